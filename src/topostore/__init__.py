@@ -1,0 +1,19 @@
+"""topostore: an OWL + SWRL ontology service for robots.
+
+The ontology lives in an Oxigraph store; OWL axioms and SWRL rules are compiled
+to SPARQL updates and run to a fixpoint on REASON.
+"""
+
+from .errors import (
+    InvalidNameError, InvalidValueError, LoadError, QueryError, QueryTimeout, RuleCompileError, TopostoreError,
+    UnknownTypeError,
+)
+from .ontology import Ontology, ReasonReport
+from .queries import QueryItem
+
+__version__ = "0.1.0"
+
+__all__ = [
+    "Ontology", "ReasonReport", "QueryItem", "TopostoreError", "InvalidNameError", "InvalidValueError",
+    "UnknownTypeError", "LoadError", "QueryError", "QueryTimeout", "RuleCompileError",
+]

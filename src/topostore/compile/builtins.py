@@ -1,0 +1,107 @@
+"""SWRL built-ins (swrlb) → SPARQL expressions.
+
+Each built-in either *tests* its arguments (a FILTER) or, for the arithmetic and
+string functions whose first argument is the result, *binds* the first argument
+when it is still unbound (a BIND) and compares it when it is bound (a FILTER).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+
+from ..errors import RuleCompileError
+from ..vocab import SWRLB
+
+#: Name of the one extension function topostore registers (swrlb:pow with a
+#: non-constant exponent); SPARQL 1.1 has no power function.
+POW_FUNCTION = "urn:topostore:fn:pow"
+
+_COMPARISONS = {
+    "equal": "=", "notEqual": "!=", "lessThan": "<", "lessThanOrEqual": "<=",
+    "greaterThan": ">", "greaterThanOrEqual": ">=",
+}
+
+
+def _trunc_div(a: str, b: str) -> str:
+    return f"xsd:integer(IF(({a} / {b}) < 0, CEIL({a} / {b}), FLOOR({a} / {b})))"
+
+
+def _pow(a: str, b: str) -> str:
+    if b.isdigit() or (b.startswith('"') and b.split('"')[1].isdigit() and "integer" in b):
+        n = int(b) if b.isdigit() else int(b.split('"')[1])
+        if n <= 16:
+            return "1" if n == 0 else "(" + " * ".join([a] * n) + ")"
+    return f"<{POW_FUNCTION}>({a}, {b})"
+
+
+# name -> (minimum args after the result, maximum (None = any), expression builder)
+_FUNCTIONS: dict[str, tuple[int, int | None, Callable[[list[str]], str]]] = {
+    "add": (1, None, lambda a: "(" + " + ".join(a) + ")"),
+    "subtract": (2, 2, lambda a: f"({a[0]} - {a[1]})"),
+    "multiply": (1, None, lambda a: "(" + " * ".join(a) + ")"),
+    "divide": (2, 2, lambda a: f"({a[0]} / {a[1]})"),
+    "integerDivide": (2, 2, lambda a: _trunc_div(a[0], a[1])),
+    "mod": (2, 2, lambda a: f"({a[0]} - {a[1]} * {_trunc_div(a[0], a[1])})"),
+    "pow": (2, 2, lambda a: _pow(a[0], a[1])),
+    "unaryPlus": (1, 1, lambda a: f"(+{a[0]})"),
+    "unaryMinus": (1, 1, lambda a: f"(-{a[0]})"),
+    "abs": (1, 1, lambda a: f"ABS({a[0]})"),
+    "round": (1, 1, lambda a: f"ROUND({a[0]})"),
+    "floor": (1, 1, lambda a: f"FLOOR({a[0]})"),
+    "ceiling": (1, 1, lambda a: f"CEIL({a[0]})"),
+    "stringConcat": (0, None, lambda a: "CONCAT(" + ", ".join(f"STR({x})" for x in a) + ")" if a else '""'),
+    "stringLength": (1, 1, lambda a: f"STRLEN({a[0]})"),
+    "upperCase": (1, 1, lambda a: f"UCASE({a[0]})"),
+    "lowerCase": (1, 1, lambda a: f"LCASE({a[0]})"),
+    "substring": (2, 3, lambda a: f"SUBSTR({', '.join(a)})"),
+}
+
+_TESTS: dict[str, tuple[int, int, Callable[[list[str]], str]]] = {
+    "contains": (2, 2, lambda a: f"CONTAINS(STR({a[0]}), STR({a[1]}))"),
+    "containsIgnoreCase": (2, 2, lambda a: f"CONTAINS(LCASE(STR({a[0]})), LCASE(STR({a[1]})))"),
+    "startsWith": (2, 2, lambda a: f"STRSTARTS(STR({a[0]}), STR({a[1]}))"),
+    "endsWith": (2, 2, lambda a: f"STRENDS(STR({a[0]}), STR({a[1]}))"),
+    "matches": (2, 3, lambda a: f"REGEX(STR({a[0]}), {', '.join(a[1:])})"),
+}
+
+SUPPORTED = sorted(set(_COMPARISONS) | set(_FUNCTIONS) | set(_TESTS))
+
+
+def translate(name: str, args: list[str], bound: set[str]) -> tuple[str, str | None] | None:
+    """SPARQL for built-in ``name`` with argument texts ``args``.
+
+    Returns ``("FILTER(...)", None)`` for a test, ``("BIND(... AS ?r)", "?r")``
+    when it binds its first argument, or None when it cannot run yet (some input
+    argument is still unbound; the caller retries after other built-ins).
+    Raises :class:`RuleCompileError` for unknown built-ins or wrong arity.
+    """
+    local = name[len(SWRLB):] if name.startswith(SWRLB) else None
+    if local is None or local not in set(SUPPORTED):
+        raise RuleCompileError(f"unsupported built-in {name}; supported: swrlb:{', swrlb:'.join(SUPPORTED)}")
+
+    def is_bound(a: str) -> bool:
+        return not a.startswith("?") or a in bound
+
+    if local in _COMPARISONS:
+        if len(args) != 2:
+            raise RuleCompileError(f"swrlb:{local} takes 2 arguments, got {len(args)}")
+        if all(is_bound(a) for a in args):
+            return f"FILTER({args[0]} {_COMPARISONS[local]} {args[1]})", None
+        if local == "equal" and is_bound(args[1]):
+            return f"BIND({args[1]} AS {args[0]})", args[0]
+        return None
+    if local in _TESTS:
+        lo, hi, build = _TESTS[local]
+        if not lo <= len(args) <= hi:
+            raise RuleCompileError(f"swrlb:{local} takes {lo}..{hi} arguments, got {len(args)}")
+        return (f"FILTER({build(args)})", None) if all(is_bound(a) for a in args) else None
+    lo, hi, build = _FUNCTIONS[local]
+    inputs = args[1:]
+    if len(args) < 1 or len(inputs) < lo or (hi is not None and len(inputs) > hi):
+        raise RuleCompileError(f"swrlb:{local} takes a result and {lo}..{hi or 'n'} arguments, got {len(args)} in all")
+    if not all(is_bound(a) for a in inputs):
+        return None
+    expr = build(inputs)
+    if is_bound(args[0]):
+        return f"FILTER({args[0]} = {expr})", None
+    return f"BIND({expr} AS {args[0]})", args[0]

@@ -1,0 +1,82 @@
+"""The ontology-independent rules, read from the ``.rq`` files in ``rules/``.
+
+Each file is a valid SPARQL query (CONSTRUCT for an inference rule, SELECT for
+a consistency check) preceded by ``# key: value`` header lines:
+
+* ``name`` — the W3C rule name; ``origin`` — where the rule comes from;
+* ``reads`` — read keys of FILTER/path lines (``p <iri-or-prefixed>``, ``t <class>``);
+* ``message`` — for checks, the explanation, with ``{var}`` placeholders;
+* ``head-graph: aux`` — the head goes to the helper graph.
+
+Inside WHERE, a line ``s p o .`` is a body atom (so the reasoner can evaluate
+it against the delta graph); any other line is kept as a filter.
+"""
+
+from __future__ import annotations
+
+import re
+from functools import cache
+from pathlib import Path
+
+from ..errors import RuleCompileError
+from ..resources import rules_dir
+from .rule import Atom, Rule
+
+PREFIXES = {
+    "owl": "http://www.w3.org/2002/07/owl#",
+    "rdf": "http://www.w3.org/1999/02/22-rdf-syntax-ns#",
+    "rdfs": "http://www.w3.org/2000/01/rdf-schema#",
+    "xsd": "http://www.w3.org/2001/XMLSchema#",
+    "ts": "urn:topostore:",
+}
+_ATOM = re.compile(r"^(\S+)\s+(\S+)\s+(\S+)\s*\.$")
+
+
+def expand(token: str) -> str:
+    """``owl:sameAs`` → ``<http://www.w3.org/2002/07/owl#sameAs>``; other tokens unchanged."""
+    if token.startswith(("?", "<", '"')) or ":" not in token:
+        return token
+    prefix, local = token.split(":", 1)
+    if prefix in PREFIXES:
+        return f"<{PREFIXES[prefix]}{local}>"
+    return token
+
+
+def parse_rule_file(path: Path) -> Rule:
+    text = path.read_text()
+    headers = dict(re.findall(r"^#\s*([a-z-]+):\s*(.*)$", text, re.M))
+    match = re.search(r"\bWHERE\s*\{(.*)\}\s*$", text, re.S)
+    if not match or "name" not in headers:
+        raise RuleCompileError(f"{path}: a rule file needs a '# name:' header and a WHERE clause")
+    body: list[Atom] = []
+    filters: list[str] = []
+    for line in (l.strip() for l in match.group(1).splitlines()):
+        if not line or line.startswith("#"):
+            continue
+        m = _ATOM.match(line)
+        if m:
+            body.append(Atom(*(expand(t) for t in m.groups())))
+        else:
+            filters.append(line)
+    reads = frozenset(
+        (kind, expand(term)) for kind, term in (r.split() for r in headers.get("reads", "").split(",") if r.strip())
+    )
+    head = None
+    violation: tuple[str, ...] = ()
+    construct = re.search(r"\bCONSTRUCT\s*\{\s*(\S+)\s+(\S+)\s+(\S+)\s*\.?\s*\}", text)
+    if construct:
+        head = Atom(*(expand(t) for t in construct.groups()))
+    else:
+        select = re.search(r"\bSELECT\s+(.*?)\s+WHERE", text, re.S)
+        if not select:
+            raise RuleCompileError(f"{path}: expected CONSTRUCT {{ s p o }} or SELECT ... WHERE")
+        violation = tuple(select.group(1).split())
+    aux_head = True if headers.get("head-graph", "").strip() == "aux" else None
+    return Rule(headers["name"].strip(), headers.get("origin", path.name).strip(), tuple(body), head,
+                "\n  ".join(filters), reads, violation, headers.get("message", "").strip(), aux_head)
+
+
+@cache
+def generic_rules(folder: Path | None = None) -> tuple[Rule, ...]:
+    folder = folder or rules_dir()
+    return tuple(parse_rule_file(p) for p in sorted(folder.glob("*.rq")))

@@ -1,0 +1,312 @@
+"""Reading OWL class expressions and axioms from the asserted graph.
+
+This is the "parser" stage of the compiler: it turns the RDF mapping of OWL 2
+(restrictions, intersections, AllDisjointClasses, ...) into small immutable
+values.  Nothing here knows about SPARQL.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from pyoxigraph import Literal, NamedNode
+
+from ..errors import RuleCompileError
+from ..store import Store
+from ..terms import Term
+from ..vocab import OWL, RDF, RDFS, XSD, THING, NOTHING, TYPE, owl, rdfs
+
+
+@dataclass(frozen=True)
+class Prop:
+    """An object or data property, possibly inverse (``owl:inverseOf`` expression)."""
+
+    iri: NamedNode
+    inverse: bool = False
+
+
+@dataclass(frozen=True)
+class Expr:
+    """A class expression.  ``node`` is its IRI (named class or skolemised blank node).
+
+    ``kind`` is one of: named, and, or, not, oneof, some, all, value, self,
+    min, max, exact.  Restrictions carry ``prop`` and, when qualified,
+    ``filler`` (an :class:`Expr`) or ``datatype`` (a data range IRI).
+    """
+
+    node: NamedNode
+    kind: str
+    members: tuple["Expr", ...] = ()
+    individuals: tuple[Term, ...] = ()
+    prop: Prop | None = None
+    filler: "Expr | None" = None
+    datatype: NamedNode | None = None
+    n: int = 0
+    value: Term | None = None
+
+    @property
+    def is_named(self) -> bool:
+        return self.kind == "named"
+
+    @property
+    def is_data(self) -> bool:
+        return self.datatype is not None
+
+    def __str__(self) -> str:  # used in rule origins and error messages
+        return describe(self)
+
+
+def describe(e: Expr) -> str:
+    def short(t: Term | None) -> str:
+        if t is None:
+            return "?"
+        v = t.value if hasattr(t, "value") else str(t)
+        return v.rsplit("#", 1)[-1] if "#" in v else v.rsplit("/", 1)[-1]
+
+    if e.kind == "named":
+        return short(e.node)
+    p = ("inverse " if e.prop and e.prop.inverse else "") + short(e.prop.iri if e.prop else None)
+    f = short(e.datatype) if e.datatype is not None else (describe(e.filler) if e.filler else "Thing")
+    if e.kind in ("and", "or"):
+        joiner = " and " if e.kind == "and" else " or "
+        return "(" + joiner.join(describe(m) for m in e.members) + ")"
+    if e.kind == "not":
+        return f"not {describe(e.members[0])}"
+    if e.kind == "oneof":
+        return "{" + ", ".join(short(i) for i in e.individuals) + "}"
+    if e.kind == "some":
+        return f"({p} some {f})"
+    if e.kind == "all":
+        return f"({p} only {f})"
+    if e.kind == "value":
+        return f"({p} value {short(e.value)})"
+    if e.kind == "self":
+        return f"({p} Self)"
+    return f"({p} {e.kind} {e.n} {f})"
+
+
+@dataclass
+class TBox:
+    """The axioms of an ontology that the compiler turns into rules."""
+
+    subclass: list[tuple[Expr, Expr]] = field(default_factory=list)
+    equivalent: list[tuple[Expr, Expr]] = field(default_factory=list)
+    disjoint: list[tuple[Expr, Expr]] = field(default_factory=list)
+    domain: list[tuple[Prop, Expr]] = field(default_factory=list)
+    range: list[tuple[Prop, Expr]] = field(default_factory=list)
+    data_range: list[tuple[NamedNode, NamedNode]] = field(default_factory=list)
+    subproperty: list[tuple[Prop, Prop]] = field(default_factory=list)
+    inverse: list[tuple[NamedNode, NamedNode]] = field(default_factory=list)
+    chains: list[tuple[NamedNode, tuple[Prop, ...]]] = field(default_factory=list)
+    disjoint_props: list[tuple[NamedNode, NamedNode]] = field(default_factory=list)
+    characteristics: dict[str, set[NamedNode]] = field(default_factory=dict)
+    data_properties: set[NamedNode] = field(default_factory=set)
+    object_properties: set[NamedNode] = field(default_factory=set)
+    named_classes: set[NamedNode] = field(default_factory=set)
+    typed_expressions: list[Expr] = field(default_factory=list)  # anonymous classes used in rdf:type
+
+    def has(self, characteristic: str, p: NamedNode) -> bool:
+        return p in self.characteristics.get(characteristic, set())
+
+
+_CHARACTERISTICS = (
+    "FunctionalProperty", "InverseFunctionalProperty", "TransitiveProperty", "SymmetricProperty",
+    "AsymmetricProperty", "IrreflexiveProperty", "ReflexiveProperty",
+)
+_DATATYPE_NAMESPACES = (XSD, RDFS + "Literal", RDF + "PlainLiteral", RDF + "langString", OWL + "real", OWL + "rational")
+
+
+def is_datatype(node: Term) -> bool:
+    return isinstance(node, NamedNode) and any(node.value.startswith(ns) for ns in _DATATYPE_NAMESPACES)
+
+
+class TBoxReader:
+    """Reads a :class:`TBox` from one graph of a :class:`Store`."""
+
+    def __init__(self, store: Store, graph: NamedNode) -> None:
+        self.store = store
+        self.graph = graph
+        self._cache: dict[Term, Expr] = {}
+        self._declared_data = {s for s in store.subjects(TYPE, owl("DatatypeProperty"), graph) if isinstance(s, NamedNode)}
+        self._declared_object = {s for s in store.subjects(TYPE, owl("ObjectProperty"), graph) if isinstance(s, NamedNode)}
+
+    # ---------------------------------------------------------------- helpers
+    def _one(self, s: Term, p: str) -> Term | None:
+        values = self.store.objects(s, NamedNode(p), self.graph)
+        return values[0] if values else None
+
+    def _list(self, head: Term) -> list[Term]:
+        return self.store.list_items(head, self.graph)
+
+    def prop(self, node: Term) -> Prop:
+        if isinstance(node, NamedNode) and node.value.startswith("urn:topostore:bnode:"):
+            inner = self._one(node, OWL + "inverseOf")
+            if isinstance(inner, NamedNode):
+                return Prop(inner, inverse=True)
+            raise RuleCompileError(f"unsupported property expression {node}")
+        if not isinstance(node, NamedNode):
+            raise RuleCompileError(f"unsupported property expression {node}")
+        return Prop(node)
+
+    # ---------------------------------------------------------------- classes
+    def expr(self, node: Term) -> Expr:
+        """The class expression whose RDF node is ``node``."""
+        if node in self._cache:
+            return self._cache[node]
+        if not isinstance(node, NamedNode):
+            raise RuleCompileError(f"a literal {node} used as a class")
+        self._cache[node] = Expr(node, "named")  # guards against cyclic structures
+        expr = self._read(node)
+        self._cache[node] = expr
+        return expr
+
+    def _read(self, node: NamedNode) -> Expr:
+        if not node.value.startswith("urn:topostore:bnode:"):
+            return Expr(node, "named")
+        for kind, pred in (("and", "intersectionOf"), ("or", "unionOf")):
+            head = self._one(node, OWL + pred)
+            if head is not None:
+                return Expr(node, kind, members=tuple(self.expr(m) for m in self._list(head)))
+        comp = self._one(node, OWL + "complementOf")
+        if comp is not None:
+            return Expr(node, "not", members=(self.expr(comp),))
+        one_of = self._one(node, OWL + "oneOf")
+        if one_of is not None:
+            return Expr(node, "oneof", individuals=tuple(self._list(one_of)))
+        on_prop = self._one(node, OWL + "onProperty")
+        if on_prop is not None:
+            return self._restriction(node, self.prop(on_prop))
+        raise RuleCompileError(f"unsupported or malformed class expression {node.value}")
+
+    def _filler(self, node: NamedNode, prop: Prop, value: Term | None) -> tuple[Expr | None, NamedNode | None]:
+        """(class filler, data range) of a restriction; (None, None) when unqualified."""
+        for pred in ("onClass", "onDataRange"):
+            v = self._one(node, OWL + pred)
+            if v is not None:
+                value = v
+        if value is None:
+            return None, None
+        if pred_is_data(value, prop, self):
+            if not isinstance(value, NamedNode) or value.value.startswith("urn:topostore:bnode:"):
+                raise RuleCompileError(f"unsupported data range in restriction on {prop.iri.value}")
+            return None, value
+        if value == THING:
+            return None, None
+        return self.expr(value), None
+
+    def _restriction(self, node: NamedNode, prop: Prop) -> Expr:
+        some = self._one(node, OWL + "someValuesFrom")
+        if some is not None:
+            filler, dt = self._filler(node, prop, some)
+            return Expr(node, "some", prop=prop, filler=filler, datatype=dt)
+        all_ = self._one(node, OWL + "allValuesFrom")
+        if all_ is not None:
+            filler, dt = self._filler(node, prop, all_)
+            return Expr(node, "all", prop=prop, filler=filler, datatype=dt)
+        has_value = self._one(node, OWL + "hasValue")
+        if has_value is not None:
+            return Expr(node, "value", prop=prop, value=has_value)
+        if self._one(node, OWL + "hasSelf") is not None:
+            return Expr(node, "self", prop=prop)
+        for kind, names in (
+            ("min", ("minCardinality", "minQualifiedCardinality")),
+            ("max", ("maxCardinality", "maxQualifiedCardinality")),
+            ("exact", ("cardinality", "qualifiedCardinality")),
+        ):
+            for name in names:
+                n = self._one(node, OWL + name)
+                if n is not None:
+                    if not isinstance(n, Literal) or not n.value.strip().isdigit():
+                        raise RuleCompileError(f"cardinality {n} of a restriction on {prop.iri.value} is not a number")
+                    filler, dt = self._filler(node, prop, None)
+                    return Expr(node, kind, prop=prop, filler=filler, datatype=dt, n=int(n.value))
+        raise RuleCompileError(f"unsupported restriction on {prop.iri.value}")
+
+    # ---------------------------------------------------------------- axioms
+    def read(self) -> TBox:
+        tb = TBox()
+        st, g = self.store, self.graph
+        tb.data_properties = set(self._declared_data)
+        tb.object_properties = set(self._declared_object)
+        for name in _CHARACTERISTICS:
+            tb.characteristics[name] = {s for s in st.subjects(TYPE, owl(name), g) if isinstance(s, NamedNode)}
+        tb.named_classes = {s for s in st.subjects(TYPE, owl("Class"), g) if not s.value.startswith("urn:topostore:bnode:")}
+
+        for t in st.triples(None, rdfs("subClassOf"), None, g):
+            tb.subclass.append((self.expr(t.subject), self.expr(t.object)))
+        for t in st.triples(None, owl("equivalentClass"), None, g):
+            tb.equivalent.append((self.expr(t.subject), self.expr(t.object)))
+        for t in st.triples(None, owl("disjointWith"), None, g):
+            tb.disjoint.append((self.expr(t.subject), self.expr(t.object)))
+        for node in st.subjects(TYPE, owl("AllDisjointClasses"), g):
+            members = [self.expr(m) for m in self._list(self._one(node, OWL + "members"))]
+            tb.disjoint += [(a, b) for i, a in enumerate(members) for b in members[i + 1:]]
+        for t in st.triples(None, owl("disjointUnionOf"), None, g):
+            members = [self.expr(m) for m in self._list(t.object)]
+            tb.disjoint += [(a, b) for i, a in enumerate(members) for b in members[i + 1:]]
+            union = Expr(t.subject, "or", members=tuple(members))
+            tb.subclass += [(m, self.expr(t.subject)) for m in members]
+            del union
+
+        for t in st.triples(None, rdfs("domain"), None, g):
+            tb.domain.append((self.prop(t.subject), self.expr(t.object)))
+        for t in st.triples(None, rdfs("range"), None, g):
+            p = self.prop(t.subject)
+            if is_datatype(t.object) or p.iri in tb.data_properties:
+                tb.data_properties.add(p.iri)
+                if isinstance(t.object, NamedNode) and not t.object.value.startswith("urn:topostore:bnode:"):
+                    tb.data_range.append((p.iri, t.object))
+            else:
+                tb.range.append((p, self.expr(t.object)))
+        for t in st.triples(None, rdfs("subPropertyOf"), None, g):
+            tb.subproperty.append((self.prop(t.subject), self.prop(t.object)))
+        for t in st.triples(None, owl("equivalentProperty"), None, g):
+            a, b = self.prop(t.subject), self.prop(t.object)
+            tb.subproperty += [(a, b), (b, a)]
+        for t in st.triples(None, owl("inverseOf"), None, g):
+            if isinstance(t.subject, NamedNode) and not t.subject.value.startswith("urn:topostore:bnode:"):
+                tb.inverse.append((t.subject, t.object))
+        for t in st.triples(None, owl("propertyChainAxiom"), None, g):
+            tb.chains.append((t.subject, tuple(self.prop(p) for p in self._list(t.object))))
+        for t in st.triples(None, owl("propertyDisjointWith"), None, g):
+            tb.disjoint_props.append((t.subject, t.object))
+        for node in st.subjects(TYPE, owl("AllDisjointProperties"), g):
+            members = self._list(self._one(node, OWL + "members"))
+            tb.disjoint_props += [(a, b) for i, a in enumerate(members) for b in members[i + 1:]]
+
+        # anonymous class expressions used directly as types of individuals
+        for t in st.triples(None, TYPE, None, g):
+            o = t.object
+            if isinstance(o, NamedNode) and o.value.startswith("urn:topostore:bnode:") and not _is_axiom_node(st, o, g):
+                try:
+                    tb.typed_expressions.append(self.expr(o))
+                except RuleCompileError:
+                    continue
+        for e in self._cache.values():
+            if e.is_named and e.node not in (THING, NOTHING) and not is_datatype(e.node):
+                tb.named_classes.add(e.node)
+        return tb
+
+
+def _is_axiom_node(store: Store, node: NamedNode, graph: NamedNode) -> bool:
+    """True for blank nodes that are axioms (AllDifferent, SWRL atoms, ...), not class expressions."""
+    return not (
+        store.objects(node, NamedNode(OWL + "onProperty"), graph)
+        or store.objects(node, NamedNode(OWL + "intersectionOf"), graph)
+        or store.objects(node, NamedNode(OWL + "unionOf"), graph)
+        or store.objects(node, NamedNode(OWL + "complementOf"), graph)
+        or store.objects(node, NamedNode(OWL + "oneOf"), graph)
+    )
+
+
+def pred_is_data(value: Term, prop: Prop, reader: TBoxReader) -> bool:
+    """Whether a restriction filler is a data range (by the filler or by the property's declaration)."""
+    if is_datatype(value):
+        return True
+    if isinstance(value, NamedNode) and value.value.startswith("urn:topostore:bnode:"):
+        # a data range expression (datatype restriction, oneOf of literals)
+        if reader.store.objects(value, NamedNode(OWL + "onDatatype"), reader.graph):
+            return True
+        if reader.store.objects(value, TYPE, reader.graph) == [NamedNode(RDFS + "Datatype")]:
+            return True
+    return prop.iri in reader._declared_data

@@ -1,0 +1,358 @@
+"""OWL axioms → rules.
+
+Implements the OWL 2 RL/RDF rules (W3C OWL 2 Profiles §4.3) for the axioms an
+ontology actually contains, each rule instantiated for one axiom, plus what a
+tableau reasoner such as Pellet concludes beyond OWL 2 RL on this kind of
+ontology:
+
+* membership by qualified minimum cardinality (≥ n fillers that are pairwise
+  different) and by exact cardinality (when a maximum is also known);
+* subsumption between restrictions (≥ n by ≥ m for m ≤ n, and by someValuesFrom),
+  so that e.g. every ``≥2 hasDoor.DOOR`` is also ``∃hasDoor.DOOR``;
+* domain/range typing, functional properties merging individuals (owl:sameAs)
+  unless they are known to be different, in which case the ontology is inconsistent.
+
+Rule names are the W3C names (``prp-dom``, ``cls-int1``, ...) or ``ext-*`` for
+the extensions; the origin says which axiom the rule was made from.
+"""
+
+from __future__ import annotations
+
+from itertools import combinations
+
+from pyoxigraph import NamedNode
+
+from ..terms import sparql
+from ..vocab import NOTHING, SAME_AS, THING, TYPE
+from .model import Expr, Prop, TBox
+from .rule import Atom, Rule
+from .snippets import DIFFERENT_READS, declared_different, distinct_values, entailed_different, in_datatype
+
+T = str(TYPE)
+
+
+class OwlCompiler:
+    def __init__(self, tbox: TBox) -> None:
+        self.tb = tbox
+        self.rules: list[Rule] = []
+        self.disjoint_pairs = [
+            (a.node, b.node) for a, b in tbox.disjoint if a.is_named and b.is_named
+        ]
+        self.told = self._told_superclasses()
+        self._var = 0
+
+    # ------------------------------------------------------------------ helpers
+    def fresh(self, base: str = "v") -> str:
+        self._var += 1
+        return f"?{base}{self._var}"
+
+    @staticmethod
+    def member(var: str, e: Expr | None) -> list[Atom]:
+        """Atoms saying ``var`` is an instance of ``e`` (none for owl:Thing)."""
+        if e is None or e.node == THING:
+            return []
+        return [Atom(var, T, sparql(e.node))]
+
+    @staticmethod
+    def prop_atom(s: str, p: Prop, o: str) -> Atom:
+        return Atom(o, sparql(p.iri), s) if p.inverse else Atom(s, sparql(p.iri), o)
+
+    def is_data(self, p: Prop, e: Expr | None = None) -> bool:
+        return (e is not None and e.is_data) or p.iri in self.tb.data_properties
+
+    def emit(self, name: str, origin: str, body: list[Atom], head: Atom | None = None,
+             filters: str = "", reads: frozenset = frozenset(), violation: tuple[str, ...] = (), message: str = "",
+             stratum: int = 0) -> None:
+        self.rules.append(Rule(name, origin, tuple(body), head, filters, reads, violation, message, stratum=stratum))
+
+    def type_head(self, var: str, e: Expr) -> Atom | None:
+        return None if e.node == THING else Atom(var, T, sparql(e.node))
+
+    def different(self, a: str, b: str, data: bool) -> tuple[str, frozenset]:
+        if data:
+            return distinct_values(a, b), frozenset()
+        return entailed_different(a, b, self.disjoint_pairs)
+
+    def _told_superclasses(self) -> dict[NamedNode, set[NamedNode]]:
+        """Named-class subsumption told by the axioms (closure), for comparing fillers."""
+        edges: dict[NamedNode, set[NamedNode]] = {}
+
+        def link(a: Expr, b: Expr) -> None:
+            if a.is_named and b.is_named:
+                edges.setdefault(a.node, set()).add(b.node)
+            elif a.is_named and b.kind == "and":
+                for m in b.members:
+                    link(a, m)
+
+        for a, b in self.tb.subclass:
+            link(a, b)
+        for a, b in self.tb.equivalent:
+            link(a, b)
+            link(b, a)
+        closure: dict[NamedNode, set[NamedNode]] = {}
+        for start in edges:
+            seen, todo = set(), [start]
+            while todo:
+                for nxt in edges.get(todo.pop(), ()):
+                    if nxt not in seen:
+                        seen.add(nxt)
+                        todo.append(nxt)
+            closure[start] = seen
+        return closure
+
+    def filler_subsumed(self, a: Expr, b: Expr) -> bool:
+        """Told: every instance of filler ``a`` is an instance of filler ``b`` (None = Thing)."""
+        if b.filler is None and b.datatype is None:
+            return True
+        if a.datatype is not None or b.datatype is not None:
+            return a.datatype == b.datatype
+        if a.filler is None:
+            return False
+        if a.filler.node == b.filler.node:
+            return True
+        return a.filler.is_named and b.filler.node in self.told.get(a.filler.node, set())
+
+    # ------------------------------------------------------------------ expressions
+    def all_expressions(self) -> list[Expr]:
+        found: dict[NamedNode, Expr] = {}
+
+        def walk(e: Expr | None) -> None:
+            if e is None or e.node in found:
+                return
+            found[e.node] = e
+            for m in e.members:
+                walk(m)
+            walk(e.filler)
+
+        tb = self.tb
+        for a, b in tb.subclass + tb.equivalent + tb.disjoint:
+            walk(a)
+            walk(b)
+        for _, e in tb.domain + tb.range:
+            walk(e)
+        for e in tb.typed_expressions:
+            walk(e)
+        return list(found.values())
+
+    def expression_rules(self, e: Expr) -> None:
+        x = "?x"
+        node = sparql(e.node)
+        origin = f"class expression {e}"
+        if e.kind == "and":
+            body = [a for m in e.members for a in self.member(x, m)]
+            if body:
+                self.emit("cls-int1", origin, body, Atom(x, T, node))
+            for m in e.members:
+                head = self.type_head(x, m)
+                if head:
+                    self.emit("cls-int2", origin, [Atom(x, T, node)], head)
+        elif e.kind == "or":
+            for m in e.members:
+                if m.node != THING:
+                    self.emit("cls-uni", origin, self.member(x, m), Atom(x, T, node))
+        elif e.kind == "oneof":
+            for ind in e.individuals:
+                self.emit("cls-oo", origin, [], Atom(sparql(ind), T, node))
+        elif e.kind == "not":
+            self.emit("cls-com", origin, [Atom(x, T, node)] + self.member(x, e.members[0]),
+                      violation=(x,), message=f"an individual is in {e.members[0]} and in its complement")
+        elif e.kind == "value":
+            self.emit("cls-hv1", origin, [Atom(x, T, node)], self.prop_atom(x, e.prop, sparql(e.value)))
+            self.emit("cls-hv2", origin, [self.prop_atom(x, e.prop, sparql(e.value))], Atom(x, T, node))
+        elif e.kind == "self":
+            self.emit("cls-self1", origin, [Atom(x, T, node)], self.prop_atom(x, e.prop, x))
+            self.emit("cls-self2", origin, [self.prop_atom(x, e.prop, x)], Atom(x, T, node))
+        elif e.kind == "all":
+            self._all_rules(e, node, origin)
+        elif e.kind in ("some", "min", "exact"):
+            self._lower_bound_rules(e, node, origin)
+        if e.kind in ("max", "exact"):
+            self._upper_bound_rules(e, node, origin)
+
+    def _filler_test(self, var: str, e: Expr) -> tuple[list[Atom], str]:
+        if e.datatype is not None:
+            test = in_datatype(var, e.datatype)
+            return [], (f"FILTER({test})" if test else f"FILTER(isLiteral({var}))")
+        if self.is_data(e.prop, e):
+            return [], f"FILTER(isLiteral({var}))"
+        return self.member(var, e.filler), ""
+
+    def _fillers(self, e: Expr, x: str, n: int) -> tuple[list[Atom], list[str], frozenset, list[str]]:
+        """Body atoms for ``n`` pairwise-different fillers of restriction ``e`` on ``x``."""
+        ys = [f"?y{i}" for i in range(1, n + 1)]
+        atoms: list[Atom] = []
+        filters: list[str] = []
+        reads: set = set()
+        for y in ys:
+            atoms.append(self.prop_atom(x, e.prop, y))
+            more, test = self._filler_test(y, e)
+            atoms += more
+            if test:
+                filters.append(test)
+        data = self.is_data(e.prop, e)
+        for a, b in combinations(ys, 2):
+            text, r = self.different(a, b, data)
+            filters.append(f"FILTER({text})")
+            reads |= r
+        return atoms, filters, frozenset(reads), ys
+
+    def _lower_bound_rules(self, e: Expr, node: str, origin: str) -> None:
+        x = "?x"
+        n = 1 if e.kind == "some" else e.n
+        if n == 0:
+            return
+        atoms, filters, reads, _ = self._fillers(e, x, n)
+        name = {"some": "cls-svf1", "min": "ext-min-card"}.get(e.kind, "ext-exact-card")
+        if e.kind != "exact":
+            self.emit(name, origin, atoms, Atom(x, T, node), "\n  ".join(filters), reads)
+            return
+        # exact: the minimum is met; a maximum must be known too
+        if e.n == 1 and not e.prop.inverse and self.tb.has("FunctionalProperty", e.prop.iri):
+            self.emit(name, origin + " (functional property)", atoms, Atom(x, T, node), "\n  ".join(filters), reads)
+        for m in self.all_expressions():
+            if m.node != e.node and m.kind in ("max", "exact") and m.prop == e.prop and m.n <= e.n and self.filler_subsumed(e, m):
+                self.emit(name, origin + f" (maximum known from {m})", atoms + [Atom(x, T, sparql(m.node))],
+                          Atom(x, T, node), "\n  ".join(filters), reads)
+
+    def _upper_bound_rules(self, e: Expr, node: str, origin: str) -> None:
+        x = "?x"
+        data = self.is_data(e.prop, e)
+        if e.n == 0:
+            atoms, filters, _, _ = self._fillers(e, x, 1)
+            self.emit("cls-maxqc2" if e.filler or e.datatype else "cls-maxc1", origin, [Atom(x, T, node)] + atoms,
+                      filters="\n  ".join(filters), violation=(x, "?y1"), message=f"{{x}} has a value of {e.prop.iri.value} but is in {e}")
+            return
+        atoms, filters, reads, ys = self._fillers(e, x, e.n + 1)
+        self.emit("cls-maxqc3" if e.filler or e.datatype else "cls-maxc2", origin, [Atom(x, T, node)] + atoms,
+                  filters="\n  ".join(filters), reads=reads, violation=(x, *ys),
+                  message=f"{{x}} has more than {e.n} different values of {e.prop.iri.value} but is in {e}")
+        if e.n == 1 and not data:
+            # two values that are not known different are the same individual
+            y1, y2 = "?y1", "?y2"
+            body = [Atom(x, T, node)]
+            for y in (y1, y2):
+                body.append(self.prop_atom(x, e.prop, y))
+                more, test = self._filler_test(y, e)
+                body += more
+            text, r = self.different(y1, y2, False)
+            self.emit("cls-maxqc4" if e.filler else "cls-maxc2", origin, body, Atom(y1, str(SAME_AS), y2),
+                      f"FILTER(!sameTerm({y1}, {y2}) && isIRI({y1}) && isIRI({y2}) && !({text}))", r, stratum=1)
+
+    def _all_rules(self, e: Expr, node: str, origin: str) -> None:
+        x, y = "?x", "?y"
+        body = [Atom(x, T, node), self.prop_atom(x, e.prop, y)]
+        if e.datatype is not None:
+            test = in_datatype(y, e.datatype)
+            if test:
+                self.emit("cls-avf", origin, body, filters=f"FILTER(!({test}))", violation=(x, y),
+                          message=f"{{x}} has a value outside {e.datatype.value} for {e.prop.iri.value}")
+        elif e.filler is not None and e.filler.node != THING:
+            self.emit("cls-avf", origin, body, Atom(y, T, sparql(e.filler.node)))
+
+    def restriction_subsumption(self, exprs: list[Expr]) -> None:
+        """≥n p.C ⊑ ≥m p.D (n ≥ m ≥ 1, C ⊑ D), with ∃ as ≥1 and = n as ≥ n."""
+        lower = [e for e in exprs if e.kind in ("some", "min", "exact")]
+        for a in lower:
+            for b in lower:
+                if a.node == b.node or b.kind == "exact" or a.prop != b.prop:
+                    continue
+                na = 1 if a.kind == "some" else a.n
+                nb = 1 if b.kind == "some" else b.n
+                if na >= nb >= 1 and self.filler_subsumed(a, b):
+                    self.emit("ext-card-sub", f"{a} is subsumed by {b}", [Atom("?x", T, sparql(a.node))],
+                              Atom("?x", T, sparql(b.node)))
+
+    # ------------------------------------------------------------------ axioms
+    def class_axioms(self) -> None:
+        for a, b in self.tb.subclass:
+            self._subclass(a, b, f"{a} SubClassOf {b}")
+        for a, b in self.tb.equivalent:
+            self._subclass(a, b, f"{a} EquivalentTo {b}", "cax-eqc1")
+            self._subclass(b, a, f"{a} EquivalentTo {b}", "cax-eqc2")
+        for a, b in self.tb.disjoint:
+            body = self.member("?x", a) + self.member("?x", b)
+            if body:
+                self.emit("cax-dw", f"{a} DisjointWith {b}", body, violation=("?x",),
+                          message=f"{{x}} is in the disjoint classes {a} and {b}")
+        self.emit("cls-nothing2", "owl:Nothing has no instances", [Atom("?x", T, sparql(NOTHING))], violation=("?x",),
+                  message="{x} is an instance of owl:Nothing")
+
+    def _subclass(self, a: Expr, b: Expr, origin: str, name: str = "cax-sco") -> None:
+        if a.node == b.node or b.node == THING or a.node == THING:
+            return
+        self.emit(name, origin, self.member("?x", a), Atom("?x", T, sparql(b.node)))
+
+    def property_axioms(self) -> None:
+        tb = self.tb
+        x, y, z = "?x", "?y", "?z"
+        for p, c in tb.domain:
+            if c.node != THING:
+                self.emit("prp-dom", f"{p.iri.value} domain {c}", [self.prop_atom(x, p, y)], Atom(x, T, sparql(c.node)))
+        for p, c in tb.range:
+            if c.node != THING:
+                self.emit("prp-rng", f"{p.iri.value} range {c}", [self.prop_atom(x, p, y)], Atom(y, T, sparql(c.node)))
+        for p, dt in tb.data_range:
+            test = in_datatype(y, dt)
+            if test:
+                self.emit("dt-range", f"{p.value} range {dt.value}", [Atom(x, sparql(p), y)], filters=f"FILTER(!({test}))",
+                          violation=(x, y), message=f"{{x}} has the value {{y}} of {p.value}, outside its range {dt.value}")
+        for p, q in tb.subproperty:
+            if p != q:
+                self.emit("prp-spo1", f"{p.iri.value} SubPropertyOf {q.iri.value}", [self.prop_atom(x, p, y)], self.prop_atom(x, q, y))
+        for p, q in tb.inverse:
+            origin = f"{p.value} InverseOf {q.value}"
+            self.emit("prp-inv1", origin, [Atom(x, sparql(p), y)], Atom(y, sparql(q), x))
+            self.emit("prp-inv2", origin, [Atom(x, sparql(q), y)], Atom(y, sparql(p), x))
+        for q, chain in tb.chains:
+            vars_ = [f"?u{i}" for i in range(len(chain) + 1)]
+            body = [self.prop_atom(vars_[i], p, vars_[i + 1]) for i, p in enumerate(chain)]
+            self.emit("prp-spo2", f"{q.value} chain of {' o '.join(p.iri.value for p in chain)}", body, Atom(vars_[0], sparql(q), vars_[-1]))
+        for p, q in tb.disjoint_props:
+            self.emit("prp-pdw", f"{p.value} DisjointWith {q.value}", [Atom(x, sparql(p), y), Atom(x, sparql(q), y)],
+                      violation=(x, y), message=f"{{x}} is linked to {{y}} by the disjoint properties {p.value} and {q.value}")
+        ch = tb.characteristics
+        for p in ch.get("SymmetricProperty", ()):
+            self.emit("prp-symp", f"{p.value} is symmetric", [Atom(x, sparql(p), y)], Atom(y, sparql(p), x))
+        for p in ch.get("TransitiveProperty", ()):
+            self.emit("prp-trp", f"{p.value} is transitive", [Atom(x, sparql(p), y), Atom(y, sparql(p), z)], Atom(x, sparql(p), z))
+        for p in ch.get("AsymmetricProperty", ()):
+            self.emit("prp-asyp", f"{p.value} is asymmetric", [Atom(x, sparql(p), y), Atom(y, sparql(p), x)],
+                      violation=(x, y), message=f"{{x}} and {{y}} are linked both ways by the asymmetric {p.value}")
+        for p in ch.get("IrreflexiveProperty", ()):
+            self.emit("prp-irp", f"{p.value} is irreflexive", [Atom(x, sparql(p), x)], violation=(x,),
+                      message=f"{{x}} is linked to itself by the irreflexive {p.value}")
+        for p in ch.get("FunctionalProperty", ()):
+            self._functional(p, inverse=False)
+        for p in ch.get("InverseFunctionalProperty", ()):
+            self._functional(p, inverse=True)
+
+    def _functional(self, p: NamedNode, inverse: bool) -> None:
+        x, y1, y2 = "?x", "?y1", "?y2"
+        prop = Prop(p, inverse)
+        data = not inverse and p in self.tb.data_properties
+        body = [self.prop_atom(x, prop, y1), self.prop_atom(x, prop, y2)]
+        name = "prp-ifp" if inverse else "prp-fp"
+        kind = "inverse functional" if inverse else "functional"
+        text, reads = self.different(y1, y2, data)
+        self.emit(name, f"{p.value} is {kind}", body, filters=f"FILTER({text})", reads=reads, violation=(x, y1, y2),
+                  message=f"{{x}} has the different values {{y1}} and {{y2}} of the {kind} property {p.value}")
+        if not data:
+            self.emit(name, f"{p.value} is {kind}", body, Atom(y1, str(SAME_AS), y2),
+                      f"FILTER(!sameTerm({y1}, {y2}) && isIRI({y1}) && isIRI({y2}) && !({text}))", reads, stratum=1)
+
+    def compile(self) -> list[Rule]:
+        exprs = self.all_expressions()
+        for e in exprs:
+            if not e.is_named:
+                self.expression_rules(e)
+        self.restriction_subsumption(exprs)
+        self.class_axioms()
+        self.property_axioms()
+        return self.rules
+
+
+def compile_owl(tbox: TBox) -> list[Rule]:
+    return OwlCompiler(tbox).compile()
+
+
+__all__ = ["compile_owl", "OwlCompiler", "DIFFERENT_READS", "declared_different"]

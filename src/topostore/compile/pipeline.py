@@ -1,0 +1,34 @@
+"""compile_ontology: asserted graph → RuleSet (generic + OWL + SWRL rules)."""
+
+from __future__ import annotations
+
+from pyoxigraph import NamedNode
+
+from ..store import Store
+from .generic import generic_rules
+from .model import TBoxReader
+from .owl import OwlCompiler
+from .rule import RuleSet
+from .swrl import SwrlCompiler
+
+
+def compile_ontology(store: Store, graph: NamedNode) -> RuleSet:
+    """All rules for the ontology in ``graph``.
+
+    Raises :class:`~topostore.errors.RuleCompileError` naming the rule and atom
+    when a SWRL rule or an axiom cannot be translated.
+    """
+    reader = TBoxReader(store, graph)
+    tbox = reader.read()
+    swrl = SwrlCompiler(store, graph, reader)
+    swrl_rules = swrl.compile()
+    tbox.typed_expressions.extend(swrl.expressions)
+    owl = OwlCompiler(tbox)
+    rules = RuleSet()
+    rules.add(generic_rules())
+    rules.add(owl.compile())
+    rules.add(swrl_rules)
+    rules.named_classes = set(tbox.named_classes)
+    rules.data_properties = set(tbox.data_properties)
+    rules.object_properties = set(tbox.object_properties)
+    return rules

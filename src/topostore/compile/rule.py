@@ -1,0 +1,145 @@
+"""The :class:`Rule` value: what a rule reads, what it writes, where it comes from.
+
+A rule is kept structured (body atoms apart from filters) rather than as one
+SPARQL string, because the reasoner needs to evaluate it in several ways: in
+full, or with one body atom restricted to the facts derived in the previous
+round (semi-naive evaluation), and it needs to know which predicates and
+classes a rule reads to skip rules nothing new can trigger.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+from dataclasses import dataclass, field
+
+from pyoxigraph import NamedNode
+
+from ..vocab import TYPE, is_internal
+
+#: A read key: ("p", predicate IRI), ("t", class IRI) for ``?x rdf:type <C>``,
+#: or ("*",) for a pattern with a variable predicate (reads everything).
+ReadKey = tuple
+
+
+@dataclass(frozen=True)
+class Atom:
+    """One triple pattern; terms are SPARQL text (variables or rendered terms).
+
+    ``aux`` marks a pattern over the reasoner's helper graph (anonymous class
+    memberships, AllDifferent groups), which users never see.
+    """
+
+    s: str
+    p: str
+    o: str
+    aux: bool = False
+
+    def text(self) -> str:
+        return f"{self.s} {self.p} {self.o} ."
+
+    def read_key(self) -> ReadKey:
+        if self.p.startswith("?"):
+            return ("*",)
+        if self.p == str(TYPE) and not self.o.startswith("?"):
+            return ("t", self.o)
+        return ("p", self.p)
+
+    def variables(self) -> set[str]:
+        return {t for t in (self.s, self.p, self.o) if t.startswith("?")}
+
+
+def head_is_aux(p: str, o: str) -> bool:
+    """Whether a derived triple belongs in the helper graph rather than the inferred one."""
+    for term in (p, o):
+        if term.startswith("<") and is_internal(NamedNode(term[1:-1])) and not term.startswith("<urn:topostore:bnode:"):
+            return True
+    # memberships of anonymous class expressions (skolemised blank nodes)
+    return p == str(TYPE) and o.startswith("<urn:topostore:bnode:")
+
+
+@dataclass(frozen=True)
+class Rule:
+    """A Horn rule: if ``body`` (and ``filters``) match, ``head`` holds.
+
+    A rule with ``violation`` set is a consistency check instead: every match is
+    an inconsistency, reported with the variables listed in ``violation``.
+    """
+
+    name: str
+    origin: str
+    body: tuple[Atom, ...]
+    head: Atom | None = None
+    filters: str = ""
+    filter_reads: frozenset = frozenset()
+    violation: tuple[str, ...] = ()
+    message: str = ""
+    #: where the head goes: None decides from the head's terms, True = helper graph
+    aux_head: bool | None = None
+    #: evaluation stratum: rules with negated premises ("not known different")
+    #: run only once everything they negate has reached its fixpoint
+    stratum: int = 0
+
+    @property
+    def is_check(self) -> bool:
+        return self.head is None
+
+    def reads(self) -> frozenset:
+        return frozenset(a.read_key() for a in self.body) | self.filter_reads
+
+    def writes(self) -> ReadKey | None:
+        return self.head.read_key() if self.head else None
+
+    def head_aux(self) -> bool:
+        if self.aux_head is not None:
+            return self.aux_head
+        return self.head is not None and head_is_aux(self.head.p, self.head.o)
+
+    def where(self, delta_index: int | None = None, delta_graph: str = "") -> str:
+        """The WHERE group; with ``delta_index``, that atom reads only the delta graph."""
+        lines = []
+        for i, atom in enumerate(self.body):
+            if i == delta_index:
+                lines.append(f"GRAPH {delta_graph} {{ {atom.text()} }}")
+            elif atom.aux:
+                lines.append(f"GRAPH <urn:topostore:graph:aux> {{ {atom.text()} }}")
+            else:
+                lines.append(atom.text())
+        if self.filters:
+            lines.append(self.filters)
+        return "\n  ".join(lines)
+
+    def sparql(self) -> str:
+        """A readable rendering (CONSTRUCT or SELECT over the union graph), for `topostore rules`."""
+        body = self.where()
+        if self.head is not None:
+            return f"# {self.name}: {self.origin}\nCONSTRUCT {{ {self.head.text()} }}\nWHERE {{\n  {body}\n}}"
+        proj = " ".join(self.violation) or "*"
+        return f"# {self.name}: {self.origin} (inconsistent when it matches)\nSELECT {proj}\nWHERE {{\n  {body}\n}}"
+
+
+@dataclass
+class RuleSet:
+    """All rules of one ontology, plus schema facts the query layer needs."""
+
+    rules: list[Rule] = field(default_factory=list)
+    #: named class -> its named superclasses (told and entailed), for class queries
+    superclasses: dict[NamedNode, set[NamedNode]] = field(default_factory=dict)
+    named_classes: set[NamedNode] = field(default_factory=set)
+    data_properties: set[NamedNode] = field(default_factory=set)
+    object_properties: set[NamedNode] = field(default_factory=set)
+
+    def add(self, rules: Iterable[Rule]) -> None:
+        seen = {(r.name, r.where(), r.head) for r in self.rules}
+        for r in rules:
+            key = (r.name, r.where(), r.head)
+            if key not in seen:
+                seen.add(key)
+                self.rules.append(r)
+
+    @property
+    def inference_rules(self) -> list[Rule]:
+        return [r for r in self.rules if not r.is_check]
+
+    @property
+    def checks(self) -> list[Rule]:
+        return [r for r in self.rules if r.is_check]

@@ -1,0 +1,411 @@
+"""An ontology reference: store + compiled rules + reasoner.  The Python API.
+
+>>> from topostore import Ontology
+>>> onto = Ontology.from_file("ontology/topological_map.ttl", "ontology/topological_map_abox.ttl")
+>>> onto.reason().consistent
+True
+>>> sorted(onto.object_values("canReach", "Robot1"))
+['R1', 'R2']
+
+Manipulations change the asserted graph only; :meth:`Ontology.reason`
+recomputes the inferred graph from the asserted graph as it is *now*, so
+conclusions whose premises were removed disappear.  Queries answer over
+asserted ∪ inferred knowledge as of the last reasoning (only asserted knowledge
+while the ontology is inconsistent, as aRMOR does).
+"""
+
+from __future__ import annotations
+
+import os
+import time
+from collections.abc import Iterable, Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from pyoxigraph import Literal, NamedNode, RdfFormat, Triple
+
+from .compile import RuleSet, compile_ontology
+from .errors import InvalidValueError, QueryError
+from .queries import QueryItem, bind, collect, get_named_query, render_jena, to_items
+from .reason import Materializer, ReasonStats, Violation, check_consistency, classify
+from .store import Store, fresh_skolem, guess_format, serialize
+from .terms import Term, entity, literal_of, value_key
+from .vocab import (
+    ASSERTED, AUX, DECLARATION_TYPES, DIFFERENT_FROM, INFERRED, NIL, NOTHING, OWL, RDF, RDFS, SWRL, THING, TYPE,
+    FIRST, REST, XSD, is_internal, owl,
+)
+
+_SCHEMA_NS = (RDF, RDFS, OWL, SWRL, "http://swrl.stanford.edu/")
+_ABOX_PREDICATES = {TYPE, owl("sameAs"), DIFFERENT_FROM, FIRST, REST, owl("distinctMembers"), owl("members")}
+
+
+def is_schema_triple(t: Triple) -> bool:
+    """True for triples that change the rules (TBox axioms, SWRL rules), not just facts."""
+    p = t.predicate
+    if p == TYPE:
+        return isinstance(t.object, NamedNode) and t.object.value.startswith(_SCHEMA_NS) and t.object not in (
+            owl("NamedIndividual"), owl("Thing"), owl("AllDifferent"))
+    if p in _ABOX_PREDICATES:
+        return False
+    return p.value.startswith(_SCHEMA_NS)
+
+
+@dataclass
+class ReasonReport:
+    """The outcome of :meth:`Ontology.reason`."""
+
+    consistent: bool
+    violations: list[Violation] = field(default_factory=list)
+    stats: ReasonStats = field(default_factory=ReasonStats)
+
+    def explain(self) -> str:
+        return "consistent" if self.consistent else "; ".join(str(v) for v in self.violations)
+
+
+class Ontology:
+    """One ontology: asserted and inferred graphs in an Oxigraph store, plus its rules."""
+
+    def __init__(self, prefix: str | None = None, store: Store | None = None) -> None:
+        self.store = store or Store()
+        self._prefix = prefix
+        self._rules: RuleSet | None = None
+        self._superclasses: dict | None = None
+        self._report: ReasonReport | None = None
+        self.dirty = True  # asserted graph changed since the last reasoning
+
+    # ------------------------------------------------------------------ loading
+    @classmethod
+    def from_file(cls, *paths: str | os.PathLike[str], prefix: str | None = None, fmt: str | None = None,
+                  base_iri: str | None = None) -> "Ontology":
+        onto = cls(prefix=prefix)
+        for p in paths:
+            onto.load(p, fmt=fmt, base_iri=base_iri)
+        return onto
+
+    def load(self, path: str | os.PathLike[str], fmt: str | None = None, base_iri: str | None = None) -> int:
+        """Add a document's triples to the asserted graph; all or nothing.
+
+        Rules are compiled before anything is added, so a file with a rule that
+        cannot be translated is refused and leaves the ontology as it was.
+        """
+        triples = self.store.parse_file(path, fmt, base_iri)
+        return self._add_checked(triples)
+
+    def load_data(self, data: str | bytes, fmt: str = "turtle", base_iri: str | None = None) -> int:
+        triples = self.store.parse_bytes(data, guess_format("x", fmt), base_iri)
+        return self._add_checked(triples)
+
+    def _add_checked(self, triples: list[Triple]) -> int:
+        if any(is_schema_triple(t) for t in triples):
+            scratch = Store()
+            scratch.add(self.store.triples(graph=ASSERTED), ASSERTED)
+            scratch.add(triples, ASSERTED)
+            compile_ontology(scratch, ASSERTED)  # raises RuleCompileError, nothing added
+        return self.add(*triples)
+
+    @property
+    def prefix(self) -> str:
+        """Namespace for entity names: the ontology IRI + '#' unless given."""
+        if self._prefix is None:
+            for t in self.store.triples(None, TYPE, owl("Ontology"), ASSERTED):
+                if isinstance(t.subject, NamedNode):
+                    iri = t.subject.value
+                    return iri if iri.endswith(("#", "/")) else iri + "#"
+            return "urn:topostore:default#"
+        return self._prefix
+
+    @prefix.setter
+    def prefix(self, value: str) -> None:
+        self._prefix = value
+
+    def iri(self, name: str | NamedNode) -> NamedNode:
+        """IRI of a named entity (``<full IRI>`` or a name in :attr:`prefix`)."""
+        return name if isinstance(name, NamedNode) else entity(name, self.prefix)
+
+    def short(self, term: Term) -> str:
+        """Name of a term relative to :attr:`prefix` (full IRI otherwise); literals as text."""
+        if isinstance(term, NamedNode):
+            v = term.value
+            return v[len(self.prefix):] if v.startswith(self.prefix) else v
+        if isinstance(term, Literal):
+            return term.value
+        return str(term)
+
+    # ------------------------------------------------------------------ manipulation
+    def add(self, *triples: Triple) -> int:
+        """Assert triples; returns how many were new."""
+        for t in triples:
+            _validate(t)
+        self._touch(triples)
+        return self.store.add(triples, ASSERTED)
+
+    def remove(self, *triples: Triple) -> int:
+        """Retract asserted triples (inferred ones cannot be removed, only their premises)."""
+        self._touch(triples)
+        return self.store.remove(triples, ASSERTED)
+
+    def _touch(self, triples: Iterable[Triple]) -> None:
+        self.dirty = True
+        if any(is_schema_triple(t) for t in triples):
+            self._rules = None
+            self._superclasses = None
+
+    def value(self, value: object, datatype: str | None = None) -> Literal:
+        """A validated literal from a Python value (int → xsd:integer, ...) or text + datatype."""
+        if isinstance(value, Literal):
+            _validate_literal(value)
+            return value
+        if datatype is not None:
+            local = datatype[len(XSD):] if datatype.startswith(XSD) else datatype
+            return literal_of(str(value), local)
+        if isinstance(value, bool):
+            return literal_of(str(value).lower(), "boolean")
+        if isinstance(value, int):
+            return literal_of(str(value), "integer")
+        if isinstance(value, float):
+            return literal_of(repr(value), "double")
+        return Literal(str(value))
+
+    def fact(self, subject: str, prop: str, obj: object) -> Triple:
+        """A triple from names: ``obj`` is an individual name, a Literal or a Python value."""
+        o = self.iri(obj) if isinstance(obj, (str, NamedNode)) and not isinstance(obj, Literal) else self.value(obj)
+        return Triple(self.iri(subject), self.iri(prop), o)
+
+    def add_fact(self, subject: str, prop: str, obj: object) -> int:
+        return self.add(self.fact(subject, prop, obj))
+
+    def remove_fact(self, subject: str, prop: str, obj: object) -> int:
+        return self.remove(self.fact(subject, prop, obj))
+
+    def add_type(self, individual: str, cls: str) -> int:
+        return self.add(Triple(self.iri(individual), TYPE, self.iri(cls)))
+
+    def remove_type(self, individual: str, cls: str) -> int:
+        return self.remove(Triple(self.iri(individual), TYPE, self.iri(cls)))
+
+    def add_data(self, prop: str, individual: str, value: object, datatype: str | None = None) -> int:
+        return self.add(Triple(self.iri(individual), self.iri(prop), self.value(value, datatype)))
+
+    def replace(self, subject: str, prop: str, new: object, old: object | None = None) -> int:
+        """Replace ``old`` by ``new`` (every current value when ``old`` is None); atomic.
+
+        Values are matched by data value, so ``7`` replaces a stored ``"7"^^xsd:long``.
+        Returns how many old facts were removed.
+        """
+        new_t = self.fact(subject, prop, new)
+        s, p = new_t.subject, new_t.predicate
+        if old is None:
+            olds = list(self.store.triples(s, p, None, ASSERTED))
+        else:
+            old_t = self.fact(subject, prop, old)
+            key = value_key(old_t.object)
+            olds = [t for t in self.store.triples(s, p, None, ASSERTED) if value_key(t.object) == key]
+        self.remove(*olds)
+        self.add(new_t)
+        return len(olds)
+
+    def add_all_different(self, names: Sequence[str | NamedNode]) -> NamedNode:
+        """One owl:AllDifferent over ``names`` (deduplicated): linear in size, never n² pairs."""
+        members = list(dict.fromkeys(self.iri(n) for n in names))
+        group = fresh_skolem()
+        triples = [Triple(group, TYPE, owl("AllDifferent"))]
+        nodes = [fresh_skolem() for _ in members]
+        triples.append(Triple(group, owl("distinctMembers"), nodes[0] if nodes else NIL))
+        for i, (node, m) in enumerate(zip(nodes, members)):
+            triples.append(Triple(node, FIRST, m))
+            triples.append(Triple(node, REST, nodes[i + 1] if i + 1 < len(nodes) else NIL))
+        self.add(*triples)
+        return group
+
+    def remove_individual(self, name: str | NamedNode) -> int:
+        """Remove every asserted triple mentioning the individual, and whole AllDifferent axioms containing it."""
+        ind = self.iri(name)
+        doomed = list(self.store.triples(ind, None, None, ASSERTED)) + list(self.store.triples(None, None, ind, ASSERTED))
+        for t in list(doomed):
+            if t.predicate == FIRST:
+                doomed += self._axiom_of_list_node(t.subject)
+        return self.remove(*dict.fromkeys(doomed))
+
+    def _axiom_of_list_node(self, node: Term) -> list[Triple]:
+        head = node
+        while True:
+            prev = self.store.subjects(REST, head, ASSERTED)
+            if not prev:
+                break
+            head = prev[0]
+        out: list[Triple] = []
+        for owner in self.store.subjects(owl("distinctMembers"), head, ASSERTED) + self.store.subjects(owl("members"), head, ASSERTED):
+            out += list(self.store.triples(owner, None, None, ASSERTED))
+            cur = head
+            while cur != NIL:
+                out += list(self.store.triples(cur, None, None, ASSERTED))
+                rest = self.store.objects(cur, REST, ASSERTED)
+                cur = rest[0] if rest else NIL
+        return out
+
+    # ------------------------------------------------------------------ reasoning
+    @property
+    def rules(self) -> RuleSet:
+        """The compiled rules (recompiled when the TBox or the SWRL rules change)."""
+        if self._rules is None:
+            self._rules = compile_ontology(self.store, ASSERTED)
+        return self._rules
+
+    def reason(self, profile: bool = False) -> ReasonReport:
+        """Bring the inferred graph to the closure of the asserted graph as it is now."""
+        stats = Materializer(self.store, self.rules, profile=profile).run()
+        start = time.perf_counter()
+        violations = check_consistency(self.store, self.rules)
+        stats.seconds += time.perf_counter() - start
+        self._report = ReasonReport(not violations, violations, stats)
+        self.dirty = False
+        return self._report
+
+    @property
+    def report(self) -> ReasonReport | None:
+        return self._report
+
+    @property
+    def is_consistent(self) -> bool:
+        """Consistency as of the last reasoning (reasons first if never reasoned)."""
+        if self._report is None:
+            self.reason()
+        return self._report.consistent
+
+    @property
+    def violations(self) -> list[Violation]:
+        return [] if self._report is None else self._report.violations
+
+    def visible_graphs(self) -> list[NamedNode]:
+        """Graphs queries see: asserted ∪ inferred, or asserted only while inconsistent."""
+        if self._report is not None and not self._report.consistent:
+            return [ASSERTED]
+        return [ASSERTED, INFERRED]
+
+    def superclasses(self, cls: str | NamedNode) -> set[NamedNode]:
+        if self._superclasses is None:
+            self._superclasses = classify(self.rules)
+        return set(self._superclasses.get(self.iri(cls), set()))
+
+    def subclasses(self, cls: str | NamedNode) -> set[NamedNode]:
+        """Named classes subsumed by ``cls`` (direct and indirect; never owl:Nothing)."""
+        target = self.iri(cls)
+        if self._superclasses is None:
+            self._superclasses = classify(self.rules)
+        return {c for c, sups in self._superclasses.items() if target in sups and c != target}
+
+    # ------------------------------------------------------------------ queries
+    def _objects(self, s: Term, p: NamedNode) -> list[Term]:
+        seen: dict = {}
+        for g in self.visible_graphs():
+            for o in self.store.objects(s, p, g):
+                seen.setdefault(value_key(o), self.store.original_literal(ASSERTED, s, p, o) if isinstance(o, Literal) else o)
+        return list(seen.values())
+
+    def types(self, individual: str | NamedNode) -> list[NamedNode]:
+        """Named classes of an individual (asserted ∪ inferred), without owl:Thing."""
+        return [t for t in self._objects(self.iri(individual), TYPE) if _is_user_class(t)]
+
+    def instances(self, cls: str | NamedNode) -> list[NamedNode]:
+        c = self.iri(cls)
+        found: dict = {}
+        for g in self.visible_graphs():
+            for s in self.store.subjects(TYPE, c, g):
+                if not is_internal(s) or s.value.startswith("urn:topostore:bnode:"):
+                    found[s] = None
+        return list(found)
+
+    def object_values(self, prop: str | NamedNode, individual: str | NamedNode, names: bool = True) -> list:
+        vals = [o for o in self._objects(self.iri(individual), self.iri(prop)) if isinstance(o, NamedNode)]
+        return [self.short(v) for v in vals] if names else vals
+
+    def data_values(self, prop: str | NamedNode, individual: str | NamedNode) -> list[Literal]:
+        return [o for o in self._objects(self.iri(individual), self.iri(prop)) if isinstance(o, Literal)]
+
+    def properties_of(self, individual: str | NamedNode, data: bool) -> list[NamedNode]:
+        s = self.iri(individual)
+        props: dict = {}
+        for g in self.visible_graphs():
+            for t in self.store.triples(s, None, None, g):
+                if isinstance(t.object, Literal) == data and not t.predicate.value.startswith(_SCHEMA_NS) and not is_internal(t.predicate):
+                    props[t.predicate] = None
+        return list(props)
+
+    def sparql(self, text: str, bindings: dict[str, Term] | None = None, **kwargs):
+        """Raw SPARQL over the visible graphs (asserted ∪ inferred)."""
+        text = bind(text, bindings or {})
+        return self.store.query(text, graphs=self.visible_graphs(), **kwargs)
+
+    def select(self, text: str, bindings: dict[str, Term] | None = None, timeout: float | None = None):
+        """(variables, rows, timed_out) of a SELECT query over the visible graphs."""
+        result = self.sparql(text, bindings)
+        if not hasattr(result, "variables"):
+            raise QueryError("only SELECT queries return rows")
+        return collect(result, timeout)
+
+    def query(self, name_or_text: str, params: dict[str, object] | None = None, timeout: float | None = None) -> list[QueryItem]:
+        """Run a named query (or SELECT text) and return ``QueryItem`` results.
+
+        ``params`` values are entity names / NamedNodes for ``iri`` parameters
+        and Python values or Literals for ``literal`` parameters.
+        """
+        params = params or {}
+        if name_or_text.lstrip().upper().startswith(("SELECT", "PREFIX", "BASE")):
+            text, kinds = name_or_text, {k: "iri" for k in params}
+        else:
+            q = get_named_query(name_or_text)
+            text, kinds = q.text, q.params
+            missing = set(q.params) - set(params)
+            if missing:
+                raise QueryError(f"query {q.name!r} needs the parameter(s) {', '.join(sorted(missing))}")
+            unknown = set(params) - set(q.params)
+            if unknown:
+                raise QueryError(f"query {q.name!r} has no parameter(s) {', '.join(sorted(unknown))}")
+        bindings = {k: (self.iri(v) if kinds.get(k) == "iri" else self.value(v)) for k, v in params.items()}
+        variables, rows, _ = self.select(text, bindings, timeout)
+        return to_items(variables, rows, lambda t: render_jena(t, self.store.restore))
+
+    # ------------------------------------------------------------------ persistence
+    def triples(self, inferred: bool = False) -> list[Triple]:
+        graphs = [ASSERTED, INFERRED] if inferred and self.visible_graphs() != [ASSERTED] else [ASSERTED]
+        return self.store.dump(graphs, restore_literals_from=ASSERTED)
+
+    def serialize(self, fmt: str | RdfFormat = "turtle", inferred: bool = False) -> bytes:
+        rdf_format = guess_format("x", fmt) if isinstance(fmt, str) else fmt
+        prefixes = {"owl": OWL, "rdf": RDF, "rdfs": RDFS, "xsd": XSD, "swrl": SWRL,
+                    "swrlb": "http://www.w3.org/2003/11/swrlb#", "": self.prefix}
+        return serialize(self.triples(inferred), rdf_format, prefixes)
+
+    def save(self, path: str | os.PathLike[str], fmt: str | None = None, inferred: bool = False) -> Path:
+        """Write asserted (or asserted + inferred) triples; the format follows the extension."""
+        path = Path(path)
+        data = self.serialize(guess_format(path, fmt), inferred)
+        tmp = path.with_name(path.name + ".tmp")
+        tmp.write_bytes(data)
+        tmp.replace(path)
+        return path
+
+
+def _is_user_class(t: Term) -> bool:
+    return isinstance(t, NamedNode) and t.value not in DECLARATION_TYPES and t != THING and not is_internal(t)
+
+
+def _validate_literal(lit: Literal) -> None:
+    dt = lit.datatype.value
+    if lit.language or not dt.startswith(XSD):
+        return
+    local = dt[len(XSD):]
+    try:
+        literal_of(lit.value, local)
+    except InvalidValueError:
+        raise
+    except Exception:  # datatypes topostore does not validate
+        return
+
+
+def _validate(t: Triple) -> None:
+    if isinstance(t.object, Literal):
+        _validate_literal(t.object)
+
+
+__all__ = ["Ontology", "ReasonReport", "is_schema_triple", "NOTHING", "AUX"]

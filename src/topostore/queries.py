@@ -1,0 +1,190 @@
+"""Named SPARQL queries, safe parameter binding and ``QueryItem`` results.
+
+A named query is a ``.rq`` file in ``queries/`` with ``# key: value`` headers::
+
+    # name: can-reach
+    # description: locations a robot can reach
+    # param: robot iri
+    SELECT ?location WHERE { ?robot <...#canReach> ?location }
+
+Parameters are bound by adding ``VALUES ?robot { <term> }`` at the start of the
+WHERE group, with the term rendered by pyoxigraph, so a parameter value can
+never change the query's structure.  Results are ``QueryItem(key, value)``
+lists, one item per projected variable per row (``""`` when unbound), in the
+shape of aRMOR's ``sparql_queried_objects``.
+"""
+
+from __future__ import annotations
+
+import re
+import threading
+import time
+from collections.abc import Callable
+from dataclasses import dataclass
+from functools import cache
+from pathlib import Path
+
+from pyoxigraph import BlankNode, Literal, NamedNode, QuerySolutions
+
+from .errors import QueryError, QueryTimeout
+from .resources import queries_dir
+from .store import unskolem
+from .terms import Term, sparql
+from .vocab import XSD
+
+
+@dataclass(frozen=True)
+class QueryItem:
+    """One variable of one result row: ``key`` without ``?``, ``value`` rendered as text."""
+
+    key: str
+    value: str
+
+    def to_dict(self) -> dict[str, str]:
+        return {"key": self.key, "value": self.value}
+
+
+@dataclass(frozen=True)
+class NamedQuery:
+    name: str
+    description: str
+    params: dict[str, str]  # name -> kind ("iri" or "literal")
+    text: str
+    path: Path | None = None
+
+
+def parse_query_file(path: Path) -> NamedQuery:
+    text = path.read_text()
+    headers = re.findall(r"^#\s*([a-z]+):\s*(.*)$", text, re.M)
+    info = {k: v.strip() for k, v in headers if k != "param"}
+    params: dict[str, str] = {}
+    for k, v in headers:
+        if k == "param":
+            parts = v.split()
+            params[parts[0]] = parts[1] if len(parts) > 1 else "iri"
+    return NamedQuery(info.get("name", path.stem), info.get("description", ""), params, text, path)
+
+
+@cache
+def named_queries(folder: Path | None = None) -> dict[str, NamedQuery]:
+    folder = folder or queries_dir()
+    queries = (parse_query_file(p) for p in sorted(folder.glob("*.rq")))
+    return {q.name: q for q in queries}
+
+
+def get_named_query(name_or_path: str) -> NamedQuery:
+    """A named query by name, or any ``.rq`` file by path."""
+    queries = named_queries()
+    if name_or_path in queries:
+        return queries[name_or_path]
+    path = Path(name_or_path)
+    if path.suffix == ".rq" and path.is_file():
+        return parse_query_file(path)
+    raise QueryError(f"unknown query {name_or_path!r}; named queries: {', '.join(sorted(queries))}")
+
+
+# --------------------------------------------------------------------------- binding
+
+def _where_brace(text: str) -> int:
+    """Index of the ``{`` opening the query's WHERE group (outside comments, IRIs, strings)."""
+    i, n = 0, len(text)
+    seen_where = False
+    depth = 0
+    while i < n:
+        c = text[i]
+        if c == "#":
+            j = text.find("\n", i)
+            i = n if j < 0 else j
+            continue
+        if c in "\"'":
+            quote = text[i:i + 3] if text[i:i + 3] in ('"""', "'''") else c
+            j = i + len(quote)
+            while j < n and text[j:j + len(quote)] != quote:
+                j += 2 if text[j] == "\\" else 1
+            i = j + len(quote)
+            continue
+        if c == "<" and re.match(r"<[^\s<>\"{}|^`\\]*>", text[i:]):
+            i = text.index(">", i) + 1
+            continue
+        if text[i:i + 5].upper() == "WHERE" and (i == 0 or not text[i - 1].isalnum()):
+            seen_where = True
+        if c == "{":
+            if depth == 0 and (seen_where or not re.search(r"\b(CONSTRUCT|DESCRIBE)\b", text[:i], re.I)):
+                return i
+            depth += 1
+        elif c == "}":
+            depth -= 1
+        i += 1
+    raise QueryError("the query has no WHERE group to bind parameters into")
+
+
+def bind(text: str, bindings: dict[str, Term]) -> str:
+    """``text`` with each variable of ``bindings`` fixed by a VALUES clause."""
+    if not bindings:
+        return text
+    pos = _where_brace(text)
+    values = " ".join(f"VALUES ?{name} {{ {sparql(term)} }}" for name, term in bindings.items())
+    return text[: pos + 1] + " " + values + " " + text[pos + 1:]
+
+
+# --------------------------------------------------------------------------- rendering
+
+def render_jena(term: Term | None, restore: Callable[[Term], Term] = lambda t: t) -> str:
+    """Value text as aRMOR's SPARQL answers show it: IRI bare, ``lex^^datatypeIRI``,
+    plain strings bare, ``text@lang``; ``""`` for unbound."""
+    if term is None:
+        return ""
+    term = unskolem(restore(term))
+    if isinstance(term, NamedNode):
+        return term.value
+    if isinstance(term, BlankNode):
+        return "_:" + term.value
+    if isinstance(term, Literal):
+        if term.language:
+            return f"{term.value}@{term.language}"
+        if term.datatype.value == XSD + "string":
+            return term.value
+        return f"{term.value}^^{term.datatype.value}"
+    return str(term)
+
+
+def collect(solutions: QuerySolutions, timeout: float | None) -> tuple[list[str], list[list[Term | None]], bool]:
+    """Rows of a SELECT result; stops at ``timeout`` seconds with the rows so far."""
+    variables = [v.value for v in solutions.variables]
+    rows: list[list[Term | None]] = []
+    timed_out = False
+    if timeout is None or timeout <= 0:
+        rows = [[s[v] for v in variables] for s in solutions]
+        return variables, rows, False
+    deadline = time.monotonic() + timeout
+    done = threading.Event()
+
+    def worker() -> None:
+        try:
+            for s in solutions:
+                rows.append([s[v] for v in variables])
+                if time.monotonic() > deadline:
+                    break
+        except Exception as exc:  # surfaced below
+            rows.append(exc)  # type: ignore[arg-type]
+        finally:
+            done.set()
+
+    thread = threading.Thread(target=worker, daemon=True)
+    thread.start()
+    if not done.wait(timeout):
+        timed_out = True
+    elif time.monotonic() > deadline:
+        timed_out = True
+    snapshot = list(rows)
+    errors = [r for r in snapshot if isinstance(r, Exception)]
+    if errors:
+        raise QueryError(f"SPARQL evaluation failed: {errors[0]}")
+    return variables, snapshot, timed_out
+
+
+def to_items(variables: list[str], rows: list[list[Term | None]], render: Callable[[Term | None], str]) -> list[QueryItem]:
+    return [QueryItem(v, render(value)) for row in rows for v, value in zip(variables, row)]
+
+
+__all__ = ["QueryItem", "NamedQuery", "named_queries", "get_named_query", "bind", "render_jena", "collect", "to_items", "QueryTimeout"]

@@ -1,0 +1,31 @@
+"""Classification: the named superclasses of every named class.
+
+Uses the rules themselves: one prototype individual per class is asserted in a
+scratch store and the rules run to their fixpoint; the prototype's types are
+the class's superclasses.  This finds what the rules know about restrictions
+too (every ``≥2 hasDoor.DOOR`` is a ``∃hasDoor.DOOR``, so CORRIDOR ⊑ ROOM).
+"""
+
+from __future__ import annotations
+
+from pyoxigraph import NamedNode, Triple
+
+from ..compile.rule import RuleSet
+from ..store import Store
+from ..vocab import ASSERTED, INFERRED, THING, TYPE, is_internal
+from .materialize import Materializer
+
+PROTO = "urn:topostore:prototype:"
+
+
+def classify(rules: RuleSet) -> dict[NamedNode, set[NamedNode]]:
+    scratch = Store()
+    classes = sorted(rules.named_classes, key=lambda c: c.value)
+    protos = {c: NamedNode(f"{PROTO}{i}") for i, c in enumerate(classes)}
+    scratch.add([Triple(p, TYPE, c) for c, p in protos.items()], ASSERTED)
+    Materializer(scratch, rules).run()
+    supers: dict[NamedNode, set[NamedNode]] = {}
+    for c, p in protos.items():
+        types = {t.object for g in (ASSERTED, INFERRED) for t in scratch.triples(p, TYPE, None, g)}
+        supers[c] = {t for t in types if isinstance(t, NamedNode) and t != c and t != THING and not is_internal(t)}
+    return supers

@@ -1,0 +1,93 @@
+"""Vocabulary constants shared by every layer.
+
+Kept in one module so that no other module spells an IRI by hand: a typo in a
+namespace would silently make a rule never fire.
+"""
+
+from __future__ import annotations
+
+from pyoxigraph import NamedNode
+
+RDF = "http://www.w3.org/1999/02/22-rdf-syntax-ns#"
+RDFS = "http://www.w3.org/2000/01/rdf-schema#"
+OWL = "http://www.w3.org/2002/07/owl#"
+XSD = "http://www.w3.org/2001/XMLSchema#"
+SWRL = "http://www.w3.org/2003/11/swrl#"
+SWRLB = "http://www.w3.org/2003/11/swrlb#"
+SWRLA = "http://swrl.stanford.edu/ontologies/3.3/swrla.owl#"
+
+#: Namespace of every IRI topostore invents (graphs, anonymous class ids, helper
+#: predicates).  Nothing in this namespace is ever shown to a user as a class.
+INTERNAL = "urn:topostore:"
+
+#: Graph holding the facts users asserted (loaded files and manipulations).
+ASSERTED = NamedNode(INTERNAL + "graph:asserted")
+#: Graph holding the entailed facts users may see (types, property values, sameAs).
+INFERRED = NamedNode(INTERNAL + "graph:inferred")
+#: Graph holding helper facts of the reasoner (membership of anonymous class
+#: expressions, membership of AllDifferent groups); never shown to users.
+AUX = NamedNode(INTERNAL + "graph:aux")
+#: Scratch graphs of the fixpoint loop.
+DELTA = NamedNode(INTERNAL + "graph:delta")
+NEW_INFERRED = NamedNode(INTERNAL + "graph:new-inferred")
+NEW_AUX = NamedNode(INTERNAL + "graph:new-aux")
+
+#: aux predicate: ``?x ts:inDifferentGroup ?g`` when ?x is a member of the
+#: owl:AllDifferent axiom ?g (keeps DISJOINT IND linear in size).
+IN_DIFFERENT_GROUP = NamedNode(INTERNAL + "inDifferentGroup")
+#: Prefix of the ids given to anonymous class expressions.
+EXPR_PREFIX = INTERNAL + "expr:"
+
+
+def rdf(name: str) -> NamedNode:
+    return NamedNode(RDF + name)
+
+
+def rdfs(name: str) -> NamedNode:
+    return NamedNode(RDFS + name)
+
+
+def owl(name: str) -> NamedNode:
+    return NamedNode(OWL + name)
+
+
+def xsd(name: str) -> NamedNode:
+    return NamedNode(XSD + name)
+
+
+def swrl(name: str) -> NamedNode:
+    return NamedNode(SWRL + name)
+
+
+TYPE = rdf("type")
+FIRST = rdf("first")
+REST = rdf("rest")
+NIL = rdf("nil")
+SAME_AS = owl("sameAs")
+DIFFERENT_FROM = owl("differentFrom")
+THING = owl("Thing")
+NOTHING = owl("Nothing")
+NAMED_INDIVIDUAL = owl("NamedIndividual")
+
+#: Types that say what kind of entity a node is, not which class it belongs to.
+DECLARATION_TYPES = frozenset(
+    OWL + n
+    for n in (
+        "Class", "ObjectProperty", "DatatypeProperty", "AnnotationProperty", "NamedIndividual",
+        "Ontology", "Restriction", "AllDifferent", "AllDisjointClasses", "AllDisjointProperties",
+        "FunctionalProperty", "InverseFunctionalProperty", "TransitiveProperty", "SymmetricProperty",
+        "AsymmetricProperty", "ReflexiveProperty", "IrreflexiveProperty", "NegativePropertyAssertion",
+        "Axiom", "DeprecatedClass", "DeprecatedProperty", "OntologyProperty", "Thing",
+    )
+) | frozenset({RDFS + "Class", RDFS + "Datatype", RDF + "Property", RDF + "List"}) | frozenset(
+    SWRL + n
+    for n in (
+        "Imp", "Variable", "AtomList", "ClassAtom", "IndividualPropertyAtom", "DatavaluedPropertyAtom",
+        "SameIndividualAtom", "DifferentIndividualsAtom", "DataRangeAtom", "BuiltinAtom", "Builtin",
+    )
+)
+
+
+def is_internal(term: object) -> bool:
+    """True for IRIs topostore invented; they never leave the library."""
+    return isinstance(term, NamedNode) and term.value.startswith(INTERNAL)
