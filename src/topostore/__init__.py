@@ -17,3 +17,7 @@ __all__ = [
     "Ontology", "ReasonReport", "QueryItem", "TopostoreError", "InvalidNameError", "InvalidValueError",
     "UnknownTypeError", "LoadError", "QueryError", "QueryTimeout", "RuleCompileError",
 ]
+
+from .armor import ArmorRequest, ArmorResponse, ArmorService  # noqa: E402  (aRMOR command interface)
+
+__all__ += ["ArmorService", "ArmorRequest", "ArmorResponse"]

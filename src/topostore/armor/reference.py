@@ -1,0 +1,155 @@
+"""A named reference: one ontology with its reasoner settings, buffer and mount owner.
+
+aRMOR keeps these pieces in three places (AMOR's registry, the manipulator's
+buffer and aRMOR's unsynchronised mount map); here they live together and are
+guarded by one lock, so concurrent calls on a reference are serialised.
+"""
+
+from __future__ import annotations
+
+import threading
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from pyoxigraph import Triple
+
+from ..ontology import Ontology
+from ..vocab import ASSERTED
+
+#: Reasoner names accepted at LOAD (spec §5.2); all run topostore's reasoner.
+REASONERS = frozenset({"", "PELLET", "HERMIT", "FACT", "SNOROCKET"})
+
+
+@dataclass
+class Delta:
+    """The triples one manipulation adds and removes, computed against the current state."""
+
+    add: list[Triple] = field(default_factory=list)
+    remove: list[Triple] = field(default_factory=list)
+    warning: str = ""
+
+
+@dataclass
+class Change:
+    """A validated manipulation waiting to be applied (now, or at APPLY/REASON when buffered).
+
+    ``plan`` computes the delta when the change is applied, because what a
+    REPLACE or REMOVE IND removes depends on the state at that moment.
+    """
+
+    description: str
+    plan: Callable[[Ontology], Delta]
+
+
+@dataclass
+class Applied:
+    """What applying a change really did, kept so it can be undone."""
+
+    added: list[Triple]
+    removed: list[Triple]
+    warning: str
+
+
+@dataclass
+class Reference:
+    """State of one reference; every access goes through :attr:`lock`."""
+
+    name: str
+    ontology: Ontology
+    iri: str
+    source: Path | None = None
+    buffered_manipulation: bool = False
+    reasoner: str = "PELLET"
+    buffered_reasoner: bool = False
+    owner: str | None = None  # mounted client, None when unmounted
+    buffer: list[Change] = field(default_factory=list)
+    lock: threading.RLock = field(default_factory=threading.RLock)
+
+    @property
+    def prefix(self) -> str:
+        return self.ontology.prefix
+
+    @property
+    def is_consistent(self) -> bool:
+        """Consistency as of the last reasoning (spec §2.6)."""
+        return self.ontology.is_consistent
+
+    def apply_change(self, change: Change) -> Applied:
+        """Apply one change to the asserted graph; returns what it did (for undo)."""
+        onto = self.ontology
+        delta = change.plan(onto)
+        removed = [t for t in dict.fromkeys(delta.remove) if onto.store.contains(t, ASSERTED)]
+        removed = [_original(onto, t) for t in removed]
+        onto.remove(*removed)
+        added = [t for t in dict.fromkeys(delta.add) if not onto.store.contains(t, ASSERTED)]
+        onto.add(*added)
+        return Applied(added, removed, delta.warning)
+
+    def undo(self, applied: list[Applied]) -> None:
+        """Revert applied changes, newest first (used when a later step fails)."""
+        for step in reversed(applied):
+            self.ontology.remove(*step.added)
+            self.ontology.add(*step.removed)
+
+    def submit(self, changes: list[Change]) -> list[str]:
+        """Apply ``changes`` now, or queue them under manipulation buffering.
+
+        All or nothing: if applying or re-reasoning fails the applied part is
+        undone, the reasoner is brought back to the old state, and the error
+        propagates.  With a non-buffered reasoner the reference is left
+        reasoned, as a Pellet reasoner listening to changes would be.
+        """
+        if self.buffered_manipulation:
+            self.buffer.extend(changes)
+            return []
+        return self.run(changes)
+
+    def run(self, changes: list[Change], reason: bool | None = None) -> list[str]:
+        """Apply changes in order, all or nothing, then reason if ``reason`` (default: live reasoner).
+
+        A live (non-buffered) reasoner sees every applied change, so the
+        reference is re-reasoned after each applied manipulation.
+        """
+        if reason is None:
+            reason = not self.buffered_reasoner and bool(changes)
+        applied: list[Applied] = []
+        try:
+            for change in changes:
+                applied.append(self.apply_change(change))
+            if reason:
+                self.ontology.reason()
+        except Exception:
+            self.undo(applied)
+            if reason:
+                self._reason_quietly()
+            raise
+        return [a.warning for a in applied if a.warning]
+
+    def flush(self, reason: bool | None = None) -> list[str]:
+        """Apply the manipulation buffer (APPLY/REASON); the buffer is emptied only on success."""
+        pending, self.buffer = self.buffer, []
+        try:
+            return self.run(pending, reason)
+        except Exception:
+            self.buffer = pending + self.buffer
+            raise
+
+    def _reason_quietly(self) -> None:
+        """Bring the inferred graph back after an undo; a failure here is already being reported."""
+        try:
+            self.ontology.reason()
+        except Exception:  # the original error is the one worth reporting
+            pass
+
+
+def _original(onto: Ontology, t: Triple) -> Triple:
+    """The triple with its literal in the form the user asserted (so undo restores it exactly)."""
+    from pyoxigraph import Literal
+
+    if isinstance(t.object, Literal):
+        return Triple(t.subject, t.predicate, onto.store.original_literal(ASSERTED, t.subject, t.predicate, t.object))
+    return t
+
+
+__all__ = ["Reference", "Change", "Delta", "Applied", "REASONERS"]

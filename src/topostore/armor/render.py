@@ -1,0 +1,96 @@
+"""How query answers are written in ``queried_objects`` (spec §2.4).
+
+Default (aRMOR HEAD, what armor_py_api's ``_strip_URI`` expects): entities as
+``<full IRI>``, IRIs of the owl/rdf/rdfs/xsd/xml vocabularies abbreviated
+(``owl:Thing``), literals as ``"lexical"^^xsd:long``.  Short-name mode (a
+service option, the pre-2019 aRMOR behaviour the public tutorials show):
+entities by their local name, literals by their lexical form.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from pyoxigraph import BlankNode, Literal, NamedNode
+
+from ..store import unskolem
+from ..terms import Term
+from ..vocab import OWL, RDF, RDFS, XSD
+
+_ABBREVIATIONS = (
+    ("owl:", OWL),
+    ("rdf:", RDF),
+    ("rdfs:", RDFS),
+    ("xsd:", XSD),
+    ("xml:", "http://www.w3.org/XML/1998/namespace"),
+)
+
+
+def abbreviate(iri: str) -> str | None:
+    """``owl:Thing`` for a well-known vocabulary IRI, ``None`` otherwise."""
+    for prefix, namespace in _ABBREVIATIONS:
+        if iri.startswith(namespace) and len(iri) > len(namespace):
+            return prefix + iri[len(namespace):]
+    return None
+
+
+def local_name(iri: str) -> str:
+    """The text after the last ``#`` (or, without ``#``, after the last ``/``)."""
+    if "#" in iri:
+        return iri.rsplit("#", 1)[1]
+    if "/" in iri:
+        return iri.rstrip("/").rsplit("/", 1)[-1]
+    return iri
+
+
+def escape_lexical(text: str) -> str:
+    """OWL API literal escaping: backslash and double quote."""
+    return text.replace("\\", "\\\\").replace('"', '\\"')
+
+
+def full_entity(iri: str) -> str:
+    """``<IRI>`` or the vocabulary abbreviation, as OWL API 5 ``toString()``."""
+    return abbreviate(iri) or f"<{iri}>"
+
+
+def full_literal(lit: Literal) -> str:
+    """``"lex"^^xsd:T``, ``"text"@lang`` or ``"lex"^^<datatype IRI>``."""
+    body = f'"{escape_lexical(lit.value)}"'
+    if lit.language:
+        return f"{body}@{lit.language}"
+    return f"{body}^^{full_entity(lit.datatype.value)}"
+
+
+@dataclass(frozen=True)
+class Renderer:
+    """Renders terms for ``queried_objects``; ``short_names`` selects the short-name mode."""
+
+    short_names: bool = False
+
+    def term(self, term: Term) -> str:
+        term = unskolem(term)
+        if isinstance(term, NamedNode):
+            return local_name(term.value) if self.short_names else full_entity(term.value)
+        if isinstance(term, Literal):
+            return term.value if self.short_names else full_literal(term)
+        if isinstance(term, BlankNode):
+            return f"_:{term.value}"
+        return str(term)
+
+    def terms(self, terms: list[Term]) -> list[str]:
+        """Render a list, dropping duplicates (aRMOR answers are sets)."""
+        return list(dict.fromkeys(self.term(t) for t in terms))
+
+
+def short_name(term: Term) -> str:
+    """Short name used whatever the mode (bottom types, restriction strings)."""
+    term = unskolem(term)
+    if isinstance(term, NamedNode):
+        # datatypes keep their prefix (``xsd:long``), as in aRMOR's restriction strings
+        return "xsd:" + term.value[len(XSD):] if term.value.startswith(XSD) else local_name(term.value)
+    if isinstance(term, Literal):
+        return term.value
+    return str(term)
+
+
+__all__ = ["Renderer", "abbreviate", "local_name", "full_entity", "full_literal", "short_name", "escape_lexical"]

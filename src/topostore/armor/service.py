@@ -1,0 +1,259 @@
+"""``ArmorService``: the aRMOR command interface as an in-process object.
+
+>>> from topostore.armor import ArmorService
+>>> service = ArmorService()
+>>> service.call({"reference_name": "ref", "command": "GET", "primary_command_spec": "ALL",
+...               "secondary_command_spec": "REFS"}).queried_objects
+[]
+
+``call`` never raises and always answers: every failure becomes a
+``success=false`` reply with a documented exit code (:mod:`topostore.armor.codes`).
+Transports (ROS bridge, HTTP) only translate messages to and from this object.
+"""
+
+from __future__ import annotations
+
+import logging
+import os
+import sys
+import threading
+import urllib.parse
+import urllib.request
+from collections.abc import Iterable, Mapping
+from pathlib import Path
+from typing import Any
+
+from ..errors import LoadError, RuleCompileError, TopostoreError
+from ..ontology import Ontology
+from ..store import guess_format
+from . import codes
+from .codes import CommandError
+from .commands import COMMANDS, Context, Reply
+from .reference import Reference
+from .render import Renderer
+from .types import ArmorRequest, ArmorResponse, ArmorResponseList
+
+logger = logging.getLogger("topostore.armor")
+
+_WEB_TIMEOUT_SECONDS = 20.0
+_WEB_MAX_BYTES = 64 * 1024 * 1024
+
+
+class ArmorService:
+    """Named references and the aRMOR command table.
+
+    ``data_dir``: when set, every LOAD/SAVE/LOG path is resolved inside it and
+    paths escaping it are refused (210).  ``short_names``: answer with local
+    names and bare lexical forms instead of ``<IRI>`` and ``"lex"^^xsd:T``.
+    ``allow_web``: permit LOAD WEB (off by default: it makes the service fetch
+    arbitrary URLs).
+    """
+
+    def __init__(self, data_dir: str | os.PathLike[str] | None = None, short_names: bool = False,
+                 allow_web: bool = False) -> None:
+        self.data_dir = Path(data_dir).resolve() if data_dir is not None else None
+        self.short_names = short_names
+        self.allow_web = allow_web
+        self.renderer = Renderer(short_names)
+        self._references: dict[str, Reference] = {}
+        self._registry_lock = threading.RLock()
+        self._file_handler: logging.Handler | None = None
+        self._screen_handler: logging.Handler | None = None
+
+    # ------------------------------------------------------------ entry points
+    def call(self, request: ArmorRequest | Mapping[str, Any]) -> ArmorResponse:
+        """Execute one request and return its response; never raises."""
+        try:
+            req = ArmorRequest.from_dict(request)
+        except (TypeError, ValueError) as exc:
+            return ArmorResponse(False, codes.INVALID_ARGUMENT, f"malformed request: {exc}")
+        try:
+            response = self._dispatch(req)
+        except Exception as exc:  # a bug must still produce a reply, never a hung caller
+            logger.exception("internal error while executing %s", _describe(req))
+            response = ArmorResponse(False, codes.REASONER_OR_QUERY_FAILURE, f"internal error: {type(exc).__name__}: {exc}")
+            response.is_consistent = self._consistency(req.reference_name)
+        level = logging.DEBUG if response.success else logging.INFO
+        logger.log(level, "%s -> %s %s %s", _describe(req), response.exit_code, response.error_description, response.queried_objects)
+        return response
+
+    def call_many(self, requests: Iterable[ArmorRequest | Mapping[str, Any]]) -> ArmorResponseList:
+        """The serialized service as intended: run in order, one response each.
+
+        ``success`` is true only if every command succeeded; ``is_consistent``
+        is the consistency after the last command.
+        """
+        responses = [self.call(r) for r in requests]
+        return ArmorResponseList(
+            success=all(r.success for r in responses),
+            is_consistent=responses[-1].is_consistent if responses else False,
+            armor_responses=responses,
+        )
+
+    # ------------------------------------------------------------ dispatch
+    def _dispatch(self, req: ArmorRequest) -> ArmorResponse:
+        if req.reference_name == "":
+            return ArmorResponse(False, codes.EMPTY_REFERENCE, "reference_name is empty; every command needs one")
+        if req.command == "":
+            return self._failure(req, codes.EMPTY_COMMAND, "command is empty")
+        key = (req.command.upper(), req.primary_command_spec.upper(), req.secondary_command_spec.upper())
+        command = COMMANDS.get(key)
+        if command is None:
+            return self._failure(req, codes.UNKNOWN_COMMAND, f"unknown command {' '.join(repr(k) for k in key)}: "
+                                 "check the spelling and that unused specs are empty strings")
+        try:
+            command.check_arity(len(req.args))
+            ctx = Context(self, req)
+            if not command.needs_ref:
+                reply = command.handler(ctx)
+                return self._reply(req, reply)
+            ctx.ref = self.reference(req.reference_name)
+            with ctx.ref.lock:
+                if command.manipulation and ctx.ref.owner is not None and ctx.ref.owner != req.client_name:
+                    raise CommandError(codes.MOUNTED_BY_OTHER, f"reference {req.reference_name!r} is mounted by client "
+                                       f"{ctx.ref.owner!r}; client {req.client_name!r} may query it but not change it")
+                reply = command.handler(ctx)
+                return self._reply(req, reply)
+        except CommandError as exc:
+            return self._failure(req, exc.code, exc.message)
+
+    def _reply(self, req: ArmorRequest, reply: Reply) -> ArmorResponse:
+        return ArmorResponse(
+            success=reply.success,
+            exit_code=reply.exit_code,
+            error_description="; ".join(reply.warnings),
+            is_consistent=self._consistency(req.reference_name),
+            timeout=reply.timeout,
+            queried_objects=reply.queried_objects,
+            sparql_queried_objects=reply.sparql_queried_objects,
+        )
+
+    def _failure(self, req: ArmorRequest, code: int, message: str) -> ArmorResponse:
+        return ArmorResponse(False, code, message, is_consistent=self._consistency(req.reference_name))
+
+    def _consistency(self, name: str) -> bool:
+        """``is_consistent`` of spec §2.6: the reference's state at its last reasoning; false if unknown."""
+        ref = self._references.get(name)
+        if ref is None:
+            return False
+        with ref.lock:
+            try:
+                return ref.is_consistent
+            except Exception:  # a reasoner that cannot run says nothing about consistency
+                return False
+
+    # ------------------------------------------------------------ registry
+    def reference(self, name: str) -> Reference:
+        """The loaded reference ``name``, or 207."""
+        with self._registry_lock:
+            ref = self._references.get(name)
+        if ref is None:
+            raise CommandError(codes.UNKNOWN_REFERENCE, f"reference {name!r} is not loaded; LOAD it first")
+        return ref
+
+    def reference_names(self) -> list[str]:
+        with self._registry_lock:
+            return list(self._references)
+
+    def drop_reference(self, name: str) -> bool:
+        with self._registry_lock:
+            return self._references.pop(name, None) is not None
+
+    def load_reference(self, name: str, source: str, location: str, iri: str, buffered_manipulation: bool,
+                       reasoner: str, buffered_reasoner: bool) -> tuple[Reference, bool]:
+        """(reference, created): load a new reference, or return the existing one untouched."""
+        with self._registry_lock:
+            existing = self._references.get(name)
+        if existing is not None:
+            return existing, False
+        onto = Ontology(prefix=iri + "#")
+        path: Path | None = None
+        try:
+            if source == "FILE":
+                path = self.resolve_path(location)
+                onto.load(path)
+            else:
+                data, fmt = self._fetch(location)
+                onto.load_data(data, fmt)
+            onto.reason()
+        except LoadError as exc:
+            raise CommandError(codes.FILE_ERROR, f"cannot load {location!r}: {exc}") from None
+        except RuleCompileError as exc:
+            raise CommandError(codes.REASONER_OR_QUERY_FAILURE, f"cannot reason on {location!r}: {exc}") from None
+        except TopostoreError as exc:
+            raise CommandError(codes.INVALID_ARGUMENT, f"cannot load {location!r}: {exc}") from None
+        ref = Reference(name, onto, iri, path, buffered_manipulation, reasoner, buffered_reasoner)
+        with self._registry_lock:
+            existing = self._references.setdefault(name, ref)
+        return existing, existing is ref
+
+    # ------------------------------------------------------------ files, web, logging
+    def resolve_path(self, text: str) -> Path:
+        """A file path for LOAD/SAVE/LOG; confined to ``data_dir`` when one is set (210 otherwise)."""
+        if text == "" or "\x00" in text:
+            raise CommandError(codes.INVALID_ARGUMENT, "the path is empty or contains a NUL character")
+        if self.data_dir is None:
+            return Path(text)
+        candidate = Path(text)
+        if not candidate.is_absolute():
+            candidate = self.data_dir / candidate
+        resolved = candidate.resolve()  # follows symlinks, so a link pointing out is caught
+        if resolved != self.data_dir and self.data_dir not in resolved.parents:
+            raise CommandError(codes.FILE_ERROR, f"path {text!r} is outside the data directory {str(self.data_dir)!r}")
+        return resolved
+
+    def _fetch(self, url: str) -> tuple[bytes, Any]:
+        """Download an ontology for LOAD WEB (http/https only, size- and time-limited)."""
+        if not self.allow_web:
+            raise CommandError(codes.FILE_ERROR, "LOAD WEB is disabled on this service (start it with allow_web=True); "
+                               "download the file and use LOAD FILE instead")
+        scheme = urllib.parse.urlparse(url).scheme.lower()
+        if scheme not in ("http", "https"):
+            raise CommandError(codes.INVALID_ARGUMENT, f"argument 1: {url!r} is not an http(s) URL")
+        try:
+            with urllib.request.urlopen(url, timeout=_WEB_TIMEOUT_SECONDS) as answer:  # noqa: S310 - scheme checked
+                data = answer.read(_WEB_MAX_BYTES + 1)
+        except OSError as exc:
+            raise CommandError(codes.FILE_ERROR, f"cannot download {url!r}: {exc}") from None
+        if len(data) > _WEB_MAX_BYTES:
+            raise CommandError(codes.FILE_ERROR, f"{url!r} is larger than {_WEB_MAX_BYTES} bytes")
+        return data, guess_format(urllib.parse.urlparse(url).path)
+
+    def log_to_file(self, path: Path | None) -> None:
+        """LOG FILE ON/OFF: send this service's log to ``path`` (None stops)."""
+        if self._file_handler is not None:
+            logger.removeHandler(self._file_handler)
+            self._file_handler.close()
+            self._file_handler = None
+        if path is not None:
+            try:
+                handler = logging.FileHandler(path, encoding="utf-8")
+            except OSError as exc:
+                raise CommandError(codes.FILE_ERROR, f"cannot open log file {str(path)!r}: {exc.strerror or exc}") from None
+            handler.setFormatter(logging.Formatter("%(asctime)s %(levelname)s %(name)s: %(message)s"))
+            self._file_handler = handler
+            logger.addHandler(handler)
+        self._update_level()
+
+    def log_to_screen(self, on: bool) -> None:
+        """LOG SCREEN ON/OFF: send this service's log to standard error."""
+        if self._screen_handler is not None:
+            logger.removeHandler(self._screen_handler)
+            self._screen_handler = None
+        if on:
+            self._screen_handler = logging.StreamHandler(sys.stderr)
+            self._screen_handler.setFormatter(logging.Formatter("[armor] %(levelname)s: %(message)s"))
+            logger.addHandler(self._screen_handler)
+        self._update_level()
+
+    def _update_level(self) -> None:
+        """Debug detail only while a log destination is switched on."""
+        on = self._file_handler is not None or self._screen_handler is not None
+        logger.setLevel(logging.DEBUG if on else logging.NOTSET)
+
+
+def _describe(req: ArmorRequest) -> str:
+    return f"[{req.client_name}@{req.reference_name}] {req.command} {req.primary_command_spec} {req.secondary_command_spec} {req.args}"
+
+
+__all__ = ["ArmorService"]
