@@ -17,7 +17,6 @@ shape of aRMOR's ``sparql_queried_objects``.
 from __future__ import annotations
 
 import re
-import threading
 import time
 from collections.abc import Callable
 from dataclasses import dataclass
@@ -149,38 +148,22 @@ def render_jena(term: Term | None, restore: Callable[[Term], Term] = lambda t: t
 
 
 def collect(solutions: QuerySolutions, timeout: float | None) -> tuple[list[str], list[list[Term | None]], bool]:
-    """Rows of a SELECT result; stops at ``timeout`` seconds with the rows so far."""
+    """Rows of a SELECT result; stops after ``timeout`` seconds with the rows so far.
+
+    Rows are read on the calling thread (pyoxigraph results are bound to the
+    thread that made them); the deadline is checked between rows.
+    """
     variables = [v.value for v in solutions.variables]
     rows: list[list[Term | None]] = []
-    timed_out = False
-    if timeout is None or timeout <= 0:
-        rows = [[s[v] for v in variables] for s in solutions]
-        return variables, rows, False
-    deadline = time.monotonic() + timeout
-    done = threading.Event()
-
-    def worker() -> None:
-        try:
-            for s in solutions:
-                rows.append([s[v] for v in variables])
-                if time.monotonic() > deadline:
-                    break
-        except Exception as exc:  # surfaced below
-            rows.append(exc)  # type: ignore[arg-type]
-        finally:
-            done.set()
-
-    thread = threading.Thread(target=worker, daemon=True)
-    thread.start()
-    if not done.wait(timeout):
-        timed_out = True
-    elif time.monotonic() > deadline:
-        timed_out = True
-    snapshot = list(rows)
-    errors = [r for r in snapshot if isinstance(r, Exception)]
-    if errors:
-        raise QueryError(f"SPARQL evaluation failed: {errors[0]}")
-    return variables, snapshot, timed_out
+    deadline = time.monotonic() + timeout if timeout and timeout > 0 else None
+    try:
+        for s in solutions:
+            rows.append([s[v] for v in variables])
+            if deadline is not None and time.monotonic() > deadline:
+                return variables, rows, True
+    except OSError as exc:
+        raise QueryError(f"SPARQL evaluation failed: {exc}") from exc
+    return variables, rows, False
 
 
 def to_items(variables: list[str], rows: list[list[Term | None]], render: Callable[[Term | None], str]) -> list[QueryItem]:

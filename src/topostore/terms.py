@@ -87,8 +87,8 @@ REAL_TYPES = set(INTEGER_TYPES) | {"decimal"}
 #: real xsd:double here (aRMOR narrowed it to float: a bug, spec §7 item 9).
 ARMOR_TYPES: dict[str, str] = {
     "STRING": "string",
-    "INT": "integer",
-    "INTEGER": "integer",
+    "INT": "int32",
+    "INTEGER": "int32",
     "LONG": "long",
     "FLOAT": "float",
     "DOUBLE": "double",
@@ -136,6 +136,10 @@ def typed_literal(value: str, type_name: str) -> Literal:
         raise UnknownTypeError(
             f"unsupported value type {type_name!r}; use one of {', '.join(sorted(ARMOR_TYPES))}"
         )
+    if local == "int32":
+        # aRMOR parses INT/INTEGER as a 32-bit Java int and asserts xsd:integer
+        literal_of(value, "int")
+        return literal_of(value, "integer")
     return literal_of(value, local)
 
 

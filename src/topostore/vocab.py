@@ -32,9 +32,19 @@ DELTA = NamedNode(INTERNAL + "graph:delta")
 NEW_INFERRED = NamedNode(INTERNAL + "graph:new-inferred")
 NEW_AUX = NamedNode(INTERNAL + "graph:new-aux")
 
-#: aux predicate: ``?x ts:inDifferentGroup ?g`` when ?x is a member of the
-#: owl:AllDifferent axiom ?g (keeps DISJOINT IND linear in size).
-IN_DIFFERENT_GROUP = NamedNode(INTERNAL + "inDifferentGroup")
+#: aux predicates indexing owl:AllDifferent axioms in linear size (never n²
+#: pairs): member ``m`` of group ``g`` gets ``m ts:differentKey k . k
+#: ts:differentGroup g`` with ``k`` a key minted from (g, m).
+DIFFERENT_KEY = NamedNode(INTERNAL + "differentKey")
+DIFFERENT_GROUP = NamedNode(INTERNAL + "differentGroup")
+#: aux predicates of the difference check.  A rule that needs "a and b are
+#: different" first derives ``a ts:differenceCandidate b`` for the pairs its body
+#: can produce; generic rules then derive ``a ts:different b`` for the candidates
+#: that are different (same AllDifferent group, owl:differentFrom, disjoint
+#: classes).  Both are plain joins, so difference costs no more than the pairs
+#: that are actually asked about.
+DIFFERENCE_CANDIDATE = NamedNode(INTERNAL + "differenceCandidate")
+DIFFERENT = NamedNode(INTERNAL + "different")
 #: Prefix of the ids given to anonymous class expressions.
 EXPR_PREFIX = INTERNAL + "expr:"
 

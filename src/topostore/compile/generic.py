@@ -8,8 +8,9 @@ a consistency check) preceded by ``# key: value`` header lines:
 * ``message`` — for checks, the explanation, with ``{var}`` placeholders;
 * ``head-graph: aux`` — the head goes to the helper graph.
 
-Inside WHERE, a line ``s p o .`` is a body atom (so the reasoner can evaluate
-it against the delta graph); any other line is kept as a filter.
+Inside WHERE, a line ``s p o .`` (or ``GRAPH ts:graph:aux { s p o . }``) is a
+body atom, so the reasoner can evaluate it against the delta graph; any other
+line is kept as a filter.
 """
 
 from __future__ import annotations
@@ -30,6 +31,7 @@ PREFIXES = {
     "ts": "urn:topostore:",
 }
 _ATOM = re.compile(r"^(\S+)\s+(\S+)\s+(\S+)\s*\.$")
+_AUX_ATOM = re.compile(r"^GRAPH\s+ts:graph:aux\s*\{\s*(\S+)\s+(\S+)\s+(\S+)\s*\.?\s*\}$")
 
 
 def expand(token: str) -> str:
@@ -54,8 +56,11 @@ def parse_rule_file(path: Path) -> Rule:
         if not line or line.startswith("#"):
             continue
         m = _ATOM.match(line)
+        aux = _AUX_ATOM.match(line)
         if m:
             body.append(Atom(*(expand(t) for t in m.groups())))
+        elif aux:
+            body.append(Atom(*(expand(t) for t in aux.groups()), aux=True))
         else:
             filters.append(line)
     reads = frozenset(

@@ -26,7 +26,7 @@ from ..terms import sparql
 from ..vocab import NOTHING, SAME_AS, THING, TYPE
 from .model import Expr, Prop, TBox
 from .rule import Atom, Rule
-from .snippets import DIFFERENT_READS, declared_different, distinct_values, entailed_different, in_datatype
+from .snippets import NOT_DIFFERENT_READS, candidate_atom, different_atom, distinct_values, in_datatype, not_different
 
 T = str(TYPE)
 
@@ -68,10 +68,21 @@ class OwlCompiler:
     def type_head(self, var: str, e: Expr) -> Atom | None:
         return None if e.node == THING else Atom(var, T, sparql(e.node))
 
-    def different(self, a: str, b: str, data: bool) -> tuple[str, frozenset]:
-        if data:
-            return distinct_values(a, b), frozenset()
-        return entailed_different(a, b, self.disjoint_pairs)
+    def ask_different(self, pairs: list[tuple[str, str]], body: list[Atom], filters: list[str], origin: str) -> list[Atom]:
+        """Atoms requiring each pair to be known different, after emitting the
+        candidate rules that make the difference rules look at exactly these pairs."""
+        for a, b in pairs:
+            self.emit("different-candidate", origin, body, candidate_atom(a, b),
+                      "\n  ".join(filters + [f"FILTER(!sameTerm({a}, {b}))"]))
+        return [different_atom(a, b) for a, b in pairs]
+
+    def difference_rules(self) -> None:
+        """Individuals of disjoint classes are different (equality would be inconsistent)."""
+        for c1, c2 in self.disjoint_pairs:
+            for x, y in ((c1, c2), (c2, c1)):
+                self.emit("different-disjoint", f"{x.value} and {y.value} are disjoint",
+                          [candidate_atom("?a", "?b"), Atom("?a", T, sparql(x)), Atom("?b", T, sparql(y))],
+                          different_atom("?a", "?b"))
 
     def _told_superclasses(self) -> dict[NamedNode, set[NamedNode]]:
         """Named-class subsumption told by the axioms (closure), for comparing fillers."""
@@ -177,66 +188,65 @@ class OwlCompiler:
             return [], f"FILTER(isLiteral({var}))"
         return self.member(var, e.filler), ""
 
-    def _fillers(self, e: Expr, x: str, n: int) -> tuple[list[Atom], list[str], frozenset, list[str]]:
-        """Body atoms for ``n`` pairwise-different fillers of restriction ``e`` on ``x``."""
+    def _fillers(self, e: Expr, x: str, n: int) -> tuple[list[Atom], list[str], list[tuple[str, str]], list[str]]:
+        """Body atoms and filters for ``n`` fillers of restriction ``e`` on ``x``, and
+        the pairs that must be different (object fillers) — data fillers get a
+        distinct-values filter instead."""
         ys = [f"?y{i}" for i in range(1, n + 1)]
         atoms: list[Atom] = []
         filters: list[str] = []
-        reads: set = set()
         for y in ys:
             atoms.append(self.prop_atom(x, e.prop, y))
             more, test = self._filler_test(y, e)
             atoms += more
             if test:
                 filters.append(test)
-        data = self.is_data(e.prop, e)
-        for a, b in combinations(ys, 2):
-            text, r = self.different(a, b, data)
-            filters.append(f"FILTER({text})")
-            reads |= r
-        return atoms, filters, frozenset(reads), ys
+        pairs = list(combinations(ys, 2))
+        if self.is_data(e.prop, e):
+            filters += [f"FILTER({distinct_values(a, b)})" for a, b in pairs]
+            pairs = []
+        return atoms, filters, pairs, ys
 
     def _lower_bound_rules(self, e: Expr, node: str, origin: str) -> None:
         x = "?x"
         n = 1 if e.kind == "some" else e.n
         if n == 0:
             return
-        atoms, filters, reads, _ = self._fillers(e, x, n)
+        atoms, filters, pairs, _ = self._fillers(e, x, n)
+        atoms = atoms + self.ask_different(pairs, atoms, filters, origin)
         name = {"some": "cls-svf1", "min": "ext-min-card"}.get(e.kind, "ext-exact-card")
         if e.kind != "exact":
-            self.emit(name, origin, atoms, Atom(x, T, node), "\n  ".join(filters), reads)
+            self.emit(name, origin, atoms, Atom(x, T, node), "\n  ".join(filters))
             return
         # exact: the minimum is met; a maximum must be known too
         if e.n == 1 and not e.prop.inverse and self.tb.has("FunctionalProperty", e.prop.iri):
-            self.emit(name, origin + " (functional property)", atoms, Atom(x, T, node), "\n  ".join(filters), reads)
+            self.emit(name, origin + " (functional property)", atoms, Atom(x, T, node), "\n  ".join(filters))
         for m in self.all_expressions():
             if m.node != e.node and m.kind in ("max", "exact") and m.prop == e.prop and m.n <= e.n and self.filler_subsumed(e, m):
                 self.emit(name, origin + f" (maximum known from {m})", atoms + [Atom(x, T, sparql(m.node))],
-                          Atom(x, T, node), "\n  ".join(filters), reads)
+                          Atom(x, T, node), "\n  ".join(filters))
 
     def _upper_bound_rules(self, e: Expr, node: str, origin: str) -> None:
         x = "?x"
         data = self.is_data(e.prop, e)
+        member = [Atom(x, T, node)]
         if e.n == 0:
             atoms, filters, _, _ = self._fillers(e, x, 1)
-            self.emit("cls-maxqc2" if e.filler or e.datatype else "cls-maxc1", origin, [Atom(x, T, node)] + atoms,
+            self.emit("cls-maxqc2" if e.filler or e.datatype else "cls-maxc1", origin, member + atoms,
                       filters="\n  ".join(filters), violation=(x, "?y1"), message=f"{{x}} has a value of {e.prop.iri.value} but is in {e}")
             return
-        atoms, filters, reads, ys = self._fillers(e, x, e.n + 1)
-        self.emit("cls-maxqc3" if e.filler or e.datatype else "cls-maxc2", origin, [Atom(x, T, node)] + atoms,
-                  filters="\n  ".join(filters), reads=reads, violation=(x, *ys),
+        atoms, filters, pairs, ys = self._fillers(e, x, e.n + 1)
+        atoms = member + atoms
+        atoms = atoms + self.ask_different(pairs, atoms, filters, origin)
+        self.emit("cls-maxqc3" if e.filler or e.datatype else "cls-maxc2", origin, atoms,
+                  filters="\n  ".join(filters), violation=(x, *ys),
                   message=f"{{x}} has more than {e.n} different values of {e.prop.iri.value} but is in {e}")
         if e.n == 1 and not data:
             # two values that are not known different are the same individual
-            y1, y2 = "?y1", "?y2"
-            body = [Atom(x, T, node)]
-            for y in (y1, y2):
-                body.append(self.prop_atom(x, e.prop, y))
-                more, test = self._filler_test(y, e)
-                body += more
-            text, r = self.different(y1, y2, False)
-            self.emit("cls-maxqc4" if e.filler else "cls-maxc2", origin, body, Atom(y1, str(SAME_AS), y2),
-                      f"FILTER(!sameTerm({y1}, {y2}) && isIRI({y1}) && isIRI({y2}) && !({text}))", r, stratum=1)
+            atoms, filters, _, _ = self._fillers(e, x, 2)
+            self.emit("cls-maxqc4" if e.filler else "cls-maxc2", origin, member + atoms, Atom("?y1", str(SAME_AS), "?y2"),
+                      "\n  ".join(filters + ["FILTER(!sameTerm(?y1, ?y2) && isIRI(?y1) && isIRI(?y2))", not_different("?y1", "?y2")]),
+                      NOT_DIFFERENT_READS, stratum=1)
 
     def _all_rules(self, e: Expr, node: str, origin: str) -> None:
         x, y = "?x", "?y"
@@ -333,12 +343,15 @@ class OwlCompiler:
         body = [self.prop_atom(x, prop, y1), self.prop_atom(x, prop, y2)]
         name = "prp-ifp" if inverse else "prp-fp"
         kind = "inverse functional" if inverse else "functional"
-        text, reads = self.different(y1, y2, data)
-        self.emit(name, f"{p.value} is {kind}", body, filters=f"FILTER({text})", reads=reads, violation=(x, y1, y2),
-                  message=f"{{x}} has the different values {{y1}} and {{y2}} of the {kind} property {p.value}")
-        if not data:
-            self.emit(name, f"{p.value} is {kind}", body, Atom(y1, str(SAME_AS), y2),
-                      f"FILTER(!sameTerm({y1}, {y2}) && isIRI({y1}) && isIRI({y2}) && !({text}))", reads, stratum=1)
+        origin = f"{p.value} is {kind}"
+        message = f"{{x}} has the different values {{y1}} and {{y2}} of the {kind} property {p.value}"
+        if data:
+            self.emit(name, origin, body, filters=f"FILTER({distinct_values(y1, y2)})", violation=(x, y1, y2), message=message)
+            return
+        self.emit(name, origin, body + self.ask_different([(y1, y2)], body, [], origin), violation=(x, y1, y2), message=message)
+        self.emit(name, origin, body, Atom(y1, str(SAME_AS), y2),
+                  f"FILTER(!sameTerm({y1}, {y2}) && isIRI({y1}) && isIRI({y2}))\n  {not_different(y1, y2)}",
+                  NOT_DIFFERENT_READS, stratum=1)
 
     def compile(self) -> list[Rule]:
         exprs = self.all_expressions()
@@ -348,6 +361,7 @@ class OwlCompiler:
         self.restriction_subsumption(exprs)
         self.class_axioms()
         self.property_axioms()
+        self.difference_rules()
         return self.rules
 
 
@@ -355,4 +369,4 @@ def compile_owl(tbox: TBox) -> list[Rule]:
     return OwlCompiler(tbox).compile()
 
 
-__all__ = ["compile_owl", "OwlCompiler", "DIFFERENT_READS", "declared_different"]
+__all__ = ["compile_owl", "OwlCompiler"]

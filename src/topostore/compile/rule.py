@@ -57,6 +57,44 @@ def head_is_aux(p: str, o: str) -> bool:
     return p == str(TYPE) and o.startswith("<urn:topostore:bnode:")
 
 
+def _atom_score(atom: Atom, bound: set[str]) -> int:
+    """Higher is cheaper to evaluate next, given the variables already bound."""
+    unbound = atom.variables() - bound
+    if not unbound:
+        return 100  # a pure check on bound values
+    s_known = not atom.s.startswith("?") or atom.s in bound
+    o_known = not atom.o.startswith("?") or atom.o in bound
+    is_type = atom.p == str(TYPE)
+    if atom.p.startswith("?"):
+        return 20 if s_known else (15 if o_known else 0)
+    if s_known and not is_type:
+        return 60
+    if o_known and not is_type:
+        return 55
+    if is_type:
+        return 10  # enumerate the instances of a class
+    return 30  # enumerate a property
+
+
+def join_order(atoms: tuple[Atom, ...], first: int | None = None) -> list[int]:
+    """A greedy join order: start from ``first`` (or the most selective atom), then
+    always take the atom that is cheapest given what is bound, so that no rule
+    starts from a cross product of class extensions."""
+    remaining = list(range(len(atoms)))
+    order: list[int] = []
+    bound: set[str] = set()
+    if first is not None:
+        order.append(first)
+        remaining.remove(first)
+        bound |= atoms[first].variables()
+    while remaining:
+        best = max(remaining, key=lambda i: (_atom_score(atoms[i], bound), -i))
+        order.append(best)
+        remaining.remove(best)
+        bound |= atoms[best].variables()
+    return order
+
+
 @dataclass(frozen=True)
 class Rule:
     """A Horn rule: if ``body`` (and ``filters``) match, ``head`` holds.
@@ -95,9 +133,15 @@ class Rule:
         return self.head is not None and head_is_aux(self.head.p, self.head.o)
 
     def where(self, delta_index: int | None = None, delta_graph: str = "") -> str:
-        """The WHERE group; with ``delta_index``, that atom reads only the delta graph."""
+        """The WHERE group; with ``delta_index``, that atom reads only the delta graph.
+
+        Atoms are written in a join order chosen by :func:`join_order` (the delta
+        atom first), because the store evaluates a basic graph pattern largely in
+        the order it is written.
+        """
         lines = []
-        for i, atom in enumerate(self.body):
+        for i in join_order(self.body, delta_index):
+            atom = self.body[i]
             if i == delta_index:
                 lines.append(f"GRAPH {delta_graph} {{ {atom.text()} }}")
             elif atom.aux:

@@ -9,35 +9,28 @@ from __future__ import annotations
 from pyoxigraph import NamedNode
 
 from ..terms import INTEGER_TYPES, sparql
-from ..vocab import AUX, DIFFERENT_FROM, IN_DIFFERENT_GROUP, OWL, RDF, RDFS, SAME_AS, TYPE, XSD
+from ..vocab import AUX, DIFFERENCE_CANDIDATE, DIFFERENT, OWL, RDF, RDFS, SAME_AS, TYPE, XSD
+from .rule import Atom
 
 T = str(TYPE)
 SAME = str(SAME_AS)
 
-DIFFERENT_READS = frozenset({("p", str(IN_DIFFERENT_GROUP)), ("p", str(DIFFERENT_FROM)), ("p", SAME)})
+def different_atom(a: str, b: str) -> Atom:
+    """Body atom: ``a`` and ``b`` are known to be different (see vocab.DIFFERENT)."""
+    return Atom(a, str(DIFFERENT), b, aux=True)
 
 
-def declared_different(a: str, b: str) -> str:
-    """True when ``a`` and ``b`` are declared different (owl:differentFrom or one
-    owl:AllDifferent), also through owl:sameAs.  Never expands AllDifferent to pairs:
-    it tests membership of the same group (two index look-ups)."""
-    return (
-        f"(!sameTerm({a}, {b}) && EXISTS {{ {{ {a} {DIFFERENT_FROM} {b} }} UNION {{ {b} {DIFFERENT_FROM} {a} }} UNION "
-        f"{{ {a} {SAME}? ?_m1 . {b} {SAME}? ?_m2 . GRAPH {AUX} {{ ?_m1 {IN_DIFFERENT_GROUP} ?_g . ?_m2 {IN_DIFFERENT_GROUP} ?_g }} "
-        f"FILTER(!sameTerm(?_m1, ?_m2)) }} }})"
-    )
+def candidate_atom(a: str, b: str) -> Atom:
+    """Head atom of a candidate rule: ask whether ``a`` and ``b`` are different."""
+    return Atom(a, str(DIFFERENCE_CANDIDATE), b, aux=True)
 
 
-def entailed_different(a: str, b: str, disjoint_pairs: list[tuple[NamedNode, NamedNode]]) -> tuple[str, frozenset]:
-    """Declared difference, or membership of disjoint classes (which makes equality
-    inconsistent, so a tableau reasoner concludes difference)."""
-    text = declared_different(a, b)
-    reads = set(DIFFERENT_READS)
-    if disjoint_pairs:
-        values = " ".join(f"({sparql(x)} {sparql(y)}) ({sparql(y)} {sparql(x)})" for x, y in disjoint_pairs)
-        text = f"({text} || EXISTS {{ VALUES (?_c1 ?_c2) {{ {values} }} {a} {T} ?_c1 . {b} {T} ?_c2 }})"
-        reads |= {("t", sparql(c)) for pair in disjoint_pairs for c in pair}
-    return text, frozenset(reads)
+NOT_DIFFERENT_READS = frozenset({("p", str(DIFFERENT))})
+
+
+def not_different(a: str, b: str) -> str:
+    """Filter: ``a`` and ``b`` are not known to be different (a negated premise)."""
+    return f"FILTER NOT EXISTS {{ GRAPH {AUX} {{ {a} {DIFFERENT} {b} }} }}"
 
 
 def distinct_values(a: str, b: str) -> str:

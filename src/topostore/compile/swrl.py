@@ -19,7 +19,7 @@ from ..vocab import DIFFERENT_FROM, RDFS, SAME_AS, SWRL, SWRLA, TYPE, rdfs, swrl
 from . import builtins
 from .model import Expr, TBoxReader, is_datatype
 from .rule import Atom, Rule
-from .snippets import DIFFERENT_READS, declared_different, in_datatype
+from .snippets import candidate_atom, different_atom, in_datatype
 
 T = str(TYPE)
 
@@ -93,6 +93,7 @@ class SwrlCompiler:
             raise RuleCompileError(f"SWRL rule {name!r} has no head atom")
         names: dict[Term, str] = {}
         self._deferred: list[tuple[str, list[str], SwrlAtom]] = []
+        self._different: list[tuple[str, str, SwrlAtom]] = []
 
         def arg(t: Term) -> str:
             if t in self.variables:
@@ -141,8 +142,17 @@ class SwrlCompiler:
             if missing:
                 raise RuleCompileError(f"SWRL rule {name!r}, atom {a.describe(name)}: variable {missing[0]} is not bound by the body")
             filters.append(text)
-
         rules = []
+        # difference: ask about exactly the pairs the rest of the body produces
+        checks: list[Atom] = []
+        for x, y, a in self._different:
+            for v in (x, y):
+                if v.startswith("?") and v not in bound:
+                    raise RuleCompileError(f"SWRL rule {name!r}, atom {a.describe(name)}: variable {v} is not bound by the body")
+            rules.append(Rule(f"swrl:{name}", f"SWRL rule {name}: which pairs to check for difference", tuple(patterns),
+                              candidate_atom(x, y), "\n  ".join(filters + [f"FILTER(!sameTerm({x}, {y}))"]), frozenset(reads)))
+            checks.append(different_atom(x, y))
+        patterns = patterns + checks
         for a in head:
             try:
                 h = self._head_atom(a, arg)
@@ -180,8 +190,7 @@ class SwrlCompiler:
         elif k == "DifferentIndividualsAtom":
             self._need(a, 2)
             x, y = arg(a.args[0]), arg(a.args[1])
-            self._deferred.append((f"FILTER({declared_different(x, y)})", [x, y], a))
-            reads.update(DIFFERENT_READS)
+            self._different.append((x, y, a))
         elif k == "DataRangeAtom":
             self._need(a, 1)
             if not is_datatype(a.predicate):
