@@ -31,6 +31,12 @@ from .snippets import NOT_DIFFERENT_READS, candidate_atom, different_atom, disti
 T = str(TYPE)
 
 
+def nm(term: NamedNode) -> str:
+    """Short name of an IRI for messages (local part after # or /)."""
+    v = term.value
+    return v.rsplit("#", 1)[-1] if "#" in v else v.rsplit("/", 1)[-1]
+
+
 class OwlCompiler:
     def __init__(self, tbox: TBox) -> None:
         self.tb = tbox
@@ -80,7 +86,7 @@ class OwlCompiler:
         """Individuals of disjoint classes are different (equality would be inconsistent)."""
         for c1, c2 in self.disjoint_pairs:
             for x, y in ((c1, c2), (c2, c1)):
-                self.emit("different-disjoint", f"{x.value} and {y.value} are disjoint",
+                self.emit("different-disjoint", f"{nm(x)} and {nm(y)} are disjoint",
                           [candidate_atom("?a", "?b"), Atom("?a", T, sparql(x)), Atom("?b", T, sparql(y))],
                           different_atom("?a", "?b"))
 
@@ -233,14 +239,14 @@ class OwlCompiler:
         if e.n == 0:
             atoms, filters, _, _ = self._fillers(e, x, 1)
             self.emit("cls-maxqc2" if e.filler or e.datatype else "cls-maxc1", origin, member + atoms,
-                      filters="\n  ".join(filters), violation=(x, "?y1"), message=f"{{x}} has a value of {e.prop.iri.value} but is in {e}")
+                      filters="\n  ".join(filters), violation=(x, "?y1"), message=f"{{x}} has a value of {nm(e.prop.iri)} but is in {e}")
             return
         atoms, filters, pairs, ys = self._fillers(e, x, e.n + 1)
         atoms = member + atoms
         atoms = atoms + self.ask_different(pairs, atoms, filters, origin)
         self.emit("cls-maxqc3" if e.filler or e.datatype else "cls-maxc2", origin, atoms,
                   filters="\n  ".join(filters), violation=(x, *ys),
-                  message=f"{{x}} has more than {e.n} different values of {e.prop.iri.value} but is in {e}")
+                  message=f"{{x}} has more than {e.n} different values of {nm(e.prop.iri)} but is in {e}")
         if e.n == 1 and not data:
             # two values that are not known different are the same individual
             atoms, filters, _, _ = self._fillers(e, x, 2)
@@ -255,7 +261,7 @@ class OwlCompiler:
             test = in_datatype(y, e.datatype)
             if test:
                 self.emit("cls-avf", origin, body, filters=f"FILTER(!({test}))", violation=(x, y),
-                          message=f"{{x}} has a value outside {e.datatype.value} for {e.prop.iri.value}")
+                          message=f"{{x}} has a value outside {nm(e.datatype)} for {nm(e.prop.iri)}")
         elif e.filler is not None and e.filler.node != THING:
             self.emit("cls-avf", origin, body, Atom(y, T, sparql(e.filler.node)))
 
@@ -297,40 +303,40 @@ class OwlCompiler:
         x, y, z = "?x", "?y", "?z"
         for p, c in tb.domain:
             if c.node != THING:
-                self.emit("prp-dom", f"{p.iri.value} domain {c}", [self.prop_atom(x, p, y)], Atom(x, T, sparql(c.node)))
+                self.emit("prp-dom", f"{nm(p.iri)} domain {c}", [self.prop_atom(x, p, y)], Atom(x, T, sparql(c.node)))
         for p, c in tb.range:
             if c.node != THING:
-                self.emit("prp-rng", f"{p.iri.value} range {c}", [self.prop_atom(x, p, y)], Atom(y, T, sparql(c.node)))
+                self.emit("prp-rng", f"{nm(p.iri)} range {c}", [self.prop_atom(x, p, y)], Atom(y, T, sparql(c.node)))
         for p, dt in tb.data_range:
             test = in_datatype(y, dt)
             if test:
-                self.emit("dt-range", f"{p.value} range {dt.value}", [Atom(x, sparql(p), y)], filters=f"FILTER(!({test}))",
-                          violation=(x, y), message=f"{{x}} has the value {{y}} of {p.value}, outside its range {dt.value}")
+                self.emit("dt-range", f"{nm(p)} range {nm(dt)}", [Atom(x, sparql(p), y)], filters=f"FILTER(!({test}))",
+                          violation=(x, y), message=f"{{x}} has the value {{y}} of {nm(p)}, outside its range {nm(dt)}")
         for p, q in tb.subproperty:
             if p != q:
-                self.emit("prp-spo1", f"{p.iri.value} SubPropertyOf {q.iri.value}", [self.prop_atom(x, p, y)], self.prop_atom(x, q, y))
+                self.emit("prp-spo1", f"{nm(p.iri)} SubPropertyOf {nm(q.iri)}", [self.prop_atom(x, p, y)], self.prop_atom(x, q, y))
         for p, q in tb.inverse:
-            origin = f"{p.value} InverseOf {q.value}"
+            origin = f"{nm(p)} InverseOf {nm(q)}"
             self.emit("prp-inv1", origin, [Atom(x, sparql(p), y)], Atom(y, sparql(q), x))
             self.emit("prp-inv2", origin, [Atom(x, sparql(q), y)], Atom(y, sparql(p), x))
         for q, chain in tb.chains:
             vars_ = [f"?u{i}" for i in range(len(chain) + 1)]
             body = [self.prop_atom(vars_[i], p, vars_[i + 1]) for i, p in enumerate(chain)]
-            self.emit("prp-spo2", f"{q.value} chain of {' o '.join(p.iri.value for p in chain)}", body, Atom(vars_[0], sparql(q), vars_[-1]))
+            self.emit("prp-spo2", f"{nm(q)} chain of {' o '.join(nm(p.iri) for p in chain)}", body, Atom(vars_[0], sparql(q), vars_[-1]))
         for p, q in tb.disjoint_props:
-            self.emit("prp-pdw", f"{p.value} DisjointWith {q.value}", [Atom(x, sparql(p), y), Atom(x, sparql(q), y)],
-                      violation=(x, y), message=f"{{x}} is linked to {{y}} by the disjoint properties {p.value} and {q.value}")
+            self.emit("prp-pdw", f"{nm(p)} DisjointWith {nm(q)}", [Atom(x, sparql(p), y), Atom(x, sparql(q), y)],
+                      violation=(x, y), message=f"{{x}} is linked to {{y}} by the disjoint properties {nm(p)} and {nm(q)}")
         ch = tb.characteristics
         for p in ch.get("SymmetricProperty", ()):
-            self.emit("prp-symp", f"{p.value} is symmetric", [Atom(x, sparql(p), y)], Atom(y, sparql(p), x))
+            self.emit("prp-symp", f"{nm(p)} is symmetric", [Atom(x, sparql(p), y)], Atom(y, sparql(p), x))
         for p in ch.get("TransitiveProperty", ()):
-            self.emit("prp-trp", f"{p.value} is transitive", [Atom(x, sparql(p), y), Atom(y, sparql(p), z)], Atom(x, sparql(p), z))
+            self.emit("prp-trp", f"{nm(p)} is transitive", [Atom(x, sparql(p), y), Atom(y, sparql(p), z)], Atom(x, sparql(p), z))
         for p in ch.get("AsymmetricProperty", ()):
-            self.emit("prp-asyp", f"{p.value} is asymmetric", [Atom(x, sparql(p), y), Atom(y, sparql(p), x)],
-                      violation=(x, y), message=f"{{x}} and {{y}} are linked both ways by the asymmetric {p.value}")
+            self.emit("prp-asyp", f"{nm(p)} is asymmetric", [Atom(x, sparql(p), y), Atom(y, sparql(p), x)],
+                      violation=(x, y), message=f"{{x}} and {{y}} are linked both ways by the asymmetric {nm(p)}")
         for p in ch.get("IrreflexiveProperty", ()):
-            self.emit("prp-irp", f"{p.value} is irreflexive", [Atom(x, sparql(p), x)], violation=(x,),
-                      message=f"{{x}} is linked to itself by the irreflexive {p.value}")
+            self.emit("prp-irp", f"{nm(p)} is irreflexive", [Atom(x, sparql(p), x)], violation=(x,),
+                      message=f"{{x}} is linked to itself by the irreflexive {nm(p)}")
         for p in ch.get("FunctionalProperty", ()):
             self._functional(p, inverse=False)
         for p in ch.get("InverseFunctionalProperty", ()):
@@ -343,8 +349,8 @@ class OwlCompiler:
         body = [self.prop_atom(x, prop, y1), self.prop_atom(x, prop, y2)]
         name = "prp-ifp" if inverse else "prp-fp"
         kind = "inverse functional" if inverse else "functional"
-        origin = f"{p.value} is {kind}"
-        message = f"{{x}} has the different values {{y1}} and {{y2}} of the {kind} property {p.value}"
+        origin = f"{nm(p)} is {kind}"
+        message = f"{{x}} has the different values {{y1}} and {{y2}} of the {kind} property {nm(p)}"
         if data:
             self.emit(name, origin, body, filters=f"FILTER({distinct_values(y1, y2)})", violation=(x, y1, y2), message=message)
             return

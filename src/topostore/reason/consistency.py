@@ -54,9 +54,14 @@ def _message(rule: Rule, row: dict) -> str:
 def check_consistency(store: Store, rules: RuleSet) -> list[Violation]:
     """All violations of the check rules over asserted ∪ inferred knowledge."""
     found: list[Violation] = []
+    seen: set = set()
     graphs = [ASSERTED, INFERRED, AUX]
     for rule in rules.checks:
         for solution in store.query(check_text(rule), graphs=graphs, prefixes=PREFIXES):
             row = {v[1:]: solution[v[1:]] for v in rule.violation if solution[v[1:]] is not None}
+            key = (rule.name, rule.origin, frozenset(row.values()))
+            if key in seen:  # the same violation found with its variables swapped
+                continue
+            seen.add(key)
             found.append(Violation(rule.name, rule.origin, {k: unskolem(v) for k, v in row.items()}, _message(rule, row)))
     return found
