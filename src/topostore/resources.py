@@ -36,5 +36,10 @@ def ontology_dir() -> Path:
 
 
 def default_ontology() -> Path:
-    """The embedded topological map (TBox, SWRL rules and the example environment)."""
+    """The embedded topological map TBox with its SWRL rules (the example environment is beside it)."""
     return ontology_dir() / "topological_map.ttl"
+
+
+def default_ontology_files() -> list[Path]:
+    """The embedded topological map as [TBox with the SWRL rules, example environment (ABox)]."""
+    return [default_ontology(), ontology_dir() / "topological_map_abox.ttl"]

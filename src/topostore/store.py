@@ -31,6 +31,28 @@ from .terms import Term, value_key
 from .vocab import AUX, ASSERTED, INFERRED, INTERNAL, NIL, FIRST, REST
 
 SKOLEM_PREFIX = INTERNAL + "bnode:"
+_XSD = "http://www.w3.org/2001/XMLSchema#"
+
+
+def _pow(base: Term, exponent: Term) -> Literal | None:
+    """swrlb:pow for a non-constant exponent (SPARQL 1.1 has no power function).
+
+    Integers with a non-negative integer exponent stay integers; anything else
+    is computed as a double.  Non-numbers give no value (the rule does not fire).
+    """
+    if not isinstance(base, Literal) or not isinstance(exponent, Literal):
+        return None
+    try:
+        if base.datatype.value.startswith(_XSD) and "." not in base.value and "e" not in base.value.lower() \
+                and exponent.value.lstrip("+").isdigit():
+            return Literal(str(int(base.value) ** int(exponent.value)), datatype=NamedNode(_XSD + "integer"))
+        return Literal(repr(float(base.value) ** float(exponent.value)), datatype=NamedNode(_XSD + "double"))
+    except (ValueError, OverflowError, ZeroDivisionError):
+        return None
+
+
+#: Extension functions the compiled rules may call (see compile/builtins.py).
+CUSTOM_FUNCTIONS = {NamedNode(INTERNAL + "fn:pow"): _pow}
 
 _FORMATS = {
     ".owl": RdfFormat.RDF_XML,
@@ -237,19 +259,22 @@ class Store:
     # ------------------------------------------------------------ SPARQL
     def update(self, text: str, **kwargs) -> None:
         try:
-            self._ox.update(text, **kwargs)
+            self._ox.update(text, custom_functions=CUSTOM_FUNCTIONS, **kwargs)
         except SyntaxError as exc:
             raise QueryError(f"malformed SPARQL update: {exc}") from exc
+        except (OSError, RuntimeError) as exc:
+            raise QueryError(f"SPARQL update failed: {exc}") from exc
 
     def query(self, text: str, graphs: list[NamedNode] | None = None, **kwargs):
         """Run a query whose default graph is the union of ``graphs``."""
+        kwargs.setdefault("custom_functions", CUSTOM_FUNCTIONS)
         try:
             if graphs is not None:
                 return self._ox.query(text, default_graph=list(graphs), named_graphs=list(graphs), **kwargs)
             return self._ox.query(text, **kwargs)
         except SyntaxError as exc:
             raise QueryError(f"malformed SPARQL query: {exc}") from exc
-        except OSError as exc:  # evaluation errors reported by Oxigraph
+        except (OSError, RuntimeError) as exc:  # evaluation errors reported by Oxigraph
             raise QueryError(f"SPARQL evaluation failed: {exc}") from exc
 
     # ------------------------------------------------------------ output
