@@ -1,0 +1,449 @@
+"""The network service: aRMOR commands as JSON over HTTP and a SPARQL 1.1 endpoint per reference.
+
+Routes (all answers JSON unless a SPARQL result format is negotiated)::
+
+    GET  /health                        liveness and version
+    GET  /references                    each reference: triples, consistency, last reasoning
+    POST /armor                         one aRMOR request  -> ArmorResponse fields
+    POST /armor/batch                   a list of requests -> the serialized service's reply
+    GET  /references/{name}/sparql      SPARQL 1.1 Protocol query (?query=...)
+    POST /references/{name}/sparql      query or update (form, application/sparql-query|update)
+
+Secure by default: loopback only unless a bearer token is set, LOAD/SAVE
+paths confined to the data directory, bounded request bodies, a time limit on
+SPARQL, SPARQL updates off, and SERVICE/LOAD (which would make the service
+fetch URLs) refused.  See docs/server.md for the reasons behind the stack.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import concurrent.futures
+import contextlib
+import hmac
+import ipaddress
+import json
+import logging
+import socket
+import time
+import urllib.parse
+from collections.abc import AsyncIterator, Callable
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+from starlette.applications import Starlette
+from starlette.concurrency import run_in_threadpool
+from starlette.requests import Request
+from starlette.responses import JSONResponse, Response
+from starlette.routing import Route
+from starlette.types import ASGIApp, Message, Receive, Scope, Send
+
+from . import __version__
+from .armor import ArmorService
+from .armor.codes import CommandError
+from .errors import QueryError, TopostoreError
+from .sparql.execute import (
+    Job, ReferenceMounted, ResultTooLarge, SparqlTimeout, run_query, run_update, timeout_message,
+)
+from .sparql.guard import UnsafeOperationError
+from .sparql.results import NotAcceptable
+from .vocab import ASSERTED, INFERRED
+
+logger = logging.getLogger("topostore.server")
+
+DEFAULT_MAX_REQUEST_BYTES = 1024 * 1024
+DEFAULT_SPARQL_TIMEOUT = 10.0
+DEFAULT_SPARQL_WORKERS = 4
+DEFAULT_SPARQL_MAX_ROWS = 500_000
+
+
+class ConfigError(TopostoreError):
+    """A server setting that would be unsafe or cannot work."""
+
+
+@dataclass
+class ServerConfig:
+    """Everything ``topostore serve`` can set; the defaults are the safe choice."""
+
+    host: str = "127.0.0.1"
+    port: int = 8765
+    data_dir: Path = Path("data")
+    token: str | None = None
+    allow_update: bool = False
+    max_request_bytes: int = DEFAULT_MAX_REQUEST_BYTES
+    sparql_timeout: float = DEFAULT_SPARQL_TIMEOUT
+    sparql_workers: int = DEFAULT_SPARQL_WORKERS
+    sparql_max_rows: int = DEFAULT_SPARQL_MAX_ROWS
+    short_names: bool = False
+    #: browser origins allowed to call the service (CORS), e.g. a YASGUI page; none by default
+    cors_origins: tuple[str, ...] = ()
+
+    def check(self) -> None:
+        """Refuse settings that would expose the service or cannot work, with the fix in the message."""
+        if self.token is not None and not self.token.strip():
+            raise ConfigError("the token is empty; give a real secret with --token")
+        if not is_loopback(self.host) and not self.token:
+            raise ConfigError(f"refusing to listen on {self.host!r} without a token: anyone on the network could "
+                              "change the robot's map; add --token SECRET or bind 127.0.0.1")
+        if self.max_request_bytes < 1:
+            raise ConfigError("--max-request-bytes must be at least 1")
+        if not self.sparql_timeout > 0:
+            raise ConfigError("--sparql-timeout must be a positive number of seconds")
+        if self.sparql_max_rows < 1:
+            raise ConfigError("--sparql-max-rows must be at least 1")
+        if self.sparql_workers < 1:
+            raise ConfigError("the SPARQL worker count must be at least 1")
+
+
+def is_loopback(host: str) -> bool:
+    """True when every address ``host`` stands for is a loopback address ("" and 0.0.0.0 are not)."""
+    name = host.strip().strip("[]")
+    if not name:
+        return False
+    try:
+        return ipaddress.ip_address(name).is_loopback
+    except ValueError:
+        pass
+    try:
+        infos = socket.getaddrinfo(name, None)
+    except OSError:
+        return False
+    return bool(infos) and all(ipaddress.ip_address(info[4][0].split("%")[0]).is_loopback for info in infos)
+
+
+def error(status: int, message: str, headers: dict[str, str] | None = None) -> JSONResponse:
+    """Every error answer has the same shape: ``{"error": "..."}`` and a fitting status."""
+    return JSONResponse({"error": message}, status_code=status, headers=headers)
+
+
+# --------------------------------------------------------------------------- middleware
+
+def is_loopback_host_header(value: str) -> bool:
+    """Whether a Host header names this machine literally (no DNS: a rebinding domain must not pass)."""
+    host = value.strip().lower()
+    if host.startswith("["):
+        host = host[1:host.find("]")] if "]" in host else host[1:]
+    elif host.count(":") == 1:
+        host = host.split(":", 1)[0]
+    if host == "localhost" or host.endswith(".localhost"):
+        return True
+    try:
+        return ipaddress.ip_address(host).is_loopback
+    except ValueError:
+        return False
+
+
+class Guard:
+    """Browser protections, bearer-token check and request-size limit, before any route runs.
+
+    Without a token the service trusts whoever can reach the loopback
+    interface, so two browser attacks are stopped here: requests from web
+    pages of other origins (refused unless allowed with ``cors_origins``) and
+    DNS rebinding (the Host header must name the machine literally).
+    The body is read here, up to the limit, and replayed to the route, so an
+    oversized upload is refused with 413 without ever being held in memory.
+    """
+
+    def __init__(self, app: ASGIApp, token: str | None, max_bytes: int, cors_origins: tuple[str, ...] = ()) -> None:
+        self.app = app
+        self.token = token.encode() if token else None
+        self.max_bytes = max_bytes
+        self.cors_origins = {o.rstrip("/") for o in cors_origins}
+
+    async def __call__(self, scope: Scope, receive: Receive, send: Send) -> None:
+        if scope["type"] != "http":
+            await self.app(scope, receive, send)
+            return
+        headers = {k.decode("latin-1").lower(): v for k, v in scope.get("headers", [])}
+        origin = headers.get("origin", b"").decode("latin-1")
+        if origin:
+            if origin.rstrip("/") not in self.cors_origins:
+                await error(403, f"requests from web pages of origin {origin!r} are refused; allow it with "
+                            "--cors-origin")(scope, receive, send)
+                return
+            send = _with_cors(send, origin)
+            if scope["method"] == "OPTIONS":  # preflight: carries no token, answers only what is allowed
+                await Response(status_code=204, headers={
+                    "Access-Control-Allow-Methods": "GET, POST",
+                    "Access-Control-Allow-Headers": "Authorization, Content-Type, Accept",
+                    "Access-Control-Max-Age": "600"})(scope, receive, send)
+                return
+        if self.token is None and not is_loopback_host_header(headers.get("host", b"").decode("latin-1")):
+            await error(403, "the Host header does not name this machine (DNS rebinding protection); "
+                        "use 127.0.0.1 or localhost, or start the server with --token")(scope, receive, send)
+            return
+        if self.token is not None and not self._authorized(headers.get("authorization", b"")):
+            await error(401, "missing or wrong bearer token (send 'Authorization: Bearer <token>')",
+                        {"WWW-Authenticate": 'Bearer realm="topostore"'})(scope, receive, send)
+            return
+        if len(scope.get("query_string", b"")) > self.max_bytes:
+            await error(414, f"the query string is longer than the limit of {self.max_bytes} bytes; "
+                        "send the query with POST")(scope, receive, send)
+            return
+        declared = headers.get("content-length")
+        if declared is not None and declared.isdigit() and int(declared) > self.max_bytes:
+            await self._too_large(scope, receive, send)
+            return
+        chunks: list[bytes] = []
+        size = 0
+        while True:
+            message = await receive()
+            if message["type"] == "http.disconnect":
+                return
+            chunk = message.get("body", b"")
+            size += len(chunk)
+            if size > self.max_bytes:
+                await self._too_large(scope, receive, send)
+                return
+            chunks.append(chunk)
+            if not message.get("more_body", False):
+                break
+        body = b"".join(chunks)
+        replayed = False
+
+        async def replay() -> Message:
+            nonlocal replayed
+            if not replayed:
+                replayed = True
+                return {"type": "http.request", "body": body, "more_body": False}
+            return await receive()
+
+        await self.app(scope, replay, send)
+
+    def _authorized(self, header: bytes) -> bool:
+        scheme, _, value = header.partition(b" ")
+        return scheme.lower() == b"bearer" and hmac.compare_digest(value.strip(), self.token or b"")
+
+    async def _too_large(self, scope: Scope, receive: Receive, send: Send) -> None:
+        await error(413, f"the request body is larger than the limit of {self.max_bytes} bytes "
+                    "(server option --max-request-bytes)")(scope, receive, send)
+
+
+# --------------------------------------------------------------------------- application
+
+class Api:
+    """Route handlers bound to one service and configuration."""
+
+    def __init__(self, config: ServerConfig, service: ArmorService) -> None:
+        self.config = config
+        self.service = service
+        self.pool = concurrent.futures.ThreadPoolExecutor(max_workers=config.sparql_workers,
+                                                          thread_name_prefix="topostore-sparql")
+        self.started = time.time()
+
+    # ------------------------------------------------------------ simple routes
+    async def health(self, request: Request) -> Response:
+        return JSONResponse({"status": "ok", "version": __version__, "references": len(self.service.reference_names()),
+                             "uptime_seconds": round(time.time() - self.started, 3)})
+
+    async def references(self, request: Request) -> Response:
+        infos = await run_in_threadpool(self._reference_infos)
+        return JSONResponse({"references": infos})
+
+    def _reference_infos(self) -> list[dict[str, Any]]:
+        out = []
+        for name in sorted(self.service.reference_names()):
+            try:
+                ref = self.service.reference(name)
+            except CommandError:  # dropped meanwhile
+                continue
+            with ref.lock:
+                onto = ref.ontology
+                report = onto.report
+                out.append({
+                    "name": name,
+                    "iri": ref.iri,
+                    "triples_asserted": onto.store.count(ASSERTED),
+                    "triples_inferred": onto.store.count(INFERRED),
+                    "consistent": None if report is None else report.consistent,
+                    "last_reasoning_seconds": None if report is None else round(report.stats.seconds, 6),
+                    "changed_since_reasoning": onto.dirty,
+                    "buffered_changes": len(ref.buffer),
+                    "mounted_by": ref.owner,
+                })
+        return out
+
+    # ------------------------------------------------------------ aRMOR
+    async def armor(self, request: Request) -> Response:
+        data = await _json_body(request)
+        if isinstance(data, Response):
+            return data
+        if not isinstance(data, dict):
+            return error(400, "POST /armor takes one request as a JSON object; use /armor/batch for a list")
+        if "armor_request" in data and isinstance(data["armor_request"], dict):  # the ROS service's wrapper
+            data = data["armor_request"]
+        response = await run_in_threadpool(self.service.call, data)
+        return JSONResponse(response.to_dict())
+
+    async def armor_batch(self, request: Request) -> Response:
+        data = await _json_body(request)
+        if isinstance(data, Response):
+            return data
+        if isinstance(data, dict) and isinstance(data.get("armor_requests"), list):
+            data = data["armor_requests"]
+        if not isinstance(data, list):
+            return error(400, "POST /armor/batch takes a JSON list of requests (or {\"armor_requests\": [...]})")
+        result = await run_in_threadpool(self.service.call_many, data)
+        return JSONResponse(result.to_dict())
+
+    # ------------------------------------------------------------ SPARQL
+    async def sparql(self, request: Request) -> Response:
+        name = request.path_params["name"]
+        try:
+            ref = self.service.reference(name)
+        except CommandError as exc:
+            return error(404, exc.message)
+        parsed = await _sparql_operation(request)
+        if isinstance(parsed, Response):
+            return parsed
+        kind, text = parsed
+        params = request.query_params
+        for dataset_param in ("default-graph-uri", "named-graph-uri", "using-graph-uri", "using-named-graph-uri"):
+            if dataset_param in params:
+                return error(400, f"{dataset_param} is not supported: the dataset of this endpoint is fixed to the "
+                             f"asserted and inferred knowledge of reference {name!r}")
+        if kind == "update" and not self.config.allow_update:
+            return error(403, "SPARQL updates are disabled on this server (start it with --allow-update, "
+                         "or change the ontology with aRMOR commands on /armor)")
+        limit = self.config.sparql_timeout
+        job = Job(deadline=time.monotonic() + limit)
+        if kind == "query":
+            work: Callable[[], Any] = lambda: run_query(ref, text, request.headers.get("accept"), params.get("format"),
+                                                         job, limit, self.config.sparql_max_rows)
+        else:
+            work = lambda: run_update(ref, text, job, limit)
+        try:
+            outcome = await self._run_limited(work, job, limit)
+        except SparqlTimeout as exc:
+            return error(503, str(exc))
+        except NotAcceptable as exc:
+            return error(406, str(exc))
+        except ResultTooLarge as exc:
+            return error(400, str(exc))
+        except (UnsafeOperationError, ReferenceMounted) as exc:
+            return error(403, str(exc))
+        except QueryError as exc:
+            return error(400, str(exc))
+        except TopostoreError as exc:  # e.g. a rule in the update that cannot be compiled: nothing was changed
+            return error(400, f"the update was not applied: {exc}")
+        if kind == "update":
+            return JSONResponse(outcome.to_dict())
+        return Response(outcome.body, media_type=outcome.format.content_type,
+                        headers={"Vary": "Accept"})
+
+    async def _run_limited(self, work: Callable[[], Any], job: Job, limit: float) -> Any:
+        """Run ``work`` on the SPARQL pool; give up at the deadline unless an update already committed."""
+        loop = asyncio.get_running_loop()
+        future = loop.run_in_executor(self.pool, work)
+        future.add_done_callback(_consume_exception)
+        remaining = max(0.0, job.deadline - time.monotonic())
+        done, _ = await asyncio.wait({future}, timeout=remaining)
+        if not done and job.expire():
+            raise SparqlTimeout(timeout_message(limit))
+        return await future
+
+    def close(self) -> None:
+        self.pool.shutdown(wait=False, cancel_futures=True)
+
+
+def _with_cors(send: Send, origin: str) -> Send:
+    """``send`` with the CORS headers for an allowed origin added to the response."""
+
+    async def wrapped(message: Message) -> None:
+        if message["type"] == "http.response.start":
+            extra = [(b"access-control-allow-origin", origin.encode("latin-1")), (b"vary", b"Origin"),
+                     (b"access-control-expose-headers", b"Content-Type")]
+            message = {**message, "headers": list(message.get("headers", [])) + extra}
+        await send(message)
+
+    return wrapped
+
+
+def _consume_exception(future: asyncio.Future) -> None:
+    """Abandoned (timed-out) futures still finish; read their exception so asyncio does not warn."""
+    if not future.cancelled():
+        future.exception()
+
+
+async def _json_body(request: Request) -> Any:
+    """The parsed JSON body; only ``application/json``, which browsers cannot send cross-site unasked."""
+    media = request.headers.get("content-type", "").split(";")[0].strip().lower()
+    if media != "application/json":
+        return error(415, f"send aRMOR requests as application/json, not {media or 'no content type'!r}")
+    body = await request.body()
+    try:
+        return json.loads(body)
+    except (UnicodeDecodeError, json.JSONDecodeError) as exc:
+        return error(400, f"the request body is not valid JSON: {exc}")
+
+
+async def _sparql_operation(request: Request) -> tuple[str, str] | Response:
+    """("query"|"update", text) from a SPARQL 1.1 Protocol request, or an error response."""
+    if request.method == "GET":
+        if "update" in request.query_params:
+            return error(400, "SPARQL updates must be sent with POST")
+        query = request.query_params.get("query")
+        if not query:
+            return error(400, "missing the 'query' parameter (GET /references/NAME/sparql?query=SELECT...)")
+        return "query", query
+    media = request.headers.get("content-type", "").split(";")[0].strip().lower()
+    body = await request.body()
+    try:
+        text = body.decode("utf-8")
+    except UnicodeDecodeError:
+        return error(400, "the request body is not UTF-8 text")
+    if media == "application/x-www-form-urlencoded":
+        form = urllib.parse.parse_qs(text, keep_blank_values=True)
+        queries, updates = form.get("query", []), form.get("update", [])
+        if len(queries) + len(updates) != 1:
+            return error(400, "send exactly one 'query' or one 'update' form field")
+        return ("query", queries[0]) if queries else ("update", updates[0])
+    if media == "application/sparql-query":
+        return "query", text
+    if media == "application/sparql-update":
+        return "update", text
+    return error(415, "POST a SPARQL operation as application/x-www-form-urlencoded (query= or update=), "
+                 f"application/sparql-query or application/sparql-update, not {media or 'no content type'!r}")
+
+
+def create_app(config: ServerConfig, service: ArmorService | None = None) -> Starlette:
+    """The ASGI application serving one :class:`ArmorService` (created from ``config`` if not given)."""
+    config.check()
+    data_dir = Path(config.data_dir)
+    data_dir.mkdir(parents=True, exist_ok=True)
+    service = service or ArmorService(data_dir=data_dir, short_names=config.short_names)
+    if service.data_dir is None:
+        raise ConfigError("the served ArmorService must confine files to a data directory")
+    api = Api(config, service)
+
+    @contextlib.asynccontextmanager
+    async def lifespan(app: Starlette) -> AsyncIterator[None]:
+        yield
+        api.close()
+
+    routes = [
+        Route("/health", api.health, methods=["GET"]),
+        Route("/references", api.references, methods=["GET"]),
+        Route("/armor", api.armor, methods=["POST"]),
+        Route("/armor/batch", api.armor_batch, methods=["POST"]),
+        Route("/references/{name}/sparql", api.sparql, methods=["GET", "POST"]),
+    ]
+    app = Starlette(routes=routes, lifespan=lifespan)
+    app.add_middleware(Guard, token=config.token, max_bytes=config.max_request_bytes,
+                       cors_origins=tuple(config.cors_origins))
+    app.state.api = api
+    return app
+
+
+def serve(config: ServerConfig) -> None:
+    """Check the configuration, then serve until interrupted (Ctrl-C)."""
+    import uvicorn
+
+    app = create_app(config)
+    logger.info("serving on http://%s:%s (data directory %s)", config.host, config.port, Path(config.data_dir).resolve())
+    uvicorn.run(app, host=config.host, port=config.port, log_level="info", server_header=False,
+                timeout_graceful_shutdown=5)
+
+
+__all__ = ["ServerConfig", "ConfigError", "create_app", "serve", "is_loopback", "is_loopback_host_header", "Guard"]

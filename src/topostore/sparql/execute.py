@@ -1,0 +1,190 @@
+"""Run SPARQL queries and updates on an aRMOR reference, safely under concurrency.
+
+Queries: the reference lock is held only while the query is *started*.
+Oxigraph evaluates every query on a snapshot of the store taken at that
+moment, and the reference lock guarantees the moment is between two
+manipulations (never half-way through a REASON), so the reader sees one
+consistent state while writers carry on.  Rows are read on the calling thread
+(pyoxigraph result objects must stay on the thread that created them) and
+the deadline is checked between rows, so a long result stops at the limit.
+
+Updates are evaluated on a scratch copy of the asserted graph; the difference
+is applied as one all-or-nothing manipulation through
+:meth:`~topostore.armor.reference.Reference.run`, which re-reasons (or undoes
+everything if reasoning fails), exactly like an aRMOR manipulation.
+"""
+
+from __future__ import annotations
+
+import threading
+import time
+from dataclasses import dataclass, field
+
+import pyoxigraph as ox
+from pyoxigraph import DefaultGraph, Literal, Quad, QueryBoolean, QuerySolutions, Triple
+
+from ..armor.reference import Change, Delta, Reference
+from ..errors import QueryError
+from ..store import skolemize
+from ..vocab import ASSERTED, OWL, RDF, RDFS, XSD
+from .guard import check_safe
+from .results import ResultFormat, boolean_json, choose_format, render_graph, render_table, solutions_json
+
+
+class SparqlTimeout(QueryError):
+    """A query or update ran past the server's time limit."""
+
+
+class ResultTooLarge(QueryError):
+    """A result with more rows (or triples) than the server's limit."""
+
+
+class ReferenceMounted(QueryError):
+    """A SPARQL update on a reference mounted by an aRMOR client (only that client may change it)."""
+
+
+@dataclass
+class QueryOutcome:
+    """A serialized query result and the format it is in."""
+
+    body: bytes
+    format: ResultFormat
+    kind: str  # "solutions", "boolean" or "graph"
+    rows: int = 0
+
+
+@dataclass
+class Job:
+    """Shared between the waiting request and the worker: who gets to decide the outcome.
+
+    A request that gives up at the deadline *expires* the job; a worker about
+    to commit an update *claims* it.  Whichever comes first wins, so a client
+    told "timed out" can rely on nothing having changed.
+    """
+
+    deadline: float
+    _state: str = "running"
+    _lock: threading.Lock = field(default_factory=threading.Lock)
+
+    def expire(self) -> bool:
+        with self._lock:
+            if self._state == "running":
+                self._state = "expired"
+            return self._state == "expired"
+
+    def claim(self) -> bool:
+        with self._lock:
+            if self._state == "running":
+                self._state = "claimed"
+            return self._state == "claimed"
+
+    @property
+    def expired(self) -> bool:
+        return self._state == "expired" or time.monotonic() > self.deadline
+
+
+def timeout_message(limit: float) -> str:
+    return (f"the SPARQL request ran past the time limit of {limit:g} s and was stopped; "
+            "narrow it (LIMIT, more specific patterns) or start the server with a larger --sparql-timeout")
+
+
+def too_large_message(max_rows: int) -> str:
+    return (f"the result has more than {max_rows} rows; page through it with LIMIT/OFFSET "
+            "or start the server with a larger --sparql-max-rows")
+
+
+def run_query(ref: Reference, text: str, accept: str | None, explicit_format: str | None, job: Job,
+              limit: float, max_rows: int = 500_000) -> QueryOutcome:
+    """Evaluate a query over the reference's asserted ∪ inferred graphs and serialize it.
+
+    Results are held in memory to be serialized, so more than ``max_rows``
+    rows or triples is refused rather than risking the robot's memory.
+    Raises QueryError (malformed), UnsafeOperationError, NotAcceptable,
+    SparqlTimeout or ResultTooLarge.
+    """
+    check_safe(text)
+    onto = ref.ontology
+    with ref.lock:
+        result = onto.sparql(text)  # the snapshot is taken here
+    if isinstance(result, QueryBoolean):
+        fmt = choose_format(accept, graph=False, explicit=explicit_format)
+        return QueryOutcome(render_table(boolean_json(bool(result)), fmt), fmt, "boolean", 1)
+    if isinstance(result, QuerySolutions):
+        fmt = choose_format(accept, graph=False, explicit=explicit_format)
+        variables = [v.value for v in result.variables]
+        rows: list[list[object | None]] = []
+        for solution in result:
+            rows.append([solution[v] for v in variables])
+            if job.expired:
+                raise SparqlTimeout(timeout_message(limit))
+            if len(rows) > max_rows:
+                raise ResultTooLarge(too_large_message(max_rows))
+        with ref.lock:  # literal forms are bookkeeping shared with writers
+            rows = [[_restore(onto, t) for t in row] for row in rows]
+        return QueryOutcome(render_table(solutions_json(variables, rows), fmt), fmt, "solutions", len(rows))
+    fmt = choose_format(accept, graph=True, explicit=explicit_format)
+    triples: list[Triple] = []
+    for t in result:
+        triples.append(t)
+        if job.expired:
+            raise SparqlTimeout(timeout_message(limit))
+        if len(triples) > max_rows:
+            raise ResultTooLarge(too_large_message(max_rows))
+    with ref.lock:
+        triples = [Triple(t.subject, t.predicate, _restore(onto, t.object)) for t in triples]
+    prefixes = {"owl": OWL, "rdf": RDF, "rdfs": RDFS, "xsd": XSD, "": onto.prefix}
+    return QueryOutcome(render_graph(triples, fmt, prefixes), fmt, "graph", len(triples))
+
+
+def _restore(onto, term):
+    """A literal in the form the user asserted (Oxigraph canonicalises xsd:long to xsd:integer)."""
+    return onto.store.restore(term) if isinstance(term, Literal) else term
+
+
+@dataclass
+class UpdateOutcome:
+    added: int
+    removed: int
+    consistent: bool
+    warnings: list[str]
+
+    def to_dict(self) -> dict[str, object]:
+        return {"added": self.added, "removed": self.removed, "is_consistent": self.consistent,
+                "warnings": self.warnings}
+
+
+def update_delta(asserted: list[Triple], text: str) -> Delta:
+    """What ``text`` adds to and removes from ``asserted``, computed on a scratch store."""
+    scratch = ox.Store()
+    scratch.extend([Quad(t.subject, t.predicate, t.object, DefaultGraph()) for t in asserted])
+    try:
+        scratch.update(text)
+    except SyntaxError as exc:
+        raise QueryError(f"malformed SPARQL update: {exc}") from exc
+    except OSError as exc:
+        raise QueryError(f"SPARQL update failed: {exc}") from exc
+    after = {skolemize(Triple(q.subject, q.predicate, q.object)) for q in scratch.quads_for_pattern(None, None, None, DefaultGraph())}
+    before = set(asserted)
+    return Delta(add=sorted(after - before, key=str), remove=sorted(before - after, key=str))
+
+
+def run_update(ref: Reference, text: str, job: Job, limit: float) -> UpdateOutcome:
+    """Apply a SPARQL update to the reference's asserted graph, then reason as a manipulation would.
+
+    Updates see and change asserted knowledge only; inferences follow from reasoning.
+    """
+    check_safe(text)
+    with ref.lock:
+        if ref.owner is not None:
+            raise ReferenceMounted(f"reference {ref.name!r} is mounted by client {ref.owner!r}; "
+                                   "only that client may change it")
+        asserted = list(ref.ontology.store.triples(graph=ASSERTED))
+        delta = update_delta(asserted, text)
+        if not job.claim():
+            raise SparqlTimeout(timeout_message(limit))
+        warnings = ref.run([Change("SPARQL update", lambda _onto: delta)])
+        return UpdateOutcome(len(delta.add), len(delta.remove), ref.is_consistent, warnings)
+
+
+__all__ = ["QueryOutcome", "UpdateOutcome", "SparqlTimeout", "ResultTooLarge", "ReferenceMounted", "Job", "run_query", "run_update",
+           "update_delta", "timeout_message"]

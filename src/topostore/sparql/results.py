@@ -1,0 +1,162 @@
+"""SPARQL results in the formats clients ask for, chosen by content negotiation.
+
+Rows are first written as SPARQL JSON with :mod:`json` (where every term is an
+explicit object, so nothing needs escaping by hand), and converted to XML, CSV
+and TSV by pyoxigraph's own result serializers.  Graph results (CONSTRUCT,
+DESCRIBE) are serialized by pyoxigraph as Turtle, N-Triples or RDF/XML.
+Going through pyoxigraph means no hand-written escaping for any format.
+"""
+
+from __future__ import annotations
+
+import json
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+import pyoxigraph as ox
+from pyoxigraph import BlankNode, Literal, NamedNode, QueryResultsFormat, RdfFormat, Triple
+
+from ..errors import TopostoreError
+from ..vocab import XSD
+
+_XSD_STRING = XSD + "string"
+_RDF_LANG_STRING = "http://www.w3.org/1999/02/22-rdf-syntax-ns#langString"
+
+
+@dataclass(frozen=True)
+class ResultFormat:
+    """One output format: short name (for ``?format=``), media type, pyoxigraph format."""
+
+    name: str
+    media_type: str
+    ox_format: QueryResultsFormat | RdfFormat
+    aliases: tuple[str, ...] = ()
+
+    @property
+    def content_type(self) -> str:
+        text = self.media_type.startswith("text/") or self.media_type.endswith(("+json", "+xml", "n-triples"))
+        return f"{self.media_type}; charset=utf-8" if text else self.media_type
+
+
+#: Formats for SELECT and ASK results; the first is the default.
+SOLUTION_FORMATS: tuple[ResultFormat, ...] = (
+    ResultFormat("json", "application/sparql-results+json", QueryResultsFormat.JSON, ("application/json",)),
+    ResultFormat("xml", "application/sparql-results+xml", QueryResultsFormat.XML, ("application/xml", "text/xml")),
+    ResultFormat("csv", "text/csv", QueryResultsFormat.CSV),
+    ResultFormat("tsv", "text/tab-separated-values", QueryResultsFormat.TSV),
+)
+
+#: Formats for CONSTRUCT and DESCRIBE results; the first is the default.
+GRAPH_FORMATS: tuple[ResultFormat, ...] = (
+    ResultFormat("turtle", "text/turtle", RdfFormat.TURTLE, ("application/x-turtle",)),
+    ResultFormat("ntriples", "application/n-triples", RdfFormat.N_TRIPLES, ("text/plain",)),
+    ResultFormat("rdfxml", "application/rdf+xml", RdfFormat.RDF_XML, ("application/xml", "text/xml")),
+)
+
+
+class NotAcceptable(TopostoreError):
+    """No format the client accepts can carry this kind of result (HTTP 406)."""
+
+
+def _accept_entries(header: str) -> list[tuple[str, float]]:
+    """(media range, q) pairs of an Accept header, best first, order kept among equals."""
+    entries: list[tuple[str, float, int]] = []
+    for index, part in enumerate(header.split(",")):
+        fields = [f.strip() for f in part.split(";")]
+        media = fields[0].lower()
+        if not media:
+            continue
+        q = 1.0
+        for f in fields[1:]:
+            if f.lower().startswith("q="):
+                try:
+                    q = float(f[2:])
+                except ValueError:
+                    q = 0.0
+        if q > 0:
+            entries.append((media, q, index))
+    entries.sort(key=lambda e: (-e[1], e[2]))
+    return [(m, q) for m, q, _ in entries]
+
+
+def choose_format(accept: str | None, graph: bool, explicit: str | None = None) -> ResultFormat:
+    """The format for a result: ``explicit`` (``?format=``) if given, else the best Accept match.
+
+    ``graph`` selects the CONSTRUCT/DESCRIBE formats.  Raises
+    :class:`NotAcceptable` naming the formats on offer.
+    """
+    offered = GRAPH_FORMATS if graph else SOLUTION_FORMATS
+    if explicit:
+        key = explicit.strip().lower()
+        for f in offered:
+            if key in (f.name, f.media_type, *f.aliases):
+                return f
+        raise NotAcceptable(f"format {explicit!r} cannot carry this result; use one of "
+                            f"{', '.join(f.name for f in offered)}")
+    if not accept or not accept.strip():
+        return offered[0]
+    for media, _ in _accept_entries(accept):
+        if media in ("*/*", "*"):
+            return offered[0]
+        for f in offered:
+            if media == f.media_type or media in f.aliases:
+                return f
+        if media.endswith("/*"):
+            major = media[:-1]
+            for f in offered:
+                if f.media_type.startswith(major):
+                    return f
+    raise NotAcceptable(f"none of the accepted media types ({accept}) can carry this result; this endpoint offers "
+                        f"{', '.join(f.media_type for f in offered)}")
+
+
+# --------------------------------------------------------------------------- SELECT / ASK
+
+def term_json(term: object) -> dict[str, object]:
+    """A term as an object of the SPARQL 1.1 JSON results format."""
+    if isinstance(term, NamedNode):
+        return {"type": "uri", "value": term.value}
+    if isinstance(term, BlankNode):
+        return {"type": "bnode", "value": term.value}
+    if isinstance(term, Literal):
+        out: dict[str, object] = {"type": "literal", "value": term.value}
+        if term.language:
+            out["xml:lang"] = term.language
+        elif term.datatype.value not in (_XSD_STRING, _RDF_LANG_STRING):
+            out["datatype"] = term.datatype.value
+        return out
+    if isinstance(term, Triple):
+        return {"type": "triple", "value": {"subject": term_json(term.subject), "predicate": term_json(term.predicate),
+                                            "object": term_json(term.object)}}
+    raise TypeError(f"not an RDF term: {term!r}")
+
+
+def solutions_json(variables: Sequence[str], rows: Sequence[Sequence[object | None]]) -> bytes:
+    """SPARQL JSON for a SELECT result; unbound values are left out of their row."""
+    bindings = [{v: term_json(t) for v, t in zip(variables, row) if t is not None} for row in rows]
+    return json.dumps({"head": {"vars": list(variables)}, "results": {"bindings": bindings}},
+                      ensure_ascii=False).encode("utf-8")
+
+
+def boolean_json(value: bool) -> bytes:
+    return json.dumps({"head": {}, "boolean": bool(value)}).encode("utf-8")
+
+
+def render_table(json_results: bytes, fmt: ResultFormat) -> bytes:
+    """SPARQL JSON results re-serialized in ``fmt`` (identity for JSON)."""
+    if fmt.ox_format == QueryResultsFormat.JSON:
+        return json_results
+    parsed = ox.parse_query_results(json_results, format=QueryResultsFormat.JSON)
+    return parsed.serialize(format=fmt.ox_format)
+
+
+def render_graph(triples: Sequence[Triple], fmt: ResultFormat, prefixes: dict[str, str] | None = None) -> bytes:
+    """Triples in an RDF syntax; prefixes only where the syntax has them."""
+    use_prefixes = prefixes if fmt.ox_format in (RdfFormat.TURTLE, RdfFormat.RDF_XML) else None
+    return ox.serialize(list(triples), format=fmt.ox_format, prefixes=use_prefixes or None)
+
+
+__all__ = [
+    "ResultFormat", "SOLUTION_FORMATS", "GRAPH_FORMATS", "NotAcceptable", "choose_format", "term_json",
+    "solutions_json", "boolean_json", "render_table", "render_graph",
+]

@@ -1,0 +1,156 @@
+"""The `topostore` command line: exit codes, outputs, help texts and one-line errors."""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+import rdflib
+from click.testing import CliRunner
+
+from topostore.cli import cli, main
+from topostore.errors import LoadError
+from topostore.queries import named_queries
+from topostore.resources import default_ontology, ontology_dir
+
+TBOX = str(default_ontology())
+ABOX = str(ontology_dir() / "topological_map_abox.ttl")
+NS = "http://bnc/exp-rob-lab/2022-23#"
+
+
+def run(*args: str):
+    return CliRunner().invoke(cli, list(args))
+
+
+@pytest.fixture
+def inconsistent(tmp_path: Path) -> Path:
+    """R1 given a location as a door: DOOR and LOCATION are disjoint."""
+    path = tmp_path / "bad.ttl"
+    path.write_text(f"@prefix : <{NS}> .\n:R1 :hasDoor :C1 .\n")
+    return path
+
+
+@pytest.mark.parametrize("command", sorted(cli.commands))
+def test_every_command_has_help_with_an_example(command: str) -> None:
+    result = run(command, "--help")
+    assert result.exit_code == 0, result.output
+    assert "Example" in result.output
+
+
+def test_top_level_help_and_version() -> None:
+    result = run("--help")
+    assert result.exit_code == 0
+    for command in ("reason", "rules", "query", "serve", "demo", "map", "bench"):
+        assert command in result.output
+    assert main(["--version"]) == 0
+
+
+def test_reason_consistent_exits_0_and_writes_closure(tmp_path: Path) -> None:
+    out = tmp_path / "closure.ttl"
+    result = run("reason", TBOX, ABOX, "-o", str(out))
+    assert result.exit_code == 0, result.output
+    assert "asserted triples" in result.output and "inferred triples" in result.output
+    assert "Consistent." in result.output
+    graph = rdflib.Graph().parse(out, format="turtle")
+    robot, reach, door = (rdflib.URIRef(NS + n) for n in ("Robot1", "canReach", "hasDoor"))
+    assert set(graph.objects(robot, reach)) == {rdflib.URIRef(NS + "R1"), rdflib.URIRef(NS + "R2")}
+    assert (rdflib.URIRef(NS + "C1"), door, rdflib.URIRef(NS + "D1")) in graph
+
+
+def test_reason_inferred_only_in_another_format(tmp_path: Path) -> None:
+    out = tmp_path / "inferred.out"
+    result = run("reason", TBOX, ABOX, "-o", str(out), "--inferred-only", "--format", "ntriples")
+    assert result.exit_code == 0, result.output
+    graph = rdflib.Graph().parse(out, format="nt")
+    assert (rdflib.URIRef(NS + "R1"), rdflib.RDF.type, rdflib.URIRef(NS + "URGENT")) in graph
+    assert not list(graph.triples((None, rdflib.URIRef(NS + "hasDoor"), None)))  # asserted, not inferred
+
+
+def test_reason_inconsistent_exits_3_naming_axiom_and_individual(inconsistent: Path) -> None:
+    result = run("reason", TBOX, ABOX, str(inconsistent))
+    assert result.exit_code == 3
+    assert "INCONSISTENT" in result.stderr
+    assert "DOOR DisjointWith LOCATION" in result.stderr
+    assert "C1" in result.stderr
+    assert main(["reason", TBOX, ABOX, str(inconsistent)]) == 3
+
+
+def test_rules_are_grouped_with_origin() -> None:
+    result = run("rules", TBOX)
+    assert result.exit_code == 0, result.output
+    out = result.output
+    assert "### SWRL rules" in out and "### OWL axioms" in out and "### Consistency checks" in out
+    assert "# swrl:Urgency: SWRL rule Urgency" in out
+    assert "# cax-dw: DOOR DisjointWith LOCATION (inconsistent when it matches)" in out
+    assert "CONSTRUCT {" in out
+    assert "Generic OWL 2 RL rules" not in out
+    assert "Generic OWL 2 RL rules" in run("rules", "--all", TBOX).output
+
+
+def test_query_named_table_json_tsv() -> None:
+    table = run("query", TBOX, ABOX, "urgent-locations")
+    assert table.exit_code == 0, table.output
+    assert "R1" in table.output and "R2" not in table.output and "1 row(s)" in table.output
+    js = run("query", TBOX, ABOX, "reachable-locations", "--param", "robot=Robot1", "--format", "json")
+    assert js.exit_code == 0, js.output
+    assert json.loads(js.output) == [{"location": NS + "R1"}, {"location": NS + "R2"}]
+    tsv = run("query", TBOX, ABOX, "connected-locations", "--format", "tsv")
+    lines = tsv.output.splitlines()
+    assert lines[0] == "location\tconnectedTo"
+    assert f"{NS}C1\t{NS}R1" in lines and len(lines) == 5
+
+
+def test_query_rq_file(tmp_path: Path) -> None:
+    rq = tmp_path / "corridors.rq"
+    rq.write_text(f"# param: cls iri\nSELECT ?x WHERE {{ ?x a ?cls }} ORDER BY ?x\n")
+    result = run("query", TBOX, ABOX, str(rq), "-p", "cls=CORRIDOR", "--format", "json")
+    assert result.exit_code == 0, result.output
+    assert json.loads(result.output) == [{"x": NS + "C1"}]
+
+
+def test_query_list() -> None:
+    result = run("query", "--list")
+    assert result.exit_code == 0
+    for name in named_queries():
+        assert name in result.output
+    assert "reachable-locations robot=iri" in result.output
+
+
+@pytest.mark.parametrize("args,message", [
+    (("reason", "missing.ttl"), "no such file: missing.ttl"),
+    (("query", TBOX, ABOX, "no-such-query"), "unknown query 'no-such-query'"),
+    (("query", TBOX, ABOX, "reachable-locations"), "needs the parameter(s) robot"),
+    (("query", TBOX, ABOX, "reachable-locations", "-p", "robot"), "--param takes NAME=VALUE"),
+    (("query", TBOX), "give the ontology file(s) and then a query name"),
+    (("reason", TBOX, "-o", "x.ttl", "--format", "klingon"), "unknown RDF format 'klingon'"),
+    (("serve", "--host", "0.0.0.0"), "without a token"),
+    (("map", TBOX, ABOX, "-o", "map.gif"), "use a .png, .svg, .pdf file name"),
+])
+def test_errors_are_one_line(args: tuple[str, ...], message: str, tmp_path: Path, monkeypatch) -> None:
+    monkeypatch.chdir(tmp_path)
+    result = run(*args)
+    assert result.exit_code in (1, 2), result.output
+    err = result.stderr.strip()
+    assert message in err
+    assert "Traceback" not in result.output + result.stderr
+    assert len(err.splitlines()) == 1 or err.startswith("Usage:"), err
+
+
+def test_malformed_file_is_one_line_unless_debug(tmp_path: Path) -> None:
+    bad = tmp_path / "broken.ttl"
+    bad.write_text("@prefix : <http://x#> .\n:a :b \n")
+    result = run("reason", str(bad))
+    assert result.exit_code == 1
+    assert result.stderr.startswith("Error: ") and len(result.stderr.strip().splitlines()) == 1
+    debug = run("--debug", "reason", str(bad))
+    assert isinstance(debug.exception, LoadError)
+
+
+def test_console_script_entry_point(inconsistent: Path) -> None:
+    proc = subprocess.run([sys.executable, "-m", "topostore.cli", "reason", TBOX, ABOX, str(inconsistent)],
+                          capture_output=True, text=True, timeout=60)
+    assert proc.returncode == 3
+    assert "Traceback" not in proc.stderr and "DisjointWith" in proc.stderr
