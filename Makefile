@@ -18,10 +18,14 @@ run: $(STAMP)
 test: $(STAMP)
 	$(BIN)/python -m pytest
 
+# Benchmarks need the `bench` extra (matplotlib for the plot; Owlready2 for the
+# optional Pellet peer, which also needs `java`).  Results go to out/bench/.
 bench: $(STAMP)
+	-$(BIN)/pip install --quiet -e ".[bench]"
 	$(BIN)/python -m benchmarks --quick
 
 bench-full: $(STAMP)
+	-$(BIN)/pip install --quiet -e ".[bench]"
 	$(BIN)/python -m benchmarks
 
 clean:

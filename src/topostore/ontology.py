@@ -8,8 +8,10 @@ True
 ['R1', 'R2']
 
 Manipulations change the asserted graph only; :meth:`Ontology.reason`
-recomputes the inferred graph from the asserted graph as it is *now*, so
-conclusions whose premises were removed disappear.  Queries answer over
+brings the inferred graph to the closure of the asserted graph as it is *now*
+(incrementally from the net changes since the last reasoning when that is
+sound, see :mod:`topostore.reason.incremental`), so conclusions whose premises
+were removed disappear.  Queries answer over
 asserted ∪ inferred knowledge as of the last reasoning (only asserted knowledge
 while the ontology is inconsistent, as aRMOR does).
 """
@@ -17,7 +19,6 @@ while the ontology is inconsistent, as aRMOR does).
 from __future__ import annotations
 
 import os
-import time
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -27,11 +28,13 @@ from pyoxigraph import Literal, NamedNode, RdfFormat, Triple
 from .compile import RuleSet, compile_ontology
 from .errors import InvalidValueError, QueryError
 from .queries import QueryItem, bind, collect, get_named_query, render_jena, to_items
-from .reason import Materializer, ReasonStats, Violation, check_consistency, classify
+from .reason import ReasonStats, Violation, classify
+from .reason.incremental import DEFAULT_MAX_CHANGE_SHARE, IncrementalReasoner
 from .store import Store, fresh_skolem, guess_format, serialize
 from .terms import Term, entity, literal_of, value_key
+from .reason.entailed import publish_entailed
 from .vocab import (
-    ASSERTED, AUX, DECLARATION_TYPES, DIFFERENT_FROM, INFERRED, NIL, NOTHING, OWL, RDF, RDFS, SWRL, THING, TYPE,
+    ASSERTED, AUX, ENTAILED, DECLARATION_TYPES, DIFFERENT_FROM, INFERRED, NIL, NOTHING, OWL, RDF, RDFS, SWRL, THING, TYPE,
     FIRST, REST, XSD, is_internal, owl,
 )
 
@@ -72,6 +75,14 @@ class Ontology:
         self._superclasses: dict | None = None
         self._report: ReasonReport | None = None
         self.dirty = True  # asserted graph changed since the last reasoning
+        # net asserted changes since the last reasoning (add then remove cancels),
+        # tracked only while an incremental REASON can use them
+        self._added: dict[Triple, None] = {}
+        self._removed: dict[Triple, None] = {}
+        self._tracking = False
+        self._reasoner: IncrementalReasoner | None = None
+        #: share of the asserted graph above which REASON recomputes from scratch
+        self.max_change_share = DEFAULT_MAX_CHANGE_SHARE
 
     # ------------------------------------------------------------------ loading
     @classmethod
@@ -134,14 +145,18 @@ class Ontology:
     # ------------------------------------------------------------------ manipulation
     def add(self, *triples: Triple) -> int:
         """Assert triples; returns how many were new."""
+        triples = tuple(dict.fromkeys(triples))
         for t in triples:
             _validate(t)
         self._touch(triples)
+        self._track(triples, added=True)
         return self.store.add(triples, ASSERTED)
 
     def remove(self, *triples: Triple) -> int:
         """Retract asserted triples (inferred ones cannot be removed, only their premises)."""
+        triples = tuple(dict.fromkeys(triples))
         self._touch(triples)
+        self._track(triples, added=False)
         return self.store.remove(triples, ASSERTED)
 
     def _touch(self, triples: Iterable[Triple]) -> None:
@@ -149,6 +164,34 @@ class Ontology:
         if any(is_schema_triple(t) for t in triples):
             self._rules = None
             self._superclasses = None
+            self._stop_tracking()
+
+    def _track(self, triples: Iterable[Triple], added: bool) -> None:
+        """Record net asserted changes (call before the store changes; ``triples`` deduplicated).
+
+        Tracking stops (and the next REASON is a full one) once the change
+        exceeds the share of the asserted graph where incremental reasoning
+        pays off, so loading a large file keeps no copy of it.
+        """
+        if not self._tracking:
+            return
+        mine, other = (self._added, self._removed) if added else (self._removed, self._added)
+        for t in triples:
+            if self.store.contains(t, ASSERTED) == added:
+                continue  # adding a present triple or removing an absent one changes nothing
+            if t in other:
+                del other[t]
+            else:
+                mine[t] = None
+        reasoner = self._reasoner
+        limit = self.max_change_share * (reasoner.state.asserted_size if reasoner else 0)
+        if len(self._added) + len(self._removed) > max(limit, 1000):
+            self._stop_tracking()
+
+    def _stop_tracking(self) -> None:
+        self._tracking = False
+        self._added.clear()
+        self._removed.clear()
 
     def value(self, value: object, datatype: str | None = None) -> Literal:
         """A validated literal from a Python value (int → xsd:integer, ...) or text + datatype."""
@@ -251,12 +294,32 @@ class Ontology:
             self._rules = compile_ontology(self.store, ASSERTED)
         return self._rules
 
-    def reason(self, profile: bool = False) -> ReasonReport:
-        """Bring the inferred graph to the closure of the asserted graph as it is now."""
-        stats = Materializer(self.store, self.rules, profile=profile).run()
-        start = time.perf_counter()
-        violations = check_consistency(self.store, self.rules)
-        stats.seconds += time.perf_counter() - start
+    def reason(self, profile: bool = False, mode: str = "auto") -> ReasonReport:
+        """Bring the inferred graph to the closure of the asserted graph as it is now.
+
+        ``mode`` "auto" maintains the inferred graph incrementally from the net
+        changes since the last reasoning when that is sound and the change is
+        small, "incremental" whenever sound, "full" always recomputes.  The
+        result is the same in every mode; ``report.stats.mode`` and
+        ``.reason`` say which was used and why.
+        """
+        if mode not in ("auto", "incremental", "full"):
+            raise ValueError(f"unknown reasoning mode {mode!r}; use auto, incremental or full")
+        rules = self.rules
+        forced = ""
+        if self._reasoner is None or self._reasoner.ruleset is not rules:
+            self._reasoner = IncrementalReasoner(self.store, rules)
+        elif self.dirty and not self._tracking:
+            forced = "asserted changes were not tracked (too many since the last REASON)"
+        self._reasoner.max_change_share = self.max_change_share
+        added, removed = list(self._added), list(self._removed)
+        self._stop_tracking()
+        try:
+            stats, violations = self._reasoner.reason(added, removed, mode=mode, profile=profile,
+                                                      forced_reason=forced)
+        finally:
+            self._tracking = self._reasoner.state.ready
+        publish_entailed(self.store, rules)
         self._report = ReasonReport(not violations, violations, stats)
         self.dirty = False
         return self._report
@@ -277,10 +340,11 @@ class Ontology:
         return [] if self._report is None else self._report.violations
 
     def visible_graphs(self) -> list[NamedNode]:
-        """Graphs queries see: asserted ∪ inferred, or asserted only while inconsistent."""
+        """Graphs queries see: asserted ∪ inferred (with the entailed-only SWRL
+        conclusions), or asserted only while inconsistent."""
         if self._report is not None and not self._report.consistent:
             return [ASSERTED]
-        return [ASSERTED, INFERRED]
+        return [ASSERTED, INFERRED, ENTAILED]
 
     def superclasses(self, cls: str | NamedNode) -> set[NamedNode]:
         if self._superclasses is None:
@@ -367,7 +431,7 @@ class Ontology:
 
     # ------------------------------------------------------------------ persistence
     def triples(self, inferred: bool = False) -> list[Triple]:
-        graphs = [ASSERTED, INFERRED] if inferred and self.visible_graphs() != [ASSERTED] else [ASSERTED]
+        graphs = self.visible_graphs() if inferred else [ASSERTED]
         return self.store.dump(graphs, restore_literals_from=ASSERTED)
 
     def serialize(self, fmt: str | RdfFormat = "turtle", inferred: bool = False) -> bytes:

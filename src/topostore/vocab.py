@@ -44,7 +44,20 @@ DIFFERENT_GROUP = NamedNode(INTERNAL + "differentGroup")
 #: classes).  Both are plain joins, so difference costs no more than the pairs
 #: that are actually asked about.
 DIFFERENCE_CANDIDATE = NamedNode(INTERNAL + "differenceCandidate")
+#: declared different: one owl:AllDifferent, or owl:differentFrom
+DECLARED_DIFFERENT = NamedNode(INTERNAL + "declaredDifferent")
+#: entailed different: declared, or equality would be inconsistent (disjoint
+#: classes, two distinct values of a property allowing at most one)
 DIFFERENT = NamedNode(INTERNAL + "different")
+
+#: Conclusions of SWRL rules whose DifferentIndividuals atom holds only by
+#: entailment (not by declaration).  A tableau reasoner such as Pellet reports
+#: them (they are entailed) but, having found them by refutation, never uses
+#: them to fire other rules; topostore derives them in the helper graph under
+#: ``ENTAILED_PREFIX + predicate`` so that no rule reads them, and publishes
+#: them in the ENTAILED graph that queries see.
+ENTAILED_PREFIX = INTERNAL + "entailed:"
+ENTAILED = NamedNode(INTERNAL + "graph:entailed")
 #: Prefix of the ids given to anonymous class expressions.
 EXPR_PREFIX = INTERNAL + "expr:"
 

@@ -83,12 +83,32 @@ class OwlCompiler:
         return [different_atom(a, b) for a, b in pairs]
 
     def difference_rules(self) -> None:
-        """Individuals of disjoint classes are different (equality would be inconsistent)."""
+        """When asked about a pair, conclude it is different if equality would be
+        inconsistent: disjoint classes, or two distinct values of a data property
+        that allows at most one (functional, or a maximum of one for a class of
+        either individual).  This is the difference a tableau reasoner finds by
+        refutation (e.g. two locations with different ``visitedAt`` times)."""
+        a, b, v1, v2 = "?a", "?b", "?v1", "?v2"
         for c1, c2 in self.disjoint_pairs:
             for x, y in ((c1, c2), (c2, c1)):
                 self.emit("different-disjoint", f"{nm(x)} and {nm(y)} are disjoint",
-                          [candidate_atom("?a", "?b"), Atom("?a", T, sparql(x)), Atom("?b", T, sparql(y))],
-                          different_atom("?a", "?b"))
+                          [candidate_atom(a, b), Atom(a, T, sparql(x)), Atom(b, T, sparql(y))], different_atom(a, b))
+        for p in sorted(self.tb.characteristics.get("FunctionalProperty", ()), key=lambda t: t.value):
+            if p in self.tb.data_properties:
+                self.emit("different-values", f"{nm(p)} is functional",
+                          [candidate_atom(a, b), Atom(a, sparql(p), v1), Atom(b, sparql(p), v2)], different_atom(a, b),
+                          f"FILTER({distinct_values(v1, v2)})")
+        for e in self.all_expressions():
+            if e.kind not in ("max", "exact") or e.n != 1 or e.prop.inverse or not self.is_data(e.prop, e):
+                continue
+            tests = [f"FILTER({distinct_values(v1, v2)})"]
+            if e.datatype is not None and in_datatype(v1, e.datatype):
+                tests += [f"FILTER({in_datatype(v1, e.datatype)} && {in_datatype(v2, e.datatype)})"]
+            for member in (a, b):
+                self.emit("different-values", f"class expression {e} allows one value",
+                          [candidate_atom(a, b), Atom(member, T, sparql(e.node)),
+                           Atom(a, sparql(e.prop.iri), v1), Atom(b, sparql(e.prop.iri), v2)],
+                          different_atom(a, b), "\n  ".join(tests))
 
     def _told_superclasses(self) -> dict[NamedNode, set[NamedNode]]:
         """Named-class subsumption told by the axioms (closure), for comparing fillers."""

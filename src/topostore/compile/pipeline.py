@@ -31,4 +31,5 @@ def compile_ontology(store: Store, graph: NamedNode) -> RuleSet:
     rules.named_classes = set(tbox.named_classes)
     rules.data_properties = set(tbox.data_properties)
     rules.object_properties = set(tbox.object_properties)
+    rules.entailed_predicates = set(swrl.entailed_predicates)
     return rules

@@ -171,6 +171,8 @@ class RuleSet:
     named_classes: set[NamedNode] = field(default_factory=set)
     data_properties: set[NamedNode] = field(default_factory=set)
     object_properties: set[NamedNode] = field(default_factory=set)
+    #: predicates whose entailed-only conclusions are published (see vocab.ENTAILED)
+    entailed_predicates: set[NamedNode] = field(default_factory=set)
 
     def add(self, rules: Iterable[Rule]) -> None:
         seen = {(r.name, r.where(), r.head) for r in self.rules}

@@ -9,15 +9,16 @@ from __future__ import annotations
 from pyoxigraph import NamedNode
 
 from ..terms import INTEGER_TYPES, sparql
-from ..vocab import AUX, DIFFERENCE_CANDIDATE, DIFFERENT, OWL, RDF, RDFS, SAME_AS, TYPE, XSD
+from ..vocab import AUX, DECLARED_DIFFERENT, DIFFERENCE_CANDIDATE, DIFFERENT, OWL, RDF, RDFS, SAME_AS, TYPE, XSD
 from .rule import Atom
 
 T = str(TYPE)
 SAME = str(SAME_AS)
 
-def different_atom(a: str, b: str) -> Atom:
-    """Body atom: ``a`` and ``b`` are known to be different (see vocab.DIFFERENT)."""
-    return Atom(a, str(DIFFERENT), b, aux=True)
+def different_atom(a: str, b: str, declared: bool = False) -> Atom:
+    """Body atom: ``a`` and ``b`` are known to be different — by entailment
+    (vocab.DIFFERENT), or only by declaration (vocab.DECLARED_DIFFERENT)."""
+    return Atom(a, str(DECLARED_DIFFERENT if declared else DIFFERENT), b, aux=True)
 
 
 def candidate_atom(a: str, b: str) -> Atom:

@@ -15,7 +15,7 @@ from pyoxigraph import Literal, NamedNode
 from ..errors import RuleCompileError
 from ..store import Store
 from ..terms import Term, sparql
-from ..vocab import DIFFERENT_FROM, RDFS, SAME_AS, SWRL, SWRLA, TYPE, rdfs, swrl
+from ..vocab import DIFFERENT_FROM, ENTAILED_PREFIX, RDFS, SAME_AS, SWRL, SWRLA, TYPE, rdfs, swrl
 from . import builtins
 from .model import Expr, TBoxReader, is_datatype
 from .rule import Atom, Rule
@@ -46,6 +46,8 @@ class SwrlCompiler:
         self.store, self.graph, self.reader = store, graph, reader
         self.variables = {v for v in store.subjects(TYPE, swrl("Variable"), graph)}
         self.expressions: list[Expr] = []
+        #: predicates of conclusions drawn with entailed-only difference
+        self.entailed_predicates: set[NamedNode] = set()
 
     def _one(self, s: Term, p: NamedNode) -> Term | None:
         v = self.store.objects(s, p, self.graph)
@@ -144,15 +146,16 @@ class SwrlCompiler:
             filters.append(text)
         rules = []
         # difference: ask about exactly the pairs the rest of the body produces
-        checks: list[Atom] = []
+        declared: list[Atom] = []
+        entailed: list[Atom] = []
         for x, y, a in self._different:
             for v in (x, y):
                 if v.startswith("?") and v not in bound:
                     raise RuleCompileError(f"SWRL rule {name!r}, atom {a.describe(name)}: variable {v} is not bound by the body")
             rules.append(Rule(f"swrl:{name}", f"SWRL rule {name}: which pairs to check for difference", tuple(patterns),
                               candidate_atom(x, y), "\n  ".join(filters + [f"FILTER(!sameTerm({x}, {y}))"]), frozenset(reads)))
-            checks.append(different_atom(x, y))
-        patterns = patterns + checks
+            declared.append(different_atom(x, y, declared=True))
+            entailed.append(different_atom(x, y))
         for a in head:
             try:
                 h = self._head_atom(a, arg)
@@ -161,7 +164,13 @@ class SwrlCompiler:
             for v in h.variables():
                 if v not in bound:
                     raise RuleCompileError(f"SWRL rule {name!r}, head atom {a.describe(name)}: variable {v} is not bound by the body")
-            rules.append(Rule(f"swrl:{name}", f"SWRL rule {name}", tuple(patterns), h, "\n  ".join(filters), frozenset(reads)))
+            rules.append(Rule(f"swrl:{name}", f"SWRL rule {name}", tuple(patterns + declared), h, "\n  ".join(filters), frozenset(reads)))
+            if entailed:
+                # difference only entailed: the conclusion holds but fires no other rule
+                weak = Atom(h.s, str(NamedNode(ENTAILED_PREFIX + h.p[1:-1])), h.o)
+                rules.append(Rule(f"swrl:{name}", f"SWRL rule {name} (individuals different by entailment only)",
+                                  tuple(patterns + entailed), weak, "\n  ".join(filters), frozenset(reads)))
+                self.entailed_predicates.add(NamedNode(h.p[1:-1]))
         return rules
 
     def _class(self, pred: Term | None) -> str:

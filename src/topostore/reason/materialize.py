@@ -18,9 +18,12 @@ from __future__ import annotations
 import time
 from dataclasses import dataclass, field
 
+from pyoxigraph import NamedNode
+
 from ..compile.generic import PREFIXES
-from ..compile.rule import Rule, RuleSet
+from ..compile.rule import Atom, Rule, RuleSet
 from ..store import Store
+from .plan import KeyCounts, is_small, key_counts, plan_where
 from ..vocab import ASSERTED, AUX, DELTA, INFERRED, NEW_AUX, NEW_INFERRED, TYPE
 
 DATASET = f"USING {ASSERTED} USING {INFERRED} USING {AUX} USING NAMED {AUX} USING NAMED {DELTA}"
@@ -35,14 +38,51 @@ class ReasonStats:
     derived: int = 0
     seconds: float = 0.0
     mode: str = "full"
+    #: why this mode was chosen (e.g. "schema changed", "change of 5000 triples > 10% of ...")
+    reason: str = ""
+    #: incremental maintenance only: facts over-deleted and put back by rederivation
+    overdeleted: int = 0
+    rederived: int = 0
     per_rule: dict[str, float] = field(default_factory=dict)
 
 
-def insert_text(rule: Rule, delta_index: int | None = None) -> str:
+def insert_text(rule: Rule, delta_index: int | None = None, planned: bool = False, lateral: bool = True) -> str:
+    """The INSERT evaluating ``rule`` (atom ``delta_index`` on the delta) into NEW_*.
+
+    ``planned`` uses :func:`.plan.plan_where` for delta evaluations (delta atom
+    first, rest per delta fact), whose cost follows the delta rather than the data.
+    """
     target = NEW_AUX if rule.head_aux() else NEW_INFERRED
     head = rule.head.text()
-    where = rule.where(delta_index, str(DELTA))
+    if planned and delta_index is not None:
+        where = plan_where(rule, delta_index, DELTA, lateral=lateral)
+    else:
+        where = rule.where(delta_index, str(DELTA))
     return f"INSERT {{ GRAPH {target} {{ {head} }} }}\n{DATASET}\nWHERE {{\n  {where}\n  FILTER NOT EXISTS {{ {head} }}\n}}"
+
+
+#: Predicates and classes that have (or may have) facts: a superset kept by incremental runs.
+Present = tuple[set[str], set[str]]
+
+
+def feasible(rule: Rule, present: Present | None, skip: int | None = None) -> bool:
+    """False when a body atom other than ``skip`` reads a predicate or class without any fact.
+
+    Such an evaluation cannot match; skipping it saves a SPARQL update, which
+    costs about 0.1 ms even when nothing matches.
+    """
+    if present is None:
+        return True
+    return all(feasible_atom(atom, present) for k, atom in enumerate(rule.body) if k != skip)
+
+
+def feasible_atom(atom: Atom, present: Present) -> bool:
+    """Whether facts of the atom's predicate (or class) may exist; property paths always may."""
+    if not atom.p.startswith("<"):
+        return True  # a variable or a property path (reads several predicates)
+    key = atom.read_key()
+    preds, classes = present
+    return key[1] in classes if key[0] == "t" else key[1] in preds
 
 
 def matches(key: tuple, changed_preds: set[str], changed_classes: set[str]) -> bool:
@@ -60,49 +100,96 @@ class Materializer:
         self.store = store
         self.rules = rules.inference_rules
         self.profile = profile
-        self._texts: dict[tuple[int, int | None], str] = {}
+        self._texts: dict[tuple, str] = {}
+        #: when set, evaluations that cannot match are skipped (see :func:`feasible`);
+        #: the keys of every delta are added to it, so it stays a superset
+        self.present: Present | None = None
+        #: evaluate delta rounds with :func:`.plan.plan_where` (set by incremental runs)
+        self.planned = False
+        #: set by :meth:`run` when a rule above the first stratum derived something,
+        #: i.e. the closure is not the fixpoint of the first stratum alone
+        self.upper_derived = False
+        self._queue: list[str] = []
+        self._lateral = True
 
     def _run(self, index: int, delta_index: int | None, stats: ReasonStats) -> None:
-        key = (index, delta_index)
+        key = (index, delta_index, self._lateral)
         text = self._texts.get(key)
         if text is None:
-            text = self._texts[key] = insert_text(self.rules[index], delta_index)
-        start = time.perf_counter() if self.profile else 0.0
-        self.store.update(text, prefixes=PREFIXES)
+            text = self._texts[key] = insert_text(self.rules[index], delta_index, self.planned, self._lateral)
         stats.evaluations += 1
-        if self.profile:
-            name = self.rules[index].name
-            stats.per_rule[name] = stats.per_rule.get(name, 0.0) + time.perf_counter() - start
+        if not self.profile:
+            self._queue.append(text)  # sent by _flush, one request per round
+            return
+        start = time.perf_counter()
+        self.store.update(text, prefixes=PREFIXES)
+        name = self.rules[index].name
+        stats.per_rule[name] = stats.per_rule.get(name, 0.0) + time.perf_counter() - start
 
-    def _changed(self) -> tuple[set[str], set[str]]:
-        preds = {str(r["p"]) for r in self.store.query(f"SELECT DISTINCT ?p WHERE {{ GRAPH {DELTA} {{ ?s ?p ?o }} }}")}
-        classes: set[str] = set()
-        if str(TYPE) in preds:
-            classes = {str(r["c"]) for r in self.store.query(f"SELECT DISTINCT ?c WHERE {{ GRAPH {DELTA} {{ ?s {TYPE} ?c }} }}")}
-        return preds, classes
+    def _flush(self) -> None:
+        """Send the queued evaluations of a round as one update request.
 
-    def _promote(self) -> bool:
-        """Move the facts of this round into the inferred graphs and make them the delta."""
-        if self.store.is_empty(NEW_INFERRED) and self.store.is_empty(NEW_AUX):
+        They all insert into NEW_* graphs, which none of them reads, so one
+        request gives the same result and saves the per-request cost.
+        """
+        if self._queue:
+            text = " ;\n".join(self._queue)
+            self._queue.clear()
+            self.store.update(text, prefixes=PREFIXES)
+
+    def _changed(self) -> KeyCounts:
+        """Predicates and classes in the delta (with their number of facts)."""
+        return key_counts(self.store, DELTA)
+
+    def _promote(self, seed: NamedNode | None = None, record: NamedNode | None = None) -> bool:
+        """Move the facts of this round into the inferred graphs and make them the delta.
+
+        ``seed`` (a graph of facts already stored, e.g. newly asserted triples)
+        joins the delta; ``record`` accumulates every promoted fact, so that an
+        incremental run knows what is new since the previous state.
+        """
+        seeded = seed is not None and not self.store.is_empty(seed)
+        if not seeded and self.store.is_empty(NEW_INFERRED) and self.store.is_empty(NEW_AUX):
             return False
-        self.store.update(
-            f"DROP SILENT GRAPH {DELTA} ; "
-            f"ADD SILENT {NEW_INFERRED} TO {DELTA} ; ADD SILENT {NEW_AUX} TO {DELTA} ; "
-            f"ADD SILENT {NEW_INFERRED} TO {INFERRED} ; ADD SILENT {NEW_AUX} TO {AUX} ; "
-            f"DROP SILENT GRAPH {NEW_INFERRED} ; DROP SILENT GRAPH {NEW_AUX}"
-        )
+        ops = [f"DROP SILENT GRAPH {DELTA}", f"ADD SILENT {NEW_INFERRED} TO {DELTA}", f"ADD SILENT {NEW_AUX} TO {DELTA}"]
+        if seeded:
+            ops.append(f"ADD SILENT {seed} TO {DELTA}")
+        ops += [f"ADD SILENT {NEW_INFERRED} TO {INFERRED}", f"ADD SILENT {NEW_AUX} TO {AUX}"]
+        if record is not None:
+            ops += [f"ADD SILENT {NEW_INFERRED} TO {record}", f"ADD SILENT {NEW_AUX} TO {record}"]
+        ops += [f"DROP SILENT GRAPH {NEW_INFERRED}", f"DROP SILENT GRAPH {NEW_AUX}"]
+        self.store.update(" ; ".join(ops))
         return True
+
+    def propagate(self, active: list[int], stats: ReasonStats, seed: NamedNode | None = None,
+                  record: NamedNode | None = None) -> None:
+        """Semi-naive rounds until nothing new: the facts in NEW_* (and ``seed``) are the first delta.
+
+        Shared by the full run and by incremental maintenance, which seeds it
+        with the added asserted triples and the rederived facts.
+        """
+        while self._promote(seed, record):
+            seed = None
+            stats.rounds += 1
+            self._delta_round(active, stats)
 
     def _delta_round(self, active: list[int], stats: ReasonStats) -> None:
         preds, classes = self._changed()
+        if self.planned:
+            self._lateral = is_small((preds, classes))
+        if self.present is not None:
+            self.present[0].update(preds)
+            self.present[1].update(classes)
         for i in active:
             rule = self.rules[i]
             if any(matches(k, preds, classes) for k in rule.filter_reads):
-                self._run(i, None, stats)
+                if feasible(rule, self.present):
+                    self._run(i, None, stats)
                 continue
             for j, atom in enumerate(rule.body):
-                if matches(atom.read_key(), preds, classes):
+                if matches(atom.read_key(), preds, classes) and feasible(rule, self.present, j):
                     self._run(i, j, stats)
+        self._flush()
 
     def clear(self) -> None:
         self.store.update(
@@ -120,10 +207,11 @@ class Materializer:
             fresh = [i for i in active if self.rules[i].stratum == level]
             for i in fresh:
                 self._run(i, None, stats)
+            self._flush()
             stats.rounds += 1
-            while self._promote():
-                stats.rounds += 1
-                self._delta_round(active, stats)
+            if level > strata[0] and not (self.store.is_empty(NEW_INFERRED) and self.store.is_empty(NEW_AUX)):
+                self.upper_derived = True
+            self.propagate(active, stats)
         self.store.update(f"DROP SILENT GRAPH {DELTA}")
         stats.derived = self.store.count(INFERRED)
         stats.seconds = time.perf_counter() - start

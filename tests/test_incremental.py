@@ -1,0 +1,281 @@
+"""Incremental REASON gives exactly what reasoning from scratch gives.
+
+The property test applies random sequences of manipulations (robot moves,
+clock ticks, visits, doors added and removed, AllDifferent axioms added and
+removed, facts that make the ontology inconsistent or merge individuals) to
+random small maps, reasons after every batch and compares the inferred and
+helper graphs and the consistency verdict with a from-scratch
+materialisation of the same asserted graph.
+"""
+
+from __future__ import annotations
+
+from functools import cache
+from pathlib import Path
+
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+from pyoxigraph import NamedNode, Triple
+
+from topostore import Ontology
+from topostore.mapgen import MAP_NS, generate
+from topostore.reason import Materializer, check_consistency
+from topostore.reason.incremental import is_monotone, negates_exists
+from topostore.store import Store
+from topostore.vocab import ASSERTED, AUX, DIFFERENT_FROM, INFERRED, TYPE, owl
+
+TBOX = Path(__file__).resolve().parents[2] / "shared" / "ontology" / "topological_map.owl"
+
+
+def N(name: str) -> NamedNode:
+    return NamedNode(MAP_NS + name)
+
+
+@cache
+def tbox_triples() -> tuple[Triple, ...]:
+    return tuple(Ontology.from_file(TBOX).store.triples(graph=ASSERTED))
+
+
+def new_map(n: int, seed: int, all_different: bool) -> Ontology:
+    onto = Ontology()
+    onto.add(*tbox_triples())
+    onto.add(*generate(n, seed=seed).triples(all_different=all_different))
+    return onto
+
+
+def from_scratch(onto: Ontology) -> tuple[set, set, bool]:
+    """Inferred and helper graphs and consistency of a fresh store holding the same asserted graph."""
+    store = Store()
+    store.add(onto.store.triples(graph=ASSERTED), ASSERTED)
+    Materializer(store, onto.rules).run()
+    violations = check_consistency(store, onto.rules)
+    return set(store.triples(graph=INFERRED)), set(store.triples(graph=AUX)), not violations
+
+
+def assert_same_as_scratch(onto: Ontology, profile: bool = False) -> None:
+    report = onto.reason(profile=profile)
+    inferred, aux, consistent = from_scratch(onto)
+    assert set(onto.store.triples(graph=INFERRED)) == inferred, report.stats
+    assert set(onto.store.triples(graph=AUX)) == aux, report.stats
+    assert report.consistent == consistent, report.stats
+
+
+# ---------------------------------------------------------------- manipulations
+NAMES = [f"C{i}" for i in range(1, 4)] + [f"R{i}" for i in range(1, 6)] + ["X1", "X2"]
+DOORS = [f"D{i}" for i in range(1, 7)] + ["DX"]
+TIMES = st.integers(1665579700, 1665579800)
+
+
+def move(onto: Ontology, where: str) -> None:
+    onto.replace(N("Robot1"), N("isIn"), N(where))
+
+
+def tick(onto: Ontology, t: int) -> None:
+    onto.replace(N("Robot1"), N("now"), t)
+
+
+def visit(onto: Ontology, where: str, t: int) -> None:
+    onto.replace(N(where), N("visitedAt"), t)
+
+
+def second_visit(onto: Ontology, where: str, t: int) -> None:
+    """Two different visitedAt values: inconsistent (exactly one visitedAt)."""
+    onto.add(onto.fact(N(where), N("visitedAt"), t))
+
+
+def add_door(onto: Ontology, where: str, door: str) -> None:
+    onto.add(Triple(N(where), N("hasDoor"), N(door)))
+
+
+def door_to_location(onto: Ontology, where: str, other: str) -> None:
+    """hasDoor pointing at a location: DOOR and LOCATION are disjoint, inconsistent."""
+    onto.add(Triple(N(where), N("hasDoor"), N(other)))
+
+
+def remove_door(onto: Ontology, index: int) -> None:
+    links = list(onto.store.triples(None, N("hasDoor"), None, ASSERTED))
+    if links:
+        onto.remove(links[index % len(links)])
+
+
+def second_place(onto: Ontology, where: str) -> None:
+    """Robot in two places: inconsistent if they are different, else merged by owl:sameAs."""
+    onto.add(Triple(N("Robot1"), N("isIn"), N(where)))
+
+
+def all_different(onto: Ontology, names: list[str]) -> None:
+    onto.add_all_different([N(n) for n in names])
+
+
+def drop_all_different(onto: Ontology, index: int) -> None:
+    """Remove one whole AllDifferent axiom, or a single triple of one (a broken list)."""
+    groups = list(onto.store.triples(None, TYPE, owl("AllDifferent"), ASSERTED))
+    if not groups:
+        return
+    group = groups[index % len(groups)].subject
+    if index % 2:
+        onto.remove(groups[index % len(groups)])
+    else:
+        members = list(onto.store.triples(group, owl("distinctMembers"), None, ASSERTED))
+        onto.remove(*members)
+
+
+def different_from(onto: Ontology, a: str, b: str, add: bool) -> None:
+    t = Triple(N(a), DIFFERENT_FROM, N(b))
+    onto.add(t) if add else onto.remove(t)
+
+
+def remove_any(onto: Ontology, index: int) -> None:
+    """Retract one random asserted ABox fact (a declaration, a list cell, a value...)."""
+    abox = [t for t in onto.store.triples(graph=ASSERTED) if t not in set(tbox_triples())]
+    if abox:
+        onto.remove(abox[index % len(abox)])
+
+
+place = st.sampled_from(NAMES)
+index = st.integers(0, 1000)
+operation = st.one_of(
+    st.tuples(st.just(move), place),
+    st.tuples(st.just(tick), TIMES),
+    st.tuples(st.just(visit), place, TIMES),
+    st.tuples(st.just(add_door), place, st.sampled_from(DOORS)),
+    st.tuples(st.just(remove_door), index),
+    st.tuples(st.just(second_visit), place, TIMES),
+    st.tuples(st.just(door_to_location), place, place),
+    st.tuples(st.just(second_place), place),
+    st.tuples(st.just(all_different), st.lists(place, min_size=2, max_size=4)),
+    st.tuples(st.just(drop_all_different), index),
+    st.tuples(st.just(different_from), place, place, st.booleans()),
+    st.tuples(st.just(remove_any), index),
+)
+# a REASON after every batch of one to three manipulations
+batches = st.lists(st.lists(operation, min_size=1, max_size=3), min_size=1, max_size=6)
+
+
+@settings(max_examples=80, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(n=st.integers(1, 8), seed=st.integers(0, 3), declared=st.booleans(), share=st.sampled_from([0.1, 1.0]),
+       steps=batches, profile=st.booleans())
+def test_incremental_equals_from_scratch(n: int, seed: int, declared: bool, share: float, steps: list,
+                                         profile: bool) -> None:
+    """``profile`` runs every update on its own (timed) instead of one request per phase."""
+    onto = new_map(n, seed, declared)
+    onto.max_change_share = share
+    assert_same_as_scratch(onto)
+    for batch in steps:
+        for op, *args in batch:
+            op(onto, *args)
+        assert_same_as_scratch(onto, profile)
+
+
+# ---------------------------------------------------------------- modes and fallbacks
+def robot_step(onto: Ontology, where: str, t: int) -> None:
+    move(onto, where)
+    tick(onto, t)
+    visit(onto, where, t)
+
+
+def test_robot_step_is_incremental_and_exact() -> None:
+    onto = new_map(20, 1, True)
+    first = onto.reason()
+    assert first.stats.mode == "full"
+    for k, where in enumerate(["R3", "C2", "R7", "C1"]):
+        robot_step(onto, where, 1665579750 + 5 * k)
+        report = onto.reason()
+        assert report.stats.mode == "incremental", report.stats.reason
+        inferred, aux, consistent = from_scratch(onto)
+        assert set(onto.store.triples(graph=INFERRED)) == inferred
+        assert set(onto.store.triples(graph=AUX)) == aux
+        assert report.consistent == consistent
+    assert sorted(onto.object_values("canReach", N("Robot1"))) == sorted(generate(20, seed=1).neighbours("C1"))
+
+
+def test_no_change_keeps_the_report() -> None:
+    onto = new_map(5, 0, True)
+    onto.reason()
+    report = onto.reason()
+    assert report.stats.mode == "incremental" and report.stats.reason == "no asserted change"
+    assert report.consistent
+
+
+def test_add_then_remove_cancels() -> None:
+    onto = new_map(5, 0, True)
+    onto.reason()
+    fact = Triple(N("R1"), N("hasDoor"), N("DX"))
+    onto.add(fact)
+    onto.remove(fact)
+    assert onto.reason().stats.reason == "no asserted change"
+
+
+def test_schema_change_forces_full() -> None:
+    onto = new_map(5, 0, True)
+    onto.reason()
+    onto.add(Triple(N("SPARE"), TYPE, owl("Class")))
+    report = onto.reason()
+    assert report.stats.mode == "full"
+    assert "schema" in report.stats.reason
+
+
+def test_large_change_forces_full_unless_incremental_requested() -> None:
+    onto = new_map(5, 0, True)
+    onto.reason()
+    onto.max_change_share = 0.01  # of the asserted graph, TBox included
+    for k in range(6):
+        visit(onto, f"R{k % 4 + 1}", 1665579700 + k)
+        add_door(onto, f"R{k % 4 + 1}", f"DN{k}")
+    report = onto.reason()
+    assert report.stats.mode == "full" and "exceeds" in report.stats.reason
+    robot_step(onto, "R2", 1665579760)
+    assert onto.reason(mode="full").stats.mode == "full"
+    onto.max_change_share = 0.0
+    robot_step(onto, "R1", 1665579770)
+    assert onto.reason(mode="incremental").stats.mode == "incremental"
+
+
+def test_same_as_merge_falls_back_to_full_and_back() -> None:
+    onto = new_map(5, 0, True)
+    onto.reason()
+    second_place(onto, "X1")  # X1 is not declared different from the robot's corridor
+    merged = onto.reason()
+    assert merged.stats.mode == "full" and "negated premise" in merged.stats.reason
+    assert merged.consistent
+    assert onto.store.contains(Triple(N("X1"), owl("sameAs"), N("C1")), INFERRED)
+    onto.remove(Triple(N("Robot1"), N("isIn"), N("X1")))
+    undone = onto.reason()
+    assert undone.stats.mode == "full"  # the merge existed before: undone from scratch
+    assert not onto.store.contains(Triple(N("X1"), owl("sameAs"), N("C1")), INFERRED)
+    robot_step(onto, "R2", 1665579760)
+    assert onto.reason().stats.mode == "incremental"
+
+
+def test_inconsistency_appears_and_disappears_incrementally() -> None:
+    onto = new_map(5, 0, True)
+    onto.reason()
+    door_to_location(onto, "C1", "R1")
+    bad = onto.reason()
+    assert bad.stats.mode == "incremental" and not bad.consistent
+    onto.remove(Triple(N("C1"), N("hasDoor"), N("R1")))
+    good = onto.reason()
+    assert good.stats.mode == "incremental" and good.consistent
+
+
+def test_unknown_mode_is_refused_and_keeps_pending_changes() -> None:
+    onto = new_map(3, 0, True)
+    onto.reason()
+    visit(onto, "R1", 1665579790)
+    try:
+        onto.reason(mode="fast")
+    except ValueError:
+        pass
+    else:
+        raise AssertionError("mode 'fast' accepted")
+    assert onto.reason().stats.reason == "1 added, 1 removed asserted triples"
+
+
+def test_negation_detection() -> None:
+    assert negates_exists("FILTER NOT EXISTS { ?x ?p ?y }")
+    assert negates_exists("FILTER(!(?a && EXISTS { ?x ?p ?y }))")
+    assert not negates_exists("FILTER(!sameTerm(?a, ?b) && EXISTS { ?x ?p ?y })")
+    assert not negates_exists("BIND((?t - ?v) AS ?d)\n  FILTER(?d > ?h)")
+    onto = new_map(2, 0, True)
+    stratified = [r for r in onto.rules.inference_rules if r.stratum > 0]
+    assert stratified and not any(is_monotone(r) for r in stratified)
