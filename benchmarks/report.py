@@ -73,12 +73,12 @@ def table(rows: list[dict], info: dict[str, str]) -> str:
             f"{r['rss_peak_mib']:.0f} MiB | {r['inc_median_ms']:.1f} / {r['inc_p95_ms']:.1f} ms | "
             f"{full_step(r)} | {ratio(r['full_median_ms'], r['inc_median_ms']) if r['full_steps'] else '-'} | {' | '.join(peers)} | {r['verified'] or '-'} |"
         )
-    notes = [r for r in rows for name in ("owlrl", "pellet") if r.get(name, {}).get("status") in ("skipped", "error")]
-    for r in notes[:4]:
+    lines.append("")
+    for r in rows:
         for name in ("owlrl", "pellet"):
             p = r.get(name, {})
-            if p.get("status") in ("skipped", "error"):
-                lines.append(f"\n{PEER_LABELS[name]} on {r['size']}: {p['status']} ({p.get('why', '')})")
+            if p.get("status") in ("skipped", "error", "timeout"):
+                lines.append(f"- {PEER_LABELS[name]} on {size_label(r)}: {p['status']} ({p.get('why', '')})")
     return "\n".join(lines)
 
 

@@ -8,7 +8,7 @@ import pytest
 from pyoxigraph import NamedNode
 
 from topostore import ArmorService as TopLevelArmorService
-from topostore.armor import ArmorRequest, ArmorResponse, ArmorService, codes
+from topostore.armor import ArmorRequest, ArmorResponse, ArmorService
 from topostore.vocab import ASSERTED, TYPE, owl
 
 ONTOLOGY_DIR = Path(__file__).parents[2] / "shared" / "ontology"

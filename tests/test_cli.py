@@ -105,7 +105,7 @@ def test_query_named_table_json_tsv() -> None:
 
 def test_query_rq_file(tmp_path: Path) -> None:
     rq = tmp_path / "corridors.rq"
-    rq.write_text(f"# param: cls iri\nSELECT ?x WHERE {{ ?x a ?cls }} ORDER BY ?x\n")
+    rq.write_text("# param: cls iri\nSELECT ?x WHERE { ?x a ?cls } ORDER BY ?x\n")
     result = run("query", TBOX, ABOX, str(rq), "-p", "cls=CORRIDOR", "--format", "json")
     assert result.exit_code == 0, result.output
     assert json.loads(result.output) == [{"x": NS + "C1"}]

@@ -9,27 +9,14 @@ from __future__ import annotations
 from pathlib import Path
 
 import pytest
-from pyoxigraph import Literal, NamedNode
+from pyoxigraph import NamedNode
 
 from topostore import InvalidValueError, Ontology, QueryError
 from topostore import mapgen
 from topostore.resources import default_ontology, default_ontology_files
-from topostore.vocab import ASSERTED, INFERRED, XSD
+from topostore.vocab import ASSERTED, XSD
 
-NS = "http://bnc/exp-rob-lab/2022-23#"
-NOW = 1665579740
-
-
-def long(v: int) -> Literal:
-    return Literal(str(v), datatype=NamedNode(XSD + "long"))
-
-
-def types_of(o: Ontology, name: str) -> set[str]:
-    return {o.short(t) for t in o.types(name)}
-
-
-def instances(o: Ontology, cls: str) -> set[str]:
-    return {o.short(i) for i in o.instances(cls)}
+from support import NOW, NS, instances, long, types_of
 
 
 def values(items, key: str) -> list[str]:

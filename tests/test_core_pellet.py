@@ -7,37 +7,13 @@ Unless a comment says otherwise, expectations come from that README section
 
 from __future__ import annotations
 
-from pathlib import Path
-
 import pytest
 from pyoxigraph import Literal, NamedNode
 
 from topostore import Ontology
 from topostore.vocab import SAME_AS, XSD
 
-ROOT = Path(__file__).resolve().parents[1]
-SHARED = ROOT.parent / "shared" / "ontology"
-TBOX_OWL = SHARED / "topological_map.owl"
-ABOX_OWL = SHARED / "topological_map_abox.owl"
-NS = "http://bnc/exp-rob-lab/2022-23#"
-NOW = 1665579740
-
-
-def long(v: int) -> Literal:
-    return Literal(str(v), datatype=NamedNode(XSD + "long"))
-
-
-def types_of(o: Ontology, name: str) -> set[str]:
-    return {o.short(t) for t in o.types(name)}
-
-
-def instances(o: Ontology, cls: str) -> set[str]:
-    return {o.short(i) for i in o.instances(cls)}
-
-
-def connected(o: Ontology) -> set[tuple[str, str]]:
-    rows = o.sparql(f"SELECT ?a ?b WHERE {{ ?a <{NS}connectedTo> ?b }}")
-    return {(o.short(r["a"]), o.short(r["b"])) for r in rows}
+from support import ABOX_OWL, NOW, NS, TBOX_OWL, connected, instances, long, types_of
 
 
 def can_reach(o: Ontology, robot: str = "Robot1") -> set[str]:

@@ -17,11 +17,6 @@ from topostore import LoadError, Ontology
 from topostore.resources import default_ontology, default_ontology_files
 from topostore.vocab import ASSERTED, AUX, INFERRED, TYPE, XSD
 
-ROOT = Path(__file__).resolve().parents[1]
-SHARED = ROOT.parent / "shared" / "ontology"
-TBOX_OWL = SHARED / "topological_map.owl"
-ABOX_OWL = SHARED / "topological_map_abox.owl"
-NS = "http://bnc/exp-rob-lab/2022-23#"
 LONG = NamedNode(XSD + "long")
 
 INDIVIDUALS = ("C1", "R1", "R2", "D1", "D2", "Robot1")
@@ -38,18 +33,7 @@ README_CONNECTED = {("C1", "R1"), ("R1", "C1"), ("C1", "R2"), ("R2", "C1")}
 README_CAN_REACH = {"R1", "R2"}
 README_URGENT = {"R1"}
 
-
-def types_of(o: Ontology, name: str) -> set[str]:
-    return {o.short(t) for t in o.types(name)}
-
-
-def connected(o: Ontology) -> set[tuple[str, str]]:
-    rows = o.sparql(f"SELECT ?a ?b WHERE {{ ?a <{NS}connectedTo> ?b }}")
-    return {(o.short(r["a"]), o.short(r["b"])) for r in rows}
-
-
-def instances(o: Ontology, cls: str) -> set[str]:
-    return {o.short(i) for i in o.instances(cls)}
+from support import ABOX_OWL, NS, TBOX_OWL, connected, instances, types_of
 
 
 def assert_readme_facts(o: Ontology) -> None:

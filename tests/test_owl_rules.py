@@ -7,11 +7,10 @@ from __future__ import annotations
 
 from pathlib import Path
 
-import pytest
-from pyoxigraph import NamedNode, Triple
+from pyoxigraph import NamedNode
 
 from topostore import Ontology
-from topostore.vocab import ASSERTED, AUX, DIFFERENT_FROM, INFERRED, SAME_AS, TYPE
+from topostore.vocab import ASSERTED, AUX, DIFFERENT_FROM, INFERRED, SAME_AS
 
 ROOT = Path(__file__).resolve().parents[1]
 TBOX_OWL = ROOT.parent / "shared" / "ontology" / "topological_map.owl"

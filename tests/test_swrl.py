@@ -12,10 +12,10 @@ import re
 from decimal import Decimal
 
 import pytest
-from pyoxigraph import Literal, NamedNode
+from pyoxigraph import Literal
 
 from topostore import Ontology, RuleCompileError
-from topostore.vocab import ASSERTED, INFERRED, XSD
+from topostore.vocab import ASSERTED, INFERRED
 
 NS = "http://example.org/swrltest#"
 PREFIXES = """\

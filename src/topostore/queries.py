@@ -84,27 +84,44 @@ def get_named_query(name_or_path: str) -> NamedQuery:
 
 # --------------------------------------------------------------------------- binding
 
+#: IRIREF per the SPARQL grammar: no spaces, quotes, braces, pipes or carets inside.
+IRIREF = re.compile(r"<[^<>\"{}|^`\\\x00-\x20]*>")
+
+
+def skip_non_code(text: str, i: int) -> int | None:
+    """Index just past the comment, string or IRI that starts at ``i`` (None if none does).
+
+    The one SPARQL lexing rule every scanner of query text needs: braces and
+    keywords inside these are not syntax.
+    """
+    c = text[i]
+    if c == "#":
+        j = text.find("\n", i)
+        return len(text) if j < 0 else j + 1
+    if c in "\"'":
+        quote = text[i:i + 3] if text[i:i + 3] in ('"""', "'''") else c
+        j = i + len(quote)
+        while j < len(text) and text[j:j + len(quote)] != quote:
+            j += 2 if text[j] == "\\" else 1
+        return j + len(quote)
+    if c == "<":
+        m = IRIREF.match(text, i)
+        if m:
+            return m.end()
+    return None
+
+
 def _where_brace(text: str) -> int:
     """Index of the ``{`` opening the query's WHERE group (outside comments, IRIs, strings)."""
     i, n = 0, len(text)
     seen_where = False
     depth = 0
     while i < n:
+        nxt = skip_non_code(text, i)
+        if nxt is not None:
+            i = nxt
+            continue
         c = text[i]
-        if c == "#":
-            j = text.find("\n", i)
-            i = n if j < 0 else j
-            continue
-        if c in "\"'":
-            quote = text[i:i + 3] if text[i:i + 3] in ('"""', "'''") else c
-            j = i + len(quote)
-            while j < n and text[j:j + len(quote)] != quote:
-                j += 2 if text[j] == "\\" else 1
-            i = j + len(quote)
-            continue
-        if c == "<" and re.match(r"<[^\s<>\"{}|^`\\]*>", text[i:]):
-            i = text.index(">", i) + 1
-            continue
         if text[i:i + 5].upper() == "WHERE" and (i == 0 or not text[i - 1].isalnum()):
             seen_where = True
         if c == "{":

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 from pyoxigraph import NamedNode
 
-from ..terms import INTEGER_TYPES, sparql
+from ..terms import INTEGER_TYPES
 from ..vocab import AUX, DECLARED_DIFFERENT, DIFFERENCE_CANDIDATE, DIFFERENT, OWL, RDF, RDFS, SAME_AS, TYPE, XSD
 from .rule import Atom
 

@@ -15,7 +15,7 @@ from pyoxigraph import Literal, NamedNode
 from ..errors import RuleCompileError
 from ..store import Store
 from ..terms import Term, sparql
-from ..vocab import DIFFERENT_FROM, ENTAILED_PREFIX, RDFS, SAME_AS, SWRL, SWRLA, TYPE, rdfs, swrl
+from ..vocab import DIFFERENT_FROM, ENTAILED_PREFIX, SAME_AS, SWRL, SWRLA, TYPE, rdfs, swrl
 from . import builtins
 from .model import Expr, TBoxReader, is_datatype
 from .rule import Atom, Rule

@@ -24,7 +24,7 @@ from ..compile.generic import PREFIXES
 from ..compile.rule import Atom, Rule, RuleSet
 from ..store import Store
 from .plan import KeyCounts, is_small, key_counts, plan_where
-from ..vocab import ASSERTED, AUX, DELTA, INFERRED, NEW_AUX, NEW_INFERRED, TYPE
+from ..vocab import ASSERTED, AUX, DELTA, INFERRED, NEW_AUX, NEW_INFERRED
 
 DATASET = f"USING {ASSERTED} USING {INFERRED} USING {AUX} USING NAMED {AUX} USING NAMED {DELTA}"
 

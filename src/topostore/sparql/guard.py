@@ -17,14 +17,13 @@ from __future__ import annotations
 import re
 
 from ..errors import QueryError
+from ..queries import skip_non_code
 
 _ESCAPE = re.compile(r"\\u([0-9A-Fa-f]{4})|\\U([0-9A-Fa-f]{8})")
 _WORD = re.compile(r"[A-Za-z_][A-Za-z0-9_\-]*")
 _NAME_CHARS = set("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-.:")
 #: characters that, just before a word, make it part of a name rather than a keyword
 _JOINERS = _NAME_CHARS - {"."}
-#: IRIREF per the SPARQL grammar: no spaces, quotes, braces, pipes or carets inside.
-_IRI = re.compile(r"<[^<>\"{}|^`\\\x00-\x20]*>")
 
 FORBIDDEN = ("SERVICE", "LOAD")
 
@@ -49,23 +48,11 @@ def keywords(text: str) -> list[str]:
     found: list[str] = []
     i, n = 0, len(text)
     while i < n:
+        nxt = skip_non_code(text, i)
+        if nxt is not None:
+            i = nxt
+            continue
         c = text[i]
-        if c == "#":
-            j = text.find("\n", i)
-            i = n if j < 0 else j + 1
-            continue
-        if c in "\"'":
-            quote = text[i:i + 3] if text[i:i + 3] in ('"""', "'''") else c
-            j = i + len(quote)
-            while j < n and text[j:j + len(quote)] != quote:
-                j += 2 if text[j] == "\\" else 1
-            i = j + len(quote)
-            continue
-        if c == "<":
-            m = _IRI.match(text, i)
-            if m:
-                i = m.end()
-                continue
         if c in "?$":  # a variable: skip its name
             m = _WORD.match(text, i + 1)
             i = m.end() if m else i + 1

@@ -1,0 +1,37 @@
+"""Helpers shared by the core tests: where the reference files are, and short views of answers."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from pyoxigraph import Literal, NamedNode
+
+from topostore import Ontology
+from topostore.vocab import XSD
+
+ROOT = Path(__file__).resolve().parents[1]
+#: ../shared/ontology beside the checkout (CI clones the repository with it there)
+SHARED = ROOT.parent / "shared" / "ontology"
+TBOX_OWL = SHARED / "topological_map.owl"
+ABOX_OWL = SHARED / "topological_map_abox.owl"
+NS = "http://bnc/exp-rob-lab/2022-23#"
+#: the example environment's clock (Robot1 now)
+NOW = 1665579740
+
+
+def long(v: int) -> Literal:
+    return Literal(str(v), datatype=NamedNode(XSD + "long"))
+
+
+def types_of(o: Ontology, name: str) -> set[str]:
+    return {o.short(t) for t in o.types(name)}
+
+
+def instances(o: Ontology, cls: str) -> set[str]:
+    return {o.short(i) for i in o.instances(cls)}
+
+
+def connected(o: Ontology) -> set[tuple[str, str]]:
+    """All connectedTo pairs the ontology answers (asserted ∪ inferred)."""
+    rows = o.sparql(f"SELECT ?a ?b WHERE {{ ?a <{NS}connectedTo> ?b }}")
+    return {(o.short(r["a"]), o.short(r["b"])) for r in rows}
