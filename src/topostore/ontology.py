@@ -320,6 +320,7 @@ class Ontology:
         finally:
             self._tracking = self._reasoner.state.ready
         publish_entailed(self.store, rules)
+        self.store.maybe_compact()
         self._report = ReasonReport(not violations, violations, stats)
         self.dirty = False
         return self._report

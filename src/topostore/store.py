@@ -133,6 +133,9 @@ class Store:
 
     def __init__(self, path: str | os.PathLike[str] | None = None) -> None:
         self._ox = ox.Store(str(path)) if path is not None else ox.Store()
+        self._in_memory = path is None
+        self._writes = 0  # write operations since the last compaction
+        self._live_at_compaction = 0
         # (graph, subject, predicate, value key) -> literal as the user wrote it
         self._literal_forms: dict[tuple, Literal] = {}
         # value key -> {literal as written: number of asserted triples using it}
@@ -166,6 +169,7 @@ class Store:
     def add(self, triples: Iterable[Triple], graph: NamedNode) -> int:
         """Add triples to ``graph``; returns how many were new."""
         added = 0
+        self._writes += 1
         for t in triples:
             quad = Quad(t.subject, t.predicate, t.object, graph)
             if quad not in self._ox:
@@ -178,8 +182,14 @@ class Store:
                     forms[t.object] = forms.get(t.object, 0) + 1
         return added
 
+    def add_scratch(self, triples: Iterable[Triple], graph: NamedNode) -> None:
+        """Bulk-add to a reasoner's scratch graph (no literal forms recorded, no counting)."""
+        self._writes += 1
+        self._ox.extend(Quad(t.subject, t.predicate, t.object, graph) for t in triples)
+
     def remove(self, triples: Iterable[Triple], graph: NamedNode) -> int:
         removed = 0
+        self._writes += 1
         for t in triples:
             quad = Quad(t.subject, t.predicate, t.object, graph)
             if quad in self._ox:
@@ -258,6 +268,7 @@ class Store:
 
     # ------------------------------------------------------------ SPARQL
     def update(self, text: str, **kwargs) -> None:
+        self._writes += 1
         try:
             self._ox.update(text, custom_functions=CUSTOM_FUNCTIONS, **kwargs)
         except SyntaxError as exc:
@@ -276,6 +287,26 @@ class Store:
             raise QueryError(f"malformed SPARQL query: {exc}") from exc
         except (OSError, RuntimeError) as exc:  # evaluation errors reported by Oxigraph
             raise QueryError(f"SPARQL evaluation failed: {exc}") from exc
+
+    # ------------------------------------------------------------ housekeeping
+    def maybe_compact(self) -> bool:
+        """Rebuild the in-memory store once enough writes have piled up.
+
+        Oxigraph's in-memory store keeps removed quads around (for its
+        transactions), so a long-running reasoner that derives and drops the same
+        facts step after step gets slower and bigger.  Copying the live quads into
+        a fresh store resets that; it is done when the writes since the last
+        compaction outnumber a fiftieth of the live quads (at least 200), which
+        keeps its amortised cost small.  On-disk stores compact themselves.
+        """
+        if not self._in_memory or self._writes < max(200, self._live_at_compaction // 50):
+            return False
+        fresh = ox.Store()
+        fresh.extend(self._ox)
+        self._ox = fresh
+        self._writes = 0
+        self._live_at_compaction = len(fresh)
+        return True
 
     # ------------------------------------------------------------ output
     def dump(self, graphs: list[NamedNode], restore_literals_from: NamedNode | None = None) -> list[Triple]:

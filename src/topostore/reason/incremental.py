@@ -65,7 +65,7 @@ import time
 from collections.abc import Collection, Iterable
 from dataclasses import dataclass, field
 
-from pyoxigraph import NamedNode, Quad, Triple
+from pyoxigraph import NamedNode, Triple
 
 from ..compile.generic import PREFIXES
 from ..compile.rule import Rule, RuleSet
@@ -516,7 +516,7 @@ class IncrementalReasoner:
         Not through :meth:`Store.add`, which would record the literals' written
         forms for a graph that is dropped with SPARQL and never shown.
         """
-        self.store._ox.extend(Quad(t.subject, t.predicate, t.object, graph) for t in triples)
+        self.store.add_scratch(triples, graph)
 
     def _clear_scratch(self) -> None:
         self.store.update(" ; ".join(f"DROP SILENT GRAPH {g}" for g in (*SCRATCH, DELTA, NEW_INFERRED, NEW_AUX)))
