@@ -32,11 +32,11 @@ DELTA = NamedNode(INTERNAL + "graph:delta")
 NEW_INFERRED = NamedNode(INTERNAL + "graph:new-inferred")
 NEW_AUX = NamedNode(INTERNAL + "graph:new-aux")
 
-#: aux predicates indexing owl:AllDifferent axioms in linear size (never n²
-#: pairs): member ``m`` of group ``g`` gets ``m ts:differentKey k . k
-#: ts:differentGroup g`` with ``k`` a key minted from (g, m).
+#: aux predicate indexing owl:AllDifferent axioms in linear size (never n²
+#: pairs): member ``m`` of group ``g`` gets ``m ts:differentKey k`` with
+#: ``k = urn:topostore:key:<md5(g)>:<md5(m)>``; two individuals holding
+#: different keys with the same group part are declared different.
 DIFFERENT_KEY = NamedNode(INTERNAL + "differentKey")
-DIFFERENT_GROUP = NamedNode(INTERNAL + "differentGroup")
 #: aux predicates of the difference check.  A rule that needs "a and b are
 #: different" first derives ``a ts:differenceCandidate b`` for the pairs its body
 #: can produce; generic rules then derive ``a ts:different b`` for the candidates

@@ -24,7 +24,7 @@ from ..compile.generic import PREFIXES
 from ..compile.rule import Atom, Rule, RuleSet
 from ..store import Store
 from .plan import KeyCounts, is_small, key_counts, plan_where
-from ..vocab import ASSERTED, AUX, DELTA, INFERRED, NEW_AUX, NEW_INFERRED
+from ..vocab import ASSERTED, AUX, DELTA, INFERRED, NEW_AUX, NEW_INFERRED, TYPE
 
 DATASET = f"USING {ASSERTED} USING {INFERRED} USING {AUX} USING NAMED {AUX} USING NAMED {DELTA}"
 
@@ -197,14 +197,32 @@ class Materializer:
         )
 
     def run(self) -> ReasonStats:
-        """Recompute the inferred graphs from the asserted graph alone."""
+        """Recompute the inferred graphs from the asserted graph alone.
+
+        The first stratum is evaluated component by component of the rule
+        dependency graph, in topological order (:func:`evaluation_order`): a rule
+        runs once everything it reads is complete, so a non-recursive rule such
+        as a SWRL rule is evaluated exactly once instead of once per round that
+        touched one of its inputs.  Rules that read or write any predicate
+        (owl:sameAs replacement) and the upper strata then run, followed by
+        ordinary semi-naive rounds over every rule, which changes nothing unless
+        they derived something.
+        """
         start = time.perf_counter()
         stats = ReasonStats()
         self.clear()
         strata = sorted({r.stratum for r in self.rules}) or [0]
+        first = [i for i, r in enumerate(self.rules) if r.stratum == strata[0]]
+        ordered, rest = evaluation_order(self.rules, first)
+        for component in ordered:
+            for i in component:
+                self._run(i, None, stats)
+            self._flush()
+            stats.rounds += 1
+            self.propagate(component, stats)
         for level in strata:
             active = [i for i, r in enumerate(self.rules) if r.stratum <= level]
-            fresh = [i for i in active if self.rules[i].stratum == level]
+            fresh = rest if level == strata[0] else [i for i in active if self.rules[i].stratum == level]
             for i in fresh:
                 self._run(i, None, stats)
             self._flush()
@@ -216,3 +234,70 @@ class Materializer:
         stats.derived = self.store.count(INFERRED)
         stats.seconds = time.perf_counter() - start
         return stats
+
+
+def _feeds(write: tuple, read: tuple) -> bool:
+    """Whether facts with key ``write`` can match a body pattern with key ``read``."""
+    if write == read:
+        return True
+    if read == ("p", str(TYPE)):
+        return write[0] == "t"
+    if write == ("p", str(TYPE)):
+        return read[0] == "t"
+    return False
+
+
+def evaluation_order(rules: list[Rule], indexes: list[int]) -> tuple[list[list[int]], list[int]]:
+    """Strongly connected components of the rules' dependency graph, writers first.
+
+    Rules that read or write a variable predicate (``*``) depend on everything
+    and are returned apart (second value), to run after the ordered pass.
+    """
+    wild = [i for i in indexes if rules[i].writes() == ("*",) or ("*",) in rules[i].reads()]
+    nodes = [i for i in indexes if i not in set(wild)]
+    succ: dict[int, list[int]] = {i: [] for i in nodes}
+    for a in nodes:
+        w = rules[a].writes()
+        for b in nodes:
+            if any(_feeds(w, r) for r in rules[b].reads()):
+                succ[a].append(b)
+    # Tarjan's algorithm, iterative; components come out in reverse topological order
+    index: dict[int, int] = {}
+    low: dict[int, int] = {}
+    on_stack: set[int] = set()
+    stack: list[int] = []
+    components: list[list[int]] = []
+    counter = 0
+    for root in nodes:
+        if root in index:
+            continue
+        work = [(root, 0)]
+        while work:
+            v, k = work.pop()
+            if k == 0:
+                index[v] = low[v] = counter
+                counter += 1
+                stack.append(v)
+                on_stack.add(v)
+            if k < len(succ[v]):
+                work.append((v, k + 1))
+                w = succ[v][k]
+                if w not in index:
+                    work.append((w, 0))
+                elif w in on_stack:
+                    low[v] = min(low[v], index[w])
+                continue
+            for w in succ[v]:
+                if w in on_stack:
+                    low[v] = min(low[v], low[w])
+            if low[v] == index[v]:
+                component = []
+                while True:
+                    w = stack.pop()
+                    on_stack.discard(w)
+                    component.append(w)
+                    if w == v:
+                        break
+                components.append(sorted(component))
+    components.reverse()
+    return components, wild
