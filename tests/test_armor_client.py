@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import importlib.util
 from pathlib import Path
 
 import pytest
@@ -227,11 +226,13 @@ def test_call_serialized(client: ArmorClient) -> None:
     assert f"<{IRI}#K>" in result.armor_responses[2].queried_objects
 
 
-@pytest.mark.skipif(importlib.util.find_spec("topostore.armor_api.http_transport") is not None,
-                    reason="an HTTP transport is installed")
-def test_url_without_http_transport_is_call_error() -> None:
+def test_url_selects_the_http_transport_and_an_unreachable_server_is_a_call_error() -> None:
+    from topostore.armor_api.http_transport import HttpTransport
+
+    client = ArmorClient("x", "ref", url="http://127.0.0.1:1", timeout=1)
+    assert isinstance(client.transport, HttpTransport)
     with pytest.raises(ArmorServiceCallError):
-        ArmorClient("x", "ref", url="http://localhost:1")
+        client.utils.mount_on_ref()
 
 
 def test_module_layout() -> None:
