@@ -76,13 +76,14 @@ def _atom_score(atom: Atom, bound: set[str]) -> int:
     return 30  # enumerate a property
 
 
-def join_order(atoms: tuple[Atom, ...], first: int | None = None) -> list[int]:
+def join_order(atoms: tuple[Atom, ...], first: int | None = None, bound: Iterable[str] = ()) -> list[int]:
     """A greedy join order: start from ``first`` (or the most selective atom), then
-    always take the atom that is cheapest given what is bound, so that no rule
-    starts from a cross product of class extensions."""
+    always take the atom that is cheapest given what is bound (``bound``: variables
+    bound before the body), so that no rule starts from a cross product of class
+    extensions."""
     remaining = list(range(len(atoms)))
     order: list[int] = []
-    bound: set[str] = set()
+    bound = set(bound)
     if first is not None:
         order.append(first)
         remaining.remove(first)
@@ -139,18 +140,19 @@ class Rule:
         atom first), because the store evaluates a basic graph pattern largely in
         the order it is written.
         """
-        lines = []
-        for i in join_order(self.body, delta_index):
-            atom = self.body[i]
-            if i == delta_index:
-                lines.append(f"GRAPH {delta_graph} {{ {atom.text()} }}")
-            elif atom.aux:
-                lines.append(f"GRAPH <urn:topostore:graph:aux> {{ {atom.text()} }}")
-            else:
-                lines.append(atom.text())
+        lines = [self.atom_text(i, delta_index, delta_graph) for i in join_order(self.body, delta_index)]
         if self.filters:
             lines.append(self.filters)
         return "\n  ".join(lines)
+
+    def atom_text(self, i: int, delta_index: int | None = None, delta_graph: str = "") -> str:
+        """Body atom ``i`` as a pattern: on the delta graph, the helper graph, or the default graph."""
+        atom = self.body[i]
+        if i == delta_index:
+            return f"GRAPH {delta_graph} {{ {atom.text()} }}"
+        if atom.aux:
+            return f"GRAPH <urn:topostore:graph:aux> {{ {atom.text()} }}"
+        return atom.text()
 
     def sparql(self) -> str:
         """A readable rendering (CONSTRUCT or SELECT over the union graph), for `topostore rules`."""

@@ -57,8 +57,10 @@ def check_consistency(store: Store, rules: RuleSet) -> list[Violation]:
     seen: set = set()
     graphs = [ASSERTED, INFERRED, AUX]
     for rule in rules.checks:
-        for solution in store.query(check_text(rule), graphs=graphs, prefixes=PREFIXES):
-            row = {v[1:]: solution[v[1:]] for v in rule.violation if solution[v[1:]] is not None}
+        rows = [{v[1:]: solution[v[1:]] for v in rule.violation if solution[v[1:]] is not None}
+                for solution in store.query(check_text(rule), graphs=graphs, prefixes=PREFIXES)]
+        # sorted, so that the report does not depend on evaluation order
+        for row in sorted(rows, key=lambda r: [str(v) for v in r.values()]):
             key = (rule.name, rule.origin, frozenset(row.values()))
             if key in seen:  # the same violation found with its variables swapped
                 continue

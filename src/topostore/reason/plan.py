@@ -8,12 +8,11 @@ solution, so their cost follows the change, not the map.
 from __future__ import annotations
 
 import re
-from collections.abc import Iterable
 
 from pyoxigraph import NamedNode
 
-from ..compile.rule import Rule
-from ..vocab import AUX, TYPE
+from ..compile.rule import Rule, join_order
+from ..vocab import TYPE
 
 _BIND_TARGET = re.compile(r"\bAS\s+(\?\w+)", re.I)
 
@@ -54,32 +53,6 @@ def is_small(counts: KeyCounts, key: tuple = ("*",)) -> bool:
     return n <= LATERAL_MAX
 
 
-def join_order(rule: Rule, first: int | None = None, bound: Iterable[str] = ()) -> list[int]:
-    """Body atoms in the order to match them: ``first`` (the delta atom), then greedily
-    the atom leaving the fewest unbound variables, atoms other than class
-    memberships first (a class has many members, a property value few).
-
-    Incremental evaluations start from a small graph (the delta, the
-    candidates); matching the rest in textual order can start with a
-    cross product of two classes.
-    """
-    known = set(bound)
-    todo = [k for k in range(len(rule.body)) if k != first]
-    order = [] if first is None else [first]
-    if first is not None:
-        known |= rule.body[first].variables()
-    while todo:
-        def cost(k: int) -> tuple:
-            atom = rule.body[k]
-            is_type = atom.p == str(TYPE)
-            return (len(atom.variables() - known), is_type, k)
-        best = min(todo, key=cost)
-        todo.remove(best)
-        order.append(best)
-        known |= rule.body[best].variables()
-    return order
-
-
 def plan_where(rule: Rule, delta: int | None = None, delta_graph: NamedNode | None = None,
                head_graph: NamedNode | None = None, lateral: bool = True) -> str:
     """The WHERE group of ``rule`` for incremental evaluation.
@@ -90,7 +63,7 @@ def plan_where(rule: Rule, delta: int | None = None, delta_graph: NamedNode | No
     Filters follow the atoms, as in :meth:`Rule.where`.
 
     With ``lateral`` (for a small start graph), each further atom is evaluated under its own LATERAL, i.e. once per
-    solution so far, in the order of :func:`join_order`: Oxigraph's own join
+    solution so far, in the order of :func:`~topostore.compile.rule.join_order`: Oxigraph's own join
     ordering (also inside one LATERAL group, where it does not know which
     variables are bound) often starts with a large class membership, and an
     evaluation over an empty delta then still costs tens of milliseconds on a
@@ -103,14 +76,8 @@ def plan_where(rule: Rule, delta: int | None = None, delta_graph: NamedNode | No
     bound = rule.head.variables() if head_line and not head_last else set()
     start = [head_line] if head_line and not head_last else []
     rest: list[str] = []
-    for k in join_order(rule, delta, bound):
-        atom = rule.body[k]
-        if k == delta:
-            start.append(f"GRAPH {delta_graph} {{ {atom.text()} }}")
-        elif atom.aux:
-            rest.append(f"GRAPH {AUX} {{ {atom.text()} }}")
-        else:
-            rest.append(atom.text())
+    for k in join_order(rule.body, delta, bound):
+        (start if k == delta else rest).append(rule.atom_text(k, delta, str(delta_graph)))
     if not start:
         return "\n  ".join(rest + ([rule.filters] if rule.filters else []))
     if not lateral:
@@ -127,4 +94,4 @@ def nested(patterns: list[str], filters: str) -> str:
     return text
 
 
-__all__ = ["KeyCounts", "LATERAL_MAX", "is_small", "join_order", "key_counts", "nested", "plan_where"]
+__all__ = ["KeyCounts", "LATERAL_MAX", "is_small", "key_counts", "nested", "plan_where"]
