@@ -532,3 +532,18 @@ def test_log_screen_and_file(svc: ArmorService, tmp_path: Path) -> None:
     assert "URGENT" in text and "'ROOM'" not in text
     res = call(svc, "LOG", "FILE", "ON", [str(tmp_path / "missing" / "dir" / "x.log")])
     assert (res.success, res.exit_code) == (False, 210)
+
+
+def test_ros_style_message_objects_are_accepted() -> None:
+    # a client shimming rospy passes message objects (attributes, possibly wrapped in armor_request)
+    from types import SimpleNamespace
+
+    service = ArmorService()
+    message = SimpleNamespace(client_name="c", reference_name="r", command="GET", primary_command_spec="ALL",
+                              secondary_command_spec="REFS", args=())
+    assert service.call(message).success
+    assert service.call(SimpleNamespace(armor_request=message)).success
+    assert service.call({"armor_request": {"reference_name": "r", "command": "GET", "primary_command_spec": "ALL",
+                                           "secondary_command_spec": "REFS", "args": []}}).success
+    refused = service.call(SimpleNamespace(command="GET"))
+    assert not refused.success and "mapping or a message" in refused.error_description

@@ -43,8 +43,7 @@ class ArmorRequest:
         """
         if isinstance(data, ArmorRequest):
             return data
-        if not isinstance(data, Mapping):
-            raise TypeError(f"a request must be a mapping, got {type(data).__name__}")
+        data = _as_mapping(data)
         args = data.get("args") or []
         if isinstance(args, (str, bytes)) or not isinstance(args, (list, tuple)):
             raise TypeError("args must be a list of strings")
@@ -106,6 +105,24 @@ class ArmorResponse:
             queried_objects=[str(o) for o in data.get("queried_objects") or []],
             sparql_queried_objects=items,
         )
+
+
+_REQUEST_FIELDS = ("client_name", "reference_name", "command", "primary_command_spec", "secondary_command_spec", "args")
+
+
+def _as_mapping(data: Any) -> Mapping[str, Any]:
+    """A request as a mapping: a dict, a ROS-style message object with the request
+    fields as attributes, or either wrapped in ``armor_request`` (the service's
+    request message)."""
+    inner = data.get("armor_request") if isinstance(data, Mapping) else getattr(data, "armor_request", None)
+    if inner is not None:
+        data = inner
+    if isinstance(data, Mapping):
+        return data
+    if all(hasattr(data, f) for f in _REQUEST_FIELDS):
+        return {f: (list(getattr(data, f)) if f == "args" else getattr(data, f)) for f in _REQUEST_FIELDS}
+    raise TypeError(f"a request must be a mapping or a message with the fields {', '.join(_REQUEST_FIELDS)}, "
+                    f"got {type(data).__name__}")
 
 
 @dataclass
