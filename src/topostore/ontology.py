@@ -107,12 +107,18 @@ class Ontology:
         return self._add_checked(triples)
 
     def _add_checked(self, triples: list[Triple]) -> int:
-        if any(is_schema_triple(t) for t in triples):
-            scratch = Store()
-            scratch.add(self.store.triples(graph=ASSERTED), ASSERTED)
-            scratch.add(triples, ASSERTED)
-            compile_ontology(scratch, ASSERTED)  # raises RuleCompileError, nothing added
-        return self.add(*triples)
+        """Add loaded triples; when they change the rules, compile first on a copy,
+        so that an untranslatable rule leaves the ontology untouched, and keep
+        that compilation (it is the one the new asserted graph gives)."""
+        if not any(is_schema_triple(t) for t in triples):
+            return self.add(*triples)
+        scratch = Store()
+        scratch.add(self.store.triples(graph=ASSERTED), ASSERTED)
+        scratch.add(triples, ASSERTED)
+        rules = compile_ontology(scratch, ASSERTED)  # raises RuleCompileError, nothing added
+        added = self.add(*triples)
+        self._rules = rules
+        return added
 
     @property
     def prefix(self) -> str:

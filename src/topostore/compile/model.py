@@ -244,9 +244,7 @@ class TBoxReader:
         for t in st.triples(None, owl("disjointUnionOf"), None, g):
             members = [self.expr(m) for m in self._list(t.object)]
             tb.disjoint += [(a, b) for i, a in enumerate(members) for b in members[i + 1:]]
-            union = Expr(t.subject, "or", members=tuple(members))
             tb.subclass += [(m, self.expr(t.subject)) for m in members]
-            del union
 
         for t in st.triples(None, rdfs("domain"), None, g):
             tb.domain.append((self.prop(t.subject), self.expr(t.object)))

@@ -45,13 +45,8 @@ class OwlCompiler:
             (a.node, b.node) for a, b in tbox.disjoint if a.is_named and b.is_named
         ]
         self.told = self._told_superclasses()
-        self._var = 0
 
     # ------------------------------------------------------------------ helpers
-    def fresh(self, base: str = "v") -> str:
-        self._var += 1
-        return f"?{base}{self._var}"
-
     @staticmethod
     def member(var: str, e: Expr | None) -> list[Atom]:
         """Atoms saying ``var`` is an instance of ``e`` (none for owl:Thing)."""

@@ -9,11 +9,9 @@ from __future__ import annotations
 from pyoxigraph import NamedNode
 
 from ..terms import INTEGER_TYPES
-from ..vocab import AUX, DECLARED_DIFFERENT, DIFFERENCE_CANDIDATE, DIFFERENT, OWL, RDF, RDFS, SAME_AS, TYPE, XSD
+from ..vocab import AUX, DECLARED_DIFFERENT, DIFFERENCE_CANDIDATE, DIFFERENT, OWL, RDF, RDFS, XSD
 from .rule import Atom
 
-T = str(TYPE)
-SAME = str(SAME_AS)
 
 def different_atom(a: str, b: str, declared: bool = False) -> Atom:
     """Body atom: ``a`` and ``b`` are known to be different — by entailment
