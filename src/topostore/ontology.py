@@ -183,6 +183,7 @@ class Ontology:
             return
         mine, other = (self._added, self._removed) if added else (self._removed, self._added)
         for t in triples:
+            t = self.store.stored_form(t)  # both sets hold triples as the store does, so they cancel
             if self.store.contains(t, ASSERTED) == added:
                 continue  # adding a present triple or removing an absent one changes nothing
             if t in other:

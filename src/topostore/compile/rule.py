@@ -20,6 +20,8 @@ from ..vocab import TYPE, is_internal
 #: or ("*",) for a pattern with a variable predicate (reads everything).
 ReadKey = tuple
 
+_TYPE_TEXT = str(TYPE)
+
 
 @dataclass(frozen=True)
 class Atom:
@@ -33,19 +35,28 @@ class Atom:
     p: str
     o: str
     aux: bool = False
+    # derived once: the reasoner asks for them thousands of times per REASON
+    _key: ReadKey = field(init=False, repr=False, compare=False)
+    _vars: frozenset = field(init=False, repr=False, compare=False)
+
+    def __post_init__(self) -> None:
+        if self.p.startswith("?"):
+            key: ReadKey = ("*",)
+        elif self.p == _TYPE_TEXT and not self.o.startswith("?"):
+            key = ("t", self.o)
+        else:
+            key = ("p", self.p)
+        object.__setattr__(self, "_key", key)
+        object.__setattr__(self, "_vars", frozenset(t for t in (self.s, self.p, self.o) if t.startswith("?")))
 
     def text(self) -> str:
         return f"{self.s} {self.p} {self.o} ."
 
     def read_key(self) -> ReadKey:
-        if self.p.startswith("?"):
-            return ("*",)
-        if self.p == str(TYPE) and not self.o.startswith("?"):
-            return ("t", self.o)
-        return ("p", self.p)
+        return self._key
 
     def variables(self) -> set[str]:
-        return {t for t in (self.s, self.p, self.o) if t.startswith("?")}
+        return set(self._vars)
 
 
 def head_is_aux(p: str, o: str) -> bool:

@@ -72,8 +72,10 @@ from ..compile.rule import Rule, RuleSet
 from ..store import Store
 from ..vocab import ASSERTED, AUX, DELTA, INFERRED, INTERNAL, NEW_AUX, NEW_INFERRED, TYPE
 from .consistency import Violation, check_consistency
+from . import flip
 from .materialize import Materializer, Present, ReasonStats, feasible, feasible_atom, matches
 from .plan import KeyCounts, is_small, key_counts, plan_where
+from .triggers import Triggers
 
 #: Scratch graphs of incremental maintenance (never visible to queries).
 ADDED = NamedNode(INTERNAL + "graph:inc-added")          # asserted triples added since the last REASON
@@ -85,7 +87,11 @@ PROVEN = NamedNode(INTERNAL + "graph:inc-proven")        # proven to hold in the
 NEW_PROVEN = NamedNode(INTERNAL + "graph:inc-new-proven")
 SUBGOALS = NamedNode(INTERNAL + "graph:inc-subgoals")    # premises a candidate's proof needs
 NEW_FACTS = NamedNode(INTERNAL + "graph:inc-new-facts")  # facts that may be new in the closure
-SCRATCH = (ADDED, REMOVED, OVERDELETED, DEL_DELTA, CANDIDATES, PROVEN, NEW_PROVEN, SUBGOALS, NEW_FACTS)
+FLIP_GAINED = NamedNode(INTERNAL + "graph:inc-flip-gained")  # heads a replaced value may have made true
+SCRATCH = (ADDED, REMOVED, OVERDELETED, DEL_DELTA, CANDIDATES, PROVEN, NEW_PROVEN, SUBGOALS, NEW_FACTS,
+           FLIP_GAINED, flip.CHANGE_OLD)
+
+
 
 #: Default share of the asserted graph above which a change is recomputed from scratch.
 DEFAULT_MAX_CHANGE_SHARE = 0.10
@@ -180,6 +186,9 @@ class IncrementalReasoner:
         self.state = MaintenanceState()
         self.rules = rules.inference_rules
         self.monotone = [i for i, r in enumerate(self.rules) if is_monotone(r)]
+        self._monotone_set = set(self.monotone)
+        self.triggers = Triggers(self.rules)
+        self.check_triggers = Triggers(rules.checks)
         self.negated = [r for r in self.rules if not is_monotone(r)]
         self.provers = [i for i in self.monotone if can_prove(self.rules[i])]
         self.checks_monotone = all(not negates_exists(c.filters) and c.stratum == 0 for c in rules.checks)
@@ -188,6 +197,8 @@ class IncrementalReasoner:
         self._lateral = True  # is the graph the next evaluation starts from small?
         self._counts: KeyCounts = ({}, {})  # read keys of the graph evaluations start from
         self.profile = False
+        self._filter_var_cache: dict[int, set[str]] = {}
+        self._plain_cache: dict[int, bool] = {}
 
     # ------------------------------------------------------------------ entry point
     def reason(self, added: Collection[Triple] = (), removed: Collection[Triple] = (), mode: str = "auto",
@@ -206,7 +217,7 @@ class IncrementalReasoner:
         start = time.perf_counter()
         stats = ReasonStats(mode="incremental", reason=self._incremental_reason(added, removed))
         self.profile = profile
-        materializer = Materializer(self.store, self.ruleset, profile=profile)
+        materializer = Materializer(self.store, self.ruleset, profile=profile, triggers=self.triggers)
         materializer.present = self.state.present
         materializer.planned = True
         try:
@@ -278,39 +289,132 @@ class IncrementalReasoner:
             keys[0].update(preds)
             keys[1].update(classes)
         # a newly asserted fact that was inferred is now asserted only (as from scratch)
-        for g in (INFERRED, AUX):
-            self._update(f"DELETE {{ GRAPH {g} {{ ?s ?p ?o }} }} {dataset((), (ADDED, g))} "
-                         f"WHERE {{ GRAPH {ADDED} {{ ?s ?p ?o }} GRAPH {g} {{ ?s ?p ?o }} }}", stats, "dred:asserted")
+        if added:
+            self.store.discard(added, (INFERRED, AUX))
+        skip, lost, gained_rules = self._flips(added, removed, stats)
         if removed:
-            self._overdelete(stats)
+            self._overdelete(stats, skip, lost)
             self._rederive(stats)
-        self._update(f"ADD SILENT {ADDED} TO {NEW_FACTS}", stats, "dred:bookkeeping")
-        m.propagate(self.monotone, stats, seed=ADDED, record=NEW_FACTS)
+        if gained_rules:
+            self._start(FLIP_GAINED)
+        for i in sorted(gained_rules):
+            self._run(("flip-gained", i), self._rederive_text, i, FLIP_GAINED, stats)
+        self._defer(f"ADD SILENT {ADDED} TO {NEW_FACTS}")
+        self._flush()
+        m.propagate(self.monotone, stats, seed=ADDED, record=NEW_FACTS, skip_first=skip)
 
-    def _overdelete(self, stats: ReasonStats) -> None:
-        """DRed's first phase, with the proof check that keeps cyclic axioms from cascading."""
-        self._update(f"ADD SILENT {REMOVED} TO {DEL_DELTA} ; ADD SILENT {REMOVED} TO {OVERDELETED}", stats, "dred:bookkeeping")
+    def _flips(self, added: Collection[Triple], removed: Collection[Triple],
+               stats: ReasonStats) -> tuple[set[tuple[int, int]], list[Triple], set[int]]:
+        """Evaluate the rules that see replaced values only through comparisons (see :mod:`.flip`).
+
+        Returns the (rule, atom) evaluations the ordinary path must skip, the
+        heads that lost their derivation by such a rule, and the rules with
+        heads that may have gained one (put in FLIP_GAINED, checked later).
+        """
+        clean = flip.clean_replacements(added, removed, lambda s, p: self.store.objects(s, p, ASSERTED))
+        clean = {p: pairs for p, pairs in clean.items() if not self._derivable(p)}
+        skip: set[tuple[int, int]] = set()
+        lost: list[Triple] = []
+        gained_rules: set[int] = set()
+        if not clean:
+            return skip, lost, gained_rules
+        preds, classes = self._keys(ADDED)
+        removed_preds, removed_classes = self._keys(REMOVED)
+        changed = (set(preds) | set(removed_preds), set(classes) | set(removed_classes))
+        self.store.add_scratch((r.old for pairs in clean.values() for r in pairs), flip.CHANGE_OLD)
+        wanted: list[tuple[int, tuple[int, ...]]] = []
+        for i in self.triggers.rules_reading(clean, self._monotone_set):
+            handled = self._flip_atoms(i, clean, changed)
+            if handled is None:
+                continue
+            skip.update((i, j) for j in handled)
+            compared = tuple(j for j in handled if self.rules[i].body[j].o[1:] in self._filter_vars(i))
+            if compared and self.triggers.feasible(i, self.state.present):
+                wanted.append((i, compared))
+        stats.flipped = len(skip)
+        for row in self._flip_rows(tuple(wanted), stats):
+            i = int(row["rule"].value)
+            head = flip.head_triple(row)
+            if flip.gained(row):
+                self.store.add_scratch([head], FLIP_GAINED)
+                gained_rules.add(i)
+            elif self.store.contains(head, target(self.rules[i])):
+                lost.append(head)
+        return skip, lost, gained_rules
+
+    def _flip_atoms(self, i: int, clean: dict, changed: tuple[set[str], set[str]]) -> tuple[int, ...] | None:
+        """The rule's atoms on cleanly replaced values, when every changed atom is one (else None)."""
+        rule = self.rules[i]
+        if any(matches(k, *changed) for k in rule.filter_reads) or not self._plain(i):
+            return None
+        handled = []
+        for j, atom in enumerate(rule.body):
+            if not matches(atom.read_key(), *changed):
+                continue
+            if atom.p not in clean or not flip.compared_only(rule, j):
+                return None
+            handled.append(j)
+        return tuple(handled) or None
+
+    def _flip_rows(self, wanted: tuple[tuple[int, tuple[int, ...]], ...], stats: ReasonStats) -> list:
+        """One query for the flips of all ``wanted`` (rule, compared atoms)."""
+        if not wanted:
+            return []
+        key = ("flip", wanted)
+        text = self._texts.get(key)
+        if text is None:
+            text = self._texts[key] = flip.flip_query(
+                b for i, atoms in wanted for b in flip.flip_branches(self.rules[i], atoms, True, i))
+        stats.evaluations += len(wanted)
+        start = time.perf_counter()
+        rows = list(self.store.query(text, prefixes=PREFIXES, graphs=[ASSERTED, INFERRED, AUX],
+                                     named=[AUX, flip.CHANGE_OLD]))
+        if self._profiling(stats):
+            stats.per_rule["flip"] = stats.per_rule.get("flip", 0.0) + time.perf_counter() - start
+        return rows
+
+    def _filter_vars(self, i: int) -> set[str]:
+        found = self._filter_var_cache.get(i)
+        if found is None:
+            found = self._filter_var_cache[i] = flip.filter_variables(self.rules[i])
+        return found
+
+    def _plain(self, i: int) -> bool:
+        found = self._plain_cache.get(i)
+        if found is None:
+            found = self._plain_cache[i] = flip._plain_filters(self.rules[i])
+        return found
+
+    def _derivable(self, p: str) -> bool:
+        """Whether a rule that can fire may derive facts of predicate ``p`` (IRI text)."""
+        return any(self.triggers.feasible(i, self.state.present) for i in self.triggers.writers(("p", p)))
+
+    def _overdelete(self, stats: ReasonStats, skip: set[tuple[int, int]] = frozenset(),
+                    lost: list[Triple] = ()) -> None:
+        """DRed's first phase, with the proof check that keeps cyclic axioms from cascading.
+
+        In the first round, the evaluations in ``skip`` are replaced by the
+        heads in ``lost`` (found by :meth:`_flips`).
+        """
+        self._defer(f"ADD SILENT {REMOVED} TO {DEL_DELTA} ; ADD SILENT {REMOVED} TO {OVERDELETED}")
+        preds, classes = self._start(REMOVED)  # what DEL_DELTA holds once the queue is sent
         while True:
-            preds, classes = self._start(DEL_DELTA)
-            for i in self.monotone:
-                rule = self.rules[i]
-                if any(matches(k, preds, classes) for k in rule.filter_reads):
-                    if feasible(rule, self.state.present):
-                        self._run(("cand", i, None), self._candidate_text, i, None, stats)
-                    continue
-                for j, atom in enumerate(rule.body):
-                    if matches(atom.read_key(), preds, classes) and feasible(rule, self.state.present, j):
-                        self._run(("cand", i, j), self._candidate_text, i, j, stats)
+            for i, j in self.triggers.evaluations(preds, classes, self._monotone_set, self.state.present, skip):
+                self._run(("cand", i, j), self._candidate_text, i, j, stats)
             self._flush()
+            if lost:
+                self.store.add_scratch(lost, CANDIDATES)
+            skip, lost = frozenset(), ()
             if self.store.is_empty(CANDIDATES):
                 break
             self._prove(stats)
             stats.overdeleted += self.store.count(CANDIDATES) if self._profiling(stats) else 0
-            self._update(f"DROP SILENT GRAPH {DEL_DELTA} ; ADD SILENT {CANDIDATES} TO {DEL_DELTA} ; "
-                         f"ADD SILENT {CANDIDATES} TO {OVERDELETED} ; DROP SILENT GRAPH {CANDIDATES}", stats, "dred:bookkeeping")
-        for g in (INFERRED, AUX):
-            self._update(f"DELETE {{ GRAPH {g} {{ ?s ?p ?o }} }} {dataset((), (OVERDELETED, g))} "
-                         f"WHERE {{ GRAPH {OVERDELETED} {{ ?s ?p ?o }} GRAPH {g} {{ ?s ?p ?o }} }}", stats, "dred:delete")
+            preds, classes = self._start(CANDIDATES)  # the next DEL_DELTA
+            self._defer(f"DROP SILENT GRAPH {DEL_DELTA} ; ADD SILENT {CANDIDATES} TO {DEL_DELTA} ; "
+                        f"ADD SILENT {CANDIDATES} TO {OVERDELETED} ; DROP SILENT GRAPH {CANDIDATES}")
+        self._defer(" ; ".join(f"DELETE {{ GRAPH {g} {{ ?s ?p ?o }} }} {dataset((), (OVERDELETED, g))} "
+                               f"WHERE {{ GRAPH {OVERDELETED} {{ ?s ?p ?o }} GRAPH {g} {{ ?s ?p ?o }} }}"
+                               for g in (INFERRED, AUX)))
 
     def _prove(self, stats: ReasonStats) -> None:
         """Move candidates that still hold to PROVEN: a derivation from asserted or proven facts.
@@ -333,7 +437,7 @@ class IncrementalReasoner:
             progress = False
             while self._prove_goals(SUBGOALS, known, stats):
                 progress = True
-            self._update(f"DROP SILENT GRAPH {SUBGOALS}", stats, "dred:bookkeeping")
+            self._defer(f"DROP SILENT GRAPH {SUBGOALS}")
             if not progress:
                 return
 
@@ -350,7 +454,7 @@ class IncrementalReasoner:
         new_preds, new_classes = self._keys(NEW_PROVEN)
         known[0].update(new_preds)
         known[1].update(new_classes)
-        self._update(f"DROP SILENT GRAPH {NEW_PROVEN}", stats, "dred:bookkeeping")
+        self._defer(f"DROP SILENT GRAPH {NEW_PROVEN}")
         return True
 
     def _make_subgoals(self, stats: ReasonStats) -> None:
@@ -376,8 +480,8 @@ class IncrementalReasoner:
             key = self.rules[i].writes()
             if key is not None and matches(key, preds, classes) and feasible(self.rules[i], self.state.present):
                 self._run(("rederive", i), self._rederive_text, i, None, stats)
-        self._flush()
         if self._profiling(stats):
+            self._flush()
             stats.rederived = self.store.count(NEW_INFERRED) + self.store.count(NEW_AUX)
 
     # ------------------------------------------------------------------ SPARQL texts
@@ -410,22 +514,26 @@ class IncrementalReasoner:
         return (f"INSERT {{ GRAPH {SUBGOALS} {{ {atoms} }} }}\n"
                 f"{dataset((ASSERTED, INFERRED, AUX), (AUX, CANDIDATES))}\nWHERE {{\n  {where}\n}}")
 
-    def _rederive_text(self, i: int, _: None) -> str:
+    def _rederive_text(self, i: int, heads: NamedNode | None) -> str:
+        """Insert into NEW_* the heads in ``heads`` (over-deleted ones by default) that the rule derives now."""
+        heads = heads or OVERDELETED
         rule = self.rules[i]
         head = rule.head.text()
         new = NEW_AUX if rule.head_aux() else NEW_INFERRED
-        where = plan_where(rule, head_graph=OVERDELETED, lateral=self._lateral)
-        return (f"INSERT {{ GRAPH {new} {{ {head} }} }}\n{dataset((ASSERTED, INFERRED, AUX), (AUX, OVERDELETED))}\n"
+        where = plan_where(rule, head_graph=heads, lateral=self._lateral)
+        return (f"INSERT {{ GRAPH {new} {{ {head} }} }}\n{dataset((ASSERTED, INFERRED, AUX), (AUX, heads))}\n"
                 f"WHERE {{\n  {where}\n  FILTER NOT EXISTS {{ {head} }}\n}}")
 
     # ------------------------------------------------------------------ after maintenance
     def _negated_match(self) -> bool:
-        """Whether any rule with a negated premise matches the current closure."""
-        for rule in self.negated:
-            text = f"ASK {{\n  {rule.where()}\n}}"
-            if self.store.query(text, graphs=[ASSERTED, INFERRED, AUX], prefixes=PREFIXES):
-                return True
-        return False
+        """Whether any rule with a negated premise matches the current closure (one ASK for all)."""
+        if not self.negated:
+            return False
+        text = self._texts.get(("negated",))
+        if text is None:
+            text = self._texts[("negated",)] = "ASK {\n" + "\nUNION\n".join(
+                f"{{\n  {rule.where()}\n}}" for rule in self.negated) + "\n}"
+        return bool(self.store.query(text, graphs=[ASSERTED, INFERRED, AUX], prefixes=PREFIXES))
 
     def _check(self, stats: ReasonStats, changed: bool) -> list[Violation]:
         """Consistency of the new state, running all checks only when one may have changed."""
@@ -441,20 +549,27 @@ class IncrementalReasoner:
                 stats.per_rule["consistency"] = stats.per_rule.get("consistency", 0.0) + time.perf_counter() - start
 
     def _new_violation_possible(self) -> bool:
-        """A check matches with at least one atom on a fact new in the closure (semi-naive ASK)."""
+        """A check matches with at least one atom on a fact new in the closure (one semi-naive ASK)."""
         counts = preds, classes = self._keys(NEW_FACTS)
+        branches = []
+        for c, j in self.check_triggers.evaluations(preds, classes, range(len(self.ruleset.checks)),
+                                                    self.state.present):
+            lateral = j is not None and is_small(counts, self.ruleset.checks[c].body[j].read_key())
+            branches.append(self._check_text(c, j, lateral))
+        if not branches:
+            return False
         head = f"FROM {ASSERTED} FROM {INFERRED} FROM {AUX} FROM NAMED {AUX} FROM NAMED {NEW_FACTS}"
-        for rule in self.ruleset.checks:
-            if any(matches(k, preds, classes) for k in rule.filter_reads):
-                wheres = [rule.where()] if feasible(rule, self.state.present) else []
-            else:
-                wheres = [plan_where(rule, j, NEW_FACTS, lateral=is_small(counts, a.read_key()))
-                          for j, a in enumerate(rule.body)
-                          if matches(a.read_key(), preds, classes) and feasible(rule, self.state.present, j)]
-            for where in wheres:
-                if self.store.query(f"ASK {head} WHERE {{\n  {where}\n}}", prefixes=PREFIXES):
-                    return True
-        return False
+        text = f"ASK {head} WHERE {{\n" + "\nUNION\n".join(branches) + "\n}"
+        return bool(self.store.query(text, prefixes=PREFIXES))
+
+    def _check_text(self, c: int, j: int | None, lateral: bool) -> str:
+        key = ("check", c, j, lateral)
+        text = self._texts.get(key)
+        if text is None:
+            rule = self.ruleset.checks[c]
+            where = rule.where() if j is None else plan_where(rule, j, NEW_FACTS, lateral=lateral)
+            text = self._texts[key] = f"{{\n  {where}\n}}"
+        return text
 
     # ------------------------------------------------------------------ helpers
     def _run(self, key: tuple, make, i: int, j: int | None, stats: ReasonStats) -> None:
@@ -480,6 +595,10 @@ class IncrementalReasoner:
         """The evaluations that follow start from ``graph``: its read keys, and their sizes for the plans."""
         self._counts = self._keys(graph)
         return self._counts
+
+    def _defer(self, text: str) -> None:
+        """Queue a bookkeeping update to go with the next request (they run in queue order)."""
+        self._queue.append(text)
 
     def _flush(self) -> None:
         if self._queue:

@@ -16,6 +16,7 @@ join only after the positive rules reached their fixpoint.
 from __future__ import annotations
 
 import time
+from collections.abc import Collection
 from dataclasses import dataclass, field
 
 from pyoxigraph import NamedNode
@@ -24,6 +25,7 @@ from ..compile.generic import PREFIXES
 from ..compile.rule import Atom, Rule, RuleSet
 from ..store import Store
 from .plan import KeyCounts, is_small, key_counts, plan_where
+from .triggers import Triggers
 from ..vocab import ASSERTED, AUX, DELTA, INFERRED, NEW_AUX, NEW_INFERRED, TYPE
 
 DATASET = f"USING {ASSERTED} USING {INFERRED} USING {AUX} USING NAMED {AUX} USING NAMED {DELTA}"
@@ -43,6 +45,8 @@ class ReasonStats:
     #: incremental maintenance only: facts over-deleted and put back by rederivation
     overdeleted: int = 0
     rederived: int = 0
+    #: incremental only: rule evaluations replaced by one flip query (replaced values only compared)
+    flipped: int = 0
     per_rule: dict[str, float] = field(default_factory=dict)
 
 
@@ -96,9 +100,10 @@ def matches(key: tuple, changed_preds: set[str], changed_classes: set[str]) -> b
 class Materializer:
     """Runs a :class:`RuleSet` to its fixpoint over one store's graphs."""
 
-    def __init__(self, store: Store, rules: RuleSet, profile: bool = False) -> None:
+    def __init__(self, store: Store, rules: RuleSet, profile: bool = False, triggers: Triggers | None = None) -> None:
         self.store = store
         self.rules = rules.inference_rules
+        self.triggers = triggers or Triggers(self.rules)
         self.profile = profile
         self._texts: dict[tuple, str] = {}
         #: when set, evaluations that cannot match are skipped (see :func:`feasible`);
@@ -137,20 +142,20 @@ class Materializer:
             self._queue.clear()
             self.store.update(text, prefixes=PREFIXES)
 
-    def _changed(self) -> KeyCounts:
-        """Predicates and classes in the delta (with their number of facts)."""
-        return key_counts(self.store, DELTA)
-
-    def _promote(self, seed: NamedNode | None = None, record: NamedNode | None = None) -> bool:
-        """Move the facts of this round into the inferred graphs and make them the delta.
+    def _promote(self, seed: NamedNode | None = None, record: NamedNode | None = None) -> KeyCounts | None:
+        """Queue moving the facts of this round into the inferred graphs, as the next delta.
 
         ``seed`` (a graph of facts already stored, e.g. newly asserted triples)
         joins the delta; ``record`` accumulates every promoted fact, so that an
-        incremental run knows what is new since the previous state.
+        incremental run knows what is new since the previous state.  Returns the
+        read keys of the next delta (None when it is empty); the moves go with
+        the round's evaluations in one request.
         """
-        seeded = seed is not None and not self.store.is_empty(seed)
-        if not seeded and self.store.is_empty(NEW_INFERRED) and self.store.is_empty(NEW_AUX):
-            return False
+        parts = [g for g in (NEW_INFERRED, NEW_AUX, seed) if g is not None and not self.store.is_empty(g)]
+        if not parts:
+            return None
+        counts = _merge(self.store.census(g) for g in parts)
+        seeded = seed in parts
         ops = [f"DROP SILENT GRAPH {DELTA}", f"ADD SILENT {NEW_INFERRED} TO {DELTA}", f"ADD SILENT {NEW_AUX} TO {DELTA}"]
         if seeded:
             ops.append(f"ADD SILENT {seed} TO {DELTA}")
@@ -158,38 +163,43 @@ class Materializer:
         if record is not None:
             ops += [f"ADD SILENT {NEW_INFERRED} TO {record}", f"ADD SILENT {NEW_AUX} TO {record}"]
         ops += [f"DROP SILENT GRAPH {NEW_INFERRED}", f"DROP SILENT GRAPH {NEW_AUX}"]
-        self.store.update(" ; ".join(ops))
-        return True
+        self._queue.insert(0, " ; ".join(ops))
+        return counts
 
     def propagate(self, active: list[int], stats: ReasonStats, seed: NamedNode | None = None,
-                  record: NamedNode | None = None) -> None:
+                  record: NamedNode | None = None, skip_first: Collection[tuple[int, int]] = ()) -> None:
         """Semi-naive rounds until nothing new: the facts in NEW_* (and ``seed``) are the first delta.
 
         Shared by the full run and by incremental maintenance, which seeds it
-        with the added asserted triples and the rederived facts.
+        with the added asserted triples and the rederived facts.  The first
+        round leaves out the (rule, delta atom) evaluations in ``skip_first``
+        (their effect of the seed was found otherwise, see :mod:`.flip`).
         """
-        while self._promote(seed, record):
+        skip = skip_first
+        while (counts := self._promote(seed, record)) is not None:
             seed = None
             stats.rounds += 1
-            self._delta_round(active, stats)
+            self._delta_round(active, stats, counts, skip)
+            skip = ()
 
-    def _delta_round(self, active: list[int], stats: ReasonStats) -> None:
-        preds, classes = self._changed()
+    def _delta_round(self, active: list[int], stats: ReasonStats, counts: KeyCounts,
+                     skip: Collection[tuple[int, int]] = ()) -> None:
+        preds, classes = counts
+        if self.profile:
+            self._flush()  # the promotion first: profiled evaluations do not wait in the queue
         if self.planned:
             self._lateral = is_small((preds, classes))
         if self.present is not None:
             self.present[0].update(preds)
             self.present[1].update(classes)
-        for i in active:
-            rule = self.rules[i]
-            if any(matches(k, preds, classes) for k in rule.filter_reads):
-                if feasible(rule, self.present):
-                    self._run(i, None, stats)
-                continue
-            for j, atom in enumerate(rule.body):
-                if matches(atom.read_key(), preds, classes) and feasible(rule, self.present, j):
-                    self._run(i, j, stats)
+        for i, j in self.triggers.evaluations(preds, classes, self._active(active), self.present, skip):
+            self._run(i, j, stats)
         self._flush()
+
+    def _active(self, active: list[int]) -> set[int] | range:
+        if len(active) == len(self.rules):
+            return range(len(self.rules))
+        return set(active)
 
     def clear(self) -> None:
         self.store.update(
@@ -234,6 +244,18 @@ class Materializer:
         stats.derived = self.store.count(INFERRED)
         stats.seconds = time.perf_counter() - start
         return stats
+
+
+def _merge(parts) -> KeyCounts:
+    """The read-key counts of several graphs together."""
+    preds: dict[str, int] = {}
+    classes: dict[str, int] = {}
+    for p, c in parts:
+        for k, n in p.items():
+            preds[k] = preds.get(k, 0) + n
+        for k, n in c.items():
+            classes[k] = classes.get(k, 0) + n
+    return preds, classes
 
 
 def _feeds(write: tuple, read: tuple) -> bool:

@@ -12,7 +12,6 @@ import re
 from pyoxigraph import NamedNode
 
 from ..compile.rule import Rule, join_order
-from ..vocab import TYPE
 
 _BIND_TARGET = re.compile(r"\bAS\s+(\?\w+)", re.I)
 
@@ -28,17 +27,10 @@ KeyCounts = tuple[dict[str, int], dict[str, int]]
 def key_counts(store, graph: NamedNode) -> KeyCounts:
     """Facts per predicate and per class in ``graph``: which read keys it changes, and how much.
 
-    One query (two when it holds rdf:type facts) tells whether the graph is
-    empty, which rules it can trigger and whether evaluations starting from it
-    should run per solution (:func:`is_small`).
+    Tells whether the graph is empty, which rules it can trigger and whether
+    evaluations starting from it should run per solution (:func:`is_small`).
     """
-    preds = {str(r["p"]): int(r["n"].value) for r in store.query(
-        f"SELECT ?p (COUNT(*) AS ?n) WHERE {{ GRAPH {graph} {{ ?s ?p ?o }} }} GROUP BY ?p")}
-    classes: dict[str, int] = {}
-    if str(TYPE) in preds:
-        classes = {str(r["c"]): int(r["n"].value) for r in store.query(
-            f"SELECT ?c (COUNT(*) AS ?n) WHERE {{ GRAPH {graph} {{ ?s {TYPE} ?c }} }} GROUP BY ?c")}
-    return preds, classes
+    return store.census(graph)
 
 
 def is_small(counts: KeyCounts, key: tuple = ("*",)) -> bool:

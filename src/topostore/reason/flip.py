@@ -1,0 +1,204 @@
+"""Value replacements seen only through built-in comparisons: evaluate the flip, not the closure.
+
+Why this exists
+---------------
+A robot step *replaces* values: ``now(Robot1)`` goes from t to t+5,
+``visitedAt(R1)`` from v to t+5.  In the rules these values are only compared
+(the Urgency rule's ``now - visitedAt > threshold``), never joined.  Plain
+delete-and-rederive treats the old ``now`` as a deleted premise of *every*
+URGENT fact, over-deletes them all and proves them again: the cost of a clock
+tick follows the number of URGENT locations instead of the number of
+locations whose urgency actually changes.
+
+For a rule whose changed atoms read a value that occurs nowhere else in the
+rule but in its filters, the matches in the old and in the new state have the
+same shape; only the filter outcome can differ.  One query per rule therefore
+finds exactly the heads whose derivation by that rule *flips*: it binds each
+changed atom to the old and the new value at once (the old one from a scratch
+graph of replaced facts) and keeps the bindings where the rule's filters
+answer differently.  Lost heads become over-deletion candidates (they may
+still hold through another derivation, which the usual proof decides);
+gained heads are re-checked once the deletions are done and then seed the
+ordinary semi-naive rounds.  An atom whose value is not even compared (e.g.
+``visitedAt`` under a domain axiom) cannot flip at all and costs nothing.
+
+Conditions, checked per REASON (anything else takes the ordinary path):
+
+* a *clean replacement*: the change of ``(s, p)`` is one removed and one added
+  fact, and ``s`` has exactly that one value of ``p`` afterwards;
+* every change of ``p`` in the batch is clean, no rule that can fire derives
+  ``p``, and ``p`` is not ``rdf:type``;
+* the rule is monotone, reads nothing changed in its filters' graph patterns,
+  and every body atom that reads a changed predicate is such an atom.
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Collection, Iterable
+from dataclasses import dataclass
+
+from pyoxigraph import Literal, NamedNode, Triple
+
+from ..compile.rule import Atom, Rule, join_order
+from ..vocab import INTERNAL, TYPE
+from .plan import nested
+
+#: Old values of cleanly replaced facts (scratch; never visible to queries).
+CHANGE_OLD = NamedNode(INTERNAL + "graph:flip-old")
+
+_STRING = re.compile(r'"(?:[^"\\]|\\.)*"' + r"|'(?:[^'\\]|\\.)*'")
+_VARIABLE = re.compile(r"\?(\w+)")
+_BIND = re.compile(r"^BIND\((.*) AS \?(\w+)\)$", re.S)
+_FILTER = re.compile(r"^FILTER\s*\((.*)\)$", re.S)
+
+
+def filter_lines(rule: Rule) -> list[str]:
+    """The rule's filters, one BIND(...) or FILTER(...) per entry, in order."""
+    return [line.strip() for line in rule.filters.split("\n") if line.strip()]
+
+
+def _rename(text: str, names: Collection[str], suffix: str) -> str:
+    """``text`` with the variables in ``names`` renamed ``?x`` → ``?x__suffix`` (not inside strings)."""
+    def swap(m: re.Match) -> str:
+        return f"?{m.group(1)}__{suffix}" if m.group(1) in names else m.group(0)
+
+    out, last = [], 0
+    for s in _STRING.finditer(text):
+        out.append(_VARIABLE.sub(swap, text[last:s.start()]))
+        out.append(s.group(0))
+        last = s.end()
+    out.append(_VARIABLE.sub(swap, text[last:]))
+    return "".join(out)
+
+
+def filter_variables(rule: Rule) -> set[str]:
+    """Names (without ``?``) of the variables the filters mention."""
+    return set(_VARIABLE.findall(_STRING.sub('""', rule.filters)))
+
+
+def _plain_filters(rule: Rule) -> bool:
+    """Filters made only of BIND and FILTER lines without graph patterns (no EXISTS)."""
+    lines = filter_lines(rule)
+    return all((_BIND.match(x) or _FILTER.match(x)) and "{" not in x and "EXISTS" not in x.upper() for x in lines)
+
+
+def compared_only(rule: Rule, j: int) -> bool:
+    """Whether atom ``j``'s object is a variable the rule uses only in its filters (or not at all)."""
+    atom = rule.body[j]
+    if not atom.o.startswith("?") or not atom.p.startswith("<") or atom.p == str(TYPE) or atom.aux:
+        return False
+    if atom.o in (atom.s, atom.p) or (rule.head is not None and atom.o in rule.head.variables()):
+        return False
+    return all(atom.o not in other.variables() for k, other in enumerate(rule.body) if k != j)
+
+
+@dataclass(frozen=True)
+class Replacement:
+    """One clean replacement of the single value of ``(s, p)``."""
+
+    old: Triple
+    new: Triple
+
+
+def clean_replacements(added: Iterable[Triple], removed: Iterable[Triple], values_now) -> dict[str, list[Replacement]]:
+    """Predicates (IRI text) all of whose changes in the batch are clean replacements.
+
+    ``values_now(s, p)`` gives the current values of ``(s, p)`` in the asserted graph.
+    """
+    by_key: dict[tuple, tuple[list[Triple], list[Triple]]] = {}
+    for t in added:
+        by_key.setdefault((t.subject, t.predicate), ([], []))[0].append(t)
+    for t in removed:
+        by_key.setdefault((t.subject, t.predicate), ([], []))[1].append(t)
+    clean: dict[str, list[Replacement]] = {}
+    dirty: set[str] = set()
+    for (s, p), (adds, rems) in by_key.items():
+        key = f"<{p.value}>"
+        if p == TYPE or len(adds) != 1 or len(rems) != 1 or len(values_now(s, p)) != 1:
+            dirty.add(key)
+            continue
+        clean.setdefault(key, []).append(Replacement(rems[0], adds[0]))
+    return {p: pairs for p, pairs in clean.items() if p not in dirty}
+
+
+def flip_query(branches: Iterable[str]) -> str:
+    """One SELECT over the branches of several rules: head ``?h0 ?h1 ?h2``, ``?rule``, ``?ok__n`` (true: gained)."""
+    return "SELECT DISTINCT ?rule ?h0 ?h1 ?h2 ?ok__n WHERE {\n" + "\nUNION\n".join(branches) + "\n}"
+
+
+def flip_branches(rule: Rule, changed: tuple[int, ...], lateral: bool, tag: int) -> list[str]:
+    """UNION branches finding the heads whose derivation by ``rule`` flips (``?rule`` = ``tag``).
+
+    ``changed`` are the body atoms reading a replaced value (all compared only).
+    One branch per changed atom starts from that atom's replaced facts.
+    With ``lateral``, the other atoms follow in join order, each evaluated per
+    solution so far, and the filters stand right after the atom that binds
+    their last variable: only the bindings that flip reach the atoms after it.
+    """
+    renamed = {rule.body[k].o[1:] for k in changed}
+    targets = {m.group(2) for m in map(_BIND.match, filter_lines(rule)) if m}
+    renamed |= targets
+    needed = {f"?{v}" for v in filter_variables(rule) - targets}
+    head = rule.head
+    project = " ".join(f"BIND({term} AS ?h{i})" for i, term in enumerate((head.s, head.p, head.o)))
+    tests = "\n  ".join(_instances(rule, renamed) + [project, f"BIND({tag} AS ?rule)"])
+    branches = []
+    for k in changed:
+        seed = rule.body[k]
+        start = [f"GRAPH {CHANGE_OLD} {{ {seed.s} {seed.p} {_rename(seed.o, renamed, 'o')} }}",
+                 f"{seed.s} {seed.p} {_rename(seed.o, renamed, 'n')} ."]
+        order = [m for m in join_order(rule.body, k) if m != k]
+        rest = [_paired_atom(rule.body[m], renamed) if m in changed else rule.atom_text(m) for m in order]
+        if lateral:
+            bound = set(seed.variables())
+            at = 0
+            while not needed <= bound and at < len(order):
+                bound |= rule.body[order[at]].variables()
+                at += 1
+            body = "\n  ".join(start + rest[:at] + [tests]) if at == 0 else "\n  ".join(start)
+            levels = rest[:at - 1] + [rest[at - 1] + "\n  " + tests] + rest[at:] if at else rest
+            body += nested(levels, "")
+        else:
+            body = "\n  ".join(start + rest + [tests])
+        branches.append("{\n  " + body + "\n}")
+    return branches
+
+
+def _paired_atom(atom: Atom, renamed: set[str]) -> str:
+    """Another changed atom: its new value from the store, its old one from CHANGE_OLD if replaced."""
+    new, old, probe = (_rename(atom.o, renamed, x) for x in ("n", "o", "o0"))
+    return (f"{atom.s} {atom.p} {new} . OPTIONAL {{ GRAPH {CHANGE_OLD} {{ {atom.s} {atom.p} {probe} }} }} "
+            f"BIND(COALESCE({probe}, {new}) AS {old})")
+
+
+def _instances(rule: Rule, renamed: set[str]) -> list[str]:
+    """The filters evaluated for the old (``__o``) and new (``__n``) values, and their difference."""
+    out = []
+    for suffix in ("o", "n"):
+        tests = []
+        for i, line in enumerate(filter_lines(rule)):
+            text = _rename(line, renamed, suffix)
+            m = _FILTER.match(text)
+            if m:
+                tests.append(f"?f{i}__{suffix}")
+                out.append(f"BIND(COALESCE(({m.group(1)}), false) AS ?f{i}__{suffix})")
+            else:
+                out.append(text)
+        out.append(f"BIND(({' && '.join(tests) or 'true'}) AS ?ok__{suffix})")
+    out.append("FILTER(?ok__o != ?ok__n)")
+    return out
+
+
+def head_triple(row) -> Triple:
+    return Triple(row["h0"], row["h1"], row["h2"])
+
+
+def gained(row) -> bool:
+    ok = row["ok__n"]
+    return isinstance(ok, Literal) and ok.value == "true"
+
+
+__all__ = ["CHANGE_OLD", "Replacement", "clean_replacements", "compared_only", "filter_variables", "flip_branches",
+           "flip_query",
+           "gained", "head_triple"]

@@ -1,0 +1,85 @@
+"""Which rule evaluations a change triggers, looked up instead of scanned.
+
+Every delta round asks: for the predicates and classes that changed, which
+(rule, body atom) pairs can match something new, and can the rest of the rule
+match at all?  Scanning every rule and atom for that costs more Python time
+than the SPARQL it saves on small maps, so the answer comes from an index
+built once per rule set.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Collection
+
+from ..compile.rule import ReadKey, Rule
+
+#: Predicates and classes that have (or may have) facts, as SPARQL text.
+Present = tuple[set[str], set[str]]
+
+#: One evaluation: rule index, and the body atom on the delta (None: the whole rule).
+Evaluation = tuple[int, int | None]
+
+
+class Triggers:
+    """An index from read keys to the rule evaluations they trigger."""
+
+    def __init__(self, rules: list[Rule]) -> None:
+        self.rules = rules
+        self._atoms: dict[ReadKey, list[tuple[int, int]]] = {}
+        self._filters: dict[ReadKey, list[int]] = {}
+        self._writers: dict[ReadKey, list[int]] = {}
+        #: per rule, per body atom: the key that must have facts for the atom to match (None: any may)
+        self._needs: list[tuple[ReadKey | None, ...]] = []
+        for i, rule in enumerate(rules):
+            for j, atom in enumerate(rule.body):
+                self._atoms.setdefault(atom.read_key(), []).append((i, j))
+            for key in rule.filter_reads:
+                self._filters.setdefault(key, []).append(i)
+            self._needs.append(tuple(a.read_key() if a.p.startswith("<") else None for a in rule.body))
+            if rule.head is not None:
+                self._writers.setdefault(rule.writes(), []).append(i)
+
+    def evaluations(self, preds: Collection[str], classes: Collection[str], active: Collection[int],
+                    present: Present | None = None, skip: Collection[tuple[int, int]] = ()) -> list[Evaluation]:
+        """The evaluations a change of ``preds``/``classes`` triggers among the ``active`` rules.
+
+        A rule whose filters read a changed key is evaluated whole; otherwise
+        once per body atom on a changed key (that atom on the delta), unless the
+        pair is in ``skip``.  With ``present``, evaluations where another atom
+        reads a key without any fact are left out: they cannot match.
+        """
+        keys = [("p", p) for p in preds] + [("t", c) for c in classes] + ([("*",)] if preds else [])
+        whole = {i for k in keys for i in self._filters.get(k, ())}
+        pairs = {pair for k in keys for pair in self._atoms.get(k, ())}
+        out: list[Evaluation] = [(i, None) for i in sorted(whole)
+                                 if i in active and self.feasible(i, present)]
+        out += [(i, j) for i, j in sorted(pairs)
+                if i not in whole and i in active and (i, j) not in skip and self.feasible(i, present, j)]
+        return out
+
+    def rules_reading(self, preds: Collection[str], among: Collection[int]) -> list[int]:
+        """The rules in ``among`` with a body atom on one of the predicates ``preds``."""
+        found = {i for p in preds for i, _ in self._atoms.get(("p", p), ())}
+        return sorted(i for i in found if i in among)
+
+    def writers(self, key: ReadKey) -> list[int]:
+        """The rules whose head may produce facts of ``key`` (those writing any predicate included)."""
+        return self._writers.get(key, []) + self._writers.get(("*",), [])
+
+    def feasible(self, i: int, present: Present | None, skip: int | None = None) -> bool:
+        """False when a body atom of rule ``i`` other than ``skip`` reads a key without any fact."""
+        if present is None:
+            return True
+        preds, classes = present
+        for j, need in enumerate(self._needs[i]):
+            if need is None or j == skip:
+                continue
+            if need[0] == "t":
+                if need[1] not in classes:
+                    return False
+            elif need[0] == "p" and need[1] not in preds:
+                return False
+        return True
+
+
+__all__ = ["Evaluation", "Present", "Triggers"]
