@@ -26,6 +26,7 @@ from pathlib import Path
 from pyoxigraph import Literal, NamedNode, RdfFormat, Triple
 
 from .compile import RuleSet, compile_ontology
+from .compile.swrl_text import removal_triples, rule_labels, rule_triples
 from .errors import InvalidValueError, QueryError
 from .queries import QueryItem, bind, collect, get_named_query, render_jena, to_items
 from .reason import ReasonStats, Violation, classify
@@ -291,6 +292,23 @@ class Ontology:
                 rest = self.store.objects(cur, REST, ASSERTED)
                 cur = rest[0] if rest else NIL
         return out
+
+    # ------------------------------------------------------------------ SWRL rules at run time
+    def add_rule(self, text: str, label: str, comment: str | None = None) -> int:
+        """Add a SWRL rule written as Protégé shows it (``A(?x) ^ p(?x, ?y) -> B(?y)``).
+
+        Stored in the standard SWRL RDF vocabulary and compiled like a loaded
+        rule; a rule that cannot be parsed or compiled is refused naming the
+        atom (RuleCompileError) and nothing changes.  Takes effect at the next REASON.
+        """
+        return self._add_checked(rule_triples(text, label, self.store, self.prefix, comment))
+
+    def remove_rule(self, label: str) -> int:
+        """Remove the SWRL rule(s) labelled ``label`` (loaded or added); RuleCompileError if none."""
+        return self.remove(*removal_triples(self.store, label))
+
+    def rule_labels(self) -> list[str]:
+        return rule_labels(self.store)
 
     # ------------------------------------------------------------------ reasoning
     @property
