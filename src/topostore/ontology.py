@@ -293,6 +293,14 @@ class Ontology:
                 cur = rest[0] if rest else NIL
         return out
 
+    # ------------------------------------------------------------------ explanations
+    def explain(self, subject: str | Term, predicate: str | Term, obj: object):
+        """Why ``subject predicate obj`` holds: a :class:`~topostore.explain.Explanation` tree
+        (rule and premises down to asserted facts), "asserted", or "not entailed"."""
+        from .explain import explain
+
+        return explain(self, subject, predicate, obj)
+
     # ------------------------------------------------------------------ SWRL rules at run time
     def add_rule(self, text: str, label: str, comment: str | None = None) -> int:
         """Add a SWRL rule written as Protégé shows it (``A(?x) ^ p(?x, ?y) -> B(?y)``).
