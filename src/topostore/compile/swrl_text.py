@@ -242,6 +242,8 @@ class RuleWriter:
             return node
         if n == 1:
             if not self._is_class(pred):
+                if self._declared(pred, owl("ObjectProperty"), owl("DatatypeProperty")):
+                    self._arity(a, 2)
                 raise RuleCompileError(f"{a.name} is not a declared class of the ontology")
             add(Triple(node, TYPE, swrl("ClassAtom")))
             add(Triple(node, swrl("classPredicate"), pred))
