@@ -151,3 +151,19 @@ def test_cli_explains_a_conclusion_of_a_rule_given_on_the_command_line() -> None
     result = CliRunner().invoke(cli, ["explain", *files, "R2 rdf:type URGENT", "--rule", rule])
     assert result.exit_code == 0, result.output
     assert result.output.splitlines()[0] == "R2 rdf:type URGENT  ← swrl:Stale: SWRL rule Stale"
+
+
+def test_conclusion_with_difference_by_entailment_only() -> None:
+    """R9 is not declared different from C1, but its other visit time makes it so: the
+    Connectability conclusion is published (as Pellet reports it) and explained through the helper graph."""
+    onto = Ontology.from_file(*default_ontology_files())
+    onto.add_fact("R9", "hasDoor", "D2")
+    onto.add_data("visitedAt", "R9", 1665579000, "long")
+    onto.reason()
+    tree = onto.explain("R9", "connectedTo", "C1")
+    assert (tree.rule, [p.text for p in tree.premises]) == (
+        "swrl-entailed", ["R9 connectedTo C1 (different by entailment only)"])
+    inner = tree.premises[0]
+    assert inner.origin == "SWRL rule Connectability (individuals different by entailment only)"
+    assert [(p.text, p.rule) for p in inner.premises][-1] == ("R9 different from C1", "different-values")
+    assert {leaf.status for leaf in leaves(tree)} == {"asserted"}

@@ -229,7 +229,7 @@ class Explainer:
                 weak = Triple(t.subject, NamedNode(ENTAILED_PREFIX + t.predicate.value), t.object)
                 publish = Rule("swrl-entailed", "SWRL conclusion whose individuals are different by entailment only",
                                (Atom("?s", "?weak", "?o", aux=True),), Atom("?s", "?p", "?o"))
-                found.append(Candidate(publish, {}, ((weak, ""),)))
+                found.append(Candidate(publish, {}, ((weak, ""),), publish.body))
             for rule in self.rules:
                 binding = unify(rule.head, t)
                 if binding is not None:
