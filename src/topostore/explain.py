@@ -24,6 +24,7 @@ from __future__ import annotations
 import hashlib
 import re
 from collections.abc import Callable
+from functools import lru_cache
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
@@ -152,7 +153,8 @@ class Explainer:
         self._proved: dict[Triple, Explanation] = {}
         self._failed: dict[Triple, int] = {}
         self._reader: TBoxReader | None = None
-        self._groups: dict[str, list[Term]] | None = None
+        self._groups: dict[str, Term] | None = None
+        self._texts: dict[Term, str] = {}  # readable forms of AllDifferent groups and keys
 
     # ------------------------------------------------------------ facts
     def holds(self, t: Triple) -> bool:
@@ -301,6 +303,11 @@ class Explainer:
             return "_:" + node.value.rsplit(":", 1)[-1][:8]
 
     def _group_text(self, group: Term) -> str:
+        if group not in self._texts:
+            self._texts[group] = self._group_text_uncached(group)
+        return self._texts[group]
+
+    def _group_text_uncached(self, group: Term) -> str:
         members = []
         for p in (owl("distinctMembers"), owl("members")):
             for head in self.store.objects(group, p, ASSERTED):
@@ -311,7 +318,12 @@ class Explainer:
         return "AllDifferent(" + ", ".join(shown) + ")"
 
     def render_key(self, key: Term) -> str:
-        """``urn:topostore:key:<md5(group)>:<md5(member)>`` → the AllDifferent group it names."""
+        """``urn:topostore:key:<md5(group)>:<md5(member)>`` → the member and the AllDifferent group it names."""
+        if key not in self._texts:
+            self._texts[key] = self._render_key_uncached(key)
+        return self._texts[key]
+
+    def _render_key_uncached(self, key: Term) -> str:
         if self._groups is None:
             self._groups = {}
             for g in self.store.subjects(TYPE, owl("AllDifferent"), ASSERTED):
@@ -354,6 +366,7 @@ def unify(head: Atom | None, t: Triple) -> dict[str, Term] | None:
     return binding
 
 
+@lru_cache(maxsize=4096)
 def constant(text: str) -> Term | None:
     """The RDF term a rendered SPARQL constant stands for (None for a property path)."""
     if not text.startswith(("<", '"')) or (text.startswith("<") and not text.endswith(">")):
