@@ -401,6 +401,9 @@ def bench(args: tuple[str, ...]) -> None:
     raise click.exceptions.Exit(code)
 
 
+from . import cli_explain  # noqa: E402,F401  (registers `topostore explain`)
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     """Console-script entry point."""
     try:

@@ -26,7 +26,9 @@ from pathlib import Path
 from pyoxigraph import Literal, NamedNode, RdfFormat, Triple
 
 from .compile import RuleSet, compile_ontology
+from .compile.swrl_text import removal_triples, rule_labels, rule_triples
 from .errors import InvalidValueError, QueryError
+from .events import EventHub
 from .queries import QueryItem, bind, collect, get_named_query, render_jena, to_items
 from .reason import ReasonStats, Violation, classify
 from .reason.incremental import DEFAULT_MAX_CHANGE_SHARE, IncrementalReasoner
@@ -83,6 +85,8 @@ class Ontology:
         self._reasoner: IncrementalReasoner | None = None
         #: share of the asserted graph above which REASON recomputes from scratch
         self.max_change_share = DEFAULT_MAX_CHANGE_SHARE
+        #: change notifications: subscribe with ``onto.events.subscribe(callback, "rdf:type URGENT")``
+        self.events = EventHub(lambda: self.prefix)
 
     # ------------------------------------------------------------------ loading
     @classmethod
@@ -293,6 +297,36 @@ class Ontology:
                 cur = rest[0] if rest else NIL
         return out
 
+    def subscribe(self, callback, pattern: str | None = None, maxsize: int = 100):
+        """Call ``callback(event)`` after each REASON that changed an inferred triple matching
+        ``pattern`` (e.g. ``"rdf:type URGENT"``) or the consistency; see :mod:`topostore.events`."""
+        return self.events.subscribe(callback, pattern, maxsize)
+
+    # ------------------------------------------------------------------ explanations
+    def explain(self, subject: str | Term, predicate: str | Term, obj: object):
+        """Why ``subject predicate obj`` holds: a :class:`~topostore.explain.Explanation` tree
+        (rule and premises down to asserted facts), "asserted", or "not entailed"."""
+        from .explain import explain
+
+        return explain(self, subject, predicate, obj)
+
+    # ------------------------------------------------------------------ SWRL rules at run time
+    def add_rule(self, text: str, label: str, comment: str | None = None) -> int:
+        """Add a SWRL rule written as Protégé shows it (``A(?x) ^ p(?x, ?y) -> B(?y)``).
+
+        Stored in the standard SWRL RDF vocabulary and compiled like a loaded
+        rule; a rule that cannot be parsed or compiled is refused naming the
+        atom (RuleCompileError) and nothing changes.  Takes effect at the next REASON.
+        """
+        return self._add_checked(rule_triples(text, label, self.store, self.prefix, comment))
+
+    def remove_rule(self, label: str) -> int:
+        """Remove the SWRL rule(s) labelled ``label`` (loaded or added); RuleCompileError if none."""
+        return self.remove(*removal_triples(self.store, label))
+
+    def rule_labels(self) -> list[str]:
+        return rule_labels(self.store)
+
     # ------------------------------------------------------------------ reasoning
     @property
     def rules(self) -> RuleSet:
@@ -319,6 +353,7 @@ class Ontology:
         elif self.dirty and not self._tracking:
             forced = "asserted changes were not tracked (too many since the last REASON)"
         self._reasoner.max_change_share = self.max_change_share
+        before = self.events.before_reason(self.store, None if self._report is None else self._report.consistent)
         added, removed = list(self._added), list(self._removed)
         self._stop_tracking()
         try:
@@ -330,6 +365,7 @@ class Ontology:
         self.store.maybe_compact()
         self._report = ReasonReport(not violations, violations, stats)
         self.dirty = False
+        self.events.after_reason(self.store, self._report.consistent, before, stats.seconds)
         return self._report
 
     @property

@@ -7,6 +7,7 @@ Routes (all answers JSON unless a SPARQL result format is negotiated)::
     POST /armor                         one aRMOR request  -> ArmorResponse fields
     POST /armor/batch                   a list of requests -> the serialized service's reply
     GET  /references/{name}/sparql      SPARQL 1.1 Protocol query (?query=...)
+    GET  /references/{name}/explain     why a triple holds; /events (SSE), /map (live page): see live.py
     POST /references/{name}/sparql      query or update (form, application/sparql-query|update)
 
 Secure by default: loopback only unless a bearer token is set, LOAD/SAVE
@@ -43,6 +44,7 @@ from . import __version__
 from .armor import ArmorService
 from .armor.codes import CommandError
 from .errors import QueryError, TopostoreError
+from .live import live_routes
 from .sparql.execute import (
     Job, ReferenceMounted, ResultTooLarge, SparqlTimeout, run_query, run_update, timeout_message,
 )
@@ -429,6 +431,7 @@ def create_app(config: ServerConfig, service: ArmorService | None = None) -> Sta
         Route("/armor/batch", api.armor_batch, methods=["POST"]),
         Route("/references/{name}/sparql", api.sparql, methods=["GET", "POST"]),
     ]
+    routes += live_routes(api)  # explanations, server-sent events, the live map page (live.py)
     app = Starlette(routes=routes, lifespan=lifespan)
     app.add_middleware(Guard, token=config.token, max_bytes=config.max_request_bytes,
                        cors_origins=tuple(config.cors_origins))

@@ -799,4 +799,8 @@ def _table() -> dict[tuple[str, str, str], Command]:
 
 COMMANDS: dict[tuple[str, str, str], Command] = _table()
 
+from .live_commands import live_commands  # noqa: E402  (QUERY EXPLAIN, ADD/REMOVE/QUERY SWRL)
+
+COMMANDS.update(live_commands())
+
 __all__ = ["Command", "Context", "Reply", "Handler", "COMMANDS", "run_select", "most_specific"]
