@@ -389,12 +389,12 @@ def bench(args: tuple[str, ...]) -> None:
     Example:
       topostore bench --quick
     """
-    from .resources import home
+    from .resources import source_root
 
-    root = home()
-    if not (root / "benchmarks" / "__main__.py").is_file():
-        raise click.ClickException(f"the benchmarks package is not available (looked in {root / 'benchmarks'}); "
-                                   "it ships with the source tree")
+    root = source_root()
+    if root is None or not (root / "benchmarks" / "__main__.py").is_file():
+        raise click.ClickException("the benchmarks package is not available: it ships with the source tree "
+                                   "(git clone, then pip install -e '.[bench]')")
     env = dict(os.environ)
     env["PYTHONPATH"] = os.pathsep.join(filter(None, [str(root), env.get("PYTHONPATH", "")]))
     code = subprocess.call([sys.executable, "-m", "benchmarks", *args], cwd=root, env=env)

@@ -102,7 +102,8 @@ class ArmorService:
             return self._failure(req, codes.UNKNOWN_COMMAND, f"unknown command {' '.join(repr(k) for k in key)}: "
                                  "check the spelling and that unused specs are empty strings")
         try:
-            command.check_arity(len(req.args))
+            # aRMOR ignores the arguments of argument-less commands; rosservice YAML and tutorials send args: ['']
+            command.check_arity(0 if command.max_args == 0 and not any(req.args) else len(req.args))
             ctx = Context(self, req)
             if not command.needs_ref:
                 reply = command.handler(ctx)
