@@ -349,7 +349,14 @@ def demo(map_files: tuple[str, ...], steps: int, seed: int, robots: int, time_sc
       topostore demo --map my_map.ttl --every-step
     """
     from .demo import run_demo
+    from .demo.mapview import VizMissing, require_matplotlib
 
+    if not no_picture:
+        try:
+            require_matplotlib()
+        except VizMissing as exc:
+            click.echo(f"note: no picture: {exc}", err=True)
+            no_picture = True
     run_demo(list(map_files) or None, steps=steps, seed=seed, robots=robots, time_scale=time_scale,
              picture=None if no_picture else picture, every_step=every_step, emit=click.echo)
 
@@ -360,21 +367,30 @@ def demo(map_files: tuple[str, ...], steps: int, seed: int, robots: int, time_sc
 @click.argument("files", nargs=-1, required=True, metavar="FILE...")
 @click.option("-o", "--output", required=True, type=click.Path(dir_okay=False), help="Picture file: .png, .svg or .pdf.")
 @click.option("--title", default="", help="Title above the map.")
-def map_command(files: tuple[str, ...], output: str, title: str) -> None:
+@click.option("--robots/--no-robots", default=True, show_default=True, help="Mark where each robot isIn.")
+@click.option("--urgent/--no-urgent", default=True, show_default=True, help="Ring URGENT locations in red.")
+@click.option("--cluster-above", default=400, show_default=True, type=click.IntRange(1), metavar="N",
+              help="Draw corridors with their rooms as clusters when the map has more than N locations.")
+def map_command(files: tuple[str, ...], output: str, title: str, robots: bool, urgent: bool, cluster_above: int) -> None:
     """Draw the reasoned map of FILE(s): rooms, corridors, doors, connections, robots, URGENT.
 
-    \b
-    Example:
-      topostore map ontology/topological_map.ttl ontology/topological_map_abox.ttl -o out/map.svg
-    """
-    from .demo.mapview import draw_ontology
+    Corridors form the spine, rooms sit around their corridor; big maps are
+    drawn as clusters of corridors with their rooms.  Needs the [viz] extra.
 
+    \b
+    Examples:
+      topostore map ontology/topological_map.ttl ontology/topological_map_abox.ttl -o out/map.svg
+      topostore map ontology/topological_map.ttl ontology/topological_map_abox.ttl -o out/plain.png --no-robots --no-urgent
+    """
+    from .demo.mapview import Style, draw_ontology, require_matplotlib
+
+    require_matplotlib()
     _existing(files)
     onto = load_files(files)
     report = reason_with_progress(onto)
     if not report.consistent:
         raise click.ClickException(f"the ontology is inconsistent, nothing reliable to draw: {report.explain()}")
-    path = draw_ontology(onto, output, title)
+    path = draw_ontology(onto, output, title, Style(robots=robots, urgent=urgent, cluster_above=cluster_above))
     click.echo(f"Wrote {path}")
 
 
