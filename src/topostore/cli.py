@@ -293,7 +293,7 @@ def _readable(value: str, prefix: str) -> str:
 @click.option("--data-dir", default="data", show_default=True, type=click.Path(file_okay=False),
               help="LOAD and SAVE paths are confined to this folder (created if missing).")
 @click.option("--token", envvar="TOPOSTORE_TOKEN", help="Bearer token required on every request (env TOPOSTORE_TOKEN).")
-@click.option("--allow-update", is_flag=True, help="Accept SPARQL updates on the SPARQL endpoints.")
+@click.option("--allow-update", is_flag=True, help="Accept SPARQL updates and Graph Store writes (PUT/POST/DELETE, uploads).")
 @click.option("--max-request-bytes", default=1024 * 1024, show_default=True, type=click.IntRange(1),
               help="Largest request body accepted (413 beyond).")
 @click.option("--sparql-timeout", default=10.0, show_default=True, type=click.FloatRange(min=0, min_open=True),

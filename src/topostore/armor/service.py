@@ -188,6 +188,12 @@ class ArmorService:
             existing = self._references.setdefault(name, ref)
         return existing, existing is ref
 
+    def add_reference(self, ref: Reference) -> tuple[Reference, bool]:
+        """(reference, created): register a reference built elsewhere (an HTTP upload) unless the name is taken."""
+        with self._registry_lock:
+            existing = self._references.setdefault(ref.name, ref)
+        return existing, existing is ref
+
     # ------------------------------------------------------------ files, web, logging
     def resolve_path(self, text: str) -> Path:
         """A file path for LOAD/SAVE/LOG; confined to ``data_dir`` when one is set (210 otherwise)."""
