@@ -27,7 +27,7 @@ from pyoxigraph import Literal, NamedNode, RdfFormat, Triple
 
 from .compile import RuleSet, compile_ontology
 from .errors import InvalidValueError, QueryError
-from .queries import QueryItem, bind, collect, get_named_query, render_jena, to_items
+from .queries import QueryItem, collect, get_named_query, render_jena, substitutions, to_items
 from .reason import ReasonStats, Violation, classify
 from .reason.incremental import DEFAULT_MAX_CHANGE_SHARE, IncrementalReasoner
 from .store import Store, fresh_skolem, guess_format, serialize
@@ -403,9 +403,21 @@ class Ontology:
         return list(props)
 
     def sparql(self, text: str, bindings: dict[str, Term] | None = None, **kwargs):
-        """Raw SPARQL over the visible graphs (asserted ∪ inferred)."""
-        text = bind(text, bindings or {})
-        return self.store.query(text, graphs=self.visible_graphs(), **kwargs)
+        """Raw SPARQL over the visible graphs (asserted ∪ inferred).
+
+        ``bindings`` fix variables to terms with pyoxigraph's ``substitutions=``;
+        in a SELECT query a bound variable must be projected.
+        """
+        if not bindings:
+            return self.store.query(text, graphs=self.visible_graphs(), **kwargs)
+        try:
+            return self.store.query(text, graphs=self.visible_graphs(), substitutions=substitutions(bindings), **kwargs)
+        except QueryError as exc:
+            if "SELECT projection" not in str(exc):
+                raise
+            names = " ".join(f"?{b}" for b in bindings)
+            raise QueryError(f"a query parameter must be in the SELECT list (add {names} to it): parameters are "
+                             "bound with pyoxigraph's substitutions, which fix projected variables only") from None
 
     def select(self, text: str, bindings: dict[str, Term] | None = None, timeout: float | None = None):
         """(variables, rows, timed_out) of a SELECT query over the visible graphs."""
@@ -434,7 +446,10 @@ class Ontology:
                 raise QueryError(f"query {q.name!r} has no parameter(s) {', '.join(sorted(unknown))}")
         bindings = {k: (self.iri(v) if kinds.get(k) == "iri" else self.value(v)) for k, v in params.items()}
         variables, rows, _ = self.select(text, bindings, timeout)
-        return to_items(variables, rows, lambda t: render_jena(t, self.store.restore))
+        # parameters are projected so that pyoxigraph can substitute them; their fixed values are not answers
+        keep = [i for i, v in enumerate(variables) if v not in bindings]
+        rows = [[row[i] for i in keep] for row in rows]
+        return to_items([variables[i] for i in keep], rows, lambda t: render_jena(t, self.store.restore))
 
     # ------------------------------------------------------------------ persistence
     def triples(self, inferred: bool = False) -> list[Triple]:
