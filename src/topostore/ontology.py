@@ -19,7 +19,7 @@ while the ontology is inconsistent, as aRMOR does).
 from __future__ import annotations
 
 import os
-from collections.abc import Iterable, Sequence
+from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -93,13 +93,15 @@ class Ontology:
             onto.load(p, fmt=fmt, base_iri=base_iri)
         return onto
 
-    def load(self, path: str | os.PathLike[str], fmt: str | None = None, base_iri: str | None = None) -> int:
+    def load(self, path: str | os.PathLike[str], fmt: str | None = None, base_iri: str | None = None,
+             progress: Callable[[int], None] | None = None) -> int:
         """Add a document's triples to the asserted graph; all or nothing.
 
         Rules are compiled before anything is added, so a file with a rule that
         cannot be translated is refused and leaves the ontology as it was.
+        ``progress(n)`` is told how many triples have been parsed so far.
         """
-        triples = self.store.parse_file(path, fmt, base_iri)
+        triples = self.store.parse_file(path, fmt, base_iri, progress)
         return self._add_checked(triples)
 
     def load_data(self, data: str | bytes, fmt: str = "turtle", base_iri: str | None = None) -> int:
