@@ -117,15 +117,15 @@ def test_serve_on_a_busy_port_exits_4_with_one_line(workdir: Path) -> None:
 
 def test_load_progress_counts_triples(tmp_path: Path) -> None:
     onto = Ontology.from_file(default_ontology())
-    onto.add(*mapgen.generate(1000, seed=1).triples())
-    path = onto.save(tmp_path / "m1000.ttl")
+    onto.add(*mapgen.generate(600, seed=1).triples())
+    path = onto.save(tmp_path / "m600.ttl")
     buffer = io.StringIO()
     console = Console(file=buffer, force_terminal=True, width=120)
     loaded = load_files([str(path)], console=console)
     reason_with_progress(loaded, console=console)
     shown = re.sub(r"\x1b\[[0-9;?]*[A-Za-z]", "", buffer.getvalue())
     total = len(loaded.triples())
-    assert "loading m1000.ttl 5,000 triples parsed" in shown
-    assert f"loaded m1000.ttl {total:,} triples" in shown
+    assert "loading m600.ttl 5,000 triples parsed" in shown
+    assert f"loaded m600.ttl {total:,} triples" in shown
     assert f"reasoning over {total:,} asserted triples" in shown
     assert "None" not in shown
