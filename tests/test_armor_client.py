@@ -62,7 +62,7 @@ def test_seed_tutorial_through_client(rec: Recorder, tmp_path: Path) -> None:
     client.manipulation.add_objectprop_to_ind("isIn", "Robot1", "R3")
     client.manipulation.replace_objectprop_b2_ind("isIn", "Robot1", "E", "R3")
     assert client.utils.sync_buffered_reasoner() is True
-    assert client.query.dataprop_b2_ind("now", "Robot1") == ["1665579740"]
+    assert client.query.dataprop_b2_ind("now", "Robot1") == ['"1665579740"^^xsd:long']
     assert client.manipulation.replace_one_dataprop_b2_ind("now", "Robot1", "LONG", "1665579750") is True
     assert last(rec)[2:] == ("REPLACE", "DATAPROP", "IND", ["now", "Robot1", "LONG", "1665579750", "1665579740"])
     client.manipulation.replace_one_dataprop_b2_ind("visitedAt", "E", "LONG", "1665579750")
@@ -70,7 +70,7 @@ def test_seed_tutorial_through_client(rec: Recorder, tmp_path: Path) -> None:
     assert client.query.objectprop_b2_ind("canReach", "Robot1") == ["R3"]
     assert client.query.objectprop_b2_ind("canReach", "Robot1", with_URI=True) == [f"<{IRI}#R3>"]
     assert client.query.ind_b2_class("URGENT") == ["R3"]
-    assert client.query.dataprop_b2_ind("now", "Robot1") == ["1665579750"]
+    assert client.query.dataprop_b2_ind("now", "Robot1") == ['"1665579750"^^xsd:long']
     client.utils.save(str(tmp_path / "out.owl"))
     assert (tmp_path / "out.owl").is_file()
 
@@ -123,7 +123,7 @@ def test_batch_methods(client: ArmorClient) -> None:
     props = [["visitedAt", "LONG", "10"], ["label", "STRING", "kitchen"]]
     assert client.manipulation.add_batch_dataprop_to_ind("K", props) is True
     client.utils.apply_buffered_changes()
-    assert client.query.dataprop_b2_ind("label", "K") == ["kitchen"]
+    assert client.query.dataprop_b2_ind("label", "K") == ['"kitchen"^^xsd:string']
     # fixed: individual and property are no longer swapped (pyM:524)
     assert client.manipulation.remove_batch_dataprop_to_ind("K", props) is True
     client.utils.apply_buffered_changes()
@@ -173,7 +173,7 @@ def test_replace_one_adds_when_absent_and_string_values_match(client: ArmorClien
     client.utils.apply_buffered_changes()
     client.manipulation.replace_one_dataprop_b2_ind("label", "R1", "STRING", "plain")
     client.utils.apply_buffered_changes()
-    assert client.query.dataprop_b2_ind("label", "R1") == ["plain"]
+    assert client.query.dataprop_b2_ind("label", "R1") == ['"plain"^^xsd:string']
     client.manipulation.replace_one_objectprop_b2_ind("isIn", "Robot1", "R2")
     client.utils.sync_buffered_reasoner()
     assert client.query.objectprop_b2_ind("isIn", "Robot1") == ["R2"]

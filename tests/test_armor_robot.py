@@ -76,4 +76,4 @@ def test_robot_surveys_the_map() -> None:
         assert sorted(client.query.objectprop_b2_ind("canReach", "Robot1")) == NEIGHBOURS[here], (time, here)
         assert sorted(client.query.ind_b2_class("URGENT")) == urgent, (time, here)
         assert client.query.objectprop_b2_ind("isIn", "Robot1") == [here]
-        assert client.query.dataprop_b2_ind("visitedAt", here) == [str(time)]
+        assert client.query.dataprop_b2_ind("visitedAt", here) == [f'"{time}"^^xsd:long']

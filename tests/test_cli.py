@@ -105,10 +105,14 @@ def test_query_named_table_json_tsv() -> None:
 
 def test_query_rq_file(tmp_path: Path) -> None:
     rq = tmp_path / "corridors.rq"
-    rq.write_text("# param: cls iri\nSELECT ?x WHERE { ?x a ?cls } ORDER BY ?x\n")
+    rq.write_text("# param: cls iri\nSELECT ?x ?cls WHERE { ?x a ?cls } ORDER BY ?x\n")
     result = run("query", TBOX, ABOX, str(rq), "-p", "cls=CORRIDOR", "--format", "json")
     assert result.exit_code == 0, result.output
     assert json.loads(result.output) == [{"x": NS + "C1"}]
+    rq.write_text("# param: cls iri\nSELECT ?x WHERE { ?x a ?cls } ORDER BY ?x\n")
+    result = run("query", TBOX, ABOX, str(rq), "-p", "cls=CORRIDOR")
+    assert result.exit_code == 1
+    assert "a query parameter must be in the SELECT list (add ?cls to it)" in result.output
 
 
 def test_query_list() -> None:

@@ -85,10 +85,10 @@ class Server:
         return self.request(f"/references/{ref}/sparql?" + urllib.parse.urlencode({"query": query}), headers=headers)
 
 
-def start_server(data_dir: Path, *extra: str, token: str | None = None) -> Server:
+def start_server(data_dir: Path, *extra: str, token: str | None = None, port: int | None = None) -> Server:
     data_dir.mkdir(parents=True, exist_ok=True)
     shutil.copy(TBOX, data_dir / "topological_map.owl")
-    port = free_port()
+    port = port or free_port()
     log = open(data_dir / "server.log", "wb")
     cmd = [sys.executable, "-m", "topostore.cli", "serve", "--host", "127.0.0.1", "--port", str(port),
            "--data-dir", str(data_dir), *extra]
@@ -348,7 +348,7 @@ def test_armor_client_over_http(server: Server) -> None:
     assert sorted(client.query.objectprop_b2_ind("canReach", "Robot1")) == ["R1", "R2"]
     assert client.query.ind_b2_class("URGENT") == ["R1"]  # 100 - 90 > 7, 100 - 98 is not
     assert client.query.ind_b2_class("CORRIDOR") == ["C1"]
-    assert client.query.dataprop_b2_ind("now", "Robot1") == ["100"]
+    assert client.query.dataprop_b2_ind("now", "Robot1") == ['"100"^^xsd:long']
     result = client.call_serialized([("QUERY", "IND", "CLASS", ["ROOM"]), ("REASON", "", "", [])])
     assert result.success and len(result.armor_responses) == 2
     with pytest.raises(ArmorServiceInternalError) as err:

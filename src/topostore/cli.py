@@ -1,11 +1,13 @@
 """``topostore``: reason, inspect rules, query, serve, run the demo, draw maps.
 
 Errors are printed as one line (``Error: ...``) unless ``--debug`` is given;
-exit codes: 0 success, 1 error, 2 usage error, 3 inconsistent ontology.
+exit codes: 0 success, 1 error, 2 usage error, 3 inconsistent ontology,
+4 ``serve`` cannot listen (the port is in use or the address is not this machine's).
 """
 
 from __future__ import annotations
 
+import errno
 import json
 import os
 import subprocess
@@ -17,7 +19,7 @@ from pathlib import Path
 
 import click
 from rich.console import Console
-from rich.progress import BarColumn, Progress, SpinnerColumn, TextColumn, TimeElapsedColumn
+from rich.progress import Progress, SpinnerColumn, TaskID, TextColumn, TimeElapsedColumn
 from rich.table import Table
 
 from . import __version__
@@ -28,6 +30,7 @@ from .store import guess_format, serialize
 from .vocab import ASSERTED, INFERRED, OWL, RDF, RDFS, XSD
 
 EXIT_INCONSISTENT = 3
+EXIT_CANNOT_LISTEN = 4
 
 err_console = Console(stderr=True, highlight=False)
 
@@ -76,30 +79,36 @@ def cli(ctx: click.Context, debug: bool) -> None:
 # --------------------------------------------------------------------------- loading with progress
 
 @contextmanager
-def _progress(enabled: bool = True) -> Iterator[Progress]:
+def _progress(enabled: bool = True, console: Console | None = None) -> Iterator[Progress]:
     """A progress display on standard error; silent when stderr is not a terminal."""
-    progress = Progress(SpinnerColumn(), TextColumn("{task.description}"), BarColumn(), TextColumn("{task.completed}/{task.total}"),
-                        TimeElapsedColumn(), console=err_console, transient=True,
-                        disable=not enabled or not err_console.is_terminal)
+    console = console or err_console
+    progress = Progress(SpinnerColumn(), TextColumn("{task.description}"), TextColumn("{task.fields[detail]}"),
+                        TimeElapsedColumn(), console=console, transient=True,
+                        disable=not enabled or not console.is_terminal)
     with progress:
         yield progress
 
 
-def load_files(files: Sequence[str], fmt: str | None = None) -> Ontology:
-    """Load ``files`` into one ontology, showing progress for big inputs."""
+def load_files(files: Sequence[str], fmt: str | None = None, console: Console | None = None) -> Ontology:
+    """Load ``files`` into one ontology, showing how many triples each has given so far."""
     onto = Ontology()
-    with _progress() as progress:
-        task = progress.add_task("loading", total=len(files))
+    with _progress(console=console) as progress:
         for f in files:
-            progress.update(task, description=f"loading {Path(f).name}")
-            onto.load(f, fmt=fmt)
-            progress.advance(task)
+            name = Path(f).name
+            task = progress.add_task(f"loading {name}", detail="")
+
+            def parsed(n: int, task: TaskID = task) -> None:
+                progress.update(task, detail=f"{n:,} triples parsed")
+
+            added = onto.load(f, fmt=fmt, progress=parsed)
+            progress.update(task, description=f"loaded {name}", detail=f"{added:,} triples")
+            progress.stop_task(task)
     return onto
 
 
-def reason_with_progress(onto: Ontology) -> ReasonReport:
-    with _progress() as progress:
-        progress.add_task("reasoning", total=None)
+def reason_with_progress(onto: Ontology, console: Console | None = None) -> ReasonReport:
+    with _progress(console=console) as progress:
+        progress.add_task(f"reasoning over {onto.store.count(ASSERTED):,} asserted triples", detail="")
         return onto.reason()
 
 
@@ -293,7 +302,7 @@ def _readable(value: str, prefix: str) -> str:
 @click.option("--data-dir", default="data", show_default=True, type=click.Path(file_okay=False),
               help="LOAD and SAVE paths are confined to this folder (created if missing).")
 @click.option("--token", envvar="TOPOSTORE_TOKEN", help="Bearer token required on every request (env TOPOSTORE_TOKEN).")
-@click.option("--allow-update", is_flag=True, help="Accept SPARQL updates on the SPARQL endpoints.")
+@click.option("--allow-update", is_flag=True, help="Accept SPARQL updates and Graph Store writes (PUT/POST/DELETE, uploads).")
 @click.option("--max-request-bytes", default=1024 * 1024, show_default=True, type=click.IntRange(1),
               help="Largest request body accepted (413 beyond).")
 @click.option("--sparql-timeout", default=10.0, show_default=True, type=click.FloatRange(min=0, min_open=True),
@@ -307,10 +316,12 @@ def serve(host: str, port: int, data_dir: str, token: str | None, allow_update: 
           sparql_timeout: float, sparql_max_rows: int, short_names: bool, cors_origins: tuple[str, ...]) -> None:
     """Serve aRMOR commands (POST /armor) and SPARQL endpoints over HTTP.
 
+    Exits with code 4 and one line when it cannot listen (port in use).
+
     \b
     Example:
       topostore serve --port 8765 --data-dir data
-      curl -s localhost:8765/armor -d '{"reference_name":"ref","command":"GET","primary_command_spec":"ALL","secondary_command_spec":"REFS"}'
+      curl -s localhost:8765/armor -H 'Content-Type: application/json' -d '{"reference_name":"ref","command":"GET","primary_command_spec":"ALL","secondary_command_spec":"REFS"}'
     """
     from .server import ServerConfig, serve as run_server
 
@@ -319,9 +330,39 @@ def serve(host: str, port: int, data_dir: str, token: str | None, allow_update: 
                           sparql_max_rows=sparql_max_rows, short_names=short_names,
                           cors_origins=cors_origins)
     config.check()
+    problem = _cannot_listen(host, port)
+    if problem:
+        click.echo(f"Error: {problem}", err=True)
+        raise click.exceptions.Exit(EXIT_CANNOT_LISTEN)
     click.echo(f"topostore {__version__}: http://{host}:{port} (data directory {Path(data_dir).resolve()}; "
                f"SPARQL updates {'on' if allow_update else 'off'}; token {'required' if token else 'off'})", err=True)
-    run_server(config)
+    try:
+        run_server(config)
+    except SystemExit as exc:  # uvicorn exits 3 when it cannot start; 3 means "inconsistent" here
+        if exc.code in (0, None):
+            raise
+        click.echo(f"Error: the server could not start listening on {host}:{port} (see the log above)", err=True)
+        raise click.exceptions.Exit(EXIT_CANNOT_LISTEN) from None
+
+
+def _cannot_listen(host: str, port: int) -> str | None:
+    """Why ``serve`` could not listen on host:port (None if it can), checked before the server starts."""
+    import socket
+
+    try:
+        infos = socket.getaddrinfo(host, port, type=socket.SOCK_STREAM)
+    except OSError as exc:
+        return f"cannot resolve --host {host!r}: {exc.strerror or exc}"
+    family, kind, proto, _, address = infos[0]
+    with socket.socket(family, kind, proto) as sock:
+        sock.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)  # as uvicorn does
+        try:
+            sock.bind(address)
+        except OSError as exc:
+            if exc.errno == errno.EADDRINUSE:
+                return f"port {port} on {host} is already in use (another topostore serve?); choose one with --port"
+            return f"cannot listen on {host}:{port}: {exc.strerror or exc}"
+    return None
 
 
 # --------------------------------------------------------------------------- demo
@@ -346,10 +387,17 @@ def demo(map_files: tuple[str, ...], steps: int, seed: int, robots: int, time_sc
     Examples:
       topostore demo
       topostore demo --steps 30 --robots 2 --seed 7 --picture out/map.svg
-      topostore demo --map my_map.ttl --every-step
+      topostore demo --map ontology/topological_map.ttl --map ontology/topological_map_abox.ttl --every-step
     """
     from .demo import run_demo
+    from .demo.mapview import VizMissing, require_matplotlib
 
+    if not no_picture:
+        try:
+            require_matplotlib()
+        except VizMissing as exc:
+            click.echo(f"note: no picture: {exc}", err=True)
+            no_picture = True
     run_demo(list(map_files) or None, steps=steps, seed=seed, robots=robots, time_scale=time_scale,
              picture=None if no_picture else picture, every_step=every_step, emit=click.echo)
 
@@ -360,21 +408,30 @@ def demo(map_files: tuple[str, ...], steps: int, seed: int, robots: int, time_sc
 @click.argument("files", nargs=-1, required=True, metavar="FILE...")
 @click.option("-o", "--output", required=True, type=click.Path(dir_okay=False), help="Picture file: .png, .svg or .pdf.")
 @click.option("--title", default="", help="Title above the map.")
-def map_command(files: tuple[str, ...], output: str, title: str) -> None:
+@click.option("--robots/--no-robots", default=True, show_default=True, help="Mark where each robot isIn.")
+@click.option("--urgent/--no-urgent", default=True, show_default=True, help="Ring URGENT locations in red.")
+@click.option("--cluster-above", default=400, show_default=True, type=click.IntRange(1), metavar="N",
+              help="Draw corridors with their rooms as clusters when the map has more than N locations.")
+def map_command(files: tuple[str, ...], output: str, title: str, robots: bool, urgent: bool, cluster_above: int) -> None:
     """Draw the reasoned map of FILE(s): rooms, corridors, doors, connections, robots, URGENT.
 
-    \b
-    Example:
-      topostore map ontology/topological_map.ttl ontology/topological_map_abox.ttl -o out/map.svg
-    """
-    from .demo.mapview import draw_ontology
+    Corridors form the spine, rooms sit around their corridor; big maps are
+    drawn as clusters of corridors with their rooms.  Needs the [viz] extra.
 
+    \b
+    Examples:
+      topostore map ontology/topological_map.ttl ontology/topological_map_abox.ttl -o out/map.svg
+      topostore map ontology/topological_map.ttl ontology/topological_map_abox.ttl -o out/plain.png --no-robots --no-urgent
+    """
+    from .demo.mapview import Style, draw_ontology, require_matplotlib
+
+    require_matplotlib()
     _existing(files)
     onto = load_files(files)
     report = reason_with_progress(onto)
     if not report.consistent:
         raise click.ClickException(f"the ontology is inconsistent, nothing reliable to draw: {report.explain()}")
-    path = draw_ontology(onto, output, title)
+    path = draw_ontology(onto, output, title, Style(robots=robots, urgent=urgent, cluster_above=cluster_above))
     click.echo(f"Wrote {path}")
 
 
@@ -386,15 +443,15 @@ def bench(args: tuple[str, ...]) -> None:
     """Run the benchmarks (python -m benchmarks); arguments are passed on.
 
     \b
-    Example:
-      topostore bench --quick
+    Example (the quick suite is `make bench`):
+      topostore bench --sizes seed 10 --steps 5 --no-peers --out out/bench-example
     """
-    from .resources import home
+    from .resources import source_root
 
-    root = home()
-    if not (root / "benchmarks" / "__main__.py").is_file():
-        raise click.ClickException(f"the benchmarks package is not available (looked in {root / 'benchmarks'}); "
-                                   "it ships with the source tree")
+    root = source_root()
+    if root is None or not (root / "benchmarks" / "__main__.py").is_file():
+        raise click.ClickException("the benchmarks package is not available: it ships with the source tree "
+                                   "(git clone, then pip install -e '.[bench]')")
     env = dict(os.environ)
     env["PYTHONPATH"] = os.pathsep.join(filter(None, [str(root), env.get("PYTHONPATH", "")]))
     code = subprocess.call([sys.executable, "-m", "benchmarks", *args], cwd=root, env=env)

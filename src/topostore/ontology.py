@@ -19,7 +19,7 @@ while the ontology is inconsistent, as aRMOR does).
 from __future__ import annotations
 
 import os
-from collections.abc import Iterable, Sequence
+from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -29,7 +29,7 @@ from .compile import RuleSet, compile_ontology
 from .compile.swrl_text import removal_triples, rule_labels, rule_triples
 from .errors import InvalidValueError, QueryError
 from .events import EventHub
-from .queries import QueryItem, bind, collect, get_named_query, render_jena, to_items
+from .queries import QueryItem, collect, get_named_query, render_jena, substitutions, to_items
 from .reason import ReasonStats, Violation, classify
 from .reason.incremental import DEFAULT_MAX_CHANGE_SHARE, IncrementalReasoner
 from .store import Store, fresh_skolem, guess_format, serialize
@@ -97,13 +97,15 @@ class Ontology:
             onto.load(p, fmt=fmt, base_iri=base_iri)
         return onto
 
-    def load(self, path: str | os.PathLike[str], fmt: str | None = None, base_iri: str | None = None) -> int:
+    def load(self, path: str | os.PathLike[str], fmt: str | None = None, base_iri: str | None = None,
+             progress: Callable[[int], None] | None = None) -> int:
         """Add a document's triples to the asserted graph; all or nothing.
 
         Rules are compiled before anything is added, so a file with a rule that
         cannot be translated is refused and leaves the ontology as it was.
+        ``progress(n)`` is told how many triples have been parsed so far.
         """
-        triples = self.store.parse_file(path, fmt, base_iri)
+        triples = self.store.parse_file(path, fmt, base_iri, progress)
         return self._add_checked(triples)
 
     def load_data(self, data: str | bytes, fmt: str = "turtle", base_iri: str | None = None) -> int:
@@ -440,9 +442,21 @@ class Ontology:
         return list(props)
 
     def sparql(self, text: str, bindings: dict[str, Term] | None = None, **kwargs):
-        """Raw SPARQL over the visible graphs (asserted ∪ inferred)."""
-        text = bind(text, bindings or {})
-        return self.store.query(text, graphs=self.visible_graphs(), **kwargs)
+        """Raw SPARQL over the visible graphs (asserted ∪ inferred).
+
+        ``bindings`` fix variables to terms with pyoxigraph's ``substitutions=``;
+        in a SELECT query a bound variable must be projected.
+        """
+        if not bindings:
+            return self.store.query(text, graphs=self.visible_graphs(), **kwargs)
+        try:
+            return self.store.query(text, graphs=self.visible_graphs(), substitutions=substitutions(bindings), **kwargs)
+        except QueryError as exc:
+            if "SELECT projection" not in str(exc):
+                raise
+            names = " ".join(f"?{b}" for b in bindings)
+            raise QueryError(f"a query parameter must be in the SELECT list (add {names} to it): parameters are "
+                             "bound with pyoxigraph's substitutions, which fix projected variables only") from None
 
     def select(self, text: str, bindings: dict[str, Term] | None = None, timeout: float | None = None):
         """(variables, rows, timed_out) of a SELECT query over the visible graphs."""
@@ -471,7 +485,10 @@ class Ontology:
                 raise QueryError(f"query {q.name!r} has no parameter(s) {', '.join(sorted(unknown))}")
         bindings = {k: (self.iri(v) if kinds.get(k) == "iri" else self.value(v)) for k, v in params.items()}
         variables, rows, _ = self.select(text, bindings, timeout)
-        return to_items(variables, rows, lambda t: render_jena(t, self.store.restore))
+        # parameters are projected so that pyoxigraph can substitute them; their fixed values are not answers
+        keep = [i for i, v in enumerate(variables) if v not in bindings]
+        rows = [[row[i] for i in keep] for row in rows]
+        return to_items([variables[i] for i in keep], rows, lambda t: render_jena(t, self.store.restore))
 
     # ------------------------------------------------------------------ persistence
     def triples(self, inferred: bool = False) -> list[Triple]:

@@ -7,9 +7,11 @@ A named query is a ``.rq`` file in ``queries/`` with ``# key: value`` headers::
     # param: robot iri
     SELECT ?location WHERE { ?robot <...#canReach> ?location }
 
-Parameters are bound by adding ``VALUES ?robot { <term> }`` at the start of the
-WHERE group, with the term rendered by pyoxigraph, so a parameter value can
-never change the query's structure.  Results are ``QueryItem(key, value)``
+Parameters are bound by pyoxigraph's ``substitutions=`` (SPARQL-dev SEP-0007:
+the variable is replaced by the RDF term in the parsed query), so a parameter
+value is never spliced into the query text and cannot change its structure.
+pyoxigraph binds projected variables only, so a named query projects its
+parameters; :meth:`topostore.Ontology.query` leaves their columns out.  Results are ``QueryItem(key, value)``
 lists, one item per projected variable per row (``""`` when unbound), in the
 shape of aRMOR's ``sparql_queried_objects``.
 """
@@ -23,12 +25,12 @@ from dataclasses import dataclass
 from functools import cache
 from pathlib import Path
 
-from pyoxigraph import BlankNode, Literal, NamedNode, QuerySolutions
+from pyoxigraph import BlankNode, Literal, NamedNode, QuerySolutions, Variable
 
 from .errors import QueryError, QueryTimeout
 from .resources import queries_dir
 from .store import unskolem
-from .terms import Term, sparql
+from .terms import Term
 from .vocab import XSD
 
 
@@ -111,36 +113,9 @@ def skip_non_code(text: str, i: int) -> int | None:
     return None
 
 
-def _where_brace(text: str) -> int:
-    """Index of the ``{`` opening the query's WHERE group (outside comments, IRIs, strings)."""
-    i, n = 0, len(text)
-    seen_where = False
-    depth = 0
-    while i < n:
-        nxt = skip_non_code(text, i)
-        if nxt is not None:
-            i = nxt
-            continue
-        c = text[i]
-        if text[i:i + 5].upper() == "WHERE" and (i == 0 or not text[i - 1].isalnum()):
-            seen_where = True
-        if c == "{":
-            if depth == 0 and (seen_where or not re.search(r"\b(CONSTRUCT|DESCRIBE)\b", text[:i], re.I)):
-                return i
-            depth += 1
-        elif c == "}":
-            depth -= 1
-        i += 1
-    raise QueryError("the query has no WHERE group to bind parameters into")
-
-
-def bind(text: str, bindings: dict[str, Term]) -> str:
-    """``text`` with each variable of ``bindings`` fixed by a VALUES clause."""
-    if not bindings:
-        return text
-    pos = _where_brace(text)
-    values = " ".join(f"VALUES ?{name} {{ {sparql(term)} }}" for name, term in bindings.items())
-    return text[: pos + 1] + " " + values + " " + text[pos + 1:]
+def substitutions(bindings: dict[str, Term]) -> dict[Variable, Term]:
+    """pyoxigraph's ``substitutions=`` argument: each variable name fixed to its term."""
+    return {Variable(name): term for name, term in bindings.items()}
 
 
 # --------------------------------------------------------------------------- rendering
@@ -187,4 +162,4 @@ def to_items(variables: list[str], rows: list[list[Term | None]], render: Callab
     return [QueryItem(v, render(value)) for row in rows for v, value in zip(variables, row)]
 
 
-__all__ = ["QueryItem", "NamedQuery", "named_queries", "get_named_query", "bind", "render_jena", "collect", "to_items", "QueryTimeout"]
+__all__ = ["QueryItem", "NamedQuery", "named_queries", "get_named_query", "substitutions", "render_jena", "collect", "to_items", "QueryTimeout"]

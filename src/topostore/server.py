@@ -296,6 +296,8 @@ class Api:
             ref = self.service.reference(name)
         except CommandError as exc:
             return error(404, exc.message)
+        if request.method == "GET" and not {"query", "update"} & set(request.query_params):
+            return await _described(request, ref, self.config.allow_update)  # SPARQL 1.1 Service Description
         parsed = await _sparql_operation(request)
         if isinstance(parsed, Response):
             return parsed
@@ -347,6 +349,15 @@ class Api:
 
     def close(self) -> None:
         self.pool.shutdown(wait=False, cancel_futures=True)
+
+
+async def _described(request: Request, ref: Any, allow_update: bool) -> Response:
+    from .http import describe_service
+
+    try:
+        return await describe_service(request, ref, allow_update)
+    except NotAcceptable as exc:
+        return error(406, str(exc))
 
 
 def _with_cors(send: Send, origin: str) -> Send:
@@ -432,6 +443,9 @@ def create_app(config: ServerConfig, service: ArmorService | None = None) -> Sta
         Route("/references/{name}/sparql", api.sparql, methods=["GET", "POST"]),
     ]
     routes += live_routes(api)  # explanations, server-sent events, the live map page (live.py)
+    from .http import GraphStore  # SPARQL 1.1 Graph Store HTTP Protocol: /references/{name}/data
+
+    routes += GraphStore(api).routes()
     app = Starlette(routes=routes, lifespan=lifespan)
     app.add_middleware(Guard, token=config.token, max_bytes=config.max_request_bytes,
                        cors_origins=tuple(config.cors_origins))

@@ -20,7 +20,7 @@ from __future__ import annotations
 import os
 import threading
 import uuid
-from collections.abc import Iterable, Iterator
+from collections.abc import Callable, Iterable, Iterator
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -59,6 +59,9 @@ def _pow(base: Term, exponent: Term) -> Literal | None:
 
 #: Extension functions the compiled rules may call (see compile/builtins.py).
 CUSTOM_FUNCTIONS = {NamedNode(INTERNAL + "fn:pow"): _pow}
+
+#: How often (in triples) parsing reports progress.
+PROGRESS_EVERY = 5000
 
 _FORMATS = {
     ".owl": RdfFormat.RDF_XML,
@@ -149,22 +152,29 @@ class Store:
 
     # ------------------------------------------------------------ parsing
     def parse_file(
-        self, path: str | os.PathLike[str], fmt: str | RdfFormat | None = None, base_iri: str | None = None
+        self, path: str | os.PathLike[str], fmt: str | RdfFormat | None = None, base_iri: str | None = None,
+        progress: Callable[[int], None] | None = None,
     ) -> list[Triple]:
         """Parse a document into skolemised triples without touching the store."""
         try:
             data = Path(path).read_bytes()
         except OSError as exc:
             raise LoadError(f"{path}: cannot read file: {exc.strerror or exc}") from exc
-        return self.parse_bytes(data, guess_format(path, fmt), base_iri, source=str(path))
+        return self.parse_bytes(data, guess_format(path, fmt), base_iri, source=str(path), progress=progress)
 
     def parse_bytes(
-        self, data: bytes | str, fmt: RdfFormat, base_iri: str | None = None, source: str = "<input>"
+        self, data: bytes | str, fmt: RdfFormat, base_iri: str | None = None, source: str = "<input>",
+        progress: Callable[[int], None] | None = None,
     ) -> list[Triple]:
+        """``progress(n)`` is called every ``PROGRESS_EVERY`` triples parsed (for progress displays)."""
         if isinstance(data, str):
             data = data.encode()
         try:
-            quads = list(ox.parse(data, format=fmt, base_iri=base_iri, rename_blank_nodes=True))
+            quads = []
+            for quad in ox.parse(data, format=fmt, base_iri=base_iri, rename_blank_nodes=True):
+                quads.append(quad)
+                if progress is not None and len(quads) % PROGRESS_EVERY == 0:
+                    progress(len(quads))
         except SyntaxError as exc:
             raise LoadError(_syntax_error_message(source, exc, data, fmt)) from exc
         except ValueError as exc:

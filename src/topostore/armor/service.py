@@ -102,7 +102,8 @@ class ArmorService:
             return self._failure(req, codes.UNKNOWN_COMMAND, f"unknown command {' '.join(repr(k) for k in key)}: "
                                  "check the spelling and that unused specs are empty strings")
         try:
-            command.check_arity(len(req.args))
+            # aRMOR ignores the arguments of argument-less commands; rosservice YAML and tutorials send args: ['']
+            command.check_arity(0 if command.max_args == 0 and not any(req.args) else len(req.args))
             ctx = Context(self, req)
             if not command.needs_ref:
                 reply = command.handler(ctx)
@@ -185,6 +186,12 @@ class ArmorService:
         ref = Reference(name, onto, iri, path, buffered_manipulation, reasoner, buffered_reasoner)
         with self._registry_lock:
             existing = self._references.setdefault(name, ref)
+        return existing, existing is ref
+
+    def add_reference(self, ref: Reference) -> tuple[Reference, bool]:
+        """(reference, created): register a reference built elsewhere (an HTTP upload) unless the name is taken."""
+        with self._registry_lock:
+            existing = self._references.setdefault(ref.name, ref)
         return existing, existing is ref
 
     # ------------------------------------------------------------ files, web, logging

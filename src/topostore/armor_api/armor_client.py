@@ -4,13 +4,17 @@
 >>> client = ArmorClient("example", "ref")
 
 The ROS service names are kept as attributes for compatibility; the requests
-go through a pluggable :class:`~topostore.armor_api.transport.Transport`
-(default: the shared in-process service).
+go through a pluggable :class:`~topostore.armor_api.transport.Transport`:
+``url=`` (or the ``TOPOSTORE_URL`` environment variable) selects the HTTP
+transport, ``token=`` (or ``TOPOSTORE_TOKEN``) the bearer token it sends;
+otherwise the shared in-process service.  ``timeout`` keeps armor_py_api's
+meaning: seconds to wait for the service, not a limit on a command.
 """
 
 from __future__ import annotations
 
 import importlib
+import os
 from collections.abc import Sequence
 
 from ..armor import ArmorRequest, ArmorResponse
@@ -22,13 +26,13 @@ from .armor_utils_client import ArmorUtilsClient
 from .transport import Transport, default_service
 
 
-def _http_transport(url: str, timeout: float) -> Transport:
+def _http_transport(url: str, timeout: float, token: str | None) -> Transport:
     """An HTTP transport from ``topostore.armor_api.http_transport`` when that module is installed."""
     try:
         module = importlib.import_module("topostore.armor_api.http_transport")
     except ImportError as exc:
         raise ArmorServiceCallError(f"no HTTP transport is available for {url!r}: {exc}") from None
-    return module.HttpTransport(url, timeout=timeout)
+    return module.HttpTransport(url, timeout=timeout, token=token)
 
 
 class ArmorClient:
@@ -36,14 +40,15 @@ class ArmorClient:
 
     def __init__(self, client_id: str, reference_name: str, service_name: str = "/armor_interface_srv",
                  serial_service_name: str = "/armor_interface_serialized_srv", timeout: float = 5,
-                 transport: Transport | None = None, url: str | None = None) -> None:
+                 transport: Transport | None = None, url: str | None = None, token: str | None = None) -> None:
         self.client_id = client_id
         self.reference_name = reference_name
         self.service_name = service_name
         self.serial_service_name = serial_service_name
         self.timeout = timeout
         if transport is None:
-            transport = _http_transport(url, timeout) if url is not None else default_service()
+            url = url if url is not None else os.environ.get("TOPOSTORE_URL") or None
+            transport = _http_transport(url, timeout, token) if url is not None else default_service()
         self.transport: Transport = transport
         self.manipulation = ArmorManipulationClient(self)
         self.query = ArmorQueryClient(self)

@@ -11,6 +11,7 @@ from typing import TYPE_CHECKING
 
 from ..armor.codes import SEVERAL_VALUES
 from .armor_exceptions import ArmorServiceInternalError
+from .armor_query_client import lexical_form
 
 if TYPE_CHECKING:  # pragma: no cover
     from .armor_client import ArmorClient
@@ -51,14 +52,18 @@ class ArmorManipulationClient:
                                      [dataprop_name, ind_name, value_type, str(new_value), str(old_value)]).is_consistent
 
     def replace_one_dataprop_b2_ind(self, dataprop_name: str, ind_name: str, value_type: str, new_value: str) -> bool:
-        """Set the single value of a data property (add if none; 206 if several)."""
+        """Set the single value of a data property (add if none; 206 if several).
+
+        The old value is sent as its lexical form (the original client sent the
+        rendered literal back, which the service cannot match).
+        """
         values = self._client.query.dataprop_b2_ind(dataprop_name, ind_name)
         if len(values) > 1:
             raise ArmorServiceInternalError(
                 f"{dataprop_name} of {ind_name} has {len(values)} values {values}; cannot replace just one", SEVERAL_VALUES)
         if not values:
             return self.add_dataprop_to_ind(dataprop_name, ind_name, value_type, new_value)
-        return self.replace_dataprop_b2_ind(dataprop_name, ind_name, value_type, new_value, values[0])
+        return self.replace_dataprop_b2_ind(dataprop_name, ind_name, value_type, new_value, lexical_form(values[0]))
 
     def replace_one_objectprop_b2_ind(self, objectprop_name: str, ind_name: str, new_value: str) -> bool:
         """Set the single value of an object property (add if none; 206 if several)."""

@@ -1,8 +1,10 @@
 """``client.query``: armor_py_api's query methods (spec §6.4), bugs of §7 item 25 fixed.
 
-Answers are checked for ``success`` before they are parsed; names are
-stripped without ever raising on IRIs that have no ``#``; data values come
-back as their lexical form (``'1665579740'``, not ``'"1665579740"^^xsd:long'``).
+Answers are checked for ``success`` before they are parsed and names are
+stripped without ever raising on IRIs that have no ``#``.  Data values come
+back exactly as aRMOR renders them (``'"1665579740"^^xsd:long'``), as the
+original client returns them, so code that slices the lexical form out
+(``value[1:-11]``) keeps working; :func:`lexical_form` does it for any type.
 """
 
 from __future__ import annotations
@@ -52,9 +54,9 @@ class ArmorQueryClient:
         return list(res.queried_objects) if with_URI else [strip_uri(o) for o in res.queried_objects]
 
     def dataprop_b2_ind(self, dataprop_name: str, ind_name: str) -> list[str]:
-        """Values as lexical forms, ready for ``int()``/``float()``."""
+        """Values as aRMOR renders them (``'"1665579740"^^xsd:long'``); :func:`lexical_form` gives ``'1665579740'``."""
         res = self._client._checked("QUERY", "DATAPROP", "IND", [dataprop_name, ind_name])
-        return [lexical_form(o) for o in res.queried_objects]
+        return list(res.queried_objects)
 
     def objectprop_b2_ind(self, objectprop_name: str, ind_name: str, with_URI: bool = False) -> list[str]:  # noqa: N803
         res = self._client._checked("QUERY", "OBJECTPROP", "IND", [objectprop_name, ind_name])

@@ -17,8 +17,8 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from ..armor_api.armor_query_client import lexical_form
 from ..errors import TopostoreError
-from .mapview import draw_ontology
 from .policy import decide
 from .world import World, open_world
 
@@ -98,10 +98,10 @@ def _step(world: World, robot: str, step: int, rng: random.Random) -> Move:
     query, manip, utils = world.client.query, world.client.manipulation, world.client.utils
     here_list = query.objectprop_b2_ind("isIn", robot)
     here = here_list[0] if here_list else None
-    now = int(query.dataprop_b2_ind("now", robot)[0])
+    now = int(lexical_form(query.dataprop_b2_ind("now", robot)[0]))
     reachable = sorted(query.objectprop_b2_ind("canReach", robot))
     urgent = sorted(query.ind_b2_class("URGENT"))
-    visited = {loc: int(v[0]) for loc in reachable if loc in urgent for v in [query.dataprop_b2_ind("visitedAt", loc)] if v}
+    visited = {loc: int(lexical_form(v[0])) for loc in reachable if loc in urgent for v in [query.dataprop_b2_ind("visitedAt", loc)] if v}
     decision = decide(here, reachable, urgent, world.corridors, visited, now, rng)
     target = decision.destination or here
     kind = "corridor" if target in world.corridors else "room"
@@ -145,6 +145,8 @@ def _numbered(path: Path, step: int) -> Path:
 
 
 def _draw(world: World, path: Path, title: str) -> Path:
+    from .mapview import draw_ontology  # matplotlib is the [viz] extra: imported only when drawing
+
     ref = world.reference
     with ref.lock:
         return draw_ontology(ref.ontology, path, title)

@@ -17,6 +17,7 @@ from pathlib import Path
 
 from ..armor import ArmorService
 from ..armor_api.armor_client import ArmorClient
+from ..armor_api.armor_query_client import lexical_form
 from ..errors import TopostoreError
 from ..ontology import Ontology
 from ..resources import default_ontology, ontology_dir
@@ -89,10 +90,10 @@ def _place_robots(client: ArmorClient, count: int, locations: list[str], corrido
     """Use the map's robots first, then create Robot2, Robot3, ... in corridors (round robin)."""
     query = client.query
     existing = sorted(query.ind_b2_class("ROBOT"))
-    clocks = [int(v) for r in existing for v in query.dataprop_b2_ind("now", r)]
-    visits = [int(v) for loc in locations for v in query.dataprop_b2_ind("visitedAt", loc)]
+    clocks = [int(lexical_form(v)) for r in existing for v in query.dataprop_b2_ind("now", r)]
+    visits = [int(lexical_form(v)) for loc in locations for v in query.dataprop_b2_ind("visitedAt", loc)]
     start_time = max(clocks or visits or [0])
-    thresholds = [v for r in existing for v in query.dataprop_b2_ind("urgencyThreshold", r)]
+    thresholds = [lexical_form(v) for r in existing for v in query.dataprop_b2_ind("urgencyThreshold", r)]
     threshold = thresholds[0] if thresholds else str(DEFAULT_THRESHOLD)
     starts = sorted(corridors) or locations
     names: list[str] = []

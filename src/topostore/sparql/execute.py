@@ -163,6 +163,10 @@ def update_delta(asserted: list[Triple], text: str) -> Delta:
         raise QueryError(f"malformed SPARQL update: {exc}") from exc
     except OSError as exc:
         raise QueryError(f"SPARQL update failed: {exc}") from exc
+    named = {q.graph_name.value for q in scratch.quads_for_pattern(None, None, None) if not isinstance(q.graph_name, DefaultGraph)}
+    if named:
+        raise QueryError(f"the update writes to the named graph(s) {', '.join(sorted(named))}; a reference has one "
+                         "writable graph, the default graph (leave out GRAPH and WITH)")
     after = {skolemize(Triple(q.subject, q.predicate, q.object)) for q in scratch.quads_for_pattern(None, None, None, DefaultGraph())}
     before = set(asserted)
     return Delta(add=sorted(after - before, key=str), remove=sorted(before - after, key=str))

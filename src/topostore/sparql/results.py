@@ -1,9 +1,14 @@
 """SPARQL results in the formats clients ask for, chosen by content negotiation.
 
+The format is negotiated with python-mimeparse (q-values, wildcards,
+specificity); ``?format=`` (as SPARQLWrapper, Virtuoso and Fuseki clients
+send it) is honoured when it names an offered format that the Accept header
+also allows, so a client sending both is never refused for the pair.
+
 Rows are first written as SPARQL JSON with :mod:`json` (where every term is an
 explicit object, so nothing needs escaping by hand), and converted to XML, CSV
 and TSV by pyoxigraph's own result serializers.  Graph results (CONSTRUCT,
-DESCRIBE) are serialized by pyoxigraph as Turtle, N-Triples or RDF/XML.
+DESCRIBE) are serialized by pyoxigraph as Turtle, N-Triples, RDF/XML or JSON-LD.
 Going through pyoxigraph means no hand-written escaping for any format.
 """
 
@@ -13,6 +18,7 @@ import json
 from collections.abc import Sequence
 from dataclasses import dataclass
 
+import mimeparse
 import pyoxigraph as ox
 from pyoxigraph import BlankNode, Literal, NamedNode, QueryResultsFormat, RdfFormat, Triple
 
@@ -43,14 +49,17 @@ SOLUTION_FORMATS: tuple[ResultFormat, ...] = (
     ResultFormat("json", "application/sparql-results+json", QueryResultsFormat.JSON, ("application/json",)),
     ResultFormat("xml", "application/sparql-results+xml", QueryResultsFormat.XML, ("application/xml", "text/xml")),
     ResultFormat("csv", "text/csv", QueryResultsFormat.CSV),
-    ResultFormat("tsv", "text/tab-separated-values", QueryResultsFormat.TSV),
+    ResultFormat("tsv", "text/tab-separated-values", QueryResultsFormat.TSV, ("tab-separated-values",)),
 )
 
 #: Formats for CONSTRUCT and DESCRIBE results; the first is the default.
 GRAPH_FORMATS: tuple[ResultFormat, ...] = (
-    ResultFormat("turtle", "text/turtle", RdfFormat.TURTLE, ("application/x-turtle",)),
-    ResultFormat("ntriples", "application/n-triples", RdfFormat.N_TRIPLES, ("text/plain",)),
-    ResultFormat("rdfxml", "application/rdf+xml", RdfFormat.RDF_XML, ("application/xml", "text/xml")),
+    # Turtle is N3 without N3's extensions: what N3 clients (SPARQLWrapper's N3) ask for
+    ResultFormat("turtle", "text/turtle", RdfFormat.TURTLE,
+                 ("application/x-turtle", "application/turtle", "ttl", "n3", "text/n3", "text/rdf+n3", "application/n3")),
+    ResultFormat("ntriples", "application/n-triples", RdfFormat.N_TRIPLES, ("text/plain", "nt", "n-triples")),
+    ResultFormat("rdfxml", "application/rdf+xml", RdfFormat.RDF_XML, ("application/xml", "text/xml", "xml", "rdf+xml")),
+    ResultFormat("jsonld", "application/ld+json", RdfFormat.JSON_LD, ("json-ld", "json", "application/x-json+ld")),
 )
 
 
@@ -58,56 +67,47 @@ class NotAcceptable(TopostoreError):
     """No format the client accepts can carry this kind of result (HTTP 406)."""
 
 
-def _accept_entries(header: str) -> list[tuple[str, float]]:
-    """(media range, q) pairs of an Accept header, best first, order kept among equals."""
-    entries: list[tuple[str, float, int]] = []
-    for index, part in enumerate(header.split(",")):
-        fields = [f.strip() for f in part.split(";")]
-        media = fields[0].lower()
-        if not media:
-            continue
-        q = 1.0
-        for f in fields[1:]:
-            if f.lower().startswith("q="):
-                try:
-                    q = float(f[2:])
-                except ValueError:
-                    q = 0.0
-        if q > 0:
-            entries.append((media, q, index))
-    entries.sort(key=lambda e: (-e[1], e[2]))
-    return [(m, q) for m, q, _ in entries]
+def _named(offered: Sequence[ResultFormat], name: str) -> ResultFormat | None:
+    key = name.strip().lower()
+    return next((f for f in offered if key in (f.name, f.media_type, *f.aliases)), None)
+
+
+def _media_types(offered: Sequence[ResultFormat]) -> list[str]:
+    """Every media type (and alias that is one) of ``offered``, least preferred first (mimeparse's tie order)."""
+    types = [m for f in offered for m in (f.media_type, *f.aliases) if "/" in m]
+    return list(reversed(types))
+
+
+def _quality(media: str, accept: str) -> float:
+    try:
+        return mimeparse.quality(media, accept)
+    except (mimeparse.MimeTypeParseException, ValueError):
+        return 0.0
 
 
 def choose_format(accept: str | None, graph: bool, explicit: str | None = None) -> ResultFormat:
-    """The format for a result: ``explicit`` (``?format=``) if given, else the best Accept match.
+    """The format for a result: ``explicit`` (``?format=``) if it fits the Accept header, else the best Accept match.
 
     ``graph`` selects the CONSTRUCT/DESCRIBE formats.  Raises
     :class:`NotAcceptable` naming the formats on offer.
     """
     offered = GRAPH_FORMATS if graph else SOLUTION_FORMATS
-    if explicit:
-        key = explicit.strip().lower()
-        for f in offered:
-            if key in (f.name, f.media_type, *f.aliases):
-                return f
+    header = (accept or "").strip() or "*/*"
+    named = _named(offered, explicit) if explicit else None
+    if named is not None and any(_quality(m, header) > 0 for m in (named.media_type, *named.aliases) if "/" in m):
+        return named
+    if explicit and named is None and header in ("*/*", "*"):
         raise NotAcceptable(f"format {explicit!r} cannot carry this result; use one of "
                             f"{', '.join(f.name for f in offered)}")
-    if not accept or not accept.strip():
-        return offered[0]
-    for media, _ in _accept_entries(accept):
-        if media in ("*/*", "*"):
-            return offered[0]
-        for f in offered:
-            if media == f.media_type or media in f.aliases:
-                return f
-        if media.endswith("/*"):
-            major = media[:-1]
-            for f in offered:
-                if f.media_type.startswith(major):
-                    return f
-    raise NotAcceptable(f"none of the accepted media types ({accept}) can carry this result; this endpoint offers "
-                        f"{', '.join(f.media_type for f in offered)}")
+    try:
+        best = mimeparse.best_match(_media_types(offered), "*/*" if header == "*" else header)
+    except (mimeparse.MimeTypeParseException, ValueError):
+        raise NotAcceptable(f"cannot read the Accept header {accept!r}") from None
+    found = next((f for f in offered if best and best in (f.media_type, *f.aliases)), None)
+    if found is None:
+        raise NotAcceptable(f"none of the accepted media types ({accept}) can carry this result; this endpoint offers "
+                            f"{', '.join(f.media_type for f in offered)}")
+    return found
 
 
 # --------------------------------------------------------------------------- SELECT / ASK
@@ -152,7 +152,7 @@ def render_table(json_results: bytes, fmt: ResultFormat) -> bytes:
 
 def render_graph(triples: Sequence[Triple], fmt: ResultFormat, prefixes: dict[str, str] | None = None) -> bytes:
     """Triples in an RDF syntax; prefixes only where the syntax has them."""
-    use_prefixes = prefixes if fmt.ox_format in (RdfFormat.TURTLE, RdfFormat.RDF_XML) else None
+    use_prefixes = prefixes if fmt.ox_format in (RdfFormat.TURTLE, RdfFormat.RDF_XML, RdfFormat.JSON_LD) else None
     return ox.serialize(list(triples), format=fmt.ox_format, prefixes=use_prefixes or None)
 
 

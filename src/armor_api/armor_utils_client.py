@@ -1,0 +1,7 @@
+"""armor_py_api's ``armor_api.armor_utils_client``, served by :mod:`topostore.armor_api.armor_utils_client`.
+
+``client.utils``: armor_py_api's utility methods (spec §6.5), bugs of §7 item 25 fixed.
+"""
+
+from topostore.armor_api.armor_utils_client import *  # noqa: F401,F403 - the same objects under armor_py_api's module name
+from topostore.armor_api.armor_utils_client import __all__  # noqa: F401
