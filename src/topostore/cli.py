@@ -1,7 +1,8 @@
 """``topostore``: reason, inspect rules, query, serve, run the demo, draw maps.
 
 Errors are printed as one line (``Error: ...``) unless ``--debug`` is given;
-exit codes: 0 success, 1 error, 2 usage error, 3 inconsistent ontology.
+exit codes: 0 success, 1 error, 2 usage error, 3 inconsistent ontology; ``topostore ros``: 4 no ROS
+master reachable, 5 ROS not installed.
 """
 
 from __future__ import annotations
@@ -399,6 +400,13 @@ def bench(args: tuple[str, ...]) -> None:
     env["PYTHONPATH"] = os.pathsep.join(filter(None, [str(root), env.get("PYTHONPATH", "")]))
     code = subprocess.call([sys.executable, "-m", "benchmarks", *args], cwd=root, env=env)
     raise click.exceptions.Exit(code)
+
+
+# --------------------------------------------------------------------------- ros
+
+from .ros.command import ros as _ros_command  # noqa: E402  (imports no ROS module until it runs)
+
+cli.add_command(_ros_command)
 
 
 def main(argv: Sequence[str] | None = None) -> int:
