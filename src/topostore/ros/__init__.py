@@ -22,8 +22,10 @@ DEBIAN_PACKAGES = ("python3-rospy", "python3-rosservice", "python3-genpy", "pyth
 #: Where Debian installs them; the Python of a virtual environment does not search it.
 DEBIAN_DIST_PACKAGES = Path("/usr/lib/python3/dist-packages")
 
-SINGLE_SERVICE = "/armor_interface_srv"
-SERIALIZED_SERVICE = "/armor_interface_serialized_srv"
+#: Relative names, as aRMOR advertises them: ``/armor_interface_srv`` in the root
+#: namespace, ``/robot1/armor_interface_srv`` for a node started with ``__ns:=/robot1``.
+SINGLE_SERVICE = "armor_interface_srv"
+SERIALIZED_SERVICE = "armor_interface_serialized_srv"
 DEFAULT_NODE_NAME = "armor_service"
 
 #: ``topostore ros`` exit codes beyond the CLI's 0-3.

@@ -14,8 +14,7 @@ from typing import NoReturn
 import click
 
 from .. import __version__
-from . import (DEFAULT_NODE_NAME, EXIT_NO_MASTER, EXIT_NO_ROS, SERIALIZED_SERVICE, SINGLE_SERVICE, RosUnavailable,
-               require_ros)
+from . import DEFAULT_NODE_NAME, EXIT_NO_MASTER, EXIT_NO_ROS, RosUnavailable, require_ros
 
 
 @click.command("ros", context_settings={"ignore_unknown_options": True})
@@ -27,7 +26,7 @@ from . import (DEFAULT_NODE_NAME, EXIT_NO_MASTER, EXIT_NO_ROS, SERIALIZED_SERVIC
 @click.option("--env", "print_env", is_flag=True,
               help="Print the export lines that let rosservice, rosmsg and rospy scripts find armor_msgs; start nothing.")
 @click.option("--master-timeout", default=3.0, show_default=True, type=click.FloatRange(min=0, min_open=True),
-              help="Seconds to wait for the ROS master to answer at start-up.")
+              help="Seconds to wait for the ROS master at start-up (exit 4 after).")
 @click.argument("ros_args", nargs=-1, type=click.UNPROCESSED, metavar="[NAME:=VALUE]...")
 def ros(name: str, data_dir: str, short_names: bool, print_env: bool, master_timeout: float,
         ros_args: tuple[str, ...]) -> None:
@@ -72,8 +71,9 @@ def ros(name: str, data_dir: str, short_names: bool, print_env: bool, master_tim
     data.mkdir(parents=True, exist_ok=True)
     node = ArmorNode(ArmorService(data_dir=data, short_names=short_names), work, name, ros_args)
     node.start()
-    click.echo(f"topostore {__version__}: ROS node {node.resolved_name} (master {uri}) serving {SINGLE_SERVICE} "
-               f"and {SERIALIZED_SERVICE} (data directory {data.resolve()})", err=True)
+    single, serialized = node.service_names
+    click.echo(f"topostore {__version__}: ROS node {node.resolved_name} (master {uri}) serving {single} "
+               f"and {serialized} (data directory {data.resolve()})", err=True)
     node.spin()
 
 

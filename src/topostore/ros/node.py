@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import socket
 import sys
+import time
 import xmlrpc.client
 from collections.abc import Sequence
 from typing import Any
@@ -40,14 +41,22 @@ def check_master(uri: str, timeout: float = 3.0) -> None:
     """Raise :class:`NoMaster` unless the master at ``uri`` answers within ``timeout`` seconds.
 
     rospy itself would wait for a master forever, retrying in the background;
-    a service that is started without one should say so and stop instead.
+    a service that is started without one should say so and stop instead.  The
+    master is asked again until the time is up, so a node started together
+    with ``roscore`` (a script, a boot sequence) waits for it.
     """
-    proxy = xmlrpc.client.ServerProxy(uri, transport=_TimeoutTransport(timeout))
-    try:
-        code, message, _pid = proxy.getPid("/topostore_probe")
-    except (OSError, xmlrpc.client.Error, socket.timeout) as exc:
-        raise NoMaster(f"no ROS master reachable at {uri} ({_reason(exc)}); start `roscore` or set "
-                       f"ROS_MASTER_URI") from None
+    deadline = time.monotonic() + timeout
+    while True:
+        left = deadline - time.monotonic()
+        proxy = xmlrpc.client.ServerProxy(uri, transport=_TimeoutTransport(max(left, 0.1)))
+        try:
+            code, message, _pid = proxy.getPid("/topostore_probe")
+            break
+        except (OSError, xmlrpc.client.Error, socket.timeout) as exc:
+            if time.monotonic() + 0.25 >= deadline:
+                raise NoMaster(f"no ROS master reachable at {uri} within {timeout:g} s ({_reason(exc)}); "
+                               f"start `roscore` or set ROS_MASTER_URI") from None
+            time.sleep(0.25)
     if code != 1:
         raise NoMaster(f"the ROS master at {uri} refused a request: {message}")
 
@@ -88,6 +97,11 @@ class ArmorNode:
         rospy.init_node(self.name, argv=[sys.argv[0], *self.ros_args])
         self._servers = [rospy.Service(SINGLE_SERVICE, ArmorDirective, self._single),
                          rospy.Service(SERIALIZED_SERVICE, ArmorDirectiveList, self._serialized)]
+
+    @property
+    def service_names(self) -> tuple[str, str]:
+        """The resolved names of the single and the serialized service."""
+        return tuple(server.resolved_name for server in self._servers)  # type: ignore[return-value]
 
     @property
     def resolved_name(self) -> str:

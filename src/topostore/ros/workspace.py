@@ -82,7 +82,7 @@ def generation_key() -> str:
     digest = hashlib.sha256()
     for part in (__version__, sys.executable, getattr(genpy, "__version__", ""), launcher.SCRIPT_VERSION):
         digest.update(str(part).encode() + b"\0")
-    for path in msgs.definition_files():
+    for path in [*msgs.definition_files(), launcher.LAUNCH_FILE]:
         digest.update(path.name.encode() + b"\0" + path.read_bytes() + b"\0")
     return digest.hexdigest()[:16]
 
