@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import re
 import os
 import signal
 import socket
@@ -314,3 +315,44 @@ def wait_until(condition, seconds: float = 30.0) -> None:
     deadline = time.monotonic() + seconds
     while not condition() and time.monotonic() < deadline:
         time.sleep(0.2)
+
+
+# ------------------------------------------------------------------ the README's ROS section
+
+def readme_ros_block() -> str:
+    text = (ROOT / "README.md").read_text()
+    section = text.split("## aRMOR over ROS", 1)[1].split("\n## ", 1)[0]
+    (block,) = re.findall(r"```sh\n(.*?)```", section, re.S)
+    return block
+
+
+def test_readme_ros_section_runs_as_written(tmp_path: Path) -> None:
+    """The README's shell block, in a scratch copy of the repository layout, on a free port instead of 11311."""
+    skip_without_ros()
+    port = free_port()
+    (tmp_path / ".venv").symlink_to(Path(sys.executable).parents[1])  # the project's venv, pyvenv.cfg and all
+    (tmp_path / "ontology").symlink_to(ROOT / "ontology")
+    env = dict(os.environ, ROS_MASTER_URI=f"http://127.0.0.1:{port}", ROS_HOSTNAME="127.0.0.1",
+               ROS_HOME=str(tmp_path / "ros_home"), TOPOSTORE_ROS_DIR=str(tmp_path / "cache"))
+    script = "set -e\n" + readme_ros_block().replace("11311", str(port))
+    with (tmp_path / "out.txt").open("w") as out_file, (tmp_path / "err.txt").open("w") as err_file:
+        proc = subprocess.Popen(["bash", "-c", script], cwd=tmp_path, env=env, stdout=out_file, stderr=err_file,
+                                start_new_session=True)
+    try:
+        proc.wait(180)
+    finally:
+        for sig in (signal.SIGINT, signal.SIGKILL):  # whatever the block left running when it failed
+            try:
+                os.killpg(proc.pid, sig)
+            except ProcessLookupError:
+                break
+            wait_until(lambda: proc.poll() is not None, 10)
+        proc.wait(10)
+    out, err = (tmp_path / "out.txt").read_text(), (tmp_path / "err.txt").read_text()
+    assert proc.returncode == 0, err
+    assert "39cbf11e18dc47e2c7b5fda84e5d8c39" in out
+    r1, r2, c1 = (f"<http://bnc/exp-rob-lab/2022-23#{n}>" for n in ("R1", "R2", "C1"))
+    assert f"  queried_objects: \n    - {r1}\n    - {r2}\n" in out  # rosservice prints lists as YAML blocks
+    assert f"    queried_objects: \n      - {c1}\n" in out
+    assert "queried_objects: \n  - CORRIDOR\n" in out
+    assert (tmp_path / "data" / "map.ttl").exists()
