@@ -255,6 +255,17 @@ def test_no_master_is_a_one_line_error_with_exit_4(tmp_path: Path) -> None:
     assert done.stderr.count("\n") == 1 and done.stderr.startswith("Error: no ROS master reachable at http://127.0.0.1:")
 
 
+def test_without_ros_exit_5_says_what_to_install(tmp_path: Path) -> None:
+    """A Python where rospy cannot be imported (here: shadowed by a module that refuses to load)."""
+    (tmp_path / "rospy.py").write_text("raise ImportError('rospy hidden by the test')\n")
+    env = dict(os.environ, PYTHONPATH=str(tmp_path), TOPOSTORE_ROS_DIR=str(tmp_path / "c"))
+    done = subprocess.run([TOPOSTORE, "ros", "--env"], env=env, capture_output=True, text=True, timeout=60)
+    assert done.returncode == 5
+    assert done.stdout == ""
+    assert done.stderr.count("\n") == 1
+    assert "python3-rospy python3-rosservice python3-genpy python3-genmsg ros-core" in done.stderr
+
+
 def test_stray_argument_is_a_usage_error() -> None:
     done = subprocess.run([TOPOSTORE, "ros", "surprise"], capture_output=True, text=True, timeout=60)
     assert done.returncode == 2
