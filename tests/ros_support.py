@@ -61,6 +61,7 @@ class RosWorld:
     home: Path
     master: subprocess.Popen
     nodes: list[subprocess.Popen] = field(default_factory=list)
+    data_dir: Path | None = None
 
     @property
     def uri(self) -> str:

@@ -44,13 +44,12 @@ class Workspace:
     def share_dir(self) -> Path:
         return self.root / "share"
 
-    def export_lines(self, environ: Mapping[str, str] | None = None) -> list[str]:
+    def export_lines(self) -> list[str]:
         """``export`` lines (POSIX shell) putting this folder first on PYTHONPATH and ROS_PACKAGE_PATH.
 
         Existing values are kept after ours, expanded when the lines are
         evaluated (``eval "$(topostore ros --env)"``), not when printed.
         """
-        del environ  # the lines reference the variables instead of copying them
         return [_prepend("PYTHONPATH", self.python_dir), _prepend("ROS_PACKAGE_PATH", self.share_dir)]
 
     def activate(self) -> None:
