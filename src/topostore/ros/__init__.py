@@ -39,9 +39,9 @@ class RosUnavailable(TopostoreError):
 
 def install_hint() -> str:
     """What to install, said the same way by the CLI and by skipped tests."""
-    return (f"install Debian's ROS 1 packages ({' '.join(DEBIAN_PACKAGES)}: `apt-get install "
-            f"{' '.join(DEBIAN_PACKAGES)}`) and make {DEBIAN_DIST_PACKAGES} visible to this Python "
-            f"(`make test` does both when run as root on Debian)")
+    return (f"install Debian's ROS 1 packages (`apt-get install {' '.join(DEBIAN_PACKAGES)}`) and make "
+            f"{DEBIAN_DIST_PACKAGES} visible to this Python (`make ros-deps`, part of `make test`, does both "
+            f"when run as root on Debian)")
 
 
 def require_ros() -> None:
