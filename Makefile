@@ -4,7 +4,7 @@ VENV   := .venv
 BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.installed
 
-.PHONY: run test bench bench-full demo clean browser vendor-js
+.PHONY: run test bench bench-full demo clean browser vendor-js ros-deps
 
 $(STAMP): pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -15,7 +15,7 @@ $(STAMP): pyproject.toml
 run: $(STAMP)
 	$(BIN)/topostore demo
 
-test: $(STAMP) browser
+test: $(STAMP) browser ros-deps
 	$(BIN)/python -m pytest
 
 # The live-map page is tested in Debian's chromium (driven by Playwright, a test extra); as
@@ -27,6 +27,23 @@ browser:
 # Cytoscape.js for the live map page, fetched from the npm registry into src/topostore/static/.
 vendor-js:
 	sh scripts/vendor-cytoscape.sh
+
+# ROS 1 for `topostore ros` and tests/test_ros*.py, from Debian's packages: installed
+# when running as root on Debian (CI), skipped elsewhere (the ROS tests then say what
+# to install).  The venv sees Debian's /usr/lib/python3/dist-packages through a .pth
+# file appended after its own packages (README, "aRMOR over ROS", says why).
+ROS_DEBS := python3-rospy python3-rosservice python3-genpy python3-genmsg ros-core
+ros-deps: $(STAMP)
+	@missing=$$(for p in $(ROS_DEBS); do dpkg-query -W -f='$${Status}' $$p 2>/dev/null | grep -q "ok installed" || echo $$p; done); \
+	if [ -n "$$missing" ] && [ "$$(id -u)" = 0 ] && [ -f /etc/debian_version ] && command -v apt-get >/dev/null; then \
+	  echo "installing ROS 1 from Debian:" $$missing; \
+	  (apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends $$missing >/dev/null) \
+	    || echo "warning: could not install $$missing; the ROS tests will be skipped"; \
+	fi
+	@$(BIN)/python -c 'import sys, sysconfig, pathlib; d = pathlib.Path("/usr/lib/python3/dist-packages"); \
+	  same = pathlib.Path("/usr/lib/python%d.%d" % sys.version_info[:2]).is_dir(); \
+	  pth = pathlib.Path(sysconfig.get_paths()["purelib"], "debian-ros.pth"); \
+	  (d / "rospy").is_dir() and same and pth.write_text(str(d) + "\n")'
 
 # Benchmarks need the `bench` extra (matplotlib for the plot; Owlready2 for the
 # optional Pellet peer, which also needs `java`).  Results go to out/bench/.

@@ -2,7 +2,8 @@
 
 Errors are printed as one line (``Error: ...``) unless ``--debug`` is given;
 exit codes: 0 success, 1 error, 2 usage error, 3 inconsistent ontology,
-4 ``serve`` cannot listen (the port is in use or the address is not this machine's).
+4 ``serve`` cannot listen (the port is in use or the address is not this machine's);
+``topostore ros``: 4 no ROS master reachable, 5 ROS not installed.
 """
 
 from __future__ import annotations
@@ -459,6 +460,11 @@ def bench(args: tuple[str, ...]) -> None:
 
 
 from . import cli_explain  # noqa: E402,F401  (registers `topostore explain`)
+# --------------------------------------------------------------------------- ros
+
+from .ros.command import ros as _ros_command  # noqa: E402  (imports no ROS module until it runs)
+
+cli.add_command(_ros_command)
 
 
 def main(argv: Sequence[str] | None = None) -> int:
