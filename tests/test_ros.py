@@ -399,7 +399,7 @@ def test_readme_ros_section_runs_as_written(tmp_path: Path) -> None:
 def test_armor_api_client_over_ros(world: RosWorld) -> None:
     """topostore's armor_py_api client with RosTransport: the tutorial as robot code writes it."""
     result = client_result(rospy_client_raw(world, "armor_api", "apiRef"))["result"]
-    assert result == {"reach_from_E": ["R3", "R4"], "now": ["1665579740"], "batch": [True, True, [0, 0]],
+    assert result == {"reach_from_E": ["R3", "R4"], "now": ['"1665579740"^^xsd:long'], "batch": [True, True, [0, 0]],
                       "reach_from_R3": ["E"], "urgent": ["R3", "R4"], "refused": 208,
                       "unreachable": "/no_such_srv"}
 
