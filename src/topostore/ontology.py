@@ -31,6 +31,8 @@ from .queries import QueryItem, bind, collect, get_named_query, render_jena, to_
 from .reason import ReasonStats, Violation, classify
 from .reason.incremental import DEFAULT_MAX_CHANGE_SHARE, IncrementalReasoner
 from .store import Store, fresh_skolem, guess_format, serialize
+from .stores import StoreSpec, check_rules, open_store
+from .stores import state as durable_state
 from .terms import Term, entity, literal_of, value_key
 from .reason.entailed import publish_entailed
 from .vocab import (
@@ -68,8 +70,9 @@ class ReasonReport:
 class Ontology:
     """One ontology: asserted and inferred graphs in an Oxigraph store, plus its rules."""
 
-    def __init__(self, prefix: str | None = None, store: Store | None = None) -> None:
-        self.store = store or Store()
+    def __init__(self, prefix: str | None = None, store: Store | StoreSpec = None) -> None:
+        """``store``: a Store, or a store setting (None: memory; a directory; an http(s) SPARQL server URL)."""
+        self.store = store if isinstance(store, Store) else open_store(store)
         self._prefix = prefix
         self._rules: RuleSet | None = None
         self._superclasses: dict | None = None
@@ -83,12 +86,19 @@ class Ontology:
         self._reasoner: IncrementalReasoner | None = None
         #: share of the asserted graph above which REASON recomputes from scratch
         self.max_change_share = DEFAULT_MAX_CHANGE_SHARE
+        #: how a durable store was found: "new", "reopened" or "rebuilt" (see stores/state.py)
+        self.opened = durable_state.reopen(self)
+
+    def restore_report(self, consistent: bool, dirty: bool) -> None:
+        """State of a reopened durable ontology: its last REASON's outcome (no violations kept)."""
+        self._report = ReasonReport(consistent)
+        self.dirty = dirty
 
     # ------------------------------------------------------------------ loading
     @classmethod
     def from_file(cls, *paths: str | os.PathLike[str], prefix: str | None = None, fmt: str | None = None,
-                  base_iri: str | None = None) -> "Ontology":
-        onto = cls(prefix=prefix)
+                  base_iri: str | None = None, store: Store | StoreSpec = None) -> "Ontology":
+        onto = cls(prefix=prefix, store=store)
         for p in paths:
             onto.load(p, fmt=fmt, base_iri=base_iri)
         return onto
@@ -116,6 +126,7 @@ class Ontology:
         scratch.add(self.store.triples(graph=ASSERTED), ASSERTED)
         scratch.add(triples, ASSERTED)
         rules = compile_ontology(scratch, ASSERTED)  # raises RuleCompileError, nothing added
+        check_rules(self.store, rules)
         added = self.add(*triples)
         self._rules = rules
         return added
@@ -167,6 +178,7 @@ class Ontology:
 
     def _touch(self, triples: Iterable[Triple]) -> None:
         self.dirty = True
+        durable_state.note_changed(self.store)
         if any(is_schema_triple(t) for t in triples):
             self._rules = None
             self._superclasses = None
@@ -297,7 +309,9 @@ class Ontology:
     def rules(self) -> RuleSet:
         """The compiled rules (recompiled when the TBox or the SWRL rules change)."""
         if self._rules is None:
-            self._rules = compile_ontology(self.store, ASSERTED)
+            rules = compile_ontology(self.store, ASSERTED)
+            check_rules(self.store, rules)
+            self._rules = rules
         return self._rules
 
     def reason(self, profile: bool = False, mode: str = "auto") -> ReasonReport:
@@ -320,6 +334,7 @@ class Ontology:
         self._reasoner.max_change_share = self.max_change_share
         added, removed = list(self._added), list(self._removed)
         self._stop_tracking()
+        durable_state.begin_reason(self.store)
         try:
             stats, violations = self._reasoner.reason(added, removed, mode=mode, profile=profile,
                                                       forced_reason=forced)
@@ -329,6 +344,7 @@ class Ontology:
         self.store.maybe_compact()
         self._report = ReasonReport(not violations, violations, stats)
         self.dirty = False
+        durable_state.end_reason(self.store, self._report.consistent)
         return self._report
 
     @property

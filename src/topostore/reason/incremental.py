@@ -185,7 +185,7 @@ class IncrementalReasoner:
         self.checks_monotone = all(not negates_exists(c.filters) and c.stratum == 0 for c in rules.checks)
         self._texts: dict[tuple, str] = {}
         self._queue: list[str] = []
-        self._lateral = True  # is the graph the next evaluation starts from small?
+        self._lateral = store.supports_lateral  # is the graph the next evaluation starts from small?
         self._counts: KeyCounts = ({}, {})  # read keys of the graph evaluations start from
         self.profile = False
 
@@ -448,7 +448,7 @@ class IncrementalReasoner:
             if any(matches(k, preds, classes) for k in rule.filter_reads):
                 wheres = [rule.where()] if feasible(rule, self.state.present) else []
             else:
-                wheres = [plan_where(rule, j, NEW_FACTS, lateral=is_small(counts, a.read_key()))
+                wheres = [plan_where(rule, j, NEW_FACTS, lateral=is_small(counts, a.read_key()) and self.store.supports_lateral)
                           for j, a in enumerate(rule.body)
                           if matches(a.read_key(), preds, classes) and feasible(rule, self.state.present, j)]
             for where in wheres:
@@ -465,7 +465,7 @@ class IncrementalReasoner:
         gives the same result and saves the per-request cost (~0.1 ms each).
         When profiling, each runs on its own to be timed.
         """
-        self._lateral = is_small(self._counts, rule_start(self.rules[i], j, key[0]))
+        self._lateral = is_small(self._counts, rule_start(self.rules[i], j, key[0])) and self.store.supports_lateral
         key = (*key, self._lateral)
         text = self._texts.get(key)
         if text is None:
