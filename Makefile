@@ -4,7 +4,7 @@ VENV   := .venv
 BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.installed
 
-.PHONY: run test bench bench-full demo clean
+.PHONY: run test bench bench-full demo clean virtuoso
 
 $(STAMP): pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -15,8 +15,15 @@ $(STAMP): pyproject.toml
 run: $(STAMP)
 	$(BIN)/topostore demo
 
-test: $(STAMP)
+test: $(STAMP) virtuoso
 	$(BIN)/python -m pytest
+
+# Virtuoso, the second SPARQL 1.1 server of the remote-store tests (Debian's package, installed
+# when running as root on Debian; the tests say loudly when it is missing).
+virtuoso:
+	@command -v virtuoso-t >/dev/null || { [ "$$(id -u)" = 0 ] && command -v apt-get >/dev/null && \
+	  (apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq virtuoso-opensource >/dev/null) \
+	  || echo "virtuoso-opensource not installed: the Virtuoso remote-store tests will be skipped"; }
 
 # Benchmarks need the `bench` extra (matplotlib for the plot; Owlready2 for the
 # optional Pellet peer, which also needs `java`).  Results go to out/bench/.
