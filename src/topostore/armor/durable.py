@@ -134,6 +134,10 @@ class DurableReferences:
         ref = Reference(name, onto, data["iri"], Path(data["source"]) if data.get("source") else None,
                         bool(data["buffered_manipulation"]), data["reasoner"], bool(data["buffered_reasoner"]),
                         owner=data.get("owner"))
+        if not ref.buffered_reasoner and onto.dirty:
+            # a live reasoner has seen every applied change: a change committed by a process killed
+            # before its REASON finished is reasoned now (the change itself was never acknowledged)
+            onto.reason()
         self._replay(service, ref, data.get("buffer") or [])
         ref.persist = self.persist
         logger.info("reference %r reopened from %s (%s, %d buffered)", name, self.spec, onto.opened, len(ref.buffer))
