@@ -19,14 +19,13 @@ import subprocess
 import sys
 import threading
 import time
-from collections.abc import Iterator
 from pathlib import Path
 
 import httpx
 import pytest
 from pyoxigraph import NamedNode, Triple
 
-from servers import free_port, oxigraph_server
+from servers import free_port
 from test_swrl import PREFIXES, builtin, data, rule
 from topostore import Ontology, RuleCompileError
 from topostore.armor import ArmorService
@@ -169,12 +168,6 @@ def test_kill_minus_nine_loses_no_acknowledged_write(tmp_path: Path) -> None:
 
 # --------------------------------------------------------------------------- restarts in-process
 
-@pytest.fixture(scope="module")
-def oxigraph_url() -> Iterator[str]:
-    with oxigraph_server() as url:
-        yield url
-
-
 def store_setting(kind: str, request, tmp_path: Path) -> str:
     return str(tmp_path / "refs") if kind == "disk" else request.getfixturevalue("oxigraph_url")
 
@@ -262,12 +255,14 @@ def test_rule_needing_an_extension_function_is_refused_on_a_remote_store(oxigrap
     assert remote.store.is_empty(ASSERTED)
 
 
-def test_two_services_on_one_remote_store(oxigraph_url: str) -> None:
-    first = ArmorService(data_dir=ROOT, store=oxigraph_url)
+@pytest.mark.parametrize("server", ["oxigraph", "virtuoso"])
+def test_two_services_on_one_remote_store(server: str, request) -> None:
+    url = request.getfixturevalue(f"{server}_url")
+    first = ArmorService(data_dir=ROOT, store=url)
     second = None
     try:
         assert armor(first, "LOAD", "FILE", "", str(TBOX), IRI, "false", "PELLET", "false", ref="shared").success
-        second = ArmorService(data_dir=ROOT, store=oxigraph_url)
+        second = ArmorService(data_dir=ROOT, store=url)
         assert "shared" not in second.reference_names()  # held by the first service: not opened
         refused = armor(second, "LOAD", "FILE", "", str(TBOX), IRI, "false", "PELLET", "false", ref="shared")
         assert (refused.success, refused.exit_code) == (False, 102)

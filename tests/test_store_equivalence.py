@@ -10,33 +10,16 @@ on every store too.  Virtuoso is skipped, loudly, only where it cannot be instal
 from __future__ import annotations
 
 import itertools
-from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
 
-from servers import oxigraph_server, virtuoso_available, virtuoso_server
 from test_pellet_differential import ABOX, NAMES, SCENARIOS, generated, topostore
 from topostore import Ontology, mapgen
 from topostore.stores import open_store
 
 STORES = ["disk", "oxigraph", "virtuoso"]
 _counter = itertools.count()
-
-
-@pytest.fixture(scope="module")
-def oxigraph_url() -> Iterator[str]:
-    with oxigraph_server() as url:
-        yield url
-
-
-@pytest.fixture(scope="module")
-def virtuoso_url() -> Iterator[str]:
-    if not virtuoso_available():
-        pytest.skip("VIRTUOSO NOT INSTALLED: the second SPARQL server is missing; "
-                    "apt-get install virtuoso-opensource (make test does this as root on Debian)")
-    with virtuoso_server() as url:
-        yield url
 
 
 def store_for(kind: str, request, tmp_path: Path):
@@ -102,3 +85,62 @@ def onto_graph():
     from topostore.vocab import ASSERTED
 
     return ASSERTED
+
+
+# --------------------------------------------------------------------------- the tutorial through aRMOR
+
+TBOX = Path(__file__).resolve().parents[2] / "shared" / "ontology" / "topological_map.owl"
+IRI = "http://bnc/exp-rob-lab/2022-23"
+#: The seed tutorial's requests (tests/test_armor_service.py::test_seed_tutorial), then queries of every
+#: kind, a removal and raw SPARQL: each response must be the same on every store.
+TUTORIAL = [
+    ("LOAD", "FILE", "", [str(TBOX), IRI, "true", "PELLET", "true"]),
+    ("ADD", "OBJECTPROP", "IND", ["hasDoor", "E", "D6"]),
+    ("ADD", "OBJECTPROP", "IND", ["hasDoor", "E", "D7"]),
+    ("ADD", "OBJECTPROP", "IND", ["hasDoor", "R3", "D6"]),
+    ("ADD", "DATAPROP", "IND", ["visitedAt", "E", "LONG", "1665579700"]),
+    ("ADD", "DATAPROP", "IND", ["visitedAt", "R3", "LONG", "1665579735"]),
+    ("DISJOINT", "IND", "", ["E", "R3", "D6", "D7"]),
+    ("ADD", "OBJECTPROP", "IND", ["isIn", "Robot1", "R3"]),
+    ("REPLACE", "OBJECTPROP", "IND", ["isIn", "Robot1", "E", "R3"]),
+    ("REASON", "", "", []),
+    ("QUERY", "DATAPROP", "IND", ["now", "Robot1"]),
+    ("REPLACE", "DATAPROP", "IND", ["now", "Robot1", "LONG", "1665579750", "1665579740"]),
+    ("REPLACE", "DATAPROP", "IND", ["visitedAt", "E", "LONG", "1665579750", "1665579700"]),
+    ("REASON", "", "", []),
+    ("QUERY", "OBJECTPROP", "IND", ["canReach", "Robot1"]),
+    ("QUERY", "IND", "CLASS", ["URGENT"]),
+    ("QUERY", "CLASS", "IND", ["E", "false"]),
+    ("QUERY", "CLASS", "IND", ["E", "true"]),
+    ("QUERY", "IND", "", ["R3"]),
+    ("QUERY", "OBJECTPROP", "IND", ["connectedTo", "E"]),
+    ("QUERY", "SPARQL", "", ["PREFIX : <http://bnc/exp-rob-lab/2022-23#> SELECT ?l ?t WHERE { ?l a :URGENT ; :visitedAt ?t }", "5000"]),
+    ("REMOVE", "IND", "", ["D7"]),
+    ("REASON", "", "", []),
+    ("QUERY", "IND", "CLASS", ["CORRIDOR"]),
+    ("ADD", "OBJECTPROP", "IND", ["hasDoor", "R3", "R3"]),  # a location that is a door: inconsistent
+    ("REASON", "", "", []),
+    ("QUERY", "OBJECTPROP", "IND", ["canReach", "Robot1"]),
+]
+
+
+def tutorial_answers(store) -> list[dict]:
+    from topostore.armor import ArmorService
+
+    service = ArmorService(store=store)
+    try:
+        return [service.call({"client_name": "c", "reference_name": f"tutorial-{next(_counter)}" if i == -1 else "tut",
+                              "command": c, "primary_command_spec": s1, "secondary_command_spec": s2,
+                              "args": list(args)}).to_dict()
+                for i, (c, s1, s2, args) in enumerate(TUTORIAL)]
+    finally:
+        service.close()
+
+
+@pytest.mark.parametrize("kind", STORES)
+def test_tutorial_answers_equal_in_memory(kind: str, request, tmp_path: Path) -> None:
+    expected = tutorial_answers(None)
+    assert all(a["success"] for a in expected) and not expected[-2]["is_consistent"]
+    assert expected[20]["queried_objects"] == ["{l=http://bnc/exp-rob-lab/2022-23#R3, t=1665579735^^http://www.w3.org/2001/XMLSchema#long}"]
+    spec = str(tmp_path / "refs") if kind == "disk" else request.getfixturevalue(f"{kind}_url")
+    assert tutorial_answers(spec) == expected

@@ -71,12 +71,14 @@ class WriterLease:
         me = Literal(self.holder)
         expires = Literal(f"{time.time() + self.lease:.3f}", datatype=NamedNode(XSD + "decimal"))
         other = f" && ?h != {Literal(steal)}" if steal else ""
+        free = (f"FILTER NOT EXISTS {{ GRAPH {LOCK_GRAPH} {{ {_LOCK} {_HOLDER} ?h . {_LOCK} {_EXPIRES} ?e }} "
+                f"FILTER(?h != {me} && ?e > {time.time():.3f}{other}) }}")
+        # two operations of one request (one transaction): the old lease goes, this one comes, both only
+        # where no other live lease exists (one DELETE/INSERT with an OPTIONAL does the same, but Virtuoso
+        # 7.2 then inserts nothing)
         self.store.update(
-            f"DELETE {{ GRAPH {LOCK_GRAPH} {{ {_LOCK} ?p ?o }} }}\n"
-            f"INSERT {{ GRAPH {LOCK_GRAPH} {{ {_LOCK} {_HOLDER} {me} . {_LOCK} {_EXPIRES} {expires} }} }}\n"
-            f"WHERE {{\n  FILTER NOT EXISTS {{ GRAPH {LOCK_GRAPH} {{ {_LOCK} {_HOLDER} ?h . {_LOCK} {_EXPIRES} ?e }} "
-            f"FILTER(?h != {me} && ?e > {time.time():.3f}{other}) }}\n"
-            f"  OPTIONAL {{ GRAPH {LOCK_GRAPH} {{ {_LOCK} ?p ?o }} }}\n}}")
+            f"DELETE {{ GRAPH {LOCK_GRAPH} {{ {_LOCK} ?p ?o }} }} WHERE {{ GRAPH {LOCK_GRAPH} {{ {_LOCK} ?p ?o }} {free} }} ;\n"
+            f"INSERT {{ GRAPH {LOCK_GRAPH} {{ {_LOCK} {_HOLDER} {me} . {_LOCK} {_EXPIRES} {expires} }} }} WHERE {{ {free} }}")
 
     def claim(self, what: str) -> None:
         """Take the lock or raise :class:`StoreLockedError` saying who holds it."""
