@@ -74,6 +74,7 @@ class Ontology:
         """``store``: a Store, or a store setting (None: memory; a directory; an http(s) SPARQL server URL)."""
         self.store = store if isinstance(store, Store) else open_store(store)
         self._prefix = prefix
+        self._found_prefix: str | None = None
         self._rules: RuleSet | None = None
         self._superclasses: dict | None = None
         self._report: ReasonReport | None = None
@@ -135,11 +136,14 @@ class Ontology:
     def prefix(self) -> str:
         """Namespace for entity names: the ontology IRI + '#' unless given."""
         if self._prefix is None:
-            for t in self.store.triples(None, TYPE, owl("Ontology"), ASSERTED):
-                if isinstance(t.subject, NamedNode):
-                    iri = t.subject.value
-                    return iri if iri.endswith(("#", "/")) else iri + "#"
-            return "urn:topostore:default#"
+            if self._found_prefix is None:  # looked up once per schema change (a round trip on a server)
+                self._found_prefix = "urn:topostore:default#"
+                for t in self.store.triples(None, TYPE, owl("Ontology"), ASSERTED):
+                    if isinstance(t.subject, NamedNode):
+                        iri = t.subject.value
+                        self._found_prefix = iri if iri.endswith(("#", "/")) else iri + "#"
+                        break
+            return self._found_prefix
         return self._prefix
 
     @prefix.setter
@@ -182,6 +186,7 @@ class Ontology:
         if any(is_schema_triple(t) for t in triples):
             self._rules = None
             self._superclasses = None
+            self._found_prefix = None
             self._stop_tracking()
 
     def _track(self, triples: Iterable[Triple], added: bool) -> None:
@@ -255,14 +260,15 @@ class Ontology:
         """
         new_t = self.fact(subject, prop, new)
         s, p = new_t.subject, new_t.predicate
-        if old is None:
-            olds = list(self.store.triples(s, p, None, ASSERTED))
-        else:
-            old_t = self.fact(subject, prop, old)
-            key = value_key(old_t.object)
-            olds = [t for t in self.store.triples(s, p, None, ASSERTED) if value_key(t.object) == key]
-        self.remove(*olds)
-        self.add(new_t)
+        with self.store.transaction():  # one commit: a durable store never holds half a REPLACE
+            if old is None:
+                olds = list(self.store.triples(s, p, None, ASSERTED))
+            else:
+                old_t = self.fact(subject, prop, old)
+                key = value_key(old_t.object)
+                olds = [t for t in self.store.triples(s, p, None, ASSERTED) if value_key(t.object) == key]
+            self.remove(*olds)
+            self.add(new_t)
         return len(olds)
 
     def add_all_different(self, names: Sequence[str | NamedNode]) -> NamedNode:

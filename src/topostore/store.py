@@ -166,6 +166,8 @@ class Store:
         self._value_forms: dict[tuple, dict[Literal, int]] = {}
         # quad key -> (quad, present after commit) while a transaction is open
         self._pending: dict[tuple, tuple[Quad, bool]] | None = None
+        # quad key -> present in the committed store, learnt during the open transaction (saves round trips)
+        self._known: dict[tuple, bool] = {}
         self._depth = 0
         self._meta: dict[str, object] | None = None
         self._meta_pending: dict[str, object] = {}
@@ -234,18 +236,19 @@ class Store:
         if self._depth == 0:
             self._pending = {}
             self._meta_pending = {}
+            self._known = {}
         self._depth += 1
         try:
             yield self
         except BaseException:
             self._depth -= 1
             if self._depth == 0:
-                self._pending, self._meta_pending = None, {}
+                self._pending, self._meta_pending, self._known = None, {}, {}
             raise
         self._depth -= 1
         if self._depth == 0:
             self._flush()
-            self._pending = None
+            self._pending, self._known = None, {}
 
     def _flush(self) -> None:
         """Commit the pending writes of the open transaction (also the persisted state)."""
@@ -270,10 +273,12 @@ class Store:
         return (quad.subject, quad.predicate, value_key(o) if isinstance(o, Literal) else o, quad.graph_name)
 
     def _present(self, quads: list[Quad]) -> list[bool]:
-        pending = self._pending or {}
-        unknown = [q for q in quads if self._key(q) not in pending]
-        known = dict(zip(map(self._key, unknown), self._has_many(unknown))) if unknown else {}
-        return [pending[k][1] if k in pending else known[k] for k in map(self._key, quads)]
+        pending, known = self._pending or {}, self._known
+        unknown = [q for q in quads if self._key(q) not in pending and self._key(q) not in known]
+        found = dict(zip(map(self._key, unknown), self._has_many(unknown))) if unknown else {}
+        if self._pending is not None:
+            known.update(found)
+        return [pending[k][1] if k in pending else known[k] if k in known else found[k] for k in map(self._key, quads)]
 
     # ------------------------------------------------------------ quads
     def add(self, triples: Iterable[Triple], graph: NamedNode) -> int:
@@ -308,11 +313,12 @@ class Store:
         self, s: Term | None = None, p: NamedNode | None = None, o: Term | None = None, graph: NamedNode | None = None
     ) -> Iterator[Triple]:
         pending = self._pending
-        if not pending:
+        if pending is None:
             for q in self._match(s, p, o, graph):
                 yield Triple(q.subject, q.predicate, q.object)
             return
         for q in list(self._match(s, p, o, graph)):
+            self._known[self._key(q)] = True
             entry = pending.get(self._key(q))
             if entry is None or entry[1]:
                 yield Triple(q.subject, q.predicate, q.object)
@@ -437,9 +443,11 @@ class Store:
 
     def _meta_quads(self, meta: dict[str, object]) -> tuple[list[Quad], list[Quad]]:
         adds, removes = [], []
+        self.meta  # noqa: B018 - loads the persisted values once; they name the quads to replace
         for key, value in meta.items():
             pred = NamedNode(META_KEY + key)
-            removes += list(self._match(META_SUBJECT, pred, None, META))
+            if key in self._meta:
+                removes.append(Quad(META_SUBJECT, pred, Literal(json.dumps(self._meta[key], sort_keys=True)), META))
             adds.append(Quad(META_SUBJECT, pred, Literal(json.dumps(value, sort_keys=True)), META))
         return adds, removes
 
@@ -447,6 +455,7 @@ class Store:
     def _flush_open(self) -> None:
         if self._pending:
             self._flush()
+        self._known = {}
 
     def update(self, text: str, prefixes: dict[str, str] | None = None) -> None:
         self._flush_open()
