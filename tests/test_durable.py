@@ -283,3 +283,18 @@ def test_two_services_on_one_remote_store(server: str, request) -> None:
         first.close()
         if second is not None:
             second.close()
+
+
+def test_fleet_demo_shares_one_map_through_a_remote_store(oxigraph_url: str) -> None:
+    from topostore.demo import run_demo
+
+    lines: list[str] = []
+    first = run_demo(None, steps=2, robots=3, store=oxigraph_url, picture=None, emit=lines.append)
+    assert sorted((m.robot, m.step) for m in first.moves) == [(r, s) for r in ("Robot1", "Robot2", "Robot3") for s in (1, 2)]
+    assert all(m.consistent for m in first.moves)
+    trace = [line for line in lines if line.startswith("[")]
+    assert len(trace) == 3 * 2 * 3 and {line[1:7] for line in trace} == {"Robot1", "Robot2", "Robot3"}
+    # a second fleet run continues on the stored map: each robot's clock goes on from where it stopped
+    last = {m.robot: m.time for m in first.moves if m.step == 2}
+    again = run_demo(None, steps=1, robots=3, store=oxigraph_url, picture=None, emit=lambda _: None)
+    assert all(m.time > last[m.robot] for m in again.moves)

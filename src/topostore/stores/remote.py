@@ -32,7 +32,6 @@ from ..errors import QueryError, StoreError
 from ..store import Store
 from ..vocab import INTERNAL
 from .oxigraph import data_update
-from .virtuoso import adapt_update
 
 GRAPH_PREFIX = INTERNAL + "graph:"
 _ACCEPT = "application/sparql-results+xml, application/n-triples;q=0.9, text/turtle;q=0.8"
@@ -65,7 +64,7 @@ class RemoteStore(Store):
     durable = True
 
     def __init__(self, url: str, *, reference: str = "", query_url: str | None = None,
-                 update_url: str | None = None, dialect: str | None = None) -> None:
+                 update_url: str | None = None) -> None:
         super().__init__()
         base = url.rstrip("/")
         single = base.endswith("/sparql")  # Virtuoso and others serve both on one path
@@ -77,21 +76,11 @@ class RemoteStore(Store):
         auth = credentials()
         self._client = httpx.Client(timeout=_TIMEOUT, auth=auth if isinstance(auth, httpx.Auth) else None,
                                     headers=auth if isinstance(auth, dict) else None)
-        self.dialect = dialect or self._detect_dialect()
         #: HTTP requests sent (benchmarks report round trips per step)
         self.requests = 0
         self.load_forms()
 
     # ------------------------------------------------------------ wire
-    def _detect_dialect(self) -> str:
-        try:
-            answer = self._client.get(self.query_url, params={"query": "ASK {}"},
-                                      headers={"Accept": "application/sparql-results+xml"})
-        except httpx.HTTPError as exc:
-            raise StoreError(f"cannot reach the SPARQL server at {self.query_url}: {exc}") from None
-        server = answer.headers.get("server", "").lower()
-        return "virtuoso" if "virtuoso" in server else "standard"
-
     def _out(self, text: str) -> str:
         """Graph names of this reference as the server knows them."""
         return text if self._prefix == GRAPH_PREFIX else text.replace("<" + GRAPH_PREFIX, "<" + self._prefix)
@@ -115,11 +104,7 @@ class RemoteStore(Store):
         return answer
 
     def _run_update(self, text: str, prefixes: dict[str, str] | None) -> None:
-        text = self._out(_with_prefixes(text, prefixes))
-        if self.dialect == "virtuoso":
-            text = adapt_update(text)
-        key = "query" if self.dialect == "virtuoso" else "update"
-        self._post(self.update_url, {key: text})
+        self._post(self.update_url, {"update": self._out(_with_prefixes(text, prefixes))})
 
     def _run_query(self, text: str, graphs: list[NamedNode] | None, **kwargs):
         kwargs.pop("custom_functions", None)
