@@ -74,11 +74,14 @@ class DurableReferences:
         if self.remote:
             from ..stores.lock import WriterLease
 
-            lease = WriterLease(store)
+            # the lease has a connection of its own: its renewals run on another thread than the
+            # manipulations, whose open transaction a shared store object would otherwise commit
+            lease = WriterLease(open_store(self.spec, name, **self.urls))
             try:
                 lease.claim(f"reference {name!r} on {self.spec}")
             except StoreLockedError as exc:
                 store.close()
+                lease.store.close()
                 raise CommandError(codes.MOUNTED_BY_OTHER, str(exc)) from None
             self._leases[name] = lease
             self._start_renewer(lease.lease / 3)
@@ -167,7 +170,7 @@ class DurableReferences:
                 try:
                     if not lease.renew():
                         logger.error("lost the writer lock of reference %r to another process", name)
-                except StoreError as exc:
+                except Exception as exc:  # a server down for a while: the lease may still be renewed later
                     logger.warning("could not renew the writer lock of %r: %s", name, exc)
 
     def held(self, name: str) -> bool:

@@ -103,10 +103,12 @@ class WriterLease:
         return self.held
 
     def release(self) -> None:
+        """Give the lock up (a clean shutdown) and close the lease's connection."""
         if self.held:
             self.store.update(f"DELETE WHERE {{ GRAPH {LOCK_GRAPH} {{ {_LOCK} {_HOLDER} {Literal(self.holder)} . "
                               f"{_LOCK} {_EXPIRES} ?e }} }}")
             self.held = False
+        self.store.close()
 
     def _refuse(self, what: str, holders: list[tuple[str, float]]) -> None:
         who = ", ".join(f"{h} (lease until {time.strftime('%H:%M:%S', time.localtime(e))})" for h, e in holders)
