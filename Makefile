@@ -4,7 +4,7 @@ VENV   := .venv
 BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.installed
 
-.PHONY: run test bench bench-full demo clean virtuoso
+.PHONY: run test bench bench-full bench-stores demo clean virtuoso
 
 $(STAMP): pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -34,6 +34,10 @@ bench: $(STAMP)
 bench-full: $(STAMP)
 	-$(BIN)/pip install --quiet -e ".[bench]"
 	$(BIN)/python -m benchmarks
+
+# Step latency and full REASON per store (memory, disk, disk --sync, oxigraph serve; Virtuoso if installed).
+bench-stores: $(STAMP)
+	$(BIN)/python -m benchmarks.stores --sizes seed,100 --steps 20 --virtuoso
 
 clean:
 	rm -rf $(VENV) out .pytest_cache .hypothesis
