@@ -61,8 +61,8 @@ def run_demo(map_files: Sequence[str | os.PathLike[str]] | None = None, steps: i
     """Run ``steps`` steps; ``time_scale`` = real seconds slept per simulated second (0: no waiting).
 
     With ``store`` (a directory or a SPARQL server URL) the map lives there and the robots are a
-    fleet: each robot is its own client and runs its steps concurrently with the others
-    (:mod:`.fleet`); the trace names the robot on every line.
+    fleet: each robot is a client of its own in a thread of its own (:mod:`.fleet`); the
+    trace names the robot on every line.
     """
     if steps < 0:
         raise TopostoreError("--steps must be 0 or more")
@@ -73,14 +73,12 @@ def run_demo(map_files: Sequence[str | os.PathLike[str]] | None = None, steps: i
     result = DemoResult(robots=list(world.robots))
     try:
         emit(f"Map: {len(world.locations)} locations ({len(world.corridors)} corridors); robots: {', '.join(world.robots)}")
+        in_turn = range(1, steps + 1) if store is None else range(0)  # a fleet runs its own steps
         if store is not None:
             from .fleet import run_fleet
 
             run_fleet(world, steps, seed, time_scale, emit, result)
-            steps_done = []
-        else:
-            steps_done = range(1, steps + 1)
-        for step in steps_done:
+        for step in in_turn:
             emit(f"Step {step}")
             for robot in world.robots:
                 move = _step(world, robot, step, rng)
