@@ -109,6 +109,8 @@ class RemoteStore(Store):
     def _run_query(self, text: str, graphs: list[NamedNode] | None, **kwargs):
         kwargs.pop("custom_functions", None)
         text = self._out(_with_prefixes(text, kwargs.pop("prefixes", None)))
+        if kwargs:  # pyoxigraph-only options would otherwise be ignored silently
+            raise QueryError(f"query options {', '.join(sorted(kwargs))} are not available on a remote SPARQL store")
         data: dict = {"query": text}
         if graphs is not None:
             names = [self._graph_out(g).value for g in graphs]
