@@ -89,3 +89,41 @@ def test_references_are_listed_per_setting(tmp_path: Path, oxigraph_url: str) ->
 def test_a_missing_server_is_a_clear_error() -> None:
     with pytest.raises(StoreError, match="did not answer"):
         open_store("http://127.0.0.1:9/")
+
+
+def test_sync_store_commits_and_reopens(tmp_path: Path) -> None:
+    from topostore.armor import ArmorService
+
+    ttl = Path(__file__).resolve().parents[1] / "ontology" / "topological_map.ttl"
+    service = ArmorService(store=tmp_path / "refs", sync=True)
+    base = {"client_name": "c", "reference_name": "r"}
+    assert service.call({**base, "command": "LOAD", "primary_command_spec": "FILE",
+                         "args": [str(ttl), "http://bnc/exp-rob-lab/2022-23", "false", "", "false"]}).success
+    assert service.call({**base, "command": "ADD", "primary_command_spec": "OBJECTPROP", "secondary_command_spec": "IND",
+                         "args": ["isIn", "Robot1", "C1"]}).success
+    assert service.reference("r").ontology.store.sync is True
+    service.close()
+    service = ArmorService(store=tmp_path / "refs")
+    assert service.call({**base, "command": "QUERY", "primary_command_spec": "OBJECTPROP", "secondary_command_spec": "IND",
+                         "args": ["isIn", "Robot1"]}).queried_objects == ["<http://bnc/exp-rob-lab/2022-23#C1>"]
+    service.close()
+
+
+def test_cli_reason_and_query_on_a_store(tmp_path: Path) -> None:
+    from click.testing import CliRunner
+
+    from topostore.cli import cli
+
+    root = Path(__file__).resolve().parents[1] / "ontology"
+    db = str(tmp_path / "mapdb")
+    first = CliRunner().invoke(cli, ["reason", "--store", db, str(root / "topological_map.ttl"),
+                                     str(root / "topological_map_abox.ttl")])
+    assert first.exit_code == 0 and "Consistent." in first.output, first.output
+    # no files: the stored ontology, reopened
+    answer = CliRunner().invoke(cli, ["query", "--store", db, "reachable-locations", "--param", "robot=Robot1",
+                                      "--format", "json"])
+    assert answer.exit_code == 0, answer.output
+    assert '"location": "http://bnc/exp-rob-lab/2022-23#R1"' in answer.output
+    assert '"location": "http://bnc/exp-rob-lab/2022-23#R2"' in answer.output
+    missing = CliRunner().invoke(cli, ["reason"])
+    assert missing.exit_code == 2 and "--store" in missing.output
