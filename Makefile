@@ -4,7 +4,7 @@ VENV   := .venv
 BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.installed
 
-.PHONY: run test bench bench-full demo clean browser vendor-js ros-deps
+.PHONY: run test bench bench-full bench-stores demo clean browser vendor-js ros-deps virtuoso
 
 $(STAMP): pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -15,7 +15,7 @@ $(STAMP): pyproject.toml
 run: $(STAMP)
 	$(BIN)/topostore demo
 
-test: $(STAMP) browser ros-deps
+test: $(STAMP) browser ros-deps virtuoso
 	$(BIN)/python -m pytest
 
 # The live-map page is tested in Debian's chromium (driven by Playwright, a test extra); as
@@ -45,6 +45,13 @@ ros-deps: $(STAMP)
 	  pth = pathlib.Path(sysconfig.get_paths()["purelib"], "debian-ros.pth"); \
 	  (d / "rospy").is_dir() and same and pth.write_text(str(d) + "\n")'
 
+# Virtuoso, the second SPARQL 1.1 server of the remote-store tests (Debian's package, installed
+# when running as root on Debian; the tests say loudly when it is missing).
+virtuoso:
+	@command -v virtuoso-t >/dev/null || { [ "$$(id -u)" = 0 ] && command -v apt-get >/dev/null && \
+	  (apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq virtuoso-opensource >/dev/null) \
+	  || echo "virtuoso-opensource not installed: the Virtuoso remote-store tests will be skipped"; }
+
 # Benchmarks need the `bench` extra (matplotlib for the plot; Owlready2 for the
 # optional Pellet peer, which also needs `java`).  Results go to out/bench/.
 bench: $(STAMP)
@@ -54,6 +61,10 @@ bench: $(STAMP)
 bench-full: $(STAMP)
 	-$(BIN)/pip install --quiet -e ".[bench]"
 	$(BIN)/python -m benchmarks
+
+# Step latency and full REASON per store (memory, disk, disk --sync, oxigraph serve; Virtuoso if installed).
+bench-stores: $(STAMP)
+	$(BIN)/python -m benchmarks.stores --sizes seed,100 --steps 20 --virtuoso
 
 clean:
 	rm -rf $(VENV) out .pytest_cache .hypothesis

@@ -72,6 +72,8 @@ def cli(ctx: click.Context, debug: bool) -> None:
       topostore reason ontology/topological_map.ttl ontology/topological_map_abox.ttl
       topostore query --list
       topostore serve --port 8765 --data-dir data
+      topostore serve --store data/references        # references survive restarts
+      topostore serve --store http://127.0.0.1:7878  # references on an Oxigraph server
       topostore demo --steps 20 --robots 2
     """
     ctx.meta["topostore.debug"] = debug
@@ -90,9 +92,18 @@ def _progress(enabled: bool = True, console: Console | None = None) -> Iterator[
         yield progress
 
 
-def load_files(files: Sequence[str], fmt: str | None = None, console: Console | None = None) -> Ontology:
-    """Load ``files`` into one ontology, showing how many triples each has given so far."""
-    onto = Ontology()
+def store_option(f):
+    """``--store``: where the ontology lives (memory by default, a directory, or a SPARQL server URL)."""
+    return click.option("--store", "store", metavar="DIR|URL", envvar="TOPOSTORE_STORE",
+                        help="Keep the ontology in a durable store: a directory (RocksDB) or an http(s) SPARQL 1.1 "
+                             "server (URL/query + URL/update); default: in memory. Credentials for a server come "
+                             "from TOPOSTORE_STORE_TOKEN or TOPOSTORE_STORE_USER/TOPOSTORE_STORE_PASSWORD.")(f)
+
+
+def load_files(files: Sequence[str], fmt: str | None = None, console: Console | None = None,
+               store: str | None = None) -> Ontology:
+    """Load ``files`` into one ontology (on ``store``), showing how many triples each has given so far."""
+    onto = Ontology(store=store)
     with _progress(console=console) as progress:
         for f in files:
             name = Path(f).name
@@ -122,23 +133,29 @@ def _existing(files: Sequence[str]) -> None:
 # --------------------------------------------------------------------------- reason
 
 @cli.command()
-@click.argument("files", nargs=-1, required=True, metavar="FILE...")
+@click.argument("files", nargs=-1, metavar="FILE...")
+@store_option
 @click.option("-o", "--output", type=click.Path(dir_okay=False, writable=True), help="Write asserted + inferred triples here.")
 @click.option("--inferred-only", is_flag=True, help="With -o: write only the inferred triples.")
 @click.option("--format", "fmt", metavar="F", help="Output format: turtle, ntriples or rdfxml (default: from -o's extension).")
 @click.option("--input-format", metavar="F", help="Format of the input files when their extension does not tell.")
-def reason(files: tuple[str, ...], output: str | None, inferred_only: bool, fmt: str | None, input_format: str | None) -> None:
-    """Load FILE(s), reason, and print a summary; exit 3 if inconsistent.
+def reason(files: tuple[str, ...], store: str | None, output: str | None, inferred_only: bool, fmt: str | None,
+           input_format: str | None) -> None:
+    """Load FILE(s) (into --store, if given), reason, and print a summary; exit 3 if inconsistent.
 
     \b
-    Example:
+    Examples:
       topostore reason ontology/topological_map.ttl ontology/topological_map_abox.ttl -o out/closure.ttl
+      topostore reason --store out/mapdb ontology/topological_map.ttl ontology/topological_map_abox.ttl
+      topostore reason --store out/mapdb        # the stored ontology again, no files
     """
+    if not files and not store:
+        raise click.UsageError("give the ontology file(s), or --store holding an ontology")
     _existing(files)
     if inferred_only and not output:
         raise click.UsageError("--inferred-only needs -o FILE")
     start = time.perf_counter()
-    onto = load_files(files, input_format)
+    onto = load_files(files, input_format, store=store)
     loaded = time.perf_counter() - start
     report = reason_with_progress(onto)
     asserted = onto.store.count(ASSERTED)
@@ -245,7 +262,9 @@ def _rows(items: list[QueryItem]) -> tuple[list[str], list[list[str]]]:
 @click.option("--format", "fmt", type=click.Choice(["table", "json", "tsv"]), default="table", show_default=True)
 @click.option("--list", "list_only", is_flag=True, help="List the named queries and their parameters.")
 @click.option("--full-iris", is_flag=True, help="Show full IRIs in tables instead of names in the ontology's namespace.")
-def query(args: tuple[str, ...], params: tuple[str, ...], fmt: str, list_only: bool, full_iris: bool) -> None:
+@store_option
+def query(args: tuple[str, ...], params: tuple[str, ...], fmt: str, list_only: bool, full_iris: bool,
+          store: str | None) -> None:
     """Reason on FILE(s), then run a named query (see --list) or a SPARQL .rq file.
 
     \b
@@ -253,17 +272,18 @@ def query(args: tuple[str, ...], params: tuple[str, ...], fmt: str, list_only: b
       topostore query --list
       topostore query ontology/topological_map.ttl ontology/topological_map_abox.ttl urgent-locations
       topostore query ontology/*.ttl reachable-locations --param robot=Robot1 --format json
+      topostore query --store out/mapdb urgent-locations      # the ontology kept in a store
     """
     if list_only:
         for q in named_queries().values():
             sig = " ".join(f"{name}={kind}" for name, kind in q.params.items())
             click.echo(f"{q.name}{' ' + sig if sig else ''}\n    {q.description}")
         return
-    if len(args) < 2:
+    if len(args) < (1 if store else 2):
         raise click.UsageError("give the ontology file(s) and then a query name or .rq file (topostore query --list)")
     files, name = args[:-1], args[-1]
     _existing(files)
-    onto = load_files(files)
+    onto = load_files(files, store=store)
     report = reason_with_progress(onto)
     if not report.consistent:
         click.echo(f"warning: the ontology is inconsistent ({report.explain()}); answering from asserted facts only",
@@ -313,8 +333,14 @@ def _readable(value: str, prefix: str) -> str:
 @click.option("--short-names", is_flag=True, help="Answer aRMOR queries with short names instead of <IRI>s.")
 @click.option("--cors-origin", "cors_origins", multiple=True, metavar="ORIGIN",
               help="Let web pages of ORIGIN (e.g. a YASGUI page) call the service (repeatable).")
+@store_option
+@click.option("--sync", is_flag=True, help="With a directory --store: flush every acknowledged change to disk, so it "
+              "also survives an OS crash or power loss (slower).")
+@click.option("--store-query-url", metavar="URL", help="SPARQL query endpoint of a remote --store (default URL/query).")
+@click.option("--store-update-url", metavar="URL", help="SPARQL update endpoint of a remote --store (default URL/update).")
 def serve(host: str, port: int, data_dir: str, token: str | None, allow_update: bool, max_request_bytes: int,
-          sparql_timeout: float, sparql_max_rows: int, short_names: bool, cors_origins: tuple[str, ...]) -> None:
+          sparql_timeout: float, sparql_max_rows: int, short_names: bool, cors_origins: tuple[str, ...],
+          store: str | None, sync: bool, store_query_url: str | None, store_update_url: str | None) -> None:
     """Serve aRMOR commands (POST /armor) and SPARQL endpoints over HTTP.
 
     Exits with code 4 and one line when it cannot listen (port in use).
@@ -322,6 +348,8 @@ def serve(host: str, port: int, data_dir: str, token: str | None, allow_update: 
     \b
     Example:
       topostore serve --port 8765 --data-dir data
+      topostore serve --store data/references        # references survive restarts
+      topostore serve --store http://127.0.0.1:7878  # references on an Oxigraph server
       curl -s localhost:8765/armor -H 'Content-Type: application/json' -d '{"reference_name":"ref","command":"GET","primary_command_spec":"ALL","secondary_command_spec":"REFS"}'
     """
     from .server import ServerConfig, serve as run_server
@@ -329,14 +357,16 @@ def serve(host: str, port: int, data_dir: str, token: str | None, allow_update: 
     config = ServerConfig(host=host, port=port, data_dir=Path(data_dir), token=token, allow_update=allow_update,
                           max_request_bytes=max_request_bytes, sparql_timeout=sparql_timeout,
                           sparql_max_rows=sparql_max_rows, short_names=short_names,
-                          cors_origins=cors_origins)
+                          cors_origins=cors_origins, store=store, sync=sync, store_query_url=store_query_url,
+                          store_update_url=store_update_url)
     config.check()
     problem = _cannot_listen(host, port)
     if problem:
         click.echo(f"Error: {problem}", err=True)
         raise click.exceptions.Exit(EXIT_CANNOT_LISTEN)
     click.echo(f"topostore {__version__}: http://{host}:{port} (data directory {Path(data_dir).resolve()}; "
-               f"SPARQL updates {'on' if allow_update else 'off'}; token {'required' if token else 'off'})", err=True)
+               f"SPARQL updates {'on' if allow_update else 'off'}; token {'required' if token else 'off'}; "
+               f"store {store or 'memory'})", err=True)
     try:
         run_server(config)
     except SystemExit as exc:  # uvicorn exits 3 when it cannot start; 3 means "inconsistent" here
@@ -380,8 +410,9 @@ def _cannot_listen(host: str, port: int) -> str | None:
               help="Where to draw the reasoned map (.png, .svg or .pdf).")
 @click.option("--no-picture", is_flag=True, help="Do not draw the map.")
 @click.option("--every-step", is_flag=True, help="Draw the map after every step (map-001.png, ...).")
+@store_option
 def demo(map_files: tuple[str, ...], steps: int, seed: int, robots: int, time_scale: float, picture: str,
-         no_picture: bool, every_step: bool) -> None:
+         no_picture: bool, every_step: bool, store: str | None) -> None:
     """The surveillance demo: robots patrol the map, visiting URGENT locations.
 
     \b
@@ -389,6 +420,7 @@ def demo(map_files: tuple[str, ...], steps: int, seed: int, robots: int, time_sc
       topostore demo
       topostore demo --steps 30 --robots 2 --seed 7 --picture out/map.svg
       topostore demo --map ontology/topological_map.ttl --map ontology/topological_map_abox.ttl --every-step
+      topostore demo --robots 3 --store http://127.0.0.1:7878   # a fleet: one client per robot, one shared map
     """
     from .demo import run_demo
     from .demo.mapview import VizMissing, require_matplotlib
@@ -400,7 +432,7 @@ def demo(map_files: tuple[str, ...], steps: int, seed: int, robots: int, time_sc
             click.echo(f"note: no picture: {exc}", err=True)
             no_picture = True
     run_demo(list(map_files) or None, steps=steps, seed=seed, robots=robots, time_scale=time_scale,
-             picture=None if no_picture else picture, every_step=every_step, emit=click.echo)
+             picture=None if no_picture else picture, every_step=every_step, emit=click.echo, store=store)
 
 
 # --------------------------------------------------------------------------- map

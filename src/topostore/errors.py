@@ -45,3 +45,11 @@ class QueryTimeout(QueryError):
 
 class PathNotAllowedError(TopostoreError):
     """A file path outside the configured data directory."""
+
+
+class StoreError(TopostoreError):
+    """A store that cannot be opened, reached or written (disk locked, server down, writer lock held)."""
+
+
+class StoreLockedError(StoreError):
+    """Another topostore process holds the writer lock of a reference in a shared store."""

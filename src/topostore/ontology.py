@@ -33,6 +33,8 @@ from .queries import QueryItem, collect, get_named_query, render_jena, substitut
 from .reason import ReasonStats, Violation, classify
 from .reason.incremental import DEFAULT_MAX_CHANGE_SHARE, IncrementalReasoner
 from .store import Store, fresh_skolem, guess_format, serialize
+from .stores import StoreSpec, check_rules, open_store
+from .stores import state as durable_state
 from .terms import Term, entity, literal_of, value_key
 from .reason.entailed import publish_entailed
 from .vocab import (
@@ -70,9 +72,11 @@ class ReasonReport:
 class Ontology:
     """One ontology: asserted and inferred graphs in an Oxigraph store, plus its rules."""
 
-    def __init__(self, prefix: str | None = None, store: Store | None = None) -> None:
-        self.store = store or Store()
+    def __init__(self, prefix: str | None = None, store: Store | StoreSpec = None) -> None:
+        """``store``: a Store, or a store setting (None: memory; a directory; an http(s) SPARQL server URL)."""
+        self.store = store if isinstance(store, Store) else open_store(store)
         self._prefix = prefix
+        self._found_prefix: str | None = None
         self._rules: RuleSet | None = None
         self._superclasses: dict | None = None
         self._report: ReasonReport | None = None
@@ -87,12 +91,19 @@ class Ontology:
         self.max_change_share = DEFAULT_MAX_CHANGE_SHARE
         #: change notifications: subscribe with ``onto.events.subscribe(callback, "rdf:type URGENT")``
         self.events = EventHub(lambda: self.prefix)
+        #: how a durable store was found: "new", "reopened" or "rebuilt" (see stores/state.py)
+        self.opened = durable_state.reopen(self)
+
+    def restore_report(self, consistent: bool, dirty: bool) -> None:
+        """State of a reopened durable ontology: its last REASON's outcome (no violations kept)."""
+        self._report = ReasonReport(consistent)
+        self.dirty = dirty
 
     # ------------------------------------------------------------------ loading
     @classmethod
     def from_file(cls, *paths: str | os.PathLike[str], prefix: str | None = None, fmt: str | None = None,
-                  base_iri: str | None = None) -> "Ontology":
-        onto = cls(prefix=prefix)
+                  base_iri: str | None = None, store: Store | StoreSpec = None) -> "Ontology":
+        onto = cls(prefix=prefix, store=store)
         for p in paths:
             onto.load(p, fmt=fmt, base_iri=base_iri)
         return onto
@@ -122,6 +133,7 @@ class Ontology:
         scratch.add(self.store.triples(graph=ASSERTED), ASSERTED)
         scratch.add(triples, ASSERTED)
         rules = compile_ontology(scratch, ASSERTED)  # raises RuleCompileError, nothing added
+        check_rules(self.store, rules)
         added = self.add(*triples)
         self._rules = rules
         return added
@@ -130,11 +142,14 @@ class Ontology:
     def prefix(self) -> str:
         """Namespace for entity names: the ontology IRI + '#' unless given."""
         if self._prefix is None:
-            for t in self.store.triples(None, TYPE, owl("Ontology"), ASSERTED):
-                if isinstance(t.subject, NamedNode):
-                    iri = t.subject.value
-                    return iri if iri.endswith(("#", "/")) else iri + "#"
-            return "urn:topostore:default#"
+            if self._found_prefix is None:  # looked up once per schema change (a round trip on a server)
+                self._found_prefix = "urn:topostore:default#"
+                for t in self.store.triples(None, TYPE, owl("Ontology"), ASSERTED):
+                    if isinstance(t.subject, NamedNode):
+                        iri = t.subject.value
+                        self._found_prefix = iri if iri.endswith(("#", "/")) else iri + "#"
+                        break
+            return self._found_prefix
         return self._prefix
 
     @prefix.setter
@@ -173,9 +188,11 @@ class Ontology:
 
     def _touch(self, triples: Iterable[Triple]) -> None:
         self.dirty = True
+        durable_state.note_changed(self.store)
         if any(is_schema_triple(t) for t in triples):
             self._rules = None
             self._superclasses = None
+            self._found_prefix = None
             self._stop_tracking()
 
     def _track(self, triples: Iterable[Triple], added: bool) -> None:
@@ -250,14 +267,15 @@ class Ontology:
         """
         new_t = self.fact(subject, prop, new)
         s, p = new_t.subject, new_t.predicate
-        if old is None:
-            olds = list(self.store.triples(s, p, None, ASSERTED))
-        else:
-            old_t = self.fact(subject, prop, old)
-            key = value_key(old_t.object)
-            olds = [t for t in self.store.triples(s, p, None, ASSERTED) if value_key(t.object) == key]
-        self.remove(*olds)
-        self.add(new_t)
+        with self.store.transaction():  # one commit: a durable store never holds half a REPLACE
+            if old is None:
+                olds = list(self.store.triples(s, p, None, ASSERTED))
+            else:
+                old_t = self.fact(subject, prop, old)
+                key = value_key(old_t.object)
+                olds = [t for t in self.store.triples(s, p, None, ASSERTED) if value_key(t.object) == key]
+            self.remove(*olds)
+            self.add(new_t)
         return len(olds)
 
     def add_all_different(self, names: Sequence[str | NamedNode]) -> NamedNode:
@@ -334,7 +352,9 @@ class Ontology:
     def rules(self) -> RuleSet:
         """The compiled rules (recompiled when the TBox or the SWRL rules change)."""
         if self._rules is None:
-            self._rules = compile_ontology(self.store, ASSERTED)
+            rules = compile_ontology(self.store, ASSERTED)
+            check_rules(self.store, rules)
+            self._rules = rules
         return self._rules
 
     def reason(self, profile: bool = False, mode: str = "auto") -> ReasonReport:
@@ -358,6 +378,7 @@ class Ontology:
         before = self.events.before_reason(self.store, None if self._report is None else self._report.consistent)
         added, removed = list(self._added), list(self._removed)
         self._stop_tracking()
+        durable_state.begin_reason(self.store)
         try:
             stats, violations = self._reasoner.reason(added, removed, mode=mode, profile=profile,
                                                       forced_reason=forced)
@@ -368,6 +389,7 @@ class Ontology:
         self._report = ReasonReport(not violations, violations, stats)
         self.dirty = False
         self.events.after_reason(self.store, self._report.consistent, before, stats.seconds)
+        durable_state.end_reason(self.store, self._report.consistent)
         return self._report
 
     @property

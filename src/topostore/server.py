@@ -80,6 +80,12 @@ class ServerConfig:
     short_names: bool = False
     #: browser origins allowed to call the service (CORS), e.g. a YASGUI page; none by default
     cors_origins: tuple[str, ...] = ()
+    #: where references live (None: memory; a directory; an http(s) SPARQL server), see topostore.stores
+    store: str | None = None
+    #: flush every acknowledged change to disk (directory stores)
+    sync: bool = False
+    store_query_url: str | None = None
+    store_update_url: str | None = None
 
     def check(self) -> None:
         """Refuse settings that would expose the service or cannot work, with the fix in the message."""
@@ -425,7 +431,9 @@ def create_app(config: ServerConfig, service: ArmorService | None = None) -> Sta
     config.check()
     data_dir = Path(config.data_dir)
     data_dir.mkdir(parents=True, exist_ok=True)
-    service = service or ArmorService(data_dir=data_dir, short_names=config.short_names)
+    service = service or ArmorService(data_dir=data_dir, short_names=config.short_names, store=config.store,
+                                      sync=config.sync, store_query_url=config.store_query_url,
+                                      store_update_url=config.store_update_url)
     if service.data_dir is None:
         raise ConfigError("the served ArmorService must confine files to a data directory")
     api = Api(config, service)
@@ -434,6 +442,7 @@ def create_app(config: ServerConfig, service: ArmorService | None = None) -> Sta
     async def lifespan(app: Starlette) -> AsyncIterator[None]:
         yield
         api.close()
+        service.close()
 
     routes = [
         Route("/health", api.health, methods=["GET"]),

@@ -17,10 +17,12 @@ Two details of the store are handled here so that nobody else has to know them:
 
 from __future__ import annotations
 
+import json
 import os
 import threading
 import uuid
 from collections.abc import Callable, Iterable, Iterator
+from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -138,17 +140,73 @@ class Graphs:
 
 
 class Store:
-    """pyoxigraph behind a small interface: quads in, SPARQL in, results out."""
+    """The store interface every other module talks to: quads in, SPARQL in, results out.
 
-    def __init__(self, path: str | os.PathLike[str] | None = None) -> None:
-        self._ox = ox.Store(str(path)) if path is not None else ox.Store()
-        self._in_memory = path is None
-        self._writes = 0  # write operations since the last compaction
-        self._live_at_compaction = 0
+    This class holds what every implementation shares (parsing, the literal
+    forms users wrote, transactions, the small persisted state of a reference)
+    on top of a few primitives each implementation provides: ``_has``,
+    ``_match``, ``_commit``, ``_run_update``, ``_run_query`` and ``_drop``.
+    Implementations: :class:`topostore.stores.oxigraph.OxigraphStore` (memory
+    or RocksDB on disk) and :class:`topostore.stores.remote.RemoteStore` (a
+    SPARQL 1.1 Query + Update endpoint pair); :func:`topostore.stores.open_store`
+    picks one from a ``store`` setting.  ``Store()`` itself gives an in-memory store.
+
+    Writes (``add``/``remove``/``meta_set``) are grouped by :meth:`transaction`
+    into one atomic commit; reads inside a transaction see its pending writes.
+    """
+
+    #: Can the compiled rules use Oxigraph's LATERAL joins on this store?
+    supports_lateral = True
+    #: Does this store run topostore's extension functions (``urn:topostore:fn:pow``)?
+    custom_functions = True
+    #: Does this store outlive the process (disk, remote server)?
+    durable = False
+
+    def __new__(cls, *args, **kwargs):
+        if cls is Store:  # Store() keeps meaning "a fresh in-memory store"
+            from .stores.oxigraph import OxigraphStore
+            cls = OxigraphStore
+        return super().__new__(cls)
+
+    def __init__(self) -> None:
         # (graph, subject, predicate, value key) -> literal as the user wrote it
         self._literal_forms: dict[tuple, Literal] = {}
         # value key -> {literal as written: number of asserted triples using it}
         self._value_forms: dict[tuple, dict[Literal, int]] = {}
+        # quad key -> (quad, present after commit) while a transaction is open
+        self._pending: dict[tuple, tuple[Quad, bool]] | None = None
+        # quad key -> present in the committed store, learnt during the open transaction (saves round trips)
+        self._known: dict[tuple, bool] = {}
+        self._depth = 0
+        self._meta: dict[str, object] | None = None
+        self._meta_pending: dict[str, object] = {}
+
+    # ------------------------------------------------------------ primitives (implementations)
+    def _has(self, quad: Quad) -> bool:
+        raise NotImplementedError
+
+    def _has_many(self, quads: list[Quad]) -> list[bool]:
+        """Presence of several quads (one round trip where that matters)."""
+        return [self._has(q) for q in quads]
+
+    def _match(self, s, p, o, graph) -> Iterator[Quad]:
+        raise NotImplementedError
+
+    def _commit(self, adds: list[Quad], removes: list[Quad]) -> None:
+        """Apply removals then additions, all or nothing."""
+        raise NotImplementedError
+
+    def _run_update(self, text: str, prefixes: dict[str, str] | None) -> None:
+        raise NotImplementedError
+
+    def _run_query(self, text: str, graphs: list[NamedNode] | None, **kwargs):
+        raise NotImplementedError
+
+    def _drop(self, graph: NamedNode) -> None:
+        self._run_update(f"DROP SILENT GRAPH {graph}", None)
+
+    def close(self) -> None:
+        """Release the store (files, connections, locks)."""
 
     # ------------------------------------------------------------ parsing
     def parse_file(
@@ -181,45 +239,88 @@ class Store:
             raise LoadError(f"{source}: {exc}") from exc
         return [skolemize(Triple(q.subject, q.predicate, q.object)) for q in quads]
 
+    # ------------------------------------------------------------ transactions
+    @contextmanager
+    def transaction(self) -> Iterator["Store"]:
+        """Group writes into one atomic commit (nested calls join the outer one).
+
+        On an exception nothing of the transaction is written.  A SPARQL query
+        or update inside a transaction first commits what is pending, so that it
+        sees it; manipulations only read through the quad methods, so they stay
+        one commit.
+        """
+        if self._depth == 0:
+            self._pending = {}
+            self._meta_pending = {}
+            self._known = {}
+        self._depth += 1
+        try:
+            yield self
+        except BaseException:
+            self._depth -= 1
+            if self._depth == 0:
+                self._pending, self._meta_pending, self._known = None, {}, {}
+            raise
+        self._depth -= 1
+        if self._depth == 0:
+            self._flush()
+            self._pending, self._known = None, {}
+
+    def _flush(self) -> None:
+        """Commit the pending writes of the open transaction (also the persisted state)."""
+        pending, self._pending = self._pending or {}, ({} if self._depth else None)
+        meta, self._meta_pending = self._meta_pending, {}
+        adds = [q for q, present in pending.values() if present]
+        removes = [q for q, present in pending.values() if not present]
+        if not adds and not removes and not meta:
+            return
+        forms_add, forms_remove = self._record_forms(adds, removes)
+        meta_add, meta_remove = self._meta_quads(meta)
+        try:
+            self._commit(adds + forms_add + meta_add, removes + forms_remove + meta_remove)
+        except BaseException:
+            self._record_forms(removes, adds, undo=True)
+            raise
+        if meta:
+            self._meta = {**(self._meta or {}), **meta}
+
+    def _key(self, quad: Quad) -> tuple:
+        o = quad.object
+        return (quad.subject, quad.predicate, value_key(o) if isinstance(o, Literal) else o, quad.graph_name)
+
+    def _present(self, quads: list[Quad]) -> list[bool]:
+        pending, known = self._pending or {}, self._known
+        unknown = [q for q in quads if self._key(q) not in pending and self._key(q) not in known]
+        found = dict(zip(map(self._key, unknown), self._has_many(unknown))) if unknown else {}
+        if self._pending is not None:
+            known.update(found)
+        return [pending[k][1] if k in pending else known[k] if k in known else found[k] for k in map(self._key, quads)]
+
     # ------------------------------------------------------------ quads
     def add(self, triples: Iterable[Triple], graph: NamedNode) -> int:
         """Add triples to ``graph``; returns how many were new."""
-        added = 0
-        self._writes += 1
-        for t in triples:
-            quad = Quad(t.subject, t.predicate, t.object, graph)
-            if quad not in self._ox:
-                self._ox.add(quad)
-                added += 1
-                if isinstance(t.object, Literal):
-                    key = value_key(t.object)
-                    self._literal_forms[(graph.value, t.subject, t.predicate, key)] = t.object
-                    forms = self._value_forms.setdefault(key, {})
-                    forms[t.object] = forms.get(t.object, 0) + 1
-        return added
+        quads = list(dict.fromkeys(Quad(t.subject, t.predicate, t.object, graph) for t in triples))
+        with self.transaction():
+            new = [q for q, present in zip(quads, self._present(quads)) if not present]
+            for q in new:  # pending True: absent from the committed store; False: present there
+                key = self._key(q)
+                if self._pending.pop(key, None) is None:
+                    self._pending[key] = (q, True)
+        return len(new)
 
     def add_scratch(self, triples: Iterable[Triple], graph: NamedNode) -> None:
         """Bulk-add to a reasoner's scratch graph (no literal forms recorded, no counting)."""
-        self._writes += 1
-        self._ox.extend(Quad(t.subject, t.predicate, t.object, graph) for t in triples)
+        self._commit([Quad(t.subject, t.predicate, t.object, graph) for t in triples], [])
 
     def remove(self, triples: Iterable[Triple], graph: NamedNode) -> int:
-        removed = 0
-        self._writes += 1
-        for t in triples:
-            quad = Quad(t.subject, t.predicate, t.object, graph)
-            if quad in self._ox:
-                self._ox.remove(quad)
-                removed += 1
-                if isinstance(t.object, Literal):
-                    key = value_key(t.object)
-                    original = self._literal_forms.pop((graph.value, t.subject, t.predicate, key), t.object)
-                    forms = self._value_forms.get(key, {})
-                    if original in forms:
-                        forms[original] -= 1
-                        if forms[original] <= 0:
-                            del forms[original]
-        return removed
+        quads = list(dict.fromkeys(Quad(t.subject, t.predicate, t.object, graph) for t in triples))
+        with self.transaction():
+            gone = [q for q, present in zip(quads, self._present(quads)) if present]
+            for q in gone:
+                key = self._key(q)
+                if self._pending.pop(key, None) is None:
+                    self._pending[key] = (q, False)
+        return len(gone)
 
     def stored_form(self, t: Triple) -> Triple:
         """The triple as this store holds it once added (Oxigraph canonicalises some literals,
@@ -233,26 +334,37 @@ class Store:
         return Triple(t.subject, t.predicate, stored.object)
 
     def discard(self, triples: Iterable[Triple], graphs: Iterable[NamedNode]) -> None:
-        """Remove triples from reasoner graphs (no literal forms are kept for those)."""
+        """Remove triples from reasoner graphs, present or not (no literal forms are kept for those)."""
         graphs = tuple(graphs)
-        for t in triples:
-            for g in graphs:
-                self._ox.remove(Quad(t.subject, t.predicate, t.object, g))
+        quads = [Quad(t.subject, t.predicate, t.object, g) for t in triples for g in graphs]
+        if quads:
+            self._commit([], quads)
 
     def contains(self, t: Triple, graph: NamedNode) -> bool:
-        return Quad(t.subject, t.predicate, t.object, graph) in self._ox
+        return self._present([Quad(t.subject, t.predicate, t.object, graph)])[0]
 
     def triples(
         self, s: Term | None = None, p: NamedNode | None = None, o: Term | None = None, graph: NamedNode | None = None
     ) -> Iterator[Triple]:
-        for q in self._ox.quads_for_pattern(s, p, o, graph):
-            yield Triple(q.subject, q.predicate, q.object)
+        pending = self._pending
+        if pending is None:
+            for q in self._match(s, p, o, graph):
+                yield Triple(q.subject, q.predicate, q.object)
+            return
+        for q in list(self._match(s, p, o, graph)):
+            self._known[self._key(q)] = True
+            entry = pending.get(self._key(q))
+            if entry is None or entry[1]:
+                yield Triple(q.subject, q.predicate, q.object)
+        for q, present in list(pending.values()):
+            if present and _matches(q, s, p, o, graph):
+                yield Triple(q.subject, q.predicate, q.object)
 
     def objects(self, s: Term, p: NamedNode, graph: NamedNode) -> list[Term]:
-        return [q.object for q in self._ox.quads_for_pattern(s, p, None, graph)]
+        return [t.object for t in self.triples(s, p, None, graph)]
 
     def subjects(self, p: NamedNode, o: Term, graph: NamedNode) -> list[Term]:
-        return [q.subject for q in self._ox.quads_for_pattern(None, p, o, graph)]
+        return [t.subject for t in self.triples(None, p, o, graph)]
 
     def list_items(self, head: Term, graph: NamedNode) -> list[Term]:
         """Members of an RDF collection (rdf:first/rdf:rest), in order."""
@@ -271,49 +383,74 @@ class Store:
             node = rests[0]
         return items
 
-    def census(self, graph: NamedNode, small: int = 2000) -> tuple[dict[str, int], dict[str, int]]:
-        """Facts per predicate and per class (objects of rdf:type) in ``graph``, keyed by SPARQL text.
-
-        Reasoning asks this of its small scratch graphs many times per REASON:
-        up to ``small`` quads are counted from the index directly, which costs
-        microseconds where a GROUP BY query costs a parse and a plan; larger
-        graphs are counted by the store.
-        """
-        preds: dict[str, int] = {}
-        classes: dict[str, int] = {}
-        for n, q in enumerate(self._ox.quads_for_pattern(None, None, None, graph)):
-            if n >= small:
-                return self._census_query(graph)
-            p = str(q.predicate)
-            preds[p] = preds.get(p, 0) + 1
-            if q.predicate == TYPE:
-                c = str(q.object)
-                classes[c] = classes.get(c, 0) + 1
-        return preds, classes
-
-    def _census_query(self, graph: NamedNode) -> tuple[dict[str, int], dict[str, int]]:
-        preds = {str(r["p"]): int(r["n"].value) for r in self._ox.query(
-            f"SELECT ?p (COUNT(*) AS ?n) WHERE {{ GRAPH {graph} {{ ?s ?p ?o }} }} GROUP BY ?p")}
+    def census(self, graph: NamedNode) -> tuple[dict[str, int], dict[str, int]]:
+        """Facts per predicate and per class (objects of rdf:type) in ``graph``, keyed by SPARQL text."""
+        self._flush_open()
+        preds = {str(r["p"]): int(r["n"].value) for r in self._run_query(
+            f"SELECT ?p (COUNT(*) AS ?n) WHERE {{ GRAPH {graph} {{ ?s ?p ?o }} }} GROUP BY ?p", None)}
         classes: dict[str, int] = {}
         if str(TYPE) in preds:
-            classes = {str(r["c"]): int(r["n"].value) for r in self._ox.query(
-                f"SELECT ?c (COUNT(*) AS ?n) WHERE {{ GRAPH {graph} {{ ?s {TYPE} ?c }} }} GROUP BY ?c")}
+            classes = {str(r["c"]): int(r["n"].value) for r in self._run_query(
+                f"SELECT ?c (COUNT(*) AS ?n) WHERE {{ GRAPH {graph} {{ ?s {TYPE} ?c }} }} GROUP BY ?c", None)}
         return preds, classes
 
     def count(self, graph: NamedNode) -> int:
-        result = self._ox.query(f"SELECT (COUNT(*) AS ?n) WHERE {{ GRAPH {graph} {{ ?s ?p ?o }} }}")
+        result = self.query(f"SELECT (COUNT(*) AS ?n) WHERE {{ GRAPH {graph} {{ ?s ?p ?o }} }}")
         return int(next(iter(result))["n"].value)
 
     def is_empty(self, graph: NamedNode) -> bool:
-        return next(iter(self._ox.quads_for_pattern(None, None, None, graph)), None) is None
+        return not bool(self.query(f"ASK {{ GRAPH {graph} {{ ?s ?p ?o }} }}"))
 
     def clear(self, graph: NamedNode) -> None:
-        self._ox.update(f"DROP SILENT GRAPH {graph}")
+        self._flush_open()
+        self._drop(graph)
+        gone = [(k, v) for k, v in self._literal_forms.items() if k[0] == graph.value]
+        if self.durable and gone:
+            self._commit([], [_form_quad(k[0], k[1], k[2], lit) for k, lit in gone])
         self._literal_forms = {k: v for k, v in self._literal_forms.items() if k[0] != graph.value}
+        self._rebuild_value_forms()
+
+    # ------------------------------------------------------------ literal forms
+    def _record_forms(self, adds: list[Quad], removes: list[Quad], undo: bool = False) -> tuple[list[Quad], list[Quad]]:
+        """Remember (or forget) how committed literals were written; the quads persisting that on a durable store."""
+        forms_add: list[Quad] = []
+        forms_remove: list[Quad] = []
+        for q in removes:
+            if isinstance(q.object, Literal) and not _is_scratch(q.graph_name):
+                key = value_key(q.object)
+                original = self._literal_forms.pop((q.graph_name.value, q.subject, q.predicate, key), q.object)
+                self._count_form(key, original, -1)
+                if self.durable and not undo:
+                    forms_remove.append(_form_quad(q.graph_name.value, q.subject, q.predicate, original))
+        for q in adds:
+            if isinstance(q.object, Literal) and not _is_scratch(q.graph_name):
+                key = value_key(q.object)
+                self._literal_forms[(q.graph_name.value, q.subject, q.predicate, key)] = q.object
+                self._count_form(key, q.object, +1)
+                if self.durable and not undo:
+                    forms_add.append(_form_quad(q.graph_name.value, q.subject, q.predicate, q.object))
+        return forms_add, forms_remove
+
+    def _count_form(self, key: tuple, lit: Literal, delta: int) -> None:
+        forms = self._value_forms.setdefault(key, {})
+        forms[lit] = forms.get(lit, 0) + delta
+        if forms[lit] <= 0:
+            del forms[lit]
+
+    def _rebuild_value_forms(self) -> None:
         self._value_forms = {}
         for (_, _, _, key), lit in self._literal_forms.items():
-            forms = self._value_forms.setdefault(key, {})
-            forms[lit] = forms.get(lit, 0) + 1
+            self._count_form(key, lit, +1)
+
+    def load_forms(self) -> None:
+        """Read the persisted literal forms back (a durable store opened again)."""
+        self._literal_forms = {}
+        for q in self._match(None, None, None, FORMS):
+            graph, _, text = q.object.value.partition(" ")
+            lit = _parse_literal(text)
+            if lit is not None:
+                self._literal_forms[(graph, q.subject, q.predicate, value_key(lit))] = lit
+        self._rebuild_value_forms()
 
     def original_literal(self, graph: NamedNode, s: Term, p: NamedNode, o: Literal) -> Literal:
         """The literal as the user asserted it (lexical form and datatype)."""
@@ -329,50 +466,57 @@ class Store:
             return next(iter(forms))
         return term
 
+    # ------------------------------------------------------------ persisted state
+    @property
+    def meta(self) -> dict[str, object]:
+        """The small JSON state a durable store keeps beside the data (settings, flags)."""
+        if self._meta is None:
+            self._meta = {}
+            for q in self._match(META_SUBJECT, None, None, META):
+                try:
+                    self._meta[q.predicate.value[len(META_KEY):]] = json.loads(q.object.value)
+                except ValueError:
+                    continue
+        return {**self._meta, **self._meta_pending}
+
+    def meta_set(self, key: str, value: object) -> None:
+        """Persist ``key`` (JSON value) with the current transaction; no-op on a memory store."""
+        if not self.durable or self.meta.get(key, _MISSING) == value:
+            return
+        with self.transaction():
+            self._meta_pending[key] = value
+
+    def _meta_quads(self, meta: dict[str, object]) -> tuple[list[Quad], list[Quad]]:
+        adds, removes = [], []
+        self.meta  # noqa: B018 - loads the persisted values once; they name the quads to replace
+        for key, value in meta.items():
+            pred = NamedNode(META_KEY + key)
+            if key in self._meta:
+                removes.append(Quad(META_SUBJECT, pred, Literal(json.dumps(self._meta[key], sort_keys=True)), META))
+            adds.append(Quad(META_SUBJECT, pred, Literal(json.dumps(value, sort_keys=True)), META))
+        return adds, removes
+
     # ------------------------------------------------------------ SPARQL
-    def update(self, text: str, **kwargs) -> None:
-        self._writes += 1
-        try:
-            self._ox.update(text, custom_functions=CUSTOM_FUNCTIONS, **kwargs)
-        except SyntaxError as exc:
-            raise QueryError(f"malformed SPARQL update: {exc}") from exc
-        except (OSError, RuntimeError) as exc:
-            raise QueryError(f"SPARQL update failed: {exc}") from exc
+    def _flush_open(self) -> None:
+        if self._pending:
+            self._flush()
+        self._known = {}
+
+    def update(self, text: str, prefixes: dict[str, str] | None = None) -> None:
+        self._flush_open()
+        self._run_update(text, prefixes)
 
     def query(self, text: str, graphs: list[NamedNode] | None = None, named: list[NamedNode] | None = None,
               **kwargs):
         """Run a query whose default graph is the union of ``graphs`` (the named graphs: ``named``,
         by default ``graphs`` too)."""
-        kwargs.setdefault("custom_functions", CUSTOM_FUNCTIONS)
-        try:
-            if graphs is not None:
-                named = graphs if named is None else named
-                return self._ox.query(text, default_graph=list(graphs), named_graphs=list(named), **kwargs)
-            return self._ox.query(text, **kwargs)
-        except SyntaxError as exc:
-            raise QueryError(f"malformed SPARQL query: {exc}") from exc
-        except (OSError, RuntimeError) as exc:  # evaluation errors reported by Oxigraph
-            raise QueryError(f"SPARQL evaluation failed: {exc}") from exc
+        self._flush_open()
+        return self._run_query(text, graphs, named=named, **kwargs)
 
     # ------------------------------------------------------------ housekeeping
     def maybe_compact(self) -> bool:
-        """Rebuild the in-memory store once enough writes have piled up.
-
-        Oxigraph's in-memory store keeps removed quads around (for its
-        transactions), so a long-running reasoner that derives and drops the same
-        facts step after step gets slower and bigger.  Copying the live quads into
-        a fresh store resets that; it is done when the writes since the last
-        compaction outnumber a fiftieth of the live quads (at least 200), which
-        keeps its amortised cost small.  On-disk stores compact themselves.
-        """
-        if not self._in_memory or self._writes < max(200, self._live_at_compaction // 50):
-            return False
-        fresh = ox.Store()
-        fresh.extend(self._ox)
-        self._ox = fresh
-        self._writes = 0
-        self._live_at_compaction = len(fresh)
-        return True
+        """Reclaim space left by removed quads where the implementation needs it (see OxigraphStore)."""
+        return False
 
     # ------------------------------------------------------------ output
     def dump(self, graphs: list[NamedNode], restore_literals_from: NamedNode | None = None) -> list[Triple]:
@@ -384,6 +528,36 @@ class Store:
                     t = Triple(t.subject, t.predicate, self.original_literal(restore_literals_from or g, t.subject, t.predicate, t.object))
                 out[unskolemize(t)] = None
         return list(out)
+
+
+#: Graph of the persisted literal forms, and of the persisted state of a reference.
+FORMS = NamedNode(INTERNAL + "graph:forms")
+META = NamedNode(INTERNAL + "graph:meta")
+META_SUBJECT = NamedNode(INTERNAL + "meta")
+META_KEY = INTERNAL + "meta:"
+_MISSING = object()
+
+
+def _is_scratch(graph) -> bool:
+    """Reasoner scratch graphs and the persisted state need no literal forms."""
+    return not isinstance(graph, NamedNode) or graph == FORMS or graph == META
+
+
+def _form_quad(graph: str, s: Term, p: NamedNode, lit: Literal) -> Quad:
+    return Quad(s, p, Literal(f"{graph} {lit}"), FORMS)
+
+
+def _parse_literal(text: str) -> Literal | None:
+    try:
+        quads = list(ox.parse(f"<urn:x:s> <urn:x:p> {text} .", format=RdfFormat.N_TRIPLES))
+    except (SyntaxError, ValueError):
+        return None
+    return quads[0].object if quads and isinstance(quads[0].object, Literal) else None
+
+
+def _matches(q: Quad, s, p, o, graph) -> bool:
+    return ((s is None or q.subject == s) and (p is None or q.predicate == p)
+            and (o is None or q.object == o) and (graph is None or q.graph_name == graph))
 
 
 def skolem(term: Term) -> Term:
@@ -417,5 +591,5 @@ def serialize(triples: Iterable[Triple], fmt: RdfFormat, prefixes: dict[str, str
 
 __all__ = [
     "Store", "Graphs", "guess_format", "skolemize", "unskolemize", "skolem", "unskolem", "fresh_skolem",
-    "serialize", "DefaultGraph", "SKOLEM_PREFIX",
+    "serialize", "DefaultGraph", "SKOLEM_PREFIX", "CUSTOM_FUNCTIONS", "FORMS", "META",
 ]

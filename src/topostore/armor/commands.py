@@ -102,6 +102,8 @@ class Context:
 
     def submit(self, *changes: Change) -> Reply:
         """Apply (or queue) manipulations; a failure of the reasoner undoes them (209)."""
+        if changes:  # the request that made them, so a durable store can persist a buffer
+            changes[0].origin = self.request.to_dict()
         try:
             warnings = self.reference.submit(list(changes))
         except CommandError:
@@ -623,6 +625,7 @@ def _mount(ref: Reference, client: str) -> Reply:
         raise CommandError(codes.CANNOT_MOUNT, f"reference {ref.name!r} is mounted by client {ref.owner!r}; it must UNMOUNT first")
     already = ref.owner == client
     ref.owner = client
+    ref.save_state()
     return Reply(warnings=[f"client {client!r} was already mounted on {ref.name!r}"] if already else [])
 
 
@@ -635,6 +638,7 @@ def unmount(ctx: Context) -> Reply:
     ref, client = ctx.reference, ctx.request.client_name
     if ref.owner == client:
         ref.owner = None
+        ref.save_state()
         return Reply()
     holder = "nobody" if ref.owner is None else f"client {ref.owner!r}"
     return Reply(warnings=[f"client {client!r} is not mounted on {ref.name!r} ({holder} is); nothing changed"])

@@ -40,6 +40,8 @@ class Change:
 
     description: str
     plan: Callable[[Ontology], Delta]
+    #: the request (as a dict) that made this change, kept so a durable store can persist the buffer
+    origin: dict | None = None
 
 
 @dataclass
@@ -65,6 +67,13 @@ class Reference:
     owner: str | None = None  # mounted client, None when unmounted
     buffer: list[Change] = field(default_factory=list)
     lock: threading.RLock = field(default_factory=threading.RLock)
+    #: writes the settings, owner and buffer to a durable store (None in memory); see armor/durable.py
+    persist: Callable[["Reference"], None] | None = None
+
+    def save_state(self) -> None:
+        """Persist settings, owner and buffer (joins the store transaction in progress)."""
+        if self.persist is not None:
+            self.persist(self)
 
     @property
     def prefix(self) -> str:
@@ -101,7 +110,13 @@ class Reference:
         reasoned, as a Pellet reasoner listening to changes would be.
         """
         if self.buffered_manipulation:
-            self.buffer.extend(changes)
+            with self.ontology.store.transaction():
+                self.buffer.extend(changes)
+                try:
+                    self.save_state()
+                except BaseException:
+                    del self.buffer[len(self.buffer) - len(changes):]
+                    raise
             return []
         return self.run(changes)
 
@@ -115,12 +130,15 @@ class Reference:
             reason = not self.buffered_reasoner and bool(changes)
         applied: list[Applied] = []
         try:
-            for change in changes:
-                applied.append(self.apply_change(change))
+            with self.ontology.store.transaction():  # the changes and the persisted buffer: one commit
+                for change in changes:
+                    applied.append(self.apply_change(change))
+                self.save_state()
             if reason:
                 self.ontology.reason()
         except Exception:
-            self.undo(applied)
+            with self.ontology.store.transaction():
+                self.undo(applied)
             if reason:
                 self._reason_quietly()
             raise
@@ -133,6 +151,7 @@ class Reference:
             return self.run(pending, reason)
         except Exception:
             self.buffer = pending + self.buffer
+            self.save_state()
             raise
 
     def _reason_quietly(self) -> None:

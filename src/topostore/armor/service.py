@@ -26,9 +26,11 @@ from typing import Any
 from ..errors import LoadError, RuleCompileError, TopostoreError
 from ..ontology import Ontology
 from ..store import guess_format
+from ..stores import StoreSpec, kind as store_kind
 from . import codes
 from .codes import CommandError
 from .commands import COMMANDS, Context, Reply
+from .durable import DurableReferences
 from .reference import Reference
 from .render import Renderer
 from .types import ArmorRequest, ArmorResponse, ArmorResponseList
@@ -46,11 +48,15 @@ class ArmorService:
     paths escaping it are refused (210).  ``short_names``: answer with local
     names and bare lexical forms instead of ``<IRI>`` and ``"lex"^^xsd:T``.
     ``allow_web``: permit LOAD WEB (off by default: it makes the service fetch
-    arbitrary URLs).
+    arbitrary URLs).  ``store``: where references live (None: memory; a directory:
+    one RocksDB store per reference; an http(s) URL: a SPARQL 1.1 server), see
+    :mod:`topostore.stores`; a durable store's references are reopened here
+    (:mod:`topostore.armor.durable`).  ``sync``: flush each commit to disk (directory stores).
     """
 
     def __init__(self, data_dir: str | os.PathLike[str] | None = None, short_names: bool = False,
-                 allow_web: bool = False) -> None:
+                 allow_web: bool = False, store: StoreSpec = None, sync: bool = False,
+                 store_query_url: str | None = None, store_update_url: str | None = None) -> None:
         self.data_dir = Path(data_dir).resolve() if data_dir is not None else None
         self.short_names = short_names
         self.allow_web = allow_web
@@ -59,6 +65,16 @@ class ArmorService:
         self._registry_lock = threading.RLock()
         self._file_handler: logging.Handler | None = None
         self._screen_handler: logging.Handler | None = None
+        self.durable = None if store_kind(store) == "memory" else DurableReferences(
+            store, sync, store_query_url, store_update_url)
+        if self.durable is not None:
+            self._references.update(self.durable.restore(self))
+
+    def close(self) -> None:
+        """Release durable stores and writer locks (a clean shutdown; a kill loses nothing acknowledged)."""
+        if self.durable is not None:
+            with self._registry_lock:
+                self.durable.close(dict(self._references))
 
     # ------------------------------------------------------------ entry points
     def call(self, request: ArmorRequest | Mapping[str, Any]) -> ArmorResponse:
@@ -110,6 +126,9 @@ class ArmorService:
                 return self._reply(req, reply)
             ctx.ref = self.reference(req.reference_name)
             with ctx.ref.lock:
+                if command.manipulation and self.durable is not None and not self.durable.held(req.reference_name):
+                    raise CommandError(codes.MOUNTED_BY_OTHER, f"reference {req.reference_name!r}: this service lost "
+                                       "its writer lock to another topostore process; it may be queried, not changed")
                 if command.manipulation and ctx.ref.owner is not None and ctx.ref.owner != req.client_name:
                     raise CommandError(codes.MOUNTED_BY_OTHER, f"reference {req.reference_name!r} is mounted by client "
                                        f"{ctx.ref.owner!r}; client {req.client_name!r} may query it but not change it")
@@ -158,7 +177,11 @@ class ArmorService:
 
     def drop_reference(self, name: str) -> bool:
         with self._registry_lock:
-            return self._references.pop(name, None) is not None
+            ref = self._references.pop(name, None)
+        if ref is not None and self.durable is not None:
+            with ref.lock:
+                self.durable.discard(name, ref.ontology.store)
+        return ref is not None
 
     def load_reference(self, name: str, source: str, location: str, iri: str, buffered_manipulation: bool,
                        reasoner: str, buffered_reasoner: bool) -> tuple[Reference, bool]:
@@ -167,9 +190,31 @@ class ArmorService:
             existing = self._references.get(name)
         if existing is not None:
             return existing, False
-        onto = Ontology(prefix=iri + "#")
+        reopened = self.durable.reopen(self, name) if self.durable is not None else None
+        if reopened is not None:
+            with self._registry_lock:
+                existing = self._references.setdefault(name, reopened)
+            return existing, False
+        store = self.durable.new_store(name) if self.durable is not None else None
+        try:
+            onto, path = self._load_ontology(store, source, location, iri)
+            ref = Reference(name, onto, iri, path, buffered_manipulation, reasoner, buffered_reasoner)
+            if self.durable is not None:
+                ref.persist = self.durable.persist
+                ref.save_state()  # the reference exists (durably) from here on
+        except BaseException:
+            if store is not None:  # nothing of a failed LOAD stays in a durable store
+                self.durable.discard(name, store)
+            raise
+        with self._registry_lock:
+            existing = self._references.setdefault(name, ref)
+        return existing, existing is ref
+
+    def _load_ontology(self, store, source: str, location: str, iri: str) -> tuple[Ontology, Path | None]:
+        """A reasoned ontology from a file or URL, on ``store`` (None: memory); aRMOR errors on failure."""
         path: Path | None = None
         try:
+            onto = Ontology(prefix=iri + "#", store=store)
             if source == "FILE":
                 path = self.resolve_path(location)
                 onto.load(path)
@@ -183,10 +228,7 @@ class ArmorService:
             raise CommandError(codes.REASONER_OR_QUERY_FAILURE, f"cannot reason on {location!r}: {exc}") from None
         except TopostoreError as exc:
             raise CommandError(codes.INVALID_ARGUMENT, f"cannot load {location!r}: {exc}") from None
-        ref = Reference(name, onto, iri, path, buffered_manipulation, reasoner, buffered_reasoner)
-        with self._registry_lock:
-            existing = self._references.setdefault(name, ref)
-        return existing, existing is ref
+        return onto, path
 
     def add_reference(self, ref: Reference) -> tuple[Reference, bool]:
         """(reference, created): register a reference built elsewhere (an HTTP upload) unless the name is taken."""

@@ -57,18 +57,28 @@ class DemoResult:
 
 def run_demo(map_files: Sequence[str | os.PathLike[str]] | None = None, steps: int = 10, seed: int = 0,
              robots: int = 1, time_scale: float = 0.0, picture: str | os.PathLike[str] | None = "out/map.png",
-             every_step: bool = False, emit: Callable[[str], None] = print) -> DemoResult:
-    """Run ``steps`` steps; ``time_scale`` = real seconds slept per simulated second (0: no waiting)."""
+             every_step: bool = False, emit: Callable[[str], None] = print, store: str | None = None) -> DemoResult:
+    """Run ``steps`` steps; ``time_scale`` = real seconds slept per simulated second (0: no waiting).
+
+    With ``store`` (a directory or a SPARQL server URL) the map lives there and the robots are a
+    fleet: each robot is a client of its own in a thread of its own (:mod:`.fleet`); the
+    trace names the robot on every line.
+    """
     if steps < 0:
         raise TopostoreError("--steps must be 0 or more")
     if time_scale < 0:
         raise TopostoreError("--time-scale must be 0 or more")
     rng = random.Random(seed)
-    world = open_world(map_files, robots)
+    world = open_world(map_files, robots, store)
     result = DemoResult(robots=list(world.robots))
     try:
         emit(f"Map: {len(world.locations)} locations ({len(world.corridors)} corridors); robots: {', '.join(world.robots)}")
-        for step in range(1, steps + 1):
+        in_turn = range(1, steps + 1) if store is None else range(0)  # a fleet runs its own steps
+        if store is not None:
+            from .fleet import run_fleet
+
+            run_fleet(world, steps, seed, time_scale, emit, result)
+        for step in in_turn:
             emit(f"Step {step}")
             for robot in world.robots:
                 move = _step(world, robot, step, rng)
@@ -94,8 +104,9 @@ def run_demo(map_files: Sequence[str | os.PathLike[str]] | None = None, steps: i
     return result
 
 
-def _step(world: World, robot: str, step: int, rng: random.Random) -> Move:
-    query, manip, utils = world.client.query, world.client.manipulation, world.client.utils
+def _step(world: World, robot: str, step: int, rng: random.Random, client=None) -> Move:
+    client = client or world.client
+    query, manip, utils = client.query, client.manipulation, client.utils
     here_list = query.objectprop_b2_ind("isIn", robot)
     here = here_list[0] if here_list else None
     now = int(lexical_form(query.dataprop_b2_ind("now", robot)[0]))

@@ -49,11 +49,21 @@ class World:
         return self.service.reference(REFERENCE)
 
     def close(self) -> None:
+        self.service.close()
         self.workdir.cleanup()
 
+    def robot_client(self, robot: str) -> ArmorClient:
+        """A client of its own for one robot of a fleet (named after the robot)."""
+        return ArmorClient(robot, REFERENCE, transport=self.service)
 
-def open_world(map_files: Sequence[str | os.PathLike[str]] | None = None, robots: int = 1) -> World:
-    """Load the map, declare locations and doors different (as the seed tutorial does), place ``robots`` robots."""
+
+def open_world(map_files: Sequence[str | os.PathLike[str]] | None = None, robots: int = 1,
+               store: str | None = None) -> World:
+    """Load the map, declare locations and doors different (as the seed tutorial does), place ``robots`` robots.
+
+    With a durable ``store`` that already holds the map, the stored map (robots where they were,
+    clocks and visits as they were) is reused and only missing robots are placed.
+    """
     if robots < 1:
         raise TopostoreError("the demo needs at least one robot (--robots 1 or more)")
     files = [Path(f) for f in (map_files or default_map_files())]
@@ -64,13 +74,15 @@ def open_world(map_files: Sequence[str | os.PathLike[str]] | None = None, robots
     workdir = tempfile.TemporaryDirectory(prefix="topostore-demo-")
     try:
         onto.save(Path(workdir.name) / "map.ttl")
-        service = ArmorService(data_dir=workdir.name)
+        service = ArmorService(data_dir=workdir.name, store=store)
         client = ArmorClient(CLIENT, REFERENCE, transport=service)
-        client.utils.load_ref_from_file("map.ttl", prefix[:-1], buffered_manipulation=False, reasoner="PELLET",
-                                        buffered_reasoner=True)
-        # no unique name assumption: corridors, connectedTo and canReach need declared differences
-        client.manipulation.disj_inds_of_class("LOCATION")
-        client.manipulation.disj_inds_of_class("DOOR")
+        stored = REFERENCE in service.reference_names()
+        if not stored:
+            client.utils.load_ref_from_file("map.ttl", prefix[:-1], buffered_manipulation=False, reasoner="PELLET",
+                                            buffered_reasoner=True)
+            # no unique name assumption: corridors, connectedTo and canReach need declared differences
+            client.manipulation.disj_inds_of_class("LOCATION")
+            client.manipulation.disj_inds_of_class("DOOR")
         if not client.utils.sync_buffered_reasoner():
             raise TopostoreError(f"the map {', '.join(map(str, files))} is inconsistent; check it with `topostore reason`")
         locations = sorted(client.query.ind_b2_class("LOCATION"))
@@ -81,6 +93,8 @@ def open_world(map_files: Sequence[str | os.PathLike[str]] | None = None, robots
         if not client.utils.sync_buffered_reasoner():
             raise TopostoreError("placing the robots made the map inconsistent")
     except BaseException:
+        if "service" in locals():
+            service.close()
         workdir.cleanup()
         raise
     return World(client, service, names, locations, corridors, workdir)

@@ -194,7 +194,7 @@ class IncrementalReasoner:
         self.checks_monotone = all(not negates_exists(c.filters) and c.stratum == 0 for c in rules.checks)
         self._texts: dict[tuple, str] = {}
         self._queue: list[str] = []
-        self._lateral = True  # is the graph the next evaluation starts from small?
+        self._lateral = store.supports_lateral  # is the graph the next evaluation starts from small?
         self._counts: KeyCounts = ({}, {})  # read keys of the graph evaluations start from
         self.profile = False
         self._filter_var_cache: dict[int, set[str]] = {}
@@ -364,7 +364,8 @@ class IncrementalReasoner:
         text = self._texts.get(key)
         if text is None:
             text = self._texts[key] = flip.flip_query(
-                b for i, atoms in wanted for b in flip.flip_branches(self.rules[i], atoms, True, i))
+                b for i, atoms in wanted
+                for b in flip.flip_branches(self.rules[i], atoms, self.store.supports_lateral, i))
         stats.evaluations += len(wanted)
         start = time.perf_counter()
         rows = list(self.store.query(text, prefixes=PREFIXES, graphs=[ASSERTED, INFERRED, AUX],
@@ -554,7 +555,8 @@ class IncrementalReasoner:
         branches = []
         for c, j in self.check_triggers.evaluations(preds, classes, range(len(self.ruleset.checks)),
                                                     self.state.present):
-            lateral = j is not None and is_small(counts, self.ruleset.checks[c].body[j].read_key())
+            lateral = j is not None and is_small(counts, self.ruleset.checks[c].body[j].read_key()) \
+                and self.store.supports_lateral
             branches.append(self._check_text(c, j, lateral))
         if not branches:
             return False
@@ -580,7 +582,7 @@ class IncrementalReasoner:
         gives the same result and saves the per-request cost (~0.1 ms each).
         When profiling, each runs on its own to be timed.
         """
-        self._lateral = is_small(self._counts, rule_start(self.rules[i], j, key[0]))
+        self._lateral = is_small(self._counts, rule_start(self.rules[i], j, key[0])) and self.store.supports_lateral
         key = (*key, self._lateral)
         text = self._texts.get(key)
         if text is None:

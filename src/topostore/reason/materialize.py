@@ -115,7 +115,7 @@ class Materializer:
         #: i.e. the closure is not the fixpoint of the first stratum alone
         self.upper_derived = False
         self._queue: list[str] = []
-        self._lateral = True
+        self._lateral = store.supports_lateral
 
     def _run(self, index: int, delta_index: int | None, stats: ReasonStats) -> None:
         key = (index, delta_index, self._lateral)
@@ -188,7 +188,7 @@ class Materializer:
         if self.profile:
             self._flush()  # the promotion first: profiled evaluations do not wait in the queue
         if self.planned:
-            self._lateral = is_small((preds, classes))
+            self._lateral = is_small((preds, classes)) and self.store.supports_lateral
         if self.present is not None:
             self.present[0].update(preds)
             self.present[1].update(classes)

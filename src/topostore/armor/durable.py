@@ -1,0 +1,190 @@
+"""References that outlive the process: the aRMOR side of a durable ``store`` setting.
+
+Each reference keeps, beside its graphs and in the same store, one JSON record
+(``Store.meta["reference"]``): the LOAD settings (IRI, source file, buffered
+flags, reasoner name), the mounted client and the pending buffered
+manipulations as the requests that made them.  The record is written in the
+same transaction as the change it describes, so after ``kill -9`` the store
+holds either the state before a manipulation or the state after it.  On start
+the service reopens every reference the store holds and replays the buffered
+requests into the buffer (their handlers validate again and queue the same
+changes).  On a remote store each reference is claimed with a
+:class:`~topostore.stores.lock.WriterLease`; a reference another process holds
+is not opened, and LOADing it is refused with the holder's name.
+"""
+
+from __future__ import annotations
+
+import logging
+import shutil
+import threading
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+from ..errors import StoreError, StoreLockedError
+from ..ontology import Ontology
+from ..store import Store
+from ..stores import kind, list_references, open_store, reference_dir
+from ..vocab import ASSERTED
+from . import codes
+from .codes import CommandError
+from .reference import Reference
+
+if TYPE_CHECKING:  # pragma: no cover
+    from .service import ArmorService
+
+logger = logging.getLogger("topostore.armor")
+
+
+def record(ref: Reference) -> dict:
+    """The persisted settings and pending state of a reference."""
+    return {
+        "name": ref.name, "iri": ref.iri, "source": None if ref.source is None else str(ref.source),
+        "buffered_manipulation": ref.buffered_manipulation, "reasoner": ref.reasoner,
+        "buffered_reasoner": ref.buffered_reasoner, "owner": ref.owner,
+        "buffer": [c.origin for c in ref.buffer if c.origin is not None],
+    }
+
+
+class DurableReferences:
+    """Opens, persists, restores and discards the references of one durable store setting."""
+
+    def __init__(self, spec, sync: bool = False, query_url: str | None = None, update_url: str | None = None) -> None:
+        self.spec = spec
+        self.sync = sync
+        self.urls = {"query_url": query_url, "update_url": update_url}
+        self.remote = kind(spec) == "remote"
+        self._leases: dict[str, object] = {}
+        self._stop = threading.Event()
+        self._renewer: threading.Thread | None = None
+
+    # ------------------------------------------------------------ stores
+    def new_store(self, name: str) -> Store:
+        """A store for a reference being LOADed (emptied when it held a half-created reference)."""
+        store = self._open(name)
+        if store.meta.get("reference") is None and not store.is_empty(ASSERTED):
+            self._wipe(store)
+        return store
+
+    def _open(self, name: str) -> Store:
+        try:
+            store = open_store(self.spec, name, sync=self.sync, **self.urls)
+        except StoreError as exc:
+            raise CommandError(codes.FILE_ERROR, f"cannot open the store of reference {name!r}: {exc}") from None
+        if self.remote:
+            from ..stores.lock import WriterLease
+
+            # the lease has a connection of its own: its renewals run on another thread than the
+            # manipulations, whose open transaction a shared store object would otherwise commit
+            lease = WriterLease(open_store(self.spec, name, **self.urls))
+            try:
+                lease.claim(f"reference {name!r} on {self.spec}")
+            except StoreLockedError as exc:
+                store.close()
+                lease.store.close()
+                raise CommandError(codes.MOUNTED_BY_OTHER, str(exc)) from None
+            self._leases[name] = lease
+            self._start_renewer(lease.lease / 3)
+        return store
+
+    def persist(self, ref: Reference) -> None:
+        ref.ontology.store.meta_set("reference", record(ref))
+
+    def discard(self, name: str, store: Store | None) -> None:
+        """Remove a reference's durable data (DROP, or a LOAD that failed)."""
+        lease = self._leases.pop(name, None)
+        if store is not None:
+            self._wipe(store)
+        if lease is not None:
+            lease.release()
+        if store is not None:
+            store.close()
+        if kind(self.spec) == "directory":
+            shutil.rmtree(reference_dir(self.spec, name), ignore_errors=True)
+
+    def _wipe(self, store: Store) -> None:
+        from ..store import FORMS, META
+        from ..vocab import ASSERTED, AUX, ENTAILED, INFERRED
+
+        for graph in (ASSERTED, INFERRED, AUX, ENTAILED, FORMS, META):
+            store.clear(graph)
+        store._meta = None
+
+    # ------------------------------------------------------------ restore
+    def restore(self, service: "ArmorService") -> dict[str, Reference]:
+        """Every reference the store holds, as it was acknowledged (references held by another writer are left out)."""
+        refs: dict[str, Reference] = {}
+        for name in list_references(self.spec, **self.urls):
+            try:
+                refs[name] = self._restore_one(service, name)
+            except CommandError as exc:
+                logger.warning("reference %r not opened: %s", name, exc.message)
+        return refs
+
+    def reopen(self, service: "ArmorService", name: str) -> Reference | None:
+        """The reference ``name`` if the store holds it (created by another process since this one started)."""
+        if name not in list_references(self.spec, **self.urls):
+            return None
+        return self._restore_one(service, name)
+
+    def _restore_one(self, service: "ArmorService", name: str) -> Reference:
+        store = self._open(name)
+        data = store.meta.get("reference")
+        if not isinstance(data, dict):
+            self.discard(name, store)
+            raise CommandError(codes.FILE_ERROR, "its LOAD never finished; the half-created data was removed")
+        onto = Ontology(prefix=data["iri"] + "#", store=store)
+        ref = Reference(name, onto, data["iri"], Path(data["source"]) if data.get("source") else None,
+                        bool(data["buffered_manipulation"]), data["reasoner"], bool(data["buffered_reasoner"]),
+                        owner=data.get("owner"))
+        if not ref.buffered_reasoner and onto.dirty:
+            # a live reasoner has seen every applied change: a change committed by a process killed
+            # before its REASON finished is reasoned now (the change itself was never acknowledged)
+            onto.reason()
+        self._replay(service, ref, data.get("buffer") or [])
+        ref.persist = self.persist
+        logger.info("reference %r reopened from %s (%s, %d buffered)", name, self.spec, onto.opened, len(ref.buffer))
+        return ref
+
+    def _replay(self, service: "ArmorService", ref: Reference, requests: list[dict]) -> None:
+        """Queue the buffered requests again through their handlers (which validate and plan them)."""
+        from .commands import COMMANDS, Context
+        from .types import ArmorRequest
+
+        for data in requests:
+            req = ArmorRequest.from_dict(data)
+            command = COMMANDS[(req.command.upper(), req.primary_command_spec.upper(), req.secondary_command_spec.upper())]
+            ctx = Context(service, req, ref)
+            command.handler(ctx)
+
+    # ------------------------------------------------------------ leases
+    def _start_renewer(self, every: float) -> None:
+        if self._renewer is None:
+            self._renewer = threading.Thread(target=self._renew_loop, args=(every,), name="topostore-lease",
+                                             daemon=True)
+            self._renewer.start()
+
+    def _renew_loop(self, every: float) -> None:
+        while not self._stop.wait(every):
+            for name, lease in list(self._leases.items()):
+                try:
+                    if not lease.renew():
+                        logger.error("lost the writer lock of reference %r to another process", name)
+                except Exception as exc:  # a server down for a while: the lease may still be renewed later
+                    logger.warning("could not renew the writer lock of %r: %s", name, exc)
+
+    def held(self, name: str) -> bool:
+        lease = self._leases.get(name)
+        return lease is None or lease.held
+
+    def close(self, refs: dict[str, Reference]) -> None:
+        """Release every lease and close every store (a clean shutdown)."""
+        self._stop.set()
+        for name, ref in refs.items():
+            lease = self._leases.pop(name, None)
+            if lease is not None:
+                lease.release()
+            ref.ontology.store.close()
+
+
+__all__ = ["DurableReferences", "record"]

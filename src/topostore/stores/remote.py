@@ -1,0 +1,191 @@
+"""A remote SPARQL 1.1 Query + Update endpoint pair as a :class:`~topostore.store.Store`.
+
+Several references share one server: each keeps its graphs under its own
+namespace (``urn:topostore:graph:asserted`` becomes
+``urn:topostore:ref:<name>:graph:asserted`` on the wire), so the engine's
+fixed graph names need no change.  Every write of a manipulation is one
+update request (a transaction on the server); every reasoning round is one
+update request per rule evaluation, as in memory.
+
+The server has none of Oxigraph's extensions, so ``supports_lateral`` and
+``custom_functions`` are false: the engine then plans flat joins, and a rule
+needing ``urn:topostore:fn:pow`` is refused at load
+(:func:`topostore.stores.check_rules`).
+
+Credentials come only from the environment: ``TOPOSTORE_STORE_TOKEN`` (a
+bearer token) or ``TOPOSTORE_STORE_USER`` and ``TOPOSTORE_STORE_PASSWORD``
+(HTTP basic), never from the command line where other users could read them.
+"""
+
+from __future__ import annotations
+
+import os
+import re
+import urllib.parse
+from collections.abc import Iterator
+
+import httpx
+import pyoxigraph as ox
+from pyoxigraph import NamedNode, Quad, QueryResultsFormat, RdfFormat, Triple
+
+from ..errors import QueryError, StoreError
+from ..store import Store
+from ..vocab import INTERNAL
+from .oxigraph import data_update
+
+GRAPH_PREFIX = INTERNAL + "graph:"
+_ACCEPT = "application/sparql-results+xml, application/n-triples;q=0.9, text/turtle;q=0.8"
+_TIMEOUT = httpx.Timeout(300.0, connect=10.0)
+#: Rows per presence check; keeps request bodies small.
+_CHUNK = 500
+
+
+def namespace_prefix(reference: str) -> str:
+    """Graph-name prefix of one reference on a shared server (the name percent-encoded)."""
+    return f"{INTERNAL}ref:{urllib.parse.quote(reference, safe='')}:graph:" if reference else GRAPH_PREFIX
+
+
+def credentials() -> httpx.Auth | dict[str, str] | None:
+    """HTTP credentials from the environment (token first), or None."""
+    token = os.environ.get("TOPOSTORE_STORE_TOKEN")
+    if token:
+        return {"Authorization": f"Bearer {token}"}
+    user = os.environ.get("TOPOSTORE_STORE_USER")
+    if user:
+        return httpx.BasicAuth(user, os.environ.get("TOPOSTORE_STORE_PASSWORD", ""))
+    return None
+
+
+class RemoteStore(Store):
+    """Graphs of one reference on a SPARQL 1.1 server, reached over HTTP."""
+
+    supports_lateral = False
+    custom_functions = False
+    durable = True
+
+    def __init__(self, url: str, *, reference: str = "", query_url: str | None = None,
+                 update_url: str | None = None) -> None:
+        super().__init__()
+        base = url.rstrip("/")
+        single = base.endswith("/sparql")  # Virtuoso and others serve both on one path
+        self.url = base
+        self.query_url = query_url or (base if single else base + "/query")
+        self.update_url = update_url or (base if single else base + "/update")
+        self.reference = reference
+        self._prefix = namespace_prefix(reference)
+        auth = credentials()
+        self._client = httpx.Client(timeout=_TIMEOUT, auth=auth if isinstance(auth, httpx.Auth) else None,
+                                    headers=auth if isinstance(auth, dict) else None)
+        #: HTTP requests sent (benchmarks report round trips per step)
+        self.requests = 0
+        self.load_forms()
+
+    # ------------------------------------------------------------ wire
+    def _out(self, text: str) -> str:
+        """Graph names of this reference as the server knows them."""
+        return text if self._prefix == GRAPH_PREFIX else text.replace("<" + GRAPH_PREFIX, "<" + self._prefix)
+
+    def _graph_out(self, graph: NamedNode) -> NamedNode:
+        return NamedNode(self._out(f"<{graph.value}>")[1:-1])
+
+    def _graph_in(self, graph: NamedNode) -> NamedNode:
+        v = graph.value
+        return NamedNode(GRAPH_PREFIX + v[len(self._prefix):]) if v.startswith(self._prefix) else graph
+
+    def _post(self, url: str, data: dict, accept: str | None = None) -> httpx.Response:
+        self.requests += 1
+        try:
+            answer = self._client.post(url, data=data, headers={"Accept": accept} if accept else None)
+        except httpx.HTTPError as exc:
+            raise StoreError(f"the SPARQL server at {url} did not answer: {exc}") from None
+        if answer.status_code >= 400:
+            raise QueryError(f"the SPARQL server at {url} refused the request ({answer.status_code}): "
+                             f"{answer.text[:500]}")
+        return answer
+
+    def _run_update(self, text: str, prefixes: dict[str, str] | None) -> None:
+        self._post(self.update_url, {"update": self._out(_with_prefixes(text, prefixes))})
+
+    def _run_query(self, text: str, graphs: list[NamedNode] | None, named: list[NamedNode] | None = None,
+                   **kwargs):
+        kwargs.pop("custom_functions", None)
+        text = self._out(_with_prefixes(text, kwargs.pop("prefixes", None)))
+        if kwargs:  # pyoxigraph-only options would otherwise be ignored silently
+            raise QueryError(f"query options {', '.join(sorted(kwargs))} are not available on a remote SPARQL store")
+        data: dict = {"query": text}
+        if graphs is not None:
+            data["default-graph-uri"] = [self._graph_out(g).value for g in graphs]
+            data["named-graph-uri"] = [self._graph_out(g).value for g in (graphs if named is None else named)]
+        answer = self._post(self.query_url, data, _ACCEPT)
+        kind = answer.headers.get("content-type", "").split(";")[0].strip()
+        if kind == "application/sparql-results+xml":
+            return ox.parse_query_results(answer.content, format=QueryResultsFormat.XML)
+        if kind in ("application/sparql-results+json", "application/json"):
+            return ox.parse_query_results(answer.content, format=QueryResultsFormat.JSON)
+        fmt = RdfFormat.TURTLE if "turtle" in kind else RdfFormat.N_TRIPLES
+        return [Triple(q.subject, q.predicate, q.object) for q in ox.parse(answer.content, format=fmt)]
+
+    # ------------------------------------------------------------ primitives
+    def _has(self, quad: Quad) -> bool:
+        return self._has_many([quad])[0]
+
+    def _has_many(self, quads: list[Quad]) -> list[bool]:
+        found: set[tuple] = set()
+        for i in range(0, len(quads), _CHUNK):
+            chunk = quads[i:i + _CHUNK]
+            rows = " ".join(f"({q.subject} {q.predicate} {q.object} {self._graph_out(q.graph_name)})" for q in chunk)
+            text = f"SELECT ?s ?p ?o ?g WHERE {{ VALUES (?s ?p ?o ?g) {{ {rows} }} GRAPH ?g {{ ?s ?p ?o }} }}"
+            for r in self._run_query(text, None):
+                found.add(self._key(Quad(r["s"], r["p"], r["o"], self._graph_in(r["g"]))))
+        return [self._key(q) in found for q in quads]
+
+    def _match(self, s, p, o, graph) -> Iterator[Quad]:
+        terms = [t if t is not None else f"?{v}" for t, v in ((s, "s"), (p, "p"), (o, "o"))]
+        pattern = f"{terms[0]} {terms[1]} {terms[2]}"
+        if graph is not None:
+            text = f"SELECT * WHERE {{ GRAPH {self._graph_out(graph)} {{ {pattern} }} }}"
+        else:
+            text = (f"SELECT * WHERE {{ GRAPH ?g {{ {pattern} }} "
+                    f"FILTER(STRSTARTS(STR(?g), {ox.Literal(self._prefix)})) }}")
+        for r in self._run_query(text, None):
+            g = graph if graph is not None else self._graph_in(r["g"])
+            yield Quad(s if s is not None else r["s"], p if p is not None else r["p"],
+                       o if o is not None else r["o"], g)
+
+    def _commit(self, adds: list[Quad], removes: list[Quad]) -> None:
+        out = lambda qs: [Quad(q.subject, q.predicate, q.object, self._graph_out(q.graph_name)) for q in qs]  # noqa: E731
+        text = data_update(out(adds), out(removes))
+        if text:
+            self._run_update(text, None)
+
+    def add_scratch(self, triples, graph: NamedNode) -> None:
+        self._commit([Quad(t.subject, t.predicate, t.object, graph) for t in triples], [])
+
+    def close(self) -> None:
+        self._client.close()
+
+
+def _with_prefixes(text: str, prefixes: dict[str, str] | None) -> str:
+    """PREFIX declarations for pyoxigraph's ``prefixes=`` argument, which servers do not have."""
+    if not prefixes:
+        return text
+    return "".join(f"PREFIX {p}: <{iri}>\n" for p, iri in prefixes.items()) + text
+
+
+def list_references(url: str, **kwargs) -> list[str]:
+    """Names of the references a server holds (those with persisted settings)."""
+    probe = RemoteStore(url, reference="", **kwargs)
+    try:
+        text = (f"SELECT DISTINCT ?g WHERE {{ GRAPH ?g {{ <{INTERNAL}meta> <{INTERNAL}meta:reference> ?j }} "
+                f"FILTER(STRSTARTS(STR(?g), \"{INTERNAL}ref:\")) }}")
+        names = []
+        for r in probe._run_query(text, None):
+            m = re.fullmatch(re.escape(INTERNAL) + r"ref:([^:]*):graph:meta", r["g"].value)
+            if m:
+                names.append(urllib.parse.unquote(m.group(1)))
+        return sorted(names)
+    finally:
+        probe.close()
+
+
+__all__ = ["RemoteStore", "list_references", "namespace_prefix", "credentials"]

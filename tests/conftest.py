@@ -1,0 +1,30 @@
+"""Shared fixtures: the SPARQL servers of the remote-store tests, started once per session."""
+
+from __future__ import annotations
+
+import sys
+from collections.abc import Iterator
+from pathlib import Path
+
+import pytest
+
+sys.path.insert(0, str(Path(__file__).parent))
+
+from servers import oxigraph_server, virtuoso_available, virtuoso_server  # noqa: E402
+
+
+@pytest.fixture(scope="session")
+def oxigraph_url() -> Iterator[str]:
+    """A real ``oxigraph serve`` on a free loopback port."""
+    with oxigraph_server() as url:
+        yield url
+
+
+@pytest.fixture(scope="session")
+def virtuoso_url() -> Iterator[str]:
+    """A real Virtuoso on free loopback ports; skipped loudly where Debian's package is not installed."""
+    if not virtuoso_available():
+        pytest.skip("VIRTUOSO NOT INSTALLED: the second SPARQL server is missing; "
+                    "apt-get install virtuoso-opensource (make test does this as root on Debian)")
+    with virtuoso_server() as url:
+        yield url
