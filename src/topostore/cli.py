@@ -104,6 +104,9 @@ def load_files(files: Sequence[str], fmt: str | None = None, console: Console | 
                store: str | None = None) -> Ontology:
     """Load ``files`` into one ontology (on ``store``), showing how many triples each has given so far."""
     onto = Ontology(store=store)
+    context = click.get_current_context(silent=True)
+    if store and context is not None:
+        context.call_on_close(onto.store.close)  # a durable store is released when the command ends
     with _progress(console=console) as progress:
         for f in files:
             name = Path(f).name
