@@ -41,7 +41,7 @@ def parse_args(argv: list[str] | None) -> argparse.Namespace:
     p.add_argument("--steps", type=int, help="robot steps per map (default 20, 10 with --quick); "
                                              "medians are over steps 4 to the last")
     p.add_argument("--pellet-budget", type=float,
-                   help="seconds of Pellet steps per map before it stops (at least 6 steps; default 60, 20 with --quick)")
+                   help="seconds of Pellet steps per map before it stops (at least 4 steps; default 45, 20 with --quick)")
     p.add_argument("--no-pellet", action="store_true", help="measure topostore only")
     p.add_argument("--out", type=Path, default=Path("out/bench"), help="output folder (default out/bench)")
     args = p.parse_args(argv)
@@ -50,7 +50,7 @@ def parse_args(argv: list[str] | None) -> argparse.Namespace:
     if args.skip_100k:
         args.scale_sizes = [s for s in args.scale_sizes if s != "100000"]
     args.steps = args.steps or (10 if args.quick else 20)
-    args.pellet_budget = args.pellet_budget or (20.0 if args.quick else 60.0)
+    args.pellet_budget = args.pellet_budget or (20.0 if args.quick else 45.0)
     args.budgets = QUICK_SCALE_BUDGET if args.quick else SCALE_BUDGET
     return args
 

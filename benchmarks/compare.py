@@ -32,8 +32,8 @@ class Limits:
     """How long each side may take on one map."""
 
     steps: int = 20
-    pellet_budget_s: float = 60.0  # Pellet's steps stop once the next one would exceed this
-    min_steps: int = 6  # ... but not before this many (median of steps 4-6 at least)
+    pellet_budget_s: float = 45.0  # Pellet's steps stop once the next one would exceed this
+    min_steps: int = 4  # ... but not before this many (so that step 4, the first counted, is there)
     ready_timeout_s: float = 300.0  # Pellet's load + first REASON
     step_timeout_s: float = 120.0  # one Pellet step
 
