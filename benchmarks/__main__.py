@@ -59,12 +59,23 @@ def run_size(cmd: list[str], timeout: float, size: str, kind: str) -> dict[str, 
     """One size in its own interpreter; its JSON row, or a row saying why there is none."""
     try:
         done = subprocess.run([sys.executable, "-m", *cmd], capture_output=True, text=True, timeout=timeout)
-    except subprocess.TimeoutExpired:
-        return _failed(kind, size, f"killed after {timeout:.0f} s")
+    except subprocess.TimeoutExpired as exc:
+        return _killed(kind, size, timeout, exc.stdout)
     lines = done.stdout.strip().splitlines()
     if not lines or not lines[-1].startswith("{"):
         return _failed(kind, size, f"exit {done.returncode}: {done.stderr.strip()[-800:]}")
     return json.loads(lines[-1])
+
+
+def _killed(kind: str, size: str, timeout: float, stdout: str | bytes | None) -> dict[str, Any]:
+    """A size that ran out of time: the last progress row it printed (scale runs print them), marked."""
+    text = stdout.decode(errors="replace") if isinstance(stdout, bytes) else stdout or ""
+    rows = [line for line in text.strip().splitlines() if line.startswith("{")]
+    if not rows:
+        return {**_failed(kind, size, ""), "error": None, "killed": f"killed after {timeout:.0f} s"}
+    row = json.loads(rows[-1])
+    row["killed"] = f"killed after {timeout:.0f} s, during {row.pop('doing', 'the run')}"
+    return row
 
 
 def _failed(kind: str, size: str, why: str) -> dict[str, Any]:
@@ -80,6 +91,8 @@ def progress(row: dict[str, Any], seconds: float) -> str:
         bits.append(f"Pellet {_ms(pellet.get('median_ms'))} ({pellet.get('status', 'not run')})")
     if row.get("error"):
         bits.append(f"FAILED: {row['error']}")
+    if row.get("killed"):
+        bits.append(row["killed"])
     if row.get("mismatches"):
         bits.append(f"ANSWERS DIFFER ({len(row['mismatches'])}): {row['mismatches'][0]}")
     return ", ".join(bits)
@@ -118,7 +131,7 @@ def main(argv: list[str] | None = None) -> None:
     write_csv(rows, args.out / "bench.csv")
     plot = write_plot(rows, args.out / "bench.png")
     print(f"\nwrote {args.out / 'table.md'}, {args.out / 'bench.csv'}, {args.out / 'results.json'}, {plot}")
-    bad = [r["label"] for r in rows if r.get("mismatches") or r.get("error")]
+    bad = [r["label"] for r in rows if r.get("mismatches") or r.get("error")]  # a size out of time is no failure
     if bad:
         print(f"FAILED: answers differ or a run failed on {', '.join(bad)} (see the notes above)", file=sys.stderr)
         sys.exit(1)

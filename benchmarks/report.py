@@ -78,6 +78,8 @@ def pellet_cell(s: dict[str, Any], row: dict[str, Any]) -> str:
 
 
 def answers_cell(s: dict[str, Any], row: dict[str, Any]) -> str:
+    if row.get("killed") or row.get("error"):
+        return f"run {row.get('killed') or 'failed'}"
     if s["mismatches"]:
         return f"**MISMATCH** ({s['mismatches']})"
     if row["kind"] == "scale":
@@ -108,6 +110,8 @@ def table(rows: list[dict[str, Any]], info: dict[str, str]) -> str:
     notes += [f"- {r['label']}: full REASON not run ({r['full_skipped']})" for r in rows if r.get("full_skipped")]
     notes += [f"- {r['label']}: steps stopped at the {r['stopped']}" for r in rows if r.get("stopped")]
     notes += [f"- {r['label']}: {r['error']}" for r in rows if r.get("error")]
+    notes += [f"- {r['label']}: {r['killed']}; the figures above are what it measured until then" for r in rows
+              if r.get("killed")]
     return "\n".join(lines + (["", "Notes:", *notes] if notes else []))
 
 

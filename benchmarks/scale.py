@@ -14,6 +14,7 @@ import json
 import sys
 import tempfile
 import time
+from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
@@ -25,18 +26,26 @@ from .timing import median, p95, peak_rss_mib
 from .walk import expected, plan
 
 
-def run(size: str, steps: int, budget_s: float, work: Path, min_steps: int = 5) -> dict[str, Any]:
-    """Measure one size; times in ms except ``load_first_s`` and ``full_s``."""
+def run(size: str, steps: int, budget_s: float, work: Path, min_steps: int = 5,
+        progress: Callable[[dict[str, Any]], None] = lambda row: None) -> dict[str, Any]:
+    """Measure one size; times in ms except ``load_first_s`` and ``full_s``.
+
+    ``progress`` gets the row after the load and after every step, so that a run killed from
+    outside still tells how far it got.
+    """
     start = time.perf_counter()
     path, bench = maps.write(size, work, RdfFormat.N_TRIPLES)
     moves = plan(bench, steps)
     truth = expected(bench, moves)
     row: dict[str, Any] = {"kind": "scale", "size": size, "label": bench.label, "locations": bench.locations,
                            "doors": bench.doors, "triples": bench.triples, "mismatches": []}
+    progress({**row, "doing": "load + first REASON"})
     robot = ArmorRobot(path)
     row["load_first_s"] = robot.load_s
     check(row, "after the load", robot.answers(), truth[0])
     times: list[float] = []
+    row.update(step_ms=times, doing="steps")
+    progress(row)
     for k, move in enumerate(moves, 1):
         last = times[-1] / 1000 if times else 0.0
         if k > min_steps and time.perf_counter() - start + last > budget_s:
@@ -45,8 +54,11 @@ def run(size: str, steps: int, budget_s: float, work: Path, min_steps: int = 5) 
         seconds, answers = robot.step(move)
         times.append(seconds * 1000)
         check(row, f"after step {k}", answers, truth[k])
-    row.update(step_ms=times, median_ms=median(times), p95_ms=p95(times), full_s=None)
+        row.update(median_ms=median(times), p95_ms=p95(times), peak_rss_mib=peak_rss_mib())
+        progress(row)
+    row.update(median_ms=median(times), p95_ms=p95(times), full_s=None, doing="full REASON")
     if time.perf_counter() - start + robot.load_s <= budget_s:
+        progress(row)
         began = time.perf_counter()
         robot.ontology.reason(mode="full")
         row["full_s"] = time.perf_counter() - began
@@ -55,6 +67,7 @@ def run(size: str, steps: int, budget_s: float, work: Path, min_steps: int = 5) 
         row["full_skipped"] = f"no room in the time budget of {budget_s:.0f} s"
     row["peak_rss_mib"] = peak_rss_mib()
     row["wall_s"] = time.perf_counter() - start
+    del row["doing"]
     return row
 
 
@@ -70,7 +83,7 @@ def main(argv: list[str] | None = None) -> None:
     parser.add_argument("--budget", type=float, default=600.0, help="seconds for this size (default 600)")
     args = parser.parse_args(argv)
     with tempfile.TemporaryDirectory(prefix="topostore-bench-") as tmp:
-        row = run(args.size, args.steps, args.budget, Path(tmp))
+        row = run(args.size, args.steps, args.budget, Path(tmp), progress=lambda r: print(json.dumps(r), flush=True))
     print(json.dumps(row))
     sys.exit(3 if row["mismatches"] else 0)
 

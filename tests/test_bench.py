@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import csv
+import json
 import shutil
 import sys
 from pathlib import Path
@@ -12,6 +13,7 @@ import pytest
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # the benchmarks package lives beside src/
 
 from benchmarks import compare, maps, report, scale  # noqa: E402
+from benchmarks.__main__ import _killed  # noqa: E402
 from benchmarks.timing import counted, median, p95  # noqa: E402
 from benchmarks.walk import Answers, Move, expected, plan  # noqa: E402
 from benchmarks.warm_pellet import compile_peer  # noqa: E402
@@ -58,11 +60,18 @@ def test_a_wrong_answer_is_reported() -> None:
 
 
 def test_chain_map_alone(tmp_path: Path) -> None:
-    row = scale.run("8", steps=4, budget_s=120.0, work=tmp_path)
+    partial: list[str] = []
+    row = scale.run("8", steps=4, budget_s=120.0, work=tmp_path, progress=lambda r: partial.append(json.dumps(r)))
     assert row["mismatches"] == []
     assert (row["locations"], row["doors"]) == (8, 7)
     assert len(row["step_ms"]) == 4 and row["full_s"] > 0 and row["peak_rss_mib"] > 0
     assert "chain 8" in report.table([row], report.machine())
+    # load, then after each of the 4 steps, then before the full REASON
+    assert [json.loads(p)["doing"] for p in partial] == ["load + first REASON"] + ["steps"] * 5 + ["full REASON"]
+    # a size killed from outside keeps what it measured until then
+    killed = _killed("scale", "8", 60.0, ("noise\n" + "\n".join(partial[:4])).encode())
+    assert killed["killed"] == "killed after 60 s, during steps" and len(killed["step_ms"]) == 2
+    assert "run killed after 60 s, during steps" in report.table([killed], report.machine())
 
 
 def test_odd_chain_is_refused(tmp_path: Path) -> None:
