@@ -23,7 +23,8 @@ from .warm_pellet import PeerError, compile_peer
 
 COMPARE = ["example", "8", "50", "200", "500"]
 SCALE = ["1000", "10000", "100000"]
-#: seconds each topostore-only size may use (steps stop, and the full REASON is left out, to stay in it)
+#: seconds each topostore-only size may use: steps stop (never before 5) to stay in it; above 10,000
+#: locations the full REASON is left out too when there is no room for it
 SCALE_BUDGET = {"1000": 90.0, "10000": 200.0, "100000": 420.0}
 QUICK_COMPARE, QUICK_SCALE = ["example", "8", "50", "200"], ["1000", "10000"]
 QUICK_SCALE_BUDGET = {"1000": 45.0, "10000": 90.0}
@@ -123,6 +124,7 @@ def main(argv: list[str] | None = None) -> None:
         for size in args.scale_sizes:
             budget = args.budgets.get(size, 300.0)
             cmd = ["benchmarks.scale", size, "--steps", str(args.steps), "--budget", str(budget)]
+            cmd += ["--full-if-room"] if int(size) > 10000 else []  # up to 10,000 the full/step ratio is a target
             rows.append(_timed(cmd, 2 * budget + 600, size, "scale"))
     text = table(rows, info)
     print("\n" + text)
