@@ -25,7 +25,7 @@ java:
 		{ apt-get update -q && apt-get install -y -q openjdk-17-jdk-headless; }
 
 # Benchmarks need the `bench` extra (Owlready2 0.49 for the Pellet jars) and a JDK for the warm
-# Pellet peer.  `bench`: everything (about 15 minutes); `bench-quick`: a few minutes, no 100,000.
+# Pellet peer.  `bench`: every size up to 100,000 locations; `bench-quick`: a few minutes, no 100,000.
 # Results go to out/bench/.
 bench: $(STAMP) java
 	$(BIN)/pip install --quiet -e ".[bench]"
