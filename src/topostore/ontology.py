@@ -30,6 +30,10 @@ from .errors import InvalidValueError, QueryError
 from .queries import QueryItem, bind, collect, get_named_query, render_jena, to_items
 from .reason import ReasonStats, Violation, classify
 from .reason.incremental import DEFAULT_MAX_CHANGE_SHARE, IncrementalReasoner
+from .journal import Journal, all_or_nothing
+from .reason import limits as reason_limits
+from .reason.limits import ReasonLimits
+from .safeio import atomic_write
 from .store import Store, fresh_skolem, guess_format, serialize
 from .terms import Term, entity, literal_of, value_key
 from .reason.entailed import publish_entailed
@@ -83,6 +87,9 @@ class Ontology:
         self._reasoner: IncrementalReasoner | None = None
         #: share of the asserted graph above which REASON recomputes from scratch
         self.max_change_share = DEFAULT_MAX_CHANGE_SHARE
+        #: rounds, inferred facts and seconds one REASON may use (see topostore.reason.limits)
+        self.limits: ReasonLimits = reason_limits.DEFAULTS
+        self._journal = Journal()  # asserted changes since the last successful REASON, to roll back
 
     # ------------------------------------------------------------------ loading
     @classmethod
@@ -156,6 +163,7 @@ class Ontology:
             _validate(t)
         self._touch(triples)
         self._track(triples, added=True)
+        self._journal.record(self.store, triples, added=True)
         return self.store.add(triples, ASSERTED)
 
     def remove(self, *triples: Triple) -> int:
@@ -163,6 +171,7 @@ class Ontology:
         triples = tuple(dict.fromkeys(triples))
         self._touch(triples)
         self._track(triples, added=False)
+        self._journal.record(self.store, triples, added=False)
         return self.store.remove(triples, ASSERTED)
 
     def _touch(self, triples: Iterable[Triple]) -> None:
@@ -300,6 +309,7 @@ class Ontology:
             self._rules = compile_ontology(self.store, ASSERTED)
         return self._rules
 
+    @all_or_nothing  # under self.limits; a failure restores the state of the last successful REASON
     def reason(self, profile: bool = False, mode: str = "auto") -> ReasonReport:
         """Bring the inferred graph to the closure of the asserted graph as it is now.
 
@@ -403,7 +413,16 @@ class Ontology:
         return list(props)
 
     def sparql(self, text: str, bindings: dict[str, Term] | None = None, **kwargs):
-        """Raw SPARQL over the visible graphs (asserted ∪ inferred)."""
+        """Raw SPARQL over the visible graphs (asserted ∪ inferred).
+
+        User text passes the one SPARQL guard (size, nesting, SERVICE, internal
+        functions) before Oxigraph parses it, and runs without the reasoner's
+        extension functions.
+        """
+        from .sparql.guard import check_user_sparql  # here: the sparql package imports this module
+
+        check_user_sparql(text)
+        kwargs.setdefault("custom_functions", {})
         text = bind(text, bindings or {})
         return self.store.query(text, graphs=self.visible_graphs(), **kwargs)
 
@@ -451,10 +470,7 @@ class Ontology:
         """Write asserted (or asserted + inferred) triples; the format follows the extension."""
         path = Path(path)
         data = self.serialize(guess_format(path, fmt), inferred)
-        tmp = path.with_name(path.name + ".tmp")
-        tmp.write_bytes(data)
-        tmp.replace(path)
-        return path
+        return atomic_write(path, data)  # temporary file beside it, never through a symlink, removed on failure
 
 
 def _is_user_class(t: Term) -> bool:

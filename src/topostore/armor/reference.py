@@ -119,6 +119,8 @@ class Reference:
                 applied.append(self.apply_change(change))
             if reason:
                 self.ontology.reason()
+            else:
+                self.ontology.rules  # noqa: B018 - compile now: a change no rules can be compiled from is refused
         except Exception:
             self.undo(applied)
             if reason:

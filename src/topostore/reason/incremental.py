@@ -71,6 +71,7 @@ from ..compile.generic import PREFIXES
 from ..compile.rule import Rule, RuleSet
 from ..store import Store
 from ..vocab import ASSERTED, AUX, DELTA, INFERRED, INTERNAL, NEW_AUX, NEW_INFERRED, TYPE
+from . import limits
 from .consistency import Violation, check_consistency
 from .materialize import Materializer, Present, ReasonStats, feasible, feasible_atom, matches
 from .plan import KeyCounts, is_small, key_counts, plan_where
@@ -291,6 +292,7 @@ class IncrementalReasoner:
         """DRed's first phase, with the proof check that keeps cyclic axioms from cascading."""
         self._update(f"ADD SILENT {REMOVED} TO {DEL_DELTA} ; ADD SILENT {REMOVED} TO {OVERDELETED}", stats, "dred:bookkeeping")
         while True:
+            limits.check()
             preds, classes = self._start(DEL_DELTA)
             for i in self.monotone:
                 rule = self.rules[i]
@@ -324,6 +326,7 @@ class IncrementalReasoner:
         known = (set(self.state.asserted[0]), set(self.state.asserted[1]))
         tried_subgoals = False
         while True:
+            limits.check()
             if self._prove_goals(CANDIDATES, known, stats):
                 continue
             if tried_subgoals or self.store.is_empty(CANDIDATES):

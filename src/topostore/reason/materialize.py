@@ -23,6 +23,7 @@ from pyoxigraph import NamedNode
 from ..compile.generic import PREFIXES
 from ..compile.rule import Atom, Rule, RuleSet
 from ..store import Store
+from . import limits
 from .plan import KeyCounts, is_small, key_counts, plan_where
 from ..vocab import ASSERTED, AUX, DELTA, INFERRED, NEW_AUX, NEW_INFERRED, TYPE
 
@@ -175,6 +176,7 @@ class Materializer:
 
     def _delta_round(self, active: list[int], stats: ReasonStats) -> None:
         preds, classes = self._changed()
+        limits.tick(sum(preds.values()), lambda: limits.writers(self.rules, preds, classes))
         if self.planned:
             self._lateral = is_small((preds, classes))
         if self.present is not None:

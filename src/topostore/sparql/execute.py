@@ -27,7 +27,7 @@ from ..armor.reference import Change, Delta, Reference
 from ..errors import QueryError
 from ..store import skolemize
 from ..vocab import ASSERTED, OWL, RDF, RDFS, XSD
-from .guard import check_safe
+from .guard import check_user_sparql
 from .results import ResultFormat, boolean_json, choose_format, render_graph, render_table, solutions_json
 
 
@@ -102,8 +102,7 @@ def run_query(ref: Reference, text: str, accept: str | None, explicit_format: st
     Raises QueryError (malformed), UnsafeOperationError, NotAcceptable,
     SparqlTimeout or ResultTooLarge.
     """
-    check_safe(text)
-    onto = ref.ontology
+    onto = ref.ontology  # onto.sparql passes the text through the SPARQL guard
     with ref.lock:
         result = onto.sparql(text)  # the snapshot is taken here
     if isinstance(result, QueryBoolean):
@@ -161,7 +160,7 @@ def update_delta(asserted: list[Triple], text: str) -> Delta:
         scratch.update(text)
     except SyntaxError as exc:
         raise QueryError(f"malformed SPARQL update: {exc}") from exc
-    except OSError as exc:
+    except (OSError, RuntimeError) as exc:
         raise QueryError(f"SPARQL update failed: {exc}") from exc
     after = {skolemize(Triple(q.subject, q.predicate, q.object)) for q in scratch.quads_for_pattern(None, None, None, DefaultGraph())}
     before = set(asserted)
@@ -173,7 +172,7 @@ def run_update(ref: Reference, text: str, job: Job, limit: float) -> UpdateOutco
 
     Updates see and change asserted knowledge only; inferences follow from reasoning.
     """
-    check_safe(text)
+    check_user_sparql(text)
     with ref.lock:
         if ref.owner is not None:
             raise ReferenceMounted(f"reference {ref.name!r} is mounted by client {ref.owner!r}; "
