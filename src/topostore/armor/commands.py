@@ -414,9 +414,13 @@ def reason(ctx: Context) -> Reply:
     ref = ctx.reference
     try:
         warnings = ref.flush(reason=False)
-        ref.ontology.reason()
+        ref.ontology.reason()  # on failure the ontology is back at its last successful REASON
     except Exception as exc:
-        raise CommandError(codes.REASONER_OR_QUERY_FAILURE, f"reasoning failed: {exc}") from exc
+        # the buffered changes that broke it are dropped too, or every later REASON would fail the same way
+        dropped, ref.buffer = len(ref.buffer), []
+        note = f"; {dropped} buffered change(s) were discarded" if dropped else ""
+        raise CommandError(codes.REASONER_OR_QUERY_FAILURE, f"reasoning failed and the changes since the last "
+                           f"successful REASON were undone: {exc}{note}") from exc
     return Reply(warnings=warnings)
 
 
