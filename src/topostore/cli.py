@@ -287,6 +287,9 @@ def _readable(value: str, prefix: str) -> str:
 
 # --------------------------------------------------------------------------- serve
 
+from .limits_cli import apply_limits, limit_options  # noqa: E402 - beside the command that uses them
+
+
 @cli.command()
 @click.option("--host", default="127.0.0.1", show_default=True, help="Address to listen on (loopback unless --token).")
 @click.option("--port", default=8765, show_default=True, type=click.IntRange(0, 65535))
@@ -303,8 +306,10 @@ def _readable(value: str, prefix: str) -> str:
 @click.option("--short-names", is_flag=True, help="Answer aRMOR queries with short names instead of <IRI>s.")
 @click.option("--cors-origin", "cors_origins", multiple=True, metavar="ORIGIN",
               help="Let web pages of ORIGIN (e.g. a YASGUI page) call the service (repeatable).")
+@limit_options
 def serve(host: str, port: int, data_dir: str, token: str | None, allow_update: bool, max_request_bytes: int,
-          sparql_timeout: float, sparql_max_rows: int, short_names: bool, cors_origins: tuple[str, ...]) -> None:
+          sparql_timeout: float, sparql_max_rows: int, short_names: bool, cors_origins: tuple[str, ...],
+          **limits: float) -> None:
     """Serve aRMOR commands (POST /armor) and SPARQL endpoints over HTTP.
 
     \b
@@ -319,6 +324,7 @@ def serve(host: str, port: int, data_dir: str, token: str | None, allow_update: 
                           sparql_max_rows=sparql_max_rows, short_names=short_names,
                           cors_origins=cors_origins)
     config.check()
+    apply_limits(**limits)
     click.echo(f"topostore {__version__}: http://{host}:{port} (data directory {Path(data_dir).resolve()}; "
                f"SPARQL updates {'on' if allow_update else 'off'}; token {'required' if token else 'off'})", err=True)
     run_server(config)

@@ -144,6 +144,8 @@ class Ontology:
 
     def iri(self, name: str | NamedNode) -> NamedNode:
         """IRI of a named entity (``<full IRI>`` or a name in :attr:`prefix`)."""
+        if not isinstance(name, (str, NamedNode)):
+            raise TypeError(f"an entity name must be a string or a NamedNode, not {type(name).__name__}")
         return name if isinstance(name, NamedNode) else entity(name, self.prefix)
 
     def short(self, term: Term) -> str:
@@ -214,6 +216,8 @@ class Ontology:
             _validate_literal(value)
             return value
         if datatype is not None:
+            if not isinstance(datatype, str):
+                raise TypeError(f"a datatype must be a string, not {type(datatype).__name__}")
             local = datatype[len(XSD):] if datatype.startswith(XSD) else datatype
             return literal_of(str(value), local)
         if isinstance(value, bool):
@@ -440,6 +444,8 @@ class Ontology:
         and Python values or Literals for ``literal`` parameters.
         """
         params = params or {}
+        if not isinstance(name_or_text, str):
+            raise TypeError(f"a query name or text must be a string, not {type(name_or_text).__name__}")
         if name_or_text.lstrip().upper().startswith(("SELECT", "PREFIX", "BASE")):
             text, kinds = name_or_text, {k: "iri" for k in params}
         else:
