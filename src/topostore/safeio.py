@@ -59,10 +59,11 @@ def read_regular_file(path: str | os.PathLike[str], max_bytes: int | None = None
         fd = os.open(path, os.O_RDONLY | os.O_NONBLOCK | getattr(os, "O_CLOEXEC", 0))
     except OSError as exc:
         raise LoadError(f"{path}: cannot read file: {exc.strerror or exc}") from exc
+    info = os.fstat(fd)
+    if not stat.S_ISREG(info.st_mode):
+        os.close(fd)
+        raise LoadError(f"{path}: not a regular file (a directory, FIFO or device cannot be loaded)")
     with os.fdopen(fd, "rb") as f:
-        info = os.fstat(f.fileno())
-        if not stat.S_ISREG(info.st_mode):
-            raise LoadError(f"{path}: not a regular file (a directory, FIFO or device cannot be loaded)")
         if info.st_size > limit:
             raise LoadError(f"{path}: the file has {info.st_size} bytes, more than the limit of {limit} "
                             "(server option --max-file-size)")

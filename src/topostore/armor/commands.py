@@ -577,9 +577,10 @@ def run_select(onto: Ontology, text: str, timeout: float | None) -> tuple[list[s
                 if stop.is_set():
                     break
                 state["rows"].append([solution[v] for v in names])
-        except Exception as exc:  # reported by the caller
-            state["error"] = exc
+        except Exception as exc:  # reported by the caller, as text: the traceback would keep the result alive
+            state["error"] = f"{type(exc).__name__}: {exc}" if not isinstance(exc, QueryError) else str(exc)
         finally:
+            result = None  # pyoxigraph results must be freed on the thread that made them  # noqa: F841
             done.set()
 
     if timeout is None:  # direct callers only; commands always pass a limit (_query_limit)

@@ -105,6 +105,29 @@ def run_query(ref: Reference, text: str, accept: str | None, explicit_format: st
     onto = ref.ontology  # onto.sparql passes the text through the SPARQL guard
     with ref.lock:
         result = onto.sparql(text)  # the snapshot is taken here
+    try:
+        return _serialize(ref, onto, result, accept, explicit_format, job, limit, max_rows)
+    finally:
+        # pyoxigraph results must be freed on this thread, not where a traceback holding them ends up
+        result = None  # noqa: F841
+
+
+def _serialize(ref: Reference, onto, result, accept: str | None, explicit_format: str | None, job: Job,
+               limit: float, max_rows: int) -> QueryOutcome:
+    """Read the rows (or triples) under the deadline and serialize them."""
+    try:
+        return _read(ref, onto, result, accept, explicit_format, job, limit, max_rows)
+    except Exception as exc:  # a fresh exception: no traceback may keep the result alive
+        try:
+            error = type(exc)(str(exc))
+        except Exception:
+            error = QueryError(str(exc))
+    result = None  # noqa: F841
+    raise error
+
+
+def _read(ref: Reference, onto, result, accept: str | None, explicit_format: str | None, job: Job,
+          limit: float, max_rows: int) -> QueryOutcome:
     if isinstance(result, QueryBoolean):
         fmt = choose_format(accept, graph=False, explicit=explicit_format)
         return QueryOutcome(render_table(boolean_json(bool(result)), fmt), fmt, "boolean", 1)
