@@ -19,7 +19,7 @@ from topostore.armor.commands import COMMANDS
 from topostore.vocab import ASSERTED, AUX, INFERRED
 
 #: examples per fuzz test
-FUZZ_EXAMPLES = int(os.environ.get("TOPOSTORE_FUZZ_EXAMPLES", "120"))
+FUZZ_EXAMPLES = int(os.environ.get("TOPOSTORE_FUZZ_EXAMPLES", "500"))
 CASES = {"tried": 0}
 
 
