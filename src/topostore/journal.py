@@ -10,7 +10,9 @@ records the net asserted changes since the last successful REASON, and
 and recomputes the previous closure when reasoning fails, then re-raises.
 
 The journal holds references to the changed triples only until the next
-successful REASON (LOAD reasons at once), so it stays as small as the change.
+successful REASON (LOAD reasons at once), so it stays as small as the change;
+before the first successful REASON there is nothing to go back to, and a
+failure leaves the asserted graph as it is.
 """
 
 from __future__ import annotations
@@ -39,9 +41,14 @@ class Journal:
     def __init__(self) -> None:
         self.added: dict[Triple, None] = {}
         self.removed: dict[Triple, None] = {}
+        #: recording starts at the first successful REASON: before it there is no state to go back to
+        #: (and a large file loaded before reasoning is not copied)
+        self.active = False
 
     def record(self, store: "Store", triples: Iterable[Triple], added: bool) -> None:
         """Call before the store changes, with ``triples`` deduplicated."""
+        if not self.active:
+            return
         mine, other = (self.added, self.removed) if added else (self.removed, self.added)
         for t in triples:
             if store.contains(t, ASSERTED) == added:
@@ -54,6 +61,11 @@ class Journal:
     def clear(self) -> None:
         self.added.clear()
         self.removed.clear()
+
+    def start(self) -> None:
+        """A REASON succeeded: its state is the one to return to from now on."""
+        self.clear()
+        self.active = True
 
     def revert(self, store: "Store") -> int:
         """Undo the recorded changes on the asserted graph; returns how many triples changed."""
@@ -74,9 +86,10 @@ def all_or_nothing(reason: F) -> F:
             with limits.budget(self.limits):
                 report = reason(self, *args, **kwargs)
         except Exception:
-            _restore(self, reason)
+            if self._journal.active:
+                _restore(self, reason)
             raise
-        self._journal.clear()
+        self._journal.start()
         return report
 
     return wrapper  # type: ignore[return-value]
@@ -94,7 +107,7 @@ def _restore(onto: "Ontology", reason: Callable[..., Any]) -> None:
     try:
         with limits.budget(onto.limits):
             reason(onto, mode="full")
-        onto._journal.clear()
+        onto._journal.start()
     except Exception:  # even the previous state cannot be reasoned (e.g. limits lowered): show asserted facts only
         logger.exception("the state before the change could not be reasoned either; inferred facts cleared")
         onto.store.update(" ; ".join(f"DROP SILENT GRAPH {g}" for g in (INFERRED, AUX, ENTAILED)))
