@@ -4,7 +4,7 @@ VENV   := .venv
 BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.installed
 
-.PHONY: run test bench bench-quick bench-stores demo clean browser vendor-js ros-deps virtuoso java
+.PHONY: run test bench bench-quick bench-stores demo clean browser vendor-js ros-deps virtuoso java fuzz load
 
 $(STAMP): pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -73,6 +73,18 @@ bench-stores: $(STAMP)
 bench-quick: $(STAMP) java
 	$(BIN)/pip install --quiet -e ".[bench]"
 	$(BIN)/python -m benchmarks --quick
+
+# Fuzz every entry point with many more cases than `make test` (>= 100,000 in all); prints
+# "fuzz: N cases tried, V violations found".
+FUZZ_EXAMPLES ?= 10000
+fuzz: $(STAMP)
+	TOPOSTORE_FUZZ_RANDOM=1 TOPOSTORE_FUZZ_EXAMPLES=$(FUZZ_EXAMPLES) $(BIN)/python -m pytest -p no:cacheprovider -q tests/test_fuzz_armor.py \
+		tests/test_fuzz_http.py tests/test_fuzz_files.py
+
+# Load test on loopback: concurrent clients mixing manipulations, REASON and queries (benchmarks/load.py).
+LOAD_ARGS ?= --clients 8 --seconds 60
+load: $(STAMP)
+	$(BIN)/python -m benchmarks.load $(LOAD_ARGS)
 
 clean:
 	rm -rf $(VENV) out .pytest_cache .hypothesis
