@@ -76,7 +76,7 @@ bench-quick: $(STAMP) java
 
 # Fuzz every entry point with many more cases than `make test` (>= 100,000 in all); prints
 # "fuzz: N cases tried, V violations found".
-FUZZ_EXAMPLES ?= 10000
+FUZZ_EXAMPLES ?= 11000
 fuzz: $(STAMP)
 	TOPOSTORE_FUZZ_RANDOM=1 TOPOSTORE_FUZZ_EXAMPLES=$(FUZZ_EXAMPLES) $(BIN)/python -m pytest -p no:cacheprovider -q tests/test_fuzz_armor.py \
 		tests/test_fuzz_http.py tests/test_fuzz_files.py

@@ -489,6 +489,8 @@ class Ontology:
         from .sparql.guard import check_user_sparql  # here: the sparql package imports this module
 
         check_user_sparql(text)
+        if bindings is not None and not isinstance(bindings, dict):
+            raise TypeError(f"bindings must be a dict of variable name -> term, not {type(bindings).__name__}")
         kwargs.setdefault("custom_functions", {})
         if not bindings:
             return self.store.query(text, graphs=self.visible_graphs(), **kwargs)
