@@ -27,7 +27,7 @@ from pyoxigraph import NamedNode, Triple
 
 from servers import free_port
 from test_swrl import PREFIXES, builtin, data, rule
-from topostore import Ontology, RuleCompileError
+from topostore import Ontology, safeio, RuleCompileError
 from topostore.armor import ArmorService
 from topostore.stores import open_store
 from topostore.vocab import ASSERTED, INFERRED
@@ -235,15 +235,14 @@ def test_save_interrupted_keeps_the_old_file(tmp_path: Path, monkeypatch: pytest
     good = target.read_bytes()
     onto.add_fact("R1", "hasDoor", "D9")
 
-    def half_then_fail(self: Path, data: bytes) -> int:
-        with open(self, "wb") as f:
-            f.write(data[: len(data) // 2])
+    def disk_full(fd: int) -> None:  # the temporary file is written, then the disk fills up
         raise OSError(28, "No space left on device")
 
-    monkeypatch.setattr(Path, "write_bytes", half_then_fail)
+    monkeypatch.setattr(safeio.os, "fsync", disk_full)
     with pytest.raises(OSError):
         onto.save(target)
     monkeypatch.undo()
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["db", "map.ttl"]  # no temporary file left
     assert target.read_bytes() == good
     assert Ontology.from_file(target).reason().consistent
 

@@ -485,8 +485,8 @@ def bench(args: tuple[str, ...]) -> None:
     """Run the benchmarks (python -m benchmarks); arguments are passed on.
 
     \b
-    Example (the quick suite is `make bench`):
-      topostore bench --sizes seed 10 --steps 5 --no-peers --out out/bench-example
+    Example (`make bench-quick` is the quick suite, `make bench` the whole one):
+      topostore bench --sizes example 8 --scale-sizes --steps 5 --no-pellet --out out/bench-example
     """
     from .resources import source_root
 
