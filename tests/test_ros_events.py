@@ -128,3 +128,20 @@ def test_a_lagging_topic_says_what_it_missed(world: RosWorld, tmp_path: Path) ->
     assert [m["missed"] for m in got] == [seq - before - 1 for before, seq in zip([0] + seqs, seqs)]
     assert len(got) + sum(m["missed"] for m in got) == reasons
     print(f"{len(got)} of {reasons} events delivered, {reasons - len(got)} reported missed")
+
+
+def test_references_are_followed_only_while_someone_listens(world: RosWorld) -> None:
+    """Without subscribers REASON pays nothing for the topic: ``seq`` stops counting.
+
+    rospy learns that a subscriber left when writing to its closed connection fails,
+    so at most the first two REASONs after the last one left are still followed."""
+    first = listen(world, TOPIC, 1)
+    call(world, "serialized", [load("quietRef"), request("REASON", ref="quietRef")])
+    assert [m["seq"] for m in messages(first)] == [1]
+    call(world, "serialized", [request("REASON", ref="quietRef")] * 6)   # nobody listens
+    second = listen(world, TOPIC, 1)
+    call(world, "serialized", [request("REASON", ref="quietRef")])
+    (msg,) = messages(second)
+    assert msg["reference"] == "quietRef"
+    assert 2 <= msg["seq"] <= 4, msg
+    print(f"first seq after six REASONs nobody heard: {msg['seq']}")

@@ -12,8 +12,15 @@ events) drained by a thread of its own, which hands the message to rospy's
 publisher queue (:data:`ROS_QUEUE` messages per subscriber; rospy sends from its own thread).
 When the drain falls behind, the oldest events are dropped and the next message
 says how many in ``missed``, exactly as the server-sent events do.  ``seq``
-counts REASONs per reference, so a ROS subscriber whose own ``queue_size``
-overflowed (ROS drops those silently) sees the gap too.
+counts the REASONs of a reference published while the topic had subscribers, so
+a ROS subscriber whose own ``queue_size`` overflowed (ROS drops those silently)
+sees the gap too.
+
+References are followed only while the topic has at least one subscriber (rospy
+tells the publisher as subscribers come and go): following makes each REASON
+snapshot the inferred triples twice, which costs as much as the REASON itself on
+large maps (``python -m benchmarks.events``), and nobody should pay that for a
+topic nobody reads.
 
 Not latched: a message is a change (added and removed triples), meaningful only
 to a listener that already knew the state before it.  Replaying the last change
@@ -59,7 +66,8 @@ class EventsTopic:
         import rospy
         from std_msgs.msg import String
 
-        self._publisher = rospy.Publisher(EVENTS_TOPIC, String, queue_size=ROS_QUEUE, latch=False)
+        self._publisher = rospy.Publisher(EVENTS_TOPIC, String, queue_size=ROS_QUEUE, latch=False,
+                                          subscriber_listener=_PeerWatch(self))
         self.follow()
 
     @property
@@ -67,7 +75,8 @@ class EventsTopic:
         return self._publisher.resolved_name
 
     def follow(self) -> None:
-        """Subscribe to references loaded since the last call; let go of dropped or reloaded ones.
+        """Subscribe to references loaded since the last call; let go of dropped or reloaded ones;
+        let go of all of them while the topic has no subscriber.
 
         Cheap (a look at the registry's names): the node calls it around every request,
         so the first REASON after a LOAD is published, even in the same serialized call.
@@ -75,7 +84,9 @@ class EventsTopic:
         if self._publisher is None:
             return
         with self._lock:
-            current = {name: self._ontology(name) for name in self.service.reference_names()}
+            listened = self._publisher.get_num_connections() > 0
+            names = self.service.reference_names() if listened else []
+            current = {name: self._ontology(name) for name in names}
             for name, (onto, sub) in list(self._followed.items()):
                 if current.get(name) is not onto:
                     sub.close()
@@ -115,6 +126,21 @@ class EventsTopic:
             self._publisher.publish(String(data=event_json(event, onto.prefix, name)))
 
         return send
+
+
+class _PeerWatch:
+    """rospy's subscriber listener interface (``rospy.SubscribeListener``): follow the references
+    when a subscriber connects, let go of them when the last one leaves."""
+
+    def __init__(self, topic: EventsTopic) -> None:
+        self.topic = topic
+
+    def peer_subscribe(self, topic_name: str, topic_publish: Any, peer_publish: Any) -> None:
+        self.topic.follow()
+
+    def peer_unsubscribe(self, topic_name: str, num_peers: int) -> None:
+        if num_peers == 0:
+            self.topic.follow()
 
 
 __all__ = ["EVENTS_TOPIC", "ROS_QUEUE", "EventsTopic"]
