@@ -30,7 +30,6 @@ newcomer asks the service for the current state (QUERY) and then follows the top
 
 from __future__ import annotations
 
-import logging
 import threading
 from typing import TYPE_CHECKING, Any
 
@@ -40,8 +39,6 @@ from ..events import DEFAULT_QUEUE, Event, Subscription, event_json
 if TYPE_CHECKING:  # pragma: no cover
     from ..armor import ArmorService
     from ..ontology import Ontology
-
-logger = logging.getLogger("topostore.ros.events")
 
 #: Relative to the node: ``/armor_service/events``, ``/robot1/armor_service/events`` under ``__ns:=/robot1``.
 EVENTS_TOPIC = "~events"
@@ -102,11 +99,6 @@ class EventsTopic:
             for _onto, sub in self._followed.values():
                 sub.close()
             self._followed.clear()
-
-    @property
-    def followed(self) -> list[str]:
-        with self._lock:
-            return sorted(self._followed)
 
     def _ontology(self, name: str) -> "Ontology | None":
         try:
