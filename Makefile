@@ -4,7 +4,7 @@ VENV   := .venv
 BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.installed
 
-.PHONY: run test bench bench-full bench-stores demo clean browser vendor-js ros-deps virtuoso
+.PHONY: run test bench bench-quick bench-stores demo clean browser vendor-js ros-deps virtuoso java fuzz load
 
 $(STAMP): pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -15,7 +15,7 @@ $(STAMP): pyproject.toml
 run: $(STAMP)
 	$(BIN)/topostore demo
 
-test: $(STAMP) browser ros-deps virtuoso
+test: $(STAMP) browser ros-deps virtuoso java
 	$(BIN)/python -m pytest
 
 # The live-map page is tested in Debian's chromium (driven by Playwright, a test extra); as
@@ -52,19 +52,39 @@ virtuoso:
 	  (apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq virtuoso-opensource >/dev/null) \
 	  || echo "virtuoso-opensource not installed: the Virtuoso remote-store tests will be skipped"; }
 
-# Benchmarks need the `bench` extra (matplotlib for the plot; Owlready2 for the
-# optional Pellet peer, which also needs `java`).  Results go to out/bench/.
-bench: $(STAMP)
-	-$(BIN)/pip install --quiet -e ".[bench]"
-	$(BIN)/python -m benchmarks --quick
 
-bench-full: $(STAMP)
-	-$(BIN)/pip install --quiet -e ".[bench]"
+# The Pellet peers need a JDK (the benchmark compiles its warm Pellet peer with javac); as root
+# on Debian, install it when only a runtime (or nothing) is there.
+java:
+	@command -v javac >/dev/null || [ "$$(id -u)" != 0 ] || ! command -v apt-get >/dev/null || \
+		{ apt-get update -q && apt-get install -y -q openjdk-17-jdk-headless; }
+
+# Benchmarks need the `bench` extra (Owlready2 0.49 for the Pellet jars) and a JDK for the warm
+# Pellet peer.  `bench`: every size up to 100,000 locations; `bench-quick`: a few minutes, no 100,000.
+# Results go to out/bench/.
+bench: $(STAMP) java
+	$(BIN)/pip install --quiet -e ".[bench]"
 	$(BIN)/python -m benchmarks
 
 # Step latency and full REASON per store (memory, disk, disk --sync, oxigraph serve; Virtuoso if installed).
 bench-stores: $(STAMP)
 	$(BIN)/python -m benchmarks.stores --sizes seed,100 --steps 20 --virtuoso
+
+bench-quick: $(STAMP) java
+	$(BIN)/pip install --quiet -e ".[bench]"
+	$(BIN)/python -m benchmarks --quick
+
+# Fuzz every entry point with many more cases than `make test` (>= 100,000 in all); prints
+# "fuzz: N cases tried, V violations found".
+FUZZ_EXAMPLES ?= 10000
+fuzz: $(STAMP)
+	TOPOSTORE_FUZZ_RANDOM=1 TOPOSTORE_FUZZ_EXAMPLES=$(FUZZ_EXAMPLES) $(BIN)/python -m pytest -p no:cacheprovider -q tests/test_fuzz_armor.py \
+		tests/test_fuzz_http.py tests/test_fuzz_files.py
+
+# Load test on loopback: concurrent clients mixing manipulations, REASON and queries (benchmarks/load.py).
+LOAD_ARGS ?= --clients 8 --seconds 60
+load: $(STAMP)
+	$(BIN)/python -m benchmarks.load $(LOAD_ARGS)
 
 clean:
 	rm -rf $(VENV) out .pytest_cache .hypothesis

@@ -1,18 +1,13 @@
-"""Reasoning-latency benchmarks: ``python -m benchmarks [--quick] [--sizes ...] [--steps N] [--out DIR]``.
+"""Reasoning-latency benchmarks: ``python -m benchmarks [--quick] [--skip-100k]`` (``make bench``).
 
-For generated topological maps (:mod:`topostore.mapgen`) of growing size, each
-size in a fresh subprocess so that peak memory belongs to that size alone:
+One robot step — REPLACE isIn, REPLACE now (+5 s), REPLACE visitedAt, REASON, QUERY canReach,
+QUERY IND CLASS URGENT — measured for topostore through ``ArmorService.call`` in-process and for
+warm Pellet (one OWL API ontology and one Pellet reasoner kept alive in a JVM, REASON =
+``reasoner.flush()``, as aRMOR runs it) on the same maps and moves, answers compared after every
+step; then topostore alone on maps of 1,000 to 100,000 locations.
 
-* load time (TBox file + map file into the store) and full materialisation time;
-* peak resident memory (``getrusage`` maxrss: Oxigraph's memory is Rust's, which
-  ``tracemalloc`` does not see);
-* latency of one robot step — REPLACE isIn, now and visitedAt, REASON, query
-  canReach and URGENT — with incremental maintenance and with full
-  rematerialisation, as median and 95th percentile;
-* peers on the same data, each in a subprocess with a time limit: owlrl on
-  rdflib (OWL 2 RL closure only — owlrl does not run SWRL rules) and, when
-  ``java`` and Owlready2 are installed, Owlready2 + Pellet.
-
-Results go to ``--out`` (default ``out/bench/``) as a printed table, a CSV,
-JSON and a PNG plot.
+Modules, one concept each: ``maps`` (the map files), ``walk`` (the moves and the expected
+answers), ``armor_robot`` (topostore's step), ``warm_pellet`` + ``pellet/PelletStep.java`` (the
+peer), ``timing`` (medians, p95, RSS), ``compare`` and ``scale`` (one size each, in a process of
+its own), ``report`` (machine, table, ratios, CSV, plot).
 """

@@ -1,4 +1,4 @@
-"""The machine description, the results table, the CSV and the plot."""
+"""The machine, the one results table with its ratios and targets, the CSV and the plot."""
 
 from __future__ import annotations
 
@@ -6,128 +6,200 @@ import csv
 import os
 import platform
 from pathlib import Path
+from typing import Any
 
 import pyoxigraph
 
-PEER_LABELS = {"owlrl": "owlrl (OWL RL only, no SWRL)", "pellet": "Owlready2 + Pellet"}
+from .warm_pellet import java_version
 
 
 def machine() -> dict[str, str]:
-    """CPU model, cores, RAM, Python and pyoxigraph versions: what the numbers depend on."""
-    cpu = platform.processor() or "unknown CPU"
-    ram = "unknown"
+    """What the numbers depend on: CPU, cores, memory, versions, and how busy the machine was."""
+    cpu, ram = platform.processor() or "unknown CPU", "unknown"
     try:
-        for line in Path("/proc/cpuinfo").read_text().splitlines():
-            if line.startswith("model name"):
-                cpu = line.split(":", 1)[1].strip()
-                break
-        for line in Path("/proc/meminfo").read_text().splitlines():
-            if line.startswith("MemTotal"):
-                ram = f"{int(line.split()[1]) / 1024 / 1024:.1f} GiB"
-                break
-    except OSError:
+        cpu = next((line.split(":", 1)[1].strip() for line in Path("/proc/cpuinfo").read_text().splitlines()
+                    if line.startswith("model name")), cpu)
+        kib = next(int(line.split()[1]) for line in Path("/proc/meminfo").read_text().splitlines()
+                   if line.startswith("MemTotal"))
+        ram = f"{kib / 1024 / 1024:.1f} GiB"
+    except (OSError, StopIteration, ValueError):
         pass
-    return {"CPU": cpu, "cores": str(os.cpu_count()), "RAM": ram,
-            "Python": platform.python_version(), "pyoxigraph": pyoxigraph.__version__,
-            "OS": f"{platform.system()} {platform.release()}"}
+    return {"CPU": cpu, "cores": str(os.cpu_count()), "memory": ram, "Python": platform.python_version(),
+            "pyoxigraph": pyoxigraph.__version__, "Java": java_version(),
+            "OS": f"{platform.system()} {platform.release()}",
+            "load average at start": " ".join(f"{x:.2f}" for x in os.getloadavg())}
 
 
-def peer_cell(result: dict | None) -> str:
-    if not result:
-        return "-"
-    if result["status"] == "ok":
-        return f"{result['reason_s']:.2f} s"
-    return result["status"]
+def summary(row: dict[str, Any]) -> dict[str, Any]:
+    """One flat record per map size, whatever measured it (the table, the CSV and the plot read this)."""
+    topo = row.get("topostore", row)  # compare rows nest topostore's figures; scale rows are flat
+    pellet = row.get("pellet") or {}
+    load_first_s = topo["load_first_ms"] / 1000 if "load_first_ms" in topo else row.get("load_first_s")
+    out = {"kind": row["kind"], "size": row["size"], "label": row["label"], "locations": row["locations"],
+           "doors": row["doors"], "triples": row["triples"],
+           "pellet_status": pellet.get("status", "not run"), "pellet_steps": len(pellet.get("step_ms", [])),
+           "pellet_median_ms": pellet.get("median_ms"), "pellet_p95_ms": pellet.get("p95_ms"),
+           "pellet_load_ms": pellet.get("load_ms"), "pellet_first_reason_ms": pellet.get("first_ms"),
+           "topostore_steps": len(topo.get("step_ms", [])), "topostore_median_ms": topo.get("median_ms"),
+           "topostore_p95_ms": topo.get("p95_ms"), "load_first_reason_s": load_first_s,
+           "full_reason_s": row.get("full_s"), "peak_rss_mib": topo.get("peak_rss_mib"),
+           "compared_steps": row.get("compared_steps"), "mismatches": len(row.get("mismatches", []))}
+    out["speedup"] = _ratio(out["pellet_median_ms"], out["topostore_median_ms"])
+    out["full_over_step"] = _ratio(out["full_reason_s"] and out["full_reason_s"] * 1000, out["topostore_median_ms"])
+    return out
 
 
-def size_label(row: dict) -> str:
-    return f"seed map ({row['locations']})" if row["size"] == "seed" else f"{int(row['size']):,}"
+def _ratio(a: float | None, b: float | None) -> float | None:
+    return a / b if a and b else None
 
 
-def full_step(row: dict) -> str:
-    if not row["full_steps"]:
-        return "not run"
-    return f"{row['full_median_ms']:.0f} / {row['full_p95_ms']:.0f} ms ({row['full_steps']})"
+def ms(x: float | None) -> str:
+    if x is None:
+        return "–"
+    return f"{x:.2f} ms" if x < 10 else f"{x:.1f} ms" if x < 100 else f"{x:,.0f} ms"
 
 
-def ratio(a: float, b: float) -> str:
-    return f"{a / b:.0f}×" if b > 0 else "-"
+def times(x: float | None) -> str:
+    return "–" if x is None else f"{x:.2f}×" if x < 10 else f"{x:,.0f}×"
 
 
-def table(rows: list[dict], info: dict[str, str]) -> str:
-    """A Markdown table: one row per size."""
-    head = ("| locations | asserted | inferred | load | full reason | RSS after reason | peak RSS | "
-            "step incremental median / p95 | step full median / p95 (n) | full/incremental | "
-            "owlrl closure | owlrl/topostore full | Pellet | Pellet/topostore full | verified |")
-    lines = [f"Machine: {', '.join(f'{k} {v}' for k, v in info.items())}", "", head,
-             "|" + "|".join("---" for _ in head.split("|")[1:-1]) + "|"]
-    for r in rows:
-        peers = []
-        for name in ("owlrl", "pellet"):
-            p = r.get(name)
-            peers.append(peer_cell(p))
-            peers.append(ratio(p["reason_s"], r["full_reason_s"]) if p and p["status"] == "ok" else "-")
+def pellet_cell(s: dict[str, Any], row: dict[str, Any]) -> str:
+    if row["kind"] == "scale":
+        return "not run (topostore only)"
+    p = row.get("pellet", {})
+    if not s["pellet_steps"]:
+        return f"{s['pellet_status']}: {p.get('why', '')}"
+    cell = f"{ms(s['pellet_median_ms'])} / {ms(s['pellet_p95_ms'])} ({s['pellet_steps']}"
+    if p.get("stopped"):
+        cell += f" of {s['topostore_steps']}: {p['stopped']}"
+    if s["pellet_status"] != "ok":
+        cell += f"; then {s['pellet_status']}"
+    return cell + ")"
+
+
+def answers_cell(s: dict[str, Any], row: dict[str, Any]) -> str:
+    if row.get("killed") or row.get("error"):
+        return f"run {row.get('killed') or 'failed'}"
+    if s["mismatches"]:
+        return f"**MISMATCH** ({s['mismatches']})"
+    if row["kind"] == "scale":
+        return f"as expected ({s['topostore_steps']} steps)"
+    if not s["compared_steps"]:
+        return "as expected (Pellet not compared)"
+    return f"equal ({s['compared_steps']} steps)"
+
+
+def table(rows: list[dict[str, Any]], info: dict[str, str]) -> str:
+    """The Markdown report: machine, one table, ratios, targets, notes."""
+    sums = [summary(r) for r in rows]
+    lines = ["Machine: " + ", ".join(f"{k} {v}" for k, v in info.items()), "",
+             "| locations | map | warm Pellet step median / p95 (steps) | topostore step median / p95 (steps) | "
+             "topostore speed-up | answers | topostore load + first REASON | full REASON | full / step | peak RSS |",
+             "|---|---|---|---|---|---|---|---|---|---|"]
+    for s, r in zip(sums, rows):
         lines.append(
-            f"| {size_label(r)} | {r['asserted']:,} | {r['inferred']:,} | "
-            f"{r['load_s']:.2f} s | {r['full_reason_s']:.2f} s | {r['rss_after_reason_mib']:.0f} MiB | "
-            f"{r['rss_peak_mib']:.0f} MiB | {r['inc_median_ms']:.1f} / {r['inc_p95_ms']:.1f} ms | "
-            f"{full_step(r)} | {ratio(r['full_median_ms'], r['inc_median_ms']) if r['full_steps'] else '-'} | {' | '.join(peers)} | {r['verified'] or '-'} |"
-        )
-    lines.append("")
-    for r in rows:
-        for name in ("owlrl", "pellet"):
-            p = r.get(name, {})
-            if p.get("status") in ("skipped", "error", "timeout"):
-                lines.append(f"- {PEER_LABELS[name]} on {size_label(r)}: {p['status']} ({p.get('why', '')})")
-    return "\n".join(lines)
+            f"| {s['locations']:,} | {s['label']} | {pellet_cell(s, r)} | "
+            f"{ms(s['topostore_median_ms'])} / {ms(s['topostore_p95_ms'])} ({s['topostore_steps']}) | "
+            f"{times(s['speedup'])} | {answers_cell(s, r)} | "
+            f"{_seconds(s['load_first_reason_s'])} | {_seconds(s['full_reason_s'])} | {times(s['full_over_step'])} | "
+            f"{_mib(s['peak_rss_mib'])} |")
+    lines += ["", "Ratios:", *ratios(sums), "", "Targets (issue 9):", *targets(sums)]
+    notes = [f"- {r['label']}: {m}" for r in rows for m in r.get("mismatches", [])[:5]]
+    notes += [f"- {r['label']}, Pellet: {r['pellet']['why']}" for r in rows
+              if r.get("pellet", {}).get("why") and r["pellet"]["status"] != "skipped"]
+    notes += [f"- {r['label']}: full REASON not run ({r['full_skipped']})" for r in rows if r.get("full_skipped")]
+    notes += [f"- {r['label']}: steps stopped at the {r['stopped']}" for r in rows if r.get("stopped")]
+    notes += [f"- {r['label']}: {r['error']}" for r in rows if r.get("error")]
+    notes += [f"- {r['label']}: {r['killed']}; the figures above are what it measured until then" for r in rows
+              if r.get("killed")]
+    return "\n".join(lines + (["", "Notes:", *notes] if notes else []))
 
 
-FIELDS = ["size", "locations", "asserted", "inferred", "load_s", "full_reason_s", "rss_after_reason_mib",
-          "rss_peak_mib", "inc_steps", "inc_median_ms", "inc_p95_ms", "inc_fallbacks", "full_steps",
-          "full_median_ms", "full_p95_ms", "verified"]
+def ratios(sums: list[dict[str, Any]]) -> list[str]:
+    by_size = {s["size"]: s for s in sums}
+    speedups = [f"{s['label']} {times(s['speedup'])}" for s in sums if s["speedup"]]
+    out = [f"- topostore speed-up vs warm Pellet (Pellet step median / topostore step median): "
+           f"{', '.join(speedups) or 'Pellet not run'}"]
+    small, big = by_size.get("1000"), by_size.get("100000")
+    if small and big and small["topostore_median_ms"] and big["topostore_median_ms"]:
+        out.append(f"- step(100,000) / step(1,000): {big['topostore_median_ms'] / small['topostore_median_ms']:.1f}")
+    if (ten := by_size.get("10000")) and ten["full_over_step"]:
+        out.append(f"- full REASON / step at 10,000: {ten['full_over_step']:.0f}")
+    return out
 
 
-def write_csv(rows: list[dict], path: Path) -> None:
+def targets(sums: list[dict[str, Any]]) -> list[str]:
+    """The four targets of issue 9, each with what this run measured."""
+    by_size = {s["size"]: s for s in sums}
+    compared = [s for s in sums if s["kind"] == "compare" and s["speedup"]]
+    out = []
+    if compared:
+        worst = min(compared, key=lambda s: s["speedup"])
+        out.append(_verdict("1. step ≥ 4× faster than warm Pellet on every compared map",
+                            f"lowest {times(worst['speedup'])} ({worst['label']})", worst["speedup"] >= 4))
+    if (ex := by_size.get("example")) and ex["topostore_median_ms"]:
+        out.append(_verdict("1. step ≤ 1 ms on the example map", ms(ex["topostore_median_ms"]),
+                            ex["topostore_median_ms"] <= 1))
+    if (ten := by_size.get("10000")) and ten["topostore_median_ms"]:
+        out.append(_verdict("2. step ≤ 10 ms at 10,000", ms(ten["topostore_median_ms"]), ten["topostore_median_ms"] <= 10))
+        if ten["full_over_step"]:
+            out.append(_verdict("2. step ≥ 50× cheaper than a full REASON at 10,000", times(ten["full_over_step"]),
+                                ten["full_over_step"] >= 50))
+    if (big := by_size.get("100000")) and big["load_first_reason_s"]:
+        out.append(_verdict("3. load + first full REASON ≤ 15 s at 100,000", _seconds(big["load_first_reason_s"]),
+                            big["load_first_reason_s"] <= 15))
+        out.append(_verdict("3. peak RSS ≤ 2 GiB at 100,000", _mib(big["peak_rss_mib"]),
+                            (big["peak_rss_mib"] or 0) <= 2048))
+        if big["topostore_median_ms"]:
+            out.append(_verdict("3. step ≤ 50 ms at 100,000", ms(big["topostore_median_ms"]), big["topostore_median_ms"] <= 50))
+            if (one := by_size.get("1000")) and one["topostore_median_ms"]:
+                r = big["topostore_median_ms"] / one["topostore_median_ms"]
+                out.append(_verdict("4. step(100,000) / step(1,000) ≤ 3", f"{r:.1f}", r <= 3))
+    return out or ["- not measured in this run"]
+
+
+def _verdict(what: str, measured: str, met: bool) -> str:
+    return f"- {what}: {measured} — {'met' if met else 'missed'}"
+
+
+def _seconds(x: float | None) -> str:
+    return "–" if x is None else f"{x:.2f} s" if x < 10 else f"{x:,.1f} s"
+
+
+def _mib(x: float | None) -> str:
+    return "–" if x is None else f"{x:,.0f} MiB" if x < 1024 else f"{x / 1024:.2f} GiB"
+
+
+def write_csv(rows: list[dict[str, Any]], path: Path) -> None:
+    sums = [summary(r) for r in rows]
     with path.open("w", newline="") as f:
-        writer = csv.writer(f)
-        writer.writerow(FIELDS + ["owlrl_s", "owlrl_status", "pellet_s", "pellet_status"])
-        for r in rows:
-            peers = []
-            for name in ("owlrl", "pellet"):
-                p = r.get(name) or {"status": "not run"}
-                peers += [p.get("reason_s", ""), p["status"]]
-            writer.writerow([r[k] for k in FIELDS] + peers)
+        writer = csv.DictWriter(f, fieldnames=list(sums[0]) if sums else ["size"])
+        writer.writeheader()
+        writer.writerows(sums)
 
 
-def write_plot(rows: list[dict], path: Path) -> Path | None:
-    """Log-log plot of the times against map size; None when matplotlib is not installed."""
-    try:
-        import matplotlib
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
-    except ImportError:
-        return None
-    xs = [r["locations"] for r in rows]
+def write_plot(rows: list[dict[str, Any]], path: Path) -> Path:
+    """Step medians (both reasoners) and topostore's full REASON against map size, log-log."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    sums = [summary(r) for r in rows]
+    series = {"warm Pellet: robot step (median)": ("pellet_median_ms", 1.0, "s--"),
+              "topostore: robot step (median)": ("topostore_median_ms", 1.0, "o-"),
+              "topostore: full REASON": ("full_reason_s", 1000.0, "^:")}
     fig, ax = plt.subplots(figsize=(8, 5))
-    series = {
-        "load": [r["load_s"] for r in rows],
-        "full reason": [r["full_reason_s"] for r in rows],
-        "robot step, full rematerialisation (median)": [r["full_median_ms"] / 1000 for r in rows],
-        "robot step, incremental (median)": [r["inc_median_ms"] / 1000 for r in rows],
-    }
-    for label, ys in series.items():
-        pts = [(x, y) for x, y in zip(xs, ys) if y > 0]  # steps not run have no time
+    for label, (key, scale, style) in series.items():
+        pts = [(s["locations"], s[key] * scale) for s in sums if s[key]]
         if pts:
-            ax.plot(*zip(*pts), marker="o", label=label)
-    for name, label in PEER_LABELS.items():
-        pts = [(r["locations"], r[name]["reason_s"]) for r in rows if r.get(name, {}).get("status") == "ok"]
-        if pts:
-            ax.plot(*zip(*pts), marker="s", linestyle="--", label=f"{label}: reason")
-    ax.set_xscale("log")
-    ax.set_yscale("log")
-    ax.set_xlabel("locations in the map")
-    ax.set_ylabel("seconds")
-    ax.set_title("topostore reasoning latency")
+            ax.plot(*zip(*pts), style, label=label)
+    for s in sums:
+        if s["speedup"]:
+            ax.annotate(times(s["speedup"]), (s["locations"], s["topostore_median_ms"]), textcoords="offset points",
+                        xytext=(4, -12), fontsize=8)
+    ax.set(xscale="log", yscale="log", xlabel="locations in the map", ylabel="milliseconds",
+           title="Robot step: topostore vs warm Pellet (labels: topostore speed-up)")
     ax.grid(True, which="both", alpha=0.3)
     ax.legend(fontsize=8)
     fig.tight_layout()

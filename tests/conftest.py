@@ -1,4 +1,5 @@
-"""Shared fixtures: the SPARQL servers of the remote-store tests, started once per session."""
+"""Shared fixtures: the SPARQL servers of the remote-store tests, started once per session; the fuzz
+figures (cases tried, violations found) printed at the end of a run that fuzzed."""
 
 from __future__ import annotations
 
@@ -28,3 +29,14 @@ def virtuoso_url() -> Iterator[str]:
                     "apt-get install virtuoso-opensource (make test does this as root on Debian)")
     with virtuoso_server() as url:
         yield url
+
+
+def pytest_terminal_summary(terminalreporter: pytest.TerminalReporter) -> None:
+    try:
+        from fuzz_support import CASES
+    except ImportError:  # pragma: no cover
+        return
+    if not CASES["tried"]:
+        return
+    failed = [r for r in terminalreporter.stats.get("failed", []) if "test_fuzz" in r.nodeid]
+    terminalreporter.write_line(f"fuzz: {CASES['tried']} cases tried, {len(failed)} violations found")

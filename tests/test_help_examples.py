@@ -2,9 +2,11 @@
 
 Examples run through bash (globs and quotes as a user's shell reads them) in a
 scratch folder where ``ontology/`` is the repository's, so the relative paths
-of the examples resolve and nothing is written into the checkout.  The one
-change made to an example: a server's port (8765) becomes a free one, because
-other programs on the machine may hold 8765.
+of the examples resolve and nothing is written into the checkout.  The changes
+made to an example: a server's port (8765) becomes a free one, because other
+programs on the machine may hold 8765, and an example that names an Oxigraph
+server (``http://127.0.0.1:7878``) gets a real ``oxigraph serve`` started for it
+on a free port.
 """
 
 from __future__ import annotations
@@ -18,6 +20,8 @@ import socket
 import subprocess
 import sys
 import time
+from collections.abc import Iterator
+from contextlib import contextmanager
 from pathlib import Path
 
 import pytest
@@ -27,6 +31,7 @@ from topostore import Ontology, mapgen
 from topostore.cli import EXIT_CANNOT_LISTEN, cli, load_files, reason_with_progress
 from topostore.resources import default_ontology
 
+from servers import oxigraph_server
 from test_server import free_port
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -67,9 +72,23 @@ def test_every_command_has_an_example() -> None:
 SERVED = [line for _, line in help_examples() if line.startswith(("topostore serve", "curl"))]
 
 
+EXAMPLE_SERVER = "http://127.0.0.1:7878"
+
+
+@contextmanager
+def with_its_server(line: str) -> Iterator[str]:
+    """The example line, with a real Oxigraph server behind the URL it names (if it names one)."""
+    if EXAMPLE_SERVER not in line:
+        yield line
+        return
+    with oxigraph_server() as url:
+        yield line.replace(EXAMPLE_SERVER, url)
+
+
 @pytest.mark.parametrize("line", [line for _, line in help_examples() if line not in SERVED])
 def test_help_example_runs(line: str, workdir: Path) -> None:
-    done = sh(line, workdir)
+    with with_its_server(line) as line:
+        done = sh(line, workdir)
     assert done.returncode == 0, f"{line}\n{done.stdout}\n{done.stderr}"
     assert "Traceback" not in done.stderr
 
@@ -79,7 +98,14 @@ def test_serve_help_example_with_its_curl(workdir: Path) -> None:
     port = free_port()
     own = [line for name, line in help_examples() if name == "serve"]
     assert set(SERVED) == set(own)  # the top-level help repeats the serve line
-    serve_line, curl_line = (line.replace("8765", str(port)) for line in own)
+    *serve_lines, curl_line = (line.replace("8765", str(port)) for line in own)
+    for serve_line in serve_lines:  # each way of starting it, in turn, answers the help's curl
+        with with_its_server(serve_line) as line:
+            serve_and_curl(line.replace("topostore serve", f"topostore serve --port {port}")
+                           if "--port" not in line else line, curl_line, port, workdir)
+
+
+def serve_and_curl(serve_line: str, curl_line: str, port: int, workdir: Path) -> None:
     proc = subprocess.Popen(["bash", "-c", f"exec {serve_line}"], cwd=workdir, env=shell_env(),
                             stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
     try:

@@ -104,6 +104,9 @@ def load_files(files: Sequence[str], fmt: str | None = None, console: Console | 
                store: str | None = None) -> Ontology:
     """Load ``files`` into one ontology (on ``store``), showing how many triples each has given so far."""
     onto = Ontology(store=store)
+    context = click.get_current_context(silent=True)
+    if store and context is not None:
+        context.call_on_close(onto.store.close)  # a durable store is released when the command ends
     with _progress(console=console) as progress:
         for f in files:
             name = Path(f).name
@@ -317,6 +320,9 @@ def _readable(value: str, prefix: str) -> str:
 
 # --------------------------------------------------------------------------- serve
 
+from .limits_cli import apply_limits, limit_options  # noqa: E402 - beside the command that uses them
+
+
 @cli.command()
 @click.option("--host", default="127.0.0.1", show_default=True, help="Address to listen on (loopback unless --token).")
 @click.option("--port", default=8765, show_default=True, type=click.IntRange(0, 65535))
@@ -338,9 +344,11 @@ def _readable(value: str, prefix: str) -> str:
               "also survives an OS crash or power loss (slower).")
 @click.option("--store-query-url", metavar="URL", help="SPARQL query endpoint of a remote --store (default URL/query).")
 @click.option("--store-update-url", metavar="URL", help="SPARQL update endpoint of a remote --store (default URL/update).")
+@limit_options
 def serve(host: str, port: int, data_dir: str, token: str | None, allow_update: bool, max_request_bytes: int,
           sparql_timeout: float, sparql_max_rows: int, short_names: bool, cors_origins: tuple[str, ...],
-          store: str | None, sync: bool, store_query_url: str | None, store_update_url: str | None) -> None:
+          store: str | None, sync: bool, store_query_url: str | None, store_update_url: str | None,
+          **limits: float) -> None:
     """Serve aRMOR commands (POST /armor) and SPARQL endpoints over HTTP.
 
     Exits with code 4 and one line when it cannot listen (port in use).
@@ -360,6 +368,7 @@ def serve(host: str, port: int, data_dir: str, token: str | None, allow_update: 
                           cors_origins=cors_origins, store=store, sync=sync, store_query_url=store_query_url,
                           store_update_url=store_update_url)
     config.check()
+    apply_limits(**limits)
     problem = _cannot_listen(host, port)
     if problem:
         click.echo(f"Error: {problem}", err=True)

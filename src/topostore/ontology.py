@@ -32,6 +32,10 @@ from .events import EventHub
 from .queries import QueryItem, collect, get_named_query, render_jena, substitutions, to_items
 from .reason import ReasonStats, Violation, classify
 from .reason.incremental import DEFAULT_MAX_CHANGE_SHARE, IncrementalReasoner
+from .journal import Journal, all_or_nothing
+from .reason import limits as reason_limits
+from .reason.limits import ReasonLimits
+from .safeio import atomic_write
 from .store import Store, fresh_skolem, guess_format, serialize
 from .stores import StoreSpec, check_rules, open_store
 from .stores import state as durable_state
@@ -89,6 +93,9 @@ class Ontology:
         self._reasoner: IncrementalReasoner | None = None
         #: share of the asserted graph above which REASON recomputes from scratch
         self.max_change_share = DEFAULT_MAX_CHANGE_SHARE
+        #: rounds, inferred facts and seconds one REASON may use (see topostore.reason.limits)
+        self.limits: ReasonLimits = reason_limits.DEFAULTS
+        self._journal = Journal()  # asserted changes since the last successful REASON, to roll back
         #: change notifications: subscribe with ``onto.events.subscribe(callback, "rdf:type URGENT")``
         self.events = EventHub(lambda: self.prefix)
         #: how a durable store was found: "new", "reopened" or "rebuilt" (see stores/state.py)
@@ -158,6 +165,8 @@ class Ontology:
 
     def iri(self, name: str | NamedNode) -> NamedNode:
         """IRI of a named entity (``<full IRI>`` or a name in :attr:`prefix`)."""
+        if not isinstance(name, (str, NamedNode)):
+            raise TypeError(f"an entity name must be a string or a NamedNode, not {type(name).__name__}")
         return name if isinstance(name, NamedNode) else entity(name, self.prefix)
 
     def short(self, term: Term) -> str:
@@ -177,6 +186,7 @@ class Ontology:
             _validate(t)
         self._touch(triples)
         self._track(triples, added=True)
+        self._journal.record(self.store, triples, added=True)
         return self.store.add(triples, ASSERTED)
 
     def remove(self, *triples: Triple) -> int:
@@ -184,6 +194,7 @@ class Ontology:
         triples = tuple(dict.fromkeys(triples))
         self._touch(triples)
         self._track(triples, added=False)
+        self._journal.record(self.store, triples, added=False)
         return self.store.remove(triples, ASSERTED)
 
     def _touch(self, triples: Iterable[Triple]) -> None:
@@ -229,6 +240,8 @@ class Ontology:
             _validate_literal(value)
             return value
         if datatype is not None:
+            if not isinstance(datatype, str):
+                raise TypeError(f"a datatype must be a string, not {type(datatype).__name__}")
             local = datatype[len(XSD):] if datatype.startswith(XSD) else datatype
             return literal_of(str(value), local)
         if isinstance(value, bool):
@@ -357,6 +370,7 @@ class Ontology:
             self._rules = rules
         return self._rules
 
+    @all_or_nothing  # under self.limits; a failure restores the state of the last successful REASON
     def reason(self, profile: bool = False, mode: str = "auto") -> ReasonReport:
         """Bring the inferred graph to the closure of the asserted graph as it is now.
 
@@ -466,9 +480,16 @@ class Ontology:
     def sparql(self, text: str, bindings: dict[str, Term] | None = None, **kwargs):
         """Raw SPARQL over the visible graphs (asserted ∪ inferred).
 
+        User text passes the one SPARQL guard (size, nesting, SERVICE, internal
+        functions) before Oxigraph parses it, and runs without the reasoner's
+        extension functions.
         ``bindings`` fix variables to terms with pyoxigraph's ``substitutions=``;
         in a SELECT query a bound variable must be projected.
         """
+        from .sparql.guard import check_user_sparql  # here: the sparql package imports this module
+
+        check_user_sparql(text)
+        kwargs.setdefault("custom_functions", {})
         if not bindings:
             return self.store.query(text, graphs=self.visible_graphs(), **kwargs)
         try:
@@ -494,6 +515,8 @@ class Ontology:
         and Python values or Literals for ``literal`` parameters.
         """
         params = params or {}
+        if not isinstance(name_or_text, str):
+            raise TypeError(f"a query name or text must be a string, not {type(name_or_text).__name__}")
         if name_or_text.lstrip().upper().startswith(("SELECT", "PREFIX", "BASE")):
             text, kinds = name_or_text, {k: "iri" for k in params}
         else:
@@ -527,10 +550,7 @@ class Ontology:
         """Write asserted (or asserted + inferred) triples; the format follows the extension."""
         path = Path(path)
         data = self.serialize(guess_format(path, fmt), inferred)
-        tmp = path.with_name(path.name + ".tmp")
-        tmp.write_bytes(data)
-        tmp.replace(path)
-        return path
+        return atomic_write(path, data)  # temporary file beside it, never through a symlink, removed on failure
 
 
 def _is_user_class(t: Term) -> bool:

@@ -25,6 +25,7 @@ import hmac
 import ipaddress
 import json
 import logging
+import re
 import socket
 import time
 import urllib.parse
@@ -127,9 +128,15 @@ def error(status: int, message: str, headers: dict[str, str] | None = None) -> J
 
 # --------------------------------------------------------------------------- middleware
 
+#: RFC 7230 Host: a name or IPv4 address, or an IPv6 literal in brackets, then an optional port
+_HOST_HEADER = re.compile(r"(\[[0-9a-f:.%]+\]|[a-z0-9.\-]+)(:[0-9]{1,5})?")
+
+
 def is_loopback_host_header(value: str) -> bool:
     """Whether a Host header names this machine literally (no DNS: a rebinding domain must not pass)."""
     host = value.strip().lower()
+    if not _HOST_HEADER.fullmatch(host):  # e.g. "localhost:80@evil.com", which a URL parser reads as evil.com
+        return False
     if host.startswith("["):
         host = host[1:host.find("]")] if "]" in host else host[1:]
     elif host.count(":") == 1:
@@ -395,6 +402,10 @@ async def _json_body(request: Request) -> Any:
         return json.loads(body)
     except (UnicodeDecodeError, json.JSONDecodeError) as exc:
         return error(400, f"the request body is not valid JSON: {exc}")
+    except ValueError as exc:  # e.g. an integer of more than 4,300 digits
+        return error(400, f"the request body has a value out of range: {exc}")
+    except RecursionError:
+        return error(400, "the request body nests JSON arrays or objects too deeply")
 
 
 async def _sparql_operation(request: Request) -> tuple[str, str] | Response:

@@ -30,6 +30,7 @@ import pyoxigraph as ox
 from pyoxigraph import BlankNode, DefaultGraph, Literal, NamedNode, Quad, RdfFormat, Triple
 
 from .errors import LoadError, QueryError
+from .safeio import check_xml_entities, read_regular_file
 from .terms import Term, value_key
 from .vocab import AUX, ASSERTED, INFERRED, INTERNAL, NIL, FIRST, REST, TYPE
 
@@ -40,6 +41,10 @@ _PROBE = ox.Store()
 _PROBE_LOCK = threading.Lock()
 _PROBE_GRAPH = NamedNode(INTERNAL + "graph:probe")
 _XSD = "http://www.w3.org/2001/XMLSchema#"
+
+
+#: largest integer result swrlb:pow computes (bits); beyond it the built-in gives no value
+_POW_MAX_BITS = 4096
 
 
 def _pow(base: Term, exponent: Term) -> Literal | None:
@@ -53,7 +58,10 @@ def _pow(base: Term, exponent: Term) -> Literal | None:
     try:
         if base.datatype.value.startswith(_XSD) and "." not in base.value and "e" not in base.value.lower() \
                 and exponent.value.lstrip("+").isdigit():
-            return Literal(str(int(base.value) ** int(exponent.value)), datatype=NamedNode(_XSD + "integer"))
+            b, e = int(base.value), int(exponent.value)
+            if abs(b) > 1 and e * abs(b).bit_length() > _POW_MAX_BITS:
+                return None  # a number this large is not a measurement; computing it would freeze the service
+            return Literal(str(b ** e), datatype=NamedNode(_XSD + "integer"))
         return Literal(repr(float(base.value) ** float(exponent.value)), datatype=NamedNode(_XSD + "double"))
     except (ValueError, OverflowError, ZeroDivisionError):
         return None
@@ -214,10 +222,7 @@ class Store:
         progress: Callable[[int], None] | None = None,
     ) -> list[Triple]:
         """Parse a document into skolemised triples without touching the store."""
-        try:
-            data = Path(path).read_bytes()
-        except OSError as exc:
-            raise LoadError(f"{path}: cannot read file: {exc.strerror or exc}") from exc
+        data = read_regular_file(path)  # regular files only, size-limited (LoadError otherwise)
         return self.parse_bytes(data, guess_format(path, fmt), base_iri, source=str(path), progress=progress)
 
     def parse_bytes(
@@ -226,7 +231,9 @@ class Store:
     ) -> list[Triple]:
         """``progress(n)`` is called every ``PROGRESS_EVERY`` triples parsed (for progress displays)."""
         if isinstance(data, str):
-            data = data.encode()
+            data = data.encode("utf-8", errors="surrogatepass")
+        if fmt == RdfFormat.RDF_XML:
+            check_xml_entities(data, source)
         try:
             quads = []
             for quad in ox.parse(data, format=fmt, base_iri=base_iri, rename_blank_nodes=True):

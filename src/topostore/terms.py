@@ -143,6 +143,10 @@ def typed_literal(value: str, type_name: str) -> Literal:
     return literal_of(value, local)
 
 
+#: longest integer accepted (Python refuses to parse more than 4,300 digits; no robot measures more)
+_MAX_INTEGER_DIGITS = 4000
+
+
 def literal_of(value: str, local: str) -> Literal:
     """A canonical literal of XSD type ``local`` from its lexical text, validated."""
     datatype = NamedNode(XSD + local)
@@ -151,7 +155,10 @@ def literal_of(value: str, local: str) -> Literal:
         return Literal(value)
     if local in INTEGER_TYPES:
         if not _INT_RE.match(text):
-            raise InvalidValueError(f"{value!r} is not a valid xsd:{local}")
+            raise InvalidValueError(f"{value[:40]!r} is not a valid xsd:{local}")
+        if len(text) > _MAX_INTEGER_DIGITS:
+            raise InvalidValueError(f"an xsd:{local} of {len(text)} digits is out of range "
+                                    f"(at most {_MAX_INTEGER_DIGITS} digits are accepted)")
         number = int(text)
         low, high = INTEGER_TYPES[local]
         if (low is not None and number < low) or (high is not None and number > high):

@@ -23,7 +23,7 @@ from ..ontology import Ontology
 from ..queries import QueryItem, render_jena
 from ..store import fresh_skolem
 from ..vocab import (
-    ASSERTED, FIRST, NIL, NOTHING, REST, THING, TYPE, XSD, is_internal, owl, rdfs,
+    ASSERTED, FIRST, NIL, NOTHING, OWL, RDF, RDFS, REST, SWRL, SWRLB, THING, TYPE, XSD, is_internal, owl, rdfs,
 )
 from . import codes
 from .codes import CommandError
@@ -35,6 +35,8 @@ if TYPE_CHECKING:  # pragma: no cover
     from .types import ArmorRequest
 
 SUBCLASS_OF = rdfs("subClassOf")
+#: namespaces whose terms give the ontology its meaning; RENAME refuses them
+_VOCABULARIES = (RDF, RDFS, OWL, XSD, SWRL, SWRLB, "http://swrl.stanford.edu/")
 EQUIVALENT_CLASS = owl("equivalentClass")
 
 
@@ -378,6 +380,10 @@ def rename(kind: str) -> Handler:
 
     def handler(ctx: Context) -> Reply:
         old, new = ctx.iri(0, f"old {kind} name"), ctx.iri(1, f"new {kind} name")
+        for position, term in ((1, old), (2, new)):
+            if term.value.startswith(_VOCABULARIES) or is_internal(term):
+                raise CommandError(codes.INVALID_ARGUMENT, f"argument {position}: {term.value} belongs to the RDF, "
+                                   "RDFS, OWL, XSD or SWRL vocabulary (or to topostore); it cannot be renamed")
 
         def plan(onto: Ontology) -> Delta:
             sub = (lambda term: new if term == old else term)
@@ -410,9 +416,13 @@ def reason(ctx: Context) -> Reply:
     ref = ctx.reference
     try:
         warnings = ref.flush(reason=False)
-        ref.ontology.reason()
+        ref.ontology.reason()  # on failure the ontology is back at its last successful REASON
     except Exception as exc:
-        raise CommandError(codes.REASONER_OR_QUERY_FAILURE, f"reasoning failed: {exc}") from exc
+        # the buffered changes that broke it are dropped too, or every later REASON would fail the same way
+        dropped, ref.buffer = len(ref.buffer), []
+        note = f"; {dropped} buffered change(s) were discarded" if dropped else ""
+        raise CommandError(codes.REASONER_OR_QUERY_FAILURE, f"reasoning failed and the changes since the last "
+                           f"successful REASON were undone: {exc}{note}") from exc
     return Reply(warnings=warnings)
 
 
@@ -569,12 +579,13 @@ def run_select(onto: Ontology, text: str, timeout: float | None) -> tuple[list[s
                 if stop.is_set():
                     break
                 state["rows"].append([solution[v] for v in names])
-        except Exception as exc:  # reported by the caller
-            state["error"] = exc
+        except Exception as exc:  # reported by the caller, as text: the traceback would keep the result alive
+            state["error"] = f"{type(exc).__name__}: {exc}" if not isinstance(exc, QueryError) else str(exc)
         finally:
+            result = None  # pyoxigraph results must be freed on the thread that made them  # noqa: F841
             done.set()
 
-    if timeout is None:
+    if timeout is None:  # direct callers only; commands always pass a limit (_query_limit)
         worker()
     else:
         threading.Thread(target=worker, name="armor-sparql", daemon=True).start()
@@ -596,14 +607,24 @@ def _sparql_args(ctx: Context) -> tuple[str, float | None]:
     try:
         millis = int(raw.strip())
     except ValueError:
-        raise CommandError(codes.INVALID_ARGUMENT, f"timeout must be an integer number of milliseconds, got {raw!r}") from None
+        raise CommandError(codes.INVALID_ARGUMENT, f"timeout must be an integer number of milliseconds, got {raw[:40]!r}") from None
     return text, (millis / 1000.0 if millis > 0 else None)
+
+
+def _query_limit(ctx: Context, asked: float | None) -> float:
+    """The time a query may run: what the client asked, never more than the service's maximum.
+
+    No timeout (or one <= 0) used to mean "unlimited" while the reference's
+    lock was held; now it means the maximum (``ArmorService.max_query_seconds``).
+    """
+    maximum = ctx.service.max_query_seconds
+    return maximum if asked is None else min(asked, maximum)
 
 
 def query_sparql(ctx: Context) -> Reply:
     """QUERY SPARQL: one string ``{x=v, y=w}, {...}``; every projected variable per row, values unmodified."""
     text, timeout = _sparql_args(ctx)
-    variables, rows, timed_out = run_select(ctx.onto, text, timeout)
+    variables, rows, timed_out = run_select(ctx.onto, text, _query_limit(ctx, timeout))
     render = lambda t: render_jena(t, ctx.onto.store.restore)  # noqa: E731
     flat = ", ".join("{" + ", ".join(f"{v}={render(x)}" for v, x in zip(variables, row)) + "}" for row in rows)
     return Reply(queried_objects=[flat], timeout=timed_out)
@@ -612,7 +633,7 @@ def query_sparql(ctx: Context) -> Reply:
 def query_sparql_formatted(ctx: Context) -> Reply:
     """QUERY SPARQL FORMATTED: one QueryItem per projected variable per row ("" when unbound)."""
     text, timeout = _sparql_args(ctx)
-    variables, rows, timed_out = run_select(ctx.onto, text, timeout)
+    variables, rows, timed_out = run_select(ctx.onto, text, _query_limit(ctx, timeout))
     items = [QueryItem(v, render_jena(x, ctx.onto.store.restore)) for row in rows for v, x in zip(variables, row)]
     return Reply(sparql_queried_objects=items, timeout=timed_out)
 
@@ -684,6 +705,7 @@ def save(inferred: bool) -> Handler:
             target = ref.source
         else:
             target = ctx.service.resolve_path(ctx.args[0])
+        ctx.service.note_ontology_file(target)
         try:
             ref.ontology.save(target, inferred=inferred)
         except OSError as exc:

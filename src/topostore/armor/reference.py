@@ -136,6 +136,8 @@ class Reference:
                 self.save_state()
             if reason:
                 self.ontology.reason()
+            else:
+                self.ontology.rules  # noqa: B018 - compile now: a change no rules can be compiled from is refused
         except Exception:
             with self.ontology.store.transaction():
                 self.undo(applied)

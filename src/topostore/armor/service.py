@@ -25,6 +25,7 @@ from typing import Any
 
 from ..errors import LoadError, RuleCompileError, TopostoreError
 from ..ontology import Ontology
+from ..safeio import open_log
 from ..store import guess_format
 from ..stores import StoreSpec, kind as store_kind
 from . import codes
@@ -39,6 +40,9 @@ logger = logging.getLogger("topostore.armor")
 
 _WEB_TIMEOUT_SECONDS = 20.0
 _WEB_MAX_BYTES = 64 * 1024 * 1024
+DEFAULT_MAX_QUERY_SECONDS = 30.0
+_ONTOLOGY_SUFFIXES = {".owl", ".rdf", ".xml", ".ttl", ".turtle", ".nt", ".ntriples", ".n3", ".jsonld", ".nq", ".trig"}
+
 
 
 class ArmorService:
@@ -63,7 +67,10 @@ class ArmorService:
         self.renderer = Renderer(short_names)
         self._references: dict[str, Reference] = {}
         self._registry_lock = threading.RLock()
-        self._file_handler: logging.Handler | None = None
+        #: longest a QUERY SPARQL may run, also when the client asks for no limit (seconds)
+        self.max_query_seconds = DEFAULT_MAX_QUERY_SECONDS
+        self._file_handler: logging.StreamHandler | None = None
+        self._ontology_files: set[Path] = set()
         self._screen_handler: logging.Handler | None = None
         self.durable = None if store_kind(store) == "memory" else DurableReferences(
             store, sync, store_query_url, store_update_url)
@@ -217,6 +224,7 @@ class ArmorService:
             onto = Ontology(prefix=iri + "#", store=store)
             if source == "FILE":
                 path = self.resolve_path(location)
+                self.note_ontology_file(path)
                 onto.load(path)
             else:
                 data, fmt = self._fetch(location)
@@ -268,19 +276,32 @@ class ArmorService:
             raise CommandError(codes.FILE_ERROR, f"{url!r} is larger than {_WEB_MAX_BYTES} bytes")
         return data, guess_format(urllib.parse.urlparse(url).path)
 
+    def note_ontology_file(self, path: Path) -> None:
+        """Remember a file LOAD read or SAVE wrote, so LOG FILE never appends to it."""
+        self._ontology_files.add(Path(path).resolve())
+
     def log_to_file(self, path: Path | None) -> None:
-        """LOG FILE ON/OFF: send this service's log to ``path`` (None stops)."""
+        """LOG FILE ON/OFF: send this service's log to ``path`` (None stops).
+
+        The new file is opened first; if that fails the current log stays as it was.
+        """
+        handler: logging.StreamHandler | None = None
+        if path is not None:
+            if Path(path).resolve() in self._ontology_files or Path(path).suffix.lower() in _ONTOLOGY_SUFFIXES:
+                raise CommandError(codes.FILE_ERROR, f"{str(path)!r} is an ontology file; choose a log file name "
+                                   "that is not a loaded or saved ontology (e.g. armor.log)")
+            try:
+                stream = open_log(path)
+            except OSError as exc:
+                raise CommandError(codes.FILE_ERROR, f"cannot open log file {str(path)!r}: {exc.strerror or exc}") from None
+            handler = logging.StreamHandler(stream)
+            handler.setFormatter(logging.Formatter("%(asctime)s %(levelname)s %(name)s: %(message)s"))
         if self._file_handler is not None:
             logger.removeHandler(self._file_handler)
             self._file_handler.close()
-            self._file_handler = None
-        if path is not None:
-            try:
-                handler = logging.FileHandler(path, encoding="utf-8")
-            except OSError as exc:
-                raise CommandError(codes.FILE_ERROR, f"cannot open log file {str(path)!r}: {exc.strerror or exc}") from None
-            handler.setFormatter(logging.Formatter("%(asctime)s %(levelname)s %(name)s: %(message)s"))
-            self._file_handler = handler
+            self._file_handler.stream.close()  # StreamHandler.close leaves the stream open
+        self._file_handler = handler
+        if handler is not None:
             logger.addHandler(handler)
         self._update_level()
 

@@ -20,6 +20,16 @@ def _text(data: Mapping[str, Any], key: str) -> str:
         return ""
     if not isinstance(value, str):
         raise TypeError(f"{key} must be a string, got {type(value).__name__}")
+    return _unicode(value, key)
+
+
+def _unicode(value: str, what: str) -> str:
+    """``value`` if it is valid Unicode text; lone surrogates (not encodable as UTF-8) are refused."""
+    try:
+        value.encode("utf-8")
+    except UnicodeEncodeError as exc:
+        raise ValueError(f"{what} contains a lone surrogate code point at index {exc.start}; "
+                         "send valid Unicode text") from None
     return value
 
 
@@ -49,6 +59,8 @@ class ArmorRequest:
             raise TypeError("args must be a list of strings")
         if not all(isinstance(a, str) for a in args):
             raise TypeError("every element of args must be a string")
+        for k, a in enumerate(args):
+            _unicode(a, f"argument {k + 1}")
         return cls(
             client_name=_text(data, "client_name"),
             reference_name=_text(data, "reference_name"),

@@ -195,8 +195,9 @@ def head_triple(row) -> Triple:
 
 
 def gained(row) -> bool:
+    """Whether the row's head became derivable (``?ok__n`` true; some servers answer booleans as 1/0)."""
     ok = row["ok__n"]
-    return isinstance(ok, Literal) and ok.value == "true"
+    return isinstance(ok, Literal) and ok.value in ("true", "1")
 
 
 __all__ = ["CHANGE_OLD", "Replacement", "clean_replacements", "compared_only", "filter_variables", "flip_branches",

@@ -71,6 +71,7 @@ from ..compile.generic import PREFIXES
 from ..compile.rule import Rule, RuleSet
 from ..store import Store
 from ..vocab import ASSERTED, AUX, DELTA, INFERRED, INTERNAL, NEW_AUX, NEW_INFERRED, TYPE
+from . import limits
 from .consistency import Violation, check_consistency
 from . import flip
 from .materialize import Materializer, Present, ReasonStats, feasible, feasible_atom, matches
@@ -400,6 +401,7 @@ class IncrementalReasoner:
         self._defer(f"ADD SILENT {REMOVED} TO {DEL_DELTA} ; ADD SILENT {REMOVED} TO {OVERDELETED}")
         preds, classes = self._start(REMOVED)  # what DEL_DELTA holds once the queue is sent
         while True:
+            limits.check()
             for i, j in self.triggers.evaluations(preds, classes, self._monotone_set, self.state.present, skip):
                 self._run(("cand", i, j), self._candidate_text, i, j, stats)
             self._flush()
@@ -429,6 +431,7 @@ class IncrementalReasoner:
         known = (set(self.state.asserted[0]), set(self.state.asserted[1]))
         tried_subgoals = False
         while True:
+            limits.check()
             if self._prove_goals(CANDIDATES, known, stats):
                 continue
             if tried_subgoals or self.store.is_empty(CANDIDATES):

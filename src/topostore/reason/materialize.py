@@ -24,6 +24,7 @@ from pyoxigraph import NamedNode
 from ..compile.generic import PREFIXES
 from ..compile.rule import Atom, Rule, RuleSet
 from ..store import Store
+from . import limits
 from .plan import KeyCounts, is_small, key_counts, plan_where
 from .triggers import Triggers
 from ..vocab import ASSERTED, AUX, DELTA, INFERRED, NEW_AUX, NEW_INFERRED, TYPE
@@ -185,6 +186,7 @@ class Materializer:
     def _delta_round(self, active: list[int], stats: ReasonStats, counts: KeyCounts,
                      skip: Collection[tuple[int, int]] = ()) -> None:
         preds, classes = counts
+        limits.tick(sum(preds.values()), lambda: limits.writers(self.rules, preds, classes))
         if self.profile:
             self._flush()  # the promotion first: profiled evaluations do not wait in the queue
         if self.planned:

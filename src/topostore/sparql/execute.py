@@ -27,7 +27,7 @@ from ..armor.reference import Change, Delta, Reference
 from ..errors import QueryError
 from ..store import skolemize
 from ..vocab import ASSERTED, OWL, RDF, RDFS, XSD
-from .guard import check_safe
+from .guard import check_user_sparql
 from .results import ResultFormat, boolean_json, choose_format, render_graph, render_table, solutions_json
 
 
@@ -102,10 +102,32 @@ def run_query(ref: Reference, text: str, accept: str | None, explicit_format: st
     Raises QueryError (malformed), UnsafeOperationError, NotAcceptable,
     SparqlTimeout or ResultTooLarge.
     """
-    check_safe(text)
-    onto = ref.ontology
+    onto = ref.ontology  # onto.sparql passes the text through the SPARQL guard
     with ref.lock:
         result = onto.sparql(text)  # the snapshot is taken here
+    try:
+        return _serialize(ref, onto, result, accept, explicit_format, job, limit, max_rows)
+    finally:
+        # pyoxigraph results must be freed on this thread, not where a traceback holding them ends up
+        result = None  # noqa: F841
+
+
+def _serialize(ref: Reference, onto, result, accept: str | None, explicit_format: str | None, job: Job,
+               limit: float, max_rows: int) -> QueryOutcome:
+    """Read the rows (or triples) under the deadline and serialize them."""
+    try:
+        return _read(ref, onto, result, accept, explicit_format, job, limit, max_rows)
+    except Exception as exc:  # a fresh exception: no traceback may keep the result alive
+        try:
+            error = type(exc)(str(exc))
+        except Exception:
+            error = QueryError(str(exc))
+    result = None  # noqa: F841
+    raise error
+
+
+def _read(ref: Reference, onto, result, accept: str | None, explicit_format: str | None, job: Job,
+          limit: float, max_rows: int) -> QueryOutcome:
     if isinstance(result, QueryBoolean):
         fmt = choose_format(accept, graph=False, explicit=explicit_format)
         return QueryOutcome(render_table(boolean_json(bool(result)), fmt), fmt, "boolean", 1)
@@ -161,7 +183,7 @@ def update_delta(asserted: list[Triple], text: str) -> Delta:
         scratch.update(text)
     except SyntaxError as exc:
         raise QueryError(f"malformed SPARQL update: {exc}") from exc
-    except OSError as exc:
+    except (OSError, RuntimeError) as exc:
         raise QueryError(f"SPARQL update failed: {exc}") from exc
     named = {q.graph_name.value for q in scratch.quads_for_pattern(None, None, None) if not isinstance(q.graph_name, DefaultGraph)}
     if named:
@@ -177,7 +199,7 @@ def run_update(ref: Reference, text: str, job: Job, limit: float) -> UpdateOutco
 
     Updates see and change asserted knowledge only; inferences follow from reasoning.
     """
-    check_safe(text)
+    check_user_sparql(text)
     with ref.lock:
         if ref.owner is not None:
             raise ReferenceMounted(f"reference {ref.name!r} is mounted by client {ref.owner!r}; "

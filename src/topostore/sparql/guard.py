@@ -1,20 +1,34 @@
-"""Refuse SPARQL that would make the service reach the network or the file system.
+"""The one check every piece of user SPARQL passes before anything parses it.
 
-Oxigraph evaluates ``SERVICE <url>`` in queries and ``LOAD <url>`` in updates by
-fetching the URL itself.  Exposed over HTTP, that would let any client make
-the robot's ontology service issue requests to arbitrary hosts (server-side
-request forgery).  aRMOR has no such feature, so both keywords are refused.
+Three kinds of danger, one lexical scan (:func:`scan`):
 
-The check is lexical: the text is scanned with SPARQL's own escaping rules
-(``\\uXXXX`` escapes are decoded first, as the SPARQL grammar requires) and
-the keywords are looked for outside IRIs, strings and comments, and not as part
-of prefixed names or variables.  A false alarm only refuses a query; the
-scanner never lets a keyword through.
+* **Reaching out.**  Oxigraph evaluates ``SERVICE <url>`` in queries and
+  ``LOAD <url>`` in updates by fetching the URL itself.  Exposed over HTTP,
+  that would let any client make the robot's ontology service issue requests
+  to arbitrary hosts (server-side request forgery).  aRMOR has no such feature,
+  so both keywords are refused.
+* **Internal functions.**  The compiled rules call extension functions in
+  ``urn:topostore:fn:`` (e.g. ``pow``); they are not part of the public query
+  language, so an IRI in that namespace is refused (user queries are also run
+  without them, see :meth:`topostore.ontology.Ontology.sparql`).
+* **Parser and planner exhaustion.**  Oxigraph's parser and optimizer recurse
+  on the query's structure: about 2,200 nested ``{`` or 900 nested function
+  calls overflow the native stack and kill the whole process (SIGSEGV), and
+  about 3,000 chained operators (``1+1+…``, ``UNION``) do the same.  No
+  Python ``except`` can catch that, so the nesting depth, the number of tokens
+  and the length are bounded *before* parsing (:class:`SparqlLimits`).
+
+The scan follows SPARQL's own lexing rules (``\\uXXXX`` escapes are decoded
+first, as the grammar requires; IRIs, strings and comments are skipped) and
+keywords are looked for outside them and not as parts of prefixed names or
+variables.  A false alarm only refuses a query; the scanner never lets a
+keyword through.
 """
 
 from __future__ import annotations
 
 import re
+from dataclasses import dataclass, field
 
 from ..errors import QueryError
 from ..queries import skip_non_code
@@ -24,12 +38,53 @@ _WORD = re.compile(r"[A-Za-z_][A-Za-z0-9_\-]*")
 _NAME_CHARS = set("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-.:")
 #: characters that, just before a word, make it part of a name rather than a keyword
 _JOINERS = _NAME_CHARS - {"."}
+_OPEN, _CLOSE = "({[", ")}]"
 
 FORBIDDEN = ("SERVICE", "LOAD")
+#: namespace of the extension functions only compiled rules may call
+INTERNAL_FUNCTIONS = "urn:topostore:fn:"
+
+
+@dataclass(frozen=True)
+class SparqlLimits:
+    """Bounds on user SPARQL text, checked before parsing (defaults far below the crash points)."""
+
+    #: characters of query or update text
+    max_length: int = 256 * 1024
+    #: nesting of ``(``, ``{`` and ``[`` (the parser crashes near 900 nested calls)
+    max_depth: int = 64
+    #: IRIs, literals, names, variables and punctuation (operator chains crash near 3,000)
+    max_tokens: int = 2000
+
+
+#: the limits every entry point uses; change with :func:`set_limits` (``topostore serve --sparql-max-*``)
+LIMITS = SparqlLimits()
+
+
+def set_limits(limits: SparqlLimits) -> None:
+    """Replace the process-wide SPARQL limits (called once at start-up by the CLI)."""
+    global LIMITS
+    if limits.max_length < 1 or limits.max_depth < 1 or limits.max_tokens < 1:
+        raise ValueError("SPARQL limits must be positive")
+    LIMITS = limits
 
 
 class UnsafeOperationError(QueryError):
-    """The request uses an operation this service refuses (SERVICE, LOAD)."""
+    """The request uses an operation this service refuses (SERVICE, LOAD, internal functions)."""
+
+
+class QueryTooComplex(QueryError):
+    """The text is longer, deeper or has more tokens than :class:`SparqlLimits` allows."""
+
+
+@dataclass
+class Scan:
+    """What the lexer saw: bare keywords (upper case), IRIs, deepest nesting, token count."""
+
+    keywords: list[str] = field(default_factory=list)
+    iris: list[str] = field(default_factory=list)
+    depth: int = 0
+    tokens: int = 0
 
 
 def decode_escapes(text: str) -> str:
@@ -42,17 +97,33 @@ def decode_escapes(text: str) -> str:
     return _ESCAPE.sub(repl, text)
 
 
-def keywords(text: str) -> list[str]:
-    """The bare words of a query outside IRIs, strings and comments, upper-cased."""
+def scan(text: str, stop_tokens: int | None = None) -> Scan:
+    """Lex ``text`` once; stops early (the answer is already "too many") past ``stop_tokens``."""
     text = decode_escapes(text)
-    found: list[str] = []
+    out = Scan()
+    depth = 0
     i, n = 0, len(text)
     while i < n:
+        c = text[i]
+        if c.isspace():
+            i += 1
+            continue
+        out.tokens += 1
+        if stop_tokens is not None and out.tokens > stop_tokens:
+            return out
         nxt = skip_non_code(text, i)
         if nxt is not None:
+            if c == "<":
+                out.iris.append(text[i + 1:nxt - 1])
+            elif c == "#":
+                out.tokens -= 1  # a comment is not a token
             i = nxt
             continue
-        c = text[i]
+        if c in _OPEN:
+            depth += 1
+            out.depth = max(out.depth, depth)
+        elif c in _CLOSE:
+            depth -= 1
         if c in "?$":  # a variable: skip its name
             m = _WORD.match(text, i + 1)
             i = m.end() if m else i + 1
@@ -62,22 +133,57 @@ def keywords(text: str) -> list[str]:
             prev = text[i - 1] if i > 0 else " "
             after = text[m.end()] if m.end() < n else " "
             if prev not in _JOINERS and after != ":":
-                found.append(m.group(0).upper())
+                out.keywords.append(m.group(0).upper())
             i = m.end()
             # the rest of a prefixed name (ex:LOAD) is not a keyword
             while i < n and text[i] in _NAME_CHARS:
                 i += 1
             continue
         i += 1
+    return out
+
+
+def keywords(text: str) -> list[str]:
+    """The bare words of a query outside IRIs, strings and comments, upper-cased."""
+    return scan(text).keywords
+
+
+def check_size(text: str, limits: SparqlLimits | None = None) -> Scan:
+    """Raise :class:`QueryTooComplex` unless ``text`` is within the limits; returns the scan."""
+    limits = limits or LIMITS
+    if not isinstance(text, str):
+        raise QueryError(f"SPARQL text must be a string, not {type(text).__name__}")
+    if len(text) > limits.max_length:
+        raise QueryTooComplex(f"the SPARQL text has {len(text)} characters, more than the limit of {limits.max_length}")
+    found = scan(text, stop_tokens=limits.max_tokens)
+    if found.tokens > limits.max_tokens:
+        raise QueryTooComplex(f"the SPARQL text has more than {limits.max_tokens} tokens; split it into smaller "
+                              "queries (the limit protects the parser, which would crash the service)")
+    if found.depth > limits.max_depth:
+        raise QueryTooComplex(f"the SPARQL text nests brackets {found.depth} deep, more than the limit of "
+                              f"{limits.max_depth} (the limit protects the parser, which would crash the service)")
     return found
 
 
 def check_safe(text: str) -> None:
-    """Raise :class:`UnsafeOperationError` if ``text`` uses SERVICE or LOAD."""
-    used = sorted(set(keywords(text)) & set(FORBIDDEN))
+    """Raise :class:`UnsafeOperationError` if ``text`` uses SERVICE, LOAD or an internal function."""
+    _check_found(text, scan(text))
+
+
+def _check_found(text: str, found: Scan) -> None:
+    used = sorted(set(found.keywords) & set(FORBIDDEN))
     if used:
         raise UnsafeOperationError(
             f"{' and '.join(used)} is not allowed on this endpoint: it would make the service fetch remote data")
+    if any(iri.startswith(INTERNAL_FUNCTIONS[:-1]) for iri in found.iris) or INTERNAL_FUNCTIONS in decode_escapes(text):
+        raise UnsafeOperationError(f"IRIs in {INTERNAL_FUNCTIONS} name internal functions of the reasoner; "
+                                   "they cannot be called from user SPARQL")
 
 
-__all__ = ["UnsafeOperationError", "check_safe", "keywords", "decode_escapes", "FORBIDDEN"]
+def check_user_sparql(text: str, limits: SparqlLimits | None = None) -> None:
+    """The single gate for user SPARQL (queries and updates): size, nesting, then safety."""
+    _check_found(text, check_size(text, limits))
+
+
+__all__ = ["UnsafeOperationError", "QueryTooComplex", "SparqlLimits", "LIMITS", "set_limits", "check_safe",
+           "check_size", "check_user_sparql", "keywords", "scan", "decode_escapes", "FORBIDDEN", "INTERNAL_FUNCTIONS"]

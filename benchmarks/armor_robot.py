@@ -1,0 +1,70 @@
+"""topostore's side of a step: aRMOR commands through ``ArmorService.call``, in this process.
+
+The reference is loaded with a buffering reasoner and unbuffered manipulations, the way aRMOR
+clients run the tutorial loop: the REPLACEs change the ontology at once and REASON brings the
+inferences up to date.  Answers are compared as local names.
+"""
+
+from __future__ import annotations
+
+import time
+from pathlib import Path
+
+from topostore.armor import ArmorService
+from topostore.armor.types import ArmorRequest, ArmorResponse
+from topostore.mapgen import MAP_NS
+
+from .maps import ROBOT
+from .walk import Answers, Move
+
+REFERENCE = "bench"
+IRI = MAP_NS.rstrip("#")
+
+
+class ArmorRobot:
+    """One ArmorService with the map loaded as one reference."""
+
+    def __init__(self, map_file: Path) -> None:
+        self.service = ArmorService()
+        start = time.perf_counter()
+        # LOAD parses the file and runs the first (full) REASON
+        self._call("LOAD", "FILE", "", [str(map_file), IRI, "false", "PELLET", "true"])
+        self.load_s = time.perf_counter() - start
+
+    @property
+    def ontology(self):  # noqa: ANN201 - topostore.Ontology, for the full-REASON measurement
+        return self.service.reference(REFERENCE).ontology
+
+    def answers(self) -> Answers:
+        """QUERY OBJECTPROP IND canReach Robot1 and QUERY IND CLASS URGENT."""
+        reach = self._call("QUERY", "OBJECTPROP", "IND", ["canReach", ROBOT]).queried_objects
+        urgent = self._call("QUERY", "IND", "CLASS", ["URGENT"]).queried_objects
+        return Answers(_names(reach), _names(urgent))
+
+    def step(self, move: Move) -> tuple[float, Answers]:
+        """One robot step (three REPLACEs, REASON, two queries); its seconds and its answers."""
+        start = time.perf_counter()
+        self._call("REPLACE", "OBJECTPROP", "IND", ["isIn", ROBOT, move.to, move.frm])
+        self._call("REPLACE", "DATAPROP", "IND", ["now", ROBOT, "LONG", str(move.now), str(move.old_now)])
+        if move.old_visit is None:
+            self._call("ADD", "DATAPROP", "IND", ["visitedAt", move.to, "LONG", str(move.now)])
+        else:
+            self._call("REPLACE", "DATAPROP", "IND", ["visitedAt", move.to, "LONG", str(move.now), str(move.old_visit)])
+        reasoned = self._call("REASON", "", "", [])
+        answers = self.answers()
+        elapsed = time.perf_counter() - start
+        if not reasoned.is_consistent:
+            raise RuntimeError(f"topostore found the map inconsistent after moving to {move.to}")
+        return elapsed, answers
+
+    def _call(self, command: str, primary: str, secondary: str, args: list[str]) -> ArmorResponse:
+        reply = self.service.call(ArmorRequest("bench", REFERENCE, command, primary, secondary, args))
+        if not reply.success:
+            raise RuntimeError(f"{command} {primary} {secondary} {args[:3]} failed: "
+                               f"{reply.exit_code} {reply.error_description}")
+        return reply
+
+
+def _names(objects: list[str]) -> tuple[str, ...]:
+    """'<http://…#R1>' → 'R1', sorted (the aRMOR reply wraps IRIs in angle brackets)."""
+    return tuple(sorted(o.strip("<>").removeprefix(MAP_NS) for o in objects))

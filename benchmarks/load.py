@@ -1,0 +1,238 @@
+"""Load test on loopback: concurrent clients against a real ``topostore serve`` process.
+
+    python -m benchmarks.load --clients 8 --seconds 60      (make load)
+
+Each client loops over a mix of aRMOR commands over HTTP, on one reference
+shared by every client and on a reference of its own: ADD IND (each a unique
+individual, remembered once acknowledged), ADD/REPLACE DATAPROP, REASON,
+QUERY IND / QUERY SPARQL, and SPARQL endpoint queries.  Two clients also
+compete for the mount of a third reference: a client that mounted it checks
+that GET REF CLIENT names it until it unmounts (mount exclusivity).
+
+At the end every acknowledged individual is looked up: **lost writes** are
+acknowledged ADD INDs the server does not know.  Printed: requests served,
+p50/p99 latency per command, errors (non-200 answers, unexpected exit codes),
+lost writes, mount violations; also written to out/load.json.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import random
+import shutil
+import socket
+import statistics
+import subprocess
+import sys
+import tempfile
+import threading
+import time
+import urllib.error
+import urllib.parse
+import urllib.request
+from collections import defaultdict
+from dataclasses import dataclass, field
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+SHARED = ROOT.parent / "shared" / "ontology"
+IRI = "http://bnc/exp-rob-lab/2022-23"
+OK_FAILURES = {("QUERY", "IND")}  # success=false with exit 0 when the individual does not occur
+
+
+@dataclass
+class Stats:
+    latencies: dict[str, list[float]] = field(default_factory=lambda: defaultdict(list))
+    errors: list[str] = field(default_factory=list)
+    acked: dict[str, list[str]] = field(default_factory=lambda: defaultdict(list))
+    mount_violations: int = 0
+    mounts: int = 0
+    lock: threading.Lock = field(default_factory=threading.Lock)
+
+
+class Client:
+    """One HTTP client (one connection per request, as a ROS bridge would open)."""
+
+    def __init__(self, url: str, name: str, stats: Stats) -> None:
+        self.url, self.name, self.stats = url, name, stats
+
+    def post(self, path: str, body: bytes, ctype: str) -> tuple[int, bytes]:
+        req = urllib.request.Request(self.url + path, data=body, headers={"Content-Type": ctype}, method="POST")
+        try:
+            with urllib.request.urlopen(req, timeout=120) as res:
+                return res.status, res.read()
+        except urllib.error.HTTPError as exc:
+            return exc.code, exc.read()
+
+    def armor(self, ref: str, command: str, spec1: str = "", spec2: str = "", args: list[str] | None = None,
+              label: str | None = None) -> dict:
+        payload = {"client_name": self.name, "reference_name": ref, "command": command,
+                   "primary_command_spec": spec1, "secondary_command_spec": spec2, "args": args or []}
+        start = time.perf_counter()
+        status, body = self.post("/armor", json.dumps(payload).encode(), "application/json")
+        elapsed = time.perf_counter() - start
+        key = label or " ".join(x for x in (command, spec1, spec2) if x)
+        with self.stats.lock:
+            self.stats.latencies[key].append(elapsed)
+        if status != 200:
+            self.error(f"{key}: HTTP {status} {body[:200]!r}")
+            return {}
+        answer = json.loads(body)
+        if answer["exit_code"] != 0 and not (answer["exit_code"] in (102, 203) and ref == "mounted"):
+            # 203/102: another client holds the mount, the refusal mount exclusivity requires
+            self.error(f"{key} on {ref}: exit {answer['exit_code']} {answer['error_description'][:200]}")
+        return answer
+
+    def sparql(self, ref: str, query: str) -> None:
+        start = time.perf_counter()
+        status, body = self.post(f"/references/{ref}/sparql", query.encode(), "application/sparql-query")
+        with self.stats.lock:
+            self.stats.latencies["SPARQL endpoint"].append(time.perf_counter() - start)
+        if status != 200:
+            self.error(f"SPARQL endpoint: HTTP {status} {body[:200]!r}")
+
+    def error(self, text: str) -> None:
+        with self.stats.lock:
+            self.stats.errors.append(text)
+
+    # ------------------------------------------------------------ workloads
+    def step(self, ref: str, seq: int, rng: random.Random) -> None:
+        """One mixed step on ``ref``."""
+        roll = rng.random()
+        if roll < 0.30:
+            ind = f"w_{self.name}_{seq}"
+            if self.armor(ref, "ADD", "IND", "", [ind]).get("success"):
+                with self.stats.lock:
+                    self.stats.acked[ref].append(ind)
+        elif roll < 0.45:
+            self.armor(ref, "REPLACE", "DATAPROP", "IND", ["visitedAt", "R1", "LONG", str(1665579800 + seq),
+                                                            str(1665579740)])
+        elif roll < 0.55:
+            self.armor(ref, "REASON")
+        elif roll < 0.75:
+            self.armor(ref, "QUERY", "SPARQL", "", [f"SELECT ?x WHERE {{ ?x a <{IRI}#URGENT> }}", "5000"])
+        elif roll < 0.90:
+            self.armor(ref, "QUERY", "IND", "CLASS", ["URGENT"])
+        else:
+            self.sparql(ref, f"SELECT ?x ?y WHERE {{ ?x <{IRI}#canReach> ?y }}")
+
+    def mount_step(self) -> None:
+        """Try to take the mount of "mounted"; while held, nobody else may hold it."""
+        answer = self.armor("mounted", "MOUNT")
+        if not answer.get("success"):
+            return  # 203: another client holds it (the expected refusal)
+        with self.stats.lock:
+            self.stats.mounts += 1
+        for _ in range(3):
+            holder = self.armor("mounted", "GET", "REF", "CLIENT", ["mounted"]).get("queried_objects", [])
+            if holder != [self.name]:
+                with self.stats.lock:
+                    self.stats.mount_violations += 1
+            self.armor("mounted", "ADD", "IND", "", [f"m_{self.name}"])
+        self.armor("mounted", "UNMOUNT")
+
+
+def free_port() -> int:
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+def start_server(data_dir: Path) -> tuple[subprocess.Popen, str]:
+    port = free_port()
+    proc = subprocess.Popen([sys.executable, "-m", "topostore.cli", "serve", "--port", str(port), "--data-dir",
+                             str(data_dir)], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    url = f"http://127.0.0.1:{port}"
+    deadline = time.monotonic() + 30
+    while time.monotonic() < deadline:
+        try:
+            with urllib.request.urlopen(url + "/health", timeout=2):
+                return proc, url
+        except OSError:
+            time.sleep(0.1)
+    proc.kill()
+    raise RuntimeError("the server did not start in 30 s")
+
+
+def percentile(values: list[float], q: float) -> float:
+    ordered = sorted(values)
+    return ordered[min(len(ordered) - 1, int(q * len(ordered)))]
+
+
+def run(clients: int, seconds: float) -> dict:
+    data = Path(tempfile.mkdtemp(prefix="topostore-load-"))
+    shutil.copy(SHARED / "topological_map_abox.owl", data / "map.owl")
+    proc, url = start_server(data)
+    stats = Stats()
+    try:
+        setup = Client(url, "setup", stats)
+        for ref in ["shared", "mounted"] + [f"own{i}" for i in range(clients)]:
+            setup.armor(ref, "LOAD", "FILE", "", ["map.owl", IRI, "false", "PELLET", "false"])
+        stats.latencies.clear()
+        stop = time.monotonic() + seconds
+
+        def work(i: int) -> None:
+            client, rng, seq = Client(url, f"c{i}", stats), random.Random(i), 0
+            while time.monotonic() < stop:
+                seq += 1
+                if i < 2 and seq % 5 == 0:
+                    client.mount_step()
+                else:
+                    client.step("shared" if seq % 2 else f"own{i}", seq, rng)
+
+        threads = [threading.Thread(target=work, args=(i,)) for i in range(clients)]
+        start = time.monotonic()
+        for t in threads:
+            t.start()
+        for t in threads:
+            t.join()
+        elapsed = time.monotonic() - start
+        lost = 0
+        checker = Client(url, "checker", Stats())
+        for ref, names in stats.acked.items():
+            query = "SELECT ?x WHERE { ?x a <http://www.w3.org/2002/07/owl#Thing> }"
+            answer = checker.armor(ref, "QUERY", "SPARQL", "FORMATTED", [query, "60000"])
+            present = {item["value"].strip("<>").rsplit("#", 1)[-1] for item in answer.get("sparql_queried_objects", [])}
+            lost += sum(1 for n in names if n not in present)
+        alive = proc.poll() is None
+    finally:
+        proc.terminate()
+        proc.wait(10)
+        shutil.rmtree(data, ignore_errors=True)
+    served = sum(len(v) for v in stats.latencies.values())
+    return {
+        "clients": clients, "seconds": round(elapsed, 1), "requests_served": served,
+        "requests_per_second": round(served / elapsed, 1),
+        "per_command_ms": {k: {"n": len(v), "p50": round(statistics.median(v) * 1000, 1),
+                               "p99": round(percentile(v, 0.99) * 1000, 1)} for k, v in sorted(stats.latencies.items())},
+        "errors": len(stats.errors), "error_samples": stats.errors[:5],
+        "acknowledged_writes": sum(len(v) for v in stats.acked.values()), "lost_writes": lost,
+        "mounts_taken": stats.mounts, "mount_violations": stats.mount_violations, "server_alive": alive,
+    }
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--clients", type=int, default=8)
+    parser.add_argument("--seconds", type=float, default=60.0)
+    parser.add_argument("--output", default="out/load.json")
+    args = parser.parse_args(argv)
+    report = run(args.clients, args.seconds)
+    Path(args.output).parent.mkdir(parents=True, exist_ok=True)
+    Path(args.output).write_text(json.dumps(report, indent=2))
+    print(f"{report['clients']} clients, {report['seconds']} s: {report['requests_served']} requests served "
+          f"({report['requests_per_second']}/s), errors {report['errors']}, lost writes {report['lost_writes']} "
+          f"of {report['acknowledged_writes']} acknowledged, mounts {report['mounts_taken']} "
+          f"(violations {report['mount_violations']}), server alive: {report['server_alive']}")
+    print(f"{'command':<28}{'n':>8}{'p50 ms':>10}{'p99 ms':>10}")
+    for name, row in report["per_command_ms"].items():
+        print(f"{name:<28}{row['n']:>8}{row['p50']:>10}{row['p99']:>10}")
+    for sample in report["error_samples"]:
+        print("error:", sample)
+    ok = report["errors"] == 0 and report["lost_writes"] == 0 and report["mount_violations"] == 0 and report["server_alive"]
+    return 0 if ok else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())

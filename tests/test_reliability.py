@@ -1,0 +1,364 @@
+"""Regression tests for the reliability and security findings V1-V10: each is named after what it prevents."""
+
+from __future__ import annotations
+
+import json
+import os
+import subprocess
+import sys
+import textwrap
+import time
+from pathlib import Path
+
+import pytest
+from pyoxigraph import Literal, NamedNode
+
+from topostore import Ontology
+from topostore.armor import ArmorService
+from topostore.errors import LoadError
+from topostore.reason.limits import ReasonLimitExceeded, ReasonLimits
+from topostore.safeio import atomic_write, check_xml_entities, read_regular_file
+from topostore.server import ServerConfig, create_app, is_loopback_host_header
+from topostore.sparql.guard import QueryTooComplex, check_user_sparql
+from topostore.vocab import ASSERTED, INFERRED
+
+from test_swrl import PREFIXES, builtin, data, rule
+
+SHARED = Path(__file__).resolve().parents[2] / "shared" / "ontology"
+ABOX = SHARED / "topological_map_abox.owl"
+IRI = "http://bnc/exp-rob-lab/2022-23"
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def call(svc: ArmorService, command: str, spec1: str = "", spec2: str = "", args=(), ref: str = "ref", client: str = "c"):
+    return svc.call({"client_name": client, "reference_name": ref, "command": command,
+                     "primary_command_spec": spec1, "secondary_command_spec": spec2, "args": list(args)})
+
+
+def graphs(svc: ArmorService, ref: str = "ref") -> tuple[list[str], list[str]]:
+    onto = svc.reference(ref).ontology
+    return (sorted(str(t) for t in onto.store.triples(graph=ASSERTED)),
+            sorted(str(t) for t in onto.store.triples(graph=INFERRED)))
+
+
+@pytest.fixture
+def data_dir(tmp_path: Path) -> Path:
+    d = tmp_path / "data"
+    d.mkdir()
+    (d / "map.owl").write_bytes(ABOX.read_bytes())
+    return d
+
+
+@pytest.fixture
+def svc(data_dir: Path) -> ArmorService:
+    s = ArmorService(data_dir=data_dir)
+    r = call(s, "LOAD", "FILE", "", ["map.owl", IRI, "false", "PELLET", "false"])
+    assert r.exit_code == 0, r
+    return s
+
+
+# --------------------------------------------------------------------------- V1 parser crash
+
+CRASH_SCRIPT = textwrap.dedent("""
+    import json, sys
+    from starlette.testclient import TestClient
+    from topostore import Ontology
+    from topostore.armor import ArmorService
+    from topostore.server import ServerConfig, create_app
+    n = int(sys.argv[2])
+    texts = {
+        "braces": "SELECT * WHERE " + "{" * n + "}" * n,
+        "parens": "SELECT * WHERE { FILTER(" + "(" * n + "1" + ")" * n + ") }",
+        "calls": "SELECT * WHERE { BIND(" + "CONCAT(" * n + "'a'" + ")" * n + " AS ?x) }",
+        "chain": "SELECT * WHERE { FILTER(" + "+".join(["1"] * n) + ") }",
+        "escaped": "SELECT * WHERE " + "\\\\u007B" * n + "}" * n,
+    }
+    text = texts[sys.argv[1]]
+    out = {}
+    onto = Ontology()
+    try:
+        onto.sparql(text)
+        out["python"] = "ran"
+    except Exception as exc:
+        out["python"] = type(exc).__name__
+    svc = ArmorService(data_dir=sys.argv[3])
+    svc.call({"reference_name": "r", "command": "LOAD", "primary_command_spec": "FILE",
+              "args": ["map.owl", "http://x", "false", "PELLET", "false"]})
+    res = svc.call({"reference_name": "r", "command": "QUERY", "primary_command_spec": "SPARQL", "args": [text]})
+    out["armor"] = res.exit_code
+    client = TestClient(create_app(ServerConfig(data_dir=sys.argv[3]), svc), base_url="http://127.0.0.1")
+    out["get"] = client.get("/references/r/sparql", params={"query": text}).status_code
+    out["post"] = client.post("/references/r/sparql", content=text.encode(),
+                              headers={"content-type": "application/sparql-query"}).status_code
+    print(json.dumps(out))
+""")
+
+
+@pytest.mark.parametrize("kind,n", [("braces", 2500), ("parens", 3000), ("calls", 1000), ("chain", 3500),
+                                    ("escaped", 2500)])
+def test_deeply_nested_sparql_cannot_crash_the_process(kind: str, n: int, data_dir: Path) -> None:
+    """Run in a child process: a SIGSEGV fails this test instead of killing pytest."""
+    proc = subprocess.run([sys.executable, "-c", CRASH_SCRIPT, kind, str(n), str(data_dir)], capture_output=True,
+                          text=True, timeout=120)
+    assert proc.returncode == 0, f"child died with {proc.returncode}: {proc.stderr[-2000:]}"
+    out = json.loads(proc.stdout.strip().splitlines()[-1])
+    assert out == {"python": "QueryTooComplex", "armor": 209, "get": 400, "post": 400}
+
+
+def test_sparql_limits_leave_ordinary_queries_alone() -> None:
+    check_user_sparql("SELECT ?x WHERE { ?x a <urn:C> . FILTER(?x != <urn:a>) } LIMIT 10")
+    with pytest.raises(QueryTooComplex, match="nests brackets 65 deep"):
+        check_user_sparql("SELECT * WHERE " + "{" * 65 + "}" * 65)
+    with pytest.raises(QueryTooComplex, match="characters"):
+        check_user_sparql("#" * 300_000 + "\nSELECT * {}")
+
+
+# --------------------------------------------------------------------------- V3 SSRF, V4 internal functions
+
+def test_service_through_armor_query_is_refused(svc: ArmorService) -> None:
+    for text in ("SELECT * WHERE { SERVICE <http://127.0.0.1:9/x> { ?s ?p ?o } }",
+                 "SELECT * WHERE { \\u0053ERVICE <http://127.0.0.1:9/> { ?s ?p ?o } }"):
+        res = call(svc, "QUERY", "SPARQL", "", [text])
+        assert (res.success, res.exit_code) == (False, 209)
+        assert "SERVICE is not allowed" in res.error_description
+
+
+def test_internal_functions_cannot_be_called_from_user_sparql(svc: ArmorService) -> None:
+    text = "SELECT ?x WHERE { BIND(<urn:topostore:fn:pow>(3, 30000000) AS ?x) }"
+    start = time.monotonic()
+    res = call(svc, "QUERY", "SPARQL", "", [text])
+    assert (res.success, res.exit_code) == (False, 209) and "internal functions" in res.error_description
+    # hidden behind a prefix: the guard does not see the IRI, Oxigraph does not know the function
+    hidden = "PREFIX f: <urn:topostore:> SELECT ?x WHERE { BIND(f:fn:pow(3, 30000000) AS ?x) }"
+    res = call(svc, "QUERY", "SPARQL", "", [hidden])
+    assert (res.success, res.exit_code) == (False, 209)
+    assert time.monotonic() - start < 5
+
+
+def test_pow_builtin_cannot_freeze_the_service() -> None:
+    from topostore.store import _pow
+
+    integer = NamedNode("http://www.w3.org/2001/XMLSchema#integer")
+    assert _pow(Literal("3", datatype=integer), Literal("4", datatype=integer)).value == "81"
+    start = time.monotonic()
+    assert _pow(Literal("3", datatype=integer), Literal("30000000", datatype=integer)) is None
+    assert time.monotonic() - start < 1
+
+
+# --------------------------------------------------------------------------- V4 time limits
+
+def test_query_without_timeout_is_bounded_by_the_service_maximum(svc: ArmorService) -> None:
+    svc.max_query_seconds = 0.5
+    slow = ("SELECT * WHERE { ?a ?b ?c . ?d ?e ?f . ?g ?h ?i . ?j ?k ?l }")
+    for args in ([slow], [slow, "0"], [slow, "-5"], [slow, str(2 ** 70)]):
+        start = time.monotonic()
+        res = call(svc, "QUERY", "SPARQL", "", args)
+        assert res.exit_code == 0 and res.timeout is True, res
+        assert time.monotonic() - start < 5
+
+
+def test_huge_timeout_is_not_an_internal_error(svc: ArmorService) -> None:
+    res = call(svc, "QUERY", "SPARQL", "FORMATTED", ["SELECT ?x WHERE { ?x a <urn:none> }", str(2 ** 70)])
+    assert (res.success, res.exit_code, res.timeout) == (True, 0, False)
+
+
+# --------------------------------------------------------------------------- V2 runaway reasoning
+
+RUNAWAY = rule([data(":counter", "?x", "?v"), builtin("add", "?w", "?v", 1)], [data(":counter", "?x", "?w")],
+               label="Runaway")
+
+
+def test_runaway_rule_is_stopped_and_rolled_back() -> None:
+    onto = Ontology()
+    onto.load_data(PREFIXES + ':c1 a owl:NamedIndividual .\n:counter a owl:DatatypeProperty .\n', "turtle")
+    onto.reason()
+    before = sorted(map(str, onto.store.triples(graph=ASSERTED)))
+    inferred = sorted(map(str, onto.store.triples(graph=INFERRED)))
+    onto.limits = ReasonLimits(max_rounds=50, max_inferred=10_000, max_seconds=20)
+    onto.load_data(PREFIXES + RUNAWAY + ':c1 :counter "0"^^xsd:integer .\n', "turtle")
+    with pytest.raises(ReasonLimitExceeded, match="more than 50 rounds") as info:
+        onto.reason()
+    assert "Runaway" in str(info.value)
+    assert sorted(map(str, onto.store.triples(graph=ASSERTED))) == before
+    assert sorted(map(str, onto.store.triples(graph=INFERRED))) == inferred
+    assert onto.reason().consistent  # the next REASON works
+
+
+def test_runaway_rule_planted_by_armor_commands_is_refused_and_the_service_answers(svc: ArmorService) -> None:
+    from topostore.reason import limits
+
+    svc.reference("ref").ontology.limits = limits.ReasonLimits(max_rounds=100, max_inferred=100_000, max_seconds=30)
+    before = graphs(svc)
+    text = PREFIXES + RUNAWAY + ':R1 :counter "0"^^xsd:integer .\n'
+    onto = svc.reference("ref").ontology
+    with svc.reference("ref").lock:
+        with pytest.raises(ReasonLimitExceeded):
+            onto.load_data(text, "turtle")
+            onto.reason()
+    assert graphs(svc) == before
+    res = call(svc, "QUERY", "CLASS", "IND", ["R1", "true"])
+    assert (res.exit_code, res.queried_objects) == (0, ["ROOM", "URGENT"])
+
+
+def test_cardinality_min_check_is_not_exponential(svc: ArmorService) -> None:
+    start = time.monotonic()
+    res = call(svc, "ADD", "CARDINALITY", "MIN", ["CORRIDOR", "hasDoor", "20", "DOOR"])
+    assert res.exit_code == 0, res
+    assert time.monotonic() - start < 30
+
+
+# --------------------------------------------------------------------------- V6 half-applied change
+
+@pytest.mark.parametrize("buffered_reasoner", ["false", "true"])
+def test_vocabulary_class_cannot_break_every_later_reason(data_dir: Path, buffered_reasoner: str) -> None:
+    svc = ArmorService(data_dir=data_dir)
+    assert call(svc, "LOAD", "FILE", "", ["map.owl", IRI, "false", "PELLET", buffered_reasoner]).exit_code == 0
+    before = graphs(svc)
+    res = call(svc, "ADD", "IND", "CLASS", ["rx", "<http://www.w3.org/2003/11/swrl#Imp>"])
+    assert (res.success, res.exit_code) == (False, 209)
+    assert graphs(svc) == before
+    res = call(svc, "REASON")
+    assert (res.success, res.exit_code) == (True, 0), res
+
+
+def test_failed_reason_restores_the_state_before_the_change(data_dir: Path) -> None:
+    svc = ArmorService(data_dir=data_dir)
+    assert call(svc, "LOAD", "FILE", "", ["map.owl", IRI, "true", "PELLET", "true"]).exit_code == 0
+    before = graphs(svc)
+    assert call(svc, "ADD", "IND", "CLASS", ["rx", "<http://www.w3.org/2003/11/swrl#Imp>"]).exit_code == 0  # buffered
+    res = call(svc, "REASON")
+    assert (res.success, res.exit_code) == (False, 209)
+    assert graphs(svc) == before
+    assert call(svc, "REASON").exit_code == 0
+
+
+# --------------------------------------------------------------------------- V5 entity expansion, file size
+
+LAUGHS = b"""<?xml version="1.0"?>
+<!DOCTYPE rdf:RDF [
+ <!ENTITY a "aaaaaaaaaa">
+ <!ENTITY b "&a;&a;&a;&a;&a;&a;&a;&a;&a;&a;">
+ <!ENTITY c "&b;&b;&b;&b;&b;&b;&b;&b;&b;&b;">
+]>
+<rdf:RDF xmlns:rdf="http://www.w3.org/1999/02/22-rdf-syntax-ns#" xmlns:x="urn:x#">
+ <rdf:Description rdf:about="urn:x#s"><x:p>&c;</x:p></rdf:Description>
+</rdf:RDF>
+"""
+
+
+def test_billion_laughs_is_refused_before_parsing(svc: ArmorService, data_dir: Path) -> None:
+    (data_dir / "laughs.owl").write_bytes(LAUGHS)
+    res = call(svc, "LOAD", "FILE", "", ["laughs.owl", IRI, "false", "PELLET", "false"], ref="laughs")
+    assert (res.success, res.exit_code) == (False, 210)
+    assert "nested entities are refused" in res.error_description
+    with pytest.raises(LoadError, match="external or parameter entity"):
+        check_xml_entities(b'<!DOCTYPE x [<!ENTITY e SYSTEM "file:///etc/passwd">]><x>&e;</x>')
+    with pytest.raises(LoadError, match="would expand to"):
+        check_xml_entities(b'<!DOCTYPE x [<!ENTITY e "' + b"a" * 1000 + b'">]><x>' + b"&e;" * 2000 + b"</x>")
+    # Protege's abbreviations stay accepted
+    check_xml_entities(b'<!DOCTYPE rdf:RDF [<!ENTITY owl "http://www.w3.org/2002/07/owl#">]><x a="&owl;Thing"/>')
+
+
+def test_fifo_device_and_oversized_files_cannot_hang_or_exhaust_load(tmp_path: Path) -> None:
+    fifo = tmp_path / "pipe.owl"
+    os.mkfifo(fifo)
+    with pytest.raises(LoadError, match="not a regular file"):
+        read_regular_file(fifo)
+    with pytest.raises(LoadError, match="not a regular file"):
+        read_regular_file("/dev/zero")
+    big = tmp_path / "big.ttl"
+    big.write_bytes(b"#" * 2000)
+    with pytest.raises(LoadError, match="more than the limit of 1000"):
+        read_regular_file(big, max_bytes=1000)
+
+
+# --------------------------------------------------------------------------- V7 file escapes
+
+def test_save_to_the_data_dir_itself_writes_nothing_outside(svc: ArmorService, data_dir: Path) -> None:
+    outside = sorted(p.name for p in data_dir.parent.iterdir())
+    res = call(svc, "SAVE", "", "", ["."])
+    assert (res.success, res.exit_code) == (False, 210)
+    assert sorted(p.name for p in data_dir.parent.iterdir()) == outside
+    assert sorted(p.name for p in data_dir.iterdir()) == ["map.owl"]
+
+
+def test_save_never_follows_a_planted_tmp_symlink(svc: ArmorService, data_dir: Path) -> None:
+    victim = data_dir.parent / "victim.txt"
+    victim.write_text("keep")
+    (data_dir / "x.owl.tmp").symlink_to(victim)
+    assert call(svc, "SAVE", "", "", ["x.owl"]).exit_code == 0
+    assert victim.read_text() == "keep"
+    assert (data_dir / "x.owl").stat().st_size > 1000
+
+
+def test_failed_save_leaves_no_temporary_file(tmp_path: Path) -> None:
+    target = tmp_path / "out.ttl"
+    with pytest.raises(TypeError):
+        atomic_write(target, object())  # type: ignore[arg-type]  # fails half-way through writing
+    assert list(tmp_path.iterdir()) == []
+    atomic_write(target, b"ok")
+    assert [p.name for p in tmp_path.iterdir()] == ["out.ttl"] and target.read_bytes() == b"ok"
+
+
+# --------------------------------------------------------------------------- V8 LOG FILE
+
+def test_log_file_refuses_ontologies_fifos_and_keeps_the_current_log(svc: ArmorService, data_dir: Path) -> None:
+    assert call(svc, "LOG", "FILE", "ON", ["armor.log"]).exit_code == 0
+    for bad in ("map.owl", "saved.ttl"):
+        res = call(svc, "LOG", "FILE", "ON", [bad])
+        assert (res.success, res.exit_code) == (False, 210), bad
+    os.mkfifo(data_dir / "pipe.log")
+    start = time.monotonic()
+    res = call(svc, "LOG", "FILE", "ON", ["pipe.log"])
+    assert (res.success, res.exit_code) == (False, 210)
+    assert time.monotonic() - start < 5
+    assert call(svc, "QUERY", "IND", "", ["R1"]).exit_code == 0
+    assert "QUERY" in (data_dir / "armor.log").read_text()  # the old log is still on
+    assert (data_dir / "map.owl").read_bytes() == ABOX.read_bytes()
+    assert call(svc, "LOG", "FILE", "OFF").exit_code == 0
+
+
+# --------------------------------------------------------------------------- V9/V10 client errors
+
+@pytest.fixture
+def client(svc: ArmorService, data_dir: Path):
+    from starlette.testclient import TestClient
+
+    with TestClient(create_app(ServerConfig(data_dir=data_dir), svc), base_url="http://127.0.0.1") as c:
+        yield c
+
+
+def test_huge_json_numbers_and_deep_nesting_are_client_errors(client) -> None:
+    for body in ('{"args": [' + "1" * 5000 + "]}", "[" * 5000 + "]" * 5000):
+        res = client.post("/armor", content=body.encode(), headers={"content-type": "application/json"})
+        assert res.status_code == 400, res.text
+        res = client.post("/armor/batch", content=body.encode(), headers={"content-type": "application/json"})
+        assert res.status_code == 400, res.text
+
+
+def test_lone_surrogates_huge_numbers_are_argument_errors(svc: ArmorService) -> None:
+    res = call(svc, "ADD", "IND", "", ["bad\ud800name"])
+    assert (res.success, res.exit_code) == (False, 208) and "surrogate" in res.error_description
+    res = call(svc, "ADD", "DATAPROP", "IND", ["now", "R1", "LONG", "9" * 5000])
+    assert (res.success, res.exit_code) == (False, 208)
+    res = call(svc, "ADD", "DATAPROP", "IND", ["now", "R1", "INTEGER", "9" * 5000])
+    assert (res.success, res.exit_code) == (False, 208)
+
+
+# --------------------------------------------------------------------------- lower items
+
+def test_host_header_with_userinfo_cannot_pass_the_loopback_check(client) -> None:
+    assert not is_loopback_host_header("localhost:80@evil.com")
+    assert is_loopback_host_header("localhost:8765") and is_loopback_host_header("[::1]:1")
+    res = client.get("/health", headers={"host": "localhost:80@evil.com"})
+    assert res.status_code == 403
+
+
+def test_rename_cannot_rewrite_vocabulary_terms(svc: ArmorService) -> None:
+    before = graphs(svc)
+    for old in ("<http://www.w3.org/1999/02/22-rdf-syntax-ns#type>", "<http://www.w3.org/2002/07/owl#Thing>"):
+        res = call(svc, "RENAME", "IND", "", [old, "mytype"])
+        assert (res.success, res.exit_code) == (False, 208), res
+    res = call(svc, "RENAME", "IND", "", ["R1", "<http://www.w3.org/2000/01/rdf-schema#label>"])
+    assert (res.success, res.exit_code) == (False, 208)
+    assert graphs(svc) == before
