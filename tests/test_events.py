@@ -123,3 +123,16 @@ def test_a_blocked_subscriber_never_blocks_reason_and_is_told_what_it_missed() -
         threading.Event().wait(0.05)
     # event 1 was being handled; 2..5 went to a queue of 2: 2 and 3 were dropped
     assert received == [(1, 0), (4, 2), (5, 0)]
+
+
+def test_event_json_is_the_event_with_its_reference() -> None:
+    """The one serialisation of the SSE stream and the ROS topic."""
+    import json
+
+    from topostore.events import Event, event_json
+
+    e = Event(3, [urgent("R2")], [urgent("R1")], True, False, 0.25, missed=2, time=1.5)
+    assert json.loads(event_json(e, NS, "ontoRef")) == {
+        "reference": "ontoRef", "seq": 3, "added": [{"s": "R2", "p": "rdf:type", "o": "URGENT"}],
+        "removed": [{"s": "R1", "p": "rdf:type", "o": "URGENT"}], "consistent": True, "consistency_changed": False,
+        "missed": 2, "reason_seconds": 0.25, "time": 1.5}

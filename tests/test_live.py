@@ -114,6 +114,7 @@ def test_r2_becoming_urgent_arrives_over_sse_within_one_reason(live: Server) -> 
         assert event["added"] == [{"s": "C1", "p": "rdf:type", "o": "URGENT"},
                                   {"s": "R2", "p": "rdf:type", "o": "URGENT"}]
         assert (event["removed"], event["consistent"], event["missed"]) == ([], True, 0)
+        assert event["reference"] == "ontoRef"                            # as on the ROS events topic
         live.ok("REASON")                                                  # nothing changes: still one event
         assert reader.wait(lambda r: len(r.events) >= 2)
         assert (reader.events[1]["added"], reader.events[1]["removed"]) == ([], [])

@@ -16,6 +16,7 @@ loop (server-sent events).
 
 from __future__ import annotations
 
+import json
 import logging
 import threading
 import time
@@ -148,6 +149,12 @@ class Event:
                 "missed": self.missed, "reason_seconds": round(self.seconds, 6), "time": self.time}
 
 
+def event_json(event: Event, prefix: str, reference: str) -> str:
+    """One event as the JSON text every interface sends: the data of a server-sent event
+    and the ``std_msgs/String`` of the ROS events topic (one serialisation for both)."""
+    return json.dumps({"reference": reference, **event.to_dict(prefix)})
+
+
 class Subscription:
     """A bounded queue of events for one subscriber.  :meth:`offer` never blocks."""
 
@@ -227,11 +234,12 @@ class EventHub:
         return sub
 
     def subscribe(self, callback: Callable[[Event], None], pattern: str | Pattern | None = None,
-                  maxsize: int = DEFAULT_QUEUE) -> Subscription:
+                  maxsize: int = DEFAULT_QUEUE, every_reason: bool = False) -> Subscription:
         """Call ``callback(event)`` from a thread of its own after each REASON that changed
-        something matching ``pattern`` (or changed consistency).  A slow callback only
-        delays itself: its queue drops the oldest events and the next event says how many."""
-        sub = self.open(pattern, maxsize, every_reason=False)
+        something matching ``pattern`` (or changed consistency; after every REASON with
+        ``every_reason``).  A slow callback only delays itself: its queue drops the oldest
+        events and the next event says how many."""
+        sub = self.open(pattern, maxsize, every_reason=every_reason)
 
         def deliver() -> None:
             while not sub.closed:
@@ -270,5 +278,5 @@ class EventHub:
             sub.offer(seq, d, seconds)
 
 
-__all__ = ["Delta", "Snapshot", "Event", "EventHub", "Pattern", "Subscription", "delta", "snapshot",
+__all__ = ["Delta", "Snapshot", "Event", "EventHub", "Pattern", "Subscription", "delta", "event_json", "snapshot",
            "parse_pattern", "term_text"]

@@ -8,7 +8,7 @@
     GET /references/{name}/map.json                          the map as the page draws it
     GET /static/...                                          the page's script and Cytoscape.js (vendored)
 
-Events are JSON objects (see :meth:`topostore.events.Event.to_dict`) sent as
+Events are JSON objects (:func:`topostore.events.event_json`, also the ROS events topic's) sent as
 ``event: reason``; a comment line keeps the connection alive every
 ``keepalive`` seconds (default 15).  A subscriber that reads too slowly loses
 the oldest events of its bounded queue (``queue``, default 100) and the next
@@ -18,7 +18,6 @@ event it gets says how many (``missed``); reasoning never waits for it.
 from __future__ import annotations
 
 import asyncio
-import json
 from collections.abc import AsyncIterator
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -32,7 +31,7 @@ from starlette.staticfiles import StaticFiles
 
 from .armor.codes import CommandError
 from .errors import TopostoreError
-from .events import term_text
+from .events import event_json, term_text
 from .explain import resolve_triple
 from .vocab import is_internal
 
@@ -100,7 +99,7 @@ class LiveRoutes:
             size = int(_number(request, "queue", 100, 1, 10_000))
             loop = asyncio.get_running_loop()
             wake = asyncio.Event()
-            onto = ref.ontology
+            onto, name = ref.ontology, ref.name
             sub = onto.events.open(request.query_params.get("pattern"), size, every_reason=True,
                                    notify=lambda: loop.call_soon_threadsafe(wake.set))
         except CommandError as exc:
@@ -119,7 +118,7 @@ class LiveRoutes:
                         continue
                     wake.clear()
                     while (event := sub.get(timeout=0)) is not None:
-                        data = json.dumps(event.to_dict(onto.prefix))
+                        data = event_json(event, onto.prefix, name)
                         yield f"id: {event.seq}\nevent: reason\ndata: {data}\n\n"
             finally:
                 sub.close()

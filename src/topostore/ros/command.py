@@ -14,6 +14,7 @@ from typing import NoReturn
 import click
 
 from .. import __version__
+from ..events import DEFAULT_QUEUE
 from . import DEFAULT_NODE_NAME, EXIT_NO_MASTER, EXIT_NO_ROS, RosUnavailable, require_ros
 
 
@@ -27,10 +28,17 @@ from . import DEFAULT_NODE_NAME, EXIT_NO_MASTER, EXIT_NO_ROS, RosUnavailable, re
               help="Print the export lines that let rosservice, rosmsg and rospy scripts find armor_msgs; start nothing.")
 @click.option("--master-timeout", default=3.0, show_default=True, type=click.FloatRange(min=0, min_open=True),
               help="Seconds to wait for the ROS master at start-up (exit 4 after).")
+@click.option("--events-queue", default=DEFAULT_QUEUE, show_default=True, type=click.IntRange(min=1),
+              help="REASON events held per reference for the ~events topic; when full the oldest are dropped "
+                   "and the next message says how many (missed).")
 @click.argument("ros_args", nargs=-1, type=click.UNPROCESSED, metavar="[NAME:=VALUE]...")
-def ros(name: str, data_dir: str, short_names: bool, print_env: bool, master_timeout: float,
+def ros(name: str, data_dir: str, short_names: bool, print_env: bool, master_timeout: float, events_queue: int,
         ros_args: tuple[str, ...]) -> None:
     """Serve aRMOR's ROS services /armor_interface_srv and /armor_interface_serialized_srv.
+
+    Every REASON is also published on ~events (/armor_service/events, std_msgs/String
+    holding the JSON event of the HTTP service's /references/{name}/events) while
+    the topic has subscribers.
 
     Needs a running ROS master (ROS_MASTER_URI). Exit codes: 0 after Ctrl-C or
     SIGTERM, 4 when no master is reachable, 5 when ROS is not installed.
@@ -69,11 +77,11 @@ def ros(name: str, data_dir: str, short_names: bool, print_env: bool, master_tim
 
     data = Path(data_dir)
     data.mkdir(parents=True, exist_ok=True)
-    node = ArmorNode(ArmorService(data_dir=data, short_names=short_names), work, name, ros_args)
+    node = ArmorNode(ArmorService(data_dir=data, short_names=short_names), work, name, ros_args, events_queue)
     node.start()
     single, serialized = node.service_names
     click.echo(f"topostore {__version__}: ROS node {node.resolved_name} (master {uri}) serving {single} "
-               f"and {serialized} (data directory {data.resolve()})", err=True)
+               f"and {serialized}, events on {node.events.resolved_name} (data directory {data.resolve()})", err=True)
     node.spin()
 
 

@@ -6,8 +6,9 @@ list in order with the README's intended semantics.  rospy serves every client
 connection on its own thread; ArmorService serialises manipulations of one
 reference, so concurrent clients are safe.
 
-Both services go through :meth:`ArmorNode.execute`, the single place where a
-future events publisher (e.g. "reference changed") would be called.
+Both services go through :meth:`ArmorNode.execute`, which keeps the events
+topic (:mod:`.events`, ``~events``) following every reference, including those
+a request has just LOADed.
 """
 
 from __future__ import annotations
@@ -16,12 +17,14 @@ import socket
 import sys
 import time
 import xmlrpc.client
-from collections.abc import Sequence
+from collections.abc import Iterator, Sequence
 from typing import Any
 
 from ..armor import ArmorService
 from ..armor.types import ArmorResponse, ArmorResponseList
 from . import DEFAULT_NODE_NAME, SERIALIZED_SERVICE, SINGLE_SERVICE, require_ros
+from ..events import DEFAULT_QUEUE
+from .events import EventsTopic
 from .workspace import Workspace
 
 
@@ -80,21 +83,23 @@ class ArmorNode:
     """A ROS node named ``name`` answering aRMOR requests with ``service``."""
 
     def __init__(self, service: ArmorService, workspace: Workspace, name: str = DEFAULT_NODE_NAME,
-                 ros_args: Sequence[str] = ()) -> None:
+                 ros_args: Sequence[str] = (), events_queue: int = DEFAULT_QUEUE) -> None:
         self.service = service
         self.workspace = workspace
         self.name = name
         self.ros_args = list(ros_args)
         self._servers: list[Any] = []
+        self.events = EventsTopic(service, events_queue)
 
     def start(self) -> None:
-        """Register with the master and advertise both services."""
+        """Register with the master, advertise the events topic and both services."""
         require_ros()
         self.workspace.activate()
         import rospy
         from armor_msgs.srv import ArmorDirective, ArmorDirectiveList
 
         rospy.init_node(self.name, argv=[sys.argv[0], *self.ros_args])
+        self.events.start()
         self._servers = [rospy.Service(SINGLE_SERVICE, ArmorDirective, self._single),
                          rospy.Service(SERIALIZED_SERVICE, ArmorDirectiveList, self._serialized)]
 
@@ -117,6 +122,8 @@ class ArmorNode:
             rospy.spin()
         except KeyboardInterrupt:  # a second Ctrl-C while shutting down
             rospy.signal_shutdown("interrupted")
+        finally:
+            self.events.close()
 
     def shutdown(self, reason: str = "stopped") -> None:
         import rospy
@@ -126,7 +133,15 @@ class ArmorNode:
     # ---------------------------------------------------------------- handlers
     def execute(self, requests: Sequence[Any]) -> ArmorResponseList:
         """Run requests (ROS ``ArmorDirectiveReq`` messages) in order; never raises."""
-        return self.service.call_many(requests)
+        return self.service.call_many(self._following(requests))
+
+    def _following(self, requests: Sequence[Any]) -> Iterator[Any]:
+        """The requests, the events topic catching up with the references before each one runs
+        and after the last (a LOAD then a REASON in one serialized call publishes that REASON)."""
+        for request in requests:
+            self.events.follow()
+            yield request
+        self.events.follow()
 
     def _single(self, request: Any) -> Any:
         from armor_msgs.srv import ArmorDirectiveResponse
