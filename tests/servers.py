@@ -46,9 +46,10 @@ def _wait_http(url: str, proc: subprocess.Popen, seconds: float, log: Path) -> N
     raise RuntimeError(f"{url}: the server did not answer within {seconds} s: {log.read_text()[-2000:]}")
 
 
-def _stop(proc: subprocess.Popen) -> None:
+def stop(proc: subprocess.Popen, sig: int = signal.SIGTERM) -> None:
+    """Stop a process the tests started: ``sig``, then SIGKILL after 10 s."""
     if proc.poll() is None:
-        proc.send_signal(signal.SIGTERM)
+        proc.send_signal(sig)
         try:
             proc.wait(10)
         except subprocess.TimeoutExpired:
@@ -72,7 +73,7 @@ def oxigraph_server() -> Iterator[str]:
             _wait_http(url + "/query", proc, 30, log)
             yield url
         finally:
-            _stop(proc)
+            stop(proc)
 
 
 _VIRTUOSO_INI = """[Database]
@@ -129,7 +130,7 @@ def virtuoso_server() -> Iterator[str]:
                            capture_output=True, timeout=60)
             yield url
         finally:
-            _stop(proc)
+            stop(proc)
 
 
 @contextmanager

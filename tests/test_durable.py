@@ -25,7 +25,7 @@ import httpx
 import pytest
 from pyoxigraph import NamedNode, Triple
 
-from servers import free_port
+from servers import free_port, stop
 from test_swrl import PREFIXES, builtin, data, rule
 from topostore import Ontology, safeio, RuleCompileError
 from topostore.armor import ArmorService
@@ -161,12 +161,7 @@ def test_kill_minus_nine_loses_no_acknowledged_write(tmp_path: Path) -> None:
         answer = httpx.post(url, json=request("QUERY", "DATAPROP", "IND", "now", "Robot1"), timeout=60).json()
         assert answer["queried_objects"] == [f'"{now}"^^xsd:long']
     finally:
-        if proc.poll() is None:
-            proc.send_signal(signal.SIGTERM)
-            try:
-                proc.wait(10)
-            except subprocess.TimeoutExpired:
-                proc.kill()
+        stop(proc)
 
 
 # --------------------------------------------------------------------------- restarts in-process

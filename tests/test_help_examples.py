@@ -31,7 +31,7 @@ from topostore import Ontology, mapgen
 from topostore.cli import EXIT_CANNOT_LISTEN, cli, load_files, reason_with_progress
 from topostore.resources import default_ontology
 
-from servers import oxigraph_server
+from servers import oxigraph_server, stop
 from test_server import free_port
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -122,12 +122,7 @@ def serve_and_curl(serve_line: str, curl_line: str, port: int, workdir: Path) ->
         answer = json.loads(done.stdout)
         assert answer["success"] is True and answer["exit_code"] == 0
     finally:
-        proc.send_signal(signal.SIGINT)
-        try:
-            proc.wait(10)
-        except subprocess.TimeoutExpired:
-            proc.kill()
-            proc.wait(5)
+        stop(proc, signal.SIGINT)
 
 
 def test_serve_on_a_busy_port_exits_4_with_one_line(workdir: Path) -> None:

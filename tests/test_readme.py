@@ -24,6 +24,7 @@ import pytest
 
 from topostore.armor_api import transport
 
+from servers import stop
 from test_server import free_port
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -123,9 +124,4 @@ def test_use_it_from_section(tmp_path: Path, monkeypatch: pytest.MonkeyPatch,
         assert outputs[2].startswith(f"['{ns}C1']\n")
         assert f"<{ns}canReach>" in outputs[2] or ":canReach" in outputs[2]
     finally:
-        server.send_signal(signal.SIGINT)
-        try:
-            server.wait(10)
-        except subprocess.TimeoutExpired:
-            server.kill()
-            server.wait(5)
+        stop(server, signal.SIGINT)
