@@ -407,3 +407,26 @@ def test_armor_api_client_over_ros(world: RosWorld) -> None:
 def rospy_client_raw(world: RosWorld, mode: str, argument: str) -> subprocess.Popen:
     return subprocess.Popen([sys.executable, CLIENT, mode, argument], env=world.env, stdout=subprocess.PIPE,
                             stderr=subprocess.PIPE, text=True, start_new_session=True)
+
+
+# ------------------------------------------------------------------ a durable store behind the node
+
+def test_references_survive_a_node_restart_with_store(tmp_path: Path) -> None:
+    """`topostore ros --store DIR`: a reference loaded and changed through ROS is there after a restart."""
+    skip_without_ros()
+    world = start_world(tmp_path)
+    try:
+        data, store = prepare_data(tmp_path / "data"), tmp_path / "store"
+        node = world.start_node(data, "--store", str(store))
+        load = request("LOAD", "FILE", "", "topological_map.owl", "http://bnc/exp-rob-lab/2022-23", "false",
+                       "PELLET", "false", ref="kept")
+        add = request("ADD", "IND", "CLASS", "R9", "LOCATION", ref="kept")
+        reason = request("REASON", ref="kept")
+        assert client_result(rospy_client(world, "single", [load, add, reason]))["result"] == [reply()] * 3
+        assert stop(node, 30) == 0
+        world.start_node(data, "--store", str(store))
+        look = request("QUERY", "IND", "CLASS", "LOCATION", ref="kept")
+        answer = client_result(rospy_client(world, "single", [look]))["result"]
+        assert answer == [reply("<http://bnc/exp-rob-lab/2022-23#R9>")]
+    finally:
+        stop_world(world)

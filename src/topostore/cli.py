@@ -19,6 +19,8 @@ from contextlib import contextmanager
 from pathlib import Path
 
 import click
+
+from .store_cli import store_option
 from rich.console import Console
 from rich.progress import Progress, SpinnerColumn, TaskID, TextColumn, TimeElapsedColumn
 from rich.table import Table
@@ -90,14 +92,6 @@ def _progress(enabled: bool = True, console: Console | None = None) -> Iterator[
                         disable=not enabled or not console.is_terminal)
     with progress:
         yield progress
-
-
-def store_option(f):
-    """``--store``: where the ontology lives (memory by default, a directory, or a SPARQL server URL)."""
-    return click.option("--store", "store", metavar="DIR|URL", envvar="TOPOSTORE_STORE",
-                        help="Keep the ontology in a durable store: a directory (RocksDB) or an http(s) SPARQL 1.1 "
-                             "server (URL/query + URL/update); default: in memory. Credentials for a server come "
-                             "from TOPOSTORE_STORE_TOKEN or TOPOSTORE_STORE_USER/TOPOSTORE_STORE_PASSWORD.")(f)
 
 
 def load_files(files: Sequence[str], fmt: str | None = None, console: Console | None = None,

@@ -15,6 +15,7 @@ import click
 
 from .. import __version__
 from ..events import DEFAULT_QUEUE
+from ..store_cli import store_option
 from . import DEFAULT_NODE_NAME, EXIT_NO_MASTER, EXIT_NO_ROS, RosUnavailable, require_ros
 
 
@@ -31,9 +32,11 @@ from . import DEFAULT_NODE_NAME, EXIT_NO_MASTER, EXIT_NO_ROS, RosUnavailable, re
 @click.option("--events-queue", default=DEFAULT_QUEUE, show_default=True, type=click.IntRange(min=1),
               help="REASON events held per reference for the ~events topic; when full the oldest are dropped "
                    "and the next message says how many (missed).")
+@store_option
+@click.option("--sync", is_flag=True, help="With a directory --store: flush every acknowledged change to disk.")
 @click.argument("ros_args", nargs=-1, type=click.UNPROCESSED, metavar="[NAME:=VALUE]...")
 def ros(name: str, data_dir: str, short_names: bool, print_env: bool, master_timeout: float, events_queue: int,
-        ros_args: tuple[str, ...]) -> None:
+        store: str | None, sync: bool, ros_args: tuple[str, ...]) -> None:
     """Serve aRMOR's ROS services /armor_interface_srv and /armor_interface_serialized_srv.
 
     Every REASON is also published on ~events (/armor_service/events, std_msgs/String
@@ -77,7 +80,8 @@ def ros(name: str, data_dir: str, short_names: bool, print_env: bool, master_tim
 
     data = Path(data_dir)
     data.mkdir(parents=True, exist_ok=True)
-    node = ArmorNode(ArmorService(data_dir=data, short_names=short_names), work, name, ros_args, events_queue)
+    service = ArmorService(data_dir=data, short_names=short_names, store=store, sync=sync)
+    node = ArmorNode(service, work, name, ros_args, events_queue)
     node.start()
     single, serialized = node.service_names
     click.echo(f"topostore {__version__}: ROS node {node.resolved_name} (master {uri}) serving {single} "
