@@ -46,6 +46,7 @@ def installed(tmp_path_factory: pytest.TempPathFactory) -> tuple[Path, Path]:
     print(f"wheel built and installed in a fresh venv in {time.monotonic() - started:.1f} s")
     work = base / "work"
     work.mkdir()
+    shutil.copy(wheels[0], work.parent / wheels[0].name)
     return bin_dir, work
 
 
@@ -83,3 +84,35 @@ def test_wheel_holds_data_and_runs_outside_the_checkout(installed: tuple[Path, P
     assert drawn.returncode == 1
     assert drawn.stderr.strip().splitlines()[-1].startswith("Error: drawing maps needs matplotlib")
     assert not (work / "m.png").exists()
+
+
+@pytest.mark.parametrize("how", ["--target", "--user"])
+def test_target_and_user_installs_find_their_data(installed: tuple[Path, Path], how: str) -> None:
+    """``pip install --target DIR`` and ``pip install --user`` put the package data beside the code too.
+
+    The fresh venv supplies the dependencies; the copy installed the other way comes first on the path
+    (``PYTHONPATH``), and its rules, queries and ontology must be the ones it finds.
+    """
+    bin_dir, work = installed
+    wheel = next(work.parent.glob("topostore-*.whl"))
+    env = clean_env(bin_dir)
+    root = work.parent / how.strip("-")
+    if how == "--target":
+        done = run([str(bin_dir / "python"), "-m", "pip", "install", "--quiet", "--no-deps", "--target", str(root),
+                    str(wheel)], work, env)
+        site = root
+    else:  # a user base of its own (pip refuses --user inside a venv, so the base python installs it)
+        env_user = {**env, "PYTHONUSERBASE": str(root)}
+        base_python = Path(sys.base_prefix) / "bin" / "python3"
+        done = run([str(base_python), "-m", "pip", "install", "--quiet", "--no-deps", "--user",
+                    "--no-warn-script-location", str(wheel)], work, env_user)
+        site = next(root.glob("lib/python*/site-packages"))
+    assert done.returncode == 0, done.stderr
+    env["PYTHONPATH"] = str(site)
+    where = run([str(bin_dir / "python"), "-c", "import topostore.resources as r; print(r.home()); "
+                 "print(len(list(r.rules_dir().glob('*.rq'))), len(list(r.queries_dir().glob('*.rq'))))"], work, env)
+    assert where.returncode == 0, where.stderr
+    home, n_rules, n_queries = where.stdout.split()
+    assert Path(home).resolve().is_relative_to(site.resolve())
+    assert (int(n_rules), int(n_queries)) == (len(list((ROOT / "rules").glob("*.rq"))),
+                                             len(list((ROOT / "queries").glob("*.rq"))))
