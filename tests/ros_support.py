@@ -13,6 +13,8 @@ import socket
 import subprocess
 import sys
 import time
+from collections.abc import Iterator
+from contextlib import contextmanager
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -224,3 +226,17 @@ def prepare_data(data_dir: Path) -> Path:
     data_dir.mkdir(parents=True, exist_ok=True)
     shutil.copyfile(TBOX_OWL, data_dir / "topological_map.owl")
     return data_dir
+
+
+@contextmanager
+def node_world(tmp: Path, *files: Path) -> Iterator[RosWorld]:
+    """roscore and one `topostore ros` on the tutorial's data directory (plus ``files``), stopped afterwards."""
+    world = start_world(tmp)
+    try:
+        world.data_dir = prepare_data(tmp / "data")
+        for f in files:
+            shutil.copyfile(f, world.data_dir / f.name)
+        world.start_node(world.data_dir)
+        yield world
+    finally:
+        stop_world(world)

@@ -15,8 +15,8 @@ from pathlib import Path
 
 import pytest
 
-from ros_support import (ROOT, TOPOSTORE, RosWorld, free_port, prepare_data, reply, request, skip_without_ros,
-                         start_world, stop, stop_world, tutorial, tutorial_yaml)
+from ros_support import (ROOT, TOPOSTORE, RosWorld, free_port, node_world, prepare_data, reply, request,
+                         skip_without_ros, start_world, stop, stop_world, tutorial, tutorial_yaml)
 
 CLIENT = str(Path(__file__).with_name("ros_client.py"))
 SINGLE = "/armor_interface_srv"
@@ -26,14 +26,8 @@ SERIALIZED = "/armor_interface_serialized_srv"
 @pytest.fixture(scope="module")
 def world(tmp_path_factory: pytest.TempPathFactory) -> Iterator[RosWorld]:
     skip_without_ros()
-    tmp = tmp_path_factory.mktemp("ros")
-    w = start_world(tmp)
-    try:
-        w.data_dir = prepare_data(tmp / "data")
-        w.start_node(w.data_dir)
+    with node_world(tmp_path_factory.mktemp("ros")) as w:
         yield w
-    finally:
-        stop_world(w)
 
 
 def yaml_reply(text: str) -> dict:

@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import json
-import shutil
 import subprocess
 import sys
 from collections.abc import Iterator
@@ -11,7 +10,7 @@ from pathlib import Path
 
 import pytest
 
-from ros_support import (RosWorld, prepare_data, request, skip_without_ros, start_world, stop, stop_world)
+from ros_support import RosWorld, node_world, request, skip_without_ros, stop
 
 LISTENER = str(Path(__file__).with_name("ros_events_client.py"))
 CLIENT = str(Path(__file__).with_name("ros_client.py"))
@@ -23,15 +22,8 @@ TOPIC = "/armor_service/events"
 @pytest.fixture(scope="module")
 def world(tmp_path_factory: pytest.TempPathFactory) -> Iterator[RosWorld]:
     skip_without_ros()
-    tmp = tmp_path_factory.mktemp("ros_events")
-    w = start_world(tmp)
-    try:
-        w.data_dir = prepare_data(tmp / "data")
-        shutil.copyfile(ABOX_OWL, w.data_dir / "topological_map_abox.owl")
-        w.start_node(w.data_dir)
+    with node_world(tmp_path_factory.mktemp("ros_events"), ABOX_OWL) as w:
         yield w
-    finally:
-        stop_world(w)
 
 
 def listen(world: RosWorld, topic: str, count: int, until_seq: int | None = None) -> subprocess.Popen:

@@ -18,7 +18,7 @@ event it gets says how many (``missed``); reasoning never waits for it.
 from __future__ import annotations
 
 import asyncio
-from collections.abc import AsyncIterator
+from collections.abc import AsyncIterator, Callable
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -69,25 +69,31 @@ class LiveRoutes:
     def _reference(self, request: Request):
         return self.api.service.reference(request.path_params["name"])
 
+    async def _with_ontology(self, request: Request, work: Callable[["Ontology"], dict]) -> Response:
+        """``work(ontology)`` of the named reference, under its lock, off the event loop, as JSON (404 if unknown)."""
+        try:
+            ref = self._reference(request)
+        except CommandError as exc:
+            return _error(404, exc.message)
+
+        def locked() -> dict:
+            with ref.lock:
+                return work(ref.ontology)
+
+        return JSONResponse(await run_in_threadpool(locked))
+
     # ------------------------------------------------------------ explanations
     async def explain(self, request: Request) -> Response:
         params = request.query_params
         missing = [k for k in ("s", "p", "o") if not params.get(k)]
         if missing:
             return _error(400, f"missing parameter(s) {', '.join(missing)}: GET .../explain?s=R1&p=rdf:type&o=URGENT")
-        try:
-            ref = self._reference(request)
-        except CommandError as exc:
-            return _error(404, exc.message)
-
-        def work() -> dict:
-            with ref.lock:
-                onto = ref.ontology
-                s, p, o = resolve_triple(onto, params["s"], params["p"], params["o"])
-                return onto.explain(s, p, o).to_dict()
+        def work(onto: "Ontology") -> dict:
+            s, p, o = resolve_triple(onto, params["s"], params["p"], params["o"])
+            return onto.explain(s, p, o).to_dict()
 
         try:
-            return JSONResponse(await run_in_threadpool(work))
+            return await self._with_ontology(request, work)
         except (TopostoreError, ValueError) as exc:
             return _error(400, str(exc))
 
@@ -135,16 +141,7 @@ class LiveRoutes:
         return FileResponse(STATIC / "map.html", media_type="text/html")
 
     async def map_data(self, request: Request) -> Response:
-        try:
-            ref = self._reference(request)
-        except CommandError as exc:
-            return _error(404, exc.message)
-
-        def work() -> dict:
-            with ref.lock:
-                return map_data(ref.ontology)
-
-        return JSONResponse(await run_in_threadpool(work))
+        return await self._with_ontology(request, map_data)
 
 
 def map_data(onto: "Ontology") -> dict[str, Any]:
