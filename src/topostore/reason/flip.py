@@ -77,7 +77,7 @@ def filter_variables(rule: Rule) -> set[str]:
     return set(_VARIABLE.findall(_STRING.sub('""', rule.filters)))
 
 
-def _plain_filters(rule: Rule) -> bool:
+def plain_filters(rule: Rule) -> bool:
     """Filters made only of BIND and FILTER lines without graph patterns (no EXISTS)."""
     lines = filter_lines(rule)
     return all((_BIND.match(x) or _FILTER.match(x)) and "{" not in x and "EXISTS" not in x.upper() for x in lines)
@@ -202,4 +202,4 @@ def gained(row) -> bool:
 
 __all__ = ["CHANGE_OLD", "Replacement", "clean_replacements", "compared_only", "filter_variables", "flip_branches",
            "flip_query",
-           "gained", "head_triple"]
+           "gained", "head_triple", "plain_filters"]

@@ -198,8 +198,9 @@ class IncrementalReasoner:
         self._lateral = store.supports_lateral  # is the graph the next evaluation starts from small?
         self._counts: KeyCounts = ({}, {})  # read keys of the graph evaluations start from
         self.profile = False
-        self._filter_var_cache: dict[int, set[str]] = {}
-        self._plain_cache: dict[int, bool] = {}
+        # per rule, for flips: the variables its filters mention, and whether they are plain BIND/FILTER lines
+        self._filter_vars = [flip.filter_variables(r) for r in self.rules]
+        self._plain = [flip.plain_filters(r) for r in self.rules]
 
     # ------------------------------------------------------------------ entry point
     def reason(self, added: Collection[Triple] = (), removed: Collection[Triple] = (), mode: str = "auto",
@@ -292,7 +293,7 @@ class IncrementalReasoner:
         # a newly asserted fact that was inferred is now asserted only (as from scratch)
         if added:
             self.store.discard(added, (INFERRED, AUX))
-        skip, lost, gained_rules = self._flips(added, removed, stats)
+        skip, lost, gained_rules = self._flips(added, removed, (preds, classes), stats)
         if removed:
             self._overdelete(stats, skip, lost)
             self._rederive(stats)
@@ -304,7 +305,7 @@ class IncrementalReasoner:
         self._flush()
         m.propagate(self.monotone, stats, seed=ADDED, record=NEW_FACTS, skip_first=skip)
 
-    def _flips(self, added: Collection[Triple], removed: Collection[Triple],
+    def _flips(self, added: Collection[Triple], removed: Collection[Triple], added_keys: KeyCounts,
                stats: ReasonStats) -> tuple[set[tuple[int, int]], list[Triple], set[int]]:
         """Evaluate the rules that see replaced values only through comparisons (see :mod:`.flip`).
 
@@ -319,7 +320,7 @@ class IncrementalReasoner:
         gained_rules: set[int] = set()
         if not clean:
             return skip, lost, gained_rules
-        preds, classes = self._keys(ADDED)
+        preds, classes = added_keys
         removed_preds, removed_classes = self._keys(REMOVED)
         changed = (set(preds) | set(removed_preds), set(classes) | set(removed_classes))
         self.store.add_scratch((r.old for pairs in clean.values() for r in pairs), flip.CHANGE_OLD)
@@ -329,7 +330,7 @@ class IncrementalReasoner:
             if handled is None:
                 continue
             skip.update((i, j) for j in handled)
-            compared = tuple(j for j in handled if self.rules[i].body[j].o[1:] in self._filter_vars(i))
+            compared = tuple(j for j in handled if self.rules[i].body[j].o[1:] in self._filter_vars[i])
             if compared and self.triggers.feasible(i, self.state.present):
                 wanted.append((i, compared))
         stats.flipped = len(skip)
@@ -346,7 +347,7 @@ class IncrementalReasoner:
     def _flip_atoms(self, i: int, clean: dict, changed: tuple[set[str], set[str]]) -> tuple[int, ...] | None:
         """The rule's atoms on cleanly replaced values, when every changed atom is one (else None)."""
         rule = self.rules[i]
-        if any(matches(k, *changed) for k in rule.filter_reads) or not self._plain(i):
+        if any(matches(k, *changed) for k in rule.filter_reads) or not self._plain[i]:
             return None
         handled = []
         for j, atom in enumerate(rule.body):
@@ -374,18 +375,6 @@ class IncrementalReasoner:
         if self._profiling(stats):
             stats.per_rule["flip"] = stats.per_rule.get("flip", 0.0) + time.perf_counter() - start
         return rows
-
-    def _filter_vars(self, i: int) -> set[str]:
-        found = self._filter_var_cache.get(i)
-        if found is None:
-            found = self._filter_var_cache[i] = flip.filter_variables(self.rules[i])
-        return found
-
-    def _plain(self, i: int) -> bool:
-        found = self._plain_cache.get(i)
-        if found is None:
-            found = self._plain_cache[i] = flip._plain_filters(self.rules[i])
-        return found
 
     def _derivable(self, p: str) -> bool:
         """Whether a rule that can fire may derive facts of predicate ``p`` (IRI text)."""
