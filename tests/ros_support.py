@@ -100,11 +100,23 @@ class RosWorld:
         return next((nodes[0] for name, nodes in state[2] if name == service), None)
 
 
-def start_world(tmp: Path) -> RosWorld:
-    """roscore on a free port with ROS_HOME, logs and the armor_msgs cache inside ``tmp``."""
-    port = free_port()
+def start_world(tmp: Path, attempts: int = 3) -> RosWorld:
+    """roscore on a free port with ROS_HOME, logs and the armor_msgs cache inside ``tmp``.
+
+    A port that ``free_port`` found free can be taken (by a node of an earlier test) before roscore
+    binds it; then roscore exits or a stranger answers the probe, and another port is tried.
+    """
     home = tmp / "ros_home"
     home.mkdir()
+    for _ in range(attempts):
+        world = _launch_master(tmp, home, free_port())
+        if _wait_for_master(world):
+            return world
+        stop(world.master)
+    raise AssertionError(f"roscore did not start on any of {attempts} free ports")
+
+
+def _launch_master(tmp: Path, home: Path, port: int) -> RosWorld:
     env = dict(os.environ)
     env.update(ROS_MASTER_URI=f"http://127.0.0.1:{port}", ROS_HOSTNAME="127.0.0.1", ROS_HOME=str(home),
                ROS_LOG_DIR=str(home / "log"), TOPOSTORE_ROS_DIR=str(tmp / "ros_cache"), PYTHONUNBUFFERED="1")
@@ -114,9 +126,7 @@ def start_world(tmp: Path) -> RosWorld:
     env.update(_evaluate_exports(exports, env))
     master = subprocess.Popen(["roscore", "-p", str(port)], env=env, stdout=subprocess.DEVNULL,
                               stderr=subprocess.DEVNULL, start_new_session=True)
-    world = RosWorld(port, env, home, master)
-    _wait_for_master(world)
-    return world
+    return RosWorld(port, env, home, master)
 
 
 def stop_world(world: RosWorld) -> None:
@@ -134,16 +144,21 @@ def _evaluate_exports(lines: str, env: dict[str, str]) -> dict[str, str]:
     return {"PYTHONPATH": python_path, "ROS_PACKAGE_PATH": package_path}
 
 
-def _wait_for_master(world: RosWorld) -> None:
+def _wait_for_master(world: RosWorld) -> bool:
+    """True once our roscore answers; False when it died or another server holds its port."""
     import xmlrpc.client
 
     deadline = time.monotonic() + STARTUP_SECONDS
     while True:
         try:
             xmlrpc.client.ServerProxy(world.uri).getPid("/test")
-            return
+            return world.master.poll() is None
+        except xmlrpc.client.Fault:
+            return False
         except OSError:
-            if world.master.poll() is not None or time.monotonic() > deadline:
+            if world.master.poll() is not None:
+                return False
+            if time.monotonic() > deadline:
                 stop(world.master)
                 raise AssertionError(f"roscore did not start on port {world.port}") from None
             time.sleep(0.2)
