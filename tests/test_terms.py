@@ -1,0 +1,146 @@
+"""terms.py, where user text becomes RDF terms: names, IRIs, typed literals and data-value keys."""
+
+from __future__ import annotations
+
+import pytest
+from pyoxigraph import BlankNode, Literal, NamedNode
+
+from topostore.errors import InvalidNameError, InvalidValueError, UnknownTypeError
+from topostore.terms import entity, iri, literal_of, sparql, typed_literal, validate_name, value_key
+
+XSD = "http://www.w3.org/2001/XMLSchema#"
+NS = "http://bnc/exp-rob-lab/2022-23#"
+
+
+def lit(value: str, local: str) -> Literal:
+    return Literal(value, datatype=NamedNode(XSD + local))
+
+
+# ---------------------------------------------------------------- names and IRIs
+
+@pytest.mark.parametrize("name", ["R1", "a-b_c.d", "Ünïcode", "x/y#z", "0"])
+def test_validate_name_returns_good_names_unchanged(name: str) -> None:
+    assert validate_name(name) == name
+
+
+@pytest.mark.parametrize("name,bad", [("R 1", " "), ("a<b", "<"), ("a>b", ">"), ('a"b', '"'), ("a{b", "{"),
+                                      ("a}b", "}"), ("a|b", "|"), ("a^b", "^"), ("a`b", "`"), ("a\\b", "\\"),
+                                      ("a\nb", "\n"), ("a\x00b", "\x00"), ("a\x7fb", "\x7f")])
+def test_validate_name_names_the_bad_character(name: str, bad: str) -> None:
+    with pytest.raises(InvalidNameError) as err:
+        validate_name(name, "individual")
+    assert str(err.value) == (f"individual {name!r} contains the character {bad!r}, "
+                              "which is not allowed in an IRI")
+
+
+def test_validate_name_refuses_empty_and_non_strings() -> None:
+    with pytest.raises(InvalidNameError, match="^class is empty$"):
+        validate_name("", "class")
+    with pytest.raises(InvalidNameError, match="^name must be a string, got int$"):
+        validate_name(5)  # type: ignore[arg-type]
+
+
+def test_iri_needs_a_scheme() -> None:
+    assert iri("urn:x") == NamedNode("urn:x")
+    assert iri("http://example.org/a#b") == NamedNode("http://example.org/a#b")
+    with pytest.raises(InvalidNameError, match="is not an absolute IRI"):
+        iri("relative/path")
+    with pytest.raises(InvalidNameError, match="not allowed in an IRI"):
+        iri("http://example.org/a b")
+
+
+def test_entity_appends_to_the_prefix_or_takes_a_full_iri() -> None:
+    assert entity("R1", NS) == NamedNode(NS + "R1")
+    assert entity("<http://other.org/x#Z>", NS) == NamedNode("http://other.org/x#Z")
+    with pytest.raises(InvalidNameError):
+        entity("<>", NS)  # too short to be <IRI>, and "<" may not be part of a name
+    with pytest.raises(InvalidNameError, match="is not an absolute IRI"):
+        entity("<no-scheme>", NS)
+
+
+# ---------------------------------------------------------------- typed literals
+
+@pytest.mark.parametrize("value,type_name,expected", [
+    ("42", "LONG", lit("42", "long")),
+    ("  42 ", "long", lit("42", "long")),  # type names are case-insensitive; numbers are trimmed
+    ("+7", "INTEGER", lit("7", "integer")),  # aRMOR asserts xsd:integer for INT/INTEGER
+    ("-2147483648", "INT", lit("-2147483648", "integer")),
+    ("007", "SHORT", lit("7", "short")),
+    ("-128", "BYTE", lit("-128", "byte")),
+    ("3", "FLOAT", lit("3.0", "float")),  # Java's Float.toString
+    ("1e10", "DOUBLE", lit("10000000000.0", "double")),
+    ("1.5e-7", "DOUBLE", lit("1.5E-7", "double")),
+    ("1e300", "DOUBLE", lit("1.0E300", "double")),  # as Java writes it
+    ("INF", "FLOAT", lit("INF", "float")),
+    ("-INF", "DOUBLE", lit("-INF", "double")),
+    ("NaN", "DOUBLE", lit("NaN", "double")),
+    (".5", "DECIMAL", lit(".5", "decimal")),
+    ("TRUE", "BOOL", lit("true", "boolean")),
+    ("0", "BOOLEAN", lit("false", "boolean")),
+    ("2022-10-12T10:00:00Z", "DATETIME", lit("2022-10-12T10:00:00Z", "dateTime")),
+    ("2022-10-12", "DATE", lit("2022-10-12", "date")),
+    (' say "hi" ', "STRING", Literal(' say "hi" ')),  # strings are kept as given
+])
+def test_typed_literal(value: str, type_name: str, expected: Literal) -> None:
+    assert typed_literal(value, type_name) == expected
+
+
+@pytest.mark.parametrize("value,type_name,message", [
+    ("12x", "LONG", "'12x' is not a valid xsd:long"),
+    ("1.0", "INT", "'1.0' is not a valid xsd:int"),
+    ("2147483648", "INT", "'2147483648' is out of range for xsd:int"),
+    ("9223372036854775808", "LONG", "'9223372036854775808' is out of range for xsd:long"),
+    ("128", "BYTE", "'128' is out of range for xsd:byte"),
+    ("1e39", "FLOAT", "'1e39' is out of range for xsd:float"),
+    ("one", "DOUBLE", "'one' is not a valid xsd:double"),
+    ("1.2.3", "DECIMAL", "'1.2.3' is not a valid xsd:decimal"),
+    ("yes", "BOOLEAN", "'yes' is not a valid xsd:boolean (true/false)"),
+    ("2022-13", "DATE", "'2022-13' is not a valid xsd:date"),
+    ("12:00", "DATETIME", "'12:00' is not a valid xsd:dateTime"),
+])
+def test_typed_literal_refuses_bad_values(value: str, type_name: str, message: str) -> None:
+    with pytest.raises(InvalidValueError) as err:
+        typed_literal(value, type_name)
+    assert str(err.value) == message
+
+
+def test_typed_literal_refuses_unknown_types_and_huge_integers() -> None:
+    with pytest.raises(UnknownTypeError, match="unsupported value type 'NUMBER'; use one of BOOL, BOOLEAN, BYTE"):
+        typed_literal("5", "NUMBER")
+    with pytest.raises(UnknownTypeError):
+        typed_literal("5", None)  # type: ignore[arg-type]
+    with pytest.raises(InvalidValueError, match="^value must be a string, got int$"):
+        typed_literal(5, "LONG")  # type: ignore[arg-type]
+    with pytest.raises(InvalidValueError, match="of 4001 digits is out of range"):
+        typed_literal("9" * 4001, "INTEGER")
+
+
+def test_literal_of_covers_the_unsigned_and_sign_restricted_types() -> None:
+    assert literal_of("0", "nonNegativeInteger") == lit("0", "nonNegativeInteger")
+    assert literal_of("18446744073709551615", "unsignedLong") == lit("18446744073709551615", "unsignedLong")
+    for value, local in (("0", "positiveInteger"), ("1", "nonPositiveInteger"), ("0", "negativeInteger"),
+                         ("-1", "unsignedByte"), ("256", "unsignedByte")):
+        with pytest.raises(InvalidValueError, match=f"out of range for xsd:{local}"):
+            literal_of(value, local)
+
+
+# ---------------------------------------------------------------- data-value keys and SPARQL text
+
+def test_value_key_is_equal_exactly_for_equal_data_values() -> None:
+    assert value_key(lit("5", "long")) == value_key(lit("5", "integer")) == value_key(lit("5.0", "decimal"))
+    assert value_key(lit("5", "long")) != value_key(lit("5.0", "double"))  # reals and doubles stay apart
+    assert value_key(lit("5.0", "double")) != value_key(lit("5.0", "float"))
+    assert value_key(lit("2.50", "double")) == value_key(lit("2.5", "double"))
+    assert value_key(lit("1", "boolean")) == value_key(lit("true", "boolean"))
+    assert value_key(Literal("5")) != value_key(lit("5", "integer"))
+    assert value_key(Literal("chat", language="fr")) != value_key(Literal("chat", language="en"))
+    assert value_key(lit("abc", "long")) == ("literal", "abc", XSD + "long", None)  # ill-typed: compared as text
+    assert value_key(NamedNode(NS + "R1")) == ("term", f"<{NS}R1>")
+
+
+def test_sparql_renders_escaped_terms_and_refuses_blank_nodes() -> None:
+    assert sparql(Literal('a"b\\c')) == '"a\\"b\\\\c"'
+    assert sparql(lit("5", "long")) == f'"5"^^<{XSD}long>'
+    assert sparql(NamedNode(NS + "R1")) == f"<{NS}R1>"
+    with pytest.raises(InvalidNameError, match="blank nodes cannot be named in a query"):
+        sparql(BlankNode("b0"))
