@@ -5,6 +5,8 @@ from __future__ import annotations
 from pathlib import Path
 
 import pytest
+import rdflib
+from rdflib.compare import isomorphic
 
 from topostore.armor import ArmorRequest, ArmorResponse, ArmorService
 from topostore.armor_api import armor_exceptions, transport
@@ -108,7 +110,7 @@ def test_requests_match_armor_py_api(client: ArmorClient, rec: Recorder) -> None
         assert last(rec)[:2] == ("tester", "ref")
 
 
-def test_return_types(client: ArmorClient, tmp_path: Path) -> None:
+def test_return_types(client: ArmorClient, rec: Recorder, tmp_path: Path) -> None:
     assert client.manipulation.add_ind_to_class("K", "ROOM") is True
     assert client.utils.apply_buffered_changes() is True
     assert client.utils.save(str(tmp_path / "a.owl")) is None
@@ -116,7 +118,18 @@ def test_return_types(client: ArmorClient, tmp_path: Path) -> None:
     assert client.utils.mount_on_ref() is None
     assert client.query.check_ind_exists("R1") is True
     assert client.query.check_ind_exists("Nobody") is False
-    assert isinstance(client.call("QUERY", "IND", "CLASS", ["ROOM"]), ArmorResponse)
+    assert client.call("QUERY", "IND", "CLASS", ["ROOM"]) == ArmorResponse(
+        True, 0, "", True, False, [f"<{IRI}#{n}>" for n in ("C1", "K", "R1", "R2")])
+    # save wrote the asserted triples (K included), save_ref_with_inferences the inferred ones too
+    asserted, inferred = (rdflib.Graph().parse(tmp_path / name, format="xml") for name in ("a.owl", "b.owl"))
+    k_room = (rdflib.URIRef(IRI + "#K"), rdflib.RDF.type, rdflib.URIRef(IRI + "#ROOM"))
+    reach = (rdflib.URIRef(IRI + "#Robot1"), rdflib.URIRef(IRI + "#canReach"), rdflib.URIRef(IRI + "#R1"))
+    assert k_room in asserted and k_room in inferred
+    assert reach not in asserted and reach in inferred
+    onto = rec.service.reference("ref").ontology
+    for graph, with_inferred in ((asserted, False), (inferred, True)):
+        expected = rdflib.Graph().parse(data=onto.serialize("nt", inferred=with_inferred), format="nt")
+        assert isomorphic(graph, expected)
 
 
 def test_batch_methods(client: ArmorClient) -> None:

@@ -43,8 +43,9 @@ def test_every_command_has_help_with_an_example(command: str) -> None:
 def test_top_level_help_and_version() -> None:
     result = run("--help")
     assert result.exit_code == 0
-    for command in ("reason", "rules", "query", "serve", "demo", "map", "bench"):
-        assert command in result.output
+    listed = result.output.split("\nCommands:\n", 1)[1].splitlines()
+    assert [line.split()[0] for line in listed if line.strip()] == sorted(cli.commands)
+    assert sorted(cli.commands) == ["bench", "demo", "explain", "map", "query", "reason", "ros", "rules", "serve"]
     assert main(["--version"]) == 0
 
 
@@ -123,24 +124,27 @@ def test_query_list() -> None:
     assert "reachable-locations robot=iri" in result.output
 
 
-@pytest.mark.parametrize("args,message", [
-    (("reason", "missing.ttl"), "no such file: missing.ttl"),
-    (("query", TBOX, ABOX, "no-such-query"), "unknown query 'no-such-query'"),
-    (("query", TBOX, ABOX, "reachable-locations"), "needs the parameter(s) robot"),
-    (("query", TBOX, ABOX, "reachable-locations", "-p", "robot"), "--param takes NAME=VALUE"),
-    (("query", TBOX), "give the ontology file(s) and then a query name"),
-    (("reason", TBOX, "-o", "x.ttl", "--format", "klingon"), "unknown RDF format 'klingon'"),
-    (("serve", "--host", "0.0.0.0"), "without a token"),
-    (("map", TBOX, ABOX, "-o", "map.gif"), "use a .png, .svg, .pdf file name"),
+@pytest.mark.parametrize("args,code,message", [
+    (("reason", "missing.ttl"), 1, "no such file: missing.ttl"),
+    (("query", TBOX, ABOX, "no-such-query"), 1, "unknown query 'no-such-query'"),
+    (("query", TBOX, ABOX, "reachable-locations"), 1, "needs the parameter(s) robot"),
+    (("query", TBOX, ABOX, "reachable-locations", "-p", "robot"), 2, "--param takes NAME=VALUE"),
+    (("query", TBOX), 2, "give the ontology file(s) and then a query name"),
+    (("reason", TBOX, "-o", "x.ttl", "--format", "klingon"), 1, "unknown RDF format 'klingon'"),
+    (("serve", "--host", "0.0.0.0"), 1, "without a token"),
+    (("map", TBOX, ABOX, "-o", "map.gif"), 1, "use a .png, .svg, .pdf file name"),
 ])
-def test_errors_are_one_line(args: tuple[str, ...], message: str, tmp_path: Path, monkeypatch) -> None:
+def test_errors_are_one_line(args: tuple[str, ...], code: int, message: str, tmp_path: Path, monkeypatch) -> None:
+    """Errors of the program exit 1 with one "Error: ..." line; usage errors exit 2 with click's usage lines first."""
     monkeypatch.chdir(tmp_path)
     result = run(*args)
-    assert result.exit_code in (1, 2), result.output
+    assert result.exit_code == code, result.output
     err = result.stderr.strip()
-    assert message in err
     assert "Traceback" not in result.output + result.stderr
-    assert len(err.splitlines()) == 1 or err.startswith("Usage:"), err
+    if code == 1:
+        assert err.startswith("Error: ") and message in err and len(err.splitlines()) == 1, err
+    else:
+        assert err.startswith(f"Usage: cli {args[0]} ") and err.splitlines()[-1].startswith(f"Error: {message}"), err
 
 
 def test_malformed_file_is_one_line_unless_debug(tmp_path: Path) -> None:
