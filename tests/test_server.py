@@ -1,9 +1,10 @@
-"""The HTTP service, run for real: `topostore serve` in a subprocess on a free loopback port.
+"""The HTTP service: the seed tutorial as JSON requests, the SPARQL 1.1 endpoint (rdflib's SPARQLStore and plain
+HTTP in every result format), ArmorClient over HTTP, the security defaults (loopback without token, data directory,
+size and time limits, token, updates) and concurrent clients losing no write.
 
-Covers the seed tutorial as JSON requests, the SPARQL 1.1 endpoint (rdflib's
-SPARQLStore and plain HTTP in every result format), ArmorClient over HTTP,
-the security defaults (loopback without token, data directory, size and time
-limits, token, updates) and concurrent clients losing no write.
+Most tests call the application in-process through Starlette's TestClient; the clients that need a URL (rdflib,
+the armor client, concurrent threads) reach it on a real socket served by uvicorn in a thread; one smoke test and
+the refusal to start run the real ``topostore serve`` command.
 """
 
 from __future__ import annotations
@@ -12,17 +13,14 @@ import csv
 import io
 import json
 import shutil
-import socket
+import signal
 import subprocess
 import sys
 import threading
 import time
-import urllib.error
 import urllib.parse
-import urllib.request
 import xml.etree.ElementTree as ET
 from collections.abc import Iterator
-from dataclasses import dataclass
 from pathlib import Path
 
 import pytest
@@ -32,106 +30,37 @@ from rdflib.plugins.stores.sparqlstore import SPARQLStore
 from topostore.armor_api.armor_client import ArmorClient
 from topostore.armor_api.armor_exceptions import ArmorServiceCallError, ArmorServiceInternalError
 from topostore.armor_api.http_transport import HttpTransport
+from topostore.server import ServerConfig
 
-TBOX = Path(__file__).parents[2] / "shared" / "ontology" / "topological_map.owl"
+from http_support import TBOX, Client, Live, free_port, in_process, start_server, stop_server, threaded, with_map
+
+Server = Live  # the name other test modules import
 IRI = "http://bnc/exp-rob-lab/2022-23"
 NS = IRI + "#"
 TOKEN = "s3cret-token"
+__all__ = ["IRI", "NS", "TBOX", "Server", "free_port", "start_server", "stop_server"]
 
 
-def free_port() -> int:
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return s.getsockname()[1]
-
-
-@dataclass
-class Server:
-    url: str
-    data_dir: Path
-    proc: subprocess.Popen
-    token: str | None = None
-
-    def request(self, path: str, body: bytes | None = None, headers: dict[str, str] | None = None,
-                method: str | None = None) -> tuple[int, dict[str, str], bytes]:
-        """(status, headers, body) of one HTTP request; errors are returned, not raised."""
-        h = dict(headers or {})
-        if body is not None and "Content-Type" not in h:
-            h["Content-Type"] = "application/json"
-        if self.token and "Authorization" not in h:
-            h["Authorization"] = f"Bearer {self.token}"
-        req = urllib.request.Request(self.url + path, data=body, headers=h, method=method)
-        try:
-            with urllib.request.urlopen(req, timeout=30) as res:
-                return res.status, dict(res.headers), res.read()
-        except urllib.error.HTTPError as exc:
-            return exc.code, dict(exc.headers), exc.read()
-
-    def armor(self, command: str, spec1: str = "", spec2: str = "", args: list[str] | None = None,
-              ref: str = "ontoRef", client: str = "example") -> dict:
-        payload = {"client_name": client, "reference_name": ref, "command": command,
-                   "primary_command_spec": spec1, "secondary_command_spec": spec2, "args": args or []}
-        status, _, body = self.request("/armor", json.dumps(payload).encode(), {"Content-Type": "application/json"})
-        assert status == 200, body
-        return json.loads(body)
-
-    def ok(self, *a, **k) -> dict:
-        res = self.armor(*a, **k)
-        assert res["success"] and res["exit_code"] == 0, (a, res)
-        return res
-
-    def sparql_get(self, query: str, accept: str | None = None, ref: str = "ontoRef") -> tuple[int, dict[str, str], bytes]:
-        headers = {"Accept": accept} if accept else {}
-        return self.request(f"/references/{ref}/sparql?" + urllib.parse.urlencode({"query": query}), headers=headers)
-
-
-def start_server(data_dir: Path, *extra: str, token: str | None = None, port: int | None = None) -> Server:
-    data_dir.mkdir(parents=True, exist_ok=True)
-    shutil.copy(TBOX, data_dir / "topological_map.owl")
-    port = port or free_port()
-    log = open(data_dir / "server.log", "wb")
-    cmd = [sys.executable, "-m", "topostore.cli", "serve", "--host", "127.0.0.1", "--port", str(port),
-           "--data-dir", str(data_dir), *extra]
-    if token:
-        cmd += ["--token", token]
-    proc = subprocess.Popen(cmd, stdout=log, stderr=subprocess.STDOUT)
-    server = Server(f"http://127.0.0.1:{port}", data_dir, proc, token)
-    deadline = time.monotonic() + 20
-    while time.monotonic() < deadline:
-        if proc.poll() is not None:
-            raise RuntimeError(f"server exited: {(data_dir / 'server.log').read_text()}")
-        try:
-            if server.request("/health")[0] == 200:
-                return server
-        except OSError:
-            pass
-        time.sleep(0.1)
-    proc.kill()
-    raise RuntimeError("server did not start in 20 s")
-
-
-def stop_server(server: Server) -> None:
-    server.proc.terminate()
-    try:
-        server.proc.wait(10)
-    except subprocess.TimeoutExpired:
-        server.proc.kill()
-        server.proc.wait(5)
+def config(data_dir: Path, **settings) -> ServerConfig:
+    """What ``topostore serve --data-dir DATA_DIR`` with these settings configures."""
+    return ServerConfig(data_dir=with_map(data_dir), **settings)
 
 
 @pytest.fixture(scope="module")
-def server(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Server]:
-    s = start_server(tmp_path_factory.mktemp("data"), "--sparql-timeout", "1", "--max-request-bytes", "65536")
-    try:
+def server(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Client]:
+    with in_process(config(tmp_path_factory.mktemp("data"), sparql_timeout=1, max_request_bytes=65536)) as s:
         yield s
-    finally:
-        stop_server(s)
 
 
 @pytest.fixture(scope="module")
-def tutorial(server: Server) -> Server:
+def live(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Live]:
+    """The same settings on a real socket, for clients that need a URL."""
+    with threaded(config(tmp_path_factory.mktemp("live"), sparql_timeout=1, max_request_bytes=65536)) as s:
+        yield s
+
+
+def run_tutorial(s: Client) -> Client:
     """The seed tutorial's requests, sent as JSON, with their answers checked."""
-    s = server
     s.ok("LOAD", "FILE", "", ["topological_map.owl", IRI, "true", "PELLET", "true"])
     for door in ("D6", "D7"):
         s.ok("ADD", "OBJECTPROP", "IND", ["hasDoor", "E", door])
@@ -156,24 +85,45 @@ def tutorial(server: Server) -> Server:
     return s
 
 
+@pytest.fixture(scope="module")
+def tutorial(server: Client) -> Client:
+    return run_tutorial(server)
+
+
+@pytest.fixture(scope="module")
+def live_tutorial(live: Live) -> Live:
+    run_tutorial(live)
+    return live
+
+
+def saved_graph(s: Client) -> rdflib.Graph:
+    return rdflib.Graph().parse(s.data_dir / "saved" / "tutorial.owl", format="xml")
+
+
 # --------------------------------------------------------------------------- aRMOR over HTTP
 
-def test_tutorial_as_json(tutorial: Server) -> None:
-    saved = tutorial.data_dir / "saved" / "tutorial.owl"
-    assert saved.stat().st_size > 0
-    assert b"hasDoor" in saved.read_bytes()
+def test_tutorial_as_json(tutorial: Client) -> None:
+    saved = saved_graph(tutorial)  # SAVE wrote the asserted triples: the changes are in, no inference is
+    assert set(saved.objects(rdflib.URIRef(NS + "E"), rdflib.URIRef(NS + "hasDoor"))) == {
+        rdflib.URIRef(NS + "D6"), rdflib.URIRef(NS + "D7")}
+    assert set(saved.objects(rdflib.URIRef(NS + "Robot1"), rdflib.URIRef(NS + "isIn"))) == {rdflib.URIRef(NS + "E")}
+    assert (None, rdflib.URIRef(NS + "canReach"), None) not in saved
     status, _, body = tutorial.request("/health")
     assert status == 200 and json.loads(body)["status"] == "ok"
 
 
-def test_references_listing(tutorial: Server) -> None:
+def test_references_listing(tutorial: Client) -> None:
     status, _, body = tutorial.request("/references")
     refs = {r["name"]: r for r in json.loads(body)["references"]}
+    assert status == 200 and list(refs) == ["ontoRef"]
     info = refs["ontoRef"]
-    assert status == 200
-    assert info["consistent"] is True
-    assert info["triples_asserted"] > 100 and info["triples_inferred"] > 0
-    assert info["last_reasoning_seconds"] >= 0
+    seconds = info.pop("last_reasoning_seconds")
+    assert isinstance(seconds, float) and seconds >= 0  # a duration: its value is the machine's
+    everything = tutorial.sparql_get("CONSTRUCT { ?s ?p ?o } WHERE { ?s ?p ?o }", "application/n-triples")[2]
+    assert info == {"name": "ontoRef", "iri": IRI, "consistent": True, "changed_since_reasoning": False,
+                    "buffered_changes": 0, "mounted_by": None, "triples_asserted": len(saved_graph(tutorial)),
+                    "triples_inferred": len(everything.splitlines()) - len(saved_graph(tutorial))}
+    assert info["triples_inferred"] == 12
 
 
 def test_batch_is_the_serialized_service(tutorial: Server) -> None:
@@ -209,13 +159,18 @@ def test_browser_protections(server: Server) -> None:
 def test_path_outside_data_dir_is_refused(server: Server, tmp_path: Path) -> None:
     outside = tmp_path / "elsewhere.owl"
     shutil.copy(TBOX, outside)
+    data = server.data_dir.resolve()
     for path in (str(outside), "../topological_map.owl", "/etc/passwd"):
         res = server.armor("LOAD", "FILE", "", [path, IRI, "false", "PELLET", "false"], ref="escape")
-        assert res["success"] is False and res["exit_code"] == 210, res
-        assert "outside the data directory" in res["error_description"] or "cannot load" in res["error_description"]
-    res = server.armor("SAVE", "", "", [str(tmp_path / "leak.owl")])
+        assert (res["success"], res["exit_code"]) == (False, 210), res
+        assert res["error_description"] == f"path {path!r} is outside the data directory {str(data)!r}"
+    server.ok("LOAD", "FILE", "", ["topological_map.owl", IRI, "false", "PELLET", "false"], ref="escape")
+    leak = str(tmp_path / "leak.owl")
+    res = server.armor("SAVE", "", "", [leak], ref="escape")
     assert not (tmp_path / "leak.owl").exists()
-    assert res["success"] is False or res["exit_code"] != 0
+    assert (res["success"], res["exit_code"]) == (False, 210), res
+    assert res["error_description"] == f"path {leak!r} is outside the data directory {str(data)!r}"
+    server.ok("DROP", ref="escape")
 
 
 def test_oversized_request_gets_413(server: Server) -> None:
@@ -300,7 +255,8 @@ def test_sparql_errors(tutorial: Server) -> None:
     status, _, body = tutorial.request("/references/ontoRef/sparql", update,
                                        {"Content-Type": "application/x-www-form-urlencoded"})
     assert status == 403 and "--allow-update" in json.loads(body)["error"]
-    assert tutorial.sparql_get(f"ASK {{ <{NS}X> ?p ?o }}")[2].find(b"false") > 0
+    status, _, body = tutorial.sparql_get(f"ASK {{ <{NS}X> ?p ?o }}")
+    assert status == 200 and json.loads(body) == {"head": {}, "boolean": False}  # nothing was inserted
 
 
 def test_sparql_time_limit(tutorial: Server) -> None:
@@ -316,8 +272,8 @@ def test_sparql_time_limit(tutorial: Server) -> None:
     assert tutorial.ok("QUERY", "IND", "CLASS", ["URGENT"])["queried_objects"] == [f"<{NS}R3>"]
 
 
-def test_rdflib_sparqlstore(tutorial: Server) -> None:
-    graph = rdflib.Graph(store=SPARQLStore(tutorial.url + "/references/ontoRef/sparql"))
+def test_rdflib_sparqlstore(live_tutorial: Live) -> None:
+    graph = rdflib.Graph(store=SPARQLStore(live_tutorial.url + "/references/ontoRef/sparql"))
     rows = list(graph.query(REACH))
     assert [str(r[0]) for r in rows] == [NS + "R3"]
     rows = list(graph.query(VISITED))
@@ -331,8 +287,8 @@ def test_rdflib_sparqlstore(tutorial: Server) -> None:
 
 # --------------------------------------------------------------------------- ArmorClient over HTTP
 
-def test_armor_client_over_http(server: Server) -> None:
-    client = ArmorClient("robot", "clientRef", url=server.url)
+def test_armor_client_over_http(live: Live) -> None:
+    client = ArmorClient("robot", "clientRef", url=live.url)
     client.utils.load_ref_from_file("topological_map.owl", IRI, buffered_manipulation=False, reasoner="PELLET",
                                     buffered_reasoner=True)
     for loc, door in (("C1", "D1"), ("C1", "D2"), ("R1", "D1"), ("R2", "D2")):
@@ -350,10 +306,12 @@ def test_armor_client_over_http(server: Server) -> None:
     assert client.query.ind_b2_class("CORRIDOR") == ["C1"]
     assert client.query.dataprop_b2_ind("now", "Robot1") == ['"100"^^xsd:long']
     result = client.call_serialized([("QUERY", "IND", "CLASS", ["ROOM"]), ("REASON", "", "", [])])
-    assert result.success and len(result.armor_responses) == 2
+    assert result.success is True
+    assert [(r.exit_code, r.queried_objects) for r in result.armor_responses] == [
+        (0, [f"<{NS}C1>", f"<{NS}R1>", f"<{NS}R2>"]), (0, [])]
     with pytest.raises(ArmorServiceInternalError) as err:
         client.query.ind_b2_class("")  # refused by the service, reported as in armor_py_api
-    assert err.value.code != 0
+    assert err.value.code == 208
     dead = ArmorClient("robot", "clientRef", url=f"http://127.0.0.1:{free_port()}", timeout=2)
     with pytest.raises(ArmorServiceCallError):
         dead.query.ind_b2_class("ROOM")
@@ -361,7 +319,8 @@ def test_armor_client_over_http(server: Server) -> None:
 
 # --------------------------------------------------------------------------- concurrency
 
-def test_concurrent_clients_lose_no_write(server: Server) -> None:
+def test_concurrent_clients_lose_no_write(live: Live) -> None:
+    server = live
     """8 clients for ~3 s: writers add markers (single and batched), readers query; every write is kept."""
     server.ok("LOAD", "FILE", "", ["topological_map.owl", IRI, "false", "PELLET", "true"], ref="busy")
     stop = time.monotonic() + 3.0
@@ -415,6 +374,26 @@ def test_concurrent_clients_lose_no_write(server: Server) -> None:
     assert {r["name"]: r for r in json.loads(body)["references"]}["busy"]["consistent"] is True
 
 
+# --------------------------------------------------------------------------- the real command
+
+def test_real_server_smoke(tmp_path: Path) -> None:
+    """`topostore serve` as a subprocess: it listens, answers aRMOR requests and SPARQL, and stops on SIGTERM."""
+    s = start_server(tmp_path / "data", "--sparql-timeout", "5")
+    try:
+        status, _, body = s.request("/health")
+        assert status == 200 and json.loads(body)["status"] == "ok"
+        s.ok("LOAD", "FILE", "", ["topological_map.owl", IRI, "false", "PELLET", "false"])
+        s.ok("ADD", "OBJECTPROP", "IND", ["hasDoor", "E", "D6"])
+        s.ok("ADD", "OBJECTPROP", "IND", ["isIn", "Robot1", "E"])
+        assert s.ok("QUERY", "IND", "CLASS", ["ROOM"])["queried_objects"] == [f"<{NS}E>"]
+        status, _, body = s.sparql_get(f"SELECT ?d WHERE {{ <{NS}E> <{NS}hasDoor> ?d }}", "text/csv")
+        assert status == 200 and body.decode().splitlines() == ["d", NS + "D6"]
+    finally:
+        stop_server(s)
+    # uvicorn shuts down gracefully, then re-raises the signal it caught: the process ends by SIGTERM
+    assert s.proc is not None and s.proc.returncode == -signal.SIGTERM
+
+
 # --------------------------------------------------------------------------- security settings
 
 def test_non_loopback_without_token_refuses_to_start(tmp_path: Path) -> None:
@@ -427,9 +406,8 @@ def test_non_loopback_without_token_refuses_to_start(tmp_path: Path) -> None:
 
 def test_token_and_updates(tmp_path: Path) -> None:
     origin = "https://yasgui.example.org"
-    s = start_server(tmp_path / "data", "--allow-update", "--cors-origin", origin, "--sparql-max-rows", "100",
-                     token=TOKEN)
-    try:
+    settings = config(tmp_path / "data", allow_update=True, cors_origins=(origin,), sparql_max_rows=100, token=TOKEN)
+    with threaded(settings) as s:
         status, headers, _ = s.request("/references/upd/sparql", method="OPTIONS",
                                        headers={"Origin": origin, "Access-Control-Request-Method": "POST"})
         assert status == 204 and headers.get("access-control-allow-origin") == origin
@@ -461,8 +439,6 @@ def test_token_and_updates(tmp_path: Path) -> None:
         assert status == 400 and "more than 100 rows" in json.loads(body)["error"]
         big = urllib.parse.urlencode({"query": "SELECT * WHERE { ?a ?b ?c . ?d ?e ?f } LIMIT 100"})
         assert s.request("/references/upd/sparql?" + big)[0] == 200
-    finally:
-        stop_server(s)
 
 
 # --------------------------------------------------------------------------- the SERVICE/LOAD guard
