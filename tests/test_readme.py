@@ -21,6 +21,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 import pytest
+import rdflib
 
 from topostore.armor_api import transport
 
@@ -121,7 +122,10 @@ def test_use_it_from_section(tmp_path: Path, monkeypatch: pytest.MonkeyPatch,
         assert outputs[0] == "['R1']\n['C1', 'R1', 'R2']\n"
         ns = "http://bnc/exp-rob-lab/2022-23#"
         assert outputs[1] == f"['{ns}R1', '{ns}R2']\nTrue\n"
-        assert outputs[2].startswith(f"['{ns}C1']\n")
-        assert f"<{ns}canReach>" in outputs[2] or ":canReach" in outputs[2]
+        corridors, constructed = outputs[2].split("\n", 1)
+        assert corridors == f"['{ns}C1']"
+        graph = rdflib.Graph().parse(data=constructed, format="turtle")
+        reach = (rdflib.URIRef(ns + "Robot1"), rdflib.URIRef(ns + "canReach"))
+        assert set(graph) == {(*reach, rdflib.URIRef(ns + "R1")), (*reach, rdflib.URIRef(ns + "R2"))}
     finally:
         stop(server, signal.SIGINT)
