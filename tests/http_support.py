@@ -66,7 +66,8 @@ class Client:
         assert res["success"] and res["exit_code"] == 0, (a, res)
         return res
 
-    def sparql_get(self, query: str, accept: str | None = None, ref: str = "ontoRef") -> tuple[int, dict[str, str], bytes]:
+    def sparql_get(self, query: str, accept: str | None = None,
+                   ref: str = "ontoRef") -> tuple[int, dict[str, str], bytes]:
         headers = {"Accept": accept} if accept else {}
         return self.request(f"/references/{ref}/sparql?" + urllib.parse.urlencode({"query": query}), headers=headers)
 

@@ -12,8 +12,8 @@ from pathlib import Path
 import pyoxigraph
 import pytest
 import rdflib
-from rdflib.compare import isomorphic
 from pyoxigraph import Literal, NamedNode, Triple
+from rdflib.compare import isomorphic
 
 from topostore import LoadError, Ontology
 from topostore.resources import default_ontology, default_ontology_files
@@ -81,7 +81,8 @@ def test_embedded_files_parse_with_rdflib(path):
     """rdflib reads the embedded files as the same graph pyoxigraph reads (an independent parser agrees)."""
     g = rdflib.Graph()
     for s, p, o in rdflib.Graph().parse(path, format="turtle"):  # "x"^^xsd:string is "x" in RDF 1.1
-        g.add((s, p, rdflib.Literal(str(o)) if isinstance(o, rdflib.Literal) and o.datatype == rdflib.XSD.string else o))
+        plain = isinstance(o, rdflib.Literal) and o.datatype == rdflib.XSD.string
+        g.add((s, p, rdflib.Literal(str(o)) if plain else o))
     ours = pyoxigraph.serialize(pyoxigraph.parse(path=str(path), format=pyoxigraph.RdfFormat.TURTLE),
                                 format=pyoxigraph.RdfFormat.N_TRIPLES)
     expected = rdflib.Graph().parse(data=ours, format="nt")
