@@ -15,6 +15,7 @@ from pathlib import Path
 
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
+from profiles import property_examples
 from pyoxigraph import NamedNode, Triple
 
 from topostore import Ontology
@@ -152,7 +153,7 @@ operation = st.one_of(
 batches = st.lists(st.lists(operation, min_size=1, max_size=3), min_size=1, max_size=6)
 
 
-@settings(max_examples=80, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@settings(max_examples=property_examples(80), deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(n=st.integers(1, 8), seed=st.integers(0, 3), declared=st.booleans(), share=st.sampled_from([0.1, 1.0]),
        steps=batches, profile=st.booleans())
 def test_incremental_equals_from_scratch(n: int, seed: int, declared: bool, share: float, steps: list,
@@ -305,7 +306,7 @@ clock_change = st.one_of(
 )
 
 
-@settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@settings(max_examples=property_examples(60), deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(n=st.integers(2, 10), seed=st.integers(0, 3), steps=st.lists(st.lists(clock_change, min_size=1, max_size=4),
                                                                         min_size=1, max_size=6))
 def test_clock_changes_equal_from_scratch(n: int, seed: int, steps: list) -> None:

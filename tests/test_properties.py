@@ -13,6 +13,7 @@ import owlrl
 import rdflib
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
+from profiles import property_examples
 from pyoxigraph import Literal, NamedNode, Triple
 
 from topostore import Ontology
@@ -84,7 +85,7 @@ def restricted(triples) -> set[tuple[str, str, str]]:
     return out
 
 
-@settings(max_examples=30, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@settings(max_examples=property_examples(30), deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(type_assertions, property_assertions)
 def test_named_closure_equals_owlrl(types, props):
     # Reference: owlrl's implementation of the OWL 2 RL/RDF rules (W3C OWL 2 Profiles §4.3)
@@ -136,7 +137,7 @@ def _graph(o: Ontology, g: NamedNode) -> set:
     return set(o.store.triples(graph=g))
 
 
-@settings(max_examples=25, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@settings(max_examples=property_examples(25), deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(operations)
 def test_reasoning_after_changes_equals_reasoning_from_scratch(ops):
     # README: "Reasoning again must never keep conclusions whose premises were removed"
