@@ -18,7 +18,9 @@ from pathlib import Path
 
 import pytest
 
-from test_server import Server, start_server, stop_server
+from http_support import Live as Server
+from http_support import threaded
+from test_server import config
 from topostore import Ontology
 from topostore.resources import default_ontology_files
 
@@ -30,13 +32,10 @@ CHROMIUM_FLAGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic
 @pytest.fixture
 def live(tmp_path: Path) -> Iterator[Server]:
     """A server with the example map loaded as reference ontoRef (live reasoner: every change reasons)."""
-    server = start_server(tmp_path / "data")
-    Ontology.from_file(*default_ontology_files()).save(server.data_dir / "example.ttl")
-    server.ok("LOAD", "FILE", "", ["example.ttl", "http://bnc/exp-rob-lab/2022-23", "false", "PELLET", "false"])
-    try:
+    with threaded(config(tmp_path / "data")) as server:  # uvicorn in a thread: a real socket for the browser
+        Ontology.from_file(*default_ontology_files()).save(server.data_dir / "example.ttl")
+        server.ok("LOAD", "FILE", "", ["example.ttl", "http://bnc/exp-rob-lab/2022-23", "false", "PELLET", "false"])
         yield server
-    finally:
-        stop_server(server)
 
 
 def get_json(server: Server, path: str) -> tuple[int, dict]:

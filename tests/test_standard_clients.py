@@ -16,7 +16,9 @@ from rdflib.graph import DATASET_DEFAULT_GRAPH_ID
 from rdflib.plugins.stores.sparqlstore import SPARQLStore, SPARQLUpdateStore
 from SPARQLWrapper import CSV, JSON, JSONLD, N3, POST, RDFXML, TSV, TURTLE, XML, SPARQLWrapper
 
-from test_server import IRI, NS, TBOX, Server, start_server, stop_server
+from http_support import Live as Server
+from http_support import in_process, threaded
+from test_server import IRI, NS, TBOX, config
 
 ABOX = TBOX.with_name("topological_map_abox.owl")
 SD = rdflib.Namespace("http://www.w3.org/ns/sparql-service-description#")
@@ -28,13 +30,10 @@ CONSTRUCT = f"CONSTRUCT {{ ?r <{NS}canReach> ?l }} WHERE {{ ?r <{NS}canReach> ?l
 def server(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Server]:
     data = tmp_path_factory.mktemp("data")
     shutil.copy(ABOX, data / ABOX.name)
-    s = start_server(data, "--allow-update")
-    try:
+    with threaded(config(data, allow_update=True)) as s:  # uvicorn in a thread: a real socket for the clients
         s.ok("LOAD", "FILE", "", [ABOX.name, IRI, "false", "PELLET", "false"], ref="tutorial")
         s.ok("LOAD", "FILE", "", ["topological_map.owl", IRI, "false", "PELLET", "false"], ref="writable")
         yield s
-    finally:
-        stop_server(s)
 
 
 def endpoint(server: Server, ref: str = "tutorial") -> str:
@@ -185,14 +184,11 @@ def test_graph_store_refusals(server: Server) -> None:
 
 
 def test_graph_store_writes_need_allow_update(tmp_path: Path) -> None:
-    s = start_server(tmp_path / "data")
-    try:
+    with in_process(config(tmp_path / "data")) as s:
         status, _, body = gsp(s, "new", "PUT", TBOX.read_bytes(), "application/rdf+xml")
         assert status == 403 and b"--allow-update" in body
         status, _, body = s.request("/references/new/data?default")
         assert status == 404
-    finally:
-        stop_server(s)
 
 
 def test_service_description(server: Server) -> None:
