@@ -15,8 +15,13 @@ $(STAMP): pyproject.toml
 run: $(STAMP)
 	$(BIN)/topostore demo
 
+# Coverage of src/topostore: the code run in the test process and its threads (subprocesses such as
+# `topostore serve` or the ROS node are not counted); 90.4% when the floor was set.  The floor only
+# goes up: when tests raise the figure, set COV_FLOOR to the new value rounded down; never lower it.
+COV_FLOOR := 90
+
 test: $(STAMP) browser ros-deps virtuoso java
-	$(BIN)/python -m pytest
+	$(BIN)/python -m pytest --cov=topostore --cov-report=term-missing:skip-covered --cov-fail-under=$(COV_FLOOR)
 
 # The live-map page is tested in Debian's chromium (driven by Playwright, a test extra); as
 # root on Debian install it (without it that one test is skipped and says what to install).
@@ -75,11 +80,13 @@ bench-quick: $(STAMP) java
 	$(BIN)/python -m benchmarks --quick
 
 # Fuzz every entry point with many more cases than `make test` (>= 100,000 in all); prints
-# "fuzz: N cases tried, V violations found".
+# "fuzz: N cases tried, V violations found".  The property-based suites run their full example
+# counts here (`make test` runs half of them, tests/profiles.py).
 FUZZ_EXAMPLES ?= 11000
 fuzz: $(STAMP)
 	TOPOSTORE_FUZZ_RANDOM=1 TOPOSTORE_FUZZ_EXAMPLES=$(FUZZ_EXAMPLES) $(BIN)/python -m pytest -p no:cacheprovider -q tests/test_fuzz_armor.py \
 		tests/test_fuzz_http.py tests/test_fuzz_files.py
+	TOPOSTORE_PROPERTY_SCALE=1 $(BIN)/python -m pytest -p no:cacheprovider -q tests/test_incremental.py tests/test_properties.py
 
 # Load test on loopback: concurrent clients mixing manipulations, REASON and queries (benchmarks/load.py).
 LOAD_ARGS ?= --clients 8 --seconds 60
