@@ -40,7 +40,6 @@ from .store import Store, fresh_skolem, guess_format, serialize
 from .stores import StoreSpec, check_rules, open_store
 from .stores import state as durable_state
 from .terms import Term, entity, literal_of, value_key
-from .reason.entailed import publish_entailed
 from .vocab import (
     ASSERTED, AUX, ENTAILED, DECLARATION_TYPES, DIFFERENT_FROM, INFERRED, NIL, NOTHING, OWL, RDF, RDFS, SWRL, THING, TYPE,
     FIRST, REST, XSD, is_internal, owl,
@@ -398,7 +397,6 @@ class Ontology:
                                                       forced_reason=forced)
         finally:
             self._tracking = self._reasoner.state.ready
-        publish_entailed(self.store, rules)
         self.store.maybe_compact()
         self._report = ReasonReport(not violations, violations, stats)
         self.dirty = False

@@ -73,6 +73,7 @@ from ..store import Store
 from ..vocab import ASSERTED, AUX, DELTA, INFERRED, INTERNAL, NEW_AUX, NEW_INFERRED, TYPE
 from . import limits
 from .consistency import Violation, check_consistency
+from .entailed import entailed_update, publish_entailed
 from . import flip
 from .materialize import Materializer, Present, ReasonStats, feasible, feasible_atom, matches
 from .plan import KeyCounts, is_small, key_counts, plan_where
@@ -227,6 +228,7 @@ class IncrementalReasoner:
             if (added or removed) and self._negated_match():
                 return self.full("the change makes a rule with a negated premise (stratum 1) match", profile)
             violations = self._check(stats, bool(added or removed))
+            self._publish_entailed(bool(added or removed))
             if profile:
                 stats.derived = self.store.count(NEW_FACTS)
         except Exception:
@@ -248,6 +250,7 @@ class IncrementalReasoner:
         stats = materializer.run()
         start = time.perf_counter()
         violations = check_consistency(self.store, self.ruleset)
+        publish_entailed(self.store, self.ruleset)
         stats.mode, stats.reason = "full", why
         # "quiet": the closure is the stratum-0 fixpoint, which maintenance keeps up to date
         # (a negated premise may have fired and stopped matching since, so ask the run)
@@ -540,6 +543,13 @@ class IncrementalReasoner:
         finally:
             if self._profiling(stats):
                 stats.per_rule["consistency"] = stats.per_rule.get("consistency", 0.0) + time.perf_counter() - start
+
+    def _publish_entailed(self, changed: bool) -> None:
+        """Bring the ENTAILED graph up to date from what this maintenance touched (see :mod:`.entailed`)."""
+        text = entailed_update(self.ruleset, (NEW_FACTS, OVERDELETED)) if changed else ""
+        if text:
+            self._defer(text)
+            self._flush()
 
     def _new_violation_possible(self) -> bool:
         """A check matches with at least one atom on a fact new in the closure (one semi-naive ASK)."""
