@@ -20,7 +20,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 
-from pyoxigraph import NamedNode
+from pyoxigraph import NamedNode, Triple
 
 from ..compile.rule import RuleSet
 from ..store import Store
@@ -29,40 +29,45 @@ from ..vocab import ASSERTED, AUX, ENTAILED, ENTAILED_PREFIX, INFERRED
 
 def publish_entailed(store: Store, rules: RuleSet) -> None:
     """Rebuild the ENTAILED graph from the helper graph (after a full run)."""
-    store.update(entailed_update(rules))
+    ops = [f"DROP SILENT GRAPH {ENTAILED}"]
+    for p in sorted(rules.entailed_predicates, key=lambda t: t.value):
+        ops.append(f"INSERT {{ GRAPH {ENTAILED} {{ ?s {p} ?o }} }} WHERE {{ GRAPH {AUX} {{ ?s {_internal(p)} ?o }} "
+                   f"FILTER NOT EXISTS {{ GRAPH {INFERRED} {{ ?s {p} ?o }} }} "
+                   f"FILTER NOT EXISTS {{ GRAPH {ASSERTED} {{ ?s {p} ?o }} }} }}")
+    store.update(" ; ".join(ops))
 
 
-def entailed_update(rules: RuleSet, changed: Sequence[NamedNode] | None = None) -> str:
-    """The update that brings ENTAILED up to date.
+def refresh_entailed(store: Store, rules: RuleSet, changed: Sequence[NamedNode]) -> None:
+    """Bring ENTAILED up to date after maintenance; ``changed``: graphs holding every triple whose
+    presence in the asserted, inferred or helper graph changed (in either form, real or internal).
 
-    ``changed``: graphs holding every triple whose presence in the asserted,
-    inferred or helper graph changed since ENTAILED was last right (both forms,
-    real and internal predicate); None rebuilds the whole graph.
+    The few touched triples are found with one query and decided one by one
+    (index look-ups); a set-at-a-time update over them let the planner scan
+    every internal triple instead.
     """
     predicates = sorted(rules.entailed_predicates, key=lambda t: t.value)
-    if changed is None:
-        return " ; ".join([f"DROP SILENT GRAPH {ENTAILED}", *(_insert(p, "") for p in predicates)])
-    ops = []
-    for p in predicates:
-        touched = _touched(p, changed)
-        ops.append(f"DELETE {{ GRAPH {ENTAILED} {{ ?s {p} ?o }} }} WHERE {{ {touched} GRAPH {ENTAILED} {{ ?s {p} ?o }} }}")
-        ops.append(_insert(p, touched))
-    return " ; ".join(ops)
+    if not predicates:
+        return
+    add: list[Triple] = []
+    drop: list[Triple] = []
+    for row in store.query(_touched_query(predicates, changed)):
+        t = Triple(row["s"], row["p"], row["o"])
+        wanted = (store.contains(Triple(t.subject, _internal(t.predicate), t.object), AUX)
+                  and not store.contains(t, INFERRED) and not store.contains(t, ASSERTED))
+        if wanted != store.contains(t, ENTAILED):
+            (add if wanted else drop).append(t)
+    if add:
+        store.add_scratch(add, ENTAILED)
+    if drop:
+        store.discard(drop, (ENTAILED,))
 
 
 def _internal(p: NamedNode) -> NamedNode:
     return NamedNode(ENTAILED_PREFIX + p.value)
 
 
-def _insert(p: NamedNode, restriction: str) -> str:
-    """Insert the conclusions of ``p`` that only entailment gives, among those ``restriction`` binds."""
-    return (f"INSERT {{ GRAPH {ENTAILED} {{ ?s {p} ?o }} }} WHERE {{ {restriction} GRAPH {AUX} {{ ?s {_internal(p)} ?o }} "
-            f"FILTER NOT EXISTS {{ GRAPH {INFERRED} {{ ?s {p} ?o }} }} "
-            f"FILTER NOT EXISTS {{ GRAPH {ASSERTED} {{ ?s {p} ?o }} }} }}")
-
-
-def _touched(p: NamedNode, changed: Sequence[NamedNode]) -> str:
-    """Pattern binding ?s ?o of the ``p`` triples (real or internal) in the ``changed`` graphs."""
-    graphs = " ".join(str(g) for g in changed)
-    return (f"{{ SELECT DISTINCT ?s ?o WHERE {{ VALUES ?g {{ {graphs} }} VALUES ?q {{ {p} {_internal(p)} }} "
-            f"GRAPH ?g {{ ?s ?q ?o }} }} }}")
+def _touched_query(predicates: Sequence[NamedNode], changed: Sequence[NamedNode]) -> str:
+    """?s ?p ?o of the triples of ``predicates`` (real or internal form) in the ``changed`` graphs."""
+    patterns = [f"{{ GRAPH {g} {{ ?s {q} ?o }} BIND({p} AS ?p) }}"
+                for p in predicates for g in changed for q in (p, _internal(p))]
+    return f"SELECT DISTINCT ?s ?p ?o WHERE {{ {' UNION '.join(patterns)} }}"

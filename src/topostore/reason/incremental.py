@@ -73,7 +73,7 @@ from ..store import Store
 from ..vocab import ASSERTED, AUX, DELTA, INFERRED, INTERNAL, NEW_AUX, NEW_INFERRED, TYPE
 from . import limits
 from .consistency import Violation, check_consistency
-from .entailed import entailed_update, publish_entailed
+from .entailed import publish_entailed, refresh_entailed
 from . import flip
 from .materialize import Materializer, Present, ReasonStats, feasible, feasible_atom, matches
 from .plan import KeyCounts, is_small, key_counts, plan_where
@@ -546,10 +546,9 @@ class IncrementalReasoner:
 
     def _publish_entailed(self, changed: bool) -> None:
         """Bring the ENTAILED graph up to date from what this maintenance touched (see :mod:`.entailed`)."""
-        text = entailed_update(self.ruleset, (NEW_FACTS, OVERDELETED)) if changed else ""
-        if text:
-            self._defer(text)
+        if changed:
             self._flush()
+            refresh_entailed(self.store, self.ruleset, (NEW_FACTS, OVERDELETED))
 
     def _new_violation_possible(self) -> bool:
         """A check matches with at least one atom on a fact new in the closure (one semi-naive ASK)."""
