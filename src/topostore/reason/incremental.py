@@ -370,7 +370,7 @@ class IncrementalReasoner:
         if text is None:
             text = self._texts[key] = flip.flip_query(
                 b for i, atoms in wanted
-                for b in flip.flip_branches(self.rules[i], atoms, self.store.supports_lateral, i))
+                for b in flip.flip_branches(self.rules[i], self._by_frequency(i, atoms), self.store.supports_lateral, i))
         stats.evaluations += len(wanted)
         start = time.perf_counter()
         rows = list(self.store.query(text, prefixes=PREFIXES, graphs=[ASSERTED, INFERRED, AUX],
@@ -378,6 +378,15 @@ class IncrementalReasoner:
         if self._profiling(stats):
             stats.per_rule["flip"] = stats.per_rule.get("flip", 0.0) + time.perf_counter() - start
         return rows
+
+    def _by_frequency(self, i: int, atoms: tuple[int, ...]) -> tuple[int, ...]:
+        """The rule's atoms, those of predicates with the most asserted facts first (see flip.flip_branches)."""
+        def size(j: int) -> int:
+            p = self.rules[i].body[j].p
+            rows = self.store.query(f"SELECT (COUNT(*) AS ?n) WHERE {{ ?s {p} ?o }}", graphs=[ASSERTED])
+            return int(next(iter(rows))["n"].value)
+        sizes = {j: size(j) for j in atoms}
+        return tuple(sorted(atoms, key=lambda j: (-sizes[j], j)))
 
     def _derivable(self, p: str) -> bool:
         """Whether a rule that can fire may derive facts of predicate ``p`` (IRI text)."""
