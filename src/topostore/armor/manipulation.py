@@ -288,5 +288,3 @@ def reason(ctx: Context) -> Reply:
         ) from exc
     return Reply(warnings=warnings)
 
-
-__all__ = ["SUBCLASS_OF", "EQUIVALENT_CLASS"]
