@@ -33,15 +33,16 @@ from .queries import QueryItem, collect, get_named_query, render_jena, substitut
 from .reason import ReasonStats, Violation, classify
 from .reason.incremental import DEFAULT_MAX_CHANGE_SHARE, IncrementalReasoner
 from .journal import Journal, all_or_nothing
+from .nary import all_different, individual_triples
 from .reason import limits as reason_limits
 from .reason.limits import ReasonLimits
 from .safeio import atomic_write
-from .store import Store, fresh_skolem, guess_format, serialize
+from .store import Store, guess_format, serialize
 from .stores import StoreSpec, check_rules, open_store
 from .stores import state as durable_state
 from .terms import Term, entity, literal_of, value_key
 from .vocab import (
-    ASSERTED, AUX, ENTAILED, DECLARATION_TYPES, DIFFERENT_FROM, INFERRED, NIL, NOTHING, OWL, RDF, RDFS, SWRL, THING, TYPE,
+    ASSERTED, AUX, ENTAILED, DECLARATION_TYPES, DIFFERENT_FROM, INFERRED, NOTHING, OWL, RDF, RDFS, SWRL, THING, TYPE,
     FIRST, REST, XSD, is_internal, owl,
 )
 
@@ -292,42 +293,13 @@ class Ontology:
 
     def add_all_different(self, names: Sequence[str | NamedNode]) -> NamedNode:
         """One owl:AllDifferent over ``names`` (deduplicated): linear in size, never n² pairs."""
-        members = list(dict.fromkeys(self.iri(n) for n in names))
-        group = fresh_skolem()
-        triples = [Triple(group, TYPE, owl("AllDifferent"))]
-        nodes = [fresh_skolem() for _ in members]
-        triples.append(Triple(group, owl("distinctMembers"), nodes[0] if nodes else NIL))
-        for i, (node, m) in enumerate(zip(nodes, members)):
-            triples.append(Triple(node, FIRST, m))
-            triples.append(Triple(node, REST, nodes[i + 1] if i + 1 < len(nodes) else NIL))
+        triples = all_different(list(dict.fromkeys(self.iri(n) for n in names)))
         self.add(*triples)
-        return group
+        return triples[0].subject
 
     def remove_individual(self, name: str | NamedNode) -> int:
         """Remove every asserted triple mentioning the individual, and whole AllDifferent axioms containing it."""
-        ind = self.iri(name)
-        doomed = list(self.store.triples(ind, None, None, ASSERTED)) + list(self.store.triples(None, None, ind, ASSERTED))
-        for t in list(doomed):
-            if t.predicate == FIRST:
-                doomed += self._axiom_of_list_node(t.subject)
-        return self.remove(*dict.fromkeys(doomed))
-
-    def _axiom_of_list_node(self, node: Term) -> list[Triple]:
-        head = node
-        while True:
-            prev = self.store.subjects(REST, head, ASSERTED)
-            if not prev:
-                break
-            head = prev[0]
-        out: list[Triple] = []
-        for owner in self.store.subjects(owl("distinctMembers"), head, ASSERTED) + self.store.subjects(owl("members"), head, ASSERTED):
-            out += list(self.store.triples(owner, None, None, ASSERTED))
-            cur = head
-            while cur != NIL:
-                out += list(self.store.triples(cur, None, None, ASSERTED))
-                rest = self.store.objects(cur, REST, ASSERTED)
-                cur = rest[0] if rest else NIL
-        return out
+        return self.remove(*individual_triples(self.store, self.iri(name)))
 
     def subscribe(self, callback, pattern: str | None = None, maxsize: int = 100):
         """Call ``callback(event)`` after each REASON that changed an inferred triple matching

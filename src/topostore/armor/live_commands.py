@@ -31,7 +31,7 @@ from ..store import Store
 from ..vocab import ASSERTED
 from . import codes
 from .codes import CommandError
-from .commands import Command, Context, Reply, _fixed
+from .context import Command, Context, Reply, fixed
 from .reference import Change, Delta
 
 
@@ -68,7 +68,7 @@ def add_swrl(ctx: Context) -> Reply:
         compile_ontology(scratch, ASSERTED)
     except (RuleCompileError, InvalidNameError) as exc:
         raise CommandError(codes.INVALID_ARGUMENT, f"SWRL rule {label!r} refused: {exc}") from None
-    return ctx.submit(_fixed("ADD SWRL", add=triples))
+    return ctx.submit(fixed("ADD SWRL", add=triples))
 
 
 def remove_swrl(ctx: Context) -> Reply:
