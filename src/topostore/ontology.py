@@ -26,6 +26,7 @@ from pathlib import Path
 from pyoxigraph import Literal, NamedNode, RdfFormat, Triple
 
 from .compile import RuleSet, compile_ontology
+from .compile.builtins import FUNCTIONS as RULE_FUNCTIONS
 from .compile.swrl_text import removal_triples, rule_labels, rule_triples
 from .errors import InvalidValueError, QueryError
 from .events import EventHub
@@ -43,10 +44,10 @@ from .terms import Term, entity, literal_of, value_key
 from .reason.entailed import publish_entailed
 from .vocab import (
     ASSERTED, AUX, ENTAILED, DECLARATION_TYPES, DIFFERENT_FROM, INFERRED, NIL, NOTHING, OWL, RDF, RDFS, SWRL, THING, TYPE,
-    FIRST, REST, XSD, is_internal, owl,
+    DEFAULT_PREFIX, FIRST, REST, STANFORD_SWRL, SWRLB, XSD, is_internal, is_skolem, owl,
 )
 
-_SCHEMA_NS = (RDF, RDFS, OWL, SWRL, "http://swrl.stanford.edu/")
+_SCHEMA_NS = (RDF, RDFS, OWL, SWRL, STANFORD_SWRL)
 _ABOX_PREDICATES = {TYPE, owl("sameAs"), DIFFERENT_FROM, FIRST, REST, owl("distinctMembers"), owl("members")}
 
 
@@ -79,6 +80,7 @@ class Ontology:
     def __init__(self, prefix: str | None = None, store: Store | StoreSpec = None) -> None:
         """``store``: a Store, or a store setting (None: memory; a directory; an http(s) SPARQL server URL)."""
         self.store = store if isinstance(store, Store) else open_store(store)
+        self.store.use_functions(RULE_FUNCTIONS)  # the extension functions compiled rules call (swrlb:pow)
         self._prefix = prefix
         self._found_prefix: str | None = None
         self._rules: RuleSet | None = None
@@ -150,7 +152,7 @@ class Ontology:
         """Namespace for entity names: the ontology IRI + '#' unless given."""
         if self._prefix is None:
             if self._found_prefix is None:  # looked up once per schema change (a round trip on a server)
-                self._found_prefix = "urn:topostore:default#"
+                self._found_prefix = DEFAULT_PREFIX
                 for t in self.store.triples(None, TYPE, owl("Ontology"), ASSERTED):
                     if isinstance(t.subject, NamedNode):
                         iri = t.subject.value
@@ -457,7 +459,7 @@ class Ontology:
         found: dict = {}
         for g in self.visible_graphs():
             for s in self.store.subjects(TYPE, c, g):
-                if not is_internal(s) or s.value.startswith("urn:topostore:bnode:"):
+                if not is_internal(s) or is_skolem(s):
                     found[s] = None
         return list(found)
 
@@ -545,7 +547,7 @@ class Ontology:
     def serialize(self, fmt: str | RdfFormat = "turtle", inferred: bool = False) -> bytes:
         rdf_format = guess_format("x", fmt) if isinstance(fmt, str) else fmt
         prefixes = {"owl": OWL, "rdf": RDF, "rdfs": RDFS, "xsd": XSD, "swrl": SWRL,
-                    "swrlb": "http://www.w3.org/2003/11/swrlb#", "": self.prefix}
+                    "swrlb": SWRLB, "": self.prefix}
         return serialize(self.triples(inferred), rdf_format, prefixes)
 
     def save(self, path: str | os.PathLike[str], fmt: str | None = None, inferred: bool = False) -> Path:

@@ -23,7 +23,8 @@ from ..ontology import Ontology
 from ..queries import QueryItem, render_jena
 from ..store import fresh_skolem
 from ..vocab import (
-    ASSERTED, FIRST, NIL, NOTHING, OWL, RDF, RDFS, REST, SWRL, SWRLB, THING, TYPE, XSD, is_internal, owl, rdfs,
+    ASSERTED, FIRST, NIL, NOTHING, OWL, RDF, RDFS, REST, STANFORD_SWRL, SWRL, SWRLB, THING, TYPE, XSD, is_internal, owl,
+    rdfs,
 )
 from . import codes
 from .codes import CommandError
@@ -36,7 +37,7 @@ if TYPE_CHECKING:  # pragma: no cover
 
 SUBCLASS_OF = rdfs("subClassOf")
 #: namespaces whose terms give the ontology its meaning; RENAME refuses them
-_VOCABULARIES = (RDF, RDFS, OWL, XSD, SWRL, SWRLB, "http://swrl.stanford.edu/")
+_VOCABULARIES = (RDF, RDFS, OWL, XSD, SWRL, SWRLB, STANFORD_SWRL)
 EQUIVALENT_CLASS = owl("equivalentClass")
 
 
