@@ -28,12 +28,12 @@ from functools import lru_cache
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
-from pyoxigraph import Literal, NamedNode, RdfFormat, Triple, parse
+from pyoxigraph import Literal, NamedNode, Triple
 
 from .compile.generic import PREFIXES
 from .compile.model import TBoxReader
 from .compile.rule import Atom, Rule, join_order
-from .errors import InvalidNameError, QueryError
+from .errors import InvalidNameError, QueryError, RuleCompileError
 from .terms import Term, parse_term, sparql, value_key
 from .vocab import (
     ASSERTED, AUX, DECLARED_DIFFERENT, DIFFERENCE_CANDIDATE, DIFFERENT, DIFFERENT_KEY, ENTAILED, ENTAILED_PREFIX,
@@ -299,7 +299,7 @@ class Explainer:
             self._reader = TBoxReader(self.store, ASSERTED)
         try:
             return str(self._reader.expr(node))
-        except Exception:  # not a class expression: a plain anonymous node
+        except RuleCompileError:  # not a class expression: a plain anonymous node
             return "_:" + node.value.rsplit(":", 1)[-1][:8]
 
     def _group_text(self, group: Term) -> str:

@@ -18,7 +18,7 @@ from typing import TYPE_CHECKING
 from pyoxigraph import Literal, NamedNode, Triple
 
 from .. import terms
-from ..errors import InvalidNameError, InvalidValueError, QueryError, UnknownTypeError
+from ..errors import InvalidNameError, InvalidValueError, QueryError, TopostoreError, UnknownTypeError
 from ..ontology import Ontology
 from ..queries import QueryItem, render_jena
 from ..store import fresh_skolem
@@ -109,9 +109,7 @@ class Context:
             changes[0].origin = self.request.to_dict()
         try:
             warnings = self.reference.submit(list(changes))
-        except CommandError:
-            raise
-        except Exception as exc:
+        except (TopostoreError, OSError) as exc:  # reasoning, the store or its files failed; a bug surfaces as one
             raise CommandError(codes.REASONER_OR_QUERY_FAILURE, f"the change was undone because reasoning failed: {exc}") from exc
         return Reply(warnings=warnings)
 
@@ -408,17 +406,17 @@ def apply_buffer(ctx: Context) -> Reply:
     """APPLY: run the queued manipulations; a buffered reasoner is not synchronised."""
     try:
         return Reply(warnings=ctx.reference.flush())
-    except Exception as exc:
+    except (TopostoreError, OSError) as exc:  # reasoning, the store or its files failed
         raise CommandError(codes.REASONER_OR_QUERY_FAILURE, f"APPLY failed and changed nothing: {exc}") from exc
 
 
 def reason(ctx: Context) -> Reply:
-    """REASON: apply pending changes and recompute from scratch, also after an inconsistency."""
+    """REASON: apply pending changes and bring the inferences up to date (incrementally), also after an inconsistency."""
     ref = ctx.reference
     try:
         warnings = ref.flush(reason=False)
         ref.ontology.reason()  # on failure the ontology is back at its last successful REASON
-    except Exception as exc:
+    except (TopostoreError, OSError) as exc:  # reasoning, the store or its files failed
         # the buffered changes that broke it are dropped too, or every later REASON would fail the same way
         dropped, ref.buffer = len(ref.buffer), []
         note = f"; {dropped} buffered change(s) were discarded" if dropped else ""

@@ -120,7 +120,7 @@ def _serialize(ref: Reference, onto, result, accept: str | None, explicit_format
     except Exception as exc:  # a fresh exception: no traceback may keep the result alive
         try:
             error = type(exc)(str(exc))
-        except Exception:
+        except TypeError:  # an exception class that takes other arguments
             error = QueryError(str(exc))
     result = None  # noqa: F841
     raise error
