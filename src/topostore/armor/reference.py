@@ -150,6 +150,11 @@ class Reference:
             raise
         return [a.warning for a in applied if a.warning]
 
+    def manipulate(self, description: str, add: list[Triple], remove: list[Triple]) -> list[str]:
+        """One all-or-nothing manipulation of the asserted graph, then reasoning (sparql.target.WritableOntology)."""
+        delta = Delta(list(add), list(remove))
+        return self.run([Change(description, lambda _onto: delta)])
+
     def flush(self, reason: bool | None = None) -> list[str]:
         """Apply the manipulation buffer (APPLY/REASON); the buffer is emptied only on success."""
         pending, self.buffer = self.buffer, []
