@@ -56,7 +56,8 @@ def test_an_unreachable_service_is_a_call_error_and_a_bug_surfaces_as_itself() -
 
 
 def test_an_http_error_page_is_described_by_its_json_error_or_its_status_line() -> None:
-    assert _error_text(b'{"error": "reference map is mounted by robot"}', "Conflict") == "reference map is mounted by robot"
+    page = b'{"error": "reference map is mounted by robot"}'
+    assert _error_text(page, "Conflict") == "reference map is mounted by robot"
     assert _error_text(b"<html>Bad Gateway</html>", "Bad Gateway") == "Bad Gateway"
     assert _error_text(b'["not", "an", "object"]', "Bad Gateway") == "Bad Gateway"
     assert _error_text(b"\xff\xfe", "Bad Gateway") == "Bad Gateway"
