@@ -360,7 +360,6 @@ class Ontology(OntologyFiles, OntologyQueries):
                                                       forced_reason=forced)
         finally:
             self._tracking = self._reasoner.state.ready
-        publish_entailed(self.store, rules)
         self.store.maybe_compact()
         self._report = ReasonReport(not violations, violations, stats)
         self.dirty = False

@@ -131,7 +131,14 @@ def flip_branches(rule: Rule, changed: tuple[int, ...], lateral: bool, tag: int)
     """UNION branches finding the heads whose derivation by ``rule`` flips (``?rule`` = ``tag``).
 
     ``changed`` are the body atoms reading a replaced value (all compared only).
-    One branch per changed atom starts from that atom's replaced facts.
+    One branch per changed atom starts from that atom's replaced facts; the
+    changed atoms before it in ``changed`` are read with their new value only.
+    A match whose changed atoms are the set C is thus evaluated exactly (old
+    and new values paired) by the branch of the first atom of C; the other
+    branches may give it a wrong row, which costs a proof or a re-check and
+    never a wrong fact (see :meth:`IncrementalReasoner._flips`).  Callers put
+    the atoms of the most frequent predicates first: a branch that joins them
+    unbound then scans them without a look-up of the old value per fact.
     With ``lateral``, the other atoms follow in join order, each evaluated per
     solution so far, and the filters stand right after the atom that binds
     their last variable: only the bindings that flip reach the atoms after it.
@@ -144,12 +151,14 @@ def flip_branches(rule: Rule, changed: tuple[int, ...], lateral: bool, tag: int)
     project = " ".join(f"BIND({term} AS ?h{i})" for i, term in enumerate((head.s, head.p, head.o)))
     tests = "\n  ".join(_instances(rule, renamed) + [project, f"BIND({tag} AS ?rule)"])
     branches = []
-    for k in changed:
+    for position, k in enumerate(changed):
         seed = rule.body[k]
+        settled = set(changed[:position])
         start = [f"GRAPH {CHANGE_OLD} {{ {seed.s} {seed.p} {_rename(seed.o, renamed, 'o')} }}",
                  f"{seed.s} {seed.p} {_rename(seed.o, renamed, 'n')} ."]
         order = [m for m in join_order(rule.body, k) if m != k]
-        rest = [_paired_atom(rule.body[m], renamed) if m in changed else rule.atom_text(m) for m in order]
+        rest = [_settled_atom(rule.body[m], renamed) if m in settled
+                else _paired_atom(rule.body[m], renamed) if m in changed else rule.atom_text(m) for m in order]
         if lateral:
             bound = set(seed.variables())
             at = 0
@@ -170,6 +179,12 @@ def _paired_atom(atom: Atom, renamed: set[str]) -> str:
     new, old, probe = (_rename(atom.o, renamed, x) for x in ("n", "o", "o0"))
     return (f"{atom.s} {atom.p} {new} . OPTIONAL {{ GRAPH {CHANGE_OLD} {{ {atom.s} {atom.p} {probe} }} }} "
             f"BIND(COALESCE({probe}, {new}) AS {old})")
+
+
+def _settled_atom(atom: Atom, renamed: set[str]) -> str:
+    """A changed atom that an earlier branch pairs: read with its new value as the old one too."""
+    new, old = (_rename(atom.o, renamed, x) for x in ("n", "o"))
+    return f"{atom.s} {atom.p} {new} . BIND({new} AS {old})"
 
 
 def _instances(rule: Rule, renamed: set[str]) -> list[str]:

@@ -73,6 +73,7 @@ from ..store import Store
 from ..vocab import ASSERTED, AUX, DELTA, INFERRED, INTERNAL, NEW_AUX, NEW_INFERRED, TYPE
 from . import limits
 from .consistency import Violation, check_consistency
+from .entailed import publish_entailed, refresh_entailed
 from . import flip
 from .materialize import Materializer, Present, ReasonStats, feasible, feasible_atom, matches
 from .plan import KeyCounts, is_small, key_counts, plan_where
@@ -227,6 +228,7 @@ class IncrementalReasoner:
             if (added or removed) and self._negated_match():
                 return self.full("the change makes a rule with a negated premise (stratum 1) match", profile)
             violations = self._check(stats, bool(added or removed))
+            self._publish_entailed(bool(added or removed))
             if profile:
                 stats.derived = self.store.count(NEW_FACTS)
         except Exception:
@@ -248,6 +250,7 @@ class IncrementalReasoner:
         stats = materializer.run()
         start = time.perf_counter()
         violations = check_consistency(self.store, self.ruleset)
+        publish_entailed(self.store, self.ruleset)
         stats.mode, stats.reason = "full", why
         # "quiet": the closure is the stratum-0 fixpoint, which maintenance keeps up to date
         # (a negated premise may have fired and stopped matching since, so ask the run)
@@ -367,7 +370,7 @@ class IncrementalReasoner:
         if text is None:
             text = self._texts[key] = flip.flip_query(
                 b for i, atoms in wanted
-                for b in flip.flip_branches(self.rules[i], atoms, self.store.supports_lateral, i))
+                for b in flip.flip_branches(self.rules[i], self._by_frequency(i, atoms), self.store.supports_lateral, i))
         stats.evaluations += len(wanted)
         start = time.perf_counter()
         rows = list(self.store.query(text, prefixes=PREFIXES, graphs=[ASSERTED, INFERRED, AUX],
@@ -375,6 +378,15 @@ class IncrementalReasoner:
         if self._profiling(stats):
             stats.per_rule["flip"] = stats.per_rule.get("flip", 0.0) + time.perf_counter() - start
         return rows
+
+    def _by_frequency(self, i: int, atoms: tuple[int, ...]) -> tuple[int, ...]:
+        """The rule's atoms, those of predicates with the most asserted facts first (see flip.flip_branches)."""
+        def size(j: int) -> int:
+            p = self.rules[i].body[j].p
+            rows = self.store.query(f"SELECT (COUNT(*) AS ?n) WHERE {{ ?s {p} ?o }}", graphs=[ASSERTED])
+            return int(next(iter(rows))["n"].value)
+        sizes = {j: size(j) for j in atoms}
+        return tuple(sorted(atoms, key=lambda j: (-sizes[j], j)))
 
     def _derivable(self, p: str) -> bool:
         """Whether a rule that can fire may derive facts of predicate ``p`` (IRI text)."""
@@ -540,6 +552,12 @@ class IncrementalReasoner:
         finally:
             if self._profiling(stats):
                 stats.per_rule["consistency"] = stats.per_rule.get("consistency", 0.0) + time.perf_counter() - start
+
+    def _publish_entailed(self, changed: bool) -> None:
+        """Bring the ENTAILED graph up to date from what this maintenance touched (see :mod:`.entailed`)."""
+        if changed:
+            self._flush()
+            refresh_entailed(self.store, self.ruleset, (NEW_FACTS, OVERDELETED))
 
     def _new_violation_possible(self) -> bool:
         """A check matches with at least one atom on a fact new in the closure (one semi-naive ASK)."""
