@@ -33,7 +33,6 @@ from .ontology_files import OntologyFiles, is_schema_triple
 from .ontology_queries import OntologyQueries
 from .reason import ReasonStats, Violation, classify
 from .reason import limits as reason_limits
-from .reason.entailed import publish_entailed
 from .reason.incremental import DEFAULT_MAX_CHANGE_SHARE, IncrementalReasoner
 from .reason.limits import ReasonLimits
 from .store import Store, fresh_skolem
