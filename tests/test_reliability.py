@@ -136,7 +136,7 @@ def test_internal_functions_cannot_be_called_from_user_sparql(svc: ArmorService)
 
 
 def test_pow_builtin_cannot_freeze_the_service() -> None:
-    from topostore.store import _pow
+    from topostore.compile.builtins import pow_value as _pow
 
     integer = NamedNode("http://www.w3.org/2001/XMLSchema#integer")
     assert _pow(Literal("3", datatype=integer), Literal("4", datatype=integer)).value == "81"

@@ -40,6 +40,8 @@ class TopostoreGroup(click.Group):
             raise  # click reports these itself (a broken pipe, e.g. into `head`, ends quietly)
         except KeyboardInterrupt:
             raise click.Abort() from None
+        # The command line's one boundary, like ArmorService.call's: a user gets one line, not a
+        # traceback, whatever failed; --debug re-raises so that a bug shows where it is.
         except Exception as exc:
             if ctx.meta.get("topostore.debug"):
                 raise

@@ -15,7 +15,8 @@ from collections.abc import Sequence
 
 from pyoxigraph import NamedNode, Triple
 
-from .store import Store, fresh_skolem
+from .skolem import fresh_skolem
+from .store import Store
 from .terms import Term
 from .vocab import ASSERTED, FIRST, NIL, REST, TYPE, owl
 

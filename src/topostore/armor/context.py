@@ -19,7 +19,7 @@ from typing import TYPE_CHECKING
 from pyoxigraph import Literal, NamedNode, Triple
 
 from .. import terms
-from ..errors import InvalidNameError, InvalidValueError, UnknownTypeError
+from ..errors import InvalidNameError, InvalidValueError, TopostoreError, UnknownTypeError
 from ..ontology import Ontology
 from ..queries import QueryItem
 from ..vocab import ASSERTED, NOTHING, THING, is_internal
@@ -103,9 +103,7 @@ class Context:
             changes[0].origin = self.request.to_dict()
         try:
             warnings = self.reference.submit(list(changes))
-        except CommandError:
-            raise
-        except Exception as exc:
+        except (TopostoreError, OSError) as exc:  # reasoning, the store or its files failed; a bug surfaces as one
             raise CommandError(
                 codes.REASONER_OR_QUERY_FAILURE, f"the change was undone because reasoning failed: {exc}"
             ) from exc

@@ -25,7 +25,7 @@ import json
 
 from ..compile.pipeline import compile_ontology
 from ..compile.swrl_text import removal_triples, rule_labels, rule_triples
-from ..errors import InvalidNameError, RuleCompileError
+from ..errors import InvalidNameError, RuleCompileError, TopostoreError
 from ..explain import resolve_triple
 from ..store import Store
 from ..vocab import ASSERTED
@@ -42,7 +42,7 @@ def _explanation(ctx: Context):
         raise CommandError(codes.INVALID_ARGUMENT, f"cannot read the triple: {exc}") from None
     try:
         return ctx.onto.explain(s, p, o)
-    except Exception as exc:
+    except TopostoreError as exc:  # a rule query failed or ran out of time
         raise CommandError(codes.REASONER_OR_QUERY_FAILURE, f"explanation failed: {exc}") from exc
 
 

@@ -11,12 +11,12 @@ from __future__ import annotations
 from pyoxigraph import Literal, NamedNode, Triple
 
 from .. import terms
-from ..errors import InvalidValueError
+from ..errors import InvalidValueError, TopostoreError
 from ..nary import all_different, all_disjoint_classes, individual_triples, rdf_list
 from ..ontology import Ontology
 from ..queries import render_jena
 from ..store import fresh_skolem
-from ..vocab import ASSERTED, OWL, RDF, RDFS, SWRL, SWRLB, THING, TYPE, XSD, is_internal, owl, rdfs
+from ..vocab import ASSERTED, OWL, RDF, RDFS, STANFORD_SWRL, SWRL, SWRLB, THING, TYPE, XSD, is_internal, owl, rdfs
 from . import codes
 from .codes import CommandError
 from .context import Context, Handler, Reply, asserted, fixed, hidden
@@ -25,7 +25,7 @@ from .reference import Change, Delta
 SUBCLASS_OF = rdfs("subClassOf")
 EQUIVALENT_CLASS = owl("equivalentClass")
 #: namespaces whose terms give the ontology its meaning; RENAME refuses them
-_VOCABULARIES = (RDF, RDFS, OWL, XSD, SWRL, SWRLB, "http://swrl.stanford.edu/")
+_VOCABULARIES = (RDF, RDFS, OWL, XSD, SWRL, SWRLB, STANFORD_SWRL)
 
 
 def _distinct(ctx: Context, what: str) -> list[NamedNode]:
@@ -268,17 +268,17 @@ def apply_buffer(ctx: Context) -> Reply:
     """APPLY: run the queued manipulations; a buffered reasoner is not synchronised."""
     try:
         return Reply(warnings=ctx.reference.flush())
-    except Exception as exc:
+    except (TopostoreError, OSError) as exc:  # reasoning, the store or its files failed
         raise CommandError(codes.REASONER_OR_QUERY_FAILURE, f"APPLY failed and changed nothing: {exc}") from exc
 
 
 def reason(ctx: Context) -> Reply:
-    """REASON: apply pending changes and recompute from scratch, also after an inconsistency."""
+    """REASON: apply pending changes and bring the inferences up to date (incrementally), also after an inconsistency."""
     ref = ctx.reference
     try:
         warnings = ref.flush(reason=False)
         ref.ontology.reason()  # on failure the ontology is back at its last successful REASON
-    except Exception as exc:
+    except (TopostoreError, OSError) as exc:  # reasoning, the store or its files failed
         # the buffered changes that broke it are dropped too, or every later REASON would fail the same way
         dropped, ref.buffer = len(ref.buffer), []
         note = f"; {dropped} buffered change(s) were discarded" if dropped else ""

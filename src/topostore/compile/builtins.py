@@ -7,14 +7,13 @@ when it is still unbound (a BIND) and compares it when it is bound (a FILTER).
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
+
+from pyoxigraph import Literal, NamedNode
 
 from ..errors import RuleCompileError
-from ..vocab import SWRLB
-
-#: Name of the one extension function topostore registers (swrlb:pow with a
-#: non-constant exponent); SPARQL 1.1 has no power function.
-POW_FUNCTION = "urn:topostore:fn:pow"
+from ..terms import Term
+from ..vocab import POW_FUNCTION, SWRLB, XSD, xsd
 
 _COMPARISONS = {
     "equal": "=", "notEqual": "!=", "lessThan": "<", "lessThanOrEqual": "<=",
@@ -31,7 +30,7 @@ def _pow(a: str, b: str) -> str:
         n = int(b) if b.isdigit() else int(b.split('"')[1])
         if n <= 16:
             return "1" if n == 0 else "(" + " * ".join([a] * n) + ")"
-    return f"<{POW_FUNCTION}>({a}, {b})"
+    return f"{POW_FUNCTION}({a}, {b})"
 
 
 # name -> (minimum args after the result, maximum (None = any), expression builder)
@@ -105,3 +104,35 @@ def translate(name: str, args: list[str], bound: set[str]) -> tuple[str, str | N
     if is_bound(args[0]):
         return f"FILTER({args[0]} = {expr})", None
     return f"BIND({expr} AS {args[0]})", args[0]
+
+
+# --------------------------------------------------------------------------- run time
+#: largest integer result swrlb:pow computes (bits); beyond it the built-in gives no value
+POW_MAX_BITS = 4096
+
+
+def pow_value(base: Term, exponent: Term) -> Literal | None:
+    """swrlb:pow for a non-constant exponent, as the store evaluates ``POW_FUNCTION``.
+
+    Integers with a non-negative integer exponent stay integers; anything else
+    is computed as a double.  Non-numbers give no value (the rule does not fire),
+    and so does an integer result past ``POW_MAX_BITS``: a number that large is no
+    measurement, and computing it would freeze the service.
+    """
+    if not isinstance(base, Literal) or not isinstance(exponent, Literal):
+        return None
+    try:
+        if base.datatype.value.startswith(XSD) and "." not in base.value \
+                and "e" not in base.value.lower() and exponent.value.lstrip("+").isdigit():
+            b, e = int(base.value), int(exponent.value)
+            if abs(b) > 1 and e * abs(b).bit_length() > POW_MAX_BITS:
+                return None
+            return Literal(str(b ** e), datatype=xsd("integer"))
+        return Literal(repr(float(base.value) ** float(exponent.value)), datatype=xsd("double"))
+    except (ValueError, OverflowError, ZeroDivisionError):
+        return None
+
+
+#: The extension functions compiled rules call, handed to the store that runs them
+#: (:meth:`topostore.store.Store.use_functions`); the store itself knows nothing of rules.
+FUNCTIONS: Mapping[NamedNode, Callable[..., Term | None]] = {POW_FUNCTION: pow_value}

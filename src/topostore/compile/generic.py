@@ -21,14 +21,15 @@ from pathlib import Path
 
 from ..errors import RuleCompileError
 from ..resources import rules_dir
+from ..vocab import INTERNAL, OWL, RDF, RDFS, XSD
 from .rule import Atom, Rule
 
 PREFIXES = {
-    "owl": "http://www.w3.org/2002/07/owl#",
-    "rdf": "http://www.w3.org/1999/02/22-rdf-syntax-ns#",
-    "rdfs": "http://www.w3.org/2000/01/rdf-schema#",
-    "xsd": "http://www.w3.org/2001/XMLSchema#",
-    "ts": "urn:topostore:",
+    "owl": OWL,
+    "rdf": RDF,
+    "rdfs": RDFS,
+    "xsd": XSD,
+    "ts": INTERNAL,
 }
 _ATOM = re.compile(r"^(\S+)\s+(\S+)\s+(\S+)\s*\.$")
 _AUX_ATOM = re.compile(r"^GRAPH\s+ts:graph:aux\s*\{\s*(\S+)\s+(\S+)\s+(\S+)\s*\.?\s*\}$")

@@ -14,7 +14,7 @@ from dataclasses import dataclass, field
 
 from pyoxigraph import NamedNode
 
-from ..vocab import TYPE, is_internal
+from ..vocab import AUX, TYPE, is_internal, is_skolem
 
 #: A read key: ("p", predicate IRI), ("t", class IRI) for ``?x rdf:type <C>``,
 #: or ("*",) for a pattern with a variable predicate (reads everything).
@@ -62,10 +62,10 @@ class Atom:
 def head_is_aux(p: str, o: str) -> bool:
     """Whether a derived triple belongs in the helper graph rather than the inferred one."""
     for term in (p, o):
-        if term.startswith("<") and is_internal(NamedNode(term[1:-1])) and not term.startswith("<urn:topostore:bnode:"):
+        if term.startswith("<") and is_internal(NamedNode(term[1:-1])) and not is_skolem(term[1:-1]):
             return True
     # memberships of anonymous class expressions (skolemised blank nodes)
-    return p == str(TYPE) and o.startswith("<urn:topostore:bnode:")
+    return p == str(TYPE) and o.startswith("<") and is_skolem(o[1:-1])
 
 
 def _atom_score(atom: Atom, bound: set[str]) -> int:
@@ -162,7 +162,7 @@ class Rule:
         if i == delta_index:
             return f"GRAPH {delta_graph} {{ {atom.text()} }}"
         if atom.aux:
-            return f"GRAPH <urn:topostore:graph:aux> {{ {atom.text()} }}"
+            return f"GRAPH {AUX} {{ {atom.text()} }}"
         return atom.text()
 
     def sparql(self) -> str:

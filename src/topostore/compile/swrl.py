@@ -15,7 +15,7 @@ from pyoxigraph import Literal, NamedNode
 from ..errors import RuleCompileError
 from ..store import Store
 from ..terms import Term, sparql
-from ..vocab import DIFFERENT_FROM, ENTAILED_PREFIX, SAME_AS, SWRL, SWRLA, TYPE, rdfs, swrl
+from ..vocab import DIFFERENT_FROM, ENTAILED_PREFIX, SAME_AS, SWRL, SWRLA, TYPE, is_skolem, rdfs, swrl
 from . import builtins
 from .model import Expr, TBoxReader, is_datatype
 from .rule import Atom, Rule
@@ -57,7 +57,7 @@ class SwrlCompiler:
         label = self._one(node, rdfs("label"))
         if isinstance(label, Literal):
             return label.value
-        return node.value if not node.value.startswith("urn:topostore:bnode:") else "an unnamed SWRL rule"
+        return node.value if not is_skolem(node) else "an unnamed SWRL rule"
 
     def compile(self) -> list[Rule]:
         rules: list[Rule] = []

@@ -38,11 +38,11 @@ from ..errors import InvalidNameError, RuleCompileError
 from ..store import Store, fresh_skolem
 from ..terms import Term, entity
 from ..vocab import (
-    ASSERTED, FIRST, NIL, OWL, RDF, RDFS, REST, SWRL, SWRLA, SWRLB, TYPE, XSD, owl, rdfs, swrl, xsd,
+    ASSERTED, FIRST, NIL, OWL, RDF, RDFS, REST, SWRL, SWRL_VARIABLE_NS, SWRLA, SWRLB, TYPE, XSD, owl, rdfs, swrl, xsd,
 )
 
 #: Namespace of the variables of rules added as text, as the OWL API writes them.
-VARIABLE_NS = "urn:swrl:var#"
+VARIABLE_NS = SWRL_VARIABLE_NS
 PREFIXES = {"swrlb": SWRLB, "xsd": XSD, "rdf": RDF, "rdfs": RDFS, "owl": OWL, "swrl": SWRL}
 _SAME = {"sameAs", "SameAs", "sameIndividual", "SameIndividual", "owl:sameAs"}
 _DIFFERENT = {"differentFrom", "DifferentFrom", "differentIndividuals", "DifferentIndividuals", "owl:differentFrom"}

@@ -32,6 +32,7 @@ from dataclasses import dataclass, field
 
 from ..errors import QueryError
 from ..queries import skip_non_code
+from ..vocab import FUNCTION_PREFIX
 
 _ESCAPE = re.compile(r"\\u([0-9A-Fa-f]{4})|\\U([0-9A-Fa-f]{8})")
 _WORD = re.compile(r"[A-Za-z_][A-Za-z0-9_\-]*")
@@ -42,7 +43,7 @@ _OPEN, _CLOSE = "({[", ")}]"
 
 FORBIDDEN = ("SERVICE", "LOAD")
 #: namespace of the extension functions only compiled rules may call
-INTERNAL_FUNCTIONS = "urn:topostore:fn:"
+INTERNAL_FUNCTIONS = FUNCTION_PREFIX
 
 
 @dataclass(frozen=True)
