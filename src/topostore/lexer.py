@@ -22,6 +22,8 @@ IRIREF = re.compile(r"<[^<>\"{}|^`\\\x00-\x20]*>")
 
 _ESCAPE = re.compile(r"\\u([0-9A-Fa-f]{4})|\\U([0-9A-Fa-f]{8})")
 _WORD = re.compile(r"[A-Za-z_][A-Za-z0-9_\-]*")
+#: a variable's name (SPARQL's VARNAME: letters, digits, underscore; no hyphen)
+_VARNAME = re.compile(r"\w+")
 _NAME_CHARS = set("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-.:")
 #: characters that, just before a word, make it part of a name rather than a keyword
 _JOINERS = _NAME_CHARS - {"."}
@@ -95,7 +97,7 @@ def tokens(text: str) -> Iterator[Token]:
             i = nxt
             continue
         if c in "?$":
-            m = _WORD.match(text, i + 1)
+            m = _VARNAME.match(text, i + 1)
             if m:
                 yield Token(VARIABLE, text[i:m.end()], i)
                 i = m.end()

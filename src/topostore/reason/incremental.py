@@ -69,6 +69,7 @@ from pyoxigraph import NamedNode, Triple
 
 from ..compile.generic import PREFIXES
 from ..compile.rule import Rule, RuleSet
+from ..lexer import negates_exists  # noqa: F401 - public here since the first release
 from ..store import Store
 from ..vocab import ASSERTED, AUX, DELTA, INFERRED, INTERNAL, NEW_AUX, NEW_INFERRED, TYPE
 from . import limits
@@ -98,35 +99,9 @@ SCRATCH = (ADDED, REMOVED, OVERDELETED, DEL_DELTA, CANDIDATES, PROVEN, NEW_PROVE
 DEFAULT_MAX_CHANGE_SHARE = 0.10
 
 
-def negates_exists(text: str) -> bool:
-    """Whether a FILTER text tests the *absence* of data (NOT EXISTS, or EXISTS under ``!``).
-
-    Such a filter makes a rule non-monotone.  The scan tracks which open
-    brackets were opened by a ``!``; an EXISTS inside one is negated.
-    """
-    stack: list[bool] = []
-    i = 0
-    while i < len(text):
-        c = text[i]
-        if c in "({":
-            before = text[:i].rstrip()
-            stack.append(before.endswith("!"))
-        elif c in ")}":
-            if stack:
-                stack.pop()
-        elif text[i:i + 6].upper() == "EXISTS":
-            before = text[:i].rstrip()
-            if before.upper().endswith("NOT") or before.endswith("!") or any(stack):
-                return True
-            i += len("EXISTS")
-            continue
-        i += 1
-    return False
-
-
 def is_monotone(rule: Rule) -> bool:
     """A rule whose matches can only grow when facts are added (DRed needs this)."""
-    return rule.stratum == 0 and not negates_exists(rule.filters)
+    return rule.stratum == 0 and not rule.negates
 
 
 def can_prove(rule: Rule) -> bool:
@@ -137,7 +112,7 @@ def can_prove(rule: Rule) -> bool:
     over-deleted later in the same run.
     """
     return not rule.is_check and not any(a.aux for a in rule.body) and not rule.filter_reads \
-        and "EXISTS" not in rule.filters.upper()
+        and not rule.conditions_read_graph
 
 
 def dataset(default: Iterable[NamedNode], named: Iterable[NamedNode] = ()) -> str:
@@ -192,7 +167,7 @@ class IncrementalReasoner:
         self.check_triggers = Triggers(rules.checks)
         self.negated = [r for r in self.rules if not is_monotone(r)]
         self.provers = [i for i in self.monotone if can_prove(self.rules[i])]
-        self.checks_monotone = all(not negates_exists(c.filters) and c.stratum == 0 for c in rules.checks)
+        self.checks_monotone = all(not c.negates and c.stratum == 0 for c in rules.checks)
         self._texts: dict[tuple, str] = {}
         self._queue: list[str] = []
         self._lateral = store.supports_lateral  # is the graph the next evaluation starts from small?
