@@ -75,9 +75,9 @@ from ..vocab import ASSERTED, AUX, DELTA, INFERRED, INTERNAL, NEW_AUX, NEW_INFER
 from . import limits
 from .consistency import Violation, check_consistency
 from . import flip
-from .materialize import Materializer, Present, ReasonStats, feasible, feasible_atom, matches
+from .materialize import Materializer, ReasonStats
 from .plan import KeyCounts, is_small, key_counts, plan_where
-from .triggers import Triggers
+from .triggers import Present, Triggers, matches
 
 #: Scratch graphs of incremental maintenance (never visible to queries).
 ADDED = NamedNode(INTERNAL + "graph:inc-added")          # asserted triples added since the last REASON
@@ -414,7 +414,7 @@ class IncrementalReasoner:
         preds, classes = self._start(goals)
         for i in self.provers:
             key = self.rules[i].writes()
-            if key is not None and matches(key, preds, classes) and feasible(self.rules[i], known):
+            if key is not None and matches(key, preds, classes) and self.triggers.feasible(i, known):
                 self._run(("prove", i, goals.value), self._prove_text, i, goals, stats)
         self._flush()
         if self.store.is_empty(NEW_PROVEN):
@@ -429,24 +429,19 @@ class IncrementalReasoner:
         """Premises (not of an asserted kind) of the candidates' derivations in the current graphs."""
         preds, classes = self._start(CANDIDATES)
         for i in self.provers:
-            rule = self.rules[i]
-            key = rule.writes()
-            if key is None or not matches(key, preds, classes) or not feasible(rule, self.state.present):
+            key = self.rules[i].writes()
+            if key is None or not matches(key, preds, classes) or not self.triggers.feasible(i, self.state.present):
                 continue
-            if self._subgoal_atoms(rule, self.state.asserted):
+            if self.triggers.unknown_atoms(i, self.state.asserted):
                 self._run(("subgoal", i), self._subgoal_text, i, None, stats)
         self._flush()
-
-    def _subgoal_atoms(self, rule: Rule, known: Present) -> list:
-        """Body atoms whose facts may need a proof: those of a kind not known to be asserted/proven."""
-        return [a for a in rule.body if a.p.startswith("<") and not feasible_atom(a, known)]
 
     def _rederive(self, stats: ReasonStats) -> None:
         """DRed's second phase: over-deleted facts that still follow from what is left go to NEW_*."""
         preds, classes = self._start(OVERDELETED)
         for i in self.monotone:
             key = self.rules[i].writes()
-            if key is not None and matches(key, preds, classes) and feasible(self.rules[i], self.state.present):
+            if key is not None and matches(key, preds, classes) and self.triggers.feasible(i, self.state.present):
                 self._run(("rederive", i), self._rederive_text, i, None, stats)
         if self._profiling(stats):
             self._flush()
@@ -477,7 +472,8 @@ class IncrementalReasoner:
 
     def _subgoal_text(self, i: int, _: None) -> str:
         rule = self.rules[i]
-        atoms = " ".join(a.text() for a in self._subgoal_atoms(rule, self.state.asserted))
+        # the premises that may need a proof: body atoms of a kind not known to be asserted
+        atoms = " ".join(rule.body[j].text() for j in self.triggers.unknown_atoms(i, self.state.asserted))
         where = plan_where(rule, head_graph=CANDIDATES, lateral=self._lateral)
         return (f"INSERT {{ GRAPH {SUBGOALS} {{ {atoms} }} }}\n"
                 f"{dataset((ASSERTED, INFERRED, AUX), (AUX, CANDIDATES))}\nWHERE {{\n  {where}\n}}")
