@@ -253,7 +253,20 @@ def evaluation_order(rules: list[Rule], indexes: list[int]) -> tuple[list[list[i
         for b in nodes:
             if any(_feeds(w, r) for r in rules[b].reads()):
                 succ[a].append(b)
-    # Tarjan's algorithm, iterative; components come out in reverse topological order
+    return strongly_connected(nodes, succ), wild
+
+
+def strongly_connected(nodes: list[int], succ: dict[int, list[int]]) -> list[list[int]]:
+    """The strongly connected components of a graph (each sorted), in topological order: a
+    component comes before every component it has an edge to.
+
+    Tarjan's algorithm, iterative (rule sets are deep enough to exhaust Python's recursion).
+    Written here rather than taken from networkx, which is not a dependency of topostore: the
+    core install is kept to what the service needs (pyproject.toml), and networkx would be
+    imported by every CLI start for these thirty lines.  tests/test_rule_structure.py checks
+    the result against the definition (mutual reachability) and the order on random graphs.
+    """
+    # components come out of Tarjan's algorithm in reverse topological order
     index: dict[int, int] = {}
     low: dict[int, int] = {}
     on_stack: set[int] = set()
@@ -292,4 +305,4 @@ def evaluation_order(rules: list[Rule], indexes: list[int]) -> tuple[list[list[i
                         break
                 components.append(sorted(component))
     components.reverse()
-    return components, wild
+    return components
