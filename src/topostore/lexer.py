@@ -31,7 +31,8 @@ _JOINERS = _NAME_CHARS - {"."}
 OPEN, CLOSE = "({[", ")}]"
 
 #: token kinds
-IRI, STRING, COMMENT, VARIABLE, KEYWORD, NAME, PUNCT = "iri", "string", "comment", "variable", "keyword", "name", "punct"
+IRI, STRING, COMMENT, VARIABLE = "iri", "string", "comment", "variable"
+KEYWORD, NAME, PUNCT = "keyword", "name", "punct"
 
 
 @dataclass(frozen=True, slots=True)

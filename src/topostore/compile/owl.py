@@ -29,8 +29,15 @@ from . import condition as cond
 from .condition import Condition
 from .model import Expr, Prop, TBox
 from .rule import Atom, Rule
-from .snippets import (NOT_DIFFERENT_READS, candidate_atom, different_atom, distinct_values, in_datatype,
-                       known_different, not_different)
+from .snippets import (
+    NOT_DIFFERENT_READS,
+    candidate_atom,
+    different_atom,
+    distinct_values,
+    in_datatype,
+    known_different,
+    not_different,
+)
 
 T = str(TYPE)
 #: filter reads of a rule testing known differences in FILTER EXISTS

@@ -24,10 +24,10 @@ from pyoxigraph import NamedNode
 from ..compile.generic import PREFIXES
 from ..compile.rule import Rule, RuleSet
 from ..store import Store
-from . import limits
-from .plan import KeyCounts, is_small, key_counts, plan_where
-from .triggers import Present, Triggers
 from ..vocab import ASSERTED, AUX, DELTA, INFERRED, NEW_AUX, NEW_INFERRED, TYPE
+from . import limits
+from .plan import KeyCounts, is_small, plan_where
+from .triggers import Present, Triggers
 
 DATASET = f"USING {ASSERTED} USING {INFERRED} USING {AUX} USING NAMED {AUX} USING NAMED {DELTA}"
 
