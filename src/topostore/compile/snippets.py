@@ -69,7 +69,8 @@ def in_datatype(var: str, datatype: NamedNode) -> str | None:
             tests.append(f"{var} <= {high}")
         return "COALESCE((" + " && ".join(tests) + "), false)"
     if local == "decimal" or dt in (OWL + "real", OWL + "rational"):
-        return f"COALESCE((isLiteral({var}) && datatype({var}) IN ({_INTEGER_LIST}, <{XSD}decimal>) && {var} = {var}), false)"
+        return (f"COALESCE((isLiteral({var}) && datatype({var}) IN ({_INTEGER_LIST}, <{XSD}decimal>) && "
+                f"{var} = {var}), false)")
     if local == "string":
         return f"COALESCE((isLiteral({var}) && datatype({var}) = <{XSD}string>), false)"
     if dt in (RDF + "PlainLiteral", RDF + "langString"):

@@ -42,7 +42,8 @@ class SwrlAtom:
             v = getattr(t, "value", str(t))
             return v.rsplit("#", 1)[-1].rsplit("/", 1)[-1]
 
-        return f"{self.kind}({short(self.predicate)}{', ' if self.predicate else ''}{', '.join(short(a) for a in self.args)})"
+        args = ", ".join(short(a) for a in self.args)
+        return f"{self.kind}({short(self.predicate)}{', ' if self.predicate else ''}{args})"
 
 
 class _Names:
@@ -130,7 +131,8 @@ class SwrlCompiler:
             return []
         out = []
         for node in self.store.list_items(head, self.graph):
-            kinds = [t.value[len(SWRL):] for t in self.store.objects(node, TYPE, self.graph) if t.value.startswith(SWRL)]
+            kinds = [t.value[len(SWRL):] for t in self.store.objects(node, TYPE, self.graph)
+                     if t.value.startswith(SWRL)]
             kind = kinds[0] if kinds else "?"
             pred = (self._one(node, swrl("classPredicate")) or self._one(node, swrl("propertyPredicate"))
                     or self._one(node, swrl("dataRange")) or self._one(node, swrl("builtin")))
@@ -138,7 +140,8 @@ class SwrlCompiler:
                 lst = self._one(node, swrl("arguments"))
                 args = tuple(self.store.list_items(lst, self.graph)) if lst is not None else ()
             else:
-                args = tuple(a for a in (self._one(node, swrl("argument1")), self._one(node, swrl("argument2"))) if a is not None)
+                args = tuple(a for a in (self._one(node, swrl("argument1")), self._one(node, swrl("argument2")))
+                             if a is not None)
             out.append(SwrlAtom(kind, pred, args, node))
         return out
 
