@@ -343,7 +343,7 @@ class Explainer:
 
 def _variables(rule: Rule) -> list[str]:
     """Variables of the body atoms and of the filters (a BIND's result, e.g. ?d = ?t - ?v)."""
-    names = set(re.findall(r"\?[A-Za-z_][A-Za-z0-9_]*", rule.filters))
+    names = {v for c in rule.conditions for v in c.variables}
     for a in rule.body:
         names |= a.variables()
     return sorted(names)

@@ -14,6 +14,7 @@ from pyoxigraph import Literal, NamedNode
 from ..errors import RuleCompileError
 from ..terms import Term
 from ..vocab import POW_FUNCTION, SWRLB, XSD, xsd
+from .condition import Condition, bind, test
 
 _COMPARISONS = {
     "equal": "=", "notEqual": "!=", "lessThan": "<", "lessThanOrEqual": "<=",
@@ -66,11 +67,11 @@ _TESTS: dict[str, tuple[int, int, Callable[[list[str]], str]]] = {
 SUPPORTED = sorted(set(_COMPARISONS) | set(_FUNCTIONS) | set(_TESTS))
 
 
-def translate(name: str, args: list[str], bound: set[str]) -> tuple[str, str | None] | None:
-    """SPARQL for built-in ``name`` with argument texts ``args``.
+def translate(name: str, args: list[str], bound: set[str]) -> Condition | None:
+    """The condition for built-in ``name`` with argument texts ``args``.
 
-    Returns ``("FILTER(...)", None)`` for a test, ``("BIND(... AS ?r)", "?r")``
-    when it binds its first argument, or None when it cannot run yet (some input
+    Returns a test (``FILTER(...)``), a BIND of the first argument (``?r``,
+    :attr:`Condition.binds`) when it is still unbound, or None when it cannot run yet (some input
     argument is still unbound; the caller retries after other built-ins).
     Raises :class:`RuleCompileError` for unknown built-ins or wrong arity.
     """
@@ -85,15 +86,15 @@ def translate(name: str, args: list[str], bound: set[str]) -> tuple[str, str | N
         if len(args) != 2:
             raise RuleCompileError(f"swrlb:{local} takes 2 arguments, got {len(args)}")
         if all(is_bound(a) for a in args):
-            return f"FILTER({args[0]} {_COMPARISONS[local]} {args[1]})", None
+            return test(f"{args[0]} {_COMPARISONS[local]} {args[1]}")
         if local == "equal" and is_bound(args[1]):
-            return f"BIND({args[1]} AS {args[0]})", args[0]
+            return bind(args[1], args[0])
         return None
     if local in _TESTS:
         lo, hi, build = _TESTS[local]
         if not lo <= len(args) <= hi:
             raise RuleCompileError(f"swrlb:{local} takes {lo}..{hi} arguments, got {len(args)}")
-        return (f"FILTER({build(args)})", None) if all(is_bound(a) for a in args) else None
+        return test(build(args)) if all(is_bound(a) for a in args) else None
     lo, hi, build = _FUNCTIONS[local]
     inputs = args[1:]
     if len(args) < 1 or len(inputs) < lo or (hi is not None and len(inputs) > hi):
@@ -102,8 +103,8 @@ def translate(name: str, args: list[str], bound: set[str]) -> tuple[str, str | N
         return None
     expr = build(inputs)
     if is_bound(args[0]):
-        return f"FILTER({args[0]} = {expr})", None
-    return f"BIND({expr} AS {args[0]})", args[0]
+        return test(f"{args[0]} = {expr}")
+    return bind(expr, args[0])
 
 
 # --------------------------------------------------------------------------- run time

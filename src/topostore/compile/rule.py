@@ -15,6 +15,7 @@ from dataclasses import dataclass, field
 from pyoxigraph import NamedNode
 
 from ..vocab import AUX, TYPE, is_internal, is_skolem
+from .condition import Condition, render
 
 #: A read key: ("p", predicate IRI), ("t", class IRI) for ``?x rdf:type <C>``,
 #: or ("*",) for a pattern with a variable predicate (reads everything).
@@ -109,7 +110,7 @@ def join_order(atoms: tuple[Atom, ...], first: int | None = None, bound: Iterabl
 
 @dataclass(frozen=True)
 class Rule:
-    """A Horn rule: if ``body`` (and ``filters``) match, ``head`` holds.
+    """A Horn rule: if ``body`` (and ``conditions``) match, ``head`` holds.
 
     A rule with ``violation`` set is a consistency check instead: every match is
     an inconsistency, reported with the variables listed in ``violation``.
@@ -119,7 +120,8 @@ class Rule:
     origin: str
     body: tuple[Atom, ...]
     head: Atom | None = None
-    filters: str = ""
+    #: the FILTERs and BINDs, in order, as the compiler built them
+    conditions: tuple[Condition, ...] = ()
     filter_reads: frozenset = frozenset()
     violation: tuple[str, ...] = ()
     message: str = ""
@@ -128,6 +130,26 @@ class Rule:
     #: evaluation stratum: rules with negated premises ("not known different")
     #: run only once everything they negate has reached its fixpoint
     stratum: int = 0
+    #: the conditions as SPARQL lines (rendered once: every evaluation text contains them)
+    filters: str = field(init=False, repr=False, compare=False)
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "filters", render(self.conditions))
+
+    @property
+    def negates(self) -> bool:
+        """A condition tests the absence of data: matches may disappear when facts are added."""
+        return any(c.negated for c in self.conditions)
+
+    @property
+    def binds(self) -> frozenset[str]:
+        """The variables the conditions bind (``?name``)."""
+        return frozenset(c.binds for c in self.conditions if c.binds)
+
+    @property
+    def conditions_read_graph(self) -> bool:
+        """A condition holds a graph pattern (an EXISTS), i.e. reads facts beyond the body's."""
+        return any(c.reads_graph for c in self.conditions)
 
     @property
     def is_check(self) -> bool:

@@ -10,6 +10,7 @@ from pyoxigraph import NamedNode
 
 from ..terms import INTEGER_TYPES
 from ..vocab import AUX, DECLARED_DIFFERENT, DIFFERENCE_CANDIDATE, DIFFERENT, OWL, RDF, RDFS, XSD
+from .condition import Condition, exists
 from .rule import Atom
 
 
@@ -27,9 +28,14 @@ def candidate_atom(a: str, b: str) -> Atom:
 NOT_DIFFERENT_READS = frozenset({("p", str(DIFFERENT))})
 
 
-def not_different(a: str, b: str) -> str:
+def not_different(a: str, b: str) -> Condition:
     """Filter: ``a`` and ``b`` are not known to be different (a negated premise)."""
-    return f"FILTER NOT EXISTS {{ GRAPH {AUX} {{ {a} {DIFFERENT} {b} }} }}"
+    return exists(f"GRAPH {AUX} {{ {a} {DIFFERENT} {b} }}", negated=True)
+
+
+def known_different(a: str, b: str) -> Condition:
+    """Filter: ``a`` and ``b`` are known to be different (reads the helper graph)."""
+    return exists(f"GRAPH {AUX} {{ {a} {DIFFERENT} {b} }}")
 
 
 def distinct_values(a: str, b: str) -> str:

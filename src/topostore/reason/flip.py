@@ -55,7 +55,7 @@ _FILTER = re.compile(r"^FILTER\s*\((.*)\)$", re.S)
 
 def filter_lines(rule: Rule) -> list[str]:
     """The rule's filters, one BIND(...) or FILTER(...) per entry, in order."""
-    return [line.strip() for line in rule.filters.split("\n") if line.strip()]
+    return [c.text for c in rule.conditions]
 
 
 def _rename(text: str, names: Collection[str], suffix: str) -> str:
@@ -74,13 +74,12 @@ def _rename(text: str, names: Collection[str], suffix: str) -> str:
 
 def filter_variables(rule: Rule) -> set[str]:
     """Names (without ``?``) of the variables the filters mention."""
-    return set(_VARIABLE.findall(_STRING.sub('""', rule.filters)))
+    return {v[1:] for c in rule.conditions for v in c.variables}
 
 
 def plain_filters(rule: Rule) -> bool:
     """Filters made only of BIND and FILTER lines without graph patterns (no EXISTS)."""
-    lines = filter_lines(rule)
-    return all((_BIND.match(x) or _FILTER.match(x)) and "{" not in x and "EXISTS" not in x.upper() for x in lines)
+    return all(c.plain for c in rule.conditions)
 
 
 def compared_only(rule: Rule, j: int) -> bool:
