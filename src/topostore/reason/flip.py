@@ -40,6 +40,7 @@ from dataclasses import dataclass
 
 from pyoxigraph import Literal, NamedNode, Triple
 
+from ..compile.condition import TEST
 from ..compile.rule import Atom, Rule, join_order
 from ..vocab import INTERNAL, TYPE
 from .plan import nested
@@ -49,13 +50,6 @@ CHANGE_OLD = NamedNode(INTERNAL + "graph:flip-old")
 
 _STRING = re.compile(r'"(?:[^"\\]|\\.)*"' + r"|'(?:[^'\\]|\\.)*'")
 _VARIABLE = re.compile(r"\?(\w+)")
-_BIND = re.compile(r"^BIND\((.*) AS \?(\w+)\)$", re.S)
-_FILTER = re.compile(r"^FILTER\s*\((.*)\)$", re.S)
-
-
-def filter_lines(rule: Rule) -> list[str]:
-    """The rule's filters, one BIND(...) or FILTER(...) per entry, in order."""
-    return [c.text for c in rule.conditions]
 
 
 def _rename(text: str, names: Collection[str], suffix: str) -> str:
@@ -143,7 +137,7 @@ def flip_branches(rule: Rule, changed: tuple[int, ...], lateral: bool, tag: int)
     their last variable: only the bindings that flip reach the atoms after it.
     """
     renamed = {rule.body[k].o[1:] for k in changed}
-    targets = {m.group(2) for m in map(_BIND.match, filter_lines(rule)) if m}
+    targets = {c.binds[1:] for c in rule.conditions if c.binds}
     renamed |= targets
     needed = {f"?{v}" for v in filter_variables(rule) - targets}
     head = rule.head
@@ -191,14 +185,13 @@ def _instances(rule: Rule, renamed: set[str]) -> list[str]:
     out = []
     for suffix in ("o", "n"):
         tests = []
-        for i, line in enumerate(filter_lines(rule)):
-            text = _rename(line, renamed, suffix)
-            m = _FILTER.match(text)
-            if m:
+        for i, condition in enumerate(rule.conditions):  # plain: tests and BINDs only
+            if condition.kind == TEST:
                 tests.append(f"?f{i}__{suffix}")
-                out.append(f"BIND(COALESCE(({m.group(1)}), false) AS ?f{i}__{suffix})")
+                expression = _rename(condition.expression, renamed, suffix)
+                out.append(f"BIND(COALESCE(({expression}), false) AS ?f{i}__{suffix})")
             else:
-                out.append(text)
+                out.append(_rename(condition.text, renamed, suffix))
         out.append(f"BIND(({' && '.join(tests) or 'true'}) AS ?ok__{suffix})")
     out.append("FILTER(?ok__o != ?ok__n)")
     return out
