@@ -23,7 +23,8 @@ from topostore.mapgen import MAP_NS, generate
 from topostore.reason import Materializer, check_consistency
 from topostore.reason.incremental import is_monotone, negates_exists
 from topostore.store import Store
-from topostore.vocab import ASSERTED, AUX, DIFFERENT_FROM, INFERRED, TYPE, owl
+from topostore.reason.entailed import publish_entailed
+from topostore.vocab import ASSERTED, AUX, DIFFERENT_FROM, ENTAILED, INFERRED, TYPE, owl
 
 TBOX = Path(__file__).resolve().parents[2] / "shared" / "ontology" / "topological_map.owl"
 
@@ -44,20 +45,23 @@ def new_map(n: int, seed: int, all_different: bool) -> Ontology:
     return onto
 
 
-def from_scratch(onto: Ontology) -> tuple[set, set, bool]:
-    """Inferred and helper graphs and consistency of a fresh store holding the same asserted graph."""
+def from_scratch(onto: Ontology) -> tuple[set, set, set, bool]:
+    """Inferred, helper and entailed-only graphs and consistency of a fresh store holding the same asserted graph."""
     store = Store()
     store.add(onto.store.triples(graph=ASSERTED), ASSERTED)
     Materializer(store, onto.rules).run()
     violations = check_consistency(store, onto.rules)
-    return set(store.triples(graph=INFERRED)), set(store.triples(graph=AUX)), not violations
+    publish_entailed(store, onto.rules)
+    return (set(store.triples(graph=INFERRED)), set(store.triples(graph=AUX)), set(store.triples(graph=ENTAILED)),
+            not violations)
 
 
 def assert_same_as_scratch(onto: Ontology, profile: bool = False) -> None:
     report = onto.reason(profile=profile)
-    inferred, aux, consistent = from_scratch(onto)
+    inferred, aux, entailed, consistent = from_scratch(onto)
     assert set(onto.store.triples(graph=INFERRED)) == inferred, report.stats
     assert set(onto.store.triples(graph=AUX)) == aux, report.stats
+    assert set(onto.store.triples(graph=ENTAILED)) == entailed, report.stats
     assert report.consistent == consistent, report.stats
 
 
@@ -183,9 +187,10 @@ def test_robot_step_is_incremental_and_exact() -> None:
         robot_step(onto, where, 1665579750 + 5 * k)
         report = onto.reason()
         assert report.stats.mode == "incremental", report.stats.reason
-        inferred, aux, consistent = from_scratch(onto)
+        inferred, aux, entailed, consistent = from_scratch(onto)
         assert set(onto.store.triples(graph=INFERRED)) == inferred
         assert set(onto.store.triples(graph=AUX)) == aux
+        assert set(onto.store.triples(graph=ENTAILED)) == entailed
         assert report.consistent == consistent
     assert sorted(onto.object_values("canReach", N("Robot1"))) == sorted(generate(20, seed=1).neighbours("C1"))
 

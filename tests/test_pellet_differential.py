@@ -25,6 +25,7 @@ import pytest
 from pyoxigraph import Triple
 
 from topostore import Ontology, mapgen
+from topostore.nary import axiom_of_list_node
 from topostore.vocab import DIFFERENT_FROM, FIRST
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -108,7 +109,7 @@ def mentioned(onto: Ontology, name: str) -> bool:
 def drop_all_different(onto: Ontology, member: str) -> None:
     """Remove the owl:AllDifferent axiom listing ``member`` (its other facts stay)."""
     for t in list(onto.store.triples(None, FIRST, onto.iri(member))):
-        onto.remove(*onto._axiom_of_list_node(t.subject))
+        onto.remove(*axiom_of_list_node(onto.store, t.subject))
 
 
 def long(onto: Ontology, n: int):

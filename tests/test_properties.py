@@ -18,7 +18,7 @@ from pyoxigraph import Literal, NamedNode, Triple
 
 from topostore import Ontology
 from topostore.resources import default_ontology
-from topostore.vocab import ASSERTED, INFERRED, XSD, owl
+from topostore.vocab import ASSERTED, ENTAILED, INFERRED, XSD, owl
 
 NS = "http://example.org/prop#"
 RDF_TYPE = "http://www.w3.org/1999/02/22-rdf-syntax-ns#type"
@@ -159,4 +159,5 @@ def test_reasoning_after_changes_equals_reasoning_from_scratch(ops):
     fresh_report = fresh.reason()
     assert report.consistent == fresh_report.consistent
     assert _graph(onto, INFERRED) == _graph(fresh, INFERRED)
+    assert _graph(onto, ENTAILED) == _graph(fresh, ENTAILED)
     assert sorted(str(v) for v in report.violations) == sorted(str(v) for v in fresh_report.violations)

@@ -28,16 +28,16 @@ from functools import lru_cache
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
-from pyoxigraph import Literal, NamedNode, RdfFormat, Triple, parse
+from pyoxigraph import Literal, NamedNode, Triple
 
 from .compile.generic import PREFIXES
 from .compile.model import TBoxReader
 from .compile.rule import Atom, Rule, join_order
-from .errors import InvalidNameError, QueryError
-from .terms import Term, sparql, value_key
+from .errors import InvalidNameError, QueryError, RuleCompileError
+from .terms import Term, parse_term, sparql, value_key
 from .vocab import (
     ASSERTED, AUX, DECLARED_DIFFERENT, DIFFERENCE_CANDIDATE, DIFFERENT, DIFFERENT_KEY, ENTAILED, ENTAILED_PREFIX,
-    INFERRED, OWL, RDF, RDFS, SWRL, SWRLB, TYPE, XSD, owl,
+    INFERRED, KEY_PREFIX, OWL, RDF, RDFS, SWRL, SWRLB, TYPE, XSD, is_skolem, owl,
 )
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -282,9 +282,9 @@ class Explainer:
             return self.store.restore(term).value
         if isinstance(term, NamedNode):
             v = term.value
-            if v.startswith("urn:topostore:bnode:"):
+            if is_skolem(term):
                 return self._render_node(term)
-            if v.startswith("urn:topostore:key:"):
+            if v.startswith(KEY_PREFIX):
                 return self.render_key(term)
             for ns, prefix in _PREFIXES.items():
                 if v.startswith(ns):
@@ -299,7 +299,7 @@ class Explainer:
             self._reader = TBoxReader(self.store, ASSERTED)
         try:
             return str(self._reader.expr(node))
-        except Exception:  # not a class expression: a plain anonymous node
+        except RuleCompileError:  # not a class expression: a plain anonymous node
             return "_:" + node.value.rsplit(":", 1)[-1][:8]
 
     def _group_text(self, group: Term) -> str:
@@ -343,7 +343,7 @@ class Explainer:
 
 def _variables(rule: Rule) -> list[str]:
     """Variables of the body atoms and of the filters (a BIND's result, e.g. ?d = ?t - ?v)."""
-    names = set(re.findall(r"\?[A-Za-z_][A-Za-z0-9_]*", rule.filters))
+    names = {v for c in rule.conditions for v in c.variables}
     for a in rule.body:
         names |= a.variables()
     return sorted(names)
@@ -371,11 +371,7 @@ def constant(text: str) -> Term | None:
     """The RDF term a rendered SPARQL constant stands for (None for a property path)."""
     if not text.startswith(("<", '"')) or (text.startswith("<") and not text.endswith(">")):
         return None
-    try:
-        quads = list(parse(f"<urn:x:s> <urn:x:p> {text} .".encode(), format=RdfFormat.N_TRIPLES))
-    except (SyntaxError, ValueError):
-        return None
-    return quads[0].object if quads else None
+    return parse_term(text)
 
 
 def _atom_text(atom: Atom, binding: dict[str, Term]) -> str:

@@ -24,6 +24,7 @@ from typing import TYPE_CHECKING, Any, TypeVar
 
 from pyoxigraph import Triple
 
+from .errors import TopostoreError
 from .reason import limits
 from .vocab import ASSERTED, AUX, ENTAILED, INFERRED
 
@@ -108,7 +109,7 @@ def _restore(onto: "Ontology", reason: Callable[..., Any]) -> None:
         with limits.budget(onto.limits):
             reason(onto, mode="full")
         onto._journal.start()
-    except Exception:  # even the previous state cannot be reasoned (e.g. limits lowered): show asserted facts only
+    except TopostoreError:  # even the previous state cannot be reasoned (e.g. limits lowered): asserted facts only
         logger.exception("the state before the change could not be reasoned either; inferred facts cleared")
         onto.store.update(" ; ".join(f"DROP SILENT GRAPH {g}" for g in (INFERRED, AUX, ENTAILED)))
         onto._reasoner = None

@@ -13,9 +13,8 @@ from dataclasses import dataclass, field
 
 from pyoxigraph import Literal, NamedNode, Triple
 
-from .vocab import FIRST, NIL, REST, TYPE, XSD, owl
+from .vocab import FIRST, MAP_NS, NIL, REST, SKOLEM_PREFIX, TYPE, XSD, owl
 
-MAP_NS = "http://bnc/exp-rob-lab/2022-23#"
 LONG = NamedNode(XSD + "long")
 
 
@@ -66,8 +65,8 @@ class TopoMap:
 
 def all_different_triples(members: list[NamedNode], ns: str = MAP_NS) -> list[Triple]:
     """One owl:AllDifferent over ``members`` as an RDF list (linear size)."""
-    group = NamedNode("urn:topostore:bnode:mapgen-alldifferent")
-    nodes = [NamedNode(f"urn:topostore:bnode:mapgen-list-{i}") for i in range(len(members))]
+    group = NamedNode(SKOLEM_PREFIX + "mapgen-alldifferent")
+    nodes = [NamedNode(f"{SKOLEM_PREFIX}mapgen-list-{i}") for i in range(len(members))]
     out = [Triple(group, TYPE, owl("AllDifferent")), Triple(group, owl("distinctMembers"), nodes[0] if nodes else NIL)]
     for i, (node, m) in enumerate(zip(nodes, members)):
         out.append(Triple(node, FIRST, m))

@@ -18,47 +18,39 @@ while the ontology is inconsistent, as aRMOR does).
 
 from __future__ import annotations
 
-import os
-from collections.abc import Callable, Iterable, Sequence
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
-from pathlib import Path
 
-from pyoxigraph import Literal, NamedNode, RdfFormat, Triple
+from pyoxigraph import Literal, NamedNode, Triple
 
 from .compile import RuleSet, compile_ontology
+from .compile.builtins import FUNCTIONS as RULE_FUNCTIONS
 from .compile.swrl_text import removal_triples, rule_labels, rule_triples
-from .errors import InvalidValueError, QueryError
+from .errors import UnknownTypeError
 from .events import EventHub
-from .queries import QueryItem, collect, get_named_query, render_jena, substitutions, to_items
-from .reason import ReasonStats, Violation, classify
-from .reason.incremental import DEFAULT_MAX_CHANGE_SHARE, IncrementalReasoner
 from .journal import Journal, all_or_nothing
+from .nary import all_different, individual_triples
+from .ontology_files import OntologyFiles, is_schema_triple
+from .ontology_queries import OntologyQueries
+from .reason import ReasonStats, Violation, classify
 from .reason import limits as reason_limits
+from .reason.incremental import DEFAULT_MAX_CHANGE_SHARE, IncrementalReasoner
 from .reason.limits import ReasonLimits
-from .safeio import atomic_write
-from .store import Store, fresh_skolem, guess_format, serialize
+from .store import Store
 from .stores import StoreSpec, check_rules, open_store
 from .stores import state as durable_state
 from .terms import Term, entity, literal_of, value_key
-from .reason.entailed import publish_entailed
 from .vocab import (
-    ASSERTED, AUX, ENTAILED, DECLARATION_TYPES, DIFFERENT_FROM, INFERRED, NIL, NOTHING, OWL, RDF, RDFS, SWRL, THING, TYPE,
-    FIRST, REST, XSD, is_internal, owl,
+    ASSERTED,
+    AUX,
+    DEFAULT_PREFIX,
+    ENTAILED,
+    INFERRED,
+    NOTHING,
+    TYPE,
+    XSD,
+    owl,
 )
-
-_SCHEMA_NS = (RDF, RDFS, OWL, SWRL, "http://swrl.stanford.edu/")
-_ABOX_PREDICATES = {TYPE, owl("sameAs"), DIFFERENT_FROM, FIRST, REST, owl("distinctMembers"), owl("members")}
-
-
-def is_schema_triple(t: Triple) -> bool:
-    """True for triples that change the rules (TBox axioms, SWRL rules), not just facts."""
-    p = t.predicate
-    if p == TYPE:
-        return isinstance(t.object, NamedNode) and t.object.value.startswith(_SCHEMA_NS) and t.object not in (
-            owl("NamedIndividual"), owl("Thing"), owl("AllDifferent"))
-    if p in _ABOX_PREDICATES:
-        return False
-    return p.value.startswith(_SCHEMA_NS)
 
 
 @dataclass
@@ -73,12 +65,18 @@ class ReasonReport:
         return "consistent" if self.consistent else "; ".join(str(v) for v in self.violations)
 
 
-class Ontology:
-    """One ontology: asserted and inferred graphs in an Oxigraph store, plus its rules."""
+class Ontology(OntologyFiles, OntologyQueries):
+    """One ontology: asserted and inferred graphs in an Oxigraph store, plus its rules.
+
+    Loading and saving are :class:`~topostore.ontology_files.OntologyFiles`, the read API
+    :class:`~topostore.ontology_queries.OntologyQueries`; this class holds the state,
+    manipulations and reasoning.
+    """
 
     def __init__(self, prefix: str | None = None, store: Store | StoreSpec = None) -> None:
         """``store``: a Store, or a store setting (None: memory; a directory; an http(s) SPARQL server URL)."""
         self.store = store if isinstance(store, Store) else open_store(store)
+        self.store.use_functions(RULE_FUNCTIONS)  # the extension functions compiled rules call (swrlb:pow)
         self._prefix = prefix
         self._found_prefix: str | None = None
         self._rules: RuleSet | None = None
@@ -91,7 +89,7 @@ class Ontology:
         self._removed: dict[Triple, None] = {}
         self._tracking = False
         self._reasoner: IncrementalReasoner | None = None
-        #: share of the asserted graph above which REASON recomputes from scratch
+        #: share of the asserted graph above which REASON recomputes from scratch instead of incrementally
         self.max_change_share = DEFAULT_MAX_CHANGE_SHARE
         #: rounds, inferred facts and seconds one REASON may use (see topostore.reason.limits)
         self.limits: ReasonLimits = reason_limits.DEFAULTS
@@ -106,51 +104,12 @@ class Ontology:
         self._report = ReasonReport(consistent)
         self.dirty = dirty
 
-    # ------------------------------------------------------------------ loading
-    @classmethod
-    def from_file(cls, *paths: str | os.PathLike[str], prefix: str | None = None, fmt: str | None = None,
-                  base_iri: str | None = None, store: Store | StoreSpec = None) -> "Ontology":
-        onto = cls(prefix=prefix, store=store)
-        for p in paths:
-            onto.load(p, fmt=fmt, base_iri=base_iri)
-        return onto
-
-    def load(self, path: str | os.PathLike[str], fmt: str | None = None, base_iri: str | None = None,
-             progress: Callable[[int], None] | None = None) -> int:
-        """Add a document's triples to the asserted graph; all or nothing.
-
-        Rules are compiled before anything is added, so a file with a rule that
-        cannot be translated is refused and leaves the ontology as it was.
-        ``progress(n)`` is told how many triples have been parsed so far.
-        """
-        triples = self.store.parse_file(path, fmt, base_iri, progress)
-        return self._add_checked(triples)
-
-    def load_data(self, data: str | bytes, fmt: str = "turtle", base_iri: str | None = None) -> int:
-        triples = self.store.parse_bytes(data, guess_format("x", fmt), base_iri)
-        return self._add_checked(triples)
-
-    def _add_checked(self, triples: list[Triple]) -> int:
-        """Add loaded triples; when they change the rules, compile first on a copy,
-        so that an untranslatable rule leaves the ontology untouched, and keep
-        that compilation (it is the one the new asserted graph gives)."""
-        if not any(is_schema_triple(t) for t in triples):
-            return self.add(*triples)
-        scratch = Store()
-        scratch.add(self.store.triples(graph=ASSERTED), ASSERTED)
-        scratch.add(triples, ASSERTED)
-        rules = compile_ontology(scratch, ASSERTED)  # raises RuleCompileError, nothing added
-        check_rules(self.store, rules)
-        added = self.add(*triples)
-        self._rules = rules
-        return added
-
     @property
     def prefix(self) -> str:
         """Namespace for entity names: the ontology IRI + '#' unless given."""
         if self._prefix is None:
             if self._found_prefix is None:  # looked up once per schema change (a round trip on a server)
-                self._found_prefix = "urn:topostore:default#"
+                self._found_prefix = DEFAULT_PREFIX
                 for t in self.store.triples(None, TYPE, owl("Ontology"), ASSERTED):
                     if isinstance(t.subject, NamedNode):
                         iri = t.subject.value
@@ -293,42 +252,13 @@ class Ontology:
 
     def add_all_different(self, names: Sequence[str | NamedNode]) -> NamedNode:
         """One owl:AllDifferent over ``names`` (deduplicated): linear in size, never n² pairs."""
-        members = list(dict.fromkeys(self.iri(n) for n in names))
-        group = fresh_skolem()
-        triples = [Triple(group, TYPE, owl("AllDifferent"))]
-        nodes = [fresh_skolem() for _ in members]
-        triples.append(Triple(group, owl("distinctMembers"), nodes[0] if nodes else NIL))
-        for i, (node, m) in enumerate(zip(nodes, members)):
-            triples.append(Triple(node, FIRST, m))
-            triples.append(Triple(node, REST, nodes[i + 1] if i + 1 < len(nodes) else NIL))
+        triples = all_different(list(dict.fromkeys(self.iri(n) for n in names)))
         self.add(*triples)
-        return group
+        return triples[0].subject
 
     def remove_individual(self, name: str | NamedNode) -> int:
         """Remove every asserted triple mentioning the individual, and whole AllDifferent axioms containing it."""
-        ind = self.iri(name)
-        doomed = list(self.store.triples(ind, None, None, ASSERTED)) + list(self.store.triples(None, None, ind, ASSERTED))
-        for t in list(doomed):
-            if t.predicate == FIRST:
-                doomed += self._axiom_of_list_node(t.subject)
-        return self.remove(*dict.fromkeys(doomed))
-
-    def _axiom_of_list_node(self, node: Term) -> list[Triple]:
-        head = node
-        while True:
-            prev = self.store.subjects(REST, head, ASSERTED)
-            if not prev:
-                break
-            head = prev[0]
-        out: list[Triple] = []
-        for owner in self.store.subjects(owl("distinctMembers"), head, ASSERTED) + self.store.subjects(owl("members"), head, ASSERTED):
-            out += list(self.store.triples(owner, None, None, ASSERTED))
-            cur = head
-            while cur != NIL:
-                out += list(self.store.triples(cur, None, None, ASSERTED))
-                rest = self.store.objects(cur, REST, ASSERTED)
-                cur = rest[0] if rest else NIL
-        return out
+        return self.remove(*individual_triples(self.store, self.iri(name)))
 
     def subscribe(self, callback, pattern: str | None = None, maxsize: int = 100):
         """Call ``callback(event)`` after each REASON that changed an inferred triple matching
@@ -398,7 +328,6 @@ class Ontology:
                                                       forced_reason=forced)
         finally:
             self._tracking = self._reasoner.state.ready
-        publish_entailed(self.store, rules)
         self.store.maybe_compact()
         self._report = ReasonReport(not violations, violations, stats)
         self.dirty = False
@@ -440,123 +369,6 @@ class Ontology:
             self._superclasses = classify(self.rules)
         return {c for c, sups in self._superclasses.items() if target in sups and c != target}
 
-    # ------------------------------------------------------------------ queries
-    def _objects(self, s: Term, p: NamedNode) -> list[Term]:
-        seen: dict = {}
-        for g in self.visible_graphs():
-            for o in self.store.objects(s, p, g):
-                seen.setdefault(value_key(o), self.store.original_literal(ASSERTED, s, p, o) if isinstance(o, Literal) else o)
-        return list(seen.values())
-
-    def types(self, individual: str | NamedNode) -> list[NamedNode]:
-        """Named classes of an individual (asserted ∪ inferred), without owl:Thing."""
-        return [t for t in self._objects(self.iri(individual), TYPE) if _is_user_class(t)]
-
-    def instances(self, cls: str | NamedNode) -> list[NamedNode]:
-        c = self.iri(cls)
-        found: dict = {}
-        for g in self.visible_graphs():
-            for s in self.store.subjects(TYPE, c, g):
-                if not is_internal(s) or s.value.startswith("urn:topostore:bnode:"):
-                    found[s] = None
-        return list(found)
-
-    def object_values(self, prop: str | NamedNode, individual: str | NamedNode, names: bool = True) -> list:
-        vals = [o for o in self._objects(self.iri(individual), self.iri(prop)) if isinstance(o, NamedNode)]
-        return [self.short(v) for v in vals] if names else vals
-
-    def data_values(self, prop: str | NamedNode, individual: str | NamedNode) -> list[Literal]:
-        return [o for o in self._objects(self.iri(individual), self.iri(prop)) if isinstance(o, Literal)]
-
-    def properties_of(self, individual: str | NamedNode, data: bool) -> list[NamedNode]:
-        s = self.iri(individual)
-        props: dict = {}
-        for g in self.visible_graphs():
-            for t in self.store.triples(s, None, None, g):
-                if isinstance(t.object, Literal) == data and not t.predicate.value.startswith(_SCHEMA_NS) and not is_internal(t.predicate):
-                    props[t.predicate] = None
-        return list(props)
-
-    def sparql(self, text: str, bindings: dict[str, Term] | None = None, **kwargs):
-        """Raw SPARQL over the visible graphs (asserted ∪ inferred).
-
-        User text passes the one SPARQL guard (size, nesting, SERVICE, internal
-        functions) before Oxigraph parses it, and runs without the reasoner's
-        extension functions.
-        ``bindings`` fix variables to terms with pyoxigraph's ``substitutions=``;
-        in a SELECT query a bound variable must be projected.
-        """
-        from .sparql.guard import check_user_sparql  # here: the sparql package imports this module
-
-        check_user_sparql(text)
-        if bindings is not None and not isinstance(bindings, dict):
-            raise TypeError(f"bindings must be a dict of variable name -> term, not {type(bindings).__name__}")
-        kwargs.setdefault("custom_functions", {})
-        if not bindings:
-            return self.store.query(text, graphs=self.visible_graphs(), **kwargs)
-        try:
-            return self.store.query(text, graphs=self.visible_graphs(), substitutions=substitutions(bindings), **kwargs)
-        except QueryError as exc:
-            if "SELECT projection" not in str(exc):
-                raise
-            names = " ".join(f"?{b}" for b in bindings)
-            raise QueryError(f"a query parameter must be in the SELECT list (add {names} to it): parameters are "
-                             "bound with pyoxigraph's substitutions, which fix projected variables only") from None
-
-    def select(self, text: str, bindings: dict[str, Term] | None = None, timeout: float | None = None):
-        """(variables, rows, timed_out) of a SELECT query over the visible graphs."""
-        result = self.sparql(text, bindings)
-        if not hasattr(result, "variables"):
-            raise QueryError("only SELECT queries return rows")
-        return collect(result, timeout)
-
-    def query(self, name_or_text: str, params: dict[str, object] | None = None, timeout: float | None = None) -> list[QueryItem]:
-        """Run a named query (or SELECT text) and return ``QueryItem`` results.
-
-        ``params`` values are entity names / NamedNodes for ``iri`` parameters
-        and Python values or Literals for ``literal`` parameters.
-        """
-        params = params or {}
-        if not isinstance(name_or_text, str):
-            raise TypeError(f"a query name or text must be a string, not {type(name_or_text).__name__}")
-        if name_or_text.lstrip().upper().startswith(("SELECT", "PREFIX", "BASE")):
-            text, kinds = name_or_text, {k: "iri" for k in params}
-        else:
-            q = get_named_query(name_or_text)
-            text, kinds = q.text, q.params
-            missing = set(q.params) - set(params)
-            if missing:
-                raise QueryError(f"query {q.name!r} needs the parameter(s) {', '.join(sorted(missing))}")
-            unknown = set(params) - set(q.params)
-            if unknown:
-                raise QueryError(f"query {q.name!r} has no parameter(s) {', '.join(sorted(unknown))}")
-        bindings = {k: (self.iri(v) if kinds.get(k) == "iri" else self.value(v)) for k, v in params.items()}
-        variables, rows, _ = self.select(text, bindings, timeout)
-        # parameters are projected so that pyoxigraph can substitute them; their fixed values are not answers
-        keep = [i for i, v in enumerate(variables) if v not in bindings]
-        rows = [[row[i] for i in keep] for row in rows]
-        return to_items([variables[i] for i in keep], rows, lambda t: render_jena(t, self.store.restore))
-
-    # ------------------------------------------------------------------ persistence
-    def triples(self, inferred: bool = False) -> list[Triple]:
-        graphs = self.visible_graphs() if inferred else [ASSERTED]
-        return self.store.dump(graphs, restore_literals_from=ASSERTED)
-
-    def serialize(self, fmt: str | RdfFormat = "turtle", inferred: bool = False) -> bytes:
-        rdf_format = guess_format("x", fmt) if isinstance(fmt, str) else fmt
-        prefixes = {"owl": OWL, "rdf": RDF, "rdfs": RDFS, "xsd": XSD, "swrl": SWRL,
-                    "swrlb": "http://www.w3.org/2003/11/swrlb#", "": self.prefix}
-        return serialize(self.triples(inferred), rdf_format, prefixes)
-
-    def save(self, path: str | os.PathLike[str], fmt: str | None = None, inferred: bool = False) -> Path:
-        """Write asserted (or asserted + inferred) triples; the format follows the extension."""
-        path = Path(path)
-        data = self.serialize(guess_format(path, fmt), inferred)
-        return atomic_write(path, data)  # temporary file beside it, never through a symlink, removed on failure
-
-
-def _is_user_class(t: Term) -> bool:
-    return isinstance(t, NamedNode) and t.value not in DECLARATION_TYPES and t != THING and not is_internal(t)
 
 
 def _validate_literal(lit: Literal) -> None:
@@ -565,10 +377,8 @@ def _validate_literal(lit: Literal) -> None:
         return
     local = dt[len(XSD):]
     try:
-        literal_of(lit.value, local)
-    except InvalidValueError:
-        raise
-    except Exception:  # datatypes topostore does not validate
+        literal_of(lit.value, local)  # an invalid value of a type topostore knows raises InvalidValueError
+    except UnknownTypeError:  # a datatype topostore does not validate (xsd:anyURI, xsd:gYear, ...): kept as written
         return
 
 

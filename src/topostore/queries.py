@@ -28,6 +28,7 @@ from pathlib import Path
 from pyoxigraph import BlankNode, Literal, NamedNode, QuerySolutions, Variable
 
 from .errors import QueryError, QueryTimeout
+from .lexer import IRIREF, skip_non_code  # noqa: F401 - the tokenizer's home is lexer.py; kept importable here
 from .resources import queries_dir
 from .store import unskolem
 from .terms import Term
@@ -85,33 +86,6 @@ def get_named_query(name_or_path: str) -> NamedQuery:
 
 
 # --------------------------------------------------------------------------- binding
-
-#: IRIREF per the SPARQL grammar: no spaces, quotes, braces, pipes or carets inside.
-IRIREF = re.compile(r"<[^<>\"{}|^`\\\x00-\x20]*>")
-
-
-def skip_non_code(text: str, i: int) -> int | None:
-    """Index just past the comment, string or IRI that starts at ``i`` (None if none does).
-
-    The one SPARQL lexing rule every scanner of query text needs: braces and
-    keywords inside these are not syntax.
-    """
-    c = text[i]
-    if c == "#":
-        j = text.find("\n", i)
-        return len(text) if j < 0 else j + 1
-    if c in "\"'":
-        quote = text[i:i + 3] if text[i:i + 3] in ('"""', "'''") else c
-        j = i + len(quote)
-        while j < len(text) and text[j:j + len(quote)] != quote:
-            j += 2 if text[j] == "\\" else 1
-        return j + len(quote)
-    if c == "<":
-        m = IRIREF.match(text, i)
-        if m:
-            return m.end()
-    return None
-
 
 def substitutions(bindings: dict[str, Term]) -> dict[Variable, Term]:
     """pyoxigraph's ``substitutions=`` argument: each variable name fixed to its term."""

@@ -21,11 +21,9 @@ from __future__ import annotations
 import asyncio
 import concurrent.futures
 import contextlib
-import hmac
 import ipaddress
 import json
 import logging
-import re
 import socket
 import time
 import urllib.parse
@@ -39,12 +37,12 @@ from starlette.concurrency import run_in_threadpool
 from starlette.requests import Request
 from starlette.responses import JSONResponse, Response
 from starlette.routing import Route
-from starlette.types import ASGIApp, Message, Receive, Scope, Send
 
 from . import __version__
 from .armor import ArmorService
 from .armor.codes import CommandError
 from .errors import QueryError, TopostoreError
+from .http.security import error, security_middleware
 from .live import live_routes
 from .sparql.execute import (
     Job, ReferenceMounted, ResultTooLarge, SparqlTimeout, run_query, run_update, timeout_message,
@@ -119,120 +117,6 @@ def is_loopback(host: str) -> bool:
     except OSError:
         return False
     return bool(infos) and all(ipaddress.ip_address(info[4][0].split("%")[0]).is_loopback for info in infos)
-
-
-def error(status: int, message: str, headers: dict[str, str] | None = None) -> JSONResponse:
-    """Every error answer has the same shape: ``{"error": "..."}`` and a fitting status."""
-    return JSONResponse({"error": message}, status_code=status, headers=headers)
-
-
-# --------------------------------------------------------------------------- middleware
-
-#: RFC 7230 Host: a name or IPv4 address, or an IPv6 literal in brackets, then an optional port
-_HOST_HEADER = re.compile(r"(\[[0-9a-f:.%]+\]|[a-z0-9.\-]+)(:[0-9]{1,5})?")
-
-
-def is_loopback_host_header(value: str) -> bool:
-    """Whether a Host header names this machine literally (no DNS: a rebinding domain must not pass)."""
-    host = value.strip().lower()
-    if not _HOST_HEADER.fullmatch(host):  # e.g. "localhost:80@evil.com", which a URL parser reads as evil.com
-        return False
-    if host.startswith("["):
-        host = host[1:host.find("]")] if "]" in host else host[1:]
-    elif host.count(":") == 1:
-        host = host.split(":", 1)[0]
-    if host == "localhost" or host.endswith(".localhost"):
-        return True
-    try:
-        return ipaddress.ip_address(host).is_loopback
-    except ValueError:
-        return False
-
-
-class Guard:
-    """Browser protections, bearer-token check and request-size limit, before any route runs.
-
-    Without a token the service trusts whoever can reach the loopback
-    interface, so two browser attacks are stopped here: requests from web
-    pages of other origins (refused unless allowed with ``cors_origins``) and
-    DNS rebinding (the Host header must name the machine literally).
-    The body is read here, up to the limit, and replayed to the route, so an
-    oversized upload is refused with 413 without ever being held in memory.
-    """
-
-    def __init__(self, app: ASGIApp, token: str | None, max_bytes: int, cors_origins: tuple[str, ...] = ()) -> None:
-        self.app = app
-        self.token = token.encode() if token else None
-        self.max_bytes = max_bytes
-        self.cors_origins = {o.rstrip("/") for o in cors_origins}
-
-    async def __call__(self, scope: Scope, receive: Receive, send: Send) -> None:
-        if scope["type"] != "http":
-            await self.app(scope, receive, send)
-            return
-        headers = {k.decode("latin-1").lower(): v for k, v in scope.get("headers", [])}
-        origin = headers.get("origin", b"").decode("latin-1")
-        if origin:
-            if origin.rstrip("/") not in self.cors_origins:
-                await error(403, f"requests from web pages of origin {origin!r} are refused; allow it with "
-                            "--cors-origin")(scope, receive, send)
-                return
-            send = _with_cors(send, origin)
-            if scope["method"] == "OPTIONS":  # preflight: carries no token, answers only what is allowed
-                await Response(status_code=204, headers={
-                    "Access-Control-Allow-Methods": "GET, POST",
-                    "Access-Control-Allow-Headers": "Authorization, Content-Type, Accept",
-                    "Access-Control-Max-Age": "600"})(scope, receive, send)
-                return
-        if self.token is None and not is_loopback_host_header(headers.get("host", b"").decode("latin-1")):
-            await error(403, "the Host header does not name this machine (DNS rebinding protection); "
-                        "use 127.0.0.1 or localhost, or start the server with --token")(scope, receive, send)
-            return
-        if self.token is not None and not self._authorized(headers.get("authorization", b"")):
-            await error(401, "missing or wrong bearer token (send 'Authorization: Bearer <token>')",
-                        {"WWW-Authenticate": 'Bearer realm="topostore"'})(scope, receive, send)
-            return
-        if len(scope.get("query_string", b"")) > self.max_bytes:
-            await error(414, f"the query string is longer than the limit of {self.max_bytes} bytes; "
-                        "send the query with POST")(scope, receive, send)
-            return
-        declared = headers.get("content-length")
-        if declared is not None and declared.isdigit() and int(declared) > self.max_bytes:
-            await self._too_large(scope, receive, send)
-            return
-        chunks: list[bytes] = []
-        size = 0
-        while True:
-            message = await receive()
-            if message["type"] == "http.disconnect":
-                return
-            chunk = message.get("body", b"")
-            size += len(chunk)
-            if size > self.max_bytes:
-                await self._too_large(scope, receive, send)
-                return
-            chunks.append(chunk)
-            if not message.get("more_body", False):
-                break
-        body = b"".join(chunks)
-        replayed = False
-
-        async def replay() -> Message:
-            nonlocal replayed
-            if not replayed:
-                replayed = True
-                return {"type": "http.request", "body": body, "more_body": False}
-            return await receive()
-
-        await self.app(scope, replay, send)
-
-    def _authorized(self, header: bytes) -> bool:
-        scheme, _, value = header.partition(b" ")
-        return scheme.lower() == b"bearer" and hmac.compare_digest(value.strip(), self.token or b"")
-
-    async def _too_large(self, scope: Scope, receive: Receive, send: Send) -> None:
-        await error(413, f"the request body is larger than the limit of {self.max_bytes} bytes "
-                    "(server option --max-request-bytes)")(scope, receive, send)
 
 
 # --------------------------------------------------------------------------- application
@@ -373,19 +257,6 @@ async def _described(request: Request, ref: Any, allow_update: bool) -> Response
         return error(406, str(exc))
 
 
-def _with_cors(send: Send, origin: str) -> Send:
-    """``send`` with the CORS headers for an allowed origin added to the response."""
-
-    async def wrapped(message: Message) -> None:
-        if message["type"] == "http.response.start":
-            extra = [(b"access-control-allow-origin", origin.encode("latin-1")), (b"vary", b"Origin"),
-                     (b"access-control-expose-headers", b"Content-Type")]
-            message = {**message, "headers": list(message.get("headers", [])) + extra}
-        await send(message)
-
-    return wrapped
-
-
 def _consume_exception(future: asyncio.Future) -> None:
     """Abandoned (timed-out) futures still finish; read their exception so asyncio does not warn."""
     if not future.cancelled():
@@ -466,9 +337,8 @@ def create_app(config: ServerConfig, service: ArmorService | None = None) -> Sta
     from .http import GraphStore  # SPARQL 1.1 Graph Store HTTP Protocol: /references/{name}/data
 
     routes += GraphStore(api).routes()
-    app = Starlette(routes=routes, lifespan=lifespan)
-    app.add_middleware(Guard, token=config.token, max_bytes=config.max_request_bytes,
-                       cors_origins=tuple(config.cors_origins))
+    protections = security_middleware(config.token, config.max_request_bytes, config.cors_origins, config.host)
+    app = Starlette(routes=routes, lifespan=lifespan, middleware=protections)
     app.state.api = api
     return app
 
@@ -483,4 +353,4 @@ def serve(config: ServerConfig) -> None:
                 timeout_graceful_shutdown=5)
 
 
-__all__ = ["ServerConfig", "ConfigError", "create_app", "serve", "is_loopback", "is_loopback_host_header", "Guard"]
+__all__ = ["ServerConfig", "ConfigError", "create_app", "serve", "is_loopback", "error"]

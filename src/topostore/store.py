@@ -17,121 +17,20 @@ Two details of the store are handled here so that nobody else has to know them:
 
 from __future__ import annotations
 
-import json
 import os
-import threading
-import uuid
-from collections.abc import Callable, Iterable, Iterator
+from collections.abc import Callable, Iterable, Iterator, Mapping
 from contextlib import contextmanager
 from dataclasses import dataclass
-from pathlib import Path
 
-import pyoxigraph as ox
-from pyoxigraph import BlankNode, DefaultGraph, Literal, NamedNode, Quad, RdfFormat, Triple
+from pyoxigraph import DefaultGraph, Literal, NamedNode, Quad, RdfFormat, Triple
 
-from .errors import LoadError, QueryError
-from .safeio import check_xml_entities, read_regular_file
+from .literal_forms import FORMS, LiteralForms
+from .rdf_syntax import FORMAT_NAMES, PROGRESS_EVERY, guess_format, parse_triples, serialize
+from .safeio import read_regular_file
+from .skolem import fresh_skolem, skolem, skolemize, unskolem, unskolemize
+from .store_meta import META, PersistedState
 from .terms import Term, value_key
-from .vocab import AUX, ASSERTED, INFERRED, INTERNAL, NIL, FIRST, REST, TYPE
-
-SKOLEM_PREFIX = INTERNAL + "bnode:"
-
-#: a scratch store that shows how a literal is stored (see Store.stored_form)
-_PROBE = ox.Store()
-_PROBE_LOCK = threading.Lock()
-_PROBE_GRAPH = NamedNode(INTERNAL + "graph:probe")
-_XSD = "http://www.w3.org/2001/XMLSchema#"
-
-
-#: largest integer result swrlb:pow computes (bits); beyond it the built-in gives no value
-_POW_MAX_BITS = 4096
-
-
-def _pow(base: Term, exponent: Term) -> Literal | None:
-    """swrlb:pow for a non-constant exponent (SPARQL 1.1 has no power function).
-
-    Integers with a non-negative integer exponent stay integers; anything else
-    is computed as a double.  Non-numbers give no value (the rule does not fire).
-    """
-    if not isinstance(base, Literal) or not isinstance(exponent, Literal):
-        return None
-    try:
-        if base.datatype.value.startswith(_XSD) and "." not in base.value and "e" not in base.value.lower() \
-                and exponent.value.lstrip("+").isdigit():
-            b, e = int(base.value), int(exponent.value)
-            if abs(b) > 1 and e * abs(b).bit_length() > _POW_MAX_BITS:
-                return None  # a number this large is not a measurement; computing it would freeze the service
-            return Literal(str(b ** e), datatype=NamedNode(_XSD + "integer"))
-        return Literal(repr(float(base.value) ** float(exponent.value)), datatype=NamedNode(_XSD + "double"))
-    except (ValueError, OverflowError, ZeroDivisionError):
-        return None
-
-
-#: Extension functions the compiled rules may call (see compile/builtins.py).
-CUSTOM_FUNCTIONS = {NamedNode(INTERNAL + "fn:pow"): _pow}
-
-#: How often (in triples) parsing reports progress.
-PROGRESS_EVERY = 5000
-
-_FORMATS = {
-    ".owl": RdfFormat.RDF_XML,
-    ".rdf": RdfFormat.RDF_XML,
-    ".xml": RdfFormat.RDF_XML,
-    ".ttl": RdfFormat.TURTLE,
-    ".turtle": RdfFormat.TURTLE,
-    ".nt": RdfFormat.N_TRIPLES,
-    ".ntriples": RdfFormat.N_TRIPLES,
-    ".n3": RdfFormat.N3,
-    ".jsonld": RdfFormat.JSON_LD,
-}
-FORMAT_NAMES = {
-    "rdfxml": RdfFormat.RDF_XML,
-    "rdf/xml": RdfFormat.RDF_XML,
-    "xml": RdfFormat.RDF_XML,
-    "owl": RdfFormat.RDF_XML,
-    "turtle": RdfFormat.TURTLE,
-    "ttl": RdfFormat.TURTLE,
-    "ntriples": RdfFormat.N_TRIPLES,
-    "nt": RdfFormat.N_TRIPLES,
-    "n-triples": RdfFormat.N_TRIPLES,
-}
-
-
-def guess_format(path: str | os.PathLike[str], explicit: str | RdfFormat | None = None) -> RdfFormat:
-    """The RDF format of a file, from an explicit name or its extension (RDF/XML by default)."""
-    if isinstance(explicit, RdfFormat):
-        return explicit
-    if explicit:
-        try:
-            return FORMAT_NAMES[explicit.lower()]
-        except KeyError:
-            raise LoadError(f"unknown RDF format {explicit!r}; use one of {', '.join(FORMAT_NAMES)}") from None
-    return _FORMATS.get(Path(path).suffix.lower(), RdfFormat.RDF_XML)
-
-
-def _syntax_error_message(source: str, exc: SyntaxError, data: bytes, fmt: RdfFormat) -> str:
-    """'file:line: cause', finding the line with rdflib when Oxigraph gives none (RDF/XML)."""
-    cause = str(exc.msg if hasattr(exc, "msg") and exc.msg else exc)
-    line = exc.lineno
-    if line is None and fmt == RdfFormat.RDF_XML:
-        line = _xml_error_line(data)
-    where = f"{source}:{line}" if line else f"{source}:?"
-    return f"{where}: not valid {fmt.name}: {cause}"
-
-
-def _xml_error_line(data: bytes) -> int | None:
-    import xml.sax
-
-    class _Handler(xml.sax.handler.ContentHandler):
-        pass
-
-    try:
-        xml.sax.parseString(data, _Handler())
-    except xml.sax.SAXParseException as exc:
-        return exc.getLineNumber()
-    except Exception:  # pragma: no cover - only used to locate an error
-        return None
-    return None
+from .vocab import ASSERTED, AUX, FIRST, INFERRED, NIL, REST, SKOLEM_PREFIX, TYPE
 
 
 @dataclass(frozen=True)
@@ -143,11 +42,11 @@ class Graphs:
     aux: NamedNode = AUX
 
     @classmethod
-    def for_prefix(cls, prefix: str) -> "Graphs":
+    def for_prefix(cls, prefix: str) -> Graphs:
         return cls(NamedNode(prefix + "asserted"), NamedNode(prefix + "inferred"), NamedNode(prefix + "aux"))
 
 
-class Store:
+class Store(LiteralForms, PersistedState):
     """The store interface every other module talks to: quads in, SPARQL in, results out.
 
     This class holds what every implementation shares (parsing, the literal
@@ -165,7 +64,7 @@ class Store:
 
     #: Can the compiled rules use Oxigraph's LATERAL joins on this store?
     supports_lateral = True
-    #: Does this store run topostore's extension functions (``urn:topostore:fn:pow``)?
+    #: Can this store run extension functions handed to it (:meth:`use_functions`)?
     custom_functions = True
     #: Does this store outlive the process (disk, remote server)?
     durable = False
@@ -177,17 +76,25 @@ class Store:
         return super().__new__(cls)
 
     def __init__(self) -> None:
-        # (graph, subject, predicate, value key) -> literal as the user wrote it
-        self._literal_forms: dict[tuple, Literal] = {}
-        # value key -> {literal as written: number of asserted triples using it}
-        self._value_forms: dict[tuple, dict[Literal, int]] = {}
+        self._init_forms()
+        self._init_meta()
         # quad key -> (quad, present after commit) while a transaction is open
         self._pending: dict[tuple, tuple[Quad, bool]] | None = None
         # quad key -> present in the committed store, learnt during the open transaction (saves round trips)
         self._known: dict[tuple, bool] = {}
         self._depth = 0
-        self._meta: dict[str, object] | None = None
-        self._meta_pending: dict[str, object] = {}
+        #: SPARQL extension functions by IRI (the rule compiler's, see :meth:`use_functions`)
+        self.functions: dict[NamedNode, Callable[..., Term | None]] = {}
+
+    def use_functions(self, functions: Mapping[NamedNode, Callable[..., Term | None]]) -> None:
+        """Let SPARQL run on this store call ``functions`` (IRI -> Python function of RDF terms).
+
+        The compiled rules need one (swrlb:pow, :data:`topostore.compile.builtins.FUNCTIONS`);
+        the engine hands them over, so the store knows nothing of rules.  A store that cannot
+        run them (``custom_functions`` false) keeps them unused; such rules are refused at load
+        (:func:`topostore.stores.check_rules`).
+        """
+        self.functions.update(functions)
 
     # ------------------------------------------------------------ primitives (implementations)
     def _has(self, quad: Quad) -> bool:
@@ -230,25 +137,11 @@ class Store:
         progress: Callable[[int], None] | None = None,
     ) -> list[Triple]:
         """``progress(n)`` is called every ``PROGRESS_EVERY`` triples parsed (for progress displays)."""
-        if isinstance(data, str):
-            data = data.encode("utf-8", errors="surrogatepass")
-        if fmt == RdfFormat.RDF_XML:
-            check_xml_entities(data, source)
-        try:
-            quads = []
-            for quad in ox.parse(data, format=fmt, base_iri=base_iri, rename_blank_nodes=True):
-                quads.append(quad)
-                if progress is not None and len(quads) % PROGRESS_EVERY == 0:
-                    progress(len(quads))
-        except SyntaxError as exc:
-            raise LoadError(_syntax_error_message(source, exc, data, fmt)) from exc
-        except ValueError as exc:
-            raise LoadError(f"{source}: {exc}") from exc
-        return [skolemize(Triple(q.subject, q.predicate, q.object)) for q in quads]
+        return parse_triples(data, fmt, base_iri, source, progress)
 
     # ------------------------------------------------------------ transactions
     @contextmanager
-    def transaction(self) -> Iterator["Store"]:
+    def transaction(self) -> Iterator[Store]:
         """Group writes into one atomic commit (nested calls join the outer one).
 
         On an exception nothing of the transaction is written.  A SPARQL query
@@ -298,7 +191,7 @@ class Store:
     def _present(self, quads: list[Quad]) -> list[bool]:
         pending, known = self._pending or {}, self._known
         unknown = [q for q in quads if self._key(q) not in pending and self._key(q) not in known]
-        found = dict(zip(map(self._key, unknown), self._has_many(unknown))) if unknown else {}
+        found = dict(zip(map(self._key, unknown), self._has_many(unknown), strict=True)) if unknown else {}
         if self._pending is not None:
             known.update(found)
         return [pending[k][1] if k in pending else known[k] if k in known else found[k] for k in map(self._key, quads)]
@@ -308,7 +201,7 @@ class Store:
         """Add triples to ``graph``; returns how many were new."""
         quads = list(dict.fromkeys(Quad(t.subject, t.predicate, t.object, graph) for t in triples))
         with self.transaction():
-            new = [q for q, present in zip(quads, self._present(quads)) if not present]
+            new = [q for q, present in zip(quads, self._present(quads), strict=True) if not present]
             for q in new:  # pending True: absent from the committed store; False: present there
                 key = self._key(q)
                 if self._pending.pop(key, None) is None:
@@ -322,23 +215,12 @@ class Store:
     def remove(self, triples: Iterable[Triple], graph: NamedNode) -> int:
         quads = list(dict.fromkeys(Quad(t.subject, t.predicate, t.object, graph) for t in triples))
         with self.transaction():
-            gone = [q for q, present in zip(quads, self._present(quads)) if present]
+            gone = [q for q, present in zip(quads, self._present(quads), strict=True) if present]
             for q in gone:
                 key = self._key(q)
                 if self._pending.pop(key, None) is None:
                     self._pending[key] = (q, False)
         return len(gone)
-
-    def stored_form(self, t: Triple) -> Triple:
-        """The triple as this store holds it once added (Oxigraph canonicalises some literals,
-        e.g. ``"7"^^xsd:long`` becomes ``"7"^^xsd:integer``)."""
-        if not isinstance(t.object, Literal):
-            return t
-        with _PROBE_LOCK:
-            _PROBE.add(Quad(t.subject, t.predicate, t.object, _PROBE_GRAPH))
-            stored = next(iter(_PROBE.quads_for_pattern(t.subject, t.predicate, None, _PROBE_GRAPH)))
-            _PROBE.remove(stored)
-        return Triple(t.subject, t.predicate, stored.object)
 
     def discard(self, triples: Iterable[Triple], graphs: Iterable[NamedNode]) -> None:
         """Remove triples from reasoner graphs, present or not (no literal forms are kept for those)."""
@@ -411,97 +293,7 @@ class Store:
     def clear(self, graph: NamedNode) -> None:
         self._flush_open()
         self._drop(graph)
-        gone = [(k, v) for k, v in self._literal_forms.items() if k[0] == graph.value]
-        if self.durable and gone:
-            self._commit([], [_form_quad(k[0], k[1], k[2], lit) for k, lit in gone])
-        self._literal_forms = {k: v for k, v in self._literal_forms.items() if k[0] != graph.value}
-        self._rebuild_value_forms()
-
-    # ------------------------------------------------------------ literal forms
-    def _record_forms(self, adds: list[Quad], removes: list[Quad], undo: bool = False) -> tuple[list[Quad], list[Quad]]:
-        """Remember (or forget) how committed literals were written; the quads persisting that on a durable store."""
-        forms_add: list[Quad] = []
-        forms_remove: list[Quad] = []
-        for q in removes:
-            if isinstance(q.object, Literal) and not _is_scratch(q.graph_name):
-                key = value_key(q.object)
-                original = self._literal_forms.pop((q.graph_name.value, q.subject, q.predicate, key), q.object)
-                self._count_form(key, original, -1)
-                if self.durable and not undo:
-                    forms_remove.append(_form_quad(q.graph_name.value, q.subject, q.predicate, original))
-        for q in adds:
-            if isinstance(q.object, Literal) and not _is_scratch(q.graph_name):
-                key = value_key(q.object)
-                self._literal_forms[(q.graph_name.value, q.subject, q.predicate, key)] = q.object
-                self._count_form(key, q.object, +1)
-                if self.durable and not undo:
-                    forms_add.append(_form_quad(q.graph_name.value, q.subject, q.predicate, q.object))
-        return forms_add, forms_remove
-
-    def _count_form(self, key: tuple, lit: Literal, delta: int) -> None:
-        forms = self._value_forms.setdefault(key, {})
-        forms[lit] = forms.get(lit, 0) + delta
-        if forms[lit] <= 0:
-            del forms[lit]
-
-    def _rebuild_value_forms(self) -> None:
-        self._value_forms = {}
-        for (_, _, _, key), lit in self._literal_forms.items():
-            self._count_form(key, lit, +1)
-
-    def load_forms(self) -> None:
-        """Read the persisted literal forms back (a durable store opened again)."""
-        self._literal_forms = {}
-        for q in self._match(None, None, None, FORMS):
-            graph, _, text = q.object.value.partition(" ")
-            lit = _parse_literal(text)
-            if lit is not None:
-                self._literal_forms[(graph, q.subject, q.predicate, value_key(lit))] = lit
-        self._rebuild_value_forms()
-
-    def original_literal(self, graph: NamedNode, s: Term, p: NamedNode, o: Literal) -> Literal:
-        """The literal as the user asserted it (lexical form and datatype)."""
-        found = self._literal_forms.get((graph.value, s, p, value_key(o)))
-        return found if found is not None else self.restore(o)
-
-    def restore(self, term: Term) -> Term:
-        """A literal as users wrote it, when that value was written in one form only."""
-        if not isinstance(term, Literal):
-            return term
-        forms = self._value_forms.get(value_key(term))
-        if forms and len(forms) == 1:
-            return next(iter(forms))
-        return term
-
-    # ------------------------------------------------------------ persisted state
-    @property
-    def meta(self) -> dict[str, object]:
-        """The small JSON state a durable store keeps beside the data (settings, flags)."""
-        if self._meta is None:
-            self._meta = {}
-            for q in self._match(META_SUBJECT, None, None, META):
-                try:
-                    self._meta[q.predicate.value[len(META_KEY):]] = json.loads(q.object.value)
-                except ValueError:
-                    continue
-        return {**self._meta, **self._meta_pending}
-
-    def meta_set(self, key: str, value: object) -> None:
-        """Persist ``key`` (JSON value) with the current transaction; no-op on a memory store."""
-        if not self.durable or self.meta.get(key, _MISSING) == value:
-            return
-        with self.transaction():
-            self._meta_pending[key] = value
-
-    def _meta_quads(self, meta: dict[str, object]) -> tuple[list[Quad], list[Quad]]:
-        adds, removes = [], []
-        self.meta  # noqa: B018 - loads the persisted values once; they name the quads to replace
-        for key, value in meta.items():
-            pred = NamedNode(META_KEY + key)
-            if key in self._meta:
-                removes.append(Quad(META_SUBJECT, pred, Literal(json.dumps(self._meta[key], sort_keys=True)), META))
-            adds.append(Quad(META_SUBJECT, pred, Literal(json.dumps(value, sort_keys=True)), META))
-        return adds, removes
+        self._forget_forms(graph)
 
     # ------------------------------------------------------------ SPARQL
     def _flush_open(self) -> None:
@@ -532,34 +324,10 @@ class Store:
         for g in graphs:
             for t in self.triples(graph=g):
                 if isinstance(t.object, Literal):
-                    t = Triple(t.subject, t.predicate, self.original_literal(restore_literals_from or g, t.subject, t.predicate, t.object))
+                    form = self.original_literal(restore_literals_from or g, t.subject, t.predicate, t.object)
+                    t = Triple(t.subject, t.predicate, form)
                 out[unskolemize(t)] = None
         return list(out)
-
-
-#: Graph of the persisted literal forms, and of the persisted state of a reference.
-FORMS = NamedNode(INTERNAL + "graph:forms")
-META = NamedNode(INTERNAL + "graph:meta")
-META_SUBJECT = NamedNode(INTERNAL + "meta")
-META_KEY = INTERNAL + "meta:"
-_MISSING = object()
-
-
-def _is_scratch(graph) -> bool:
-    """Reasoner scratch graphs and the persisted state need no literal forms."""
-    return not isinstance(graph, NamedNode) or graph == FORMS or graph == META
-
-
-def _form_quad(graph: str, s: Term, p: NamedNode, lit: Literal) -> Quad:
-    return Quad(s, p, Literal(f"{graph} {lit}"), FORMS)
-
-
-def _parse_literal(text: str) -> Literal | None:
-    try:
-        quads = list(ox.parse(f"<urn:x:s> <urn:x:p> {text} .", format=RdfFormat.N_TRIPLES))
-    except (SyntaxError, ValueError):
-        return None
-    return quads[0].object if quads and isinstance(quads[0].object, Literal) else None
 
 
 def _matches(q: Quad, s, p, o, graph) -> bool:
@@ -567,36 +335,7 @@ def _matches(q: Quad, s, p, o, graph) -> bool:
             and (o is None or q.object == o) and (graph is None or q.graph_name == graph))
 
 
-def skolem(term: Term) -> Term:
-    if isinstance(term, BlankNode):
-        return NamedNode(SKOLEM_PREFIX + term.value)
-    return term
-
-
-def skolemize(t: Triple) -> Triple:
-    return Triple(skolem(t.subject), t.predicate, skolem(t.object))
-
-
-def unskolem(term: Term) -> Term:
-    if isinstance(term, NamedNode) and term.value.startswith(SKOLEM_PREFIX):
-        return BlankNode(term.value[len(SKOLEM_PREFIX):])
-    return term
-
-
-def unskolemize(t: Triple) -> Triple:
-    return Triple(unskolem(t.subject), t.predicate, unskolem(t.object))
-
-
-def fresh_skolem() -> NamedNode:
-    """A new skolem IRI, standing for a fresh blank node (e.g. a new AllDifferent axiom)."""
-    return NamedNode(SKOLEM_PREFIX + "n" + uuid.uuid4().hex)
-
-
-def serialize(triples: Iterable[Triple], fmt: RdfFormat, prefixes: dict[str, str] | None = None) -> bytes:
-    return ox.serialize(list(triples), format=fmt, prefixes=prefixes or None)
-
-
 __all__ = [
     "Store", "Graphs", "guess_format", "skolemize", "unskolemize", "skolem", "unskolem", "fresh_skolem",
-    "serialize", "DefaultGraph", "SKOLEM_PREFIX", "CUSTOM_FUNCTIONS", "FORMS", "META",
+    "serialize", "DefaultGraph", "SKOLEM_PREFIX", "FORMS", "META", "FORMAT_NAMES", "PROGRESS_EVERY",
 ]

@@ -11,10 +11,10 @@ import math
 import re
 from decimal import Decimal, InvalidOperation
 
-from pyoxigraph import BlankNode, Literal, NamedNode
+from pyoxigraph import BlankNode, Literal, NamedNode, RdfFormat, parse
 
 from .errors import InvalidNameError, InvalidValueError, UnknownTypeError
-from .vocab import XSD
+from .vocab import PLACEHOLDER_PREDICATE, PLACEHOLDER_SUBJECT, XSD
 
 Term = NamedNode | BlankNode | Literal
 
@@ -225,3 +225,17 @@ def sparql(term: Term) -> str:
     if isinstance(term, BlankNode):
         raise InvalidNameError("blank nodes cannot be named in a query")
     return str(term)
+
+
+def parse_term(text: str) -> Term | None:
+    """The RDF term written in N-Triples syntax (``<iri>``, ``"lex"^^<dt>``), None when ``text`` is not one.
+
+    Parsed by pyoxigraph as the object of a one-line document, so the rules of the
+    syntax (escapes, datatypes, language tags) are pyoxigraph's, not a hand-written lexer's.
+    """
+    line = f"{PLACEHOLDER_SUBJECT} {PLACEHOLDER_PREDICATE} {text} ."
+    try:
+        quads = list(parse(line.encode("utf-8", errors="surrogatepass"), format=RdfFormat.N_TRIPLES))
+    except (SyntaxError, ValueError):
+        return None
+    return quads[0].object if len(quads) == 1 else None

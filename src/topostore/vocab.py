@@ -15,6 +15,17 @@ XSD = "http://www.w3.org/2001/XMLSchema#"
 SWRL = "http://www.w3.org/2003/11/swrl#"
 SWRLB = "http://www.w3.org/2003/11/swrlb#"
 SWRLA = "http://swrl.stanford.edu/ontologies/3.3/swrla.owl#"
+#: Protégé's SWRL namespaces (swrla, swrlx, ...) all start here; they describe rules, not facts.
+STANFORD_SWRL = "http://swrl.stanford.edu/"
+XML = "http://www.w3.org/XML/1998/namespace"
+#: The namespaces of the SPARQL 1.1 Service Description (http/description.py).
+SD = "http://www.w3.org/ns/sparql-service-description#"
+VOID = "http://rdfs.org/ns/void#"
+FORMATS = "http://www.w3.org/ns/formats/"
+#: Namespace of the example topological map (ontology/, mapgen.py).
+MAP_NS = "http://bnc/exp-rob-lab/2022-23#"
+#: Namespace of SWRL variables written in Protégé's text syntax (compile/swrl_text.py).
+SWRL_VARIABLE_NS = "urn:swrl:var#"
 
 #: Namespace of every IRI topostore invents (graphs, anonymous class ids, helper
 #: predicates).  Nothing in this namespace is ever shown to a user as a class.
@@ -60,6 +71,22 @@ ENTAILED_PREFIX = INTERNAL + "entailed:"
 ENTAILED = NamedNode(INTERNAL + "graph:entailed")
 #: Prefix of the ids given to anonymous class expressions.
 EXPR_PREFIX = INTERNAL + "expr:"
+#: Blank nodes are skolemised on load to IRIs under this prefix (store.py): the rule
+#: compiler must name class expressions and SWRL atoms inside SPARQL text.
+SKOLEM_PREFIX = INTERNAL + "bnode:"
+#: Prefix of the AllDifferent membership keys (see DIFFERENT_KEY).
+KEY_PREFIX = INTERNAL + "key:"
+#: Prefix of topostore's SPARQL extension functions; user SPARQL may not call them.
+FUNCTION_PREFIX = INTERNAL + "fn:"
+#: swrlb:pow with a non-constant exponent (SPARQL 1.1 has no power function).
+POW_FUNCTION = NamedNode(FUNCTION_PREFIX + "pow")
+#: Prototype individuals of classification (reason/classify.py), one per class.
+PROTOTYPE_PREFIX = INTERNAL + "prototype:"
+#: Entity namespace of an ontology that declares no owl:Ontology IRI.
+DEFAULT_PREFIX = INTERNAL + "default#"
+#: Placeholder subject and predicate for parsing one RDF term as an N-Triples line.
+PLACEHOLDER_SUBJECT = NamedNode(INTERNAL + "placeholder:s")
+PLACEHOLDER_PREDICATE = NamedNode(INTERNAL + "placeholder:p")
 
 
 def rdf(name: str) -> NamedNode:
@@ -114,3 +141,9 @@ DECLARATION_TYPES = frozenset(
 def is_internal(term: object) -> bool:
     """True for IRIs topostore invented; they never leave the library."""
     return isinstance(term, NamedNode) and term.value.startswith(INTERNAL)
+
+
+def is_skolem(term: object) -> bool:
+    """True for a skolemised blank node (a NamedNode, or an IRI string, under SKOLEM_PREFIX)."""
+    value = term.value if isinstance(term, NamedNode) else term
+    return isinstance(value, str) and value.startswith(SKOLEM_PREFIX)

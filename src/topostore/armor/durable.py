@@ -21,7 +21,7 @@ import threading
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from ..errors import StoreError, StoreLockedError
+from ..errors import StoreError, StoreLockedError, TopostoreError
 from ..ontology import Ontology
 from ..store import Store
 from ..stores import kind, list_references, open_store, reference_dir
@@ -170,7 +170,7 @@ class DurableReferences:
                 try:
                     if not lease.renew():
                         logger.error("lost the writer lock of reference %r to another process", name)
-                except Exception as exc:  # a server down for a while: the lease may still be renewed later
+                except (TopostoreError, OSError) as exc:  # a server down for a while: renewed later perhaps
                     logger.warning("could not renew the writer lock of %r: %s", name, exc)
 
     def held(self, name: str) -> bool:

@@ -25,13 +25,13 @@ import json
 
 from ..compile.pipeline import compile_ontology
 from ..compile.swrl_text import removal_triples, rule_labels, rule_triples
-from ..errors import InvalidNameError, RuleCompileError
+from ..errors import InvalidNameError, RuleCompileError, TopostoreError
 from ..explain import resolve_triple
 from ..store import Store
 from ..vocab import ASSERTED
 from . import codes
 from .codes import CommandError
-from .commands import Command, Context, Reply, _fixed
+from .context import Command, Context, Reply, fixed
 from .reference import Change, Delta
 
 
@@ -42,7 +42,7 @@ def _explanation(ctx: Context):
         raise CommandError(codes.INVALID_ARGUMENT, f"cannot read the triple: {exc}") from None
     try:
         return ctx.onto.explain(s, p, o)
-    except Exception as exc:
+    except TopostoreError as exc:  # a rule query failed or ran out of time
         raise CommandError(codes.REASONER_OR_QUERY_FAILURE, f"explanation failed: {exc}") from exc
 
 
@@ -68,7 +68,7 @@ def add_swrl(ctx: Context) -> Reply:
         compile_ontology(scratch, ASSERTED)
     except (RuleCompileError, InvalidNameError) as exc:
         raise CommandError(codes.INVALID_ARGUMENT, f"SWRL rule {label!r} refused: {exc}") from None
-    return ctx.submit(_fixed("ADD SWRL", add=triples))
+    return ctx.submit(fixed("ADD SWRL", add=triples))
 
 
 def remove_swrl(ctx: Context) -> Reply:

@@ -7,6 +7,7 @@ guarded by one lock, so concurrent calls on a reference are serialised.
 
 from __future__ import annotations
 
+import logging
 import threading
 from collections.abc import Callable
 from dataclasses import dataclass, field
@@ -14,11 +15,14 @@ from pathlib import Path
 
 from pyoxigraph import Triple
 
+from ..errors import TopostoreError
 from ..ontology import Ontology
 from ..vocab import ASSERTED
 
 #: Reasoner names accepted at LOAD (spec §5.2); all run topostore's reasoner.
 REASONERS = frozenset({"", "PELLET", "HERMIT", "FACT", "SNOROCKET"})
+
+logger = logging.getLogger(__name__)
 
 
 @dataclass
@@ -146,6 +150,11 @@ class Reference:
             raise
         return [a.warning for a in applied if a.warning]
 
+    def manipulate(self, description: str, add: list[Triple], remove: list[Triple]) -> list[str]:
+        """One all-or-nothing manipulation of the asserted graph, then reasoning (sparql.target.WritableOntology)."""
+        delta = Delta(list(add), list(remove))
+        return self.run([Change(description, lambda _onto: delta)])
+
     def flush(self, reason: bool | None = None) -> list[str]:
         """Apply the manipulation buffer (APPLY/REASON); the buffer is emptied only on success."""
         pending, self.buffer = self.buffer, []
@@ -160,8 +169,8 @@ class Reference:
         """Bring the inferred graph back after an undo; a failure here is already being reported."""
         try:
             self.ontology.reason()
-        except Exception:  # the original error is the one worth reporting
-            pass
+        except TopostoreError as exc:  # the original error is the one reported; this one is only logged
+            logger.warning("reasoning again after undoing a failed manipulation failed too: %s", exc)
 
 
 def _original(onto: Ontology, t: Triple) -> Triple:

@@ -15,14 +15,14 @@ from pyoxigraph import BlankNode, Literal, NamedNode
 
 from ..store import unskolem
 from ..terms import Term
-from ..vocab import OWL, RDF, RDFS, XSD
+from ..vocab import OWL, RDF, RDFS, XML, XSD
 
 _ABBREVIATIONS = (
     ("owl:", OWL),
     ("rdf:", RDF),
     ("rdfs:", RDFS),
     ("xsd:", XSD),
-    ("xml:", "http://www.w3.org/XML/1998/namespace"),
+    ("xml:", XML),
 )
 
 

@@ -92,7 +92,9 @@ class ArmorService:
             return ArmorResponse(False, codes.INVALID_ARGUMENT, f"malformed request: {exc}")
         try:
             response = self._dispatch(req)
-        except Exception as exc:  # a bug must still produce a reply, never a hung caller
+        # The protocol's one boundary: ArmorService.call never raises (a ROS service or an HTTP route
+        # waits on its reply), so anything unexpected, i.e. a bug, becomes a logged 209 reply.
+        except Exception as exc:
             logger.exception("internal error while executing %s", _describe(req))
             response = ArmorResponse(False, codes.REASONER_OR_QUERY_FAILURE, f"internal error: {type(exc).__name__}: {exc}")
             response.is_consistent = self._consistency(req.reference_name)
@@ -166,7 +168,7 @@ class ArmorService:
         with ref.lock:
             try:
                 return ref.is_consistent
-            except Exception:  # a reasoner that cannot run says nothing about consistency
+            except TopostoreError:  # a reasoner that cannot run (limits, store) says nothing about consistency
                 return False
 
     # ------------------------------------------------------------ registry

@@ -19,7 +19,7 @@ from collections.abc import Sequence
 
 from ..armor import ArmorRequest, ArmorResponse
 from ..armor.types import ArmorResponseList
-from .armor_exceptions import ArmorPyException, ArmorServiceCallError, ArmorServiceInternalError
+from .armor_exceptions import ArmorServiceCallError, ArmorServiceInternalError
 from .armor_manipulation_client import ArmorManipulationClient
 from .armor_query_client import ArmorQueryClient
 from .armor_utils_client import ArmorUtilsClient
@@ -71,9 +71,7 @@ class ArmorClient:
         requests = [self._prepare_request(*c) for c in commands]
         try:
             return self.transport.call_many(requests)
-        except ArmorPyException:
-            raise
-        except Exception as exc:
+        except OSError as exc:  # the service cannot be reached (the Transport contract); other errors are bugs
             raise ArmorServiceCallError(f"serialized service call failed: {exc}") from exc
 
     def _checked(self, command: str, first_spec: str, second_spec: str, args_list: Sequence[str]) -> ArmorResponse:
@@ -87,9 +85,7 @@ class ArmorClient:
         """``call`` with transport errors converted, ``success`` not checked."""
         try:
             return self.call(command, first_spec, second_spec, args_list)
-        except ArmorPyException:
-            raise
-        except Exception as exc:
+        except OSError as exc:  # the service cannot be reached (the Transport contract); other errors are bugs
             raise ArmorServiceCallError(f"service call {command} {first_spec} {second_spec} failed: {exc}") from exc
 
 

@@ -113,7 +113,7 @@ class HttpTransport:
 def _error_text(raw: bytes, reason: str) -> str:
     try:
         return str(json.loads(raw).get("error", reason))
-    except Exception:  # a non-JSON error page: the status line says enough
+    except (ValueError, AttributeError):  # not JSON, or JSON but not an object: the status line says enough
         return reason
 
 

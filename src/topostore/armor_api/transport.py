@@ -21,7 +21,8 @@ class Transport(Protocol):
     """Carries requests to an aRMOR-compatible service."""
 
     def call(self, request: ArmorRequest) -> ArmorResponse:
-        """One request; raises ``OSError``/``ConnectionError`` when the service cannot be reached."""
+        """One request; raises ``OSError`` (e.g. ``ConnectionError``) or ``ArmorServiceCallError`` when the
+        service cannot be reached."""
         ...
 
     def call_many(self, requests: Sequence[ArmorRequest]) -> ArmorResponseList:

@@ -7,14 +7,14 @@ when it is still unbound (a BIND) and compares it when it is bound (a FILTER).
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
+
+from pyoxigraph import Literal, NamedNode
 
 from ..errors import RuleCompileError
-from ..vocab import SWRLB
-
-#: Name of the one extension function topostore registers (swrlb:pow with a
-#: non-constant exponent); SPARQL 1.1 has no power function.
-POW_FUNCTION = "urn:topostore:fn:pow"
+from ..terms import Term
+from ..vocab import POW_FUNCTION, SWRLB, XSD, xsd
+from .condition import Condition, bind, test
 
 _COMPARISONS = {
     "equal": "=", "notEqual": "!=", "lessThan": "<", "lessThanOrEqual": "<=",
@@ -31,7 +31,7 @@ def _pow(a: str, b: str) -> str:
         n = int(b) if b.isdigit() else int(b.split('"')[1])
         if n <= 16:
             return "1" if n == 0 else "(" + " * ".join([a] * n) + ")"
-    return f"<{POW_FUNCTION}>({a}, {b})"
+    return f"{POW_FUNCTION}({a}, {b})"
 
 
 # name -> (minimum args after the result, maximum (None = any), expression builder)
@@ -67,11 +67,11 @@ _TESTS: dict[str, tuple[int, int, Callable[[list[str]], str]]] = {
 SUPPORTED = sorted(set(_COMPARISONS) | set(_FUNCTIONS) | set(_TESTS))
 
 
-def translate(name: str, args: list[str], bound: set[str]) -> tuple[str, str | None] | None:
-    """SPARQL for built-in ``name`` with argument texts ``args``.
+def translate(name: str, args: list[str], bound: set[str]) -> Condition | None:
+    """The condition for built-in ``name`` with argument texts ``args``.
 
-    Returns ``("FILTER(...)", None)`` for a test, ``("BIND(... AS ?r)", "?r")``
-    when it binds its first argument, or None when it cannot run yet (some input
+    Returns a test (``FILTER(...)``), a BIND of the first argument (``?r``,
+    :attr:`Condition.binds`) when it is still unbound, or None when it cannot run yet (some input
     argument is still unbound; the caller retries after other built-ins).
     Raises :class:`RuleCompileError` for unknown built-ins or wrong arity.
     """
@@ -86,15 +86,15 @@ def translate(name: str, args: list[str], bound: set[str]) -> tuple[str, str | N
         if len(args) != 2:
             raise RuleCompileError(f"swrlb:{local} takes 2 arguments, got {len(args)}")
         if all(is_bound(a) for a in args):
-            return f"FILTER({args[0]} {_COMPARISONS[local]} {args[1]})", None
+            return test(f"{args[0]} {_COMPARISONS[local]} {args[1]}")
         if local == "equal" and is_bound(args[1]):
-            return f"BIND({args[1]} AS {args[0]})", args[0]
+            return bind(args[1], args[0])
         return None
     if local in _TESTS:
         lo, hi, build = _TESTS[local]
         if not lo <= len(args) <= hi:
             raise RuleCompileError(f"swrlb:{local} takes {lo}..{hi} arguments, got {len(args)}")
-        return (f"FILTER({build(args)})", None) if all(is_bound(a) for a in args) else None
+        return test(build(args)) if all(is_bound(a) for a in args) else None
     lo, hi, build = _FUNCTIONS[local]
     inputs = args[1:]
     if len(args) < 1 or len(inputs) < lo or (hi is not None and len(inputs) > hi):
@@ -103,5 +103,37 @@ def translate(name: str, args: list[str], bound: set[str]) -> tuple[str, str | N
         return None
     expr = build(inputs)
     if is_bound(args[0]):
-        return f"FILTER({args[0]} = {expr})", None
-    return f"BIND({expr} AS {args[0]})", args[0]
+        return test(f"{args[0]} = {expr}")
+    return bind(expr, args[0])
+
+
+# --------------------------------------------------------------------------- run time
+#: largest integer result swrlb:pow computes (bits); beyond it the built-in gives no value
+POW_MAX_BITS = 4096
+
+
+def pow_value(base: Term, exponent: Term) -> Literal | None:
+    """swrlb:pow for a non-constant exponent, as the store evaluates ``POW_FUNCTION``.
+
+    Integers with a non-negative integer exponent stay integers; anything else
+    is computed as a double.  Non-numbers give no value (the rule does not fire),
+    and so does an integer result past ``POW_MAX_BITS``: a number that large is no
+    measurement, and computing it would freeze the service.
+    """
+    if not isinstance(base, Literal) or not isinstance(exponent, Literal):
+        return None
+    try:
+        if base.datatype.value.startswith(XSD) and "." not in base.value \
+                and "e" not in base.value.lower() and exponent.value.lstrip("+").isdigit():
+            b, e = int(base.value), int(exponent.value)
+            if abs(b) > 1 and e * abs(b).bit_length() > POW_MAX_BITS:
+                return None
+            return Literal(str(b ** e), datatype=xsd("integer"))
+        return Literal(repr(float(base.value) ** float(exponent.value)), datatype=xsd("double"))
+    except (ValueError, OverflowError, ZeroDivisionError):
+        return None
+
+
+#: The extension functions compiled rules call, handed to the store that runs them
+#: (:meth:`topostore.store.Store.use_functions`); the store itself knows nothing of rules.
+FUNCTIONS: Mapping[NamedNode, Callable[..., Term | None]] = {POW_FUNCTION: pow_value}

@@ -21,14 +21,16 @@ from pathlib import Path
 
 from ..errors import RuleCompileError
 from ..resources import rules_dir
+from ..vocab import INTERNAL, OWL, RDF, RDFS, XSD
+from .condition import Condition, parse
 from .rule import Atom, Rule
 
 PREFIXES = {
-    "owl": "http://www.w3.org/2002/07/owl#",
-    "rdf": "http://www.w3.org/1999/02/22-rdf-syntax-ns#",
-    "rdfs": "http://www.w3.org/2000/01/rdf-schema#",
-    "xsd": "http://www.w3.org/2001/XMLSchema#",
-    "ts": "urn:topostore:",
+    "owl": OWL,
+    "rdf": RDF,
+    "rdfs": RDFS,
+    "xsd": XSD,
+    "ts": INTERNAL,
 }
 _ATOM = re.compile(r"^(\S+)\s+(\S+)\s+(\S+)\s*\.$")
 _AUX_ATOM = re.compile(r"^GRAPH\s+ts:graph:aux\s*\{\s*(\S+)\s+(\S+)\s+(\S+)\s*\.?\s*\}$")
@@ -51,7 +53,7 @@ def parse_rule_file(path: Path) -> Rule:
     if not match or "name" not in headers:
         raise RuleCompileError(f"{path}: a rule file needs a '# name:' header and a WHERE clause")
     body: list[Atom] = []
-    filters: list[str] = []
+    filters: list[Condition] = []
     for line in (l.strip() for l in match.group(1).splitlines()):
         if not line or line.startswith("#"):
             continue
@@ -62,7 +64,7 @@ def parse_rule_file(path: Path) -> Rule:
         elif aux:
             body.append(Atom(*(expand(t) for t in aux.groups()), aux=True))
         else:
-            filters.append(line)
+            filters.append(parse(line))
     reads = frozenset(
         (kind, expand(term)) for kind, term in (r.split() for r in headers.get("reads", "").split(",") if r.strip())
     )
@@ -78,7 +80,7 @@ def parse_rule_file(path: Path) -> Rule:
         violation = tuple(select.group(1).split())
     aux_head = True if headers.get("head-graph", "").strip() == "aux" else None
     return Rule(headers["name"].strip(), headers.get("origin", path.name).strip(), tuple(body), head,
-                "\n  ".join(filters), reads, violation, headers.get("message", "").strip(), aux_head)
+                tuple(filters), reads, violation, headers.get("message", "").strip(), aux_head)
 
 
 @cache

@@ -14,7 +14,7 @@ from pyoxigraph import Literal, NamedNode
 from ..errors import RuleCompileError
 from ..store import Store
 from ..terms import Term
-from ..vocab import OWL, RDF, RDFS, XSD, THING, NOTHING, TYPE, owl, rdfs
+from ..vocab import NOTHING, OWL, RDF, RDFS, THING, TYPE, XSD, is_skolem, owl, rdfs
 
 
 @dataclass(frozen=True)
@@ -139,7 +139,7 @@ class TBoxReader:
         return self.store.list_items(head, self.graph)
 
     def prop(self, node: Term) -> Prop:
-        if isinstance(node, NamedNode) and node.value.startswith("urn:topostore:bnode:"):
+        if is_skolem(node):
             inner = self._one(node, OWL + "inverseOf")
             if isinstance(inner, NamedNode):
                 return Prop(inner, inverse=True)
@@ -161,7 +161,7 @@ class TBoxReader:
         return expr
 
     def _read(self, node: NamedNode) -> Expr:
-        if not node.value.startswith("urn:topostore:bnode:"):
+        if not is_skolem(node):
             return Expr(node, "named")
         for kind, pred in (("and", "intersectionOf"), ("or", "unionOf")):
             head = self._one(node, OWL + pred)
@@ -187,7 +187,7 @@ class TBoxReader:
         if value is None:
             return None, None
         if pred_is_data(value, prop, self):
-            if not isinstance(value, NamedNode) or value.value.startswith("urn:topostore:bnode:"):
+            if not isinstance(value, NamedNode) or is_skolem(value):
                 raise RuleCompileError(f"unsupported data range in restriction on {prop.iri.value}")
             return None, value
         if value == THING:
@@ -230,7 +230,7 @@ class TBoxReader:
         tb.object_properties = set(self._declared_object)
         for name in _CHARACTERISTICS:
             tb.characteristics[name] = {s for s in st.subjects(TYPE, owl(name), g) if isinstance(s, NamedNode)}
-        tb.named_classes = {s for s in st.subjects(TYPE, owl("Class"), g) if not s.value.startswith("urn:topostore:bnode:")}
+        tb.named_classes = {s for s in st.subjects(TYPE, owl("Class"), g) if not is_skolem(s)}
 
         for t in st.triples(None, rdfs("subClassOf"), None, g):
             tb.subclass.append((self.expr(t.subject), self.expr(t.object)))
@@ -252,7 +252,7 @@ class TBoxReader:
             p = self.prop(t.subject)
             if is_datatype(t.object) or p.iri in tb.data_properties:
                 tb.data_properties.add(p.iri)
-                if isinstance(t.object, NamedNode) and not t.object.value.startswith("urn:topostore:bnode:"):
+                if isinstance(t.object, NamedNode) and not is_skolem(t.object):
                     tb.data_range.append((p.iri, t.object))
             else:
                 tb.range.append((p, self.expr(t.object)))
@@ -262,7 +262,7 @@ class TBoxReader:
             a, b = self.prop(t.subject), self.prop(t.object)
             tb.subproperty += [(a, b), (b, a)]
         for t in st.triples(None, owl("inverseOf"), None, g):
-            if isinstance(t.subject, NamedNode) and not t.subject.value.startswith("urn:topostore:bnode:"):
+            if isinstance(t.subject, NamedNode) and not is_skolem(t.subject):
                 tb.inverse.append((t.subject, t.object))
         for t in st.triples(None, owl("propertyChainAxiom"), None, g):
             tb.chains.append((t.subject, tuple(self.prop(p) for p in self._list(t.object))))
@@ -275,7 +275,7 @@ class TBoxReader:
         # anonymous class expressions used directly as types of individuals
         for t in st.triples(None, TYPE, None, g):
             o = t.object
-            if isinstance(o, NamedNode) and o.value.startswith("urn:topostore:bnode:") and not _is_axiom_node(st, o, g):
+            if isinstance(o, NamedNode) and is_skolem(o) and not _is_axiom_node(st, o, g):
                 try:
                     tb.typed_expressions.append(self.expr(o))
                 except RuleCompileError:
@@ -301,7 +301,7 @@ def pred_is_data(value: Term, prop: Prop, reader: TBoxReader) -> bool:
     """Whether a restriction filler is a data range (by the filler or by the property's declaration)."""
     if is_datatype(value):
         return True
-    if isinstance(value, NamedNode) and value.value.startswith("urn:topostore:bnode:"):
+    if is_skolem(value):
         # a data range expression (datatype restriction, oneOf of literals)
         if reader.store.objects(value, NamedNode(OWL + "onDatatype"), reader.graph):
             return True

@@ -18,39 +18,30 @@ the extensions; the origin says which axiom the rule was made from.
 
 from __future__ import annotations
 
-import re
-from itertools import combinations
+from collections.abc import Sequence
 
 from pyoxigraph import NamedNode
 
 from ..terms import sparql
-from ..vocab import AUX, DIFFERENT, NOTHING, SAME_AS, THING, TYPE
+from ..vocab import NOTHING, SAME_AS, THING, TYPE
+from . import condition as cond
+from .condition import Condition
 from .model import Expr, Prop, TBox
+from .owl_restrictions import RestrictionRules, nm
 from .rule import Atom, Rule
-from .snippets import NOT_DIFFERENT_READS, candidate_atom, different_atom, distinct_values, in_datatype, not_different
+from .snippets import (
+    NOT_DIFFERENT_READS,
+    candidate_atom,
+    different_atom,
+    distinct_values,
+    in_datatype,
+    not_different,
+)
 
 T = str(TYPE)
-#: filter reads of a rule testing known differences in FILTER EXISTS
-DIFFERENT_READS = frozenset({("p", str(DIFFERENT))})
 
 
-_VARIABLE = re.compile(r"\?[A-Za-z_][A-Za-z0-9_]*")
-
-
-def term_before(a: str, b: str) -> str:
-    """SPARQL test: term ``a`` sorts strictly before term ``b`` (a total order on IRIs and literals)."""
-    return (f"STR({a}) < STR({b}) || (STR({a}) = STR({b}) && (isLiteral({a}) && isLiteral({b})) && "
-            f"(STR(DATATYPE({a})) < STR(DATATYPE({b})) || "
-            f"(STR(DATATYPE({a})) = STR(DATATYPE({b})) && LANG({a}) < LANG({b}))))")
-
-
-def nm(term: NamedNode) -> str:
-    """Short name of an IRI for messages (local part after # or /)."""
-    v = term.value
-    return v.rsplit("#", 1)[-1] if "#" in v else v.rsplit("/", 1)[-1]
-
-
-class OwlCompiler:
+class OwlCompiler(RestrictionRules):
     def __init__(self, tbox: TBox) -> None:
         self.tb = tbox
         self.rules: list[Rule] = []
@@ -75,44 +66,13 @@ class OwlCompiler:
         return (e is not None and e.is_data) or p.iri in self.tb.data_properties
 
     def emit(self, name: str, origin: str, body: list[Atom], head: Atom | None = None,
-             filters: str = "", reads: frozenset = frozenset(), violation: tuple[str, ...] = (), message: str = "",
-             stratum: int = 0) -> None:
-        self.rules.append(Rule(name, origin, tuple(body), head, filters, reads, violation, message, stratum=stratum))
+             filters: Sequence[Condition] = (), reads: frozenset = frozenset(), violation: tuple[str, ...] = (),
+             message: str = "", stratum: int = 0) -> None:
+        self.rules.append(Rule(name, origin, tuple(body), head, tuple(filters), reads, violation, message,
+                               stratum=stratum))
 
     def type_head(self, var: str, e: Expr) -> Atom | None:
         return None if e.node == THING else Atom(var, T, sparql(e.node))
-
-    def require_different(self, pairs: list[tuple[str, str]], body: list[Atom], filters: list[str],
-                          origin: str) -> tuple[list[Atom], list[str], frozenset]:
-        """(body, filters, filter reads) requiring every pair to be known different.
-
-        One pair is a join atom.  Several pairs are tested with ``FILTER EXISTS``
-        once the fillers are bound: as join atoms, the optimizer may start from
-        the "different" relation, which holds for every pair of an AllDifferent
-        group, and enumerate all n-cliques of the map's individuals."""
-        if len(pairs) <= 1:
-            return body + self.ask_different(pairs, body, filters, origin), filters, frozenset()
-        self.ask_different(pairs, body, filters, origin)
-        tests = [f"FILTER EXISTS {{ GRAPH {AUX} {{ {a} {DIFFERENT} {b} }} }}" for a, b in pairs]
-        return body, filters + tests, DIFFERENT_READS
-
-    def ask_different(self, pairs: list[tuple[str, str]], body: list[Atom], filters: list[str], origin: str) -> list[Atom]:
-        """Atoms requiring each pair to be known different, after emitting the
-        candidate rule that makes the difference rules look at these pairs.
-
-        Every pair of fillers has the same shape, so one candidate rule over two
-        fillers (the atoms and filters that mention neither other filler) asks
-        about all of them, in both orders: its cost is k² for k fillers, where a
-        candidate rule over the whole n-filler body cost kⁿ."""
-        if pairs:
-            a, b = pairs[0]
-            others = {y for pair in pairs for y in pair} - {a, b}
-            keep = lambda text: not (set(_VARIABLE.findall(text)) & others)  # noqa: E731
-            pair_body = [t for t in body if keep(f"{t.s} {t.p} {t.o}")]
-            pair_filters = [f for f in filters if keep(f)]
-            self.emit("different-candidate", origin, pair_body, candidate_atom(a, b),
-                      "\n  ".join(pair_filters + [f"FILTER(!sameTerm({a}, {b}))"]))
-        return [different_atom(a, b) for a, b in pairs]
 
     def difference_rules(self) -> None:
         """When asked about a pair, conclude it is different if equality would be
@@ -129,18 +89,18 @@ class OwlCompiler:
             if p in self.tb.data_properties:
                 self.emit("different-values", f"{nm(p)} is functional",
                           [candidate_atom(a, b), Atom(a, sparql(p), v1), Atom(b, sparql(p), v2)], different_atom(a, b),
-                          f"FILTER({distinct_values(v1, v2)})")
+                          [cond.test(distinct_values(v1, v2))])
         for e in self.all_expressions():
             if e.kind not in ("max", "exact") or e.n != 1 or e.prop.inverse or not self.is_data(e.prop, e):
                 continue
-            tests = [f"FILTER({distinct_values(v1, v2)})"]
+            tests = [cond.test(distinct_values(v1, v2))]
             if e.datatype is not None and in_datatype(v1, e.datatype):
-                tests += [f"FILTER({in_datatype(v1, e.datatype)} && {in_datatype(v2, e.datatype)})"]
+                tests += [cond.test(f"{in_datatype(v1, e.datatype)} && {in_datatype(v2, e.datatype)}")]
             for member in (a, b):
                 self.emit("different-values", f"class expression {e} allows one value",
                           [candidate_atom(a, b), Atom(member, T, sparql(e.node)),
                            Atom(a, sparql(e.prop.iri), v1), Atom(b, sparql(e.prop.iri), v2)],
-                          different_atom(a, b), "\n  ".join(tests))
+                          different_atom(a, b), tests)
 
     def _told_superclasses(self) -> dict[NamedNode, set[NamedNode]]:
         """Named-class subsumption told by the axioms (closure), for comparing fillers."""
@@ -238,88 +198,6 @@ class OwlCompiler:
         if e.kind in ("max", "exact"):
             self._upper_bound_rules(e, node, origin)
 
-    def _filler_test(self, var: str, e: Expr) -> tuple[list[Atom], str]:
-        if e.datatype is not None:
-            test = in_datatype(var, e.datatype)
-            return [], (f"FILTER({test})" if test else f"FILTER(isLiteral({var}))")
-        if self.is_data(e.prop, e):
-            return [], f"FILTER(isLiteral({var}))"
-        return self.member(var, e.filler), ""
-
-    def _fillers(self, e: Expr, x: str, n: int) -> tuple[list[Atom], list[str], list[tuple[str, str]], list[str]]:
-        """Body atoms and filters for ``n`` fillers of restriction ``e`` on ``x``, and
-        the pairs that must be different (object fillers) — data fillers get a
-        distinct-values filter instead."""
-        ys = [f"?y{i}" for i in range(1, n + 1)]
-        atoms: list[Atom] = []
-        filters: list[str] = []
-        for y in ys:
-            atoms.append(self.prop_atom(x, e.prop, y))
-            more, test = self._filler_test(y, e)
-            atoms += more
-            if test:
-                filters.append(test)
-        pairs = list(combinations(ys, 2))
-        if self.is_data(e.prop, e):
-            filters += [f"FILTER({distinct_values(a, b)})" for a, b in pairs]
-            pairs = []
-        # n pairwise different fillers can always be listed in increasing term order: asking for that
-        # order finds each set of fillers once instead of once per permutation (n! times)
-        filters += [f"FILTER({term_before(a, b)})" for a, b in zip(ys, ys[1:])]
-        return atoms, filters, pairs, ys
-
-    def _lower_bound_rules(self, e: Expr, node: str, origin: str) -> None:
-        x = "?x"
-        n = 1 if e.kind == "some" else e.n
-        if n == 0:
-            return
-        atoms, filters, pairs, _ = self._fillers(e, x, n)
-        atoms, filters, reads = self.require_different(pairs, atoms, filters, origin)
-        name = {"some": "cls-svf1", "min": "ext-min-card"}.get(e.kind, "ext-exact-card")
-        if e.kind != "exact":
-            self.emit(name, origin, atoms, Atom(x, T, node), "\n  ".join(filters), reads)
-            return
-        # exact: the minimum is met; a maximum must be known too
-        if e.n == 1 and not e.prop.inverse and self.tb.has("FunctionalProperty", e.prop.iri):
-            self.emit(name, origin + " (functional property)", atoms, Atom(x, T, node), "\n  ".join(filters), reads)
-        for m in self.all_expressions():
-            if m.node != e.node and m.kind in ("max", "exact") and m.prop == e.prop and m.n <= e.n and self.filler_subsumed(e, m):
-                self.emit(name, origin + f" (maximum known from {m})", atoms + [Atom(x, T, sparql(m.node))],
-                          Atom(x, T, node), "\n  ".join(filters), reads)
-
-    def _upper_bound_rules(self, e: Expr, node: str, origin: str) -> None:
-        x = "?x"
-        data = self.is_data(e.prop, e)
-        member = [Atom(x, T, node)]
-        if e.n == 0:
-            atoms, filters, _, _ = self._fillers(e, x, 1)
-            self.emit("cls-maxqc2" if e.filler or e.datatype else "cls-maxc1", origin, member + atoms,
-                      filters="\n  ".join(filters), violation=(x, "?y1"), message=f"{{x}} has a value of {nm(e.prop.iri)} but is in {e}")
-            return
-        atoms, filters, pairs, ys = self._fillers(e, x, e.n + 1)
-        atoms = member + atoms
-        atoms, filters, reads = self.require_different(pairs, atoms, filters, origin)
-        self.emit("cls-maxqc3" if e.filler or e.datatype else "cls-maxc2", origin, atoms,
-                  filters="\n  ".join(filters), reads=reads, violation=(x, *ys),
-                  message=f"{{x}} has more than {e.n} different values of {nm(e.prop.iri)} but is in {e}")
-        if e.n == 1 and not data:
-            # two values that are not known different are the same individual
-            atoms, filters, _, _ = self._fillers(e, x, 2)
-            self.emit("cls-maxqc4" if e.filler else "cls-maxc2", origin, member + atoms, Atom("?y1", str(SAME_AS), "?y2"),
-                      "\n  ".join(filters + ["FILTER(!sameTerm(?y1, ?y2) && isIRI(?y1) && isIRI(?y2))", not_different("?y1", "?y2")]),
-                      NOT_DIFFERENT_READS, stratum=1)
-
-    def _all_rules(self, e: Expr, node: str, origin: str) -> None:
-        x, y = "?x", "?y"
-        body = [Atom(x, T, node), self.prop_atom(x, e.prop, y)]
-        if e.datatype is not None:
-            test = in_datatype(y, e.datatype)
-            if test:
-                self.emit("cls-avf", origin, body, filters=f"FILTER(!({test}))", violation=(x, y),
-                          message=f"{{x}} has a value outside {nm(e.datatype)} for {nm(e.prop.iri)}")
-        elif e.filler is not None and e.filler.node != THING:
-            self.emit("cls-avf", origin, body, Atom(y, T, sparql(e.filler.node)))
-
     def restriction_subsumption(self, exprs: list[Expr]) -> None:
         """≥n p.C ⊑ ≥m p.D (n ≥ m ≥ 1, C ⊑ D), with ∃ as ≥1 and = n as ≥ n."""
         lower = [e for e in exprs if e.kind in ("some", "min", "exact")]
@@ -365,11 +243,13 @@ class OwlCompiler:
         for p, dt in tb.data_range:
             test = in_datatype(y, dt)
             if test:
-                self.emit("dt-range", f"{nm(p)} range {nm(dt)}", [Atom(x, sparql(p), y)], filters=f"FILTER(!({test}))",
+                self.emit("dt-range", f"{nm(p)} range {nm(dt)}", [Atom(x, sparql(p), y)],
+                          filters=[cond.test(f"!({test})")],
                           violation=(x, y), message=f"{{x}} has the value {{y}} of {nm(p)}, outside its range {nm(dt)}")
         for p, q in tb.subproperty:
             if p != q:
-                self.emit("prp-spo1", f"{nm(p.iri)} SubPropertyOf {nm(q.iri)}", [self.prop_atom(x, p, y)], self.prop_atom(x, q, y))
+                self.emit("prp-spo1", f"{nm(p.iri)} SubPropertyOf {nm(q.iri)}", [self.prop_atom(x, p, y)],
+                          self.prop_atom(x, q, y))
         for p, q in tb.inverse:
             origin = f"{nm(p)} InverseOf {nm(q)}"
             self.emit("prp-inv1", origin, [Atom(x, sparql(p), y)], Atom(y, sparql(q), x))
@@ -377,15 +257,18 @@ class OwlCompiler:
         for q, chain in tb.chains:
             vars_ = [f"?u{i}" for i in range(len(chain) + 1)]
             body = [self.prop_atom(vars_[i], p, vars_[i + 1]) for i, p in enumerate(chain)]
-            self.emit("prp-spo2", f"{nm(q)} chain of {' o '.join(nm(p.iri) for p in chain)}", body, Atom(vars_[0], sparql(q), vars_[-1]))
+            self.emit("prp-spo2", f"{nm(q)} chain of {' o '.join(nm(p.iri) for p in chain)}", body,
+                      Atom(vars_[0], sparql(q), vars_[-1]))
         for p, q in tb.disjoint_props:
             self.emit("prp-pdw", f"{nm(p)} DisjointWith {nm(q)}", [Atom(x, sparql(p), y), Atom(x, sparql(q), y)],
-                      violation=(x, y), message=f"{{x}} is linked to {{y}} by the disjoint properties {nm(p)} and {nm(q)}")
+                      violation=(x, y),
+                      message=f"{{x}} is linked to {{y}} by the disjoint properties {nm(p)} and {nm(q)}")
         ch = tb.characteristics
         for p in ch.get("SymmetricProperty", ()):
             self.emit("prp-symp", f"{nm(p)} is symmetric", [Atom(x, sparql(p), y)], Atom(y, sparql(p), x))
         for p in ch.get("TransitiveProperty", ()):
-            self.emit("prp-trp", f"{nm(p)} is transitive", [Atom(x, sparql(p), y), Atom(y, sparql(p), z)], Atom(x, sparql(p), z))
+            self.emit("prp-trp", f"{nm(p)} is transitive", [Atom(x, sparql(p), y), Atom(y, sparql(p), z)],
+                      Atom(x, sparql(p), z))
         for p in ch.get("AsymmetricProperty", ()):
             self.emit("prp-asyp", f"{nm(p)} is asymmetric", [Atom(x, sparql(p), y), Atom(y, sparql(p), x)],
                       violation=(x, y), message=f"{{x}} and {{y}} are linked both ways by the asymmetric {nm(p)}")
@@ -407,11 +290,13 @@ class OwlCompiler:
         origin = f"{nm(p)} is {kind}"
         message = f"{{x}} has the different values {{y1}} and {{y2}} of the {kind} property {nm(p)}"
         if data:
-            self.emit(name, origin, body, filters=f"FILTER({distinct_values(y1, y2)})", violation=(x, y1, y2), message=message)
+            self.emit(name, origin, body, filters=[cond.test(distinct_values(y1, y2))], violation=(x, y1, y2),
+                      message=message)
             return
-        self.emit(name, origin, body + self.ask_different([(y1, y2)], body, [], origin), violation=(x, y1, y2), message=message)
+        self.emit(name, origin, body + self.ask_different([(y1, y2)], body, [], origin), violation=(x, y1, y2),
+                  message=message)
         self.emit(name, origin, body, Atom(y1, str(SAME_AS), y2),
-                  f"FILTER(!sameTerm({y1}, {y2}) && isIRI({y1}) && isIRI({y2}))\n  {not_different(y1, y2)}",
+                  [cond.test(f"!sameTerm({y1}, {y2}) && isIRI({y1}) && isIRI({y2})"), not_different(y1, y2)],
                   NOT_DIFFERENT_READS, stratum=1)
 
     def compile(self) -> list[Rule]:

@@ -14,7 +14,8 @@ from dataclasses import dataclass, field
 
 from pyoxigraph import NamedNode
 
-from ..vocab import TYPE, is_internal
+from ..vocab import AUX, TYPE, is_internal, is_skolem
+from .condition import Condition, render
 
 #: A read key: ("p", predicate IRI), ("t", class IRI) for ``?x rdf:type <C>``,
 #: or ("*",) for a pattern with a variable predicate (reads everything).
@@ -62,10 +63,10 @@ class Atom:
 def head_is_aux(p: str, o: str) -> bool:
     """Whether a derived triple belongs in the helper graph rather than the inferred one."""
     for term in (p, o):
-        if term.startswith("<") and is_internal(NamedNode(term[1:-1])) and not term.startswith("<urn:topostore:bnode:"):
+        if term.startswith("<") and is_internal(NamedNode(term[1:-1])) and not is_skolem(term[1:-1]):
             return True
     # memberships of anonymous class expressions (skolemised blank nodes)
-    return p == str(TYPE) and o.startswith("<urn:topostore:bnode:")
+    return p == str(TYPE) and o.startswith("<") and is_skolem(o[1:-1])
 
 
 def _atom_score(atom: Atom, bound: set[str]) -> int:
@@ -109,7 +110,7 @@ def join_order(atoms: tuple[Atom, ...], first: int | None = None, bound: Iterabl
 
 @dataclass(frozen=True)
 class Rule:
-    """A Horn rule: if ``body`` (and ``filters``) match, ``head`` holds.
+    """A Horn rule: if ``body`` (and ``conditions``) match, ``head`` holds.
 
     A rule with ``violation`` set is a consistency check instead: every match is
     an inconsistency, reported with the variables listed in ``violation``.
@@ -119,7 +120,8 @@ class Rule:
     origin: str
     body: tuple[Atom, ...]
     head: Atom | None = None
-    filters: str = ""
+    #: the FILTERs and BINDs, in order, as the compiler built them
+    conditions: tuple[Condition, ...] = ()
     filter_reads: frozenset = frozenset()
     violation: tuple[str, ...] = ()
     message: str = ""
@@ -128,6 +130,26 @@ class Rule:
     #: evaluation stratum: rules with negated premises ("not known different")
     #: run only once everything they negate has reached its fixpoint
     stratum: int = 0
+    #: the conditions as SPARQL lines (rendered once: every evaluation text contains them)
+    filters: str = field(init=False, repr=False, compare=False)
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "filters", render(self.conditions))
+
+    @property
+    def negates(self) -> bool:
+        """A condition tests the absence of data: matches may disappear when facts are added."""
+        return any(c.negated for c in self.conditions)
+
+    @property
+    def binds(self) -> frozenset[str]:
+        """The variables the conditions bind (``?name``)."""
+        return frozenset(c.binds for c in self.conditions if c.binds)
+
+    @property
+    def conditions_read_graph(self) -> bool:
+        """A condition holds a graph pattern (an EXISTS), i.e. reads facts beyond the body's."""
+        return any(c.reads_graph for c in self.conditions)
 
     @property
     def is_check(self) -> bool:
@@ -162,7 +184,7 @@ class Rule:
         if i == delta_index:
             return f"GRAPH {delta_graph} {{ {atom.text()} }}"
         if atom.aux:
-            return f"GRAPH <urn:topostore:graph:aux> {{ {atom.text()} }}"
+            return f"GRAPH {AUX} {{ {atom.text()} }}"
         return atom.text()
 
     def sparql(self) -> str:

@@ -10,6 +10,7 @@ from pyoxigraph import NamedNode
 
 from ..terms import INTEGER_TYPES
 from ..vocab import AUX, DECLARED_DIFFERENT, DIFFERENCE_CANDIDATE, DIFFERENT, OWL, RDF, RDFS, XSD
+from .condition import Condition, exists
 from .rule import Atom
 
 
@@ -27,9 +28,14 @@ def candidate_atom(a: str, b: str) -> Atom:
 NOT_DIFFERENT_READS = frozenset({("p", str(DIFFERENT))})
 
 
-def not_different(a: str, b: str) -> str:
+def not_different(a: str, b: str) -> Condition:
     """Filter: ``a`` and ``b`` are not known to be different (a negated premise)."""
-    return f"FILTER NOT EXISTS {{ GRAPH {AUX} {{ {a} {DIFFERENT} {b} }} }}"
+    return exists(f"GRAPH {AUX} {{ {a} {DIFFERENT} {b} }}", negated=True)
+
+
+def known_different(a: str, b: str) -> Condition:
+    """Filter: ``a`` and ``b`` are known to be different (reads the helper graph)."""
+    return exists(f"GRAPH {AUX} {{ {a} {DIFFERENT} {b} }}")
 
 
 def distinct_values(a: str, b: str) -> str:
@@ -37,7 +43,18 @@ def distinct_values(a: str, b: str) -> str:
     return f"(!sameTerm({a}, {b}) && COALESCE({a} != {b}, true))"
 
 
-_INTEGER_LIST = ", ".join(f"<{XSD}{t}>" for t in INTEGER_TYPES)
+#: Numeric literals that are not of an integer or decimal type.
+_FLOATING = "xsd:float, xsd:double"  # compiled rules run with the xsd: prefix (compile.generic.PREFIXES)
+
+
+def _real(var: str) -> str:
+    """``var`` is a valid literal of xsd:decimal or a type derived from it (xsd:integer, xsd:long, …).
+
+    isNumeric is SPARQL's own test for a *valid* numeric literal of any of those
+    types, so an ill-typed one ("abc"^^xsd:long) is in no value space; it keeps the
+    rule text short (rules run in every step, and their text is parsed each time).
+    """
+    return f"isNumeric({var}) && !(datatype({var}) IN ({_FLOATING}))"
 
 
 def in_datatype(var: str, datatype: NamedNode) -> str | None:
@@ -52,10 +69,7 @@ def in_datatype(var: str, datatype: NamedNode) -> str | None:
         return f"isLiteral({var})"
     if local in INTEGER_TYPES:
         low, high = INTEGER_TYPES[local]
-        tests = [
-            f"isLiteral({var})",
-            f"(datatype({var}) IN ({_INTEGER_LIST}) || (datatype({var}) = <{XSD}decimal> && {var} = FLOOR({var})))",
-        ]
+        tests = [_real(var), f"(datatype({var}) != xsd:decimal || {var} = FLOOR({var}))"]
         if low is not None:
             # written so that no SPARQL integer literal exceeds 64 bits
             tests.append(f"{var} >= ({low + 1} - 1)")
@@ -63,7 +77,7 @@ def in_datatype(var: str, datatype: NamedNode) -> str | None:
             tests.append(f"{var} <= {high}")
         return "COALESCE((" + " && ".join(tests) + "), false)"
     if local == "decimal" or dt in (OWL + "real", OWL + "rational"):
-        return f"COALESCE((isLiteral({var}) && datatype({var}) IN ({_INTEGER_LIST}, <{XSD}decimal>) && {var} = {var}), false)"
+        return f"COALESCE(({_real(var)}), false)"
     if local == "string":
         return f"COALESCE((isLiteral({var}) && datatype({var}) = <{XSD}string>), false)"
     if dt in (RDF + "PlainLiteral", RDF + "langString"):

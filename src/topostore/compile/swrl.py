@@ -8,15 +8,19 @@ atom, never dropped silently.
 from __future__ import annotations
 
 import re
-from dataclasses import dataclass
+from collections.abc import Iterable, Iterator
+from contextlib import contextmanager
+from dataclasses import dataclass, field
 
 from pyoxigraph import Literal, NamedNode
 
 from ..errors import RuleCompileError
 from ..store import Store
 from ..terms import Term, sparql
-from ..vocab import DIFFERENT_FROM, ENTAILED_PREFIX, SAME_AS, SWRL, SWRLA, TYPE, rdfs, swrl
+from ..vocab import DIFFERENT_FROM, ENTAILED_PREFIX, SAME_AS, SWRL, SWRLA, TYPE, is_skolem, rdfs, swrl
 from . import builtins
+from . import condition as cond
+from .condition import Condition
 from .model import Expr, TBoxReader, is_datatype
 from .rule import Atom, Rule
 from .snippets import candidate_atom, different_atom, in_datatype
@@ -38,7 +42,60 @@ class SwrlAtom:
             v = getattr(t, "value", str(t))
             return v.rsplit("#", 1)[-1].rsplit("/", 1)[-1]
 
-        return f"{self.kind}({short(self.predicate)}{', ' if self.predicate else ''}{', '.join(short(a) for a in self.args)})"
+        args = ", ".join(short(a) for a in self.args)
+        return f"{self.kind}({short(self.predicate)}{', ' if self.predicate else ''}{args})"
+
+
+class _Names:
+    """SPARQL text of a rule's arguments: ``?local`` for each SWRL variable (unique per rule), terms rendered."""
+
+    def __init__(self, variables: set[Term]) -> None:
+        self.variables = variables
+        self.names: dict[Term, str] = {}
+
+    def __call__(self, t: Term) -> str:
+        if t not in self.variables:
+            return sparql(t)
+        if t not in self.names:
+            local = re.sub(r"[^A-Za-z0-9_]", "_", t.value.rsplit("#", 1)[-1].rsplit("/", 1)[-1]) or "v"
+            candidate = f"?{local}"
+            while candidate in self.names.values():
+                candidate += "_"
+            self.names[t] = candidate
+        return self.names[t]
+
+
+@dataclass
+class _Body:
+    """What one rule body compiles to, built by :meth:`SwrlCompiler._body`."""
+
+    patterns: list[Atom] = field(default_factory=list)
+    conditions: list[Condition] = field(default_factory=list)
+    #: read keys of graph patterns inside the conditions
+    reads: set = field(default_factory=set)
+    #: variables bound by the patterns and the BINDs placed so far
+    bound: set[str] = field(default_factory=set)
+    #: tests placed after the built-ins, when every variable is bound: (test, variables it needs, atom)
+    deferred: list[tuple[Condition, list[str], SwrlAtom]] = field(default_factory=list)
+    #: DifferentIndividualsAtoms: (x, y, atom)
+    different: list[tuple[str, str, SwrlAtom]] = field(default_factory=list)
+
+
+@contextmanager
+def _about(name: str, a: SwrlAtom, what: str = "atom") -> Iterator[None]:
+    """Name the rule and the atom in a compile error raised inside."""
+    try:
+        yield
+    except RuleCompileError as exc:
+        raise RuleCompileError(f"SWRL rule {name!r}, {what} {a.describe(name)}: {exc}") from None
+
+
+def _require_bound(name: str, a: SwrlAtom, needs: Iterable[str], bound: set[str], where: str) -> None:
+    """Refuse an atom using a variable the body does not bind."""
+    missing = [v for v in needs if v.startswith("?") and v not in bound]
+    if missing:
+        raise RuleCompileError(f"SWRL rule {name!r}, {where}atom {a.describe(name)}: variable {missing[0]} "
+                               "is not bound by the body")
 
 
 class SwrlCompiler:
@@ -57,7 +114,7 @@ class SwrlCompiler:
         label = self._one(node, rdfs("label"))
         if isinstance(label, Literal):
             return label.value
-        return node.value if not node.value.startswith("urn:topostore:bnode:") else "an unnamed SWRL rule"
+        return node.value if not is_skolem(node) else "an unnamed SWRL rule"
 
     def compile(self) -> list[Rule]:
         rules: list[Rule] = []
@@ -74,7 +131,8 @@ class SwrlCompiler:
             return []
         out = []
         for node in self.store.list_items(head, self.graph):
-            kinds = [t.value[len(SWRL):] for t in self.store.objects(node, TYPE, self.graph) if t.value.startswith(SWRL)]
+            kinds = [t.value[len(SWRL):] for t in self.store.objects(node, TYPE, self.graph)
+                     if t.value.startswith(SWRL)]
             kind = kinds[0] if kinds else "?"
             pred = (self._one(node, swrl("classPredicate")) or self._one(node, swrl("propertyPredicate"))
                     or self._one(node, swrl("dataRange")) or self._one(node, swrl("builtin")))
@@ -82,95 +140,88 @@ class SwrlCompiler:
                 lst = self._one(node, swrl("arguments"))
                 args = tuple(self.store.list_items(lst, self.graph)) if lst is not None else ()
             else:
-                args = tuple(a for a in (self._one(node, swrl("argument1")), self._one(node, swrl("argument2"))) if a is not None)
+                args = tuple(a for a in (self._one(node, swrl("argument1")), self._one(node, swrl("argument2")))
+                             if a is not None)
             out.append(SwrlAtom(kind, pred, args, node))
         return out
 
     # ------------------------------------------------------------------ translation
     def compile_rule(self, node: Term) -> list[Rule]:
+        """The rules of one ``swrl:Imp``: one per head atom (two when difference is only entailed),
+        plus a candidate rule per DifferentIndividualsAtom of the body."""
         name = self.rule_name(node)
-        body = self.atoms(self._one(node, swrl("body")), name)
-        head = self.atoms(self._one(node, swrl("head")), name)
-        if not head:
+        body_atoms = self.atoms(self._one(node, swrl("body")), name)
+        head_atoms = self.atoms(self._one(node, swrl("head")), name)
+        if not head_atoms:
             raise RuleCompileError(f"SWRL rule {name!r} has no head atom")
-        names: dict[Term, str] = {}
-        self._deferred: list[tuple[str, list[str], SwrlAtom]] = []
-        self._different: list[tuple[str, str, SwrlAtom]] = []
+        arg = _Names(self.variables)
+        body = self._body(name, body_atoms, arg)
+        rules = self._difference_rules(name, body)
+        for a in head_atoms:
+            rules += self._head_rules(name, a, arg, body)
+        return rules
 
-        def arg(t: Term) -> str:
-            if t in self.variables:
-                if t not in names:
-                    local = re.sub(r"[^A-Za-z0-9_]", "_", t.value.rsplit("#", 1)[-1].rsplit("/", 1)[-1]) or "v"
-                    candidate = f"?{local}"
-                    while candidate in names.values():
-                        candidate += "_"
-                    names[t] = candidate
-                return names[t]
-            return sparql(t)
-
-        patterns: list[Atom] = []
-        filters: list[str] = []
-        reads: set = set()
+    def _body(self, name: str, atoms: list[SwrlAtom], arg: _Names) -> _Body:
+        """Patterns first, then the built-ins in an order where each one's inputs are bound,
+        then the tests that need every variable bound."""
+        body = _Body()
         pending: list[SwrlAtom] = []
-        for a in body:
-            try:
-                self._body_atom(a, arg, patterns, filters, reads, pending)
-            except RuleCompileError as exc:
-                raise RuleCompileError(f"SWRL rule {name!r}, atom {a.describe(name)}: {exc}") from None
-        bound = set().union(*(p.variables() for p in patterns)) if patterns else set()
-        # built-ins: run each as soon as its inputs are bound
+        for a in atoms:
+            with _about(name, a):
+                self._body_atom(a, arg, body, pending)
+        body.bound = set().union(*(p.variables() for p in body.patterns))
+        self._builtins(name, pending, arg, body)
+        for test, needs, a in body.deferred:
+            _require_bound(name, a, needs, body.bound, "")
+            body.conditions.append(test)
+        return body
+
+    @staticmethod
+    def _builtins(name: str, pending: list[SwrlAtom], arg: _Names, body: _Body) -> None:
+        """Place each built-in as soon as its inputs are bound (a BIND binds its result)."""
+        pending = list(pending)
         while pending:
-            progressed = False
+            placed = False
             for a in list(pending):
-                try:
-                    out = builtins.translate(a.predicate.value if a.predicate else "", [arg(x) for x in a.args], bound)
-                except RuleCompileError as exc:
-                    raise RuleCompileError(f"SWRL rule {name!r}, atom {a.describe(name)}: {exc}") from None
-                if out is not None:
-                    text, newly = out
-                    filters.append(text)
-                    if newly:
-                        bound.add(newly)
+                with _about(name, a):
+                    placed_as = builtins.translate(a.predicate.value if a.predicate else "",
+                                                   [arg(x) for x in a.args], body.bound)
+                if placed_as is not None:
+                    body.conditions.append(placed_as)
+                    if placed_as.binds:
+                        body.bound.add(placed_as.binds)
                     pending.remove(a)
-                    progressed = True
-            if not progressed:
-                a = pending[0]
-                raise RuleCompileError(
-                    f"SWRL rule {name!r}, atom {a.describe(name)}: its input variables are never bound (rule is not DL-safe)"
-                )
-        # deferred tests that needed every variable bound
-        for text, needs, a in self._deferred:
-            missing = [v for v in needs if v.startswith("?") and v not in bound]
-            if missing:
-                raise RuleCompileError(f"SWRL rule {name!r}, atom {a.describe(name)}: variable {missing[0]} is not bound by the body")
-            filters.append(text)
+                    placed = True
+            if not placed:
+                raise RuleCompileError(f"SWRL rule {name!r}, atom {pending[0].describe(name)}: its input variables "
+                                       "are never bound (rule is not DL-safe)")
+
+    @staticmethod
+    def _difference_rules(name: str, body: _Body) -> list[Rule]:
+        """Difference: ask about exactly the pairs the rest of the body produces."""
         rules = []
-        # difference: ask about exactly the pairs the rest of the body produces
-        declared: list[Atom] = []
-        entailed: list[Atom] = []
-        for x, y, a in self._different:
-            for v in (x, y):
-                if v.startswith("?") and v not in bound:
-                    raise RuleCompileError(f"SWRL rule {name!r}, atom {a.describe(name)}: variable {v} is not bound by the body")
-            rules.append(Rule(f"swrl:{name}", f"SWRL rule {name}: which pairs to check for difference", tuple(patterns),
-                              candidate_atom(x, y), "\n  ".join(filters + [f"FILTER(!sameTerm({x}, {y}))"]), frozenset(reads)))
-            declared.append(different_atom(x, y, declared=True))
-            entailed.append(different_atom(x, y))
-        for a in head:
-            try:
-                h = self._head_atom(a, arg)
-            except RuleCompileError as exc:
-                raise RuleCompileError(f"SWRL rule {name!r}, head atom {a.describe(name)}: {exc}") from None
-            for v in h.variables():
-                if v not in bound:
-                    raise RuleCompileError(f"SWRL rule {name!r}, head atom {a.describe(name)}: variable {v} is not bound by the body")
-            rules.append(Rule(f"swrl:{name}", f"SWRL rule {name}", tuple(patterns + declared), h, "\n  ".join(filters), frozenset(reads)))
-            if entailed:
-                # difference only entailed: the conclusion holds but fires no other rule
-                weak = Atom(h.s, str(NamedNode(ENTAILED_PREFIX + h.p[1:-1])), h.o)
-                rules.append(Rule(f"swrl:{name}", f"SWRL rule {name} (individuals different by entailment only)",
-                                  tuple(patterns + entailed), weak, "\n  ".join(filters), frozenset(reads)))
-                self.entailed_predicates.add(NamedNode(h.p[1:-1]))
+        for x, y, a in body.different:
+            _require_bound(name, a, [x, y], body.bound, "")
+            rules.append(Rule(f"swrl:{name}", f"SWRL rule {name}: which pairs to check for difference",
+                              tuple(body.patterns), candidate_atom(x, y),
+                              (*body.conditions, cond.test(f"!sameTerm({x}, {y})")), frozenset(body.reads)))
+        return rules
+
+    def _head_rules(self, name: str, a: SwrlAtom, arg: _Names, body: _Body) -> list[Rule]:
+        """The rule concluding head atom ``a``; with difference atoms in the body, a second rule for
+        individuals different by entailment only (its conclusion holds but fires no other rule)."""
+        with _about(name, a, "head atom"):
+            h = self._head_atom(a, arg)
+        _require_bound(name, a, sorted(h.variables(), key=[h.s, h.p, h.o].index), body.bound, "head ")
+        declared = [different_atom(x, y, declared=True) for x, y, _ in body.different]
+        entailed = [different_atom(x, y) for x, y, _ in body.different]
+        conditions, reads = tuple(body.conditions), frozenset(body.reads)
+        rules = [Rule(f"swrl:{name}", f"SWRL rule {name}", tuple(body.patterns + declared), h, conditions, reads)]
+        if entailed:
+            weak = Atom(h.s, str(NamedNode(ENTAILED_PREFIX + h.p[1:-1])), h.o)
+            rules.append(Rule(f"swrl:{name}", f"SWRL rule {name} (individuals different by entailment only)",
+                              tuple(body.patterns + entailed), weak, conditions, reads))
+            self.entailed_predicates.add(NamedNode(h.p[1:-1]))
         return rules
 
     def _class(self, pred: Term | None) -> str:
@@ -181,31 +232,32 @@ class SwrlCompiler:
             self.expressions.append(e)
         return sparql(e.node)
 
-    def _body_atom(self, a: SwrlAtom, arg, patterns, filters, reads, pending) -> None:
+    def _body_atom(self, a: SwrlAtom, arg: _Names, body: _Body, pending: list[SwrlAtom]) -> None:
         k = a.kind
         if k == "ClassAtom":
             self._need(a, 1)
-            patterns.append(Atom(arg(a.args[0]), T, self._class(a.predicate)))
+            body.patterns.append(Atom(arg(a.args[0]), T, self._class(a.predicate)))
         elif k in ("IndividualPropertyAtom", "DatavaluedPropertyAtom"):
             self._need(a, 2)
             if not isinstance(a.predicate, NamedNode):
                 raise RuleCompileError("missing property predicate")
-            patterns.append(Atom(arg(a.args[0]), sparql(a.predicate), arg(a.args[1])))
+            body.patterns.append(Atom(arg(a.args[0]), sparql(a.predicate), arg(a.args[1])))
         elif k == "SameIndividualAtom":
             self._need(a, 2)
             x, y = arg(a.args[0]), arg(a.args[1])
-            self._deferred.append((f"FILTER(sameTerm({x}, {y}) || EXISTS {{ {x} {SAME_AS} {y} }})", [x, y], a))
-            reads.add(("p", str(SAME_AS)))
+            same = cond.test(f"sameTerm({x}, {y}) || EXISTS {{ {x} {SAME_AS} {y} }}", reads_graph=True)
+            body.deferred.append((same, [x, y], a))
+            body.reads.add(("p", str(SAME_AS)))
         elif k == "DifferentIndividualsAtom":
             self._need(a, 2)
             x, y = arg(a.args[0]), arg(a.args[1])
-            self._different.append((x, y, a))
+            body.different.append((x, y, a))
         elif k == "DataRangeAtom":
             self._need(a, 1)
             if not is_datatype(a.predicate):
                 raise RuleCompileError("only named datatypes are supported as data ranges")
             test = in_datatype(arg(a.args[0]), a.predicate) or f"isLiteral({arg(a.args[0])})"
-            self._deferred.append((f"FILTER({test})", [arg(a.args[0])], a))
+            body.deferred.append((cond.test(test), [arg(a.args[0])], a))
         elif k == "BuiltinAtom":
             pending.append(a)
         else:
@@ -216,7 +268,7 @@ class SwrlCompiler:
         if len(a.args) < n:
             raise RuleCompileError(f"expects {n} argument(s), found {len(a.args)}")
 
-    def _head_atom(self, a: SwrlAtom, arg) -> Atom:
+    def _head_atom(self, a: SwrlAtom, arg: _Names) -> Atom:
         k = a.kind
         if k == "ClassAtom":
             self._need(a, 1)

@@ -38,11 +38,11 @@ from ..errors import InvalidNameError, RuleCompileError
 from ..store import Store, fresh_skolem
 from ..terms import Term, entity
 from ..vocab import (
-    ASSERTED, FIRST, NIL, OWL, RDF, RDFS, REST, SWRL, SWRLA, SWRLB, TYPE, XSD, owl, rdfs, swrl, xsd,
+    ASSERTED, FIRST, NIL, OWL, RDF, RDFS, REST, SWRL, SWRL_VARIABLE_NS, SWRLA, SWRLB, TYPE, XSD, owl, rdfs, swrl, xsd,
 )
 
 #: Namespace of the variables of rules added as text, as the OWL API writes them.
-VARIABLE_NS = "urn:swrl:var#"
+VARIABLE_NS = SWRL_VARIABLE_NS
 PREFIXES = {"swrlb": SWRLB, "xsd": XSD, "rdf": RDF, "rdfs": RDFS, "owl": OWL, "swrl": SWRL}
 _SAME = {"sameAs", "SameAs", "sameIndividual", "SameIndividual", "owl:sameAs"}
 _DIFFERENT = {"differentFrom", "DifferentFrom", "differentIndividuals", "DifferentIndividuals", "owl:differentFrom"}
@@ -105,17 +105,17 @@ class Parser:
     def peek(self) -> Token | None:
         return self.tokens[self.i] if self.i < len(self.tokens) else None
 
-    def take(self, kind: str, what: str) -> Token:
-        tok = self.peek()
-        if tok is None or tok.kind != kind:
-            found = f"{tok.text!r} at position {tok.pos + 1}" if tok else "the end of the rule"
-            raise RuleCompileError(f"expected {what}, found {found}")
-        self.i += 1
-        return tok
+    def take(self, kind: str, what: str, *more: str) -> Token:
+        """The next token, which must be of ``kind`` (or one of ``more``); else an error naming ``what``."""
+        return self._next(lambda t: t.kind == kind or t.kind in more, what)
 
     def expect(self, text: str, what: str) -> Token:
+        """The next token, which must be ``text`` (punctuation); else an error naming ``what``."""
+        return self._next(lambda t: t.text == text, what)
+
+    def _next(self, fits: Callable[[Token], bool], what: str) -> Token:
         tok = self.peek()
-        if tok is None or tok.text != text:
+        if tok is None or not fits(tok):
             found = f"{tok.text!r} at position {tok.pos + 1}" if tok else "the end of the rule"
             raise RuleCompileError(f"expected {what}, found {found}")
         self.i += 1
@@ -140,7 +140,7 @@ class Parser:
     def atom(self, what: str) -> TextAtom:
         tok = self.peek()
         start = tok.pos if tok else len(self.text)
-        name = self.take("name", what).text if tok is None or tok.kind != "iri" else self.take("iri", what).text
+        name = self.take("name", what, "iri").text
         self.expect("(", f"'(' after {name}")
         args = [self.arg()]
         while (t := self.peek()) is not None and t.text == ",":
@@ -172,8 +172,7 @@ class Parser:
         tok = self.peek()
         if tok is not None and tok.kind == "hat":
             self.i += 1
-            dt = self.take("name", "a datatype after '^^'") if self.peek() and self.peek().kind == "name" \
-                else self.take("iri", "a datatype after '^^'")
+            dt = self.take("name", "a datatype after '^^'", "iri")
             return Literal(value, datatype=self.resolve(dt.text))
         if tok is not None and tok.text == "@":
             self.i += 1

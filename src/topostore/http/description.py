@@ -17,11 +17,7 @@ from starlette.responses import Response
 
 from ..armor.reference import Reference
 from ..sparql.results import choose_format, render_graph
-from ..vocab import ASSERTED, RDF, RDFS, TYPE, XSD
-
-SD = "http://www.w3.org/ns/sparql-service-description#"
-VOID = "http://rdfs.org/ns/void#"
-FORMATS = "http://www.w3.org/ns/formats/"
+from ..vocab import ASSERTED, FORMATS, RDF, RDFS, SD, TYPE, VOID, XSD
 
 #: W3C format IRIs of the result formats the endpoint offers (sparql/results.py).
 RESULT_FORMATS = ("SPARQL_Results_JSON", "SPARQL_Results_XML", "SPARQL_Results_CSV", "SPARQL_Results_TSV",

@@ -10,18 +10,18 @@ from __future__ import annotations
 
 from pyoxigraph import NamedNode, Triple
 
+from ..compile.builtins import FUNCTIONS
 from ..compile.rule import RuleSet
 from ..store import Store
-from ..vocab import ASSERTED, INFERRED, THING, TYPE, is_internal
+from ..vocab import ASSERTED, INFERRED, PROTOTYPE_PREFIX, THING, TYPE, is_internal
 from .materialize import Materializer
-
-PROTO = "urn:topostore:prototype:"
 
 
 def classify(rules: RuleSet) -> dict[NamedNode, set[NamedNode]]:
     scratch = Store()
+    scratch.use_functions(FUNCTIONS)
     classes = sorted(rules.named_classes, key=lambda c: c.value)
-    protos = {c: NamedNode(f"{PROTO}{i}") for i, c in enumerate(classes)}
+    protos = {c: NamedNode(f"{PROTOTYPE_PREFIX}{i}") for i, c in enumerate(classes)}
     scratch.add([Triple(p, TYPE, c) for c, p in protos.items()], ASSERTED)
     Materializer(scratch, rules).run()
     supers: dict[NamedNode, set[NamedNode]] = {}

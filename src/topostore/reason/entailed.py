@@ -6,13 +6,21 @@ inconsistent) still has an entailed conclusion, which Pellet reports; Pellet
 finds it by refutation and never uses it to fire other rules.  The compiler
 derives such conclusions in the helper graph under an internal predicate (so no
 rule reads them); this step copies them, under their real predicate, into the
-ENTAILED graph that queries see.  It runs after every REASON and costs one
-indexed scan per such predicate.
+ENTAILED graph that queries see, leaving out those already asserted or inferred.
+
+After a full run the graph is rebuilt: one indexed scan per such predicate.
+After incremental maintenance only the triples the maintenance touched can
+have changed their standing, so only those are looked at: a triple is in
+ENTAILED exactly when its internal twin is in the helper graph and the triple
+is neither asserted nor inferred, and each of those three facts changes only
+for triples in the graphs of facts new in the closure or deleted from it.
 """
 
 from __future__ import annotations
 
-from pyoxigraph import NamedNode
+from collections.abc import Sequence
+
+from pyoxigraph import NamedNode, Triple
 
 from ..compile.rule import RuleSet
 from ..store import Store
@@ -20,11 +28,46 @@ from ..vocab import ASSERTED, AUX, ENTAILED, ENTAILED_PREFIX, INFERRED
 
 
 def publish_entailed(store: Store, rules: RuleSet) -> None:
+    """Rebuild the ENTAILED graph from the helper graph (after a full run)."""
     ops = [f"DROP SILENT GRAPH {ENTAILED}"]
     for p in sorted(rules.entailed_predicates, key=lambda t: t.value):
-        internal = NamedNode(ENTAILED_PREFIX + p.value)
-        ops.append(
-            f"INSERT {{ GRAPH {ENTAILED} {{ ?s {p} ?o }} }} WHERE {{ GRAPH {AUX} {{ ?s {internal} ?o }} "
-            f"FILTER NOT EXISTS {{ GRAPH {INFERRED} {{ ?s {p} ?o }} }} FILTER NOT EXISTS {{ GRAPH {ASSERTED} {{ ?s {p} ?o }} }} }}"
-        )
+        ops.append(f"INSERT {{ GRAPH {ENTAILED} {{ ?s {p} ?o }} }} WHERE {{ GRAPH {AUX} {{ ?s {_internal(p)} ?o }} "
+                   f"FILTER NOT EXISTS {{ GRAPH {INFERRED} {{ ?s {p} ?o }} }} "
+                   f"FILTER NOT EXISTS {{ GRAPH {ASSERTED} {{ ?s {p} ?o }} }} }}")
     store.update(" ; ".join(ops))
+
+
+def refresh_entailed(store: Store, rules: RuleSet, changed: Sequence[NamedNode]) -> None:
+    """Bring ENTAILED up to date after maintenance; ``changed``: graphs holding every triple whose
+    presence in the asserted, inferred or helper graph changed (in either form, real or internal).
+
+    The few touched triples are found with one query and decided one by one
+    (index look-ups); a set-at-a-time update over them let the planner scan
+    every internal triple instead.
+    """
+    predicates = sorted(rules.entailed_predicates, key=lambda t: t.value)
+    if not predicates:
+        return
+    add: list[Triple] = []
+    drop: list[Triple] = []
+    for row in store.query(_touched_query(predicates, changed)):
+        t = Triple(row["s"], row["p"], row["o"])
+        wanted = (store.contains(Triple(t.subject, _internal(t.predicate), t.object), AUX)
+                  and not store.contains(t, INFERRED) and not store.contains(t, ASSERTED))
+        if wanted != store.contains(t, ENTAILED):
+            (add if wanted else drop).append(t)
+    if add:
+        store.add_scratch(add, ENTAILED)
+    if drop:
+        store.discard(drop, (ENTAILED,))
+
+
+def _internal(p: NamedNode) -> NamedNode:
+    return NamedNode(ENTAILED_PREFIX + p.value)
+
+
+def _touched_query(predicates: Sequence[NamedNode], changed: Sequence[NamedNode]) -> str:
+    """?s ?p ?o of the triples of ``predicates`` (real or internal form) in the ``changed`` graphs."""
+    patterns = [f"{{ GRAPH {g} {{ ?s {q} ?o }} BIND({p} AS ?p) }}"
+                for p in predicates for g in changed for q in (p, _internal(p))]
+    return f"SELECT DISTINCT ?s ?p ?o WHERE {{ {' UNION '.join(patterns)} }}"

@@ -40,6 +40,7 @@ from dataclasses import dataclass
 
 from pyoxigraph import Literal, NamedNode, Triple
 
+from ..compile.condition import TEST
 from ..compile.rule import Atom, Rule, join_order
 from ..vocab import INTERNAL, TYPE
 from .plan import nested
@@ -49,13 +50,6 @@ CHANGE_OLD = NamedNode(INTERNAL + "graph:flip-old")
 
 _STRING = re.compile(r'"(?:[^"\\]|\\.)*"' + r"|'(?:[^'\\]|\\.)*'")
 _VARIABLE = re.compile(r"\?(\w+)")
-_BIND = re.compile(r"^BIND\((.*) AS \?(\w+)\)$", re.S)
-_FILTER = re.compile(r"^FILTER\s*\((.*)\)$", re.S)
-
-
-def filter_lines(rule: Rule) -> list[str]:
-    """The rule's filters, one BIND(...) or FILTER(...) per entry, in order."""
-    return [line.strip() for line in rule.filters.split("\n") if line.strip()]
 
 
 def _rename(text: str, names: Collection[str], suffix: str) -> str:
@@ -74,13 +68,12 @@ def _rename(text: str, names: Collection[str], suffix: str) -> str:
 
 def filter_variables(rule: Rule) -> set[str]:
     """Names (without ``?``) of the variables the filters mention."""
-    return set(_VARIABLE.findall(_STRING.sub('""', rule.filters)))
+    return {v[1:] for c in rule.conditions for v in c.variables}
 
 
 def plain_filters(rule: Rule) -> bool:
     """Filters made only of BIND and FILTER lines without graph patterns (no EXISTS)."""
-    lines = filter_lines(rule)
-    return all((_BIND.match(x) or _FILTER.match(x)) and "{" not in x and "EXISTS" not in x.upper() for x in lines)
+    return all(c.plain for c in rule.conditions)
 
 
 def compared_only(rule: Rule, j: int) -> bool:
@@ -131,25 +124,34 @@ def flip_branches(rule: Rule, changed: tuple[int, ...], lateral: bool, tag: int)
     """UNION branches finding the heads whose derivation by ``rule`` flips (``?rule`` = ``tag``).
 
     ``changed`` are the body atoms reading a replaced value (all compared only).
-    One branch per changed atom starts from that atom's replaced facts.
+    One branch per changed atom starts from that atom's replaced facts; the
+    changed atoms before it in ``changed`` are read with their new value only.
+    A match whose changed atoms are the set C is thus evaluated exactly (old
+    and new values paired) by the branch of the first atom of C; the other
+    branches may give it a wrong row, which costs a proof or a re-check and
+    never a wrong fact (see :meth:`IncrementalReasoner._flips`).  Callers put
+    the atoms of the most frequent predicates first: a branch that joins them
+    unbound then scans them without a look-up of the old value per fact.
     With ``lateral``, the other atoms follow in join order, each evaluated per
     solution so far, and the filters stand right after the atom that binds
     their last variable: only the bindings that flip reach the atoms after it.
     """
     renamed = {rule.body[k].o[1:] for k in changed}
-    targets = {m.group(2) for m in map(_BIND.match, filter_lines(rule)) if m}
+    targets = {c.binds[1:] for c in rule.conditions if c.binds}
     renamed |= targets
     needed = {f"?{v}" for v in filter_variables(rule) - targets}
     head = rule.head
     project = " ".join(f"BIND({term} AS ?h{i})" for i, term in enumerate((head.s, head.p, head.o)))
     tests = "\n  ".join(_instances(rule, renamed) + [project, f"BIND({tag} AS ?rule)"])
     branches = []
-    for k in changed:
+    for position, k in enumerate(changed):
         seed = rule.body[k]
+        settled = set(changed[:position])
         start = [f"GRAPH {CHANGE_OLD} {{ {seed.s} {seed.p} {_rename(seed.o, renamed, 'o')} }}",
                  f"{seed.s} {seed.p} {_rename(seed.o, renamed, 'n')} ."]
         order = [m for m in join_order(rule.body, k) if m != k]
-        rest = [_paired_atom(rule.body[m], renamed) if m in changed else rule.atom_text(m) for m in order]
+        rest = [_settled_atom(rule.body[m], renamed) if m in settled
+                else _paired_atom(rule.body[m], renamed) if m in changed else rule.atom_text(m) for m in order]
         if lateral:
             bound = set(seed.variables())
             at = 0
@@ -172,19 +174,24 @@ def _paired_atom(atom: Atom, renamed: set[str]) -> str:
             f"BIND(COALESCE({probe}, {new}) AS {old})")
 
 
+def _settled_atom(atom: Atom, renamed: set[str]) -> str:
+    """A changed atom that an earlier branch pairs: read with its new value as the old one too."""
+    new, old = (_rename(atom.o, renamed, x) for x in ("n", "o"))
+    return f"{atom.s} {atom.p} {new} . BIND({new} AS {old})"
+
+
 def _instances(rule: Rule, renamed: set[str]) -> list[str]:
     """The filters evaluated for the old (``__o``) and new (``__n``) values, and their difference."""
     out = []
     for suffix in ("o", "n"):
         tests = []
-        for i, line in enumerate(filter_lines(rule)):
-            text = _rename(line, renamed, suffix)
-            m = _FILTER.match(text)
-            if m:
+        for i, condition in enumerate(rule.conditions):  # plain: tests and BINDs only
+            if condition.kind == TEST:
                 tests.append(f"?f{i}__{suffix}")
-                out.append(f"BIND(COALESCE(({m.group(1)}), false) AS ?f{i}__{suffix})")
+                expression = _rename(condition.expression, renamed, suffix)
+                out.append(f"BIND(COALESCE(({expression}), false) AS ?f{i}__{suffix})")
             else:
-                out.append(text)
+                out.append(_rename(condition.text, renamed, suffix))
         out.append(f"BIND(({' && '.join(tests) or 'true'}) AS ?ok__{suffix})")
     out.append("FILTER(?ok__o != ?ok__n)")
     return out

@@ -57,6 +57,11 @@ A change to schema triples recompiles the rules and forces a full run; so does
 a change touching more than :attr:`IncrementalReasoner.max_change_share` of
 the asserted graph, where recomputation is as cheap as maintenance.  The mode
 and the reason are reported in :class:`~.materialize.ReasonStats`.
+
+Where the parts live: this module chooses the mode and runs additions, flips
+and checks; :mod:`.dred` holds the deletion phases (over-delete with proofs,
+rederive), :mod:`.requests` the batching of evaluations into update
+requests, :mod:`.scratch` the scratch graphs they share.
 """
 
 from __future__ import annotations
@@ -69,91 +74,25 @@ from pyoxigraph import NamedNode, Triple
 
 from ..compile.generic import PREFIXES
 from ..compile.rule import Rule, RuleSet
+from ..lexer import negates_exists  # noqa: F401 - public here since the first release
 from ..store import Store
-from ..vocab import ASSERTED, AUX, DELTA, INFERRED, INTERNAL, NEW_AUX, NEW_INFERRED, TYPE
-from . import limits
-from .consistency import Violation, check_consistency
+from ..vocab import ASSERTED, AUX, DELTA, INFERRED, NEW_AUX, NEW_INFERRED, TYPE
 from . import flip
-from .materialize import Materializer, Present, ReasonStats, feasible, feasible_atom, matches
-from .plan import KeyCounts, is_small, key_counts, plan_where
-from .triggers import Triggers
-
-#: Scratch graphs of incremental maintenance (never visible to queries).
-ADDED = NamedNode(INTERNAL + "graph:inc-added")          # asserted triples added since the last REASON
-REMOVED = NamedNode(INTERNAL + "graph:inc-removed")      # asserted triples removed since the last REASON
-OVERDELETED = NamedNode(INTERNAL + "graph:inc-overdeleted")
-DEL_DELTA = NamedNode(INTERNAL + "graph:inc-del-delta")  # over-deleted in the previous round
-CANDIDATES = NamedNode(INTERNAL + "graph:inc-candidates")
-PROVEN = NamedNode(INTERNAL + "graph:inc-proven")        # proven to hold in the new state
-NEW_PROVEN = NamedNode(INTERNAL + "graph:inc-new-proven")
-SUBGOALS = NamedNode(INTERNAL + "graph:inc-subgoals")    # premises a candidate's proof needs
-NEW_FACTS = NamedNode(INTERNAL + "graph:inc-new-facts")  # facts that may be new in the closure
-FLIP_GAINED = NamedNode(INTERNAL + "graph:inc-flip-gained")  # heads a replaced value may have made true
-SCRATCH = (ADDED, REMOVED, OVERDELETED, DEL_DELTA, CANDIDATES, PROVEN, NEW_PROVEN, SUBGOALS, NEW_FACTS,
-           FLIP_GAINED, flip.CHANGE_OLD)
-
-
+from .consistency import Violation, check_consistency
+from .dred import DeletionPhases, can_prove
+from .entailed import publish_entailed, refresh_entailed
+from .materialize import Materializer, ReasonStats
+from .plan import KeyCounts, is_small, plan_where
+from .scratch import ADDED, FLIP_GAINED, NEW_FACTS, OVERDELETED, REMOVED, SCRATCH, target
+from .triggers import Present, Triggers, matches
 
 #: Default share of the asserted graph above which a change is recomputed from scratch.
 DEFAULT_MAX_CHANGE_SHARE = 0.10
 
 
-def negates_exists(text: str) -> bool:
-    """Whether a FILTER text tests the *absence* of data (NOT EXISTS, or EXISTS under ``!``).
-
-    Such a filter makes a rule non-monotone.  The scan tracks which open
-    brackets were opened by a ``!``; an EXISTS inside one is negated.
-    """
-    stack: list[bool] = []
-    i = 0
-    while i < len(text):
-        c = text[i]
-        if c in "({":
-            before = text[:i].rstrip()
-            stack.append(before.endswith("!"))
-        elif c in ")}":
-            if stack:
-                stack.pop()
-        elif text[i:i + 6].upper() == "EXISTS":
-            before = text[:i].rstrip()
-            if before.upper().endswith("NOT") or before.endswith("!") or any(stack):
-                return True
-            i += len("EXISTS")
-            continue
-        i += 1
-    return False
-
-
 def is_monotone(rule: Rule) -> bool:
     """A rule whose matches can only grow when facts are added (DRed needs this)."""
-    return rule.stratum == 0 and not negates_exists(rule.filters)
-
-
-def can_prove(rule: Rule) -> bool:
-    """Whether the rule may be used to prove a candidate from asserted + proven facts.
-
-    Its body must read only the default graph and its filters only bound
-    values: helper-graph atoms and EXISTS filters would read facts that may be
-    over-deleted later in the same run.
-    """
-    return not rule.is_check and not any(a.aux for a in rule.body) and not rule.filter_reads \
-        and "EXISTS" not in rule.filters.upper()
-
-
-def dataset(default: Iterable[NamedNode], named: Iterable[NamedNode] = ()) -> str:
-    """USING / USING NAMED clauses of an update."""
-    return " ".join([f"USING {g}" for g in default] + [f"USING NAMED {g}" for g in named])
-
-
-def rule_start(rule: Rule, j: int | None, kind: str) -> tuple:
-    """Read key of the pattern an evaluation starts from: the delta atom, or the head."""
-    if kind == "cand" and j is not None:
-        return rule.body[j].read_key()
-    return rule.head.read_key() if rule.head is not None else ("*",)
-
-
-def target(rule: Rule) -> NamedNode:
-    return AUX if rule.head_aux() else INFERRED
+    return rule.stratum == 0 and not rule.negates
 
 
 @dataclass
@@ -172,7 +111,7 @@ class MaintenanceState:
     asserted: Present = field(default_factory=lambda: (set(), set()))
 
 
-class IncrementalReasoner:
+class IncrementalReasoner(DeletionPhases):
     """Keeps the inferred graphs of one store equal to the closure of its asserted graph.
 
     Holds the rules and the state of the previous REASON; :meth:`reason` gets
@@ -192,7 +131,7 @@ class IncrementalReasoner:
         self.check_triggers = Triggers(rules.checks)
         self.negated = [r for r in self.rules if not is_monotone(r)]
         self.provers = [i for i in self.monotone if can_prove(self.rules[i])]
-        self.checks_monotone = all(not negates_exists(c.filters) and c.stratum == 0 for c in rules.checks)
+        self.checks_monotone = all(not c.negates and c.stratum == 0 for c in rules.checks)
         self._texts: dict[tuple, str] = {}
         self._queue: list[str] = []
         self._lateral = store.supports_lateral  # is the graph the next evaluation starts from small?
@@ -227,6 +166,7 @@ class IncrementalReasoner:
             if (added or removed) and self._negated_match():
                 return self.full("the change makes a rule with a negated premise (stratum 1) match", profile)
             violations = self._check(stats, bool(added or removed))
+            self._publish_entailed(bool(added or removed))
             if profile:
                 stats.derived = self.store.count(NEW_FACTS)
         except Exception:
@@ -248,6 +188,7 @@ class IncrementalReasoner:
         stats = materializer.run()
         start = time.perf_counter()
         violations = check_consistency(self.store, self.ruleset)
+        publish_entailed(self.store, self.ruleset)
         stats.mode, stats.reason = "full", why
         # "quiet": the closure is the stratum-0 fixpoint, which maintenance keeps up to date
         # (a negated premise may have fired and stopped matching since, so ask the run)
@@ -367,7 +308,8 @@ class IncrementalReasoner:
         if text is None:
             text = self._texts[key] = flip.flip_query(
                 b for i, atoms in wanted
-                for b in flip.flip_branches(self.rules[i], atoms, self.store.supports_lateral, i))
+                for b in flip.flip_branches(self.rules[i], self._by_frequency(i, atoms), self.store.supports_lateral,
+                                            i))
         stats.evaluations += len(wanted)
         start = time.perf_counter()
         rows = list(self.store.query(text, prefixes=PREFIXES, graphs=[ASSERTED, INFERRED, AUX],
@@ -376,146 +318,18 @@ class IncrementalReasoner:
             stats.per_rule["flip"] = stats.per_rule.get("flip", 0.0) + time.perf_counter() - start
         return rows
 
+    def _by_frequency(self, i: int, atoms: tuple[int, ...]) -> tuple[int, ...]:
+        """The rule's atoms, those of predicates with the most asserted facts first (see flip.flip_branches)."""
+        def size(j: int) -> int:
+            p = self.rules[i].body[j].p
+            rows = self.store.query(f"SELECT (COUNT(*) AS ?n) WHERE {{ ?s {p} ?o }}", graphs=[ASSERTED])
+            return int(next(iter(rows))["n"].value)
+        sizes = {j: size(j) for j in atoms}
+        return tuple(sorted(atoms, key=lambda j: (-sizes[j], j)))
+
     def _derivable(self, p: str) -> bool:
         """Whether a rule that can fire may derive facts of predicate ``p`` (IRI text)."""
         return any(self.triggers.feasible(i, self.state.present) for i in self.triggers.writers(("p", p)))
-
-    def _overdelete(self, stats: ReasonStats, skip: set[tuple[int, int]] = frozenset(),
-                    lost: list[Triple] = ()) -> None:
-        """DRed's first phase, with the proof check that keeps cyclic axioms from cascading.
-
-        In the first round, the evaluations in ``skip`` are replaced by the
-        heads in ``lost`` (found by :meth:`_flips`).
-        """
-        self._defer(f"ADD SILENT {REMOVED} TO {DEL_DELTA} ; ADD SILENT {REMOVED} TO {OVERDELETED}")
-        preds, classes = self._start(REMOVED)  # what DEL_DELTA holds once the queue is sent
-        while True:
-            limits.check()
-            for i, j in self.triggers.evaluations(preds, classes, self._monotone_set, self.state.present, skip):
-                self._run(("cand", i, j), self._candidate_text, i, j, stats)
-            self._flush()
-            if lost:
-                self.store.add_scratch(lost, CANDIDATES)
-            skip, lost = frozenset(), ()
-            if self.store.is_empty(CANDIDATES):
-                break
-            self._prove(stats)
-            stats.overdeleted += self.store.count(CANDIDATES) if self._profiling(stats) else 0
-            preds, classes = self._start(CANDIDATES)  # the next DEL_DELTA
-            self._defer(f"DROP SILENT GRAPH {DEL_DELTA} ; ADD SILENT {CANDIDATES} TO {DEL_DELTA} ; "
-                        f"ADD SILENT {CANDIDATES} TO {OVERDELETED} ; DROP SILENT GRAPH {CANDIDATES}")
-        self._defer(" ; ".join(f"DELETE {{ GRAPH {g} {{ ?s ?p ?o }} }} {dataset((), (OVERDELETED, g))} "
-                               f"WHERE {{ GRAPH {OVERDELETED} {{ ?s ?p ?o }} GRAPH {g} {{ ?s ?p ?o }} }}"
-                               for g in (INFERRED, AUX)))
-
-    def _prove(self, stats: ReasonStats) -> None:
-        """Move candidates that still hold to PROVEN: a derivation from asserted or proven facts.
-
-        When that proves nothing more, the premises of the remaining
-        candidates' derivations in the current graphs become subgoals, proven
-        the same way (one level of backward chaining); then candidates are
-        tried again.  PROVEN only ever receives facts with a derivation from
-        asserted or earlier proven facts, so it stays inside the new closure.
-        """
-        known = (set(self.state.asserted[0]), set(self.state.asserted[1]))
-        tried_subgoals = False
-        while True:
-            limits.check()
-            if self._prove_goals(CANDIDATES, known, stats):
-                continue
-            if tried_subgoals or self.store.is_empty(CANDIDATES):
-                return
-            tried_subgoals = True
-            self._make_subgoals(stats)
-            progress = False
-            while self._prove_goals(SUBGOALS, known, stats):
-                progress = True
-            self._defer(f"DROP SILENT GRAPH {SUBGOALS}")
-            if not progress:
-                return
-
-    def _prove_goals(self, goals: NamedNode, known: Present, stats: ReasonStats) -> bool:
-        """One pass of the provers over ``goals``; True when something was proven."""
-        preds, classes = self._start(goals)
-        for i in self.provers:
-            key = self.rules[i].writes()
-            if key is not None and matches(key, preds, classes) and feasible(self.rules[i], known):
-                self._run(("prove", i, goals.value), self._prove_text, i, goals, stats)
-        self._flush()
-        if self.store.is_empty(NEW_PROVEN):
-            return False
-        new_preds, new_classes = self._keys(NEW_PROVEN)
-        known[0].update(new_preds)
-        known[1].update(new_classes)
-        self._defer(f"DROP SILENT GRAPH {NEW_PROVEN}")
-        return True
-
-    def _make_subgoals(self, stats: ReasonStats) -> None:
-        """Premises (not of an asserted kind) of the candidates' derivations in the current graphs."""
-        preds, classes = self._start(CANDIDATES)
-        for i in self.provers:
-            rule = self.rules[i]
-            key = rule.writes()
-            if key is None or not matches(key, preds, classes) or not feasible(rule, self.state.present):
-                continue
-            if self._subgoal_atoms(rule, self.state.asserted):
-                self._run(("subgoal", i), self._subgoal_text, i, None, stats)
-        self._flush()
-
-    def _subgoal_atoms(self, rule: Rule, known: Present) -> list:
-        """Body atoms whose facts may need a proof: those of a kind not known to be asserted/proven."""
-        return [a for a in rule.body if a.p.startswith("<") and not feasible_atom(a, known)]
-
-    def _rederive(self, stats: ReasonStats) -> None:
-        """DRed's second phase: over-deleted facts that still follow from what is left go to NEW_*."""
-        preds, classes = self._start(OVERDELETED)
-        for i in self.monotone:
-            key = self.rules[i].writes()
-            if key is not None and matches(key, preds, classes) and feasible(self.rules[i], self.state.present):
-                self._run(("rederive", i), self._rederive_text, i, None, stats)
-        if self._profiling(stats):
-            self._flush()
-            stats.rederived = self.store.count(NEW_INFERRED) + self.store.count(NEW_AUX)
-
-    # ------------------------------------------------------------------ SPARQL texts
-    def _candidate_text(self, i: int, j: int | None) -> str:
-        """Heads of matches over the *old* closure that use an over-deleted fact (atom ``j``),
-        or every head of the rule when ``j`` is None (a filter read something deleted)."""
-        rule = self.rules[i]
-        head = rule.head.text()
-        where = plan_where(rule, j, DEL_DELTA, lateral=self._lateral)
-        old_closure = (ASSERTED, INFERRED, AUX, REMOVED)
-        named = (AUX, DEL_DELTA, target(rule), OVERDELETED, PROVEN)
-        return (f"INSERT {{ GRAPH {CANDIDATES} {{ {head} }} }}\n{dataset(old_closure, named)}\nWHERE {{\n  {where}\n"
-                f"  FILTER EXISTS {{ GRAPH {target(rule)} {{ {head} }} }}\n"
-                f"  FILTER NOT EXISTS {{ GRAPH {OVERDELETED} {{ {head} }} }}\n"
-                f"  FILTER NOT EXISTS {{ GRAPH {PROVEN} {{ {head} }} }}\n}}")
-
-    def _prove_text(self, i: int, goals: NamedNode) -> str:
-        """Move the goals the rule derives from asserted + proven facts to PROVEN (and NEW_PROVEN)."""
-        rule = self.rules[i]
-        head = rule.head.text()
-        where = plan_where(rule, head_graph=goals, lateral=self._lateral)
-        return (f"DELETE {{ GRAPH {goals} {{ {head} }} }}\n"
-                f"INSERT {{ GRAPH {PROVEN} {{ {head} }} GRAPH {NEW_PROVEN} {{ {head} }} }}\n"
-                f"{dataset((ASSERTED, PROVEN), (goals, PROVEN))}\nWHERE {{\n  {where}\n}}")
-
-    def _subgoal_text(self, i: int, _: None) -> str:
-        rule = self.rules[i]
-        atoms = " ".join(a.text() for a in self._subgoal_atoms(rule, self.state.asserted))
-        where = plan_where(rule, head_graph=CANDIDATES, lateral=self._lateral)
-        return (f"INSERT {{ GRAPH {SUBGOALS} {{ {atoms} }} }}\n"
-                f"{dataset((ASSERTED, INFERRED, AUX), (AUX, CANDIDATES))}\nWHERE {{\n  {where}\n}}")
-
-    def _rederive_text(self, i: int, heads: NamedNode | None) -> str:
-        """Insert into NEW_* the heads in ``heads`` (over-deleted ones by default) that the rule derives now."""
-        heads = heads or OVERDELETED
-        rule = self.rules[i]
-        head = rule.head.text()
-        new = NEW_AUX if rule.head_aux() else NEW_INFERRED
-        where = plan_where(rule, head_graph=heads, lateral=self._lateral)
-        return (f"INSERT {{ GRAPH {new} {{ {head} }} }}\n{dataset((ASSERTED, INFERRED, AUX), (AUX, heads))}\n"
-                f"WHERE {{\n  {where}\n  FILTER NOT EXISTS {{ {head} }}\n}}")
 
     # ------------------------------------------------------------------ after maintenance
     def _negated_match(self) -> bool:
@@ -541,6 +355,12 @@ class IncrementalReasoner:
             if self._profiling(stats):
                 stats.per_rule["consistency"] = stats.per_rule.get("consistency", 0.0) + time.perf_counter() - start
 
+    def _publish_entailed(self, changed: bool) -> None:
+        """Bring the ENTAILED graph up to date from what this maintenance touched (see :mod:`.entailed`)."""
+        if changed:
+            self._flush()
+            refresh_entailed(self.store, self.ruleset, (NEW_FACTS, OVERDELETED))
+
     def _new_violation_possible(self) -> bool:
         """A check matches with at least one atom on a fact new in the closure (one semi-naive ASK)."""
         counts = preds, classes = self._keys(NEW_FACTS)
@@ -565,58 +385,6 @@ class IncrementalReasoner:
             text = self._texts[key] = f"{{\n  {where}\n}}"
         return text
 
-    # ------------------------------------------------------------------ helpers
-    def _run(self, key: tuple, make, i: int, j: int | None, stats: ReasonStats) -> None:
-        """Queue one evaluation; :meth:`_flush` sends the queue as one update request.
-
-        The evaluations of one phase write graphs the others of that phase do
-        not read (or only benefit from reading, as PROVEN), so one request
-        gives the same result and saves the per-request cost (~0.1 ms each).
-        When profiling, each runs on its own to be timed.
-        """
-        self._lateral = is_small(self._counts, rule_start(self.rules[i], j, key[0])) and self.store.supports_lateral
-        key = (*key, self._lateral)
-        text = self._texts.get(key)
-        if text is None:
-            text = self._texts[key] = make(i, j)
-        stats.evaluations += 1
-        if self._profiling(stats):
-            self._update(text, stats, f"{key[0]}:{self.rules[i].name}")
-        else:
-            self._queue.append(text)
-
-    def _start(self, graph: NamedNode) -> KeyCounts:
-        """The evaluations that follow start from ``graph``: its read keys, and their sizes for the plans."""
-        self._counts = self._keys(graph)
-        return self._counts
-
-    def _defer(self, text: str) -> None:
-        """Queue a bookkeeping update to go with the next request (they run in queue order)."""
-        self._queue.append(text)
-
-    def _flush(self) -> None:
-        if self._queue:
-            text = " ;\n".join(self._queue)
-            self._queue.clear()
-            self.store.update(text, prefixes=PREFIXES)
-
-    def _update(self, text: str, stats: ReasonStats, label: str) -> None:
-        self._flush()
-        if not self._profiling(stats):
-            self.store.update(text, prefixes=PREFIXES)
-            return
-        start = time.perf_counter()
-        self.store.update(text, prefixes=PREFIXES)
-        stats.per_rule[label] = stats.per_rule.get(label, 0.0) + time.perf_counter() - start
-
-    def _profiling(self, stats: ReasonStats) -> bool:
-        """Whether to time each update (and count what the phases did): only with ``profile``."""
-        return self.profile
-
-    def _keys(self, graph: NamedNode) -> KeyCounts:
-        """Predicates and classes (of rdf:type facts) in ``graph``, with counts: the read keys it changes."""
-        return key_counts(self.store, graph)
-
     def _present(self, graphs: list[NamedNode]) -> Present:
         """Predicates and classes with at least one fact in ``graphs`` (after a full run)."""
         preds = {str(r["p"]) for r in self.store.query("SELECT DISTINCT ?p WHERE { ?s ?p ?o }", graphs=graphs)}
@@ -635,4 +403,5 @@ class IncrementalReasoner:
         self.store.update(" ; ".join(f"DROP SILENT GRAPH {g}" for g in (*SCRATCH, DELTA, NEW_INFERRED, NEW_AUX)))
 
 
-__all__ = ["IncrementalReasoner", "MaintenanceState", "DEFAULT_MAX_CHANGE_SHARE", "negates_exists", "is_monotone"]
+__all__ = ["IncrementalReasoner", "MaintenanceState", "DEFAULT_MAX_CHANGE_SHARE", "can_prove", "negates_exists",
+           "is_monotone"]

@@ -22,12 +22,12 @@ from dataclasses import dataclass, field
 from pyoxigraph import NamedNode
 
 from ..compile.generic import PREFIXES
-from ..compile.rule import Atom, Rule, RuleSet
+from ..compile.rule import Rule, RuleSet
 from ..store import Store
-from . import limits
-from .plan import KeyCounts, is_small, key_counts, plan_where
-from .triggers import Triggers
 from ..vocab import ASSERTED, AUX, DELTA, INFERRED, NEW_AUX, NEW_INFERRED, TYPE
+from . import limits
+from .plan import KeyCounts, is_small, plan_where
+from .triggers import Present, Triggers
 
 DATASET = f"USING {ASSERTED} USING {INFERRED} USING {AUX} USING NAMED {AUX} USING NAMED {DELTA}"
 
@@ -66,38 +66,6 @@ def insert_text(rule: Rule, delta_index: int | None = None, planned: bool = Fals
     return f"INSERT {{ GRAPH {target} {{ {head} }} }}\n{DATASET}\nWHERE {{\n  {where}\n  FILTER NOT EXISTS {{ {head} }}\n}}"
 
 
-#: Predicates and classes that have (or may have) facts: a superset kept by incremental runs.
-Present = tuple[set[str], set[str]]
-
-
-def feasible(rule: Rule, present: Present | None, skip: int | None = None) -> bool:
-    """False when a body atom other than ``skip`` reads a predicate or class without any fact.
-
-    Such an evaluation cannot match; skipping it saves a SPARQL update, which
-    costs about 0.1 ms even when nothing matches.
-    """
-    if present is None:
-        return True
-    return all(feasible_atom(atom, present) for k, atom in enumerate(rule.body) if k != skip)
-
-
-def feasible_atom(atom: Atom, present: Present) -> bool:
-    """Whether facts of the atom's predicate (or class) may exist; property paths always may."""
-    if not atom.p.startswith("<"):
-        return True  # a variable or a property path (reads several predicates)
-    key = atom.read_key()
-    preds, classes = present
-    return key[1] in classes if key[0] == "t" else key[1] in preds
-
-
-def matches(key: tuple, changed_preds: set[str], changed_classes: set[str]) -> bool:
-    if key[0] == "*":
-        return bool(changed_preds)
-    if key[0] == "t":
-        return key[1] in changed_classes
-    return key[1] in changed_preds
-
-
 class Materializer:
     """Runs a :class:`RuleSet` to its fixpoint over one store's graphs."""
 
@@ -107,7 +75,7 @@ class Materializer:
         self.triggers = triggers or Triggers(self.rules)
         self.profile = profile
         self._texts: dict[tuple, str] = {}
-        #: when set, evaluations that cannot match are skipped (see :func:`feasible`);
+        #: when set, evaluations that cannot match are skipped (see :meth:`.Triggers.feasible`);
         #: the keys of every delta are added to it, so it stays a superset
         self.present: Present | None = None
         #: evaluate delta rounds with :func:`.plan.plan_where` (set by incremental runs)
@@ -285,7 +253,20 @@ def evaluation_order(rules: list[Rule], indexes: list[int]) -> tuple[list[list[i
         for b in nodes:
             if any(_feeds(w, r) for r in rules[b].reads()):
                 succ[a].append(b)
-    # Tarjan's algorithm, iterative; components come out in reverse topological order
+    return strongly_connected(nodes, succ), wild
+
+
+def strongly_connected(nodes: list[int], succ: dict[int, list[int]]) -> list[list[int]]:
+    """The strongly connected components of a graph (each sorted), in topological order: a
+    component comes before every component it has an edge to.
+
+    Tarjan's algorithm, iterative (rule sets are deep enough to exhaust Python's recursion).
+    Written here rather than taken from networkx, which is not a dependency of topostore: the
+    core install is kept to what the service needs (pyproject.toml), and networkx would be
+    imported by every CLI start for these thirty lines.  tests/test_rule_structure.py checks
+    the result against the definition (mutual reachability) and the order on random graphs.
+    """
+    # components come out of Tarjan's algorithm in reverse topological order
     index: dict[int, int] = {}
     low: dict[int, int] = {}
     on_stack: set[int] = set()
@@ -324,4 +305,4 @@ def evaluation_order(rules: list[Rule], indexes: list[int]) -> tuple[list[list[i
                         break
                 components.append(sorted(component))
     components.reverse()
-    return components, wild
+    return components

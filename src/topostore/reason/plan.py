@@ -7,13 +7,9 @@ solution, so their cost follows the change, not the map.
 
 from __future__ import annotations
 
-import re
-
 from pyoxigraph import NamedNode
 
 from ..compile.rule import Rule, join_order
-
-_BIND_TARGET = re.compile(r"\bAS\s+(\?\w+)", re.I)
 
 #: Up to this many facts in the start graph, per-solution (LATERAL) evaluation
 #: wins; above, Oxigraph's hash joins do (measured on generated maps).
@@ -64,7 +60,7 @@ def plan_where(rule: Rule, delta: int | None = None, delta_graph: NamedNode | No
     gives a flat group (start patterns first).
     """
     head_line = f"GRAPH {head_graph} {{ {rule.head.text()} }}" if head_graph is not None else ""
-    head_last = bool(head_line) and bool(set(_BIND_TARGET.findall(rule.filters)) & rule.head.variables())
+    head_last = bool(head_line) and bool(rule.binds & rule.head.variables())
     bound = rule.head.variables() if head_line and not head_last else set()
     start = [head_line] if head_line and not head_last else []
     rest: list[str] = []

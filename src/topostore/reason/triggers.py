@@ -67,7 +67,11 @@ class Triggers:
         return self._writers.get(key, []) + self._writers.get(("*",), [])
 
     def feasible(self, i: int, present: Present | None, skip: int | None = None) -> bool:
-        """False when a body atom of rule ``i`` other than ``skip`` reads a key without any fact."""
+        """False when a body atom of rule ``i`` other than ``skip`` reads a key without any fact.
+
+        Such an evaluation cannot match; skipping it saves a SPARQL update, which
+        costs about 0.1 ms even when nothing matches.
+        """
         if present is None:
             return True
         preds, classes = present
@@ -81,5 +85,21 @@ class Triggers:
                 return False
         return True
 
+    def unknown_atoms(self, i: int, known: Present) -> list[int]:
+        """Body atoms of rule ``i`` on a predicate or class without any fact in ``known``
+        (atoms with a variable predicate or a path may match anything, so they are never unknown)."""
+        preds, classes = known
+        return [j for j, need in enumerate(self._needs[i])
+                if need is not None and need[1] not in (classes if need[0] == "t" else preds)]
 
-__all__ = ["Evaluation", "Present", "Triggers"]
+
+def matches(key: ReadKey, changed_preds: Collection[str], changed_classes: Collection[str]) -> bool:
+    """Whether a change of ``changed_preds``/``changed_classes`` touches read key ``key``."""
+    if key[0] == "*":
+        return bool(changed_preds)
+    if key[0] == "t":
+        return key[1] in changed_classes
+    return key[1] in changed_preds
+
+
+__all__ = ["Evaluation", "Present", "Triggers", "matches"]

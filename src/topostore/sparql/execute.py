@@ -9,9 +9,10 @@ consistent state while writers carry on.  Rows are read on the calling thread
 the deadline is checked between rows, so a long result stops at the limit.
 
 Updates are evaluated on a scratch copy of the asserted graph; the difference
-is applied as one all-or-nothing manipulation through
-:meth:`~topostore.armor.reference.Reference.run`, which re-reasons (or undoes
-everything if reasoning fails), exactly like an aRMOR manipulation.
+is applied as one all-or-nothing manipulation through the target's
+``manipulate`` (:class:`~topostore.sparql.target.WritableOntology`), which
+re-reasons (or undoes everything if reasoning fails), exactly like an aRMOR
+manipulation.
 """
 
 from __future__ import annotations
@@ -23,11 +24,11 @@ from dataclasses import dataclass, field
 import pyoxigraph as ox
 from pyoxigraph import DefaultGraph, Literal, Quad, QueryBoolean, QuerySolutions, Triple
 
-from ..armor.reference import Change, Delta, Reference
 from ..errors import QueryError
 from ..store import skolemize
 from ..vocab import ASSERTED, OWL, RDF, RDFS, XSD
 from .guard import check_user_sparql
+from .target import LockedOntology, WritableOntology
 from .results import ResultFormat, boolean_json, choose_format, render_graph, render_table, solutions_json
 
 
@@ -41,6 +42,14 @@ class ResultTooLarge(QueryError):
 
 class ReferenceMounted(QueryError):
     """A SPARQL update on a reference mounted by an aRMOR client (only that client may change it)."""
+
+
+@dataclass
+class TripleDelta:
+    """What an update changes in the asserted graph."""
+
+    add: list[Triple]
+    remove: list[Triple]
 
 
 @dataclass
@@ -93,7 +102,7 @@ def too_large_message(max_rows: int) -> str:
             "or start the server with a larger --sparql-max-rows")
 
 
-def run_query(ref: Reference, text: str, accept: str | None, explicit_format: str | None, job: Job,
+def run_query(ref: LockedOntology, text: str, accept: str | None, explicit_format: str | None, job: Job,
               limit: float, max_rows: int = 500_000) -> QueryOutcome:
     """Evaluate a query over the reference's asserted ∪ inferred graphs and serialize it.
 
@@ -112,7 +121,7 @@ def run_query(ref: Reference, text: str, accept: str | None, explicit_format: st
         result = None  # noqa: F841
 
 
-def _serialize(ref: Reference, onto, result, accept: str | None, explicit_format: str | None, job: Job,
+def _serialize(ref: LockedOntology, onto, result, accept: str | None, explicit_format: str | None, job: Job,
                limit: float, max_rows: int) -> QueryOutcome:
     """Read the rows (or triples) under the deadline and serialize them."""
     try:
@@ -120,13 +129,13 @@ def _serialize(ref: Reference, onto, result, accept: str | None, explicit_format
     except Exception as exc:  # a fresh exception: no traceback may keep the result alive
         try:
             error = type(exc)(str(exc))
-        except Exception:
+        except TypeError:  # an exception class that takes other arguments
             error = QueryError(str(exc))
     result = None  # noqa: F841
     raise error
 
 
-def _read(ref: Reference, onto, result, accept: str | None, explicit_format: str | None, job: Job,
+def _read(ref: LockedOntology, onto, result, accept: str | None, explicit_format: str | None, job: Job,
           limit: float, max_rows: int) -> QueryOutcome:
     if isinstance(result, QueryBoolean):
         fmt = choose_format(accept, graph=False, explicit=explicit_format)
@@ -175,7 +184,7 @@ class UpdateOutcome:
                 "warnings": self.warnings}
 
 
-def update_delta(asserted: list[Triple], text: str) -> Delta:
+def update_delta(asserted: list[Triple], text: str) -> TripleDelta:
     """What ``text`` adds to and removes from ``asserted``, computed on a scratch store."""
     scratch = ox.Store()
     scratch.extend([Quad(t.subject, t.predicate, t.object, DefaultGraph()) for t in asserted])
@@ -191,10 +200,10 @@ def update_delta(asserted: list[Triple], text: str) -> Delta:
                          "writable graph, the default graph (leave out GRAPH and WITH)")
     after = {skolemize(Triple(q.subject, q.predicate, q.object)) for q in scratch.quads_for_pattern(None, None, None, DefaultGraph())}
     before = set(asserted)
-    return Delta(add=sorted(after - before, key=str), remove=sorted(before - after, key=str))
+    return TripleDelta(add=sorted(after - before, key=str), remove=sorted(before - after, key=str))
 
 
-def run_update(ref: Reference, text: str, job: Job, limit: float) -> UpdateOutcome:
+def run_update(ref: WritableOntology, text: str, job: Job, limit: float) -> UpdateOutcome:
     """Apply a SPARQL update to the reference's asserted graph, then reason as a manipulation would.
 
     Updates see and change asserted knowledge only; inferences follow from reasoning.
@@ -208,7 +217,7 @@ def run_update(ref: Reference, text: str, job: Job, limit: float) -> UpdateOutco
         delta = update_delta(asserted, text)
         if not job.claim():
             raise SparqlTimeout(timeout_message(limit))
-        warnings = ref.run([Change("SPARQL update", lambda _onto: delta)])
+        warnings = ref.manipulate("SPARQL update", delta.add, delta.remove)
         return UpdateOutcome(len(delta.add), len(delta.remove), ref.is_consistent, warnings)
 
 

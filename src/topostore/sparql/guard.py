@@ -27,22 +27,15 @@ keyword through.
 
 from __future__ import annotations
 
-import re
 from dataclasses import dataclass, field
 
 from ..errors import QueryError
-from ..queries import skip_non_code
-
-_ESCAPE = re.compile(r"\\u([0-9A-Fa-f]{4})|\\U([0-9A-Fa-f]{8})")
-_WORD = re.compile(r"[A-Za-z_][A-Za-z0-9_\-]*")
-_NAME_CHARS = set("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-.:")
-#: characters that, just before a word, make it part of a name rather than a keyword
-_JOINERS = _NAME_CHARS - {"."}
-_OPEN, _CLOSE = "({[", ")}]"
+from ..lexer import CLOSE, COMMENT, IRI, KEYWORD, OPEN, PUNCT, decode_escapes, tokens
+from ..vocab import FUNCTION_PREFIX
 
 FORBIDDEN = ("SERVICE", "LOAD")
 #: namespace of the extension functions only compiled rules may call
-INTERNAL_FUNCTIONS = "urn:topostore:fn:"
+INTERNAL_FUNCTIONS = FUNCTION_PREFIX
 
 
 @dataclass(frozen=True)
@@ -87,59 +80,26 @@ class Scan:
     tokens: int = 0
 
 
-def decode_escapes(text: str) -> str:
-    """Apply SPARQL's ``\\u``/``\\U`` code point escapes (done before parsing, §19.2)."""
-
-    def repl(m: re.Match[str]) -> str:
-        code = int(m.group(1) or m.group(2), 16)
-        return chr(code) if code <= 0x10FFFF else m.group(0)
-
-    return _ESCAPE.sub(repl, text)
-
-
 def scan(text: str, stop_tokens: int | None = None) -> Scan:
-    """Lex ``text`` once; stops early (the answer is already "too many") past ``stop_tokens``."""
-    text = decode_escapes(text)
+    """Lex ``text`` once (:func:`topostore.lexer.tokens`); stops early (the answer is already
+    "too many") past ``stop_tokens``."""
     out = Scan()
     depth = 0
-    i, n = 0, len(text)
-    while i < n:
-        c = text[i]
-        if c.isspace():
-            i += 1
-            continue
+    for token in tokens(decode_escapes(text)):
+        if token.kind == COMMENT:
+            continue  # a comment is not a token
         out.tokens += 1
         if stop_tokens is not None and out.tokens > stop_tokens:
             return out
-        nxt = skip_non_code(text, i)
-        if nxt is not None:
-            if c == "<":
-                out.iris.append(text[i + 1:nxt - 1])
-            elif c == "#":
-                out.tokens -= 1  # a comment is not a token
-            i = nxt
-            continue
-        if c in _OPEN:
+        if token.kind == IRI:
+            out.iris.append(token.text[1:-1])
+        elif token.kind == KEYWORD:
+            out.keywords.append(token.word)
+        elif token.kind == PUNCT and token.text in OPEN:
             depth += 1
             out.depth = max(out.depth, depth)
-        elif c in _CLOSE:
+        elif token.kind == PUNCT and token.text in CLOSE:
             depth -= 1
-        if c in "?$":  # a variable: skip its name
-            m = _WORD.match(text, i + 1)
-            i = m.end() if m else i + 1
-            continue
-        m = _WORD.match(text, i)
-        if m:
-            prev = text[i - 1] if i > 0 else " "
-            after = text[m.end()] if m.end() < n else " "
-            if prev not in _JOINERS and after != ":":
-                out.keywords.append(m.group(0).upper())
-            i = m.end()
-            # the rest of a prefixed name (ex:LOAD) is not a keyword
-            while i < n and text[i] in _NAME_CHARS:
-                i += 1
-            continue
-        i += 1
     return out
 
 

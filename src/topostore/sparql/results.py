@@ -23,10 +23,10 @@ import pyoxigraph as ox
 from pyoxigraph import BlankNode, Literal, NamedNode, QueryResultsFormat, RdfFormat, Triple
 
 from ..errors import TopostoreError
-from ..vocab import XSD
+from ..vocab import RDF, XSD
 
 _XSD_STRING = XSD + "string"
-_RDF_LANG_STRING = "http://www.w3.org/1999/02/22-rdf-syntax-ns#langString"
+_RDF_LANG_STRING = RDF + "langString"
 
 
 @dataclass(frozen=True)

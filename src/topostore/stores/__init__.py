@@ -17,9 +17,9 @@ import os
 import urllib.parse
 from pathlib import Path
 
-from ..compile.builtins import POW_FUNCTION
 from ..errors import RuleCompileError, StoreError
 from ..store import Store
+from ..vocab import POW_FUNCTION
 
 StoreSpec = str | os.PathLike[str] | None
 
@@ -81,10 +81,10 @@ def check_rules(store: Store, rules) -> None:
     if store.custom_functions:
         return
     for rule in rules.rules:
-        if POW_FUNCTION in rule.sparql():
+        if str(POW_FUNCTION) in rule.sparql():
             raise RuleCompileError(
                 f"rule {rule.name!r} needs swrlb:pow with a variable exponent, which topostore computes with its own "
-                f"SPARQL function <{POW_FUNCTION}>; the remote SPARQL server cannot evaluate it, so this ontology "
+                f"SPARQL function {POW_FUNCTION}; the remote SPARQL server cannot evaluate it, so this ontology "
                 "only runs on a memory or directory store")
 
 

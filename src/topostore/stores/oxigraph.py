@@ -17,7 +17,7 @@ import pyoxigraph as ox
 from pyoxigraph import NamedNode, Quad
 
 from ..errors import QueryError, StoreError
-from ..store import CUSTOM_FUNCTIONS, Store
+from ..store import Store
 from ..vocab import TYPE
 
 
@@ -88,7 +88,7 @@ class OxigraphStore(Store):
     def _run_update(self, text: str, prefixes: dict[str, str] | None) -> None:
         self._writes += 1
         try:
-            self._ox.update(text, custom_functions=CUSTOM_FUNCTIONS, prefixes=prefixes)
+            self._ox.update(text, custom_functions=self.functions, prefixes=prefixes)
         except SyntaxError as exc:
             raise QueryError(f"malformed SPARQL update: {exc}") from exc
         except (OSError, RuntimeError) as exc:
@@ -96,7 +96,7 @@ class OxigraphStore(Store):
 
     def _run_query(self, text: str, graphs: list[NamedNode] | None, named: list[NamedNode] | None = None,
                    **kwargs):
-        kwargs.setdefault("custom_functions", CUSTOM_FUNCTIONS)
+        kwargs.setdefault("custom_functions", self.functions)
         try:
             if graphs is not None:
                 named = graphs if named is None else named

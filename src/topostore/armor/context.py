@@ -1,0 +1,155 @@
+"""What every aRMOR command handler works with: the call's context, its reply and the table entry.
+
+A handler gets a :class:`Context` (the service, the request and, for commands
+on a reference, that reference), validates *all* its arguments before touching
+anything (:meth:`Context.iri`, :meth:`Context.literal`, :meth:`Context.flag`
+raise :class:`~topostore.armor.codes.CommandError` with the argument's
+position), and either answers with a :class:`Reply` or hands
+:class:`~topostore.armor.reference.Change` objects to :meth:`Context.submit`.
+The handler families live in :mod:`.manipulation`, :mod:`.query` and
+:mod:`.admin`; :mod:`.commands` assembles the table.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
+
+from pyoxigraph import Literal, NamedNode, Triple
+
+from .. import terms
+from ..errors import InvalidNameError, InvalidValueError, TopostoreError, UnknownTypeError
+from ..ontology import Ontology
+from ..queries import QueryItem
+from ..vocab import ASSERTED, NOTHING, THING, is_internal
+from . import codes
+from .codes import CommandError
+from .reference import Change, Delta, Reference
+
+if TYPE_CHECKING:  # pragma: no cover
+    from .service import ArmorService
+    from .types import ArmorRequest
+
+
+@dataclass
+class Reply:
+    """What a handler answers; the service adds ``is_consistent`` and wraps it in a response."""
+
+    queried_objects: list[str] = field(default_factory=list)
+    sparql_queried_objects: list[QueryItem] = field(default_factory=list)
+    timeout: bool = False
+    warnings: list[str] = field(default_factory=list)
+    success: bool = True
+    exit_code: int = codes.SUCCESS
+
+
+@dataclass
+class Context:
+    """One call being executed: the service, the request and (when needed) its reference."""
+
+    service: ArmorService
+    request: ArmorRequest
+    ref: Reference | None = None
+
+    @property
+    def args(self) -> list[str]:
+        return self.request.args
+
+    @property
+    def reference(self) -> Reference:
+        assert self.ref is not None, "command registered without needs_ref"
+        return self.ref
+
+    @property
+    def onto(self) -> Ontology:
+        return self.reference.ontology
+
+    def iri(self, position: int, what: str) -> NamedNode:
+        """Entity IRI of ``args[position]``; 208 with the reason when the name is illegal."""
+        try:
+            return terms.entity(self.args[position], self.reference.prefix)
+        except InvalidNameError as exc:
+            raise CommandError(codes.INVALID_ARGUMENT, f"argument {position + 1} ({what}): {exc}") from None
+
+    def literal(self, value_pos: int, type_pos: int) -> Literal:
+        """Typed literal of ``args[value_pos]`` with type name ``args[type_pos]`` (spec §2.3)."""
+        try:
+            return terms.typed_literal(self.args[value_pos], self.args[type_pos])
+        except UnknownTypeError as exc:
+            raise CommandError(codes.UNKNOWN_TYPE, f"argument {type_pos + 1}: {exc}") from None
+        except InvalidValueError as exc:
+            raise CommandError(codes.INVALID_ARGUMENT, f"argument {value_pos + 1} (value): {exc}") from None
+
+    def flag(self, position: int, what: str) -> bool:
+        """A boolean argument: ``true``/``false`` in any case (aRMOR's convention)."""
+        text = self.args[position].strip().lower()
+        if text in ("true", "1"):
+            return True
+        if text in ("false", "0", ""):
+            return False
+        raise CommandError(
+            codes.INVALID_ARGUMENT,
+            f"argument {position + 1} ({what}) must be true or false, got {self.args[position]!r}",
+        )
+
+    def render(self, items: list) -> list[str]:
+        """Render terms in the service's mode; sorted so answers are reproducible."""
+        return sorted(self.service.renderer.terms([t for t in items if not hidden(t)]))
+
+    def submit(self, *changes: Change) -> Reply:
+        """Apply (or queue) manipulations; a failure of the reasoner undoes them (209)."""
+        if changes:  # the request that made them, so a durable store can persist a buffer
+            changes[0].origin = self.request.to_dict()
+        try:
+            warnings = self.reference.submit(list(changes))
+        except (TopostoreError, OSError) as exc:  # reasoning, the store or its files failed; a bug surfaces as one
+            raise CommandError(
+                codes.REASONER_OR_QUERY_FAILURE, f"the change was undone because reasoning failed: {exc}"
+            ) from exc
+        return Reply(warnings=warnings)
+
+
+Handler = Callable[[Context], Reply]
+
+
+@dataclass(frozen=True)
+class Command:
+    """A table entry: handler, accepted argument count and how the call is gated."""
+
+    handler: Handler
+    args: tuple[str, ...]  # names of the arguments, for error messages
+    min_args: int
+    max_args: int | None  # None: variadic
+    needs_ref: bool = True
+    manipulation: bool = False
+
+    def check_arity(self, n: int) -> None:
+        if n < self.min_args or (self.max_args is not None and n > self.max_args):
+            if self.max_args is None:
+                expected = f"at least {self.min_args}"
+            elif self.min_args == self.max_args:
+                expected = str(self.min_args)
+            else:
+                expected = f"{self.min_args} to {self.max_args}"
+            names = ", ".join(self.args) if self.args else "none"
+            raise CommandError(codes.INVALID_ARGUMENT, f"expected {expected} argument(s) [{names}], got {n}")
+
+
+def hidden(term: object) -> bool:
+    """Terms never shown in answers: internal IRIs, owl:Thing and owl:Nothing (spec §7 item 6)."""
+    return is_internal(term) or term in (THING, NOTHING)
+
+
+def fixed(description: str, add: Sequence[Triple] = (), remove: Sequence[Triple] = ()) -> Change:
+    """A change whose triples do not depend on the state at application time."""
+    to_add, to_remove = list(add), list(remove)
+    return Change(description, lambda onto: Delta(add=to_add, remove=to_remove))
+
+
+def asserted(onto: Ontology, s=None, p=None, o=None) -> list[Triple]:
+    """The asserted triples matching a pattern (what manipulations and restriction queries read)."""
+    return list(onto.store.triples(s, p, o, ASSERTED))
+
+
+__all__ = ["Reply", "Context", "Command", "Handler", "hidden", "fixed", "asserted"]

@@ -1,0 +1,257 @@
+"""The aRMOR query commands (spec §3.4-3.5): QUERY IND/CLASS/DATAPROP/OBJECTPROP/RESTRICTIONS and QUERY SPARQL.
+
+Answers read asserted ∪ inferred knowledge (asserted only while the ontology
+is inconsistent) and are sorted, so the same ontology always gives the same
+reply.  QUERY SPARQL runs under the service's time limit (:func:`run_select`).
+"""
+
+from __future__ import annotations
+
+import threading
+
+from pyoxigraph import NamedNode, Triple
+
+from ..errors import QueryError
+from ..ontology import Ontology
+from ..queries import QueryItem, render_jena
+from ..vocab import ASSERTED, THING, TYPE, XSD, is_internal, owl, rdfs
+from . import codes
+from .codes import CommandError
+from .context import Context, Reply, asserted, hidden
+from .manipulation import EQUIVALENT_CLASS, SUBCLASS_OF
+from .render import short_name
+
+
+def _occurs(onto: Ontology, ind: NamedNode) -> bool:
+    for graph in onto.visible_graphs():
+        if next(onto.store.triples(ind, None, None, graph), None) or next(
+            onto.store.triples(None, None, ind, graph), None
+        ):
+            return True
+    return False
+
+
+def query_ind(ctx: Context) -> Reply:
+    """QUERY IND: classes of an individual; ``[owl:Thing]`` if it has none (spec §7 item 11)."""
+    ind = ctx.iri(0, "individual")
+    if not _occurs(ctx.onto, ind):
+        return Reply(success=False, warnings=[f"individual {ind.value} does not occur in the ontology"])
+    classes = ctx.render(ctx.onto.types(ind))
+    return Reply(queried_objects=classes or [ctx.service.renderer.term(THING)])
+
+
+def query_ind_class(ctx: Context) -> Reply:
+    return Reply(queried_objects=ctx.render(ctx.onto.instances(ctx.iri(0, "class"))))
+
+
+def query_dataprop_ind(ctx: Context) -> Reply:
+    prop, ind = ctx.iri(0, "data property"), ctx.iri(1, "individual")
+    return Reply(queried_objects=ctx.render(ctx.onto.data_values(prop, ind)))
+
+
+def query_objectprop_ind(ctx: Context) -> Reply:
+    prop, ind = ctx.iri(0, "object property"), ctx.iri(1, "individual")
+    return Reply(queried_objects=ctx.render(ctx.onto.object_values(prop, ind, names=False)))
+
+
+def most_specific(onto: Ontology, classes: list[NamedNode]) -> list[NamedNode]:
+    """Classes with no strict subclass among ``classes`` (equivalent classes all stay)."""
+    result = []
+    for c in classes:
+        below = onto.subclasses(c)
+        if not any(d in below and c not in onto.subclasses(d) for d in classes if d != c):
+            result.append(c)
+    return result
+
+
+def query_class_ind(ctx: Context) -> Reply:
+    """QUERY CLASS IND [ind, bottom?]: all classes, or the most specific ones as sorted short names."""
+    ind = ctx.iri(0, "individual")
+    bottom = ctx.flag(1, "bottom") if len(ctx.args) > 1 else False
+    classes = [c for c in ctx.onto.types(ind) if not hidden(c)]
+    if not bottom:
+        return Reply(queried_objects=ctx.render(classes))
+    return Reply(queried_objects=sorted({short_name(c) for c in most_specific(ctx.onto, classes)}))
+
+
+def query_class_class(ctx: Context) -> Reply:
+    return Reply(queried_objects=ctx.render(list(ctx.onto.subclasses(ctx.iri(0, "class")))))
+
+
+def query_ind_dataprop(ctx: Context) -> Reply:
+    return Reply(queried_objects=ctx.render(ctx.onto.properties_of(ctx.iri(0, "individual"), data=True)))
+
+
+def query_ind_objectprop(ctx: Context) -> Reply:
+    return Reply(queried_objects=ctx.render(ctx.onto.properties_of(ctx.iri(0, "individual"), data=False)))
+
+
+_CARDINALITIES = (
+    ("MIN", ("minQualifiedCardinality", "minCardinality")),
+    ("MAX", ("maxQualifiedCardinality", "maxCardinality")),
+    ("EXACT", ("qualifiedCardinality", "cardinality")),
+)
+
+
+def _is_data_restriction(onto: Ontology, prop, filler) -> bool:
+    if onto.store.contains(Triple(prop, TYPE, owl("DatatypeProperty")), ASSERTED):
+        return True
+    return isinstance(filler, NamedNode) and (
+        filler.value.startswith(XSD)
+        or filler == rdfs("Literal")
+        or onto.store.contains(Triple(filler, TYPE, rdfs("Datatype")), ASSERTED)
+    )
+
+
+def _one(onto: Ontology, node, name: str):
+    values = onto.store.objects(node, owl(name), ASSERTED)
+    return values[0] if values else None
+
+
+def restriction_item(onto: Ontology, subject: str, node) -> str | None:
+    """One restriction in aRMOR's grammar, e.g. ``C-DEFINITION_MIN_OBJECT : CORRIDOR -> hasDoor 2(DOOR)``."""
+    prop = _one(onto, node, "onProperty")
+    if prop is None:
+        return None
+    for kind, names in _CARDINALITIES:
+        for name in names:
+            count = _one(onto, node, name)
+            if count is not None:
+                filler = _one(onto, node, "onClass") or _one(onto, node, "onDataRange")
+                data = _is_data_restriction(onto, prop, filler)
+                filler = filler or (rdfs("Literal") if data else THING)
+                return (
+                    f"C-DEFINITION_{kind}_{'DATA' if data else 'OBJECT'} : {subject} -> "
+                    f"{short_name(prop)} {count.value}({short_name(filler)})"
+                )
+    for kind, name in (("SOME", "someValuesFrom"), ("ALL", "allValuesFrom")):
+        filler = _one(onto, node, name)
+        if filler is not None:
+            data = _is_data_restriction(onto, prop, filler)
+            shape = f"{kind}_{'DATA' if data else 'OBJECT'}"
+            return f"C-DEFINITION_{shape} : {subject} -> {short_name(prop)}({short_name(filler)})"
+    return None
+
+
+def restriction_items(onto: Ontology, cls: NamedNode, expression) -> list[str]:
+    """Items of one class expression: named classes and restrictions, intersections flattened."""
+    subject = short_name(cls)
+    if isinstance(expression, NamedNode) and not is_internal(expression):
+        return [] if expression in (cls, THING) else [f"C-DEFINITION_CLASS : {subject} -> ({short_name(expression)})"]
+    operands = onto.store.objects(expression, owl("intersectionOf"), ASSERTED)
+    if operands:
+        return [
+            item
+            for member in onto.store.list_items(operands[0], ASSERTED)
+            for item in restriction_items(onto, cls, member)
+        ]
+    item = restriction_item(onto, subject, expression)
+    return [item] if item else []
+
+
+def query_class_restrictions(ctx: Context) -> Reply:
+    """QUERY CLASS RESTRICTIONS: one element per SubClassOf/EquivalentClasses axiom with a restriction."""
+    onto, cls = ctx.onto, ctx.iri(0, "class")
+    expressions = (
+        [t.object for t in asserted(onto, cls, SUBCLASS_OF)]
+        + [t.object for t in asserted(onto, cls, EQUIVALENT_CLASS)]
+        + [t.subject for t in asserted(onto, None, EQUIVALENT_CLASS, cls)]
+    )
+    answers = []
+    for expression in dict.fromkeys(expressions):
+        items = restriction_items(onto, cls, expression)
+        if any(not i.startswith("C-DEFINITION_CLASS") for i in items):
+            answers.append("[" + ", ".join(sorted(items)) + "]")  # sorted: reproducible answers
+    return Reply(queried_objects=sorted(answers))
+
+
+def run_select(onto: Ontology, text: str, timeout: float | None) -> tuple[list[str], list[list], bool]:
+    """(variables, rows, timed_out) of a SELECT over asserted ∪ inferred.
+
+    The query is created and iterated in one worker thread (pyoxigraph result
+    iterators must stay on the thread that created them), and the caller waits
+    at most ``timeout`` seconds, keeping the rows obtained so far.
+    """
+    state: dict = {"variables": [], "rows": [], "error": None}
+    stop = threading.Event()
+    done = threading.Event()
+
+    def worker() -> None:
+        try:
+            result = onto.sparql(text)
+            if not hasattr(result, "variables"):
+                raise QueryError("only SELECT queries are supported (got ASK, CONSTRUCT or DESCRIBE)")
+            names = [v.value for v in result.variables]
+            state["variables"] = names
+            for solution in result:
+                if stop.is_set():
+                    break
+                state["rows"].append([solution[v] for v in names])
+        except Exception as exc:  # reported by the caller, as text: the traceback would keep the result alive
+            state["error"] = f"{type(exc).__name__}: {exc}" if not isinstance(exc, QueryError) else str(exc)
+        finally:
+            result = None  # pyoxigraph results must be freed on the thread that made them  # noqa: F841
+            done.set()
+
+    if timeout is None:  # direct callers only; commands always pass a limit (_query_limit)
+        worker()
+    else:
+        threading.Thread(target=worker, name="armor-sparql", daemon=True).start()
+        if not done.wait(timeout):
+            stop.set()
+            return list(state["variables"]), list(state["rows"]), True
+    if state["error"] is not None:
+        raise CommandError(codes.REASONER_OR_QUERY_FAILURE, f"SPARQL query failed: {state['error']}")
+    return state["variables"], state["rows"], False
+
+
+def _sparql_args(ctx: Context) -> tuple[str, float | None]:
+    """Query text and timeout (seconds or None) from 1-4 args (spec §3.5)."""
+    args = ctx.args
+    text = args[0] if len(args) in (1, 2) else "".join(args[:3])
+    raw = args[1] if len(args) == 2 else args[3] if len(args) == 4 else None
+    if raw is None:
+        return text, None
+    try:
+        millis = int(raw.strip())
+    except ValueError:
+        raise CommandError(
+            codes.INVALID_ARGUMENT, f"timeout must be an integer number of milliseconds, got {raw[:40]!r}"
+        ) from None
+    return text, (millis / 1000.0 if millis > 0 else None)
+
+
+def _query_limit(ctx: Context, asked: float | None) -> float:
+    """The time a query may run: what the client asked, never more than the service's maximum.
+
+    No timeout (or one <= 0) used to mean "unlimited" while the reference's
+    lock was held; now it means the maximum (``ArmorService.max_query_seconds``).
+    """
+    maximum = ctx.service.max_query_seconds
+    return maximum if asked is None else min(asked, maximum)
+
+
+def query_sparql(ctx: Context) -> Reply:
+    """QUERY SPARQL: one string ``{x=v, y=w}, {...}``; every projected variable per row, values unmodified."""
+    text, timeout = _sparql_args(ctx)
+    variables, rows, timed_out = run_select(ctx.onto, text, _query_limit(ctx, timeout))
+    render = lambda t: render_jena(t, ctx.onto.store.restore)  # noqa: E731
+    flat = ", ".join(
+        "{" + ", ".join(f"{v}={render(x)}" for v, x in zip(variables, row, strict=True)) + "}" for row in rows
+    )
+    return Reply(queried_objects=[flat], timeout=timed_out)
+
+
+def query_sparql_formatted(ctx: Context) -> Reply:
+    """QUERY SPARQL FORMATTED: one QueryItem per projected variable per row ("" when unbound)."""
+    text, timeout = _sparql_args(ctx)
+    variables, rows, timed_out = run_select(ctx.onto, text, _query_limit(ctx, timeout))
+    items = [
+        QueryItem(v, render_jena(x, ctx.onto.store.restore))
+        for row in rows
+        for v, x in zip(variables, row, strict=True)
+    ]
+    return Reply(sparql_queried_objects=items, timeout=timed_out)
+
+
+__all__ = ["run_select", "most_specific", "restriction_item", "restriction_items"]

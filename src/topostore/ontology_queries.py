@@ -1,0 +1,136 @@
+"""Questions to an ontology: its answers over asserted ∪ inferred knowledge.
+
+A part of :class:`topostore.ontology.Ontology` (a mixin): the typed questions
+(types, instances, property values), raw SPARQL through the one guard on user
+SPARQL, and named queries with safely bound parameters.
+"""
+
+from __future__ import annotations
+
+from pyoxigraph import Literal, NamedNode
+
+from .errors import QueryError
+from .ontology_files import SCHEMA_NAMESPACES
+from .queries import QueryItem, collect, get_named_query, render_jena, substitutions, to_items
+from .store import Store
+from .terms import Term, value_key
+from .vocab import ASSERTED, DECLARATION_TYPES, THING, TYPE, is_internal, is_skolem
+
+
+class OntologyQueries:
+    """The read API (a mixin of :class:`~topostore.ontology.Ontology`).
+
+    Uses the ontology's ``store``, ``iri``, ``short``, ``value`` and ``visible_graphs``.
+    """
+
+    store: Store
+
+    def _objects(self, s: Term, p: NamedNode) -> list[Term]:
+        seen: dict = {}
+        for g in self.visible_graphs():
+            for o in self.store.objects(s, p, g):
+                shown = self.store.original_literal(ASSERTED, s, p, o) if isinstance(o, Literal) else o
+                seen.setdefault(value_key(o), shown)
+        return list(seen.values())
+
+    def types(self, individual: str | NamedNode) -> list[NamedNode]:
+        """Named classes of an individual (asserted ∪ inferred), without owl:Thing."""
+        return [t for t in self._objects(self.iri(individual), TYPE) if _is_user_class(t)]
+
+    def instances(self, cls: str | NamedNode) -> list[NamedNode]:
+        c = self.iri(cls)
+        found: dict = {}
+        for g in self.visible_graphs():
+            for s in self.store.subjects(TYPE, c, g):
+                if not is_internal(s) or is_skolem(s):
+                    found[s] = None
+        return list(found)
+
+    def object_values(self, prop: str | NamedNode, individual: str | NamedNode, names: bool = True) -> list:
+        vals = [o for o in self._objects(self.iri(individual), self.iri(prop)) if isinstance(o, NamedNode)]
+        return [self.short(v) for v in vals] if names else vals
+
+    def data_values(self, prop: str | NamedNode, individual: str | NamedNode) -> list[Literal]:
+        return [o for o in self._objects(self.iri(individual), self.iri(prop)) if isinstance(o, Literal)]
+
+    def properties_of(self, individual: str | NamedNode, data: bool) -> list[NamedNode]:
+        s = self.iri(individual)
+        props: dict = {}
+        for g in self.visible_graphs():
+            for t in self.store.triples(s, None, None, g):
+                p = t.predicate
+                if isinstance(t.object, Literal) == data and not _is_schema_or_internal(p):
+                    props[p] = None
+        return list(props)
+
+    def sparql(self, text: str, bindings: dict[str, Term] | None = None, **kwargs):
+        """Raw SPARQL over the visible graphs (asserted ∪ inferred).
+
+        User text passes the one SPARQL guard (size, nesting, SERVICE, internal
+        functions) before Oxigraph parses it, and runs without the reasoner's
+        extension functions.
+        ``bindings`` fix variables to terms with pyoxigraph's ``substitutions=``;
+        in a SELECT query a bound variable must be projected.
+        """
+        from .sparql.guard import check_user_sparql  # here: the sparql package imports this module
+
+        check_user_sparql(text)
+        if bindings is not None and not isinstance(bindings, dict):
+            raise TypeError(f"bindings must be a dict of variable name -> term, not {type(bindings).__name__}")
+        kwargs.setdefault("custom_functions", {})
+        if not bindings:
+            return self.store.query(text, graphs=self.visible_graphs(), **kwargs)
+        try:
+            return self.store.query(text, graphs=self.visible_graphs(), substitutions=substitutions(bindings), **kwargs)
+        except QueryError as exc:
+            if "SELECT projection" not in str(exc):
+                raise
+            names = " ".join(f"?{b}" for b in bindings)
+            raise QueryError(f"a query parameter must be in the SELECT list (add {names} to it): parameters are "
+                             "bound with pyoxigraph's substitutions, which fix projected variables only") from None
+
+    def select(self, text: str, bindings: dict[str, Term] | None = None, timeout: float | None = None):
+        """(variables, rows, timed_out) of a SELECT query over the visible graphs."""
+        result = self.sparql(text, bindings)
+        if not hasattr(result, "variables"):
+            raise QueryError("only SELECT queries return rows")
+        return collect(result, timeout)
+
+    def query(self, name_or_text: str, params: dict[str, object] | None = None,
+              timeout: float | None = None) -> list[QueryItem]:
+        """Run a named query (or SELECT text) and return ``QueryItem`` results.
+
+        ``params`` values are entity names / NamedNodes for ``iri`` parameters
+        and Python values or Literals for ``literal`` parameters.
+        """
+        params = params or {}
+        if not isinstance(name_or_text, str):
+            raise TypeError(f"a query name or text must be a string, not {type(name_or_text).__name__}")
+        if name_or_text.lstrip().upper().startswith(("SELECT", "PREFIX", "BASE")):
+            text, kinds = name_or_text, {k: "iri" for k in params}
+        else:
+            q = get_named_query(name_or_text)
+            text, kinds = q.text, q.params
+            missing = set(q.params) - set(params)
+            if missing:
+                raise QueryError(f"query {q.name!r} needs the parameter(s) {', '.join(sorted(missing))}")
+            unknown = set(params) - set(q.params)
+            if unknown:
+                raise QueryError(f"query {q.name!r} has no parameter(s) {', '.join(sorted(unknown))}")
+        bindings = {k: (self.iri(v) if kinds.get(k) == "iri" else self.value(v)) for k, v in params.items()}
+        variables, rows, _ = self.select(text, bindings, timeout)
+        # parameters are projected so that pyoxigraph can substitute them; their fixed values are not answers
+        keep = [i for i, v in enumerate(variables) if v not in bindings]
+        rows = [[row[i] for i in keep] for row in rows]
+        return to_items([variables[i] for i in keep], rows, lambda t: render_jena(t, self.store.restore))
+
+
+def _is_schema_or_internal(p: NamedNode) -> bool:
+    return p.value.startswith(SCHEMA_NAMESPACES) or is_internal(p)
+
+
+def _is_user_class(t: Term) -> bool:
+    return isinstance(t, NamedNode) and t.value not in DECLARATION_TYPES and t != THING and not is_internal(t)
+
+
+__all__ = ["OntologyQueries"]

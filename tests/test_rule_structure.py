@@ -1,0 +1,167 @@
+"""Rules stay structured until they become text: conditions, the shared tokenizer, the rule index.
+
+The compilers record on each :class:`Condition` whether it negates, reads the graph and what it
+binds; these tests pin those records against what the SPARQL text says (read back with the one
+tokenizer), and the pieces of the reasoner that used to scan text (the rule dependency order,
+the feasibility index) against their definitions.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from topostore import Ontology
+from topostore.compile import condition as cond
+from topostore.compile.rule import Atom, Rule
+from topostore.lexer import COMMENT, IRI, KEYWORD, NAME, PUNCT, STRING, VARIABLE, negates_exists, tokens, variables
+from topostore.reason.materialize import strongly_connected
+from topostore.reason.triggers import Triggers, matches
+
+ROOT = Path(__file__).resolve().parent.parent
+EXAMPLE = ROOT / "ontology" / "topological_map.ttl"
+
+
+@pytest.fixture(scope="module")
+def example_rules() -> list[Rule]:
+    onto = Ontology()
+    onto.load(EXAMPLE)
+    return onto.rules.rules
+
+
+# ---------------------------------------------------------------- tokenizer
+
+def test_tokens_kinds_and_texts() -> None:
+    text = 'SELECT ?x WHERE { ?x ex:LOAD "a { b" . <urn:x?y> $z } # FILTER EXISTS\nLIMIT 1'
+    got = [(t.kind, t.text) for t in tokens(text)]
+    assert got == [
+        (KEYWORD, "SELECT"), (VARIABLE, "?x"), (KEYWORD, "WHERE"), (PUNCT, "{"), (VARIABLE, "?x"),
+        (NAME, "ex:LOAD"), (STRING, '"a { b"'), (PUNCT, "."), (IRI, "<urn:x?y>"), (VARIABLE, "$z"),
+        (PUNCT, "}"), (COMMENT, "# FILTER EXISTS\n"), (KEYWORD, "LIMIT"), (PUNCT, "1"),
+    ]
+
+
+def test_variables_skip_strings_and_iris() -> None:
+    assert variables('FILTER(?a - ?b_2 > 3 && STR(?c) != "?d" && ?e = <urn:x?f>)') == {"?a", "?b_2", "?c", "?e"}
+    assert variables("BIND(($t-?v) AS ?d)") == {"?t", "?v", "?d"}
+
+
+@pytest.mark.parametrize(("text", "negated"), [
+    ("FILTER NOT EXISTS { ?x ?p ?y }", True),
+    ("FILTER(!(?a && EXISTS { ?x ?p ?y }))", True),
+    ("FILTER(!EXISTS { ?x ?p ?y })", True),
+    ("FILTER(!sameTerm(?a, ?b) && EXISTS { ?x ?p ?y })", False),
+    ("BIND((?t - ?v) AS ?d)\n  FILTER(?d > ?h)", False),
+    ('FILTER(?x != "NOT EXISTS")', False),
+    ("FILTER(?p != <urn:not#exists>)", False),
+])
+def test_negates_exists(text: str, negated: bool) -> None:
+    assert negates_exists(text) is negated
+
+
+# ---------------------------------------------------------------- conditions
+
+def test_condition_renderings() -> None:
+    assert cond.test("?d > ?h").text == "FILTER(?d > ?h)"
+    assert cond.bind("(?t - ?v)", "?d").text == "BIND((?t - ?v) AS ?d)"
+    assert cond.exists("?a <urn:p> ?b", negated=True).text == "FILTER NOT EXISTS { ?a <urn:p> ?b }"
+    assert cond.exists("?a <urn:p> ?b").text == "FILTER EXISTS { ?a <urn:p> ?b }"
+
+
+def test_parse_reads_rule_file_lines() -> None:
+    b = cond.parse('BIND(IRI(CONCAT("urn:k:", MD5(STR(?x)))) AS ?key)')
+    assert (b.kind, b.binds, b.expression, b.negated, b.reads_graph) == (
+        cond.BIND, "?key", 'IRI(CONCAT("urn:k:", MD5(STR(?x))))', False, False)
+    f = cond.parse("FILTER(!sameTerm(?x, ?y))")
+    assert (f.kind, f.expression, f.plain, f.variables) == (cond.TEST, "!sameTerm(?x, ?y)", True, {"?x", "?y"})
+    n = cond.parse("FILTER NOT EXISTS { GRAPH <urn:g> { ?a <urn:p> ?b } }")
+    assert (n.kind, n.negated, n.reads_graph, n.plain, n.expression) == (
+        cond.EXISTS, True, True, False, "GRAPH <urn:g> { ?a <urn:p> ?b }")
+    o = cond.parse("OPTIONAL { ?a <urn:p> ?b }")
+    assert (o.kind, o.negated, o.reads_graph, o.plain) == (cond.PATTERN, False, True, False)
+
+
+def test_compiled_conditions_agree_with_their_text(example_rules: list[Rule]) -> None:
+    """What each compiler recorded is what its SPARQL says, read back by the tokenizer."""
+    seen = 0
+    for rule in example_rules:
+        for c in rule.conditions:
+            back = cond.parse(c.text)
+            assert (back.kind, back.binds, back.negated, back.reads_graph, back.variables) == \
+                (c.kind, c.binds, c.negated, c.reads_graph, c.variables), c.text
+            seen += 1
+    assert seen > 0 and any(r.negates for r in example_rules) and any(r.binds for r in example_rules)
+
+
+def test_urgency_rule_is_structured(example_rules: list[Rule]) -> None:
+    urgency = [r for r in example_rules if r.name == "swrl:Urgency" and r.head is not None
+               and "entailment" not in r.origin]
+    assert len(urgency) == 1
+    (rule,) = urgency
+    assert [c.kind for c in rule.conditions] == [cond.BIND, cond.TEST]
+    assert rule.binds == {"?d"}
+    assert not rule.negates and not rule.conditions_read_graph
+    assert rule.filters == "\n  ".join(c.text for c in rule.conditions)
+
+
+def test_rule_flags() -> None:
+    body = (Atom("?x", "<urn:p>", "?y"),)
+    plain = Rule("r", "o", body, Atom("?x", "<urn:q>", "?d"), (cond.bind("(?y + 1)", "?d"),))
+    negating = Rule("n", "o", body, Atom("?x", "<urn:q>", "?y"), (cond.exists("?y <urn:r> ?x", negated=True),))
+    assert (plain.negates, plain.binds, plain.conditions_read_graph) == (False, {"?d"}, False)
+    assert (negating.negates, negating.binds, negating.conditions_read_graph) == (True, frozenset(), True)
+    assert negating.where() == "?x <urn:p> ?y .\n  FILTER NOT EXISTS { ?y <urn:r> ?x }"
+
+
+# ---------------------------------------------------------------- rule index
+
+def test_unknown_atoms_and_feasible() -> None:
+    rule = Rule("r", "o", (Atom("?x", "<urn:p>", "?y"), Atom("?y", "<http://www.w3.org/1999/02/22-rdf-syntax-ns#type>",
+                                                                 "<urn:C>"), Atom("?y", "?any", "?z")),
+                Atom("?x", "<urn:q>", "?z"))
+    index = Triggers([rule])
+    assert index.unknown_atoms(0, ({"<urn:p>"}, set())) == [1]
+    assert index.unknown_atoms(0, (set(), {"<urn:C>"})) == [0]
+    assert index.unknown_atoms(0, ({"<urn:p>"}, {"<urn:C>"})) == []
+    assert index.feasible(0, ({"<urn:p>"}, set())) is False
+    assert index.feasible(0, ({"<urn:p>"}, set()), skip=1) is True
+    assert index.feasible(0, None) is True
+    assert matches(("*",), {"<urn:p>"}, set()) and not matches(("*",), set(), {"<urn:C>"})
+    assert matches(("t", "<urn:C>"), set(), {"<urn:C>"}) and not matches(("p", "<urn:C>"), set(), {"<urn:C>"})
+
+
+# ---------------------------------------------------------------- rule dependency order
+
+def _reach(succ: dict[int, list[int]], a: int) -> set[int]:
+    seen, todo = {a}, [a]
+    while todo:
+        for w in succ[todo.pop()]:
+            if w not in seen:
+                seen.add(w)
+                todo.append(w)
+    return seen
+
+
+graphs = st.integers(1, 9).flatmap(lambda n: st.lists(
+    st.tuples(st.integers(0, n - 1), st.integers(0, n - 1)), max_size=n * 3).map(lambda edges: (n, edges)))
+
+
+@settings(max_examples=200, deadline=None)
+@given(graphs)
+def test_strongly_connected_is_mutual_reachability_in_topological_order(graph: tuple[int, list]) -> None:
+    n, edges = graph
+    succ: dict[int, list[int]] = {i: [] for i in range(n)}
+    for a, b in edges:
+        if b not in succ[a]:
+            succ[a].append(b)
+    components = strongly_connected(list(range(n)), succ)
+    reach = {v: _reach(succ, v) for v in range(n)}
+    expected = {frozenset(w for w in range(n) if w in reach[v] and v in reach[w]) for v in range(n)}
+    assert {frozenset(c) for c in components} == expected
+    assert sorted(v for c in components for v in c) == list(range(n))
+    assert all(c == sorted(c) for c in components)
+    position = {v: k for k, c in enumerate(components) for v in c}
+    assert all(position[a] <= position[b] for a, b in edges)
