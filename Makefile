@@ -76,10 +76,10 @@ bench-quick: $(STAMP) java
 
 # Fuzz every entry point with many more cases than `make test` (>= 100,000 in all); prints
 # "fuzz: N cases tried, V violations found".
-FUZZ_EXAMPLES ?= 11000
-fuzz: $(STAMP)
+FUZZ_EXAMPLES ?= 12500
+fuzz: $(STAMP) ros-deps
 	TOPOSTORE_FUZZ_RANDOM=1 TOPOSTORE_FUZZ_EXAMPLES=$(FUZZ_EXAMPLES) $(BIN)/python -m pytest -p no:cacheprovider -q tests/test_fuzz_armor.py \
-		tests/test_fuzz_http.py tests/test_fuzz_files.py
+		tests/test_fuzz_http.py tests/test_fuzz_files.py tests/test_fuzz_ros.py
 
 # Load test on loopback: concurrent clients mixing manipulations, REASON and queries (benchmarks/load.py).
 LOAD_ARGS ?= --clients 8 --seconds 60
