@@ -21,13 +21,12 @@ from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
+from fuzz_support import DOCUMENTED_CODES, count_case, fuzz_settings, nested_sparql, text, tree
 from hypothesis import given
 from hypothesis import strategies as st
+from ros_support import IRI, RosWorld, prepare_data, skip_without_ros, start_world, stop, stop_world
 
 from topostore.armor.commands import COMMANDS
-
-from fuzz_support import DOCUMENTED_CODES, count_case, fuzz_settings, nested_sparql, text, tree
-from ros_support import IRI, RosWorld, prepare_data, skip_without_ros, start_world, stop, stop_world
 
 CLIENT = str(Path(__file__).with_name("ros_fuzz_client.py"))
 REPLY_SECONDS = 60.0
@@ -96,7 +95,7 @@ class RosFuzz:
     def graphs(self, names: list[str]) -> dict[str, list]:
         """Every quad of every reference, read back through the node."""
         replies = self.ok(*(req("QUERY", "SPARQL", "FORMATTED", DUMP, ref=n) for n in names))
-        return {n: sorted(_rows(r["sparql_queried_objects"])) for n, r in zip(names, replies)}
+        return {n: sorted(_rows(r["sparql_queried_objects"])) for n, r in zip(names, replies, strict=True)}
 
     def outside_tree(self) -> dict:
         return {k: v for k, v in tree(self.sandbox).items() if not k.startswith(str(self.data))}
@@ -136,8 +135,9 @@ KEYS = sorted(COMMANDS)
 
 
 def value() -> st.SearchStrategy[str]:
+    surrogates = st.characters(min_codepoint=0xD800, max_codepoint=0xDFFF)
     return st.one_of(text(), text(), nested_sparql(), paths(MARKER), HUGE,
-                     st.text(alphabet=st.characters(min_codepoint=0xD800, max_codepoint=0xDFFF), min_size=1, max_size=3))
+                     st.text(alphabet=surrogates, min_size=1, max_size=3))
 
 
 def directive() -> st.SearchStrategy[dict]:
