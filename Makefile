@@ -81,8 +81,9 @@ fuzz: $(STAMP) ros-deps
 	TOPOSTORE_FUZZ_RANDOM=1 TOPOSTORE_FUZZ_EXAMPLES=$(FUZZ_EXAMPLES) $(BIN)/python -m pytest -p no:cacheprovider -q tests/test_fuzz_armor.py \
 		tests/test_fuzz_http.py tests/test_fuzz_files.py tests/test_fuzz_ros.py
 
-# Load test on loopback: concurrent clients mixing manipulations, REASON and queries (benchmarks/load.py).
-LOAD_ARGS ?= --clients 8 --seconds 60
+# Load test on loopback: concurrent clients mixing manipulations, REASON and queries (benchmarks/load.py),
+# then the same against a durable store (--store DIR) killed with kill -9 and restarted 3 times mid-run.
+LOAD_ARGS ?= --clients 8 --seconds 60 --durable-seconds 60 --kills 3
 load: $(STAMP)
 	$(BIN)/python -m benchmarks.load $(LOAD_ARGS)
 
