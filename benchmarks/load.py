@@ -186,11 +186,14 @@ def load_references(url: str, clients: int, stats: Stats) -> None:
     stats.latencies.clear()
 
 
-def start_clients(url: str, clients: int, stats: Stats, stop: float) -> list[threading.Thread]:
-    """``clients`` threads running the mixed workload until ``stop`` (monotonic time)."""
+def start_clients(url: str, clients: int, stats: Stats, stop: float | threading.Event) -> list[threading.Thread]:
+    """``clients`` threads running the mixed workload until ``stop`` (a monotonic time, or an event being set)."""
+    def running() -> bool:
+        return not stop.is_set() if isinstance(stop, threading.Event) else time.monotonic() < stop
+
     def work(i: int) -> None:
         client, rng, seq = Client(url, f"c{i}", stats), random.Random(i), 0
-        while time.monotonic() < stop:
+        while running():
             seq += 1
             if i < 2 and seq % 5 == 0:
                 client.mount_step()

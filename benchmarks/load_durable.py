@@ -3,10 +3,11 @@
     python -m benchmarks.load --clients 8 --seconds 60 --durable-seconds 60 --kills 3
 
 The server keeps its references in a RocksDB directory (``--store``).  While
-the clients run, the server is killed with SIGKILL at ``kills`` moments spread
-over the run (a random instant in each slice), then restarted on the same port
-and the same store; the clients keep going (requests that get no answer are
-not acknowledged, and are counted as unanswered).  Right after each restart,
+the clients run, the server is killed with SIGKILL ``kills`` times, each after
+a random stretch of up time under load, then restarted on the same port and
+the same store (``seconds`` is the time the server is up, restarts excluded);
+the clients keep going (requests that get no answer are not acknowledged, and
+are counted as unanswered).  Right after each restart,
 every ADD IND acknowledged before the kill is looked up; at the end, every ADD
 IND acknowledged during the whole run.  Both counts must be "all of them".
 """
@@ -17,6 +18,7 @@ import random
 import shutil
 import signal
 import tempfile
+import threading
 import time
 from pathlib import Path
 
@@ -26,6 +28,13 @@ from .load import SHARED, Stats, latency_table, load_references, missing_writes,
 def _snapshot(stats: Stats) -> dict[str, list[str]]:
     with stats.lock:
         return {ref: list(names) for ref, names in stats.acked.items()}
+
+
+def _await_new_write(stats: Stats, seen: int, timeout: float = 60.0) -> None:
+    """Wait (bounded) until a write was acknowledged since the last kill, so every kill has something to lose."""
+    deadline = time.monotonic() + timeout
+    while sum(len(n) for n in _snapshot(stats).values()) <= seen and time.monotonic() < deadline:
+        time.sleep(0.01)
 
 
 def kill_and_restart(proc, data: Path, store: Path, port: int, url: str, stats: Stats) -> tuple[object, dict]:
@@ -55,14 +64,16 @@ def run_durable(clients: int, seconds: float, kills: int, seed: int = 7) -> dict
     events: list[dict] = []
     try:
         load_references(url, clients, stats)
-        start = time.monotonic()
-        threads = start_clients(url, clients, stats, start + seconds)
+        start, stop = time.monotonic(), threading.Event()
+        threads = start_clients(url, clients, stats, stop)
         slice_ = seconds / (kills + 1)
-        for k in range(kills):
-            moment = start + slice_ * (k + 0.5) + rng.uniform(0, slice_)
-            time.sleep(max(0.0, moment - time.monotonic()))
+        for _ in range(kills):
+            time.sleep(slice_ * rng.uniform(0.5, 1.5))  # the server up and under load, then killed at a random instant
+            _await_new_write(stats, sum(e["acknowledged_before_kill"] for e in events[-1:]))
             proc, event = kill_and_restart(proc, data, store, port, url, stats)
             events.append(event)
+        time.sleep(max(0.0, seconds - (time.monotonic() - start - sum(e["restart_seconds"] for e in events))))
+        stop.set()
         for t in threads:
             t.join()
         elapsed = time.monotonic() - start
@@ -74,7 +85,9 @@ def run_durable(clients: int, seconds: float, kills: int, seed: int = 7) -> dict
         shutil.rmtree(work, ignore_errors=True)
     served = sum(len(v) for v in stats.latencies.values())
     return {
-        "clients": clients, "seconds": round(elapsed, 1), "store": "directory (RocksDB)", "requests_served": served,
+        "clients": clients, "seconds": round(elapsed, 1),
+        "seconds_up": round(elapsed - sum(e["restart_seconds"] for e in events), 1),
+        "store": "directory (RocksDB)", "requests_served": served,
         "per_command_ms": latency_table(stats), "errors": len(stats.errors), "error_samples": stats.errors[:5],
         "unanswered_during_restarts": stats.unreachable, "kills": events,
         "acknowledged_writes": sum(len(v) for v in stats.acked.values()), "lost_writes": lost,
@@ -84,7 +97,8 @@ def run_durable(clients: int, seconds: float, kills: int, seed: int = 7) -> dict
 
 def print_report(report: dict) -> bool:
     """Print the durable phase's figures; True when nothing acknowledged was lost."""
-    print(f"durable store, {report['clients']} clients, {report['seconds']} s, {len(report['kills'])} x kill -9: "
+    print(f"durable store, {report['clients']} clients, {report['seconds']} s ({report['seconds_up']} s up), "
+          f"{len(report['kills'])} x kill -9: "
           f"{report['requests_served']} requests answered, {report['unanswered_during_restarts']} unanswered while "
           f"restarting, errors {report['errors']}, lost writes {report['lost_writes']} of "
           f"{report['acknowledged_writes']} acknowledged, mount violations {report['mount_violations']}")
