@@ -82,14 +82,15 @@ bench-quick: $(STAMP) java
 # Fuzz every entry point with many more cases than `make test` (>= 100,000 in all); prints
 # "fuzz: N cases tried, V violations found".  The property-based suites run their full example
 # counts here (`make test` runs half of them, tests/profiles.py).
-FUZZ_EXAMPLES ?= 11000
-fuzz: $(STAMP)
+FUZZ_EXAMPLES ?= 12500
+fuzz: $(STAMP) ros-deps
 	TOPOSTORE_FUZZ_RANDOM=1 TOPOSTORE_FUZZ_EXAMPLES=$(FUZZ_EXAMPLES) $(BIN)/python -m pytest -p no:cacheprovider -q tests/test_fuzz_armor.py \
-		tests/test_fuzz_http.py tests/test_fuzz_files.py
+		tests/test_fuzz_http.py tests/test_fuzz_files.py tests/test_fuzz_ros.py
 	TOPOSTORE_PROPERTY_SCALE=1 $(BIN)/python -m pytest -p no:cacheprovider -q tests/test_incremental.py tests/test_properties.py
 
-# Load test on loopback: concurrent clients mixing manipulations, REASON and queries (benchmarks/load.py).
-LOAD_ARGS ?= --clients 8 --seconds 60
+# Load test on loopback: concurrent clients mixing manipulations, REASON and queries (benchmarks/load.py),
+# then the same against a durable store (--store DIR) killed with kill -9 and restarted 3 times mid-run.
+LOAD_ARGS ?= --clients 8 --seconds 60 --durable-seconds 60 --kills 3
 load: $(STAMP)
 	$(BIN)/python -m benchmarks.load $(LOAD_ARGS)
 

@@ -12,12 +12,16 @@ that GET REF CLIENT names it until it unmounts (mount exclusivity).
 At the end every acknowledged individual is looked up: **lost writes** are
 acknowledged ADD INDs the server does not know.  Printed: requests served,
 p50/p99 latency per command, errors (non-200 answers, unexpected exit codes),
-lost writes, mount violations; also written to out/load.json.
+lost writes, mount violations; also written to out/load.json.  Then the
+durable phase (benchmarks/load_durable.py): the same clients against a server
+with ``--store DIR``, killed with kill -9 and restarted mid-run, counting the
+acknowledged writes found after each restart.
 """
 
 from __future__ import annotations
 
 import argparse
+import http.client
 import json
 import random
 import shutil
@@ -48,6 +52,7 @@ class Stats:
     acked: dict[str, list[str]] = field(default_factory=lambda: defaultdict(list))
     mount_violations: int = 0
     mounts: int = 0
+    unreachable: int = 0  # requests that got no answer (only expected while a killed server restarts)
     lock: threading.Lock = field(default_factory=threading.Lock)
 
 
@@ -58,12 +63,18 @@ class Client:
         self.url, self.name, self.stats = url, name, stats
 
     def post(self, path: str, body: bytes, ctype: str) -> tuple[int, bytes]:
+        """(status, body); status 0 when the server could not be reached or dropped the connection."""
         req = urllib.request.Request(self.url + path, data=body, headers={"Content-Type": ctype}, method="POST")
         try:
             with urllib.request.urlopen(req, timeout=120) as res:
                 return res.status, res.read()
         except urllib.error.HTTPError as exc:
             return exc.code, exc.read()
+        except (OSError, http.client.HTTPException):  # refused, reset, or cut off by a kill -9
+            with self.stats.lock:
+                self.stats.unreachable += 1
+            time.sleep(0.05)  # the server is down (restarting): do not spin
+            return 0, b""
 
     def armor(self, ref: str, command: str, spec1: str = "", spec2: str = "", args: list[str] | None = None,
               label: str | None = None) -> dict:
@@ -72,6 +83,8 @@ class Client:
         start = time.perf_counter()
         status, body = self.post("/armor", json.dumps(payload).encode(), "application/json")
         elapsed = time.perf_counter() - start
+        if status == 0:
+            return {}  # not answered, so not acknowledged
         key = label or " ".join(x for x in (command, spec1, spec2) if x)
         with self.stats.lock:
             self.stats.latencies[key].append(elapsed)
@@ -87,6 +100,8 @@ class Client:
     def sparql(self, ref: str, query: str) -> None:
         start = time.perf_counter()
         status, body = self.post(f"/references/{ref}/sparql", query.encode(), "application/sparql-query")
+        if status == 0:
+            return
         with self.stats.lock:
             self.stats.latencies["SPARQL endpoint"].append(time.perf_counter() - start)
         if status != 200:
@@ -125,8 +140,8 @@ class Client:
         with self.stats.lock:
             self.stats.mounts += 1
         for _ in range(3):
-            holder = self.armor("mounted", "GET", "REF", "CLIENT", ["mounted"]).get("queried_objects", [])
-            if holder != [self.name]:
+            answer = self.armor("mounted", "GET", "REF", "CLIENT", ["mounted"])
+            if answer and answer.get("queried_objects") != [self.name]:  # {}: unanswered (a restart)
                 with self.stats.lock:
                     self.stats.mount_violations += 1
             self.armor("mounted", "ADD", "IND", "", [f"m_{self.name}"])
@@ -139,10 +154,11 @@ def free_port() -> int:
         return s.getsockname()[1]
 
 
-def start_server(data_dir: Path) -> tuple[subprocess.Popen, str]:
-    port = free_port()
+def start_server(data_dir: Path, *extra: str, port: int | None = None) -> tuple[subprocess.Popen, str]:
+    """`topostore serve` on ``port`` (a free one by default) with ``extra`` options; returns once it answers."""
+    port = port or free_port()
     proc = subprocess.Popen([sys.executable, "-m", "topostore.cli", "serve", "--port", str(port), "--data-dir",
-                             str(data_dir)], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+                             str(data_dir), *extra], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     url = f"http://127.0.0.1:{port}"
     deadline = time.monotonic() + 30
     while time.monotonic() < deadline:
@@ -160,41 +176,67 @@ def percentile(values: list[float], q: float) -> float:
     return ordered[min(len(ordered) - 1, int(q * len(ordered)))]
 
 
+REFS = ("shared", "mounted")
+
+
+def load_references(url: str, clients: int, stats: Stats) -> None:
+    setup = Client(url, "setup", stats)
+    for ref in [*REFS, *(f"own{i}" for i in range(clients))]:
+        setup.armor(ref, "LOAD", "FILE", "", ["map.owl", IRI, "false", "PELLET", "false"])
+    stats.latencies.clear()
+
+
+def start_clients(url: str, clients: int, stats: Stats, stop: float | threading.Event) -> list[threading.Thread]:
+    """``clients`` threads running the mixed workload until ``stop`` (a monotonic time, or an event being set)."""
+    def running() -> bool:
+        return not stop.is_set() if isinstance(stop, threading.Event) else time.monotonic() < stop
+
+    def work(i: int) -> None:
+        client, rng, seq = Client(url, f"c{i}", stats), random.Random(i), 0
+        while running():
+            seq += 1
+            if i < 2 and seq % 5 == 0:
+                client.mount_step()
+            else:
+                client.step("shared" if seq % 2 else f"own{i}", seq, rng)
+
+    threads = [threading.Thread(target=work, args=(i,)) for i in range(clients)]
+    for t in threads:
+        t.start()
+    return threads
+
+
+def missing_writes(url: str, acked: dict[str, list[str]]) -> int:
+    """How many acknowledged ADD IND individuals the server does not know."""
+    lost = 0
+    checker = Client(url, "checker", Stats())
+    for ref, names in acked.items():
+        query = "SELECT ?x WHERE { ?x a <http://www.w3.org/2002/07/owl#Thing> }"
+        answer = checker.armor(ref, "QUERY", "SPARQL", "FORMATTED", [query, "60000"])
+        if not answer:
+            return sum(len(n) for n in acked.values())  # the server does not answer: nothing is found
+        present = {item["value"].strip("<>").rsplit("#", 1)[-1] for item in answer.get("sparql_queried_objects", [])}
+        lost += sum(1 for n in names if n not in present)
+    return lost
+
+
+def latency_table(stats: Stats) -> dict:
+    return {k: {"n": len(v), "p50": round(statistics.median(v) * 1000, 1), "p99": round(percentile(v, 0.99) * 1000, 1)}
+            for k, v in sorted(stats.latencies.items())}
+
+
 def run(clients: int, seconds: float) -> dict:
     data = Path(tempfile.mkdtemp(prefix="topostore-load-"))
     shutil.copy(SHARED / "topological_map_abox.owl", data / "map.owl")
     proc, url = start_server(data)
     stats = Stats()
     try:
-        setup = Client(url, "setup", stats)
-        for ref in ["shared", "mounted"] + [f"own{i}" for i in range(clients)]:
-            setup.armor(ref, "LOAD", "FILE", "", ["map.owl", IRI, "false", "PELLET", "false"])
-        stats.latencies.clear()
-        stop = time.monotonic() + seconds
-
-        def work(i: int) -> None:
-            client, rng, seq = Client(url, f"c{i}", stats), random.Random(i), 0
-            while time.monotonic() < stop:
-                seq += 1
-                if i < 2 and seq % 5 == 0:
-                    client.mount_step()
-                else:
-                    client.step("shared" if seq % 2 else f"own{i}", seq, rng)
-
-        threads = [threading.Thread(target=work, args=(i,)) for i in range(clients)]
+        load_references(url, clients, stats)
         start = time.monotonic()
-        for t in threads:
-            t.start()
-        for t in threads:
+        for t in start_clients(url, clients, stats, start + seconds):
             t.join()
         elapsed = time.monotonic() - start
-        lost = 0
-        checker = Client(url, "checker", Stats())
-        for ref, names in stats.acked.items():
-            query = "SELECT ?x WHERE { ?x a <http://www.w3.org/2002/07/owl#Thing> }"
-            answer = checker.armor(ref, "QUERY", "SPARQL", "FORMATTED", [query, "60000"])
-            present = {item["value"].strip("<>").rsplit("#", 1)[-1] for item in answer.get("sparql_queried_objects", [])}
-            lost += sum(1 for n in names if n not in present)
+        lost = missing_writes(url, stats.acked)
         alive = proc.poll() is None
     finally:
         proc.terminate()
@@ -204,9 +246,9 @@ def run(clients: int, seconds: float) -> dict:
     return {
         "clients": clients, "seconds": round(elapsed, 1), "requests_served": served,
         "requests_per_second": round(served / elapsed, 1),
-        "per_command_ms": {k: {"n": len(v), "p50": round(statistics.median(v) * 1000, 1),
-                               "p99": round(percentile(v, 0.99) * 1000, 1)} for k, v in sorted(stats.latencies.items())},
-        "errors": len(stats.errors), "error_samples": stats.errors[:5],
+        "per_command_ms": latency_table(stats),
+        "errors": len(stats.errors) + stats.unreachable, "unanswered": stats.unreachable,
+        "error_samples": stats.errors[:5],
         "acknowledged_writes": sum(len(v) for v in stats.acked.values()), "lost_writes": lost,
         "mounts_taken": stats.mounts, "mount_violations": stats.mount_violations, "server_alive": alive,
     }
@@ -216,11 +258,27 @@ def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--clients", type=int, default=8)
     parser.add_argument("--seconds", type=float, default=60.0)
+    parser.add_argument("--durable-seconds", type=float, default=None,
+                        help="length of the durable phase (--store DIR, kill -9); default --seconds, 0 skips it")
+    parser.add_argument("--kills", type=int, default=3, help="kill -9 restarts during the durable phase")
     parser.add_argument("--output", default="out/load.json")
     args = parser.parse_args(argv)
     report = run(args.clients, args.seconds)
+    ok = print_report(report)
+    durable_seconds = args.seconds if args.durable_seconds is None else args.durable_seconds
+    if durable_seconds > 0:
+        from .load_durable import print_report as print_durable
+        from .load_durable import run_durable
+
+        report["durable"] = run_durable(args.clients, durable_seconds, args.kills)
+        ok = print_durable(report["durable"]) and ok
     Path(args.output).parent.mkdir(parents=True, exist_ok=True)
     Path(args.output).write_text(json.dumps(report, indent=2))
+    return 0 if ok else 1
+
+
+def print_report(report: dict) -> bool:
+    """Print the in-memory phase's figures; True when there were no errors, lost writes or mount violations."""
     print(f"{report['clients']} clients, {report['seconds']} s: {report['requests_served']} requests served "
           f"({report['requests_per_second']}/s), errors {report['errors']}, lost writes {report['lost_writes']} "
           f"of {report['acknowledged_writes']} acknowledged, mounts {report['mounts_taken']} "
@@ -230,8 +288,8 @@ def main(argv: list[str] | None = None) -> int:
         print(f"{name:<28}{row['n']:>8}{row['p50']:>10}{row['p99']:>10}")
     for sample in report["error_samples"]:
         print("error:", sample)
-    ok = report["errors"] == 0 and report["lost_writes"] == 0 and report["mount_violations"] == 0 and report["server_alive"]
-    return 0 if ok else 1
+    return (report["errors"] == 0 and report["lost_writes"] == 0 and report["mount_violations"] == 0
+            and report["server_alive"])
 
 
 if __name__ == "__main__":

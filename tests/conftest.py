@@ -33,10 +33,13 @@ def virtuoso_url() -> Iterator[str]:
 
 def pytest_terminal_summary(terminalreporter: pytest.TerminalReporter) -> None:
     try:
-        from fuzz_support import CASES
+        from fuzz_support import CASES, CASES_BY_TEST
     except ImportError:  # pragma: no cover
         return
     if not CASES["tried"]:
         return
     failed = [r for r in terminalreporter.stats.get("failed", []) if "test_fuzz" in r.nodeid]
+    for name, tried in sorted(CASES_BY_TEST.items()):
+        broken = sum(1 for r in failed if r.nodeid.split("::")[-1].split("[")[0] == name)
+        terminalreporter.write_line(f"fuzz: {name}: {tried} cases, {broken} violations")
     terminalreporter.write_line(f"fuzz: {CASES['tried']} cases tried, {len(failed)} violations found")

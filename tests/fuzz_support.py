@@ -9,6 +9,8 @@ the total and the violations (failed fuzz tests) at the end of the run.
 from __future__ import annotations
 
 import os
+import sys
+from collections import Counter
 from pathlib import Path
 
 from hypothesis import HealthCheck, settings
@@ -21,10 +23,13 @@ from topostore.vocab import ASSERTED, AUX, INFERRED
 #: examples per fuzz test
 FUZZ_EXAMPLES = int(os.environ.get("TOPOSTORE_FUZZ_EXAMPLES", "500"))
 CASES = {"tried": 0}
+#: cases per fuzz test (the calling function's name), for the per-entry-point figures
+CASES_BY_TEST: Counter[str] = Counter()
 
 
 def count_case() -> None:
     CASES["tried"] += 1
+    CASES_BY_TEST[sys._getframe(1).f_code.co_name] += 1
 
 
 def fuzz_settings(scale: float = 1.0):
@@ -115,5 +120,5 @@ def tree(path: Path) -> dict[str, tuple[int, int]]:
     return out
 
 
-__all__ = ["FUZZ_EXAMPLES", "CASES", "count_case", "fuzz_settings", "DOCUMENTED_CODES", "text", "nested_sparql",
+__all__ = ["FUZZ_EXAMPLES", "CASES", "CASES_BY_TEST", "count_case", "fuzz_settings", "DOCUMENTED_CODES", "text", "nested_sparql",
            "request", "graphs", "tree"]

@@ -15,6 +15,7 @@ import click
 
 from .. import __version__
 from ..events import DEFAULT_QUEUE
+from ..limits_cli import apply_limits, limit_options
 from ..store_cli import store_option
 from . import DEFAULT_NODE_NAME, EXIT_NO_MASTER, EXIT_NO_ROS, RosUnavailable, require_ros
 
@@ -34,9 +35,10 @@ from . import DEFAULT_NODE_NAME, EXIT_NO_MASTER, EXIT_NO_ROS, RosUnavailable, re
                    "and the next message says how many (missed).")
 @store_option
 @click.option("--sync", is_flag=True, help="With a directory --store: flush every acknowledged change to disk.")
+@limit_options
 @click.argument("ros_args", nargs=-1, type=click.UNPROCESSED, metavar="[NAME:=VALUE]...")
 def ros(name: str, data_dir: str, short_names: bool, print_env: bool, master_timeout: float, events_queue: int,
-        store: str | None, sync: bool, ros_args: tuple[str, ...]) -> None:
+        store: str | None, sync: bool, ros_args: tuple[str, ...], **limits: float) -> None:
     """Serve aRMOR's ROS services /armor_interface_srv and /armor_interface_serialized_srv.
 
     Every REASON is also published on ~events (/armor_service/events, std_msgs/String
@@ -78,6 +80,7 @@ def ros(name: str, data_dir: str, short_names: bool, print_env: bool, master_tim
         _fail(str(exc), EXIT_NO_MASTER)
     from ..armor import ArmorService
 
+    apply_limits(**limits)  # the same limits as `topostore serve`, before the service exists
     data = Path(data_dir)
     data.mkdir(parents=True, exist_ok=True)
     service = ArmorService(data_dir=data, short_names=short_names, store=store, sync=sync)
