@@ -21,6 +21,7 @@ run: $(STAMP)
 COV_FLOOR := 90
 
 test: $(STAMP) browser ros-deps virtuoso java
+	$(BIN)/ruff check src tests benchmarks
 	$(BIN)/python -m pytest --cov=topostore --cov-report=term-missing:skip-covered --cov-fail-under=$(COV_FLOOR)
 
 # The live-map page is tested in Debian's chromium (driven by Playwright, a test extra); as

@@ -38,7 +38,7 @@ class Answers:
     can_reach: tuple[str, ...]
     urgent: tuple[str, ...]
 
-    def differences(self, other: "Answers") -> str:
+    def differences(self, other: Answers) -> str:
         """'' when equal, else what differs (for a loud report)."""
         out = []
         for name, mine, theirs in (("canReach", self.can_reach, other.can_reach), ("URGENT", self.urgent, other.urgent)):

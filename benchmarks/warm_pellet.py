@@ -131,14 +131,14 @@ class WarmPellet:
                 self._proc.wait()
         self._log.close()
 
-    def __enter__(self) -> "WarmPellet":
+    def __enter__(self) -> WarmPellet:
         return self
 
     def __exit__(self, *exc: object) -> None:
         self.close()
 
 
-def _pump(stream: IO[str] | None, lines: "queue.Queue[str | None]") -> None:
+def _pump(stream: IO[str] | None, lines: queue.Queue[str | None]) -> None:
     """Move the JVM's JSON lines into a queue, so that a slow answer can time out; None at EOF."""
     assert stream is not None
     for line in stream:

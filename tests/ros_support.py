@@ -129,6 +129,29 @@ def _launch_master(tmp: Path, home: Path, port: int) -> RosWorld:
     return RosWorld(port, env, home, master)
 
 
+def kill_strays(marker: Path) -> list[int]:
+    """SIGKILL processes whose command line names ``marker`` (a test's scratch folder).
+
+    roscore's rosmaster and rosout outlive a shell that started roscore in the
+    background and exited; their ``__log:=`` argument names the test's ROS_HOME.
+    """
+    killed = []
+    for entry in Path("/proc").iterdir():
+        if not entry.name.isdigit() or int(entry.name) == os.getpid():
+            continue
+        try:
+            cmdline = (entry / "cmdline").read_bytes().replace(b"\0", b" ").decode(errors="replace")
+        except OSError:
+            continue
+        if str(marker) in cmdline:
+            try:
+                os.kill(int(entry.name), signal.SIGKILL)
+                killed.append(int(entry.name))
+            except ProcessLookupError:
+                pass
+    return killed
+
+
 def stop_world(world: RosWorld) -> None:
     for node in world.nodes:
         stop(node)

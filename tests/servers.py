@@ -8,7 +8,6 @@ package (the test extra); Virtuoso from Debian's ``virtuoso-opensource``
 
 from __future__ import annotations
 
-import os
 import shutil
 import signal
 import socket

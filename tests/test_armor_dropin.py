@@ -18,12 +18,11 @@ import time
 from pathlib import Path
 
 import pytest
+from test_server import TBOX, free_port, start_server, stop_server
 
 from topostore import Ontology, mapgen
 from topostore.armor_api import transport
 from topostore.resources import default_ontology
-
-from test_server import TBOX, free_port, start_server, stop_server
 
 IRI = "http://bnc/exp-rob-lab/2022-23"
 

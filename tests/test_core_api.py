@@ -10,13 +10,11 @@ from pathlib import Path
 
 import pytest
 from pyoxigraph import NamedNode
+from support import NOW, NS, instances, long, types_of
 
-from topostore import InvalidValueError, Ontology, QueryError
-from topostore import mapgen
+from topostore import InvalidValueError, Ontology, QueryError, mapgen
 from topostore.resources import default_ontology, default_ontology_files
 from topostore.vocab import ASSERTED, XSD
-
-from support import NOW, NS, instances, long, types_of
 
 
 def values(items, key: str) -> list[str]:

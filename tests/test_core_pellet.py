@@ -9,11 +9,10 @@ from __future__ import annotations
 
 import pytest
 from pyoxigraph import Literal, NamedNode
+from support import ABOX_OWL, NOW, NS, TBOX_OWL, connected, instances, long, types_of
 
 from topostore import Ontology
 from topostore.vocab import SAME_AS, XSD
-
-from support import ABOX_OWL, NOW, NS, TBOX_OWL, connected, instances, long, types_of
 
 
 def can_reach(o: Ontology, robot: str = "Robot1") -> set[str]:

@@ -14,6 +14,7 @@ import pytest
 import rdflib
 from pyoxigraph import Literal, NamedNode, Triple
 from rdflib.compare import isomorphic
+from support import ABOX_OWL, NS, TBOX_OWL, connected, instances, types_of
 
 from topostore import LoadError, Ontology
 from topostore.resources import default_ontology, default_ontology_files
@@ -35,7 +36,6 @@ README_CONNECTED = {("C1", "R1"), ("R1", "C1"), ("C1", "R2"), ("R2", "C1")}
 README_CAN_REACH = {"R1", "R2"}
 README_URGENT = {"R1"}
 
-from support import ABOX_OWL, NS, TBOX_OWL, connected, instances, types_of
 
 
 def assert_readme_facts(o: Ontology) -> None:

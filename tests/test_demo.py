@@ -67,7 +67,7 @@ def test_generated_map_with_several_robots(generated_map: Path, tmp_path: Path) 
     assert len(result.moves) == 9
     check_policy(result.moves)
     by_robot = {r: [m for m in result.moves if m.robot == r] for r in result.robots}
-    for robot, moves in by_robot.items():
+    for moves in by_robot.values():
         assert len(moves) == 3
         for before, after in zip(moves, moves[1:]):  # each robot continues from where it went
             assert after.origin == (before.destination or before.origin)

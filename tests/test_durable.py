@@ -24,10 +24,10 @@ from pathlib import Path
 import httpx
 import pytest
 from pyoxigraph import NamedNode, Triple
-
 from servers import free_port, stop
 from test_swrl import PREFIXES, builtin, data, rule
-from topostore import Ontology, safeio, RuleCompileError
+
+from topostore import Ontology, RuleCompileError, safeio
 from topostore.armor import ArmorService
 from topostore.stores import open_store
 from topostore.vocab import ASSERTED, INFERRED

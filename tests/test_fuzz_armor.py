@@ -11,6 +11,7 @@ from __future__ import annotations
 from pathlib import Path
 
 import pytest
+from fuzz_support import DOCUMENTED_CODES, count_case, fuzz_settings, graphs, request, text, tree
 from hypothesis import given
 from hypothesis import strategies as st
 
@@ -19,7 +20,8 @@ from topostore.armor import ArmorResponse, ArmorService
 from topostore.errors import TopostoreError
 from topostore.vocab import ASSERTED
 
-from fuzz_support import DOCUMENTED_CODES, count_case, fuzz_settings, graphs, request, text, tree
+# thousands of generated cases: run without line tracing (coverage comes from the exact tests)
+pytestmark = pytest.mark.no_cover
 
 SHARED = Path(__file__).resolve().parents[2] / "shared" / "ontology"
 IRI = "http://bnc/exp-rob-lab/2022-23"

@@ -12,6 +12,7 @@ from pathlib import Path
 
 import pytest
 from click.testing import CliRunner
+from fuzz_support import count_case, fuzz_settings, text, tree
 from hypothesis import given
 from hypothesis import strategies as st
 
@@ -20,7 +21,8 @@ from topostore.armor import ArmorService
 from topostore.cli import cli
 from topostore.errors import TopostoreError
 
-from fuzz_support import count_case, fuzz_settings, text, tree
+# thousands of generated cases: run without line tracing (coverage comes from the exact tests)
+pytestmark = pytest.mark.no_cover
 
 SHARED = Path(__file__).resolve().parents[2] / "shared" / "ontology"
 IRI = "http://bnc/exp-rob-lab/2022-23"

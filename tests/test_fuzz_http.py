@@ -11,14 +11,16 @@ import urllib.parse
 from pathlib import Path
 
 import pytest
+from fuzz_support import count_case, fuzz_settings, graphs, nested_sparql, request, text, tree
 from hypothesis import given
 from hypothesis import strategies as st
+from test_server import start_server, stop_server
 
 from topostore.armor import ArmorService
 from topostore.server import ServerConfig, create_app
 
-from fuzz_support import count_case, fuzz_settings, graphs, nested_sparql, request, text, tree
-from test_server import start_server, stop_server
+# thousands of generated cases: run without line tracing (coverage comes from the exact tests)
+pytestmark = pytest.mark.no_cover
 
 SHARED = Path(__file__).resolve().parents[2] / "shared" / "ontology"
 IRI = "http://bnc/exp-rob-lab/2022-23"

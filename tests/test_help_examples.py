@@ -26,13 +26,12 @@ from pathlib import Path
 
 import pytest
 from rich.console import Console
+from servers import oxigraph_server, stop
+from test_server import free_port
 
 from topostore import Ontology, mapgen
 from topostore.cli import EXIT_CANNOT_LISTEN, cli, load_files, reason_with_progress
 from topostore.resources import default_ontology
-
-from servers import oxigraph_server, stop
-from test_server import free_port
 
 ROOT = Path(__file__).resolve().parents[1]
 BIN = Path(sys.executable).parent

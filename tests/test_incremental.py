@@ -21,9 +21,9 @@ from pyoxigraph import NamedNode, Triple
 from topostore import Ontology
 from topostore.mapgen import MAP_NS, generate
 from topostore.reason import Materializer, check_consistency
+from topostore.reason.entailed import publish_entailed
 from topostore.reason.incremental import is_monotone, negates_exists
 from topostore.store import Store
-from topostore.reason.entailed import publish_entailed
 from topostore.vocab import ASSERTED, AUX, DIFFERENT_FROM, ENTAILED, INFERRED, TYPE, owl
 
 TBOX = Path(__file__).resolve().parents[2] / "shared" / "ontology" / "topological_map.owl"

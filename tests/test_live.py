@@ -11,16 +11,15 @@ import http.client
 import json
 import shutil
 import threading
-import time
 import urllib.parse
 from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
-
 from http_support import Live as Server
 from http_support import threaded
 from test_server import config
+
 from topostore import Ontology
 from topostore.resources import default_ontology_files
 

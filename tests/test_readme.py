@@ -22,11 +22,10 @@ from pathlib import Path
 
 import pytest
 import rdflib
-
-from topostore.armor_api import transport
-
 from servers import stop
 from test_server import free_port
+
+from topostore.armor_api import transport
 
 ROOT = Path(__file__).resolve().parents[1]
 SECTION = "## Use it from armor_py_api, rdflib, SPARQLWrapper or curl"

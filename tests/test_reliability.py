@@ -14,6 +14,7 @@ import pytest
 import rdflib
 from pyoxigraph import Literal, NamedNode
 from rdflib.compare import isomorphic
+from test_swrl import PREFIXES, builtin, data, rule
 
 from topostore import Ontology
 from topostore.armor import ArmorService
@@ -23,8 +24,6 @@ from topostore.safeio import atomic_write, check_xml_entities, read_regular_file
 from topostore.server import ServerConfig, create_app
 from topostore.sparql.guard import QueryTooComplex, check_user_sparql
 from topostore.vocab import ASSERTED, INFERRED
-
-from test_swrl import PREFIXES, builtin, data, rule
 
 SHARED = Path(__file__).resolve().parents[2] / "shared" / "ontology"
 ABOX = SHARED / "topological_map_abox.owl"

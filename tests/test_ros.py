@@ -3,8 +3,8 @@
 from __future__ import annotations
 
 import json
-import re
 import os
+import re
 import signal
 import socket
 import struct
@@ -14,9 +14,23 @@ from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
-
-from ros_support import (ROOT, TOPOSTORE, RosWorld, free_port, node_world, prepare_data, reply, request,
-                         skip_without_ros, start_world, stop, stop_world, tutorial, tutorial_yaml)
+from ros_support import (
+    ROOT,
+    TOPOSTORE,
+    RosWorld,
+    free_port,
+    kill_strays,
+    node_world,
+    prepare_data,
+    reply,
+    request,
+    skip_without_ros,
+    start_world,
+    stop,
+    stop_world,
+    tutorial,
+    tutorial_yaml,
+)
 
 CLIENT = str(Path(__file__).with_name("ros_client.py"))
 SINGLE = "/armor_interface_srv"
@@ -211,8 +225,14 @@ def test_generated_messages_match_armor_msgs(tmp_path: Path) -> None:
     assert sorted(p.name for p in tmp_path.iterdir()) == [work.root.name]
     work.activate()
     from armor_msgs.msg import ArmorDirectiveReq, ArmorDirectiveRes, QueryItem
-    from armor_msgs.srv import (ArmorDirective, ArmorDirectiveList, ArmorDirectiveListRequest,
-                                ArmorDirectiveListResponse, ArmorDirectiveRequest, ArmorDirectiveResponse)
+    from armor_msgs.srv import (
+        ArmorDirective,
+        ArmorDirectiveList,
+        ArmorDirectiveListRequest,
+        ArmorDirectiveListResponse,
+        ArmorDirectiveRequest,
+        ArmorDirectiveResponse,
+    )
 
     assert Path(sys.modules["armor_msgs"].__file__).is_relative_to(work.python_dir)
     assert ArmorDirective._md5sum == "39cbf11e18dc47e2c7b5fda84e5d8c39"
@@ -380,6 +400,7 @@ def test_readme_ros_section_runs_as_written(tmp_path: Path) -> None:
                 break
             wait_until(lambda: proc.poll() is not None, 10)
         proc.wait(10)
+        kill_strays(tmp_path / "ros_home")
     out, err = (tmp_path / "out.txt").read_text(), (tmp_path / "err.txt").read_text()
     assert proc.returncode == 0, err
     assert "39cbf11e18dc47e2c7b5fda84e5d8c39" in out

@@ -9,7 +9,6 @@ from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
-
 from ros_support import RosWorld, node_world, request, skip_without_ros, stop
 
 LISTENER = str(Path(__file__).with_name("ros_events_client.py"))

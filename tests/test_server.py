@@ -25,14 +25,13 @@ from pathlib import Path
 
 import pytest
 import rdflib
+from http_support import TBOX, Client, Live, free_port, in_process, start_server, stop_server, threaded, with_map
 from rdflib.plugins.stores.sparqlstore import SPARQLStore
 
 from topostore.armor_api.armor_client import ArmorClient
 from topostore.armor_api.armor_exceptions import ArmorServiceCallError, ArmorServiceInternalError
 from topostore.armor_api.http_transport import HttpTransport
 from topostore.server import ServerConfig
-
-from http_support import TBOX, Client, Live, free_port, in_process, start_server, stop_server, threaded, with_map
 
 Server = Live  # the name other test modules import
 IRI = "http://bnc/exp-rob-lab/2022-23"

@@ -12,12 +12,11 @@ from pathlib import Path
 
 import pytest
 import rdflib
+from http_support import Live as Server
+from http_support import in_process, threaded
 from rdflib.graph import DATASET_DEFAULT_GRAPH_ID
 from rdflib.plugins.stores.sparqlstore import SPARQLStore, SPARQLUpdateStore
 from SPARQLWrapper import CSV, JSON, JSONLD, N3, POST, RDFXML, TSV, TURTLE, XML, SPARQLWrapper
-
-from http_support import Live as Server
-from http_support import in_process, threaded
 from test_server import IRI, NS, TBOX, config
 
 ABOX = TBOX.with_name("topological_map_abox.owl")

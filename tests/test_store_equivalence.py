@@ -13,8 +13,8 @@ import itertools
 from pathlib import Path
 
 import pytest
-
 from test_pellet_differential import ABOX, NAMES, SCENARIOS, generated, topostore
+
 from topostore import Ontology, mapgen
 from topostore.stores import open_store
 

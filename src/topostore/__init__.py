@@ -5,7 +5,13 @@ to SPARQL updates and run to a fixpoint on REASON.
 """
 
 from .errors import (
-    InvalidNameError, InvalidValueError, LoadError, QueryError, QueryTimeout, RuleCompileError, TopostoreError,
+    InvalidNameError,
+    InvalidValueError,
+    LoadError,
+    QueryError,
+    QueryTimeout,
+    RuleCompileError,
+    TopostoreError,
     UnknownTypeError,
 )
 from .ontology import Ontology, ReasonReport

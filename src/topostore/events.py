@@ -158,7 +158,7 @@ def event_json(event: Event, prefix: str, reference: str) -> str:
 class Subscription:
     """A bounded queue of events for one subscriber.  :meth:`offer` never blocks."""
 
-    def __init__(self, hub: "EventHub", pattern: Pattern | None, maxsize: int, every_reason: bool,
+    def __init__(self, hub: EventHub, pattern: Pattern | None, maxsize: int, every_reason: bool,
                  notify: Callable[[], None] | None = None) -> None:
         if maxsize < 1:
             raise ValueError("a subscription queue holds at least one event")

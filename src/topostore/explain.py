@@ -24,8 +24,8 @@ from __future__ import annotations
 import hashlib
 import re
 from collections.abc import Callable
-from functools import lru_cache
 from dataclasses import dataclass, field
+from functools import lru_cache
 from typing import TYPE_CHECKING
 
 from pyoxigraph import Literal, NamedNode, Triple
@@ -36,8 +36,25 @@ from .compile.rule import Atom, Rule, join_order
 from .errors import InvalidNameError, QueryError, RuleCompileError
 from .terms import Term, parse_term, sparql, value_key
 from .vocab import (
-    ASSERTED, AUX, DECLARED_DIFFERENT, DIFFERENCE_CANDIDATE, DIFFERENT, DIFFERENT_KEY, ENTAILED, ENTAILED_PREFIX,
-    INFERRED, KEY_PREFIX, OWL, RDF, RDFS, SWRL, SWRLB, TYPE, XSD, is_skolem, owl,
+    ASSERTED,
+    AUX,
+    DECLARED_DIFFERENT,
+    DIFFERENCE_CANDIDATE,
+    DIFFERENT,
+    DIFFERENT_KEY,
+    ENTAILED,
+    ENTAILED_PREFIX,
+    INFERRED,
+    KEY_PREFIX,
+    OWL,
+    RDF,
+    RDFS,
+    SWRL,
+    SWRLB,
+    TYPE,
+    XSD,
+    is_skolem,
+    owl,
 )
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -71,7 +88,7 @@ class Explanation:
     status: str
     rule: str = ""
     origin: str = ""
-    premises: list["Explanation"] = field(default_factory=list)
+    premises: list[Explanation] = field(default_factory=list)
     #: the rule's variables bound in this derivation (readable values)
     bindings: dict[str, str] = field(default_factory=dict)
     #: the rule's built-in conditions (FILTER/BIND text), when it has any
@@ -182,7 +199,7 @@ class Explainer:
         path = path | {t}
         for c in self.candidates(t):
             premises: list[Explanation] = []
-            for (p, path_text), atom in zip(c.premises, c.atoms):
+            for (p, _path_text), atom in zip(c.premises, c.atoms):
                 if p is None:
                     premises.append(self._path_premise(atom, c.binding))
                     continue
@@ -396,7 +413,7 @@ def _premise(atom: Atom, binding: dict[str, Term]) -> tuple[Triple | None, str]:
 
 # ---------------------------------------------------------------- the Ontology side
 
-def resolve_triple(onto: "Ontology", s: str | Term, p: str | Term, o: object) -> Triple:
+def resolve_triple(onto: Ontology, s: str | Term, p: str | Term, o: object) -> Triple:
     """A triple from names as users write them (``R1``, ``rdf:type``/``a``, ``URGENT``, ``1665579710``).
 
     A value of a data property is matched by data value against the stored
@@ -429,7 +446,7 @@ def _strip_quotes(text: str) -> str:
     return text[1:-1] if len(text) >= 2 and text[0] == text[-1] == '"' else text
 
 
-def _name(onto: "Ontology", name: str | Term) -> NamedNode:
+def _name(onto: Ontology, name: str | Term) -> NamedNode:
     if isinstance(name, NamedNode):
         return name
     if not isinstance(name, str):
@@ -442,7 +459,7 @@ def _name(onto: "Ontology", name: str | Term) -> NamedNode:
     return onto.iri(name)
 
 
-def parse_triple_text(onto: "Ontology", text: str) -> Triple:
+def parse_triple_text(onto: Ontology, text: str) -> Triple:
     """``"R1 rdf:type URGENT"`` (three whitespace-separated parts; a quoted value may hold spaces)."""
     import shlex
 
@@ -455,7 +472,7 @@ def parse_triple_text(onto: "Ontology", text: str) -> Triple:
     return resolve_triple(onto, *parts)
 
 
-def explain(onto: "Ontology", s: str | Term, p: str | Term, o: object) -> Explanation:
+def explain(onto: Ontology, s: str | Term, p: str | Term, o: object) -> Explanation:
     """Why ``s p o`` holds in ``onto`` as of its last REASON (reasons first if it never did)."""
     if onto.report is None:
         onto.reason()

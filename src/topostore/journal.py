@@ -46,7 +46,7 @@ class Journal:
         #: (and a large file loaded before reasoning is not copied)
         self.active = False
 
-    def record(self, store: "Store", triples: Iterable[Triple], added: bool) -> None:
+    def record(self, store: Store, triples: Iterable[Triple], added: bool) -> None:
         """Call before the store changes, with ``triples`` deduplicated."""
         if not self.active:
             return
@@ -68,7 +68,7 @@ class Journal:
         self.clear()
         self.active = True
 
-    def revert(self, store: "Store") -> int:
+    def revert(self, store: Store) -> int:
         """Undo the recorded changes on the asserted graph; returns how many triples changed."""
         n = store.remove(list(self.added), ASSERTED) + store.add(list(self.removed), ASSERTED)
         self.clear()
@@ -79,7 +79,7 @@ def all_or_nothing(reason: F) -> F:
     """Wrap ``Ontology.reason``: run it under the ontology's limits; on failure restore the last good state."""
 
     @functools.wraps(reason)
-    def wrapper(self: "Ontology", *args: Any, **kwargs: Any) -> Any:
+    def wrapper(self: Ontology, *args: Any, **kwargs: Any) -> Any:
         mode = kwargs.get("mode", args[1] if len(args) > 1 else "auto")
         if mode not in ("auto", "incremental", "full"):  # a wrong argument is not a failed REASON
             raise ValueError(f"unknown reasoning mode {mode!r}; use auto, incremental or full")
@@ -96,7 +96,7 @@ def all_or_nothing(reason: F) -> F:
     return wrapper  # type: ignore[return-value]
 
 
-def _restore(onto: "Ontology", reason: Callable[..., Any]) -> None:
+def _restore(onto: Ontology, reason: Callable[..., Any]) -> None:
     """Revert the asserted changes since the last good REASON and recompute its closure."""
     reverted = onto._journal.revert(onto.store)
     onto._rules = None

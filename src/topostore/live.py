@@ -63,13 +63,13 @@ def _number(request: Request, name: str, default: float, low: float, high: float
 class LiveRoutes:
     """The handlers, bound to the server's :class:`~topostore.server.Api` (service and pool)."""
 
-    def __init__(self, api: "Api") -> None:
+    def __init__(self, api: Api) -> None:
         self.api = api
 
     def _reference(self, request: Request):
         return self.api.service.reference(request.path_params["name"])
 
-    async def _with_ontology(self, request: Request, work: Callable[["Ontology"], dict]) -> Response:
+    async def _with_ontology(self, request: Request, work: Callable[[Ontology], dict]) -> Response:
         """``work(ontology)`` of the named reference, under its lock, off the event loop, as JSON (404 if unknown)."""
         try:
             ref = self._reference(request)
@@ -88,7 +88,7 @@ class LiveRoutes:
         missing = [k for k in ("s", "p", "o") if not params.get(k)]
         if missing:
             return _error(400, f"missing parameter(s) {', '.join(missing)}: GET .../explain?s=R1&p=rdf:type&o=URGENT")
-        def work(onto: "Ontology") -> dict:
+        def work(onto: Ontology) -> dict:
             s, p, o = resolve_triple(onto, params["s"], params["p"], params["o"])
             return onto.explain(s, p, o).to_dict()
 
@@ -119,7 +119,7 @@ class LiveRoutes:
                 while True:
                     try:
                         await asyncio.wait_for(wake.wait(), keepalive)
-                    except asyncio.TimeoutError:
+                    except TimeoutError:
                         yield ": keep-alive\n\n"
                         continue
                     wake.clear()
@@ -144,7 +144,7 @@ class LiveRoutes:
         return await self._with_ontology(request, map_data)
 
 
-def map_data(onto: "Ontology") -> dict[str, Any]:
+def map_data(onto: Ontology) -> dict[str, Any]:
     """Locations (with their classes), doors, robots and links as the page draws them.
 
     Uses the topological map's vocabulary (LOCATION, ROOM, CORRIDOR, URGENT,
@@ -183,7 +183,7 @@ def map_data(onto: "Ontology") -> dict[str, Any]:
             "consistent": None if report is None else report.consistent}
 
 
-def live_routes(api: "Api") -> list:
+def live_routes(api: Api) -> list:
     """The routes to add to the service's application."""
     live = LiveRoutes(api)
     return [

@@ -136,4 +136,5 @@ def to_items(variables: list[str], rows: list[list[Term | None]], render: Callab
     return [QueryItem(v, render(value)) for row in rows for v, value in zip(variables, row)]
 
 
-__all__ = ["QueryItem", "NamedQuery", "named_queries", "get_named_query", "substitutions", "render_jena", "collect", "to_items", "QueryTimeout"]
+__all__ = ["QueryItem", "NamedQuery", "named_queries", "get_named_query", "substitutions", "render_jena", "collect",
+           "to_items", "QueryTimeout"]

@@ -45,7 +45,13 @@ from .errors import QueryError, TopostoreError
 from .http.security import error, security_middleware
 from .live import live_routes
 from .sparql.execute import (
-    Job, ReferenceMounted, ResultTooLarge, SparqlTimeout, run_query, run_update, timeout_message,
+    Job,
+    ReferenceMounted,
+    ResultTooLarge,
+    SparqlTimeout,
+    run_query,
+    run_update,
+    timeout_message,
 )
 from .sparql.guard import UnsafeOperationError
 from .sparql.results import NotAcceptable
@@ -209,11 +215,12 @@ class Api:
                          "or change the ontology with aRMOR commands on /armor)")
         limit = self.config.sparql_timeout
         job = Job(deadline=time.monotonic() + limit)
-        if kind == "query":
-            work: Callable[[], Any] = lambda: run_query(ref, text, request.headers.get("accept"), params.get("format"),
-                                                         job, limit, self.config.sparql_max_rows)
-        else:
-            work = lambda: run_update(ref, text, job, limit)
+        def work() -> Any:
+            if kind == "query":
+                return run_query(ref, text, request.headers.get("accept"), params.get("format"), job, limit,
+                                 self.config.sparql_max_rows)
+            return run_update(ref, text, job, limit)
+
         try:
             outcome = await self._run_limited(work, job, limit)
         except SparqlTimeout as exc:

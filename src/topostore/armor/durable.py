@@ -111,7 +111,7 @@ class DurableReferences:
         store._meta = None
 
     # ------------------------------------------------------------ restore
-    def restore(self, service: "ArmorService") -> dict[str, Reference]:
+    def restore(self, service: ArmorService) -> dict[str, Reference]:
         """Every reference the store holds, as it was acknowledged (references held by another writer are left out)."""
         refs: dict[str, Reference] = {}
         for name in list_references(self.spec, **self.urls):
@@ -121,13 +121,13 @@ class DurableReferences:
                 logger.warning("reference %r not opened: %s", name, exc.message)
         return refs
 
-    def reopen(self, service: "ArmorService", name: str) -> Reference | None:
+    def reopen(self, service: ArmorService, name: str) -> Reference | None:
         """The reference ``name`` if the store holds it (created by another process since this one started)."""
         if name not in list_references(self.spec, **self.urls):
             return None
         return self._restore_one(service, name)
 
-    def _restore_one(self, service: "ArmorService", name: str) -> Reference:
+    def _restore_one(self, service: ArmorService, name: str) -> Reference:
         store = self._open(name)
         data = store.meta.get("reference")
         if not isinstance(data, dict):
@@ -146,7 +146,7 @@ class DurableReferences:
         logger.info("reference %r reopened from %s (%s, %d buffered)", name, self.spec, onto.opened, len(ref.buffer))
         return ref
 
-    def _replay(self, service: "ArmorService", ref: Reference, requests: list[dict]) -> None:
+    def _replay(self, service: ArmorService, ref: Reference, requests: list[dict]) -> None:
         """Queue the buffered requests again through their handlers (which validate and plan them)."""
         from .commands import COMMANDS, Context
         from .types import ArmorRequest

@@ -72,7 +72,7 @@ class Reference:
     buffer: list[Change] = field(default_factory=list)
     lock: threading.RLock = field(default_factory=threading.RLock)
     #: writes the settings, owner and buffer to a durable store (None in memory); see armor/durable.py
-    persist: Callable[["Reference"], None] | None = None
+    persist: Callable[[Reference], None] | None = None
 
     def save_state(self) -> None:
         """Persist settings, owner and buffer (joins the store transaction in progress)."""

@@ -27,7 +27,8 @@ from ..errors import LoadError, RuleCompileError, TopostoreError
 from ..ontology import Ontology
 from ..safeio import open_log
 from ..store import guess_format
-from ..stores import StoreSpec, kind as store_kind
+from ..stores import StoreSpec
+from ..stores import kind as store_kind
 from . import codes
 from .codes import CommandError
 from .commands import COMMANDS, Context, Reply

@@ -45,7 +45,7 @@ class ArmorRequest:
     args: list[str] = field(default_factory=list)
 
     @classmethod
-    def from_dict(cls, data: Mapping[str, Any]) -> "ArmorRequest":
+    def from_dict(cls, data: Mapping[str, Any]) -> ArmorRequest:
         """Build from a dict (JSON body, ROS message dict); missing fields default to empty.
 
         Raises ``TypeError`` for fields of the wrong type, so a transport can
@@ -105,7 +105,7 @@ class ArmorResponse:
         }
 
     @classmethod
-    def from_dict(cls, data: Mapping[str, Any]) -> "ArmorResponse":
+    def from_dict(cls, data: Mapping[str, Any]) -> ArmorResponse:
         """Rebuild a response received as a dict (e.g. over HTTP)."""
         items = [QueryItem(str(i["key"]), str(i["value"])) for i in data.get("sparql_queried_objects") or []]
         return cls(
@@ -153,7 +153,7 @@ class ArmorResponseList:
         }
 
     @classmethod
-    def from_dict(cls, data: Mapping[str, Any]) -> "ArmorResponseList":
+    def from_dict(cls, data: Mapping[str, Any]) -> ArmorResponseList:
         return cls(
             success=bool(data.get("success", False)),
             is_consistent=bool(data.get("is_consistent", False)),

@@ -18,7 +18,7 @@ if TYPE_CHECKING:  # pragma: no cover
 
 
 class ArmorManipulationClient:
-    def __init__(self, client: "ArmorClient") -> None:
+    def __init__(self, client: ArmorClient) -> None:
         self._client = client
 
     def add_ind_to_class(self, ind_name: str, class_name: str) -> bool:

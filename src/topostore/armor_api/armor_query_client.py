@@ -46,7 +46,7 @@ def lexical_form(rendered: str) -> str:
 
 
 class ArmorQueryClient:
-    def __init__(self, client: "ArmorClient") -> None:
+    def __init__(self, client: ArmorClient) -> None:
         self._client = client
 
     def ind_b2_class(self, class_name: str, with_URI: bool = False) -> list[str]:  # noqa: N803 (original name)

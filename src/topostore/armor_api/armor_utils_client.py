@@ -14,7 +14,7 @@ logger = logging.getLogger("topostore.armor_api")
 
 
 class ArmorUtilsClient:
-    def __init__(self, client: "ArmorClient") -> None:
+    def __init__(self, client: ArmorClient) -> None:
         self._client = client
 
     def _run(self, command: str, first: str, second: str, args: list[str], done: str):

@@ -27,7 +27,6 @@ from ..armor import ArmorRequest, ArmorResponse
 from ..armor.types import ArmorResponseList
 from .armor_exceptions import ArmorServiceCallError
 
-
 #: Environment variables read when the client is not told explicitly.
 TOKEN_ENV = "TOPOSTORE_TOKEN"
 URL_ENV = "TOPOSTORE_URL"

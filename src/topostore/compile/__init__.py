@@ -6,7 +6,7 @@ turns them into rules, :mod:`.swrl` turns SWRL rules into rules (with
 :mod:`.builtins` for swrlb), and :func:`compile_ontology` puts them together.
 """
 
-from .rule import Atom, Rule, RuleSet
 from .pipeline import compile_ontology
+from .rule import Atom, Rule, RuleSet
 
 __all__ = ["Atom", "Rule", "RuleSet", "compile_ontology"]

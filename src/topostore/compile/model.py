@@ -36,10 +36,10 @@ class Expr:
 
     node: NamedNode
     kind: str
-    members: tuple["Expr", ...] = ()
+    members: tuple[Expr, ...] = ()
     individuals: tuple[Term, ...] = ()
     prop: Prop | None = None
-    filler: "Expr | None" = None
+    filler: Expr | None = None
     datatype: NamedNode | None = None
     n: int = 0
     value: Term | None = None

@@ -38,7 +38,23 @@ from ..errors import InvalidNameError, RuleCompileError
 from ..store import Store, fresh_skolem
 from ..terms import Term, entity
 from ..vocab import (
-    ASSERTED, FIRST, NIL, OWL, RDF, RDFS, REST, SWRL, SWRL_VARIABLE_NS, SWRLA, SWRLB, TYPE, XSD, owl, rdfs, swrl, xsd,
+    ASSERTED,
+    FIRST,
+    NIL,
+    OWL,
+    RDF,
+    RDFS,
+    REST,
+    SWRL,
+    SWRL_VARIABLE_NS,
+    SWRLA,
+    SWRLB,
+    TYPE,
+    XSD,
+    owl,
+    rdfs,
+    swrl,
+    xsd,
 )
 
 #: Namespace of the variables of rules added as text, as the OWL API writes them.

@@ -59,7 +59,7 @@ class MapView:
         return self.corridors + self.rooms + self.other_locations
 
     @classmethod
-    def from_ontology(cls, onto: Ontology) -> "MapView":
+    def from_ontology(cls, onto: Ontology) -> MapView:
         """Read the map from ``onto``, reasoning first if it changed since the last reasoning."""
         if onto.dirty or onto.report is None:
             onto.reason()

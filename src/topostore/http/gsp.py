@@ -114,7 +114,7 @@ def ontology_iri(triples: list[Triple]) -> str | None:
 class GraphStore:
     """The protocol's handlers over one :class:`~topostore.server.Api` (service and configuration)."""
 
-    def __init__(self, api: "Api") -> None:
+    def __init__(self, api: Api) -> None:
         self.api = api
 
     def routes(self) -> list[Route]:
@@ -217,7 +217,7 @@ def _apply(ref: Reference, plan: Callable[[Ontology], Delta], method: str) -> di
                 "warnings": warnings}
 
 
-def _new_reference(api: "Api", name: str, iri: str, body: bytes, fmt: RdfFormat | None) -> Reference:
+def _new_reference(api: Api, name: str, iri: str, body: bytes, fmt: RdfFormat | None) -> Reference:
     onto = Ontology(prefix=iri + "#")
     try:
         onto.load_data(body, fmt, base_iri=iri)  # compiles the rules first: all or nothing

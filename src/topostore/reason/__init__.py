@@ -5,9 +5,9 @@ needs a :class:`~topostore.compile.RuleSet` and a :class:`~topostore.store.Store
 :mod:`.incremental` maintains its result after asserted changes.
 """
 
-from .consistency import Violation, check_consistency
-from .materialize import Materializer, ReasonStats
 from .classify import classify
+from .consistency import Violation, check_consistency
 from .incremental import IncrementalReasoner
+from .materialize import Materializer, ReasonStats
 
 __all__ = ["IncrementalReasoner", "Materializer", "ReasonStats", "Violation", "check_consistency", "classify"]

@@ -49,13 +49,13 @@ ROS_QUEUE = DEFAULT_QUEUE
 class EventsTopic:
     """Publishes the REASON events of every reference of ``service`` on :data:`EVENTS_TOPIC`."""
 
-    def __init__(self, service: "ArmorService", queue_size: int = DEFAULT_QUEUE) -> None:
+    def __init__(self, service: ArmorService, queue_size: int = DEFAULT_QUEUE) -> None:
         if queue_size < 1:
             raise ValueError("the events queue holds at least one event")
         self.service = service
         self.queue_size = queue_size
         self._publisher: Any = None
-        self._followed: dict[str, tuple["Ontology", Subscription]] = {}
+        self._followed: dict[str, tuple[Ontology, Subscription]] = {}
         self._lock = threading.Lock()
 
     def start(self) -> None:
@@ -100,13 +100,13 @@ class EventsTopic:
                 sub.close()
             self._followed.clear()
 
-    def _ontology(self, name: str) -> "Ontology | None":
+    def _ontology(self, name: str) -> Ontology | None:
         try:
             return self.service.reference(name).ontology
         except CommandError:  # dropped between the listing and the look-up
             return None
 
-    def _sender(self, name: str, onto: "Ontology"):
+    def _sender(self, name: str, onto: Ontology):
         """The callback that runs on the subscription's own thread, never on REASON's."""
         from std_msgs.msg import String
 

@@ -13,7 +13,6 @@ a request has just LOADed.
 
 from __future__ import annotations
 
-import socket
 import sys
 import time
 import xmlrpc.client
@@ -22,8 +21,8 @@ from typing import Any
 
 from ..armor import ArmorService
 from ..armor.types import ArmorResponse, ArmorResponseList
-from . import DEFAULT_NODE_NAME, SERIALIZED_SERVICE, SINGLE_SERVICE, require_ros
 from ..events import DEFAULT_QUEUE
+from . import DEFAULT_NODE_NAME, SERIALIZED_SERVICE, SINGLE_SERVICE, require_ros
 from .events import EventsTopic
 from .workspace import Workspace
 
@@ -55,7 +54,7 @@ def check_master(uri: str, timeout: float = 3.0) -> None:
         try:
             code, message, _pid = proxy.getPid("/topostore_probe")
             break
-        except (OSError, xmlrpc.client.Error, socket.timeout) as exc:
+        except (TimeoutError, OSError, xmlrpc.client.Error) as exc:
             if time.monotonic() + 0.25 >= deadline:
                 raise NoMaster(f"no ROS master reachable at {uri} within {timeout:g} s ({_reason(exc)}); "
                                f"start `roscore` or set ROS_MASTER_URI") from None

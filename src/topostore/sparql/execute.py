@@ -28,8 +28,8 @@ from ..errors import QueryError
 from ..store import skolemize
 from ..vocab import ASSERTED, OWL, RDF, RDFS, XSD
 from .guard import check_user_sparql
-from .target import LockedOntology, WritableOntology
 from .results import ResultFormat, boolean_json, choose_format, render_graph, render_table, solutions_json
+from .target import LockedOntology, WritableOntology
 
 
 class SparqlTimeout(QueryError):

@@ -19,19 +19,19 @@ if TYPE_CHECKING:  # pragma: no cover
     from ..store import Store
 
 
-def note_changed(store: "Store") -> None:
+def note_changed(store: Store) -> None:
     """Asserted facts are about to change (joins the manipulation's transaction)."""
     if store.durable and not store.meta.get("dirty"):
         store.meta_set("dirty", True)
 
 
-def begin_reason(store: "Store") -> None:
+def begin_reason(store: Store) -> None:
     """REASON is about to rewrite the inferred graphs."""
     if store.durable:
         store.meta_set("inferred", "building")
 
 
-def end_reason(store: "Store", consistent: bool) -> None:
+def end_reason(store: Store, consistent: bool) -> None:
     """REASON finished: the inferred graphs are the closure of the asserted ones."""
     if store.durable:
         with store.transaction():
@@ -40,7 +40,7 @@ def end_reason(store: "Store", consistent: bool) -> None:
             store.meta_set("consistent", consistent)
 
 
-def reopen(onto: "Ontology") -> str:
+def reopen(onto: Ontology) -> str:
     """Bring an ontology opened on a durable store to a sound state; says how ("new", "reopened", "rebuilt").
 
     Finished inferred graphs are kept as they are (with the consistency they
