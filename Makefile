@@ -16,13 +16,13 @@ run: $(STAMP)
 	$(BIN)/topostore demo
 
 # Coverage of src/topostore: the code run in the test process and its threads (subprocesses such as
-# `topostore serve` or the ROS node are not counted); 90.4% when the floor was set.  The floor only
+# `topostore serve` or the ROS node are not counted); 91.6% when the floor was set.  The floor only
 # goes up: when tests raise the figure, set COV_FLOOR to the new value rounded down; never lower it.
-COV_FLOOR := 90
+COV_FLOOR := 91
 
 test: $(STAMP) browser ros-deps virtuoso java
 	$(BIN)/ruff check src tests benchmarks
-	$(BIN)/python -m pytest --cov=topostore --cov-report=term-missing:skip-covered --cov-fail-under=$(COV_FLOOR)
+	$(BIN)/python -m pytest --durations=15 --cov=topostore --cov-report=term-missing:skip-covered --cov-fail-under=$(COV_FLOOR)
 
 # The live-map page is tested in Debian's chromium (driven by Playwright, a test extra); as
 # root on Debian install it (without it that one test is skipped and says what to install).
