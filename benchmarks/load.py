@@ -242,13 +242,19 @@ def run(clients: int, seconds: float) -> dict:
         proc.terminate()
         proc.wait(10)
         shutil.rmtree(data, ignore_errors=True)
-    served = sum(len(v) for v in stats.latencies.values())
+    outcome = phase_outcome(stats, lost, alive)
     return {
-        "clients": clients, "seconds": round(elapsed, 1), "requests_served": served,
-        "requests_per_second": round(served / elapsed, 1),
-        "per_command_ms": latency_table(stats),
+        "clients": clients, "seconds": round(elapsed, 1), **outcome,
+        "requests_per_second": round(outcome["requests_served"] / elapsed, 1),
         "errors": len(stats.errors) + stats.unreachable, "unanswered": stats.unreachable,
-        "error_samples": stats.errors[:5],
+    }
+
+
+def phase_outcome(stats: Stats, lost: int, alive: bool) -> dict:
+    """The figures every load phase reports: requests, latencies, writes acknowledged and lost, mounts."""
+    return {
+        "requests_served": sum(len(v) for v in stats.latencies.values()),
+        "per_command_ms": latency_table(stats), "errors": len(stats.errors), "error_samples": stats.errors[:5],
         "acknowledged_writes": sum(len(v) for v in stats.acked.values()), "lost_writes": lost,
         "mounts_taken": stats.mounts, "mount_violations": stats.mount_violations, "server_alive": alive,
     }

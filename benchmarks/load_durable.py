@@ -22,7 +22,7 @@ import threading
 import time
 from pathlib import Path
 
-from .load import SHARED, Stats, latency_table, load_references, missing_writes, start_clients, start_server
+from .load import SHARED, Stats, load_references, missing_writes, phase_outcome, start_clients, start_server
 
 
 def _snapshot(stats: Stats) -> dict[str, list[str]]:
@@ -83,15 +83,11 @@ def run_durable(clients: int, seconds: float, kills: int, seed: int = 7) -> dict
         proc.terminate()
         proc.wait(30)
         shutil.rmtree(work, ignore_errors=True)
-    served = sum(len(v) for v in stats.latencies.values())
     return {
         "clients": clients, "seconds": round(elapsed, 1),
         "seconds_up": round(elapsed - sum(e["restart_seconds"] for e in events), 1),
-        "store": "directory (RocksDB)", "requests_served": served,
-        "per_command_ms": latency_table(stats), "errors": len(stats.errors), "error_samples": stats.errors[:5],
+        "store": "directory (RocksDB)", **phase_outcome(stats, lost, alive),
         "unanswered_during_restarts": stats.unreachable, "kills": events,
-        "acknowledged_writes": sum(len(v) for v in stats.acked.values()), "lost_writes": lost,
-        "mounts_taken": stats.mounts, "mount_violations": stats.mount_violations, "server_alive": alive,
     }
 
 
