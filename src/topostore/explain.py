@@ -230,7 +230,7 @@ class Explainer:
         return Explanation(f"{s_text} {self._readable_filters(atom.p)} {o_text}", "condition")
 
     def _node(self, t: Triple, c: Candidate, premises: list[Explanation]) -> Explanation:
-        conditions = " ".join(c.rule.filters.split())
+        conditions = " ".join(c.rule.written_filters.split())
         shown = {k: self.render_term(v) for k, v in c.binding.items()} if conditions else {}
         return Explanation(self.render(t), "inferred", c.rule.name, c.rule.origin, premises, shown,
                            self._readable_filters(conditions),
@@ -258,8 +258,9 @@ class Explainer:
 
     def _instances(self, rule: Rule, binding: dict[str, Term]) -> list[Candidate]:
         """Answers of the rule's body with the head's variables bound (at most MAX_CANDIDATES)."""
-        order = join_order(rule.body, None, bound=binding)
-        lines = [_atom_text(rule.body[i], binding) for i in order]
+        atoms = rule.premises
+        order = join_order(atoms, None, bound=binding)
+        lines = [_atom_text(atoms[i], binding) for i in order]
         if rule.filters:
             lines.append(rule.filters)
         if binding:
@@ -277,8 +278,8 @@ class Explainer:
                 value = row[var[1:]]
                 if value is not None:
                     full[var] = value
-            premises = tuple(_premise(a, full) for a in rule.body)
-            out.append(Candidate(rule, full, premises, rule.body))
+            premises = tuple(_premise(a, full) for a in atoms)
+            out.append(Candidate(rule, full, premises, atoms))
         return out
 
     # ------------------------------------------------------------ readable text
@@ -361,7 +362,7 @@ class Explainer:
 def _variables(rule: Rule) -> list[str]:
     """Variables of the body atoms and of the filters (a BIND's result, e.g. ?d = ?t - ?v)."""
     names = {v for c in rule.conditions for v in c.variables}
-    for a in rule.body:
+    for a in rule.premises:
         names |= a.variables()
     return sorted(names)
 

@@ -6,6 +6,7 @@ from pyoxigraph import NamedNode
 
 from ..store import Store
 from .generic import generic_rules
+from .implied import simplify
 from .model import TBoxReader
 from .owl import OwlCompiler
 from .rule import RuleSet
@@ -28,6 +29,9 @@ def compile_ontology(store: Store, graph: NamedNode) -> RuleSet:
     rules.add(generic_rules())
     rules.add(owl.compile())
     rules.add(swrl_rules)
+    simplified = RuleSet()
+    simplified.add(simplify(rules.rules))  # rules that differed only in implied atoms become one
+    rules.rules = simplified.rules
     rules.named_classes = set(tbox.named_classes)
     rules.data_properties = set(tbox.data_properties)
     rules.object_properties = set(tbox.object_properties)

@@ -130,11 +130,25 @@ class Rule:
     #: evaluation stratum: rules with negated premises ("not known different")
     #: run only once everything they negate has reached its fixpoint
     stratum: int = 0
+    #: the body as written, when atoms the TBox implies were dropped from ``body`` (see :mod:`.implied`)
+    written: tuple[Atom, ...] = field(default=(), compare=False)
+    #: the conditions as written, when dropping implied atoms added some (``FILTER(!isLiteral(?y))``)
+    written_conditions: tuple[Condition, ...] | None = field(default=None, compare=False)
     #: the conditions as SPARQL lines (rendered once: every evaluation text contains them)
     filters: str = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "filters", render(self.conditions))
+
+    @property
+    def premises(self) -> tuple[Atom, ...]:
+        """The body as written: what an explanation shows (``body`` may leave implied atoms out)."""
+        return self.written or self.body
+
+    @property
+    def written_filters(self) -> str:
+        """The conditions as written, as SPARQL lines (what an explanation shows)."""
+        return self.filters if self.written_conditions is None else render(self.written_conditions)
 
     @property
     def negates(self) -> bool:
@@ -190,6 +204,9 @@ class Rule:
     def sparql(self) -> str:
         """A readable rendering (CONSTRUCT or SELECT over the union graph), for `topostore rules`."""
         body = self.where()
+        dropped = [a for a in self.written if a not in self.body]
+        if dropped:
+            body += "\n  # implied by the axioms, not evaluated: " + " ".join(a.text() for a in dropped)
         if self.head is not None:
             return f"# {self.name}: {self.origin}\nCONSTRUCT {{ {self.head.text()} }}\nWHERE {{\n  {body}\n}}"
         proj = " ".join(self.violation) or "*"
