@@ -63,6 +63,23 @@ def assert_same_as_scratch(onto: Ontology, profile: bool = False) -> None:
     assert set(onto.store.triples(graph=AUX)) == aux, report.stats
     assert set(onto.store.triples(graph=ENTAILED)) == entailed, report.stats
     assert report.consistent == consistent, report.stats
+    assert_views_fresh(onto)
+
+
+#: classes whose answers are kept as views (asked after every REASON, so the next one maintains them)
+VIEWED = ("URGENT", "LOCATION", "ROOM", "CORRIDOR", "ROBOT", "DOOR")
+
+
+def assert_views_fresh(onto: Ontology) -> None:
+    """Class answers read from the maintained views equal a fresh read of the store."""
+    for name in VIEWED:
+        fresh = onto._instances(N(name))
+        assert sorted(onto.instances(N(name)), key=str) == sorted(fresh, key=str), name
+        assert onto.rendered_instances(N(name), "local", _local) == sorted({_local(m) for m in fresh}), name
+
+
+def _local(term: NamedNode) -> str:
+    return term.value.rsplit("#", 1)[-1]
 
 
 # ---------------------------------------------------------------- manipulations

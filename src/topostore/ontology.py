@@ -40,6 +40,7 @@ from .store import Store
 from .stores import StoreSpec, check_rules, open_store
 from .stores import state as durable_state
 from .terms import Term, entity, literal_of, value_key
+from .views import ClassViews
 from .vocab import (
     ASSERTED,
     AUX,
@@ -93,6 +94,8 @@ class Ontology(OntologyFiles, OntologyQueries):
         self.max_change_share = DEFAULT_MAX_CHANGE_SHARE
         #: rounds, inferred facts and seconds one REASON may use (see topostore.reason.limits)
         self.limits: ReasonLimits = reason_limits.DEFAULTS
+        #: class answers kept up to date from each REASON's touched type facts (see topostore.views)
+        self.views = ClassViews()
         self._journal = Journal()  # asserted changes since the last successful REASON, to roll back
         #: change notifications: subscribe with ``onto.events.subscribe(callback, "rdf:type URGENT")``
         self.events = EventHub(lambda: self.prefix)
@@ -329,11 +332,18 @@ class Ontology(OntologyFiles, OntologyQueries):
         finally:
             self._tracking = self._reasoner.state.ready
         self.store.maybe_compact()
-        self._report = ReasonReport(not violations, violations, stats)
+        previous, self._report = self._report, ReasonReport(not violations, violations, stats)
+        self._advance_views(previous)
         self.dirty = False
         self.events.after_reason(self.store, self._report.consistent, before, stats.seconds)
         durable_state.end_reason(self.store, self._report.consistent)
         return self._report
+
+    def _advance_views(self, previous: ReasonReport | None) -> None:
+        """Bring the class views to the new report (dropped when the visible graphs changed or the run was full)."""
+        same_graphs = previous is not None and previous.consistent == self._report.consistent
+        touched = self._reasoner.touched_types if same_graphs else None
+        self.views.advance(previous, self._report, touched, self._is_instance)
 
     @property
     def report(self) -> ReasonReport | None:

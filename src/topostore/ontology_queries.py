@@ -7,13 +7,16 @@ SPARQL, and named queries with safely bound parameters.
 
 from __future__ import annotations
 
-from pyoxigraph import Literal, NamedNode
+from collections.abc import Hashable
+
+from pyoxigraph import Literal, NamedNode, Triple
 
 from .errors import QueryError
 from .ontology_files import SCHEMA_NAMESPACES
 from .queries import QueryItem, collect, get_named_query, render_jena, substitutions, to_items
 from .store import Store
 from .terms import Term, value_key
+from .views import Render
 from .vocab import ASSERTED, DECLARATION_TYPES, THING, TYPE, is_internal, is_skolem
 
 
@@ -38,13 +41,37 @@ class OntologyQueries:
         return [t for t in self._objects(self.iri(individual), TYPE) if _is_user_class(t)]
 
     def instances(self, cls: str | NamedNode) -> list[NamedNode]:
+        """Individuals of a class (asserted ∪ inferred); a class asked again after REASON is read from its view."""
         c = self.iri(cls)
+        if not self.dirty and self.report is not None:
+            return self.views.get(c, self.report, lambda: self._instances(c))
+        return self._instances(c)
+
+    def rendered_instances(self, cls: str | NamedNode, key: Hashable, render: Render) -> list[str]:
+        """:meth:`instances` rendered by ``render`` (None leaves a member out), sorted, without duplicates.
+
+        After a REASON the answer is kept as a view (see :mod:`topostore.views`), so asking for a
+        big class every step costs the change, not the class.
+        """
+        c = self.iri(cls)
+        if not self.dirty and self.report is not None:
+            return self.views.rendered(c, self.report, lambda: self._instances(c), key, render)
+        return sorted({text for m in self._instances(c) if (text := render(m)) is not None})
+
+    def _instances(self, c: NamedNode) -> list[NamedNode]:
         found: dict = {}
         for g in self.visible_graphs():
             for s in self.store.subjects(TYPE, c, g):
                 if not is_internal(s) or is_skolem(s):
                     found[s] = None
         return list(found)
+
+    def _is_instance(self, s: Term, c: NamedNode) -> bool:
+        """Whether ``s`` is one of :meth:`instances` of ``c`` (the test a class view re-decides touched members by)."""
+        if is_internal(s) and not is_skolem(s):
+            return False
+        t = Triple(s, TYPE, c)
+        return any(self.store.contains(t, g) for g in self.visible_graphs())
 
     def object_values(self, prop: str | NamedNode, individual: str | NamedNode, names: bool = True) -> list:
         vals = [o for o in self._objects(self.iri(individual), self.iri(prop)) if isinstance(o, NamedNode)]

@@ -41,7 +41,10 @@ def query_ind(ctx: Context) -> Reply:
 
 
 def query_ind_class(ctx: Context) -> Reply:
-    return Reply(queried_objects=ctx.render(ctx.onto.instances(ctx.iri(0, "class"))))
+    """QUERY IND CLASS: the members, as :meth:`Context.render` writes them (kept as a view between REASONs)."""
+    renderer = ctx.service.renderer
+    return Reply(queried_objects=ctx.onto.rendered_instances(
+        ctx.iri(0, "class"), renderer, lambda t: None if hidden(t) else renderer.term(t)))
 
 
 def query_dataprop_ind(ctx: Context) -> Reply:

@@ -9,6 +9,7 @@ entities by their local name, literals by their lexical form.
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass
 
 from pyoxigraph import BlankNode, Literal, NamedNode
@@ -68,18 +69,24 @@ class Renderer:
     short_names: bool = False
 
     def term(self, term: Term) -> str:
-        term = unskolem(term)
-        if isinstance(term, NamedNode):
-            return local_name(term.value) if self.short_names else full_entity(term.value)
-        if isinstance(term, Literal):
-            return term.value if self.short_names else full_literal(term)
-        if isinstance(term, BlankNode):
-            return f"_:{term.value}"
-        return str(term)
+        return _rendered(term, self.short_names)
 
     def terms(self, terms: list[Term]) -> list[str]:
         """Render a list, dropping duplicates (aRMOR answers are sets)."""
         return list(dict.fromkeys(self.term(t) for t in terms))
+
+
+@functools.lru_cache(maxsize=1 << 17)
+def _rendered(term: Term, short_names: bool) -> str:
+    """One term as ``queried_objects`` shows it; cached, since a robot asks for the same big answers every step."""
+    term = unskolem(term)
+    if isinstance(term, NamedNode):
+        return local_name(term.value) if short_names else full_entity(term.value)
+    if isinstance(term, Literal):
+        return term.value if short_names else full_literal(term)
+    if isinstance(term, BlankNode):
+        return f"_:{term.value}"
+    return str(term)
 
 
 def short_name(term: Term) -> str:

@@ -38,10 +38,11 @@ from __future__ import annotations
 from collections.abc import Iterable
 from dataclasses import replace
 
+from ..vocab import TYPE
 from .condition import test
 from .rule import Atom, Rule
 
-_TYPE = "<http://www.w3.org/1999/02/22-rdf-syntax-ns#type>"
+_TYPE = str(TYPE)
 
 #: A position a term is known from: ("s", p) subject of p, ("o", p) object of p, ("t", C) instance of C.
 Position = tuple[str, str]

@@ -76,7 +76,8 @@ from ..compile.generic import PREFIXES
 from ..compile.rule import Rule, RuleSet
 from ..lexer import negates_exists  # noqa: F401 - public here since the first release
 from ..store import Store
-from ..vocab import ASSERTED, AUX, DELTA, INFERRED, NEW_AUX, NEW_INFERRED, TYPE
+from ..terms import Term
+from ..vocab import ASSERTED, AUX, DELTA, ENTAILED_PREFIX, INFERRED, NEW_AUX, NEW_INFERRED, TYPE
 from . import flip
 from .consistency import Violation, check_consistency
 from .dred import DeletionPhases, can_prove
@@ -85,6 +86,9 @@ from .materialize import Materializer, ReasonStats
 from .plan import KeyCounts, is_small, plan_where
 from .scratch import ADDED, FLIP_GAINED, NEW_FACTS, OVERDELETED, REMOVED, SCRATCH, target
 from .triggers import Present, Triggers, matches
+
+#: the internal form of an rdf:type conclusion whose individuals are different by entailment only
+ENTAILED_TYPE = NamedNode(ENTAILED_PREFIX + TYPE.value)
 
 #: Default share of the asserted graph above which a change is recomputed from scratch.
 DEFAULT_MAX_CHANGE_SHARE = 0.10
@@ -137,6 +141,8 @@ class IncrementalReasoner(DeletionPhases):
         self._lateral = store.supports_lateral  # is the graph the next evaluation starts from small?
         self._counts: KeyCounts = ({}, {})  # read keys of the graph evaluations start from
         self.profile = False
+        #: (individual, class) pairs whose type fact the last REASON may have changed; None after a full run
+        self.touched_types: list[tuple[Term, NamedNode]] | None = None
         # per rule, for flips: the variables its filters mention, and whether they are plain BIND/FILTER lines
         self._filter_vars = [flip.filter_variables(r) for r in self.rules]
         self._plain = [flip.plain_filters(r) for r in self.rules]
@@ -167,10 +173,12 @@ class IncrementalReasoner(DeletionPhases):
                 return self.full("the change makes a rule with a negated premise (stratum 1) match", profile)
             violations = self._check(stats, bool(added or removed))
             self._publish_entailed(bool(added or removed))
+            self.touched_types = self._touched_types() if (added or removed) else []
             if profile:
                 stats.derived = self.store.count(NEW_FACTS)
         except Exception:
             self.state.ready = False  # half-maintained graphs: the next REASON recomputes them
+            self.touched_types = None
             self._queue.clear()
             raise
         finally:
@@ -183,6 +191,7 @@ class IncrementalReasoner(DeletionPhases):
     def full(self, why: str, profile: bool = False) -> tuple[ReasonStats, list[Violation]]:
         """Recompute everything from the asserted graph; records the state maintenance starts from."""
         self.state.ready = False
+        self.touched_types = None
         self._clear_scratch()
         materializer = Materializer(self.store, self.ruleset, profile=profile)
         stats = materializer.run()
@@ -360,6 +369,20 @@ class IncrementalReasoner(DeletionPhases):
         if changed:
             self._flush()
             refresh_entailed(self.store, self.ruleset, (NEW_FACTS, OVERDELETED))
+
+    def _touched_types(self) -> list[tuple[Term, NamedNode]]:
+        """(individual, class) of every type fact whose presence this maintenance may have changed.
+
+        NEW_FACTS and OVERDELETED hold every triple whose presence in the asserted, inferred or
+        helper graph changed (the same graphs the ENTAILED refresh reads), in real or internal form.
+        """
+        touched: dict[tuple[Term, NamedNode], None] = {}
+        for graph in (NEW_FACTS, OVERDELETED):
+            for predicate in (TYPE, ENTAILED_TYPE):
+                for t in self.store.triples(None, predicate, None, graph):
+                    if isinstance(t.object, NamedNode):
+                        touched[(t.subject, t.object)] = None
+        return list(touched)
 
     def _new_violation_possible(self) -> bool:
         """A check matches with at least one atom on a fact new in the closure (one semi-naive ASK)."""
