@@ -42,6 +42,7 @@ from pyoxigraph import Literal, NamedNode, Triple
 
 from ..compile.condition import TEST
 from ..compile.rule import Atom, Rule, join_order
+from ..terms import sparql
 from ..vocab import INTERNAL, TYPE
 from .plan import nested
 
@@ -120,7 +121,8 @@ def flip_query(branches: Iterable[str]) -> str:
     return "SELECT DISTINCT ?rule ?h0 ?h1 ?h2 ?ok__n WHERE {\n" + "\nUNION\n".join(branches) + "\n}"
 
 
-def flip_branches(rule: Rule, changed: tuple[int, ...], lateral: bool, tag: int) -> list[str]:
+def flip_branches(rule: Rule, changed: tuple[int, ...], lateral: bool, tag: int,
+                  windows: dict[int, dict[int, list[Triple]]] | None = None) -> list[str]:
     """UNION branches finding the heads whose derivation by ``rule`` flips (``?rule`` = ``tag``).
 
     ``changed`` are the body atoms reading a replaced value (all compared only).
@@ -135,6 +137,8 @@ def flip_branches(rule: Rule, changed: tuple[int, ...], lateral: bool, tag: int)
     With ``lateral``, the other atoms follow in join order, each evaluated per
     solution so far, and the filters stand right after the atom that binds
     their last variable: only the bindings that flip reach the atoms after it.
+    ``windows`` (per seed atom, per other atom: the facts in its window, see
+    :mod:`.window`) restricts those atoms to the facts given, as a VALUES table.
     """
     renamed = {rule.body[k].o[1:] for k in changed}
     targets = {c.binds[1:] for c in rule.conditions if c.binds}
@@ -149,9 +153,14 @@ def flip_branches(rule: Rule, changed: tuple[int, ...], lateral: bool, tag: int)
         settled = set(changed[:position])
         start = [f"GRAPH {CHANGE_OLD} {{ {seed.s} {seed.p} {_rename(seed.o, renamed, 'o')} }}",
                  f"{seed.s} {seed.p} {_rename(seed.o, renamed, 'n')} ."]
+        windowed = (windows or {}).get(k, {})
         order = [m for m in join_order(rule.body, k) if m != k]
+        if windowed:  # the windowed atoms first: a few facts, looked up by value
+            order = sorted(order, key=lambda m: m not in windowed)
         rest = [_settled_atom(rule.body[m], renamed) if m in settled
                 else _paired_atom(rule.body[m], renamed) if m in changed else rule.atom_text(m) for m in order]
+        rest = [_values(rule.body[m], windowed[m], renamed if m in settled else set()) + " " + text
+                if m in windowed else text for m, text in zip(order, rest)]
         if lateral:
             bound = set(seed.variables())
             at = 0
@@ -165,6 +174,15 @@ def flip_branches(rule: Rule, changed: tuple[int, ...], lateral: bool, tag: int)
             body = "\n  ".join(start + rest + [tests])
         branches.append("{\n  " + body + "\n}")
     return branches
+
+
+def _values(atom: Atom, facts: list[Triple], renamed: set[str]) -> str:
+    """A VALUES table binding the atom's variables to ``facts`` (its object renamed ``__n`` when settled)."""
+    columns = [(term, i) for i, term in enumerate((atom.s, atom.o)) if term.startswith("?")]
+    names = [_rename(term, renamed, "n") for term, _ in columns]
+    rows = " ".join("(" + " ".join(sparql(t.subject if i == 0 else t.object) for _, i in columns) + ")"
+                    for t in facts)
+    return f"VALUES ({' '.join(names)}) {{ {rows} }}"
 
 
 def _paired_atom(atom: Atom, renamed: set[str]) -> str:

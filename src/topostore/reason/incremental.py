@@ -69,6 +69,7 @@ from __future__ import annotations
 import time
 from collections.abc import Collection, Iterable
 from dataclasses import dataclass, field
+from fractions import Fraction
 
 from pyoxigraph import NamedNode, Triple
 
@@ -78,7 +79,7 @@ from ..lexer import negates_exists  # noqa: F401 - public here since the first r
 from ..store import Store
 from ..terms import Term
 from ..vocab import ASSERTED, AUX, DELTA, ENTAILED_PREFIX, INFERRED, NEW_AUX, NEW_INFERRED, TYPE
-from . import flip
+from . import flip, window
 from .consistency import Violation, check_consistency
 from .dred import DeletionPhases, can_prove
 from .entailed import publish_entailed, refresh_entailed
@@ -89,6 +90,9 @@ from .triggers import Present, Triggers, matches
 
 #: the internal form of an rdf:type conclusion whose individuals are different by entailment only
 ENTAILED_TYPE = NamedNode(ENTAILED_PREFIX + TYPE.value)
+
+#: a flip window is used up to this many bindings of the seed and this many facts inside (else: a scan)
+WINDOW_ROWS, WINDOW_FACTS = 64, 4096
 
 #: Default share of the asserted graph above which a change is recomputed from scratch.
 DEFAULT_MAX_CHANGE_SHARE = 0.10
@@ -141,6 +145,8 @@ class IncrementalReasoner(DeletionPhases):
         self._lateral = store.supports_lateral  # is the graph the next evaluation starts from small?
         self._counts: KeyCounts = ({}, {})  # read keys of the graph evaluations start from
         self.profile = False
+        #: sorted indexes of compared predicates (IRI text) for flip windows, kept from the asserted changes
+        self._indexes: dict[str, window.ValueIndex] = {}
         #: (individual, class) pairs whose type fact the last REASON may have changed; None after a full run
         self.touched_types: list[tuple[Term, NamedNode]] | None = None
         # per rule, for flips: the variables its filters mention, and whether they are plain BIND/FILTER lines
@@ -179,6 +185,7 @@ class IncrementalReasoner(DeletionPhases):
         except Exception:
             self.state.ready = False  # half-maintained graphs: the next REASON recomputes them
             self.touched_types = None
+            self._indexes.clear()
             self._queue.clear()
             raise
         finally:
@@ -192,6 +199,7 @@ class IncrementalReasoner(DeletionPhases):
         """Recompute everything from the asserted graph; records the state maintenance starts from."""
         self.state.ready = False
         self.touched_types = None
+        self._indexes.clear()
         self._clear_scratch()
         materializer = Materializer(self.store, self.ruleset, profile=profile)
         stats = materializer.run()
@@ -234,6 +242,12 @@ class IncrementalReasoner(DeletionPhases):
                   stats: ReasonStats) -> None:
         if not added and not removed:
             return
+        for t in removed:
+            if (index := self._indexes.get(f"<{t.predicate.value}>")) is not None:
+                index.discard(t)
+        for t in added:
+            if (index := self._indexes.get(f"<{t.predicate.value}>")) is not None:
+                index.add(t)
         self._put(added, ADDED)
         self._put(removed, REMOVED)
         preds, classes = self._keys(ADDED)
@@ -309,26 +323,115 @@ class IncrementalReasoner(DeletionPhases):
         return tuple(handled) or None
 
     def _flip_rows(self, wanted: tuple[tuple[int, tuple[int, ...]], ...], stats: ReasonStats) -> list:
-        """One query for the flips of all ``wanted`` (rule, compared atoms)."""
+        """One query for the flips of all ``wanted`` (rule, compared atoms).
+
+        A branch that would scan every value of a compared predicate reads only the
+        values in its window instead, when :mod:`.window` can give one.
+        """
         if not wanted:
             return []
-        key = ("flip", wanted)
-        text = self._texts.get(key)
-        if text is None:
-            text = self._texts[key] = flip.flip_query(
-                b for i, atoms in wanted
-                for b in flip.flip_branches(self.rules[i], self._by_frequency(i, atoms), self.store.supports_lateral,
-                                            i))
+        lateral = self.store.supports_lateral
+        branches: list[str] = []
+        for i, atoms in wanted:
+            order = self._by_frequency(i, atoms)
+            windows = self._windows(i, order)
+            if windows:
+                branches += flip.flip_branches(self.rules[i], order, lateral, i, windows)
+                continue
+            key = ("flip", i, order)
+            cached = self._texts.get(key)
+            if cached is None:
+                cached = self._texts[key] = "\nUNION\n".join(flip.flip_branches(self.rules[i], order, lateral, i))
+            branches.append(cached)
         stats.evaluations += len(wanted)
         start = time.perf_counter()
-        rows = list(self.store.query(text, prefixes=PREFIXES, graphs=[ASSERTED, INFERRED, AUX],
+        rows = list(self.store.query(flip.flip_query(branches), prefixes=PREFIXES, graphs=[ASSERTED, INFERRED, AUX],
                                      named=[AUX, flip.CHANGE_OLD]))
         if self._profiling(stats):
             stats.per_rule["flip"] = stats.per_rule.get("flip", 0.0) + time.perf_counter() - start
         return rows
 
+    def _windows(self, i: int, order: tuple[int, ...]) -> dict[int, dict[int, list[Triple]]]:
+        """For the branch seeded by the last changed atom (all others read settled), the facts of each
+        other compared atom that lie in its window (see :mod:`.window`); {} where there is none."""
+        rule, k = self.rules[i], order[-1]
+        found: dict[int, list[Triple]] = {}
+        for m, atom in enumerate(rule.body):
+            # an atom whose subject the seed binds is a look-up already; only an enumeration needs a window
+            if m == k or not flip.compared_only(rule, m) or atom.s in rule.body[k].variables() \
+                    or self._derivable(atom.p):
+                continue
+            facts = self._window_facts(i, k, m)
+            if facts is not None:
+                found[m] = facts
+        return {k: found} if found else {}
+
+    def _window_facts(self, i: int, k: int, m: int) -> list[Triple] | None:
+        """The facts of atom ``m`` that a change of seed atom ``k``'s value may flip (None: no window)."""
+        rule = self.rules[i]
+        key = ("window-tests", i)
+        tests = self._texts.get(key)
+        if tests is None:
+            tests = self._texts[key] = window.tests(rule)
+        seed, atom = rule.body[k], rule.body[m]
+        t, v = seed.o[1:], atom.o[1:]
+        rest = sorted({n for test in tests if test.form for n in test.form[0]} - {t, v})
+        text = self._texts.get(("window", i, k, m))
+        if text is None:
+            text = self._texts[("window", i, k, m)] = self._window_query(rule, k, m, rest)
+        rows = list(self.store.query(text, prefixes=PREFIXES, graphs=[ASSERTED, INFERRED, AUX],
+                                     named=[AUX, flip.CHANGE_OLD]))
+        if len(rows) > WINDOW_ROWS:
+            return None
+        index = self._value_index(atom.p)
+        facts: dict[Triple, None] = {}
+        for row in rows:
+            terms = [row[f"{t}__o"], row[f"{t}__n"], *(row[n] for n in rest)]
+            values = [window.number(term) for term in terms]
+            if any(x is None for x in values):
+                return None
+            exact = all(term.datatype.value.rsplit("#", 1)[1] not in ("double", "float") for term in terms)
+            margin = Fraction(0) if exact else Fraction(1, 10**9) * (1 + sum(abs(x) for x in values))
+            span = window.interval(tests, v, t, values[0], values[1], dict(zip(rest, values[2:])), margin)
+            if span is None:
+                return None
+            if span is False:
+                continue
+            inside = index.between(span[0], span[1], WINDOW_FACTS)
+            if inside is None:
+                return None
+            facts.update(dict.fromkeys(inside))
+            if len(facts) > WINDOW_FACTS:
+                return None
+        return list(facts)
+
+    def _window_query(self, rule: Rule, k: int, m: int, rest: list[str]) -> str:
+        """The old and new seed values with the bindings of ``rest``: the seed atom and the atoms that do
+        not depend on atom ``m`` (leaving atoms out only widens the window)."""
+        seed, atom = rule.body[k], rule.body[m]
+        t = seed.o[1:]
+        lines = [f"GRAPH {flip.CHANGE_OLD} {{ {seed.s} {seed.p} ?{t}__o }}", f"{seed.s} {seed.p} ?{t}__n ."]
+        own = atom.variables() - seed.variables()
+        lines += [rule.atom_text(j) for j, other in enumerate(rule.body)
+                  if j not in (k, m) and not (other.variables() & own)]
+        head = " ".join([f"?{t}__o", f"?{t}__n", *(f"?{n}" for n in rest)])
+        return f"SELECT DISTINCT {head} WHERE {{\n  " + "\n  ".join(lines) + f"\n}} LIMIT {WINDOW_ROWS + 1}"
+
+    def _value_index(self, p: str) -> window.ValueIndex:
+        """The sorted index of predicate ``p``'s facts (built once, kept by :meth:`_maintain`)."""
+        index = self._indexes.get(p)
+        if index is None:
+            index = self._indexes[p] = window.ValueIndex(self.store.triples(None, NamedNode(p[1:-1]), None, ASSERTED))
+        return index
+
     def _by_frequency(self, i: int, atoms: tuple[int, ...]) -> tuple[int, ...]:
         """The rule's atoms, those of predicates with the most asserted facts first (see flip.flip_branches)."""
+        key = ("order", i, atoms)
+        if key not in self._texts:
+            self._texts[key] = self._order_by_size(i, atoms)
+        return self._texts[key]
+
+    def _order_by_size(self, i: int, atoms: tuple[int, ...]) -> tuple[int, ...]:
         def size(j: int) -> int:
             p = self.rules[i].body[j].p
             rows = self.store.query(f"SELECT (COUNT(*) AS ?n) WHERE {{ ?s {p} ?o }}", graphs=[ASSERTED])

@@ -1,0 +1,275 @@
+"""Windows of compared values: the facts a clock move can flip, found by index, not by a scan.
+
+Why
+---
+A clock tick replaces ``now(Robot1)``; the Urgency rule compares it with every
+location's ``visitedAt`` (``now - visitedAt > threshold``).  The flip query of
+:mod:`.flip` pairs the old and the new clock with *every* visit time and
+evaluates the filters twice per row: on a map of 100,000 locations that scan
+is the whole cost of a step, although only the locations whose visit time
+lies between the two thresholds can change.
+
+What is exact here
+------------------
+For a rule whose tests are comparisons of *linear* expressions (variables,
+numbers, ``+`` and ``-``: what the swrlb arithmetic and comparison built-ins
+compile to), a test ``L(v, t, rest) op 0`` with ``L = a·v + c·t + r`` can
+only answer differently for the old and the new value of ``t`` when ``v``
+lies between the two thresholds ``-(c·t_old + r)/a`` and ``-(c·t_new + r)/a``
+(both included; every comparison operator changes its answer only there).  A
+conjunction of tests can only flip where one of its tests flips.  So the
+flipping values of ``v`` lie in the union of those closed intervals, one per
+binding of the other variables; the flip query then evaluates the exact
+filters on the facts in the window only, so a window that is a little too
+wide costs a row, never a wrong answer.  Values that are not numbers make the
+arithmetic fail in both states (no flip) and are left out; a test that does
+not mention ``v`` but may flip, a non-linear test on ``t`` or a binding that is
+not a number give no window: the query scans, as before.
+
+The values are read from :class:`ValueIndex`, a sorted index per compared
+predicate kept from the asserted changes of every REASON; it is used only for
+predicates no rule that can fire derives (their facts are all asserted).
+"""
+
+from __future__ import annotations
+
+import bisect
+import math
+import re
+from collections.abc import Iterable
+from dataclasses import dataclass
+from decimal import Decimal, InvalidOperation
+from fractions import Fraction
+
+from pyoxigraph import Literal, Triple
+
+from ..compile.condition import BIND, TEST
+from ..compile.rule import Rule
+from ..terms import Term
+from ..vocab import XSD
+
+#: A linear form: coefficient per variable name (without ``?``) and a constant.
+Linear = tuple[dict[str, Fraction], Fraction]
+
+_TOKEN = re.compile(r"\s*(?:(\?\w+)|(\d+(?:\.\d*)?|\.\d+)|(>=|<=|!=|=|>|<|\+|-|\(|\)))")
+_COMPARISON = (">=", "<=", "!=", "=", ">", "<")
+#: numeric datatypes whose lexical form Python reads exactly (others: float)
+_EXACT = ("integer", "decimal", "long", "int", "short", "byte", "nonNegativeInteger", "positiveInteger",
+          "nonPositiveInteger", "negativeInteger", "unsignedLong", "unsignedInt", "unsignedShort", "unsignedByte")
+
+
+class _NotLinear(Exception):
+    """The expression is not made of variables, numbers, + and - only."""
+
+
+def _tokens(text: str) -> list[str]:
+    out, at = [], 0
+    text = text.strip()
+    while at < len(text):
+        m = _TOKEN.match(text, at)
+        if m is None or m.end() == at:
+            raise _NotLinear(text[at:])
+        out.append(m.group(m.lastindex))
+        at = m.end()
+    return out
+
+
+class _Parser:
+    """``expr := term (('+'|'-') term)*``, ``term := ['-'|'+'] (number | ?var | '(' expr ')')``."""
+
+    def __init__(self, tokens: list[str], binds: dict[str, Linear]) -> None:
+        self.tokens, self.at, self.binds = tokens, 0, binds
+
+    def peek(self) -> str | None:
+        return self.tokens[self.at] if self.at < len(self.tokens) else None
+
+    def take(self) -> str:
+        tok = self.peek()
+        if tok is None:
+            raise _NotLinear("unexpected end")
+        self.at += 1
+        return tok
+
+    def expr(self) -> Linear:
+        acc = self.term()
+        while self.peek() in ("+", "-"):
+            sign = 1 if self.take() == "+" else -1
+            acc = _add(acc, self.term(), sign)
+        return acc
+
+    def term(self) -> Linear:
+        tok = self.take()
+        if tok in ("+", "-"):
+            inner = self.term()
+            return inner if tok == "+" else _add(({}, Fraction(0)), inner, -1)
+        if tok == "(":
+            inner = self.expr()
+            if self.take() != ")":
+                raise _NotLinear("unbalanced")
+            return inner
+        if tok.startswith("?"):
+            name = tok[1:]
+            return self.binds.get(name, ({name: Fraction(1)}, Fraction(0)))
+        if tok[0].isdigit() or tok[0] == ".":
+            return {}, Fraction(Decimal(tok))
+        raise _NotLinear(tok)
+
+
+def _add(a: Linear, b: Linear, sign: int) -> Linear:
+    coefs = dict(a[0])
+    for k, v in b[0].items():
+        coefs[k] = coefs.get(k, Fraction(0)) + sign * v
+    return {k: v for k, v in coefs.items() if v}, a[1] + sign * b[1]
+
+
+@dataclass(frozen=True)
+class Test:
+    """One test of a rule: linear (``form op 0``), or not (``form`` None) with the variables it reads."""
+
+    form: Linear | None
+    variables: frozenset[str]
+
+
+def tests(rule: Rule) -> list[Test]:
+    """The rule's tests with its BINDs substituted (a BIND that is not linear makes its uses non-linear)."""
+    binds: dict[str, Linear] = {}
+    deps: dict[str, frozenset[str]] = {}  # BIND results: the body variables they are computed from
+    opaque: set[str] = set()  # BIND results that are not linear
+    out: list[Test] = []
+    for c in rule.conditions:
+        names = frozenset(v[1:] for v in c.variables) - ({c.binds[1:]} if c.binds else set())
+        reads = frozenset().union(*(deps.get(n, frozenset({n})) for n in names))
+        linear_inputs = not (names & opaque)
+        if c.kind == BIND:
+            target = c.binds[1:]
+            deps[target] = reads
+            form = _linear(c.expression, binds) if linear_inputs else None
+            if form is None:
+                opaque.add(target)
+            else:
+                binds[target] = form
+            continue
+        form = _comparison(c.expression, binds) if c.kind == TEST and linear_inputs else None
+        out.append(Test(form, reads))
+    return out
+
+
+def _linear(text: str | list[str], binds: dict[str, Linear]) -> Linear | None:
+    """The linear form of a whole expression (its text or tokens), or None."""
+    try:
+        parser = _Parser(_tokens(text) if isinstance(text, str) else text, binds)
+        form = parser.expr()
+    except _NotLinear:
+        return None
+    return form if parser.peek() is None else None
+
+
+def _comparison(text: str, binds: dict[str, Linear]) -> Linear | None:
+    """``left op right`` as the linear form ``left - right`` (compared with 0), or None."""
+    try:
+        toks = _tokens(text)
+    except _NotLinear:
+        return None
+    ops = [i for i, t in enumerate(toks) if t in _COMPARISON]
+    if len(ops) != 1:
+        return None
+    left, right = _linear(toks[:ops[0]], binds), _linear(toks[ops[0] + 1:], binds)
+    return None if left is None or right is None else _add(left, right, -1)
+
+
+def number(term: Term | None) -> Fraction | None:
+    """The exact value of a numeric literal (None for anything else, NaN and infinities)."""
+    if not isinstance(term, Literal) or not term.datatype.value.startswith(XSD):
+        return None
+    local = term.datatype.value.rsplit("#", 1)[1]
+    try:
+        if local in _EXACT:
+            return Fraction(Decimal(term.value.strip()))
+        if local in ("double", "float"):
+            f = float(term.value.strip())
+            return Fraction(f) if math.isfinite(f) else None
+    except (InvalidOperation, ValueError):
+        return None
+    return None
+
+
+def interval(found: list[Test], v: str, t: str, old: Fraction, new: Fraction,
+             rest: dict[str, Fraction], margin: Fraction) -> tuple[Fraction, Fraction] | None | bool:
+    """The closed interval of ``v`` outside which no test can flip when ``t`` goes ``old`` → ``new``.
+
+    Returns False when no test can flip at all, None when there is no window (scan).
+    ``margin`` widens the interval (rounding of double arithmetic).
+    """
+    lo = hi = None
+    for test in found:
+        if t not in test.variables:
+            continue  # cannot answer differently: nothing it reads changed
+        if test.form is None:
+            return None
+        coefs, const = test.form
+        a, c = coefs.get(v, Fraction(0)), coefs.get(t, Fraction(0))
+        if not c:
+            continue
+        others = [k for k in coefs if k not in (v, t)]
+        if any(k not in rest for k in others):
+            return None
+        r = const + sum(coefs[k] * rest[k] for k in others)
+        if not a:
+            if c * old == c * new:
+                continue  # the same value in both states
+            return None  # flips for every v or for none: no window to look through
+        ends = (-(c * old + r) / a, -(c * new + r) / a)
+        lo = min(ends) if lo is None else min(lo, *ends)
+        hi = max(ends) if hi is None else max(hi, *ends)
+    if lo is None:
+        return False
+    return lo - margin, hi + margin
+
+
+class ValueIndex:
+    """The facts of one predicate sorted by their numeric object; non-numbers are left out."""
+
+    def __init__(self, triples: Iterable[Triple]) -> None:
+        self._keys: list[tuple[Fraction, str, str]] = []
+        self._facts: dict[tuple[Fraction, str, str], Triple] = {}
+        for t in triples:
+            self.add(t, insort=False)
+        self._keys.sort()
+
+    def _key(self, t: Triple) -> tuple[Fraction, str, str] | None:
+        value = number(t.object)
+        return None if value is None else (value, str(t.subject), str(t.object))
+
+    def add(self, t: Triple, insort: bool = True) -> None:
+        key = self._key(t)
+        if key is None or key in self._facts:
+            return
+        self._facts[key] = t
+        if insort:
+            bisect.insort(self._keys, key)
+        else:
+            self._keys.append(key)
+
+    def discard(self, t: Triple) -> None:
+        key = self._key(t)
+        if key is None or self._facts.pop(key, None) is None:
+            return
+        del self._keys[bisect.bisect_left(self._keys, key)]
+
+    def between(self, lo: Fraction, hi: Fraction, limit: int) -> list[Triple] | None:
+        """The facts with lo ≤ value ≤ hi (None when more than ``limit``: a scan is as cheap)."""
+        start = bisect.bisect_left(self._keys, (lo,))
+        out = []
+        for key in self._keys[start:]:
+            if key[0] > hi:
+                break
+            out.append(self._facts[key])
+            if len(out) > limit:
+                return None
+        return out
+
+    def __len__(self) -> int:
+        return len(self._keys)
+
+
+__all__ = ["Linear", "Test", "ValueIndex", "interval", "number", "tests"]
