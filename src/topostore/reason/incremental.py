@@ -91,8 +91,9 @@ from .triggers import Present, Triggers, matches
 #: the internal form of an rdf:type conclusion whose individuals are different by entailment only
 ENTAILED_TYPE = NamedNode(ENTAILED_PREFIX + TYPE.value)
 
-#: a flip window is used up to this many bindings of the seed and this many facts inside (else: a scan)
-WINDOW_ROWS, WINDOW_FACTS = 64, 4096
+#: a flip window is used from this many facts of the compared predicate on, up to this many bindings
+#: of the seed and this many facts inside (else: a scan)
+WINDOW_MIN, WINDOW_ROWS, WINDOW_FACTS = 256, 64, 4096
 
 #: Default share of the asserted graph above which a change is recomputed from scratch.
 DEFAULT_MAX_CHANGE_SHARE = 0.10
@@ -136,10 +137,11 @@ class IncrementalReasoner(DeletionPhases):
         self.monotone = [i for i, r in enumerate(self.rules) if is_monotone(r)]
         self._monotone_set = set(self.monotone)
         self.triggers = Triggers(self.rules)
-        self.check_triggers = Triggers(rules.checks)
+        self.checks = rules.checks
+        self.check_triggers = Triggers(self.checks)
         self.negated = [r for r in self.rules if not is_monotone(r)]
         self.provers = [i for i in self.monotone if can_prove(self.rules[i])]
-        self.checks_monotone = all(not c.negates and c.stratum == 0 for c in rules.checks)
+        self.checks_monotone = all(not c.negates and c.stratum == 0 for c in self.checks)
         self._texts: dict[tuple, str] = {}
         self._queue: list[str] = []
         self._lateral = store.supports_lateral  # is the graph the next evaluation starts from small?
@@ -375,6 +377,8 @@ class IncrementalReasoner(DeletionPhases):
             tests = self._texts[key] = window.tests(rule)
         seed, atom = rule.body[k], rule.body[m]
         t, v = seed.o[1:], atom.o[1:]
+        if not window.possible(tests, t) or len(self._value_index(atom.p)) < WINDOW_MIN:
+            return None  # no linear test to solve, or so few values that scanning them is as cheap
         rest = sorted({n for test in tests if test.form for n in test.form[0]} - {t, v})
         text = self._texts.get(("window", i, k, m))
         if text is None:
@@ -491,9 +495,9 @@ class IncrementalReasoner(DeletionPhases):
         """A check matches with at least one atom on a fact new in the closure (one semi-naive ASK)."""
         counts = preds, classes = self._keys(NEW_FACTS)
         branches = []
-        for c, j in self.check_triggers.evaluations(preds, classes, range(len(self.ruleset.checks)),
+        for c, j in self.check_triggers.evaluations(preds, classes, range(len(self.checks)),
                                                     self.state.present):
-            lateral = j is not None and is_small(counts, self.ruleset.checks[c].body[j].read_key()) \
+            lateral = j is not None and is_small(counts, self.checks[c].body[j].read_key()) \
                 and self.store.supports_lateral
             branches.append(self._check_text(c, j, lateral))
         if not branches:
@@ -506,7 +510,7 @@ class IncrementalReasoner(DeletionPhases):
         key = ("check", c, j, lateral)
         text = self._texts.get(key)
         if text is None:
-            rule = self.ruleset.checks[c]
+            rule = self.checks[c]
             where = rule.where() if j is None else plan_where(rule, j, NEW_FACTS, lateral=lateral)
             text = self._texts[key] = f"{{\n  {where}\n}}"
         return text

@@ -177,6 +177,11 @@ def _comparison(text: str, binds: dict[str, Linear]) -> Linear | None:
     return None if left is None or right is None else _add(left, right, -1)
 
 
+def possible(found: list[Test], t: str) -> bool:
+    """Whether a window can exist: every test that reads ``t`` is linear (checked before any query)."""
+    return all(test.form is not None for test in found if t in test.variables)
+
+
 def number(term: Term | None) -> Fraction | None:
     """The exact value of a numeric literal (None for anything else, NaN and infinities)."""
     if not isinstance(term, Literal) or not term.datatype.value.startswith(XSD):
@@ -272,4 +277,4 @@ class ValueIndex:
         return len(self._keys)
 
 
-__all__ = ["Linear", "Test", "ValueIndex", "interval", "number", "tests"]
+__all__ = ["Linear", "Test", "ValueIndex", "interval", "number", "possible", "tests"]
