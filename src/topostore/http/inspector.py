@@ -115,6 +115,8 @@ def proof_texts(value: Any) -> list[str]:
             for k, item in v.items():
                 if k in ("triple", "text") and isinstance(item, str):
                     found.append(item)
+                elif k in ("domain", "range") and isinstance(item, list):
+                    found.extend(x for x in item if isinstance(x, str))
                 else:
                     walk(item)
         elif isinstance(v, list):
@@ -134,7 +136,8 @@ def consistency(onto: Ontology) -> dict[str, Any]:
                   for v in onto.violations]
     if status["consistent"] is False and not violations:
         warnings.append("the violations of a reference reopened from disk are not kept: send REASON to see them")
-    return {**status, "violations": violations, "warnings": warnings}
+    return {**status, "violations": violations, "warnings": warnings,
+            "links": link_names(view, [v["axiom"] for v in violations])}
 
 
 def _limit(request: Request, default: int) -> int:
