@@ -132,9 +132,12 @@ def test_lists_are_cut_at_the_limit_and_say_so(server: InProcess) -> None:
 def test_search(server: InProcess) -> None:
     status, found = get(server, "/references/ontoRef/entities?q=urgent")
     assert status == 200 and found["entities"] == [{"name": "URGENT", "iri": NS + "URGENT", "kind": "class"}]
+    assert found["total"] == 1
     status, found = get(server, "/references/ontoRef/entities?q=r")
     names = [e["name"] for e in found["entities"]]
     assert names[:5] == ["R1", "R2", "ROBOT", "Robot1", "ROOM"]  # names starting with it first
+    status, found = get(server, "/references/ontoRef/entities?q=r&limit=2")
+    assert [e["name"] for e in found["entities"]] == ["R1", "R2"] and found["total"] == len(names)
     assert get(server, "/references/ontoRef/entities?q=zzz")[1]["entities"] == []
 
 

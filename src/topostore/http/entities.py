@@ -253,10 +253,11 @@ def _kind_of_type(t: Triple) -> tuple[Term, str] | None:
     return None
 
 
-def search_entities(onto: Ontology, text: str, limit: int = 20) -> list[dict[str, str]]:
+def search_entities(onto: Ontology, text: str, limit: int = 20) -> tuple[list[dict[str, str]], int]:
     """Entities whose name contains ``text`` (case-insensitive): exact matches first, then
     names starting with it, then the rest, alphabetically.  Candidates are what has an
-    ``rdf:type`` (individuals, declared classes and properties) and the classes used."""
+    ``rdf:type`` (individuals, declared classes and properties) and the classes used.
+    Returns the first ``limit`` and how many match in all."""
     needle = text.strip().lower()
     kinds: dict[NamedNode, str] = {}
     for g in [ASSERTED, *onto.visible_graphs()]:
@@ -270,7 +271,7 @@ def search_entities(onto: Ontology, text: str, limit: int = 20) -> list[dict[str
     hits = [(display_name(e, onto.prefix), e, kind) for e, kind in kinds.items()]
     hits = [h for h in hits if needle in h[0].lower()]
     hits.sort(key=lambda h: (h[0].lower() != needle, not h[0].lower().startswith(needle), h[0].lower(), h[0]))
-    return [{"name": n, "iri": e.value, "kind": kind} for n, e, kind in hits[:limit]]
+    return [{"name": n, "iri": e.value, "kind": kind} for n, e, kind in hits[:limit]], len(hits)
 
 
 _TOKEN = re.compile(r"[^\s(),{}]+")

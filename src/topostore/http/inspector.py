@@ -64,13 +64,13 @@ class NotFound(Exception):
     """The entity is named nowhere in the reference."""
 
 
-def state(onto: Ontology) -> tuple[dict[str, Any], list[str]]:
-    """Reasoning state every answer carries, and the warnings it calls for."""
+def state(onto: Ontology, facts: bool = True) -> tuple[dict[str, Any], list[str]]:
+    """Reasoning state every answer carries, and the warnings it calls for (``facts``: the answer lists facts)."""
     report = onto.report
     warnings = []
     if report is None:
         warnings.append("the reference was never reasoned: no inferred facts yet (send REASON)")
-    elif not report.consistent:
+    elif not report.consistent and facts:
         warnings.append("the reference is inconsistent: like every query, this page shows the asserted facts only "
                         "(see the consistency report)")
     if onto.dirty and report is not None:
@@ -130,7 +130,7 @@ def proof_texts(value: Any) -> list[str]:
 def consistency(onto: Ontology) -> dict[str, Any]:
     """The last REASON's consistency: each violation's rule, axiom, message and individuals (linked)."""
     view = View(onto)
-    status, warnings = state(onto)
+    status, warnings = state(onto, facts=False)
     violations = [{"rule": v.rule, "axiom": v.axiom, "message": v.message,
                    "individuals": [{"variable": k, **view.term(t)} for k, t in v.individuals.items()]}
                   for v in onto.violations]
@@ -197,7 +197,8 @@ class InspectorRoutes:
     async def search(self, request: Request) -> Response:
         def work(ref: Reference) -> dict[str, Any]:
             text = request.query_params.get("q", "")
-            return {"q": text, "entities": search_entities(ref.ontology, text, _limit(request, 20))}
+            found, total = search_entities(ref.ontology, text, _limit(request, 20))
+            return {"q": text, "entities": found, "total": total}
 
         return await self._locked(request, work)
 

@@ -8,7 +8,7 @@ window.InspectorRender = (function () {
       if (v === undefined || v === null || v === false) return;
       if (k === "class") el.className = v; else if (k === "text") el.textContent = v; else el.setAttribute(k, v);
     });
-    children.flat().forEach(c => el.append(c instanceof Node ? c : document.createTextNode(String(c))));
+    children.flat(Infinity).forEach(c => el.append(c instanceof Node ? c : document.createTextNode(String(c))));
     return el;
   }
 
@@ -17,7 +17,11 @@ window.InspectorRender = (function () {
   function entityLink(name) { return h("a", { href: entityHref(name), class: "entity" }, name); }
 
   // A term of the JSON: {name, iri} (an entity: a link), {value, datatype} (a literal), {expression}.
+  // the standard vocabularies (rdf:type, owl:Thing) are words, not entities of the reference: no link
+  const STANDARD = /^(rdf|rdfs|owl|xsd):/;
+
   function term(t) {
+    if (t.name !== undefined && STANDARD.test(t.name)) return h("span", { class: "vocab", title: t.iri }, t.name);
     if (t.name !== undefined) return h("a", { href: entityHref(t.name), title: t.iri, class: "entity" }, t.name);
     if (t.value !== undefined) {
       return h("span", { class: "literal" }, t.value,
@@ -80,9 +84,14 @@ window.InspectorRender = (function () {
     return h("table", { class: "facts" }, h("thead", {}, head), h("tbody", {}, rows));
   }
 
+  function legend() {
+    return h("div", { class: "legend" }, chip(false), " told (asserted) ", chip(true),
+             " inferred by the reasoner, as Protégé shows in yellow: open “why?” for the proof, down to asserted facts");
+  }
+
   function warnings(list) { return (list || []).map(w => h("div", { class: "warning" }, w)); }
 
   function time(seconds) { return new Date(seconds * 1000).toLocaleTimeString(); }
 
-  return { h, term, linked, chip, statusChip, proofList, factTable, warnings, entityLink, entityHref, time };
+  return { h, legend, term, linked, chip, statusChip, proofList, factTable, warnings, entityLink, entityHref, time };
 })();

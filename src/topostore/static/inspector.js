@@ -59,7 +59,7 @@
 
   function entityPage(e) {
     const parts = [h("h1", {}, e.name, e.kinds.map(k => h("span", { class: "kindtag" }, k))),
-                   h("div", { class: "iri" }, e.iri), ...R.warnings(e.warnings)];
+                   h("div", { class: "iri" }, e.iri), R.legend(), ...R.warnings(e.warnings)];
     (e.annotations || []).forEach(a => parts.push(h("p", {}, R.term(a.value))));
     if (e.kinds.some(k => k.endsWith("property"))) parts.push(propertyBox(e));
     SECTIONS.forEach(([key, title, columns]) => {
@@ -98,7 +98,10 @@
       const cards = order.filter(k => groups[k]).map(k => h("div", { class: "card" }, h("h2", {}, k.replace("class", "classes")
         .replace("property", "properties").replace("individual", "individuals") + ` (${groups[k].length})`),
         h("ul", {}, groups[k].map(e => h("li", {}, R.entityLink(e.name))))));
-      show("overview", h("h1", {}, "Reference " + name), consistencySummary(report),
+      const cut = found.total > found.entities.length
+        ? h("div", { class: "warning" }, `The first ${found.entities.length} of ${found.total} entities are listed; ` +
+            "use the search box for the others.") : "";
+      show("overview", h("h1", {}, "Reference " + name), consistencySummary(report), cut,
            h("p", { class: "hint" }, "Pick an entity to see its facts: asserted ones in green, inferred ones in yellow, " +
              "each inferred fact with the proof that derives it."), h("div", { class: "grid" }, cards));
     } catch (err) { failure("overview", err); }
@@ -143,6 +146,9 @@
       showStatus(report.consistent);
       const parts = [h("h1", {}, "Consistency"), ...R.warnings(report.warnings)];
       if (report.consistent !== false) parts.push(consistencySummary(report));
+      else parts.push(h("p", { class: "hint" }, "Each violation names the axiom it breaks and the individuals " +
+        "involved. While the reference is inconsistent, queries and entity pages show the asserted facts only; " +
+        "remove or replace one of the facts involved and the next REASON clears the report."));
       report.violations.forEach(v => parts.push(h("div", { class: "card violation" },
         h("div", { class: "message" }, v.message),
         h("div", {}, "Axiom: ", h("span", { class: "mono" }, R.linked(v.axiom, report.links)),
@@ -196,6 +202,14 @@
       yasqe: { autocompleters: ["variables"], consumeShareLink: null, createShareableLink: null },
       yasr: { prefixes: {} },
     });
+    // an IRI in the result table opens its entity page here, not the IRI's own (often unreachable) site
+    document.getElementById("yasgui").addEventListener("click", ev => {
+      const a = ev.target.closest("a.iri");
+      if (!a) return;
+      ev.preventDefault();
+      ev.stopPropagation();
+      location.hash = "#entity/" + encodeURIComponent(a.getAttribute("href"));
+    }, true);
     return state.yasgui;
   }
 

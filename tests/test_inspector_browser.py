@@ -1,0 +1,115 @@
+"""The inspector in a real browser: from the live map to R1's page (URGENT inferred, with its proof), a link to C1,
+a named query in the SPARQL console, the map made inconsistent and the report; nothing fetched from elsewhere.
+
+Debian's chromium driven by Playwright, as tests/test_live.py does.  Screenshots go to the test's temporary
+directory; with ``TOPOSTORE_DOCS_SCREENSHOTS=1`` they replace the ones in docs/ that docs/inspector.md shows.
+"""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+
+import pytest
+from test_live import CHROMIUM, CHROMIUM_FLAGS, Server, live  # noqa: F401 - live is the fixture
+
+DOCS = Path(__file__).parents[1] / "docs"
+
+
+def screenshots(tmp_path: Path) -> Path:
+    return DOCS if os.environ.get("TOPOSTORE_DOCS_SCREENSHOTS") == "1" else tmp_path
+
+
+def test_the_inspector_in_a_real_browser(live: Server, tmp_path: Path) -> None:  # noqa: F811 - the fixture
+    if CHROMIUM is None:
+        pytest.skip("needs chromium (apt-get install chromium; `make test` installs it as root)")
+    sync_api = pytest.importorskip("playwright.sync_api", reason="needs playwright (pip install -e .[test])")
+    shots = screenshots(tmp_path)
+    elsewhere: list[str] = []
+
+    def only_the_service(route) -> None:
+        if route.request.url.startswith(live.url + "/"):
+            route.continue_()
+        else:  # the page works offline: anything else is a failure (and is not fetched)
+            elsewhere.append(route.request.url)
+            route.abort()
+
+    with sync_api.sync_playwright() as p:
+        browser = p.chromium.launch(executable_path=CHROMIUM, args=CHROMIUM_FLAGS, timeout=60_000)
+        try:
+            page = browser.new_page(viewport={"width": 1280, "height": 860})
+            page.set_default_timeout(20_000)
+            page.route("**/*", only_the_service)
+            errors: list[str] = []
+            page.on("pageerror", lambda exc: errors.append(str(exc)))
+
+            # the live map links to the inspector
+            page.goto(live.url + "/references/ontoRef/map")
+            page.click("#inspector")
+            page.wait_for_url("**/references/ontoRef/inspector")
+            page.wait_for_selector("#overview .grid a.entity")
+            assert page.inner_text("#status") == "consistent"
+            page.screenshot(path=str(shots / "inspector-overview.png"))
+
+            # the search box finds R1; its page marks URGENT inferred, with its proof
+            page.fill("#search", "R1")
+            page.click("#hits a[href='#entity/R1']")
+            page.wait_for_function("() => document.querySelector('#entity h1')?.textContent.startsWith('R1')")
+            row = page.locator("#entity tr:has(td:first-child a.entity:text-is('URGENT'))")
+            assert row.get_attribute("class") == "inferred"
+            assert row.locator("td.status .chip").inner_text() == "inferred"
+            row.locator("summary").click()
+            proof = row.locator("ul.proof").first
+            assert proof.locator("li").first.inner_text().splitlines()[0] == \
+                "R1 rdf:type URGENT ← swrl:Urgency: SWRL rule Urgency"
+            assert "R1 visitedAt 1665579710 asserted" in proof.inner_text()
+            hasdoor = page.locator("#entity tr:has(td:first-child a.entity:text-is('hasDoor'))")
+            assert hasdoor.get_attribute("class") == "asserted"
+            page.screenshot(path=str(shots / "inspector-entity.png"), full_page=True)
+
+            # a link in a fact leads to C1's page
+            page.locator("#entity table.facts > tbody > tr > td > a.entity:text-is('C1')").first.click()
+            page.wait_for_function("() => document.querySelector('#entity h1')?.textContent.startsWith('C1')")
+            assert "CORRIDOR" in page.inner_text("#entity")
+            assert page.evaluate("() => location.hash") == "#entity/C1"
+
+            # a named query in the SPARQL console (YASGUI) shows its rows, inferred ones included
+            page.click("header nav a[data-view='sparql']")
+            page.click("#queries button[data-query='urgent-locations']")
+            page.wait_for_function("() => document.querySelector('#yasgui .yasr table tbody')"
+                                   "?.textContent.includes('R1')")
+            table = page.inner_text("#yasgui .yasr table tbody")
+            assert "1665579710" in table and "R2" not in table
+            page.screenshot(path=str(shots / "inspector-sparql.png"))
+            page.click("#yasgui .yasr table tbody a.iri")  # a result IRI opens its entity page
+            page.wait_for_function("() => document.querySelector('#entity h1')?.textContent.startsWith('R1')")
+
+            # the robot's clock advances (R2 and C1 become URGENT), then the map is made inconsistent
+            live.ok("REPLACE", "DATAPROP", "IND", ["now", "Robot1", "LONG", "1665579750", "1665579740"])
+            live.ok("ADD", "IND", "CLASS", ["R1", "DOOR"])
+            page.wait_for_function("() => document.body.dataset.consistent === 'false'")
+            assert page.inner_text("#status") == "INCONSISTENT"
+            page.click("#status")
+            page.wait_for_selector("#consistency .violation")
+            report = page.inner_text("#consistency")
+            assert "DOOR DisjointWith LOCATION" in report and "?x = R1" in report
+            assert page.locator("#consistency .violation a.entity", has_text="R1").count() == 1
+            page.screenshot(path=str(shots / "inspector-consistency.png"))
+
+            # the history: what became URGENT when, and when the map became inconsistent
+            page.click("header nav a[data-view='history']")
+            page.wait_for_selector("#history .timeline li.became-inconsistent")
+            timeline = page.inner_text("#history .timeline")
+            assert "+ R2 rdf:type URGENT" in timeline and "became INCONSISTENT" in timeline
+            page.screenshot(path=str(shots / "inspector-history.png"))
+
+            # the report's individual links to its page
+            page.click("#status")
+            page.locator("#consistency .violation a.entity", has_text="R1").click()
+            page.wait_for_function("() => document.querySelector('#entity h1')?.textContent.startsWith('R1')")
+            assert "inconsistent" in page.inner_text("#entity .warning")
+            assert errors == []
+        finally:
+            browser.close()
+    assert elsewhere == []
+    assert all((shots / f"inspector-{n}.png").stat().st_size > 10_000 for n in ("entity", "sparql", "consistency"))
