@@ -103,6 +103,7 @@ def test_a_class_with_members_hierarchy_axioms_and_rules(server: InProcess) -> N
     assert (proof["triple"], proof["rule"]) == ("CORRIDOR rdfs:subClassOf ROOM", "classification")
     assert proof["premises"][0]["triple"] == "(any CORRIDOR) rdf:type ROOM"
     assert "(hasDoor min 2 DOOR) is subsumed by (hasDoor some DOOR)" in json.dumps(proof)
+    assert '"triple": "(any CORRIDOR) rdf:type CORRIDOR", "status": "assumed"' in json.dumps(proof)
     location = entity(server, "LOCATION")
     assert {s["class"]["name"] for s in location["subclasses"]} == {"CORRIDOR", "ROOM", "URGENT"}
     assert {m["individual"]["name"] for m in location["members"]} == {"C1", "R1", "R2"}

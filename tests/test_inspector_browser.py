@@ -72,6 +72,15 @@ def test_the_inspector_in_a_real_browser(live: Server, tmp_path: Path) -> None: 
             page.wait_for_function("() => document.querySelector('#entity h1')?.textContent.startsWith('C1')")
             assert "CORRIDOR" in page.inner_text("#entity")
             assert page.evaluate("() => location.hash") == "#entity/C1"
+            # a class page: its superclasses (one inferred, with the classification proof), members, axioms
+            page.locator("#entity table.facts > tbody > tr > td > a.entity:text-is('CORRIDOR')").click()
+            page.wait_for_function("() => document.querySelector('#entity h1')?.textContent.startsWith('CORRIDOR')")
+            room = page.locator("#entity tr:has(td:first-child a.entity:text-is('ROOM'))")
+            assert room.get_attribute("class") == "inferred"
+            room.locator("summary").click()
+            assert "CORRIDOR rdfs:subClassOf ROOM ← classification" in room.inner_text()
+            assert "CORRIDOR EquivalentTo (LOCATION and (hasDoor min 2 DOOR))" in page.inner_text("#entity")
+            page.screenshot(path=str(shots / "inspector-class.png"), full_page=True)
 
             # a named query in the SPARQL console (YASGUI) shows its rows, inferred ones included
             page.click("header nav a[data-view='sparql']")

@@ -208,10 +208,19 @@ class Prototypes:
             return f"(any {onto.short(cls)})" if cls is not None else onto.short(t)
 
         explainer = _PrototypeExplainer(self.store, self.rules.rules, short, TBoxReader(onto.store, ASSERTED))
-        tree = explainer.explain(Triple(proto, TYPE, sup)).to_dict()
+        tree = _assumed(explainer.explain(Triple(proto, TYPE, sup)).to_dict())
         return {"triple": f"{onto.short(sub)} rdfs:subClassOf {onto.short(sup)}", "status": "inferred",
                 "rule": "classification", "origin": f"every {onto.short(sub)} is a {onto.short(sup)}",
                 "bindings": {}, "premises": [tree]}
+
+
+def _assumed(node: dict[str, Any]) -> dict[str, Any]:
+    """The prototype's own membership is where a subsumption proof starts: ``assumed``, not asserted."""
+    if node["status"] == "asserted" and node["triple"].startswith("(any "):
+        node["status"] = "assumed"
+    for p in node.get("premises", []):
+        _assumed(p)
+    return node
 
 
 _PROTOTYPES: OrderedDict[int, Prototypes] = OrderedDict()
