@@ -152,7 +152,11 @@ def test_the_inconsistency_report_names_the_axiom_and_the_individuals(server: In
     [violation] = report["violations"]
     assert violation["axiom"] == "DOOR DisjointWith LOCATION"
     assert [(i["variable"], i["name"]) for i in violation["individuals"]] == [("x", "R1")]
-    assert set(report["links"]) == {"DOOR", "LOCATION"}
+    assert [(p["triple"], p["status"]) for p in violation["why"]["premises"]] == [
+        ("R1 rdf:type DOOR", "asserted"), ("R1 rdf:type LOCATION", "inferred")]  # the facts that clash
+    location = violation["why"]["premises"][1]  # by visitedAt's or hasDoor's domain: either proof is minimal
+    assert location["rule"] == "prp-dom" and location["origin"].endswith(" domain LOCATION")
+    assert {"DOOR", "LOCATION", "R1"} <= set(report["links"])
     r1 = entity(server, "R1")
     assert r1["consistent"] is False and "inconsistent" in r1["warnings"][0]
     assert all(not t["inferred"] for t in r1["types"])  # as every query: asserted facts only while inconsistent

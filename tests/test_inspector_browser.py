@@ -102,7 +102,9 @@ def test_the_inspector_in_a_real_browser(live: Server, tmp_path: Path) -> None: 
             page.wait_for_selector("#consistency .violation")
             report = page.inner_text("#consistency")
             assert "DOOR DisjointWith LOCATION" in report and "?x = R1" in report
-            assert page.locator("#consistency .violation a.entity", has_text="R1").count() == 1
+            assert "R1 rdf:type DOOR asserted" in report  # the proof of the clash, open
+            assert "R1 rdf:type LOCATION ← prp-dom: " in report
+            assert page.locator("#consistency .violation > div > a.entity", has_text="R1").count() == 1
             page.screenshot(path=str(shots / "inspector-consistency.png"))
 
             # the history: what became URGENT when, and when the map became inconsistent
@@ -114,7 +116,7 @@ def test_the_inspector_in_a_real_browser(live: Server, tmp_path: Path) -> None: 
 
             # the report's individual links to its page
             page.click("#status")
-            page.locator("#consistency .violation a.entity", has_text="R1").click()
+            page.locator("#consistency .violation > div > a.entity", has_text="R1").click()
             page.wait_for_function("() => document.querySelector('#entity h1')?.textContent.startsWith('R1')")
             assert "inconsistent" in page.inner_text("#entity .warning")
             assert errors == []

@@ -22,7 +22,7 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from pyoxigraph import NamedNode
+from pyoxigraph import NamedNode, Triple
 from starlette.concurrency import run_in_threadpool
 from starlette.requests import Request
 from starlette.responses import FileResponse, JSONResponse, Response
@@ -30,6 +30,7 @@ from starlette.routing import Route
 
 from ..armor.codes import CommandError
 from ..errors import TopostoreError
+from ..explain import constant
 from ..queries import named_queries
 from ..vocab import ASSERTED
 from .entities import (
@@ -54,6 +55,7 @@ from .security import error
 if TYPE_CHECKING:  # pragma: no cover
     from ..armor.reference import Reference
     from ..ontology import Ontology
+    from ..reason.consistency import Violation
     from ..server import Api
 
 STATIC = Path(__file__).parents[1] / "static"
@@ -127,17 +129,39 @@ def proof_texts(value: Any) -> list[str]:
     return found
 
 
+def violation_proof(view: View, v: Violation) -> dict[str, Any] | None:
+    """Why a check matched: its rule's premises under the violation's individuals, each explained
+    (the facts that clash, down to asserted ones), in the tree format of :mod:`topostore.explain`."""
+    rule = next((r for r in view.onto.rules.checks if r.name == v.rule and r.origin == v.axiom), None)
+    if rule is None:
+        return None
+    binding = {"?" + k: t for k, t in v.individuals.items() if isinstance(t, NamedNode)}
+    premises = []
+    for atom in rule.body:
+        terms = [binding.get(x) if x.startswith("?") else constant(x) for x in (atom.s, atom.p, atom.o)]
+        if any(t is None for t in terms):
+            text = " ".join(view.explainer.render_term(t) if t is not None else x
+                            for t, x in zip(terms, (atom.s, atom.p, atom.o)))
+            premises.append({"triple": text, "status": "condition"})
+            continue
+        premises.append(view.explainer.explain(Triple(*terms)).to_dict())
+    return {"triple": v.message, "status": "inferred", "rule": v.rule, "origin": v.axiom, "bindings": {},
+            "premises": premises}
+
+
 def consistency(onto: Ontology) -> dict[str, Any]:
-    """The last REASON's consistency: each violation's rule, axiom, message and individuals (linked)."""
+    """The last REASON's consistency: each violation's rule, axiom, message and individuals (linked),
+    and the proof of the clash."""
     view = View(onto)
     status, warnings = state(onto, facts=False)
     violations = [{"rule": v.rule, "axiom": v.axiom, "message": v.message,
-                   "individuals": [{"variable": k, **view.term(t)} for k, t in v.individuals.items()]}
+                   "individuals": [{"variable": k, **view.term(t)} for k, t in v.individuals.items()],
+                   "why": violation_proof(view, v)}
                   for v in onto.violations]
     if status["consistent"] is False and not violations:
         warnings.append("the violations of a reference reopened from disk are not kept: send REASON to see them")
     return {**status, "violations": violations, "warnings": warnings,
-            "links": link_names(view, [v["axiom"] for v in violations])}
+            "links": link_names(view, proof_texts(violations) + [v["axiom"] for v in violations])}
 
 
 def _limit(request: Request, default: int) -> int:

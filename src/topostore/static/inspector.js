@@ -133,10 +133,15 @@
   });
   input.addEventListener("keydown", ev => {
     const first = hits.querySelector("a");
-    if (ev.key === "Enter" && first) { location.hash = first.getAttribute("href"); hits.hidden = true; input.blur(); }
+    if (ev.key === "Enter" && first) {
+      location.hash = first.getAttribute("href");
+      hits.hidden = true;
+      input.value = "";
+      input.blur();
+    }
     if (ev.key === "Escape") hits.hidden = true;
   });
-  hits.addEventListener("click", () => { hits.hidden = true; });
+  hits.addEventListener("click", () => { hits.hidden = true; input.value = ""; });
   document.addEventListener("click", ev => { if (!ev.target.closest(".search")) hits.hidden = true; });
 
   // ------------------------------------------------------------------ consistency
@@ -153,7 +158,9 @@
         h("div", { class: "message" }, v.message),
         h("div", {}, "Axiom: ", h("span", { class: "mono" }, R.linked(v.axiom, report.links)),
           h("span", { class: "rule" }, "  (rule " + v.rule + ")")),
-        h("div", {}, "Individuals: ", v.individuals.map((t, i) => [i ? ", " : "", "?" + t.variable + " = ", R.term(t)])))));
+        h("div", {}, "Individuals: ", v.individuals.map((t, i) => [i ? ", " : "", "?" + t.variable + " = ", R.term(t)])),
+        v.why ? h("details", { class: "why", open: "open" }, h("summary", {}, "why? the facts that clash"),
+                  R.proofList(v.why.premises, report.links)) : "")));
       show("consistency", ...parts);
     } catch (err) { failure("consistency", err); }
   }
