@@ -178,6 +178,16 @@ def test_history_records_each_reason_from_the_first_look(server: InProcess) -> N
     server.ok("DROP")
     load_example(server)
     assert get(server, "/references/ontoRef/history")[1]["events"] == []
+    # recording stops on request: REASON takes no snapshot for it any more
+    onto = server.client.app.state.api.service.reference("ontoRef").ontology
+    assert onto.events.active
+    status, _, body = server.request("/references/ontoRef/history", method="DELETE")
+    assert (status, json.loads(body)) == (200, {"recording": False, "stopped": True})
+    assert not onto.events.active
+    assert json.loads(server.request("/references/ontoRef/history", method="DELETE")[2])["stopped"] is False
+    server.ok("REASON")
+    assert get(server, "/references/ontoRef/history")[1]["events"] == []  # asking again starts again
+    assert get(server, "/references/nope/history")[0] == 404
 
 
 def test_named_queries_and_the_page(server: InProcess) -> None:

@@ -49,7 +49,7 @@ if TYPE_CHECKING:  # pragma: no cover
 PREFIXES = {"rdf": RDF, "rdfs": RDFS, "owl": OWL, "xsd": XSD}
 #: Prefixes of words in proofs that are never links (the vocabulary, not the reference's entities).
 STANDARD = {*PREFIXES, "swrl", "swrlb"}
-DEFAULT_LIMIT = 200
+DEFAULT_LIMIT = 100
 MAX_LIMIT = 5000
 #: Individual-to-individual assertions of the OWL vocabulary that belong on an individual's page.
 OWL_ASSERTIONS = (SAME_AS, DIFFERENT_FROM)

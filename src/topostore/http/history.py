@@ -3,8 +3,9 @@
 Recording a reference's events costs every REASON a snapshot of its inferred
 graph (:mod:`topostore.events` takes snapshots only while someone listens), so
 a robot that nobody inspects pays nothing: recording starts when the inspector
-first looks at the reference and goes on until the reference is dropped.  The
-answer says since when (``since``) and the page says so.
+page is first opened for the reference (or its history first asked for) and
+goes on until the reference is dropped or recording is stopped (``DELETE``).
+The answer says since when (``since``) and the page says so.
 
 No thread is used: each reference has one bounded event subscription, drained
 when the history is asked for; what the queue dropped meanwhile is counted
@@ -63,7 +64,7 @@ class History:
                 "missed": event.missed}
 
     def to_dict(self) -> dict[str, Any]:
-        return {"since": self.since, "events": list(reversed(self.events)), "kept": self.events.maxlen,
+        return {"recording": True, "since": self.since, "events": list(reversed(self.events)), "kept": self.events.maxlen,
                 "dropped": self.dropped, "facts_per_event": FACTS_PER_EVENT}
 
     def close(self) -> None:
@@ -89,6 +90,14 @@ class Histories:
             made = History(ref.ontology, self.keep)
             self._by_name[ref.name] = made
             return made
+
+    def stop(self, ref: Reference) -> bool:
+        """Stop recording ``ref``'s events and forget them; whether it was recorded."""
+        with self._lock:
+            found = self._by_name.pop(ref.name, None)
+        if found is not None:
+            found.close()
+        return found is not None
 
     def close(self) -> None:
         with self._lock:

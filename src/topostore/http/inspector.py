@@ -7,6 +7,7 @@
     GET /references/{name}/entities?q=R&limit=20     entities whose name contains ``q`` (the search box)
     GET /references/{name}/consistency              the last REASON's violations: axiom and individuals
     GET /references/{name}/history                   the change events recorded for the reference
+    DELETE /references/{name}/history                stop recording them (the page starts it again)
     GET /references/{name}/queries                   the named queries (queries/*.rq), the console's examples
 
 ``{entity}`` is a short name (``R1``), a full IRI (``http://…%23R1``, its
@@ -181,9 +182,7 @@ class InspectorRoutes:
         self.histories = Histories()
 
     def _reference(self, request: Request) -> Reference:
-        ref = self.api.service.reference(request.path_params["name"])
-        self.histories.of(ref)  # recording starts when the inspector first looks at a reference
-        return ref
+        return self.api.service.reference(request.path_params["name"])
 
     async def _locked(self, request: Request, work: Callable[[Reference], Any]) -> Response:
         """``work(reference)`` under the reference's lock, off the event loop, as JSON (404/400 on errors)."""
@@ -205,7 +204,7 @@ class InspectorRoutes:
 
     async def page(self, request: Request) -> Response:
         try:
-            self._reference(request)
+            self.histories.of(self._reference(request))  # recording starts when the page is first opened
         except CommandError as exc:
             return error(404, exc.message)
         return FileResponse(STATIC / "inspector.html", media_type="text/html")
@@ -237,6 +236,14 @@ class InspectorRoutes:
 
         return await self._locked(request, work)
 
+    async def stop_history(self, request: Request) -> Response:
+        """Stop recording (each REASON then takes no snapshots for it); opening the page starts again."""
+        try:
+            ref = self._reference(request)
+        except CommandError as exc:
+            return error(404, exc.message)
+        return JSONResponse({"recording": False, "stopped": self.histories.stop(ref)})
+
     async def queries(self, request: Request) -> Response:
         try:
             self._reference(request)
@@ -255,6 +262,7 @@ def inspector_routes(api: Api) -> list[Route]:
         Route("/references/{name}/entities/{entity:path}", inspector.entity, methods=["GET"]),
         Route("/references/{name}/consistency", inspector.consistency, methods=["GET"]),
         Route("/references/{name}/history", inspector.history, methods=["GET"]),
+        Route("/references/{name}/history", inspector.stop_history, methods=["DELETE"]),
         Route("/references/{name}/queries", inspector.queries, methods=["GET"]),
     ]
 

@@ -175,7 +175,9 @@
       const hist = await getJson("/history");
       const parts = [h("h1", {}, "History"), h("p", { class: "hint" },
         `Recording since ${R.time(hist.since)} (when the inspector first looked at this reference); ` +
-        `the last ${hist.kept} REASONs are kept, newest first.` + (hist.dropped ? ` ${hist.dropped} older ones were dropped.` : ""))];
+        `the last ${hist.kept} REASONs are kept, newest first.` + (hist.dropped ? ` ${hist.dropped} older ones were dropped.` : "") +
+        " Recording makes each REASON compare the inferred facts before and after; stop it with " +
+        "DELETE " + base + "/history (e.g. curl -X DELETE).")];
       if (!hist.events.length) parts.push(h("p", { class: "empty" }, "No REASON since then."));
       parts.push(h("ul", { class: "timeline" }, hist.events.map(ev => {
         const cls = ev.consistency_changed ? (ev.consistent ? "became-consistent" : "became-inconsistent") : "";
