@@ -82,7 +82,7 @@ def main(argv: list[str] | None = None) -> None:
         m = generate(size)
         onto = reasoned(m)
         row: dict = {"locations": size, "entity_ms": pages(onto, m),
-                     "search_ms": _ms(lambda: search_entities(onto, "R1"))}
+                     "search_ms": _ms(lambda o=onto: search_entities(o, "R1"))}
         row["step_ms"] = {("recorded" if record else "alone"): round(statistics.median(steps(m, args.steps, record))
                                                                       * 1000, 3)
                           for record in (False, True)}
