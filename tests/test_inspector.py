@@ -223,3 +223,16 @@ def test_on_loopback_other_sites_and_rebound_names_are_refused(server: InProcess
     assert status == 403 and "origin" in body["error"]
     status, _, _ = server.request("/references/ontoRef/entities/R1", headers={"Host": "evil.example"})
     assert status == 400  # DNS rebinding: the Host must name this machine
+
+
+def test_the_benchmark_runs(capsys: pytest.CaptureFixture[str]) -> None:
+    """benchmarks/inspector.py on a tiny map: it prints what it claims to measure (no timing is asserted)."""
+    import sys
+
+    sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # the benchmarks package lives beside src/
+    from benchmarks.inspector import main
+
+    main(["--sizes", "5", "--steps", "2"])
+    row = json.loads(capsys.readouterr().out)
+    assert row["locations"] == 5 and set(row["step_ms"]) == {"alone", "recorded"}
+    assert set(row["entity_ms"]) == {"room", "corridor", "robot", "URGENT", "LOCATION", "isIn"}
