@@ -3,8 +3,10 @@ consistency report, history, named queries, and the service's protections on all
 
 from __future__ import annotations
 
+import gc
 import json
 import urllib.parse
+import weakref
 from collections.abc import Iterator
 from pathlib import Path
 
@@ -174,8 +176,11 @@ def test_history_records_each_reason_from_the_first_look(server: InProcess) -> N
         ("C1", "rdf:type", "URGENT"), ("R2", "rdf:type", "URGENT")]
     assert (became_urgent["added_count"], became_urgent["missed"]) == (2, 0)
     assert events[0]["consistent"] is False and events[0]["seq"] == became_urgent["seq"] + 1
-    # the reference loaded anew under the same name starts a new history
+    # the reference loaded anew under the same name starts a new history; the dropped one is freed
+    dropped = weakref.ref(server.client.app.state.api.service.reference("ontoRef").ontology)
     server.ok("DROP")
+    gc.collect()
+    assert dropped() is None
     load_example(server)
     assert get(server, "/references/ontoRef/history")[1]["events"] == []
     # recording stops on request: REASON takes no snapshot for it any more

@@ -16,12 +16,13 @@ from __future__ import annotations
 
 import threading
 import time
+import weakref
 from collections import deque
 from typing import TYPE_CHECKING, Any
 
 from pyoxigraph import Triple
 
-from ..events import Event, Subscription
+from ..events import Event
 from .entities import View
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -37,16 +38,25 @@ class History:
     """The recorded events of one ontology."""
 
     def __init__(self, onto: Ontology, keep: int = DEFAULT_KEEP) -> None:
-        self.onto = onto
+        # weak references: a dropped reference's ontology (and its subscription, which only the
+        # ontology's event hub holds) is freed even if the inspector never asks about it again
+        self._onto = weakref.ref(onto)
         self.since = time.time()
         self.events: deque[dict[str, Any]] = deque(maxlen=keep)
         self.dropped = 0
-        self.subscription: Subscription = onto.events.open(None, keep, every_reason=True)
+        self._subscription = weakref.ref(onto.events.open(None, keep, every_reason=True))
+
+    @property
+    def onto(self) -> Ontology | None:
+        return self._onto()
 
     def drain(self) -> None:
         """Move the queued events into the kept list (call under the reference's lock)."""
-        view = View(self.onto)
-        while (event := self.subscription.get(timeout=0)) is not None:
+        onto, subscription = self._onto(), self._subscription()
+        if onto is None or subscription is None:
+            return
+        view = View(onto)
+        while (event := subscription.get(timeout=0)) is not None:
             if len(self.events) == self.events.maxlen:
                 self.dropped += 1
             self.events.append(self._entry(view, event))
@@ -68,7 +78,9 @@ class History:
                 "dropped": self.dropped, "facts_per_event": FACTS_PER_EVENT}
 
     def close(self) -> None:
-        self.subscription.close()
+        subscription = self._subscription()
+        if subscription is not None:
+            subscription.close()
 
 
 class Histories:

@@ -249,9 +249,17 @@
     return showOverview();
   }
 
+  // one redraw at a time: REASONs that arrive meanwhile are covered by one more redraw after it
   async function refresh(initial) {
-    try { showStatus((await getJson("/consistency")).consistent); } catch (err) { /* reference dropped: the view says */ }
-    if (initial === true || !location.hash.startsWith("#sparql")) await route();
+    if (state.busy) { state.again = true; return; }
+    state.busy = true;
+    try {
+      do {
+        state.again = false;
+        try { showStatus((await getJson("/consistency")).consistent); } catch (err) { /* dropped: the view says */ }
+        if (initial === true || !location.hash.startsWith("#sparql")) await route();
+      } while (state.again);
+    } finally { state.busy = false; }
     document.body.dataset.events = String(state.events);
   }
 
