@@ -11,6 +11,8 @@ from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
 from http_support import InProcess, in_process
 from test_server import NS, TOKEN, config
 
@@ -241,3 +243,23 @@ def test_the_benchmark_runs(capsys: pytest.CaptureFixture[str]) -> None:
     row = json.loads(capsys.readouterr().out)
     assert row["locations"] == 5 and set(row["step_ms"]) == {"alone", "recorded"}
     assert set(row["entity_ms"]) == {"room", "corridor", "robot", "URGENT", "LOCATION", "isIn"}
+
+
+@pytest.fixture(scope="module")
+def shared(tmp_path_factory: pytest.TempPathFactory) -> Iterator[InProcess]:
+    with in_process(config(tmp_path_factory.mktemp("data"))) as s:
+        load_example(s)
+        yield s
+
+
+@settings(max_examples=150, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
+@given(name=st.text(max_size=40) | st.sampled_from(["R1", "<", "<>", "urn:", "owl:", "http://", "a b", "R1#x", "%",
+                                                    "rdf:type", "swrl:Imp", "urn:topostore:graph:asserted"]),
+       limit=st.sampled_from(["", "1", "5000", "5001", "-1", "x", "1e3"]))
+def test_any_name_gets_an_answer_never_a_crash(shared: InProcess, name: str, limit: str) -> None:
+    query = f"?limit={urllib.parse.quote(limit)}" if limit else ""
+    status, _, body = shared.request("/references/ontoRef/entities/" + urllib.parse.quote(name, safe="") + query)
+    assert status in (200, 400, 404), (name, body)
+    assert "error" in json.loads(body) or status == 200
+    status, _, body = shared.request("/references/ontoRef/entities?q=" + urllib.parse.quote(name) + "&limit=3")
+    assert status == 200 and len(json.loads(body)["entities"]) <= 3
