@@ -11,9 +11,9 @@ from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
+from http_support import InProcess, in_process
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
-from http_support import InProcess, in_process
 from test_server import NS, TOKEN, config
 
 from topostore import Ontology

@@ -25,6 +25,7 @@ from typing import TYPE_CHECKING, Any
 
 from pyoxigraph import NamedNode, Triple
 from starlette.concurrency import run_in_threadpool
+from starlette.convertors import Convertor, register_url_convertor
 from starlette.requests import Request
 from starlette.responses import FileResponse, JSONResponse, Response
 from starlette.routing import Route
@@ -61,6 +62,22 @@ if TYPE_CHECKING:  # pragma: no cover
 
 STATIC = Path(__file__).parents[1] / "static"
 _PROPERTY_KINDS = ("object property", "data property", "annotation property")
+
+
+class AnyText(Convertor):
+    """A path parameter that is any text, line breaks included (``path`` stops at a newline), so
+    every entity name reaches the route and gets its own answer (400 for a name that cannot be an IRI)."""
+
+    regex = "(?s:.*)"
+
+    def convert(self, value: str) -> str:
+        return value
+
+    def to_string(self, value: str) -> str:
+        return value
+
+
+register_url_convertor("topostore_text", AnyText())
 
 
 class NotFound(Exception):
@@ -259,7 +276,7 @@ def inspector_routes(api: Api) -> list[Route]:
     return [
         Route("/references/{name}/inspector", inspector.page, methods=["GET"]),
         Route("/references/{name}/entities", inspector.search, methods=["GET"]),
-        Route("/references/{name}/entities/{entity:path}", inspector.entity, methods=["GET"]),
+        Route("/references/{name}/entities/{entity:topostore_text}", inspector.entity, methods=["GET"]),
         Route("/references/{name}/consistency", inspector.consistency, methods=["GET"]),
         Route("/references/{name}/history", inspector.history, methods=["GET"]),
         Route("/references/{name}/history", inspector.stop_history, methods=["DELETE"]),
