@@ -85,8 +85,8 @@ window.InspectorRender = (function () {
   }
 
   function legend() {
-    return h("div", { class: "legend" }, chip(false), " told (asserted) ", chip(true),
-             " inferred by the reasoner, as Protégé shows in yellow: open “why?” for the proof, down to asserted facts");
+    return h("div", { class: "legend" }, chip(false), " stated in the ontology or by a command   ", chip(true),
+             " derived by the reasoner (yellow, as in Protégé): open “why?” for the proof, down to asserted facts");
   }
 
   function warnings(list) { return (list || []).map(w => h("div", { class: "warning" }, w)); }

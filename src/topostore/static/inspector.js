@@ -174,7 +174,7 @@
     try {
       const hist = await getJson("/history");
       const parts = [h("h1", {}, "History"), h("p", { class: "hint" },
-        `Recording since ${R.time(hist.since)} (when the inspector first looked at this reference); ` +
+        `Recording since ${R.time(hist.since)} (when this page was first opened for the reference); ` +
         `the last ${hist.kept} REASONs are kept, newest first.` + (hist.dropped ? ` ${hist.dropped} older ones were dropped.` : "") +
         " Recording makes each REASON compare the inferred facts before and after; stop it with " +
         "DELETE " + base + "/history (e.g. curl -X DELETE).")];
