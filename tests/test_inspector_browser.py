@@ -90,6 +90,27 @@ def test_the_inspector_in_a_real_browser(live: Server, tmp_path: Path) -> None: 
             table = page.inner_text("#yasgui .yasr table tbody")
             assert "1665579710" in table and "R2" not in table
             page.screenshot(path=str(shots / "inspector-sparql.png"))
+            # class and property names complete from this reference (never from LOV on the Internet)
+            completions = page.evaluate("""async () => {
+                const yasqe = window.topostoreInspector.state.yasgui.getTab().getYasqe();
+                const get = name => Yasgui.Yasqe.Autocompleters[name].get;
+                const ns = "http://bnc/exp-rob-lab/2022-23#";
+                return [await get("topostore-class")(yasqe, { string: "map:UR", autocompletionString: ns + "UR" }),
+                        await get("topostore-property")(yasqe, { string: "<" + ns + "is", autocompletionString: ns + "is" }),
+                        yasqe.config.autocompleters];
+            }""")
+            assert completions == [["http://bnc/exp-rob-lab/2022-23#URGENT"], ["http://bnc/exp-rob-lab/2022-23#isIn"],
+                                   ["variables", "topostore-class", "topostore-property"]]
+            yasqe = "window.topostoreInspector.state.yasgui.getTab().getYasqe()"
+            page.evaluate(f"() => {yasqe}.setValue('PREFIX map: <http://bnc/exp-rob-lab/2022-23#>\\n"
+                          "SELECT * WHERE {{ ?x a ')")
+            page.click("#yasgui .CodeMirror-line >> nth=1")
+            page.keyboard.press("End")
+            page.keyboard.type("map:UR")
+            page.keyboard.press("Control+Space")
+            page.wait_for_selector(".CodeMirror-hint")
+            assert page.locator(".CodeMirror-hint").all_inner_texts() == ["map:URGENT"]
+            page.keyboard.press("Escape")
             page.click("#yasgui .yasr table tbody a.iri")  # a result IRI opens its entity page
             page.wait_for_function("() => document.querySelector('#entity h1')?.textContent.startsWith('R1')")
 

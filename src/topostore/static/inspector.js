@@ -197,10 +197,32 @@
   }
 
   // ------------------------------------------------------------------ the SPARQL console
+  // Class and property names are completed from this reference (the search route), not from LOV.
+  function entityCompletions(kinds) {
+    return async (yasqe, token) => {
+      const typed = (token && token.autocompletionString) || "";
+      const needle = typed.split(/[#/:]/).pop();
+      if (!needle) return [];
+      const found = await getJson("/entities?limit=100&q=" + encodeURIComponent(needle));
+      return found.entities.filter(e => kinds.includes(e.kind) && e.iri.startsWith(typed)).map(e => e.iri);
+    };
+  }
+
+  function localCompleters() {
+    const Yasqe = Yasgui.Yasqe;
+    if (!Yasqe.Autocompleters["topostore-class"]) {
+      Yasqe.forkAutocompleter("class", { name: "topostore-class", get: entityCompletions(["class"]) }, false);
+      Yasqe.forkAutocompleter("property", { name: "topostore-property", get: entityCompletions(
+        ["object property", "data property", "annotation property"]) }, false);
+    }
+    return ["variables", "topostore-class", "topostore-property"];
+  }
+
   function consoleReady() {
     if (state.yasgui) return state.yasgui;
     // nothing may be fetched from outside the service: no prefix.cc / LOV autocompletion, no share-link parsing
-    Yasgui.Yasqe.defaults.autocompleters = ["variables"];
+    const completers = localCompleters();
+    Yasgui.Yasqe.defaults.autocompleters = completers.slice();
     const endpoint = location.origin + base + "/sparql";
     state.yasgui = new Yasgui(document.getElementById("yasgui"), {
       requestConfig: { endpoint, method: "GET" },
@@ -208,7 +230,7 @@
       endpointCatalogueOptions: { getData: () => [{ endpoint }] },
       persistenceId: null,
       populateFromUrl: false,
-      yasqe: { autocompleters: ["variables"], consumeShareLink: null, createShareableLink: null },
+      yasqe: { autocompleters: completers.slice(), consumeShareLink: null, createShareableLink: null },
       yasr: { prefixes: {} },
     });
     // an IRI in the result table opens its entity page here, not the IRI's own (often unreachable) site
@@ -267,5 +289,5 @@
   const source = new EventSource(base + "/events");
   source.addEventListener("reason", () => { state.events += 1; refresh(); });
   refresh(true);
-  window.topostoreInspector = { refresh, state };
+  window.topostoreInspector = { refresh, state, entityCompletions };
 })();
