@@ -17,6 +17,7 @@ from hypothesis import strategies as st
 from test_server import NS, TOKEN, config
 
 from topostore import Ontology
+from topostore.explain import Explainer
 from topostore.resources import default_ontology_files
 
 LOAD = ["example.ttl", "http://bnc/exp-rob-lab/2022-23", "false", "PELLET", "false"]  # live reasoner
@@ -263,3 +264,17 @@ def test_any_name_gets_an_answer_never_a_crash(shared: InProcess, name: str, lim
     assert "error" in json.loads(body) or status == 200
     status, _, body = shared.request("/references/ontoRef/entities?q=" + urllib.parse.quote(name) + "&limit=3")
     assert status == 200 and len(json.loads(body)["entities"]) <= 3
+
+
+def test_a_hub_individual_is_cut_before_its_proofs_are_built(server: InProcess,
+                                                              monkeypatch: pytest.MonkeyPatch) -> None:
+    for i in range(5):  # five more locations sharing door D1 with C1: each is connectedTo C1
+        server.ok("ADD", "OBJECTPROP", "IND", ["hasDoor", f"R{10 + i}", "D1"])
+        server.ok("ADD", "DATAPROP", "IND", ["visitedAt", f"R{10 + i}", "LONG", "1665579730"])
+    proved: list[str] = []
+    original = Explainer.explain
+    monkeypatch.setattr(Explainer, "explain", lambda self, t: proved.append(str(t)) or original(self, t))
+    status, c1 = get(server, "/references/ontoRef/entities/C1?limit=3")
+    assert status == 200 and len(c1["referenced_by"]) == 3 and c1["truncated"]["referenced_by"] > 3
+    shown = [f for key in ("types", "values", "referenced_by") for f in c1[key] if f["inferred"]]
+    assert all("why" in f for f in shown) and len(proved) == len(shown)  # no proof of a fact not shown

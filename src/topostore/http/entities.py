@@ -206,17 +206,20 @@ def is_mentioned(onto: Ontology, e: NamedNode) -> bool:
 # --------------------------------------------------------------------------- individuals
 
 def individual_sections(view: View, e: NamedNode) -> dict[str, Any]:
-    """Types, property values and the facts naming ``e`` as a value (its incoming links)."""
-    types = [view.fact(t, inferred, **{"class": view.term(t.object)})
-             for t, inferred in visible(view, e, TYPE, None)
-             if _is_user_class(t.object) or (is_skolem(t.object) and not inferred)]
-    values = [view.fact(t, inferred, property=view.term(t.predicate), value=view.term(t.object))
-              for t, inferred in visible(view, e, None, None) if _is_assertion(t.predicate) and t.predicate != TYPE]
-    incoming = [view.fact(t, inferred, subject=view.term(t.subject), property=view.term(t.predicate))
-                for t, inferred in visible(view, None, None, e)
-                if _is_assertion(t.predicate) and t.predicate != TYPE and not is_internal(t.subject)]
-    return {"types": view.cut("types", types), "values": view.cut("values", values),
-            "referenced_by": view.cut("referenced_by", incoming)}
+    """Types, property values and the facts naming ``e`` as a value (its incoming links);
+    each list is cut before its proofs are built, so a hub individual costs ``limit`` proofs."""
+    types = view.cut("types", [(t, inferred) for t, inferred in visible(view, e, TYPE, None)
+                               if _is_user_class(t.object) or (is_skolem(t.object) and not inferred)])
+    values = view.cut("values", [(t, inferred) for t, inferred in visible(view, e, None, None)
+                                 if _is_assertion(t.predicate) and t.predicate != TYPE])
+    incoming = view.cut("referenced_by", [(t, inferred) for t, inferred in visible(view, None, None, e)
+                                          if _is_assertion(t.predicate) and t.predicate != TYPE
+                                          and not is_internal(t.subject)])
+    return {"types": [view.fact(t, inferred, **{"class": view.term(t.object)}) for t, inferred in types],
+            "values": [view.fact(t, inferred, property=view.term(t.predicate), value=view.term(t.object))
+                       for t, inferred in values],
+            "referenced_by": [view.fact(t, inferred, subject=view.term(t.subject), property=view.term(t.predicate))
+                              for t, inferred in incoming]}
 
 
 def members(view: View, cls: NamedNode) -> list[dict[str, Any]]:
