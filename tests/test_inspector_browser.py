@@ -133,6 +133,11 @@ def test_the_inspector_in_a_real_browser(live: Server, tmp_path: Path) -> None: 
             page.wait_for_selector("#history .timeline li.became-inconsistent")
             timeline = page.inner_text("#history .timeline")
             assert "+ R2 rdf:type URGENT" in timeline and "became INCONSISTENT" in timeline
+            page.fill("#history-filter", "R2 urgent")  # what became URGENT when: only R2's entry is left
+            assert page.locator("#history .timeline > li:visible").count() == 1
+            assert page.locator("#history .timeline > li:visible .fact:visible").all_inner_texts() == [
+                "+ R2 rdf:type URGENT"]
+            page.fill("#history-filter", "")
             page.screenshot(path=str(shots / "inspector-history.png"))
 
             # the report's individual links to its page

@@ -166,8 +166,25 @@
   }
 
   // ------------------------------------------------------------------ history
+  const termText = t => t.name !== undefined ? t.name : (t.value !== undefined ? t.value : t.expression);
+
   function triples(list, sign, cls) {
-    return list.map(t => h("div", { class: cls }, sign + " ", R.term(t.s), " ", R.term(t.p), " ", R.term(t.o)));
+    return list.map(t => h("div", { class: cls + " fact", "data-text": [t.s, t.p, t.o].map(termText).join(" ") },
+                           sign + " ", R.term(t.s), " ", R.term(t.p), " ", R.term(t.o)));
+  }
+
+  // "URGENT" shows what became (or stopped being) URGENT when: only the facts whose words contain it
+  function filterHistory() {
+    const words = (state.historyFilter || "").toLowerCase().split(/\s+/).filter(Boolean);
+    document.querySelectorAll("#history .timeline > li").forEach(li => {
+      let shown = 0;
+      li.querySelectorAll(".fact").forEach(f => {
+        const text = f.dataset.text.toLowerCase();
+        f.hidden = !words.every(w => text.includes(w));
+        if (!f.hidden) shown += 1;
+      });
+      li.hidden = words.length > 0 && shown === 0;
+    });
   }
 
   async function showHistory() {
@@ -178,6 +195,11 @@
         `the last ${hist.kept} REASONs are kept, newest first.` + (hist.dropped ? ` ${hist.dropped} older ones were dropped.` : "") +
         " Recording makes each REASON compare the inferred facts before and after; stop it with " +
         "DELETE " + base + "/history (e.g. curl -X DELETE).")];
+      const filter = h("input", { id: "history-filter", type: "search", placeholder: "only facts with… (e.g. URGENT)",
+                                  "aria-label": "filter the history" });
+      filter.value = state.historyFilter || "";
+      filter.addEventListener("input", () => { state.historyFilter = filter.value; filterHistory(); });
+      parts.push(filter);
       if (!hist.events.length) parts.push(h("p", { class: "empty" }, "No REASON since then."));
       parts.push(h("ul", { class: "timeline" }, hist.events.map(ev => {
         const cls = ev.consistency_changed ? (ev.consistent ? "became-consistent" : "became-inconsistent") : "";
@@ -193,6 +215,7 @@
           !ev.added_count && !ev.removed_count && !ev.consistency_changed ? h("div", { class: "hint" }, "nothing changed") : "");
       })));
       show("history", ...parts);
+      filterHistory();
     } catch (err) { failure("history", err); }
   }
 
