@@ -208,6 +208,8 @@ def test_named_queries_and_the_page(server: InProcess) -> None:
     assert status == 200 and headers["content-type"].startswith("text/html")
     assert b"/static/yasgui.min.js" in page and b"/static/inspector.js" in page
     assert b"https://" not in page  # nothing from elsewhere
+    policy = headers["content-security-policy"]
+    assert "script-src 'self';" in policy and "connect-src 'self';" in policy and "unsafe-eval" not in policy
     assert server.request("/references/nope/inspector")[0] == 404
     for script in ("yasgui.min.js", "yasgui.min.css", "inspector.js", "inspector-render.js", "inspector.css"):
         assert server.request("/static/" + script)[0] == 200

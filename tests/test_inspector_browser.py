@@ -8,6 +8,7 @@ directory; with ``TOPOSTORE_DOCS_SCREENSHOTS=1`` they replace the ones in docs/ 
 from __future__ import annotations
 
 import os
+import urllib.parse
 from pathlib import Path
 
 import pytest
@@ -42,6 +43,7 @@ def test_the_inspector_in_a_real_browser(live: Server, tmp_path: Path) -> None: 
             page.route("**/*", only_the_service)
             errors: list[str] = []
             page.on("pageerror", lambda exc: errors.append(str(exc)))
+            page.on("console", lambda msg: errors.append(msg.text) if msg.type == "error" else None)
 
             # the live map links to the inspector
             page.goto(live.url + "/references/ontoRef/map")
@@ -150,3 +152,33 @@ def test_the_inspector_in_a_real_browser(live: Server, tmp_path: Path) -> None: 
             browser.close()
     assert elsewhere == []
     assert all((shots / f"inspector-{n}.png").stat().st_size > 10_000 for n in ("entity", "sparql", "consistency"))
+
+
+def test_a_hostile_name_cannot_run_script_in_the_page(live: Server) -> None:  # noqa: F811 - the fixture
+    """An IRI may hold quotes; YASGUI's result table writes IRIs into links as they are, so a name like
+    ``x'onmouseover='…`` would be an event handler: the page's Content-Security-Policy refuses to run it."""
+    if CHROMIUM is None:
+        pytest.skip("needs chromium (apt-get install chromium; `make test` installs it as root)")
+    sync_api = pytest.importorskip("playwright.sync_api", reason="needs playwright (pip install -e .[test])")
+    hostile = "x'onmouseover='window.pwned=1'"
+    live.ok("ADD", "IND", "CLASS", [hostile, "DOOR"])
+    with sync_api.sync_playwright() as p:
+        browser = p.chromium.launch(executable_path=CHROMIUM, args=CHROMIUM_FLAGS, timeout=60_000)
+        try:
+            page = browser.new_page()
+            page.set_default_timeout(20_000)
+            page.goto(live.url + "/references/ontoRef/inspector#sparql")
+            page.wait_for_selector("#yasgui .CodeMirror")
+            page.evaluate("""() => { const tab = window.topostoreInspector.state.yasgui.getTab();
+                tab.setQuery('SELECT ?door WHERE { ?door a <http://bnc/exp-rob-lab/2022-23#DOOR> }'); tab.query(); }""")
+            page.wait_for_function("() => document.querySelector('#yasgui .yasr table tbody')?.textContent.includes('onmouseover')")
+            link = page.locator("#yasgui .yasr table tbody a.iri", has_text="onmouseover")
+            assert link.get_attribute("onmouseover") is not None  # the attribute is there (YASGUI's markup) ...
+            link.hover()
+            page.wait_for_timeout(300)
+            assert page.evaluate("() => window.pwned") is None  # ... and does not run
+            page.goto(live.url + "/references/ontoRef/inspector#entity/" + urllib.parse.quote(hostile, safe=""))
+            page.wait_for_selector("#entity h1")
+            assert page.inner_text("#entity h1").startswith(hostile)  # shown as text on the entity page
+        finally:
+            browser.close()
