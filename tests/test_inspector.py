@@ -162,6 +162,9 @@ def test_the_inconsistency_report_names_the_axiom_and_the_individuals(server: In
     location = violation["why"]["premises"][1]  # by visitedAt's or hasDoor's domain: either proof is minimal
     assert location["rule"] == "prp-dom" and location["origin"].endswith(" domain LOCATION")
     assert {"DOOR", "LOCATION", "R1"} <= set(report["links"])
+    assert get(server, "/references/ontoRef/consistency?brief=true") == (200, {
+        "consistent": False, "reasoned": True, "changed_since_reasoning": False, "violation_count": 1})
+    assert get(server, "/references/ontoRef/consistency?brief=yes")[0] == 400
     r1 = entity(server, "R1")
     assert r1["consistent"] is False and "inconsistent" in r1["warnings"][0]
     assert all(not t["inferred"] for t in r1["types"])  # as every query: asserted facts only while inconsistent

@@ -5,7 +5,7 @@
     GET /references/{name}/inspector                 the page (entity pages, SPARQL console, history)
     GET /references/{name}/entities/{entity}         one entity: facts asserted/inferred, proofs (JSON)
     GET /references/{name}/entities?q=R&limit=20     entities whose name contains ``q`` (the search box)
-    GET /references/{name}/consistency              the last REASON's violations: axiom and individuals
+    GET /references/{name}/consistency[?brief=true]  the last REASON's violations: axiom, individuals, proof
     GET /references/{name}/history                   the change events recorded for the reference
     DELETE /references/{name}/history                stop recording them (the page starts it again)
     GET /references/{name}/queries                   the named queries (queries/*.rq), the console's examples
@@ -172,11 +172,13 @@ def violation_proof(view: View, v: Violation) -> dict[str, Any] | None:
             "premises": premises}
 
 
-def consistency(onto: Ontology) -> dict[str, Any]:
+def consistency(onto: Ontology, brief: bool = False) -> dict[str, Any]:
     """The last REASON's consistency: each violation's rule, axiom, message and individuals (linked),
-    and the proof of the clash."""
+    and the proof of the clash; ``brief``: the state and the number of violations only (the page's badge)."""
     view = View(onto)
     status, warnings = state(onto, facts=False)
+    if brief:
+        return {**status, "violation_count": len(onto.violations)}
     violations = [{"rule": v.rule, "axiom": v.axiom, "message": v.message,
                    "individuals": [{"variable": k, **view.term(t)} for k, t in v.individuals.items()],
                    "why": violation_proof(view, v)}
@@ -248,7 +250,10 @@ class InspectorRoutes:
         return await self._locked(request, work)
 
     async def consistency(self, request: Request) -> Response:
-        return await self._locked(request, lambda ref: consistency(ref.ontology))
+        brief = request.query_params.get("brief", "false")
+        if brief not in ("true", "false"):
+            return error(400, f"brief must be true or false, got {brief!r}")
+        return await self._locked(request, lambda ref: consistency(ref.ontology, brief == "true"))
 
     async def history(self, request: Request) -> Response:
         def work(ref: Reference) -> dict[str, Any]:

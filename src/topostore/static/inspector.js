@@ -301,7 +301,7 @@
     try {
       do {
         state.again = false;
-        try { showStatus((await getJson("/consistency")).consistent); } catch (err) { /* dropped: the view says */ }
+        try { showStatus((await getJson("/consistency?brief=true")).consistent); } catch (err) { /* dropped: the view says */ }
         if (initial === true || !location.hash.startsWith("#sparql")) await route();
       } while (state.again);
     } finally { state.busy = false; }
