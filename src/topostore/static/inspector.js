@@ -91,7 +91,7 @@
   // ------------------------------------------------------------------ overview and search
   async function showOverview() {
     try {
-      const [found, report] = await Promise.all([getJson("/entities?limit=5000"), getJson("/consistency")]);
+      const [found, report] = await Promise.all([getJson("/entities?limit=5000"), getJson("/consistency?brief=true")]);
       const groups = {};
       found.entities.forEach(e => (groups[e.kind] = groups[e.kind] || []).push(e));
       const order = ["class", "object property", "data property", "annotation property", "individual"];
@@ -110,7 +110,7 @@
   function consistencySummary(report) {
     if (report.consistent === false) {
       return h("div", { class: "card violation" }, h("span", { class: "message" },
-        `Inconsistent: ${report.violations.length} violation(s). `), h("a", { href: "#consistency" }, "See which axiom and which individuals"));
+        `Inconsistent: ${report.violation_count ?? report.violations.length} violation(s). `), h("a", { href: "#consistency" }, "See which axiom and which individuals"));
     }
     return h("div", { class: "card" }, report.consistent === null ? "Not reasoned yet."
                                                                    : h("span", { class: "ok" }, "Consistent."));
