@@ -69,6 +69,8 @@ def test_an_individual_with_its_inferred_types_and_their_proofs(server: InProces
     assert incoming[("Robot1", "canReach")] is True and incoming[("C1", "connectedTo")] is True
     assert {"R1", "C1", "D1", "Robot1", "LOCATION"} <= set(r1["links"])  # words of the proofs that are entities
     assert "rdf:type" not in r1["links"] and "1665579710" not in r1["links"]
+    assert [(d["individual"]["name"], d["axiom"], d["inferred"]) for d in r1["different_from"]] == [
+        ("C1", "AllDifferent(C1, R1, R2)", False), ("R2", "AllDifferent(C1, R1, R2)", False)]
     assert r1["warnings"] == [] and r1["truncated"] == {}
 
 

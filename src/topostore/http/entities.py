@@ -29,9 +29,11 @@ from ..vocab import (
     ASSERTED,
     DECLARATION_TYPES,
     DIFFERENT_FROM,
+    FIRST,
     OWL,
     RDF,
     RDFS,
+    REST,
     SAME_AS,
     THING,
     TYPE,
@@ -236,6 +238,33 @@ def assertions(view: View, prop: NamedNode) -> list[dict[str, Any]]:
     return [view.fact(t, inferred, subject=view.term(t.subject), value=view.term(t.object)) for t, inferred in rows]
 
 
+def _all_different_groups(store, e: NamedNode) -> list[Term]:
+    """The asserted ``owl:AllDifferent`` axioms listing ``e`` (found from its list cell backwards)."""
+    groups: list[Term] = []
+    for cell in store.subjects(FIRST, e, ASSERTED):
+        head, seen = cell, {cell}
+        while (before := store.subjects(REST, head, ASSERTED)) and before[0] not in seen:
+            head = before[0]
+            seen.add(head)
+        for p in (owl("distinctMembers"), owl("members")):
+            groups += [g for g in store.subjects(p, head, ASSERTED)
+                       if store.contains(Triple(g, TYPE, owl("AllDifferent")), ASSERTED)]
+    return groups
+
+
+def different_from(view: View, e: NamedNode) -> list[dict[str, Any]]:
+    """The individuals ``e`` is told to differ from by an ``owl:AllDifferent`` axiom (Protégé's
+    "Different individuals"), each with the axiom; ``owl:differentFrom`` facts are among the values."""
+    store = view.onto.store
+    rows: list[tuple[Term, Term]] = []
+    for group in _all_different_groups(store, e):
+        for p in (owl("distinctMembers"), owl("members")):
+            for head in store.objects(group, p, ASSERTED):
+                rows += [(m, group) for m in store.list_items(head, ASSERTED) if m != e]
+    rows = view.cut("different_from", rows)
+    return [{"individual": view.term(m), "inferred": False, "axiom": view.explainer.render_term(g)} for m, g in rows]
+
+
 def annotations(view: View, e: NamedNode) -> list[dict[str, Any]]:
     """Labels and comments of any entity (what Protégé shows in its annotations pane)."""
     return [{"property": view.term(t.predicate), "value": view.term(t.object)}
@@ -300,4 +329,4 @@ def link_names(view: View, texts: Iterable[str]) -> dict[str, str]:
 
 
 __all__ = ["View", "resolve_entity", "display_name", "entity_kinds", "individual_sections", "members", "assertions",
-           "search_entities", "link_names", "is_mentioned", "annotations", "visible", "DEFAULT_LIMIT", "MAX_LIMIT"]
+           "search_entities", "link_names", "is_mentioned", "annotations", "different_from", "visible", "DEFAULT_LIMIT", "MAX_LIMIT"]

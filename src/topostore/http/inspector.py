@@ -41,6 +41,7 @@ from .entities import (
     View,
     annotations,
     assertions,
+    different_from,
     display_name,
     entity_kinds,
     individual_sections,
@@ -115,6 +116,8 @@ def describe_entity(onto: Ontology, e: NamedNode, limit: int = DEFAULT_LIMIT) ->
     out: dict[str, Any] = {"iri": e.value, "name": display_name(e, onto.prefix),
                            "kind": kinds[0] if kinds else "entity", "kinds": kinds, **status,
                            "annotations": annotations(view, e), **individual_sections(view, e)}
+    if "individual" in kinds:
+        out["different_from"] = different_from(view, e)
     schema_kinds = [k for k in kinds if k == "class" or k in _PROPERTY_KINDS]
     tbox = read_tbox(view) if schema_kinds else None
     if "class" in kinds:

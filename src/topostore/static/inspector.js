@@ -42,6 +42,8 @@
     ["values", "Property values", [{ title: "property", cell: f => R.term(f.property) }, { title: "value", cell: value }]],
     ["referenced_by", "Referenced by", [{ title: "subject", cell: f => R.term(f.subject) },
                                         { title: "property", cell: f => R.term(f.property) }]],
+    ["different_from", "Different individuals", [{ title: "individual", cell: f => R.term(f.individual) },
+                                                 { title: "axiom", cell: f => h("span", { class: "mono" }, f.axiom) }]],
     ["superclasses", "Superclasses", [{ title: "class", cell: f => R.term(f.class) }]],
     ["subclasses", "Subclasses", [{ title: "class", cell: f => R.term(f.class) }]],
     ["members", "Members", [{ title: "individual", cell: f => R.term(f.individual) }]],
