@@ -30,9 +30,11 @@ browser:
 	-@if ! command -v chromium >/dev/null 2>&1 && [ "$$(id -u)" = 0 ] && command -v apt-get >/dev/null 2>&1; then \
 	    apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq chromium; fi
 
-# Cytoscape.js for the live map page, fetched from the npm registry into src/topostore/static/.
+# Cytoscape.js for the live map page and YASGUI for the inspector's SPARQL console, fetched from
+# the npm registry into src/topostore/static/.
 vendor-js:
 	sh scripts/vendor-cytoscape.sh
+	sh scripts/vendor-yasgui.sh
 
 # ROS 1 for `topostore ros` and tests/test_ros*.py, from Debian's packages: installed
 # when running as root on Debian (CI), skipped elsewhere (the ROS tests then say what

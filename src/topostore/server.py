@@ -8,6 +8,7 @@ Routes (all answers JSON unless a SPARQL result format is negotiated)::
     POST /armor/batch                   a list of requests -> the serialized service's reply
     GET  /references/{name}/sparql      SPARQL 1.1 Protocol query (?query=...)
     GET  /references/{name}/explain     why a triple holds; /events (SSE), /map (live page): see live.py
+    GET  /references/{name}/inspector   entity pages, SPARQL console, history: see http/inspector.py
     POST /references/{name}/sparql      query or update (form, application/sparql-query|update)
 
 Secure by default: loopback only unless a bearer token is set, LOAD/SAVE
@@ -341,6 +342,9 @@ def create_app(config: ServerConfig, service: ArmorService | None = None) -> Sta
         Route("/references/{name}/sparql", api.sparql, methods=["GET", "POST"]),
     ]
     routes += live_routes(api)  # explanations, server-sent events, the live map page (live.py)
+    from .http.inspector import inspector_routes  # entity pages, SPARQL console, history (http/inspector.py)
+
+    routes += inspector_routes(api)
     from .http import GraphStore  # SPARQL 1.1 Graph Store HTTP Protocol: /references/{name}/data
 
     routes += GraphStore(api).routes()

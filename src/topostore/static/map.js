@@ -113,7 +113,10 @@
     const body = await res.json();
     const ul = document.createElement("ul");
     if (res.ok) ul.appendChild(tree(body)); else ul.textContent = body.error;
-    box.replaceChildren(ul);
+    const more = document.createElement("a");
+    more.href = "inspector#entity/" + encodeURIComponent(node.id());
+    more.textContent = "all of " + node.id() + " in the inspector";
+    box.replaceChildren(ul, more);
   }
 
   cy.on("tap", "node.location", evt => explain(evt.target));

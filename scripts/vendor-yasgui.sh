@@ -1,0 +1,32 @@
+#!/bin/sh
+# Vendor YASGUI (SPARQL editor and result table) into the package's static files: the
+# inspector's SPARQL console is served offline (robots often have no Internet access, so no CDN).
+#
+#   make vendor-js            # or: sh scripts/vendor-yasgui.sh [VERSION]
+#
+# Fetches @triply/yasgui from the npm registry with `npm pack`, checks the tarball against the
+# registry's integrity hash, and copies the bundle (YASQE, YASR and their dependencies in one
+# script and one style sheet), its MIT license and the licences of the libraries it bundles.
+set -eu
+VERSION="${1:-4.2.28}"
+DEST="$(cd "$(dirname "$0")/.." && pwd)/src/topostore/static"
+WORK="$(mktemp -d)"
+trap 'rm -rf "$WORK"' EXIT
+cd "$WORK"
+npm pack "@triply/yasgui@$VERSION" --silent > /dev/null
+EXPECTED="$(npm view "@triply/yasgui@$VERSION" dist.integrity)"
+ACTUAL="sha512-$(openssl dgst -sha512 -binary "triply-yasgui-$VERSION.tgz" | base64 -w0)"
+if [ "$EXPECTED" != "$ACTUAL" ]; then
+    echo "integrity mismatch for @triply/yasgui@$VERSION: registry $EXPECTED, tarball $ACTUAL" >&2
+    exit 1
+fi
+tar xzf "triply-yasgui-$VERSION.tgz"
+cp package/build/yasgui.min.js "$DEST/yasgui.min.js"
+cp package/build/yasgui.min.css "$DEST/yasgui.min.css"
+{
+    cat package/LICENSE.txt
+    printf '\n\nLibraries bundled in yasgui.min.js (package/build/yasgui.min.js.LICENSE.txt):\n\n'
+    cat package/build/yasgui.min.js.LICENSE.txt
+} > "$DEST/yasgui.LICENSE"
+echo "@triply/yasgui@$VERSION" > "$DEST/yasgui.VERSION"
+echo "vendored @triply/yasgui@$VERSION into $DEST"
