@@ -171,6 +171,17 @@ class Materializer:
             return range(len(self.rules))
         return set(active)
 
+    def _asserted_keys(self) -> Present:
+        """The predicates and classes rule bodies need that have an asserted fact (one look-up each)."""
+        preds: set[str] = set()
+        classes: set[str] = set()
+        for kind, key in self.triggers.needed_keys():
+            term = NamedNode(key[1:-1])
+            pattern = (None, TYPE, term) if kind == "t" else (None, term, None)
+            if next(iter(self.store.triples(*pattern, ASSERTED)), None) is not None:
+                (classes if kind == "t" else preds).add(key)
+        return preds, classes
+
     def clear(self) -> None:
         self.store.update(
             " ; ".join(f"DROP SILENT GRAPH {g}" for g in (INFERRED, AUX, DELTA, NEW_INFERRED, NEW_AUX))
@@ -191,12 +202,16 @@ class Materializer:
         start = time.perf_counter()
         stats = ReasonStats()
         self.clear()
+        # keys with facts so far; each round's delta adds its keys (_delta_round), so a rule
+        # skipped here for an empty key runs as soon as that key gets a fact, with it as the delta
+        self.present = self._asserted_keys()
         strata = sorted({r.stratum for r in self.rules}) or [0]
         first = [i for i, r in enumerate(self.rules) if r.stratum == strata[0]]
         ordered, rest = evaluation_order(self.rules, first)
         for component in ordered:
             for i in component:
-                self._run(i, None, stats)
+                if self.triggers.feasible(i, self.present):
+                    self._run(i, None, stats)
             self._flush()
             stats.rounds += 1
             self.propagate(component, stats)
@@ -204,7 +219,8 @@ class Materializer:
             active = [i for i, r in enumerate(self.rules) if r.stratum <= level]
             fresh = rest if level == strata[0] else [i for i in active if self.rules[i].stratum == level]
             for i in fresh:
-                self._run(i, None, stats)
+                if self.triggers.feasible(i, self.present):
+                    self._run(i, None, stats)
             self._flush()
             stats.rounds += 1
             if level > strata[0] and not (self.store.is_empty(NEW_INFERRED) and self.store.is_empty(NEW_AUX)):

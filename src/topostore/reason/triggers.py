@@ -66,6 +66,10 @@ class Triggers:
         """The rules whose head may produce facts of ``key`` (those writing any predicate included)."""
         return self._writers.get(key, []) + self._writers.get(("*",), [])
 
+    def needed_keys(self) -> set[ReadKey]:
+        """Every key some body atom needs facts of (see :meth:`feasible`)."""
+        return {need for needs in self._needs for need in needs if need is not None}
+
     def feasible(self, i: int, present: Present | None, skip: int | None = None) -> bool:
         """False when a body atom of rule ``i`` other than ``skip`` reads a key without any fact.
 
