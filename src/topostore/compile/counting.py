@@ -106,11 +106,11 @@ def count_at_least(x: str, values: list[Atom], tests: list[Condition], value: st
                                     Condition(cond.PATTERN, group, reads_graph=True, written=group)]
 
 
-def counting_warning(restriction: str, n: int) -> str:
-    """The named warning of an object cardinality above :data:`PAIRWISE_MAX`."""
+def counting_warning(restriction: str) -> str:
+    """The named warning of an object cardinality above :data:`PAIRWISE_MAX` (one per restriction)."""
     return (f"{COUNTED_ONLY}: {restriction}: more than {PAIRWISE_MAX} values are counted only among "
             "members of one owl:AllDifferent; individuals different only by owl:differentFrom, disjoint "
-            f"classes or functional values are not counted towards {n}")
+            "classes or functional values are not counted")
 
 
 __all__ = ["COUNTED_ONLY", "PAIRWISE_MAX", "UNREACHABLE", "count_at_least", "counting_warning", "group_of",

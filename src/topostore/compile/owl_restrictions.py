@@ -71,7 +71,7 @@ class RestrictionRules:
         tests = [test] if test is not None else []
         extra, conditions = count_at_least(x, values, tests, v, n, data)
         if not data:
-            warning = counting_warning(str(e), n)
+            warning = counting_warning(str(e))
             if warning not in self.warnings:
                 self.warnings.append(warning)
         return values + extra, tests + conditions

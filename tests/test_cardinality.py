@@ -1,0 +1,156 @@
+"""Cardinalities by counting (compile/counting.py) and the size guard on compiled rules (compile/guard.py).
+
+The shapes of the W3C OWL 2 test cases that used to kill the process (``owl:cardinality 257`` and
+``600``, ``maxQualifiedCardinality 300``, ``minCardinality 128``) are reasoned with the answers
+right on both sides of n; literal values are counted by value, individuals by AllDifferent key;
+what counting cannot see is said with the named warning; a rule too large to evaluate is
+refused and leaves the ontology as it was.
+"""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+import textwrap
+from pathlib import Path
+
+import pytest
+
+from topostore import Ontology
+from topostore.compile.counting import COUNTED_ONLY, PAIRWISE_MAX
+from topostore.errors import RuleCompileError
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT))  # the benchmarks package lives beside src/
+from benchmarks.cardinality import PREFIXES, cardinality_ttl  # noqa: E402
+
+
+def reasoned(text: str) -> Ontology:
+    onto = Ontology()
+    onto.load_data(text, "turtle")
+    onto.reason()
+    return onto
+
+
+def x_in_c(onto: Ontology) -> bool:
+    return "x" in {onto.short(i) for i in onto.instances("C")}
+
+
+# ---------------------------------------------------------------- the W3C shapes, both sides of n
+
+@pytest.mark.parametrize(("kind", "n", "qualified"), [
+    ("cardinality", 600, False), ("cardinality", 257, False), ("maxCardinality", 300, True),
+    ("cardinality", 40, True), ("maxCardinality", PAIRWISE_MAX + 1, False),
+])
+def test_a_maximum_holds_at_n_and_is_violated_at_n_plus_one(kind: str, n: int, qualified: bool) -> None:
+    assert reasoned(cardinality_ttl(kind, n, n, qualified)).report.consistent
+    report = reasoned(cardinality_ttl(kind, n, n + 1, qualified)).report
+    assert not report.consistent
+    assert f"more than {n} different values of p" in report.explain()
+
+
+@pytest.mark.parametrize(("n", "qualified", "data"), [
+    (128, False, False), (128, True, False), (600, True, False), (300, True, True), (PAIRWISE_MAX + 1, False, True),
+])
+def test_a_minimum_needs_n_different_values(n: int, qualified: bool, data: bool) -> None:
+    assert x_in_c(reasoned(cardinality_ttl("minCardinality", n, n, qualified, data)))
+    assert not x_in_c(reasoned(cardinality_ttl("minCardinality", n, n - 1, qualified, data)))
+
+
+def test_an_exact_cardinality_with_no_values_is_consistent_and_named_in_the_warning() -> None:
+    report = reasoned(cardinality_ttl("cardinality", 600, 0)).report
+    assert report.consistent
+    assert [w.split(":")[0] for w in report.warnings] == [COUNTED_ONLY]
+    assert "(p exact 600 Thing)" in report.warnings[0]
+
+
+def test_the_cardinality_600_shape_does_not_kill_a_process() -> None:
+    """The crash was native (SIGSEGV): only a child process can show that it is gone."""
+    code = textwrap.dedent(f"""
+        import sys; sys.path.insert(0, {str(ROOT)!r})
+        from benchmarks.cardinality import cardinality_ttl
+        from topostore import Ontology
+        for kind, q in (("cardinality", False), ("maxCardinality", True), ("minCardinality", False)):
+            o = Ontology(); o.load_data(cardinality_ttl(kind, 600, 0, q), "turtle"); assert o.reason().consistent
+        print("alive")
+    """)
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
+    assert (done.returncode, done.stdout.strip()) == (0, "alive"), done.stderr[-2000:]
+
+
+# ---------------------------------------------------------------- what counts as different
+
+def restriction(kind: str, n: int, data: bool = False) -> str:
+    prop = "owl:DatatypeProperty" if data else "owl:ObjectProperty"
+    return PREFIXES + f":p a {prop} .\n:C owl:equivalentClass [ a owl:Restriction ; owl:onProperty :p ; owl:{kind} {n} ] .\n"
+
+
+def test_literals_are_counted_by_value_not_by_spelling() -> None:
+    values = ('1, "01"^^xsd:int, "1.0e0"^^xsd:double, "1.0"^^xsd:decimal, '
+              '"2020-01-01T00:00:00Z"^^xsd:dateTime, "2020-01-01T01:00:00+01:00"^^xsd:dateTime, '
+              '"a"@en, "a"@EN, "a", "a"^^xsd:string, true, "1"^^xsd:boolean')
+    # four values: 1, one instant, "a"@en, "a" (and the boolean true: five)
+    assert x_in_c(reasoned(restriction("minCardinality", 5, data=True) + f":x :p {values} ."))
+    assert not x_in_c(reasoned(restriction("minCardinality", 6, data=True) + f":x :p {values} ."))
+    onto = reasoned(restriction("maxCardinality", 5, data=True) + f":x a :C ; :p {values} .")
+    assert onto.report.consistent
+    assert onto.report.warnings == []  # data values are counted exactly
+
+
+def group(members: str) -> str:
+    return f"[] a owl:AllDifferent ; owl:distinctMembers ({members}) .\n"
+
+
+def test_individuals_count_once_per_key_even_under_several_names() -> None:
+    text = restriction("minCardinality", 5) + group(":a :b :c :d :e") + ":x :p :a, :b, :c, :d, :a2 .\n:a2 owl:sameAs :a .\n"
+    assert not x_in_c(reasoned(text))  # :a2 is :a: four different values
+    assert x_in_c(reasoned(text + ":x :p :e ."))
+
+
+def test_individuals_of_two_groups_are_not_counted_together_and_the_warning_says_so() -> None:
+    text = restriction("minCardinality", 5) + group(":a :b :c") + group(":d :e") + ":x :p :a, :b, :c, :d, :e .\n"
+    onto = reasoned(text)
+    assert not x_in_c(onto)  # :a and :d may be the same individual as far as the groups say
+    assert onto.report.warnings and onto.report.warnings[0].startswith(COUNTED_ONLY + ":")
+
+
+def test_small_cardinalities_stay_pairwise_and_see_differentfrom() -> None:
+    n = PAIRWISE_MAX
+    names = [f":y{i}" for i in range(n)]
+    different = " ".join(f"{a} owl:differentFrom {b} ." for i, a in enumerate(names) for b in names[i + 1:])
+    onto = reasoned(restriction("minCardinality", n) + f":x :p {', '.join(names)} .\n{different}\n")
+    assert x_in_c(onto)
+    assert onto.report.warnings == []
+
+
+def test_incremental_reasoning_follows_values_added_and_removed() -> None:
+    onto = reasoned(cardinality_ttl("minCardinality", 10, 9))
+    assert not x_in_c(onto)
+    onto.load_data(PREFIXES + ":x :p :z . :z a :D . [] a owl:AllDifferent ; owl:distinctMembers (:y0 :z) .", "turtle")
+    onto.reason()
+    assert not x_in_c(onto)  # :z is only known different from :y0: nine values of one group
+    onto.load_data(cardinality_ttl("minCardinality", 10, 10), "turtle")  # :y9 joins :x and the group
+    onto.reason()
+    assert x_in_c(onto)
+    onto.remove_fact("x", "p", "y3")
+    onto.reason()
+    assert not x_in_c(onto)
+    onto.add_fact("x", "p", "y3")
+    assert onto.reason().stats.mode != "full" and x_in_c(onto)
+    assert onto.reason(mode="full") and x_in_c(onto)  # the same closure from scratch
+
+
+# ---------------------------------------------------------------- rules too large to evaluate
+
+@pytest.mark.parametrize("axiom", [
+    ":C owl:equivalentClass [ owl:intersectionOf ({}) ] .".format(" ".join(f":A{i}" for i in range(300))),
+    ":q owl:propertyChainAxiom ({}) .".format(" ".join(f":p{i}" for i in range(300))),
+    ":C owl:equivalentClass " + "[ owl:complementOf " * 150 + ":A" + " ]" * 150 + " .",
+])
+def test_a_rule_too_large_is_refused_and_nothing_changes(axiom: str) -> None:
+    onto = reasoned(cardinality_ttl("minCardinality", 3, 3))
+    triples = len(list(onto.sparql("SELECT * WHERE { ?s ?p ?o }")))
+    with pytest.raises(RuleCompileError, match="too large to evaluate safely|nested more than"):
+        onto.load_data(PREFIXES + axiom, "turtle")
+    assert len(list(onto.sparql("SELECT * WHERE { ?s ?p ?o }"))) == triples
+    assert onto.reason().consistent and x_in_c(onto)
