@@ -20,8 +20,9 @@ For individuals declared different in other ways (``owl:differentFrom``,
 disjoint classes, two values of a functional data property) a count needs the
 largest set of pairwise-different values, a clique in the difference graph:
 no fixed query computes it.  The compiler keeps the exact pairwise form for
-small n (:data:`PAIRWISE_MAX`) and, above it, counts only group members and
-says so with the warning :data:`COUNTED_ONLY` (:func:`counting_warning`).
+small n (:data:`PAIRWISE_MAX`, data values included) and, above it, counts:
+exactly for literals, only group members for individuals, which it says with
+the warning :data:`COUNTED_ONLY` (:func:`counting_warning`).
 """
 
 from __future__ import annotations
@@ -33,7 +34,7 @@ from . import condition as cond
 from .condition import Condition
 from .rule import Atom
 
-#: up to this n, object cardinalities keep the pairwise form (exact for every kind of difference);
+#: up to this n, cardinalities keep the pairwise form (exact for every kind of difference);
 #: its cost grows as C(k, n) for k values, so it stays small
 PAIRWISE_MAX = 3
 #: a cardinality at or above this can never be reached by a store (counts are 64-bit integers)

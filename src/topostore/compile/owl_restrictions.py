@@ -57,10 +57,12 @@ class RestrictionRules:
     #: named warnings about what the rules do not reason completely (see .counting)
     warnings: list[str]
 
-    def counts(self, e: Expr, n: int) -> bool:
-        """Whether ``n`` values of restriction ``e`` are asked for by counting rather than pairwise:
-        always for data values (counting is exact there), for individuals above PAIRWISE_MAX."""
-        return n > 1 and (self.is_data(e.prop, e) or n > PAIRWISE_MAX)
+    @staticmethod
+    def counts(n: int) -> bool:
+        """Whether ``n`` values are asked for by counting rather than pairwise: above PAIRWISE_MAX.
+        Up to it the pairwise form is cheap and sees every kind of difference; the rules of small
+        cardinalities (a map's "exactly one visitedAt") stay as they were."""
+        return n > PAIRWISE_MAX
 
     def _counted(self, e: Expr, x: str, n: int) -> tuple[list[Atom], list[Condition]]:
         """Body atoms and conditions: ``x`` has at least ``n`` values of ``e`` known different, counted."""
@@ -143,7 +145,7 @@ class RestrictionRules:
         n = 1 if e.kind == "some" else e.n
         if n == 0 or n >= UNREACHABLE:
             return
-        if self.counts(e, n):
+        if self.counts(n):
             atoms, filters = self._counted(e, x, n)
             reads: frozenset = frozenset()
         else:
@@ -176,7 +178,7 @@ class RestrictionRules:
         message = f"{{x}} has more than {e.n} different values of {nm(e.prop.iri)} but is in {e}"
         if e.n + 1 >= UNREACHABLE:
             pass  # no store holds that many values
-        elif self.counts(e, e.n + 1):
+        elif self.counts(e.n + 1):
             atoms, filters = self._counted(e, x, e.n + 1)
             self.emit(name, origin, member + atoms, filters=filters, violation=(x,), message=message)
         else:
