@@ -10,6 +10,7 @@ both columns.
 
     python -m benchmarks.cardinality                       # n = 40, 80, 128, 600
     python -m benchmarks.cardinality --before ../main --timeout 60
+    python -m benchmarks.cardinality --empty                  # the restriction alone, no values
 """
 
 from __future__ import annotations
@@ -102,15 +103,16 @@ def run_child(src: Path | None, kind: str, n: int, fillers: int, qualified: bool
     return row
 
 
-def cases(sizes: list[int]) -> list[tuple[str, int, int, bool, bool]]:
+def cases(sizes: list[int], empty: bool = False) -> list[tuple[str, int, int, bool, bool]]:
     """(kind, n, fillers, qualified, data) rows: each size as exact (n values: consistent), min (x is
-    inferred a C) and max (n + 1 values: inconsistent)."""
+    inferred a C) and max (n + 1 values: inconsistent); with ``empty``, no values at all (the rules
+    alone: the shape of the W3C test cases)."""
     rows = []
     for n in sizes:
-        rows.append(("cardinality", n, n, False, False))
-        rows.append(("minCardinality", n, n, True, False))
-        rows.append(("maxCardinality", n, n + 1, True, False))
-    rows.append(("minCardinality", max(sizes), max(sizes), True, True))
+        rows.append(("cardinality", n, 0 if empty else n, False, False))
+        rows.append(("minCardinality", n, 0 if empty else n, True, False))
+        rows.append(("maxCardinality", n, 0 if empty else n + 1, True, False))
+    rows.append(("minCardinality", max(sizes), 0 if empty else max(sizes), True, True))
     return rows
 
 
@@ -119,6 +121,7 @@ def main(argv: list[str] | None = None) -> int:
                                 formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--sizes", type=int, nargs="*", default=SIZES, help="values of n (default 40 80 128 600)")
     p.add_argument("--before", type=Path, help="another checkout to measure too (its src/ is put first on the path)")
+    p.add_argument("--empty", action="store_true", help="no values: the restriction's rules alone")
     p.add_argument("--timeout", type=float, default=120.0, help="seconds per row and checkout (default 120)")
     p.add_argument("--child", nargs=5, help=argparse.SUPPRESS)
     args = p.parse_args(argv)
@@ -129,7 +132,7 @@ def main(argv: list[str] | None = None) -> int:
     checkouts = [("before", args.before / "src")] if args.before else []
     checkouts.append(("after", None))
     print(f"{'restriction':<34} {'values':>6} " + " ".join(f"{name:>30}" for name, _ in checkouts) + "  answer")
-    for kind, n, fillers, qualified, data in cases(args.sizes):
+    for kind, n, fillers, qualified, data in cases(args.sizes, args.empty):
         label = f"{'qualified ' if qualified else ''}{kind} {n}{' (data)' if data else ''}"
         rows = [run_child(src, kind, n, fillers, qualified, data, args.timeout) for _, src in checkouts]
         last = rows[-1]

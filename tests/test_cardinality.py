@@ -154,3 +154,13 @@ def test_a_rule_too_large_is_refused_and_nothing_changes(axiom: str) -> None:
         onto.load_data(PREFIXES + axiom, "turtle")
     assert len(list(onto.sparql("SELECT * WHERE { ?s ?p ?o }"))) == triples
     assert onto.reason().consistent and x_in_c(onto)
+
+
+def test_the_benchmark_row_runs_in_a_child_and_reports_the_answer() -> None:
+    from benchmarks.cardinality import cases, run_child
+
+    row = run_child(None, "maxCardinality", 5, 6, True, False, timeout=120)
+    assert row["outcome"].endswith(" s") and row["consistent"] is False
+    assert len(cases([40, 600])) == 7 and all(f == 0 for _, _, f, _, _ in cases([40], empty=True))
+    with pytest.raises(ValueError, match="kind must be one of"):
+        cardinality_ttl("someCardinality", 3, 3)

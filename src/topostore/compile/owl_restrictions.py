@@ -177,8 +177,8 @@ class RestrictionRules:
         name = "cls-maxqc3" if e.filler or e.datatype else "cls-maxc2"
         message = f"{{x}} has more than {e.n} different values of {nm(e.prop.iri)} but is in {e}"
         if e.n + 1 >= UNREACHABLE:
-            pass  # no store holds that many values
-        elif self.counts(e.n + 1):
+            return  # no store holds that many values (and e.n > 1: no sameAs rule below)
+        if self.counts(e.n + 1):
             atoms, filters = self._counted(e, x, e.n + 1)
             self.emit(name, origin, member + atoms, filters=filters, violation=(x,), message=message)
         else:
