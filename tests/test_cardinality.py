@@ -164,3 +164,15 @@ def test_the_benchmark_row_runs_in_a_child_and_reports_the_answer() -> None:
     assert len(cases([40, 600])) == 7 and all(f == 0 for _, _, f, _, _ in cases([40], empty=True))
     with pytest.raises(ValueError, match="kind must be one of"):
         cardinality_ttl("someCardinality", 3, 3)
+
+
+def test_the_cli_prints_the_named_warning(tmp_path: Path) -> None:
+    from click.testing import CliRunner
+
+    from topostore.cli import cli
+
+    path = tmp_path / "card.ttl"
+    path.write_text(cardinality_ttl("minCardinality", 10, 10))
+    result = CliRunner().invoke(cli, ["reason", str(path)])
+    assert result.exit_code == 0, result.output
+    assert f"warning: {COUNTED_ONLY}: (p min 10 Thing)" in result.output
