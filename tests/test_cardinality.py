@@ -15,6 +15,9 @@ import textwrap
 from pathlib import Path
 
 import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+from profiles import property_examples
 
 from topostore import Ontology
 from topostore.compile.counting import COUNTED_ONLY, PAIRWISE_MAX
@@ -176,3 +179,59 @@ def test_the_cli_prints_the_named_warning(tmp_path: Path) -> None:
     result = CliRunner().invoke(cli, ["reason", str(path)])
     assert result.exit_code == 0, result.output
     assert f"warning: {COUNTED_ONLY}: (p min 10 Thing)" in result.output
+
+
+# ---------------------------------------------------------------- incremental = full, on random changes
+
+COUNTED_TBOX = PREFIXES + """:p a owl:ObjectProperty . :d a owl:DatatypeProperty . :D a owl:Class .
+:C owl:equivalentClass [ a owl:Restriction ; owl:onProperty :p ; owl:minQualifiedCardinality 4 ; owl:onClass :D ] .
+:M owl:equivalentClass [ a owl:Restriction ; owl:onProperty :p ; owl:maxCardinality 5 ] .
+:V owl:equivalentClass [ a owl:Restriction ; owl:onProperty :d ; owl:minCardinality 4 ] .
+[] a owl:AllDifferent ; owl:distinctMembers (:y0 :y1 :y2 :y3 :y4 :y5) .
+"""
+CHANGES = st.lists(st.tuples(st.booleans(), st.sampled_from(["x", "z"]),
+                             st.sampled_from(["p y0", "p y1", "p y2", "p y3", "p y4", "p y5", "p w", "d 1", "d 2",
+                                              "d 3", "d 4", "d 5", "type D y0", "type D y1", "type D w",
+                                              "same w y0", "type M"])), min_size=1, max_size=8)
+
+
+def _triple(onto: Ontology, subject: str, change: str):
+    from pyoxigraph import Literal, NamedNode, Triple
+
+    from topostore.vocab import SAME_AS, TYPE
+
+    ns = "http://example.org/card#"
+    kind, *rest = change.split()
+    if kind == "p":
+        return Triple(NamedNode(ns + subject), NamedNode(ns + "p"), NamedNode(ns + rest[0]))
+    if kind == "d":
+        return Triple(NamedNode(ns + subject), NamedNode(ns + "d"), Literal(rest[0], datatype=NamedNode(
+            "http://www.w3.org/2001/XMLSchema#integer")))
+    if kind == "same":
+        return Triple(NamedNode(ns + rest[0]), SAME_AS, NamedNode(ns + rest[1]))
+    target = rest[1] if len(rest) > 1 else subject
+    return Triple(NamedNode(ns + target), TYPE, NamedNode(ns + rest[0]))
+
+
+def _closure(onto: Ontology) -> tuple[bool, set]:
+    report = onto.report
+    rows = onto.sparql("SELECT ?s ?c WHERE { ?s a ?c FILTER(STRSTARTS(STR(?c), 'http://example.org/card#')) }")
+    return report.consistent, {(r["s"].value, r["c"].value) for r in rows}
+
+
+
+
+@settings(max_examples=property_examples(40), deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(changes=CHANGES)
+def test_incremental_counting_equals_a_full_reason(changes: list) -> None:
+    onto = Ontology()
+    onto.load_data(COUNTED_TBOX + ":x :p :y0, :y1, :y2 ; :d 7 . :y0 a :D . :y1 a :D . :y2 a :D . :y3 a :D .",
+                   "turtle")
+    onto.reason()
+    for add, subject, change in changes:
+        triple = _triple(onto, subject, change)
+        (onto.add if add else onto.remove)(triple)
+        onto.reason(mode="incremental")
+        incremental = _closure(onto)
+        onto.reason(mode="full")
+        assert _closure(onto) == incremental, (add, subject, change)

@@ -29,7 +29,7 @@ pytestmark = pytest.mark.no_cover
 
 #: a full fuzz run (make fuzz) also draws lists and nesting several times longer
 BIG = FUZZ_EXAMPLES > 500
-MAX_LIST = 1500 if BIG else 300
+MAX_LIST = 1000 if BIG else 300
 MAX_DEPTH = 400 if BIG else 150
 #: reasoning time limit in the child, and the margin one evaluation may overrun it by
 MAX_SECONDS, MARGIN = 10.0, 50.0
