@@ -29,7 +29,7 @@ from __future__ import annotations
 
 import re
 
-from ..vocab import AUX, DIFFERENT_KEY, KEY_PREFIX
+from ..vocab import AUX, DIFFERENT_KEY, KEY_PREFIX, XSD
 from . import condition as cond
 from .condition import Condition
 from .rule import Atom
@@ -42,8 +42,7 @@ UNREACHABLE = 2 ** 62
 #: name of the warning for cardinalities above PAIRWISE_MAX on object properties
 COUNTED_ONLY = "cardinality-counted-by-group"
 
-_EPOCH = '"1970-01-01T00:00:00Z"^^<http://www.w3.org/2001/XMLSchema#dateTime>'
-_XSD = "http://www.w3.org/2001/XMLSchema#"
+_EPOCH = f'"1970-01-01T00:00:00Z"^^<{XSD}dateTime>'
 
 
 def literal_key(var: str) -> str:
@@ -60,10 +59,10 @@ def literal_key(var: str) -> str:
     value spaces say, where ``!=`` compares both as floats and finds them equal.
     """
     term = f'CONCAT("l:", STR(DATATYPE({var})), "|", LCASE(LANG({var})), "|", STR({var}))'
-    number = f'COALESCE(CONCAT("n:", STR(<{_XSD}decimal>({var}))), CONCAT("d:", STR({var})))'
+    number = f'COALESCE(CONCAT("n:", STR(<{XSD}decimal>({var}))), CONCAT("d:", STR({var})))'
     instant = f'COALESCE(CONCAT("t:", STR({var} - {_EPOCH})), {term})'
     return (f"IF(isNumeric({var}), {number}, "
-            f"IF(DATATYPE({var}) = <{_XSD}dateTime> && TZ({var}) != \"\", {instant}, {term}))")
+            f"IF(DATATYPE({var}) = <{XSD}dateTime> && TZ({var}) != \"\", {instant}, {term}))")
 
 
 def group_of(key: str) -> str:
