@@ -235,3 +235,20 @@ def test_incremental_counting_equals_a_full_reason(changes: list) -> None:
         incremental = _closure(onto)
         onto.reason(mode="full")
         assert _closure(onto) == incremental, (add, subject, change)
+
+
+def test_the_guard_measures_each_limit() -> None:
+    from topostore.compile import condition as cond
+    from topostore.compile.guard import RuleLimits, check_rule, measure
+    from topostore.compile.rule import Atom, Rule
+
+    atoms = tuple(Atom(f"?v{i}", "<urn:p>", f"?v{i + 1}") for i in range(5))
+    rule = Rule("r", "a test", atoms, Atom("?v0", "<urn:q>", "?v5"),
+                (cond.test("(((?v0 != ?v1)))"), cond.test("?v1 != ?v2")))
+    check_rule(rule, RuleLimits())
+    for limits, words in ((RuleLimits(max_atoms=4), "5 body atoms"), (RuleLimits(max_conditions=1), "2 filters"),
+                          (RuleLimits(max_tokens=20, lex_above=0), "more than 20 tokens"),
+                          (RuleLimits(max_depth=3, lex_above=0), "nesting 5 deep")):
+        with pytest.raises(RuleCompileError, match=words):
+            check_rule(rule, limits)
+    assert measure("SELECT * WHERE { ?s ?p ?o # a comment ((((\n }", 100) == (8, 1)
