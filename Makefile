@@ -88,7 +88,7 @@ bench-quick: $(STAMP) java
 FUZZ_EXAMPLES ?= 12500
 fuzz: $(STAMP) ros-deps
 	TOPOSTORE_FUZZ_RANDOM=1 TOPOSTORE_FUZZ_EXAMPLES=$(FUZZ_EXAMPLES) $(BIN)/python -m pytest -p no:cacheprovider -q tests/test_fuzz_armor.py \
-		tests/test_fuzz_http.py tests/test_fuzz_files.py tests/test_fuzz_ros.py
+		tests/test_fuzz_http.py tests/test_fuzz_files.py tests/test_fuzz_ros.py tests/test_fuzz_tbox.py
 	TOPOSTORE_PROPERTY_SCALE=1 $(BIN)/python -m pytest -p no:cacheprovider -q tests/test_incremental.py tests/test_properties.py
 
 # Load test on loopback: concurrent clients mixing manipulations, REASON and queries (benchmarks/load.py),

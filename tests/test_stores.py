@@ -127,3 +127,15 @@ def test_cli_reason_and_query_on_a_store(tmp_path: Path) -> None:
     assert '"location": "http://bnc/exp-rob-lab/2022-23#R2"' in answer.output
     missing = CliRunner().invoke(cli, ["reason"])
     assert missing.exit_code == 2 and "--store" in missing.output
+
+
+def test_two_spellings_of_one_value_in_one_load_keep_the_value() -> None:
+    """``1`` and ``"01"^^xsd:int`` are stored as one canonical literal: the second spelling in the
+    same transaction must not cancel the first (both used to vanish)."""
+    from topostore import Ontology
+
+    onto = Ontology()
+    onto.load_data('@prefix : <http://e.org/#> . @prefix xsd: <http://www.w3.org/2001/XMLSchema#> . '
+                   ':x :p 1, "01"^^xsd:int, true, "1"^^xsd:boolean, 5 .', "turtle")
+    rows = onto.sparql("SELECT ?v WHERE { <http://e.org/#x> <http://e.org/#p> ?v }")
+    assert sorted(r["v"].value for r in rows) == ["1", "5", "true"]

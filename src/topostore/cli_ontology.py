@@ -66,6 +66,8 @@ def reason(
         f"Reasoned in {report.stats.seconds:.3f} s ({report.stats.rounds} rounds, "
         f"{len(onto.rules.rules)} rules): {inferred} inferred triples"
     )
+    for warning in report.warnings:
+        click.echo(f"warning: {warning}", err=True)
     if output:
         out = Path(output)
         rdf_format = guess_format(out, fmt)

@@ -61,6 +61,8 @@ class ReasonReport:
     consistent: bool
     violations: list[Violation] = field(default_factory=list)
     stats: ReasonStats = field(default_factory=ReasonStats)
+    #: named warnings of the rule compiler: what this REASON did not reason completely
+    warnings: list[str] = field(default_factory=list)
 
     def explain(self) -> str:
         return "consistent" if self.consistent else "; ".join(str(v) for v in self.violations)
@@ -332,7 +334,7 @@ class Ontology(OntologyFiles, OntologyQueries):
         finally:
             self._tracking = self._reasoner.state.ready
         self.store.maybe_compact()
-        previous, self._report = self._report, ReasonReport(not violations, violations, stats)
+        previous, self._report = self._report, ReasonReport(not violations, violations, stats, list(rules.warnings))
         self._advance_views(previous)
         self.dirty = False
         self.events.after_reason(self.store, self._report.consistent, before, stats.seconds)

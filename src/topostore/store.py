@@ -203,10 +203,18 @@ class Store(LiteralForms, PersistedState):
         with self.transaction():
             new = [q for q, present in zip(quads, self._present(quads), strict=True) if not present]
             for q in new:  # pending True: absent from the committed store; False: present there
-                key = self._key(q)
-                if self._pending.pop(key, None) is None:
-                    self._pending[key] = (q, True)
+                self._toggle(q, True)
         return len(new)
+
+    def _toggle(self, quad: Quad, add: bool) -> None:
+        """Record a pending add (or removal) of ``quad``: it cancels a pending change the other way,
+        and a second spelling of one value (``1`` and ``"01"^^xsd:int``) changes nothing more."""
+        key = self._key(quad)
+        pending = self._pending.get(key)
+        if pending is None:
+            self._pending[key] = (quad, add)
+        elif pending[1] != add:
+            del self._pending[key]
 
     def add_scratch(self, triples: Iterable[Triple], graph: NamedNode) -> None:
         """Bulk-add to a reasoner's scratch graph (no literal forms recorded, no counting)."""
@@ -217,9 +225,7 @@ class Store(LiteralForms, PersistedState):
         with self.transaction():
             gone = [q for q, present in zip(quads, self._present(quads), strict=True) if present]
             for q in gone:
-                key = self._key(q)
-                if self._pending.pop(key, None) is None:
-                    self._pending[key] = (q, False)
+                self._toggle(q, False)
         return len(gone)
 
     def discard(self, triples: Iterable[Triple], graphs: Iterable[NamedNode]) -> None:

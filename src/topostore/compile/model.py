@@ -120,6 +120,11 @@ def is_datatype(node: Term) -> bool:
     return isinstance(node, NamedNode) and any(node.value.startswith(ns) for ns in _DATATYPE_NAMESPACES)
 
 
+#: class expressions nested deeper than this are refused: reading, describing and compiling them
+#: recurse once per level, and Python's stack ends near 1,000 frames (no real TBox nests 100 deep)
+MAX_NESTING = 100
+
+
 class TBoxReader:
     """Reads a :class:`TBox` from one graph of a :class:`Store`."""
 
@@ -127,6 +132,7 @@ class TBoxReader:
         self.store = store
         self.graph = graph
         self._cache: dict[Term, Expr] = {}
+        self._depth = 0
         self._declared_data = {s for s in store.subjects(TYPE, owl("DatatypeProperty"), graph) if isinstance(s, NamedNode)}
         self._declared_object = {s for s in store.subjects(TYPE, owl("ObjectProperty"), graph) if isinstance(s, NamedNode)}
 
@@ -156,7 +162,14 @@ class TBoxReader:
         if not isinstance(node, NamedNode):
             raise RuleCompileError(f"a literal {node} used as a class")
         self._cache[node] = Expr(node, "named")  # guards against cyclic structures
-        expr = self._read(node)
+        if self._depth >= MAX_NESTING:
+            raise RuleCompileError(f"class expressions nested more than {MAX_NESTING} deep (at {node.value}); "
+                                   "the ontology was not reasoned")
+        self._depth += 1
+        try:
+            expr = self._read(node)
+        finally:
+            self._depth -= 1
         self._cache[node] = expr
         return expr
 

@@ -45,6 +45,7 @@ class OwlCompiler(RestrictionRules):
     def __init__(self, tbox: TBox) -> None:
         self.tb = tbox
         self.rules: list[Rule] = []
+        self.warnings: list[str] = []
         self.disjoint_pairs = [
             (a.node, b.node) for a, b in tbox.disjoint if a.is_named and b.is_named
         ]

@@ -16,6 +16,7 @@ from ..terms import sparql
 from ..vocab import DIFFERENT, SAME_AS, THING, TYPE
 from . import condition as cond
 from .condition import Condition
+from .counting import PAIRWISE_MAX, UNREACHABLE, count_at_least, counting_warning
 from .model import Expr, TBox
 from .rule import Atom
 from .snippets import (
@@ -53,6 +54,29 @@ class RestrictionRules:
     # provided by OwlCompiler: the TBox, emit(), member(), prop_atom(), is_data(), all_expressions(),
     # filler_subsumed()
     tb: TBox
+    #: named warnings about what the rules do not reason completely (see .counting)
+    warnings: list[str]
+
+    @staticmethod
+    def counts(n: int) -> bool:
+        """Whether ``n`` values are asked for by counting rather than pairwise: above PAIRWISE_MAX.
+        Up to it the pairwise form is cheap and sees every kind of difference; the rules of small
+        cardinalities (a map's "exactly one visitedAt") stay as they were."""
+        return n > PAIRWISE_MAX
+
+    def _counted(self, e: Expr, x: str, n: int) -> tuple[list[Atom], list[Condition]]:
+        """Body atoms and conditions: ``x`` has at least ``n`` values of ``e`` known different, counted."""
+        v = "?v"
+        data = self.is_data(e.prop, e)
+        more, test = self._filler_test(v, e)
+        values = [self.prop_atom(x, e.prop, v)] + more
+        tests = [test] if test is not None else []
+        extra, conditions = count_at_least(x, values, tests, v, n, data)
+        if not data:
+            warning = counting_warning(str(e))
+            if warning not in self.warnings:
+                self.warnings.append(warning)
+        return values + extra, tests + conditions
 
     def require_different(self, pairs: list[tuple[str, str]], body: list[Atom], filters: list[Condition],
                           origin: str) -> tuple[list[Atom], list[Condition], frozenset]:
@@ -119,10 +143,14 @@ class RestrictionRules:
     def _lower_bound_rules(self, e: Expr, node: str, origin: str) -> None:
         x = "?x"
         n = 1 if e.kind == "some" else e.n
-        if n == 0:
+        if n == 0 or n >= UNREACHABLE:
             return
-        atoms, filters, pairs, _ = self._fillers(e, x, n)
-        atoms, filters, reads = self.require_different(pairs, atoms, filters, origin)
+        if self.counts(n):
+            atoms, filters = self._counted(e, x, n)
+            reads: frozenset = frozenset()
+        else:
+            atoms, filters, pairs, _ = self._fillers(e, x, n)
+            atoms, filters, reads = self.require_different(pairs, atoms, filters, origin)
         name = {"some": "cls-svf1", "min": "ext-min-card"}.get(e.kind, "ext-exact-card")
         if e.kind != "exact":
             self.emit(name, origin, atoms, Atom(x, T, node), filters, reads)
@@ -146,12 +174,17 @@ class RestrictionRules:
                       filters=filters, violation=(x, "?y1"),
                       message=f"{{x}} has a value of {nm(e.prop.iri)} but is in {e}")
             return
-        atoms, filters, pairs, ys = self._fillers(e, x, e.n + 1)
-        atoms = member + atoms
-        atoms, filters, reads = self.require_different(pairs, atoms, filters, origin)
-        self.emit("cls-maxqc3" if e.filler or e.datatype else "cls-maxc2", origin, atoms,
-                  filters=filters, reads=reads, violation=(x, *ys),
-                  message=f"{{x}} has more than {e.n} different values of {nm(e.prop.iri)} but is in {e}")
+        name = "cls-maxqc3" if e.filler or e.datatype else "cls-maxc2"
+        message = f"{{x}} has more than {e.n} different values of {nm(e.prop.iri)} but is in {e}"
+        if e.n + 1 >= UNREACHABLE:
+            return  # no store holds that many values (and e.n > 1: no sameAs rule below)
+        if self.counts(e.n + 1):
+            atoms, filters = self._counted(e, x, e.n + 1)
+            self.emit(name, origin, member + atoms, filters=filters, violation=(x,), message=message)
+        else:
+            atoms, filters, pairs, ys = self._fillers(e, x, e.n + 1)
+            atoms, filters, reads = self.require_different(pairs, member + atoms, filters, origin)
+            self.emit(name, origin, atoms, filters=filters, reads=reads, violation=(x, *ys), message=message)
         if e.n == 1 and not data:
             # two values that are not known different are the same individual
             atoms, filters, _, _ = self._fillers(e, x, 2)

@@ -2,22 +2,29 @@
 
 from __future__ import annotations
 
+import logging
+
 from pyoxigraph import NamedNode
 
 from ..store import Store
 from .generic import generic_rules
+from .guard import guard_rules
 from .implied import simplify
 from .model import TBoxReader
 from .owl import OwlCompiler
 from .rule import RuleSet
 from .swrl import SwrlCompiler
 
+logger = logging.getLogger("topostore.compile")
+
 
 def compile_ontology(store: Store, graph: NamedNode) -> RuleSet:
     """All rules for the ontology in ``graph``.
 
     Raises :class:`~topostore.errors.RuleCompileError` naming the rule and atom
-    when a SWRL rule or an axiom cannot be translated.
+    when a SWRL rule or an axiom cannot be translated, or when a rule would be
+    too large for the store to evaluate safely (:mod:`.guard`).  What the rules
+    do not reason completely is in ``warnings`` (also logged).
     """
     reader = TBoxReader(store, graph)
     tbox = reader.read()
@@ -36,4 +43,8 @@ def compile_ontology(store: Store, graph: NamedNode) -> RuleSet:
     rules.data_properties = set(tbox.data_properties)
     rules.object_properties = set(tbox.object_properties)
     rules.entailed_predicates = set(swrl.entailed_predicates)
+    rules.warnings = list(owl.warnings)
+    for warning in rules.warnings:
+        logger.warning("%s", warning)
+    guard_rules(rules)
     return rules
