@@ -41,10 +41,11 @@ def write_input(spec: str, work: Path) -> tuple[Path, dict[str, Any]]:
     """The N-Triples file of ``spec`` and what is known of it (its kind, size, the robot's neighbours)."""
     if spec.startswith("tbox:"):
         classes = int(spec.removeprefix("tbox:"))
-        return tbox.write(classes, work), {"kind": "tbox", "classes": classes, "label": f"tutorial-style TBox ({classes} classes)"}
+        label = f"tutorial-style TBox ({classes} classes)"
+        return tbox.write(classes, work), {"input_kind": "tbox", "classes": classes, "label": label}
     path, bench = maps.write(spec, work, RdfFormat.N_TRIPLES)
-    return path, {"kind": "map", "locations": bench.locations, "label": bench.label,
-                  "can_reach": bench.neighbours[bench.start]}
+    return path, {"input_kind": "map", "locations": bench.locations, "label": bench.label,
+                  "expected_can_reach": bench.neighbours[bench.start]}
 
 
 def individuals(path: Path, ns: str) -> list[str]:
@@ -78,9 +79,9 @@ def run_topostore(path: Path, ns: str, names: list[str]) -> tuple[float, float, 
         extra["types"] = {n: sorted(t.value.removeprefix(ns) for t in onto.types(NamedNode(ns + n))
                                     if t.value.startswith(ns)) for n in names}
     else:
-        reach = onto.object_values(NamedNode(maps.PREFIXES[""] + "canReach"), NamedNode(maps.PREFIXES[""] + maps.ROBOT))
-        extra["can_reach"] = sorted(maps.local(NamedNode(str(r).strip("<>"))) if not isinstance(r, NamedNode)
-                                    else maps.local(r) for r in reach)
+        ns = maps.PREFIXES[""]
+        reach = onto.object_values(NamedNode(ns + "canReach"), NamedNode(ns + maps.ROBOT), names=False)
+        extra["can_reach"] = sorted(maps.local(r) for r in reach)
     return loaded - start, done - loaded, extra
 
 
@@ -144,9 +145,10 @@ RUNNERS: dict[str, Callable[[Path, str, list[str]], tuple[float, float, dict[str
 
 def run(engine: str, spec: str, work: Path) -> dict[str, Any]:
     """One engine on one input: load and REASON seconds, peak RSS, and what it answered."""
+    work.mkdir(parents=True, exist_ok=True)
     path, info = write_input(spec, work)
-    names = individuals(path, tbox.NS) if info["kind"] == "tbox" else []
-    row: dict[str, Any] = {"kind": "full", "engine": engine, "input": spec, **info, "mismatches": []}
+    names = individuals(path, tbox.NS) if info["input_kind"] == "tbox" else []
+    row: dict[str, Any] = {"kind": "full", "engine": engine, "size": spec, **info, "mismatches": []}
     try:
         load_s, reason_s, extra = RUNNERS[engine](path, tbox.NS, names)
     except Exception as exc:  # noqa: BLE001 - a peer that fails (inconsistent, not installed) is a row saying so
@@ -154,8 +156,9 @@ def run(engine: str, spec: str, work: Path) -> dict[str, Any]:
         return row
     children = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss / 1024
     row.update(load_s=load_s, reason_s=reason_s, peak_rss_mib=max(peak_rss_mib(), children), **extra)
-    if info["kind"] == "map" and "can_reach" in extra and extra["can_reach"] != info["can_reach"]:
-        row["mismatches"].append(f"canReach of the robot: {extra['can_reach']} != expected {info['can_reach']}")
+    want = info.get("expected_can_reach")
+    if want is not None and "can_reach" in extra and extra["can_reach"] != want:
+        row["mismatches"].append(f"canReach of the robot: {extra['can_reach']} != expected {want}")
     return row
 
 
