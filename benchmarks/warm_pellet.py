@@ -31,8 +31,9 @@ SOURCE = Path(__file__).with_name("pellet") / "PelletStep.java"
 #: Pellet 2.3.1 on the 500-location chain holds a few GiB; a fixed heap (pages are touched only when
 #: used) keeps G1 from resizing it between steps, which made steps at 200 locations 1.5-2x slower
 JVM_OPTIONS = ["-Xms6g", "-Xmx6g"]
-#: moves walked on the scratch copy at most (the seconds usually run out first on big maps)
-WARM_STEPS = 600
+#: moves walked on the scratch copy at most (the seconds run out first: 600 steps of the example map
+#: under load left its last steps at 6 ms where a longer walk reaches 1.5 ms)
+WARM_STEPS = 2000
 
 
 class PeerError(RuntimeError):
