@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import signal
 import subprocess
 import sys
 import tempfile
@@ -92,9 +93,23 @@ def run_size(cmd: list[str], timeout: float, size: str, kind: str) -> dict[str, 
     except subprocess.TimeoutExpired as exc:
         return _killed(kind, size, timeout, exc.stdout)
     lines = done.stdout.strip().splitlines()
+    why = f"exit {done.returncode}{_signal_name(done.returncode)}: {done.stderr.strip()[-800:]}"
     if not lines or not lines[-1].startswith("{"):
-        return _failed(kind, size, f"exit {done.returncode}: {done.stderr.strip()[-800:]}")
-    return json.loads(lines[-1])
+        return _failed(kind, size, why)
+    row = json.loads(lines[-1])
+    if done.returncode not in (0, 3):  # 3: answers differ (in the row); anything else died mid-run
+        row["error"] = f"{why} (the figures are what it printed before, during {row.pop('doing', 'the run')})"
+    return row
+
+
+def _signal_name(code: int) -> str:
+    """' (SIGKILL)' for a process killed by a signal (the kernel's OOM killer sends SIGKILL)."""
+    if code >= 0:
+        return ""
+    try:
+        return f" ({signal.Signals(-code).name})"
+    except ValueError:
+        return ""
 
 
 def _killed(kind: str, size: str, timeout: float, stdout: str | bytes | None) -> dict[str, Any]:

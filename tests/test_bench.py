@@ -13,7 +13,7 @@ import pytest
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # the benchmarks package lives beside src/
 
 from benchmarks import compare, maps, report, scale  # noqa: E402
-from benchmarks.__main__ import _killed  # noqa: E402
+from benchmarks.__main__ import _killed, run_size  # noqa: E402
 from benchmarks.timing import counted, median, p95  # noqa: E402
 from benchmarks.walk import Answers, Move, expected, plan  # noqa: E402
 from benchmarks.warm_pellet import compile_peer  # noqa: E402
@@ -88,3 +88,14 @@ def test_step_summaries() -> None:
     assert median(times) == 10.5
     assert p95(times) == 19.0
     assert median([3.0, 1.0]) == 2.0 and p95([3.0]) == 3.0 and median([]) is None
+
+
+def test_a_size_that_dies_mid_run_is_a_failure_not_its_last_progress_row(tmp_path: Path,
+                                                                         monkeypatch: pytest.MonkeyPatch) -> None:
+    script = tmp_path / "dies.py"
+    script.write_text('import json, os, signal\nprint(json.dumps({"kind": "scale", "size": "8", "label": "chain 8", '
+                      '"doing": "load + first REASON", "mismatches": []}), flush=True)\n'
+                      'os.kill(os.getpid(), signal.SIGKILL)\n')
+    monkeypatch.setenv("PYTHONPATH", str(tmp_path))  # the size runs as `python -m dies`
+    row = run_size(["dies"], 60, "8", "scale")
+    assert row["error"].startswith("exit -9 (SIGKILL)") and "during load + first REASON" in row["error"]
