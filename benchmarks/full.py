@@ -5,7 +5,8 @@ ABox, as :mod:`benchmarks.maps` writes it) or ``tbox:N``, the tutorial-style TBo
 (:mod:`benchmarks.tbox`).  Every engine reads the very same N-Triples file, in a process of its own
 so that its peak RSS is its own (Pellet's JVM is a child: the larger of the two is reported):
 
-* ``topostore``: ``Ontology.load`` then ``reason(mode="full")``;
+* ``topostore``: ``Ontology.load`` then ``reason(mode="full")``, its time limit lifted
+  when run as a program (:mod:`benchmarks.limits`);
 * ``reasonable`` (Rust, OWL 2 RL; no SWRL, so on the maps it does the OWL part only);
 * ``owlrl`` (pure Python, OWL 2 RL, over rdflib);
 * ``pellet``: Pellet 2.3.1 through Owlready2's ``sync_reasoner_pellet`` (its JVM start and file
@@ -30,6 +31,7 @@ from typing import Any
 from pyoxigraph import NamedNode, RdfFormat, parse
 
 from . import maps, tbox
+from .limits import lift_time_limit
 from .timing import peak_rss_mib
 
 ENGINES = ["topostore", "reasonable", "owlrl", "pellet"]
@@ -167,6 +169,7 @@ def main(argv: list[str] | None = None) -> None:
     parser.add_argument("engine", choices=ENGINES)
     parser.add_argument("input", help="a number of locations (a chain map) or tbox:N (N named classes)")
     args = parser.parse_args(argv)
+    lift_time_limit()  # topostore's full REASON is measured, not refused: the suite's timeout bounds the run
     with tempfile.TemporaryDirectory(prefix="topostore-bench-") as tmp:
         row = run(args.engine, args.input, Path(tmp))
     print(json.dumps(row))

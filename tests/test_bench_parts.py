@@ -152,3 +152,18 @@ def test_verdicts_say_met_and_missed() -> None:
     assert "lowest 3.00× (chain 8) — missed" in got[0] and got[1].endswith("0.80 ms — met")
     assert got[-2].endswith("12.0 ms — met") and got[-1] == "- step(100,000) / step(1,000) ≤ 5: 6.0 — missed"
     assert report.speedup_cell(sums[0]) == "5.00× met" and report.speedup_cell(sums[2]) == "–"
+
+
+def test_the_reasoning_time_limit_is_lifted_for_measurements() -> None:
+    from benchmarks.limits import BENCH_MAX_SECONDS, lift_time_limit
+    from topostore import Ontology
+    from topostore.reason import limits as reason_limits
+
+    before = reason_limits.DEFAULTS
+    try:
+        reason_limits.set_defaults(reason_limits.ReasonLimits(max_rounds=77, max_seconds=1.0))
+        lifted = lift_time_limit()
+        assert lifted.max_seconds == BENCH_MAX_SECONDS and lifted.max_rounds == 77  # only the time changes
+        assert Ontology().limits.max_seconds == BENCH_MAX_SECONDS
+    finally:
+        reason_limits.set_defaults(before)

@@ -141,7 +141,7 @@ public class PelletStep {
         List<String> times = new ArrayList<>();
         for (String line : Files.readAllLines(moves.toPath())) {
             if (line.isBlank()) continue;
-            if ((System.nanoTime() - start) / 1e9 > seconds) break;
+            if (!times.isEmpty() && (System.nanoTime() - start) / 1e9 > seconds) break;  // one step at least
             long s0 = System.nanoTime();
             scratch.step(times.size() + 1, parse(line));
             times.add(ms(System.nanoTime() - s0));
