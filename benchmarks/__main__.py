@@ -172,7 +172,7 @@ def main(argv: list[str] | None = None) -> None:
                   for size in args.remote]
     if "full" in args.parts:
         extra += full_rows(args)
-    text = "\n\n".join(t for t in (table(rows, info) if rows else "", extra_tables(extra, rows)) if t)
+    text = "\n\n".join(t for t in (table(rows, info) if rows else "", extra_tables(extra)) if t)
     print("\n" + text)
     (args.out / "table.md").write_text(text + "\n")
     (args.out / "results.json").write_text(json.dumps({"machine": info, "rows": rows, "extra": extra}, indent=1))

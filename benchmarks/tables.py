@@ -17,7 +17,7 @@ DRIFT_MAX, REQUESTS_MAX = 1.5, 3
 FULL_10K_S, FULL_100K_S, FULL_100K_MIB, GROWTH_MAX, TBOX_S = 1.0, 10.0, 1536, 12.0, 0.3
 
 
-def extra_tables(rows: list[dict[str, Any]], step_rows: list[dict[str, Any]] | None = None) -> str:
+def extra_tables(rows: list[dict[str, Any]]) -> str:
     """Every table the rows call for, each followed by its targets; '' when there are no rows."""
     parts = []
     for kind, render in (("drift", drift_table), ("remote", remote_table), ("full", full_table)):
