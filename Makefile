@@ -4,7 +4,7 @@ VENV   := .venv
 BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.installed
 
-.PHONY: run test bench bench-quick bench-stores demo clean browser vendor-js ros-deps virtuoso java fuzz load
+.PHONY: run test bench bench-quick bench-drift bench-stores demo clean browser vendor-js ros-deps virtuoso java fuzz load
 
 $(STAMP): pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -67,9 +67,11 @@ java:
 	@command -v javac >/dev/null || [ "$$(id -u)" != 0 ] || ! command -v apt-get >/dev/null || \
 		{ apt-get update -q && apt-get install -y -q openjdk-17-jdk-headless; }
 
-# Benchmarks need the `bench` extra (Owlready2 0.49 for the Pellet jars) and a JDK for the warm
-# Pellet peer.  `bench`: every size up to 100,000 locations; `bench-quick`: a few minutes, no 100,000.
-# Results go to out/bench/.
+# Benchmarks need the `bench` extra (Owlready2 0.49 for the Pellet jars, reasonable for the full-REASON
+# peer) and a JDK for the warm Pellet peer.  `bench`: the step table up to 100,000 locations, the
+# 4,000-step drift walks, the remote store and the full-REASON rows (about an hour); `bench-quick`:
+# the same without 500 and 100,000 locations and without the drift walks (under 10 minutes);
+# `bench-drift`: the drift walks alone.  Results go to out/bench/.
 bench: $(STAMP) java
 	$(BIN)/pip install --quiet -e ".[bench]"
 	$(BIN)/python -m benchmarks
@@ -81,6 +83,9 @@ bench-stores: $(STAMP)
 bench-quick: $(STAMP) java
 	$(BIN)/pip install --quiet -e ".[bench]"
 	$(BIN)/python -m benchmarks --quick
+
+bench-drift: $(STAMP)
+	$(BIN)/python -m benchmarks --parts drift
 
 # Fuzz every entry point with many more cases than `make test` (>= 100,000 in all); prints
 # "fuzz: N cases tried, V violations found".  The property-based suites run their full example

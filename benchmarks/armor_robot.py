@@ -24,8 +24,9 @@ IRI = MAP_NS.rstrip("#")
 class ArmorRobot:
     """One ArmorService with the map loaded as one reference."""
 
-    def __init__(self, map_file: Path) -> None:
-        self.service = ArmorService()
+    def __init__(self, map_file: Path, store: str | None = None) -> None:
+        """LOAD ``map_file``; ``store``: where the reference lives (None: memory; a SPARQL server's URL)."""
+        self.service = ArmorService(store=store)
         start = time.perf_counter()
         # LOAD parses the file and runs the first (full) REASON
         self._call("LOAD", "FILE", "", [str(map_file), IRI, "false", "PELLET", "true"])
@@ -56,6 +57,10 @@ class ArmorRobot:
         if not reasoned.is_consistent:
             raise RuntimeError(f"topostore found the map inconsistent after moving to {move.to}")
         return elapsed, answers
+
+    def close(self) -> None:
+        """Release the service's stores (a remote store's HTTP client)."""
+        self.service.close()
 
     def _call(self, command: str, primary: str, secondary: str, args: list[str]) -> ArmorResponse:
         reply = self.service.call(ArmorRequest("bench", REFERENCE, command, primary, secondary, args))

@@ -1,8 +1,9 @@
 """One map, topostore against warm Pellet: ``python -m benchmarks.compare SIZE --classes DIR`` prints JSON.
 
 Both reasoners get the same file and the same planned moves (:mod:`benchmarks.walk`).  Pellet
-runs first, in its own JVM, until its steps are done or its time budget is spent (never fewer
-than ``min_steps``); topostore then runs every step in this process.  After the load and after
+runs first, in its own JVM, warmed on a scratch copy of the map (:mod:`benchmarks.warm_pellet`),
+until its steps are done or its time budget is spent (never fewer than ``min_steps``); topostore
+then runs every step in this process.  After the load and after
 every step both answers are compared with each other and with the expected answers: any
 difference is listed in ``mismatches``, which the suite reports loudly and fails on.
 """
@@ -11,6 +12,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import statistics
 import sys
 import tempfile
 import time
@@ -24,7 +26,7 @@ from . import maps
 from .armor_robot import ArmorRobot
 from .timing import median, p95, peak_rss_mib
 from .walk import Answers, Move, expected, plan
-from .warm_pellet import PeerError, WarmPellet, unavailable
+from .warm_pellet import WARM_STEPS, PeerError, WarmPellet, unavailable
 
 
 @dataclass
@@ -36,6 +38,7 @@ class Limits:
     min_steps: int = 4  # ... but not before this many (so that step 4, the first counted, is there)
     ready_timeout_s: float = 300.0  # Pellet's load + first REASON
     step_timeout_s: float = 120.0  # one Pellet step
+    pellet_warmup_s: float = 20.0  # the JVM walks a scratch copy of the map this long before the load
 
 
 def run(size: str, classes: Path | None, limits: Limits, work: Path) -> dict[str, Any]:
@@ -49,7 +52,8 @@ def run(size: str, classes: Path | None, limits: Limits, work: Path) -> dict[str
     if classes is None:
         row["pellet"] = {"status": "skipped", "why": unavailable() or "not asked for (--no-pellet)"}
     else:
-        row["pellet"] = run_pellet(classes, path, moves, limits, work, pellet_answers)
+        warmup = plan(bench, WARM_STEPS) if limits.pellet_warmup_s > 0 else []
+        row["pellet"] = run_pellet(classes, path, moves, limits, work, pellet_answers, warmup)
     topo_answers: list[Answers] = []
     row["topostore"] = run_topostore(path, moves, topo_answers)
     row["mismatches"] = mismatches(truth, topo_answers, pellet_answers)
@@ -58,12 +62,14 @@ def run(size: str, classes: Path | None, limits: Limits, work: Path) -> dict[str
 
 
 def run_pellet(classes: Path, path: Path, moves: list[Move], limits: Limits, work: Path,
-               answers: list[Answers]) -> dict[str, Any]:
-    """Pellet's load, first REASON and steps; its answers are appended to ``answers``."""
+               answers: list[Answers], warmup: list[Move] | None = None) -> dict[str, Any]:
+    """Pellet's warm-up (on a scratch copy), load, first REASON and steps; answers go to ``answers``."""
     out: dict[str, Any] = {"status": "ok", "step_ms": []}
     try:
-        with WarmPellet(classes, path, MAP_NS, work / "pellet.log", limits.ready_timeout_s) as peer:
+        with WarmPellet(classes, path, MAP_NS, work / "pellet.log", limits.ready_timeout_s, warmup,
+                        limits.pellet_warmup_s) as peer:
             out.update(load_ms=peer.ready["load_ms"], first_ms=peer.ready["first_ms"], java=peer.ready["java"])
+            out.update(warmup_summary(peer.ready))
             answers.append(_answers(peer.ready))
             spent = 0.0
             for k, move in enumerate(moves, 1):
@@ -80,6 +86,14 @@ def run_pellet(classes: Path, path: Path, moves: list[Move], limits: Limits, wor
         out["why"] = str(exc)
     out["median_ms"], out["p95_ms"] = median(out["step_ms"]), p95(out["step_ms"])
     return out
+
+
+def warmup_summary(ready: dict[str, Any]) -> dict[str, Any]:
+    """The warm-up's extent and the JIT's curve: step medians of its first and last 20 steps."""
+    times = ready.get("warm_step_ms") or []
+    return {"warm_steps": len(times), "warm_s": ready.get("warm_ms", 0.0) / 1000,
+            "warm_first_ms": statistics.median(times[:20]) if times else None,
+            "warm_last_ms": statistics.median(times[-20:]) if times else None}
 
 
 def run_topostore(path: Path, moves: list[Move], answers: list[Answers]) -> dict[str, Any]:
@@ -119,8 +133,10 @@ def main(argv: list[str] | None = None) -> None:
     parser.add_argument("--classes", type=Path, help="the compiled peer (benchmarks.warm_pellet.compile_peer)")
     parser.add_argument("--steps", type=int, default=Limits.steps)
     parser.add_argument("--pellet-budget", type=float, default=Limits.pellet_budget_s)
+    parser.add_argument("--pellet-warmup", type=float, default=Limits.pellet_warmup_s,
+                        help="seconds the JVM walks a scratch copy of the map first (0: none)")
     args = parser.parse_args(argv)
-    limits = Limits(steps=args.steps, pellet_budget_s=args.pellet_budget)
+    limits = Limits(steps=args.steps, pellet_budget_s=args.pellet_budget, pellet_warmup_s=args.pellet_warmup)
     start = time.perf_counter()
     with tempfile.TemporaryDirectory(prefix="topostore-bench-") as tmp:
         row = run(args.size, args.classes, limits, Path(tmp))

@@ -4,6 +4,11 @@ The jars are the ones Owlready2 0.49 bundles (Pellet 2.3.1, OWL API 3.4.3), foun
 installed package; the classes are compiled at bench time into a folder the caller gives (nothing
 compiled is kept in the source tree).  The JVM runs as a child process reading moves on stdin and
 answering one JSON line per step; it times each step itself, so the pipe is not in the figures.
+
+A fresh JVM is not the JVM aRMOR has been running for hours: until the JIT has compiled Pellet's
+hot paths its steps on the example map are 2-5x slower.  The peer is therefore warmed first, on a
+scratch copy of the map walked for ``warm_seconds`` (see PelletStep.java), and the heap is fixed
+(``-Xms`` = ``-Xmx``) so that G1 does not grow it in the middle of the timed steps.
 """
 
 from __future__ import annotations
@@ -23,8 +28,12 @@ from typing import IO, Any
 from .walk import Move
 
 SOURCE = Path(__file__).with_name("pellet") / "PelletStep.java"
-#: Pellet 2.3.1 on the 500-location chain holds a few GiB
-JVM_OPTIONS = ["-Xmx6g"]
+#: Pellet 2.3.1 on the 500-location chain holds a few GiB; a fixed heap (pages are touched only when
+#: used) keeps G1 from resizing it between steps, which made steps at 200 locations 1.5-2x slower
+JVM_OPTIONS = ["-Xms6g", "-Xmx6g"]
+#: moves walked on the scratch copy at most (the seconds run out first: 600 steps of the example map
+#: under load left its last steps at 6 ms where a longer walk reaches 1.5 ms)
+WARM_STEPS = 2000
 
 
 class PeerError(RuntimeError):
@@ -78,9 +87,17 @@ def compile_peer(classes: Path) -> Path:
 class WarmPellet:
     """One JVM holding one ontology and one buffering Pellet reasoner; ``with`` stops it."""
 
-    def __init__(self, classes: Path, map_file: Path, namespace: str, log: Path, ready_timeout: float) -> None:
+    def __init__(self, classes: Path, map_file: Path, namespace: str, log: Path, ready_timeout: float,
+                 warmup: list[Move] | None = None, warm_seconds: float = 0.0) -> None:
+        """Start the JVM; with ``warmup`` moves it first walks a scratch copy of the map for up to
+        ``warm_seconds`` (``ready_timeout`` is for the load and first REASON after that)."""
         cmd = ["java", *JVM_OPTIONS, "-cp", f"{pellet_jars() / '*'}{os.pathsep}{classes}", "PelletStep",
                str(map_file), namespace]
+        if warmup:
+            moves = log.with_suffix(".warmup")
+            moves.write_text("".join(step_line(m) for m in warmup))
+            cmd += ["--warmup", str(moves), "--warm-seconds", str(warm_seconds)]
+            ready_timeout += warm_seconds
         self._log = log.open("w")
         self._proc = subprocess.Popen(cmd, stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=self._log,
                                       text=True, start_new_session=True)
@@ -95,9 +112,8 @@ class WarmPellet:
 
     def step(self, move: Move, timeout: float) -> dict[str, Any]:
         """Send one move; the peer's answer {step, ms, flush_ms, queries_ms, canReach, urgent}."""
-        old_visit = "-" if move.old_visit is None else str(move.old_visit)
         assert self._proc.stdin is not None
-        self._proc.stdin.write(f"STEP {move.to} {move.frm} {move.now} {move.old_now} {old_visit}\n")
+        self._proc.stdin.write(step_line(move))
         self._proc.stdin.flush()
         return self._answer(timeout, f"a step to {move.to}")
 
@@ -136,6 +152,12 @@ class WarmPellet:
 
     def __exit__(self, *exc: object) -> None:
         self.close()
+
+
+def step_line(move: Move) -> str:
+    """The peer's STEP line for a move (``-``: the place had no visit time, REPLACE is an ADD)."""
+    old_visit = "-" if move.old_visit is None else str(move.old_visit)
+    return f"STEP {move.to} {move.frm} {move.now} {move.old_now} {old_visit}\n"
 
 
 def _pump(stream: IO[str] | None, lines: queue.Queue[str | None]) -> None:

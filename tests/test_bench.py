@@ -13,7 +13,7 @@ import pytest
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # the benchmarks package lives beside src/
 
 from benchmarks import compare, maps, report, scale  # noqa: E402
-from benchmarks.__main__ import _killed  # noqa: E402
+from benchmarks.__main__ import _killed, run_size  # noqa: E402
 from benchmarks.timing import counted, median, p95  # noqa: E402
 from benchmarks.walk import Answers, Move, expected, plan  # noqa: E402
 from benchmarks.warm_pellet import compile_peer  # noqa: E402
@@ -24,14 +24,17 @@ NOW = 1665579740
 @pytest.mark.skipif(shutil.which("java") is None, reason="the warm Pellet peer needs a JDK (java and javac)")
 def test_example_map_topostore_and_warm_pellet_agree(tmp_path: Path) -> None:
     classes = compile_peer(tmp_path / "classes")
-    row = compare.run(maps.EXAMPLE, classes, compare.Limits(steps=2), tmp_path)
+    row = compare.run(maps.EXAMPLE, classes, compare.Limits(steps=2, pellet_warmup_s=1.0), tmp_path)
     assert row["mismatches"] == []
     assert row["compared_steps"] == 2
     assert row["pellet"]["status"] == "ok" and len(row["pellet"]["step_ms"]) == 2
+    # the JVM walked a scratch copy first (at least one step, however long the first took)
+    assert row["pellet"]["warm_steps"] >= 1 and row["pellet"]["warm_last_ms"] > 0
     assert len(row["topostore"]["step_ms"]) == 2 and row["topostore"]["median_ms"] > 0
     assert (row["locations"], row["doors"]) == (3, 2)
     text = report.table([row], report.machine())
     assert "| 3 | example file (3) |" in text and "equal (2 steps)" in text and "MISMATCH" not in text
+    assert "Pellet warm-up on a scratch copy" in text and "Targets (issue 20):" in text
     report.write_csv([row], tmp_path / "bench.csv")
     with (tmp_path / "bench.csv").open() as f:
         written = list(csv.DictReader(f))
@@ -85,3 +88,14 @@ def test_step_summaries() -> None:
     assert median(times) == 10.5
     assert p95(times) == 19.0
     assert median([3.0, 1.0]) == 2.0 and p95([3.0]) == 3.0 and median([]) is None
+
+
+def test_a_size_that_dies_mid_run_is_a_failure_not_its_last_progress_row(tmp_path: Path,
+                                                                         monkeypatch: pytest.MonkeyPatch) -> None:
+    script = tmp_path / "dies.py"
+    script.write_text('import json, os, signal\nprint(json.dumps({"kind": "scale", "size": "8", "label": "chain 8", '
+                      '"doing": "load + first REASON", "mismatches": []}), flush=True)\n'
+                      'os.kill(os.getpid(), signal.SIGKILL)\n')
+    monkeypatch.setenv("PYTHONPATH", str(tmp_path))  # the size runs as `python -m dies`
+    row = run_size(["dies"], 60, "8", "scale")
+    assert row["error"].startswith("exit -9 (SIGKILL)") and "during load + first REASON" in row["error"]
