@@ -136,9 +136,11 @@ class Rule:
     written_conditions: tuple[Condition, ...] | None = field(default=None, compare=False)
     #: the conditions as SPARQL lines (rendered once: every evaluation text contains them)
     filters: str = field(init=False, repr=False, compare=False)
+    _reads: frozenset = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "filters", render(self.conditions))
+        object.__setattr__(self, "_reads", frozenset(a.read_key() for a in self.body) | self.filter_reads)
 
     @property
     def premises(self) -> tuple[Atom, ...]:
@@ -170,7 +172,7 @@ class Rule:
         return self.head is None
 
     def reads(self) -> frozenset:
-        return frozenset(a.read_key() for a in self.body) | self.filter_reads
+        return self._reads
 
     def writes(self) -> ReadKey | None:
         return self.head.read_key() if self.head else None

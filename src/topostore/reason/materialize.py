@@ -260,17 +260,6 @@ def _merge(parts) -> KeyCounts:
     return preds, classes
 
 
-def _feeds(write: tuple, read: tuple) -> bool:
-    """Whether facts with key ``write`` can match a body pattern with key ``read``."""
-    if write == read:
-        return True
-    if read == ("p", str(TYPE)):
-        return write[0] == "t"
-    if write == ("p", str(TYPE)):
-        return read[0] == "t"
-    return False
-
-
 def evaluation_order(rules: list[Rule], indexes: list[int]) -> tuple[list[list[int]], list[int]]:
     """Strongly connected components of the rules' dependency graph, writers first.
 
@@ -278,13 +267,27 @@ def evaluation_order(rules: list[Rule], indexes: list[int]) -> tuple[list[list[i
     and are returned apart (second value), to run after the ordered pass.
     """
     wild = [i for i in indexes if rules[i].writes() == ("*",) or ("*",) in rules[i].reads()]
-    nodes = [i for i in indexes if i not in set(wild)]
-    succ: dict[int, list[int]] = {i: [] for i in nodes}
+    skipped = set(wild)
+    nodes = [i for i in indexes if i not in skipped]
+    # readers per key, so that the edges cost their number, not rules² (a TBox of 100 classes
+    # compiles to thousands of rules).  A written key reaches the readers of the same key; a class
+    # membership also reaches patterns ``?x rdf:type ?c``, and those reach every class reader.
+    readers: dict[tuple, list[int]] = {}
+    for b in nodes:
+        for key in rules[b].reads():
+            readers.setdefault(key, []).append(b)
+    type_key = ("p", str(TYPE))
+    class_readers = [b for key, bs in readers.items() if key[0] == "t" for b in bs]
+    position = {b: n for n, b in enumerate(nodes)}
+    succ: dict[int, list[int]] = {}
     for a in nodes:
         w = rules[a].writes()
-        for b in nodes:
-            if any(_feeds(w, r) for r in rules[b].reads()):
-                succ[a].append(b)
+        found = set(readers.get(w, ()))
+        if w[0] == "t":
+            found.update(readers.get(type_key, ()))
+        elif w == type_key:
+            found.update(class_readers)
+        succ[a] = sorted(found, key=position.__getitem__)
     return strongly_connected(nodes, succ), wild
 
 
