@@ -61,6 +61,8 @@ def _position_edges(rules: Iterable[Rule]) -> dict[Position, set[Position]]:
         (atom,), head = rule.body, rule.head
         if not (_is_var(atom.s) and _is_var(head.s)) or _is_var(atom.p) or _is_var(head.p):
             continue
+        if atom.p != _TYPE and not _is_var(atom.o):
+            continue  # p(x, v) ⟹ A(x) (a hasValue) says nothing of p(x, y) in general
         sources = _positions(atom)
         if head.p == _TYPE:
             if _is_var(head.o):
