@@ -16,7 +16,7 @@ def bench(args: tuple[str, ...]) -> None:
 
     \b
     Example (`make bench-quick` is the quick suite, `make bench` the whole one):
-      topostore bench --sizes example 8 --scale-sizes --steps 5 --no-pellet --out out/bench-example
+      topostore bench --parts steps --sizes example 8 --scale-sizes --steps 5 --no-pellet --out out/bench-example
     """
     from .resources import source_root
 
