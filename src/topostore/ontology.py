@@ -345,7 +345,7 @@ class Ontology(OntologyFiles, OntologyQueries):
         """Bring the class views to the new report (dropped when the visible graphs changed or the run was full)."""
         same_graphs = previous is not None and previous.consistent == self._report.consistent
         touched = self._reasoner.touched_types if same_graphs else None
-        self.views.advance(previous, self._report, touched, self._is_instance)
+        self.views.advance(previous, self._report, touched, self._instance_flags)
 
     @property
     def report(self) -> ReasonReport | None:

@@ -66,12 +66,14 @@ class OntologyQueries:
                     found[s] = None
         return list(found)
 
-    def _is_instance(self, s: Term, c: NamedNode) -> bool:
-        """Whether ``s`` is one of :meth:`instances` of ``c`` (the test a class view re-decides touched members by)."""
-        if is_internal(s) and not is_skolem(s):
-            return False
-        t = Triple(s, TYPE, c)
-        return any(self.store.contains(t, g) for g in self.visible_graphs())
+    def _instance_flags(self, pairs: list[tuple[Term, NamedNode]]) -> list[bool]:
+        """Whether each (individual, class) pair is one of :meth:`instances` (what a class view re-decides),
+        in one batch of look-ups per visible graph."""
+        flags = [False] * len(pairs)
+        triples = [Triple(s, TYPE, c) for s, c in pairs]
+        for g in self.visible_graphs():
+            flags = [f or found for f, found in zip(flags, self.store.contains_each(triples, g))]
+        return [f and (not is_internal(s) or is_skolem(s)) for f, (s, _) in zip(flags, pairs)]
 
     def object_values(self, prop: str | NamedNode, individual: str | NamedNode, names: bool = True) -> list:
         vals = [o for o in self._objects(self.iri(individual), self.iri(prop)) if isinstance(o, NamedNode)]

@@ -238,6 +238,10 @@ class Store(LiteralForms, PersistedState):
     def contains(self, t: Triple, graph: NamedNode) -> bool:
         return self._present([Quad(t.subject, t.predicate, t.object, graph)])[0]
 
+    def contains_each(self, triples: list[Triple], graph: NamedNode) -> list[bool]:
+        """Whether each triple is in ``graph``: one look-up batch (one request on a remote store)."""
+        return self._present([Quad(t.subject, t.predicate, t.object, graph) for t in triples])
+
     def triples(
         self, s: Term | None = None, p: NamedNode | None = None, o: Term | None = None, graph: NamedNode | None = None
     ) -> Iterator[Triple]:

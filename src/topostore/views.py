@@ -110,19 +110,19 @@ class ClassViews:
         return view
 
     def advance(self, before: object, after: object, touched: Iterable[tuple[Term, NamedNode]] | None,
-                is_member: Callable[[Term, NamedNode], bool]) -> None:
+                are_members: Callable[[list[tuple[Term, NamedNode]]], list[bool]]) -> None:
         """Bring the views of ``before`` to ``after``: re-decide each touched (individual, class) pair.
 
-        ``touched`` None (a full REASON, or a run that cannot say) drops the views.
+        ``touched`` None (a full REASON, or a run that cannot say) drops the views; ``are_members``
+        decides a batch of pairs at once.
         """
         if touched is None or before is not self._owner or before is None:
             self.clear()
             return
-        for s, cls in touched:
-            view = self._views.get(cls)
-            if view is None:
-                continue
-            was, now = s in view.members, is_member(s, cls)
+        pairs = [(s, cls) for s, cls in touched if cls in self._views]
+        for (s, cls), now in zip(pairs, are_members(pairs) if pairs else []):
+            view = self._views[cls]
+            was = s in view.members
             if now and not was:
                 view.members[s] = None
                 for r in view.rendered.values():
