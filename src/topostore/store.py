@@ -188,28 +188,32 @@ class Store(LiteralForms, PersistedState):
         o = quad.object
         return (quad.subject, quad.predicate, value_key(o) if isinstance(o, Literal) else o, quad.graph_name)
 
-    def _present(self, quads: list[Quad]) -> list[bool]:
+    def _present(self, quads: list[Quad], keys: list[tuple] | None = None) -> list[bool]:
+        """Whether each quad is in the store as the open transaction sees it (``keys``: their :meth:`_key`)."""
         pending, known = self._pending or {}, self._known
-        unknown = [q for q in quads if self._key(q) not in pending and self._key(q) not in known]
-        found = dict(zip(map(self._key, unknown), self._has_many(unknown), strict=True)) if unknown else {}
+        keys = keys if keys is not None else [self._key(q) for q in quads]
+        unknown = [(q, k) for q, k in zip(quads, keys) if k not in pending and k not in known]
+        found = dict(zip((k for _, k in unknown), self._has_many([q for q, _ in unknown]), strict=True)) \
+            if unknown else {}
         if self._pending is not None:
             known.update(found)
-        return [pending[k][1] if k in pending else known[k] if k in known else found[k] for k in map(self._key, quads)]
+        return [pending[k][1] if k in pending else known[k] if k in known else found[k] for k in keys]
 
     # ------------------------------------------------------------ quads
     def add(self, triples: Iterable[Triple], graph: NamedNode) -> int:
         """Add triples to ``graph``; returns how many were new."""
         quads = list(dict.fromkeys(Quad(t.subject, t.predicate, t.object, graph) for t in triples))
+        keys = [self._key(q) for q in quads]  # a literal's value key is the costly part of a load: once each
         with self.transaction():
-            new = [q for q, present in zip(quads, self._present(quads), strict=True) if not present]
-            for q in new:  # pending True: absent from the committed store; False: present there
-                self._toggle(q, True)
+            new = [(q, k) for q, k, present in zip(quads, keys, self._present(quads, keys), strict=True) if not present]
+            for q, k in new:  # pending True: absent from the committed store; False: present there
+                self._toggle(q, True, k)
         return len(new)
 
-    def _toggle(self, quad: Quad, add: bool) -> None:
+    def _toggle(self, quad: Quad, add: bool, key: tuple | None = None) -> None:
         """Record a pending add (or removal) of ``quad``: it cancels a pending change the other way,
         and a second spelling of one value (``1`` and ``"01"^^xsd:int``) changes nothing more."""
-        key = self._key(quad)
+        key = key if key is not None else self._key(quad)
         pending = self._pending.get(key)
         if pending is None:
             self._pending[key] = (quad, add)
@@ -222,10 +226,11 @@ class Store(LiteralForms, PersistedState):
 
     def remove(self, triples: Iterable[Triple], graph: NamedNode) -> int:
         quads = list(dict.fromkeys(Quad(t.subject, t.predicate, t.object, graph) for t in triples))
+        keys = [self._key(q) for q in quads]
         with self.transaction():
-            gone = [q for q, present in zip(quads, self._present(quads), strict=True) if present]
-            for q in gone:
-                self._toggle(q, False)
+            gone = [(q, k) for q, k, present in zip(quads, keys, self._present(quads, keys), strict=True) if present]
+            for q, k in gone:
+                self._toggle(q, False, k)
         return len(gone)
 
     def discard(self, triples: Iterable[Triple], graphs: Iterable[NamedNode]) -> None:
