@@ -18,7 +18,7 @@ Two details of the store are handled here so that nobody else has to know them:
 from __future__ import annotations
 
 import os
-from collections.abc import Callable, Iterable, Iterator, Mapping
+from collections.abc import Callable, Hashable, Iterable, Iterator, Mapping
 from contextlib import contextmanager
 from dataclasses import dataclass
 
@@ -184,9 +184,12 @@ class Store(LiteralForms, PersistedState):
         if meta:
             self._meta = {**(self._meta or {}), **meta}
 
-    def _key(self, quad: Quad) -> tuple:
+    def _key(self, quad: Quad) -> Hashable:
+        """What identifies a quad: itself, or with a literal object its value (``1`` = ``"01"^^xsd:int``)."""
         o = quad.object
-        return (quad.subject, quad.predicate, value_key(o) if isinstance(o, Literal) else o, quad.graph_name)
+        if isinstance(o, Literal):
+            return (quad.subject, quad.predicate, value_key(o), quad.graph_name)
+        return quad
 
     def _present(self, quads: list[Quad], keys: list[tuple] | None = None) -> list[bool]:
         """Whether each quad is in the store as the open transaction sees it (``keys``: their :meth:`_key`)."""
