@@ -16,10 +16,11 @@ import json
 import random
 import statistics
 import time
+from collections.abc import Callable
 
 from topostore import Ontology
 from topostore.events import event_json
-from topostore.mapgen import generate
+from topostore.mapgen import TopoMap, generate
 from topostore.resources import default_ontology
 
 
@@ -31,6 +32,12 @@ def steps(size: int, n: int, follow: bool, seed: int = 7) -> list[float]:
     onto.reason()
     if follow:
         onto.events.subscribe(lambda e: len(event_json(e, onto.prefix, "ref")), None, 100, every_reason=True)
+    return walk(onto, m, n, seed)
+
+
+def walk(onto: Ontology, m: TopoMap, n: int, seed: int = 7, after: Callable[[], object] = lambda: None) -> list[float]:
+    """Latencies of ``n`` robot steps on ``onto`` (the map ``m``, reasoned): move to a random neighbour,
+    advance the clock, mark the new location visited, REASON, then ``after`` (inside the timing)."""
     rng = random.Random(seed)
     robot, where = next(iter(m.robots.items()))
     now = m.now
@@ -43,6 +50,7 @@ def steps(size: int, n: int, follow: bool, seed: int = 7) -> list[float]:
         onto.replace(robot, "now", onto.value(now, "long"))
         onto.replace(where, "visitedAt", onto.value(now, "long"))
         onto.reason()
+        after()
         latencies.append(time.perf_counter() - start)
     return latencies
 

@@ -17,7 +17,6 @@ from __future__ import annotations
 
 import argparse
 import json
-import random
 import statistics
 import time
 from collections.abc import Callable
@@ -28,6 +27,8 @@ from topostore.http.history import History
 from topostore.http.inspector import describe_entity
 from topostore.mapgen import TopoMap, generate
 from topostore.resources import default_ontology
+
+from .events import walk
 
 
 def reasoned(m: TopoMap) -> Ontology:
@@ -54,23 +55,9 @@ def pages(onto: Ontology, m: TopoMap) -> dict[str, list[float]]:
 def steps(m: TopoMap, n: int, record: bool, seed: int = 7) -> list[float]:
     """Latencies of ``n`` robot steps on a fresh reasoned copy of the map, its history recorded or not."""
     onto = reasoned(m)
-    history = History(onto) if record else None
-    rng = random.Random(seed)
-    robot, where = next(iter(m.robots.items()))
-    now = m.now
-    latencies = []
-    for _ in range(n):
-        where = rng.choice(sorted(m.neighbours(where)) or [where])
-        now += rng.randint(1, 5)
-        start = time.perf_counter()
-        onto.replace(robot, "isIn", where)
-        onto.replace(robot, "now", onto.value(now, "long"))
-        onto.replace(where, "visitedAt", onto.value(now, "long"))
-        onto.reason()
-        if history is not None:
-            history.drain()
-        latencies.append(time.perf_counter() - start)
-    return latencies
+    if not record:
+        return walk(onto, m, n, seed)
+    return walk(onto, m, n, seed, after=History(onto).drain)
 
 
 def main(argv: list[str] | None = None) -> None:
