@@ -14,6 +14,7 @@ from .errors import (
     TopostoreError,
     UnknownTypeError,
 )
+from .notices import Notice, OntologyWarning
 from .ontology import Ontology, ReasonReport
 from .queries import QueryItem
 
@@ -21,7 +22,7 @@ __version__ = "0.1.0"
 
 __all__ = [
     "Ontology", "ReasonReport", "QueryItem", "TopostoreError", "InvalidNameError", "InvalidValueError",
-    "UnknownTypeError", "LoadError", "QueryError", "QueryTimeout", "RuleCompileError",
+    "UnknownTypeError", "LoadError", "QueryError", "QueryTimeout", "RuleCompileError", "OntologyWarning", "Notice",
 ]
 
 from .armor import ArmorRequest, ArmorResponse, ArmorService  # noqa: E402  (aRMOR command interface)

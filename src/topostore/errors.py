@@ -28,7 +28,12 @@ class LoadError(TopostoreError):
 
 
 class RuleCompileError(TopostoreError):
-    """A SWRL rule or OWL axiom that cannot be translated; names the rule and the atom."""
+    """A SWRL rule or OWL axiom that cannot be translated; names the rule and the atom.
+
+    ``rule``: the ``swrl:Imp`` node when a SWRL rule failed (None otherwise).
+    """
+
+    rule: object = None
 
 
 class QueryError(TopostoreError):

@@ -208,6 +208,8 @@ class RuleSet:
     object_properties: set[NamedNode] = field(default_factory=set)
     #: predicates whose entailed-only conclusions are published (see vocab.ENTAILED)
     entailed_predicates: set[NamedNode] = field(default_factory=set)
+    #: what the compilation set aside or reasons only in part (topostore.notices.Notice)
+    notices: list = field(default_factory=list)
 
     def add(self, rules: Iterable[Rule]) -> None:
         seen = {(r.name, r.where(), r.head) for r in self.rules}

@@ -122,7 +122,11 @@ class SwrlCompiler:
             enabled = self._one(node, NamedNode(SWRLA + "isRuleEnabled"))
             if isinstance(enabled, Literal) and enabled.value.strip().lower() in ("false", "0"):
                 continue
-            rules += self.compile_rule(node)
+            try:
+                rules += self.compile_rule(node)
+            except RuleCompileError as exc:
+                exc.rule = node  # which rule, so that a loader may set a repaired one aside
+                raise
         return rules
 
     # ------------------------------------------------------------------ reading
