@@ -174,7 +174,8 @@ def _rows(items: list[QueryItem]) -> tuple[list[str], list[list[str]]]:
 def query(
     args: tuple[str, ...], params: tuple[str, ...], fmt: str, list_only: bool, full_iris: bool, store: str | None
 ) -> None:
-    """Reason on FILE(s), then run a named query (see --list) or a SPARQL .rq file.
+    """Reason on FILE(s), then run a named query (see --list), a SQWRL query of the files by its
+    name, or a SPARQL .rq file.  ``--list`` with FILE(s) also lists their SQWRL queries.
 
     \b
     Examples:
@@ -187,6 +188,10 @@ def query(
         for q in named_queries().values():
             sig = " ".join(f"{name}={kind}" for name, kind in q.params.items())
             click.echo(f"{q.name}{' ' + sig if sig else ''}\n    {q.description}")
+        if args:  # FILE(s) given: their SQWRL queries too
+            _existing(args)
+            for name, query in load_files(args).rules.queries.items():
+                click.echo(f"{name}\n    {query.description}: columns {', '.join(query.columns)}")
         return
     if len(args) < (1 if store else 2):
         raise click.UsageError("give the ontology file(s) and then a query name or .rq file (topostore query --list)")

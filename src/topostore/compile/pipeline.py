@@ -28,6 +28,9 @@ def compile_ontology(store: Store, graph: NamedNode) -> RuleSet:
     rules.add(generic_rules())
     rules.add(owl.compile())
     rules.add(swrl_rules)
+    rules.add(swrl.query_rules)
+    rules.queries = dict(swrl.queries)
+    rules.notices += swrl.notices
     rules.named_classes = set(tbox.named_classes)
     rules.data_properties = set(tbox.data_properties)
     rules.object_properties = set(tbox.object_properties)

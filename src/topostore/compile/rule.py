@@ -210,6 +210,8 @@ class RuleSet:
     entailed_predicates: set[NamedNode] = field(default_factory=set)
     #: what the compilation set aside or reasons only in part (topostore.notices.Notice)
     notices: list = field(default_factory=list)
+    #: SQWRL queries of the ontology by name (compile.sqwrl.SqwrlQuery), run like named queries
+    queries: dict = field(default_factory=dict)
 
     def add(self, rules: Iterable[Rule]) -> None:
         seen = {(r.name, r.where(), r.head) for r in self.rules}

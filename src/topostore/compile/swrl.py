@@ -15,10 +15,11 @@ from dataclasses import dataclass, field
 from pyoxigraph import Literal, NamedNode
 
 from ..errors import RuleCompileError
+from ..notices import SQWRL_QUERY, Notice
 from ..store import Store
 from ..terms import Term, sparql
 from ..vocab import DIFFERENT_FROM, ENTAILED_PREFIX, SAME_AS, SWRL, SWRLA, TYPE, is_skolem, rdfs, swrl
-from . import builtins
+from . import builtins, sqwrl
 from . import condition as cond
 from .condition import Condition
 from .model import Expr, TBoxReader, is_datatype
@@ -105,6 +106,11 @@ class SwrlCompiler:
         self.expressions: list[Expr] = []
         #: predicates of conclusions drawn with entailed-only difference
         self.entailed_predicates: set[NamedNode] = set()
+        #: SQWRL queries by name, and what was said about them
+        self.queries: dict[str, sqwrl.SqwrlQuery] = {}
+        self.notices: list[Notice] = []
+        #: rules asking which pairs a SQWRL query's DifferentIndividuals atoms need checked
+        self.query_rules: list[Rule] = []
 
     def _one(self, s: Term, p: NamedNode) -> Term | None:
         v = self.store.objects(s, p, self.graph)
@@ -121,6 +127,9 @@ class SwrlCompiler:
         for node in self.store.subjects(TYPE, swrl("Imp"), self.graph):
             enabled = self._one(node, NamedNode(SWRLA + "isRuleEnabled"))
             if isinstance(enabled, Literal) and enabled.value.strip().lower() in ("false", "0"):
+                continue
+            if self.is_query(node):
+                self.compile_query(node)
                 continue
             try:
                 rules += self.compile_rule(node)
@@ -148,6 +157,56 @@ class SwrlCompiler:
                              if a is not None)
             out.append(SwrlAtom(kind, pred, args, node))
         return out
+
+    # ------------------------------------------------------------------ SQWRL
+    def is_query(self, node: Term) -> bool:
+        """A rule using SQWRL built-ins (in its head or body) is a query, not a rule."""
+        for part in ("head", "body"):
+            head = self._one(node, swrl(part))
+            atoms = self.store.list_items(head, self.graph) if head is not None else []
+            if any(sqwrl.is_sqwrl(self._one(a, swrl("builtin"))) for a in atoms):
+                return True
+        return False
+
+    def compile_query(self, node: Term) -> None:
+        """A SQWRL query → a SPARQL SELECT (:mod:`.sqwrl`); one that cannot be translated is set aside
+        with a notice, never refusing the file (a query concludes nothing)."""
+        name = self.rule_name(node)
+        try:
+            query, candidates = self._query(name, node)
+        except RuleCompileError as exc:
+            self.notices.append(Notice(SQWRL_QUERY, name, f"set aside, not translated: {exc}", node=node))
+            return
+        if name in self.queries:
+            self.notices.append(Notice(SQWRL_QUERY, name, "set aside: another SQWRL query has this name", node=node))
+            return
+        self.queries[name] = query
+        self.query_rules += candidates
+        self.notices.append(Notice(SQWRL_QUERY, name, f"a query, not a rule: run it by name ({', '.join(query.columns)})",
+                                   node=node))
+
+    def _query(self, name: str, node: Term) -> tuple[sqwrl.SqwrlQuery, list[Rule]]:
+        body_atoms = self.atoms(self._one(node, swrl("body")), name)
+        head_atoms = self.atoms(self._one(node, swrl("head")), name)
+        for a in body_atoms:
+            if a.kind == "BuiltinAtom" and sqwrl.is_sqwrl(a.predicate):
+                raise RuleCompileError(f"sqwrl:{sqwrl.operator(a.predicate)} in a query body (collections) "
+                                       "is not supported")
+        arg = _Names(self.variables)
+        body = self._body(name, body_atoms, arg)
+        parts = []
+        for a in head_atoms:
+            if a.kind != "BuiltinAtom" or not sqwrl.is_sqwrl(a.predicate):
+                raise RuleCompileError(f"{a.describe(name)} beside SQWRL built-ins in a head")
+            texts = [arg(x) for x in a.args]
+            _require_bound(name, a, texts, body.bound, "head ")
+            parts.append((sqwrl.operator(a.predicate), texts, list(a.args)))
+        head = sqwrl.read_head(parts)
+        patterns = body.patterns + [different_atom(x, y) for x, y, _ in body.different]
+        where = Rule(f"sqwrl:{name}", f"SQWRL query {name}", tuple(patterns), None, tuple(body.conditions),
+                     frozenset(body.reads)).where()
+        text, columns = sqwrl.select_text(head, where)
+        return sqwrl.SqwrlQuery(name, text, columns, f"SQWRL query {name}"), self._difference_rules(name, body)
 
     # ------------------------------------------------------------------ translation
     def compile_rule(self, node: Term) -> list[Rule]:
