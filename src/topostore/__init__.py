@@ -5,6 +5,7 @@ to SPARQL updates and run to a fixpoint on REASON.
 """
 
 from .errors import (
+    IncompleteOntologyError,
     InvalidNameError,
     InvalidValueError,
     LoadError,
@@ -23,6 +24,7 @@ __version__ = "0.1.0"
 __all__ = [
     "Ontology", "ReasonReport", "QueryItem", "TopostoreError", "InvalidNameError", "InvalidValueError",
     "UnknownTypeError", "LoadError", "QueryError", "QueryTimeout", "RuleCompileError", "OntologyWarning", "Notice",
+    "IncompleteOntologyError",
 ]
 
 from .armor import ArmorRequest, ArmorResponse, ArmorService  # noqa: E402  (aRMOR command interface)

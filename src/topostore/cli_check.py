@@ -20,7 +20,8 @@ from .store import Store
 
 @click.command()
 @click.argument("files", nargs=-1, required=True, metavar="FILE...")
-@click.option("--strict", is_flag=True, help="Exit 1 when an axiom is not reasoned completely or a rule was skipped.")
+@click.option("--strict", is_flag=True, help="Exit 1 when an axiom is not reasoned completely or a rule was skipped "
+              "(what a strict load, Ontology(strict=True), refuses).")
 @click.option("--input-format", metavar="F", help="Format of the input files when their extension does not tell.")
 def check(files: tuple[str, ...], strict: bool, input_format: str | None) -> None:
     """Load FILE(s) and print the load and profile report: rules repaired or skipped, SQWRL

@@ -36,6 +36,10 @@ class RuleCompileError(TopostoreError):
     rule: object = None
 
 
+class IncompleteOntologyError(RuleCompileError):
+    """A strict load refused an ontology topostore would not reason completely (the notices say why)."""
+
+
 class QueryError(TopostoreError):
     """A malformed SPARQL query, an unknown named query or a bad parameter."""
 

@@ -77,8 +77,11 @@ class Ontology(OntologyFiles, OntologyQueries):
     manipulations and reasoning.
     """
 
-    def __init__(self, prefix: str | None = None, store: Store | StoreSpec = None) -> None:
-        """``store``: a Store, or a store setting (None: memory; a directory; an http(s) SPARQL server URL)."""
+    def __init__(self, prefix: str | None = None, store: Store | StoreSpec = None, strict: bool = False) -> None:
+        """``store``: a Store, or a store setting (None: memory; a directory; an http(s) SPARQL server URL).
+
+        ``strict``: refuse (IncompleteOntologyError, nothing changed) a document with axioms topostore
+        does not reason completely or rules it had to skip, instead of loading it with warnings."""
         self.store = store if isinstance(store, Store) else open_store(store)
         self.store.use_functions(RULE_FUNCTIONS)  # the extension functions compiled rules call (swrlb:pow)
         self._prefix = prefix
@@ -87,6 +90,7 @@ class Ontology(OntologyFiles, OntologyQueries):
         self._superclasses: dict | None = None
         self._report: ReasonReport | None = None
         self.load_notices = []  # what loading repaired or set aside (topostore.notices)
+        self.strict = strict
         self.dirty = True  # asserted graph changed since the last reasoning
         # net asserted changes since the last reasoning (add then remove cancels),
         # tracked only while an incremental REASON can use them

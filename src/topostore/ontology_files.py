@@ -17,8 +17,8 @@ from pyoxigraph import NamedNode, RdfFormat, Triple
 
 from .compile import RuleSet, compile_ontology
 from .compile.swrl_repair import repair_rules, skip_rule
-from .errors import RuleCompileError
-from .notices import RULE_REPAIRED, Notice, grouped, publish
+from .errors import IncompleteOntologyError, RuleCompileError
+from .notices import RULE_REPAIRED, RULE_SKIPPED, Notice, grouped, publish
 from .safeio import atomic_write
 from .store import Store, guess_format, serialize
 from .stores import StoreSpec, check_rules
@@ -70,8 +70,8 @@ class OntologyFiles:
 
     @classmethod
     def from_file(cls, *paths: str | os.PathLike[str], prefix: str | None = None, fmt: str | None = None,
-                  base_iri: str | None = None, store: Store | StoreSpec = None) -> Ontology:
-        onto = cls(prefix=prefix, store=store)
+                  base_iri: str | None = None, store: Store | StoreSpec = None, strict: bool = False) -> Ontology:
+        onto = cls(prefix=prefix, store=store, strict=strict)
         for p in paths:
             onto.load(p, fmt=fmt, base_iri=base_iri)
         return onto
@@ -129,6 +129,8 @@ class OntologyFiles:
                 triples, skipped = skip_rule(triples, exc.rule, f"repaired ({done.reason}) but "
                                              f"it still cannot be translated: {exc}")
                 notices = [skipped if n is done else n for n in notices]
+        if getattr(self, "strict", False):
+            _refuse_incomplete([*notices, *rules.notices])
         check_rules(self.store, rules)
         added = self.add(*triples)
         self._rules = rules
@@ -158,6 +160,13 @@ class OntologyFiles:
         path = Path(path)
         data = self.serialize(guess_format(path, fmt), inferred)
         return atomic_write(path, data)  # temporary file beside it, never through a symlink, removed on failure
+
+
+def _refuse_incomplete(notices: list[Notice]) -> None:
+    """Strict loading: IncompleteOntologyError naming every axiom not reasoned completely or rule skipped."""
+    blocking = [n for n in notices if n.incomplete or n.kind == RULE_SKIPPED]
+    if blocking:
+        raise IncompleteOntologyError("refused (strict): " + "; ".join(grouped(blocking)))
 
 
 __all__ = ["OntologyFiles", "is_schema_triple"]

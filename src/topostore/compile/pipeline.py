@@ -8,6 +8,7 @@ from ..store import Store
 from .generic import generic_rules
 from .model import TBoxReader
 from .owl import OwlCompiler
+from .profile import profile
 from .rule import RuleSet
 from .swrl import SwrlCompiler
 
@@ -27,6 +28,7 @@ def compile_ontology(store: Store, graph: NamedNode) -> RuleSet:
     rules = RuleSet()
     rules.add(generic_rules())
     rules.add(owl.compile())
+    rules.notices += profile(store, graph, tbox, owl, swrl.used_as, swrl.uses_difference)
     rules.add(swrl_rules)
     rules.add(swrl.query_rules)
     rules.queries = dict(swrl.queries)

@@ -104,6 +104,10 @@ class SwrlCompiler:
         self.store, self.graph, self.reader = store, graph, reader
         self.variables = {v for v in store.subjects(TYPE, swrl("Variable"), graph)}
         self.expressions: list[Expr] = []
+        #: anonymous class expressions of rule atoms: (expression, in a head)
+        self.used_as: list[tuple[Expr, bool]] = []
+        #: whether a rule or query has a DifferentIndividuals atom in its body
+        self.uses_difference = False
         #: predicates of conclusions drawn with entailed-only difference
         self.entailed_predicates: set[NamedNode] = set()
         #: SQWRL queries by name, and what was said about them
@@ -287,12 +291,13 @@ class SwrlCompiler:
             self.entailed_predicates.add(NamedNode(h.p[1:-1]))
         return rules
 
-    def _class(self, pred: Term | None) -> str:
+    def _class(self, pred: Term | None, head: bool = False) -> str:
         if not isinstance(pred, NamedNode):
             raise RuleCompileError("missing class predicate")
         e = self.reader.expr(pred)
         if not e.is_named:
             self.expressions.append(e)
+            self.used_as.append((e, head))
         return sparql(e.node)
 
     def _body_atom(self, a: SwrlAtom, arg: _Names, body: _Body, pending: list[SwrlAtom]) -> None:
@@ -315,6 +320,7 @@ class SwrlCompiler:
             self._need(a, 2)
             x, y = arg(a.args[0]), arg(a.args[1])
             body.different.append((x, y, a))
+            self.uses_difference = True
         elif k == "DataRangeAtom":
             self._need(a, 1)
             if not is_datatype(a.predicate):
@@ -335,7 +341,7 @@ class SwrlCompiler:
         k = a.kind
         if k == "ClassAtom":
             self._need(a, 1)
-            return Atom(arg(a.args[0]), T, self._class(a.predicate))
+            return Atom(arg(a.args[0]), T, self._class(a.predicate, head=True))
         if k in ("IndividualPropertyAtom", "DatavaluedPropertyAtom"):
             self._need(a, 2)
             if not isinstance(a.predicate, NamedNode):
