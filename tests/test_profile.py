@@ -53,7 +53,7 @@ CASES = {
     "datatype facet": (":age a owl:DatatypeProperty . :B owl:equivalentClass [ a owl:Restriction ; "
                        "owl:onProperty :age ; owl:someValuesFrom [ a rdfs:Datatype ; owl:onDatatype xsd:integer ; "
                        "owl:withRestrictions ( [ xsd:minInclusive 18 ] ) ] ] .", kinds.UNSUPPORTED, "set aside"),
-    "has key": (":A owl:hasKey ( :p ) .", kinds.UNSUPPORTED, "HasKey"),
+    "reflexive": (":p a owl:ReflexiveProperty .", kinds.UNSUPPORTED, "reflexive"),
 }
 
 

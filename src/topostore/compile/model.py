@@ -7,6 +7,7 @@ values.  Nothing here knows about SPARQL.
 
 from __future__ import annotations
 
+import hashlib
 from dataclasses import dataclass, field
 
 from pyoxigraph import Literal, NamedNode
@@ -14,7 +15,7 @@ from pyoxigraph import Literal, NamedNode
 from ..errors import RuleCompileError
 from ..store import Store
 from ..terms import Term
-from ..vocab import NOTHING, OWL, RDF, RDFS, THING, TYPE, XSD, is_skolem, owl
+from ..vocab import EXPR_PREFIX, NOTHING, OWL, RDF, RDFS, THING, TYPE, XSD, is_skolem, owl
 
 
 @dataclass(frozen=True)
@@ -106,6 +107,8 @@ class TBox:
     typed_expressions: list[Expr] = field(default_factory=list)  # anonymous classes used in rdf:type
     #: axioms read but not translated: (axiom as text, why); the profile report names them
     unsupported: list[tuple[str, str]] = field(default_factory=list)
+    #: keys (owl:hasKey): class, the properties whose values identify an individual
+    keys: list[tuple[Expr, tuple[Prop, ...]]] = field(default_factory=list)
     #: axioms read without rules of their own (hasKey, disjoint unions' covering, ...): (axiom, kind, why)
     partial: list[tuple[str, str, str]] = field(default_factory=list)
 
@@ -263,6 +266,34 @@ class TBoxReader:
 
         self._each(tb, OWL + "disjointUnionOf", disjoint_union)
 
+    def _named_definitions(self, tb: TBox) -> None:
+        """OWL 1 definitions on a named class (``:C owl:intersectionOf (...)``): what the OWL API
+        reads as EquivalentClasses(C, ...); and classes made the same (owl:sameAs) as equivalent."""
+        for kind, pred in (("and", "intersectionOf"), ("or", "unionOf"), ("oneof", "oneOf"), ("not", "complementOf")):
+            def define(t, kind=kind) -> None:
+                if not isinstance(t.subject, NamedNode) or is_skolem(t.subject):
+                    return
+                node = NamedNode(EXPR_PREFIX + "definition:" + hashlib.md5(
+                    f"{t.subject.value} {kind}".encode()).hexdigest())
+                if kind == "oneof":
+                    e = Expr(node, kind, individuals=tuple(self._list(t.object)))
+                elif kind == "not":
+                    e = Expr(node, kind, members=(self.expr(t.object),))
+                else:
+                    e = Expr(node, kind, members=tuple(self.expr(m) for m in self._list(t.object)))
+                tb.equivalent.append((Expr(t.subject, "named"), e))
+            self._each(tb, OWL + pred, define)
+        classes = tb.named_classes
+
+        def same(t) -> None:
+            if t.subject in classes and t.object in classes and t.subject != t.object:
+                tb.equivalent.append((self.expr(t.subject), self.expr(t.object)))
+        self._each(tb, OWL + "sameAs", same)
+
+    def _keys(self, tb: TBox) -> None:
+        self._each(tb, OWL + "hasKey", lambda t: tb.keys.append(
+            (self.expr(t.subject), tuple(self.prop(p) for p in self._list(t.object)))))
+
     def _property_axioms(self, tb: TBox) -> None:
         expr, prop = self.expr, self.prop
         self._each(tb, RDFS + "domain", lambda t: tb.domain.append((prop(t.subject), expr(t.object))))
@@ -302,6 +333,8 @@ class TBoxReader:
         tb.named_classes = {s for s in st.subjects(TYPE, owl("Class"), g) if not is_skolem(s)}
 
         self._class_axioms(tb)
+        self._named_definitions(tb)
+        self._keys(tb)
         self._property_axioms(tb)
         for t in st.triples(None, owl("propertyDisjointWith"), None, g):
             tb.disjoint_props.append((t.subject, t.object))

@@ -24,7 +24,7 @@ difference by irreflexivity         x p y ⇒ x ≠ y is not used where differen
 =================================  =====================================================
 
 plus the axioms the reader set aside (:attr:`TBox.unsupported`) and those read
-without rules (:attr:`TBox.partial`, ``ReflexiveProperty``, ``hasKey``, ...).
+without rules (:attr:`TBox.partial`, ``ReflexiveProperty``).
 """
 
 from __future__ import annotations
@@ -35,7 +35,7 @@ from pyoxigraph import NamedNode
 
 from ..notices import INCOMPLETE, Notice
 from ..store import Store
-from ..vocab import OWL, THING, TYPE, is_skolem, owl
+from ..vocab import THING
 from .model import Expr, Prop, TBox, describe
 from .owl import OwlCompiler
 
@@ -88,6 +88,8 @@ def all_uses(tb: TBox, rule_uses: list[tuple[Expr, bool]]) -> list[Use]:
         out += list(_uses(c, True, f"{_name(p.iri)} range {describe(c)}", None))
     for e in tb.typed_expressions:
         out += list(_uses(e, True, f"an individual typed {describe(e)}", None))
+    for c, props in tb.keys:
+        out += list(_uses(c, False, f"{describe(c)} HasKey ({' '.join(_name(p.iri) for p in props)})", None))
     for e, head in rule_uses:
         out += list(_uses(e, head, f"a SWRL rule {'head' if head else 'body'} atom {describe(e)}", None))
     return out
@@ -222,16 +224,6 @@ class ProfileReport:
         """Axioms the reader does not turn into rules at all."""
         for p in sorted(self.tb.characteristics.get("ReflexiveProperty", ()), key=lambda t: t.value):
             self.note(UNSUPPORTED, f"{_name(p)} is reflexive", "not reasoned (x p x for every individual)")
-        for t in store.triples(None, owl("hasKey"), None, graph):
-            self.note(UNSUPPORTED, f"{_name(t.subject)} HasKey", "keys are not reasoned (no owl:sameAs from them)")
-        negative = store.subjects(TYPE, owl("NegativePropertyAssertion"), graph)
-        if negative:
-            self.note(UNSUPPORTED, f"{len(negative)} negative property assertion(s)", "not checked")
-        for pred in ("intersectionOf", "unionOf", "oneOf", "complementOf"):
-            for t in store.triples(None, NamedNode(OWL + pred), None, graph):
-                if isinstance(t.subject, NamedNode) and not is_skolem(t.subject):
-                    self.note(UNSUPPORTED, f"{_name(t.subject)} {pred} (...)", "an OWL 1 definition on a named "
-                              "class is not read")
 
 
 def profile(store: Store, graph: NamedNode, tb: TBox, owl_compiler: OwlCompiler,

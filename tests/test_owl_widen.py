@@ -1,0 +1,74 @@
+"""What topostore reasons beyond its first OWL reader: keys (owl:hasKey), OWL 1 definitions on a
+named class read as equivalences, classes made the same (owl:sameAs) as equivalent, and an
+individual declared different from itself as an inconsistency."""
+
+from __future__ import annotations
+
+import warnings
+
+from topostore import Ontology, OntologyWarning
+
+PREFIXES = """@prefix : <http://e.org/a#> . @prefix owl: <http://www.w3.org/2002/07/owl#> .
+@prefix rdfs: <http://www.w3.org/2000/01/rdf-schema#> . <http://e.org/a> a owl:Ontology .
+:p a owl:ObjectProperty . :n a owl:DatatypeProperty .
+"""
+
+
+def reasoned(text: str) -> Ontology:
+    o = Ontology()
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", OntologyWarning)
+        o.load_data(PREFIXES + text)
+    assert o.reason().consistent
+    return o
+
+
+def types(o: Ontology, name: str) -> set[str]:
+    return {o.short(t) for t in o.types(name)}
+
+
+def same(o: Ontology, name: str) -> list[str]:
+    return o.object_values("<http://www.w3.org/2002/07/owl#sameAs>", name)
+
+
+def test_key_makes_named_individuals_the_same() -> None:
+    o = reasoned(":C owl:hasKey ( :n :p ) . :a a :C ; :n 5 ; :p :z . :b a :C ; :n 5 ; :p :z . "
+                 ":c a :C ; :n 5 ; :p :w . :d :n 5 ; :p :z .")
+    assert same(o, "a") == ["b"]
+    assert same(o, "c") == [] and same(o, "d") == []  # another key value; not in the class
+    assert o.notices == []
+
+
+def test_key_with_individuals_declared_different_is_inconsistent() -> None:
+    o = Ontology()
+    o.load_data(PREFIXES + ":C owl:hasKey ( :n ) . :a a :C ; :n 5 ; owl:differentFrom :b . :b a :C ; :n 5 .")
+    assert not o.reason().consistent
+
+
+def test_owl1_definitions_on_a_named_class_are_equivalences() -> None:
+    o = reasoned(":Adult owl:intersectionOf ( :Person :Grown ) . :Pet owl:unionOf ( :Cat :Dog ) . "
+                 ":Primary owl:oneOf ( :red :blue ) . "
+                 ":x a :Person , :Grown . :y a :Adult . :felix a :Cat .")
+    assert types(o, "x") == {"Person", "Grown", "Adult"}
+    assert types(o, "y") == {"Adult", "Person", "Grown"}
+    assert types(o, "felix") == {"Cat", "Pet"}
+    assert types(o, "red") == {"Primary"}
+    assert not any("OWL 1" in str(n) for n in o.notices)
+
+
+def test_owl1_complement_definition_is_checked() -> None:
+    o = Ontology()
+    o.load_data(PREFIXES + ":Dead owl:complementOf :Alive . :x a :Dead , :Alive .")
+    assert not o.reason().consistent
+
+
+def test_classes_made_the_same_are_equivalent() -> None:
+    o = reasoned(":C1 a owl:Class ; owl:sameAs :C2 . :C2 a owl:Class . :x a :C1 . :y a :C2 .")
+    assert types(o, "x") == {"C1", "C2"} and types(o, "y") == {"C1", "C2"}
+
+
+def test_different_from_itself_is_inconsistent() -> None:
+    o = Ontology()
+    o.load_data(PREFIXES + ":x owl:differentFrom :x .")
+    report = o.reason()
+    assert not report.consistent and "different from itself" in report.explain()
