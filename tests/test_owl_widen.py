@@ -9,7 +9,8 @@ import warnings
 from topostore import Ontology, OntologyWarning
 
 PREFIXES = """@prefix : <http://e.org/a#> . @prefix owl: <http://www.w3.org/2002/07/owl#> .
-@prefix rdfs: <http://www.w3.org/2000/01/rdf-schema#> . <http://e.org/a> a owl:Ontology .
+@prefix rdfs: <http://www.w3.org/2000/01/rdf-schema#> . @prefix xsd: <http://www.w3.org/2001/XMLSchema#> .
+<http://e.org/a> a owl:Ontology .
 :p a owl:ObjectProperty . :n a owl:DatatypeProperty .
 """
 
@@ -72,3 +73,23 @@ def test_different_from_itself_is_inconsistent() -> None:
     o.load_data(PREFIXES + ":x owl:differentFrom :x .")
     report = o.reason()
     assert not report.consistent and "different from itself" in report.explain()
+
+
+def facet_range(facets: str) -> str:
+    return f"[ a rdfs:Datatype ; owl:onDatatype xsd:integer ; owl:withRestrictions ( {facets} ) ]"
+
+
+def test_numeric_facets_in_a_restriction() -> None:
+    o = reasoned(f":Adult owl:equivalentClass [ a owl:Restriction ; owl:onProperty :n ; owl:someValuesFrom "
+                 f"{facet_range('[ xsd:minInclusive 18 ] [ xsd:maxExclusive 65 ]')} ] . "
+                 ':a :n 18 . :b :n 17 . :c :n 65 . :d :n 40 . :e :n "40.5"^^xsd:decimal .')
+    assert sorted(o.short(i) for i in o.instances("Adult")) == ["a", "d"]
+    assert o.notices == []
+
+
+def test_numeric_facets_in_a_range_are_checked() -> None:
+    o = Ontology()
+    o.load_data(PREFIXES + f":n rdfs:range {facet_range('[ xsd:minExclusive 0 ]')} . :a :n 0 .")
+    report = o.reason()
+    assert not report.consistent and "integer[> 0]" in report.explain()
+    assert reasoned(f":n rdfs:range {facet_range('[ xsd:minExclusive 0 ]')} . :a :n 3 .").notices == []

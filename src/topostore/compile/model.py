@@ -16,6 +16,7 @@ from ..errors import RuleCompileError
 from ..store import Store
 from ..terms import Term
 from ..vocab import EXPR_PREFIX, NOTHING, OWL, RDF, RDFS, THING, TYPE, XSD, is_skolem, owl
+from . import data_ranges
 
 
 @dataclass(frozen=True)
@@ -61,6 +62,8 @@ def describe(e: Expr) -> str:
     def short(t: Term | None) -> str:
         if t is None:
             return "?"
+        if isinstance(t, NamedNode) and data_ranges.readable(t):
+            return data_ranges.readable(t)
         v = t.value if hasattr(t, "value") else str(t)
         return v.rsplit("#", 1)[-1] if "#" in v else v.rsplit("/", 1)[-1]
 
@@ -198,12 +201,33 @@ class TBoxReader:
         if value is None:
             return None, None
         if pred_is_data(value, prop, self):
-            if not isinstance(value, NamedNode) or is_skolem(value):
+            if is_skolem(value):
+                return None, self.data_range(value, f"restriction on {prop.iri.value}")
+            if not isinstance(value, NamedNode):
                 raise RuleCompileError(f"unsupported data range in restriction on {prop.iri.value}")
             return None, value
         if value == THING:
             return None, None
         return self.expr(value), None
+
+    def data_range(self, node: NamedNode, where: str) -> NamedNode:
+        """A datatype restricted by numeric facets, as the IRI :mod:`.data_ranges` names it;
+        RuleCompileError for other data range expressions (data one-of, unions, string facets)."""
+        base = self._one(node, OWL + "onDatatype")
+        head = self._one(node, OWL + "withRestrictions")
+        if not isinstance(base, NamedNode) or head is None:
+            raise RuleCompileError(f"unsupported data range in {where} (only datatypes restricted by "
+                                   "numeric facets are)")
+        facets = []
+        for item in self._list(head):
+            for t in self.store.triples(item, None, None, self.graph):
+                if not isinstance(t.object, Literal) or not t.predicate.value.startswith(XSD):
+                    raise RuleCompileError(f"unsupported facet in the data range of {where}")
+                facets.append((t.predicate.value[len(XSD):], t.object))
+        try:
+            return data_ranges.restricted(base, facets)
+        except ValueError as exc:
+            raise RuleCompileError(f"data range of {where}: {exc}") from None
 
     def _restriction(self, node: NamedNode, prop: Prop) -> Expr:
         some = self._one(node, OWL + "someValuesFrom")
@@ -304,9 +328,8 @@ class TBoxReader:
                 tb.data_properties.add(p.iri)
                 if isinstance(t.object, NamedNode) and not is_skolem(t.object):
                     tb.data_range.append((p.iri, t.object))
-                else:
-                    tb.unsupported.append((f"{_short(p.iri)} range {_short(t.object)}",
-                                           "a data range that is not a named datatype is not checked"))
+                elif isinstance(t.object, NamedNode):
+                    tb.data_range.append((p.iri, self.data_range(t.object, f"the range of {p.iri.value}")))
             else:
                 tb.range.append((p, expr(t.object)))
 

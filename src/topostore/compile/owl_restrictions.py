@@ -15,6 +15,7 @@ from pyoxigraph import NamedNode
 from ..terms import sparql
 from ..vocab import DIFFERENT, SAME_AS, THING, TYPE
 from . import condition as cond
+from . import data_ranges
 from .condition import Condition
 from .model import Expr, TBox
 from .rule import Atom
@@ -43,6 +44,8 @@ def term_before(a: str, b: str) -> str:
 def nm(term: NamedNode) -> str:
     """Short name of an IRI for messages (local part after # or /)."""
     v = term.value
+    if v.startswith(data_ranges.PREFIX):
+        return data_ranges.readable(term)
     return v.rsplit("#", 1)[-1] if "#" in v else v.rsplit("/", 1)[-1]
 
 
