@@ -93,3 +93,12 @@ def test_numeric_facets_in_a_range_are_checked() -> None:
     report = o.reason()
     assert not report.consistent and "integer[> 0]" in report.explain()
     assert reasoned(f":n rdfs:range {facet_range('[ xsd:minExclusive 0 ]')} . :a :n 3 .").notices == []
+
+
+def test_reflexive_property_links_every_individual_to_itself() -> None:
+    o = reasoned(":knows a owl:ObjectProperty , owl:ReflexiveProperty . :Person a owl:Class . "
+                 ":ann a :Person . :bob :n 3 . :cid :p :dan .")
+    for name in ("ann", "bob", "cid", "dan"):
+        assert name in o.object_values("knows", name)
+    assert o.object_values("knows", "Person") == []  # a class is no individual
+    assert o.notices == []

@@ -53,7 +53,9 @@ CASES = {
     "string facet": (":code a owl:DatatypeProperty . :B owl:equivalentClass [ a owl:Restriction ; "
                      "owl:onProperty :code ; owl:someValuesFrom [ a rdfs:Datatype ; owl:onDatatype xsd:string ; "
                      "owl:withRestrictions ( [ xsd:pattern \"A.*\" ] ) ] ] .", kinds.UNSUPPORTED, "set aside"),
-    "reflexive": (":p a owl:ReflexiveProperty .", kinds.UNSUPPORTED, "reflexive"),
+    "data one-of": (":code a owl:DatatypeProperty . :B owl:equivalentClass [ a owl:Restriction ; "
+                    "owl:onProperty :code ; owl:someValuesFrom [ a rdfs:Datatype ; owl:oneOf ( 1 2 ) ] ] .",
+                    kinds.UNSUPPORTED, "set aside"),
 }
 
 

@@ -24,7 +24,7 @@ difference by irreflexivity         x p y ⇒ x ≠ y is not used where differen
 =================================  =====================================================
 
 plus the axioms the reader set aside (:attr:`TBox.unsupported`) and those read
-without rules (:attr:`TBox.partial`, ``ReflexiveProperty``).
+in part (:attr:`TBox.partial`: a disjoint union's covering).
 """
 
 from __future__ import annotations
@@ -125,7 +125,6 @@ class ProfileReport:
             self.note(UNSUPPORTED, axiom, f"set aside: {reason}")
         for axiom, kind, reason in self.tb.partial:
             self.note(kind, axiom, reason)
-        self.unread(store, graph)
         return list(self.notices.values())
 
     # ---------------------------------------------------------------- expressions
@@ -218,12 +217,6 @@ class ProfileReport:
             return True
         return any(e.kind in ("min", "exact", "max") and e.n >= 1 and not self.owl.is_data(e.prop, e)
                    for e, _, _, _ in self.uses)
-
-    # ---------------------------------------------------------------- axioms with no rules
-    def unread(self, store: Store, graph: NamedNode) -> None:
-        """Axioms the reader does not turn into rules at all."""
-        for p in sorted(self.tb.characteristics.get("ReflexiveProperty", ()), key=lambda t: t.value):
-            self.note(UNSUPPORTED, f"{_name(p)} is reflexive", "not reasoned (x p x for every individual)")
 
 
 def profile(store: Store, graph: NamedNode, tb: TBox, owl_compiler: OwlCompiler,
