@@ -172,36 +172,49 @@ def ask_text(triples: list[tuple]) -> str:
     return "ASK { " + " ".join(f"{term(s)} {term(p)} {term(o)} ." for s, p, o in triples) + " }"
 
 
+BASE = "http://example.org/"
+
+
 def parse(text: str) -> Graph:
-    return Graph().parse(data=text, format="xml", publicID="http://example.org/")
+    return Graph().parse(data=text, format="xml", publicID=BASE)
 
 
 # ------------------------------------------------------------------------------------- engines
 
-def topostore_run(premise: Graph, asks: list[tuple] | None) -> tuple[bool, bool]:
-    """(consistent, the ASK holds) with topostore."""
+def topostore_run(premise_text: str, extra: list[tuple], asks: list[tuple] | None) -> tuple[bool, bool, list[str]]:
+    """(consistent, the ASK holds, the profile report's axiom kinds) with topostore, reading the
+    premise's RDF/XML itself (then the extra triples)."""
     from topostore import Ontology, OntologyWarning
 
     onto = Ontology()
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", OntologyWarning)
-        onto.load_data(premise.serialize(format="nt"), "ntriples")
-    consistent = onto.reason().consistent
+        onto.load_data(premise_text, "rdfxml", base_iri=BASE)
+        if extra:
+            g = Graph()
+            for t in extra:
+                g.add(t)
+            onto.load_data(g.serialize(format="nt"), "ntriples")
+    report = onto.reason()
+    consistent, kinds = report.consistent, sorted({n.axiom_kind or n.kind for n in onto.notices})
     if not asks or not consistent:
-        return consistent, not consistent
-    return consistent, bool(onto.sparql(ask_text(asks)))
+        return consistent, not consistent, kinds
+    return consistent, bool(onto.sparql(ask_text(asks))), kinds
 
 
-def owlrl_run(premise: Graph, asks: list[tuple] | None) -> tuple[bool, bool]:
-    """(consistent, the ASK holds) with owlrl (OWL 2 RL closure; inconsistency = its error messages)."""
+def owlrl_run(premise_text: str, extra: list[tuple], asks: list[tuple] | None) -> tuple[bool, bool, list[str]]:
+    """(consistent, the ASK holds, []) with owlrl (OWL 2 RL closure; inconsistency = its error messages)."""
     import owlrl
 
+    premise = parse(premise_text)
+    for t in extra:
+        premise.add(t)
     owlrl.DeductiveClosure(owlrl.OWLRL_Semantics).expand(premise)
     errors = URIRef("http://www.daml.org/2002/03/agents/agent-ont#ErrorMessage")
     consistent = (None, RDF.type, errors) not in premise and (None, RDF.type, OWL.Nothing) not in premise
     if not asks or not consistent:
-        return consistent, not consistent
-    return consistent, bool(premise.query(ask_text(asks)).askAnswer)
+        return consistent, not consistent, []
+    return consistent, bool(premise.query(ask_text(asks)).askAnswer), []
 
 
 ENGINES = {"topostore": topostore_run, "owlrl": owlrl_run}
@@ -209,21 +222,12 @@ ENGINES = {"topostore": topostore_run, "owlrl": owlrl_run}
 
 def entails(run, premise_text: str, tests: Tests) -> bool:
     """Whether the premise entails the conclusion the tests were made from."""
-    premise = parse(premise_text)
-    for t in tests.extra:
-        premise.add(t)
-    consistent, holds = run(premise, tests.asks or None)
+    consistent, holds, _ = run(premise_text, tests.extra, tests.asks or None)
     if not consistent:
         return True
     if tests.asks and not holds:
         return False
-    for triples in tests.contradictions:
-        premise = parse(premise_text)
-        for t in triples:
-            premise.add(t)
-        if run(premise, None)[0]:
-            return False
-    return True
+    return all(not run(premise_text, triples, None)[0] for triples in tests.contradictions)
 
 
 def run_case(engine: str, case: dict) -> dict[str, object]:
@@ -231,8 +235,11 @@ def run_case(engine: str, case: dict) -> dict[str, object]:
     out: dict[str, object] = {}
     try:
         checks = case["checks"]
+        out["notices"] = run(case["premise"], [], None)[2] if not (
+            "consistency" in checks or "inconsistency" in checks) else []
         if "consistency" in checks or "inconsistency" in checks:
-            consistent, _ = run(parse(case["premise"]), None)
+            consistent, _, kinds = run(case["premise"], [], None)
+            out["notices"] = kinds
             if "consistency" in checks:
                 out["consistency"] = consistent
             if "inconsistency" in checks:

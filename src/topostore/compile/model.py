@@ -18,6 +18,11 @@ from ..terms import Term
 from ..vocab import EXPR_PREFIX, NOTHING, OWL, RDF, RDFS, THING, TYPE, XSD, is_skolem, owl
 from . import data_ranges
 
+#: The largest cardinality reasoned: a restriction's rules join n (or n + 1) values and compare
+#: every pair, so a bigger one is set aside (and named by the profile report) rather than compiled
+#: into a query too big to run.
+MAX_CARDINALITY = 8
+
 
 @dataclass(frozen=True)
 class Prop:
@@ -253,6 +258,9 @@ class TBoxReader:
                 if n is not None:
                     if not isinstance(n, Literal) or not n.value.strip().isdigit():
                         raise RuleCompileError(f"cardinality {n} of a restriction on {prop.iri.value} is not a number")
+                    if int(n.value) > MAX_CARDINALITY:
+                        raise RuleCompileError(f"a cardinality of {int(n.value)} is above the {MAX_CARDINALITY} "
+                                               "topostore reasons (its rules enumerate the values)")
                     filler, dt = self._filler(node, prop, None)
                     return Expr(node, kind, prop=prop, filler=filler, datatype=dt, n=int(n.value))
         raise RuleCompileError(f"unsupported restriction on {prop.iri.value}")
