@@ -221,6 +221,9 @@ def _flat_list(atoms: list[Term]) -> tuple[Term, list[Triple]]:
 
 def repair_rules(triples: list[Triple]) -> tuple[list[Triple], list[Notice]]:
     """A document's triples with its SWRL rules repaired (or skipped), and what was done."""
+    imp_type = swrl("Imp")
+    if not any(t.object == imp_type and t.predicate == TYPE for t in triples):
+        return triples, []  # no rule: nothing to index (large ABox loads pay one scan)
     ix = _Index(triples)
     imps = [s for s, preds in ix.out.items() if swrl("Imp") in preds.get(TYPE, [])]
     if not imps:
