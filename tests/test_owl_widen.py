@@ -102,3 +102,11 @@ def test_reflexive_property_links_every_individual_to_itself() -> None:
         assert name in o.object_values("knows", name)
     assert o.object_values("knows", "Person") == []  # a class is no individual
     assert o.notices == []
+
+
+def test_a_restriction_named_by_an_iri_is_a_class_expression() -> None:
+    """RDF-Based Semantics documents name restrictions by IRIs (``ex:z owl:onProperty ex:p``)."""
+    o = reasoned(":z owl:onProperty :p ; owl:someValuesFrom :C . :w :p :x . :x a :C . "
+                 ":m owl:onProperty :p ; owl:hasValue :v . :u a :m .")
+    assert "z" in types(o, "w")
+    assert o.object_values("p", "u") == ["v"]

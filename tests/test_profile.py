@@ -48,6 +48,12 @@ CASES = {
     "existential chain": (":A rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :p ; owl:someValuesFrom "
                           "[ a owl:Restriction ; owl:onProperty :p ; owl:someValuesFrom :B ] ] .",
                           kinds.EXISTENTIAL, "own restrictions"),
+    "existential under a sub-property": (":p rdfs:subPropertyOf :q . :q a owl:ObjectProperty . "
+                                         ":A rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :p ; "
+                                         "owl:someValuesFrom :C ] . :D owl:equivalentClass [ a owl:Restriction ; "
+                                         "owl:onProperty :q ; owl:someValuesFrom :C ] .", kinds.EXISTENTIAL,
+                                         "super-properties"),
+    "properties made the same": (":a :p :b . :p owl:sameAs :q .", kinds.UNSUPPORTED, "p sameAs q"),
     "irreflexive difference": (":p a owl:IrreflexiveProperty , owl:FunctionalProperty .", kinds.DIFFERENCE,
                                "irreflexive"),
     "string facet": (":code a owl:DatatypeProperty . :B owl:equivalentClass [ a owl:Restriction ; "

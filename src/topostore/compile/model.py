@@ -8,7 +8,7 @@ values.  Nothing here knows about SPARQL.
 from __future__ import annotations
 
 import hashlib
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 from pyoxigraph import Literal, NamedNode
 
@@ -115,6 +115,8 @@ class TBox:
     typed_expressions: list[Expr] = field(default_factory=list)  # anonymous classes used in rdf:type
     #: axioms read but not translated: (axiom as text, why); the profile report names them
     unsupported: list[tuple[str, str]] = field(default_factory=list)
+    #: properties made the same by owl:sameAs (named by the profile report: not substituted)
+    same_properties: list[tuple[NamedNode, NamedNode]] = field(default_factory=list)
     #: keys (owl:hasKey): class, the properties whose values identify an individual
     keys: list[tuple[Expr, tuple[Prop, ...]]] = field(default_factory=list)
     #: axioms read without rules of their own (hasKey, disjoint unions' covering, ...): (axiom, kind, why)
@@ -305,8 +307,7 @@ class TBoxReader:
             def define(t, kind=kind) -> None:
                 if not isinstance(t.subject, NamedNode) or is_skolem(t.subject):
                     return
-                node = NamedNode(EXPR_PREFIX + "definition:" + hashlib.md5(
-                    f"{t.subject.value} {kind}".encode()).hexdigest())
+                node = self._definition_node(t.subject, kind)
                 if kind == "oneof":
                     e = Expr(node, kind, individuals=tuple(self._list(t.object)))
                 elif kind == "not":
@@ -315,12 +316,31 @@ class TBoxReader:
                     e = Expr(node, kind, members=tuple(self.expr(m) for m in self._list(t.object)))
                 tb.equivalent.append((Expr(t.subject, "named"), e))
             self._each(tb, OWL + pred, define)
+
+        def restriction(t) -> None:  # a restriction named by an IRI (RDF-Based Semantics documents)
+            if isinstance(t.subject, NamedNode) and not is_skolem(t.subject):
+                e = self._restriction(t.subject, self.prop(t.object))
+                tb.equivalent.append((Expr(t.subject, "named"), replace(e, node=self._definition_node(t.subject, "r"))))
+        self._each(tb, OWL + "onProperty", restriction)
         classes = tb.named_classes
+
+        properties = tb.object_properties | tb.data_properties
+
+        def used_as_property(node: Term) -> bool:
+            return node in properties or (isinstance(node, NamedNode) and bool(
+                self.store.triples(None, node, None, self.graph)))
 
         def same(t) -> None:
             if t.subject in classes and t.object in classes and t.subject != t.object:
                 tb.equivalent.append((self.expr(t.subject), self.expr(t.object)))
+            elif t.subject != t.object and (used_as_property(t.subject) or used_as_property(t.object)):
+                tb.same_properties.append((t.subject, t.object))
         self._each(tb, OWL + "sameAs", same)
+
+    @staticmethod
+    def _definition_node(cls: NamedNode, kind: str) -> NamedNode:
+        """The (internal) node of the expression a named class is defined as."""
+        return NamedNode(EXPR_PREFIX + "definition:" + hashlib.md5(f"{cls.value} {kind}".encode()).hexdigest())
 
     def _keys(self, tb: TBox) -> None:
         self._each(tb, OWL + "hasKey", lambda t: tb.keys.append(

@@ -121,6 +121,9 @@ class ProfileReport:
         for e, positive, axiom, subject in self.uses:
             self.expression(e, positive, axiom, subject)
         self.difference()
+        for a, b in self.tb.same_properties:
+            self.note(UNSUPPORTED, f"{_name(a)} sameAs {_name(b)}", "properties made the same are not "
+                      "substituted for each other (owl:equivalentProperty is)")
         for axiom, reason in self.tb.unsupported:
             self.note(UNSUPPORTED, axiom, f"set aside: {reason}")
         for axiom, kind, reason in self.tb.partial:
@@ -165,6 +168,10 @@ class ProfileReport:
             if q.iri == p.iri and c.node != THING and c.node not in told:
                 self.note(EXISTENTIAL, axiom, f"an instance of {what} is in {describe(c)} (the "
                           f"{'range' if p.inverse else 'domain'} of {_name(p.iri)}) only through a told value")
+        supers = self.super_properties(p)
+        if any(not pos and m.kind in ("some", "min", "exact") and m.prop in supers for m, pos, _, _ in self.uses):
+            self.note(EXISTENTIAL, axiom, f"an instance of {what} is in the restrictions on the super-properties "
+                      f"of {_name(p.iri)} only through a told value")
         if self.owl.is_data(p, e):
             return
         value_classes = self.value_classes(p)
@@ -179,6 +186,18 @@ class ProfileReport:
             if any(self.disjoint(filler.node, c) for c in value_classes):
                 self.note(EXISTENTIAL, axiom, f"the unnamed value of {what} would be in disjoint classes "
                           f"({describe(filler)} and the range of {_name(p.iri)}): the inconsistency is not found")
+
+    def super_properties(self, p: Prop) -> set[Prop]:
+        """The strict told super-properties of ``p`` (closure of subPropertyOf)."""
+        found: set[Prop] = set()
+        todo = [p]
+        while todo:
+            q = todo.pop()
+            for a, b in self.tb.subproperty:
+                if a == q and b not in found and b != p:
+                    found.add(b)
+                    todo.append(b)
+        return found
 
     def value_classes(self, p: Prop) -> set[NamedNode]:
         """Named classes every value of ``p`` is told to be in (range, domain for an inverse)."""
