@@ -29,9 +29,7 @@ from pyoxigraph import Literal
 
 from ..errors import RuleCompileError
 from ..terms import Term
-
-#: SWRLTab's SQWRL built-ins live under this prefix (``.../3.4/sqwrl.owl#select``).
-SQWRL_PREFIX = "http://sqwrl.stanford.edu/ontologies/built-ins/"
+from ..vocab import SQWRL_PREFIX
 
 _AGGREGATES = {"count": "COUNT", "countDistinct": "COUNT", "min": "MIN", "max": "MAX", "sum": "SUM", "avg": "AVG"}
 _SUPPORTED = {"select", "selectDistinct", "columnNames", "orderBy", "orderByDescending", "limit", *_AGGREGATES}
