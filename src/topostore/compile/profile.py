@@ -107,6 +107,11 @@ class ProfileReport:
                  uses_difference: bool) -> None:
         self.tb, self.owl = tb, owl_compiler
         self.uses = all_uses(tb, rule_uses)
+        #: restriction uses by property: (expression, positive), so lookups stay linear in the TBox
+        self.on: dict[Prop, list[tuple[Expr, bool]]] = {}
+        for e, positive, _, _ in self.uses:
+            if e.prop is not None:
+                self.on.setdefault(e.prop, []).append((e, positive))
         self.uses_difference = uses_difference
         self.notices: dict[tuple[str, str], Notice] = {}
 
@@ -156,7 +161,7 @@ class ProfileReport:
         """Some axiom or characteristic tells a maximum on ``p`` (so a reasoner may derive membership)."""
         if self.tb.has("InverseFunctionalProperty" if p.inverse else "FunctionalProperty", p.iri):
             return True
-        return any(pos and e.kind in ("max", "exact") and e.prop == p for e, pos, _, _ in self.uses)
+        return any(pos and e.kind in ("max", "exact") for e, pos in self.on.get(p, ()))
 
     def existential(self, e: Expr, axiom: str, subject: NamedNode | None) -> None:
         """Consequences of the unnamed value of an existential that are not drawn."""
@@ -169,7 +174,7 @@ class ProfileReport:
                 self.note(EXISTENTIAL, axiom, f"an instance of {what} is in {describe(c)} (the "
                           f"{'range' if p.inverse else 'domain'} of {_name(p.iri)}) only through a told value")
         supers = self.super_properties(p)
-        if any(not pos and m.kind in ("some", "min", "exact") and m.prop in supers for m, pos, _, _ in self.uses):
+        if any(not pos and m.kind in ("some", "min", "exact") for q in supers for m, pos in self.on.get(q, ())):
             self.note(EXISTENTIAL, axiom, f"an instance of {what} is in the restrictions on the super-properties "
                       f"of {_name(p.iri)} only through a told value")
         if self.owl.is_data(p, e):
@@ -212,8 +217,8 @@ class ProfileReport:
         """At most one value of ``p`` at all: functional, or an unqualified maximum of one told."""
         if self.tb.has("InverseFunctionalProperty" if p.inverse else "FunctionalProperty", p.iri):
             return True
-        return any(pos and m.kind in ("max", "exact") and m.n <= 1 and m.prop == p and m.filler is None
-                   and m.datatype is None for m, pos, _, _ in self.uses)
+        return any(pos and m.kind in ("max", "exact") and m.n <= 1 and m.filler is None and m.datatype is None
+                   for m, pos in self.on.get(p, ()))
 
     def disjoint(self, a: NamedNode, b: NamedNode) -> bool:
         ta, tb_ = self.told(a), self.told(b)
