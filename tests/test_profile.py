@@ -147,3 +147,27 @@ def test_check_command(tmp_path: Path) -> None:
     assert CliRunner().invoke(cli, ["check", "--strict", str(path)]).exit_code == 1
     clean = CliRunner().invoke(cli, ["check", "--strict", str(SHARED / "topological_map_abox.owl")])
     assert clean.exit_code == 0 and "reasoned completely" in clean.output
+
+
+def test_reason_strict_refuses_with_one_line(tmp_path: Path) -> None:
+    path = tmp_path / "union.ttl"
+    path.write_text(PREFIXES + CASES["union superclass"][0])
+    result = CliRunner().invoke(cli, ["reason", "--strict", str(path)])
+    assert result.exit_code == 1 and "refused (strict)" in result.output and "A SubClassOf" in result.output
+    assert CliRunner().invoke(cli, ["reason", str(path)]).exit_code == 0
+
+
+def test_served_service_is_strict_when_asked(tmp_path: Path) -> None:
+    from starlette.testclient import TestClient
+
+    from topostore.server import ServerConfig, create_app
+
+    (tmp_path / "union.ttl").write_text(PREFIXES + CASES["union superclass"][0])
+    load = {"client_name": "c", "reference_name": "ref", "command": "LOAD", "primary_command_spec": "FILE",
+            "secondary_command_spec": "", "args": ["union.ttl", "http://e.org/a", "false", "PELLET", "false"]}
+    for strict, code in ((True, 209), (False, 0)):
+        app = create_app(ServerConfig(data_dir=tmp_path, strict=strict))
+        with TestClient(app, base_url="http://127.0.0.1") as client, warnings.catch_warnings():
+            warnings.simplefilter("ignore", OntologyWarning)
+            reply = client.post("/armor", json=load).json()
+        assert reply["exit_code"] == code and "A SubClassOf" in reply["error_description"], reply

@@ -43,10 +43,12 @@ def _progress(enabled: bool = True, console: Console | None = None) -> Iterator[
 
 
 def load_files(
-    files: Sequence[str], fmt: str | None = None, console: Console | None = None, store: str | None = None
+    files: Sequence[str], fmt: str | None = None, console: Console | None = None, store: str | None = None,
+    strict: bool = False,
 ) -> Ontology:
-    """Load ``files`` into one ontology (on ``store``), showing how many triples each has given so far."""
-    onto = Ontology(store=store)
+    """Load ``files`` into one ontology (on ``store``), showing how many triples each has given so far;
+    ``strict``: refuse files with axioms not reasoned completely (IncompleteOntologyError)."""
+    onto = Ontology(store=store, strict=strict)
     context = click.get_current_context(silent=True)
     if store and context is not None:
         context.call_on_close(onto.store.close)  # a durable store is released when the command ends

@@ -34,6 +34,7 @@ EXIT_INCONSISTENT = 3
     "--format", "fmt", metavar="F", help="Output format: turtle, ntriples or rdfxml (default: from -o's extension)."
 )
 @click.option("--input-format", metavar="F", help="Format of the input files when their extension does not tell.")
+@click.option("--strict", is_flag=True, help="Refuse files with axioms not reasoned completely (see topostore check).")
 def reason(
     files: tuple[str, ...],
     store: str | None,
@@ -41,6 +42,7 @@ def reason(
     inferred_only: bool,
     fmt: str | None,
     input_format: str | None,
+    strict: bool,
 ) -> None:
     """Load FILE(s) (into --store, if given), reason, and print a summary; exit 3 if inconsistent.
 
@@ -56,7 +58,7 @@ def reason(
     if inferred_only and not output:
         raise click.UsageError("--inferred-only needs -o FILE")
     start = time.perf_counter()
-    onto = load_files(files, input_format, store=store)
+    onto = load_files(files, input_format, store=store, strict=strict)
     loaded = time.perf_counter() - start
     report = reason_with_progress(onto)
     asserted = onto.store.count(ASSERTED)
