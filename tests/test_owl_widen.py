@@ -110,3 +110,15 @@ def test_a_restriction_named_by_an_iri_is_a_class_expression() -> None:
                  ":m owl:onProperty :p ; owl:hasValue :v . :u a :m .")
     assert "z" in types(o, "w")
     assert o.object_values("p", "u") == ["v"]
+
+
+def test_restrictions_subsumed_through_sub_properties_and_fillers() -> None:
+    o = reasoned(":p rdfs:subPropertyOf :q . :q a owl:ObjectProperty . :C rdfs:subClassOf :D . "
+                 ":A rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :p ; owl:someValuesFrom :C ] . "
+                 ":B owl:equivalentClass [ a owl:Restriction ; owl:onProperty :q ; owl:someValuesFrom :D ] . "
+                 ":U rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :q ; owl:allValuesFrom :C ] . "
+                 ":V owl:equivalentClass [ a owl:Restriction ; owl:onProperty :p ; owl:allValuesFrom :D ] . "
+                 ":a a :A . :u a :U .")
+    assert "B" in types(o, "a")  # ∃p.C ⊑ ∃q.D: p ⊑ q, C ⊑ D, with no p value told
+    assert "V" in types(o, "u")  # ∀q.C ⊑ ∀p.D
+    assert not any("super-properties" in str(n) for n in o.notices)

@@ -51,7 +51,7 @@ CASES = {
     "existential under a sub-property": (":p rdfs:subPropertyOf :q . :q a owl:ObjectProperty . "
                                          ":A rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :p ; "
                                          "owl:someValuesFrom :C ] . :D owl:equivalentClass [ a owl:Restriction ; "
-                                         "owl:onProperty :q ; owl:someValuesFrom :C ] .", kinds.EXISTENTIAL,
+                                         "owl:onProperty :q ; owl:minCardinality 2 ] .", kinds.EXISTENTIAL,
                                          "super-properties"),
     "properties made the same": (":a :p :b . :p owl:sameAs :q .", kinds.UNSUPPORTED, "p sameAs q"),
     "irreflexive difference": (":p a owl:IrreflexiveProperty , owl:FunctionalProperty .", kinds.DIFFERENCE,

@@ -8,7 +8,7 @@ from ..store import Store
 from .generic import generic_rules
 from .model import TBoxReader
 from .owl import OwlCompiler
-from .owl_extras import key_rules, reflexive_rules
+from .owl_extras import key_rules, reflexive_rules, restriction_rules
 from .profile import profile
 from .rule import RuleSet
 from .swrl import SwrlCompiler
@@ -31,6 +31,7 @@ def compile_ontology(store: Store, graph: NamedNode) -> RuleSet:
     rules.add(owl.compile())
     rules.add(key_rules(tbox))
     rules.add(reflexive_rules(tbox))
+    rules.add(restriction_rules(owl))
     rules.notices += profile(store, graph, tbox, owl, swrl.used_as, swrl.uses_difference)
     rules.add(swrl_rules)
     rules.add(swrl.query_rules)

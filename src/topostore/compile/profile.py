@@ -174,7 +174,8 @@ class ProfileReport:
                 self.note(EXISTENTIAL, axiom, f"an instance of {what} is in {describe(c)} (the "
                           f"{'range' if p.inverse else 'domain'} of {_name(p.iri)}) only through a told value")
         supers = self.super_properties(p)
-        if any(not pos and m.kind in ("some", "min", "exact") for q in supers for m, pos in self.on.get(q, ())):
+        if any(not pos and m.kind in ("some", "min", "exact") and not self.reaches(e, m)
+               for q in supers for m, pos in self.on.get(q, ())):
             self.note(EXISTENTIAL, axiom, f"an instance of {what} is in the restrictions on the super-properties "
                       f"of {_name(p.iri)} only through a told value")
         if self.owl.is_data(p, e):
@@ -191,6 +192,11 @@ class ProfileReport:
             if any(self.disjoint(filler.node, c) for c in value_classes):
                 self.note(EXISTENTIAL, axiom, f"the unnamed value of {what} would be in disjoint classes "
                           f"({describe(filler)} and the range of {_name(p.iri)}): the inconsistency is not found")
+
+    def reaches(self, e: Expr, m: Expr) -> bool:
+        """Whether membership of ``e`` gives membership of ``m`` on a super-property (ext-restriction-sub)."""
+        ne, nm_ = (1 if e.kind == "some" else e.n), (1 if m.kind == "some" else m.n)
+        return m.kind != "exact" and ne >= nm_ >= 1 and self.owl.filler_subsumed(e, m)
 
     def super_properties(self, p: Prop) -> set[Prop]:
         """The strict told super-properties of ``p`` (closure of subPropertyOf)."""
