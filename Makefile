@@ -4,7 +4,7 @@ VENV   := .venv
 BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.installed
 
-.PHONY: run test bench bench-quick bench-drift bench-stores demo clean browser vendor-js ros-deps virtuoso java fuzz load
+.PHONY: run test bench bench-quick bench-drift bench-stores demo clean browser vendor-js ros-deps virtuoso java fuzz load conformance
 
 $(STAMP): pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -66,6 +66,12 @@ virtuoso:
 java:
 	@command -v javac >/dev/null || [ "$$(id -u)" != 0 ] || ! command -v apt-get >/dev/null || \
 		{ apt-get update -q && apt-get install -y -q openjdk-17-jdk-headless; }
+
+# The W3C OWL 2 test cases (../shared/conformance/owl2-wg/all.rdf, read where they are) against
+# topostore and owlrl, a child process per case and engine (60 s each); the table goes to
+# docs/conformance.md.  The RL cases also run in `make test` (tests/test_conformance.py).
+conformance: $(STAMP)
+	$(BIN)/python -m benchmarks.conformance --write docs/conformance.md
 
 # Benchmarks need the `bench` extra (Owlready2 0.49 for the Pellet jars, reasonable for the full-REASON
 # peer) and a JDK for the warm Pellet peer.  `bench`: the step table up to 100,000 locations, the

@@ -45,7 +45,8 @@ def test_top_level_help_and_version() -> None:
     assert result.exit_code == 0
     listed = result.output.split("\nCommands:\n", 1)[1].splitlines()
     assert [line.split()[0] for line in listed if line.strip()] == sorted(cli.commands)
-    assert sorted(cli.commands) == ["bench", "demo", "explain", "map", "query", "reason", "ros", "rules", "serve"]
+    assert sorted(cli.commands) == ["bench", "check", "demo", "explain", "map", "query", "reason", "repair", "ros", "rules",
+                                    "serve"]
     assert main(["--version"]) == 0
 
 

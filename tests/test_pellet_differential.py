@@ -171,3 +171,25 @@ def test_generated_maps_with_robot_moves_as_pellet(size: int, seed: int, declare
     path = tmp_path / "map.nt"
     onto.save(path, fmt="ntriples")
     assert topostore(Ontology.from_file(path), names) == pellet(path, names)
+
+
+def test_repaired_saved_map_saves_rules_pellet_fires(tmp_path: Path) -> None:
+    """A map whose rules a save damaged (nested atom lists): topostore repairs it on load, and its
+    own SAVE (RDF/XML) is read by Pellet, whose rules then draw what topostore draws."""
+    import warnings
+
+    from test_saved_rules import damage
+
+    from topostore import OntologyWarning
+
+    damaged = tmp_path / "damaged.owl"
+    damage(ABOX, damaged)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", OntologyWarning)
+        onto = Ontology.from_file(damaged)
+    path = tmp_path / "resaved.owl"
+    onto.save(path)
+    names = ["C1", "R1", "R2", "D1", "D2", "Robot1"]
+    expected = pellet(path, names)
+    assert expected["individuals"]["Robot1"].get("canReach") == ["R1", "R2"]  # Pellet fires the saved rules
+    assert topostore(Ontology.from_file(path), names) == expected

@@ -5,6 +5,7 @@ to SPARQL updates and run to a fixpoint on REASON.
 """
 
 from .errors import (
+    IncompleteOntologyError,
     InvalidNameError,
     InvalidValueError,
     LoadError,
@@ -14,6 +15,7 @@ from .errors import (
     TopostoreError,
     UnknownTypeError,
 )
+from .notices import Notice, OntologyWarning
 from .ontology import Ontology, ReasonReport
 from .queries import QueryItem
 
@@ -21,7 +23,8 @@ __version__ = "0.1.0"
 
 __all__ = [
     "Ontology", "ReasonReport", "QueryItem", "TopostoreError", "InvalidNameError", "InvalidValueError",
-    "UnknownTypeError", "LoadError", "QueryError", "QueryTimeout", "RuleCompileError",
+    "UnknownTypeError", "LoadError", "QueryError", "QueryTimeout", "RuleCompileError", "OntologyWarning", "Notice",
+    "IncompleteOntologyError",
 ]
 
 from .armor import ArmorRequest, ArmorResponse, ArmorService  # noqa: E402  (aRMOR command interface)

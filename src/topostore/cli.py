@@ -7,7 +7,8 @@ exit codes: 0 success, 1 error, 2 usage error, 3 inconsistent ontology,
 
 This module is the ``topostore`` group (one-line errors, ``--debug``) and the
 list of its commands; each family lives in its own module: ``reason``,
-``rules`` and ``query`` in :mod:`.cli_ontology`, ``serve`` in
+``rules`` and ``query`` in :mod:`.cli_ontology`, ``check`` and ``repair`` in
+:mod:`.cli_check`, ``serve`` in
 :mod:`.cli_serve`, ``demo`` and ``map`` in :mod:`.cli_pictures`, ``bench`` in
 :mod:`.cli_bench`, ``explain`` in :mod:`.cli_explain`, ``ros`` in
 :mod:`.ros.command`; loading files with progress in :mod:`.cli_loading`.
@@ -22,6 +23,7 @@ import click
 
 from . import __version__
 from .cli_bench import bench
+from .cli_check import check, repair
 from .cli_loading import _existing, err_console, load_files, reason_with_progress
 from .cli_ontology import EXIT_INCONSISTENT, query, reason, rules
 from .cli_pictures import demo, map_command
@@ -75,7 +77,7 @@ def cli(ctx: click.Context, debug: bool) -> None:
     ctx.meta["topostore.debug"] = debug
 
 
-for _command in (reason, rules, query, serve, demo, map_command, bench, ros):
+for _command in (reason, rules, query, check, repair, serve, demo, map_command, bench, ros):
     cli.add_command(_command)
 
 from . import cli_explain  # noqa: E402,F401  (registers `topostore explain`; it imports this module)

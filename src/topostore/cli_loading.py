@@ -7,6 +7,8 @@ not a terminal) and refuse a missing file with the same one-line error.
 
 from __future__ import annotations
 
+import logging
+import warnings
 from collections.abc import Iterator, Sequence
 from contextlib import contextmanager
 from pathlib import Path
@@ -15,6 +17,8 @@ import click
 from rich.console import Console
 from rich.progress import Progress, SpinnerColumn, TaskID, TextColumn, TimeElapsedColumn
 
+from .notices import OntologyWarning
+from .notices import logger as notices_logger
 from .ontology import Ontology, ReasonReport
 from .vocab import ASSERTED
 
@@ -39,10 +43,12 @@ def _progress(enabled: bool = True, console: Console | None = None) -> Iterator[
 
 
 def load_files(
-    files: Sequence[str], fmt: str | None = None, console: Console | None = None, store: str | None = None
+    files: Sequence[str], fmt: str | None = None, console: Console | None = None, store: str | None = None,
+    strict: bool = False,
 ) -> Ontology:
-    """Load ``files`` into one ontology (on ``store``), showing how many triples each has given so far."""
-    onto = Ontology(store=store)
+    """Load ``files`` into one ontology (on ``store``), showing how many triples each has given so far;
+    ``strict``: refuse files with axioms not reasoned completely (IncompleteOntologyError)."""
+    onto = Ontology(store=store, strict=strict)
     context = click.get_current_context(silent=True)
     if store and context is not None:
         context.call_on_close(onto.store.close)  # a durable store is released when the command ends
@@ -54,10 +60,36 @@ def load_files(
             def parsed(n: int, task: TaskID = task) -> None:
                 progress.update(task, detail=f"{n:,} triples parsed")
 
-            added = onto.load(f, fmt=fmt, progress=parsed)
+            with _notices_shown(console or err_console):
+                added = onto.load(f, fmt=fmt, progress=parsed)
             progress.update(task, description=f"loaded {name}", detail=f"{added:,} triples")
             progress.stop_task(task)
     return onto
+
+
+class _ConsoleHandler(logging.Handler):
+    """Log records as ``warning: ...`` lines on a console."""
+
+    def __init__(self, console: Console) -> None:
+        super().__init__(logging.WARNING)
+        self.console = console
+
+    def emit(self, record: logging.LogRecord) -> None:
+        self.console.print(f"warning: {record.getMessage()}", markup=False, soft_wrap=True)
+
+
+@contextmanager
+def _notices_shown(console: Console) -> Iterator[None]:
+    """A load's notices (topostore.notices) as one ``warning:`` line each, not as Python warnings."""
+    log = logging.getLogger(notices_logger.name)
+    handler = _ConsoleHandler(console)
+    log.addHandler(handler)
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", OntologyWarning)
+            yield
+    finally:
+        log.removeHandler(handler)
 
 
 def reason_with_progress(onto: Ontology, console: Console | None = None) -> ReasonReport:

@@ -34,6 +34,7 @@ EXIT_INCONSISTENT = 3
     "--format", "fmt", metavar="F", help="Output format: turtle, ntriples or rdfxml (default: from -o's extension)."
 )
 @click.option("--input-format", metavar="F", help="Format of the input files when their extension does not tell.")
+@click.option("--strict", is_flag=True, help="Refuse files with axioms not reasoned completely (see topostore check).")
 def reason(
     files: tuple[str, ...],
     store: str | None,
@@ -41,6 +42,7 @@ def reason(
     inferred_only: bool,
     fmt: str | None,
     input_format: str | None,
+    strict: bool,
 ) -> None:
     """Load FILE(s) (into --store, if given), reason, and print a summary; exit 3 if inconsistent.
 
@@ -56,7 +58,7 @@ def reason(
     if inferred_only and not output:
         raise click.UsageError("--inferred-only needs -o FILE")
     start = time.perf_counter()
-    onto = load_files(files, input_format, store=store)
+    onto = load_files(files, input_format, store=store, strict=strict)
     loaded = time.perf_counter() - start
     report = reason_with_progress(onto)
     asserted = onto.store.count(ASSERTED)
@@ -66,8 +68,8 @@ def reason(
         f"Reasoned in {report.stats.seconds:.3f} s ({report.stats.rounds} rounds, "
         f"{len(onto.rules.rules)} rules): {inferred} inferred triples"
     )
-    for warning in report.warnings:
-        click.echo(f"warning: {warning}", err=True)
+    for notice in report.incomplete:
+        click.echo(f"warning: {notice}", err=True)
     if output:
         out = Path(output)
         rdf_format = guess_format(out, fmt)
@@ -176,7 +178,8 @@ def _rows(items: list[QueryItem]) -> tuple[list[str], list[list[str]]]:
 def query(
     args: tuple[str, ...], params: tuple[str, ...], fmt: str, list_only: bool, full_iris: bool, store: str | None
 ) -> None:
-    """Reason on FILE(s), then run a named query (see --list) or a SPARQL .rq file.
+    """Reason on FILE(s), then run a named query (see --list), a SQWRL query of the files by its
+    name, or a SPARQL .rq file.  ``--list`` with FILE(s) also lists their SQWRL queries.
 
     \b
     Examples:
@@ -189,6 +192,10 @@ def query(
         for q in named_queries().values():
             sig = " ".join(f"{name}={kind}" for name, kind in q.params.items())
             click.echo(f"{q.name}{' ' + sig if sig else ''}\n    {q.description}")
+        if args:  # FILE(s) given: their SQWRL queries too
+            _existing(args)
+            for name, query in load_files(args).rules.queries.items():
+                click.echo(f"{name}\n    {query.description}: columns {', '.join(query.columns)}")
         return
     if len(args) < (1 if store else 2):
         raise click.UsageError("give the ontology file(s) and then a query name or .rq file (topostore query --list)")

@@ -55,6 +55,8 @@ EXIT_CANNOT_LISTEN = 4
     help="Most rows (or triples) a SPARQL result may have.",
 )
 @click.option("--short-names", is_flag=True, help="Answer aRMOR queries with short names instead of <IRI>s.")
+@click.option("--strict", is_flag=True, help="LOAD refuses ontologies with axioms not reasoned completely "
+              "(exit code 209, naming them) instead of loading them with the list.")
 @click.option(
     "--cors-origin",
     "cors_origins",
@@ -84,6 +86,7 @@ def serve(
     sparql_timeout: float,
     sparql_max_rows: int,
     short_names: bool,
+    strict: bool,
     cors_origins: tuple[str, ...],
     store: str | None,
     sync: bool,
@@ -115,6 +118,7 @@ def serve(
         sparql_timeout=sparql_timeout,
         sparql_max_rows=sparql_max_rows,
         short_names=short_names,
+        strict=strict,
         cors_origins=cors_origins,
         store=store,
         sync=sync,

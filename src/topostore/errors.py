@@ -28,7 +28,16 @@ class LoadError(TopostoreError):
 
 
 class RuleCompileError(TopostoreError):
-    """A SWRL rule or OWL axiom that cannot be translated; names the rule and the atom."""
+    """A SWRL rule or OWL axiom that cannot be translated; names the rule and the atom.
+
+    ``rule``: the ``swrl:Imp`` node when a SWRL rule failed (None otherwise).
+    """
+
+    rule: object = None
+
+
+class IncompleteOntologyError(RuleCompileError):
+    """A strict load refused an ontology topostore would not reason completely (the notices say why)."""
 
 
 class QueryError(TopostoreError):

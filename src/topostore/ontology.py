@@ -30,6 +30,7 @@ from .errors import UnknownTypeError
 from .events import EventHub
 from .journal import Journal, all_or_nothing
 from .nary import all_different, individual_triples
+from .notices import Notice
 from .ontology_files import OntologyFiles, is_schema_triple
 from .ontology_queries import OntologyQueries
 from .reason import ReasonStats, Violation, classify
@@ -61,8 +62,9 @@ class ReasonReport:
     consistent: bool
     violations: list[Violation] = field(default_factory=list)
     stats: ReasonStats = field(default_factory=ReasonStats)
-    #: named warnings of the rule compiler: what this REASON did not reason completely
-    warnings: list[str] = field(default_factory=list)
+    #: axioms not reasoned completely (non-Horn or unsupported), each with the reason
+    #: (:class:`topostore.notices.Notice`); empty when the answers are complete
+    incomplete: list[Notice] = field(default_factory=list)
 
     def explain(self) -> str:
         return "consistent" if self.consistent else "; ".join(str(v) for v in self.violations)
@@ -76,8 +78,11 @@ class Ontology(OntologyFiles, OntologyQueries):
     manipulations and reasoning.
     """
 
-    def __init__(self, prefix: str | None = None, store: Store | StoreSpec = None) -> None:
-        """``store``: a Store, or a store setting (None: memory; a directory; an http(s) SPARQL server URL)."""
+    def __init__(self, prefix: str | None = None, store: Store | StoreSpec = None, strict: bool = False) -> None:
+        """``store``: a Store, or a store setting (None: memory; a directory; an http(s) SPARQL server URL).
+
+        ``strict``: refuse (IncompleteOntologyError, nothing changed) a document with axioms topostore
+        does not reason completely or rules it had to skip, instead of loading it with warnings."""
         self.store = store if isinstance(store, Store) else open_store(store)
         self.store.use_functions(RULE_FUNCTIONS)  # the extension functions compiled rules call (swrlb:pow)
         self._prefix = prefix
@@ -85,6 +90,8 @@ class Ontology(OntologyFiles, OntologyQueries):
         self._rules: RuleSet | None = None
         self._superclasses: dict | None = None
         self._report: ReasonReport | None = None
+        self.load_notices = []  # what loading repaired or set aside (topostore.notices)
+        self.strict = strict
         self.dirty = True  # asserted graph changed since the last reasoning
         # net asserted changes since the last reasoning (add then remove cancels),
         # tracked only while an incremental REASON can use them
@@ -286,7 +293,7 @@ class Ontology(OntologyFiles, OntologyQueries):
         rule; a rule that cannot be parsed or compiled is refused naming the
         atom (RuleCompileError) and nothing changes.  Takes effect at the next REASON.
         """
-        return self._add_checked(rule_triples(text, label, self.store, self.prefix, comment))
+        return self._add_checked(rule_triples(text, label, self.store, self.prefix, comment))[0]
 
     def remove_rule(self, label: str) -> int:
         """Remove the SWRL rule(s) labelled ``label`` (loaded or added); RuleCompileError if none."""
@@ -334,7 +341,8 @@ class Ontology(OntologyFiles, OntologyQueries):
         finally:
             self._tracking = self._reasoner.state.ready
         self.store.maybe_compact()
-        previous, self._report = self._report, ReasonReport(not violations, violations, stats, list(rules.warnings))
+        previous, self._report = self._report, ReasonReport(not violations, violations, stats,
+                                                            [n for n in rules.notices if n.incomplete])
         self._advance_views(previous)
         self.dirty = False
         self.events.after_reason(self.store, self._report.consistent, before, stats.seconds)

@@ -16,6 +16,9 @@ from typing import TYPE_CHECKING
 from pyoxigraph import NamedNode, RdfFormat, Triple
 
 from .compile import RuleSet, compile_ontology
+from .compile.swrl_repair import repair_rules, skip_rule
+from .errors import IncompleteOntologyError, RuleCompileError
+from .notices import RULE_REPAIRED, RULE_SKIPPED, Notice, grouped, publish
 from .safeio import atomic_write
 from .store import Store, guess_format, serialize
 from .stores import StoreSpec, check_rules
@@ -61,11 +64,14 @@ class OntologyFiles:
 
     store: Store
     _rules: RuleSet | None
+    rules: RuleSet
+    #: what loads repaired or set aside (rules), in load order; see :mod:`topostore.notices`
+    load_notices: list[Notice]
 
     @classmethod
     def from_file(cls, *paths: str | os.PathLike[str], prefix: str | None = None, fmt: str | None = None,
-                  base_iri: str | None = None, store: Store | StoreSpec = None) -> Ontology:
-        onto = cls(prefix=prefix, store=store)
+                  base_iri: str | None = None, store: Store | StoreSpec = None, strict: bool = False) -> Ontology:
+        onto = cls(prefix=prefix, store=store, strict=strict)
         for p in paths:
             onto.load(p, fmt=fmt, base_iri=base_iri)
         return onto
@@ -79,26 +85,65 @@ class OntologyFiles:
         ``progress(n)`` is told how many triples have been parsed so far.
         """
         triples = self.store.parse_file(path, fmt, base_iri, progress)
-        return self._add_checked(triples)
+        return self._add_document(triples, str(path))
 
     def load_data(self, data: str | bytes, fmt: str = "turtle", base_iri: str | None = None) -> int:
         triples = self.store.parse_bytes(data, guess_format("x", fmt), base_iri)
-        return self._add_checked(triples)
+        return self._add_document(triples, "<data>")
 
-    def _add_checked(self, triples: list[Triple]) -> int:
+    def _add_document(self, triples: list[Triple], source: str) -> int:
+        """Add a document: its SWRL rules repaired first (:mod:`.compile.swrl_repair`), then
+        checked; what was repaired or set aside is published (warnings, log) and kept in
+        :attr:`load_notices` once the document is in."""
+        triples, notices = repair_rules(triples)
+        known = set(self._rules.notices) if self._rules is not None else set()
+        added, notices = self._add_checked(triples, notices)
+        self.load_notices += notices
+        compiled = self._rules.notices if self._rules is not None else []
+        publish([*notices, *(n for n in compiled if n not in known)], source)
+        return added
+
+    def _add_checked(self, triples: list[Triple], repaired: list[Notice] | None = None) -> tuple[int, list[Notice]]:
         """Add loaded triples; when they change the rules, compile first on a copy,
         so that an untranslatable rule leaves the ontology untouched, and keep
-        that compilation (it is the one the new asserted graph gives)."""
+        that compilation (it is the one the new asserted graph gives).
+
+        A rule that was repaired (``repaired``) and still cannot be translated is
+        set aside (a notice) rather than refusing the document; any other
+        untranslatable rule refuses it.  Returns (triples added, notices).
+        """
+        notices = list(repaired or [])
         if not any(is_schema_triple(t) for t in triples):
-            return self.add(*triples)
-        scratch = Store()
-        scratch.add(self.store.triples(graph=ASSERTED), ASSERTED)
-        scratch.add(triples, ASSERTED)
-        rules = compile_ontology(scratch, ASSERTED)  # raises RuleCompileError, nothing added
+            return self.add(*triples), notices
+        while True:
+            scratch = Store()
+            scratch.add(self.store.triples(graph=ASSERTED), ASSERTED)
+            scratch.add(triples, ASSERTED)
+            try:
+                rules = compile_ontology(scratch, ASSERTED)  # raises RuleCompileError, nothing added
+                break
+            except RuleCompileError as exc:
+                done = next((n for n in notices if n.kind == RULE_REPAIRED and n.node == exc.rule), None)
+                if done is None:
+                    raise
+                triples, skipped = skip_rule(triples, exc.rule, f"repaired ({done.reason}) but "
+                                             f"it still cannot be translated: {exc}")
+                notices = [skipped if n is done else n for n in notices]
+        if getattr(self, "strict", False):
+            _refuse_incomplete([*notices, *rules.notices])
         check_rules(self.store, rules)
         added = self.add(*triples)
         self._rules = rules
-        return added
+        return added, notices
+
+    @property
+    def notices(self) -> list[Notice]:
+        """What loading repaired or set aside, then what the current rules set aside or reason only in part."""
+        return [*self.load_notices, *self.rules.notices]
+
+    def notice_lines(self) -> list[str]:
+        """:attr:`notices` one line per kind (and axiom kind), naming each rule or axiom with its reason."""
+        return grouped(self.notices)
 
     def triples(self, inferred: bool = False) -> list[Triple]:
         graphs = self.visible_graphs() if inferred else [ASSERTED]
@@ -115,6 +160,13 @@ class OntologyFiles:
         path = Path(path)
         data = self.serialize(guess_format(path, fmt), inferred)
         return atomic_write(path, data)  # temporary file beside it, never through a symlink, removed on failure
+
+
+def _refuse_incomplete(notices: list[Notice]) -> None:
+    """Strict loading: IncompleteOntologyError naming every axiom not reasoned completely or rule skipped."""
+    blocking = [n for n in notices if n.incomplete or n.kind == RULE_SKIPPED]
+    if blocking:
+        raise IncompleteOntologyError("refused (strict): " + "; ".join(grouped(blocking)))
 
 
 __all__ = ["OntologyFiles", "is_schema_triple"]

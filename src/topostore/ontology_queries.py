@@ -13,11 +13,11 @@ from pyoxigraph import Literal, NamedNode, Triple
 
 from .errors import QueryError
 from .ontology_files import SCHEMA_NAMESPACES
-from .queries import QueryItem, collect, get_named_query, render_jena, substitutions, to_items
+from .queries import QueryItem, collect, get_named_query, named_queries, render_jena, substitutions, to_items
 from .store import Store
 from .terms import Term, value_key
 from .views import Render
-from .vocab import ASSERTED, DECLARATION_TYPES, THING, TYPE, is_internal, is_skolem
+from .vocab import ASSERTED, AUX, DECLARATION_TYPES, INFERRED, THING, TYPE, is_internal, is_skolem
 
 
 class OntologyQueries:
@@ -137,6 +137,10 @@ class OntologyQueries:
             raise TypeError(f"a query name or text must be a string, not {type(name_or_text).__name__}")
         if name_or_text.lstrip().upper().startswith(("SELECT", "PREFIX", "BASE")):
             text, kinds = name_or_text, {k: "iri" for k in params}
+        elif name_or_text in self.rules.queries:
+            if params:
+                raise QueryError(f"SQWRL query {name_or_text!r} takes no parameters")
+            return self._run_sqwrl(self.rules.queries[name_or_text], timeout)
         else:
             q = get_named_query(name_or_text)
             text, kinds = q.text, q.params
@@ -152,6 +156,23 @@ class OntologyQueries:
         keep = [i for i, v in enumerate(variables) if v not in bindings]
         rows = [[row[i] for i in keep] for row in rows]
         return to_items([variables[i] for i in keep], rows, lambda t: render_jena(t, self.store.restore))
+
+
+    def _run_sqwrl(self, query, timeout: float | None) -> list[QueryItem]:
+        """A SQWRL query of the ontology (compiled text, not user text: it may read the helper graph
+        for anonymous classes and difference, which holds only while the ontology is consistent)."""
+        graphs = self.visible_graphs()
+        if INFERRED in graphs:
+            graphs = [*graphs, AUX]
+        variables, rows, _ = collect(self.store.query(query.text, graphs=graphs), timeout)
+        return to_items(variables, rows, lambda t: render_jena(t, self.store.restore))
+
+    def query_names(self) -> dict[str, str]:
+        """The named queries this ontology runs by name: those of ``queries/`` and its SQWRL queries
+        (name → description)."""
+        names = {q.name: q.description for q in named_queries().values()}
+        names.update({q.name: q.description for q in self.rules.queries.values()})
+        return names
 
 
 def _is_schema_or_internal(p: NamedNode) -> bool:

@@ -92,6 +92,8 @@ class ServerConfig:
     sync: bool = False
     store_query_url: str | None = None
     store_update_url: str | None = None
+    #: LOAD refuses ontologies with axioms not reasoned completely (see topostore.compile.profile)
+    strict: bool = False
 
     def check(self) -> None:
         """Refuse settings that would expose the service or cannot work, with the fix in the message."""
@@ -323,7 +325,7 @@ def create_app(config: ServerConfig, service: ArmorService | None = None) -> Sta
     data_dir.mkdir(parents=True, exist_ok=True)
     service = service or ArmorService(data_dir=data_dir, short_names=config.short_names, store=config.store,
                                       sync=config.sync, store_query_url=config.store_query_url,
-                                      store_update_url=config.store_update_url)
+                                      store_update_url=config.store_update_url, strict=config.strict)
     if service.data_dir is None:
         raise ConfigError("the served ArmorService must confine files to a data directory")
     api = Api(config, service)

@@ -17,6 +17,8 @@ SWRLB = "http://www.w3.org/2003/11/swrlb#"
 SWRLA = "http://swrl.stanford.edu/ontologies/3.3/swrla.owl#"
 #: Protégé's SWRL namespaces (swrla, swrlx, ...) all start here; they describe rules, not facts.
 STANFORD_SWRL = "http://swrl.stanford.edu/"
+#: SWRLTab's SQWRL built-ins (``.../3.4/sqwrl.owl#select``) live under this prefix.
+SQWRL_PREFIX = "http://sqwrl.stanford.edu/ontologies/built-ins/"
 XML = "http://www.w3.org/XML/1998/namespace"
 #: The namespaces of the SPARQL 1.1 Service Description (http/description.py).
 SD = "http://www.w3.org/ns/sparql-service-description#"

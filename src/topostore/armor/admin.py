@@ -69,14 +69,14 @@ def load(source: str, mounted: bool) -> Handler:
             buffered_reasoner,
         )
         ctx.ref = ref
-        warnings = (
-            []
-            if created
-            else [
+        if created:  # what the file's load repaired, set aside or does not reason completely: never silent
+            with ref.lock:
+                warnings = ref.ontology.notice_lines()
+        else:
+            warnings = [
                 f"reference {ref.name!r} already exists and was reused as is; "
                 "the LOAD arguments were ignored (DROP it first to reload)"
             ]
-        )
         if mounted:
             with ref.lock:
                 warnings += _mount(ref, req.client_name).warnings

@@ -57,11 +57,16 @@ class ArmorService:
     one RocksDB store per reference; an http(s) URL: a SPARQL 1.1 server), see
     :mod:`topostore.stores`; a durable store's references are reopened here
     (:mod:`topostore.armor.durable`).  ``sync``: flush each commit to disk (directory stores).
+    ``strict``: LOAD refuses a file with axioms not reasoned completely (209, naming them) instead of
+    loading it and naming them in ``error_description``.
     """
 
     def __init__(self, data_dir: str | os.PathLike[str] | None = None, short_names: bool = False,
                  allow_web: bool = False, store: StoreSpec = None, sync: bool = False,
-                 store_query_url: str | None = None, store_update_url: str | None = None) -> None:
+                 store_query_url: str | None = None, store_update_url: str | None = None,
+                 strict: bool = False) -> None:
+        #: LOAD refuses (exit code 209) files with axioms not reasoned completely (the reply names them)
+        self.strict = strict
         self.data_dir = Path(data_dir).resolve() if data_dir is not None else None
         self.short_names = short_names
         self.allow_web = allow_web
@@ -224,7 +229,7 @@ class ArmorService:
         """A reasoned ontology from a file or URL, on ``store`` (None: memory); aRMOR errors on failure."""
         path: Path | None = None
         try:
-            onto = Ontology(prefix=iri + "#", store=store)
+            onto = Ontology(prefix=iri + "#", store=store, strict=self.strict)
             if source == "FILE":
                 path = self.resolve_path(location)
                 self.note_ontology_file(path)

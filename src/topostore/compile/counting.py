@@ -29,6 +29,7 @@ from __future__ import annotations
 
 import re
 
+from ..notices import INCOMPLETE, Notice
 from ..vocab import AUX, DIFFERENT_KEY, KEY_PREFIX, XSD
 from . import condition as cond
 from .condition import Condition
@@ -109,12 +110,14 @@ def count_at_least(x: str, values: list[Atom], tests: list[Condition], value: st
                                     Condition(cond.PATTERN, group, reads_graph=True, written=group)]
 
 
-def counting_warning(restriction: str) -> str:
-    """The named warning of an object cardinality above :data:`PAIRWISE_MAX` (one per restriction)."""
-    return (f"{COUNTED_ONLY}: {restriction}: more than {PAIRWISE_MAX} values are counted only among "
-            "members of one owl:AllDifferent; individuals different only by owl:differentFrom, disjoint "
-            "classes or functional values are not counted")
+def counting_notice(restriction: str) -> Notice:
+    """The notice of an object cardinality above :data:`PAIRWISE_MAX` (one per restriction), kind
+    :data:`COUNTED_ONLY`: what it does not reason completely."""
+    return Notice(INCOMPLETE, restriction,
+                  f"more than {PAIRWISE_MAX} values are counted only among members of one owl:AllDifferent; "
+                  "individuals different only by owl:differentFrom, disjoint classes or functional values are "
+                  "not counted", axiom_kind=COUNTED_ONLY)
 
 
-__all__ = ["COUNTED_ONLY", "PAIRWISE_MAX", "UNREACHABLE", "count_at_least", "counting_warning", "group_of",
+__all__ = ["COUNTED_ONLY", "PAIRWISE_MAX", "UNREACHABLE", "count_at_least", "counting_notice", "group_of",
            "key_atom", "literal_key"]

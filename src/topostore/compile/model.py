@@ -7,14 +7,16 @@ values.  Nothing here knows about SPARQL.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+import hashlib
+from dataclasses import dataclass, field, replace
 
 from pyoxigraph import Literal, NamedNode
 
 from ..errors import RuleCompileError
 from ..store import Store
 from ..terms import Term
-from ..vocab import NOTHING, OWL, RDF, RDFS, THING, TYPE, XSD, is_skolem, owl, rdfs
+from ..vocab import EXPR_PREFIX, NOTHING, OWL, RDF, RDFS, THING, TYPE, XSD, is_skolem, owl
+from . import data_ranges
 
 
 @dataclass(frozen=True)
@@ -60,6 +62,8 @@ def describe(e: Expr) -> str:
     def short(t: Term | None) -> str:
         if t is None:
             return "?"
+        if isinstance(t, NamedNode) and data_ranges.readable(t):
+            return data_ranges.readable(t)
         v = t.value if hasattr(t, "value") else str(t)
         return v.rsplit("#", 1)[-1] if "#" in v else v.rsplit("/", 1)[-1]
 
@@ -104,6 +108,14 @@ class TBox:
     object_properties: set[NamedNode] = field(default_factory=set)
     named_classes: set[NamedNode] = field(default_factory=set)
     typed_expressions: list[Expr] = field(default_factory=list)  # anonymous classes used in rdf:type
+    #: axioms read but not translated: (axiom as text, why); the profile report names them
+    unsupported: list[tuple[str, str]] = field(default_factory=list)
+    #: properties made the same by owl:sameAs (named by the profile report: not substituted)
+    same_properties: list[tuple[NamedNode, NamedNode]] = field(default_factory=list)
+    #: keys (owl:hasKey): class, the properties whose values identify an individual
+    keys: list[tuple[Expr, tuple[Prop, ...]]] = field(default_factory=list)
+    #: axioms read without rules of their own (hasKey, disjoint unions' covering, ...): (axiom, kind, why)
+    partial: list[tuple[str, str, str]] = field(default_factory=list)
 
     def has(self, characteristic: str, p: NamedNode) -> bool:
         return p in self.characteristics.get(characteristic, set())
@@ -163,11 +175,13 @@ class TBoxReader:
             raise RuleCompileError(f"a literal {node} used as a class")
         self._cache[node] = Expr(node, "named")  # guards against cyclic structures
         if self._depth >= MAX_NESTING:
-            raise RuleCompileError(f"class expressions nested more than {MAX_NESTING} deep (at {node.value}); "
-                                   "the ontology was not reasoned")
+            raise RuleCompileError(f"class expressions nested more than {MAX_NESTING} deep (at {node.value})")
         self._depth += 1
         try:
             expr = self._read(node)
+        except RuleCompileError:
+            del self._cache[node]  # not a class: an axiom using it is set aside, never read as named
+            raise
         finally:
             self._depth -= 1
         self._cache[node] = expr
@@ -200,12 +214,33 @@ class TBoxReader:
         if value is None:
             return None, None
         if pred_is_data(value, prop, self):
-            if not isinstance(value, NamedNode) or is_skolem(value):
+            if is_skolem(value):
+                return None, self.data_range(value, f"restriction on {prop.iri.value}")
+            if not isinstance(value, NamedNode):
                 raise RuleCompileError(f"unsupported data range in restriction on {prop.iri.value}")
             return None, value
         if value == THING:
             return None, None
         return self.expr(value), None
+
+    def data_range(self, node: NamedNode, where: str) -> NamedNode:
+        """A datatype restricted by numeric facets, as the IRI :mod:`.data_ranges` names it;
+        RuleCompileError for other data range expressions (data one-of, unions, string facets)."""
+        base = self._one(node, OWL + "onDatatype")
+        head = self._one(node, OWL + "withRestrictions")
+        if not isinstance(base, NamedNode) or head is None:
+            raise RuleCompileError(f"unsupported data range in {where} (only datatypes restricted by "
+                                   "numeric facets are)")
+        facets = []
+        for item in self._list(head):
+            for t in self.store.triples(item, None, None, self.graph):
+                if not isinstance(t.object, Literal) or not t.predicate.value.startswith(XSD):
+                    raise RuleCompileError(f"unsupported facet in the data range of {where}")
+                facets.append((t.predicate.value[len(XSD):], t.object))
+        try:
+            return data_ranges.restricted(base, facets)
+        except ValueError as exc:
+            raise RuleCompileError(f"data range of {where}: {exc}") from None
 
     def _restriction(self, node: NamedNode, prop: Prop) -> Expr:
         some = self._one(node, OWL + "someValuesFrom")
@@ -236,6 +271,112 @@ class TBoxReader:
         raise RuleCompileError(f"unsupported restriction on {prop.iri.value}")
 
     # ---------------------------------------------------------------- axioms
+    def _each(self, tb: TBox, pred: str, read) -> None:
+        """``read(triple)`` for every triple of ``pred``; an axiom that cannot be read is set aside
+        (``tb.unsupported``, named by the profile report) instead of refusing the ontology."""
+        for t in self.store.triples(None, NamedNode(pred), None, self.graph):
+            try:
+                read(t)
+            except RuleCompileError as exc:
+                tb.unsupported.append((f"{_short(t.subject)} {_short(t.predicate)} {_short(t.object)}", str(exc)))
+
+    def _class_axioms(self, tb: TBox) -> None:
+        expr, st, g = self.expr, self.store, self.graph
+        self._each(tb, RDFS + "subClassOf", lambda t: tb.subclass.append((expr(t.subject), expr(t.object))))
+        self._each(tb, OWL + "equivalentClass", lambda t: tb.equivalent.append((expr(t.subject), expr(t.object))))
+        self._each(tb, OWL + "disjointWith", lambda t: tb.disjoint.append((expr(t.subject), expr(t.object))))
+        for node in st.subjects(TYPE, owl("AllDisjointClasses"), g):
+            try:
+                members = [expr(m) for m in self._list(self._one(node, OWL + "members"))]
+            except RuleCompileError as exc:
+                tb.unsupported.append(("an AllDisjointClasses axiom", str(exc)))
+                continue
+            tb.disjoint += [(a, b) for i, a in enumerate(members) for b in members[i + 1:]]
+
+        def disjoint_union(t) -> None:
+            members = [expr(m) for m in self._list(t.object)]
+            tb.disjoint += [(a, b) for i, a in enumerate(members) for b in members[i + 1:]]
+            tb.subclass += [(m, expr(t.subject)) for m in members]
+            tb.partial.append((f"{_short(t.subject)} DisjointUnionOf ({' '.join(describe(m) for m in members)})",
+                               "union or one-of as a superclass", f"{_short(t.subject)} SubClassOf the union of its parts "
+                               "needs case analysis: not reasoned"))
+
+        self._each(tb, OWL + "disjointUnionOf", disjoint_union)
+
+    def _named_definitions(self, tb: TBox) -> None:
+        """OWL 1 definitions on a named class (``:C owl:intersectionOf (...)``): what the OWL API
+        reads as EquivalentClasses(C, ...); and classes made the same (owl:sameAs) as equivalent."""
+        for kind, pred in (("and", "intersectionOf"), ("or", "unionOf"), ("oneof", "oneOf"), ("not", "complementOf")):
+            def define(t, kind=kind) -> None:
+                if not isinstance(t.subject, NamedNode) or is_skolem(t.subject):
+                    return
+                node = self._definition_node(t.subject, kind)
+                if kind == "oneof":
+                    e = Expr(node, kind, individuals=tuple(self._list(t.object)))
+                elif kind == "not":
+                    e = Expr(node, kind, members=(self.expr(t.object),))
+                else:
+                    e = Expr(node, kind, members=tuple(self.expr(m) for m in self._list(t.object)))
+                tb.equivalent.append((Expr(t.subject, "named"), e))
+            self._each(tb, OWL + pred, define)
+
+        def restriction(t) -> None:  # a restriction named by an IRI (RDF-Based Semantics documents)
+            if isinstance(t.subject, NamedNode) and not is_skolem(t.subject):
+                e = self._restriction(t.subject, self.prop(t.object))
+                tb.equivalent.append((Expr(t.subject, "named"), replace(e, node=self._definition_node(t.subject, "r"))))
+        self._each(tb, OWL + "onProperty", restriction)
+        classes = tb.named_classes
+
+        properties = tb.object_properties | tb.data_properties
+
+        def used_as_property(node: Term) -> bool:
+            return node in properties or (isinstance(node, NamedNode) and bool(
+                self.store.triples(None, node, None, self.graph)))
+
+        def same(t) -> None:
+            if t.subject in classes and t.object in classes and t.subject != t.object:
+                tb.equivalent.append((self.expr(t.subject), self.expr(t.object)))
+            elif t.subject != t.object and (used_as_property(t.subject) or used_as_property(t.object)):
+                tb.same_properties.append((t.subject, t.object))
+        self._each(tb, OWL + "sameAs", same)
+
+    @staticmethod
+    def _definition_node(cls: NamedNode, kind: str) -> NamedNode:
+        """The (internal) node of the expression a named class is defined as."""
+        return NamedNode(EXPR_PREFIX + "definition:" + hashlib.md5(f"{cls.value} {kind}".encode()).hexdigest())
+
+    def _keys(self, tb: TBox) -> None:
+        self._each(tb, OWL + "hasKey", lambda t: tb.keys.append(
+            (self.expr(t.subject), tuple(self.prop(p) for p in self._list(t.object)))))
+
+    def _property_axioms(self, tb: TBox) -> None:
+        expr, prop = self.expr, self.prop
+        self._each(tb, RDFS + "domain", lambda t: tb.domain.append((prop(t.subject), expr(t.object))))
+
+        def range_(t) -> None:
+            p = prop(t.subject)
+            if is_datatype(t.object) or p.iri in tb.data_properties:
+                tb.data_properties.add(p.iri)
+                if isinstance(t.object, NamedNode) and not is_skolem(t.object):
+                    tb.data_range.append((p.iri, t.object))
+                elif isinstance(t.object, NamedNode):
+                    tb.data_range.append((p.iri, self.data_range(t.object, f"the range of {p.iri.value}")))
+            else:
+                tb.range.append((p, expr(t.object)))
+
+        def equivalent(t) -> None:
+            a, b = prop(t.subject), prop(t.object)
+            tb.subproperty.extend([(a, b), (b, a)])
+
+        self._each(tb, RDFS + "range", range_)
+        self._each(tb, RDFS + "subPropertyOf", lambda t: tb.subproperty.append((prop(t.subject), prop(t.object))))
+        self._each(tb, OWL + "equivalentProperty", equivalent)
+        for t in self.store.triples(None, owl("inverseOf"), None, self.graph):
+            if isinstance(t.subject, NamedNode) and not is_skolem(t.subject):
+                tb.inverse.append((t.subject, t.object))
+        self._each(tb, OWL + "propertyChainAxiom",
+                   lambda t: tb.chains.append((t.subject, tuple(prop(p) for p in self._list(t.object)))))
+
     def read(self) -> TBox:
         tb = TBox()
         st, g = self.store, self.graph
@@ -245,40 +386,10 @@ class TBoxReader:
             tb.characteristics[name] = {s for s in st.subjects(TYPE, owl(name), g) if isinstance(s, NamedNode)}
         tb.named_classes = {s for s in st.subjects(TYPE, owl("Class"), g) if not is_skolem(s)}
 
-        for t in st.triples(None, rdfs("subClassOf"), None, g):
-            tb.subclass.append((self.expr(t.subject), self.expr(t.object)))
-        for t in st.triples(None, owl("equivalentClass"), None, g):
-            tb.equivalent.append((self.expr(t.subject), self.expr(t.object)))
-        for t in st.triples(None, owl("disjointWith"), None, g):
-            tb.disjoint.append((self.expr(t.subject), self.expr(t.object)))
-        for node in st.subjects(TYPE, owl("AllDisjointClasses"), g):
-            members = [self.expr(m) for m in self._list(self._one(node, OWL + "members"))]
-            tb.disjoint += [(a, b) for i, a in enumerate(members) for b in members[i + 1:]]
-        for t in st.triples(None, owl("disjointUnionOf"), None, g):
-            members = [self.expr(m) for m in self._list(t.object)]
-            tb.disjoint += [(a, b) for i, a in enumerate(members) for b in members[i + 1:]]
-            tb.subclass += [(m, self.expr(t.subject)) for m in members]
-
-        for t in st.triples(None, rdfs("domain"), None, g):
-            tb.domain.append((self.prop(t.subject), self.expr(t.object)))
-        for t in st.triples(None, rdfs("range"), None, g):
-            p = self.prop(t.subject)
-            if is_datatype(t.object) or p.iri in tb.data_properties:
-                tb.data_properties.add(p.iri)
-                if isinstance(t.object, NamedNode) and not is_skolem(t.object):
-                    tb.data_range.append((p.iri, t.object))
-            else:
-                tb.range.append((p, self.expr(t.object)))
-        for t in st.triples(None, rdfs("subPropertyOf"), None, g):
-            tb.subproperty.append((self.prop(t.subject), self.prop(t.object)))
-        for t in st.triples(None, owl("equivalentProperty"), None, g):
-            a, b = self.prop(t.subject), self.prop(t.object)
-            tb.subproperty += [(a, b), (b, a)]
-        for t in st.triples(None, owl("inverseOf"), None, g):
-            if isinstance(t.subject, NamedNode) and not is_skolem(t.subject):
-                tb.inverse.append((t.subject, t.object))
-        for t in st.triples(None, owl("propertyChainAxiom"), None, g):
-            tb.chains.append((t.subject, tuple(self.prop(p) for p in self._list(t.object))))
+        self._class_axioms(tb)
+        self._named_definitions(tb)
+        self._keys(tb)
+        self._property_axioms(tb)
         for t in st.triples(None, owl("propertyDisjointWith"), None, g):
             tb.disjoint_props.append((t.subject, t.object))
         for node in st.subjects(TYPE, owl("AllDisjointProperties"), g):
@@ -291,12 +402,19 @@ class TBoxReader:
             if isinstance(o, NamedNode) and is_skolem(o) and not _is_axiom_node(st, o, g):
                 try:
                     tb.typed_expressions.append(self.expr(o))
-                except RuleCompileError:
-                    continue
+                except RuleCompileError as exc:
+                    tb.unsupported.append((f"{_short(t.subject)} Type an anonymous expression", str(exc)))
         for e in self._cache.values():
             if e.is_named and e.node not in (THING, NOTHING) and not is_datatype(e.node):
                 tb.named_classes.add(e.node)
         return tb
+
+
+def _short(t: Term) -> str:
+    if is_skolem(t):
+        return "an anonymous expression"
+    v = t.value if hasattr(t, "value") else str(t)
+    return v.rsplit("#", 1)[-1] if "#" in v else v.rsplit("/", 1)[-1]
 
 
 def _is_axiom_node(store: Store, node: NamedNode, graph: NamedNode) -> bool:

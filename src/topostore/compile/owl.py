@@ -22,6 +22,7 @@ from collections.abc import Sequence
 
 from pyoxigraph import NamedNode
 
+from ..notices import Notice
 from ..terms import sparql
 from ..vocab import NOTHING, SAME_AS, THING, TYPE
 from . import condition as cond
@@ -45,7 +46,7 @@ class OwlCompiler(RestrictionRules):
     def __init__(self, tbox: TBox) -> None:
         self.tb = tbox
         self.rules: list[Rule] = []
-        self.warnings: list[str] = []
+        self.notices: list[Notice] = []
         self.disjoint_pairs = [
             (a.node, b.node) for a, b in tbox.disjoint if a.is_named and b.is_named
         ]

@@ -12,11 +12,13 @@ from itertools import combinations
 
 from pyoxigraph import NamedNode
 
+from ..notices import Notice
 from ..terms import sparql
 from ..vocab import DIFFERENT, SAME_AS, THING, TYPE
 from . import condition as cond
+from . import data_ranges
 from .condition import Condition
-from .counting import PAIRWISE_MAX, UNREACHABLE, count_at_least, counting_warning
+from .counting import PAIRWISE_MAX, UNREACHABLE, count_at_least, counting_notice
 from .model import Expr, TBox
 from .rule import Atom
 from .snippets import (
@@ -44,6 +46,8 @@ def term_before(a: str, b: str) -> str:
 def nm(term: NamedNode) -> str:
     """Short name of an IRI for messages (local part after # or /)."""
     v = term.value
+    if v.startswith(data_ranges.PREFIX):
+        return data_ranges.readable(term)
     return v.rsplit("#", 1)[-1] if "#" in v else v.rsplit("/", 1)[-1]
 
 
@@ -54,8 +58,8 @@ class RestrictionRules:
     # provided by OwlCompiler: the TBox, emit(), member(), prop_atom(), is_data(), all_expressions(),
     # filler_subsumed()
     tb: TBox
-    #: named warnings about what the rules do not reason completely (see .counting)
-    warnings: list[str]
+    #: what the rules do not reason completely (see .counting), as notices
+    notices: list[Notice]
 
     @staticmethod
     def counts(n: int) -> bool:
@@ -73,9 +77,9 @@ class RestrictionRules:
         tests = [test] if test is not None else []
         extra, conditions = count_at_least(x, values, tests, v, n, data)
         if not data:
-            warning = counting_warning(str(e))
-            if warning not in self.warnings:
-                self.warnings.append(warning)
+            notice = counting_notice(str(e))
+            if notice not in self.notices:
+                self.notices.append(notice)
         return values + extra, tests + conditions
 
     def require_different(self, pairs: list[tuple[str, str]], body: list[Atom], filters: list[Condition],

@@ -2,8 +2,6 @@
 
 from __future__ import annotations
 
-import logging
-
 from pyoxigraph import NamedNode
 
 from ..store import Store
@@ -12,10 +10,10 @@ from .guard import guard_rules
 from .implied import simplify
 from .model import TBoxReader
 from .owl import OwlCompiler
+from .owl_extras import key_rules, reflexive_rules, restriction_rules
+from .profile import profile
 from .rule import RuleSet
 from .swrl import SwrlCompiler
-
-logger = logging.getLogger("topostore.compile")
 
 
 def compile_ontology(store: Store, graph: NamedNode) -> RuleSet:
@@ -24,7 +22,7 @@ def compile_ontology(store: Store, graph: NamedNode) -> RuleSet:
     Raises :class:`~topostore.errors.RuleCompileError` naming the rule and atom
     when a SWRL rule or an axiom cannot be translated, or when a rule would be
     too large for the store to evaluate safely (:mod:`.guard`).  What the rules
-    do not reason completely is in ``warnings`` (also logged).
+    do not reason completely is in ``notices`` (published at LOAD, see :mod:`topostore.notices`).
     """
     reader = TBoxReader(store, graph)
     tbox = reader.read()
@@ -35,7 +33,14 @@ def compile_ontology(store: Store, graph: NamedNode) -> RuleSet:
     rules = RuleSet()
     rules.add(generic_rules())
     rules.add(owl.compile())
+    rules.add(key_rules(tbox))
+    rules.add(reflexive_rules(tbox))
+    rules.add(restriction_rules(owl))
+    rules.notices += profile(store, graph, tbox, owl, swrl.used_as, swrl.uses_difference)
     rules.add(swrl_rules)
+    rules.add(swrl.query_rules)
+    rules.queries = dict(swrl.queries)
+    rules.notices += swrl.notices
     simplified = RuleSet()
     simplified.add(simplify(rules.rules))  # rules that differed only in implied atoms become one
     rules.rules = simplified.rules
@@ -43,8 +48,6 @@ def compile_ontology(store: Store, graph: NamedNode) -> RuleSet:
     rules.data_properties = set(tbox.data_properties)
     rules.object_properties = set(tbox.object_properties)
     rules.entailed_predicates = set(swrl.entailed_predicates)
-    rules.warnings = list(owl.warnings)
-    for warning in rules.warnings:
-        logger.warning("%s", warning)
+    rules.notices += owl.notices
     guard_rules(rules)
     return rules

@@ -227,8 +227,10 @@ class RuleSet:
     object_properties: set[NamedNode] = field(default_factory=set)
     #: predicates whose entailed-only conclusions are published (see vocab.ENTAILED)
     entailed_predicates: set[NamedNode] = field(default_factory=set)
-    #: named warnings of the compiler: what these rules do not reason completely ("name: text")
-    warnings: list[str] = field(default_factory=list)
+    #: what the compilation set aside or reasons only in part (topostore.notices.Notice)
+    notices: list = field(default_factory=list)
+    #: SQWRL queries of the ontology by name (compile.sqwrl.SqwrlQuery), run like named queries
+    queries: dict = field(default_factory=dict)
 
     def add(self, rules: Iterable[Rule]) -> None:
         seen = {(r.name, r.where(), r.head) for r in self.rules}

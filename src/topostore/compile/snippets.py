@@ -10,6 +10,7 @@ from pyoxigraph import NamedNode
 
 from ..terms import INTEGER_TYPES
 from ..vocab import AUX, DECLARED_DIFFERENT, DIFFERENCE_CANDIDATE, DIFFERENT, OWL, RDF, RDFS, XSD
+from . import data_ranges
 from .condition import Condition, exists
 from .rule import Atom
 
@@ -63,6 +64,11 @@ def in_datatype(var: str, datatype: NamedNode) -> str | None:
     Returns None for datatypes topostore does not check (any literal then fits).
     Errors (ill-typed literals) count as "not in the datatype".
     """
+    restricted = data_ranges.parts(datatype)
+    if restricted is not None:  # a datatype restricted by numeric facets: the base, then each facet
+        base = in_datatype(var, restricted[0]) or f"isLiteral({var})"
+        facets = " && ".join(data_ranges.facet_tests(var, datatype))
+        return f"COALESCE(({base} && {facets}), false)" if facets else base
     dt = datatype.value
     local = dt[len(XSD):] if dt.startswith(XSD) else None
     if dt in (RDFS + "Literal",):

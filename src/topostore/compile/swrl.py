@@ -15,10 +15,11 @@ from dataclasses import dataclass, field
 from pyoxigraph import Literal, NamedNode
 
 from ..errors import RuleCompileError
+from ..notices import SQWRL_QUERY, Notice
 from ..store import Store
 from ..terms import Term, sparql
 from ..vocab import DIFFERENT_FROM, ENTAILED_PREFIX, SAME_AS, SWRL, SWRLA, TYPE, is_skolem, rdfs, swrl
-from . import builtins
+from . import builtins, sqwrl
 from . import condition as cond
 from .condition import Condition
 from .model import Expr, TBoxReader, is_datatype
@@ -103,8 +104,17 @@ class SwrlCompiler:
         self.store, self.graph, self.reader = store, graph, reader
         self.variables = {v for v in store.subjects(TYPE, swrl("Variable"), graph)}
         self.expressions: list[Expr] = []
+        #: anonymous class expressions of rule atoms: (expression, in a head)
+        self.used_as: list[tuple[Expr, bool]] = []
+        #: whether a rule or query has a DifferentIndividuals atom in its body
+        self.uses_difference = False
         #: predicates of conclusions drawn with entailed-only difference
         self.entailed_predicates: set[NamedNode] = set()
+        #: SQWRL queries by name, and what was said about them
+        self.queries: dict[str, sqwrl.SqwrlQuery] = {}
+        self.notices: list[Notice] = []
+        #: rules asking which pairs a SQWRL query's DifferentIndividuals atoms need checked
+        self.query_rules: list[Rule] = []
 
     def _one(self, s: Term, p: NamedNode) -> Term | None:
         v = self.store.objects(s, p, self.graph)
@@ -122,7 +132,14 @@ class SwrlCompiler:
             enabled = self._one(node, NamedNode(SWRLA + "isRuleEnabled"))
             if isinstance(enabled, Literal) and enabled.value.strip().lower() in ("false", "0"):
                 continue
-            rules += self.compile_rule(node)
+            if self.is_query(node):
+                self.compile_query(node)
+                continue
+            try:
+                rules += self.compile_rule(node)
+            except RuleCompileError as exc:
+                exc.rule = node  # which rule, so that a loader may set a repaired one aside
+                raise
         return rules
 
     # ------------------------------------------------------------------ reading
@@ -144,6 +161,56 @@ class SwrlCompiler:
                              if a is not None)
             out.append(SwrlAtom(kind, pred, args, node))
         return out
+
+    # ------------------------------------------------------------------ SQWRL
+    def is_query(self, node: Term) -> bool:
+        """A rule using SQWRL built-ins (in its head or body) is a query, not a rule."""
+        for part in ("head", "body"):
+            head = self._one(node, swrl(part))
+            atoms = self.store.list_items(head, self.graph) if head is not None else []
+            if any(sqwrl.is_sqwrl(self._one(a, swrl("builtin"))) for a in atoms):
+                return True
+        return False
+
+    def compile_query(self, node: Term) -> None:
+        """A SQWRL query → a SPARQL SELECT (:mod:`.sqwrl`); one that cannot be translated is set aside
+        with a notice, never refusing the file (a query concludes nothing)."""
+        name = self.rule_name(node)
+        try:
+            query, candidates = self._query(name, node)
+        except RuleCompileError as exc:
+            self.notices.append(Notice(SQWRL_QUERY, name, f"set aside, not translated: {exc}", node=node))
+            return
+        if name in self.queries:
+            self.notices.append(Notice(SQWRL_QUERY, name, "set aside: another SQWRL query has this name", node=node))
+            return
+        self.queries[name] = query
+        self.query_rules += candidates
+        self.notices.append(Notice(SQWRL_QUERY, name, f"a query, not a rule: run it by name ({', '.join(query.columns)})",
+                                   node=node))
+
+    def _query(self, name: str, node: Term) -> tuple[sqwrl.SqwrlQuery, list[Rule]]:
+        body_atoms = self.atoms(self._one(node, swrl("body")), name)
+        head_atoms = self.atoms(self._one(node, swrl("head")), name)
+        for a in body_atoms:
+            if a.kind == "BuiltinAtom" and sqwrl.is_sqwrl(a.predicate):
+                raise RuleCompileError(f"sqwrl:{sqwrl.operator(a.predicate)} in a query body (collections) "
+                                       "is not supported")
+        arg = _Names(self.variables)
+        body = self._body(name, body_atoms, arg)
+        parts = []
+        for a in head_atoms:
+            if a.kind != "BuiltinAtom" or not sqwrl.is_sqwrl(a.predicate):
+                raise RuleCompileError(f"{a.describe(name)} beside SQWRL built-ins in a head")
+            texts = [arg(x) for x in a.args]
+            _require_bound(name, a, texts, body.bound, "head ")
+            parts.append((sqwrl.operator(a.predicate), texts, list(a.args)))
+        head = sqwrl.read_head(parts)
+        patterns = body.patterns + [different_atom(x, y) for x, y, _ in body.different]
+        where = Rule(f"sqwrl:{name}", f"SQWRL query {name}", tuple(patterns), None, tuple(body.conditions),
+                     frozenset(body.reads)).where()
+        text, columns = sqwrl.select_text(head, where)
+        return sqwrl.SqwrlQuery(name, text, columns, f"SQWRL query {name}"), self._difference_rules(name, body)
 
     # ------------------------------------------------------------------ translation
     def compile_rule(self, node: Term) -> list[Rule]:
@@ -224,12 +291,13 @@ class SwrlCompiler:
             self.entailed_predicates.add(NamedNode(h.p[1:-1]))
         return rules
 
-    def _class(self, pred: Term | None) -> str:
+    def _class(self, pred: Term | None, head: bool = False) -> str:
         if not isinstance(pred, NamedNode):
             raise RuleCompileError("missing class predicate")
         e = self.reader.expr(pred)
         if not e.is_named:
             self.expressions.append(e)
+            self.used_as.append((e, head))
         return sparql(e.node)
 
     def _body_atom(self, a: SwrlAtom, arg: _Names, body: _Body, pending: list[SwrlAtom]) -> None:
@@ -252,6 +320,7 @@ class SwrlCompiler:
             self._need(a, 2)
             x, y = arg(a.args[0]), arg(a.args[1])
             body.different.append((x, y, a))
+            self.uses_difference = True
         elif k == "DataRangeAtom":
             self._need(a, 1)
             if not is_datatype(a.predicate):
@@ -272,7 +341,7 @@ class SwrlCompiler:
         k = a.kind
         if k == "ClassAtom":
             self._need(a, 1)
-            return Atom(arg(a.args[0]), T, self._class(a.predicate))
+            return Atom(arg(a.args[0]), T, self._class(a.predicate, head=True))
         if k in ("IndividualPropertyAtom", "DatavaluedPropertyAtom"):
             self._need(a, 2)
             if not isinstance(a.predicate, NamedNode):

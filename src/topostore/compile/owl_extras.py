@@ -1,0 +1,107 @@
+"""Keys, reflexive properties and restriction subsumption through properties → rules.
+
+* Keys (``owl:hasKey``), OWL 2 RL's prp-key: ``C hasKey (p1 … pn)``, ``x`` and ``y`` in ``C``,
+  ``x pi zi`` and ``y pi zi`` for every i ⇒ ``x owl:sameAs y``.  Keys apply to named individuals
+  only (OWL 2 Direct Semantics), so neither side may be an unnamed node (a skolemised blank node).
+* ``ReflexiveProperty`` p: ``x p x`` for every individual — every node typed with a class (not a
+  declaration such as ``owl:Class``), or linked by a property of the ontology (not a schema one).
+* Restrictions subsumed through sub-properties and fillers: ``≥n p.C ⊑ ≥m q.D`` when ``p ⊑ q``,
+  ``n ≥ m`` and ``C ⊑ D`` (the same property is :mod:`.owl`'s ext-card-sub), and ``∀q.C ⊑ ∀p.D``
+  when ``p ⊑ q`` (or ``p = q``) and ``C ⊑ D`` — Horn, and what RDF-Based Semantics documents
+  compare restrictions by.
+"""
+
+from __future__ import annotations
+
+from ..terms import sparql
+from ..vocab import DECLARATION_TYPES, INTERNAL, NAMED_INDIVIDUAL, OWL, RDF, RDFS, SAME_AS, SKOLEM_PREFIX, SWRL, TYPE
+from . import condition as cond
+from .model import Expr, Prop, TBox, describe
+from .owl import OwlCompiler
+from .rule import Atom, Rule
+
+
+def _prop_atom(s: str, p: Prop, o: str) -> Atom:
+    return Atom(o, sparql(p.iri), s) if p.inverse else Atom(s, sparql(p.iri), o)
+
+
+def key_rule(cls: Expr, props: tuple[Prop, ...]) -> Rule:
+    """The prp-key rule of one key."""
+    body = [Atom("?x", str(TYPE), sparql(cls.node)), Atom("?y", str(TYPE), sparql(cls.node))]
+    for k, p in enumerate(props):
+        body += [_prop_atom("?x", p, f"?z{k}"), _prop_atom("?y", p, f"?z{k}")]
+    named = (f'!sameTerm(?x, ?y) && isIRI(?x) && isIRI(?y) && !STRSTARTS(STR(?x), "{SKOLEM_PREFIX}") '
+             f'&& !STRSTARTS(STR(?y), "{SKOLEM_PREFIX}")')
+    keys = " ".join(p.iri.value.rsplit("#", 1)[-1] for p in props)
+    return Rule("prp-key", f"{describe(cls)} HasKey ({keys})", tuple(body), Atom("?x", str(SAME_AS), "?y"),
+                (cond.test(named),))
+
+
+def key_rules(tb: TBox) -> list[Rule]:
+    return [key_rule(cls, props) for cls, props in tb.keys if props]
+
+
+def _not_schema(var: str) -> str:
+    """SPARQL test: ``var`` is no RDF, RDFS, OWL, SWRL or internal IRI."""
+    return " && ".join(f'!STRSTARTS(STR({var}), "{ns}")' for ns in (RDF, RDFS, OWL, SWRL, INTERNAL))
+
+
+def reflexive_rules(tb: TBox) -> list[Rule]:
+    """``x p x`` for every individual, for each reflexive property ``p`` (three ways to be one)."""
+    declarations = ", ".join(f"<{t}>" for t in sorted(DECLARATION_TYPES) if t != NAMED_INDIVIDUAL.value)
+    rules = []
+    for p in sorted(tb.characteristics.get("ReflexiveProperty", ()), key=lambda t: t.value):
+        origin, head = f"{p.value.rsplit('#', 1)[-1]} is reflexive", Atom("?x", sparql(p), "?x")
+        rules.append(Rule("prp-refl", origin, (Atom("?x", str(TYPE), "?c"),), head,
+                          (cond.test(f"isIRI(?x) && ?c NOT IN ({declarations}) && !isBlank(?c)"),)))
+        for body in (Atom("?x", "?q", "?o"), Atom("?o", "?q", "?x")):
+            rules.append(Rule("prp-refl", origin, (body,), head,
+                              (cond.test(f"isIRI(?x) && {_not_schema('?q')}"),)))
+    return rules
+
+
+def _super_properties(tb: TBox) -> dict[Prop, set[Prop]]:
+    """Each property's strict told super-properties (named, not inverse)."""
+    edges: dict[Prop, set[Prop]] = {}
+    for a, b in tb.subproperty:
+        if a != b and not a.inverse and not b.inverse:
+            edges.setdefault(a, set()).add(b)
+    closure: dict[Prop, set[Prop]] = {}
+    for start in edges:
+        seen, todo = set(), [start]
+        while todo:
+            for nxt in edges.get(todo.pop(), ()):
+                if nxt not in seen and nxt != start:
+                    seen.add(nxt)
+                    todo.append(nxt)
+        closure[start] = seen
+    return closure
+
+
+def restriction_rules(owl: OwlCompiler) -> list[Rule]:
+    """``x ∈ a ⇒ x ∈ b`` for the restriction pairs subsumed through properties (see the module)."""
+    supers = _super_properties(owl.tb)
+    exprs = owl.all_expressions()
+    rules = []
+
+    def subsume(a: Expr, b: Expr) -> None:
+        rules.append(Rule("ext-restriction-sub", f"{describe(a)} is subsumed by {describe(b)}",
+                          (Atom("?x", str(TYPE), sparql(a.node)),), Atom("?x", str(TYPE), sparql(b.node))))
+
+    lower = [e for e in exprs if e.kind in ("some", "min", "exact")]
+    for a in lower:
+        for b in lower:
+            if b.kind != "exact" and b.prop in supers.get(a.prop, ()):
+                na, nb = (1 if a.kind == "some" else a.n), (1 if b.kind == "some" else b.n)
+                if na >= nb >= 1 and owl.filler_subsumed(a, b):
+                    subsume(a, b)
+    alls = [e for e in exprs if e.kind == "all" and not e.prop.inverse]
+    for a in alls:
+        for b in alls:
+            if a.node != b.node and (a.prop == b.prop or a.prop in supers.get(b.prop, ())) and (
+                    a.filler is not None or a.datatype is not None) and owl.filler_subsumed(a, b):
+                subsume(a, b)
+    return rules
+
+
+__all__ = ["key_rule", "key_rules", "reflexive_rules", "restriction_rules"]

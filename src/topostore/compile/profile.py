@@ -1,0 +1,259 @@
+"""The profile report: every axiom topostore does not reason completely, with the reason.
+
+topostore compiles OWL to Horn rules (OWL 2 RL plus the cardinality reasoning of
+:mod:`.owl_restrictions`).  What needs case analysis (a union as a superclass, a
+maximum cardinality of two or more) or unnamed individuals (an existential whose
+value would carry consequences) is not derived: a tableau reasoner such as Pellet
+answers more there.  This module finds those axioms from where each class
+expression is used, so that such a difference is never silent:
+
+* an expression used *positively* (a superclass, a range, a type, a rule head) is
+  one whose membership is told; its consequences must be drawn;
+* one used *negatively* (a subclass, a rule body, a disjointness) is one whose
+  membership must be derived.
+
+=================================  =====================================================
+union / one-of, positively          non-Horn: which member is not known
+complement, negatively              membership of a complement needs what is not known
+universal restriction, negatively   membership needs every value known
+max cardinality, negatively         idem, when a maximum can be told elsewhere
+max cardinality ≥ 2, positively     which of the values are equal is not known
+existential, positively             the unnamed value's consequences (domain, a single
+                                    value, disjoint classes, nested restrictions)
+difference by irreflexivity         x p y ⇒ x ≠ y is not used where difference matters
+=================================  =====================================================
+
+plus the axioms the reader set aside (:attr:`TBox.unsupported`) and those read
+in part (:attr:`TBox.partial`: a disjoint union's covering).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+
+from pyoxigraph import NamedNode
+
+from ..notices import INCOMPLETE, Notice
+from ..store import Store
+from ..vocab import THING
+from .model import Expr, Prop, TBox, describe
+from .owl import OwlCompiler
+
+#: Axiom kinds of the report (the groups of the LOAD warning).
+UNION = "union or one-of as a superclass"
+COMPLEMENT = "complement on the left"
+UNIVERSAL = "universal restriction on the left"
+MAX_LEFT = "maximum cardinality on the left"
+MAX_CASES = "maximum cardinality needing case analysis"
+EXISTENTIAL = "existential with consequences for an unnamed value"
+DIFFERENCE = "difference entailed by a property characteristic"
+UNSUPPORTED = "not supported"
+
+#: (expression, positive?, the axiom it occurs in, the axiom's named subject or None)
+Use = tuple[Expr, bool, str, NamedNode | None]
+
+
+def _uses(e: Expr, positive: bool, axiom: str, subject: NamedNode | None) -> Iterator[Use]:
+    """Every sub-expression of ``e`` with its polarity (complement and maximum flip it)."""
+    yield e, positive, axiom, subject
+    if e.kind in ("and", "or"):
+        for m in e.members:
+            yield from _uses(m, positive, axiom, subject if e.kind == "and" else None)
+    elif e.kind == "not":
+        yield from _uses(e.members[0], not positive, axiom, None)
+    elif e.filler is not None:
+        if e.kind == "exact":
+            yield from _uses(e.filler, True, axiom, None)
+            yield from _uses(e.filler, False, axiom, None)
+        else:
+            yield from _uses(e.filler, positive if e.kind != "max" else not positive, axiom, None)
+
+
+def all_uses(tb: TBox, rule_uses: list[tuple[Expr, bool]]) -> list[Use]:
+    """Where each class expression of the ontology occurs, and how."""
+    out: list[Use] = []
+    for a, b in tb.subclass:
+        axiom = f"{describe(a)} SubClassOf {describe(b)}"
+        out += [*_uses(a, False, axiom, None), *_uses(b, True, axiom, a.node if a.is_named else None)]
+    for a, b in tb.equivalent:
+        axiom = f"{describe(a)} EquivalentTo {describe(b)}"
+        for x, y in ((a, b), (b, a)):
+            out += [*_uses(x, False, axiom, None), *_uses(y, True, axiom, x.node if x.is_named else None)]
+    for a, b in tb.disjoint:
+        axiom = f"{describe(a)} DisjointWith {describe(b)}"
+        out += [*_uses(a, False, axiom, None), *_uses(b, False, axiom, None)]
+    for p, c in tb.domain:
+        out += list(_uses(c, True, f"{_name(p.iri)} domain {describe(c)}", None))
+    for p, c in tb.range:
+        out += list(_uses(c, True, f"{_name(p.iri)} range {describe(c)}", None))
+    for e in tb.typed_expressions:
+        out += list(_uses(e, True, f"an individual typed {describe(e)}", None))
+    for c, props in tb.keys:
+        out += list(_uses(c, False, f"{describe(c)} HasKey ({' '.join(_name(p.iri) for p in props)})", None))
+    for e, head in rule_uses:
+        out += list(_uses(e, head, f"a SWRL rule {'head' if head else 'body'} atom {describe(e)}", None))
+    return out
+
+
+def _name(t: NamedNode) -> str:
+    v = t.value
+    return v.rsplit("#", 1)[-1] if "#" in v else v.rsplit("/", 1)[-1]
+
+
+class ProfileReport:
+    """Finds the axioms not reasoned completely (see the module)."""
+
+    def __init__(self, tb: TBox, owl_compiler: OwlCompiler, rule_uses: list[tuple[Expr, bool]],
+                 uses_difference: bool) -> None:
+        self.tb, self.owl = tb, owl_compiler
+        self.uses = all_uses(tb, rule_uses)
+        #: restriction uses by property: (expression, positive), so lookups stay linear in the TBox
+        self.on: dict[Prop, list[tuple[Expr, bool]]] = {}
+        for e, positive, _, _ in self.uses:
+            if e.prop is not None:
+                self.on.setdefault(e.prop, []).append((e, positive))
+        self.uses_difference = uses_difference
+        self.notices: dict[tuple[str, str], Notice] = {}
+
+    def note(self, kind: str, axiom: str, reason: str) -> None:
+        self.notices.setdefault((kind, axiom), Notice(INCOMPLETE, axiom, reason, kind))
+
+    def told(self, c: NamedNode) -> set[NamedNode]:
+        """``c`` and its told named superclasses."""
+        return {c, *self.owl.told.get(c, set())}
+
+    def run(self, store: Store, graph: NamedNode) -> list[Notice]:
+        for e, positive, axiom, subject in self.uses:
+            self.expression(e, positive, axiom, subject)
+        self.difference()
+        for a, b in self.tb.same_properties:
+            self.note(UNSUPPORTED, f"{_name(a)} sameAs {_name(b)}", "properties made the same are not "
+                      "substituted for each other (owl:equivalentProperty is)")
+        for axiom, reason in self.tb.unsupported:
+            self.note(UNSUPPORTED, axiom, f"set aside: {reason}")
+        for axiom, kind, reason in self.tb.partial:
+            self.note(kind, axiom, reason)
+        return list(self.notices.values())
+
+    # ---------------------------------------------------------------- expressions
+    def expression(self, e: Expr, positive: bool, axiom: str, subject: NamedNode | None) -> None:
+        k = e.kind
+        if positive and k == "or" and all(m.node != THING for m in e.members):
+            self.note(UNION, axiom, f"an instance of {describe(e)} is in one of its members, which one is not "
+                      "known: conclusions by case analysis are not drawn")
+        elif positive and k == "oneof":
+            self.note(UNION, axiom, f"an instance of {describe(e)} is one of those individuals: which one "
+                      "(owl:sameAs) is not derived")
+        elif not positive and k == "not":
+            self.note(COMPLEMENT, axiom, f"membership of {describe(e)} needs what is not known: never derived")
+        elif not positive and k == "all":
+            self.note(UNIVERSAL, axiom, f"membership of {describe(e)} needs every value known: never derived")
+        elif not positive and k == "max" and self.max_told(e.prop):
+            self.note(MAX_LEFT, axiom, f"membership of {describe(e)} is derived only from the same restriction "
+                      "told, not from other maxima or functional properties")
+        if positive and k in ("max", "exact") and e.n >= 2 and not self.owl.is_data(e.prop, e):
+            self.note(MAX_CASES, axiom, f"more than {e.n} values not known to be different: which are equal "
+                      "needs case analysis, not drawn")
+        if positive and k in ("some", "min", "exact") and (k == "some" or e.n >= 1):
+            self.existential(e, axiom, subject)
+
+    def max_told(self, p: Prop) -> bool:
+        """Some axiom or characteristic tells a maximum on ``p`` (so a reasoner may derive membership)."""
+        if self.tb.has("InverseFunctionalProperty" if p.inverse else "FunctionalProperty", p.iri):
+            return True
+        return any(pos and e.kind in ("max", "exact") for e, pos in self.on.get(p, ()))
+
+    def existential(self, e: Expr, axiom: str, subject: NamedNode | None) -> None:
+        """Consequences of the unnamed value of an existential that are not drawn."""
+        p, what = e.prop, describe(e)
+        told = self.told(subject) if subject is not None else set()
+        # the subject's side: domain (range for an inverse)
+        side = self.tb.range if p.inverse else self.tb.domain
+        for q, c in side:
+            if q.iri == p.iri and c.node != THING and c.node not in told:
+                self.note(EXISTENTIAL, axiom, f"an instance of {what} is in {describe(c)} (the "
+                          f"{'range' if p.inverse else 'domain'} of {_name(p.iri)}) only through a told value")
+        supers = self.super_properties(p)
+        if any(not pos and m.kind in ("some", "min", "exact") and not self.reaches(e, m)
+               for q in supers for m, pos in self.on.get(q, ())):
+            self.note(EXISTENTIAL, axiom, f"an instance of {what} is in the restrictions on the super-properties "
+                      f"of {_name(p.iri)} only through a told value")
+        if self.owl.is_data(p, e):
+            return
+        value_classes = self.value_classes(p)
+        filler = e.filler
+        if filler is not None and not filler.is_named:
+            self.note(EXISTENTIAL, axiom, f"the unnamed value of {what} is in {describe(filler)}: its own "
+                      "restrictions are not reasoned")
+        elif filler is not None and filler.node not in value_classes:
+            if self.single_valued(p, e):
+                self.note(EXISTENTIAL, axiom, f"{_name(p.iri)} has at most one value, so the told value is "
+                          f"the one in {describe(filler)}: not derived")
+            if any(self.disjoint(filler.node, c) for c in value_classes):
+                self.note(EXISTENTIAL, axiom, f"the unnamed value of {what} would be in disjoint classes "
+                          f"({describe(filler)} and the range of {_name(p.iri)}): the inconsistency is not found")
+
+    def reaches(self, e: Expr, m: Expr) -> bool:
+        """Whether membership of ``e`` gives membership of ``m`` on a super-property (ext-restriction-sub)."""
+        ne, nm_ = (1 if e.kind == "some" else e.n), (1 if m.kind == "some" else m.n)
+        return m.kind != "exact" and ne >= nm_ >= 1 and self.owl.filler_subsumed(e, m)
+
+    def super_properties(self, p: Prop) -> set[Prop]:
+        """The strict told super-properties of ``p`` (closure of subPropertyOf)."""
+        found: set[Prop] = set()
+        todo = [p]
+        while todo:
+            q = todo.pop()
+            for a, b in self.tb.subproperty:
+                if a == q and b not in found and b != p:
+                    found.add(b)
+                    todo.append(b)
+        return found
+
+    def value_classes(self, p: Prop) -> set[NamedNode]:
+        """Named classes every value of ``p`` is told to be in (range, domain for an inverse)."""
+        side = self.tb.domain if p.inverse else self.tb.range
+        out: set[NamedNode] = set()
+        for q, c in side:
+            if q.iri == p.iri and c.is_named:
+                out |= self.told(c.node)
+        return out
+
+    def single_valued(self, p: Prop, e: Expr) -> bool:
+        """At most one value of ``p`` at all: functional, or an unqualified maximum of one told."""
+        if self.tb.has("InverseFunctionalProperty" if p.inverse else "FunctionalProperty", p.iri):
+            return True
+        return any(pos and m.kind in ("max", "exact") and m.n <= 1 and m.filler is None and m.datatype is None
+                   for m, pos in self.on.get(p, ()))
+
+    def disjoint(self, a: NamedNode, b: NamedNode) -> bool:
+        ta, tb_ = self.told(a), self.told(b)
+        return any((x in ta and y in tb_) or (y in ta and x in tb_) for x, y in self.owl.disjoint_pairs)
+
+    # ---------------------------------------------------------------- difference
+    def difference(self) -> None:
+        """Irreflexive and asymmetric properties entail difference; topostore's difference (used by
+        SWRL DifferentIndividuals atoms, minimum cardinalities ≥ 2 and maxima) does not read them."""
+        if not self.difference_matters():
+            return
+        for kind in ("IrreflexiveProperty", "AsymmetricProperty"):
+            for p in sorted(self.tb.characteristics.get(kind, ()), key=lambda t: t.value):
+                self.note(DIFFERENCE, f"{_name(p)} is {kind[:-len('Property')].lower()}",
+                          f"x {_name(p)} y makes x and y different: not used where difference matters")
+
+    def difference_matters(self) -> bool:
+        if self.uses_difference or self.tb.characteristics.get("FunctionalProperty") or \
+                self.tb.characteristics.get("InverseFunctionalProperty"):
+            return True
+        return any(e.kind in ("min", "exact", "max") and e.n >= 1 and not self.owl.is_data(e.prop, e)
+                   for e, _, _, _ in self.uses)
+
+
+def profile(store: Store, graph: NamedNode, tb: TBox, owl_compiler: OwlCompiler,
+            rule_uses: list[tuple[Expr, bool]], uses_difference: bool) -> list[Notice]:
+    """The incompleteness notices of an ontology (one per axiom and kind)."""
+    return ProfileReport(tb, owl_compiler, rule_uses, uses_difference).run(store, graph)
+
+
+__all__ = ["COMPLEMENT", "DIFFERENCE", "EXISTENTIAL", "MAX_CASES", "MAX_LEFT", "UNION", "UNIVERSAL", "UNSUPPORTED",
+           "profile"]

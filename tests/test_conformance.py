@@ -1,0 +1,60 @@
+"""The W3C OWL 2 test cases of the RL profile: topostore passes every check owlrl (the OWL 2 RL
+peer) passes, with no crash and no timeout (the whole collection: ``make conformance``)."""
+
+from __future__ import annotations
+
+import importlib.util
+import sys
+from pathlib import Path
+
+import pytest
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # the benchmarks package lives beside src/
+
+from benchmarks import conformance  # noqa: E402
+from benchmarks.conformance_case import entailment_tests, parse  # noqa: E402
+
+pytestmark = pytest.mark.skipif(importlib.util.find_spec("owlrl") is None, reason="owlrl (the peer) is a test extra")
+
+
+@pytest.mark.skipif(not conformance.CASES.is_file(), reason=f"no OWL 2 test cases at {conformance.CASES}")
+def test_rl_cases_topostore_passes_what_owlrl_passes() -> None:
+    cases, _ = conformance.read_cases()
+    rl = [c for c in cases if c.category == "RL"]
+    assert len(rl) > 50
+    conformance.run_all(rl, timeout=60, jobs=2, progress=False)
+    missing = [f"{c.id} {check}: {c.results['topostore'].get(check)}" for c in rl for check in c.checks
+               if c.results["owlrl"].get(check) is True and c.results["topostore"].get(check) is not True]
+    assert missing == []
+    broken = [f"{c.id}: {v}" for c in rl for v in c.results["topostore"].values()
+              if isinstance(v, str) and v.startswith(("timeout", "crash"))]
+    assert broken == []
+    for (category, check), cell in conformance.tally(rl).items():
+        assert cell["topostore"] >= cell["owlrl"], (category, check, cell)
+
+
+def test_entailment_reductions() -> None:
+    """A conclusion's axioms become fresh individuals, ASKs and inconsistency tests."""
+    tests = entailment_tests(parse("""<rdf:RDF xmlns:rdf="http://www.w3.org/1999/02/22-rdf-syntax-ns#"
+        xmlns:rdfs="http://www.w3.org/2000/01/rdf-schema#" xmlns:owl="http://www.w3.org/2002/07/owl#"
+        xml:base="http://example.org/">
+      <owl:Ontology/>
+      <owl:Class rdf:about="A"><rdfs:subClassOf rdf:resource="B"/><owl:disjointWith rdf:resource="C"/></owl:Class>
+      <rdf:Description rdf:about="a"><ex:p xmlns:ex="http://example.org/" rdf:resource="b"/></rdf:Description>
+      <rdf:Description rdf:about="a"><rdf:type><owl:Restriction><owl:onProperty rdf:resource="p"/>
+        <owl:someValuesFrom rdf:resource="B"/></owl:Restriction></rdf:type></rdf:Description>
+    </rdf:RDF>"""))
+    asks = {(str(s).rsplit("/", 1)[-1].rsplit("#", 1)[-1], str(o).rsplit("/", 1)[-1].rsplit("#", 1)[-1])
+            for s, _, o in tests.asks}
+    assert ("a", "b") in asks  # an assertion: asked as it is
+    assert any(o == "B" and s.startswith("t") for s, o in asks)  # A ⊑ B: a fresh A asked to be a B
+    assert any(s == "a" and o.startswith("Q") for s, o in asks)  # a : ∃p.B as a : Q, Q ≡ ∃p.B added
+    assert len(tests.contradictions) == 1  # A disjoint C: a fresh A and C is inconsistent
+
+
+def test_table_has_every_category_and_type() -> None:
+    case = conformance.Case("x", "RL", "Approved", ["consistency"], "<rdf:RDF/>",
+                            results={"topostore": {"consistency": True}, "owlrl": {"consistency": False}})
+    text = conformance.table([case], 0, 60)
+    assert "| RL | — | — | 1 / 0 of 1 | — | 1 / 0 of 1 |" in text
+    assert all(f"| {c} |" in text for c in conformance.CATEGORIES)

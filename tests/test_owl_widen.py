@@ -1,0 +1,124 @@
+"""What topostore reasons beyond its first OWL reader: keys (owl:hasKey), OWL 1 definitions on a
+named class read as equivalences, classes made the same (owl:sameAs) as equivalent, and an
+individual declared different from itself as an inconsistency."""
+
+from __future__ import annotations
+
+import warnings
+
+from topostore import Ontology, OntologyWarning
+
+PREFIXES = """@prefix : <http://e.org/a#> . @prefix owl: <http://www.w3.org/2002/07/owl#> .
+@prefix rdfs: <http://www.w3.org/2000/01/rdf-schema#> . @prefix xsd: <http://www.w3.org/2001/XMLSchema#> .
+<http://e.org/a> a owl:Ontology .
+:p a owl:ObjectProperty . :n a owl:DatatypeProperty .
+"""
+
+
+def reasoned(text: str) -> Ontology:
+    o = Ontology()
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", OntologyWarning)
+        o.load_data(PREFIXES + text)
+    assert o.reason().consistent
+    return o
+
+
+def types(o: Ontology, name: str) -> set[str]:
+    return {o.short(t) for t in o.types(name)}
+
+
+def same(o: Ontology, name: str) -> list[str]:
+    return o.object_values("<http://www.w3.org/2002/07/owl#sameAs>", name)
+
+
+def test_key_makes_named_individuals_the_same() -> None:
+    o = reasoned(":C owl:hasKey ( :n :p ) . :a a :C ; :n 5 ; :p :z . :b a :C ; :n 5 ; :p :z . "
+                 ":c a :C ; :n 5 ; :p :w . :d :n 5 ; :p :z .")
+    assert same(o, "a") == ["b"]
+    assert same(o, "c") == [] and same(o, "d") == []  # another key value; not in the class
+    assert o.notices == []
+
+
+def test_key_with_individuals_declared_different_is_inconsistent() -> None:
+    o = Ontology()
+    o.load_data(PREFIXES + ":C owl:hasKey ( :n ) . :a a :C ; :n 5 ; owl:differentFrom :b . :b a :C ; :n 5 .")
+    assert not o.reason().consistent
+
+
+def test_owl1_definitions_on_a_named_class_are_equivalences() -> None:
+    o = reasoned(":Adult owl:intersectionOf ( :Person :Grown ) . :Pet owl:unionOf ( :Cat :Dog ) . "
+                 ":Primary owl:oneOf ( :red :blue ) . "
+                 ":x a :Person , :Grown . :y a :Adult . :felix a :Cat .")
+    assert types(o, "x") == {"Person", "Grown", "Adult"}
+    assert types(o, "y") == {"Adult", "Person", "Grown"}
+    assert types(o, "felix") == {"Cat", "Pet"}
+    assert types(o, "red") == {"Primary"}
+    assert not any("OWL 1" in str(n) for n in o.notices)
+
+
+def test_owl1_complement_definition_is_checked() -> None:
+    o = Ontology()
+    o.load_data(PREFIXES + ":Dead owl:complementOf :Alive . :x a :Dead , :Alive .")
+    assert not o.reason().consistent
+
+
+def test_classes_made_the_same_are_equivalent() -> None:
+    o = reasoned(":C1 a owl:Class ; owl:sameAs :C2 . :C2 a owl:Class . :x a :C1 . :y a :C2 .")
+    assert types(o, "x") == {"C1", "C2"} and types(o, "y") == {"C1", "C2"}
+
+
+def test_different_from_itself_is_inconsistent() -> None:
+    o = Ontology()
+    o.load_data(PREFIXES + ":x owl:differentFrom :x .")
+    report = o.reason()
+    assert not report.consistent and "different from itself" in report.explain()
+
+
+def facet_range(facets: str) -> str:
+    return f"[ a rdfs:Datatype ; owl:onDatatype xsd:integer ; owl:withRestrictions ( {facets} ) ]"
+
+
+def test_numeric_facets_in_a_restriction() -> None:
+    o = reasoned(f":Adult owl:equivalentClass [ a owl:Restriction ; owl:onProperty :n ; owl:someValuesFrom "
+                 f"{facet_range('[ xsd:minInclusive 18 ] [ xsd:maxExclusive 65 ]')} ] . "
+                 ':a :n 18 . :b :n 17 . :c :n 65 . :d :n 40 . :e :n "40.5"^^xsd:decimal .')
+    assert sorted(o.short(i) for i in o.instances("Adult")) == ["a", "d"]
+    assert o.notices == []
+
+
+def test_numeric_facets_in_a_range_are_checked() -> None:
+    o = Ontology()
+    o.load_data(PREFIXES + f":n rdfs:range {facet_range('[ xsd:minExclusive 0 ]')} . :a :n 0 .")
+    report = o.reason()
+    assert not report.consistent and "integer[> 0]" in report.explain()
+    assert reasoned(f":n rdfs:range {facet_range('[ xsd:minExclusive 0 ]')} . :a :n 3 .").notices == []
+
+
+def test_reflexive_property_links_every_individual_to_itself() -> None:
+    o = reasoned(":knows a owl:ObjectProperty , owl:ReflexiveProperty . :Person a owl:Class . "
+                 ":ann a :Person . :bob :n 3 . :cid :p :dan .")
+    for name in ("ann", "bob", "cid", "dan"):
+        assert name in o.object_values("knows", name)
+    assert o.object_values("knows", "Person") == []  # a class is no individual
+    assert o.notices == []
+
+
+def test_a_restriction_named_by_an_iri_is_a_class_expression() -> None:
+    """RDF-Based Semantics documents name restrictions by IRIs (``ex:z owl:onProperty ex:p``)."""
+    o = reasoned(":z owl:onProperty :p ; owl:someValuesFrom :C . :w :p :x . :x a :C . "
+                 ":m owl:onProperty :p ; owl:hasValue :v . :u a :m .")
+    assert "z" in types(o, "w")
+    assert o.object_values("p", "u") == ["v"]
+
+
+def test_restrictions_subsumed_through_sub_properties_and_fillers() -> None:
+    o = reasoned(":p rdfs:subPropertyOf :q . :q a owl:ObjectProperty . :C rdfs:subClassOf :D . "
+                 ":A rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :p ; owl:someValuesFrom :C ] . "
+                 ":B owl:equivalentClass [ a owl:Restriction ; owl:onProperty :q ; owl:someValuesFrom :D ] . "
+                 ":U rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :q ; owl:allValuesFrom :C ] . "
+                 ":V owl:equivalentClass [ a owl:Restriction ; owl:onProperty :p ; owl:allValuesFrom :D ] . "
+                 ":a a :A . :u a :U .")
+    assert "B" in types(o, "a")  # ∃p.C ⊑ ∃q.D: p ⊑ q, C ⊑ D, with no p value told
+    assert "V" in types(o, "u")  # ∀q.C ⊑ ∀p.D
+    assert not any("super-properties" in str(n) for n in o.notices)

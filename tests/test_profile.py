@@ -1,0 +1,173 @@
+"""The profile report: every axiom topostore does not reason completely is named, with the reason,
+at LOAD (OntologyWarning, once per kind), in ReasonReport.incomplete, the aRMOR LOAD reply and
+`topostore check`; a strict load refuses such files and changes nothing."""
+
+from __future__ import annotations
+
+import warnings
+from pathlib import Path
+
+import pytest
+from click.testing import CliRunner
+
+from topostore import IncompleteOntologyError, Ontology, OntologyWarning
+from topostore.armor import ArmorService
+from topostore.cli import cli
+from topostore.compile import profile as kinds
+from topostore.resources import default_ontology_files
+from topostore.vocab import ASSERTED
+
+SHARED = Path(__file__).resolve().parents[2] / "shared" / "ontology"
+PREFIXES = """@prefix : <http://e.org/a#> . @prefix owl: <http://www.w3.org/2002/07/owl#> .
+@prefix rdfs: <http://www.w3.org/2000/01/rdf-schema#> . @prefix xsd: <http://www.w3.org/2001/XMLSchema#> .
+<http://e.org/a> a owl:Ontology . :p a owl:ObjectProperty .
+"""
+
+#: name -> (Turtle, axiom kind expected, a word of the axiom named)
+CASES = {
+    "union superclass": (":A rdfs:subClassOf [ owl:unionOf (:B :C) ] . :a a :A .", kinds.UNION, "A SubClassOf"),
+    "union type": (":a a [ owl:unionOf (:B :C) ] .", kinds.UNION, "typed"),
+    "union range": (":p rdfs:range [ owl:unionOf (:B :C) ] .", kinds.UNION, "range"),
+    "one-of superclass": (":A rdfs:subClassOf [ owl:oneOf (:x :y) ] .", kinds.UNION, "{x, y}"),
+    "disjoint union": (":A owl:disjointUnionOf (:B :C) .", kinds.UNION, "DisjointUnionOf"),
+    "complement on the left": ("[ owl:complementOf :A ] rdfs:subClassOf :B .", kinds.COMPLEMENT, "not A"),
+    "universal on the left": (":B owl:equivalentClass [ a owl:Restriction ; owl:onProperty :p ; "
+                              "owl:allValuesFrom :C ] .", kinds.UNIVERSAL, "only C"),
+    "max on the left": (":p a owl:FunctionalProperty . :B owl:equivalentClass [ a owl:Restriction ; "
+                        "owl:onProperty :p ; owl:maxCardinality 1 ] .", kinds.MAX_LEFT, "max 1"),
+    "max 2": (":B rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :p ; owl:maxCardinality 2 ] .",
+              kinds.MAX_CASES, "max 2"),
+    "existential and domain": (":B rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :p ; "
+                               "owl:someValuesFrom :C ] . :p rdfs:domain :D .", kinds.EXISTENTIAL, "domain"),
+    "existential and functional": (":p a owl:FunctionalProperty . :R rdfs:subClassOf [ a owl:Restriction ; "
+                                   "owl:onProperty :p ; owl:someValuesFrom :L ] .", kinds.EXISTENTIAL,
+                                   "at most one value"),
+    "existential into disjoint classes": (":A rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :p ; "
+                                          "owl:someValuesFrom :B ] . :p rdfs:range :C . :B owl:disjointWith :C .",
+                                          kinds.EXISTENTIAL, "disjoint"),
+    "existential chain": (":A rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :p ; owl:someValuesFrom "
+                          "[ a owl:Restriction ; owl:onProperty :p ; owl:someValuesFrom :B ] ] .",
+                          kinds.EXISTENTIAL, "own restrictions"),
+    "existential under a sub-property": (":p rdfs:subPropertyOf :q . :q a owl:ObjectProperty . "
+                                         ":A rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :p ; "
+                                         "owl:someValuesFrom :C ] . :D owl:equivalentClass [ a owl:Restriction ; "
+                                         "owl:onProperty :q ; owl:minCardinality 2 ] .", kinds.EXISTENTIAL,
+                                         "super-properties"),
+    "properties made the same": (":a :p :b . :p owl:sameAs :q .", kinds.UNSUPPORTED, "p sameAs q"),
+    "irreflexive difference": (":p a owl:IrreflexiveProperty , owl:FunctionalProperty .", kinds.DIFFERENCE,
+                               "irreflexive"),
+    "string facet": (":code a owl:DatatypeProperty . :B owl:equivalentClass [ a owl:Restriction ; "
+                     "owl:onProperty :code ; owl:someValuesFrom [ a rdfs:Datatype ; owl:onDatatype xsd:string ; "
+                     "owl:withRestrictions ( [ xsd:pattern \"A.*\" ] ) ] ] .", kinds.UNSUPPORTED, "set aside"),
+    "data one-of": (":code a owl:DatatypeProperty . :B owl:equivalentClass [ a owl:Restriction ; "
+                    "owl:onProperty :code ; owl:someValuesFrom [ a rdfs:Datatype ; owl:oneOf ( 1 2 ) ] ] .",
+                    kinds.UNSUPPORTED, "set aside"),
+}
+
+
+def quietly(text: str, strict: bool = False) -> Ontology:
+    o = Ontology(strict=strict)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", OntologyWarning)
+        o.load_data(PREFIXES + text)
+    return o
+
+
+@pytest.mark.parametrize("name", list(CASES))
+def test_each_kind_is_named_at_load_and_in_the_reason_report(name: str) -> None:
+    text, kind, word = CASES[name]
+    o = Ontology()
+    with pytest.warns(OntologyWarning, match=kind):
+        o.load_data(PREFIXES + text)
+    report = o.reason()
+    found = [n for n in report.incomplete if n.axiom_kind == kind]
+    assert found, [str(n) for n in report.incomplete]
+    assert any(word in str(n) for n in found), [str(n) for n in found]
+
+
+@pytest.mark.parametrize("files", [
+    [SHARED / "topological_map_abox.owl"],
+    [SHARED / "topological_map.owl"],
+    list(default_ontology_files()),
+])
+def test_the_horn_map_is_reasoned_completely(files: list[Path]) -> None:
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", OntologyWarning)
+        o = Ontology.from_file(*files, strict=True)
+    assert o.notices == [] and o.reason().incomplete == []
+
+
+def test_horn_axioms_give_no_notice() -> None:
+    o = quietly(":A rdfs:subClassOf :B , [ a owl:Restriction ; owl:onProperty :p ; owl:hasValue :v ] . "
+                ":C owl:equivalentClass [ owl:intersectionOf ( :A [ a owl:Restriction ; owl:onProperty :p ; "
+                "owl:someValuesFrom :B ] ) ] . [ owl:unionOf ( :A :B ) ] rdfs:subClassOf :D . "
+                ":E rdfs:subClassOf [ owl:complementOf :A ] . :p rdfs:domain :A ; rdfs:range :B .")
+    assert o.notices == []
+
+
+def test_one_warning_per_kind_naming_every_axiom() -> None:
+    o = Ontology()
+    with pytest.warns(OntologyWarning) as caught:
+        o.load_data(PREFIXES + ":A rdfs:subClassOf [ owl:unionOf (:B :C) ] . :D rdfs:subClassOf [ owl:unionOf (:E :F) ] .")
+    lines = [str(w.message) for w in caught if kinds.UNION in str(w.message)]
+    assert len(lines) == 1 and "A SubClassOf" in lines[0] and "D SubClassOf" in lines[0]
+
+
+def test_a_file_with_unsupported_facets_loads_instead_of_being_refused() -> None:
+    o = quietly(CASES["string facet"][0] + ' :x :code "A1" .')
+    assert o.reason().consistent
+
+
+def test_strict_refuses_and_changes_nothing() -> None:
+    o = quietly(":a a :A .", strict=True)
+    before = o.store.count(ASSERTED)
+    with pytest.raises(IncompleteOntologyError, match="A SubClassOf"):
+        o.load_data(PREFIXES + CASES["union superclass"][0])
+    assert o.store.count(ASSERTED) == before and o.notices == []
+
+
+def test_armor_load_reply_and_strict_service(tmp_path: Path) -> None:
+    path = tmp_path / "union.ttl"
+    path.write_text(PREFIXES + CASES["union superclass"][0])
+    request = {"client_name": "c", "reference_name": "ref", "command": "LOAD", "primary_command_spec": "FILE",
+               "secondary_command_spec": "", "args": [str(path), "http://e.org/a", "false", "PELLET", "false"]}
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", OntologyWarning)
+        res = ArmorService().call(request)
+        strict = ArmorService(strict=True).call(request)
+    assert res.success and kinds.UNION in res.error_description and "A SubClassOf" in res.error_description
+    assert not strict.success and strict.exit_code == 209 and "A SubClassOf" in strict.error_description
+
+
+def test_check_command(tmp_path: Path) -> None:
+    path = tmp_path / "union.ttl"
+    path.write_text(PREFIXES + CASES["union superclass"][0])
+    result = CliRunner().invoke(cli, ["check", str(path)])
+    assert result.exit_code == 0 and kinds.UNION in result.output
+    assert CliRunner().invoke(cli, ["check", "--strict", str(path)]).exit_code == 1
+    clean = CliRunner().invoke(cli, ["check", "--strict", str(SHARED / "topological_map_abox.owl")])
+    assert clean.exit_code == 0 and "reasoned completely" in clean.output
+
+
+def test_reason_strict_refuses_with_one_line(tmp_path: Path) -> None:
+    path = tmp_path / "union.ttl"
+    path.write_text(PREFIXES + CASES["union superclass"][0])
+    result = CliRunner().invoke(cli, ["reason", "--strict", str(path)])
+    assert result.exit_code == 1 and "refused (strict)" in result.output and "A SubClassOf" in result.output
+    assert CliRunner().invoke(cli, ["reason", str(path)]).exit_code == 0
+
+
+def test_served_service_is_strict_when_asked(tmp_path: Path) -> None:
+    from starlette.testclient import TestClient
+
+    from topostore.server import ServerConfig, create_app
+
+    (tmp_path / "union.ttl").write_text(PREFIXES + CASES["union superclass"][0])
+    load = {"client_name": "c", "reference_name": "ref", "command": "LOAD", "primary_command_spec": "FILE",
+            "secondary_command_spec": "", "args": ["union.ttl", "http://e.org/a", "false", "PELLET", "false"]}
+    for strict, code in ((True, 209), (False, 0)):
+        app = create_app(ServerConfig(data_dir=tmp_path, strict=strict))
+        with TestClient(app, base_url="http://127.0.0.1") as client, warnings.catch_warnings():
+            warnings.simplefilter("ignore", OntologyWarning)
+            reply = client.post("/armor", json=load).json()
+        assert reply["exit_code"] == code and "A SubClassOf" in reply["error_description"], reply

@@ -1,0 +1,212 @@
+"""Maps saved through aRMOR (the OWL API's RDF/XML writer) whose SWRL rules hold nested atom lists.
+
+They load: nested lists are flattened, a body carrying another rule's atoms is recognised, an
+unreadable rule is skipped, and each of these is said (OntologyWarning, the log, the aRMOR LOAD
+reply, ``topostore check``).  ``topostore repair`` puts the original rules back.
+"""
+
+from __future__ import annotations
+
+import logging
+import warnings
+from pathlib import Path
+
+import pytest
+from click.testing import CliRunner
+from pyoxigraph import BlankNode, NamedNode, RdfFormat, Triple, serialize
+
+from topostore import Ontology, OntologyWarning, RuleCompileError
+from topostore.armor import ArmorService
+from topostore.cli import cli
+from topostore.compile.swrl_repair import repair_rules
+from topostore.notices import RULE_REPAIRED, RULE_SKIPPED
+from topostore.skolem import unskolemize
+from topostore.store import Store
+from topostore.vocab import ASSERTED, FIRST, NIL, REST, TYPE, swrl
+
+DATA = Path(__file__).parent / "data"
+SAVED = DATA / "saved_nested_rules.owl"
+SHARED = Path(__file__).resolve().parents[2] / "shared" / "ontology"
+ABOX = SHARED / "topological_map_abox.owl"
+TBOX = SHARED / "topological_map.owl"
+MAP_IRI = "http://bnc/exp-rob-lab/2022-23"
+
+
+def load_quietly(*paths: Path) -> Ontology:
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", OntologyWarning)
+        return Ontology.from_file(*paths)
+
+
+def nested_atom_lists(onto: Ontology) -> int:
+    """Cells whose rdf:first is itself an atom list (what a well-formed rule never has)."""
+    cells = set(onto.store.subjects(TYPE, swrl("AtomList"), ASSERTED))
+    return sum(1 for c in cells for o in onto.store.objects(c, FIRST, ASSERTED) if o in cells)
+
+
+def test_saved_rules_load_repaired_and_warn() -> None:
+    with pytest.warns(OntologyWarning) as caught:
+        onto = Ontology.from_file(SAVED)
+    text = " ".join(str(w.message) for w in caught)
+    assert "Adjacency" in text and "Reach" in text and "Broken" in text
+    kinds = {n.subject: n.kind for n in onto.load_notices}
+    assert kinds == {"Adjacency": RULE_REPAIRED, "Reach": RULE_REPAIRED, "Broken": RULE_SKIPPED}
+    reach = next(n for n in onto.load_notices if n.subject == "Reach")
+    assert "'Adjacency'" in reach.reason  # the carried atoms are named by their rule
+    assert onto.rule_labels() == ["Adjacency", "Reach"]
+    assert onto.reason().consistent
+    assert onto.object_values("adjacent", "p2") == ["p1"]
+    assert onto.object_values("reaches", "bot") == ["p1"]  # at(bot, p2) ^ adjacent(p2, p1): the carried atoms are gone
+    assert onto.instances("Hub") == []  # the skipped rule draws nothing
+    assert nested_atom_lists(onto) == 0
+
+
+def test_notices_go_to_the_log(caplog: pytest.LogCaptureFixture) -> None:
+    with caplog.at_level(logging.WARNING, logger="topostore.load"):
+        load_quietly(SAVED)
+    assert any("Broken" in r.getMessage() and "skipped" in r.getMessage() for r in caplog.records)
+
+
+def test_save_writes_flat_rules_that_reload_without_notices(tmp_path: Path) -> None:
+    onto = load_quietly(SAVED)
+    onto.save(tmp_path / "again.owl")
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", OntologyWarning)  # a second load has nothing to repair
+        again = Ontology.from_file(tmp_path / "again.owl")
+    assert again.load_notices == [] and nested_atom_lists(again) == 0
+    again.reason()
+    assert again.object_values("reaches", "bot") == ["p1"]
+    # no list cell of the damaged structure is left behind: every AtomList cell belongs to a rule
+    assert len(again.store.subjects(TYPE, swrl("AtomList"), ASSERTED)) == 6
+
+
+def test_armor_load_reply_names_repaired_and_skipped_rules() -> None:
+    svc = ArmorService()
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", OntologyWarning)
+        res = svc.call({"client_name": "c", "reference_name": "ref", "command": "LOAD",
+                        "primary_command_spec": "FILE", "secondary_command_spec": "",
+                        "args": [str(SAVED), "http://example.org/saved", "false", "PELLET", "false"]})
+    assert res.success and res.exit_code == 0
+    assert "SWRL rule repaired: Adjacency" in res.error_description
+    assert "SWRL rule skipped: Broken" in res.error_description
+
+
+def test_check_command_prints_the_report() -> None:
+    result = CliRunner().invoke(cli, ["check", str(SAVED)])
+    assert result.exit_code == 0, result.output
+    assert "SWRL rule repaired: Adjacency" in result.output and "SWRL rule skipped: Broken" in result.output
+    strict = CliRunner().invoke(cli, ["check", "--strict", str(SAVED)])
+    assert strict.exit_code == 1 and "--strict" in strict.output
+
+
+def test_a_repaired_rule_that_still_cannot_compile_is_skipped() -> None:
+    """Flattening gives a rule whose head variable no body atom binds: set aside, not a refusal."""
+    ttl = """
+    @prefix : <http://example.org/u#> . @prefix swrl: <http://www.w3.org/2003/11/swrl#> .
+    @prefix rdf: <http://www.w3.org/1999/02/22-rdf-syntax-ns#> . @prefix owl: <http://www.w3.org/2002/07/owl#> .
+    @prefix rdfs: <http://www.w3.org/2000/01/rdf-schema#> .
+    :A a owl:Class . :B a owl:Class . :x a swrl:Variable . :z a swrl:Variable . :i a :A .
+    [] a swrl:Imp ; rdfs:label "Unsafe" ;
+       swrl:body [ a swrl:AtomList ; rdf:first [ a swrl:AtomList ; rdf:rest rdf:nil ;
+                     rdf:first [ a swrl:ClassAtom ; swrl:classPredicate :A ; swrl:argument1 :x ] ] ;
+                   rdf:rest rdf:nil ] ;
+       swrl:head [ a swrl:AtomList ; rdf:rest rdf:nil ;
+                   rdf:first [ a swrl:ClassAtom ; swrl:classPredicate :B ; swrl:argument1 :z ] ] .
+    """
+    onto = Ontology()
+    with pytest.warns(OntologyWarning, match="Unsafe"):
+        onto.load_data(ttl)
+    (notice,) = onto.load_notices
+    assert notice.kind == RULE_SKIPPED and "not bound" in notice.reason
+    assert onto.rule_labels() == [] and onto.reason().consistent
+    onto.prefix = "http://example.org/u#"
+    assert [onto.short(i) for i in onto.instances("A")] == ["i"]
+
+
+def test_an_untouched_untranslatable_rule_still_refuses_the_file() -> None:
+    onto = Ontology()
+    with pytest.raises(RuleCompileError):
+        onto.load_data("""
+        @prefix : <http://example.org/u#> . @prefix swrl: <http://www.w3.org/2003/11/swrl#> .
+        @prefix rdf: <http://www.w3.org/1999/02/22-rdf-syntax-ns#> . @prefix owl: <http://www.w3.org/2002/07/owl#> .
+        :A a owl:Class . :B a owl:Class . :x a swrl:Variable . :z a swrl:Variable .
+        [] a swrl:Imp ;
+           swrl:body [ a swrl:AtomList ; rdf:rest rdf:nil ;
+                       rdf:first [ a swrl:ClassAtom ; swrl:classPredicate :A ; swrl:argument1 :x ] ] ;
+           swrl:head [ a swrl:AtomList ; rdf:rest rdf:nil ;
+                       rdf:first [ a swrl:ClassAtom ; swrl:classPredicate :B ; swrl:argument1 :z ] ] .
+        """)
+    assert onto.store.count(ASSERTED) == 0
+
+
+def test_well_formed_rules_are_not_touched() -> None:
+    triples = Store().parse_file(ABOX)
+    assert repair_rules(triples) == (triples, [])
+
+
+# ---------------------------------------------------------------- the tutorial map, damaged as a save leaves it
+
+def _list_items(index: dict, head) -> list:
+    items = []
+    while head != NIL:
+        items.append(index[(head, FIRST)])
+        head = index[(head, REST)]
+    return items
+
+
+def damage(source: Path, target: Path) -> None:
+    """Write ``source`` with every rule body's tail nested in an atom list, and the first rule's
+    body appended (nested) to the second's: the structures aRMOR SAVE leaves."""
+    triples = Store().parse_file(source)
+    index = {(t.subject, t.predicate): t.object for t in triples if t.predicate in (FIRST, REST, swrl("body"))}
+    imps = [t.subject for t in triples if t.predicate == TYPE and t.object == swrl("Imp")]
+    out = [t for t in triples if t.predicate != swrl("body")]
+    fresh = iter(NamedNode(f"urn:topostore:bnode:damaged{k}") for k in range(10_000))
+
+    def atom_list(items: list) -> NamedNode:
+        head = NIL
+        for item in reversed(items):
+            cell = next(fresh)
+            out.extend([Triple(cell, TYPE, swrl("AtomList")), Triple(cell, FIRST, item), Triple(cell, REST, head)])
+            head = cell
+        return head
+
+    bodies = {imp: _list_items(index, index[(imp, swrl("body"))]) for imp in imps}
+    for k, imp in enumerate(imps):
+        atoms = bodies[imp]
+        items = [atoms[0], atom_list(atoms[1:])]
+        if k == 1:
+            items.append(atom_list(bodies[imps[0]]))
+        out.append(Triple(imp, swrl("body"), atom_list(items)))
+    target.write_bytes(serialize([unskolemize(t) for t in out], format=RdfFormat.RDF_XML))
+    assert not any(isinstance(t.subject, BlankNode) for t in out)
+
+
+def test_damaged_tutorial_map_reasons_as_pellet_does(tmp_path: Path) -> None:
+    broken = tmp_path / "saved.owl"
+    damage(ABOX, broken)
+    with pytest.warns(OntologyWarning):
+        onto = Ontology.from_file(broken)
+    assert sorted(n.kind for n in onto.load_notices) == [RULE_REPAIRED] * 3
+    assert onto.reason().consistent
+    assert sorted(onto.object_values("canReach", "Robot1")) == ["R1", "R2"]
+    assert [onto.short(i) for i in onto.instances("URGENT")] == ["R1"]
+    assert sorted(onto.short(c) for c in onto.types("C1")) == ["CORRIDOR", "LOCATION", "ROOM"]
+
+
+def test_repair_command_puts_the_original_rules_back(tmp_path: Path) -> None:
+    broken, fixed = tmp_path / "saved.owl", tmp_path / "fixed.owl"
+    damage(ABOX, broken)
+    result = CliRunner().invoke(cli, ["repair", str(broken), "--rules-from", str(TBOX), "-o", str(fixed)])
+    assert result.exit_code == 0, result.output
+    assert "3 SWRL rule(s) removed, 3 put back" in result.output
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", OntologyWarning)
+        onto = Ontology.from_file(fixed)
+    original = load_quietly(ABOX)
+    assert onto.rule_labels() == original.rule_labels()
+    assert onto.reason().consistent
+    assert sorted(onto.object_values("canReach", "Robot1")) == ["R1", "R2"]
+    assert [onto.short(i) for i in onto.instances("URGENT")] == ["R1"]
+    assert nested_atom_lists(onto) == 0
