@@ -27,12 +27,20 @@ _TRIVIAL_TYPES = {OWL.Class, OWL.ObjectProperty, OWL.DatatypeProperty, OWL.Annot
 _TEST = "http://topostore.invalid/conformance#"
 
 
+#: Predicates that state an axiom about a class expression rather than describe it: naming an
+#: expression must not copy them, or the conclusion under test would be added to the premise.
+_AXIOMS = {RDFS.subClassOf, OWL.equivalentClass, OWL.disjointWith, OWL.disjointUnionOf}
+
+
 def _subgraph(g: Graph, node: BNode, into: list, seen: set) -> None:
-    """Triples describing a blank node (a class expression and its lists), depth first."""
+    """Triples describing a blank node (a class expression and its lists), depth first; never the
+    axioms it takes part in (:data:`_AXIOMS`)."""
     if node in seen:
         return
     seen.add(node)
     for t in g.triples((node, None, None)):
+        if t[1] in _AXIOMS:
+            continue
         into.append(t)
         if isinstance(t[2], BNode):
             _subgraph(g, t[2], into, seen)
