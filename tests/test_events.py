@@ -106,10 +106,18 @@ def test_a_blocked_subscriber_never_blocks_reason_and_is_told_what_it_missed() -
     onto.subscribe(stuck, maxsize=2)
     listener = onto.events.open(every_reason=True)
 
+    def step(k: int) -> None:
+        onto.replace("Robot1", "now", onto.value(1665579750 - 10 * (k % 2), "long"))  # C1, R2 URGENT or not
+        onto.reason()
+
     def five_reasons() -> None:
-        for k in range(5):
-            onto.replace("Robot1", "now", onto.value(1665579750 - 10 * (k % 2), "long"))  # C1, R2 URGENT or not
-            onto.reason()
+        step(0)
+        for _ in range(200):  # the subscriber holds event 1 (a REASON may be quicker than its thread)
+            if received:
+                break
+            threading.Event().wait(0.05)
+        for k in range(1, 5):
+            step(k)
 
     worker = threading.Thread(target=five_reasons)
     worker.start()
