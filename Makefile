@@ -16,9 +16,9 @@ run: $(STAMP)
 	$(BIN)/topostore demo
 
 # Coverage of src/topostore: the code run in the test process and its threads (subprocesses such as
-# `topostore serve` or the ROS node are not counted); 91.6% when the floor was set.  The floor only
+# `topostore serve` or the ROS node are not counted); 92.85% when the floor was last raised.  The floor only
 # goes up: when tests raise the figure, set COV_FLOOR to the new value rounded down; never lower it.
-COV_FLOOR := 91
+COV_FLOOR := 92
 
 test: $(STAMP) browser ros-deps virtuoso java
 	$(BIN)/ruff check src tests benchmarks
