@@ -1,5 +1,6 @@
-"""Shared fixtures: the SPARQL servers of the remote-store tests, started once per session; the fuzz
-figures (cases tried, violations found) printed at the end of a run that fuzzed."""
+"""Shared fixtures: the SPARQL servers of the remote-store tests, started once per session; the markers
+``external`` and ``slow`` (``pytest -m "not external and not slow"`` is the quick loop; ``make test`` runs
+everything); the fuzz figures (cases tried, violations found) printed at the end of a run that fuzzed."""
 
 from __future__ import annotations
 
@@ -29,6 +30,25 @@ def virtuoso_url() -> Iterator[str]:
                     "apt-get install virtuoso-opensource (make test does this as root on Debian)")
     with virtuoso_server() as url:
         yield url
+
+
+#: modules whose tests start a program from outside the virtual environment: roscore, a browser, a JVM
+EXTERNAL_MODULES = {"test_ros", "test_ros_events", "test_fuzz_ros", "test_live", "test_inspector_browser",
+                    "test_pellet_differential", "test_bench"}
+#: modules whose tests take seconds each: fuzzing, property suites, kill loops, wheel builds, the W3C cases
+SLOW_MODULES = {"test_durable", "test_conformance", "test_fuzz_armor", "test_fuzz_http", "test_fuzz_files",
+                "test_fuzz_tbox", "test_incremental", "test_properties", "test_packaging", "test_load_tool"}
+
+
+def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:
+    """Mark tests ``external`` (a Virtuoso server counts too, wherever it is used) and ``slow`` by module."""
+    for item in items:
+        module = item.module.__name__ if getattr(item, "module", None) else ""
+        if module in EXTERNAL_MODULES or "virtuoso_url" in getattr(item, "fixturenames", ()) \
+                or "virtuoso" in item.nodeid:
+            item.add_marker(pytest.mark.external)
+        if module in SLOW_MODULES:
+            item.add_marker(pytest.mark.slow)
 
 
 def pytest_terminal_summary(terminalreporter: pytest.TerminalReporter) -> None:
