@@ -43,9 +43,8 @@ class OntologyQueries:
     def instances(self, cls: str | NamedNode) -> list[NamedNode]:
         """Individuals of a class (asserted ∪ inferred); a class asked again after REASON is read from its view."""
         c = self.iri(cls)
-        if not self.dirty and self.report is not None:
-            return self.views.get(c, self.report, lambda: self._instances(c))
-        return self._instances(c)
+        owner = self._view_owner()
+        return self._instances(c) if owner is None else self.views.get(c, owner, lambda: self._instances(c))
 
     def rendered_instances(self, cls: str | NamedNode, key: Hashable, render: Render) -> list[str]:
         """:meth:`instances` rendered by ``render`` (None leaves a member out), sorted, without duplicates.
@@ -54,15 +53,20 @@ class OntologyQueries:
         big class every step costs the change, not the class.
         """
         c = self.iri(cls)
-        if not self.dirty and self.report is not None:
-            return self.views.rendered(c, self.report, lambda: self._instances(c), key, render)
-        return sorted({text for m in self._instances(c) if (text := render(m)) is not None})
+        owner = self._view_owner()
+        if owner is None:
+            return sorted({text for m in self._instances(c) if (text := render(m)) is not None})
+        return self.views.rendered(c, owner, lambda: self._instances(c), key, render)
+
+    def _view_owner(self) -> object | None:
+        """The REASON outcome class views belong to; None while asserted changes wait for a REASON."""
+        return None if self.dirty else self.report
 
     def _instances(self, c: NamedNode) -> list[NamedNode]:
         found: dict = {}
         for g in self.visible_graphs():
             for s in self.store.subjects(TYPE, c, g):
-                if not is_internal(s) or is_skolem(s):
+                if _shown(s):
                     found[s] = None
         return list(found)
 
@@ -73,7 +77,7 @@ class OntologyQueries:
         triples = [Triple(s, TYPE, c) for s, c in pairs]
         for g in self.visible_graphs():
             flags = [f or found for f, found in zip(flags, self.store.contains_each(triples, g))]
-        return [f and (not is_internal(s) or is_skolem(s)) for f, (s, _) in zip(flags, pairs)]
+        return [f and _shown(s) for f, (s, _) in zip(flags, pairs)]
 
     def object_values(self, prop: str | NamedNode, individual: str | NamedNode, names: bool = True) -> list:
         vals = [o for o in self._objects(self.iri(individual), self.iri(prop)) if isinstance(o, NamedNode)]
@@ -173,6 +177,12 @@ class OntologyQueries:
         names = {q.name: q.description for q in named_queries().values()}
         names.update({q.name: q.description for q in self.rules.queries.values()})
         return names
+
+
+def _shown(individual: Term) -> bool:
+    """Whether :meth:`OntologyQueries.instances` shows an individual: not the reasoner's own nodes
+    (skolemised blank nodes of the data are shown)."""
+    return not is_internal(individual) or is_skolem(individual)
 
 
 def _is_schema_or_internal(p: NamedNode) -> bool:

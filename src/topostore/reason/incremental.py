@@ -69,7 +69,6 @@ from __future__ import annotations
 import time
 from collections.abc import Collection, Iterable
 from dataclasses import dataclass, field
-from fractions import Fraction
 
 from pyoxigraph import NamedNode, Triple
 
@@ -143,6 +142,8 @@ class IncrementalReasoner(DeletionPhases):
         self.provers = [i for i in self.monotone if can_prove(self.rules[i])]
         self.checks_monotone = all(not c.negates and c.stratum == 0 for c in self.checks)
         self._texts: dict[tuple, str] = {}
+        #: what the rules' flips need that does not change between REASONs (atom orders, window tests)
+        self._plans: dict[tuple, object] = {}
         self._queue: list[str] = []
         self._lateral = store.supports_lateral  # is the graph the next evaluation starts from small?
         self._counts: KeyCounts = ({}, {})  # read keys of the graph evaluations start from
@@ -371,13 +372,13 @@ class IncrementalReasoner(DeletionPhases):
     def _window_facts(self, i: int, k: int, m: int) -> list[Triple] | None:
         """The facts of atom ``m`` that a change of seed atom ``k``'s value may flip (None: no window)."""
         rule = self.rules[i]
-        key = ("window-tests", i)
-        tests = self._texts.get(key)
+        tests = self._plans.get(("window-tests", i))
         if tests is None:
-            tests = self._texts[key] = window.tests(rule)
+            tests = self._plans[("window-tests", i)] = window.tests(rule)
         seed, atom = rule.body[k], rule.body[m]
         t, v = seed.o[1:], atom.o[1:]
-        if not window.possible(tests, t) or len(self._value_index(atom.p)) < WINDOW_MIN:
+        index = self._value_index(atom.p)
+        if not window.possible(tests, t) or len(index) < WINDOW_MIN:
             return None  # no linear test to solve, or so few values that scanning them is as cheap
         rest = sorted({n for test in tests if test.form for n in test.form[0]} - {t, v})
         text = self._texts.get(("window", i, k, m))
@@ -387,16 +388,14 @@ class IncrementalReasoner(DeletionPhases):
                                      named=[AUX, flip.CHANGE_OLD]))
         if len(rows) > WINDOW_ROWS:
             return None
-        index = self._value_index(atom.p)
         facts: dict[Triple, None] = {}
         for row in rows:
             terms = [row[f"{t}__o"], row[f"{t}__n"], *(row[n] for n in rest)]
             values = [window.number(term) for term in terms]
             if any(x is None for x in values):
                 return None
-            exact = all(term.datatype.value.rsplit("#", 1)[1] not in ("double", "float") for term in terms)
-            margin = Fraction(0) if exact else Fraction(1, 10**9) * (1 + sum(abs(x) for x in values))
-            span = window.interval(tests, v, t, values[0], values[1], dict(zip(rest, values[2:])), margin)
+            span = window.interval(tests, v, t, values[0], values[1], dict(zip(rest, values[2:])),
+                                   window.margin(terms, values))
             if span is None:
                 return None
             if span is False:
@@ -431,9 +430,9 @@ class IncrementalReasoner(DeletionPhases):
     def _by_frequency(self, i: int, atoms: tuple[int, ...]) -> tuple[int, ...]:
         """The rule's atoms, those of predicates with the most asserted facts first (see flip.flip_branches)."""
         key = ("order", i, atoms)
-        if key not in self._texts:
-            self._texts[key] = self._order_by_size(i, atoms)
-        return self._texts[key]
+        if key not in self._plans:
+            self._plans[key] = self._order_by_size(i, atoms)
+        return self._plans[key]
 
     def _order_by_size(self, i: int, atoms: tuple[int, ...]) -> tuple[int, ...]:
         def size(j: int) -> int:

@@ -177,6 +177,13 @@ def _comparison(text: str, binds: dict[str, Linear]) -> Linear | None:
     return None if left is None or right is None else _add(left, right, -1)
 
 
+def margin(terms: list[Term], values: list[Fraction]) -> Fraction:
+    """How much to widen a window whose bounds were computed from ``terms`` (read as ``values``):
+    nothing when every one is of an exact numeric type, else enough for double rounding."""
+    exact = all(isinstance(t, Literal) and t.datatype.value.rsplit("#", 1)[1] in _EXACT for t in terms)
+    return Fraction(0) if exact else Fraction(1, 10**9) * (1 + sum(abs(x) for x in values))
+
+
 def possible(found: list[Test], t: str) -> bool:
     """Whether a window can exist: every test that reads ``t`` is linear (checked before any query)."""
     return all(test.form is not None for test in found if t in test.variables)
@@ -277,4 +284,4 @@ class ValueIndex:
         return len(self._keys)
 
 
-__all__ = ["Linear", "Test", "ValueIndex", "interval", "number", "possible", "tests"]
+__all__ = ["Linear", "Test", "ValueIndex", "interval", "margin", "number", "possible", "tests"]
