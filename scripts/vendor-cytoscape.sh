@@ -10,16 +10,10 @@ set -eu
 VERSION="${1:-3.34.4}"
 DEST="$(cd "$(dirname "$0")/.." && pwd)/src/topostore/static"
 WORK="$(mktemp -d)"
+. "$(dirname "$0")/npm-fetch.sh"
 trap 'rm -rf "$WORK"' EXIT
 cd "$WORK"
-npm pack "cytoscape@$VERSION" --silent > /dev/null
-EXPECTED="$(npm view "cytoscape@$VERSION" dist.integrity)"
-ACTUAL="sha512-$(openssl dgst -sha512 -binary "cytoscape-$VERSION.tgz" | base64 -w0)"
-if [ "$EXPECTED" != "$ACTUAL" ]; then
-    echo "integrity mismatch for cytoscape@$VERSION: registry $EXPECTED, tarball $ACTUAL" >&2
-    exit 1
-fi
-tar xzf "cytoscape-$VERSION.tgz"
+fetch_verified "cytoscape" "$VERSION"
 cp package/dist/cytoscape.min.js "$DEST/cytoscape.min.js"
 cp package/LICENSE "$DEST/cytoscape.LICENSE"
 echo "cytoscape@$VERSION" > "$DEST/cytoscape.VERSION"

@@ -11,16 +11,10 @@ set -eu
 VERSION="${1:-4.2.28}"
 DEST="$(cd "$(dirname "$0")/.." && pwd)/src/topostore/static"
 WORK="$(mktemp -d)"
+. "$(dirname "$0")/npm-fetch.sh"
 trap 'rm -rf "$WORK"' EXIT
 cd "$WORK"
-npm pack "@triply/yasgui@$VERSION" --silent > /dev/null
-EXPECTED="$(npm view "@triply/yasgui@$VERSION" dist.integrity)"
-ACTUAL="sha512-$(openssl dgst -sha512 -binary "triply-yasgui-$VERSION.tgz" | base64 -w0)"
-if [ "$EXPECTED" != "$ACTUAL" ]; then
-    echo "integrity mismatch for @triply/yasgui@$VERSION: registry $EXPECTED, tarball $ACTUAL" >&2
-    exit 1
-fi
-tar xzf "triply-yasgui-$VERSION.tgz"
+fetch_verified "@triply/yasgui" "$VERSION"
 cp package/build/yasgui.min.js "$DEST/yasgui.min.js"
 cp package/build/yasgui.min.css "$DEST/yasgui.min.css"
 {
