@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import warnings
 from pathlib import Path
 
 from pyoxigraph import Literal, NamedNode
@@ -35,3 +36,15 @@ def connected(o: Ontology) -> set[tuple[str, str]]:
     """All connectedTo pairs the ontology answers (asserted ∪ inferred)."""
     rows = o.sparql(f"SELECT ?a ?b WHERE {{ ?a <{NS}connectedTo> ?b }}")
     return {(o.short(r["a"]), o.short(r["b"])) for r in rows}
+
+
+def armor_load(service, path: Path | str, iri: str):
+    """An aRMOR LOAD FILE of ``path`` as ``iri`` into reference "ref", the load's OntologyWarnings silenced
+    (the reply's ``error_description`` carries them, which the callers check)."""
+    from topostore import OntologyWarning
+
+    request = {"client_name": "c", "reference_name": "ref", "command": "LOAD", "primary_command_spec": "FILE",
+               "secondary_command_spec": "", "args": [str(path), iri, "false", "PELLET", "false"]}
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", OntologyWarning)
+        return service.call(request)

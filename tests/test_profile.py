@@ -9,6 +9,7 @@ from pathlib import Path
 
 import pytest
 from click.testing import CliRunner
+from support import armor_load
 
 from topostore import IncompleteOntologyError, Ontology, OntologyWarning
 from topostore.armor import ArmorService
@@ -129,12 +130,8 @@ def test_strict_refuses_and_changes_nothing() -> None:
 def test_armor_load_reply_and_strict_service(tmp_path: Path) -> None:
     path = tmp_path / "union.ttl"
     path.write_text(PREFIXES + CASES["union superclass"][0])
-    request = {"client_name": "c", "reference_name": "ref", "command": "LOAD", "primary_command_spec": "FILE",
-               "secondary_command_spec": "", "args": [str(path), "http://e.org/a", "false", "PELLET", "false"]}
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", OntologyWarning)
-        res = ArmorService().call(request)
-        strict = ArmorService(strict=True).call(request)
+    res = armor_load(ArmorService(), path, "http://e.org/a")
+    strict = armor_load(ArmorService(strict=True), path, "http://e.org/a")
     assert res.success and kinds.UNION in res.error_description and "A SubClassOf" in res.error_description
     assert not strict.success and strict.exit_code == 209 and "A SubClassOf" in strict.error_description
 

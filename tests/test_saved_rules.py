@@ -14,6 +14,7 @@ from pathlib import Path
 import pytest
 from click.testing import CliRunner
 from pyoxigraph import BlankNode, NamedNode, RdfFormat, Triple, serialize
+from support import armor_load
 
 from topostore import Ontology, OntologyWarning, RuleCompileError
 from topostore.armor import ArmorService
@@ -81,12 +82,7 @@ def test_save_writes_flat_rules_that_reload_without_notices(tmp_path: Path) -> N
 
 
 def test_armor_load_reply_names_repaired_and_skipped_rules() -> None:
-    svc = ArmorService()
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", OntologyWarning)
-        res = svc.call({"client_name": "c", "reference_name": "ref", "command": "LOAD",
-                        "primary_command_spec": "FILE", "secondary_command_spec": "",
-                        "args": [str(SAVED), "http://example.org/saved", "false", "PELLET", "false"]})
+    res = armor_load(ArmorService(), SAVED, "http://example.org/saved")
     assert res.success and res.exit_code == 0
     assert "SWRL rule repaired: Adjacency" in res.error_description
     assert "SWRL rule skipped: Broken" in res.error_description

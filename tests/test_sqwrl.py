@@ -9,6 +9,7 @@ from pathlib import Path
 
 import pytest
 from click.testing import CliRunner
+from support import armor_load
 
 from topostore import Ontology, OntologyWarning, QueryError, QueryItem
 from topostore.armor import ArmorService
@@ -133,10 +134,5 @@ def test_cli_runs_and_lists_them() -> None:
 
 
 def test_armor_load_reply_names_the_queries() -> None:
-    svc = ArmorService()
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", OntologyWarning)
-        res = svc.call({"client_name": "c", "reference_name": "ref", "command": "LOAD",
-                        "primary_command_spec": "FILE", "secondary_command_spec": "",
-                        "args": [str(DATA), "http://example.org/people", "false", "PELLET", "false"]})
+    res = armor_load(ArmorService(), DATA, "http://example.org/people")
     assert res.success and "SQWRL query" in res.error_description and "residents" in res.error_description
