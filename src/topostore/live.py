@@ -23,9 +23,8 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from pyoxigraph import Literal, NamedNode
-from starlette.concurrency import run_in_threadpool
 from starlette.requests import Request
-from starlette.responses import FileResponse, JSONResponse, Response, StreamingResponse
+from starlette.responses import FileResponse, Response, StreamingResponse
 from starlette.routing import Mount, Route
 from starlette.staticfiles import StaticFiles
 
@@ -33,6 +32,8 @@ from .armor.codes import CommandError
 from .errors import TopostoreError
 from .events import event_json, term_text
 from .explain import resolve_triple
+from .http.locked import reference_json
+from .http.security import error
 from .vocab import is_internal
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -41,10 +42,6 @@ if TYPE_CHECKING:  # pragma: no cover
 
 STATIC = Path(__file__).parent / "static"
 DEFAULT_KEEPALIVE = 15.0
-
-
-def _error(status: int, message: str) -> JSONResponse:
-    return JSONResponse({"error": message}, status_code=status)
 
 
 def _number(request: Request, name: str, default: float, low: float, high: float) -> float:
@@ -70,24 +67,15 @@ class LiveRoutes:
         return self.api.service.reference(request.path_params["name"])
 
     async def _with_ontology(self, request: Request, work: Callable[[Ontology], dict]) -> Response:
-        """``work(ontology)`` of the named reference, under its lock, off the event loop, as JSON (404 if unknown)."""
-        try:
-            ref = self._reference(request)
-        except CommandError as exc:
-            return _error(404, exc.message)
-
-        def locked() -> dict:
-            with ref.lock:
-                return work(ref.ontology)
-
-        return JSONResponse(await run_in_threadpool(locked))
+        """``work(ontology)`` of the named reference as JSON (see :func:`.http.locked.reference_json`)."""
+        return await reference_json(self.api.service, request, lambda ref: work(ref.ontology))
 
     # ------------------------------------------------------------ explanations
     async def explain(self, request: Request) -> Response:
         params = request.query_params
         missing = [k for k in ("s", "p", "o") if not params.get(k)]
         if missing:
-            return _error(400, f"missing parameter(s) {', '.join(missing)}: GET .../explain?s=R1&p=rdf:type&o=URGENT")
+            return error(400, f"missing parameter(s) {', '.join(missing)}: GET .../explain?s=R1&p=rdf:type&o=URGENT")
         def work(onto: Ontology) -> dict:
             s, p, o = resolve_triple(onto, params["s"], params["p"], params["o"])
             return onto.explain(s, p, o).to_dict()
@@ -95,7 +83,7 @@ class LiveRoutes:
         try:
             return await self._with_ontology(request, work)
         except (TopostoreError, ValueError) as exc:
-            return _error(400, str(exc))
+            return error(400, str(exc))
 
     # ------------------------------------------------------------ events
     async def events(self, request: Request) -> Response:
@@ -109,9 +97,9 @@ class LiveRoutes:
             sub = onto.events.open(request.query_params.get("pattern"), size, every_reason=True,
                                    notify=lambda: loop.call_soon_threadsafe(wake.set))
         except CommandError as exc:
-            return _error(404, exc.message)
+            return error(404, exc.message)
         except (TopostoreError, ValueError) as exc:
-            return _error(400, str(exc))
+            return error(400, str(exc))
 
         async def stream() -> AsyncIterator[str]:
             try:
@@ -137,7 +125,7 @@ class LiveRoutes:
         try:
             self._reference(request)
         except CommandError as exc:
-            return _error(404, exc.message)
+            return error(404, exc.message)
         return FileResponse(STATIC / "map.html", media_type="text/html")
 
     async def map_data(self, request: Request) -> Response:

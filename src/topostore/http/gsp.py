@@ -36,6 +36,7 @@ from ..errors import TopostoreError
 from ..ontology import Ontology
 from ..sparql.results import GRAPH_FORMATS, NotAcceptable, choose_format, render_graph
 from ..vocab import ASSERTED, ENTAILED, INFERRED, OWL, RDF, RDFS, TYPE, XSD
+from .security import error
 
 if TYPE_CHECKING:  # pragma: no cover
     from ..server import Api
@@ -58,10 +59,6 @@ class GraphStoreError(TopostoreError):
     def __init__(self, status: int, message: str) -> None:
         super().__init__(message)
         self.status = status
-
-
-def _error(status: int, message: str) -> JSONResponse:
-    return JSONResponse({"error": message}, status_code=status)
 
 
 def target_graph(request: Request, ref: Reference | None) -> str:
@@ -126,9 +123,9 @@ class GraphStore:
                 return await self.get(request)
             return await self.write(request)
         except GraphStoreError as exc:
-            return _error(exc.status, str(exc))
+            return error(exc.status, str(exc))
         except NotAcceptable as exc:
-            return _error(406, str(exc))
+            return error(406, str(exc))
 
     def _reference(self, name: str) -> Reference | None:
         try:

@@ -24,7 +24,6 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from pyoxigraph import NamedNode, Triple
-from starlette.concurrency import run_in_threadpool
 from starlette.convertors import Convertor, register_url_convertor
 from starlette.requests import Request
 from starlette.responses import FileResponse, JSONResponse, Response
@@ -52,6 +51,7 @@ from .entities import (
     search_entities,
 )
 from .history import Histories
+from .locked import reference_json
 from .schema import axioms_of, hierarchy, property_sections, read_tbox, rules_naming
 from .security import error
 
@@ -212,22 +212,10 @@ class InspectorRoutes:
         return self.api.service.reference(request.path_params["name"])
 
     async def _locked(self, request: Request, work: Callable[[Reference], Any]) -> Response:
-        """``work(reference)`` under the reference's lock, off the event loop, as JSON (404/400 on errors)."""
-        try:
-            ref = self._reference(request)
-        except CommandError as exc:
-            return error(404, exc.message)
-
-        def locked() -> Any:
-            with ref.lock:
-                return work(ref)
-
-        try:
-            return JSONResponse(await run_in_threadpool(locked))
-        except NotFound as exc:
-            return error(404, str(exc))
-        except (TopostoreError, ValueError) as exc:
-            return error(400, str(exc))
+        """``work(reference)`` as JSON (see :func:`.locked.reference_json`): 404 for an unknown reference or
+        entity, 400 for bad input."""
+        return await reference_json(self.api.service, request, work, missing=(NotFound,),
+                                    bad_input=(TopostoreError, ValueError))
 
     async def page(self, request: Request) -> Response:
         try:
