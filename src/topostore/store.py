@@ -33,6 +33,24 @@ from .terms import Term, value_key
 from .vocab import ASSERTED, AUX, FIRST, INFERRED, NIL, REST, SKOLEM_PREFIX, TYPE
 
 
+def quad_data(quads: list[Quad]) -> str:
+    """``GRAPH g { s p o . }`` blocks for INSERT/DELETE DATA, from pyoxigraph terms (escaped by pyoxigraph)."""
+    by_graph: dict[str, list[str]] = {}
+    for q in quads:
+        by_graph.setdefault(str(q.graph_name), []).append(f"{q.subject} {q.predicate} {q.object} .")
+    return " ".join(f"GRAPH {g} {{ {' '.join(lines)} }}" for g, lines in by_graph.items())
+
+
+def data_update(adds: list[Quad], removes: list[Quad]) -> str:
+    """One update request removing then adding quads (empty text when there is nothing to do)."""
+    ops = []
+    if removes:
+        ops.append(f"DELETE DATA {{ {quad_data(removes)} }}")
+    if adds:
+        ops.append(f"INSERT DATA {{ {quad_data(adds)} }}")
+    return " ;\n".join(ops)
+
+
 @dataclass(frozen=True)
 class Graphs:
     """The names of the graphs of one reference (several references may share a store)."""
@@ -68,6 +86,8 @@ class Store(LiteralForms, PersistedState):
     custom_functions = True
     #: Does this store outlive the process (disk, remote server)?
     durable = False
+    #: every read and write is a network round trip: callers batch them into few requests
+    round_trips = False
 
     def __new__(cls, *args, **kwargs):
         if cls is Store:  # Store() keeps meaning "a fresh in-memory store"
@@ -250,6 +270,10 @@ class Store(LiteralForms, PersistedState):
         """Whether each triple is in ``graph``: one look-up batch (one request on a remote store)."""
         return self._present([Quad(t.subject, t.predicate, t.object, graph) for t in triples])
 
+    def contains_quads(self, quads: list[Quad]) -> list[bool]:
+        """Whether each quad (triple and graph) is in the store: one look-up batch, as :meth:`contains_each`."""
+        return self._present(quads)
+
     def triples(
         self, s: Term | None = None, p: NamedNode | None = None, o: Term | None = None, graph: NamedNode | None = None
     ) -> Iterator[Triple]:
@@ -269,6 +293,16 @@ class Store(LiteralForms, PersistedState):
 
     def objects(self, s: Term, p: NamedNode, graph: NamedNode) -> list[Term]:
         return [t.object for t in self.triples(s, p, None, graph)]
+
+    def objects_many(self, pairs: list[tuple[Term, NamedNode]], graph: NamedNode) -> dict[tuple, list[Term]]:
+        """:meth:`objects` of several (subject, predicate) pairs; one query where reads are round trips."""
+        found: dict[tuple, list[Term]] = {pair: [] for pair in pairs}
+        if not self.round_trips or not pairs:
+            return {pair: self.objects(*pair, graph) for pair in found}
+        rows = " ".join(f"({s} {p})" for s, p in found)
+        for r in self.query(f"SELECT ?s ?p ?o WHERE {{ VALUES (?s ?p) {{ {rows} }} ?s ?p ?o }}", graphs=[graph]):
+            found[(r["s"], r["p"])].append(r["o"])
+        return found
 
     def subjects(self, p: NamedNode, o: Term, graph: NamedNode) -> list[Term]:
         return [t.subject for t in self.triples(None, p, o, graph)]
@@ -292,14 +326,34 @@ class Store(LiteralForms, PersistedState):
 
     def census(self, graph: NamedNode) -> tuple[dict[str, int], dict[str, int]]:
         """Facts per predicate and per class (objects of rdf:type) in ``graph``, keyed by SPARQL text."""
+        return self.census_many([graph])[graph]
+
+    def census_many(self, graphs: list[NamedNode]) -> dict[NamedNode, tuple[dict[str, int], dict[str, int]]]:
+        """:meth:`census` of several graphs, in one query.
+
+        The reasoner reads the size of its scratch graphs after every round; on
+        a store reached over HTTP each query is a round trip, so the graphs of
+        one round are counted together (an empty graph counts nothing).
+        """
         self._flush_open()
-        preds = {str(r["p"]): int(r["n"].value) for r in self._run_query(
-            f"SELECT ?p (COUNT(*) AS ?n) WHERE {{ GRAPH {graph} {{ ?s ?p ?o }} }} GROUP BY ?p", None)}
-        classes: dict[str, int] = {}
-        if str(TYPE) in preds:
-            classes = {str(r["c"]): int(r["n"].value) for r in self._run_query(
-                f"SELECT ?c (COUNT(*) AS ?n) WHERE {{ GRAPH {graph} {{ ?s {TYPE} ?c }} }} GROUP BY ?c", None)}
-        return preds, classes
+        found: dict[NamedNode, tuple[dict[str, int], dict[str, int]]] = {g: ({}, {}) for g in graphs}
+        if not graphs:
+            return found
+        values = " ".join(str(g) for g in found)
+        text = (f"SELECT ?g ?p ?c (COUNT(*) AS ?n) WHERE {{ VALUES ?g {{ {values} }} GRAPH ?g {{ ?s ?p ?o }} "
+                f"BIND(IF(sameTerm(?p, {TYPE}), ?o, \"\") AS ?c) }} GROUP BY ?g ?p ?c")
+        by_text = {str(g): g for g in found}
+        for r in self._run_query(text, None):
+            preds, classes = found[by_text[str(self._graph_name_in(r["g"]))]]
+            p, n = str(r["p"]), int(r["n"].value)
+            preds[p] = preds.get(p, 0) + n
+            if p == str(TYPE):
+                classes[str(r["c"])] = classes.get(str(r["c"]), 0) + n
+        return found
+
+    def _graph_name_in(self, graph: NamedNode) -> NamedNode:
+        """A graph name as a query answers it, in the engine's names (a remote store renames graphs)."""
+        return graph
 
     def count(self, graph: NamedNode) -> int:
         result = self.query(f"SELECT (COUNT(*) AS ?n) WHERE {{ GRAPH {graph} {{ ?s ?p ?o }} }}")

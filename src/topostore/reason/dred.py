@@ -16,7 +16,7 @@ from ..compile.rule import Rule
 from ..vocab import ASSERTED, AUX, INFERRED, NEW_AUX, NEW_INFERRED
 from . import limits
 from .materialize import ReasonStats
-from .plan import plan_where
+from .plan import KeyCounts, plan_where
 from .requests import Requests
 from .scratch import CANDIDATES, DEL_DELTA, NEW_PROVEN, OVERDELETED, PROVEN, REMOVED, SUBGOALS, dataset, target
 from .triggers import Present, Triggers, matches
@@ -62,9 +62,10 @@ class DeletionPhases(Requests):
             if lost:
                 self.store.add_scratch(lost, CANDIDATES)
             skip, lost = frozenset(), ()
-            if self.store.is_empty(CANDIDATES):
+            counts = self._keys(CANDIDATES)
+            if not counts[0]:
                 break
-            self._prove(stats)
+            self._prove(stats, counts)
             stats.overdeleted += self.store.count(CANDIDATES) if self._profiling(stats) else 0
             preds, classes = self._start(CANDIDATES)  # the next DEL_DELTA
             self._defer(f"DROP SILENT GRAPH {DEL_DELTA} ; ADD SILENT {CANDIDATES} TO {DEL_DELTA} ; "
@@ -73,7 +74,7 @@ class DeletionPhases(Requests):
                                f"WHERE {{ GRAPH {OVERDELETED} {{ ?s ?p ?o }} GRAPH {g} {{ ?s ?p ?o }} }}"
                                for g in (INFERRED, AUX)))
 
-    def _prove(self, stats: ReasonStats) -> None:
+    def _prove(self, stats: ReasonStats, counts: KeyCounts | None = None) -> None:
         """Move candidates that still hold to PROVEN: a derivation from asserted or proven facts.
 
         When that proves nothing more, the premises of the remaining
@@ -81,12 +82,15 @@ class DeletionPhases(Requests):
         the same way (one level of backward chaining); then candidates are
         tried again.  PROVEN only ever receives facts with a derivation from
         asserted or earlier proven facts, so it stays inside the new closure.
+        ``counts``: the candidates' read keys, when the caller has just counted them.
         """
         known = (set(self.state.asserted[0]), set(self.state.asserted[1]))
         tried_subgoals = False
         while True:
             limits.check()
-            if self._prove_goals(CANDIDATES, known, stats):
+            proved = self._prove_goals(CANDIDATES, known, stats, counts)
+            counts = None
+            if proved:
                 continue
             if tried_subgoals or self.store.is_empty(CANDIDATES):
                 return
@@ -99,17 +103,23 @@ class DeletionPhases(Requests):
             if not progress:
                 return
 
-    def _prove_goals(self, goals: NamedNode, known: Present, stats: ReasonStats) -> bool:
-        """One pass of the provers over ``goals``; True when something was proven."""
-        preds, classes = self._start(goals)
+    def _prove_goals(self, goals: NamedNode, known: Present, stats: ReasonStats,
+                     counts: KeyCounts | None = None) -> bool:
+        """One pass of the provers over ``goals`` (``counts``: their read keys if known); True when something
+        was proven."""
+        if counts is None:
+            counts = self._start(goals)
+        else:
+            self._counts = counts
+        preds, classes = counts
         for i in self.provers:
             key = self.rules[i].writes()
             if key is not None and matches(key, preds, classes) and self.triggers.feasible(i, known):
                 self._run(("prove", i, goals.value), self._prove_text, i, goals, stats)
         self._flush()
-        if self.store.is_empty(NEW_PROVEN):
-            return False
         new_preds, new_classes = self._keys(NEW_PROVEN)
+        if not new_preds:
+            return False
         known[0].update(new_preds)
         known[1].update(new_classes)
         self._defer(f"DROP SILENT GRAPH {NEW_PROVEN}")

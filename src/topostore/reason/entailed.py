@@ -20,7 +20,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 
-from pyoxigraph import NamedNode, Triple
+from pyoxigraph import NamedNode, Quad, Triple
 
 from ..compile.rule import RuleSet
 from ..store import Store
@@ -50,11 +50,17 @@ def refresh_entailed(store: Store, rules: RuleSet, changed: Sequence[NamedNode])
         return
     add: list[Triple] = []
     drop: list[Triple] = []
-    for row in store.query(_touched_query(predicates, changed)):
-        t = Triple(row["s"], row["p"], row["o"])
-        wanted = (store.contains(Triple(t.subject, _internal(t.predicate), t.object), AUX)
-                  and not store.contains(t, INFERRED) and not store.contains(t, ASSERTED))
-        if wanted != store.contains(t, ENTAILED):
+    touched = [Triple(row["s"], row["p"], row["o"]) for row in store.query(_touched_query(predicates, changed))]
+    # four look-ups per triple, sent as one batch (one request on a remote store)
+    quads = [q for t in touched for q in (Quad(t.subject, _internal(t.predicate), t.object, AUX),
+                                          Quad(t.subject, t.predicate, t.object, INFERRED),
+                                          Quad(t.subject, t.predicate, t.object, ASSERTED),
+                                          Quad(t.subject, t.predicate, t.object, ENTAILED))]
+    found = store.contains_quads(quads) if quads else []
+    for n, t in enumerate(touched):
+        internal, inferred, asserted, shown = found[4 * n:4 * n + 4]
+        wanted = internal and not inferred and not asserted
+        if wanted != shown:
             (add if wanted else drop).append(t)
     if add:
         store.add_scratch(add, ENTAILED)

@@ -70,12 +70,12 @@ import time
 from collections.abc import Collection, Iterable
 from dataclasses import dataclass, field
 
-from pyoxigraph import NamedNode, Triple
+from pyoxigraph import NamedNode, Quad, Triple
 
 from ..compile.generic import PREFIXES
 from ..compile.rule import Rule, RuleSet
 from ..lexer import negates_exists  # noqa: F401 - public here since the first release
-from ..store import Store
+from ..store import Store, data_update
 from ..terms import Term
 from ..vocab import ASSERTED, AUX, DELTA, ENTAILED_PREFIX, INFERRED, NEW_AUX, NEW_INFERRED, TYPE
 from . import flip, window
@@ -96,6 +96,18 @@ WINDOW_MIN, WINDOW_ROWS, WINDOW_FACTS = 256, 64, 4096
 
 #: Default share of the asserted graph above which a change is recomputed from scratch.
 DEFAULT_MAX_CHANGE_SHARE = 0.10
+
+
+def census_of(triples: Iterable[Triple]) -> KeyCounts:
+    """Facts per predicate and per class of ``triples`` (as :meth:`Store.census` counts a graph)."""
+    preds: dict[str, int] = {}
+    classes: dict[str, int] = {}
+    for t in triples:
+        p = str(t.predicate)
+        preds[p] = preds.get(p, 0) + 1
+        if t.predicate == TYPE:
+            classes[str(t.object)] = classes.get(str(t.object), 0) + 1
+    return preds, classes
 
 
 def is_monotone(rule: Rule) -> bool:
@@ -253,13 +265,14 @@ class IncrementalReasoner(DeletionPhases):
                 index.add(t)
         self._put(added, ADDED)
         self._put(removed, REMOVED)
-        preds, classes = self._keys(ADDED)
+        preds, classes = census_of(added)
         for keys in (self.state.present, self.state.asserted):
             keys[0].update(preds)
             keys[1].update(classes)
         # a newly asserted fact that was inferred is now asserted only (as from scratch)
         if added:
-            self.store.discard(added, (INFERRED, AUX))
+            self._discard(added, (INFERRED, AUX))
+        self._flush()  # the scratch copies are read from here on
         skip, lost, gained_rules = self._flips(added, removed, (preds, classes), stats)
         if removed:
             self._overdelete(stats, skip, lost)
@@ -280,7 +293,9 @@ class IncrementalReasoner(DeletionPhases):
         heads that lost their derivation by such a rule, and the rules with
         heads that may have gained one (put in FLIP_GAINED, checked later).
         """
-        clean = flip.clean_replacements(added, removed, lambda s, p: self.store.objects(s, p, ASSERTED))
+        replaced = [(t.subject, t.predicate) for t in added if t.predicate != TYPE]
+        now = self.store.objects_many(list(dict.fromkeys(replaced)), ASSERTED)
+        clean = flip.clean_replacements(added, removed, lambda s, p: now.get((s, p), ()))
         clean = {p: pairs for p, pairs in clean.items() if not self._derivable(p)}
         skip: set[tuple[int, int]] = set()
         lost: list[Triple] = []
@@ -288,9 +303,10 @@ class IncrementalReasoner(DeletionPhases):
         if not clean:
             return skip, lost, gained_rules
         preds, classes = added_keys
-        removed_preds, removed_classes = self._keys(REMOVED)
+        removed_preds, removed_classes = census_of(removed)
         changed = (set(preds) | set(removed_preds), set(classes) | set(removed_classes))
-        self.store.add_scratch((r.old for pairs in clean.values() for r in pairs), flip.CHANGE_OLD)
+        self._put([r.old for pairs in clean.values() for r in pairs], flip.CHANGE_OLD)
+        self._flush()
         wanted: list[tuple[int, tuple[int, ...]]] = []
         for i in self.triggers.rules_reading(clean, self._monotone_set):
             handled = self._flip_atoms(i, clean, changed)
@@ -483,6 +499,10 @@ class IncrementalReasoner(DeletionPhases):
         helper graph changed (the same graphs the ENTAILED refresh reads), in real or internal form.
         """
         touched: dict[tuple[Term, NamedNode], None] = {}
+        if self.store.round_trips:  # one query instead of four pattern reads
+            text = (f"SELECT DISTINCT ?s ?c WHERE {{ VALUES ?g {{ {NEW_FACTS} {OVERDELETED} }} "
+                    f"VALUES ?p {{ {TYPE} {ENTAILED_TYPE} }} GRAPH ?g {{ ?s ?p ?c }} FILTER(isIRI(?c)) }}")
+            return [(r["s"], r["c"]) for r in self.store.query(text)]
         for graph in (NEW_FACTS, OVERDELETED):
             for predicate in (TYPE, ENTAILED_TYPE):
                 for t in self.store.triples(None, predicate, None, graph):
@@ -524,9 +544,21 @@ class IncrementalReasoner(DeletionPhases):
         """Copy triples into a scratch graph as they are.
 
         Not through :meth:`Store.add`, which would record the literals' written
-        forms for a graph that is dropped with SPARQL and never shown.
+        forms for a graph that is dropped with SPARQL and never shown.  Where
+        every write is a round trip, the copy waits in the request queue and
+        goes with the next update.
         """
-        self.store.add_scratch(triples, graph)
+        if not self.store.round_trips:
+            self.store.add_scratch(triples, graph)
+        elif quads := [Quad(t.subject, t.predicate, t.object, graph) for t in triples]:
+            self._defer(data_update(quads, []))
+
+    def _discard(self, triples: Collection[Triple], graphs: tuple[NamedNode, ...]) -> None:
+        """Remove triples from reasoner graphs, present or not (queued where writes are round trips)."""
+        if not self.store.round_trips:
+            self.store.discard(triples, graphs)
+        elif quads := [Quad(t.subject, t.predicate, t.object, g) for t in triples for g in graphs]:
+            self._defer(data_update([], quads))
 
     def _clear_scratch(self) -> None:
         self.store.update(" ; ".join(f"DROP SILENT GRAPH {g}" for g in (*SCRATCH, DELTA, NEW_INFERRED, NEW_AUX)))

@@ -136,10 +136,11 @@ class Materializer:
         read keys of the next delta (None when it is empty); the moves go with
         the round's evaluations in one request.
         """
-        parts = [g for g in (NEW_INFERRED, NEW_AUX, seed) if g is not None and not self.store.is_empty(g)]
+        census = self.store.census_many([g for g in (NEW_INFERRED, NEW_AUX, seed) if g is not None])
+        parts = [g for g, (preds, _) in census.items() if preds]
         if not parts:
             return None
-        counts = _merge(self.store.census(g) for g in parts)
+        counts = _merge(census[g] for g in parts)
         seeded = seed in parts
         ops = [f"DROP SILENT GRAPH {DELTA}", f"ADD SILENT {NEW_INFERRED} TO {DELTA}", f"ADD SILENT {NEW_AUX} TO {DELTA}"]
         if seeded:
@@ -239,7 +240,7 @@ class Materializer:
                     self._run(i, None, stats)
             self._flush()
             stats.rounds += 1
-            if level > strata[0] and not (self.store.is_empty(NEW_INFERRED) and self.store.is_empty(NEW_AUX)):
+            if level > strata[0] and any(preds for preds, _ in self.store.census_many([NEW_INFERRED, NEW_AUX]).values()):
                 self.upper_derived = True
             self.propagate(active, stats)
         self.store.update(f"DROP SILENT GRAPH {DELTA}")

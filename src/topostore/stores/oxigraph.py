@@ -17,26 +17,8 @@ import pyoxigraph as ox
 from pyoxigraph import NamedNode, Quad
 
 from ..errors import QueryError, StoreError
-from ..store import Store
+from ..store import Store, data_update, quad_data  # noqa: F401 - data_update: this module's since the first release
 from ..vocab import TYPE
-
-
-def quad_data(quads: list[Quad]) -> str:
-    """``GRAPH g { s p o . }`` blocks for INSERT/DELETE DATA, from pyoxigraph terms (escaped by pyoxigraph)."""
-    by_graph: dict[str, list[str]] = {}
-    for q in quads:
-        by_graph.setdefault(str(q.graph_name), []).append(f"{q.subject} {q.predicate} {q.object} .")
-    return " ".join(f"GRAPH {g} {{ {' '.join(lines)} }}" for g, lines in by_graph.items())
-
-
-def data_update(adds: list[Quad], removes: list[Quad]) -> str:
-    """One update request removing then adding quads (empty text when there is nothing to do)."""
-    ops = []
-    if removes:
-        ops.append(f"DELETE DATA {{ {quad_data(removes)} }}")
-    if adds:
-        ops.append(f"INSERT DATA {{ {quad_data(adds)} }}")
-    return " ;\n".join(ops)
 
 
 class OxigraphStore(Store):
@@ -120,13 +102,17 @@ class OxigraphStore(Store):
         classes: dict[str, int] = {}
         for n, q in enumerate(self._ox.quads_for_pattern(None, None, None, graph)):
             if n >= small:
-                return super().census(graph)
+                return super().census_many([graph])[graph]
             p = str(q.predicate)
             preds[p] = preds.get(p, 0) + 1
             if q.predicate == TYPE:
                 c = str(q.object)
                 classes[c] = classes.get(c, 0) + 1
         return preds, classes
+
+    def census_many(self, graphs: list[NamedNode]) -> dict[NamedNode, tuple[dict[str, int], dict[str, int]]]:
+        """Each graph counted from the index (see :meth:`census`): no query to batch in memory."""
+        return {g: self.census(g) for g in graphs}
 
     def is_empty(self, graph: NamedNode) -> bool:
         self._flush_open()

@@ -62,6 +62,7 @@ class RemoteStore(Store):
     supports_lateral = False
     custom_functions = False
     durable = True
+    round_trips = True
 
     def __init__(self, url: str, *, reference: str = "", query_url: str | None = None,
                  update_url: str | None = None) -> None:
@@ -87,6 +88,9 @@ class RemoteStore(Store):
 
     def _graph_out(self, graph: NamedNode) -> NamedNode:
         return NamedNode(self._out(f"<{graph.value}>")[1:-1])
+
+    def _graph_name_in(self, graph: NamedNode) -> NamedNode:
+        return self._graph_in(graph)
 
     def _graph_in(self, graph: NamedNode) -> NamedNode:
         v = graph.value
