@@ -99,6 +99,8 @@ class TBox:
     domain: list[tuple[Prop, Expr]] = field(default_factory=list)
     range: list[tuple[Prop, Expr]] = field(default_factory=list)
     data_range: list[tuple[NamedNode, NamedNode]] = field(default_factory=list)
+    #: the node each data range of ``data_range`` was told as (a restricted range's blank node)
+    data_range_node: dict[tuple[NamedNode, NamedNode], NamedNode] = field(default_factory=dict)
     subproperty: list[tuple[Prop, Prop]] = field(default_factory=list)
     inverse: list[tuple[NamedNode, NamedNode]] = field(default_factory=list)
     chains: list[tuple[NamedNode, tuple[Prop, ...]]] = field(default_factory=list)
@@ -360,7 +362,9 @@ class TBoxReader:
                 if isinstance(t.object, NamedNode) and not is_skolem(t.object):
                     tb.data_range.append((p.iri, t.object))
                 elif isinstance(t.object, NamedNode):
-                    tb.data_range.append((p.iri, self.data_range(t.object, f"the range of {p.iri.value}")))
+                    dt = self.data_range(t.object, f"the range of {p.iri.value}")
+                    tb.data_range.append((p.iri, dt))
+                    tb.data_range_node[(p.iri, dt)] = t.object
             else:
                 tb.range.append((p, expr(t.object)))
 
