@@ -98,3 +98,42 @@ def test_a_narrower_literal_is_in_a_wider_value_space(literal: str, member: bool
     o = reasoned(f":C owl:equivalentClass [ a owl:Restriction ; owl:onProperty :n ; owl:someValuesFrom xsd:int ] . "
                  f":a :n {literal} .")
     assert ("C" in {o.short(t) for t in o.types("a")}) is member
+
+
+def restricted_range(base: str, *facets: tuple[str, str, str]) -> NamedNode:
+    from pyoxigraph import Literal
+
+    from topostore.compile.data_ranges import restricted
+    return restricted(NamedNode(XSD + base), [(f, Literal(v, datatype=NamedNode(XSD + t))) for f, v, t in facets])
+
+
+@pytest.mark.parametrize("base,facets,empty", [
+    ("float", [("minExclusive", "0.0", "float"), ("maxExclusive", "1.401298464324817e-45", "float")], True),
+    ("float", [("minExclusive", "0.0", "float"), ("maxExclusive", "3e-45", "float")], False),
+    ("float", [("minInclusive", "-1.0", "float"), ("maxExclusive", "-1.0", "float")], True),
+    ("double", [("minExclusive", "0.0", "double"), ("maxExclusive", "4.9e-324", "double")], True),
+    ("double", [("minExclusive", "0.0", "double"), ("maxExclusive", "1.401298464324817e-45", "double")], False),
+    ("integer", [("minExclusive", "5", "integer"), ("maxExclusive", "6", "integer")], True),
+    ("integer", [("minInclusive", "5", "integer"), ("maxExclusive", "6", "integer")], False),
+    ("byte", [("minInclusive", "200", "integer")], True),
+    ("decimal", [("minExclusive", "5", "decimal"), ("maxExclusive", "5.0", "decimal")], True),
+    ("decimal", [("minInclusive", "5", "decimal"), ("maxInclusive", "5.0", "decimal")], False),
+    ("decimal", [("minExclusive", "5", "decimal"), ("maxExclusive", "5.01", "decimal")], False),
+])
+def test_empty_data_ranges(base: str, facets: list, empty: bool) -> None:
+    from topostore.compile.datatypes import is_empty
+    assert is_empty(restricted_range(base, *facets)) is empty
+
+
+def test_a_value_of_an_empty_range_is_inconsistent() -> None:
+    o = Ontology()
+    o.load_data(PREFIXES + ":a a [ a owl:Restriction ; owl:onProperty :n ; owl:someValuesFrom [ a rdfs:Datatype ; "
+                "owl:onDatatype xsd:float ; owl:withRestrictions ( [ xsd:minExclusive \"0.0\"^^xsd:float ] "
+                "[ xsd:maxExclusive \"1.401298464324817e-45\"^^xsd:float ] ) ] ] .")
+    report = o.reason()
+    assert not report.consistent
+    assert report.violations[0].rule == "ext-empty-range"
+    ok = reasoned(":a a [ a owl:Restriction ; owl:onProperty :n ; owl:someValuesFrom [ a rdfs:Datatype ; "
+                  "owl:onDatatype xsd:float ; owl:withRestrictions ( [ xsd:minExclusive \"0.0\"^^xsd:float ] "
+                  "[ xsd:maxExclusive \"3e-45\"^^xsd:float ] ) ] ] .")
+    assert ok.reason().consistent

@@ -13,6 +13,8 @@ module only names the implied ranges, as schema facts the rules state once.
 
 from __future__ import annotations
 
+import math
+import struct
 from collections.abc import Iterable
 from dataclasses import dataclass
 from decimal import ROUND_CEILING, ROUND_FLOOR, Decimal, InvalidOperation
@@ -20,9 +22,9 @@ from decimal import ROUND_CEILING, ROUND_FLOOR, Decimal, InvalidOperation
 from pyoxigraph import NamedNode
 
 from ..terms import INTEGER_TYPES, sparql
-from ..vocab import OWL, RDF, XSD, rdfs
+from ..vocab import OWL, RDF, TYPE, XSD, rdfs
 from . import data_ranges
-from .model import TBox
+from .model import Expr, TBox
 from .rule import Atom, Rule
 
 #: Each datatype's direct super-datatypes (value-space inclusion), integers apart (intervals).
@@ -128,6 +130,91 @@ def implied_ranges(told: Iterable[NamedNode]) -> set[NamedNode]:
     return {NamedNode(dt) for dt in out}
 
 
+def _float_bounds(width: str, facets: list[tuple[str, str]]) -> tuple[float, float] | None:
+    """(least, greatest) value of a float or double range restricted by ``facets``, stepping over an
+    exclusive bound to the adjacent value (these value spaces are discrete); None if unreadable."""
+    fit = _to_float32 if width == "float" else float
+    low, high = -math.inf, math.inf
+    for op, literal in facets:
+        try:
+            v = fit(float(literal.split("^^")[0].strip('"')))
+        except ValueError:
+            return None
+        if math.isnan(v):
+            return None
+        if op in (">", ">="):
+            low = max(low, v if op == ">=" else _next(v, math.inf, width))
+        else:
+            high = min(high, v if op == "<=" else _next(v, -math.inf, width))
+    return low, high
+
+
+def _to_float32(v: float) -> float:
+    return struct.unpack("<f", struct.pack("<f", v))[0] if math.isfinite(v) and abs(v) < 3.5e38 else v
+
+
+def _next(v: float, toward: float, width: str) -> float:
+    """The value next to ``v`` toward ``toward`` in the float or double value space."""
+    if width != "float":
+        return math.nextafter(v, toward)
+    if v == 0:
+        return math.copysign(1.401298464324817e-45, toward)
+    bits = struct.unpack("<i", struct.pack("<f", v))[0]
+    bits += 1 if (v < toward) == (v > 0) else -1
+    return struct.unpack("<f", struct.pack("<i", bits))[0]
+
+
+def is_empty(datatype: NamedNode) -> bool:
+    """Whether a datatype restricted by numeric facets has no value (an integer range whose bounds
+    cross, a float range between two adjacent floats, a decimal range with ``> a`` and ``< a``)."""
+    found = data_ranges.parts(datatype)
+    if found is None:
+        return False
+    base, tests = found[0].value, found[1]
+    local = base[len(XSD):] if base.startswith(XSD) else ""
+    if local in INTEGER_TYPES:
+        interval = _Interval(*INTEGER_TYPES[local])
+        for op, literal in tests:
+            interval.narrow(*_facet_bounds(op, literal))
+        return interval.empty
+    if local in ("float", "double"):
+        bounds = _float_bounds(local, tests)
+        return bounds is not None and bounds[0] > bounds[1]
+    if local == "decimal" or base in (OWL + "real", OWL + "rational"):
+        return _dense_empty(tests)
+    return False
+
+
+def _dense_empty(tests: list[tuple[str, str]]) -> bool:
+    """A range of a dense value space (decimal, rational, real) is empty when its bounds cross."""
+    low: tuple[Decimal, bool] | None = None   # (bound, inclusive)
+    high: tuple[Decimal, bool] | None = None
+    for op, literal in tests:
+        try:
+            v = Decimal(literal.split("^^")[0].strip('"'))
+        except InvalidOperation:
+            return False
+        if op in (">", ">="):
+            low = max(low, (v, op == ">="), key=lambda b: (b[0], not b[1])) if low else (v, op == ">=")
+        else:
+            high = min(high, (v, op == "<="), key=lambda b: (b[0], b[1])) if high else (v, op == "<=")
+    if low is None or high is None:
+        return False
+    return low[0] > high[0] or (low[0] == high[0] and not (low[1] and high[1]))
+
+
+def empty_range_rules(expressions: Iterable[Expr]) -> list[Rule]:
+    """An individual in a restriction that needs a value of an empty data range is inconsistent."""
+    rules = []
+    for e in expressions:
+        if e.datatype is not None and (e.kind == "some" or (e.kind in ("min", "exact") and e.n >= 1)) \
+                and is_empty(e.datatype):
+            rules.append(Rule("ext-empty-range", f"{e} needs a value of {_short(e.datatype)}, which has none", (
+                Atom("?x", str(TYPE), sparql(e.node)),), violation=("?x",),
+                message=f"{{x}} is in {e}, but {_short(e.datatype)} has no value"))
+    return rules
+
+
 def range_rules(tb: TBox) -> list[Rule]:
     """``p rdfs:range D`` for every datatype ``D`` the told ranges of ``p`` imply and the file does
     not state; the rule reads the told range triples, so an explanation ends in them."""
@@ -151,4 +238,4 @@ def _short(t: NamedNode) -> str:
 
 RANGE = str(rdfs("range"))
 
-__all__ = ["implied_ranges", "range_rules"]
+__all__ = ["empty_range_rules", "implied_ranges", "is_empty", "range_rules"]
