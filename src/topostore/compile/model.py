@@ -322,10 +322,16 @@ class TBoxReader:
                 tb.equivalent.append((Expr(t.subject, "named"), e))
             self._each(tb, OWL + pred, define)
 
-        def restriction(t) -> None:  # a restriction named by an IRI (RDF-Based Semantics documents)
-            if isinstance(t.subject, NamedNode) and not is_skolem(t.subject):
-                e = self._restriction(t.subject, self.prop(t.object))
-                tb.equivalent.append((Expr(t.subject, "named"), replace(e, node=self._definition_node(t.subject, "r"))))
+        def restriction(t) -> None:
+            """A restriction named by an IRI, or on several properties (RDF-Based Semantics documents):
+            equivalent to the restriction on each of its properties."""
+            several = len(self.store.objects(t.subject, NamedNode(OWL + "onProperty"), self.graph)) > 1
+            if not isinstance(t.subject, NamedNode) or not (several or not is_skolem(t.subject)):
+                return
+            e = self._restriction(t.subject, self.prop(t.object))
+            node = self._definition_node(t.subject, "r " + t.object.value if several else "r")
+            whole = self.expr(t.subject) if is_skolem(t.subject) else Expr(t.subject, "named")
+            tb.equivalent.append((whole, replace(e, node=node)))
         self._each(tb, OWL + "onProperty", restriction)
         classes = tb.named_classes
 
