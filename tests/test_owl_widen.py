@@ -131,3 +131,15 @@ def test_a_restriction_on_several_properties_is_the_restriction_on_each() -> Non
     assert o.object_values("p", "a") == ["v"] and o.object_values("q", "a") == ["v"]
     assert o.object_values("q", "b") == ["v"] and o.object_values("p", "c") == ["v"]
     assert {"R"} <= types(o, "b") and {"R"} <= types(o, "c")
+
+
+def test_restrictions_subsumed_through_union_fillers_and_datatypes() -> None:
+    o = reasoned(":C rdfs:subClassOf :D . :U owl:equivalentClass [ a owl:Restriction ; owl:onProperty :p ; "
+                 "owl:someValuesFrom [ owl:unionOf ( :D :E ) ] ] . :A rdfs:subClassOf [ a owl:Restriction ; "
+                 "owl:onProperty :p ; owl:someValuesFrom :C ] . :a a :A . "
+                 ":S owl:equivalentClass [ a owl:Restriction ; owl:onProperty :n ; owl:someValuesFrom xsd:short ] . "
+                 ":B rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :n ; owl:someValuesFrom xsd:byte ] . "
+                 ":b a :B .")
+    assert "U" in types(o, "a")  # ∃p.C ⊑ ∃p.(D ⊔ E) for C ⊑ D
+    assert "S" in types(o, "b")  # ∃n.byte ⊑ ∃n.short
+    assert "U" not in types(o, "b") and "S" not in types(o, "a")

@@ -27,6 +27,7 @@ from ..terms import sparql
 from ..vocab import NOTHING, SAME_AS, THING, TYPE
 from . import condition as cond
 from .condition import Condition
+from .datatypes import implied_ranges
 from .model import Expr, Prop, TBox
 from .owl_restrictions import RestrictionRules, nm
 from .rule import Atom, Rule
@@ -148,16 +149,30 @@ class OwlCompiler(RestrictionRules):
         return closure
 
     def filler_subsumed(self, a: Expr, b: Expr) -> bool:
-        """Told: every instance of filler ``a`` is an instance of filler ``b`` (None = Thing)."""
+        """Told: every instance of filler ``a`` is an instance of filler ``b`` (None = Thing); data
+        ranges by datatype subsumption (``xsd:byte`` values are ``xsd:short`` values)."""
         if b.filler is None and b.datatype is None:
             return True
         if a.datatype is not None or b.datatype is not None:
-            return a.datatype == b.datatype
+            return a.datatype is not None and b.datatype is not None and (
+                a.datatype == b.datatype or b.datatype in implied_ranges([a.datatype]))
         if a.filler is None:
             return False
-        if a.filler.node == b.filler.node:
+        return self.class_subsumed(a.filler, b.filler)
+
+    def class_subsumed(self, x: Expr, y: Expr) -> bool:
+        """Told: ``x ⊑ y`` through named superclasses, a member of a union on the right (``C ⊑ C ⊔ D``)
+        or every member of an intersection; on the left, a member of an intersection or every member
+        of a union."""
+        if x.node == y.node or (x.is_named and y.is_named and y.node in self.told.get(x.node, set())):
             return True
-        return a.filler.is_named and b.filler.node in self.told.get(a.filler.node, set())
+        if y.kind == "or" and any(self.class_subsumed(x, m) for m in y.members):
+            return True
+        if y.kind == "and" and y.members and all(self.class_subsumed(x, m) for m in y.members):
+            return True
+        if x.kind == "and" and any(self.class_subsumed(m, y) for m in x.members):
+            return True
+        return x.kind == "or" and bool(x.members) and all(self.class_subsumed(m, y) for m in x.members)
 
     # ------------------------------------------------------------------ expressions
     def all_expressions(self) -> list[Expr]:
