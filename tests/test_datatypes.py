@@ -137,3 +137,12 @@ def test_a_value_of_an_empty_range_is_inconsistent() -> None:
                   "owl:onDatatype xsd:float ; owl:withRestrictions ( [ xsd:minExclusive \"0.0\"^^xsd:float ] "
                   "[ xsd:maxExclusive \"3e-45\"^^xsd:float ] ) ] ] .")
     assert ok.reason().consistent
+
+
+@pytest.mark.parametrize("value,datatype", [("INF", "float"), ("NaN", "double"), ("1e999999999", "decimal"),
+                                            ("-1e999999999", "decimal")])
+def test_extreme_facets_are_read_without_harm(value: str, datatype: str) -> None:
+    from topostore.compile.datatypes import is_empty
+    r = restricted_range("integer", ("minInclusive", value, datatype))
+    assert is_empty(r) is False
+    assert NamedNode(XSD + "integer") in implied_ranges([r])

@@ -87,12 +87,19 @@ class _Interval:
                 and (high is None or (self.high is not None and self.high <= high)))
 
 
+#: a bound farther than every bounded integer type's (2**64): facets beyond it are clamped to it
+_FAR = Decimal(2 ** 70)
+
+
 def _facet_bounds(op: str, literal: str) -> tuple[int | None, int | None]:
     """The integer bounds one numeric facet sets (``>= 2.5`` → low 3); (None, None) if unreadable."""
     try:
         v = Decimal(literal.split("^^")[0].strip('"'))
     except InvalidOperation:
         return None, None
+    if not v.is_finite():
+        return None, None
+    v = max(-_FAR, min(_FAR, v))  # beyond every bounded integer type: no huge int is ever built
     up, down = int(v.to_integral_value(ROUND_CEILING)), int(v.to_integral_value(ROUND_FLOOR))
     return {">=": (up, None), ">": (down + 1, None), "<=": (None, down), "<": (None, up - 1)}.get(op, (None, None))
 
