@@ -122,3 +122,24 @@ def test_restrictions_subsumed_through_sub_properties_and_fillers() -> None:
     assert "B" in types(o, "a")  # ∃p.C ⊑ ∃q.D: p ⊑ q, C ⊑ D, with no p value told
     assert "V" in types(o, "u")  # ∀q.C ⊑ ∀p.D
     assert not any("super-properties" in str(n) for n in o.notices)
+
+
+def test_a_restriction_on_several_properties_is_the_restriction_on_each() -> None:
+    # RDF-Based Semantics: one restriction node with two owl:onProperty is equal to the restriction on each
+    o = reasoned(":q a owl:ObjectProperty . :R owl:equivalentClass [ a owl:Restriction ; owl:onProperty :p , :q ; "
+                 "owl:hasValue :v ] . :a a :R . :b :p :v . :c :q :v .")
+    assert o.object_values("p", "a") == ["v"] and o.object_values("q", "a") == ["v"]
+    assert o.object_values("q", "b") == ["v"] and o.object_values("p", "c") == ["v"]
+    assert {"R"} <= types(o, "b") and {"R"} <= types(o, "c")
+
+
+def test_restrictions_subsumed_through_union_fillers_and_datatypes() -> None:
+    o = reasoned(":C rdfs:subClassOf :D . :U owl:equivalentClass [ a owl:Restriction ; owl:onProperty :p ; "
+                 "owl:someValuesFrom [ owl:unionOf ( :D :E ) ] ] . :A rdfs:subClassOf [ a owl:Restriction ; "
+                 "owl:onProperty :p ; owl:someValuesFrom :C ] . :a a :A . "
+                 ":S owl:equivalentClass [ a owl:Restriction ; owl:onProperty :n ; owl:someValuesFrom xsd:short ] . "
+                 ":B rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :n ; owl:someValuesFrom xsd:byte ] . "
+                 ":b a :B .")
+    assert "U" in types(o, "a")  # ∃p.C ⊑ ∃p.(D ⊔ E) for C ⊑ D
+    assert "S" in types(o, "b")  # ∃n.byte ⊑ ∃n.short
+    assert "U" not in types(o, "b") and "S" not in types(o, "a")

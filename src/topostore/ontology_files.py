@@ -37,6 +37,7 @@ from .vocab import (
     XSD,
     owl,
 )
+from .xml_literals import canonical_xml_literals
 
 if TYPE_CHECKING:  # pragma: no cover
     from .ontology import Ontology
@@ -95,7 +96,9 @@ class OntologyFiles:
         """Add a document: its SWRL rules repaired first (:mod:`.compile.swrl_repair`), then
         checked; what was repaired or set aside is published (warnings, log) and kept in
         :attr:`load_notices` once the document is in."""
+        triples, unreadable = canonical_xml_literals(triples)
         triples, notices = repair_rules(triples)
+        notices += unreadable
         known = set(self._rules.notices) if self._rules is not None else set()
         added, notices = self._add_checked(triples, notices)
         self.load_notices += notices

@@ -57,14 +57,15 @@ DIFFERENT_KEY = NamedNode(INTERNAL + "differentKey")
 #: classes).  Both are plain joins, so difference costs no more than the pairs
 #: that are actually asked about.
 DIFFERENCE_CANDIDATE = NamedNode(INTERNAL + "differenceCandidate")
-#: declared different: one owl:AllDifferent, or owl:differentFrom
+#: plainly different: declared (one owl:AllDifferent, owl:differentFrom) or members
+#: of disjoint classes; what a SWRL DifferentFrom atom fires rules on, as in Pellet
 DECLARED_DIFFERENT = NamedNode(INTERNAL + "declaredDifferent")
-#: entailed different: declared, or equality would be inconsistent (disjoint
-#: classes, two distinct values of a property allowing at most one)
+#: entailed different: plainly different, or equality would be inconsistent (two
+#: distinct values of a property allowing at most one)
 DIFFERENT = NamedNode(INTERNAL + "different")
 
 #: Conclusions of SWRL rules whose DifferentIndividuals atom holds only by
-#: entailment (not by declaration).  A tableau reasoner such as Pellet reports
+#: entailment (not by declaration nor by disjoint classes).  A tableau reasoner such as Pellet reports
 #: them (they are entailed) but, having found them by refutation, never uses
 #: them to fire other rules; topostore derives them in the helper graph under
 #: ``ENTAILED_PREFIX + predicate`` so that no rule reads them, and publishes

@@ -99,6 +99,8 @@ class TBox:
     domain: list[tuple[Prop, Expr]] = field(default_factory=list)
     range: list[tuple[Prop, Expr]] = field(default_factory=list)
     data_range: list[tuple[NamedNode, NamedNode]] = field(default_factory=list)
+    #: the node each data range of ``data_range`` was told as (a restricted range's blank node)
+    data_range_node: dict[tuple[NamedNode, NamedNode], NamedNode] = field(default_factory=dict)
     subproperty: list[tuple[Prop, Prop]] = field(default_factory=list)
     inverse: list[tuple[NamedNode, NamedNode]] = field(default_factory=list)
     chains: list[tuple[NamedNode, tuple[Prop, ...]]] = field(default_factory=list)
@@ -320,10 +322,16 @@ class TBoxReader:
                 tb.equivalent.append((Expr(t.subject, "named"), e))
             self._each(tb, OWL + pred, define)
 
-        def restriction(t) -> None:  # a restriction named by an IRI (RDF-Based Semantics documents)
-            if isinstance(t.subject, NamedNode) and not is_skolem(t.subject):
-                e = self._restriction(t.subject, self.prop(t.object))
-                tb.equivalent.append((Expr(t.subject, "named"), replace(e, node=self._definition_node(t.subject, "r"))))
+        def restriction(t) -> None:
+            """A restriction named by an IRI, or on several properties (RDF-Based Semantics documents):
+            equivalent to the restriction on each of its properties."""
+            several = len(self.store.objects(t.subject, NamedNode(OWL + "onProperty"), self.graph)) > 1
+            if not isinstance(t.subject, NamedNode) or not (several or not is_skolem(t.subject)):
+                return
+            e = self._restriction(t.subject, self.prop(t.object))
+            node = self._definition_node(t.subject, "r " + t.object.value if several else "r")
+            whole = self.expr(t.subject) if is_skolem(t.subject) else Expr(t.subject, "named")
+            tb.equivalent.append((whole, replace(e, node=node)))
         self._each(tb, OWL + "onProperty", restriction)
         classes = tb.named_classes
 
@@ -360,7 +368,9 @@ class TBoxReader:
                 if isinstance(t.object, NamedNode) and not is_skolem(t.object):
                     tb.data_range.append((p.iri, t.object))
                 elif isinstance(t.object, NamedNode):
-                    tb.data_range.append((p.iri, self.data_range(t.object, f"the range of {p.iri.value}")))
+                    dt = self.data_range(t.object, f"the range of {p.iri.value}")
+                    tb.data_range.append((p.iri, dt))
+                    tb.data_range_node[(p.iri, dt)] = t.object
             else:
                 tb.range.append((p, expr(t.object)))
 

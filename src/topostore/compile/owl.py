@@ -27,6 +27,7 @@ from ..terms import sparql
 from ..vocab import NOTHING, SAME_AS, THING, TYPE
 from . import condition as cond
 from .condition import Condition
+from .datatypes import implied_ranges
 from .model import Expr, Prop, TBox
 from .owl_restrictions import RestrictionRules, nm
 from .rule import Atom, Rule
@@ -76,17 +77,33 @@ class OwlCompiler(RestrictionRules):
     def type_head(self, var: str, e: Expr) -> Atom | None:
         return None if e.node == THING else Atom(var, T, sparql(e.node))
 
+    def disjoint_classes(self) -> list[tuple[Expr, Expr]]:
+        """Every pair of disjoint class expressions: disjointWith, AllDisjointClasses, the parts of a
+        disjoint union, and an expression with its complement (owl:Thing left out: it says nothing
+        of a pair)."""
+        pairs = {(a.node, b.node): (a, b) for a, b in self.tb.disjoint}
+        for e in self.all_expressions():
+            if e.kind == "not":
+                pairs.setdefault((e.node, e.members[0].node), (e, e.members[0]))
+        return [(a, b) for a, b in pairs.values() if a.node != b.node and THING not in (a.node, b.node)]
+
     def difference_rules(self) -> None:
         """When asked about a pair, conclude it is different if equality would be
         inconsistent: disjoint classes, or two distinct values of a data property
         that allows at most one (functional, or a maximum of one for a class of
-        either individual).  This is the difference a tableau reasoner finds by
-        refutation (e.g. two locations with different ``visitedAt`` times)."""
+        either individual).
+
+        Members of disjoint classes are different as plainly as declared individuals are:
+        a tableau reasoner sees both classes in the individuals' labels, and Pellet fires
+        SWRL rules on that difference and on what those rules conclude.  Two values of a
+        property allowing one are a difference found by refutation (e.g. two locations with
+        different ``visitedAt`` times): entailed, but it fires no further rules."""
         a, b, v1, v2 = "?a", "?b", "?v1", "?v2"
-        for c1, c2 in self.disjoint_pairs:
+        for c1, c2 in self.disjoint_classes():
             for x, y in ((c1, c2), (c2, c1)):
-                self.emit("different-disjoint", f"{nm(x)} and {nm(y)} are disjoint",
-                          [candidate_atom(a, b), Atom(a, T, sparql(x)), Atom(b, T, sparql(y))], different_atom(a, b))
+                self.emit("different-disjoint", f"{x} and {y} are disjoint",
+                          [candidate_atom(a, b), Atom(a, T, sparql(x.node)), Atom(b, T, sparql(y.node))],
+                          different_atom(a, b, declared=True))
         for p in sorted(self.tb.characteristics.get("FunctionalProperty", ()), key=lambda t: t.value):
             if p in self.tb.data_properties:
                 self.emit("different-values", f"{nm(p)} is functional",
@@ -132,16 +149,30 @@ class OwlCompiler(RestrictionRules):
         return closure
 
     def filler_subsumed(self, a: Expr, b: Expr) -> bool:
-        """Told: every instance of filler ``a`` is an instance of filler ``b`` (None = Thing)."""
+        """Told: every instance of filler ``a`` is an instance of filler ``b`` (None = Thing); data
+        ranges by datatype subsumption (``xsd:byte`` values are ``xsd:short`` values)."""
         if b.filler is None and b.datatype is None:
             return True
         if a.datatype is not None or b.datatype is not None:
-            return a.datatype == b.datatype
+            return a.datatype is not None and b.datatype is not None and (
+                a.datatype == b.datatype or b.datatype in implied_ranges([a.datatype]))
         if a.filler is None:
             return False
-        if a.filler.node == b.filler.node:
+        return self.class_subsumed(a.filler, b.filler)
+
+    def class_subsumed(self, x: Expr, y: Expr) -> bool:
+        """Told: ``x ⊑ y`` through named superclasses, a member of a union on the right (``C ⊑ C ⊔ D``)
+        or every member of an intersection; on the left, a member of an intersection or every member
+        of a union."""
+        if x.node == y.node or (x.is_named and y.is_named and y.node in self.told.get(x.node, set())):
             return True
-        return a.filler.is_named and b.filler.node in self.told.get(a.filler.node, set())
+        if y.kind == "or" and any(self.class_subsumed(x, m) for m in y.members):
+            return True
+        if y.kind == "and" and y.members and all(self.class_subsumed(x, m) for m in y.members):
+            return True
+        if x.kind == "and" and any(self.class_subsumed(m, y) for m in x.members):
+            return True
+        return x.kind == "or" and bool(x.members) and all(self.class_subsumed(m, y) for m in x.members)
 
     # ------------------------------------------------------------------ expressions
     def all_expressions(self) -> list[Expr]:

@@ -5,6 +5,7 @@ from __future__ import annotations
 from pyoxigraph import NamedNode
 
 from ..store import Store
+from .datatypes import empty_range_rules, range_rules
 from .generic import generic_rules
 from .guard import guard_rules
 from .implied import simplify
@@ -35,6 +36,8 @@ def compile_ontology(store: Store, graph: NamedNode) -> RuleSet:
     rules.add(owl.compile())
     rules.add(key_rules(tbox))
     rules.add(reflexive_rules(tbox))
+    rules.add(range_rules(tbox))
+    rules.add(empty_range_rules(owl.all_expressions()))
     rules.add(restriction_rules(owl))
     rules.notices += profile(store, graph, tbox, owl, swrl.used_as, swrl.uses_difference)
     rules.add(swrl_rules)

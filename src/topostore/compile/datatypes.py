@@ -1,0 +1,248 @@
+"""Datatype subsumption: the ranges a data property's told ranges imply.
+
+The value spaces of the OWL 2 datatype map nest (XML Schema Part 2 §3): ``xsd:byte`` ⊂
+``xsd:short`` ⊂ ``xsd:int`` ⊂ ``xsd:long`` ⊂ ``xsd:integer`` ⊂ ``xsd:decimal`` ⊂
+``owl:rational`` ⊂ ``owl:real``, and the string types under ``xsd:string`` ⊂ ``rdf:PlainLiteral``.
+A property whose values are all bytes has every value a short, so ``p rdfs:range xsd:byte``
+entails ``p rdfs:range xsd:short``.  With several ranges the values lie in their intersection:
+the integer types are intervals (``xsd:short`` ∩ ``xsd:unsignedInt`` is ``[0, 32767]``, inside
+``xsd:unsignedShort``), and a datatype restricted by numeric facets narrows its base's interval.
+Which literal is in which value space is decided elsewhere (:func:`.snippets.in_datatype`); this
+module only names the implied ranges, as schema facts the rules state once.
+"""
+
+from __future__ import annotations
+
+import math
+import struct
+from collections.abc import Iterable
+from dataclasses import dataclass
+from decimal import ROUND_CEILING, ROUND_FLOOR, Decimal, InvalidOperation
+
+from pyoxigraph import NamedNode
+
+from ..terms import INTEGER_TYPES, sparql
+from ..vocab import OWL, RDF, TYPE, XSD, rdfs
+from . import data_ranges
+from .model import Expr, TBox
+from .rule import Atom, Rule
+
+#: Each datatype's direct super-datatypes (value-space inclusion), integers apart (intervals).
+_PARENTS: dict[str, tuple[str, ...]] = {
+    XSD + "integer": (XSD + "decimal",),
+    XSD + "decimal": (OWL + "rational",),
+    OWL + "rational": (OWL + "real",),
+    XSD + "normalizedString": (XSD + "string",),
+    XSD + "token": (XSD + "normalizedString",),
+    XSD + "language": (XSD + "token",),
+    XSD + "NMTOKEN": (XSD + "token",),
+    XSD + "Name": (XSD + "token",),
+    XSD + "NCName": (XSD + "Name",),
+    XSD + "string": (RDF + "PlainLiteral",),
+    XSD + "dateTimeStamp": (XSD + "dateTime",),
+}
+#: The datatype families whose value spaces are pairwise disjoint (OWL 2 Structural Spec. §4).
+_FAMILY_TOPS = (OWL + "real", RDF + "PlainLiteral", XSD + "float", XSD + "double", XSD + "boolean",
+                XSD + "dateTime", XSD + "hexBinary", XSD + "base64Binary", XSD + "anyURI", RDF + "XMLLiteral")
+
+
+def _ancestors(dt: str) -> set[str]:
+    """``dt`` and every datatype whose value space contains its value space."""
+    if dt[len(XSD):] in INTEGER_TYPES and dt.startswith(XSD):
+        dt = XSD + "integer"
+    out, todo = {dt}, [dt]
+    while todo:
+        for parent in _PARENTS.get(todo.pop(), ()):
+            if parent not in out:
+                out.add(parent)
+                todo.append(parent)
+    return out
+
+
+def _family(dt: str) -> str | None:
+    """The disjoint family a datatype belongs to (None: unknown, or rdfs:Literal)."""
+    tops = [t for t in _ancestors(dt) if t in _FAMILY_TOPS]
+    return tops[0] if tops else None
+
+
+@dataclass
+class _Interval:
+    """Integers from ``low`` to ``high`` (None: unbounded)."""
+
+    low: int | None = None
+    high: int | None = None
+
+    def narrow(self, low: int | None, high: int | None) -> None:
+        if low is not None:
+            self.low = low if self.low is None else max(self.low, low)
+        if high is not None:
+            self.high = high if self.high is None else min(self.high, high)
+
+    @property
+    def empty(self) -> bool:
+        return self.low is not None and self.high is not None and self.low > self.high
+
+    def within(self, low: int | None, high: int | None) -> bool:
+        return ((low is None or (self.low is not None and self.low >= low))
+                and (high is None or (self.high is not None and self.high <= high)))
+
+
+#: a bound farther than every bounded integer type's (2**64): facets beyond it are clamped to it
+_FAR = Decimal(2 ** 70)
+
+
+def _facet_bounds(op: str, literal: str) -> tuple[int | None, int | None]:
+    """The integer bounds one numeric facet sets (``>= 2.5`` → low 3); (None, None) if unreadable."""
+    try:
+        v = Decimal(literal.split("^^")[0].strip('"'))
+    except InvalidOperation:
+        return None, None
+    if not v.is_finite():
+        return None, None
+    v = max(-_FAR, min(_FAR, v))  # beyond every bounded integer type: no huge int is ever built
+    up, down = int(v.to_integral_value(ROUND_CEILING)), int(v.to_integral_value(ROUND_FLOOR))
+    return {">=": (up, None), ">": (down + 1, None), "<=": (None, down), "<": (None, up - 1)}.get(op, (None, None))
+
+
+def _base(dt: NamedNode) -> tuple[str, list[tuple[str, str]]]:
+    """(the named datatype, its numeric facets) of a told range."""
+    found = data_ranges.parts(dt)
+    return (found[0].value, found[1]) if found is not None else (dt.value, [])
+
+
+def implied_ranges(told: Iterable[NamedNode]) -> set[NamedNode]:
+    """The named datatypes whose value space contains every value a property with the ``told``
+    ranges can have (told ones included).  An empty intersection (no value possible): every
+    datatype of the table."""
+    bases = [_base(dt) for dt in told]
+    families = {_family(b) for b, _ in bases} - {None}
+    integers = _Interval()
+    is_integer = False
+    for base, facets in bases:
+        local = base[len(XSD):] if base.startswith(XSD) else ""
+        if local in INTEGER_TYPES:
+            is_integer = True
+            integers.narrow(*INTEGER_TYPES[local])
+            for op, literal in facets:
+                integers.narrow(*_facet_bounds(op, literal))
+    everything = set(_PARENTS) | {p for ps in _PARENTS.values() for p in ps} | set(_FAMILY_TOPS) | {
+        XSD + k for k in INTEGER_TYPES}
+    if len(families) > 1 or (is_integer and integers.empty):
+        return {NamedNode(dt) for dt in everything}
+    out: set[str] = set()
+    for base, _ in bases:
+        out |= _ancestors(base)
+    if is_integer:
+        out |= {XSD + k for k, (low, high) in INTEGER_TYPES.items() if integers.within(low, high)}
+    return {NamedNode(dt) for dt in out}
+
+
+def _float_bounds(width: str, facets: list[tuple[str, str]]) -> tuple[float, float] | None:
+    """(least, greatest) value of a float or double range restricted by ``facets``, stepping over an
+    exclusive bound to the adjacent value (these value spaces are discrete); None if unreadable."""
+    fit = _to_float32 if width == "float" else float
+    low, high = -math.inf, math.inf
+    for op, literal in facets:
+        try:
+            v = fit(float(literal.split("^^")[0].strip('"')))
+        except ValueError:
+            return None
+        if math.isnan(v):
+            return None
+        if op in (">", ">="):
+            low = max(low, v if op == ">=" else _next(v, math.inf, width))
+        else:
+            high = min(high, v if op == "<=" else _next(v, -math.inf, width))
+    return low, high
+
+
+def _to_float32(v: float) -> float:
+    return struct.unpack("<f", struct.pack("<f", v))[0] if math.isfinite(v) and abs(v) < 3.5e38 else v
+
+
+def _next(v: float, toward: float, width: str) -> float:
+    """The value next to ``v`` toward ``toward`` in the float or double value space."""
+    if width != "float":
+        return math.nextafter(v, toward)
+    if v == 0:
+        return math.copysign(1.401298464324817e-45, toward)
+    bits = struct.unpack("<i", struct.pack("<f", v))[0]
+    bits += 1 if (v < toward) == (v > 0) else -1
+    return struct.unpack("<f", struct.pack("<i", bits))[0]
+
+
+def is_empty(datatype: NamedNode) -> bool:
+    """Whether a datatype restricted by numeric facets has no value (an integer range whose bounds
+    cross, a float range between two adjacent floats, a decimal range with ``> a`` and ``< a``)."""
+    found = data_ranges.parts(datatype)
+    if found is None:
+        return False
+    base, tests = found[0].value, found[1]
+    local = base[len(XSD):] if base.startswith(XSD) else ""
+    if local in INTEGER_TYPES:
+        interval = _Interval(*INTEGER_TYPES[local])
+        for op, literal in tests:
+            interval.narrow(*_facet_bounds(op, literal))
+        return interval.empty
+    if local in ("float", "double"):
+        bounds = _float_bounds(local, tests)
+        return bounds is not None and bounds[0] > bounds[1]
+    if local == "decimal" or base in (OWL + "real", OWL + "rational"):
+        return _dense_empty(tests)
+    return False
+
+
+def _dense_empty(tests: list[tuple[str, str]]) -> bool:
+    """A range of a dense value space (decimal, rational, real) is empty when its bounds cross."""
+    low: tuple[Decimal, bool] | None = None   # (bound, inclusive)
+    high: tuple[Decimal, bool] | None = None
+    for op, literal in tests:
+        try:
+            v = Decimal(literal.split("^^")[0].strip('"'))
+        except InvalidOperation:
+            return False
+        if op in (">", ">="):
+            low = max(low, (v, op == ">="), key=lambda b: (b[0], not b[1])) if low else (v, op == ">=")
+        else:
+            high = min(high, (v, op == "<="), key=lambda b: (b[0], b[1])) if high else (v, op == "<=")
+    if low is None or high is None:
+        return False
+    return low[0] > high[0] or (low[0] == high[0] and not (low[1] and high[1]))
+
+
+def empty_range_rules(expressions: Iterable[Expr]) -> list[Rule]:
+    """An individual in a restriction that needs a value of an empty data range is inconsistent."""
+    rules = []
+    for e in expressions:
+        if e.datatype is not None and (e.kind == "some" or (e.kind in ("min", "exact") and e.n >= 1)) \
+                and is_empty(e.datatype):
+            rules.append(Rule("ext-empty-range", f"{e} needs a value of {_short(e.datatype)}, which has none", (
+                Atom("?x", str(TYPE), sparql(e.node)),), violation=("?x",),
+                message=f"{{x}} is in {e}, but {_short(e.datatype)} has no value"))
+    return rules
+
+
+def range_rules(tb: TBox) -> list[Rule]:
+    """``p rdfs:range D`` for every datatype ``D`` the told ranges of ``p`` imply and the file does
+    not state; the rule reads the told range triples, so an explanation ends in them."""
+    told: dict[NamedNode, set[NamedNode]] = {}
+    for p, dt in tb.data_range:
+        told.setdefault(p, set()).add(dt)
+    rules = []
+    for p, ranges in sorted(told.items(), key=lambda kv: kv[0].value):
+        body = tuple(Atom(sparql(p), RANGE, sparql(tb.data_range_node.get((p, dt), dt)))
+                     for dt in sorted(ranges, key=lambda t: t.value))
+        origin = " and ".join(sorted(_short(dt) for dt in ranges))
+        for dt in sorted(implied_ranges(ranges) - ranges, key=lambda t: t.value):
+            rules.append(Rule("ext-dt-range", f"{_short(p)} range {origin}: every value is in {_short(dt)}", body,
+                              Atom(sparql(p), RANGE, sparql(dt))))
+    return rules
+
+
+def _short(t: NamedNode) -> str:
+    return data_ranges.readable(t) or t.value.rsplit("#", 1)[-1]
+
+
+RANGE = str(rdfs("range"))
+
+__all__ = ["empty_range_rules", "implied_ranges", "is_empty", "range_rules"]
