@@ -13,7 +13,7 @@ from typing import TYPE_CHECKING, Protocol
 from pyoxigraph import Triple
 
 if TYPE_CHECKING:  # pragma: no cover - the ontology module imports sparql.guard
-    from ..ontology import Ontology
+    from ..ontology.facade import Ontology
 
 
 class LockedOntology(Protocol):
