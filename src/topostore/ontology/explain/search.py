@@ -1,4 +1,4 @@
-"""Why does a triple hold?  One derivation, as a tree of rules and premises down to asserted facts.
+"""Finding why a triple holds: one derivation, found by running the compiled rules backwards.
 
 Every inferred triple was put there by a compiled :class:`~topostore.compile.Rule`
 (a W3C OWL 2 RL rule, a SWRL rule, or one of topostore's helper rules), so the
@@ -24,18 +24,17 @@ from __future__ import annotations
 import hashlib
 import re
 from collections.abc import Callable
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from functools import lru_cache
-from typing import TYPE_CHECKING
 
 from pyoxigraph import Literal, NamedNode, Triple
 
-from ..compile.generic import PREFIXES
-from ..compile.model import TBoxReader
-from ..compile.rule import Atom, Rule, join_order
-from ..errors import InvalidNameError, QueryError, RuleCompileError
-from ..rdf.terms import Term, parse_term, sparql, value_key
-from ..rdf.vocab import (
+from ...compile.generic import PREFIXES
+from ...compile.model import TBoxReader
+from ...compile.rule import Atom, Rule, join_order
+from ...errors import QueryError, RuleCompileError
+from ...rdf.terms import Term, parse_term, sparql, value_key
+from ...rdf.vocab import (
     ASSERTED,
     AUX,
     DECLARED_DIFFERENT,
@@ -56,9 +55,7 @@ from ..rdf.vocab import (
     is_skolem,
     owl,
 )
-
-if TYPE_CHECKING:  # pragma: no cover
-    from .facade import Ontology
+from .tree import Explanation
 
 #: The dataset rules read (as in reason/materialize.py): default graph asserted ∪ inferred ∪ helper.
 DATASET = [ASSERTED, INFERRED, AUX]
@@ -67,86 +64,13 @@ MAX_DEPTH = 40
 MAX_CANDIDATES = 20
 #: Members of an AllDifferent group named in its readable form.
 GROUP_SHOWN = 6
-_PREFIXES = {RDF: "rdf:", RDFS: "rdfs:", OWL: "owl:", XSD: "xsd:", SWRL: "swrl:", SWRLB: "swrlb:"}
+#: Short prefixes of the standard vocabularies, for readable names and for names users type (``rdf:type``).
+SHORT_PREFIXES = {RDF: "rdf:", RDFS: "rdfs:", OWL: "owl:", XSD: "xsd:", SWRL: "swrl:", SWRLB: "swrlb:"}
 _HELPER_NAMES = {
     DIFFERENCE_CANDIDATE: "difference asked with",
     DECLARED_DIFFERENT: "declared different from",
     DIFFERENT: "different from",
 }
-
-
-@dataclass
-class Explanation:
-    """One node of a derivation tree.
-
-    ``status``: ``asserted`` (a leaf), ``inferred`` (``rule`` and ``premises``
-    say how), ``condition`` (a premise that is a property path, checked but not
-    explained further) or ``not entailed``.
-    """
-
-    text: str
-    status: str
-    rule: str = ""
-    origin: str = ""
-    premises: list[Explanation] = field(default_factory=list)
-    #: the rule's variables bound in this derivation (readable values)
-    bindings: dict[str, str] = field(default_factory=dict)
-    #: the rule's built-in conditions (FILTER/BIND text), when it has any
-    conditions: str = ""
-    height: int = 1
-
-    @property
-    def entailed(self) -> bool:
-        return self.status != "not entailed"
-
-    def label(self) -> str:
-        if self.status == "inferred" and self.rule:
-            return f"{self.text}  ← {self.rule}: {self.origin}"
-        return f"{self.text}  [{self.status}]"
-
-    def lines(self, indent: str = "") -> list[str]:
-        """The tree as indented text lines (two spaces per level)."""
-        out = [indent + self.label()]
-        if self.conditions:
-            values = ", ".join(f"{k} = {v}" for k, v in sorted(self.bindings.items()))
-            out.append(indent + f"  where {self.conditions}  with {values}")
-        for p in self.premises:
-            out += p.lines(indent + "  ")
-        return out
-
-    def __str__(self) -> str:
-        return "\n".join(self.lines())
-
-    def to_dict(self) -> dict:
-        d: dict = {"triple": self.text, "status": self.status}
-        if self.status == "inferred":
-            d.update(rule=self.rule, origin=self.origin, bindings=dict(sorted(self.bindings.items())),
-                     premises=[p.to_dict() for p in self.premises])
-            if self.conditions:
-                d["conditions"] = self.conditions
-        return d
-
-    def rich_tree(self):
-        """The tree as a :class:`rich.tree.Tree` (for the command line)."""
-        from rich.markup import escape
-        from rich.tree import Tree
-
-        def style(e: Explanation) -> str:
-            if e.status == "inferred" and e.rule:
-                return f"[bold]{escape(e.text)}[/bold]  [cyan]← {escape(e.rule)}[/cyan]: {escape(e.origin)}"
-            colour = {"asserted": "green", "not entailed": "red"}.get(e.status, "yellow")
-            return f"{escape(e.text)}  [{colour}]{escape(e.status)}[/{colour}]"
-
-        def grow(node: Tree, e: Explanation) -> None:
-            if e.conditions:
-                values = ", ".join(f"{k} = {v}" for k, v in sorted(e.bindings.items()))
-                node.add(f"[dim]where {escape(e.conditions)}  with {escape(values)}[/dim]")
-            for p in e.premises:
-                grow(node.add(style(p)), p)
-
-        root = Tree(style(self))
-        grow(root, self)
-        return root
 
 
 @dataclass(frozen=True)
@@ -304,7 +228,7 @@ class Explainer:
                 return self._render_node(term)
             if v.startswith(KEY_PREFIX):
                 return self.render_key(term)
-            for ns, prefix in _PREFIXES.items():
+            for ns, prefix in SHORT_PREFIXES.items():
                 if v.startswith(ns):
                     return prefix + v[len(ns):]
             return self._short(term)
@@ -412,73 +336,4 @@ def _premise(atom: Atom, binding: dict[str, Term]) -> tuple[Triple | None, str]:
         return None, atom.p
 
 
-# ---------------------------------------------------------------- the Ontology side
-
-def resolve_triple(onto: Ontology, s: str | Term, p: str | Term, o: object) -> Triple:
-    """A triple from names as users write them (``R1``, ``rdf:type``/``a``, ``URGENT``, ``1665579710``).
-
-    A value of a data property is matched by data value against the stored
-    facts, so ``7`` finds a stored ``"7"^^xsd:long``.
-    """
-    subject = _name(onto, s)
-    predicate = TYPE if p in ("a", "rdf:type") else _name(onto, p)
-    if isinstance(o, (Literal, NamedNode)):
-        obj: Term = o
-    elif isinstance(o, str) and not _looks_like_value(o) and predicate not in onto.rules.data_properties:
-        obj = _name(onto, o)
-    else:
-        obj = onto.value(_strip_quotes(o)) if isinstance(o, str) else onto.value(o)
-        if isinstance(o, str) and _strip_quotes(o) == o and o.lstrip("+-").isdigit():
-            obj = onto.value(int(o))
-    if isinstance(obj, Literal):
-        key = value_key(obj)
-        for g in (ASSERTED, INFERRED, ENTAILED, AUX):
-            for t in onto.store.triples(subject, predicate, None, g):
-                if isinstance(t.object, Literal) and value_key(t.object) == key:
-                    return t
-    return Triple(subject, predicate, obj)
-
-
-def _looks_like_value(text: str) -> bool:
-    return text.startswith('"') or text.lstrip("+-").replace(".", "", 1).isdigit() or text in ("true", "false")
-
-
-def _strip_quotes(text: str) -> str:
-    return text[1:-1] if len(text) >= 2 and text[0] == text[-1] == '"' else text
-
-
-def _name(onto: Ontology, name: str | Term) -> NamedNode:
-    if isinstance(name, NamedNode):
-        return name
-    if not isinstance(name, str):
-        raise InvalidNameError(f"expected a name, got {name!r}")
-    if ":" in name and not name.startswith("<"):
-        prefix, local = name.split(":", 1)
-        for ns, known in _PREFIXES.items():
-            if known == prefix + ":":
-                return NamedNode(ns + local)
-    return onto.iri(name)
-
-
-def parse_triple_text(onto: Ontology, text: str) -> Triple:
-    """``"R1 rdf:type URGENT"`` (three whitespace-separated parts; a quoted value may hold spaces)."""
-    import shlex
-
-    try:
-        parts = shlex.split(text, posix=False)
-    except ValueError as exc:
-        raise InvalidNameError(f"cannot read {text!r} as 'SUBJECT PREDICATE OBJECT': {exc}") from None
-    if len(parts) != 3:
-        raise InvalidNameError(f"expected 'SUBJECT PREDICATE OBJECT' (e.g. \"R1 rdf:type URGENT\"), got {len(parts)} part(s) in {text!r}")
-    return resolve_triple(onto, *parts)
-
-
-def explain(onto: Ontology, s: str | Term, p: str | Term, o: object) -> Explanation:
-    """Why ``s p o`` holds in ``onto`` as of its last REASON (reasons first if it never did)."""
-    if onto.report is None:
-        onto.reason()
-    t = resolve_triple(onto, s, p, o)
-    return Explainer(onto.store, onto.rules.rules, onto.short).explain(t)
-
-
-__all__ = ["Explanation", "Explainer", "explain", "parse_triple_text", "resolve_triple", "unify"]
+__all__ = ["Candidate", "Explainer", "constant", "unify", "DATASET", "MAX_DEPTH"]
