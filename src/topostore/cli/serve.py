@@ -1,4 +1,4 @@
-"""``topostore serve``: the HTTP service (server.py) from the command line.
+"""``topostore serve``: the HTTP service (:mod:`topostore.http.app`) from the command line.
 
 Exit code 4 (:data:`EXIT_CANNOT_LISTEN`) and one line when it cannot listen
 (the port is in use or the address is not this machine's), checked before the

@@ -40,7 +40,7 @@ if TYPE_CHECKING:  # pragma: no cover
     from ..stores.base import Store
     from .facade import Ontology
 
-logger = logging.getLogger("topostore.journal")
+logger = logging.getLogger("topostore.journal")  # the log keeps its name from the module this one replaced
 F = TypeVar("F", bound=Callable[..., Any])
 
 #: The reasoning modes of :meth:`Ontology.reason`.

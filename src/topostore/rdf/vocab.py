@@ -73,7 +73,7 @@ ENTAILED_PREFIX = INTERNAL + "entailed:"
 ENTAILED = NamedNode(INTERNAL + "graph:entailed")
 #: Prefix of the ids given to anonymous class expressions.
 EXPR_PREFIX = INTERNAL + "expr:"
-#: Blank nodes are skolemised on load to IRIs under this prefix (store.py): the rule
+#: Blank nodes are skolemised on load to IRIs under this prefix (stores/base.py): the rule
 #: compiler must name class expressions and SWRL atoms inside SPARQL text.
 SKOLEM_PREFIX = INTERNAL + "bnode:"
 #: Prefix of the AllDifferent membership keys (see DIFFERENT_KEY).
