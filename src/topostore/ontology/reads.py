@@ -15,6 +15,7 @@ from pyoxigraph import Literal, NamedNode, Triple
 from ..errors import QueryError
 from ..rdf.terms import Term, value_key
 from ..rdf.vocab import ASSERTED, AUX, DECLARATION_TYPES, INFERRED, THING, TYPE, is_internal, is_skolem
+from ..sparql.guard import check_user_sparql
 from .files import SCHEMA_NAMESPACES
 from .named_queries import QueryItem, collect, get_named_query, named_queries, render_jena, substitutions, to_items
 from .views import Render
@@ -110,8 +111,6 @@ class OntologyQueries:
         ``bindings`` fix variables to terms with pyoxigraph's ``substitutions=``;
         in a SELECT query a bound variable must be projected.
         """
-        from ..sparql.guard import check_user_sparql  # here: the sparql package imports this module
-
         check_user_sparql(text)
         if bindings is not None and not isinstance(bindings, dict):
             raise TypeError(f"bindings must be a dict of variable name -> term, not {type(bindings).__name__}")
