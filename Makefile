@@ -31,7 +31,7 @@ browser:
 	    apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq chromium; fi
 
 # Cytoscape.js for the live map page and YASGUI for the inspector's SPARQL console, fetched from
-# the npm registry into src/topostore/static/.
+# the npm registry into src/topostore/http/static/.
 vendor-js:
 	sh scripts/vendor-cytoscape.sh
 	sh scripts/vendor-yasgui.sh

@@ -12,7 +12,7 @@ from pathlib import Path
 
 from topostore.armor import ArmorService
 from topostore.armor.types import ArmorRequest, ArmorResponse
-from topostore.mapgen import MAP_NS
+from topostore.demo.mapgen import MAP_NS
 
 from .maps import ROBOT
 from .walk import Answers, Move

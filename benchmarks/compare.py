@@ -20,7 +20,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from topostore.mapgen import MAP_NS
+from topostore.demo.mapgen import MAP_NS
 
 from . import maps
 from .armor_robot import ArmorRobot

@@ -3,9 +3,9 @@
 The ROS node's events topic (and any ``every_reason`` subscriber) makes each
 REASON take two snapshots of the visible inferred triples and their difference.
 This runs the same robot steps (move to a neighbour, advance the clock, mark the
-new location visited, REASON) on two copies of a generated map (``topostore.mapgen``):
+new location visited, REASON) on two copies of a generated map (``topostore.demo.mapgen``):
 one without subscribers, one with an every-REASON subscriber whose callback
-serialises the event as the topic does (:func:`topostore.events.event_json`).
+serialises the event as the topic does (:func:`topostore.ontology.events.event_json`).
 It prints the median and p95 step latency of each, one JSON line per size.
 """
 
@@ -19,8 +19,8 @@ import time
 from collections.abc import Callable
 
 from topostore import Ontology
-from topostore.events import event_json
-from topostore.mapgen import TopoMap, generate
+from topostore.demo.mapgen import TopoMap, generate
+from topostore.ontology.events import event_json
 from topostore.resources import default_ontology
 
 

@@ -1,6 +1,6 @@
 """What the inspector costs: ``python -m benchmarks.inspector [--sizes 100 1000] [--steps N]``.
 
-On a generated map (``topostore.mapgen``) of each size, reasoned:
+On a generated map (``topostore.demo.mapgen``) of each size, reasoned:
 
 * ``entity_ms``: the time to build the JSON of one entity page (:func:`topostore.http.inspector.describe_entity`,
   every inferred fact with its proof): a room, a corridor, the robot, the URGENT and LOCATION classes
@@ -22,10 +22,10 @@ import time
 from collections.abc import Callable
 
 from topostore import Ontology
+from topostore.demo.mapgen import TopoMap, generate
 from topostore.http.entities import resolve_entity, search_entities
 from topostore.http.history import History
 from topostore.http.inspector import describe_entity
-from topostore.mapgen import TopoMap, generate
 from topostore.resources import default_ontology
 
 from .events import walk

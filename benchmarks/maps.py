@@ -14,9 +14,10 @@ from pathlib import Path
 
 from pyoxigraph import Literal, NamedNode, RdfFormat, Triple
 
-from topostore.mapgen import MAP_NS, generate
+from topostore.demo.mapgen import MAP_NS, generate
 from topostore.resources import default_ontology, ontology_dir
-from topostore.store import Store, serialize, unskolemize
+from topostore.stores import memory_store
+from topostore.stores.base import serialize, unskolemize
 
 #: the name of the shipped example map on the command line and in the tables
 EXAMPLE = "example"
@@ -51,13 +52,13 @@ class BenchMap:
 def abox(size: str) -> list[Triple]:
     """The ABox of a size: the example file, or a chain of ``size / 2`` corridors with one room each.
 
-    Chains come from :func:`topostore.mapgen.generate` with one room per corridor: corridors
+    Chains come from :func:`topostore.demo.mapgen.generate` with one room per corridor: corridors
     in a row joined by doors, a room behind its own door off each corridor, one
     ``owl:AllDifferent`` over every location and door, visit times staggered over the last
     minute, Robot1 in the first corridor.
     """
     if size == EXAMPLE:
-        return Store().parse_file(ontology_dir() / "topological_map_abox.ttl")
+        return memory_store().parse_file(ontology_dir() / "topological_map_abox.ttl")
     n = int(size)
     if n < 2 or n % 2:
         raise ValueError(f"a chain map has an even number of locations (corridors + rooms), not {size!r}")
@@ -67,7 +68,7 @@ def abox(size: str) -> list[Triple]:
 def write(size: str, folder: Path, fmt: RdfFormat = RdfFormat.RDF_XML) -> tuple[Path, BenchMap]:
     """TBox + ABox of ``size`` as one file in ``folder`` (RDF/XML by default: the OWL API reads it)."""
     data = abox(size)
-    triples = Store().parse_file(default_ontology()) + data
+    triples = memory_store().parse_file(default_ontology()) + data
     suffix = {RdfFormat.RDF_XML: "owl", RdfFormat.N_TRIPLES: "nt"}[fmt]
     path = folder / f"map-{size}.{suffix}"
     path.write_bytes(serialize([unskolemize(t) for t in triples], fmt, PREFIXES))

@@ -33,10 +33,10 @@ import httpx
 from pyoxigraph import NamedNode, RdfFormat
 
 from topostore import Ontology
-from topostore.mapgen import MAP_NS, generate
+from topostore.demo.mapgen import MAP_NS, generate
 from topostore.resources import default_ontology, ontology_dir
-from topostore.store import serialize
 from topostore.stores import open_store
+from topostore.stores.base import serialize
 
 ROBOT = NamedNode(MAP_NS + "Robot1")
 

@@ -8,7 +8,7 @@
 # registry's integrity hash, and copies dist/cytoscape.min.js and its MIT license.
 set -eu
 VERSION="${1:-3.34.4}"
-DEST="$(cd "$(dirname "$0")/.." && pwd)/src/topostore/static"
+DEST="$(cd "$(dirname "$0")/.." && pwd)/src/topostore/http/static"
 WORK="$(mktemp -d)"
 . "$(dirname "$0")/npm-fetch.sh"
 trap 'rm -rf "$WORK"' EXIT

@@ -9,7 +9,7 @@
 # script and one style sheet), its MIT license and the licences of the libraries it bundles.
 set -eu
 VERSION="${1:-4.2.28}"
-DEST="$(cd "$(dirname "$0")/.." && pwd)/src/topostore/static"
+DEST="$(cd "$(dirname "$0")/.." && pwd)/src/topostore/http/static"
 WORK="$(mktemp -d)"
 . "$(dirname "$0")/npm-fetch.sh"
 trap 'rm -rf "$WORK"' EXIT

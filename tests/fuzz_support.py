@@ -18,7 +18,7 @@ from hypothesis import strategies as st
 
 from topostore.armor import ArmorService
 from topostore.armor.commands import COMMANDS
-from topostore.vocab import ASSERTED, AUX, INFERRED
+from topostore.rdf.vocab import ASSERTED, AUX, INFERRED
 
 #: examples per fuzz test
 FUZZ_EXAMPLES = int(os.environ.get("TOPOSTORE_FUZZ_EXAMPLES", "500"))

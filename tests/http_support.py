@@ -24,7 +24,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from topostore.server import ServerConfig, create_app
+from topostore.http.app import ServerConfig, create_app
 
 TBOX = Path(__file__).parents[2] / "shared" / "ontology" / "topological_map.owl"
 

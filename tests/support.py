@@ -8,7 +8,7 @@ from pathlib import Path
 from pyoxigraph import Literal, NamedNode
 
 from topostore import Ontology
-from topostore.vocab import XSD
+from topostore.rdf.vocab import XSD
 
 ROOT = Path(__file__).resolve().parents[1]
 #: ../shared/ontology beside the checkout (CI clones the repository with it there)

@@ -20,8 +20,9 @@ from pathlib import Path
 import pytest
 from test_server import TBOX, free_port, start_server, stop_server
 
-from topostore import Ontology, mapgen
+from topostore import Ontology
 from topostore.armor_api import transport
+from topostore.demo import mapgen
 from topostore.resources import default_ontology
 
 IRI = "http://bnc/exp-rob-lab/2022-23"

@@ -11,7 +11,7 @@ from rdflib.compare import isomorphic
 
 from topostore import ArmorService as TopLevelArmorService
 from topostore.armor import ArmorRequest, ArmorResponse, ArmorService
-from topostore.vocab import ASSERTED, TYPE, owl
+from topostore.rdf.vocab import ASSERTED, TYPE, owl
 
 ONTOLOGY_DIR = Path(__file__).parents[2] / "shared" / "ontology"
 TBOX = ONTOLOGY_DIR / "topological_map.owl"

@@ -182,7 +182,7 @@ def test_the_benchmark_row_runs_in_a_child_and_reports_the_answer() -> None:
 def test_the_cli_prints_the_named_warning(tmp_path: Path) -> None:
     from click.testing import CliRunner
 
-    from topostore.cli import cli
+    from topostore.cli.group import cli
 
     path = tmp_path / "card.ttl"
     path.write_text(cardinality_ttl("minCardinality", 10, 10))
@@ -208,7 +208,7 @@ CHANGES = st.lists(st.tuples(st.booleans(), st.sampled_from(["x", "z"]),
 def _triple(onto: Ontology, subject: str, change: str):
     from pyoxigraph import Literal, NamedNode, Triple
 
-    from topostore.vocab import SAME_AS, TYPE
+    from topostore.rdf.vocab import SAME_AS, TYPE
 
     ns = "http://example.org/card#"
     kind, *rest = change.split()

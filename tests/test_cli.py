@@ -11,9 +11,9 @@ import pytest
 import rdflib
 from click.testing import CliRunner
 
-from topostore.cli import cli, main
+from topostore.cli.group import cli, main
 from topostore.errors import LoadError
-from topostore.queries import named_queries
+from topostore.ontology.named_queries import named_queries
 from topostore.resources import default_ontology, ontology_dir
 
 TBOX = str(default_ontology())

@@ -17,7 +17,7 @@ from topostore.compile.generic import expand, generic_rules, parse_rule_file
 from topostore.compile.snippets import distinct_values, in_datatype
 from topostore.compile.swrl_text import removal_triples, rule_labels, rule_triples
 from topostore.errors import RuleCompileError
-from topostore.vocab import ASSERTED, SWRLB, XSD
+from topostore.rdf.vocab import ASSERTED, SWRLB, XSD
 
 NS = "http://e.org/t#"
 TYPE = "<http://www.w3.org/1999/02/22-rdf-syntax-ns#type>"

@@ -12,9 +12,10 @@ import pytest
 from pyoxigraph import NamedNode
 from support import NOW, NS, instances, long, types_of
 
-from topostore import InvalidValueError, Ontology, QueryError, mapgen
+from topostore import InvalidValueError, Ontology, QueryError
+from topostore.demo import mapgen
+from topostore.rdf.vocab import ASSERTED, XSD
 from topostore.resources import default_ontology, default_ontology_files
-from topostore.vocab import ASSERTED, XSD
 
 
 def values(items, key: str) -> list[str]:
@@ -101,7 +102,7 @@ def test_api_end_to_end(tmp_path: Path):
 
 
 def test_queries_see_only_asserted_facts_while_inconsistent():
-    # aRMOR behaviour (module docstring of topostore.ontology): inconsistent -> asserted knowledge only
+    # aRMOR behaviour (module docstring of topostore.ontology.facade): inconsistent -> asserted knowledge only
     o = Ontology.from_file(*default_ontology_files())
     o.reason()
     o.add_fact("C1", "hasDoor", "R1")  # README: DOOR and LOCATION are disjoint

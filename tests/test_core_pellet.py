@@ -12,7 +12,7 @@ from pyoxigraph import Literal, NamedNode
 from support import ABOX_OWL, NOW, NS, TBOX_OWL, connected, instances, long, types_of
 
 from topostore import Ontology
-from topostore.vocab import SAME_AS, XSD
+from topostore.rdf.vocab import SAME_AS, XSD
 
 
 def can_reach(o: Ontology, robot: str = "Robot1") -> set[str]:

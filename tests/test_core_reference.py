@@ -17,8 +17,8 @@ from rdflib.compare import isomorphic
 from support import ABOX_OWL, NS, TBOX_OWL, connected, instances, types_of
 
 from topostore import LoadError, Ontology
+from topostore.rdf.vocab import ASSERTED, AUX, INFERRED, TYPE, XSD
 from topostore.resources import default_ontology, default_ontology_files
-from topostore.vocab import ASSERTED, AUX, INFERRED, TYPE, XSD
 
 LONG = NamedNode(XSD + "long")
 

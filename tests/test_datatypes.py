@@ -10,7 +10,7 @@ from pyoxigraph import NamedNode, Triple
 
 from topostore import Ontology, OntologyWarning
 from topostore.compile.datatypes import implied_ranges
-from topostore.vocab import OWL, RDF, RDFS, XSD
+from topostore.rdf.vocab import OWL, RDF, RDFS, XSD
 
 PREFIXES = """@prefix : <http://e.org/d#> . @prefix owl: <http://www.w3.org/2002/07/owl#> .
 @prefix rdfs: <http://www.w3.org/2000/01/rdf-schema#> . @prefix xsd: <http://www.w3.org/2001/XMLSchema#> .

@@ -9,9 +9,9 @@ from pathlib import Path
 import pytest
 from click.testing import CliRunner
 
-from topostore import Ontology, mapgen
-from topostore.cli import cli
-from topostore.demo import decide, run_demo
+from topostore import Ontology
+from topostore.cli.group import cli
+from topostore.demo import decide, mapgen, run_demo
 from topostore.demo.mapview import MapView, draw_ontology
 from topostore.demo.world import default_map_files
 from topostore.resources import default_ontology

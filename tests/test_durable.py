@@ -27,10 +27,11 @@ from pyoxigraph import NamedNode, Triple
 from servers import free_port, stop
 from test_swrl import PREFIXES, builtin, data, rule
 
-from topostore import Ontology, RuleCompileError, safeio
+from topostore import Ontology, RuleCompileError
 from topostore.armor import ArmorService
+from topostore.rdf import safeio
+from topostore.rdf.vocab import ASSERTED, INFERRED
 from topostore.stores import open_store
-from topostore.vocab import ASSERTED, INFERRED
 
 ROOT = Path(__file__).resolve().parents[1]
 TBOX = ROOT / "ontology" / "topological_map.ttl"
@@ -48,7 +49,7 @@ def request(command: str, spec1: str = "", spec2: str = "", *args: str, client: 
 
 def start_serve(store: Path, data: Path, port: int) -> subprocess.Popen:
     proc = subprocess.Popen(
-        [sys.executable, "-c", "from topostore.cli import main; main()", "serve", "--port", str(port),
+        [sys.executable, "-c", "from topostore.cli.group import main; main()", "serve", "--port", str(port),
          "--data-dir", str(data), "--store", str(store)],
         stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
     deadline = time.monotonic() + 60

@@ -9,7 +9,7 @@ from topostore import InvalidValueError, Ontology
 from topostore.armor_api.armor_client import ArmorClient
 from topostore.armor_api.armor_exceptions import ArmorServiceCallError
 from topostore.armor_api.http_transport import _error_text
-from topostore.vocab import MAP_NS, xsd
+from topostore.rdf.vocab import MAP_NS, xsd
 
 R1, URL = NamedNode(MAP_NS + "R1"), NamedNode(MAP_NS + "homepage")
 

@@ -7,7 +7,7 @@ import threading
 from pyoxigraph import NamedNode, Triple
 
 from topostore import Ontology
-from topostore.events import Delta, EventHub, Snapshot, delta, parse_pattern
+from topostore.ontology.events import Delta, EventHub, Snapshot, delta, parse_pattern
 from topostore.resources import default_ontology_files
 
 NS = "http://bnc/exp-rob-lab/2022-23#"
@@ -137,7 +137,7 @@ def test_event_json_is_the_event_with_its_reference() -> None:
     """The one serialisation of the SSE stream and the ROS topic."""
     import json
 
-    from topostore.events import Event, event_json
+    from topostore.ontology.events import Event, event_json
 
     e = Event(3, [urgent("R2")], [urgent("R1")], True, False, 0.25, missed=2, time=1.5)
     assert json.loads(event_json(e, NS, "ontoRef")) == {

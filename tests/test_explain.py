@@ -8,11 +8,12 @@ import pytest
 from click.testing import CliRunner
 from pyoxigraph import NamedNode
 
-from topostore import Ontology, mapgen
-from topostore.cli import cli
-from topostore.explain import parse_triple_text
+from topostore import Ontology
+from topostore.cli.group import cli
+from topostore.demo import mapgen
+from topostore.ontology.explain import parse_triple_text
+from topostore.rdf.vocab import AUX, INFERRED
 from topostore.resources import default_ontology, default_ontology_files
-from topostore.vocab import AUX, INFERRED
 
 URGENT_R1 = """\
 R1 rdf:type URGENT  ← swrl:Urgency: SWRL rule Urgency

@@ -18,7 +18,7 @@ from hypothesis import strategies as st
 from topostore import Ontology
 from topostore.armor import ArmorResponse, ArmorService
 from topostore.errors import TopostoreError
-from topostore.vocab import ASSERTED
+from topostore.rdf.vocab import ASSERTED
 
 # thousands of generated cases: run without line tracing (coverage comes from the exact tests)
 pytestmark = pytest.mark.no_cover

@@ -18,7 +18,7 @@ from hypothesis import strategies as st
 
 from topostore import Ontology
 from topostore.armor import ArmorService
-from topostore.cli import cli
+from topostore.cli.group import cli
 from topostore.errors import TopostoreError
 
 # thousands of generated cases: run without line tracing (coverage comes from the exact tests)

@@ -17,7 +17,7 @@ from hypothesis import strategies as st
 from test_server import start_server, stop_server
 
 from topostore.armor import ArmorService
-from topostore.server import ServerConfig, create_app
+from topostore.http.app import ServerConfig, create_app
 
 # thousands of generated cases: run without line tracing (coverage comes from the exact tests)
 pytestmark = pytest.mark.no_cover

@@ -29,8 +29,9 @@ from rich.console import Console
 from servers import oxigraph_server, stop
 from test_server import free_port
 
-from topostore import Ontology, mapgen
-from topostore.cli import EXIT_CANNOT_LISTEN, cli, load_files, reason_with_progress
+from topostore import Ontology
+from topostore.cli.group import EXIT_CANNOT_LISTEN, cli, load_files, reason_with_progress
+from topostore.demo import mapgen
 from topostore.resources import default_ontology
 
 ROOT = Path(__file__).resolve().parents[1]

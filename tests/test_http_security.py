@@ -14,9 +14,9 @@ from starlette.testclient import TestClient
 from support import SHARED
 
 from topostore.armor import ArmorService
+from topostore.http.app import ServerConfig, create_app
 from topostore.http.security import LOOPBACK_HOSTS, allowed_hosts
-from topostore.server import ServerConfig, create_app
-from topostore.vocab import ASSERTED
+from topostore.rdf.vocab import ASSERTED
 
 IRI = "http://bnc/exp-rob-lab/2022-23"
 ORIGIN = "https://yasgui.example.org"

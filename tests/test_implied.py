@@ -6,8 +6,8 @@ from topostore import Ontology
 from topostore.compile import condition
 from topostore.compile.implied import simplify
 from topostore.compile.rule import Atom, Rule
+from topostore.rdf.vocab import TYPE
 from topostore.resources import default_ontology_files
-from topostore.vocab import TYPE
 
 T = str(TYPE)
 

@@ -20,12 +20,12 @@ from profiles import property_examples
 from pyoxigraph import NamedNode, Triple
 
 from topostore import Ontology
-from topostore.mapgen import MAP_NS, generate
+from topostore.demo.mapgen import MAP_NS, generate
+from topostore.rdf.vocab import ASSERTED, AUX, DIFFERENT_FROM, ENTAILED, INFERRED, TYPE, owl
 from topostore.reason import Materializer, check_consistency, incremental
 from topostore.reason.entailed import publish_entailed
 from topostore.reason.incremental import is_monotone, negates_exists
-from topostore.store import Store
-from topostore.vocab import ASSERTED, AUX, DIFFERENT_FROM, ENTAILED, INFERRED, TYPE, owl
+from topostore.stores import memory_store
 
 TBOX = Path(__file__).resolve().parents[2] / "shared" / "ontology" / "topological_map.owl"
 
@@ -48,7 +48,7 @@ def new_map(n: int, seed: int, all_different: bool) -> Ontology:
 
 def from_scratch(onto: Ontology) -> tuple[set, set, set, bool]:
     """Inferred, helper and entailed-only graphs and consistency of a fresh store holding the same asserted graph."""
-    store = Store()
+    store = memory_store()
     store.add(onto.store.triples(graph=ASSERTED), ASSERTED)
     Materializer(store, onto.rules).run()
     violations = check_consistency(store, onto.rules)
@@ -74,7 +74,7 @@ VIEWED = ("URGENT", "LOCATION", "ROOM", "CORRIDOR", "ROBOT", "DOOR")
 def assert_views_fresh(onto: Ontology) -> None:
     """Class answers read from the maintained views equal a fresh read of the store."""
     for name in VIEWED:
-        fresh = onto._instances(N(name))
+        fresh = onto.reads._instances(N(name))
         assert sorted(onto.instances(N(name)), key=str) == sorted(fresh, key=str), name
         assert onto.rendered_instances(N(name), "local", _local) == sorted({_local(m) for m in fresh}), name
 

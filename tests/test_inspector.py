@@ -17,7 +17,7 @@ from hypothesis import strategies as st
 from test_server import NS, TOKEN, config
 
 from topostore import Ontology
-from topostore.explain import Explainer
+from topostore.ontology.explain import Explainer
 from topostore.resources import default_ontology_files
 
 LOAD = ["example.ttl", "http://bnc/exp-rob-lab/2022-23", "false", "PELLET", "false"]  # live reasoner

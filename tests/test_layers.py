@@ -1,9 +1,9 @@
-"""The README's architecture table is the module map, and the imports obey it.
+"""docs/architecture.md's layer table is the package map, and the imports obey it.
 
-The table (README, "Architecture") names every module of ``src/topostore`` once
-and says what each may import; rows are in dependency order, so everything a
-row may import sits in a row above it.  The imports are read with :mod:`ast`,
-lazy ones inside functions included; imports under ``if TYPE_CHECKING:`` are
+The table (``| package | owns |``) names every package of ``src/topostore`` once, bottom-up.
+A module may import modules of its own package (sideways) and of rows above its own row (down
+the data path), never a row below; and the module import graph has no cycle.  Imports are read
+with :mod:`ast`, lazy ones inside functions included; imports under ``if TYPE_CHECKING:`` are
 for type checkers only and do not count.
 """
 
@@ -17,36 +17,25 @@ from pathlib import Path
 import topostore
 
 PACKAGE = Path(topostore.__file__).parent
-README = PACKAGE.parent.parent / "README.md"
-
-#: The two imports that go upward, each inside one function, as the README says.
-UPWARD = {
-    ("store.py", "stores/oxigraph.py"),  # Store() gives a fresh in-memory OxigraphStore
-    ("ros/launcher.py", "cli.py"),  # the `armor` launcher runs the command line
-}
+ARCHITECTURE = PACKAGE.parent.parent / "docs" / "architecture.md"
+#: The modules allowed at the top of src/topostore (docs/architecture.md says why).
+TOP_LEVEL = ["__init__.py", "errors.py", "resources.py"]
 
 
 @dataclass
 class Row:
     index: int
     entries: list[str]
-    may_import: list[str]
 
 
-def architecture_rows(text: str) -> list[Row]:
-    """The rows of the ``| module | owns | may import |`` table of the Architecture section."""
-    section = text.split("\n## Architecture\n", 1)[1].split("\n## ", 1)[0]
-    lines = section.split("| module | owns | may import |\n|---|---|---|\n", 1)[1].split("\n\n", 1)[0]
+def layer_rows(text: str) -> list[Row]:
+    """The rows of the ``| package | owns |`` table, in their order (bottom-up)."""
+    body = text.split("| package | owns |\n|---|---|\n", 1)[1].split("\n\n", 1)[0]
     rows = []
-    for i, line in enumerate(lines.strip().splitlines()):
-        cells = [c.strip() for c in line.strip().strip("|").split("|")]
-        rows.append(Row(i, re.findall(r"`([^`]+)`", cells[0]), re.findall(r"`([^`]+)`", cells[-1])))
+    for i, line in enumerate(body.strip().splitlines()):
+        first = line.strip().strip("|").split("|")[0]
+        rows.append(Row(i, re.findall(r"`([^`]+)`", first)))
     return rows
-
-
-def covers(entry: str, path: str) -> bool:
-    """``compile/`` covers every module of the package; ``compile/rule.py`` only itself."""
-    return path.startswith(entry) if entry.endswith("/") else path == entry
 
 
 def modules() -> list[str]:
@@ -81,7 +70,7 @@ def imported_modules(path: str) -> set[str]:
             module = ".".join(base + ([node.module] if node.module else []))
             if module.split(".")[0] != "topostore":
                 continue
-            # `from . import builtins` names a module; `from .store import Store` a name in one
+            # `from . import builtins` names a module; `from .base import Store` a name in one
             names = [f"{module}.{a.name}" if module_file(f"{module}.{a.name}") else module for a in node.names]
         else:
             continue
@@ -93,40 +82,69 @@ def imported_modules(path: str) -> set[str]:
     return found
 
 
-ROWS = architecture_rows(README.read_text(encoding="utf-8"))
+def unit_of(path: str) -> str:
+    """The table entry a module belongs to: its top folder (``compile/``) or itself at the top."""
+    return path.split("/", 1)[0] + "/" if "/" in path else path
 
 
-def row_of(path: str) -> Row:
-    return next(r for r in ROWS if path in r.entries)
+ROWS = layer_rows(ARCHITECTURE.read_text(encoding="utf-8"))
 
 
-def test_the_table_names_every_module_once_and_nothing_else() -> None:
+def row_index(path: str) -> int:
+    return next(r.index for r in ROWS if unit_of(path) in r.entries)
+
+
+def find_cycle(graph: dict[str, set[str]]) -> list[str]:
+    """One cycle of ``graph`` (a path that ends where it started), or [] when there is none."""
+    state: dict[str, int] = {}  # 1 on the current path, 2 done
+    path: list[str] = []
+
+    def visit(node: str) -> list[str]:
+        state[node] = 1
+        path.append(node)
+        for nxt in sorted(graph.get(node, ())):
+            if state.get(nxt) == 1:
+                return path[path.index(nxt):] + [nxt]
+            if nxt not in state and (found := visit(nxt)):
+                return found
+        path.pop()
+        state[node] = 2
+        return []
+
+    for start in sorted(graph):
+        if start not in state and (found := visit(start)):
+            return found
+    return []
+
+
+def test_the_table_names_every_package_once_and_nothing_else() -> None:
     named = [e for r in ROWS for e in r.entries]
-    assert sorted(e for e in named if e.endswith(".py")) == modules()
-    assert [e for e in named if not e.endswith(".py")] == ["data/", "static/"]
+    assert len(named) == len(set(named))
+    units = sorted({unit_of(m) for m in modules()})
+    assert sorted(e for e in named if e != "data/") == units
     assert all((PACKAGE / e).exists() for e in named)
 
 
-def test_a_row_may_import_only_rows_above_it() -> None:
-    for row in ROWS:
-        for allowed in row.may_import:
-            above = [m for m in modules() if covers(allowed, m) and m not in row.entries]
-            assert above, f"row {row.entries}: {allowed!r} names no module"
-            assert all(row_of(m).index < row.index for m in above), f"row {row.entries} may import {allowed!r} below it"
+def test_no_flat_modules_but_the_named_ones() -> None:
+    assert sorted(m for m in modules() if "/" not in m) == TOP_LEVEL
 
 
-def test_every_import_is_one_its_row_allows() -> None:
-    wrong = []
-    for path in modules():
-        row = row_of(path)
-        for target in sorted(imported_modules(path)):
-            allowed = target in row.entries or any(covers(a, target) for a in row.may_import)
-            if not allowed and (path, target) not in UPWARD:
-                wrong.append(f"{path} imports {target}")
+def test_every_import_goes_sideways_within_its_package_or_down_the_table() -> None:
+    wrong = [f"{path} imports {target}" for path in modules() for target in sorted(imported_modules(path))
+             if unit_of(target) != unit_of(path) and row_index(target) > row_index(path)]
     assert wrong == []
 
 
+def test_no_import_loops_between_modules() -> None:
+    assert find_cycle({m: imported_modules(m) for m in modules()}) == []
+
+
+def test_the_cycle_finder_finds_a_loop_through_three_modules() -> None:
+    assert find_cycle({"a": {"b"}, "b": {"c"}, "c": {"a"}, "d": {"a"}}) == ["a", "b", "c", "a"]
+    assert find_cycle({"a": {"b"}, "b": {"c"}, "d": {"a", "c"}}) == []
+
+
 def test_the_check_sees_lazy_imports_and_skips_type_checking_ones() -> None:
-    assert "stores/oxigraph.py" in imported_modules("store.py")          # inside Store.__new__
-    assert "ontology.py" not in imported_modules("sparql/target.py")     # under TYPE_CHECKING
-    assert "compile/builtins.py" in imported_modules("compile/swrl.py")  # `from . import builtins`
+    assert "demo/mapview.py" in imported_modules("demo/patrol.py")              # inside _draw
+    assert "ontology/facade.py" not in imported_modules("sparql/target.py")    # under TYPE_CHECKING
+    assert "compile/builtins.py" in imported_modules("compile/swrl.py")        # `from . import builtins`

@@ -138,7 +138,7 @@ def test_map_data(live: Server) -> None:
     status, _, page = live.request("/references/ontoRef/map")
     assert status == 200 and b"/static/cytoscape.min.js" in page
     status, headers, script = live.request("/static/cytoscape.min.js")
-    assert status == 200 and len(script) == (Path(__file__).parents[1] / "src/topostore/static/cytoscape.min.js").stat().st_size
+    assert status == 200 and len(script) == (Path(__file__).parents[1] / "src/topostore/http/static/cytoscape.min.js").stat().st_size
 
 
 def test_the_live_page_in_a_real_browser(live: Server, tmp_path: Path) -> None:

@@ -12,8 +12,9 @@ from pathlib import Path
 import pytest
 from click.testing import CliRunner
 
-from topostore import Ontology, mapgen
-from topostore.cli import cli
+from topostore import Ontology
+from topostore.cli.group import cli
+from topostore.demo import mapgen
 from topostore.demo.layout import adjacency, layout
 from topostore.demo.mapview import MapView, Style, draw
 from topostore.resources import default_ontology, default_ontology_files
@@ -112,7 +113,7 @@ def test_no_scipy_or_networkx_needed(tmp_path: Path) -> None:
         import sys
         sys.modules["scipy"] = None
         sys.modules["networkx"] = None
-        from topostore import mapgen
+        from topostore.demo import mapgen
         from topostore.demo.mapview import MapView, draw
         m = mapgen.generate(300, seed=1)
         view = MapView(corridors=m.corridors, rooms=m.rooms, doors=m.doors, has_door=m.has_door)

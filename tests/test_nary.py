@@ -1,12 +1,18 @@
-"""N-ary axioms as RDF lists (topostore.nary): the one builder and remover used by Ontology and the aRMOR commands."""
+"""N-ary axioms as RDF lists (topostore.ontology.nary): the one builder and remover used by Ontology and the aRMOR commands."""
 
 from __future__ import annotations
 
 from pyoxigraph import NamedNode, Triple
 
 from topostore import Ontology
-from topostore.nary import all_different, all_disjoint_classes, axiom_of_list_node, individual_triples, rdf_list
-from topostore.vocab import ASSERTED, FIRST, NIL, REST, TYPE, owl
+from topostore.ontology.nary import (
+    all_different,
+    all_disjoint_classes,
+    axiom_of_list_node,
+    individual_triples,
+    rdf_list,
+)
+from topostore.rdf.vocab import ASSERTED, FIRST, NIL, REST, TYPE, owl
 
 NS = "http://example.org/m#"
 A, B, C = (NamedNode(NS + n) for n in "ABC")

@@ -10,7 +10,7 @@ from pathlib import Path
 from pyoxigraph import NamedNode
 
 from topostore import Ontology
-from topostore.vocab import ASSERTED, AUX, DIFFERENT_FROM, INFERRED, SAME_AS
+from topostore.rdf.vocab import ASSERTED, AUX, DIFFERENT_FROM, INFERRED, SAME_AS
 
 ROOT = Path(__file__).resolve().parents[1]
 TBOX_OWL = ROOT.parent / "shared" / "ontology" / "topological_map.owl"

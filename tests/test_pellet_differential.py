@@ -24,9 +24,10 @@ from pathlib import Path
 import pytest
 from pyoxigraph import Triple
 
-from topostore import Ontology, mapgen
-from topostore.nary import axiom_of_list_node
-from topostore.vocab import DIFFERENT_FROM, FIRST
+from topostore import Ontology
+from topostore.demo import mapgen
+from topostore.ontology.nary import axiom_of_list_node
+from topostore.rdf.vocab import DIFFERENT_FROM, FIRST
 
 ROOT = Path(__file__).resolve().parents[1]
 ABOX = ROOT.parent / "shared" / "ontology" / "topological_map_abox.owl"

@@ -10,10 +10,11 @@ from pyoxigraph import NamedNode, Triple
 
 from topostore import Ontology
 from topostore.compile import Atom, Rule, compile_ontology
+from topostore.rdf.vocab import ASSERTED, DELTA, INFERRED
 from topostore.reason.classify import classify
 from topostore.reason.plan import LATERAL_MAX, is_small, key_counts, nested, plan_where
-from topostore.store import Store
-from topostore.vocab import ASSERTED, DELTA, INFERRED
+from topostore.stores import memory_store
+from topostore.stores.base import Store
 
 NS = "http://e.org/t#"
 TYPE = NamedNode("http://www.w3.org/1999/02/22-rdf-syntax-ns#type")
@@ -33,7 +34,7 @@ REACH = Rule("reach", "test", (Atom("?r", str(iri("isIn")), "?x"), Atom("?x", st
 @pytest.fixture
 def store() -> Store:
     """Two robots on a small map; only Robot2's position is in the delta graph."""
-    s = Store()
+    s = memory_store()
     facts = [Triple(iri("Robot1"), iri("isIn"), iri("C1")), Triple(iri("Robot2"), iri("isIn"), iri("C2"))]
     for a, b in (("C1", "R1"), ("C1", "R2"), ("C2", "R3"), ("C2", "R4")):
         facts.append(Triple(iri(a), iri("connectedTo"), iri(b)))

@@ -13,10 +13,10 @@ from support import armor_load
 
 from topostore import IncompleteOntologyError, Ontology, OntologyWarning
 from topostore.armor import ArmorService
-from topostore.cli import cli
+from topostore.cli.group import cli
 from topostore.compile import profile as kinds
+from topostore.rdf.vocab import ASSERTED
 from topostore.resources import default_ontology_files
-from topostore.vocab import ASSERTED
 
 SHARED = Path(__file__).resolve().parents[2] / "shared" / "ontology"
 PREFIXES = """@prefix : <http://e.org/a#> . @prefix owl: <http://www.w3.org/2002/07/owl#> .
@@ -157,7 +157,7 @@ def test_reason_strict_refuses_with_one_line(tmp_path: Path) -> None:
 def test_served_service_is_strict_when_asked(tmp_path: Path) -> None:
     from starlette.testclient import TestClient
 
-    from topostore.server import ServerConfig, create_app
+    from topostore.http.app import ServerConfig, create_app
 
     (tmp_path / "union.ttl").write_text(PREFIXES + CASES["union superclass"][0])
     load = {"client_name": "c", "reference_name": "ref", "command": "LOAD", "primary_command_spec": "FILE",

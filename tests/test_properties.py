@@ -17,8 +17,8 @@ from profiles import property_examples
 from pyoxigraph import Literal, NamedNode, Triple
 
 from topostore import Ontology
+from topostore.rdf.vocab import ASSERTED, ENTAILED, INFERRED, XSD, owl
 from topostore.resources import default_ontology
-from topostore.vocab import ASSERTED, ENTAILED, INFERRED, XSD, owl
 
 NS = "http://example.org/prop#"
 RDF_TYPE = "http://www.w3.org/1999/02/22-rdf-syntax-ns#type"

@@ -19,11 +19,11 @@ from test_swrl import PREFIXES, builtin, data, rule
 from topostore import Ontology
 from topostore.armor import ArmorService
 from topostore.errors import LoadError
+from topostore.http.app import ServerConfig, create_app
+from topostore.rdf.safeio import atomic_write, check_xml_entities, read_regular_file
+from topostore.rdf.vocab import ASSERTED, INFERRED
 from topostore.reason.limits import ReasonLimitExceeded, ReasonLimits
-from topostore.safeio import atomic_write, check_xml_entities, read_regular_file
-from topostore.server import ServerConfig, create_app
 from topostore.sparql.guard import QueryTooComplex, check_user_sparql
-from topostore.vocab import ASSERTED, INFERRED
 
 SHARED = Path(__file__).resolve().parents[2] / "shared" / "ontology"
 ABOX = SHARED / "topological_map_abox.owl"
@@ -65,7 +65,7 @@ CRASH_SCRIPT = textwrap.dedent("""
     from starlette.testclient import TestClient
     from topostore import Ontology
     from topostore.armor import ArmorService
-    from topostore.server import ServerConfig, create_app
+    from topostore.http.app import ServerConfig, create_app
     n = int(sys.argv[2])
     texts = {
         "braces": "SELECT * WHERE " + "{" * n + "}" * n,

@@ -294,7 +294,7 @@ def test_without_ros_exit_5_says_what_to_install(tmp_path: Path) -> None:
     ({}, ("__ip:=10.0.0.5",), None),
 ])
 def test_loopback_by_default(monkeypatch: pytest.MonkeyPatch, environ: dict, args: tuple, expected: str | None) -> None:
-    from topostore.ros.command import _loopback_by_default
+    from topostore.cli.ros import _loopback_by_default
 
     for name in ("ROS_IP", "ROS_HOSTNAME"):
         monkeypatch.delenv(name, raising=False)

@@ -17,7 +17,7 @@ from hypothesis import strategies as st
 from topostore import Ontology
 from topostore.compile import condition as cond
 from topostore.compile.rule import Atom, Rule
-from topostore.lexer import COMMENT, IRI, KEYWORD, NAME, PUNCT, STRING, VARIABLE, negates_exists, tokens, variables
+from topostore.rdf.lexer import COMMENT, IRI, KEYWORD, NAME, PUNCT, STRING, VARIABLE, negates_exists, tokens, variables
 from topostore.reason.materialize import strongly_connected
 from topostore.reason.triggers import Triggers, matches
 

@@ -10,8 +10,8 @@ import rdflib
 from topostore import Ontology
 from topostore.compile.swrl_text import VARIABLE_NS, rule_labels
 from topostore.errors import RuleCompileError
+from topostore.rdf.vocab import ASSERTED
 from topostore.resources import default_ontology_files
-from topostore.vocab import ASSERTED
 
 STALE = "LOCATION(?l) ^ visitedAt(?l, ?v) ^ swrlb:lessThan(?v, 1665579736) -> URGENT(?l)"
 SWRL = "http://www.w3.org/2003/11/swrl#"

@@ -18,12 +18,12 @@ from support import armor_load
 
 from topostore import Ontology, OntologyWarning, RuleCompileError
 from topostore.armor import ArmorService
-from topostore.cli import cli
+from topostore.cli.group import cli
+from topostore.compile.notices import RULE_REPAIRED, RULE_SKIPPED
 from topostore.compile.swrl_repair import repair_rules
-from topostore.notices import RULE_REPAIRED, RULE_SKIPPED
-from topostore.skolem import unskolemize
-from topostore.store import Store
-from topostore.vocab import ASSERTED, FIRST, NIL, REST, TYPE, swrl
+from topostore.rdf.skolem import unskolemize
+from topostore.rdf.vocab import ASSERTED, FIRST, NIL, REST, TYPE, swrl
+from topostore.stores import memory_store
 
 DATA = Path(__file__).parent / "data"
 SAVED = DATA / "saved_nested_rules.owl"
@@ -137,7 +137,7 @@ def test_an_untouched_untranslatable_rule_still_refuses_the_file() -> None:
 
 
 def test_well_formed_rules_are_not_touched() -> None:
-    triples = Store().parse_file(ABOX)
+    triples = memory_store().parse_file(ABOX)
     assert repair_rules(triples) == (triples, [])
 
 
@@ -154,7 +154,7 @@ def _list_items(index: dict, head) -> list:
 def damage(source: Path, target: Path) -> None:
     """Write ``source`` with every rule body's tail nested in an atom list, and the first rule's
     body appended (nested) to the second's: the structures aRMOR SAVE leaves."""
-    triples = Store().parse_file(source)
+    triples = memory_store().parse_file(source)
     index = {(t.subject, t.predicate): t.object for t in triples if t.predicate in (FIRST, REST, swrl("body"))}
     imps = [t.subject for t in triples if t.predicate == TYPE and t.object == swrl("Imp")]
     out = [t for t in triples if t.predicate != swrl("body")]

@@ -31,7 +31,7 @@ from rdflib.plugins.stores.sparqlstore import SPARQLStore
 from topostore.armor_api.armor_client import ArmorClient
 from topostore.armor_api.armor_exceptions import ArmorServiceCallError, ArmorServiceInternalError
 from topostore.armor_api.http_transport import HttpTransport
-from topostore.server import ServerConfig
+from topostore.http.app import ServerConfig
 
 Server = Live  # the name other test modules import
 IRI = "http://bnc/exp-rob-lab/2022-23"

@@ -13,8 +13,8 @@ from support import armor_load
 
 from topostore import Ontology, OntologyWarning, QueryError, QueryItem
 from topostore.armor import ArmorService
-from topostore.cli import cli
-from topostore.notices import SQWRL_QUERY
+from topostore.cli.group import cli
+from topostore.compile.notices import SQWRL_QUERY
 
 DATA = Path(__file__).parent / "data" / "sqwrl_queries.ttl"
 NS = "http://example.org/people#"

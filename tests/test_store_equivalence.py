@@ -15,7 +15,8 @@ from pathlib import Path
 import pytest
 from test_pellet_differential import ABOX, NAMES, SCENARIOS, generated, topostore
 
-from topostore import Ontology, mapgen
+from topostore import Ontology
+from topostore.demo import mapgen
 from topostore.stores import open_store
 
 STORES = ["disk", "oxigraph", "virtuoso"]
@@ -82,7 +83,7 @@ def test_generated_map_walk_equal_in_memory(kind: str, request, tmp_path: Path) 
 
 
 def onto_graph():
-    from topostore.vocab import ASSERTED
+    from topostore.rdf.vocab import ASSERTED
 
     return ASSERTED
 

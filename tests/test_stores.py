@@ -8,11 +8,10 @@ import pytest
 from pyoxigraph import Literal, NamedNode, Triple
 
 from topostore.errors import StoreError
-from topostore.store import Store
-from topostore.stores import kind, list_references, open_store, reference_dir
+from topostore.rdf.vocab import ASSERTED, XSD
+from topostore.stores import kind, list_references, memory_store, open_store, reference_dir
 from topostore.stores.oxigraph import OxigraphStore
 from topostore.stores.remote import RemoteStore
-from topostore.vocab import ASSERTED, XSD
 
 A, P, B = NamedNode("urn:x:a"), NamedNode("urn:x:p"), NamedNode("urn:x:b")
 SEVEN_LONG = Literal("7", datatype=NamedNode(XSD + "long"))
@@ -33,7 +32,7 @@ def test_the_three_settings(tmp_path: Path, oxigraph_url: str) -> None:
         s.close()
     with pytest.raises(StoreError):
         reference_dir(tmp_path, "..")
-    assert type(Store()) is OxigraphStore
+    assert type(memory_store()) is OxigraphStore
 
 
 def test_transaction_is_all_or_nothing_and_reads_its_own_writes(tmp_path: Path) -> None:
@@ -63,7 +62,7 @@ def test_literal_forms_and_state_survive_reopening(tmp_path: Path) -> None:
     again.remove([Triple(A, P, Literal("7", datatype=NamedNode(XSD + "integer")))], ASSERTED)
     again.close()
     third = open_store(tmp_path / "db")
-    assert third.dump([ASSERTED]) == [] and third._literal_forms == {}
+    assert third.dump([ASSERTED]) == [] and third.forms._literal_forms == {}
     third.close()
 
 
@@ -112,7 +111,7 @@ def test_sync_store_commits_and_reopens(tmp_path: Path) -> None:
 def test_cli_reason_and_query_on_a_store(tmp_path: Path) -> None:
     from click.testing import CliRunner
 
-    from topostore.cli import cli
+    from topostore.cli.group import cli
 
     root = Path(__file__).resolve().parents[1] / "ontology"
     db = str(tmp_path / "mapdb")

@@ -15,7 +15,7 @@ import pytest
 from pyoxigraph import Literal
 
 from topostore import Ontology, RuleCompileError
-from topostore.vocab import ASSERTED, INFERRED
+from topostore.rdf.vocab import ASSERTED, INFERRED
 
 NS = "http://example.org/swrltest#"
 PREFIXES = """\

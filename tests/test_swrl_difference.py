@@ -10,7 +10,7 @@ from pathlib import Path
 import pytest
 
 from topostore import Ontology, OntologyWarning
-from topostore.vocab import DECLARED_DIFFERENT, ENTAILED
+from topostore.rdf.vocab import DECLARED_DIFFERENT, ENTAILED
 
 DATA = Path(__file__).parent / "data"
 

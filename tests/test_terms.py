@@ -6,7 +6,7 @@ import pytest
 from pyoxigraph import BlankNode, Literal, NamedNode
 
 from topostore.errors import InvalidNameError, InvalidValueError, UnknownTypeError
-from topostore.terms import entity, iri, literal_of, sparql, typed_literal, validate_name, value_key
+from topostore.rdf.terms import entity, iri, literal_of, sparql, typed_literal, validate_name, value_key
 
 XSD = "http://www.w3.org/2001/XMLSchema#"
 NS = "http://bnc/exp-rob-lab/2022-23#"

@@ -12,8 +12,8 @@ from pyoxigraph import Literal, NamedNode, Triple
 
 from topostore.compile import condition
 from topostore.compile.rule import Atom, Rule
+from topostore.rdf.vocab import xsd
 from topostore.reason import window
-from topostore.vocab import xsd
 
 OPS = {">": operator.gt, ">=": operator.ge, "<": operator.lt, "<=": operator.le, "=": operator.eq,
        "!=": operator.ne}

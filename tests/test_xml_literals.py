@@ -9,7 +9,7 @@ import pytest
 from pyoxigraph import Literal, NamedNode
 
 from topostore import Ontology, OntologyWarning
-from topostore.xml_literals import canonical
+from topostore.ontology.xml_literals import canonical
 
 PREFIXES = """@prefix : <http://e.org/x#> . @prefix owl: <http://www.w3.org/2002/07/owl#> .
 @prefix rdf: <http://www.w3.org/1999/02/22-rdf-syntax-ns#> .

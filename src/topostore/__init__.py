@@ -4,6 +4,7 @@ The ontology lives in an Oxigraph store; OWL axioms and SWRL rules are compiled
 to SPARQL updates and run to a fixpoint on REASON.
 """
 
+from .compile.notices import Notice, OntologyWarning
 from .errors import (
     IncompleteOntologyError,
     InvalidNameError,
@@ -15,9 +16,8 @@ from .errors import (
     TopostoreError,
     UnknownTypeError,
 )
-from .notices import Notice, OntologyWarning
-from .ontology import Ontology, ReasonReport
-from .queries import QueryItem
+from .ontology.facade import Ontology, ReasonReport
+from .ontology.named_queries import QueryItem
 
 __version__ = "0.1.0"
 

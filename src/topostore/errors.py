@@ -52,10 +52,6 @@ class QueryTimeout(QueryError):
         self.partial = partial or []
 
 
-class PathNotAllowedError(TopostoreError):
-    """A file path outside the configured data directory."""
-
-
 class StoreError(TopostoreError):
     """A store that cannot be opened, reached or written (disk locked, server down, writer lock held)."""
 

@@ -6,8 +6,8 @@ dropping them) rather than on an ontology's content.
 
 from __future__ import annotations
 
-from .. import terms
 from ..errors import InvalidNameError
+from ..rdf import terms
 from . import codes
 from .codes import CommandError
 from .context import Context, Handler, Reply

@@ -18,11 +18,11 @@ from typing import TYPE_CHECKING
 
 from pyoxigraph import Literal, NamedNode, Triple
 
-from .. import terms
 from ..errors import InvalidNameError, InvalidValueError, TopostoreError, UnknownTypeError
-from ..ontology import Ontology
-from ..queries import QueryItem
-from ..vocab import ASSERTED, NOTHING, THING, is_internal
+from ..ontology.facade import Ontology
+from ..ontology.named_queries import QueryItem
+from ..rdf import terms
+from ..rdf.vocab import ASSERTED, NOTHING, THING, is_internal
 from . import codes
 from .codes import CommandError
 from .reference import Change, Delta, Reference

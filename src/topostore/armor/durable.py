@@ -22,10 +22,10 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from ..errors import StoreError, StoreLockedError, TopostoreError
-from ..ontology import Ontology
-from ..store import Store
+from ..ontology.facade import Ontology
+from ..rdf.vocab import ASSERTED
 from ..stores import kind, list_references, open_store, reference_dir
-from ..vocab import ASSERTED
+from ..stores.base import Store
 from . import codes
 from .codes import CommandError
 from .reference import Reference
@@ -103,12 +103,12 @@ class DurableReferences:
             shutil.rmtree(reference_dir(self.spec, name), ignore_errors=True)
 
     def _wipe(self, store: Store) -> None:
-        from ..store import FORMS, META
-        from ..vocab import ASSERTED, AUX, ENTAILED, INFERRED
+        from ..rdf.vocab import ASSERTED, AUX, ENTAILED, INFERRED
+        from ..stores.base import FORMS, META
 
         for graph in (ASSERTED, INFERRED, AUX, ENTAILED, FORMS, META):
             store.clear(graph)
-        store._meta = None
+        store.persisted.forget()
 
     # ------------------------------------------------------------ restore
     def restore(self, service: ArmorService) -> dict[str, Reference]:

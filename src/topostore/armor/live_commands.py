@@ -26,9 +26,9 @@ import json
 from ..compile.pipeline import compile_ontology
 from ..compile.swrl_text import removal_triples, rule_labels, rule_triples
 from ..errors import InvalidNameError, RuleCompileError, TopostoreError
-from ..explain import resolve_triple
-from ..store import Store
-from ..vocab import ASSERTED
+from ..ontology.explain import resolve_triple
+from ..rdf.vocab import ASSERTED
+from ..stores import memory_store
 from . import codes
 from .codes import CommandError
 from .context import Command, Context, Reply, fixed
@@ -62,7 +62,7 @@ def add_swrl(ctx: Context) -> Reply:
     onto = ctx.onto
     try:
         triples = rule_triples(text, label, onto.store, onto.prefix, comment)
-        scratch = Store()
+        scratch = memory_store()
         scratch.add(onto.store.triples(graph=ASSERTED), ASSERTED)
         scratch.add(triples, ASSERTED)
         compile_ontology(scratch, ASSERTED)

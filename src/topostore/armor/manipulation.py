@@ -3,20 +3,20 @@
 Each handler builds :class:`~topostore.armor.reference.Change` objects; a
 change whose triples depend on the ontology at application time (buffered
 manipulation) carries a ``plan`` that reads the ontology then.  N-ary axioms
-and individual removal are written by :mod:`topostore.nary`, as in the Python API.
+and individual removal are written by :mod:`topostore.ontology.nary`, as in the Python API.
 """
 
 from __future__ import annotations
 
 from pyoxigraph import Literal, NamedNode, Triple
 
-from .. import terms
 from ..errors import InvalidValueError, TopostoreError
-from ..nary import all_different, all_disjoint_classes, individual_triples, rdf_list
-from ..ontology import Ontology
-from ..queries import render_jena
-from ..store import fresh_skolem
-from ..vocab import ASSERTED, OWL, RDF, RDFS, STANFORD_SWRL, SWRL, SWRLB, THING, TYPE, XSD, is_internal, owl, rdfs
+from ..ontology.facade import Ontology
+from ..ontology.named_queries import render_jena
+from ..ontology.nary import all_different, all_disjoint_classes, individual_triples, rdf_list
+from ..rdf import terms
+from ..rdf.vocab import ASSERTED, OWL, RDF, RDFS, STANFORD_SWRL, SWRL, SWRLB, THING, TYPE, XSD, is_internal, owl, rdfs
+from ..stores.base import fresh_skolem
 from . import codes
 from .codes import CommandError
 from .context import Context, Handler, Reply, asserted, fixed, hidden
@@ -280,7 +280,7 @@ def reason(ctx: Context) -> Reply:
         ref.ontology.reason()  # on failure the ontology is back at its last successful REASON
     except (TopostoreError, OSError) as exc:  # reasoning, the store or its files failed
         # the buffered changes that broke it are dropped too, or every later REASON would fail the same way
-        dropped, ref.buffer = len(ref.buffer), []
+        dropped = ref.discard_buffer()
         note = f"; {dropped} buffered change(s) were discarded" if dropped else ""
         raise CommandError(
             codes.REASONER_OR_QUERY_FAILURE,

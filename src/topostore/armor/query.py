@@ -12,9 +12,9 @@ import threading
 from pyoxigraph import NamedNode, Triple
 
 from ..errors import QueryError
-from ..ontology import Ontology
-from ..queries import QueryItem, render_jena
-from ..vocab import ASSERTED, THING, TYPE, XSD, is_internal, owl, rdfs
+from ..ontology.facade import Ontology
+from ..ontology.named_queries import QueryItem, render_jena
+from ..rdf.vocab import ASSERTED, THING, TYPE, XSD, is_internal, owl, rdfs
 from . import codes
 from .codes import CommandError
 from .context import Context, Reply, asserted, hidden

@@ -16,8 +16,8 @@ from pathlib import Path
 from pyoxigraph import Triple
 
 from ..errors import TopostoreError
-from ..ontology import Ontology
-from ..vocab import ASSERTED
+from ..ontology.facade import Ontology
+from ..rdf.vocab import ASSERTED
 
 #: Reasoner names accepted at LOAD (spec §5.2); all run topostore's reasoner.
 REASONERS = frozenset({"", "PELLET", "HERMIT", "FACT", "SNOROCKET"})
@@ -50,7 +50,7 @@ class Change:
 
 @dataclass
 class Applied:
-    """What applying a change really did, kept so it can be undone."""
+    """What applying a change really did (the ontology's change ledger is what undoes it)."""
 
     added: list[Triple]
     removed: list[Triple]
@@ -99,18 +99,12 @@ class Reference:
         onto.add(*added)
         return Applied(added, removed, delta.warning)
 
-    def undo(self, applied: list[Applied]) -> None:
-        """Revert applied changes, newest first (used when a later step fails)."""
-        for step in reversed(applied):
-            self.ontology.remove(*step.added)
-            self.ontology.add(*step.removed)
-
     def submit(self, changes: list[Change]) -> list[str]:
         """Apply ``changes`` now, or queue them under manipulation buffering.
 
         All or nothing: if applying or re-reasoning fails the applied part is
-        undone, the reasoner is brought back to the old state, and the error
-        propagates.  With a non-buffered reasoner the reference is left
+        undone (by the ontology's change ledger), the reasoner is brought back
+        to the old state, and the error propagates.  With a non-buffered reasoner the reference is left
         reasoned, as a Pellet reasoner listening to changes would be.
         """
         if self.buffered_manipulation:
@@ -133,18 +127,18 @@ class Reference:
         if reason is None:
             reason = not self.buffered_reasoner and bool(changes)
         applied: list[Applied] = []
+        onto = self.ontology
         try:
-            with self.ontology.store.transaction():  # the changes and the persisted buffer: one commit
-                for change in changes:
-                    applied.append(self.apply_change(change))
-                self.save_state()
-            if reason:
-                self.ontology.reason()
-            else:
-                self.ontology.rules  # noqa: B018 - compile now: a change no rules can be compiled from is refused
+            with onto.ledger.undoable(onto):  # a failure below undoes the changes applied here
+                with onto.store.transaction():  # the changes and the persisted buffer: one commit
+                    for change in changes:
+                        applied.append(self.apply_change(change))
+                    self.save_state()
+                if reason:
+                    onto.reason()  # a failed REASON itself goes back to the last successful one
+                else:
+                    onto.rules  # noqa: B018 - compile now: a change no rules can be compiled from is refused
         except Exception:
-            with self.ontology.store.transaction():
-                self.undo(applied)
             if reason:
                 self._reason_quietly()
             raise
@@ -164,6 +158,14 @@ class Reference:
             self.buffer = pending + self.buffer
             self.save_state()
             raise
+
+    def discard_buffer(self) -> int:
+        """Drop the buffered changes (a REASON failed with them: every later REASON would fail the same way)
+        and persist the empty buffer; returns how many were dropped."""
+        dropped, self.buffer = len(self.buffer), []
+        if dropped:
+            self.save_state()
+        return dropped
 
     def _reason_quietly(self) -> None:
         """Bring the inferred graph back after an undo; a failure here is already being reported."""

@@ -14,9 +14,9 @@ from dataclasses import dataclass
 
 from pyoxigraph import BlankNode, Literal, NamedNode
 
-from ..store import unskolem
-from ..terms import Term
-from ..vocab import OWL, RDF, RDFS, XML, XSD
+from ..rdf.terms import Term
+from ..rdf.vocab import OWL, RDF, RDFS, XML, XSD
+from ..stores.base import unskolem
 
 _ABBREVIATIONS = (
     ("owl:", OWL),

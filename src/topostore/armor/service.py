@@ -24,11 +24,11 @@ from pathlib import Path
 from typing import Any
 
 from ..errors import LoadError, RuleCompileError, TopostoreError
-from ..ontology import Ontology
-from ..safeio import open_log
-from ..store import guess_format
+from ..ontology.facade import Ontology
+from ..rdf.safeio import open_log
 from ..stores import StoreSpec
 from ..stores import kind as store_kind
+from ..stores.base import guess_format
 from . import codes
 from .codes import CommandError
 from .commands import COMMANDS, Context, Reply

@@ -10,7 +10,7 @@ from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
-from ..queries import QueryItem
+from ..ontology.named_queries import QueryItem
 
 
 def _text(data: Mapping[str, Any], key: str) -> str:

@@ -12,8 +12,8 @@ from collections.abc import Callable, Mapping
 from pyoxigraph import Literal, NamedNode
 
 from ..errors import RuleCompileError
-from ..terms import Term
-from ..vocab import POW_FUNCTION, SWRLB, XSD, xsd
+from ..rdf.terms import Term
+from ..rdf.vocab import POW_FUNCTION, SWRLB, XSD, xsd
 from .condition import Condition, bind, test
 
 _COMPARISONS = {
@@ -135,5 +135,5 @@ def pow_value(base: Term, exponent: Term) -> Literal | None:
 
 
 #: The extension functions compiled rules call, handed to the store that runs them
-#: (:meth:`topostore.store.Store.use_functions`); the store itself knows nothing of rules.
+#: (:meth:`topostore.stores.base.Store.use_functions`); the store itself knows nothing of rules.
 FUNCTIONS: Mapping[NamedNode, Callable[..., Term | None]] = {POW_FUNCTION: pow_value}

@@ -16,7 +16,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-from .. import lexer
+from ..rdf import lexer
 
 #: kinds of condition (PATTERN: any other group line of a rule file, e.g. OPTIONAL or VALUES)
 TEST, EXISTS, BIND, PATTERN = "test", "exists", "bind", "pattern"

@@ -29,10 +29,10 @@ from __future__ import annotations
 
 import re
 
-from ..notices import INCOMPLETE, Notice
-from ..vocab import AUX, DIFFERENT_KEY, KEY_PREFIX, XSD
+from ..rdf.vocab import AUX, DIFFERENT_KEY, KEY_PREFIX, XSD
 from . import condition as cond
 from .condition import Condition
+from .notices import INCOMPLETE, Notice
 from .rule import Atom
 
 #: up to this n, cardinalities keep the pairwise form (exact for every kind of difference);

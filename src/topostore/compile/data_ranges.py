@@ -14,7 +14,7 @@ from urllib.parse import parse_qsl, quote, urlencode
 
 from pyoxigraph import Literal, NamedNode
 
-from ..vocab import INTERNAL, XSD
+from ..rdf.vocab import INTERNAL, XSD
 
 PREFIX = INTERNAL + "datarange:"
 #: the numeric facets, as SPARQL comparison operators

@@ -21,8 +21,8 @@ from decimal import ROUND_CEILING, ROUND_FLOOR, Decimal, InvalidOperation
 
 from pyoxigraph import NamedNode
 
-from ..terms import INTEGER_TYPES, sparql
-from ..vocab import OWL, RDF, TYPE, XSD, rdfs
+from ..rdf.terms import INTEGER_TYPES, sparql
+from ..rdf.vocab import OWL, RDF, TYPE, XSD, rdfs
 from . import data_ranges
 from .model import Expr, TBox
 from .rule import Atom, Rule

@@ -20,8 +20,8 @@ from functools import cache
 from pathlib import Path
 
 from ..errors import RuleCompileError
+from ..rdf.vocab import INTERNAL, OWL, RDF, RDFS, XSD
 from ..resources import rules_dir
-from ..vocab import INTERNAL, OWL, RDF, RDFS, XSD
 from .condition import Condition, parse
 from .rule import Atom, Rule
 

@@ -19,7 +19,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from ..errors import RuleCompileError
-from ..lexer import CLOSE, COMMENT, OPEN, PUNCT, tokens
+from ..rdf.lexer import CLOSE, COMMENT, OPEN, PUNCT, tokens
 from .rule import Rule, RuleSet
 
 

@@ -38,7 +38,7 @@ from __future__ import annotations
 from collections.abc import Iterable
 from dataclasses import replace
 
-from ..vocab import TYPE
+from ..rdf.vocab import TYPE
 from .condition import test
 from .rule import Atom, Rule
 

@@ -13,9 +13,9 @@ from dataclasses import dataclass, field, replace
 from pyoxigraph import Literal, NamedNode
 
 from ..errors import RuleCompileError
-from ..store import Store
-from ..terms import Term
-from ..vocab import EXPR_PREFIX, NOTHING, OWL, RDF, RDFS, THING, TYPE, XSD, is_skolem, owl
+from ..rdf.terms import Term
+from ..rdf.vocab import EXPR_PREFIX, NOTHING, OWL, RDF, RDFS, THING, TYPE, XSD, is_skolem, owl
+from ..stores.base import Store
 from . import data_ranges
 
 

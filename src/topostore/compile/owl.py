@@ -22,13 +22,13 @@ from collections.abc import Sequence
 
 from pyoxigraph import NamedNode
 
-from ..notices import Notice
-from ..terms import sparql
-from ..vocab import NOTHING, SAME_AS, THING, TYPE
+from ..rdf.terms import sparql
+from ..rdf.vocab import NOTHING, SAME_AS, THING, TYPE
 from . import condition as cond
 from .condition import Condition
 from .datatypes import implied_ranges
 from .model import Expr, Prop, TBox
+from .notices import Notice
 from .owl_restrictions import RestrictionRules, nm
 from .rule import Atom, Rule
 from .snippets import (
@@ -43,9 +43,14 @@ from .snippets import (
 T = str(TYPE)
 
 
-class OwlCompiler(RestrictionRules):
+class OwlCompiler:
+    """TBox → rules.  The rules of restrictions with fillers are a named part (:attr:`restrictions`)
+    that emits through this compiler's :meth:`emit` and reads its TBox helpers."""
+
     def __init__(self, tbox: TBox) -> None:
         self.tb = tbox
+        #: the rules of restrictions with fillers (cardinalities, some/all values), a named part
+        self.restrictions = RestrictionRules(self)
         self.rules: list[Rule] = []
         self.notices: list[Notice] = []
         self.disjoint_pairs = [
@@ -225,11 +230,11 @@ class OwlCompiler(RestrictionRules):
             self.emit("cls-self1", origin, [Atom(x, T, node)], self.prop_atom(x, e.prop, x))
             self.emit("cls-self2", origin, [self.prop_atom(x, e.prop, x)], Atom(x, T, node))
         elif e.kind == "all":
-            self._all_rules(e, node, origin)
+            self.restrictions.all_rules(e, node, origin)
         elif e.kind in ("some", "min", "exact"):
-            self._lower_bound_rules(e, node, origin)
+            self.restrictions.lower_bound_rules(e, node, origin)
         if e.kind in ("max", "exact"):
-            self._upper_bound_rules(e, node, origin)
+            self.restrictions.upper_bound_rules(e, node, origin)
 
     def restriction_subsumption(self, exprs: list[Expr]) -> None:
         """≥n p.C ⊑ ≥m p.D (n ≥ m ≥ 1, C ⊑ D), with ∃ as ≥1 and = n as ≥ n."""
@@ -326,7 +331,7 @@ class OwlCompiler(RestrictionRules):
             self.emit(name, origin, body, filters=[cond.test(distinct_values(y1, y2))], violation=(x, y1, y2),
                       message=message)
             return
-        self.emit(name, origin, body + self.ask_different([(y1, y2)], body, [], origin), violation=(x, y1, y2),
+        self.emit(name, origin, body + self.restrictions.ask_different([(y1, y2)], body, [], origin), violation=(x, y1, y2),
                   message=message)
         self.emit(name, origin, body, Atom(y1, str(SAME_AS), y2),
                   [cond.test(f"!sameTerm({y1}, {y2}) && isIRI({y1}) && isIRI({y2})"), not_different(y1, y2)],
@@ -344,8 +349,4 @@ class OwlCompiler(RestrictionRules):
         return self.rules
 
 
-def compile_owl(tbox: TBox) -> list[Rule]:
-    return OwlCompiler(tbox).compile()
-
-
-__all__ = ["compile_owl", "OwlCompiler"]
+__all__ = ["OwlCompiler"]

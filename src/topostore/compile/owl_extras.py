@@ -13,8 +13,19 @@
 
 from __future__ import annotations
 
-from ..terms import sparql
-from ..vocab import DECLARATION_TYPES, INTERNAL, NAMED_INDIVIDUAL, OWL, RDF, RDFS, SAME_AS, SKOLEM_PREFIX, SWRL, TYPE
+from ..rdf.terms import sparql
+from ..rdf.vocab import (
+    DECLARATION_TYPES,
+    INTERNAL,
+    NAMED_INDIVIDUAL,
+    OWL,
+    RDF,
+    RDFS,
+    SAME_AS,
+    SKOLEM_PREFIX,
+    SWRL,
+    TYPE,
+)
 from . import condition as cond
 from .model import Expr, Prop, TBox, describe
 from .owl import OwlCompiler

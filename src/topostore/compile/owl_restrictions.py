@@ -1,6 +1,6 @@
 """OWL restrictions → rules: cardinality, someValuesFrom and allValuesFrom, with their fillers.
 
-The part of :class:`~.owl.OwlCompiler` that needs several fillers of one
+A named part of :class:`~.owl.OwlCompiler` (``compiler.restrictions``) that needs several fillers of one
 property and asks whether they are pairwise different: what a tableau
 reasoner concludes from ``≥ n``, ``≤ n`` and ``= n`` restrictions beyond
 OWL 2 RL (see :mod:`.owl`).
@@ -9,18 +9,21 @@ OWL 2 RL (see :mod:`.owl`).
 from __future__ import annotations
 
 from itertools import combinations
+from typing import TYPE_CHECKING
 
 from pyoxigraph import NamedNode
 
-from ..notices import Notice
-from ..terms import sparql
-from ..vocab import DIFFERENT, SAME_AS, THING, TYPE
+from ..rdf.terms import sparql
+from ..rdf.vocab import DIFFERENT, SAME_AS, THING, TYPE
 from . import condition as cond
 from . import data_ranges
 from .condition import Condition
 from .counting import PAIRWISE_MAX, UNREACHABLE, count_at_least, counting_notice
-from .model import Expr, TBox
+from .model import Expr
 from .rule import Atom
+
+if TYPE_CHECKING:
+    from .owl import OwlCompiler
 from .snippets import (
     NOT_DIFFERENT_READS,
     candidate_atom,
@@ -52,14 +55,14 @@ def nm(term: NamedNode) -> str:
 
 
 class RestrictionRules:
-    """Rules of restrictions with fillers; a part of :class:`~.owl.OwlCompiler`, which provides
-    :meth:`emit` and the TBox helpers used here."""
+    """Rules of restrictions with fillers, emitted through the compiler that owns this part.
 
-    # provided by OwlCompiler: the TBox, emit(), member(), prop_atom(), is_data(), all_expressions(),
-    # filler_subsumed()
-    tb: TBox
-    #: what the rules do not reason completely (see .counting), as notices
-    notices: list[Notice]
+    The compiler provides the TBox (``tb``), ``emit()``, the notices list and its helpers
+    ``member()``, ``prop_atom()``, ``is_data()``, ``all_expressions()`` and ``filler_subsumed()``.
+    """
+
+    def __init__(self, compiler: OwlCompiler) -> None:
+        self.compiler = compiler
 
     @staticmethod
     def counts(n: int) -> bool:
@@ -71,15 +74,15 @@ class RestrictionRules:
     def _counted(self, e: Expr, x: str, n: int) -> tuple[list[Atom], list[Condition]]:
         """Body atoms and conditions: ``x`` has at least ``n`` values of ``e`` known different, counted."""
         v = "?v"
-        data = self.is_data(e.prop, e)
+        data = self.compiler.is_data(e.prop, e)
         more, test = self._filler_test(v, e)
-        values = [self.prop_atom(x, e.prop, v)] + more
+        values = [self.compiler.prop_atom(x, e.prop, v)] + more
         tests = [test] if test is not None else []
         extra, conditions = count_at_least(x, values, tests, v, n, data)
         if not data:
             notice = counting_notice(str(e))
-            if notice not in self.notices:
-                self.notices.append(notice)
+            if notice not in self.compiler.notices:
+                self.compiler.notices.append(notice)
         return values + extra, tests + conditions
 
     def require_different(self, pairs: list[tuple[str, str]], body: list[Atom], filters: list[Condition],
@@ -110,7 +113,7 @@ class RestrictionRules:
             others = {y for pair in pairs for y in pair} - {a, b}
             pair_body = [t for t in body if not (t.variables() & others)]
             pair_filters = [f for f in filters if not (f.variables & others)]
-            self.emit("different-candidate", origin, pair_body, candidate_atom(a, b),
+            self.compiler.emit("different-candidate", origin, pair_body, candidate_atom(a, b),
                       pair_filters + [cond.test(f"!sameTerm({a}, {b})")])
         return [different_atom(a, b) for a, b in pairs]
 
@@ -118,9 +121,9 @@ class RestrictionRules:
         if e.datatype is not None:
             test = in_datatype(var, e.datatype)
             return [], cond.test(test or f"isLiteral({var})")
-        if self.is_data(e.prop, e):
+        if self.compiler.is_data(e.prop, e):
             return [], cond.test(f"isLiteral({var})")
-        return self.member(var, e.filler), None
+        return self.compiler.member(var, e.filler), None
 
     def _fillers(self, e: Expr, x: str, n: int) -> tuple[list[Atom], list[Condition], list[tuple[str, str]], list[str]]:
         """Body atoms and filters for ``n`` fillers of restriction ``e`` on ``x``, and
@@ -130,13 +133,13 @@ class RestrictionRules:
         atoms: list[Atom] = []
         filters: list[Condition] = []
         for y in ys:
-            atoms.append(self.prop_atom(x, e.prop, y))
+            atoms.append(self.compiler.prop_atom(x, e.prop, y))
             more, test = self._filler_test(y, e)
             atoms += more
             if test is not None:
                 filters.append(test)
         pairs = list(combinations(ys, 2))
-        if self.is_data(e.prop, e):
+        if self.compiler.is_data(e.prop, e):
             filters += [cond.test(distinct_values(a, b)) for a, b in pairs]
             pairs = []
         # n pairwise different fillers can always be listed in increasing term order: asking for that
@@ -144,7 +147,7 @@ class RestrictionRules:
         filters += [cond.test(term_before(a, b)) for a, b in zip(ys, ys[1:], strict=False)]
         return atoms, filters, pairs, ys
 
-    def _lower_bound_rules(self, e: Expr, node: str, origin: str) -> None:
+    def lower_bound_rules(self, e: Expr, node: str, origin: str) -> None:
         x = "?x"
         n = 1 if e.kind == "some" else e.n
         if n == 0 or n >= UNREACHABLE:
@@ -157,24 +160,24 @@ class RestrictionRules:
             atoms, filters, reads = self.require_different(pairs, atoms, filters, origin)
         name = {"some": "cls-svf1", "min": "ext-min-card"}.get(e.kind, "ext-exact-card")
         if e.kind != "exact":
-            self.emit(name, origin, atoms, Atom(x, T, node), filters, reads)
+            self.compiler.emit(name, origin, atoms, Atom(x, T, node), filters, reads)
             return
         # exact: the minimum is met; a maximum must be known too
-        if e.n == 1 and not e.prop.inverse and self.tb.has("FunctionalProperty", e.prop.iri):
-            self.emit(name, origin + " (functional property)", atoms, Atom(x, T, node), filters, reads)
-        for m in self.all_expressions():
+        if e.n == 1 and not e.prop.inverse and self.compiler.tb.has("FunctionalProperty", e.prop.iri):
+            self.compiler.emit(name, origin + " (functional property)", atoms, Atom(x, T, node), filters, reads)
+        for m in self.compiler.all_expressions():
             if m.node != e.node and m.kind in ("max", "exact") and m.prop == e.prop and m.n <= e.n \
-                    and self.filler_subsumed(e, m):
-                self.emit(name, origin + f" (maximum known from {m})", atoms + [Atom(x, T, sparql(m.node))],
+                    and self.compiler.filler_subsumed(e, m):
+                self.compiler.emit(name, origin + f" (maximum known from {m})", atoms + [Atom(x, T, sparql(m.node))],
                           Atom(x, T, node), filters, reads)
 
-    def _upper_bound_rules(self, e: Expr, node: str, origin: str) -> None:
+    def upper_bound_rules(self, e: Expr, node: str, origin: str) -> None:
         x = "?x"
-        data = self.is_data(e.prop, e)
+        data = self.compiler.is_data(e.prop, e)
         member = [Atom(x, T, node)]
         if e.n == 0:
             atoms, filters, _, _ = self._fillers(e, x, 1)
-            self.emit("cls-maxqc2" if e.filler or e.datatype else "cls-maxc1", origin, member + atoms,
+            self.compiler.emit("cls-maxqc2" if e.filler or e.datatype else "cls-maxc1", origin, member + atoms,
                       filters=filters, violation=(x, "?y1"),
                       message=f"{{x}} has a value of {nm(e.prop.iri)} but is in {e}")
             return
@@ -184,30 +187,30 @@ class RestrictionRules:
             return  # no store holds that many values (and e.n > 1: no sameAs rule below)
         if self.counts(e.n + 1):
             atoms, filters = self._counted(e, x, e.n + 1)
-            self.emit(name, origin, member + atoms, filters=filters, violation=(x,), message=message)
+            self.compiler.emit(name, origin, member + atoms, filters=filters, violation=(x,), message=message)
         else:
             atoms, filters, pairs, ys = self._fillers(e, x, e.n + 1)
             atoms, filters, reads = self.require_different(pairs, member + atoms, filters, origin)
-            self.emit(name, origin, atoms, filters=filters, reads=reads, violation=(x, *ys), message=message)
+            self.compiler.emit(name, origin, atoms, filters=filters, reads=reads, violation=(x, *ys), message=message)
         if e.n == 1 and not data:
             # two values that are not known different are the same individual
             atoms, filters, _, _ = self._fillers(e, x, 2)
-            self.emit("cls-maxqc4" if e.filler else "cls-maxc2", origin, member + atoms,
+            self.compiler.emit("cls-maxqc4" if e.filler else "cls-maxc2", origin, member + atoms,
                       Atom("?y1", str(SAME_AS), "?y2"),
                       filters + [cond.test("!sameTerm(?y1, ?y2) && isIRI(?y1) && isIRI(?y2)"),
                                  not_different("?y1", "?y2")],
                       NOT_DIFFERENT_READS, stratum=1)
 
-    def _all_rules(self, e: Expr, node: str, origin: str) -> None:
+    def all_rules(self, e: Expr, node: str, origin: str) -> None:
         x, y = "?x", "?y"
-        body = [Atom(x, T, node), self.prop_atom(x, e.prop, y)]
+        body = [Atom(x, T, node), self.compiler.prop_atom(x, e.prop, y)]
         if e.datatype is not None:
             test = in_datatype(y, e.datatype)
             if test:
-                self.emit("cls-avf", origin, body, filters=[cond.test(f"!({test})")], violation=(x, y),
+                self.compiler.emit("cls-avf", origin, body, filters=[cond.test(f"!({test})")], violation=(x, y),
                           message=f"{{x}} has a value outside {nm(e.datatype)} for {nm(e.prop.iri)}")
         elif e.filler is not None and e.filler.node != THING:
-            self.emit("cls-avf", origin, body, Atom(y, T, sparql(e.filler.node)))
+            self.compiler.emit("cls-avf", origin, body, Atom(y, T, sparql(e.filler.node)))
 
 
 __all__ = ["DIFFERENT_READS", "RestrictionRules", "nm", "term_before"]

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from pyoxigraph import NamedNode
 
-from ..store import Store
+from ..stores.base import Store
 from .datatypes import empty_range_rules, range_rules
 from .generic import generic_rules
 from .guard import guard_rules
@@ -23,7 +23,7 @@ def compile_ontology(store: Store, graph: NamedNode) -> RuleSet:
     Raises :class:`~topostore.errors.RuleCompileError` naming the rule and atom
     when a SWRL rule or an axiom cannot be translated, or when a rule would be
     too large for the store to evaluate safely (:mod:`.guard`).  What the rules
-    do not reason completely is in ``notices`` (published at LOAD, see :mod:`topostore.notices`).
+    do not reason completely is in ``notices`` (published at LOAD, see :mod:`topostore.compile.notices`).
     """
     reader = TBoxReader(store, graph)
     tbox = reader.read()

@@ -33,10 +33,10 @@ from collections.abc import Iterator
 
 from pyoxigraph import NamedNode
 
-from ..notices import INCOMPLETE, Notice
-from ..store import Store
-from ..vocab import THING
+from ..rdf.vocab import THING
+from ..stores.base import Store
 from .model import Expr, Prop, TBox, describe
+from .notices import INCOMPLETE, Notice
 from .owl import OwlCompiler
 
 #: Axiom kinds of the report (the groups of the LOAD warning).

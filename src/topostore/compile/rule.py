@@ -14,7 +14,7 @@ from dataclasses import dataclass, field
 
 from pyoxigraph import NamedNode
 
-from ..vocab import AUX, TYPE, is_internal, is_skolem
+from ..rdf.vocab import AUX, TYPE, is_internal, is_skolem
 from .condition import Condition, render
 
 #: A read key: ("p", predicate IRI), ("t", class IRI) for ``?x rdf:type <C>``,
@@ -227,7 +227,7 @@ class RuleSet:
     object_properties: set[NamedNode] = field(default_factory=set)
     #: predicates whose entailed-only conclusions are published (see vocab.ENTAILED)
     entailed_predicates: set[NamedNode] = field(default_factory=set)
-    #: what the compilation set aside or reasons only in part (topostore.notices.Notice)
+    #: what the compilation set aside or reasons only in part (topostore.compile.notices.Notice)
     notices: list = field(default_factory=list)
     #: SQWRL queries of the ontology by name (compile.sqwrl.SqwrlQuery), run like named queries
     queries: dict = field(default_factory=dict)

@@ -8,8 +8,8 @@ from __future__ import annotations
 
 from pyoxigraph import NamedNode
 
-from ..terms import INTEGER_TYPES
-from ..vocab import AUX, DECLARED_DIFFERENT, DIFFERENCE_CANDIDATE, DIFFERENT, OWL, RDF, RDFS, XSD
+from ..rdf.terms import INTEGER_TYPES
+from ..rdf.vocab import AUX, DECLARED_DIFFERENT, DIFFERENCE_CANDIDATE, DIFFERENT, OWL, RDF, RDFS, XSD
 from . import data_ranges
 from .condition import Condition, exists
 from .rule import Atom

@@ -28,8 +28,8 @@ from dataclasses import dataclass, field
 from pyoxigraph import Literal
 
 from ..errors import RuleCompileError
-from ..terms import Term
-from ..vocab import SQWRL_PREFIX
+from ..rdf.terms import Term
+from ..rdf.vocab import SQWRL_PREFIX
 
 _AGGREGATES = {"count": "COUNT", "countDistinct": "COUNT", "min": "MIN", "max": "MAX", "sum": "SUM", "avg": "AVG"}
 _SUPPORTED = {"select", "selectDistinct", "columnNames", "orderBy", "orderByDescending", "limit", *_AGGREGATES}

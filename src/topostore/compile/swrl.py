@@ -15,14 +15,14 @@ from dataclasses import dataclass, field
 from pyoxigraph import Literal, NamedNode
 
 from ..errors import RuleCompileError
-from ..notices import SQWRL_QUERY, Notice
-from ..store import Store
-from ..terms import Term, sparql
-from ..vocab import DIFFERENT_FROM, ENTAILED_PREFIX, SAME_AS, SWRL, SWRLA, TYPE, is_skolem, rdfs, swrl
+from ..rdf.terms import Term, sparql
+from ..rdf.vocab import DIFFERENT_FROM, ENTAILED_PREFIX, SAME_AS, SWRL, SWRLA, TYPE, is_skolem, rdfs, swrl
+from ..stores.base import Store
 from . import builtins, sqwrl
 from . import condition as cond
 from .condition import Condition
 from .model import Expr, TBoxReader, is_datatype
+from .notices import SQWRL_QUERY, Notice
 from .rule import Atom, Rule
 from .snippets import candidate_atom, different_atom, in_datatype
 

@@ -15,9 +15,9 @@ to translate SWRL Atom" and Pellet drops the rule.
 * a rule whose lists cannot be read (a list cell with two ``rdf:first``, a list
   that loops or is cut short) is skipped: its triples are not loaded;
 * a repaired rule that still cannot be compiled is skipped by the loader
-  (:mod:`topostore.ontology_files`); an untouched one refuses the file as before;
+  (:mod:`topostore.ontology.files`); an untouched one refuses the file as before;
 
-and says what it did in :class:`~topostore.notices.Notice` s.  The repaired rule
+and says what it did in :class:`~topostore.compile.notices.Notice` s.  The repaired rule
 is written back as a flat list, and list cells no rule reaches any more are
 dropped, so a SAVE afterwards writes only well-formed rules.
 """
@@ -29,10 +29,10 @@ from dataclasses import dataclass, field
 
 from pyoxigraph import Literal, NamedNode, Triple
 
-from ..notices import RULE_REPAIRED, RULE_SKIPPED, Notice
-from ..skolem import fresh_skolem
-from ..terms import Term
-from ..vocab import FIRST, NIL, REST, SWRL, TYPE, is_skolem, rdf, rdfs, swrl
+from ..rdf.skolem import fresh_skolem
+from ..rdf.terms import Term
+from ..rdf.vocab import FIRST, NIL, REST, SWRL, TYPE, is_skolem, rdf, rdfs, swrl
+from .notices import RULE_REPAIRED, RULE_SKIPPED, Notice
 
 #: Atom kinds of the SWRL RDF vocabulary.
 ATOM_KINDS = frozenset(SWRL + k for k in (

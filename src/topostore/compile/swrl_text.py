@@ -35,9 +35,8 @@ from dataclasses import dataclass
 from pyoxigraph import Literal, NamedNode, Triple
 
 from ..errors import InvalidNameError, RuleCompileError
-from ..store import Store, fresh_skolem
-from ..terms import Term, entity
-from ..vocab import (
+from ..rdf.terms import Term, entity
+from ..rdf.vocab import (
     ASSERTED,
     FIRST,
     NIL,
@@ -56,6 +55,7 @@ from ..vocab import (
     swrl,
     xsd,
 )
+from ..stores.base import Store, fresh_skolem
 
 #: Namespace of the variables of rules added as text, as the OWL API writes them.
 VARIABLE_NS = SWRL_VARIABLE_NS

@@ -1,6 +1,6 @@
 """A fleet on one shared map: one client and one thread per robot, all through one store.
 
-Each robot patrols as in the single-robot demo (:func:`.patrol._step`), but
+Each robot patrols as in the single-robot demo (:func:`.step.take_step`), but
 with a client of its own (its name is the client name) and in a thread of its
 own; the store (a directory or a SPARQL server) holds the one shared map.  A
 step reads the map, decides and writes (a location's ``visitedAt`` is shared
@@ -18,13 +18,12 @@ import time
 from collections.abc import Callable
 
 from ..errors import TopostoreError
+from .step import describe, take_step
 from .world import World
 
 
 def run_fleet(world: World, steps: int, seed: int, time_scale: float, emit: Callable[[str], None], result) -> None:
     """Run ``steps`` steps of every robot concurrently; moves are appended to ``result`` as they happen."""
-    from .patrol import _describe, _step
-
     lock = threading.Lock()  # the trace: one move printed whole
     step_lock = threading.Lock()  # one robot's read-decide-write step at a time
     failures: list[BaseException] = []
@@ -33,13 +32,13 @@ def run_fleet(world: World, steps: int, seed: int, time_scale: float, emit: Call
         rng = random.Random(seed * 1000 + index)
         client = world.robot_client(robot)
         try:
-            for step in range(1, steps + 1):
+            for number in range(1, steps + 1):
                 with step_lock:
-                    move = _step(world, robot, step, rng, client)
+                    move = take_step(world, robot, number, rng, client)
                 with lock:
                     result.moves.append(move)
-                    for i, line in enumerate(_describe(move)):
-                        emit(f"[{robot} step {step}] {line.strip()}" if i == 0 else f"[{robot}]   {line.strip()}")
+                    for i, line in enumerate(describe(move)):
+                        emit(f"[{robot} step {number}] {line.strip()}" if i == 0 else f"[{robot}]   {line.strip()}")
                 if not move.consistent:
                     raise TopostoreError(f"the ontology became inconsistent after {robot} moved; stopping")
                 if time_scale:

@@ -18,7 +18,7 @@ from pathlib import Path
 from typing import Any
 
 from ..errors import TopostoreError
-from ..ontology import Ontology
+from ..ontology.facade import Ontology
 from .layout import CLUSTER_ABOVE, Layout, cluster_links, layout
 
 #: Output formats matplotlib writes that make sense for a map.

@@ -19,7 +19,7 @@ from ..armor import ArmorService
 from ..armor_api.armor_client import ArmorClient
 from ..armor_api.armor_query_client import lexical_form
 from ..errors import TopostoreError
-from ..ontology import Ontology
+from ..ontology.facade import Ontology
 from ..resources import default_ontology, ontology_dir
 
 REFERENCE = "surveillance"

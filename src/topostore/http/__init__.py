@@ -1,4 +1,4 @@
-"""Standard RDF interfaces mounted into the HTTP service (server.py).
+"""Standard RDF interfaces mounted into the HTTP service (app.py).
 
 :mod:`.gsp` is the SPARQL 1.1 Graph Store HTTP Protocol on each reference
 (read and write the asserted graph, upload ontology files), :mod:`.description`

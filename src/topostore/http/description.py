@@ -16,8 +16,8 @@ from starlette.requests import Request
 from starlette.responses import Response
 
 from ..armor.reference import Reference
+from ..rdf.vocab import ASSERTED, FORMATS, RDF, RDFS, SD, TYPE, VOID, XSD
 from ..sparql.results import choose_format, render_graph
-from ..vocab import ASSERTED, FORMATS, RDF, RDFS, SD, TYPE, VOID, XSD
 
 #: W3C format IRIs of the result formats the endpoint offers (sparql/results.py).
 RESULT_FORMATS = ("SPARQL_Results_JSON", "SPARQL_Results_XML", "SPARQL_Results_CSV", "SPARQL_Results_TSV",

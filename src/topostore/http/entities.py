@@ -2,8 +2,8 @@
 
 :func:`describe_entity` answers ``GET /references/{name}/entities/{entity}``.
 A fact is *inferred* when it holds in the graphs queries see (asserted ∪
-inferred, :meth:`~topostore.ontology.Ontology.visible_graphs`) but was not
-asserted; its ``why`` is the derivation tree of :mod:`topostore.explain`, the
+inferred, :meth:`~topostore.ontology.facade.Ontology.visible_graphs`) but was not
+asserted; its ``why`` is the derivation tree of :mod:`topostore.ontology.explain`, the
 same one ``GET .../explain`` and ``topostore explain`` give, so the page never
 has an explanation of its own.  Every other entity a fact names is given by
 ``name`` and ``iri``, which the page turns into a link.
@@ -22,10 +22,10 @@ from typing import TYPE_CHECKING, Any
 from pyoxigraph import Literal, NamedNode, Triple
 
 from ..errors import InvalidNameError
-from ..explain import Explainer
-from ..ontology_files import SCHEMA_NAMESPACES
-from ..terms import Term, iri, value_key
-from ..vocab import (
+from ..ontology.explain import Explainer
+from ..ontology.files import SCHEMA_NAMESPACES
+from ..rdf.terms import Term, iri, value_key
+from ..rdf.vocab import (
     ASSERTED,
     DECLARATION_TYPES,
     DIFFERENT_FROM,
@@ -45,7 +45,7 @@ from ..vocab import (
 )
 
 if TYPE_CHECKING:  # pragma: no cover
-    from ..ontology import Ontology
+    from ..ontology.facade import Ontology
 
 #: Prefixed names the inspector accepts and shows for the standard vocabularies.
 PREFIXES = {"rdf": RDF, "rdfs": RDFS, "owl": OWL, "xsd": XSD}

@@ -33,13 +33,13 @@ from starlette.routing import Route
 from ..armor.codes import CommandError
 from ..armor.reference import Change, Delta, Reference
 from ..errors import TopostoreError
-from ..ontology import Ontology
+from ..ontology.facade import Ontology
+from ..rdf.vocab import ASSERTED, ENTAILED, INFERRED, OWL, RDF, RDFS, TYPE, XSD
 from ..sparql.results import GRAPH_FORMATS, NotAcceptable, choose_format, render_graph
-from ..vocab import ASSERTED, ENTAILED, INFERRED, OWL, RDF, RDFS, TYPE, XSD
 from .security import error
 
 if TYPE_CHECKING:  # pragma: no cover
-    from ..server import Api
+    from .app import Api
 
 #: Media types accepted in PUT and POST bodies.
 UPLOAD_FORMATS = {
@@ -109,7 +109,7 @@ def ontology_iri(triples: list[Triple]) -> str | None:
 
 
 class GraphStore:
-    """The protocol's handlers over one :class:`~topostore.server.Api` (service and configuration)."""
+    """The protocol's handlers over one :class:`~topostore.http.app.Api` (service and configuration)."""
 
     def __init__(self, api: Api) -> None:
         self.api = api

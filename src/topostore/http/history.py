@@ -1,7 +1,7 @@
 """The inspector's history: the change events of each reference (what each REASON added and removed), kept.
 
 Recording a reference's events costs every REASON a snapshot of its inferred
-graph (:mod:`topostore.events` takes snapshots only while someone listens), so
+graph (:mod:`topostore.ontology.events` takes snapshots only while someone listens), so
 a robot that nobody inspects pays nothing: recording starts when the inspector
 page is first opened for the reference (or its history first asked for) and
 goes on until the reference is dropped or recording is stopped (``DELETE``).
@@ -22,12 +22,12 @@ from typing import TYPE_CHECKING, Any
 
 from pyoxigraph import Triple
 
-from ..events import Event
+from ..ontology.events import Event
 from .entities import View
 
 if TYPE_CHECKING:  # pragma: no cover
     from ..armor.reference import Reference
-    from ..ontology import Ontology
+    from ..ontology.facade import Ontology
 
 DEFAULT_KEEP = 500
 #: facts of one event kept for the page (one REASON of a large map can change thousands)

@@ -31,9 +31,9 @@ from starlette.routing import Route
 
 from ..armor.codes import CommandError
 from ..errors import TopostoreError
-from ..explain import constant
-from ..queries import named_queries
-from ..vocab import ASSERTED
+from ..ontology.explain import constant
+from ..ontology.named_queries import named_queries
+from ..rdf.vocab import ASSERTED
 from .entities import (
     DEFAULT_LIMIT,
     MAX_LIMIT,
@@ -57,11 +57,11 @@ from .security import error
 
 if TYPE_CHECKING:  # pragma: no cover
     from ..armor.reference import Reference
-    from ..ontology import Ontology
+    from ..ontology.facade import Ontology
     from ..reason.consistency import Violation
-    from ..server import Api
+    from .app import Api
 
-STATIC = Path(__file__).parents[1] / "static"
+STATIC = Path(__file__).parent / "static"
 _PROPERTY_KINDS = ("object property", "data property", "annotation property")
 #: The page runs only the service's own scripts and talks only to the service: a name in the ontology
 #: that reaches HTML unescaped (YASGUI's result table writes IRIs into links as they are) cannot run
@@ -157,7 +157,7 @@ def proof_texts(value: Any) -> list[str]:
 
 def violation_proof(view: View, v: Violation) -> dict[str, Any] | None:
     """Why a check matched: its rule's premises under the violation's individuals, each explained
-    (the facts that clash, down to asserted ones), in the tree format of :mod:`topostore.explain`."""
+    (the facts that clash, down to asserted ones), in the tree format of :mod:`topostore.ontology.explain`."""
     rule = next((r for r in view.onto.rules.checks if r.name == v.rule and r.origin == v.axiom), None)
     if rule is None:
         return None
@@ -202,7 +202,7 @@ def _limit(request: Request, default: int) -> int:
 
 
 class InspectorRoutes:
-    """The handlers, bound to the server's :class:`~topostore.server.Api` (its service)."""
+    """The handlers, bound to the server's :class:`~topostore.http.app.Api` (its service)."""
 
     def __init__(self, api: Api) -> None:
         self.api = api

@@ -24,15 +24,16 @@ from ..compile.builtins import FUNCTIONS
 from ..compile.model import Expr, Prop, TBox, TBoxReader
 from ..compile.rule import Rule, RuleSet
 from ..errors import RuleCompileError
-from ..explain import Explainer
+from ..ontology.explain import Explainer
+from ..rdf.terms import sparql
+from ..rdf.vocab import ASSERTED, PROTOTYPE_PREFIX, TYPE, rdfs
 from ..reason.materialize import Materializer
-from ..store import Store
-from ..terms import sparql
-from ..vocab import ASSERTED, PROTOTYPE_PREFIX, TYPE, rdfs
+from ..stores import memory_store
+from ..stores.base import Store
 from .entities import View, display_name
 
 if TYPE_CHECKING:  # pragma: no cover
-    from ..ontology import Ontology
+    from ..ontology.facade import Ontology
 
 _CHARACTERISTIC_NAMES = {"FunctionalProperty": "Functional", "InverseFunctionalProperty": "InverseFunctional",
                          "TransitiveProperty": "Transitive", "SymmetricProperty": "Symmetric",
@@ -190,7 +191,7 @@ class Prototypes:
 
     def __init__(self, rules: RuleSet) -> None:
         self.rules = rules
-        self.store = Store()
+        self.store = memory_store()
         self.store.use_functions(FUNCTIONS)
         classes = sorted(rules.named_classes, key=lambda c: c.value)
         self.of = {c: NamedNode(f"{PROTOTYPE_PREFIX}inspector:{i}") for i, c in enumerate(classes)}

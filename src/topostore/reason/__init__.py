@@ -1,7 +1,7 @@
 """Reasoning: the fixpoint of the compiled rules, consistency checks, classification.
 
 Rules and the loop that runs them are kept apart: :mod:`.materialize` only
-needs a :class:`~topostore.compile.RuleSet` and a :class:`~topostore.store.Store`;
+needs a :class:`~topostore.compile.RuleSet` and a :class:`~topostore.stores.base.Store`;
 :mod:`.incremental` maintains its result after asserted changes.
 """
 

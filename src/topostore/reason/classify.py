@@ -12,13 +12,13 @@ from pyoxigraph import NamedNode, Triple
 
 from ..compile.builtins import FUNCTIONS
 from ..compile.rule import RuleSet
-from ..store import Store
-from ..vocab import ASSERTED, INFERRED, PROTOTYPE_PREFIX, THING, TYPE, is_internal
+from ..rdf.vocab import ASSERTED, INFERRED, PROTOTYPE_PREFIX, THING, TYPE, is_internal
+from ..stores import memory_store
 from .materialize import Materializer
 
 
 def classify(rules: RuleSet) -> dict[NamedNode, set[NamedNode]]:
-    scratch = Store()
+    scratch = memory_store()
     scratch.use_functions(FUNCTIONS)
     classes = sorted(rules.named_classes, key=lambda c: c.value)
     protos = {c: NamedNode(f"{PROTOTYPE_PREFIX}{i}") for i, c in enumerate(classes)}

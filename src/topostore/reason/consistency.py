@@ -9,8 +9,8 @@ from pyoxigraph import Literal, NamedNode
 
 from ..compile.generic import PREFIXES
 from ..compile.rule import Rule, RuleSet
-from ..store import Store, unskolem
-from ..vocab import ASSERTED, AUX, INFERRED
+from ..rdf.vocab import ASSERTED, AUX, INFERRED
+from ..stores.base import Store, unskolem
 
 #: How many matches of one check are reported (one is enough to be inconsistent).
 MAX_REPORTED = 20

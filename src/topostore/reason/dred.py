@@ -13,7 +13,7 @@ from __future__ import annotations
 from pyoxigraph import NamedNode, Triple
 
 from ..compile.rule import Rule
-from ..vocab import ASSERTED, AUX, INFERRED, NEW_AUX, NEW_INFERRED
+from ..rdf.vocab import ASSERTED, AUX, INFERRED, NEW_AUX, NEW_INFERRED
 from . import limits
 from .materialize import ReasonStats
 from .plan import KeyCounts, plan_where

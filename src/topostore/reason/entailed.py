@@ -23,8 +23,8 @@ from collections.abc import Sequence
 from pyoxigraph import NamedNode, Quad, Triple
 
 from ..compile.rule import RuleSet
-from ..store import Store
-from ..vocab import ASSERTED, AUX, ENTAILED, ENTAILED_PREFIX, INFERRED
+from ..rdf.vocab import ASSERTED, AUX, ENTAILED, ENTAILED_PREFIX, INFERRED
+from ..stores.base import Store
 
 
 def publish_entailed(store: Store, rules: RuleSet) -> None:

@@ -42,8 +42,8 @@ from pyoxigraph import Literal, NamedNode, Triple
 
 from ..compile.condition import TEST
 from ..compile.rule import Atom, Rule, join_order
-from ..terms import sparql
-from ..vocab import INTERNAL, TYPE
+from ..rdf.terms import sparql
+from ..rdf.vocab import INTERNAL, TYPE
 from .plan import nested
 
 #: Old values of cleanly replaced facts (scratch; never visible to queries).

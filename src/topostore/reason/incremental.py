@@ -74,10 +74,10 @@ from pyoxigraph import NamedNode, Quad, Triple
 
 from ..compile.generic import PREFIXES
 from ..compile.rule import Rule, RuleSet
-from ..lexer import negates_exists  # noqa: F401 - public here since the first release
-from ..store import Store, data_update
-from ..terms import Term
-from ..vocab import ASSERTED, AUX, DELTA, ENTAILED_PREFIX, INFERRED, NEW_AUX, NEW_INFERRED, TYPE
+from ..rdf.lexer import negates_exists  # noqa: F401 - public here since the first release
+from ..rdf.terms import Term
+from ..rdf.vocab import ASSERTED, AUX, DELTA, ENTAILED_PREFIX, INFERRED, NEW_AUX, NEW_INFERRED, TYPE
+from ..stores.base import Store, data_update
 from . import flip, window
 from .consistency import Violation, check_consistency
 from .dred import DeletionPhases, can_prove

@@ -6,7 +6,7 @@ would hold the reference's lock forever.  Every REASON therefore runs under a
 :class:`Budget`: the reasoning loops call :func:`tick` once per semi-naive round
 with the number of facts the round derived and the rules that derived them; past
 a limit :class:`ReasonLimitExceeded` is raised naming those rules, and
-:meth:`topostore.ontology.Ontology.reason` rolls the change back.
+:meth:`topostore.ontology.facade.Ontology.reason` rolls the change back.
 
 The budget travels in a context variable, so the loops need no extra
 parameters: ``with limits.budget(ReasonLimits()): ...`` around a REASON, and
@@ -48,7 +48,7 @@ DEFAULTS = ReasonLimits()
 
 
 def set_defaults(limits: ReasonLimits) -> None:
-    """Replace the limits every new :class:`~topostore.ontology.Ontology` starts with."""
+    """Replace the limits every new :class:`~topostore.ontology.facade.Ontology` starts with."""
     global DEFAULTS
     limits.check()
     DEFAULTS = limits

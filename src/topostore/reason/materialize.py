@@ -23,8 +23,8 @@ from pyoxigraph import NamedNode
 
 from ..compile.generic import PREFIXES
 from ..compile.rule import Rule, RuleSet
-from ..store import Store
-from ..vocab import ASSERTED, AUX, DELTA, INFERRED, NEW_AUX, NEW_INFERRED, TYPE
+from ..rdf.vocab import ASSERTED, AUX, DELTA, INFERRED, NEW_AUX, NEW_INFERRED, TYPE
+from ..stores.base import Store
 from . import limits
 from .plan import KeyCounts, is_small, plan_where
 from .triggers import Present, Triggers

@@ -15,7 +15,7 @@ from pyoxigraph import NamedNode
 
 from ..compile.generic import PREFIXES
 from ..compile.rule import Rule
-from ..store import Store
+from ..stores.base import Store
 from .materialize import ReasonStats
 from .plan import KeyCounts, is_small, key_counts
 from .scratch import rule_start

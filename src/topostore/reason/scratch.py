@@ -10,7 +10,7 @@ from collections.abc import Iterable
 from pyoxigraph import NamedNode
 
 from ..compile.rule import Rule
-from ..vocab import AUX, INFERRED, INTERNAL
+from ..rdf.vocab import AUX, INFERRED, INTERNAL
 from . import flip
 
 #: Scratch graphs of incremental maintenance (never visible to queries).

@@ -45,8 +45,8 @@ from pyoxigraph import Literal, Triple
 
 from ..compile.condition import BIND, TEST
 from ..compile.rule import Rule
-from ..terms import Term
-from ..vocab import XSD
+from ..rdf.terms import Term
+from ..rdf.vocab import XSD
 
 #: A linear form: coefficient per variable name (without ``?``) and a constant.
 Linear = tuple[dict[str, Fraction], Fraction]

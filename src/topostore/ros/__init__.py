@@ -3,7 +3,7 @@
 Modules: :mod:`.msgs` generates the ``armor_msgs`` Python classes with genpy,
 :mod:`.workspace` keeps them (and the ``armor`` launcher package) in a cache
 folder and prints the environment that makes ROS tools find them,
-:mod:`.node` is the ROS node, :mod:`.command` the ``topostore ros`` command.
+:mod:`.node` is the ROS node, :mod:`topostore.cli.ros` the ``topostore ros`` command.
 
 Nothing here imports ``rospy`` at module level: the rest of topostore works
 without ROS.  :func:`require_ros` is the one place that makes ROS importable.

@@ -1,13 +1,13 @@
 """The node's events topic: every REASON on any reference, as the JSON event the HTTP stream sends.
 
 ``~events`` (``/armor_service/events`` for the default node name), type
-``std_msgs/String``; each message's ``data`` is :func:`topostore.events.event_json`
+``std_msgs/String``; each message's ``data`` is :func:`topostore.ontology.events.event_json`
 of one REASON — the same text as the ``data:`` line of
 ``GET /references/{name}/events`` — with ``reference`` naming the reference, so
 one topic serves every reference, including those LOADed after the node started.
 
 Reasoning never waits for ROS: each reference has an
-:class:`~topostore.events.EventHub` subscription (a bounded queue, ``queue_size``
+:class:`~topostore.ontology.events.EventHub` subscription (a bounded queue, ``queue_size``
 events) drained by a thread of its own, which hands the message to rospy's
 publisher queue (:data:`ROS_QUEUE` messages per subscriber; rospy sends from its own thread).
 When the drain falls behind, the oldest events are dropped and the next message
@@ -34,11 +34,11 @@ import threading
 from typing import TYPE_CHECKING, Any
 
 from ..armor.codes import CommandError
-from ..events import DEFAULT_QUEUE, Event, Subscription, event_json
+from ..ontology.events import DEFAULT_QUEUE, Event, Subscription, event_json
 
 if TYPE_CHECKING:  # pragma: no cover
     from ..armor import ArmorService
-    from ..ontology import Ontology
+    from ..ontology.facade import Ontology
 
 #: Relative to the node: ``/armor_service/events``, ``/robot1/armor_service/events`` under ``__ns:=/robot1``.
 EVENTS_TOPIC = "~events"

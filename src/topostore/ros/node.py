@@ -21,7 +21,7 @@ from typing import Any
 
 from ..armor import ArmorService
 from ..armor.types import ArmorResponse, ArmorResponseList
-from ..events import DEFAULT_QUEUE
+from ..ontology.events import DEFAULT_QUEUE
 from . import DEFAULT_NODE_NAME, SERIALIZED_SERVICE, SINGLE_SERVICE, require_ros
 from .events import EventsTopic
 from .workspace import Workspace

@@ -3,7 +3,7 @@
 :mod:`.guard` refuses operations that would reach outside the service
 (``SERVICE``, ``LOAD``), :mod:`.results` turns rows and triples into the
 standard result formats, :mod:`.execute` runs queries and updates on a
-reference with its lock and a time limit.  :mod:`topostore.server` only maps
+reference with its lock and a time limit.  :mod:`topostore.http.app` only maps
 HTTP requests onto these functions.
 """
 

@@ -25,8 +25,8 @@ import pyoxigraph as ox
 from pyoxigraph import DefaultGraph, Literal, Quad, QueryBoolean, QuerySolutions, Triple
 
 from ..errors import QueryError
-from ..store import skolemize
-from ..vocab import ASSERTED, OWL, RDF, RDFS, XSD
+from ..rdf.vocab import ASSERTED, OWL, RDF, RDFS, XSD
+from ..stores.base import skolemize
 from .guard import check_user_sparql
 from .results import ResultFormat, boolean_json, choose_format, render_graph, render_table, solutions_json
 from .target import LockedOntology, WritableOntology

@@ -10,7 +10,7 @@ Three kinds of danger, one lexical scan (:func:`scan`):
 * **Internal functions.**  The compiled rules call extension functions in
   ``urn:topostore:fn:`` (e.g. ``pow``); they are not part of the public query
   language, so an IRI in that namespace is refused (user queries are also run
-  without them, see :meth:`topostore.ontology.Ontology.sparql`).
+  without them, see :meth:`topostore.ontology.facade.Ontology.sparql`).
 * **Parser and planner exhaustion.**  Oxigraph's parser and optimizer recurse
   on the query's structure: about 2,200 nested ``{`` or 900 nested function
   calls overflow the native stack and kill the whole process (SIGSEGV), and
@@ -30,8 +30,8 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 from ..errors import QueryError
-from ..lexer import CLOSE, COMMENT, IRI, KEYWORD, OPEN, PUNCT, decode_escapes, tokens
-from ..vocab import FUNCTION_PREFIX
+from ..rdf.lexer import CLOSE, COMMENT, IRI, KEYWORD, OPEN, PUNCT, decode_escapes, tokens
+from ..rdf.vocab import FUNCTION_PREFIX
 
 FORBIDDEN = ("SERVICE", "LOAD")
 #: namespace of the extension functions only compiled rules may call
@@ -81,7 +81,7 @@ class Scan:
 
 
 def scan(text: str, stop_tokens: int | None = None) -> Scan:
-    """Lex ``text`` once (:func:`topostore.lexer.tokens`); stops early (the answer is already
+    """Lex ``text`` once (:func:`topostore.rdf.lexer.tokens`); stops early (the answer is already
     "too many") past ``stop_tokens``."""
     out = Scan()
     depth = 0

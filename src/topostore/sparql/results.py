@@ -23,7 +23,7 @@ import pyoxigraph as ox
 from pyoxigraph import BlankNode, Literal, NamedNode, QueryResultsFormat, RdfFormat, Triple
 
 from ..errors import TopostoreError
-from ..vocab import RDF, XSD
+from ..rdf.vocab import RDF, XSD
 
 _XSD_STRING = XSD + "string"
 _RDF_LANG_STRING = RDF + "langString"

@@ -12,8 +12,8 @@ from typing import TYPE_CHECKING, Protocol
 
 from pyoxigraph import Triple
 
-if TYPE_CHECKING:  # pragma: no cover - the ontology module imports sparql.guard
-    from ..ontology import Ontology
+if TYPE_CHECKING:  # pragma: no cover - ontology/ sits above sparql/ in docs/architecture.md
+    from ..ontology.facade import Ontology
 
 
 class LockedOntology(Protocol):

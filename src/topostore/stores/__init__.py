@@ -7,7 +7,8 @@
   pair (``URL/query`` and ``URL/update`` as Oxigraph's server lays them out,
   ``URL`` itself when it ends in ``/sparql``; both overridable).
 
-:func:`open_store` turns a setting into a :class:`~topostore.store.Store`;
+:func:`open_store` turns a setting into a :class:`~topostore.stores.base.Store`
+(:func:`memory_store` is the fresh in-memory one);
 :func:`list_references` tells which references a durable setting holds.
 """
 
@@ -18,8 +19,9 @@ import urllib.parse
 from pathlib import Path
 
 from ..errors import RuleCompileError, StoreError
-from ..store import Store
-from ..vocab import POW_FUNCTION
+from ..rdf.vocab import POW_FUNCTION
+from .base import Store
+from .oxigraph import OxigraphStore
 
 StoreSpec = str | os.PathLike[str] | None
 
@@ -41,18 +43,21 @@ def reference_dir(spec: StoreSpec, reference: str) -> Path:
     return Path(spec) / name
 
 
+def memory_store() -> Store:
+    """A fresh, empty in-memory store (scratch graphs, parsing a file, a reference without a ``store`` setting)."""
+    return OxigraphStore()
+
+
 def open_store(spec: StoreSpec = None, reference: str | None = None, *, sync: bool = False,
                query_url: str | None = None, update_url: str | None = None) -> Store:
     """The store a ``store`` setting names, for ``reference`` (None: the setting itself is the store)."""
     which = kind(spec)
     if which == "memory":
-        return Store()
+        return memory_store()
     if which == "remote":
         from .remote import RemoteStore
 
         return RemoteStore(str(spec), reference=reference or "", query_url=query_url, update_url=update_url)
-    from .oxigraph import OxigraphStore
-
     path = reference_dir(spec, reference) if reference else Path(spec)
     try:
         path.mkdir(parents=True, exist_ok=True)
@@ -88,4 +93,4 @@ def check_rules(store: Store, rules) -> None:
                 "only runs on a memory or directory store")
 
 
-__all__ = ["open_store", "list_references", "check_rules", "kind", "reference_dir", "StoreSpec"]
+__all__ = ["open_store", "memory_store", "list_references", "check_rules", "kind", "reference_dir", "StoreSpec"]

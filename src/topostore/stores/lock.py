@@ -21,7 +21,7 @@ import uuid
 from pyoxigraph import Literal, NamedNode
 
 from ..errors import StoreLockedError
-from ..vocab import INTERNAL, XSD
+from ..rdf.vocab import INTERNAL, XSD
 from .remote import RemoteStore
 
 LOCK_GRAPH = NamedNode(INTERNAL + "graph:lock")

@@ -1,4 +1,4 @@
-"""pyoxigraph as a :class:`~topostore.store.Store`: in memory, or durable in a RocksDB directory.
+"""pyoxigraph as a :class:`~topostore.stores.base.Store`: in memory, or durable in a RocksDB directory.
 
 On disk, every commit of a transaction is one SPARQL update, which Oxigraph
 runs as one RocksDB transaction: a manipulation is written whole or not at
@@ -17,8 +17,8 @@ import pyoxigraph as ox
 from pyoxigraph import NamedNode, Quad
 
 from ..errors import QueryError, StoreError
-from ..store import Store, data_update, quad_data  # noqa: F401 - data_update: this module's since the first release
-from ..vocab import TYPE
+from ..rdf.vocab import TYPE
+from .base import Store, data_update, quad_data  # noqa: F401 - data_update: this module's since the first release
 
 
 class OxigraphStore(Store):
@@ -40,7 +40,7 @@ class OxigraphStore(Store):
         self._writes = 0  # write operations since the last compaction
         self._live_at_compaction = 0
         if self.durable:
-            self.load_forms()
+            self.forms.load()
 
     # ------------------------------------------------------------ primitives
     def _has(self, quad: Quad) -> bool:
@@ -117,11 +117,6 @@ class OxigraphStore(Store):
     def is_empty(self, graph: NamedNode) -> bool:
         self._flush_open()
         return next(iter(self._ox.quads_for_pattern(None, None, None, graph)), None) is None
-
-    def flush_to_disk(self) -> None:
-        """Make every commit so far survive a power loss (RocksDB flush)."""
-        if self.durable:
-            self._ox.flush()
 
     def close(self) -> None:
         if self.durable:

@@ -1,4 +1,4 @@
-"""A remote SPARQL 1.1 Query + Update endpoint pair as a :class:`~topostore.store.Store`.
+"""A remote SPARQL 1.1 Query + Update endpoint pair as a :class:`~topostore.stores.base.Store`.
 
 Several references share one server: each keeps its graphs under its own
 namespace (``urn:topostore:graph:asserted`` becomes
@@ -29,8 +29,8 @@ import pyoxigraph as ox
 from pyoxigraph import NamedNode, Quad, QueryResultsFormat, RdfFormat, Triple
 
 from ..errors import QueryError, StoreError
-from ..store import Store
-from ..vocab import INTERNAL
+from ..rdf.vocab import INTERNAL
+from .base import Store
 from .oxigraph import data_update
 
 GRAPH_PREFIX = INTERNAL + "graph:"
@@ -79,7 +79,7 @@ class RemoteStore(Store):
                                     headers=auth if isinstance(auth, dict) else None)
         #: HTTP requests sent (benchmarks report round trips per step)
         self.requests = 0
-        self.load_forms()
+        self.forms.load()
 
     # ------------------------------------------------------------ wire
     def _out(self, text: str) -> str:

@@ -1,0 +1,166 @@
+"""An ontology's documents: loading (all or nothing, rules compiled first) and saving.
+
+A part of :class:`topostore.ontology.facade.Ontology` (a mixin), apart from the facade
+because loading has rules of its own: a document that changes the schema is
+compiled on a scratch copy first, so an untranslatable rule leaves the ontology
+as it was.
+"""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Callable
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+from pyoxigraph import NamedNode, RdfFormat, Triple
+
+from ..compile import compile_ontology
+from ..compile.notices import RULE_REPAIRED, RULE_SKIPPED, Notice, grouped, publish
+from ..compile.swrl_repair import repair_rules, skip_rule
+from ..errors import IncompleteOntologyError, RuleCompileError
+from ..rdf.safeio import atomic_write
+from ..rdf.vocab import (
+    ASSERTED,
+    DIFFERENT_FROM,
+    FIRST,
+    OWL,
+    RDF,
+    RDFS,
+    REST,
+    STANFORD_SWRL,
+    SWRL,
+    SWRLB,
+    TYPE,
+    XSD,
+    owl,
+)
+from ..stores import check_rules, memory_store
+from ..stores.base import guess_format, serialize
+from .xml_literals import canonical_xml_literals
+
+if TYPE_CHECKING:  # pragma: no cover
+    from .facade import Ontology
+
+SCHEMA_NAMESPACES = (RDF, RDFS, OWL, SWRL, STANFORD_SWRL)
+_ABOX_PREDICATES = {TYPE, owl("sameAs"), DIFFERENT_FROM, FIRST, REST, owl("distinctMembers"), owl("members")}
+
+
+def is_schema_triple(t: Triple) -> bool:
+    """True for triples that change the rules (TBox axioms, SWRL rules), not just facts."""
+    p = t.predicate
+    if p == TYPE:
+        return isinstance(t.object, NamedNode) and t.object.value.startswith(SCHEMA_NAMESPACES) and t.object not in (
+            owl("NamedIndividual"), owl("Thing"), owl("AllDifferent"))
+    if p in _ABOX_PREDICATES:
+        return False
+    return p.value.startswith(SCHEMA_NAMESPACES)
+
+
+class OntologyFiles:
+    """Loading and saving: a named part of one :class:`~topostore.ontology.facade.Ontology` (``onto.files``).
+
+    It adds through the ontology (``add``, so the change ledger sees every triple) and reads its
+    ``store``, ``prefix``, ``rules`` and ``visible_graphs``; the compiled rules a load checked are
+    handed back to the ontology so they are not compiled twice.
+    """
+
+    def __init__(self, onto: Ontology) -> None:
+        self.onto = onto
+
+    def load(self, path: str | os.PathLike[str], fmt: str | None = None, base_iri: str | None = None,
+             progress: Callable[[int], None] | None = None) -> int:
+        """Add a document's triples to the asserted graph; all or nothing.
+
+        Rules are compiled before anything is added, so a file with a rule that
+        cannot be translated is refused and leaves the ontology as it was.
+        ``progress(n)`` is told how many triples have been parsed so far.
+        """
+        triples = self.onto.store.parse_file(path, fmt, base_iri, progress)
+        return self._add_document(triples, str(path))
+
+    def load_data(self, data: str | bytes, fmt: str = "turtle", base_iri: str | None = None) -> int:
+        triples = self.onto.store.parse_bytes(data, guess_format("x", fmt), base_iri)
+        return self._add_document(triples, "<data>")
+
+    def _add_document(self, triples: list[Triple], source: str) -> int:
+        """Add a document: its SWRL rules repaired first (:mod:`.compile.swrl_repair`), then
+        checked; what was repaired or set aside is published (warnings, log) and kept in
+        :attr:`load_notices` once the document is in."""
+        triples, unreadable = canonical_xml_literals(triples)
+        triples, notices = repair_rules(triples)
+        notices += unreadable
+        known = set(self.onto._rules.notices) if self.onto._rules is not None else set()
+        added, notices = self._add_checked(triples, notices)
+        self.onto.load_notices += notices
+        compiled = self.onto._rules.notices if self.onto._rules is not None else []
+        publish([*notices, *(n for n in compiled if n not in known)], source)
+        return added
+
+    def _add_checked(self, triples: list[Triple], repaired: list[Notice] | None = None) -> tuple[int, list[Notice]]:
+        """Add loaded triples; when they change the rules, compile first on a copy,
+        so that an untranslatable rule leaves the ontology untouched, and keep
+        that compilation (it is the one the new asserted graph gives).
+
+        A rule that was repaired (``repaired``) and still cannot be translated is
+        set aside (a notice) rather than refusing the document; any other
+        untranslatable rule refuses it.  Returns (triples added, notices).
+        """
+        notices = list(repaired or [])
+        if not any(is_schema_triple(t) for t in triples):
+            return self.onto.add(*triples), notices
+        while True:
+            scratch = memory_store()
+            scratch.add(self.onto.store.triples(graph=ASSERTED), ASSERTED)
+            scratch.add(triples, ASSERTED)
+            try:
+                rules = compile_ontology(scratch, ASSERTED)  # raises RuleCompileError, nothing added
+                break
+            except RuleCompileError as exc:
+                done = next((n for n in notices if n.kind == RULE_REPAIRED and n.node == exc.rule), None)
+                if done is None:
+                    raise
+                triples, skipped = skip_rule(triples, exc.rule, f"repaired ({done.reason}) but "
+                                             f"it still cannot be translated: {exc}")
+                notices = [skipped if n is done else n for n in notices]
+        if self.onto.strict:
+            _refuse_incomplete([*notices, *rules.notices])
+        check_rules(self.onto.store, rules)
+        added = self.onto.add(*triples)
+        self.onto._rules = rules
+        return added, notices
+
+    @property
+    def notices(self) -> list[Notice]:
+        """What loading repaired or set aside, then what the current rules set aside or reason only in part."""
+        return [*self.onto.load_notices, *self.onto.rules.notices]
+
+    def notice_lines(self) -> list[str]:
+        """:attr:`notices` one line per kind (and axiom kind), naming each rule or axiom with its reason."""
+        return grouped(self.notices)
+
+    def triples(self, inferred: bool = False) -> list[Triple]:
+        graphs = self.onto.visible_graphs() if inferred else [ASSERTED]
+        return self.onto.store.dump(graphs, restore_literals_from=ASSERTED)
+
+    def serialize(self, fmt: str | RdfFormat = "turtle", inferred: bool = False) -> bytes:
+        rdf_format = guess_format("x", fmt) if isinstance(fmt, str) else fmt
+        prefixes = {"owl": OWL, "rdf": RDF, "rdfs": RDFS, "xsd": XSD, "swrl": SWRL,
+                    "swrlb": SWRLB, "": self.onto.prefix}
+        return serialize(self.triples(inferred), rdf_format, prefixes)
+
+    def save(self, path: str | os.PathLike[str], fmt: str | None = None, inferred: bool = False) -> Path:
+        """Write asserted (or asserted + inferred) triples; the format follows the extension."""
+        path = Path(path)
+        data = self.serialize(guess_format(path, fmt), inferred)
+        return atomic_write(path, data)  # temporary file beside it, never through a symlink, removed on failure
+
+
+def _refuse_incomplete(notices: list[Notice]) -> None:
+    """Strict loading: IncompleteOntologyError naming every axiom not reasoned completely or rule skipped."""
+    blocking = [n for n in notices if n.incomplete or n.kind == RULE_SKIPPED]
+    if blocking:
+        raise IncompleteOntologyError("refused (strict): " + "; ".join(grouped(blocking)))
+
+
+__all__ = ["OntologyFiles", "is_schema_triple"]

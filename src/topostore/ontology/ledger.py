@@ -1,0 +1,204 @@
+"""The change ledger: the one record of asserted changes since the last successful REASON, and their undo.
+
+Every assertion and retraction of an :class:`~topostore.ontology.facade.Ontology` is
+recorded here before the store changes (:meth:`ChangeLedger.record`), as a net change
+(adding then removing a triple cancels out).  Three readers share that record:
+
+* **incremental REASON** reads the net added and removed triples (:meth:`ChangeLedger.net_changes`)
+  while they are few enough for incremental maintenance to pay off;
+* **rollback**: reasoning can fail after asserted changes were applied (a rule that cannot be
+  compiled, a rule with no finite closure stopped by :mod:`topostore.reason.limits`).  Leaving
+  such a change in place would make *every* later REASON fail, and a half-computed inferred
+  graph would answer queries, so :func:`all_or_nothing` (the decorator on
+  :meth:`Ontology.reason`) undoes the recorded changes and recomputes the previous closure,
+  then re-raises;
+* **a caller's unit of work** (an aRMOR manipulation, :meth:`ChangeLedger.undoable`): the changes
+  made inside it are undone, newest first, when it fails.
+
+The record starts at the first successful REASON (before it there is no state to go back to, and
+a large file loaded before reasoning is not copied) and is emptied by each successful REASON, so
+it stays as small as the change.  Triples are keyed as the store holds them (Oxigraph
+canonicalises numbers), and a removed literal is kept in the form the user asserted, so an undo
+restores it exactly.
+"""
+
+from __future__ import annotations
+
+import functools
+import logging
+from collections.abc import Callable, Iterable, Iterator
+from contextlib import contextmanager
+from typing import TYPE_CHECKING, Any, TypeVar
+
+from pyoxigraph import Literal, Triple
+
+from ..errors import TopostoreError
+from ..rdf.vocab import ASSERTED, AUX, ENTAILED, INFERRED
+from ..reason import limits
+
+if TYPE_CHECKING:  # pragma: no cover
+    from ..stores.base import Store
+    from .facade import Ontology
+
+logger = logging.getLogger("topostore.journal")  # the log keeps its name from the module this one replaced
+F = TypeVar("F", bound=Callable[..., Any])
+
+#: The reasoning modes of :meth:`Ontology.reason`.
+MODES = ("auto", "incremental", "full")
+#: Below this many net changes incremental REASON is always worth trying, whatever the share.
+MIN_TRACKED = 1000
+
+
+def check_mode(mode: str) -> None:
+    """Refuse an unknown reasoning mode (a wrong argument, not a failed REASON: nothing is undone)."""
+    if mode not in MODES:
+        raise ValueError(f"unknown reasoning mode {mode!r}; use auto, incremental or full")
+
+
+class ChangeLedger:
+    """Net asserted changes since the last successful REASON, and the steps of open units of work."""
+
+    def __init__(self) -> None:
+        #: stored form → triple as written, for triples added / removed since the last successful REASON
+        self.added: dict[Triple, Triple] = {}
+        self.removed: dict[Triple, Triple] = {}
+        #: recording starts at the first successful REASON
+        self.recording = False
+        #: whether the record may drive an incremental REASON (false after a schema change or a large change)
+        self.incremental = False
+        #: (triples, added) steps applied since the outermost open unit of work began
+        self._steps: list[tuple[list[Triple], bool]] = []
+        self._open = 0
+
+    # ------------------------------------------------------------ recording
+    def record(self, store: Store, triples: Iterable[Triple], added: bool, limit: float = 0) -> None:
+        """Call before the store changes, with ``triples`` deduplicated.
+
+        ``limit``: the number of net changes above which an incremental REASON no longer pays off
+        (at least :data:`MIN_TRACKED`); past it the record only serves rollback.
+        """
+        if not self.recording and not self._open:
+            return
+        triples = list(triples)
+        changed = [t for t, present in zip(triples, store.contains_each(triples, ASSERTED), strict=True)
+                   if present != added]  # adding a present triple or removing an absent one changes nothing
+        if self._open:
+            self._steps.append((changed if added else [_as_written(store, t) for t in changed], added))
+        if not self.recording:
+            return
+        mine, other = (self.added, self.removed) if added else (self.removed, self.added)
+        for t in changed:
+            key = store.stored_form(t)  # both sides hold triples as the store does, so they cancel
+            if key in other:
+                del other[key]
+            else:
+                mine[key] = t if added else _as_written(store, t)
+        if self.incremental and len(self.added) + len(self.removed) > max(limit, MIN_TRACKED):
+            self.incremental = False
+
+    def net_changes(self) -> tuple[list[Triple], list[Triple]]:
+        """The net added and removed triples (as stored) for an incremental REASON; empty when not usable."""
+        if not self.incremental:
+            return [], []
+        return list(self.added), list(self.removed)
+
+    def stop_incremental(self) -> None:
+        """The next REASON cannot be incremental (the schema changed); rollback still has the record."""
+        self.incremental = False
+
+    def succeeded(self, incremental_ready: bool) -> None:
+        """A REASON succeeded: its state is the one to return to from now on."""
+        self.added.clear()
+        self.removed.clear()
+        self.recording = True
+        self.incremental = incremental_ready
+
+    # ------------------------------------------------------------ undo
+    def revert(self, store: Store) -> int:
+        """Undo every recorded change since the last successful REASON on the asserted graph (the caller
+        forgets its reasoning state); returns how many triples changed.  Open units of work have nothing
+        left to undo afterwards."""
+        added, removed = list(self.added.values()), list(self.removed.values())
+        self.added.clear()
+        self.removed.clear()
+        self._steps.clear()
+        self.incremental = False
+        with store.transaction():
+            return store.remove(added, ASSERTED) + store.add(removed, ASSERTED)
+
+    @contextmanager
+    def undoable(self, onto: Ontology) -> Iterator[None]:
+        """A unit of work: the asserted changes made inside are undone (newest first) if it raises."""
+        start = len(self._steps)
+        self._open += 1
+        try:
+            yield
+        except BaseException:
+            steps = self._steps[start:]
+            with self._paused(), onto.store.transaction():
+                for triples, added in reversed(steps):
+                    if added:
+                        onto.remove(*triples)
+                    else:
+                        onto.add(*triples)
+            del self._steps[start:]
+            raise
+        finally:
+            self._open -= 1
+            if not self._open:
+                self._steps.clear()
+
+    @contextmanager
+    def _paused(self) -> Iterator[None]:
+        """Undo steps are recorded in the net record but are no steps of a unit of work themselves."""
+        steps = self._steps
+        self._steps = []
+        try:
+            yield
+        finally:
+            self._steps = steps
+
+
+def _as_written(store: Store, t: Triple) -> Triple:
+    """A retracted triple with its literal in the form the user asserted (so an undo restores it exactly)."""
+    if isinstance(t.object, Literal):
+        return Triple(t.subject, t.predicate, store.original_literal(ASSERTED, t.subject, t.predicate, t.object))
+    return t
+
+
+def all_or_nothing(reason: F) -> F:
+    """Wrap ``Ontology.reason``: check the mode, run it under the ontology's limits; on failure
+    restore the last good state."""
+
+    @functools.wraps(reason)
+    def wrapper(self: Ontology, *args: Any, **kwargs: Any) -> Any:
+        check_mode(kwargs.get("mode", args[1] if len(args) > 1 else "auto"))
+        try:
+            with limits.budget(self.limits):
+                report = reason(self, *args, **kwargs)
+        except Exception:
+            if self.ledger.recording:
+                _restore(self, reason)
+            raise
+        self.ledger.succeeded(self.incremental_ready())
+        return report
+
+    return wrapper  # type: ignore[return-value]
+
+
+def _restore(onto: Ontology, reason: Callable[..., Any]) -> None:
+    """Revert the asserted changes since the last good REASON and recompute its closure."""
+    reverted = onto.ledger.revert(onto.store)
+    onto.forget_reasoning()
+    logger.warning("reasoning failed; %d asserted change(s) since the last successful REASON were reverted", reverted)
+    try:
+        with limits.budget(onto.limits):
+            reason(onto, mode="full")
+        onto.ledger.succeeded(onto.incremental_ready())
+    except TopostoreError:  # even the previous state cannot be reasoned (e.g. limits lowered): asserted facts only
+        logger.exception("the state before the change could not be reasoned either; inferred facts cleared")
+        onto.store.update(" ; ".join(f"DROP SILENT GRAPH {g}" for g in (INFERRED, AUX, ENTAILED)))
+        onto.forget_reasoning()
+
+
+__all__ = ["ChangeLedger", "all_or_nothing", "check_mode", "MODES"]

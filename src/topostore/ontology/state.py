@@ -1,0 +1,68 @@
+"""The reasoning state a durable store keeps, so that a reopened ontology is never stale nor a mix.
+
+Three persisted keys (``Store.meta``): ``dirty`` (asserted facts changed since
+the last REASON), ``inferred`` ("valid" once a REASON finished, "building"
+while one runs) and ``consistent`` (its outcome).  ``inferred`` is set to
+"building" before REASON writes anything, so a process killed half-way leaves
+a mark, and the reopened ontology rebuilds the inferred graphs from the
+asserted ones instead of serving a mix of old and new conclusions.
+"""
+
+from __future__ import annotations
+
+import logging
+from typing import TYPE_CHECKING
+
+from ..rdf.vocab import ASSERTED
+
+if TYPE_CHECKING:  # pragma: no cover
+    from ..stores.base import Store
+    from .facade import Ontology
+
+logger = logging.getLogger("topostore.store")
+
+
+def note_changed(store: Store) -> None:
+    """Asserted facts are about to change (joins the manipulation's transaction)."""
+    if store.durable and not store.meta.get("dirty"):
+        store.meta_set("dirty", True)
+
+
+def begin_reason(store: Store) -> None:
+    """REASON is about to rewrite the inferred graphs."""
+    if store.durable:
+        store.meta_set("inferred", "building")
+
+
+def end_reason(store: Store, consistent: bool) -> None:
+    """REASON finished: the inferred graphs are the closure of the asserted ones."""
+    if store.durable:
+        with store.transaction():
+            store.meta_set("inferred", "valid")
+            store.meta_set("dirty", False)
+            store.meta_set("consistent", consistent)
+
+
+def reopen(onto: Ontology) -> str:
+    """Bring an ontology opened on a durable store to a sound state; says how ("new", "reopened", "rebuilt").
+
+    Finished inferred graphs are kept as they are (with the consistency they
+    had); unfinished ones, or an inconsistent state whose explanations are
+    needed, are rebuilt by a full REASON over the asserted graph.  That REASON
+    runs while the :class:`Ontology` is being built (its constructor calls this),
+    so it is said on the ``topostore.store`` log and in the result ("rebuilt").
+    """
+    store = onto.store
+    if not store.durable or store.is_empty(ASSERTED):
+        return "new"
+    meta = store.meta
+    if meta.get("inferred") == "valid" and (meta.get("consistent") is True or meta.get("dirty")):
+        onto.restore_report(bool(meta.get("consistent")), dirty=bool(meta.get("dirty")))
+        return "reopened"
+    why = "unfinished" if meta.get("inferred") != "valid" else "inconsistent (its violations are not kept)"
+    logger.warning("the store's inferred graphs are %s: rebuilding them with a full REASON while opening it", why)
+    onto.reason(mode="full")
+    return "rebuilt"
+
+
+__all__ = ["note_changed", "begin_reason", "end_reason", "reopen"]

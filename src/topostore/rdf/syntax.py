@@ -1,0 +1,112 @@
+"""RDF syntaxes: which format a file is in, parsing into skolemised triples, writing.
+
+Parsing is pyoxigraph's; this module adds what users need around it: the format
+from a name or an extension, ``file:line: cause`` errors (with the line found by
+an XML parser when Oxigraph gives none), refusal of XML entity expansion, progress
+reports for big files, and blank nodes skolemised (:mod:`topostore.rdf.skolem`).
+"""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Callable, Iterable
+from pathlib import Path
+
+import pyoxigraph as ox
+from pyoxigraph import RdfFormat, Triple
+
+from ..errors import LoadError
+from .safeio import check_xml_entities
+from .skolem import skolemize
+
+#: How often (in triples) parsing reports progress.
+PROGRESS_EVERY = 5000
+
+_FORMATS = {
+    ".owl": RdfFormat.RDF_XML,
+    ".rdf": RdfFormat.RDF_XML,
+    ".xml": RdfFormat.RDF_XML,
+    ".ttl": RdfFormat.TURTLE,
+    ".turtle": RdfFormat.TURTLE,
+    ".nt": RdfFormat.N_TRIPLES,
+    ".ntriples": RdfFormat.N_TRIPLES,
+    ".n3": RdfFormat.N3,
+    ".jsonld": RdfFormat.JSON_LD,
+}
+FORMAT_NAMES = {
+    "rdfxml": RdfFormat.RDF_XML,
+    "rdf/xml": RdfFormat.RDF_XML,
+    "xml": RdfFormat.RDF_XML,
+    "owl": RdfFormat.RDF_XML,
+    "turtle": RdfFormat.TURTLE,
+    "ttl": RdfFormat.TURTLE,
+    "ntriples": RdfFormat.N_TRIPLES,
+    "nt": RdfFormat.N_TRIPLES,
+    "n-triples": RdfFormat.N_TRIPLES,
+}
+
+
+def guess_format(path: str | os.PathLike[str], explicit: str | RdfFormat | None = None) -> RdfFormat:
+    """The RDF format of a file, from an explicit name or its extension (RDF/XML by default)."""
+    if isinstance(explicit, RdfFormat):
+        return explicit
+    if explicit:
+        try:
+            return FORMAT_NAMES[explicit.lower()]
+        except KeyError:
+            raise LoadError(f"unknown RDF format {explicit!r}; use one of {', '.join(FORMAT_NAMES)}") from None
+    return _FORMATS.get(Path(path).suffix.lower(), RdfFormat.RDF_XML)
+
+
+def _syntax_error_message(source: str, exc: SyntaxError, data: bytes, fmt: RdfFormat) -> str:
+    """'file:line: cause', finding the line with rdflib when Oxigraph gives none (RDF/XML)."""
+    cause = str(exc.msg if hasattr(exc, "msg") and exc.msg else exc)
+    line = exc.lineno
+    if line is None and fmt == RdfFormat.RDF_XML:
+        line = _xml_error_line(data)
+    where = f"{source}:{line}" if line else f"{source}:?"
+    return f"{where}: not valid {fmt.name}: {cause}"
+
+
+def _xml_error_line(data: bytes) -> int | None:
+    import xml.sax
+
+    class _Handler(xml.sax.handler.ContentHandler):
+        pass
+
+    try:
+        xml.sax.parseString(data, _Handler())
+    except xml.sax.SAXParseException as exc:
+        return exc.getLineNumber()
+    except (xml.sax.SAXException, ValueError):  # pragma: no cover - other failures locate nothing
+        return None
+    return None
+
+
+def parse_triples(
+    data: bytes | str, fmt: RdfFormat, base_iri: str | None = None, source: str = "<input>",
+    progress: Callable[[int], None] | None = None,
+) -> list[Triple]:
+    """A document's triples, skolemised; ``progress(n)`` is called every ``PROGRESS_EVERY`` triples parsed."""
+    if isinstance(data, str):
+        data = data.encode("utf-8", errors="surrogatepass")
+    if fmt == RdfFormat.RDF_XML:
+        check_xml_entities(data, source)
+    try:
+        quads = []
+        for quad in ox.parse(data, format=fmt, base_iri=base_iri, rename_blank_nodes=True):
+            quads.append(quad)
+            if progress is not None and len(quads) % PROGRESS_EVERY == 0:
+                progress(len(quads))
+    except SyntaxError as exc:
+        raise LoadError(_syntax_error_message(source, exc, data, fmt)) from exc
+    except ValueError as exc:
+        raise LoadError(f"{source}: {exc}") from exc
+    return [skolemize(Triple(q.subject, q.predicate, q.object)) for q in quads]
+
+
+def serialize(triples: Iterable[Triple], fmt: RdfFormat, prefixes: dict[str, str] | None = None) -> bytes:
+    return ox.serialize(list(triples), format=fmt, prefixes=prefixes or None)
+
+
+__all__ = ["FORMAT_NAMES", "PROGRESS_EVERY", "guess_format", "parse_triples", "serialize"]

@@ -1,0 +1,241 @@
+"""Names, IRIs and typed literals.
+
+This module is the only place where user text becomes RDF terms.  Every term
+that later appears inside a SPARQL string is a pyoxigraph object rendered by
+pyoxigraph itself, so no user text is ever pasted into a query.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from decimal import Decimal, InvalidOperation
+
+from pyoxigraph import BlankNode, Literal, NamedNode, RdfFormat, parse
+
+from ..errors import InvalidNameError, InvalidValueError, UnknownTypeError
+from .vocab import PLACEHOLDER_PREDICATE, PLACEHOLDER_SUBJECT, XSD
+
+Term = NamedNode | BlankNode | Literal
+
+# Characters that may not appear in an IRI (RFC 3987) and would let a name
+# break out of ``<...>`` in SPARQL.  Whitespace and control characters too.
+_ILLEGAL_IRI_CHARS = re.compile(r'[\s<>"{}|^`\\\x00-\x1f\x7f]')
+_SCHEME = re.compile(r"^[A-Za-z][A-Za-z0-9+.\-]*:")
+
+
+def validate_name(name: str, what: str = "name") -> str:
+    """Return ``name`` if it can be appended to a namespace to make an IRI.
+
+    Rejects empty names, whitespace and the IRI-illegal characters
+    ``< > " { } | ^ ` \\`` so that no name can alter a SPARQL query.
+    """
+    if not isinstance(name, str):
+        raise InvalidNameError(f"{what} must be a string, got {type(name).__name__}")
+    if name == "":
+        raise InvalidNameError(f"{what} is empty")
+    bad = _ILLEGAL_IRI_CHARS.search(name)
+    if bad:
+        raise InvalidNameError(
+            f"{what} {name!r} contains the character {bad.group()!r}, which is not allowed in an IRI"
+        )
+    return name
+
+
+def iri(value: str) -> NamedNode:
+    """A NamedNode from an absolute IRI, with a clear error when it is not one."""
+    validate_name(value, "IRI")
+    if not _SCHEME.match(value):
+        raise InvalidNameError(f"{value!r} is not an absolute IRI (no scheme)")
+    try:
+        return NamedNode(value)
+    except ValueError as exc:  # pyoxigraph's own IRI validation
+        raise InvalidNameError(f"{value!r} is not a valid IRI: {exc}") from exc
+
+
+def entity(name: str, prefix: str) -> NamedNode:
+    """IRI of an entity named by a user.
+
+    ``<http://full/iri>`` is taken as a full IRI; anything else is appended to
+    ``prefix`` (aRMOR's ``args[1] + "#" + name`` convention).
+    """
+    if isinstance(name, str) and len(name) > 2 and name.startswith("<") and name.endswith(">"):
+        return iri(name[1:-1])
+    return iri(prefix + validate_name(name))
+
+
+# ---------------------------------------------------------------- datatypes
+
+INTEGER_TYPES: dict[str, tuple[int | None, int | None]] = {
+    "integer": (None, None),
+    "long": (-(2**63), 2**63 - 1),
+    "int": (-(2**31), 2**31 - 1),
+    "short": (-(2**15), 2**15 - 1),
+    "byte": (-(2**7), 2**7 - 1),
+    "nonNegativeInteger": (0, None),
+    "positiveInteger": (1, None),
+    "nonPositiveInteger": (None, 0),
+    "negativeInteger": (None, -1),
+    "unsignedLong": (0, 2**64 - 1),
+    "unsignedInt": (0, 2**32 - 1),
+    "unsignedShort": (0, 2**16 - 1),
+    "unsignedByte": (0, 2**8 - 1),
+}
+REAL_TYPES = set(INTEGER_TYPES) | {"decimal"}
+
+#: aRMOR value type names (case-insensitive) → XSD local name.  DOUBLE is a
+#: real xsd:double here (aRMOR narrowed it to float: a bug, spec §7 item 9).
+ARMOR_TYPES: dict[str, str] = {
+    "STRING": "string",
+    "INT": "int32",
+    "INTEGER": "int32",
+    "LONG": "long",
+    "FLOAT": "float",
+    "DOUBLE": "double",
+    "BOOL": "boolean",
+    "BOOLEAN": "boolean",
+    "DECIMAL": "decimal",
+    "SHORT": "short",
+    "BYTE": "byte",
+    "DATETIME": "dateTime",
+    "DATE": "date",
+}
+
+_INT_RE = re.compile(r"^[+-]?[0-9]+$")
+_DEC_RE = re.compile(r"^[+-]?([0-9]+(\.[0-9]*)?|\.[0-9]+)$")
+_FLOAT_RE = re.compile(r"^[+-]?(([0-9]+(\.[0-9]*)?|\.[0-9]+)([eE][+-]?[0-9]+)?|INF|NaN)$")
+
+
+def _java_float_text(value: float) -> str:
+    """Render like Java's Float/Double.toString for the common cases ("3" → "3.0")."""
+    if math.isnan(value):
+        return "NaN"
+    if math.isinf(value):
+        return "INF" if value > 0 else "-INF"
+    if value == int(value) and abs(value) < 1e7:
+        return f"{int(value)}.0"
+    text = repr(value)
+    if "e" in text:
+        mantissa, exponent = text.split("e")
+        if "." not in mantissa:
+            mantissa += ".0"
+        return f"{mantissa}E{int(exponent)}"
+    return text
+
+
+def typed_literal(value: str, type_name: str) -> Literal:
+    """Parse ``value`` as aRMOR type ``type_name`` (STRING, INTEGER, LONG, ...).
+
+    Raises :class:`UnknownTypeError` for an unsupported type name and
+    :class:`InvalidValueError` when the text is not a valid value of the type.
+    """
+    if not isinstance(value, str):
+        raise InvalidValueError(f"value must be a string, got {type(value).__name__}")
+    local = ARMOR_TYPES.get(type_name.upper()) if isinstance(type_name, str) else None
+    if local is None:
+        raise UnknownTypeError(
+            f"unsupported value type {type_name!r}; use one of {', '.join(sorted(ARMOR_TYPES))}"
+        )
+    if local == "int32":
+        # aRMOR parses INT/INTEGER as a 32-bit Java int and asserts xsd:integer
+        literal_of(value, "int")
+        return literal_of(value, "integer")
+    return literal_of(value, local)
+
+
+#: longest integer accepted (Python refuses to parse more than 4,300 digits; no robot measures more)
+_MAX_INTEGER_DIGITS = 4000
+
+
+def literal_of(value: str, local: str) -> Literal:
+    """A canonical literal of XSD type ``local`` from its lexical text, validated."""
+    datatype = NamedNode(XSD + local)
+    text = value.strip() if local != "string" else value
+    if local == "string":
+        return Literal(value)
+    if local in INTEGER_TYPES:
+        if not _INT_RE.match(text):
+            raise InvalidValueError(f"{value[:40]!r} is not a valid xsd:{local}")
+        if len(text) > _MAX_INTEGER_DIGITS:
+            raise InvalidValueError(f"an xsd:{local} of {len(text)} digits is out of range "
+                                    f"(at most {_MAX_INTEGER_DIGITS} digits are accepted)")
+        number = int(text)
+        low, high = INTEGER_TYPES[local]
+        if (low is not None and number < low) or (high is not None and number > high):
+            raise InvalidValueError(f"{value!r} is out of range for xsd:{local}")
+        return Literal(str(number), datatype=datatype)
+    if local == "decimal":
+        if not _DEC_RE.match(text):
+            raise InvalidValueError(f"{value!r} is not a valid xsd:decimal")
+        return Literal(text, datatype=datatype)
+    if local in ("float", "double"):
+        if not _FLOAT_RE.match(text):
+            raise InvalidValueError(f"{value!r} is not a valid xsd:{local}")
+        number = float(text.replace("INF", "inf"))
+        if local == "float" and not math.isinf(number) and abs(number) > 3.4028235e38:
+            raise InvalidValueError(f"{value!r} is out of range for xsd:float")
+        return Literal(_java_float_text(number), datatype=datatype)
+    if local == "boolean":
+        # aRMOR: true iff equal to "true" ignoring case; we also accept 1/0 and
+        # refuse anything else instead of silently storing false.
+        lowered = text.lower()
+        if lowered in ("true", "1"):
+            return Literal("true", datatype=datatype)
+        if lowered in ("false", "0"):
+            return Literal("false", datatype=datatype)
+        raise InvalidValueError(f"{value!r} is not a valid xsd:boolean (true/false)")
+    if local in ("dateTime", "date"):
+        pattern = (
+            r"^-?\d{4,}-\d{2}-\d{2}T\d{2}:\d{2}:\d{2}(\.\d+)?(Z|[+-]\d{2}:\d{2})?$"
+            if local == "dateTime"
+            else r"^-?\d{4,}-\d{2}-\d{2}(Z|[+-]\d{2}:\d{2})?$"
+        )
+        if not re.match(pattern, text):
+            raise InvalidValueError(f"{value!r} is not a valid xsd:{local}")
+        return Literal(text, datatype=datatype)
+    raise UnknownTypeError(f"unsupported datatype xsd:{local}")  # pragma: no cover
+
+
+def value_key(term: Term) -> tuple:
+    """A key equal for two literals exactly when they denote the same OWL data value.
+
+    ``"5"^^xsd:long`` and ``"5"^^xsd:integer`` share a key (the store keeps only
+    one of them); floats, doubles and reals stay apart, as in OWL 2.
+    """
+    if not isinstance(term, Literal):
+        return ("term", str(term))
+    dt = term.datatype.value
+    local = dt[len(XSD):] if dt.startswith(XSD) else None
+    try:
+        if local in REAL_TYPES:
+            return ("real", Decimal(term.value).normalize())
+        if local == "float":
+            return ("float", float(term.value.replace("INF", "inf")))
+        if local == "double":
+            return ("double", float(term.value.replace("INF", "inf")))
+        if local == "boolean":
+            return ("boolean", term.value in ("true", "1"))
+    except (InvalidOperation, ValueError):
+        pass
+    return ("literal", term.value, dt, term.language)
+
+
+def sparql(term: Term) -> str:
+    """SPARQL text of a term, rendered by pyoxigraph (escaped, never pasted)."""
+    if isinstance(term, BlankNode):
+        raise InvalidNameError("blank nodes cannot be named in a query")
+    return str(term)
+
+
+def parse_term(text: str) -> Term | None:
+    """The RDF term written in N-Triples syntax (``<iri>``, ``"lex"^^<dt>``), None when ``text`` is not one.
+
+    Parsed by pyoxigraph as the object of a one-line document, so the rules of the
+    syntax (escapes, datatypes, language tags) are pyoxigraph's, not a hand-written lexer's.
+    """
+    line = f"{PLACEHOLDER_SUBJECT} {PLACEHOLDER_PREDICATE} {text} ."
+    try:
+        quads = list(parse(line.encode("utf-8", errors="surrogatepass"), format=RdfFormat.N_TRIPLES))
+    except (SyntaxError, ValueError):
+        return None
+    return quads[0].object if len(quads) == 1 else None

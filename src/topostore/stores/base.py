@@ -1,0 +1,418 @@
+"""The one store interface every other module talks to.
+
+All reasoning goes through :meth:`Store.query` and :meth:`Store.update` with
+graphs named explicitly, so the same rules run against Oxigraph in memory or on
+disk (:mod:`.oxigraph`) and against a remote SPARQL 1.1 server (:mod:`.remote`).
+
+Two details of the store are handled here so that nobody else has to know them:
+
+* Blank nodes are *skolemised* on load (``urn:topostore:bnode:…``): the rule
+  compiler must name class expressions and SWRL atoms inside SPARQL text, which
+  is impossible for blank nodes.  They become blank nodes again on save.
+* Oxigraph keeps numbers in canonical form (``"7"^^xsd:long`` is stored as
+  ``"7"^^xsd:integer``).  The asserted lexical form and datatype of every
+  literal is remembered so that answers and saved files show what the user wrote.
+"""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Callable, Hashable, Iterable, Iterator, Mapping
+from contextlib import contextmanager
+
+from pyoxigraph import DefaultGraph, Literal, NamedNode, Quad, RdfFormat, Triple
+
+from ..rdf.safeio import read_regular_file
+from ..rdf.skolem import fresh_skolem, skolem, skolemize, unskolem, unskolemize
+from ..rdf.syntax import FORMAT_NAMES, PROGRESS_EVERY, guess_format, parse_triples, serialize
+from ..rdf.terms import Term, value_key
+from ..rdf.vocab import FIRST, NIL, REST, SKOLEM_PREFIX, TYPE
+from .literal_forms import FORMS, LiteralForms
+from .meta import META, PersistedState
+
+
+def quad_data(quads: list[Quad]) -> str:
+    """``GRAPH g { s p o . }`` blocks for INSERT/DELETE DATA, from pyoxigraph terms (escaped by pyoxigraph)."""
+    by_graph: dict[str, list[str]] = {}
+    for q in quads:
+        by_graph.setdefault(str(q.graph_name), []).append(f"{q.subject} {q.predicate} {q.object} .")
+    return " ".join(f"GRAPH {g} {{ {' '.join(lines)} }}" for g, lines in by_graph.items())
+
+
+def data_update(adds: list[Quad], removes: list[Quad]) -> str:
+    """One update request removing then adding quads (empty text when there is nothing to do)."""
+    ops = []
+    if removes:
+        ops.append(f"DELETE DATA {{ {quad_data(removes)} }}")
+    if adds:
+        ops.append(f"INSERT DATA {{ {quad_data(adds)} }}")
+    return " ;\n".join(ops)
+
+
+class Store:
+    """The store interface every other module talks to: quads in, SPARQL in, results out.
+
+    This class holds what every implementation shares (parsing, transactions) and
+    two named parts: the literal forms users wrote (``forms``, :class:`.literal_forms.LiteralForms`)
+    and the small persisted state of a reference (``persisted``, :class:`.meta.PersistedState`),
+    on top of a few primitives each implementation provides: ``_has``,
+    ``_match``, ``_commit``, ``_run_update``, ``_run_query`` and ``_drop``.
+    Implementations: :class:`topostore.stores.oxigraph.OxigraphStore` (memory
+    or RocksDB on disk) and :class:`topostore.stores.remote.RemoteStore` (a
+    SPARQL 1.1 Query + Update endpoint pair); :func:`topostore.stores.open_store`
+    picks one from a ``store`` setting and :func:`topostore.stores.memory_store` gives a fresh in-memory one
+    (this base never builds a subclass itself).
+
+    Writes (``add``/``remove``/``meta_set``) are grouped by :meth:`transaction`
+    into one atomic commit; reads inside a transaction see its pending writes.
+    """
+
+    #: Can the compiled rules use Oxigraph's LATERAL joins on this store?
+    supports_lateral = True
+    #: Can this store run extension functions handed to it (:meth:`use_functions`)?
+    custom_functions = True
+    #: Does this store outlive the process (disk, remote server)?
+    durable = False
+    #: every read and write is a network round trip: callers batch them into few requests
+    round_trips = False
+
+    def __init__(self) -> None:
+        #: how each committed literal was written (Oxigraph canonicalises numbers)
+        self.forms = LiteralForms(self)
+        #: the small JSON state kept beside the data (``meta``/``meta_set``)
+        self.persisted = PersistedState(self)
+        # quad key -> (quad, present after commit) while a transaction is open
+        self._pending: dict[tuple, tuple[Quad, bool]] | None = None
+        # quad key -> present in the committed store, learnt during the open transaction (saves round trips)
+        self._known: dict[tuple, bool] = {}
+        self._depth = 0
+        #: SPARQL extension functions by IRI (the rule compiler's, see :meth:`use_functions`)
+        self.functions: dict[NamedNode, Callable[..., Term | None]] = {}
+
+    def use_functions(self, functions: Mapping[NamedNode, Callable[..., Term | None]]) -> None:
+        """Let SPARQL run on this store call ``functions`` (IRI -> Python function of RDF terms).
+
+        The compiled rules need one (swrlb:pow, :data:`topostore.compile.builtins.FUNCTIONS`);
+        the engine hands them over, so the store knows nothing of rules.  A store that cannot
+        run them (``custom_functions`` false) keeps them unused; such rules are refused at load
+        (:func:`topostore.stores.check_rules`).
+        """
+        self.functions.update(functions)
+
+    # ------------------------------------------------------------ the parts, as every caller reads them
+    @property
+    def meta(self) -> dict[str, object]:
+        """The small JSON state a durable store keeps beside the data (settings, flags)."""
+        return self.persisted.values
+
+    def meta_set(self, key: str, value: object) -> None:
+        """Persist ``key`` (JSON value) with the current transaction; no-op on a memory store."""
+        self.persisted.set(key, value)
+
+    def original_literal(self, graph: NamedNode, s: Term, p: NamedNode, o: Literal) -> Literal:
+        """The literal as the user asserted it (lexical form and datatype)."""
+        return self.forms.original_literal(graph, s, p, o)
+
+    def restore(self, term: Term) -> Term:
+        """A literal as users wrote it, when that value was written in one form only."""
+        return self.forms.restore(term)
+
+    def stored_form(self, t: Triple) -> Triple:
+        """The triple as this store holds it once added (Oxigraph canonicalises some literals)."""
+        return self.forms.stored_form(t)
+
+    # ------------------------------------------------------------ primitives (implementations)
+    def _has(self, quad: Quad) -> bool:
+        raise NotImplementedError
+
+    def _has_many(self, quads: list[Quad]) -> list[bool]:
+        """Presence of several quads (one round trip where that matters)."""
+        return [self._has(q) for q in quads]
+
+    def _match(self, s, p, o, graph) -> Iterator[Quad]:
+        raise NotImplementedError
+
+    def _commit(self, adds: list[Quad], removes: list[Quad]) -> None:
+        """Apply removals then additions, all or nothing."""
+        raise NotImplementedError
+
+    def _run_update(self, text: str, prefixes: dict[str, str] | None) -> None:
+        raise NotImplementedError
+
+    def _run_query(self, text: str, graphs: list[NamedNode] | None, **kwargs):
+        raise NotImplementedError
+
+    def _drop(self, graph: NamedNode) -> None:
+        self._run_update(f"DROP SILENT GRAPH {graph}", None)
+
+    def close(self) -> None:
+        """Release the store (files, connections, locks)."""
+
+    # ------------------------------------------------------------ parsing
+    def parse_file(
+        self, path: str | os.PathLike[str], fmt: str | RdfFormat | None = None, base_iri: str | None = None,
+        progress: Callable[[int], None] | None = None,
+    ) -> list[Triple]:
+        """Parse a document into skolemised triples without touching the store."""
+        data = read_regular_file(path)  # regular files only, size-limited (LoadError otherwise)
+        return self.parse_bytes(data, guess_format(path, fmt), base_iri, source=str(path), progress=progress)
+
+    def parse_bytes(
+        self, data: bytes | str, fmt: RdfFormat, base_iri: str | None = None, source: str = "<input>",
+        progress: Callable[[int], None] | None = None,
+    ) -> list[Triple]:
+        """``progress(n)`` is called every ``PROGRESS_EVERY`` triples parsed (for progress displays)."""
+        return parse_triples(data, fmt, base_iri, source, progress)
+
+    # ------------------------------------------------------------ transactions
+    @contextmanager
+    def transaction(self) -> Iterator[Store]:
+        """Group writes into one atomic commit (nested calls join the outer one).
+
+        On an exception nothing of the transaction is written.  A SPARQL query
+        or update inside a transaction first commits what is pending, so that it
+        sees it; manipulations only read through the quad methods, so they stay
+        one commit.
+        """
+        if self._depth == 0:
+            self._pending = {}
+            self.persisted.pending = {}
+            self._known = {}
+        self._depth += 1
+        try:
+            yield self
+        except BaseException:
+            self._depth -= 1
+            if self._depth == 0:
+                self._pending, self._known = None, {}
+                self.persisted.pending = {}
+            raise
+        self._depth -= 1
+        if self._depth == 0:
+            self._flush()
+            self._pending, self._known = None, {}
+
+    def _flush(self) -> None:
+        """Commit the pending writes of the open transaction (also the persisted state)."""
+        pending, self._pending = self._pending or {}, ({} if self._depth else None)
+        meta = self.persisted.take_pending()
+        adds = [q for q, present in pending.values() if present]
+        removes = [q for q, present in pending.values() if not present]
+        if not adds and not removes and not meta:
+            return
+        forms_add, forms_remove = self.forms.record(adds, removes)
+        meta_add, meta_remove = self.persisted.quads(meta)
+        try:
+            self._commit(adds + forms_add + meta_add, removes + forms_remove + meta_remove)
+        except BaseException:
+            self.forms.record(removes, adds, undo=True)
+            raise
+        self.persisted.committed(meta)
+
+    def _key(self, quad: Quad) -> Hashable:
+        """What identifies a quad: itself, or with a literal object its value (``1`` = ``"01"^^xsd:int``)."""
+        o = quad.object
+        if isinstance(o, Literal):
+            return (quad.subject, quad.predicate, value_key(o), quad.graph_name)
+        return quad
+
+    def _present(self, quads: list[Quad], keys: list[tuple] | None = None) -> list[bool]:
+        """Whether each quad is in the store as the open transaction sees it (``keys``: their :meth:`_key`)."""
+        pending, known = self._pending or {}, self._known
+        keys = keys if keys is not None else [self._key(q) for q in quads]
+        unknown = [(q, k) for q, k in zip(quads, keys) if k not in pending and k not in known]
+        found = dict(zip((k for _, k in unknown), self._has_many([q for q, _ in unknown]), strict=True)) \
+            if unknown else {}
+        if self._pending is not None:
+            known.update(found)
+        return [pending[k][1] if k in pending else known[k] if k in known else found[k] for k in keys]
+
+    # ------------------------------------------------------------ quads
+    def add(self, triples: Iterable[Triple], graph: NamedNode) -> int:
+        """Add triples to ``graph``; returns how many were new."""
+        quads = list(dict.fromkeys(Quad(t.subject, t.predicate, t.object, graph) for t in triples))
+        keys = [self._key(q) for q in quads]  # a literal's value key is the costly part of a load: once each
+        with self.transaction():
+            new = [(q, k) for q, k, present in zip(quads, keys, self._present(quads, keys), strict=True) if not present]
+            for q, k in new:  # pending True: absent from the committed store; False: present there
+                self._toggle(q, True, k)
+        return len(new)
+
+    def _toggle(self, quad: Quad, add: bool, key: tuple | None = None) -> None:
+        """Record a pending add (or removal) of ``quad``: it cancels a pending change the other way,
+        and a second spelling of one value (``1`` and ``"01"^^xsd:int``) changes nothing more."""
+        key = key if key is not None else self._key(quad)
+        pending = self._pending.get(key)
+        if pending is None:
+            self._pending[key] = (quad, add)
+        elif pending[1] != add:
+            del self._pending[key]
+
+    def add_scratch(self, triples: Iterable[Triple], graph: NamedNode) -> None:
+        """Bulk-add to a reasoner's scratch graph (no literal forms recorded, no counting)."""
+        self._commit([Quad(t.subject, t.predicate, t.object, graph) for t in triples], [])
+
+    def remove(self, triples: Iterable[Triple], graph: NamedNode) -> int:
+        quads = list(dict.fromkeys(Quad(t.subject, t.predicate, t.object, graph) for t in triples))
+        keys = [self._key(q) for q in quads]
+        with self.transaction():
+            gone = [(q, k) for q, k, present in zip(quads, keys, self._present(quads, keys), strict=True) if present]
+            for q, k in gone:
+                self._toggle(q, False, k)
+        return len(gone)
+
+    def discard(self, triples: Iterable[Triple], graphs: Iterable[NamedNode]) -> None:
+        """Remove triples from reasoner graphs, present or not (no literal forms are kept for those)."""
+        graphs = tuple(graphs)
+        quads = [Quad(t.subject, t.predicate, t.object, g) for t in triples for g in graphs]
+        if quads:
+            self._commit([], quads)
+
+    def contains(self, t: Triple, graph: NamedNode) -> bool:
+        return self._present([Quad(t.subject, t.predicate, t.object, graph)])[0]
+
+    def contains_each(self, triples: list[Triple], graph: NamedNode) -> list[bool]:
+        """Whether each triple is in ``graph``: one look-up batch (one request on a remote store)."""
+        return self._present([Quad(t.subject, t.predicate, t.object, graph) for t in triples])
+
+    def contains_quads(self, quads: list[Quad]) -> list[bool]:
+        """Whether each quad (triple and graph) is in the store: one look-up batch, as :meth:`contains_each`."""
+        return self._present(quads)
+
+    def triples(
+        self, s: Term | None = None, p: NamedNode | None = None, o: Term | None = None, graph: NamedNode | None = None
+    ) -> Iterator[Triple]:
+        pending = self._pending
+        if pending is None:
+            for q in self._match(s, p, o, graph):
+                yield Triple(q.subject, q.predicate, q.object)
+            return
+        for q in list(self._match(s, p, o, graph)):
+            self._known[self._key(q)] = True
+            entry = pending.get(self._key(q))
+            if entry is None or entry[1]:
+                yield Triple(q.subject, q.predicate, q.object)
+        for q, present in list(pending.values()):
+            if present and _matches(q, s, p, o, graph):
+                yield Triple(q.subject, q.predicate, q.object)
+
+    def objects(self, s: Term, p: NamedNode, graph: NamedNode) -> list[Term]:
+        return [t.object for t in self.triples(s, p, None, graph)]
+
+    def objects_many(self, pairs: list[tuple[Term, NamedNode]], graph: NamedNode) -> dict[tuple, list[Term]]:
+        """:meth:`objects` of several (subject, predicate) pairs; one query where reads are round trips."""
+        found: dict[tuple, list[Term]] = {pair: [] for pair in pairs}
+        if not self.round_trips or not pairs:
+            return {pair: self.objects(*pair, graph) for pair in found}
+        rows = " ".join(f"({s} {p})" for s, p in found)
+        for r in self.query(f"SELECT ?s ?p ?o WHERE {{ VALUES (?s ?p) {{ {rows} }} ?s ?p ?o }}", graphs=[graph]):
+            found[(r["s"], r["p"])].append(r["o"])
+        return found
+
+    def subjects(self, p: NamedNode, o: Term, graph: NamedNode) -> list[Term]:
+        return [t.subject for t in self.triples(None, p, o, graph)]
+
+    def list_items(self, head: Term, graph: NamedNode) -> list[Term]:
+        """Members of an RDF collection (rdf:first/rdf:rest), in order."""
+        items: list[Term] = []
+        seen = set()
+        node = head
+        while node != NIL and node not in seen:
+            seen.add(node)
+            firsts = self.objects(node, FIRST, graph)
+            if not firsts:
+                break
+            items.append(firsts[0])
+            rests = self.objects(node, REST, graph)
+            if not rests:
+                break
+            node = rests[0]
+        return items
+
+    def census(self, graph: NamedNode) -> tuple[dict[str, int], dict[str, int]]:
+        """Facts per predicate and per class (objects of rdf:type) in ``graph``, keyed by SPARQL text."""
+        return self.census_many([graph])[graph]
+
+    def census_many(self, graphs: list[NamedNode]) -> dict[NamedNode, tuple[dict[str, int], dict[str, int]]]:
+        """:meth:`census` of several graphs, in one query.
+
+        The reasoner reads the size of its scratch graphs after every round; on
+        a store reached over HTTP each query is a round trip, so the graphs of
+        one round are counted together (an empty graph counts nothing).
+        """
+        self._flush_open()
+        found: dict[NamedNode, tuple[dict[str, int], dict[str, int]]] = {g: ({}, {}) for g in graphs}
+        if not graphs:
+            return found
+        values = " ".join(str(g) for g in found)
+        text = (f"SELECT ?g ?p ?c (COUNT(*) AS ?n) WHERE {{ VALUES ?g {{ {values} }} GRAPH ?g {{ ?s ?p ?o }} "
+                f"BIND(IF(sameTerm(?p, {TYPE}), ?o, \"\") AS ?c) }} GROUP BY ?g ?p ?c")
+        by_text = {str(g): g for g in found}
+        for r in self._run_query(text, None):
+            preds, classes = found[by_text[str(self._graph_name_in(r["g"]))]]
+            p, n = str(r["p"]), int(r["n"].value)
+            preds[p] = preds.get(p, 0) + n
+            if p == str(TYPE):
+                classes[str(r["c"])] = classes.get(str(r["c"]), 0) + n
+        return found
+
+    def _graph_name_in(self, graph: NamedNode) -> NamedNode:
+        """A graph name as a query answers it, in the engine's names (a remote store renames graphs)."""
+        return graph
+
+    def count(self, graph: NamedNode) -> int:
+        result = self.query(f"SELECT (COUNT(*) AS ?n) WHERE {{ GRAPH {graph} {{ ?s ?p ?o }} }}")
+        return int(next(iter(result))["n"].value)
+
+    def is_empty(self, graph: NamedNode) -> bool:
+        return not bool(self.query(f"ASK {{ GRAPH {graph} {{ ?s ?p ?o }} }}"))
+
+    def clear(self, graph: NamedNode) -> None:
+        self._flush_open()
+        self._drop(graph)
+        self.forms.forget(graph)
+
+    # ------------------------------------------------------------ SPARQL
+    def _flush_open(self) -> None:
+        if self._pending:
+            self._flush()
+        self._known = {}
+
+    def update(self, text: str, prefixes: dict[str, str] | None = None) -> None:
+        self._flush_open()
+        self._run_update(text, prefixes)
+
+    def query(self, text: str, graphs: list[NamedNode] | None = None, named: list[NamedNode] | None = None,
+              **kwargs):
+        """Run a query whose default graph is the union of ``graphs`` (the named graphs: ``named``,
+        by default ``graphs`` too)."""
+        self._flush_open()
+        return self._run_query(text, graphs, named=named, **kwargs)
+
+    # ------------------------------------------------------------ housekeeping
+    def maybe_compact(self) -> bool:
+        """Reclaim space left by removed quads where the implementation needs it (see OxigraphStore)."""
+        return False
+
+    # ------------------------------------------------------------ output
+    def dump(self, graphs: list[NamedNode], restore_literals_from: NamedNode | None = None) -> list[Triple]:
+        """Triples of ``graphs`` (deduplicated), blank nodes and literal forms restored."""
+        out: dict[Triple, None] = {}
+        for g in graphs:
+            for t in self.triples(graph=g):
+                if isinstance(t.object, Literal):
+                    form = self.forms.original_literal(restore_literals_from or g, t.subject, t.predicate, t.object)
+                    t = Triple(t.subject, t.predicate, form)
+                out[unskolemize(t)] = None
+        return list(out)
+
+
+def _matches(q: Quad, s, p, o, graph) -> bool:
+    return ((s is None or q.subject == s) and (p is None or q.predicate == p)
+            and (o is None or q.object == o) and (graph is None or q.graph_name == graph))
+
+
+__all__ = [
+    "Store", "guess_format", "skolemize", "unskolemize", "skolem", "unskolem", "fresh_skolem",
+    "serialize", "DefaultGraph", "SKOLEM_PREFIX", "FORMS", "META", "FORMAT_NAMES", "PROGRESS_EVERY",
+]

@@ -1,0 +1,137 @@
+"""The literal forms users wrote, remembered beside a store that canonicalises numbers.
+
+Oxigraph keeps numbers in canonical form (``"7"^^xsd:long`` is stored as
+``"7"^^xsd:integer``).  :class:`LiteralForms`, a part every
+:class:`~topostore.stores.base.Store` holds (``store.forms``), remembers the lexical form and datatype of each
+asserted literal, so that answers and saved files show what the user wrote; a
+durable store persists them in the ``FORMS`` graph.
+"""
+
+from __future__ import annotations
+
+import threading
+from typing import TYPE_CHECKING
+
+import pyoxigraph as ox
+from pyoxigraph import Literal, NamedNode, Quad, Triple
+
+from ..rdf.terms import Term, parse_term, value_key
+from ..rdf.vocab import INTERNAL
+from .meta import META
+
+if TYPE_CHECKING:
+    from .base import Store
+
+#: Graph of the persisted literal forms.
+FORMS = NamedNode(INTERNAL + "graph:forms")
+
+#: a scratch store that shows how a literal is stored (see LiteralForms.stored_form)
+_PROBE = ox.Store()
+_PROBE_LOCK = threading.Lock()
+_PROBE_GRAPH = NamedNode(INTERNAL + "graph:probe")
+
+
+class LiteralForms:
+    """How each committed literal was written: a part of one :class:`~topostore.stores.base.Store`.
+
+    It reads its store's ``durable`` flag at each write (an implementation sets it after the base
+    is built) and persists through the store's ``_commit``/``_match`` primitives.
+    """
+
+    def __init__(self, store: Store) -> None:
+        self._store = store
+        # (graph, subject, predicate, value key) -> literal as the user wrote it
+        self._literal_forms: dict[tuple, Literal] = {}
+        # value key -> {literal as written: number of asserted triples using it}
+        self._value_forms: dict[tuple, dict[Literal, int]] = {}
+
+    def record(self, adds: list[Quad], removes: list[Quad], undo: bool = False) -> tuple[list[Quad], list[Quad]]:
+        """Remember (or forget) how committed literals were written; the quads persisting that on a durable store."""
+        forms_add: list[Quad] = []
+        forms_remove: list[Quad] = []
+        for q in removes:
+            if isinstance(q.object, Literal) and not _is_scratch(q.graph_name):
+                key = value_key(q.object)
+                original = self._literal_forms.pop((q.graph_name.value, q.subject, q.predicate, key), q.object)
+                self._count_form(key, original, -1)
+                if self._store.durable and not undo:
+                    forms_remove.append(_form_quad(q.graph_name.value, q.subject, q.predicate, original))
+        for q in adds:
+            if isinstance(q.object, Literal) and not _is_scratch(q.graph_name):
+                key = value_key(q.object)
+                self._literal_forms[(q.graph_name.value, q.subject, q.predicate, key)] = q.object
+                self._count_form(key, q.object, +1)
+                if self._store.durable and not undo:
+                    forms_add.append(_form_quad(q.graph_name.value, q.subject, q.predicate, q.object))
+        return forms_add, forms_remove
+
+    def _count_form(self, key: tuple, lit: Literal, delta: int) -> None:
+        forms = self._value_forms.setdefault(key, {})
+        forms[lit] = forms.get(lit, 0) + delta
+        if forms[lit] <= 0:
+            del forms[lit]
+
+    def _rebuild_value_forms(self) -> None:
+        self._value_forms = {}
+        for (_, _, _, key), lit in self._literal_forms.items():
+            self._count_form(key, lit, +1)
+
+    def load(self) -> None:
+        """Read the persisted literal forms back (a durable store opened again)."""
+        self._literal_forms = {}
+        for q in self._store._match(None, None, None, FORMS):
+            graph, _, text = q.object.value.partition(" ")
+            lit = _parse_literal(text)
+            if lit is not None:
+                self._literal_forms[(graph, q.subject, q.predicate, value_key(lit))] = lit
+        self._rebuild_value_forms()
+
+    def original_literal(self, graph: NamedNode, s: Term, p: NamedNode, o: Literal) -> Literal:
+        """The literal as the user asserted it (lexical form and datatype)."""
+        found = self._literal_forms.get((graph.value, s, p, value_key(o)))
+        return found if found is not None else self.restore(o)
+
+    def restore(self, term: Term) -> Term:
+        """A literal as users wrote it, when that value was written in one form only."""
+        if not isinstance(term, Literal):
+            return term
+        forms = self._value_forms.get(value_key(term))
+        if forms and len(forms) == 1:
+            return next(iter(forms))
+        return term
+
+    def stored_form(self, t: Triple) -> Triple:
+        """The triple as this store holds it once added (Oxigraph canonicalises some literals,
+        e.g. ``"7"^^xsd:long`` becomes ``"7"^^xsd:integer``)."""
+        if not isinstance(t.object, Literal):
+            return t
+        with _PROBE_LOCK:
+            _PROBE.add(Quad(t.subject, t.predicate, t.object, _PROBE_GRAPH))
+            stored = next(iter(_PROBE.quads_for_pattern(t.subject, t.predicate, None, _PROBE_GRAPH)))
+            _PROBE.remove(stored)
+        return Triple(t.subject, t.predicate, stored.object)
+
+    def forget(self, graph: NamedNode) -> None:
+        """Forget the forms of a graph being cleared (and their persisted copies)."""
+        gone = [(k, v) for k, v in self._literal_forms.items() if k[0] == graph.value]
+        if self._store.durable and gone:
+            self._store._commit([], [_form_quad(k[0], k[1], k[2], lit) for k, lit in gone])
+        self._literal_forms = {k: v for k, v in self._literal_forms.items() if k[0] != graph.value}
+        self._rebuild_value_forms()
+
+
+def _is_scratch(graph) -> bool:
+    """Reasoner scratch graphs and the persisted state need no literal forms."""
+    return not isinstance(graph, NamedNode) or graph == FORMS or graph == META
+
+
+def _form_quad(graph: str, s: Term, p: NamedNode, lit: Literal) -> Quad:
+    return Quad(s, p, Literal(f"{graph} {lit}"), FORMS)
+
+
+def _parse_literal(text: str) -> Literal | None:
+    term = parse_term(text)
+    return term if isinstance(term, Literal) else None
+
+
+__all__ = ["FORMS", "LiteralForms"]

@@ -1,0 +1,118 @@
+"""The change ledger: one record of asserted changes since the last successful REASON.
+
+Incremental REASON reads its net changes, a failed REASON is rolled back from it, and a unit of
+work (an aRMOR manipulation) is undone through it; these tests drive each reader on a small
+ontology and check the asserted graph afterwards.
+"""
+
+from __future__ import annotations
+
+import pytest
+from pyoxigraph import Literal, NamedNode, Triple
+
+from topostore import Ontology, RuleCompileError
+from topostore.ontology.ledger import check_mode
+from topostore.rdf.vocab import ASSERTED, TYPE, XSD
+
+EX = "http://example.org/ledger#"
+TBOX = f"""@prefix : <{EX}> . @prefix owl: <http://www.w3.org/2002/07/owl#> .
+@prefix rdfs: <http://www.w3.org/2000/01/rdf-schema#> .
+:Robot a owl:Class . :Thing2 a owl:Class . :Robot rdfs:subClassOf :Thing2 .
+:speed a owl:DatatypeProperty .
+"""
+SWRL_IMP = NamedNode("http://www.w3.org/2003/11/swrl#Imp")
+
+
+def n(name: str) -> NamedNode:
+    return NamedNode(EX + name)
+
+
+def typed(value: str, datatype: str) -> Literal:
+    return Literal(value, datatype=NamedNode(XSD + datatype))
+
+
+@pytest.fixture
+def onto() -> Ontology:
+    o = Ontology(prefix=EX)
+    o.load_data(TBOX)
+    o.add(Triple(n("r1"), TYPE, n("Robot")), Triple(n("r1"), n("speed"), typed("7", "long")))
+    o.reason()
+    return o
+
+
+def asserted(o: Ontology) -> set[Triple]:
+    return set(o.store.triples(graph=ASSERTED))
+
+
+def test_nothing_is_recorded_before_the_first_successful_reason() -> None:
+    o = Ontology(prefix=EX)
+    o.add(Triple(n("r1"), TYPE, n("Robot")))
+    assert not o.ledger.recording and o.ledger.added == {} and o.ledger.removed == {}
+
+
+def test_adding_then_removing_cancels_even_in_another_spelling_of_the_value(onto: Ontology) -> None:
+    fact = Triple(n("r2"), n("speed"), typed("8", "long"))
+    onto.add(fact)
+    assert list(onto.ledger.added.values()) == [fact]
+    onto.remove(Triple(n("r2"), n("speed"), typed("8", "integer")))  # the same value, written otherwise
+    assert onto.ledger.added == {} and onto.ledger.removed == {}
+    assert onto.ledger.net_changes() == ([], [])
+
+
+def test_incremental_reason_reads_the_net_changes_and_a_success_empties_them(onto: Ontology) -> None:
+    onto.add(Triple(n("r2"), TYPE, n("Robot")))
+    added, removed = onto.ledger.net_changes()
+    assert added == [Triple(n("r2"), TYPE, n("Robot"))] and removed == []
+    report = onto.reason(mode="incremental")  # "auto" recomputes a graph this small in full
+    assert report.stats.mode == "incremental", report.stats.reason
+    assert onto.ledger.net_changes() == ([], []) and n("r2") in onto.instances("Thing2")
+
+
+def test_a_schema_change_keeps_the_record_for_rollback_but_not_for_incremental_reason(onto: Ontology) -> None:
+    onto.add(Triple(n("r2"), TYPE, n("Robot")))
+    onto.load_data(f"@prefix : <{EX}> . @prefix owl: <http://www.w3.org/2002/07/owl#> . :Other a owl:Class .")
+    assert onto.ledger.net_changes() == ([], [])
+    assert Triple(n("r2"), TYPE, n("Robot")) in onto.ledger.added.values()
+
+
+def test_a_failed_reason_restores_every_change_since_the_last_success_as_written(onto: Ontology) -> None:
+    before = asserted(onto)
+    onto.remove(Triple(n("r1"), n("speed"), typed("7", "integer")))  # asserted as xsd:long
+    onto.add(Triple(n("r2"), TYPE, n("Robot")), Triple(n("rx"), TYPE, SWRL_IMP))  # a rule without a head
+    with pytest.raises(RuleCompileError):
+        onto.reason()
+    assert asserted(onto) == before
+    assert onto.data_values("speed", "r1") == [typed("7", "long")]
+    assert onto.ledger.added == {} and onto.ledger.removed == {}
+    assert onto.reason().consistent and n("r1") in onto.instances("Thing2")
+
+
+def test_a_unit_of_work_is_undone_newest_first_when_it_fails(onto: Ontology) -> None:
+    before = asserted(onto)
+    with pytest.raises(KeyError), onto.ledger.undoable(onto):
+        onto.remove(Triple(n("r1"), n("speed"), typed("7", "long")))
+        onto.add(Triple(n("r1"), n("speed"), typed("9", "long")), Triple(n("r3"), TYPE, n("Robot")))
+        raise KeyError("a later step failed")
+    assert asserted(onto) == before
+    assert onto.ledger.added == {} and onto.ledger.removed == {}  # the undo cancelled the net record too
+
+
+def test_a_unit_of_work_that_succeeds_keeps_its_changes_and_works_before_any_reason() -> None:
+    o = Ontology(prefix=EX)
+    with o.ledger.undoable(o):
+        o.add(Triple(n("r1"), TYPE, n("Robot")))
+    assert Triple(n("r1"), TYPE, n("Robot")) in asserted(o)
+    with pytest.raises(ValueError), o.ledger.undoable(o):
+        o.add(Triple(n("r2"), TYPE, n("Robot")))
+        raise ValueError("refused")
+    assert Triple(n("r2"), TYPE, n("Robot")) not in asserted(o)
+
+
+def test_a_wrong_mode_is_refused_once_and_undoes_nothing(onto: Ontology) -> None:
+    onto.add(Triple(n("r2"), TYPE, n("Robot")))
+    with pytest.raises(ValueError, match="unknown reasoning mode 'sometimes'"):
+        onto.reason(mode="sometimes")
+    assert Triple(n("r2"), TYPE, n("Robot")) in asserted(onto)
+    with pytest.raises(ValueError):
+        check_mode("")
+    check_mode("full")
