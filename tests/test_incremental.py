@@ -22,7 +22,7 @@ from pyoxigraph import NamedNode, Triple
 from topostore import Ontology
 from topostore.demo.mapgen import MAP_NS, generate
 from topostore.rdf.vocab import ASSERTED, AUX, DIFFERENT_FROM, ENTAILED, INFERRED, TYPE, owl
-from topostore.reason import Materializer, check_consistency, incremental
+from topostore.reason import Materializer, check_consistency, flips
 from topostore.reason.entailed import publish_entailed
 from topostore.reason.incremental import is_monotone, negates_exists
 from topostore.stores import memory_store
@@ -184,7 +184,7 @@ def test_incremental_equals_from_scratch(n: int, seed: int, declared: bool, shar
     onto = new_map(n, seed, declared)
     onto.max_change_share = share
     assert_same_as_scratch(onto)
-    with mock.patch.object(incremental, "WINDOW_MIN", 0 if seed % 2 else incremental.WINDOW_MIN):
+    with mock.patch.object(flips, "WINDOW_MIN", 0 if seed % 2 else flips.WINDOW_MIN):
         for batch in steps:
             for op, *args in batch:
                 op(onto, *args)
@@ -342,7 +342,7 @@ def test_clock_changes_equal_from_scratch(n: int, seed: int, steps: list) -> Non
     onto.add(*generate(n, seed=seed, robots=2).triples(all_different=True))
     onto.max_change_share = 1.0
     onto.reason()
-    with mock.patch.object(incremental, "WINDOW_MIN", 0):  # flip windows on these small maps too
+    with mock.patch.object(flips, "WINDOW_MIN", 0):  # flip windows on these small maps too
         for batch in steps:
             for op, *args in batch:
                 op(onto, *args)

@@ -35,6 +35,7 @@ from pyoxigraph import Literal, Triple
 from ..errors import TopostoreError
 from ..rdf.vocab import ASSERTED, AUX, ENTAILED, INFERRED
 from ..reason import limits
+from ..reason.incremental import check_mode
 
 if TYPE_CHECKING:  # pragma: no cover
     from ..stores.base import Store
@@ -43,16 +44,8 @@ if TYPE_CHECKING:  # pragma: no cover
 logger = logging.getLogger("topostore.journal")  # the log keeps its name from the module this one replaced
 F = TypeVar("F", bound=Callable[..., Any])
 
-#: The reasoning modes of :meth:`Ontology.reason`.
-MODES = ("auto", "incremental", "full")
 #: Below this many net changes incremental REASON is always worth trying, whatever the share.
 MIN_TRACKED = 1000
-
-
-def check_mode(mode: str) -> None:
-    """Refuse an unknown reasoning mode (a wrong argument, not a failed REASON: nothing is undone)."""
-    if mode not in MODES:
-        raise ValueError(f"unknown reasoning mode {mode!r}; use auto, incremental or full")
 
 
 class ChangeLedger:
@@ -201,4 +194,4 @@ def _restore(onto: Ontology, reason: Callable[..., Any]) -> None:
         onto.forget_reasoning()
 
 
-__all__ = ["ChangeLedger", "all_or_nothing", "check_mode", "MODES"]
+__all__ = ["ChangeLedger", "all_or_nothing", "check_mode"]

@@ -17,7 +17,7 @@ from ..rdf.vocab import ASSERTED, AUX, INFERRED, NEW_AUX, NEW_INFERRED
 from . import limits
 from .materialize import ReasonStats
 from .plan import KeyCounts, plan_where
-from .requests import Requests
+from .requests import RequestQueue
 from .scratch import CANDIDATES, DEL_DELTA, NEW_PROVEN, OVERDELETED, PROVEN, REMOVED, SUBGOALS, dataset, target
 from .triggers import Present, Triggers, matches
 
@@ -33,44 +33,54 @@ def can_prove(rule: Rule) -> bool:
         and not rule.conditions_read_graph
 
 
-class DeletionPhases(Requests):
-    """DRed's phases of :class:`~.incremental.IncrementalReasoner`: over-delete (with proofs), rederive."""
+class Deletion:
+    """DRed's phases of :class:`~.incremental.IncrementalReasoner`: over-delete (with proofs), rederive.
 
-    triggers: Triggers
-    #: indexes of the monotone rules (as a list, in rule order, and as a set)
-    monotone: list[int]
-    _monotone_set: set[int]
-    #: indexes of the rules usable in proofs (:func:`can_prove`)
-    provers: list[int]
-    #: the previous REASON's state (a :class:`~.incremental.MaintenanceState`)
-    state: object
+    Holds the rule indexes the phases choose from; the previous REASON's
+    state (what has facts, what is asserted) is handed to each phase, and the
+    evaluations go through the reasoner's :class:`~.requests.RequestQueue`.
+    """
 
-    def _overdelete(self, stats: ReasonStats, skip: set[tuple[int, int]] = frozenset(),
-                    lost: list[Triple] = ()) -> None:
+    def __init__(self, requests: RequestQueue, triggers: Triggers, monotone: list[int], provers: list[int]) -> None:
+        self.requests = requests
+        self.store = requests.store
+        self.rules = requests.rules
+        self.triggers = triggers
+        #: indexes of the monotone rules (as a list, in rule order, and as a set)
+        self.monotone = monotone
+        self._monotone_set = set(monotone)
+        #: indexes of the rules usable in proofs (:func:`can_prove`)
+        self.provers = provers
+        #: the previous REASON's state (a :class:`~.incremental.MaintenanceState`), set by each phase
+        self.state = None
+
+    def overdelete(self, state, stats: ReasonStats, skip: set[tuple[int, int]] = frozenset(),
+                   lost: list[Triple] = ()) -> None:
         """DRed's first phase, with the proof check that keeps cyclic axioms from cascading.
 
         In the first round, the evaluations in ``skip`` are replaced by the
-        heads in ``lost`` (found by :meth:`_flips`).
+        heads in ``lost`` (found by :class:`~.flips.Flips`).
         """
-        self._defer(f"ADD SILENT {REMOVED} TO {DEL_DELTA} ; ADD SILENT {REMOVED} TO {OVERDELETED}")
-        preds, classes = self._start(REMOVED)  # what DEL_DELTA holds once the queue is sent
+        self.state = state
+        self.requests.defer(f"ADD SILENT {REMOVED} TO {DEL_DELTA} ; ADD SILENT {REMOVED} TO {OVERDELETED}")
+        preds, classes = self.requests.start(REMOVED)  # what DEL_DELTA holds once the queue is sent
         while True:
             limits.check()
             for i, j in self.triggers.evaluations(preds, classes, self._monotone_set, self.state.present, skip):
-                self._run(("cand", i, j), self._candidate_text, i, j, stats)
-            self._flush()
+                self.requests.run(("cand", i, j), self._candidate_text, i, j, stats)
+            self.requests.flush()
             if lost:
                 self.store.add_scratch(lost, CANDIDATES)
             skip, lost = frozenset(), ()
-            counts = self._keys(CANDIDATES)
+            counts = self.requests.keys(CANDIDATES)
             if not counts[0]:
                 break
             self._prove(stats, counts)
-            stats.overdeleted += self.store.count(CANDIDATES) if self._profiling(stats) else 0
-            preds, classes = self._start(CANDIDATES)  # the next DEL_DELTA
-            self._defer(f"DROP SILENT GRAPH {DEL_DELTA} ; ADD SILENT {CANDIDATES} TO {DEL_DELTA} ; "
+            stats.overdeleted += self.store.count(CANDIDATES) if self.requests.profile else 0
+            preds, classes = self.requests.start(CANDIDATES)  # the next DEL_DELTA
+            self.requests.defer(f"DROP SILENT GRAPH {DEL_DELTA} ; ADD SILENT {CANDIDATES} TO {DEL_DELTA} ; "
                         f"ADD SILENT {CANDIDATES} TO {OVERDELETED} ; DROP SILENT GRAPH {CANDIDATES}")
-        self._defer(" ; ".join(f"DELETE {{ GRAPH {g} {{ ?s ?p ?o }} }} {dataset((), (OVERDELETED, g))} "
+        self.requests.defer(" ; ".join(f"DELETE {{ GRAPH {g} {{ ?s ?p ?o }} }} {dataset((), (OVERDELETED, g))} "
                                f"WHERE {{ GRAPH {OVERDELETED} {{ ?s ?p ?o }} GRAPH {g} {{ ?s ?p ?o }} }}"
                                for g in (INFERRED, AUX)))
 
@@ -99,7 +109,7 @@ class DeletionPhases(Requests):
             progress = False
             while self._prove_goals(SUBGOALS, known, stats):
                 progress = True
-            self._defer(f"DROP SILENT GRAPH {SUBGOALS}")
+            self.requests.defer(f"DROP SILENT GRAPH {SUBGOALS}")
             if not progress:
                 return
 
@@ -108,43 +118,44 @@ class DeletionPhases(Requests):
         """One pass of the provers over ``goals`` (``counts``: their read keys if known); True when something
         was proven."""
         if counts is None:
-            counts = self._start(goals)
+            counts = self.requests.start(goals)
         else:
-            self._counts = counts
+            self.requests.counts = counts
         preds, classes = counts
         for i in self.provers:
             key = self.rules[i].writes()
             if key is not None and matches(key, preds, classes) and self.triggers.feasible(i, known):
-                self._run(("prove", i, goals.value), self._prove_text, i, goals, stats)
-        self._flush()
-        new_preds, new_classes = self._keys(NEW_PROVEN)
+                self.requests.run(("prove", i, goals.value), self._prove_text, i, goals, stats)
+        self.requests.flush()
+        new_preds, new_classes = self.requests.keys(NEW_PROVEN)
         if not new_preds:
             return False
         known[0].update(new_preds)
         known[1].update(new_classes)
-        self._defer(f"DROP SILENT GRAPH {NEW_PROVEN}")
+        self.requests.defer(f"DROP SILENT GRAPH {NEW_PROVEN}")
         return True
 
     def _make_subgoals(self, stats: ReasonStats) -> None:
         """Premises (not of an asserted kind) of the candidates' derivations in the current graphs."""
-        preds, classes = self._start(CANDIDATES)
+        preds, classes = self.requests.start(CANDIDATES)
         for i in self.provers:
             key = self.rules[i].writes()
             if key is None or not matches(key, preds, classes) or not self.triggers.feasible(i, self.state.present):
                 continue
             if self.triggers.unknown_atoms(i, self.state.asserted):
-                self._run(("subgoal", i), self._subgoal_text, i, None, stats)
-        self._flush()
+                self.requests.run(("subgoal", i), self._subgoal_text, i, None, stats)
+        self.requests.flush()
 
-    def _rederive(self, stats: ReasonStats) -> None:
+    def rederive(self, state, stats: ReasonStats) -> None:
         """DRed's second phase: over-deleted facts that still follow from what is left go to NEW_*."""
-        preds, classes = self._start(OVERDELETED)
+        self.state = state
+        preds, classes = self.requests.start(OVERDELETED)
         for i in self.monotone:
             key = self.rules[i].writes()
             if key is not None and matches(key, preds, classes) and self.triggers.feasible(i, self.state.present):
-                self._run(("rederive", i), self._rederive_text, i, None, stats)
-        if self._profiling(stats):
-            self._flush()
+                self.requests.run(("rederive", i), self.rederive_text, i, None, stats)
+        if self.requests.profile:
+            self.requests.flush()
             stats.rederived = self.store.count(NEW_INFERRED) + self.store.count(NEW_AUX)
 
     # ------------------------------------------------------------------ SPARQL texts
@@ -153,7 +164,7 @@ class DeletionPhases(Requests):
         or every head of the rule when ``j`` is None (a filter read something deleted)."""
         rule = self.rules[i]
         head = rule.head.text()
-        where = plan_where(rule, j, DEL_DELTA, lateral=self._lateral)
+        where = plan_where(rule, j, DEL_DELTA, lateral=self.requests.lateral)
         old_closure = (ASSERTED, INFERRED, AUX, REMOVED)
         named = (AUX, DEL_DELTA, target(rule), OVERDELETED, PROVEN)
         return (f"INSERT {{ GRAPH {CANDIDATES} {{ {head} }} }}\n{dataset(old_closure, named)}\nWHERE {{\n  {where}\n"
@@ -165,7 +176,7 @@ class DeletionPhases(Requests):
         """Move the goals the rule derives from asserted + proven facts to PROVEN (and NEW_PROVEN)."""
         rule = self.rules[i]
         head = rule.head.text()
-        where = plan_where(rule, head_graph=goals, lateral=self._lateral)
+        where = plan_where(rule, head_graph=goals, lateral=self.requests.lateral)
         return (f"DELETE {{ GRAPH {goals} {{ {head} }} }}\n"
                 f"INSERT {{ GRAPH {PROVEN} {{ {head} }} GRAPH {NEW_PROVEN} {{ {head} }} }}\n"
                 f"{dataset((ASSERTED, PROVEN), (goals, PROVEN))}\nWHERE {{\n  {where}\n}}")
@@ -174,19 +185,19 @@ class DeletionPhases(Requests):
         rule = self.rules[i]
         # the premises that may need a proof: body atoms of a kind not known to be asserted
         atoms = " ".join(rule.body[j].text() for j in self.triggers.unknown_atoms(i, self.state.asserted))
-        where = plan_where(rule, head_graph=CANDIDATES, lateral=self._lateral)
+        where = plan_where(rule, head_graph=CANDIDATES, lateral=self.requests.lateral)
         return (f"INSERT {{ GRAPH {SUBGOALS} {{ {atoms} }} }}\n"
                 f"{dataset((ASSERTED, INFERRED, AUX), (AUX, CANDIDATES))}\nWHERE {{\n  {where}\n}}")
 
-    def _rederive_text(self, i: int, heads: NamedNode | None) -> str:
+    def rederive_text(self, i: int, heads: NamedNode | None) -> str:
         """Insert into NEW_* the heads in ``heads`` (over-deleted ones by default) that the rule derives now."""
         heads = heads or OVERDELETED
         rule = self.rules[i]
         head = rule.head.text()
         new = NEW_AUX if rule.head_aux() else NEW_INFERRED
-        where = plan_where(rule, head_graph=heads, lateral=self._lateral)
+        where = plan_where(rule, head_graph=heads, lateral=self.requests.lateral)
         return (f"INSERT {{ GRAPH {new} {{ {head} }} }}\n{dataset((ASSERTED, INFERRED, AUX), (AUX, heads))}\n"
                 f"WHERE {{\n  {where}\n  FILTER NOT EXISTS {{ {head} }}\n}}")
 
 
-__all__ = ["DeletionPhases", "can_prove"]
+__all__ = ["Deletion", "can_prove"]

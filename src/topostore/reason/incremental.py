@@ -67,47 +67,41 @@ requests, :mod:`.scratch` the scratch graphs they share.
 from __future__ import annotations
 
 import time
-from collections.abc import Collection, Iterable
+from collections.abc import Collection
 from dataclasses import dataclass, field
 
-from pyoxigraph import NamedNode, Quad, Triple
+from pyoxigraph import NamedNode, Triple
 
 from ..compile.generic import PREFIXES
 from ..compile.rule import Rule, RuleSet
 from ..rdf.lexer import negates_exists  # noqa: F401 - public here since the first release
 from ..rdf.terms import Term
 from ..rdf.vocab import ASSERTED, AUX, DELTA, ENTAILED_PREFIX, INFERRED, NEW_AUX, NEW_INFERRED, TYPE
-from ..stores.base import Store, data_update
-from . import flip, window
+from ..stores.base import Store
 from .consistency import Violation, check_consistency
-from .dred import DeletionPhases, can_prove
+from .dred import Deletion, can_prove
 from .entailed import publish_entailed, refresh_entailed
+from .flips import Flips, census_of
 from .materialize import Materializer, ReasonStats
-from .plan import KeyCounts, is_small, plan_where
-from .scratch import ADDED, FLIP_GAINED, NEW_FACTS, OVERDELETED, REMOVED, SCRATCH, target
-from .triggers import Present, Triggers, matches
+from .plan import is_small, plan_where
+from .requests import RequestQueue
+from .scratch import ADDED, FLIP_GAINED, NEW_FACTS, OVERDELETED, REMOVED, SCRATCH
+from .triggers import Present, Triggers
 
 #: the internal form of an rdf:type conclusion whose individuals are different by entailment only
 ENTAILED_TYPE = NamedNode(ENTAILED_PREFIX + TYPE.value)
 
-#: a flip window is used from this many facts of the compared predicate on, up to this many bindings
-#: of the seed and this many facts inside (else: a scan)
-WINDOW_MIN, WINDOW_ROWS, WINDOW_FACTS = 256, 64, 4096
-
 #: Default share of the asserted graph above which a change is recomputed from scratch.
 DEFAULT_MAX_CHANGE_SHARE = 0.10
 
+#: The reasoning modes: incremental when sound and the change is small, incremental whenever sound, full.
+MODES = ("auto", "incremental", "full")
 
-def census_of(triples: Iterable[Triple]) -> KeyCounts:
-    """Facts per predicate and per class of ``triples`` (as :meth:`Store.census` counts a graph)."""
-    preds: dict[str, int] = {}
-    classes: dict[str, int] = {}
-    for t in triples:
-        p = str(t.predicate)
-        preds[p] = preds.get(p, 0) + 1
-        if t.predicate == TYPE:
-            classes[str(t.object)] = classes.get(str(t.object), 0) + 1
-    return preds, classes
+
+def check_mode(mode: str) -> None:
+    """Refuse an unknown reasoning mode (a wrong argument, not a failed REASON: nothing is undone)."""
+    if mode not in MODES:
+        raise ValueError(f"unknown reasoning mode {mode!r}; use auto, incremental or full")
 
 
 def is_monotone(rule: Rule) -> bool:
@@ -131,12 +125,15 @@ class MaintenanceState:
     asserted: Present = field(default_factory=lambda: (set(), set()))
 
 
-class IncrementalReasoner(DeletionPhases):
+class IncrementalReasoner:
     """Keeps the inferred graphs of one store equal to the closure of its asserted graph.
 
     Holds the rules and the state of the previous REASON; :meth:`reason` gets
     the net asserted additions and removals since then (already applied to
     the asserted graph) and chooses incremental maintenance or a full run.
+    Its parts: the request queue the phases share (:mod:`.requests`), the
+    flips of replaced values (:mod:`.flips`) and the deletion phases
+    (:mod:`.dred`); additions are the materializer's semi-naive rounds.
     """
 
     def __init__(self, store: Store, rules: RuleSet, max_change_share: float = DEFAULT_MAX_CHANGE_SHARE) -> None:
@@ -153,20 +150,13 @@ class IncrementalReasoner(DeletionPhases):
         self.negated = [r for r in self.rules if not is_monotone(r)]
         self.provers = [i for i in self.monotone if can_prove(self.rules[i])]
         self.checks_monotone = all(not c.negates and c.stratum == 0 for c in self.checks)
+        self.requests = RequestQueue(store, self.rules)
+        self.flips = Flips(self.requests, self.triggers, self._monotone_set)
+        self.deletion = Deletion(self.requests, self.triggers, self.monotone, self.provers)
+        #: SPARQL texts of the checks made once (the phases' texts live in the request queue)
         self._texts: dict[tuple, str] = {}
-        #: what the rules' flips need that does not change between REASONs (atom orders, window tests)
-        self._plans: dict[tuple, object] = {}
-        self._queue: list[str] = []
-        self._lateral = store.supports_lateral  # is the graph the next evaluation starts from small?
-        self._counts: KeyCounts = ({}, {})  # read keys of the graph evaluations start from
-        self.profile = False
-        #: sorted indexes of compared predicates (IRI text) for flip windows, kept from the asserted changes
-        self._indexes: dict[str, window.ValueIndex] = {}
         #: (individual, class) pairs whose type fact the last REASON may have changed; None after a full run
         self.touched_types: list[tuple[Term, NamedNode]] | None = None
-        # per rule, for flips: the variables its filters mention, and whether they are plain BIND/FILTER lines
-        self._filter_vars = [flip.filter_variables(r) for r in self.rules]
-        self._plain = [flip.plain_filters(r) for r in self.rules]
 
     # ------------------------------------------------------------------ entry point
     def reason(self, added: Collection[Triple] = (), removed: Collection[Triple] = (), mode: str = "auto",
@@ -177,14 +167,13 @@ class IncrementalReasoner(DeletionPhases):
         "incremental" (incremental whenever sound, whatever the size) or "full".
         ``forced_reason`` makes the run full and says why (e.g. the schema changed).
         """
-        if mode not in ("auto", "incremental", "full"):
-            raise ValueError(f"unknown reasoning mode {mode!r}; use auto, incremental or full")
+        check_mode(mode)
         why = forced_reason or self._full_reason(len(added) + len(removed), mode)
         if why:
             return self.full(why, profile)
         start = time.perf_counter()
         stats = ReasonStats(mode="incremental", reason=self._incremental_reason(added, removed))
-        self.profile = profile
+        self.requests.profile = profile
         materializer = Materializer(self.store, self.ruleset, profile=profile, triggers=self.triggers)
         materializer.present = self.state.present
         materializer.planned = True
@@ -200,8 +189,8 @@ class IncrementalReasoner(DeletionPhases):
         except Exception:
             self.state.ready = False  # half-maintained graphs: the next REASON recomputes them
             self.touched_types = None
-            self._indexes.clear()
-            self._queue.clear()
+            self.flips.forget()
+            self.requests.clear()
             raise
         finally:
             self._clear_scratch()
@@ -214,7 +203,7 @@ class IncrementalReasoner(DeletionPhases):
         """Recompute everything from the asserted graph; records the state maintenance starts from."""
         self.state.ready = False
         self.touched_types = None
-        self._indexes.clear()
+        self.flips.forget()
         self._clear_scratch()
         materializer = Materializer(self.store, self.ruleset, profile=profile)
         stats = materializer.run()
@@ -257,210 +246,29 @@ class IncrementalReasoner(DeletionPhases):
                   stats: ReasonStats) -> None:
         if not added and not removed:
             return
-        for t in removed:
-            if (index := self._indexes.get(f"<{t.predicate.value}>")) is not None:
-                index.discard(t)
-        for t in added:
-            if (index := self._indexes.get(f"<{t.predicate.value}>")) is not None:
-                index.add(t)
-        self._put(added, ADDED)
-        self._put(removed, REMOVED)
+        self.flips.note(added, removed)
+        requests = self.requests
+        requests.scratch(added, ADDED)
+        requests.scratch(removed, REMOVED)
         preds, classes = census_of(added)
         for keys in (self.state.present, self.state.asserted):
             keys[0].update(preds)
             keys[1].update(classes)
         # a newly asserted fact that was inferred is now asserted only (as from scratch)
         if added:
-            self._discard(added, (INFERRED, AUX))
-        self._flush()  # the scratch copies are read from here on
-        skip, lost, gained_rules = self._flips(added, removed, (preds, classes), stats)
+            requests.discard(added, (INFERRED, AUX))
+        requests.flush()  # the scratch copies are read from here on
+        skip, lost, gained_rules = self.flips.find(self.state, added, removed, (preds, classes), stats)
         if removed:
-            self._overdelete(stats, skip, lost)
-            self._rederive(stats)
+            self.deletion.overdelete(self.state, stats, skip, lost)
+            self.deletion.rederive(self.state, stats)
         if gained_rules:
-            self._start(FLIP_GAINED)
+            requests.start(FLIP_GAINED)
         for i in sorted(gained_rules):
-            self._run(("flip-gained", i), self._rederive_text, i, FLIP_GAINED, stats)
-        self._defer(f"ADD SILENT {ADDED} TO {NEW_FACTS}")
-        self._flush()
+            requests.run(("flip-gained", i), self.deletion.rederive_text, i, FLIP_GAINED, stats)
+        requests.defer(f"ADD SILENT {ADDED} TO {NEW_FACTS}")
+        requests.flush()
         m.propagate(self.monotone, stats, seed=ADDED, record=NEW_FACTS, skip_first=skip)
-
-    def _flips(self, added: Collection[Triple], removed: Collection[Triple], added_keys: KeyCounts,
-               stats: ReasonStats) -> tuple[set[tuple[int, int]], list[Triple], set[int]]:
-        """Evaluate the rules that see replaced values only through comparisons (see :mod:`.flip`).
-
-        Returns the (rule, atom) evaluations the ordinary path must skip, the
-        heads that lost their derivation by such a rule, and the rules with
-        heads that may have gained one (put in FLIP_GAINED, checked later).
-        """
-        replaced = [(t.subject, t.predicate) for t in added if t.predicate != TYPE]
-        now = self.store.objects_many(list(dict.fromkeys(replaced)), ASSERTED)
-        clean = flip.clean_replacements(added, removed, lambda s, p: now.get((s, p), ()))
-        clean = {p: pairs for p, pairs in clean.items() if not self._derivable(p)}
-        skip: set[tuple[int, int]] = set()
-        lost: list[Triple] = []
-        gained_rules: set[int] = set()
-        if not clean:
-            return skip, lost, gained_rules
-        preds, classes = added_keys
-        removed_preds, removed_classes = census_of(removed)
-        changed = (set(preds) | set(removed_preds), set(classes) | set(removed_classes))
-        self._put([r.old for pairs in clean.values() for r in pairs], flip.CHANGE_OLD)
-        self._flush()
-        wanted: list[tuple[int, tuple[int, ...]]] = []
-        for i in self.triggers.rules_reading(clean, self._monotone_set):
-            handled = self._flip_atoms(i, clean, changed)
-            if handled is None:
-                continue
-            skip.update((i, j) for j in handled)
-            compared = tuple(j for j in handled if self.rules[i].body[j].o[1:] in self._filter_vars[i])
-            if compared and self.triggers.feasible(i, self.state.present):
-                wanted.append((i, compared))
-        stats.flipped = len(skip)
-        for row in self._flip_rows(tuple(wanted), stats):
-            i = int(row["rule"].value)
-            head = flip.head_triple(row)
-            if flip.gained(row):
-                self.store.add_scratch([head], FLIP_GAINED)
-                gained_rules.add(i)
-            elif self.store.contains(head, target(self.rules[i])):
-                lost.append(head)
-        return skip, lost, gained_rules
-
-    def _flip_atoms(self, i: int, clean: dict, changed: tuple[set[str], set[str]]) -> tuple[int, ...] | None:
-        """The rule's atoms on cleanly replaced values, when every changed atom is one (else None)."""
-        rule = self.rules[i]
-        if any(matches(k, *changed) for k in rule.filter_reads) or not self._plain[i]:
-            return None
-        handled = []
-        for j, atom in enumerate(rule.body):
-            if not matches(atom.read_key(), *changed):
-                continue
-            if atom.p not in clean or not flip.compared_only(rule, j):
-                return None
-            handled.append(j)
-        return tuple(handled) or None
-
-    def _flip_rows(self, wanted: tuple[tuple[int, tuple[int, ...]], ...], stats: ReasonStats) -> list:
-        """One query for the flips of all ``wanted`` (rule, compared atoms).
-
-        A branch that would scan every value of a compared predicate reads only the
-        values in its window instead, when :mod:`.window` can give one.
-        """
-        if not wanted:
-            return []
-        lateral = self.store.supports_lateral
-        branches: list[str] = []
-        for i, atoms in wanted:
-            order = self._by_frequency(i, atoms)
-            windows = self._windows(i, order)
-            if windows:
-                branches += flip.flip_branches(self.rules[i], order, lateral, i, windows)
-                continue
-            key = ("flip", i, order)
-            cached = self._texts.get(key)
-            if cached is None:
-                cached = self._texts[key] = "\nUNION\n".join(flip.flip_branches(self.rules[i], order, lateral, i))
-            branches.append(cached)
-        stats.evaluations += len(wanted)
-        start = time.perf_counter()
-        rows = list(self.store.query(flip.flip_query(branches), prefixes=PREFIXES, graphs=[ASSERTED, INFERRED, AUX],
-                                     named=[AUX, flip.CHANGE_OLD]))
-        if self._profiling(stats):
-            stats.per_rule["flip"] = stats.per_rule.get("flip", 0.0) + time.perf_counter() - start
-        return rows
-
-    def _windows(self, i: int, order: tuple[int, ...]) -> dict[int, dict[int, list[Triple]]]:
-        """For the branch seeded by the last changed atom (all others read settled), the facts of each
-        other compared atom that lie in its window (see :mod:`.window`); {} where there is none."""
-        rule, k = self.rules[i], order[-1]
-        found: dict[int, list[Triple]] = {}
-        for m, atom in enumerate(rule.body):
-            # an atom whose subject the seed binds is a look-up already; only an enumeration needs a window
-            if m == k or not flip.compared_only(rule, m) or atom.s in rule.body[k].variables() \
-                    or self._derivable(atom.p):
-                continue
-            facts = self._window_facts(i, k, m)
-            if facts is not None:
-                found[m] = facts
-        return {k: found} if found else {}
-
-    def _window_facts(self, i: int, k: int, m: int) -> list[Triple] | None:
-        """The facts of atom ``m`` that a change of seed atom ``k``'s value may flip (None: no window)."""
-        rule = self.rules[i]
-        tests = self._plans.get(("window-tests", i))
-        if tests is None:
-            tests = self._plans[("window-tests", i)] = window.tests(rule)
-        seed, atom = rule.body[k], rule.body[m]
-        t, v = seed.o[1:], atom.o[1:]
-        index = self._value_index(atom.p)
-        if not window.possible(tests, t) or len(index) < WINDOW_MIN:
-            return None  # no linear test to solve, or so few values that scanning them is as cheap
-        rest = sorted({n for test in tests if test.form for n in test.form[0]} - {t, v})
-        text = self._texts.get(("window", i, k, m))
-        if text is None:
-            text = self._texts[("window", i, k, m)] = self._window_query(rule, k, m, rest)
-        rows = list(self.store.query(text, prefixes=PREFIXES, graphs=[ASSERTED, INFERRED, AUX],
-                                     named=[AUX, flip.CHANGE_OLD]))
-        if len(rows) > WINDOW_ROWS:
-            return None
-        facts: dict[Triple, None] = {}
-        for row in rows:
-            terms = [row[f"{t}__o"], row[f"{t}__n"], *(row[n] for n in rest)]
-            values = [window.number(term) for term in terms]
-            if any(x is None for x in values):
-                return None
-            span = window.interval(tests, v, t, values[0], values[1], dict(zip(rest, values[2:])),
-                                   window.margin(terms, values))
-            if span is None:
-                return None
-            if span is False:
-                continue
-            inside = index.between(span[0], span[1], WINDOW_FACTS)
-            if inside is None:
-                return None
-            facts.update(dict.fromkeys(inside))
-            if len(facts) > WINDOW_FACTS:
-                return None
-        return list(facts)
-
-    def _window_query(self, rule: Rule, k: int, m: int, rest: list[str]) -> str:
-        """The old and new seed values with the bindings of ``rest``: the seed atom and the atoms that do
-        not depend on atom ``m`` (leaving atoms out only widens the window)."""
-        seed, atom = rule.body[k], rule.body[m]
-        t = seed.o[1:]
-        lines = [f"GRAPH {flip.CHANGE_OLD} {{ {seed.s} {seed.p} ?{t}__o }}", f"{seed.s} {seed.p} ?{t}__n ."]
-        own = atom.variables() - seed.variables()
-        lines += [rule.atom_text(j) for j, other in enumerate(rule.body)
-                  if j not in (k, m) and not (other.variables() & own)]
-        head = " ".join([f"?{t}__o", f"?{t}__n", *(f"?{n}" for n in rest)])
-        return f"SELECT DISTINCT {head} WHERE {{\n  " + "\n  ".join(lines) + f"\n}} LIMIT {WINDOW_ROWS + 1}"
-
-    def _value_index(self, p: str) -> window.ValueIndex:
-        """The sorted index of predicate ``p``'s facts (built once, kept by :meth:`_maintain`)."""
-        index = self._indexes.get(p)
-        if index is None:
-            index = self._indexes[p] = window.ValueIndex(self.store.triples(None, NamedNode(p[1:-1]), None, ASSERTED))
-        return index
-
-    def _by_frequency(self, i: int, atoms: tuple[int, ...]) -> tuple[int, ...]:
-        """The rule's atoms, those of predicates with the most asserted facts first (see flip.flip_branches)."""
-        key = ("order", i, atoms)
-        if key not in self._plans:
-            self._plans[key] = self._order_by_size(i, atoms)
-        return self._plans[key]
-
-    def _order_by_size(self, i: int, atoms: tuple[int, ...]) -> tuple[int, ...]:
-        def size(j: int) -> int:
-            p = self.rules[i].body[j].p
-            rows = self.store.query(f"SELECT (COUNT(*) AS ?n) WHERE {{ ?s {p} ?o }}", graphs=[ASSERTED])
-            return int(next(iter(rows))["n"].value)
-        sizes = {j: size(j) for j in atoms}
-        return tuple(sorted(atoms, key=lambda j: (-sizes[j], j)))
-
-    def _derivable(self, p: str) -> bool:
-        """Whether a rule that can fire may derive facts of predicate ``p`` (IRI text)."""
-        return any(self.triggers.feasible(i, self.state.present) for i in self.triggers.writers(("p", p)))
 
     # ------------------------------------------------------------------ after maintenance
     def _negated_match(self) -> bool:
@@ -483,13 +291,13 @@ class IncrementalReasoner(DeletionPhases):
                 return check_consistency(self.store, self.ruleset)
             return []
         finally:
-            if self._profiling(stats):
+            if self.requests.profile:
                 stats.per_rule["consistency"] = stats.per_rule.get("consistency", 0.0) + time.perf_counter() - start
 
     def _publish_entailed(self, changed: bool) -> None:
         """Bring the ENTAILED graph up to date from what this maintenance touched (see :mod:`.entailed`)."""
         if changed:
-            self._flush()
+            self.requests.flush()
             refresh_entailed(self.store, self.ruleset, (NEW_FACTS, OVERDELETED))
 
     def _touched_types(self) -> list[tuple[Term, NamedNode]]:
@@ -512,7 +320,7 @@ class IncrementalReasoner(DeletionPhases):
 
     def _new_violation_possible(self) -> bool:
         """A check matches with at least one atom on a fact new in the closure (one semi-naive ASK)."""
-        counts = preds, classes = self._keys(NEW_FACTS)
+        counts = preds, classes = self.requests.keys(NEW_FACTS)
         branches = []
         for c, j in self.check_triggers.evaluations(preds, classes, range(len(self.checks)),
                                                     self.state.present):
@@ -540,29 +348,9 @@ class IncrementalReasoner(DeletionPhases):
         classes = {str(r["c"]) for r in self.store.query(f"SELECT DISTINCT ?c WHERE {{ ?s {TYPE} ?c }}", graphs=graphs)}
         return preds, classes
 
-    def _put(self, triples: Iterable[Triple], graph: NamedNode) -> None:
-        """Copy triples into a scratch graph as they are.
-
-        Not through :meth:`Store.add`, which would record the literals' written
-        forms for a graph that is dropped with SPARQL and never shown.  Where
-        every write is a round trip, the copy waits in the request queue and
-        goes with the next update.
-        """
-        if not self.store.round_trips:
-            self.store.add_scratch(triples, graph)
-        elif quads := [Quad(t.subject, t.predicate, t.object, graph) for t in triples]:
-            self._defer(data_update(quads, []))
-
-    def _discard(self, triples: Collection[Triple], graphs: tuple[NamedNode, ...]) -> None:
-        """Remove triples from reasoner graphs, present or not (queued where writes are round trips)."""
-        if not self.store.round_trips:
-            self.store.discard(triples, graphs)
-        elif quads := [Quad(t.subject, t.predicate, t.object, g) for t in triples for g in graphs]:
-            self._defer(data_update([], quads))
-
     def _clear_scratch(self) -> None:
         self.store.update(" ; ".join(f"DROP SILENT GRAPH {g}" for g in (*SCRATCH, DELTA, NEW_INFERRED, NEW_AUX)))
 
 
-__all__ = ["IncrementalReasoner", "MaintenanceState", "DEFAULT_MAX_CHANGE_SHARE", "can_prove", "negates_exists",
-           "is_monotone"]
+__all__ = ["IncrementalReasoner", "MaintenanceState", "DEFAULT_MAX_CHANGE_SHARE", "MODES", "can_prove", "check_mode",
+           "negates_exists", "is_monotone"]

@@ -10,80 +10,111 @@ Texts are made once per (phase, rule, atom, plan) and cached.  With
 from __future__ import annotations
 
 import time
+from collections.abc import Collection, Iterable
 
-from pyoxigraph import NamedNode
+from pyoxigraph import NamedNode, Quad, Triple
 
 from ..compile.generic import PREFIXES
 from ..compile.rule import Rule
-from ..stores.base import Store
+from ..stores.base import Store, data_update
 from .materialize import ReasonStats
 from .plan import KeyCounts, is_small, key_counts
 from .scratch import rule_start
 
 
-class Requests:
-    """The request queue and text cache of :class:`~.incremental.IncrementalReasoner` (set up by it)."""
+class RequestQueue:
+    """The update queue and SPARQL text cache that the phases of one incremental REASON share.
 
-    store: Store
-    rules: list[Rule]
-    profile: bool
-    _texts: dict[tuple, str]
-    _queue: list[str]
-    #: is the graph the next evaluation starts from small (per-solution plans)?
-    _lateral: bool
-    #: read keys of the graph evaluations start from, with counts
-    _counts: KeyCounts
+    :class:`~.incremental.IncrementalReasoner` owns one; its deletion phases
+    (:class:`~.dred.Deletion`) and its flips (:class:`~.flips.Flips`) queue
+    evaluations here, so that one request carries a whole phase.
+    """
 
-    def _run(self, key: tuple, make, i: int, j: int | None, stats: ReasonStats) -> None:
-        """Queue one evaluation; :meth:`_flush` sends the queue as one update request.
+    def __init__(self, store: Store, rules: list[Rule]) -> None:
+        self.store = store
+        self.rules = rules
+        #: time each evaluation on its own (set per REASON)
+        self.profile = False
+        #: SPARQL texts by (phase, rule, atom, plan): made once, sent many times
+        self.texts: dict[tuple, str] = {}
+        self.queue: list[str] = []
+        #: is the graph the next evaluation starts from small (per-solution plans)?
+        self.lateral = store.supports_lateral
+        #: read keys of the graph evaluations start from, with counts
+        self.counts: KeyCounts = ({}, {})
+
+    def run(self, key: tuple, make, i: int, j: int | None, stats: ReasonStats) -> None:
+        """Queue one evaluation; :meth:`flush` sends the queue as one update request.
 
         The evaluations of one phase write graphs the others of that phase do
         not read (or only benefit from reading, as PROVEN), so one request
         gives the same result and saves the per-request cost (~0.1 ms each).
         When profiling, each runs on its own to be timed.
         """
-        self._lateral = is_small(self._counts, rule_start(self.rules[i], j, key[0])) and self.store.supports_lateral
-        key = (*key, self._lateral)
-        text = self._texts.get(key)
+        self.lateral = is_small(self.counts, rule_start(self.rules[i], j, key[0])) and self.store.supports_lateral
+        key = (*key, self.lateral)
+        text = self.texts.get(key)
         if text is None:
-            text = self._texts[key] = make(i, j)
+            text = self.texts[key] = make(i, j)
         stats.evaluations += 1
-        if self._profiling(stats):
-            self._update(text, stats, f"{key[0]}:{self.rules[i].name}")
+        if self.profile:
+            self.update(text, stats, f"{key[0]}:{self.rules[i].name}")
         else:
-            self._queue.append(text)
+            self.queue.append(text)
 
-    def _start(self, graph: NamedNode) -> KeyCounts:
+    def start(self, graph: NamedNode) -> KeyCounts:
         """The evaluations that follow start from ``graph``: its read keys, and their sizes for the plans."""
-        self._counts = self._keys(graph)
-        return self._counts
+        self.counts = self.keys(graph)
+        return self.counts
 
-    def _defer(self, text: str) -> None:
+    def defer(self, text: str) -> None:
         """Queue a bookkeeping update to go with the next request (they run in queue order)."""
-        self._queue.append(text)
+        self.queue.append(text)
 
-    def _flush(self) -> None:
-        if self._queue:
-            text = " ;\n".join(self._queue)
-            self._queue.clear()
+    def flush(self) -> None:
+        """Send what is queued as one update request."""
+        if self.queue:
+            text = " ;\n".join(self.queue)
+            self.queue.clear()
             self.store.update(text, prefixes=PREFIXES)
 
-    def _update(self, text: str, stats: ReasonStats, label: str) -> None:
-        self._flush()
-        if not self._profiling(stats):
+    def update(self, text: str, stats: ReasonStats, label: str) -> None:
+        """Send ``text`` now (after the queue), timed under ``label`` when profiling."""
+        self.flush()
+        if not self.profile:
             self.store.update(text, prefixes=PREFIXES)
             return
         start = time.perf_counter()
         self.store.update(text, prefixes=PREFIXES)
         stats.per_rule[label] = stats.per_rule.get(label, 0.0) + time.perf_counter() - start
 
-    def _profiling(self, stats: ReasonStats) -> bool:
-        """Whether to time each update (and count what the phases did): only with ``profile``."""
-        return self.profile
-
-    def _keys(self, graph: NamedNode) -> KeyCounts:
+    def keys(self, graph: NamedNode) -> KeyCounts:
         """Predicates and classes (of rdf:type facts) in ``graph``, with counts: the read keys it changes."""
         return key_counts(self.store, graph)
 
+    def scratch(self, triples: Iterable[Triple], graph: NamedNode) -> None:
+        """Copy triples into a scratch graph as they are.
 
-__all__ = ["Requests"]
+        Not through :meth:`Store.add`, which would record the literals' written
+        forms for a graph that is dropped with SPARQL and never shown.  Where
+        every write is a round trip, the copy waits in the request queue and
+        goes with the next update.
+        """
+        if not self.store.round_trips:
+            self.store.add_scratch(triples, graph)
+        elif quads := [Quad(t.subject, t.predicate, t.object, graph) for t in triples]:
+            self.defer(data_update(quads, []))
+
+    def discard(self, triples: Collection[Triple], graphs: tuple[NamedNode, ...]) -> None:
+        """Remove triples from reasoner graphs, present or not (queued where writes are round trips)."""
+        if not self.store.round_trips:
+            self.store.discard(triples, graphs)
+        elif quads := [Quad(t.subject, t.predicate, t.object, g) for t in triples for g in graphs]:
+            self.defer(data_update([], quads))
+
+    def clear(self) -> None:
+        """Forget what is queued (after a failed REASON)."""
+        self.queue.clear()
+
+
+__all__ = ["RequestQueue"]

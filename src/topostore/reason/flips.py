@@ -1,0 +1,258 @@
+"""What a replaced value flips: the rule heads gained or lost when a compared value changes.
+
+A robot step replaces values that rules only compare (the clock ``now``, a
+location's ``visitedAt``); re-proving every conclusion built on them would cost
+the whole map.  :class:`Flips` evaluates, per rule, only the heads whose
+comparison gives a different answer with the new value than with the old one
+(texts in :mod:`.flip`), reading the compared facts through a value window
+(:mod:`.window`) where the change is narrow.  The heads found lost go to the
+deletion phase, those found gained are rechecked and propagated.
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Collection
+
+from pyoxigraph import NamedNode, Triple
+
+from ..compile.generic import PREFIXES
+from ..compile.rule import Rule
+from ..rdf.vocab import ASSERTED, AUX, INFERRED, TYPE
+from . import flip, window
+from .materialize import ReasonStats
+from .plan import KeyCounts
+from .requests import RequestQueue
+from .scratch import FLIP_GAINED, target
+from .triggers import Triggers, matches
+
+#: a flip window is used from this many facts of the compared predicate on, up to this many bindings
+#: of the seed and this many facts inside (else: a scan)
+WINDOW_MIN, WINDOW_ROWS, WINDOW_FACTS = 256, 64, 4096
+
+
+def census_of(triples: Collection[Triple]) -> KeyCounts:
+    """Facts per predicate and per class of ``triples`` (as :meth:`Store.census` counts a graph)."""
+    preds: dict[str, int] = {}
+    classes: dict[str, int] = {}
+    for t in triples:
+        p = str(t.predicate)
+        preds[p] = preds.get(p, 0) + 1
+        if t.predicate == TYPE:
+            classes[str(t.object)] = classes.get(str(t.object), 0) + 1
+    return preds, classes
+
+
+class Flips:
+    """Finds the flips of one REASON's replacements; keeps the value indexes of compared predicates."""
+
+    def __init__(self, requests: RequestQueue, triggers: Triggers, monotone: set[int]) -> None:
+        self.requests = requests
+        self.store = requests.store
+        self.rules: list[Rule] = requests.rules
+        self.triggers = triggers
+        self._monotone_set = monotone
+        #: the previous REASON's state (what has facts), set by :meth:`find`
+        self.state = None
+        self._texts: dict[tuple, str] = {}
+        #: what the rules' flips need that does not change between REASONs (atom orders, window tests)
+        self._plans: dict[tuple, object] = {}
+        #: sorted indexes of compared predicates (IRI text) for flip windows, kept from the asserted changes
+        self._indexes: dict[str, window.ValueIndex] = {}
+        # per rule: the variables its filters mention, and whether they are plain BIND/FILTER lines
+        self._filter_vars = [flip.filter_variables(r) for r in self.rules]
+        self._plain = [flip.plain_filters(r) for r in self.rules]
+
+    def note(self, added: Collection[Triple], removed: Collection[Triple]) -> None:
+        """Keep the value indexes up to date with the asserted changes."""
+        for t in removed:
+            if (index := self._indexes.get(f"<{t.predicate.value}>")) is not None:
+                index.discard(t)
+        for t in added:
+            if (index := self._indexes.get(f"<{t.predicate.value}>")) is not None:
+                index.add(t)
+
+    def forget(self) -> None:
+        """Drop the value indexes (after a full run or a failed REASON: rebuilt when next needed)."""
+        self._indexes.clear()
+
+    def find(self, state, added: Collection[Triple], removed: Collection[Triple], added_keys: KeyCounts,
+             stats: ReasonStats) -> tuple[set[tuple[int, int]], list[Triple], set[int]]:
+        """Evaluate the rules that see replaced values only through comparisons (see :mod:`.flip`).
+
+        Returns the (rule, atom) evaluations the ordinary path must skip, the
+        heads that lost their derivation by such a rule, and the rules with
+        heads that may have gained one (put in FLIP_GAINED, checked later).
+        """
+        self.state = state
+        replaced = [(t.subject, t.predicate) for t in added if t.predicate != TYPE]
+        now = self.store.objects_many(list(dict.fromkeys(replaced)), ASSERTED)
+        clean = flip.clean_replacements(added, removed, lambda s, p: now.get((s, p), ()))
+        clean = {p: pairs for p, pairs in clean.items() if not self.derivable(p)}
+        skip: set[tuple[int, int]] = set()
+        lost: list[Triple] = []
+        gained_rules: set[int] = set()
+        if not clean:
+            return skip, lost, gained_rules
+        preds, classes = added_keys
+        removed_preds, removed_classes = census_of(removed)
+        changed = (set(preds) | set(removed_preds), set(classes) | set(removed_classes))
+        self.requests.scratch([r.old for pairs in clean.values() for r in pairs], flip.CHANGE_OLD)
+        self.requests.flush()
+        wanted: list[tuple[int, tuple[int, ...]]] = []
+        for i in self.triggers.rules_reading(clean, self._monotone_set):
+            handled = self._flip_atoms(i, clean, changed)
+            if handled is None:
+                continue
+            skip.update((i, j) for j in handled)
+            compared = tuple(j for j in handled if self.rules[i].body[j].o[1:] in self._filter_vars[i])
+            if compared and self.triggers.feasible(i, self.state.present):
+                wanted.append((i, compared))
+        stats.flipped = len(skip)
+        for row in self._flip_rows(tuple(wanted), stats):
+            i = int(row["rule"].value)
+            head = flip.head_triple(row)
+            if flip.gained(row):
+                self.store.add_scratch([head], FLIP_GAINED)
+                gained_rules.add(i)
+            elif self.store.contains(head, target(self.rules[i])):
+                lost.append(head)
+        return skip, lost, gained_rules
+
+    def _flip_atoms(self, i: int, clean: dict, changed: tuple[set[str], set[str]]) -> tuple[int, ...] | None:
+        """The rule's atoms on cleanly replaced values, when every changed atom is one (else None)."""
+        rule = self.rules[i]
+        if any(matches(k, *changed) for k in rule.filter_reads) or not self._plain[i]:
+            return None
+        handled = []
+        for j, atom in enumerate(rule.body):
+            if not matches(atom.read_key(), *changed):
+                continue
+            if atom.p not in clean or not flip.compared_only(rule, j):
+                return None
+            handled.append(j)
+        return tuple(handled) or None
+
+    def _flip_rows(self, wanted: tuple[tuple[int, tuple[int, ...]], ...], stats: ReasonStats) -> list:
+        """One query for the flips of all ``wanted`` (rule, compared atoms).
+
+        A branch that would scan every value of a compared predicate reads only the
+        values in its window instead, when :mod:`.window` can give one.
+        """
+        if not wanted:
+            return []
+        lateral = self.store.supports_lateral
+        branches: list[str] = []
+        for i, atoms in wanted:
+            order = self._by_frequency(i, atoms)
+            windows = self._windows(i, order)
+            if windows:
+                branches += flip.flip_branches(self.rules[i], order, lateral, i, windows)
+                continue
+            key = ("flip", i, order)
+            cached = self._texts.get(key)
+            if cached is None:
+                cached = self._texts[key] = "\nUNION\n".join(flip.flip_branches(self.rules[i], order, lateral, i))
+            branches.append(cached)
+        stats.evaluations += len(wanted)
+        start = time.perf_counter()
+        rows = list(self.store.query(flip.flip_query(branches), prefixes=PREFIXES, graphs=[ASSERTED, INFERRED, AUX],
+                                     named=[AUX, flip.CHANGE_OLD]))
+        if self.requests.profile:
+            stats.per_rule["flip"] = stats.per_rule.get("flip", 0.0) + time.perf_counter() - start
+        return rows
+
+    def _windows(self, i: int, order: tuple[int, ...]) -> dict[int, dict[int, list[Triple]]]:
+        """For the branch seeded by the last changed atom (all others read settled), the facts of each
+        other compared atom that lie in its window (see :mod:`.window`); {} where there is none."""
+        rule, k = self.rules[i], order[-1]
+        found: dict[int, list[Triple]] = {}
+        for m, atom in enumerate(rule.body):
+            # an atom whose subject the seed binds is a look-up already; only an enumeration needs a window
+            if m == k or not flip.compared_only(rule, m) or atom.s in rule.body[k].variables() \
+                    or self.derivable(atom.p):
+                continue
+            facts = self._window_facts(i, k, m)
+            if facts is not None:
+                found[m] = facts
+        return {k: found} if found else {}
+
+    def _window_facts(self, i: int, k: int, m: int) -> list[Triple] | None:
+        """The facts of atom ``m`` that a change of seed atom ``k``'s value may flip (None: no window)."""
+        rule = self.rules[i]
+        tests = self._plans.get(("window-tests", i))
+        if tests is None:
+            tests = self._plans[("window-tests", i)] = window.tests(rule)
+        seed, atom = rule.body[k], rule.body[m]
+        t, v = seed.o[1:], atom.o[1:]
+        index = self._value_index(atom.p)
+        if not window.possible(tests, t) or len(index) < WINDOW_MIN:
+            return None  # no linear test to solve, or so few values that scanning them is as cheap
+        rest = sorted({n for test in tests if test.form for n in test.form[0]} - {t, v})
+        text = self._texts.get(("window", i, k, m))
+        if text is None:
+            text = self._texts[("window", i, k, m)] = self._window_query(rule, k, m, rest)
+        rows = list(self.store.query(text, prefixes=PREFIXES, graphs=[ASSERTED, INFERRED, AUX],
+                                     named=[AUX, flip.CHANGE_OLD]))
+        if len(rows) > WINDOW_ROWS:
+            return None
+        facts: dict[Triple, None] = {}
+        for row in rows:
+            terms = [row[f"{t}__o"], row[f"{t}__n"], *(row[n] for n in rest)]
+            values = [window.number(term) for term in terms]
+            if any(x is None for x in values):
+                return None
+            span = window.interval(tests, v, t, values[0], values[1], dict(zip(rest, values[2:])),
+                                   window.margin(terms, values))
+            if span is None:
+                return None
+            if span is False:
+                continue
+            inside = index.between(span[0], span[1], WINDOW_FACTS)
+            if inside is None:
+                return None
+            facts.update(dict.fromkeys(inside))
+            if len(facts) > WINDOW_FACTS:
+                return None
+        return list(facts)
+
+    def _window_query(self, rule: Rule, k: int, m: int, rest: list[str]) -> str:
+        """The old and new seed values with the bindings of ``rest``: the seed atom and the atoms that do
+        not depend on atom ``m`` (leaving atoms out only widens the window)."""
+        seed, atom = rule.body[k], rule.body[m]
+        t = seed.o[1:]
+        lines = [f"GRAPH {flip.CHANGE_OLD} {{ {seed.s} {seed.p} ?{t}__o }}", f"{seed.s} {seed.p} ?{t}__n ."]
+        own = atom.variables() - seed.variables()
+        lines += [rule.atom_text(j) for j, other in enumerate(rule.body)
+                  if j not in (k, m) and not (other.variables() & own)]
+        head = " ".join([f"?{t}__o", f"?{t}__n", *(f"?{n}" for n in rest)])
+        return f"SELECT DISTINCT {head} WHERE {{\n  " + "\n  ".join(lines) + f"\n}} LIMIT {WINDOW_ROWS + 1}"
+
+    def _value_index(self, p: str) -> window.ValueIndex:
+        """The sorted index of predicate ``p``'s facts (built once, kept by :meth:`_maintain`)."""
+        index = self._indexes.get(p)
+        if index is None:
+            index = self._indexes[p] = window.ValueIndex(self.store.triples(None, NamedNode(p[1:-1]), None, ASSERTED))
+        return index
+
+    def _by_frequency(self, i: int, atoms: tuple[int, ...]) -> tuple[int, ...]:
+        """The rule's atoms, those of predicates with the most asserted facts first (see flip.flip_branches)."""
+        key = ("order", i, atoms)
+        if key not in self._plans:
+            self._plans[key] = self._order_by_size(i, atoms)
+        return self._plans[key]
+
+    def _order_by_size(self, i: int, atoms: tuple[int, ...]) -> tuple[int, ...]:
+        def size(j: int) -> int:
+            p = self.rules[i].body[j].p
+            rows = self.store.query(f"SELECT (COUNT(*) AS ?n) WHERE {{ ?s {p} ?o }}", graphs=[ASSERTED])
+            return int(next(iter(rows))["n"].value)
+        sizes = {j: size(j) for j in atoms}
+        return tuple(sorted(atoms, key=lambda j: (-sizes[j], j)))
+
+    def derivable(self, p: str) -> bool:
+        """Whether a rule that can fire may derive facts of predicate ``p`` (IRI text)."""
+        return any(self.triggers.feasible(i, self.state.present) for i in self.triggers.writers(("p", p)))
+
+
+__all__ = ["Flips", "WINDOW_FACTS", "WINDOW_MIN", "WINDOW_ROWS", "census_of"]
