@@ -92,6 +92,35 @@ def test_rules_are_grouped_with_origin() -> None:
     assert "Generic OWL 2 RL rules" in run("rules", "--all", TBOX).output
 
 
+def test_rules_deltas_are_one_plain_update_per_body_atom(tmp_path: Path) -> None:
+    """Each printed delta rule reads its atom from the delta graph, runs as it is on a store, and, with the
+    new facts put in the delta graph, inserts what the rule derives from them."""
+    import pyoxigraph as ox
+
+    from topostore.compile.generic import PREFIXES
+    from topostore.rdf.vocab import DELTA
+
+    rule_file = tmp_path / "chain.ttl"
+    rule_file.write_text(
+        "@prefix : <http://example.org/#> . @prefix owl: <http://www.w3.org/2002/07/owl#> .\n"
+        "@prefix rdfs: <http://www.w3.org/2000/01/rdf-schema#> .\n"
+        ":p a owl:ObjectProperty . :q a owl:ObjectProperty . :r a owl:ObjectProperty ; owl:propertyChainAxiom (:p :q) .\n")
+    out = run("rules", "--deltas", str(rule_file)).output
+    blocks = [b.split("\n", 1)[1].split("\n\n")[0] for b in out.split("#   delta on atom ")[1:]]
+    chain = [b for b in blocks if "http://example.org/#r" in b.split("WHERE")[0]]
+    assert len(chain) == 2 and all(f"GRAPH {DELTA}" in b and "LATERAL" not in b and "UNION" not in b for b in chain)
+    store = ox.Store()
+    a, b, c = (ox.NamedNode(f"http://example.org/#{n}") for n in "abc")
+    p, q = ox.NamedNode("http://example.org/#p"), ox.NamedNode("http://example.org/#q")
+    store.add(ox.Quad(a, p, b, ox.NamedNode("urn:topostore:graph:asserted")))
+    store.add(ox.Quad(b, q, c, DELTA))  # the new fact: b q c
+    for text in chain:
+        store.update(text, prefixes=PREFIXES)
+    derived = {(str(x.subject), str(x.object)) for x in store.quads_for_pattern(None, None, None,
+                                                                                  ox.NamedNode("urn:topostore:graph:new-inferred"))}
+    assert derived == {("<http://example.org/#a>", "<http://example.org/#c>")}
+
+
 def test_query_named_table_json_tsv() -> None:
     table = run("query", TBOX, ABOX, "urgent-locations")
     assert table.exit_code == 0, table.output

@@ -14,6 +14,7 @@ import click
 from rich.console import Console
 from rich.table import Table
 
+from ..compile.rule import Rule
 from ..ontology.named_queries import QueryItem, named_queries
 from ..rdf.vocab import ASSERTED, INFERRED, OWL, RDF, RDFS, XSD
 from ..stores.base import guess_format, serialize
@@ -107,12 +108,16 @@ RULE_GROUPS = ("SWRL rules", "OWL axioms", "Consistency checks", "Generic OWL 2 
 @click.command()
 @click.argument("files", nargs=-1, required=True, metavar="FILE...")
 @click.option("--all", "show_all", is_flag=True, help="Also print the generic OWL 2 RL rules every ontology gets.")
-def rules(files: tuple[str, ...], show_all: bool) -> None:
+@click.option("--deltas", is_flag=True,
+              help="After each rule, the delta rules incremental REASON runs: one per body atom, that atom read "
+                   "from the changed facts only.")
+def rules(files: tuple[str, ...], show_all: bool, deltas: bool) -> None:
     """Print the rules compiled from FILE(s): SPARQL per rule, grouped, with its origin.
 
     \b
-    Example:
+    Examples:
       topostore rules ontology/topological_map.ttl
+      topostore rules --deltas ontology/topological_map.ttl
     """
     from ..compile.generic import generic_rules
 
@@ -137,9 +142,26 @@ def rules(files: tuple[str, ...], show_all: bool) -> None:
         click.echo(f"### {title} ({len(members)})\n")
         for rule in members:
             click.echo(rule.sparql() + "\n")
+            if deltas and not rule.is_check:
+                click.echo(_delta_rules(rule))
         shown += len(members)
     hidden = "" if show_all else f", {len(groups['Generic OWL 2 RL rules'])} generic rules not shown (--all)"
     click.echo(f"# {shown} rules{hidden}")
+
+
+def _delta_rules(rule: Rule) -> str:
+    """The semi-naive forms of ``rule`` as a REASON after a change runs them: per body atom, that atom
+    on the delta graph (the facts new in this round), the others in the join order fixed for it.
+
+    Printed as plain SPARQL 1.1, the form remote stores run; on Oxigraph a small delta runs each further
+    atom under LATERAL (once per delta fact), in the same order.
+    """
+    from ..reason.materialize import insert_text
+
+    blocks = []
+    for j, atom in enumerate(rule.body):
+        blocks.append(f"#   delta on atom {j + 1} ({atom.text()}):\n{insert_text(rule, j, planned=True, lateral=False)}\n")
+    return "\n".join(blocks)
 
 
 # --------------------------------------------------------------------------- query
