@@ -1,6 +1,6 @@
-"""The README's architecture table is the module map, and the imports obey it.
+"""The layer table of docs/architecture.md is the module map, and the imports obey it.
 
-The table (README, "Architecture") names every module of ``src/topostore`` once
+The table (docs/architecture.md, "Layers") names every module of ``src/topostore`` once
 and says what each may import; rows are in dependency order, so everything a
 row may import sits in a row above it.  The imports are read with :mod:`ast`,
 lazy ones inside functions included; imports under ``if TYPE_CHECKING:`` are
@@ -17,9 +17,9 @@ from pathlib import Path
 import topostore
 
 PACKAGE = Path(topostore.__file__).parent
-README = PACKAGE.parent.parent / "README.md"
+ARCHITECTURE = PACKAGE.parent.parent / "docs" / "architecture.md"
 
-#: The two imports that go upward, each inside one function, as the README says.
+#: The two imports that go upward, each inside one function, as docs/architecture.md says.
 UPWARD = {
     ("store.py", "stores/oxigraph.py"),  # Store() gives a fresh in-memory OxigraphStore
     ("ros/launcher.py", "cli.py"),  # the `armor` launcher runs the command line
@@ -34,8 +34,8 @@ class Row:
 
 
 def architecture_rows(text: str) -> list[Row]:
-    """The rows of the ``| module | owns | may import |`` table of the Architecture section."""
-    section = text.split("\n## Architecture\n", 1)[1].split("\n## ", 1)[0]
+    """The rows of the ``| module | owns | may import |`` table of the Layers section."""
+    section = text.split("\n## Layers\n", 1)[1].split("\n## ", 1)[0]
     lines = section.split("| module | owns | may import |\n|---|---|---|\n", 1)[1].split("\n\n", 1)[0]
     rows = []
     for i, line in enumerate(lines.strip().splitlines()):
@@ -93,7 +93,7 @@ def imported_modules(path: str) -> set[str]:
     return found
 
 
-ROWS = architecture_rows(README.read_text(encoding="utf-8"))
+ROWS = architecture_rows(ARCHITECTURE.read_text(encoding="utf-8"))
 
 
 def row_of(path: str) -> Row:
