@@ -24,6 +24,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from topostore.armor import ArmorService
 from topostore.server import ServerConfig, create_app
 
 TBOX = Path(__file__).parents[2] / "shared" / "ontology" / "topological_map.owl"
@@ -124,14 +125,16 @@ def in_process(config: ServerConfig) -> Iterator[InProcess]:
 
 
 @contextlib.contextmanager
-def threaded(config: ServerConfig, timeout: float = 20) -> Iterator[Live]:
-    """The application of ``config`` served by uvicorn on a free loopback port, in a thread of this process."""
+def threaded(config: ServerConfig, timeout: float = 20, service: ArmorService | None = None) -> Iterator[Live]:
+    """The application of ``config`` (serving ``service`` when given) on a free loopback port, in a thread of this
+    process."""
     import uvicorn
 
     sock = socket.socket()
     sock.bind(("127.0.0.1", 0))  # bound here, so no other process can take the port before uvicorn listens
     port = sock.getsockname()[1]
-    server = uvicorn.Server(uvicorn.Config(create_app(config), log_level="warning", timeout_graceful_shutdown=5))
+    app = create_app(config, service)
+    server = uvicorn.Server(uvicorn.Config(app, log_level="warning", timeout_graceful_shutdown=5))
     thread = threading.Thread(target=server.run, kwargs={"sockets": [sock]}, name="uvicorn-test", daemon=True)
     thread.start()
     try:
