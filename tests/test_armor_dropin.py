@@ -21,12 +21,11 @@ from typing import Any
 
 import pytest
 from http_support import TBOX, free_port, start_server, stop_server, threaded, with_map
+from support import IRI
 
 from topostore.armor import ArmorRequest, ArmorResponse, ArmorService
 from topostore.armor_api import transport
 from topostore.server import ServerConfig
-
-IRI = "http://bnc/exp-rob-lab/2022-23"
 
 #: The seed tutorial's client code, verbatim in style (only the ontology path is a parameter).
 TUTORIAL = textwrap.dedent('''

@@ -25,7 +25,8 @@ import httpx
 import pytest
 from pyoxigraph import NamedNode, Triple
 from servers import free_port, stop
-from test_swrl import PREFIXES, builtin, data, rule
+from support import IRI
+from swrl_support import PREFIXES, builtin, data, rule
 
 from topostore import Ontology, RuleCompileError, safeio
 from topostore.armor import ArmorService
@@ -34,7 +35,6 @@ from topostore.vocab import ASSERTED, INFERRED
 
 ROOT = Path(__file__).resolve().parents[1]
 TBOX = ROOT / "ontology" / "topological_map.ttl"
-IRI = "http://bnc/exp-rob-lab/2022-23"
 REPETITIONS = 20
 
 

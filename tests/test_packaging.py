@@ -18,9 +18,9 @@ import venv
 from pathlib import Path
 
 import pytest
+from support import SHARED
 
 ROOT = Path(__file__).resolve().parents[1]
-SHARED = ROOT.parent / "shared" / "ontology"
 LIMIT = 600  # seconds for any one step (a cold pip cache downloads pyoxigraph and friends)
 
 

@@ -18,22 +18,16 @@ import json
 import shutil
 import subprocess
 import sys
-from collections.abc import Callable
 from pathlib import Path
 
 import pytest
-from pyoxigraph import Triple
+from scenarios import NAMES, PROPS, SCENARIOS, damage, generated, topostore
+from support import ABOX_OWL as ABOX
+from support import NS
 
 from topostore import Ontology, mapgen
-from topostore.nary import axiom_of_list_node
-from topostore.vocab import DIFFERENT_FROM, FIRST
 
 ROOT = Path(__file__).resolve().parents[1]
-ABOX = ROOT.parent / "shared" / "ontology" / "topological_map_abox.owl"
-TBOX = ROOT.parent / "shared" / "ontology" / "topological_map.owl"
-NS = "http://bnc/exp-rob-lab/2022-23#"
-NAMES = ["C1", "C2", "R1", "R2", "R3", "D1", "D2", "D3", "D4", "Robot1", "Robot2", "X"]
-PROPS = ["canReach", "connectedTo"]
 
 pytestmark = [
     pytest.mark.skipif(shutil.which("java") is None, reason="Pellet needs a Java runtime"),
@@ -84,64 +78,6 @@ def pellet(path: Path, names: list[str]) -> dict:
     return json.loads(run.stdout.strip().splitlines()[-1])
 
 
-def topostore(onto: Ontology, names: list[str]) -> dict:
-    if not onto.reason().consistent:
-        return {"consistent": False}
-    out = {}
-    for name in names:
-        types = sorted(onto.short(t) for t in onto.types(name) if t.value.startswith(NS))
-        facts: dict = {"types": types}
-        for p in PROPS:
-            values = sorted(onto.object_values(p, name))
-            if values:
-                facts[p] = values
-        if mentioned(onto, name):
-            out[name] = facts
-    return {"consistent": True, "individuals": out}
-
-
-def mentioned(onto: Ontology, name: str) -> bool:
-    """Whether the file names this individual at all (Owlready2 then knows the entity)."""
-    iri = onto.iri(name)
-    return any(True for _ in onto.store.triples(iri, None, None)) or any(True for _ in onto.store.triples(None, None, iri))
-
-
-def drop_all_different(onto: Ontology, member: str) -> None:
-    """Remove the owl:AllDifferent axiom listing ``member`` (its other facts stay)."""
-    for t in list(onto.store.triples(None, FIRST, onto.iri(member))):
-        onto.remove(*axiom_of_list_node(onto.store, t.subject))
-
-
-def long(onto: Ontology, n: int):
-    return onto.value(n, "long")
-
-
-SCENARIOS: dict[str, Callable[[Ontology], None]] = {
-    "example": lambda o: None,
-    "doors not declared different": lambda o: drop_all_different(o, "D1"),
-    "locations not declared different, distinct visits": lambda o: drop_all_different(o, "C1"),
-    "robot moved to R1": lambda o: o.replace("Robot1", "isIn", "R1"),
-    "robot in an undeclared place: sameAs merge": lambda o: o.add_fact("Robot1", "isIn", "X"),
-    "robot in two places declared different": lambda o: o.add_fact("Robot1", "isIn", "R1"),
-    "a door that is a location": lambda o: o.add_fact("R1", "hasDoor", "R2"),
-    "a room with a second, different door": lambda o: (o.add_fact("R1", "hasDoor", "D3"),
-                                                       o.add_all_different(["D1", "D3"])),
-    "a door link removed": lambda o: o.remove_fact("C1", "hasDoor", "D2"),
-    "visited in the future": lambda o: o.replace("R2", "visitedAt", long(o, 1665579999)),
-    "time advances": lambda o: o.replace("Robot1", "now", long(o, 1665579760)),
-    "a new room not declared different": lambda o: (o.add_fact("R3", "hasDoor", "D1"),
-                                                    o.add_fact("R3", "visitedAt", long(o, 1665579000))),
-    "a new room declared different from C1 only": lambda o: (
-        o.add_fact("R3", "hasDoor", "D1"), o.add_fact("R3", "visitedAt", long(o, 1665579000)),
-        o.add(Triple(o.iri("R3"), DIFFERENT_FROM, o.iri("C1")))),
-    "a location without doors": lambda o: o.add_fact("R3", "visitedAt", long(o, 1665579700)),
-    "two visit times of one location": lambda o: o.add_fact("R1", "visitedAt", long(o, 1665579720)),
-    "a literal outside its range": lambda o: o.add_data("visitedAt", "R1", "1.5", "decimal"),
-    "second robot on the map": lambda o: (o.add_fact("Robot2", "isIn", "R2"), o.add_fact("Robot2", "now", long(o, 1665579800)),
-                                          o.add_fact("Robot2", "urgencyThreshold", long(o, 50))),
-}
-
-
 @pytest.mark.parametrize("name", list(SCENARIOS))
 def test_same_inferences_as_pellet(name: str, tmp_path: Path) -> None:
     onto = Ontology.from_file(ABOX)
@@ -150,14 +86,6 @@ def test_same_inferences_as_pellet(name: str, tmp_path: Path) -> None:
     onto.save(path, fmt="ntriples")
     expected = pellet(path, NAMES)
     assert topostore(Ontology.from_file(path), NAMES) == expected
-
-
-def generated(size: int, seed: int, declared: bool) -> tuple[Ontology, list[str]]:
-    """A generated map (corridors and rooms) on the reference TBox, and its individuals."""
-    m = mapgen.generate(size, seed=seed)
-    onto = Ontology.from_file(TBOX)
-    onto.add(*m.triples(all_different=declared))
-    return onto, m.locations + m.doors + list(m.robots)
 
 
 @pytest.mark.parametrize("size,seed,declared", [(9, 1, True), (9, 2, False)])
@@ -177,8 +105,6 @@ def test_repaired_saved_map_saves_rules_pellet_fires(tmp_path: Path) -> None:
     """A map whose rules a save damaged (nested atom lists): topostore repairs it on load, and its
     own SAVE (RDF/XML) is read by Pellet, whose rules then draw what topostore draws."""
     import warnings
-
-    from test_saved_rules import damage
 
     from topostore import OntologyWarning
 

@@ -14,7 +14,9 @@ import pytest
 import rdflib
 from pyoxigraph import Literal, NamedNode
 from rdflib.compare import isomorphic
-from test_swrl import PREFIXES, builtin, data, rule
+from support import ABOX_OWL as ABOX
+from support import IRI
+from swrl_support import PREFIXES, builtin, data, rule
 
 from topostore import Ontology
 from topostore.armor import ArmorService
@@ -25,9 +27,6 @@ from topostore.server import ServerConfig, create_app
 from topostore.sparql.guard import QueryTooComplex, check_user_sparql
 from topostore.vocab import ASSERTED, INFERRED
 
-SHARED = Path(__file__).resolve().parents[2] / "shared" / "ontology"
-ABOX = SHARED / "topological_map_abox.owl"
-IRI = "http://bnc/exp-rob-lab/2022-23"
 ROOT = Path(__file__).resolve().parents[1]
 
 

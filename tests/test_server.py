@@ -25,24 +25,27 @@ from pathlib import Path
 
 import pytest
 import rdflib
-from http_support import TBOX, Client, Live, free_port, in_process, start_server, stop_server, threaded, with_map
+from http_support import (
+    IRI,
+    NS,
+    TBOX,
+    TOKEN,
+    Client,
+    Live,
+    config,
+    free_port,
+    in_process,
+    start_server,
+    stop_server,
+    threaded,
+)
 from rdflib.plugins.stores.sparqlstore import SPARQLStore
 
 from topostore.armor_api.armor_client import ArmorClient
 from topostore.armor_api.armor_exceptions import ArmorServiceCallError, ArmorServiceInternalError
 from topostore.armor_api.http_transport import HttpTransport
-from topostore.server import ServerConfig
 
-Server = Live  # the name other test modules import
-IRI = "http://bnc/exp-rob-lab/2022-23"
-NS = IRI + "#"
-TOKEN = "s3cret-token"
-__all__ = ["IRI", "NS", "TBOX", "Server", "free_port", "start_server", "stop_server"]
-
-
-def config(data_dir: Path, **settings) -> ServerConfig:
-    """What ``topostore serve --data-dir DATA_DIR`` with these settings configures."""
-    return ServerConfig(data_dir=with_map(data_dir), **settings)
+Server = Live
 
 
 @pytest.fixture(scope="module")
