@@ -39,7 +39,7 @@ vendor-js:
 # ROS 1 for `topostore ros` and tests/test_ros*.py, from Debian's packages: installed
 # when running as root on Debian (CI), skipped elsewhere (the ROS tests then say what
 # to install).  The venv sees Debian's /usr/lib/python3/dist-packages through a .pth
-# file appended after its own packages (README, "aRMOR over ROS", says why).
+# file appended after its own packages (docs/ros.md, "Set-up", says why).
 ROS_DEBS := python3-rospy python3-rosservice python3-genpy python3-genmsg ros-core
 ros-deps: $(STAMP)
 	@missing=$$(for p in $(ROS_DEBS); do dpkg-query -W -f='$${Status}' $$p 2>/dev/null | grep -q "ok installed" || echo $$p; done); \

@@ -1,4 +1,5 @@
-"""Shared fixtures: the SPARQL servers of the remote-store tests, started once per session; the markers
+"""Shared fixtures: the SPARQL servers of the remote-store tests, started once per session; the example map
+served for the browser tests; the markers
 ``external`` and ``slow`` (``pytest -m "not external and not slow"`` is the quick loop; ``make test`` runs
 everything); the fuzz figures (cases tried, violations found) printed at the end of a run that fuzzed."""
 
@@ -12,7 +13,16 @@ import pytest
 
 sys.path.insert(0, str(Path(__file__).parent))
 
+from http_support import Live, example_map_server  # noqa: E402
 from servers import oxigraph_server, virtuoso_available, virtuoso_server  # noqa: E402
+
+
+@pytest.fixture
+def live_map(tmp_path: Path) -> Iterator[Live]:
+    """A service on a real socket (uvicorn in a thread) with the example map loaded as reference ontoRef, for the
+    live map page, its events and the inspector in a browser."""
+    with example_map_server(tmp_path / "data") as server:
+        yield server
 
 
 @pytest.fixture(scope="session")

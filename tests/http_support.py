@@ -24,15 +24,29 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from servers import free_port
+from support import IRI, NS
+from support import TBOX_OWL as TBOX
+
+from topostore import Ontology
+from topostore.armor import ArmorService
 from topostore.http.app import ServerConfig, create_app
+from topostore.resources import default_ontology_files
 
-TBOX = Path(__file__).parents[2] / "shared" / "ontology" / "topological_map.owl"
+__all__ = ["IRI", "NS", "TBOX", "TOKEN", "Client", "InProcess", "Live", "config", "example_map_server", "free_port",
+           "in_process", "start_server", "stop_server", "threaded", "with_map"]
+
+#: the bearer token of the tests that need one
+TOKEN = "s3cret-token"
+#: Debian's chromium, driven by Playwright for the live map and the inspector (None: those tests skip)
+CHROMIUM = shutil.which("chromium") or shutil.which("chromium-browser")
+CHROMIUM_FLAGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
+                  "--disable-background-networking", "--disable-component-update", "--disable-sync"]
 
 
-def free_port() -> int:
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return s.getsockname()[1]
+def config(data_dir: Path, **settings: Any) -> ServerConfig:
+    """What ``topostore serve --data-dir DATA_DIR`` with these settings configures (the tutorial's TBox in it)."""
+    return ServerConfig(data_dir=with_map(data_dir), **settings)
 
 
 class Client:
@@ -124,14 +138,16 @@ def in_process(config: ServerConfig) -> Iterator[InProcess]:
 
 
 @contextlib.contextmanager
-def threaded(config: ServerConfig, timeout: float = 20) -> Iterator[Live]:
-    """The application of ``config`` served by uvicorn on a free loopback port, in a thread of this process."""
+def threaded(config: ServerConfig, timeout: float = 20, service: ArmorService | None = None) -> Iterator[Live]:
+    """The application of ``config`` (serving ``service`` when given) on a free loopback port, in a thread of this
+    process."""
     import uvicorn
 
     sock = socket.socket()
     sock.bind(("127.0.0.1", 0))  # bound here, so no other process can take the port before uvicorn listens
     port = sock.getsockname()[1]
-    server = uvicorn.Server(uvicorn.Config(create_app(config), log_level="warning", timeout_graceful_shutdown=5))
+    app = create_app(config, service)
+    server = uvicorn.Server(uvicorn.Config(app, log_level="warning", timeout_graceful_shutdown=5))
     thread = threading.Thread(target=server.run, kwargs={"sockets": [sock]}, name="uvicorn-test", daemon=True)
     thread.start()
     try:
@@ -145,6 +161,16 @@ def threaded(config: ServerConfig, timeout: float = 20) -> Iterator[Live]:
         server.should_exit = True
         thread.join(15)
         sock.close()
+
+
+@contextlib.contextmanager
+def example_map_server(data_dir: Path) -> Iterator[Live]:
+    """A service on a real socket with the example map loaded as reference ontoRef (live reasoner: every change
+    reasons), for the browser and the server-sent events."""
+    with threaded(config(data_dir)) as server:
+        Ontology.from_file(*default_ontology_files()).save(server.data_dir / "example.ttl")
+        server.ok("LOAD", "FILE", "", ["example.ttl", IRI, "false", "PELLET", "false"])
+        yield server
 
 
 def start_server(data_dir: Path, *extra: str, token: str | None = None, port: int | None = None) -> Live:

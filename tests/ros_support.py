@@ -19,11 +19,11 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 import pytest
+from support import IRI, TBOX_OWL
 
 from topostore.ros import install_hint, ros_available
 
 ROOT = Path(__file__).resolve().parents[1]
-TBOX_OWL = ROOT.parent / "shared" / "ontology" / "topological_map.owl"
 TOPOSTORE = str(Path(sys.executable).with_name("topostore"))
 STARTUP_SECONDS = 30.0
 
@@ -189,7 +189,6 @@ def _wait_for_master(world: RosWorld) -> bool:
 
 # --------------------------------------------------------------------------- the tutorial
 
-IRI = "http://bnc/exp-rob-lab/2022-23"
 
 
 def iri(name: str) -> str:

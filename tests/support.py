@@ -1,4 +1,5 @@
-"""Helpers shared by the core tests: where the reference files are, and short views of answers."""
+"""Helpers shared by the tests: where the test data and the tutorial's files are (the one place that says so),
+and short views of answers."""
 
 from __future__ import annotations
 
@@ -11,11 +12,16 @@ from topostore import Ontology
 from topostore.rdf.vocab import XSD
 
 ROOT = Path(__file__).resolve().parents[1]
-#: ../shared/ontology beside the checkout (CI clones the repository with it there)
+#: small project-owned files the tests read (saved maps, SQWRL queries)
+DATA = ROOT / "tests" / "data"
+#: ../shared/ontology beside the checkout (CI clones the repository with it there): the tutorial's files,
+#: read where they are, never copied
 SHARED = ROOT.parent / "shared" / "ontology"
 TBOX_OWL = SHARED / "topological_map.owl"
 ABOX_OWL = SHARED / "topological_map_abox.owl"
-NS = "http://bnc/exp-rob-lab/2022-23#"
+#: the tutorial ontology's IRI, and its namespace
+IRI = "http://bnc/exp-rob-lab/2022-23"
+NS = IRI + "#"
 #: the example environment's clock (Robot1 now)
 NOW = 1665579740
 

@@ -7,16 +7,14 @@ from pathlib import Path
 import pytest
 import rdflib
 from rdflib.compare import isomorphic
+from support import ABOX_OWL as ABOX
+from support import IRI
+from support import TBOX_OWL as TBOX
 
 from topostore.armor import ArmorRequest, ArmorResponse, ArmorService
 from topostore.armor_api import armor_exceptions, transport
 from topostore.armor_api.armor_client import ArmorClient
 from topostore.armor_api.armor_exceptions import ArmorPyException, ArmorServiceCallError, ArmorServiceInternalError
-
-ONTOLOGY_DIR = Path(__file__).parents[2] / "shared" / "ontology"
-TBOX = ONTOLOGY_DIR / "topological_map.owl"
-ABOX = ONTOLOGY_DIR / "topological_map_abox.owl"
-IRI = "http://bnc/exp-rob-lab/2022-23"
 
 
 class Recorder:

@@ -7,13 +7,12 @@ from pathlib import Path
 
 import pytest
 import rdflib
+from support import ABOX_OWL as ABOX
+from support import IRI
 
 from topostore import Ontology
 from topostore.armor import ArmorResponse, ArmorService
 
-ONTOLOGY_DIR = Path(__file__).parents[2] / "shared" / "ontology"
-ABOX = ONTOLOGY_DIR / "topological_map_abox.owl"
-IRI = "http://bnc/exp-rob-lab/2022-23"
 NS = IRI + "#"
 SWRL = rdflib.Namespace("http://www.w3.org/2003/11/swrl#")
 

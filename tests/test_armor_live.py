@@ -6,12 +6,12 @@ import json
 from pathlib import Path
 
 import pytest
+from support import IRI
 
 from topostore import Ontology
 from topostore.armor import ArmorService
 from topostore.resources import default_ontology_files
 
-IRI = "http://bnc/exp-rob-lab/2022-23"
 STALE = "LOCATION(?l) ^ visitedAt(?l, ?v) ^ swrlb:lessThan(?v, 1665579736) -> URGENT(?l)"
 
 

@@ -12,13 +12,11 @@ Expectations come from the rules in shared/ontology/README.md:
 
 from __future__ import annotations
 
-from pathlib import Path
+from support import IRI
+from support import TBOX_OWL as TBOX
 
 from topostore.armor import ArmorService
 from topostore.armor_api.armor_client import ArmorClient
-
-TBOX = Path(__file__).parents[2] / "shared" / "ontology" / "topological_map.owl"
-IRI = "http://bnc/exp-rob-lab/2022-23"
 
 DOORS = {"C1": ["D1", "D2", "D5"], "C2": ["D5", "D3", "D4"], "R1": ["D1"], "R2": ["D2"], "R3": ["D3"], "R4": ["D4"]}
 # connectedTo derived by hand from shared doors (Connectability rule)

@@ -8,15 +8,14 @@ import pytest
 import rdflib
 from pyoxigraph import NamedNode, Triple
 from rdflib.compare import isomorphic
+from support import ABOX_OWL as ABOX
+from support import IRI
+from support import TBOX_OWL as TBOX
 
 from topostore import ArmorService as TopLevelArmorService
 from topostore.armor import ArmorRequest, ArmorResponse, ArmorService
 from topostore.rdf.vocab import ASSERTED, TYPE, owl
 
-ONTOLOGY_DIR = Path(__file__).parents[2] / "shared" / "ontology"
-TBOX = ONTOLOGY_DIR / "topological_map.owl"
-ABOX = ONTOLOGY_DIR / "topological_map_abox.owl"
-IRI = "http://bnc/exp-rob-lab/2022-23"
 NS = IRI + "#"
 
 

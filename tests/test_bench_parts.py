@@ -1,4 +1,4 @@
-"""The drift, remote-store and full-REASON benchmark tools measure what they claim (tiny runs; no timing
+"""The drift, remote-store, full-REASON and picture benchmark tools measure what they claim (tiny runs; no timing
 is asserted): windows and pauses, HTTP requests counted at the transport, the TBox generator, every
 engine's answers, and the tables' met/missed verdicts."""
 
@@ -17,7 +17,7 @@ from pyoxigraph import RdfFormat, parse
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # the benchmarks package lives beside src/
 
-from benchmarks import drift, full, remote, report, tables, tbox  # noqa: E402
+from benchmarks import drift, full, picture, remote, report, tables, tbox  # noqa: E402
 from benchmarks.http_count import counting  # noqa: E402
 
 OWL = "http://www.w3.org/2002/07/owl#"
@@ -35,6 +35,14 @@ def test_a_short_drift_walk_on_the_example_map(tmp_path: Path) -> None:
     row = drift.run("example", 12, tmp_path)
     assert row["mismatches"] == [] and len(row["step_ms"]) == 12
     assert row["early_ms"] > 0 and row["late_ms"] > 0 and 1 <= row["longest_step"] <= 12
+
+
+def test_the_picture_benchmark_draws_both_kinds_of_map(capsys: pytest.CaptureFixture[str]) -> None:
+    pytest.importorskip("matplotlib")
+    assert picture.main(["--sizes", "30", "450"]) == 0
+    rows = [line.split("|")[1:-1] for line in capsys.readouterr().out.splitlines()[2:]]
+    assert [(r[0].strip(), r[1].strip()) for r in rows] == [("30", "no"), ("450", "yes")]  # clusters above 400
+    assert all(int(r[5].split()[0].replace(",", "")) > 0 for r in rows)  # a PNG was written
 
 
 class _Ok(BaseHTTPRequestHandler):

@@ -10,6 +10,7 @@ from pathlib import Path
 import pytest
 import rdflib
 from click.testing import CliRunner
+from support import NS
 
 from topostore.cli.group import cli, main
 from topostore.errors import LoadError
@@ -18,7 +19,6 @@ from topostore.resources import default_ontology, ontology_dir
 
 TBOX = str(default_ontology())
 ABOX = str(ontology_dir() / "topological_map_abox.ttl")
-NS = "http://bnc/exp-rob-lab/2022-23#"
 
 
 def run(*args: str):

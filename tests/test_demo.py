@@ -83,10 +83,17 @@ def test_every_step_pictures(tmp_path: Path) -> None:
     assert all(p.read_bytes().startswith(PNG_MAGIC) for p in result.pictures)
 
 
-def test_time_scale_waits(tmp_path: Path) -> None:
-    start = time.monotonic()
-    result = run_demo(steps=1, time_scale=0.05, picture=None, emit=lambda _: None)
-    assert time.monotonic() - start >= 0.05 * result.moves[0].elapsed
+@pytest.mark.parametrize("robots", [1, 2])
+def test_time_scale_waits(robots: int, monkeypatch: pytest.MonkeyPatch) -> None:
+    """Each move is followed by a sleep of time_scale real seconds per simulated second, one robot or a fleet."""
+    slept: list[float] = []
+    monkeypatch.setattr(time, "sleep", slept.append)  # recorded, not waited
+    result = run_demo(steps=2, robots=robots, time_scale=0.05, picture=None, emit=lambda _: None)
+    assert len(result.moves) == 2 * robots and all(m.elapsed > 0 for m in result.moves)
+    assert sorted(slept) == sorted(0.05 * m.elapsed for m in result.moves)
+    slept.clear()
+    run_demo(steps=2, robots=robots, time_scale=0, picture=None, emit=lambda _: None)
+    assert slept == []  # 0: as fast as possible
 
 
 def test_demo_command(tmp_path: Path) -> None:

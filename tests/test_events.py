@@ -5,12 +5,12 @@ from __future__ import annotations
 import threading
 
 from pyoxigraph import NamedNode, Triple
+from support import NS
 
 from topostore import Ontology
 from topostore.ontology.events import Delta, EventHub, Snapshot, delta, parse_pattern
 from topostore.resources import default_ontology_files
 
-NS = "http://bnc/exp-rob-lab/2022-23#"
 TYPE = NamedNode("http://www.w3.org/1999/02/22-rdf-syntax-ns#type")
 
 

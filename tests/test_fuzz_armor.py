@@ -14,6 +14,7 @@ import pytest
 from fuzz_support import DOCUMENTED_CODES, count_case, fuzz_settings, graphs, request, text, tree
 from hypothesis import given
 from hypothesis import strategies as st
+from support import IRI, SHARED
 
 from topostore import Ontology
 from topostore.armor import ArmorResponse, ArmorService
@@ -23,8 +24,6 @@ from topostore.rdf.vocab import ASSERTED
 # thousands of generated cases: run without line tracing (coverage comes from the exact tests)
 pytestmark = pytest.mark.no_cover
 
-SHARED = Path(__file__).resolve().parents[2] / "shared" / "ontology"
-IRI = "http://bnc/exp-rob-lab/2022-23"
 
 
 class Harness:

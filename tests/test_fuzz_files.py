@@ -15,6 +15,7 @@ from click.testing import CliRunner
 from fuzz_support import count_case, fuzz_settings, text, tree
 from hypothesis import given
 from hypothesis import strategies as st
+from support import IRI, SHARED
 
 from topostore import Ontology
 from topostore.armor import ArmorService
@@ -24,8 +25,6 @@ from topostore.errors import TopostoreError
 # thousands of generated cases: run without line tracing (coverage comes from the exact tests)
 pytestmark = pytest.mark.no_cover
 
-SHARED = Path(__file__).resolve().parents[2] / "shared" / "ontology"
-IRI = "http://bnc/exp-rob-lab/2022-23"
 
 CONTENTS = st.one_of(
     st.binary(max_size=300),

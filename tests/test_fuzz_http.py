@@ -12,9 +12,10 @@ from pathlib import Path
 
 import pytest
 from fuzz_support import count_case, fuzz_settings, graphs, nested_sparql, request, text, tree
+from http_support import start_server, stop_server
 from hypothesis import given
 from hypothesis import strategies as st
-from test_server import start_server, stop_server
+from support import IRI, SHARED
 
 from topostore.armor import ArmorService
 from topostore.http.app import ServerConfig, create_app
@@ -22,8 +23,6 @@ from topostore.http.app import ServerConfig, create_app
 # thousands of generated cases: run without line tracing (coverage comes from the exact tests)
 pytestmark = pytest.mark.no_cover
 
-SHARED = Path(__file__).resolve().parents[2] / "shared" / "ontology"
-IRI = "http://bnc/exp-rob-lab/2022-23"
 ALLOWED = {200, 400, 403, 404, 405, 406, 413, 414, 415, 503}
 
 

@@ -25,9 +25,9 @@ from contextlib import contextmanager
 from pathlib import Path
 
 import pytest
+from http_support import free_port
 from rich.console import Console
 from servers import oxigraph_server, stop
-from test_server import free_port
 
 from topostore import Ontology
 from topostore.cli.group import EXIT_CANNOT_LISTEN, cli, load_files, reason_with_progress

@@ -11,14 +11,13 @@ from pathlib import Path
 
 import pytest
 from starlette.testclient import TestClient
-from support import SHARED
+from support import IRI, SHARED
 
 from topostore.armor import ArmorService
 from topostore.http.app import ServerConfig, create_app
 from topostore.http.security import LOOPBACK_HOSTS, allowed_hosts
 from topostore.rdf.vocab import ASSERTED
 
-IRI = "http://bnc/exp-rob-lab/2022-23"
 ORIGIN = "https://yasgui.example.org"
 UPDATE = "INSERT DATA { <http://example.org/a> <http://example.org/p> <http://example.org/b> }"
 

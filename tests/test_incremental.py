@@ -11,13 +11,13 @@ materialisation of the same asserted graph.
 from __future__ import annotations
 
 from functools import cache
-from pathlib import Path
 from unittest import mock
 
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 from profiles import property_examples
 from pyoxigraph import NamedNode, Triple
+from support import TBOX_OWL as TBOX
 
 from topostore import Ontology
 from topostore.demo.mapgen import MAP_NS, generate
@@ -26,8 +26,6 @@ from topostore.reason import Materializer, check_consistency, flips
 from topostore.reason.entailed import publish_entailed
 from topostore.reason.incremental import is_monotone, negates_exists
 from topostore.stores import memory_store
-
-TBOX = Path(__file__).resolve().parents[2] / "shared" / "ontology" / "topological_map.owl"
 
 
 def N(name: str) -> NamedNode:

@@ -11,10 +11,9 @@ from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
-from http_support import InProcess, in_process
+from http_support import NS, TOKEN, InProcess, config, in_process
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
-from test_server import NS, TOKEN, config
 
 from topostore import Ontology
 from topostore.ontology.explain import Explainer

@@ -12,7 +12,8 @@ import urllib.parse
 from pathlib import Path
 
 import pytest
-from test_live import CHROMIUM, CHROMIUM_FLAGS, Server, live  # noqa: F401 - live is the fixture
+from http_support import CHROMIUM, CHROMIUM_FLAGS
+from http_support import Live as Server
 
 DOCS = Path(__file__).parents[1] / "docs"
 
@@ -21,7 +22,7 @@ def screenshots(tmp_path: Path) -> Path:
     return DOCS if os.environ.get("TOPOSTORE_DOCS_SCREENSHOTS") == "1" else tmp_path
 
 
-def test_the_inspector_in_a_real_browser(live: Server, tmp_path: Path) -> None:  # noqa: F811 - the fixture
+def test_the_inspector_in_a_real_browser(live_map: Server, tmp_path: Path) -> None:
     if CHROMIUM is None:
         pytest.skip("needs chromium (apt-get install chromium; `make test` installs it as root)")
     sync_api = pytest.importorskip("playwright.sync_api", reason="needs playwright (pip install -e .[test])")
@@ -29,7 +30,7 @@ def test_the_inspector_in_a_real_browser(live: Server, tmp_path: Path) -> None: 
     elsewhere: list[str] = []
 
     def only_the_service(route) -> None:
-        if route.request.url.startswith(live.url + "/"):
+        if route.request.url.startswith(live_map.url + "/"):
             route.continue_()
         else:  # the page works offline: anything else is a failure (and is not fetched)
             elsewhere.append(route.request.url)
@@ -46,7 +47,7 @@ def test_the_inspector_in_a_real_browser(live: Server, tmp_path: Path) -> None: 
             page.on("console", lambda msg: errors.append(msg.text) if msg.type == "error" else None)
 
             # the live map links to the inspector
-            page.goto(live.url + "/references/ontoRef/map")
+            page.goto(live_map.url + "/references/ontoRef/map")
             page.click("#inspector")
             page.wait_for_url("**/references/ontoRef/inspector")
             page.wait_for_selector("#overview .grid a.entity")
@@ -117,8 +118,8 @@ def test_the_inspector_in_a_real_browser(live: Server, tmp_path: Path) -> None: 
             page.wait_for_function("() => document.querySelector('#entity h1')?.textContent.startsWith('R1')")
 
             # the robot's clock advances (R2 and C1 become URGENT), then the map is made inconsistent
-            live.ok("REPLACE", "DATAPROP", "IND", ["now", "Robot1", "LONG", "1665579750", "1665579740"])
-            live.ok("ADD", "IND", "CLASS", ["R1", "DOOR"])
+            live_map.ok("REPLACE", "DATAPROP", "IND", ["now", "Robot1", "LONG", "1665579750", "1665579740"])
+            live_map.ok("ADD", "IND", "CLASS", ["R1", "DOOR"])
             page.wait_for_function("() => document.body.dataset.consistent === 'false'")
             assert page.inner_text("#status") == "INCONSISTENT"
             page.click("#status")
@@ -154,20 +155,20 @@ def test_the_inspector_in_a_real_browser(live: Server, tmp_path: Path) -> None: 
     assert all((shots / f"inspector-{n}.png").stat().st_size > 10_000 for n in ("entity", "sparql", "consistency"))
 
 
-def test_a_hostile_name_cannot_run_script_in_the_page(live: Server) -> None:  # noqa: F811 - the fixture
+def test_a_hostile_name_cannot_run_script_in_the_page(live_map: Server) -> None:
     """An IRI may hold quotes; YASGUI's result table writes IRIs into links as they are, so a name like
     ``x'onmouseover='…`` would be an event handler: the page's Content-Security-Policy refuses to run it."""
     if CHROMIUM is None:
         pytest.skip("needs chromium (apt-get install chromium; `make test` installs it as root)")
     sync_api = pytest.importorskip("playwright.sync_api", reason="needs playwright (pip install -e .[test])")
     hostile = "x'onmouseover='window.pwned=1'"
-    live.ok("ADD", "IND", "CLASS", [hostile, "DOOR"])
+    live_map.ok("ADD", "IND", "CLASS", [hostile, "DOOR"])
     with sync_api.sync_playwright() as p:
         browser = p.chromium.launch(executable_path=CHROMIUM, args=CHROMIUM_FLAGS, timeout=60_000)
         try:
             page = browser.new_page()
             page.set_default_timeout(20_000)
-            page.goto(live.url + "/references/ontoRef/inspector#sparql")
+            page.goto(live_map.url + "/references/ontoRef/inspector#sparql")
             page.wait_for_selector("#yasgui .CodeMirror")
             page.evaluate("""() => { const tab = window.topostoreInspector.state.yasgui.getTab();
                 tab.setQuery('SELECT ?door WHERE { ?door a <http://bnc/exp-rob-lab/2022-23#DOOR> }'); tab.query(); }""")
@@ -177,7 +178,7 @@ def test_a_hostile_name_cannot_run_script_in_the_page(live: Server) -> None:  # 
             link.hover()
             page.wait_for_timeout(300)
             assert page.evaluate("() => window.pwned") is None  # ... and does not run
-            page.goto(live.url + "/references/ontoRef/inspector#entity/" + urllib.parse.quote(hostile, safe=""))
+            page.goto(live_map.url + "/references/ontoRef/inspector#entity/" + urllib.parse.quote(hostile, safe=""))
             page.wait_for_selector("#entity h1")
             assert page.inner_text("#entity h1").startswith(hostile)  # shown as text on the entity page
         finally:

@@ -9,32 +9,13 @@ from __future__ import annotations
 
 import http.client
 import json
-import shutil
 import threading
 import urllib.parse
-from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
+from http_support import CHROMIUM, CHROMIUM_FLAGS
 from http_support import Live as Server
-from http_support import threaded
-from test_server import config
-
-from topostore import Ontology
-from topostore.resources import default_ontology_files
-
-CHROMIUM = shutil.which("chromium") or shutil.which("chromium-browser")
-CHROMIUM_FLAGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
-                  "--disable-background-networking", "--disable-component-update", "--disable-sync"]
-
-
-@pytest.fixture
-def live(tmp_path: Path) -> Iterator[Server]:
-    """A server with the example map loaded as reference ontoRef (live reasoner: every change reasons)."""
-    with threaded(config(tmp_path / "data")) as server:  # uvicorn in a thread: a real socket for the browser
-        Ontology.from_file(*default_ontology_files()).save(server.data_dir / "example.ttl")
-        server.ok("LOAD", "FILE", "", ["example.ttl", "http://bnc/exp-rob-lab/2022-23", "false", "PELLET", "false"])
-        yield server
 
 
 def get_json(server: Server, path: str) -> tuple[int, dict]:
@@ -42,20 +23,20 @@ def get_json(server: Server, path: str) -> tuple[int, dict]:
     return status, json.loads(body)
 
 
-def test_explain_route(live: Server) -> None:
+def test_explain_route(live_map: Server) -> None:
     query = urllib.parse.urlencode({"s": "R1", "p": "rdf:type", "o": "URGENT"})
-    status, tree = get_json(live, f"/references/ontoRef/explain?{query}")
+    status, tree = get_json(live_map, f"/references/ontoRef/explain?{query}")
     assert status == 200
     assert (tree["triple"], tree["rule"], tree["status"]) == ("R1 rdf:type URGENT", "swrl:Urgency", "inferred")
     assert [p["triple"] for p in tree["premises"]] == [
         "Robot1 rdf:type ROBOT", "Robot1 now 1665579740", "R1 rdf:type LOCATION", "R1 visitedAt 1665579710",
         "Robot1 urgencyThreshold 7"]
     query = urllib.parse.urlencode({"s": "R2", "p": "rdf:type", "o": "URGENT"})
-    assert get_json(live, f"/references/ontoRef/explain?{query}") == (
+    assert get_json(live_map, f"/references/ontoRef/explain?{query}") == (
         200, {"triple": "R2 rdf:type URGENT", "status": "not entailed"})
-    assert get_json(live, "/references/ontoRef/explain?s=R1&p=rdf:type")[0] == 400
-    assert get_json(live, "/references/nope/explain?s=R1&p=a&o=URGENT")[0] == 404
-    status, body = get_json(live, "/references/ontoRef/explain?s=R1&p=a&o=" + urllib.parse.quote("bad name"))
+    assert get_json(live_map, "/references/ontoRef/explain?s=R1&p=rdf:type")[0] == 400
+    assert get_json(live_map, "/references/nope/explain?s=R1&p=a&o=URGENT")[0] == 404
+    status, body = get_json(live_map, "/references/ontoRef/explain?s=R1&p=a&o=" + urllib.parse.quote("bad name"))
     assert status == 400 and "bad name" in body["error"]
 
 
@@ -97,8 +78,8 @@ class SseReader:
         self.conn.close()
 
 
-def test_r2_becoming_urgent_arrives_over_sse_within_one_reason(live: Server) -> None:
-    reader = SseReader(live, "/references/ontoRef/events?pattern=" + urllib.parse.quote("rdf:type URGENT")
+def test_r2_becoming_urgent_arrives_over_sse_within_one_reason(live_map: Server) -> None:
+    reader = SseReader(live_map, "/references/ontoRef/events?pattern=" + urllib.parse.quote("rdf:type URGENT")
                        + "&keepalive=0.2")
     try:
         assert reader.response.status == 200
@@ -106,14 +87,14 @@ def test_r2_becoming_urgent_arrives_over_sse_within_one_reason(live: Server) -> 
         assert reader.wait(lambda r: ": connected" in r.comments)
         assert reader.wait(lambda r: ": keep-alive" in r.comments)          # keep-alive comments flow
         # one manipulation with the live reasoner = one REASON
-        live.ok("REPLACE", "DATAPROP", "IND", ["now", "Robot1", "LONG", "1665579750", "1665579740"])
+        live_map.ok("REPLACE", "DATAPROP", "IND", ["now", "Robot1", "LONG", "1665579750", "1665579740"])
         assert reader.wait(lambda r: len(r.events) >= 1)
         event = reader.events[0]
         assert event["added"] == [{"s": "C1", "p": "rdf:type", "o": "URGENT"},
                                   {"s": "R2", "p": "rdf:type", "o": "URGENT"}]
         assert (event["removed"], event["consistent"], event["missed"]) == ([], True, 0)
         assert event["reference"] == "ontoRef"                            # as on the ROS events topic
-        live.ok("REASON")                                                  # nothing changes: still one event
+        live_map.ok("REASON")                                                  # nothing changes: still one event
         assert reader.wait(lambda r: len(r.events) >= 2)
         assert (reader.events[1]["added"], reader.events[1]["removed"]) == ([], [])
         assert reader.events[1]["seq"] == event["seq"] + 1
@@ -121,27 +102,27 @@ def test_r2_becoming_urgent_arrives_over_sse_within_one_reason(live: Server) -> 
         reader.close()
 
 
-def test_events_route_errors(live: Server) -> None:
-    assert get_json(live, "/references/nope/events")[0] == 404
-    assert get_json(live, "/references/ontoRef/events?keepalive=0")[0] == 400
-    assert get_json(live, "/references/ontoRef/events?pattern=a+b+c+d")[0] == 400
+def test_events_route_errors(live_map: Server) -> None:
+    assert get_json(live_map, "/references/nope/events")[0] == 404
+    assert get_json(live_map, "/references/ontoRef/events?keepalive=0")[0] == 400
+    assert get_json(live_map, "/references/ontoRef/events?pattern=a+b+c+d")[0] == 400
 
 
-def test_map_data(live: Server) -> None:
-    status, data = get_json(live, "/references/ontoRef/map.json")
+def test_map_data(live_map: Server) -> None:
+    status, data = get_json(live_map, "/references/ontoRef/map.json")
     assert status == 200
     assert [(l["id"], l["kind"], l["urgent"]) for l in data["locations"]] == [
         ("C1", "CORRIDOR", False), ("R1", "ROOM", True), ("R2", "ROOM", False)]
     assert data["doors"] == [{"id": "D1"}, {"id": "D2"}]
     assert data["robots"] == [{"id": "Robot1", "isIn": "C1", "now": "1665579740"}]
     assert (data["urgent"], data["consistent"]) == (["R1"], True)
-    status, _, page = live.request("/references/ontoRef/map")
+    status, _, page = live_map.request("/references/ontoRef/map")
     assert status == 200 and b"/static/cytoscape.min.js" in page
-    status, headers, script = live.request("/static/cytoscape.min.js")
+    status, headers, script = live_map.request("/static/cytoscape.min.js")
     assert status == 200 and len(script) == (Path(__file__).parents[1] / "src/topostore/http/static/cytoscape.min.js").stat().st_size
 
 
-def test_the_live_page_in_a_real_browser(live: Server, tmp_path: Path) -> None:
+def test_the_live_page_in_a_real_browser(live_map: Server, tmp_path: Path) -> None:
     if CHROMIUM is None:
         pytest.skip("needs chromium (apt-get install chromium; `make test` installs it as root)")
     sync_api = pytest.importorskip("playwright.sync_api", reason="needs playwright (pip install -e .[test])")
@@ -150,12 +131,12 @@ def test_the_live_page_in_a_real_browser(live: Server, tmp_path: Path) -> None:
         try:
             page = browser.new_page(viewport={"width": 1200, "height": 700})
             page.set_default_timeout(20_000)
-            page.goto(live.url + "/references/ontoRef/map")
+            page.goto(live_map.url + "/references/ontoRef/map")
             page.wait_for_function("() => window.topostoreMap && window.topostoreMap.cy.nodes().length === 6")
             assert page.locator("#urgent li").all_inner_texts() == ["R1"]
             page.wait_for_function("() => document.getElementById('status').textContent.startsWith('consistent')")
             # a REASON that makes R2 (and C1) URGENT, by the robot's clock advancing
-            live.ok("REPLACE", "DATAPROP", "IND", ["now", "Robot1", "LONG", "1665579750", "1665579740"])
+            live_map.ok("REPLACE", "DATAPROP", "IND", ["now", "Robot1", "LONG", "1665579750", "1665579740"])
             page.wait_for_function("() => document.body.dataset.events === '1'")
             page.wait_for_function("() => document.querySelectorAll('#urgent li').length === 3")
             assert page.locator("#urgent li").all_inner_texts() == ["C1", "R1", "R2"]

@@ -8,12 +8,12 @@ from __future__ import annotations
 from pathlib import Path
 
 from pyoxigraph import NamedNode
+from support import TBOX_OWL
 
 from topostore import Ontology
 from topostore.rdf.vocab import ASSERTED, AUX, DIFFERENT_FROM, INFERRED, SAME_AS
 
 ROOT = Path(__file__).resolve().parents[1]
-TBOX_OWL = ROOT.parent / "shared" / "ontology" / "topological_map.owl"
 NS = "http://example.org/owltest#"
 PREFIXES = """\
 @prefix : <http://example.org/owltest#> .

@@ -14,14 +14,13 @@ import os
 import shutil
 import subprocess
 import sys
-import time
 import venv
 from pathlib import Path
 
 import pytest
+from support import SHARED
 
 ROOT = Path(__file__).resolve().parents[1]
-SHARED = ROOT.parent / "shared" / "ontology"
 LIMIT = 600  # seconds for any one step (a cold pip cache downloads pyoxigraph and friends)
 
 
@@ -34,7 +33,6 @@ def installed(tmp_path_factory: pytest.TempPathFactory) -> tuple[Path, Path]:
     """(the fresh venv's bin folder, a work folder outside the checkout)."""
     base = tmp_path_factory.mktemp("wheel")
     assert not base.resolve().is_relative_to(ROOT)
-    started = time.monotonic()
     built = run([sys.executable, "-m", "pip", "wheel", "--no-deps", "--quiet", "-w", str(base / "dist"), str(ROOT)], base)
     assert built.returncode == 0, built.stderr
     wheels = list((base / "dist").glob("topostore-*.whl"))
@@ -43,7 +41,6 @@ def installed(tmp_path_factory: pytest.TempPathFactory) -> tuple[Path, Path]:
     bin_dir = base / "venv" / "bin"
     done = run([str(bin_dir / "python"), "-m", "pip", "install", "--quiet", str(wheels[0])], base)
     assert done.returncode == 0, done.stderr
-    print(f"wheel built and installed in a fresh venv in {time.monotonic() - started:.1f} s")
     work = base / "work"
     work.mkdir()
     shutil.copy(wheels[0], work.parent / wheels[0].name)

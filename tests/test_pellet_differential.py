@@ -18,23 +18,17 @@ import json
 import shutil
 import subprocess
 import sys
-from collections.abc import Callable
 from pathlib import Path
 
 import pytest
-from pyoxigraph import Triple
+from scenarios import NAMES, PROPS, SCENARIOS, damage, generated, topostore
+from support import ABOX_OWL as ABOX
+from support import NS
 
 from topostore import Ontology
 from topostore.demo import mapgen
-from topostore.ontology.nary import axiom_of_list_node
-from topostore.rdf.vocab import DIFFERENT_FROM, FIRST
 
 ROOT = Path(__file__).resolve().parents[1]
-ABOX = ROOT.parent / "shared" / "ontology" / "topological_map_abox.owl"
-TBOX = ROOT.parent / "shared" / "ontology" / "topological_map.owl"
-NS = "http://bnc/exp-rob-lab/2022-23#"
-NAMES = ["C1", "C2", "R1", "R2", "R3", "D1", "D2", "D3", "D4", "Robot1", "Robot2", "X"]
-PROPS = ["canReach", "connectedTo"]
 
 pytestmark = [
     pytest.mark.skipif(shutil.which("java") is None, reason="Pellet needs a Java runtime"),
@@ -74,73 +68,15 @@ print(json.dumps({"consistent": True, "individuals": out}))
 """
 
 
-def pellet(path: Path, names: list[str], ns: str = NS, props: list[str] = PROPS) -> dict:
+def pellet(path: Path, names: list[str]) -> dict:
     names_file = path.with_suffix(".names.json")
     names_file.write_text(json.dumps(names))
     run = subprocess.run(
-        [sys.executable, "-c", PELLET_SCRIPT, path.resolve().as_uri(), ns, str(names_file), json.dumps(props)],
+        [sys.executable, "-c", PELLET_SCRIPT, path.resolve().as_uri(), NS, str(names_file), json.dumps(PROPS)],
         capture_output=True, text=True, timeout=300,
     )
     assert run.returncode == 0, run.stderr[-2000:]
     return json.loads(run.stdout.strip().splitlines()[-1])
-
-
-def topostore(onto: Ontology, names: list[str], ns: str = NS, props: list[str] = PROPS) -> dict:
-    if not onto.reason().consistent:
-        return {"consistent": False}
-    out = {}
-    for name in names:
-        types = sorted(onto.short(t) for t in onto.types(name) if t.value.startswith(ns))
-        facts: dict = {"types": types}
-        for p in props:
-            values = sorted(onto.object_values(p, name))
-            if values:
-                facts[p] = values
-        if mentioned(onto, name):
-            out[name] = facts
-    return {"consistent": True, "individuals": out}
-
-
-def mentioned(onto: Ontology, name: str) -> bool:
-    """Whether the file names this individual at all (Owlready2 then knows the entity)."""
-    iri = onto.iri(name)
-    return any(True for _ in onto.store.triples(iri, None, None)) or any(True for _ in onto.store.triples(None, None, iri))
-
-
-def drop_all_different(onto: Ontology, member: str) -> None:
-    """Remove the owl:AllDifferent axiom listing ``member`` (its other facts stay)."""
-    for t in list(onto.store.triples(None, FIRST, onto.iri(member))):
-        onto.remove(*axiom_of_list_node(onto.store, t.subject))
-
-
-def long(onto: Ontology, n: int):
-    return onto.value(n, "long")
-
-
-SCENARIOS: dict[str, Callable[[Ontology], None]] = {
-    "example": lambda o: None,
-    "doors not declared different": lambda o: drop_all_different(o, "D1"),
-    "locations not declared different, distinct visits": lambda o: drop_all_different(o, "C1"),
-    "robot moved to R1": lambda o: o.replace("Robot1", "isIn", "R1"),
-    "robot in an undeclared place: sameAs merge": lambda o: o.add_fact("Robot1", "isIn", "X"),
-    "robot in two places declared different": lambda o: o.add_fact("Robot1", "isIn", "R1"),
-    "a door that is a location": lambda o: o.add_fact("R1", "hasDoor", "R2"),
-    "a room with a second, different door": lambda o: (o.add_fact("R1", "hasDoor", "D3"),
-                                                       o.add_all_different(["D1", "D3"])),
-    "a door link removed": lambda o: o.remove_fact("C1", "hasDoor", "D2"),
-    "visited in the future": lambda o: o.replace("R2", "visitedAt", long(o, 1665579999)),
-    "time advances": lambda o: o.replace("Robot1", "now", long(o, 1665579760)),
-    "a new room not declared different": lambda o: (o.add_fact("R3", "hasDoor", "D1"),
-                                                    o.add_fact("R3", "visitedAt", long(o, 1665579000))),
-    "a new room declared different from C1 only": lambda o: (
-        o.add_fact("R3", "hasDoor", "D1"), o.add_fact("R3", "visitedAt", long(o, 1665579000)),
-        o.add(Triple(o.iri("R3"), DIFFERENT_FROM, o.iri("C1")))),
-    "a location without doors": lambda o: o.add_fact("R3", "visitedAt", long(o, 1665579700)),
-    "two visit times of one location": lambda o: o.add_fact("R1", "visitedAt", long(o, 1665579720)),
-    "a literal outside its range": lambda o: o.add_data("visitedAt", "R1", "1.5", "decimal"),
-    "second robot on the map": lambda o: (o.add_fact("Robot2", "isIn", "R2"), o.add_fact("Robot2", "now", long(o, 1665579800)),
-                                          o.add_fact("Robot2", "urgencyThreshold", long(o, 50))),
-}
 
 
 @pytest.mark.parametrize("name", list(SCENARIOS))
@@ -151,14 +87,6 @@ def test_same_inferences_as_pellet(name: str, tmp_path: Path) -> None:
     onto.save(path, fmt="ntriples")
     expected = pellet(path, NAMES)
     assert topostore(Ontology.from_file(path), NAMES) == expected
-
-
-def generated(size: int, seed: int, declared: bool) -> tuple[Ontology, list[str]]:
-    """A generated map (corridors and rooms) on the reference TBox, and its individuals."""
-    m = mapgen.generate(size, seed=seed)
-    onto = Ontology.from_file(TBOX)
-    onto.add(*m.triples(all_different=declared))
-    return onto, m.locations + m.doors + list(m.robots)
 
 
 @pytest.mark.parametrize("size,seed,declared", [(9, 1, True), (9, 2, False)])
@@ -179,8 +107,6 @@ def test_repaired_saved_map_saves_rules_pellet_fires(tmp_path: Path) -> None:
     own SAVE (RDF/XML) is read by Pellet, whose rules then draw what topostore draws."""
     import warnings
 
-    from test_saved_rules import damage
-
     from topostore import OntologyWarning
 
     damaged = tmp_path / "damaged.owl"
@@ -194,27 +120,3 @@ def test_repaired_saved_map_saves_rules_pellet_fires(tmp_path: Path) -> None:
     expected = pellet(path, names)
     assert expected["individuals"]["Robot1"].get("canReach") == ["R1", "R2"]  # Pellet fires the saved rules
     assert topostore(Ontology.from_file(path), names) == expected
-
-
-def test_swrl_difference_by_disjoint_classes_chains_as_in_pellet(tmp_path: Path) -> None:
-    """A family ontology whose sibling rule reads DifferentFrom and whose brother rule reads the
-    sibling rule's conclusion: children different by declaration or by disjoint classes (disjointWith,
-    AllDisjointClasses, a disjoint union, a complement; asserted or derived types) get the same
-    siblings, brothers and types as Pellet gives them."""
-    import warnings
-
-    from topostore import OntologyWarning
-
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", OntologyWarning)  # the complement and the union's covering are named
-        onto = Ontology.from_file(ROOT / "tests" / "data" / "family_difference.ttl")
-        path = tmp_path / "family.nt"
-        onto.save(path, fmt="ntriples")
-        ns, props = "http://example.org/family#", ["hasSibling", "hasBrother"]
-        names = sorted({onto.short(t.subject) for t in onto.store.triples(None, onto.iri("hasParent"), None)}
-                       | {onto.short(t.object) for t in onto.store.triples(None, onto.iri("hasParent"), None)}
-                       | {"carl", "dora", "sue"})
-        expected = pellet(path, names, ns, props)
-        got = topostore(Ontology.from_file(path), names, ns, props)
-    assert sum("hasBrother" in facts for facts in expected["individuals"].values()) == 7  # Pellet chains
-    assert got == expected

@@ -3,10 +3,9 @@ checked by running the planned WHERE groups on a store and by classifying the tu
 
 from __future__ import annotations
 
-from pathlib import Path
-
 import pytest
 from pyoxigraph import NamedNode, Triple
+from support import TBOX_OWL as TBOX
 
 from topostore import Ontology
 from topostore.compile import Atom, Rule, compile_ontology
@@ -18,7 +17,6 @@ from topostore.stores.base import Store
 
 NS = "http://e.org/t#"
 TYPE = NamedNode("http://www.w3.org/1999/02/22-rdf-syntax-ns#type")
-TBOX = Path(__file__).resolve().parents[2] / "shared" / "ontology" / "topological_map.owl"
 
 
 def iri(local: str) -> NamedNode:

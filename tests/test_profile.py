@@ -9,7 +9,7 @@ from pathlib import Path
 
 import pytest
 from click.testing import CliRunner
-from support import armor_load
+from support import SHARED, armor_load
 
 from topostore import IncompleteOntologyError, Ontology, OntologyWarning
 from topostore.armor import ArmorService
@@ -18,7 +18,6 @@ from topostore.compile import profile as kinds
 from topostore.rdf.vocab import ASSERTED
 from topostore.resources import default_ontology_files
 
-SHARED = Path(__file__).resolve().parents[2] / "shared" / "ontology"
 PREFIXES = """@prefix : <http://e.org/a#> . @prefix owl: <http://www.w3.org/2002/07/owl#> .
 @prefix rdfs: <http://www.w3.org/2000/01/rdf-schema#> . @prefix xsd: <http://www.w3.org/2001/XMLSchema#> .
 <http://e.org/a> a owl:Ontology . :p a owl:ObjectProperty .

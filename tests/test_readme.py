@@ -1,17 +1,20 @@
-"""The README's examples run as written (documentation that cannot rot).
+"""The README's and the manual's examples run as written (documentation that cannot rot).
 
-Every Python block runs on its own, in a fresh namespace, so a block cannot
-lean on a name defined by an earlier one.  The "Use it from ..." section runs
-in order against a real server started with the section's own `topostore serve`
-line: its shell blocks through bash, its Python blocks in-process; the one
-change is the port (8765 becomes a free one).  The only block not run is the
-`make run` / `make test` pair at the top: `make test` is this test suite.
+Every Python block of README.md and docs/*.md runs on its own, in a fresh
+namespace, so a block cannot lean on a name defined by an earlier one.  The
+"Use it from ..." section of docs/service.md runs in order against a real
+server started with the section's own `topostore serve` line: its shell blocks
+through bash, its Python blocks in-process; the one change is the port (8765
+becomes a free one).  The front page's tour runs its `topostore reason` and
+`topostore explain` lines.  Shell blocks that are not run are listed below,
+each with the reason; every relative link of the pages names a file that exists.
 """
 
 from __future__ import annotations
 
 import os
 import re
+import shlex
 import signal
 import socket
 import subprocess
@@ -22,66 +25,133 @@ from pathlib import Path
 
 import pytest
 import rdflib
+from http_support import free_port
 from servers import stop
-from test_server import free_port
 
 from topostore.armor_api import transport
 
 ROOT = Path(__file__).resolve().parents[1]
-SECTION = "## Use it from armor_py_api, rdflib, SPARQLWrapper or curl"
+PAGES = [ROOT / "README.md", *sorted((ROOT / "docs").glob("*.md"))]
+SERVED = ("docs/service.md", "## Use it from armor_py_api, rdflib, SPARQLWrapper or curl")
 
 
 @dataclass(frozen=True)
 class Block:
+    page: str
     language: str
     code: str
     section: str
 
+    @property
+    def served(self) -> bool:
+        return (self.page, self.section) == SERVED
 
-def blocks() -> list[Block]:
+
+def page_blocks(path: Path) -> list[Block]:
     """Fenced code blocks with a language, with the `## ` section they are in."""
     out, section = [], ""
+    page = str(path.relative_to(ROOT))
     pattern = re.compile(r"(^## [^\n]*$|^```\w+\n.*?^```$)", re.M | re.S)
-    for part in pattern.split((ROOT / "README.md").read_text()):
+    for part in pattern.split(path.read_text(encoding="utf-8")):
         if part.startswith("## "):
             section = part.strip()
         elif part.startswith("```"):
             language, code = re.match(r"```(\w+)\n(.*)```", part, re.S).groups()
-            out.append(Block(language, code, section))
+            out.append(Block(page, language, code, section))
     return out
 
 
+def blocks() -> list[Block]:
+    return [b for page in PAGES for b in page_blocks(page)]
+
+
 def standalone_python() -> list[Block]:
-    return [b for b in blocks() if b.language == "python" and b.section != SECTION]
+    return [b for b in blocks() if b.language == "python" and not b.served]
 
 
-def test_readme_has_the_blocks_it_should() -> None:
+def first_words(block: Block) -> list[str]:
+    return block.code.split()[:4]
+
+
+#: Shell blocks not run here, page by page, with why.
+NOT_RUN = {
+    # the set-up pair is the suite itself
+    "README.md": [["make", "run", "#", "set"]],
+    # the --store forms; the page's Python block (run here) exercises each store
+    "docs/stores.md": [["topostore", "reason", "--store", "out/mapdb"]],
+    # run by tests/test_ros.py against a real roscore
+    "docs/ros.md": [["export", 'PATH="$PWD/.venv/bin:$PATH"', "roscore", "-p"]],
+    # a server on a fixed port, then the same requests the "Use it from" section runs
+    "docs/service.md": [["topostore", "serve", "--port", "8765"], ["curl", "-s", "localhost:8765/armor", "-H"]],
+    "docs/cli.md": [["topostore", "reason", "FILE...", "[-o"]],  # a synopsis, not commands
+    "docs/inspector.md": [["topostore", "serve", "--data-dir", "data"]],  # starts a server and waits
+}
+
+
+def test_the_pages_have_the_blocks_they_should() -> None:
     found = blocks()
-    assert len(standalone_python()) >= 3
-    served = [b for b in found if b.section == SECTION]
+    assert len(standalone_python()) >= 8
+    assert {b.page for b in standalone_python()} >= {"README.md", "docs/api.md", "docs/armor.md", "docs/explain.md",
+                                                     "docs/reliability.md", "docs/stores.md", "docs/incremental.md"}
+    served = [b for b in found if b.served]
     assert [b.language for b in served] == ["sh", "sh", "python", "python", "python"]
-    not_run = [b for b in found if b.section != SECTION and b.language != "python"]
-    # the set-up block is the suite itself; the ROS section's block is run by tests/test_ros.py; the
-    # durable-store section lists the --store forms, which its Python block (run below) exercises
-    assert [b.code.split()[:4] for b in not_run] == [["make", "run", "#", "set"],
-                                                     ["export", 'PATH="$PWD/.venv/bin:$PATH"', "roscore", "-p"],
-                                                     ["topostore", "reason", "--store", "out/mapdb"]]
+    not_run: dict[str, list[list[str]]] = {}
+    for b in found:
+        if b.language in ("sh", "bash") and not b.served and b != tour_shell():
+            not_run.setdefault(b.page, []).append(first_words(b))
+    assert not_run == NOT_RUN
+
+
+def tour_shell() -> Block:
+    (block,) = [b for b in page_blocks(ROOT / "README.md") if b.section == "## A tour" and b.language == "sh"]
+    return block
+
+
+def test_the_tour_commands_run(tmp_path: Path) -> None:
+    """The tour's one-shot commands, as written, from the repository root (serve and ros are long-running)."""
+    env = {**os.environ, "PATH": f"{Path(sys.executable).parent}{os.pathsep}{os.environ.get('PATH', '')}"}
+    lines = [line.split("#", 1)[0].strip() for line in tour_shell().code.splitlines()]
+    commands = [shlex.split(line) for line in lines if line]
+    assert [c[:2] for c in commands] == [["topostore", "reason"], ["topostore", "explain"],
+                                        ["topostore", "serve"], ["topostore", "ros"]]
+    reason, explain = (subprocess.run(c, cwd=ROOT, env=env, capture_output=True, text=True, timeout=120)
+                       for c in commands[:2])
+    assert reason.returncode == 0, reason.stderr
+    assert "Consistent." in reason.stdout
+    assert explain.returncode == 0, explain.stderr
+    assert explain.stdout.startswith("R1 rdf:type URGENT  ← swrl:Urgency")
+
+
+def relative_links(path: Path) -> list[str]:
+    text = re.sub(r"^```.*?^```$", "", path.read_text(encoding="utf-8"), flags=re.M | re.S)
+    return [t for t in re.findall(r"\]\(([^)\s]+)\)", text) if not re.match(r"[a-z]+:|#", t)]
+
+
+@pytest.mark.parametrize("page", PAGES, ids=lambda p: str(p.relative_to(ROOT)))
+def test_every_relative_link_names_a_file(page: Path) -> None:
+    missing = [t for t in relative_links(page) if not (page.parent / t.split("#")[0]).exists()]
+    assert not missing, f"{page.name} links to files that do not exist: {missing}"
+
+
+def test_every_page_is_in_the_index() -> None:
+    index = {t.split("#")[0] for t in relative_links(ROOT / "docs" / "README.md")}
+    assert {p.name for p in PAGES if p.parent.name == "docs" and p.name != "README.md"} <= index
 
 
 @pytest.mark.parametrize("index", range(len(standalone_python())))
 def test_python_block_runs_alone(index: int, monkeypatch: pytest.MonkeyPatch,
                                  capsys: pytest.CaptureFixture[str]) -> None:
     monkeypatch.chdir(ROOT)
+    block = standalone_python()[index]
     transport.set_default_service(None)  # the in-process service a fresh interpreter would have
     try:
-        exec(compile(standalone_python()[index].code, f"README.md block {index}", "exec"), {})  # noqa: S102
+        exec(compile(block.code, f"{block.page} block {index}", "exec"), {})  # noqa: S102 - our own documentation
     finally:
         transport.set_default_service(None)
     out = capsys.readouterr().out
-    block = standalone_python()[index]
-    if "service.call" in block.code and block.section.startswith("## aRMOR commands"):  # the tutorial as dicts
+    if "service.call" in block.code and block.page == "docs/armor.md":  # the tutorial as dicts
         assert "['\"1665579740\"^^xsd:long']" in out and "['CORRIDOR']" in out
-    if "armor_api.armor_client import" in standalone_python()[index].code:
+    if "armor_api.armor_client import" in block.code and block.page == "docs/armor.md":
         assert "\"1665579740\"^^xsd:long 1665579740" in out
 
 
@@ -90,7 +160,7 @@ def test_use_it_from_section(tmp_path: Path, monkeypatch: pytest.MonkeyPatch,
     port = str(free_port())
     (tmp_path / "ontology").symlink_to(ROOT / "ontology")
     env = {**os.environ, "PATH": f"{Path(sys.executable).parent}{os.pathsep}{os.environ.get('PATH', '')}"}
-    served = [Block(b.language, b.code.replace("8765", port), b.section) for b in blocks() if b.section == SECTION]
+    served = [Block(b.page, b.language, b.code.replace("8765", port), b.section) for b in blocks() if b.served]
     serve_line = served[0].code.strip()
     assert serve_line.startswith("topostore serve ") and "\n" not in serve_line
     server = subprocess.Popen(["bash", "-c", f"exec {serve_line}"], cwd=tmp_path, env=env,
@@ -102,7 +172,7 @@ def test_use_it_from_section(tmp_path: Path, monkeypatch: pytest.MonkeyPatch,
                 socket.create_connection(("127.0.0.1", int(port)), timeout=1).close()
                 break
             except OSError:
-                assert server.poll() is None and time.monotonic() < deadline, "the README's server did not start"
+                assert server.poll() is None and time.monotonic() < deadline, "the service page's server did not start"
                 time.sleep(0.1)
         curl = subprocess.run(["bash", "-e", "-c", served[1].code], cwd=tmp_path, env=env, capture_output=True,
                               text=True, timeout=120)
@@ -116,7 +186,7 @@ def test_use_it_from_section(tmp_path: Path, monkeypatch: pytest.MonkeyPatch,
         monkeypatch.chdir(tmp_path)
         outputs = []
         for block in served[2:]:
-            exec(compile(block.code, "README.md", "exec"), {})  # noqa: S102 - our own documentation
+            exec(compile(block.code, block.page, "exec"), {})  # noqa: S102 - our own documentation
             outputs.append(capsys.readouterr().out)
         assert outputs[0] == "['R1']\n['C1', 'R1', 'R2']\n"
         ns = "http://bnc/exp-rob-lab/2022-23#"

@@ -7,14 +7,16 @@ import os
 import subprocess
 import sys
 import textwrap
-import time
+import threading
 from pathlib import Path
 
 import pytest
 import rdflib
 from pyoxigraph import Literal, NamedNode
 from rdflib.compare import isomorphic
-from test_swrl import PREFIXES, builtin, data, rule
+from support import ABOX_OWL as ABOX
+from support import IRI
+from swrl_support import PREFIXES, builtin, data, rule
 
 from topostore import Ontology
 from topostore.armor import ArmorService
@@ -25,9 +27,6 @@ from topostore.rdf.vocab import ASSERTED, INFERRED
 from topostore.reason.limits import ReasonLimitExceeded, ReasonLimits
 from topostore.sparql.guard import QueryTooComplex, check_user_sparql
 
-SHARED = Path(__file__).resolve().parents[2] / "shared" / "ontology"
-ABOX = SHARED / "topological_map_abox.owl"
-IRI = "http://bnc/exp-rob-lab/2022-23"
 ROOT = Path(__file__).resolve().parents[1]
 
 
@@ -126,24 +125,28 @@ def test_service_through_armor_query_is_refused(svc: ArmorService) -> None:
 
 def test_internal_functions_cannot_be_called_from_user_sparql(svc: ArmorService) -> None:
     text = "SELECT ?x WHERE { BIND(<urn:topostore:fn:pow>(3, 30000000) AS ?x) }"
-    start = time.monotonic()
     res = call(svc, "QUERY", "SPARQL", "", [text])
     assert (res.success, res.exit_code) == (False, 209) and "internal functions" in res.error_description
     # hidden behind a prefix: the guard does not see the IRI, Oxigraph does not know the function
     hidden = "PREFIX f: <urn:topostore:> SELECT ?x WHERE { BIND(f:fn:pow(3, 30000000) AS ?x) }"
     res = call(svc, "QUERY", "SPARQL", "", [hidden])
     assert (res.success, res.exit_code) == (False, 209)
-    assert time.monotonic() - start < 5
+    assert "fn:pow" in res.error_description  # refused by name, never evaluated
 
 
 def test_pow_builtin_cannot_freeze_the_service() -> None:
+    from topostore.compile.builtins import POW_MAX_BITS
     from topostore.compile.builtins import pow_value as _pow
 
     integer = NamedNode("http://www.w3.org/2001/XMLSchema#integer")
-    assert _pow(Literal("3", datatype=integer), Literal("4", datatype=integer)).value == "81"
-    start = time.monotonic()
-    assert _pow(Literal("3", datatype=integer), Literal("30000000", datatype=integer)) is None
-    assert time.monotonic() - start < 1
+
+    def power(base: int, exponent: int) -> Literal | None:
+        return _pow(Literal(str(base), datatype=integer), Literal(str(exponent), datatype=integer))
+
+    assert power(3, 4).value == "81"
+    assert power(2, POW_MAX_BITS // 2).value == str(2 ** (POW_MAX_BITS // 2))  # within the bound: computed
+    assert power(2, POW_MAX_BITS + 1) is None  # past it: no value, and nothing computed
+    assert power(3, 30000000) is None  # a 47-million-bit number is never built
 
 
 # --------------------------------------------------------------------------- V4 time limits
@@ -152,10 +155,8 @@ def test_query_without_timeout_is_bounded_by_the_service_maximum(svc: ArmorServi
     svc.max_query_seconds = 0.5
     slow = ("SELECT * WHERE { ?a ?b ?c . ?d ?e ?f . ?g ?h ?i . ?j ?k ?l }")
     for args in ([slow], [slow, "0"], [slow, "-5"], [slow, str(2 ** 70)]):
-        start = time.monotonic()
         res = call(svc, "QUERY", "SPARQL", "", args)
-        assert res.exit_code == 0 and res.timeout is True, res
-        assert time.monotonic() - start < 5
+        assert res.exit_code == 0 and res.timeout is True, res  # the service's maximum applied, whatever was asked
 
 
 def test_huge_timeout_is_not_an_internal_error(svc: ArmorService) -> None:
@@ -202,10 +203,16 @@ def test_runaway_rule_planted_by_armor_commands_is_refused_and_the_service_answe
 
 
 def test_cardinality_min_check_is_not_exponential(svc: ArmorService) -> None:
-    start = time.monotonic()
+    """A minimum of 20 compiles to one counting subquery, not a 20-way join of pairwise different fillers
+    (its cost is measured by ``python -m benchmarks.cardinality``)."""
+    onto = svc.reference("ref").ontology
+    before = {r.sparql() for r in onto.rules.rules}
     res = call(svc, "ADD", "CARDINALITY", "MIN", ["CORRIDOR", "hasDoor", "20", "DOOR"])
     assert res.exit_code == 0, res
-    assert time.monotonic() - start < 30
+    (membership,) = [r for r in onto.rules.rules if r.sparql() not in before and r.name == "ext-min-card"]
+    assert "(hasDoor min 20 DOOR)" in membership.origin
+    assert "COUNT(DISTINCT" in membership.sparql() and len(membership.body) <= 2
+    assert max(len(r.body) for r in onto.rules.rules) < 20
 
 
 # --------------------------------------------------------------------------- V6 half-applied change
@@ -311,10 +318,15 @@ def test_log_file_refuses_ontologies_fifos_and_keeps_the_current_log(svc: ArmorS
         res = call(svc, "LOG", "FILE", "ON", [bad])
         assert (res.success, res.exit_code) == (False, 210), bad
     os.mkfifo(data_dir / "pipe.log")
-    start = time.monotonic()
-    res = call(svc, "LOG", "FILE", "ON", ["pipe.log"])
+    answers: list = []
+    asking = threading.Thread(target=lambda: answers.append(call(svc, "LOG", "FILE", "ON", ["pipe.log"])), daemon=True)
+    asking.start()
+    asking.join(60)  # opening a FIFO for writing would wait for a reader forever
+    if asking.is_alive():  # release the writer so the thread ends, then fail
+        os.close(os.open(data_dir / "pipe.log", os.O_RDONLY | os.O_NONBLOCK))
+        pytest.fail("LOG FILE opened the FIFO and waited for a reader")
+    (res,) = answers
     assert (res.success, res.exit_code) == (False, 210)
-    assert time.monotonic() - start < 5
     assert call(svc, "QUERY", "IND", "", ["R1"]).exit_code == 0
     assert "QUERY" in (data_dir / "armor.log").read_text()  # the old log is still on
     assert (data_dir / "map.owl").read_bytes() == ABOX.read_bytes()

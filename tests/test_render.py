@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import pytest
 from pyoxigraph import BlankNode, Literal, NamedNode
+from support import NS
 
 from topostore.armor.render import (
     Renderer,
@@ -16,7 +17,6 @@ from topostore.armor.render import (
 )
 
 XSD = "http://www.w3.org/2001/XMLSchema#"
-NS = "http://bnc/exp-rob-lab/2022-23#"
 
 
 @pytest.mark.parametrize("iri,expected", [

@@ -369,17 +369,16 @@ def wait_until(condition, seconds: float = 30.0) -> None:
         time.sleep(0.2)
 
 
-# ------------------------------------------------------------------ the README's ROS section
+# ------------------------------------------------------------------ the ROS page's shell session
 
 def readme_ros_block() -> str:
-    text = (ROOT / "README.md").read_text()
-    section = text.split("## aRMOR over ROS", 1)[1].split("\n## ", 1)[0]
-    (block,) = re.findall(r"```sh\n(.*?)```", section, re.S)
+    """The one shell block of docs/ros.md."""
+    (block,) = re.findall(r"```sh\n(.*?)```", (ROOT / "docs" / "ros.md").read_text(), re.S)
     return block
 
 
 def test_readme_ros_section_runs_as_written(tmp_path: Path) -> None:
-    """The README's shell block, in a scratch copy of the repository layout, on a free port instead of 11311."""
+    """docs/ros.md's shell block, in a scratch copy of the repository layout, on a free port instead of 11311."""
     skip_without_ros()
     port = free_port()
     (tmp_path / ".venv").symlink_to(Path(sys.executable).parents[1])  # the project's venv, pyvenv.cfg and all

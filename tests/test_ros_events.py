@@ -10,11 +10,10 @@ from pathlib import Path
 
 import pytest
 from ros_support import RosWorld, node_world, request, skip_without_ros, stop
+from support import ABOX_OWL, IRI
 
 LISTENER = str(Path(__file__).with_name("ros_events_client.py"))
 CLIENT = str(Path(__file__).with_name("ros_client.py"))
-ABOX_OWL = Path(__file__).resolve().parents[2] / "shared" / "ontology" / "topological_map_abox.owl"
-IRI = "http://bnc/exp-rob-lab/2022-23"
 TOPIC = "/armor_service/events"
 
 

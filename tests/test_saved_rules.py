@@ -13,24 +13,21 @@ from pathlib import Path
 
 import pytest
 from click.testing import CliRunner
-from pyoxigraph import BlankNode, NamedNode, RdfFormat, Triple, serialize
-from support import armor_load
+from scenarios import damage
+from support import ABOX_OWL as ABOX
+from support import DATA, armor_load
+from support import TBOX_OWL as TBOX
 
 from topostore import Ontology, OntologyWarning, RuleCompileError
 from topostore.armor import ArmorService
-from topostore.cli.group import cli
+from topostore.cli import cli
 from topostore.compile.notices import RULE_REPAIRED, RULE_SKIPPED
 from topostore.compile.swrl_repair import repair_rules
-from topostore.rdf.skolem import unskolemize
-from topostore.rdf.vocab import ASSERTED, FIRST, NIL, REST, TYPE, swrl
-from topostore.stores import memory_store
+from topostore.rdf.vocab import ASSERTED, FIRST, TYPE, swrl
+from topostore.stores.base import Store
 
-DATA = Path(__file__).parent / "data"
 SAVED = DATA / "saved_nested_rules.owl"
-SHARED = Path(__file__).resolve().parents[2] / "shared" / "ontology"
-ABOX = SHARED / "topological_map_abox.owl"
-TBOX = SHARED / "topological_map.owl"
-MAP_IRI = "http://bnc/exp-rob-lab/2022-23"
+
 
 
 def load_quietly(*paths: Path) -> Ontology:
@@ -137,47 +134,11 @@ def test_an_untouched_untranslatable_rule_still_refuses_the_file() -> None:
 
 
 def test_well_formed_rules_are_not_touched() -> None:
-    triples = memory_store().parse_file(ABOX)
+    triples = Store().parse_file(ABOX)
     assert repair_rules(triples) == (triples, [])
 
 
 # ---------------------------------------------------------------- the tutorial map, damaged as a save leaves it
-
-def _list_items(index: dict, head) -> list:
-    items = []
-    while head != NIL:
-        items.append(index[(head, FIRST)])
-        head = index[(head, REST)]
-    return items
-
-
-def damage(source: Path, target: Path) -> None:
-    """Write ``source`` with every rule body's tail nested in an atom list, and the first rule's
-    body appended (nested) to the second's: the structures aRMOR SAVE leaves."""
-    triples = memory_store().parse_file(source)
-    index = {(t.subject, t.predicate): t.object for t in triples if t.predicate in (FIRST, REST, swrl("body"))}
-    imps = [t.subject for t in triples if t.predicate == TYPE and t.object == swrl("Imp")]
-    out = [t for t in triples if t.predicate != swrl("body")]
-    fresh = iter(NamedNode(f"urn:topostore:bnode:damaged{k}") for k in range(10_000))
-
-    def atom_list(items: list) -> NamedNode:
-        head = NIL
-        for item in reversed(items):
-            cell = next(fresh)
-            out.extend([Triple(cell, TYPE, swrl("AtomList")), Triple(cell, FIRST, item), Triple(cell, REST, head)])
-            head = cell
-        return head
-
-    bodies = {imp: _list_items(index, index[(imp, swrl("body"))]) for imp in imps}
-    for k, imp in enumerate(imps):
-        atoms = bodies[imp]
-        items = [atoms[0], atom_list(atoms[1:])]
-        if k == 1:
-            items.append(atom_list(bodies[imps[0]]))
-        out.append(Triple(imp, swrl("body"), atom_list(items)))
-    target.write_bytes(serialize([unskolemize(t) for t in out], format=RdfFormat.RDF_XML))
-    assert not any(isinstance(t.subject, BlankNode) for t in out)
-
 
 def test_damaged_tutorial_map_reasons_as_pellet_does(tmp_path: Path) -> None:
     broken = tmp_path / "saved.owl"

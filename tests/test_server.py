@@ -25,24 +25,27 @@ from pathlib import Path
 
 import pytest
 import rdflib
-from http_support import TBOX, Client, Live, free_port, in_process, start_server, stop_server, threaded, with_map
+from http_support import (
+    IRI,
+    NS,
+    TBOX,
+    TOKEN,
+    Client,
+    Live,
+    config,
+    free_port,
+    in_process,
+    start_server,
+    stop_server,
+    threaded,
+)
 from rdflib.plugins.stores.sparqlstore import SPARQLStore
 
 from topostore.armor_api.armor_client import ArmorClient
 from topostore.armor_api.armor_exceptions import ArmorServiceCallError, ArmorServiceInternalError
 from topostore.armor_api.http_transport import HttpTransport
-from topostore.http.app import ServerConfig
 
-Server = Live  # the name other test modules import
-IRI = "http://bnc/exp-rob-lab/2022-23"
-NS = IRI + "#"
-TOKEN = "s3cret-token"
-__all__ = ["IRI", "NS", "TBOX", "Server", "free_port", "start_server", "stop_server"]
-
-
-def config(data_dir: Path, **settings) -> ServerConfig:
-    """What ``topostore serve --data-dir DATA_DIR`` with these settings configures."""
-    return ServerConfig(data_dir=with_map(data_dir), **settings)
+Server = Live
 
 
 @pytest.fixture(scope="module")
@@ -117,13 +120,13 @@ def test_references_listing(tutorial: Client) -> None:
     assert status == 200 and list(refs) == ["ontoRef"]
     info = refs["ontoRef"]
     seconds = info.pop("last_reasoning_seconds")
-    assert isinstance(seconds, float) and seconds >= 0  # a duration: its value is the machine's
+    report = tutorial.client.app.state.api.service.reference("ontoRef").ontology.report
+    assert seconds == round(report.stats.seconds, 6)  # the last REASON's own duration, in seconds
     everything = tutorial.sparql_get("CONSTRUCT { ?s ?p ?o } WHERE { ?s ?p ?o }", "application/n-triples")[2]
     assert info == {"name": "ontoRef", "iri": IRI, "consistent": True, "changed_since_reasoning": False,
                     "buffered_changes": 0, "mounted_by": None, "triples_asserted": len(saved_graph(tutorial)),
                     "triples_inferred": len(everything.splitlines()) - len(saved_graph(tutorial))}
-    # 12 facts about the map and 12 range axioms the xsd:long ranges imply (integer, decimal, rational, real)
-    assert info["triples_inferred"] == 24
+    assert info["triples_inferred"] == 12
 
 
 def test_batch_is_the_serialized_service(tutorial: Server) -> None:
@@ -261,12 +264,9 @@ def test_sparql_errors(tutorial: Server) -> None:
 
 def test_sparql_time_limit(tutorial: Server) -> None:
     slow = "SELECT * WHERE { ?a ?b ?c . ?d ?e ?f . ?g ?h ?i . ?j ?k ?l }"
-    start = time.monotonic()
     status, _, body = tutorial.sparql_get(slow)
-    elapsed = time.monotonic() - start
     assert status == 503
     assert "time limit of 1 s" in json.loads(body)["error"]
-    assert elapsed < 5
     # the service is still responsive and the reference not left locked
     assert tutorial.sparql_get(REACH)[0] == 200
     assert tutorial.ok("QUERY", "IND", "CLASS", ["URGENT"])["queried_objects"] == [f"<{NS}R3>"]
@@ -320,17 +320,24 @@ def test_armor_client_over_http(live: Live) -> None:
 # --------------------------------------------------------------------------- concurrency
 
 def test_concurrent_clients_lose_no_write(live: Live) -> None:
-    """8 clients for ~3 s: writers add markers (single and batched), readers query; every write is kept."""
+    """8 clients: 4 writers add 60 markers each (single and batched), 4 readers query while they write; every
+    write is kept and no reader sees the count go backwards."""
     server = live
     server.ok("LOAD", "FILE", "", ["topological_map.owl", IRI, "false", "PELLET", "true"], ref="busy")
-    start = time.monotonic()
+    per_writer = 60
+    writers = range(0, 8, 2)
+    deadline = time.monotonic() + 120  # a bound for a service that stopped answering, not a figure
 
-    def running() -> bool:
-        """At least 3 s, and until the writers have written 24 markers (a slow, loaded machine), within 60 s."""
-        elapsed = time.monotonic() - start
-        return elapsed < 3.0 or (sum(writes) < 24 and elapsed < 60)
+    def running(k: int) -> bool:
+        """A writer until it has written its markers; a reader until every writer has, and at least twice."""
+        if time.monotonic() > deadline:
+            return False
+        if k in writers:
+            return writes[k] < per_writer
+        return reads[k] < 2 or any(writes[w] < per_writer for w in writers)
 
     writes: list[int] = [0] * 8
+    reads: list[int] = [0] * 8
     failures: list[str] = []
     marker_query = f"SELECT (COUNT(DISTINCT ?x) AS ?n) WHERE {{ ?x a <{NS}Marker> }}"
 
@@ -342,7 +349,7 @@ def test_concurrent_clients_lose_no_write(live: Live) -> None:
     def worker(k: int) -> None:
         try:
             n, seen = 0, 0
-            while running():
+            while running(k):
                 if k % 2 == 0:  # writer
                     if n % 3 == 2:
                         batch = [{"client_name": f"w{k}", "reference_name": "busy", "command": "ADD",
@@ -362,6 +369,7 @@ def test_concurrent_clients_lose_no_write(live: Live) -> None:
                         server.ok("QUERY", "IND", "CLASS", ["Marker"], ref="busy")["queried_objects"])
                     assert now >= seen, (now, seen)
                     seen = now
+                    reads[k] += 1
         except BaseException as exc:  # reported by the main thread
             failures.append(f"client {k}: {exc!r}")
 
@@ -371,8 +379,9 @@ def test_concurrent_clients_lose_no_write(live: Live) -> None:
     for t in threads:
         t.join(90)
     assert not failures, failures
+    assert all(writes[w] >= per_writer for w in writers), writes
+    assert all(reads[r] >= 2 for r in range(8) if r not in writers), reads
     total = sum(writes)
-    assert total >= 24, "the writers should have done real work"
     assert count_markers() == total
     listed = server.ok("QUERY", "IND", "CLASS", ["Marker"], ref="busy")["queried_objects"]
     assert len(listed) == total

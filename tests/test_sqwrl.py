@@ -5,18 +5,17 @@ from __future__ import annotations
 
 import json
 import warnings
-from pathlib import Path
 
 import pytest
 from click.testing import CliRunner
-from support import armor_load
+from support import DATA, armor_load
 
 from topostore import Ontology, OntologyWarning, QueryError, QueryItem
 from topostore.armor import ArmorService
 from topostore.cli.group import cli
 from topostore.compile.notices import SQWRL_QUERY
 
-DATA = Path(__file__).parent / "data" / "sqwrl_queries.ttl"
+QUERIES = DATA / "sqwrl_queries.ttl"
 NS = "http://example.org/people#"
 INT = "^^http://www.w3.org/2001/XMLSchema#integer"
 
@@ -31,7 +30,7 @@ PREFIXES = """
 def onto() -> Ontology:
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", OntologyWarning)
-        o = Ontology.from_file(DATA)
+        o = Ontology.from_file(QUERIES)
     assert o.reason().consistent
     return o
 
@@ -43,7 +42,7 @@ def rows(items: list[QueryItem], width: int) -> list[tuple[str, ...]]:
 
 def test_queries_load_with_a_notice_and_are_not_rules() -> None:
     with pytest.warns(OntologyWarning, match="SQWRL query") as caught:
-        o = Ontology.from_file(DATA)
+        o = Ontology.from_file(QUERIES)
     text = " ".join(str(w.message) for w in caught)
     assert all(name in text for name in ("ages", "people", "residents", "adult list", "age set"))
     assert sorted(o.rules.queries) == ["adult list", "ages", "people", "residents"]
@@ -125,14 +124,14 @@ def test_limit_distinct_and_difference() -> None:
 
 
 def test_cli_runs_and_lists_them() -> None:
-    result = CliRunner().invoke(cli, ["query", str(DATA), "residents", "--format", "json"])
+    result = CliRunner().invoke(cli, ["query", str(QUERIES), "residents", "--format", "json"])
     assert result.exit_code == 0, result.output
     answer = json.loads(result.output[result.output.index("["):])
     assert [(r["c"].rsplit("#", 1)[-1], r["count_p"].split("^^")[0]) for r in answer] == [("genoa", "2"), ("turin", "1")]
-    listed = CliRunner().invoke(cli, ["query", "--list", str(DATA)])
+    listed = CliRunner().invoke(cli, ["query", "--list", str(QUERIES)])
     assert "residents" in listed.output and "columns c, count_p" in listed.output
 
 
 def test_armor_load_reply_names_the_queries() -> None:
-    res = armor_load(ArmorService(), DATA, "http://example.org/people")
+    res = armor_load(ArmorService(), QUERIES, "http://example.org/people")
     assert res.success and "SQWRL query" in res.error_description and "residents" in res.error_description

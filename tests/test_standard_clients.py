@@ -12,14 +12,13 @@ from pathlib import Path
 
 import pytest
 import rdflib
+from http_support import IRI, NS, TBOX, config, in_process, threaded
 from http_support import Live as Server
-from http_support import in_process, threaded
 from rdflib.graph import DATASET_DEFAULT_GRAPH_ID
 from rdflib.plugins.stores.sparqlstore import SPARQLStore, SPARQLUpdateStore
 from SPARQLWrapper import CSV, JSON, JSONLD, N3, POST, RDFXML, TSV, TURTLE, XML, SPARQLWrapper
-from test_server import IRI, NS, TBOX, config
+from support import ABOX_OWL as ABOX
 
-ABOX = TBOX.with_name("topological_map_abox.owl")
 SD = rdflib.Namespace("http://www.w3.org/ns/sparql-service-description#")
 CORRIDORS = f"SELECT ?c WHERE {{ ?c a <{NS}CORRIDOR> }}"
 CONSTRUCT = f"CONSTRUCT {{ ?r <{NS}canReach> ?l }} WHERE {{ ?r <{NS}canReach> ?l }}"

@@ -1,6 +1,6 @@
 """The same rules, queries and aRMOR commands give identical answers on every store.
 
-The Pellet-differential scenarios (tests/test_pellet_differential.py) and a generated map
+The Pellet-differential scenarios (tests/scenarios.py) and a generated map
 with robot moves run in memory, on disk (RocksDB), on ``oxigraph serve`` and on Virtuoso;
 each answer must equal the in-memory one (which the differential tests compare with
 Pellet).  The scenarios are applied *after* a first REASON, so incremental maintenance runs
@@ -13,7 +13,10 @@ import itertools
 from pathlib import Path
 
 import pytest
-from test_pellet_differential import ABOX, NAMES, SCENARIOS, generated, topostore
+from scenarios import NAMES, SCENARIOS, generated, topostore
+from support import ABOX_OWL as ABOX
+from support import IRI
+from support import TBOX_OWL as TBOX
 
 from topostore import Ontology
 from topostore.demo import mapgen
@@ -90,8 +93,6 @@ def onto_graph():
 
 # --------------------------------------------------------------------------- the tutorial through aRMOR
 
-TBOX = Path(__file__).resolve().parents[2] / "shared" / "ontology" / "topological_map.owl"
-IRI = "http://bnc/exp-rob-lab/2022-23"
 #: The seed tutorial's requests (tests/test_armor_service.py::test_seed_tutorial), then queries of every
 #: kind, a removal and raw SPARQL: each response must be the same on every store.
 TUTORIAL = [

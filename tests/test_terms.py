@@ -4,12 +4,12 @@ from __future__ import annotations
 
 import pytest
 from pyoxigraph import BlankNode, Literal, NamedNode
+from support import NS
 
 from topostore.errors import InvalidNameError, InvalidValueError, UnknownTypeError
 from topostore.rdf.terms import entity, iri, literal_of, sparql, typed_literal, validate_name, value_key
 
 XSD = "http://www.w3.org/2001/XMLSchema#"
-NS = "http://bnc/exp-rob-lab/2022-23#"
 
 
 def lit(value: str, local: str) -> Literal:

@@ -3,7 +3,7 @@
 Each limit lives beside the code it protects (:mod:`topostore.sparql.guard`,
 :mod:`topostore.rdf.safeio`, :mod:`topostore.reason.limits`,
 ``ArmorService.max_query_seconds``); this module only turns command-line
-options into those settings, so the README's limits table has one place to
+options into those settings, so the limits table of docs/reliability.md has one place to
 point to.
 """
 

@@ -14,7 +14,7 @@ Routes (all answers JSON unless a SPARQL result format is negotiated)::
 Secure by default: loopback only unless a bearer token is set, LOAD/SAVE
 paths confined to the data directory, bounded request bodies, a time limit on
 SPARQL, SPARQL updates off, and SERVICE/LOAD (which would make the service
-fetch URLs) refused.  See docs/server.md for the reasons behind the stack.
+fetch URLs) refused.  See docs/service.md for the reasons behind the stack.
 """
 
 from __future__ import annotations

@@ -5,7 +5,7 @@ runs as one RocksDB transaction: a manipulation is written whole or not at
 all, and once written it survives the process being killed (RocksDB's
 write-ahead log is in the operating system's hands).  It survives an OS crash
 or a power loss only once flushed to disk: ``sync=True`` flushes after every
-commit (see README, "Durable and remote stores").
+commit (see docs/stores.md).
 """
 
 from __future__ import annotations
