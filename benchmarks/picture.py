@@ -23,7 +23,7 @@ SIZES = [200, 1000, 10_000]
 
 def view_of(locations: int, seed: int = 4):
     """A generated map of ``locations`` locations and what the reasoner concludes about it."""
-    from topostore import mapgen
+    from topostore.demo import mapgen
     from topostore.demo.layout import adjacency
     from topostore.demo.mapview import MapView
 

@@ -24,14 +24,14 @@ NAMES = ["C1", "C2", "R1", "R2", "R3", "D1", "D2", "D3", "D4", "Robot1", "Robot2
 PROPS = ["canReach", "connectedTo"]
 
 
-def topostore(onto: Ontology, names: list[str]) -> dict:
+def topostore(onto: Ontology, names: list[str], ns: str = NS, props: list[str] = PROPS) -> dict:
     if not onto.reason().consistent:
         return {"consistent": False}
     out = {}
     for name in names:
-        types = sorted(onto.short(t) for t in onto.types(name) if t.value.startswith(NS))
+        types = sorted(onto.short(t) for t in onto.types(name) if t.value.startswith(ns))
         facts: dict = {"types": types}
-        for p in PROPS:
+        for p in props:
             values = sorted(onto.object_values(p, name))
             if values:
                 facts[p] = values

@@ -20,11 +20,11 @@ from support import TBOX_OWL as TBOX
 
 from topostore import Ontology, OntologyWarning, RuleCompileError
 from topostore.armor import ArmorService
-from topostore.cli import cli
+from topostore.cli.group import cli
 from topostore.compile.notices import RULE_REPAIRED, RULE_SKIPPED
 from topostore.compile.swrl_repair import repair_rules
 from topostore.rdf.vocab import ASSERTED, FIRST, TYPE, swrl
-from topostore.stores.base import Store
+from topostore.stores import memory_store
 
 SAVED = DATA / "saved_nested_rules.owl"
 
@@ -134,7 +134,7 @@ def test_an_untouched_untranslatable_rule_still_refuses_the_file() -> None:
 
 
 def test_well_formed_rules_are_not_touched() -> None:
-    triples = Store().parse_file(ABOX)
+    triples = memory_store().parse_file(ABOX)
     assert repair_rules(triples) == (triples, [])
 
 

@@ -5,14 +5,12 @@ as individuals declared different, so a rule's conclusion about them fires the r
 from __future__ import annotations
 
 import warnings
-from pathlib import Path
 
 import pytest
+from support import DATA
 
 from topostore import Ontology, OntologyWarning
 from topostore.rdf.vocab import DECLARED_DIFFERENT, ENTAILED
-
-DATA = Path(__file__).parent / "data"
 
 PREFIXES = """@prefix : <http://e.org/f#> . @prefix owl: <http://www.w3.org/2002/07/owl#> .
 @prefix rdfs: <http://www.w3.org/2000/01/rdf-schema#> . @prefix swrl: <http://www.w3.org/2003/11/swrl#> .
