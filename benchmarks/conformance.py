@@ -14,9 +14,11 @@ from __future__ import annotations
 
 import argparse
 import json
+import queue
 import subprocess
 import sys
 import tempfile
+import threading
 import time
 from collections import Counter
 from concurrent.futures import ThreadPoolExecutor
@@ -81,32 +83,69 @@ def read_cases(path: Path = CASES) -> tuple[list[Case], int]:
     return cases, without
 
 
-def run_one(case: Case, engine: str, folder: Path, timeout: float) -> None:
-    """Run ``case`` on ``engine`` in a child process; a timeout or a crash is the answer of every check."""
-    path = folder / f"{abs(hash(case.id))}-{engine}.json"
-    path.write_text(json.dumps(case.payload()), encoding="utf-8")
-    start = time.perf_counter()
-    try:
-        done = subprocess.run([sys.executable, "-m", "benchmarks.conformance_case", engine, str(path)], cwd=ROOT,
-                              capture_output=True, text=True, timeout=timeout, check=False)
-        lines = done.stdout.strip().splitlines()
-        if done.returncode == 0 and lines:
-            case.results[engine] = json.loads(lines[-1])
-        else:
-            tail = " ".join(done.stderr.strip().splitlines()[-1:])[:200]
-            case.results[engine] = dict.fromkeys(case.checks, f"crash (exit {done.returncode}): {tail}")
-    except subprocess.TimeoutExpired:
-        case.results[engine] = dict.fromkeys(case.checks, f"timeout ({timeout:g} s)")
-    case.seconds[engine] = time.perf_counter() - start
+#: a child's answer line for one case (other output of the engines is ignored)
+RESULT = "RESULT "
+
+
+def run_batch(batch: list[Case], engine: str, folder: Path, timeout: float) -> None:
+    """Run ``batch`` on ``engine`` in one child process, case after case, each within ``timeout``.
+
+    Starting a Python with the engines loaded costs more than most cases, so a child runs many; a case
+    that times out or crashes its child gets that as the answer of every check, and a new child takes
+    the cases after it, so no case decides another's answer.
+    """
+    pending = list(batch)
+    while pending:
+        files = []
+        for case in pending:
+            path = folder / f"{abs(hash(case.id))}-{engine}.json"
+            path.write_text(json.dumps(case.payload()), encoding="utf-8")
+            files.append(str(path))
+        with tempfile.TemporaryFile("w+", encoding="utf-8") as errors:
+            child = subprocess.Popen([sys.executable, "-m", "benchmarks.conformance_case", "--batch", engine, *files],
+                                     cwd=ROOT, stdout=subprocess.PIPE, stderr=errors, text=True)
+            answers: queue.Queue[str | None] = queue.Queue()
+            threading.Thread(target=_read_answers, args=(child, answers), daemon=True).start()
+            while pending:
+                case, start = pending.pop(0), time.perf_counter()
+                try:
+                    line = answers.get(timeout=timeout)
+                except queue.Empty:
+                    child.kill()
+                    child.wait()
+                    case.results[engine] = dict.fromkeys(case.checks, f"timeout ({timeout:g} s)")
+                    case.seconds[engine] = timeout
+                    break
+                if line is None:  # the child died on this case
+                    code = child.wait()
+                    errors.seek(0)
+                    tail = " ".join(errors.read().strip().splitlines()[-1:])[:200]
+                    case.results[engine] = dict.fromkeys(case.checks, f"crash (exit {code}): {tail}")
+                    case.seconds[engine] = time.perf_counter() - start
+                    break
+                case.results[engine] = json.loads(line)
+                case.seconds[engine] = time.perf_counter() - start
+            else:
+                child.wait()
+
+
+def _read_answers(child: subprocess.Popen, answers: queue.Queue) -> None:
+    """Hand the child's answer lines to the parent as they come; None when its output ends."""
+    for line in child.stdout:
+        if line.startswith(RESULT):
+            answers.put(line[len(RESULT):])
+    answers.put(None)
 
 
 def run_all(cases: list[Case], timeout: float, jobs: int, progress: bool = True) -> None:
+    """Every case on every engine: per engine, the cases dealt into ``jobs`` batches run side by side."""
+    batches = [(cases[k::jobs], engine) for engine in ENGINES for k in range(jobs) if cases[k::jobs]]
     with tempfile.TemporaryDirectory(prefix="conformance-") as tmp, ThreadPoolExecutor(max_workers=jobs) as pool:
-        futures = [pool.submit(run_one, c, e, Path(tmp), timeout) for c in cases for e in ENGINES]
+        futures = [pool.submit(run_batch, batch, engine, Path(tmp), timeout) for batch, engine in batches]
         for k, f in enumerate(futures, 1):
             f.result()
-            if progress and k % 50 == 0:
-                print(f"  {k}/{len(futures)} runs", file=sys.stderr, flush=True)
+            if progress:
+                print(f"  {k}/{len(futures)} batches", file=sys.stderr, flush=True)
 
 
 def tally(cases: list[Case]) -> dict[tuple[str, str], Counter]:

@@ -1,6 +1,7 @@
 """One W3C OWL 2 test case on one engine, in a process of its own (see :mod:`benchmarks.conformance`).
 
-``python -m benchmarks.conformance_case ENGINE CASE.json`` prints one JSON object: for each check
+``python -m benchmarks.conformance_case ENGINE CASE.json`` prints one JSON object (``--batch ENGINE
+CASE.json...``: one per case, in order, each on a line starting ``RESULT``): for each check
 of the case (``consistency``, ``inconsistency``, ``positive``, ``negative``) true when the engine
 passes it, false when it does not, or ``"error: ..."`` when it refused the premise.
 
@@ -264,10 +265,15 @@ def run_case(engine: str, case: dict) -> dict[str, object]:
 
 
 def main(argv: list[str]) -> int:
-    engine, path = argv
-    with open(path, encoding="utf-8") as f:
-        case = json.load(f)
-    print(json.dumps(run_case(engine, case)))
+    """``ENGINE FILE`` or ``--batch ENGINE FILE...``: each case's answers, one line each, as they are found."""
+    if argv and argv[0] == "--batch":
+        engine, paths = argv[1], argv[2:]
+    else:
+        engine, paths = argv[0], argv[1:]
+    for path in paths:
+        with open(path, encoding="utf-8") as f:
+            case = json.load(f)
+        print("RESULT " + json.dumps(run_case(engine, case)), flush=True)
     return 0
 
 

@@ -33,6 +33,20 @@ def test_rl_cases_topostore_passes_what_owlrl_passes() -> None:
         assert cell["topostore"] >= cell["owlrl"], (category, check, cell)
 
 
+def test_a_case_that_hangs_or_kills_its_child_answers_alone(tmp_path: Path) -> None:
+    """A batch child that times out or dies answers that for its case only; a new child takes the rest."""
+    cases = [conformance.Case(f"c{k}", "RL", "Approved", ["consistency"], "<rdf:RDF/>") for k in range(3)]
+    conformance.run_batch(cases, "no-such-engine", tmp_path, timeout=60)  # the child dies on each case
+    assert all(c.results["no-such-engine"]["consistency"].startswith("crash (exit 1)") for c in cases)
+    slow = [conformance.Case(f"s{k}", "RL", "Approved", ["consistency"], "<rdf:RDF/>") for k in range(2)]
+    conformance.run_batch(slow, "topostore", tmp_path, timeout=0.001)  # no child answers that fast
+    assert [c.results["topostore"]["consistency"] for c in slow] == ["timeout (0.001 s)"] * 2
+    empty = '<rdf:RDF xmlns:rdf="http://www.w3.org/1999/02/22-rdf-syntax-ns#"/>'
+    fine = [conformance.Case(f"f{k}", "RL", "Approved", ["consistency"], empty) for k in range(2)]
+    conformance.run_batch(fine, "topostore", tmp_path, timeout=60)
+    assert [c.results["topostore"]["consistency"] for c in fine] == [True, True]
+
+
 def test_entailment_reductions() -> None:
     """A conclusion's axioms become fresh individuals, ASKs and inconsistency tests."""
     tests = entailment_tests(parse("""<rdf:RDF xmlns:rdf="http://www.w3.org/1999/02/22-rdf-syntax-ns#"
