@@ -26,6 +26,19 @@ NS = IRI + "#"
 NOW = 1665579740
 
 
+def reasoned_turtle(text: str) -> Ontology:
+    """An ontology of Turtle ``text`` (its prefixes included), reasoned and consistent; what it does not
+    reason completely is named in warnings the caller does not look at."""
+    from topostore import OntologyWarning
+
+    o = Ontology()
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", OntologyWarning)
+        o.load_data(text)
+    assert o.reason().consistent
+    return o
+
+
 def long(v: int) -> Literal:
     return Literal(str(v), datatype=NamedNode(XSD + "long"))
 

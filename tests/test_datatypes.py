@@ -3,12 +3,11 @@ integer types intersect as intervals), and literals of a narrower type in a wide
 
 from __future__ import annotations
 
-import warnings
-
 import pytest
 from pyoxigraph import NamedNode, Triple
+from support import reasoned_turtle
 
-from topostore import Ontology, OntologyWarning
+from topostore import Ontology
 from topostore.compile.datatypes import implied_ranges
 from topostore.rdf.vocab import OWL, RDF, RDFS, XSD
 
@@ -27,12 +26,7 @@ def implied(*locals_: str) -> set[str]:
 
 
 def reasoned(text: str) -> Ontology:
-    o = Ontology()
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", OntologyWarning)
-        o.load_data(PREFIXES + text)
-    assert o.reason().consistent
-    return o
+    return reasoned_turtle(PREFIXES + text)
 
 
 def has_range(o: Ontology, dt: str) -> bool:

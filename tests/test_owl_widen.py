@@ -4,9 +4,9 @@ individual declared different from itself as an inconsistency."""
 
 from __future__ import annotations
 
-import warnings
+from support import reasoned_turtle
 
-from topostore import Ontology, OntologyWarning
+from topostore import Ontology
 
 PREFIXES = """@prefix : <http://e.org/a#> . @prefix owl: <http://www.w3.org/2002/07/owl#> .
 @prefix rdfs: <http://www.w3.org/2000/01/rdf-schema#> . @prefix xsd: <http://www.w3.org/2001/XMLSchema#> .
@@ -16,12 +16,7 @@ PREFIXES = """@prefix : <http://e.org/a#> . @prefix owl: <http://www.w3.org/2002
 
 
 def reasoned(text: str) -> Ontology:
-    o = Ontology()
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", OntologyWarning)
-        o.load_data(PREFIXES + text)
-    assert o.reason().consistent
-    return o
+    return reasoned_turtle(PREFIXES + text)
 
 
 def types(o: Ontology, name: str) -> set[str]:

@@ -7,7 +7,7 @@ from __future__ import annotations
 import warnings
 
 import pytest
-from support import DATA
+from support import DATA, reasoned_turtle
 
 from topostore import Ontology, OntologyWarning
 from topostore.rdf.vocab import DECLARED_DIFFERENT, ENTAILED
@@ -32,12 +32,7 @@ PREFIXES = """@prefix : <http://e.org/f#> . @prefix owl: <http://www.w3.org/2002
 
 
 def family(axioms: str) -> Ontology:
-    o = Ontology()
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", OntologyWarning)
-        o.load_data(PREFIXES + axioms)
-    assert o.reason().consistent
-    return o
+    return reasoned_turtle(PREFIXES + axioms)
 
 
 def siblings(o: Ontology) -> dict[str, list[str]]:
