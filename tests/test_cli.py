@@ -192,3 +192,13 @@ def test_console_script_entry_point(inconsistent: Path) -> None:
                           capture_output=True, text=True, timeout=60)
     assert proc.returncode == 3
     assert "Traceback" not in proc.stderr and "DisjointWith" in proc.stderr
+
+
+def test_the_shipped_launch_file_is_well_formed_xml() -> None:
+    """roslaunch refuses a launch file that is not XML (a comment holding two hyphens in a row is not)."""
+    import xml.dom.minidom
+
+    from topostore.ros.launcher import LAUNCH_FILE
+
+    launch = xml.dom.minidom.parse(str(LAUNCH_FILE)).documentElement
+    assert launch.tagName == "launch" and launch.getElementsByTagName("node")[0].getAttribute("type") == "execute"
