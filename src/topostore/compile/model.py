@@ -338,8 +338,8 @@ class TBoxReader:
         properties = tb.object_properties | tb.data_properties
 
         def used_as_property(node: Term) -> bool:
-            return node in properties or (isinstance(node, NamedNode) and bool(
-                self.store.triples(None, node, None, self.graph)))
+            return node in properties or (isinstance(node, NamedNode) and next(
+                iter(self.store.triples(None, node, None, self.graph)), None) is not None)
 
         def same(t) -> None:
             if t.subject in classes and t.object in classes and t.subject != t.object:

@@ -23,20 +23,24 @@ existential, positively             the unnamed value's consequences (domain, a 
 difference by irreflexivity         x p y ⇒ x ≠ y is not used where difference matters
 =================================  =====================================================
 
-plus the axioms the reader set aside (:attr:`TBox.unsupported`) and those read
-in part (:attr:`TBox.partial`: a disjoint union's covering).
+plus the axioms the reader set aside (:attr:`TBox.unsupported`), those read
+in part (:attr:`TBox.partial`: a disjoint union's covering), statements about the
+RDF list vocabulary (``rdf:nil`` with a first element or a rest: inconsistent under
+the RDF-Based semantics, not reasoned), and, informatively, the reflexivity of
+``owl:sameAs`` (:data:`~.notices.NOT_STORED`) when a file uses it.
 """
 
 from __future__ import annotations
 
 from collections.abc import Iterator
+from itertools import islice
 
-from pyoxigraph import NamedNode
+from pyoxigraph import Literal, NamedNode
 
-from ..rdf.vocab import THING
+from ..rdf.vocab import FIRST, NIL, REST, SAME_AS, THING, is_skolem
 from ..stores.base import Store
 from .model import Expr, Prop, TBox, describe
-from .notices import INCOMPLETE, Notice
+from .notices import INCOMPLETE, NOT_STORED, Notice
 from .owl import OwlCompiler
 
 #: Axiom kinds of the report (the groups of the LOAD warning).
@@ -48,6 +52,12 @@ MAX_CASES = "maximum cardinality needing case analysis"
 EXISTENTIAL = "existential with consequences for an unnamed value"
 DIFFERENCE = "difference entailed by a property characteristic"
 UNSUPPORTED = "not supported"
+
+#: Why ``x owl:sameAs x`` is not stored, said whenever a file uses owl:sameAs.
+REFLEXIVE_SAME_AS = ("owl:sameAs is reflexive: x sameAs x holds for every individual, but is not stored (it "
+                     "would add a triple per term and list each individual as its own alias); every fact of an "
+                     "individual is copied to each of its names, so only the triple x sameAs x itself is not "
+                     "answered")
 
 #: (expression, positive?, the axiom it occurs in, the axiom's named subject or None)
 Use = tuple[Expr, bool, str, NamedNode | None]
@@ -96,6 +106,8 @@ def all_uses(tb: TBox, rule_uses: list[tuple[Expr, bool]]) -> list[Use]:
 
 
 def _name(t: NamedNode) -> str:
+    if not isinstance(t, NamedNode) or is_skolem(t):
+        return "[]" if not isinstance(t, Literal) else str(t)
     v = t.value
     return v.rsplit("#", 1)[-1] if "#" in v else v.rsplit("/", 1)[-1]
 
@@ -133,7 +145,26 @@ class ProfileReport:
             self.note(UNSUPPORTED, axiom, f"set aside: {reason}")
         for axiom, kind, reason in self.tb.partial:
             self.note(kind, axiom, reason)
+        self.list_vocabulary(store, graph)
+        self.reflexive_equality(store, graph)
         return list(self.notices.values())
+
+    # ---------------------------------------------------------------- RDF vocabulary
+    def list_vocabulary(self, store: Store, graph: NamedNode) -> None:
+        """``rdf:nil`` is the empty list: a first element or a rest of it is a contradiction under the
+        RDF-Based semantics, which topostore does not find (it reads lists, it does not reason about them)."""
+        for p in (FIRST, REST):
+            for t in islice(store.triples(NIL, p, None, graph), 1):
+                self.note(UNSUPPORTED, f"nil {_name(p)} {_name(t.object)}", "rdf:nil is the empty list, which has "
+                          "no first element and no rest: inconsistent under the RDF-Based semantics; the RDF "
+                          "list vocabulary is not reasoned, the statement is kept as a plain triple")
+
+    def reflexive_equality(self, store: Store, graph: NamedNode) -> None:
+        """Said once when the file states an equality: see :data:`REFLEXIVE_SAME_AS` for why."""
+        first = next(iter(store.triples(None, SAME_AS, None, graph)), None)
+        if first is not None:
+            subject = f"owl:sameAs (as in {_name(first.subject)} sameAs {_name(first.object)})"
+            self.notices.setdefault((NOT_STORED, "owl:sameAs"), Notice(NOT_STORED, subject, REFLEXIVE_SAME_AS))
 
     # ---------------------------------------------------------------- expressions
     def expression(self, e: Expr, positive: bool, axiom: str, subject: NamedNode | None) -> None:
