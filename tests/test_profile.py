@@ -63,6 +63,8 @@ CASES = {
                                      "nil first x"),
     "rdf:nil with a rest": ("<http://www.w3.org/1999/02/22-rdf-syntax-ns#nil> "
                             "<http://www.w3.org/1999/02/22-rdf-syntax-ns#rest> [] .", kinds.UNSUPPORTED, "nil rest"),
+    "import not loaded": ("<http://e.org/a> owl:imports <http://e.org/b> .", kinds.UNSUPPORTED,
+                          "imports http://e.org/b"),
     "string facet": (":code a owl:DatatypeProperty . :B owl:equivalentClass [ a owl:Restriction ; "
                      "owl:onProperty :code ; owl:someValuesFrom [ a rdfs:Datatype ; owl:onDatatype xsd:string ; "
                      "owl:withRestrictions ( [ xsd:pattern \"A.*\" ] ) ] ] .", kinds.UNSUPPORTED, "set aside"),
@@ -218,3 +220,9 @@ def test_rdf_nil_statements_are_incomplete_only_when_made() -> None:
     assert not any("nil" in n.subject for n in o.notices)
     with pytest.raises(IncompleteOntologyError, match="nil first"):
         quietly(CASES["rdf:nil with a first element"][0], strict=True)
+
+
+def test_an_import_is_named_only_while_its_ontology_is_not_loaded() -> None:
+    o = quietly("<http://e.org/a> owl:imports <http://e.org/b> , <http://e.org/c> . "
+                "<http://e.org/b> a owl:Ontology . <http://e.org/d> owl:versionIRI <http://e.org/c> .")
+    assert not any("imports" in n.subject for n in o.notices)

@@ -26,7 +26,7 @@ difference by irreflexivity         x p y ⇒ x ≠ y is not used where differen
 plus the axioms the reader set aside (:attr:`TBox.unsupported`), those read
 in part (:attr:`TBox.partial`: a disjoint union's covering), statements about the
 RDF list vocabulary (``rdf:nil`` with a first element or a rest: inconsistent under
-the RDF-Based semantics, not reasoned), and, informatively, the reflexivity of
+the RDF-Based semantics, not reasoned), imports of ontologies not loaded, and, informatively, the reflexivity of
 ``owl:sameAs`` (:data:`~.notices.NOT_STORED`) when a file uses it.
 """
 
@@ -37,7 +37,7 @@ from itertools import islice
 
 from pyoxigraph import Literal, NamedNode
 
-from ..rdf.vocab import FIRST, NIL, REST, SAME_AS, THING, is_skolem
+from ..rdf.vocab import FIRST, NIL, REST, SAME_AS, THING, TYPE, is_skolem, owl
 from ..stores.base import Store
 from .model import Expr, Prop, TBox, describe
 from .notices import INCOMPLETE, NOT_STORED, Notice
@@ -146,6 +146,7 @@ class ProfileReport:
         for axiom, kind, reason in self.tb.partial:
             self.note(kind, axiom, reason)
         self.list_vocabulary(store, graph)
+        self.imports(store, graph)
         self.reflexive_equality(store, graph)
         return list(self.notices.values())
 
@@ -158,6 +159,15 @@ class ProfileReport:
                 self.note(UNSUPPORTED, f"nil {_name(p)} {_name(t.object)}", "rdf:nil is the empty list, which has "
                           "no first element and no rest: inconsistent under the RDF-Based semantics; the RDF "
                           "list vocabulary is not reasoned, the statement is kept as a plain triple")
+
+    def imports(self, store: Store, graph: NamedNode) -> None:
+        """An ``owl:imports`` of an ontology not loaded: its axioms are missing (topostore fetches no URL)."""
+        loaded = {t.subject for t in store.triples(None, TYPE, owl("Ontology"), graph)}
+        loaded |= {t.object for t in store.triples(None, owl("versionIRI"), None, graph)}
+        for t in store.triples(None, owl("imports"), None, graph):
+            if t.object not in loaded:
+                self.note(UNSUPPORTED, f"imports {t.object.value}", "the imported ontology is not loaded and "
+                          "not fetched (topostore reads no URL): its axioms are not reasoned; load its file too")
 
     def reflexive_equality(self, store: Store, graph: NamedNode) -> None:
         """Said once when the file states an equality: see :data:`REFLEXIVE_SAME_AS` for why."""
