@@ -65,6 +65,8 @@ CASES = {
                             "<http://www.w3.org/1999/02/22-rdf-syntax-ns#rest> [] .", kinds.UNSUPPORTED, "nil rest"),
     "import not loaded": ("<http://e.org/a> owl:imports <http://e.org/b> .", kinds.UNSUPPORTED,
                           "imports http://e.org/b"),
+    "datatypes made the same": (":bar owl:sameAs xsd:decimal . :x :n \"01\"^^:bar .", kinds.UNSUPPORTED,
+                                "bar sameAs decimal"),
     "string facet": (":code a owl:DatatypeProperty . :B owl:equivalentClass [ a owl:Restriction ; "
                      "owl:onProperty :code ; owl:someValuesFrom [ a rdfs:Datatype ; owl:onDatatype xsd:string ; "
                      "owl:withRestrictions ( [ xsd:pattern \"A.*\" ] ) ] ] .", kinds.UNSUPPORTED, "set aside"),
