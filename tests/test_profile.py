@@ -67,6 +67,9 @@ CASES = {
                           "imports http://e.org/b"),
     "datatypes made the same": (":bar owl:sameAs xsd:decimal . :x :n \"01\"^^:bar .", kinds.UNSUPPORTED,
                                 "bar sameAs decimal"),
+    "empty property": (":a a [ a owl:Restriction ; owl:onProperty owl:bottomObjectProperty ; "
+                       "owl:someValuesFrom owl:Thing ] .", kinds.UNSUPPORTED, "owl:bottomObjectProperty"),
+    "universal property": (":a owl:topObjectProperty :b .", kinds.UNSUPPORTED, "owl:topObjectProperty"),
     "string facet": (":code a owl:DatatypeProperty . :B owl:equivalentClass [ a owl:Restriction ; "
                      "owl:onProperty :code ; owl:someValuesFrom [ a rdfs:Datatype ; owl:onDatatype xsd:string ; "
                      "owl:withRestrictions ( [ xsd:pattern \"A.*\" ] ) ] ] .", kinds.UNSUPPORTED, "set aside"),

@@ -26,7 +26,8 @@ difference by irreflexivity         x p y ⇒ x ≠ y is not used where differen
 plus the axioms the reader set aside (:attr:`TBox.unsupported`), those read
 in part (:attr:`TBox.partial`: a disjoint union's covering), statements about the
 RDF list vocabulary (``rdf:nil`` with a first element or a rest: inconsistent under
-the RDF-Based semantics, not reasoned), imports of ontologies not loaded, and, informatively, the reflexivity of
+the RDF-Based semantics, not reasoned), imports of ontologies not loaded, the universal and empty properties
+(``owl:topObjectProperty`` …), and, informatively, the reflexivity of
 ``owl:sameAs`` (:data:`~.notices.NOT_STORED`) when a file uses it.
 """
 
@@ -52,6 +53,14 @@ MAX_CASES = "maximum cardinality needing case analysis"
 EXISTENTIAL = "existential with consequences for an unnamed value"
 DIFFERENCE = "difference entailed by a property characteristic"
 UNSUPPORTED = "not supported"
+
+#: The universal and the empty properties, with what they mean.
+_TOP_AND_BOTTOM = {
+    "topObjectProperty": "the universal property (every two individuals are linked by it)",
+    "topDataProperty": "the universal data property (every individual has every literal as its value)",
+    "bottomObjectProperty": "the empty property (a link by it, or an existential on it, is inconsistent)",
+    "bottomDataProperty": "the empty data property (a value of it, or an existential on it, is inconsistent)",
+}
 
 #: Why ``x owl:sameAs x`` is not stored, said whenever a file uses owl:sameAs.
 REFLEXIVE_SAME_AS = ("owl:sameAs is reflexive: x sameAs x holds for every individual, but is not stored (it "
@@ -147,6 +156,7 @@ class ProfileReport:
             self.note(kind, axiom, reason)
         self.list_vocabulary(store, graph)
         self.imports(store, graph)
+        self.top_and_bottom(store, graph)
         self.reflexive_equality(store, graph)
         return list(self.notices.values())
 
@@ -168,6 +178,14 @@ class ProfileReport:
             if t.object not in loaded:
                 self.note(UNSUPPORTED, f"imports {t.object.value}", "the imported ontology is not loaded and "
                           "not fetched (topostore reads no URL): its axioms are not reasoned; load its file too")
+
+    def top_and_bottom(self, store: Store, graph: NamedNode) -> None:
+        """The universal and the empty properties have no rules: named wherever a file uses them."""
+        for name, meaning in _TOP_AND_BOTTOM.items():
+            p = owl(name)
+            if any(next(iter(store.triples(*pattern, graph)), None) is not None
+                   for pattern in ((p, None, None), (None, p, None), (None, None, p))):
+                self.note(UNSUPPORTED, f"owl:{name}", f"{meaning}: not reasoned, used as any other property")
 
     def reflexive_equality(self, store: Store, graph: NamedNode) -> None:
         """Said once when the file states an equality: see :data:`REFLEXIVE_SAME_AS` for why."""
