@@ -46,6 +46,15 @@ def test_key_with_individuals_declared_different_is_inconsistent() -> None:
     assert not o.reason().consistent
 
 
+def test_key_of_every_individual_needs_no_type() -> None:
+    """owl:Thing hasKey: individuals typed with nothing are in owl:Thing all the same."""
+    o = reasoned("owl:Thing owl:hasKey ( :n ) . :a :n 5 . :b :n 5 . :c :n 6 .")
+    assert same(o, "a") == ["b"] and same(o, "c") == []
+    different = Ontology()
+    different.load_data(PREFIXES + "owl:Thing owl:hasKey ( :n ) . :a :n 5 ; owl:differentFrom :b . :b :n 5 .")
+    assert not different.reason().consistent
+
+
 def test_owl1_definitions_on_a_named_class_are_equivalences() -> None:
     o = reasoned(":Adult owl:intersectionOf ( :Person :Grown ) . :Pet owl:unionOf ( :Cat :Dog ) . "
                  ":Primary owl:oneOf ( :red :blue ) . "

@@ -24,6 +24,7 @@ from ..rdf.vocab import (
     SAME_AS,
     SKOLEM_PREFIX,
     SWRL,
+    THING,
     TYPE,
 )
 from . import condition as cond
@@ -37,8 +38,9 @@ def _prop_atom(s: str, p: Prop, o: str) -> Atom:
 
 
 def key_rule(cls: Expr, props: tuple[Prop, ...]) -> Rule:
-    """The prp-key rule of one key."""
-    body = [Atom("?x", str(TYPE), sparql(cls.node)), Atom("?y", str(TYPE), sparql(cls.node))]
+    """The prp-key rule of one key (a key of owl:Thing asks no type: every individual is a Thing, typed or not)."""
+    body = [] if cls.node == THING else [Atom("?x", str(TYPE), sparql(cls.node)),
+                                         Atom("?y", str(TYPE), sparql(cls.node))]
     for k, p in enumerate(props):
         body += [_prop_atom("?x", p, f"?z{k}"), _prop_atom("?y", p, f"?z{k}")]
     named = (f'!sameTerm(?x, ?y) && isIRI(?x) && isIRI(?y) && !STRSTARTS(STR(?x), "{SKOLEM_PREFIX}") '
