@@ -55,6 +55,17 @@ def test_key_of_every_individual_needs_no_type() -> None:
     assert not different.reason().consistent
 
 
+def test_an_existential_into_nothing_has_no_instance() -> None:
+    for filler in ("owl:someValuesFrom owl:Nothing", "owl:onClass owl:Nothing ; owl:minQualifiedCardinality 2"):
+        o = Ontology()
+        o.load_data(PREFIXES + f":a a [ a owl:Restriction ; owl:onProperty :p ; {filler} ] .")
+        assert not o.reason().consistent, filler
+    zero = reasoned(":a a [ a owl:Restriction ; owl:onProperty :p ; owl:onClass owl:Nothing ; "
+                    "owl:maxQualifiedCardinality 0 ] . :B rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :p ; "
+                    "owl:someValuesFrom owl:Nothing ] .")  # no member of the existential: consistent
+    assert types(zero, "a") == set()
+
+
 def test_owl1_definitions_on_a_named_class_are_equivalences() -> None:
     o = reasoned(":Adult owl:intersectionOf ( :Person :Grown ) . :Pet owl:unionOf ( :Cat :Dog ) . "
                  ":Primary owl:oneOf ( :red :blue ) . "

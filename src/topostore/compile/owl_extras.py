@@ -5,6 +5,8 @@
   only (OWL 2 Direct Semantics), so neither side may be an unnamed node (a skolemised blank node).
 * ``ReflexiveProperty`` p: ``x p x`` for every individual — every node typed with a class (not a
   declaration such as ``owl:Class``), or linked by a property of the ontology (not a schema one).
+* An existential into owl:Nothing (``∃p.⊥``, ``≥n p.⊥`` with n ≥ 1) has no instance: a member of it
+  is a member of owl:Nothing (then inconsistent, cls-nothing2).
 * Restrictions subsumed through sub-properties and fillers: ``≥n p.C ⊑ ≥m q.D`` when ``p ⊑ q``,
   ``n ≥ m`` and ``C ⊑ D`` (the same property is :mod:`.owl`'s ext-card-sub), and ``∀q.C ⊑ ∀p.D``
   when ``p ⊑ q`` (or ``p = q``) and ``C ⊑ D`` — Horn, and what RDF-Based Semantics documents
@@ -18,6 +20,7 @@ from ..rdf.vocab import (
     DECLARATION_TYPES,
     INTERNAL,
     NAMED_INDIVIDUAL,
+    NOTHING,
     OWL,
     RDF,
     RDFS,
@@ -89,6 +92,15 @@ def _super_properties(tb: TBox) -> dict[Prop, set[Prop]]:
                     todo.append(nxt)
         closure[start] = seen
     return closure
+
+
+def unsatisfiable_rules(owl: OwlCompiler) -> list[Rule]:
+    """``x ∈ ∃p.⊥ ⇒ x ∈ ⊥`` (and for minimum and exact cardinalities of at least one into owl:Nothing)."""
+    return [Rule("cls-svf-nothing", f"{describe(e)} has no instance", (Atom("?x", str(TYPE), sparql(e.node)),),
+                 Atom("?x", str(TYPE), sparql(NOTHING)))
+            for e in owl.all_expressions()
+            if e.kind in ("some", "min", "exact") and (e.kind == "some" or e.n >= 1)
+            and e.filler is not None and e.filler.node == NOTHING]
 
 
 def restriction_rules(owl: OwlCompiler) -> list[Rule]:
