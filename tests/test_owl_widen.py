@@ -66,6 +66,16 @@ def test_an_existential_into_nothing_has_no_instance() -> None:
     assert types(zero, "a") == set()
 
 
+def test_exact_cardinalities_written_alike_are_one_class() -> None:
+    o = reasoned(":C1 owl:equivalentClass [ a owl:Restriction ; owl:onProperty :p ; owl:cardinality 1 ] . "
+                 ":C2 owl:equivalentClass [ a owl:Restriction ; owl:onProperty :p ; owl:cardinality 1 ] . "
+                 ":C3 owl:equivalentClass [ a owl:Restriction ; owl:onProperty :p ; owl:cardinality 2 ] . "
+                 ":Q1 owl:equivalentClass [ a owl:Restriction ; owl:onProperty :p ; owl:onClass :A ; "
+                 "owl:qualifiedCardinality 1 ] . :a a :C1 . :q a :Q1 .")
+    assert types(o, "a") == {"C1", "C2"}
+    assert types(o, "q") == {"Q1"}  # = 1 p.A is not = 1 p (other values may be outside A)
+
+
 def test_owl1_definitions_on_a_named_class_are_equivalences() -> None:
     o = reasoned(":Adult owl:intersectionOf ( :Person :Grown ) . :Pet owl:unionOf ( :Cat :Dog ) . "
                  ":Primary owl:oneOf ( :red :blue ) . "
