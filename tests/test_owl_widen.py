@@ -76,6 +76,17 @@ def test_exact_cardinalities_written_alike_are_one_class() -> None:
     assert types(o, "q") == {"Q1"}  # = 1 p.A is not = 1 p (other values may be outside A)
 
 
+def test_a_superclass_of_thing_holds_every_individual() -> None:
+    """owl:Thing ⊑ ∀p.A is a range of p; owl:Thing ⊑ B types every individual, typed or only linked."""
+    o = reasoned(":A a owl:Class . :B a owl:Class . :C a owl:Class . "
+                 "owl:Thing rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :p ; owl:allValuesFrom :A ] . "
+                 ":a :p :b . :c a :C .")
+    assert types(o, "b") == {"A"} and types(o, "a") == set()
+    o = reasoned(":B a owl:Class . :C a owl:Class . owl:Thing rdfs:subClassOf :B . :a :p :b . :c a :C . "
+                 ":d :n 4 .")
+    assert types(o, "a") == types(o, "b") == types(o, "d") == {"B"} and types(o, "c") == {"B", "C"}
+
+
 def test_owl1_definitions_on_a_named_class_are_equivalences() -> None:
     o = reasoned(":Adult owl:intersectionOf ( :Person :Grown ) . :Pet owl:unionOf ( :Cat :Dog ) . "
                  ":Primary owl:oneOf ( :red :blue ) . "
