@@ -219,6 +219,12 @@ def test_reflexive_equality_is_said_when_a_file_states_an_equality_and_blocks_no
     assert not [n for n in quietly(":a :p :b .").notices if n.kind == NOT_STORED]
 
 
+def test_an_equality_with_a_literal_loads() -> None:
+    """RDF-Based documents may state owl:sameAs of a literal: read as a plain triple, not a crash."""
+    o = quietly(':a owl:sameAs "one" .')
+    assert o.reason().consistent and any(n.kind == NOT_STORED for n in o.notices)
+
+
 def test_rdf_nil_statements_are_incomplete_only_when_made() -> None:
     """A well-formed list (an axiom's members) is no statement about rdf:nil."""
     o = quietly(":A owl:disjointUnionOf ( :B :C ) . :x a :B .")

@@ -342,7 +342,8 @@ class TBoxReader:
                 iter(self.store.triples(None, node, None, self.graph)), None) is not None)
 
         def a_datatype(node: Term) -> bool:
-            return is_datatype(node) or NamedNode(RDFS + "Datatype") in self.store.objects(node, TYPE, self.graph)
+            return is_datatype(node) or (isinstance(node, NamedNode) and NamedNode(RDFS + "Datatype") in
+                                         self.store.objects(node, TYPE, self.graph))
 
         def same(t) -> None:
             if t.subject in classes and t.object in classes and t.subject != t.object:
