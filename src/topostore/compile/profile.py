@@ -26,8 +26,8 @@ difference by irreflexivity         x p y ⇒ x ≠ y is not used where differen
 plus the axioms the reader set aside (:attr:`TBox.unsupported`), those read
 in part (:attr:`TBox.partial`: a disjoint union's covering), statements about the
 RDF list vocabulary (``rdf:nil`` with a first element or a rest: inconsistent under
-the RDF-Based semantics, not reasoned), imports of ontologies not loaded, the universal and empty properties
-(``owl:topObjectProperty`` …), and, informatively, the reflexivity of
+the RDF-Based semantics, not reasoned), imports of ontologies not loaded, the
+universal and empty properties (``owl:topObjectProperty`` …), and, informatively, the reflexivity of
 ``owl:sameAs`` (:data:`~.notices.NOT_STORED`) when a file uses it.
 """
 
@@ -172,11 +172,14 @@ class ProfileReport:
 
     def imports(self, store: Store, graph: NamedNode) -> None:
         """An ``owl:imports`` of an ontology not loaded: its axioms are missing (topostore fetches no URL)."""
+        imported = [t.object for t in store.triples(None, owl("imports"), None, graph)]
+        if not imported:
+            return
         loaded = {t.subject for t in store.triples(None, TYPE, owl("Ontology"), graph)}
         loaded |= {t.object for t in store.triples(None, owl("versionIRI"), None, graph)}
-        for t in store.triples(None, owl("imports"), None, graph):
-            if t.object not in loaded:
-                self.note(UNSUPPORTED, f"imports {t.object.value}", "the imported ontology is not loaded and "
+        for target in imported:
+            if target not in loaded:
+                self.note(UNSUPPORTED, f"imports {target.value}", "the imported ontology is not loaded and "
                           "not fetched (topostore reads no URL): its axioms are not reasoned; load its file too")
 
     def top_and_bottom(self, store: Store, graph: NamedNode) -> None:
