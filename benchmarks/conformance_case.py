@@ -229,34 +229,43 @@ def owlrl_run(premise_text: str, extra: list[tuple], asks: list[tuple] | None) -
 ENGINES = {"topostore": topostore_run, "owlrl": owlrl_run}
 
 
-def entails(run, premise_text: str, tests: Tests) -> bool:
-    """Whether the premise entails the conclusion the tests were made from."""
-    consistent, holds, _ = run(premise_text, tests.extra, tests.asks or None)
+def entails(run, premise_text: str, tests: Tests) -> tuple[bool, set[str]]:
+    """Whether the premise entails the conclusion the tests were made from, and the profile report's
+    axiom kinds with the conclusion's expressions loaded (what the engine says of the question asked)."""
+    consistent, holds, kinds = run(premise_text, tests.extra, tests.asks or None)
+    said = set(kinds)
     if not consistent:
-        return True
+        return True, said
     if tests.asks and not holds:
-        return False
-    return all(not run(premise_text, triples, None)[0] for triples in tests.contradictions)
+        return False, said
+    for triples in tests.contradictions:
+        consistent, _, kinds = run(premise_text, triples, None)
+        said |= set(kinds)
+        if consistent:
+            return False, said
+    return True, said
 
 
 def run_case(engine: str, case: dict) -> dict[str, object]:
+    """The checks of ``case`` on ``engine``; ``notices``: the axiom kinds the profile report names for the
+    premise; ``question_notices``: those it adds once the conclusion's expressions are loaded."""
     run = ENGINES[engine]
     out: dict[str, object] = {}
     try:
         checks = case["checks"]
-        out["notices"] = run(case["premise"], [], None)[2] if not (
-            "consistency" in checks or "inconsistency" in checks) else []
-        if "consistency" in checks or "inconsistency" in checks:
-            consistent, _, kinds = run(case["premise"], [], None)
-            out["notices"] = kinds
-            if "consistency" in checks:
-                out["consistency"] = consistent
-            if "inconsistency" in checks:
-                out["inconsistency"] = not consistent
+        consistent, _, kinds = run(case["premise"], [], None)
+        out["notices"] = kinds
+        if "consistency" in checks:
+            out["consistency"] = consistent
+        if "inconsistency" in checks:
+            out["inconsistency"] = not consistent
+        asked: set[str] = set()
         for check, key in (("positive", "conclusion"), ("negative", "nonconclusion")):
             if check in checks and case.get(key):
-                entailed = entails(run, case["premise"], entailment_tests(parse(case[key])))
+                entailed, said = entails(run, case["premise"], entailment_tests(parse(case[key])))
+                asked |= said
                 out[check] = entailed if check == "positive" else not entailed
+        out["question_notices"] = sorted(asked - set(kinds))
     except Exception as exc:  # a refusal or a failure of the engine is this case's answer, not the run's end
         message = f"error: {type(exc).__name__}: {' '.join(str(exc).split())[:300]}"
         for check in case["checks"]:

@@ -72,3 +72,48 @@ def test_table_has_every_category_and_type() -> None:
     text = conformance.table([case], 0, 60)
     assert "| RL | — | — | 1 / 0 of 1 | — | 1 / 0 of 1 |" in text
     assert all(f"| {c} |" in text for c in conformance.CATEGORIES)
+
+
+def test_document_lists_every_full_and_dl_failure_with_what_the_profile_report_names() -> None:
+    """Full and DL failures are listed whatever owlrl answers, each with the premise's notices, those the
+    conclusion's expressions add, or "no profile notice"; the headings count them."""
+    def case(cid: str, category: str, mine: object, theirs: bool, **said: list[str]) -> conformance.Case:
+        return conformance.Case(cid, category, "Approved", ["positive"], "<rdf:RDF/>",
+                                results={"topostore": {"positive": mine, **said}, "owlrl": {"positive": theirs}})
+
+    cases = [case("f1", "Full", False, False, notices=["complement on the left"]),
+             case("f2", "Full", False, True),
+             case("f3", "Full", False, False, question_notices=["maximum cardinality on the left"]),
+             case("f4", "Full", True, True),
+             case("d1", "DL", "error: LoadError: bad", False),
+             case("r1", "RL", False, False)]
+    text = conformance.document(cases, "table")
+    full = text[text.index("## Every check topostore fails in Full"):text.index("## Every check topostore fails in DL")]
+    assert "(3; 1 without a profile notice)" in full
+    assert "`f1` — owlrl fails; profile report: complement on the left" in full
+    assert "`f2` — owlrl passes; no profile notice" in full
+    assert "`f3` — owlrl fails; with the conclusion's expressions loaded: maximum cardinality on the left" in full
+    assert "`f4`" not in full and "`r1`" not in full
+    dl = text[text.index("## Every check topostore fails in DL"):]
+    assert "(1; 1 without a profile notice)" in dl and "- positive entailment (1; 1 without a notice): `d1`" in dl
+    assert "x owl:sameAs x" in full  # why the failures without a notice have none
+    behind = text[text.index("## Checks topostore fails where owlrl passes"):text.index("## Every check")]
+    assert "`f2`" in behind and "`d1`" in behind and "`f1`" not in behind
+
+
+def test_a_case_records_what_the_conclusions_expressions_add_to_the_profile_report() -> None:
+    """x : ≤1 p with p functional: the premise is Horn, the question needs a maximum on the left."""
+    from benchmarks.conformance_case import run_case
+
+    head = ('<rdf:RDF xmlns:rdf="http://www.w3.org/1999/02/22-rdf-syntax-ns#" '
+            'xmlns:owl="http://www.w3.org/2002/07/owl#">')
+    premise = head + ('<owl:FunctionalProperty rdf:about="http://e.org/p"/>'
+                      '<owl:Thing rdf:about="http://e.org/x"/></rdf:RDF>')
+    conclusion = head + ('<owl:Thing rdf:about="http://e.org/x"><rdf:type><owl:Restriction>'
+                         '<owl:onProperty rdf:resource="http://e.org/p"/><owl:maxCardinality rdf:datatype='
+                         '"http://www.w3.org/2001/XMLSchema#nonNegativeInteger">1</owl:maxCardinality>'
+                         '</owl:Restriction></rdf:type></owl:Thing></rdf:RDF>')
+    out = run_case("topostore", {"id": "t", "checks": ["positive", "consistency"], "premise": premise,
+                                 "conclusion": conclusion, "nonconclusion": ""})
+    assert out["consistency"] is True and out["notices"] == []
+    assert "maximum cardinality on the left" in out["question_notices"]

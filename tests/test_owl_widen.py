@@ -41,6 +41,47 @@ def test_key_with_individuals_declared_different_is_inconsistent() -> None:
     assert not o.reason().consistent
 
 
+def test_key_of_every_individual_needs_no_type() -> None:
+    """owl:Thing hasKey: individuals typed with nothing are in owl:Thing all the same."""
+    o = reasoned("owl:Thing owl:hasKey ( :n ) . :a :n 5 . :b :n 5 . :c :n 6 .")
+    assert same(o, "a") == ["b"] and same(o, "c") == []
+    different = Ontology()
+    different.load_data(PREFIXES + "owl:Thing owl:hasKey ( :n ) . :a :n 5 ; owl:differentFrom :b . :b :n 5 .")
+    assert not different.reason().consistent
+
+
+def test_an_existential_into_nothing_has_no_instance() -> None:
+    for filler in ("owl:someValuesFrom owl:Nothing", "owl:onClass owl:Nothing ; owl:minQualifiedCardinality 2"):
+        o = Ontology()
+        o.load_data(PREFIXES + f":a a [ a owl:Restriction ; owl:onProperty :p ; {filler} ] .")
+        assert not o.reason().consistent, filler
+    zero = reasoned(":a a [ a owl:Restriction ; owl:onProperty :p ; owl:onClass owl:Nothing ; "
+                    "owl:maxQualifiedCardinality 0 ] . :B rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :p ; "
+                    "owl:someValuesFrom owl:Nothing ] .")  # no member of the existential: consistent
+    assert types(zero, "a") == set()
+
+
+def test_exact_cardinalities_written_alike_are_one_class() -> None:
+    o = reasoned(":C1 owl:equivalentClass [ a owl:Restriction ; owl:onProperty :p ; owl:cardinality 1 ] . "
+                 ":C2 owl:equivalentClass [ a owl:Restriction ; owl:onProperty :p ; owl:cardinality 1 ] . "
+                 ":C3 owl:equivalentClass [ a owl:Restriction ; owl:onProperty :p ; owl:cardinality 2 ] . "
+                 ":Q1 owl:equivalentClass [ a owl:Restriction ; owl:onProperty :p ; owl:onClass :A ; "
+                 "owl:qualifiedCardinality 1 ] . :a a :C1 . :q a :Q1 .")
+    assert types(o, "a") == {"C1", "C2"}
+    assert types(o, "q") == {"Q1"}  # = 1 p.A is not = 1 p (other values may be outside A)
+
+
+def test_a_superclass_of_thing_holds_every_individual() -> None:
+    """owl:Thing ⊑ ∀p.A is a range of p; owl:Thing ⊑ B types every individual, typed or only linked."""
+    o = reasoned(":A a owl:Class . :B a owl:Class . :C a owl:Class . "
+                 "owl:Thing rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :p ; owl:allValuesFrom :A ] . "
+                 ":a :p :b . :c a :C .")
+    assert types(o, "b") == {"A"} and types(o, "a") == set()
+    o = reasoned(":B a owl:Class . :C a owl:Class . owl:Thing rdfs:subClassOf :B . :a :p :b . :c a :C . "
+                 ":d :n 4 .")
+    assert types(o, "a") == types(o, "b") == types(o, "d") == {"B"} and types(o, "c") == {"B", "C"}
+
+
 def test_owl1_definitions_on_a_named_class_are_equivalences() -> None:
     o = reasoned(":Adult owl:intersectionOf ( :Person :Grown ) . :Pet owl:unionOf ( :Cat :Dog ) . "
                  ":Primary owl:oneOf ( :red :blue ) . "

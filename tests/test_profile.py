@@ -15,6 +15,7 @@ from topostore import IncompleteOntologyError, Ontology, OntologyWarning
 from topostore.armor import ArmorService
 from topostore.cli.group import cli
 from topostore.compile import profile as kinds
+from topostore.compile.notices import NOT_STORED
 from topostore.rdf.vocab import ASSERTED
 from topostore.resources import default_ontology_files
 
@@ -56,6 +57,18 @@ CASES = {
     "properties made the same": (":a :p :b . :p owl:sameAs :q .", kinds.UNSUPPORTED, "p sameAs q"),
     "irreflexive difference": (":p a owl:IrreflexiveProperty , owl:FunctionalProperty .", kinds.DIFFERENCE,
                                "irreflexive"),
+    "rdf:nil with a first element": ("<http://www.w3.org/1999/02/22-rdf-syntax-ns#nil> "
+                                     "<http://www.w3.org/1999/02/22-rdf-syntax-ns#first> :x .", kinds.UNSUPPORTED,
+                                     "nil first x"),
+    "rdf:nil with a rest": ("<http://www.w3.org/1999/02/22-rdf-syntax-ns#nil> "
+                            "<http://www.w3.org/1999/02/22-rdf-syntax-ns#rest> [] .", kinds.UNSUPPORTED, "nil rest"),
+    "import not loaded": ("<http://e.org/a> owl:imports <http://e.org/b> .", kinds.UNSUPPORTED,
+                          "imports http://e.org/b"),
+    "datatypes made the same": (":bar owl:sameAs xsd:decimal . :x :n \"01\"^^:bar .", kinds.UNSUPPORTED,
+                                "bar sameAs decimal"),
+    "empty property": (":a a [ a owl:Restriction ; owl:onProperty owl:bottomObjectProperty ; "
+                       "owl:someValuesFrom owl:Thing ] .", kinds.UNSUPPORTED, "owl:bottomObjectProperty"),
+    "universal property": (":a owl:topObjectProperty :b .", kinds.UNSUPPORTED, "owl:topObjectProperty"),
     "string facet": (":code a owl:DatatypeProperty . :B owl:equivalentClass [ a owl:Restriction ; "
                      "owl:onProperty :code ; owl:someValuesFrom [ a rdfs:Datatype ; owl:onDatatype xsd:string ; "
                      "owl:withRestrictions ( [ xsd:pattern \"A.*\" ] ) ] ] .", kinds.UNSUPPORTED, "set aside"),
@@ -185,3 +198,41 @@ def test_tutorial_tbox_differences_from_pellet_are_named_at_load(tmp_path: Path)
     path = tbox.write(100, tmp_path)
     result = CliRunner().invoke(cli, ["check", str(path)])
     assert result.exit_code == 0 and "NonVegetarianPizza EquivalentTo" in result.output
+
+
+def test_reflexive_equality_is_said_when_a_file_states_an_equality_and_blocks_nothing() -> None:
+    """x sameAs x is not stored: an informative notice names it (the reason in the text) where a file uses
+    owl:sameAs, never elsewhere; it is no incompleteness (a strict load accepts the file), and individuals
+    made the same are not taken for properties made the same."""
+    text = ":a owl:sameAs :b . :a :p :c . :b a :A ."
+    with pytest.warns(OntologyWarning, match="x sameAs x"):
+        o = Ontology(strict=True)
+        o.load_data(PREFIXES + text)
+    said = [n for n in o.notices if n.kind == NOT_STORED]
+    assert len(said) == 1 and "a sameAs b" in said[0].subject and "not stored" in said[0].reason
+    assert [n for n in o.notices if n.incomplete] == []
+    report = o.reason()
+    assert report.consistent and report.incomplete == []
+    assert o.object_values("p", "b") == ["c"]  # the facts of one name are answered for the other
+    assert not o.sparql("ASK { <http://e.org/a#a> <http://www.w3.org/2002/07/owl#sameAs> <http://e.org/a#a> }")
+    assert not [n for n in quietly(":a :p :b .").notices if n.kind == NOT_STORED]
+
+
+def test_an_equality_with_a_literal_loads() -> None:
+    """RDF-Based documents may state owl:sameAs of a literal: read as a plain triple, not a crash."""
+    o = quietly(':a owl:sameAs "one" .')
+    assert o.reason().consistent and any(n.kind == NOT_STORED for n in o.notices)
+
+
+def test_rdf_nil_statements_are_incomplete_only_when_made() -> None:
+    """A well-formed list (an axiom's members) is no statement about rdf:nil."""
+    o = quietly(":A owl:disjointUnionOf ( :B :C ) . :x a :B .")
+    assert not any("nil" in n.subject for n in o.notices)
+    with pytest.raises(IncompleteOntologyError, match="nil first"):
+        quietly(CASES["rdf:nil with a first element"][0], strict=True)
+
+
+def test_an_import_is_named_only_while_its_ontology_is_not_loaded() -> None:
+    o = quietly("<http://e.org/a> owl:imports <http://e.org/b> , <http://e.org/c> . "
+                "<http://e.org/b> a owl:Ontology . <http://e.org/d> owl:versionIRI <http://e.org/c> .")
+    assert not any("imports" in n.subject for n in o.notices)

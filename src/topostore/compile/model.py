@@ -338,12 +338,19 @@ class TBoxReader:
         properties = tb.object_properties | tb.data_properties
 
         def used_as_property(node: Term) -> bool:
-            return node in properties or (isinstance(node, NamedNode) and bool(
-                self.store.triples(None, node, None, self.graph)))
+            return node in properties or (isinstance(node, NamedNode) and next(
+                iter(self.store.triples(None, node, None, self.graph)), None) is not None)
+
+        def a_datatype(node: Term) -> bool:
+            return is_datatype(node) or (isinstance(node, NamedNode) and NamedNode(RDFS + "Datatype") in
+                                         self.store.objects(node, TYPE, self.graph))
 
         def same(t) -> None:
             if t.subject in classes and t.object in classes and t.subject != t.object:
                 tb.equivalent.append((self.expr(t.subject), self.expr(t.object)))
+            elif t.subject != t.object and (a_datatype(t.subject) or a_datatype(t.object)):
+                tb.unsupported.append((f"{_short(t.subject)} sameAs {_short(t.object)}", "datatypes made the same: "
+                                       "a literal typed with one name is not read as a value of the other"))
             elif t.subject != t.object and (used_as_property(t.subject) or used_as_property(t.object)):
                 tb.same_properties.append((t.subject, t.object))
         self._each(tb, OWL + "sameAs", same)

@@ -22,6 +22,8 @@ RULE_REPAIRED = "SWRL rule repaired"
 RULE_SKIPPED = "SWRL rule skipped"
 SQWRL_QUERY = "SQWRL query"
 INCOMPLETE = "not reasoned completely"
+#: Informative: an entailment every ontology of the kind has, answered by convention instead of stored.
+NOT_STORED = "entailed, not stored"
 
 
 class OntologyWarning(UserWarning):
@@ -77,5 +79,5 @@ def publish(notices: Iterable[Notice], source: str = "") -> list[str]:
     return lines
 
 
-__all__ = ["INCOMPLETE", "RULE_REPAIRED", "RULE_SKIPPED", "SQWRL_QUERY", "Notice", "OntologyWarning", "grouped",
+__all__ = ["INCOMPLETE", "NOT_STORED", "RULE_REPAIRED", "RULE_SKIPPED", "SQWRL_QUERY", "Notice", "OntologyWarning", "grouped",
            "publish"]

@@ -237,11 +237,14 @@ class OwlCompiler:
             self.restrictions.upper_bound_rules(e, node, origin)
 
     def restriction_subsumption(self, exprs: list[Expr]) -> None:
-        """≥n p.C ⊑ ≥m p.D (n ≥ m ≥ 1, C ⊑ D), with ∃ as ≥1 and = n as ≥ n."""
+        """≥n p.C ⊑ ≥m p.D (n ≥ m ≥ 1, C ⊑ D), with ∃ as ≥1 and = n as ≥ n; and = n p.C ⊑ = n p.D when
+        C ≡ D (two restrictions written alike are one class)."""
         lower = [e for e in exprs if e.kind in ("some", "min", "exact")]
         for a in lower:
             for b in lower:
-                if a.node == b.node or b.kind == "exact" or a.prop != b.prop:
+                if a.node == b.node or a.prop != b.prop:
+                    continue
+                if b.kind == "exact" and not (a.kind == "exact" and a.n == b.n and self.filler_subsumed(b, a)):
                     continue
                 na = 1 if a.kind == "some" else a.n
                 nb = 1 if b.kind == "some" else b.n

@@ -5,6 +5,9 @@
   only (OWL 2 Direct Semantics), so neither side may be an unnamed node (a skolemised blank node).
 * ``ReflexiveProperty`` p: ``x p x`` for every individual — every node typed with a class (not a
   declaration such as ``owl:Class``), or linked by a property of the ontology (not a schema one).
+* ``owl:Thing ⊑ C``: every individual (as above) is in ``C``.
+* An existential into owl:Nothing (``∃p.⊥``, ``≥n p.⊥`` with n ≥ 1) has no instance: a member of it
+  is a member of owl:Nothing (then inconsistent, cls-nothing2).
 * Restrictions subsumed through sub-properties and fillers: ``≥n p.C ⊑ ≥m q.D`` when ``p ⊑ q``,
   ``n ≥ m`` and ``C ⊑ D`` (the same property is :mod:`.owl`'s ext-card-sub), and ``∀q.C ⊑ ∀p.D``
   when ``p ⊑ q`` (or ``p = q``) and ``C ⊑ D`` — Horn, and what RDF-Based Semantics documents
@@ -18,12 +21,14 @@ from ..rdf.vocab import (
     DECLARATION_TYPES,
     INTERNAL,
     NAMED_INDIVIDUAL,
+    NOTHING,
     OWL,
     RDF,
     RDFS,
     SAME_AS,
     SKOLEM_PREFIX,
     SWRL,
+    THING,
     TYPE,
 )
 from . import condition as cond
@@ -37,8 +42,9 @@ def _prop_atom(s: str, p: Prop, o: str) -> Atom:
 
 
 def key_rule(cls: Expr, props: tuple[Prop, ...]) -> Rule:
-    """The prp-key rule of one key."""
-    body = [Atom("?x", str(TYPE), sparql(cls.node)), Atom("?y", str(TYPE), sparql(cls.node))]
+    """The prp-key rule of one key (a key of owl:Thing asks no type: every individual is a Thing, typed or not)."""
+    body = [] if cls.node == THING else [Atom("?x", str(TYPE), sparql(cls.node)),
+                                         Atom("?y", str(TYPE), sparql(cls.node))]
     for k, p in enumerate(props):
         body += [_prop_atom("?x", p, f"?z{k}"), _prop_atom("?y", p, f"?z{k}")]
     named = (f'!sameTerm(?x, ?y) && isIRI(?x) && isIRI(?y) && !STRSTARTS(STR(?x), "{SKOLEM_PREFIX}") '
@@ -57,17 +63,35 @@ def _not_schema(var: str) -> str:
     return " && ".join(f'!STRSTARTS(STR({var}), "{ns}")' for ns in (RDF, RDFS, OWL, SWRL, INTERNAL))
 
 
-def reflexive_rules(tb: TBox) -> list[Rule]:
-    """``x p x`` for every individual, for each reflexive property ``p`` (three ways to be one)."""
+def _for_every_individual(name: str, origin: str, head: Atom) -> list[Rule]:
+    """``head`` (about ``?x``) for every individual ``?x``: every node typed with a class (not a
+    declaration such as ``owl:Class``), or linked by a property of the ontology (not a schema one)."""
     declarations = ", ".join(f"<{t}>" for t in sorted(DECLARATION_TYPES) if t != NAMED_INDIVIDUAL.value)
+    rules = [Rule(name, origin, (Atom("?x", str(TYPE), "?c"),), head,
+                  (cond.test(f"isIRI(?x) && ?c NOT IN ({declarations}) && !isBlank(?c)"),))]
+    for body in (Atom("?x", "?q", "?o"), Atom("?o", "?q", "?x")):
+        rules.append(Rule(name, origin, (body,), head, (cond.test(f"isIRI(?x) && {_not_schema('?q')}"),)))
+    return rules
+
+
+def reflexive_rules(tb: TBox) -> list[Rule]:
+    """``x p x`` for every individual, for each reflexive property ``p``."""
     rules = []
     for p in sorted(tb.characteristics.get("ReflexiveProperty", ()), key=lambda t: t.value):
-        origin, head = f"{p.value.rsplit('#', 1)[-1]} is reflexive", Atom("?x", sparql(p), "?x")
-        rules.append(Rule("prp-refl", origin, (Atom("?x", str(TYPE), "?c"),), head,
-                          (cond.test(f"isIRI(?x) && ?c NOT IN ({declarations}) && !isBlank(?c)"),)))
-        for body in (Atom("?x", "?q", "?o"), Atom("?o", "?q", "?x")):
-            rules.append(Rule("prp-refl", origin, (body,), head,
-                              (cond.test(f"isIRI(?x) && {_not_schema('?q')}"),)))
+        rules += _for_every_individual("prp-refl", f"{p.value.rsplit('#', 1)[-1]} is reflexive",
+                                       Atom("?x", sparql(p), "?x"))
+    return rules
+
+
+def thing_rules(tb: TBox) -> list[Rule]:
+    """``owl:Thing ⊑ C`` (or ``owl:Thing ≡ C``): every individual is a member of ``C`` — how a range or
+    a property's universal restriction is often written (``owl:Thing ⊑ ∀p.A``)."""
+    supers = {b for a, b in tb.subclass if a.node == THING and b.node != THING}
+    supers |= {y for a, b in tb.equivalent for x, y in ((a, b), (b, a)) if x.node == THING and y.node != THING}
+    rules = []
+    for b in sorted(supers, key=lambda e: e.node.value):
+        rules += _for_every_individual("cax-sco-thing", f"Thing SubClassOf {describe(b)}",
+                                       Atom("?x", str(TYPE), sparql(b.node)))
     return rules
 
 
@@ -87,6 +111,15 @@ def _super_properties(tb: TBox) -> dict[Prop, set[Prop]]:
                     todo.append(nxt)
         closure[start] = seen
     return closure
+
+
+def unsatisfiable_rules(owl: OwlCompiler) -> list[Rule]:
+    """``x ∈ ∃p.⊥ ⇒ x ∈ ⊥`` (and for minimum and exact cardinalities of at least one into owl:Nothing)."""
+    return [Rule("cls-svf-nothing", f"{describe(e)} has no instance", (Atom("?x", str(TYPE), sparql(e.node)),),
+                 Atom("?x", str(TYPE), sparql(NOTHING)))
+            for e in owl.all_expressions()
+            if e.kind in ("some", "min", "exact") and (e.kind == "some" or e.n >= 1)
+            and e.filler is not None and e.filler.node == NOTHING]
 
 
 def restriction_rules(owl: OwlCompiler) -> list[Rule]:

@@ -11,7 +11,7 @@ from .guard import guard_rules
 from .implied import simplify
 from .model import TBoxReader
 from .owl import OwlCompiler
-from .owl_extras import key_rules, reflexive_rules, restriction_rules
+from .owl_extras import key_rules, reflexive_rules, restriction_rules, thing_rules, unsatisfiable_rules
 from .profile import profile
 from .rule import RuleSet
 from .swrl import SwrlCompiler
@@ -36,9 +36,11 @@ def compile_ontology(store: Store, graph: NamedNode) -> RuleSet:
     rules.add(owl.compile())
     rules.add(key_rules(tbox))
     rules.add(reflexive_rules(tbox))
+    rules.add(thing_rules(tbox))
     rules.add(range_rules(tbox))
     rules.add(empty_range_rules(owl.all_expressions()))
     rules.add(restriction_rules(owl))
+    rules.add(unsatisfiable_rules(owl))
     rules.notices += profile(store, graph, tbox, owl, swrl.used_as, swrl.uses_difference)
     rules.add(swrl_rules)
     rules.add(swrl.query_rules)

@@ -23,20 +23,25 @@ existential, positively             the unnamed value's consequences (domain, a 
 difference by irreflexivity         x p y ⇒ x ≠ y is not used where difference matters
 =================================  =====================================================
 
-plus the axioms the reader set aside (:attr:`TBox.unsupported`) and those read
-in part (:attr:`TBox.partial`: a disjoint union's covering).
+plus the axioms the reader set aside (:attr:`TBox.unsupported`), those read
+in part (:attr:`TBox.partial`: a disjoint union's covering), statements about the
+RDF list vocabulary (``rdf:nil`` with a first element or a rest: inconsistent under
+the RDF-Based semantics, not reasoned), imports of ontologies not loaded, the
+universal and empty properties (``owl:topObjectProperty`` …), and, informatively, the reflexivity of
+``owl:sameAs`` (:data:`~.notices.NOT_STORED`) when a file uses it.
 """
 
 from __future__ import annotations
 
 from collections.abc import Iterator
+from itertools import islice
 
-from pyoxigraph import NamedNode
+from pyoxigraph import Literal, NamedNode
 
-from ..rdf.vocab import THING
+from ..rdf.vocab import FIRST, NIL, REST, SAME_AS, THING, TYPE, is_skolem, owl
 from ..stores.base import Store
 from .model import Expr, Prop, TBox, describe
-from .notices import INCOMPLETE, Notice
+from .notices import INCOMPLETE, NOT_STORED, Notice
 from .owl import OwlCompiler
 
 #: Axiom kinds of the report (the groups of the LOAD warning).
@@ -48,6 +53,20 @@ MAX_CASES = "maximum cardinality needing case analysis"
 EXISTENTIAL = "existential with consequences for an unnamed value"
 DIFFERENCE = "difference entailed by a property characteristic"
 UNSUPPORTED = "not supported"
+
+#: The universal and the empty properties, with what they mean.
+_TOP_AND_BOTTOM = {
+    "topObjectProperty": "the universal property (every two individuals are linked by it)",
+    "topDataProperty": "the universal data property (every individual has every literal as its value)",
+    "bottomObjectProperty": "the empty property (a link by it, or an existential on it, is inconsistent)",
+    "bottomDataProperty": "the empty data property (a value of it, or an existential on it, is inconsistent)",
+}
+
+#: Why ``x owl:sameAs x`` is not stored, said whenever a file uses owl:sameAs.
+REFLEXIVE_SAME_AS = ("owl:sameAs is reflexive: x sameAs x holds for every individual, but is not stored (it "
+                     "would add a triple per term and list each individual as its own alias); every fact of an "
+                     "individual is copied to each of its names, so only the triple x sameAs x itself is not "
+                     "answered")
 
 #: (expression, positive?, the axiom it occurs in, the axiom's named subject or None)
 Use = tuple[Expr, bool, str, NamedNode | None]
@@ -96,6 +115,8 @@ def all_uses(tb: TBox, rule_uses: list[tuple[Expr, bool]]) -> list[Use]:
 
 
 def _name(t: NamedNode) -> str:
+    if not isinstance(t, NamedNode) or is_skolem(t):
+        return "[]" if not isinstance(t, Literal) else str(t)
     v = t.value
     return v.rsplit("#", 1)[-1] if "#" in v else v.rsplit("/", 1)[-1]
 
@@ -133,7 +154,48 @@ class ProfileReport:
             self.note(UNSUPPORTED, axiom, f"set aside: {reason}")
         for axiom, kind, reason in self.tb.partial:
             self.note(kind, axiom, reason)
+        self.list_vocabulary(store, graph)
+        self.imports(store, graph)
+        self.top_and_bottom(store, graph)
+        self.reflexive_equality(store, graph)
         return list(self.notices.values())
+
+    # ---------------------------------------------------------------- RDF vocabulary
+    def list_vocabulary(self, store: Store, graph: NamedNode) -> None:
+        """``rdf:nil`` is the empty list: a first element or a rest of it is a contradiction under the
+        RDF-Based semantics, which topostore does not find (it reads lists, it does not reason about them)."""
+        for p in (FIRST, REST):
+            for t in islice(store.triples(NIL, p, None, graph), 1):
+                self.note(UNSUPPORTED, f"nil {_name(p)} {_name(t.object)}", "rdf:nil is the empty list, which has "
+                          "no first element and no rest: inconsistent under the RDF-Based semantics; the RDF "
+                          "list vocabulary is not reasoned, the statement is kept as a plain triple")
+
+    def imports(self, store: Store, graph: NamedNode) -> None:
+        """An ``owl:imports`` of an ontology not loaded: its axioms are missing (topostore fetches no URL)."""
+        imported = [t.object for t in store.triples(None, owl("imports"), None, graph)]
+        if not imported:
+            return
+        loaded = {t.subject for t in store.triples(None, TYPE, owl("Ontology"), graph)}
+        loaded |= {t.object for t in store.triples(None, owl("versionIRI"), None, graph)}
+        for target in imported:
+            if target not in loaded:
+                self.note(UNSUPPORTED, f"imports {target.value}", "the imported ontology is not loaded and "
+                          "not fetched (topostore reads no URL): its axioms are not reasoned; load its file too")
+
+    def top_and_bottom(self, store: Store, graph: NamedNode) -> None:
+        """The universal and the empty properties have no rules: named wherever a file uses them."""
+        for name, meaning in _TOP_AND_BOTTOM.items():
+            p = owl(name)
+            if any(next(iter(store.triples(*pattern, graph)), None) is not None
+                   for pattern in ((p, None, None), (None, p, None), (None, None, p))):
+                self.note(UNSUPPORTED, f"owl:{name}", f"{meaning}: not reasoned, used as any other property")
+
+    def reflexive_equality(self, store: Store, graph: NamedNode) -> None:
+        """Said once when the file states an equality: see :data:`REFLEXIVE_SAME_AS` for why."""
+        first = next(iter(store.triples(None, SAME_AS, None, graph)), None)
+        if first is not None:
+            subject = f"owl:sameAs (as in {_name(first.subject)} sameAs {_name(first.object)})"
+            self.notices.setdefault((NOT_STORED, "owl:sameAs"), Notice(NOT_STORED, subject, REFLEXIVE_SAME_AS))
 
     # ---------------------------------------------------------------- expressions
     def expression(self, e: Expr, positive: bool, axiom: str, subject: NamedNode | None) -> None:
