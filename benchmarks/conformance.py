@@ -4,8 +4,8 @@
 
 Reads the test cases from ``../shared/conformance/owl2-wg/all.rdf`` (``--cases``; never copied into
 the repository): every case with an RDF/XML premise, whatever its status (Approved, Proposed,
-Extracredit, none).  Each case runs on each engine in a child process of its own
-(:mod:`benchmarks.conformance_case`) under a time limit, so a crash or a hang costs that case only.
+Extracredit, none).  Each case runs on each engine in a child process (:mod:`benchmarks.conformance_case`;
+a child takes case after case) under a time limit per case, so a crash or a hang costs that case only.
 Prints (and with ``--write`` writes) a table by category — RL (the OWL 2 RL profile), DL (OWL 2 DL
 outside RL), Full (RDF-Based semantics only) — and test type, with the cases each engine fails.
 """
@@ -183,8 +183,9 @@ def table(cases: list[Case], without: int, timeout: float) -> str:
         "",
         *lines,
         "",
-        f"{len(cases)} cases with an RDF/XML premise ({without} without one are not run); a child process "
-        f"per case and engine, {timeout:g} s each. Timeouts or crashes: topostore {problems['topostore']}, "
+        f"{len(cases)} cases with an RDF/XML premise ({without} without one are not run); in child processes "
+        f"(one case at a time, {timeout:g} s each; a case that hangs or crashes its child answers that alone). "
+        f"Timeouts or crashes: topostore {problems['topostore']}, "
         f"owlrl {problems['owlrl']}; slowest topostore case {slowest[1]} ({slowest[0]:.1f} s).",
     ])
 
@@ -279,8 +280,9 @@ INTRODUCTION = """# W3C OWL 2 conformance
 
 `make conformance` (`python -m benchmarks.conformance --write docs/conformance.md`) runs the OWL
 Working Group's test cases (`../shared/conformance/owl2-wg/all.rdf`, read where they are) on topostore
-and on owlrl, the OWL 2 RL reasoner for rdflib, each case and engine in a child process of its own
-with a time limit. A case is one or more checks: *consistency* and *inconsistency* of the premise,
+and on owlrl, the OWL 2 RL reasoner for rdflib, each case and engine in a child process with a time
+limit (a child takes case after case; one that hangs or crashes costs that case only). A case is one
+or more checks: *consistency* and *inconsistency* of the premise,
 *positive entailment* (the conclusion follows) and *negative entailment* (the non-conclusion does
 not). Entailment is decided the same way for both engines (`benchmarks/conformance_case.py`): a
 type with a class expression becomes `Q ≡ expression` and a type `Q`; a subclass, domain, range or
