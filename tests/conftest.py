@@ -5,6 +5,7 @@ everything); the fuzz figures (cases tried, violations found) printed at the end
 
 from __future__ import annotations
 
+import json
 import sys
 from collections.abc import Iterator
 from pathlib import Path
@@ -59,6 +60,29 @@ def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:
             item.add_marker(pytest.mark.external)
         if module in SLOW_MODULES:
             item.add_marker(pytest.mark.slow)
+
+
+def pytest_sessionfinish(session: pytest.Session) -> None:
+    """On an xdist worker, hand the fuzz counts of its tests to the controller (which prints them)."""
+    output = getattr(session.config, "workeroutput", None)
+    if output is None:
+        return
+    try:
+        from fuzz_support import CASES_BY_TEST
+    except ImportError:  # pragma: no cover
+        return
+    output["fuzz_cases"] = json.dumps(dict(CASES_BY_TEST))
+
+
+@pytest.hookimpl(optionalhook=True)
+def pytest_testnodedown(node, error) -> None:  # noqa: ANN001 - xdist's worker node
+    """Add a worker's fuzz counts to the controller's."""
+    counts = json.loads(getattr(node, "workeroutput", {}).get("fuzz_cases", "{}"))
+    if counts:
+        from fuzz_support import CASES, CASES_BY_TEST
+
+        CASES_BY_TEST.update(counts)
+        CASES["tried"] += sum(counts.values())
 
 
 def pytest_terminal_summary(terminalreporter: pytest.TerminalReporter) -> None:
