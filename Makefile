@@ -16,9 +16,9 @@ run: $(STAMP)
 	$(BIN)/topostore demo
 
 # Coverage of src/topostore: the code run in the test process and its threads (subprocesses such as
-# `topostore serve` or the ROS node are not counted); 92.85% when the floor was last raised.  The floor only
+# `topostore serve` or the ROS node are not counted); 93.13% when the floor was last raised.  The floor only
 # goes up: when tests raise the figure, set COV_FLOOR to the new value rounded down; never lower it.
-COV_FLOOR := 92
+COV_FLOOR := 93
 
 # The tests that need nothing outside the venv run on two workers (pytest-xdist, `-n 2` in pyproject.toml); those
 # that start roscore, Virtuoso, a browser or a JVM run in one process after them; coverage adds both up.
