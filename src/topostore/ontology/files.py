@@ -1,6 +1,6 @@
 """An ontology's documents: loading (all or nothing, rules compiled first) and saving.
 
-A part of :class:`topostore.ontology.facade.Ontology` (a mixin), apart from the facade
+A named part of :class:`topostore.ontology.facade.Ontology` (``onto.files``), apart from the facade
 because loading has rules of its own: a document that changes the schema is
 compiled on a scratch copy first, so an untranslatable rule leaves the ontology
 as it was.

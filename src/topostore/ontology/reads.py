@@ -1,6 +1,6 @@
 """Questions to an ontology: its answers over asserted ∪ inferred knowledge.
 
-A part of :class:`topostore.ontology.facade.Ontology` (a mixin): the typed questions
+A named part of :class:`topostore.ontology.facade.Ontology` (``onto.reads``): the typed questions
 (types, instances, property values), raw SPARQL through the one guard on user
 SPARQL, and named queries with safely bound parameters.
 """
