@@ -171,10 +171,12 @@ def remove_class_class(ctx: Context) -> Reply:
     return ctx.submit(fixed("REMOVE CLASS CLASS", remove=[Triple(sub, SUBCLASS_OF, sup)]))
 
 
-def _matching_values(onto: Ontology, ind: NamedNode, prop: NamedNode, value) -> list[Triple]:
-    """Asserted ``prop(ind, v)`` whose v is the same data value (or the same individual) as ``value``."""
+def _matching_values(onto: Ontology, ind: NamedNode, prop: NamedNode, value,
+                     values: list[Triple] | None = None) -> list[Triple]:
+    """Asserted ``prop(ind, v)`` whose v is the same data value (or the same individual) as ``value``
+    (among ``values`` when the caller has read them already)."""
     key = terms.value_key(value)
-    return [t for t in asserted(onto, ind, prop) if terms.value_key(t.object) == key]
+    return [t for t in (asserted(onto, ind, prop) if values is None else values) if terms.value_key(t.object) == key]
 
 
 def remove_dataprop_ind(ctx: Context) -> Reply:
@@ -194,9 +196,10 @@ def _replace(ind: NamedNode, prop: NamedNode, new, old, description: str) -> Cha
     """Remove ``prop(ind, old)`` (matched by data value), add ``prop(ind, new)``; warn if old was absent."""
 
     def plan(onto: Ontology) -> Delta:
-        olds = _matching_values(onto, ind, prop, old)
+        values = asserted(onto, ind, prop)  # read once: on a remote store each read is a round trip
+        olds = _matching_values(onto, ind, prop, old, values)
         new_key = terms.value_key(new)
-        present = any(terms.value_key(t.object) == new_key for t in asserted(onto, ind, prop)) and not any(
+        present = any(terms.value_key(t.object) == new_key for t in values) and not any(
             terms.value_key(t.object) == new_key for t in olds
         )
         warning = (
