@@ -19,6 +19,7 @@ from pyoxigraph import NamedNode, Triple
 from ..compile.generic import PREFIXES
 from ..compile.rule import Rule
 from ..rdf.vocab import ASSERTED, AUX, INFERRED, TYPE
+from ..stores.base import key_census
 from . import flip, window
 from .materialize import ReasonStats
 from .plan import KeyCounts
@@ -29,18 +30,6 @@ from .triggers import Triggers, matches
 #: a flip window is used from this many facts of the compared predicate on, up to this many bindings
 #: of the seed and this many facts inside (else: a scan)
 WINDOW_MIN, WINDOW_ROWS, WINDOW_FACTS = 256, 64, 4096
-
-
-def census_of(triples: Collection[Triple]) -> KeyCounts:
-    """Facts per predicate and per class of ``triples`` (as :meth:`Store.census` counts a graph)."""
-    preds: dict[str, int] = {}
-    classes: dict[str, int] = {}
-    for t in triples:
-        p = str(t.predicate)
-        preds[p] = preds.get(p, 0) + 1
-        if t.predicate == TYPE:
-            classes[str(t.object)] = classes.get(str(t.object), 0) + 1
-    return preds, classes
 
 
 class Flips:
@@ -95,7 +84,7 @@ class Flips:
         if not clean:
             return skip, lost, gained_rules
         preds, classes = added_keys
-        removed_preds, removed_classes = census_of(removed)
+        removed_preds, removed_classes = key_census(removed)
         changed = (set(preds) | set(removed_preds), set(classes) | set(removed_classes))
         self.requests.scratch([r.old for pairs in clean.values() for r in pairs], flip.CHANGE_OLD)
         self.requests.flush()
@@ -255,4 +244,4 @@ class Flips:
         return any(self.triggers.feasible(i, self.state.present) for i in self.triggers.writers(("p", p)))
 
 
-__all__ = ["Flips", "WINDOW_FACTS", "WINDOW_MIN", "WINDOW_ROWS", "census_of"]
+__all__ = ["Flips", "WINDOW_FACTS", "WINDOW_MIN", "WINDOW_ROWS"]

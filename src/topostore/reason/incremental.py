@@ -77,11 +77,11 @@ from ..compile.rule import Rule, RuleSet
 from ..rdf.lexer import negates_exists  # noqa: F401 - public here since the first release
 from ..rdf.terms import Term
 from ..rdf.vocab import ASSERTED, AUX, DELTA, ENTAILED_PREFIX, INFERRED, NEW_AUX, NEW_INFERRED, TYPE
-from ..stores.base import Store
+from ..stores.base import Store, key_census
 from .consistency import Violation, check_consistency
 from .dred import Deletion, can_prove
 from .entailed import publish_entailed, refresh_entailed
-from .flips import Flips, census_of
+from .flips import Flips
 from .materialize import Materializer, ReasonStats
 from .plan import is_small, plan_where
 from .requests import RequestQueue
@@ -250,7 +250,7 @@ class IncrementalReasoner:
         requests = self.requests
         requests.scratch(added, ADDED)
         requests.scratch(removed, REMOVED)
-        preds, classes = census_of(added)
+        preds, classes = key_census(added)
         for keys in (self.state.present, self.state.asserted):
             keys[0].update(preds)
             keys[1].update(classes)

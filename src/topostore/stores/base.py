@@ -31,6 +31,20 @@ from .literal_forms import FORMS, LiteralForms
 from .meta import META, PersistedState
 
 
+def key_census(facts: Iterable[Triple | Quad]) -> tuple[dict[str, int], dict[str, int]]:
+    """Facts per predicate and per class (objects of rdf:type), keyed by SPARQL text: the read keys
+    a set of facts changes, and how much (see :meth:`Store.census`)."""
+    preds: dict[str, int] = {}
+    classes: dict[str, int] = {}
+    for f in facts:
+        p = str(f.predicate)
+        preds[p] = preds.get(p, 0) + 1
+        if f.predicate == TYPE:
+            c = str(f.object)
+            classes[c] = classes.get(c, 0) + 1
+    return preds, classes
+
+
 def quad_data(quads: list[Quad]) -> str:
     """``GRAPH g { s p o . }`` blocks for INSERT/DELETE DATA, from pyoxigraph terms (escaped by pyoxigraph)."""
     by_graph: dict[str, list[str]] = {}
@@ -347,16 +361,15 @@ class Store:
         values = " ".join(str(g) for g in found)
         text = (f"SELECT ?g ?p ?c (COUNT(*) AS ?n) WHERE {{ VALUES ?g {{ {values} }} GRAPH ?g {{ ?s ?p ?o }} "
                 f"BIND(IF(sameTerm(?p, {TYPE}), ?o, \"\") AS ?c) }} GROUP BY ?g ?p ?c")
-        by_text = {str(g): g for g in found}
         for r in self._run_query(text, None):
-            preds, classes = found[by_text[str(self._graph_name_in(r["g"]))]]
+            preds, classes = found[self._graph_in(r["g"])]
             p, n = str(r["p"]), int(r["n"].value)
             preds[p] = preds.get(p, 0) + n
             if p == str(TYPE):
                 classes[str(r["c"])] = classes.get(str(r["c"]), 0) + n
         return found
 
-    def _graph_name_in(self, graph: NamedNode) -> NamedNode:
+    def _graph_in(self, graph: NamedNode) -> NamedNode:
         """A graph name as a query answers it, in the engine's names (a remote store renames graphs)."""
         return graph
 

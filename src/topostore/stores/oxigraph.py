@@ -12,13 +12,13 @@ from __future__ import annotations
 
 import os
 from collections.abc import Iterator
+from itertools import islice
 
 import pyoxigraph as ox
 from pyoxigraph import NamedNode, Quad
 
 from ..errors import QueryError, StoreError
-from ..rdf.vocab import TYPE
-from .base import Store, data_update, quad_data  # noqa: F401 - data_update: this module's since the first release
+from .base import Store, data_update, key_census, quad_data  # noqa: F401 - data_update: this module's since the first release
 
 
 class OxigraphStore(Store):
@@ -98,17 +98,10 @@ class OxigraphStore(Store):
         parse and a plan.  Larger graphs are counted by a query.
         """
         self._flush_open()
-        preds: dict[str, int] = {}
-        classes: dict[str, int] = {}
-        for n, q in enumerate(self._ox.quads_for_pattern(None, None, None, graph)):
-            if n >= small:
-                return super().census_many([graph])[graph]
-            p = str(q.predicate)
-            preds[p] = preds.get(p, 0) + 1
-            if q.predicate == TYPE:
-                c = str(q.object)
-                classes[c] = classes.get(c, 0) + 1
-        return preds, classes
+        quads = list(islice(self._ox.quads_for_pattern(None, None, None, graph), small + 1))
+        if len(quads) > small:
+            return super().census_many([graph])[graph]
+        return key_census(quads)
 
     def census_many(self, graphs: list[NamedNode]) -> dict[NamedNode, tuple[dict[str, int], dict[str, int]]]:
         """Each graph counted from the index (see :meth:`census`): no query to batch in memory."""

@@ -89,9 +89,6 @@ class RemoteStore(Store):
     def _graph_out(self, graph: NamedNode) -> NamedNode:
         return NamedNode(self._out(f"<{graph.value}>")[1:-1])
 
-    def _graph_name_in(self, graph: NamedNode) -> NamedNode:
-        return self._graph_in(graph)
-
     def _graph_in(self, graph: NamedNode) -> NamedNode:
         v = graph.value
         return NamedNode(GRAPH_PREFIX + v[len(self._prefix):]) if v.startswith(self._prefix) else graph
