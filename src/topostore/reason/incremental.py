@@ -78,14 +78,18 @@ from ..rdf.lexer import negates_exists  # noqa: F401 - public here since the fir
 from ..rdf.terms import Term
 from ..rdf.vocab import ASSERTED, AUX, DELTA, ENTAILED_PREFIX, INFERRED, NEW_AUX, NEW_INFERRED, TYPE
 from ..stores.base import Store, key_census
+from . import delta_texts as texts
+from . import flip
 from .consistency import Violation, check_consistency
 from .dred import Deletion, can_prove
 from .entailed import publish_entailed, refresh_entailed
 from .flips import Flips
 from .materialize import Materializer, ReasonStats
 from .plan import is_small, plan_where
+from .program import PROGRAM_SCRATCH, Refused, StepCompiler, StepProgram, signature
 from .requests import RequestQueue
 from .scratch import ADDED, FLIP_GAINED, NEW_FACTS, OVERDELETED, REMOVED, SCRATCH
+from .staged import StagedRun
 from .triggers import Present, Triggers
 
 #: the internal form of an rdf:type conclusion whose individuals are different by entailment only
@@ -153,6 +157,11 @@ class IncrementalReasoner:
         self.requests = RequestQueue(store, self.rules)
         self.flips = Flips(self.requests, self.triggers, self._monotone_set)
         self.deletion = Deletion(self.requests, self.triggers, self.monotone, self.provers)
+        #: the compiled step (see :mod:`.program`); False runs the general phases for every change
+        self.compiled = True
+        self.compiler = StepCompiler(self.rules, self.monotone, self.flips._by_frequency, store.supports_lateral)
+        #: compiled programs (or why a signature cannot be compiled) by signature, until the next full run
+        self._programs: dict = {}
         #: SPARQL texts of the checks made once (the phases' texts live in the request queue)
         self._texts: dict[tuple, str] = {}
         #: (individual, class) pairs whose type fact the last REASON may have changed; None after a full run
@@ -204,6 +213,7 @@ class IncrementalReasoner:
         self.state.ready = False
         self.touched_types = None
         self.flips.forget()
+        self._programs.clear()  # compiled against the keys with facts, which a full run recounts
         self._clear_scratch()
         materializer = Materializer(self.store, self.ruleset, profile=profile)
         stats = materializer.run()
@@ -257,6 +267,8 @@ class IncrementalReasoner:
         # a newly asserted fact that was inferred is now asserted only (as from scratch)
         if added:
             requests.discard(added, (INFERRED, AUX))
+        if self._compiled(added, removed, stats):
+            return
         requests.flush()  # the scratch copies are read from here on
         skip, lost, gained_rules = self.flips.find(self.state, added, removed, (preds, classes), stats)
         if removed:
@@ -269,6 +281,67 @@ class IncrementalReasoner:
         requests.defer(f"ADD SILENT {ADDED} TO {NEW_FACTS}")
         requests.flush()
         m.propagate(self.monotone, stats, seed=ADDED, record=NEW_FACTS, skip_first=skip)
+
+    # ------------------------------------------------------------------ the compiled step
+    def _compiled(self, added: Collection[Triple], removed: Collection[Triple], stats: ReasonStats) -> bool:
+        """Maintain with the compiled program of this kind of change (see :mod:`.program`); False
+        (with the reason in ``stats.program``) when it cannot be compiled."""
+        if not self.compiled:
+            stats.program = "general: compiled step switched off"
+            return False
+        replaced = [(t.subject, t.predicate) for t in added if t.predicate != TYPE]
+        now = self.store.objects_many(list(dict.fromkeys(replaced)), ASSERTED) if replaced else {}
+        clean = flip.clean_replacements(added, removed, lambda s, p: now.get((s, p), ()))
+        sig = signature(key_census(added), key_census(removed), clean)
+        program = self._program(sig)
+        if isinstance(program, str):
+            stats.program = f"general: {program}"
+            return False
+        self.requests.scratch([r.old for p in program.flipped for r in clean[p]], flip.CHANGE_OLD)
+        start = time.perf_counter()
+        if self.store.round_trips and not program.whole:
+            stats.program = "general: a recursive component runs in rounds, each a round trip here"
+            return False
+        self.flips.state = self.state
+        if self.store.round_trips:  # the whole program as one request
+            self.requests.flush()
+            self.requests.defer(program.text(self._flip_text))
+            self.requests.flush()
+            stats.evaluations += program.operations
+        else:
+            self.requests.flush()
+            run = StagedRun(self.store, program, sig, self._flip_text)
+            run.run()
+            stats.evaluations += run.sent
+        if self.requests.profile:
+            stats.per_rule["program"] = time.perf_counter() - start
+        stats.flipped = program.flips
+        stats.program = "compiled"
+        for kind, key in program.heads:
+            self.state.present[0 if kind == "p" else 1].add(key)
+        return True
+
+    def _flip_text(self, i: int, order: tuple[int, ...], text: str) -> str:
+        """A compiled flip's text for this run: narrowed to the values in a window where one applies."""
+        windows = self.flips._windows(i, order)
+        if not windows:
+            return text
+        return texts.flips(self.rules[i], order, self.store.supports_lateral, i, windows)
+
+    def _program(self, sig) -> StepProgram | str:
+        """The compiled program of a signature, or why there is none (cached until the next full run)."""
+        program = self._programs.get(sig)
+        preds, classes = self.state.present
+        if isinstance(program, StepProgram) and any(
+                key[1] in (classes if key[0] == "t" else preds) for key in program.needs_absent):
+            program = None  # a key it left out has facts now
+        if program is None:
+            try:
+                program = self.compiler.compile(sig, self.state.present)
+            except Refused as why:
+                program = str(why)
+            self._programs[sig] = program
+        return program
 
     # ------------------------------------------------------------------ after maintenance
     def _negated_match(self) -> bool:
@@ -349,7 +422,8 @@ class IncrementalReasoner:
         return preds, classes
 
     def _clear_scratch(self) -> None:
-        self.store.update(" ; ".join(f"DROP SILENT GRAPH {g}" for g in (*SCRATCH, DELTA, NEW_INFERRED, NEW_AUX)))
+        self.store.update(" ; ".join(f"DROP SILENT GRAPH {g}"
+                                     for g in (*SCRATCH, *PROGRAM_SCRATCH, DELTA, NEW_INFERRED, NEW_AUX)))
 
 
 __all__ = ["IncrementalReasoner", "MaintenanceState", "DEFAULT_MAX_CHANGE_SHARE", "MODES", "can_prove", "check_mode",

@@ -48,6 +48,9 @@ class ReasonStats:
     rederived: int = 0
     #: incremental only: rule evaluations replaced by one flip query (replaced values only compared)
     flipped: int = 0
+    #: incremental only: "compiled" when the compiled step ran (see :mod:`.program`), with what it handed
+    #: to the general phases; else why the general phases ran instead
+    program: str = ""
     per_rule: dict[str, float] = field(default_factory=dict)
 
 

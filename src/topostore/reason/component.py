@@ -1,0 +1,164 @@
+"""A recursive component of the compiled step: delete and rederive inside it, confirming from outside first.
+
+Why this exists
+---------------
+On the tutorial map most keys a step reaches form one recursive component: a
+place's class decides which places are different (disjoint classes), what is
+different decides what is connected (Connectability), and what is connected
+decides the class (domain and range).  A recheck key by key (:mod:`.program`)
+could let a fact confirm itself around that cycle, so inside a component the
+compiled step runs DRed (Gupta, Mumick & Subrahmanian, SIGMOD 1993), with one
+refinement that keeps it small: a candidate that a rule with every premise
+*outside* the component still derives is confirmed on the spot (those premises
+are final, so the fact really holds) and is not propagated.  Only the others
+join the over-deleted set, whose consequences inside the component become the
+next round's candidates; then the over-deleted facts go, those still derived
+come back, and additions run semi-naively inside the component.
+
+Sound: a confirmed fact holds in the new closure, so what depends on it keeps
+its support; everything else that may have lost support is over-deleted and
+rederived as in DRed.  The rounds are data-dependent, so a component runs only
+key by key (:class:`~.program.StagedRun`); stores where each request is a round
+trip use the general phases for such changes.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from pyoxigraph import NamedNode
+
+from ..compile.rule import ReadKey
+from ..rdf.vocab import ASSERTED, INTERNAL
+from . import delta_texts as texts
+from . import limits
+from .scratch import ADDED, CANDIDATES, FLIP_GAINED, NEW_FACTS, OVERDELETED, REMOVED
+
+#: every fact of the component over-deleted so far, those of the last round, those of the next
+OVER = NamedNode(INTERNAL + "graph:inc-comp-over")
+OVER_DELTA = NamedNode(INTERNAL + "graph:inc-comp-over-delta")
+OVER_NEXT = NamedNode(INTERNAL + "graph:inc-comp-over-next")
+#: facts the component gained in the last round and in the next
+ADD_DELTA = NamedNode(INTERNAL + "graph:inc-comp-add-delta")
+ADD_NEXT = NamedNode(INTERNAL + "graph:inc-comp-add-next")
+COMPONENT_SCRATCH = (OVER, OVER_DELTA, OVER_NEXT, ADD_DELTA, ADD_NEXT)
+
+ALWAYS, SEEDS = ("always",), ("seeds",)
+
+
+@dataclass
+class Component:
+    """The operations of one recursive component, by phase and by the key they start from."""
+
+    keys: tuple
+    #: first candidates: (tag, text) with tags as in :class:`~.program.StagedRun`
+    seeds: list = field(default_factory=list)
+    #: per key: confirm its candidates from outside the component, then over-delete the others
+    confirm: dict = field(default_factory=dict)
+    #: per key: candidates from its facts over-deleted in the last round
+    inner_candidates: dict = field(default_factory=dict)
+    #: per key: delete its over-deleted facts; put back those still derived
+    delete: dict = field(default_factory=dict)
+    rederive: dict = field(default_factory=dict)
+    #: heads a flipped comparison made true, added when their rule derives them after the deletions
+    gained: list = field(default_factory=list)
+    #: additions from changes outside the component: (tag, text)
+    additions: list = field(default_factory=list)
+    #: per key: additions from its facts gained in the last round
+    inner_additions: dict = field(default_factory=dict)
+
+
+def compile_component(e, keys: list[ReadKey]) -> Component:
+    """The component's operations; ``e`` is the program's emitter (rules, changed keys, provers)."""
+    inside = set(keys)
+    comp = Component(tuple(keys))
+    graphs = {key: e.target(key, [i for i in e.active if e.rules[i].writes() == key]) for key in keys}
+    e.graphs.update(graphs)
+    writers = [i for i in e.active if e.rules[i].writes() in inside]
+    flipped = e.flip_ops(writers, comp.seeds, SEEDS)
+    for i in flipped:
+        rule = e.rules[i]
+        comp.gained.append(texts.additions(rule, None, FLIP_GAINED, (graphs[rule.writes()], NEW_FACTS, ADD_NEXT),
+                                           e.c.lateral))
+    for i in writers:
+        handled = set(e.handled(i) or ())
+        rule = e.rules[i]
+        into = (graphs[rule.writes()], NEW_FACTS, ADD_NEXT)
+        for j, atom in enumerate(rule.body):
+            key = atom.read_key()
+            if key in inside:
+                comp.inner_candidates.setdefault(key, []).append(
+                    texts.candidates(e.c.flat(i), j, OVER_DELTA, e.c.lateral, (OVER, texts.KEEP)))
+                comp.inner_additions.setdefault(key, []).append(texts.additions(rule, j, ADD_DELTA, into, e.c.lateral))
+            elif j not in handled and key in e.minus:
+                comp.seeds.append((("minus", key), texts.candidates(e.c.flat(i), j, OVERDELETED, e.c.lateral)))
+            if key not in inside and j not in handled and key in e.plus:
+                comp.additions.append((("plus", key), texts.additions(rule, j, NEW_FACTS, into, e.c.lateral)))
+    for key in keys:
+        p = texts.pattern(key)
+        if key in e.sig.removed:
+            comp.seeds.append((ALWAYS, texts.copy(key, REMOVED, (OVER, OVER_NEXT))))
+        if key in e.sig.added:
+            comp.additions.append((ALWAYS, texts.copy(key, ADDED, (ADD_NEXT,))))
+        provers = e.writers.get(key, [])
+        comp.confirm[key] = [texts.keep(e.rules[i], e.c.lateral) for i in provers
+                             if not (e.rules[i].reads() & inside)]
+        comp.confirm[key].append(
+            f"INSERT {{ GRAPH {OVER} {{ {p} }} GRAPH {OVER_NEXT} {{ {p} }} }} WHERE {{ GRAPH {CANDIDATES} {{ {p} }} "
+            f"FILTER NOT EXISTS {{ GRAPH {texts.KEEP} {{ {p} }} }} FILTER NOT EXISTS {{ GRAPH {ASSERTED} {{ {p} }} }} "
+            f"FILTER NOT EXISTS {{ GRAPH {OVER} {{ {p} }} }} }}")
+        comp.delete[key] = (f"DELETE {{ GRAPH {graphs[key]} {{ {p} }} }} INSERT {{ GRAPH {OVERDELETED} {{ {p} }} }} "
+                            f"WHERE {{ GRAPH {OVER} {{ {p} }} }}")
+        comp.rederive[key] = [texts.additions(e.rules[i], None, OVER, (graphs[key], NEW_FACTS, ADD_NEXT), e.c.lateral)
+                              for i in provers]
+    e.minus.update(keys)
+    e.plus.update(keys)
+    return comp
+
+
+def run_component(run, comp: Component) -> None:
+    """Run a component's phases on ``run`` (a :class:`~.program.StagedRun`), reading between rounds."""
+    run.queue.append(" ; ".join(f"DROP SILENT GRAPH {g}" for g in COMPONENT_SCRATCH))
+    for tag, text in comp.seeds:
+        if tag[0] == "flip":
+            tag, text = tag[1], run.flip_text(tag[2], tag[3], text)
+        if tag[0] != "minus" or tag[1] in run.minus:
+            run.queue.append(text)
+    run.flush()
+    while True:  # over-delete, round by round
+        limits.check()
+        for key in comp.keys:
+            if run.has(key, CANDIDATES):
+                run.queue += comp.confirm[key]
+        run.queue.append(f"DROP SILENT GRAPH {CANDIDATES}")  # decided: the next round's are new ones
+        run.flush()
+        if not run.has_any(OVER_NEXT):
+            break
+        run.queue.append(f"DROP SILENT GRAPH {OVER_DELTA} ; MOVE SILENT {OVER_NEXT} TO {OVER_DELTA}")
+        run.flush()
+        for key in comp.keys:
+            if run.has(key, OVER_DELTA):
+                run.queue += comp.inner_candidates.get(key, [])
+        run.flush()
+    over = [key for key in comp.keys if run.has(key, OVER)]
+    run.queue += [comp.delete[key] for key in over]  # every deletion before any rederivation
+    for key in over:
+        run.queue += comp.rederive[key]
+    run.queue += comp.gained
+    for tag, text in comp.additions:
+        if tag[0] != "plus" or tag[1] in run.plus:
+            run.queue.append(text)
+    run.flush()
+    while run.has_any(ADD_NEXT):  # additions inside the component, semi-naive
+        limits.check()
+        run.queue.append(f"DROP SILENT GRAPH {ADD_DELTA} ; MOVE SILENT {ADD_NEXT} TO {ADD_DELTA}")
+        run.flush()
+        for key in comp.keys:
+            if run.has(key, ADD_DELTA):
+                run.queue += comp.inner_additions.get(key, [])
+        run.flush()
+    for key in comp.keys:
+        run.note(key)
+
+
+__all__ = ["COMPONENT_SCRATCH", "Component", "compile_component", "run_component"]

@@ -1,0 +1,100 @@
+"""The SPARQL operations of the compiled step (:mod:`.program`, :mod:`.component`), one function each.
+
+Every text reads one small graph first (a change, the candidates, a round's new facts) and the
+rest of the rule per solution (:func:`.plan.plan_where`), so that its cost follows the change.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+
+from pyoxigraph import NamedNode
+
+from ..compile.rule import ReadKey, Rule
+from ..rdf.vocab import ASSERTED, AUX, INFERRED, INTERNAL, TYPE
+from . import flip
+from .plan import plan_where
+from .scratch import CANDIDATES, FLIP_GAINED, OVERDELETED, dataset, target
+
+#: heads a rule still derives from the new state (the recheck's answer)
+KEEP = NamedNode(INTERNAL + "graph:inc-keep")
+#: heads whose derivation by a flipped comparison turned false
+FLIP_LOST = NamedNode(INTERNAL + "graph:inc-flip-lost")
+
+#: the graphs rules read, after the change / before it (its removed facts included)
+NEW_STATE = (ASSERTED, INFERRED, AUX)
+OLD_STATE = (ASSERTED, INFERRED, AUX, OVERDELETED)
+
+_TYPE = str(TYPE)
+
+
+def pattern(key: ReadKey) -> str:
+    """The triple pattern of a key's facts (``?s ?o`` for the terms)."""
+    return f"?s {_TYPE} {key[1]} ." if key[0] == "t" else f"?s {key[1]} ?o ."
+
+
+def _into(head: str, graphs: Iterable[NamedNode]) -> str:
+    return " ".join(f"GRAPH {g} {{ {head} }}" for g in graphs)
+
+
+def candidates(flat: Rule, j: int, delta: NamedNode, lateral: bool, exclude: Iterable[NamedNode] = ()) -> str:
+    """Heads present now that ``flat`` derived in the old state with atom ``j`` on ``delta`` (removed
+    facts) go to CANDIDATES; not those in the ``exclude`` graphs.  ``flat`` reads its helper atoms from
+    the default graph, whose old state includes OVERDELETED."""
+    head = flat.head.text()
+    where = plan_where(flat, j, delta, lateral=lateral)
+    graph = target(flat)
+    skip = "".join(f"\n  FILTER NOT EXISTS {{ GRAPH {g} {{ {head} }} }}" for g in exclude)
+    return (f"INSERT {{ GRAPH {CANDIDATES} {{ {head} }} }}\n{dataset(OLD_STATE, (delta, graph, *exclude))}\n"
+            f"WHERE {{\n  {where}\n  FILTER EXISTS {{ GRAPH {graph} {{ {head} }} }}{skip}\n}}")
+
+
+def keep(rule: Rule, lateral: bool) -> str:
+    """Mark the candidates that ``rule`` derives from the new state."""
+    where = plan_where(rule, head_graph=CANDIDATES, lateral=lateral)
+    return (f"INSERT {{ GRAPH {KEEP} {{ {rule.head.text()} }} }}\n{dataset(NEW_STATE, (AUX, CANDIDATES))}\n"
+            f"WHERE {{\n  {where}\n}}")
+
+
+def additions(rule: Rule, j: int | None, delta: NamedNode, into: Iterable[NamedNode], lateral: bool) -> str:
+    """Heads ``rule`` derives now with atom ``j`` on ``delta`` (or, with ``j`` None, the heads in
+    ``delta`` it derives now), not known yet, into the graphs ``into``."""
+    head = rule.head.text()
+    if j is None:
+        where = plan_where(rule, head_graph=delta, lateral=lateral)
+    else:
+        where = plan_where(rule, j, delta, lateral=lateral)
+    return (f"INSERT {{ {_into(head, into)} }}\n{dataset(NEW_STATE, (AUX, delta))}\nWHERE {{\n  {where}\n"
+            f"  FILTER NOT EXISTS {{ {head} }}\n}}")
+
+
+def flips(rule: Rule, order: tuple[int, ...], lateral: bool, tag: int, windows: dict | None = None) -> str:
+    """The heads whose derivation by ``rule`` flips with the replaced values (see :mod:`.flip`) go to
+    FLIP_GAINED or FLIP_LOST; ``windows`` narrows compared atoms to the facts in a value window."""
+    branches = flip.flip_branches(rule, order, lateral, tag, windows)
+    return (f"INSERT {{ GRAPH ?flip {{ ?h0 ?h1 ?h2 }} }}\n{dataset(NEW_STATE, (AUX, flip.CHANGE_OLD))}\n"
+            "WHERE {\n  {\n" + "\nUNION\n".join(branches)
+            + f"\n  }}\n  BIND(IF(?ok__n, {FLIP_GAINED}, {FLIP_LOST}) AS ?flip)\n}}")
+
+
+def lost(key: ReadKey, graph: NamedNode) -> str:
+    """Flipped-false heads of ``key`` that are present become candidates."""
+    p = pattern(key)
+    return f"INSERT {{ GRAPH {CANDIDATES} {{ {p} }} }} WHERE {{ GRAPH {FLIP_LOST} {{ {p} }} GRAPH {graph} {{ {p} }} }}"
+
+
+def gained(key: ReadKey, into: Iterable[NamedNode]) -> str:
+    """Flipped-true heads of ``key`` not known yet, into the graphs ``into``."""
+    p = pattern(key)
+    return (f"INSERT {{ {_into(p, into)} }} {dataset(NEW_STATE, (FLIP_GAINED,))} "
+            f"WHERE {{ GRAPH {FLIP_GAINED} {{ {p} }} FILTER NOT EXISTS {{ {p} }} }}")
+
+
+def copy(key: ReadKey, source: NamedNode, into: Iterable[NamedNode]) -> str:
+    """The facts of ``key`` in ``source`` into the graphs ``into``."""
+    p = pattern(key)
+    return f"INSERT {{ {_into(p, into)} }} WHERE {{ GRAPH {source} {{ {p} }} }}"
+
+
+__all__ = ["FLIP_LOST", "KEEP", "NEW_STATE", "OLD_STATE", "additions", "candidates", "copy", "flips", "gained",
+           "keep", "lost", "pattern"]

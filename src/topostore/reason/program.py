@@ -1,0 +1,385 @@
+"""The compiled step: an incremental REASON as one update request, made once per kind of change.
+
+Why this exists
+---------------
+A robot step changes the same few predicates every time (where it is, the
+clock, when it visited a place).  The general maintenance of :mod:`.incremental`
+decides what to evaluate next from what the previous phase produced, so it
+reads the store between phases and re-plans long, generic SPARQL texts every
+step.  But which rules a change can reach, in which order, and what each of
+them must do, depends only on *which keys changed* (the predicates and classes
+of the added and removed asserted facts), not on the facts themselves.  So the
+whole maintenance is compiled once per such *signature* into a fixed sequence
+of small SPARQL operations, sent as one update request; data-dependent
+decisions (is a fact still derivable?) are made inside the operations.
+
+The algorithm (keys in topological order of the rule dependency graph)
+-----------------------------------------------------------------------
+For a key no rule derives from itself (non-recursive), once everything it
+reads is final:
+
+* **candidates**: heads present before that a rule derived with a removed fact
+  (one operation per rule and removed body atom; the other atoms read the old
+  state, approximated from above by the new state plus the removed facts);
+* **flips**: a rule that sees replaced values only through comparisons (the
+  clock) is evaluated with old and new values paired (:mod:`.flip`): heads whose
+  comparison turned false become candidates, those turned true are added;
+* **recheck**: a candidate stays when some rule still derives it from the new
+  state (``KEEP``) or it is asserted; the others are deleted and become the
+  key's removed facts for the keys downstream.  A removed asserted fact that
+  a rule still derives is put back as inferred;
+* **additions**: heads a rule derives with an added fact (one operation per
+  rule and added body atom) that are not already known.
+
+No over-deletion and no rederivation: the recheck is exact because the key's
+inputs are final.  On a store where a request costs microseconds (in memory),
+:class:`StagedRun` sends the program key by key and leaves out the operations
+that start from a key the step did not change after all (two index look-ups
+per key tell); where each request is a round trip, the program goes as one.
+
+A *recursive* component of keys (a key derived, through other keys, from
+itself) cannot be rechecked that way: a fact could confirm itself around the
+cycle.  It runs DRed inside the component instead (:mod:`.component`), which
+needs reads between rounds, so it is compiled for the key-by-key run only.
+
+What is not compiled (the general path runs instead; ``stats.program`` says
+which ran and why): rules over any predicate or any class that a change
+reaches (owl:sameAs replacement), rules whose filters read changed graph
+patterns, keys whose derivations go to different graphs, and recursive
+components where every request is a round trip.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Collection
+from dataclasses import dataclass, field, replace
+
+from pyoxigraph import NamedNode
+
+from ..compile.rule import ReadKey, Rule
+from ..rdf.vocab import ASSERTED, TYPE
+from . import delta_texts as texts
+from . import flip
+from .component import COMPONENT_SCRATCH, compile_component
+from .materialize import strongly_connected
+from .scratch import ADDED, CANDIDATES, NEW_FACTS, OVERDELETED, REMOVED, target
+from .triggers import Present
+
+PROGRAM_SCRATCH = (texts.KEEP, texts.FLIP_LOST, *COMPONENT_SCRATCH)
+
+#: tags of operations every run needs, and of those that seed a key's candidates (see :class:`.staged.StagedRun`)
+ALWAYS, SEEDS = ("always",), ("seeds",)
+
+_TYPE = str(TYPE)
+
+
+@dataclass(frozen=True)
+class Signature:
+    """What kind of change a REASON maintains: read keys of the added and removed asserted facts,
+    and the predicates all of whose changes are clean replacements (see :func:`.flip.clean_replacements`)."""
+
+    added: frozenset
+    removed: frozenset
+    clean: frozenset
+
+
+@dataclass
+class StepProgram:
+    """The compiled maintenance of one :class:`Signature`."""
+
+    #: the operations, each tagged with when a key-by-key run needs it (see :class:`.staged.StagedRun`);
+    #: a recursive component is one entry, tagged ``("component", Component)``
+    ops: list
+    #: keys whose absence let the compiler leave rules out: the program holds while none has a fact
+    needs_absent: frozenset
+    #: keys the program may add facts to (for the reasoner's record of keys with facts)
+    heads: frozenset
+    #: the clean predicates whose flips the program evaluates (their old values go to CHANGE_OLD)
+    flipped: frozenset = field(default_factory=frozenset)
+    #: rules evaluated as flips (replaced values only compared)
+    flips: int = 0
+
+    @property
+    def whole(self) -> bool:
+        """Whether the program can go as one request (no recursive component to run in rounds)."""
+        return not any(tag[0] == "component" for tag, _ in self.ops)
+
+    def text(self, flip_text: Callable[[int, tuple, str], str]) -> str:
+        """Every operation as one update request (for stores where each request is a round trip);
+        ``flip_text(rule, order, text)`` gives a flip operation's text for this run."""
+        return " ;\n".join(flip_text(tag[2], tag[3], text) if tag[0] == "flip" else text
+                            for tag, text in self.ops if text)
+
+    @property
+    def operations(self) -> int:
+        return sum(1 for _, text in self.ops if text)
+
+
+class Refused(Exception):
+    """The signature cannot be compiled; the message says why (reported in ``stats.program``)."""
+
+
+def signature(added_keys: tuple[dict, dict], removed_keys: tuple[dict, dict], clean: Collection[str]) -> Signature:
+    """The signature of a change from the read keys of its facts (:func:`~..stores.base.key_census`)."""
+    return Signature(_keys(added_keys), _keys(removed_keys), frozenset(clean))
+
+
+def _keys(census: tuple[dict, dict]) -> frozenset:
+    preds, classes = census
+    keys = {("t", c) for c in classes}
+    keys |= {("p", p) for p in preds if p != _TYPE}
+    return frozenset(keys)
+
+
+class StepCompiler:
+    """Compiles signatures into :class:`StepProgram` operations for one rule set.
+
+    ``rules``: the inference rules; ``monotone``: the indexes maintained (stratum 0, no negation);
+    ``order``: for a flipped rule and its compared atoms, the order of the flip branches
+    (:meth:`.flips.Flips._by_frequency`); ``lateral``: whether the store evaluates LATERAL.
+    """
+
+    def __init__(self, rules: list[Rule], monotone: Collection[int],
+                 order: Callable[[int, tuple[int, ...]], tuple[int, ...]], lateral: bool) -> None:
+        self.rules = rules
+        self.monotone = sorted(monotone)
+        self.order = order
+        self.lateral = lateral
+        self._flat: dict[int, Rule] = {}
+        self.filter_vars = {i: flip.filter_variables(rules[i]) for i in self.monotone}
+
+    def compile(self, sig: Signature, present: Present) -> StepProgram:
+        """The program of ``sig`` given the keys with facts (``present``); raises :class:`Refused`."""
+        active, affected, absent = self._affected(sig, present)
+        writers = self._writers(present, affected, absent)
+        # a replaced value that a rule may also derive is not a clean replacement (see :mod:`.flip`)
+        clean = {p for p in sig.clean if not writers.get(("p", p))}
+        components = self._components(active, affected)
+        return _Emitter(self, sig, active, writers, frozenset(clean)).emit(components, absent)
+
+    def _writers(self, present: Present, affected: set, absent: set) -> dict[ReadKey, list[int]]:
+        """Every maintained rule that can fire (its body keys have facts, now or from this change), by
+        the key it writes: a recheck must ask all of them, changed premises or not."""
+        writers: dict[ReadKey, list[int]] = {}
+        for i in self.monotone:
+            rule = self.rules[i]
+            missing = self._missing(rule, present, affected)
+            if missing:
+                absent |= missing
+                continue
+            writers.setdefault(rule.writes(), []).append(i)
+        return writers
+
+    def _affected(self, sig: Signature, present: Present) -> tuple[list[int], set, set]:
+        """The rules a change of ``sig`` can make fire, the keys they may change, and the keys whose
+        absence left rules out."""
+        affected = set(sig.added | sig.removed)
+        active: dict[int, None] = {}
+        absent: set = set()
+        grew = True
+        while grew:
+            grew = False
+            for i in self.monotone:
+                rule = self.rules[i]
+                if i in active or not self._reaches(rule, affected):
+                    continue
+                missing = self._missing(rule, present, affected)
+                if missing:
+                    absent |= missing
+                    continue
+                self._check_compilable(rule, affected)
+                active[i] = None
+                if rule.writes() not in affected:
+                    affected.add(rule.writes())
+                    grew = True
+        return list(active), affected, absent
+
+    @staticmethod
+    def _reaches(rule: Rule, affected: set) -> bool:
+        reads = rule.reads()
+        if ("*",) in reads or ("p", _TYPE) in reads:
+            return bool(affected)
+        return bool(reads & affected)
+
+    @staticmethod
+    def _missing(rule: Rule, present: Present, affected: set) -> set:
+        """Body keys without any fact, now or from this change (the rule cannot match)."""
+        preds, classes = present
+        missing = set()
+        for atom in rule.body:
+            key = atom.read_key()
+            if not atom.p.startswith("<") or key in affected:
+                continue  # a variable predicate or a path may match anything
+            if key[1] not in (classes if key[0] == "t" else preds):
+                missing.add(key)
+        return missing
+
+    @staticmethod
+    def _check_compilable(rule: Rule, affected: set) -> None:
+        if ("*",) in rule.reads() or rule.writes() == ("*",):
+            raise Refused(f"rule {rule.name} reads or writes any predicate")
+        if ("p", _TYPE) in rule.reads() or rule.writes() == ("p", _TYPE):
+            raise Refused(f"rule {rule.name} reads or writes any class")
+        if rule.filter_reads & affected or rule.conditions_read_graph:
+            raise Refused(f"rule {rule.name} has a filter reading facts")
+
+    def _components(self, active: list[int], affected: set) -> list[list[ReadKey]]:
+        """The strongly connected components of the affected keys, in topological order."""
+        keys = sorted(affected)
+        number = {k: n for n, k in enumerate(keys)}
+        succ: dict[int, set[int]] = {n: set() for n in range(len(keys))}
+        for i in active:
+            rule = self.rules[i]
+            head = number[rule.writes()]
+            for key in rule.reads():
+                if key in number:
+                    succ[number[key]].add(head)
+        found = strongly_connected(list(range(len(keys))), {n: sorted(s) for n, s in succ.items()})
+        return [[keys[n] for n in comp] if len(comp) > 1 or comp[0] in succ[comp[0]] else keys[comp[0]]
+                for comp in found]
+
+    def flat(self, i: int) -> Rule:
+        """Rule ``i`` with its helper-graph atoms read from the dataset's default graph (for the old
+        state, whose removed helper facts are in OVERDELETED, not in the helper graph)."""
+        rule = self._flat.get(i)
+        if rule is None:
+            rule = self.rules[i]
+            if any(a.aux for a in rule.body):
+                rule = replace(rule, body=tuple(replace(a, aux=False) for a in rule.body))
+            self._flat[i] = rule
+        return rule
+
+    def compared_atoms(self, i: int, clean: frozenset, changed: set) -> tuple[int, ...] | None:
+        """The body atoms of rule ``i`` on cleanly replaced values, when every changed atom of the rule
+        is one and the rule's filters are plain (else None): see :meth:`.flips.Flips._flip_atoms`."""
+        rule = self.rules[i]
+        if not flip.plain_filters(rule):
+            return None
+        handled = []
+        for j, atom in enumerate(rule.body):
+            if atom.read_key() not in changed:
+                continue
+            if atom.p not in clean or not flip.compared_only(rule, j):
+                return None
+            handled.append(j)
+        return tuple(handled) or None
+
+
+class _Emitter:
+    """Writes the operations of one program, key by key (a recursive component as one entry)."""
+
+    def __init__(self, compiler: StepCompiler, sig: Signature, active: list[int],
+                 writers: dict[ReadKey, list[int]], clean: frozenset) -> None:
+        self.c = compiler
+        self.rules = compiler.rules
+        self.sig = sig
+        self.active = active
+        #: every rule that can fire, by written key (the recheck's provers)
+        self.writers = writers
+        self.clean = clean
+        #: keys that may have lost facts / gained facts so far (their changes are in OVERDELETED / NEW_FACTS)
+        self.minus: set = set(sig.removed)
+        self.plus: set = set(sig.added)
+        self.ops: list[tuple[tuple, object]] = [(ALWAYS, f"ADD SILENT {REMOVED} TO {OVERDELETED} ; "
+                                                          f"ADD SILENT {ADDED} TO {NEW_FACTS}")]
+        self.flipped: set[str] = set()
+        self.flip_rules = 0
+        #: the keys the program may change, with the graph their derived facts live in
+        self.graphs: dict[ReadKey, NamedNode] = {}
+
+    def emit(self, components: list, absent: set) -> StepProgram:
+        for item in components:
+            if isinstance(item, list):
+                self.ops.append((("component", compile_component(self, item)), ""))
+                continue
+            writers = [i for i in self.active if self.rules[i].writes() == item]
+            # a removed asserted fact that some rule still derives stays, as inferred
+            if writers or (item in self.sig.removed and self.writers.get(item)):
+                self._plain(item, writers)
+        return StepProgram(self.ops, frozenset(absent), frozenset(self.graphs), frozenset(self.flipped),
+                           self.flip_rules)
+
+    def _plain(self, key: ReadKey, writers: list[int]) -> None:
+        """A key no rule derives from itself: candidates, flips, recheck, additions."""
+        graph = self.graphs[key] = self.target(key, writers)
+        seeded = self._candidates(writers)
+        flipped = self.flip_ops(writers, self.ops, SEEDS)
+        if key in self.sig.removed:
+            self.ops.append((SEEDS, texts.copy(key, REMOVED, (CANDIDATES,))))
+        if seeded or flipped or key in self.sig.removed:
+            recheck = ("recheck", key)
+            self.ops += [(recheck, texts.keep(self.rules[i], self.c.lateral)) for i in self.writers.get(key, [])]
+            p = texts.pattern(key)
+            self.ops.append((recheck, f"DELETE {{ GRAPH {graph} {{ {p} }} }} INSERT {{ GRAPH {OVERDELETED} {{ {p} }} }} "
+                                      f"WHERE {{ GRAPH {CANDIDATES} {{ {p} }} "
+                                      f"FILTER NOT EXISTS {{ GRAPH {texts.KEEP} {{ {p} }} }} "
+                                      f"FILTER NOT EXISTS {{ GRAPH {ASSERTED} {{ {p} }} }} }}"))
+            if key in self.sig.removed:
+                self.ops.append((recheck, f"DELETE {{ GRAPH {OVERDELETED} {{ {p} }} }} "
+                                          f"INSERT {{ GRAPH {graph} {{ {p} }} }} "
+                                          f"WHERE {{ GRAPH {REMOVED} {{ {p} }} GRAPH {texts.KEEP} {{ {p} }} }}"))
+            self.minus.add(key)
+        added = self._additions(writers, graph)
+        if flipped:
+            self.ops.append((ALWAYS, texts.gained(key, (graph, NEW_FACTS))))
+        if added or flipped:
+            self.plus.add(key)
+        self.ops.append((("end", key), ""))
+
+    def target(self, key: ReadKey, writers: list[int]) -> NamedNode:
+        """The graph the key's derived facts live in (one for all its rules, else :class:`Refused`)."""
+        graphs = {target(self.rules[i]) for i in self.writers.get(key, writers)}
+        if len(graphs) != 1:
+            raise Refused(f"facts of {key[1]} are derived into different graphs")
+        return graphs.pop()
+
+    def handled(self, i: int) -> tuple[int, ...] | None:
+        """Rule ``i``'s changed atoms when all are flips (see :meth:`StepCompiler.compared_atoms`)."""
+        return self.c.compared_atoms(i, self.clean, self.minus | self.plus)
+
+    def _candidates(self, writers: list[int]) -> bool:
+        """Heads present before that a rule derived with a removed fact go to CANDIDATES."""
+        emitted = False
+        for i in writers:
+            handled = set(self.handled(i) or ())
+            for j, atom in enumerate(self.rules[i].body):
+                if atom.read_key() in self.minus and j not in handled:
+                    self.ops.append((("minus", atom.read_key()),
+                                     texts.candidates(self.c.flat(i), j, OVERDELETED, self.c.lateral)))
+                    emitted = True
+        return emitted
+
+    def flip_ops(self, writers: list[int], ops: list, tag: tuple) -> list[int]:
+        """Per rule seeing replaced values only through comparisons, the operation sending the heads
+        whose comparison flipped to FLIP_LOST or FLIP_GAINED, then the lost ones present to
+        CANDIDATES; appended to ``ops``.  Returns the rules."""
+        found = []
+        for i in writers:
+            rule = self.rules[i]
+            compared = tuple(j for j in self.handled(i) or () if rule.body[j].o[1:] in self.c.filter_vars[i])
+            if not compared:
+                continue  # replaced values the rule does not look at: nothing flips
+            self.flipped.update(rule.body[j].p for j in compared)
+            self.flip_rules += 1
+            order = self.c.order(i, compared)
+            # the text is made per run when a value window narrows the flip (see :mod:`.window`)
+            ops.append((("flip", tag, i, order), texts.flips(rule, order, self.c.lateral, i)))
+            found.append(i)
+        for key in sorted({self.rules[i].writes() for i in found}):
+            ops.append((tag, texts.lost(key, self.target(key, found))))
+        return found
+
+    def _additions(self, writers: list[int], graph: NamedNode) -> bool:
+        """Heads a rule derives with an added fact, not known yet: into their graph and NEW_FACTS."""
+        emitted = False
+        for i in writers:
+            handled = set(self.handled(i) or ())
+            for j, atom in enumerate(self.rules[i].body):
+                if atom.read_key() in self.plus and j not in handled:
+                    self.ops.append((("plus", atom.read_key()),
+                                     texts.additions(self.rules[i], j, NEW_FACTS, (graph, NEW_FACTS), self.c.lateral)))
+                    emitted = True
+        return emitted
+
+
+__all__ = ["ALWAYS", "PROGRAM_SCRATCH", "Refused", "SEEDS", "Signature", "StepCompiler", "StepProgram", "signature"]
