@@ -91,7 +91,7 @@ def compile_component(e, keys: list[ReadKey]) -> Component:
                     texts.candidates(e.c.flat(i), j, OVER_DELTA, e.c.lateral, (OVER, texts.KEEP)))
                 comp.inner_additions.setdefault(key, []).append(texts.additions(rule, j, ADD_DELTA, into, e.c.lateral))
             elif j not in handled and key in e.minus:
-                comp.seeds.append((("minus", key), texts.candidates(e.c.flat(i), j, OVERDELETED, e.c.lateral)))
+                comp.seeds.append((("minus", key), e.candidates(i, j)))
             if key not in inside and j not in handled and key in e.plus:
                 comp.additions.append((("plus", key), texts.additions(rule, j, NEW_FACTS, into, e.c.lateral)))
     for key in keys:

@@ -14,7 +14,7 @@ from ..compile.rule import ReadKey, Rule
 from ..rdf.vocab import ASSERTED, AUX, INFERRED, INTERNAL, TYPE
 from . import flip
 from .plan import plan_where
-from .scratch import CANDIDATES, FLIP_GAINED, OVERDELETED, dataset, target
+from .scratch import ADDED, CANDIDATES, FLIP_GAINED, OVERDELETED, dataset, target
 
 #: heads a rule still derives from the new state (the recheck's answer)
 KEEP = NamedNode(INTERNAL + "graph:inc-keep")
@@ -37,15 +37,20 @@ def _into(head: str, graphs: Iterable[NamedNode]) -> str:
     return " ".join(f"GRAPH {g} {{ {head} }}" for g in graphs)
 
 
-def candidates(flat: Rule, j: int, delta: NamedNode, lateral: bool, exclude: Iterable[NamedNode] = ()) -> str:
+def candidates(flat: Rule, j: int, delta: NamedNode, lateral: bool, exclude: Iterable[NamedNode] = (),
+               not_added: Iterable[int] = ()) -> str:
     """Heads present now that ``flat`` derived in the old state with atom ``j`` on ``delta`` (removed
     facts) go to CANDIDATES; not those in the ``exclude`` graphs.  ``flat`` reads its helper atoms from
-    the default graph, whose old state includes OVERDELETED."""
+    the default graph, whose old state includes OVERDELETED.  The atoms ``not_added`` (on predicates
+    only asserted, never derived) leave out the facts just added: for them the old state is exact, so
+    that a replaced value is not paired with its successor (a self-join over a replaced value)."""
     head = flat.head.text()
     where = plan_where(flat, j, delta, lateral=lateral)
     graph = target(flat)
     skip = "".join(f"\n  FILTER NOT EXISTS {{ GRAPH {g} {{ {head} }} }}" for g in exclude)
-    return (f"INSERT {{ GRAPH {CANDIDATES} {{ {head} }} }}\n{dataset(OLD_STATE, (delta, graph, *exclude))}\n"
+    skip += "".join(f"\n  FILTER NOT EXISTS {{ GRAPH {ADDED} {{ {flat.body[k].text()} }} }}" for k in not_added)
+    named = (delta, graph, *exclude, *((ADDED,) if not_added else ()))
+    return (f"INSERT {{ GRAPH {CANDIDATES} {{ {head} }} }}\n{dataset(OLD_STATE, named)}\n"
             f"WHERE {{\n  {where}\n  FILTER EXISTS {{ GRAPH {graph} {{ {head} }} }}{skip}\n}}")
 
 

@@ -344,10 +344,16 @@ class _Emitter:
             handled = set(self.handled(i) or ())
             for j, atom in enumerate(self.rules[i].body):
                 if atom.read_key() in self.minus and j not in handled:
-                    self.ops.append((("minus", atom.read_key()),
-                                     texts.candidates(self.c.flat(i), j, OVERDELETED, self.c.lateral)))
+                    self.ops.append((("minus", atom.read_key()), self.candidates(i, j)))
                     emitted = True
         return emitted
+
+    def candidates(self, i: int, j: int) -> str:
+        """The candidates of rule ``i`` from the removed facts of atom ``j`` (see :func:`.delta_texts.candidates`)."""
+        body = self.rules[i].body
+        added_only = [k for k, atom in enumerate(body) if k != j and atom.read_key() in self.sig.added
+                      and not self.writers.get(atom.read_key())]
+        return texts.candidates(self.c.flat(i), j, OVERDELETED, self.c.lateral, not_added=added_only)
 
     def flip_ops(self, writers: list[int], ops: list, tag: tuple) -> list[int]:
         """Per rule seeing replaced values only through comparisons, the operation sending the heads
