@@ -42,6 +42,8 @@ OVER_NEXT = NamedNode(INTERNAL + "graph:inc-comp-over-next")
 ADD_DELTA = NamedNode(INTERNAL + "graph:inc-comp-add-delta")
 ADD_NEXT = NamedNode(INTERNAL + "graph:inc-comp-add-next")
 COMPONENT_SCRATCH = (OVER, OVER_DELTA, OVER_NEXT, ADD_DELTA, ADD_NEXT)
+#: marked when a component run as one request needed more rounds than it had (see :func:`whole_ops`)
+UNSETTLED = NamedNode(INTERNAL + "graph:inc-comp-unsettled")
 
 ALWAYS, SEEDS = ("always",), ("seeds",)
 
@@ -161,4 +163,41 @@ def run_component(run, comp: Component) -> None:
         run.note(key)
 
 
-__all__ = ["COMPONENT_SCRATCH", "Component", "compile_component", "run_component"]
+#: rounds of over-deletion and of additions a component gets when the program goes as one request
+WHOLE_ROUNDS = 2
+
+
+def whole_ops(comp: Component, flip_text, rounds: int = WHOLE_ROUNDS) -> list[str]:
+    """The component as operations of one request, its rounds unrolled (``rounds`` of each phase).
+
+    Where every request is a round trip, reading between rounds costs more than running a round
+    that finds nothing.  Whether the rounds were enough is read afterwards: OVER_NEXT and ADD_NEXT
+    are empty then (:data:`UNSETTLED_QUERY`); otherwise the reasoner recomputes in full, once: that
+    kind of change takes the general phases from then on.  Two rounds are what a robot step of the
+    tutorial map needs (its moves' canReach facts over-deleted, then their classes confirmed).
+    """
+    ops = [" ; ".join(f"DROP SILENT GRAPH {g}" for g in COMPONENT_SCRATCH)]
+    for tag, text in comp.seeds:
+        ops.append(flip_text(tag[2], tag[3], text) if tag[0] == "flip" else text)
+    for n in range(rounds):
+        ops += [op for key in comp.keys for op in comp.confirm[key]]
+        ops.append(f"DROP SILENT GRAPH {CANDIDATES}")
+        if n < rounds - 1:
+            ops.append(f"DROP SILENT GRAPH {OVER_DELTA} ; MOVE SILENT {OVER_NEXT} TO {OVER_DELTA}")
+            ops += [op for key in comp.keys for op in comp.inner_candidates.get(key, [])]
+    ops += [comp.delete[key] for key in comp.keys]
+    ops += [op for key in comp.keys for op in comp.rederive[key]]
+    ops += comp.gained + [text for _, text in comp.additions]
+    for _ in range(rounds):
+        ops.append(f"DROP SILENT GRAPH {ADD_DELTA} ; MOVE SILENT {ADD_NEXT} TO {ADD_DELTA}")
+        ops += [op for key in comp.keys for op in comp.inner_additions.get(key, [])]
+    # the next component starts by clearing these graphs: say now whether this one had rounds left
+    ops.append(f"INSERT {{ GRAPH {UNSETTLED} {{ {UNSETTLED} {UNSETTLED} {UNSETTLED} }} }} WHERE {{ "
+               f"{{ GRAPH {OVER_NEXT} {{ ?s ?p ?o }} }} UNION {{ GRAPH {ADD_NEXT} {{ ?s ?p ?o }} }} }}")
+    return ops
+
+
+UNSETTLED_QUERY = f"ASK {{ GRAPH {UNSETTLED} {{ ?s ?p ?o }} }}"
+
+__all__ = ["COMPONENT_SCRATCH", "Component", "UNSETTLED_QUERY", "WHOLE_ROUNDS", "compile_component", "run_component",
+           "whole_ops"]

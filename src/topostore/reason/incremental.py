@@ -80,6 +80,7 @@ from ..rdf.vocab import ASSERTED, AUX, DELTA, ENTAILED_PREFIX, INFERRED, NEW_AUX
 from ..stores.base import Store, key_census
 from . import delta_texts as texts
 from . import flip
+from .component import UNSETTLED_QUERY, WHOLE_ROUNDS
 from .consistency import Violation, check_consistency
 from .dred import Deletion, can_prove
 from .entailed import publish_entailed, refresh_entailed
@@ -100,6 +101,10 @@ DEFAULT_MAX_CHANGE_SHARE = 0.10
 
 #: The reasoning modes: incremental when sound and the change is small, incremental whenever sound, full.
 MODES = ("auto", "incremental", "full")
+
+
+class _Unsettled(Exception):
+    """A recursive component run as one request needed more rounds than it had (see :mod:`.component`)."""
 
 
 def check_mode(mode: str) -> None:
@@ -162,6 +167,8 @@ class IncrementalReasoner:
         self.compiler = StepCompiler(self.rules, self.monotone, self.flips._by_frequency, store.supports_lateral)
         #: compiled programs (or why a signature cannot be compiled) by signature, until the next full run
         self._programs: dict = {}
+        #: signatures whose program in one request needed more rounds than it had: general phases for good
+        self._unsettled: set = set()
         #: SPARQL texts of the checks made once (the phases' texts live in the request queue)
         self._texts: dict[tuple, str] = {}
         #: (individual, class) pairs whose type fact the last REASON may have changed; None after a full run
@@ -187,7 +194,12 @@ class IncrementalReasoner:
         materializer.present = self.state.present
         materializer.planned = True
         try:
-            self._maintain(materializer, added, removed, stats)
+            try:
+                self._maintain(materializer, added, removed, stats)
+            except _Unsettled:
+                self._clear_scratch()
+                return self.full(f"the compiled step's {WHOLE_ROUNDS} rounds of a recursive component were not "
+                                 "enough", profile)
             if (added or removed) and self._negated_match():
                 return self.full("the change makes a rule with a negated premise (stratum 1) match", profile)
             violations = self._check(stats, bool(added or removed))
@@ -299,15 +311,15 @@ class IncrementalReasoner:
             return False
         self.requests.scratch([r.old for p in program.flipped for r in clean[p]], flip.CHANGE_OLD)
         start = time.perf_counter()
-        if self.store.round_trips and not program.whole:
-            stats.program = "general: a recursive component runs in rounds, each a round trip here"
-            return False
         self.flips.state = self.state
         if self.store.round_trips:  # the whole program as one request
             self.requests.flush()
             self.requests.defer(program.text(self._flip_text))
             self.requests.flush()
             stats.evaluations += program.operations
+            if not program.whole and self.store.query(UNSETTLED_QUERY):
+                self._unsettled.add(sig)  # once is enough: changes of this kind take the general phases
+                raise _Unsettled
         else:
             self.requests.flush()
             run = StagedRun(self.store, program, sig, self._flip_text)
@@ -330,6 +342,8 @@ class IncrementalReasoner:
 
     def _program(self, sig) -> StepProgram | str:
         """The compiled program of a signature, or why there is none (cached until the next full run)."""
+        if sig in self._unsettled and self.store.round_trips:
+            return f"a recursive component needed more than {WHOLE_ROUNDS} rounds in one request before"
         program = self._programs.get(sig)
         preds, classes = self.state.present
         if isinstance(program, StepProgram) and any(

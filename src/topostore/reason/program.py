@@ -39,14 +39,14 @@ per key tell); where each request is a round trip, the program goes as one.
 
 A *recursive* component of keys (a key derived, through other keys, from
 itself) cannot be rechecked that way: a fact could confirm itself around the
-cycle.  It runs DRed inside the component instead (:mod:`.component`), which
-needs reads between rounds, so it is compiled for the key-by-key run only.
+cycle.  It runs DRed inside the component instead (:mod:`.component`): round
+by round in the key-by-key run, with a fixed number of rounds unrolled in the
+one request (and a full run when they were not enough).
 
 What is not compiled (the general path runs instead; ``stats.program`` says
 which ran and why): rules over any predicate or any class that a change
 reaches (owl:sameAs replacement), rules whose filters read changed graph
-patterns, keys whose derivations go to different graphs, and recursive
-components where every request is a round trip.
+patterns, and keys whose derivations go to different graphs.
 """
 
 from __future__ import annotations
@@ -60,12 +60,12 @@ from ..compile.rule import ReadKey, Rule
 from ..rdf.vocab import ASSERTED, TYPE
 from . import delta_texts as texts
 from . import flip
-from .component import COMPONENT_SCRATCH, compile_component
+from .component import COMPONENT_SCRATCH, UNSETTLED, compile_component, whole_ops
 from .materialize import strongly_connected
 from .scratch import ADDED, CANDIDATES, NEW_FACTS, OVERDELETED, REMOVED, target
 from .triggers import Present
 
-PROGRAM_SCRATCH = (texts.KEEP, texts.FLIP_LOST, *COMPONENT_SCRATCH)
+PROGRAM_SCRATCH = (texts.KEEP, texts.FLIP_LOST, UNSETTLED, *COMPONENT_SCRATCH)
 
 #: tags of operations every run needs, and of those that seed a key's candidates (see :class:`.staged.StagedRun`)
 ALWAYS, SEEDS = ("always",), ("seeds",)
@@ -101,14 +101,21 @@ class StepProgram:
 
     @property
     def whole(self) -> bool:
-        """Whether the program can go as one request (no recursive component to run in rounds)."""
+        """Whether the program as one request is exact whatever the data (no recursive component,
+        whose unrolled rounds may not be enough)."""
         return not any(tag[0] == "component" for tag, _ in self.ops)
 
     def text(self, flip_text: Callable[[int, tuple, str], str]) -> str:
-        """Every operation as one update request (for stores where each request is a round trip);
-        ``flip_text(rule, order, text)`` gives a flip operation's text for this run."""
-        return " ;\n".join(flip_text(tag[2], tag[3], text) if tag[0] == "flip" else text
-                            for tag, text in self.ops if text)
+        """Every operation as one update request (for stores where each request is a round trip), a
+        recursive component's rounds unrolled (:func:`.component.whole_ops`); ``flip_text(rule,
+        order, text)`` gives a flip operation's text for this run."""
+        ops: list[str] = []
+        for tag, text in self.ops:
+            if tag[0] == "component":
+                ops += whole_ops(tag[1], flip_text)
+            elif text:
+                ops.append(flip_text(tag[2], tag[3], text) if tag[0] == "flip" else text)
+        return " ;\n".join(ops)
 
     @property
     def operations(self) -> int:
