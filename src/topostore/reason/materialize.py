@@ -8,7 +8,11 @@ read something that changed is evaluated in full.  The loop stops when a
 round derives nothing new.
 
 Derived facts go to ``NEW_INFERRED`` / ``NEW_AUX`` first (never re-deriving a
-fact already present), then become the next delta.  Rules with negated premises
+fact already present), then become the next delta.  A full run (:meth:`Materializer.run`)
+writes each derived fact straight into its final graph *and* into the next delta, two
+graphs that take turns (:data:`DELTA` and :data:`DELTA_NEXT`): promoting a round is then
+dropping the old delta, instead of copying every fact twice more (into the delta and the
+inferred graph), which was a third of a full REASON.  Rules with negated premises
 (``stratum`` 1: "y1 and y2 are not known to be different, so they are the same")
 join only after the positive rules reached their fixpoint.
 """
@@ -23,13 +27,15 @@ from pyoxigraph import NamedNode
 
 from ..compile.generic import PREFIXES
 from ..compile.rule import Rule, RuleSet
-from ..rdf.vocab import ASSERTED, AUX, DELTA, INFERRED, NEW_AUX, NEW_INFERRED, TYPE
+from ..rdf.vocab import ASSERTED, AUX, DELTA, INFERRED, INTERNAL, NEW_AUX, NEW_INFERRED, TYPE
 from ..stores.base import Store
 from . import limits
 from .plan import KeyCounts, is_small, plan_where
 from .triggers import Present, Triggers
 
 DATASET = f"USING {ASSERTED} USING {INFERRED} USING {AUX} USING NAMED {AUX} USING NAMED {DELTA}"
+#: the other delta graph of a full run: each round reads one and fills the other
+DELTA_NEXT = NamedNode(INTERNAL + "graph:delta-next")
 
 
 @dataclass
@@ -51,20 +57,28 @@ class ReasonStats:
     per_rule: dict[str, float] = field(default_factory=dict)
 
 
-def insert_text(rule: Rule, delta_index: int | None = None, planned: bool = False, lateral: bool = True) -> str:
+def insert_text(rule: Rule, delta_index: int | None = None, planned: bool = False, lateral: bool = True,
+                direct: tuple[NamedNode, NamedNode] | None = None) -> str:
     """The INSERT evaluating ``rule`` (atom ``delta_index`` on the delta) into NEW_*.
 
     ``planned`` uses :func:`.plan.plan_where` for delta evaluations (delta atom
     first, rest per delta fact), whose cost follows the delta rather than the data.
+    ``direct`` = (delta read, next delta) writes the head into its final graph and into the
+    next delta instead of NEW_* (the full run's rounds, see :meth:`Materializer.run`).
     """
+    final = AUX if rule.head_aux() else INFERRED
     target = NEW_AUX if rule.head_aux() else NEW_INFERRED
     head = rule.head.text()
+    delta = DELTA if direct is None else direct[0]
     small = planned and delta_index is not None and lateral
     if planned and delta_index is not None:
-        where = plan_where(rule, delta_index, DELTA, lateral=lateral)
+        where = plan_where(rule, delta_index, delta, lateral=lateral)
     else:
-        where = rule.where(delta_index, str(DELTA))
-    return f"INSERT {{ GRAPH {target} {{ {head} }} }}\n{DATASET}\nWHERE {{\n  {where}\n  {new_only(rule, small)}\n}}"
+        where = rule.where(delta_index, str(delta))
+    into = f"GRAPH {target} {{ {head} }}" if direct is None else \
+        f"GRAPH {final} {{ {head} }} GRAPH {direct[1]} {{ {head} }}"
+    dataset = DATASET if direct is None else DATASET.replace(str(DELTA), str(delta))
+    return f"INSERT {{ {into} }}\n{dataset}\nWHERE {{\n  {where}\n  {new_only(rule, small)}\n}}"
 
 
 def new_only(rule: Rule, small: bool) -> str:
@@ -101,12 +115,15 @@ class Materializer:
         self.upper_derived = False
         self._queue: list[str] = []
         self._lateral = store.supports_lateral
+        #: (delta read, next delta) while :meth:`run` writes derived facts straight to their graphs
+        self._direct: tuple[NamedNode, NamedNode] | None = None
 
     def _run(self, index: int, delta_index: int | None, stats: ReasonStats) -> None:
-        key = (index, delta_index, self._lateral)
+        key = (index, delta_index, self._lateral, self._direct)
         text = self._texts.get(key)
         if text is None:
-            text = self._texts[key] = insert_text(self.rules[index], delta_index, self.planned, self._lateral)
+            text = self._texts[key] = insert_text(self.rules[index], delta_index, self.planned, self._lateral,
+                                                  self._direct)
         stats.evaluations += 1
         if not self.profile:
             self._queue.append(text)  # sent by _flush, one request per round
@@ -136,6 +153,8 @@ class Materializer:
         read keys of the next delta (None when it is empty); the moves go with
         the round's evaluations in one request.
         """
+        if self._direct is not None:
+            return self._turn()
         census = self.store.census_many([g for g in (NEW_INFERRED, NEW_AUX, seed) if g is not None])
         parts = [g for g, (preds, _) in census.items() if preds]
         if not parts:
@@ -151,6 +170,20 @@ class Materializer:
         ops += [f"DROP SILENT GRAPH {NEW_INFERRED}", f"DROP SILENT GRAPH {NEW_AUX}"]
         self._queue.insert(0, " ; ".join(ops))
         return counts
+
+    def _turn(self) -> KeyCounts | None:
+        """Promote a round of the full run: the filled next delta becomes the delta read.
+
+        Its facts are already in their final graphs; the old delta is dropped (queued first in
+        the round's request) and becomes the graph the round fills.
+        """
+        read, filled = self._direct
+        (preds, classes), = self.store.census_many([filled]).values()
+        if not preds:
+            return None
+        self._direct = (filled, read)
+        self._queue.insert(0, f"DROP SILENT GRAPH {read}")
+        return preds, classes
 
     def propagate(self, active: list[int], stats: ReasonStats, seed: NamedNode | None = None,
                   record: NamedNode | None = None, skip_first: Collection[tuple[int, int]] = ()) -> None:
@@ -201,7 +234,7 @@ class Materializer:
 
     def clear(self) -> None:
         self.store.update(
-            " ; ".join(f"DROP SILENT GRAPH {g}" for g in (INFERRED, AUX, DELTA, NEW_INFERRED, NEW_AUX))
+            " ; ".join(f"DROP SILENT GRAPH {g}" for g in (INFERRED, AUX, DELTA, DELTA_NEXT, NEW_INFERRED, NEW_AUX))
         )
 
     def run(self) -> ReasonStats:
@@ -214,11 +247,24 @@ class Materializer:
         touched one of its inputs.  Rules that read or write any predicate
         (owl:sameAs replacement) and the upper strata then run, followed by
         ordinary semi-naive rounds over every rule, which changes nothing unless
-        they derived something.
+        they derived something.  Derived facts go straight to their graphs and to
+        the next delta (:meth:`_turn`): no round copies them.
         """
         start = time.perf_counter()
         stats = ReasonStats()
         self.clear()
+        self._direct = (DELTA, DELTA_NEXT)
+        try:
+            self._materialize(stats)
+        finally:
+            self._direct = None
+            self.store.update(f"DROP SILENT GRAPH {DELTA} ; DROP SILENT GRAPH {DELTA_NEXT}")
+        stats.derived = self.store.count(INFERRED)
+        stats.seconds = time.perf_counter() - start
+        return stats
+
+    def _materialize(self, stats: ReasonStats) -> None:
+        """The passes of :meth:`run`: components in order, then the rest and the upper strata."""
         # keys with facts so far; each round's delta adds its keys (_delta_round), so a rule
         # skipped here for an empty key runs as soon as that key gets a fact, with it as the delta
         self.present = self._asserted_keys()
@@ -240,13 +286,9 @@ class Materializer:
                     self._run(i, None, stats)
             self._flush()
             stats.rounds += 1
-            if level > strata[0] and any(preds for preds, _ in self.store.census_many([NEW_INFERRED, NEW_AUX]).values()):
+            if level > strata[0] and not self.store.is_empty(self._direct[1]):
                 self.upper_derived = True
             self.propagate(active, stats)
-        self.store.update(f"DROP SILENT GRAPH {DELTA}")
-        stats.derived = self.store.count(INFERRED)
-        stats.seconds = time.perf_counter() - start
-        return stats
 
 
 def _merge(parts) -> KeyCounts:
