@@ -270,6 +270,12 @@ class Materializer:
         self.present = self._asserted_keys()
         strata = sorted({r.stratum for r in self.rules}) or [0]
         first = [i for i, r in enumerate(self.rules) if r.stratum == strata[0]]
+        # rules that cannot fire in the first stratum stay out of its order: left in, one such rule
+        # (eq-rep-s without any owl:sameAs) ties every class reader and writer into one component
+        # whose rules are then evaluated round after round; a key they need that an upper stratum
+        # derives triggers them on its delta, which finds all they derive
+        possible = reachable(self.triggers, first, self.present)
+        first = [i for i in first if self.triggers.feasible(i, possible)]
         ordered, rest = evaluation_order(self.rules, first)
         for component in ordered:
             for i in component:
@@ -289,6 +295,41 @@ class Materializer:
             if level > strata[0] and not self.store.is_empty(self._direct[1]):
                 self.upper_derived = True
             self.propagate(active, stats)
+
+
+def reachable(triggers: Triggers, indexes: list[int], present: Present) -> Present:
+    """The predicates and classes that may get facts when the rules ``indexes`` run from ``present``.
+
+    A rule that can match (every key its body needs may have facts) adds the key it writes; a
+    head of any class (``?x rdf:type ?c``) or any predicate may write every key, and the result
+    says so by holding every key the rules need.  A rule not feasible in the result can never
+    match in those rules' fixpoint.
+    """
+    preds, classes = set(present[0]), set(present[1])
+    needed = triggers.needed_keys()
+    waiting = list(indexes)
+    grew = True
+    while grew:
+        grew = False
+        for i in [i for i in waiting if triggers.feasible(i, (preds, classes))]:
+            waiting.remove(i)
+            grew = True
+            key = triggers.rules[i].writes()
+            if key is None:
+                continue
+            if key[0] == "t":
+                classes.add(key[1])
+                preds.add(_TYPE_KEY)
+            else:
+                preds.add(key[1] if key[0] == "p" else _TYPE_KEY)
+                if key[0] == "*":
+                    preds.update(k[1] for k in needed if k[0] == "p")
+                if key[0] == "*" or key[1] == _TYPE_KEY:
+                    classes.update(k[1] for k in needed if k[0] == "t")
+    return preds, classes
+
+
+_TYPE_KEY = str(TYPE)
 
 
 def _merge(parts) -> KeyCounts:
