@@ -30,6 +30,10 @@ from ..rdf.vocab import FIRST, NIL, REST, SKOLEM_PREFIX, TYPE
 from .literal_forms import FORMS, LiteralForms
 from .meta import META, PersistedState
 
+#: from this many quads on, :meth:`Store.add` asks whether the graph is empty (one look-up) and,
+#: when it is, adds without looking each quad up
+BULK_ADD = 1000
+
 
 def key_census(facts: Iterable[Triple | Quad]) -> tuple[dict[str, int], dict[str, int]]:
     """Facts per predicate and per class (objects of rdf:type), keyed by SPARQL text: the read keys
@@ -246,11 +250,24 @@ class Store:
         """Add triples to ``graph``; returns how many were new."""
         quads = list(dict.fromkeys(Quad(t.subject, t.predicate, t.object, graph) for t in triples))
         keys = [self._key(q) for q in quads]  # a literal's value key is the costly part of a load: once each
+        if self._depth == 0 and len(quads) >= BULK_ADD and self.is_empty(graph):
+            return self._add_to_empty(quads, keys)
         with self.transaction():
             new = [(q, k) for q, k, present in zip(quads, keys, self._present(quads, keys), strict=True) if not present]
             for q, k in new:  # pending True: absent from the committed store; False: present there
                 self._toggle(q, True, k)
         return len(new)
+
+    def _add_to_empty(self, quads: list[Quad], keys: list[Hashable]) -> int:
+        """:meth:`add` into an empty graph with no transaction open: every quad is new, so none
+        is looked up (a big load's look-ups cost as much as writing it).  As :meth:`add`, the
+        first spelling of a value is written and every distinct quad counts as new."""
+        first: dict[Hashable, Quad] = {}
+        for q, k in zip(quads, keys, strict=True):
+            first.setdefault(k, q)
+        with self.transaction():
+            self._pending.update((k, (q, True)) for k, q in first.items())
+        return len(quads)
 
     def _toggle(self, quad: Quad, add: bool, key: tuple | None = None) -> None:
         """Record a pending add (or removal) of ``quad``: it cancels a pending change the other way,
