@@ -58,13 +58,13 @@ class ReasonStats:
 
 
 def insert_text(rule: Rule, delta_index: int | None = None, planned: bool = False, lateral: bool = True,
-                direct: tuple[NamedNode, NamedNode] | None = None) -> str:
+                direct: tuple[NamedNode, NamedNode | None] | None = None) -> str:
     """The INSERT evaluating ``rule`` (atom ``delta_index`` on the delta) into NEW_*.
 
     ``planned`` uses :func:`.plan.plan_where` for delta evaluations (delta atom
     first, rest per delta fact), whose cost follows the delta rather than the data.
     ``direct`` = (delta read, next delta) writes the head into its final graph and into the
-    next delta instead of NEW_* (the full run's rounds, see :meth:`Materializer.run`).
+    next delta (None: no delta) instead of NEW_* (the full run's rounds, see :meth:`Materializer.run`).
     """
     final = AUX if rule.head_aux() else INFERRED
     target = NEW_AUX if rule.head_aux() else NEW_INFERRED
@@ -75,8 +75,9 @@ def insert_text(rule: Rule, delta_index: int | None = None, planned: bool = Fals
         where = plan_where(rule, delta_index, delta, lateral=lateral)
     else:
         where = rule.where(delta_index, str(delta))
-    into = f"GRAPH {target} {{ {head} }}" if direct is None else \
-        f"GRAPH {final} {{ {head} }} GRAPH {direct[1]} {{ {head} }}"
+    into = f"GRAPH {target} {{ {head} }}" if direct is None else f"GRAPH {final} {{ {head} }}"
+    if direct is not None and direct[1] is not None:
+        into += f" GRAPH {direct[1]} {{ {head} }}"
     dataset = DATASET if direct is None else DATASET.replace(str(DELTA), str(delta))
     return f"INSERT {{ {into} }}\n{dataset}\nWHERE {{\n  {where}\n  {new_only(rule, small)}\n}}"
 
@@ -263,6 +264,28 @@ class Materializer:
         stats.seconds = time.perf_counter() - start
         return stats
 
+    def _once(self, i: int, stats: ReasonStats) -> bool:
+        """Evaluate a rule that reads nothing it or a later rule of the pass writes: once, into its
+        graph only (no delta: no rule of its component would read it).  The key it writes joins
+        :attr:`present` (a superset, as it must be).  False, with nothing done, for a head of any
+        class or predicate, whose keys only its delta's census can tell."""
+        key = self.rules[i].writes()
+        if key[0] == "*" or key == ("p", _TYPE_KEY):
+            return False
+        if self.triggers.feasible(i, self.present):
+            read = self._direct
+            self._direct = (read[0], None)
+            try:
+                self._run(i, None, stats)
+                self._flush()
+            finally:
+                self._direct = read
+            self.present[1 if key[0] == "t" else 0].add(key[1])
+            if key[0] == "t":
+                self.present[0].add(_TYPE_KEY)
+        stats.rounds += 1
+        return True
+
     def _materialize(self, stats: ReasonStats) -> None:
         """The passes of :meth:`run`: components in order, then the rest and the upper strata."""
         # keys with facts so far; each round's delta adds its keys (_delta_round), so a rule
@@ -276,8 +299,10 @@ class Materializer:
         # derives triggers them on its delta, which finds all they derive
         possible = reachable(self.triggers, first, self.present)
         first = [i for i in first if self.triggers.feasible(i, possible)]
-        ordered, rest = evaluation_order(self.rules, first)
+        ordered, rest, looped = evaluation_order(self.rules, first)
         for component in ordered:
+            if len(component) == 1 and component[0] not in looped and self._once(component[0], stats):
+                continue
             for i in component:
                 if self.triggers.feasible(i, self.present):
                     self._run(i, None, stats)
@@ -344,11 +369,13 @@ def _merge(parts) -> KeyCounts:
     return preds, classes
 
 
-def evaluation_order(rules: list[Rule], indexes: list[int]) -> tuple[list[list[int]], list[int]]:
+def evaluation_order(rules: list[Rule], indexes: list[int]) -> tuple[list[list[int]], list[int], set[int]]:
     """Strongly connected components of the rules' dependency graph, writers first.
 
     Rules that read or write a variable predicate (``*``) depend on everything
-    and are returned apart (second value), to run after the ordered pass.
+    and are returned apart (second value), to run after the ordered pass; the
+    third value holds the rules that read what they write (a component of one
+    such rule is recursive).
     """
     wild = [i for i in indexes if rules[i].writes() == ("*",) or ("*",) in rules[i].reads()]
     skipped = set(wild)
@@ -372,7 +399,7 @@ def evaluation_order(rules: list[Rule], indexes: list[int]) -> tuple[list[list[i
         elif w == type_key:
             found.update(class_readers)
         succ[a] = sorted(found, key=position.__getitem__)
-    return strongly_connected(nodes, succ), wild
+    return strongly_connected(nodes, succ), wild, {a for a in nodes if a in succ[a]}
 
 
 def strongly_connected(nodes: list[int], succ: dict[int, list[int]]) -> list[list[int]]:
