@@ -18,7 +18,7 @@ from topostore import Ontology
 from topostore.compile import condition as cond
 from topostore.compile.rule import Atom, Rule
 from topostore.rdf.lexer import COMMENT, IRI, KEYWORD, NAME, PUNCT, STRING, VARIABLE, negates_exists, tokens, variables
-from topostore.reason.materialize import strongly_connected
+from topostore.reason.materialize import strongly_connected, within
 from topostore.reason.triggers import Triggers, matches
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -165,3 +165,22 @@ def test_strongly_connected_is_mutual_reachability_in_topological_order(graph: t
     assert all(c == sorted(c) for c in components)
     position = {v: k for k, c in enumerate(components) for v in c}
     assert all(position[a] <= position[b] for a, b in edges)
+
+
+@settings(max_examples=200, deadline=None)
+@given(graphs)
+def test_within_a_component_writers_come_first_unless_a_cycle_forbids(graph: tuple[int, list]) -> None:
+    """:func:`within` orders a set of rules so that an edge goes backwards only on a cycle: on an
+    acyclic graph every writer comes before its readers (no rule needs a delta), on any graph each
+    backward edge closes a cycle (its reader reaches its writer)."""
+    n, edges = graph
+    succ: dict[int, list[int]] = {i: [] for i in range(n)}
+    for a, b in edges:
+        if b not in succ[a]:
+            succ[a].append(b)
+    order = within(list(range(n)), succ)
+    assert sorted(order) == list(range(n))
+    at = {v: k for k, v in enumerate(order)}
+    for a, b in edges:
+        if at[b] <= at[a]:
+            assert a in _reach(succ, b)  # a backward edge lies on a cycle

@@ -264,27 +264,33 @@ class Materializer:
         stats.seconds = time.perf_counter() - start
         return stats
 
-    def _once(self, i: int, stats: ReasonStats) -> bool:
-        """Evaluate a rule that reads nothing it or a later rule of the pass writes: once, into its
-        graph only (no delta: no rule of its component would read it).  The key it writes joins
-        :attr:`present` (a superset, as it must be).  False, with nothing done, for a head of any
-        class or predicate, whose keys only its delta's census can tell."""
-        key = self.rules[i].writes()
-        if key[0] == "*" or key == ("p", _TYPE_KEY):
-            return False
-        if self.triggers.feasible(i, self.present):
-            read = self._direct
+    def _first_pass(self, component: list[int], back: set[int], stats: ReasonStats) -> None:
+        """Evaluate a component's rules once each, in order, in one request.
+
+        Operations of one request see what the earlier ones wrote, so a rule's facts are already
+        read by every later rule of the pass: they go to the next delta only for a rule in
+        ``back`` (a rule of the pass at or before it reads them) or with a head of any class or
+        predicate.  The key a rule without delta writes joins :attr:`present` at once (a
+        superset, as it must be), so later rules of the pass are not skipped for want of it.
+        """
+        read = self._direct
+        for i in component:
+            if not self.triggers.feasible(i, self.present):
+                continue
+            key = self.rules[i].writes()
+            if i in back or key[0] == "*" or key == ("p", _TYPE_KEY):
+                self._run(i, None, stats)
+                continue
             self._direct = (read[0], None)
             try:
                 self._run(i, None, stats)
-                self._flush()
             finally:
                 self._direct = read
             self.present[1 if key[0] == "t" else 0].add(key[1])
             if key[0] == "t":
                 self.present[0].add(_TYPE_KEY)
+        self._flush()
         stats.rounds += 1
-        return True
 
     def _materialize(self, stats: ReasonStats) -> None:
         """The passes of :meth:`run`: components in order, then the rest and the upper strata."""
@@ -299,15 +305,9 @@ class Materializer:
         # derives triggers them on its delta, which finds all they derive
         possible = reachable(self.triggers, first, self.present)
         first = [i for i in first if self.triggers.feasible(i, possible)]
-        ordered, rest, looped = evaluation_order(self.rules, first)
+        ordered, rest, back = evaluation_order(self.rules, first)
         for component in ordered:
-            if len(component) == 1 and component[0] not in looped and self._once(component[0], stats):
-                continue
-            for i in component:
-                if self.triggers.feasible(i, self.present):
-                    self._run(i, None, stats)
-            self._flush()
-            stats.rounds += 1
+            self._first_pass(component, back, stats)
             self.propagate(component, stats)
         for level in strata:
             active = [i for i, r in enumerate(self.rules) if r.stratum <= level]
@@ -370,12 +370,13 @@ def _merge(parts) -> KeyCounts:
 
 
 def evaluation_order(rules: list[Rule], indexes: list[int]) -> tuple[list[list[int]], list[int], set[int]]:
-    """Strongly connected components of the rules' dependency graph, writers first.
+    """Strongly connected components of the rules' dependency graph, writers first, each in an
+    order where most readers come after the writers they read (:func:`within`).
 
     Rules that read or write a variable predicate (``*``) depend on everything
     and are returned apart (second value), to run after the ordered pass; the
-    third value holds the rules that read what they write (a component of one
-    such rule is recursive).
+    third value holds the rules whose facts a rule at or before them in their
+    component reads (the edges that make the component recursive).
     """
     wild = [i for i in indexes if rules[i].writes() == ("*",) or ("*",) in rules[i].reads()]
     skipped = set(wild)
@@ -399,7 +400,38 @@ def evaluation_order(rules: list[Rule], indexes: list[int]) -> tuple[list[list[i
         elif w == type_key:
             found.update(class_readers)
         succ[a] = sorted(found, key=position.__getitem__)
-    return strongly_connected(nodes, succ), wild, {a for a in nodes if a in succ[a]}
+    components = [within(c, succ) for c in strongly_connected(nodes, succ)]
+    at = {a: n for c in components for n, a in enumerate(c)}
+    comp = {a: k for k, c in enumerate(components) for a in c}
+    back = {a for a in nodes if any(comp[b] == comp[a] and at[b] <= at[a] for b in succ[a])}
+    return components, wild, back
+
+
+def within(component: list[int], succ: dict[int, list[int]]) -> list[int]:
+    """The rules of a component in reverse post-order of a depth-first walk inside it: a
+    topological order where the component has no cycle, and few readers before their writers
+    where it has (each such edge makes a rule's facts go through a delta)."""
+    if len(component) == 1:
+        return component
+    members = set(component)
+    seen: set[int] = set()
+    post: list[int] = []
+    for root in component:
+        if root in seen:
+            continue
+        seen.add(root)
+        work = [(root, iter(succ[root]))]
+        while work:
+            node, children = work[-1]
+            child = next((c for c in children if c in members and c not in seen), None)
+            if child is None:
+                work.pop()
+                post.append(node)
+                continue
+            seen.add(child)
+            work.append((child, iter(succ[child])))
+    post.reverse()
+    return post
 
 
 def strongly_connected(nodes: list[int], succ: dict[int, list[int]]) -> list[list[int]]:
