@@ -57,8 +57,12 @@ class _Index:
 
     def __init__(self, triples: Iterable[Triple]) -> None:
         self._raw: dict[Term, list[Triple]] = {}
+        imp = swrl("Imp")
+        self._imps: dict[Term, None] = {}
         for t in triples:
             self._raw.setdefault(t.subject, []).append(t)
+            if t.object == imp and t.predicate == TYPE:
+                self._imps[t.subject] = None
         self._nodes: dict[Term, dict[NamedNode, list[Term]]] = {}
 
     def node(self, s: Term) -> dict[NamedNode, list[Term]]:
@@ -73,9 +77,10 @@ class _Index:
         return table
 
     def imps(self) -> list[Term]:
-        """The rules (subjects typed swrl:Imp), in document order."""
-        imp = swrl("Imp")
-        return [s for s, ts in self._raw.items() if any(t.predicate == TYPE and t.object == imp for t in ts)]
+        """The rules (subjects typed swrl:Imp), in the order their subjects first appear."""
+        if len(self._imps) < 2:
+            return list(self._imps)
+        return [s for s in self._raw if s in self._imps]
 
     def objects(self, s: Term, p: NamedNode) -> list[Term]:
         return self.node(s).get(p, [])
