@@ -18,7 +18,8 @@ from topostore import Ontology
 from topostore.compile import condition as cond
 from topostore.compile.rule import Atom, Rule
 from topostore.rdf.lexer import COMMENT, IRI, KEYWORD, NAME, PUNCT, STRING, VARIABLE, negates_exists, tokens, variables
-from topostore.reason.materialize import strongly_connected, within
+from topostore.rdf.vocab import TYPE
+from topostore.reason.materialize import reachable, strongly_connected, within
 from topostore.reason.triggers import Triggers, matches
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -184,3 +185,24 @@ def test_within_a_component_writers_come_first_unless_a_cycle_forbids(graph: tup
     for a, b in edges:
         if at[b] <= at[a]:
             assert a in _reach(succ, b)  # a backward edge lies on a cycle
+
+
+def _type(x: str, c: str) -> Atom:
+    return Atom(x, str(TYPE), f"<http://e.org/{c}>")
+
+
+def test_reachable_keys_follow_the_rules_that_can_fire() -> None:
+    """A rule whose body needs a key no asserted fact and no firing rule gives stays out of the
+    first stratum's order; a head of any class makes every class possible."""
+    chain = [Rule("r0", "A => B", (_type("?x", "A"),), _type("?x", "B")),
+             Rule("r1", "B => C", (_type("?x", "B"),), _type("?x", "C")),
+             Rule("r2", "D => E", (_type("?x", "D"),), _type("?x", "E")),
+             Rule("r3", "E and p => F", (_type("?x", "E"), Atom("?x", "<http://e.org/p>", "?y")), _type("?x", "F"))]
+    triggers = Triggers(chain)
+    preds, classes = reachable(triggers, [0, 1, 2, 3], ({str(TYPE)}, {"<http://e.org/A>"}))
+    assert classes == {"<http://e.org/A>", "<http://e.org/B>", "<http://e.org/C>"}
+    assert [i for i in range(4) if triggers.feasible(i, (preds, classes))] == [0, 1]
+    any_class = [*chain, Rule("r4", "q => any", (Atom("?x", "<http://e.org/q>", "?c"),), Atom("?x", str(TYPE), "?c"))]
+    triggers = Triggers(any_class)
+    possible = reachable(triggers, list(range(5)), ({str(TYPE), "<http://e.org/q>"}, {"<http://e.org/A>"}))
+    assert [i for i in range(5) if triggers.feasible(i, possible)] == [0, 1, 2, 4]  # r3 also needs p
