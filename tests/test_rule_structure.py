@@ -19,7 +19,7 @@ from topostore.compile import condition as cond
 from topostore.compile.rule import Atom, Rule
 from topostore.rdf.lexer import COMMENT, IRI, KEYWORD, NAME, PUNCT, STRING, VARIABLE, negates_exists, tokens, variables
 from topostore.rdf.vocab import TYPE
-from topostore.reason.materialize import reachable, strongly_connected, within
+from topostore.reason.order import reachable, strongly_connected, within
 from topostore.reason.triggers import Triggers, matches
 
 ROOT = Path(__file__).resolve().parent.parent
