@@ -18,7 +18,8 @@ from topostore import Ontology
 from topostore.compile import condition as cond
 from topostore.compile.rule import Atom, Rule
 from topostore.rdf.lexer import COMMENT, IRI, KEYWORD, NAME, PUNCT, STRING, VARIABLE, negates_exists, tokens, variables
-from topostore.reason.materialize import strongly_connected
+from topostore.rdf.vocab import TYPE
+from topostore.reason.order import reachable, strongly_connected, within
 from topostore.reason.triggers import Triggers, matches
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -165,3 +166,43 @@ def test_strongly_connected_is_mutual_reachability_in_topological_order(graph: t
     assert all(c == sorted(c) for c in components)
     position = {v: k for k, c in enumerate(components) for v in c}
     assert all(position[a] <= position[b] for a, b in edges)
+
+
+@settings(max_examples=200, deadline=None)
+@given(graphs)
+def test_within_a_component_writers_come_first_unless_a_cycle_forbids(graph: tuple[int, list]) -> None:
+    """:func:`within` orders a set of rules so that an edge goes backwards only on a cycle: on an
+    acyclic graph every writer comes before its readers (no rule needs a delta), on any graph each
+    backward edge closes a cycle (its reader reaches its writer)."""
+    n, edges = graph
+    succ: dict[int, list[int]] = {i: [] for i in range(n)}
+    for a, b in edges:
+        if b not in succ[a]:
+            succ[a].append(b)
+    order = within(list(range(n)), succ)
+    assert sorted(order) == list(range(n))
+    at = {v: k for k, v in enumerate(order)}
+    for a, b in edges:
+        if at[b] <= at[a]:
+            assert a in _reach(succ, b)  # a backward edge lies on a cycle
+
+
+def _type(x: str, c: str) -> Atom:
+    return Atom(x, str(TYPE), f"<http://e.org/{c}>")
+
+
+def test_reachable_keys_follow_the_rules_that_can_fire() -> None:
+    """A rule whose body needs a key no asserted fact and no firing rule gives stays out of the
+    first stratum's order; a head of any class makes every class possible."""
+    chain = [Rule("r0", "A => B", (_type("?x", "A"),), _type("?x", "B")),
+             Rule("r1", "B => C", (_type("?x", "B"),), _type("?x", "C")),
+             Rule("r2", "D => E", (_type("?x", "D"),), _type("?x", "E")),
+             Rule("r3", "E and p => F", (_type("?x", "E"), Atom("?x", "<http://e.org/p>", "?y")), _type("?x", "F"))]
+    triggers = Triggers(chain)
+    preds, classes = reachable(triggers, [0, 1, 2, 3], ({str(TYPE)}, {"<http://e.org/A>"}))
+    assert classes == {"<http://e.org/A>", "<http://e.org/B>", "<http://e.org/C>"}
+    assert [i for i in range(4) if triggers.feasible(i, (preds, classes))] == [0, 1]
+    any_class = [*chain, Rule("r4", "q => any", (Atom("?x", "<http://e.org/q>", "?c"),), Atom("?x", str(TYPE), "?c"))]
+    triggers = Triggers(any_class)
+    possible = reachable(triggers, list(range(5)), ({str(TYPE), "<http://e.org/q>"}, {"<http://e.org/A>"}))
+    assert [i for i in range(5) if triggers.feasible(i, possible)] == [0, 1, 2, 4]  # r3 also needs p

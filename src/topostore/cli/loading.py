@@ -58,7 +58,7 @@ def load_files(
             task = progress.add_task(f"loading {name}", detail="")
 
             def parsed(n: int, task: TaskID = task) -> None:
-                progress.update(task, detail=f"{n:,} triples parsed")
+                progress.update(task, detail=f"{n:,} triples parsed", refresh=True)  # shown even when the load is fast
 
             with _notices_shown(console or err_console):
                 added = onto.load(f, fmt=fmt, progress=parsed)

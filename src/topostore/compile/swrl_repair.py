@@ -49,17 +49,41 @@ class _Unreadable(Exception):
 
 
 class _Index:
-    """Subject → predicate → objects (in document order) of a document's triples."""
+    """Subject → predicate → objects (in document order) of a document's triples.
+
+    Triples are grouped by subject in one pass; a subject's predicate table is built when the
+    subject is first read, so a big ABox beside a few rules costs one pass, not a table each.
+    """
 
     def __init__(self, triples: Iterable[Triple]) -> None:
-        self.out: dict[Term, dict[NamedNode, list[Term]]] = {}
+        self._raw: dict[Term, list[Triple]] = {}
+        imp = swrl("Imp")
+        self._imps: dict[Term, None] = {}
         for t in triples:
-            objs = self.out.setdefault(t.subject, {}).setdefault(t.predicate, [])
-            if t.object not in objs:
-                objs.append(t.object)
+            self._raw.setdefault(t.subject, []).append(t)
+            if t.object == imp and t.predicate == TYPE:
+                self._imps[t.subject] = None
+        self._nodes: dict[Term, dict[NamedNode, list[Term]]] = {}
+
+    def node(self, s: Term) -> dict[NamedNode, list[Term]]:
+        """The predicates and objects of ``s`` (each object once, in document order)."""
+        table = self._nodes.get(s)
+        if table is None:
+            table = self._nodes[s] = {}
+            for t in self._raw.get(s, ()):
+                objs = table.setdefault(t.predicate, [])
+                if t.object not in objs:
+                    objs.append(t.object)
+        return table
+
+    def imps(self) -> list[Term]:
+        """The rules (subjects typed swrl:Imp), in the order their subjects first appear."""
+        if len(self._imps) < 2:
+            return list(self._imps)
+        return [s for s in self._raw if s in self._imps]
 
     def objects(self, s: Term, p: NamedNode) -> list[Term]:
-        return self.out.get(s, {}).get(p, [])
+        return self.node(s).get(p, [])
 
     def one(self, s: Term, p: NamedNode) -> Term | None:
         v = self.objects(s, p)
@@ -225,7 +249,7 @@ def repair_rules(triples: list[Triple]) -> tuple[list[Triple], list[Notice]]:
     if not any(t.object == imp_type and t.predicate == TYPE for t in triples):
         return triples, []  # no rule: nothing to index (large ABox loads pay one scan)
     ix = _Index(triples)
-    imps = [s for s, preds in ix.out.items() if swrl("Imp") in preds.get(TYPE, [])]
+    imps = ix.imps()
     if not imps:
         return triples, []
     names = {imp: rule_name(ix, imp) for imp in imps}
@@ -253,7 +277,7 @@ def _rewrite(ix: _Index, triples: list[Triple], imps: list[Term], outcomes: dict
     for imp in imps:
         o = outcomes[imp]
         if o.skip:
-            drop.update(Triple(imp, p, v) for p, vs in ix.out.get(imp, {}).items() for v in vs)
+            drop.update(Triple(imp, p, v) for p, vs in ix.node(imp).items() for v in vs)
             notices.append(Notice(RULE_SKIPPED, names[imp], f"not loaded: {o.skip}", node=imp))
             continue
         for p, atoms in o.parts.items():
@@ -271,7 +295,7 @@ def _rewrite(ix: _Index, triples: list[Triple], imps: list[Term], outcomes: dict
 def skip_rule(triples: list[Triple], imp: Term, why: str) -> tuple[list[Triple], Notice]:
     """``triples`` without the rule ``imp`` and the structure only it used; the notice saying so."""
     ix = _Index(triples)
-    imps = [s for s, preds in ix.out.items() if swrl("Imp") in preds.get(TYPE, [])]
+    imps = ix.imps()
     outcomes = {i: _Outcome(skip=why if i == imp else "") for i in imps}
     kept, notices = _rewrite(ix, triples, imps, outcomes, {i: rule_name(ix, i) for i in imps})
     return kept, notices[0]
@@ -280,7 +304,7 @@ def skip_rule(triples: list[Triple], imp: Term, why: str) -> tuple[list[Triple],
 def rule_triples(triples: list[Triple]) -> tuple[list[Triple], list[Triple]]:
     """(the SWRL rules' triples: rules, their lists and atoms, variable declarations; the others)."""
     ix = _Index(triples)
-    imps = [s for s, preds in ix.out.items() if swrl("Imp") in preds.get(TYPE, [])]
+    imps = ix.imps()
     nodes = _reachable(ix, imps)
     variable = swrl("Variable")
     rules, rest = [], []

@@ -3,7 +3,9 @@
 A named part of :class:`topostore.ontology.facade.Ontology` (``onto.files``), apart from the facade
 because loading has rules of its own: a document that changes the schema is
 compiled on a scratch copy first, so an untranslatable rule leaves the ontology
-as it was.
+as it was.  The first document of an empty in-memory ontology is compiled where
+it is added instead (taken out again when it is refused): a big map is then
+written once, not twice.
 """
 
 from __future__ import annotations
@@ -18,7 +20,7 @@ from pyoxigraph import NamedNode, RdfFormat, Triple
 from ..compile import compile_ontology
 from ..compile.notices import RULE_REPAIRED, RULE_SKIPPED, Notice, grouped, publish
 from ..compile.swrl_repair import repair_rules, skip_rule
-from ..errors import IncompleteOntologyError, RuleCompileError
+from ..errors import IncompleteOntologyError, RuleCompileError, TopostoreError
 from ..rdf.safeio import atomic_write
 from ..rdf.vocab import (
     ASSERTED,
@@ -109,6 +111,10 @@ class OntologyFiles:
         notices = list(repaired or [])
         if not any(is_schema_triple(t) for t in triples):
             return self.onto.add(*triples), notices
+        if self._in_place_possible():
+            done = self._add_compiled_in_place(triples, notices)
+            if done is not None:
+                return done
         while True:
             scratch = memory_store()
             scratch.add(self.onto.store.triples(graph=ASSERTED), ASSERTED)
@@ -127,6 +133,36 @@ class OntologyFiles:
             _refuse_incomplete([*notices, *rules.notices])
         check_rules(self.onto.store, rules)
         added = self.onto.add(*triples)
+        self.onto._rules = rules
+        return added, notices
+
+    def _in_place_possible(self) -> bool:
+        """Whether a document may be compiled where it is added: the asserted graph is empty and
+        in memory, so taking a refused document out again leaves exactly what was there (a
+        durable store could keep half of it through a crash, a remote one pays every write twice)."""
+        store = self.onto.store
+        return not store.durable and not store.round_trips and store.is_empty(ASSERTED)
+
+    def _add_compiled_in_place(self, triples: list[Triple], notices: list[Notice]) -> tuple[int, list[Notice]] | None:
+        """Add the document, then compile the asserted graph it makes (no scratch copy).
+
+        A refusal (an untranslatable rule, strict loading, a rule too large for the store) takes
+        the document out again, leaving the graph empty as it was, and returns None: the scratch
+        path then repairs or refuses it with its own messages.
+        """
+        dirty = self.onto.dirty
+        added = self.onto.add(*triples)
+        try:
+            rules = compile_ontology(self.onto.store, ASSERTED)
+            if self.onto.strict:
+                _refuse_incomplete([*notices, *rules.notices])
+            check_rules(self.onto.store, rules)
+        except BaseException as exc:
+            self.onto.remove(*triples)
+            self.onto.dirty = dirty
+            if isinstance(exc, TopostoreError):
+                return None
+            raise
         self.onto._rules = rules
         return added, notices
 

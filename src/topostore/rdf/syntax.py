@@ -17,7 +17,7 @@ from pyoxigraph import RdfFormat, Triple
 
 from ..errors import LoadError
 from .safeio import check_xml_entities
-from .skolem import skolemize
+from .skolem import skolem
 
 #: How often (in triples) parsing reports progress.
 PROGRESS_EVERY = 5000
@@ -92,17 +92,17 @@ def parse_triples(
         data = data.encode("utf-8", errors="surrogatepass")
     if fmt == RdfFormat.RDF_XML:
         check_xml_entities(data, source)
+    triples: list[Triple] = []  # each quad becomes its triple at once: a big file is never held twice
     try:
-        quads = []
         for quad in ox.parse(data, format=fmt, base_iri=base_iri, rename_blank_nodes=True):
-            quads.append(quad)
-            if progress is not None and len(quads) % PROGRESS_EVERY == 0:
-                progress(len(quads))
+            triples.append(Triple(skolem(quad.subject), quad.predicate, skolem(quad.object)))
+            if progress is not None and len(triples) % PROGRESS_EVERY == 0:
+                progress(len(triples))
     except SyntaxError as exc:
         raise LoadError(_syntax_error_message(source, exc, data, fmt)) from exc
     except ValueError as exc:
         raise LoadError(f"{source}: {exc}") from exc
-    return [skolemize(Triple(q.subject, q.predicate, q.object)) for q in quads]
+    return triples
 
 
 def serialize(triples: Iterable[Triple], fmt: RdfFormat, prefixes: dict[str, str] | None = None) -> bytes:

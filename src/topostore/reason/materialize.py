@@ -8,7 +8,11 @@ read something that changed is evaluated in full.  The loop stops when a
 round derives nothing new.
 
 Derived facts go to ``NEW_INFERRED`` / ``NEW_AUX`` first (never re-deriving a
-fact already present), then become the next delta.  Rules with negated premises
+fact already present), then become the next delta.  A full run (:meth:`Materializer.run`)
+writes each derived fact straight into its final graph *and* into the next delta, two
+graphs that take turns (:data:`DELTA` and :data:`DELTA_NEXT`): promoting a round is then
+dropping the old delta, instead of copying every fact twice more (into the delta and the
+inferred graph), which was a third of a full REASON.  Rules with negated premises
 (``stratum`` 1: "y1 and y2 are not known to be different, so they are the same")
 join only after the positive rules reached their fixpoint.
 """
@@ -23,13 +27,16 @@ from pyoxigraph import NamedNode
 
 from ..compile.generic import PREFIXES
 from ..compile.rule import Rule, RuleSet
-from ..rdf.vocab import ASSERTED, AUX, DELTA, INFERRED, NEW_AUX, NEW_INFERRED, TYPE
+from ..rdf.vocab import ASSERTED, AUX, DELTA, INFERRED, INTERNAL, NEW_AUX, NEW_INFERRED, TYPE
 from ..stores.base import Store
 from . import limits
+from .order import TYPE_KEY, evaluation_order, reachable
 from .plan import KeyCounts, is_small, plan_where
 from .triggers import Present, Triggers
 
 DATASET = f"USING {ASSERTED} USING {INFERRED} USING {AUX} USING NAMED {AUX} USING NAMED {DELTA}"
+#: the other delta graph of a full run: each round reads one and fills the other
+DELTA_NEXT = NamedNode(INTERNAL + "graph:delta-next")
 
 
 @dataclass
@@ -54,32 +61,47 @@ class ReasonStats:
     per_rule: dict[str, float] = field(default_factory=dict)
 
 
-def insert_text(rule: Rule, delta_index: int | None = None, planned: bool = False, lateral: bool = True) -> str:
+def insert_text(rule: Rule, delta_index: int | None = None, planned: bool = False, lateral: bool = True,
+                direct: tuple[NamedNode, NamedNode | None] | None = None) -> str:
     """The INSERT evaluating ``rule`` (atom ``delta_index`` on the delta) into NEW_*.
 
     ``planned`` uses :func:`.plan.plan_where` for delta evaluations (delta atom
     first, rest per delta fact), whose cost follows the delta rather than the data.
+    ``direct`` = (delta read, next delta) writes the head into its final graph and into the
+    next delta (None: no delta) instead of NEW_* (the full run's rounds, see :meth:`Materializer.run`).
     """
+    final = AUX if rule.head_aux() else INFERRED
     target = NEW_AUX if rule.head_aux() else NEW_INFERRED
     head = rule.head.text()
+    delta = DELTA if direct is None else direct[0]
     small = planned and delta_index is not None and lateral
     if planned and delta_index is not None:
-        where = plan_where(rule, delta_index, DELTA, lateral=lateral)
+        where = plan_where(rule, delta_index, delta, lateral=lateral)
     else:
-        where = rule.where(delta_index, str(DELTA))
-    return f"INSERT {{ GRAPH {target} {{ {head} }} }}\n{DATASET}\nWHERE {{\n  {where}\n  {new_only(rule, small)}\n}}"
+        where = rule.where(delta_index, str(delta))
+    into = f"GRAPH {target} {{ {head} }}" if direct is None else f"GRAPH {final} {{ {head} }}"
+    if direct is not None and direct[1] is not None:
+        into += f" GRAPH {direct[1]} {{ {head} }}"
+    dataset = DATASET if direct is None else DATASET.replace(str(DELTA), str(delta))
+    known = new_only(rule, small)
+    if direct is not None and direct[1] is None:
+        # no delta: a head already inferred is written again, which changes nothing, so only the
+        # asserted facts are kept out (an inferred fact is never an asserted one)
+        known = new_only(rule, small, ASSERTED)
+        dataset += f" USING NAMED {ASSERTED}"
+    return f"INSERT {{ {into} }}\n{dataset}\nWHERE {{\n  {where}\n  {known}\n}}"
 
 
-def new_only(rule: Rule, small: bool) -> str:
+def new_only(rule: Rule, small: bool, graph: NamedNode | None = None) -> str:
     """The line that keeps the heads already known out of an evaluation.
 
     ``FILTER NOT EXISTS`` is a look-up per solution (≈ 9 µs each in Oxigraph), right for a small
     delta; ``MINUS`` reads the head's facts once and anti-joins them (a rule over 10,000 facts:
     9 ms instead of 92 ms).  Both mean the same when the head has a variable, which every solution
     binds (a rule's head variables come from its body); a ground head keeps ``NOT EXISTS``, as
-    ``MINUS`` with no shared variable removes nothing.
+    ``MINUS`` with no shared variable removes nothing.  ``graph`` looks in that graph only.
     """
-    head = rule.head.text()
+    head = rule.head.text() if graph is None else f"GRAPH {graph} {{ {rule.head.text()} }}"
     if small or not rule.head.variables():
         return f"FILTER NOT EXISTS {{ {head} }}"
     return f"MINUS {{ {head} }}"
@@ -104,12 +126,15 @@ class Materializer:
         self.upper_derived = False
         self._queue: list[str] = []
         self._lateral = store.supports_lateral
+        #: (delta read, next delta) while :meth:`run` writes derived facts straight to their graphs
+        self._direct: tuple[NamedNode, NamedNode] | None = None
 
     def _run(self, index: int, delta_index: int | None, stats: ReasonStats) -> None:
-        key = (index, delta_index, self._lateral)
+        key = (index, delta_index, self._lateral, self._direct)
         text = self._texts.get(key)
         if text is None:
-            text = self._texts[key] = insert_text(self.rules[index], delta_index, self.planned, self._lateral)
+            text = self._texts[key] = insert_text(self.rules[index], delta_index, self.planned, self._lateral,
+                                                  self._direct)
         stats.evaluations += 1
         if not self.profile:
             self._queue.append(text)  # sent by _flush, one request per round
@@ -139,6 +164,8 @@ class Materializer:
         read keys of the next delta (None when it is empty); the moves go with
         the round's evaluations in one request.
         """
+        if self._direct is not None:
+            return self._turn()
         census = self.store.census_many([g for g in (NEW_INFERRED, NEW_AUX, seed) if g is not None])
         parts = [g for g, (preds, _) in census.items() if preds]
         if not parts:
@@ -154,6 +181,20 @@ class Materializer:
         ops += [f"DROP SILENT GRAPH {NEW_INFERRED}", f"DROP SILENT GRAPH {NEW_AUX}"]
         self._queue.insert(0, " ; ".join(ops))
         return counts
+
+    def _turn(self) -> KeyCounts | None:
+        """Promote a round of the full run: the filled next delta becomes the delta read.
+
+        Its facts are already in their final graphs; the old delta is dropped (queued first in
+        the round's request) and becomes the graph the round fills.
+        """
+        read, filled = self._direct
+        (preds, classes), = self.store.census_many([filled]).values()
+        if not preds:
+            return None
+        self._direct = (filled, read)
+        self._queue.insert(0, f"DROP SILENT GRAPH {read}")
+        return preds, classes
 
     def propagate(self, active: list[int], stats: ReasonStats, seed: NamedNode | None = None,
                   record: NamedNode | None = None, skip_first: Collection[tuple[int, int]] = ()) -> None:
@@ -204,7 +245,7 @@ class Materializer:
 
     def clear(self) -> None:
         self.store.update(
-            " ; ".join(f"DROP SILENT GRAPH {g}" for g in (INFERRED, AUX, DELTA, NEW_INFERRED, NEW_AUX))
+            " ; ".join(f"DROP SILENT GRAPH {g}" for g in (INFERRED, AUX, DELTA, DELTA_NEXT, NEW_INFERRED, NEW_AUX))
         )
 
     def run(self) -> ReasonStats:
@@ -217,23 +258,66 @@ class Materializer:
         touched one of its inputs.  Rules that read or write any predicate
         (owl:sameAs replacement) and the upper strata then run, followed by
         ordinary semi-naive rounds over every rule, which changes nothing unless
-        they derived something.
+        they derived something.  Derived facts go straight to their graphs and to
+        the next delta (:meth:`_turn`): no round copies them.
         """
         start = time.perf_counter()
         stats = ReasonStats()
         self.clear()
+        self._direct = (DELTA, DELTA_NEXT)
+        try:
+            self._materialize(stats)
+        finally:
+            self._direct = None
+            self.store.update(f"DROP SILENT GRAPH {DELTA} ; DROP SILENT GRAPH {DELTA_NEXT}")
+        stats.derived = self.store.count(INFERRED)
+        stats.seconds = time.perf_counter() - start
+        return stats
+
+    def _first_pass(self, component: list[int], back: set[int], stats: ReasonStats) -> None:
+        """Evaluate a component's rules once each, in order, in one request.
+
+        Operations of one request see what the earlier ones wrote, so a rule's facts are already
+        read by every later rule of the pass: they go to the next delta only for a rule in
+        ``back`` (a rule of the pass at or before it reads them) or with a head of any class or
+        predicate.  The key a rule without delta writes joins :attr:`present` at once (a
+        superset, as it must be), so later rules of the pass are not skipped for want of it.
+        """
+        read = self._direct
+        for i in component:
+            if not self.triggers.feasible(i, self.present):
+                continue
+            key = self.rules[i].writes()
+            if i in back or key[0] == "*" or key == ("p", TYPE_KEY):
+                self._run(i, None, stats)
+                continue
+            self._direct = (read[0], None)
+            try:
+                self._run(i, None, stats)
+            finally:
+                self._direct = read
+            self.present[1 if key[0] == "t" else 0].add(key[1])
+            if key[0] == "t":
+                self.present[0].add(TYPE_KEY)
+        self._flush()
+        stats.rounds += 1
+
+    def _materialize(self, stats: ReasonStats) -> None:
+        """The passes of :meth:`run`: components in order, then the rest and the upper strata."""
         # keys with facts so far; each round's delta adds its keys (_delta_round), so a rule
         # skipped here for an empty key runs as soon as that key gets a fact, with it as the delta
         self.present = self._asserted_keys()
         strata = sorted({r.stratum for r in self.rules}) or [0]
         first = [i for i, r in enumerate(self.rules) if r.stratum == strata[0]]
-        ordered, rest = evaluation_order(self.rules, first)
+        # rules that cannot fire in the first stratum stay out of its order: left in, one such rule
+        # (eq-rep-s without any owl:sameAs) ties every class reader and writer into one component
+        # whose rules are then evaluated round after round; a key they need that an upper stratum
+        # derives triggers them on its delta, which finds all they derive
+        possible = reachable(self.triggers, first, self.present)
+        first = [i for i in first if self.triggers.feasible(i, possible)]
+        ordered, rest, back = evaluation_order(self.rules, first)
         for component in ordered:
-            for i in component:
-                if self.triggers.feasible(i, self.present):
-                    self._run(i, None, stats)
-            self._flush()
-            stats.rounds += 1
+            self._first_pass(component, back, stats)
             self.propagate(component, stats)
         for level in strata:
             active = [i for i, r in enumerate(self.rules) if r.stratum <= level]
@@ -243,13 +327,9 @@ class Materializer:
                     self._run(i, None, stats)
             self._flush()
             stats.rounds += 1
-            if level > strata[0] and any(preds for preds, _ in self.store.census_many([NEW_INFERRED, NEW_AUX]).values()):
+            if level > strata[0] and not self.store.is_empty(self._direct[1]):
                 self.upper_derived = True
             self.propagate(active, stats)
-        self.store.update(f"DROP SILENT GRAPH {DELTA}")
-        stats.derived = self.store.count(INFERRED)
-        stats.seconds = time.perf_counter() - start
-        return stats
 
 
 def _merge(parts) -> KeyCounts:
@@ -262,86 +342,3 @@ def _merge(parts) -> KeyCounts:
         for k, n in c.items():
             classes[k] = classes.get(k, 0) + n
     return preds, classes
-
-
-def evaluation_order(rules: list[Rule], indexes: list[int]) -> tuple[list[list[int]], list[int]]:
-    """Strongly connected components of the rules' dependency graph, writers first.
-
-    Rules that read or write a variable predicate (``*``) depend on everything
-    and are returned apart (second value), to run after the ordered pass.
-    """
-    wild = [i for i in indexes if rules[i].writes() == ("*",) or ("*",) in rules[i].reads()]
-    skipped = set(wild)
-    nodes = [i for i in indexes if i not in skipped]
-    # readers per key, so that the edges cost their number, not rules² (a TBox of 100 classes
-    # compiles to thousands of rules).  A written key reaches the readers of the same key; a class
-    # membership also reaches patterns ``?x rdf:type ?c``, and those reach every class reader.
-    readers: dict[tuple, list[int]] = {}
-    for b in nodes:
-        for key in rules[b].reads():
-            readers.setdefault(key, []).append(b)
-    type_key = ("p", str(TYPE))
-    class_readers = [b for key, bs in readers.items() if key[0] == "t" for b in bs]
-    position = {b: n for n, b in enumerate(nodes)}
-    succ: dict[int, list[int]] = {}
-    for a in nodes:
-        w = rules[a].writes()
-        found = set(readers.get(w, ()))
-        if w[0] == "t":
-            found.update(readers.get(type_key, ()))
-        elif w == type_key:
-            found.update(class_readers)
-        succ[a] = sorted(found, key=position.__getitem__)
-    return strongly_connected(nodes, succ), wild
-
-
-def strongly_connected(nodes: list[int], succ: dict[int, list[int]]) -> list[list[int]]:
-    """The strongly connected components of a graph (each sorted), in topological order: a
-    component comes before every component it has an edge to.
-
-    Tarjan's algorithm, iterative (rule sets are deep enough to exhaust Python's recursion).
-    Written here rather than taken from networkx, which is not a dependency of topostore: the
-    core install is kept to what the service needs (pyproject.toml), and networkx would be
-    imported by every CLI start for these thirty lines.  tests/test_rule_structure.py checks
-    the result against the definition (mutual reachability) and the order on random graphs.
-    """
-    # components come out of Tarjan's algorithm in reverse topological order
-    index: dict[int, int] = {}
-    low: dict[int, int] = {}
-    on_stack: set[int] = set()
-    stack: list[int] = []
-    components: list[list[int]] = []
-    counter = 0
-    for root in nodes:
-        if root in index:
-            continue
-        work = [(root, 0)]
-        while work:
-            v, k = work.pop()
-            if k == 0:
-                index[v] = low[v] = counter
-                counter += 1
-                stack.append(v)
-                on_stack.add(v)
-            if k < len(succ[v]):
-                work.append((v, k + 1))
-                w = succ[v][k]
-                if w not in index:
-                    work.append((w, 0))
-                elif w in on_stack:
-                    low[v] = min(low[v], index[w])
-                continue
-            for w in succ[v]:
-                if w in on_stack:
-                    low[v] = min(low[v], low[w])
-            if low[v] == index[v]:
-                component = []
-                while True:
-                    w = stack.pop()
-                    on_stack.discard(w)
-                    component.append(w)
-                    if w == v:
-                        break
-                components.append(sorted(component))
-    components.reverse()
-    return components

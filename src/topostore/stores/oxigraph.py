@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import os
 from collections.abc import Iterator
-from itertools import islice
+from itertools import chain, islice
 
 import pyoxigraph as ox
 from pyoxigraph import NamedNode, Quad
@@ -61,6 +61,14 @@ class OxigraphStore(Store):
             self._ox.update(text)
             if self.sync:
                 self._ox.flush()
+
+    def _commit_stream(self, quads: Iterator[Quad], extra: list[Quad]) -> None:
+        """In memory, the store takes the quads as they are made (one atomic ``extend``)."""
+        if not self._in_memory:
+            super()._commit_stream(quads, extra)
+            return
+        self._writes += 1
+        self._ox.extend(chain(quads, extra))
 
     def add_scratch(self, triples, graph: NamedNode) -> None:
         """Bulk-add to a reasoner's scratch graph (one RocksDB transaction)."""
