@@ -61,7 +61,7 @@ from ..rdf.vocab import ASSERTED, TYPE
 from . import delta_texts as texts
 from . import flip
 from .component import COMPONENT_SCRATCH, UNSETTLED, compile_component, whole_ops
-from .materialize import strongly_connected
+from .order import strongly_connected
 from .scratch import ADDED, CANDIDATES, NEW_FACTS, OVERDELETED, REMOVED, target
 from .triggers import Present
 
