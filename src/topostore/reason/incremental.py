@@ -76,11 +76,12 @@ from ..compile.generic import PREFIXES
 from ..compile.rule import Rule, RuleSet
 from ..rdf.lexer import negates_exists  # noqa: F401 - public here since the first release
 from ..rdf.terms import Term
-from ..rdf.vocab import ASSERTED, AUX, DELTA, ENTAILED_PREFIX, INFERRED, NEW_AUX, NEW_INFERRED, TYPE
+from ..rdf.vocab import ASSERTED, AUX, DELTA, ENTAILED, ENTAILED_PREFIX, INFERRED, NEW_AUX, NEW_INFERRED, TYPE
 from ..stores.base import Store, key_census
+from . import after as after_step
 from . import delta_texts as texts
 from . import flip
-from .component import UNSETTLED_QUERY, WHOLE_ROUNDS
+from .component import WHOLE_ROUNDS
 from .consistency import Violation, check_consistency
 from .dred import Deletion, can_prove
 from .entailed import publish_entailed, refresh_entailed
@@ -101,10 +102,6 @@ DEFAULT_MAX_CHANGE_SHARE = 0.10
 
 #: The reasoning modes: incremental when sound and the change is small, incremental whenever sound, full.
 MODES = ("auto", "incremental", "full")
-
-
-class _Unsettled(Exception):
-    """A recursive component run as one request needed more rounds than it had (see :mod:`.component`)."""
 
 
 def check_mode(mode: str) -> None:
@@ -169,6 +166,10 @@ class IncrementalReasoner:
         self._programs: dict = {}
         #: signatures whose program in one request needed more rounds than it had: general phases for good
         self._unsettled: set = set()
+        #: the last compiled step's signature, whether it had unrolled rounds, and the keys it may change
+        self._last_sig = None
+        self._settle = False
+        self._heads: set = set()
         #: SPARQL texts of the checks made once (the phases' texts live in the request queue)
         self._texts: dict[tuple, str] = {}
         #: (individual, class) pairs whose type fact the last REASON may have changed; None after a full run
@@ -194,17 +195,28 @@ class IncrementalReasoner:
         materializer.present = self.state.present
         materializer.planned = True
         try:
-            try:
-                self._maintain(materializer, added, removed, stats)
-            except _Unsettled:
-                self._clear_scratch()
-                return self.full(f"the compiled step's {WHOLE_ROUNDS} rounds of a recursive component were not "
-                                 "enough", profile)
-            if (added or removed) and self._negated_match():
-                return self.full("the change makes a rule with a negated premise (stratum 1) match", profile)
-            violations = self._check(stats, bool(added or removed))
-            self._publish_entailed(bool(added or removed))
-            self.touched_types = self._touched_types() if (added or removed) else []
+            self._maintain(materializer, added, removed, stats)
+            changed = bool(added or removed)
+            if changed and self.store.round_trips and stats.program == "compiled":
+                after = self._read_after()
+                if after.unsettled:
+                    self._unsettled.add(self._last_sig)  # once is enough: the general phases from now on
+                    self._clear_scratch()
+                    return self.full(f"the compiled step's {WHOLE_ROUNDS} rounds of a recursive component were "
+                                     "not enough", profile)
+                if after.negated:
+                    return self.full("the change makes a rule with a negated premise (stratum 1) match", profile)
+                violations = check_consistency(self.store, self.ruleset) \
+                    if self.state.violations or not self.checks_monotone or after.violation_possible else []
+                self.requests.scratch(after.entailed_add, ENTAILED)
+                self.requests.discard(after.entailed_drop, (ENTAILED,))
+                self.touched_types = after.touched_types
+            else:
+                if changed and self._negated_match():
+                    return self.full("the change makes a rule with a negated premise (stratum 1) match", profile)
+                violations = self._check(stats, changed)
+                self._publish_entailed(changed)
+                self.touched_types = self._touched_types() if changed else []
             if profile:
                 stats.derived = self.store.count(NEW_FACTS)
         except Exception:
@@ -317,9 +329,7 @@ class IncrementalReasoner:
             self.requests.defer(program.text(self._flip_text))
             self.requests.flush()
             stats.evaluations += program.operations
-            if not program.whole and self.store.query(UNSETTLED_QUERY):
-                self._unsettled.add(sig)  # once is enough: changes of this kind take the general phases
-                raise _Unsettled
+            self._last_sig, self._settle = sig, not program.whole
         else:
             self.requests.flush()
             run = StagedRun(self.store, program, sig, self._flip_text)
@@ -329,6 +339,8 @@ class IncrementalReasoner:
             stats.per_rule["program"] = time.perf_counter() - start
         stats.flipped = program.flips
         stats.program = "compiled"
+        #: the keys the after-step reads ask about: the asserted changes' and what the program may add
+        self._heads = set(program.heads) | set(sig.added)
         for kind, key in program.heads:
             self.state.present[0 if kind == "p" else 1].add(key)
         return True
@@ -339,6 +351,20 @@ class IncrementalReasoner:
         if not windows:
             return text
         return texts.flips(self.rules[i], order, self.store.supports_lateral, i, windows)
+
+    def _read_after(self) -> after_step.After:
+        """The reads that follow a compiled step, as one query (see :mod:`.after`)."""
+        preds: set[str] = set()
+        classes: set[str] = set()
+        for kind, key in self._heads:
+            (preds if kind == "p" else classes).add(key)
+        lateral = self.store.supports_lateral
+        checks = [self._check_text(c, j, lateral) for c, j in
+                  self.check_triggers.evaluations(preds, classes, range(len(self.checks)), self.state.present)]
+        negated = [f"{{\n  {rule.where()}\n}}" for rule in self.negated]
+        text = after_step.query(negated, checks, sorted(self.ruleset.entailed_predicates, key=lambda t: t.value),
+                                self._settle)
+        return after_step.read(self.store.query(text, prefixes=PREFIXES))
 
     def _program(self, sig) -> StepProgram | str:
         """The compiled program of a signature, or why there is none (cached until the next full run)."""
@@ -436,8 +462,10 @@ class IncrementalReasoner:
         return preds, classes
 
     def _clear_scratch(self) -> None:
-        self.store.update(" ; ".join(f"DROP SILENT GRAPH {g}"
-                                     for g in (*SCRATCH, *PROGRAM_SCRATCH, DELTA, NEW_INFERRED, NEW_AUX)))
+        """Drop the scratch graphs (with what the queue holds: one request)."""
+        self.requests.defer(" ; ".join(f"DROP SILENT GRAPH {g}"
+                                       for g in (*SCRATCH, *PROGRAM_SCRATCH, DELTA, NEW_INFERRED, NEW_AUX)))
+        self.requests.flush()
 
 
 __all__ = ["IncrementalReasoner", "MaintenanceState", "DEFAULT_MAX_CHANGE_SHARE", "MODES", "can_prove", "check_mode",
