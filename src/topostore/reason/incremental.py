@@ -100,6 +100,9 @@ ENTAILED_TYPE = NamedNode(ENTAILED_PREFIX + TYPE.value)
 #: Default share of the asserted graph above which a change is recomputed from scratch.
 DEFAULT_MAX_CHANGE_SHARE = 0.10
 
+#: Compiled steps kept (one per kind of change seen since the last full run, oldest dropped first).
+MAX_PROGRAMS = 256
+
 #: The reasoning modes: incremental when sound and the change is small, incremental whenever sound, full.
 MODES = ("auto", "incremental", "full")
 
@@ -380,6 +383,8 @@ class IncrementalReasoner:
                 program = self.compiler.compile(sig, self.state.present)
             except Refused as why:
                 program = str(why)
+            if len(self._programs) >= MAX_PROGRAMS:  # the oldest kind of change is compiled again if it returns
+                del self._programs[next(iter(self._programs))]
             self._programs[sig] = program
         return program
 
