@@ -51,11 +51,13 @@ patterns, and keys whose derivations go to different graphs.
 
 from __future__ import annotations
 
+import re
 from collections.abc import Callable, Collection
 from dataclasses import dataclass, field, replace
 
 from pyoxigraph import NamedNode
 
+from ..compile.condition import TEST
 from ..compile.rule import ReadKey, Rule
 from ..rdf.vocab import ASSERTED, TYPE
 from . import delta_texts as texts
@@ -71,6 +73,8 @@ PROGRAM_SCRATCH = (texts.KEEP, texts.FLIP_LOST, UNSETTLED, *COMPONENT_SCRATCH)
 ALWAYS, SEEDS = ("always",), ("seeds",)
 
 _TYPE = str(TYPE)
+#: ``!sameTerm(?a, ?b)`` at the start of a test or after ``&&``
+_APART = re.compile(r"(?:^|&&)\s*!sameTerm\((\?\w+), (\?\w+)\)")
 
 
 @dataclass(frozen=True)
@@ -153,6 +157,7 @@ class StepCompiler:
         self.order = order
         self.lateral = lateral
         self._flat: dict[int, Rule] = {}
+        self._apart: dict[int, set[frozenset]] = {}
         self.filter_vars = {i: flip.filter_variables(rules[i]) for i in self.monotone}
 
     def compile(self, sig: Signature, present: Present) -> StepProgram:
@@ -256,6 +261,15 @@ class StepCompiler:
             self._flat[i] = rule
         return rule
 
+    def apart(self, i: int) -> set[frozenset]:
+        """Pairs of variables of rule ``i`` that a ``FILTER(!sameTerm(?a, ?b) ...)`` keeps apart (the
+        compiler's own form of a distinctness test, a conjunct of a test)."""
+        found = self._apart.get(i)
+        if found is None:
+            found = self._apart[i] = {frozenset(m.groups()) for c in self.rules[i].conditions if c.kind == TEST
+                                      for m in _APART.finditer(c.expression)}
+        return found
+
     def compared_atoms(self, i: int, clean: frozenset, changed: set) -> tuple[int, ...] | None:
         """The body atoms of rule ``i`` on cleanly replaced values, when every changed atom of the rule
         is one and the rule's filters are plain (else None): see :meth:`.flips.Flips._flip_atoms`."""
@@ -340,6 +354,19 @@ class _Emitter:
             raise Refused(f"facts of {key[1]} are derived into different graphs")
         return graphs.pop()
 
+    def paired(self, i: int, j: int) -> bool:
+        """Whether atom ``j`` of rule ``i`` only ever matches beside a second, different value of its
+        subject: another atom on the same predicate and subject, whose object a ``!sameTerm`` test
+        keeps apart (a cardinality's pair of fillers).  On a cleanly replaced predicate every changed
+        subject has one value before and one after, so such an atom cannot match a change."""
+        rule = self.rules[i]
+        atom = rule.body[j]
+        if atom.p not in self.clean or not atom.o.startswith("?"):
+            return False
+        apart = self.c.apart(i)
+        return any(k != j and other.p == atom.p and other.s == atom.s and frozenset((atom.o, other.o)) in apart
+                   for k, other in enumerate(rule.body))
+
     def handled(self, i: int) -> tuple[int, ...] | None:
         """Rule ``i``'s changed atoms when all are flips (see :meth:`StepCompiler.compared_atoms`)."""
         return self.c.compared_atoms(i, self.clean, self.minus | self.plus)
@@ -350,7 +377,7 @@ class _Emitter:
         for i in writers:
             handled = set(self.handled(i) or ())
             for j, atom in enumerate(self.rules[i].body):
-                if atom.read_key() in self.minus and j not in handled:
+                if atom.read_key() in self.minus and j not in handled and not self.paired(i, j):
                     self.ops.append((("minus", atom.read_key()), self.candidates(i, j)))
                     emitted = True
         return emitted
@@ -388,7 +415,7 @@ class _Emitter:
         for i in writers:
             handled = set(self.handled(i) or ())
             for j, atom in enumerate(self.rules[i].body):
-                if atom.read_key() in self.plus and j not in handled:
+                if atom.read_key() in self.plus and j not in handled and not self.paired(i, j):
                     self.ops.append((("plus", atom.read_key()),
                                      texts.additions(self.rules[i], j, NEW_FACTS, (graph, NEW_FACTS), self.c.lateral)))
                     emitted = True
