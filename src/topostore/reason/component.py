@@ -124,7 +124,7 @@ def run_component(run, comp: Component) -> None:
     for tag, text in comp.seeds:
         if tag[0] == "flip":
             tag, text = tag[1], run.flip_text(tag[2], tag[3], text)
-        if tag[0] != "minus" or tag[1] in run.minus:
+        if text and (tag[0] != "minus" or tag[1] in run.minus):
             run.queue.append(text)
     run.flush()
     while True:  # over-delete, round by round
@@ -179,6 +179,7 @@ def whole_ops(comp: Component, flip_text, rounds: int = WHOLE_ROUNDS) -> list[st
     ops = [" ; ".join(f"DROP SILENT GRAPH {g}" for g in COMPONENT_SCRATCH)]
     for tag, text in comp.seeds:
         ops.append(flip_text(tag[2], tag[3], text) if tag[0] == "flip" else text)
+    ops = [op for op in ops if op]
     for n in range(rounds):
         ops += [op for key in comp.keys for op in comp.confirm[key]]
         ops.append(f"DROP SILENT GRAPH {CANDIDATES}")

@@ -116,6 +116,21 @@ def clean_replacements(added: Iterable[Triple], removed: Iterable[Triple], value
     return {p: pairs for p, pairs in clean.items() if p not in dirty}
 
 
+_KIND_TEST = re.compile(r"^\s*!?\s*is(?:Literal|IRI|URI|Blank)\(\?\w+\)\s*$")
+
+
+def kind_tests_only(rule: Rule, atoms: Iterable[int]) -> bool:
+    """Whether the conditions on the values of ``atoms`` only test their kind (``isLiteral``, ``isIRI``,
+    ``isBlank``, negated or not), as the filter an implied range atom leaves behind."""
+    names = {rule.body[j].o for j in atoms}
+    return all(c.kind == TEST and _KIND_TEST.match(c.expression) for c in rule.conditions if c.variables & names)
+
+
+def same_kind(r: Replacement) -> bool:
+    """Whether a replacement keeps the value's kind (IRI, blank node or literal): a kind test cannot flip."""
+    return type(r.old.object) is type(r.new.object)
+
+
 def flip_query(branches: Iterable[str]) -> str:
     """One SELECT over the branches of several rules: head ``?h0 ?h1 ?h2``, ``?rule``, ``?ok__n`` (true: gained)."""
     return "SELECT DISTINCT ?rule ?h0 ?h1 ?h2 ?ok__n WHERE {\n" + "\nUNION\n".join(branches) + "\n}"
@@ -226,5 +241,4 @@ def gained(row) -> bool:
 
 
 __all__ = ["CHANGE_OLD", "Replacement", "clean_replacements", "compared_only", "filter_variables", "flip_branches",
-           "flip_query",
-           "gained", "head_triple", "plain_filters"]
+           "flip_query", "gained", "head_triple", "kind_tests_only", "plain_filters", "same_kind"]

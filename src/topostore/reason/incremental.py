@@ -88,7 +88,7 @@ from .entailed import publish_entailed, refresh_entailed
 from .flips import Flips
 from .materialize import Materializer, ReasonStats
 from .plan import is_small, plan_where
-from .program import PROGRAM_SCRATCH, Refused, StepCompiler, StepProgram, signature
+from .program import PROGRAM_SCRATCH, Refused, StepCompiler, StepProgram, pair_atom, signature
 from .requests import RequestQueue
 from .scratch import ADDED, FLIP_GAINED, NEW_FACTS, OVERDELETED, REMOVED, SCRATCH
 from .staged import StagedRun
@@ -172,6 +172,10 @@ class IncrementalReasoner:
         #: the last compiled step's signature, whether it had unrolled rounds, and the keys it may change
         self._last_sig = None
         self._settle = False
+        #: the clean replacements of the REASON under way, by predicate (see :func:`.flip.clean_replacements`)
+        self._clean: dict = {}
+        #: the cleanly replaced predicates no rule derives, when the compiled step ran (else empty)
+        self._step_clean: frozenset = frozenset()
         self._heads: set = set()
         #: SPARQL texts of the checks made once (the phases' texts live in the request queue)
         self._texts: dict[tuple, str] = {}
@@ -192,6 +196,7 @@ class IncrementalReasoner:
         if why:
             return self.full(why, profile)
         start = time.perf_counter()
+        self._step_clean = frozenset()
         stats = ReasonStats(mode="incremental", reason=self._incremental_reason(added, removed))
         self.requests.profile = profile
         materializer = Materializer(self.store, self.ruleset, profile=profile, triggers=self.triggers)
@@ -320,6 +325,7 @@ class IncrementalReasoner:
         now = self.store.objects_many(list(dict.fromkeys(replaced)), ASSERTED) if replaced else {}
         clean = flip.clean_replacements(added, removed, lambda s, p: now.get((s, p), ()))
         sig = signature(key_census(added), key_census(removed), clean)
+        self._clean = {p: pairs for p, pairs in clean.items()}
         program = self._program(sig)
         if isinstance(program, str):
             stats.program = f"general: {program}"
@@ -342,6 +348,7 @@ class IncrementalReasoner:
             stats.per_rule["program"] = time.perf_counter() - start
         stats.flipped = program.flips
         stats.program = "compiled"
+        self._step_clean = program.clean
         #: the keys the after-step reads ask about: the asserted changes' and what the program may add
         self._heads = set(program.heads) | set(sig.added)
         for kind, key in program.heads:
@@ -349,7 +356,12 @@ class IncrementalReasoner:
         return True
 
     def _flip_text(self, i: int, order: tuple[int, ...], text: str) -> str:
-        """A compiled flip's text for this run: narrowed to the values in a window where one applies."""
+        """A compiled flip's text for this run: "" when no value changed kind and the rule only tests
+        kinds (:func:`.flip.kind_tests_only`), else narrowed to the values in a window where one applies."""
+        rule = self.rules[i]
+        if flip.kind_tests_only(rule, order) and all(
+                flip.same_kind(r) for j in order for r in self._clean.get(rule.body[j].p, ())):
+            return ""
         windows = self.flips._windows(i, order)
         if not windows:
             return text
@@ -363,7 +375,8 @@ class IncrementalReasoner:
             (preds if kind == "p" else classes).add(key)
         lateral = self.store.supports_lateral
         checks = [self._check_text(c, j, lateral) for c, j in
-                  self.check_triggers.evaluations(preds, classes, range(len(self.checks)), self.state.present)]
+                  self.check_triggers.evaluations(preds, classes, range(len(self.checks)), self.state.present)
+                  if not self._cannot_match(c, j)]
         negated = [f"{{\n  {rule.where()}\n}}" for rule in self.negated]
         text = after_step.query(negated, checks, sorted(self.ruleset.entailed_predicates, key=lambda t: t.value),
                                 self._settle)
@@ -442,6 +455,8 @@ class IncrementalReasoner:
         branches = []
         for c, j in self.check_triggers.evaluations(preds, classes, range(len(self.checks)),
                                                     self.state.present):
+            if self._cannot_match(c, j):
+                continue
             lateral = j is not None and is_small(counts, self.checks[c].body[j].read_key()) \
                 and self.store.supports_lateral
             branches.append(self._check_text(c, j, lateral))
@@ -450,6 +465,11 @@ class IncrementalReasoner:
         head = f"FROM {ASSERTED} FROM {INFERRED} FROM {AUX} FROM NAMED {AUX} FROM NAMED {NEW_FACTS}"
         text = f"ASK {head} WHERE {{\n" + "\nUNION\n".join(branches) + "\n}"
         return bool(self.store.query(text, prefixes=PREFIXES))
+
+    def _cannot_match(self, c: int, j: int | None) -> bool:
+        """Whether check ``c`` with atom ``j`` on the new facts cannot match after the compiled step: a
+        pair of values of one subject on a cleanly replaced predicate (:func:`.program.pair_atom`)."""
+        return j is not None and self.checks[c].body[j].p in self._step_clean and pair_atom(self.checks[c], j)
 
     def _check_text(self, c: int, j: int | None, lateral: bool) -> str:
         key = ("check", c, j, lateral)

@@ -58,6 +58,7 @@ from dataclasses import dataclass, field, replace
 from pyoxigraph import NamedNode
 
 from ..compile.condition import TEST
+from ..compile.owl_restrictions import term_before
 from ..compile.rule import ReadKey, Rule
 from ..rdf.vocab import ASSERTED, TYPE
 from . import delta_texts as texts
@@ -102,6 +103,8 @@ class StepProgram:
     flipped: frozenset = field(default_factory=frozenset)
     #: rules evaluated as flips (replaced values only compared)
     flips: int = 0
+    #: the cleanly replaced predicates no rule derives (see :meth:`_Emitter.paired`)
+    clean: frozenset = field(default_factory=frozenset)
 
     @property
     def whole(self) -> bool:
@@ -119,11 +122,38 @@ class StepProgram:
                 ops += whole_ops(tag[1], flip_text)
             elif text:
                 ops.append(flip_text(tag[2], tag[3], text) if tag[0] == "flip" else text)
-        return " ;\n".join(ops)
+        return " ;\n".join(op for op in ops if op)
 
     @property
     def operations(self) -> int:
         return sum(1 for _, text in self.ops if text)
+
+
+def pair_atom(rule: Rule, j: int) -> bool:
+    """Whether atom ``j`` only ever matches beside a second, different value of its subject: another
+    atom on the same predicate and subject whose object a test keeps apart from it (a cardinality's
+    pair of fillers, in the compiler's two forms of that test: ``!sameTerm(?a, ?b)`` as a conjunct,
+    or the strict term order :func:`~..compile.owl_restrictions.term_before`).
+
+    Where every changed subject of the predicate has exactly one value before and after the change
+    (a clean replacement, see :func:`.flip.clean_replacements`), such an atom cannot match a change.
+    """
+    atom = rule.body[j]
+    if not atom.o.startswith("?"):
+        return False
+    others = [o.o for k, o in enumerate(rule.body) if k != j and o.p == atom.p and o.s == atom.s and o.o.startswith("?")]
+    return any(_apart(rule, atom.o, other) for other in others)
+
+
+def _apart(rule: Rule, a: str, b: str) -> bool:
+    for c in rule.conditions:
+        if c.kind != TEST or a not in c.variables or b not in c.variables:
+            continue
+        if any({x, y} == {a, b} for x, y in _APART.findall(c.expression)):
+            return True
+        if c.expression in (term_before(a, b), term_before(b, a)):
+            return True
+    return False
 
 
 class Refused(Exception):
@@ -157,7 +187,6 @@ class StepCompiler:
         self.order = order
         self.lateral = lateral
         self._flat: dict[int, Rule] = {}
-        self._apart: dict[int, set[frozenset]] = {}
         self.filter_vars = {i: flip.filter_variables(rules[i]) for i in self.monotone}
 
     def compile(self, sig: Signature, present: Present) -> StepProgram:
@@ -261,15 +290,6 @@ class StepCompiler:
             self._flat[i] = rule
         return rule
 
-    def apart(self, i: int) -> set[frozenset]:
-        """Pairs of variables of rule ``i`` that a ``FILTER(!sameTerm(?a, ?b) ...)`` keeps apart (the
-        compiler's own form of a distinctness test, a conjunct of a test)."""
-        found = self._apart.get(i)
-        if found is None:
-            found = self._apart[i] = {frozenset(m.groups()) for c in self.rules[i].conditions if c.kind == TEST
-                                      for m in _APART.finditer(c.expression)}
-        return found
-
     def compared_atoms(self, i: int, clean: frozenset, changed: set) -> tuple[int, ...] | None:
         """The body atoms of rule ``i`` on cleanly replaced values, when every changed atom of the rule
         is one and the rule's filters are plain (else None): see :meth:`.flips.Flips._flip_atoms`."""
@@ -318,7 +338,7 @@ class _Emitter:
             if writers or (item in self.sig.removed and self.writers.get(item)):
                 self._plain(item, writers)
         return StepProgram(self.ops, frozenset(absent), frozenset(self.graphs), frozenset(self.flipped),
-                           self.flip_rules)
+                           self.flip_rules, self.clean)
 
     def _plain(self, key: ReadKey, writers: list[int]) -> None:
         """A key no rule derives from itself: candidates, flips, recheck, additions."""
@@ -355,17 +375,9 @@ class _Emitter:
         return graphs.pop()
 
     def paired(self, i: int, j: int) -> bool:
-        """Whether atom ``j`` of rule ``i`` only ever matches beside a second, different value of its
-        subject: another atom on the same predicate and subject, whose object a ``!sameTerm`` test
-        keeps apart (a cardinality's pair of fillers).  On a cleanly replaced predicate every changed
-        subject has one value before and one after, so such an atom cannot match a change."""
-        rule = self.rules[i]
-        atom = rule.body[j]
-        if atom.p not in self.clean or not atom.o.startswith("?"):
-            return False
-        apart = self.c.apart(i)
-        return any(k != j and other.p == atom.p and other.s == atom.s and frozenset((atom.o, other.o)) in apart
-                   for k, other in enumerate(rule.body))
+        """Whether atom ``j`` of rule ``i`` is on a cleanly replaced predicate and only matches beside a
+        second value of its subject (:func:`pair_atom`): it cannot match a change."""
+        return self.rules[i].body[j].p in self.clean and pair_atom(self.rules[i], j)
 
     def handled(self, i: int) -> tuple[int, ...] | None:
         """Rule ``i``'s changed atoms when all are flips (see :meth:`StepCompiler.compared_atoms`)."""
@@ -422,4 +434,4 @@ class _Emitter:
         return emitted
 
 
-__all__ = ["ALWAYS", "PROGRAM_SCRATCH", "Refused", "SEEDS", "Signature", "StepCompiler", "StepProgram", "signature"]
+__all__ = ["ALWAYS", "PROGRAM_SCRATCH", "Refused", "SEEDS", "Signature", "StepCompiler", "StepProgram", "pair_atom", "signature"]

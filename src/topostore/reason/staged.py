@@ -44,6 +44,8 @@ class StagedRun:
         for tag, text in self.program.ops:
             if tag[0] == "flip":
                 tag, text = tag[1], self.flip_text(tag[2], tag[3], text)
+                if not text:
+                    continue  # nothing can flip this time
             kind = tag[0]
             if kind in ("always", "seeds") or (kind == "minus" and tag[1] in self.minus) \
                     or (kind == "plus" and tag[1] in self.plus) or (kind == "recheck" and seeded):
