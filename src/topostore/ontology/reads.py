@@ -10,7 +10,7 @@ from __future__ import annotations
 from collections.abc import Hashable
 from typing import TYPE_CHECKING
 
-from pyoxigraph import Literal, NamedNode, Triple
+from pyoxigraph import Literal, NamedNode, Quad
 
 from ..errors import QueryError
 from ..rdf.terms import Term, value_key
@@ -36,8 +36,8 @@ class OntologyQueries:
 
     def _objects(self, s: Term, p: NamedNode) -> list[Term]:
         seen: dict = {}
-        for g in self.onto.visible_graphs():
-            for o in self.onto.store.objects(s, p, g):
+        for objects in self.onto.store.objects_in(s, p, self.onto.visible_graphs()).values():
+            for o in objects:
                 shown = self.onto.store.original_literal(ASSERTED, s, p, o) if isinstance(o, Literal) else o
                 seen.setdefault(value_key(o), shown)
         return list(seen.values())
@@ -79,11 +79,10 @@ class OntologyQueries:
     def _instance_flags(self, pairs: list[tuple[Term, NamedNode]]) -> list[bool]:
         """Whether each (individual, class) pair is one of :meth:`instances` (what a class view re-decides),
         in one batch of look-ups per visible graph."""
-        flags = [False] * len(pairs)
-        triples = [Triple(s, TYPE, c) for s, c in pairs]
-        for g in self.onto.visible_graphs():
-            flags = [f or found for f, found in zip(flags, self.onto.store.contains_each(triples, g))]
-        return [f and _shown(s) for f, (s, _) in zip(flags, pairs)]
+        graphs = self.onto.visible_graphs()
+        found = self.onto.store.contains_quads([Quad(s, TYPE, c, g) for s, c in pairs for g in graphs])
+        n = len(graphs)
+        return [any(found[i * n:(i + 1) * n]) and _shown(s) for i, (s, _) in enumerate(pairs)]
 
     def object_values(self, prop: str | NamedNode, individual: str | NamedNode, names: bool = True) -> list:
         vals = [o for o in self._objects(self.onto.iri(individual), self.onto.iri(prop)) if isinstance(o, NamedNode)]

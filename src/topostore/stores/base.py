@@ -27,6 +27,7 @@ from ..rdf.skolem import fresh_skolem, skolem, skolemize, unskolem, unskolemize
 from ..rdf.syntax import FORMAT_NAMES, PROGRESS_EVERY, guess_format, parse_triples, serialize
 from ..rdf.terms import Term, value_key
 from ..rdf.vocab import FIRST, NIL, REST, SKOLEM_PREFIX, TYPE
+from .listings import Listings
 from .literal_forms import FORMS, LiteralForms
 from .meta import META, PersistedState
 
@@ -102,6 +103,10 @@ class Store:
         self._depth = 0
         #: SPARQL extension functions by IRI (the rule compiler's, see :meth:`use_functions`)
         self.functions: dict[NamedNode, Callable[..., Term | None]] = {}
+        #: values of (subject, predicate, graph) this process knows without asking (stores reached over HTTP)
+        self.listings: Listings | None = Listings(self._key) if self.round_trips else None
+        #: called with the writes a store that defers them could not apply (see :meth:`_writes_lost`)
+        self.on_lost: list[Callable[[list[tuple[list[Quad], list[Quad]]]], None]] = []
 
     def use_functions(self, functions: Mapping[NamedNode, Callable[..., Term | None]]) -> None:
         """Let SPARQL run on this store call ``functions`` (IRI -> Python function of RDF terms).
@@ -149,6 +154,46 @@ class Store:
     def _commit(self, adds: list[Quad], removes: list[Quad]) -> None:
         """Apply removals then additions, all or nothing."""
         raise NotImplementedError
+
+    def _write(self, adds: list[Quad], removes: list[Quad], undo: Callable[[], None] | None = None) -> None:
+        """Apply a data change (removals then additions) through :meth:`_commit`.
+
+        A store that defers writes (:class:`~topostore.stores.remote.RemoteStore`) queues it instead and
+        calls ``undo`` (what the caller recorded in memory for it) should the server refuse it later.
+        """
+        self._commit(adds, removes)
+        self._written(adds, removes)
+
+    def _written(self, adds: list[Quad], removes: list[Quad]) -> None:
+        """A change is committed as far as this process is concerned: the listings follow it."""
+        if self.listings is not None:
+            self.listings.committed(adds, removes, self._stored_quad)
+
+    def _stored_quad(self, q: Quad) -> Quad:
+        if not isinstance(q.object, Literal):
+            return q
+        t = self.forms.stored_form(Triple(q.subject, q.predicate, q.object))
+        return Quad(t.subject, t.predicate, t.object, q.graph_name)
+
+    def _writes_lost(self, lost: list[tuple[list[Quad], list[Quad]]]) -> None:
+        """Deferred writes (oldest first) the server did not apply: forget what this process believed of
+        the committed state, and tell the owners (the ontology's ledger) so that they undo them too."""
+        if self.listings is not None:
+            self.listings.forget()
+        self._known = {}
+        self.persisted.forget()
+        for listener in list(self.on_lost):
+            listener(lost)
+
+    @contextmanager
+    def keeping(self, graphs: Iterable[NamedNode]) -> Iterator[None]:
+        """SPARQL updates sent inside the block leave ``graphs`` unchanged (what this process knows of
+        them stays valid; see :mod:`.listings`).  The reasoner writes only its own graphs."""
+        if self.listings is None:
+            yield
+            return
+        with self.listings.keeping(graphs):
+            yield
 
     def _run_update(self, text: str, prefixes: dict[str, str] | None) -> None:
         raise NotImplementedError
@@ -216,10 +261,11 @@ class Store:
             return
         forms_add, forms_remove = self.forms.record(adds, removes)
         meta_add, meta_remove = self.persisted.quads(meta)
+        undo = lambda: self.forms.record(removes, adds, undo=True)  # noqa: E731
         try:
-            self._commit(adds + forms_add + meta_add, removes + forms_remove + meta_remove)
+            self._write(adds + forms_add + meta_add, removes + forms_remove + meta_remove, undo)
         except BaseException:
-            self.forms.record(removes, adds, undo=True)
+            undo()
             raise
         self.persisted.committed(meta)
 
@@ -235,8 +281,15 @@ class Store:
         pending, known = self._pending or {}, self._known
         keys = keys if keys is not None else [self._key(q) for q in quads]
         unknown = [(q, k) for q, k in zip(quads, keys) if k not in pending and k not in known]
+        listed: dict = {}
+        if self.listings is not None and unknown:
+            for q, k in unknown:
+                if (present := self.listings.presence(q, k)) is not None:
+                    listed[k] = present
+            unknown = [(q, k) for q, k in unknown if k not in listed]
         found = dict(zip((k for _, k in unknown), self._has_many([q for q, _ in unknown]), strict=True)) \
             if unknown else {}
+        found.update(listed)
         if self._pending is not None:
             known.update(found)
         return [pending[k][1] if k in pending else known[k] if k in known else found[k] for k in keys]
@@ -264,7 +317,7 @@ class Store:
 
     def add_scratch(self, triples: Iterable[Triple], graph: NamedNode) -> None:
         """Bulk-add to a reasoner's scratch graph (no literal forms recorded, no counting)."""
-        self._commit([Quad(t.subject, t.predicate, t.object, graph) for t in triples], [])
+        self._write([Quad(t.subject, t.predicate, t.object, graph) for t in triples], [])
 
     def remove(self, triples: Iterable[Triple], graph: NamedNode) -> int:
         quads = list(dict.fromkeys(Quad(t.subject, t.predicate, t.object, graph) for t in triples))
@@ -280,7 +333,7 @@ class Store:
         graphs = tuple(graphs)
         quads = [Quad(t.subject, t.predicate, t.object, g) for t in triples for g in graphs]
         if quads:
-            self._commit([], quads)
+            self._write([], quads)
 
     def contains(self, t: Triple, graph: NamedNode) -> bool:
         return self._present([Quad(t.subject, t.predicate, t.object, graph)])[0]
@@ -296,6 +349,9 @@ class Store:
     def triples(
         self, s: Term | None = None, p: NamedNode | None = None, o: Term | None = None, graph: NamedNode | None = None
     ) -> Iterator[Triple]:
+        if self.listings is not None and s is not None and p is not None and o is None and graph is not None:
+            yield from self._listed(s, p, graph)
+            return
         pending = self._pending
         if pending is None:
             for q in self._match(s, p, o, graph):
@@ -310,6 +366,26 @@ class Store:
             if present and _matches(q, s, p, o, graph):
                 yield Triple(q.subject, q.predicate, q.object)
 
+    def _listed(self, s: Term, p: NamedNode, graph: NamedNode) -> list[Triple]:
+        """:meth:`triples` of (s, p, ?, graph) from its listing (read once, then kept by own writes)."""
+        quads = self.listings.get(s, p, graph)
+        if quads is None:
+            quads = list(self._match(s, p, None, graph))
+            self.listings.learn(s, p, graph, quads)
+        pending = self._pending
+        if pending is None:
+            return [Triple(q.subject, q.predicate, q.object) for q in quads]
+        out = []
+        for q in quads:
+            key = self._key(q)
+            self._known[key] = True
+            entry = pending.get(key)
+            if entry is None or entry[1]:
+                out.append(Triple(q.subject, q.predicate, q.object))
+        out += [Triple(q.subject, q.predicate, q.object) for q, present in list(pending.values())
+                if present and _matches(q, s, p, None, graph)]
+        return out
+
     def objects(self, s: Term, p: NamedNode, graph: NamedNode) -> list[Term]:
         return [t.object for t in self.triples(s, p, None, graph)]
 
@@ -318,10 +394,44 @@ class Store:
         found: dict[tuple, list[Term]] = {pair: [] for pair in pairs}
         if not self.round_trips or not pairs:
             return {pair: self.objects(*pair, graph) for pair in found}
-        rows = " ".join(f"({s} {p})" for s, p in found)
-        for r in self.query(f"SELECT ?s ?p ?o WHERE {{ VALUES (?s ?p) {{ {rows} }} ?s ?p ?o }}", graphs=[graph]):
-            found[(r["s"], r["p"])].append(r["o"])
+        self._flush_open()
+        listings = self.listings
+        missing = [pair for pair in found if listings is None or listings.get(*pair, graph) is None]
+        if missing:
+            rows = " ".join(f"({s} {p})" for s, p in missing)
+            for r in self._run_query(f"SELECT ?s ?p ?o WHERE {{ VALUES (?s ?p) {{ {rows} }} ?s ?p ?o }}", [graph]):
+                found[(r["s"], r["p"])].append(r["o"])
+        for pair in found:
+            if pair in missing:
+                if listings is not None:
+                    listings.learn(*pair, graph, (Quad(*pair, o, graph) for o in found[pair]))
+            else:
+                found[pair] = [q.object for q in listings.get(*pair, graph)]
         return found
+
+    def objects_in(self, s: Term, p: NamedNode, graphs: list[NamedNode]) -> dict[NamedNode, list[Term]]:
+        """:meth:`objects` of one (subject, predicate) in each of ``graphs``: where reads are round trips,
+        from the listings this process keeps and one query for the graphs it does not know (then kept)."""
+        listings = self.listings
+        if listings is None or self._pending is not None:
+            return {g: self.objects(s, p, g) for g in graphs}
+        found: dict[NamedNode, list[Term]] = {}
+        for g in graphs:
+            quads = listings.get(s, p, g)
+            if quads is not None:
+                found[g] = [q.object for q in quads]
+        missing = [g for g in graphs if g not in found]
+        if len(missing) == 1:
+            found[missing[0]] = self.objects(s, p, missing[0])
+        elif missing:
+            rows: dict[NamedNode, list[Quad]] = {g: [] for g in missing}
+            for r in self.query(f"SELECT ?g ?o WHERE {{ GRAPH ?g {{ {s} {p} ?o }} }}", graphs=missing):
+                g = self._graph_in(r["g"])
+                rows[g].append(Quad(s, p, r["o"], g))
+            for g, quads in rows.items():
+                listings.learn(s, p, g, quads)
+                found[g] = [q.object for q in quads]
+        return {g: found[g] for g in graphs}
 
     def subjects(self, p: NamedNode, o: Term, graph: NamedNode) -> list[Term]:
         return [t.subject for t in self.triples(None, p, o, graph)]
@@ -382,6 +492,8 @@ class Store:
 
     def clear(self, graph: NamedNode) -> None:
         self._flush_open()
+        if self.listings is not None:
+            self.listings.forget(graph)
         self._drop(graph)
         self.forms.forget(graph)
 
@@ -393,6 +505,8 @@ class Store:
 
     def update(self, text: str, prefixes: dict[str, str] | None = None) -> None:
         self._flush_open()
+        if self.listings is not None:
+            self.listings.updated()
         self._run_update(text, prefixes)
 
     def query(self, text: str, graphs: list[NamedNode] | None = None, named: list[NamedNode] | None = None,

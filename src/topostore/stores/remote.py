@@ -3,9 +3,19 @@
 Several references share one server: each keeps its graphs under its own
 namespace (``urn:topostore:graph:asserted`` becomes
 ``urn:topostore:ref:<name>:graph:asserted`` on the wire), so the engine's
-fixed graph names need no change.  Every write of a manipulation is one
-update request (a transaction on the server); every reasoning round is one
-update request per rule evaluation, as in memory.
+fixed graph names need no change.
+
+Every request is a round trip, so writes wait: the data change of a manipulation
+(``DELETE DATA``/``INSERT DATA``) is queued and goes with the next request, joined
+with ``;`` to the next update (one request, one transaction on the server), or sent
+before the next read so that the read sees it.  A queued change the server then
+refuses is undone in this process as well (literal forms, persisted state, what
+the store knew, and through :attr:`~topostore.stores.base.Store.on_lost` the
+ontology's change ledger) and reported as :class:`~topostore.errors.WritesLostError`;
+an update refused on its own does not take the queued changes with it (they are
+sent again alone).  The price: a change is on the server only once the next
+request has gone, so a process killed in between loses the changes since its last
+request (``defer_writes=False`` sends every write at once).
 
 The server has none of Oxigraph's extensions, so ``supports_lateral`` and
 ``custom_functions`` are false: the engine then plans flat joins, and a rule
@@ -22,18 +32,21 @@ from __future__ import annotations
 import os
 import re
 import urllib.parse
-from collections.abc import Iterator
+from collections.abc import Callable, Collection, Iterator
+from dataclasses import dataclass
 
 import httpx
 import pyoxigraph as ox
 from pyoxigraph import NamedNode, Quad, QueryResultsFormat, RdfFormat, Triple
 
-from ..errors import QueryError, StoreError
+from ..errors import QueryError, StoreError, WritesLostError
 from ..rdf.vocab import INTERNAL
 from .base import Store
 from .oxigraph import data_update
 
 GRAPH_PREFIX = INTERNAL + "graph:"
+#: an update that declares its own prefixes or base (comments may come first)
+_PROLOGUE = re.compile(r"(?:\s|#[^\n]*\n)*(?:PREFIX|BASE)\b", re.IGNORECASE)
 _ACCEPT = "application/sparql-results+xml, application/n-triples;q=0.9, text/turtle;q=0.8"
 _TIMEOUT = httpx.Timeout(300.0, connect=10.0)
 #: Rows per presence check; keeps request bodies small.
@@ -56,6 +69,24 @@ def credentials() -> httpx.Auth | dict[str, str] | None:
     return None
 
 
+@dataclass
+class _Queued:
+    """A data change accepted by the store and not yet sent: its update text (graph names on the wire),
+    its quads, and how to undo what was recorded in memory for it."""
+
+    text: str
+    adds: list[Quad]
+    removes: list[Quad]
+    undo: Callable[[], None] | None
+
+    def touches(self, graphs: Collection[NamedNode] | None, patterns: Collection[tuple] | None) -> bool:
+        """Whether a read of ``graphs`` (None: any) or of (subject, predicate, graph) ``patterns`` sees it."""
+        if graphs is None and patterns is None:
+            return True
+        return any(q.graph_name in graphs if patterns is None else (q.subject, q.predicate, q.graph_name) in patterns
+                   for q in (*self.adds, *self.removes))
+
+
 class RemoteStore(Store):
     """Graphs of one reference on a SPARQL 1.1 server, reached over HTTP."""
 
@@ -65,8 +96,11 @@ class RemoteStore(Store):
     round_trips = True
 
     def __init__(self, url: str, *, reference: str = "", query_url: str | None = None,
-                 update_url: str | None = None) -> None:
+                 update_url: str | None = None, defer_writes: bool = True) -> None:
         super().__init__()
+        #: data changes wait for the next request (see the module docstring)
+        self.defer_writes = defer_writes
+        self._queue: list[_Queued] = []
         base = url.rstrip("/")
         single = base.endswith("/sparql")  # Virtuoso and others serve both on one path
         self.url = base
@@ -105,10 +139,61 @@ class RemoteStore(Store):
         return answer
 
     def _run_update(self, text: str, prefixes: dict[str, str] | None) -> None:
-        self._post(self.update_url, {"update": self._out(_with_prefixes(text, prefixes))})
+        if _PROLOGUE.match(text):  # a prologue starts a request (Oxigraph takes none after ';'): queue first
+            self.send_writes()
+        self._send(self._out(text), prefixes)
+
+    def _send(self, text: str = "", prefixes: dict[str, str] | None = None) -> None:
+        """One update request: the queued data changes, then ``text`` (either may be empty); the
+        prefixes are declared first (the queued changes name full IRIs only)."""
+        queued, self._queue = self._queue, []
+        body = " ;\n".join([q.text for q in queued] + ([text] if text else []))
+        if not body:
+            return
+        body = _with_prefixes(body, prefixes)
+        try:
+            self._post(self.update_url, {"update": body})
+        except StoreError as exc:  # no answer: the queued changes may or may not be there
+            if queued:
+                self._lose(queued, f"the server did not answer, so whether it applied them is unknown: {exc}")
+            raise
+        except QueryError as exc:  # refused: nothing of the request was applied
+            if not queued:
+                raise
+            if text:  # the update alone may be at fault: the queued changes go again without it
+                self._queue = queued
+                self.send_writes()
+                raise
+            self._lose(queued, f"the server refused them: {exc}")
+
+    def send_writes(self, graphs: Collection[NamedNode] | None = None,
+                    patterns: Collection[tuple] | None = None) -> None:
+        """Send the queued data changes now: all of them, when one writes ``graphs`` or one of the
+        (subject, predicate, graph) ``patterns`` (neither given: always).
+
+        A read sends them first when it may see one (a query's dataset, a look-up's patterns; the
+        persisted state no query reads waits for the next update); so does :meth:`close`.
+        """
+        if self._queue and any(q.touches(graphs, patterns) for q in self._queue):
+            self._send()
+
+    def _lose(self, queued: list[_Queued], why: str) -> None:
+        """Undo queued changes that did not reach the server, in this process; raises WritesLostError."""
+        for q in reversed(queued):
+            if q.undo is not None:
+                q.undo()
+        self._writes_lost([(q.adds, q.removes) for q in queued])
+        raise WritesLostError(f"{len(queued)} change(s) accepted earlier and waiting to be written to the SPARQL "
+                              f"server were not written, and were undone here: {why}")
 
     def _run_query(self, text: str, graphs: list[NamedNode] | None, named: list[NamedNode] | None = None,
                    **kwargs):
+        # the read sees every change accepted before it: with its dataset given, those of its graphs
+        self.send_writes(None if graphs is None else {*graphs, *(graphs if named is None else named)})
+        return self._query(text, graphs, named, **kwargs)
+
+    def _query(self, text: str, graphs: list[NamedNode] | None, named: list[NamedNode] | None = None, **kwargs):
+        """One query request (the caller has sent the queued changes the query may see)."""
         kwargs.pop("custom_functions", None)
         text = self._out(_with_prefixes(text, kwargs.pop("prefixes", None)))
         if kwargs:  # pyoxigraph-only options would otherwise be ignored silently
@@ -136,7 +221,8 @@ class RemoteStore(Store):
             chunk = quads[i:i + _CHUNK]
             rows = " ".join(f"({q.subject} {q.predicate} {q.object} {self._graph_out(q.graph_name)})" for q in chunk)
             text = f"SELECT ?s ?p ?o ?g WHERE {{ VALUES (?s ?p ?o ?g) {{ {rows} }} GRAPH ?g {{ ?s ?p ?o }} }}"
-            for r in self._run_query(text, None):
+            self.send_writes(patterns={(q.subject, q.predicate, q.graph_name) for q in chunk})
+            for r in self._query(text, None):
                 found.add(self._key(Quad(r["s"], r["p"], r["o"], self._graph_in(r["g"]))))
         return [self._key(q) in found for q in quads]
 
@@ -148,22 +234,40 @@ class RemoteStore(Store):
         else:
             text = (f"SELECT * WHERE {{ GRAPH ?g {{ {pattern} }} "
                     f"FILTER(STRSTARTS(STR(?g), {ox.Literal(self._prefix)})) }}")
-        for r in self._run_query(text, None):
+        if s is not None and p is not None and graph is not None:
+            self.send_writes(patterns={(s, p, graph)})
+        else:
+            self.send_writes(None if graph is None else (graph,))
+        for r in self._query(text, None):
             g = graph if graph is not None else self._graph_in(r["g"])
             yield Quad(s if s is not None else r["s"], p if p is not None else r["p"],
                        o if o is not None else r["o"], g)
 
-    def _commit(self, adds: list[Quad], removes: list[Quad]) -> None:
+    def _data_text(self, adds: list[Quad], removes: list[Quad]) -> str:
         out = lambda qs: [Quad(q.subject, q.predicate, q.object, self._graph_out(q.graph_name)) for q in qs]  # noqa: E731
-        text = data_update(out(adds), out(removes))
-        if text:
-            self._run_update(text, None)
+        return data_update(out(adds), out(removes))
 
-    def add_scratch(self, triples, graph: NamedNode) -> None:
-        self._commit([Quad(t.subject, t.predicate, t.object, graph) for t in triples], [])
+    def _commit(self, adds: list[Quad], removes: list[Quad]) -> None:
+        text = self._data_text(adds, removes)
+        if text:
+            self._send(text)
+
+    def _write(self, adds: list[Quad], removes: list[Quad], undo: Callable[[], None] | None = None) -> None:
+        """Queue the change for the next request (see the module docstring); at once without ``defer_writes``."""
+        if not self.defer_writes:
+            super()._write(adds, removes, undo)
+            return
+        text = self._data_text(adds, removes)
+        if text:
+            self._queue.append(_Queued(text, adds, removes, undo))
+            self._written(adds, removes)
 
     def close(self) -> None:
-        self._client.close()
+        """Send the queued changes, then release the connection (a refusal is raised after it)."""
+        try:
+            self.send_writes()
+        finally:
+            self._client.close()
 
 
 def _with_prefixes(text: str, prefixes: dict[str, str] | None) -> str:

@@ -1,0 +1,98 @@
+"""What this process knows of a remote store without asking: the values of (subject, predicate, graph).
+
+Why
+---
+On a store reached over HTTP every read is a round trip.  A robot step replaces the same few values
+every step (``isIn``, ``now``, ``visitedAt`` of the place it reaches): a REPLACE reads the values of
+its (individual, property) to match the old one, and the reasoner reads them again to find what a
+replaced value flipped.  Those reads are the ones this process answered itself a moment ago: it read
+the values once and every change since was its own write.
+
+A :class:`Listings` keeps, for each (subject, predicate, graph) read completely, the committed quads
+keyed by :meth:`~topostore.stores.base.Store._key` (a literal by its value), and applies the store's
+own writes to them.  It is sound because one process writes a reference: the store's writer lock
+(:mod:`topostore.stores.lock`) refuses a second one.  A write this process cannot follow (a SPARQL
+update, a dropped graph) forgets the graphs it may have changed; the caller of an update that
+leaves some graphs alone says so with :meth:`keeping` (the reasoner writes only its own graphs).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Hashable, Iterable, Iterator
+from contextlib import contextmanager
+
+from pyoxigraph import NamedNode, Quad
+
+from ..rdf.terms import Term
+
+#: at most this many (subject, predicate, graph) listings are kept (the oldest learnt go first)
+MAX_LISTINGS = 4096
+
+_Pattern = tuple[Term, NamedNode, NamedNode]
+
+
+class Listings:
+    """Complete committed values of (subject, predicate, graph) patterns, kept up to date by own writes."""
+
+    def __init__(self, key: Callable[[Quad], Hashable]) -> None:
+        self._key = key
+        self._lists: dict[_Pattern, dict[Hashable, Quad]] = {}
+        #: graphs the updates being sent now leave unchanged (see :meth:`keeping`)
+        self._kept: frozenset[NamedNode] = frozenset()
+
+    def __len__(self) -> int:
+        return len(self._lists)
+
+    def get(self, s: Term, p: NamedNode, graph: NamedNode) -> list[Quad] | None:
+        """The committed quads of the pattern, or None when not known."""
+        found = self._lists.get((s, p, graph))
+        return None if found is None else list(found.values())
+
+    def learn(self, s: Term, p: NamedNode, graph: NamedNode, quads: Iterable[Quad]) -> None:
+        """A complete read of the pattern (committed state, nothing pending in between)."""
+        if (s, p, graph) not in self._lists:
+            while len(self._lists) >= MAX_LISTINGS:
+                del self._lists[next(iter(self._lists))]
+        self._lists[(s, p, graph)] = {self._key(q): q for q in quads}
+
+    def presence(self, quad: Quad, key: Hashable) -> bool | None:
+        """Whether the quad is committed (by its key), or None when its pattern is not known."""
+        found = self._lists.get((quad.subject, quad.predicate, quad.graph_name))
+        return None if found is None else key in found
+
+    def committed(self, adds: Iterable[Quad], removes: Iterable[Quad], stored: Callable[[Quad], Quad]) -> None:
+        """Own writes, removals first (as :meth:`~topostore.stores.base.Store._commit` applies them);
+        ``stored`` gives an added quad as the store will hold it (numbers canonicalised), so a listing
+        answers what a read would."""
+        if not self._lists:
+            return
+        for q in removes:
+            found = self._lists.get((q.subject, q.predicate, q.graph_name))
+            if found is not None:
+                found.pop(self._key(q), None)
+        for q in adds:
+            found = self._lists.get((q.subject, q.predicate, q.graph_name))
+            if found is not None:
+                found.setdefault(self._key(q), stored(q))
+
+    def updated(self) -> None:
+        """A SPARQL update was sent: forget every graph it may have changed."""
+        if self._lists:
+            self._lists = {k: v for k, v in self._lists.items() if k[2] in self._kept}
+
+    def forget(self, graph: NamedNode | None = None) -> None:
+        """Forget one graph (dropped), or everything (None: writes were lost, the server is the truth)."""
+        self._lists = {} if graph is None else {k: v for k, v in self._lists.items() if k[2] != graph}
+
+    @contextmanager
+    def keeping(self, graphs: Iterable[NamedNode]) -> Iterator[None]:
+        """Updates sent inside the block leave ``graphs`` unchanged (their listings stay)."""
+        before = self._kept
+        self._kept = before | frozenset(graphs)
+        try:
+            yield
+        finally:
+            self._kept = before
+
+
+__all__ = ["Listings", "MAX_LISTINGS"]
