@@ -205,15 +205,17 @@ class Ontology:
         self.ledger.stop_incremental()
         self.dirty = True
 
-    def _writes_lost(self, lost: list[tuple[list[Quad], list[Quad]]]) -> None:
+    def _writes_lost(self, lost: list[tuple[list[Quad], list[Quad]]], certain: bool) -> None:
         """The store could not write changes it had accepted (a remote store defers them): undo them
-        here too.  The ledger is set back exactly; a lost write of the reasoner's graphs makes the
-        next REASON a full one; class views wait for the next REASON."""
+        here too.  The ledger is set back exactly; a lost write of the reasoner's graphs, or a server
+        that did not answer (it may hold the changes after all), makes the next REASON a full one
+        over what the server holds; class views wait for the next REASON."""
         def asserted(quads: list[Quad]) -> list[Triple]:
             return [Triple(q.subject, q.predicate, q.object) for q in quads if q.graph_name == ASSERTED]
 
         self.ledger.lost(self.store, [(asserted(adds), asserted(removes)) for adds, removes in lost])
-        if any(q.graph_name not in (ASSERTED, FORMS, META) for adds, removes in lost for q in adds + removes):
+        if not certain or any(q.graph_name not in (ASSERTED, FORMS, META) for adds, removes in lost
+                              for q in adds + removes):
             self._reasoner = None
             self.ledger.stop_incremental()
         self.dirty = True

@@ -69,12 +69,7 @@ class OntologyQueries:
         return None if self.onto.dirty else self.onto.report
 
     def _instances(self, c: NamedNode) -> list[NamedNode]:
-        found: dict = {}
-        for g in self.onto.visible_graphs():
-            for s in self.onto.store.subjects(TYPE, c, g):
-                if _shown(s):
-                    found[s] = None
-        return list(found)
+        return [s for s in self.onto.store.subjects_in(TYPE, c, self.onto.visible_graphs()) if _shown(s)]
 
     def _instance_flags(self, pairs: list[tuple[Term, NamedNode]]) -> list[bool]:
         """Whether each (individual, class) pair is one of :meth:`instances` (what a class view re-decides),

@@ -105,8 +105,9 @@ class Store:
         self.functions: dict[NamedNode, Callable[..., Term | None]] = {}
         #: values of (subject, predicate, graph) this process knows without asking (stores reached over HTTP)
         self.listings: Listings | None = Listings(self._key) if self.round_trips else None
-        #: called with the writes a store that defers them could not apply (see :meth:`_writes_lost`)
-        self.on_lost: list[Callable[[list[tuple[list[Quad], list[Quad]]]], None]] = []
+        #: called with the writes a store that defers them could not apply, and whether that is certain
+        #: (see :meth:`_writes_lost`)
+        self.on_lost: list[Callable[[list[tuple[list[Quad], list[Quad]]], bool], None]] = []
 
     def use_functions(self, functions: Mapping[NamedNode, Callable[..., Term | None]]) -> None:
         """Let SPARQL run on this store call ``functions`` (IRI -> Python function of RDF terms).
@@ -175,15 +176,16 @@ class Store:
         t = self.forms.stored_form(Triple(q.subject, q.predicate, q.object))
         return Quad(t.subject, t.predicate, t.object, q.graph_name)
 
-    def _writes_lost(self, lost: list[tuple[list[Quad], list[Quad]]]) -> None:
-        """Deferred writes (oldest first) the server did not apply: forget what this process believed of
-        the committed state, and tell the owners (the ontology's ledger) so that they undo them too."""
+    def _writes_lost(self, lost: list[tuple[list[Quad], list[Quad]]], certain: bool = True) -> None:
+        """Deferred writes (oldest first) the server did not apply (``certain`` false: that did not answer,
+        so it may have): forget what this process believed of the committed state, and tell the owners
+        (the ontology's ledger) so that they undo them too."""
         if self.listings is not None:
             self.listings.forget()
         self._known = {}
         self.persisted.forget()
         for listener in list(self.on_lost):
-            listener(lost)
+            listener(lost, certain)
 
     @contextmanager
     def keeping(self, graphs: Iterable[NamedNode]) -> Iterator[None]:
@@ -259,9 +261,13 @@ class Store:
         removes = [q for q, present in pending.values() if not present]
         if not adds and not removes and not meta:
             return
+        # the removed literals as their users wrote them, for an undo (a removal may name the stored form)
+        written = [Quad(q.subject, q.predicate, self.forms.original_literal(q.graph_name, q.subject, q.predicate,
+                                                                              q.object), q.graph_name)
+                   if isinstance(q.object, Literal) else q for q in removes]
         forms_add, forms_remove = self.forms.record(adds, removes)
         meta_add, meta_remove = self.persisted.quads(meta)
-        undo = lambda: self.forms.record(removes, adds, undo=True)  # noqa: E731
+        undo = lambda: self.forms.record(written, adds, undo=True)  # noqa: E731
         try:
             self._write(adds + forms_add + meta_add, removes + forms_remove + meta_remove, undo)
         except BaseException:
@@ -432,6 +438,12 @@ class Store:
                 listings.learn(s, p, g, quads)
                 found[g] = [q.object for q in quads]
         return {g: found[g] for g in graphs}
+
+    def subjects_in(self, p: NamedNode, o: Term, graphs: list[NamedNode]) -> list[Term]:
+        """:meth:`subjects` in any of ``graphs``, each once: one query where reads are round trips."""
+        if not self.round_trips or self._pending is not None:
+            return list(dict.fromkeys(s for g in graphs for s in self.subjects(p, o, g)))
+        return [r["s"] for r in self.query(f"SELECT DISTINCT ?s WHERE {{ ?s {p} {o} }}", graphs=graphs)]
 
     def subjects(self, p: NamedNode, o: Term, graph: NamedNode) -> list[Term]:
         return [t.subject for t in self.triples(None, p, o, graph)]

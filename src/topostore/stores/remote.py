@@ -42,6 +42,7 @@ from pyoxigraph import NamedNode, Quad, QueryResultsFormat, RdfFormat, Triple
 from ..errors import QueryError, StoreError, WritesLostError
 from ..rdf.vocab import INTERNAL
 from .base import Store
+from .meta import META
 from .oxigraph import data_update
 
 GRAPH_PREFIX = INTERNAL + "graph:"
@@ -155,7 +156,8 @@ class RemoteStore(Store):
             self._post(self.update_url, {"update": body})
         except StoreError as exc:  # no answer: the queued changes may or may not be there
             if queued:
-                self._lose(queued, f"the server did not answer, so whether it applied them is unknown: {exc}")
+                self._lose(queued, f"the server did not answer, so whether it applied them is unknown: {exc}",
+                           certain=False)
             raise
         except QueryError as exc:  # refused: nothing of the request was applied
             if not queued:
@@ -177,14 +179,16 @@ class RemoteStore(Store):
         if self._queue and any(q.touches(graphs, patterns) for q in self._queue):
             self._send()
 
-    def _lose(self, queued: list[_Queued], why: str) -> None:
+    def _lose(self, queued: list[_Queued], why: str, certain: bool = True) -> None:
         """Undo queued changes that did not reach the server, in this process; raises WritesLostError."""
         for q in reversed(queued):
             if q.undo is not None:
                 q.undo()
-        self._writes_lost([(q.adds, q.removes) for q in queued])
-        raise WritesLostError(f"{len(queued)} change(s) accepted earlier and waiting to be written to the SPARQL "
-                              f"server were not written, and were undone here: {why}")
+        self._writes_lost([(q.adds, q.removes) for q in queued], certain)
+        data = sum(1 for q in queued if any(x.graph_name != META for x in (*q.adds, *q.removes)))
+        raise WritesLostError(f"{data} change(s) of the data ({len(queued) - data} of the persisted state) accepted "
+                              f"earlier and waiting to be written to the SPARQL server were not written, and were "
+                              f"undone here: {why}")
 
     def _run_query(self, text: str, graphs: list[NamedNode] | None, named: list[NamedNode] | None = None,
                    **kwargs):
