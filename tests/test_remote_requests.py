@@ -11,6 +11,8 @@ from __future__ import annotations
 
 import itertools
 import re
+import subprocess
+import sys
 from collections.abc import Iterator
 from pathlib import Path
 
@@ -269,3 +271,30 @@ def test_close_sends_the_queued_writes(oxigraph_url: str, map_file: Path) -> Non
             == [NamedNode(NS + "R2")]
     finally:
         check.close()
+
+
+def test_a_script_that_never_closes_its_store_still_writes_at_exit(oxigraph_url: str, map_file: Path) -> None:
+    ref = f"exit-{next(_names)}"
+    script = (f"from topostore import Ontology\nfrom topostore.stores import open_store\n"
+              f"onto = Ontology.from_file({str(map_file)!r}, store=open_store({oxigraph_url!r}, reference={ref!r}))\n"
+              f"onto.replace('Robot1', 'isIn', 'R1', 'C1')\n")
+    subprocess.run([sys.executable, "-c", script], check=True, timeout=120)
+    check = open_store(oxigraph_url, reference=ref)
+    try:
+        assert [t.object for t in check.triples(NamedNode(NS + "Robot1"), NamedNode(NS + "isIn"), None, ASSERTED)] \
+            == [NamedNode(NS + "R1")]
+    finally:
+        check.close()
+
+
+def test_sync_sends_every_change_before_the_reply(oxigraph_url: str, map_file: Path) -> None:
+    store = open_store(oxigraph_url, reference=f"sync-{next(_names)}", sync=True)
+    onto = Ontology.from_file(map_file, store=store)
+    onto.reason()
+    assert onto.prefix == NS  # looked up once, before counting
+    before = store.requests
+    onto.replace("Robot1", "isIn", "R1", "C1")
+    assert store.requests - before == 2  # the values read once, the change written at once
+    onto.replace("Robot1", "isIn", "R2", "R1")
+    assert store.requests - before == 3  # the values known: the write alone
+    store.close()

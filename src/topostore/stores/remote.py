@@ -29,9 +29,12 @@ bearer token) or ``TOPOSTORE_STORE_USER`` and ``TOPOSTORE_STORE_PASSWORD``
 
 from __future__ import annotations
 
+import atexit
+import logging
 import os
 import re
 import urllib.parse
+import weakref
 from collections.abc import Callable, Collection, Iterator
 from dataclasses import dataclass
 
@@ -45,6 +48,7 @@ from .base import Store
 from .meta import META
 from .oxigraph import data_update
 
+logger = logging.getLogger("topostore.store")
 GRAPH_PREFIX = INTERNAL + "graph:"
 #: an update that declares its own prefixes or base (comments may come first)
 _PROLOGUE = re.compile(r"(?:\s|#[^\n]*\n)*(?:PREFIX|BASE)\b", re.IGNORECASE)
@@ -102,6 +106,7 @@ class RemoteStore(Store):
         #: data changes wait for the next request (see the module docstring)
         self.defer_writes = defer_writes
         self._queue: list[_Queued] = []
+        _OPEN.add(self)  # a process that ends without closing its store still sends what it queued
         base = url.rstrip("/")
         single = base.endswith("/sparql")  # Virtuoso and others serve both on one path
         self.url = base
@@ -271,7 +276,23 @@ class RemoteStore(Store):
         try:
             self.send_writes()
         finally:
+            _OPEN.discard(self)
             self._client.close()
+
+
+#: remote stores not closed yet (see :func:`_send_at_exit`)
+_OPEN: weakref.WeakSet[RemoteStore] = weakref.WeakSet()
+
+
+@atexit.register
+def _send_at_exit() -> None:
+    """Send the changes stores still hold when the interpreter exits (a script that never closed them);
+    a failure is logged, naming why (nothing can be raised to anyone any more)."""
+    for store in list(_OPEN):
+        try:
+            store.send_writes()
+        except Exception as exc:  # noqa: BLE001 - at exit the log is the only place left to say it
+            logger.error("at exit, changes queued for %s were not written: %s", store.update_url, exc)
 
 
 def _with_prefixes(text: str, prefixes: dict[str, str] | None) -> str:
