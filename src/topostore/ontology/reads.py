@@ -36,11 +36,32 @@ class OntologyQueries:
 
     def _objects(self, s: Term, p: NamedNode) -> list[Term]:
         seen: dict = {}
-        for objects in self.onto.store.objects_in(s, p, self.onto.visible_graphs()).values():
+        for objects in self._objects_in_graphs(s, p).values():
             for o in objects:
                 shown = self.onto.store.original_literal(ASSERTED, s, p, o) if isinstance(o, Literal) else o
                 seen.setdefault(value_key(o), shown)
         return list(seen.values())
+
+    def _objects_in_graphs(self, s: Term, p: NamedNode) -> dict[NamedNode, list[Term]]:
+        """The values of (s, p) in each visible graph; a read that goes to the store carries the class
+        views' pending decisions with it (one request for both, see :mod:`.views`)."""
+        graphs, store = self.onto.visible_graphs(), self.onto.store
+        owner = self._view_owner()
+        pairs = self.onto.views.pending(owner) if owner is not None and store.round_trips else []
+        if not pairs:
+            return store.objects_in(s, p, graphs)
+        values, found = store.objects_and_presence(s, p, graphs, self._type_quads(pairs, graphs))
+        self.onto.views.settle(pairs, self._members(pairs, found, len(graphs)))
+        return values
+
+    @staticmethod
+    def _type_quads(pairs: list[tuple[Term, NamedNode]], graphs: list[NamedNode]) -> list[Quad]:
+        return [Quad(s, TYPE, c, g) for s, c in pairs for g in graphs]
+
+    @staticmethod
+    def _members(pairs: list[tuple[Term, NamedNode]], found: list[bool], n: int) -> list[bool]:
+        """Membership of each pair from the presence of its type fact in each of ``n`` graphs."""
+        return [any(found[i * n:(i + 1) * n]) and _shown(s) for i, (s, _) in enumerate(pairs)]
 
     def types(self, individual: str | NamedNode) -> list[NamedNode]:
         """Named classes of an individual (asserted ∪ inferred), without owl:Thing."""
@@ -75,9 +96,7 @@ class OntologyQueries:
         """Whether each (individual, class) pair is one of :meth:`instances` (what a class view re-decides),
         in one batch of look-ups per visible graph."""
         graphs = self.onto.visible_graphs()
-        found = self.onto.store.contains_quads([Quad(s, TYPE, c, g) for s, c in pairs for g in graphs])
-        n = len(graphs)
-        return [any(found[i * n:(i + 1) * n]) and _shown(s) for i, (s, _) in enumerate(pairs)]
+        return self._members(pairs, self.onto.store.contains_quads(self._type_quads(pairs, graphs)), len(graphs))
 
     def object_values(self, prop: str | NamedNode, individual: str | NamedNode, names: bool = True) -> list:
         vals = [o for o in self._objects(self.onto.iri(individual), self.onto.iri(prop)) if isinstance(o, NamedNode)]

@@ -439,6 +439,36 @@ class Store:
                 found[g] = [q.object for q in quads]
         return {g: found[g] for g in graphs}
 
+    def objects_and_presence(self, s: Term, p: NamedNode, graphs: list[NamedNode],
+                             quads: list[Quad]) -> tuple[dict[NamedNode, list[Term]], list[bool]]:
+        """:meth:`objects_in` and :meth:`contains_quads` together: one query where reads are round trips
+        and neither is known already (two questions of one robot step, one request)."""
+        listings = self.listings
+        if listings is None or self._pending is not None or not quads:
+            return self.objects_in(s, p, graphs), self.contains_quads(quads)
+        missing = [g for g in graphs if listings.get(s, p, g) is None]
+        keys = [self._key(q) for q in quads]
+        unknown = [q for q, k in zip(quads, keys) if listings.presence(q, k) is None]
+        if not missing or not unknown:
+            return self.objects_in(s, p, graphs), self.contains_quads(quads)
+        rows = " ".join(f"({q.subject} {q.predicate} {q.object} {q.graph_name})" for q in unknown)
+        text = (f"SELECT ?g ?o ?qs ?qp ?qo WHERE {{ {{ VALUES ?g {{ {' '.join(map(str, missing))} }} "
+                f"GRAPH ?g {{ {s} {p} ?o }} }} UNION {{ VALUES (?qs ?qp ?qo ?g) {{ {rows} }} GRAPH ?g {{ ?qs ?qp ?qo }} }} }}")
+        dataset = list(dict.fromkeys([*missing, *(q.graph_name for q in unknown)]))
+        values: dict[NamedNode, list[Quad]] = {g: [] for g in missing}
+        found: set = set()
+        for r in self.query(text, graphs=dataset):
+            g = self._graph_in(r["g"])
+            if r["o"] is not None:
+                values[g].append(Quad(s, p, r["o"], g))
+            else:
+                found.add(self._key(Quad(r["qs"], r["qp"], r["qo"], g)))
+        for g, learnt in values.items():
+            listings.learn(s, p, g, learnt)
+        objects = {g: [q.object for q in listings.get(s, p, g) or values.get(g, [])] for g in graphs}
+        return objects, [k in found if listings.presence(q, k) is None else bool(listings.presence(q, k))
+                         for q, k in zip(quads, keys)]
+
     def subjects_in(self, p: NamedNode, o: Term, graphs: list[NamedNode]) -> list[Term]:
         """:meth:`subjects` in any of ``graphs``, each once: one query where reads are round trips."""
         if not self.round_trips or self._pending is not None:
