@@ -27,7 +27,7 @@ from ..rdf.skolem import fresh_skolem, skolem, skolemize, unskolem, unskolemize
 from ..rdf.syntax import FORMAT_NAMES, PROGRESS_EVERY, guess_format, parse_triples, serialize
 from ..rdf.terms import Term, value_key
 from ..rdf.vocab import FIRST, NIL, REST, SKOLEM_PREFIX, TYPE
-from .listings import Listings
+from .listings import MAX_WHOLE, Listings
 from .literal_forms import FORMS, LiteralForms
 from .meta import META, PersistedState
 
@@ -375,6 +375,8 @@ class Store:
     def _listed(self, s: Term, p: NamedNode, graph: NamedNode) -> list[Triple]:
         """:meth:`triples` of (s, p, ?, graph) from its listing (read once, then kept by own writes)."""
         quads = self.listings.get(s, p, graph)
+        if quads is None and self.listings.missed(p, graph) and self._learn_whole(p, graph):
+            quads = self.listings.get(s, p, graph)
         if quads is None:
             quads = list(self._match(s, p, None, graph))
             self.listings.learn(s, p, graph, quads)
@@ -391,6 +393,19 @@ class Store:
         out += [Triple(q.subject, q.predicate, q.object) for q, present in list(pending.values())
                 if present and _matches(q, s, p, None, graph)]
         return out
+
+    def _learn_whole(self, p: NamedNode, graph: NamedNode) -> bool:
+        """Read every fact of ``p`` in ``graph`` into the listings when there are few enough (one query)."""
+        rows = self._predicate_rows(p, graph, MAX_WHOLE + 1)
+        if len(rows) > MAX_WHOLE:
+            return False
+        self.listings.learn_whole(p, graph, (Quad(s, p, o, graph) for s, o in rows))
+        return True
+
+    def _predicate_rows(self, p: NamedNode, graph: NamedNode, limit: int) -> list[tuple[Term, Term]]:
+        """(subject, object) of up to ``limit`` facts of ``p`` in ``graph``."""
+        text = f"SELECT ?s ?o WHERE {{ GRAPH {graph} {{ ?s {p} ?o }} }} LIMIT {limit}"
+        return [(r["s"], r["o"]) for r in self._run_query(text, [graph])]
 
     def objects(self, s: Term, p: NamedNode, graph: NamedNode) -> list[Term]:
         return [t.object for t in self.triples(s, p, None, graph)]

@@ -85,10 +85,13 @@ class _Queued:
     undo: Callable[[], None] | None
 
     def touches(self, graphs: Collection[NamedNode] | None, patterns: Collection[tuple] | None) -> bool:
-        """Whether a read of ``graphs`` (None: any) or of (subject, predicate, graph) ``patterns`` sees it."""
+        """Whether a read of ``graphs`` (None: any) or of (subject, predicate, graph) ``patterns`` (subject
+        None: any) sees it."""
         if graphs is None and patterns is None:
             return True
-        return any(q.graph_name in graphs if patterns is None else (q.subject, q.predicate, q.graph_name) in patterns
+        if patterns is None:
+            return any(q.graph_name in graphs for q in (*self.adds, *self.removes))
+        return any((q.subject, q.predicate, q.graph_name) in patterns or (None, q.predicate, q.graph_name) in patterns
                    for q in (*self.adds, *self.removes))
 
 
@@ -251,6 +254,11 @@ class RemoteStore(Store):
             g = graph if graph is not None else self._graph_in(r["g"])
             yield Quad(s if s is not None else r["s"], p if p is not None else r["p"],
                        o if o is not None else r["o"], g)
+
+    def _predicate_rows(self, p: NamedNode, graph: NamedNode, limit: int) -> list[tuple]:
+        self.send_writes(patterns={(None, p, graph)})  # only writes of this predicate matter to the read
+        text = f"SELECT ?s ?o WHERE {{ GRAPH {graph} {{ ?s {p} ?o }} }} LIMIT {limit}"
+        return [(r["s"], r["o"]) for r in self._query(text, None)]
 
     def _data_text(self, adds: list[Quad], removes: list[Quad]) -> str:
         out = lambda qs: [Quad(q.subject, q.predicate, q.object, self._graph_out(q.graph_name)) for q in qs]  # noqa: E731
