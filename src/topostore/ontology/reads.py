@@ -49,8 +49,8 @@ class OntologyQueries:
         owner = self._view_owner()
         pairs = self.onto.views.pending(owner) if owner is not None and store.round_trips else []
         if not pairs:
-            return store.objects_in(s, p, graphs)
-        values, found = store.objects_and_presence(s, p, graphs, self._type_quads(pairs, graphs))
+            return store.batched.objects_in(s, p, graphs)
+        values, found = store.batched.objects_and_presence(s, p, graphs, self._type_quads(pairs, graphs))
         self.onto.views.settle(pairs, self._members(pairs, found, len(graphs)))
         return values
 
@@ -90,7 +90,7 @@ class OntologyQueries:
         return None if self.onto.dirty else self.onto.report
 
     def _instances(self, c: NamedNode) -> list[NamedNode]:
-        return [s for s in self.onto.store.subjects_in(TYPE, c, self.onto.visible_graphs()) if _shown(s)]
+        return [s for s in self.onto.store.batched.subjects_in(TYPE, c, self.onto.visible_graphs()) if _shown(s)]
 
     def _instance_flags(self, pairs: list[tuple[Term, NamedNode]]) -> list[bool]:
         """Whether each (individual, class) pair is one of :meth:`instances` (what a class view re-decides),

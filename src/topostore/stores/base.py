@@ -27,7 +27,8 @@ from ..rdf.skolem import fresh_skolem, skolem, skolemize, unskolem, unskolemize
 from ..rdf.syntax import FORMAT_NAMES, PROGRESS_EVERY, guess_format, parse_triples, serialize
 from ..rdf.terms import Term, value_key
 from ..rdf.vocab import FIRST, NIL, REST, SKOLEM_PREFIX, TYPE
-from .listings import MAX_WHOLE, Listings
+from .batched import BatchedReads
+from .listings import Listings
 from .literal_forms import FORMS, LiteralForms
 from .meta import META, PersistedState
 
@@ -68,8 +69,10 @@ class Store:
     """The store interface every other module talks to: quads in, SPARQL in, results out.
 
     This class holds what every implementation shares (parsing, transactions) and
-    two named parts: the literal forms users wrote (``forms``, :class:`.literal_forms.LiteralForms`)
-    and the small persisted state of a reference (``persisted``, :class:`.meta.PersistedState`),
+    named parts: the literal forms users wrote (``forms``, :class:`.literal_forms.LiteralForms`),
+    the small persisted state of a reference (``persisted``, :class:`.meta.PersistedState`), what a
+    store reached over HTTP knows without asking (``listings``, :class:`.listings.Listings`) and the
+    reads batched for it (``batched``, :class:`.batched.BatchedReads`),
     on top of a few primitives each implementation provides: ``_has``,
     ``_match``, ``_commit``, ``_run_update``, ``_run_query`` and ``_drop``.
     Implementations: :class:`topostore.stores.oxigraph.OxigraphStore` (memory
@@ -105,6 +108,8 @@ class Store:
         self.functions: dict[NamedNode, Callable[..., Term | None]] = {}
         #: values of (subject, predicate, graph) this process knows without asking (stores reached over HTTP)
         self.listings: Listings | None = Listings(self._key) if self.round_trips else None
+        #: reads that cost one request where reads are round trips (see :mod:`.batched`)
+        self.batched = BatchedReads(self)
         #: called with the writes a store that defers them could not apply, and whether that is certain
         #: (see :meth:`_writes_lost`)
         self.on_lost: list[Callable[[list[tuple[list[Quad], list[Quad]]], bool], None]] = []
@@ -356,7 +361,7 @@ class Store:
         self, s: Term | None = None, p: NamedNode | None = None, o: Term | None = None, graph: NamedNode | None = None
     ) -> Iterator[Triple]:
         if self.listings is not None and s is not None and p is not None and o is None and graph is not None:
-            yield from self._listed(s, p, graph)
+            yield from self.batched.listed(s, p, graph)
             return
         pending = self._pending
         if pending is None:
@@ -372,36 +377,6 @@ class Store:
             if present and _matches(q, s, p, o, graph):
                 yield Triple(q.subject, q.predicate, q.object)
 
-    def _listed(self, s: Term, p: NamedNode, graph: NamedNode) -> list[Triple]:
-        """:meth:`triples` of (s, p, ?, graph) from its listing (read once, then kept by own writes)."""
-        quads = self.listings.get(s, p, graph)
-        if quads is None and self.listings.missed(p, graph) and self._learn_whole(p, graph):
-            quads = self.listings.get(s, p, graph)
-        if quads is None:
-            quads = list(self._match(s, p, None, graph))
-            self.listings.learn(s, p, graph, quads)
-        pending = self._pending
-        if pending is None:
-            return [Triple(q.subject, q.predicate, q.object) for q in quads]
-        out = []
-        for q in quads:
-            key = self._key(q)
-            self._known[key] = True
-            entry = pending.get(key)
-            if entry is None or entry[1]:
-                out.append(Triple(q.subject, q.predicate, q.object))
-        out += [Triple(q.subject, q.predicate, q.object) for q, present in list(pending.values())
-                if present and _matches(q, s, p, None, graph)]
-        return out
-
-    def _learn_whole(self, p: NamedNode, graph: NamedNode) -> bool:
-        """Read every fact of ``p`` in ``graph`` into the listings when there are few enough (one query)."""
-        rows = self._predicate_rows(p, graph, MAX_WHOLE + 1)
-        if len(rows) > MAX_WHOLE:
-            return False
-        self.listings.learn_whole(p, graph, (Quad(s, p, o, graph) for s, o in rows))
-        return True
-
     def _predicate_rows(self, p: NamedNode, graph: NamedNode, limit: int) -> list[tuple[Term, Term]]:
         """(subject, object) of up to ``limit`` facts of ``p`` in ``graph``."""
         text = f"SELECT ?s ?o WHERE {{ GRAPH {graph} {{ ?s {p} ?o }} }} LIMIT {limit}"
@@ -412,83 +387,7 @@ class Store:
 
     def objects_many(self, pairs: list[tuple[Term, NamedNode]], graph: NamedNode) -> dict[tuple, list[Term]]:
         """:meth:`objects` of several (subject, predicate) pairs; one query where reads are round trips."""
-        found: dict[tuple, list[Term]] = {pair: [] for pair in pairs}
-        if not self.round_trips or not pairs:
-            return {pair: self.objects(*pair, graph) for pair in found}
-        self._flush_open()
-        listings = self.listings
-        missing = [pair for pair in found if listings is None or listings.get(*pair, graph) is None]
-        if missing:
-            rows = " ".join(f"({s} {p})" for s, p in missing)
-            for r in self._run_query(f"SELECT ?s ?p ?o WHERE {{ VALUES (?s ?p) {{ {rows} }} ?s ?p ?o }}", [graph]):
-                found[(r["s"], r["p"])].append(r["o"])
-        for pair in found:
-            if pair in missing:
-                if listings is not None:
-                    listings.learn(*pair, graph, (Quad(*pair, o, graph) for o in found[pair]))
-            else:
-                found[pair] = [q.object for q in listings.get(*pair, graph)]
-        return found
-
-    def objects_in(self, s: Term, p: NamedNode, graphs: list[NamedNode]) -> dict[NamedNode, list[Term]]:
-        """:meth:`objects` of one (subject, predicate) in each of ``graphs``: where reads are round trips,
-        from the listings this process keeps and one query for the graphs it does not know (then kept)."""
-        listings = self.listings
-        if listings is None or self._pending is not None:
-            return {g: self.objects(s, p, g) for g in graphs}
-        found: dict[NamedNode, list[Term]] = {}
-        for g in graphs:
-            quads = listings.get(s, p, g)
-            if quads is not None:
-                found[g] = [q.object for q in quads]
-        missing = [g for g in graphs if g not in found]
-        if len(missing) == 1:
-            found[missing[0]] = self.objects(s, p, missing[0])
-        elif missing:
-            rows: dict[NamedNode, list[Quad]] = {g: [] for g in missing}
-            for r in self.query(f"SELECT ?g ?o WHERE {{ GRAPH ?g {{ {s} {p} ?o }} }}", graphs=missing):
-                g = self._graph_in(r["g"])
-                rows[g].append(Quad(s, p, r["o"], g))
-            for g, quads in rows.items():
-                listings.learn(s, p, g, quads)
-                found[g] = [q.object for q in quads]
-        return {g: found[g] for g in graphs}
-
-    def objects_and_presence(self, s: Term, p: NamedNode, graphs: list[NamedNode],
-                             quads: list[Quad]) -> tuple[dict[NamedNode, list[Term]], list[bool]]:
-        """:meth:`objects_in` and :meth:`contains_quads` together: one query where reads are round trips
-        and neither is known already (two questions of one robot step, one request)."""
-        listings = self.listings
-        if listings is None or self._pending is not None or not quads:
-            return self.objects_in(s, p, graphs), self.contains_quads(quads)
-        missing = [g for g in graphs if listings.get(s, p, g) is None]
-        keys = [self._key(q) for q in quads]
-        unknown = [q for q, k in zip(quads, keys) if listings.presence(q, k) is None]
-        if not missing or not unknown:
-            return self.objects_in(s, p, graphs), self.contains_quads(quads)
-        rows = " ".join(f"({q.subject} {q.predicate} {q.object} {q.graph_name})" for q in unknown)
-        text = (f"SELECT ?g ?o ?qs ?qp ?qo WHERE {{ {{ VALUES ?g {{ {' '.join(map(str, missing))} }} "
-                f"GRAPH ?g {{ {s} {p} ?o }} }} UNION {{ VALUES (?qs ?qp ?qo ?g) {{ {rows} }} GRAPH ?g {{ ?qs ?qp ?qo }} }} }}")
-        dataset = list(dict.fromkeys([*missing, *(q.graph_name for q in unknown)]))
-        values: dict[NamedNode, list[Quad]] = {g: [] for g in missing}
-        found: set = set()
-        for r in self.query(text, graphs=dataset):
-            g = self._graph_in(r["g"])
-            if r["o"] is not None:
-                values[g].append(Quad(s, p, r["o"], g))
-            else:
-                found.add(self._key(Quad(r["qs"], r["qp"], r["qo"], g)))
-        for g, learnt in values.items():
-            listings.learn(s, p, g, learnt)
-        objects = {g: [q.object for q in listings.get(s, p, g) or values.get(g, [])] for g in graphs}
-        return objects, [k in found if listings.presence(q, k) is None else bool(listings.presence(q, k))
-                         for q, k in zip(quads, keys)]
-
-    def subjects_in(self, p: NamedNode, o: Term, graphs: list[NamedNode]) -> list[Term]:
-        """:meth:`subjects` in any of ``graphs``, each once: one query where reads are round trips."""
-        if not self.round_trips or self._pending is not None:
-            return list(dict.fromkeys(s for g in graphs for s in self.subjects(p, o, g)))
-        return [r["s"] for r in self.query(f"SELECT DISTINCT ?s WHERE {{ ?s {p} {o} }}", graphs=graphs)]
+        return self.batched.objects_many(pairs, graph)
 
     def subjects(self, p: NamedNode, o: Term, graph: NamedNode) -> list[Term]:
         return [t.subject for t in self.triples(None, p, o, graph)]
