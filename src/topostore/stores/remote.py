@@ -37,6 +37,7 @@ import urllib.parse
 import weakref
 from collections.abc import Callable, Collection, Iterator
 from dataclasses import dataclass
+from functools import cached_property
 
 import httpx
 import pyoxigraph as ox
@@ -84,15 +85,21 @@ class _Queued:
     removes: list[Quad]
     undo: Callable[[], None] | None
 
+    @cached_property
+    def _written(self) -> tuple[frozenset, frozenset]:
+        """The graphs and the (subject, predicate, graph) and (None, predicate, graph) patterns it writes."""
+        quads = (*self.adds, *self.removes)
+        return (frozenset(q.graph_name for q in quads),
+                frozenset(k for q in quads for k in ((q.subject, q.predicate, q.graph_name),
+                                                       (None, q.predicate, q.graph_name))))
+
     def touches(self, graphs: Collection[NamedNode] | None, patterns: Collection[tuple] | None) -> bool:
         """Whether a read of ``graphs`` (None: any) or of (subject, predicate, graph) ``patterns`` (subject
-        None: any) sees it."""
+        None: any predicate's subject) sees it."""
         if graphs is None and patterns is None:
             return True
-        if patterns is None:
-            return any(q.graph_name in graphs for q in (*self.adds, *self.removes))
-        return any((q.subject, q.predicate, q.graph_name) in patterns or (None, q.predicate, q.graph_name) in patterns
-                   for q in (*self.adds, *self.removes))
+        written, keys = self._written
+        return not written.isdisjoint(graphs) if patterns is None else not keys.isdisjoint(patterns)
 
 
 class RemoteStore(Store):
