@@ -22,7 +22,7 @@ from pyoxigraph import Literal, NamedNode, Triple
 from topostore import Ontology
 from topostore.armor import ArmorService
 from topostore.errors import QueryError, StoreError, WritesLostError
-from topostore.rdf.vocab import ASSERTED, XSD
+from topostore.rdf.vocab import ASSERTED, ENTAILED, INFERRED, XSD
 from topostore.stores import open_store
 from topostore.stores.remote import RemoteStore
 
@@ -239,6 +239,7 @@ def test_a_refused_write_seen_by_a_query_sets_the_ledger_back(oxigraph_url: str,
     robot, is_in, now = NamedNode(NS + "Robot1"), NamedNode(NS + "isIn"), NamedNode(NS + "now")
     onto.replace("Robot1", "isIn", "R1", "C1")
     onto.reason()
+    onto.store.send_writes()  # the REASON's drop of its scratch graphs goes (lost, it would make the next one full)
     onto.replace("Robot1", "now", long(NOW + 40), long(NOW))  # queued ...
     onto.remove(Triple(robot, is_in, NamedNode(NS + "R1")))  # ... this one too
     onto.add(Triple(robot, is_in, NamedNode(NS + "R1")))  # ... and this add cancels it in the ledger
@@ -308,3 +309,27 @@ def test_sync_sends_every_change_before_the_reply(oxigraph_url: str, map_file: P
     onto.replace("Robot1", "isIn", "R2", "R1")
     assert store.requests - before == 3  # the values known: the write alone
     store.close()
+
+
+def test_the_reasoner_drop_of_its_scratch_graphs_waits_for_the_next_request(robot: Robot,
+                                                                            monkeypatch: pytest.MonkeyPatch) -> None:
+    robot.move("R2")
+    assert robot.call("REASON").success
+    queued = [q for q in robot.store._queue if q.dropped]
+    assert queued and not queued[0].dropped & {ASSERTED, INFERRED, ENTAILED}
+    # the questions do not read the scratch graphs: the drop still waits
+    robot.answers()
+    assert any(q.dropped for q in robot.store._queue)
+    # lost, it leaves those graphs unknown: the next REASON is a full one, and right
+    robot.move("C1")
+    onto = robot.service.reference(robot.ref).ontology
+    refuse_next_update(robot.store, monkeypatch, QueryError("refused (503)"), times=2)
+    reply = robot.call("REASON")
+    assert not reply.success and "1 drop(s) of scratch graphs" in reply.error_description
+    monkeypatch.undo()
+    assert onto.report.stats.mode == "full"  # the state before the change, recomputed whole
+    assert robot.answers() == expected(onto)
+    robot.now, robot.place, robot.visits["C1"] = NOW + 10, "R2", NOW
+    robot.move("C1")
+    assert robot.call("REASON").success
+    assert robot.answers() == expected(onto)

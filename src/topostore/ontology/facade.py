@@ -207,9 +207,10 @@ class Ontology:
 
     def _writes_lost(self, lost: list[tuple[list[Quad], list[Quad]]], certain: bool) -> None:
         """The store could not write changes it had accepted (a remote store defers them): undo them
-        here too.  The ledger is set back exactly; a lost write of the reasoner's graphs, or a server
-        that did not answer (it may hold the changes after all), makes the next REASON a full one
-        over what the server holds; class views wait for the next REASON."""
+        here too.  The ledger is set back exactly; a lost write of the reasoner's graphs, or a loss the
+        store cannot state exactly (``certain`` false: a server that did not answer may hold the changes
+        after all; a lost drop of scratch graphs), makes the next REASON a full one over what the server
+        holds; class views wait for the next REASON."""
         def asserted(quads: list[Quad]) -> list[Triple]:
             return [Triple(q.subject, q.predicate, q.object) for q in quads if q.graph_name == ASSERTED]
 

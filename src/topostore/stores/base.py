@@ -182,9 +182,10 @@ class Store:
         return Quad(t.subject, t.predicate, t.object, q.graph_name)
 
     def _writes_lost(self, lost: list[tuple[list[Quad], list[Quad]]], certain: bool = True) -> None:
-        """Deferred writes (oldest first) the server did not apply (``certain`` false: that did not answer,
-        so it may have): forget what this process believed of the committed state, and tell the owners
-        (the ontology's ledger) so that they undo them too."""
+        """Deferred writes (oldest first) the server did not apply (``certain`` false: it did not answer, so
+        it may have, or a lost write dropped graphs whose content is then unknown here): forget what this
+        process believed of the committed state, and tell the owners (the ontology's ledger) so that they
+        undo them too."""
         if self.listings is not None:
             self.listings.forget()
         self._known = {}

@@ -54,6 +54,11 @@ class Listings:
     def __len__(self) -> int:
         return len(self._lists)
 
+    @property
+    def kept(self) -> frozenset[NamedNode]:
+        """The graphs the updates being sent now leave unchanged (declared with :meth:`keeping`)."""
+        return self._kept
+
     def get(self, s: Term, p: NamedNode, graph: NamedNode) -> list[Quad] | None:
         """The committed quads of the pattern, or None when not known."""
         found = self._lists.get((s, p, graph))

@@ -6,7 +6,8 @@ namespace (``urn:topostore:graph:asserted`` becomes
 fixed graph names need no change.
 
 Every request is a round trip, so writes wait: the data change of a manipulation
-(``DELETE DATA``/``INSERT DATA``) is queued and goes with the next request, joined
+(``DELETE DATA``/``INSERT DATA``), and the reasoner's drop of its scratch graphs at
+the end of a REASON, is queued and goes with the next request, joined
 with ``;`` to the next update (one request, one transaction on the server), or sent
 before the next read so that the read sees it.  A queued change the server then
 refuses is undone in this process as well (literal forms, persisted state, what
@@ -46,11 +47,15 @@ from pyoxigraph import NamedNode, Quad, QueryResultsFormat, RdfFormat, Triple
 from ..errors import QueryError, StoreError, WritesLostError
 from ..rdf.vocab import INTERNAL
 from .base import Store
+from .literal_forms import FORMS
 from .meta import META
 from .oxigraph import data_update
 
 logger = logging.getLogger("topostore.store")
 GRAPH_PREFIX = INTERNAL + "graph:"
+#: an update that only drops graphs named by full IRIs (what a reasoner does with its scratch graphs)
+_DROPS = re.compile(r"(?:\s*DROP\s+SILENT\s+GRAPH\s+<[^<>\s]+>\s*;?)+\s*", re.IGNORECASE)
+_DROPPED = re.compile(r"GRAPH\s+<([^<>\s]+)>", re.IGNORECASE)
 #: an update that declares its own prefixes or base (comments may come first)
 _PROLOGUE = re.compile(r"(?:\s|#[^\n]*\n)*(?:PREFIX|BASE)\b", re.IGNORECASE)
 _ACCEPT = "application/sparql-results+xml, application/n-triples;q=0.9, text/turtle;q=0.8"
@@ -84,12 +89,14 @@ class _Queued:
     adds: list[Quad]
     removes: list[Quad]
     undo: Callable[[], None] | None
+    #: graphs the change drops whole (a reasoner's scratch graphs)
+    dropped: frozenset[NamedNode] = frozenset()
 
     @cached_property
     def _written(self) -> tuple[frozenset, frozenset]:
         """The graphs and the (subject, predicate, graph) and (None, predicate, graph) patterns it writes."""
         quads = (*self.adds, *self.removes)
-        return (frozenset(q.graph_name for q in quads),
+        return (frozenset(q.graph_name for q in quads) | self.dropped,
                 frozenset(k for q in quads for k in ((q.subject, q.predicate, q.graph_name),
                                                        (None, q.predicate, q.graph_name))))
 
@@ -99,7 +106,9 @@ class _Queued:
         if graphs is None and patterns is None:
             return True
         written, keys = self._written
-        return not written.isdisjoint(graphs) if patterns is None else not keys.isdisjoint(patterns)
+        if patterns is None:
+            return not written.isdisjoint(graphs)
+        return not keys.isdisjoint(patterns) or any(p[2] in self.dropped for p in patterns)
 
 
 class RemoteStore(Store):
@@ -155,6 +164,8 @@ class RemoteStore(Store):
         return answer
 
     def _run_update(self, text: str, prefixes: dict[str, str] | None) -> None:
+        if self._defer_drops(text):
+            return
         if _PROLOGUE.match(text):  # a prologue starts a request (Oxigraph takes none after ';'): queue first
             self.send_writes()
         self._send(self._out(text), prefixes)
@@ -183,6 +194,18 @@ class RemoteStore(Store):
                 raise
             self._lose(queued, f"the server refused them: {exc}")
 
+    def _defer_drops(self, text: str) -> bool:
+        """Queue an update that only drops graphs the caller declared its own (a reasoner clearing its
+        scratch graphs, inside :meth:`~topostore.stores.base.Store.keeping`): it goes with the next
+        request like a data change, and a read of one of those graphs sends it first."""
+        if not self.defer_writes or self.listings is None or not self.listings.kept or not _DROPS.fullmatch(text):
+            return False
+        dropped = frozenset(NamedNode(iri) for iri in _DROPPED.findall(text))
+        if dropped & (self.listings.kept | {META, FORMS}):
+            return False
+        self._queue.append(_Queued(self._out(text.strip().rstrip(";")), [], [], None, dropped))
+        return True
+
     def send_writes(self, graphs: Collection[NamedNode] | None = None,
                     patterns: Collection[tuple] | None = None) -> None:
         """Send the queued data changes now: all of them, when one writes ``graphs`` or one of the
@@ -199,11 +222,17 @@ class RemoteStore(Store):
         for q in reversed(queued):
             if q.undo is not None:
                 q.undo()
-        self._writes_lost([(q.adds, q.removes) for q in queued], certain)
+        # a lost drop leaves a graph's content unknown here: as unknown as an unanswered request
+        self._writes_lost([(q.adds, q.removes) for q in queued], certain and not any(q.dropped for q in queued))
+        drops = sum(1 for q in queued if q.dropped)
         data = sum(1 for q in queued if any(x.graph_name != META for x in (*q.adds, *q.removes)))
-        raise WritesLostError(f"{data} change(s) of the data ({len(queued) - data} of the persisted state) accepted "
-                              f"earlier and waiting to be written to the SPARQL server were not written, and were "
-                              f"undone here: {why}")
+        what = f"{data} change(s) of the data" + (f", {drops} drop(s) of scratch graphs" if drops else "")
+        raise WritesLostError(f"{what} ({len(queued) - data - drops} of the persisted state) accepted earlier and "
+                              f"waiting to be written to the SPARQL server were not written, and were undone here "
+                              f"(the next REASON is a full one where a drop was lost): {why}"
+                              if drops else
+                              f"{what} ({len(queued) - data} of the persisted state) accepted earlier and waiting "
+                              f"to be written to the SPARQL server were not written, and were undone here: {why}")
 
     def _run_query(self, text: str, graphs: list[NamedNode] | None, named: list[NamedNode] | None = None,
                    **kwargs):
