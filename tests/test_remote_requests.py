@@ -325,7 +325,8 @@ def test_the_reasoner_drop_of_its_scratch_graphs_waits_for_the_next_request(robo
     onto = robot.service.reference(robot.ref).ontology
     refuse_next_update(robot.store, monkeypatch, QueryError("refused (503)"), times=2)
     reply = robot.call("REASON")
-    assert not reply.success and "1 drop(s) of scratch graphs" in reply.error_description
+    assert not reply.success and "update(s) of the reasoner" in reply.error_description
+    assert "the next REASON is a full one" in reply.error_description
     monkeypatch.undo()
     assert onto.report.stats.mode == "full"  # the state before the change, recomputed whole
     assert robot.answers() == expected(onto)

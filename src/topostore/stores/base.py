@@ -16,6 +16,7 @@ Two details of the store are handled here so that nobody else has to know them:
 
 from __future__ import annotations
 
+import logging
 import os
 from collections.abc import Callable, Hashable, Iterable, Iterator, Mapping
 from contextlib import contextmanager
@@ -201,7 +202,22 @@ class Store:
             yield
             return
         with self.listings.keeping(graphs):
-            yield
+            try:
+                yield
+            except BaseException:
+                self._settle_quietly()
+                raise
+        self._settle()
+
+    def _settle(self) -> None:
+        """The block of :meth:`keeping` is over: a store that deferred its updates sends them."""
+
+    def _settle_quietly(self) -> None:
+        """:meth:`_settle` while the block's own error propagates: a failure here is logged, not raised."""
+        try:
+            self._settle()
+        except Exception as exc:  # noqa: BLE001 - the block's error is the one reported
+            logging.getLogger("topostore.store").warning("sending the deferred updates failed too: %s", exc)
 
     def _run_update(self, text: str, prefixes: dict[str, str] | None) -> None:
         raise NotImplementedError

@@ -91,6 +91,10 @@ class _Queued:
     undo: Callable[[], None] | None
     #: graphs the change drops whole (a reasoner's scratch graphs)
     dropped: frozenset[NamedNode] = frozenset()
+    #: a reasoner's update, whatever it reads and writes: every read sends it first
+    opaque: bool = False
+    #: the prefixes its text uses (declared once at the head of the request that carries it)
+    prefixes: dict[str, str] | None = None
 
     @cached_property
     def _written(self) -> tuple[frozenset, frozenset]:
@@ -103,7 +107,7 @@ class _Queued:
     def touches(self, graphs: Collection[NamedNode] | None, patterns: Collection[tuple] | None) -> bool:
         """Whether a read of ``graphs`` (None: any) or of (subject, predicate, graph) ``patterns`` (subject
         None: any predicate's subject) sees it."""
-        if graphs is None and patterns is None:
+        if self.opaque or (graphs is None and patterns is None):
             return True
         written, keys = self._written
         if patterns is None:
@@ -164,20 +168,23 @@ class RemoteStore(Store):
         return answer
 
     def _run_update(self, text: str, prefixes: dict[str, str] | None) -> None:
-        if self._defer_drops(text):
+        if self._defer_drops(text) or self._defer_reasoning(text, prefixes):
             return
-        if _PROLOGUE.match(text):  # a prologue starts a request (Oxigraph takes none after ';'): queue first
+        if _PROLOGUE.match(text) or _clash(self._queue, prefixes):  # one prologue per request: queue first
             self.send_writes()
         self._send(self._out(text), prefixes)
 
     def _send(self, text: str = "", prefixes: dict[str, str] | None = None) -> None:
-        """One update request: the queued data changes, then ``text`` (either may be empty); the
-        prefixes are declared first (the queued changes name full IRIs only)."""
+        """One update request: the queued changes, then ``text`` (either may be empty); the prefixes of
+        all of them are declared once, first (the caller saw that they do not clash)."""
         queued, self._queue = self._queue, []
         body = " ;\n".join([q.text for q in queued] + ([text] if text else []))
         if not body:
             return
-        body = _with_prefixes(body, prefixes)
+        declared: dict[str, str] = {}
+        for q in queued:
+            declared.update(q.prefixes or {})
+        body = _with_prefixes(body, {**declared, **(prefixes or {})})
         try:
             self._post(self.update_url, {"update": body})
         except StoreError as exc:  # no answer: the queued changes may or may not be there
@@ -188,11 +195,43 @@ class RemoteStore(Store):
         except QueryError as exc:  # refused: nothing of the request was applied
             if not queued:
                 raise
-            if text:  # the update alone may be at fault: the queued changes go again without it
-                self._queue = queued
-                self.send_writes()
-                raise
+            self._refused(queued, bool(text), exc)
+
+    def _refused(self, queued: list[_Queued], with_update: bool, exc: QueryError) -> None:
+        """A request carrying queued changes was refused.  The manipulations' data changes are not to be
+        lost for an update that went with them (the caller's, or the reasoner's queued ones): they are
+        sent again alone; what still fails is undone here and said (WritesLostError).  Re-raises
+        ``exc`` when the caller's update alone was at fault."""
+        data = [q for q in queued if not (q.opaque or q.dropped)]
+        reasoner = [q for q in queued if q.opaque or q.dropped]
+        if not data or not (with_update or reasoner):
             self._lose(queued, f"the server refused them: {exc}")
+        try:
+            self._post(self.update_url, {"update": " ;\n".join(q.text for q in data)})
+        except (QueryError, StoreError) as again:
+            self._lose(queued, f"the server refused them: {exc}; sent alone: {again}",
+                       certain=isinstance(again, QueryError))
+        if reasoner:
+            self._lose(reasoner, f"the server refused them: {exc}")
+        raise exc
+
+    def _defer_reasoning(self, text: str, prefixes: dict[str, str] | None) -> bool:
+        """Queue an update sent while the reasoner runs (inside :meth:`~topostore.stores.base.Store.keeping`):
+        it goes with the reasoner's next update, or before its next read (any read: what it changes is not
+        known here); whatever is queued goes when the reasoner is done (:meth:`_settle`).  The server runs
+        the same operations in the same order, in fewer requests."""
+        if not self.defer_writes or self.listings is None or not self.listings.kept or _PROLOGUE.match(text):
+            return False
+        if _clash(self._queue, prefixes):
+            self.send_writes()
+        self._queue.append(_Queued(self._out(text), [], [], None, opaque=True, prefixes=prefixes))
+        return True
+
+    def _settle(self) -> None:
+        """The reasoner is done: its queued updates go now (a REASON says it succeeded only once its
+        writes are on the server); a drop of its scratch graphs alone may wait for the next request."""
+        if any(q.opaque for q in self._queue):
+            self._send()
 
     def _defer_drops(self, text: str) -> bool:
         """Queue an update that only drops graphs the caller declared its own (a reasoner clearing its
@@ -222,17 +261,15 @@ class RemoteStore(Store):
         for q in reversed(queued):
             if q.undo is not None:
                 q.undo()
-        # a lost drop leaves a graph's content unknown here: as unknown as an unanswered request
-        self._writes_lost([(q.adds, q.removes) for q in queued], certain and not any(q.dropped for q in queued))
-        drops = sum(1 for q in queued if q.dropped)
+        # a lost drop or reasoner update leaves graphs' content unknown here: as an unanswered request does
+        reasoner = sum(1 for q in queued if q.dropped or q.opaque)
+        self._writes_lost([(q.adds, q.removes) for q in queued], certain and not reasoner)
         data = sum(1 for q in queued if any(x.graph_name != META for x in (*q.adds, *q.removes)))
-        what = f"{data} change(s) of the data" + (f", {drops} drop(s) of scratch graphs" if drops else "")
-        raise WritesLostError(f"{what} ({len(queued) - data - drops} of the persisted state) accepted earlier and "
-                              f"waiting to be written to the SPARQL server were not written, and were undone here "
-                              f"(the next REASON is a full one where a drop was lost): {why}"
-                              if drops else
-                              f"{what} ({len(queued) - data} of the persisted state) accepted earlier and waiting "
-                              f"to be written to the SPARQL server were not written, and were undone here: {why}")
+        what = f"{data} change(s) of the data" + (f", {reasoner} update(s) of the reasoner" if reasoner else "")
+        note = " (the next REASON is a full one)" if reasoner else ""
+        raise WritesLostError(f"{what} ({len(queued) - data - reasoner} of the persisted state) accepted earlier and "
+                              f"waiting to be written to the SPARQL server were not written, and were undone "
+                              f"here{note}: {why}")
 
     def _run_query(self, text: str, graphs: list[NamedNode] | None, named: list[NamedNode] | None = None,
                    **kwargs):
@@ -337,6 +374,13 @@ def _send_at_exit() -> None:
             store.send_writes()
         except Exception as exc:  # noqa: BLE001 - at exit the log is the only place left to say it
             logger.error("at exit, changes queued for %s were not written: %s", store.update_url, exc)
+
+
+def _clash(queued: list[_Queued], prefixes: dict[str, str] | None) -> bool:
+    """Whether ``prefixes`` declare a name the queued updates use for another IRI (one request then
+    cannot declare both)."""
+    return bool(prefixes) and any(q.prefixes and any(q.prefixes.get(k, v) != v for k, v in prefixes.items())
+                                  for q in queued)
 
 
 def _with_prefixes(text: str, prefixes: dict[str, str] | None) -> str:
