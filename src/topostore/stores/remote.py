@@ -6,8 +6,9 @@ namespace (``urn:topostore:graph:asserted`` becomes
 fixed graph names need no change.
 
 Every request is a round trip, so writes wait: the data change of a manipulation
-(``DELETE DATA``/``INSERT DATA``), and the reasoner's drop of its scratch graphs at
-the end of a REASON, is queued and goes with the next request, joined
+(``DELETE DATA``/``INSERT DATA``), the updates the reasoner sends while it runs
+(until its next read, or its end) and its drop of its scratch graphs at the end of
+a REASON are queued and go with the next request, joined
 with ``;`` to the next update (one request, one transaction on the server), or sent
 before the next read so that the read sees it.  A queued change the server then
 refuses is undone in this process as well (literal forms, persisted state, what
