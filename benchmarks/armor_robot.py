@@ -8,6 +8,7 @@ inferences up to date.  Answers are compared as local names.
 from __future__ import annotations
 
 import time
+from collections.abc import Callable
 from pathlib import Path
 
 from topostore.armor import ArmorService
@@ -24,9 +25,13 @@ IRI = MAP_NS.rstrip("#")
 class ArmorRobot:
     """One ArmorService with the map loaded as one reference."""
 
-    def __init__(self, map_file: Path, store: str | None = None) -> None:
-        """LOAD ``map_file``; ``store``: where the reference lives (None: memory; a SPARQL server's URL)."""
+    def __init__(self, map_file: Path, store: str | None = None,
+                 observe: Callable[[str], None] | None = None) -> None:
+        """LOAD ``map_file``; ``store``: where the reference lives (None: memory; a SPARQL server's URL);
+        ``observe`` is called with each command's name after it answered (the remote benchmark counts
+        each command's requests with it)."""
         self.service = ArmorService(store=store)
+        self.observe = observe
         start = time.perf_counter()
         # LOAD parses the file and runs the first (full) REASON
         self._call("LOAD", "FILE", "", [str(map_file), IRI, "false", "PELLET", "true"])
@@ -69,6 +74,8 @@ class ArmorRobot:
 
     def _call(self, command: str, primary: str, secondary: str, args: list[str]) -> ArmorResponse:
         reply = self.service.call(ArmorRequest("bench", REFERENCE, command, primary, secondary, args))
+        if self.observe is not None:
+            self.observe(" ".join(w for w in (command, primary, secondary, args[0] if args else "") if w))
         if not reply.success:
             raise RuntimeError(f"{command} {primary} {secondary} {args[:3]} failed: "
                                f"{reply.exit_code} {reply.error_description}")

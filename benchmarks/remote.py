@@ -5,7 +5,8 @@ the map into a reference kept on it (``ArmorService(store=URL)``), walks the pla
 same aRMOR commands as :mod:`benchmarks.compare` and checks every answer.  The HTTP requests are
 counted at the transport (:mod:`benchmarks.http_count`), not read from the store: per step (the
 median and the most over the counted steps, issue 20's target is <= 3 on the example map), for the
-LOAD, and by endpoint for the last step.
+LOAD, by endpoint for the last step, and by command (the median over the counted steps: which
+command sends what).
 """
 
 from __future__ import annotations
@@ -34,14 +35,23 @@ def run(size: str, steps: int, work: Path) -> dict[str, Any]:
     truth = expected(bench, moves)
     row: dict[str, Any] = {"kind": "remote", "size": size, "label": bench.label, "locations": bench.locations,
                            "store": "oxigraph serve", "mismatches": []}
+    by_command: dict[str, list[int]] = {}
     with oxigraph_server() as url, counting() as http:
-        robot = ArmorRobot(path, store=url)
+        mark = [0]
+
+        def observe(command: str) -> None:
+            by_command.setdefault(command, []).append(http.total - mark[0])
+            mark[0] = http.total
+
+        robot = ArmorRobot(path, store=url, observe=observe)
         row["load_requests"] = http.total
+        by_command.clear()
         per_step: list[int] = []
         times: list[float] = []
         try:
             for k, move in enumerate(moves, 1):
                 before, endpoints = http.total, dict(http.by_endpoint)
+                mark[0] = before
                 seconds, answers = robot.step(move)
                 per_step.append(http.total - before)
                 times.append(seconds * 1000)
@@ -53,6 +63,8 @@ def run(size: str, steps: int, work: Path) -> dict[str, Any]:
     kept = counted([float(n) for n in per_step])
     row.update(requests_per_step=per_step, requests_median=statistics.median(kept) if kept else None,
                requests_max=max(kept) if kept else None, last_step_requests=last if moves else {},
+               requests_by_command={c: statistics.median(counted([float(n) for n in ns]) or ns)
+                                    for c, ns in by_command.items()},
                step_ms=times, median_ms=median(times), p95_ms=p95(times))
     return row
 

@@ -48,16 +48,17 @@ def drift_table(rows: list[dict[str, Any]]) -> str:
 def remote_table(rows: list[dict[str, Any]]) -> str:
     lines = ["Remote store (the same step through ArmorService on a real `oxigraph serve`; HTTP requests counted "
              "at the transport):", "",
-             "| map | HTTP requests per step, median / most | by endpoint (last step) | LOAD requests | "
-             "step median / p95 | answers |", "|---|---|---|---|---|---|"]
+             "| map | HTTP requests per step, median / most | by endpoint (last step) | by command (median) | "
+             "LOAD requests | step median / p95 | answers |", "|---|---|---|---|---|---|---|"]
     verdicts = []
     for r in rows:
         if r.get("error") or r.get("killed"):
-            lines.append(f"| {r['label']} | – | – | – | – | run {r.get('killed') or 'failed: ' + str(r['error'])[:200]} |")
+            lines.append(f"| {r['label']} | – | – | – | – | – | run {r.get('killed') or 'failed: ' + str(r['error'])[:200]} |")
             continue
         ends = ", ".join(f"{k} {v}" for k, v in sorted(r["last_step_requests"].items()))
+        commands = ", ".join(f"{c} {_num(n)}" for c, n in r.get("requests_by_command", {}).items()) or "–"
         lines.append(f"| {r['label']} | {_num(r['requests_median'])} / {_num(r['requests_max'])} | {ends} | "
-                     f"{r['load_requests']} | {ms(r['median_ms'])} / {ms(r['p95_ms'])} | {_answers(r)} |")
+                     f"{commands} | {r['load_requests']} | {ms(r['median_ms'])} / {ms(r['p95_ms'])} | {_answers(r)} |")
         if r["size"] == "example" and r["requests_median"] is not None:
             verdicts.append(verdict(f"HTTP requests per step ≤ {REQUESTS_MAX} on the example map",
                                     _num(r["requests_median"]), r["requests_median"] <= REQUESTS_MAX))

@@ -81,6 +81,10 @@ def test_remote_steps_on_oxigraph_serve_count_their_requests(tmp_path: Path) -> 
     assert row["mismatches"] == [] and len(row["requests_per_step"]) == 3
     assert all(n >= 1 for n in row["requests_per_step"]) and row["load_requests"] >= 1
     assert sum(row["last_step_requests"].values()) == row["requests_per_step"][-1]
+    by_command = row["requests_by_command"]
+    assert {"REASON", "QUERY OBJECTPROP IND canReach", "QUERY IND CLASS URGENT"} <= set(by_command)
+    assert by_command["REPLACE OBJECTPROP IND isIn"] == 0  # its write goes with the REASON's update
+    assert by_command["QUERY OBJECTPROP IND canReach"] + by_command["QUERY IND CLASS URGENT"] <= 1
     assert "HTTP requests per step ≤ 3 on the example map" in tables.extra_tables([row])
 
 

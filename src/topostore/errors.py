@@ -56,5 +56,10 @@ class StoreError(TopostoreError):
     """A store that cannot be opened, reached or written (disk locked, server down, writer lock held)."""
 
 
+class WritesLostError(StoreError):
+    """Changes a store had accepted and queued for the server were refused (or not answered) when sent:
+    they were undone in this process too, and the message says how many and why."""
+
+
 class StoreLockedError(StoreError):
     """Another topostore process holds the writer lock of a reference in a shared store."""

@@ -56,7 +56,8 @@ class ArmorService:
     arbitrary URLs).  ``store``: where references live (None: memory; a directory:
     one RocksDB store per reference; an http(s) URL: a SPARQL 1.1 server), see
     :mod:`topostore.stores`; a durable store's references are reopened here
-    (:mod:`topostore.armor.durable`).  ``sync``: flush each commit to disk (directory stores).
+    (:mod:`topostore.armor.durable`).  ``sync``: flush each commit to disk (directory stores), send each
+    commit before the reply instead of with the next request (remote stores).
     ``strict``: LOAD refuses a file with axioms not reasoned completely (209, naming them) instead of
     loading it and naming them in ``error_description``.
     """

@@ -69,7 +69,8 @@ EXIT_CANNOT_LISTEN = 4
     "--sync",
     is_flag=True,
     help="With a directory --store: flush every acknowledged change to disk, so it "
-    "also survives an OS crash or power loss (slower).",
+    "also survives an OS crash or power loss (slower). With a server --store: send every "
+    "change before the reply instead of with the next request (more round trips).",
 )
 @click.option("--store-query-url", metavar="URL", help="SPARQL query endpoint of a remote --store (default URL/query).")
 @click.option(

@@ -23,7 +23,7 @@ from collections.abc import Callable, Hashable, Iterable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from pyoxigraph import Literal, NamedNode, RdfFormat, Triple
+from pyoxigraph import Literal, NamedNode, Quad, RdfFormat, Triple
 
 from ..compile import RuleSet, compile_ontology
 from ..compile.builtins import FUNCTIONS as RULE_FUNCTIONS
@@ -48,6 +48,8 @@ from ..reason.incremental import DEFAULT_MAX_CHANGE_SHARE, IncrementalReasoner
 from ..reason.limits import ReasonLimits
 from ..stores import StoreSpec, check_rules, open_store
 from ..stores.base import Store
+from ..stores.literal_forms import FORMS
+from ..stores.meta import META
 from . import state as durable_state
 from .events import EventHub
 from .files import OntologyFiles, is_schema_triple
@@ -117,6 +119,7 @@ class Ontology:
         self.views = ClassViews()
         #: change notifications: subscribe with ``onto.events.subscribe(callback, "rdf:type URGENT")``
         self.events = EventHub(lambda: self.prefix)
+        self.store.on_lost.append(self._writes_lost)
         #: how a durable store was found: "new", "reopened" or "rebuilt" (see topostore.ontology.state)
         self.opened = durable_state.reopen(self)
 
@@ -201,6 +204,23 @@ class Ontology:
         self._reasoner = None
         self.ledger.stop_incremental()
         self.dirty = True
+
+    def _writes_lost(self, lost: list[tuple[list[Quad], list[Quad]]], certain: bool) -> None:
+        """The store could not write changes it had accepted (a remote store defers them): undo them
+        here too.  The ledger is set back exactly; a lost write of the reasoner's graphs, or a loss the
+        store cannot state exactly (``certain`` false: a server that did not answer may hold the changes
+        after all; a lost drop of scratch graphs), makes the next REASON a full one over what the server
+        holds; class views wait for the next REASON."""
+        def asserted(quads: list[Quad]) -> list[Triple]:
+            return [Triple(q.subject, q.predicate, q.object) for q in quads if q.graph_name == ASSERTED]
+
+        self.ledger.lost(self.store, [(asserted(adds), asserted(removes)) for adds, removes in lost])
+        if not certain or any(q.graph_name not in (ASSERTED, FORMS, META) for adds, removes in lost
+                              for q in adds + removes):
+            self._reasoner = None
+            self.ledger.stop_incremental()
+        self.dirty = True
+        self.views.clear()
 
     def value(self, value: object, datatype: str | None = None) -> Literal:
         """A validated literal from a Python value (int → xsd:integer, ...) or text + datatype."""
@@ -329,7 +349,9 @@ class Ontology:
         before = self.events.before_reason(self.store, None if self._report is None else self._report.consistent)
         added, removed = self.ledger.net_changes()
         durable_state.begin_reason(self.store)
-        stats, violations = self._reasoner.reason(added, removed, mode=mode, profile=profile, forced_reason=forced)
+        with self.store.keeping((ASSERTED,)):  # the reasoner writes its own graphs only
+            stats, violations = self._reasoner.reason(added, removed, mode=mode, profile=profile,
+                                                      forced_reason=forced)
         self.store.maybe_compact()
         previous, self._report = self._report, ReasonReport(not violations, violations, stats,
                                                             [n for n in rules.notices if n.incomplete])

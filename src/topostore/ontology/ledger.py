@@ -89,6 +89,22 @@ class ChangeLedger:
         if self.incremental and len(self.added) + len(self.removed) > max(limit, MIN_TRACKED):
             self.incremental = False
 
+    def lost(self, store: Store, changes: list[tuple[list[Triple], list[Triple]]]) -> None:
+        """Recorded changes (added, removed; oldest first) that never reached the store: a store that
+        defers writes had them refused.  The record is set back as if each had been undone, newest
+        first, without reading the store (it may be the store that is unreachable)."""
+        if not self.recording:
+            return
+        for added, removed in reversed(changes):
+            for triples, was_added in ((added, True), (removed, False)):
+                mine, other = (self.added, self.removed) if was_added else (self.removed, self.added)
+                for t in triples:
+                    key = store.stored_form(t)
+                    if key in mine:  # changed since the last REASON: back to as it was then
+                        del mine[key]
+                    else:  # it cancelled an earlier change the store has: that one stands alone again
+                        other[key] = t
+
     def net_changes(self) -> tuple[list[Triple], list[Triple]]:
         """The net added and removed triples (as stored) for an incremental REASON; empty when not usable."""
         if not self.incremental:

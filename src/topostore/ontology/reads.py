@@ -10,7 +10,7 @@ from __future__ import annotations
 from collections.abc import Hashable
 from typing import TYPE_CHECKING
 
-from pyoxigraph import Literal, NamedNode, Triple
+from pyoxigraph import Literal, NamedNode, Quad
 
 from ..errors import QueryError
 from ..rdf.terms import Term, value_key
@@ -36,11 +36,32 @@ class OntologyQueries:
 
     def _objects(self, s: Term, p: NamedNode) -> list[Term]:
         seen: dict = {}
-        for g in self.onto.visible_graphs():
-            for o in self.onto.store.objects(s, p, g):
+        for objects in self._objects_in_graphs(s, p).values():
+            for o in objects:
                 shown = self.onto.store.original_literal(ASSERTED, s, p, o) if isinstance(o, Literal) else o
                 seen.setdefault(value_key(o), shown)
         return list(seen.values())
+
+    def _objects_in_graphs(self, s: Term, p: NamedNode) -> dict[NamedNode, list[Term]]:
+        """The values of (s, p) in each visible graph; a read that goes to the store carries the class
+        views' pending decisions with it (one request for both, see :mod:`.views`)."""
+        graphs, store = self.onto.visible_graphs(), self.onto.store
+        owner = self._view_owner()
+        pairs = self.onto.views.pending(owner) if owner is not None and store.round_trips else []
+        if not pairs:
+            return store.batched.objects_in(s, p, graphs)
+        values, found = store.batched.objects_and_presence(s, p, graphs, self._type_quads(pairs, graphs))
+        self.onto.views.settle(pairs, self._members(pairs, found, len(graphs)))
+        return values
+
+    @staticmethod
+    def _type_quads(pairs: list[tuple[Term, NamedNode]], graphs: list[NamedNode]) -> list[Quad]:
+        return [Quad(s, TYPE, c, g) for s, c in pairs for g in graphs]
+
+    @staticmethod
+    def _members(pairs: list[tuple[Term, NamedNode]], found: list[bool], n: int) -> list[bool]:
+        """Membership of each pair from the presence of its type fact in each of ``n`` graphs."""
+        return [any(found[i * n:(i + 1) * n]) and _shown(s) for i, (s, _) in enumerate(pairs)]
 
     def types(self, individual: str | NamedNode) -> list[NamedNode]:
         """Named classes of an individual (asserted ∪ inferred), without owl:Thing."""
@@ -69,21 +90,13 @@ class OntologyQueries:
         return None if self.onto.dirty else self.onto.report
 
     def _instances(self, c: NamedNode) -> list[NamedNode]:
-        found: dict = {}
-        for g in self.onto.visible_graphs():
-            for s in self.onto.store.subjects(TYPE, c, g):
-                if _shown(s):
-                    found[s] = None
-        return list(found)
+        return [s for s in self.onto.store.batched.subjects_in(TYPE, c, self.onto.visible_graphs()) if _shown(s)]
 
     def _instance_flags(self, pairs: list[tuple[Term, NamedNode]]) -> list[bool]:
         """Whether each (individual, class) pair is one of :meth:`instances` (what a class view re-decides),
         in one batch of look-ups per visible graph."""
-        flags = [False] * len(pairs)
-        triples = [Triple(s, TYPE, c) for s, c in pairs]
-        for g in self.onto.visible_graphs():
-            flags = [f or found for f, found in zip(flags, self.onto.store.contains_each(triples, g))]
-        return [f and _shown(s) for f, (s, _) in zip(flags, pairs)]
+        graphs = self.onto.visible_graphs()
+        return self._members(pairs, self.onto.store.contains_quads(self._type_quads(pairs, graphs)), len(graphs))
 
     def object_values(self, prop: str | NamedNode, individual: str | NamedNode, names: bool = True) -> list:
         vals = [o for o in self._objects(self.onto.iri(individual), self.onto.iri(prop)) if isinstance(o, NamedNode)]

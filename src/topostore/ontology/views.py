@@ -19,6 +19,14 @@ date with).  It answers only while no asserted change has been made since
 report only through an incremental REASON that reports its touched type facts.
 A full REASON, a rollback (which puts an older report back) or a change of the
 visible graphs drops every view; the next read builds it again from the store.
+
+When the touched members are decided
+------------------------------------
+Not at the REASON: the touched pairs wait (:meth:`ClassViews.pending`) until a view
+is read, and are then decided in one batch.  On a store reached over HTTP that batch
+is a round trip; a read that goes to the server anyway (the robot's other question,
+``QUERY OBJECTPROP IND``) carries it (:meth:`ClassViews.settle`), so the step's two
+questions cost one request.
 """
 
 from __future__ import annotations
@@ -83,6 +91,9 @@ class ClassViews:
     def __init__(self) -> None:
         self._views: dict[NamedNode, _View] = {}
         self._owner: object | None = None  # the report the views are up to date with
+        # (individual, class) pairs a REASON touched, to re-decide before a view answers
+        self._stale: dict[tuple[Term, NamedNode], None] = {}
+        self._decide: Callable[[list[tuple[Term, NamedNode]]], list[bool]] | None = None
 
     def get(self, cls: NamedNode, owner: object, compute: Callable[[], Iterable[Term]]) -> list[Term]:
         """The members of ``cls`` under ``owner`` (the current report); built with ``compute`` once."""
@@ -101,6 +112,9 @@ class ClassViews:
         if owner is not self._owner:
             self.clear()
             self._owner = owner
+        if self._stale and self._decide is not None:
+            pairs = list(self._stale)
+            self.settle(pairs, self._decide(pairs))
         view = self._views.pop(cls, None)
         if view is None:
             view = _View(compute())
@@ -109,19 +123,17 @@ class ClassViews:
         self._views[cls] = view  # most recently asked last
         return view
 
-    def advance(self, before: object, after: object, touched: Iterable[tuple[Term, NamedNode]] | None,
-                are_members: Callable[[list[tuple[Term, NamedNode]]], list[bool]]) -> None:
-        """Bring the views of ``before`` to ``after``: re-decide each touched (individual, class) pair.
+    def pending(self, owner: object) -> list[tuple[Term, NamedNode]]:
+        """The touched (individual, class) pairs the views of ``owner`` still have to decide."""
+        return list(self._stale) if owner is self._owner else []
 
-        ``touched`` None (a full REASON, or a run that cannot say) drops the views; ``are_members``
-        decides a batch of pairs at once.
-        """
-        if touched is None or before is not self._owner or before is None:
-            self.clear()
-            return
-        pairs = [(s, cls) for s, cls in touched if cls in self._views]
-        for (s, cls), now in zip(pairs, are_members(pairs) if pairs else []):
-            view = self._views[cls]
+    def settle(self, pairs: list[tuple[Term, NamedNode]], members: list[bool]) -> None:
+        """Whether each pending pair is a member now (decided by the caller, e.g. with another read)."""
+        for (s, cls), now in zip(pairs, members, strict=True):
+            self._stale.pop((s, cls), None)
+            view = self._views.get(cls)
+            if view is None:
+                continue
             was = s in view.members
             if now and not was:
                 view.members[s] = None
@@ -131,10 +143,25 @@ class ClassViews:
                 del view.members[s]
                 for r in view.rendered.values():
                     r.remove(s)
+
+    def advance(self, before: object, after: object, touched: Iterable[tuple[Term, NamedNode]] | None,
+                are_members: Callable[[list[tuple[Term, NamedNode]]], list[bool]]) -> None:
+        """Bring the views of ``before`` to ``after``: each touched (individual, class) pair is to be
+        re-decided, in one batch with ``are_members`` when a view is next read (see the module docstring).
+
+        ``touched`` None (a full REASON, or a run that cannot say) drops the views.  Pairs still pending
+        from an earlier REASON stay pending: they are decided against the state of the latest one.
+        """
+        if touched is None or before is not self._owner or before is None:
+            self.clear()
+            return
+        self._stale.update(((s, cls), None) for s, cls in touched if cls in self._views)
+        self._decide = are_members
         self._owner = after
 
     def clear(self) -> None:
         self._views.clear()
+        self._stale.clear()
         self._owner = None
 
 

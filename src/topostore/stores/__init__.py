@@ -50,14 +50,18 @@ def memory_store() -> Store:
 
 def open_store(spec: StoreSpec = None, reference: str | None = None, *, sync: bool = False,
                query_url: str | None = None, update_url: str | None = None) -> Store:
-    """The store a ``store`` setting names, for ``reference`` (None: the setting itself is the store)."""
+    """The store a ``store`` setting names, for ``reference`` (None: the setting itself is the store).
+
+    ``sync``: every acknowledged change is durable before the reply — flushed to disk (a directory), or
+    sent at once instead of with the next request (a remote server, see :mod:`.remote`)."""
     which = kind(spec)
     if which == "memory":
         return memory_store()
     if which == "remote":
         from .remote import RemoteStore
 
-        return RemoteStore(str(spec), reference=reference or "", query_url=query_url, update_url=update_url)
+        return RemoteStore(str(spec), reference=reference or "", query_url=query_url, update_url=update_url,
+                           defer_writes=not sync)
     path = reference_dir(spec, reference) if reference else Path(spec)
     try:
         path.mkdir(parents=True, exist_ok=True)

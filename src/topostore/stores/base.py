@@ -16,6 +16,7 @@ Two details of the store are handled here so that nobody else has to know them:
 
 from __future__ import annotations
 
+import logging
 import os
 from collections.abc import Callable, Hashable, Iterable, Iterator, Mapping
 from contextlib import contextmanager
@@ -27,6 +28,8 @@ from ..rdf.skolem import fresh_skolem, skolem, skolemize, unskolem, unskolemize
 from ..rdf.syntax import FORMAT_NAMES, PROGRESS_EVERY, guess_format, parse_triples, serialize
 from ..rdf.terms import Term, value_key
 from ..rdf.vocab import FIRST, NIL, REST, SKOLEM_PREFIX, TYPE
+from .batched import BatchedReads
+from .listings import Listings
 from .literal_forms import FORMS, LiteralForms
 from .meta import META, PersistedState
 
@@ -71,8 +74,10 @@ class Store:
     """The store interface every other module talks to: quads in, SPARQL in, results out.
 
     This class holds what every implementation shares (parsing, transactions) and
-    two named parts: the literal forms users wrote (``forms``, :class:`.literal_forms.LiteralForms`)
-    and the small persisted state of a reference (``persisted``, :class:`.meta.PersistedState`),
+    named parts: the literal forms users wrote (``forms``, :class:`.literal_forms.LiteralForms`),
+    the small persisted state of a reference (``persisted``, :class:`.meta.PersistedState`), what a
+    store reached over HTTP knows without asking (``listings``, :class:`.listings.Listings`) and the
+    reads batched for it (``batched``, :class:`.batched.BatchedReads`),
     on top of a few primitives each implementation provides: ``_has``,
     ``_match``, ``_commit``, ``_run_update``, ``_run_query`` and ``_drop``.
     Implementations: :class:`topostore.stores.oxigraph.OxigraphStore` (memory
@@ -106,6 +111,13 @@ class Store:
         self._depth = 0
         #: SPARQL extension functions by IRI (the rule compiler's, see :meth:`use_functions`)
         self.functions: dict[NamedNode, Callable[..., Term | None]] = {}
+        #: values of (subject, predicate, graph) this process knows without asking (stores reached over HTTP)
+        self.listings: Listings | None = Listings(self._key) if self.round_trips else None
+        #: reads that cost one request where reads are round trips (see :mod:`.batched`)
+        self.batched = BatchedReads(self)
+        #: called with the writes a store that defers them could not apply, and whether that is certain
+        #: (see :meth:`_writes_lost`)
+        self.on_lost: list[Callable[[list[tuple[list[Quad], list[Quad]]], bool], None]] = []
 
     def use_functions(self, functions: Mapping[NamedNode, Callable[..., Term | None]]) -> None:
         """Let SPARQL run on this store call ``functions`` (IRI -> Python function of RDF terms).
@@ -153,6 +165,63 @@ class Store:
     def _commit(self, adds: list[Quad], removes: list[Quad]) -> None:
         """Apply removals then additions, all or nothing."""
         raise NotImplementedError
+
+    def _write(self, adds: list[Quad], removes: list[Quad], undo: Callable[[], None] | None = None) -> None:
+        """Apply a data change (removals then additions) through :meth:`_commit`.
+
+        A store that defers writes (:class:`~topostore.stores.remote.RemoteStore`) queues it instead and
+        calls ``undo`` (what the caller recorded in memory for it) should the server refuse it later.
+        """
+        self._commit(adds, removes)
+        self._written(adds, removes)
+
+    def _written(self, adds: list[Quad], removes: list[Quad]) -> None:
+        """A change is committed as far as this process is concerned: the listings follow it."""
+        if self.listings is not None:
+            self.listings.committed(adds, removes, self._stored_quad)
+
+    def _stored_quad(self, q: Quad) -> Quad:
+        if not isinstance(q.object, Literal):
+            return q
+        t = self.forms.stored_form(Triple(q.subject, q.predicate, q.object))
+        return Quad(t.subject, t.predicate, t.object, q.graph_name)
+
+    def _writes_lost(self, lost: list[tuple[list[Quad], list[Quad]]], certain: bool = True) -> None:
+        """Deferred writes (oldest first) the server did not apply (``certain`` false: it did not answer, so
+        it may have, or a lost write dropped graphs whose content is then unknown here): forget what this
+        process believed of the committed state, and tell the owners (the ontology's ledger) so that they
+        undo them too."""
+        if self.listings is not None:
+            self.listings.forget()
+        self._known = {}
+        self.persisted.forget()
+        for listener in list(self.on_lost):
+            listener(lost, certain)
+
+    @contextmanager
+    def keeping(self, graphs: Iterable[NamedNode]) -> Iterator[None]:
+        """SPARQL updates sent inside the block leave ``graphs`` unchanged (what this process knows of
+        them stays valid; see :mod:`.listings`).  The reasoner writes only its own graphs."""
+        if self.listings is None:
+            yield
+            return
+        with self.listings.keeping(graphs):
+            try:
+                yield
+            except BaseException:
+                self._settle_quietly()
+                raise
+        self._settle()
+
+    def _settle(self) -> None:
+        """The block of :meth:`keeping` is over: a store that deferred its updates sends them."""
+
+    def _settle_quietly(self) -> None:
+        """:meth:`_settle` while the block's own error propagates: a failure here is logged, not raised."""
+        try:
+            self._settle()
+        except Exception as exc:  # noqa: BLE001 - the block's error is the one reported
+            logging.getLogger("topostore.store").warning("sending the deferred updates failed too: %s", exc)
 
     def _run_update(self, text: str, prefixes: dict[str, str] | None) -> None:
         raise NotImplementedError
@@ -218,12 +287,17 @@ class Store:
         removes = [q for q, present in pending.values() if not present]
         if not adds and not removes and not meta:
             return
+        # the removed literals as their users wrote them, for an undo (a removal may name the stored form)
+        written = [Quad(q.subject, q.predicate, self.forms.original_literal(q.graph_name, q.subject, q.predicate,
+                                                                              q.object), q.graph_name)
+                   if isinstance(q.object, Literal) else q for q in removes]
         forms_add, forms_remove = self.forms.record(adds, removes)
         meta_add, meta_remove = self.persisted.quads(meta)
+        undo = lambda: self.forms.record(written, adds, undo=True)  # noqa: E731
         try:
-            self._commit(adds + forms_add + meta_add, removes + forms_remove + meta_remove)
+            self._write(adds + forms_add + meta_add, removes + forms_remove + meta_remove, undo)
         except BaseException:
-            self.forms.record(removes, adds, undo=True)
+            undo()
             raise
         self.persisted.committed(meta)
 
@@ -239,8 +313,15 @@ class Store:
         pending, known = self._pending or {}, self._known
         keys = keys if keys is not None else [self._key(q) for q in quads]
         unknown = [(q, k) for q, k in zip(quads, keys) if k not in pending and k not in known]
+        listed: dict = {}
+        if self.listings is not None and unknown:
+            for q, k in unknown:
+                if (present := self.listings.presence(q, k)) is not None:
+                    listed[k] = present
+            unknown = [(q, k) for q, k in unknown if k not in listed]
         found = dict(zip((k for _, k in unknown), self._has_many([q for q, _ in unknown]), strict=True)) \
             if unknown else {}
+        found.update(listed)
         if self._pending is not None:
             known.update(found)
         return [pending[k][1] if k in pending else known[k] if k in known else found[k] for k in keys]
@@ -301,7 +382,7 @@ class Store:
 
     def add_scratch(self, triples: Iterable[Triple], graph: NamedNode) -> None:
         """Bulk-add to a reasoner's scratch graph (no literal forms recorded, no counting)."""
-        self._commit([Quad(t.subject, t.predicate, t.object, graph) for t in triples], [])
+        self._write([Quad(t.subject, t.predicate, t.object, graph) for t in triples], [])
 
     def remove(self, triples: Iterable[Triple], graph: NamedNode) -> int:
         quads = list(dict.fromkeys(Quad(t.subject, t.predicate, t.object, graph) for t in triples))
@@ -317,7 +398,7 @@ class Store:
         graphs = tuple(graphs)
         quads = [Quad(t.subject, t.predicate, t.object, g) for t in triples for g in graphs]
         if quads:
-            self._commit([], quads)
+            self._write([], quads)
 
     def contains(self, t: Triple, graph: NamedNode) -> bool:
         return self._present([Quad(t.subject, t.predicate, t.object, graph)])[0]
@@ -333,6 +414,9 @@ class Store:
     def triples(
         self, s: Term | None = None, p: NamedNode | None = None, o: Term | None = None, graph: NamedNode | None = None
     ) -> Iterator[Triple]:
+        if self.listings is not None and s is not None and p is not None and o is None and graph is not None:
+            yield from self.batched.listed(s, p, graph)
+            return
         pending = self._pending
         if pending is None:
             for q in self._match(s, p, o, graph):
@@ -347,18 +431,17 @@ class Store:
             if present and _matches(q, s, p, o, graph):
                 yield Triple(q.subject, q.predicate, q.object)
 
+    def _predicate_rows(self, p: NamedNode, graph: NamedNode, limit: int) -> list[tuple[Term, Term]]:
+        """(subject, object) of up to ``limit`` facts of ``p`` in ``graph``."""
+        text = f"SELECT ?s ?o WHERE {{ GRAPH {graph} {{ ?s {p} ?o }} }} LIMIT {limit}"
+        return [(r["s"], r["o"]) for r in self._run_query(text, [graph])]
+
     def objects(self, s: Term, p: NamedNode, graph: NamedNode) -> list[Term]:
         return [t.object for t in self.triples(s, p, None, graph)]
 
     def objects_many(self, pairs: list[tuple[Term, NamedNode]], graph: NamedNode) -> dict[tuple, list[Term]]:
         """:meth:`objects` of several (subject, predicate) pairs; one query where reads are round trips."""
-        found: dict[tuple, list[Term]] = {pair: [] for pair in pairs}
-        if not self.round_trips or not pairs:
-            return {pair: self.objects(*pair, graph) for pair in found}
-        rows = " ".join(f"({s} {p})" for s, p in found)
-        for r in self.query(f"SELECT ?s ?p ?o WHERE {{ VALUES (?s ?p) {{ {rows} }} ?s ?p ?o }}", graphs=[graph]):
-            found[(r["s"], r["p"])].append(r["o"])
-        return found
+        return self.batched.objects_many(pairs, graph)
 
     def subjects(self, p: NamedNode, o: Term, graph: NamedNode) -> list[Term]:
         return [t.subject for t in self.triples(None, p, o, graph)]
@@ -419,6 +502,8 @@ class Store:
 
     def clear(self, graph: NamedNode) -> None:
         self._flush_open()
+        if self.listings is not None:
+            self.listings.forget(graph)
         self._drop(graph)
         self.forms.forget(graph)
 
@@ -430,6 +515,8 @@ class Store:
 
     def update(self, text: str, prefixes: dict[str, str] | None = None) -> None:
         self._flush_open()
+        if self.listings is not None:
+            self.listings.updated()
         self._run_update(text, prefixes)
 
     def query(self, text: str, graphs: list[NamedNode] | None = None, named: list[NamedNode] | None = None,

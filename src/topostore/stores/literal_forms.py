@@ -35,7 +35,7 @@ class LiteralForms:
     """How each committed literal was written: a part of one :class:`~topostore.stores.base.Store`.
 
     It reads its store's ``durable`` flag at each write (an implementation sets it after the base
-    is built) and persists through the store's ``_commit``/``_match`` primitives.
+    is built) and persists through the store's ``_write``/``_match`` primitives.
     """
 
     def __init__(self, store: Store) -> None:
@@ -115,7 +115,7 @@ class LiteralForms:
         """Forget the forms of a graph being cleared (and their persisted copies)."""
         gone = [(k, v) for k, v in self._literal_forms.items() if k[0] == graph.value]
         if self._store.durable and gone:
-            self._store._commit([], [_form_quad(k[0], k[1], k[2], lit) for k, lit in gone])
+            self._store._write([], [_form_quad(k[0], k[1], k[2], lit) for k, lit in gone])
         self._literal_forms = {k: v for k, v in self._literal_forms.items() if k[0] != graph.value}
         self._rebuild_value_forms()
 
