@@ -111,18 +111,25 @@ RULE_GROUPS = ("SWRL rules", "OWL axioms", "Consistency checks", "Generic OWL 2 
 @click.option("--deltas", is_flag=True,
               help="After each rule, the delta rules incremental REASON runs: one per body atom, that atom read "
                    "from the changed facts only.")
-def rules(files: tuple[str, ...], show_all: bool, deltas: bool) -> None:
+@click.option("--step", "step", metavar="PROP[,PROP...]",
+              help="Instead, the compiled step of a REASON after replacing a value of each of these properties "
+                   "(local names or IRIs): its operations in order, each with when it runs.")
+def rules(files: tuple[str, ...], show_all: bool, deltas: bool, step: str | None) -> None:
     """Print the rules compiled from FILE(s): SPARQL per rule, grouped, with its origin.
 
     \b
     Examples:
       topostore rules ontology/topological_map.ttl
       topostore rules --deltas ontology/topological_map.ttl
+      topostore rules --step isIn,now,visitedAt ontology/topological_map.ttl
     """
     from ..compile.generic import generic_rules
 
     _existing(files)
     onto = load_files(files)
+    if step:
+        click.echo(_step_program(onto, [p.strip() for p in step.split(",") if p.strip()]))
+        return
     generic = {(r.name, r.where(), r.head) for r in generic_rules()}
     groups: dict[str, list] = {g: [] for g in RULE_GROUPS}
     for rule in onto.rules.rules:
@@ -162,6 +169,21 @@ def _delta_rules(rule: Rule) -> str:
     for j, atom in enumerate(rule.body):
         blocks.append(f"#   delta on atom {j + 1} ({atom.text()}):\n{insert_text(rule, j, planned=True, lateral=False)}\n")
     return "\n".join(blocks)
+
+
+def _step_program(onto, props: list[str]) -> str:
+    """The compiled step of replacing a value of each property in ``props`` (see reason/program.py)."""
+    from ..reason.program import Refused, describe, signature
+
+    onto.reason()
+    reasoner = onto._reasoner
+    keys = {f"<{onto.iri(p).value}>": 1 for p in props}
+    sig = signature((keys, {}), (keys, {}), keys)
+    try:
+        program = reasoner.compiler.compile(sig, reasoner.state.present)
+    except Refused as why:
+        return f"# not compiled: {why}"
+    return describe(program)
 
 
 # --------------------------------------------------------------------------- query

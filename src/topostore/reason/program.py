@@ -160,6 +160,33 @@ class Refused(Exception):
     """The signature cannot be compiled; the message says why (reported in ``stats.program``)."""
 
 
+_WHEN = {"always": "always", "seeds": "always (seeds the key's candidates)", "recheck": "when {} has candidates",
+         "minus": "when {} lost facts", "plus": "when {} gained facts"}
+
+
+def describe(program: StepProgram) -> str:
+    """The program as commented SPARQL: each operation with when it runs (``topostore rules --step``)."""
+    out = [f"# {program.operations} operations outside recursive components; flips of "
+           + (", ".join(sorted(program.flipped)) or "none")]
+    for tag, text in program.ops:
+        if tag[0] == "flip":
+            tag = tag[1]
+        if tag[0] == "end":
+            out.append(f"# ---- {tag[1][1]} done: did it lose or gain facts? (two look-ups)")
+        elif tag[0] == "component":
+            comp = tag[1]
+            out.append(f"# ---- recursive component: {', '.join(k[1] for k in comp.keys)}\n"
+                       f"#   DRed inside it: {len(comp.seeds)} seed, {sum(map(len, comp.confirm.values()))} "
+                       f"confirmation, {sum(map(len, comp.inner_candidates.values()))} over-deletion, "
+                       f"{sum(map(len, comp.rederive.values()))} rederivation and "
+                       f"{len(comp.additions) + sum(map(len, comp.inner_additions.values()))} addition operations, "
+                       "run round by round")
+        else:
+            when = _WHEN.get(tag[0], tag[0]).format(tag[1][1] if len(tag) > 1 else "")
+            out.append(f"# runs {when}\n{text} ;")
+    return "\n".join(out)
+
+
 def signature(added_keys: tuple[dict, dict], removed_keys: tuple[dict, dict], clean: Collection[str]) -> Signature:
     """The signature of a change from the read keys of its facts (:func:`~..stores.base.key_census`)."""
     return Signature(_keys(added_keys), _keys(removed_keys), frozenset(clean))
@@ -434,4 +461,5 @@ class _Emitter:
         return emitted
 
 
-__all__ = ["ALWAYS", "PROGRAM_SCRATCH", "Refused", "SEEDS", "Signature", "StepCompiler", "StepProgram", "pair_atom", "signature"]
+__all__ = ["ALWAYS", "PROGRAM_SCRATCH", "Refused", "SEEDS", "Signature", "StepCompiler", "StepProgram", "describe",
+           "pair_atom", "signature"]
