@@ -271,16 +271,20 @@ def test_an_update_refused_alone_keeps_the_queued_writes(robot: Robot) -> None:
     assert robot.answers() == expected(onto)
 
 
+def _robot_place(url: str, ref: str) -> list[NamedNode]:
+    """Where Robot1 is, read by a store of its own."""
+    check = open_store(url, reference=ref)
+    try:
+        return [t.object for t in check.triples(NamedNode(NS + "Robot1"), NamedNode(NS + "isIn"), None, ASSERTED)]
+    finally:
+        check.close()
+
+
 def test_close_sends_the_queued_writes(oxigraph_url: str, map_file: Path) -> None:
     robot = Robot(oxigraph_url, map_file)
     robot.move("R2")
     robot.close()
-    check = open_store(oxigraph_url, reference=robot.ref)
-    try:
-        assert [t.object for t in check.triples(NamedNode(NS + "Robot1"), NamedNode(NS + "isIn"), None, ASSERTED)] \
-            == [NamedNode(NS + "R2")]
-    finally:
-        check.close()
+    assert _robot_place(oxigraph_url, robot.ref) == [NamedNode(NS + "R2")]
 
 
 def test_a_script_that_never_closes_its_store_still_writes_at_exit(oxigraph_url: str, map_file: Path) -> None:
@@ -289,12 +293,7 @@ def test_a_script_that_never_closes_its_store_still_writes_at_exit(oxigraph_url:
               f"onto = Ontology.from_file({str(map_file)!r}, store=open_store({oxigraph_url!r}, reference={ref!r}))\n"
               f"onto.replace('Robot1', 'isIn', 'R1', 'C1')\n")
     subprocess.run([sys.executable, "-c", script], check=True, timeout=120)
-    check = open_store(oxigraph_url, reference=ref)
-    try:
-        assert [t.object for t in check.triples(NamedNode(NS + "Robot1"), NamedNode(NS + "isIn"), None, ASSERTED)] \
-            == [NamedNode(NS + "R1")]
-    finally:
-        check.close()
+    assert _robot_place(oxigraph_url, ref) == [NamedNode(NS + "R1")]
 
 
 def test_sync_sends_every_change_before_the_reply(oxigraph_url: str, map_file: Path) -> None:

@@ -136,12 +136,7 @@ def run_component(run, comp: Component) -> None:
         run.flush()
         if not run.has_any(OVER_NEXT):
             break
-        run.queue.append(f"DROP SILENT GRAPH {OVER_DELTA} ; MOVE SILENT {OVER_NEXT} TO {OVER_DELTA}")
-        run.flush()
-        for key in comp.keys:
-            if run.has(key, OVER_DELTA):
-                run.queue += comp.inner_candidates.get(key, [])
-        run.flush()
+        _next_round(run, comp, OVER_NEXT, OVER_DELTA, comp.inner_candidates)
     over = [key for key in comp.keys if run.has(key, OVER)]
     run.queue += [comp.delete[key] for key in over]  # every deletion before any rederivation
     for key in over:
@@ -153,14 +148,19 @@ def run_component(run, comp: Component) -> None:
     run.flush()
     while run.has_any(ADD_NEXT):  # additions inside the component, semi-naive
         limits.check()
-        run.queue.append(f"DROP SILENT GRAPH {ADD_DELTA} ; MOVE SILENT {ADD_NEXT} TO {ADD_DELTA}")
-        run.flush()
-        for key in comp.keys:
-            if run.has(key, ADD_DELTA):
-                run.queue += comp.inner_additions.get(key, [])
-        run.flush()
+        _next_round(run, comp, ADD_NEXT, ADD_DELTA, comp.inner_additions)
     for key in comp.keys:
         run.note(key)
+
+
+def _next_round(run, comp: Component, found: NamedNode, delta: NamedNode, by_key: dict) -> None:
+    """What the last round ``found`` becomes the ``delta``; the operations of the keys it holds run."""
+    run.queue.append(f"DROP SILENT GRAPH {delta} ; MOVE SILENT {found} TO {delta}")
+    run.flush()
+    for key in comp.keys:
+        if run.has(key, delta):
+            run.queue += by_key.get(key, [])
+    run.flush()
 
 
 #: rounds of over-deletion and of additions a component gets when the program goes as one request
