@@ -138,3 +138,28 @@ def test_two_spellings_of_one_value_in_one_load_keep_the_value() -> None:
                    ':x :p 1, "01"^^xsd:int, true, "1"^^xsd:boolean, 5 .', "turtle")
     rows = onto.sparql("SELECT ?v WHERE { <http://e.org/#x> <http://e.org/#p> ?v }")
     assert sorted(r["v"].value for r in rows) == ["1", "5", "true"]
+
+
+def test_an_in_memory_store_is_compacted_after_a_fiftieth_of_its_quads_in_writes() -> None:
+    """Removed quads stay in an in-memory store until it is rebuilt: after 200 writes for a small one, after
+    a fiftieth of its live quads for a big one (not after its first 200 writes: a rebuild costs the map)."""
+    small, big = memory_store(), memory_store()
+    small.add([Triple(A, P, B)], ASSERTED)  # one write each
+    big.add([Triple(NamedNode(f"urn:x:s{k}"), P, B) for k in range(20_000)], ASSERTED)
+
+    def writes(store, n: int) -> None:
+        for k in range(n):
+            store.update(f"INSERT DATA {{ GRAPH {ASSERTED} {{ <urn:x:w> <urn:x:p> {k} }} }} ; "
+                         f"DELETE DATA {{ GRAPH {ASSERTED} {{ <urn:x:w> <urn:x:p> {k} }} }}")
+
+    for store in (small, big):
+        writes(store, 198)
+        assert not store.maybe_compact()  # 199 writes
+        writes(store, 1)
+    assert small.maybe_compact()  # 200 writes
+    assert not big.maybe_compact()  # 20,000 live quads: once every 400 writes
+    writes(big, 199)
+    assert not big.maybe_compact()
+    writes(big, 1)
+    assert big.maybe_compact()
+    assert small.count(ASSERTED) == 1 and big.count(ASSERTED) == 20_000  # the live quads, all of them
