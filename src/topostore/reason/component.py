@@ -89,12 +89,14 @@ def compile_component(e, keys: list[ReadKey]) -> Component:
         for j, atom in enumerate(rule.body):
             key = atom.read_key()
             if key in inside:
-                comp.inner_candidates.setdefault(key, []).append(
-                    texts.candidates(e.c.flat(i), j, OVER_DELTA, e.c.lateral, (OVER, texts.KEEP)))
-                comp.inner_additions.setdefault(key, []).append(texts.additions(rule, j, ADD_DELTA, into, e.c.lateral))
-            elif j not in handled and key in e.minus and not e.paired(i, j):
+                if not e.idle(i, j):
+                    comp.inner_candidates.setdefault(key, []).append(
+                        texts.candidates(e.c.flat(i), j, OVER_DELTA, e.c.lateral, (OVER, texts.KEEP)))
+                    comp.inner_additions.setdefault(key, []).append(
+                        texts.additions(rule, j, ADD_DELTA, into, e.c.lateral))
+            elif j not in handled and key in e.minus and not e.idle(i, j):
                 comp.seeds.append((("minus", key), e.candidates(i, j)))
-            if key not in inside and j not in handled and key in e.plus and not e.paired(i, j):
+            if key not in inside and j not in handled and key in e.plus and not e.idle(i, j):
                 comp.additions.append((("plus", key), texts.additions(rule, j, NEW_FACTS, into, e.c.lateral)))
     for key in keys:
         p = texts.pattern(key)

@@ -103,7 +103,7 @@ class StepProgram:
     flipped: frozenset = field(default_factory=frozenset)
     #: rules evaluated as flips (replaced values only compared)
     flips: int = 0
-    #: the cleanly replaced predicates no rule derives (see :meth:`_Emitter.paired`)
+    #: the cleanly replaced predicates no rule derives (see :meth:`_Emitter.idle`)
     clean: frozenset = field(default_factory=frozenset)
 
     @property
@@ -214,6 +214,7 @@ class StepCompiler:
         self.order = order
         self.lateral = lateral
         self._flat: dict[int, Rule] = {}
+        self._restates: dict[tuple, bool] = {}
         self.filter_vars = {i: flip.filter_variables(rules[i]) for i in self.monotone}
 
     def compile(self, sig: Signature, present: Present) -> StepProgram:
@@ -317,6 +318,38 @@ class StepCompiler:
             self._flat[i] = rule
         return rule
 
+    def restates_premise(self, i: int, writers: list[int]) -> bool:
+        """Whether rule ``i`` (one body atom, no condition: a domain, a range, a subclass) concludes a
+        premise, as written, of every rule in ``writers`` (the rules deriving its atom's facts).
+
+        Every derived fact of the atom's key then had that conclusion as a premise before it was
+        derived, so the rule adds no support a well-founded derivation needs: only asserted facts of
+        the key need it.  Reachability's canReach, for instance, requires the place to be a
+        LOCATION; canReach's range restates it.
+        """
+        key = (i, tuple(writers))
+        found = self._restates.get(key)
+        if found is None:
+            found = self._restates[key] = bool(writers) and all(self._restated(i, w) for w in writers)
+        return found
+
+    def _restated(self, i: int, w: int) -> bool:
+        rule, writer = self.rules[i], self.rules[w]
+        if len(rule.body) != 1 or rule.conditions or writer.head is None:
+            return False
+        atom, head = rule.body[0], writer.head
+        mapping: dict[str, str] = {}
+        for mine, theirs in ((atom.s, head.s), (atom.p, head.p), (atom.o, head.o)):
+            if mine.startswith("?"):
+                if mapping.setdefault(mine, theirs) != theirs:
+                    return False
+            elif mine != theirs:
+                return False
+        concluded = tuple(mapping.get(t, t) for t in (rule.head.s, rule.head.p, rule.head.o))
+        if any(t.startswith("?") and t not in mapping.values() and t in rule.head.variables() for t in concluded):
+            return False
+        return any((a.s, a.p, a.o) == concluded for a in writer.premises)
+
     def compared_atoms(self, i: int, clean: frozenset, changed: set) -> tuple[int, ...] | None:
         """The body atoms of rule ``i`` on cleanly replaced values, when every changed atom of the rule
         is one and the rule's filters are plain (else None): see :meth:`.flips.Flips._flip_atoms`."""
@@ -401,10 +434,21 @@ class _Emitter:
             raise Refused(f"facts of {key[1]} are derived into different graphs")
         return graphs.pop()
 
-    def paired(self, i: int, j: int) -> bool:
-        """Whether atom ``j`` of rule ``i`` is on a cleanly replaced predicate and only matches beside a
-        second value of its subject (:func:`pair_atom`): it cannot match a change."""
-        return self.rules[i].body[j].p in self.clean and pair_atom(self.rules[i], j)
+    def idle(self, i: int, j: int) -> bool:
+        """Whether a change of atom ``j``'s facts cannot change what rule ``i`` concludes in this step:
+
+        * the atom is on a cleanly replaced predicate and only matches beside a second value of its
+          subject (:func:`pair_atom`): it cannot match a change;
+        * the rule only restates a premise of every rule deriving the atom's facts
+          (:meth:`StepCompiler.restates_premise`), and no asserted fact of the atom's key changed: a
+          derived fact's premise held before it, so the rule never supports anything else.
+        """
+        rule = self.rules[i]
+        if rule.body[j].p in self.clean and pair_atom(rule, j):
+            return True
+        key = rule.body[j].read_key()
+        return key not in self.sig.added and key not in self.sig.removed and \
+            self.c.restates_premise(i, self.writers.get(key, []))
 
     def handled(self, i: int) -> tuple[int, ...] | None:
         """Rule ``i``'s changed atoms when all are flips (see :meth:`StepCompiler.compared_atoms`)."""
@@ -416,7 +460,7 @@ class _Emitter:
         for i in writers:
             handled = set(self.handled(i) or ())
             for j, atom in enumerate(self.rules[i].body):
-                if atom.read_key() in self.minus and j not in handled and not self.paired(i, j):
+                if atom.read_key() in self.minus and j not in handled and not self.idle(i, j):
                     self.ops.append((("minus", atom.read_key()), self.candidates(i, j)))
                     emitted = True
         return emitted
@@ -454,7 +498,7 @@ class _Emitter:
         for i in writers:
             handled = set(self.handled(i) or ())
             for j, atom in enumerate(self.rules[i].body):
-                if atom.read_key() in self.plus and j not in handled and not self.paired(i, j):
+                if atom.read_key() in self.plus and j not in handled and not self.idle(i, j):
                     self.ops.append((("plus", atom.read_key()),
                                      texts.additions(self.rules[i], j, NEW_FACTS, (graph, NEW_FACTS), self.c.lateral)))
                     emitted = True
