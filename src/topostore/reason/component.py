@@ -136,7 +136,7 @@ def run_component(run, comp: Component) -> None:
                 run.queue += comp.confirm[key]
         run.queue.append(f"DROP SILENT GRAPH {CANDIDATES}")  # decided: the next round's are new ones
         run.flush()
-        if not run.has_any(OVER_NEXT):
+        if not _more(run, comp, OVER_NEXT, comp.inner_candidates):
             break
         _next_round(run, comp, OVER_NEXT, OVER_DELTA, comp.inner_candidates)
     over = [key for key in comp.keys if run.has(key, OVER)]
@@ -148,11 +148,16 @@ def run_component(run, comp: Component) -> None:
         if tag[0] != "plus" or tag[1] in run.plus:
             run.queue.append(text)
     run.flush()
-    while run.has_any(ADD_NEXT):  # additions inside the component, semi-naive
+    while _more(run, comp, ADD_NEXT, comp.inner_additions):  # additions inside the component, semi-naive
         limits.check()
         _next_round(run, comp, ADD_NEXT, ADD_DELTA, comp.inner_additions)
     for key in comp.keys:
         run.note(key)
+
+
+def _more(run, comp: Component, found: NamedNode, by_key: dict) -> bool:
+    """Whether the last round ``found`` facts of a key some operation of the next round starts from."""
+    return run.has_any(found) and any(by_key.get(key) and run.has(key, found) for key in comp.keys)
 
 
 def _next_round(run, comp: Component, found: NamedNode, delta: NamedNode, by_key: dict) -> None:
