@@ -17,12 +17,10 @@ from dataclasses import dataclass, field
 from pyoxigraph import NamedNode, Triple
 
 from ..rdf.terms import Term
-from ..rdf.vocab import ASSERTED, AUX, ENTAILED, ENTAILED_PREFIX, INFERRED, TYPE
+from ..rdf.vocab import ASSERTED, AUX, ENTAILED, INFERRED, TYPE
 from .component import UNSETTLED
+from .entailed import ENTAILED_TYPE, internal, standing
 from .scratch import NEW_FACTS, OVERDELETED
-
-#: the internal form of an rdf:type conclusion whose individuals are different by entailment only
-ENTAILED_TYPE = NamedNode(ENTAILED_PREFIX + TYPE.value)
 
 
 @dataclass
@@ -43,8 +41,11 @@ def _flag(part: str, where: str) -> str:
     return f'{{ SELECT ("{part}" AS ?part) WHERE {{\n{where}\n}} LIMIT 1 }}'
 
 
-def _internal(p: NamedNode) -> NamedNode:
-    return NamedNode(ENTAILED_PREFIX + p.value)
+def touched_types(s: str, c: str) -> str:
+    """The group binding ``s`` and ``c`` to every (individual, class) whose type fact, real or
+    entailed-only, the last maintenance may have changed (its new-facts and over-deleted graphs)."""
+    return (f"VALUES ?g {{ {NEW_FACTS} {OVERDELETED} }} VALUES ?q {{ {TYPE} {ENTAILED_TYPE} }} "
+            f"GRAPH ?g {{ {s} ?q {c} }} FILTER(isIRI({c}))")
 
 
 def query(negated: Sequence[str], checks: Sequence[str], entailed: Iterable[NamedNode], settle: bool) -> str:
@@ -59,15 +60,14 @@ def query(negated: Sequence[str], checks: Sequence[str], entailed: Iterable[Name
     if checks:
         branches.append(_flag("v", "\nUNION\n".join(checks)))
     for p in entailed:  # touched triples of p, real or internal form, and where each stands now
-        q = _internal(p)
+        q = internal(p)
         branches.append(
             f'{{ SELECT DISTINCT ("e" AS ?part) ?s ?o ("{p.value}" AS ?p) ?i ?n ?a ?e WHERE {{ '
             f"VALUES ?g {{ {NEW_FACTS} {OVERDELETED} }} VALUES ?q {{ {p} {q} }} GRAPH ?g {{ ?s ?q ?o }} "
             f"BIND(EXISTS {{ GRAPH {AUX} {{ ?s {q} ?o }} }} AS ?i) BIND(EXISTS {{ GRAPH {INFERRED} {{ ?s {p} ?o }} }} AS ?n) "
             f"BIND(EXISTS {{ GRAPH {ASSERTED} {{ ?s {p} ?o }} }} AS ?a) "
             f"BIND(EXISTS {{ GRAPH {ENTAILED} {{ ?s {p} ?o }} }} AS ?e) }} }}")
-    branches.append(f'{{ SELECT DISTINCT ("t" AS ?part) ?s ?o WHERE {{ VALUES ?g {{ {NEW_FACTS} {OVERDELETED} }} '
-                    f"VALUES ?q {{ {TYPE} {ENTAILED_TYPE} }} GRAPH ?g {{ ?s ?q ?o }} FILTER(isIRI(?o)) }} }}")
+    branches.append(f'{{ SELECT DISTINCT ("t" AS ?part) ?s ?o WHERE {{ {touched_types("?s", "?o")} }} }}')
     graphs = f"FROM {ASSERTED} FROM {INFERRED} FROM {AUX} " + " ".join(
         f"FROM NAMED {g}" for g in (ASSERTED, INFERRED, AUX, ENTAILED, NEW_FACTS, OVERDELETED, UNSETTLED))
     return f"SELECT ?part ?s ?p ?o ?i ?n ?a ?e {graphs} WHERE {{\n" + "\nUNION\n".join(branches) + "\n}"
@@ -92,11 +92,11 @@ def read(rows) -> After:
             out.touched_types.append((row["s"], row["o"]))
         else:
             t = Triple(row["s"], NamedNode(row["p"].value), row["o"])
-            wanted = _true(row["i"]) and not _true(row["n"]) and not _true(row["a"])
-            if wanted != _true(row["e"]):
-                (out.entailed_add if wanted else out.entailed_drop).append(t)
+            change = standing(*(_true(row[v]) for v in ("i", "n", "a", "e")))
+            if change is not None:
+                (out.entailed_add if change else out.entailed_drop).append(t)
     out.touched_types = list(dict.fromkeys(out.touched_types))
     return out
 
 
-__all__ = ["After", "ENTAILED_TYPE", "query", "read"]
+__all__ = ["After", "query", "read", "touched_types"]

@@ -29,10 +29,10 @@ from dataclasses import dataclass, field
 from pyoxigraph import NamedNode
 
 from ..compile.rule import ReadKey
-from ..rdf.vocab import ASSERTED, INTERNAL
+from ..rdf.vocab import INTERNAL
 from . import delta_texts as texts
 from . import limits
-from .scratch import ADDED, CANDIDATES, FLIP_GAINED, NEW_FACTS, OVERDELETED, REMOVED
+from .scratch import ADDED, CANDIDATES, FLIP_GAINED, NEW_FACTS, REMOVED
 
 #: every fact of the component over-deleted so far, those of the last round, those of the next
 OVER = NamedNode(INTERNAL + "graph:inc-comp-over")
@@ -99,7 +99,6 @@ def compile_component(e, keys: list[ReadKey]) -> Component:
             if key not in inside and j not in handled and key in e.plus and not e.idle(i, j):
                 comp.additions.append((("plus", key), texts.additions(rule, j, NEW_FACTS, into, e.c.lateral)))
     for key in keys:
-        p = texts.pattern(key)
         if key in e.sig.removed:
             comp.seeds.append((ALWAYS, texts.copy(key, REMOVED, (OVER, OVER_NEXT))))
         if key in e.sig.added:
@@ -107,12 +106,8 @@ def compile_component(e, keys: list[ReadKey]) -> Component:
         provers = e.writers.get(key, [])
         comp.confirm[key] = [texts.keep(e.rules[i], e.c.lateral) for i in provers
                              if not (e.rules[i].reads() & inside)]
-        comp.confirm[key].append(
-            f"INSERT {{ GRAPH {OVER} {{ {p} }} GRAPH {OVER_NEXT} {{ {p} }} }} WHERE {{ GRAPH {CANDIDATES} {{ {p} }} "
-            f"FILTER NOT EXISTS {{ GRAPH {texts.KEEP} {{ {p} }} }} FILTER NOT EXISTS {{ GRAPH {ASSERTED} {{ {p} }} }} "
-            f"FILTER NOT EXISTS {{ GRAPH {OVER} {{ {p} }} }} }}")
-        comp.delete[key] = (f"DELETE {{ GRAPH {graphs[key]} {{ {p} }} }} INSERT {{ GRAPH {OVERDELETED} {{ {p} }} }} "
-                            f"WHERE {{ GRAPH {OVER} {{ {p} }} }}")
+        comp.confirm[key].append(texts.over_delete(key, OVER, OVER_NEXT))
+        comp.delete[key] = texts.delete(key, OVER, graphs[key])
         comp.rederive[key] = [texts.additions(e.rules[i], None, OVER, (graphs[key], NEW_FACTS, ADD_NEXT), e.c.lateral)
                               for i in provers]
     e.minus.update(keys)

@@ -14,7 +14,7 @@ from ..compile.rule import ReadKey, Rule
 from ..rdf.vocab import ASSERTED, AUX, INFERRED, INTERNAL, TYPE
 from . import flip
 from .plan import plan_where
-from .scratch import ADDED, CANDIDATES, FLIP_GAINED, OVERDELETED, dataset, target
+from .scratch import ADDED, CANDIDATES, FLIP_GAINED, OVERDELETED, REMOVED, dataset, target
 
 #: heads a rule still derives from the new state (the recheck's answer)
 KEEP = NamedNode(INTERNAL + "graph:inc-keep")
@@ -95,11 +95,47 @@ def gained(key: ReadKey, into: Iterable[NamedNode]) -> str:
             f"WHERE {{ GRAPH {FLIP_GAINED} {{ {p} }} FILTER NOT EXISTS {{ {p} }} }}")
 
 
+def _unconfirmed(p: str) -> str:
+    """The candidates of pattern ``p`` no rule confirmed and not asserted."""
+    return (f"GRAPH {CANDIDATES} {{ {p} }} FILTER NOT EXISTS {{ GRAPH {KEEP} {{ {p} }} }} "
+            f"FILTER NOT EXISTS {{ GRAPH {ASSERTED} {{ {p} }} }}")
+
+
+def recheck(key: ReadKey, graph: NamedNode) -> str:
+    """The candidates of ``key`` no rule confirmed leave ``graph`` and join OVERDELETED (the key's
+    removed facts for the keys downstream)."""
+    p = pattern(key)
+    return (f"DELETE {{ GRAPH {graph} {{ {p} }} }} INSERT {{ GRAPH {OVERDELETED} {{ {p} }} }} "
+            f"WHERE {{ {_unconfirmed(p)} }}")
+
+
+def restore(key: ReadKey, graph: NamedNode) -> str:
+    """A removed asserted fact of ``key`` that a rule still derives stays, as inferred in ``graph``."""
+    p = pattern(key)
+    return (f"DELETE {{ GRAPH {OVERDELETED} {{ {p} }} }} INSERT {{ GRAPH {graph} {{ {p} }} }} "
+            f"WHERE {{ GRAPH {REMOVED} {{ {p} }} GRAPH {KEEP} {{ {p} }} }}")
+
+
+def over_delete(key: ReadKey, over: NamedNode, over_next: NamedNode) -> str:
+    """The candidates of ``key`` no rule confirmed, not over-deleted yet, join ``over`` and ``over_next``
+    (DRed inside a recursive component)."""
+    p = pattern(key)
+    return (f"INSERT {{ GRAPH {over} {{ {p} }} GRAPH {over_next} {{ {p} }} }} "
+            f"WHERE {{ {_unconfirmed(p)} FILTER NOT EXISTS {{ GRAPH {over} {{ {p} }} }} }}")
+
+
+def delete(key: ReadKey, over: NamedNode, graph: NamedNode) -> str:
+    """The over-deleted facts of ``key`` leave ``graph`` and join OVERDELETED."""
+    p = pattern(key)
+    return (f"DELETE {{ GRAPH {graph} {{ {p} }} }} INSERT {{ GRAPH {OVERDELETED} {{ {p} }} }} "
+            f"WHERE {{ GRAPH {over} {{ {p} }} }}")
+
+
 def copy(key: ReadKey, source: NamedNode, into: Iterable[NamedNode]) -> str:
     """The facts of ``key`` in ``source`` into the graphs ``into``."""
     p = pattern(key)
     return f"INSERT {{ {_into(p, into)} }} WHERE {{ GRAPH {source} {{ {p} }} }}"
 
 
-__all__ = ["FLIP_LOST", "KEEP", "NEW_STATE", "OLD_STATE", "additions", "candidates", "copy", "flips", "gained",
-           "keep", "lost", "pattern"]
+__all__ = ["FLIP_LOST", "KEEP", "NEW_STATE", "OLD_STATE", "additions", "candidates", "copy", "delete", "flips",
+           "gained", "keep", "lost", "over_delete", "pattern", "recheck", "restore"]

@@ -23,7 +23,7 @@ from collections.abc import Sequence
 from pyoxigraph import NamedNode, Quad, Triple
 
 from ..compile.rule import RuleSet
-from ..rdf.vocab import ASSERTED, AUX, ENTAILED, ENTAILED_PREFIX, INFERRED
+from ..rdf.vocab import ASSERTED, AUX, ENTAILED, ENTAILED_PREFIX, INFERRED, TYPE
 from ..stores.base import Store
 
 
@@ -31,7 +31,7 @@ def publish_entailed(store: Store, rules: RuleSet) -> None:
     """Rebuild the ENTAILED graph from the helper graph (after a full run)."""
     ops = [f"DROP SILENT GRAPH {ENTAILED}"]
     for p in sorted(rules.entailed_predicates, key=lambda t: t.value):
-        ops.append(f"INSERT {{ GRAPH {ENTAILED} {{ ?s {p} ?o }} }} WHERE {{ GRAPH {AUX} {{ ?s {_internal(p)} ?o }} "
+        ops.append(f"INSERT {{ GRAPH {ENTAILED} {{ ?s {p} ?o }} }} WHERE {{ GRAPH {AUX} {{ ?s {internal(p)} ?o }} "
                    f"FILTER NOT EXISTS {{ GRAPH {INFERRED} {{ ?s {p} ?o }} }} "
                    f"FILTER NOT EXISTS {{ GRAPH {ASSERTED} {{ ?s {p} ?o }} }} }}")
     store.update(" ; ".join(ops))
@@ -52,28 +52,39 @@ def refresh_entailed(store: Store, rules: RuleSet, changed: Sequence[NamedNode])
     drop: list[Triple] = []
     touched = [Triple(row["s"], row["p"], row["o"]) for row in store.query(_touched_query(predicates, changed))]
     # four look-ups per triple, sent as one batch (one request on a remote store)
-    quads = [q for t in touched for q in (Quad(t.subject, _internal(t.predicate), t.object, AUX),
+    quads = [q for t in touched for q in (Quad(t.subject, internal(t.predicate), t.object, AUX),
                                           Quad(t.subject, t.predicate, t.object, INFERRED),
                                           Quad(t.subject, t.predicate, t.object, ASSERTED),
                                           Quad(t.subject, t.predicate, t.object, ENTAILED))]
     found = store.contains_quads(quads) if quads else []
     for n, t in enumerate(touched):
-        internal, inferred, asserted, shown = found[4 * n:4 * n + 4]
-        wanted = internal and not inferred and not asserted
-        if wanted != shown:
-            (add if wanted else drop).append(t)
+        change = standing(*found[4 * n:4 * n + 4])
+        if change is not None:
+            (add if change else drop).append(t)
     if add:
         store.add_scratch(add, ENTAILED)
     if drop:
         store.discard(drop, (ENTAILED,))
 
 
-def _internal(p: NamedNode) -> NamedNode:
+def internal(p: NamedNode) -> NamedNode:
+    """The internal predicate of ``p``'s entailed-only conclusions (in the helper graph)."""
     return NamedNode(ENTAILED_PREFIX + p.value)
+
+
+#: the internal form of an rdf:type conclusion whose individuals are different by entailment only
+ENTAILED_TYPE = internal(TYPE)
+
+
+def standing(internal_fact: bool, inferred: bool, asserted: bool, shown: bool) -> bool | None:
+    """Whether a triple must be added to ENTAILED (True), dropped from it (False) or neither (None): it
+    belongs there exactly when its internal twin holds and it is neither inferred nor asserted."""
+    wanted = internal_fact and not inferred and not asserted
+    return None if wanted == shown else wanted
 
 
 def _touched_query(predicates: Sequence[NamedNode], changed: Sequence[NamedNode]) -> str:
     """?s ?p ?o of the triples of ``predicates`` (real or internal form) in the ``changed`` graphs."""
     patterns = [f"{{ GRAPH {g} {{ ?s {q} ?o }} BIND({p} AS ?p) }}"
-                for p in predicates for g in changed for q in (p, _internal(p))]
+                for p in predicates for g in changed for q in (p, internal(p))]
     return f"SELECT DISTINCT ?s ?p ?o WHERE {{ {' UNION '.join(patterns)} }}"

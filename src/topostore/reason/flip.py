@@ -131,6 +131,30 @@ def same_kind(r: Replacement) -> bool:
     return type(r.old.object) is type(r.new.object)
 
 
+def replaced_in(store, added: Collection[Triple], removed: Collection[Triple], graph) -> dict[str, list[Replacement]]:
+    """:func:`clean_replacements` of a change, the subjects' values read from ``graph`` of ``store`` (one
+    batch of look-ups)."""
+    replaced = [(t.subject, t.predicate) for t in added if t.predicate != TYPE]
+    now = store.objects_many(list(dict.fromkeys(replaced)), graph) if replaced else {}
+    return clean_replacements(added, removed, lambda s, p: now.get((s, p), ()))
+
+
+def flip_atoms(rule: Rule, clean: Collection[str], changed) -> tuple[int, ...] | None:
+    """The rule's atoms on cleanly replaced values (``clean``: predicates as IRI text), when every atom
+    ``changed(key)`` says is changed is one of them and compared only, and the rule's filters are plain
+    and read nothing changed (else None): the atoms a flip evaluates instead of the ordinary delta."""
+    if not plain_filters(rule) or any(changed(k) for k in rule.filter_reads):
+        return None
+    handled = []
+    for j, atom in enumerate(rule.body):
+        if not changed(atom.read_key()):
+            continue
+        if atom.p not in clean or not compared_only(rule, j):
+            return None
+        handled.append(j)
+    return tuple(handled) or None
+
+
 def flip_query(branches: Iterable[str]) -> str:
     """One SELECT over the branches of several rules: head ``?h0 ?h1 ?h2``, ``?rule``, ``?ok__n`` (true: gained)."""
     return "SELECT DISTINCT ?rule ?h0 ?h1 ?h2 ?ok__n WHERE {\n" + "\nUNION\n".join(branches) + "\n}"
@@ -241,4 +265,5 @@ def gained(row) -> bool:
 
 
 __all__ = ["CHANGE_OLD", "Replacement", "clean_replacements", "compared_only", "filter_variables", "flip_branches",
-           "flip_query", "gained", "head_triple", "kind_tests_only", "plain_filters", "same_kind"]
+           "flip_atoms", "flip_query", "gained", "head_triple", "kind_tests_only", "plain_filters", "replaced_in",
+           "same_kind"]

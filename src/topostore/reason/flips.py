@@ -18,7 +18,7 @@ from pyoxigraph import NamedNode, Triple
 
 from ..compile.generic import PREFIXES
 from ..compile.rule import Rule
-from ..rdf.vocab import ASSERTED, AUX, INFERRED, TYPE
+from ..rdf.vocab import ASSERTED, AUX, INFERRED
 from ..stores.base import key_census
 from . import flip, window
 from .materialize import ReasonStats
@@ -48,9 +48,8 @@ class Flips:
         self._plans: dict[tuple, object] = {}
         #: sorted indexes of compared predicates (IRI text) for flip windows, kept from the asserted changes
         self._indexes: dict[str, window.ValueIndex] = {}
-        # per rule: the variables its filters mention, and whether they are plain BIND/FILTER lines
+        # per rule: the variables its filters mention
         self._filter_vars = [flip.filter_variables(r) for r in self.rules]
-        self._plain = [flip.plain_filters(r) for r in self.rules]
 
     def note(self, added: Collection[Triple], removed: Collection[Triple]) -> None:
         """Keep the value indexes up to date with the asserted changes."""
@@ -66,18 +65,18 @@ class Flips:
         self._indexes.clear()
 
     def find(self, state, added: Collection[Triple], removed: Collection[Triple], added_keys: KeyCounts,
-             stats: ReasonStats) -> tuple[set[tuple[int, int]], list[Triple], set[int]]:
+             stats: ReasonStats, replaced: dict | None = None) -> tuple[set[tuple[int, int]], list[Triple], set[int]]:
         """Evaluate the rules that see replaced values only through comparisons (see :mod:`.flip`).
 
         Returns the (rule, atom) evaluations the ordinary path must skip, the
         heads that lost their derivation by such a rule, and the rules with
         heads that may have gained one (put in FLIP_GAINED, checked later).
+        ``replaced``: the change's clean replacements when the caller has read them already.
         """
         self.state = state
-        replaced = [(t.subject, t.predicate) for t in added if t.predicate != TYPE]
-        now = self.store.objects_many(list(dict.fromkeys(replaced)), ASSERTED)
-        clean = flip.clean_replacements(added, removed, lambda s, p: now.get((s, p), ()))
-        clean = {p: pairs for p, pairs in clean.items() if not self.derivable(p)}
+        if replaced is None:
+            replaced = flip.replaced_in(self.store, added, removed, ASSERTED)
+        clean = {p: pairs for p, pairs in replaced.items() if not self.derivable(p)}
         skip: set[tuple[int, int]] = set()
         lost: list[Triple] = []
         gained_rules: set[int] = set()
@@ -90,7 +89,7 @@ class Flips:
         self.requests.flush()
         wanted: list[tuple[int, tuple[int, ...]]] = []
         for i in self.triggers.rules_reading(clean, self._monotone_set):
-            handled = self._flip_atoms(i, clean, changed)
+            handled = flip.flip_atoms(self.rules[i], clean, lambda key: matches(key, *changed))
             if handled is None:
                 continue
             skip.update((i, j) for j in handled)
@@ -107,20 +106,6 @@ class Flips:
             elif self.store.contains(head, target(self.rules[i])):
                 lost.append(head)
         return skip, lost, gained_rules
-
-    def _flip_atoms(self, i: int, clean: dict, changed: tuple[set[str], set[str]]) -> tuple[int, ...] | None:
-        """The rule's atoms on cleanly replaced values, when every changed atom is one (else None)."""
-        rule = self.rules[i]
-        if any(matches(k, *changed) for k in rule.filter_reads) or not self._plain[i]:
-            return None
-        handled = []
-        for j, atom in enumerate(rule.body):
-            if not matches(atom.read_key(), *changed):
-                continue
-            if atom.p not in clean or not flip.compared_only(rule, j):
-                return None
-            handled.append(j)
-        return tuple(handled) or None
 
     def _flip_rows(self, wanted: tuple[tuple[int, tuple[int, ...]], ...], stats: ReasonStats) -> list:
         """One query for the flips of all ``wanted`` (rule, compared atoms).

@@ -76,7 +76,7 @@ from ..compile.generic import PREFIXES
 from ..compile.rule import Rule, RuleSet
 from ..rdf.lexer import negates_exists  # noqa: F401 - public here since the first release
 from ..rdf.terms import Term
-from ..rdf.vocab import ASSERTED, AUX, DELTA, ENTAILED, ENTAILED_PREFIX, INFERRED, NEW_AUX, NEW_INFERRED, TYPE
+from ..rdf.vocab import ASSERTED, AUX, DELTA, ENTAILED, INFERRED, NEW_AUX, NEW_INFERRED, TYPE
 from ..stores.base import Store, key_census
 from . import after as after_step
 from . import delta_texts as texts
@@ -84,7 +84,7 @@ from . import flip
 from .component import WHOLE_ROUNDS
 from .consistency import Violation, check_consistency
 from .dred import Deletion, can_prove
-from .entailed import publish_entailed, refresh_entailed
+from .entailed import ENTAILED_TYPE, publish_entailed, refresh_entailed
 from .flips import Flips
 from .materialize import Materializer, ReasonStats
 from .plan import is_small, plan_where
@@ -93,9 +93,6 @@ from .requests import RequestQueue
 from .scratch import ADDED, FLIP_GAINED, NEW_FACTS, OVERDELETED, REMOVED, SCRATCH
 from .staged import StagedRun
 from .triggers import Present, Triggers
-
-#: the internal form of an rdf:type conclusion whose individuals are different by entailment only
-ENTAILED_TYPE = NamedNode(ENTAILED_PREFIX + TYPE.value)
 
 #: Default share of the asserted graph above which a change is recomputed from scratch.
 DEFAULT_MAX_CHANGE_SHARE = 0.10
@@ -299,10 +296,11 @@ class IncrementalReasoner:
         # a newly asserted fact that was inferred is now asserted only (as from scratch)
         if added:
             requests.discard(added, (INFERRED, AUX))
-        if self._compiled(added, removed, stats):
+        replaced = flip.replaced_in(self.store, added, removed, ASSERTED)
+        if self._compiled(added, removed, replaced, stats):
             return
         requests.flush()  # the scratch copies are read from here on
-        skip, lost, gained_rules = self.flips.find(self.state, added, removed, (preds, classes), stats)
+        skip, lost, gained_rules = self.flips.find(self.state, added, removed, (preds, classes), stats, replaced)
         if removed:
             self.deletion.overdelete(self.state, stats, skip, lost)
             self.deletion.rederive(self.state, stats)
@@ -315,17 +313,16 @@ class IncrementalReasoner:
         m.propagate(self.monotone, stats, seed=ADDED, record=NEW_FACTS, skip_first=skip)
 
     # ------------------------------------------------------------------ the compiled step
-    def _compiled(self, added: Collection[Triple], removed: Collection[Triple], stats: ReasonStats) -> bool:
+    def _compiled(self, added: Collection[Triple], removed: Collection[Triple], clean: dict,
+                  stats: ReasonStats) -> bool:
         """Maintain with the compiled program of this kind of change (see :mod:`.program`); False
-        (with the reason in ``stats.program``) when it cannot be compiled."""
+        (with the reason in ``stats.program``) when it cannot be compiled.  ``clean``: the change's
+        clean replacements (:func:`.flip.replaced_in`)."""
         if not self.compiled:
             stats.program = "general: compiled step switched off"
             return False
-        replaced = [(t.subject, t.predicate) for t in added if t.predicate != TYPE]
-        now = self.store.objects_many(list(dict.fromkeys(replaced)), ASSERTED) if replaced else {}
-        clean = flip.clean_replacements(added, removed, lambda s, p: now.get((s, p), ()))
         sig = signature(key_census(added), key_census(removed), clean)
-        self._clean = {p: pairs for p, pairs in clean.items()}
+        self._clean = clean
         program = self._program(sig)
         if isinstance(program, str):
             stats.program = f"general: {program}"
@@ -373,10 +370,7 @@ class IncrementalReasoner:
         classes: set[str] = set()
         for kind, key in self._heads:
             (preds if kind == "p" else classes).add(key)
-        lateral = self.store.supports_lateral
-        checks = [self._check_text(c, j, lateral) for c, j in
-                  self.check_triggers.evaluations(preds, classes, range(len(self.checks)), self.state.present)
-                  if not self._cannot_match(c, j)]
+        checks = self._check_branches(preds, classes, lambda c, j: self.store.supports_lateral)
         negated = [f"{{\n  {rule.where()}\n}}" for rule in self.negated]
         text = after_step.query(negated, checks, sorted(self.ruleset.entailed_predicates, key=lambda t: t.value),
                                 self._settle)
@@ -439,8 +433,7 @@ class IncrementalReasoner:
         """
         touched: dict[tuple[Term, NamedNode], None] = {}
         if self.store.round_trips:  # one query instead of four pattern reads
-            text = (f"SELECT DISTINCT ?s ?c WHERE {{ VALUES ?g {{ {NEW_FACTS} {OVERDELETED} }} "
-                    f"VALUES ?p {{ {TYPE} {ENTAILED_TYPE} }} GRAPH ?g {{ ?s ?p ?c }} FILTER(isIRI(?c)) }}")
+            text = f"SELECT DISTINCT ?s ?c WHERE {{ {after_step.touched_types('?s', '?c')} }}"
             return [(r["s"], r["c"]) for r in self.store.query(text)]
         for graph in (NEW_FACTS, OVERDELETED):
             for predicate in (TYPE, ENTAILED_TYPE):
@@ -452,19 +445,21 @@ class IncrementalReasoner:
     def _new_violation_possible(self) -> bool:
         """A check matches with at least one atom on a fact new in the closure (one semi-naive ASK)."""
         counts = preds, classes = self.requests.keys(NEW_FACTS)
-        branches = []
-        for c, j in self.check_triggers.evaluations(preds, classes, range(len(self.checks)),
-                                                    self.state.present):
-            if self._cannot_match(c, j):
-                continue
-            lateral = j is not None and is_small(counts, self.checks[c].body[j].read_key()) \
-                and self.store.supports_lateral
-            branches.append(self._check_text(c, j, lateral))
+        branches = self._check_branches(preds, classes, lambda c, j: j is not None and self.store.supports_lateral
+                                        and is_small(counts, self.checks[c].body[j].read_key()))
         if not branches:
             return False
         head = f"FROM {ASSERTED} FROM {INFERRED} FROM {AUX} FROM NAMED {AUX} FROM NAMED {NEW_FACTS}"
         text = f"ASK {head} WHERE {{\n" + "\nUNION\n".join(branches) + "\n}"
         return bool(self.store.query(text, prefixes=PREFIXES))
+
+    def _check_branches(self, preds: Collection[str], classes: Collection[str], lateral) -> list[str]:
+        """The semi-naive groups of the checks a change of ``preds``/``classes`` may make match (one per
+        check and changed atom), those that cannot match after the compiled step left out;
+        ``lateral(c, j)``: whether the group of check ``c`` on atom ``j`` runs per solution."""
+        return [self._check_text(c, j, lateral(c, j)) for c, j in
+                self.check_triggers.evaluations(preds, classes, range(len(self.checks)), self.state.present)
+                if not self._cannot_match(c, j)]
 
     def _cannot_match(self, c: int, j: int | None) -> bool:
         """Whether check ``c`` with atom ``j`` on the new facts cannot match after the compiled step: a

@@ -60,7 +60,7 @@ from pyoxigraph import NamedNode
 from ..compile.condition import TEST
 from ..compile.owl_restrictions import term_before
 from ..compile.rule import ReadKey, Rule
-from ..rdf.vocab import ASSERTED, TYPE
+from ..rdf.vocab import TYPE
 from . import delta_texts as texts
 from . import flip
 from .component import COMPONENT_SCRATCH, UNSETTLED, compile_component, whole_ops
@@ -350,21 +350,6 @@ class StepCompiler:
             return False
         return any((a.s, a.p, a.o) == concluded for a in writer.premises)
 
-    def compared_atoms(self, i: int, clean: frozenset, changed: set) -> tuple[int, ...] | None:
-        """The body atoms of rule ``i`` on cleanly replaced values, when every changed atom of the rule
-        is one and the rule's filters are plain (else None): see :meth:`.flips.Flips._flip_atoms`."""
-        rule = self.rules[i]
-        if not flip.plain_filters(rule):
-            return None
-        handled = []
-        for j, atom in enumerate(rule.body):
-            if atom.read_key() not in changed:
-                continue
-            if atom.p not in clean or not flip.compared_only(rule, j):
-                return None
-            handled.append(j)
-        return tuple(handled) or None
-
 
 class _Emitter:
     """Writes the operations of one program, key by key (a recursive component as one entry)."""
@@ -410,15 +395,9 @@ class _Emitter:
         if seeded or flipped or key in self.sig.removed:
             recheck = ("recheck", key)
             self.ops += [(recheck, texts.keep(self.rules[i], self.c.lateral)) for i in self.writers.get(key, [])]
-            p = texts.pattern(key)
-            self.ops.append((recheck, f"DELETE {{ GRAPH {graph} {{ {p} }} }} INSERT {{ GRAPH {OVERDELETED} {{ {p} }} }} "
-                                      f"WHERE {{ GRAPH {CANDIDATES} {{ {p} }} "
-                                      f"FILTER NOT EXISTS {{ GRAPH {texts.KEEP} {{ {p} }} }} "
-                                      f"FILTER NOT EXISTS {{ GRAPH {ASSERTED} {{ {p} }} }} }}"))
+            self.ops.append((recheck, texts.recheck(key, graph)))
             if key in self.sig.removed:
-                self.ops.append((recheck, f"DELETE {{ GRAPH {OVERDELETED} {{ {p} }} }} "
-                                          f"INSERT {{ GRAPH {graph} {{ {p} }} }} "
-                                          f"WHERE {{ GRAPH {REMOVED} {{ {p} }} GRAPH {texts.KEEP} {{ {p} }} }}"))
+                self.ops.append((recheck, texts.restore(key, graph)))
             self.minus.add(key)
         added = self._additions(writers, graph)
         if flipped:
@@ -451,8 +430,9 @@ class _Emitter:
             self.c.restates_premise(i, self.writers.get(key, []))
 
     def handled(self, i: int) -> tuple[int, ...] | None:
-        """Rule ``i``'s changed atoms when all are flips (see :meth:`StepCompiler.compared_atoms`)."""
-        return self.c.compared_atoms(i, self.clean, self.minus | self.plus)
+        """Rule ``i``'s changed atoms when all are flips (see :func:`.flip.flip_atoms`)."""
+        changed = self.minus | self.plus
+        return flip.flip_atoms(self.rules[i], self.clean, changed.__contains__)
 
     def _candidates(self, writers: list[int]) -> bool:
         """Heads present before that a rule derived with a removed fact go to CANDIDATES."""
