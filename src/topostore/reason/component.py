@@ -104,12 +104,15 @@ def compile_component(e, keys: list[ReadKey]) -> Component:
         if key in e.sig.added:
             comp.additions.append((ALWAYS, texts.copy(key, ADDED, (ADD_NEXT,))))
         provers = e.writers.get(key, [])
-        comp.confirm[key] = [texts.keep(e.rules[i], e.c.lateral) for i in provers
-                             if not (e.rules[i].reads() & inside)]
+        # a rule only restating a premise reads its premise's asserted facts alone (see :mod:`.restate`)
+        comp.confirm[key] = [text for text in (e.recheck(i) for i in provers
+                                               if e.restated(i) or not (e.rules[i].reads() & inside)) if text]
         comp.confirm[key].append(texts.over_delete(key, OVER, OVER_NEXT))
         comp.delete[key] = texts.delete(key, OVER, graphs[key])
-        comp.rederive[key] = [texts.additions(e.rules[i], None, OVER, (graphs[key], NEW_FACTS, ADD_NEXT), e.c.lateral)
-                              for i in provers]
+        into = (graphs[key], NEW_FACTS, ADD_NEXT)
+        comp.rederive[key] = [texts.rederive_asserted(e.rules[i], OVER, into) if e.restated(i)
+                              else texts.additions(e.rules[i], None, OVER, into, e.c.lateral)
+                              for i in provers if not (e.restated(i) and e.rules[i].body[0].aux)]
     e.minus.update(keys)
     e.plus.update(keys)
     return comp

@@ -61,6 +61,22 @@ def keep(rule: Rule, lateral: bool) -> str:
             f"WHERE {{\n  {where}\n}}")
 
 
+def keep_asserted(rule: Rule) -> str:
+    """Mark the candidates that ``rule`` (one premise) derives from asserted facts (see :mod:`.restate`)."""
+    head = rule.head.text()
+    return (f"INSERT {{ GRAPH {KEEP} {{ {head} }} }} WHERE {{ GRAPH {CANDIDATES} {{ {head} }} "
+            f"GRAPH {ASSERTED} {{ {rule.body[0].text()} }} }}")
+
+
+def rederive_asserted(rule: Rule, delta: NamedNode, into: Iterable[NamedNode]) -> str:
+    """Heads in ``delta`` that ``rule`` (one premise) derives from asserted facts, not known yet, into
+    the graphs ``into`` (see :mod:`.restate`)."""
+    head = rule.head.text()
+    return (f"INSERT {{ {_into(head, into)} }}\n{dataset(NEW_STATE, (delta, ASSERTED))}\n"
+            f"WHERE {{ GRAPH {delta} {{ {head} }} GRAPH {ASSERTED} {{ {rule.body[0].text()} }} "
+            f"FILTER NOT EXISTS {{ {head} }} }}")
+
+
 def additions(rule: Rule, j: int | None, delta: NamedNode, into: Iterable[NamedNode], lateral: bool) -> str:
     """Heads ``rule`` derives now with atom ``j`` on ``delta`` (or, with ``j`` None, the heads in
     ``delta`` it derives now), not known yet, into the graphs ``into``."""

@@ -73,7 +73,7 @@ from dataclasses import dataclass, field
 from pyoxigraph import NamedNode, Triple
 
 from ..compile.generic import PREFIXES
-from ..compile.rule import Rule, RuleSet
+from ..compile.rule import ReadKey, Rule, RuleSet
 from ..rdf.lexer import negates_exists  # noqa: F401 - public here since the first release
 from ..rdf.terms import Term
 from ..rdf.vocab import ASSERTED, AUX, DELTA, ENTAILED, INFERRED, NEW_AUX, NEW_INFERRED, TYPE
@@ -381,13 +381,12 @@ class IncrementalReasoner:
         if sig in self._unsettled and self.store.round_trips:
             return f"a recursive component needed more than {WHOLE_ROUNDS} rounds in one request before"
         program = self._programs.get(sig)
-        preds, classes = self.state.present
-        if isinstance(program, StepProgram) and any(
-                key[1] in (classes if key[0] == "t" else preds) for key in program.needs_absent):
+        if isinstance(program, StepProgram) and (_has_any(program.needs_absent, self.state.present)
+                                                 or _has_any(program.needs_unasserted, self.state.asserted)):
             program = None  # a key it left out has facts now
         if program is None:
             try:
-                program = self.compiler.compile(sig, self.state.present)
+                program = self.compiler.compile(sig, self.state.present, self.state.asserted)
             except Refused as why:
                 program = str(why)
             if len(self._programs) >= MAX_PROGRAMS:  # the oldest kind of change is compiled again if it returns
@@ -486,6 +485,12 @@ class IncrementalReasoner:
         self.requests.defer(" ; ".join(f"DROP SILENT GRAPH {g}"
                                        for g in (*SCRATCH, *PROGRAM_SCRATCH, DELTA, NEW_INFERRED, NEW_AUX)))
         self.requests.flush()
+
+
+def _has_any(keys: Collection[ReadKey], present: Present) -> bool:
+    """Whether any of ``keys`` has facts according to ``present``."""
+    preds, classes = present
+    return any(key[1] in (classes if key[0] == "t" else preds) for key in keys)
 
 
 __all__ = ["IncrementalReasoner", "MaintenanceState", "DEFAULT_MAX_CHANGE_SHARE", "MODES", "can_prove", "check_mode",

@@ -65,6 +65,7 @@ from . import delta_texts as texts
 from . import flip
 from .component import COMPONENT_SCRATCH, UNSETTLED, compile_component, whole_ops
 from .order import strongly_connected
+from .restate import restates
 from .scratch import ADDED, CANDIDATES, NEW_FACTS, OVERDELETED, REMOVED, target
 from .triggers import Present
 
@@ -105,6 +106,8 @@ class StepProgram:
     flips: int = 0
     #: the cleanly replaced predicates no rule derives (see :meth:`_Emitter.idle`)
     clean: frozenset = field(default_factory=frozenset)
+    #: keys whose absence from the asserted graph let rechecks be left out (see :meth:`_Emitter.recheck`)
+    needs_unasserted: frozenset = field(default_factory=frozenset)
 
     @property
     def whole(self) -> bool:
@@ -214,17 +217,17 @@ class StepCompiler:
         self.order = order
         self.lateral = lateral
         self._flat: dict[int, Rule] = {}
-        self._restates: dict[tuple, bool] = {}
         self.filter_vars = {i: flip.filter_variables(rules[i]) for i in self.monotone}
 
-    def compile(self, sig: Signature, present: Present) -> StepProgram:
-        """The program of ``sig`` given the keys with facts (``present``); raises :class:`Refused`."""
+    def compile(self, sig: Signature, present: Present, asserted: Present | None = None) -> StepProgram:
+        """The program of ``sig`` given the keys with facts (``present``) and with asserted facts
+        (``asserted``, a superset; None: any); raises :class:`Refused`."""
         active, affected, absent = self._affected(sig, present)
         writers = self._writers(present, affected, absent)
         # a replaced value that a rule may also derive is not a clean replacement (see :mod:`.flip`)
         clean = {p for p in sig.clean if not writers.get(("p", p))}
-        components = self._components(active, affected)
-        return _Emitter(self, sig, active, writers, frozenset(clean)).emit(components, absent)
+        emitter = _Emitter(self, sig, active, writers, frozenset(clean), asserted)
+        return emitter.emit(self._components(active, affected, emitter.idle), absent)
 
     def _writers(self, present: Present, affected: set, absent: set) -> dict[ReadKey, list[int]]:
         """Every maintained rule that can fire (its body keys have facts, now or from this change), by
@@ -292,15 +295,19 @@ class StepCompiler:
         if rule.filter_reads & affected or rule.conditions_read_graph:
             raise Refused(f"rule {rule.name} has a filter reading facts")
 
-    def _components(self, active: list[int], affected: set) -> list[list[ReadKey]]:
-        """The strongly connected components of the affected keys, in topological order."""
+    def _components(self, active: list[int], affected: set,
+                    idle: Callable[[int, int], bool]) -> list[list[ReadKey]]:
+        """The strongly connected components of the affected keys, in topological order, without the
+        edges of atoms whose changes cannot change the rule's conclusions (``idle``)."""
         keys = sorted(affected)
         number = {k: n for n, k in enumerate(keys)}
         succ: dict[int, set[int]] = {n: set() for n in range(len(keys))}
         for i in active:
             rule = self.rules[i]
             head = number[rule.writes()]
-            for key in rule.reads():
+            in_body = {atom.read_key() for atom in rule.body}
+            live = {atom.read_key() for j, atom in enumerate(rule.body) if not idle(i, j)}
+            for key in live | (rule.reads() - in_body):
                 if key in number:
                     succ[number[key]].add(head)
         found = strongly_connected(list(range(len(keys))), {n: sorted(s) for n, s in succ.items()})
@@ -318,44 +325,12 @@ class StepCompiler:
             self._flat[i] = rule
         return rule
 
-    def restates_premise(self, i: int, writers: list[int]) -> bool:
-        """Whether rule ``i`` (one body atom, no condition: a domain, a range, a subclass) concludes a
-        premise, as written, of every rule in ``writers`` (the rules deriving its atom's facts).
-
-        Every derived fact of the atom's key then had that conclusion as a premise before it was
-        derived, so the rule adds no support a well-founded derivation needs: only asserted facts of
-        the key need it.  Reachability's canReach, for instance, requires the place to be a
-        LOCATION; canReach's range restates it.
-        """
-        key = (i, tuple(writers))
-        found = self._restates.get(key)
-        if found is None:
-            found = self._restates[key] = bool(writers) and all(self._restated(i, w) for w in writers)
-        return found
-
-    def _restated(self, i: int, w: int) -> bool:
-        rule, writer = self.rules[i], self.rules[w]
-        if len(rule.body) != 1 or rule.conditions or writer.head is None:
-            return False
-        atom, head = rule.body[0], writer.head
-        mapping: dict[str, str] = {}
-        for mine, theirs in ((atom.s, head.s), (atom.p, head.p), (atom.o, head.o)):
-            if mine.startswith("?"):
-                if mapping.setdefault(mine, theirs) != theirs:
-                    return False
-            elif mine != theirs:
-                return False
-        concluded = tuple(mapping.get(t, t) for t in (rule.head.s, rule.head.p, rule.head.o))
-        if any(t.startswith("?") and t not in mapping.values() and t in rule.head.variables() for t in concluded):
-            return False
-        return any((a.s, a.p, a.o) == concluded for a in writer.premises)
-
 
 class _Emitter:
     """Writes the operations of one program, key by key (a recursive component as one entry)."""
 
     def __init__(self, compiler: StepCompiler, sig: Signature, active: list[int],
-                 writers: dict[ReadKey, list[int]], clean: frozenset) -> None:
+                 writers: dict[ReadKey, list[int]], clean: frozenset, asserted: Present | None) -> None:
         self.c = compiler
         self.rules = compiler.rules
         self.sig = sig
@@ -363,6 +338,10 @@ class _Emitter:
         #: every rule that can fire, by written key (the recheck's provers)
         self.writers = writers
         self.clean = clean
+        self.asserted = asserted
+        self._restated: dict[int, bool] = {}
+        #: keys whose absence from the asserted graph let a recheck be left out
+        self.unasserted: set[ReadKey] = set()
         #: keys that may have lost facts / gained facts so far (their changes are in OVERDELETED / NEW_FACTS)
         self.minus: set = set(sig.removed)
         self.plus: set = set(sig.added)
@@ -383,7 +362,7 @@ class _Emitter:
             if writers or (item in self.sig.removed and self.writers.get(item)):
                 self._plain(item, writers)
         return StepProgram(self.ops, frozenset(absent), frozenset(self.graphs), frozenset(self.flipped),
-                           self.flip_rules, self.clean)
+                           self.flip_rules, self.clean, frozenset(self.unasserted))
 
     def _plain(self, key: ReadKey, writers: list[int]) -> None:
         """A key no rule derives from itself: candidates, flips, recheck, additions."""
@@ -394,7 +373,7 @@ class _Emitter:
             self.ops.append((SEEDS, texts.copy(key, REMOVED, (CANDIDATES,))))
         if seeded or flipped or key in self.sig.removed:
             recheck = ("recheck", key)
-            self.ops += [(recheck, texts.keep(self.rules[i], self.c.lateral)) for i in self.writers.get(key, [])]
+            self.ops += [(recheck, text) for text in map(self.recheck, self.writers.get(key, [])) if text]
             self.ops.append((recheck, texts.recheck(key, graph)))
             if key in self.sig.removed:
                 self.ops.append((recheck, texts.restore(key, graph)))
@@ -418,16 +397,33 @@ class _Emitter:
 
         * the atom is on a cleanly replaced predicate and only matches beside a second value of its
           subject (:func:`pair_atom`): it cannot match a change;
-        * the rule only restates a premise of every rule deriving the atom's facts
-          (:meth:`StepCompiler.restates_premise`), and no asserted fact of the atom's key changed: a
-          derived fact's premise held before it, so the rule never supports anything else.
+        * the rule only restates a premise of every derivation of the atom's facts, and no asserted
+          fact of the atom's key changed (:func:`.restate.restates`): a derived fact's premise held
+          before it, so the rule never supports anything else.
         """
         rule = self.rules[i]
         if rule.body[j].p in self.clean and pair_atom(rule, j):
             return True
-        key = rule.body[j].read_key()
-        return key not in self.sig.added and key not in self.sig.removed and \
-            self.c.restates_premise(i, self.writers.get(key, []))
+        return self.restated(i)
+
+    def restated(self, i: int) -> bool:
+        """Whether rule ``i`` only restates a premise (see :mod:`.restate`), decided once per program."""
+        found = self._restated.get(i)
+        if found is None:
+            found = self._restated[i] = restates(self.rules, i, self.writers, self.sig.added | self.sig.removed)
+        return found
+
+    def recheck(self, i: int) -> str:
+        """Rule ``i``'s recheck of its key's candidates: from the new state, or, for a rule that only
+        restates a premise, from the asserted facts of its premise ("" when there are none)."""
+        rule = self.rules[i]
+        if not self.restated(i):
+            return texts.keep(rule, self.c.lateral)
+        key = rule.body[0].read_key()
+        if rule.body[0].aux or (self.asserted is not None and key[1] not in self.asserted[0 if key[0] == "p" else 1]):
+            self.unasserted.add(key)
+            return ""
+        return texts.keep_asserted(rule)
 
     def handled(self, i: int) -> tuple[int, ...] | None:
         """Rule ``i``'s changed atoms when all are flips (see :func:`.flip.flip_atoms`)."""
