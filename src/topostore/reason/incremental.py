@@ -154,6 +154,7 @@ class IncrementalReasoner:
         self.checks = rules.checks
         self.check_triggers = Triggers(self.checks)
         self.negated = [r for r in self.rules if not is_monotone(r)]
+        self.negated_triggers = Triggers(self.negated)
         self.provers = [i for i in self.monotone if can_prove(self.rules[i])]
         self.checks_monotone = all(not c.negates and c.stratum == 0 for c in self.checks)
         self.requests = RequestQueue(store, self.rules)
@@ -174,6 +175,8 @@ class IncrementalReasoner:
         #: the cleanly replaced predicates no rule derives, when the compiled step ran (else empty)
         self._step_clean: frozenset = frozenset()
         self._heads: set = set()
+        #: the keys that may have lost facts in the last compiled step (the remote negated-premise read)
+        self._lost: set = set()
         #: SPARQL texts of the checks made once (the phases' texts live in the request queue)
         self._texts: dict[tuple, str] = {}
         #: (individual, class) pairs whose type fact the last REASON may have changed; None after a full run
@@ -348,6 +351,7 @@ class IncrementalReasoner:
         self._step_clean = program.clean
         #: the keys the after-step reads ask about: the asserted changes' and what the program may add
         self._heads = set(program.heads) | set(sig.added)
+        self._lost = set(program.heads) | set(sig.removed)
         for kind, key in program.heads:
             self.state.present[0 if kind == "p" else 1].add(key)
         return True
@@ -371,7 +375,8 @@ class IncrementalReasoner:
         for kind, key in self._heads:
             (preds if kind == "p" else classes).add(key)
         checks = self._check_branches(preds, classes, lambda c, j: self.store.supports_lateral)
-        negated = [f"{{\n  {rule.where()}\n}}" for rule in self.negated]
+        lost = ({k for kind, k in self._lost if kind == "p"}, {k for kind, k in self._lost if kind == "t"})
+        negated = self._negated_branches((preds, classes), lost, lambda i, j: self.store.supports_lateral)
         text = after_step.query(negated, checks, sorted(self.ruleset.entailed_predicates, key=lambda t: t.value),
                                 self._settle)
         return after_step.read(self.store.query(text, prefixes=PREFIXES))
@@ -396,14 +401,42 @@ class IncrementalReasoner:
 
     # ------------------------------------------------------------------ after maintenance
     def _negated_match(self) -> bool:
-        """Whether any rule with a negated premise matches the current closure (one ASK for all)."""
-        if not self.negated:
+        """Whether a rule with a negated premise matches after this maintenance (one ASK, semi-naive)."""
+        new, lost = self.requests.keys(NEW_FACTS), self.requests.keys(OVERDELETED)
+        branches = self._negated_branches(new, lost, lambda i, j: self.store.supports_lateral
+                                          and is_small(new, self.negated[i].body[j].read_key()))
+        if not branches:
             return False
-        text = self._texts.get(("negated",))
-        if text is None:
-            text = self._texts[("negated",)] = "ASK {\n" + "\nUNION\n".join(
-                f"{{\n  {rule.where()}\n}}" for rule in self.negated) + "\n}"
-        return bool(self.store.query(text, graphs=[ASSERTED, INFERRED, AUX], prefixes=PREFIXES))
+        head = f"FROM {ASSERTED} FROM {INFERRED} FROM {AUX} FROM NAMED {AUX} FROM NAMED {NEW_FACTS}"
+        return bool(self.store.query(f"ASK {head} WHERE {{\n" + "\nUNION\n".join(branches) + "\n}",
+                                     prefixes=PREFIXES))
+
+    def _negated_branches(self, new: Present, lost: Present, lateral) -> list[str]:
+        """The groups of the negated-premise rules that may match now, when none matched before (the
+        state is quiet): a rule whose filters read a key that gained or lost facts, whole; else one
+        group per body atom on a key that gained facts, that atom on NEW_FACTS (a lost positive
+        premise cannot make a rule match), except a pair of values of one subject on a cleanly
+        replaced predicate (:func:`.program.pair_atom`)."""
+        if not self.negated:
+            return []
+        preds = set(new[0]) | set(lost[0])
+        classes = set(new[1]) | set(lost[1])
+        out = []
+        for i, j in self.negated_triggers.evaluations(preds, classes, range(len(self.negated)), self.state.present):
+            rule = self.negated[i]
+            if j is None:
+                out.append(f"{{\n  {rule.where()}\n}}")
+                continue
+            key = rule.body[j].read_key()
+            if not _has_any((key,), new) and key != ("*",) or \
+                    (rule.body[j].p in self._step_clean and pair_atom(rule, j)):
+                continue
+            text_key = ("negated", i, j, lateral(i, j))
+            text = self._texts.get(text_key)
+            if text is None:
+                text = self._texts[text_key] = f"{{\n  {plan_where(rule, j, NEW_FACTS, lateral=lateral(i, j))}\n}}"
+            out.append(text)
+        return out
 
     def _check(self, stats: ReasonStats, changed: bool) -> list[Violation]:
         """Consistency of the new state, running all checks only when one may have changed."""

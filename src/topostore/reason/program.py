@@ -65,7 +65,7 @@ from . import delta_texts as texts
 from . import flip
 from .component import COMPONENT_SCRATCH, UNSETTLED, compile_component, whole_ops
 from .order import strongly_connected
-from .restate import restates
+from .restate import covering, restates
 from .scratch import ADDED, CANDIDATES, NEW_FACTS, OVERDELETED, REMOVED, target
 from .triggers import Present
 
@@ -218,22 +218,39 @@ class StepCompiler:
         self.lateral = lateral
         self._flat: dict[int, Rule] = {}
         self.filter_vars = {i: flip.filter_variables(rules[i]) for i in self.monotone}
+        #: rules that add nothing while a premise only matches derived facts (see :func:`.restate.covering`)
+        self.covered = covering(rules, self.monotone)
 
     def compile(self, sig: Signature, present: Present, asserted: Present | None = None) -> StepProgram:
         """The program of ``sig`` given the keys with facts (``present``) and with asserted facts
         (``asserted``, a superset; None: any); raises :class:`Refused`."""
-        active, affected, absent = self._affected(sig, present)
-        writers = self._writers(present, affected, absent)
+        left_out = self._left_out(sig, asserted)
+        active, affected, absent = self._affected(sig, present, left_out)
+        writers = self._writers(present, affected, absent, left_out)
         # a replaced value that a rule may also derive is not a clean replacement (see :mod:`.flip`)
         clean = {p for p in sig.clean if not writers.get(("p", p))}
         emitter = _Emitter(self, sig, active, writers, frozenset(clean), asserted)
+        emitter.unasserted.update(self.covered[i] for i in left_out)
         return emitter.emit(self._components(active, affected, emitter.idle), absent)
 
-    def _writers(self, present: Present, affected: set, absent: set) -> dict[ReadKey, list[int]]:
+    def _left_out(self, sig: Signature, asserted: Present | None) -> set[int]:
+        """The covered rules whose premise has no asserted fact, now or from this change: they add
+        nothing (:func:`.restate.covering`).  None known of the asserted facts: none."""
+        if asserted is None:
+            return set()
+        changed = sig.added | sig.removed
+        preds, classes = asserted
+        return {i for i, key in self.covered.items()
+                if key not in changed and key[1] not in (classes if key[0] == "t" else preds)}
+
+    def _writers(self, present: Present, affected: set, absent: set,
+                 left_out: Collection[int]) -> dict[ReadKey, list[int]]:
         """Every maintained rule that can fire (its body keys have facts, now or from this change), by
         the key it writes: a recheck must ask all of them, changed premises or not."""
         writers: dict[ReadKey, list[int]] = {}
         for i in self.monotone:
+            if i in left_out:
+                continue
             rule = self.rules[i]
             missing = self._missing(rule, present, affected)
             if missing:
@@ -242,7 +259,7 @@ class StepCompiler:
             writers.setdefault(rule.writes(), []).append(i)
         return writers
 
-    def _affected(self, sig: Signature, present: Present) -> tuple[list[int], set, set]:
+    def _affected(self, sig: Signature, present: Present, left_out: Collection[int]) -> tuple[list[int], set, set]:
         """The rules a change of ``sig`` can make fire, the keys they may change, and the keys whose
         absence left rules out."""
         affected = set(sig.added | sig.removed)
@@ -253,7 +270,7 @@ class StepCompiler:
             grew = False
             for i in self.monotone:
                 rule = self.rules[i]
-                if i in active or not self._reaches(rule, affected):
+                if i in active or i in left_out or not self._reaches(rule, affected):
                     continue
                 missing = self._missing(rule, present, affected)
                 if missing:
@@ -380,7 +397,7 @@ class _Emitter:
             self.minus.add(key)
         added = self._additions(writers, graph)
         if flipped:
-            self.ops.append((ALWAYS, texts.gained(key, (graph, NEW_FACTS))))
+            self.ops.append((("gained", key), texts.gained(key, (graph, NEW_FACTS))))
         if added or flipped:
             self.plus.add(key)
         self.ops.append((("end", key), ""))
@@ -465,7 +482,7 @@ class _Emitter:
             ops.append((("flip", tag, i, order), texts.flips(rule, order, self.c.lateral, i)))
             found.append(i)
         for key in sorted({self.rules[i].writes() for i in found}):
-            ops.append((tag, texts.lost(key, self.target(key, found))))
+            ops.append((("lost", key), texts.lost(key, self.target(key, found))))
         return found
 
     def _additions(self, writers: list[int], graph: NamedNode) -> bool:

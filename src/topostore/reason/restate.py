@@ -26,9 +26,11 @@ change.
 
 from __future__ import annotations
 
-from collections.abc import Collection, Mapping
+from collections.abc import Collection, Iterator, Mapping
 
+from ..compile.condition import TEST
 from ..compile.rule import Atom, ReadKey, Rule
+from ..rdf import lexer
 
 Triple = tuple[str, str, str]
 
@@ -103,4 +105,99 @@ def _terms(atom: Atom) -> Triple:
     return (atom.s, atom.p, atom.o)
 
 
-__all__ = ["restates"]
+def covering(rules: list[Rule], candidates: Collection[int]) -> dict[int, ReadKey]:
+    """Rules among ``candidates`` that never conclude anything new while one of their premises only
+    matches derived facts: by rule, that premise's key.
+
+    Reachability asks whether ``l1`` and ``l2`` are different for every ``connectedTo(l1, l2)`` the
+    robot's place has; but every rule deriving ``connectedTo(l1, l2)`` (Connectability) had two places
+    sharing a door, and Connectability's own question already asked about that pair from those very
+    premises.  While no ``connectedTo`` fact is asserted, Reachability's question adds no fact: a
+    compiled step may leave that rule out, and with it the path from ``isIn`` to the difference keys.
+    The premises another rule ``r`` reads must be evaluated premises of each deriving rule ``w``, and
+    ``r``'s filters must be among ``w``'s or the rule's own (as text); ``r`` must not itself be left out.
+    """
+    writers: dict[ReadKey, list[int]] = {}
+    for n, rule in enumerate(rules):
+        if rule.head is not None:
+            writers.setdefault(rule.writes(), []).append(n)
+    found: dict[int, ReadKey] = {}
+    for i in candidates:
+        key = _covered_at(rules, i, writers)
+        if key is not None:
+            found[i] = key
+    # a rule that helps cover another must stay
+    return {i: key for i, key in found.items() if not any(n in found for n in _helpers(rules, i, key, writers))}
+
+
+def _covered_at(rules: list[Rule], i: int, writers: Mapping[ReadKey, list[int]]) -> ReadKey | None:
+    rule = rules[i]
+    if rule.head is None or any(c.kind != TEST or c.reads_graph for c in rule.conditions):
+        return None
+    for atom in rule.body:
+        key = atom.read_key()
+        if not atom.p.startswith("<") or key == rule.writes() or not writers.get(key):
+            continue
+        if all(any(True for _ in _derivers(rules, i, atom, rules[w], writers)) for w in writers[key]):
+            return key
+    return None
+
+
+def _helpers(rules: list[Rule], i: int, key: ReadKey, writers: Mapping[ReadKey, list[int]]) -> set[int]:
+    atom = next(a for a in rules[i].body if a.read_key() == key)
+    return {n for w in writers[key] for n in _derivers(rules, i, atom, rules[w], writers)}
+
+
+def _derivers(rules: list[Rule], i: int, atom: Atom, writer: Rule, writers: Mapping[ReadKey, list[int]]) -> Iterator[int]:
+    """The rules other than ``i`` that derive rule ``i``'s conclusion from ``writer``'s evaluated premises,
+    whenever ``writer`` derives a fact matching ``atom`` and rule ``i``'s filters hold."""
+    rule = rules[i]
+    if writer.head is None or any(c.kind != TEST or c.reads_graph for c in writer.conditions):
+        return
+    theta = _match(_terms(atom), _terms(writer.head))
+    if theta is None or any(t.startswith("?") and t not in theta for t in _terms(rule.head)):
+        return
+    goal = tuple(theta.get(t, t) for t in _terms(rule.head))
+    known = {_squash(c.text) for c in writer.conditions}
+    known |= {_squash(_substitute(c.text, theta)) for c in rule.conditions if c.variables <= theta.keys()}
+    for n in writers.get(rule.writes(), []):
+        other = rules[n]
+        if n == i or any(c.kind != TEST or c.reads_graph for c in other.conditions):
+            continue
+        for sigma in _embeddings(other.body, writer.body, {}):
+            if tuple(sigma.get(t, t) for t in _terms(other.head)) == goal and all(
+                    _squash(_substitute(c.text, sigma)) in known for c in other.conditions):
+                yield n
+                break
+
+
+def _embeddings(body: tuple[Atom, ...], premises: tuple[Atom, ...], sigma: dict[str, str]) -> Iterator[dict[str, str]]:
+    """Substitutions mapping every atom of ``body`` onto one of ``premises`` (backtracking)."""
+    if not body:
+        yield sigma
+        return
+    first, rest = body[0], body[1:]
+    for premise in premises:
+        if first.aux != premise.aux:
+            continue
+        extended = dict(sigma)
+        if all(extended.setdefault(m, t) == t if m.startswith("?") else m == t
+               for m, t in zip(_terms(first), _terms(premise))):
+            yield from _embeddings(rest, premises, extended)
+
+
+def _substitute(text: str, mapping: Mapping[str, str]) -> str:
+    """``text`` with its variables replaced by ``mapping``'s terms."""
+    out, last = [], 0
+    for token in lexer.tokens(text):
+        if token.kind == lexer.VARIABLE and token.text in mapping:
+            out += [text[last:token.start], mapping[token.text]]
+            last = token.start + len(token.text)
+    return "".join(out) + text[last:]
+
+
+def _squash(text: str) -> str:
+    return " ".join(text.split())
+
+
+__all__ = ["covering", "restates"]

@@ -18,8 +18,13 @@ from ..compile.generic import PREFIXES
 from ..compile.rule import ReadKey
 from ..rdf.vocab import TYPE
 from .component import run_component
+from .delta_texts import FLIP_LOST
 from .program import Signature, StepProgram
-from .scratch import NEW_FACTS, OVERDELETED
+from .scratch import CANDIDATES, FLIP_GAINED, NEW_FACTS, OVERDELETED
+
+#: operations that run only when a graph holds facts of their key: the key's candidates are rechecked,
+#: its flipped-false facts become candidates, its flipped-true facts are added
+_AFTER = {"recheck": CANDIDATES, "lost": FLIP_LOST, "gained": FLIP_GAINED}
 
 
 class StagedRun:
@@ -39,8 +44,11 @@ class StagedRun:
         self.sent = 0
 
     def run(self) -> None:
-        """Run the program: an operation is sent when the key it starts from changed."""
+        """Run the program: an operation is sent when the key it starts from changed, and a key's
+        recheck and flip results only when there is something to recheck or add (index look-ups,
+        after sending what is queued)."""
         seeded = False
+        found: dict[tuple, bool] = {}
         for tag, text in self.program.ops:
             if tag[0] == "flip":
                 tag, text = tag[1], self.flip_text(tag[2], tag[3], text)
@@ -48,17 +56,29 @@ class StagedRun:
                     continue  # nothing can flip this time
             kind = tag[0]
             if kind in ("always", "seeds") or (kind == "minus" and tag[1] in self.minus) \
-                    or (kind == "plus" and tag[1] in self.plus) or (kind == "recheck" and seeded):
+                    or (kind == "plus" and tag[1] in self.plus) \
+                    or (kind in _AFTER and self._holds(found, _AFTER[kind], tag[1], seeded)):
                 self.queue.append(text)
-                seeded |= kind in ("seeds", "minus")
+                seeded |= kind in ("seeds", "minus", "lost")
             elif kind == "end":
                 if self.queue:
                     self.flush()
                     self.note(tag[1])
                 seeded = False
+                found.clear()
             elif kind == "component":
                 run_component(self, tag[1])
         self.flush()
+
+    def _holds(self, found: dict, graph: NamedNode, key: ReadKey, seeded: bool) -> bool:
+        """Whether ``graph`` holds facts of ``key`` once what is queued has run (looked up once per key)."""
+        if graph == CANDIDATES and not seeded:
+            return False  # nothing could have made candidates
+        answer = found.get((graph, key))
+        if answer is None:
+            self.flush()
+            answer = found[(graph, key)] = self.has(key, graph)
+        return answer
 
     def flush(self) -> None:
         """Send what is queued as one update request."""
