@@ -164,6 +164,7 @@ class Refused(Exception):
 
 
 _WHEN = {"always": "always", "seeds": "always (seeds the key's candidates)", "recheck": "when {} has candidates",
+         "keep": "when {} has candidates not kept yet", "delete": "when {} has candidates not all kept",
          "minus": "when {} lost facts", "plus": "when {} gained facts"}
 
 
@@ -390,8 +391,10 @@ class _Emitter:
             self.ops.append((SEEDS, texts.copy(key, REMOVED, (CANDIDATES,))))
         if seeded or flipped or key in self.sig.removed:
             recheck = ("recheck", key)
-            self.ops += [(recheck, text) for text in map(self.recheck, self.writers.get(key, [])) if text]
-            self.ops.append((recheck, texts.recheck(key, graph)))
+            # provers whose premises the step left alone first: the likeliest to keep every candidate
+            provers = sorted(self.writers.get(key, []), key=lambda i: bool(self.rules[i].reads() & (self.minus | self.plus)))
+            self.ops += [(("keep", key), text) for text in map(self.recheck, provers) if text]
+            self.ops.append((("delete", key), texts.recheck(key, graph)))
             if key in self.sig.removed:
                 self.ops.append((recheck, texts.restore(key, graph)))
             self.minus.add(key)

@@ -11,6 +11,7 @@ left-out operation reads an empty change.  Recursive components run their rounds
 from __future__ import annotations
 
 from collections.abc import Callable
+from itertools import islice
 
 from pyoxigraph import NamedNode
 
@@ -18,12 +19,14 @@ from ..compile.generic import PREFIXES
 from ..compile.rule import ReadKey
 from ..rdf.vocab import TYPE
 from .component import run_component
-from .delta_texts import FLIP_LOST
+from .delta_texts import FLIP_LOST, KEEP
 from .program import Signature, StepProgram
 from .scratch import CANDIDATES, FLIP_GAINED, NEW_FACTS, OVERDELETED
 
 #: operations that run only when a graph holds facts of their key: the key's candidates are rechecked,
 #: its flipped-false facts become candidates, its flipped-true facts are added
+#: up to how many candidates a key's rechecks go one by one, stopping once every candidate is kept
+FEW = 32
 _AFTER = {"recheck": CANDIDATES, "lost": FLIP_LOST, "gained": FLIP_GAINED}
 
 
@@ -55,7 +58,12 @@ class StagedRun:
                 if not text:
                     continue  # nothing can flip this time
             kind = tag[0]
-            if kind in ("always", "seeds") or (kind == "minus" and tag[1] in self.minus) \
+            if kind == "keep":
+                self._keep(found, tag[1], text, seeded)
+            elif kind == "delete":
+                if not found.get(("kept", tag[1])) and self._holds(found, CANDIDATES, tag[1], seeded):
+                    self.queue.append(text)
+            elif kind in ("always", "seeds") or (kind == "minus" and tag[1] in self.minus) \
                     or (kind == "plus" and tag[1] in self.plus) \
                     or (kind in _AFTER and self._holds(found, _AFTER[kind], tag[1], seeded)):
                 self.queue.append(text)
@@ -69,6 +77,21 @@ class StagedRun:
             elif kind == "component":
                 run_component(self, tag[1])
         self.flush()
+
+    def _keep(self, found: dict, key: ReadKey, text: str, seeded: bool) -> None:
+        """Queue one of a key's rechecks, unless every candidate is kept already: while the key has
+        few candidates, each recheck is sent alone and the candidates and kept ones counted after it."""
+        if found.get(("kept", key)) or not self._holds(found, CANDIDATES, key, seeded):
+            return
+        self.queue.append(text)
+        if found.get(("many", key)):
+            return
+        self.flush()
+        candidates = self.count(key, CANDIDATES, FEW)
+        if candidates >= FEW:
+            found[("many", key)] = True
+        elif self.count(key, KEEP, FEW) >= candidates:
+            found[("kept", key)] = True
 
     def _holds(self, found: dict, graph: NamedNode, key: ReadKey, seeded: bool) -> bool:
         """Whether ``graph`` holds facts of ``key`` once what is queued has run (looked up once per key)."""
@@ -92,6 +115,12 @@ class StagedRun:
         term = NamedNode(key[1][1:-1])
         s, p, o = (None, TYPE, term) if key[0] == "t" else (None, term, None)
         return next(iter(self.store.triples(s, p, o, graph)), None) is not None
+
+    def count(self, key: ReadKey, graph: NamedNode, limit: int) -> int:
+        """How many facts of ``key`` ``graph`` holds, counted up to ``limit``."""
+        term = NamedNode(key[1][1:-1])
+        s, p, o = (None, TYPE, term) if key[0] == "t" else (None, term, None)
+        return sum(1 for _ in islice(self.store.triples(s, p, o, graph), limit))
 
     def has_any(self, graph: NamedNode) -> bool:
         return next(iter(self.store.triples(None, None, None, graph)), None) is not None
