@@ -120,7 +120,9 @@ def compile_component(e, keys: list[ReadKey]) -> Component:
 
 def run_component(run, comp: Component) -> None:
     """Run a component's phases on ``run`` (a :class:`~.program.StagedRun`), reading between rounds."""
-    run.queue.append(" ; ".join(f"DROP SILENT GRAPH {g}" for g in COMPONENT_SCRATCH))
+    if run.components:  # the first component of a run finds them empty (dropped after every REASON)
+        run.queue.append(" ; ".join(f"DROP SILENT GRAPH {g}" for g in COMPONENT_SCRATCH))
+    run.components += 1
     for tag, text in comp.seeds:
         if tag[0] == "flip":
             tag, text = tag[1], run.flip_text(tag[2], tag[3], text)

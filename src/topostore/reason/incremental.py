@@ -341,7 +341,7 @@ class IncrementalReasoner:
             self._last_sig, self._settle = sig, not program.whole
         else:
             self.requests.flush()
-            run = StagedRun(self.store, program, sig, self._flip_text)
+            run = StagedRun(self.store, program, sig, self._flip_text, (added, removed))
             run.run()
             stats.evaluations += run.sent
         if self.requests.profile:

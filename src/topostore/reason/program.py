@@ -163,7 +163,10 @@ class Refused(Exception):
     """The signature cannot be compiled; the message says why (reported in ``stats.program``)."""
 
 
-_WHEN = {"always": "always", "seeds": "always (seeds the key's candidates)", "recheck": "when {} has candidates",
+#: the tag of the program's first operation: the asserted changes are the first lost and gained facts
+CHANGES = ("changes",)
+_WHEN = {"always": "always", "changes": "always (the asserted changes are the first lost and gained facts)",
+         "seeds": "always (seeds the key's candidates)", "recheck": "when {} has candidates",
          "keep": "when {} has candidates not kept yet", "delete": "when {} has candidates not all kept",
          "minus": "when {} lost facts", "plus": "when {} gained facts"}
 
@@ -363,8 +366,8 @@ class _Emitter:
         #: keys that may have lost facts / gained facts so far (their changes are in OVERDELETED / NEW_FACTS)
         self.minus: set = set(sig.removed)
         self.plus: set = set(sig.added)
-        self.ops: list[tuple[tuple, object]] = [(ALWAYS, f"ADD SILENT {REMOVED} TO {OVERDELETED} ; "
-                                                          f"ADD SILENT {ADDED} TO {NEW_FACTS}")]
+        self.ops: list[tuple[tuple, object]] = [(CHANGES, f"ADD SILENT {REMOVED} TO {OVERDELETED} ; "
+                                                           f"ADD SILENT {ADDED} TO {NEW_FACTS}")]
         self.flipped: set[str] = set()
         self.flip_rules = 0
         #: the keys the program may change, with the graph their derived facts live in

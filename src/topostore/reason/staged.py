@@ -10,10 +10,10 @@ left-out operation reads an empty change.  Recursive components run their rounds
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Collection
 from itertools import islice
 
-from pyoxigraph import NamedNode
+from pyoxigraph import NamedNode, Triple
 
 from ..compile.generic import PREFIXES
 from ..compile.rule import ReadKey
@@ -34,8 +34,12 @@ class StagedRun:
     """One key-by-key run of a :class:`~.program.StepProgram` on a store."""
 
     def __init__(self, store, program: StepProgram, sig: Signature,
-                 flip_text: Callable[[int, tuple, str], str]) -> None:
+                 flip_text: Callable[[int, tuple, str], str],
+                 changes: tuple[Collection[Triple], Collection[Triple]] | None = None) -> None:
+        """``changes``: the added and removed asserted triples, written to the step's first lost and
+        gained facts directly instead of by the program's first operation."""
         self.store = store
+        self.changes = changes
         self.program = program
         #: a flip operation's text for this run (narrowed by a value window where one applies)
         self.flip_text = flip_text
@@ -45,6 +49,8 @@ class StagedRun:
         self.queue: list[str] = []
         #: operations sent (the reasoner's evaluation count)
         self.sent = 0
+        #: recursive components run so far (their scratch graphs start empty)
+        self.components = 0
 
     def run(self) -> None:
         """Run the program: an operation is sent when the key it starts from changed, and a key's
@@ -58,12 +64,15 @@ class StagedRun:
                 if not text:
                     continue  # nothing can flip this time
             kind = tag[0]
-            if kind == "keep":
+            if kind == "changes" and self.changes is not None:
+                self.store.add_scratch(self.changes[0], NEW_FACTS)
+                self.store.add_scratch(self.changes[1], OVERDELETED)
+            elif kind == "keep":
                 self._keep(found, tag[1], text, seeded)
             elif kind == "delete":
                 if not found.get(("kept", tag[1])) and self._holds(found, CANDIDATES, tag[1], seeded):
                     self.queue.append(text)
-            elif kind in ("always", "seeds") or (kind == "minus" and tag[1] in self.minus) \
+            elif kind in ("always", "seeds", "changes") or (kind == "minus" and tag[1] in self.minus) \
                     or (kind == "plus" and tag[1] in self.plus) \
                     or (kind in _AFTER and self._holds(found, _AFTER[kind], tag[1], seeded)):
                 self.queue.append(text)
