@@ -142,7 +142,8 @@ def test_parse_rule_file(tmp_path: Path) -> None:
 
 def test_generic_rules_are_the_rule_files() -> None:
     names = sorted({r.name for r in generic_rules()})
-    assert names == ["all-different", "different", "different-candidate", "eq-diff-self", "eq-diff1", "eq-rep-o",
+    assert names == ["all-different", "different", "different-candidate", "different-self", "eq-diff-self", "eq-diff1",
+                     "eq-rep-o",
                      "eq-rep-s", "eq-sym", "eq-trans", "prp-npa1", "prp-npa2"]
     assert len(generic_rules()) == len(list((Path(__file__).parents[1] / "rules").glob("*.rq")))
 

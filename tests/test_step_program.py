@@ -17,7 +17,7 @@ from swrl_support import NS, PREFIXES, builtin, cls, data, diff, obj, rule
 from topostore import Ontology
 from topostore.rdf.vocab import ASSERTED, AUX, INFERRED, TYPE
 from topostore.reason import Materializer, check_consistency
-from topostore.reason.program import Refused, StepCompiler, describe, signature
+from topostore.reason.program import Refused, StepCompiler, check_pair_atom, describe, pair_atom, signature
 from topostore.stores import memory_store
 
 TBOX = PREFIXES + f"""
@@ -282,6 +282,27 @@ def test_the_covered_rule_is_left_out_until_a_fact_of_its_atom_is_asserted() -> 
     onto.reason(mode="incremental")
     program = reasoner.compiler.compile(sig, reasoner.state.present, reasoner.state.asserted)
     assert ("p", f"<{NS}link>") not in program.needs_unasserted
+
+
+def test_a_check_pair_kept_apart_by_difference_is_skipped_after_a_clean_replacement() -> None:
+    """prp-fp (two values of a functional property known different) pairs the values of one subject
+    through its difference atom: after a clean replacement it cannot match anew (a value different
+    from itself is the different-self check's violation), but an added second value does."""
+    onto = turtle(NEGATED)
+    for name, value in (("i1", 1), ("i2", 2)):
+        onto.replace(N(name), N("d"), value)
+    onto.add(Triple(N("i0"), N("f"), N("i1")))
+    onto.reason()
+    reasoner = onto._reasoner
+    assert "different-self" in {c.name for c in reasoner.checks}
+    fp = next(c for c in reasoner.checks if c.name == "prp-fp" and c.body[0].p == f"<{NS}f>")
+    assert check_pair_atom(fp, 0) and check_pair_atom(fp, 1) and not pair_atom(fp, 0)
+    onto.replace(N("i0"), N("f"), N("i2"))
+    report = onto.reason(mode="incremental")
+    assert report.consistent and report.stats.program == "compiled"
+    onto.add(Triple(N("i0"), N("f"), N("i1")))
+    report = onto.reason(mode="incremental")
+    assert not report.consistent and [v.rule for v in report.violations] == ["prp-fp"]
 
 
 TRANSITIVE = PREFIXES + """

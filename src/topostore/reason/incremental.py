@@ -88,7 +88,7 @@ from .entailed import ENTAILED_TYPE, publish_entailed, refresh_entailed
 from .flips import Flips
 from .materialize import Materializer, ReasonStats
 from .plan import is_small, plan_where
-from .program import PROGRAM_SCRATCH, Refused, StepCompiler, StepProgram, pair_atom, signature
+from .program import PROGRAM_SCRATCH, Refused, StepCompiler, StepProgram, check_pair_atom, pair_atom, signature
 from .requests import RequestQueue
 from .scratch import ADDED, FLIP_GAINED, NEW_FACTS, OVERDELETED, REMOVED, SCRATCH
 from .staged import StagedRun
@@ -496,7 +496,7 @@ class IncrementalReasoner:
     def _cannot_match(self, c: int, j: int | None) -> bool:
         """Whether check ``c`` with atom ``j`` on the new facts cannot match after the compiled step: a
         pair of values of one subject on a cleanly replaced predicate (:func:`.program.pair_atom`)."""
-        return j is not None and self.checks[c].body[j].p in self._step_clean and pair_atom(self.checks[c], j)
+        return j is not None and self.checks[c].body[j].p in self._step_clean and check_pair_atom(self.checks[c], j)
 
     def _check_text(self, c: int, j: int | None, lateral: bool) -> str:
         key = ("check", c, j, lateral)

@@ -60,7 +60,7 @@ from pyoxigraph import NamedNode
 from ..compile.condition import TEST
 from ..compile.owl_restrictions import term_before
 from ..compile.rule import ReadKey, Rule
-from ..rdf.vocab import TYPE
+from ..rdf.vocab import DIFFERENT, TYPE
 from . import delta_texts as texts
 from . import flip
 from .component import COMPONENT_SCRATCH, UNSETTLED, compile_component, whole_ops
@@ -146,6 +146,21 @@ def pair_atom(rule: Rule, j: int) -> bool:
         return False
     others = [o.o for k, o in enumerate(rule.body) if k != j and o.p == atom.p and o.s == atom.s and o.o.startswith("?")]
     return any(_apart(rule, atom.o, other) for other in others)
+
+
+def check_pair_atom(check: Rule, j: int) -> bool:
+    """:func:`pair_atom` for a consistency check, where the two values may also be kept apart by the
+    check's own difference atom: a value different from itself is a violation of its own (the
+    different-self check), so the two values of a clean replacement's subject cannot match anew."""
+    if pair_atom(check, j):
+        return True
+    atom = check.body[j]
+    if not atom.o.startswith("?"):
+        return False
+    linked = {(a.s, a.o) for a in check.body if a.p == f"<{DIFFERENT.value}>"}
+    return any(o.p == atom.p and o.s == atom.s and o.o.startswith("?") and o.o != atom.o
+               and ((atom.o, o.o) in linked or (o.o, atom.o) in linked)
+               for k, o in enumerate(check.body) if k != j)
 
 
 def _apart(rule: Rule, a: str, b: str) -> bool:
@@ -433,7 +448,8 @@ class _Emitter:
         """Whether rule ``i`` only restates a premise (see :mod:`.restate`), decided once per program."""
         found = self._restated.get(i)
         if found is None:
-            found = self._restated[i] = restates(self.rules, i, self.writers, self.sig.added | self.sig.removed)
+            found = self._restated[i] = restates(self.rules, i, self.writers, self.sig.added | self.sig.removed,
+                                                 self.asserted, self.unasserted)
         return found
 
     def recheck(self, i: int) -> str:
@@ -504,5 +520,5 @@ class _Emitter:
         return emitted
 
 
-__all__ = ["ALWAYS", "PROGRAM_SCRATCH", "Refused", "SEEDS", "Signature", "StepCompiler", "StepProgram", "describe",
-           "pair_atom", "signature"]
+__all__ = ["ALWAYS", "PROGRAM_SCRATCH", "Refused", "SEEDS", "Signature", "StepCompiler", "StepProgram",
+           "check_pair_atom", "describe", "pair_atom", "signature"]

@@ -17,9 +17,9 @@ The argument is one of well-founded derivations.  Rule ``i`` has one premise
 derived ``A`` fact was derived after ``C`` held, without ``A``'s help: ``C``
 holds without rule ``i``.  A rule with one premise ``B`` deriving ``A`` (an
 equivalence's way back, say) passes the question on to ``B``'s writers, as
-long as no asserted ``B`` fact changed in the step; a path that comes back to
-the question it started from adds nothing (a derivation around a cycle is not
-well founded).  So rule ``i`` can be left out for derived ``A`` facts, and its
+long as ``B`` has no asserted fact (an asserted ``B`` fact would support ``A``
+without ``C``); a path that comes back to the question it started from adds
+nothing (a derivation around a cycle is not well founded).  So rule ``i`` can be left out for derived ``A`` facts, and its
 recheck (``KEEP``) only needs the *asserted* ``A`` facts, which the step did not
 change.
 """
@@ -31,14 +31,18 @@ from collections.abc import Collection, Iterator, Mapping
 from ..compile.condition import TEST
 from ..compile.rule import Atom, ReadKey, Rule
 from ..rdf import lexer
+from .triggers import Present
 
 Triple = tuple[str, str, str]
 
 
-def restates(rules: list[Rule], i: int, writers: Mapping[ReadKey, list[int]], changed: Collection[ReadKey]) -> bool:
+def restates(rules: list[Rule], i: int, writers: Mapping[ReadKey, list[int]], changed: Collection[ReadKey],
+             asserted: Present | None, through: set[ReadKey]) -> bool:
     """Whether rule ``i`` (one premise, no condition) concludes what every derivation of its
     premise's facts already required (see the module docstring).  ``writers``: the rules that can
-    derive each key; ``changed``: the keys with asserted facts added or removed."""
+    derive each key; ``changed``: the keys with asserted facts added or removed; ``asserted``: the keys
+    with asserted facts (a superset; None: any).  The keys a derivation was followed through (they
+    must have no asserted fact for the answer to hold) are added to ``through``."""
     rule = rules[i]
     if len(rule.body) != 1 or rule.conditions or rule.head is None:
         return False
@@ -46,11 +50,22 @@ def restates(rules: list[Rule], i: int, writers: Mapping[ReadKey, list[int]], ch
     key = atom.read_key()
     if key in changed:
         return False
-    return _required(rules, _terms(atom), _terms(rule.head), key, writers, changed, {})
+
+    def passable(inner: ReadKey) -> bool:
+        """A premise's key the question may pass to: every fact of it is derived, and stays so."""
+        if inner in changed or asserted is None:
+            return False
+        return inner[1] not in asserted[0 if inner[0] == "p" else 1]
+
+    passed: set[ReadKey] = set()
+    found = _required(rules, _terms(atom), _terms(rule.head), key, writers, passable, {}, passed)
+    if found:
+        through |= passed
+    return found
 
 
 def _required(rules: list[Rule], pattern: Triple, concluded: Triple, key: ReadKey,
-              writers: Mapping[ReadKey, list[int]], changed: Collection[ReadKey], trail: dict) -> bool:
+              writers: Mapping[ReadKey, list[int]], passable, trail: dict, passed: set) -> bool:
     """Whether every derivation of a ``key`` fact matching ``pattern`` required ``concluded``."""
     shape = _canonical(pattern, concluded)
     if key in trail:
@@ -59,11 +74,11 @@ def _required(rules: list[Rule], pattern: Triple, concluded: Triple, key: ReadKe
     if not found:
         return False
     trail = {**trail, key: shape}
-    return all(_required_by(rules, rules[w], pattern, concluded, writers, changed, trail) for w in found)
+    return all(_required_by(rules, rules[w], pattern, concluded, writers, passable, trail, passed) for w in found)
 
 
 def _required_by(rules: list[Rule], writer: Rule, pattern: Triple, concluded: Triple,
-                 writers: Mapping[ReadKey, list[int]], changed: Collection[ReadKey], trail: dict) -> bool:
+                 writers: Mapping[ReadKey, list[int]], passable, trail: dict, passed: set) -> bool:
     if writer.head is None:
         return False
     mapping = _match(pattern, _terms(writer.head))
@@ -78,9 +93,10 @@ def _required_by(rules: list[Rule], writer: Rule, pattern: Triple, concluded: Tr
         return False
     premise = writer.body[0]
     inner = premise.read_key()
-    if inner in changed or not all(t in premise.variables() for t in theirs if t.startswith("?")):
+    if not passable(inner) or not all(t in premise.variables() for t in theirs if t.startswith("?")):
         return False
-    return _required(rules, _terms(premise), theirs, inner, writers, changed, trail)
+    passed.add(inner)
+    return _required(rules, _terms(premise), theirs, inner, writers, passable, trail, passed)
 
 
 def _match(pattern: Triple, head: Triple) -> dict[str, str] | None:

@@ -58,6 +58,7 @@ class StagedRun:
         after sending what is queued)."""
         seeded = False
         found: dict[tuple, bool] = {}
+        mark = self.sent
         for tag, text in self.program.ops:
             if tag[0] == "flip":
                 tag, text = tag[1], self.flip_text(tag[2], tag[3], text)
@@ -78,11 +79,12 @@ class StagedRun:
                 self.queue.append(text)
                 seeded |= kind in ("seeds", "minus", "lost")
             elif kind == "end":
-                if self.queue:
+                if self.queue or self.sent != mark:  # something ran for this key (a look-up may have sent it)
                     self.flush()
                     self.note(tag[1])
                 seeded = False
                 found.clear()
+                mark = self.sent
             elif kind == "component":
                 run_component(self, tag[1])
         self.flush()
@@ -96,10 +98,10 @@ class StagedRun:
         if found.get(("many", key)):
             return
         self.flush()
-        candidates = self.count(key, CANDIDATES, FEW)
-        if candidates >= FEW:
+        candidates = self.facts(key, CANDIDATES, FEW)
+        if len(candidates) >= FEW:
             found[("many", key)] = True
-        elif self.count(key, KEEP, FEW) >= candidates:
+        elif all(self.store.contains_each(candidates, KEEP)):
             found[("kept", key)] = True
 
     def _holds(self, found: dict, graph: NamedNode, key: ReadKey, seeded: bool) -> bool:
@@ -125,11 +127,11 @@ class StagedRun:
         s, p, o = (None, TYPE, term) if key[0] == "t" else (None, term, None)
         return next(iter(self.store.triples(s, p, o, graph)), None) is not None
 
-    def count(self, key: ReadKey, graph: NamedNode, limit: int) -> int:
-        """How many facts of ``key`` ``graph`` holds, counted up to ``limit``."""
+    def facts(self, key: ReadKey, graph: NamedNode, limit: int) -> list[Triple]:
+        """The facts of ``key`` in ``graph``, at most ``limit`` of them."""
         term = NamedNode(key[1][1:-1])
         s, p, o = (None, TYPE, term) if key[0] == "t" else (None, term, None)
-        return sum(1 for _ in islice(self.store.triples(s, p, o, graph), limit))
+        return list(islice(self.store.triples(s, p, o, graph), limit))
 
     def has_any(self, graph: NamedNode) -> bool:
         return next(iter(self.store.triples(None, None, None, graph)), None) is not None
