@@ -114,11 +114,17 @@ class OwlCompiler:
                 self.emit("different-values", f"{nm(p)} is functional",
                           [candidate_atom(a, b), Atom(a, sparql(p), v1), Atom(b, sparql(p), v2)], different_atom(a, b),
                           [cond.test(distinct_values(v1, v2))])
+        told: dict[NamedNode, set[NamedNode]] = {}
+        for p, dt in self.tb.data_range:
+            told.setdefault(p, set()).add(dt)
         for e in self.all_expressions():
             if e.kind not in ("max", "exact") or e.n != 1 or e.prop.inverse or not self.is_data(e.prop, e):
                 continue
             tests = [cond.test(distinct_values(v1, v2))]
-            if e.datatype is not None and in_datatype(v1, e.datatype):
+            # a filler the property's range already implies needs no test: a value outside it is a
+            # violation of the range (and the rule text is evaluated in every robot step)
+            if e.datatype is not None and in_datatype(v1, e.datatype) \
+                    and e.datatype not in implied_ranges(told.get(e.prop.iri, ())):
                 tests += [cond.test(f"{in_datatype(v1, e.datatype)} && {in_datatype(v2, e.datatype)}")]
             for member in (a, b):
                 self.emit("different-values", f"class expression {e} allows one value",
