@@ -162,7 +162,8 @@ class IncrementalReasoner:
         self.deletion = Deletion(self.requests, self.triggers, self.monotone, self.provers)
         #: the compiled step (see :mod:`.program`); False runs the general phases for every change
         self.compiled = True
-        self.compiler = StepCompiler(self.rules, self.monotone, self.flips._by_frequency, store.supports_lateral)
+        self.compiler = StepCompiler(self.rules, self.monotone, self.flips._by_frequency, store.supports_lateral,
+                                     cover=not store.round_trips)
         #: compiled programs (or why a signature cannot be compiled) by signature, until the next full run
         self._programs: dict = {}
         #: signatures whose program in one request needed more rounds than it had: general phases for good

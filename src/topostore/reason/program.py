@@ -226,11 +226,15 @@ class StepCompiler:
 
     ``rules``: the inference rules; ``monotone``: the indexes maintained (stratum 0, no negation);
     ``order``: for a flipped rule and its compared atoms, the order of the flip branches
-    (:meth:`.flips.Flips._by_frequency`); ``lateral``: whether the store evaluates LATERAL.
+    (:meth:`.flips.Flips._by_frequency`); ``lateral``: whether the store evaluates LATERAL;
+    ``cover``: whether covered rules may be left out (:func:`.restate.covering`).  A store where
+    every request is a round trip gets the whole program in one request, and there they are kept:
+    one SPARQL server (Virtuoso 7) answered such a long request without them differently from the
+    same operations sent one by one.
     """
 
     def __init__(self, rules: list[Rule], monotone: Collection[int],
-                 order: Callable[[int, tuple[int, ...]], tuple[int, ...]], lateral: bool) -> None:
+                 order: Callable[[int, tuple[int, ...]], tuple[int, ...]], lateral: bool, cover: bool = True) -> None:
         self.rules = rules
         self.monotone = sorted(monotone)
         self.order = order
@@ -238,7 +242,7 @@ class StepCompiler:
         self._flat: dict[int, Rule] = {}
         self.filter_vars = {i: flip.filter_variables(rules[i]) for i in self.monotone}
         #: rules that add nothing while a premise only matches derived facts (see :func:`.restate.covering`)
-        self.covered = covering(rules, self.monotone)
+        self.covered = covering(rules, self.monotone) if cover else {}
 
     def compile(self, sig: Signature, present: Present, asserted: Present | None = None) -> StepProgram:
         """The program of ``sig`` given the keys with facts (``present``) and with asserted facts
