@@ -92,8 +92,10 @@ def additions(rule: Rule, j: int | None, delta: NamedNode, into: Iterable[NamedN
 def flips(rule: Rule, order: tuple[int, ...], lateral: bool, tag: int, windows: dict | None = None) -> str:
     """The heads whose derivation by ``rule`` flips with the replaced values (see :mod:`.flip`) go to
     FLIP_GAINED or FLIP_LOST; ``windows`` narrows compared atoms to the facts in a value window."""
-    branches = flip.flip_branches(rule, order, lateral, tag, windows)
-    return (f"INSERT {{ GRAPH ?flip {{ ?h0 ?h1 ?h2 }} }}\n{dataset(NEW_STATE, (AUX, flip.CHANGE_OLD))}\n"
+    compact = flip.compact_possible(rule, order)
+    branches = flip.flip_branches(rule, order, lateral, tag, windows, compact=compact)
+    template = rule.head.text() if compact else "?h0 ?h1 ?h2"
+    return (f"INSERT {{ GRAPH ?flip {{ {template} }} }}\n{dataset(NEW_STATE, (AUX, flip.CHANGE_OLD))}\n"
             "WHERE {\n  {\n" + "\nUNION\n".join(branches)
             + f"\n  }}\n  BIND(IF(?ok__n, {FLIP_GAINED}, {FLIP_LOST}) AS ?flip)\n}}")
 

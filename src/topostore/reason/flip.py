@@ -161,7 +161,7 @@ def flip_query(branches: Iterable[str]) -> str:
 
 
 def flip_branches(rule: Rule, changed: tuple[int, ...], lateral: bool, tag: int,
-                  windows: dict[int, dict[int, list[Triple]]] | None = None) -> list[str]:
+                  windows: dict[int, dict[int, list[Triple]]] | None = None, compact: bool = False) -> list[str]:
     """UNION branches finding the heads whose derivation by ``rule`` flips (``?rule`` = ``tag``).
 
     ``changed`` are the body atoms reading a replaced value (all compared only).
@@ -178,14 +178,20 @@ def flip_branches(rule: Rule, changed: tuple[int, ...], lateral: bool, tag: int,
     their last variable: only the bindings that flip reach the atoms after it.
     ``windows`` (per seed atom, per other atom: the facts in its window, see
     :mod:`.window`) restricts those atoms to the facts given, as a VALUES table.
+    ``compact`` binds only ``?ok__n`` (no ``?rule``, no ``?h0``..``?h2``, each test written once
+    per state inside one FILTER): for an update whose template is the head itself, where every
+    BIND costs planning time (see :func:`compact_possible`).
     """
     renamed = {rule.body[k].o[1:] for k in changed}
     targets = {c.binds[1:] for c in rule.conditions if c.binds}
     renamed |= targets
     needed = {f"?{v}" for v in filter_variables(rule) - targets}
     head = rule.head
-    project = " ".join(f"BIND({term} AS ?h{i})" for i, term in enumerate((head.s, head.p, head.o)))
-    tests = "\n  ".join(_instances(rule, renamed) + [project, f"BIND({tag} AS ?rule)"])
+    if compact:
+        tests = "\n  ".join(_compact_instances(rule, renamed))
+    else:
+        project = " ".join(f"BIND({term} AS ?h{i})" for i, term in enumerate((head.s, head.p, head.o)))
+        tests = "\n  ".join(_instances(rule, renamed) + [project, f"BIND({tag} AS ?rule)"])
     branches = []
     for position, k in enumerate(changed):
         seed = rule.body[k]
@@ -254,6 +260,29 @@ def _instances(rule: Rule, renamed: set[str]) -> list[str]:
     return out
 
 
+def _compact_instances(rule: Rule, renamed: set[str]) -> list[str]:
+    """The rule's BINDs for the old and new values, then its tests once per state: ``?ok__n`` and
+    the FILTER keeping the bindings whose answer differs."""
+    out = []
+    tests: dict[str, list[str]] = {"o": [], "n": []}
+    for suffix in ("o", "n"):
+        for condition in rule.conditions:  # plain: tests and BINDs only
+            if condition.kind == TEST:
+                tests[suffix].append(f"COALESCE(({_rename(condition.expression, renamed, suffix)}), false)")
+            else:
+                out.append(_rename(condition.text, renamed, suffix))
+    out.append(f"BIND(({' && '.join(tests['n']) or 'true'}) AS ?ok__n)")
+    out.append(f"FILTER(({' && '.join(tests['o']) or 'true'}) != ?ok__n)")
+    return out
+
+
+def compact_possible(rule: Rule, changed: tuple[int, ...]) -> bool:
+    """Whether the head names no value the flip renames (a compared value or a BIND's result), so an
+    update can write the head as it stands."""
+    renamed = {rule.body[k].o for k in changed} | {c.binds for c in rule.conditions if c.binds}
+    return not (rule.head.variables() & renamed)
+
+
 def head_triple(row) -> Triple:
     return Triple(row["h0"], row["h1"], row["h2"])
 
@@ -264,6 +293,6 @@ def gained(row) -> bool:
     return isinstance(ok, Literal) and ok.value in ("true", "1")
 
 
-__all__ = ["CHANGE_OLD", "Replacement", "clean_replacements", "compared_only", "filter_variables", "flip_branches",
-           "flip_atoms", "flip_query", "gained", "head_triple", "kind_tests_only", "plain_filters", "replaced_in",
-           "same_kind"]
+__all__ = ["CHANGE_OLD", "Replacement", "clean_replacements", "compact_possible", "compared_only", "filter_variables",
+           "flip_atoms", "flip_branches", "flip_query", "gained", "head_triple", "kind_tests_only", "plain_filters",
+           "replaced_in", "same_kind"]
