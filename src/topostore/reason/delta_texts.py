@@ -127,6 +127,18 @@ def recheck(key: ReadKey, graph: NamedNode) -> str:
             f"WHERE {{ {_unconfirmed(p)} }}")
 
 
+def recheck_one(rule: Rule, graph: NamedNode, asserted_premise: bool) -> str:
+    """:func:`recheck` for a key with one prover: the candidates ``rule`` does not derive from the new
+    state (``asserted_premise``: from its premise's asserted facts, see :mod:`.restate`) and that are
+    not asserted leave ``graph`` and join OVERDELETED (one operation instead of a KEEP and a deletion)."""
+    head = rule.head.text()
+    proof = f"GRAPH {ASSERTED} {{ {rule.body[0].text()} }}" if asserted_premise else rule.where()
+    return (f"DELETE {{ GRAPH {graph} {{ {head} }} }} INSERT {{ GRAPH {OVERDELETED} {{ {head} }} }}\n"
+            f"{dataset(NEW_STATE, (AUX, CANDIDATES, ASSERTED))}\n"
+            f"WHERE {{ GRAPH {CANDIDATES} {{ {head} }} FILTER NOT EXISTS {{ {proof} }} "
+            f"FILTER NOT EXISTS {{ GRAPH {ASSERTED} {{ {head} }} }} }}")
+
+
 def restore(key: ReadKey, graph: NamedNode) -> str:
     """A removed asserted fact of ``key`` that a rule still derives stays, as inferred in ``graph``."""
     p = pattern(key)
@@ -156,4 +168,4 @@ def copy(key: ReadKey, source: NamedNode, into: Iterable[NamedNode]) -> str:
 
 
 __all__ = ["FLIP_LOST", "KEEP", "NEW_STATE", "OLD_STATE", "additions", "candidates", "copy", "delete", "flips",
-           "gained", "keep", "lost", "over_delete", "pattern", "recheck", "restore"]
+           "gained", "keep", "lost", "over_delete", "pattern", "recheck", "recheck_one", "restore"]

@@ -174,6 +174,12 @@ def _apart(rule: Rule, a: str, b: str) -> bool:
     return False
 
 
+def _general_head(rule: Rule, key: ReadKey) -> bool:
+    """Whether the rule's head matches every fact of ``key`` (variables where the key has none)."""
+    head = rule.head
+    return head.s.startswith("?") and (key[0] == "t" or (head.o.startswith("?") and head.o != head.s))
+
+
 class Refused(Exception):
     """The signature cannot be compiled; the message says why (reported in ``stats.program``)."""
 
@@ -415,8 +421,13 @@ class _Emitter:
             recheck = ("recheck", key)
             # provers whose premises the step left alone first: the likeliest to keep every candidate
             provers = sorted(self.writers.get(key, []), key=lambda i: bool(self.rules[i].reads() & (self.minus | self.plus)))
-            self.ops += [(("keep", key), text) for text in map(self.recheck, provers) if text]
-            self.ops.append((("delete", key), texts.recheck(key, graph)))
+            keeps = [(i, text) for i, text in ((i, self.recheck(i)) for i in provers) if text]
+            if len(keeps) == 1 and key not in self.sig.removed and _general_head(self.rules[keeps[0][0]], key):
+                i = keeps[0][0]  # one prover, whose head matches every fact of the key: ask it inside the deletion
+                self.ops.append((("delete", key), texts.recheck_one(self.rules[i], graph, self.restated(i))))
+            else:
+                self.ops += [(("keep", key), text) for _, text in keeps]
+                self.ops.append((("delete", key), texts.recheck(key, graph)))
             if key in self.sig.removed:
                 self.ops.append((recheck, texts.restore(key, graph)))
             self.minus.add(key)
