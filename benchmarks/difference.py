@@ -14,8 +14,10 @@ map of N locations (:mod:`benchmarks.maps`) this prints:
   ``SELECT`` over the reasoned store in three shapes: the body alone, with the materialised
   declared-difference atom (as the rule runs), and with the declared difference tested inline
   (``FILTER(EXISTS …)`` over the AllDifferent keys, owl:differentFrom both ways and the disjoint
-  class pairs) instead of materialised candidate and difference facts.  The inline shape is what
-  testing difference where it is asked would cost per pair.
+  class pairs) instead of materialised candidate and difference facts.  Since
+  :mod:`topostore.compile.inline_difference` a rule with one difference atom joins the difference
+  rules into its body, so only rules that still read the materialised relation are listed (two or
+  more difference atoms); the list was how the join was chosen (docs/benchmarks.md).
 """
 
 from __future__ import annotations
