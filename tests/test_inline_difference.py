@@ -3,15 +3,19 @@ the same conclusions as the materialised candidates, none of their helper facts.
 
 from __future__ import annotations
 
+from pyoxigraph import NamedNode, Triple
 from support import reasoned_turtle
 from test_swrl_difference import PREFIXES, siblings
 
 from topostore import Ontology
 from topostore.compile.inline_difference import MAX_JOINED
-from topostore.rdf.vocab import AUX, DECLARED_DIFFERENT, DIFFERENCE_CANDIDATE, DIFFERENT
+from topostore.compile.snippets import VALUE_CANDIDATE
+from topostore.rdf.vocab import AUX, DECLARED_DIFFERENT, DIFFERENCE_CANDIDATE, DIFFERENT, ENTAILED
 from topostore.resources import default_ontology_files
 
-HELPERS = (str(DIFFERENCE_CANDIDATE), str(DECLARED_DIFFERENT), str(DIFFERENT))
+HELPERS = (str(DIFFERENCE_CANDIDATE), str(DECLARED_DIFFERENT), str(DIFFERENT), str(VALUE_CANDIDATE))
+EX, F = "http://bnc/exp-rob-lab/2022-23#", "http://e.org/f#"
+OWL_DIFFERENT_FROM = NamedNode("http://www.w3.org/2002/07/owl#differentFrom")
 
 #: a third rule with two DifferentIndividuals atoms: its candidates stay materialised
 THREE = """:z a swrl:Variable . :hasTwoSiblings a owl:ObjectProperty .
@@ -61,11 +65,22 @@ def test_the_example_map_asks_only_for_the_door_pairs_of_its_cardinality() -> No
     o = Ontology.from_file(*default_ontology_files())
     assert o.reason().consistent
     for name in ("Connectability", "Reachability"):
-        assert 1 < len(swrl_rules(o, name)) <= 2 * MAX_JOINED
-        assert not any(a.p in HELPERS for r in swrl_rules(o, name) for a in (*r.body, r.head))
-    # the candidates left are pairs of doors of one location (hasDoor min 2 DOOR), never two locations
+        rules = swrl_rules(o, name)
+        assert 1 < len(rules) <= 2 * MAX_JOINED
+        # the conclusions read no difference fact; only the entailed-only one reads ts:different,
+        # for the pairs asked by values (visitedAt allows one value)
+        assert not any(a.p in (str(DECLARED_DIFFERENT), str(DIFFERENCE_CANDIDATE)) for r in rules
+                       for a in (*r.body, r.head))
+        assert [r.head.p for r in rules if any(a.p == str(DIFFERENT) for a in r.body)] == [
+            f"<urn:topostore:entailed:{EX}{'connectedTo' if name == 'Connectability' else 'canReach'}>"]
+        assert [r.head.p for r in rules if r.head.p == str(VALUE_CANDIDATE)]
+    # the declared candidates left are pairs of doors of one location (hasDoor min 2 DOOR), never two locations
     door_pairs = {(str(t.subject), str(t.object)) for t in o.store.triples(None, DIFFERENCE_CANDIDATE, None, AUX)}
     assert door_pairs and all("#D" in s and "#D" in t for s, t in door_pairs)
+    # the pairs asked by values are two locations, and none of them is declared different through it
+    asked = {(t.subject, t.object) for t in o.store.triples(None, VALUE_CANDIDATE, None, AUX)}
+    declared = {(t.subject, t.object) for t in o.store.triples(None, DECLARED_DIFFERENT, None, AUX)}
+    assert asked and not asked & declared
     assert sorted(o.short(x) for x in o.object_values("canReach", "Robot1")) == sorted(
         o.short(x) for x in o.object_values("connectedTo", o.object_values("isIn", "Robot1")[0]))
 
@@ -82,3 +97,35 @@ MAN_RULE = """:hasManSibling a owl:ObjectProperty .
 
 def family_with(text: str) -> Ontology:
     return reasoned_turtle(PREFIXES + text)
+
+
+#: a functional data property: two birth years make two individuals different by entailment only
+BORN = ":born a owl:DatatypeProperty , owl:FunctionalProperty . "
+
+
+def entailed_siblings(o: Ontology) -> set[tuple[str, str]]:
+    sibling = "http://e.org/f#hasSibling"
+    return {(o.short(t.subject), o.short(t.object)) for t in o.store.triples(None, None, None, ENTAILED)
+            if t.predicate.value == sibling}
+
+
+def test_difference_by_values_only_is_asked_by_values_and_published_as_entailed() -> None:
+    o = family_with(BORN + ":a :born 1990 . :b :born 1992 .")
+    # reported as entailed (as Pellet does), firing no other rule
+    assert siblings(o) == {"hasSibling": ["b"], "hasBrother": []}
+    assert entailed_siblings(o) == {("a", "b"), ("b", "a")}
+    # the pair is asked of the value rules alone: nothing declares it different
+    assert helper_count(o, str(VALUE_CANDIDATE)) == 2
+    assert helper_count(o, str(DECLARED_DIFFERENT)) == 0 and helper_count(o, str(DIFFERENCE_CANDIDATE)) == 0
+    o.replace("b", "born", 1990)
+    assert o.reason().consistent
+    assert entailed_siblings(o) == set() and siblings(o)["hasSibling"] == []  # the same year: not different
+    o.add(Triple(NamedNode(F + "b"), OWL_DIFFERENT_FROM, NamedNode(F + "a")))
+    assert o.reason().consistent
+    assert siblings(o) == {"hasSibling": ["b"], "hasBrother": ["b"]} and entailed_siblings(o) == set()
+
+
+def test_without_value_rules_the_entailed_only_conclusion_is_left_out() -> None:
+    o = family_with(":b owl:differentFrom :a .")
+    assert not [r for r in swrl_rules(o, "siblings") if "entailment only" in r.origin]
+    assert siblings(o) == {"hasSibling": ["b"], "hasBrother": ["b"]}

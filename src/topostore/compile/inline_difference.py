@@ -11,22 +11,31 @@ two values of a property allowing one) turned candidates into ``ts:declaredDiffe
 a map where every connected pair is declared different that is four helper facts and four joins
 per pair, most of a full REASON.
 
-Here each difference rule (a *source*: a rule reading ``?a ts:differenceCandidate ?b`` and writing
-``?a ts:declaredDifferent ?b`` or ``?a ts:different ?b``) is joined into the SWRL rule instead:
-the body with the source's other atoms and conditions, ``?a``/``?b`` bound to ``x``/``y``.  A
-declared-difference source concludes the rule's head; a value source (difference by entailment
-only) concludes its entailed-only head.  No candidate, no difference fact is written for the
-rule's pairs; every new rule is positive, so semi-naive and incremental evaluation treat them as
-any other.
+Here each declared-difference rule (a *declared source*: a rule reading ``?a
+ts:differenceCandidate ?b`` and writing ``?a ts:declaredDifferent ?b``: AllDifferent keys,
+owl:differentFrom either way, disjoint classes) is joined into the SWRL rule's conclusion instead:
+the body with the source's other atoms and conditions, ``?a``/``?b`` bound to ``x``/``y``.  No
+candidate, no declared or copied difference fact is written for the rule's pairs; every new rule is
+positive, so semi-naive and incremental evaluation treat them as any other.
+
+The entailed-only conclusion (difference by values only) keeps reading ``ts:different``, but its
+pairs are asked as ``ts:valueCandidate`` (:data:`~.snippets.VALUE_CANDIDATE`), which only the value
+sources (two values of a property allowing one) read: no declared difference is derived for them.
+Why not join the value sources too: a robot step replaces visit times, and a value test joined into
+each SWRL rule is then maintained rule by rule (the connecting rule's flip, the reaching rule's
+deltas on both visit times besides its location), where one flip of the value sources over the asked
+pairs serves every rule; measured, the joined form cost the example step 0.5 ms more
+(docs/benchmarks.md).
 
 Same closure
 ------------
-The rule fired on ``declaredDifferent(x, y)``; that fact held exactly when some declared source
-matched the candidate ``(x, y)``, and the candidate held exactly when the rest of the body matched
-with ``x ≠ y``: the joined rules have the same matches.  The entailed-only head was concluded on
-``different(x, y)``, i.e. a declared source or a value source: for a declared one the rule's own
-head holds for the same body, so that entailed-only head was never published (ENTAILED keeps only
-those neither asserted nor inferred); value sources give the rest.
+The conclusion fired on ``declaredDifferent(x, y)``; that fact held exactly when some declared
+source matched the candidate ``(x, y)``, and the candidate held exactly when the rest of the body
+matched with ``x ≠ y``: the joined rules have the same matches.  The entailed-only head was
+concluded on ``different(x, y)``, i.e. a declared source or a value source: for a declared one the
+rule's own head holds for the same body, so that entailed-only head was never published (ENTAILED
+keeps only those neither asserted nor inferred); the value sources over the same pairs give the rest.
+Without value sources the entailed-only head is never published, and its rules are left out.
 
 A disjoint-classes source ``C1(x), C2(y)`` is left out when the body as written types ``x`` (or
 ``y``) with a class disjoint with ``C1`` (``C2``): it could only match an individual of two disjoint
@@ -44,11 +53,13 @@ from ..rdf.vocab import DECLARED_DIFFERENT, DIFFERENCE_CANDIDATE, DIFFERENT, TYP
 from . import condition as cond
 from .condition import Condition
 from .rule import Atom, Rule
+from .snippets import VALUE_CANDIDATE
 
 #: joined rules per SWRL rule beyond which its candidates stay materialised
 MAX_JOINED = 16
 
 _CANDIDATE, _DECLARED, _DIFFERENT, _TYPE = str(DIFFERENCE_CANDIDATE), str(DECLARED_DIFFERENT), str(DIFFERENT), str(TYPE)
+_VALUE_CANDIDATE = str(VALUE_CANDIDATE)
 _VARIABLE = re.compile(r"\?([A-Za-z_][A-Za-z0-9_]*)")
 
 
@@ -64,21 +75,58 @@ class DifferenceAsk:
 
 
 def inline_difference(rules: list[Rule], asks: list[DifferenceAsk]) -> list[Rule]:
-    """``rules`` with each ask's candidate and head rules replaced by the rules joining the sources."""
+    """``rules`` with each ask's conclusion joined with the declared sources, its entailed-only
+    conclusion reading the value sources' answers for its pairs (see the module docstring)."""
     sources = _sources(rules)
     if sources is None or not asks:
         return rules
-    disjoint = {_disjoint_classes(s) for s in sources if s.name == "different-disjoint"}
+    declared = [s for s in sources if s.head.p == _DECLARED]
+    values = [s for s in sources if s.head.p == _DIFFERENT]
+    disjoint = {_disjoint_classes(s) for s in declared if s.name == "different-disjoint"}
     disjoint.discard(None)
     dropped: set[int] = set()
     added: list[Rule] = []
+    asked = False
     for ask in asks:
-        joined = _joined(ask, sources, disjoint)
-        if joined is None:
+        conclusions = [r for r in ask.heads if _difference_atom(r, ask) is not None
+                       and _difference_atom(r, ask).p == _DECLARED]
+        entailed = [r for r in ask.heads if r not in conclusions]
+        joined = _joined(ask, conclusions, declared, disjoint)
+        if joined is None or any(_difference_atom(r, ask) is None for r in entailed):
             continue
-        dropped |= {id(ask.candidate), *(id(r) for r in ask.heads)}
+        dropped |= {id(ask.candidate), *(id(r) for r in conclusions)}
         added += joined
+        if values and entailed:
+            added.append(_asks_values(ask.candidate))
+            asked = True
+        else:  # nothing but a declared difference could fire it: never published
+            dropped |= {id(r) for r in entailed}
+    if asked:
+        added += [_reading_value_candidates(s) for s in values]
     return [r for r in rules if id(r) not in dropped] + added
+
+
+def _difference_atom(head: Rule, ask: DifferenceAsk) -> Atom | None:
+    """The head rule's one difference atom on the ask's pair, or None."""
+    found = [a for a in head.body if a.p in (_DECLARED, _DIFFERENT)]
+    if len(found) != 1 or (found[0].s, found[0].o) != (ask.x, ask.y):
+        return None
+    return found[0]
+
+
+def _asks_values(candidate: Rule) -> Rule:
+    """The candidate rule asking the value sources only (``ts:valueCandidate``)."""
+    head = candidate.head
+    return replace(candidate, head=Atom(head.s, _VALUE_CANDIDATE, head.o, aux=True),
+                   origin=candidate.origin.replace("for difference", "for difference by values"))
+
+
+def _reading_value_candidates(source: Rule) -> Rule:
+    """A value source answering the pairs asked as ``ts:valueCandidate``."""
+    def swap(body: tuple[Atom, ...]) -> tuple[Atom, ...]:
+        return tuple(Atom(a.s, _VALUE_CANDIDATE, a.o, a.aux) if a.p == _CANDIDATE else a for a in body)
+
+    return replace(source, body=swap(source.body), written=swap(source.written))
 
 
 def _sources(rules: list[Rule]) -> list[Rule] | None:
@@ -103,23 +151,19 @@ def _disjoint_classes(source: Rule) -> tuple[str, str] | None:
     return (types["?a"], types["?b"]) if "?a" in types and "?b" in types else None
 
 
-def _joined(ask: DifferenceAsk, sources: list[Rule], disjoint: set) -> list[Rule] | None:
-    """The rules replacing the ask's head rules, or None when they stay as they are."""
+def _joined(ask: DifferenceAsk, conclusions: list[Rule], declared: list[Rule], disjoint: set) -> list[Rule] | None:
+    """The rules replacing the ask's conclusions, or None when they stay as they are."""
     x, y = ask.x, ask.y
-    if not (x.startswith("?") and y.startswith("?")) or x == y:
+    if not (x.startswith("?") and y.startswith("?")) or x == y or not conclusions:
         return None
     out = []
-    for head in ask.heads:
-        atom = next((a for a in head.body if a.p in (_DECLARED, _DIFFERENT) and (a.s, a.o) == (x, y)), None)
-        if atom is None or sum(a.p in (_DECLARED, _DIFFERENT) for a in head.body) != 1:
-            return None
-        wanted = _DECLARED if atom.p == _DECLARED else _DIFFERENT
+    for head in conclusions:
+        atom = _difference_atom(head, ask)
         known = {v: {a.o for a in head.premises if a.s == v and a.p == _TYPE and not a.o.startswith("?")}
                  for v in (x, y)}
-        for source in sources:
-            if source.head.p != wanted or _contradictory(source, known[x], known[y], disjoint):
-                continue
-            out.append(_join(head, atom, source))
+        for source in declared:
+            if not _contradictory(source, known[x], known[y], disjoint):
+                out.append(_join(head, atom, source))
     return out if len(out) <= MAX_JOINED else None
 
 

@@ -9,10 +9,15 @@ from __future__ import annotations
 from pyoxigraph import NamedNode
 
 from ..rdf.terms import INTEGER_TYPES
-from ..rdf.vocab import AUX, DECLARED_DIFFERENT, DIFFERENCE_CANDIDATE, DIFFERENT, OWL, RDF, RDFS, XSD
+from ..rdf.vocab import AUX, DECLARED_DIFFERENT, DIFFERENCE_CANDIDATE, DIFFERENT, INTERNAL, OWL, RDF, RDFS, XSD
 from . import data_ranges
 from .condition import Condition, exists
 from .rule import Atom
+
+#: aux predicate: a pair whose difference by values alone is asked (an entailed-only SWRL conclusion's
+#: pairs, see :mod:`.inline_difference`); only the value sources read it, no declared difference is
+#: derived for it
+VALUE_CANDIDATE = NamedNode(INTERNAL + "valueCandidate")
 
 
 def different_atom(a: str, b: str, declared: bool = False) -> Atom:
