@@ -52,6 +52,7 @@ from dataclasses import dataclass, replace
 from ..rdf.vocab import DECLARED_DIFFERENT, DIFFERENCE_CANDIDATE, DIFFERENT, TYPE
 from . import condition as cond
 from .condition import Condition
+from .implied import classes_of, position_classes
 from .rule import Atom, Rule
 from .snippets import VALUE_CANDIDATE
 
@@ -65,33 +66,66 @@ _VARIABLE = re.compile(r"\?([A-Za-z_][A-Za-z0-9_]*)")
 
 @dataclass
 class DifferenceAsk:
-    """The rules a SWRL rule with one DifferentIndividuals atom ``x ≠ y`` compiled to."""
+    """The rules asking whether ``x ≠ y``: the candidate rule and the rules reading the answer."""
 
     x: str
     y: str
     candidate: Rule
-    #: the head rules: the conclusion on declared difference, the entailed-only one on difference
+    #: the head rules: a SWRL rule's conclusion on declared difference and its entailed-only one on
+    #: difference; an OWL rule's conclusions on difference (``twins`` False)
     heads: list[Rule]
+    #: whether heads reading ``ts:different`` are entailed-only twins of heads on declared difference
+    twins: bool = True
+
+
+def owl_asks(rules: list[Rule]) -> list[DifferenceAsk]:
+    """The OWL rules that need one pair of fillers different (a minimum cardinality of two): per
+    axiom (origin), one ``different-candidate`` rule and rules reading its pair as one body atom.
+    An axiom whose rules read the difference any other way (negated, in a filter, in a check)
+    keeps its candidates."""
+    groups: dict[str, list[Rule]] = {}
+    for r in rules:
+        if not r.name.startswith("swrl:"):
+            groups.setdefault(r.origin, []).append(r)
+    asks = []
+    for group in groups.values():
+        candidates = [r for r in group if r.name == "different-candidate" and r.head.p == _CANDIDATE]
+        if len(candidates) != 1:
+            continue
+        candidate = candidates[0]
+        others = [r for r in group if r is not candidate]
+        if any(r.is_check or ("p", _DIFFERENT) in r.filter_reads or r.negates for r in others):
+            continue
+        readers = [r for r in others if any(a.p in (_DIFFERENT, _DECLARED) for a in r.body)]
+        ask = DifferenceAsk(candidate.head.s, candidate.head.o, candidate, readers, twins=False)
+        if readers and all(_difference_atom(r, ask) is not None and r.stratum == 0 for r in readers):
+            asks.append(ask)
+    return asks
 
 
 def inline_difference(rules: list[Rule], asks: list[DifferenceAsk]) -> list[Rule]:
-    """``rules`` with each ask's conclusion joined with the declared sources, its entailed-only
+    """``rules`` with each ask's conclusions joined with the sources, a SWRL rule's entailed-only
     conclusion reading the value sources' answers for its pairs (see the module docstring)."""
     sources = _sources(rules)
     if sources is None or not asks:
         return rules
     declared = [s for s in sources if s.head.p == _DECLARED]
     values = [s for s in sources if s.head.p == _DIFFERENT]
-    disjoint = {_disjoint_classes(s) for s in declared if s.name == "different-disjoint"}
-    disjoint.discard(None)
+    apart = _Apart(rules, declared)
     dropped: set[int] = set()
     added: list[Rule] = []
     asked = False
     for ask in asks:
+        if not ask.twins:  # an OWL conclusion on difference: every source answers it
+            joined = _joined(ask, ask.heads, declared + values, apart)
+            if joined is not None:
+                dropped |= {id(ask.candidate), *(id(r) for r in ask.heads)}
+                added += joined
+            continue
         conclusions = [r for r in ask.heads if _difference_atom(r, ask) is not None
                        and _difference_atom(r, ask).p == _DECLARED]
         entailed = [r for r in ask.heads if r not in conclusions]
-        joined = _joined(ask, conclusions, declared, disjoint)
+        joined = _joined(ask, conclusions, declared, apart)
         if joined is None or any(_difference_atom(r, ask) is None for r in entailed):
             continue
         dropped |= {id(ask.candidate), *(id(r) for r in conclusions)}
@@ -151,28 +185,32 @@ def _disjoint_classes(source: Rule) -> tuple[str, str] | None:
     return (types["?a"], types["?b"]) if "?a" in types and "?b" in types else None
 
 
-def _joined(ask: DifferenceAsk, conclusions: list[Rule], declared: list[Rule], disjoint: set) -> list[Rule] | None:
-    """The rules replacing the ask's conclusions, or None when they stay as they are."""
+def _joined(ask: DifferenceAsk, heads: list[Rule], sources: list[Rule], apart: _Apart) -> list[Rule] | None:
+    """The rules replacing the ask's ``heads``, or None when they stay as they are."""
     x, y = ask.x, ask.y
-    if not (x.startswith("?") and y.startswith("?")) or x == y or not conclusions:
+    if not (x.startswith("?") and y.startswith("?")) or x == y or not heads:
         return None
-    out = []
-    for head in conclusions:
-        atom = _difference_atom(head, ask)
-        known = {v: {a.o for a in head.premises if a.s == v and a.p == _TYPE and not a.o.startswith("?")}
-                 for v in (x, y)}
-        for source in declared:
-            if not _contradictory(source, known[x], known[y], disjoint):
-                out.append(_join(head, atom, source))
+    out = [_join(head, _difference_atom(head, ask), source) for head in heads for source in sources
+           if not apart.contradictory(head, x, y, source)]
     return out if len(out) <= MAX_JOINED else None
 
 
-def _contradictory(source: Rule, x_classes: set[str], y_classes: set[str], disjoint: set) -> bool:
-    """A disjoint-classes source that needs ``x`` or ``y`` in a class disjoint with one it is typed with."""
-    pair = _disjoint_classes(source) if source.name == "different-disjoint" else None
-    if pair is None:
-        return False
-    return any((pair[0], c) in disjoint for c in x_classes) or any((pair[1], c) in disjoint for c in y_classes)
+class _Apart:
+    """Which joins could only match an individual of two disjoint classes."""
+
+    def __init__(self, rules: list[Rule], declared: list[Rule]) -> None:
+        #: (class, class) of every disjoint-classes source, both orders
+        self.disjoint = {_disjoint_classes(s) for s in declared if s.name == "different-disjoint"} - {None}
+        self.implied = position_classes(rules) if self.disjoint else {}
+
+    def contradictory(self, head: Rule, x: str, y: str, source: Rule) -> bool:
+        """Whether ``source``'s ``?a`` (``?b``) must be in a class disjoint with one ``head`` puts ``x``
+        (``y``) in, as written or implied by the axioms (a domain, a range, a superclass): such a join
+        matches only where the disjointness check reports an inconsistency."""
+        return any((c, d) in self.disjoint
+                   for mine, theirs in ((x, "?a"), (y, "?b"))
+                   for c in classes_of(theirs, source.premises, self.implied)
+                   for d in classes_of(mine, head.premises, self.implied))
 
 
 def _join(head: Rule, atom: Atom, source: Rule) -> Rule:

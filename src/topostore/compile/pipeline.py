@@ -9,7 +9,7 @@ from .datatypes import empty_range_rules, range_rules
 from .generic import generic_rules
 from .guard import guard_rules
 from .implied import simplify
-from .inline_difference import inline_difference
+from .inline_difference import inline_difference, owl_asks
 from .model import TBoxReader
 from .owl import OwlCompiler
 from .owl_extras import key_rules, reflexive_rules, restriction_rules, thing_rules, unsatisfiable_rules
@@ -47,7 +47,7 @@ def compile_ontology(store: Store, graph: NamedNode) -> RuleSet:
     rules.add(swrl.query_rules)
     rules.queries = dict(swrl.queries)
     rules.notices += swrl.notices
-    rules.rules = inline_difference(rules.rules, swrl.asks)
+    rules.rules = inline_difference(rules.rules, swrl.asks + owl_asks(rules.rules))
     simplified = RuleSet()
     simplified.add(simplify(rules.rules))  # rules that differed only in implied atoms become one
     rules.rules = simplified.rules
