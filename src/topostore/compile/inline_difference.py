@@ -1,4 +1,4 @@
-"""A SWRL rule's difference tested where it is asked, not materialised pair by pair.
+"""A rule's difference tested where it is asked, not materialised pair by pair.
 
 Why
 ---
@@ -27,6 +27,9 @@ deltas on both visit times besides its location), where one flip of the value so
 pairs serves every rule; measured, the joined form cost the example step 0.5 ms more
 (docs/benchmarks.md).
 
+An OWL rule that needs one pair of fillers different (a minimum cardinality of two, :func:`owl_asks`)
+reads ``ts:different`` as a plain conclusion: it is joined with every source, declared and by values.
+
 Same closure
 ------------
 The conclusion fired on ``declaredDifferent(x, y)``; that fact held exactly when some declared
@@ -37,8 +40,11 @@ rule's own head holds for the same body, so that entailed-only head was never pu
 keeps only those neither asserted nor inferred); the value sources over the same pairs give the rest.
 Without value sources the entailed-only head is never published, and its rules are left out.
 
-A disjoint-classes source ``C1(x), C2(y)`` is left out when the body as written types ``x`` (or
-``y``) with a class disjoint with ``C1`` (``C2``): it could only match an individual of two disjoint
+A source is left out of a join when its ``?a`` (``?b``) must be in a class disjoint with one that
+``x`` (``y``) is in, as the bodies write them or as the axioms imply from the positions the variables
+hold (a domain, a range, a superclass; :func:`.implied.classes_of`): ``C1(a), C2(b)`` of a
+disjoint-classes source, or the domain of a value source's property (two doors have no visit time
+when doors and locations are disjoint).  Such a join matches only an individual of two disjoint
 classes, an inconsistency the disjointness check reports.  A rule with more than one difference
 atom, a source that does not fit the pattern, or more than :data:`MAX_JOINED` joined rules keep
 the materialised candidates (correct, only slower).
