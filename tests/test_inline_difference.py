@@ -125,6 +125,16 @@ def test_difference_by_values_only_is_asked_by_values_and_published_as_entailed(
     assert siblings(o) == {"hasSibling": ["b"], "hasBrother": ["b"]} and entailed_siblings(o) == set()
 
 
+def test_the_value_rules_answer_the_pairs_asked_by_values_alone() -> None:
+    # a functional property reads its difference negated (sameAs unless different): its pairs stay
+    # asked, of both kinds
+    o = family_with(BORN + ":hasParent a owl:FunctionalProperty . :a :born 1990 . :b :born 1992 .")
+    values = [r for r in o.rules.rules if r.name == "different-values"]
+    assert values and all({a.p for a in r.body if a.aux} == {str(VALUE_CANDIDATE)} for r in values)
+    heads = {r.head.p for r in o.rules.rules if r.origin == "hasParent is functional" and r.head is not None}
+    assert {str(DIFFERENCE_CANDIDATE), str(VALUE_CANDIDATE)} <= heads
+
+
 def test_without_value_rules_the_entailed_only_conclusion_is_left_out() -> None:
     o = family_with(":b owl:differentFrom :a .")
     assert not [r for r in swrl_rules(o, "siblings") if "entailment only" in r.origin]

@@ -19,12 +19,14 @@ candidate, no declared or copied difference fact is written for the rule's pairs
 positive, so semi-naive and incremental evaluation treat them as any other.
 
 The entailed-only conclusion (difference by values only) keeps reading ``ts:different``, but its
-pairs are asked as ``ts:valueCandidate`` (:data:`~.snippets.VALUE_CANDIDATE`), which only the value
-sources (two values of a property allowing one) read: no declared difference is derived for them.
-Why not join the value sources too: a robot step replaces visit times, and a value test joined into
-each SWRL rule is then maintained rule by rule (the connecting rule's flip, the reaching rule's
-deltas on both visit times besides its location), where one flip of the value sources over the asked
-pairs serves every rule; measured, the joined form cost the example step 0.5 ms more
+pairs are asked as ``ts:valueCandidate`` (:data:`~.snippets.VALUE_CANDIDATE`): no declared difference
+is derived for them.  The value sources (two values of a property allowing one) then read
+``ts:valueCandidate`` alone, and every other rule asking about a pair asks both kinds (its candidate
+rule writes both), so one set of value rules serves every asker.  Why not join the value sources into
+the SWRL rules too: a robot step replaces visit times, and a value test joined into each rule is then
+maintained rule by rule (the connecting rule's flip, the reaching rule's deltas on both visit times
+besides its location), where the value rules over the asked pairs serve every rule once; measured,
+the joined form cost the example step 0.5 ms more, two sets of value rules 0.2 ms
 (docs/benchmarks.md).
 
 An OWL rule that needs one pair of fillers different (a minimum cardinality of two, :func:`owl_asks`)
@@ -141,8 +143,10 @@ def inline_difference(rules: list[Rule], asks: list[DifferenceAsk]) -> list[Rule
             asked = True
         else:  # nothing but a declared difference could fire it: never published
             dropped |= {id(r) for r in entailed}
-    if asked:
-        added += [_reading_value_candidates(s) for s in values]
+    if asked:  # the value sources answer ts:valueCandidate alone; the other askers ask both kinds
+        asking = [r for r in rules if id(r) not in dropped and r.head is not None and r.head.p == _CANDIDATE]
+        dropped |= {id(s) for s in values}
+        added += [_asks_values(r) for r in asking] + [_reading_value_candidates(s) for s in values]
     return [r for r in rules if id(r) not in dropped] + added
 
 

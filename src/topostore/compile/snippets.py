@@ -14,9 +14,8 @@ from . import data_ranges
 from .condition import Condition, exists
 from .rule import Atom
 
-#: aux predicate: a pair whose difference by values alone is asked (an entailed-only SWRL conclusion's
-#: pairs, see :mod:`.inline_difference`); only the value sources read it, no declared difference is
-#: derived for it
+#: aux predicate: a pair whose difference by values is asked (see :mod:`.inline_difference`): the value
+#: rules read it, the declared-difference rules read ``ts:differenceCandidate``
 VALUE_CANDIDATE = NamedNode(INTERNAL + "valueCandidate")
 
 
