@@ -15,9 +15,11 @@ map of N locations (:mod:`benchmarks.maps`) this prints:
   declared-difference atom (as the rule runs), and with the declared difference tested inline
   (``FILTER(EXISTS …)`` over the AllDifferent keys, owl:differentFrom both ways and the disjoint
   class pairs) instead of materialised candidate and difference facts.  Since
-  :mod:`topostore.compile.inline_difference` a rule with one difference atom joins the difference
-  rules into its body, so only rules that still read the materialised relation are listed (two or
-  more difference atoms); the list was how the join was chosen (docs/benchmarks.md).
+  :mod:`topostore.compile.inline_difference` a rule with one difference atom (and an OWL minimum of
+  two fillers) joins the declared-difference rules into its body, so only rules that still read the
+  materialised relation are listed (two or more difference atoms); the list was how the join was
+  chosen (docs/benchmarks.md).  ``ts:valueCandidate`` in ``helper_facts`` are the pairs asked of
+  the value rules alone (an entailed-only SWRL conclusion's).
 """
 
 from __future__ import annotations
