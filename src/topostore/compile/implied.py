@@ -110,6 +110,25 @@ def _closure(edges: dict[Position, set[Position]]) -> dict[Position, frozenset[s
     return out
 
 
+def position_classes(rules: Iterable[Rule]) -> dict[Position, frozenset[str]]:
+    """Per position (subject or object of a property, instance of a class), the classes a term there
+    belongs to in the closure, read off the single-atom rules as :func:`simplify` reads them."""
+    return _closure(_position_edges(rules))
+
+
+def classes_of(var: str, atoms: Iterable[Atom], implied: dict[Position, frozenset[str]]) -> set[str]:
+    """The classes ``var`` belongs to in the closure wherever ``atoms`` match: those they type it with
+    and those the positions it holds imply (``implied``: :func:`position_classes`)."""
+    out: set[str] = set()
+    for atom in atoms:
+        for v, pos in _positions(atom):
+            if v == var:
+                out |= implied.get(pos, frozenset())
+                if pos[0] == "t":
+                    out.add(pos[1])
+    return out
+
+
 def simplify(rules: list[Rule]) -> list[Rule]:
     """The rules with every implied type atom dropped from their bodies (see the module docstring)."""
     implied = _closure(_position_edges(rules))
@@ -146,4 +165,4 @@ def _witness(atom: Atom, others: list[Atom], implied: dict[Position, frozenset[s
     return None
 
 
-__all__ = ["simplify"]
+__all__ = ["classes_of", "position_classes", "simplify"]

@@ -6,9 +6,11 @@ from pyoxigraph import NamedNode
 
 from ..stores.base import Store
 from .datatypes import empty_range_rules, range_rules
+from .fold import fold_equivalents
 from .generic import generic_rules
 from .guard import guard_rules
 from .implied import simplify
+from .inline_difference import inline_difference, owl_asks
 from .model import TBoxReader
 from .owl import OwlCompiler
 from .owl_extras import key_rules, reflexive_rules, restriction_rules, thing_rules, unsatisfiable_rules
@@ -46,6 +48,8 @@ def compile_ontology(store: Store, graph: NamedNode) -> RuleSet:
     rules.add(swrl.query_rules)
     rules.queries = dict(swrl.queries)
     rules.notices += swrl.notices
+    rules.rules = fold_equivalents(rules.rules)  # before the joins: they then see the named classes
+    rules.rules = inline_difference(rules.rules, swrl.asks + owl_asks(rules.rules))
     simplified = RuleSet()
     simplified.add(simplify(rules.rules))  # rules that differed only in implied atoms become one
     rules.rules = simplified.rules

@@ -9,10 +9,14 @@ from __future__ import annotations
 from pyoxigraph import NamedNode
 
 from ..rdf.terms import INTEGER_TYPES
-from ..rdf.vocab import AUX, DECLARED_DIFFERENT, DIFFERENCE_CANDIDATE, DIFFERENT, OWL, RDF, RDFS, XSD
+from ..rdf.vocab import AUX, DECLARED_DIFFERENT, DIFFERENCE_CANDIDATE, DIFFERENT, INTERNAL, OWL, RDF, RDFS, XSD
 from . import data_ranges
 from .condition import Condition, exists
 from .rule import Atom
+
+#: aux predicate: a pair whose difference by values is asked (see :mod:`.inline_difference`): the value
+#: rules read it, the declared-difference rules read ``ts:differenceCandidate``
+VALUE_CANDIDATE = NamedNode(INTERNAL + "valueCandidate")
 
 
 def different_atom(a: str, b: str, declared: bool = False) -> Atom:

@@ -21,6 +21,7 @@ from ..stores.base import Store
 from . import builtins, sqwrl
 from . import condition as cond
 from .condition import Condition
+from .inline_difference import DifferenceAsk
 from .model import Expr, TBoxReader, is_datatype
 from .notices import SQWRL_QUERY, Notice
 from .rule import Atom, Rule
@@ -115,6 +116,8 @@ class SwrlCompiler:
         self.notices: list[Notice] = []
         #: rules asking which pairs a SQWRL query's DifferentIndividuals atoms need checked
         self.query_rules: list[Rule] = []
+        #: rules with one DifferentIndividuals atom, joined with the difference rules (.inline_difference)
+        self.asks: list[DifferenceAsk] = []
 
     def _one(self, s: Term, p: NamedNode) -> Term | None:
         v = self.store.objects(s, p, self.graph)
@@ -224,9 +227,13 @@ class SwrlCompiler:
         arg = _Names(self.variables)
         body = self._body(name, body_atoms, arg)
         rules = self._difference_rules(name, body)
+        heads: list[Rule] = []
         for a in head_atoms:
-            rules += self._head_rules(name, a, arg, body)
-        return rules
+            heads += self._head_rules(name, a, arg, body)
+        if len(body.different) == 1:  # tested where it is asked, once the difference rules are known
+            x, y, _ = body.different[0]
+            self.asks.append(DifferenceAsk(x, y, rules[0], heads))
+        return rules + heads
 
     def _body(self, name: str, atoms: list[SwrlAtom], arg: _Names) -> _Body:
         """Patterns first, then the built-ins in an order where each one's inputs are bound,

@@ -1,0 +1,57 @@
+"""Two values of a property allowing one make two individuals different (compile/owl.py
+difference_rules): the test that both values lie in the restriction's data range is left out when the
+property's told ranges already imply it, since a value outside them is a range violation."""
+
+from __future__ import annotations
+
+import warnings
+
+import pytest
+
+from topostore import Ontology, OntologyWarning
+
+PREFIXES = """@prefix : <http://e.org/v#> . @prefix owl: <http://www.w3.org/2002/07/owl#> .
+@prefix rdfs: <http://www.w3.org/2000/01/rdf-schema#> . @prefix xsd: <http://www.w3.org/2001/XMLSchema#> .
+<http://e.org/v> a owl:Ontology .
+:seen a owl:DatatypeProperty .
+:Place owl:equivalentClass [ a owl:Restriction ; owl:onProperty :seen ;
+                             owl:qualifiedCardinality "1"^^xsd:nonNegativeInteger ; owl:onDataRange xsd:long ] .
+"""
+
+
+def load(text: str) -> Ontology:
+    o = Ontology()
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", OntologyWarning)
+        o.load_data(PREFIXES + text)
+    return o
+
+
+def value_rules(o: Ontology) -> list:
+    return [r for r in o.rules.rules if r.name == "different-values"]
+
+
+@pytest.mark.parametrize(("ranges", "tested"), [
+    (":seen rdfs:range xsd:long .", False),
+    (":seen rdfs:range xsd:int .", False),  # every int is a long
+    (":seen rdfs:range xsd:integer .", True),  # an integer may lie outside long
+    ("", True),
+    (":seen rdfs:range xsd:long , xsd:string .", False),  # no value can satisfy both: every value violates
+])
+def test_the_range_test_is_left_out_only_when_the_told_ranges_imply_it(ranges: str, tested: bool) -> None:
+    rules = value_rules(load(ranges))
+    assert rules
+    assert all(any("FLOOR" in c.expression for c in r.conditions) == tested for r in rules)
+
+
+def test_a_value_outside_the_range_is_still_an_inconsistency() -> None:
+    o = load(':seen rdfs:range xsd:long . :a :seen 5 . :b :seen "five" .')
+    report = o.reason()
+    assert not report.consistent
+
+
+def test_two_values_in_range_still_make_two_places_different() -> None:
+    o = load(":seen rdfs:range xsd:long . :a a :Place ; :seen 5 . :b a :Place ; :seen 7 .")
+    assert o.reason().consistent
+    o.load_data(PREFIXES + ":a owl:sameAs :b .")
+    assert not o.reason().consistent  # one place cannot have two times
