@@ -41,8 +41,8 @@ def refresh_entailed(store: Store, rules: RuleSet, changed: Sequence[NamedNode])
     """Bring ENTAILED up to date after maintenance; ``changed``: graphs holding every triple whose
     presence in the asserted, inferred or helper graph changed (in either form, real or internal).
 
-    The few touched triples are found with one query and decided one by one
-    (index look-ups); a set-at-a-time update over them let the planner scan
+    The few touched triples are found (index reads in memory, one query where reads are round trips)
+    and decided one by one (index look-ups); a set-at-a-time update over them let the planner scan
     every internal triple instead.
     """
     predicates = sorted(rules.entailed_predicates, key=lambda t: t.value)
@@ -50,7 +50,7 @@ def refresh_entailed(store: Store, rules: RuleSet, changed: Sequence[NamedNode])
         return
     add: list[Triple] = []
     drop: list[Triple] = []
-    touched = [Triple(row["s"], row["p"], row["o"]) for row in store.query(_touched_query(predicates, changed))]
+    touched = _touched(store, predicates, changed)
     # four look-ups per triple, sent as one batch (one request on a remote store)
     quads = [q for t in touched for q in (Quad(t.subject, internal(t.predicate), t.object, AUX),
                                           Quad(t.subject, t.predicate, t.object, INFERRED),
@@ -81,6 +81,21 @@ def standing(internal_fact: bool, inferred: bool, asserted: bool, shown: bool) -
     belongs there exactly when its internal twin holds and it is neither inferred nor asserted."""
     wanted = internal_fact and not inferred and not asserted
     return None if wanted == shown else wanted
+
+
+def _touched(store: Store, predicates: Sequence[NamedNode], changed: Sequence[NamedNode]) -> list[Triple]:
+    """The triples of ``predicates`` (real or internal form, as the real triple) in the ``changed`` graphs,
+    without duplicates.  In memory an index read per predicate, form and graph costs microseconds where
+    parsing and planning the UNION query costs a tenth of a millisecond."""
+    if store.round_trips:
+        return [Triple(row["s"], row["p"], row["o"]) for row in store.query(_touched_query(predicates, changed))]
+    found: dict[Triple, None] = {}
+    for p in predicates:
+        for g in changed:
+            for q in (p, internal(p)):
+                for t in store.triples(None, q, None, g):
+                    found[Triple(t.subject, p, t.object)] = None
+    return list(found)
 
 
 def _touched_query(predicates: Sequence[NamedNode], changed: Sequence[NamedNode]) -> str:

@@ -154,6 +154,7 @@ class IncrementalReasoner:
         self.checks = rules.checks
         self.check_triggers = Triggers(self.checks)
         self.negated = [r for r in self.rules if not is_monotone(r)]
+        self.negated_triggers = Triggers(self.negated)
         self.provers = [i for i in self.monotone if can_prove(self.rules[i])]
         self.checks_monotone = all(not c.negates and c.stratum == 0 for c in self.checks)
         self.requests = RequestQueue(store, self.rules)
@@ -176,6 +177,10 @@ class IncrementalReasoner:
         self._heads: set = set()
         #: SPARQL texts of the checks made once (the phases' texts live in the request queue)
         self._texts: dict[tuple, str] = {}
+        #: :func:`.program.pair_atom` of a check's or negated rule's atom, by (kind, rule index, atom): rules never change
+        self._pairs: dict[tuple[str, int, int], bool] = {}
+        #: the read keys of the scratch graphs counted during this REASON's reads after maintenance
+        self._counted: dict[NamedNode, tuple[dict[str, int], dict[str, int]]] = {}
         #: (individual, class) pairs whose type fact the last REASON may have changed; None after a full run
         self.touched_types: list[tuple[Term, NamedNode]] | None = None
 
@@ -396,14 +401,54 @@ class IncrementalReasoner:
 
     # ------------------------------------------------------------------ after maintenance
     def _negated_match(self) -> bool:
-        """Whether any rule with a negated premise matches the current closure (one ASK for all)."""
-        if not self.negated:
+        """Whether any rule with a negated premise matches the current closure (one ASK for all), asked
+        only when the maintenance changed a key such a rule reads (:meth:`_negated_may_match`)."""
+        if not self.negated or not self._negated_may_match():
             return False
         text = self._texts.get(("negated",))
         if text is None:
             text = self._texts[("negated",)] = "ASK {\n" + "\nUNION\n".join(
                 f"{{\n  {rule.where()}\n}}" for rule in self.negated) + "\n}"
         return bool(self.store.query(text, graphs=[ASSERTED, INFERRED, AUX], prefixes=PREFIXES))
+
+    def _negated_may_match(self) -> bool:
+        """Whether a rule with a negated premise may match now: none did before (the state is "quiet", or
+        this REASON would be full), so a match needs a body atom on a fact the closure gained or a filter
+        reading a key that changed.  NEW_FACTS and OVERDELETED hold every triple whose presence changed
+        (a superset), so their read keys decide it, as the semi-naive triggers do; a pair atom on a cleanly
+        replaced predicate (:meth:`_on_clean_pair`) cannot match a change and triggers nothing.  An index
+        count of two small graphs instead of an ASK over every negated rule per step."""
+        preds: set[str] = set()
+        classes: set[str] = set()
+        for graph in (NEW_FACTS, OVERDELETED):
+            p, c = self._changed_keys(graph)
+            preds.update(p)
+            classes.update(c)
+        skip = [(i, j) for i, rule in enumerate(self.negated) for j in range(len(rule.body))
+                if self._on_clean_pair("negated", i, rule, j)]
+        return bool(self.negated_triggers.evaluations(preds, classes, range(len(self.negated)), self.state.present,
+                                                      skip))
+
+    def _changed_keys(self, graph: NamedNode) -> tuple[dict[str, int], dict[str, int]]:
+        """The read keys of a scratch graph maintenance wrote (counted once per REASON: the reads after
+        maintenance do not write it)."""
+        counts = self._counted.get(graph)
+        if counts is None:
+            self.requests.flush()
+            counts = self._counted[graph] = self.requests.keys(graph)
+        return counts
+
+    def _on_clean_pair(self, kind: str, i: int, rule: Rule, j: int) -> bool:
+        """Whether atom ``j`` of ``rule`` (``kind`` "check" or "negated", index ``i``) is a pair atom
+        (:func:`.program.pair_atom`) on a predicate the compiled step cleanly replaced: it cannot match a
+        change, since every changed subject has one value before and after."""
+        if rule.body[j].p not in self._step_clean:
+            return False
+        key = (kind, i, j)
+        pair = self._pairs.get(key)
+        if pair is None:
+            pair = self._pairs[key] = pair_atom(rule, j)
+        return pair
 
     def _check(self, stats: ReasonStats, changed: bool) -> list[Violation]:
         """Consistency of the new state, running all checks only when one may have changed."""
@@ -443,7 +488,7 @@ class IncrementalReasoner:
 
     def _new_violation_possible(self) -> bool:
         """A check matches with at least one atom on a fact new in the closure (one semi-naive ASK)."""
-        counts = preds, classes = self.requests.keys(NEW_FACTS)
+        counts = preds, classes = self._changed_keys(NEW_FACTS)
         branches = self._check_branches(preds, classes, lambda c, j: j is not None and self.store.supports_lateral
                                         and is_small(counts, self.checks[c].body[j].read_key()))
         if not branches:
@@ -463,7 +508,7 @@ class IncrementalReasoner:
     def _cannot_match(self, c: int, j: int | None) -> bool:
         """Whether check ``c`` with atom ``j`` on the new facts cannot match after the compiled step: a
         pair of values of one subject on a cleanly replaced predicate (:func:`.program.pair_atom`)."""
-        return j is not None and self.checks[c].body[j].p in self._step_clean and pair_atom(self.checks[c], j)
+        return j is not None and self._on_clean_pair("check", c, self.checks[c], j)
 
     def _check_text(self, c: int, j: int | None, lateral: bool) -> str:
         key = ("check", c, j, lateral)
@@ -482,6 +527,7 @@ class IncrementalReasoner:
 
     def _clear_scratch(self) -> None:
         """Drop the scratch graphs (with what the queue holds: one request)."""
+        self._counted.clear()
         self.requests.defer(" ; ".join(f"DROP SILENT GRAPH {g}"
                                        for g in (*SCRATCH, *PROGRAM_SCRATCH, DELTA, NEW_INFERRED, NEW_AUX)))
         self.requests.flush()
