@@ -92,11 +92,8 @@ class Reference:
         """Apply one change to the asserted graph; returns what it did (for undo)."""
         onto = self.ontology
         delta = change.plan(onto)
-        removed = [t for t in dict.fromkeys(delta.remove) if onto.store.contains(t, ASSERTED)]
-        removed = [_original(onto, t) for t in removed]
-        onto.remove(*removed)
-        added = [t for t in dict.fromkeys(delta.add) if not onto.store.contains(t, ASSERTED)]
-        onto.add(*added)
+        removed = onto.remove_present(*(_original(onto, t) for t in delta.remove))
+        added = onto.add_new(*delta.add)
         return Applied(added, removed, delta.warning)
 
     def submit(self, changes: list[Change]) -> list[str]:

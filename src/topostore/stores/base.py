@@ -332,13 +332,28 @@ class Store:
         triples = triples if isinstance(triples, (list, tuple)) else list(triples)
         if self._depth == 0 and len(triples) >= BULK_ADD and self.is_empty(graph):
             return self._add_to_empty(triples, graph)
-        quads = list(dict.fromkeys(Quad(t.subject, t.predicate, t.object, graph) for t in triples))
+        return len(self.add_new(triples, graph))
+
+    def add_new(self, triples: Iterable[Triple], graph: NamedNode) -> list[Triple]:
+        """Add triples to ``graph``; returns those that were not there (deduplicated): what a caller
+        recording the change needs, from the one presence look-up the addition makes anyway."""
+        return self._toggle_each(triples, graph, True)
+
+    def remove_present(self, triples: Iterable[Triple], graph: NamedNode) -> list[Triple]:
+        """Remove triples from ``graph``; returns those that were there (deduplicated), as :meth:`add_new`."""
+        return self._toggle_each(triples, graph, False)
+
+    def _toggle_each(self, triples: Iterable[Triple], graph: NamedNode, add: bool) -> list[Triple]:
+        """Record the pending addition (or removal) of each triple that is absent (present) in ``graph``,
+        in one transaction; returns those triples."""
+        quads = {Quad(t.subject, t.predicate, t.object, graph): t for t in triples}
         keys = [self._key(q) for q in quads]  # a literal's value key is the costly part of a load: once each
         with self.transaction():
-            new = [(q, k) for q, k, present in zip(quads, keys, self._present(quads, keys), strict=True) if not present]
-            for q, k in new:  # pending True: absent from the committed store; False: present there
-                self._toggle(q, True, k)
-        return len(new)
+            changed = [(q, t, k) for (q, t), k, present in zip(quads.items(), keys, self._present(list(quads), keys),
+                                                               strict=True) if present != add]
+            for q, _, k in changed:  # pending True: absent from the committed store; False: present there
+                self._toggle(q, add, k)
+        return [t for _, t, _ in changed]
 
     def _add_to_empty(self, triples: list[Triple] | tuple[Triple, ...], graph: NamedNode) -> int:
         """:meth:`add` into an empty graph with no transaction open: every triple is new, so none
@@ -385,13 +400,8 @@ class Store:
         self._write([Quad(t.subject, t.predicate, t.object, graph) for t in triples], [])
 
     def remove(self, triples: Iterable[Triple], graph: NamedNode) -> int:
-        quads = list(dict.fromkeys(Quad(t.subject, t.predicate, t.object, graph) for t in triples))
-        keys = [self._key(q) for q in quads]
-        with self.transaction():
-            gone = [(q, k) for q, k, present in zip(quads, keys, self._present(quads, keys), strict=True) if present]
-            for q, k in gone:
-                self._toggle(q, False, k)
-        return len(gone)
+        """Remove triples from ``graph``; returns how many were there."""
+        return len(self.remove_present(triples, graph))
 
     def discard(self, triples: Iterable[Triple], graphs: Iterable[NamedNode]) -> None:
         """Remove triples from reasoner graphs, present or not (no literal forms are kept for those)."""
