@@ -179,6 +179,10 @@ class IncrementalReasoner:
         self._texts: dict[tuple, str] = {}
         #: :func:`.program.pair_atom` of a check's or negated rule's atom, by (kind, rule index, atom): rules never change
         self._pairs: dict[tuple[str, int, int], bool] = {}
+        #: the negated rules' atoms a change cannot match, by the compiled step's cleanly replaced predicates
+        self._negated_skip: dict[frozenset, list[tuple[int, int]]] = {}
+        #: :func:`.flip.kind_tests_only` of a flip (rule index, changed atoms)
+        self._kind_only: dict[tuple[int, tuple[int, ...]], bool] = {}
         #: the read keys of the scratch graphs counted during this REASON's reads after maintenance
         self._counted: dict[NamedNode, tuple[dict[str, int], dict[str, int]]] = {}
         #: (individual, class) pairs whose type fact the last REASON may have changed; None after a full run
@@ -201,11 +205,8 @@ class IncrementalReasoner:
         self._step_clean = frozenset()
         stats = ReasonStats(mode="incremental", reason=self._incremental_reason(added, removed))
         self.requests.profile = profile
-        materializer = Materializer(self.store, self.ruleset, profile=profile, triggers=self.triggers)
-        materializer.present = self.state.present
-        materializer.planned = True
         try:
-            self._maintain(materializer, added, removed, stats)
+            self._maintain(added, removed, stats, profile)
             changed = bool(added or removed)
             if changed and self.store.round_trips and stats.program == "compiled":
                 after = self._read_after()
@@ -286,8 +287,8 @@ class IncrementalReasoner:
         return f"{len(added)} added, {len(removed)} removed asserted triples"
 
     # ------------------------------------------------------------------ maintenance
-    def _maintain(self, m: Materializer, added: Collection[Triple], removed: Collection[Triple],
-                  stats: ReasonStats) -> None:
+    def _maintain(self, added: Collection[Triple], removed: Collection[Triple], stats: ReasonStats,
+                  profile: bool) -> None:
         if not added and not removed:
             return
         self.flips.note(added, removed)
@@ -315,6 +316,9 @@ class IncrementalReasoner:
             requests.run(("flip-gained", i), self.deletion.rederive_text, i, FLIP_GAINED, stats)
         requests.defer(f"ADD SILENT {ADDED} TO {NEW_FACTS}")
         requests.flush()
+        m = Materializer(self.store, self.ruleset, profile=profile, triggers=self.triggers)  # the general path only
+        m.present = self.state.present
+        m.planned = True
         m.propagate(self.monotone, stats, seed=ADDED, record=NEW_FACTS, skip_first=skip)
 
     # ------------------------------------------------------------------ the compiled step
@@ -361,7 +365,10 @@ class IncrementalReasoner:
         """A compiled flip's text for this run: "" when no value changed kind and the rule only tests
         kinds (:func:`.flip.kind_tests_only`), else narrowed to the values in a window where one applies."""
         rule = self.rules[i]
-        if flip.kind_tests_only(rule, order) and all(
+        kinds = self._kind_only.get((i, order))
+        if kinds is None:  # a property of the rule: asked once
+            kinds = self._kind_only[(i, order)] = flip.kind_tests_only(rule, order)
+        if kinds and all(
                 flip.same_kind(r) for j in order for r in self._clean.get(rule.body[j].p, ())):
             return ""
         windows = self.flips._windows(i, order)
@@ -424,7 +431,10 @@ class IncrementalReasoner:
             p, c = self._changed_keys(graph)
             preds.update(p)
             classes.update(c)
-        skip = [(i, j) for i, rule in enumerate(self.negated) for j in range(len(rule.body))
+        skip = self._negated_skip.get(self._step_clean)
+        if skip is None:  # the same few kinds of step return: their pair atoms are listed once
+            skip = self._negated_skip[self._step_clean] = [
+                (i, j) for i, rule in enumerate(self.negated) for j in range(len(rule.body))
                 if self._on_clean_pair("negated", i, rule, j)]
         return bool(self.negated_triggers.evaluations(preds, classes, range(len(self.negated)), self.state.present,
                                                       skip))
@@ -467,7 +477,8 @@ class IncrementalReasoner:
         """Bring the ENTAILED graph up to date from what this maintenance touched (see :mod:`.entailed`)."""
         if changed:
             self.requests.flush()
-            refresh_entailed(self.store, self.ruleset, (NEW_FACTS, OVERDELETED))
+            refresh_entailed(self.store, self.ruleset, (NEW_FACTS, OVERDELETED),
+                             lambda graph: self._changed_keys(graph)[0])
 
     def _touched_types(self) -> list[tuple[Term, NamedNode]]:
         """(individual, class) of every type fact whose presence this maintenance may have changed.
@@ -528,8 +539,7 @@ class IncrementalReasoner:
     def _clear_scratch(self) -> None:
         """Drop the scratch graphs (with what the queue holds: one request)."""
         self._counted.clear()
-        self.requests.defer(" ; ".join(f"DROP SILENT GRAPH {g}"
-                                       for g in (*SCRATCH, *PROGRAM_SCRATCH, DELTA, NEW_INFERRED, NEW_AUX)))
+        self.requests.drop((*SCRATCH, *PROGRAM_SCRATCH, DELTA, NEW_INFERRED, NEW_AUX))
         self.requests.flush()
 
 

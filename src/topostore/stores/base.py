@@ -232,6 +232,11 @@ class Store:
     def _drop(self, graph: NamedNode) -> None:
         self._run_update(f"DROP SILENT GRAPH {graph}", None)
 
+    def drop_graphs(self, graphs: Iterable[NamedNode]) -> None:
+        """Drop a reasoner's scratch graphs (no literal forms or listings are kept for them): one update."""
+        self._flush_open()
+        self._run_update(" ; ".join(f"DROP SILENT GRAPH {g}" for g in graphs), None)
+
     def close(self) -> None:
         """Release the store (files, connections, locks)."""
 
@@ -252,32 +257,35 @@ class Store:
         return parse_triples(data, fmt, base_iri, source, progress)
 
     # ------------------------------------------------------------ transactions
-    @contextmanager
-    def transaction(self) -> Iterator[Store]:
+    def transaction(self) -> _Transaction:
         """Group writes into one atomic commit (nested calls join the outer one).
 
         On an exception nothing of the transaction is written.  A SPARQL query
         or update inside a transaction first commits what is pending, so that it
         sees it; manipulations only read through the quad methods, so they stay
-        one commit.
+        one commit.  (A plain context manager class: a robot step opens a dozen of them.)
         """
+        return _Transaction(self)
+
+    def _begin(self) -> None:
+        """Enter a transaction (the outermost one starts with nothing pending)."""
         if self._depth == 0:
             self._pending = {}
             self.persisted.pending = {}
             self._known = {}
         self._depth += 1
-        try:
-            yield self
-        except BaseException:
-            self._depth -= 1
-            if self._depth == 0:
-                self._pending, self._known = None, {}
-                self.persisted.pending = {}
-            raise
+
+    def _end(self, failed: bool) -> None:
+        """Leave a transaction: the outermost one commits, or on failure forgets what is pending."""
         self._depth -= 1
-        if self._depth == 0:
-            self._flush()
+        if self._depth:
+            return
+        if failed:
             self._pending, self._known = None, {}
+            self.persisted.pending = {}
+            return
+        self._flush()
+        self._pending, self._known = None, {}
 
     def _flush(self) -> None:
         """Commit the pending writes of the open transaction (also the persisted state)."""
@@ -310,6 +318,8 @@ class Store:
 
     def _present(self, quads: list[Quad], keys: list[tuple] | None = None) -> list[bool]:
         """Whether each quad is in the store as the open transaction sees it (``keys``: their :meth:`_key`)."""
+        if self._pending is None and self.listings is None and not any(isinstance(q.object, Literal) for q in quads):
+            return self._has_many(quads)  # no transaction, no value keys: each quad is its own key
         pending, known = self._pending or {}, self._known
         keys = keys if keys is not None else [self._key(q) for q in quads]
         unknown = [(q, k) for q, k in zip(quads, keys) if k not in pending and k not in known]
@@ -552,6 +562,22 @@ class Store:
                     t = Triple(t.subject, t.predicate, form)
                 out[unskolemize(t)] = None
         return list(out)
+
+
+class _Transaction:
+    """The context manager :meth:`Store.transaction` returns."""
+
+    __slots__ = ("store",)
+
+    def __init__(self, store: Store) -> None:
+        self.store = store
+
+    def __enter__(self) -> Store:
+        self.store._begin()
+        return self.store
+
+    def __exit__(self, kind, value, traceback) -> None:
+        self.store._end(kind is not None)
 
 
 def _matches(q: Quad, s, p, o, graph) -> bool:

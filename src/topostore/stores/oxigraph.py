@@ -11,7 +11,7 @@ commit (see docs/stores.md).
 from __future__ import annotations
 
 import os
-from collections.abc import Iterator
+from collections.abc import Iterable, Iterator
 from itertools import chain, islice
 
 import pyoxigraph as ox
@@ -74,6 +74,17 @@ class OxigraphStore(Store):
         """Bulk-add to a reasoner's scratch graph (one RocksDB transaction)."""
         self._writes += 1
         self._ox.extend(Quad(t.subject, t.predicate, t.object, graph) for t in triples)
+
+    def drop_graphs(self, graphs: Iterable[NamedNode]) -> None:
+        """In memory each graph is removed from the index directly (a SPARQL DROP of a dozen graphs costs
+        its parse, ≈ 10 µs); on disk, one update (one RocksDB transaction)."""
+        if not self._in_memory:
+            super().drop_graphs(graphs)
+            return
+        self._flush_open()
+        self._writes += 1
+        for g in graphs:
+            self._ox.remove_graph(g)
 
     def _run_update(self, text: str, prefixes: dict[str, str] | None) -> None:
         self._writes += 1
