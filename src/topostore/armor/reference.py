@@ -13,7 +13,7 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from pyoxigraph import Triple
+from pyoxigraph import Literal, Triple
 
 from ..errors import TopostoreError
 from ..ontology.facade import Ontology
@@ -174,8 +174,6 @@ class Reference:
 
 def _original(onto: Ontology, t: Triple) -> Triple:
     """The triple with its literal in the form the user asserted (so undo restores it exactly)."""
-    from pyoxigraph import Literal
-
     if isinstance(t.object, Literal):
         return Triple(t.subject, t.predicate, onto.store.original_literal(ASSERTED, t.subject, t.predicate, t.object))
     return t
