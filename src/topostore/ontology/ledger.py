@@ -81,17 +81,18 @@ class ChangeLedger:
         if not self.tracking:
             return
         changed = list(changed)
+        written = changed if added else [_as_written(store, t) for t in changed]  # an undo restores these
         if self._open:
-            self._steps.append((changed if added else [_as_written(store, t) for t in changed], added))
+            self._steps.append((written, added))
         if not self.recording:
             return
         mine, other = (self.added, self.removed) if added else (self.removed, self.added)
-        for t in changed:
+        for t, as_written in zip(changed, written, strict=True):
             key = store.stored_form(t)  # both sides hold triples as the store does, so they cancel
             if key in other:
                 del other[key]
             else:
-                mine[key] = t if added else _as_written(store, t)
+                mine[key] = as_written
         if self.incremental and len(self.added) + len(self.removed) > max(limit, MIN_TRACKED):
             self.incremental = False
 
