@@ -445,9 +445,8 @@ class Store:
         """:meth:`triples` inside a transaction: the committed matches not removed, then the pending additions."""
         pending = self._pending
         for q in list(self._match(s, p, o, graph)):
-            key = self._key(q)
-            self._known[key] = True
-            entry = pending.get(key)
+            self._known[self._key(q)] = True
+            entry = pending.get(self._key(q))
             if entry is None or entry[1]:
                 yield Triple(q.subject, q.predicate, q.object)
         for q, present in list(pending.values()):
