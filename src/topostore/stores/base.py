@@ -445,8 +445,9 @@ class Store:
         """:meth:`triples` inside a transaction: the committed matches not removed, then the pending additions."""
         pending = self._pending
         for q in list(self._match(s, p, o, graph)):
-            self._known[self._key(q)] = True
-            entry = pending.get(self._key(q))
+            key = self._key(q)
+            self._known[key] = True
+            entry = pending.get(key)
             if entry is None or entry[1]:
                 yield Triple(q.subject, q.predicate, q.object)
         for q, present in list(pending.values()):
