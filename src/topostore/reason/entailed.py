@@ -53,20 +53,31 @@ def refresh_entailed(store: Store, rules: RuleSet, changed: Sequence[NamedNode],
     add: list[Triple] = []
     drop: list[Triple] = []
     touched = _touched(store, predicates, changed, predicates_in)
-    # four look-ups per triple, sent as one batch (one request on a remote store)
-    quads = [q for t in touched for q in (Quad(t.subject, internal(t.predicate), t.object, AUX),
-                                          Quad(t.subject, t.predicate, t.object, INFERRED),
-                                          Quad(t.subject, t.predicate, t.object, ASSERTED),
-                                          Quad(t.subject, t.predicate, t.object, ENTAILED))]
-    found = store.contains_quads(quads) if quads else []
-    for n, t in enumerate(touched):
-        change = standing(*found[4 * n:4 * n + 4])
+    for t, change in zip(touched, _standings(store, touched), strict=True):
         if change is not None:
             (add if change else drop).append(t)
     if add:
         store.add_scratch(add, ENTAILED)
     if drop:
         store.discard(drop, (ENTAILED,))
+
+
+def _standings(store: Store, touched: list[Triple]) -> list[bool | None]:
+    """:func:`standing` of each touched triple.  Where reads are round trips its four look-ups are one
+    batch (one request); in memory the twin and the shown triple are looked up first, and whether it is
+    inferred or asserted only when the twin holds (else it is not wanted, whatever those say)."""
+    def quads(t: Triple, graphs) -> list[Quad]:
+        return [Quad(t.subject, internal(t.predicate) if g == AUX else t.predicate, t.object, g) for g in graphs]
+
+    if store.round_trips:
+        found = store.contains_quads([q for t in touched for q in quads(t, (AUX, INFERRED, ASSERTED, ENTAILED))])
+        return [standing(*found[4 * n:4 * n + 4]) for n in range(len(touched))]
+    out: list[bool | None] = []
+    for t in touched:
+        twin, shown = store.contains_quads(quads(t, (AUX, ENTAILED)))
+        inferred, asserted = store.contains_quads(quads(t, (INFERRED, ASSERTED))) if twin else (False, False)
+        out.append(standing(twin, inferred, asserted, shown))
+    return out
 
 
 def internal(p: NamedNode) -> NamedNode:

@@ -87,7 +87,7 @@ from .dred import Deletion, can_prove
 from .entailed import ENTAILED_TYPE, publish_entailed, refresh_entailed
 from .flips import Flips
 from .materialize import Materializer, ReasonStats
-from .plan import is_small, plan_where
+from .plan import LATERAL_MAX, is_small, plan_where
 from .program import PROGRAM_SCRATCH, Refused, StepCompiler, StepProgram, pair_atom, signature
 from .requests import RequestQueue
 from .scratch import ADDED, FLIP_GAINED, NEW_FACTS, OVERDELETED, REMOVED, SCRATCH
@@ -179,6 +179,9 @@ class IncrementalReasoner:
         self._texts: dict[tuple, str] = {}
         #: :func:`.program.pair_atom` of a check's or negated rule's atom, by (kind, rule index, atom): rules never change
         self._pairs: dict[tuple[str, int, int], bool] = {}
+        #: what the reads after maintenance decided (the checks' ASK, whether a negated rule may match), by
+        #: the shape of the change (:meth:`_shape`), until the next full run
+        self._decided: dict[tuple, object] = {}
         #: the negated rules' atoms a change cannot match, by the compiled step's cleanly replaced predicates
         self._negated_skip: dict[frozenset, list[tuple[int, int]]] = {}
         #: :func:`.flip.kind_tests_only` of a flip (rule index, changed atoms)
@@ -249,6 +252,7 @@ class IncrementalReasoner:
         self.touched_types = None
         self.flips.forget()
         self._programs.clear()  # compiled against the keys with facts, which a full run recounts
+        self._decided.clear()
         self._clear_scratch()
         materializer = Materializer(self.store, self.ruleset, profile=profile)
         stats = materializer.run()
@@ -425,19 +429,25 @@ class IncrementalReasoner:
         (a superset), so their read keys decide it, as the semi-naive triggers do; a pair atom on a cleanly
         replaced predicate (:meth:`_on_clean_pair`) cannot match a change and triggers nothing.  An index
         count of two small graphs instead of an ASK over every negated rule per step."""
-        preds: set[str] = set()
-        classes: set[str] = set()
-        for graph in (NEW_FACTS, OVERDELETED):
-            p, c = self._changed_keys(graph)
-            preds.update(p)
-            classes.update(c)
+        counts = [self._changed_keys(graph) for graph in (NEW_FACTS, OVERDELETED)]
+        key = ("negated", *self._shape(*counts))
+        decided = self._decided.get(key)
+        if decided is None:
+            preds = {p for found, _ in counts for p in found}
+            classes = {c for _, found in counts for c in found}
+            decided = self._decide(key, bool(self.negated_triggers.evaluations(
+                preds, classes, range(len(self.negated)), self.state.present, self._negated_pairs())))
+        return decided
+
+    def _negated_pairs(self) -> list[tuple[int, int]]:
+        """The negated rules' pair atoms on the compiled step's cleanly replaced predicates (they cannot
+        match a change)."""
         skip = self._negated_skip.get(self._step_clean)
-        if skip is None:  # the same few kinds of step return: their pair atoms are listed once
+        if skip is None:
             skip = self._negated_skip[self._step_clean] = [
                 (i, j) for i, rule in enumerate(self.negated) for j in range(len(rule.body))
                 if self._on_clean_pair("negated", i, rule, j)]
-        return bool(self.negated_triggers.evaluations(preds, classes, range(len(self.negated)), self.state.present,
-                                                      skip))
+        return skip
 
     def _changed_keys(self, graph: NamedNode) -> tuple[dict[str, int], dict[str, int]]:
         """The read keys of a scratch graph maintenance wrote (counted once per REASON: the reads after
@@ -499,14 +509,39 @@ class IncrementalReasoner:
 
     def _new_violation_possible(self) -> bool:
         """A check matches with at least one atom on a fact new in the closure (one semi-naive ASK)."""
-        counts = preds, classes = self._changed_keys(NEW_FACTS)
+        counts = self._changed_keys(NEW_FACTS)
+        key = ("check", *self._shape(counts))
+        text = self._decided.get(key)
+        if text is None:  # the same few kinds of step return: their ASK is made once
+            text = self._decide(key, self._violation_ask(counts))
+        return bool(text) and bool(self.store.query(text, prefixes=PREFIXES))
+
+    def _violation_ask(self, counts: tuple[dict[str, int], dict[str, int]]) -> str:
+        """The semi-naive ASK of the checks a change of ``counts``' keys may make match ("" when none may)."""
+        preds, classes = counts
         branches = self._check_branches(preds, classes, lambda c, j: j is not None and self.store.supports_lateral
                                         and is_small(counts, self.checks[c].body[j].read_key()))
         if not branches:
-            return False
+            return ""
         head = f"FROM {ASSERTED} FROM {INFERRED} FROM {AUX} FROM NAMED {AUX} FROM NAMED {NEW_FACTS}"
-        text = f"ASK {head} WHERE {{\n" + "\nUNION\n".join(branches) + "\n}"
-        return bool(self.store.query(text, prefixes=PREFIXES))
+        return f"ASK {head} WHERE {{\n" + "\nUNION\n".join(branches) + "\n}"
+
+    def _shape(self, *counts: tuple[dict[str, int], dict[str, int]]) -> tuple:
+        """What the reads after maintenance decide from: the changed keys (each with whether it is small,
+        :func:`.plan.is_small`), the cleanly replaced predicates and the keys with facts (a set that only
+        grows until the next full run, so its size tells it)."""
+        keys = frozenset((kind, key, n <= LATERAL_MAX) for preds, classes in counts
+                         for kind, found in (("p", preds), ("t", classes)) for key, n in found.items())
+        small = all(sum(preds.values()) <= LATERAL_MAX for preds, _ in counts)
+        present = self.state.present
+        return keys, small, self._step_clean, len(present[0]), len(present[1])
+
+    def _decide(self, key: tuple, value):
+        """Remember what the reads after maintenance decided for ``key`` (see :meth:`_shape`)."""
+        if len(self._decided) >= MAX_PROGRAMS:
+            self._decided.clear()
+        self._decided[key] = value
+        return value
 
     def _check_branches(self, preds: Collection[str], classes: Collection[str], lateral) -> list[str]:
         """The semi-naive groups of the checks a change of ``preds``/``classes`` may make match (one per
