@@ -70,7 +70,7 @@ import time
 from collections.abc import Collection
 from dataclasses import dataclass, field
 
-from pyoxigraph import NamedNode, Triple
+from pyoxigraph import NamedNode, Quad, Triple
 
 from ..compile.generic import PREFIXES
 from ..compile.rule import ReadKey, Rule, RuleSet
@@ -188,6 +188,8 @@ class IncrementalReasoner:
         self._kind_only: dict[tuple[int, tuple[int, ...]], bool] = {}
         #: the read keys of the scratch graphs counted during this REASON's reads after maintenance
         self._counted: dict[NamedNode, tuple[dict[str, int], dict[str, int]]] = {}
+        #: the quads of the small scratch graphs read after maintenance (see :meth:`_scratch_quads`)
+        self._read: dict[NamedNode, list[Quad] | None] = {}
         #: (individual, class) pairs whose type fact the last REASON may have changed; None after a full run
         self.touched_types: list[tuple[Term, NamedNode]] | None = None
 
@@ -454,9 +456,18 @@ class IncrementalReasoner:
         maintenance do not write it)."""
         counts = self._counted.get(graph)
         if counts is None:
-            self.requests.flush()
-            counts = self._counted[graph] = self.requests.keys(graph)
+            quads = self._scratch_quads(graph)
+            counts = self._counted[graph] = key_census(quads) if quads is not None else self.requests.keys(graph)
         return counts
+
+    def _scratch_quads(self, graph: NamedNode) -> list[Quad] | None:
+        """The quads of a scratch graph maintenance wrote, read once per REASON for every read after it
+        (the changed keys, the touched types, the entailed-only refresh); None when the graph is large or
+        the store is reached over HTTP (those read by pattern or query)."""
+        if graph not in self._read:
+            self.requests.flush()
+            self._read[graph] = self.store.small_graph(graph)
+        return self._read[graph]
 
     def _on_clean_pair(self, kind: str, i: int, rule: Rule, j: int) -> bool:
         """Whether atom ``j`` of ``rule`` (``kind`` "check" or "negated", index ``i``) is a pair atom
@@ -487,8 +498,7 @@ class IncrementalReasoner:
         """Bring the ENTAILED graph up to date from what this maintenance touched (see :mod:`.entailed`)."""
         if changed:
             self.requests.flush()
-            refresh_entailed(self.store, self.ruleset, (NEW_FACTS, OVERDELETED),
-                             lambda graph: self._changed_keys(graph)[0])
+            refresh_entailed(self.store, self.ruleset, (NEW_FACTS, OVERDELETED), self._scratch_quads)
 
     def _touched_types(self) -> list[tuple[Term, NamedNode]]:
         """(individual, class) of every type fact whose presence this maintenance may have changed.
@@ -501,10 +511,12 @@ class IncrementalReasoner:
             text = f"SELECT DISTINCT ?s ?c WHERE {{ {after_step.touched_types('?s', '?c')} }}"
             return [(r["s"], r["c"]) for r in self.store.query(text)]
         for graph in (NEW_FACTS, OVERDELETED):
-            for predicate in (TYPE, ENTAILED_TYPE):
-                for t in self.store.triples(None, predicate, None, graph):
-                    if isinstance(t.object, NamedNode):
-                        touched[(t.subject, t.object)] = None
+            quads = self._scratch_quads(graph)
+            found = (q for q in quads if q.predicate in (TYPE, ENTAILED_TYPE)) if quads is not None else \
+                (t for predicate in (TYPE, ENTAILED_TYPE) for t in self.store.triples(None, predicate, None, graph))
+            for t in found:
+                if isinstance(t.object, NamedNode):
+                    touched[(t.subject, t.object)] = None
         return list(touched)
 
     def _new_violation_possible(self) -> bool:
@@ -574,6 +586,7 @@ class IncrementalReasoner:
     def _clear_scratch(self) -> None:
         """Drop the scratch graphs (with what the queue holds: one request)."""
         self._counted.clear()
+        self._read.clear()
         self.requests.drop((*SCRATCH, *PROGRAM_SCRATCH, DELTA, NEW_INFERRED, NEW_AUX))
         self.requests.flush()
 

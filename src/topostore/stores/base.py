@@ -516,6 +516,11 @@ class Store:
         """A graph name as a query answers it, in the engine's names (a remote store renames graphs)."""
         return graph
 
+    def small_graph(self, graph: NamedNode, limit: int = 2000) -> list[Quad] | None:
+        """Every quad of ``graph`` when there are at most ``limit`` and reading them is an index scan
+        (in memory or on disk), else None: the caller reads by pattern or query instead."""
+        return None
+
     def count(self, graph: NamedNode) -> int:
         result = self.query(f"SELECT (COUNT(*) AS ?n) WHERE {{ GRAPH {graph} {{ ?s ?p ?o }} }}")
         return int(next(iter(result))["n"].value)

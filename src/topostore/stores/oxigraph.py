@@ -109,6 +109,11 @@ class OxigraphStore(Store):
             raise QueryError(f"SPARQL evaluation failed: {exc}") from exc
 
     # ------------------------------------------------------------ reasoner scratch graphs
+    def small_graph(self, graph: NamedNode, limit: int = 2000) -> list[Quad] | None:
+        self._flush_open()
+        quads = list(islice(self._ox.quads_for_pattern(None, None, None, graph), limit + 1))
+        return quads if len(quads) <= limit else None
+
     def census(self, graph: NamedNode, small: int = 2000) -> tuple[dict[str, int], dict[str, int]]:
         """Facts per predicate and per class in ``graph``, counted from the index up to ``small`` quads.
 
@@ -116,11 +121,8 @@ class OxigraphStore(Store):
         reading the index costs microseconds where a GROUP BY query costs a
         parse and a plan.  Larger graphs are counted by a query.
         """
-        self._flush_open()
-        quads = list(islice(self._ox.quads_for_pattern(None, None, None, graph), small + 1))
-        if len(quads) > small:
-            return super().census_many([graph])[graph]
-        return key_census(quads)
+        quads = self.small_graph(graph, small)
+        return key_census(quads) if quads is not None else super().census_many([graph])[graph]
 
     def census_many(self, graphs: list[NamedNode]) -> dict[NamedNode, tuple[dict[str, int], dict[str, int]]]:
         """Each graph counted from the index (see :meth:`census`): no query to batch in memory."""
