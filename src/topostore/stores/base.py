@@ -434,16 +434,14 @@ class Store:
     def triples(
         self, s: Term | None = None, p: NamedNode | None = None, o: Term | None = None, graph: NamedNode | None = None
     ) -> Iterator[Triple]:
-        """The triples matching a pattern, as the open transaction sees them (its pending writes included)."""
         if self.listings is not None and s is not None and p is not None and o is None and graph is not None:
-            return iter(self.batched.listed(s, p, graph))
-        if self._pending is None:  # the common case (a reasoner's look-ups): the index read as it is
-            return (Triple(q.subject, q.predicate, q.object) for q in self._match(s, p, o, graph))
-        return self._pending_triples(s, p, o, graph)
-
-    def _pending_triples(self, s, p, o, graph) -> Iterator[Triple]:
-        """:meth:`triples` inside a transaction: the committed matches not removed, then the pending additions."""
+            yield from self.batched.listed(s, p, graph)
+            return
         pending = self._pending
+        if pending is None:
+            for q in self._match(s, p, o, graph):
+                yield Triple(q.subject, q.predicate, q.object)
+            return
         for q in list(self._match(s, p, o, graph)):
             key = self._key(q)
             self._known[key] = True
