@@ -12,7 +12,6 @@ The handler families live in :mod:`.manipulation`, :mod:`.query` and
 
 from __future__ import annotations
 
-import functools
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
@@ -69,7 +68,7 @@ class Context:
     def iri(self, position: int, what: str) -> NamedNode:
         """Entity IRI of ``args[position]``; 208 with the reason when the name is illegal."""
         try:
-            return _entity(self.args[position], self.reference.prefix)
+            return terms.entity(self.args[position], self.reference.prefix)
         except InvalidNameError as exc:
             raise CommandError(codes.INVALID_ARGUMENT, f"argument {position + 1} ({what}): {exc}") from None
 
@@ -135,11 +134,6 @@ class Command:
                 expected = f"{self.min_args} to {self.max_args}"
             names = ", ".join(self.args) if self.args else "none"
             raise CommandError(codes.INVALID_ARGUMENT, f"expected {expected} argument(s) [{names}], got {n}")
-
-
-#: entity IRIs by (name, prefix): a robot names the same few individuals and properties in every command,
-#: and checking a name costs two regular expressions and pyoxigraph's IRI parse (a refused name is not kept)
-_entity = functools.lru_cache(maxsize=4096)(terms.entity)
 
 
 def hidden(term: object) -> bool:
