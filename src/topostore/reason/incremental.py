@@ -70,7 +70,7 @@ import time
 from collections.abc import Collection
 from dataclasses import dataclass, field
 
-from pyoxigraph import NamedNode, Quad, Triple
+from pyoxigraph import NamedNode, Triple
 
 from ..compile.generic import PREFIXES
 from ..compile.rule import ReadKey, Rule, RuleSet
@@ -81,13 +81,14 @@ from ..stores.base import Store, key_census
 from . import after as after_step
 from . import delta_texts as texts
 from . import flip
+from .changed import ChangedGraphs, Decisions, shape
 from .component import WHOLE_ROUNDS
 from .consistency import Violation, check_consistency
 from .dred import Deletion, can_prove
-from .entailed import ENTAILED_TYPE, publish_entailed, refresh_entailed
+from .entailed import publish_entailed, refresh_entailed
 from .flips import Flips
 from .materialize import Materializer, ReasonStats
-from .plan import LATERAL_MAX, is_small, plan_where
+from .plan import is_small, plan_where
 from .program import PROGRAM_SCRATCH, Refused, StepCompiler, StepProgram, pair_atom, signature
 from .requests import RequestQueue
 from .scratch import ADDED, FLIP_GAINED, NEW_FACTS, OVERDELETED, REMOVED, SCRATCH
@@ -180,16 +181,12 @@ class IncrementalReasoner:
         #: :func:`.program.pair_atom` of a check's or negated rule's atom, by (kind, rule index, atom): rules never change
         self._pairs: dict[tuple[str, int, int], bool] = {}
         #: what the reads after maintenance decided (the checks' ASK, whether a negated rule may match), by
-        #: the shape of the change (:meth:`_shape`), until the next full run
-        self._decided: dict[tuple, object] = {}
-        #: the negated rules' atoms a change cannot match, by the compiled step's cleanly replaced predicates
-        self._negated_skip: dict[frozenset, list[tuple[int, int]]] = {}
+        #: the shape of the change (:func:`.changed.shape`), until the next full run
+        self._decided = Decisions(MAX_PROGRAMS)
         #: :func:`.flip.kind_tests_only` of a flip (rule index, changed atoms)
         self._kind_only: dict[tuple[int, tuple[int, ...]], bool] = {}
-        #: the read keys of the scratch graphs counted during this REASON's reads after maintenance
-        self._counted: dict[NamedNode, tuple[dict[str, int], dict[str, int]]] = {}
-        #: the quads of the small scratch graphs read after maintenance (see :meth:`_scratch_quads`)
-        self._read: dict[NamedNode, list[Quad] | None] = {}
+        #: the scratch graphs of the REASON under way, read once by the reads after maintenance
+        self.changed = ChangedGraphs(store, self.requests.flush, self.requests.keys)
         #: (individual, class) pairs whose type fact the last REASON may have changed; None after a full run
         self.touched_types: list[tuple[Term, NamedNode]] | None = None
 
@@ -232,7 +229,7 @@ class IncrementalReasoner:
                     return self.full("the change makes a rule with a negated premise (stratum 1) match", profile)
                 violations = self._check(stats, changed)
                 self._publish_entailed(changed)
-                self.touched_types = self._touched_types() if changed else []
+                self.touched_types = self.changed.touched_types() if changed else []
             if profile:
                 stats.derived = self.store.count(NEW_FACTS)
         except Exception:
@@ -431,43 +428,21 @@ class IncrementalReasoner:
         (a superset), so their read keys decide it, as the semi-naive triggers do; a pair atom on a cleanly
         replaced predicate (:meth:`_on_clean_pair`) cannot match a change and triggers nothing.  An index
         count of two small graphs instead of an ASK over every negated rule per step."""
-        counts = [self._changed_keys(graph) for graph in (NEW_FACTS, OVERDELETED)]
-        key = ("negated", *self._shape(*counts))
-        decided = self._decided.get(key)
-        if decided is None:
+        counts = [self.changed.keys(graph) for graph in (NEW_FACTS, OVERDELETED)]
+
+        def decide() -> bool:
             preds = {p for found, _ in counts for p in found}
             classes = {c for _, found in counts for c in found}
-            decided = self._decide(key, bool(self.negated_triggers.evaluations(
-                preds, classes, range(len(self.negated)), self.state.present, self._negated_pairs())))
-        return decided
+            return bool(self.negated_triggers.evaluations(preds, classes, range(len(self.negated)),
+                                                          self.state.present, self._negated_pairs()))
+
+        return bool(self._decided.get(("negated", *shape(counts, self._step_clean, self.state.present)), decide))
 
     def _negated_pairs(self) -> list[tuple[int, int]]:
         """The negated rules' pair atoms on the compiled step's cleanly replaced predicates (they cannot
         match a change)."""
-        skip = self._negated_skip.get(self._step_clean)
-        if skip is None:
-            skip = self._negated_skip[self._step_clean] = [
-                (i, j) for i, rule in enumerate(self.negated) for j in range(len(rule.body))
+        return [(i, j) for i, rule in enumerate(self.negated) for j in range(len(rule.body))
                 if self._on_clean_pair("negated", i, rule, j)]
-        return skip
-
-    def _changed_keys(self, graph: NamedNode) -> tuple[dict[str, int], dict[str, int]]:
-        """The read keys of a scratch graph maintenance wrote (counted once per REASON: the reads after
-        maintenance do not write it)."""
-        counts = self._counted.get(graph)
-        if counts is None:
-            quads = self._scratch_quads(graph)
-            counts = self._counted[graph] = key_census(quads) if quads is not None else self.requests.keys(graph)
-        return counts
-
-    def _scratch_quads(self, graph: NamedNode) -> list[Quad] | None:
-        """The quads of a scratch graph maintenance wrote, read once per REASON for every read after it
-        (the changed keys, the touched types, the entailed-only refresh); None when the graph is large or
-        the store is reached over HTTP (those read by pattern or query)."""
-        if graph not in self._read:
-            self.requests.flush()
-            self._read[graph] = self.store.small_graph(graph)
-        return self._read[graph]
 
     def _on_clean_pair(self, kind: str, i: int, rule: Rule, j: int) -> bool:
         """Whether atom ``j`` of ``rule`` (``kind`` "check" or "negated", index ``i``) is a pair atom
@@ -498,34 +473,13 @@ class IncrementalReasoner:
         """Bring the ENTAILED graph up to date from what this maintenance touched (see :mod:`.entailed`)."""
         if changed:
             self.requests.flush()
-            refresh_entailed(self.store, self.ruleset, (NEW_FACTS, OVERDELETED), self._scratch_quads)
-
-    def _touched_types(self) -> list[tuple[Term, NamedNode]]:
-        """(individual, class) of every type fact whose presence this maintenance may have changed.
-
-        NEW_FACTS and OVERDELETED hold every triple whose presence in the asserted, inferred or
-        helper graph changed (the same graphs the ENTAILED refresh reads), in real or internal form.
-        """
-        touched: dict[tuple[Term, NamedNode], None] = {}
-        if self.store.round_trips:  # one query instead of four pattern reads
-            text = f"SELECT DISTINCT ?s ?c WHERE {{ {after_step.touched_types('?s', '?c')} }}"
-            return [(r["s"], r["c"]) for r in self.store.query(text)]
-        for graph in (NEW_FACTS, OVERDELETED):
-            quads = self._scratch_quads(graph)
-            found = (q for q in quads if q.predicate in (TYPE, ENTAILED_TYPE)) if quads is not None else \
-                (t for predicate in (TYPE, ENTAILED_TYPE) for t in self.store.triples(None, predicate, None, graph))
-            for t in found:
-                if isinstance(t.object, NamedNode):
-                    touched[(t.subject, t.object)] = None
-        return list(touched)
+            refresh_entailed(self.store, self.ruleset, (NEW_FACTS, OVERDELETED), self.changed.quads)
 
     def _new_violation_possible(self) -> bool:
         """A check matches with at least one atom on a fact new in the closure (one semi-naive ASK)."""
-        counts = self._changed_keys(NEW_FACTS)
-        key = ("check", *self._shape(counts))
-        text = self._decided.get(key)
-        if text is None:  # the same few kinds of step return: their ASK is made once
-            text = self._decide(key, self._violation_ask(counts))
+        counts = self.changed.keys(NEW_FACTS)
+        text = self._decided.get(("check", *shape([counts], self._step_clean, self.state.present)),
+                                 lambda: self._violation_ask(counts))  # the same few shapes return: made once
         return bool(text) and bool(self.store.query(text, prefixes=PREFIXES))
 
     def _violation_ask(self, counts: tuple[dict[str, int], dict[str, int]]) -> str:
@@ -537,23 +491,6 @@ class IncrementalReasoner:
             return ""
         head = f"FROM {ASSERTED} FROM {INFERRED} FROM {AUX} FROM NAMED {AUX} FROM NAMED {NEW_FACTS}"
         return f"ASK {head} WHERE {{\n" + "\nUNION\n".join(branches) + "\n}"
-
-    def _shape(self, *counts: tuple[dict[str, int], dict[str, int]]) -> tuple:
-        """What the reads after maintenance decide from: the changed keys (each with whether it is small,
-        :func:`.plan.is_small`), the cleanly replaced predicates and the keys with facts (a set that only
-        grows until the next full run, so its size tells it)."""
-        keys = frozenset((kind, key, n <= LATERAL_MAX) for preds, classes in counts
-                         for kind, found in (("p", preds), ("t", classes)) for key, n in found.items())
-        small = all(sum(preds.values()) <= LATERAL_MAX for preds, _ in counts)
-        present = self.state.present
-        return keys, small, self._step_clean, len(present[0]), len(present[1])
-
-    def _decide(self, key: tuple, value):
-        """Remember what the reads after maintenance decided for ``key`` (see :meth:`_shape`)."""
-        if len(self._decided) >= MAX_PROGRAMS:
-            self._decided.clear()
-        self._decided[key] = value
-        return value
 
     def _check_branches(self, preds: Collection[str], classes: Collection[str], lateral) -> list[str]:
         """The semi-naive groups of the checks a change of ``preds``/``classes`` may make match (one per
@@ -585,8 +522,7 @@ class IncrementalReasoner:
 
     def _clear_scratch(self) -> None:
         """Drop the scratch graphs (with what the queue holds: one request)."""
-        self._counted.clear()
-        self._read.clear()
+        self.changed.forget()
         self.requests.drop((*SCRATCH, *PROGRAM_SCRATCH, DELTA, NEW_INFERRED, NEW_AUX))
         self.requests.flush()
 
