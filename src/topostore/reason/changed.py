@@ -35,12 +35,10 @@ SMALL = 2000
 class ChangedGraphs:
     """The scratch graphs of one REASON, each read at most once (:meth:`forget` when they are dropped)."""
 
-    def __init__(self, store: Store, flush: Callable[[], None], count: Callable[[NamedNode], KeyCounts]) -> None:
-        """``flush`` sends what the reasoner still queues (before a graph is read); ``count`` gives the
-        read keys of a graph too large to read (the request queue's census)."""
+    def __init__(self, store: Store, flush: Callable[[], None]) -> None:
+        """``flush`` sends what the reasoner still queues (before a graph is read)."""
         self.store = store
         self._flush = flush
-        self._count = count
         self._quads: dict[NamedNode, list[Quad] | None] = {}
         self._keys: dict[NamedNode, KeyCounts] = {}
 
@@ -52,13 +50,15 @@ class ChangedGraphs:
             self._quads[graph] = self.store.small_graph(graph, SMALL)
         return self._quads[graph]
 
-    def keys(self, graph: NamedNode) -> KeyCounts:
-        """Facts per predicate and per class in ``graph`` (its read keys)."""
-        counts = self._keys.get(graph)
-        if counts is None:
-            quads = self.quads(graph)
-            counts = self._keys[graph] = key_census(quads) if quads is not None else self._count(graph)
-        return counts
+    def keys(self, *graphs: NamedNode) -> list[KeyCounts]:
+        """Facts per predicate and per class in each of ``graphs`` (their read keys): counted from the
+        quads read, else those not counted yet by one census (one query where reads are round trips)."""
+        for graph in graphs:
+            if graph not in self._keys and (quads := self.quads(graph)) is not None:
+                self._keys[graph] = key_census(quads)
+        if missing := [g for g in graphs if g not in self._keys]:
+            self._keys.update(self.store.census_many(missing))
+        return [self._keys[g] for g in graphs]
 
     def touched_types(self) -> list[tuple[Term, NamedNode]]:
         """(individual, class) of every type fact, real or entailed-only, whose presence the maintenance

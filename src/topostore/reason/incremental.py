@@ -186,7 +186,7 @@ class IncrementalReasoner:
         #: :func:`.flip.kind_tests_only` of a flip (rule index, changed atoms)
         self._kind_only: dict[tuple[int, tuple[int, ...]], bool] = {}
         #: the scratch graphs of the REASON under way, read once by the reads after maintenance
-        self.changed = ChangedGraphs(store, self.requests.flush, self.requests.keys)
+        self.changed = ChangedGraphs(store, self.requests.flush)
         #: (individual, class) pairs whose type fact the last REASON may have changed; None after a full run
         self.touched_types: list[tuple[Term, NamedNode]] | None = None
 
@@ -428,7 +428,7 @@ class IncrementalReasoner:
         (a superset), so their read keys decide it, as the semi-naive triggers do; a pair atom on a cleanly
         replaced predicate (:meth:`_on_clean_pair`) cannot match a change and triggers nothing.  An index
         count of two small graphs instead of an ASK over every negated rule per step."""
-        counts = [self.changed.keys(graph) for graph in (NEW_FACTS, OVERDELETED)]
+        counts = self.changed.keys(NEW_FACTS, OVERDELETED)
 
         def decide() -> bool:
             preds = {p for found, _ in counts for p in found}
@@ -477,7 +477,7 @@ class IncrementalReasoner:
 
     def _new_violation_possible(self) -> bool:
         """A check matches with at least one atom on a fact new in the closure (one semi-naive ASK)."""
-        counts = self.changed.keys(NEW_FACTS)
+        counts, = self.changed.keys(NEW_FACTS)
         text = self._decided.get(("check", *shape([counts], self._step_clean, self.state.present)),
                                  lambda: self._violation_ask(counts))  # the same few shapes return: made once
         return bool(text) and bool(self.store.query(text, prefixes=PREFIXES))
