@@ -17,7 +17,7 @@ from pyoxigraph import RdfFormat, parse
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # the benchmarks package lives beside src/
 
-from benchmarks import drift, full, picture, remote, report, tables, tbox  # noqa: E402
+from benchmarks import drift, full, paired, picture, remote, report, tables, tbox  # noqa: E402
 from benchmarks.http_count import counting  # noqa: E402
 
 OWL = "http://www.w3.org/2002/07/owl#"
@@ -35,6 +35,14 @@ def test_a_short_drift_walk_on_the_example_map(tmp_path: Path) -> None:
     row = drift.run("example", 12, tmp_path)
     assert row["mismatches"] == [] and len(row["step_ms"]) == 12
     assert row["early_ms"] > 0 and row["late_ms"] > 0 and 1 <= row["longest_step"] <= 12
+
+
+def test_a_tree_compared_with_itself_in_turns() -> None:
+    """Two worker processes of the same tree take turns on the example map; the line names both medians
+    and the per-round difference (no figure is asserted: it is a measurement)."""
+    tree = Path(__file__).resolve().parents[1]
+    line = paired.compare(tree, tree, "example", 2, 2)
+    assert line.startswith("example: A ") and "A - B per round: median" in line and "(2 rounds of 2 steps)" in line
 
 
 def test_the_picture_benchmark_draws_both_kinds_of_map(capsys: pytest.CaptureFixture[str]) -> None:

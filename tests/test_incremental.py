@@ -270,6 +270,43 @@ def test_same_as_merge_falls_back_to_full_and_back() -> None:
     assert onto.reason().stats.mode == "incremental"
 
 
+def test_lost_difference_makes_a_merge_and_falls_back_to_full() -> None:
+    """The negated rules are asked only when a key they read changed: here no body atom gains a fact,
+    the difference their filter reads is lost (the robot's two places stop being different)."""
+    onto = new_map(5, 0, False)
+    second_place(onto, "X1")
+    different_from(onto, "X1", "C1", True)
+    onto.reason()
+    assert not onto.report.consistent  # one isIn (functional) value too many, and the two are different
+    different_from(onto, "X1", "C1", False)
+    merged = onto.reason()
+    assert merged.stats.mode == "full" and "negated premise" in merged.stats.reason
+    assert onto.store.contains(Triple(N("X1"), owl("sameAs"), N("C1")), INFERRED)
+    inferred, aux, entailed, consistent = from_scratch(onto)
+    assert set(onto.store.triples(graph=INFERRED)) == inferred and merged.consistent == consistent
+
+
+def test_clean_step_asks_no_negated_rule() -> None:
+    """A robot step (clean replacements of a functional property) cannot make a stratum-1 rule match:
+    the ASK over them is not sent, and the step equals reasoning from scratch."""
+    onto = new_map(8, 2, True)
+    onto.reason()
+    asked = []
+    query = onto.store.query
+
+    def counting(text, *args, **kwargs):
+        asked.append(text)
+        return query(text, *args, **kwargs)
+
+    with mock.patch.object(onto.store, "query", counting):
+        robot_step(onto, "R3", 1665579750)
+        report = onto.reason()
+    assert report.stats.mode == "incremental" and report.stats.program == "compiled"
+    assert not any("NOT EXISTS" in text and text.startswith("ASK") for text in asked), asked
+    inferred, aux, entailed, consistent = from_scratch(onto)
+    assert set(onto.store.triples(graph=INFERRED)) == inferred and report.consistent == consistent
+
+
 def test_inconsistency_appears_and_disappears_incrementally() -> None:
     onto = new_map(5, 0, True)
     onto.reason()

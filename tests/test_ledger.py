@@ -116,3 +116,18 @@ def test_a_wrong_mode_is_refused_once_and_undoes_nothing(onto: Ontology) -> None
     with pytest.raises(ValueError):
         check_mode("")
     check_mode("full")
+
+
+def test_add_new_and_remove_present_return_and_record_what_changed(onto: Ontology) -> None:
+    """The one presence look-up of a change decides both what it returns and what the ledger records;
+    a triple already there (or absent) is neither returned nor recorded, in any spelling of its value."""
+    known, fresh = Triple(n("r1"), TYPE, n("Robot")), Triple(n("r2"), n("speed"), typed("9", "int"))
+    assert onto.add_new(known, fresh, fresh) == [fresh]
+    assert list(onto.ledger.added.values()) == [fresh]
+    assert onto.add_new(Triple(n("r2"), n("speed"), typed("09", "integer"))) == []
+    gone = onto.remove_present(Triple(n("r1"), n("speed"), typed("7", "integer")), Triple(n("r3"), TYPE, n("Robot")))
+    assert gone == [Triple(n("r1"), n("speed"), typed("7", "integer"))]
+    assert list(onto.ledger.removed.values()) == [Triple(n("r1"), n("speed"), typed("7", "long"))]  # as written
+    assert onto.remove_present(*gone) == [] and onto.add(known) == 0 and onto.remove(fresh) == 1
+    assert onto.ledger.added == {}
+    assert {t for t in asserted(onto) if t.subject in (n("r1"), n("r2"))} == {known}

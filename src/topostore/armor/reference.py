@@ -13,7 +13,7 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from pyoxigraph import Triple
+from pyoxigraph import Literal, Triple
 
 from ..errors import TopostoreError
 from ..ontology.facade import Ontology
@@ -92,11 +92,8 @@ class Reference:
         """Apply one change to the asserted graph; returns what it did (for undo)."""
         onto = self.ontology
         delta = change.plan(onto)
-        removed = [t for t in dict.fromkeys(delta.remove) if onto.store.contains(t, ASSERTED)]
-        removed = [_original(onto, t) for t in removed]
-        onto.remove(*removed)
-        added = [t for t in dict.fromkeys(delta.add) if not onto.store.contains(t, ASSERTED)]
-        onto.add(*added)
+        removed = onto.remove_present(*(_original(onto, t) for t in delta.remove))
+        added = onto.add_new(*delta.add)
         return Applied(added, removed, delta.warning)
 
     def submit(self, changes: list[Change]) -> list[str]:
@@ -177,8 +174,6 @@ class Reference:
 
 def _original(onto: Ontology, t: Triple) -> Triple:
     """The triple with its literal in the form the user asserted (so undo restores it exactly)."""
-    from pyoxigraph import Literal
-
     if isinstance(t.object, Literal):
         return Triple(t.subject, t.predicate, onto.store.original_literal(ASSERTED, t.subject, t.predicate, t.object))
     return t

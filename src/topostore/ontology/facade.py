@@ -168,15 +168,39 @@ class Ontology:
         for t in triples:
             _validate(t)
         self._touch(triples)
-        self.ledger.record(self.store, triples, added=True, limit=self._change_limit())
-        return self.store.add(triples, ASSERTED)
+        if not self.ledger.tracking:  # nothing to record: a big first load takes the store's bulk path
+            return self.store.add(triples, ASSERTED)
+        return len(self._change(triples, added=True))
 
     def remove(self, *triples: Triple) -> int:
         """Retract asserted triples (inferred ones cannot be removed, only their premises)."""
         triples = tuple(dict.fromkeys(triples))
         self._touch(triples)
-        self.ledger.record(self.store, triples, added=False, limit=self._change_limit())
-        return self.store.remove(triples, ASSERTED)
+        return len(self._change(triples, added=False))
+
+    def add_new(self, *triples: Triple) -> list[Triple]:
+        """Assert triples; returns those that were new (what a manipulation reports it did).  Unlike
+        :meth:`add`, only the new triples count as touched (a schema triple already there recompiles nothing)."""
+        triples = tuple(dict.fromkeys(triples))
+        for t in triples:
+            _validate(t)
+        new = self._change(triples, added=True)
+        self._touch(new)
+        return new
+
+    def remove_present(self, *triples: Triple) -> list[Triple]:
+        """Retract asserted triples; returns those that were asserted, as :meth:`add_new`."""
+        gone = self._change(tuple(dict.fromkeys(triples)), added=False)
+        self._touch(gone)
+        return gone
+
+    def _change(self, triples: tuple[Triple, ...], added: bool) -> list[Triple]:
+        """Add or remove in the asserted graph and record what changed in the ledger: one presence look-up
+        per triple (the store's), in one transaction with the change."""
+        with self.store.transaction():
+            changed = (self.store.add_new if added else self.store.remove_present)(triples, ASSERTED)
+            self.ledger.record(self.store, changed, added=added, limit=self._change_limit())
+        return changed
 
     def _touch(self, triples: Iterable[Triple]) -> None:
         self.dirty = True

@@ -64,28 +64,35 @@ class ChangeLedger:
         self._open = 0
 
     # ------------------------------------------------------------ recording
-    def record(self, store: Store, triples: Iterable[Triple], added: bool, limit: float = 0) -> None:
-        """Call before the store changes, with ``triples`` deduplicated.
+    @property
+    def tracking(self) -> bool:
+        """Whether changes are being recorded (since the first successful REASON, or in a unit of work)."""
+        return self.recording or bool(self._open)
+
+    def record(self, store: Store, changed: Iterable[Triple], added: bool, limit: float = 0) -> None:
+        """Record ``changed``: triples whose presence in the asserted graph the caller's change flips
+        (added while absent, removed while present), as :meth:`Store.add_new` and
+        :meth:`Store.remove_present` return them.  Call inside the transaction making the change, so that
+        a removed literal is still known in the form the user asserted.
 
         ``limit``: the number of net changes above which an incremental REASON no longer pays off
         (at least :data:`MIN_TRACKED`); past it the record only serves rollback.
         """
-        if not self.recording and not self._open:
+        if not self.tracking:
             return
-        triples = list(triples)
-        changed = [t for t, present in zip(triples, store.contains_each(triples, ASSERTED), strict=True)
-                   if present != added]  # adding a present triple or removing an absent one changes nothing
+        changed = list(changed)
+        written = changed if added else [_as_written(store, t) for t in changed]  # an undo restores these
         if self._open:
-            self._steps.append((changed if added else [_as_written(store, t) for t in changed], added))
+            self._steps.append((written, added))
         if not self.recording:
             return
         mine, other = (self.added, self.removed) if added else (self.removed, self.added)
-        for t in changed:
+        for t, as_written in zip(changed, written, strict=True):
             key = store.stored_form(t)  # both sides hold triples as the store does, so they cancel
             if key in other:
                 del other[key]
             else:
-                mine[key] = t if added else _as_written(store, t)
+                mine[key] = as_written
         if self.incremental and len(self.added) + len(self.removed) > max(limit, MIN_TRACKED):
             self.incremental = False
 

@@ -81,10 +81,11 @@ from ..stores.base import Store, key_census
 from . import after as after_step
 from . import delta_texts as texts
 from . import flip
+from .changed import ChangedGraphs, Decisions, shape
 from .component import WHOLE_ROUNDS
 from .consistency import Violation, check_consistency
 from .dred import Deletion, can_prove
-from .entailed import ENTAILED_TYPE, publish_entailed, refresh_entailed
+from .entailed import publish_entailed, refresh_entailed
 from .flips import Flips
 from .materialize import Materializer, ReasonStats
 from .plan import is_small, plan_where
@@ -180,6 +181,15 @@ class IncrementalReasoner:
         self._lost: set = set()
         #: SPARQL texts of the checks made once (the phases' texts live in the request queue)
         self._texts: dict[tuple, str] = {}
+        #: :func:`.program.pair_atom` of a check's or negated rule's atom, by (kind, rule index, atom): rules never change
+        self._pairs: dict[tuple[str, int, int], bool] = {}
+        #: what the reads after maintenance decided (the checks' ASK, whether a negated rule may match), by
+        #: the shape of the change (:func:`.changed.shape`), until the next full run
+        self._decided = Decisions(MAX_PROGRAMS)
+        #: :func:`.flip.kind_tests_only` of a flip (rule index, changed atoms)
+        self._kind_only: dict[tuple[int, tuple[int, ...]], bool] = {}
+        #: the scratch graphs of the REASON under way, read once by the reads after maintenance
+        self.changed = ChangedGraphs(store, self.requests.flush)
         #: (individual, class) pairs whose type fact the last REASON may have changed; None after a full run
         self.touched_types: list[tuple[Term, NamedNode]] | None = None
 
@@ -200,11 +210,8 @@ class IncrementalReasoner:
         self._step_clean = frozenset()
         stats = ReasonStats(mode="incremental", reason=self._incremental_reason(added, removed))
         self.requests.profile = profile
-        materializer = Materializer(self.store, self.ruleset, profile=profile, triggers=self.triggers)
-        materializer.present = self.state.present
-        materializer.planned = True
         try:
-            self._maintain(materializer, added, removed, stats)
+            self._maintain(added, removed, stats, profile)
             changed = bool(added or removed)
             if changed and self.store.round_trips and stats.program == "compiled":
                 after = self._read_after()
@@ -225,7 +232,7 @@ class IncrementalReasoner:
                     return self.full("the change makes a rule with a negated premise (stratum 1) match", profile)
                 violations = self._check(stats, changed)
                 self._publish_entailed(changed)
-                self.touched_types = self._touched_types() if changed else []
+                self.touched_types = self.changed.touched_types() if changed else []
             if profile:
                 stats.derived = self.store.count(NEW_FACTS)
         except Exception:
@@ -247,6 +254,7 @@ class IncrementalReasoner:
         self.touched_types = None
         self.flips.forget()
         self._programs.clear()  # compiled against the keys with facts, which a full run recounts
+        self._decided.clear()
         self._clear_scratch()
         materializer = Materializer(self.store, self.ruleset, profile=profile)
         stats = materializer.run()
@@ -285,8 +293,8 @@ class IncrementalReasoner:
         return f"{len(added)} added, {len(removed)} removed asserted triples"
 
     # ------------------------------------------------------------------ maintenance
-    def _maintain(self, m: Materializer, added: Collection[Triple], removed: Collection[Triple],
-                  stats: ReasonStats) -> None:
+    def _maintain(self, added: Collection[Triple], removed: Collection[Triple], stats: ReasonStats,
+                  profile: bool) -> None:
         if not added and not removed:
             return
         self.flips.note(added, removed)
@@ -314,6 +322,9 @@ class IncrementalReasoner:
             requests.run(("flip-gained", i), self.deletion.rederive_text, i, FLIP_GAINED, stats)
         requests.defer(f"ADD SILENT {ADDED} TO {NEW_FACTS}")
         requests.flush()
+        m = Materializer(self.store, self.ruleset, profile=profile, triggers=self.triggers)  # the general path only
+        m.present = self.state.present
+        m.planned = True
         m.propagate(self.monotone, stats, seed=ADDED, record=NEW_FACTS, skip_first=skip)
 
     # ------------------------------------------------------------------ the compiled step
@@ -361,7 +372,10 @@ class IncrementalReasoner:
         """A compiled flip's text for this run: "" when no value changed kind and the rule only tests
         kinds (:func:`.flip.kind_tests_only`), else narrowed to the values in a window where one applies."""
         rule = self.rules[i]
-        if flip.kind_tests_only(rule, order) and all(
+        kinds = self._kind_only.get((i, order))
+        if kinds is None:  # a property of the rule: asked once
+            kinds = self._kind_only[(i, order)] = flip.kind_tests_only(rule, order)
+        if kinds and all(
                 flip.same_kind(r) for j in order for r in self._clean.get(rule.body[j].p, ())):
             return ""
         windows = self.flips._windows(i, order)
@@ -402,8 +416,11 @@ class IncrementalReasoner:
 
     # ------------------------------------------------------------------ after maintenance
     def _negated_match(self) -> bool:
-        """Whether a rule with a negated premise matches after this maintenance (one ASK, semi-naive)."""
-        new, lost = self.requests.keys(NEW_FACTS), self.requests.keys(OVERDELETED)
+        """Whether a rule with a negated premise matches after this maintenance: asked only when the
+        maintenance changed a key such a rule reads (:meth:`_negated_may_match`), then semi-naively."""
+        if not self.negated or not self._negated_may_match():
+            return False
+        new, lost = self.changed.keys(NEW_FACTS, OVERDELETED)
         branches = self._negated_branches(new, lost, lambda i, j: self.store.supports_lateral
                                           and is_small(new, self.negated[i].body[j].read_key()))
         if not branches:
@@ -429,8 +446,7 @@ class IncrementalReasoner:
                 out.append(f"{{\n  {rule.where()}\n}}")
                 continue
             key = rule.body[j].read_key()
-            if not _has_any((key,), new) and key != ("*",) or \
-                    (rule.body[j].p in self._step_clean and pair_atom(rule, j)):
+            if not _has_any((key,), new) and key != ("*",) or self._on_clean_pair("negated", i, rule, j):
                 continue
             text_key = ("negated", i, j, lateral(i, j))
             text = self._texts.get(text_key)
@@ -438,6 +454,41 @@ class IncrementalReasoner:
                 text = self._texts[text_key] = f"{{\n  {plan_where(rule, j, NEW_FACTS, lateral=lateral(i, j))}\n}}"
             out.append(text)
         return out
+
+    def _negated_may_match(self) -> bool:
+        """Whether a rule with a negated premise may match now: none did before (the state is "quiet", or
+        this REASON would be full), so a match needs a body atom on a fact the closure gained or a filter
+        reading a key that changed.  NEW_FACTS and OVERDELETED hold every triple whose presence changed
+        (a superset), so their read keys decide it, as the semi-naive triggers do; a pair atom on a cleanly
+        replaced predicate (:meth:`_on_clean_pair`) cannot match a change and triggers nothing.  An index
+        count of two small graphs instead of an ASK over every negated rule per step."""
+        counts = self.changed.keys(NEW_FACTS, OVERDELETED)
+
+        def decide() -> bool:
+            preds = {p for found, _ in counts for p in found}
+            classes = {c for _, found in counts for c in found}
+            return bool(self.negated_triggers.evaluations(preds, classes, range(len(self.negated)),
+                                                          self.state.present, self._negated_pairs()))
+
+        return bool(self._decided.get(("negated", *shape(counts, self._step_clean, self.state.present)), decide))
+
+    def _negated_pairs(self) -> list[tuple[int, int]]:
+        """The negated rules' pair atoms on the compiled step's cleanly replaced predicates (they cannot
+        match a change)."""
+        return [(i, j) for i, rule in enumerate(self.negated) for j in range(len(rule.body))
+                if self._on_clean_pair("negated", i, rule, j)]
+
+    def _on_clean_pair(self, kind: str, i: int, rule: Rule, j: int) -> bool:
+        """Whether atom ``j`` of ``rule`` (``kind`` "check" or "negated", index ``i``) is a pair atom
+        (:func:`.program.pair_atom`) on a predicate the compiled step cleanly replaced: it cannot match a
+        change, since every changed subject has one value before and after."""
+        if rule.body[j].p not in self._step_clean:
+            return False
+        key = (kind, i, j)
+        pair = self._pairs.get(key)
+        if pair is None:  # a check's pair may also be kept apart by its difference atom
+            pair = self._pairs[key] = check_pair_atom(rule, j) if kind == "check" else pair_atom(rule, j)
+        return pair
 
     def _check(self, stats: ReasonStats, changed: bool) -> list[Violation]:
         """Consistency of the new state, running all checks only when one may have changed."""
@@ -456,35 +507,24 @@ class IncrementalReasoner:
         """Bring the ENTAILED graph up to date from what this maintenance touched (see :mod:`.entailed`)."""
         if changed:
             self.requests.flush()
-            refresh_entailed(self.store, self.ruleset, (NEW_FACTS, OVERDELETED))
-
-    def _touched_types(self) -> list[tuple[Term, NamedNode]]:
-        """(individual, class) of every type fact whose presence this maintenance may have changed.
-
-        NEW_FACTS and OVERDELETED hold every triple whose presence in the asserted, inferred or
-        helper graph changed (the same graphs the ENTAILED refresh reads), in real or internal form.
-        """
-        touched: dict[tuple[Term, NamedNode], None] = {}
-        if self.store.round_trips:  # one query instead of four pattern reads
-            text = f"SELECT DISTINCT ?s ?c WHERE {{ {after_step.touched_types('?s', '?c')} }}"
-            return [(r["s"], r["c"]) for r in self.store.query(text)]
-        for graph in (NEW_FACTS, OVERDELETED):
-            for predicate in (TYPE, ENTAILED_TYPE):
-                for t in self.store.triples(None, predicate, None, graph):
-                    if isinstance(t.object, NamedNode):
-                        touched[(t.subject, t.object)] = None
-        return list(touched)
+            refresh_entailed(self.store, self.ruleset, (NEW_FACTS, OVERDELETED), self.changed.quads)
 
     def _new_violation_possible(self) -> bool:
         """A check matches with at least one atom on a fact new in the closure (one semi-naive ASK)."""
-        counts = preds, classes = self.requests.keys(NEW_FACTS)
+        counts, = self.changed.keys(NEW_FACTS)
+        text = self._decided.get(("check", *shape([counts], self._step_clean, self.state.present)),
+                                 lambda: self._violation_ask(counts))  # the same few shapes return: made once
+        return bool(text) and bool(self.store.query(text, prefixes=PREFIXES))
+
+    def _violation_ask(self, counts: tuple[dict[str, int], dict[str, int]]) -> str:
+        """The semi-naive ASK of the checks a change of ``counts``' keys may make match ("" when none may)."""
+        preds, classes = counts
         branches = self._check_branches(preds, classes, lambda c, j: j is not None and self.store.supports_lateral
                                         and is_small(counts, self.checks[c].body[j].read_key()))
         if not branches:
-            return False
+            return ""
         head = f"FROM {ASSERTED} FROM {INFERRED} FROM {AUX} FROM NAMED {AUX} FROM NAMED {NEW_FACTS}"
-        text = f"ASK {head} WHERE {{\n" + "\nUNION\n".join(branches) + "\n}"
-        return bool(self.store.query(text, prefixes=PREFIXES))
+        return f"ASK {head} WHERE {{\n" + "\nUNION\n".join(branches) + "\n}"
 
     def _check_branches(self, preds: Collection[str], classes: Collection[str], lateral) -> list[str]:
         """The semi-naive groups of the checks a change of ``preds``/``classes`` may make match (one per
@@ -497,7 +537,7 @@ class IncrementalReasoner:
     def _cannot_match(self, c: int, j: int | None) -> bool:
         """Whether check ``c`` with atom ``j`` on the new facts cannot match after the compiled step: a
         pair of values of one subject on a cleanly replaced predicate (:func:`.program.pair_atom`)."""
-        return j is not None and self.checks[c].body[j].p in self._step_clean and check_pair_atom(self.checks[c], j)
+        return j is not None and self._on_clean_pair("check", c, self.checks[c], j)
 
     def _check_text(self, c: int, j: int | None, lateral: bool) -> str:
         key = ("check", c, j, lateral)
@@ -516,8 +556,8 @@ class IncrementalReasoner:
 
     def _clear_scratch(self) -> None:
         """Drop the scratch graphs (with what the queue holds: one request)."""
-        self.requests.defer(" ; ".join(f"DROP SILENT GRAPH {g}"
-                                       for g in (*SCRATCH, *PROGRAM_SCRATCH, DELTA, NEW_INFERRED, NEW_AUX)))
+        self.changed.forget()
+        self.requests.drop((*SCRATCH, *PROGRAM_SCRATCH, DELTA, NEW_INFERRED, NEW_AUX))
         self.requests.flush()
 
 

@@ -112,6 +112,16 @@ class RequestQueue:
         elif quads := [Quad(t.subject, t.predicate, t.object, g) for t in triples for g in graphs]:
             self.defer(data_update([], quads))
 
+    def drop(self, graphs: Iterable[NamedNode]) -> None:
+        """Drop scratch graphs after what is queued: with the queue's next request where every request
+        is a round trip, else at once (:meth:`Store.drop_graphs`)."""
+        graphs = list(graphs)
+        if self.store.round_trips:
+            self.defer(" ; ".join(f"DROP SILENT GRAPH {g}" for g in graphs))
+            return
+        self.flush()
+        self.store.drop_graphs(graphs)
+
     def clear(self) -> None:
         """Forget what is queued (after a failed REASON)."""
         self.queue.clear()

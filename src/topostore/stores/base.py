@@ -232,6 +232,11 @@ class Store:
     def _drop(self, graph: NamedNode) -> None:
         self._run_update(f"DROP SILENT GRAPH {graph}", None)
 
+    def drop_graphs(self, graphs: Iterable[NamedNode]) -> None:
+        """Drop a reasoner's scratch graphs (no literal forms or listings are kept for them): one update."""
+        self._flush_open()
+        self._run_update(" ; ".join(f"DROP SILENT GRAPH {g}" for g in graphs), None)
+
     def close(self) -> None:
         """Release the store (files, connections, locks)."""
 
@@ -252,32 +257,35 @@ class Store:
         return parse_triples(data, fmt, base_iri, source, progress)
 
     # ------------------------------------------------------------ transactions
-    @contextmanager
-    def transaction(self) -> Iterator[Store]:
+    def transaction(self) -> _Transaction:
         """Group writes into one atomic commit (nested calls join the outer one).
 
         On an exception nothing of the transaction is written.  A SPARQL query
         or update inside a transaction first commits what is pending, so that it
         sees it; manipulations only read through the quad methods, so they stay
-        one commit.
+        one commit.  (A plain context manager class: a robot step opens a dozen of them.)
         """
+        return _Transaction(self)
+
+    def _begin(self) -> None:
+        """Enter a transaction (the outermost one starts with nothing pending)."""
         if self._depth == 0:
             self._pending = {}
             self.persisted.pending = {}
             self._known = {}
         self._depth += 1
-        try:
-            yield self
-        except BaseException:
-            self._depth -= 1
-            if self._depth == 0:
-                self._pending, self._known = None, {}
-                self.persisted.pending = {}
-            raise
+
+    def _end(self, failed: bool) -> None:
+        """Leave a transaction: the outermost one commits, or on failure forgets what is pending."""
         self._depth -= 1
-        if self._depth == 0:
-            self._flush()
+        if self._depth:
+            return
+        if failed:
             self._pending, self._known = None, {}
+            self.persisted.pending = {}
+            return
+        self._flush()
+        self._pending, self._known = None, {}
 
     def _flush(self) -> None:
         """Commit the pending writes of the open transaction (also the persisted state)."""
@@ -310,6 +318,8 @@ class Store:
 
     def _present(self, quads: list[Quad], keys: list[tuple] | None = None) -> list[bool]:
         """Whether each quad is in the store as the open transaction sees it (``keys``: their :meth:`_key`)."""
+        if self._pending is None and self.listings is None and not any(isinstance(q.object, Literal) for q in quads):
+            return self._has_many(quads)  # no transaction, no value keys: each quad is its own key
         pending, known = self._pending or {}, self._known
         keys = keys if keys is not None else [self._key(q) for q in quads]
         unknown = [(q, k) for q, k in zip(quads, keys) if k not in pending and k not in known]
@@ -332,13 +342,28 @@ class Store:
         triples = triples if isinstance(triples, (list, tuple)) else list(triples)
         if self._depth == 0 and len(triples) >= BULK_ADD and self.is_empty(graph):
             return self._add_to_empty(triples, graph)
-        quads = list(dict.fromkeys(Quad(t.subject, t.predicate, t.object, graph) for t in triples))
+        return len(self.add_new(triples, graph))
+
+    def add_new(self, triples: Iterable[Triple], graph: NamedNode) -> list[Triple]:
+        """Add triples to ``graph``; returns those that were not there (deduplicated): what a caller
+        recording the change needs, from the one presence look-up the addition makes anyway."""
+        return self._toggle_each(triples, graph, True)
+
+    def remove_present(self, triples: Iterable[Triple], graph: NamedNode) -> list[Triple]:
+        """Remove triples from ``graph``; returns those that were there (deduplicated), as :meth:`add_new`."""
+        return self._toggle_each(triples, graph, False)
+
+    def _toggle_each(self, triples: Iterable[Triple], graph: NamedNode, add: bool) -> list[Triple]:
+        """Record the pending addition (or removal) of each triple that is absent (present) in ``graph``,
+        in one transaction; returns those triples."""
+        quads = {Quad(t.subject, t.predicate, t.object, graph): t for t in triples}
         keys = [self._key(q) for q in quads]  # a literal's value key is the costly part of a load: once each
         with self.transaction():
-            new = [(q, k) for q, k, present in zip(quads, keys, self._present(quads, keys), strict=True) if not present]
-            for q, k in new:  # pending True: absent from the committed store; False: present there
-                self._toggle(q, True, k)
-        return len(new)
+            changed = [(q, t, k) for (q, t), k, present in zip(quads.items(), keys, self._present(list(quads), keys),
+                                                               strict=True) if present != add]
+            for q, _, k in changed:  # pending True: absent from the committed store; False: present there
+                self._toggle(q, add, k)
+        return [t for _, t, _ in changed]
 
     def _add_to_empty(self, triples: list[Triple] | tuple[Triple, ...], graph: NamedNode) -> int:
         """:meth:`add` into an empty graph with no transaction open: every triple is new, so none
@@ -385,13 +410,8 @@ class Store:
         self._write([Quad(t.subject, t.predicate, t.object, graph) for t in triples], [])
 
     def remove(self, triples: Iterable[Triple], graph: NamedNode) -> int:
-        quads = list(dict.fromkeys(Quad(t.subject, t.predicate, t.object, graph) for t in triples))
-        keys = [self._key(q) for q in quads]
-        with self.transaction():
-            gone = [(q, k) for q, k, present in zip(quads, keys, self._present(quads, keys), strict=True) if present]
-            for q, k in gone:
-                self._toggle(q, False, k)
-        return len(gone)
+        """Remove triples from ``graph``; returns how many were there."""
+        return len(self.remove_present(triples, graph))
 
     def discard(self, triples: Iterable[Triple], graphs: Iterable[NamedNode]) -> None:
         """Remove triples from reasoner graphs, present or not (no literal forms are kept for those)."""
@@ -423,8 +443,9 @@ class Store:
                 yield Triple(q.subject, q.predicate, q.object)
             return
         for q in list(self._match(s, p, o, graph)):
-            self._known[self._key(q)] = True
-            entry = pending.get(self._key(q))
+            key = self._key(q)
+            self._known[key] = True
+            entry = pending.get(key)
             if entry is None or entry[1]:
                 yield Triple(q.subject, q.predicate, q.object)
         for q, present in list(pending.values()):
@@ -493,6 +514,11 @@ class Store:
         """A graph name as a query answers it, in the engine's names (a remote store renames graphs)."""
         return graph
 
+    def small_graph(self, graph: NamedNode, limit: int = 2000) -> list[Quad] | None:
+        """Every quad of ``graph`` when there are at most ``limit`` and reading them is an index scan
+        (in memory or on disk), else None: the caller reads by pattern or query instead."""
+        return None
+
     def count(self, graph: NamedNode) -> int:
         result = self.query(f"SELECT (COUNT(*) AS ?n) WHERE {{ GRAPH {graph} {{ ?s ?p ?o }} }}")
         return int(next(iter(result))["n"].value)
@@ -542,6 +568,22 @@ class Store:
                     t = Triple(t.subject, t.predicate, form)
                 out[unskolemize(t)] = None
         return list(out)
+
+
+class _Transaction:
+    """The context manager :meth:`Store.transaction` returns."""
+
+    __slots__ = ("store",)
+
+    def __init__(self, store: Store) -> None:
+        self.store = store
+
+    def __enter__(self) -> Store:
+        self.store._begin()
+        return self.store
+
+    def __exit__(self, kind, value, traceback) -> None:
+        self.store._end(kind is not None)
 
 
 def _matches(q: Quad, s, p, o, graph) -> bool:

@@ -105,11 +105,7 @@ class LiteralForms:
         e.g. ``"7"^^xsd:long`` becomes ``"7"^^xsd:integer``)."""
         if not isinstance(t.object, Literal):
             return t
-        with _PROBE_LOCK:
-            _PROBE.add(Quad(t.subject, t.predicate, t.object, _PROBE_GRAPH))
-            stored = next(iter(_PROBE.quads_for_pattern(t.subject, t.predicate, None, _PROBE_GRAPH)))
-            _PROBE.remove(stored)
-        return Triple(t.subject, t.predicate, stored.object)
+        return Triple(t.subject, t.predicate, stored_literal(t.object))
 
     def forget(self, graph: NamedNode) -> None:
         """Forget the forms of a graph being cleared (and their persisted copies)."""
@@ -118,6 +114,28 @@ class LiteralForms:
             self._store._write([], [_form_quad(k[0], k[1], k[2], lit) for k, lit in gone])
         self._literal_forms = {k: v for k, v in self._literal_forms.items() if k[0] != graph.value}
         self._rebuild_value_forms()
+
+
+#: literals the probe store canonicalised, as it stored them (a robot writes each clock value two or three
+#: times: as the new ``now``, as a visit's time and as the old ``now`` of the next step)
+_STORED: dict[Literal, Literal] = {}
+_STORED_MAX = 4096
+
+
+def stored_literal(lit: Literal) -> Literal:
+    """``lit`` as Oxigraph stores it: asked of a scratch store (Oxigraph's own canonical form, never a
+    copy of its rules), remembered for the next few thousand literals."""
+    stored = _STORED.get(lit)
+    if stored is not None:
+        return stored
+    with _PROBE_LOCK:
+        _PROBE.add(Quad(_PROBE_GRAPH, _PROBE_GRAPH, lit, _PROBE_GRAPH))
+        quad = next(iter(_PROBE.quads_for_pattern(_PROBE_GRAPH, _PROBE_GRAPH, None, _PROBE_GRAPH)))
+        _PROBE.remove(quad)
+        if len(_STORED) >= _STORED_MAX:
+            _STORED.clear()
+        _STORED[lit] = quad.object
+    return quad.object
 
 
 def _is_scratch(graph) -> bool:

@@ -11,7 +11,7 @@ commit (see docs/stores.md).
 from __future__ import annotations
 
 import os
-from collections.abc import Iterator
+from collections.abc import Iterable, Iterator
 from itertools import chain, islice
 
 import pyoxigraph as ox
@@ -75,6 +75,17 @@ class OxigraphStore(Store):
         self._writes += 1
         self._ox.extend(Quad(t.subject, t.predicate, t.object, graph) for t in triples)
 
+    def drop_graphs(self, graphs: Iterable[NamedNode]) -> None:
+        """In memory each graph is removed from the index directly (a SPARQL DROP of a dozen graphs costs
+        its parse, ≈ 10 µs); on disk, one update (one RocksDB transaction)."""
+        if not self._in_memory:
+            super().drop_graphs(graphs)
+            return
+        self._flush_open()
+        self._writes += 1
+        for g in graphs:
+            self._ox.remove_graph(g)
+
     def _run_update(self, text: str, prefixes: dict[str, str] | None) -> None:
         self._writes += 1
         try:
@@ -98,6 +109,11 @@ class OxigraphStore(Store):
             raise QueryError(f"SPARQL evaluation failed: {exc}") from exc
 
     # ------------------------------------------------------------ reasoner scratch graphs
+    def small_graph(self, graph: NamedNode, limit: int = 2000) -> list[Quad] | None:
+        self._flush_open()
+        quads = list(islice(self._ox.quads_for_pattern(None, None, None, graph), limit + 1))
+        return quads if len(quads) <= limit else None
+
     def census(self, graph: NamedNode, small: int = 2000) -> tuple[dict[str, int], dict[str, int]]:
         """Facts per predicate and per class in ``graph``, counted from the index up to ``small`` quads.
 
@@ -105,11 +121,8 @@ class OxigraphStore(Store):
         reading the index costs microseconds where a GROUP BY query costs a
         parse and a plan.  Larger graphs are counted by a query.
         """
-        self._flush_open()
-        quads = list(islice(self._ox.quads_for_pattern(None, None, None, graph), small + 1))
-        if len(quads) > small:
-            return super().census_many([graph])[graph]
-        return key_census(quads)
+        quads = self.small_graph(graph, small)
+        return key_census(quads) if quads is not None else super().census_many([graph])[graph]
 
     def census_many(self, graphs: list[NamedNode]) -> dict[NamedNode, tuple[dict[str, int], dict[str, int]]]:
         """Each graph counted from the index (see :meth:`census`): no query to batch in memory."""
