@@ -345,13 +345,14 @@ class IncrementalReasoner:
         self.requests.scratch([r.old for p in program.flipped for r in clean[p]], flip.CHANGE_OLD)
         start = time.perf_counter()
         self.flips.state = self.state
-        if self.store.round_trips:  # the whole program as one request
+        if self.store.round_trips and self.store.whole_programs:  # the whole program as one request
             self.requests.flush()
             self.requests.defer(program.text(self._flip_text))
             self.requests.flush()
             stats.evaluations += program.operations
             self._last_sig, self._settle = sig, not program.whole
         else:
+            self._settle = False  # the rounds run to their end here
             self.requests.flush()
             run = StagedRun(self.store, program, sig, self._flip_text, (added, removed))
             run.run()
@@ -398,7 +399,7 @@ class IncrementalReasoner:
 
     def _program(self, sig) -> StepProgram | str:
         """The compiled program of a signature, or why there is none (cached until the next full run)."""
-        if sig in self._unsettled and self.store.round_trips:
+        if sig in self._unsettled and self.store.round_trips and self.store.whole_programs:
             return f"a recursive component needed more than {WHOLE_ROUNDS} rounds in one request before"
         program = self._programs.get(sig)
         if isinstance(program, StepProgram) and (_has_any(program.needs_absent, self.state.present)

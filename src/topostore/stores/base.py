@@ -98,6 +98,9 @@ class Store:
     durable = False
     #: every read and write is a network round trip: callers batch them into few requests
     round_trips = False
+    #: whether a long multi-operation update request gives what its operations give sent one by one
+    #: (where a request is a round trip, the compiled step sends its whole program as one request)
+    whole_programs = True
 
     def __init__(self) -> None:
         #: how each committed literal was written (Oxigraph canonicalises numbers)
