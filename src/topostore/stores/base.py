@@ -236,9 +236,8 @@ class Store:
         self._run_update(f"DROP SILENT GRAPH {graph}", None)
 
     def drop_graphs(self, graphs: Iterable[NamedNode]) -> None:
-        """Drop a reasoner's scratch graphs (no literal forms or listings are kept for them): one update."""
-        self._flush_open()
-        self._run_update(" ; ".join(f"DROP SILENT GRAPH {g}" for g in graphs), None)
+        """Drop a reasoner's scratch graphs (no literal forms are kept for them): one update."""
+        self.update(" ; ".join(f"DROP SILENT GRAPH {g}" for g in graphs))
 
     def close(self) -> None:
         """Release the store (files, connections, locks)."""
