@@ -247,8 +247,16 @@ class StepCompiler:
         self.lateral = lateral
         self._flat: dict[int, Rule] = {}
         self.filter_vars = {i: flip.filter_variables(rules[i]) for i in self.monotone}
-        #: rules that add nothing while a premise only matches derived facts (see :func:`.restate.covering`)
-        self.covered = covering(rules, self.monotone) if cover else {}
+        self._cover = cover
+        self._covered: dict[int, ReadKey] | None = None
+
+    @property
+    def covered(self) -> dict[int, ReadKey]:
+        """Rules that add nothing while a premise only matches derived facts (see :func:`.restate.covering`),
+        found when the first step is compiled (a full REASON does not need them)."""
+        if self._covered is None:
+            self._covered = covering(self.rules, self.monotone) if self._cover else {}
+        return self._covered
 
     def compile(self, sig: Signature, present: Present, asserted: Present | None = None) -> StepProgram:
         """The program of ``sig`` given the keys with facts (``present``) and with asserted facts

@@ -176,10 +176,12 @@ def _derivers(rules: list[Rule], i: int, atom: Atom, writer: Rule, writers: Mapp
     goal = tuple(theta.get(t, t) for t in _terms(rule.head))
     known = {_squash(c.text) for c in writer.conditions}
     known |= {_squash(_substitute(c.text, theta)) for c in rule.conditions if c.variables <= theta.keys()}
+    premise_keys = {a.read_key() for a in writer.body}
     for n in writers.get(rule.writes(), []):
         other = rules[n]
-        if n == i or any(c.kind != TEST or c.reads_graph for c in other.conditions):
-            continue
+        if n == i or not other.reads() <= premise_keys \
+                or any(c.kind != TEST or c.reads_graph for c in other.conditions):
+            continue  # (a rule reading a key the writer does not read cannot be embedded in it)
         for sigma in _embeddings(other.body, writer.body, {}):
             if tuple(sigma.get(t, t) for t in _terms(other.head)) == goal and all(
                     _squash(_substitute(c.text, sigma)) in known for c in other.conditions):
