@@ -26,15 +26,21 @@ NS = IRI + "#"
 NOW = 1665579740
 
 
-def reasoned_turtle(text: str) -> Ontology:
-    """An ontology of Turtle ``text`` (its prefixes included), reasoned and consistent; what it does not
-    reason completely is named in warnings the caller does not look at."""
+def quiet_turtle(text: str) -> Ontology:
+    """An ontology of Turtle ``text`` (its prefixes included), not reasoned; what it does not reason
+    completely is named in warnings the caller does not look at."""
     from topostore import OntologyWarning
 
     o = Ontology()
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", OntologyWarning)
         o.load_data(text)
+    return o
+
+
+def reasoned_turtle(text: str) -> Ontology:
+    """:func:`quiet_turtle`, reasoned and consistent."""
+    o = quiet_turtle(text)
     assert o.reason().consistent
     return o
 

@@ -4,11 +4,10 @@ property's told ranges already imply it, since a value outside them is a range v
 
 from __future__ import annotations
 
-import warnings
-
 import pytest
+from support import quiet_turtle
 
-from topostore import Ontology, OntologyWarning
+from topostore import Ontology
 
 PREFIXES = """@prefix : <http://e.org/v#> . @prefix owl: <http://www.w3.org/2002/07/owl#> .
 @prefix rdfs: <http://www.w3.org/2000/01/rdf-schema#> . @prefix xsd: <http://www.w3.org/2001/XMLSchema#> .
@@ -20,11 +19,7 @@ PREFIXES = """@prefix : <http://e.org/v#> . @prefix owl: <http://www.w3.org/2002
 
 
 def load(text: str) -> Ontology:
-    o = Ontology()
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", OntologyWarning)
-        o.load_data(PREFIXES + text)
-    return o
+    return quiet_turtle(PREFIXES + text)
 
 
 def value_rules(o: Ontology) -> list:

@@ -3,10 +3,9 @@ written differently is one value; what is not well-formed stays as written and i
 
 from __future__ import annotations
 
-import warnings
-
 import pytest
 from pyoxigraph import Literal, NamedNode
+from support import quiet_turtle
 
 from topostore import Ontology, OntologyWarning
 from topostore.ontology.xml_literals import canonical
@@ -18,11 +17,7 @@ PREFIXES = """@prefix : <http://e.org/x#> . @prefix owl: <http://www.w3.org/2002
 
 
 def load(text: str) -> Ontology:
-    o = Ontology()
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", OntologyWarning)
-        o.load_data(PREFIXES + text)
-    return o
+    return quiet_turtle(PREFIXES + text)
 
 
 @pytest.mark.parametrize("a,b", [
