@@ -6,14 +6,17 @@ import json
 
 import pytest
 from click.testing import CliRunner
-from pyoxigraph import NamedNode
+from pyoxigraph import NamedNode, Triple
 
 from topostore import Ontology
 from topostore.cli.group import cli
+from topostore.compile.snippets import VALUE_CANDIDATE
 from topostore.demo import mapgen
 from topostore.ontology.explain import parse_triple_text
-from topostore.rdf.vocab import AUX, INFERRED
+from topostore.ontology.explain.search import Explainer
+from topostore.rdf.vocab import AUX, DECLARED_DIFFERENT, DIFFERENCE_CANDIDATE, DIFFERENT, INFERRED
 from topostore.resources import default_ontology, default_ontology_files
+from topostore.stores import memory_store
 
 URGENT_R1 = """\
 R1 rdf:type URGENT  ← swrl:Urgency: SWRL rule Urgency
@@ -157,3 +160,12 @@ def test_conclusion_with_difference_by_entailment_only() -> None:
     assert inner.origin == "SWRL rule Connectability (individuals different by entailment only)"
     assert [(p.text, p.rule) for p in inner.premises][-1] == ("R9 different from C1", "different-values")
     assert {leaf.status for leaf in leaves(tree)} == {"asserted"}
+
+
+def test_helper_predicates_read_as_words() -> None:
+    """The difference helpers an explanation may show are named in words, not as internal IRIs."""
+    explainer = Explainer(memory_store(), [], lambda t: t.value.rsplit("#", 1)[-1])
+    a, b = NamedNode("http://e.org/x#a"), NamedNode("http://e.org/x#b")
+    for p in (DIFFERENCE_CANDIDATE, VALUE_CANDIDATE, DECLARED_DIFFERENT, DIFFERENT):
+        text = explainer.render(Triple(a, p, b))
+        assert "urn:topostore" not in text and text.startswith("a ") and text.endswith(" b"), text

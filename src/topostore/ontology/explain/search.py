@@ -32,6 +32,7 @@ from pyoxigraph import Literal, NamedNode, Triple
 from ...compile.generic import PREFIXES
 from ...compile.model import TBoxReader
 from ...compile.rule import Atom, Rule, join_order
+from ...compile.snippets import VALUE_CANDIDATE
 from ...errors import QueryError, RuleCompileError
 from ...rdf.terms import Term, parse_term, sparql, value_key
 from ...rdf.vocab import (
@@ -68,6 +69,7 @@ GROUP_SHOWN = 6
 SHORT_PREFIXES = {RDF: "rdf:", RDFS: "rdfs:", OWL: "owl:", XSD: "xsd:", SWRL: "swrl:", SWRLB: "swrlb:"}
 _HELPER_NAMES = {
     DIFFERENCE_CANDIDATE: "difference asked with",
+    VALUE_CANDIDATE: "difference by values asked with",
     DECLARED_DIFFERENT: "declared different from",
     DIFFERENT: "different from",
 }
