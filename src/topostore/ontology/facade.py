@@ -133,12 +133,15 @@ class Ontology:
         """Namespace for entity names: the ontology IRI + '#' unless given."""
         if self._prefix is None:
             if self._found_prefix is None:  # looked up once per schema change (a round trip on a server)
-                self._found_prefix = DEFAULT_PREFIX
+                found = DEFAULT_PREFIX
+                # kept only once the read succeeded: a read that fails (a remote store's queued writes
+                # refused on the way) must not leave the default namespace behind for good
                 for t in self.store.triples(None, TYPE, owl("Ontology"), ASSERTED):
                     if isinstance(t.subject, NamedNode):
                         iri = t.subject.value
-                        self._found_prefix = iri if iri.endswith(("#", "/")) else iri + "#"
+                        found = iri if iri.endswith(("#", "/")) else iri + "#"
                         break
+                self._found_prefix = found
             return self._found_prefix
         return self._prefix
 
