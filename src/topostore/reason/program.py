@@ -175,9 +175,13 @@ def _apart(rule: Rule, a: str, b: str) -> bool:
 
 
 def _general_head(rule: Rule, key: ReadKey) -> bool:
-    """Whether the rule's head matches every fact of ``key`` (variables where the key has none)."""
+    """Whether the rule's head matches every fact of ``key`` (variables where the key has none), each
+    of its variables bound by a body atom (a BIND's result could not be asked inside NOT EXISTS, where
+    the head's value is already bound)."""
     head = rule.head
-    return head.s.startswith("?") and (key[0] == "t" or (head.o.startswith("?") and head.o != head.s))
+    bound = set().union(*(a.variables() for a in rule.body))
+    return head.s.startswith("?") and (key[0] == "t" or (head.o.startswith("?") and head.o != head.s)) \
+        and head.variables() <= bound and not any(c.binds in head.variables() for c in rule.conditions if c.binds)
 
 
 class Refused(Exception):
