@@ -13,7 +13,7 @@ from __future__ import annotations
 from functools import cache
 from unittest import mock
 
-from hypothesis import HealthCheck, given, settings
+from hypothesis import HealthCheck, example, given, settings
 from hypothesis import strategies as st
 from profiles import property_examples
 from pyoxigraph import NamedNode, Triple
@@ -176,6 +176,14 @@ batches = st.lists(st.lists(operation, min_size=1, max_size=3), min_size=1, max_
 @settings(max_examples=property_examples(80), deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(n=st.integers(1, 8), seed=st.integers(0, 3), declared=st.booleans(), share=st.sampled_from([0.1, 1.0]),
        steps=batches, profile=st.booleans())
+# cases the compiled step once got wrong: a group naming one place twice, dropped (its BIND-made key is
+# rechecked through KEEP, not inside NOT EXISTS); a lost difference noted although a look-up sent its key
+@example(n=1, seed=0, declared=True, share=0.1, profile=False,
+         steps=[[(all_different, ["C1", "C1"])], [(drop_all_different, 1)]])
+@example(n=1, seed=0, declared=False, share=0.1, profile=False,
+         steps=[[(all_different, ["C1", "C1"]), (all_different, ["C1", "C1"])], [(drop_all_different, 1)]])
+@example(n=2, seed=0, declared=True, share=0.1, profile=False,
+         steps=[[(drop_all_different, 1), (visit, "C1", 1_665_579_700)]])
 def test_incremental_equals_from_scratch(n: int, seed: int, declared: bool, share: float, steps: list,
                                          profile: bool) -> None:
     """``profile`` runs every update on its own (timed) instead of one request per phase."""
