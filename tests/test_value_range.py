@@ -5,9 +5,16 @@ property's told ranges already imply it, since a value outside them is a range v
 from __future__ import annotations
 
 import pytest
+from pyoxigraph import Literal, NamedNode
 from support import quiet_turtle
 
 from topostore import Ontology
+from topostore.compile.datatypes import surely_in
+
+
+def XSD_(local: str) -> str:
+    return "http://www.w3.org/2001/XMLSchema#" + local
+
 
 PREFIXES = """@prefix : <http://e.org/v#> . @prefix owl: <http://www.w3.org/2002/07/owl#> .
 @prefix rdfs: <http://www.w3.org/2000/01/rdf-schema#> . @prefix xsd: <http://www.w3.org/2001/XMLSchema#> .
@@ -50,3 +57,33 @@ def test_two_values_in_range_still_make_two_places_different() -> None:
     assert o.reason().consistent
     o.load_data(PREFIXES + ":a owl:sameAs :b .")
     assert not o.reason().consistent  # one place cannot have two times
+
+
+@pytest.mark.parametrize("value,datatype,sure", [
+    (Literal("5", datatype=NamedNode(XSD_("long"))), XSD_("long"), True),
+    (Literal("-9223372036854775808", datatype=NamedNode(XSD_("long"))), XSD_("long"), True),
+    (Literal("9223372036854775808", datatype=NamedNode(XSD_("integer"))), XSD_("long"), False),  # out of range: ask
+    (Literal("300", datatype=NamedNode(XSD_("integer"))), XSD_("byte"), False),
+    (Literal("5", datatype=NamedNode(XSD_("integer"))), XSD_("decimal"), True),
+    (Literal("abc", datatype=NamedNode(XSD_("long"))), XSD_("long"), False),  # ill-typed: ask
+    (Literal(" 5", datatype=NamedNode(XSD_("long"))), XSD_("long"), False),  # not decided here: ask
+    (Literal("5.0", datatype=NamedNode(XSD_("decimal"))), XSD_("long"), False),
+    (Literal("5"), XSD_("long"), False),
+    (Literal("5", datatype=NamedNode(XSD_("long"))), XSD_("string"), False),
+])
+def test_a_known_value_is_decided_only_when_it_surely_lies_in_the_range(value, datatype: str, sure: bool) -> None:
+    assert surely_in(value, datatype) is sure
+
+
+def test_a_replaced_value_outside_the_range_is_still_a_violation() -> None:
+    """Range checks decide surely valid new values without a query; the others are still asked."""
+    o = load(":seen rdfs:range xsd:long . :a :seen 5 .")
+    o.reason()
+    o.replace("a", "seen", Literal("7", datatype=NamedNode(XSD_("long"))))
+    report = o.reason(mode="incremental")
+    assert report.consistent and report.stats.mode == "incremental"
+    o.replace("a", "seen", Literal("9223372036854775808", datatype=NamedNode(XSD_("integer"))))
+    report = o.reason(mode="incremental")
+    assert not report.consistent and [v.rule for v in report.violations] == ["dt-range"]
+    o.replace("a", "seen", Literal("8", datatype=NamedNode(XSD_("long"))))
+    assert o.reason(mode="incremental").consistent

@@ -14,20 +14,24 @@ module only names the implied ranges, as schema facts the rules state once.
 from __future__ import annotations
 
 import math
+import re
 import struct
 from collections.abc import Iterable
 from dataclasses import dataclass
 from decimal import ROUND_CEILING, ROUND_FLOOR, Decimal, InvalidOperation
 
-from pyoxigraph import NamedNode
+from pyoxigraph import Literal, NamedNode
 
-from ..rdf.terms import INTEGER_TYPES, sparql
+from ..rdf.terms import INTEGER_TYPES, Term, sparql
 from ..rdf.vocab import OWL, RDF, TYPE, XSD, rdfs
 from . import data_ranges
 from .model import Expr, TBox
 from .rule import Atom, Rule
 
 #: Each datatype's direct super-datatypes (value-space inclusion), integers apart (intervals).
+#: an integer's canonical-enough lexical form (a sign, digits): what :func:`surely_in` decides alone
+_INTEGER_TEXT = re.compile(r"[+-]?[0-9]+")
+
 _PARENTS: dict[str, tuple[str, ...]] = {
     XSD + "integer": (XSD + "decimal",),
     XSD + "decimal": (OWL + "rational",),
@@ -135,6 +139,24 @@ def implied_ranges(told: Iterable[NamedNode]) -> set[NamedNode]:
     if is_integer:
         out |= {XSD + k for k, (low, high) in INTEGER_TYPES.items() if integers.within(low, high)}
     return {NamedNode(dt) for dt in out}
+
+
+def surely_in(value: Term, datatype: str) -> bool:
+    """Whether ``value`` certainly lies in ``datatype``'s value space, as the compiled range test
+    (:func:`.snippets.in_datatype`) would find: decided here only for an integer literal of an XSD
+    integer type in a named integer (or decimal, real, rational) datatype; False means "ask"."""
+    if not isinstance(value, Literal) or not value.datatype.value.startswith(XSD):
+        return False
+    local, target = value.datatype.value[len(XSD):], datatype[len(XSD):] if datatype.startswith(XSD) else None
+    if local not in INTEGER_TYPES or not _INTEGER_TEXT.fullmatch(value.value) or len(value.value) > 40:
+        return False
+    number = int(value.value)
+    ranges = [INTEGER_TYPES[local]]
+    if target in INTEGER_TYPES:
+        ranges.append(INTEGER_TYPES[target])
+    elif target != "decimal" and datatype not in (OWL + "real", OWL + "rational"):
+        return False
+    return all((low is None or number >= low) and (high is None or number <= high) for low, high in ranges)
 
 
 def _float_bounds(width: str, facets: list[tuple[str, str]]) -> tuple[float, float] | None:

@@ -75,9 +75,9 @@ class OwlCompiler:
 
     def emit(self, name: str, origin: str, body: list[Atom], head: Atom | None = None,
              filters: Sequence[Condition] = (), reads: frozenset = frozenset(), violation: tuple[str, ...] = (),
-             message: str = "", stratum: int = 0) -> None:
+             message: str = "", stratum: int = 0, value_range: tuple[str, str] | None = None) -> None:
         self.rules.append(Rule(name, origin, tuple(body), head, tuple(filters), reads, violation, message,
-                               stratum=stratum))
+                               stratum=stratum, value_range=value_range))
 
     def type_head(self, var: str, e: Expr) -> Atom | None:
         return None if e.node == THING else Atom(var, T, sparql(e.node))
@@ -294,7 +294,8 @@ class OwlCompiler:
             if test:
                 self.emit("dt-range", f"{nm(p)} range {nm(dt)}", [Atom(x, sparql(p), y)],
                           filters=[cond.test(f"!({test})")],
-                          violation=(x, y), message=f"{{x}} has the value {{y}} of {nm(p)}, outside its range {nm(dt)}")
+                          violation=(x, y), message=f"{{x}} has the value {{y}} of {nm(p)}, outside its range {nm(dt)}",
+                          value_range=(p.value, dt.value))
         for p, q in tb.subproperty:
             if p != q:
                 self.emit("prp-spo1", f"{nm(p.iri)} SubPropertyOf {nm(q.iri)}", [self.prop_atom(x, p, y)],

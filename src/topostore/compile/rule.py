@@ -134,6 +134,9 @@ class Rule:
     written: tuple[Atom, ...] = field(default=(), compare=False)
     #: the conditions as written, when dropping implied atoms added some (``FILTER(!isLiteral(?y))``)
     written_conditions: tuple[Condition, ...] | None = field(default=None, compare=False)
+    #: a check that a data property's values lie in its range: (the property's IRI, the datatype's
+    #: IRI), so that values already known can be decided without a query (see :func:`.datatypes.surely_in`)
+    value_range: tuple[str, str] | None = field(default=None, compare=False)
     #: the conditions as SPARQL lines (rendered once: every evaluation text contains them)
     filters: str = field(init=False, repr=False, compare=False)
     _reads: frozenset = field(init=False, repr=False, compare=False)

@@ -72,6 +72,7 @@ from dataclasses import dataclass, field
 
 from pyoxigraph import NamedNode, Triple
 
+from ..compile.datatypes import surely_in
 from ..compile.generic import PREFIXES
 from ..compile.rule import ReadKey, Rule, RuleSet
 from ..rdf.lexer import negates_exists  # noqa: F401 - public here since the first release
@@ -177,6 +178,8 @@ class IncrementalReasoner:
         #: the cleanly replaced predicates no rule derives, when the compiled step ran (else empty)
         self._step_clean: frozenset = frozenset()
         self._heads: set = set()
+        #: the asserted triples the REASON under way adds (range checks decide known values without a query)
+        self._added_now: Collection[Triple] = ()
         #: the keys that may have lost facts in the last compiled step (the remote negated-premise read)
         self._lost: set = set()
         #: SPARQL texts of the checks made once (the phases' texts live in the request queue)
@@ -208,6 +211,7 @@ class IncrementalReasoner:
             return self.full(why, profile)
         start = time.perf_counter()
         self._step_clean = frozenset()
+        self._added_now = added
         stats = ReasonStats(mode="incremental", reason=self._incremental_reason(added, removed))
         self.requests.profile = profile
         try:
@@ -513,25 +517,40 @@ class IncrementalReasoner:
     def _new_violation_possible(self) -> bool:
         """A check matches with at least one atom on a fact new in the closure (one semi-naive ASK)."""
         counts, = self.changed.keys(NEW_FACTS)
-        text = self._decided.get(("check", *shape([counts], self._step_clean, self.state.present)),
-                                 lambda: self._violation_ask(counts))  # the same few shapes return: made once
-        return bool(text) and bool(self.store.query(text, prefixes=PREFIXES))
-
-    def _violation_ask(self, counts: tuple[dict[str, int], dict[str, int]]) -> str:
-        """The semi-naive ASK of the checks a change of ``counts``' keys may make match ("" when none may)."""
-        preds, classes = counts
-        branches = self._check_branches(preds, classes, lambda c, j: j is not None and self.store.supports_lateral
-                                        and is_small(counts, self.checks[c].body[j].read_key()))
+        lateral = self._lateral(counts)
+        # the same few shapes return: the groups are made once; range checks of known values are decided per run
+        fixed, ranged = self._decided.get(("check", *shape([counts], self._step_clean, self.state.present)),
+                                          lambda: self._violation_groups(counts))
+        branches = fixed + [self._check_text(c, j, lateral(c, j)) for c, j in ranged
+                            if not self._values_in_range(c, j)]
         if not branches:
-            return ""
+            return False
         head = f"FROM {ASSERTED} FROM {INFERRED} FROM {AUX} FROM NAMED {AUX} FROM NAMED {NEW_FACTS}"
-        return f"ASK {head} WHERE {{\n" + "\nUNION\n".join(branches) + "\n}"
+        return bool(self.store.query(f"ASK {head} WHERE {{\n" + "\nUNION\n".join(branches) + "\n}",
+                                     prefixes=PREFIXES))
+
+    def _lateral(self, counts: tuple[dict[str, int], dict[str, int]]):
+        return lambda c, j: j is not None and self.store.supports_lateral \
+            and is_small(counts, self.checks[c].body[j].read_key())
+
+    def _violation_groups(self, counts: tuple[dict[str, int], dict[str, int]]) -> tuple[list[str], list[tuple]]:
+        """The semi-naive groups of the checks a change of ``counts``' keys may make match, and apart the
+        (check, atom) pairs of range checks, whose values each run may decide (:meth:`_values_in_range`)."""
+        preds, classes = counts
+        pairs = self._check_pairs(preds, classes)
+        lateral = self._lateral(counts)
+        fixed = [self._check_text(c, j, lateral(c, j)) for c, j in pairs if self.checks[c].value_range is None]
+        return fixed, [(c, j) for c, j in pairs if self.checks[c].value_range is not None]
 
     def _check_branches(self, preds: Collection[str], classes: Collection[str], lateral) -> list[str]:
         """The semi-naive groups of the checks a change of ``preds``/``classes`` may make match (one per
         check and changed atom), those that cannot match after the compiled step left out;
         ``lateral(c, j)``: whether the group of check ``c`` on atom ``j`` runs per solution."""
-        return [self._check_text(c, j, lateral(c, j)) for c, j in
+        return [self._check_text(c, j, lateral(c, j)) for c, j in self._check_pairs(preds, classes)
+                if not self._values_in_range(c, j)]
+
+    def _check_pairs(self, preds: Collection[str], classes: Collection[str]) -> list[tuple[int, int | None]]:
+        return [(c, j) for c, j in
                 self.check_triggers.evaluations(preds, classes, range(len(self.checks)), self.state.present)
                 if not self._cannot_match(c, j)]
 
@@ -539,6 +558,18 @@ class IncrementalReasoner:
         """Whether check ``c`` with atom ``j`` on the new facts cannot match after the compiled step: a
         pair of values of one subject on a cleanly replaced predicate (:func:`.program.pair_atom`)."""
         return j is not None and self._on_clean_pair("check", c, self.checks[c], j)
+
+    def _values_in_range(self, c: int, j: int | None) -> bool:
+        """Whether a range check cannot match this run: its property was cleanly replaced by the compiled
+        step (no rule that can fire derives it), so its new facts are the asserted additions, and each
+        surely lies in the range (:func:`~..compile.datatypes.surely_in`)."""
+        check = self.checks[c]
+        if check.value_range is None or j != 0:
+            return False
+        p, datatype = check.value_range
+        if f"<{p}>" not in self._step_clean:
+            return False
+        return all(surely_in(t.object, datatype) for t in self._added_now if t.predicate.value == p)
 
     def _check_text(self, c: int, j: int | None, lateral: bool) -> str:
         key = ("check", c, j, lateral)
