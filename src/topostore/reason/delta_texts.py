@@ -61,11 +61,16 @@ def keep(rule: Rule, lateral: bool) -> str:
             f"WHERE {{\n  {where}\n}}")
 
 
+def _asserted_premise(rule: Rule) -> str:
+    """The one premise of ``rule`` read from the asserted graph (a rule restating it, see :mod:`.restate`)."""
+    return f"GRAPH {ASSERTED} {{ {rule.body[0].text()} }}"
+
+
 def keep_asserted(rule: Rule) -> str:
     """Mark the candidates that ``rule`` (one premise) derives from asserted facts (see :mod:`.restate`)."""
     head = rule.head.text()
     return (f"INSERT {{ GRAPH {KEEP} {{ {head} }} }} WHERE {{ GRAPH {CANDIDATES} {{ {head} }} "
-            f"GRAPH {ASSERTED} {{ {rule.body[0].text()} }} }}")
+            f"{_asserted_premise(rule)} }}")
 
 
 def rederive_asserted(rule: Rule, delta: NamedNode, into: Iterable[NamedNode]) -> str:
@@ -73,7 +78,7 @@ def rederive_asserted(rule: Rule, delta: NamedNode, into: Iterable[NamedNode]) -
     the graphs ``into`` (see :mod:`.restate`)."""
     head = rule.head.text()
     return (f"INSERT {{ {_into(head, into)} }}\n{dataset(NEW_STATE, (delta, ASSERTED))}\n"
-            f"WHERE {{ GRAPH {delta} {{ {head} }} GRAPH {ASSERTED} {{ {rule.body[0].text()} }} "
+            f"WHERE {{ GRAPH {delta} {{ {head} }} {_asserted_premise(rule)} "
             f"FILTER NOT EXISTS {{ {head} }} }}")
 
 
@@ -132,7 +137,7 @@ def recheck_one(rule: Rule, graph: NamedNode, asserted_premise: bool) -> str:
     state (``asserted_premise``: from its premise's asserted facts, see :mod:`.restate`) and that are
     not asserted leave ``graph`` and join OVERDELETED (one operation instead of a KEEP and a deletion)."""
     head = rule.head.text()
-    proof = f"GRAPH {ASSERTED} {{ {rule.body[0].text()} }}" if asserted_premise else rule.where()
+    proof = _asserted_premise(rule) if asserted_premise else rule.where()
     return (f"DELETE {{ GRAPH {graph} {{ {head} }} }} INSERT {{ GRAPH {OVERDELETED} {{ {head} }} }}\n"
             f"{dataset(NEW_STATE, (AUX, CANDIDATES, ASSERTED))}\n"
             f"WHERE {{ GRAPH {CANDIDATES} {{ {head} }} FILTER NOT EXISTS {{ {proof} }} "

@@ -74,7 +74,7 @@ from pyoxigraph import NamedNode, Triple
 
 from ..compile.datatypes import surely_in
 from ..compile.generic import PREFIXES
-from ..compile.rule import ReadKey, Rule, RuleSet
+from ..compile.rule import Rule, RuleSet
 from ..rdf.lexer import negates_exists  # noqa: F401 - public here since the first release
 from ..rdf.terms import Term
 from ..rdf.vocab import ASSERTED, AUX, DELTA, ENTAILED, INFERRED, NEW_AUX, NEW_INFERRED, TYPE
@@ -94,7 +94,7 @@ from .program import PROGRAM_SCRATCH, Refused, StepCompiler, StepProgram, check_
 from .requests import RequestQueue
 from .scratch import ADDED, FLIP_GAINED, NEW_FACTS, OVERDELETED, REMOVED, SCRATCH
 from .staged import StagedRun
-from .triggers import Present, Triggers
+from .triggers import Present, Triggers, matches
 
 #: Default share of the asserted graph above which a change is recomputed from scratch.
 DEFAULT_MAX_CHANGE_SHARE = 0.10
@@ -406,8 +406,9 @@ class IncrementalReasoner:
         if sig in self._unsettled and self.store.round_trips and self.store.whole_programs:
             return f"a recursive component needed more than {WHOLE_ROUNDS} rounds in one request before"
         program = self._programs.get(sig)
-        if isinstance(program, StepProgram) and (_has_any(program.needs_absent, self.state.present)
-                                                 or _has_any(program.needs_unasserted, self.state.asserted)):
+        if isinstance(program, StepProgram) and (
+                any(matches(key, *self.state.present) for key in program.needs_absent)
+                or any(matches(key, *self.state.asserted) for key in program.needs_unasserted)):
             program = None  # a key it left out has facts now
         if program is None:
             try:
@@ -421,18 +422,23 @@ class IncrementalReasoner:
 
     # ------------------------------------------------------------------ after maintenance
     def _negated_match(self) -> bool:
-        """Whether a rule with a negated premise matches after this maintenance: asked only when the
-        maintenance changed a key such a rule reads (:meth:`_negated_may_match`), then semi-naively."""
-        if not self.negated or not self._negated_may_match():
+        """Whether a rule with a negated premise matches after this maintenance (one semi-naive ASK,
+        made once per shape of change; none when the change cannot make one match)."""
+        if not self.negated:
             return False
-        new, lost = self.changed.keys(NEW_FACTS, OVERDELETED)
+        counts = self.changed.keys(NEW_FACTS, OVERDELETED)
+        text = self._decided.get(("negated", *shape(counts, self._step_clean, self.state.present)),
+                                 lambda: self._negated_ask(*counts))
+        return bool(text) and bool(self.store.query(text, prefixes=PREFIXES))
+
+    def _negated_ask(self, new: Present, lost: Present) -> str:
+        """The ASK of :meth:`_negated_branches` ("" when there is none)."""
         branches = self._negated_branches(new, lost, lambda i, j: self.store.supports_lateral
                                           and is_small(new, self.negated[i].body[j].read_key()))
         if not branches:
-            return False
+            return ""
         head = f"FROM {ASSERTED} FROM {INFERRED} FROM {AUX} FROM NAMED {AUX} FROM NAMED {NEW_FACTS}"
-        return bool(self.store.query(f"ASK {head} WHERE {{\n" + "\nUNION\n".join(branches) + "\n}",
-                                     prefixes=PREFIXES))
+        return f"ASK {head} WHERE {{\n" + "\nUNION\n".join(branches) + "\n}"
 
     def _negated_branches(self, new: Present, lost: Present, lateral) -> list[str]:
         """The groups of the negated-premise rules that may match now, when none matched before (the
@@ -451,7 +457,7 @@ class IncrementalReasoner:
                 out.append(f"{{\n  {rule.where()}\n}}")
                 continue
             key = rule.body[j].read_key()
-            if not _has_any((key,), new) and key != ("*",) or self._on_clean_pair("negated", i, rule, j):
+            if key != ("*",) and not matches(key, *new) or self._on_clean_pair("negated", i, rule, j):
                 continue
             text_key = ("negated", i, j, lateral(i, j))
             text = self._texts.get(text_key)
@@ -459,29 +465,6 @@ class IncrementalReasoner:
                 text = self._texts[text_key] = f"{{\n  {plan_where(rule, j, NEW_FACTS, lateral=lateral(i, j))}\n}}"
             out.append(text)
         return out
-
-    def _negated_may_match(self) -> bool:
-        """Whether a rule with a negated premise may match now: none did before (the state is "quiet", or
-        this REASON would be full), so a match needs a body atom on a fact the closure gained or a filter
-        reading a key that changed.  NEW_FACTS and OVERDELETED hold every triple whose presence changed
-        (a superset), so their read keys decide it, as the semi-naive triggers do; a pair atom on a cleanly
-        replaced predicate (:meth:`_on_clean_pair`) cannot match a change and triggers nothing.  An index
-        count of two small graphs instead of an ASK over every negated rule per step."""
-        counts = self.changed.keys(NEW_FACTS, OVERDELETED)
-
-        def decide() -> bool:
-            preds = {p for found, _ in counts for p in found}
-            classes = {c for _, found in counts for c in found}
-            return bool(self.negated_triggers.evaluations(preds, classes, range(len(self.negated)),
-                                                          self.state.present, self._negated_pairs()))
-
-        return bool(self._decided.get(("negated", *shape(counts, self._step_clean, self.state.present)), decide))
-
-    def _negated_pairs(self) -> list[tuple[int, int]]:
-        """The negated rules' pair atoms on the compiled step's cleanly replaced predicates (they cannot
-        match a change)."""
-        return [(i, j) for i, rule in enumerate(self.negated) for j in range(len(rule.body))
-                if self._on_clean_pair("negated", i, rule, j)]
 
     def _on_clean_pair(self, kind: str, i: int, rule: Rule, j: int) -> bool:
         """Whether atom ``j`` of ``rule`` (``kind`` "check" or "negated", index ``i``) is a pair atom
@@ -591,12 +574,6 @@ class IncrementalReasoner:
         self.changed.forget()
         self.requests.drop((*SCRATCH, *PROGRAM_SCRATCH, DELTA, NEW_INFERRED, NEW_AUX))
         self.requests.flush()
-
-
-def _has_any(keys: Collection[ReadKey], present: Present) -> bool:
-    """Whether any of ``keys`` has facts according to ``present``."""
-    preds, classes = present
-    return any(key[1] in (classes if key[0] == "t" else preds) for key in keys)
 
 
 __all__ = ["IncrementalReasoner", "MaintenanceState", "DEFAULT_MAX_CHANGE_SHARE", "MODES", "can_prove", "check_mode",

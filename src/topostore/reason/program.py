@@ -67,7 +67,7 @@ from .component import COMPONENT_SCRATCH, UNSETTLED, compile_component, whole_op
 from .order import strongly_connected
 from .restate import covering, restates
 from .scratch import ADDED, CANDIDATES, NEW_FACTS, OVERDELETED, REMOVED, target
-from .triggers import Present
+from .triggers import Present, matches
 
 PROGRAM_SCRATCH = (texts.KEEP, texts.FLIP_LOST, UNSETTLED, *COMPONENT_SCRATCH)
 
@@ -280,9 +280,7 @@ class StepCompiler:
         if asserted is None:
             return set()
         changed = sig.added | sig.removed
-        preds, classes = asserted
-        return {i for i, key in self.covered.items()
-                if key not in changed and key[1] not in (classes if key[0] == "t" else preds)}
+        return {i for i, key in self.covered.items() if key not in changed and not matches(key, *asserted)}
 
     def _writers(self, present: Present, affected: set, absent: set,
                  left_out: Collection[int]) -> dict[ReadKey, list[int]]:
@@ -486,7 +484,7 @@ class _Emitter:
         if not self.restated(i):
             return texts.keep(rule, self.c.lateral)
         key = rule.body[0].read_key()
-        if rule.body[0].aux or (self.asserted is not None and key[1] not in self.asserted[0 if key[0] == "p" else 1]):
+        if rule.body[0].aux or (self.asserted is not None and not matches(key, *self.asserted)):
             self.unasserted.add(key)
             return ""
         return texts.keep_asserted(rule)

@@ -31,7 +31,7 @@ from collections.abc import Collection, Iterator, Mapping
 from ..compile.condition import TEST
 from ..compile.rule import Atom, ReadKey, Rule
 from ..rdf import lexer
-from .triggers import Present
+from .triggers import Present, matches
 
 Triple = tuple[str, str, str]
 
@@ -55,7 +55,7 @@ def restates(rules: list[Rule], i: int, writers: Mapping[ReadKey, list[int]], ch
         """A premise's key the question may pass to: every fact of it is derived, and stays so."""
         if inner in changed or asserted is None:
             return False
-        return inner[1] not in asserted[0 if inner[0] == "p" else 1]
+        return not matches(inner, *asserted)
 
     passed: set[ReadKey] = set()
     found = _required(rules, _terms(atom), _terms(rule.head), key, writers, passable, {}, passed)

@@ -123,15 +123,11 @@ class StagedRun:
 
     def has(self, key: ReadKey, graph: NamedNode) -> bool:
         """Whether ``graph`` holds a fact of ``key`` (an index look-up)."""
-        term = NamedNode(key[1][1:-1])
-        s, p, o = (None, TYPE, term) if key[0] == "t" else (None, term, None)
-        return next(iter(self.store.triples(s, p, o, graph)), None) is not None
+        return next(iter(self.store.triples(*_pattern(key), graph)), None) is not None
 
     def facts(self, key: ReadKey, graph: NamedNode, limit: int) -> list[Triple]:
         """The facts of ``key`` in ``graph``, at most ``limit`` of them."""
-        term = NamedNode(key[1][1:-1])
-        s, p, o = (None, TYPE, term) if key[0] == "t" else (None, term, None)
-        return list(islice(self.store.triples(s, p, o, graph), limit))
+        return list(islice(self.store.triples(*_pattern(key), graph), limit))
 
     def has_any(self, graph: NamedNode) -> bool:
         return next(iter(self.store.triples(None, None, None, graph)), None) is not None
@@ -142,6 +138,12 @@ class StagedRun:
             self.minus.add(key)
         if self.has(key, NEW_FACTS):
             self.plus.add(key)
+
+
+def _pattern(key: ReadKey) -> tuple:
+    """The (subject, predicate, object) pattern of a key's facts, None where any term matches."""
+    term = NamedNode(key[1][1:-1])
+    return (None, TYPE, term) if key[0] == "t" else (None, term, None)
 
 
 __all__ = ["StagedRun"]
