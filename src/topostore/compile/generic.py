@@ -6,11 +6,15 @@ a consistency check) preceded by ``# key: value`` header lines:
 * ``name`` — the W3C rule name; ``origin`` — where the rule comes from;
 * ``reads`` — read keys of FILTER/path lines (``p <iri-or-prefixed>``, ``t <class>``);
 * ``message`` — for checks, the explanation, with ``{var}`` placeholders;
-* ``head-graph: aux`` — the head goes to the helper graph.
+* ``head-graph: aux`` — the head goes to the helper graph;
+* ``schema`` — for the OWL rules of ``rules/owl/``, the schema table the rule joins.
 
 Inside WHERE, a line ``s p o .`` (or ``GRAPH ts:graph:aux { s p o . }``) is a
-body atom, so the reasoner can evaluate it against the delta graph; any other
-line is kept as a filter.
+body atom, so the reasoner can evaluate it against the delta graph; a line
+``GRAPH ts:graph:schema { s p o . }`` is a *schema atom*, a row of the TBox's
+schema tables (see :mod:`.schema`); any other line is kept as a filter.  The
+files of ``rules/`` are rules every ontology gets; those of ``rules/owl/`` join
+schema atoms and are read by :mod:`.schema`.
 """
 
 from __future__ import annotations
@@ -34,6 +38,7 @@ PREFIXES = {
 }
 _ATOM = re.compile(r"^(\S+)\s+(\S+)\s+(\S+)\s*\.$")
 _AUX_ATOM = re.compile(r"^GRAPH\s+ts:graph:aux\s*\{\s*(\S+)\s+(\S+)\s+(\S+)\s*\.?\s*\}$")
+_SCHEMA_ATOM = re.compile(r"^GRAPH\s+ts:graph:schema\s*\{\s*(\S+)\s+(\S+)\s+(\S+)\s*\.?\s*\}$")
 
 
 def expand(token: str) -> str:
@@ -47,22 +52,35 @@ def expand(token: str) -> str:
 
 
 def parse_rule_file(path: Path) -> Rule:
+    """The rule of a file of ``rules/`` (a schema atom there is an error: see :func:`parse_schema_rule_file`)."""
+    rule, schema, _ = parse_rule_text(path)
+    if schema:
+        raise RuleCompileError(f"{path}: a schema atom belongs to a rule of rules/owl/")
+    return rule
+
+
+def parse_rule_text(path: Path) -> tuple[Rule, tuple[Atom, ...], dict[str, str]]:
+    """(the rule without its schema atoms, the schema atoms, the header lines) of a rule file."""
     text = path.read_text()
-    headers = dict(re.findall(r"^#\s*([a-z-]+):\s*(.*)$", text, re.M))
+    headers = {k: v.strip() for k, v in re.findall(r"^#\s*([a-z-]+):\s*(.*)$", text, re.M)}
     match = re.search(r"\bWHERE\s*\{(.*)\}\s*$", text, re.S)
     if not match or "name" not in headers:
         raise RuleCompileError(f"{path}: a rule file needs a '# name:' header and a WHERE clause")
     body: list[Atom] = []
+    schema: list[Atom] = []
     filters: list[Condition] = []
     for line in (l.strip() for l in match.group(1).splitlines()):
         if not line or line.startswith("#"):
             continue
         m = _ATOM.match(line)
         aux = _AUX_ATOM.match(line)
+        table = _SCHEMA_ATOM.match(line)
         if m:
             body.append(Atom(*(expand(t) for t in m.groups())))
         elif aux:
             body.append(Atom(*(expand(t) for t in aux.groups()), aux=True))
+        elif table:
+            schema.append(Atom(*(expand(t) for t in table.groups())))
         else:
             filters.append(parse(line))
     reads = frozenset(
@@ -78,9 +96,10 @@ def parse_rule_file(path: Path) -> Rule:
         if not select:
             raise RuleCompileError(f"{path}: expected CONSTRUCT {{ s p o }} or SELECT ... WHERE")
         violation = tuple(select.group(1).split())
-    aux_head = True if headers.get("head-graph", "").strip() == "aux" else None
-    return Rule(headers["name"].strip(), headers.get("origin", path.name).strip(), tuple(body), head,
-                tuple(filters), reads, violation, headers.get("message", "").strip(), aux_head)
+    aux_head = True if headers.get("head-graph", "") == "aux" else None
+    rule = Rule(headers["name"], headers.get("origin", path.name), tuple(body), head,
+                tuple(filters), reads, violation, headers.get("message", ""), aux_head)
+    return rule, tuple(schema), headers
 
 
 @cache

@@ -14,6 +14,11 @@ ontology:
 
 Rule names are the W3C names (``prp-dom``, ``cls-int1``, ...) or ``ext-*`` for
 the extensions; the origin says which axiom the rule was made from.
+
+The rules of the plain kinds of axiom (class and property hierarchies, equivalent classes,
+domain, range, inverse, symmetric, transitive) are not written here: they are the generic rules
+of ``rules/owl/`` instantiated with the axiom's row of the schema tables (:mod:`.schema`), which
+this compiler fills (:attr:`OwlCompiler.schema`).
 """
 
 from __future__ import annotations
@@ -31,6 +36,7 @@ from .model import Expr, Prop, TBox
 from .notices import Notice
 from .owl_restrictions import RestrictionRules, nm
 from .rule import Atom, Rule
+from .schema import Row, SchemaTables, class_row, schema_rule, subproperty_row, typing_row
 from .snippets import (
     NOT_DIFFERENT_READS,
     candidate_atom,
@@ -53,6 +59,8 @@ class OwlCompiler:
         self.restrictions = RestrictionRules(self)
         self.rules: list[Rule] = []
         self.notices: list[Notice] = []
+        #: the rows of the plain kinds of axiom, whose rules are instantiations of ``rules/owl/``
+        self.schema = SchemaTables()
         self.disjoint_pairs = [
             (a.node, b.node) for a, b in tbox.disjoint if a.is_named and b.is_named
         ]
@@ -78,6 +86,15 @@ class OwlCompiler:
              message: str = "", stratum: int = 0, value_range: tuple[str, str] | None = None) -> None:
         self.rules.append(Rule(name, origin, tuple(body), head, tuple(filters), reads, violation, message,
                                stratum=stratum, value_range=value_range))
+
+    def instantiate(self, table: str, row: Row | None, origin: str, *names: str) -> bool:
+        """Record ``row`` in ``table`` and emit the generic rules ``names`` instantiated with it;
+        False (nothing emitted) when the axiom has no row."""
+        if self.schema.add(table, row, origin) is None:
+            return False
+        for name in names:
+            self.rules.append(schema_rule(name).instantiate(row, origin))
+        return True
 
     def type_head(self, var: str, e: Expr) -> Atom | None:
         return None if e.node == THING else Atom(var, T, sparql(e.node))
@@ -263,10 +280,9 @@ class OwlCompiler:
     # ------------------------------------------------------------------ axioms
     def class_axioms(self) -> None:
         for a, b in self.tb.subclass:
-            self._subclass(a, b, f"{a} SubClassOf {b}")
+            self.instantiate("subClassOf", class_row(a, b), f"{a} SubClassOf {b}", "cax-sco")
         for a, b in self.tb.equivalent:
-            self._subclass(a, b, f"{a} EquivalentTo {b}", "cax-eqc1")
-            self._subclass(b, a, f"{a} EquivalentTo {b}", "cax-eqc2")
+            self.instantiate("equivalentClass", class_row(a, b), f"{a} EquivalentTo {b}", "cax-eqc1", "cax-eqc2")
         for a, b in self.tb.disjoint:
             body = self.member("?x", a) + self.member("?x", b)
             if body:
@@ -275,20 +291,17 @@ class OwlCompiler:
         self.emit("cls-nothing2", "owl:Nothing has no instances", [Atom("?x", T, sparql(NOTHING))], violation=("?x",),
                   message="{x} is an instance of owl:Nothing")
 
-    def _subclass(self, a: Expr, b: Expr, origin: str, name: str = "cax-sco") -> None:
-        if a.node == b.node or b.node == THING or a.node == THING:
-            return
-        self.emit(name, origin, self.member("?x", a), Atom("?x", T, sparql(b.node)))
-
     def property_axioms(self) -> None:
         tb = self.tb
-        x, y, z = "?x", "?y", "?z"
+        x, y = "?x", "?y"
         for p, c in tb.domain:
-            if c.node != THING:
-                self.emit("prp-dom", f"{nm(p.iri)} domain {c}", [self.prop_atom(x, p, y)], Atom(x, T, sparql(c.node)))
+            origin = f"{nm(p.iri)} domain {c}"
+            if not self.instantiate("domain", typing_row(p, c), origin, "prp-dom") and c.node != THING:
+                self.emit("prp-dom", origin, [self.prop_atom(x, p, y)], Atom(x, T, sparql(c.node)))
         for p, c in tb.range:
-            if c.node != THING:
-                self.emit("prp-rng", f"{nm(p.iri)} range {c}", [self.prop_atom(x, p, y)], Atom(y, T, sparql(c.node)))
+            origin = f"{nm(p.iri)} range {c}"
+            if not self.instantiate("range", typing_row(p, c), origin, "prp-rng") and c.node != THING:
+                self.emit("prp-rng", origin, [self.prop_atom(x, p, y)], Atom(y, T, sparql(c.node)))
         for p, dt in tb.data_range:
             test = in_datatype(y, dt)
             if test:
@@ -297,13 +310,11 @@ class OwlCompiler:
                           violation=(x, y), message=f"{{x}} has the value {{y}} of {nm(p)}, outside its range {nm(dt)}",
                           value_range=(p.value, dt.value))
         for p, q in tb.subproperty:
-            if p != q:
-                self.emit("prp-spo1", f"{nm(p.iri)} SubPropertyOf {nm(q.iri)}", [self.prop_atom(x, p, y)],
-                          self.prop_atom(x, q, y))
+            origin = f"{nm(p.iri)} SubPropertyOf {nm(q.iri)}"
+            if not self.instantiate("subPropertyOf", subproperty_row(p, q), origin, "prp-spo1") and p != q:
+                self.emit("prp-spo1", origin, [self.prop_atom(x, p, y)], self.prop_atom(x, q, y))
         for p, q in tb.inverse:
-            origin = f"{nm(p)} InverseOf {nm(q)}"
-            self.emit("prp-inv1", origin, [Atom(x, sparql(p), y)], Atom(y, sparql(q), x))
-            self.emit("prp-inv2", origin, [Atom(x, sparql(q), y)], Atom(y, sparql(p), x))
+            self.instantiate("inverseOf", (sparql(p), sparql(q)), f"{nm(p)} InverseOf {nm(q)}", "prp-inv1", "prp-inv2")
         for q, chain in tb.chains:
             vars_ = [f"?u{i}" for i in range(len(chain) + 1)]
             body = [self.prop_atom(vars_[i], p, vars_[i + 1]) for i, p in enumerate(chain)]
@@ -315,10 +326,9 @@ class OwlCompiler:
                       message=f"{{x}} is linked to {{y}} by the disjoint properties {nm(p)} and {nm(q)}")
         ch = tb.characteristics
         for p in ch.get("SymmetricProperty", ()):
-            self.emit("prp-symp", f"{nm(p)} is symmetric", [Atom(x, sparql(p), y)], Atom(y, sparql(p), x))
+            self.instantiate("symmetric", (sparql(p),), f"{nm(p)} is symmetric", "prp-symp")
         for p in ch.get("TransitiveProperty", ()):
-            self.emit("prp-trp", f"{nm(p)} is transitive", [Atom(x, sparql(p), y), Atom(y, sparql(p), z)],
-                      Atom(x, sparql(p), z))
+            self.instantiate("transitive", (sparql(p),), f"{nm(p)} is transitive", "prp-trp")
         for p in ch.get("AsymmetricProperty", ()):
             self.emit("prp-asyp", f"{nm(p)} is asymmetric", [Atom(x, sparql(p), y), Atom(y, sparql(p), x)],
                       violation=(x, y), message=f"{{x}} and {{y}} are linked both ways by the asymmetric {nm(p)}")

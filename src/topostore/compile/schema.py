@@ -1,0 +1,188 @@
+"""The schema tables of a TBox and the generic OWL rules that join them (``rules/owl/*.rq``).
+
+The OWL 2 RL rules for the plain kinds of axiom — class hierarchy (cax-sco), equivalent classes
+(cax-eqc1/2), property hierarchy (prp-spo1, which also serves prp-eqp1/2: the reader reads an
+EquivalentProperties axiom as two sub-property rows), domain (prp-dom), range (prp-rng), inverse
+(prp-inv1/2), symmetric (prp-symp) and transitive (prp-trp) — are written once, as SPARQL files in
+``rules/owl/``, each with a *schema atom* ``GRAPH ts:graph:schema { ... }`` that reads a row of the
+TBox's tables.  Those files are the single source of these rules, used two ways:
+
+* **instantiated** (partial evaluation): a row's constants are substituted into the rule and the
+  schema atom is dropped, giving one rule per axiom (:meth:`SchemaRule.instantiate`).  This is what
+  the compiler emits (:mod:`.owl`), so the robot step, whose delta rules need constants, sees the
+  rules it always saw;
+* **generic**: the rule runs once against the rows written into a schema graph, whatever the number
+  of axioms (:mod:`.schema_program`, chosen by a full REASON when a table is large).
+
+The rows of a table are what an axiom contributes, as SPARQL terms in the order the schema atom's
+variables first appear (``(C, D)`` for ``C SubClassOf D``).  Axioms on an inverse property
+expression have no row (no generic rule reads property expressions): the compiler keeps emitting
+their rules directly.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+from dataclasses import dataclass, field
+from functools import cache
+
+from ..errors import RuleCompileError
+from ..rdf.terms import sparql
+from ..rdf.vocab import SCHEMA, SCHEMA_AUX, THING
+from . import condition as cond
+from .generic import parse_rule_text
+from .model import Expr, Prop
+from .rule import Atom, Rule
+
+#: A row of a schema table: the SPARQL terms bound to the schema atom's variables, in order.
+Row = tuple[str, ...]
+
+#: How the rule files write the schema graph (replaced by the real graph when a rule is evaluated).
+_SCHEMA_GRAPH_TEXT = "ts:graph:schema"
+
+
+@dataclass(frozen=True)
+class SchemaRule:
+    """A generic OWL rule: ``rule`` with the schema variables free, and the schema atoms it joins."""
+
+    rule: Rule
+    schema: tuple[Atom, ...]
+    #: the table the schema atoms read (the file's ``# schema:`` header, its first word)
+    table: str
+    #: the schema atoms' variables, in order of first appearance: a row binds them in this order
+    variables: tuple[str, ...] = field(init=False)
+
+    def __post_init__(self) -> None:
+        seen: list[str] = []
+        for atom in self.schema:
+            seen += [t for t in (atom.s, atom.p, atom.o) if t.startswith("?") and t not in seen]
+        object.__setattr__(self, "variables", tuple(seen))
+        mentioned = set().union(*(c.variables for c in self.rule.conditions)) if self.rule.conditions else set()
+        if mentioned & set(seen):
+            raise RuleCompileError(f"{self.name}: a filter reads a schema variable, which instantiation cannot drop")
+        body_vars = set().union(*(a.variables() for a in self.rule.body)) if self.rule.body else set()
+        if not set(seen) <= body_vars | (self.rule.head.variables() if self.rule.head else set()):
+            raise RuleCompileError(f"{self.name}: a schema variable is used by no body atom nor the head")
+
+    @property
+    def name(self) -> str:
+        return self.rule.name
+
+    def _substitute(self, atom: Atom, row: Row) -> Atom:
+        bound = dict(zip(self.variables, row))
+        return Atom(*(bound.get(t, t) for t in (atom.s, atom.p, atom.o)), aux=atom.aux)
+
+    def instantiate(self, row: Row, origin: str) -> Rule:
+        """The rule of one row: its constants substituted, the schema atoms dropped (they hold)."""
+        if len(row) != len(self.variables):
+            raise RuleCompileError(f"{self.name}: a row of {len(row)} terms for {len(self.variables)} variables")
+        r = self.rule
+        head = self._substitute(r.head, row) if r.head is not None else None
+        return Rule(r.name, origin, tuple(self._substitute(a, row) for a in r.body), head, r.conditions,
+                    r.filter_reads, r.violation, r.message, r.aux_head, r.stratum)
+
+    def row_of(self, rule: Rule) -> Row | None:
+        """The row ``rule`` is the instantiation of, or None when it is not one (another name or shape).
+
+        What the passes after compilation made of a rule (a folded class, atoms dropped as implied)
+        is kept: a rule matches only when its evaluated body, head and filters are the template's."""
+        t = self.rule
+        if (rule.name != t.name or len(rule.body) != len(t.body) or rule.conditions != t.conditions
+                or rule.violation != t.violation or rule.stratum != t.stratum or rule.aux_head != t.aux_head
+                or (rule.head is None) != (t.head is None)):
+            return None
+        bound: dict[str, str] = {}
+        pairs = list(zip(t.body, rule.body)) + ([(t.head, rule.head)] if t.head is not None else [])
+        for want, got in pairs:
+            if want.aux != got.aux:
+                return None
+            for w, g in ((want.s, got.s), (want.p, got.p), (want.o, got.o)):
+                if w in self.variables:
+                    if g.startswith("?") or bound.setdefault(w, g) != g:
+                        return None
+                elif w != g:
+                    return None
+        return tuple(bound[v] for v in self.variables)
+
+    def triples(self, row: Row) -> list[str]:
+        """The schema atoms of a row, as triples of SPARQL text (what the schema graph holds)."""
+        return [self._substitute(a, row).text() for a in self.schema]
+
+    def evaluable(self, aux: bool) -> Rule:
+        """The generic rule joining the schema graph of conclusions in the helper graph (``aux``) or in the
+        inferred graph: one rule, whatever the number of rows."""
+        graph = SCHEMA_AUX if aux else SCHEMA
+        pattern = " ".join(a.text() for a in self.schema)
+        r = self.rule
+        where = "helper" if aux else "inferred"
+        return Rule(r.name, f"{r.origin} (generic: the rows of the {self.table} table, conclusions in the {where} "
+                            "graph)", r.body, r.head, r.conditions + (cond.parse(f"GRAPH {graph} {{ {pattern} }}"),),
+                    r.filter_reads, r.violation, r.message, aux, r.stratum)
+
+
+@cache
+def schema_rules() -> dict[str, SchemaRule]:
+    """The generic OWL rules of ``rules/owl/``, by name."""
+    from ..resources import rules_dir
+
+    found: dict[str, SchemaRule] = {}
+    for path in sorted((rules_dir() / "owl").glob("*.rq")):
+        rule, schema, headers = parse_rule_text(path)
+        if not schema or not headers.get("schema"):
+            raise RuleCompileError(f"{path}: a rule of rules/owl/ needs a '# schema:' header and a schema atom "
+                                   f"(GRAPH {_SCHEMA_GRAPH_TEXT} {{ ... }})")
+        found[rule.name] = SchemaRule(rule, schema, headers["schema"].split()[0])
+    return found
+
+
+def schema_rule(name: str) -> SchemaRule:
+    try:
+        return schema_rules()[name]
+    except KeyError:
+        raise RuleCompileError(f"no generic OWL rule {name!r} in rules/owl/") from None
+
+
+# ---------------------------------------------------------------------- rows of axioms
+def class_row(a: Expr, b: Expr) -> Row | None:
+    """``a ⊑ b`` (or one direction of ``a ≡ b``); None when it says nothing (a class of itself, owl:Thing)."""
+    if a.node == b.node or THING in (a.node, b.node):
+        return None
+    return sparql(a.node), sparql(b.node)
+
+
+def typing_row(p: Prop, c: Expr) -> Row | None:
+    """A domain or range ``c`` of ``p``; None for owl:Thing or an inverse property expression."""
+    if c.node == THING or p.inverse:
+        return None
+    return sparql(p.iri), sparql(c.node)
+
+
+def subproperty_row(p: Prop, q: Prop) -> Row | None:
+    """``p ⊑ q`` of two named properties; None otherwise."""
+    if p == q or p.inverse or q.inverse:
+        return None
+    return sparql(p.iri), sparql(q.iri)
+
+
+@dataclass
+class SchemaTables:
+    """The TBox's axioms of the plain kinds as rows, by table, each with the axiom it comes from.
+
+    The compiler (:class:`~.owl.OwlCompiler`) fills it axiom by axiom as it instantiates their rules,
+    in the order it always emitted them."""
+
+    rows: dict[str, list[tuple[Row, str]]] = field(default_factory=dict)
+
+    def add(self, table: str, row: Row | None, origin: str) -> Row | None:
+        if row is not None:
+            self.rows.setdefault(table, []).append((row, origin))
+        return row
+
+    def __iter__(self) -> Iterator[tuple[str, Row, str]]:
+        for table, rows in self.rows.items():
+            for row, origin in rows:
+                yield table, row, origin
+
+
+__all__ = ["Row", "SchemaRule", "SchemaTables", "class_row", "schema_rule", "schema_rules", "subproperty_row",
+           "typing_row"]
