@@ -26,9 +26,11 @@ from collections.abc import Iterator
 from dataclasses import dataclass, field
 from functools import cache
 
+from pyoxigraph import NamedNode
+
 from ..errors import RuleCompileError
 from ..rdf.terms import sparql
-from ..rdf.vocab import SCHEMA, SCHEMA_AUX, THING
+from ..rdf.vocab import INTERNAL, SCHEMA_PREFIX, SKOLEM_PREFIX, THING, TYPE
 from . import condition as cond
 from .generic import parse_rule_text
 from .model import Expr, Prop
@@ -108,16 +110,50 @@ class SchemaRule:
         """The schema atoms of a row, as triples of SPARQL text (what the schema graph holds)."""
         return [self._substitute(a, row).text() for a in self.schema]
 
+    @property
+    def graph(self) -> NamedNode:
+        """The graph a full REASON writes this rule's rows into (one per rule: rules sharing a table,
+        such as cax-eqc1 and cax-eqc2, may be left different rows by the passes after compilation)."""
+        return NamedNode(SCHEMA_PREFIX + self.name)
+
+    @property
+    def chains(self) -> bool:
+        """The rule copies one atom with one schema term replaced by another (cax-sco, prp-spo1): two
+        rows ``(a, b)`` and ``(b, c)`` then conclude what ``(a, c)`` does, so its rows may be closed."""
+        r = self.rule
+        if len(r.body) != 1 or len(self.variables) != 2 or r.head is None or r.conditions:
+            return False
+        first, second = self.variables
+        return self._substitute(r.body[0], (second, second)) == r.head and first in r.body[0].variables()
+
+    def aux_test(self) -> str | None:
+        """SPARQL that holds when a row's conclusion goes to the helper graph, as :func:`.rule.head_is_aux`
+        decides it for the row's instantiation; None when no row's does (no schema term in the head)."""
+        h = self.rule.head
+        if h is None:
+            return None
+        parts = []
+        for term in (h.p, h.o):
+            if term not in self.variables:
+                continue
+            if term == h.o and h.p == str(TYPE):
+                parts.append(f'STRSTARTS(STR({term}), "{INTERNAL}")')  # a class expression or a helper class
+            else:
+                parts.append(f'(STRSTARTS(STR({term}), "{INTERNAL}") && !STRSTARTS(STR({term}), "{SKOLEM_PREFIX}"))')
+        return " || ".join(parts) or None
+
     def evaluable(self, aux: bool) -> Rule:
-        """The generic rule joining the schema graph of conclusions in the helper graph (``aux``) or in the
-        inferred graph: one rule, whatever the number of rows."""
-        graph = SCHEMA_AUX if aux else SCHEMA
+        """The generic rule: one rule joining the rows of :attr:`graph`, whatever their number, for the
+        rows whose conclusions go to the helper graph (``aux``) or to the inferred graph."""
         pattern = " ".join(a.text() for a in self.schema)
+        conditions = self.rule.conditions + (cond.parse(f"GRAPH {self.graph} {{ {pattern} }}"),)
+        test = self.aux_test()
+        if test is not None:
+            conditions += (cond.test(test if aux else f"!({test})"),)
         r = self.rule
         where = "helper" if aux else "inferred"
-        return Rule(r.name, f"{r.origin} (generic: the rows of the {self.table} table, conclusions in the {where} "
-                            "graph)", r.body, r.head, r.conditions + (cond.parse(f"GRAPH {graph} {{ {pattern} }}"),),
-                    r.filter_reads, r.violation, r.message, aux, r.stratum)
+        return Rule(r.name, f"{r.origin} (generic: the rows of {self.table}, conclusions in the {where} graph)",
+                    r.body, r.head, conditions, r.filter_reads, r.violation, r.message, aux, r.stratum)
 
 
 @cache
@@ -133,6 +169,15 @@ def schema_rules() -> dict[str, SchemaRule]:
                                    f"(GRAPH {_SCHEMA_GRAPH_TEXT} {{ ... }})")
         found[rule.name] = SchemaRule(rule, schema, headers["schema"].split()[0])
     return found
+
+
+def schema_dataset(rule: Rule) -> str:
+    """The ``USING NAMED`` clause of the schema graph a generic rule joins ("" for any other rule):
+    an update's GRAPH pattern sees only the graphs its dataset names."""
+    generic = schema_rules().get(rule.name)
+    if generic is None or not any(str(generic.graph) in c.text for c in rule.conditions):
+        return ""
+    return f" USING NAMED {generic.graph}"
 
 
 def schema_rule(name: str) -> SchemaRule:
@@ -184,5 +229,5 @@ class SchemaTables:
                 yield table, row, origin
 
 
-__all__ = ["Row", "SchemaRule", "SchemaTables", "class_row", "schema_rule", "schema_rules", "subproperty_row",
+__all__ = ["Row", "SchemaRule", "SchemaTables", "class_row", "schema_dataset", "schema_rule", "schema_rules", "subproperty_row",
            "typing_row"]

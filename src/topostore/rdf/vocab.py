@@ -44,11 +44,9 @@ AUX = NamedNode(INTERNAL + "graph:aux")
 DELTA = NamedNode(INTERNAL + "graph:delta")
 NEW_INFERRED = NamedNode(INTERNAL + "graph:new-inferred")
 NEW_AUX = NamedNode(INTERNAL + "graph:new-aux")
-#: Graphs holding the schema tables a full REASON's generic OWL rules join (``rules/owl/``), written
-#: for that run only: the rows whose conclusions go to the inferred graph, and those whose
-#: conclusions go to the helper graph (memberships of class expressions).
-SCHEMA = NamedNode(INTERNAL + "graph:schema")
-SCHEMA_AUX = NamedNode(INTERNAL + "graph:schema-aux")
+#: Prefix of the graphs holding the schema rows a full REASON's generic OWL rules join (``rules/owl/``),
+#: one graph per rule (``graph:schema:cax-sco``), written for that run only.
+SCHEMA_PREFIX = INTERNAL + "graph:schema:"
 
 #: aux predicate indexing owl:AllDifferent axioms in linear size (never n²
 #: pairs): member ``m`` of group ``g`` gets ``m ts:differentKey k`` with

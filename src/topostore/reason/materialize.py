@@ -27,6 +27,7 @@ from pyoxigraph import NamedNode
 
 from ..compile.generic import PREFIXES
 from ..compile.rule import Rule, RuleSet
+from ..compile.schema import schema_dataset
 from ..rdf.vocab import ASSERTED, AUX, DELTA, INFERRED, INTERNAL, NEW_AUX, NEW_INFERRED, TYPE
 from ..stores.base import Store
 from . import limits
@@ -82,7 +83,7 @@ def insert_text(rule: Rule, delta_index: int | None = None, planned: bool = Fals
     into = f"GRAPH {target} {{ {head} }}" if direct is None else f"GRAPH {final} {{ {head} }}"
     if direct is not None and direct[1] is not None:
         into += f" GRAPH {direct[1]} {{ {head} }}"
-    dataset = DATASET if direct is None else DATASET.replace(str(DELTA), str(delta))
+    dataset = (DATASET if direct is None else DATASET.replace(str(DELTA), str(delta))) + schema_dataset(rule)
     known = new_only(rule, small)
     if direct is not None and direct[1] is None:
         # no delta: a head already inferred is written again, which changes nothing, so only the

@@ -1,0 +1,98 @@
+"""Full REASON with the schema tables' rules instantiated or generic: ``python -m benchmarks.generic INPUT``.
+
+INPUT is ``tbox:N`` (the tutorial-style TBox of N classes, :mod:`benchmarks.tbox`) or a number of
+locations (a chain map, :mod:`benchmarks.maps`).  The ontology is loaded once; then the
+materialisation of a full REASON (:class:`topostore.reason.materialize.Materializer`, the part the
+choice changes) runs ``--reps`` times per variant, the variants interleaved so that the machine's
+load falls on each alike:
+
+* ``instantiated``: one rule per axiom (every rule of :mod:`topostore.compile.schema` instantiated);
+* ``default``: what a full REASON runs (generic above ``GENERIC_ROWS`` instantiations of a rule);
+* ``generic``: every generic rule of ``rules/owl/`` run generically over its schema graph;
+* ``generic-N``: generic above N instantiations (``--threshold N``, repeatable).
+
+Each variant's closure (inferred and helper graphs) must equal the instantiated one: a difference
+is printed and the exit status is 3.  Prints one JSON line per variant: rules evaluated, the
+generic rules and their rows, rounds, evaluations and the median seconds.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import statistics
+import sys
+import tempfile
+import warnings
+from pathlib import Path
+from typing import Any
+
+from pyoxigraph import RdfFormat
+
+from topostore import Ontology
+from topostore.compile.schema_program import GENERIC_ROWS, full_program
+from topostore.rdf.vocab import AUX, INFERRED
+from topostore.reason.materialize import Materializer
+
+from . import maps, tbox
+from .limits import lift_time_limit
+
+
+def write_input(spec: str, folder: Path) -> Path:
+    if spec.startswith("tbox:"):
+        return tbox.write(int(spec.split(":", 1)[1]), folder)
+    return maps.write(spec, folder, RdfFormat.N_TRIPLES)[0]
+
+
+def closure(onto: Ontology) -> tuple[frozenset, frozenset]:
+    """The inferred and helper graphs, as sets of triples."""
+    return tuple(frozenset((t.subject, t.predicate, t.object) for t in onto.store.triples(None, None, None, g))
+                 for g in (INFERRED, AUX))
+
+
+def measure(onto: Ontology, variants: dict[str, int], reps: int) -> list[dict[str, Any]]:
+    programs = {name: full_program(onto.rules, threshold) for name, threshold in variants.items()}
+    seconds: dict[str, list[float]] = {name: [] for name in variants}
+    rows: dict[str, dict[str, Any]] = {}
+    for _ in range(reps):
+        for name, program in programs.items():
+            program.write(onto.store)
+            try:
+                stats = Materializer(onto.store, program.rules).run()
+            finally:
+                program.drop(onto.store)
+            seconds[name].append(stats.seconds)
+            rows[name] = {"variant": name, "rules": len(program.rules.inference_rules),
+                          "generic": {k: len(v) for k, v in program.rows.items()}, "rounds": stats.rounds,
+                          "evaluations": stats.evaluations, "closure": closure(onto)}
+    base = rows["instantiated"]["closure"]
+    out = []
+    for name, row in rows.items():
+        same = row.pop("closure") == base
+        out.append({**row, "same_closure": same, "median_s": round(statistics.median(seconds[name]), 4),
+                    "all_s": [round(s, 4) for s in seconds[name]]})
+    return out
+
+
+def main(argv: list[str] | None = None) -> None:
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("input", help="tbox:N (N named classes) or a number of locations (a chain map)")
+    parser.add_argument("--reps", type=int, default=5)
+    parser.add_argument("--threshold", type=int, action="append", default=[],
+                        help="also run generic above this many instantiations of a rule")
+    args = parser.parse_args(argv)
+    lift_time_limit()
+    warnings.simplefilter("ignore")  # the TBox's notices (what is not reasoned completely) are not measured here
+    variants = {"instantiated": sys.maxsize, "default": GENERIC_ROWS, "generic": 0}
+    variants.update({f"generic-{n}": n for n in args.threshold})
+    with tempfile.TemporaryDirectory(prefix="topostore-bench-") as tmp:
+        onto = Ontology()
+        onto.load(write_input(args.input, Path(tmp)))
+    rows = measure(onto, variants, args.reps)
+    for row in rows:
+        print(json.dumps({"input": args.input, **row}))
+    sys.exit(0 if all(r["same_closure"] for r in rows) else 3)
+
+
+if __name__ == "__main__":
+    main()

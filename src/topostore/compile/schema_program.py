@@ -1,0 +1,119 @@
+"""A full REASON's rules: the instantiations of a large schema table run as one generic rule.
+
+The compiled rule set holds one rule per axiom of the plain kinds (:mod:`.schema`): what the robot
+step needs, and cheap while a kind has few axioms.  A full REASON over a TBox with many axioms of a
+kind pays for each of those rules in every round (a text to plan, an update to run); the generic rule
+of ``rules/owl/`` does the same work in one evaluation, joining the rows written into its schema
+graph.  :func:`full_program` makes that choice per rule: above :data:`GENERIC_ROWS` instantiations,
+they are replaced by the generic rule over their rows.
+
+The rows are read back from the compiled rules (:meth:`.SchemaRule.row_of`), not from the TBox: what
+the passes after compilation did (a class folded into its anonymous equivalent, a rule dropped as a
+duplicate) is kept, and the generic rule over those rows is, by construction, the union of the rules
+it replaces.  A chaining rule's rows (cax-sco, prp-spo1) are closed first: the hierarchy is then
+one row deep, and its closure takes one evaluation instead of one round per level.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field, replace
+
+from pyoxigraph import NamedNode
+
+from ..stores.base import Store
+from .rule import Rule, RuleSet
+from .schema import Row, SchemaRule, schema_rules
+
+#: A rule kind with more instantiations than this runs as its generic rule in a full REASON.
+#: Measured (docs/benchmarks.md, "Generic OWL rules"): on the tutorial-style TBox of 100 and 400
+#: classes, and on the 10,000-location map, whose kinds have at most a handful of rows.
+GENERIC_ROWS = 16
+
+#: rows per INSERT DATA request when the schema graphs are written
+_CHUNK = 2_000
+
+
+@dataclass
+class GenericProgram:
+    """The rule set a full REASON runs, and the rows its generic rules read."""
+
+    rules: RuleSet
+    #: per generic rule, its rows (closed for a chaining rule)
+    rows: dict[str, list[Row]] = field(default_factory=dict)
+
+    def graphs(self) -> list[NamedNode]:
+        return [schema_rules()[name].graph for name in self.rows]
+
+    def write(self, store: Store) -> None:
+        """Write each generic rule's rows into its schema graph (replacing what a failed run left)."""
+        if not self.rows:
+            return
+        self.drop(store)
+        for name, rows in self.rows.items():
+            generic = schema_rules()[name]
+            triples = [t for row in rows for t in generic.triples(row)]
+            for start in range(0, len(triples), _CHUNK):
+                store.update(f"INSERT DATA {{ GRAPH {generic.graph} {{ {' '.join(triples[start:start + _CHUNK])} }} }}")
+
+    def drop(self, store: Store) -> None:
+        if self.rows:
+            store.update(" ; ".join(f"DROP SILENT GRAPH {g}" for g in self.graphs()))
+
+
+def closed(rows: list[Row]) -> list[Row]:
+    """The transitive closure of two-term rows (a pair ``(a, a)`` says nothing and is left out)."""
+    succ: dict[str, list[str]] = {}
+    for a, b in rows:
+        succ.setdefault(a, []).append(b)
+    out: list[Row] = []
+    for start in succ:
+        seen: set[str] = set()
+        todo = list(succ[start])
+        while todo:
+            node = todo.pop()
+            if node in seen or node == start:
+                continue
+            seen.add(node)
+            out.append((start, node))
+            todo += succ.get(node, [])
+    return out
+
+
+def _instances(rules: list[Rule]) -> dict[str, list[tuple[int, Row]]]:
+    """Per generic rule, the compiled rules that are its instantiations: (index, row)."""
+    generic = schema_rules()
+    found: dict[str, list[tuple[int, Row]]] = {}
+    for i, rule in enumerate(rules):
+        template = generic.get(rule.name)
+        row = template.row_of(rule) if template is not None else None
+        if row is not None:
+            found.setdefault(rule.name, []).append((i, row))
+    return found
+
+
+def _evaluables(generic: SchemaRule, instances: list[Rule]) -> list[Rule]:
+    """The generic rule once per head graph its instantiations write (inferred, helper, or both)."""
+    return [generic.evaluable(aux) for aux in (False, True) if any(r.head_aux() == aux for r in instances)]
+
+
+def full_program(ruleset: RuleSet, threshold: int = GENERIC_ROWS) -> GenericProgram:
+    """``ruleset`` with every generic rule of more than ``threshold`` instantiations run generically."""
+    rules = ruleset.rules
+    program = GenericProgram(ruleset)
+    replaced: dict[int, list[Rule]] = {}
+    for name, found in _instances(rules).items():
+        if len(found) <= threshold:
+            continue
+        generic = schema_rules()[name]
+        rows = list(dict.fromkeys(row for _, row in found))
+        program.rows[name] = closed(rows) if generic.chains else rows
+        first = found[0][0]
+        replaced[first] = _evaluables(generic, [rules[i] for i, _ in found])
+        replaced.update({i: [] for i, _ in found[1:]})
+    if replaced:
+        new = [r for i, rule in enumerate(rules) for r in replaced.get(i, [rule])]
+        program.rules = replace(ruleset, rules=new)
+    return program
+
+
+__all__ = ["GENERIC_ROWS", "GenericProgram", "closed", "full_program"]
