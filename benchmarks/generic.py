@@ -1,7 +1,9 @@
 """Full REASON with the schema tables' rules instantiated or generic: ``python -m benchmarks.generic INPUT``.
 
-INPUT is ``tbox:N`` (the tutorial-style TBox of N classes, :mod:`benchmarks.tbox`) or a number of
-locations (a chain map, :mod:`benchmarks.maps`).  The ontology is loaded once; then the
+INPUT is ``tbox:N`` (the tutorial-style TBox of N classes, :mod:`benchmarks.tbox`), ``taxonomy:N``
+(N classes and N properties in trees of fan-out 4, each property's domain and range its class, an
+individual in each leaf class: a taxonomy, where the plain kinds of axiom are all there is) or
+a number of locations (a chain map, :mod:`benchmarks.maps`).  The ontology is loaded once; then the
 materialisation of a full REASON (:class:`topostore.reason.materialize.Materializer`, the part the
 choice changes) runs ``--reps`` times per variant, the variants interleaved so that the machine's
 load falls on each alike:
@@ -38,9 +40,29 @@ from . import maps, tbox
 from .limits import lift_time_limit
 
 
+def taxonomy(classes: int) -> str:
+    """Turtle: ``classes`` classes in a tree of fan-out 4 and as many properties in a tree alike (each
+    property's domain and range its class), an individual per leaf class, each linked to the next
+    by its leaf's property; the last property is symmetric and the root one transitive."""
+    lines = [f"@prefix : <{tbox.NS}> .", "@prefix owl: <http://www.w3.org/2002/07/owl#> .",
+             "@prefix rdfs: <http://www.w3.org/2000/01/rdf-schema#> ."]
+    for i in range(1, classes):
+        lines += [f":K{i} rdfs:subClassOf :K{(i - 1) // 4} .", f":r{i} rdfs:subPropertyOf :r{(i - 1) // 4} ."]
+    lines += [f":r{i} rdfs:domain :K{i} ; rdfs:range :K{i} ." for i in range(classes)]
+    leaves = [i for i in range(classes) if 4 * i + 1 >= classes]
+    lines += [f":o{i} a :K{i} ." for i in leaves]
+    lines += [f":o{a} :r{a} :o{b} ." for a, b in zip(leaves, leaves[1:])]
+    lines += [f":r{classes - 1} a owl:SymmetricProperty .", ":r0 a owl:TransitiveProperty ."]
+    return "\n".join(lines) + "\n"
+
+
 def write_input(spec: str, folder: Path) -> Path:
     if spec.startswith("tbox:"):
         return tbox.write(int(spec.split(":", 1)[1]), folder)
+    if spec.startswith("taxonomy:"):
+        path = folder / "taxonomy.ttl"
+        path.write_text(taxonomy(int(spec.split(":", 1)[1])))
+        return path
     return maps.write(spec, folder, RdfFormat.N_TRIPLES)[0]
 
 

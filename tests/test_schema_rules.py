@@ -23,7 +23,7 @@ from pyoxigraph import NamedNode
 from topostore import Ontology
 from topostore.compile.rule import Atom
 from topostore.compile.schema import schema_rule, schema_rules
-from topostore.compile.schema_program import closed, full_program
+from topostore.compile.schema_program import GENERIC_ROWS, closed, full_program
 from topostore.errors import RuleCompileError
 from topostore.rdf.vocab import AUX, INFERRED, SCHEMA_PREFIX
 from topostore.reason.materialize import Materializer
@@ -144,6 +144,16 @@ def test_generic_equals_instantiated_on_the_tutorial_map() -> None:
     onto.load(default_ontology())
     onto.load(default_ontology().with_name("topological_map_abox.ttl"))
     assert _materialize(onto, 0) == _materialize(onto, sys.maxsize)
+
+
+def test_a_full_reason_runs_a_large_table_generically() -> None:
+    chain = "\n".join(f":C{i} rdfs:subClassOf :C{i + 1} ." for i in range(GENERIC_ROWS + 4))
+    onto = Ontology()
+    onto.load_data(PREFIXES + chain + "\n:x a :C0 .\n", "turtle")
+    assert set(full_program(onto.rules).rows) == {"cax-sco"}
+    onto.reason(mode="full")
+    assert NamedNode(f"{NS}C{GENERIC_ROWS + 4}") in onto.types(NamedNode(NS + "x"))
+    assert _no_schema_graph(onto)
 
 
 # ---------------------------------------------------------------- generated TBoxes

@@ -75,6 +75,7 @@ from pyoxigraph import NamedNode, Triple
 from ..compile.datatypes import surely_in
 from ..compile.generic import PREFIXES
 from ..compile.rule import Rule, RuleSet
+from ..compile.schema_program import full_program
 from ..rdf.lexer import negates_exists  # noqa: F401 - public here since the first release
 from ..rdf.terms import Term
 from ..rdf.vocab import ASSERTED, AUX, DELTA, ENTAILED, INFERRED, NEW_AUX, NEW_INFERRED, TYPE
@@ -260,8 +261,13 @@ class IncrementalReasoner:
         self._programs.clear()  # compiled against the keys with facts, which a full run recounts
         self._decided.clear()
         self._clear_scratch()
-        materializer = Materializer(self.store, self.ruleset, profile=profile)
-        stats = materializer.run()
+        program = full_program(self.ruleset)  # large schema tables as one generic rule each
+        program.write(self.store)
+        try:
+            materializer = Materializer(self.store, program.rules, profile=profile)
+            stats = materializer.run()
+        finally:
+            program.drop(self.store)
         start = time.perf_counter()
         violations = check_consistency(self.store, self.ruleset)
         publish_entailed(self.store, self.ruleset)
