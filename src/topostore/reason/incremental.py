@@ -262,8 +262,8 @@ class IncrementalReasoner:
         self._decided.clear()
         self._clear_scratch()
         program = full_program(self.ruleset)  # large schema tables as one generic rule each
-        program.write(self.store)
         try:
+            program.write(self.store)
             materializer = Materializer(self.store, program.rules, profile=profile)
             stats = materializer.run()
         finally:
