@@ -173,6 +173,9 @@ axioms = st.lists(st.one_of(
     st.builds(":{} owl:inverseOf :{} .".format, _p, _p),
     st.builds(":{} a owl:SymmetricProperty .".format, _p),
     st.builds(":{} a owl:TransitiveProperty .".format, _p),
+    st.builds("[ owl:onProperty :{} ; owl:someValuesFrom :{} ] rdfs:subClassOf :{} .".format, _p, _c, _c),
+    st.builds(":{} owl:equivalentClass [ owl:onProperty :{} ; owl:hasValue :{} ] .".format, _c, _p, _i),
+    st.builds("[ owl:inverseOf :{} ] rdfs:domain :{} .".format, _p, _c),
 ), max_size=10)
 facts = st.lists(st.one_of(st.builds(":{} a :{} .".format, _i, _c), st.builds(":{} :{} :{} .".format, _i, _p, _i)),
                  max_size=8)
