@@ -1,0 +1,193 @@
+"""Deciding without a query that a difference-by-values flip finds nothing.
+
+Why this exists
+---------------
+A rule that concludes two things differ because their values of a predicate
+differ (``?a p ?v1 . ?b p ?v2`` with ``distinct_values(?v1, ?v2)``, see
+:func:`~..compile.snippets.distinct_values`) is a flip rule of every clean
+replacement of ``p`` (:mod:`.flip`): the robot's ``visitedAt`` moves each step.
+Its flip query pairs the replaced subject with every candidate partner; it
+costs as much as the rest of the step's flips and almost always finds nothing,
+because a pair's answer can only change when the partner's value *equals* the
+old or the new value.  An index of the predicate's values by equality answers
+that in a dictionary look-up: when no partner value may equal them, nothing
+flips and the query is left out; otherwise the query runs as before.
+
+Equality here is SPARQL's ``sameTerm`` or ``=``, approximated from above (a value
+that may be equal is always found, see :func:`probe_keys`): a
+shared key only costs the query that would have run anyway.
+"""
+
+from __future__ import annotations
+
+import math
+import struct
+from collections.abc import Collection, Iterable
+from decimal import Decimal, InvalidOperation
+
+from pyoxigraph import Literal, Triple
+
+from ..compile.condition import BIND, TEST
+from ..compile.rule import Rule
+from ..compile.snippets import distinct_values
+from ..rdf.vocab import XSD
+from .flip import compared_only
+
+#: XSD types whose values SPARQL compares as numbers (promoted to a common type)
+_INTEGERS = {"integer", "nonPositiveInteger", "negativeInteger", "long", "int", "short", "byte",
+             "nonNegativeInteger", "unsignedLong", "unsignedInt", "unsignedShort", "unsignedByte", "positiveInteger"}
+_NUMERIC = _INTEGERS | {"decimal", "float", "double"}
+#: XSD types whose values SPARQL compares by value in ways not modelled here (time zones): one key for all
+_TEMPORAL = {"dateTime", "dateTimeStamp", "date", "time", "gYear", "gYearMonth", "gMonth", "gMonthDay", "gDay",
+             "duration", "dayTimeDuration", "yearMonthDuration"}
+
+
+def _double(local: str, text: str) -> float | None:
+    """The value as an xsd:double; None for an ill-typed lexical form (in no value space: only
+    ``sameTerm`` can make it equal) or NaN (equal to nothing)."""
+    try:
+        if local in _INTEGERS or local == "decimal":
+            value = float(Decimal(text.strip()))
+        else:
+            value = float(text.strip().replace("INF", "inf"))
+    except (InvalidOperation, ValueError, OverflowError):
+        return None
+    return None if math.isnan(value) else value
+
+
+def _single(value: float) -> float:
+    """``value`` rounded to an xsd:float (single precision), as SPARQL promotes a value compared with one."""
+    try:
+        return struct.unpack("f", struct.pack("f", value))[0]
+    except OverflowError:
+        return math.copysign(math.inf, value)
+
+
+def _around(value: float, single: bool) -> list[float]:
+    """``value`` and its two neighbours in its precision: a conversion rounded otherwise still meets it."""
+    if not math.isfinite(value):
+        return [value]
+    if not single:
+        return [math.nextafter(value, -math.inf), value, math.nextafter(value, math.inf)]
+    bits = struct.unpack("<i", struct.pack("<f", value))[0]
+    out = [value]
+    for near in (bits - 1, bits + 1):
+        if -2 ** 31 <= near < 2 ** 31:
+            other = struct.unpack("<f", struct.pack("<i", near))[0]
+            if not math.isnan(other):
+                out.append(other)
+    return out
+
+
+def _numeric(term: Literal) -> tuple[str, float] | None:
+    dt = term.datatype.value
+    local = dt[len(XSD):] if dt.startswith(XSD) else ""
+    if local not in _NUMERIC:
+        return None
+    value = _double(local, term.value)
+    return None if value is None else (local, value)
+
+
+def stored_keys(term) -> tuple:
+    """The keys a value is indexed under (see :func:`probe_keys`)."""
+    keys: list[tuple] = [("term", str(term))]
+    if not isinstance(term, Literal):
+        return tuple(keys)
+    number = _numeric(term)
+    if number is not None:
+        local, value = number
+        keys.append(("double", value))
+        keys.append(("single", local == "float", _single(value)))
+    else:
+        keys += _other_keys(term)
+    return tuple(keys)
+
+
+def probe_keys(term) -> tuple:
+    """Keys such that a value SPARQL may call equal to ``term`` (``sameTerm`` or ``=``) is indexed
+    under one of them (:func:`stored_keys`).
+
+    Coarser than SPARQL where exactness would need its rules in full: numbers meet in double
+    precision, and in single precision where one side is an xsd:float (SPARQL compares such a pair
+    as floats), each with its neighbours; every date or time meets every other; every other literal
+    meets those of the same lexical form, whatever their datatype."""
+    keys: list[tuple] = [("term", str(term))]
+    if not isinstance(term, Literal):
+        return tuple(keys)
+    number = _numeric(term)
+    if number is not None:
+        local, value = number
+        keys += [("double", v) for v in _around(value, False)]
+        near = _around(_single(value), True)
+        keys += [("single", True, v) for v in near]
+        if local == "float":
+            keys += [("single", False, v) for v in near]
+    else:
+        keys += _other_keys(term)
+    return tuple(keys)
+
+
+def _other_keys(term: Literal) -> list[tuple]:
+    dt = term.datatype.value
+    local = dt[len(XSD):] if dt.startswith(XSD) else ""
+    if local in _TEMPORAL:
+        return [("temporal",)]
+    if local == "boolean" and term.value.strip() in ("true", "false", "1", "0"):
+        return [("boolean", term.value.strip() in ("true", "1"))]
+    return [("lexical", term.value.lower())]
+
+
+class EqualityIndex:
+    """The subjects of one predicate's facts by :func:`stored_keys` of their values."""
+
+    def __init__(self, triples: Iterable[Triple]) -> None:
+        self._subjects: dict[tuple, dict[str, int]] = {}
+        for t in triples:
+            self.add(t)
+
+    def add(self, t: Triple) -> None:
+        for key in stored_keys(t.object):
+            subjects = self._subjects.setdefault(key, {})
+            subjects[str(t.subject)] = subjects.get(str(t.subject), 0) + 1
+
+    def discard(self, t: Triple) -> None:
+        """Forget one fact (a fact never added leaves the index as it is: it only ever over-answers)."""
+        for key in stored_keys(t.object):
+            subjects = self._subjects.get(key)
+            if subjects is None or str(t.subject) not in subjects:
+                continue
+            subjects[str(t.subject)] -= 1
+            if not subjects[str(t.subject)]:
+                del subjects[str(t.subject)]
+                if not subjects:
+                    del self._subjects[key]
+
+    def other_subject(self, value, subject: str | None) -> bool:
+        """Whether a fact whose subject is not ``subject`` (None: any) may have a value equal to ``value``."""
+        for key in probe_keys(value):
+            subjects = self._subjects.get(key)
+            if subjects and (subject is None or len(subjects) > 1 or subject not in subjects):
+                return True
+        return False
+
+
+def difference_pairs(rule: Rule, changed: Collection[int]) -> list[tuple[int, int]] | None:
+    """The (atom, atom) pairs whose values the rule's tests on the ``changed`` atoms' values compare,
+    when every condition mentioning one of those values is ``distinct_values`` of two compared-only
+    atoms' values on named predicates (else None: the flip cannot be decided by equality)."""
+    values = {rule.body[j].o for j in changed}
+    holder = {atom.o: j for j, atom in enumerate(rule.body) if compared_only(rule, j)}
+    pairs = []
+    for c in rule.conditions:
+        if not (c.variables & values):
+            continue
+        if c.kind == BIND or c.kind != TEST or len(c.variables) != 2:
+            return None
+        a, b = sorted(c.variables)
+        if c.expression not in (distinct_values(a, b), distinct_values(b, a)) or a not in holder or b not in holder:
+            return None
+        pairs.append((holder[a], holder[b]))
+    return pairs
+
+
+__all__ = ["EqualityIndex", "difference_pairs", "probe_keys", "stored_keys"]
