@@ -24,6 +24,7 @@ import math
 import struct
 from collections.abc import Collection, Iterable
 from decimal import Decimal, InvalidOperation
+from functools import lru_cache
 
 from pyoxigraph import Literal, Triple
 
@@ -88,6 +89,7 @@ def _numeric(term: Literal) -> tuple[str, float] | None:
     return None if value is None else (local, value)
 
 
+@lru_cache(maxsize=4096)
 def stored_keys(term) -> tuple:
     """The keys a value is indexed under (see :func:`probe_keys`)."""
     keys: list[tuple] = [("term", str(term))]
@@ -103,6 +105,7 @@ def stored_keys(term) -> tuple:
     return tuple(keys)
 
 
+@lru_cache(maxsize=4096)
 def probe_keys(term) -> tuple:
     """Keys such that a value SPARQL may call equal to ``term`` (``sameTerm`` or ``=``) is indexed
     under one of them (:func:`stored_keys`).
