@@ -404,3 +404,24 @@ def test_a_rule_copying_a_literal_equals_from_scratch() -> None:
         assert report.stats.program == "compiled" or report.stats.reason == "no asserted change", report.stats
         assert [t.object for t in onto.store.triples(N("i0"), N("noted"), None, INFERRED)] == \
             [t.object for t in onto.store.triples(N("i0"), N("seen"), None, ASSERTED)]
+
+
+def test_a_flip_seeded_by_a_clock_needs_every_clock_replaced() -> None:
+    """The clock rule's flip runs as the one branch seeded by ``now`` only when every ``now`` fact was
+    replaced: with a second clock left alone, a visit compared with that clock must still flip."""
+    onto = new_ontology()
+    onto.max_change_share = 1.0
+    onto.add(Triple(N("clock2"), N("now"), Literal("200", datatype=NamedNode("http://www.w3.org/2001/XMLSchema#long"))))
+    onto.replace(N("i1"), N("seen"), 195)
+    assert_as_from_scratch(onto, onto.reason())
+    steps = [[("i1", "seen", 150), ("clock", "now", 101)],  # i1 becomes Hot by clock2 (the clock left alone)
+             [("i1", "seen", 195), ("clock", "now", 102), ("clock2", "now", 201)],  # both clocks: one branch
+             [("i2", "seen", 90), ("clock", "now", 103), ("clock2", "now", 202)],
+             [("i2", "seen", 100), ("clock2", "now", 150)]]
+    for batch in steps:
+        for a, p, v in batch:
+            onto.replace(N(a), N(p), v)
+        report = onto.reason(mode="incremental")
+        assert_as_from_scratch(onto, report)
+        assert report.stats.program == "compiled", report.stats.program
+    assert {onto.short(i) for i in onto.instances(N("Hot"))} == {"i2"}

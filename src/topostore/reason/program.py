@@ -112,6 +112,9 @@ class StepProgram:
     #: by position in ``ops``: the operation's equivalent through index look-ups (see :mod:`.direct`),
     #: ``run(store)`` answering False where its text must run instead
     direct: dict = field(default_factory=dict)
+    #: by position of a flip in ``ops``: per compared predicate (IRI text), the flip as the one branch
+    #: seeded by that predicate's atom, for a run where every fact of it was replaced
+    seeded: dict = field(default_factory=dict)
 
     @property
     def whole(self) -> bool:
@@ -413,6 +416,8 @@ class _Emitter:
         self.graphs: dict[ReadKey, NamedNode] = {}
         #: operations with an equivalent through index look-ups, by position (see :mod:`.direct`)
         self.direct: dict[int, Callable] = {}
+        #: flips as one branch, by position and seed predicate (see :attr:`StepProgram.seeded`)
+        self.seeded: dict[int, dict[str, str]] = {}
 
     def op(self, ops: list, tag: tuple, text: str, direct: Callable | None = None) -> None:
         """Append an operation to ``ops`` (the program's own: with its look-up equivalent, if any)."""
@@ -430,7 +435,8 @@ class _Emitter:
             if writers or (item in self.sig.removed and self.writers.get(item)):
                 self._plain(item, writers)
         return StepProgram(self.ops, frozenset(absent), frozenset(self.graphs), frozenset(self.flipped),
-                           self.flip_rules, self.clean, frozenset(self.unasserted), self.direct)
+                           self.flip_rules, self.clean, frozenset(self.unasserted), self.direct,
+                           self.seeded)
 
     def _plain(self, key: ReadKey, writers: list[int]) -> None:
         """A key no rule derives from itself: candidates, flips, recheck, additions."""
@@ -540,6 +546,10 @@ class _Emitter:
             self.flip_rules += 1
             order = self.c.order(i, compared)
             # the text is made per run when a value window narrows the flip (see :mod:`.window`)
+            if ops is self.ops and len(order) > 1:
+                self.seeded[len(ops)] = {
+                    rule.body[j].p: texts.flips(rule, (j, *(m for m in order if m != j)), self.c.lateral, i, seeded=True)
+                    for j in order}
             ops.append((("flip", tag, i, order), texts.flips(rule, order, self.c.lateral, i)))
             found.append(i)
         for key in sorted({self.rules[i].writes() for i in found}):

@@ -17,7 +17,7 @@ from pyoxigraph import NamedNode, Triple
 
 from ..compile.generic import PREFIXES
 from ..compile.rule import ReadKey
-from ..rdf.vocab import TYPE
+from ..rdf.vocab import ASSERTED, TYPE
 from .component import run_component
 from .delta_texts import FLIP_LOST, KEEP
 from .program import Signature, StepProgram
@@ -63,7 +63,7 @@ class StagedRun:
         mark = self.sent
         for index, (tag, text) in enumerate(self.program.ops):
             if tag[0] == "flip":
-                tag, text = tag[1], self.flip_text(tag[2], tag[3], text)
+                tag, text = tag[1], self._flip(index, tag, text)
                 if not text:
                     continue  # nothing can flip this time
             kind = tag[0]
@@ -90,6 +90,27 @@ class StagedRun:
             elif kind == "component":
                 run_component(self, tag[1])
         self.flush()
+
+    def _flip(self, index: int, tag: tuple, text: str) -> str:
+        """The flip's text for this run (:attr:`flip_text`); where that is the compiled text and every
+        fact of a compared predicate was replaced, the one branch seeded by it instead of the UNION."""
+        found = self.flip_text(tag[2], tag[3], text)
+        seeded = self.program.seeded.get(index)
+        if found is not text or not seeded or self.changes is None or self.store.round_trips:
+            return found
+        for p, single in seeded.items():
+            if self._all_replaced(p):
+                return single
+        return found
+
+    def _all_replaced(self, p: str) -> bool:
+        """Whether every fact of predicate ``p`` (IRI text; asserted only, no rule derives it) was
+        replaced by this change: as many facts as replaced subjects (one index read, stopped early)."""
+        subjects = {t.subject for t in self.changes[0] if t.predicate.value == p[1:-1]}
+        if not subjects:
+            return False
+        facts = islice(self.store.triples(None, NamedNode(p[1:-1]), None, ASSERTED), len(subjects) + 1)
+        return sum(1 for _ in facts) == len(subjects)
 
     def _send(self, index: int, text: str) -> None:
         """Run operation ``index`` through look-ups where it has that equivalent and its facts are few
