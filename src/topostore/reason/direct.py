@@ -152,6 +152,49 @@ class OneAtom:
         return True
 
 
+class Relaxed:
+    """:func:`.delta_texts.candidates` widened: every present head that agrees with a removed fact of
+    atom ``j`` on the head's variables that atom binds, whatever the rest of the body.
+
+    A candidate is only rechecked, and the recheck of a key whose inputs are final is exact whatever
+    the candidates (a present fact no longer derivable is deleted, any other kept), so a superset
+    of the exact candidates changes nothing but the work: this one costs look-ups instead of a join,
+    and is used only while it stays as small as :data:`FEW` (else the exact SPARQL text runs)."""
+
+    def __init__(self, rule: Rule, j: int, graph: NamedNode) -> None:
+        self._body = tuple(_term(t) for t in (rule.body[j].s, rule.body[j].p, rule.body[j].o))
+        self._head = tuple(_term(t) for t in (rule.head.s, rule.head.p, rule.head.o))
+        self.graph = graph
+
+    def run(self, store) -> bool:
+        facts = _facts(store, _pattern(self._body), OVERDELETED)
+        if facts is None:
+            return False
+        heads: dict[Triple, None] = {}
+        for t in facts:
+            bound = _match(self._body, t)
+            if bound is None:
+                continue
+            found = _facts(store, tuple(bound.get(x) if isinstance(x, str) else x for x in self._head), self.graph)
+            if found is None:
+                return False
+            heads.update(dict.fromkeys(found))
+            if len(heads) > FEW:
+                return False
+        store.add_scratch(list(heads), CANDIDATES)
+        return True
+
+
+def relaxable(rule: Rule, j: int) -> bool:
+    """Whether :class:`Relaxed` applies to atom ``j``: every term of the atom and the head a variable
+    or an IRI, and a head variable bound by the atom (else every fact of the key would be a candidate)."""
+    atom, head = rule.body[j], rule.head
+    if head is None or not (head.variables() & atom.variables()):
+        return False
+    return all(t.startswith("?") or (t.startswith("<") and t.endswith(">"))
+               for t in (atom.s, atom.p, atom.o, head.s, head.p, head.o))
+
+
 def one_atom(rule: Rule) -> bool:
     """Whether :class:`OneAtom` can evaluate ``rule``: one body atom, no filter, every term a
     variable or an IRI, the head's variables bound by the atom."""
@@ -195,4 +238,4 @@ def _instance(terms: tuple, bound: dict[str, object]) -> Triple | None | bool:
     return Triple(s, p, o)
 
 
-__all__ = ["FEW", "Gained", "Lost", "OneAtom", "one_atom"]
+__all__ = ["FEW", "Gained", "Lost", "OneAtom", "Relaxed", "one_atom", "relaxable"]

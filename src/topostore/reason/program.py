@@ -64,7 +64,7 @@ from ..rdf.vocab import DIFFERENT, TYPE
 from . import delta_texts as texts
 from . import flip
 from .component import COMPONENT_SCRATCH, UNSETTLED, compile_component, whole_ops
-from .direct import Gained, Lost, OneAtom, one_atom
+from .direct import Gained, Lost, OneAtom, Relaxed, one_atom, relaxable
 from .order import strongly_connected
 from .restate import covering, restates
 from .scratch import ADDED, CANDIDATES, NEW_FACTS, OVERDELETED, REMOVED, target
@@ -521,7 +521,7 @@ class _Emitter:
             for j, atom in enumerate(self.rules[i].body):
                 if atom.read_key() in self.minus and j not in handled and not self.idle(i, j):
                     self.op(self.ops, ("minus", atom.read_key()), self.candidates(i, j),
-                            self._one_atom(i, target(self.rules[i]), "candidates"))
+                            self._one_atom(i, target(self.rules[i]), "candidates") or self._relaxed(i, j))
                     emitted = True
         return emitted
 
@@ -569,6 +569,11 @@ class _Emitter:
                             self._one_atom(i, graph, "additions"))
                     emitted = True
         return emitted
+
+    def _relaxed(self, i: int, j: int) -> Callable | None:
+        """Rule ``i``'s candidates from atom ``j``, widened to look-ups (see :class:`.direct.Relaxed`)."""
+        rule = self.rules[i]
+        return Relaxed(rule, j, target(rule)).run if relaxable(rule, j) else None
 
     def _one_atom(self, i: int, graph: NamedNode, what: str) -> Callable | None:
         """Rule ``i``'s ``what`` (candidates, keep, additions) through index look-ups, when it is a
