@@ -64,7 +64,7 @@ from ..rdf.vocab import DIFFERENT, TYPE
 from . import delta_texts as texts
 from . import flip
 from .component import COMPONENT_SCRATCH, UNSETTLED, compile_component, whole_ops
-from .direct import Gained, Lost, OneAtom, Relaxed, one_atom, relaxable
+from .direct import FEW, Gained, Lost, OneAtom, Relaxed, one_atom, relaxable
 from .order import strongly_connected
 from .restate import covering, restates
 from .scratch import ADDED, CANDIDATES, NEW_FACTS, OVERDELETED, REMOVED, target
@@ -207,7 +207,10 @@ def describe(program: StepProgram) -> str:
     """The program as commented SPARQL: each operation with when it runs (``topostore rules --step``)."""
     out = [f"# {program.operations} operations outside recursive components; flips of "
            + (", ".join(sorted(program.flipped)) or "none")]
-    for tag, text in program.ops:
+    for index, (tag, text) in enumerate(program.ops):
+        if index in program.seeded:
+            out.append(f"# where every fact of {' or '.join(program.seeded[index])} was replaced: only the "
+                       "branch seeded by its atom")
         if tag[0] == "flip":
             tag = tag[1]
         if tag[0] == "end":
@@ -222,6 +225,8 @@ def describe(program: StepProgram) -> str:
                        "run round by round")
         else:
             when = _WHEN.get(tag[0], tag[0]).format(tag[1][1] if len(tag) > 1 else "")
+            if index in program.direct:
+                when += f" (by index look-ups where up to {FEW} facts are in play, in memory)"
             out.append(f"# runs {when}\n{text} ;")
     return "\n".join(out)
 
