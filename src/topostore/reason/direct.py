@@ -146,10 +146,19 @@ class OneAtom:
             if bound is None:
                 continue
             pattern = tuple(bound.get(x) if isinstance(x, str) else x for x in self._body)
-            if any(next(iter(store.triples(*pattern, g)), None) is not None for g in graphs):
+            if any(self._proves(store.triples(*pattern, g), bound) for g in graphs):
                 kept.append(c)
         store.add_scratch(kept, KEEP)
         return True
+
+    def _proves(self, facts, bound: dict[str, object]) -> bool:
+        """Whether one of ``facts`` matches the atom with the head's values ``bound`` (a variable
+        the head leaves free but the atom repeats must take one value)."""
+        for t in facts:
+            found = _match(self._body, t)
+            if found is not None and all(found[x] == value for x, value in bound.items() if x in found):
+                return True
+        return False
 
 
 class Relaxed:
