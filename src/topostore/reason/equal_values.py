@@ -45,12 +45,17 @@ _TEMPORAL = {"dateTime", "dateTimeStamp", "date", "time", "gYear", "gYearMonth",
 
 def _double(local: str, text: str) -> float | None:
     """The value as an xsd:double; None for an ill-typed lexical form (in no value space: only
-    ``sameTerm`` can make it equal) or NaN (equal to nothing)."""
+    ``sameTerm`` can make it equal) or NaN (equal to nothing).  Forms Python reads more liberally
+    than XSD (``1_000``) get a value too: a key too many only ever costs the query."""
+    text = text.strip()
     try:
         if local in _INTEGERS or local == "decimal":
-            value = float(Decimal(text.strip()))
+            try:
+                value = float(int(text))
+            except ValueError:
+                value = float(Decimal(text))
         else:
-            value = float(text.strip().replace("INF", "inf"))
+            value = float(text.replace("INF", "inf"))
     except (InvalidOperation, ValueError, OverflowError):
         return None
     return None if math.isnan(value) else value
@@ -80,98 +85,118 @@ def _around(value: float, single: bool) -> list[float]:
     return out
 
 
-def _numeric(term: Literal) -> tuple[str, float] | None:
+def _kind(term) -> tuple[str, object]:
+    """What decides a term's equality: ("number", (local, double)), ("other", keys) or ("term", text)."""
+    if not isinstance(term, Literal):
+        return "term", str(term)
     dt = term.datatype.value
     local = dt[len(XSD):] if dt.startswith(XSD) else ""
-    if local not in _NUMERIC:
-        return None
-    value = _double(local, term.value)
-    return None if value is None else (local, value)
+    if local in _NUMERIC:
+        value = _double(local, term.value)
+        return ("term", str(term)) if value is None else ("number", (local, value))
+    if local in _TEMPORAL:
+        return "other", ("temporal",)
+    if local == "boolean" and term.value.strip() in ("true", "false", "1", "0"):
+        return "other", ("boolean", term.value.strip() in ("true", "1"))
+    return "other", ("lexical", term.value.lower())
+
+
+def _stored(term) -> tuple[tuple, ...]:
+    kind, what = _kind(term)
+    if kind == "number":
+        local, value = what
+        return (("double", value), ("single", _single(value))) if local == "float" else (("double", value),)
+    return ((kind, what),) if kind == "term" else (what,)
 
 
 @lru_cache(maxsize=4096)
 def stored_keys(term) -> tuple:
-    """The keys a value is indexed under (see :func:`probe_keys`)."""
-    keys: list[tuple] = [("term", str(term))]
-    if not isinstance(term, Literal):
-        return tuple(keys)
-    number = _numeric(term)
-    if number is not None:
-        local, value = number
-        keys.append(("double", value))
-        keys.append(("single", local == "float", _single(value)))
-    else:
-        keys += _other_keys(term)
-    return tuple(keys)
+    """The keys a value is indexed under (see :func:`probe_keys`): numbers by their double, an
+    xsd:float also by its single-precision value; a term SPARQL cannot compare by value (an IRI,
+    an ill-typed literal) by itself.  An index counts apart its numbers that are no xsd:float."""
+    return _stored(term)
 
 
 @lru_cache(maxsize=4096)
 def probe_keys(term) -> tuple:
     """Keys such that a value SPARQL may call equal to ``term`` (``sameTerm`` or ``=``) is indexed
-    under one of them (:func:`stored_keys`).
+    under one of them (:func:`stored_keys`), but for a number no xsd:float compared with an xsd:float
+    (see :meth:`EqualityIndex.other_subject`).
 
     Coarser than SPARQL where exactness would need its rules in full: numbers meet in double
-    precision, and in single precision where one side is an xsd:float (SPARQL compares such a pair
-    as floats), each with its neighbours; every date or time meets every other; every other literal
-    meets those of the same lexical form, whatever their datatype."""
-    keys: list[tuple] = [("term", str(term))]
-    if not isinstance(term, Literal):
-        return tuple(keys)
-    number = _numeric(term)
-    if number is not None:
-        local, value = number
-        keys += [("double", v) for v in _around(value, False)]
-        near = _around(_single(value), True)
-        keys += [("single", True, v) for v in near]
-        if local == "float":
-            keys += [("single", False, v) for v in near]
-    else:
-        keys += _other_keys(term)
-    return tuple(keys)
+    precision, and an xsd:float in single precision (SPARQL compares a pair with one as floats),
+    each with its neighbours; every date or time meets every other; every other literal meets
+    those of the same lexical form, whatever their datatype."""
+    kind, what = _kind(term)
+    if kind != "number":
+        return ((kind, what),) if kind == "term" else (what,)
+    local, value = what
+    return tuple([("double", v) for v in _around(value, False)] + [("single", v) for v in _around(_single(value), True)])
 
 
-def _other_keys(term: Literal) -> list[tuple]:
-    dt = term.datatype.value
-    local = dt[len(XSD):] if dt.startswith(XSD) else ""
-    if local in _TEMPORAL:
-        return [("temporal",)]
-    if local == "boolean" and term.value.strip() in ("true", "false", "1", "0"):
-        return [("boolean", term.value.strip() in ("true", "1"))]
-    return [("lexical", term.value.lower())]
+def _is_float(term) -> bool:
+    return isinstance(term, Literal) and term.datatype.value == XSD + "float"
 
 
 class EqualityIndex:
-    """The subjects of one predicate's facts by :func:`stored_keys` of their values."""
+    """The subjects of one predicate's facts by :func:`stored_keys` of their values (one subject
+    kept as its text, several as a count per subject), and the numbers that are no xsd:float."""
 
     def __init__(self, triples: Iterable[Triple]) -> None:
-        self._subjects: dict[tuple, dict[str, int]] = {}
+        self._subjects: dict[tuple, str | dict[str, int]] = {}
+        self._numbers: dict[str, int] = {}
         for t in triples:
-            self.add(t)
+            self._add(t, _stored(t.object))
 
     def add(self, t: Triple) -> None:
-        for key in stored_keys(t.object):
-            subjects = self._subjects.setdefault(key, {})
-            subjects[str(t.subject)] = subjects.get(str(t.subject), 0) + 1
+        self._add(t, stored_keys(t.object))
+
+    def _add(self, t: Triple, keys: tuple) -> None:
+        subject = str(t.subject)
+        for key in keys:
+            held = self._subjects.get(key)
+            if held is None:
+                self._subjects[key] = subject
+                continue
+            if isinstance(held, str):
+                held = self._subjects[key] = {held: 1}
+            held[subject] = held.get(subject, 0) + 1
+        if keys[0][0] == "double" and not _is_float(t.object):
+            self._numbers[subject] = self._numbers.get(subject, 0) + 1
 
     def discard(self, t: Triple) -> None:
         """Forget one fact (a fact never added leaves the index as it is: it only ever over-answers)."""
-        for key in stored_keys(t.object):
-            subjects = self._subjects.get(key)
-            if subjects is None or str(t.subject) not in subjects:
-                continue
-            subjects[str(t.subject)] -= 1
-            if not subjects[str(t.subject)]:
-                del subjects[str(t.subject)]
-                if not subjects:
-                    del self._subjects[key]
+        subject = str(t.subject)
+        keys = stored_keys(t.object)
+        for key in keys:
+            held = self._subjects.get(key)
+            if held == subject:
+                del self._subjects[key]
+            elif isinstance(held, dict) and subject in held:
+                held[subject] -= 1
+                if not held[subject]:
+                    del held[subject]
+                    if not held:
+                        del self._subjects[key]
+        if keys[0][0] == "double" and not _is_float(t.object) and self._numbers.get(subject):
+            self._numbers[subject] -= 1
+            if not self._numbers[subject]:
+                del self._numbers[subject]
 
     def other_subject(self, value, subject: str | None) -> bool:
-        """Whether a fact whose subject is not ``subject`` (None: any) may have a value equal to ``value``."""
+        """Whether a fact whose subject is not ``subject`` (None: any) may have a value equal to
+        ``value`` (an xsd:float: whenever another subject holds a number that is no xsd:float)."""
         for key in probe_keys(value):
-            subjects = self._subjects.get(key)
-            if subjects and (subject is None or len(subjects) > 1 or subject not in subjects):
+            held = self._subjects.get(key)
+            if held is not None and _other(held, subject):
                 return True
-        return False
+        return _is_float(value) and probe_keys(value)[0][0] == "double" and _other(self._numbers, subject)
+
+
+def _other(held: str | dict[str, int], subject: str | None) -> bool:
+    if isinstance(held, str):
+        return held != subject
+    return bool(held) and (subject is None or len(held) > 1 or subject not in held)
 
 
 def difference_pairs(rule: Rule, changed: Collection[int]) -> list[tuple[int, int]] | None:

@@ -21,7 +21,7 @@ from ..compile.rule import Rule
 from ..rdf.vocab import ASSERTED, AUX, INFERRED
 from ..stores.base import key_census
 from . import flip, window
-from .equal_values import EqualityIndex, difference_pairs, probe_keys, stored_keys
+from .equal_values import EqualityIndex, difference_pairs
 from .materialize import ReasonStats
 from .plan import KeyCounts
 from .requests import RequestQueue
@@ -92,13 +92,11 @@ class Flips:
         if self.derivable(q):
             return True  # derived values are not in the index
         index = self._equality_index(q)
+        before = EqualityIndex(r.old for r in replaced.get(q, ()))  # the values replaced facts of q held
         for r in replacements:
             own = str(r.old.subject) if p == q else None  # a subject's one value is not its own partner
-            # the values replaced facts of q held before this change
-            before = {k for o in replaced.get(q, ()) if own is None or str(o.old.subject) != own
-                      for k in stored_keys(o.old.object)}
             for value in (r.old.object, r.new.object):
-                if index.other_subject(value, own) or before.intersection(probe_keys(value)):
+                if index.other_subject(value, own) or before.other_subject(value, own):
                     return True
         return False
 
