@@ -12,7 +12,7 @@ from pyoxigraph import Literal, NamedNode, Store, Triple
 from test_incremental import N, assert_same_as_scratch, new_map, revisit
 
 from topostore.rdf.vocab import AUX, DIFFERENT, XSD
-from topostore.reason.equal_values import EqualityIndex, difference_pairs
+from topostore.reason.equal_values import EqualityIndex, difference_pairs, may_equal
 
 A, B, P = NamedNode("urn:a"), NamedNode("urn:b"), NamedNode("urn:p")
 
@@ -41,6 +41,7 @@ def test_values_sparql_calls_equal_are_found(a: Literal) -> None:
     for b in VALUES:
         if sparql_equal(a, b):
             assert EqualityIndex([Triple(B, P, b)]).other_subject(a, str(A)), (a, b)
+            assert may_equal(a, b), (a, b)
 
 
 def test_distinct_values_do_not_meet() -> None:
@@ -49,6 +50,7 @@ def test_distinct_values_do_not_meet() -> None:
              (NamedNode("urn:a"), NamedNode("urn:b"))]
     for a, b in pairs:
         assert not EqualityIndex([Triple(B, P, b)]).other_subject(a, str(A)), (a, b)
+        assert not may_equal(a, b), (a, b)
     assert not EqualityIndex([Triple(B, P, lit("1.5", "float"))]).other_subject(lit("2", "integer"), str(A))
 
 

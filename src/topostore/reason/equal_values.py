@@ -134,6 +134,13 @@ def probe_keys(term) -> tuple:
     return tuple([("double", v) for v in _around(value, False)] + [("single", v) for v in _around(_single(value), True)])
 
 
+def may_equal(a, b) -> bool:
+    """Whether SPARQL may call ``a`` and ``b`` equal (as :class:`EqualityIndex` answers, for one pair)."""
+    if _is_float(a) and not _is_float(b) and _kind(b)[0] == "number":
+        return True
+    return not set(probe_keys(a)).isdisjoint(stored_keys(b))
+
+
 def _is_float(term) -> bool:
     return isinstance(term, Literal) and term.datatype.value == XSD + "float"
 
@@ -218,4 +225,4 @@ def difference_pairs(rule: Rule, changed: Collection[int]) -> list[tuple[int, in
     return pairs
 
 
-__all__ = ["EqualityIndex", "difference_pairs", "probe_keys", "stored_keys"]
+__all__ = ["EqualityIndex", "difference_pairs", "may_equal", "probe_keys", "stored_keys"]

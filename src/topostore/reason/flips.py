@@ -21,7 +21,7 @@ from ..compile.rule import Rule
 from ..rdf.vocab import ASSERTED, AUX, INFERRED
 from ..stores.base import key_census
 from . import flip, window
-from .equal_values import EqualityIndex, difference_pairs
+from .equal_values import EqualityIndex, difference_pairs, may_equal
 from .materialize import ReasonStats
 from .plan import KeyCounts
 from .requests import RequestQueue
@@ -80,8 +80,8 @@ class Flips:
         if pairs is None:
             return False
         body = self.rules[i].body
-        return not any(self._may_equal(body[seed].p, body[partner].p, replaced)
-                       for x, y in pairs for seed, partner in ((x, y), (y, x)))
+        compared = {(body[seed].p, body[partner].p) for x, y in pairs for seed, partner in ((x, y), (y, x))}
+        return not any(self._may_equal(p, q, replaced) for p, q in compared)
 
     def _may_equal(self, p: str, q: str, replaced: dict[str, list[flip.Replacement]]) -> bool:
         """Whether an old or new value of a replacement of ``p`` may equal a value of ``q`` held by
@@ -92,11 +92,12 @@ class Flips:
         if self.derivable(q):
             return True  # derived values are not in the index
         index = self._equality_index(q)
-        before = EqualityIndex(r.old for r in replaced.get(q, ()))  # the values replaced facts of q held
         for r in replacements:
             own = str(r.old.subject) if p == q else None  # a subject's one value is not its own partner
+            # the values the replaced facts of q held before this change
+            before = [o.old.object for o in replaced.get(q, ()) if own is None or str(o.old.subject) != own]
             for value in (r.old.object, r.new.object):
-                if index.other_subject(value, own) or before.other_subject(value, own):
+                if index.other_subject(value, own) or any(may_equal(value, old) for old in before):
                     return True
         return False
 
