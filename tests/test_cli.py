@@ -132,6 +132,8 @@ def test_rules_step_prints_the_compiled_step(tmp_path: Path) -> None:
     moved = run("rules", "--step", "isIn,now,visitedAt", TBOX, ABOX).output
     assert "operations outside recursive components" in moved and "# ---- recursive component:" not in moved
     assert "# runs when <http://bnc/exp-rob-lab/2022-23#isIn> lost facts" in moved
+    assert "(by index look-ups where up to 16 facts are in play, in memory)" in moved
+    assert "was replaced: only the branch seeded by its atom" in moved
     same = tmp_path / "same.ttl"
     same.write_text("@prefix : <http://example.org/#> . @prefix owl: <http://www.w3.org/2002/07/owl#> .\n"
                     ":p a owl:ObjectProperty . :a owl:sameAs :b . :a :p :c .\n")

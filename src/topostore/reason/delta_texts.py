@@ -94,11 +94,16 @@ def additions(rule: Rule, j: int | None, delta: NamedNode, into: Iterable[NamedN
             f"  FILTER NOT EXISTS {{ {head} }}\n}}")
 
 
-def flips(rule: Rule, order: tuple[int, ...], lateral: bool, tag: int, windows: dict | None = None) -> str:
+def flips(rule: Rule, order: tuple[int, ...], lateral: bool, tag: int, windows: dict | None = None,
+          seeded: bool = False) -> str:
     """The heads whose derivation by ``rule`` flips with the replaced values (see :mod:`.flip`) go to
-    FLIP_GAINED or FLIP_LOST; ``windows`` narrows compared atoms to the facts in a value window."""
+    FLIP_GAINED or FLIP_LOST; ``windows`` narrows compared atoms to the facts in a value window.
+    ``seeded``: only the branch of the first atom of ``order``, the others paired (exact where every
+    fact of that atom's predicate was replaced: every match starts from a replaced fact)."""
     compact = flip.compact_possible(rule, order)
     branches = flip.flip_branches(rule, order, lateral, tag, windows, compact=compact)
+    if seeded:
+        branches = branches[:1]
     template = rule.head.text() if compact else "?h0 ?h1 ?h2"
     return (f"INSERT {{ GRAPH ?flip {{ {template} }} }}\n{dataset(NEW_STATE, (AUX, flip.CHANGE_OLD))}\n"
             "WHERE {\n  {\n" + "\nUNION\n".join(branches)

@@ -21,6 +21,7 @@ from ..compile.rule import Rule
 from ..rdf.vocab import ASSERTED, AUX, INFERRED
 from ..stores.base import key_census
 from . import flip, window
+from .equal_values import EqualityIndex, difference_pairs, may_equal
 from .materialize import ReasonStats
 from .plan import KeyCounts
 from .requests import RequestQueue
@@ -48,21 +49,64 @@ class Flips:
         self._plans: dict[tuple, object] = {}
         #: sorted indexes of compared predicates (IRI text) for flip windows, kept from the asserted changes
         self._indexes: dict[str, window.ValueIndex] = {}
+        #: indexes of compared predicates' values by equality, for difference flips (see :mod:`.equal_values`)
+        self._equal: dict[str, EqualityIndex] = {}
         # per rule: the variables its filters mention
         self._filter_vars = [flip.filter_variables(r) for r in self.rules]
 
     def note(self, added: Collection[Triple], removed: Collection[Triple]) -> None:
         """Keep the value indexes up to date with the asserted changes."""
-        for t in removed:
-            if (index := self._indexes.get(f"<{t.predicate.value}>")) is not None:
-                index.discard(t)
-        for t in added:
-            if (index := self._indexes.get(f"<{t.predicate.value}>")) is not None:
-                index.add(t)
+        for indexes in (self._indexes, self._equal):
+            for t in removed:
+                if (index := indexes.get(f"<{t.predicate.value}>")) is not None:
+                    index.discard(t)
+            for t in added:
+                if (index := indexes.get(f"<{t.predicate.value}>")) is not None:
+                    index.add(t)
 
     def forget(self) -> None:
         """Drop the value indexes (after a full run or a failed REASON: rebuilt when next needed)."""
         self._indexes.clear()
+        self._equal.clear()
+
+    def quiet(self, i: int, order: tuple[int, ...], replaced: dict[str, list[flip.Replacement]]) -> bool:
+        """Whether rule ``i``'s flip over its changed atoms ``order`` surely finds nothing: its tests on
+        the replaced values are differences of values (:func:`.equal_values.difference_pairs`), and no
+        partner value may equal an old or a new value of a replacement (an index look-up per value)."""
+        key = ("difference", i, order)
+        if key not in self._plans:
+            self._plans[key] = difference_pairs(self.rules[i], order)
+        pairs = self._plans[key]
+        if pairs is None:
+            return False
+        body = self.rules[i].body
+        compared = {(body[seed].p, body[partner].p) for x, y in pairs for seed, partner in ((x, y), (y, x))}
+        return not any(self._may_equal(p, q, replaced) for p, q in compared)
+
+    def _may_equal(self, p: str, q: str, replaced: dict[str, list[flip.Replacement]]) -> bool:
+        """Whether an old or new value of a replacement of ``p`` may equal a value of ``q`` held by
+        another fact (now, or before this change for a replaced fact of ``q``)."""
+        replacements = replaced.get(p, ())
+        if not replacements:
+            return False
+        if self.derivable(q):
+            return True  # derived values are not in the index
+        index = self._equality_index(q)
+        for r in replacements:
+            own = str(r.old.subject) if p == q else None  # a subject's one value is not its own partner
+            # the values the replaced facts of q held before this change
+            before = [o.old.object for o in replaced.get(q, ()) if own is None or str(o.old.subject) != own]
+            for value in (r.old.object, r.new.object):
+                if index.other_subject(value, own) or any(may_equal(value, old) for old in before):
+                    return True
+        return False
+
+    def _equality_index(self, p: str) -> EqualityIndex:
+        """The equality index of predicate ``p``'s asserted facts (built once, kept by :meth:`note`)."""
+        index = self._equal.get(p)
+        if index is None:
+            index = self._equal[p] = EqualityIndex(self.store.triples(None, NamedNode(p[1:-1]), None, ASSERTED))
+        return index
 
     def find(self, state, added: Collection[Triple], removed: Collection[Triple], added_keys: KeyCounts,
              stats: ReasonStats, replaced: dict | None = None) -> tuple[set[tuple[int, int]], list[Triple], set[int]]:

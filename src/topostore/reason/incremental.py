@@ -389,6 +389,8 @@ class IncrementalReasoner:
         if kinds and all(
                 flip.same_kind(r) for j in order for r in self._clean.get(rule.body[j].p, ())):
             return ""
+        if self.flips.quiet(i, order, self._clean):
+            return ""  # a difference of values whose partners none may equal (see :mod:`.equal_values`)
         windows = self.flips._windows(i, order)
         if not windows:
             return text

@@ -64,6 +64,7 @@ from ..rdf.vocab import DIFFERENT, TYPE
 from . import delta_texts as texts
 from . import flip
 from .component import COMPONENT_SCRATCH, UNSETTLED, compile_component, whole_ops
+from .direct import FEW, Gained, Lost, OneAtom, Relaxed, one_atom, relaxable
 from .order import strongly_connected
 from .restate import covering, restates
 from .scratch import ADDED, CANDIDATES, NEW_FACTS, OVERDELETED, REMOVED, target
@@ -108,6 +109,12 @@ class StepProgram:
     clean: frozenset = field(default_factory=frozenset)
     #: keys whose absence from the asserted graph let rechecks be left out (see :meth:`_Emitter.recheck`)
     needs_unasserted: frozenset = field(default_factory=frozenset)
+    #: by position in ``ops``: the operation's equivalent through index look-ups (see :mod:`.direct`),
+    #: ``run(store)`` answering False where its text must run instead
+    direct: dict = field(default_factory=dict)
+    #: by position of a flip in ``ops``: per compared predicate (IRI text), the flip as the one branch
+    #: seeded by that predicate's atom, for a run where every fact of it was replaced
+    seeded: dict = field(default_factory=dict)
 
     @property
     def whole(self) -> bool:
@@ -200,7 +207,10 @@ def describe(program: StepProgram) -> str:
     """The program as commented SPARQL: each operation with when it runs (``topostore rules --step``)."""
     out = [f"# {program.operations} operations outside recursive components; flips of "
            + (", ".join(sorted(program.flipped)) or "none")]
-    for tag, text in program.ops:
+    for index, (tag, text) in enumerate(program.ops):
+        if index in program.seeded:
+            out.append(f"# where every fact of {' or '.join(program.seeded[index])} was replaced: only the "
+                       "branch seeded by its atom")
         if tag[0] == "flip":
             tag = tag[1]
         if tag[0] == "end":
@@ -215,6 +225,8 @@ def describe(program: StepProgram) -> str:
                        "run round by round")
         else:
             when = _WHEN.get(tag[0], tag[0]).format(tag[1][1] if len(tag) > 1 else "")
+            if index in program.direct:
+                when += f" (by index look-ups where up to {FEW} facts are in play, in memory)"
             out.append(f"# runs {when}\n{text} ;")
     return "\n".join(out)
 
@@ -407,6 +419,16 @@ class _Emitter:
         self.flip_rules = 0
         #: the keys the program may change, with the graph their derived facts live in
         self.graphs: dict[ReadKey, NamedNode] = {}
+        #: operations with an equivalent through index look-ups, by position (see :mod:`.direct`)
+        self.direct: dict[int, Callable] = {}
+        #: flips as one branch, by position and seed predicate (see :attr:`StepProgram.seeded`)
+        self.seeded: dict[int, dict[str, str]] = {}
+
+    def op(self, ops: list, tag: tuple, text: str, direct: Callable | None = None) -> None:
+        """Append an operation to ``ops`` (the program's own: with its look-up equivalent, if any)."""
+        if direct is not None and ops is self.ops:
+            self.direct[len(ops)] = direct
+        ops.append((tag, text))
 
     def emit(self, components: list, absent: set) -> StepProgram:
         for item in components:
@@ -418,7 +440,8 @@ class _Emitter:
             if writers or (item in self.sig.removed and self.writers.get(item)):
                 self._plain(item, writers)
         return StepProgram(self.ops, frozenset(absent), frozenset(self.graphs), frozenset(self.flipped),
-                           self.flip_rules, self.clean, frozenset(self.unasserted))
+                           self.flip_rules, self.clean, frozenset(self.unasserted), self.direct,
+                           self.seeded)
 
     def _plain(self, key: ReadKey, writers: list[int]) -> None:
         """A key no rule derives from itself: candidates, flips, recheck, additions."""
@@ -436,14 +459,15 @@ class _Emitter:
                 i = keeps[0][0]  # one prover, whose head matches every fact of the key: ask it inside the deletion
                 self.ops.append((("delete", key), texts.recheck_one(self.rules[i], graph, self.restated(i))))
             else:
-                self.ops += [(("keep", key), text) for _, text in keeps]
+                for i, text in keeps:
+                    self.op(self.ops, ("keep", key), text, self._one_atom(i, graph, "keep"))
                 self.ops.append((("delete", key), texts.recheck(key, graph)))
             if key in self.sig.removed:
                 self.ops.append((recheck, texts.restore(key, graph)))
             self.minus.add(key)
         added = self._additions(writers, graph)
         if flipped:
-            self.ops.append((("gained", key), texts.gained(key, (graph, NEW_FACTS))))
+            self.op(self.ops, ("gained", key), texts.gained(key, (graph, NEW_FACTS)), Gained(key, graph).run)
         if added or flipped:
             self.plus.add(key)
         self.ops.append((("end", key), ""))
@@ -501,7 +525,8 @@ class _Emitter:
             handled = set(self.handled(i) or ())
             for j, atom in enumerate(self.rules[i].body):
                 if atom.read_key() in self.minus and j not in handled and not self.idle(i, j):
-                    self.ops.append((("minus", atom.read_key()), self.candidates(i, j)))
+                    self.op(self.ops, ("minus", atom.read_key()), self.candidates(i, j),
+                            self._one_atom(i, target(self.rules[i]), "candidates") or self._relaxed(i, j))
                     emitted = True
         return emitted
 
@@ -526,10 +551,15 @@ class _Emitter:
             self.flip_rules += 1
             order = self.c.order(i, compared)
             # the text is made per run when a value window narrows the flip (see :mod:`.window`)
+            if ops is self.ops and len(order) > 1:
+                self.seeded[len(ops)] = {
+                    rule.body[j].p: texts.flips(rule, (j, *(m for m in order if m != j)), self.c.lateral, i, seeded=True)
+                    for j in order}
             ops.append((("flip", tag, i, order), texts.flips(rule, order, self.c.lateral, i)))
             found.append(i)
         for key in sorted({self.rules[i].writes() for i in found}):
-            ops.append((("lost", key), texts.lost(key, self.target(key, found))))
+            graph = self.target(key, found)
+            self.op(ops, ("lost", key), texts.lost(key, graph), Lost(key, graph).run)
         return found
 
     def _additions(self, writers: list[int], graph: NamedNode) -> bool:
@@ -539,10 +569,24 @@ class _Emitter:
             handled = set(self.handled(i) or ())
             for j, atom in enumerate(self.rules[i].body):
                 if atom.read_key() in self.plus and j not in handled and not self.idle(i, j):
-                    self.ops.append((("plus", atom.read_key()),
-                                     texts.additions(self.rules[i], j, NEW_FACTS, (graph, NEW_FACTS), self.c.lateral)))
+                    self.op(self.ops, ("plus", atom.read_key()),
+                            texts.additions(self.rules[i], j, NEW_FACTS, (graph, NEW_FACTS), self.c.lateral),
+                            self._one_atom(i, graph, "additions"))
                     emitted = True
         return emitted
+
+    def _relaxed(self, i: int, j: int) -> Callable | None:
+        """Rule ``i``'s candidates from atom ``j``, widened to look-ups (see :class:`.direct.Relaxed`)."""
+        rule = self.rules[i]
+        return Relaxed(rule, j, target(rule)).run if relaxable(rule, j) else None
+
+    def _one_atom(self, i: int, graph: NamedNode, what: str) -> Callable | None:
+        """Rule ``i``'s ``what`` (candidates, keep, additions) through index look-ups, when it is a
+        rule with one atom and no filter whose recheck reads the new state (see :mod:`.direct`)."""
+        rule = self.rules[i]
+        if not one_atom(rule) or (what == "keep" and self.restated(i)):
+            return None
+        return getattr(OneAtom(rule, graph), what)
 
 
 __all__ = ["ALWAYS", "PROGRAM_SCRATCH", "Refused", "SEEDS", "Signature", "StepCompiler", "StepProgram",

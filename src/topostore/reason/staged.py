@@ -17,7 +17,7 @@ from pyoxigraph import NamedNode, Triple
 
 from ..compile.generic import PREFIXES
 from ..compile.rule import ReadKey
-from ..rdf.vocab import TYPE
+from ..rdf.vocab import ASSERTED, TYPE
 from .component import run_component
 from .delta_texts import FLIP_LOST, KEEP
 from .program import Signature, StepProgram
@@ -51,6 +51,8 @@ class StagedRun:
         self.sent = 0
         #: recursive components run so far (their scratch graphs start empty)
         self.components = 0
+        #: operations with an equivalent through index look-ups use it (not where a look-up is a round trip)
+        self.direct = {} if store.round_trips else program.direct
 
     def run(self) -> None:
         """Run the program: an operation is sent when the key it starts from changed, and a key's
@@ -59,9 +61,9 @@ class StagedRun:
         seeded = False
         found: dict[tuple, bool] = {}
         mark = self.sent
-        for tag, text in self.program.ops:
+        for index, (tag, text) in enumerate(self.program.ops):
             if tag[0] == "flip":
-                tag, text = tag[1], self.flip_text(tag[2], tag[3], text)
+                tag, text = tag[1], self._flip(index, tag, text)
                 if not text:
                     continue  # nothing can flip this time
             kind = tag[0]
@@ -69,14 +71,14 @@ class StagedRun:
                 self.store.add_scratch(self.changes[0], NEW_FACTS)
                 self.store.add_scratch(self.changes[1], OVERDELETED)
             elif kind == "keep":
-                self._keep(found, tag[1], text, seeded)
+                self._keep(found, tag[1], index, text, seeded)
             elif kind == "delete":
                 if not found.get(("kept", tag[1])) and self._holds(found, CANDIDATES, tag[1], seeded):
                     self.queue.append(text)
             elif kind in ("always", "seeds", "changes") or (kind == "minus" and tag[1] in self.minus) \
                     or (kind == "plus" and tag[1] in self.plus) \
                     or (kind in _AFTER and self._holds(found, _AFTER[kind], tag[1], seeded)):
-                self.queue.append(text)
+                self._send(index, text)
                 seeded |= kind in ("seeds", "minus", "lost")
             elif kind == "end":
                 if self.queue or self.sent != mark:  # something ran for this key (a look-up may have sent it)
@@ -89,12 +91,44 @@ class StagedRun:
                 run_component(self, tag[1])
         self.flush()
 
-    def _keep(self, found: dict, key: ReadKey, text: str, seeded: bool) -> None:
+    def _flip(self, index: int, tag: tuple, text: str) -> str:
+        """The flip's text for this run (:attr:`flip_text`); where that is the compiled text and every
+        fact of a compared predicate was replaced, the one branch seeded by it instead of the UNION."""
+        found = self.flip_text(tag[2], tag[3], text)
+        seeded = self.program.seeded.get(index)
+        if found is not text or not seeded or self.changes is None or self.store.round_trips:
+            return found
+        for p, single in seeded.items():
+            if self._all_replaced(p):
+                return single
+        return found
+
+    def _all_replaced(self, p: str) -> bool:
+        """Whether every fact of predicate ``p`` (IRI text; asserted only, no rule derives it) was
+        replaced by this change: as many facts as replaced subjects (one index read, stopped early)."""
+        subjects = {t.subject for t in self.changes[0] if t.predicate.value == p[1:-1]}
+        if not subjects:
+            return False
+        facts = islice(self.store.triples(None, NamedNode(p[1:-1]), None, ASSERTED), len(subjects) + 1)
+        return sum(1 for _ in facts) == len(subjects)
+
+    def _send(self, index: int, text: str) -> None:
+        """Run operation ``index`` through look-ups where it has that equivalent and its facts are few
+        (after sending what is queued, which it reads), else queue its text."""
+        direct = self.direct.get(index)
+        if direct is not None:
+            self.flush()
+            if direct(self.store):
+                self.sent += 1
+                return
+        self.queue.append(text)
+
+    def _keep(self, found: dict, key: ReadKey, index: int, text: str, seeded: bool) -> None:
         """Queue one of a key's rechecks, unless every candidate is kept already: while the key has
         few candidates, each recheck is sent alone and the candidates and kept ones counted after it."""
         if found.get(("kept", key)) or not self._holds(found, CANDIDATES, key, seeded):
             return
-        self.queue.append(text)
+        self._send(index, text)
         if found.get(("many", key)):
             return
         self.flush()

@@ -1,0 +1,250 @@
+"""Compiled-step operations answered by index look-ups instead of a SPARQL update, where few facts are in play.
+
+Why this exists
+---------------
+On the in-memory store a SPARQL update costs 20–40 µs to parse and plan even when it moves one fact,
+while an index look-up costs about a microsecond.  Several operations of the compiled step
+(:mod:`.program`) need no join at all: moving a key's flipped facts to its candidates or into its
+graph (``lost``, ``gained``), and the candidates, rechecks and additions of a rule with one body
+atom and no filter (a domain, range or subclass axiom: the commonest OWL rules).  Each such
+operation has an equivalent here that reads its few facts through the store's quad API; when there
+are more than :data:`FEW` of them, or a fact it would write holds a literal (whose stored spelling
+the SPARQL text leaves to the store), it answers False and the SPARQL text runs instead.  Only
+stores where a look-up is not a round trip use them (see :class:`.staged.StagedRun`); the whole
+program as one request (:meth:`.program.StepProgram.text`) is unchanged.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from itertools import islice
+
+from pyoxigraph import BlankNode, Literal, NamedNode, Quad, Triple
+
+from ..compile.rule import ReadKey, Rule
+from ..rdf.terms import parse_term
+from ..rdf.vocab import ASSERTED, AUX, INFERRED, TYPE
+from .delta_texts import FLIP_LOST, KEEP
+from .scratch import CANDIDATES, FLIP_GAINED, NEW_FACTS, OVERDELETED
+
+#: at most this many facts are moved through look-ups; more go through the SPARQL text
+FEW = 16
+
+_STATE = (ASSERTED, INFERRED, AUX)
+
+
+def _facts(store, pattern: tuple, graph: NamedNode) -> list[Triple] | None:
+    """The facts of ``pattern`` in ``graph``, None when there are more than :data:`FEW`."""
+    found = list(islice(store.triples(*pattern, graph), FEW + 1))
+    return None if len(found) > FEW else found
+
+
+def _known(store, facts: list[Triple], graphs: tuple[NamedNode, ...]) -> list[bool]:
+    """Whether each fact is in one of ``graphs`` (one look-up batch)."""
+    present = store.contains_quads([Quad(t.subject, t.predicate, t.object, g) for t in facts for g in graphs])
+    n = len(graphs)
+    return [any(present[i * n:(i + 1) * n]) for i in range(len(facts))]
+
+
+def _key_pattern(key: ReadKey) -> tuple:
+    term = NamedNode(key[1][1:-1])
+    return (None, TYPE, term) if key[0] == "t" else (None, term, None)
+
+
+@dataclass(frozen=True)
+class Lost:
+    """:func:`.delta_texts.lost`: flipped-false facts of ``key`` present in ``graph`` become candidates."""
+
+    key: ReadKey
+    graph: NamedNode
+
+    def run(self, store) -> bool:
+        facts = _facts(store, _key_pattern(self.key), FLIP_LOST)
+        if facts is None or any(isinstance(t.object, Literal) for t in facts):
+            return False
+        present = [t for t, here in zip(facts, store.contains_each(facts, self.graph)) if here]
+        store.add_scratch(present, CANDIDATES)
+        return True
+
+
+@dataclass(frozen=True)
+class Gained:
+    """:func:`.delta_texts.gained`: flipped-true facts of ``key`` not known yet, into ``graph`` and NEW_FACTS."""
+
+    key: ReadKey
+    graph: NamedNode
+
+    def run(self, store) -> bool:
+        facts = _facts(store, _key_pattern(self.key), FLIP_GAINED)
+        if facts is None or any(isinstance(t.object, Literal) for t in facts):
+            return False
+        _write_new(store, facts, self.graph)
+        return True
+
+
+def _write_new(store, heads: list[Triple], graph: NamedNode) -> None:
+    """The heads not known in the new state, into ``graph`` and NEW_FACTS."""
+    heads = list(dict.fromkeys(heads))
+    new = [t for t, known in zip(heads, _known(store, heads, _STATE)) if not known]
+    if new:
+        store.add_scratch(new, graph)
+        store.add_scratch(new, NEW_FACTS)
+
+
+class OneAtom:
+    """A rule with one body atom and no filter, on named terms (see :func:`one_atom`): its
+    candidates from removed facts, its recheck of candidates and its additions from added facts."""
+
+    def __init__(self, rule: Rule, graph: NamedNode) -> None:
+        self.atom = rule.body[0]
+        self.head = rule.head
+        self.graph = graph
+        self._body = tuple(_term(t) for t in (self.atom.s, self.atom.p, self.atom.o))
+        self._head = tuple(_term(t) for t in (self.head.s, self.head.p, self.head.o))
+
+    def _heads(self, facts: list[Triple]) -> list[Triple] | None:
+        """The heads the facts derive (None when one would hold a literal)."""
+        out = []
+        for t in facts:
+            bound = _match(self._body, t)
+            if bound is None:
+                continue
+            head = _instance(self._head, bound)
+            if head is False:
+                return None
+            if head is not None:
+                out.append(head)
+        return out
+
+    def candidates(self, store) -> bool:
+        """:func:`.delta_texts.candidates`: heads present in the graph that a removed fact derived."""
+        facts = _facts(store, _pattern(self._body), OVERDELETED)
+        heads = None if facts is None else self._heads(facts)
+        if heads is None:
+            return False
+        store.add_scratch([h for h, here in zip(heads, store.contains_each(heads, self.graph)) if here], CANDIDATES)
+        return True
+
+    def additions(self, store) -> bool:
+        """:func:`.delta_texts.additions`: heads an added fact derives, not known yet."""
+        facts = _facts(store, _pattern(self._body), NEW_FACTS)
+        heads = None if facts is None else self._heads(facts)
+        if heads is None:
+            return False
+        _write_new(store, heads, self.graph)
+        return True
+
+    def keep(self, store) -> bool:
+        """:func:`.delta_texts.keep`: the candidates the rule derives from the new state go to KEEP."""
+        candidates = _facts(store, _pattern(self._head), CANDIDATES)
+        if candidates is None:
+            return False
+        graphs = (AUX,) if self.atom.aux else _STATE
+        kept = []
+        for c in candidates:
+            bound = _match(self._head, c)
+            if bound is None:
+                continue
+            pattern = tuple(bound.get(x) if isinstance(x, str) else x for x in self._body)
+            if any(self._proves(store.triples(*pattern, g), bound) for g in graphs):
+                kept.append(c)
+        store.add_scratch(kept, KEEP)
+        return True
+
+    def _proves(self, facts, bound: dict[str, object]) -> bool:
+        """Whether one of ``facts`` matches the atom with the head's values ``bound`` (a variable
+        the head leaves free but the atom repeats must take one value)."""
+        for t in facts:
+            found = _match(self._body, t)
+            if found is not None and all(found[x] == value for x, value in bound.items() if x in found):
+                return True
+        return False
+
+
+class Relaxed:
+    """:func:`.delta_texts.candidates` widened: every present head that agrees with a removed fact of
+    atom ``j`` on the head's variables that atom binds, whatever the rest of the body.
+
+    A candidate is only rechecked, and the recheck of a key whose inputs are final is exact whatever
+    the candidates (a present fact no longer derivable is deleted, any other kept), so a superset
+    of the exact candidates changes nothing but the work: this one costs look-ups instead of a join,
+    and is used only while it stays as small as :data:`FEW` (else the exact SPARQL text runs)."""
+
+    def __init__(self, rule: Rule, j: int, graph: NamedNode) -> None:
+        self._body = tuple(_term(t) for t in (rule.body[j].s, rule.body[j].p, rule.body[j].o))
+        self._head = tuple(_term(t) for t in (rule.head.s, rule.head.p, rule.head.o))
+        self.graph = graph
+
+    def run(self, store) -> bool:
+        facts = _facts(store, _pattern(self._body), OVERDELETED)
+        if facts is None:
+            return False
+        heads: dict[Triple, None] = {}
+        for t in facts:
+            bound = _match(self._body, t)
+            if bound is None:
+                continue
+            found = _facts(store, tuple(bound.get(x) if isinstance(x, str) else x for x in self._head), self.graph)
+            if found is None:
+                return False
+            heads.update(dict.fromkeys(found))
+            if len(heads) > FEW:
+                return False
+        store.add_scratch(list(heads), CANDIDATES)
+        return True
+
+
+def relaxable(rule: Rule, j: int) -> bool:
+    """Whether :class:`Relaxed` applies to atom ``j``: every term of the atom and the head a variable
+    or an IRI, and a head variable bound by the atom (else every fact of the key would be a candidate)."""
+    atom, head = rule.body[j], rule.head
+    if head is None or not (head.variables() & atom.variables()):
+        return False
+    return all(t.startswith("?") or (t.startswith("<") and t.endswith(">"))
+               for t in (atom.s, atom.p, atom.o, head.s, head.p, head.o))
+
+
+def one_atom(rule: Rule) -> bool:
+    """Whether :class:`OneAtom` can evaluate ``rule``: one body atom, no filter, every term a
+    variable or an IRI, the head's variables bound by the atom."""
+    if len(rule.body) != 1 or rule.conditions or rule.head is None:
+        return False
+    atom, head = rule.body[0], rule.head
+    terms = (atom.s, atom.p, atom.o, head.s, head.p, head.o)
+    return all(t.startswith("?") or (t.startswith("<") and t.endswith(">")) for t in terms) \
+        and head.variables() <= atom.variables()
+
+
+def _term(text: str):
+    """A variable's name (str) or the named term."""
+    return text if text.startswith("?") else parse_term(text)
+
+
+def _pattern(terms: tuple) -> tuple:
+    return tuple(None if isinstance(x, str) else x for x in terms)
+
+
+def _match(terms: tuple, t: Triple) -> dict[str, object] | None:
+    """The variables' values for which ``terms`` match ``t`` (None: no match)."""
+    bound: dict[str, object] = {}
+    for x, value in zip(terms, (t.subject, t.predicate, t.object)):
+        if isinstance(x, str):
+            if bound.setdefault(x, value) != value:
+                return None
+        elif x != value:
+            return None
+    return bound
+
+
+def _instance(terms: tuple, bound: dict[str, object]) -> Triple | None | bool:
+    """The head for ``bound``: None where SPARQL would not write it (a literal subject, a predicate
+    that is not an IRI), False where a literal object would leave its spelling to this code."""
+    s, p, o = (bound[x] if isinstance(x, str) else x for x in terms)
+    if not isinstance(s, (NamedNode, BlankNode)) or not isinstance(p, NamedNode):
+        return None
+    if isinstance(o, Literal):
+        return False
+    return Triple(s, p, o)
+
+
+__all__ = ["FEW", "Gained", "Lost", "OneAtom", "Relaxed", "one_atom", "relaxable"]
