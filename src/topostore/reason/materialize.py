@@ -20,17 +20,17 @@ join only after the positive rules reached their fixpoint.
 from __future__ import annotations
 
 import time
-from collections.abc import Collection
+from collections.abc import Collection, Mapping
 from dataclasses import dataclass, field
 
 from pyoxigraph import NamedNode
 
 from ..compile.generic import PREFIXES
-from ..compile.rule import Rule, RuleSet
+from ..compile.rule import ReadKey, Rule, RuleSet
 from ..rdf.vocab import ASSERTED, AUX, DELTA, INFERRED, INTERNAL, NEW_AUX, NEW_INFERRED, TYPE
 from ..stores.base import Store
 from . import limits
-from .order import TYPE_KEY, evaluation_order, reachable
+from .order import TYPE_KEY, evaluation_order, reachable, single_graphs
 from .plan import KeyCounts, is_small, plan_where
 from .triggers import Present, Triggers
 
@@ -62,13 +62,16 @@ class ReasonStats:
 
 
 def insert_text(rule: Rule, delta_index: int | None = None, planned: bool = False, lateral: bool = True,
-                direct: tuple[NamedNode, NamedNode | None] | None = None) -> str:
+                direct: tuple[NamedNode, NamedNode | None] | None = None,
+                graphs: Mapping[ReadKey, NamedNode] | None = None) -> str:
     """The INSERT evaluating ``rule`` (atom ``delta_index`` on the delta) into NEW_*.
 
     ``planned`` uses :func:`.plan.plan_where` for delta evaluations (delta atom
     first, rest per delta fact), whose cost follows the delta rather than the data.
     ``direct`` = (delta read, next delta) writes the head into its final graph and into the
     next delta (None: no delta) instead of NEW_* (the full run's rounds, see :meth:`Materializer.run`).
+    ``graphs``: the one graph holding each of some read keys (:func:`.order.single_graphs`), read
+    there instead of in the whole default dataset (unplanned evaluations only).
     """
     final = AUX if rule.head_aux() else INFERRED
     target = NEW_AUX if rule.head_aux() else NEW_INFERRED
@@ -78,17 +81,19 @@ def insert_text(rule: Rule, delta_index: int | None = None, planned: bool = Fals
     if planned and delta_index is not None:
         where = plan_where(rule, delta_index, delta, lateral=lateral)
     else:
-        where = rule.where(delta_index, str(delta))
+        where = rule.where(delta_index, str(delta), graphs)
     into = f"GRAPH {target} {{ {head} }}" if direct is None else f"GRAPH {final} {{ {head} }}"
     if direct is not None and direct[1] is not None:
         into += f" GRAPH {direct[1]} {{ {head} }}"
     dataset = DATASET if direct is None else DATASET.replace(str(DELTA), str(delta))
+    named = {g for g in (graphs or {}).values() if g not in (AUX, delta)}
     known = new_only(rule, small)
     if direct is not None and direct[1] is None:
         # no delta: a head already inferred is written again, which changes nothing, so only the
         # asserted facts are kept out (an inferred fact is never an asserted one)
         known = new_only(rule, small, ASSERTED)
-        dataset += f" USING NAMED {ASSERTED}"
+        named.add(ASSERTED)
+    dataset += "".join(f" USING NAMED {g}" for g in sorted(named, key=str))
     return f"INSERT {{ {into} }}\n{dataset}\nWHERE {{\n  {where}\n  {known}\n}}"
 
 
@@ -128,13 +133,15 @@ class Materializer:
         self._lateral = store.supports_lateral
         #: (delta read, next delta) while :meth:`run` writes derived facts straight to their graphs
         self._direct: tuple[NamedNode, NamedNode] | None = None
+        #: while :meth:`run` evaluates the ordered first stratum: the one graph of some read keys
+        self._graphs: dict[ReadKey, NamedNode] | None = None
 
     def _run(self, index: int, delta_index: int | None, stats: ReasonStats) -> None:
-        key = (index, delta_index, self._lateral, self._direct)
+        key = (index, delta_index, self._lateral, self._direct, self._graphs is not None)
         text = self._texts.get(key)
         if text is None:
             text = self._texts[key] = insert_text(self.rules[index], delta_index, self.planned, self._lateral,
-                                                  self._direct)
+                                                  self._direct, self._graphs)
         stats.evaluations += 1
         if not self.profile:
             self._queue.append(text)  # sent by _flush, one request per round
@@ -316,9 +323,17 @@ class Materializer:
         possible = reachable(self.triggers, first, self.present)
         first = [i for i in first if self.triggers.feasible(i, possible)]
         ordered, rest, back = evaluation_order(self.rules, first)
-        for component in ordered:
-            self._first_pass(component, back, stats)
-            self.propagate(component, stats)
+        # until the rules of a variable predicate and the upper strata run, only the ordered rules
+        # write, so a key's facts lie where its asserted facts and its writers put them
+        asserted = (set(self.present[0]), set(self.present[1]))
+        self._graphs = single_graphs(self.rules, [i for c in ordered for i in c], self.triggers.needed_keys(),
+                                     asserted, lambda r: AUX if r.head_aux() else INFERRED, ASSERTED)
+        try:
+            for component in ordered:
+                self._first_pass(component, back, stats)
+                self.propagate(component, stats)
+        finally:
+            self._graphs = None
         for level in strata:
             active = [i for i, r in enumerate(self.rules) if r.stratum <= level]
             fresh = rest if level == strata[0] else [i for i in active if self.rules[i].stratum == level]
