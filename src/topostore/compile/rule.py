@@ -11,6 +11,7 @@ from __future__ import annotations
 
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
+from functools import cached_property
 
 from pyoxigraph import NamedNode
 
@@ -181,6 +182,11 @@ class Rule:
         return self.head.read_key() if self.head else None
 
     def head_aux(self) -> bool:
+        return self._head_aux
+
+    @cached_property
+    def _head_aux(self) -> bool:
+        """Whether the head goes to the helper graph (decided once: a full REASON asks per evaluation)."""
         if self.aux_head is not None:
             return self.aux_head
         return self.head is not None and head_is_aux(self.head.p, self.head.o)
