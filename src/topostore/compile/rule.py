@@ -9,8 +9,9 @@ classes a rule reads to skip rules nothing new can trigger.
 
 from __future__ import annotations
 
-from collections.abc import Iterable
+from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
+from functools import cached_property
 
 from pyoxigraph import NamedNode
 
@@ -181,29 +182,46 @@ class Rule:
         return self.head.read_key() if self.head else None
 
     def head_aux(self) -> bool:
+        return self._head_aux
+
+    @cached_property
+    def _head_aux(self) -> bool:
+        """Whether the head goes to the helper graph (decided once: a full REASON asks per evaluation)."""
         if self.aux_head is not None:
             return self.aux_head
         return self.head is not None and head_is_aux(self.head.p, self.head.o)
 
-    def where(self, delta_index: int | None = None, delta_graph: str = "") -> str:
+    def where(self, delta_index: int | None = None, delta_graph: str = "",
+              graphs: Mapping[ReadKey, NamedNode] | None = None) -> str:
         """The WHERE group; with ``delta_index``, that atom reads only the delta graph.
 
         Atoms are written in a join order chosen by :func:`join_order` (the delta
         atom first), because the store evaluates a basic graph pattern largely in
-        the order it is written.
+        the order it is written.  ``graphs`` names the one graph that holds every fact of
+        some read keys (see :func:`.atom_text`).
         """
-        lines = [self.atom_text(i, delta_index, delta_graph) for i in join_order(self.body, delta_index)]
+        lines = [self.atom_text(i, delta_index, delta_graph, graphs) for i in join_order(self.body, delta_index)]
         if self.filters:
             lines.append(self.filters)
         return "\n  ".join(lines)
 
-    def atom_text(self, i: int, delta_index: int | None = None, delta_graph: str = "") -> str:
-        """Body atom ``i`` as a pattern: on the delta graph, the helper graph, or the default graph."""
+    def atom_text(self, i: int, delta_index: int | None = None, delta_graph: str = "",
+                  graphs: Mapping[ReadKey, NamedNode] | None = None) -> str:
+        """Body atom ``i`` as a pattern: on the delta graph, the helper graph, the one graph
+        ``graphs`` names for its read key, or the default graph.
+
+        A default-graph pattern is looked up in each graph of the default dataset (asserted,
+        inferred, helper); where the caller knows that one graph holds all the key's facts, one
+        look-up suffices (a quarter of a join's cost on the maps, docs/benchmarks.md).
+        """
         atom = self.body[i]
         if i == delta_index:
             return f"GRAPH {delta_graph} {{ {atom.text()} }}"
         if atom.aux:
             return f"GRAPH {AUX} {{ {atom.text()} }}"
+        graph = graphs.get(atom.read_key()) if graphs else None
+        if graph is not None:
+            return f"GRAPH {graph} {{ {atom.text()} }}"
         return atom.text()
 
     def sparql(self) -> str:

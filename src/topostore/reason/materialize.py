@@ -20,18 +20,18 @@ join only after the positive rules reached their fixpoint.
 from __future__ import annotations
 
 import time
-from collections.abc import Collection
+from collections.abc import Collection, Mapping
 from dataclasses import dataclass, field
 
 from pyoxigraph import NamedNode
 
 from ..compile.generic import PREFIXES
-from ..compile.rule import Rule, RuleSet
+from ..compile.rule import ReadKey, Rule, RuleSet
 from ..compile.schema import schema_dataset
 from ..rdf.vocab import ASSERTED, AUX, DELTA, INFERRED, INTERNAL, NEW_AUX, NEW_INFERRED, TYPE
 from ..stores.base import Store
 from . import limits
-from .order import TYPE_KEY, evaluation_order, reachable
+from .order import TYPE_KEY, evaluation_order, reachable, single_graphs
 from .plan import KeyCounts, is_small, plan_where
 from .triggers import Present, Triggers
 
@@ -63,13 +63,17 @@ class ReasonStats:
 
 
 def insert_text(rule: Rule, delta_index: int | None = None, planned: bool = False, lateral: bool = True,
-                direct: tuple[NamedNode, NamedNode | None] | None = None) -> str:
+                direct: tuple[NamedNode, NamedNode | None] | None = None,
+                graphs: Mapping[ReadKey, NamedNode] | None = None, derived: bool = False) -> str:
     """The INSERT evaluating ``rule`` (atom ``delta_index`` on the delta) into NEW_*.
 
     ``planned`` uses :func:`.plan.plan_where` for delta evaluations (delta atom
     first, rest per delta fact), whose cost follows the delta rather than the data.
     ``direct`` = (delta read, next delta) writes the head into its final graph and into the
     next delta (None: no delta) instead of NEW_* (the full run's rounds, see :meth:`Materializer.run`).
+    ``graphs``: the one graph holding each of some read keys (:func:`.order.single_graphs`), read
+    there instead of in the whole default dataset (unplanned evaluations only).  ``derived``: the
+    head's key already has derived facts, which a rule without delta keeps out too.
     """
     final = AUX if rule.head_aux() else INFERRED
     target = NEW_AUX if rule.head_aux() else NEW_INFERRED
@@ -79,17 +83,21 @@ def insert_text(rule: Rule, delta_index: int | None = None, planned: bool = Fals
     if planned and delta_index is not None:
         where = plan_where(rule, delta_index, delta, lateral=lateral)
     else:
-        where = rule.where(delta_index, str(delta))
+        where = rule.where(delta_index, str(delta), graphs)
     into = f"GRAPH {target} {{ {head} }}" if direct is None else f"GRAPH {final} {{ {head} }}"
     if direct is not None and direct[1] is not None:
         into += f" GRAPH {direct[1]} {{ {head} }}"
     dataset = (DATASET if direct is None else DATASET.replace(str(DELTA), str(delta))) + schema_dataset(rule)
+    named = {graphs[a.read_key()] for a in rule.body if not a.aux and a.read_key() in graphs} if graphs else set()
+    named -= {AUX, delta}
     known = new_only(rule, small)
-    if direct is not None and direct[1] is None:
-        # no delta: a head already inferred is written again, which changes nothing, so only the
-        # asserted facts are kept out (an inferred fact is never an asserted one)
+    if direct is not None and direct[1] is None and not derived:
+        # no delta and no derived fact of the head's key yet: only the asserted facts are kept out
+        # (an inferred fact is never an asserted one); once another rule derived facts of the key,
+        # writing them again costs more than the anti-join (a write looks up six indexes)
         known = new_only(rule, small, ASSERTED)
-        dataset += f" USING NAMED {ASSERTED}"
+        named.add(ASSERTED)
+    dataset += "".join(f" USING NAMED {g}" for g in sorted(named, key=str))
     return f"INSERT {{ {into} }}\n{dataset}\nWHERE {{\n  {where}\n  {known}\n}}"
 
 
@@ -129,13 +137,18 @@ class Materializer:
         self._lateral = store.supports_lateral
         #: (delta read, next delta) while :meth:`run` writes derived facts straight to their graphs
         self._direct: tuple[NamedNode, NamedNode] | None = None
+        #: while :meth:`run` evaluates the ordered first stratum: the one graph of some read keys
+        self._graphs: dict[ReadKey, NamedNode] | None = None
+        #: the keys rules of :meth:`run` have written so far
+        self._derived: set[ReadKey] = set()
 
     def _run(self, index: int, delta_index: int | None, stats: ReasonStats) -> None:
-        key = (index, delta_index, self._lateral, self._direct)
+        derived = self._direct is not None and self.rules[index].writes() in self._derived
+        key = (index, delta_index, self._lateral, self._direct, self._graphs is not None, derived)
         text = self._texts.get(key)
         if text is None:
             text = self._texts[key] = insert_text(self.rules[index], delta_index, self.planned, self._lateral,
-                                                  self._direct)
+                                                  self._direct, self._graphs, derived)
         stats.evaluations += 1
         if not self.profile:
             self._queue.append(text)  # sent by _flush, one request per round
@@ -224,6 +237,8 @@ class Materializer:
         if self.present is not None:
             self.present[0].update(preds)
             self.present[1].update(classes)
+        if self._direct is not None:
+            self._derived.update([("p", p) for p in preds] + [("t", c) for c in classes])
         for i, j in self.triggers.evaluations(preds, classes, self._active(active), self.present, skip):
             self._run(i, j, stats)
         self._flush()
@@ -265,6 +280,7 @@ class Materializer:
         start = time.perf_counter()
         stats = ReasonStats()
         self.clear()
+        self._derived = set()
         self._direct = (DELTA, DELTA_NEXT)
         try:
             self._materialize(stats)
@@ -291,12 +307,14 @@ class Materializer:
             key = self.rules[i].writes()
             if i in back or key[0] == "*" or key == ("p", TYPE_KEY):
                 self._run(i, None, stats)
+                self._derived.add(key)
                 continue
             self._direct = (read[0], None)
             try:
                 self._run(i, None, stats)
             finally:
                 self._direct = read
+            self._derived.add(key)
             self.present[1 if key[0] == "t" else 0].add(key[1])
             if key[0] == "t":
                 self.present[0].add(TYPE_KEY)
@@ -317,9 +335,17 @@ class Materializer:
         possible = reachable(self.triggers, first, self.present)
         first = [i for i in first if self.triggers.feasible(i, possible)]
         ordered, rest, back = evaluation_order(self.rules, first)
-        for component in ordered:
-            self._first_pass(component, back, stats)
-            self.propagate(component, stats)
+        # until the rules of a variable predicate and the upper strata run, only the ordered rules
+        # write, so a key's facts lie where its asserted facts and its writers put them
+        asserted = (set(self.present[0]), set(self.present[1]))
+        self._graphs = single_graphs(self.rules, [i for c in ordered for i in c], self.triggers.needed_keys(),
+                                     asserted, lambda r: AUX if r.head_aux() else INFERRED, ASSERTED)
+        try:
+            for component in ordered:
+                self._first_pass(component, back, stats)
+                self.propagate(component, stats)
+        finally:
+            self._graphs = None
         for level in strata:
             active = [i for i, r in enumerate(self.rules) if r.stratum <= level]
             fresh = rest if level == strata[0] else [i for i in active if self.rules[i].stratum == level]

@@ -9,7 +9,11 @@ from :mod:`.materialize`, which runs what this module orders.
 
 from __future__ import annotations
 
-from ..compile.rule import Rule
+from collections.abc import Callable
+
+from pyoxigraph import NamedNode
+
+from ..compile.rule import ReadKey, Rule
 from ..rdf.vocab import TYPE
 from .triggers import Present, Triggers
 
@@ -47,6 +51,40 @@ def reachable(triggers: Triggers, indexes: list[int], present: Present) -> Prese
                 if key[0] == "*" or key[1] == TYPE_KEY:
                     classes.update(k[1] for k in needed if k[0] == "t")
     return preds, classes
+
+
+def single_graphs(rules: list[Rule], writers: list[int], needed: set[tuple[str, str]], asserted: Present,
+                  graph_of: Callable[[Rule], NamedNode], asserted_graph: NamedNode) -> dict[ReadKey, NamedNode]:
+    """The read keys whose facts all lie in one graph while only the rules ``writers`` write.
+
+    A key's facts lie in the asserted graph when it has an asserted fact (``asserted``: exact for
+    the ``needed`` keys) and in the graph each of its writers writes to (``graph_of``); a rule
+    writing ``?x rdf:type ?c`` may write every class.  Keys with facts in two graphs, or in none
+    (their readers cannot match), are left out, as is ``rdf:type`` with a variable class.  Only
+    valid while no other rule writes: a rule of a variable predicate, or of an upper stratum, may
+    write any key anywhere.
+    """
+    found: dict[ReadKey, set[NamedNode]] = {}
+    any_class: set[NamedNode] = set()
+    for i in writers:
+        key = rules[i].writes()
+        if key is None:
+            continue
+        if key == ("p", TYPE_KEY):
+            any_class.add(graph_of(rules[i]))
+        found.setdefault(key, set()).add(graph_of(rules[i]))
+    out: dict[ReadKey, NamedNode] = {}
+    for kind, name in needed:
+        if kind not in ("p", "t") or (kind, name) == ("p", TYPE_KEY):
+            continue
+        graphs = set(found.get((kind, name), ()))
+        if kind == "t":
+            graphs |= any_class
+        if name in asserted[0 if kind == "p" else 1]:
+            graphs.add(asserted_graph)
+        if len(graphs) == 1:
+            out[(kind, name)] = graphs.pop()
+    return out
 
 
 def evaluation_order(rules: list[Rule], indexes: list[int]) -> tuple[list[list[int]], list[int], set[int]]:
