@@ -99,8 +99,8 @@ class Context:
 
     def submit(self, *changes: Change) -> Reply:
         """Apply (or queue) manipulations; a failure of the reasoner undoes them (209)."""
-        if changes:  # the request that made them, so a durable store can persist a buffer
-            changes[0].origin = self.request.to_dict()
+        if changes and self.reference.buffered_manipulation:  # the request that made them, kept so that a
+            changes[0].origin = self.request.to_dict()  # durable store can persist the buffer they wait in
         try:
             warnings = self.reference.submit(list(changes))
         except (TopostoreError, OSError) as exc:  # reasoning, the store or its files failed; a bug surfaces as one
