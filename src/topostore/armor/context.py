@@ -32,6 +32,12 @@ if TYPE_CHECKING:  # pragma: no cover
     from .types import ArmorRequest
 
 
+#: entity IRIs of recent (name, namespace) arguments: a robot names the same few entities every step, and
+#: validating a name and building its IRI costs more than the rest of reading its arguments
+_ENTITIES: dict[tuple[str, str], NamedNode] = {}
+_ENTITIES_MAX = 4096
+
+
 @dataclass
 class Reply:
     """What a handler answers; the service adds ``is_consistent`` and wraps it in a response."""
@@ -67,10 +73,18 @@ class Context:
 
     def iri(self, position: int, what: str) -> NamedNode:
         """Entity IRI of ``args[position]``; 208 with the reason when the name is illegal."""
+        key = (self.args[position], self.reference.prefix)
+        found = _ENTITIES.get(key)
+        if found is not None:
+            return found
         try:
-            return terms.entity(self.args[position], self.reference.prefix)
+            found = terms.entity(*key)
         except InvalidNameError as exc:
             raise CommandError(codes.INVALID_ARGUMENT, f"argument {position + 1} ({what}): {exc}") from None
+        if len(_ENTITIES) >= _ENTITIES_MAX:
+            _ENTITIES.clear()
+        _ENTITIES[key] = found
+        return found
 
     def literal(self, value_pos: int, type_pos: int) -> Literal:
         """Typed literal of ``args[value_pos]`` with type name ``args[type_pos]`` (spec §2.3)."""

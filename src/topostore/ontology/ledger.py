@@ -80,7 +80,7 @@ class ChangeLedger:
         """
         if not self.tracking:
             return
-        changed = list(changed)
+        changed = changed if isinstance(changed, list) else list(changed)
         written = changed if added else [_as_written(store, t) for t in changed]  # an undo restores these
         if self._open:
             self._steps.append((written, added))
@@ -197,7 +197,8 @@ class _UnitOfWork:
 def _as_written(store: Store, t: Triple) -> Triple:
     """A retracted triple with its literal in the form the user asserted (so an undo restores it exactly)."""
     if isinstance(t.object, Literal):
-        return Triple(t.subject, t.predicate, store.original_literal(ASSERTED, t.subject, t.predicate, t.object))
+        written = store.original_literal(ASSERTED, t.subject, t.predicate, t.object)
+        return t if written == t.object else Triple(t.subject, t.predicate, written)
     return t
 
 
