@@ -36,6 +36,8 @@ if TYPE_CHECKING:  # pragma: no cover
 #: validating a name and building its IRI costs more than the rest of reading its arguments
 _ENTITIES: dict[tuple[str, str], NamedNode] = {}
 _ENTITIES_MAX = 4096
+#: literals of recent (text, type name) arguments, as :func:`~topostore.rdf.terms.typed_literal` made them
+_LITERALS: dict[tuple[str, str], Literal] = {}
 
 
 @dataclass
@@ -88,12 +90,20 @@ class Context:
 
     def literal(self, value_pos: int, type_pos: int) -> Literal:
         """Typed literal of ``args[value_pos]`` with type name ``args[type_pos]`` (spec §2.3)."""
+        key = (self.args[value_pos], self.args[type_pos])
+        found = _LITERALS.get(key)
+        if found is not None:  # a robot's old value is the new value of its previous step
+            return found
         try:
-            return terms.typed_literal(self.args[value_pos], self.args[type_pos])
+            found = terms.typed_literal(*key)
         except UnknownTypeError as exc:
             raise CommandError(codes.UNKNOWN_TYPE, f"argument {type_pos + 1}: {exc}") from None
         except InvalidValueError as exc:
             raise CommandError(codes.INVALID_ARGUMENT, f"argument {value_pos + 1} (value): {exc}") from None
+        if len(_LITERALS) >= _ENTITIES_MAX:
+            _LITERALS.clear()
+        _LITERALS[key] = found
+        return found
 
     def flag(self, position: int, what: str) -> bool:
         """A boolean argument: ``true``/``false`` in any case (aRMOR's convention)."""

@@ -512,7 +512,22 @@ class Ontology:
         return self.reads.query_names()
 
 
+#: literals found valid lately: a manipulation's literal was usually just made (and checked) from its text
+_VALID: dict[Literal, None] = {}
+_VALID_MAX = 4096
+
+
 def _validate_literal(lit: Literal) -> None:
+    if lit in _VALID:
+        return
+    _check_literal(lit)
+    if len(_VALID) >= _VALID_MAX:
+        _VALID.clear()
+    _VALID[lit] = None
+
+
+def _check_literal(lit: Literal) -> None:
+    """Raise InvalidValueError when ``lit`` is not a valid value of its XSD type (kept as written otherwise)."""
     dt = lit.datatype.value
     if lit.language or not dt.startswith(XSD):
         return
