@@ -239,7 +239,7 @@ class Ontology:
         after all; a lost drop of scratch graphs), makes the next REASON a full one over what the server
         holds; class views wait for the next REASON."""
         def asserted(quads: list[Quad]) -> list[Triple]:
-            return [Triple(q.subject, q.predicate, q.object) for q in quads if q.graph_name == ASSERTED]
+            return [q.triple for q in quads if q.graph_name == ASSERTED]
 
         self.ledger.lost(self.store, [(asserted(adds), asserted(removes)) for adds, removes in lost])
         if not certain or any(q.graph_name not in (ASSERTED, FORMS, META) for adds, removes in lost

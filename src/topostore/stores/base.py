@@ -186,7 +186,7 @@ class Store:
     def _stored_quad(self, q: Quad) -> Quad:
         if not isinstance(q.object, Literal):
             return q
-        t = self.forms.stored_form(Triple(q.subject, q.predicate, q.object))
+        t = self.forms.stored_form(q.triple)
         return Quad(t.subject, t.predicate, t.object, q.graph_name)
 
     def _writes_lost(self, lost: list[tuple[list[Quad], list[Quad]]], certain: bool = True) -> None:
@@ -453,17 +453,17 @@ class Store:
         pending = self._pending
         if pending is None:
             for q in self._match(s, p, o, graph):
-                yield Triple(q.subject, q.predicate, q.object)
+                yield q.triple
             return
         for q in list(self._match(s, p, o, graph)):
             key = self._key(q)
             self._known[key] = True
             entry = pending.get(key)
             if entry is None or entry[1]:
-                yield Triple(q.subject, q.predicate, q.object)
+                yield q.triple
         for q, present in list(pending.values()):
             if present and _matches(q, s, p, o, graph):
-                yield Triple(q.subject, q.predicate, q.object)
+                yield q.triple
 
     def _predicate_rows(self, p: NamedNode, graph: NamedNode, limit: int) -> list[tuple[Term, Term]]:
         """(subject, object) of up to ``limit`` facts of ``p`` in ``graph``."""
