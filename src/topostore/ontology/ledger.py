@@ -80,7 +80,7 @@ class ChangeLedger:
         """
         if not self.tracking:
             return
-        changed = changed if isinstance(changed, list) else list(changed)
+        changed = list(changed)
         written = changed if added else [_as_written(store, t) for t in changed]  # an undo restores these
         if self._open:
             self._steps.append((written, added))
