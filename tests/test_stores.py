@@ -163,3 +163,17 @@ def test_an_in_memory_store_is_compacted_after_a_fiftieth_of_its_quads_in_writes
     writes(big, 1)
     assert big.maybe_compact()
     assert small.count(ASSERTED) == 1 and big.count(ASSERTED) == 20_000  # the live quads, all of them
+
+
+def test_memory_discard_removes_a_literal_triple_in_any_spelling() -> None:
+    """An in-memory discard finds a literal triple by subject and predicate and compares stored forms:
+    the same value written another way is removed, another value and other graphs are left."""
+    store = memory_store()
+    s, p = NamedNode("urn:x:s"), NamedNode("urn:x:p")
+    scratch, other = NamedNode("urn:x:g1"), NamedNode("urn:x:g2")
+    kept = Triple(s, p, Literal("6", datatype=NamedNode(XSD + "integer")))
+    for g in (scratch, other):
+        store.add_scratch([Triple(s, p, Literal("5", datatype=NamedNode(XSD + "integer"))), kept], g)
+    store.discard([Triple(s, p, Literal("05", datatype=NamedNode(XSD + "long")))], (scratch,))
+    assert [t.object.value for t in store.triples(s, p, None, scratch)] == ["6"]
+    assert sorted(t.object.value for t in store.triples(s, p, None, other)) == ["5", "6"]

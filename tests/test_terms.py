@@ -144,3 +144,12 @@ def test_sparql_renders_escaped_terms_and_refuses_blank_nodes() -> None:
     assert sparql(NamedNode(NS + "R1")) == f"<{NS}R1>"
     with pytest.raises(InvalidNameError, match="blank nodes cannot be named in a query"):
         sparql(BlankNode("b0"))
+
+
+def test_value_key_is_the_same_when_asked_again() -> None:
+    """Keys are kept per literal: asking again gives an equal key, and a NaN's key still equals no other
+    (not even its own, as when each key was computed afresh)."""
+    five = lit("5", "long")
+    assert value_key(five) == value_key(five) == value_key(lit("5", "integer"))
+    nan = lit("NaN", "float")
+    assert value_key(nan) != value_key(nan)

@@ -32,6 +32,14 @@ if TYPE_CHECKING:  # pragma: no cover
     from .types import ArmorRequest
 
 
+#: entity IRIs of recent (name, namespace) arguments: a robot names the same few entities every step, and
+#: validating a name and building its IRI costs more than the rest of reading its arguments
+_ENTITIES: dict[tuple[str, str], NamedNode] = {}
+_ENTITIES_MAX = 4096
+#: literals of recent (text, type name) arguments, as :func:`~topostore.rdf.terms.typed_literal` made them
+_LITERALS: dict[tuple[str, str], Literal] = {}
+
+
 @dataclass
 class Reply:
     """What a handler answers; the service adds ``is_consistent`` and wraps it in a response."""
@@ -67,19 +75,35 @@ class Context:
 
     def iri(self, position: int, what: str) -> NamedNode:
         """Entity IRI of ``args[position]``; 208 with the reason when the name is illegal."""
+        key = (self.args[position], self.reference.prefix)
+        found = _ENTITIES.get(key)
+        if found is not None:
+            return found
         try:
-            return terms.entity(self.args[position], self.reference.prefix)
+            found = terms.entity(*key)
         except InvalidNameError as exc:
             raise CommandError(codes.INVALID_ARGUMENT, f"argument {position + 1} ({what}): {exc}") from None
+        if len(_ENTITIES) >= _ENTITIES_MAX:
+            _ENTITIES.clear()
+        _ENTITIES[key] = found
+        return found
 
     def literal(self, value_pos: int, type_pos: int) -> Literal:
         """Typed literal of ``args[value_pos]`` with type name ``args[type_pos]`` (spec §2.3)."""
+        key = (self.args[value_pos], self.args[type_pos])
+        found = _LITERALS.get(key)
+        if found is not None:  # a robot's old value is the new value of its previous step
+            return found
         try:
-            return terms.typed_literal(self.args[value_pos], self.args[type_pos])
+            found = terms.typed_literal(*key)
         except UnknownTypeError as exc:
             raise CommandError(codes.UNKNOWN_TYPE, f"argument {type_pos + 1}: {exc}") from None
         except InvalidValueError as exc:
             raise CommandError(codes.INVALID_ARGUMENT, f"argument {value_pos + 1} (value): {exc}") from None
+        if len(_LITERALS) >= _ENTITIES_MAX:
+            _LITERALS.clear()
+        _LITERALS[key] = found
+        return found
 
     def flag(self, position: int, what: str) -> bool:
         """A boolean argument: ``true``/``false`` in any case (aRMOR's convention)."""
@@ -99,8 +123,8 @@ class Context:
 
     def submit(self, *changes: Change) -> Reply:
         """Apply (or queue) manipulations; a failure of the reasoner undoes them (209)."""
-        if changes:  # the request that made them, so a durable store can persist a buffer
-            changes[0].origin = self.request.to_dict()
+        if changes and self.reference.buffered_manipulation:  # the request that made them, kept so that a
+            changes[0].origin = self.request.to_dict()  # durable store can persist the buffer they wait in
         try:
             warnings = self.reference.submit(list(changes))
         except (TopostoreError, OSError) as exc:  # reasoning, the store or its files failed; a bug surfaces as one

@@ -148,6 +148,9 @@ class Reference:
 
     def flush(self, reason: bool | None = None) -> list[str]:
         """Apply the manipulation buffer (APPLY/REASON); the buffer is emptied only on success."""
+        if not self.buffer and reason is False:  # REASON with nothing buffered (every unbuffered robot step):
+            self.ontology.rules  # noqa: B018 - what applying nothing checks, without a unit of work or a commit
+            return []
         pending, self.buffer = self.buffer, []
         try:
             return self.run(pending, reason)

@@ -106,7 +106,9 @@ class ArmorService:
             response = ArmorResponse(False, codes.REASONER_OR_QUERY_FAILURE, f"internal error: {type(exc).__name__}: {exc}")
             response.is_consistent = self._consistency(req.reference_name)
         level = logging.DEBUG if response.success else logging.INFO
-        logger.log(level, "%s -> %s %s %s", _describe(req), response.exit_code, response.error_description, response.queried_objects)
+        if logger.isEnabledFor(level):  # the line is built only for a log that keeps it
+            logger.log(level, "%s -> %s %s %s", _describe(req), response.exit_code, response.error_description,
+                       response.queried_objects)
         return response
 
     def call_many(self, requests: Iterable[ArmorRequest | Mapping[str, Any]]) -> ArmorResponseList:

@@ -239,7 +239,7 @@ class Ontology:
         after all; a lost drop of scratch graphs), makes the next REASON a full one over what the server
         holds; class views wait for the next REASON."""
         def asserted(quads: list[Quad]) -> list[Triple]:
-            return [Triple(q.subject, q.predicate, q.object) for q in quads if q.graph_name == ASSERTED]
+            return [q.triple for q in quads if q.graph_name == ASSERTED]
 
         self.ledger.lost(self.store, [(asserted(adds), asserted(removes)) for adds, removes in lost])
         if not certain or any(q.graph_name not in (ASSERTED, FORMS, META) for adds, removes in lost
@@ -512,7 +512,22 @@ class Ontology:
         return self.reads.query_names()
 
 
+#: literals found valid lately: a manipulation's literal was usually just made (and checked) from its text
+_VALID: dict[Literal, None] = {}
+_VALID_MAX = 4096
+
+
 def _validate_literal(lit: Literal) -> None:
+    if lit in _VALID:
+        return
+    _check_literal(lit)
+    if len(_VALID) >= _VALID_MAX:
+        _VALID.clear()
+    _VALID[lit] = None
+
+
+def _check_literal(lit: Literal) -> None:
+    """Raise InvalidValueError when ``lit`` is not a valid value of its XSD type (kept as written otherwise)."""
     dt = lit.datatype.value
     if lit.language or not dt.startswith(XSD):
         return

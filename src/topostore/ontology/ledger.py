@@ -142,27 +142,21 @@ class ChangeLedger:
         with store.transaction():
             return store.remove(added, ASSERTED) + store.add(removed, ASSERTED)
 
-    @contextmanager
-    def undoable(self, onto: Ontology) -> Iterator[None]:
-        """A unit of work: the asserted changes made inside are undone (newest first) if it raises."""
-        start = len(self._steps)
-        self._open += 1
-        try:
-            yield
-        except BaseException:
-            steps = self._steps[start:]
-            with self._paused(), onto.store.transaction():
-                for triples, added in reversed(steps):
-                    if added:
-                        onto.remove(*triples)
-                    else:
-                        onto.add(*triples)
-            del self._steps[start:]
-            raise
-        finally:
-            self._open -= 1
-            if not self._open:
-                self._steps.clear()
+    def undoable(self, onto: Ontology) -> _UnitOfWork:
+        """A unit of work: the asserted changes made inside are undone (newest first) if it raises.
+        (A plain context manager class: every manipulation opens one.)"""
+        return _UnitOfWork(self, onto)
+
+    def _undo_since(self, onto: Ontology, start: int) -> None:
+        """Undo the steps recorded since ``start`` (newest first) and forget them."""
+        steps = self._steps[start:]
+        with self._paused(), onto.store.transaction():
+            for triples, added in reversed(steps):
+                if added:
+                    onto.remove(*triples)
+                else:
+                    onto.add(*triples)
+        del self._steps[start:]
 
     @contextmanager
     def _paused(self) -> Iterator[None]:
@@ -175,10 +169,36 @@ class ChangeLedger:
             self._steps = steps
 
 
+class _UnitOfWork:
+    """The context manager :meth:`ChangeLedger.undoable` returns."""
+
+    __slots__ = ("ledger", "onto", "start")
+
+    def __init__(self, ledger: ChangeLedger, onto: Ontology) -> None:
+        self.ledger = ledger
+        self.onto = onto
+        self.start = 0
+
+    def __enter__(self) -> None:
+        self.start = len(self.ledger._steps)
+        self.ledger._open += 1
+
+    def __exit__(self, kind, value, traceback) -> None:
+        ledger = self.ledger
+        try:
+            if kind is not None:
+                ledger._undo_since(self.onto, self.start)
+        finally:
+            ledger._open -= 1
+            if not ledger._open:
+                ledger._steps.clear()
+
+
 def _as_written(store: Store, t: Triple) -> Triple:
     """A retracted triple with its literal in the form the user asserted (so an undo restores it exactly)."""
     if isinstance(t.object, Literal):
-        return Triple(t.subject, t.predicate, store.original_literal(ASSERTED, t.subject, t.predicate, t.object))
+        written = store.original_literal(ASSERTED, t.subject, t.predicate, t.object)
+        return t if written == t.object else Triple(t.subject, t.predicate, written)
     return t
 
 

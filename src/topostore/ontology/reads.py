@@ -38,8 +38,10 @@ class OntologyQueries:
         seen: dict = {}
         for objects in self._objects_in_graphs(s, p).values():
             for o in objects:
-                shown = self.onto.store.original_literal(ASSERTED, s, p, o) if isinstance(o, Literal) else o
-                seen.setdefault(value_key(o), shown)
+                if isinstance(o, Literal):  # one answer per data value, as the user wrote it
+                    seen.setdefault(value_key(o), self.onto.store.original_literal(ASSERTED, s, p, o))
+                else:  # an individual is its own key
+                    seen.setdefault(o, o)
         return list(seen.values())
 
     def _objects_in_graphs(self, s: Term, p: NamedNode) -> dict[NamedNode, list[Term]]:

@@ -196,6 +196,12 @@ def literal_of(value: str, local: str) -> Literal:
     raise UnknownTypeError(f"unsupported datatype xsd:{local}")  # pragma: no cover
 
 
+#: value keys of recent literals: a manipulation asks the key of one literal a dozen times (its read, its
+#: presence, the ledger, the literal forms), and parsing a decimal is most of a key's cost
+_VALUE_KEYS: dict[Literal, tuple] = {}
+_VALUE_KEYS_MAX = 4096
+
+
 def value_key(term: Term) -> tuple:
     """A key equal for two literals exactly when they denote the same OWL data value.
 
@@ -204,6 +210,19 @@ def value_key(term: Term) -> tuple:
     """
     if not isinstance(term, Literal):
         return ("term", str(term))
+    key = _VALUE_KEYS.get(term)
+    if key is None:
+        key = _literal_key(term)
+        if key[1] != key[1]:  # NaN: never equal to another key, as computed afresh (one object would be)
+            return key
+        if len(_VALUE_KEYS) >= _VALUE_KEYS_MAX:
+            _VALUE_KEYS.clear()
+        _VALUE_KEYS[term] = key
+    return key
+
+
+def _literal_key(term: Literal) -> tuple:
+    """:func:`value_key` of a literal, computed."""
     dt = term.datatype.value
     local = dt[len(XSD):] if dt.startswith(XSD) else None
     try:

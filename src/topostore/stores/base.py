@@ -186,7 +186,7 @@ class Store:
     def _stored_quad(self, q: Quad) -> Quad:
         if not isinstance(q.object, Literal):
             return q
-        t = self.forms.stored_form(Triple(q.subject, q.predicate, q.object))
+        t = self.forms.stored_form(q.triple)
         return Quad(t.subject, t.predicate, t.object, q.graph_name)
 
     def _writes_lost(self, lost: list[tuple[list[Quad], list[Quad]]], certain: bool = True) -> None:
@@ -298,9 +298,7 @@ class Store:
         if not adds and not removes and not meta:
             return
         # the removed literals as their users wrote them, for an undo (a removal may name the stored form)
-        written = [Quad(q.subject, q.predicate, self.forms.original_literal(q.graph_name, q.subject, q.predicate,
-                                                                              q.object), q.graph_name)
-                   if isinstance(q.object, Literal) else q for q in removes]
+        written = [self._as_written(q) for q in removes]
         forms_add, forms_remove = self.forms.record(adds, removes)
         meta_add, meta_remove = self.persisted.quads(meta)
         undo = lambda: self.forms.record(written, adds, undo=True)  # noqa: E731
@@ -310,6 +308,13 @@ class Store:
             undo()
             raise
         self.persisted.committed(meta)
+
+    def _as_written(self, q: Quad) -> Quad:
+        """``q`` with its literal in the form the user wrote (``q`` itself when that is its form)."""
+        if not isinstance(q.object, Literal):
+            return q
+        written = self.forms.original_literal(q.graph_name, q.subject, q.predicate, q.object)
+        return q if written == q.object else Quad(q.subject, q.predicate, written, q.graph_name)
 
     def _key(self, quad: Quad) -> Hashable:
         """What identifies a quad: itself, or with a literal object its value (``1`` = ``"01"^^xsd:int``)."""
@@ -360,11 +365,17 @@ class Store:
         in one transaction; returns those triples."""
         quads = {Quad(t.subject, t.predicate, t.object, graph): t for t in triples}
         keys = [self._key(q) for q in quads]  # a literal's value key is the costly part of a load: once each
-        with self.transaction():
-            changed = [(q, t, k) for (q, t), k, present in zip(quads.items(), keys, self._present(list(quads), keys),
-                                                               strict=True) if present != add]
-            for q, _, k in changed:  # pending True: absent from the committed store; False: present there
-                self._toggle(q, add, k)
+        if not self._depth:
+            with self.transaction():
+                return self._toggle_absent(quads, keys, add)
+        return self._toggle_absent(quads, keys, add)  # inside the caller's transaction (a manipulation's)
+
+    def _toggle_absent(self, quads: dict[Quad, Triple], keys: list[Hashable], add: bool) -> list[Triple]:
+        """:meth:`_toggle_each` inside an open transaction."""
+        changed = [(q, t, k) for (q, t), k, present in zip(quads.items(), keys, self._present(list(quads), keys),
+                                                           strict=True) if present != add]
+        for q, _, k in changed:  # pending True: absent from the committed store; False: present there
+            self._toggle(q, add, k)
         return [t for _, t, _ in changed]
 
     def _add_to_empty(self, triples: list[Triple] | tuple[Triple, ...], graph: NamedNode) -> int:
@@ -442,17 +453,17 @@ class Store:
         pending = self._pending
         if pending is None:
             for q in self._match(s, p, o, graph):
-                yield Triple(q.subject, q.predicate, q.object)
+                yield q.triple
             return
         for q in list(self._match(s, p, o, graph)):
             key = self._key(q)
             self._known[key] = True
             entry = pending.get(key)
             if entry is None or entry[1]:
-                yield Triple(q.subject, q.predicate, q.object)
+                yield q.triple
         for q, present in list(pending.values()):
             if present and _matches(q, s, p, o, graph):
-                yield Triple(q.subject, q.predicate, q.object)
+                yield q.triple
 
     def _predicate_rows(self, p: NamedNode, graph: NamedNode, limit: int) -> list[tuple[Term, Term]]:
         """(subject, object) of up to ``limit`` facts of ``p`` in ``graph``."""
@@ -460,6 +471,8 @@ class Store:
         return [(r["s"], r["o"]) for r in self._run_query(text, [graph])]
 
     def objects(self, s: Term, p: NamedNode, graph: NamedNode) -> list[Term]:
+        if self._pending is None and self.listings is None:  # the index as it is: no triple made per value
+            return [q.object for q in self._match(s, p, None, graph)]
         return [t.object for t in self.triples(s, p, None, graph)]
 
     def objects_many(self, pairs: list[tuple[Term, NamedNode]], graph: NamedNode) -> dict[tuple, list[Term]]:

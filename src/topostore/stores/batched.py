@@ -42,15 +42,15 @@ class BatchedReads:
             listings.learn(s, p, graph, quads)
         pending = store._pending
         if pending is None:
-            return [Triple(q.subject, q.predicate, q.object) for q in quads]
+            return [q.triple for q in quads]
         out = []
         for q in quads:
             key = store._key(q)
             store._known[key] = True
             entry = pending.get(key)
             if entry is None or entry[1]:
-                out.append(Triple(q.subject, q.predicate, q.object))
-        out += [Triple(q.subject, q.predicate, q.object) for q, present in list(pending.values())
+                out.append(q.triple)
+        out += [q.triple for q, present in list(pending.values())
                 if present and q.subject == s and q.predicate == p and q.graph_name == graph]
         return out
 

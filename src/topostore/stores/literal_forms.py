@@ -105,7 +105,8 @@ class LiteralForms:
         e.g. ``"7"^^xsd:long`` becomes ``"7"^^xsd:integer``)."""
         if not isinstance(t.object, Literal):
             return t
-        return Triple(t.subject, t.predicate, stored_literal(t.object))
+        stored = stored_literal(t.object)
+        return t if stored == t.object else Triple(t.subject, t.predicate, stored)
 
     def forget(self, graph: NamedNode) -> None:
         """Forget the forms of a graph being cleared (and their persisted copies)."""
@@ -134,7 +135,7 @@ def stored_literal(lit: Literal) -> Literal:
         _PROBE.remove(quad)
         if len(_STORED) >= _STORED_MAX:
             _STORED.clear()
-        _STORED[lit] = quad.object
+        _STORED[lit] = _STORED[quad.object] = quad.object  # the stored form is its own (a reasoner's discard asks it)
     return quad.object
 
 

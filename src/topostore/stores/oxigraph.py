@@ -15,10 +15,11 @@ from collections.abc import Iterable, Iterator
 from itertools import chain, islice
 
 import pyoxigraph as ox
-from pyoxigraph import NamedNode, Quad
+from pyoxigraph import Literal, NamedNode, Quad
 
 from ..errors import QueryError, StoreError
 from .base import Store, data_update, key_census, quad_data  # noqa: F401 - data_update: this module's since the first release
+from .literal_forms import stored_literal
 
 
 class OxigraphStore(Store):
@@ -74,6 +75,26 @@ class OxigraphStore(Store):
         """Bulk-add to a reasoner's scratch graph (one RocksDB transaction)."""
         self._writes += 1
         self._ox.extend(Quad(t.subject, t.predicate, t.object, graph) for t in triples)
+
+    def discard(self, triples, graphs: Iterable[NamedNode]) -> None:
+        """In memory, a triple with a literal object is found by its subject and predicate and removed as
+        the index holds it: making a quad of a literal costs pyoxigraph several times a look-up, and the
+        reasoner's graphs seldom hold the asserted triples it discards (one write, as on disk)."""
+        if not self._in_memory or self._pending is not None:
+            super().discard(triples, graphs)
+            return
+        graphs = tuple(graphs)
+        self._writes += 1
+        ox = self._ox
+        for t in triples:
+            s, p, o = t.subject, t.predicate, t.object
+            if isinstance(o, Literal):
+                o = stored_literal(o)
+                for q in [q for g in graphs for q in ox.quads_for_pattern(s, p, None, g) if q.object == o]:
+                    ox.remove(q)
+            else:
+                for g in graphs:
+                    ox.remove(Quad(s, p, o, g))
 
     def drop_graphs(self, graphs: Iterable[NamedNode]) -> None:
         """In memory each graph is removed from the index directly (a SPARQL DROP of a dozen graphs costs

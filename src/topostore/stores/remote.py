@@ -43,7 +43,7 @@ from functools import cached_property
 
 import httpx
 import pyoxigraph as ox
-from pyoxigraph import NamedNode, Quad, QueryResultsFormat, RdfFormat, Triple
+from pyoxigraph import NamedNode, Quad, QueryResultsFormat, RdfFormat
 
 from ..errors import QueryError, StoreError, WritesLostError
 from ..rdf.vocab import INTERNAL
@@ -299,7 +299,7 @@ class RemoteStore(Store):
         if kind in ("application/sparql-results+json", "application/json"):
             return ox.parse_query_results(answer.content, format=QueryResultsFormat.JSON)
         fmt = RdfFormat.TURTLE if "turtle" in kind else RdfFormat.N_TRIPLES
-        return [Triple(q.subject, q.predicate, q.object) for q in ox.parse(answer.content, format=fmt)]
+        return [q.triple for q in ox.parse(answer.content, format=fmt)]
 
     # ------------------------------------------------------------ primitives
     def _has(self, quad: Quad) -> bool:
