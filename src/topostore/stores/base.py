@@ -374,21 +374,21 @@ class Store:
         100,000 locations was ≈ 800 MB).  As :meth:`add`, the first spelling of a value is
         written and every distinct triple counts as new."""
         distinct = dict.fromkeys(triples)
-        spelled: set[tuple] = set()  # value keys of the literals kept
+        spelled: dict[tuple, Literal] = {}  # (subject, predicate, value key) -> the literal kept
         kept: list[Triple] = []
         for t in distinct:
-            if isinstance(t.object, Literal):
-                key = (t.subject, t.predicate, value_key(t.object))
+            o = t.object
+            if isinstance(o, Literal):
+                key = (t.subject, t.predicate, value_key(o))
                 if key in spelled:
                     continue
-                spelled.add(key)
+                spelled[key] = o
             kept.append(t)
-        literals = [Quad(t.subject, t.predicate, t.object, graph) for t in kept if isinstance(t.object, Literal)]
-        forms_add, _ = self.forms.record(literals, [])
+        forms_add = self.forms.record_loaded(graph, list(spelled.items()))  # each value key computed once
         try:
             self._commit_stream((Quad(t.subject, t.predicate, t.object, graph) for t in kept), forms_add)
         except BaseException:
-            self.forms.record([], literals, undo=True)
+            self.forms.record([], [Quad(s, p, o, graph) for (s, p, _), o in spelled.items()], undo=True)
             raise
         return len(distinct)
 
