@@ -172,7 +172,7 @@ class Ontology:
             _validate(t)
         self._touch(triples)
         if not self.ledger.tracking:  # nothing to record: a big first load takes the store's bulk path
-            return self.store.add(triples, ASSERTED)
+            return self.store.add(triples, ASSERTED, distinct=True)
         return len(self._change(triples, added=True))
 
     def remove(self, *triples: Triple) -> int:
