@@ -377,20 +377,27 @@ class Store:
         written and every distinct triple counts as new."""
         unique = triples if distinct else tuple(dict.fromkeys(triples))
         spelled: dict[tuple, Literal] = {}  # (subject, predicate, value key) -> the literal kept
-        kept: list[Triple] = []
-        for t in unique:
-            o = t.object
-            if isinstance(o, Literal):
-                key = (t.subject, t.predicate, value_key(o))
-                if key in spelled:
-                    continue
-                spelled[key] = o
-            kept.append(t)
-        forms_add = self.forms.record_loaded(graph, list(spelled.items()))  # each value key computed once
+        recorded: list[bool] = []
+
+        def quads() -> Iterator[Quad]:
+            """The quads to write, each triple's terms taken once; then the literal forms' quads."""
+            for t in unique:
+                s, p, o = t.subject, t.predicate, t.object
+                if isinstance(o, Literal):
+                    key = (s, p, value_key(o))
+                    if key in spelled:
+                        continue
+                    spelled[key] = o
+                yield Quad(s, p, o, graph)
+            forms_add = self.forms.record_loaded(graph, list(spelled.items()))  # each value key computed once
+            recorded.append(True)
+            yield from forms_add
+
         try:
-            self._commit_stream((Quad(t.subject, t.predicate, t.object, graph) for t in kept), forms_add)
+            self._commit_stream(quads(), [])
         except BaseException:
-            self.forms.record([], [Quad(s, p, o, graph) for (s, p, _), o in spelled.items()], undo=True)
+            if recorded:
+                self.forms.record([], [Quad(s, p, o, graph) for (s, p, _), o in spelled.items()], undo=True)
             raise
         return len(unique)
 
