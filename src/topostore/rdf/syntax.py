@@ -111,8 +111,9 @@ def _skolemised(quads: Iterable[ox.Quad], progress: Callable[[int], None] | None
     blank = BlankNode
     for quad in quads:
         t = quad.triple
-        if type(t.subject) is blank or type(t.object) is blank:
-            t = Triple(skolem(t.subject), t.predicate, skolem(t.object))
+        s, o = t.subject, t.object
+        if type(s) is blank or type(o) is blank:
+            t = Triple(skolem(s), t.predicate, skolem(o))
         append(t)
         if progress is not None and len(triples) % PROGRESS_EVERY == 0:
             progress(len(triples))
