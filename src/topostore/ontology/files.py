@@ -210,7 +210,8 @@ def _collector_paused() -> Iterator[None]:
     A load makes millions of objects that live until it ends (triples, keys, index
     tables) and no cycle that must be freed before then; the collector would scan them
     again and again as they pile up (a sixth of a 100,000-location load).  Whatever
-    cycles the load leaves are collected as usual once it is on again."""
+    cycles the load (or another thread meanwhile) leaves are collected as usual once it is
+    on again; a collector found off is left off."""
     enabled = gc.isenabled()
     gc.disable()
     try:
