@@ -44,6 +44,12 @@ _PARTS = (swrl("body"), swrl("head"))
 _STRUCTURE = (swrl("body"), swrl("head"), FIRST, REST, swrl("arguments"))
 
 
+def _imps(triples: Iterable[Triple]) -> dict[Term, None]:
+    """The subjects typed swrl:Imp, in the order of their typing triples."""
+    imp = swrl("Imp")
+    return {t.subject: None for t in triples if t.object == imp and t.predicate == TYPE}
+
+
 class _Unreadable(Exception):
     """A rule's structure that cannot be read; the message says where."""
 
@@ -55,14 +61,20 @@ class _Index:
     subject is first read, so a big ABox beside a few rules costs one pass, not a table each.
     """
 
-    def __init__(self, triples: Iterable[Triple]) -> None:
+    def __init__(self, triples: list[Triple], imps: dict[Term, None] | None = None) -> None:
+        """``imps``: the rules, when the caller has found them already (one term fewer read per triple)."""
         self._raw: dict[Term, list[Triple]] = {}
-        imp = swrl("Imp")
-        self._imps: dict[Term, None] = {}
+        if imps is None:
+            imps = _imps(triples)
+        self._imps = imps
+        raw = self._raw
         for t in triples:
-            self._raw.setdefault(t.subject, []).append(t)
-            if t.object == imp and t.predicate == TYPE:
-                self._imps[t.subject] = None
+            s = t.subject
+            group = raw.get(s)
+            if group is None:
+                raw[s] = [t]
+            else:
+                group.append(t)
         self._nodes: dict[Term, dict[NamedNode, list[Term]]] = {}
 
     def node(self, s: Term) -> dict[NamedNode, list[Term]]:
@@ -245,10 +257,10 @@ def _flat_list(atoms: list[Term]) -> tuple[Term, list[Triple]]:
 
 def repair_rules(triples: list[Triple]) -> tuple[list[Triple], list[Notice]]:
     """A document's triples with its SWRL rules repaired (or skipped), and what was done."""
-    imp_type = swrl("Imp")
-    if not any(t.object == imp_type and t.predicate == TYPE for t in triples):
+    found = _imps(triples)
+    if not found:
         return triples, []  # no rule: nothing to index (large ABox loads pay one scan)
-    ix = _Index(triples)
+    ix = _Index(triples, found)
     imps = ix.imps()
     if not imps:
         return triples, []

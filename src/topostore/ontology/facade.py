@@ -169,10 +169,12 @@ class Ontology:
         """Assert triples; returns how many were new."""
         triples = tuple(dict.fromkeys(triples))
         for t in triples:
-            _validate(t)
+            o = t.object  # each term taken from a triple is a new object: once here (a big load has millions)
+            if isinstance(o, Literal):
+                _validate_literal(o)
         self._touch(triples)
         if not self.ledger.tracking:  # nothing to record: a big first load takes the store's bulk path
-            return self.store.add(triples, ASSERTED)
+            return self.store.add(triples, ASSERTED, distinct=True)
         return len(self._change(triples, added=True))
 
     def remove(self, *triples: Triple) -> int:

@@ -10,8 +10,10 @@ written once, not twice.
 
 from __future__ import annotations
 
+import gc
 import os
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
+from contextlib import contextmanager
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -78,19 +80,22 @@ class OntologyFiles:
         cannot be translated is refused and leaves the ontology as it was.
         ``progress(n)`` is told how many triples have been parsed so far.
         """
-        triples = self.onto.store.parse_file(path, fmt, base_iri, progress)
+        with _collector_paused():
+            triples = self.onto.store.parse_file(path, fmt, base_iri, progress)
         return self._add_document(triples, str(path))
 
     def load_data(self, data: str | bytes, fmt: str = "turtle", base_iri: str | None = None) -> int:
-        triples = self.onto.store.parse_bytes(data, guess_format("x", fmt), base_iri)
+        with _collector_paused():
+            triples = self.onto.store.parse_bytes(data, guess_format("x", fmt), base_iri)
         return self._add_document(triples, "<data>")
 
     def _add_document(self, triples: list[Triple], source: str) -> int:
         """Add a document: its SWRL rules repaired first (:mod:`.compile.swrl_repair`), then
         checked; what was repaired or set aside is published (warnings, log) and kept in
         :attr:`load_notices` once the document is in."""
-        triples, unreadable = canonical_xml_literals(triples)
-        triples, notices = repair_rules(triples)
+        with _collector_paused():
+            triples, unreadable = canonical_xml_literals(triples)
+            triples, notices = repair_rules(triples)
         notices += unreadable
         known = set(self.onto._rules.notices) if self.onto._rules is not None else set()
         added, notices = self._add_checked(triples, notices)
@@ -110,7 +115,7 @@ class OntologyFiles:
         """
         notices = list(repaired or [])
         if not any(is_schema_triple(t) for t in triples):
-            return self.onto.add(*triples), notices
+            return self._add_all(triples), notices
         if self._in_place_possible():
             done = self._add_compiled_in_place(triples, notices)
             if done is not None:
@@ -132,9 +137,15 @@ class OntologyFiles:
         if self.onto.strict:
             _refuse_incomplete([*notices, *rules.notices])
         check_rules(self.onto.store, rules)
-        added = self.onto.add(*triples)
+        added = self._add_all(triples)
         self.onto._rules = rules
         return added, notices
+
+    def _add_all(self, triples: list[Triple]) -> int:
+        """Add a document's triples through the ontology, the cycle collector paused (the compiling
+        around it runs with the collector on: a big TBox's expressions may well make cycles)."""
+        with _collector_paused():
+            return self.onto.add(*triples)
 
     def _in_place_possible(self) -> bool:
         """Whether a document may be compiled where it is added: the asserted graph is empty and
@@ -151,7 +162,7 @@ class OntologyFiles:
         path then repairs or refuses it with its own messages.
         """
         dirty = self.onto.dirty
-        added = self.onto.add(*triples)
+        added = self._add_all(triples)
         try:
             rules = compile_ontology(self.onto.store, ASSERTED)
             if self.onto.strict:
@@ -190,6 +201,24 @@ class OntologyFiles:
         path = Path(path)
         data = self.serialize(guess_format(path, fmt), inferred)
         return atomic_write(path, data)  # temporary file beside it, never through a symlink, removed on failure
+
+
+@contextmanager
+def _collector_paused() -> Iterator[None]:
+    """Python's cycle collector off while a document is loaded, as it was after.
+
+    A load makes millions of objects that live until it ends (triples, keys, index
+    tables) and no cycle that must be freed before then; the collector would scan them
+    again and again as they pile up (a sixth of a 100,000-location load).  Whatever
+    cycles the load (or another thread meanwhile) leaves are collected as usual once it is
+    on again; a collector found off is left off."""
+    enabled = gc.isenabled()
+    gc.disable()
+    try:
+        yield
+    finally:
+        if enabled:
+            gc.enable()
 
 
 def _refuse_incomplete(notices: list[Notice]) -> None:

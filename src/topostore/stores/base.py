@@ -344,11 +344,12 @@ class Store:
         return [pending[k][1] if k in pending else known[k] if k in known else found[k] for k in keys]
 
     # ------------------------------------------------------------ quads
-    def add(self, triples: Iterable[Triple], graph: NamedNode) -> int:
-        """Add triples to ``graph``; returns how many were new."""
+    def add(self, triples: Iterable[Triple], graph: NamedNode, distinct: bool = False) -> int:
+        """Add triples to ``graph``; returns how many were new (``distinct``: the caller has
+        removed repeated triples already, so a big load does not hash each one again)."""
         triples = triples if isinstance(triples, (list, tuple)) else list(triples)
         if self._depth == 0 and len(triples) >= BULK_ADD and self.is_empty(graph):
-            return self._add_to_empty(triples, graph)
+            return self._add_to_empty(triples, graph, distinct)
         return len(self.add_new(triples, graph))
 
     def add_new(self, triples: Iterable[Triple], graph: NamedNode) -> list[Triple]:
@@ -378,30 +379,38 @@ class Store:
             self._toggle(q, add, k)
         return [t for _, t, _ in changed]
 
-    def _add_to_empty(self, triples: list[Triple] | tuple[Triple, ...], graph: NamedNode) -> int:
+    def _add_to_empty(self, triples: list[Triple] | tuple[Triple, ...], graph: NamedNode,
+                      distinct: bool = False) -> int:
         """:meth:`add` into an empty graph with no transaction open: every triple is new, so none
         is looked up (a big load's look-ups cost as much as writing it), and quads are made only
         as the store takes them (one quad object is ≈ 440 bytes: a list of them for a map of
         100,000 locations was ≈ 800 MB).  As :meth:`add`, the first spelling of a value is
         written and every distinct triple counts as new."""
-        distinct = dict.fromkeys(triples)
-        spelled: set[tuple] = set()  # value keys of the literals kept
-        kept: list[Triple] = []
-        for t in distinct:
-            if isinstance(t.object, Literal):
-                key = (t.subject, t.predicate, value_key(t.object))
-                if key in spelled:
-                    continue
-                spelled.add(key)
-            kept.append(t)
-        literals = [Quad(t.subject, t.predicate, t.object, graph) for t in kept if isinstance(t.object, Literal)]
-        forms_add, _ = self.forms.record(literals, [])
+        unique = triples if distinct else tuple(dict.fromkeys(triples))
+        spelled: dict[tuple, Literal] = {}  # (subject, predicate, value key) -> the literal kept
+        recorded: list[bool] = []
+
+        def quads() -> Iterator[Quad]:
+            """The quads to write, each triple's terms taken once; then the literal forms' quads."""
+            for t in unique:
+                s, p, o = t.subject, t.predicate, t.object
+                if isinstance(o, Literal):
+                    key = (s, p, value_key(o))
+                    if key in spelled:
+                        continue
+                    spelled[key] = o
+                yield Quad(s, p, o, graph)
+            forms_add = self.forms.record_loaded(graph, list(spelled.items()))  # each value key computed once
+            recorded.append(True)
+            yield from forms_add
+
         try:
-            self._commit_stream((Quad(t.subject, t.predicate, t.object, graph) for t in kept), forms_add)
+            self._commit_stream(quads(), [])
         except BaseException:
-            self.forms.record([], literals, undo=True)
+            if recorded:
+                self.forms.record([], [Quad(s, p, o, graph) for (s, p, _), o in spelled.items()], undo=True)
             raise
-        return len(distinct)
+        return len(unique)
 
     def _commit_stream(self, quads: Iterator[Quad], extra: list[Quad]) -> None:
         """Add ``quads`` (made one by one) and ``extra`` in one commit; stores that can take a

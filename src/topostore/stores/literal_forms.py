@@ -65,6 +65,21 @@ class LiteralForms:
                     forms_add.append(_form_quad(q.graph_name.value, q.subject, q.predicate, q.object))
         return forms_add, forms_remove
 
+    def record_loaded(self, graph: NamedNode, spelled: list[tuple[tuple, Literal]]) -> list[Quad]:
+        """Remember the literals of a bulk load into ``graph`` (``spelled``: ((subject, predicate,
+        value key), literal) each, keys computed once by the caller): :meth:`record` without a quad
+        made or a key computed per literal; the quads persisting that on a durable store."""
+        if _is_scratch(graph):
+            return []
+        name, durable = graph.value, self._store.durable
+        forms_add: list[Quad] = []
+        for (s, p, key), lit in spelled:
+            self._literal_forms[(name, s, p, key)] = lit
+            self._count_form(key, lit, +1)
+            if durable:
+                forms_add.append(_form_quad(name, s, p, lit))
+        return forms_add
+
     def _count_form(self, key: tuple, lit: Literal, delta: int) -> None:
         forms = self._value_forms.setdefault(key, {})
         forms[lit] = forms.get(lit, 0) + delta

@@ -1,0 +1,84 @@
+"""LOAD of a generated map file: CPU, wall time and peak RSS of ``Ontology().load(path)`` alone.
+
+    python -m benchmarks.file_load 10000 100000 [--runs 3] [--maps DIR] [--profile 25]
+
+Each size is written once (``benchmarks.maps``, kept in ``--maps`` so that runs of two trees
+read the very same file) and loaded in a child process of its own, so that one size's peak
+RSS is not another's.  No REASON: a first REASON is measured by ``benchmarks.scale`` and
+``benchmarks.full``.  ``--profile N`` prints the N costliest functions (cProfile, by internal
+time) of one extra load per size; its times are inflated by the profiler.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import statistics
+import subprocess
+import sys
+import tempfile
+from pathlib import Path
+
+_CHILD = """
+import cProfile, json, pstats, resource, sys, time, warnings
+warnings.simplefilter("ignore")
+from topostore import Ontology
+path, top = sys.argv[1], int(sys.argv[2])
+onto = Ontology()
+profiler = cProfile.Profile() if top else None
+cpu, wall = time.process_time(), time.perf_counter()
+if profiler:
+    profiler.enable()
+n = onto.load(path)
+if profiler:
+    profiler.disable()
+    pstats.Stats(profiler, stream=sys.stderr).sort_stats("tottime").print_stats(top)
+print(json.dumps({"triples": n, "cpu": time.process_time() - cpu, "wall": time.perf_counter() - wall,
+                  "peak_rss_mib": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024}))
+"""
+
+
+def map_file(size: str, where: Path) -> Path:
+    """The map of ``size`` locations in ``where`` (written the first time it is asked for)."""
+    from benchmarks import maps
+
+    folder = where / size
+    found = sorted(folder.glob("*.owl")) if folder.exists() else []
+    if found:
+        return found[0]
+    folder.mkdir(parents=True, exist_ok=True)
+    path, _ = maps.write(size, folder)
+    return path
+
+
+def load_once(path: Path, profile: int = 0) -> dict:
+    """One load in a fresh interpreter: triples, cpu, wall, peak_rss_mib."""
+    out = subprocess.run([sys.executable, "-c", _CHILD, str(path), str(profile)], check=True,
+                         capture_output=True, text=True)
+    if profile:
+        print(out.stderr, file=sys.stderr)
+    return json.loads(out.stdout.strip().splitlines()[-1])
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("sizes", nargs="+", help="map sizes (locations), e.g. 10000 100000")
+    parser.add_argument("--runs", type=int, default=3)
+    parser.add_argument("--maps", type=Path, default=Path(tempfile.gettempdir()) / "topostore-maps")
+    parser.add_argument("--profile", type=int, default=0, metavar="N")
+    args = parser.parse_args(argv)
+    for size in args.sizes:
+        path = map_file(size, args.maps)
+        runs = [load_once(path) for _ in range(args.runs)]
+        cpu = statistics.median(r["cpu"] for r in runs)
+        wall = statistics.median(r["wall"] for r in runs)
+        rss = max(r["peak_rss_mib"] for r in runs)
+        print(f"{size:>7} locations  {runs[0]['triples']:>9,} triples  {path.stat().st_size / 1e6:6.1f} MB  "
+              f"load CPU {cpu:6.2f} s (median of {len(runs)})  wall {wall:6.2f} s  peak RSS {rss:5.0f} MiB")
+        if args.profile:
+            load_once(path, args.profile)
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
