@@ -78,7 +78,7 @@ from ..compile.rule import Rule, RuleSet
 from ..compile.schema_program import full_program
 from ..rdf.lexer import negates_exists  # noqa: F401 - public here since the first release
 from ..rdf.terms import Term
-from ..rdf.vocab import ASSERTED, AUX, DELTA, ENTAILED, INFERRED, NEW_AUX, NEW_INFERRED, TYPE
+from ..rdf.vocab import ASSERTED, AUX, DELTA, ENTAILED, INFERRED, NEW_AUX, NEW_INFERRED
 from ..stores.base import Store, key_census
 from . import after as after_step
 from . import delta_texts as texts
@@ -91,6 +91,7 @@ from .entailed import publish_entailed, refresh_entailed
 from .flips import Flips
 from .materialize import Materializer, ReasonStats
 from .plan import is_small, plan_where
+from .present import keys_with_facts
 from .program import PROGRAM_SCRATCH, Refused, StepCompiler, StepProgram, check_pair_atom, pair_atom, signature
 from .requests import RequestQueue
 from .scratch import ADDED, FLIP_GAINED, NEW_FACTS, OVERDELETED, REMOVED, SCRATCH
@@ -128,7 +129,8 @@ class MaintenanceState:
     quiet: bool = False
     asserted_size: int = 0
     violations: list[Violation] = field(default_factory=list)
-    #: predicates and classes with facts (a superset), to skip evaluations that cannot match
+    #: predicates and classes with facts (a superset of those the rules and checks read: no other
+    #: is asked about), to skip evaluations that cannot match
     present: Present = field(default_factory=lambda: (set(), set()))
     #: predicates and classes of asserted facts (a superset), to skip proofs that cannot succeed
     asserted: Present = field(default_factory=lambda: (set(), set()))
@@ -159,6 +161,8 @@ class IncrementalReasoner:
         self.negated = [r for r in self.rules if not is_monotone(r)]
         self.negated_triggers = Triggers(self.negated)
         self.provers = [i for i in self.monotone if can_prove(self.rules[i])]
+        #: the keys some rule or check body reads: the only ones :attr:`MaintenanceState.present` is asked about
+        self._needed = self.triggers.needed_keys() | self.check_triggers.needed_keys()
         self.checks_monotone = all(not c.negates and c.stratum == 0 for c in self.checks)
         self.requests = RequestQueue(store, self.rules)
         self.flips = Flips(self.requests, self.triggers, self._monotone_set)
@@ -572,10 +576,9 @@ class IncrementalReasoner:
         return text
 
     def _present(self, graphs: list[NamedNode]) -> Present:
-        """Predicates and classes with at least one fact in ``graphs`` (after a full run)."""
-        preds = {str(r["p"]) for r in self.store.query("SELECT DISTINCT ?p WHERE { ?s ?p ?o }", graphs=graphs)}
-        classes = {str(r["c"]) for r in self.store.query(f"SELECT DISTINCT ?c WHERE {{ ?s {TYPE} ?c }}", graphs=graphs)}
-        return preds, classes
+        """The predicates and classes a rule or check body reads with at least one fact in ``graphs``
+        (after a full run): maintenance only ever asks about those (:meth:`.Triggers.feasible`)."""
+        return keys_with_facts(self.store, self._needed, graphs)
 
     def _clear_scratch(self) -> None:
         """Drop the scratch graphs (with what the queue holds: one request)."""
