@@ -91,7 +91,7 @@ from .entailed import publish_entailed, refresh_entailed
 from .flips import Flips
 from .materialize import Materializer, ReasonStats
 from .plan import is_small, plan_where
-from .present import keys_with_facts
+from .present import key_graphs, with_facts
 from .program import PROGRAM_SCRATCH, Refused, StepCompiler, StepProgram, check_pair_atom, pair_atom, signature
 from .requests import RequestQueue
 from .scratch import ADDED, FLIP_GAINED, NEW_FACTS, OVERDELETED, REMOVED, SCRATCH
@@ -273,13 +273,16 @@ class IncrementalReasoner:
         finally:
             program.drop(self.store)
         start = time.perf_counter()
-        violations = check_consistency(self.store, self.ruleset)
+        # where the keys the rules and checks read have facts: the checks read a key of one graph
+        # there, and maintenance starts from the keys with facts (one query for both)
+        keys = self.key_graphs()
+        violations = check_consistency(self.store, self.ruleset, keys)
         publish_entailed(self.store, self.ruleset)
         stats.mode, stats.reason = "full", why
         # "quiet": the closure is the stratum-0 fixpoint, which maintenance keeps up to date
         # (a negated premise may have fired and stopped matching since, so ask the run)
         self.state = MaintenanceState(True, not materializer.upper_derived, self.store.count(ASSERTED), violations,
-                                      self._present([ASSERTED, INFERRED, AUX]), self._present([ASSERTED]))
+                                      with_facts(keys), with_facts(keys, ASSERTED))
         stats.seconds += time.perf_counter() - start
         return stats, violations
 
@@ -575,10 +578,11 @@ class IncrementalReasoner:
             text = self._texts[key] = f"{{\n  {where}\n}}"
         return text
 
-    def _present(self, graphs: list[NamedNode]) -> Present:
-        """The predicates and classes a rule or check body reads with at least one fact in ``graphs``
-        (after a full run): maintenance only ever asks about those (:meth:`.Triggers.feasible`)."""
-        return keys_with_facts(self.store, self._needed, graphs)
+    def key_graphs(self) -> dict:
+        """Which of the asserted, inferred and helper graphs hold facts of each key a rule or check
+        body reads (after a full run): maintenance only ever asks about those keys
+        (:meth:`.Triggers.feasible`), and the checks read a key of one graph there."""
+        return key_graphs(self.store, self._needed, [ASSERTED, INFERRED, AUX])
 
     def _clear_scratch(self) -> None:
         """Drop the scratch graphs (with what the queue holds: one request)."""
