@@ -5,10 +5,11 @@ at what costs.  For each chain map (:mod:`benchmarks.maps`), in a process of its
 its own), after LOAD and its first REASON:
 
 * the phases of ``reason(mode="full")`` run one by one on the same store, CPU seconds: the rules to
-  their fixpoint (:class:`~topostore.reason.materialize.Materializer`), the consistency checks, the
-  publication of entailed-only conclusions, the census of the keys with facts that maintenance starts
-  from, and the counts; "rules" is the only phase that grows with the rule set's work, the others are
-  what a full REASON does after it;
+  their fixpoint (:class:`~topostore.reason.materialize.Materializer`), the census of which graphs
+  hold the keys the rules and checks read (maintenance starts from it, the checks read a key of one
+  graph there), the consistency checks, the publication of entailed-only conclusions, and the counts;
+  "rules" is the only phase that grows with the rule set's work, the others are what a full REASON
+  does after it;
 * the quads each graph holds afterwards (a quad of a named graph is six index entries);
 * the rules' CPU per rule name (the profiled run: each evaluation its own request, so its total is a
   little above the unprofiled "rules" phase).
