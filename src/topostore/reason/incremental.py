@@ -78,7 +78,7 @@ from ..compile.rule import Rule, RuleSet
 from ..compile.schema_program import full_program
 from ..rdf.lexer import negates_exists  # noqa: F401 - public here since the first release
 from ..rdf.terms import Term
-from ..rdf.vocab import ASSERTED, AUX, DELTA, ENTAILED, INFERRED, NEW_AUX, NEW_INFERRED, TYPE
+from ..rdf.vocab import ASSERTED, AUX, DELTA, ENTAILED, INFERRED, NEW_AUX, NEW_INFERRED
 from ..stores.base import Store, key_census
 from . import after as after_step
 from . import delta_texts as texts
@@ -91,6 +91,7 @@ from .entailed import publish_entailed, refresh_entailed
 from .flips import Flips
 from .materialize import Materializer, ReasonStats
 from .plan import is_small, plan_where
+from .present import key_graphs, with_facts
 from .program import PROGRAM_SCRATCH, Refused, StepCompiler, StepProgram, check_pair_atom, pair_atom, signature
 from .requests import RequestQueue
 from .scratch import ADDED, FLIP_GAINED, NEW_FACTS, OVERDELETED, REMOVED, SCRATCH
@@ -128,7 +129,8 @@ class MaintenanceState:
     quiet: bool = False
     asserted_size: int = 0
     violations: list[Violation] = field(default_factory=list)
-    #: predicates and classes with facts (a superset), to skip evaluations that cannot match
+    #: predicates and classes with facts (a superset of those the rules and checks read: no other
+    #: is asked about), to skip evaluations that cannot match
     present: Present = field(default_factory=lambda: (set(), set()))
     #: predicates and classes of asserted facts (a superset), to skip proofs that cannot succeed
     asserted: Present = field(default_factory=lambda: (set(), set()))
@@ -159,6 +161,8 @@ class IncrementalReasoner:
         self.negated = [r for r in self.rules if not is_monotone(r)]
         self.negated_triggers = Triggers(self.negated)
         self.provers = [i for i in self.monotone if can_prove(self.rules[i])]
+        #: the keys some rule or check body reads: the only ones :attr:`MaintenanceState.present` is asked about
+        self._needed = self.triggers.needed_keys() | self.check_triggers.needed_keys()
         self.checks_monotone = all(not c.negates and c.stratum == 0 for c in self.checks)
         self.requests = RequestQueue(store, self.rules)
         self.flips = Flips(self.requests, self.triggers, self._monotone_set)
@@ -269,13 +273,16 @@ class IncrementalReasoner:
         finally:
             program.drop(self.store)
         start = time.perf_counter()
-        violations = check_consistency(self.store, self.ruleset)
+        # where the keys the rules and checks read have facts: the checks read a key of one graph
+        # there, and maintenance starts from the keys with facts (one query for both)
+        keys = self.key_graphs()
+        violations = check_consistency(self.store, self.ruleset, keys)
         publish_entailed(self.store, self.ruleset)
         stats.mode, stats.reason = "full", why
         # "quiet": the closure is the stratum-0 fixpoint, which maintenance keeps up to date
         # (a negated premise may have fired and stopped matching since, so ask the run)
         self.state = MaintenanceState(True, not materializer.upper_derived, self.store.count(ASSERTED), violations,
-                                      self._present([ASSERTED, INFERRED, AUX]), self._present([ASSERTED]))
+                                      with_facts(keys), with_facts(keys, ASSERTED))
         stats.seconds += time.perf_counter() - start
         return stats, violations
 
@@ -571,11 +578,11 @@ class IncrementalReasoner:
             text = self._texts[key] = f"{{\n  {where}\n}}"
         return text
 
-    def _present(self, graphs: list[NamedNode]) -> Present:
-        """Predicates and classes with at least one fact in ``graphs`` (after a full run)."""
-        preds = {str(r["p"]) for r in self.store.query("SELECT DISTINCT ?p WHERE { ?s ?p ?o }", graphs=graphs)}
-        classes = {str(r["c"]) for r in self.store.query(f"SELECT DISTINCT ?c WHERE {{ ?s {TYPE} ?c }}", graphs=graphs)}
-        return preds, classes
+    def key_graphs(self) -> dict:
+        """Which of the asserted, inferred and helper graphs hold facts of each key a rule or check
+        body reads (after a full run): maintenance only ever asks about those keys
+        (:meth:`.Triggers.feasible`), and the checks read a key of one graph there."""
+        return key_graphs(self.store, self._needed, [ASSERTED, INFERRED, AUX])
 
     def _clear_scratch(self) -> None:
         """Drop the scratch graphs (with what the queue holds: one request)."""
