@@ -51,6 +51,15 @@ def _key_pattern(key: ReadKey) -> tuple:
     return (None, TYPE, term) if key[0] == "t" else (None, term, None)
 
 
+def _flipped(store, key: ReadKey, graph: NamedNode) -> list[Triple] | None:
+    """The flipped facts of ``key`` in ``graph``; None when they are too many or one holds a
+    literal (the SPARQL text then moves them: a literal may be stored in another spelling)."""
+    facts = _facts(store, _key_pattern(key), graph)
+    if facts is None or any(isinstance(t.object, Literal) for t in facts):
+        return None
+    return facts
+
+
 @dataclass(frozen=True)
 class Lost:
     """:func:`.delta_texts.lost`: flipped-false facts of ``key`` present in ``graph`` become candidates."""
@@ -59,8 +68,8 @@ class Lost:
     graph: NamedNode
 
     def run(self, store) -> bool:
-        facts = _facts(store, _key_pattern(self.key), FLIP_LOST)
-        if facts is None or any(isinstance(t.object, Literal) for t in facts):
+        facts = _flipped(store, self.key, FLIP_LOST)
+        if facts is None:
             return False
         present = [t for t, here in zip(facts, store.contains_each(facts, self.graph)) if here]
         store.add_scratch(present, CANDIDATES)
@@ -75,8 +84,8 @@ class Gained:
     graph: NamedNode
 
     def run(self, store) -> bool:
-        facts = _facts(store, _key_pattern(self.key), FLIP_GAINED)
-        if facts is None or any(isinstance(t.object, Literal) for t in facts):
+        facts = _flipped(store, self.key, FLIP_GAINED)
+        if facts is None:
             return False
         _write_new(store, facts, self.graph)
         return True
