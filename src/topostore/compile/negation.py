@@ -76,7 +76,8 @@ class NegativeMembership:
         for a, b in tb.equivalent:
             self.supers.setdefault(a.node, []).append(b)
             self.supers.setdefault(b.node, []).append(a)
-        self.complements = [e for e in compiler.all_expressions() if e.kind == "not"]
+        self.expressions = compiler.all_expressions()
+        self.complements = [e for e in self.expressions if e.kind == "not"]
         self.needed = self._needed()
 
     # ------------------------------------------------------------------ what is needed
@@ -143,7 +144,7 @@ class NegativeMembership:
         x, y = "?x", "?y"
         self.compiler.emit("neg-avf", f"not in {describe(c)}", [self.compiler.prop_atom(x, c.prop, y), not_type(y, u)],
                            head)
-        for e in self.compiler.all_expressions():
+        for e in self.expressions:
             if e.prop != c.prop or e.kind not in ("some", "min", "exact") or (e.kind != "some" and e.n < 1):
                 continue
             if e.filler is not None and self.class_disjoint(e.filler, u):
