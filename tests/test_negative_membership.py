@@ -129,6 +129,16 @@ def test_an_existential_value_of_a_class_disjoint_with_the_filler() -> None:
     assert "N" not in types_of(o, "y")  # K is disjoint with U1 only: its value may be in U2
 
 
+def test_an_existential_on_a_sub_property_counts_one_on_a_super_property_does_not() -> None:
+    o = reasoned(":C owl:equivalentClass [ a owl:Restriction ; owl:onProperty :p ; owl:allValuesFrom :U ] . "
+                 + NOT_C + ":q rdfs:subPropertyOf :p . :p rdfs:subPropertyOf :r . :M owl:disjointWith :U . "
+                 ":A rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :q ; owl:someValuesFrom :M ] . "
+                 ":B rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :r ; owl:someValuesFrom :M ] . "
+                 ":x a :A . :y a :B .")
+    assert "N" in types_of(o, "x")
+    assert "N" not in types_of(o, "y")  # an r value need not be a p value
+
+
 # ---------------------------------------------------------------- what stays underived, and is said
 def test_case_analysis_stays_underived_and_the_warning_says_so() -> None:
     """m is in A ⊔ B, each disjoint with U: m ∉ U only by cases, so x ∈ ¬C is not derived (Pellet derives it)."""
@@ -194,3 +204,26 @@ def test_the_tutorial_tbox_types_every_individual_as_pellet(tmp_path: Path) -> N
     for name in ("pizzaA", "pizzaC"):
         assert "NonVegetarianPizza" in pellet["types"][name]
     assert mine["types"] == pellet["types"]
+
+
+# ---------------------------------------------------------------- maintenance: REASON after changes
+@pytest.mark.parametrize("mode", ["incremental", "full"])
+def test_the_complement_follows_changes_of_toppings_and_types(mode: str) -> None:
+    """A topping removed takes the non-vegetarian conclusion (and its helper facts) away; a type changed
+    brings it back; each REASON equals a full one on the same facts."""
+    o = reasoned(PIZZAS + ":p a :Pizza ; :hasTopping :s , :c . :s a :Salami . :c a :Cheese .")
+    assert "NonVegPizza" in types_of(o, "p")
+    o.remove_fact("p", "hasTopping", "s")
+    assert o.reason(mode=mode).consistent
+    assert "NonVegPizza" not in types_of(o, "p") and not not_in(o, "p", "VegPizza")
+    o.remove_type("c", "Cheese")
+    o.add_type("c", "Fish")
+    assert o.reason(mode=mode).consistent
+    assert "NonVegPizza" in types_of(o, "p")
+    fresh = Ontology()
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", OntologyWarning)
+        fresh.load_data(PREFIXES + PIZZAS + ":p a :Pizza ; :hasTopping :c . :c a :Fish . :s a :Salami .", "turtle")
+    fresh.reason()
+    for name in ("p", "c", "s"):
+        assert types_of(o, name) == types_of(fresh, name)

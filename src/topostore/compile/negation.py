@@ -15,8 +15,8 @@ neg-dw     x ∈ D, D disjoint with C (disjointWith, AllDisjointClasses, disjoin
 neg-uni    x ∉ every member of a union ⇒ x ∉ the union
 neg-int    x ∉ one conjunct of an intersection ⇒ x ∉ the intersection
 neg-avf    x p y, y ∉ U ⇒ x ∉ ∀p.U
-neg-svf    x ∈ ∃p.X (≥ n p.X, = n p.X with n ≥ 1), X disjoint with U as told ⇒ x ∉ ∀p.U: the value the
-           existential promises, named or not, is outside U
+neg-svf    x ∈ ∃q.X (≥ n q.X, = n q.X with n ≥ 1), q = p or a told sub-property of p, X disjoint with U
+           as told ⇒ x ∉ ∀p.U: the value the existential promises, named or not, is outside U
 neg-sco    x ∉ B, A ⊑ B ⇒ x ∉ A (both ways for A ≡ E)
 neg-com    x ∉ C ⇒ x ∈ ¬C (then cls-int1 and the equivalences conclude the named class)
 neg-clash  x ∈ C and x ∉ C: inconsistent (a check)
@@ -39,7 +39,7 @@ from pyoxigraph import NamedNode
 
 from ..rdf.terms import sparql
 from ..rdf.vocab import INTERNAL, NOTHING, THING, TYPE
-from .model import Expr, describe
+from .model import Expr, Prop, describe
 from .rule import Atom
 
 if TYPE_CHECKING:
@@ -144,12 +144,28 @@ class NegativeMembership:
         x, y = "?x", "?y"
         self.compiler.emit("neg-avf", f"not in {describe(c)}", [self.compiler.prop_atom(x, c.prop, y), not_type(y, u)],
                            head)
+        below = self._sub_properties(c.prop)
         for e in self.expressions:
-            if e.prop != c.prop or e.kind not in ("some", "min", "exact") or (e.kind != "some" and e.n < 1):
+            if e.prop not in below or e.kind not in ("some", "min", "exact") or (e.kind != "some" and e.n < 1):
                 continue
             if e.filler is not None and self.class_disjoint(e.filler, u):
                 self.compiler.emit("neg-svf", f"the value of {describe(e)} is not in {describe(u)}",
                                    [Atom(x, T, sparql(e.node))], head)
+
+    def _sub_properties(self, p: Prop) -> set[Prop]:
+        """``p`` and its told sub-properties (closure; q ⊑ p gives q⁻ ⊑ p⁻): a value by any of them is a
+        value by ``p``, so an existential on one promises a value ∀p.U constrains."""
+        down: dict[Prop, set[Prop]] = {}
+        for q, r in self.compiler.tb.subproperty:
+            down.setdefault(r, set()).add(q)
+            down.setdefault(Prop(r.iri, not r.inverse), set()).add(Prop(q.iri, not q.inverse))
+        found, todo = {p}, [p]
+        while todo:
+            for q in down.get(todo.pop(), ()):
+                if q not in found:
+                    found.add(q)
+                    todo.append(q)
+        return found
 
     # ------------------------------------------------------------------ told disjointness of classes
     def class_disjoint(self, a: Expr, b: Expr) -> bool:
