@@ -33,6 +33,7 @@ from . import condition as cond
 from .condition import Condition
 from .datatypes import implied_ranges
 from .model import Expr, Prop, TBox
+from .negation import NegativeMembership
 from .notices import Notice
 from .owl_restrictions import RestrictionRules, nm
 from .rule import Atom, Rule
@@ -65,6 +66,8 @@ class OwlCompiler:
             (a.node, b.node) for a, b in tbox.disjoint if a.is_named and b.is_named
         ]
         self.told = self._told_superclasses()
+        #: the rules of non-membership the complements need, a named part
+        self.negation = NegativeMembership(self)
 
     # ------------------------------------------------------------------ helpers
     @staticmethod
@@ -368,6 +371,7 @@ class OwlCompiler:
         self.class_axioms()
         self.property_axioms()
         self.difference_rules()
+        self.negation.compile()
         return self.rules
 
 

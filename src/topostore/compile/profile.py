@@ -14,7 +14,7 @@ expression is used, so that such a difference is never silent:
 
 =================================  =====================================================
 union / one-of, positively          non-Horn: which member is not known
-complement, negatively              membership of a complement needs what is not known
+complement, negatively              non-membership by case analysis (:mod:`.negation`)
 universal restriction, negatively   membership needs every value known
 max cardinality, negatively         idem, when a maximum can be told elsewhere
 max cardinality ≥ 2, positively     which of the values are equal is not known
@@ -207,7 +207,7 @@ class ProfileReport:
             self.note(UNION, axiom, f"an instance of {describe(e)} is one of those individuals: which one "
                       "(owl:sameAs) is not derived")
         elif not positive and k == "not":
-            self.note(COMPLEMENT, axiom, f"membership of {describe(e)} needs what is not known: never derived")
+            self.note(COMPLEMENT, axiom, self.complement_gap(e))
         elif not positive and k == "all":
             self.note(UNIVERSAL, axiom, f"membership of {describe(e)} needs every value known: never derived")
         elif not positive and k == "max" and self.max_told(e.prop):
@@ -218,6 +218,20 @@ class ProfileReport:
                       "needs case analysis, not drawn")
         if positive and k in ("some", "min", "exact") and (k == "some" or e.n >= 1):
             self.existential(e, axiom, subject)
+
+    def complement_gap(self, e: Expr) -> str:
+        """What of a complement's membership is not derived: the rules of :mod:`.negation` derive that an
+        individual is outside the complemented class from disjoint classes, through intersections, unions,
+        subclasses and universal restrictions; never by case analysis, nor for the parts without rules."""
+        inner = describe(e.members[0])
+        said = (f"membership of {describe(e)} is derived only where not being in {inner} follows from disjoint "
+                "classes through intersections, unions, subclasses and universal restrictions (over known values "
+                "or an existential's value of a class told disjoint with the filler); where it needs case "
+                "analysis it is not derived")
+        gaps = self.owl.negation.gaps(e)
+        if gaps:
+            said += "; not being in " + ", ".join(describe(g) for g in gaps) + " is never derived"
+        return said
 
     def max_told(self, p: Prop) -> bool:
         """Some axiom or characteristic tells a maximum on ``p`` (so a reasoner may derive membership)."""
