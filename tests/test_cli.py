@@ -89,7 +89,26 @@ def test_rules_are_grouped_with_origin() -> None:
     assert "# cax-dw: DOOR DisjointWith LOCATION (inconsistent when it matches)" in out
     assert "CONSTRUCT {" in out
     assert "Generic OWL 2 RL rules" not in out
-    assert "Generic OWL 2 RL rules" in run("rules", "--all", TBOX).output
+    everything = run("rules", "--all", TBOX).output
+    assert "Generic OWL 2 RL rules" in everything
+    assert "OWL rule files of rules/owl/" not in out
+
+
+def test_rules_all_prints_the_owl_rule_files_with_their_instantiations(tmp_path: Path) -> None:
+    """The files of rules/owl/ are shown as written, with how many compiled rules fill them in."""
+    onto = tmp_path / "kinds.ttl"
+    onto.write_text("@prefix : <http://example.org/k#> . @prefix owl: <http://www.w3.org/2002/07/owl#> .\n"
+                    "@prefix rdfs: <http://www.w3.org/2000/01/rdf-schema#> .\n"
+                    ":A a owl:Class ; rdfs:subClassOf :B . :B a owl:Class ; rdfs:subClassOf :C . :C a owl:Class .\n"
+                    ":p a owl:ObjectProperty ; rdfs:domain :A .\n")
+    result = run("rules", "--all", str(onto))
+    assert result.exit_code == 0, result.output
+    out = result.output
+    assert "### OWL rule files of rules/owl/" in out
+    assert "# cax-sco: 2 instantiation(s)" in out
+    assert "# prp-dom: 1 instantiation(s)" in out
+    assert "# prp-rng: 0 instantiation(s)" in out
+    assert "GRAPH ts:graph:schema" in out
 
 
 def test_rules_deltas_are_one_plain_update_per_body_atom(tmp_path: Path) -> None:

@@ -107,7 +107,9 @@ RULE_GROUPS = ("SWRL rules", "OWL axioms", "Consistency checks", "Generic OWL 2 
 
 @click.command()
 @click.argument("files", nargs=-1, required=True, metavar="FILE...")
-@click.option("--all", "show_all", is_flag=True, help="Also print the generic OWL 2 RL rules every ontology gets.")
+@click.option("--all", "show_all", is_flag=True,
+              help="Also print the generic OWL 2 RL rules every ontology gets, and the rule files of rules/owl/ "
+                   "that the OWL axioms' rules instantiate.")
 @click.option("--deltas", is_flag=True,
               help="After each rule, the delta rules incremental REASON runs: one per body atom, that atom read "
                    "from the changed facts only.")
@@ -152,8 +154,25 @@ def rules(files: tuple[str, ...], show_all: bool, deltas: bool, step: str | None
             if deltas and not rule.is_check:
                 click.echo(_delta_rules(rule))
         shown += len(members)
+    if show_all:
+        click.echo(_templates(onto.rules.rules))
     hidden = "" if show_all else f", {len(groups['Generic OWL 2 RL rules'])} generic rules not shown (--all)"
     click.echo(f"# {shown} rules{hidden}")
+
+
+def _templates(compiled: list[Rule]) -> str:
+    """The rule files of ``rules/owl/`` as written, each with how many of the compiled rules instantiate
+    it: the OWL axioms' rules of those kinds are these files with one axiom's schema row filled in."""
+    from ..compile.schema import schema_rules
+    from ..resources import rules_dir
+
+    templates = schema_rules()
+    out = [f"### OWL rule files of rules/owl/ ({len(templates)})\n"]
+    for name, template in sorted(templates.items()):
+        count = sum(1 for rule in compiled if rule.name == name and template.row_of(rule) is not None)
+        text = (rules_dir() / "owl" / f"{name}.rq").read_text().rstrip()
+        out.append(f"# {name}: {count} instantiation(s) among the OWL axioms' rules\n{text}\n")
+    return "\n".join(out)
 
 
 def _delta_rules(rule: Rule) -> str:
