@@ -26,6 +26,7 @@ from ..rdf.terms import INTEGER_TYPES, Term, sparql
 from ..rdf.vocab import OWL, RDF, TYPE, XSD, rdfs
 from . import data_ranges
 from .model import Expr, TBox
+from .reach import reachable
 from .rule import Atom, Rule
 
 #: Each datatype's direct super-datatypes (value-space inclusion), integers apart (intervals).
@@ -54,13 +55,7 @@ def _ancestors(dt: str) -> set[str]:
     """``dt`` and every datatype whose value space contains its value space."""
     if dt[len(XSD):] in INTEGER_TYPES and dt.startswith(XSD):
         dt = XSD + "integer"
-    out, todo = {dt}, [dt]
-    while todo:
-        for parent in _PARENTS.get(todo.pop(), ()):
-            if parent not in out:
-                out.add(parent)
-                todo.append(parent)
-    return out
+    return reachable(dt, lambda d: _PARENTS.get(d, ()))
 
 
 def _family(dt: str) -> str | None:

@@ -40,6 +40,7 @@ from dataclasses import replace
 
 from ..rdf.vocab import TYPE
 from .condition import test
+from .reach import reachable
 from .rule import Atom, Rule
 
 _TYPE = str(TYPE)
@@ -100,12 +101,7 @@ def _closure(edges: dict[Position, set[Position]]) -> dict[Position, frozenset[s
     """Per position, the classes its terms belong to in the closure."""
     out: dict[Position, frozenset[str]] = {}
     for start in edges:
-        seen, stack = {start}, [start]
-        while stack:
-            for nxt in edges.get(stack.pop(), ()):
-                if nxt not in seen:
-                    seen.add(nxt)
-                    stack.append(nxt)
+        seen = reachable(start, lambda position: edges.get(position, ()))
         out[start] = frozenset(c for kind, c in seen if kind == "t" and (kind, c) != start)
     return out
 

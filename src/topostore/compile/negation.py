@@ -40,6 +40,7 @@ from pyoxigraph import NamedNode
 from ..rdf.terms import sparql
 from ..rdf.vocab import INTERNAL, NOTHING, THING, TYPE
 from .model import Expr, Prop, describe
+from .reach import reachable
 from .rule import Atom
 
 if TYPE_CHECKING:
@@ -159,13 +160,7 @@ class NegativeMembership:
         for q, r in self.compiler.tb.subproperty:
             down.setdefault(r, set()).add(q)
             down.setdefault(Prop(r.iri, not r.inverse), set()).add(Prop(q.iri, not q.inverse))
-        found, todo = {p}, [p]
-        while todo:
-            for q in down.get(todo.pop(), ()):
-                if q not in found:
-                    found.add(q)
-                    todo.append(q)
-        return found
+        return reachable(p, lambda q: down.get(q, ()))
 
     # ------------------------------------------------------------------ told disjointness of classes
     def class_disjoint(self, a: Expr, b: Expr) -> bool:

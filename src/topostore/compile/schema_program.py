@@ -21,6 +21,7 @@ from dataclasses import dataclass, field, replace
 from pyoxigraph import NamedNode
 
 from ..stores.base import Store
+from .reach import reachable
 from .rule import Rule, RuleSet
 from .schema import Row, SchemaRule, schema_rules
 
@@ -65,18 +66,8 @@ def closed(rows: list[Row]) -> list[Row]:
     succ: dict[str, list[str]] = {}
     for a, b in rows:
         succ.setdefault(a, []).append(b)
-    out: list[Row] = []
-    for start in succ:
-        seen: set[str] = set()
-        todo = list(succ[start])
-        while todo:
-            node = todo.pop()
-            if node in seen or node == start:
-                continue
-            seen.add(node)
-            out.append((start, node))
-            todo += succ.get(node, [])
-    return out
+    return [(start, node) for start in succ
+            for node in sorted(reachable(start, lambda n: succ.get(n, ())) - {start})]
 
 
 def _instances(rules: list[Rule]) -> dict[str, list[tuple[int, Row]]]:
