@@ -12,7 +12,7 @@ from topostore.compile.generic import PREFIXES
 from topostore.demo.mapgen import generate
 from topostore.rdf.vocab import ASSERTED, AUX, INFERRED, TYPE
 from topostore.reason.consistency import GRAPHS, check_consistency, check_keys, check_text, one_graphs
-from topostore.reason.present import key_graphs, keys_with_facts, with_facts
+from topostore.reason.present import key_graphs, with_facts
 from topostore.stores import memory_store
 
 EX = "http://example.org/present#"
@@ -34,7 +34,7 @@ def test_key_graphs_names_each_graph_holding_a_key_and_none_for_a_key_without_fa
                      ("p", str(TYPE)): {ASSERTED}}
     assert with_facts(found) == ({f"<{EX}p>", f"<{EX}q>", str(TYPE)}, {f"<{EX}C>"})
     assert with_facts(found, INFERRED) == ({f"<{EX}p>", f"<{EX}q>"}, set())
-    assert keys_with_facts(store, keys, [ASSERTED]) == ({f"<{EX}p>", str(TYPE)}, {f"<{EX}C>"})
+    assert with_facts(key_graphs(store, keys, [ASSERTED])) == ({f"<{EX}p>", str(TYPE)}, {f"<{EX}C>"})
 
 
 def test_a_key_that_is_no_iri_counts_as_held_by_every_graph() -> None:
@@ -97,3 +97,27 @@ def test_checks_read_in_one_graph_find_what_checks_on_the_whole_dataset_find() -
              for row in store.query(check_text(c, one_graphs(c, keys)), graphs=GRAPHS, prefixes=PREFIXES)]
     assert sorted(whole) == sorted(split) and whole
     assert check_consistency(store, rules) == check_consistency(store, rules, keys) == report.violations
+
+
+def test_a_remote_store_with_a_reference_name_answers_the_same_keys_and_graphs(oxigraph_url: str) -> None:
+    """A named reference on a SPARQL server keeps its graphs under names of its own; the keys with facts,
+    and what a full REASON records as asserted, are told in the engine's graph names all the same."""
+    from topostore.stores import open_store
+
+    triples = [Triple(iri("a"), iri("p"), iri("b")), Triple(iri("a"), TYPE, iri("C"))]
+    keys = {("p", f"<{EX}p>"), ("t", f"<{EX}C>"), ("p", str(TYPE)), ("p", f"<{EX}absent>")}
+    local, remote = memory_store(), open_store(oxigraph_url, reference="present-ref")
+    for store in (local, remote):
+        store.add(triples, ASSERTED)
+    assert key_graphs(remote, keys, [ASSERTED, INFERRED, AUX]) == key_graphs(local, keys, [ASSERTED, INFERRED, AUX])
+    assert key_graphs(remote, keys, [ASSERTED])[("p", f"<{EX}p>")] == {ASSERTED}
+
+    states = []
+    for store in (memory_store(), open_store(oxigraph_url, reference="present-map")):
+        onto = Ontology(store=store)
+        onto.load(TBOX)
+        onto.reason(mode="full")
+        states.append(onto._reasoner.state)
+    assert states[1].asserted == states[0].asserted and states[0].asserted[0]
+    assert states[1].present == states[0].present
+

@@ -188,6 +188,35 @@ def test_a_full_reason_runs_a_large_table_generically() -> None:
     assert _no_schema_graph(onto)
 
 
+def test_a_failed_full_reason_reports_its_own_error_when_dropping_the_schema_graphs_fails_too(monkeypatch) -> None:
+    """The run's error is the one raised; a failure to drop the schema graphs after it does not hide it."""
+    from topostore.compile.schema_program import GenericProgram
+
+    chain = "\n".join(f":C{i} rdfs:subClassOf :C{i + 1} ." for i in range(GENERIC_ROWS + 4))
+    onto = Ontology()
+    onto.load_data(PREFIXES + chain + "\n:x a :C0 .\n", "turtle")
+
+    def run_fails(self, *args, **kwargs):
+        raise RuntimeError("the run itself")
+
+    real_drop, calls = GenericProgram.drop, []
+
+    def drop_fails(self, store):  # the drop inside write() (what a failed run left) still works
+        calls.append(1)
+        if len(calls) % 2 == 1:
+            return real_drop(self, store)
+        raise OSError("the drop")
+
+    monkeypatch.setattr(Materializer, "run", run_fails)
+    monkeypatch.setattr(GenericProgram, "drop", drop_fails)
+    with pytest.raises(RuntimeError, match="the run itself"):
+        onto.reason(mode="full")
+    monkeypatch.undo()
+    monkeypatch.setattr(GenericProgram, "drop", drop_fails)
+    with pytest.raises(OSError, match="the drop"):
+        onto.reason(mode="full")
+
+
 # ---------------------------------------------------------------- generated TBoxes
 CLASSES = [f"C{i}" for i in range(5)]
 PROPS = [f"p{i}" for i in range(4)]

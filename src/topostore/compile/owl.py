@@ -17,8 +17,9 @@ the extensions; the origin says which axiom the rule was made from.
 
 The rules of the plain kinds of axiom (class and property hierarchies, equivalent classes,
 domain, range, inverse, symmetric, transitive) are not written here: they are the generic rules
-of ``rules/owl/`` instantiated with the axiom's row of the schema tables (:mod:`.schema`), which
-this compiler fills (:attr:`OwlCompiler.schema`).
+of ``rules/owl/`` instantiated with the axiom's row of its schema table (:mod:`.schema`); a full
+REASON reads those rows back from the rules and may run the generic rule over them instead
+(:mod:`.schema_program`).
 """
 
 from __future__ import annotations
@@ -37,7 +38,7 @@ from .negation import NegativeMembership
 from .notices import Notice
 from .owl_restrictions import RestrictionRules, nm
 from .rule import Atom, Rule
-from .schema import Row, SchemaTables, class_row, schema_rule, subproperty_row, typing_row
+from .schema import Row, class_row, schema_rule, subproperty_row, typing_row
 from .snippets import (
     NOT_DIFFERENT_READS,
     candidate_atom,
@@ -61,7 +62,6 @@ class OwlCompiler:
         self.rules: list[Rule] = []
         self.notices: list[Notice] = []
         #: the rows of the plain kinds of axiom, whose rules are instantiations of ``rules/owl/``
-        self.schema = SchemaTables()
         self.disjoint_pairs = [
             (a.node, b.node) for a, b in tbox.disjoint if a.is_named and b.is_named
         ]
@@ -90,10 +90,10 @@ class OwlCompiler:
         self.rules.append(Rule(name, origin, tuple(body), head, tuple(filters), reads, violation, message,
                                stratum=stratum, value_range=value_range))
 
-    def instantiate(self, table: str, row: Row | None, origin: str, *names: str) -> bool:
-        """Record ``row`` in ``table`` and emit the generic rules ``names`` instantiated with it;
-        False (nothing emitted) when the axiom has no row."""
-        if self.schema.add(table, row, origin) is None:
+    def instantiate(self, row: Row | None, origin: str, *names: str) -> bool:
+        """Emit the generic rules ``names`` instantiated with the axiom's ``row``; False (nothing
+        emitted) when the axiom has no row (e.g. a domain of an inverse property expression)."""
+        if row is None:
             return False
         for name in names:
             self.rules.append(schema_rule(name).instantiate(row, origin))
@@ -283,9 +283,9 @@ class OwlCompiler:
     # ------------------------------------------------------------------ axioms
     def class_axioms(self) -> None:
         for a, b in self.tb.subclass:
-            self.instantiate("subClassOf", class_row(a, b), f"{a} SubClassOf {b}", "cax-sco")
+            self.instantiate(class_row(a, b), f"{a} SubClassOf {b}", "cax-sco")
         for a, b in self.tb.equivalent:
-            self.instantiate("equivalentClass", class_row(a, b), f"{a} EquivalentTo {b}", "cax-eqc1", "cax-eqc2")
+            self.instantiate(class_row(a, b), f"{a} EquivalentTo {b}", "cax-eqc1", "cax-eqc2")
         for a, b in self.tb.disjoint:
             body = self.member("?x", a) + self.member("?x", b)
             if body:
@@ -299,11 +299,11 @@ class OwlCompiler:
         x, y = "?x", "?y"
         for p, c in tb.domain:
             origin = f"{nm(p.iri)} domain {c}"
-            if not self.instantiate("domain", typing_row(p, c), origin, "prp-dom") and c.node != THING:
+            if not self.instantiate(typing_row(p, c), origin, "prp-dom") and c.node != THING:
                 self.emit("prp-dom", origin, [self.prop_atom(x, p, y)], Atom(x, T, sparql(c.node)))
         for p, c in tb.range:
             origin = f"{nm(p.iri)} range {c}"
-            if not self.instantiate("range", typing_row(p, c), origin, "prp-rng") and c.node != THING:
+            if not self.instantiate(typing_row(p, c), origin, "prp-rng") and c.node != THING:
                 self.emit("prp-rng", origin, [self.prop_atom(x, p, y)], Atom(y, T, sparql(c.node)))
         for p, dt in tb.data_range:
             test = in_datatype(y, dt)
@@ -314,10 +314,10 @@ class OwlCompiler:
                           value_range=(p.value, dt.value))
         for p, q in tb.subproperty:
             origin = f"{nm(p.iri)} SubPropertyOf {nm(q.iri)}"
-            if not self.instantiate("subPropertyOf", subproperty_row(p, q), origin, "prp-spo1") and p != q:
+            if not self.instantiate(subproperty_row(p, q), origin, "prp-spo1") and p != q:
                 self.emit("prp-spo1", origin, [self.prop_atom(x, p, y)], self.prop_atom(x, q, y))
         for p, q in tb.inverse:
-            self.instantiate("inverseOf", (sparql(p), sparql(q)), f"{nm(p)} InverseOf {nm(q)}", "prp-inv1", "prp-inv2")
+            self.instantiate((sparql(p), sparql(q)), f"{nm(p)} InverseOf {nm(q)}", "prp-inv1", "prp-inv2")
         for q, chain in tb.chains:
             vars_ = [f"?u{i}" for i in range(len(chain) + 1)]
             body = [self.prop_atom(vars_[i], p, vars_[i + 1]) for i, p in enumerate(chain)]
@@ -329,9 +329,9 @@ class OwlCompiler:
                       message=f"{{x}} is linked to {{y}} by the disjoint properties {nm(p)} and {nm(q)}")
         ch = tb.characteristics
         for p in ch.get("SymmetricProperty", ()):
-            self.instantiate("symmetric", (sparql(p),), f"{nm(p)} is symmetric", "prp-symp")
+            self.instantiate((sparql(p),), f"{nm(p)} is symmetric", "prp-symp")
         for p in ch.get("TransitiveProperty", ()):
-            self.instantiate("transitive", (sparql(p),), f"{nm(p)} is transitive", "prp-trp")
+            self.instantiate((sparql(p),), f"{nm(p)} is transitive", "prp-trp")
         for p in ch.get("AsymmetricProperty", ()):
             self.emit("prp-asyp", f"{nm(p)} is asymmetric", [Atom(x, sparql(p), y), Atom(y, sparql(p), x)],
                       violation=(x, y), message=f"{{x}} and {{y}} are linked both ways by the asymmetric {nm(p)}")

@@ -22,7 +22,6 @@ their rules directly.
 
 from __future__ import annotations
 
-from collections.abc import Iterator
 from dataclasses import dataclass, field
 from functools import cache
 
@@ -209,25 +208,5 @@ def subproperty_row(p: Prop, q: Prop) -> Row | None:
     return sparql(p.iri), sparql(q.iri)
 
 
-@dataclass
-class SchemaTables:
-    """The TBox's axioms of the plain kinds as rows, by table, each with the axiom it comes from.
-
-    The compiler (:class:`~.owl.OwlCompiler`) fills it axiom by axiom as it instantiates their rules,
-    in the order it always emitted them."""
-
-    rows: dict[str, list[tuple[Row, str]]] = field(default_factory=dict)
-
-    def add(self, table: str, row: Row | None, origin: str) -> Row | None:
-        if row is not None:
-            self.rows.setdefault(table, []).append((row, origin))
-        return row
-
-    def __iter__(self) -> Iterator[tuple[str, Row, str]]:
-        for table, rows in self.rows.items():
-            for row, origin in rows:
-                yield table, row, origin
-
-
-__all__ = ["Row", "SchemaRule", "SchemaTables", "class_row", "schema_dataset", "schema_rule", "schema_rules", "subproperty_row",
+__all__ = ["Row", "SchemaRule", "class_row", "schema_dataset", "schema_rule", "schema_rules", "subproperty_row",
            "typing_row"]

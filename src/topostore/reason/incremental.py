@@ -266,12 +266,19 @@ class IncrementalReasoner:
         self._decided.clear()
         self._clear_scratch()
         program = full_program(self.ruleset)  # large schema tables as one generic rule each
+        failed = True
         try:
             program.write(self.store)
             materializer = Materializer(self.store, program.rules, profile=profile)
             stats = materializer.run()
+            failed = False
         finally:
-            program.drop(self.store)
+            try:
+                program.drop(self.store)
+            except Exception:
+                if not failed:
+                    raise
+                # the run's own error is the one to report; the next full REASON drops these graphs first
         start = time.perf_counter()
         # where the keys the rules and checks read have facts: the checks read a key of one graph
         # there, and maintenance starts from the keys with facts (one query for both)

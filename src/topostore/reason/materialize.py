@@ -340,6 +340,8 @@ class Materializer:
         asserted = (set(self.present[0]), set(self.present[1]))
         self._graphs = single_graphs(self.rules, [i for c in ordered for i in c], self.triggers.needed_keys(),
                                      asserted, lambda r: AUX if r.head_aux() else INFERRED, ASSERTED)
+        # a text reading a key in one graph holds only for this run's asserted keys: none is kept from before
+        self._texts = {k: t for k, t in self._texts.items() if not k[4]}
         try:
             for component in ordered:
                 self._first_pass(component, back, stats)

@@ -49,7 +49,7 @@ def key_graphs(store: Store, keys: Iterable[ReadKey], graphs: list[NamedNode]) -
         text = "SELECT ?g ?p ?c WHERE { " + " UNION ".join(branches) + " }"
         for row in store.query(text, graphs=graphs):
             key = ("p", str(row["p"])) if row["p"] is not None else ("t", str(row["c"]))
-            found[key].add(row["g"])
+            found[key].add(store._graph_in(row["g"]))  # a remote store answers its own graph names
     return {k: frozenset(v) for k, v in found.items()}
 
 
@@ -63,10 +63,4 @@ def with_facts(found: KeyGraphs, graph: NamedNode | None = None) -> Present:
     return preds, classes
 
 
-def keys_with_facts(store: Store, keys: Iterable[ReadKey], graphs: list[NamedNode]) -> Present:
-    """The predicates and classes among ``keys`` with at least one fact in the union of ``graphs``
-    (a superset: a key that is no IRI counts as having facts)."""
-    return with_facts(key_graphs(store, keys, graphs))
-
-
-__all__ = ["KeyGraphs", "key_graphs", "keys_with_facts", "with_facts"]
+__all__ = ["KeyGraphs", "key_graphs", "with_facts"]
