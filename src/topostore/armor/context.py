@@ -38,6 +38,7 @@ _ENTITIES: dict[tuple[str, str], NamedNode] = {}
 _ENTITIES_MAX = 4096
 #: literals of recent (text, type name) arguments, as :func:`~topostore.rdf.terms.typed_literal` made them
 _LITERALS: dict[tuple[str, str], Literal] = {}
+_LITERALS_MAX = 4096
 
 
 @dataclass
@@ -100,7 +101,7 @@ class Context:
             raise CommandError(codes.UNKNOWN_TYPE, f"argument {type_pos + 1}: {exc}") from None
         except InvalidValueError as exc:
             raise CommandError(codes.INVALID_ARGUMENT, f"argument {value_pos + 1} (value): {exc}") from None
-        if len(_LITERALS) >= _ENTITIES_MAX:
+        if len(_LITERALS) >= _LITERALS_MAX:
             _LITERALS.clear()
         _LITERALS[key] = found
         return found

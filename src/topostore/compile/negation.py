@@ -84,8 +84,13 @@ class NegativeMembership:
     # ------------------------------------------------------------------ what is needed
     def _needed(self) -> dict[NamedNode, Expr]:
         """The classes whose non-membership a complement needs, closed backwards through the rules."""
+        return self._closure([e.members[0] for e in self.complements])
+
+    def _closure(self, starts: list[Expr]) -> dict[NamedNode, Expr]:
+        """``starts`` and the classes whose non-membership their rules read, and so on (owl:Thing,
+        which nothing is outside of, ends a walk), in the order the walk first meets them."""
         found: dict[NamedNode, Expr] = {}
-        todo = [e.members[0] for e in self.complements]
+        todo = list(starts)
         while todo:
             c = todo.pop()
             if c.node in found or c.node == THING:
@@ -182,18 +187,8 @@ class NegativeMembership:
     # ------------------------------------------------------------------ what the warning says
     def gaps(self, complement: Expr) -> list[Expr]:
         """The expressions, in the closure a complement needs, whose non-membership no rule derives."""
-        seen: set[NamedNode] = set()
-        out: list[Expr] = []
-        todo = [complement.members[0]]
-        while todo:
-            c = todo.pop()
-            if c.node in seen or c.node == THING:
-                continue
-            seen.add(c.node)
-            if c.kind not in _WITH_RULES or (c.kind == "all" and self._class_filler(c) is None):
-                out.append(c)
-            todo += self._premises(c)
-        return out
+        return [c for c in self._closure([complement.members[0]]).values()
+                if c.kind not in _WITH_RULES or (c.kind == "all" and self._class_filler(c) is None)]
 
 
 __all__ = ["NOT_TYPE", "NegativeMembership", "not_type"]

@@ -30,7 +30,7 @@ from collections.abc import Callable, Iterable, Iterator
 from contextlib import contextmanager
 from typing import TYPE_CHECKING, Any, TypeVar
 
-from pyoxigraph import Literal, Triple
+from pyoxigraph import Triple
 
 from ..errors import TopostoreError
 from ..rdf.vocab import ASSERTED, AUX, ENTAILED, INFERRED
@@ -196,10 +196,8 @@ class _UnitOfWork:
 
 def _as_written(store: Store, t: Triple) -> Triple:
     """A retracted triple with its literal in the form the user asserted (so an undo restores it exactly)."""
-    if isinstance(t.object, Literal):
-        written = store.original_literal(ASSERTED, t.subject, t.predicate, t.object)
-        return t if written == t.object else Triple(t.subject, t.predicate, written)
-    return t
+    written = store.rewritten(ASSERTED, t.subject, t.predicate, t.object)
+    return t if written is None else Triple(t.subject, t.predicate, written)
 
 
 def all_or_nothing(reason: F) -> F:

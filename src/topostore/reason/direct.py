@@ -21,7 +21,7 @@ from itertools import islice
 
 from pyoxigraph import BlankNode, Literal, NamedNode, Quad, Triple
 
-from ..compile.rule import ReadKey, Rule
+from ..compile.rule import Atom, ReadKey, Rule
 from ..rdf.terms import parse_term
 from ..rdf.vocab import ASSERTED, AUX, INFERRED, TYPE
 from .delta_texts import FLIP_LOST, KEEP
@@ -108,8 +108,7 @@ class OneAtom:
         self.atom = rule.body[0]
         self.head = rule.head
         self.graph = graph
-        self._body = tuple(_term(t) for t in (self.atom.s, self.atom.p, self.atom.o))
-        self._head = tuple(_term(t) for t in (self.head.s, self.head.p, self.head.o))
+        self._body, self._head = _terms(self.atom), _terms(self.head)
 
     def _heads(self, facts: list[Triple]) -> list[Triple] | None:
         """The heads the facts derive (None when one would hold a literal)."""
@@ -154,7 +153,7 @@ class OneAtom:
             bound = _match(self._head, c)
             if bound is None:
                 continue
-            pattern = tuple(bound.get(x) if isinstance(x, str) else x for x in self._body)
+            pattern = _bind(self._body, bound)
             if any(self._proves(store.triples(*pattern, g), bound) for g in graphs):
                 kept.append(c)
         store.add_scratch(kept, KEEP)
@@ -180,8 +179,7 @@ class Relaxed:
     and is used only while it stays as small as :data:`FEW` (else the exact SPARQL text runs)."""
 
     def __init__(self, rule: Rule, j: int, graph: NamedNode) -> None:
-        self._body = tuple(_term(t) for t in (rule.body[j].s, rule.body[j].p, rule.body[j].o))
-        self._head = tuple(_term(t) for t in (rule.head.s, rule.head.p, rule.head.o))
+        self._body, self._head = _terms(rule.body[j]), _terms(rule.head)
         self.graph = graph
 
     def run(self, store) -> bool:
@@ -193,7 +191,7 @@ class Relaxed:
             bound = _match(self._body, t)
             if bound is None:
                 continue
-            found = _facts(store, tuple(bound.get(x) if isinstance(x, str) else x for x in self._head), self.graph)
+            found = _facts(store, _bind(self._head, bound), self.graph)
             if found is None:
                 return False
             heads.update(dict.fromkeys(found))
@@ -209,8 +207,7 @@ def relaxable(rule: Rule, j: int) -> bool:
     atom, head = rule.body[j], rule.head
     if head is None or not (head.variables() & atom.variables()):
         return False
-    return all(t.startswith("?") or (t.startswith("<") and t.endswith(">"))
-               for t in (atom.s, atom.p, atom.o, head.s, head.p, head.o))
+    return _named_only(atom, head)
 
 
 def one_atom(rule: Rule) -> bool:
@@ -219,14 +216,28 @@ def one_atom(rule: Rule) -> bool:
     if len(rule.body) != 1 or rule.conditions or rule.head is None:
         return False
     atom, head = rule.body[0], rule.head
-    terms = (atom.s, atom.p, atom.o, head.s, head.p, head.o)
-    return all(t.startswith("?") or (t.startswith("<") and t.endswith(">")) for t in terms) \
-        and head.variables() <= atom.variables()
+    return _named_only(atom, head) and head.variables() <= atom.variables()
+
+
+def _named_only(*atoms: Atom) -> bool:
+    """Every term of ``atoms`` a variable or an IRI: what the quad API can match without the store's
+    literal spellings."""
+    return all(t.startswith("?") or (t.startswith("<") and t.endswith(">")) for a in atoms for t in (a.s, a.p, a.o))
 
 
 def _term(text: str):
     """A variable's name (str) or the named term."""
     return text if text.startswith("?") else parse_term(text)
+
+
+def _terms(atom: Atom) -> tuple:
+    """The atom's subject, predicate and object as :func:`_term` gives them."""
+    return tuple(_term(t) for t in (atom.s, atom.p, atom.o))
+
+
+def _bind(terms: tuple, bound: dict[str, object]) -> tuple:
+    """``terms`` with the variables ``bound`` gives filled in (a free variable stays a name)."""
+    return tuple(bound.get(x) if isinstance(x, str) else x for x in terms)
 
 
 def _pattern(terms: tuple) -> tuple:

@@ -78,12 +78,15 @@ def internal(p: NamedNode) -> NamedNode:
     """The internal predicate of ``p``'s entailed-only conclusions (in the helper graph)."""
     found = _INTERNAL.get(p)
     if found is None:
+        if len(_INTERNAL) >= _INTERNAL_MAX:  # a long-lived service loads many rule sets
+            _INTERNAL.clear()
         found = _INTERNAL[p] = NamedNode(ENTAILED_PREFIX + p.value)
     return found
 
 
 #: internal predicates made so far (the entailed-only predicates of the rules loaded: a few)
 _INTERNAL: dict[NamedNode, NamedNode] = {}
+_INTERNAL_MAX = 1024
 
 
 #: the internal form of an rdf:type conclusion whose individuals are different by entailment only

@@ -146,6 +146,14 @@ class Store:
         """The literal as the user asserted it (lexical form and datatype)."""
         return self.forms.original_literal(graph, s, p, o)
 
+    def rewritten(self, graph: NamedNode, s: Term, p: NamedNode, o: Term) -> Literal | None:
+        """The form the user wrote of ``o`` in ``graph`` where it differs from ``o``; None when ``o``
+        is no literal or already that form (so a removal or an undo restores exactly what was written)."""
+        if not isinstance(o, Literal):
+            return None
+        written = self.forms.original_literal(graph, s, p, o)
+        return None if written == o else written
+
     def restore(self, term: Term) -> Term:
         """A literal as users wrote it, when that value was written in one form only."""
         return self.forms.restore(term)
@@ -311,10 +319,8 @@ class Store:
 
     def _as_written(self, q: Quad) -> Quad:
         """``q`` with its literal in the form the user wrote (``q`` itself when that is its form)."""
-        if not isinstance(q.object, Literal):
-            return q
-        written = self.forms.original_literal(q.graph_name, q.subject, q.predicate, q.object)
-        return q if written == q.object else Quad(q.subject, q.predicate, written, q.graph_name)
+        written = self.rewritten(q.graph_name, q.subject, q.predicate, q.object)
+        return q if written is None else Quad(q.subject, q.predicate, written, q.graph_name)
 
     def _key(self, quad: Quad) -> Hashable:
         """What identifies a quad: itself, or with a literal object its value (``1`` = ``"01"^^xsd:int``)."""
