@@ -71,8 +71,7 @@ class Lost:
         facts = _flipped(store, self.key, FLIP_LOST)
         if facts is None:
             return False
-        present = [t for t, here in zip(facts, store.contains_each(facts, self.graph)) if here]
-        store.add_scratch(present, CANDIDATES)
+        _add_candidates(store, facts, self.graph)
         return True
 
 
@@ -89,6 +88,11 @@ class Gained:
             return False
         _write_new(store, facts, self.graph)
         return True
+
+
+def _add_candidates(store, facts: list[Triple], graph: NamedNode) -> None:
+    """The facts present in ``graph`` become candidates (of a recheck)."""
+    store.add_scratch([t for t, here in zip(facts, store.contains_each(facts, graph)) if here], CANDIDATES)
 
 
 def _write_new(store, heads: list[Triple], graph: NamedNode) -> None:
@@ -130,7 +134,7 @@ class OneAtom:
         heads = None if facts is None else self._heads(facts)
         if heads is None:
             return False
-        store.add_scratch([h for h, here in zip(heads, store.contains_each(heads, self.graph)) if here], CANDIDATES)
+        _add_candidates(store, heads, self.graph)
         return True
 
     def additions(self, store) -> bool:

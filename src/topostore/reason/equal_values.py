@@ -31,13 +31,12 @@ from pyoxigraph import Literal, Triple
 from ..compile.condition import BIND, TEST
 from ..compile.rule import Rule
 from ..compile.snippets import distinct_values
+from ..rdf.terms import REAL_TYPES
 from ..rdf.vocab import XSD
 from .flip import compared_only
 
 #: XSD types whose values SPARQL compares as numbers (promoted to a common type)
-_INTEGERS = {"integer", "nonPositiveInteger", "negativeInteger", "long", "int", "short", "byte",
-             "nonNegativeInteger", "unsignedLong", "unsignedInt", "unsignedShort", "unsignedByte", "positiveInteger"}
-_NUMERIC = _INTEGERS | {"decimal", "float", "double"}
+_NUMERIC = REAL_TYPES | {"float", "double"}
 #: XSD types whose values SPARQL compares by value in ways not modelled here (time zones): one key for all
 _TEMPORAL = {"dateTime", "dateTimeStamp", "date", "time", "gYear", "gYearMonth", "gMonth", "gMonthDay", "gDay",
              "duration", "dayTimeDuration", "yearMonthDuration"}
@@ -49,7 +48,7 @@ def _double(local: str, text: str) -> float | None:
     than XSD (``1_000``) get a value too: a key too many only ever costs the query."""
     text = text.strip()
     try:
-        if local in _INTEGERS or local == "decimal":
+        if local in REAL_TYPES:
             try:
                 value = float(int(text))
             except ValueError:
