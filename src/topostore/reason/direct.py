@@ -67,6 +67,11 @@ class Lost:
     key: ReadKey
     graph: NamedNode
 
+    @property
+    def reads(self) -> frozenset:
+        """The keys whose facts it reads (its own)."""
+        return frozenset((self.key,))
+
     def run(self, store) -> bool:
         facts = _flipped(store, self.key, FLIP_LOST)
         if facts is None:
@@ -82,6 +87,11 @@ class Gained:
     key: ReadKey
     graph: NamedNode
 
+    @property
+    def reads(self) -> frozenset:
+        """The keys whose facts it reads (its own)."""
+        return frozenset((self.key,))
+
     def run(self, store) -> bool:
         facts = _flipped(store, self.key, FLIP_GAINED)
         if facts is None:
@@ -92,12 +102,21 @@ class Gained:
 
 def _add_candidates(store, facts: list[Triple], graph: NamedNode) -> None:
     """The facts present in ``graph`` become candidates (of a recheck)."""
-    store.add_scratch([t for t, here in zip(facts, store.contains_each(facts, graph)) if here], CANDIDATES)
+    if facts:
+        _add(store, [t for t, here in zip(facts, store.contains_each(facts, graph)) if here], CANDIDATES)
+
+
+def _add(store, facts: list[Triple], graph: NamedNode) -> None:
+    """Add ``facts`` to a scratch graph; none is no write (a store write costs microseconds even empty)."""
+    if facts:
+        store.add_scratch(facts, graph)
 
 
 def _write_new(store, heads: list[Triple], graph: NamedNode) -> None:
     """The heads not known in the new state, into ``graph`` and NEW_FACTS."""
     heads = list(dict.fromkeys(heads))
+    if not heads:
+        return
     new = [t for t, known in zip(heads, _known(store, heads, _STATE)) if not known]
     if new:
         store.add_scratch(new, graph)
@@ -113,6 +132,8 @@ class OneAtom:
         self.head = rule.head
         self.graph = graph
         self._body, self._head = _terms(self.atom), _terms(self.head)
+        #: the keys whose facts it reads: the atom's and the head's
+        self.reads = frozenset((self.atom.read_key(), self.head.read_key()))
 
     def _heads(self, facts: list[Triple]) -> list[Triple] | None:
         """The heads the facts derive (None when one would hold a literal)."""
@@ -160,7 +181,7 @@ class OneAtom:
             pattern = _bind(self._body, bound)
             if any(self._proves(store.triples(*pattern, g), bound) for g in graphs):
                 kept.append(c)
-        store.add_scratch(kept, KEEP)
+        _add(store, kept, KEEP)
         return True
 
     def _proves(self, facts, bound: dict[str, object]) -> bool:
@@ -185,6 +206,9 @@ class Relaxed:
     def __init__(self, rule: Rule, j: int, graph: NamedNode) -> None:
         self._body, self._head = _terms(rule.body[j]), _terms(rule.head)
         self.graph = graph
+        #: the keys whose facts it reads: atom ``j``'s and the head's
+        self.reads = frozenset((rule.body[j].read_key(), rule.head.read_key()))
+
 
     def run(self, store) -> bool:
         facts = _facts(store, _pattern(self._body), OVERDELETED)
@@ -201,7 +225,7 @@ class Relaxed:
             heads.update(dict.fromkeys(found))
             if len(heads) > FEW:
                 return False
-        store.add_scratch(list(heads), CANDIDATES)
+        _add(store, list(heads), CANDIDATES)
         return True
 
 

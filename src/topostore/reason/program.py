@@ -115,6 +115,14 @@ class StepProgram:
     #: by position of a flip in ``ops``: per compared predicate (IRI text), the flip as the one branch
     #: seeded by that predicate's atom, for a run where every fact of it was replaced
     seeded: dict = field(default_factory=dict)
+    #: by position in ``ops``: the key whose part of the program the operation belongs to (None: the
+    #: first operation and recursive components); every operation of a key's part writes facts of it only
+    part: list = field(default_factory=list)
+    #: what Python reads of the store before a part's operation (see :class:`.staged.StagedRun`): by
+    #: key with a part, the keys its rules read and itself; by position of an operation in ``direct``,
+    #: the keys its look-ups read
+    reads: dict = field(default_factory=dict)
+
 
     @property
     def whole(self) -> bool:
@@ -423,31 +431,48 @@ class _Emitter:
         self.direct: dict[int, Callable] = {}
         #: flips as one branch, by position and seed predicate (see :attr:`StepProgram.seeded`)
         self.seeded: dict[int, dict[str, str]] = {}
+        #: the key of each operation's part, and what each part reads (see :attr:`StepProgram.part`)
+        self.part: list[ReadKey | None] = []
+        self.reads: dict[ReadKey, frozenset] = {}
 
     def op(self, ops: list, tag: tuple, text: str, direct: Callable | None = None) -> None:
-        """Append an operation to ``ops`` (the program's own: with its look-up equivalent, if any)."""
+        """Append an operation to ``ops`` (the program's own: with its look-up equivalent, if any, a
+        method of an object of :mod:`.direct` that tells the keys it ``reads``)."""
         if direct is not None and ops is self.ops:
             self.direct[len(ops)] = direct
+            self.reads[len(ops)] = direct.__self__.reads
         ops.append((tag, text))
 
     def emit(self, components: list, absent: set) -> StepProgram:
         for item in components:
             if isinstance(item, list):
                 self.ops.append((("component", compile_component(self, item)), ""))
+                self.part += [None] * (len(self.ops) - len(self.part))
                 continue
             writers = [i for i in self.active if self.rules[i].writes() == item]
             # a removed asserted fact that some rule still derives stays, as inferred
             if writers or (item in self.sig.removed and self.writers.get(item)):
+                start = len(self.ops)
+                self.part += [None] * (start - len(self.part))
                 self._plain(item, writers)
+                self.part += [item] * (len(self.ops) - start)
+                self.reads[item] = frozenset({item}.union(
+                    *(self.rules[i].reads() for i in {*writers, *self.writers.get(item, ())})))
+        self.part += [None] * (len(self.ops) - len(self.part))
         return StepProgram(self.ops, frozenset(absent), frozenset(self.graphs), frozenset(self.flipped),
                            self.flip_rules, self.clean, frozenset(self.unasserted), self.direct,
-                           self.seeded)
+                           self.seeded, self.part, self.reads)
 
     def _plain(self, key: ReadKey, writers: list[int]) -> None:
         """A key no rule derives from itself: candidates, flips, recheck, additions."""
         graph = self.graphs[key] = self.target(key, writers)
         seeded = self._candidates(writers)
         flipped = self.flip_ops(writers, self.ops, SEEDS)
+        # the flipped-true heads before the recheck, where each is proven by its flip's rule in the new
+        # state (no recheck deletes it): the recheck then goes out with what follows, not alone
+        early = flipped and not any(self.restated(i) for i in flipped)
+        if early:
+            self._gained(key, graph)
         if key in self.sig.removed:
             self.ops.append((SEEDS, texts.copy(key, REMOVED, (CANDIDATES,))))
         if seeded or flipped or key in self.sig.removed:
@@ -466,13 +491,18 @@ class _Emitter:
                 self.ops.append((recheck, texts.restore(key, graph)))
             self.minus.add(key)
         added = self._additions(writers, graph)
-        if flipped:
-            self.op(self.ops, ("gained", key), texts.gained(key, (graph, NEW_FACTS)), Gained(key, graph).run)
+        if flipped and not early:
+            self._gained(key, graph)
         if added or flipped:
             self.plus.add(key)
         self.ops.append((("end", key), ""))
 
+    def _gained(self, key: ReadKey, graph: NamedNode) -> None:
+        """The key's flipped-true heads not known yet, into its graph and NEW_FACTS."""
+        self.op(self.ops, ("gained", key), texts.gained(key, (graph, NEW_FACTS)), Gained(key, graph).run)
+
     def target(self, key: ReadKey, writers: list[int]) -> NamedNode:
+
         """The graph the key's derived facts live in (one for all its rules, else :class:`Refused`)."""
         graphs = {target(self.rules[i]) for i in self.writers.get(key, writers)}
         if len(graphs) != 1:

@@ -11,6 +11,7 @@ left-out operation reads an empty change.  Recursive components run their rounds
 from __future__ import annotations
 
 from collections.abc import Callable, Collection
+from functools import lru_cache
 from itertools import islice
 
 from pyoxigraph import NamedNode, Triple
@@ -28,6 +29,8 @@ from .scratch import CANDIDATES, FLIP_GAINED, NEW_FACTS, OVERDELETED
 #: up to how many candidates a key's rechecks go one by one, stopping once every candidate is kept
 FEW = 32
 _AFTER = {"recheck": CANDIDATES, "lost": FLIP_LOST, "gained": FLIP_GAINED}
+#: operations reading a key's flipped facts, which only the key's own flips (earlier in its part) write
+_FLIPPED = ("lost", "gained")
 
 
 class StagedRun:
@@ -53,47 +56,77 @@ class StagedRun:
         self.components = 0
         #: operations with an equivalent through index look-ups use it (not where a look-up is a round trip)
         self.direct = {} if store.round_trips else program.direct
+        #: keys whose facts the queued operations may write (a look-up of another key needs no flush);
+        #: None: any key
+        self.dirty: set = set()
+        #: keys whose part ran, not yet looked up for lost or gained facts (done when a later part asks)
+        self.unnoted: set = set()
 
     def run(self) -> None:
         """Run the program: an operation is sent when the key it starts from changed, and a key's
         recheck and flip results only when there is something to recheck or add (index look-ups,
         after sending what is queued)."""
-        seeded = False
+        seeded = flipped = queued = False
         found: dict[tuple, bool] = {}
         mark = self.sent
+        part = self.program.part
         for index, (tag, text) in enumerate(self.program.ops):
             if tag[0] == "flip":
                 tag, text = tag[1], self._flip(index, tag, text)
                 if not text:
                     continue  # nothing can flip this time
+                flipped = True
             kind = tag[0]
+            if kind in _FLIPPED and not flipped:
+                continue  # no flip of this key ran: its flipped facts are none (no look-up)
             if kind == "changes" and self.changes is not None:
                 self.store.add_scratch(self.changes[0], NEW_FACTS)
                 self.store.add_scratch(self.changes[1], OVERDELETED)
             elif kind == "keep":
-                self._keep(found, tag[1], index, text, seeded)
+                queued |= self._keep(found, tag[1], index, text, seeded)
             elif kind == "delete":
                 if not found.get(("kept", tag[1])) and self._holds(found, CANDIDATES, tag[1], seeded):
-                    self.queue.append(text)
-            elif kind in ("always", "seeds", "changes") or (kind == "minus" and tag[1] in self.minus) \
-                    or (kind == "plus" and tag[1] in self.plus) \
+                    queued |= self._send(index, text, part[index])
+            elif kind in ("always", "seeds", "changes") or (kind == "minus" and self._changed(tag[1], self.minus)) \
+                    or (kind == "plus" and self._changed(tag[1], self.plus)) \
                     or (kind in _AFTER and self._holds(found, _AFTER[kind], tag[1], seeded)):
-                self._send(index, text)
+                queued |= self._send(index, text, part[index])
                 seeded |= kind in ("seeds", "minus", "lost")
             elif kind == "end":
-                if self.queue or self.sent != mark:  # something ran for this key (a look-up may have sent it)
-                    self.flush()
-                    self.note(tag[1])
-                seeded = False
+                if queued or self.sent != mark:  # something ran for this key (a look-up may have sent it)
+                    self.unnoted.add(tag[1])  # looked up when a later part asks (after a flush if needed)
+                seeded = flipped = queued = False
                 found.clear()
                 mark = self.sent
             elif kind == "component":
+                self.flush()  # a component reads between its rounds whatever it likes
+                for key in list(self.unnoted):
+                    self._changed(key, self.minus)
                 run_component(self, tag[1])
         self.flush()
+
+    def _changed(self, key: ReadKey, changes: set) -> bool:
+        """Whether ``key`` is in ``changes`` (:attr:`minus` or :attr:`plus`), looking up first whether
+        it lost or gained facts where its part ran and nothing asked yet."""
+        if key in self.unnoted:
+            self.unnoted.discard(key)
+            self.note(key)
+        return key in changes
+
+    def _reading(self, keys: Collection) -> None:
+        """Send what is queued when it may write facts of ``keys``, which Python is about to read."""
+        if self.dirty and (None in self.dirty or not self.dirty.isdisjoint(keys)):
+            self.flush()
+
+    def _reads(self, index: int) -> Collection:
+        """The keys operation ``index``'s part may read (its rules' premises and its own key)."""
+        key = self.program.part[index]
+        return self.program.reads[key] if key is not None else (None,)
 
     def _flip(self, index: int, tag: tuple, text: str) -> str:
         """The flip's text for this run (:attr:`flip_text`); where that is the compiled text and every
         fact of a compared predicate was replaced, the one branch seeded by it instead of the UNION."""
+        self._reading(self._reads(index))  # a value window's query reads the rule's premises
         found = self.flip_text(tag[2], tag[3], text)
         seeded = self.program.seeded.get(index)
         if found is not text or not seeded or self.changes is None or self.store.round_trips:
@@ -112,31 +145,35 @@ class StagedRun:
         facts = islice(self.store.triples(None, NamedNode(p[1:-1]), None, ASSERTED), len(subjects) + 1)
         return sum(1 for _ in facts) == len(subjects)
 
-    def _send(self, index: int, text: str) -> None:
-        """Run operation ``index`` through look-ups where it has that equivalent and its facts are few
-        (after sending what is queued, which it reads), else queue its text."""
+    def _send(self, index: int, text: str, key: ReadKey | None) -> bool:
+        """Run operation ``index`` (of ``key``'s part, None: of no key's) through look-ups where it has
+        that equivalent and its facts are few (after sending what is queued and may write what it
+        reads), else queue its text.  Whether it was queued."""
         direct = self.direct.get(index)
         if direct is not None:
-            self.flush()
+            self._reading(self.program.reads[index])
             if direct(self.store):
                 self.sent += 1
-                return
+                return False
         self.queue.append(text)
+        self.dirty.add(key)
+        return True
 
-    def _keep(self, found: dict, key: ReadKey, index: int, text: str, seeded: bool) -> None:
+    def _keep(self, found: dict, key: ReadKey, index: int, text: str, seeded: bool) -> bool:
         """Queue one of a key's rechecks, unless every candidate is kept already: while the key has
         few candidates, each recheck is sent alone and the candidates and kept ones counted after it."""
         if found.get(("kept", key)) or not self._holds(found, CANDIDATES, key, seeded):
-            return
-        self._send(index, text)
+            return False
+        queued = self._send(index, text, key)
         if found.get(("many", key)):
-            return
-        self.flush()
+            return queued
+        self._reading((key,))
         candidates = self.facts(key, CANDIDATES, FEW)
         if len(candidates) >= FEW:
             found[("many", key)] = True
         elif all(self.store.contains_each(candidates, KEEP)):
             found[("kept", key)] = True
+        return False
 
     def _holds(self, found: dict, graph: NamedNode, key: ReadKey, seeded: bool) -> bool:
         """Whether ``graph`` holds facts of ``key`` once what is queued has run (looked up once per key)."""
@@ -144,7 +181,7 @@ class StagedRun:
             return False  # nothing could have made candidates
         answer = found.get((graph, key))
         if answer is None:
-            self.flush()
+            self._reading((key,))
             answer = found[(graph, key)] = self.has(key, graph)
         return answer
 
@@ -154,6 +191,7 @@ class StagedRun:
             self.sent += len(self.queue)
             self.store.update(" ;\n".join(self.queue), prefixes=PREFIXES)
             self.queue.clear()
+        self.dirty.clear()
 
     def has(self, key: ReadKey, graph: NamedNode) -> bool:
         """Whether ``graph`` holds a fact of ``key`` (an index look-up)."""
@@ -168,14 +206,18 @@ class StagedRun:
 
     def note(self, key: ReadKey) -> None:
         """Record whether ``key`` lost or gained facts."""
+        self._reading((key,))
+
         if self.has(key, OVERDELETED):
             self.minus.add(key)
         if self.has(key, NEW_FACTS):
             self.plus.add(key)
 
 
+@lru_cache(maxsize=4096)
 def _pattern(key: ReadKey) -> tuple:
-    """The (subject, predicate, object) pattern of a key's facts, None where any term matches."""
+    """The (subject, predicate, object) pattern of a key's facts, None where any term matches (made once
+    per key: a step asks about the same few keys every time)."""
     term = NamedNode(key[1][1:-1])
     return (None, TYPE, term) if key[0] == "t" else (None, term, None)
 
