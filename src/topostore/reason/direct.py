@@ -29,6 +29,9 @@ from .scratch import CANDIDATES, FLIP_GAINED, NEW_FACTS, OVERDELETED
 
 #: at most this many facts are moved through look-ups; more go through the SPARQL text
 FEW = 16
+#: what a recheck through look-ups answers when it proved every candidate of its key
+ALL_KEPT = "all kept"
+
 
 _STATE = (ASSERTED, INFERRED, AUX)
 
@@ -169,9 +172,30 @@ class OneAtom:
 
     def keep(self, store) -> bool:
         """:func:`.delta_texts.keep`: the candidates the rule derives from the new state go to KEEP."""
+        found = self._kept(store)
+        if found is None:
+            return False
+        _add(store, found[1], KEEP)
+        return True
+
+    def keep_all(self, store) -> bool | str:
+        """:meth:`keep` where nothing reads KEEP once every candidate is kept (the key's deletion is then
+        left out, and it restores no removed asserted fact): :data:`ALL_KEPT`, nothing written, when the
+        rule proves every candidate."""
+        found = self._kept(store)
+        if found is None:
+            return False
+        candidates, kept = found
+        if len(kept) == len(candidates):
+            return ALL_KEPT
+        _add(store, kept, KEEP)
+        return True
+
+    def _kept(self, store) -> tuple[list[Triple], list[Triple]] | None:
+        """The key's candidates and those the rule derives from the new state (None: too many)."""
         candidates = _facts(store, _pattern(self._head), CANDIDATES)
         if candidates is None:
-            return False
+            return None
         graphs = (AUX,) if self.atom.aux else _STATE
         kept = []
         for c in candidates:
@@ -181,8 +205,7 @@ class OneAtom:
             pattern = _bind(self._body, bound)
             if any(self._proves(store.triples(*pattern, g), bound) for g in graphs):
                 kept.append(c)
-        _add(store, kept, KEEP)
-        return True
+        return candidates, kept
 
     def _proves(self, facts, bound: dict[str, object]) -> bool:
         """Whether one of ``facts`` matches the atom with the head's values ``bound`` (a variable
@@ -295,4 +318,4 @@ def _instance(terms: tuple, bound: dict[str, object]) -> Triple | None | bool:
     return Triple(s, p, o)
 
 
-__all__ = ["FEW", "Gained", "Lost", "OneAtom", "Relaxed", "one_atom", "relaxable"]
+__all__ = ["ALL_KEPT", "FEW", "Gained", "Lost", "OneAtom", "Relaxed", "one_atom", "relaxable"]
