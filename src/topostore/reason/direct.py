@@ -105,21 +105,12 @@ class Gained:
 
 def _add_candidates(store, facts: list[Triple], graph: NamedNode) -> None:
     """The facts present in ``graph`` become candidates (of a recheck)."""
-    if facts:
-        _add(store, [t for t, here in zip(facts, store.contains_each(facts, graph)) if here], CANDIDATES)
-
-
-def _add(store, facts: list[Triple], graph: NamedNode) -> None:
-    """Add ``facts`` to a scratch graph; none is no write (a store write costs microseconds even empty)."""
-    if facts:
-        store.add_scratch(facts, graph)
+    store.add_scratch([t for t, here in zip(facts, store.contains_each(facts, graph)) if here], CANDIDATES)
 
 
 def _write_new(store, heads: list[Triple], graph: NamedNode) -> None:
     """The heads not known in the new state, into ``graph`` and NEW_FACTS."""
     heads = list(dict.fromkeys(heads))
-    if not heads:
-        return
     new = [t for t, known in zip(heads, _known(store, heads, _STATE)) if not known]
     if new:
         store.add_scratch(new, graph)
@@ -175,7 +166,7 @@ class OneAtom:
         found = self._kept(store)
         if found is None:
             return False
-        _add(store, found[1], KEEP)
+        store.add_scratch(found[1], KEEP)
         return True
 
     def keep_all(self, store) -> bool | str:
@@ -188,7 +179,7 @@ class OneAtom:
         candidates, kept = found
         if len(kept) == len(candidates):
             return ALL_KEPT
-        _add(store, kept, KEEP)
+        store.add_scratch(kept, KEEP)
         return True
 
     def _kept(self, store) -> tuple[list[Triple], list[Triple]] | None:
@@ -248,7 +239,7 @@ class Relaxed:
             heads.update(dict.fromkeys(found))
             if len(heads) > FEW:
                 return False
-        _add(store, list(heads), CANDIDATES)
+        store.add_scratch(list(heads), CANDIDATES)
         return True
 
 

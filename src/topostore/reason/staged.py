@@ -11,7 +11,6 @@ left-out operation reads an empty change.  Recursive components run their rounds
 from __future__ import annotations
 
 from collections.abc import Callable, Collection
-from functools import lru_cache
 from itertools import islice
 
 from pyoxigraph import NamedNode, Triple
@@ -30,8 +29,6 @@ from .scratch import CANDIDATES, FLIP_GAINED, NEW_FACTS, OVERDELETED
 #: up to how many candidates a key's rechecks go one by one, stopping once every candidate is kept
 FEW = 32
 _AFTER = {"recheck": CANDIDATES, "lost": FLIP_LOST, "gained": FLIP_GAINED}
-#: operations reading a key's flipped facts, which only the key's own flips (earlier in its part) write
-_FLIPPED = ("lost", "gained")
 
 
 class StagedRun:
@@ -67,7 +64,7 @@ class StagedRun:
         """Run the program: an operation is sent when the key it starts from changed, and a key's
         recheck and flip results only when there is something to recheck or add (index look-ups,
         after sending what is queued)."""
-        seeded = flipped = queued = False
+        seeded = queued = False
         found: dict[tuple, bool] = {}
         mark = self.sent
         part = self.program.part
@@ -76,10 +73,7 @@ class StagedRun:
                 tag, text = tag[1], self._flip(index, tag, text)
                 if not text:
                     continue  # nothing can flip this time
-                flipped = True
             kind = tag[0]
-            if kind in _FLIPPED and not flipped:
-                continue  # no flip of this key ran: its flipped facts are none (no look-up)
             if kind == "changes" and self.changes is not None:
                 self.store.add_scratch(self.changes[0], NEW_FACTS)
                 self.store.add_scratch(self.changes[1], OVERDELETED)
@@ -96,7 +90,7 @@ class StagedRun:
             elif kind == "end":
                 if queued or self.sent != mark:  # something ran for this key (a look-up may have sent it)
                     self.unnoted.add(tag[1])  # looked up when a later part asks (after a flush if needed)
-                seeded = flipped = queued = False
+                seeded = queued = False
                 found.clear()
                 mark = self.sent
             elif kind == "component":
@@ -231,10 +225,8 @@ class StagedRun:
             self.plus.add(key)
 
 
-@lru_cache(maxsize=4096)
 def _pattern(key: ReadKey) -> tuple:
-    """The (subject, predicate, object) pattern of a key's facts, None where any term matches (made once
-    per key: a step asks about the same few keys every time)."""
+    """The (subject, predicate, object) pattern of a key's facts, None where any term matches."""
     term = NamedNode(key[1][1:-1])
     return (None, TYPE, term) if key[0] == "t" else (None, term, None)
 

@@ -40,7 +40,6 @@ from collections.abc import Iterable
 from dataclasses import dataclass
 from decimal import Decimal, InvalidOperation
 from fractions import Fraction
-from functools import lru_cache
 
 from pyoxigraph import Literal, Triple
 
@@ -190,10 +189,8 @@ def possible(found: list[Test], t: str) -> bool:
     return all(test.form is not None for test in found if t in test.variables)
 
 
-@lru_cache(maxsize=4096)
 def number(term: Term | None) -> Fraction | None:
-    """The exact value of a numeric literal (None for anything else, NaN and infinities); remembered,
-    since the value indexes read each value twice (added, then replaced) and parsing it is the cost."""
+    """The exact value of a numeric literal (None for anything else, NaN and infinities)."""
     if not isinstance(term, Literal) or not term.datatype.value.startswith(XSD):
         return None
     local = term.datatype.value.rsplit("#", 1)[1]
