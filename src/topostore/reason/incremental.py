@@ -323,6 +323,8 @@ class IncrementalReasoner:
             return
         self.flips.note(added, removed)
         requests = self.requests
+        requests.scratch(added, ADDED)
+        requests.scratch(removed, REMOVED)
         preds, classes = key_census(added)
         for keys in (self.state.present, self.state.asserted):
             keys[0].update(preds)
@@ -333,7 +335,6 @@ class IncrementalReasoner:
         replaced = flip.replaced_in(self.store, added, removed, ASSERTED)
         if self._compiled(added, removed, replaced, stats):
             return
-        self._changes(added, removed)
         requests.flush()  # the scratch copies are read from here on
         skip, lost, gained_rules = self.flips.find(self.state, added, removed, (preds, classes), stats, replaced)
         if removed:
@@ -368,10 +369,7 @@ class IncrementalReasoner:
         self.requests.scratch([r.old for p in program.flipped for r in clean[p]], flip.CHANGE_OLD)
         start = time.perf_counter()
         self.flips.state = self.state
-        whole = self.store.round_trips and self.store.whole_programs
-        if whole or program.reads_changes:  # else the key-by-key run writes the changes where it reads them
-            self._changes(added, removed)
-        if whole:  # the whole program as one request
+        if self.store.round_trips and self.store.whole_programs:  # the whole program as one request
             self.requests.flush()
             self.requests.defer(program.text(self._flip_text))
             self.requests.flush()
@@ -395,13 +393,7 @@ class IncrementalReasoner:
             self.state.present[0 if kind == "p" else 1].add(key)
         return True
 
-    def _changes(self, added: Collection[Triple], removed: Collection[Triple]) -> None:
-        """The asserted changes into their scratch graphs (ADDED, REMOVED), for the operations reading them."""
-        self.requests.scratch(added, ADDED)
-        self.requests.scratch(removed, REMOVED)
-
     def _flip_text(self, i: int, order: tuple[int, ...], text: str) -> str:
-
         """A compiled flip's text for this run: "" when no value changed kind and the rule only tests
         kinds (:func:`.flip.kind_tests_only`), else narrowed to the values in a window where one applies."""
         rule = self.rules[i]

@@ -118,13 +118,11 @@ class StepProgram:
     #: by position in ``ops``: the key whose part of the program the operation belongs to (None: the
     #: first operation and recursive components); every operation of a key's part writes facts of it only
     part: list = field(default_factory=list)
-    #: whether an operation after the first reads ADDED or REMOVED (else a key-by-key run, which
-    #: writes the first one's changes itself, leaves those graphs empty)
-    reads_changes: bool = True
     #: what Python reads of the store before a part's operation (see :class:`.staged.StagedRun`): by
     #: key with a part, the keys its rules read and itself; by position of an operation in ``direct``,
     #: the keys its look-ups read
     reads: dict = field(default_factory=dict)
+
 
     @property
     def whole(self) -> bool:
@@ -463,14 +461,7 @@ class _Emitter:
         self.part += [None] * (len(self.ops) - len(self.part))
         return StepProgram(self.ops, frozenset(absent), frozenset(self.graphs), frozenset(self.flipped),
                            self.flip_rules, self.clean, frozenset(self.unasserted), self.direct,
-                           self.seeded, part=self.part, reads=self.reads,
-                           reads_changes=self._reads_changes())
-
-    def _reads_changes(self) -> bool:
-        """Whether an operation after the first reads the asserted changes' graphs (ADDED, REMOVED):
-        one whose text names them, or a recursive component."""
-        names = (str(ADDED), str(REMOVED))
-        return any(tag[0] == "component" or any(n in text for n in names) for tag, text in self.ops[1:])
+                           self.seeded, self.part, self.reads)
 
     def _plain(self, key: ReadKey, writers: list[int]) -> None:
         """A key no rule derives from itself: candidates, flips, recheck, additions."""
