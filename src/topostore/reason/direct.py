@@ -29,9 +29,6 @@ from .scratch import CANDIDATES, FLIP_GAINED, NEW_FACTS, OVERDELETED
 
 #: at most this many facts are moved through look-ups; more go through the SPARQL text
 FEW = 16
-#: what a recheck through look-ups answers when it proved every candidate of its key
-ALL_KEPT = "all kept"
-
 
 _STATE = (ASSERTED, INFERRED, AUX)
 
@@ -163,30 +160,9 @@ class OneAtom:
 
     def keep(self, store) -> bool:
         """:func:`.delta_texts.keep`: the candidates the rule derives from the new state go to KEEP."""
-        found = self._kept(store)
-        if found is None:
-            return False
-        store.add_scratch(found[1], KEEP)
-        return True
-
-    def keep_all(self, store) -> bool | str:
-        """:meth:`keep` where nothing reads KEEP once every candidate is kept (the key's deletion is then
-        left out, and it restores no removed asserted fact): :data:`ALL_KEPT`, nothing written, when the
-        rule proves every candidate."""
-        found = self._kept(store)
-        if found is None:
-            return False
-        candidates, kept = found
-        if len(kept) == len(candidates):
-            return ALL_KEPT
-        store.add_scratch(kept, KEEP)
-        return True
-
-    def _kept(self, store) -> tuple[list[Triple], list[Triple]] | None:
-        """The key's candidates and those the rule derives from the new state (None: too many)."""
         candidates = _facts(store, _pattern(self._head), CANDIDATES)
         if candidates is None:
-            return None
+            return False
         graphs = (AUX,) if self.atom.aux else _STATE
         kept = []
         for c in candidates:
@@ -196,7 +172,8 @@ class OneAtom:
             pattern = _bind(self._body, bound)
             if any(self._proves(store.triples(*pattern, g), bound) for g in graphs):
                 kept.append(c)
-        return candidates, kept
+        store.add_scratch(kept, KEEP)
+        return True
 
     def _proves(self, facts, bound: dict[str, object]) -> bool:
         """Whether one of ``facts`` matches the atom with the head's values ``bound`` (a variable
@@ -222,7 +199,6 @@ class Relaxed:
         self.graph = graph
         #: the keys whose facts it reads: atom ``j``'s and the head's
         self.reads = frozenset((rule.body[j].read_key(), rule.head.read_key()))
-
 
     def run(self, store) -> bool:
         facts = _facts(store, _pattern(self._body), OVERDELETED)
@@ -309,4 +285,4 @@ def _instance(terms: tuple, bound: dict[str, object]) -> Triple | None | bool:
     return Triple(s, p, o)
 
 
-__all__ = ["ALL_KEPT", "FEW", "Gained", "Lost", "OneAtom", "Relaxed", "one_atom", "relaxable"]
+__all__ = ["FEW", "Gained", "Lost", "OneAtom", "Relaxed", "one_atom", "relaxable"]

@@ -484,10 +484,8 @@ class _Emitter:
                 i = keeps[0][0]  # one prover, whose head matches every fact of the key: ask it inside the deletion
                 self.ops.append((("delete", key), texts.recheck_one(self.rules[i], graph, self.restated(i))))
             else:
-                # where the key restores no removed asserted fact, nothing reads KEEP once all are kept
-                what = "keep" if key in self.sig.removed else "keep_all"
                 for i, text in keeps:
-                    self.op(self.ops, ("keep", key), text, self._one_atom(i, graph, what))
+                    self.op(self.ops, ("keep", key), text, self._one_atom(i, graph, "keep"))
                 self.ops.append((("delete", key), texts.recheck(key, graph)))
             if key in self.sig.removed:
                 self.ops.append((recheck, texts.restore(key, graph)))
@@ -613,11 +611,10 @@ class _Emitter:
         return Relaxed(rule, j, target(rule)).run if relaxable(rule, j) else None
 
     def _one_atom(self, i: int, graph: NamedNode, what: str) -> Callable | None:
-        """Rule ``i``'s ``what`` (candidates, keep, keep_all, additions) through index look-ups, when it is a
+        """Rule ``i``'s ``what`` (candidates, keep, additions) through index look-ups, when it is a
         rule with one atom and no filter whose recheck reads the new state (see :mod:`.direct`)."""
         rule = self.rules[i]
-        if not one_atom(rule) or (what.startswith("keep") and self.restated(i)):
-
+        if not one_atom(rule) or (what == "keep" and self.restated(i)):
             return None
         return getattr(OneAtom(rule, graph), what)
 

@@ -20,7 +20,6 @@ from ..compile.rule import ReadKey
 from ..rdf.vocab import ASSERTED, TYPE
 from .component import run_component
 from .delta_texts import FLIP_LOST, KEEP
-from .direct import ALL_KEPT
 from .program import Signature, StepProgram
 from .scratch import CANDIDATES, FLIP_GAINED, NEW_FACTS, OVERDELETED
 
@@ -144,39 +143,23 @@ class StagedRun:
         """Run operation ``index`` (of ``key``'s part, None: of no key's) through look-ups where it has
         that equivalent and its facts are few (after sending what is queued and may write what it
         reads), else queue its text.  Whether it was queued."""
-        if self._direct(index):
-            return False
+        direct = self.direct.get(index)
+        if direct is not None:
+            self._reading(self.program.reads[index])
+            if direct(self.store):
+                self.sent += 1
+                return False
         self.queue.append(text)
         self.dirty.add(key)
         return True
-
-    def _direct(self, index: int) -> object:
-        """Operation ``index`` through look-ups, where it has that equivalent: its answer (False: its
-        text must run; :data:`.direct.ALL_KEPT`: a recheck proved every candidate)."""
-        direct = self.direct.get(index)
-        if direct is None:
-            return False
-        self._reading(self.program.reads[index])
-        answer = direct(self.store)
-        if answer:
-            self.sent += 1
-        return answer
 
     def _keep(self, found: dict, key: ReadKey, index: int, text: str, seeded: bool) -> bool:
         """Queue one of a key's rechecks, unless every candidate is kept already: while the key has
         few candidates, each recheck is sent alone and the candidates and kept ones counted after it."""
         if found.get(("kept", key)) or not self._holds(found, CANDIDATES, key, seeded):
             return False
-        answer = self._direct(index)
-        if answer is ALL_KEPT:
-            found[("kept", key)] = True
-            return False
-        queued = not answer
-        if queued:
-            self.queue.append(text)
-            self.dirty.add(key)
+        queued = self._send(index, text, key)
         if found.get(("many", key)):
-
             return queued
         self._reading((key,))
         candidates = self.facts(key, CANDIDATES, FEW)
