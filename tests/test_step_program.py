@@ -425,3 +425,45 @@ def test_a_flip_seeded_by_a_clock_needs_every_clock_replaced() -> None:
         assert_as_from_scratch(onto, report)
         assert report.stats.program == "compiled", report.stats.program
     assert {onto.short(i) for i in onto.instances(N("Hot"))} == {"i2"}
+
+
+def test_a_look_up_waits_for_the_queued_deletion_of_a_key_it_reads() -> None:
+    """Hot's deletion is queued when the clock goes back; C's candidates and rechecks, made by look-ups
+    (C ⊑ A, Hot ⊑ C: one-atom rules), read Hot: the deletion is sent before them, and C and A of the
+    individual that cooled down go too."""
+    onto = new_ontology()
+    onto.replace(N("i0"), N("seen"), 80)
+    onto.reason()
+    assert {onto.short(i) for i in onto.instances(N("C"))} == {"i0"}
+    onto.replace(N("clock"), N("now"), 85)
+    report = onto.reason(mode="incremental")
+    assert report.stats.program == "compiled", report.stats.program
+    assert_as_from_scratch(onto, report)
+    assert set(onto.instances(N("C"))) == set()
+    assert N("i0") not in set(onto.instances(N("A")))
+
+
+def test_parts_reading_apart_share_one_request(tmp_path) -> None:
+    """The example map's robot step: the clock's flip is sent alone (its flipped facts are read by
+    look-ups), every operation after it in one request (no look-up reads a key they write)."""
+    import sys
+    from pathlib import Path
+
+    sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # the benchmarks package lives beside src/
+    from benchmarks import maps
+    from benchmarks.armor_robot import ArmorRobot
+    from benchmarks.walk import plan
+
+    path, bench = maps.write("example", tmp_path)
+    moves = plan(bench, 12)
+    robot = ArmorRobot(path)
+    for move in moves[:10]:
+        robot.step(move)
+    store = robot.ontology.store
+    sent: list[str] = []
+    update = store.update
+    with mock.patch.object(store, "update", lambda text, *a, **k: (sent.append(text), update(text, *a, **k))[1]):
+        for move in moves[10:]:
+            sent.clear()
+            robot.step(move)
+            assert len(sent) <= 2, sent
