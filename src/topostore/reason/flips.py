@@ -185,47 +185,27 @@ class Flips:
         other compared atom that lie in its window (see :mod:`.window`); {} where there is none."""
         rule, k = self.rules[i], order[-1]
         found: dict[int, list[Triple]] = {}
-        for m in self._windowed(i, k):
-            if self.derivable(rule.body[m].p):
+        for m, atom in enumerate(rule.body):
+            # an atom whose subject the seed binds is a look-up already; only an enumeration needs a window
+            if m == k or not flip.compared_only(rule, m) or atom.s in rule.body[k].variables() \
+                    or self.derivable(atom.p):
                 continue
             facts = self._window_facts(i, k, m)
             if facts is not None:
                 found[m] = facts
         return {k: found} if found else {}
 
-    def _windowed(self, i: int, k: int) -> tuple[int, ...]:
-        """The atoms of rule ``i`` a value window may narrow when atom ``k`` seeds its flip: compared
-        only, their subject not bound by the seed (such an atom is a look-up already), with a linear
-        test to solve (:func:`.window.possible`).  A property of the rule: decided once."""
-        key = ("windowed", i, k)
-        found = self._plans.get(key)
-        if found is None:
-            rule = self.rules[i]
-            seed = rule.body[k]
-            t = seed.o[1:]
-            possible = window.possible(self._window_tests(i), t)
-            found = self._plans[key] = tuple(
-                m for m, atom in enumerate(rule.body)
-                if possible and m != k and flip.compared_only(rule, m) and atom.s not in seed.variables())
-        return found
-
-    def _window_tests(self, i: int) -> list:
-        """The linear tests of rule ``i`` (:func:`.window.tests`), made once."""
-        tests = self._plans.get(("window-tests", i))
-        if tests is None:
-            tests = self._plans[("window-tests", i)] = window.tests(self.rules[i])
-        return tests
-
     def _window_facts(self, i: int, k: int, m: int) -> list[Triple] | None:
         """The facts of atom ``m`` that a change of seed atom ``k``'s value may flip (None: no window)."""
         rule = self.rules[i]
-        tests = self._window_tests(i)
+        tests = self._plans.get(("window-tests", i))
+        if tests is None:
+            tests = self._plans[("window-tests", i)] = window.tests(rule)
         seed, atom = rule.body[k], rule.body[m]
         t, v = seed.o[1:], atom.o[1:]
         index = self._value_index(atom.p)
-        if len(index) < WINDOW_MIN:
-            return None  # so few values that scanning them is as cheap (a linear test: :meth:`_windowed`)
-
+        if not window.possible(tests, t) or len(index) < WINDOW_MIN:
+            return None  # no linear test to solve, or so few values that scanning them is as cheap
         rest = sorted({n for test in tests if test.form for n in test.form[0]} - {t, v})
         text = self._texts.get(("window", i, k, m))
         if text is None:
