@@ -149,3 +149,26 @@ def test_on_the_map_the_links_domain_reads_the_asserted_links_alone() -> None:
     chosen = {rules[i].origin for i in implied_first_passes(rules, list(range(len(rules))))}
     assert "connectedTo domain LOCATION" in chosen  # written by Connectability, whose doors say LOCATION
     assert "hasDoor domain LOCATION" not in chosen  # asserted only: it is what the others rest on
+
+
+# ---------------------------------------------------------------- checks pairing two values
+
+INCONSISTENT = PREFIXES + """:d a owl:DatatypeProperty , owl:FunctionalProperty . :p a owl:ObjectProperty .
+:M owl:equivalentClass [ a owl:Restriction ; owl:onProperty :p ; owl:maxCardinality 1 ] .
+:x :d 1, 2 . :z :d 3 . :w :d 4, "4"^^xsd:int .
+:y a :M ; :p :a, :b . :a owl:differentFrom :b . :v a :M ; :p :a .
+"""
+
+
+def test_a_check_pairing_two_values_reports_what_it_did_without_the_count(monkeypatch: pytest.MonkeyPatch) -> None:
+    from topostore.reason import consistency
+
+    onto = loaded(INCONSISTENT)
+    report = onto.reason()
+    assert not report.consistent
+    texts = [consistency.check_text(r) for r in onto.rules.checks]
+    assert any("HAVING (COUNT(DISTINCT ?several_value) > 1)" in t for t in texts)
+    found = sorted(str(v) for v in consistency.check_consistency(onto.store, onto.rules))
+    assert any("x" in v for v in found) and any("y" in v for v in found)
+    monkeypatch.setattr(consistency, "several_values", lambda rule, graphs: [])
+    assert sorted(str(v) for v in consistency.check_consistency(onto.store, onto.rules)) == found
