@@ -16,11 +16,6 @@ also pairwise different, without any pairwise test, when
   ontology inconsistent by eq-diff2, so counting keys never counts one
   individual twice in a consistent ontology.
 
-The count by group is also how a minimum of two object values meets the AllDifferent keys
-(:func:`by_group`): one key look-up per value instead of two per pair of values, with the
-pairwise rule left to the other kinds of difference (:mod:`.inline_difference` joins it with
-every source but the group keys).
-
 For individuals declared different in other ways (``owl:differentFrom``,
 disjoint classes, two values of a functional data property) a count needs the
 largest set of pairwise-different values, a clique in the difference graph:
@@ -38,7 +33,7 @@ from ..rdf.vocab import AUX, DIFFERENT_KEY, KEY_PREFIX, XSD
 from . import condition as cond
 from .condition import Condition
 from .notices import INCOMPLETE, Notice
-from .rule import Atom, Rule
+from .rule import Atom
 
 #: up to this n, cardinalities keep the pairwise form (exact for every kind of difference);
 #: its cost grows as C(k, n) for k values, so it stays small
@@ -48,8 +43,6 @@ UNREACHABLE = 2 ** 62
 #: name of the warning for cardinalities above PAIRWISE_MAX on object properties
 COUNTED_ONLY = "cardinality-counted-by-group"
 
-#: the variable of a count's AllDifferent group
-_GROUP = "?count_group"
 _EPOCH = f'"1970-01-01T00:00:00Z"^^<{XSD}dateTime>'
 
 
@@ -110,17 +103,11 @@ def count_at_least(x: str, values: list[Atom], tests: list[Condition], value: st
         return [], [Condition(cond.PATTERN, group, reads_graph=True, written=group)]
     key, inner_key = "?count_key", "?count_key_c"
     inner_atoms.append(key_atom(inner, inner_key))
-    inner_tests.append(cond.bind(group_of(inner_key), _GROUP))
-    group = f"{{ SELECT {x} {_GROUP} WHERE {{ {_pattern_text(inner_atoms, inner_tests)} }} " \
-            f"GROUP BY {x} {_GROUP} HAVING (COUNT(DISTINCT {inner_key}) >= {n}) }}"
-    return [key_atom(value, key)], [cond.bind(group_of(key), _GROUP),
+    inner_tests.append(cond.bind(group_of(inner_key), "?count_group"))
+    group = f"{{ SELECT {x} ?count_group WHERE {{ {_pattern_text(inner_atoms, inner_tests)} }} " \
+            f"GROUP BY {x} ?count_group HAVING (COUNT(DISTINCT {inner_key}) >= {n}) }}"
+    return [key_atom(value, key)], [cond.bind(group_of(key), "?count_group"),
                                     Condition(cond.PATTERN, group, reads_graph=True, written=group)]
-
-
-def by_group(rule: Rule) -> bool:
-    """Whether ``rule`` counts the AllDifferent keys of its values per group (:func:`count_at_least`
-    on object values): its pairs of members of one group need no pairwise rule."""
-    return any(c.kind == cond.PATTERN and _GROUP in c.expression for c in rule.conditions)
 
 
 def counting_notice(restriction: str) -> Notice:
@@ -132,5 +119,5 @@ def counting_notice(restriction: str) -> Notice:
                   "not counted", axiom_kind=COUNTED_ONLY)
 
 
-__all__ = ["COUNTED_ONLY", "PAIRWISE_MAX", "UNREACHABLE", "by_group", "count_at_least", "counting_notice", "group_of",
+__all__ = ["COUNTED_ONLY", "PAIRWISE_MAX", "UNREACHABLE", "count_at_least", "counting_notice", "group_of",
            "key_atom", "literal_key"]

@@ -73,10 +73,13 @@ class RestrictionRules:
 
     def _counted(self, e: Expr, x: str, n: int) -> tuple[list[Atom], list[Condition]]:
         """Body atoms and conditions: ``x`` has at least ``n`` values of ``e`` known different, counted."""
+        v = "?v"
         data = self.compiler.is_data(e.prop, e)
-        values, tests, v = self._values(e, x)
+        more, test = self._filler_test(v, e)
+        values = [self.compiler.prop_atom(x, e.prop, v)] + more
+        tests = [test] if test is not None else []
         extra, conditions = count_at_least(x, values, tests, v, n, data)
-        if not data and self.counts(n):
+        if not data:
             notice = counting_notice(str(e))
             if notice not in self.compiler.notices:
                 self.compiler.notices.append(notice)
@@ -151,27 +154,11 @@ class RestrictionRules:
             return
         if self.counts(n):
             atoms, filters = self._counted(e, x, n)
-            forms: list[tuple[list[Atom], list[Condition], frozenset]] = [(atoms, filters, frozenset())]
+            reads: frozenset = frozenset()
         else:
             atoms, filters, pairs, _ = self._fillers(e, x, n)
-            forms = [self.require_different(pairs, atoms, filters, origin)]
-            if n == 2 and not self.compiler.is_data(e.prop, e):
-                # two members of one AllDifferent group counted, not paired (see .counting.by_group)
-                forms.append((*self._counted(e, x, n), frozenset()))
+            atoms, filters, reads = self.require_different(pairs, atoms, filters, origin)
         name = {"some": "cls-svf1", "min": "ext-min-card"}.get(e.kind, "ext-exact-card")
-        for atoms, filters, reads in forms:
-            self._emit_lower(e, node, name, origin, atoms, filters, reads)
-
-    def _values(self, e: Expr, x: str) -> tuple[list[Atom], list[Condition], str]:
-        """(atoms, tests, variable): ``?v`` is a value of ``e`` on ``x`` (its filler test included)."""
-        v = "?v"
-        more, test = self._filler_test(v, e)
-        return [self.compiler.prop_atom(x, e.prop, v)] + more, [test] if test is not None else [], v
-
-    def _emit_lower(self, e: Expr, node: str, name: str, origin: str, atoms: list[Atom],
-                    filters: list[Condition], reads: frozenset) -> None:
-        """Emit one form of a lower bound's rule (an exact cardinality's once per known maximum)."""
-        x = "?x"
         if e.kind != "exact":
             self.compiler.emit(name, origin, atoms, Atom(x, T, node), filters, reads)
             return
