@@ -31,7 +31,7 @@ from ..compile.schema import schema_dataset
 from ..rdf.vocab import ASSERTED, AUX, DELTA, INFERRED, INTERNAL, NEW_AUX, NEW_INFERRED, TYPE
 from ..stores.base import Store
 from . import limits
-from .order import TYPE_KEY, evaluation_order, reachable, single_graphs
+from .order import TYPE_KEY, evaluation_order, implied_first_passes, reachable, single_graphs
 from .plan import KeyCounts, is_small, plan_where
 from .triggers import Present, Triggers
 
@@ -141,14 +141,25 @@ class Materializer:
         self._graphs: dict[ReadKey, NamedNode] | None = None
         #: the keys rules of :meth:`run` have written so far
         self._derived: set[ReadKey] = set()
+        #: the needed keys with asserted facts at the start of :meth:`run`, and the rules of its ordered
+        #: pass whose first evaluation reads those alone (:func:`.order.implied_first_passes`)
+        self._asserted: Present = (set(), set())
+        self._implied: set[int] = set()
+        #: keys put in :attr:`present` by a first pass before the evaluation writing them ran
+        self._claimed: set[ReadKey] = set()
 
-    def _run(self, index: int, delta_index: int | None, stats: ReasonStats) -> None:
+    def _run(self, index: int, delta_index: int | None, stats: ReasonStats, asserted_only: bool = False) -> None:
+        """Evaluate rule ``index`` (its atom ``delta_index`` on the delta); ``asserted_only``: its one
+        atom reads the asserted graph alone (see :func:`.order.implied_first_passes`)."""
         derived = self._direct is not None and self.rules[index].writes() in self._derived
-        key = (index, delta_index, self._lateral, self._direct, self._graphs is not None, derived)
+        key = (index, delta_index, self._lateral, self._direct, self._graphs is not None, derived, asserted_only)
         text = self._texts.get(key)
         if text is None:
+            graphs = self._graphs
+            if asserted_only:
+                graphs = {**(graphs or {}), self.rules[index].body[0].read_key(): ASSERTED}
             text = self._texts[key] = insert_text(self.rules[index], delta_index, self.planned, self._lateral,
-                                                  self._direct, self._graphs, derived)
+                                                  self._direct, graphs, derived)
         stats.evaluations += 1
         if not self.profile:
             self._queue.append(text)  # sent by _flush, one request per round
@@ -302,24 +313,54 @@ class Materializer:
         """
         read = self._direct
         for i in component:
-            if not self.triggers.feasible(i, self.present):
+            if not self.triggers.feasible(i, self.present) or not self._claims_hold(i):
                 continue
+            asserted_only = i in self._implied
+            if asserted_only and not self._has_asserted(self.rules[i].body[0].read_key()):
+                continue  # every fact it reads is derived, and what it concludes of them holds already
             key = self.rules[i].writes()
             if i in back or key[0] == "*" or key == ("p", TYPE_KEY):
-                self._run(i, None, stats)
+                self._run(i, None, stats, asserted_only)
                 self._derived.add(key)
                 continue
             self._direct = (read[0], None)
             try:
-                self._run(i, None, stats)
+                self._run(i, None, stats, asserted_only)
             finally:
                 self._direct = read
             self._derived.add(key)
+            if key[1] not in self.present[1 if key[0] == "t" else 0]:
+                self._claimed.add(key)
             self.present[1 if key[0] == "t" else 0].add(key[1])
             if key[0] == "t":
                 self.present[0].add(TYPE_KEY)
         self._flush()
         stats.rounds += 1
+
+    def _claims_hold(self, i: int) -> bool:
+        """Whether rule ``i`` can still match once the keys it reads that earlier rules of the pass only
+        claimed (:attr:`_claimed`: put in :attr:`present` before their evaluation ran) are looked up.
+
+        A claim is a superset, as :attr:`present` must be; but a rule that wrote nothing leaves its
+        readers to scan for nothing (the six disjoint-classes rules over 10,000 doors and locations,
+        asking about pairs no rule asked about).  The queued evaluations are sent first, so that the
+        look-up sees what they wrote: one request more per pass that needs it.
+        """
+        keys = {a.read_key() for a in self.rules[i].body} & self._claimed
+        if not keys:
+            return True
+        self._flush()
+        for key in keys:
+            self._claimed.discard(key)
+            term = NamedNode(key[1][1:-1])
+            pattern = (None, TYPE, term) if key[0] == "t" else (None, term, None)
+            if not any(next(iter(self.store.triples(*pattern, g)), None) is not None for g in (INFERRED, AUX, ASSERTED)):
+                self.present[1 if key[0] == "t" else 0].discard(key[1])
+        return self.triggers.feasible(i, self.present)
+
+    def _has_asserted(self, key: ReadKey) -> bool:
+        """Whether read key ``key`` had an asserted fact when :meth:`run` started."""
+        return key[1] in self._asserted[1 if key[0] == "t" else 0]
 
     def _materialize(self, stats: ReasonStats) -> None:
         """The passes of :meth:`run`: components in order, then the rest and the upper strata."""
@@ -337,7 +378,9 @@ class Materializer:
         ordered, rest, back = evaluation_order(self.rules, first)
         # until the rules of a variable predicate and the upper strata run, only the ordered rules
         # write, so a key's facts lie where its asserted facts and its writers put them
-        asserted = (set(self.present[0]), set(self.present[1]))
+        asserted = self._asserted = (set(self.present[0]), set(self.present[1]))
+        self._claimed = set()
+        self._implied = implied_first_passes(self.rules, [i for c in ordered for i in c])
         self._graphs = single_graphs(self.rules, [i for c in ordered for i in c], self.triggers.needed_keys(),
                                      asserted, lambda r: AUX if r.head_aux() else INFERRED, ASSERTED)
         # a text reading a key in one graph holds only for this run's asserted keys: none is kept from before

@@ -1,0 +1,172 @@
+"""A full REASON's shortcuts keep its closure and its violations: first passes that read the asserted
+facts alone where every derived fact's conclusion holds anyway (reason/order.py ``implied_first_passes``),
+readers of a key only claimed by the same pass looked up first (``Materializer._claims_hold``), checks
+pairing two values kept to the subjects with two (reason/consistency.py ``several_values``); and a
+minimum of two values meets every kind of difference."""
+
+from __future__ import annotations
+
+import sys
+import warnings
+from pathlib import Path
+
+import pytest
+
+from topostore import Ontology, OntologyWarning
+from topostore.rdf.vocab import AUX, ENTAILED, INFERRED
+from topostore.reason import materialize
+from topostore.reason.order import implied_first_passes
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT))  # the benchmarks package lives beside src/
+from benchmarks import tbox  # noqa: E402
+from benchmarks.cardinality import PREFIXES  # noqa: E402
+
+MIN2 = PREFIXES + """:p a owl:ObjectProperty . :D a owl:Class .
+:C owl:equivalentClass [ a owl:Restriction ; owl:onProperty :p ; owl:minQualifiedCardinality 2 ; owl:onClass :D ] .
+"""
+
+
+def loaded(text: str) -> Ontology:
+    onto = Ontology()
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", OntologyWarning)
+        onto.load_data(text, "turtle")
+    return onto
+
+
+def in_c(onto: Ontology, name: str = "x") -> bool:
+    return name in {onto.short(i) for i in onto.instances("C")}
+
+
+# ---------------------------------------------------------------- a minimum of two
+
+@pytest.mark.parametrize(("data", "expected"), [
+    (":x :p :a, :b . :a a :D . :b a :D . [] a owl:AllDifferent ; owl:distinctMembers (:a :b) .", True),
+    (":x :p :a, :a2 . :a a :D . :a2 a :D . :a2 owl:sameAs :a . [] a owl:AllDifferent ; owl:distinctMembers (:a :b) .",
+     False),  # one member under two names
+    (":x :p :a, :b . :a a :D . :b a :D . [] a owl:AllDifferent ; owl:distinctMembers (:a :c) . "
+     "[] a owl:AllDifferent ; owl:distinctMembers (:b :c) .", False),  # two groups say nothing of :a and :b
+    (":x :p :a, :b . :a a :D . :b a :D . :a owl:differentFrom :b .", True),  # the pairwise rule's source
+    (":x :p :a, :b . :a a :D . [] a owl:AllDifferent ; owl:distinctMembers (:a :b) .", False),  # :b is no D
+    (":x :p :a, :b2 . :a a :D . :b a :D . :b2 owl:sameAs :b . [] a owl:AllDifferent ; owl:distinctMembers (:a :b) .",
+     True),  # a member's key held by what is the same as it
+])
+def test_a_minimum_of_two_sees_group_members_and_other_differences(data: str, expected: bool) -> None:
+    onto = loaded(MIN2 + data)
+    assert onto.reason().consistent
+    assert in_c(onto) is expected
+    onto.reason(mode="full")
+    assert in_c(onto) is expected
+
+
+@pytest.mark.parametrize("change", [
+    ":x :p :c . :c a :D .", ":y :p :a . :y :p :c . :c a :D .", ":c owl:sameAs :b .",
+])
+def test_a_minimum_of_two_follows_changes_as_a_full_reason_does(change: str) -> None:
+    text = MIN2 + ":x :p :a . :a a :D . :b a :D . [] a owl:AllDifferent ; owl:distinctMembers (:a :b :c) ."
+    onto = loaded(text)
+    onto.reason()
+    assert not in_c(onto)
+    onto.load_data(PREFIXES + change, "turtle")
+    onto.reason(mode="incremental")
+    incremental = {onto.short(i) for i in onto.instances("C")}
+    onto.reason(mode="full")
+    assert {onto.short(i) for i in onto.instances("C")} == incremental
+
+
+# ---------------------------------------------------------------- first passes over asserted facts
+
+CHAIN = PREFIXES + """:q a owl:ObjectProperty ; rdfs:domain :D . :D rdfs:subClassOf :C .
+:r a owl:ObjectProperty ; rdfs:domain :E . :r2 a owl:ObjectProperty ; rdfs:subPropertyOf :r .
+:t a owl:ObjectProperty ; rdfs:domain :E .
+"""
+
+
+def test_a_conclusion_implied_only_through_itself_is_still_drawn() -> None:
+    # D ⊑ C: the writer of D (q's domain) implies C only through D ⊑ C itself, so that rule reads every D
+    onto = loaded(CHAIN + ":a :q :b .")
+    assert onto.reason().consistent
+    assert {"C", "D"} <= {onto.short(c) for c in onto.types("a")}
+
+
+def test_asserted_facts_of_a_key_with_implied_writers_are_read() -> None:
+    # r's domain E: its writer (r2 ⊑ r) has a body whose subject is an E by r2 ⊑ r ... only through r's own
+    # domain, so nothing is restricted there; a key read alone in the asserted graph still finds them
+    onto = loaded(CHAIN + ":a :r2 :b . :c :r :d . :e :t :f .")
+    assert onto.reason().consistent
+    assert {"a", "c", "e"} <= {onto.short(i) for i in onto.instances("E")}
+
+
+def closure(onto: Ontology) -> dict[str, set]:
+    ox = onto.store._ox
+    return {g.value: set(ox.quads_for_pattern(None, None, None, g)) for g in (INFERRED, AUX, ENTAILED)}
+
+
+@pytest.mark.parametrize("source", ["example", "tbox", "map"])
+@pytest.mark.parametrize("shortcut", ["implied", "claims"])
+def test_a_full_reason_reaches_the_same_closure_with_and_without_the_shortcuts(
+        source: str, shortcut: str, monkeypatch: pytest.MonkeyPatch) -> None:
+    """``implied``: first passes over the asserted facts alone; ``claims``: readers of a key the pass
+    only claimed skipped when it has no fact after all."""
+    from benchmarks import maps
+    from topostore.resources import default_ontology_files
+
+    onto = Ontology()
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", OntologyWarning)
+        if source == "example":
+            for path in default_ontology_files():
+                onto.load(path)
+        elif source == "tbox":
+            onto.load_data(tbox.turtle(60), "turtle")
+        else:
+            import tempfile
+            with tempfile.TemporaryDirectory() as tmp:
+                path, _ = maps.write("200", Path(tmp))
+                onto.load(path)
+    onto.reason(mode="full")
+    restricted = closure(onto)
+    ordered = list(range(len(onto.rules.inference_rules)))
+    assert implied_first_passes(onto.rules.inference_rules, ordered) or source == "tbox"
+    if shortcut == "implied":
+        monkeypatch.setattr(materialize, "implied_first_passes", lambda rules, ordered: set())
+    else:
+        monkeypatch.setattr(materialize.Materializer, "_claims_hold", lambda self, i: True)
+    onto.reason(mode="full")
+    assert closure(onto) == restricted
+
+
+def test_on_the_map_the_links_domain_reads_the_asserted_links_alone() -> None:
+    from topostore.resources import default_ontology_files
+
+    onto = Ontology()
+    for path in default_ontology_files():
+        onto.load(path)
+    rules = onto.rules.inference_rules
+    chosen = {rules[i].origin for i in implied_first_passes(rules, list(range(len(rules))))}
+    assert "connectedTo domain LOCATION" in chosen  # written by Connectability, whose doors say LOCATION
+    assert "hasDoor domain LOCATION" not in chosen  # asserted only: it is what the others rest on
+
+
+# ---------------------------------------------------------------- checks pairing two values
+
+INCONSISTENT = PREFIXES + """:d a owl:DatatypeProperty , owl:FunctionalProperty . :p a owl:ObjectProperty .
+:M owl:equivalentClass [ a owl:Restriction ; owl:onProperty :p ; owl:maxCardinality 1 ] .
+:x :d 1, 2 . :z :d 3 . :w :d 4, "4"^^xsd:int .
+:y a :M ; :p :a, :b . :a owl:differentFrom :b . :v a :M ; :p :a .
+"""
+
+
+def test_a_check_pairing_two_values_reports_what_it_did_without_the_count(monkeypatch: pytest.MonkeyPatch) -> None:
+    from topostore.reason import consistency
+
+    onto = loaded(INCONSISTENT)
+    report = onto.reason()
+    assert not report.consistent
+    texts = [consistency.check_text(r) for r in onto.rules.checks]
+    assert any("HAVING (COUNT(DISTINCT ?several_value) > 1)" in t for t in texts)
+    found = sorted(str(v) for v in consistency.check_consistency(onto.store, onto.rules))
+    assert any("x" in v for v in found) and any("y" in v for v in found)
+    monkeypatch.setattr(consistency, "several_values", lambda rule, graphs: [])
+    assert sorted(str(v) for v in consistency.check_consistency(onto.store, onto.rules)) == found
