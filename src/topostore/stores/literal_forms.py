@@ -15,7 +15,7 @@ from typing import TYPE_CHECKING
 import pyoxigraph as ox
 from pyoxigraph import Literal, NamedNode, Quad, Triple
 
-from ..rdf.terms import Term, parse_term, value_key
+from ..rdf.terms import Term, parse_term, triple, value_key
 from ..rdf.vocab import INTERNAL
 from .meta import META
 
@@ -121,7 +121,7 @@ class LiteralForms:
         if not isinstance(t.object, Literal):
             return t
         stored = stored_literal(t.object)
-        return t if stored == t.object else Triple(t.subject, t.predicate, stored)
+        return t if stored == t.object else triple(t.subject, t.predicate, stored)
 
     def forget(self, graph: NamedNode) -> None:
         """Forget the forms of a graph being cleared (and their persisted copies)."""
