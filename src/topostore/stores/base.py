@@ -350,7 +350,12 @@ class Store:
             if present is None:
                 unknown.append(i)
             answers.append(present)
-        if unknown:  # one batch (one request on a remote store); a value asked twice takes the last answer
+        if len(unknown) == 1:  # a manipulation's one new triple
+            i = unknown[0]
+            answers[i] = self._has_many([quads[i]])[0]
+            if self._pending is not None:
+                known[keys[i]] = answers[i]
+        elif unknown:  # one batch (one request on a remote store); a value asked twice takes the last answer
             found = dict(zip((keys[i] for i in unknown), self._has_many([quads[i] for i in unknown]), strict=True))
             if self._pending is not None:
                 known.update(found)
