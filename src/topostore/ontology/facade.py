@@ -207,10 +207,10 @@ class Ontology:
             _validate(t)
         store, ledger, limit = self.store, self.ledger, self._change_limit()
         with store.transaction():
-            removed = store.remove_present(dict.fromkeys(remove), ASSERTED) if remove else []
+            removed = store.remove_present(remove, ASSERTED) if remove else []
             if removed:
                 ledger.record(store, removed, added=False, limit=limit)
-            added = store.add_new(dict.fromkeys(add), ASSERTED) if add else []
+            added = store.add_new(add, ASSERTED) if add else []
             if added:
                 ledger.record(store, added, added=True, limit=limit)
         self._touch(removed + added)

@@ -384,17 +384,24 @@ class Store:
     def _toggle_each(self, triples: Iterable[Triple], graph: NamedNode, add: bool) -> list[Triple]:
         """Record the pending addition (or removal) of each triple that is absent (present) in ``graph``,
         in one transaction; returns those triples."""
-        quads = {quad(t.subject, t.predicate, t.object, graph): t for t in triples}
+        triples = triples if isinstance(triples, (list, tuple)) else list(triples)
+        if len(triples) == 1:  # a manipulation's usual change: nothing to deduplicate
+            t = triples[0]
+            quads, triples = [quad(t.subject, t.predicate, t.object, graph)], [t]
+        else:  # deduplicated by quad
+            made = {quad(t.subject, t.predicate, t.object, graph): t for t in triples}
+            quads, triples = list(made), list(made.values())
         keys = [self._key(q) for q in quads]  # a literal's value key is the costly part of a load: once each
         if not self._depth:
             with self.transaction():
-                return self._toggle_absent(quads, keys, add)
-        return self._toggle_absent(quads, keys, add)  # inside the caller's transaction (a manipulation's)
+                return self._toggle_absent(quads, triples, keys, add)
+        return self._toggle_absent(quads, triples, keys, add)  # inside the caller's transaction (a manipulation's)
 
-    def _toggle_absent(self, quads: dict[Quad, Triple], keys: list[Hashable], add: bool) -> list[Triple]:
+    def _toggle_absent(self, quads: list[Quad], triples: list[Triple], keys: list[Hashable],
+                       add: bool) -> list[Triple]:
         """:meth:`_toggle_each` inside an open transaction."""
         pending, changed = self._pending, []
-        for (q, t), k, present in zip(quads.items(), keys, self._present(list(quads), keys), strict=True):
+        for q, t, k, present in zip(quads, triples, keys, self._present(quads, keys), strict=True):
             if present == add:
                 continue
             entry = pending.get(k)  # as _toggle: pending True is absent from the committed store, False present
