@@ -53,17 +53,21 @@ class Reply:
     exit_code: int = codes.SUCCESS
 
 
-@dataclass
 class Context:
-    """One call being executed: the service, the request and (when needed) its reference."""
+    """One call being executed: the service, the request and (when needed) its reference.
 
-    service: ArmorService
-    request: ArmorRequest
-    ref: Reference | None = None
+    A plain class with slots: every command makes one, and its handler reads ``args`` a few times."""
 
-    @property
-    def args(self) -> list[str]:
-        return self.request.args
+    __slots__ = ("service", "request", "ref", "args")
+
+    def __init__(self, service: ArmorService, request: ArmorRequest, ref: Reference | None = None) -> None:
+        self.service = service
+        self.request = request
+        self.ref = ref
+        self.args: list[str] = request.args
+
+    def __repr__(self) -> str:
+        return f"Context({self.request!r}, ref={None if self.ref is None else self.ref.name!r})"
 
     @property
     def reference(self) -> Reference:
@@ -76,7 +80,9 @@ class Context:
 
     def iri(self, position: int, what: str) -> NamedNode:
         """Entity IRI of ``args[position]``; 208 with the reason when the name is illegal."""
-        key = (self.args[position], self.reference.prefix)
+        ref = self.ref
+        assert ref is not None, "command registered without needs_ref"
+        key = (self.args[position], ref.ontology.prefix)
         found = _ENTITIES.get(key)
         if found is not None:
             return found

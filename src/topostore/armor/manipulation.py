@@ -65,7 +65,7 @@ def add_dataprop_ind(ctx: Context) -> Reply:
 
     def plan(onto: Ontology) -> Delta:
         present = any(terms.value_key(t.object) == key for t in asserted(onto, ind, prop))
-        return Delta(add=[] if present else [Triple(ind, prop, value)])
+        return Delta(add=[] if present else [terms.triple(ind, prop, value)])
 
     return ctx.submit(Change("ADD DATAPROP IND", plan))
 
@@ -195,13 +195,14 @@ def remove_objectprop_ind(ctx: Context) -> Reply:
 def _replace(ind: NamedNode, prop: NamedNode, new, old, description: str) -> Change:
     """Remove ``prop(ind, old)`` (matched by data value), add ``prop(ind, new)``; warn if old was absent."""
 
+    old_key, new_key = terms.value_key(old), terms.value_key(new)
+
     def plan(onto: Ontology) -> Delta:
-        values = asserted(onto, ind, prop)  # read once: on a remote store each read is a round trip
-        olds = _matching_values(onto, ind, prop, old, values)
-        new_key = terms.value_key(new)
-        present = any(terms.value_key(t.object) == new_key for t in values) and not any(
-            terms.value_key(t.object) == new_key for t in olds
-        )
+        # read once (on a remote store each read is a round trip), each value's key taken once
+        keys = [(t, terms.value_key(t.object)) for t in asserted(onto, ind, prop)]
+        olds = [t for t, key in keys if key == old_key]
+        # the new value stays if it is there already, unless it is the old value (removed, then added)
+        present = not (olds and new_key == old_key) and any(key == new_key for _, key in keys)
         warning = (
             ""
             if olds
@@ -210,7 +211,7 @@ def _replace(ind: NamedNode, prop: NamedNode, new, old, description: str) -> Cha
                 "the new value was added and the existing values were kept"
             )
         )
-        return Delta(add=[] if present else [Triple(ind, prop, new)], remove=olds, warning=warning)
+        return Delta(add=[] if present else [terms.triple(ind, prop, new)], remove=olds, warning=warning)
 
     return Change(description, plan)
 

@@ -13,10 +13,11 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from pyoxigraph import Literal, Triple
+from pyoxigraph import Triple
 
 from ..errors import TopostoreError
 from ..ontology.facade import Ontology
+from ..rdf.terms import triple
 from ..rdf.vocab import ASSERTED
 
 #: Reasoner names accepted at LOAD (spec §5.2); all run topostore's reasoner.
@@ -92,8 +93,7 @@ class Reference:
         """Apply one change to the asserted graph; returns what it did (for undo)."""
         onto = self.ontology
         delta = change.plan(onto)
-        removed = onto.remove_present(*(_original(onto, t) for t in delta.remove))
-        added = onto.add_new(*delta.add)
+        added, removed = onto.change(delta.add, [_original(onto, t) for t in delta.remove])
         return Applied(added, removed, delta.warning)
 
     def submit(self, changes: list[Change]) -> list[str]:
@@ -177,9 +177,8 @@ class Reference:
 
 def _original(onto: Ontology, t: Triple) -> Triple:
     """The triple with its literal in the form the user asserted (so undo restores it exactly)."""
-    if isinstance(t.object, Literal):
-        return Triple(t.subject, t.predicate, onto.store.original_literal(ASSERTED, t.subject, t.predicate, t.object))
-    return t
+    written = onto.store.rewritten(ASSERTED, t.subject, t.predicate, t.object)
+    return t if written is None else triple(t.subject, t.predicate, written)
 
 
 __all__ = ["Reference", "Change", "Delta", "Applied", "REASONERS"]

@@ -199,6 +199,23 @@ class Ontology:
         self._touch(gone)
         return gone
 
+    def change(self, add: Sequence[Triple], remove: Sequence[Triple]) -> tuple[list[Triple], list[Triple]]:
+        """Retract ``remove``, then assert ``add``, in one transaction: (added, removed), those that were new
+        and those that were asserted, as :meth:`add_new` and :meth:`remove_present` return them.  One
+        manipulation's delta (an aRMOR REPLACE) is one call: one transaction, one change limit, one touch."""
+        for t in add:
+            _validate(t)
+        store, ledger, limit = self.store, self.ledger, self._change_limit()
+        with store.transaction():
+            removed = store.remove_present(remove, ASSERTED) if remove else []
+            if removed:
+                ledger.record(store, removed, added=False, limit=limit)
+            added = store.add_new(add, ASSERTED) if add else []
+            if added:
+                ledger.record(store, added, added=True, limit=limit)
+        self._touch(removed + added)
+        return added, removed
+
     def _change(self, triples: tuple[Triple, ...], added: bool) -> list[Triple]:
         """Add or remove in the asserted graph and record what changed in the ledger: one presence look-up
         per triple (the store's), in one transaction with the change."""
@@ -209,7 +226,8 @@ class Ontology:
 
     def _touch(self, triples: Iterable[Triple]) -> None:
         self.dirty = True
-        durable_state.note_changed(self.store)
+        if self.store.durable:
+            durable_state.note_changed(self.store)
         if any(is_schema_triple(t) for t in triples):
             self._rules = None
             self._superclasses = None

@@ -33,6 +33,7 @@ from typing import TYPE_CHECKING, Any, TypeVar
 from pyoxigraph import Triple
 
 from ..errors import TopostoreError
+from ..rdf.terms import triple
 from ..rdf.vocab import ASSERTED, AUX, ENTAILED, INFERRED
 from ..reason import limits
 from ..reason.incremental import check_mode
@@ -197,7 +198,7 @@ class _UnitOfWork:
 def _as_written(store: Store, t: Triple) -> Triple:
     """A retracted triple with its literal in the form the user asserted (so an undo restores it exactly)."""
     written = store.rewritten(ASSERTED, t.subject, t.predicate, t.object)
-    return t if written is None else Triple(t.subject, t.predicate, written)
+    return t if written is None else triple(t.subject, t.predicate, written)
 
 
 def all_or_nothing(reason: F) -> F:

@@ -11,7 +11,7 @@ import math
 import re
 from decimal import Decimal, InvalidOperation
 
-from pyoxigraph import BlankNode, Literal, NamedNode, RdfFormat, parse
+from pyoxigraph import BlankNode, Literal, NamedNode, Quad, RdfFormat, Triple, parse
 
 from ..errors import InvalidNameError, InvalidValueError, UnknownTypeError
 from .vocab import PLACEHOLDER_PREDICATE, PLACEHOLDER_SUBJECT, XSD
@@ -237,6 +237,39 @@ def _literal_key(term: Literal) -> tuple:
     except (InvalidOperation, ValueError):
         pass
     return ("literal", term.value, dt, term.language)
+
+
+#: triples and quads with a literal object made lately, by their terms: pyoxigraph takes a literal argument
+#: only after trying it as a NamedNode and a BlankNode (building an error for each), ten times an IRI's
+#: cost, and a manipulation makes the same few again (a step's clock value is written, and removed as
+#: the old value a step later; a changed triple is made as a triple, a pending quad and its stored form)
+_MADE: dict[tuple, Triple | Quad] = {}
+_MADE_MAX = 4096
+
+
+def triple(s: Term, p: NamedNode, o: Term) -> Triple:
+    """``Triple(s, p, o)``; one with a literal object is kept for the next few thousand (see ``_MADE``)."""
+    if not isinstance(o, Literal):
+        return Triple(s, p, o)
+    key = (s, p, o)
+    made = _MADE.get(key)
+    return made if made is not None else _keep(key, Triple(s, p, o))
+
+
+def quad(s: Term, p: NamedNode, o: Term, g: NamedNode) -> Quad:
+    """``Quad(s, p, o, g)``, kept as :func:`triple` keeps a triple."""
+    if not isinstance(o, Literal):
+        return Quad(s, p, o, g)
+    key = (s, p, o, g)
+    made = _MADE.get(key)
+    return made if made is not None else _keep(key, Quad(s, p, o, g))
+
+
+def _keep(key: tuple, made: Triple | Quad):  # noqa: ANN202 - the type it was given
+    if len(_MADE) >= _MADE_MAX:
+        _MADE.clear()
+    _MADE[key] = made
+    return made
 
 
 def sparql(term: Term) -> str:

@@ -26,7 +26,7 @@ from pyoxigraph import DefaultGraph, Literal, NamedNode, Quad, RdfFormat, Triple
 from ..rdf.safeio import read_regular_file
 from ..rdf.skolem import fresh_skolem, skolem, skolemize, unskolem, unskolemize
 from ..rdf.syntax import FORMAT_NAMES, PROGRESS_EVERY, guess_format, parse_triples, serialize
-from ..rdf.terms import Term, value_key
+from ..rdf.terms import Term, quad, value_key
 from ..rdf.vocab import FIRST, NIL, REST, SKOLEM_PREFIX, TYPE
 from .batched import BatchedReads
 from .listings import Listings
@@ -308,7 +308,7 @@ class Store:
         # the removed literals as their users wrote them, for an undo (a removal may name the stored form)
         written = [self._as_written(q) for q in removes]
         forms_add, forms_remove = self.forms.record(adds, removes)
-        meta_add, meta_remove = self.persisted.quads(meta)
+        meta_add, meta_remove = self.persisted.quads(meta) if meta else ([], [])
         undo = lambda: self.forms.record(written, adds, undo=True)  # noqa: E731
         try:
             self._write(adds + forms_add + meta_add, removes + forms_remove + meta_remove, undo)
@@ -320,7 +320,7 @@ class Store:
     def _as_written(self, q: Quad) -> Quad:
         """``q`` with its literal in the form the user wrote (``q`` itself when that is its form)."""
         written = self.rewritten(q.graph_name, q.subject, q.predicate, q.object)
-        return q if written is None else Quad(q.subject, q.predicate, written, q.graph_name)
+        return q if written is None else quad(q.subject, q.predicate, written, q.graph_name)
 
     def _key(self, quad: Quad) -> Hashable:
         """What identifies a quad: itself, or with a literal object its value (``1`` = ``"01"^^xsd:int``)."""
@@ -333,21 +333,35 @@ class Store:
         """Whether each quad is in the store as the open transaction sees it (``keys``: their :meth:`_key`)."""
         if self._pending is None and self.listings is None and not any(isinstance(q.object, Literal) for q in quads):
             return self._has_many(quads)  # no transaction, no value keys: each quad is its own key
-        pending, known = self._pending or {}, self._known
+        pending, known, listings = self._pending or {}, self._known, self.listings
         keys = keys if keys is not None else [self._key(q) for q in quads]
-        unknown = [(q, k) for q, k in zip(quads, keys) if k not in pending and k not in known]
-        listed: dict = {}
-        if self.listings is not None and unknown:
-            for q, k in unknown:
-                if (present := self.listings.presence(q, k)) is not None:
-                    listed[k] = present
-            unknown = [(q, k) for q, k in unknown if k not in listed]
-        found = dict(zip((k for _, k in unknown), self._has_many([q for q, _ in unknown]), strict=True)) \
-            if unknown else {}
-        found.update(listed)
-        if self._pending is not None:
-            known.update(found)
-        return [pending[k][1] if k in pending else known[k] if k in known else found[k] for k in keys]
+        answers: list[bool | None] = []
+        unknown: list[int] = []  # positions neither the transaction nor the listings can answer
+        for i, k in enumerate(keys):
+            entry = pending.get(k)
+            if entry is not None:
+                answers.append(entry[1])
+                continue
+            present = known.get(k)
+            if present is None and listings is not None:
+                present = listings.presence(quads[i], k)
+                if present is not None and self._pending is not None:
+                    known[k] = present
+            if present is None:
+                unknown.append(i)
+            answers.append(present)
+        if len(unknown) == 1:  # a manipulation's one new triple
+            i = unknown[0]
+            answers[i] = self._has_many([quads[i]])[0]
+            if self._pending is not None:
+                known[keys[i]] = answers[i]
+        elif unknown:  # one batch (one request on a remote store); a value asked twice takes the last answer
+            found = dict(zip((keys[i] for i in unknown), self._has_many([quads[i] for i in unknown]), strict=True))
+            if self._pending is not None:
+                known.update(found)
+            for i in unknown:
+                answers[i] = found[keys[i]]
+        return answers  # type: ignore[return-value] - every position is answered by now
 
     # ------------------------------------------------------------ quads
     def add(self, triples: Iterable[Triple], graph: NamedNode, distinct: bool = False) -> int:
@@ -370,20 +384,33 @@ class Store:
     def _toggle_each(self, triples: Iterable[Triple], graph: NamedNode, add: bool) -> list[Triple]:
         """Record the pending addition (or removal) of each triple that is absent (present) in ``graph``,
         in one transaction; returns those triples."""
-        quads = {Quad(t.subject, t.predicate, t.object, graph): t for t in triples}
+        triples = triples if isinstance(triples, (list, tuple)) else list(triples)
+        if len(triples) == 1:  # a manipulation's usual change: nothing to deduplicate
+            t = triples[0]
+            quads, triples = [quad(t.subject, t.predicate, t.object, graph)], [t]
+        else:  # deduplicated by quad
+            made = {quad(t.subject, t.predicate, t.object, graph): t for t in triples}
+            quads, triples = list(made), list(made.values())
         keys = [self._key(q) for q in quads]  # a literal's value key is the costly part of a load: once each
         if not self._depth:
             with self.transaction():
-                return self._toggle_absent(quads, keys, add)
-        return self._toggle_absent(quads, keys, add)  # inside the caller's transaction (a manipulation's)
+                return self._toggle_absent(quads, triples, keys, add)
+        return self._toggle_absent(quads, triples, keys, add)  # inside the caller's transaction (a manipulation's)
 
-    def _toggle_absent(self, quads: dict[Quad, Triple], keys: list[Hashable], add: bool) -> list[Triple]:
+    def _toggle_absent(self, quads: list[Quad], triples: list[Triple], keys: list[Hashable],
+                       add: bool) -> list[Triple]:
         """:meth:`_toggle_each` inside an open transaction."""
-        changed = [(q, t, k) for (q, t), k, present in zip(quads.items(), keys, self._present(list(quads), keys),
-                                                           strict=True) if present != add]
-        for q, _, k in changed:  # pending True: absent from the committed store; False: present there
-            self._toggle(q, add, k)
-        return [t for _, t, _ in changed]
+        pending, changed = self._pending, []
+        for q, t, k, present in zip(quads, triples, keys, self._present(quads, keys), strict=True):
+            if present == add:
+                continue
+            entry = pending.get(k)  # as _toggle: pending True is absent from the committed store, False present
+            if entry is None:
+                pending[k] = (q, add)
+            elif entry[1] != add:
+                del pending[k]
+            changed.append(t)
+        return changed
 
     def _add_to_empty(self, triples: list[Triple] | tuple[Triple, ...], graph: NamedNode,
                       distinct: bool = False) -> int:

@@ -15,7 +15,7 @@ from typing import TYPE_CHECKING
 import pyoxigraph as ox
 from pyoxigraph import Literal, NamedNode, Quad, Triple
 
-from ..rdf.terms import Term, parse_term, value_key
+from ..rdf.terms import Term, parse_term, triple, value_key
 from ..rdf.vocab import INTERNAL
 from .meta import META
 
@@ -49,20 +49,23 @@ class LiteralForms:
         """Remember (or forget) how committed literals were written; the quads persisting that on a durable store."""
         forms_add: list[Quad] = []
         forms_remove: list[Quad] = []
-        for q in removes:
-            if isinstance(q.object, Literal) and not _is_scratch(q.graph_name):
-                key = value_key(q.object)
-                original = self._literal_forms.pop((q.graph_name.value, q.subject, q.predicate, key), q.object)
+        persist = self._store.durable and not undo
+        for q in removes:  # each term read once: pyoxigraph makes a new object at every read
+            o = q.object
+            if isinstance(o, Literal) and not _is_scratch(graph := q.graph_name):
+                key, s, p = value_key(o), q.subject, q.predicate
+                original = self._literal_forms.pop((graph.value, s, p, key), o)
                 self._count_form(key, original, -1)
-                if self._store.durable and not undo:
-                    forms_remove.append(_form_quad(q.graph_name.value, q.subject, q.predicate, original))
+                if persist:
+                    forms_remove.append(_form_quad(graph.value, s, p, original))
         for q in adds:
-            if isinstance(q.object, Literal) and not _is_scratch(q.graph_name):
-                key = value_key(q.object)
-                self._literal_forms[(q.graph_name.value, q.subject, q.predicate, key)] = q.object
-                self._count_form(key, q.object, +1)
-                if self._store.durable and not undo:
-                    forms_add.append(_form_quad(q.graph_name.value, q.subject, q.predicate, q.object))
+            o = q.object
+            if isinstance(o, Literal) and not _is_scratch(graph := q.graph_name):
+                key, s, p = value_key(o), q.subject, q.predicate
+                self._literal_forms[(graph.value, s, p, key)] = o
+                self._count_form(key, o, +1)
+                if persist:
+                    forms_add.append(_form_quad(graph.value, s, p, o))
         return forms_add, forms_remove
 
     def record_loaded(self, graph: NamedNode, spelled: list[tuple[tuple, Literal]]) -> list[Quad]:
@@ -121,7 +124,7 @@ class LiteralForms:
         if not isinstance(t.object, Literal):
             return t
         stored = stored_literal(t.object)
-        return t if stored == t.object else Triple(t.subject, t.predicate, stored)
+        return t if stored == t.object else triple(t.subject, t.predicate, stored)
 
     def forget(self, graph: NamedNode) -> None:
         """Forget the forms of a graph being cleared (and their persisted copies)."""

@@ -1,0 +1,90 @@
+"""A manipulation's path through the ontology and the store: ``Ontology.change`` (one delta, one
+transaction) and the terms made for it (``rdf.terms.triple`` / ``quad``), checked against what
+the separate retraction and assertion did before."""
+
+from __future__ import annotations
+
+import pytest
+from pyoxigraph import Literal, NamedNode, Quad, Triple
+
+from topostore import Ontology
+from topostore.errors import InvalidValueError
+from topostore.rdf import terms
+from topostore.rdf.vocab import ASSERTED, TYPE, XSD
+
+EX = "http://example.org/change#"
+TBOX = f"""@prefix : <{EX}> . @prefix owl: <http://www.w3.org/2002/07/owl#> .
+:Robot a owl:Class . :speed a owl:DatatypeProperty . :at a owl:ObjectProperty .
+"""
+
+
+def n(name: str) -> NamedNode:
+    return NamedNode(EX + name)
+
+
+def typed(value: str, datatype: str) -> Literal:
+    return Literal(value, datatype=NamedNode(XSD + datatype))
+
+
+@pytest.fixture
+def onto() -> Ontology:
+    o = Ontology(prefix=EX)
+    o.load_data(TBOX)
+    o.add(Triple(n("r1"), TYPE, n("Robot")), Triple(n("r1"), n("speed"), typed("7", "long")),
+          Triple(n("r1"), n("at"), n("a")))
+    o.reason()
+    return o
+
+
+def asserted(onto: Ontology, p: str) -> list:
+    return sorted(str(t.object) for t in onto.store.triples(n("r1"), n(p), None, ASSERTED))
+
+
+def test_terms_made_equal_the_constructors_and_literal_ones_are_kept() -> None:
+    lit = typed("12", "long")
+    made = terms.triple(n("s"), n("p"), lit)
+    assert made == Triple(n("s"), n("p"), lit)
+    assert terms.triple(n("s"), n("p"), typed("12", "long")) is made  # the same value made again: kept
+    assert terms.triple(n("s"), n("p"), typed("012", "long")) != made  # another spelling is another term
+    q = terms.quad(n("s"), n("p"), lit, n("g"))
+    assert q == Quad(n("s"), n("p"), lit, n("g")) and terms.quad(n("s"), n("p"), lit, n("g")) is q
+    assert terms.triple(n("s"), n("p"), n("o")) == Triple(n("s"), n("p"), n("o")) and \
+        terms.quad(n("s"), n("p"), n("o"), n("g")) == Quad(n("s"), n("p"), n("o"), n("g"))
+
+
+def test_change_removes_then_adds_and_the_ledger_nets_them(onto: Ontology) -> None:
+    added, removed = onto.change([Triple(n("r1"), n("speed"), typed("8", "long"))],
+                                 [Triple(n("r1"), n("speed"), typed("7", "long"))])
+    assert [t.object.value for t in added] == ["8"] and [t.object.value for t in removed] == ["7"]
+    assert asserted(onto, "speed") == [str(typed("8", "integer"))]
+    assert onto.dirty
+    net_added, net_removed = onto.ledger.net_changes()
+    assert len(net_added) == 1 and len(net_removed) == 1
+    # and back: the ledger's record cancels out, the literal keeps the form it was written in
+    onto.change([Triple(n("r1"), n("speed"), typed("7", "long"))], [Triple(n("r1"), n("speed"), typed("8", "long"))])
+    assert onto.ledger.net_changes() == ([], [])
+    assert [str(v) for v in onto.data_values("speed", "r1")] == [str(typed("7", "long"))]
+
+
+def test_change_of_a_value_to_itself_keeps_it(onto: Ontology) -> None:
+    """Removed, then added again in the same transaction: present afterwards, nothing to reason."""
+    same = Triple(n("r1"), n("speed"), typed("7", "long"))
+    added, removed = onto.change([same], [same])
+    assert len(added) == 1 and len(removed) == 1
+    assert asserted(onto, "speed") == [str(typed("7", "integer"))]
+    assert onto.ledger.net_changes() == ([], [])
+
+
+def test_change_deduplicates_and_reports_only_what_changed(onto: Ontology) -> None:
+    new = Triple(n("r1"), n("at"), n("b"))
+    added, removed = onto.change([new, new, Triple(n("r1"), n("at"), n("a"))], [Triple(n("r1"), n("at"), n("zz"))])
+    assert added == [new] and removed == []
+    assert asserted(onto, "at") == [f"<{EX}a>", f"<{EX}b>"]
+
+
+def test_change_with_an_invalid_value_changes_nothing(onto: Ontology) -> None:
+    bad = Triple(n("r1"), n("speed"), typed("fast", "long"))
+    with pytest.raises(InvalidValueError):
+        onto.change([bad], [Triple(n("r1"), n("at"), n("a"))])
+    assert asserted(onto, "at") == [f"<{EX}a>"] and asserted(onto, "speed") == [str(typed("7", "integer"))]
+    assert onto.ledger.net_changes() == ([], [])
