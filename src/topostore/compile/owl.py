@@ -38,7 +38,7 @@ from .negation import NegativeMembership
 from .notices import Notice
 from .owl_restrictions import RestrictionRules, nm
 from .rule import Atom, Rule
-from .schema import Row, class_row, schema_rule, subproperty_row, typing_row
+from .schema import Row, class_row, disjoint_row, schema_rule, subproperty_row, typing_row
 from .snippets import (
     NOT_DIFFERENT_READS,
     candidate_atom,
@@ -90,13 +90,14 @@ class OwlCompiler:
         self.rules.append(Rule(name, origin, tuple(body), head, tuple(filters), reads, violation, message,
                                stratum=stratum, value_range=value_range))
 
-    def instantiate(self, row: Row | None, origin: str, *names: str) -> bool:
-        """Emit the generic rules ``names`` instantiated with the axiom's ``row``; False (nothing
-        emitted) when the axiom has no row (e.g. a domain of an inverse property expression)."""
+    def instantiate(self, row: Row | None, origin: str, *names: str, labels: Sequence[str] | None = None) -> bool:
+        """Emit the generic rules ``names`` instantiated with the axiom's ``row`` (``labels``: how a
+        check's message names its terms); False (nothing emitted) when the axiom has no row (e.g. a
+        domain of an inverse property expression)."""
         if row is None:
             return False
         for name in names:
-            self.rules.append(schema_rule(name).instantiate(row, origin))
+            self.rules.append(schema_rule(name).instantiate(row, origin, labels))
         return True
 
     def type_head(self, var: str, e: Expr) -> Atom | None:
@@ -126,9 +127,7 @@ class OwlCompiler:
         a, b, v1, v2 = "?a", "?b", "?v1", "?v2"
         for c1, c2 in self.disjoint_classes():
             for x, y in ((c1, c2), (c2, c1)):
-                self.emit("different-disjoint", f"{x} and {y} are disjoint",
-                          [candidate_atom(a, b), Atom(a, T, sparql(x.node)), Atom(b, T, sparql(y.node))],
-                          different_atom(a, b, declared=True))
+                self.instantiate(disjoint_row(x, y), f"{x} and {y} are disjoint", "different-disjoint")
         for p in sorted(self.tb.characteristics.get("FunctionalProperty", ()), key=lambda t: t.value):
             if p in self.tb.data_properties:
                 self.emit("different-values", f"{nm(p)} is functional",
@@ -277,8 +276,7 @@ class OwlCompiler:
                 na = 1 if a.kind == "some" else a.n
                 nb = 1 if b.kind == "some" else b.n
                 if na >= nb >= 1 and self.filler_subsumed(a, b):
-                    self.emit("ext-card-sub", f"{a} is subsumed by {b}", [Atom("?x", T, sparql(a.node))],
-                              Atom("?x", T, sparql(b.node)))
+                    self.instantiate(class_row(a, b), f"{a} is subsumed by {b}", "ext-card-sub")
 
     # ------------------------------------------------------------------ axioms
     def class_axioms(self) -> None:
@@ -288,7 +286,9 @@ class OwlCompiler:
             self.instantiate(class_row(a, b), f"{a} EquivalentTo {b}", "cax-eqc1", "cax-eqc2")
         for a, b in self.tb.disjoint:
             body = self.member("?x", a) + self.member("?x", b)
-            if body:
+            if self.instantiate(disjoint_row(a, b), f"{a} DisjointWith {b}", "cax-dw", labels=(str(a), str(b))):
+                continue
+            if body:  # with owl:Thing: a check of one class
                 self.emit("cax-dw", f"{a} DisjointWith {b}", body, violation=("?x",),
                           message=f"{{x}} is in the disjoint classes {a} and {b}")
         self.emit("cls-nothing2", "owl:Nothing has no instances", [Atom("?x", T, sparql(NOTHING))], violation=("?x",),

@@ -22,7 +22,8 @@ their rules directly.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from collections.abc import Sequence
+from dataclasses import dataclass, field, replace
 from functools import cache
 
 from pyoxigraph import NamedNode
@@ -33,7 +34,7 @@ from ..rdf.vocab import INTERNAL, SCHEMA_PREFIX, SKOLEM_PREFIX, THING, TYPE
 from . import condition as cond
 from .generic import parse_rule_text
 from .model import Expr, Prop
-from .rule import Atom, Rule
+from .rule import Atom, Rule, head_is_aux
 
 #: A row of a schema table: the SPARQL terms bound to the schema atom's variables, in order.
 Row = tuple[str, ...]
@@ -73,14 +74,26 @@ class SchemaRule:
         bound = dict(zip(self.variables, row))
         return Atom(*(bound.get(t, t) for t in (atom.s, atom.p, atom.o)), aux=atom.aux)
 
-    def instantiate(self, row: Row, origin: str) -> Rule:
-        """The rule of one row: its constants substituted, the schema atoms dropped (they hold)."""
-        if len(row) != len(self.variables):
+    @property
+    def reported(self) -> tuple[str, ...]:
+        """A check's reported variables once instantiated: the schema variables are constants there
+        (the generic check reports them, so that its message can name the row's terms)."""
+        return tuple(v for v in self.rule.violation if v not in self.variables)
+
+    def instantiate(self, row: Row, origin: str, labels: Sequence[str] | None = None) -> Rule:
+        """The rule of one row: its constants substituted, the schema atoms dropped (they hold).
+
+        A check's message names the row's terms by ``labels`` (default: their short names), as the
+        generic check's report names the terms it read."""
+        if len(row) != len(self.variables) or (labels is not None and len(labels) != len(row)):
             raise RuleCompileError(f"{self.name}: a row of {len(row)} terms for {len(self.variables)} variables")
         r = self.rule
         head = self._substitute(r.head, row) if r.head is not None else None
+        message = r.message
+        for var, label in zip(self.variables, labels if labels is not None else [_short(t) for t in row]):
+            message = message.replace("{" + var[1:] + "}", label)
         return Rule(r.name, origin, tuple(self._substitute(a, row) for a in r.body), head, r.conditions,
-                    r.filter_reads, r.violation, r.message, r.aux_head, r.stratum)
+                    r.filter_reads, self.reported, message, r.aux_head, r.stratum)
 
     def row_of(self, rule: Rule) -> Row | None:
         """The row ``rule`` is the instantiation of, or None when it is not one (another name or shape).
@@ -89,7 +102,7 @@ class SchemaRule:
         is kept: a rule matches only when its evaluated body, head and filters are the template's."""
         t = self.rule
         if (rule.name != t.name or len(rule.body) != len(t.body) or rule.conditions != t.conditions
-                or rule.violation != t.violation or rule.stratum != t.stratum or rule.aux_head != t.aux_head
+                or rule.violation != self.reported or rule.stratum != t.stratum or rule.aux_head != t.aux_head
                 or (rule.head is None) != (t.head is None)):
             return None
         bound: dict[str, str] = {}
@@ -166,8 +179,17 @@ def schema_rules() -> dict[str, SchemaRule]:
         if not schema or not headers.get("schema"):
             raise RuleCompileError(f"{path}: a rule of rules/owl/ needs a '# schema:' header and a schema atom "
                                    f"(GRAPH {_SCHEMA_GRAPH_TEXT} {{ ... }})")
-        found[rule.name] = SchemaRule(rule, schema, headers["schema"].split()[0])
+        found[rule.name] = SchemaRule(_marked_head(rule), schema, headers["schema"].split()[0])
     return found
+
+
+def _marked_head(rule: Rule) -> Rule:
+    """``rule`` with a head of constant helper terms marked as a helper atom (``ts:declaredDifferent``),
+    as the compiler's atoms of the helper graph are: a SPARQL CONSTRUCT cannot write the graph."""
+    h = rule.head
+    if h is None or h.aux or not head_is_aux(h.p, h.o):
+        return rule
+    return replace(rule, head=Atom(h.s, h.p, h.o, aux=True))
 
 
 def schema_dataset(rule: Rule) -> str:
@@ -186,10 +208,23 @@ def schema_rule(name: str) -> SchemaRule:
         raise RuleCompileError(f"no generic OWL rule {name!r} in rules/owl/") from None
 
 
+def _short(term: str) -> str:
+    """A row term's short name in a message (``<http://x#A>`` → ``A``), as a check's report shows it."""
+    value = term[1:-1] if term.startswith("<") else term
+    return value.rsplit("#", 1)[-1] if "#" in value else value.rsplit("/", 1)[-1]
+
+
 # ---------------------------------------------------------------------- rows of axioms
 def class_row(a: Expr, b: Expr) -> Row | None:
     """``a ⊑ b`` (or one direction of ``a ≡ b``); None when it says nothing (a class of itself, owl:Thing)."""
     if a.node == b.node or THING in (a.node, b.node):
+        return None
+    return sparql(a.node), sparql(b.node)
+
+
+def disjoint_row(a: Expr, b: Expr) -> Row | None:
+    """Disjoint ``a`` and ``b`` (in this order); None when one is owl:Thing (its rules read one class)."""
+    if THING in (a.node, b.node):
         return None
     return sparql(a.node), sparql(b.node)
 
@@ -208,5 +243,5 @@ def subproperty_row(p: Prop, q: Prop) -> Row | None:
     return sparql(p.iri), sparql(q.iri)
 
 
-__all__ = ["Row", "SchemaRule", "class_row", "schema_dataset", "schema_rule", "schema_rules", "subproperty_row",
+__all__ = ["Row", "SchemaRule", "class_row", "disjoint_row", "schema_dataset", "schema_rule", "schema_rules", "subproperty_row",
            "typing_row"]

@@ -71,11 +71,17 @@ def closed(rows: list[Row]) -> list[Row]:
 
 
 def _instances(rules: list[Rule]) -> dict[str, list[tuple[int, Row]]]:
-    """Per generic rule, the compiled rules that are its instantiations: (index, row)."""
+    """Per generic inference rule, the compiled rules that are its instantiations: (index, row).
+
+    A check (cax-dw) stays instantiated: a full REASON runs the checks after the materialisation,
+    once the schema graphs are dropped, and a check whose classes have no member is skipped
+    without a query (:func:`..reason.consistency.one_graphs`), so its instantiations cost little."""
     generic = schema_rules()
     found: dict[str, list[tuple[int, Row]]] = {}
     for i, rule in enumerate(rules):
         template = generic.get(rule.name)
+        if rule.is_check:
+            continue
         row = template.row_of(rule) if template is not None else None
         if row is not None:
             found.setdefault(rule.name, []).append((i, row))
