@@ -38,7 +38,7 @@ from .negation import NegativeMembership
 from .notices import Notice
 from .owl_restrictions import RestrictionRules, nm
 from .rule import Atom, Rule
-from .schema import Row, class_row, disjoint_row, schema_rule, subproperty_row, typing_row
+from .schema import Row, class_row, disjoint_row, member_row, schema_rule, subproperty_row, typing_row, value_row
 from .snippets import (
     NOT_DIFFERENT_READS,
     candidate_atom,
@@ -234,16 +234,13 @@ class OwlCompiler:
         origin = f"class expression {e}"
         if e.kind == "and":
             body = [a for m in e.members for a in self.member(x, m)]
-            if body:
+            if body:  # n members: a rule per intersection (a table row has a fixed number of terms)
                 self.emit("cls-int1", origin, body, Atom(x, T, node))
             for m in e.members:
-                head = self.type_head(x, m)
-                if head:
-                    self.emit("cls-int2", origin, [Atom(x, T, node)], head)
+                self.instantiate(member_row(e, m), origin, "cls-int2")
         elif e.kind == "or":
             for m in e.members:
-                if m.node != THING:
-                    self.emit("cls-uni", origin, self.member(x, m), Atom(x, T, node))
+                self.instantiate(member_row(e, m), origin, "cls-uni")
         elif e.kind == "oneof":
             for ind in e.individuals:
                 self.emit("cls-oo", origin, [], Atom(sparql(ind), T, node))
@@ -251,8 +248,9 @@ class OwlCompiler:
             self.emit("cls-com", origin, [Atom(x, T, node)] + self.member(x, e.members[0]),
                       violation=(x,), message=f"an individual is in {e.members[0]} and in its complement")
         elif e.kind == "value":
-            self.emit("cls-hv1", origin, [Atom(x, T, node)], self.prop_atom(x, e.prop, sparql(e.value)))
-            self.emit("cls-hv2", origin, [self.prop_atom(x, e.prop, sparql(e.value))], Atom(x, T, node))
+            if not self.instantiate(value_row(e), origin, "cls-hv1", "cls-hv2"):
+                self.emit("cls-hv1", origin, [Atom(x, T, node)], self.prop_atom(x, e.prop, sparql(e.value)))
+                self.emit("cls-hv2", origin, [self.prop_atom(x, e.prop, sparql(e.value))], Atom(x, T, node))
         elif e.kind == "self":
             self.emit("cls-self1", origin, [Atom(x, T, node)], self.prop_atom(x, e.prop, x))
             self.emit("cls-self2", origin, [self.prop_atom(x, e.prop, x)], Atom(x, T, node))

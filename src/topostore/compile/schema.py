@@ -151,7 +151,8 @@ class SchemaRule:
             if term == h.o and h.p == str(TYPE):
                 parts.append(f'STRSTARTS(STR({term}), "{INTERNAL}")')  # a class expression or a helper class
             else:
-                parts.append(f'(STRSTARTS(STR({term}), "{INTERNAL}") && !STRSTARTS(STR({term}), "{SKOLEM_PREFIX}"))')
+                parts.append(f'(isIRI({term}) && STRSTARTS(STR({term}), "{INTERNAL}") '
+                             f'&& !STRSTARTS(STR({term}), "{SKOLEM_PREFIX}"))')
         return " || ".join(parts) or None
 
     def evaluable(self, aux: bool) -> Rule:
@@ -229,6 +230,30 @@ def disjoint_row(a: Expr, b: Expr) -> Row | None:
     return sparql(a.node), sparql(b.node)
 
 
+def filler_row(e: Expr, data: bool) -> Row | None:
+    """(restriction, property, filler) of a some/all restriction ``e`` on a named object property with a
+    class filler other than owl:Thing; None otherwise (a data or inverse property, an unqualified
+    filler: those rules have other shapes and stay as the compiler writes them)."""
+    if data or e.prop is None or e.prop.inverse or e.datatype is not None or e.filler is None \
+            or e.filler.node == THING:
+        return None
+    return sparql(e.node), sparql(e.prop.iri), sparql(e.filler.node)
+
+
+def value_row(e: Expr) -> Row | None:
+    """(restriction, property, value) of a hasValue restriction on a named property; None otherwise."""
+    if e.prop is None or e.prop.inverse or e.value is None:
+        return None
+    return sparql(e.node), sparql(e.prop.iri), sparql(e.value)
+
+
+def member_row(e: Expr, m: Expr) -> Row | None:
+    """(intersection or union, member): a row per member; None for owl:Thing (it says nothing)."""
+    if m.node == THING:
+        return None
+    return sparql(e.node), sparql(m.node)
+
+
 def typing_row(p: Prop, c: Expr) -> Row | None:
     """A domain or range ``c`` of ``p``; None for owl:Thing or an inverse property expression."""
     if c.node == THING or p.inverse:
@@ -243,5 +268,5 @@ def subproperty_row(p: Prop, q: Prop) -> Row | None:
     return sparql(p.iri), sparql(q.iri)
 
 
-__all__ = ["Row", "SchemaRule", "class_row", "disjoint_row", "schema_dataset", "schema_rule", "schema_rules", "subproperty_row",
-           "typing_row"]
+__all__ = ["Row", "SchemaRule", "class_row", "disjoint_row", "filler_row", "member_row", "schema_dataset",
+           "schema_rule", "schema_rules", "subproperty_row", "typing_row", "value_row"]
