@@ -34,7 +34,7 @@ NS = "http://example.org/schema#"
 TYPE = "<http://www.w3.org/1999/02/22-rdf-syntax-ns#type>"
 KINDS = {"cax-sco", "cax-eqc1", "cax-eqc2", "prp-dom", "prp-rng", "prp-spo1", "prp-inv1", "prp-inv2", "prp-symp",
          "prp-trp", "cax-dw", "different-disjoint", "ext-card-sub", "cls-svf1", "cls-avf", "cls-hv1", "cls-hv2",
-         "cls-int2", "cls-uni"}
+         "cls-int2", "cls-uni", "prp-spo2"}
 #: the generic checks: the compiler emits their instantiations; a full REASON keeps them instantiated
 CHECKS = {"cax-dw"}
 PREFIXES = f"""\
@@ -135,6 +135,7 @@ EVERY_KIND = PREFIXES + """\
 :L owl:equivalentClass [ owl:onProperty :p ; owl:hasValue :g ] .
 [ owl:onProperty :s ; owl:someValuesFrom :G ] rdfs:subClassOf :M .
 :n a :K ; :q :o . :u :s :g .
+:v owl:propertyChainAxiom ( :p :s ) . :w owl:propertyChainAxiom ( :p :s :s ) . :g :s :h .
 """
 
 
@@ -161,8 +162,10 @@ def test_the_compiled_rules_of_those_kinds_are_instantiations_with_their_axioms(
     assert ("prp-dom", "p domain E", f"?y {p} ?x .", f"?x {TYPE} <{NS}E> .") in texts
     # so is an existential of owl:Thing (no filler atom: another shape than the table's)
     generic = schema_rules()
+    # and a chain of three properties (a row has a fixed number of terms)
     assert sorted(r.origin for r in rules if generic[r.name].row_of(r) is None) == [
-        "class expression (p some Thing)", "p domain E"]
+        "class expression (p some Thing)", "p domain E", "w chain of p o s o s"]
+    assert ("prp-spo2", "v chain of p o s", f"?u0 {p} ?u1 . ?u1 <{NS}s> ?u2 .", f"?u0 <{NS}v> ?u2 .") in texts
 
 
 TUTORIAL_RULES = {  # as the compiler wrote them before the rules moved to rules/owl/ (same texts, origins, order)
@@ -222,6 +225,7 @@ def test_generic_equals_instantiated_on_every_kind_with_a_class_expression() -> 
     rdf_type = NamedNode(TYPE[1:-1])
     for s, c in (("m", "F"), ("o", "J"), ("u", "M"), ("m", "L"), ("o", "G")):
         assert (NamedNode(NS + s), rdf_type, NamedNode(NS + c)) in instantiated[0], (s, c)
+    assert (NamedNode(NS + "m"), NamedNode(NS + "v"), NamedNode(NS + "h")) in instantiated[0]  # p o s
     assert _materialize(onto, 0) == instantiated
 
 
@@ -295,6 +299,7 @@ axioms = st.lists(st.one_of(
     st.builds(":{} owl:disjointWith :{} .".format, _c, _c),
     st.builds("[ a owl:AllDisjointClasses ; owl:members ( :{} :{} :{} ) ] .".format, _c, _c, _c),
     st.builds("[ owl:unionOf ( :{} :{} ) ] rdfs:subClassOf :{} .".format, _c, _c, _c),
+    st.builds(":{} owl:propertyChainAxiom ( :{} :{} ) .".format, _p, _p, _p),
 ), max_size=10)
 #: axioms beyond OWL 2 RL (what a tableau reasoner concludes from cardinalities, restriction subsumption
 #: and the difference of members of disjoint classes): generic = instantiated, no owlrl to compare with

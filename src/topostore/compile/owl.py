@@ -38,7 +38,17 @@ from .negation import NegativeMembership
 from .notices import Notice
 from .owl_restrictions import RestrictionRules, nm
 from .rule import Atom, Rule
-from .schema import Row, class_row, disjoint_row, member_row, schema_rule, subproperty_row, typing_row, value_row
+from .schema import (
+    Row,
+    chain_row,
+    class_row,
+    disjoint_row,
+    member_row,
+    schema_rule,
+    subproperty_row,
+    typing_row,
+    value_row,
+)
 from .snippets import (
     NOT_DIFFERENT_READS,
     candidate_atom,
@@ -317,10 +327,12 @@ class OwlCompiler:
         for p, q in tb.inverse:
             self.instantiate((sparql(p), sparql(q)), f"{nm(p)} InverseOf {nm(q)}", "prp-inv1", "prp-inv2")
         for q, chain in tb.chains:
+            origin = f"{nm(q)} chain of {' o '.join(nm(p.iri) for p in chain)}"
+            if self.instantiate(chain_row(q, chain), origin, "prp-spo2"):
+                continue
             vars_ = [f"?u{i}" for i in range(len(chain) + 1)]
             body = [self.prop_atom(vars_[i], p, vars_[i + 1]) for i, p in enumerate(chain)]
-            self.emit("prp-spo2", f"{nm(q)} chain of {' o '.join(nm(p.iri) for p in chain)}", body,
-                      Atom(vars_[0], sparql(q), vars_[-1]))
+            self.emit("prp-spo2", origin, body, Atom(vars_[0], sparql(q), vars_[-1]))
         for p, q in tb.disjoint_props:
             self.emit("prp-pdw", f"{nm(p)} DisjointWith {nm(q)}", [Atom(x, sparql(p), y), Atom(x, sparql(q), y)],
                       violation=(x, y),

@@ -254,6 +254,14 @@ def member_row(e: Expr, m: Expr) -> Row | None:
     return sparql(e.node), sparql(m.node)
 
 
+def chain_row(q: NamedNode, chain: Sequence[Prop]) -> Row | None:
+    """(first, second, super-property) of a chain of two named properties; None for another length
+    or an inverse link (a row has a fixed number of terms: a longer chain keeps a rule of its own)."""
+    if len(chain) != 2 or any(p.inverse for p in chain):
+        return None
+    return sparql(chain[0].iri), sparql(chain[1].iri), sparql(q)
+
+
 def typing_row(p: Prop, c: Expr) -> Row | None:
     """A domain or range ``c`` of ``p``; None for owl:Thing or an inverse property expression."""
     if c.node == THING or p.inverse:
@@ -268,5 +276,5 @@ def subproperty_row(p: Prop, q: Prop) -> Row | None:
     return sparql(p.iri), sparql(q.iri)
 
 
-__all__ = ["Row", "SchemaRule", "class_row", "disjoint_row", "filler_row", "member_row", "schema_dataset",
+__all__ = ["Row", "SchemaRule", "chain_row", "class_row", "disjoint_row", "filler_row", "member_row", "schema_dataset",
            "schema_rule", "schema_rules", "subproperty_row", "typing_row", "value_row"]
