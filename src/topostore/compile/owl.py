@@ -15,11 +15,13 @@ ontology:
 Rule names are the W3C names (``prp-dom``, ``cls-int1``, ...) or ``ext-*`` for
 the extensions; the origin says which axiom the rule was made from.
 
-The rules of the plain kinds of axiom (class and property hierarchies, equivalent classes,
-domain, range, inverse, symmetric, transitive) are not written here: they are the generic rules
+The rules of the kinds of axiom that fit a row of fixed width (class and property hierarchies,
+equivalent classes, domain, range, inverse, symmetric, transitive, chains of two, disjointness,
+restrictions by kind, restriction subsumption) are not written here: they are the generic rules
 of ``rules/owl/`` instantiated with the axiom's row of its schema table (:mod:`.schema`); a full
 REASON reads those rows back from the rules and may run the generic rule over them instead
-(:mod:`.schema_program`).
+(:mod:`.schema_program`).  An axiom without a row (an inverse property, a longer chain) keeps the
+rule written here.
 """
 
 from __future__ import annotations
@@ -71,7 +73,7 @@ class OwlCompiler:
         self.restrictions = RestrictionRules(self)
         self.rules: list[Rule] = []
         self.notices: list[Notice] = []
-        #: the rows of the plain kinds of axiom, whose rules are instantiations of ``rules/owl/``
+        #: the told disjoint pairs of named classes (read by the parts of the compiler)
         self.disjoint_pairs = [
             (a.node, b.node) for a, b in tbox.disjoint if a.is_named and b.is_named
         ]

@@ -1,10 +1,13 @@
 """The schema tables of a TBox and the generic OWL rules that join them (``rules/owl/*.rq``).
 
-The OWL 2 RL rules for the plain kinds of axiom — class hierarchy (cax-sco), equivalent classes
+The OWL rules whose axioms fit a row of fixed width — class hierarchy (cax-sco), equivalent classes
 (cax-eqc1/2), property hierarchy (prp-spo1, which also serves prp-eqp1/2: the reader reads an
 EquivalentProperties axiom as two sub-property rows), domain (prp-dom), range (prp-rng), inverse
-(prp-inv1/2), symmetric (prp-symp) and transitive (prp-trp) — are written once, as SPARQL files in
-``rules/owl/``, each with a *schema atom* ``GRAPH ts:graph:schema { ... }`` that reads a row of the
+(prp-inv1/2), symmetric (prp-symp), transitive (prp-trp), chains of two properties (prp-spo2),
+disjointness (the check cax-dw, and different-disjoint), restrictions by kind (cls-svf1, cls-avf,
+cls-hv1/2, one row per member for cls-int2 and cls-uni) and restriction subsumption (ext-card-sub)
+— are written once, as SPARQL files in
+``rules/owl/``, each with *schema atoms* ``GRAPH ts:graph:schema { ... }`` that read a row of the
 TBox's tables.  Those files are the single source of these rules, used two ways:
 
 * **instantiated** (partial evaluation): a row's constants are substituted into the rule and the
@@ -16,8 +19,10 @@ TBox's tables.  Those files are the single source of these rules, used two ways:
 
 The rows of a table are what an axiom contributes, as SPARQL terms in the order the schema atom's
 variables first appear (``(C, D)`` for ``C SubClassOf D``).  Axioms on an inverse property
-expression have no row (no generic rule reads property expressions): the compiler keeps emitting
-their rules directly.
+expression have no row (no generic rule reads property expressions), nor have shapes of another width
+(an intersection's n members in one body, a chain of three): the compiler keeps emitting their rules
+directly.  A check's instantiation reports the individuals only (:attr:`SchemaRule.reported`); its
+message names the row's terms.
 """
 
 from __future__ import annotations

@@ -1,6 +1,6 @@
 """A full REASON's rules: the instantiations of a large schema table run as one generic rule.
 
-The compiled rule set holds one rule per axiom of the plain kinds (:mod:`.schema`): what the robot
+The compiled rule set holds one rule per axiom of the kinds with a schema row (:mod:`.schema`): what the robot
 step needs, and cheap while a kind has few axioms.  A full REASON over a TBox with many axioms of a
 kind pays for each of those rules in every round (a text to plan, an update to run); the generic rule
 of ``rules/owl/`` does the same work in one evaluation, joining the rows written into its schema
