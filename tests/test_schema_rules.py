@@ -240,10 +240,28 @@ def test_a_full_reason_runs_a_large_table_generically() -> None:
     chain = "\n".join(f":C{i} rdfs:subClassOf :C{i + 1} ." for i in range(GENERIC_ROWS + 4))
     onto = Ontology()
     onto.load_data(PREFIXES + chain + "\n:x a :C0 .\n", "turtle")
-    assert set(full_program(onto.rules).rows) == {"cax-sco"}
+    default = set(full_program(onto.rules).rows)  # and ext-card-sub: each existential is below the next ones
+    assert "cax-sco" in default and "cls-svf1" not in default
     onto.reason(mode="full")
     assert NamedNode(f"{NS}C{GENERIC_ROWS + 4}") in onto.types(NamedNode(NS + "x"))
     assert _no_schema_graph(onto)
+
+
+def test_a_rule_file_may_raise_its_own_threshold() -> None:
+    """cls-svf1 reads a variable predicate: a full REASON keeps 20 of its instantiations (its file's
+    ``# generic-rows:``), and runs cax-sco generically over as many rows."""
+    from topostore.compile.schema_program import rows_threshold
+
+    assert rows_threshold(schema_rule("cls-svf1")) > 20 >= GENERIC_ROWS == rows_threshold(schema_rule("cax-sco"))
+    axioms = "\n".join(f":C{i} rdfs:subClassOf :C{i + 1} . [ owl:onProperty :p ; owl:someValuesFrom :C{i} ] "
+                       f"rdfs:subClassOf :D{i} ." for i in range(20))
+    onto = Ontology()
+    onto.load_data(PREFIXES + axioms + "\n:x :p :y . :y a :C0 .\n", "turtle")
+    default = set(full_program(onto.rules).rows)  # and ext-card-sub: each existential is below the next ones
+    assert "cax-sco" in default and "cls-svf1" not in default
+    assert set(full_program(onto.rules, 0).rows) >= {"cax-sco", "cls-svf1"}
+    onto.reason(mode="full")
+    assert {NamedNode(f"{NS}D{i}") for i in range(20)} <= onto.types(NamedNode(NS + "x"))
 
 
 def test_a_failed_full_reason_reports_its_own_error_when_dropping_the_schema_graphs_fails_too(monkeypatch) -> None:

@@ -56,6 +56,9 @@ class SchemaRule:
     schema: tuple[Atom, ...]
     #: the table the schema atoms read (the file's ``# schema:`` header, its first word)
     table: str
+    #: above how many instantiations a full REASON runs the rule generically (the file's
+    #: ``# generic-rows:`` header; None: :data:`.schema_program.GENERIC_ROWS`)
+    generic_rows: int | None = None
     #: the schema atoms' variables, in order of first appearance: a row binds them in this order
     variables: tuple[str, ...] = field(init=False)
 
@@ -185,8 +188,19 @@ def schema_rules() -> dict[str, SchemaRule]:
         if not schema or not headers.get("schema"):
             raise RuleCompileError(f"{path}: a rule of rules/owl/ needs a '# schema:' header and a schema atom "
                                    f"(GRAPH {_SCHEMA_GRAPH_TEXT} {{ ... }})")
-        found[rule.name] = SchemaRule(_marked_head(rule), schema, headers["schema"].split()[0])
+        found[rule.name] = SchemaRule(_marked_head(rule), schema, headers["schema"].split()[0],
+                                      _rows_header(path, headers.get("generic-rows")))
     return found
+
+
+def _rows_header(path, text: str | None) -> int | None:
+    """The ``# generic-rows:`` header, a count of rows (its first word)."""
+    if text is None:
+        return None
+    word = text.split()[0] if text.split() else ""
+    if not word.isdigit():
+        raise RuleCompileError(f"{path}: '# generic-rows:' needs a number of rows, not {text!r}")
+    return int(word)
 
 
 def _marked_head(rule: Rule) -> Rule:

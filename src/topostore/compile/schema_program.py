@@ -93,15 +93,22 @@ def _evaluables(generic: SchemaRule, instances: list[Rule]) -> list[Rule]:
     return [generic.evaluable(aux) for aux in (False, True) if any(r.head_aux() == aux for r in instances)]
 
 
-def full_program(ruleset: RuleSet, threshold: int = GENERIC_ROWS) -> GenericProgram:
-    """``ruleset`` with every generic rule of more than ``threshold`` instantiations run generically."""
+def rows_threshold(generic: SchemaRule) -> int:
+    """Above how many instantiations a full REASON runs ``generic`` generically: its file's
+    ``# generic-rows:`` header, else :data:`GENERIC_ROWS`."""
+    return GENERIC_ROWS if generic.generic_rows is None else generic.generic_rows
+
+
+def full_program(ruleset: RuleSet, threshold: int | None = None) -> GenericProgram:
+    """``ruleset`` with every generic rule of more than ``threshold`` instantiations run generically
+    (None: each rule's own, :func:`rows_threshold`)."""
     rules = ruleset.rules
     program = GenericProgram(ruleset)
     replaced: dict[int, list[Rule]] = {}
     for name, found in _instances(rules).items():
-        if len(found) <= threshold:
-            continue
         generic = schema_rules()[name]
+        if len(found) <= (rows_threshold(generic) if threshold is None else threshold):
+            continue
         rows = list(dict.fromkeys(row for _, row in found))
         program.rows[name] = closed(rows) if generic.chains else rows
         first = found[0][0]
@@ -113,4 +120,4 @@ def full_program(ruleset: RuleSet, threshold: int = GENERIC_ROWS) -> GenericProg
     return program
 
 
-__all__ = ["GENERIC_ROWS", "GenericProgram", "closed", "full_program"]
+__all__ = ["GENERIC_ROWS", "GenericProgram", "closed", "full_program", "rows_threshold"]
