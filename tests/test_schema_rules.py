@@ -110,6 +110,18 @@ def test_only_copying_rules_chain_and_their_rows_close() -> None:
         ("a", "b"), ("a", "c"), ("b", "a"), ("b", "c"), ("c", "a"), ("c", "b")]
 
 
+@settings(max_examples=property_examples(200), deadline=None)
+@given(st.lists(st.tuples(st.sampled_from("abcdefg"), st.sampled_from("abcdefg")), max_size=20))
+def test_closed_rows_are_what_each_start_reaches(rows) -> None:
+    """The closure's shortcut (a start takes whole the set an earlier start found) changes nothing."""
+    from topostore.compile.reach import reachable
+
+    succ: dict[str, list[str]] = {}
+    for a, b in rows:
+        succ.setdefault(a, []).append(b)
+    assert closed(rows) == [(s, n) for s in succ for n in sorted(reachable(s, lambda x: succ.get(x, ())) - {s})]
+
+
 def test_the_schema_atom_is_refused_in_the_rules_every_ontology_gets(tmp_path) -> None:
     from topostore.compile.generic import parse_rule_file
 
@@ -162,6 +174,8 @@ def test_the_compiled_rules_of_those_kinds_are_instantiations_with_their_axioms(
     assert ("prp-dom", "p domain E", f"?y {p} ?x .", f"?x {TYPE} <{NS}E> .") in texts
     # so is an existential of owl:Thing (no filler atom: another shape than the table's)
     generic = schema_rules()
+    assert all(generic[r.name].row_aux(generic[r.name].row_of(r)) == r.head_aux() for r in rules
+               if generic[r.name].row_of(r) is not None)
     # and a chain of three properties (a row has a fixed number of terms)
     assert sorted(r.origin for r in rules if generic[r.name].row_of(r) is None) == [
         "class expression (p some Thing)", "p domain E", "w chain of p o s o s"]

@@ -44,6 +44,8 @@ from .rule import Atom, Rule, head_is_aux
 #: A row of a schema table: the SPARQL terms bound to the schema atom's variables, in order.
 Row = tuple[str, ...]
 
+_INTERNAL_TEXT, _SKOLEM_TEXT, _TYPE_TEXT = f"<{INTERNAL}", f"<{SKOLEM_PREFIX}", str(TYPE)
+
 #: How the rule files write the schema graph (replaced by the real graph when a rule is evaluated).
 _SCHEMA_GRAPH_TEXT = "ts:graph:schema"
 
@@ -128,7 +130,8 @@ class SchemaRule:
 
     def triples(self, row: Row) -> list[str]:
         """The schema atoms of a row, as triples of SPARQL text (what the schema graph holds)."""
-        return [self._substitute(a, row).text() for a in self.schema]
+        bound = dict(zip(self.variables, row))
+        return [f"{bound.get(a.s, a.s)} {bound.get(a.p, a.p)} {bound.get(a.o, a.o)} ." for a in self.schema]
 
     @property
     def graph(self) -> NamedNode:
@@ -162,6 +165,19 @@ class SchemaRule:
                 parts.append(f'(isIRI({term}) && STRSTARTS(STR({term}), "{INTERNAL}") '
                              f'&& !STRSTARTS(STR({term}), "{SKOLEM_PREFIX}"))')
         return " || ".join(parts) or None
+
+    def row_aux(self, row: Row) -> bool:
+        """Whether the conclusion of ``row`` goes to the helper graph: what :func:`.rule.head_is_aux`
+        decides for the row's instantiation, on the SPARQL text (a full REASON asks it of every row:
+        no IRI is built)."""
+        r = self.rule
+        if r.aux_head is not None or r.head is None:
+            return bool(r.aux_head)
+        bound = dict(zip(self.variables, row))
+        p, o = bound.get(r.head.p, r.head.p), bound.get(r.head.o, r.head.o)
+        if any(t.startswith(_INTERNAL_TEXT) and not t.startswith(_SKOLEM_TEXT) for t in (p, o)):
+            return True
+        return p == _TYPE_TEXT and o.startswith(_SKOLEM_TEXT)
 
     def evaluable(self, aux: bool) -> Rule:
         """The generic rule: one rule joining the rows of :attr:`graph`, whatever their number, for the

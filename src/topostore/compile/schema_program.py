@@ -21,7 +21,6 @@ from dataclasses import dataclass, field, replace
 from pyoxigraph import NamedNode
 
 from ..stores.base import Store
-from .reach import reachable
 from .rule import Rule, RuleSet
 from .schema import Row, SchemaRule, schema_rules
 
@@ -62,12 +61,29 @@ class GenericProgram:
 
 
 def closed(rows: list[Row]) -> list[Row]:
-    """The transitive closure of two-term rows (a pair ``(a, a)`` says nothing and is left out)."""
+    """The transitive closure of two-term rows (a pair ``(a, a)`` says nothing and is left out).
+
+    A start's walk stops at a node whose closure an earlier start found, taking that set whole:
+    closing rows that are already nearly closed (the compiler's restriction subsumption, tens of
+    thousands of rows) then costs set unions, not a walk per start over every reachable row."""
     succ: dict[str, list[str]] = {}
     for a, b in rows:
         succ.setdefault(a, []).append(b)
-    return [(start, node) for start in succ
-            for node in sorted(reachable(start, lambda n: succ.get(n, ())) - {start})]
+    found: dict[str, set[str]] = {}
+    for start, first in succ.items():
+        seen: set[str] = set()
+        todo = list(first)
+        while todo:
+            node = todo.pop()
+            if node in seen:
+                continue
+            seen.add(node)
+            if node in found:  # everything it reaches is reached, and needs no walk of its own
+                seen |= found[node]
+            else:
+                todo.extend(succ.get(node, ()))
+        found[start] = seen
+    return [(start, node) for start in succ for node in sorted(found[start] - {start})]
 
 
 def _instances(rules: list[Rule]) -> dict[str, list[tuple[int, Row]]]:
@@ -88,9 +104,10 @@ def _instances(rules: list[Rule]) -> dict[str, list[tuple[int, Row]]]:
     return found
 
 
-def _evaluables(generic: SchemaRule, instances: list[Rule]) -> list[Rule]:
-    """The generic rule once per head graph its instantiations write (inferred, helper, or both)."""
-    return [generic.evaluable(aux) for aux in (False, True) if any(r.head_aux() == aux for r in instances)]
+def _evaluables(generic: SchemaRule, rows: list[Row]) -> list[Rule]:
+    """The generic rule once per head graph its rows' instantiations write (inferred, helper, or both)."""
+    graphs = {generic.row_aux(row) for row in rows}
+    return [generic.evaluable(aux) for aux in (False, True) if aux in graphs]
 
 
 def rows_threshold(generic: SchemaRule) -> int:
@@ -112,7 +129,7 @@ def full_program(ruleset: RuleSet, threshold: int | None = None) -> GenericProgr
         rows = list(dict.fromkeys(row for _, row in found))
         program.rows[name] = closed(rows) if generic.chains else rows
         first = found[0][0]
-        replaced[first] = _evaluables(generic, [rules[i] for i, _ in found])
+        replaced[first] = _evaluables(generic, rows)
         replaced.update({i: [] for i, _ in found[1:]})
     if replaced:
         new = [r for i, rule in enumerate(rules) for r in replaced.get(i, [rule])]
