@@ -7,7 +7,9 @@ a consistency check) preceded by ``# key: value`` header lines:
 * ``reads`` — read keys of FILTER/path lines (``p <iri-or-prefixed>``, ``t <class>``);
 * ``message`` — for checks, the explanation, with ``{var}`` placeholders;
 * ``head-graph: aux`` — the head goes to the helper graph;
-* ``schema`` — for the OWL rules of ``rules/owl/``, the schema table the rule joins.
+* ``schema`` — for the OWL rules of ``rules/owl/``, the schema table the rule joins;
+  ``generic-rows`` — above how many instantiations a full REASON runs such a rule generically
+  (default: :data:`.schema_program.GENERIC_ROWS`).
 
 Inside WHERE, a line ``s p o .`` (or ``GRAPH ts:graph:aux { s p o . }``) is a
 body atom, so the reasoner can evaluate it against the delta graph; a line

@@ -15,11 +15,13 @@ ontology:
 Rule names are the W3C names (``prp-dom``, ``cls-int1``, ...) or ``ext-*`` for
 the extensions; the origin says which axiom the rule was made from.
 
-The rules of the plain kinds of axiom (class and property hierarchies, equivalent classes,
-domain, range, inverse, symmetric, transitive) are not written here: they are the generic rules
+The rules of the kinds of axiom that fit a row of fixed width (class and property hierarchies,
+equivalent classes, domain, range, inverse, symmetric, transitive, chains of two, disjointness,
+restrictions by kind, restriction subsumption) are not written here: they are the generic rules
 of ``rules/owl/`` instantiated with the axiom's row of its schema table (:mod:`.schema`); a full
 REASON reads those rows back from the rules and may run the generic rule over them instead
-(:mod:`.schema_program`).
+(:mod:`.schema_program`).  An axiom without a row (an inverse property, a longer chain) keeps the
+rule written here.
 """
 
 from __future__ import annotations
@@ -38,7 +40,17 @@ from .negation import NegativeMembership
 from .notices import Notice
 from .owl_restrictions import RestrictionRules, nm
 from .rule import Atom, Rule
-from .schema import Row, class_row, schema_rule, subproperty_row, typing_row
+from .schema import (
+    Row,
+    chain_row,
+    class_row,
+    disjoint_row,
+    member_row,
+    schema_rule,
+    subproperty_row,
+    typing_row,
+    value_row,
+)
 from .snippets import (
     NOT_DIFFERENT_READS,
     candidate_atom,
@@ -61,7 +73,7 @@ class OwlCompiler:
         self.restrictions = RestrictionRules(self)
         self.rules: list[Rule] = []
         self.notices: list[Notice] = []
-        #: the rows of the plain kinds of axiom, whose rules are instantiations of ``rules/owl/``
+        #: the told disjoint pairs of named classes (read by the parts of the compiler)
         self.disjoint_pairs = [
             (a.node, b.node) for a, b in tbox.disjoint if a.is_named and b.is_named
         ]
@@ -90,13 +102,14 @@ class OwlCompiler:
         self.rules.append(Rule(name, origin, tuple(body), head, tuple(filters), reads, violation, message,
                                stratum=stratum, value_range=value_range))
 
-    def instantiate(self, row: Row | None, origin: str, *names: str) -> bool:
-        """Emit the generic rules ``names`` instantiated with the axiom's ``row``; False (nothing
-        emitted) when the axiom has no row (e.g. a domain of an inverse property expression)."""
+    def instantiate(self, row: Row | None, origin: str, *names: str, labels: Sequence[str] | None = None) -> bool:
+        """Emit the generic rules ``names`` instantiated with the axiom's ``row`` (``labels``: how a
+        check's message names its terms); False (nothing emitted) when the axiom has no row (e.g. a
+        domain of an inverse property expression)."""
         if row is None:
             return False
         for name in names:
-            self.rules.append(schema_rule(name).instantiate(row, origin))
+            self.rules.append(schema_rule(name).instantiate(row, origin, labels))
         return True
 
     def type_head(self, var: str, e: Expr) -> Atom | None:
@@ -126,9 +139,7 @@ class OwlCompiler:
         a, b, v1, v2 = "?a", "?b", "?v1", "?v2"
         for c1, c2 in self.disjoint_classes():
             for x, y in ((c1, c2), (c2, c1)):
-                self.emit("different-disjoint", f"{x} and {y} are disjoint",
-                          [candidate_atom(a, b), Atom(a, T, sparql(x.node)), Atom(b, T, sparql(y.node))],
-                          different_atom(a, b, declared=True))
+                self.instantiate(disjoint_row(x, y), f"{x} and {y} are disjoint", "different-disjoint")
         for p in sorted(self.tb.characteristics.get("FunctionalProperty", ()), key=lambda t: t.value):
             if p in self.tb.data_properties:
                 self.emit("different-values", f"{nm(p)} is functional",
@@ -235,16 +246,13 @@ class OwlCompiler:
         origin = f"class expression {e}"
         if e.kind == "and":
             body = [a for m in e.members for a in self.member(x, m)]
-            if body:
+            if body:  # n members: a rule per intersection (a table row has a fixed number of terms)
                 self.emit("cls-int1", origin, body, Atom(x, T, node))
             for m in e.members:
-                head = self.type_head(x, m)
-                if head:
-                    self.emit("cls-int2", origin, [Atom(x, T, node)], head)
+                self.instantiate(member_row(e, m), origin, "cls-int2")
         elif e.kind == "or":
             for m in e.members:
-                if m.node != THING:
-                    self.emit("cls-uni", origin, self.member(x, m), Atom(x, T, node))
+                self.instantiate(member_row(e, m), origin, "cls-uni")
         elif e.kind == "oneof":
             for ind in e.individuals:
                 self.emit("cls-oo", origin, [], Atom(sparql(ind), T, node))
@@ -252,8 +260,9 @@ class OwlCompiler:
             self.emit("cls-com", origin, [Atom(x, T, node)] + self.member(x, e.members[0]),
                       violation=(x,), message=f"an individual is in {e.members[0]} and in its complement")
         elif e.kind == "value":
-            self.emit("cls-hv1", origin, [Atom(x, T, node)], self.prop_atom(x, e.prop, sparql(e.value)))
-            self.emit("cls-hv2", origin, [self.prop_atom(x, e.prop, sparql(e.value))], Atom(x, T, node))
+            if not self.instantiate(value_row(e), origin, "cls-hv1", "cls-hv2"):
+                self.emit("cls-hv1", origin, [Atom(x, T, node)], self.prop_atom(x, e.prop, sparql(e.value)))
+                self.emit("cls-hv2", origin, [self.prop_atom(x, e.prop, sparql(e.value))], Atom(x, T, node))
         elif e.kind == "self":
             self.emit("cls-self1", origin, [Atom(x, T, node)], self.prop_atom(x, e.prop, x))
             self.emit("cls-self2", origin, [self.prop_atom(x, e.prop, x)], Atom(x, T, node))
@@ -277,8 +286,7 @@ class OwlCompiler:
                 na = 1 if a.kind == "some" else a.n
                 nb = 1 if b.kind == "some" else b.n
                 if na >= nb >= 1 and self.filler_subsumed(a, b):
-                    self.emit("ext-card-sub", f"{a} is subsumed by {b}", [Atom("?x", T, sparql(a.node))],
-                              Atom("?x", T, sparql(b.node)))
+                    self.instantiate(class_row(a, b), f"{a} is subsumed by {b}", "ext-card-sub")
 
     # ------------------------------------------------------------------ axioms
     def class_axioms(self) -> None:
@@ -288,7 +296,9 @@ class OwlCompiler:
             self.instantiate(class_row(a, b), f"{a} EquivalentTo {b}", "cax-eqc1", "cax-eqc2")
         for a, b in self.tb.disjoint:
             body = self.member("?x", a) + self.member("?x", b)
-            if body:
+            if self.instantiate(disjoint_row(a, b), f"{a} DisjointWith {b}", "cax-dw", labels=(str(a), str(b))):
+                continue
+            if body:  # with owl:Thing: a check of one class
                 self.emit("cax-dw", f"{a} DisjointWith {b}", body, violation=("?x",),
                           message=f"{{x}} is in the disjoint classes {a} and {b}")
         self.emit("cls-nothing2", "owl:Nothing has no instances", [Atom("?x", T, sparql(NOTHING))], violation=("?x",),
@@ -319,10 +329,12 @@ class OwlCompiler:
         for p, q in tb.inverse:
             self.instantiate((sparql(p), sparql(q)), f"{nm(p)} InverseOf {nm(q)}", "prp-inv1", "prp-inv2")
         for q, chain in tb.chains:
+            origin = f"{nm(q)} chain of {' o '.join(nm(p.iri) for p in chain)}"
+            if self.instantiate(chain_row(q, chain), origin, "prp-spo2"):
+                continue
             vars_ = [f"?u{i}" for i in range(len(chain) + 1)]
             body = [self.prop_atom(vars_[i], p, vars_[i + 1]) for i, p in enumerate(chain)]
-            self.emit("prp-spo2", f"{nm(q)} chain of {' o '.join(nm(p.iri) for p in chain)}", body,
-                      Atom(vars_[0], sparql(q), vars_[-1]))
+            self.emit("prp-spo2", origin, body, Atom(vars_[0], sparql(q), vars_[-1]))
         for p, q in tb.disjoint_props:
             self.emit("prp-pdw", f"{nm(p)} DisjointWith {nm(q)}", [Atom(x, sparql(p), y), Atom(x, sparql(q), y)],
                       violation=(x, y),

@@ -21,6 +21,7 @@ from .condition import Condition
 from .counting import PAIRWISE_MAX, UNREACHABLE, count_at_least, counting_notice
 from .model import Expr
 from .rule import Atom
+from .schema import filler_row
 
 if TYPE_CHECKING:
     from .owl import OwlCompiler
@@ -152,6 +153,9 @@ class RestrictionRules:
         n = 1 if e.kind == "some" else e.n
         if n == 0 or n >= UNREACHABLE:
             return
+        if e.kind == "some" and self.compiler.instantiate(filler_row(e, self.compiler.is_data(e.prop, e)), origin,
+                                                          "cls-svf1"):
+            return
         if self.counts(n):
             atoms, filters = self._counted(e, x, n)
             reads: frozenset = frozenset()
@@ -209,7 +213,8 @@ class RestrictionRules:
             if test:
                 self.compiler.emit("cls-avf", origin, body, filters=[cond.test(f"!({test})")], violation=(x, y),
                           message=f"{{x}} has a value outside {nm(e.datatype)} for {nm(e.prop.iri)}")
-        elif e.filler is not None and e.filler.node != THING:
+        elif not self.compiler.instantiate(filler_row(e, self.compiler.is_data(e.prop, e)), origin, "cls-avf") \
+                and e.filler is not None and e.filler.node != THING:
             self.compiler.emit("cls-avf", origin, body, Atom(y, T, sparql(e.filler.node)))
 
 

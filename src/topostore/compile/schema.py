@@ -1,10 +1,13 @@
 """The schema tables of a TBox and the generic OWL rules that join them (``rules/owl/*.rq``).
 
-The OWL 2 RL rules for the plain kinds of axiom — class hierarchy (cax-sco), equivalent classes
+The OWL rules whose axioms fit a row of fixed width — class hierarchy (cax-sco), equivalent classes
 (cax-eqc1/2), property hierarchy (prp-spo1, which also serves prp-eqp1/2: the reader reads an
 EquivalentProperties axiom as two sub-property rows), domain (prp-dom), range (prp-rng), inverse
-(prp-inv1/2), symmetric (prp-symp) and transitive (prp-trp) — are written once, as SPARQL files in
-``rules/owl/``, each with a *schema atom* ``GRAPH ts:graph:schema { ... }`` that reads a row of the
+(prp-inv1/2), symmetric (prp-symp), transitive (prp-trp), chains of two properties (prp-spo2),
+disjointness (the check cax-dw, and different-disjoint), restrictions by kind (cls-svf1, cls-avf,
+cls-hv1/2, one row per member for cls-int2 and cls-uni) and restriction subsumption (ext-card-sub)
+— are written once, as SPARQL files in
+``rules/owl/``, each with *schema atoms* ``GRAPH ts:graph:schema { ... }`` that read a row of the
 TBox's tables.  Those files are the single source of these rules, used two ways:
 
 * **instantiated** (partial evaluation): a row's constants are substituted into the rule and the
@@ -16,13 +19,16 @@ TBox's tables.  Those files are the single source of these rules, used two ways:
 
 The rows of a table are what an axiom contributes, as SPARQL terms in the order the schema atom's
 variables first appear (``(C, D)`` for ``C SubClassOf D``).  Axioms on an inverse property
-expression have no row (no generic rule reads property expressions): the compiler keeps emitting
-their rules directly.
+expression have no row (no generic rule reads property expressions), nor have shapes of another width
+(an intersection's n members in one body, a chain of three): the compiler keeps emitting their rules
+directly.  A check's instantiation reports the individuals only (:attr:`SchemaRule.reported`); its
+message names the row's terms.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from collections.abc import Sequence
+from dataclasses import dataclass, field, replace
 from functools import cache
 
 from pyoxigraph import NamedNode
@@ -33,10 +39,12 @@ from ..rdf.vocab import INTERNAL, SCHEMA_PREFIX, SKOLEM_PREFIX, THING, TYPE
 from . import condition as cond
 from .generic import parse_rule_text
 from .model import Expr, Prop
-from .rule import Atom, Rule
+from .rule import Atom, Rule, head_is_aux
 
 #: A row of a schema table: the SPARQL terms bound to the schema atom's variables, in order.
 Row = tuple[str, ...]
+
+_INTERNAL_TEXT, _SKOLEM_TEXT, _TYPE_TEXT = f"<{INTERNAL}", f"<{SKOLEM_PREFIX}", str(TYPE)
 
 #: How the rule files write the schema graph (replaced by the real graph when a rule is evaluated).
 _SCHEMA_GRAPH_TEXT = "ts:graph:schema"
@@ -50,6 +58,9 @@ class SchemaRule:
     schema: tuple[Atom, ...]
     #: the table the schema atoms read (the file's ``# schema:`` header, its first word)
     table: str
+    #: above how many instantiations a full REASON runs the rule generically (the file's
+    #: ``# generic-rows:`` header; None: :data:`.schema_program.GENERIC_ROWS`)
+    generic_rows: int | None = None
     #: the schema atoms' variables, in order of first appearance: a row binds them in this order
     variables: tuple[str, ...] = field(init=False)
 
@@ -73,14 +84,26 @@ class SchemaRule:
         bound = dict(zip(self.variables, row))
         return Atom(*(bound.get(t, t) for t in (atom.s, atom.p, atom.o)), aux=atom.aux)
 
-    def instantiate(self, row: Row, origin: str) -> Rule:
-        """The rule of one row: its constants substituted, the schema atoms dropped (they hold)."""
-        if len(row) != len(self.variables):
+    @property
+    def reported(self) -> tuple[str, ...]:
+        """A check's reported variables once instantiated: the schema variables are constants there
+        (the generic check reports them, so that its message can name the row's terms)."""
+        return tuple(v for v in self.rule.violation if v not in self.variables)
+
+    def instantiate(self, row: Row, origin: str, labels: Sequence[str] | None = None) -> Rule:
+        """The rule of one row: its constants substituted, the schema atoms dropped (they hold).
+
+        A check's message names the row's terms by ``labels`` (default: their short names), as the
+        generic check's report names the terms it read."""
+        if len(row) != len(self.variables) or (labels is not None and len(labels) != len(row)):
             raise RuleCompileError(f"{self.name}: a row of {len(row)} terms for {len(self.variables)} variables")
         r = self.rule
         head = self._substitute(r.head, row) if r.head is not None else None
+        message = r.message
+        for var, label in zip(self.variables, labels if labels is not None else [_short(t) for t in row]):
+            message = message.replace("{" + var[1:] + "}", label)
         return Rule(r.name, origin, tuple(self._substitute(a, row) for a in r.body), head, r.conditions,
-                    r.filter_reads, r.violation, r.message, r.aux_head, r.stratum)
+                    r.filter_reads, self.reported, message, r.aux_head, r.stratum)
 
     def row_of(self, rule: Rule) -> Row | None:
         """The row ``rule`` is the instantiation of, or None when it is not one (another name or shape).
@@ -89,7 +112,7 @@ class SchemaRule:
         is kept: a rule matches only when its evaluated body, head and filters are the template's."""
         t = self.rule
         if (rule.name != t.name or len(rule.body) != len(t.body) or rule.conditions != t.conditions
-                or rule.violation != t.violation or rule.stratum != t.stratum or rule.aux_head != t.aux_head
+                or rule.violation != self.reported or rule.stratum != t.stratum or rule.aux_head != t.aux_head
                 or (rule.head is None) != (t.head is None)):
             return None
         bound: dict[str, str] = {}
@@ -107,7 +130,8 @@ class SchemaRule:
 
     def triples(self, row: Row) -> list[str]:
         """The schema atoms of a row, as triples of SPARQL text (what the schema graph holds)."""
-        return [self._substitute(a, row).text() for a in self.schema]
+        bound = dict(zip(self.variables, row))
+        return [f"{bound.get(a.s, a.s)} {bound.get(a.p, a.p)} {bound.get(a.o, a.o)} ." for a in self.schema]
 
     @property
     def graph(self) -> NamedNode:
@@ -138,8 +162,22 @@ class SchemaRule:
             if term == h.o and h.p == str(TYPE):
                 parts.append(f'STRSTARTS(STR({term}), "{INTERNAL}")')  # a class expression or a helper class
             else:
-                parts.append(f'(STRSTARTS(STR({term}), "{INTERNAL}") && !STRSTARTS(STR({term}), "{SKOLEM_PREFIX}"))')
+                parts.append(f'(isIRI({term}) && STRSTARTS(STR({term}), "{INTERNAL}") '
+                             f'&& !STRSTARTS(STR({term}), "{SKOLEM_PREFIX}"))')
         return " || ".join(parts) or None
+
+    def row_aux(self, row: Row) -> bool:
+        """Whether the conclusion of ``row`` goes to the helper graph: what :func:`.rule.head_is_aux`
+        decides for the row's instantiation, on the SPARQL text (a full REASON asks it of every row:
+        no IRI is built)."""
+        r = self.rule
+        if r.aux_head is not None or r.head is None:
+            return bool(r.aux_head)
+        bound = dict(zip(self.variables, row))
+        p, o = bound.get(r.head.p, r.head.p), bound.get(r.head.o, r.head.o)
+        if any(t.startswith(_INTERNAL_TEXT) and not t.startswith(_SKOLEM_TEXT) for t in (p, o)):
+            return True
+        return p == _TYPE_TEXT and o.startswith(_SKOLEM_TEXT)
 
     def evaluable(self, aux: bool) -> Rule:
         """The generic rule: one rule joining the rows of :attr:`graph`, whatever their number, for the
@@ -166,8 +204,28 @@ def schema_rules() -> dict[str, SchemaRule]:
         if not schema or not headers.get("schema"):
             raise RuleCompileError(f"{path}: a rule of rules/owl/ needs a '# schema:' header and a schema atom "
                                    f"(GRAPH {_SCHEMA_GRAPH_TEXT} {{ ... }})")
-        found[rule.name] = SchemaRule(rule, schema, headers["schema"].split()[0])
+        found[rule.name] = SchemaRule(_marked_head(rule), schema, headers["schema"].split()[0],
+                                      _rows_header(path, headers.get("generic-rows")))
     return found
+
+
+def _rows_header(path, text: str | None) -> int | None:
+    """The ``# generic-rows:`` header, a count of rows (its first word)."""
+    if text is None:
+        return None
+    word = text.split()[0] if text.split() else ""
+    if not word.isdigit():
+        raise RuleCompileError(f"{path}: '# generic-rows:' needs a number of rows, not {text!r}")
+    return int(word)
+
+
+def _marked_head(rule: Rule) -> Rule:
+    """``rule`` with a head of constant helper terms marked as a helper atom (``ts:declaredDifferent``),
+    as the compiler's atoms of the helper graph are: a SPARQL CONSTRUCT cannot write the graph."""
+    h = rule.head
+    if h is None or h.aux or not head_is_aux(h.p, h.o):
+        return rule
+    return replace(rule, head=Atom(h.s, h.p, h.o, aux=True))
 
 
 def schema_dataset(rule: Rule) -> str:
@@ -186,12 +244,57 @@ def schema_rule(name: str) -> SchemaRule:
         raise RuleCompileError(f"no generic OWL rule {name!r} in rules/owl/") from None
 
 
+def _short(term: str) -> str:
+    """A row term's short name in a message (``<http://x#A>`` → ``A``), as a check's report shows it."""
+    value = term[1:-1] if term.startswith("<") else term
+    return value.rsplit("#", 1)[-1] if "#" in value else value.rsplit("/", 1)[-1]
+
+
 # ---------------------------------------------------------------------- rows of axioms
 def class_row(a: Expr, b: Expr) -> Row | None:
     """``a ⊑ b`` (or one direction of ``a ≡ b``); None when it says nothing (a class of itself, owl:Thing)."""
     if a.node == b.node or THING in (a.node, b.node):
         return None
     return sparql(a.node), sparql(b.node)
+
+
+def disjoint_row(a: Expr, b: Expr) -> Row | None:
+    """Disjoint ``a`` and ``b`` (in this order); None when one is owl:Thing (its rules read one class)."""
+    if THING in (a.node, b.node):
+        return None
+    return sparql(a.node), sparql(b.node)
+
+
+def filler_row(e: Expr, data: bool) -> Row | None:
+    """(restriction, property, filler) of a some/all restriction ``e`` on a named object property with a
+    class filler other than owl:Thing; None otherwise (a data or inverse property, an unqualified
+    filler: those rules have other shapes and stay as the compiler writes them)."""
+    if data or e.prop is None or e.prop.inverse or e.datatype is not None or e.filler is None \
+            or e.filler.node == THING:
+        return None
+    return sparql(e.node), sparql(e.prop.iri), sparql(e.filler.node)
+
+
+def value_row(e: Expr) -> Row | None:
+    """(restriction, property, value) of a hasValue restriction on a named property; None otherwise."""
+    if e.prop is None or e.prop.inverse or e.value is None:
+        return None
+    return sparql(e.node), sparql(e.prop.iri), sparql(e.value)
+
+
+def member_row(e: Expr, m: Expr) -> Row | None:
+    """(intersection or union, member): a row per member; None for owl:Thing (it says nothing)."""
+    if m.node == THING:
+        return None
+    return sparql(e.node), sparql(m.node)
+
+
+def chain_row(q: NamedNode, chain: Sequence[Prop]) -> Row | None:
+    """(first, second, super-property) of a chain of two named properties; None for another length
+    or an inverse link (a row has a fixed number of terms: a longer chain keeps a rule of its own)."""
+    if len(chain) != 2 or any(p.inverse for p in chain):
+        return None
+    return sparql(chain[0].iri), sparql(chain[1].iri), sparql(q)
 
 
 def typing_row(p: Prop, c: Expr) -> Row | None:
@@ -208,5 +311,5 @@ def subproperty_row(p: Prop, q: Prop) -> Row | None:
     return sparql(p.iri), sparql(q.iri)
 
 
-__all__ = ["Row", "SchemaRule", "class_row", "schema_dataset", "schema_rule", "schema_rules", "subproperty_row",
-           "typing_row"]
+__all__ = ["Row", "SchemaRule", "chain_row", "class_row", "disjoint_row", "filler_row", "member_row", "schema_dataset",
+           "schema_rule", "schema_rules", "subproperty_row", "typing_row", "value_row"]

@@ -1,6 +1,6 @@
 """A full REASON's rules: the instantiations of a large schema table run as one generic rule.
 
-The compiled rule set holds one rule per axiom of the plain kinds (:mod:`.schema`): what the robot
+The compiled rule set holds one rule per axiom of the kinds with a schema row (:mod:`.schema`): what the robot
 step needs, and cheap while a kind has few axioms.  A full REASON over a TBox with many axioms of a
 kind pays for each of those rules in every round (a text to plan, an update to run); the generic rule
 of ``rules/owl/`` does the same work in one evaluation, joining the rows written into its schema
@@ -21,7 +21,6 @@ from dataclasses import dataclass, field, replace
 from pyoxigraph import NamedNode
 
 from ..stores.base import Store
-from .reach import reachable
 from .rule import Rule, RuleSet
 from .schema import Row, SchemaRule, schema_rules
 
@@ -62,44 +61,75 @@ class GenericProgram:
 
 
 def closed(rows: list[Row]) -> list[Row]:
-    """The transitive closure of two-term rows (a pair ``(a, a)`` says nothing and is left out)."""
+    """The transitive closure of two-term rows (a pair ``(a, a)`` says nothing and is left out).
+
+    A start's walk stops at a node whose closure an earlier start found, taking that set whole:
+    closing rows that are already nearly closed (the compiler's restriction subsumption, tens of
+    thousands of rows) then costs set unions, not a walk per start over every reachable row."""
     succ: dict[str, list[str]] = {}
     for a, b in rows:
         succ.setdefault(a, []).append(b)
-    return [(start, node) for start in succ
-            for node in sorted(reachable(start, lambda n: succ.get(n, ())) - {start})]
+    found: dict[str, set[str]] = {}
+    for start, first in succ.items():
+        seen: set[str] = set()
+        todo = list(first)
+        while todo:
+            node = todo.pop()
+            if node in seen:
+                continue
+            seen.add(node)
+            if node in found:  # everything it reaches is reached, and needs no walk of its own
+                seen |= found[node]
+            else:
+                todo.extend(succ.get(node, ()))
+        found[start] = seen
+    return [(start, node) for start in succ for node in sorted(found[start] - {start})]
 
 
 def _instances(rules: list[Rule]) -> dict[str, list[tuple[int, Row]]]:
-    """Per generic rule, the compiled rules that are its instantiations: (index, row)."""
+    """Per generic inference rule, the compiled rules that are its instantiations: (index, row).
+
+    A check (cax-dw) stays instantiated: a full REASON runs the checks after the materialisation,
+    once the schema graphs are dropped, and a check whose classes have no member is skipped
+    without a query (:func:`..reason.consistency.one_graphs`), so its instantiations cost little."""
     generic = schema_rules()
     found: dict[str, list[tuple[int, Row]]] = {}
     for i, rule in enumerate(rules):
         template = generic.get(rule.name)
+        if rule.is_check:
+            continue
         row = template.row_of(rule) if template is not None else None
         if row is not None:
             found.setdefault(rule.name, []).append((i, row))
     return found
 
 
-def _evaluables(generic: SchemaRule, instances: list[Rule]) -> list[Rule]:
-    """The generic rule once per head graph its instantiations write (inferred, helper, or both)."""
-    return [generic.evaluable(aux) for aux in (False, True) if any(r.head_aux() == aux for r in instances)]
+def _evaluables(generic: SchemaRule, rows: list[Row]) -> list[Rule]:
+    """The generic rule once per head graph its rows' instantiations write (inferred, helper, or both)."""
+    graphs = {generic.row_aux(row) for row in rows}
+    return [generic.evaluable(aux) for aux in (False, True) if aux in graphs]
 
 
-def full_program(ruleset: RuleSet, threshold: int = GENERIC_ROWS) -> GenericProgram:
-    """``ruleset`` with every generic rule of more than ``threshold`` instantiations run generically."""
+def rows_threshold(generic: SchemaRule) -> int:
+    """Above how many instantiations a full REASON runs ``generic`` generically: its file's
+    ``# generic-rows:`` header, else :data:`GENERIC_ROWS`."""
+    return GENERIC_ROWS if generic.generic_rows is None else generic.generic_rows
+
+
+def full_program(ruleset: RuleSet, threshold: int | None = None) -> GenericProgram:
+    """``ruleset`` with every generic rule of more than ``threshold`` instantiations run generically
+    (None: each rule's own, :func:`rows_threshold`)."""
     rules = ruleset.rules
     program = GenericProgram(ruleset)
     replaced: dict[int, list[Rule]] = {}
     for name, found in _instances(rules).items():
-        if len(found) <= threshold:
-            continue
         generic = schema_rules()[name]
+        if len(found) <= (rows_threshold(generic) if threshold is None else threshold):
+            continue
         rows = list(dict.fromkeys(row for _, row in found))
         program.rows[name] = closed(rows) if generic.chains else rows
         first = found[0][0]
-        replaced[first] = _evaluables(generic, [rules[i] for i, _ in found])
+        replaced[first] = _evaluables(generic, rows)
         replaced.update({i: [] for i, _ in found[1:]})
     if replaced:
         new = [r for i, rule in enumerate(rules) for r in replaced.get(i, [rule])]
@@ -107,4 +137,4 @@ def full_program(ruleset: RuleSet, threshold: int = GENERIC_ROWS) -> GenericProg
     return program
 
 
-__all__ = ["GENERIC_ROWS", "GenericProgram", "closed", "full_program"]
+__all__ = ["GENERIC_ROWS", "GenericProgram", "closed", "full_program", "rows_threshold"]
