@@ -1,0 +1,317 @@
+"""The floor of a full REASON on the chain maps: ``python -m benchmarks.full_floor SIZE... [--reps N]``.
+
+Before a target of topostore's full REASON is declared out of reach, the same work is measured done
+the least way the store allows: the map file topostore loads (:func:`benchmarks.maps.write`) is read
+into a bare pyoxigraph ``Store`` (``bulk_load`` and ``extend`` timed apart), then the same closure is
+materialised by the hand-written updates of :mod:`benchmarks.full_floor_closure` to the fixpoint, and
+once more as quads computed in Python and written with ``Store.extend`` (no SPARQL: the floor of
+writing it).  Each form runs in a process of its own (its peak RSS is its own), and so does
+topostore's LOAD and ``reason(mode="full")`` on the same file.
+
+Up to 10,000 locations (or with ``--check``) the new triples of both floors are held against
+topostore's inferred graph as sets; any difference is printed and the exit status is 3.
+The table gives CPU and wall seconds per rule, per form and for topostore, the machine (cores, load
+average), the ratios topostore / floor and, with several sizes, the growth from the first to the last.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+import warnings
+from collections.abc import Callable
+from pathlib import Path
+from typing import Any
+
+from pyoxigraph import DefaultGraph, RdfFormat, Store, parse, serialize
+
+from . import full_floor_closure as closure
+from .timing import peak_rss_mib
+
+#: above this size the sets are compared only when asked (``--check``): the dumps cost more than the run
+CHECK_UP_TO = 10_000
+
+
+def timed(fn: Callable[[], Any]) -> tuple[Any, float, float]:
+    """``fn()``'s result, CPU seconds and wall seconds."""
+    cpu, wall = time.process_time(), time.perf_counter()
+    out = fn()
+    return out, time.process_time() - cpu, time.perf_counter() - wall
+
+
+def _dump(triples: list, path: Path) -> None:
+    path.write_bytes(serialize(triples, format=RdfFormat.N_TRIPLES) or b"")
+
+
+def _median(runs: list[dict[str, float]]) -> dict[str, float]:
+    return {k: statistics.median(r[k] for r in runs) for k in runs[0]}
+
+
+def load_extend(path: Path) -> tuple[float, float]:
+    """CPU and wall seconds of parsing the file and writing its quads with ``Store.extend``."""
+    def go() -> Store:
+        store = Store()
+        store.extend(parse(path=str(path), format=RdfFormat.N_TRIPLES))
+        return store
+    _, cpu, wall = timed(go)
+    return cpu, wall
+
+
+def load_bulk(path: Path) -> tuple[Store, float, float]:
+    """A store holding the file (``Store.bulk_load``), with the CPU and wall seconds it took."""
+    store = Store()
+    _, cpu, wall = timed(lambda: store.bulk_load(path=str(path), format=RdfFormat.N_TRIPLES))
+    return store, cpu, wall
+
+
+def sparql_once(path: Path) -> tuple[Store, dict[str, float], int, set]:
+    """Load, then the hand-written rules to the fixpoint; seconds per step and the rounds it took."""
+    store, cpu, wall = load_bulk(path)
+    times = {"load: bulk_load (cpu)": cpu, "load: bulk_load (wall)": wall}
+    closure.refuse_outside(store)
+    loaded = default_graph(store)  # not timed: what the comparison subtracts
+    rounds = 0
+    while True:
+        rounds += 1
+        for name, text in [*closure.RULES, closure.CLOSING]:
+            before = len(store) if name == closure.CLOSING[0] else 0
+            _, c, w = timed(lambda text=text: store.update(closure.PREFIXES + text))
+            times[f"{name} (cpu)"] = times.get(f"{name} (cpu)", 0.0) + c
+            times[f"{name} (wall)"] = times.get(f"{name} (wall)", 0.0) + w
+        if len(store) == before:
+            break
+    for name, ask in closure.CHECKS:
+        found, c, w = timed(lambda ask=ask: store.query(closure.PREFIXES + ask))
+        if found:
+            raise closure.OutsideModel(f"the map is inconsistent ({name}): not a floor of a consistent REASON")
+        times[f"check: {name} (cpu)"], times[f"check: {name} (wall)"] = c, w
+    return store, times, rounds, loaded
+
+
+def part_sparql(path: Path, reps: int, dump: Path | None) -> dict[str, Any]:
+    """The SPARQL floor, ``reps`` times on a fresh store each; medians per step."""
+    cpu, wall = load_extend(path)
+    runs, rounds, store = [], 0, None
+    for _ in range(reps):
+        store, times, rounds, loaded = sparql_once(path)
+        runs.append(times)
+    assert store is not None
+    new = new_triples(store, loaded)
+    if dump is not None:
+        _dump(new, dump)
+    return {"times": _median(runs), "load_extend_cpu": cpu, "load_extend_wall": wall, "rounds": rounds,
+            "new_triples": len(new), "quads_after": len(store), "peak_rss_mib": peak_rss_mib()}
+
+
+def default_graph(store: Store) -> set:
+    """The default graph's triples (as the store gives them back: it writes ``xsd:long`` as ``xsd:integer``)."""
+    return {q.triple for q in store.quads_for_pattern(None, None, None, DefaultGraph())}
+
+
+def new_triples(store: Store, loaded: set) -> list:
+    """The default graph's triples that were not there after the load: what the floor derived."""
+    return list(default_graph(store) - loaded)
+
+
+def python_once(path: Path) -> tuple[Store, dict[str, float], int, set]:
+    """Load, read the facts back, compute the closure in Python, write it with ``Store.extend``."""
+    store, cpu, wall = load_bulk(path)
+    times = {"load: bulk_load (cpu)": cpu, "load: bulk_load (wall)": wall}
+    closure.refuse_outside(store)
+    loaded = default_graph(store)  # not timed: what the comparison subtracts
+    facts, times["read the facts (cpu)"], times["read the facts (wall)"] = timed(lambda: closure.read_facts(store))
+    quads, times["compute in Python (cpu)"], times["compute in Python (wall)"] = timed(
+        lambda: closure.as_quads(closure.python_closure(facts)))
+    _, times["write: Store.extend (cpu)"], times["write: Store.extend (wall)"] = timed(lambda: store.extend(quads))
+    return store, times, len(quads), loaded
+
+
+def part_python(path: Path, reps: int, dump: Path | None) -> dict[str, Any]:
+    """The Python floor, ``reps`` times on a fresh store each; medians per step."""
+    runs, store, written = [], None, 0
+    for _ in range(reps):
+        store, times, written, loaded = python_once(path)
+        runs.append(times)
+    assert store is not None
+    new = new_triples(store, loaded)
+    if dump is not None:
+        _dump(new, dump)
+    return {"times": _median(runs), "written": written, "new_triples": len(new), "quads_after": len(store),
+            "peak_rss_mib": peak_rss_mib()}
+
+
+def part_topostore(path: Path, reps: int, dump: Path | None) -> dict[str, Any]:
+    """topostore's LOAD, then ``reps`` full REASONs (the first reported apart); CPU and wall each."""
+    from topostore import Ontology
+    from topostore.rdf.vocab import INFERRED
+
+    from .limits import lift_time_limit
+
+    warnings.simplefilter("ignore")  # the map's notices are not what is measured
+    lift_time_limit()
+    onto = Ontology()
+    _, load_cpu, load_wall = timed(lambda: onto.load(path))
+    runs = []
+    for _ in range(reps):
+        report, cpu, wall = timed(lambda: onto.reason(mode="full"))
+        if not report.consistent:
+            raise RuntimeError("topostore found the map inconsistent")
+        runs.append({"full (cpu)": cpu, "full (wall)": wall})
+    inferred = list(onto.store.triples(None, None, None, INFERRED))
+    if dump is not None:
+        _dump(inferred, dump)
+    return {"load_cpu": load_cpu, "load_wall": load_wall, "first": runs[0], "times": _median(runs),
+            "inferred": len(inferred), "peak_rss_mib": peak_rss_mib()}
+
+
+PARTS: dict[str, Callable[[Path, int, Path | None], dict[str, Any]]] = {
+    "sparql": part_sparql, "python": part_python, "topostore": part_topostore}
+
+
+def child(part: str, path: Path, reps: int, dump: Path | None) -> dict[str, Any]:
+    """One part in a process of its own (its peak RSS is its own), its JSON row."""
+    cmd = [sys.executable, "-m", "benchmarks.full_floor", "--part", part, "--file", str(path), "--reps", str(reps)]
+    if dump is not None:
+        cmd += ["--dump", str(dump)]
+    out = subprocess.run(cmd, capture_output=True, text=True)
+    if out.returncode != 0:
+        raise RuntimeError(f"{part} on {path.name} failed:\n{out.stderr.strip()[-2000:]}")
+    return json.loads(out.stdout)
+
+
+def differences(ours: Path, theirs: Path) -> tuple[list[str], list[str]]:
+    """Triples only in ``ours`` and only in ``theirs`` (N-Triples files), as sorted lines."""
+    def read(p: Path) -> set[str]:
+        return {str(q.triple) for q in parse(path=str(p), format=RdfFormat.N_TRIPLES)}
+    a, b = read(ours), read(theirs)
+    return sorted(a - b), sorted(b - a)
+
+
+def measure(size: str, reps: int, check: bool, work: Path) -> dict[str, Any]:
+    """Every part on the map of ``size`` locations, and the sets compared when ``check``."""
+    from . import maps
+
+    path, bench = maps.write(size, work, RdfFormat.N_TRIPLES)
+    dumps = {p: (work / f"{p}-{size}.nt" if check else None) for p in PARTS}
+    row: dict[str, Any] = {"size": size, "locations": bench.locations, "file_triples": bench.triples,
+                           "load_average": os.getloadavg()[0], "mismatches": []}
+    for part in PARTS:
+        row[part] = child(part, path, reps, dumps[part])
+    if check:
+        for part in ("sparql", "python"):
+            only_ours, only_topostore = differences(dumps[part], dumps["topostore"])
+            for line in only_ours[:20]:
+                row["mismatches"].append(f"{part} only: {line}")
+            for line in only_topostore[:20]:
+                row["mismatches"].append(f"topostore only ({part} lacks it): {line}")
+            row[f"{part}_differences"] = len(only_ours) + len(only_topostore)
+    return row
+
+
+def _pair(times: dict[str, float], name: str) -> tuple[float, float]:
+    return times[f"{name} (cpu)"], times[f"{name} (wall)"]
+
+
+def _names(times: dict[str, float], skip: str = "load:") -> list[str]:
+    return [k.removesuffix(" (cpu)") for k in times if k.endswith(" (cpu)") and not k.startswith(skip)]
+
+
+def lines(row: dict[str, Any]) -> list[tuple[str, tuple[float, float] | float | str]]:
+    """One size's figures as (label, (cpu, wall) or a number or text), in the table's order."""
+    sp, py, ts = row["sparql"], row["python"], row["topostore"]
+    rules = _names(sp["times"])
+    sparql_total = tuple(sum(_pair(sp["times"], n)[i] for n in rules) for i in (0, 1))
+    python_steps = _names(py["times"])
+    python_total = tuple(sum(_pair(py["times"], n)[i] for n in python_steps) for i in (0, 1))
+    full = _pair(ts["times"], "full")
+    write = _pair(py["times"], "write: Store.extend")
+    out: list[tuple[str, Any]] = [
+        ("file triples", float(row["file_triples"])),
+        ("load: Store.bulk_load", _pair(sp["times"], "load: bulk_load")),
+        ("load: parse + Store.extend", (sp["load_extend_cpu"], sp["load_extend_wall"])),
+        (f"SPARQL floor ({sp['rounds']} round(s)), per update:", "")]
+    out += [("  " + n, _pair(sp["times"], n)) for n in rules]
+    out += [("  total (rules + checks)", sparql_total), ("Python floor (no SPARQL):", "")]
+    out += [("  " + n, _pair(py["times"], n)) for n in python_steps]
+    out += [("  total", python_total), ("topostore:", ""),
+            ("  LOAD", (ts["load_cpu"], ts["load_wall"])),
+            ("  first full REASON", _pair(ts["first"], "full")),
+            ("  full REASON (median)", full),
+            ("  LOAD + full REASON", (ts["load_cpu"] + full[0], ts["load_wall"] + full[1])),
+            ("peak RSS MiB: SPARQL floor", sp["peak_rss_mib"]), ("peak RSS MiB: Python floor", py["peak_rss_mib"]),
+            ("peak RSS MiB: topostore", ts["peak_rss_mib"]),
+            ("inferred: topostore", float(ts["inferred"])), ("new: SPARQL floor", float(sp["new_triples"])),
+            ("new: Python floor", float(py["new_triples"])),
+            ("differences (SPARQL, Python)", f"{row.get('sparql_differences', '-')}, "
+                                              f"{row.get('python_differences', '-')}"),
+            ("ratio full / SPARQL floor", (full[0] / sparql_total[0], full[1] / sparql_total[1])),
+            ("ratio full / Store.extend", (full[0] / write[0], full[1] / write[1])),
+            ("ratio SPARQL floor / Store.extend", (sparql_total[0] / write[0], sparql_total[1] / write[1])),
+            ("load average at the start", row["load_average"])]
+    return out
+
+
+def _cell(value: Any) -> str:
+    if isinstance(value, tuple):
+        return f"{value[0]:.3f}/{value[1]:.3f}"
+    if isinstance(value, float):
+        return f"{value:,.0f}" if value >= 100 else f"{value:.2f}"
+    return str(value)
+
+
+def report(rows: list[dict[str, Any]]) -> str:
+    """The rows as one table: one column per size (seconds as CPU/wall), and the growth first → last."""
+    import pyoxigraph
+
+    tables = [lines(r) for r in rows]
+    head = (f"full REASON's floor, pyoxigraph {pyoxigraph.__version__}, os.cpu_count() = {os.cpu_count()}, "
+            f"load average now {os.getloadavg()[0]:.2f}; seconds as CPU/wall")
+    growth = len(rows) > 1
+    out = [head, f"{'locations':<56}" + "".join(f"{r['locations']:>20,}" for r in rows)
+           + (f"{'growth (CPU)':>14}" if growth else "")]
+    for i, (label, first) in enumerate(tables[0]):
+        cells = [t[i][1] for t in tables]
+        line = f"{label:<56}" + "".join(f"{_cell(c):>20}" for c in cells)
+        if growth and isinstance(first, tuple) and first[0] > 0 and not label.startswith("ratio"):
+            line += f"{cells[-1][0] / first[0]:>13.1f}x"
+        out.append(line)
+    return "\n".join(out)
+
+
+def main(argv: list[str] | None = None) -> None:
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("sizes", nargs="*", help="numbers of locations (even), each a chain map")
+    parser.add_argument("--reps", type=int, default=3, help="runs of each part per size (medians; default 3)")
+    parser.add_argument("--check", action="store_true", help=f"compare the sets above {CHECK_UP_TO:,} too")
+    parser.add_argument("--json", action="store_true", help="print the rows as JSON instead of the table")
+    parser.add_argument("--part", choices=list(PARTS), help=argparse.SUPPRESS)
+    parser.add_argument("--file", type=Path, help=argparse.SUPPRESS)
+    parser.add_argument("--dump", type=Path, help=argparse.SUPPRESS)
+    args = parser.parse_args(argv)
+    if args.reps < 1:
+        parser.error("--reps must be at least 1")
+    if args.part:
+        print(json.dumps(PARTS[args.part](args.file, args.reps, args.dump)))
+        return
+    if not args.sizes:
+        parser.error("give at least one size")
+    rows = []
+    with tempfile.TemporaryDirectory(prefix="topostore-floor-") as tmp:
+        for size in args.sizes:
+            check = args.check or int(size) <= CHECK_UP_TO
+            rows.append(measure(size, args.reps, check, Path(tmp)))
+    print(json.dumps(rows) if args.json else report(rows))
+    bad = [m for r in rows for m in r["mismatches"]]
+    for m in bad:
+        print("MISMATCH", m, file=sys.stderr)
+    sys.exit(3 if bad else 0)
+
+
+if __name__ == "__main__":
+    main()
