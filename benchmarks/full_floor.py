@@ -5,7 +5,8 @@ the least way the store allows: the map file topostore loads (:func:`benchmarks.
 into a bare pyoxigraph ``Store`` (``bulk_load`` and ``extend`` timed apart), then the same closure is
 materialised by the hand-written updates of :mod:`benchmarks.full_floor_closure` to the fixpoint, and
 once more as quads computed in Python and written with ``Store.extend`` (no SPARQL: the floor of
-writing it; once more into a named graph, as topostore keeps its inferred graph apart).  Each form runs in a process of its own (its peak RSS is its own), and so does
+writing it; once more into a named graph, as topostore keeps its inferred graph apart).  Each form
+runs in a process of its own (its peak RSS is its own), and so does
 topostore's LOAD and ``reason(mode="full")`` on the same file.
 
 Up to 10,000 locations (or with ``--check``) the new triples of both floors are held against
