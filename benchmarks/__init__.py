@@ -13,6 +13,7 @@ answers), ``armor_robot`` (topostore's step), ``warm_pellet`` + ``pellet/PelletS
 peer), ``timing`` (medians, p95, RSS), ``compare`` and ``scale`` (one size each, in a process of
 its own), ``drift`` (a long walk), ``remote`` + ``http_count`` (the step on a SPARQL server,
 requests counted at the transport), ``full`` + ``tbox`` (full REASON per engine, the tutorial-style
-TBox), ``report`` (machine, step table, issue 20's step targets, CSV, plot) and ``tables`` (the
+TBox), ``full_floor`` + ``full_floor_closure`` (the floor of a full REASON on the bare store, held
+against topostore's closure), ``report`` (machine, step table, issue 20's step targets, CSV, plot) and ``tables`` (the
 drift, remote and full-REASON tables with their targets).
 """

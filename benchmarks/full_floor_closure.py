@@ -141,7 +141,8 @@ def read_facts(store: Store) -> dict[str, list[tuple[object, object]]]:
     preds = {"hasDoor": MAP + "hasDoor", "visitedAt": MAP + "visitedAt", "isIn": MAP + "isIn", "now": MAP + "now",
              "urgencyThreshold": MAP + "urgencyThreshold", "type": RDF + "type", "range": RDFS + "range",
              "distinctMembers": OWL + "distinctMembers", "members": OWL + "members",
-             "first": RDF + "first", "rest": RDF + "rest"}
+             "first": RDF + "first", "rest": RDF + "rest", "connectedTo": MAP + "connectedTo",
+             "canReach": MAP + "canReach"}
     return {k: list(_subjects(store, p)) for k, p in preds.items()}
 
 
@@ -183,15 +184,18 @@ def python_closure(facts: dict[str, list[tuple[object, object]]]) -> list[Triple
     for loc, door in facts["hasDoor"]:
         doors_of[loc].append(door)
     door_cls = {d for _, d in facts["hasDoor"]} | {s for s, o in asserted_types if o == cls("DOOR")}
+    # derived connectedTo and canReach only join LOCATIONs and ROBOTs already typed: one pass is the fixpoint
     location = ({s for s, _ in facts["hasDoor"]} | {s for s, _ in facts["visitedAt"]} | {o for _, o in facts["isIn"]}
+                | {t for pair in facts["connectedTo"] for t in pair} | {o for _, o in facts["canReach"]}
                 | {s for s, o in asserted_types if o in (cls("LOCATION"), cls("URGENT"))})
     robot = ({s for s, _ in facts["isIn"]} | {s for s, _ in facts["now"]} | {s for s, _ in facts["urgencyThreshold"]}
-             | {s for s, o in asserted_types if o == cls("ROBOT")})
+             | {s for s, _ in facts["canReach"]} | {s for s, o in asserted_types if o == cls("ROBOT")})
     locs_of: dict[object, list[object]] = defaultdict(list)
     for loc, door in facts["hasDoor"]:
         if loc in location and door in door_cls:
             locs_of[door].append(loc)
     connected = {(a, b) for locs in locs_of.values() for a in locs for b in locs if different(a, b)}
+    asserted_links = set(facts["connectedTo"])
     room = {loc for loc, doors in doors_of.items() if loc in location and any(d in door_cls for d in doors)}
     corridor = {loc for loc, doors in doors_of.items() if loc in location
                 and any(different(a, b) for a in doors if a in door_cls for b in doors if b in door_cls)}
@@ -200,12 +204,12 @@ def python_closure(facts: dict[str, list[tuple[object, object]]]) -> list[Triple
     urgent = {loc for r in robot if r in now and r in threshold
               for loc, v in facts["visitedAt"] if loc in location and now[r] - _number(v) > threshold[r]}
     neighbours: dict[object, list[object]] = defaultdict(list)
-    for a, b in connected:
+    for a, b in connected | asserted_links:
         neighbours[a].append(b)
     reach = {(r, b) for r, a in facts["isIn"] if r in robot and a in location
              for b in neighbours.get(a, []) if b in location and different(a, b)}
-    out = [Triple(a, NamedNode(MAP + "connectedTo"), b) for a, b in connected]
-    out += [Triple(r, NamedNode(MAP + "canReach"), b) for r, b in reach]
+    out = [Triple(a, NamedNode(MAP + "connectedTo"), b) for a, b in connected - asserted_links]
+    out += [Triple(r, NamedNode(MAP + "canReach"), b) for r, b in reach - set(facts["canReach"])]
     typed = [("LOCATION", location), ("DOOR", door_cls), ("ROBOT", robot), ("ROOM", room), ("CORRIDOR", corridor),
              ("URGENT", urgent)]
     rdf_type = NamedNode(RDF + "type")

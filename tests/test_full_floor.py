@@ -40,3 +40,14 @@ def test_what_the_floor_does_not_model_is_refused(tmp_path: Path) -> None:
     store.update(f"INSERT DATA {{ <{maps.MAP_NS}Robot1> <{maps.MAP_NS}isIn> <{maps.MAP_NS}R1> }}")
     with pytest.raises(full_floor_closure.OutsideModel, match="robot in two places"):
         full_floor_closure.refuse_outside(store)
+
+
+def test_the_floor_runs_another_round_when_the_closing_update_adds(tmp_path: Path) -> None:
+    """An asserted connectedTo to a place nothing else types: its LOCATION comes from the closing update,
+    so the rules run again, and the closure is still topostore's."""
+    path, bench = maps.write("20", tmp_path, RdfFormat.N_TRIPLES)
+    with path.open("a") as out:
+        out.write(f"<{maps.MAP_NS}{bench.start}> <{maps.MAP_NS}connectedTo> <{maps.MAP_NS}Elsewhere> .\n")
+    assert full_floor.part_sparql(path, 1, None)["rounds"] == 2
+    for part, (only_floor, only_topostore) in _floors_against_topostore(path, tmp_path).items():
+        assert (only_floor, only_topostore) == ([], []), part
