@@ -15,7 +15,7 @@ from typing import TYPE_CHECKING
 import pyoxigraph as ox
 from pyoxigraph import Literal, NamedNode, Quad, Triple
 
-from ..rdf.terms import Term, parse_term, triple, value_key
+from ..rdf.terms import Term, parse_term, quad, triple, value_key
 from ..rdf.vocab import INTERNAL
 from .meta import META
 
@@ -47,26 +47,47 @@ class LiteralForms:
 
     def record(self, adds: list[Quad], removes: list[Quad], undo: bool = False) -> tuple[list[Quad], list[Quad]]:
         """Remember (or forget) how committed literals were written; the quads persisting that on a durable store."""
+        forms_add, forms_remove, _ = self.record_keyed([(q, None) for q in adds], [(q, None) for q in removes], undo)
+        return forms_add, forms_remove
+
+    def record_keyed(self, adds: list[tuple[Quad, object]], removes: list[tuple[Quad, object]],
+                     undo: bool = False) -> tuple[list[Quad], list[Quad], list[Quad]]:
+        """:meth:`record` of (quad, store key) pairs: a literal's value key is read from its store key
+        (``Store._key``: subject, predicate, value key, graph) where the caller has one, not computed
+        again.  Returns the quads persisting the forms on a durable store, and the removed quads as their
+        users wrote them (what an undo restores)."""
         forms_add: list[Quad] = []
         forms_remove: list[Quad] = []
+        written: list[Quad] = []
         persist = self._store.durable and not undo
-        for q in removes:  # each term read once: pyoxigraph makes a new object at every read
+        literal_forms, count = self._literal_forms, self._count_form
+        popped: list[tuple[tuple, Literal, str, Term, NamedNode]] = []
+        for q, k in removes:  # each term read once: pyoxigraph makes a new object at every read
             o = q.object
             if isinstance(o, Literal) and not _is_scratch(graph := q.graph_name):
-                key, s, p = value_key(o), q.subject, q.predicate
-                original = self._literal_forms.pop((graph.value, s, p, key), o)
-                self._count_form(key, original, -1)
-                if persist:
-                    forms_remove.append(_form_quad(graph.value, s, p, original))
-        for q in adds:
+                s, p = q.subject, q.predicate
+                key = k[2] if type(k) is tuple else value_key(o)
+                found = literal_forms.pop((graph.value, s, p, key), None)
+                # as written: the form kept for it, else the value's one form (read before any count changes)
+                original = found if found is not None else self.restore(o)
+                written.append(q if original == o else quad(s, p, original, graph))
+                popped.append((key, o if found is None else found, graph.value, s, p))
+            else:
+                written.append(q)
+        for key, original, name, s, p in popped:
+            count(key, original, -1)
+            if persist:
+                forms_remove.append(_form_quad(name, s, p, original))
+        for q, k in adds:
             o = q.object
             if isinstance(o, Literal) and not _is_scratch(graph := q.graph_name):
-                key, s, p = value_key(o), q.subject, q.predicate
-                self._literal_forms[(graph.value, s, p, key)] = o
-                self._count_form(key, o, +1)
+                s, p = q.subject, q.predicate
+                key = k[2] if type(k) is tuple else value_key(o)
+                literal_forms[(graph.value, s, p, key)] = o
+                count(key, o, +1)
                 if persist:
                     forms_add.append(_form_quad(graph.value, s, p, o))
-        return forms_add, forms_remove
+        return forms_add, forms_remove, written
 
     def record_loaded(self, graph: NamedNode, spelled: list[tuple[tuple, Literal]]) -> list[Quad]:
         """Remember the literals of a bulk load into ``graph`` (``spelled``: ((subject, predicate,
@@ -107,6 +128,14 @@ class LiteralForms:
     def original_literal(self, graph: NamedNode, s: Term, p: NamedNode, o: Literal) -> Literal:
         """The literal as the user asserted it (lexical form and datatype)."""
         found = self._literal_forms.get((graph.value, s, p, value_key(o)))
+        return found if found is not None else self.restore(o)
+
+    def written(self, graph: NamedNode, s: Term, p: NamedNode, o: Term, value: tuple | None) -> Term:
+        """:meth:`original_literal` of ``o`` whose value key is ``value`` (None: ``o`` is no literal,
+        its own form)."""
+        if value is None:
+            return o
+        found = self._literal_forms.get((graph.value, s, p, value))
         return found if found is not None else self.restore(o)
 
     def restore(self, term: Term) -> Term:
