@@ -219,7 +219,7 @@ class Ontology:
                 t = store.fact(t, ASSERTED)
             adds.append(t)
         removes = [t if type(t) is Fact else store.fact(t, ASSERTED, written=False) for t in _distinct(remove)]
-        ledger, limit = self.ledger, self._change_limit()
+        ledger, limit = self.ledger, self._change_limit
         with store.transaction():
             removed = store.toggle_facts(removes, False) if removes else []
             if removed:
@@ -238,18 +238,20 @@ class Ontology:
         facts = [store.fact(t, ASSERTED, written=added) for t in triples]
         with store.transaction():
             changed = store.toggle_facts(facts, added)
-            self.ledger.record(store, changed, added=added, limit=self._change_limit())
+            self.ledger.record(store, changed, added=added, limit=self._change_limit)
         return [f.triple for f in changed]
 
     def _touch(self, triples: Iterable[Triple]) -> None:
         self.dirty = True
         if self.store.durable:
             durable_state.note_changed(self.store)
-        if any(is_schema_triple(t) for t in triples):
-            self._rules = None
-            self._superclasses = None
-            self._found_prefix = None
-            self.ledger.stop_incremental()
+        for t in triples:  # a loop, not any() over a generator: a manipulation touches one or two triples
+            if is_schema_triple(t):  # the rules, the classification and the namespace are read again
+                self._rules = None
+                self._superclasses = None
+                self._found_prefix = None
+                self.ledger.stop_incremental()
+                return
 
     def _change_limit(self) -> float:
         """Net changes above which an incremental REASON no longer pays off (a share of the asserted graph):

@@ -70,7 +70,7 @@ class ChangeLedger:
         """Whether changes are being recorded (since the first successful REASON, or in a unit of work)."""
         return self.recording or bool(self._open)
 
-    def record(self, store: Store, changed: list[Fact], added: bool, limit: float = 0) -> None:
+    def record(self, store: Store, changed: list[Fact], added: bool, limit: Callable[[], float] | None = None) -> None:
         """Record ``changed``: facts (:class:`~topostore.stores.facts.Fact`) whose presence in the asserted
         graph the caller's change flips (added while absent, removed while present), as
         :meth:`Store.toggle_facts` returns them.  Call inside the transaction making the change, so that a
@@ -78,10 +78,10 @@ class ChangeLedger:
         both sides share, so an addition and a removal cancel) and written form (what an undo restores)
         are read from it, not made again.
 
-        ``limit``: the number of net changes above which an incremental REASON no longer pays off
-        (at least :data:`MIN_TRACKED`); past it the record only serves rollback.
+        ``limit``: gives the number of net changes above which an incremental REASON no longer pays off
+        (at least :data:`MIN_TRACKED`; asked only past that); past it the record only serves rollback.
         """
-        if not self.tracking:
+        if not self.recording and not self._open:
             return
         written = [f.triple for f in changed] if added else [store.written_fact(f) for f in changed]
         if self._open:
@@ -97,8 +97,10 @@ class ChangeLedger:
                 del other[key]
             else:
                 mine[key] = as_written
-        if self.incremental and len(self.added) + len(self.removed) > max(limit, MIN_TRACKED):
-            self.incremental = False
+        if self.incremental:
+            size = len(self.added) + len(self.removed)
+            if size > MIN_TRACKED and (limit is None or size > limit()):
+                self.incremental = False
 
     def lost(self, store: Store, changes: list[tuple[list[Triple], list[Triple]]]) -> None:
         """Recorded changes (added, removed; oldest first) that never reached the store: a store that

@@ -310,10 +310,9 @@ class Store:
             return
         adds = [q for q, _ in keyed_adds]
         removes = [q for q, _ in keyed_removes]
-        # written: the removed literals as their users wrote them, for an undo (a removal may name the stored form)
-        forms_add, forms_remove, written = self.forms.record_keyed(keyed_adds, keyed_removes)
+        # undo: the literal forms as they were (the removed literals as their users wrote them)
+        forms_add, forms_remove, undo = self.forms.record_keyed(keyed_adds, keyed_removes)
         meta_add, meta_remove = self.persisted.quads(meta) if meta else ([], [])
-        undo = lambda: self.forms.record(written, adds, undo=True)  # noqa: E731
         try:
             self._write(adds + forms_add + meta_add, removes + forms_remove + meta_remove, undo)
         except BaseException:
@@ -451,26 +450,26 @@ class Store:
         presence changed."""
         if not self._depth:
             with self.transaction():
-                return self._toggle_facts(facts, add)
-        return self._toggle_facts(facts, add)
-
-    def _toggle_facts(self, facts: list[Fact], add: bool) -> list[Fact]:
-        """:meth:`toggle_facts` inside an open transaction."""
+                return self.toggle_facts(facts, add)
         pending, changed = self._pending, []
-        if len(facts) == 1:
+        if len(facts) == 1:  # a manipulation's usual change: its presence asked without a batch
             f = facts[0]
             k = f.key
             entry = pending.get(k)
-            present = entry[1] if entry is not None else self._known.get(k)
-            if present is None:
-                present = self._present([f.quad], [k])[0]
-            if present == add:
-                return changed
-            if entry is None:
-                pending[k] = (f.quad, add)
+            if entry is not None:
+                present = entry[1]
             else:
-                del pending[k]
-            changed.append(f)
+                present = self._known.get(k)
+                if present is None and self.listings is None:
+                    present = self._known[k] = self._has(f.quad)
+                elif present is None:
+                    present = self._present([f.quad], [k])[0]
+            if present != add:
+                if entry is None:
+                    pending[k] = (f.quad, add)
+                else:
+                    del pending[k]
+                changed.append(f)
             return changed
         keys = [f.key for f in facts]
         for f, k, present in zip(facts, keys, self._present([f.quad for f in facts], keys), strict=True):
