@@ -29,8 +29,7 @@ from ..compile import RuleSet, compile_ontology
 from ..compile.builtins import FUNCTIONS as RULE_FUNCTIONS
 from ..compile.notices import Notice
 from ..compile.swrl_text import removal_triples, rule_labels, rule_triples
-from ..errors import UnknownTypeError
-from ..rdf.terms import Term, entity, literal_of, value_key
+from ..rdf.terms import Term, check_literal, entity, literal_of, value_key
 from ..rdf.vocab import (
     ASSERTED,
     AUX,
@@ -551,30 +550,9 @@ class Ontology:
         return self.reads.query_names()
 
 
-#: literals found valid lately: a manipulation's literal was usually just made (and checked) from its text
-_VALID: dict[Literal, None] = {}
-_VALID_MAX = 4096
-
-
 def _validate_literal(lit: Literal) -> None:
-    if lit in _VALID:
-        return
-    _check_literal(lit)
-    if len(_VALID) >= _VALID_MAX:
-        _VALID.clear()
-    _VALID[lit] = None
-
-
-def _check_literal(lit: Literal) -> None:
     """Raise InvalidValueError when ``lit`` is not a valid value of its XSD type (kept as written otherwise)."""
-    dt = lit.datatype.value
-    if lit.language or not dt.startswith(XSD):
-        return
-    local = dt[len(XSD):]
-    try:
-        literal_of(lit.value, local)  # an invalid value of a type topostore knows raises InvalidValueError
-    except UnknownTypeError:  # a datatype topostore does not validate (xsd:anyURI, xsd:gYear, ...): kept as written
-        return
+    check_literal(lit)
 
 
 def _distinct(items: Sequence[Triple | Fact]) -> Sequence[Triple | Fact]:
