@@ -418,10 +418,11 @@ class Store:
 
     def read_facts(self, s: Term, p: NamedNode, graph: NamedNode) -> list[Fact]:
         """:meth:`triples` of (s, p, ?, graph) as facts, each quad keyed once (what a REPLACE reads, then
-        removes some of): inside a transaction, their presence is remembered for the removal."""
+        removes some of): inside a transaction, their presence is remembered for the removal.  Their
+        written forms are asked of the literal forms when they are removed (:meth:`written_fact`)."""
         pending = self._pending
         if pending is None or self.listings is not None:
-            return [self.fact(t, graph) for t in self.triples(s, p, None, graph)]
+            return [self.fact(t, graph, written=False) for t in self.triples(s, p, None, graph)]
         canonical, known, out = self.canonical_reads, self._known, []
         for q in list(self._match(s, p, None, graph)):
             f = fact_read(q, canonical)
@@ -431,7 +432,7 @@ class Store:
                 out.append(f)
         for q, present in list(pending.values()):
             if present and q.subject == s and q.predicate == p and q.graph_name == graph:
-                out.append(self.fact(q.triple, graph))
+                out.append(self.fact(q.triple, graph, written=False))
         return out
 
     def written_fact(self, f: Fact) -> Triple:
