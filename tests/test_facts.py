@@ -143,3 +143,17 @@ def test_type_facts_touch_the_rules(onto: Ontology) -> None:
     onto.rules  # noqa: B018 - compiled
     onto.change([Triple(n("Drone"), TYPE, NamedNode("http://www.w3.org/2002/07/owl#Class"))], [])
     assert onto._rules is None
+
+
+def test_a_removal_writes_the_literal_as_its_user_wrote_it(onto: Ontology, monkeypatch: pytest.MonkeyPatch) -> None:
+    """A store that keeps literals as written (a remote one) must be sent the form it holds, even where the
+    value was read in Oxigraph's stored form."""
+    store = onto.store
+    written: list[tuple[list[Quad], list[Quad]]] = []
+    commit = store._commit
+    monkeypatch.setattr(store, "_commit", lambda adds, removes: (written.append((adds, removes)), commit(adds, removes)))
+    onto.change([Triple(n("r1"), n("speed"), typed("8", "long"))], store.read_facts(n("r1"), n("speed"), ASSERTED))
+    (adds, removes), = written
+    assert Quad(n("r1"), n("speed"), typed("07", "long"), ASSERTED) in removes
+    assert Quad(n("r1"), n("speed"), typed("8", "long"), ASSERTED) in adds
+    assert [str(t.object) for t in store.triples(n("r1"), n("speed"), None, ASSERTED)] == [str(typed("8", "integer"))]

@@ -467,7 +467,7 @@ class Store:
                     present = self._present([f.quad], [k])[0]
             if present != add:
                 if entry is None:
-                    pending[k] = (f.quad, add)
+                    pending[k] = (f.quad if add else self._removal_quad(f), add)
                 else:
                     del pending[k]
                 changed.append(f)
@@ -478,11 +478,20 @@ class Store:
                 continue
             entry = pending.get(k)
             if entry is None:
-                pending[k] = (f.quad, add)
+                pending[k] = (f.quad if add else self._removal_quad(f), add)
             elif entry[1] != add:
                 del pending[k]
             changed.append(f)
         return changed
+
+    def _removal_quad(self, f: Fact) -> Quad:
+        """The quad a removal writes: the literal in the form its user wrote, as it was asserted (a store
+        that keeps literals as written, a remote one, matches it exactly; the listings and the literal
+        forms key it by value)."""
+        written = self.written_fact(f)
+        if written is f.triple:
+            return f.quad
+        return quad(written.subject, written.predicate, written.object, f.quad.graph_name)
 
     def _add_to_empty(self, triples: list[Triple] | tuple[Triple, ...], graph: NamedNode,
                       distinct: bool = False) -> int:
