@@ -17,6 +17,7 @@ from ..ontology.nary import all_different, all_disjoint_classes, individual_trip
 from ..rdf import terms
 from ..rdf.vocab import ASSERTED, OWL, RDF, RDFS, STANFORD_SWRL, SWRL, SWRLB, THING, TYPE, XSD, is_internal, owl, rdfs
 from ..stores.base import fresh_skolem
+from ..stores.facts import Fact
 from . import codes
 from .codes import CommandError
 from .context import Context, Handler, Reply, asserted, fixed, hidden
@@ -198,11 +199,12 @@ def _replace(ind: NamedNode, prop: NamedNode, new, old, description: str) -> Cha
     old_key, new_key = terms.value_key(old), terms.value_key(new)
 
     def plan(onto: Ontology) -> Delta:
-        # read once (on a remote store each read is a round trip), each value's key taken once
-        keys = [(t, terms.value_key(t.object)) for t in asserted(onto, ind, prop)]
-        olds = [t for t, key in keys if key == old_key]
+        # read once (on a remote store each read is a round trip) as facts: each value keyed once, and the
+        # removed ones go on to the store and the ledger with their keys
+        facts = onto.store.read_facts(ind, prop, ASSERTED)
+        olds = [f for f in facts if _same_value(f, old, old_key)]
         # the new value stays if it is there already, unless it is the old value (removed, then added)
-        present = not (olds and new_key == old_key) and any(key == new_key for _, key in keys)
+        present = not (olds and new_key == old_key) and any(_same_value(f, new, new_key) for f in facts)
         warning = (
             ""
             if olds
@@ -214,6 +216,13 @@ def _replace(ind: NamedNode, prop: NamedNode, new, old, description: str) -> Cha
         return Delta(add=[] if present else [terms.triple(ind, prop, new)], remove=olds, warning=warning)
 
     return Change(description, plan)
+
+
+def _same_value(f: Fact, term, key: tuple) -> bool:
+    """Whether the fact's object is the same data value (``key``: the value key of ``term``) or the same
+    individual as ``term``."""
+    value = f.value
+    return value == key if value is not None else f.triple.object == term
 
 
 def replace_dataprop_ind(ctx: Context) -> Reply:

@@ -17,8 +17,7 @@ from pyoxigraph import Triple
 
 from ..errors import TopostoreError
 from ..ontology.facade import Ontology
-from ..rdf.terms import triple
-from ..rdf.vocab import ASSERTED
+from ..stores.facts import Fact
 
 #: Reasoner names accepted at LOAD (spec §5.2); all run topostore's reasoner.
 REASONERS = frozenset({"", "PELLET", "HERMIT", "FACT", "SNOROCKET"})
@@ -28,10 +27,11 @@ logger = logging.getLogger(__name__)
 
 @dataclass
 class Delta:
-    """The triples one manipulation adds and removes, computed against the current state."""
+    """The triples one manipulation adds and removes, computed against the current state (as triples, or
+    as the store's facts a plan read them as: :meth:`Store.read_facts`)."""
 
-    add: list[Triple] = field(default_factory=list)
-    remove: list[Triple] = field(default_factory=list)
+    add: list[Triple | Fact] = field(default_factory=list)
+    remove: list[Triple | Fact] = field(default_factory=list)
     warning: str = ""
 
 
@@ -93,7 +93,9 @@ class Reference:
         """Apply one change to the asserted graph; returns what it did (for undo)."""
         onto = self.ontology
         delta = change.plan(onto)
-        added, removed = onto.change(delta.add, [_original(onto, t) for t in delta.remove])
+        # a removed literal is recorded in the form its user wrote (the ledger asks the literal forms), so
+        # an undo restores it exactly
+        added, removed = onto.change(delta.add, delta.remove)
         return Applied(added, removed, delta.warning)
 
     def submit(self, changes: list[Change]) -> list[str]:
@@ -173,12 +175,6 @@ class Reference:
             self.ontology.reason()
         except TopostoreError as exc:  # the original error is the one reported; this one is only logged
             logger.warning("reasoning again after undoing a failed manipulation failed too: %s", exc)
-
-
-def _original(onto: Ontology, t: Triple) -> Triple:
-    """The triple with its literal in the form the user asserted (so undo restores it exactly)."""
-    written = onto.store.rewritten(ASSERTED, t.subject, t.predicate, t.object)
-    return t if written is None else triple(t.subject, t.predicate, written)
 
 
 __all__ = ["Reference", "Change", "Delta", "Applied", "REASONERS"]

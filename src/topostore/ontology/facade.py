@@ -29,8 +29,7 @@ from ..compile import RuleSet, compile_ontology
 from ..compile.builtins import FUNCTIONS as RULE_FUNCTIONS
 from ..compile.notices import Notice
 from ..compile.swrl_text import removal_triples, rule_labels, rule_triples
-from ..errors import UnknownTypeError
-from ..rdf.terms import Term, entity, literal_of, value_key
+from ..rdf.terms import Term, check_literal, entity, literal_of, value_key
 from ..rdf.vocab import (
     ASSERTED,
     AUX,
@@ -48,6 +47,7 @@ from ..reason.incremental import DEFAULT_MAX_CHANGE_SHARE, IncrementalReasoner
 from ..reason.limits import ReasonLimits
 from ..stores import StoreSpec, check_rules, open_store
 from ..stores.base import Store
+from ..stores.facts import Fact
 from ..stores.literal_forms import FORMS
 from ..stores.meta import META
 from . import state as durable_state
@@ -199,40 +199,58 @@ class Ontology:
         self._touch(gone)
         return gone
 
-    def change(self, add: Sequence[Triple], remove: Sequence[Triple]) -> tuple[list[Triple], list[Triple]]:
+    def change(self, add: Sequence[Triple | Fact], remove: Sequence[Triple | Fact]) -> tuple[list[Triple], list[Triple]]:
         """Retract ``remove``, then assert ``add``, in one transaction: (added, removed), those that were new
         and those that were asserted, as :meth:`add_new` and :meth:`remove_present` return them.  One
-        manipulation's delta (an aRMOR REPLACE) is one call: one transaction, one change limit, one touch."""
-        for t in add:
-            _validate(t)
-        store, ledger, limit = self.store, self.ledger, self._change_limit()
+        manipulation's delta (an aRMOR REPLACE) is one call: one transaction, one change limit, one touch.
+
+        The triples may come as facts (:class:`~topostore.stores.facts.Fact`, e.g. read by
+        :meth:`Store.read_facts`): their keys and forms, made once, serve the store, the ledger and the
+        literal forms alike."""
+        store = self.store
+        adds = []
+        for t in _distinct(add):  # every value is validated before anything changes
+            if type(t) is Fact:
+                if t.value is not None:
+                    _validate_literal(t.triple.object)
+            else:
+                _validate(t)
+                t = store.fact(t, ASSERTED)
+            adds.append(t)
+        removes = [t if type(t) is Fact else store.fact(t, ASSERTED, written=False) for t in _distinct(remove)]
+        ledger, limit = self.ledger, self._change_limit
         with store.transaction():
-            removed = store.remove_present(remove, ASSERTED) if remove else []
+            removed = store.toggle_facts(removes, False) if removes else []
             if removed:
                 ledger.record(store, removed, added=False, limit=limit)
-            added = store.add_new(add, ASSERTED) if add else []
+            added = store.toggle_facts(adds, True) if adds else []
             if added:
                 ledger.record(store, added, added=True, limit=limit)
-        self._touch(removed + added)
-        return added, removed
+        added_triples, removed_triples = [f.triple for f in added], [f.triple for f in removed]
+        self._touch(removed_triples + added_triples)
+        return added_triples, removed_triples
 
     def _change(self, triples: tuple[Triple, ...], added: bool) -> list[Triple]:
         """Add or remove in the asserted graph and record what changed in the ledger: one presence look-up
         per triple (the store's), in one transaction with the change."""
-        with self.store.transaction():
-            changed = (self.store.add_new if added else self.store.remove_present)(triples, ASSERTED)
-            self.ledger.record(self.store, changed, added=added, limit=self._change_limit())
-        return changed
+        store = self.store
+        facts = [store.fact(t, ASSERTED, written=added) for t in triples]
+        with store.transaction():
+            changed = store.toggle_facts(facts, added)
+            self.ledger.record(store, changed, added=added, limit=self._change_limit)
+        return [f.triple for f in changed]
 
     def _touch(self, triples: Iterable[Triple]) -> None:
         self.dirty = True
         if self.store.durable:
             durable_state.note_changed(self.store)
-        if any(is_schema_triple(t) for t in triples):
-            self._rules = None
-            self._superclasses = None
-            self._found_prefix = None
-            self.ledger.stop_incremental()
+        for t in triples:  # a loop, not any() over a generator: a manipulation touches one or two triples
+            if is_schema_triple(t):  # the rules, the classification and the namespace are read again
+                self._rules = None
+                self._superclasses = None
+                self._found_prefix = None
+                self.ledger.stop_incremental()
+                return
 
     def _change_limit(self) -> float:
         """Net changes above which an incremental REASON no longer pays off (a share of the asserted graph):
@@ -532,30 +550,14 @@ class Ontology:
         return self.reads.query_names()
 
 
-#: literals found valid lately: a manipulation's literal was usually just made (and checked) from its text
-_VALID: dict[Literal, None] = {}
-_VALID_MAX = 4096
-
-
 def _validate_literal(lit: Literal) -> None:
-    if lit in _VALID:
-        return
-    _check_literal(lit)
-    if len(_VALID) >= _VALID_MAX:
-        _VALID.clear()
-    _VALID[lit] = None
-
-
-def _check_literal(lit: Literal) -> None:
     """Raise InvalidValueError when ``lit`` is not a valid value of its XSD type (kept as written otherwise)."""
-    dt = lit.datatype.value
-    if lit.language or not dt.startswith(XSD):
-        return
-    local = dt[len(XSD):]
-    try:
-        literal_of(lit.value, local)  # an invalid value of a type topostore knows raises InvalidValueError
-    except UnknownTypeError:  # a datatype topostore does not validate (xsd:anyURI, xsd:gYear, ...): kept as written
-        return
+    check_literal(lit)
+
+
+def _distinct(items: Sequence[Triple | Fact]) -> Sequence[Triple | Fact]:
+    """``items`` without repeats (one triple, a manipulation's usual change, is not hashed for it)."""
+    return items if len(items) < 2 else list(dict.fromkeys(items))
 
 
 def _validate(t: Triple) -> None:

@@ -26,20 +26,20 @@ from __future__ import annotations
 
 import functools
 import logging
-from collections.abc import Callable, Iterable, Iterator
+from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from typing import TYPE_CHECKING, Any, TypeVar
 
 from pyoxigraph import Triple
 
 from ..errors import TopostoreError
-from ..rdf.terms import triple
 from ..rdf.vocab import ASSERTED, AUX, ENTAILED, INFERRED
 from ..reason import limits
 from ..reason.incremental import check_mode
 
 if TYPE_CHECKING:  # pragma: no cover
     from ..stores.base import Store
+    from ..stores.facts import Fact
     from .facade import Ontology
 
 logger = logging.getLogger("topostore.journal")  # the log keeps its name from the module this one replaced
@@ -70,32 +70,37 @@ class ChangeLedger:
         """Whether changes are being recorded (since the first successful REASON, or in a unit of work)."""
         return self.recording or bool(self._open)
 
-    def record(self, store: Store, changed: Iterable[Triple], added: bool, limit: float = 0) -> None:
-        """Record ``changed``: triples whose presence in the asserted graph the caller's change flips
-        (added while absent, removed while present), as :meth:`Store.add_new` and
-        :meth:`Store.remove_present` return them.  Call inside the transaction making the change, so that
-        a removed literal is still known in the form the user asserted.
+    def record(self, store: Store, changed: list[Fact], added: bool, limit: Callable[[], float] | None = None) -> None:
+        """Record ``changed``: facts (:class:`~topostore.stores.facts.Fact`) whose presence in the asserted
+        graph the caller's change flips (added while absent, removed while present), as
+        :meth:`Store.toggle_facts` returns them.  Call inside the transaction making the change, so that a
+        removed literal is still known in the form the user asserted.  Each fact's stored form (the key
+        both sides share, so an addition and a removal cancel) and written form (what an undo restores)
+        are read from it, not made again.
 
-        ``limit``: the number of net changes above which an incremental REASON no longer pays off
-        (at least :data:`MIN_TRACKED`); past it the record only serves rollback.
+        ``limit``: gives the number of net changes above which an incremental REASON no longer pays off
+        (at least :data:`MIN_TRACKED`; asked only past that); past it the record only serves rollback.
         """
-        if not self.tracking:
+        if not self.recording and not self._open:
             return
-        changed = list(changed)
-        written = changed if added else [_as_written(store, t) for t in changed]  # an undo restores these
+        written = [f.triple for f in changed] if added else [store.written_fact(f) for f in changed]
         if self._open:
             self._steps.append((written, added))
         if not self.recording:
             return
         mine, other = (self.added, self.removed) if added else (self.removed, self.added)
-        for t, as_written in zip(changed, written, strict=True):
-            key = store.stored_form(t)  # both sides hold triples as the store does, so they cancel
+        for f, as_written in zip(changed, written, strict=True):
+            key = f.stored
+            if key is None:  # both sides hold triples as the store does, so they cancel
+                key = f.stored = store.stored_form(f.triple)
             if key in other:
                 del other[key]
             else:
                 mine[key] = as_written
-        if self.incremental and len(self.added) + len(self.removed) > max(limit, MIN_TRACKED):
-            self.incremental = False
+        if self.incremental:
+            size = len(self.added) + len(self.removed)
+            if size > MIN_TRACKED and (limit is None or size > limit()):
+                self.incremental = False
 
     def lost(self, store: Store, changes: list[tuple[list[Triple], list[Triple]]]) -> None:
         """Recorded changes (added, removed; oldest first) that never reached the store: a store that
@@ -193,12 +198,6 @@ class _UnitOfWork:
             ledger._open -= 1
             if not ledger._open:
                 ledger._steps.clear()
-
-
-def _as_written(store: Store, t: Triple) -> Triple:
-    """A retracted triple with its literal in the form the user asserted (so an undo restores it exactly)."""
-    written = store.rewritten(ASSERTED, t.subject, t.predicate, t.object)
-    return t if written is None else triple(t.subject, t.predicate, written)
 
 
 def all_or_nothing(reason: F) -> F:

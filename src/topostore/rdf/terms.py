@@ -139,9 +139,42 @@ def typed_literal(value: str, type_name: str) -> Literal:
     if local == "int32":
         # aRMOR parses INT/INTEGER as a 32-bit Java int and asserts xsd:integer
         literal_of(value, "int")
-        return literal_of(value, "integer")
-    return literal_of(value, local)
+        local = "integer"
+    made = literal_of(value, local)
+    _known_valid(made)  # made by validation: checking it again (as every assertion does) would parse it twice
+    return made
 
+
+#: literals checked lately (:func:`check_literal`), and those :func:`typed_literal` made
+_VALID: dict[Literal, None] = {}
+_VALID_MAX = 4096
+
+
+def check_literal(lit: Literal) -> None:
+    """Raise :class:`InvalidValueError` when ``lit`` is not a valid value of its XSD type (a literal of a
+    datatype topostore does not validate, xsd:anyURI, xsd:gYear, ..., is kept as written)."""
+    if lit in _VALID:
+        return
+    dt = lit.datatype.value
+    if not lit.language and dt.startswith(XSD):
+        try:
+            literal_of(lit.value, dt[len(XSD):])  # an invalid value of a type topostore knows raises
+        except UnknownTypeError:
+            pass
+    _known_valid(lit)
+
+
+def _known_valid(lit: Literal) -> None:
+    if len(_VALID) >= _VALID_MAX:
+        _VALID.clear()
+    _VALID[lit] = None
+
+
+#: the IRIs of the XSD datatypes :func:`literal_of` validates (an IRI is checked by pyoxigraph as it is made)
+_DATATYPES: dict[str, NamedNode] = {
+    local: NamedNode(XSD + local)
+    for local in (*INTEGER_TYPES, "decimal", "float", "double", "boolean", "dateTime", "date")
+}
 
 #: longest integer accepted (Python refuses to parse more than 4,300 digits; no robot measures more)
 _MAX_INTEGER_DIGITS = 4000
@@ -149,10 +182,12 @@ _MAX_INTEGER_DIGITS = 4000
 
 def literal_of(value: str, local: str) -> Literal:
     """A canonical literal of XSD type ``local`` from its lexical text, validated."""
-    datatype = NamedNode(XSD + local)
-    text = value.strip() if local != "string" else value
     if local == "string":
         return Literal(value)
+    datatype = _DATATYPES.get(local)
+    if datatype is None:  # not a type topostore validates: the IRI is made (and checked by pyoxigraph) to say so
+        datatype = NamedNode(XSD + local)
+    text = value.strip()
     if local in INTEGER_TYPES:
         if not _INT_RE.match(text):
             raise InvalidValueError(f"{value[:40]!r} is not a valid xsd:{local}")

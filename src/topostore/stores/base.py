@@ -26,9 +26,10 @@ from pyoxigraph import DefaultGraph, Literal, NamedNode, Quad, RdfFormat, Triple
 from ..rdf.safeio import read_regular_file
 from ..rdf.skolem import fresh_skolem, skolem, skolemize, unskolem, unskolemize
 from ..rdf.syntax import FORMAT_NAMES, PROGRESS_EVERY, guess_format, parse_triples, serialize
-from ..rdf.terms import Term, quad, value_key
+from ..rdf.terms import Term, quad, triple, value_key
 from ..rdf.vocab import FIRST, NIL, REST, SKOLEM_PREFIX, TYPE
 from .batched import BatchedReads
+from .facts import Fact, fact_of, fact_read
 from .listings import Listings
 from .literal_forms import FORMS, LiteralForms
 from .meta import META, PersistedState
@@ -101,6 +102,8 @@ class Store:
     #: whether a long multi-operation update request gives what its operations give sent one by one
     #: (where a request is a round trip, the compiled step sends its whole program as one request)
     whole_programs = True
+    #: whether a literal read from this store is in the form Oxigraph stores it (its own stored form)
+    canonical_reads = False
 
     def __init__(self) -> None:
         #: how each committed literal was written (Oxigraph canonicalises numbers)
@@ -301,26 +304,21 @@ class Store:
         """Commit the pending writes of the open transaction (also the persisted state)."""
         pending, self._pending = self._pending or {}, ({} if self._depth else None)
         meta = self.persisted.take_pending()
-        adds = [q for q, present in pending.values() if present]
-        removes = [q for q, present in pending.values() if not present]
-        if not adds and not removes and not meta:
+        keyed_adds = [(q, k) for k, (q, present) in pending.items() if present]
+        keyed_removes = [(q, k) for k, (q, present) in pending.items() if not present]
+        if not keyed_adds and not keyed_removes and not meta:
             return
-        # the removed literals as their users wrote them, for an undo (a removal may name the stored form)
-        written = [self._as_written(q) for q in removes]
-        forms_add, forms_remove = self.forms.record(adds, removes)
+        adds = [q for q, _ in keyed_adds]
+        removes = [q for q, _ in keyed_removes]
+        # undo: the literal forms as they were (the removed literals as their users wrote them)
+        forms_add, forms_remove, undo = self.forms.record_keyed(keyed_adds, keyed_removes)
         meta_add, meta_remove = self.persisted.quads(meta) if meta else ([], [])
-        undo = lambda: self.forms.record(written, adds, undo=True)  # noqa: E731
         try:
             self._write(adds + forms_add + meta_add, removes + forms_remove + meta_remove, undo)
         except BaseException:
             undo()
             raise
         self.persisted.committed(meta)
-
-    def _as_written(self, q: Quad) -> Quad:
-        """``q`` with its literal in the form the user wrote (``q`` itself when that is its form)."""
-        written = self.rewritten(q.graph_name, q.subject, q.predicate, q.object)
-        return q if written is None else quad(q.subject, q.predicate, written, q.graph_name)
 
     def _key(self, quad: Quad) -> Hashable:
         """What identifies a quad: itself, or with a literal object its value (``1`` = ``"01"^^xsd:int``)."""
@@ -411,6 +409,89 @@ class Store:
                 del pending[k]
             changed.append(t)
         return changed
+
+    # ------------------------------------------------------------ facts: a change's triples with their keys made once
+    def fact(self, t: Triple, graph: NamedNode, written: bool = True) -> Fact:
+        """The :class:`~.facts.Fact` of a triple a caller adds (``written``: it is its own written form)
+        or removes (its written form is asked of the literal forms when needed, see :meth:`written_fact`)."""
+        return fact_of(t, graph, written)
+
+    def read_facts(self, s: Term, p: NamedNode, graph: NamedNode) -> list[Fact]:
+        """:meth:`triples` of (s, p, ?, graph) as facts, each quad keyed once (what a REPLACE reads, then
+        removes some of): inside a transaction, their presence is remembered for the removal.  Their
+        written forms are asked of the literal forms when they are removed (:meth:`written_fact`)."""
+        pending = self._pending
+        if pending is None or self.listings is not None:
+            return [self.fact(t, graph, written=False) for t in self.triples(s, p, None, graph)]
+        canonical, known, out = self.canonical_reads, self._known, []
+        for q in list(self._match(s, p, None, graph)):
+            f = fact_read(q, canonical)
+            known[f.key] = True
+            entry = pending.get(f.key)
+            if entry is None or entry[1]:
+                out.append(f)
+        for q, present in list(pending.values()):
+            if present and q.subject == s and q.predicate == p and q.graph_name == graph:
+                out.append(self.fact(q.triple, graph, written=False))
+        return out
+
+    def written_fact(self, f: Fact) -> Triple:
+        """The triple of ``f`` as its user wrote it (kept in ``f.written``): what a removal reports and
+        an undo restores."""
+        written = f.written
+        if written is None:
+            t = f.triple
+            o = t.object
+            lit = self.forms.written(f.quad.graph_name, t.subject, t.predicate, o, f.value)
+            written = f.written = t if lit == o else triple(t.subject, t.predicate, lit)
+        return written
+
+    def toggle_facts(self, facts: list[Fact], add: bool) -> list[Fact]:
+        """:meth:`add_new` (or :meth:`remove_present`) of facts, deduplicated by the caller: those whose
+        presence changed."""
+        if not self._depth:
+            with self.transaction():
+                return self.toggle_facts(facts, add)
+        pending, changed = self._pending, []
+        if len(facts) == 1:  # a manipulation's usual change: its presence asked without a batch
+            f = facts[0]
+            k = f.key
+            entry = pending.get(k)
+            if entry is not None:
+                present = entry[1]
+            else:
+                present = self._known.get(k)
+                if present is None and self.listings is None:
+                    present = self._known[k] = self._has(f.quad)
+                elif present is None:
+                    present = self._present([f.quad], [k])[0]
+            if present != add:
+                if entry is None:
+                    pending[k] = (f.quad if add else self._removal_quad(f), add)
+                else:
+                    del pending[k]
+                changed.append(f)
+            return changed
+        keys = [f.key for f in facts]
+        for f, k, present in zip(facts, keys, self._present([f.quad for f in facts], keys), strict=True):
+            if present == add:
+                continue
+            entry = pending.get(k)
+            if entry is None:
+                pending[k] = (f.quad if add else self._removal_quad(f), add)
+            elif entry[1] != add:
+                del pending[k]
+            changed.append(f)
+        return changed
+
+    def _removal_quad(self, f: Fact) -> Quad:
+        """The quad a removal writes: the literal in the form its user wrote, as it was asserted (a store
+        that keeps literals as written, a remote one, matches it exactly; the listings and the literal
+        forms key it by value)."""
+        written = self.written_fact(f)
+        if written is f.triple:
+            return f.quad
+        return quad(written.subject, written.predicate, written.object, f.quad.graph_name)
 
     def _add_to_empty(self, triples: list[Triple] | tuple[Triple, ...], graph: NamedNode,
                       distinct: bool = False) -> int:

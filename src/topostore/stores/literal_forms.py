@@ -10,6 +10,7 @@ durable store persists them in the ``FORMS`` graph.
 from __future__ import annotations
 
 import threading
+from collections.abc import Callable
 from typing import TYPE_CHECKING
 
 import pyoxigraph as ox
@@ -47,26 +48,56 @@ class LiteralForms:
 
     def record(self, adds: list[Quad], removes: list[Quad], undo: bool = False) -> tuple[list[Quad], list[Quad]]:
         """Remember (or forget) how committed literals were written; the quads persisting that on a durable store."""
+        forms_add, forms_remove, _undo = self.record_keyed([(q, None) for q in adds], [(q, None) for q in removes], undo)
+        return forms_add, forms_remove
+
+    def record_keyed(self, adds: list[tuple[Quad, object]], removes: list[tuple[Quad, object]],
+                     undo: bool = False) -> tuple[list[Quad], list[Quad], Callable[[], None]]:
+        """:meth:`record` of (quad, store key) pairs: a literal's value key is read from its store key
+        (``Store._key``: subject, predicate, value key, graph) where the caller has one, not computed
+        again.  Returns the quads persisting the forms on a durable store, and what takes the record back
+        should the write fail (the removed literals remembered again as their users wrote them)."""
         forms_add: list[Quad] = []
         forms_remove: list[Quad] = []
         persist = self._store.durable and not undo
-        for q in removes:  # each term read once: pyoxigraph makes a new object at every read
+        literal_forms, count = self._literal_forms, self._count_form
+        # (value key, form counted, form an undo restores, graph name, subject, predicate) of each removal
+        popped: list[tuple[tuple, Literal, Literal, str, Term, NamedNode]] = []
+        for q, k in removes:  # each term read once: pyoxigraph makes a new object at every read
             o = q.object
             if isinstance(o, Literal) and not _is_scratch(graph := q.graph_name):
-                key, s, p = value_key(o), q.subject, q.predicate
-                original = self._literal_forms.pop((graph.value, s, p, key), o)
-                self._count_form(key, original, -1)
-                if persist:
-                    forms_remove.append(_form_quad(graph.value, s, p, original))
-        for q in adds:
+                s, p = q.subject, q.predicate
+                key = k[2] if type(k) is tuple else value_key(o)
+                name = graph.value
+                found = literal_forms.pop((name, s, p, key), None)
+                # as written: the form kept for it, else the value's one form (read before any count changes)
+                popped.append((key, o, self.restore(o), name, s, p) if found is None else (key, found, found, name, s, p))
+        for key, counted, _, name, s, p in popped:
+            count(key, counted, -1)
+            if persist:
+                forms_remove.append(_form_quad(name, s, p, counted))
+        added: list[tuple[tuple, Literal, str, Term, NamedNode]] = []
+        for q, k in adds:
             o = q.object
             if isinstance(o, Literal) and not _is_scratch(graph := q.graph_name):
-                key, s, p = value_key(o), q.subject, q.predicate
-                self._literal_forms[(graph.value, s, p, key)] = o
-                self._count_form(key, o, +1)
+                s, p = q.subject, q.predicate
+                key = k[2] if type(k) is tuple else value_key(o)
+                name = graph.value
+                literal_forms[(name, s, p, key)] = o
+                count(key, o, +1)
+                added.append((key, o, name, s, p))
                 if persist:
-                    forms_add.append(_form_quad(graph.value, s, p, o))
-        return forms_add, forms_remove
+                    forms_add.append(_form_quad(name, s, p, o))
+
+        def take_back() -> None:
+            for key, o, name, s, p in added:
+                literal_forms.pop((name, s, p, key), None)
+                count(key, o, -1)
+            for key, _, written, name, s, p in popped:
+                literal_forms[(name, s, p, key)] = written
+                count(key, written, +1)
+
+        return forms_add, forms_remove, take_back
 
     def record_loaded(self, graph: NamedNode, spelled: list[tuple[tuple, Literal]]) -> list[Quad]:
         """Remember the literals of a bulk load into ``graph`` (``spelled``: ((subject, predicate,
@@ -107,6 +138,14 @@ class LiteralForms:
     def original_literal(self, graph: NamedNode, s: Term, p: NamedNode, o: Literal) -> Literal:
         """The literal as the user asserted it (lexical form and datatype)."""
         found = self._literal_forms.get((graph.value, s, p, value_key(o)))
+        return found if found is not None else self.restore(o)
+
+    def written(self, graph: NamedNode, s: Term, p: NamedNode, o: Term, value: tuple | None) -> Term:
+        """:meth:`original_literal` of ``o`` whose value key is ``value`` (None: ``o`` is no literal,
+        its own form)."""
+        if value is None:
+            return o
+        found = self._literal_forms.get((graph.value, s, p, value))
         return found if found is not None else self.restore(o)
 
     def restore(self, term: Term) -> Term:

@@ -25,6 +25,8 @@ from .literal_forms import stored_literal
 class OxigraphStore(Store):
     """An Oxigraph store in memory (``path=None``) or in a RocksDB directory."""
 
+    canonical_reads = True
+
     def __init__(self, path: str | os.PathLike[str] | None = None, sync: bool = False) -> None:
         super().__init__()
         self.path = path

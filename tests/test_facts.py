@@ -1,0 +1,159 @@
+"""A change's triples as facts (``stores/facts.py``): the keys and forms each layer reads are those the
+layers computed for themselves before, and a REPLACE that fails, or whose write fails, leaves the
+store, the ledger and the literal forms as they were (each literal as its user wrote it)."""
+
+from __future__ import annotations
+
+import pytest
+from pyoxigraph import Literal, NamedNode, Quad, Triple
+
+from topostore import Ontology
+from topostore.armor import ArmorService
+from topostore.armor.reference import Change, Delta, Reference
+from topostore.errors import InvalidValueError, StoreError
+from topostore.rdf import terms
+from topostore.rdf.vocab import ASSERTED, TYPE, XSD
+
+EX = "http://example.org/facts#"
+TBOX = f"""@prefix : <{EX}> . @prefix owl: <http://www.w3.org/2002/07/owl#> .
+<{EX.rstrip('#')}> a owl:Ontology .
+:Robot a owl:Class . :speed a owl:DatatypeProperty . :at a owl:ObjectProperty .
+:r1 a :Robot ; :speed "07"^^<http://www.w3.org/2001/XMLSchema#long> ; :at :a .
+"""
+
+
+def n(name: str) -> NamedNode:
+    return NamedNode(EX + name)
+
+
+def typed(value: str, datatype: str) -> Literal:
+    return Literal(value, datatype=NamedNode(XSD + datatype))
+
+
+@pytest.fixture
+def onto() -> Ontology:
+    o = Ontology(prefix=EX)
+    o.load_data(TBOX)
+    o.reason()
+    return o
+
+
+def test_a_fact_carries_the_keys_the_store_and_the_ledger_compute(onto: Ontology) -> None:
+    store = onto.store
+    t = Triple(n("r1"), n("speed"), typed("8", "long"))
+    f = store.fact(t, ASSERTED)
+    q = Quad(t.subject, t.predicate, t.object, ASSERTED)
+    assert f.triple == t and f.quad == q and f.key == store._key(q) and f.value == terms.value_key(t.object)
+    assert f.written == t and f.stored is None  # the stored form is asked when the ledger records it
+    iri = store.fact(Triple(n("r1"), n("at"), n("b")), ASSERTED)
+    assert iri.key == iri.quad and iri.value is None and iri.stored == iri.triple == iri.written
+
+
+def test_read_facts_are_the_triples_read_with_their_written_forms_asked_once(onto: Ontology) -> None:
+    store = onto.store
+    with store.transaction():
+        facts = store.read_facts(n("r1"), n("speed"), ASSERTED)
+        assert [f.triple for f in facts] == list(store.triples(n("r1"), n("speed"), None, ASSERTED))
+        (f,) = facts
+        assert f.key == store._key(f.quad) and f.stored == store.stored_form(f.triple)
+        assert f.written is None
+        assert store.written_fact(f) == Triple(n("r1"), n("speed"), typed("07", "long")) == f.written
+        # a pending addition is read too, a pending removal is not
+        store.toggle_facts([store.fact(Triple(n("r1"), n("speed"), typed("9", "long")), ASSERTED)], True)
+        store.toggle_facts([f], False)
+        assert [str(g.triple.object) for g in store.read_facts(n("r1"), n("speed"), ASSERTED)] == [
+            str(typed("9", "long"))]
+
+
+def test_toggling_facts_reports_only_what_changed_and_one_value_is_one_write(onto: Ontology) -> None:
+    store = onto.store
+    present = store.fact(Triple(n("r1"), n("speed"), typed("7", "integer")), ASSERTED)  # another spelling
+    absent = store.fact(Triple(n("r1"), n("speed"), typed("8", "long")), ASSERTED)
+    with store.transaction():
+        assert store.toggle_facts([present, absent], True) == [absent]
+        assert store.toggle_facts([absent], True) == []
+        assert store.toggle_facts([absent], False) == [absent]  # the pending addition cancelled
+    assert [str(t.object) for t in store.triples(n("r1"), n("speed"), None, ASSERTED)] == [
+        str(typed("7", "integer"))]
+
+
+def test_replace_records_the_stored_and_written_forms_and_back_cancels(onto: Ontology) -> None:
+    added, removed = onto.change([Triple(n("r1"), n("speed"), typed("8", "long"))],
+                                 onto.store.read_facts(n("r1"), n("speed"), ASSERTED))
+    assert [str(t.object) for t in added] == [str(typed("8", "long"))] and len(removed) == 1
+    assert set(onto.ledger.added) == {Triple(n("r1"), n("speed"), typed("8", "integer"))}
+    assert list(onto.ledger.removed.values()) == [Triple(n("r1"), n("speed"), typed("07", "long"))]
+    onto.change([Triple(n("r1"), n("speed"), typed("7", "long"))],
+                onto.store.read_facts(n("r1"), n("speed"), ASSERTED))
+    assert onto.ledger.net_changes() == ([], [])
+
+
+def test_a_failed_armor_change_restores_the_literal_as_written() -> None:
+    service = ArmorService()
+    ref_onto = Ontology(prefix=EX)
+    ref_onto.load_data(TBOX)
+    ref_onto.reason()
+    ref = Reference("ref", ref_onto, EX.rstrip("#"))
+    service.add_reference(ref)
+
+    def broken(_onto: Ontology) -> Delta:
+        raise InvalidValueError("this change cannot be planned")
+
+    replace_plan = Change("REPLACE", lambda o: Delta(add=[Triple(n("r1"), n("speed"), typed("8", "long"))],
+                                                      remove=o.store.read_facts(n("r1"), n("speed"), ASSERTED)))
+    with pytest.raises(InvalidValueError):
+        ref.run([replace_plan, Change("broken", broken)])
+    assert [str(v) for v in ref_onto.data_values("speed", "r1")] == [str(typed("07", "long"))]
+    assert ref_onto.ledger.net_changes() == ([], [])
+    reply = service.call({"reference_name": "ref", "command": "QUERY", "primary_command_spec": "DATAPROP",
+                          "secondary_command_spec": "IND", "args": ["speed", "r1"]})
+    assert reply.success and reply.queried_objects == ['"07"^^xsd:long']
+
+
+def test_a_write_that_fails_leaves_the_literal_forms_as_they_were(onto: Ontology,
+                                                                  monkeypatch: pytest.MonkeyPatch) -> None:
+    store = onto.store
+
+    def failing(adds, removes, undo=None) -> None:
+        raise StoreError("the disk is full")
+
+    monkeypatch.setattr(store, "_write", failing)
+    with pytest.raises(StoreError):
+        onto.change([Triple(n("r1"), n("speed"), typed("8", "long"))],
+                    [Triple(n("r1"), n("speed"), typed("7", "integer"))])
+    monkeypatch.undo()
+    assert store.original_literal(ASSERTED, n("r1"), n("speed"), typed("7", "integer")) == typed("07", "long")
+    assert store.restore(typed("8", "integer")) == typed("8", "integer")  # the new form is not remembered
+    assert [str(v) for v in onto.data_values("speed", "r1")] == [str(typed("07", "long"))]
+
+
+def test_a_typed_argument_is_known_valid_and_an_invalid_literal_is_still_refused() -> None:
+    made = terms.typed_literal("123456789", "LONG")
+    assert made in terms._VALID
+    terms.check_literal(made)
+    with pytest.raises(InvalidValueError):
+        terms.check_literal(typed("fast", "long"))
+    terms.check_literal(Literal("1999", datatype=NamedNode(XSD + "gYear")))  # not validated: kept as written
+    assert terms.literal_of("5", "long") == typed("5", "long")
+    with pytest.raises(ValueError):
+        terms.literal_of("5", "no such type")  # the datatype IRI is refused by pyoxigraph, as before
+
+
+def test_type_facts_touch_the_rules(onto: Ontology) -> None:
+    onto.rules  # noqa: B018 - compiled
+    onto.change([Triple(n("Drone"), TYPE, NamedNode("http://www.w3.org/2002/07/owl#Class"))], [])
+    assert onto._rules is None
+
+
+def test_a_removal_writes_the_literal_as_its_user_wrote_it(onto: Ontology, monkeypatch: pytest.MonkeyPatch) -> None:
+    """A store that keeps literals as written (a remote one) must be sent the form it holds, even where the
+    value was read in Oxigraph's stored form."""
+    store = onto.store
+    written: list[tuple[list[Quad], list[Quad]]] = []
+    commit = store._commit
+    monkeypatch.setattr(store, "_commit", lambda adds, removes: (written.append((adds, removes)), commit(adds, removes)))
+    onto.change([Triple(n("r1"), n("speed"), typed("8", "long"))], store.read_facts(n("r1"), n("speed"), ASSERTED))
+    (adds, removes), = written
+    assert Quad(n("r1"), n("speed"), typed("07", "long"), ASSERTED) in removes
+    assert Quad(n("r1"), n("speed"), typed("8", "long"), ASSERTED) in adds
+    assert [str(t.object) for t in store.triples(n("r1"), n("speed"), None, ASSERTED)] == [str(typed("8", "integer"))]
