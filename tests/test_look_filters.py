@@ -39,11 +39,14 @@ TERMS = st.one_of(
     st.sampled_from([("a", "en"), ("", "fr"), ("a:b", "en")]).map(lambda p: Literal(p[0], language=p[1])),
 )
 
+TYPED = "^^<http://www.w3.org/2001/XMLSchema#"
 ATOMS = st.one_of(
     st.sampled_from(VARS),
     st.sampled_from(["0", "1", "3", "9223372036854775807", '""', '"a"', '":"', '"urn:topostore:key:"',
                      "true", "false", "<urn:topostore:key:a:1>", "<http://t/x>", '"a"@en', "1.0",
-                     '"1"^^<http://www.w3.org/2001/XMLSchema#integer>']),
+                     f'"1"{TYPED}integer>', f'"-5"{TYPED}integer>', f'"05"{TYPED}integer>', f'"x"{TYPED}integer>',
+                     f'"9223372036854775808"{TYPED}integer>', f'"a:"{TYPED}string>', f'"10"{TYPED}int>',
+                     "'a'", '"""a"""']),
 )
 
 

@@ -41,7 +41,9 @@ _VAR = re.compile(r"[?$](\w+)")
 _IRI = re.compile(r"<([^<>\"{}|^`\\\x00-\x20]*)>")
 _INT = re.compile(r"[0-9]+(?![0-9.eE])")
 _NAME = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
-_STR = re.compile(r"\"((?:[^\"\\\n\r]|\\[tnrbf\"'\\])*)\"(?![@^])|'((?:[^'\\\n\r]|\\[tnrbf\"'\\])*)'(?![@^])")
+_STR = re.compile(r"\"((?:[^\"\\\n\r]|\\[tnrbf\"'\\])*)\"(?!\")|'((?:[^'\\\n\r]|\\[tnrbf\"'\\])*)'(?!')")
+#: a typed literal's datatype (the two the evaluator models, written in full); a language tag is refused
+_TYPED = re.compile(r"\^\^<(" + re.escape(_INTEGER) + "|" + re.escape(_STRING) + r")>")
 _ECHAR = {"t": "\t", "n": "\n", "r": "\r", "b": "\b", "f": "\f", '"': '"', "'": "'", "\\": "\\"}
 _RELATIONS = ("<=", ">=", "!=", "=", "<", ">")
 
@@ -165,6 +167,8 @@ class _Parser:
             or _STR.match(self.text, self.i)
         if m is not None:
             self.i = m.end()
+            if m.group(0)[0] in "\"'":
+                return self.literal(m)
             return _constant_or_variable(m)
         m = _NAME.match(self.text, self.i)
         if m is None:
@@ -175,6 +179,22 @@ class _Parser:
             flag = name == "true"
             return lambda _s: flag
         return self.call(name.upper())
+
+    def literal(self, m: re.Match) -> Expr:
+        """A string constant: simple, or typed ``xsd:integer`` / ``xsd:string`` (as the store reads it)."""
+        raw = m.group(1) if m.group(1) is not None else m.group(2)
+        lex = re.sub(r"\\(.)", lambda e: _ECHAR[e.group(1)], raw)
+        typed = _TYPED.match(self.text, self.i)
+        if typed is None:
+            if self.text.startswith(("@", "^^"), self.i):
+                raise self.fail()
+            string = _Str(lex)
+            return lambda _s: string
+        self.i = typed.end()
+        found = value(Literal(lex, datatype=NamedNode(typed.group(1))))
+        if isinstance(found, Literal):
+            raise self.fail()  # an ill-typed or non-canonical integer: left to SPARQL
+        return lambda _s: found
 
     def call(self, name: str) -> Expr:
         self.expect("(")
@@ -218,10 +238,6 @@ def _constant_or_variable(m: re.Match) -> Expr:
     if text[0] == "<":
         iri = NamedNode(m.group(1))
         return lambda _s: iri
-    if text[0] in "\"'":
-        raw = m.group(1) if m.group(1) is not None else m.group(2)
-        string = _Str(re.sub(r"\\(.)", lambda e: _ECHAR[e.group(1)], raw))
-        return lambda _s: string
     n = int(text)
     if n > _MAX:
         raise Unsupported(f"integer beyond 64 bits: {text}")
