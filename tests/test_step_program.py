@@ -18,7 +18,7 @@ from swrl_support import NS, PREFIXES, builtin, cls, data, diff, obj, rule
 
 from topostore import Ontology
 from topostore.rdf.vocab import ASSERTED, AUX, INFERRED, TYPE
-from topostore.reason import Materializer, check_consistency, direct, look_join
+from topostore.reason import Materializer, check_consistency, direct, look_flip, look_join
 from topostore.reason.program import Refused, StepCompiler, check_pair_atom, describe, pair_atom, signature
 from topostore.stores import memory_store
 
@@ -177,6 +177,36 @@ def test_clock_tick_is_compiled_as_a_flip() -> None:
     onto.reason()
     assert set(onto.instances(N("Hot"))) == set()
 
+
+
+def test_a_flip_runs_by_look_ups_and_falls_back_on_an_overflow() -> None:
+    """The clock's flip through look-ups (reason/look_flip.py) gives the text's heads; a visit time whose
+    difference from the clock overflows 64 bits is no boolean the evaluator decides: the text runs."""
+    answers: list[bool] = []
+    original = look_flip.Flipped.run
+
+    def counted(self, store):
+        answers.append(original(self, store))
+        return answers[-1]
+
+    onto = new_ontology()
+    with mock.patch.object(look_flip.Flipped, "run", counted):
+        for k, v in enumerate([99, 80, 60]):
+            onto.replace(N(PEOPLE[k]), N("seen"), v)
+        onto.reason()
+        for now, hot in ((115, {"i0", "i1", "i2"}), (70, set()), (100, {"i1", "i2"})):
+            onto.replace(N("clock"), N("now"), now)
+            report = onto.reason(mode="incremental")
+            assert report.stats.program == "compiled" and report.stats.flipped == 1
+            assert {onto.short(i) for i in onto.instances(N("Hot"))} == hot
+            assert_as_from_scratch(onto, report)
+        assert answers[-1] is True
+        onto.replace(N(PEOPLE[3]), N("seen"), -(2 ** 63))
+        onto.reason(mode="incremental")
+        onto.replace(N("clock"), N("now"), 101)
+        report = onto.reason(mode="incremental")
+        assert answers[-1] is False
+        assert_as_from_scratch(onto, report)
 
 RESTATED = PREFIXES + f"""
 :A a owl:Class . :B a owl:Class . :p a owl:ObjectProperty ; rdfs:range :A . :q a owl:ObjectProperty ; rdfs:domain :B .

@@ -48,6 +48,8 @@ class Conditions:
     def __init__(self, rule: Rule) -> None:
         self.binds = []
         self.tests = []
+        #: the tests' expressions, for a caller that needs their value rather than its truth
+        self.raw = []
         for c in rule.conditions:
             if not c.plain or c.kind not in (BIND, TEST):
                 raise Unsupported(f"condition {c.text!r} reads the graph")
@@ -56,6 +58,7 @@ class Conditions:
                 self.binds.append((c.binds, expr))
             else:
                 self.tests.append(filter_of(expr))
+                self.raw.append(expr)
 
     def holds(self, solution: dict) -> object:
         """True / False for a solution of the atoms, UNKNOWN where the evaluator is not exact."""

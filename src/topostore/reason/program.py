@@ -65,6 +65,7 @@ from . import delta_texts as texts
 from . import flip
 from .component import COMPONENT_SCRATCH, UNSETTLED, compile_component, whole_ops
 from .direct import FEW, Gained, Lost, OneAtom, Relaxed, one_atom, relaxable
+from .look_flip import Flipped, flippable
 from .look_join import Joined, joinable
 from .order import strongly_connected
 from .restate import covering, restates
@@ -588,6 +589,9 @@ class _Emitter:
                 self.seeded[len(ops)] = {
                     rule.body[j].p: texts.flips(rule, (j, *(m for m in order if m != j)), self.c.lateral, i, seeded=True)
                     for j in order}
+            if ops is self.ops and flippable(rule, order):
+                flipped = Flipped(rule, order)
+                self.direct[len(ops)], self.reads[len(ops)] = flipped.run, flipped.reads
             ops.append((("flip", tag, i, order), texts.flips(rule, order, self.c.lateral, i)))
             found.append(i)
         for key in sorted({self.rules[i].writes() for i in found}):
