@@ -27,11 +27,12 @@ from collections.abc import Callable, Mapping
 
 from pyoxigraph import BlankNode, Literal, NamedNode
 
+from ..rdf.vocab import XSD
+
 #: the answer when the value is not modelled exactly (the caller falls back to SPARQL)
 UNKNOWN = None
 
-_XSD = "http://www.w3.org/2001/XMLSchema#"
-_INTEGER, _STRING = _XSD + "integer", _XSD + "string"
+_INTEGER, _STRING = XSD + "integer", XSD + "string"
 _MIN, _MAX = -(2 ** 63), 2 ** 63 - 1
 #: the canonical spelling of an xsd:integer (Oxigraph stores integers in it)
 _CANONICAL = re.compile(r"-?(?:0|[1-9][0-9]*)\Z")
@@ -403,7 +404,7 @@ def term_of(x: object) -> object:
     """A value as the term SPARQL holds for it (Oxigraph writes computed values canonically, as here);
     UNKNOWN stays UNKNOWN."""
     if type(x) is bool:
-        return Literal("true" if x else "false", datatype=NamedNode(_XSD + "boolean"))
+        return Literal("true" if x else "false", datatype=NamedNode(XSD + "boolean"))
     if _is_int(x):
         return Literal(str(x), datatype=NamedNode(_INTEGER))
     if type(x) is _Str:
