@@ -65,6 +65,8 @@ from . import delta_texts as texts
 from . import flip
 from .component import COMPONENT_SCRATCH, UNSETTLED, compile_component, whole_ops
 from .direct import FEW, Gained, Lost, OneAtom, Relaxed, one_atom, relaxable
+from .look_flip import Flipped, flippable
+from .look_join import Joined, joinable
 from .order import strongly_connected
 from .restate import covering, restates
 from .scratch import ADDED, CANDIDATES, NEW_FACTS, OVERDELETED, REMOVED, target
@@ -482,10 +484,12 @@ class _Emitter:
             keeps = [(i, text) for i, text in ((i, self.recheck(i)) for i in provers) if text]
             if len(keeps) == 1 and key not in self.sig.removed and _general_head(self.rules[keeps[0][0]], key):
                 i = keeps[0][0]  # one prover, whose head matches every fact of the key: ask it inside the deletion
-                self.ops.append((("delete", key), texts.recheck_one(self.rules[i], graph, self.restated(i))))
+                self.op(self.ops, ("delete", key), texts.recheck_one(self.rules[i], graph, self.restated(i)),
+                        self._joined(i, graph, "delete"))
             else:
                 for i, text in keeps:
-                    self.op(self.ops, ("keep", key), text, self._one_atom(i, graph, "keep"))
+                    self.op(self.ops, ("keep", key), text,
+                            self._one_atom(i, graph, "keep") or self._joined(i, graph, "keep"))
                 self.ops.append((("delete", key), texts.recheck(key, graph)))
             if key in self.sig.removed:
                 self.ops.append((recheck, texts.restore(key, graph)))
@@ -585,6 +589,9 @@ class _Emitter:
                 self.seeded[len(ops)] = {
                     rule.body[j].p: texts.flips(rule, (j, *(m for m in order if m != j)), self.c.lateral, i, seeded=True)
                     for j in order}
+            if ops is self.ops and flippable(rule, order):
+                flipped = Flipped(rule, order)
+                self.direct[len(ops)], self.reads[len(ops)] = flipped.run, flipped.reads
             ops.append((("flip", tag, i, order), texts.flips(rule, order, self.c.lateral, i)))
             found.append(i)
         for key in sorted({self.rules[i].writes() for i in found}):
@@ -601,7 +608,7 @@ class _Emitter:
                 if atom.read_key() in self.plus and j not in handled and not self.idle(i, j):
                     self.op(self.ops, ("plus", atom.read_key()),
                             texts.additions(self.rules[i], j, NEW_FACTS, (graph, NEW_FACTS), self.c.lateral),
-                            self._one_atom(i, graph, "additions"))
+                            self._one_atom(i, graph, "additions") or self._joined(i, graph, "additions", j))
                     emitted = True
         return emitted
 
@@ -617,6 +624,17 @@ class _Emitter:
         if not one_atom(rule) or (what == "keep" and self.restated(i)):
             return None
         return getattr(OneAtom(rule, graph), what)
+
+    def _joined(self, i: int, graph: NamedNode, what: str, j: int | None = None) -> Callable | None:
+        """Rule ``i``'s ``what`` (keep, delete, additions from atom ``j``) by a look-up join with its
+        conditions decided in Python, when every condition is in the evaluated subset and the recheck
+        reads the new state (see :mod:`.look_join`)."""
+        if self.restated(i) and what != "additions":
+            return None
+        rule = self.rules[i]
+        if not joinable(rule):
+            return None
+        return getattr(Joined(rule, graph, j), what)
 
 
 __all__ = ["ALWAYS", "PROGRAM_SCRATCH", "Refused", "SEEDS", "Signature", "StepCompiler", "StepProgram",

@@ -68,10 +68,14 @@ class StagedRun:
         mark = self.sent
         part = self.program.part
         for index, (tag, text) in enumerate(self.program.ops):
+            look_up = True
             if tag[0] == "flip":
+                compiled = text
                 tag, text = tag[1], self._flip(index, tag, text)
                 if not text:
                     continue  # nothing can flip this time
+                # a text narrowed by a value window: many facts, whose window query ran already
+                look_up = text is compiled or text in self.program.seeded.get(index, {}).values()
             kind = tag[0]
             if kind == "changes" and self.changes is not None:
                 self.store.add_scratch(self.changes[0], NEW_FACTS)
@@ -84,7 +88,7 @@ class StagedRun:
             elif kind in ("always", "seeds", "changes") or (kind == "minus" and self._changed(tag[1], self.minus)) \
                     or (kind == "plus" and self._changed(tag[1], self.plus)) \
                     or (kind in _AFTER and self._holds(found, _AFTER[kind], tag[1], seeded)):
-                queued |= self._send(index, text, part[index])
+                queued |= self._send(index, text, part[index], look_up)
                 seeded |= kind in ("seeds", "minus", "lost")
             elif kind == "end":
                 if queued or self.sent != mark:  # something ran for this key (a look-up may have sent it)
@@ -139,11 +143,11 @@ class StagedRun:
         facts = islice(self.store.triples(None, NamedNode(p[1:-1]), None, ASSERTED), len(subjects) + 1)
         return sum(1 for _ in facts) == len(subjects)
 
-    def _send(self, index: int, text: str, key: ReadKey | None) -> bool:
+    def _send(self, index: int, text: str, key: ReadKey | None, look_up: bool = True) -> bool:
         """Run operation ``index`` (of ``key``'s part, None: of no key's) through look-ups where it has
-        that equivalent and its facts are few (after sending what is queued and may write what it
-        reads), else queue its text.  Whether it was queued."""
-        direct = self.direct.get(index)
+        that equivalent, ``look_up`` allows it and its facts are few (after sending what is queued and
+        may write what it reads), else queue its text.  Whether it was queued."""
+        direct = self.direct.get(index) if look_up else None
         if direct is not None:
             self._reading(self.program.reads[index])
             if direct(self.store):

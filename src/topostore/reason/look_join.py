@@ -1,0 +1,225 @@
+"""A rule of several body atoms with simple conditions, evaluated by a nested-loop join of index
+look-ups, for the compiled step (:mod:`.program`) where few facts are in play.
+
+Why this exists
+---------------
+:mod:`.direct` answers the join-free operations of the step by look-ups; a rule with two or three
+atoms and a FILTER (a robot's reachability, the clock's comparison) still cost a SPARQL text of
+1–2 KB whose parse and plan is 40–120 µs, while its facts are a handful.  Here such a rule's
+recheck (does a candidate head still have a derivation in the new state?) and additions (the heads a
+changed atom's new facts derive) are answered by binding the atoms one by one in the rule's compiled
+join order (:func:`~..compile.rule.join_order`), each atom's matches read from the store's indexes,
+and the conditions decided by :mod:`.look_filters`.
+
+It never guesses: an atom with more than :data:`.direct.FEW` matches, a condition the evaluator
+answers UNKNOWN, or a head that would be written with a literal makes the operation answer False,
+and its SPARQL text runs instead (before anything was written).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+from itertools import islice
+
+from pyoxigraph import Literal, NamedNode, Triple
+
+from ..compile.condition import BIND, TEST
+from ..compile.rule import Rule, join_order
+from ..rdf.vocab import ASSERTED, AUX, INFERRED
+from . import direct
+from .delta_texts import KEEP
+from .direct import _bind, _instance, _match, _named_only, _pattern, _terms, _write_new
+from .look_filters import UNKNOWN, Unsupported, compile_expression, filter_of
+from .scratch import CANDIDATES, NEW_FACTS, OVERDELETED
+
+_STATE = (ASSERTED, INFERRED, AUX)
+
+
+class _Fallback(Exception):
+    """More matches than :data:`.direct.FEW`: the SPARQL text decides."""
+
+
+class Conditions:
+    """A rule's BINDs and FILTERs, compiled once (:class:`~.look_filters.Unsupported` outside the subset).
+
+    A group's BINDs extend the solution in order, after its atoms (every rule text writes them there),
+    and its FILTERs apply to the whole group, so they are decided after every BIND."""
+
+    def __init__(self, rule: Rule) -> None:
+        self.binds = []
+        self.tests = []
+        #: the tests' expressions, for a caller that needs their value rather than its truth
+        self.raw = []
+        for c in rule.conditions:
+            if not c.plain or c.kind not in (BIND, TEST):
+                raise Unsupported(f"condition {c.text!r} reads the graph")
+            expr = compile_expression(c.expression)
+            if c.kind == BIND:
+                self.binds.append((c.binds, expr))
+            else:
+                self.tests.append(filter_of(expr))
+                self.raw.append(expr)
+
+    def holds(self, solution: dict) -> object:
+        """True / False for a solution of the atoms, UNKNOWN where the evaluator is not exact."""
+        if self.binds:
+            solution = dict(solution)
+            for var, expr in self.binds:
+                found = expr(solution)
+                if found is UNKNOWN:
+                    return UNKNOWN
+                solution[var] = found
+        answer: object = True
+        for test in self.tests:
+            b = test(solution)
+            if b is False:
+                return False
+            if b is UNKNOWN:
+                answer = UNKNOWN
+        return answer
+
+
+def joinable(rule: Rule) -> bool:
+    """Whether :class:`Joined` can evaluate ``rule``: a head, every atom's term a variable or an IRI,
+    the head's variables bound by atoms (not by a BIND), every condition inside the evaluated subset."""
+    if rule.head is None or not rule.body or not _named_only(*rule.body, rule.head):
+        return False
+    if not rule.head.variables() <= set().union(*(a.variables() for a in rule.body)):
+        return False
+    if rule.binds & set().union(*(a.variables() for a in rule.body)):
+        return False
+    try:
+        Conditions(rule)
+    except Unsupported:
+        return False
+    return True
+
+
+class Joined:
+    """Rule ``rule`` (see :func:`joinable`), whose heads live in ``graph``: its recheck of candidates
+    (as KEEP marks, or as the one-prover deletion) and its additions from an atom's new facts."""
+
+    def __init__(self, rule: Rule, graph: NamedNode, delta: int | None = None) -> None:
+        """``delta``: the atom whose new facts the additions start from.  The recheck reads the new
+        state (a rule that only restates a premise is rechecked from asserted facts by its text)."""
+        self.rule = rule
+        self.graph = graph
+        self.delta = delta
+        self.conditions = Conditions(rule)
+        self._body = [_terms(a) for a in rule.body]
+        self._head = _terms(rule.head)
+        self._graphs = [(AUX,) if a.aux else _STATE for a in rule.body]
+        self._proof_order = join_order(rule.body, None, rule.head.variables())
+        self._delta_order = join_order(rule.body, delta)[1:] if delta is not None else []
+        #: the keys whose facts it reads: its atoms' and its head's
+        self.reads = frozenset({a.read_key() for a in rule.body} | {rule.head.read_key()})
+
+    def _matches(self, store, k: int, bound: dict) -> list[dict]:
+        """The extensions of ``bound`` by atom ``k`` (at most FEW, else :class:`_Fallback`)."""
+        terms = self._body[k]
+        pattern = _pattern(_bind(terms, bound))
+        found: dict[Triple, None] = {}
+        for g in self._graphs[k]:
+            found.update(dict.fromkeys(islice(store.triples(*pattern, g), direct.FEW + 1)))
+            if len(found) > direct.FEW:
+                raise _Fallback
+        out = []
+        for t in found:
+            m = _match(terms, t)
+            if m is not None and all(bound.get(x, v) == v for x, v in m.items()):
+                out.append({**bound, **m})
+        return out
+
+    def _solutions(self, store, order: list[int], bound: dict, at: int = 0) -> Iterator[dict]:
+        """The atoms' solutions extending ``bound``, atom by atom in ``order`` (depth first)."""
+        if at == len(order):
+            yield bound
+            return
+        for extended in self._matches(store, order[at], bound):
+            yield from self._solutions(store, order, extended, at + 1)
+
+    def _proven(self, store, bound: dict) -> object:
+        """Whether some derivation with the head's values ``bound`` holds (UNKNOWN: not decided)."""
+        answer: object = False
+        for solution in self._solutions(store, self._proof_order, bound):
+            b = self.conditions.holds(solution)
+            if b is True:
+                return True
+            if b is UNKNOWN:
+                answer = UNKNOWN
+        return answer
+
+    def _decide(self, store) -> list[tuple[Triple, bool]] | None:
+        """Each candidate of the head's pattern and whether the rule still derives it (None: the
+        SPARQL text decides)."""
+        candidates = direct._facts(store, _pattern(self._head), CANDIDATES)
+        if candidates is None:
+            return None
+        out = []
+        try:
+            for c in candidates:
+                bound = _match(self._head, c)
+                if bound is None:
+                    continue
+                proven = self._proven(store, bound)
+                if proven is UNKNOWN:
+                    return None
+                out.append((c, proven))
+        except _Fallback:
+            return None
+        return out
+
+    def keep(self, store) -> bool:
+        """:func:`.delta_texts.keep`: the candidates the rule derives from the new state go to KEEP."""
+        decided = self._decide(store)
+        if decided is None:
+            return False
+        store.add_scratch([c for c, proven in decided if proven], KEEP)
+        return True
+
+    def delete(self, store) -> bool:
+        """:func:`.delta_texts.recheck_one`: the candidates the rule no longer derives and not asserted
+        leave the graph and join OVERDELETED."""
+        decided = self._decide(store)
+        if decided is None:
+            return False
+        dead = [c for c, proven in decided if not proven]
+        if any(isinstance(c.object, Literal) for c in dead):
+            return False  # moved by the SPARQL text: a literal may be stored in another spelling
+        dead = [c for c, asserted in zip(dead, store.contains_each(dead, ASSERTED)) if not asserted] if dead else []
+        if dead:
+            store.discard(dead, (self.graph,))
+            store.add_scratch(dead, OVERDELETED)
+        return True
+
+    def additions(self, store) -> bool:
+        """:func:`.delta_texts.additions`: heads the rule derives with an added fact of the delta atom,
+        not known yet, into the graph and NEW_FACTS."""
+        facts = direct._facts(store, _pattern(self._body[self.delta]), NEW_FACTS)
+        if facts is None:
+            return False
+        heads = []
+        try:
+            for t in facts:
+                start = _match(self._body[self.delta], t)
+                if start is None:
+                    continue
+                for solution in self._solutions(store, self._delta_order, start):
+                    b = self.conditions.holds(solution)
+                    if b is UNKNOWN:
+                        return False
+                    if b:
+                        head = _instance(self._head, solution)
+                        if head is False:
+                            return False
+                        if head is not None:
+                            heads.append(head)
+                    if len(heads) > direct.FEW:
+                        return False
+        except _Fallback:
+            return False
+        _write_new(store, heads, self.graph)
+        return True
+
+
+__all__ = ["Conditions", "Joined", "joinable"]
