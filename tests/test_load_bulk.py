@@ -11,7 +11,7 @@ from pyoxigraph import BlankNode, Literal, NamedNode, Triple
 from topostore import LoadError, Ontology
 from topostore.rdf.vocab import ASSERTED, SKOLEM_PREFIX
 from topostore.stores import memory_store
-from topostore.stores.base import BULK_ADD
+from topostore.stores.work import BULK_ADD
 
 XSD = "http://www.w3.org/2001/XMLSchema#"
 PREFIXES = f"@prefix : <http://e.org/a#> . @prefix xsd: <{XSD}> .\n"

@@ -15,7 +15,7 @@ from pyoxigraph import Literal, NamedNode, Triple
 from topostore import IncompleteOntologyError, Ontology, RuleCompileError
 from topostore.rdf.vocab import ASSERTED
 from topostore.stores import memory_store
-from topostore.stores.base import BULK_ADD
+from topostore.stores.work import BULK_ADD
 
 PREFIXES = """@prefix : <http://e.org/a#> . @prefix owl: <http://www.w3.org/2002/07/owl#> .
 @prefix rdfs: <http://www.w3.org/2000/01/rdf-schema#> . @prefix xsd: <http://www.w3.org/2001/XMLSchema#> .

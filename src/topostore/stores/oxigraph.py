@@ -18,8 +18,10 @@ import pyoxigraph as ox
 from pyoxigraph import Literal, NamedNode, Quad
 
 from ..errors import QueryError, StoreError
-from .base import Store, data_update, key_census, quad_data  # noqa: F401 - data_update: this module's since the first release
+from .base import Store
+from .data_text import data_update, quad_data  # noqa: F401 - quad_data: named here since the first release
 from .literal_forms import stored_literal
+from .reads import key_census
 
 
 class OxigraphStore(Store):

@@ -48,9 +48,9 @@ from pyoxigraph import NamedNode, Quad, QueryResultsFormat, RdfFormat
 from ..errors import QueryError, StoreError, WritesLostError
 from ..rdf.vocab import INTERNAL
 from .base import Store
+from .data_text import data_update
 from .literal_forms import FORMS
 from .meta import META
-from .oxigraph import data_update
 
 logger = logging.getLogger("topostore.store")
 GRAPH_PREFIX = INTERNAL + "graph:"

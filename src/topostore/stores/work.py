@@ -1,0 +1,343 @@
+"""The unit of work of a :class:`~topostore.stores.base.Store`: transactions, pending writes, presence.
+
+A transaction gathers writes (``add``/``remove``/``meta_set``) into one atomic commit; reads inside it see
+its pending writes.  Its state lives on the store (``_pending``: quad key -> (quad, present after commit);
+``_known``: quad key -> present in the committed store, learnt during the transaction; ``_depth``), which
+the reads (:mod:`.reads`, :mod:`.batched`) consult too.
+
+These are functions of the store, bound as its methods in :class:`~topostore.stores.base.Store` (``add =
+work.add``): a robot step calls them hundreds of times, and a delegating method or a separate object
+would add a call (or an attribute look-up) to each.  They call one another through the store, so an
+implementation's override (``_write`` of a store that defers writes, ``_commit_stream``) is the one run.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Hashable, Iterable, Iterator
+from typing import TYPE_CHECKING
+
+from pyoxigraph import Literal, NamedNode, Quad, Triple
+
+from ..rdf.terms import Term, quad, triple, value_key
+from .facts import Fact, fact_of, fact_read
+
+if TYPE_CHECKING:
+    from .base import Store
+
+#: from this many quads on, :meth:`Store.add` asks whether the graph is empty (one look-up) and,
+#: when it is, adds without looking each quad up
+BULK_ADD = 1000
+
+
+class _Transaction:
+    """The context manager :meth:`Store.transaction` returns."""
+
+    __slots__ = ("store",)
+
+    def __init__(self, store: Store) -> None:
+        self.store = store
+
+    def __enter__(self) -> Store:
+        self.store._begin()
+        return self.store
+
+    def __exit__(self, kind, value, traceback) -> None:
+        self.store._end(kind is not None)
+
+
+# ------------------------------------------------------------ transactions
+def transaction(store: Store) -> _Transaction:
+    """Group writes into one atomic commit (nested calls join the outer one).
+
+    On an exception nothing of the transaction is written.  A SPARQL query
+    or update inside a transaction first commits what is pending, so that it
+    sees it; manipulations only read through the quad methods, so they stay
+    one commit.  (A plain context manager class: a robot step opens a dozen of them.)
+    """
+    return _Transaction(store)
+
+
+def begin(store: Store) -> None:
+    """Enter a transaction (the outermost one starts with nothing pending)."""
+    if store._depth == 0:
+        store._pending = {}
+        store.persisted.pending = {}
+        store._known = {}
+    store._depth += 1
+
+
+def end(store: Store, failed: bool) -> None:
+    """Leave a transaction: the outermost one commits, or on failure forgets what is pending."""
+    store._depth -= 1
+    if store._depth:
+        return
+    if failed:
+        store._pending, store._known = None, {}
+        store.persisted.pending = {}
+        return
+    store._flush()
+    store._pending, store._known = None, {}
+
+
+def flush(store: Store) -> None:
+    """Commit the pending writes of the open transaction (also the persisted state)."""
+    pending, store._pending = store._pending or {}, ({} if store._depth else None)
+    meta = store.persisted.take_pending()
+    keyed_adds = [(q, k) for k, (q, present) in pending.items() if present]
+    keyed_removes = [(q, k) for k, (q, present) in pending.items() if not present]
+    if not keyed_adds and not keyed_removes and not meta:
+        return
+    adds = [q for q, _ in keyed_adds]
+    removes = [q for q, _ in keyed_removes]
+    # undo: the literal forms as they were (the removed literals as their users wrote them)
+    forms_add, forms_remove, undo = store.forms.record_keyed(keyed_adds, keyed_removes)
+    meta_add, meta_remove = store.persisted.quads(meta) if meta else ([], [])
+    try:
+        store._write(adds + forms_add + meta_add, removes + forms_remove + meta_remove, undo)
+    except BaseException:
+        undo()
+        raise
+    store.persisted.committed(meta)
+
+
+def flush_open(store: Store) -> None:
+    """Commit what the open transaction holds pending, and forget what it learnt of the committed store:
+    a SPARQL query or update (or a read outside the quad methods) is about to see the store itself."""
+    if store._pending:
+        store._flush()
+    store._known = {}
+
+
+def key(store: Store, quad: Quad) -> Hashable:
+    """What identifies a quad: itself, or with a literal object its value (``1`` = ``"01"^^xsd:int``)."""
+    o = quad.object
+    if isinstance(o, Literal):
+        return (quad.subject, quad.predicate, value_key(o), quad.graph_name)
+    return quad
+
+
+def present(store: Store, quads: list[Quad], keys: list[tuple] | None = None) -> list[bool]:
+    """Whether each quad is in the store as the open transaction sees it (``keys``: their :meth:`_key`)."""
+    if store._pending is None and store.listings is None and not any(isinstance(q.object, Literal) for q in quads):
+        return store._has_many(quads)  # no transaction, no value keys: each quad is its own key
+    pending, known, listings = store._pending or {}, store._known, store.listings
+    keys = keys if keys is not None else [store._key(q) for q in quads]
+    answers: list[bool | None] = []
+    unknown: list[int] = []  # positions neither the transaction nor the listings can answer
+    for i, k in enumerate(keys):
+        entry = pending.get(k)
+        if entry is not None:
+            answers.append(entry[1])
+            continue
+        present = known.get(k)
+        if present is None and listings is not None:
+            present = listings.presence(quads[i], k)
+            if present is not None and store._pending is not None:
+                known[k] = present
+        if present is None:
+            unknown.append(i)
+        answers.append(present)
+    if len(unknown) == 1:  # a manipulation's one new triple
+        i = unknown[0]
+        answers[i] = store._has_many([quads[i]])[0]
+        if store._pending is not None:
+            known[keys[i]] = answers[i]
+    elif unknown:  # one batch (one request on a remote store); a value asked twice takes the last answer
+        found = dict(zip((keys[i] for i in unknown), store._has_many([quads[i] for i in unknown]), strict=True))
+        if store._pending is not None:
+            known.update(found)
+        for i in unknown:
+            answers[i] = found[keys[i]]
+    return answers  # type: ignore[return-value] - every position is answered by now
+
+
+# ------------------------------------------------------------ quads
+def add(store: Store, triples: Iterable[Triple], graph: NamedNode, distinct: bool = False) -> int:
+    """Add triples to ``graph``; returns how many were new (``distinct``: the caller has
+    removed repeated triples already, so a big load does not hash each one again)."""
+    triples = triples if isinstance(triples, (list, tuple)) else list(triples)
+    if store._depth == 0 and len(triples) >= BULK_ADD and store.is_empty(graph):
+        return store._add_to_empty(triples, graph, distinct)
+    return len(store.add_new(triples, graph))
+
+
+def add_new(store: Store, triples: Iterable[Triple], graph: NamedNode) -> list[Triple]:
+    """Add triples to ``graph``; returns those that were not there (deduplicated): what a caller
+    recording the change needs, from the one presence look-up the addition makes anyway."""
+    return store._toggle_each(triples, graph, True)
+
+
+def remove_present(store: Store, triples: Iterable[Triple], graph: NamedNode) -> list[Triple]:
+    """Remove triples from ``graph``; returns those that were there (deduplicated), as :meth:`add_new`."""
+    return store._toggle_each(triples, graph, False)
+
+
+def remove(store: Store, triples: Iterable[Triple], graph: NamedNode) -> int:
+    """Remove triples from ``graph``; returns how many were there."""
+    return len(store.remove_present(triples, graph))
+
+
+def toggle_each(store: Store, triples: Iterable[Triple], graph: NamedNode, add: bool) -> list[Triple]:
+    """Record the pending addition (or removal) of each triple that is absent (present) in ``graph``,
+    in one transaction; returns those triples."""
+    triples = triples if isinstance(triples, (list, tuple)) else list(triples)
+    if len(triples) == 1:  # a manipulation's usual change: nothing to deduplicate
+        t = triples[0]
+        quads, triples = [quad(t.subject, t.predicate, t.object, graph)], [t]
+    else:  # deduplicated by quad
+        made = {quad(t.subject, t.predicate, t.object, graph): t for t in triples}
+        quads, triples = list(made), list(made.values())
+    keys = [store._key(q) for q in quads]  # a literal's value key is the costly part of a load: once each
+    if not store._depth:
+        with store.transaction():
+            return store._toggle_absent(quads, triples, keys, add)
+    return store._toggle_absent(quads, triples, keys, add)  # inside the caller's transaction (a manipulation's)
+
+
+def toggle_absent(store: Store, quads: list[Quad], triples: list[Triple], keys: list[Hashable],
+                  add: bool) -> list[Triple]:
+    """:meth:`_toggle_each` inside an open transaction."""
+    pending, changed = store._pending, []
+    for q, t, k, present in zip(quads, triples, keys, store._present(quads, keys), strict=True):
+        if present == add:
+            continue
+        entry = pending.get(k)  # as _toggle: pending True is absent from the committed store, False present
+        if entry is None:
+            pending[k] = (q, add)
+        elif entry[1] != add:
+            del pending[k]
+        changed.append(t)
+    return changed
+
+
+def toggle(store: Store, quad: Quad, add: bool, key: tuple | None = None) -> None:
+    """Record a pending add (or removal) of ``quad``: it cancels a pending change the other way,
+    and a second spelling of one value (``1`` and ``"01"^^xsd:int``) changes nothing more."""
+    key = key if key is not None else store._key(quad)
+    pending = store._pending.get(key)
+    if pending is None:
+        store._pending[key] = (quad, add)
+    elif pending[1] != add:
+        del store._pending[key]
+
+
+def add_to_empty(store: Store, triples: list[Triple] | tuple[Triple, ...], graph: NamedNode,
+                 distinct: bool = False) -> int:
+    """:meth:`add` into an empty graph with no transaction open: every triple is new, so none
+    is looked up (a big load's look-ups cost as much as writing it), and quads are made only
+    as the store takes them (one quad object is ≈ 440 bytes: a list of them for a map of
+    100,000 locations was ≈ 800 MB).  As :meth:`add`, the first spelling of a value is
+    written and every distinct triple counts as new."""
+    unique = triples if distinct else tuple(dict.fromkeys(triples))
+    spelled: dict[tuple, Literal] = {}  # (subject, predicate, value key) -> the literal kept
+    recorded: list[bool] = []
+
+    def quads() -> Iterator[Quad]:
+        """The quads to write, each triple's terms taken once; then the literal forms' quads."""
+        for t in unique:
+            s, p, o = t.subject, t.predicate, t.object
+            if isinstance(o, Literal):
+                key = (s, p, value_key(o))
+                if key in spelled:
+                    continue
+                spelled[key] = o
+            yield Quad(s, p, o, graph)
+        forms_add = store.forms.record_loaded(graph, list(spelled.items()))  # each value key computed once
+        recorded.append(True)
+        yield from forms_add
+
+    try:
+        store._commit_stream(quads(), [])
+    except BaseException:
+        if recorded:
+            store.forms.record([], [Quad(s, p, o, graph) for (s, p, _), o in spelled.items()], undo=True)
+        raise
+    return len(unique)
+
+
+# ------------------------------------------------------------ facts: a change's triples with their keys made once
+def fact(store: Store, t: Triple, graph: NamedNode, written: bool = True) -> Fact:
+    """The :class:`~.facts.Fact` of a triple a caller adds (``written``: it is its own written form)
+    or removes (its written form is asked of the literal forms when needed, see :meth:`written_fact`)."""
+    return fact_of(t, graph, written)
+
+
+def read_facts(store: Store, s: Term, p: NamedNode, graph: NamedNode) -> list[Fact]:
+    """:meth:`triples` of (s, p, ?, graph) as facts, each quad keyed once (what a REPLACE reads, then
+    removes some of): inside a transaction, their presence is remembered for the removal.  Their
+    written forms are asked of the literal forms when they are removed (:meth:`written_fact`)."""
+    pending = store._pending
+    if pending is None or store.listings is not None:
+        return [store.fact(t, graph, written=False) for t in store.triples(s, p, None, graph)]
+    canonical, known, out = store.canonical_reads, store._known, []
+    for q in list(store._match(s, p, None, graph)):
+        f = fact_read(q, canonical)
+        known[f.key] = True
+        entry = pending.get(f.key)
+        if entry is None or entry[1]:
+            out.append(f)
+    for q, present in list(pending.values()):
+        if present and q.subject == s and q.predicate == p and q.graph_name == graph:
+            out.append(store.fact(q.triple, graph, written=False))
+    return out
+
+
+def written_fact(store: Store, f: Fact) -> Triple:
+    """The triple of ``f`` as its user wrote it (kept in ``f.written``): what a removal reports and
+    an undo restores."""
+    written = f.written
+    if written is None:
+        t = f.triple
+        o = t.object
+        lit = store.forms.written(f.quad.graph_name, t.subject, t.predicate, o, f.value)
+        written = f.written = t if lit == o else triple(t.subject, t.predicate, lit)
+    return written
+
+
+def toggle_facts(store: Store, facts: list[Fact], add: bool) -> list[Fact]:
+    """:meth:`add_new` (or :meth:`remove_present`) of facts, deduplicated by the caller: those whose
+    presence changed."""
+    if not store._depth:
+        with store.transaction():
+            return store.toggle_facts(facts, add)
+    pending, changed = store._pending, []
+    if len(facts) == 1:  # a manipulation's usual change: its presence asked without a batch
+        f = facts[0]
+        k = f.key
+        entry = pending.get(k)
+        if entry is not None:
+            present = entry[1]
+        else:
+            present = store._known.get(k)
+            if present is None and store.listings is None:
+                present = store._known[k] = store._has(f.quad)
+            elif present is None:
+                present = store._present([f.quad], [k])[0]
+        if present != add:
+            if entry is None:
+                pending[k] = (f.quad if add else store._removal_quad(f), add)
+            else:
+                del pending[k]
+            changed.append(f)
+        return changed
+    keys = [f.key for f in facts]
+    for f, k, present in zip(facts, keys, store._present([f.quad for f in facts], keys), strict=True):
+        if present == add:
+            continue
+        entry = pending.get(k)
+        if entry is None:
+            pending[k] = (f.quad if add else store._removal_quad(f), add)
+        elif entry[1] != add:
+            del pending[k]
+        changed.append(f)
+    return changed
+
+
+def removal_quad(store: Store, f: Fact) -> Quad:
+    """The quad a removal writes: the literal in the form its user wrote, as it was asserted (a store
+    that keeps literals as written, a remote one, matches it exactly; the listings and the literal
+    forms key it by value)."""
+    written = store.written_fact(f)
+    if written is f.triple:
+        return f.quad
+    return quad(written.subject, written.predicate, written.object, f.quad.graph_name)
