@@ -157,3 +157,19 @@ def test_a_removal_writes_the_literal_as_its_user_wrote_it(onto: Ontology, monke
     assert Quad(n("r1"), n("speed"), typed("07", "long"), ASSERTED) in removes
     assert Quad(n("r1"), n("speed"), typed("8", "long"), ASSERTED) in adds
     assert [str(t.object) for t in store.triples(n("r1"), n("speed"), None, ASSERTED)] == [str(typed("8", "integer"))]
+
+
+def test_a_fact_with_no_form_kept_is_removed_as_read_not_in_another_subjects_spelling(onto: Ontology) -> None:
+    """:r2's speed reached the store without a form kept (another writer of a shared store); :r1's
+    "07"^^xsd:long is the one spelling of the value 7 the forms know.  Removing :r2's speed must name
+    it as the store holds it, and must not count :r1's form away."""
+    store = onto.store
+    r2 = Quad(n("r2"), n("speed"), typed("7", "integer"), ASSERTED)
+    store._ox.add(r2)  # behind the literal forms' back
+    with store.transaction():
+        (f,) = store.read_facts(n("r2"), n("speed"), ASSERTED)
+        assert store._removal_quad(f) == f.quad
+        store.toggle_facts([f], add=False)
+    assert r2 not in store._ox
+    assert store.written_fact(store.read_facts(n("r1"), n("speed"), ASSERTED)[0]).object == typed("07", "long")
+    assert store.forms.restore(typed("7", "integer")) == typed("07", "long")  # :r1's form still counted

@@ -137,3 +137,13 @@ def test_overflow_and_foreign_values_are_unknown() -> None:
     assert filter_of(compile_expression("?a > 0 && ?b > 0"))({"?a": typed("0", "integer"), "?b": big}) is False
     assert filter_of(compile_expression("?a > 0 || ?b + 1 > 0"))({"?a": typed("1", "integer"), "?b": big}) is True
     assert ebv(object()) is UNKNOWN
+
+
+def test_an_integer_too_long_for_python_is_outside_the_subset_not_a_crash() -> None:
+    """Python refuses to read integers of more than 4,300 digits; such a constant is refused as outside
+    the subset, and such a stored value is no value the evaluator models."""
+    from topostore.reason.look_filters import value
+    with pytest.raises(Unsupported):
+        compile_expression("?a < " + "9" * 5000)
+    huge = Literal("9" * 5000, datatype=NamedNode("http://www.w3.org/2001/XMLSchema#integer"))
+    assert value(huge) is huge

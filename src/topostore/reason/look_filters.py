@@ -70,7 +70,8 @@ def value(term) -> object:
             dt = term.datatype.value
             if dt == _STRING:
                 return _Str(term.value)
-            if dt == _INTEGER and _CANONICAL.match(term.value):
+            # 64 bits need at most 20 characters; a longer text is no value this evaluator models
+            if dt == _INTEGER and len(term.value) <= 20 and _CANONICAL.match(term.value):
                 n = int(term.value)
                 if _MIN <= n <= _MAX:
                     return n
@@ -239,7 +240,7 @@ def _constant_or_variable(m: re.Match) -> Expr:
     if text[0] == "<":
         iri = NamedNode(m.group(1))
         return lambda _s: iri
-    n = int(text)
+    n = int(text) if len(text) <= 20 else _MAX + 1
     if n > _MAX:
         raise Unsupported(f"integer beyond 64 bits: {text}")
     return lambda _s: n

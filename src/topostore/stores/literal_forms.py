@@ -70,8 +70,9 @@ class LiteralForms:
                 key = k[2] if type(k) is tuple else value_key(o)
                 name = graph.value
                 found = literal_forms.pop((name, s, p, key), None)
-                # as written: the form kept for it, else the value's one form (read before any count changes)
-                popped.append((key, o, self.restore(o), name, s, p) if found is None else (key, found, found, name, s, p))
+                # a fact with no form kept for it was never counted: its removal changes no count
+                if found is not None:
+                    popped.append((key, found, found, name, s, p))
         for key, counted, _, name, s, p in popped:
             count(key, counted, -1)
             if persist:
@@ -139,6 +140,13 @@ class LiteralForms:
         """The literal as the user asserted it (lexical form and datatype)."""
         found = self._literal_forms.get((graph.value, s, p, value_key(o)))
         return found if found is not None else self.restore(o)
+
+    def recorded(self, graph: NamedNode, s: Term, p: NamedNode, value: tuple | None) -> Literal | None:
+        """The form kept for this one fact (``value``: its value key), None when none is: a removal
+        names the fact as the store holds it, never another subject's spelling of the value."""
+        if value is None:
+            return None
+        return self._literal_forms.get((graph.value, s, p, value))
 
     def written(self, graph: NamedNode, s: Term, p: NamedNode, o: Term, value: tuple | None) -> Term:
         """:meth:`original_literal` of ``o`` whose value key is ``value`` (None: ``o`` is no literal,

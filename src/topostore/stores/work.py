@@ -334,10 +334,11 @@ def toggle_facts(store: Store, facts: list[Fact], add: bool) -> list[Fact]:
 
 
 def removal_quad(store: Store, f: Fact) -> Quad:
-    """The quad a removal writes: the literal in the form its user wrote, as it was asserted (a store
-    that keeps literals as written, a remote one, matches it exactly; the listings and the literal
-    forms key it by value)."""
-    written = store.written_fact(f)
-    if written is f.triple:
+    """The quad a removal writes: the literal in the form kept for this fact, as it was asserted (a
+    store that keeps literals as written, a remote one, matches it exactly); a fact with no form kept
+    is removed as read, never in another subject's spelling of the value."""
+    t = f.triple
+    kept = store.forms.recorded(f.quad.graph_name, t.subject, t.predicate, f.value)
+    if kept is None or kept == t.object:
         return f.quad
-    return quad(written.subject, written.predicate, written.object, f.quad.graph_name)
+    return quad(t.subject, t.predicate, kept, f.quad.graph_name)
