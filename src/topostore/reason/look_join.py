@@ -134,13 +134,14 @@ class Joined:
         self.reads = frozenset({a.read_key() for a in rule.body} | {rule.head.read_key()})
 
     def _matches(self, store, k: int, bound: dict) -> list[dict]:
-        """The extensions of ``bound`` by atom ``k`` (at most FEW, else :class:`_Fallback`)."""
+        """The extensions of ``bound`` by atom ``k`` (at most FEW, else :class:`_Fallback`).  The read
+        pattern holds every bound variable's value (:func:`.direct._bind` leaves a free one None), so a
+        fact read agrees with ``bound``; :func:`.direct._match` checks a variable repeated in the atom."""
         terms = self._body[k]
-        found = _read(store, _pattern(_bind(terms, bound)), self._graphs[k])
         out = []
-        for t in found:
+        for t in _read(store, _bind(terms, bound), self._graphs[k]):
             m = _match(terms, t)
-            if m is not None and all(bound.get(x, v) == v for x, v in m.items()):
+            if m is not None:
                 out.append({**bound, **m})
         return out
 
