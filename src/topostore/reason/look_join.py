@@ -33,6 +33,25 @@ from .look_filters import UNKNOWN, Unsupported, compile_expression, filter_of
 from .scratch import CANDIDATES, NEW_FACTS, OVERDELETED
 
 _STATE = (ASSERTED, INFERRED, AUX)
+#: the graph tuples an atom reads, as sets (for a membership test per quad)
+_SETS = {_STATE: frozenset(_STATE), (AUX,): frozenset((AUX,))}
+
+
+def _read(store, pattern: tuple, graphs: tuple[NamedNode, ...]) -> list[Triple]:
+    """The distinct facts of ``pattern`` in ``graphs`` (at most FEW, else :class:`_Fallback`): one read
+    over every graph where the store offers it (``match_in``: a bound subject or object), else one per graph."""
+    match_in = getattr(store, "match_in", None)
+    found = match_in(*pattern, _SETS[graphs], direct.FEW) if match_in is not None else None
+    if found is None:
+        seen: dict[Triple, None] = {}
+        for g in graphs:
+            seen.update(dict.fromkeys(islice(store.triples(*pattern, g), direct.FEW + 1)))
+            if len(seen) > direct.FEW:
+                raise _Fallback
+        return list(seen)
+    if len(found) > direct.FEW:
+        raise _Fallback
+    return found
 
 
 class _Fallback(Exception):
@@ -115,18 +134,14 @@ class Joined:
         self.reads = frozenset({a.read_key() for a in rule.body} | {rule.head.read_key()})
 
     def _matches(self, store, k: int, bound: dict) -> list[dict]:
-        """The extensions of ``bound`` by atom ``k`` (at most FEW, else :class:`_Fallback`)."""
+        """The extensions of ``bound`` by atom ``k`` (at most FEW, else :class:`_Fallback`).  The read
+        pattern holds every bound variable's value (:func:`.direct._bind` leaves a free one None), so a
+        fact read agrees with ``bound``; :func:`.direct._match` checks a variable repeated in the atom."""
         terms = self._body[k]
-        pattern = _pattern(_bind(terms, bound))
-        found: dict[Triple, None] = {}
-        for g in self._graphs[k]:
-            found.update(dict.fromkeys(islice(store.triples(*pattern, g), direct.FEW + 1)))
-            if len(found) > direct.FEW:
-                raise _Fallback
         out = []
-        for t in found:
+        for t in _read(store, _bind(terms, bound), self._graphs[k]):
             m = _match(terms, t)
-            if m is not None and all(bound.get(x, v) == v for x, v in m.items()):
+            if m is not None:
                 out.append({**bound, **m})
         return out
 
