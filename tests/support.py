@@ -4,6 +4,7 @@ and short views of answers."""
 from __future__ import annotations
 
 import warnings
+from collections.abc import Callable
 from pathlib import Path
 
 from pyoxigraph import Literal, NamedNode
@@ -43,6 +44,16 @@ def reasoned_turtle(text: str) -> Ontology:
     o = quiet_turtle(text)
     assert o.reason().consistent
     return o
+
+
+def names(ns: str) -> Callable[[str], NamedNode]:
+    """The IRI maker of a test's namespace: ``names(EX)("r1")`` is ``<EX r1>``."""
+    return lambda name: NamedNode(ns + name)
+
+
+def typed(value: str, datatype: str) -> Literal:
+    """A literal of XSD ``datatype`` (its local name), spelled ``value``."""
+    return Literal(value, datatype=NamedNode(XSD + datatype))
 
 
 def long(v: int) -> Literal:

@@ -5,25 +5,19 @@ the separate retraction and assertion did before."""
 from __future__ import annotations
 
 import pytest
-from pyoxigraph import Literal, NamedNode, Quad, Triple
+from pyoxigraph import Quad, Triple
+from support import names, typed
 
 from topostore import Ontology
 from topostore.errors import InvalidValueError
 from topostore.rdf import terms
-from topostore.rdf.vocab import ASSERTED, TYPE, XSD
+from topostore.rdf.vocab import ASSERTED, TYPE
 
 EX = "http://example.org/change#"
+n = names(EX)
 TBOX = f"""@prefix : <{EX}> . @prefix owl: <http://www.w3.org/2002/07/owl#> .
 :Robot a owl:Class . :speed a owl:DatatypeProperty . :at a owl:ObjectProperty .
 """
-
-
-def n(name: str) -> NamedNode:
-    return NamedNode(EX + name)
-
-
-def typed(value: str, datatype: str) -> Literal:
-    return Literal(value, datatype=NamedNode(XSD + datatype))
 
 
 @pytest.fixture

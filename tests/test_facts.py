@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import pytest
 from pyoxigraph import Literal, NamedNode, Quad, Triple
+from support import names, typed
 
 from topostore import Ontology
 from topostore.armor import ArmorService
@@ -15,19 +16,12 @@ from topostore.rdf import terms
 from topostore.rdf.vocab import ASSERTED, TYPE, XSD
 
 EX = "http://example.org/facts#"
+n = names(EX)
 TBOX = f"""@prefix : <{EX}> . @prefix owl: <http://www.w3.org/2002/07/owl#> .
 <{EX.rstrip('#')}> a owl:Ontology .
 :Robot a owl:Class . :speed a owl:DatatypeProperty . :at a owl:ObjectProperty .
 :r1 a :Robot ; :speed "07"^^<http://www.w3.org/2001/XMLSchema#long> ; :at :a .
 """
-
-
-def n(name: str) -> NamedNode:
-    return NamedNode(EX + name)
-
-
-def typed(value: str, datatype: str) -> Literal:
-    return Literal(value, datatype=NamedNode(XSD + datatype))
 
 
 @pytest.fixture

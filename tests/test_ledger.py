@@ -8,27 +8,21 @@ ontology and check the asserted graph afterwards.
 from __future__ import annotations
 
 import pytest
-from pyoxigraph import Literal, NamedNode, Triple
+from pyoxigraph import NamedNode, Triple
+from support import names, typed
 
 from topostore import Ontology, RuleCompileError
 from topostore.ontology.ledger import check_mode
-from topostore.rdf.vocab import ASSERTED, TYPE, XSD
+from topostore.rdf.vocab import ASSERTED, TYPE
 
 EX = "http://example.org/ledger#"
+n = names(EX)
 TBOX = f"""@prefix : <{EX}> . @prefix owl: <http://www.w3.org/2002/07/owl#> .
 @prefix rdfs: <http://www.w3.org/2000/01/rdf-schema#> .
 :Robot a owl:Class . :Thing2 a owl:Class . :Robot rdfs:subClassOf :Thing2 .
 :speed a owl:DatatypeProperty .
 """
 SWRL_IMP = NamedNode("http://www.w3.org/2003/11/swrl#Imp")
-
-
-def n(name: str) -> NamedNode:
-    return NamedNode(EX + name)
-
-
-def typed(value: str, datatype: str) -> Literal:
-    return Literal(value, datatype=NamedNode(XSD + datatype))
 
 
 @pytest.fixture

@@ -11,7 +11,14 @@ T = TypeVar("T", bound=Hashable)
 
 def reachable(start: T, successors: Callable[[T], Iterable[T]]) -> set[T]:
     """``start`` and everything reachable from it by ``successors`` (depth first; cycles end the walk)."""
-    seen, todo = {start}, [start]
+    return reachable_all((start,), successors)
+
+
+def reachable_all(starts: Iterable[T], successors: Callable[[T], Iterable[T]]) -> set[T]:
+    """The ``starts`` and everything reachable from any of them by ``successors``: one walk, each node
+    visited once however many starts reach it."""
+    seen = set(starts)
+    todo = list(seen)
     while todo:
         for nxt in successors(todo.pop()):
             if nxt not in seen:
@@ -20,4 +27,4 @@ def reachable(start: T, successors: Callable[[T], Iterable[T]]) -> set[T]:
     return seen
 
 
-__all__ = ["reachable"]
+__all__ = ["reachable", "reachable_all"]

@@ -33,6 +33,7 @@ from ..rdf.skolem import fresh_skolem
 from ..rdf.terms import Term
 from ..rdf.vocab import FIRST, NIL, REST, SWRL, TYPE, is_skolem, rdf, rdfs, swrl
 from .notices import RULE_REPAIRED, RULE_SKIPPED, Notice
+from .reach import reachable_all
 
 #: Atom kinds of the SWRL RDF vocabulary.
 ATOM_KINDS = frozenset(SWRL + k for k in (
@@ -229,18 +230,7 @@ def _without(atoms: list[Term], inner: list[Term]) -> list[Term]:
 
 def _reachable(ix: _Index, roots: Iterable[Term]) -> set[Term]:
     """Nodes reachable from ``roots`` through rule structure (lists, atoms, argument lists)."""
-    seen: set[Term] = set()
-    todo = list(roots)
-    while todo:
-        n = todo.pop()
-        if n in seen:
-            continue
-        seen.add(n)
-        for p in _STRUCTURE:
-            todo += [o for o in ix.objects(n, p) if is_skolem(o)]
-        if ix.is_atom(n):
-            seen.add(n)
-    return seen
+    return reachable_all(roots, lambda n: [o for p in _STRUCTURE for o in ix.objects(n, p) if is_skolem(o)])
 
 
 def _flat_list(atoms: list[Term]) -> tuple[Term, list[Triple]]:

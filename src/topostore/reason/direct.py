@@ -39,6 +39,17 @@ def _facts(store, pattern: tuple, graph: NamedNode) -> list[Triple] | None:
     return None if len(found) > FEW else found
 
 
+def facts_in(store, pattern: tuple, graphs) -> list[Triple] | None:
+    """The distinct facts of ``pattern`` in any of ``graphs`` (one read per graph), None when there
+    are more than :data:`FEW`."""
+    seen: dict[Triple, None] = {}
+    for g in graphs:
+        seen.update(dict.fromkeys(islice(store.triples(*pattern, g), FEW + 1)))
+        if len(seen) > FEW:
+            return None
+    return list(seen)
+
+
 def _known(store, facts: list[Triple], graphs: tuple[NamedNode, ...]) -> list[bool]:
     """Whether each fact is in one of ``graphs`` (one look-up batch)."""
     present = store.contains_quads([Quad(t.subject, t.predicate, t.object, g) for t in facts for g in graphs])

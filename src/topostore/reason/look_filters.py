@@ -324,25 +324,22 @@ def _not(arg: Expr) -> Expr:
 
 
 def _all(parts: list[Expr]) -> Expr:
-    def run(s):
-        answer = True
-        for part in parts:
-            b = ebv(part(s))
-            if b is False:
-                return False
-            if b is UNKNOWN:
-                answer = UNKNOWN
-        return answer
-    return run
+    return _junction(parts, False)
 
 
 def _any(parts: list[Expr]) -> Expr:
+    return _junction(parts, True)
+
+
+def _junction(parts: list[Expr], decisive: bool) -> Expr:
+    """``&&`` (``decisive`` False) or ``||`` (True) in SPARQL's logic: one decisive operand decides,
+    even beside an error; otherwise an error (UNKNOWN) among them leaves the answer unknown."""
     def run(s):
-        answer = False
+        answer = not decisive
         for part in parts:
             b = ebv(part(s))
-            if b is True:
-                return True
+            if b is decisive:
+                return decisive
             if b is UNKNOWN:
                 answer = UNKNOWN
         return answer

@@ -20,8 +20,6 @@ head as it stands, :func:`.flip.compact_possible`).
 
 from __future__ import annotations
 
-from itertools import islice
-
 from pyoxigraph import Triple
 
 from ..compile.rule import Rule, join_order
@@ -73,12 +71,10 @@ class Flipped:
         return True
 
     def _facts(self, store, pattern: tuple, graphs) -> list[Triple]:
-        found: dict[Triple, None] = {}
-        for g in graphs:
-            found.update(dict.fromkeys(islice(store.triples(*pattern, g), direct.FEW + 1)))
-            if len(found) > direct.FEW:
-                raise _Fallback
-        return list(found)
+        found = direct.facts_in(store, pattern, graphs)
+        if found is None:
+            raise _Fallback
+        return found
 
     def _graphs(self, m: int) -> tuple:
         return (AUX,) if self._aux[m] else NEW_STATE

@@ -19,7 +19,6 @@ and its SPARQL text runs instead (before anything was written).
 from __future__ import annotations
 
 from collections.abc import Iterator
-from itertools import islice
 
 from pyoxigraph import Literal, NamedNode, Triple
 
@@ -43,13 +42,8 @@ def _read(store, pattern: tuple, graphs: tuple[NamedNode, ...]) -> list[Triple]:
     match_in = getattr(store, "match_in", None)
     found = match_in(*pattern, _SETS[graphs], direct.FEW) if match_in is not None else None
     if found is None:
-        seen: dict[Triple, None] = {}
-        for g in graphs:
-            seen.update(dict.fromkeys(islice(store.triples(*pattern, g), direct.FEW + 1)))
-            if len(seen) > direct.FEW:
-                raise _Fallback
-        return list(seen)
-    if len(found) > direct.FEW:
+        found = direct.facts_in(store, pattern, graphs)
+    if found is None or len(found) > direct.FEW:
         raise _Fallback
     return found
 
