@@ -19,7 +19,8 @@ from swrl_support import NS, PREFIXES, builtin, cls, data, diff, obj, rule
 from topostore import Ontology
 from topostore.rdf.vocab import ASSERTED, AUX, INFERRED, TYPE
 from topostore.reason import Materializer, check_consistency, direct, look_flip, look_join
-from topostore.reason.program import Refused, StepCompiler, check_pair_atom, describe, pair_atom, signature
+from topostore.reason.program import Refused, check_pair_atom, describe, pair_atom, signature
+from topostore.reason.step_compiler import StepCompiler
 from topostore.stores import memory_store
 
 TBOX = PREFIXES + f"""

@@ -191,7 +191,7 @@ def _delta_rules(rule: Rule) -> str:
 
 
 def _step_program(onto, props: list[str]) -> str:
-    """The compiled step of replacing a value of each property in ``props`` (see reason/program.py)."""
+    """The compiled step of replacing a value of each property in ``props`` (see reason/program.py and reason/step_compiler.py)."""
     from ..reason.program import Refused, describe, signature
 
     onto.reason()

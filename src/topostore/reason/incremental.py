@@ -92,10 +92,11 @@ from .flips import Flips
 from .materialize import Materializer, ReasonStats
 from .plan import is_small, plan_where
 from .present import key_graphs, with_facts
-from .program import PROGRAM_SCRATCH, Refused, StepCompiler, StepProgram, check_pair_atom, pair_atom, signature
+from .program import PROGRAM_SCRATCH, Refused, StepProgram, check_pair_atom, pair_atom, signature
 from .requests import RequestQueue
 from .scratch import ADDED, FLIP_GAINED, NEW_FACTS, OVERDELETED, REMOVED, SCRATCH
 from .staged import StagedRun
+from .step_compiler import StepCompiler
 from .triggers import Present, Triggers, matches
 
 #: Default share of the asserted graph above which a change is recomputed from scratch.

@@ -1,0 +1,177 @@
+"""The step compiler: which rules a signature's change reaches, in which order, and the program that
+maintains them (:class:`.program.StepProgram`); the operations themselves are written by
+:class:`.emit.Emitter`.  The algorithm is described in :mod:`.program`."""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Collection
+from dataclasses import replace
+
+from ..compile.rule import ReadKey, Rule
+from ..rdf.vocab import TYPE
+from . import flip
+from .emit import Emitter
+from .order import strongly_connected
+from .program import (
+    Refused,
+    Signature,
+    StepProgram,
+)
+from .restate import covering
+from .triggers import Present, matches
+
+_TYPE = str(TYPE)
+
+
+class StepCompiler:
+    """Compiles signatures into :class:`StepProgram` operations for one rule set.
+
+    ``rules``: the inference rules; ``monotone``: the indexes maintained (stratum 0, no negation);
+    ``order``: for a flipped rule and its compared atoms, the order of the flip branches
+    (:meth:`.flips.Flips._by_frequency`); ``lateral``: whether the store evaluates LATERAL;
+    ``cover``: whether covered rules may be left out (:func:`.restate.covering`).  A store where
+    every request is a round trip gets the whole program in one request, and there they are kept:
+    one SPARQL server (Virtuoso 7) answered such a long request without them differently from the
+    same operations sent one by one.
+    """
+
+    def __init__(self, rules: list[Rule], monotone: Collection[int],
+                 order: Callable[[int, tuple[int, ...]], tuple[int, ...]], lateral: bool, cover: bool = True) -> None:
+        self.rules = rules
+        self.monotone = sorted(monotone)
+        self.order = order
+        self.lateral = lateral
+        self._flat: dict[int, Rule] = {}
+        self.filter_vars = {i: flip.filter_variables(rules[i]) for i in self.monotone}
+        self._cover = cover
+        self._covered: dict[int, ReadKey] | None = None
+
+    @property
+    def covered(self) -> dict[int, ReadKey]:
+        """Rules that add nothing while a premise only matches derived facts (see :func:`.restate.covering`),
+        found when the first step is compiled (a full REASON does not need them)."""
+        if self._covered is None:
+            self._covered = covering(self.rules, self.monotone) if self._cover else {}
+        return self._covered
+
+    def compile(self, sig: Signature, present: Present, asserted: Present | None = None) -> StepProgram:
+        """The program of ``sig`` given the keys with facts (``present``) and with asserted facts
+        (``asserted``, a superset; None: any); raises :class:`Refused`."""
+        left_out = self._left_out(sig, asserted)
+        active, affected, absent = self._affected(sig, present, left_out)
+        writers = self._writers(present, affected, absent, left_out)
+        # a replaced value that a rule may also derive is not a clean replacement (see :mod:`.flip`)
+        clean = {p for p in sig.clean if not writers.get(("p", p))}
+        emitter = Emitter(self, sig, active, writers, frozenset(clean), asserted)
+        emitter.unasserted.update(self.covered[i] for i in left_out)
+        return emitter.emit(self._components(active, affected, emitter.idle), absent)
+
+    def _left_out(self, sig: Signature, asserted: Present | None) -> set[int]:
+        """The covered rules whose premise has no asserted fact, now or from this change: they add
+        nothing (:func:`.restate.covering`).  None known of the asserted facts: none."""
+        if asserted is None:
+            return set()
+        changed = sig.added | sig.removed
+        return {i for i, key in self.covered.items() if key not in changed and not matches(key, *asserted)}
+
+    def _writers(self, present: Present, affected: set, absent: set,
+                 left_out: Collection[int]) -> dict[ReadKey, list[int]]:
+        """Every maintained rule that can fire (its body keys have facts, now or from this change), by
+        the key it writes: a recheck must ask all of them, changed premises or not."""
+        writers: dict[ReadKey, list[int]] = {}
+        for i in self.monotone:
+            if i in left_out:
+                continue
+            rule = self.rules[i]
+            missing = self._missing(rule, present, affected)
+            if missing:
+                absent |= missing
+                continue
+            writers.setdefault(rule.writes(), []).append(i)
+        return writers
+
+    def _affected(self, sig: Signature, present: Present, left_out: Collection[int]) -> tuple[list[int], set, set]:
+        """The rules a change of ``sig`` can make fire, the keys they may change, and the keys whose
+        absence left rules out."""
+        affected = set(sig.added | sig.removed)
+        active: dict[int, None] = {}
+        absent: set = set()
+        grew = True
+        while grew:
+            grew = False
+            for i in self.monotone:
+                rule = self.rules[i]
+                if i in active or i in left_out or not self._reaches(rule, affected):
+                    continue
+                missing = self._missing(rule, present, affected)
+                if missing:
+                    absent |= missing
+                    continue
+                self._check_compilable(rule, affected)
+                active[i] = None
+                if rule.writes() not in affected:
+                    affected.add(rule.writes())
+                    grew = True
+        return list(active), affected, absent
+
+    @staticmethod
+    def _reaches(rule: Rule, affected: set) -> bool:
+        reads = rule.reads()
+        if ("*",) in reads or ("p", _TYPE) in reads:
+            return bool(affected)
+        return bool(reads & affected)
+
+    @staticmethod
+    def _missing(rule: Rule, present: Present, affected: set) -> set:
+        """Body keys without any fact, now or from this change (the rule cannot match)."""
+        preds, classes = present
+        missing = set()
+        for atom in rule.body:
+            key = atom.read_key()
+            if not atom.p.startswith("<") or key in affected:
+                continue  # a variable predicate or a path may match anything
+            if key[1] not in (classes if key[0] == "t" else preds):
+                missing.add(key)
+        return missing
+
+    @staticmethod
+    def _check_compilable(rule: Rule, affected: set) -> None:
+        if ("*",) in rule.reads() or rule.writes() == ("*",):
+            raise Refused(f"rule {rule.name} reads or writes any predicate")
+        if ("p", _TYPE) in rule.reads() or rule.writes() == ("p", _TYPE):
+            raise Refused(f"rule {rule.name} reads or writes any class")
+        if rule.filter_reads & affected or rule.conditions_read_graph:
+            raise Refused(f"rule {rule.name} has a filter reading facts")
+
+    def _components(self, active: list[int], affected: set,
+                    idle: Callable[[int, int], bool]) -> list[list[ReadKey]]:
+        """The strongly connected components of the affected keys, in topological order, without the
+        edges of atoms whose changes cannot change the rule's conclusions (``idle``)."""
+        keys = sorted(affected)
+        number = {k: n for n, k in enumerate(keys)}
+        succ: dict[int, set[int]] = {n: set() for n in range(len(keys))}
+        for i in active:
+            rule = self.rules[i]
+            head = number[rule.writes()]
+            in_body = {atom.read_key() for atom in rule.body}
+            live = {atom.read_key() for j, atom in enumerate(rule.body) if not idle(i, j)}
+            for key in live | (rule.reads() - in_body):
+                if key in number:
+                    succ[number[key]].add(head)
+        found = strongly_connected(list(range(len(keys))), {n: sorted(s) for n, s in succ.items()})
+        return [[keys[n] for n in comp] if len(comp) > 1 or comp[0] in succ[comp[0]] else keys[comp[0]]
+                for comp in found]
+
+    def flat(self, i: int) -> Rule:
+        """Rule ``i`` with its helper-graph atoms read from the dataset's default graph (for the old
+        state, whose removed helper facts are in OVERDELETED, not in the helper graph)."""
+        rule = self._flat.get(i)
+        if rule is None:
+            rule = self.rules[i]
+            if any(a.aux for a in rule.body):
+                rule = replace(rule, body=tuple(replace(a, aux=False) for a in rule.body))
+            self._flat[i] = rule
+        return rule
+
+
+__all__ = ["StepCompiler"]
