@@ -58,19 +58,14 @@ class Flips:
         self._filter_vars = [flip.filter_variables(r) for r in self.rules]
 
     def note(self, added: Collection[Triple], removed: Collection[Triple]) -> None:
-        """Keep the value indexes up to date with the asserted changes (each fact's predicate is
-        spelled once, and not at all while no index is kept)."""
-        if not self._indexes and not self._equal:
-            return
-        for facts, kept in ((removed, False), (added, True)):
-            for t in facts:
-                key = f"<{t.predicate.value}>"
-                for indexes in (self._indexes, self._equal):
-                    if (index := indexes.get(key)) is not None:
-                        if kept:
-                            index.add(t)
-                        else:
-                            index.discard(t)
+        """Keep the value indexes up to date with the asserted changes."""
+        for indexes in (self._indexes, self._equal):
+            for t in removed:
+                if (index := indexes.get(f"<{t.predicate.value}>")) is not None:
+                    index.discard(t)
+            for t in added:
+                if (index := indexes.get(f"<{t.predicate.value}>")) is not None:
+                    index.add(t)
 
     def forget(self) -> None:
         """Drop the value indexes (after a full run or a failed REASON: rebuilt when next needed)."""

@@ -90,7 +90,7 @@ from .dred import Deletion, can_prove
 from .entailed import publish_entailed, refresh_entailed
 from .flips import Flips
 from .materialize import Materializer, ReasonStats
-from .plan import KeyCounts, is_small, plan_where
+from .plan import is_small, plan_where
 from .present import key_graphs, with_facts
 from .program import PROGRAM_SCRATCH, Refused, StepCompiler, StepProgram, check_pair_atom, pair_atom, signature
 from .requests import RequestQueue
@@ -182,15 +182,11 @@ class IncrementalReasoner:
         self._clean: dict = {}
         #: the cleanly replaced predicates no rule derives, when the compiled step ran (else empty)
         self._step_clean: frozenset = frozenset()
-        #: the last compiled step's signature and program (the keys the remote after-step read asks about)
-        self._last_program: tuple = (None, None)
-        #: the program whose head keys were last added to the keys with facts, by signature (until the
-        #: next full run: the keys with facts only grow until then, so once per program is enough)
-        self._noted: dict = {}
-        #: the objects of the asserted triples the REASON under way adds, by predicate IRI (range checks
-        #: decide known values without a query); made when first asked
+        self._heads: set = set()
+        #: the asserted triples the REASON under way adds (range checks decide known values without a query)
         self._added_now: Collection[Triple] = ()
-        self._added_objects: dict[str, list[Term]] | None = None
+        #: the keys that may have lost facts in the last compiled step (the remote negated-premise read)
+        self._lost: set = set()
         #: SPARQL texts of the checks made once (the phases' texts live in the request queue)
         self._texts: dict[tuple, str] = {}
         #: :func:`.program.pair_atom` of a check's or negated rule's atom, by (kind, rule index, atom): rules never change
@@ -220,7 +216,7 @@ class IncrementalReasoner:
             return self.full(why, profile)
         start = time.perf_counter()
         self._step_clean = frozenset()
-        self._added_now, self._added_objects = added, None
+        self._added_now = added
         stats = ReasonStats(mode="incremental", reason=self._incremental_reason(added, removed))
         self.requests.profile = profile
         try:
@@ -267,7 +263,6 @@ class IncrementalReasoner:
         self.touched_types = None
         self.flips.forget()
         self._programs.clear()  # compiled against the keys with facts, which a full run recounts
-        self._noted.clear()
         self._decided.clear()
         self._clear_scratch()
         program = full_program(self.ruleset)  # large schema tables as one generic rule each
@@ -338,7 +333,7 @@ class IncrementalReasoner:
         if added:
             requests.discard(added, (INFERRED, AUX))
         replaced = flip.replaced_in(self.store, added, removed, ASSERTED)
-        if self._compiled(added, removed, (preds, classes), replaced, stats):
+        if self._compiled(added, removed, replaced, stats):
             return
         requests.flush()  # the scratch copies are read from here on
         skip, lost, gained_rules = self.flips.find(self.state, added, removed, (preds, classes), stats, replaced)
@@ -357,16 +352,15 @@ class IncrementalReasoner:
         m.propagate(self.monotone, stats, seed=ADDED, record=NEW_FACTS, skip_first=skip)
 
     # ------------------------------------------------------------------ the compiled step
-    def _compiled(self, added: Collection[Triple], removed: Collection[Triple], added_keys: KeyCounts, clean: dict,
+    def _compiled(self, added: Collection[Triple], removed: Collection[Triple], clean: dict,
                   stats: ReasonStats) -> bool:
         """Maintain with the compiled program of this kind of change (see :mod:`.program`); False
-        (with the reason in ``stats.program``) when it cannot be compiled.  ``added_keys``: the
-        :func:`~..stores.base.key_census` of the added triples; ``clean``: the change's clean
-        replacements (:func:`.flip.replaced_in`)."""
+        (with the reason in ``stats.program``) when it cannot be compiled.  ``clean``: the change's
+        clean replacements (:func:`.flip.replaced_in`)."""
         if not self.compiled:
             stats.program = "general: compiled step switched off"
             return False
-        sig = signature(added_keys, key_census(removed), clean)
+        sig = signature(key_census(added), key_census(removed), clean)
         self._clean = clean
         program = self._program(sig)
         if isinstance(program, str):
@@ -392,11 +386,11 @@ class IncrementalReasoner:
         stats.flipped = program.flips
         stats.program = "compiled"
         self._step_clean = program.clean
-        self._last_program = (sig, program)
-        if self._noted.get(sig) is not program:  # the keys with facts only grow until the next full run
-            for kind, key in program.heads:
-                self.state.present[0 if kind == "p" else 1].add(key)
-            self._noted[sig] = program
+        #: the keys the after-step reads ask about: the asserted changes' and what the program may add
+        self._heads = set(program.heads) | set(sig.added)
+        self._lost = set(program.heads) | set(sig.removed)
+        for kind, key in program.heads:
+            self.state.present[0 if kind == "p" else 1].add(key)
         return True
 
     def _flip_text(self, i: int, order: tuple[int, ...], text: str) -> str:
@@ -418,16 +412,12 @@ class IncrementalReasoner:
 
     def _read_after(self) -> after_step.After:
         """The reads that follow a compiled step, as one query (see :mod:`.after`)."""
-        sig, program = self._last_program
-        # the keys asked about: the asserted changes' and what the program may add (or lose)
-        heads = set(program.heads) | set(sig.added)
-        lost_keys = set(program.heads) | set(sig.removed)
         preds: set[str] = set()
         classes: set[str] = set()
-        for kind, key in heads:
+        for kind, key in self._heads:
             (preds if kind == "p" else classes).add(key)
         checks = self._check_branches(preds, classes, lambda c, j: self.store.supports_lateral)
-        lost = ({k for kind, k in lost_keys if kind == "p"}, {k for kind, k in lost_keys if kind == "t"})
+        lost = ({k for kind, k in self._lost if kind == "p"}, {k for kind, k in self._lost if kind == "t"})
         negated = self._negated_branches((preds, classes), lost, lambda i, j: self.store.supports_lateral)
         text = after_step.query(negated, checks, sorted(self.ruleset.entailed_predicates, key=lambda t: t.value),
                                 self._settle)
@@ -584,11 +574,7 @@ class IncrementalReasoner:
         p, datatype = check.value_range
         if f"<{p}>" not in self._step_clean:
             return False
-        if self._added_objects is None:  # one pass over the additions, shared by every range check
-            self._added_objects = {}
-            for t in self._added_now:
-                self._added_objects.setdefault(t.predicate.value, []).append(t.object)
-        return all(surely_in(o, datatype) for o in self._added_objects.get(p, ()))
+        return all(surely_in(t.object, datatype) for t in self._added_now if t.predicate.value == p)
 
     def _check_text(self, c: int, j: int | None, lateral: bool) -> str:
         key = ("check", c, j, lateral)
