@@ -405,3 +405,20 @@ def test_clock_tick_is_evaluated_as_a_flip() -> None:
     expected = {loc for loc, v in m.visited_at.items() if 1665579770 - v > m.threshold}
     assert {onto.short(i) for i in onto.instances("URGENT")} == expected
     assert expected > before
+
+
+def test_a_map_below_the_window_size_keeps_no_value_index() -> None:
+    """Below WINDOW_MIN facts of a compared predicate no flip window is used, which the fact count
+    tells without building the predicate's value index: none is built, and none is kept up to date
+    at every step; above it the index is built and the windows give the from-scratch answer."""
+    for window_min, indexed in ((flips.WINDOW_MIN, False), (5, True)):
+        onto = new_map(30, 2, True)
+        onto.max_change_share = 1.0
+        onto.reason()
+        with mock.patch.object(flips, "WINDOW_MIN", window_min):
+            for tick in range(1, 4):
+                set_clock(onto, "Robot1", 1665579740 + 40 * tick)
+                revisit(onto, f"R{tick}", 1665579740 + 40 * tick)
+                assert onto.reason().stats.mode == "incremental"
+                assert_same_as_scratch(onto)
+        assert bool(onto._reasoner.flips._indexes) is indexed

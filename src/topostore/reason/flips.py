@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import time
 from collections.abc import Collection
+from itertools import islice
 
 from pyoxigraph import NamedNode, Triple
 
@@ -51,6 +52,8 @@ class Flips:
         self._indexes: dict[str, window.ValueIndex] = {}
         #: indexes of compared predicates' values by equality, for difference flips (see :mod:`.equal_values`)
         self._equal: dict[str, EqualityIndex] = {}
+        #: predicates by IRI text, for the fact counts of :meth:`_fewer_than`
+        self._nodes: dict[str, NamedNode] = {}
         # per rule: the variables its filters mention
         self._filter_vars = [flip.filter_variables(r) for r in self.rules]
 
@@ -203,8 +206,7 @@ class Flips:
             tests = self._plans[("window-tests", i)] = window.tests(rule)
         seed, atom = rule.body[k], rule.body[m]
         t, v = seed.o[1:], atom.o[1:]
-        index = self._value_index(atom.p)
-        if not window.possible(tests, t) or len(index) < WINDOW_MIN:
+        if not window.possible(tests, t) or self._fewer_than(atom.p, WINDOW_MIN):
             return None  # no linear test to solve, or so few values that scanning them is as cheap
         rest = sorted({n for test in tests if test.form for n in test.form[0]} - {t, v})
         text = self._texts.get(("window", i, k, m))
@@ -226,7 +228,7 @@ class Flips:
                 return None
             if span is False:
                 continue
-            inside = index.between(span[0], span[1], WINDOW_FACTS)
+            inside = self._value_index(atom.p).between(span[0], span[1], WINDOW_FACTS)
             if inside is None:
                 return None
             facts.update(dict.fromkeys(inside))
@@ -245,6 +247,23 @@ class Flips:
                   if j not in (k, m) and not (other.variables() & own)]
         head = " ".join([f"?{t}__o", f"?{t}__n", *(f"?{n}" for n in rest)])
         return f"SELECT DISTINCT {head} WHERE {{\n  " + "\n  ".join(lines) + f"\n}} LIMIT {WINDOW_ROWS + 1}"
+
+    def _fewer_than(self, p: str, n: int) -> bool:
+        """Whether predicate ``p`` has fewer than ``n`` numeric values in its index.  Until its index is
+        built, fewer than ``n`` asserted facts of ``p`` (a superset of the indexed ones) answer without
+        building it: a small map then keeps no index up to date at every step (:meth:`note`)."""
+        if p not in self._indexes:
+            facts = self.store.triples(None, self._node(p), None, ASSERTED)
+            if sum(1 for _ in islice(facts, n)) < n:
+                return True
+        return len(self._value_index(p)) < n
+
+    def _node(self, p: str) -> NamedNode:
+        """The predicate of IRI text ``p`` (made once: the rules' few compared predicates)."""
+        node = self._nodes.get(p)
+        if node is None:
+            node = self._nodes[p] = NamedNode(p[1:-1])
+        return node
 
     def _value_index(self, p: str) -> window.ValueIndex:
         """The sorted index of predicate ``p``'s facts (built once, kept by :meth:`_maintain`)."""
