@@ -142,6 +142,20 @@ def test_a_replace_sends_nothing_of_its_own_and_its_write_goes_with_the_reason(r
     assert robot.answers() == expected(robot.service.reference(robot.ref).ontology)
 
 
+def test_a_robot_steps_reason_sends_one_update_and_one_read(robot: Robot) -> None:
+    """Once the step is compiled, a REASON after a robot's move is the program's one update request
+    and one read: nothing it decides in between may ask the server (a count of a predicate's facts,
+    a look-up) on a store where every question is a round trip."""
+    for place in ("R2", "C1", "R1"):
+        robot.move(place)
+        assert robot.call("REASON").success
+    for place in ("R2", "C1"):
+        robot.move(place)
+        sent, reply = robot.counted("REASON")
+        assert reply.success and sent <= 2
+    assert robot.answers() == expected(robot.service.reference(robot.ref).ontology)
+
+
 def test_the_step_queries_send_one_request_then_none(robot: Robot) -> None:
     robot.move("R2")
     assert robot.call("REASON").success

@@ -251,8 +251,9 @@ class Flips:
     def _fewer_than(self, p: str, n: int) -> bool:
         """Whether predicate ``p`` has fewer than ``n`` numeric values in its index.  Until its index is
         built, fewer than ``n`` asserted facts of ``p`` (a superset of the indexed ones) answer without
-        building it: a small map then keeps no index up to date at every step (:meth:`note`)."""
-        if p not in self._indexes:
+        building it: a small map then keeps no index up to date at every step (:meth:`note`).  Not on a
+        store where each look-up is a round trip: the index, built once, answers there without one."""
+        if p not in self._indexes and not self.store.round_trips:  # a count there is a request per step
             facts = self.store.triples(None, self._node(p), None, ASSERTED)
             if sum(1 for _ in islice(facts, n)) < n:
                 return True
