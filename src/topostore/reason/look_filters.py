@@ -121,7 +121,7 @@ class _Parser:
         parts = [self.relation()]
         while self.take("&&"):
             parts.append(self.relation())
-        return parts[0] if len(parts) == 1 else _all(parts)
+        return parts[0] if len(parts) == 1 else all_of(parts)
 
     def relation(self) -> Expr:
         left = self.additive()
@@ -323,7 +323,8 @@ def _not(arg: Expr) -> Expr:
     return run
 
 
-def _all(parts: list[Expr]) -> Expr:
+def all_of(parts: list[Expr]) -> Expr:
+    """``&&`` of ``parts`` (a FILTER's several conditions too): True when there are none."""
     return _junction(parts, False)
 
 

@@ -87,8 +87,8 @@ class Flipped:
             if start is None:
                 continue
             for t in self._facts(store, _pattern(_bind(terms[:2] + ("?",), start)), NEW_STATE):
-                bound = _match(terms, t)
-                if bound is not None and all(bound[x] == v for x, v in start.items() if x != terms[2]):
+                bound = _match(terms, t)  # subject and predicate read as bound: only the value is new
+                if bound is not None:
                     yield bound, {terms[2]: f.object}
 
     def _extend(self, store, position: int, bound: dict, old: dict, at: int):
@@ -100,8 +100,8 @@ class Flipped:
         m = plan[at]
         terms = self._body[m]
         for t in self._facts(store, _pattern(_bind(terms, bound)), self._graphs(m)):
-            found = _match(terms, t)
-            if found is None or any(bound.get(x, v) != v for x, v in found.items()):
+            found = _match(terms, t)  # the read pattern holds every bound value: a fact read agrees with them
+            if found is None:
                 continue
             extended = {**bound, **found}
             if m in self.order[position + 1:]:  # paired: its old value where one was replaced
@@ -115,12 +115,9 @@ class Flipped:
     def _ok(self, solution: dict) -> bool:
         """Whether every condition holds (each test's value must be a boolean, as the text's
         ``COALESCE(test, false)`` then is)."""
-        s = dict(solution)
-        for var, expr in self.conditions.binds:
-            found = expr(s)
-            if found is UNKNOWN:
-                raise _Fallback
-            s[var] = found
+        s = self.conditions.bound(solution)
+        if s is UNKNOWN:
+            raise _Fallback
         answer = True
         for test in self.conditions.raw:
             found = test(s)

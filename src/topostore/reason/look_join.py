@@ -28,7 +28,7 @@ from ..rdf.vocab import ASSERTED, AUX, INFERRED
 from . import direct
 from .delta_texts import KEEP
 from .direct import _bind, _instance, _match, _named_only, _pattern, _terms, _write_new
-from .look_filters import UNKNOWN, Unsupported, compile_expression, filter_of
+from .look_filters import UNKNOWN, Unsupported, all_of, compile_expression
 from .scratch import CANDIDATES, NEW_FACTS, OVERDELETED
 
 _STATE = (ASSERTED, INFERRED, AUX)
@@ -60,7 +60,6 @@ class Conditions:
 
     def __init__(self, rule: Rule) -> None:
         self.binds = []
-        self.tests = []
         #: the tests' expressions, for a caller that needs their value rather than its truth
         self.raw = []
         for c in rule.conditions:
@@ -70,26 +69,26 @@ class Conditions:
             if c.kind == BIND:
                 self.binds.append((c.binds, expr))
             else:
-                self.tests.append(filter_of(expr))
                 self.raw.append(expr)
+        #: the tests together, in SPARQL's three-valued logic
+        self.test = all_of(self.raw)
+
+    def bound(self, solution: dict) -> dict | object:
+        """``solution`` extended by the BINDs in order; UNKNOWN where one is not exact."""
+        if not self.binds:
+            return solution
+        solution = dict(solution)
+        for var, expr in self.binds:
+            found = expr(solution)
+            if found is UNKNOWN:
+                return UNKNOWN
+            solution[var] = found
+        return solution
 
     def holds(self, solution: dict) -> object:
         """True / False for a solution of the atoms, UNKNOWN where the evaluator is not exact."""
-        if self.binds:
-            solution = dict(solution)
-            for var, expr in self.binds:
-                found = expr(solution)
-                if found is UNKNOWN:
-                    return UNKNOWN
-                solution[var] = found
-        answer: object = True
-        for test in self.tests:
-            b = test(solution)
-            if b is False:
-                return False
-            if b is UNKNOWN:
-                answer = UNKNOWN
-        return answer
+        solution = self.bound(solution)
+        return UNKNOWN if solution is UNKNOWN else self.test(solution)
 
 
 def joinable(rule: Rule) -> bool:
