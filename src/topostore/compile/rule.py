@@ -22,6 +22,13 @@ from .condition import Condition, render
 #: or ("*",) for a pattern with a variable predicate (reads everything).
 ReadKey = tuple
 
+
+def key_pattern(key: ReadKey) -> tuple:
+    """The (subject, predicate, object) pattern of a read key's facts (``("p", …)`` or ``("t", …)``),
+    None where any term matches: what the reasoner looks a key up by in the store's indexes."""
+    term = NamedNode(key[1][1:-1])
+    return (None, TYPE, term) if key[0] == "t" else (None, term, None)
+
 _TYPE_TEXT = str(TYPE)
 
 

@@ -21,9 +21,9 @@ from itertools import islice
 
 from pyoxigraph import BlankNode, Literal, NamedNode, Quad, Triple
 
-from ..compile.rule import Atom, ReadKey, Rule
+from ..compile.rule import Atom, ReadKey, Rule, key_pattern
 from ..rdf.terms import parse_term
-from ..rdf.vocab import ASSERTED, AUX, INFERRED, TYPE
+from ..rdf.vocab import ASSERTED, AUX, INFERRED
 from .delta_texts import FLIP_LOST, KEEP
 from .scratch import CANDIDATES, FLIP_GAINED, NEW_FACTS, OVERDELETED
 
@@ -57,15 +57,10 @@ def _known(store, facts: list[Triple], graphs: tuple[NamedNode, ...]) -> list[bo
     return [any(present[i * n:(i + 1) * n]) for i in range(len(facts))]
 
 
-def _key_pattern(key: ReadKey) -> tuple:
-    term = NamedNode(key[1][1:-1])
-    return (None, TYPE, term) if key[0] == "t" else (None, term, None)
-
-
 def _flipped(store, key: ReadKey, graph: NamedNode) -> list[Triple] | None:
     """The flipped facts of ``key`` in ``graph``; None when they are too many or one holds a
     literal (the SPARQL text then moves them: a literal may be stored in another spelling)."""
-    facts = _facts(store, _key_pattern(key), graph)
+    facts = _facts(store, key_pattern(key), graph)
     if facts is None or any(isinstance(t.object, Literal) for t in facts):
         return None
     return facts

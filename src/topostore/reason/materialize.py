@@ -26,9 +26,9 @@ from dataclasses import dataclass, field
 from pyoxigraph import NamedNode
 
 from ..compile.generic import PREFIXES
-from ..compile.rule import ReadKey, Rule, RuleSet
+from ..compile.rule import ReadKey, Rule, RuleSet, key_pattern
 from ..compile.schema import schema_dataset
-from ..rdf.vocab import ASSERTED, AUX, DELTA, INFERRED, INTERNAL, NEW_AUX, NEW_INFERRED, TYPE
+from ..rdf.vocab import ASSERTED, AUX, DELTA, INFERRED, INTERNAL, NEW_AUX, NEW_INFERRED
 from ..stores.base import Store
 from . import limits
 from .order import TYPE_KEY, evaluation_order, implied_first_passes, reachable, single_graphs
@@ -264,9 +264,7 @@ class Materializer:
         preds: set[str] = set()
         classes: set[str] = set()
         for kind, key in self.triggers.needed_keys():
-            term = NamedNode(key[1:-1])
-            pattern = (None, TYPE, term) if kind == "t" else (None, term, None)
-            if next(iter(self.store.triples(*pattern, ASSERTED)), None) is not None:
+            if next(iter(self.store.triples(*key_pattern((kind, key)), ASSERTED)), None) is not None:
                 (classes if kind == "t" else preds).add(key)
         return preds, classes
 
@@ -352,8 +350,7 @@ class Materializer:
         self._flush()
         for key in keys:
             self._claimed.discard(key)
-            term = NamedNode(key[1][1:-1])
-            pattern = (None, TYPE, term) if key[0] == "t" else (None, term, None)
+            pattern = key_pattern(key)
             if not any(next(iter(self.store.triples(*pattern, g)), None) is not None for g in (INFERRED, AUX, ASSERTED)):
                 self.present[1 if key[0] == "t" else 0].discard(key[1])
         return self.triggers.feasible(i, self.present)

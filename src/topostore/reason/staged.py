@@ -16,8 +16,8 @@ from itertools import islice
 from pyoxigraph import NamedNode, Triple
 
 from ..compile.generic import PREFIXES
-from ..compile.rule import ReadKey
-from ..rdf.vocab import ASSERTED, TYPE
+from ..compile.rule import ReadKey, key_pattern
+from ..rdf.vocab import ASSERTED
 from .component import run_component
 from .delta_texts import FLIP_LOST, KEEP
 from .program import Signature, StepProgram
@@ -193,11 +193,11 @@ class StagedRun:
 
     def has(self, key: ReadKey, graph: NamedNode) -> bool:
         """Whether ``graph`` holds a fact of ``key`` (an index look-up)."""
-        return next(iter(self.store.triples(*_pattern(key), graph)), None) is not None
+        return next(iter(self.store.triples(*key_pattern(key), graph)), None) is not None
 
     def facts(self, key: ReadKey, graph: NamedNode, limit: int) -> list[Triple]:
         """The facts of ``key`` in ``graph``, at most ``limit`` of them."""
-        return list(islice(self.store.triples(*_pattern(key), graph), limit))
+        return list(islice(self.store.triples(*key_pattern(key), graph), limit))
 
     def has_any(self, graph: NamedNode) -> bool:
         return next(iter(self.store.triples(None, None, None, graph)), None) is not None
@@ -210,12 +210,6 @@ class StagedRun:
             self.minus.add(key)
         if self.has(key, NEW_FACTS):
             self.plus.add(key)
-
-
-def _pattern(key: ReadKey) -> tuple:
-    """The (subject, predicate, object) pattern of a key's facts, None where any term matches."""
-    term = NamedNode(key[1][1:-1])
-    return (None, TYPE, term) if key[0] == "t" else (None, term, None)
 
 
 __all__ = ["StagedRun"]
