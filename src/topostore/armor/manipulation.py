@@ -172,12 +172,10 @@ def remove_class_class(ctx: Context) -> Reply:
     return ctx.submit(fixed("REMOVE CLASS CLASS", remove=[Triple(sub, SUBCLASS_OF, sup)]))
 
 
-def _matching_values(onto: Ontology, ind: NamedNode, prop: NamedNode, value,
-                     values: list[Triple] | None = None) -> list[Triple]:
-    """Asserted ``prop(ind, v)`` whose v is the same data value (or the same individual) as ``value``
-    (among ``values`` when the caller has read them already)."""
+def _matching_values(onto: Ontology, ind: NamedNode, prop: NamedNode, value) -> list[Triple]:
+    """Asserted ``prop(ind, v)`` whose v is the same data value (or the same individual) as ``value``."""
     key = terms.value_key(value)
-    return [t for t in (asserted(onto, ind, prop) if values is None else values) if terms.value_key(t.object) == key]
+    return [t for t in asserted(onto, ind, prop) if terms.value_key(t.object) == key]
 
 
 def remove_dataprop_ind(ctx: Context) -> Reply:

@@ -57,7 +57,7 @@ class GenericProgram:
 
     def drop(self, store: Store) -> None:
         if self.rows:
-            store.update(" ; ".join(f"DROP SILENT GRAPH {g}" for g in self.graphs()))
+            store.drop_graphs(self.graphs())
 
 
 def closed(rows: list[Row]) -> list[Row]:

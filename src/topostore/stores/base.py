@@ -117,14 +117,6 @@ class Store:
         """The literal as the user asserted it (lexical form and datatype)."""
         return self.forms.original_literal(graph, s, p, o)
 
-    def rewritten(self, graph: NamedNode, s: Term, p: NamedNode, o: Term) -> Literal | None:
-        """The form the user wrote of ``o`` in ``graph`` where it differs from ``o``; None when ``o``
-        is no literal or already that form (so a removal or an undo restores exactly what was written)."""
-        if not isinstance(o, Literal):
-            return None
-        written = self.forms.original_literal(graph, s, p, o)
-        return None if written == o else written
-
     def restore(self, term: Term) -> Term:
         """A literal as users wrote it, when that value was written in one form only."""
         return self.forms.restore(term)
@@ -147,7 +139,6 @@ class Store:
     remove = work.remove
     _toggle_each = work.toggle_each
     _toggle_absent = work.toggle_absent
-    _toggle = work.toggle
     _add_to_empty = work.add_to_empty
     fact = work.fact
     read_facts = work.read_facts

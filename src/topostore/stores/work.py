@@ -201,24 +201,13 @@ def toggle_absent(store: Store, quads: list[Quad], triples: list[Triple], keys: 
     for q, t, k, present in zip(quads, triples, keys, store._present(quads, keys), strict=True):
         if present == add:
             continue
-        entry = pending.get(k)  # as _toggle: pending True is absent from the committed store, False present
+        entry = pending.get(k)  # pending True is absent from the committed store, False present; a change the other way cancels it
         if entry is None:
             pending[k] = (q, add)
         elif entry[1] != add:
             del pending[k]
         changed.append(t)
     return changed
-
-
-def toggle(store: Store, quad: Quad, add: bool, key: tuple | None = None) -> None:
-    """Record a pending add (or removal) of ``quad``: it cancels a pending change the other way,
-    and a second spelling of one value (``1`` and ``"01"^^xsd:int``) changes nothing more."""
-    key = key if key is not None else store._key(quad)
-    pending = store._pending.get(key)
-    if pending is None:
-        store._pending[key] = (quad, add)
-    elif pending[1] != add:
-        del store._pending[key]
 
 
 def add_to_empty(store: Store, triples: list[Triple] | tuple[Triple, ...], graph: NamedNode,
