@@ -74,7 +74,7 @@ def publish(notices: Iterable[Notice], source: str = "") -> list[str]:
     where = f"{source}: " if source else ""
     for line in lines:
         logger.warning("%s%s", where, line)
-        # the caller of Ontology.load/load_data: publish ← _add_document ← OntologyFiles.load* ← Ontology.load*
+        # the caller of Ontology.load/load_data: publish ← _published ← OntologyFiles.load* ← Ontology.load*
         warnings.warn(where + line, OntologyWarning, stacklevel=5)
     return lines
 

@@ -24,7 +24,7 @@ dropped, so a SAVE afterwards writes only well-formed rules.
 
 from __future__ import annotations
 
-from collections.abc import Iterable
+from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field
 
 from pyoxigraph import Literal, NamedNode, Triple
@@ -269,6 +269,23 @@ def repair_rules(triples: list[Triple]) -> tuple[list[Triple], list[Notice]]:
     return _rewrite(ix, triples, imps, outcomes, names)
 
 
+def needs_repair(read: Callable[[Term], Iterable[Triple]], imps: Iterable[Term]) -> bool:
+    """Whether :func:`repair_rules` would repair or skip any of the rules ``imps``, asking only for their
+    nodes (``read(node)``: its triples, e.g. from the graph they were written to): the nodes reached from
+    each rule through its body, head, lists and argument lists, every node the repair reads."""
+    todo = list(dict.fromkeys(imps))
+    seen = set(todo)
+    triples: list[Triple] = []
+    while todo:
+        for t in read(todo.pop()):
+            triples.append(t)
+            o = t.object
+            if t.predicate in _STRUCTURE and not isinstance(o, Literal) and o not in seen:
+                seen.add(o)
+                todo.append(o)
+    return bool(repair_rules(triples)[1])
+
+
 def _rewrite(ix: _Index, triples: list[Triple], imps: list[Term], outcomes: dict[Term, _Outcome],
              names: dict[Term, str]) -> tuple[list[Triple], list[Notice]]:
     """Apply the outcomes: new flat parts, skipped rules out, structure no rule reaches any more dropped."""
@@ -330,4 +347,4 @@ def replace_rules(saved: list[Triple], original: list[Triple]) -> tuple[list[Tri
     return kept + [t for t in new if t not in present], count, put
 
 
-__all__ = ["ATOM_KINDS", "repair_rules", "replace_rules", "rule_name", "rule_triples", "skip_rule"]
+__all__ = ["ATOM_KINDS", "needs_repair", "repair_rules", "replace_rules", "rule_name", "rule_triples", "skip_rule"]

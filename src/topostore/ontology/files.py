@@ -19,11 +19,11 @@ from typing import TYPE_CHECKING
 
 from pyoxigraph import NamedNode, RdfFormat, Triple
 
-from ..compile import compile_ontology
+from ..compile import RuleSet, compile_ontology
 from ..compile.notices import RULE_REPAIRED, RULE_SKIPPED, Notice, grouped, publish
 from ..compile.swrl_repair import repair_rules, skip_rule
 from ..errors import IncompleteOntologyError, RuleCompileError, TopostoreError
-from ..rdf.safeio import atomic_write
+from ..rdf.safeio import atomic_write, read_regular_file
 from ..rdf.vocab import (
     ASSERTED,
     DIFFERENT_FROM,
@@ -41,6 +41,7 @@ from ..rdf.vocab import (
 )
 from ..stores import check_rules, memory_store
 from ..stores.base import guess_format, serialize
+from .streamed import rules_need_repair, schema_triples, stream_into_empty
 from .xml_literals import canonical_xml_literals
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -80,29 +81,97 @@ class OntologyFiles:
         cannot be translated is refused and leaves the ontology as it was.
         ``progress(n)`` is told how many triples have been parsed so far.
         """
-        with _collector_paused():
-            triples = self.onto.store.parse_file(path, fmt, base_iri, progress)
-        return self._add_document(triples, str(path))
+        if self._streaming_possible():
+            data = read_regular_file(path)  # regular files only, size-limited (LoadError otherwise)
+            added, shown = self._load_bytes(data, guess_format(path, fmt), base_iri, str(path), progress)
+        else:
+            with _collector_paused():
+                triples = self.onto.store.parse_file(path, fmt, base_iri, progress)
+            added, shown = self._add_document(triples)
+        _published(shown, str(path))
+        return added
 
     def load_data(self, data: str | bytes, fmt: str = "turtle", base_iri: str | None = None) -> int:
-        with _collector_paused():
-            triples = self.onto.store.parse_bytes(data, guess_format("x", fmt), base_iri)
-        return self._add_document(triples, "<data>")
+        added, shown = self._load_bytes(data, guess_format("x", fmt), base_iri, "<data>")
+        _published(shown, "<data>")
+        return added
 
-    def _add_document(self, triples: list[Triple], source: str) -> int:
+    def _load_bytes(self, data: str | bytes, fmt: RdfFormat, base_iri: str | None, source: str,
+                    progress: Callable[[int], None] | None = None) -> tuple[int, list[Notice]]:
+        """A document given as its bytes: streamed into an empty graph where that is possible, else (or
+        when the stream finds what only the ordinary load handles) parsed into triples and added.
+        (Triples added, notices to publish.)"""
+        if self._streaming_possible():
+            done = self._streamed(data, fmt, base_iri, source, progress)
+            if done is not None:
+                return done
+        with _collector_paused():
+            triples = self.onto.store.parse_bytes(data, fmt, base_iri, source=source, progress=progress)
+        return self._add_document(triples)
+
+    def _add_document(self, triples: list[Triple]) -> tuple[int, list[Notice]]:
         """Add a document: its SWRL rules repaired first (:mod:`.compile.swrl_repair`), then
-        checked; what was repaired or set aside is published (warnings, log) and kept in
-        :attr:`load_notices` once the document is in."""
+        checked; what was repaired or set aside is kept in :attr:`load_notices` once the document is
+        in.  (Triples added, notices to publish.)"""
         with _collector_paused():
             triples, unreadable = canonical_xml_literals(triples)
             triples, notices = repair_rules(triples)
         notices += unreadable
-        known = set(self.onto._rules.notices) if self.onto._rules is not None else set()
+        known = self._known_notices()
         added, notices = self._add_checked(triples, notices)
+        return added, self._kept(notices, known)
+
+    def _known_notices(self) -> set[Notice]:
+        """What the current rules' compiling reported already (not published again)."""
+        return set(self.onto._rules.notices) if self.onto._rules is not None else set()
+
+    def _kept(self, notices: list[Notice], known: set[Notice]) -> list[Notice]:
+        """A document is in: what loading it repaired or set aside kept; returned with what its compiling
+        found that was not known before (what is published)."""
         self.onto.load_notices += notices
         compiled = self.onto._rules.notices if self.onto._rules is not None else []
-        publish([*notices, *(n for n in compiled if n not in known)], source)
-        return added
+        return [*notices, *(n for n in compiled if n not in known)]
+
+    # ------------------------------------------------------------ a document streamed into an empty graph
+    def _streaming_possible(self) -> bool:
+        """Whether a document may be written as it is parsed (:mod:`.streamed`): the asserted graph is empty
+        and in memory (see :meth:`_in_place_possible`), no change is being recorded and no transaction is
+        open (both need each triple)."""
+        return (not self.onto.ledger.tracking and not self.onto.store._depth and self._in_place_possible())
+
+    def _streamed(self, data: str | bytes, fmt: RdfFormat, base_iri: str | None, source: str,
+                  progress: Callable[[int], None] | None) -> tuple[int, list[Notice]] | None:
+        """Stream the document into the empty asserted graph, then test and compile it there.  None when it
+        is taken out again for the ordinary load, whose answer (repair, skip, refusal, error) is then the one
+        given: an error of any kind, a rule that needs repair, a rule that cannot be compiled, strict loading
+        refusing it."""
+        store = self.onto.store
+        known = self._known_notices()
+        try:
+            with _collector_paused():
+                found = stream_into_empty(store, data, fmt, base_iri, source, progress)
+                schema = next(schema_triples(store, found.predicates, is_schema_triple), None)
+                if schema is not None and rules_need_repair(store, found.predicates):
+                    raise _Ordinary
+            rules = self._compiled_here(found.notices) if schema is not None else None
+        except (TopostoreError, _Ordinary):
+            store.clear(ASSERTED)
+            return None
+        except BaseException:
+            store.clear(ASSERTED)
+            raise
+        self.onto._touch([schema] if schema is not None else [])
+        if rules is not None:
+            self.onto._rules = rules
+        return found.triples, self._kept(found.notices, known)
+
+    def _compiled_here(self, notices: list[Notice]) -> RuleSet:
+        """The rules of the asserted graph as it now is, checked as the ordinary load checks them."""
+        rules = compile_ontology(self.onto.store, ASSERTED)
+        if self.onto.strict:
+            _refuse_incomplete([*notices, *rules.notices])
+        check_rules(self.onto.store, rules)
+        return rules
 
     def _add_checked(self, triples: list[Triple], repaired: list[Notice] | None = None) -> tuple[int, list[Notice]]:
         """Add loaded triples; when they change the rules, compile first on a copy,
@@ -201,6 +270,15 @@ class OntologyFiles:
         path = Path(path)
         data = self.serialize(guess_format(path, fmt), inferred)
         return atomic_write(path, data)  # temporary file beside it, never through a symlink, removed on failure
+
+
+def _published(notices: list[Notice], source: str) -> None:
+    """Warn of and log what loading a document repaired, set aside or reasons only in part."""
+    publish(notices, source)  # its warnings point at the caller of Ontology.load / load_data
+
+
+class _Ordinary(Exception):
+    """A document streamed into the empty graph needs what only the ordinary load does (its rules repaired)."""
 
 
 @contextmanager

@@ -17,7 +17,7 @@ from __future__ import annotations
 from collections.abc import Iterable
 from xml.etree.ElementTree import ParseError, canonicalize
 
-from pyoxigraph import Literal, Triple
+from pyoxigraph import Literal, NamedNode, Triple
 
 from ..compile.notices import INCOMPLETE, Notice
 from ..compile.profile import UNSUPPORTED
@@ -38,6 +38,17 @@ def canonical(text: str) -> str | None:
     return out[len(_OPEN):-len(_CLOSE)]
 
 
+def canonical_xml_literal(p: NamedNode, o: Literal) -> tuple[Literal, Notice | None]:
+    """An rdf:XMLLiteral object of predicate ``p`` in canonical form; the notice naming it when it is not
+    well-formed XML (then it is kept as written)."""
+    text = canonical(o.value)
+    if text is None:
+        shown = o.value if len(o.value) <= 40 else o.value[:40] + "…"
+        return o, Notice(INCOMPLETE, f"{p.value.rsplit('#', 1)[-1]} {shown!r}",
+                         "an rdf:XMLLiteral that is not well-formed XML: compared as written", UNSUPPORTED)
+    return (o if text == o.value else Literal(text, datatype=o.datatype)), None
+
+
 def canonical_xml_literals(triples: Iterable[Triple]) -> tuple[list[Triple], list[Notice]]:
     """The triples with every rdf:XMLLiteral object in canonical form, and a notice per
     literal that is not well-formed XML (kept as written)."""
@@ -46,16 +57,14 @@ def canonical_xml_literals(triples: Iterable[Triple]) -> tuple[list[Triple], lis
     for t in triples:
         o = t.object
         if isinstance(o, Literal) and o.datatype.value == XML_LITERAL:
-            text = canonical(o.value)
-            if text is None:
-                shown = o.value if len(o.value) <= 40 else o.value[:40] + "…"
-                notices.append(Notice(INCOMPLETE, f"{t.predicate.value.rsplit('#', 1)[-1]} {shown!r}",
-                                      "an rdf:XMLLiteral that is not well-formed XML: compared as written",
-                                      UNSUPPORTED))
-            elif text != o.value:
-                t = Triple(t.subject, t.predicate, Literal(text, datatype=o.datatype))
+            p = t.predicate
+            written, notice = canonical_xml_literal(p, o)
+            if notice is not None:
+                notices.append(notice)
+            elif written is not o:
+                t = Triple(t.subject, p, written)
         out.append(t)
     return out, notices
 
 
-__all__ = ["canonical", "canonical_xml_literals"]
+__all__ = ["XML_LITERAL", "canonical", "canonical_xml_literal", "canonical_xml_literals"]

@@ -9,7 +9,7 @@ reports for big files, and blank nodes skolemised (:mod:`topostore.rdf.skolem`).
 from __future__ import annotations
 
 import os
-from collections.abc import Callable, Iterable
+from collections.abc import Callable, Iterable, Iterator
 from pathlib import Path
 
 import pyoxigraph as ox
@@ -88,17 +88,25 @@ def parse_triples(
     progress: Callable[[int], None] | None = None,
 ) -> list[Triple]:
     """A document's triples, skolemised; ``progress(n)`` is called every ``PROGRESS_EVERY`` triples parsed."""
+    return _skolemised(parsed_quads(data, fmt, base_iri, source), progress)
+
+
+def parsed_quads(data: bytes | str, fmt: RdfFormat, base_iri: str | None = None,
+                 source: str = "<input>") -> Iterator[ox.Quad]:
+    """The parser's quads as it makes them (blank nodes renamed apart from every other document's, not yet
+    skolemised): RDF/XML refused before a byte is parsed when it declares entities, a syntax error raised
+    as :class:`LoadError` ``file:line: cause`` where the parser stops (so a caller writing the quads as they
+    come takes them out again)."""
     if isinstance(data, str):
         data = data.encode("utf-8", errors="surrogatepass")
     if fmt == RdfFormat.RDF_XML:
         check_xml_entities(data, source)
     try:
-        triples = _skolemised(ox.parse(data, format=fmt, base_iri=base_iri, rename_blank_nodes=True), progress)
+        yield from ox.parse(data, format=fmt, base_iri=base_iri, rename_blank_nodes=True)
     except SyntaxError as exc:
         raise LoadError(_syntax_error_message(source, exc, data, fmt)) from exc
     except ValueError as exc:
         raise LoadError(f"{source}: {exc}") from exc
-    return triples
 
 
 def _skolemised(quads: Iterable[ox.Quad], progress: Callable[[int], None] | None) -> list[Triple]:
@@ -124,4 +132,4 @@ def serialize(triples: Iterable[Triple], fmt: RdfFormat, prefixes: dict[str, str
     return ox.serialize(list(triples), format=fmt, prefixes=prefixes or None)
 
 
-__all__ = ["FORMAT_NAMES", "PROGRESS_EVERY", "guess_format", "parse_triples", "serialize"]
+__all__ = ["FORMAT_NAMES", "PROGRESS_EVERY", "guess_format", "parse_triples", "parsed_quads", "serialize"]

@@ -267,10 +267,12 @@ class Store:
         return parse_triples(data, fmt, base_iri, source, progress)
 
     # ------------------------------------------------------------ writes and reads an implementation specialises
-    def _commit_stream(self, quads: Iterator[Quad], extra: list[Quad]) -> None:
+    def _commit_stream(self, quads: Iterator[Quad], extra: list[Quad]) -> int | None:
         """Add ``quads`` (made one by one) and ``extra`` in one commit; stores that can take a
-        stream without a list override this."""
+        stream without a list override this.  How many quads the store gained where it knows that at
+        no cost (None here: a count is a query)."""
         self._commit([*quads, *extra], [])
+        return None
 
     def add_scratch(self, triples: Iterable[Triple], graph: NamedNode) -> None:
         """Bulk-add to a reasoner's scratch graph (no literal forms recorded, no counting)."""

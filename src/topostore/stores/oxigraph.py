@@ -67,13 +67,15 @@ class OxigraphStore(Store):
             if self.sync:
                 self._ox.flush()
 
-    def _commit_stream(self, quads: Iterator[Quad], extra: list[Quad]) -> None:
-        """In memory, the store takes the quads as they are made (one atomic ``extend``)."""
+    def _commit_stream(self, quads: Iterator[Quad], extra: list[Quad]) -> int | None:
+        """In memory, the store takes the quads as they are made (one atomic ``extend``); it counts its
+        quads in a few milliseconds where a SPARQL count of a big graph takes ten times that."""
         if not self._in_memory:
-            super()._commit_stream(quads, extra)
-            return
+            return super()._commit_stream(quads, extra)
         self._writes += 1
+        before = len(self._ox)
         self._ox.extend(chain(quads, extra))
+        return len(self._ox) - before
 
     def add_scratch(self, triples, graph: NamedNode) -> None:
         """Bulk-add to a reasoner's scratch graph (one RocksDB transaction)."""

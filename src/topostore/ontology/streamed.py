@@ -1,0 +1,166 @@
+"""A document written straight into an empty asserted graph: one pass over the parser's quads, no triple list.
+
+The ordinary load (:mod:`.files`) parses a document into a list of triples that every check reads in turn
+(skolemisation, XML literals, the SWRL repair's scan, literal validation and forms, the schema test, the
+deduplication) before the store is written.  Into an empty in-memory graph a document can be written as
+the parser makes its quads (one ``extend``), each term read once, because taking it out again leaves
+exactly what was there; the checks run on the few triples that need them, as the quads go by or read
+back from the graph:
+
+* a blank node becomes its skolem IRI as its quad is made;
+* a literal is validated, an rdf:XMLLiteral put in canonical form, and only the first spelling of a value
+  for a (subject, predicate) is written (document order, as the ordinary load keeps it) and recorded as
+  the form users wrote;
+* the schema test reads one triple per predicate the pass met, and per class the graph types;
+* the SWRL rules are read back from the graph, a few nodes each, and asked whether they need repair.
+
+:class:`StreamedDocument` reports what the pass found; :mod:`.files` decides, and whatever the ordinary
+load would repair, skip or refuse takes the document out again and goes the ordinary way.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Iterator
+from dataclasses import dataclass, field
+
+from pyoxigraph import BlankNode, Literal, NamedNode, Quad, RdfFormat, Triple
+
+from ..compile.notices import Notice
+from ..compile.swrl_repair import needs_repair
+from ..rdf.syntax import PROGRESS_EVERY, parsed_quads
+from ..rdf.terms import Term, check_literal, value_key
+from ..rdf.vocab import ASSERTED, SKOLEM_PREFIX, TYPE, swrl
+from ..stores.base import Store
+from .xml_literals import XML_LITERAL, canonical_xml_literal
+
+
+@dataclass
+class StreamedDocument:
+    """What writing one document into the empty asserted graph found."""
+
+    #: the distinct triples of the document, as the ordinary load counts them (every spelling of a value)
+    triples: int = 0
+    #: every predicate the document uses
+    predicates: set[NamedNode] = field(default_factory=set)
+    #: rdf:XMLLiteral objects that are not well-formed XML (kept as written), in document order
+    notices: list[Notice] = field(default_factory=list)
+
+
+class _Literals:
+    """The literal objects of one document as the pass meets them: validated, XML in canonical form, the
+    first spelling of each (subject, predicate, value) kept, every distinct literal triple counted."""
+
+    def __init__(self, found: StreamedDocument) -> None:
+        self.found = found
+        #: (subject, predicate, value key) -> the spelling written
+        self.spelled: dict[tuple, Literal] = {}
+        #: each distinct literal triple (subject, predicate, literal as written)
+        self.distinct: set[tuple] = set()
+
+    def written(self, s: Term, p: NamedNode, o: Literal) -> Literal | None:
+        """``o`` as it is written, or None when an earlier spelling of its value was (InvalidValueError
+        when it is no valid value of its datatype)."""
+        check_literal(o)
+        if o.datatype.value == XML_LITERAL:
+            o, notice = canonical_xml_literal(p, o)
+            if notice is not None:
+                self.found.notices.append(notice)
+        triple = (s, p, o)
+        if triple in self.distinct:  # written (or skipped) already: each distinct triple is met once
+            return None
+        self.distinct.add(triple)
+        key = (s, p, value_key(o))
+        if key in self.spelled:
+            return None
+        self.spelled[key] = o
+        return o
+
+
+def stream_into_empty(store: Store, data: bytes | str, fmt: RdfFormat, base_iri: str | None, source: str,
+                      progress: Callable[[int], None] | None = None) -> StreamedDocument:
+    """Write a document into the empty asserted graph of ``store`` in one pass (one commit), its literal
+    forms recorded; what it found.  An error (syntax, an invalid value) leaves the graph as it was only
+    where the commit is all or nothing: the caller takes the graph back to empty on any failure."""
+    found = StreamedDocument()
+    literals = _Literals(found)
+    quads = parsed_quads(data, fmt, base_iri, source)
+    if progress is not None:
+        quads = _counted(quads, progress)
+    gained = store._commit_stream(_written(quads, literals, store), [])
+    if gained is None or store.durable:  # a durable store's gain counts the persisted forms too
+        found.triples = _distinct_triples(store, len(literals.distinct))
+    else:  # one quad per value written (its first spelling), every distinct literal triple counted
+        found.triples = gained - len(literals.spelled) + len(literals.distinct)
+    return found
+
+
+def _written(quads: Iterator[Quad], literals: _Literals, store: Store) -> Iterator[Quad]:
+    """The quads to write into the asserted graph, then the quads persisting the literal forms (none in
+    memory).  Each term of a parsed quad is read once: a read makes a new object, the bulk of the cost."""
+    graph, blank, literal, named = ASSERTED, BlankNode, Literal, NamedNode
+    predicates = literals.found.predicates
+    written = literals.written
+    for q in quads:
+        s, p, o = q.subject, q.predicate, q.object
+        predicates.add(p)
+        if type(s) is blank:
+            s = named(SKOLEM_PREFIX + s.value)
+        kind = type(o)
+        if kind is literal:
+            o = written(s, p, o)
+            if o is None:
+                continue
+        elif kind is blank:
+            o = named(SKOLEM_PREFIX + o.value)
+        yield Quad(s, p, o, graph)
+    yield from store.forms.record_loaded(graph, list(literals.spelled.items()))
+
+
+def _counted(quads: Iterator[Quad], progress: Callable[[int], None]) -> Iterator[Quad]:
+    """``quads``, telling ``progress`` every ``PROGRESS_EVERY`` of them."""
+    n = 0
+    for q in quads:
+        yield q
+        n += 1
+        if n % PROGRESS_EVERY == 0:
+            progress(n)
+
+
+def _distinct_triples(store: Store, literal_triples: int) -> int:
+    """The document's distinct triples from the graph it was written to: its quads without a literal (the
+    store keeps each once) and every distinct literal triple as written (the store keeps one quad per value)."""
+    rows = store.query(f"SELECT (COUNT(*) AS ?n) (SUM(IF(isLiteral(?o), 1, 0)) AS ?l) "
+                       f"WHERE {{ GRAPH {ASSERTED} {{ ?s ?p ?o }} }}")
+    row = next(iter(rows))
+    stored_literals = row["l"]
+    return int(row["n"].value) - (int(stored_literals.value) if stored_literals is not None else 0) + literal_triples
+
+
+def schema_triples(store: Store, predicates: set[NamedNode], is_schema: Callable[[Triple], bool]) -> Iterator[Triple]:
+    """One schema triple (``is_schema``) of the asserted graph per predicate and per class typed that makes
+    one: whether a triple is one depends on its predicate alone, or for rdf:type on its class alone."""
+    for p in predicates:
+        if p == TYPE:
+            classes = store.query(f"SELECT DISTINCT ?c WHERE {{ GRAPH {ASSERTED} {{ ?x {TYPE} ?c }} }}")
+            for c in [row["c"] for row in classes]:
+                yield from _first_schema(store.triples(None, TYPE, c, ASSERTED), is_schema)
+        else:
+            yield from _first_schema(store.triples(None, p, None, ASSERTED), is_schema)
+
+
+def _first_schema(triples: Iterator[Triple], is_schema: Callable[[Triple], bool]) -> Iterator[Triple]:
+    first = next(triples, None)
+    if first is not None and is_schema(first):
+        yield first
+
+
+def rules_need_repair(store: Store, predicates: set[NamedNode]) -> bool:
+    """Whether the SWRL rules of the asserted graph need the repair (:mod:`topostore.compile.swrl_repair`),
+    reading only their nodes from the graph."""
+    if TYPE not in predicates:
+        return False
+    imps = [t.subject for t in store.triples(None, TYPE, swrl("Imp"), ASSERTED)]
+    return bool(imps) and needs_repair(lambda node: store.triples(node, None, None, ASSERTED), imps)
+
+
+__all__ = ["StreamedDocument", "rules_need_repair", "schema_triples", "stream_into_empty"]
