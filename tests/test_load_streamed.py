@@ -185,3 +185,11 @@ def test_progress_is_told_as_the_document_is_parsed(tmp_path: Path) -> None:
     told: list[int] = []
     assert Ontology().load(path, progress=told.append) == 12_000
     assert told == [5000, 10000]
+
+
+def test_the_count_asked_of_the_graph_is_the_count_the_store_gains() -> None:
+    """A store that cannot tell what it gained (a durable one) has the graph counted by a query instead."""
+    onto, n, _ = loaded(PREFIXES + ':a :p "01"^^xsd:int , "1"^^xsd:int , "x" ; :q :b , :b .', stream=True)
+    assert n == 4
+    # two quads (one per value, :q :b once); the three distinct literal triples counted as written
+    assert streamed._distinct_triples(onto.store, 3) == n
