@@ -5,7 +5,9 @@ because loading has rules of its own: a document that changes the schema is
 compiled on a scratch copy first, so an untranslatable rule leaves the ontology
 as it was.  The first document of an empty in-memory ontology is compiled where
 it is added instead (taken out again when it is refused): a big map is then
-written once, not twice.
+written once, not twice; and it is written as it is parsed (:mod:`.streamed`),
+without a list of its triples, unless it needs what only the list gives (its
+rules repaired, a refusal's message).
 """
 
 from __future__ import annotations
@@ -233,10 +235,7 @@ class OntologyFiles:
         dirty = self.onto.dirty
         added = self._add_all(triples)
         try:
-            rules = compile_ontology(self.onto.store, ASSERTED)
-            if self.onto.strict:
-                _refuse_incomplete([*notices, *rules.notices])
-            check_rules(self.onto.store, rules)
+            rules = self._compiled_here(notices)
         except BaseException as exc:
             self.onto.remove(*triples)
             self.onto.dirty = dirty
