@@ -86,7 +86,7 @@ def stream_into_empty(store: Store, data: bytes | str, fmt: RdfFormat, base_iri:
     quads = parsed_quads(data, fmt, base_iri, source)
     if progress is not None:
         quads = _counted(quads, progress)
-    gained = store._commit_stream(_written(quads, literals, store), [])
+    gained = store._commit_stream(_written(quads, literals, store), [], count=True)
     if gained is None or store.durable:  # a durable store's gain counts the persisted forms too
         found.triples = _distinct_triples(store, len(literals.distinct))
     else:  # one quad per value written (its first spelling), every distinct literal triple counted

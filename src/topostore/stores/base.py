@@ -267,10 +267,10 @@ class Store:
         return parse_triples(data, fmt, base_iri, source, progress)
 
     # ------------------------------------------------------------ writes and reads an implementation specialises
-    def _commit_stream(self, quads: Iterator[Quad], extra: list[Quad]) -> int | None:
+    def _commit_stream(self, quads: Iterator[Quad], extra: list[Quad], count: bool = False) -> int | None:
         """Add ``quads`` (made one by one) and ``extra`` in one commit; stores that can take a
-        stream without a list override this.  How many quads the store gained where it knows that at
-        no cost (None here: a count is a query)."""
+        stream without a list override this.  Asked to ``count``: how many quads the store gained,
+        where it can tell that without a query (None otherwise, and here)."""
         self._commit([*quads, *extra], [])
         return None
 
