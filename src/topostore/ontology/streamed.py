@@ -96,7 +96,8 @@ def stream_into_empty(store: Store, data: bytes | str, fmt: RdfFormat, base_iri:
 
 def _written(quads: Iterator[Quad], literals: _Literals, store: Store) -> Iterator[Quad]:
     """The quads to write into the asserted graph, then the quads persisting the literal forms (none in
-    memory).  Each term of a parsed quad is read once: a read makes a new object, the bulk of the cost."""
+    memory).  Each term of a parsed quad is read once: a read makes a new object, the bulk of the cost;
+    a blank node is named as :func:`topostore.rdf.skolem.skolem` names it, inline (no call per term)."""
     graph, blank, literal, named = ASSERTED, BlankNode, Literal, NamedNode
     predicates = literals.found.predicates
     written = literals.written
