@@ -21,7 +21,9 @@ Variants (``NAME``: what it does):
   look-ups with only ``!sameTerm`` of the keys (the string test's share); ``pairs_typed``: the typed
   keys' test (``sameTerm(DATATYPE(..))``); ``pairs_groups``: the group-node join;
 * ``twin_candidates``, ``twin_values``, ``twin``: the three evaluations of the entailed-only twin as
-  the rules run them; ``twin_joined``: the twin with the visit-time test in its body (one rule);
+  the rules ran them for every door pair (each reading the one before in the scratch graph; since
+  :mod:`topostore.reason.negation` a full REASON asks only pairs whose conclusion is not known);
+  ``twin_joined``: the twin with the visit-time test in its body (one rule);
 * ``candidates_undeclared``: the asked pairs less the pairs whose ordinary conclusion is known (a
   ``MINUS`` of the inferred head): what the value rules would need to be asked if the candidates
   left out declared pairs; ``candidates_not_grouped``: the same by ``FILTER NOT EXISTS`` over the keys.
@@ -77,6 +79,10 @@ def _member_key(bind: str) -> str:
                    f"BIND({bind} AS ?key)")
 
 
+#: the twin's evaluations as the rules ran them before :mod:`topostore.reason.negation`, each reading
+#: the one before it in the scratch graph (the helper graph now holds none of these facts for door pairs)
+_CANDIDATES = _insert(f"?l1 {VALUE_CANDIDATE} ?l2", DOOR_PAIRS)
+_VALUES = _insert(f"?l1 {DIFFERENT} ?l2", f"GRAPH {SCRATCH} {{ ?l1 {VALUE_CANDIDATE} ?l2 . }} {VALUES_DIFFER}")
 #: variant name → (setup updates into the scratch graph, the timed update)
 VARIANTS: dict[str, tuple[tuple[str, ...], str]] = {
     "keys": ((), _member_key('IRI(CONCAT("urn:topostore:key:", MD5(STR(?group)), ":", MD5(STR(?x))))')),
@@ -91,9 +97,10 @@ VARIANTS: dict[str, tuple[tuple[str, ...], str]] = {
                            "!sameTerm(?k1, ?k2) && sameTerm(DATATYPE(?k1), DATATYPE(?k2))")),
     "pairs_groups": ((_member_key("?group"),),
                      _keyed(f"GRAPH {SCRATCH} {{ ?l1 {KEY} ?g . ?l2 {KEY} ?g . }}", "true")),
-    "twin_candidates": ((), _insert(f"?l1 {VALUE_CANDIDATE} ?l2", DOOR_PAIRS)),
-    "twin_values": ((), _insert(f"?l1 {DIFFERENT} ?l2", f"GRAPH {X} {{ ?l1 {VALUE_CANDIDATE} ?l2 . }} {VALUES_DIFFER}")),
-    "twin": ((), _insert(f"?l1 <{M}connectedTo> ?l2", f"{DOOR_PAIRS} GRAPH {X} {{ ?l1 {DIFFERENT} ?l2 . }}")),
+    "twin_candidates": ((), _CANDIDATES),
+    "twin_values": ((_CANDIDATES,), _VALUES),
+    "twin": ((_CANDIDATES, _VALUES), _insert(f"?l1 <{M}connectedTo> ?l2",
+                                             f"{DOOR_PAIRS} GRAPH {SCRATCH} {{ ?l1 {DIFFERENT} ?l2 . }}")),
     "twin_joined": ((), _insert(f"?l1 <{M}connectedTo> ?l2", f"{DOOR_PAIRS} {VALUES_DIFFER}")),
     "candidates_undeclared": ((), _insert(f"?l1 {VALUE_CANDIDATE} ?l2",
                                           f"{DOOR_PAIRS} MINUS {{ GRAPH {I} {{ ?l1 <{M}connectedTo> ?l2 }} }}")),
@@ -131,14 +138,18 @@ def written_by(onto: Ontology, name: str) -> set[tuple[str, str, str]]:
     store = onto.store
     store.update(f"DROP SILENT GRAPH {SCRATCH}")
     setup, timed = VARIANTS[name]
-    for text in (*setup, timed):
+    for text in setup:
         store.update(text)
-    if setup:  # the setup's own facts are not the variant's
-        store.update(f"DELETE {{ GRAPH {SCRATCH} {{ ?s {KEY} ?k }} }} WHERE {{ GRAPH {SCRATCH} {{ ?s {KEY} ?k }} }}")
-    rows = store.query(f"SELECT ?s ?p ?o WHERE {{ GRAPH {SCRATCH} {{ ?s ?p ?o }} }}")
-    out = {(r["s"].value, r["p"].value, r["o"].value) for r in rows}
+    before = _scratch(onto)  # the setup's own facts are not the variant's
+    store.update(timed)
+    out = _scratch(onto) - before
     store.update(f"DROP SILENT GRAPH {SCRATCH}")
     return out
+
+
+def _scratch(onto: Ontology) -> set[tuple[str, str, str]]:
+    rows = onto.store.query(f"SELECT ?s ?p ?o WHERE {{ GRAPH {SCRATCH} {{ ?s ?p ?o }} }}")
+    return {(r["s"].value, r["p"].value, r["o"].value) for r in rows}
 
 
 def _count(onto: Ontology) -> int:

@@ -139,7 +139,7 @@ def inline_difference(rules: list[Rule], asks: list[DifferenceAsk]) -> list[Rule
         dropped |= {id(ask.candidate), *(id(r) for r in conclusions)}
         added += joined
         if values and entailed:
-            added.append(_asks_values(ask.candidate))
+            added.append(_asks_values(ask.candidate, _known_conclusion(ask, conclusions)))
             asked = True
         else:  # nothing but a declared difference could fire it: never published
             dropped |= {id(r) for r in entailed}
@@ -158,11 +158,30 @@ def _difference_atom(head: Rule, ask: DifferenceAsk) -> Atom | None:
     return found[0]
 
 
-def _asks_values(candidate: Rule) -> Rule:
-    """The candidate rule asking the value sources only (``ts:valueCandidate``)."""
+def _asks_values(candidate: Rule, unless_known: Atom | None = None) -> Rule:
+    """The candidate rule asking the value sources only (``ts:valueCandidate``); ``unless_known``:
+    the ordinary conclusion whose known facts make the ask idle (:func:`_known_conclusion`)."""
     head = candidate.head
     return replace(candidate, head=Atom(head.s, _VALUE_CANDIDATE, head.o, aux=True),
-                   origin=candidate.origin.replace("for difference", "for difference by values"))
+                   origin=candidate.origin.replace("for difference", "for difference by values"),
+                   unless_known=unless_known)
+
+
+def _known_conclusion(ask: DifferenceAsk, conclusions: list[Rule]) -> Atom | None:
+    """The one head of a SWRL rule's conclusions when it names the asked pair itself (``x``/``y`` as
+    its subject and object), else None.
+
+    Why: the entailed-only twin of a pair is published only where that head is neither asserted nor
+    inferred, so its pair need not be asked of the value rules where the head is known.  The head must
+    name the pair: a head on other variables (``canReach(r, l2)`` asking ``l1 ≠ l2``) is known through
+    one match of the body while another match's pair may still need asking."""
+    heads = {r.head for r in conclusions}
+    if len(heads) != 1:
+        return None
+    head = heads.pop()
+    if head is None or head.p.startswith("?") or {head.s, head.o} != {ask.x, ask.y}:
+        return None
+    return head
 
 
 def _reading_value_candidates(source: Rule) -> Rule:

@@ -31,8 +31,10 @@ from ..compile.schema import schema_dataset
 from ..rdf.vocab import ASSERTED, AUX, DELTA, INFERRED, INTERNAL, NEW_AUX, NEW_INFERRED
 from ..stores.base import Store
 from . import limits
+from .negation import deferred, idle_asks, unless_known_text
 from .order import TYPE_KEY, evaluation_order, implied_first_passes, reachable, single_graphs
 from .plan import KeyCounts, is_small, plan_where
+from .restate import covering
 from .triggers import Present, Triggers
 
 DATASET = f"USING {ASSERTED} USING {INFERRED} USING {AUX} USING NAMED {AUX} USING NAMED {DELTA}"
@@ -147,10 +149,17 @@ class Materializer:
         self._implied: set[int] = set()
         #: keys put in :attr:`present` by a first pass before the evaluation writing them ran
         self._claimed: set[ReadKey] = set()
+        #: while :meth:`run` reaches its fixpoint: the candidate rules it evaluates last (:mod:`.negation`)
+        self._deferring: set[int] = set()
+        #: of those, the ones asking nothing a twin could be published for on derived facts of a key
+        #: (:func:`.negation.idle_asks`): by rule, that key, whose asserted facts alone they read
+        self._idle: dict[int, ReadKey] = {}
 
     def _run(self, index: int, delta_index: int | None, stats: ReasonStats, asserted_only: bool = False) -> None:
         """Evaluate rule ``index`` (its atom ``delta_index`` on the delta); ``asserted_only``: its one
         atom reads the asserted graph alone (see :func:`.order.implied_first_passes`)."""
+        if index in self._deferring:
+            return
         derived = self._direct is not None and self.rules[index].writes() in self._derived
         key = (index, delta_index, self._lateral, self._direct, self._graphs is not None, derived, asserted_only)
         text = self._texts.get(key)
@@ -291,14 +300,60 @@ class Materializer:
         self.clear()
         self._derived = set()
         self._direct = (DELTA, DELTA_NEXT)
+        self._deferring = self._deferred()
         try:
             self._materialize(stats)
+            self._ask_unknown(stats)
         finally:
             self._direct = None
+            self._deferring = set()
             self.store.update(f"DROP SILENT GRAPH {DELTA} ; DROP SILENT GRAPH {DELTA_NEXT}")
         stats.derived = self.store.count(INFERRED)
         stats.seconds = time.perf_counter() - start
         return stats
+
+    def _deferred(self) -> set[int]:
+        """The candidate rules left out of the fixpoint, run after it: those asking unless a conclusion
+        is known, and those asking nothing a twin could be published for on derived facts of the key
+        they are covered at (run on its asserted facts alone; see :mod:`.negation`)."""
+        later = deferred(self.rules)
+        if not later:
+            return later
+        asking = [i for i, r in enumerate(self.rules) if r.head is not None and r.head_aux() and i not in later]
+        self._idle = idle_asks(self.rules, covering(self.rules, asking))
+        return later | set(self._idle)
+
+    def _ask_unknown(self, stats: ReasonStats) -> None:
+        """After the fixpoint: the deferred candidate rules without the pairs whose conclusion is
+        known (:mod:`.negation`), then the rounds their facts trigger."""
+        rules, self._deferring = sorted(self._deferring), set()
+        for i in rules:
+            if not self.triggers.feasible(i, self.present):
+                continue
+            key = self._idle.get(i)
+            if key is None:
+                text = insert_text(self.rules[i], None, self.planned, self._lateral, self._direct)
+                text = unless_known_text(text, self.rules[i])
+            elif next(iter(self.store.triples(*key_pattern(key), ASSERTED)), None) is not None:
+                # its asks on derived facts of the key are idle: the asserted ones alone
+                text = insert_text(self.rules[i], None, self.planned, self._lateral, self._direct, {key: ASSERTED})
+            else:
+                continue
+            stats.evaluations += 1
+            self._timed(text, self.rules[i].name, stats)
+        if rules:
+            self._flush()
+            stats.rounds += 1
+            self.propagate(list(range(len(self.rules))), stats)
+
+    def _timed(self, text: str, name: str, stats: ReasonStats) -> None:
+        """Queue ``text``, or send it and time it under ``name`` when profiling."""
+        if not self.profile:
+            self._queue.append(text)
+            return
+        start = time.perf_counter()
+        self.store.update(text, prefixes=PREFIXES)
+        stats.per_rule[name] = stats.per_rule.get(name, 0.0) + time.perf_counter() - start
 
     def _first_pass(self, component: list[int], back: set[int], stats: ReasonStats) -> None:
         """Evaluate a component's rules once each, in order, in one request.
