@@ -29,6 +29,11 @@ besides its location), where the value rules over the asked pairs serve every ru
 the joined form cost the example step 0.5 ms more, two sets of value rules 0.2 ms
 (docs/benchmarks.md).
 
+The entailed-only twin of a pair is published only where the rule's ordinary head is not known, so
+its value candidate rule carries that head as ``unless_known`` when the head names the asked pair
+(``connectedTo(l1, l2)`` asking ``l1 ≠ l2``): a full REASON then asks only the pairs whose head is not
+known, and maintenance keeps the asks exact enough for what is published (:mod:`..reason.negation`).
+
 An OWL rule that needs one pair of fillers different (a minimum cardinality of two, :func:`owl_asks`)
 reads ``ts:different`` as a plain conclusion: it is joined with every source, declared and by values.
 
