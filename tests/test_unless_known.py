@@ -21,7 +21,7 @@ from test_incremental import (
     visit,
 )
 
-from topostore.rdf.vocab import AUX, ENTAILED, ENTAILED_PREFIX, INFERRED
+from topostore.rdf.vocab import AUX, ENTAILED, ENTAILED_PREFIX, INFERRED, owl
 
 
 def _entailed(onto, name: str) -> set[tuple[str, str]]:
@@ -94,3 +94,35 @@ def test_an_asserted_link_to_an_undeclared_place_is_asked_by_reachability() -> N
     onto.remove(Triple(N("C1"), N("connectedTo"), N("Outside")))
     assert_same_as_scratch(onto)
     assert ("Robot1", "Outside") not in _entailed(onto, "canReach")
+
+
+def test_an_alias_of_a_member_and_members_of_two_groups() -> None:
+    onto = new_map(8, 7, False)
+    places = [f"R{k}" for k in range(1, 30)] + [f"C{k}" for k in range(1, 8)]
+    all_different(onto, places[: len(places) // 2 + 2])
+    all_different(onto, places[len(places) // 2 - 2:])  # four members in both groups
+    assert_same_as_scratch(onto)
+    alias = Triple(N("Alias"), owl("sameAs"), N("C1"))
+    onto.add(alias)
+    assert_same_as_scratch(onto)
+    drop_all_different(onto, 0)
+    assert_same_as_scratch(onto)
+    onto.remove(alias)
+    assert_same_as_scratch(onto)
+    drop_all_different(onto, 0)
+    assert_same_as_scratch(onto)
+    assert _entailed(onto, "connectedTo")  # no group left: the pairs different by visit times
+
+
+def test_visit_times_made_equal_and_apart_on_an_undeclared_link() -> None:
+    onto = new_map(6, 8, False)
+    assert_same_as_scratch(onto)
+    a, b = sorted(_entailed(onto, "connectedTo"))[0]
+    same = next(iter(onto.store.triples(N(a), N("visitedAt"), None))).object
+    before = next(iter(onto.store.triples(N(b), N("visitedAt"), None))).object
+    visit(onto, b, int(same.value))
+    assert_same_as_scratch(onto)
+    assert (a, b) not in _entailed(onto, "connectedTo")
+    visit(onto, b, int(before.value))
+    assert_same_as_scratch(onto)
+    assert (a, b) in _entailed(onto, "connectedTo")

@@ -303,7 +303,6 @@ class Materializer:
         self._deferring = self._deferred()
         try:
             self._materialize(stats)
-            self._ask_unknown(stats)
         finally:
             self._direct = None
             self._deferring = set()
@@ -323,9 +322,9 @@ class Materializer:
         self._idle = idle_asks(self.rules, covering(self.rules, asking))
         return later | set(self._idle)
 
-    def _ask_unknown(self, stats: ReasonStats) -> None:
-        """After the fixpoint: the deferred candidate rules without the pairs whose conclusion is
-        known (:mod:`.negation`), then the rounds their facts trigger."""
+    def _ask_unknown(self, stats: ReasonStats, active: list[int]) -> None:
+        """After the first stratum's fixpoint: the deferred candidate rules without the pairs whose
+        conclusion is known (:mod:`.negation`), then the rounds their facts trigger among ``active``."""
         rules, self._deferring = sorted(self._deferring), set()
         for i in rules:
             if not self.triggers.feasible(i, self.present):
@@ -344,7 +343,7 @@ class Materializer:
         if rules:
             self._flush()
             stats.rounds += 1
-            self.propagate(list(range(len(self.rules))), stats)
+            self.propagate(active, stats)
 
     def _timed(self, text: str, name: str, stats: ReasonStats) -> None:
         """Queue ``text``, or send it and time it under ``name`` when profiling."""
@@ -454,6 +453,8 @@ class Materializer:
             if level > strata[0] and not self.store.is_empty(self._direct[1]):
                 self.upper_derived = True
             self.propagate(active, stats)
+            if level == strata[0]:  # before the upper strata, which may read what the asks derive
+                self._ask_unknown(stats, active)
 
 
 def _merge(parts) -> KeyCounts:
