@@ -632,10 +632,10 @@ class IncrementalReasoner:
         self.requests.flush()
 
 
-__all__ = ["IncrementalReasoner", "MaintenanceState", "DEFAULT_MAX_CHANGE_SHARE", "MODES", "can_prove", "check_mode",
-           "negates_exists", "is_monotone"]
-
-
 def _key_sets(keys: Collection[tuple[str, str]]) -> tuple[set[str], set[str]]:
     """(predicates, classes) of read keys ``("p", iri)`` / ``("t", class)``."""
     return {k for kind, k in keys if kind == "p"}, {k for kind, k in keys if kind == "t"}
+
+
+__all__ = ["IncrementalReasoner", "MaintenanceState", "DEFAULT_MAX_CHANGE_SHARE", "MODES", "can_prove", "check_mode",
+           "negates_exists", "is_monotone"]

@@ -31,10 +31,9 @@ from ..compile.schema import schema_dataset
 from ..rdf.vocab import ASSERTED, AUX, DELTA, INFERRED, INTERNAL, NEW_AUX, NEW_INFERRED
 from ..stores.base import Store
 from . import limits
-from .negation import deferred, idle_asks, unless_known_text
+from .negation import evaluated_last, unless_known_text
 from .order import TYPE_KEY, evaluation_order, implied_first_passes, reachable, single_graphs
 from .plan import KeyCounts, is_small, plan_where
-from .restate import covering
 from .triggers import Present, Triggers
 
 DATASET = f"USING {ASSERTED} USING {INFERRED} USING {AUX} USING NAMED {AUX} USING NAMED {DELTA}"
@@ -170,13 +169,7 @@ class Materializer:
             text = self._texts[key] = insert_text(self.rules[index], delta_index, self.planned, self._lateral,
                                                   self._direct, graphs, derived)
         stats.evaluations += 1
-        if not self.profile:
-            self._queue.append(text)  # sent by _flush, one request per round
-            return
-        start = time.perf_counter()
-        self.store.update(text, prefixes=PREFIXES)
-        name = self.rules[index].name
-        stats.per_rule[name] = stats.per_rule.get(name, 0.0) + time.perf_counter() - start
+        self._timed(text, self.rules[index].name, stats)
 
     def _flush(self) -> None:
         """Send the queued evaluations of a round as one update request.
@@ -300,7 +293,8 @@ class Materializer:
         self.clear()
         self._derived = set()
         self._direct = (DELTA, DELTA_NEXT)
-        self._deferring = self._deferred()
+        later, self._idle = evaluated_last(self.rules)
+        self._deferring = later | set(self._idle)
         try:
             self._materialize(stats)
         finally:
@@ -310,17 +304,6 @@ class Materializer:
         stats.derived = self.store.count(INFERRED)
         stats.seconds = time.perf_counter() - start
         return stats
-
-    def _deferred(self) -> set[int]:
-        """The candidate rules left out of the fixpoint, run after it: those asking unless a conclusion
-        is known, and those asking nothing a twin could be published for on derived facts of the key
-        they are covered at (run on its asserted facts alone; see :mod:`.negation`)."""
-        later = deferred(self.rules)
-        if not later:
-            return later
-        asking = [i for i, r in enumerate(self.rules) if r.head is not None and r.head_aux() and i not in later]
-        self._idle = idle_asks(self.rules, covering(self.rules, asking))
-        return later | set(self._idle)
 
     def _ask_unknown(self, stats: ReasonStats, active: list[int]) -> None:
         """After the first stratum's fixpoint: the deferred candidate rules without the pairs whose
@@ -346,7 +329,8 @@ class Materializer:
             self.propagate(active, stats)
 
     def _timed(self, text: str, name: str, stats: ReasonStats) -> None:
-        """Queue ``text``, or send it and time it under ``name`` when profiling."""
+        """Queue ``text`` (sent by :meth:`_flush`, one request per round), or send it and time it under
+        ``name`` when profiling."""
         if not self.profile:
             self._queue.append(text)
             return

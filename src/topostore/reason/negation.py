@@ -39,6 +39,7 @@ from pyoxigraph import NamedNode
 
 from ..compile.rule import ReadKey, Rule
 from ..rdf.vocab import ASSERTED, AUX, INFERRED, INTERNAL
+from .restate import covering
 from .triggers import matches
 
 #: the pairs a maintenance asks again, the first delta of the propagation that follows
@@ -77,6 +78,18 @@ def idle_asks(rules: Sequence[Rule], covered: Mapping[int, ReadKey]) -> dict[int
                 for w in writers[key]):
             out[i] = key
     return out
+
+
+def evaluated_last(rules: Sequence[Rule]) -> tuple[set[int], dict[int, ReadKey]]:
+    """The candidate rules a full REASON leaves out of its first stratum's fixpoint and runs after it:
+    those asking unless a conclusion is known (:func:`deferred`), and those asking nothing a twin could
+    be published for on derived facts of the key they are covered at, by rule, that key
+    (:func:`idle_asks`: run on its asserted facts alone)."""
+    later = deferred(rules)
+    if not later:
+        return later, {}
+    asking = [i for i, r in enumerate(rules) if r.head is not None and r.head_aux() and i not in later]
+    return later, idle_asks(rules, covering(list(rules), asking))
 
 
 def unless_known_text(text: str, rule: Rule) -> str:
@@ -146,4 +159,4 @@ def completion_text(rule: Rule, seed: NamedNode) -> str:
             f"  MINUS {{ {rule.unless_known.text()} }}\n}}")
 
 
-__all__ = ["ASKED", "Completion", "idle_asks", "completion_text", "deferred", "lost_any", "unless_known_text"]
+__all__ = ["ASKED", "Completion", "evaluated_last", "idle_asks", "completion_text", "deferred", "lost_any", "unless_known_text"]
