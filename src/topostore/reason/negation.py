@@ -38,7 +38,7 @@ from collections.abc import Collection, Mapping, Sequence
 from pyoxigraph import NamedNode
 
 from ..compile.rule import ReadKey, Rule
-from ..rdf.vocab import ASSERTED, AUX, INFERRED, INTERNAL
+from ..rdf.vocab import ASSERTED, AUX, INFERRED, INTERNAL, TYPE
 from .restate import covering
 from .triggers import matches
 
@@ -141,7 +141,7 @@ def _may_write(written: ReadKey, key: ReadKey) -> bool:
     if written == key or written[0] == "*" or key[0] == "*":
         return True
     # a type atom of a variable class writes every class's facts
-    return written == ("p", "<http://www.w3.org/1999/02/22-rdf-syntax-ns#type>") and key[0] == "t"
+    return written == ("p", str(TYPE)) and key[0] == "t"
 
 
 def lost_any(keys: Collection[ReadKey], preds: Collection[str], classes: Collection[str]) -> bool:
