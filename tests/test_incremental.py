@@ -5,7 +5,9 @@ clock ticks, visits, doors added and removed, AllDifferent axioms added and
 removed, facts that make the ontology inconsistent or merge individuals) to
 random small maps, reasons after every batch and compares the inferred and
 helper graphs and the consistency verdict with a from-scratch
-materialisation of the same asserted graph.
+materialisation of the same asserted graph.  The helper graph is equal but for the asks a full
+REASON leaves out where a conclusion is known (topostore.reason.negation): maintenance may keep
+those, and what they derive, as long as the conclusion holds (:func:`assert_helper_facts`).
 """
 
 from __future__ import annotations
@@ -20,8 +22,10 @@ from pyoxigraph import NamedNode, Triple
 from support import TBOX_OWL as TBOX
 
 from topostore import Ontology
+from topostore.compile.rule import RuleSet
+from topostore.compile.snippets import VALUE_CANDIDATE
 from topostore.demo.mapgen import MAP_NS, generate
-from topostore.rdf.vocab import ASSERTED, AUX, DIFFERENT_FROM, ENTAILED, INFERRED, TYPE, owl
+from topostore.rdf.vocab import ASSERTED, AUX, DIFFERENT, DIFFERENT_FROM, ENTAILED, ENTAILED_PREFIX, INFERRED, TYPE, owl
 from topostore.reason import Materializer, check_consistency, flips
 from topostore.reason.entailed import publish_entailed
 from topostore.reason.incremental import is_monotone, negates_exists
@@ -55,11 +59,43 @@ def from_scratch(onto: Ontology) -> tuple[set, set, set, bool]:
             not violations)
 
 
+def assert_helper_facts(onto: Ontology, scratch: set) -> None:
+    """The helper graph holds what a REASON from scratch holds, and beyond it only asks left out by a
+    full REASON (a value candidate, a difference by values) of a pair whose ordinary conclusion is
+    known, as the asking rule's ``unless_known`` names it, and entailed-only twins of known facts."""
+    aux = set(onto.store.triples(graph=AUX))
+    assert scratch <= aux, scratch - aux
+    extra = aux - scratch
+    if extra:
+        assert all(_known_ask(onto.store, onto.rules, t) for t in extra), extra
+
+
+def _known_ask(store, rules: RuleSet, t: Triple) -> bool:
+    """Whether ``t`` is a deferred ask's fact (or one derived from it) on a pair whose conclusion is known,
+    or an entailed-only twin whose ordinary fact is known (never published)."""
+    def known(s, p: str, o) -> bool:
+        triple = Triple(s, NamedNode(p), o)
+        return store.contains(triple, INFERRED) or store.contains(triple, ASSERTED)
+
+    if t.predicate.value.startswith(ENTAILED_PREFIX) and known(
+            t.subject, t.predicate.value.removeprefix(ENTAILED_PREFIX), t.object):
+        return True
+    for r in rules.rules:
+        if r.unless_known is None:
+            continue
+        p = r.unless_known.p[1:-1]
+        same = r.unless_known.s == r.head.s
+        if t.predicate in (VALUE_CANDIDATE, DIFFERENT) and (
+                known(t.subject, p, t.object) if same else known(t.object, p, t.subject)):
+            return True
+    return False
+
+
 def assert_same_as_scratch(onto: Ontology, profile: bool = False) -> None:
     report = onto.reason(profile=profile)
     inferred, aux, entailed, consistent = from_scratch(onto)
     assert set(onto.store.triples(graph=INFERRED)) == inferred, report.stats
-    assert set(onto.store.triples(graph=AUX)) == aux, report.stats
+    assert_helper_facts(onto, aux)
     assert set(onto.store.triples(graph=ENTAILED)) == entailed, report.stats
     assert report.consistent == consistent, report.stats
     assert_views_fresh(onto)
@@ -214,7 +250,7 @@ def test_robot_step_is_incremental_and_exact() -> None:
         assert report.stats.mode == "incremental", report.stats.reason
         inferred, aux, entailed, consistent = from_scratch(onto)
         assert set(onto.store.triples(graph=INFERRED)) == inferred
-        assert set(onto.store.triples(graph=AUX)) == aux
+        assert_helper_facts(onto, aux)
         assert set(onto.store.triples(graph=ENTAILED)) == entailed
         assert report.consistent == consistent
     assert sorted(onto.object_values("canReach", N("Robot1"))) == sorted(generate(20, seed=1).neighbours("C1"))

@@ -29,6 +29,11 @@ besides its location), where the value rules over the asked pairs serve every ru
 the joined form cost the example step 0.5 ms more, two sets of value rules 0.2 ms
 (docs/benchmarks.md).
 
+The entailed-only twin of a pair is published only where the rule's ordinary head is not known, so
+its value candidate rule carries that head as ``unless_known`` when the head names the asked pair
+(``connectedTo(l1, l2)`` asking ``l1 ≠ l2``): a full REASON then asks only the pairs whose head is not
+known, and maintenance keeps the asks exact enough for what is published (:mod:`..reason.negation`).
+
 An OWL rule that needs one pair of fillers different (a minimum cardinality of two, :func:`owl_asks`)
 reads ``ts:different`` as a plain conclusion: it is joined with every source, declared and by values.
 
@@ -139,7 +144,7 @@ def inline_difference(rules: list[Rule], asks: list[DifferenceAsk]) -> list[Rule
         dropped |= {id(ask.candidate), *(id(r) for r in conclusions)}
         added += joined
         if values and entailed:
-            added.append(_asks_values(ask.candidate))
+            added.append(_asks_values(ask.candidate, _known_conclusion(ask, conclusions)))
             asked = True
         else:  # nothing but a declared difference could fire it: never published
             dropped |= {id(r) for r in entailed}
@@ -158,11 +163,30 @@ def _difference_atom(head: Rule, ask: DifferenceAsk) -> Atom | None:
     return found[0]
 
 
-def _asks_values(candidate: Rule) -> Rule:
-    """The candidate rule asking the value sources only (``ts:valueCandidate``)."""
+def _asks_values(candidate: Rule, unless_known: Atom | None = None) -> Rule:
+    """The candidate rule asking the value sources only (``ts:valueCandidate``); ``unless_known``:
+    the ordinary conclusion whose known facts make the ask idle (:func:`_known_conclusion`)."""
     head = candidate.head
     return replace(candidate, head=Atom(head.s, _VALUE_CANDIDATE, head.o, aux=True),
-                   origin=candidate.origin.replace("for difference", "for difference by values"))
+                   origin=candidate.origin.replace("for difference", "for difference by values"),
+                   unless_known=unless_known)
+
+
+def _known_conclusion(ask: DifferenceAsk, conclusions: list[Rule]) -> Atom | None:
+    """The one head of a SWRL rule's conclusions when it names the asked pair itself (``x``/``y`` as
+    its subject and object), else None.
+
+    Why: the entailed-only twin of a pair is published only where that head is neither asserted nor
+    inferred, so its pair need not be asked of the value rules where the head is known.  The head must
+    name the pair: a head on other variables (``canReach(r, l2)`` asking ``l1 ≠ l2``) is known through
+    one match of the body while another match's pair may still need asking."""
+    heads = {r.head for r in conclusions}
+    if len(heads) != 1:
+        return None
+    head = heads.pop()
+    if head is None or head.p.startswith("?") or {head.s, head.o} != {ask.x, ask.y}:
+        return None
+    return head
 
 
 def _reading_value_candidates(source: Rule) -> Rule:

@@ -145,6 +145,9 @@ class Rule:
     #: a check that a data property's values lie in its range: (the property's IRI, the datatype's
     #: IRI), so that values already known can be decided without a query (see :func:`.datatypes.surely_in`)
     value_range: tuple[str, str] | None = field(default=None, compare=False)
+    #: a candidate rule whose pairs need not be asked where this atom (the asking rule's ordinary
+    #: conclusion) is known: a full REASON evaluates it last, without them (see :mod:`..reason.negation`)
+    unless_known: Atom | None = field(default=None, compare=False)
     #: the conditions as SPARQL lines (rendered once: every evaluation text contains them)
     filters: str = field(init=False, repr=False, compare=False)
     _reads: frozenset = field(init=False, repr=False, compare=False)

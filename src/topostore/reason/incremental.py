@@ -90,6 +90,7 @@ from .dred import Deletion, can_prove
 from .entailed import publish_entailed, refresh_entailed
 from .flips import Flips
 from .materialize import Materializer, ReasonStats
+from .negation import ASKED, Completion, completion_text, deferred
 from .plan import is_small, plan_where
 from .present import key_graphs, with_facts
 from .program import PROGRAM_SCRATCH, Refused, StepProgram, check_pair_atom, pair_atom, signature
@@ -156,6 +157,12 @@ class IncrementalReasoner:
         self.rules = rules.inference_rules
         self.monotone = [i for i, r in enumerate(self.rules) if is_monotone(r)]
         self._monotone_set = set(self.monotone)
+        #: candidate rules a full REASON evaluates without the pairs whose conclusion is known, and the
+        #: keys whose loss (derived; asserted) makes maintenance ask those pairs again (:mod:`.negation`)
+        self.deferred = sorted(deferred(self.rules))
+        self._completion = Completion(self.rules)
+        #: set by a compiled step that may have lost such a key: the REASON is then run in full
+        self._incomplete = False
         self.triggers = Triggers(self.rules)
         self.checks = rules.checks
         self.check_triggers = Triggers(self.checks)
@@ -220,8 +227,13 @@ class IncrementalReasoner:
         self._added_now = added
         stats = ReasonStats(mode="incremental", reason=self._incremental_reason(added, removed))
         self.requests.profile = profile
+        self._incomplete = False
         try:
             self._maintain(added, removed, stats, profile)
+            if self._incomplete:
+                self._clear_scratch()
+                return self.full("the compiled step may have lost a declaration of difference a full REASON "
+                                 "left pairs unasked for (see topostore.reason.negation)", profile)
             changed = bool(added or removed)
             if changed and self.store.round_trips and stats.program == "compiled":
                 after = self._read_after()
@@ -334,7 +346,11 @@ class IncrementalReasoner:
         if added:
             requests.discard(added, (INFERRED, AUX))
         replaced = flip.replaced_in(self.store, added, removed, ASSERTED)
-        if self._compiled(added, removed, replaced, stats):
+        ask_again = bool(self.deferred and removed) and self._completion.needed(
+            self.state.present, key_census(removed), asserted=True)
+        if not ask_again and self._compiled(added, removed, replaced, stats):
+            self._incomplete = bool(self.deferred and removed) and self._completion.needed(
+                self.state.present, _key_sets(self._lost))
             return
         requests.flush()  # the scratch copies are read from here on
         skip, lost, gained_rules = self.flips.find(self.state, added, removed, (preds, classes), stats, replaced)
@@ -351,6 +367,23 @@ class IncrementalReasoner:
         m.present = self.state.present
         m.planned = True
         m.propagate(self.monotone, stats, seed=ADDED, record=NEW_FACTS, skip_first=skip)
+        if self.deferred and removed:
+            self._ask_again(m, stats)
+
+    def _ask_again(self, m: Materializer, stats: ReasonStats) -> None:
+        """Ask the value rules again about the pairs a full REASON left out because their conclusion was
+        known, when this maintenance lost a fact that may have held such a conclusion (:mod:`.negation`);
+        what the asks derive is propagated as new facts."""
+        lost = self.store.census_many([OVERDELETED])[OVERDELETED]
+        if not self._completion.needed(self.state.present, lost, asserted=True):
+            return
+        try:
+            self.store.update(" ;\n".join(completion_text(self.rules[i], ASKED) for i in self.deferred),
+                              prefixes=PREFIXES)
+            stats.evaluations += len(self.deferred)
+            m.propagate(self.monotone, stats, seed=ASKED, record=NEW_FACTS)
+        finally:
+            self.store.update(f"DROP SILENT GRAPH {ASKED}")
 
     # ------------------------------------------------------------------ the compiled step
     def _compiled(self, added: Collection[Triple], removed: Collection[Triple], clean: dict,
@@ -597,6 +630,11 @@ class IncrementalReasoner:
         self.changed.forget()
         self.requests.drop((*SCRATCH, *PROGRAM_SCRATCH, DELTA, NEW_INFERRED, NEW_AUX))
         self.requests.flush()
+
+
+def _key_sets(keys: Collection[tuple[str, str]]) -> tuple[set[str], set[str]]:
+    """(predicates, classes) of read keys ``("p", iri)`` / ``("t", class)``."""
+    return {k for kind, k in keys if kind == "p"}, {k for kind, k in keys if kind == "t"}
 
 
 __all__ = ["IncrementalReasoner", "MaintenanceState", "DEFAULT_MAX_CHANGE_SHARE", "MODES", "can_prove", "check_mode",

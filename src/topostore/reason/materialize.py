@@ -31,6 +31,7 @@ from ..compile.schema import schema_dataset
 from ..rdf.vocab import ASSERTED, AUX, DELTA, INFERRED, INTERNAL, NEW_AUX, NEW_INFERRED
 from ..stores.base import Store
 from . import limits
+from .negation import evaluated_last, unless_known_text
 from .order import TYPE_KEY, evaluation_order, implied_first_passes, reachable, single_graphs
 from .plan import KeyCounts, is_small, plan_where
 from .triggers import Present, Triggers
@@ -147,10 +148,17 @@ class Materializer:
         self._implied: set[int] = set()
         #: keys put in :attr:`present` by a first pass before the evaluation writing them ran
         self._claimed: set[ReadKey] = set()
+        #: while :meth:`run` reaches its fixpoint: the candidate rules it evaluates last (:mod:`.negation`)
+        self._deferring: set[int] = set()
+        #: of those, the ones asking nothing a twin could be published for on derived facts of a key
+        #: (:func:`.negation.idle_asks`): by rule, that key, whose asserted facts alone they read
+        self._idle: dict[int, ReadKey] = {}
 
     def _run(self, index: int, delta_index: int | None, stats: ReasonStats, asserted_only: bool = False) -> None:
         """Evaluate rule ``index`` (its atom ``delta_index`` on the delta); ``asserted_only``: its one
         atom reads the asserted graph alone (see :func:`.order.implied_first_passes`)."""
+        if index in self._deferring:
+            return
         derived = self._direct is not None and self.rules[index].writes() in self._derived
         key = (index, delta_index, self._lateral, self._direct, self._graphs is not None, derived, asserted_only)
         text = self._texts.get(key)
@@ -161,13 +169,7 @@ class Materializer:
             text = self._texts[key] = insert_text(self.rules[index], delta_index, self.planned, self._lateral,
                                                   self._direct, graphs, derived)
         stats.evaluations += 1
-        if not self.profile:
-            self._queue.append(text)  # sent by _flush, one request per round
-            return
-        start = time.perf_counter()
-        self.store.update(text, prefixes=PREFIXES)
-        name = self.rules[index].name
-        stats.per_rule[name] = stats.per_rule.get(name, 0.0) + time.perf_counter() - start
+        self._timed(text, self.rules[index].name, stats)
 
     def _flush(self) -> None:
         """Send the queued evaluations of a round as one update request.
@@ -291,14 +293,50 @@ class Materializer:
         self.clear()
         self._derived = set()
         self._direct = (DELTA, DELTA_NEXT)
+        later, self._idle = evaluated_last(self.rules)
+        self._deferring = later | set(self._idle)
         try:
             self._materialize(stats)
         finally:
             self._direct = None
+            self._deferring = set()
             self.store.update(f"DROP SILENT GRAPH {DELTA} ; DROP SILENT GRAPH {DELTA_NEXT}")
         stats.derived = self.store.count(INFERRED)
         stats.seconds = time.perf_counter() - start
         return stats
+
+    def _ask_unknown(self, stats: ReasonStats, active: list[int]) -> None:
+        """After the first stratum's fixpoint: the deferred candidate rules without the pairs whose
+        conclusion is known (:mod:`.negation`), then the rounds their facts trigger among ``active``."""
+        rules, self._deferring = sorted(self._deferring), set()
+        for i in rules:
+            if not self.triggers.feasible(i, self.present):
+                continue
+            key = self._idle.get(i)
+            if key is None:
+                text = insert_text(self.rules[i], None, self.planned, self._lateral, self._direct)
+                text = unless_known_text(text, self.rules[i])
+            elif next(iter(self.store.triples(*key_pattern(key), ASSERTED)), None) is not None:
+                # its asks on derived facts of the key are idle: the asserted ones alone
+                text = insert_text(self.rules[i], None, self.planned, self._lateral, self._direct, {key: ASSERTED})
+            else:
+                continue
+            stats.evaluations += 1
+            self._timed(text, self.rules[i].name, stats)
+        if rules:
+            self._flush()
+            stats.rounds += 1
+            self.propagate(active, stats)
+
+    def _timed(self, text: str, name: str, stats: ReasonStats) -> None:
+        """Queue ``text`` (sent by :meth:`_flush`, one request per round), or send it and time it under
+        ``name`` when profiling."""
+        if not self.profile:
+            self._queue.append(text)
+            return
+        start = time.perf_counter()
+        self.store.update(text, prefixes=PREFIXES)
+        stats.per_rule[name] = stats.per_rule.get(name, 0.0) + time.perf_counter() - start
 
     def _first_pass(self, component: list[int], back: set[int], stats: ReasonStats) -> None:
         """Evaluate a component's rules once each, in order, in one request.
@@ -399,6 +437,8 @@ class Materializer:
             if level > strata[0] and not self.store.is_empty(self._direct[1]):
                 self.upper_derived = True
             self.propagate(active, stats)
+            if level == strata[0]:  # before the upper strata, which may read what the asks derive
+                self._ask_unknown(stats, active)
 
 
 def _merge(parts) -> KeyCounts:
