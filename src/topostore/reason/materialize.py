@@ -21,7 +21,7 @@ from __future__ import annotations
 
 import time
 from collections.abc import Collection, Mapping
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 from pyoxigraph import NamedNode
 
@@ -31,7 +31,7 @@ from ..compile.schema import schema_dataset
 from ..rdf.vocab import ASSERTED, AUX, DELTA, INFERRED, INTERNAL, NEW_AUX, NEW_INFERRED
 from ..stores.base import Store
 from . import limits
-from .order import TYPE_KEY, evaluation_order, implied_first_passes, reachable, single_graphs
+from .order import TYPE_KEY, evaluation_order, implied_atoms, implied_first_passes, reachable, single_graphs
 from .plan import KeyCounts, is_small, plan_where
 from .triggers import Present, Triggers
 
@@ -147,18 +147,26 @@ class Materializer:
         self._implied: set[int] = set()
         #: keys put in :attr:`present` by a first pass before the evaluation writing them ran
         self._claimed: set[ReadKey] = set()
+        #: rules of :meth:`run`'s ordered pass whose first evaluation leaves out class atoms another
+        #: atom implies (:func:`.order.implied_atoms`), as the rule that first evaluation runs
+        self._lean: dict[int, Rule] = {}
 
-    def _run(self, index: int, delta_index: int | None, stats: ReasonStats, asserted_only: bool = False) -> None:
+    def _run(self, index: int, delta_index: int | None, stats: ReasonStats, asserted_only: bool = False,
+             first: bool = False) -> None:
         """Evaluate rule ``index`` (its atom ``delta_index`` on the delta); ``asserted_only``: its one
-        atom reads the asserted graph alone (see :func:`.order.implied_first_passes`)."""
+        atom reads the asserted graph alone (see :func:`.order.implied_first_passes`); ``first``: the
+        first pass of the ordered stratum, which leaves out the atoms :attr:`_lean` says are implied."""
         derived = self._direct is not None and self.rules[index].writes() in self._derived
-        key = (index, delta_index, self._lateral, self._direct, self._graphs is not None, derived, asserted_only)
+        lean = first and index in self._lean
+        key = (index, delta_index, self._lateral, self._direct, self._graphs is not None, derived, asserted_only,
+               lean)
         text = self._texts.get(key)
         if text is None:
             graphs = self._graphs
             if asserted_only:
                 graphs = {**(graphs or {}), self.rules[index].body[0].read_key(): ASSERTED}
-            text = self._texts[key] = insert_text(self.rules[index], delta_index, self.planned, self._lateral,
+            rule = self._lean[index] if lean else self.rules[index]
+            text = self._texts[key] = insert_text(rule, delta_index, self.planned, self._lateral,
                                                   self._direct, graphs, derived)
         stats.evaluations += 1
         if not self.profile:
@@ -318,12 +326,12 @@ class Materializer:
                 continue  # every fact it reads is derived, and what it concludes of them holds already
             key = self.rules[i].writes()
             if i in back or key[0] == "*" or key == ("p", TYPE_KEY):
-                self._run(i, None, stats, asserted_only)
+                self._run(i, None, stats, asserted_only, first=True)
                 self._derived.add(key)
                 continue
             self._direct = (read[0], None)
             try:
-                self._run(i, None, stats, asserted_only)
+                self._run(i, None, stats, asserted_only, first=True)
             finally:
                 self._direct = read
             self._derived.add(key)
@@ -378,6 +386,8 @@ class Materializer:
         asserted = self._asserted = (set(self.present[0]), set(self.present[1]))
         self._claimed = set()
         self._implied = implied_first_passes(self.rules, [i for c in ordered for i in c])
+        self._lean = {i: _without(self.rules[i], atoms)
+                      for i, atoms in implied_atoms(self.rules, [i for c in ordered for i in c], asserted).items()}
         self._graphs = single_graphs(self.rules, [i for c in ordered for i in c], self.triggers.needed_keys(),
                                      asserted, lambda r: AUX if r.head_aux() else INFERRED, ASSERTED)
         # a text reading a key in one graph holds only for this run's asserted keys: none is kept from before
@@ -399,6 +409,11 @@ class Materializer:
             if level > strata[0] and not self.store.is_empty(self._direct[1]):
                 self.upper_derived = True
             self.propagate(active, stats)
+
+
+def _without(rule: Rule, atoms: tuple[int, ...]) -> Rule:
+    """``rule`` with the body atoms ``atoms`` left out (the body as written kept for explanations)."""
+    return replace(rule, body=tuple(a for n, a in enumerate(rule.body) if n not in atoms), written=rule.premises)
 
 
 def _merge(parts) -> KeyCounts:
