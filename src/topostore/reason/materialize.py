@@ -84,6 +84,8 @@ def insert_text(rule: Rule, delta_index: int | None = None, planned: bool = Fals
         where = plan_where(rule, delta_index, delta, lateral=lateral)
     else:
         where = rule.where(delta_index, str(delta), graphs)
+    if direct is not None and delta_index is None and distinct_pays(rule):
+        where = f"{{ SELECT DISTINCT {' '.join(sorted(rule.head.variables()))} WHERE {{\n  {where}\n  }} }}"
     into = f"GRAPH {target} {{ {head} }}" if direct is None else f"GRAPH {final} {{ {head} }}"
     if direct is not None and direct[1] is not None:
         into += f" GRAPH {direct[1]} {{ {head} }}"
@@ -99,6 +101,20 @@ def insert_text(rule: Rule, delta_index: int | None = None, planned: bool = Fals
         named.add(ASSERTED)
     dataset += "".join(f" USING NAMED {g}" for g in sorted(named, key=str))
     return f"INSERT {{ {into} }}\n{dataset}\nWHERE {{\n  {where}\n  {known}\n}}"
+
+
+def distinct_pays(rule: Rule) -> bool:
+    """Whether a full run's evaluation of ``rule`` without delta projects its matches on the head first.
+
+    A class head on one variable from a body with more (a domain ``p(x, y) ⟹ C(x)``, a restriction
+    ``p(x, y1) ∧ p(x, y2) ∧ … ⟹ R(x)``) matches once per value: writing a membership again looks
+    up six indexes, hashing it away costs less (10,000 locations: ≥2 hasDoor 205 → 185 ms, ∃hasDoor
+    65 → 47 ms).  Where each match is a new head (two-variable heads such as a difference by
+    values) the hashing only costs (158 → 183 ms), so they keep the plain form.
+    """
+    head = rule.head
+    return (head is not None and head.p == TYPE_KEY and not head.o.startswith("?")
+            and len(head.variables()) == 1 and len({v for a in rule.body for v in a.variables()} | set(rule.binds)) > 1)
 
 
 def new_only(rule: Rule, small: bool, graph: NamedNode | None = None) -> str:
