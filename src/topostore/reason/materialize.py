@@ -31,6 +31,7 @@ from ..compile.schema import schema_dataset
 from ..rdf.vocab import ASSERTED, AUX, DELTA, INFERRED, INTERNAL, NEW_AUX, NEW_INFERRED
 from ..stores.base import Store
 from . import limits
+from .key_pairs import grouped_form
 from .order import TYPE_KEY, evaluation_order, implied_atoms, implied_first_passes, reachable, single_graphs
 from .plan import KeyCounts, is_small, plan_where
 from .triggers import Present, Triggers
@@ -84,7 +85,10 @@ def insert_text(rule: Rule, delta_index: int | None = None, planned: bool = Fals
         where = plan_where(rule, delta_index, delta, lateral=lateral)
     else:
         where = rule.where(delta_index, str(delta), graphs)
-    if direct is not None and delta_index is None and distinct_pays(rule):
+    pair = grouped_form(rule) if direct is not None and delta_index is None else None
+    if pair is not None:
+        where = pair.where(graphs)
+    elif direct is not None and delta_index is None and distinct_pays(rule):
         where = f"{{ SELECT DISTINCT {' '.join(sorted(rule.head.variables()))} WHERE {{\n  {where}\n  }} }}"
     into = f"GRAPH {target} {{ {head} }}" if direct is None else f"GRAPH {final} {{ {head} }}"
     if direct is not None and direct[1] is not None:
