@@ -232,3 +232,26 @@ def test_a_check_pairing_two_values_reports_what_it_did_without_the_count(monkey
     assert any("x" in v for v in found) and any("y" in v for v in found)
     monkeypatch.setattr(consistency, "several_values", lambda rule, graphs: [])
     assert sorted(str(v) for v in consistency.check_consistency(onto.store, onto.rules)) == found
+
+
+# ---------------------------------------------------------------- a disjointness check's classes, fewest members first
+
+NS = "http://example.org/card#"
+DISJOINT = PREFIXES + """:A a owl:Class . :B a owl:Class . :A owl:disjointWith :B .
+:a1 a :A . :a2 a :A . :a3 a :A . :both a :A , :B .
+"""
+
+
+def test_a_disjointness_check_reads_its_smaller_class_first_and_reports_the_same(
+        monkeypatch: pytest.MonkeyPatch) -> None:
+    from topostore.reason import consistency
+
+    onto = loaded(DISJOINT)
+    assert not onto.reason().consistent
+    check = next(r for r in onto.rules.checks if sorted(a.o for a in r.body) == [f"<{NS}A>", f"<{NS}B>"])
+    ordered = consistency.small_first(onto.store, check, {})
+    assert [a.o[-2] for a in ordered.body] == ["B", "A"]  # one B against four A
+    found = sorted(str(v) for v in consistency.check_consistency(onto.store, onto.rules))
+    assert any("both" in v for v in found)
+    monkeypatch.setattr(consistency, "small_first", lambda store, rule, graphs: rule)
+    assert sorted(str(v) for v in consistency.check_consistency(onto.store, onto.rules)) == found
