@@ -144,12 +144,13 @@ def implied_atoms(rules: list[Rule], ordered: list[int], asserted: Present) -> d
     Facts of K written later (a rule of a variable predicate, an upper stratum) reach the rule
     through delta evaluations of its whole body.  An atom left out never vouches for another.
     """
+    candidates = [i for i in ordered if _has_class_atom_beside(rules[i])]
+    if not candidates:
+        return {}  # the table below reads every rule: not built where no body could use it
     carried = subject_classes(rules, ordered, asserted)
     out: dict[int, tuple[int, ...]] = {}
-    for i in ordered:
+    for i in candidates:
         rule = rules[i]
-        if len(rule.body) < 2 or rule.is_check or rule.stratum or rule.negates or rule.conditions_read_graph:
-            continue
         dropped: list[int] = []
         for j, atom in enumerate(rule.body):
             if atom.p != TYPE_KEY or atom.o.startswith("?") or not atom.s.startswith("?"):
@@ -161,6 +162,14 @@ def implied_atoms(rules: list[Rule], ordered: list[int], asserted: Present) -> d
         if dropped:
             out[i] = tuple(dropped)
     return out
+
+
+def _has_class_atom_beside(rule: Rule) -> bool:
+    """A rule of the first stratum, positive, with a class atom and another atom on its subject."""
+    if len(rule.body) < 2 or rule.is_check or rule.stratum or rule.negates or rule.conditions_read_graph:
+        return False
+    return any(a.p == TYPE_KEY and not a.o.startswith("?") and a.s.startswith("?")
+               and any(b is not a and b.s == a.s for b in rule.body) for a in rule.body)
 
 
 def subject_classes(rules: list[Rule], ordered: list[int], asserted: Present) -> dict[ReadKey, frozenset[str]]:
