@@ -1,6 +1,7 @@
 """A full REASON's shortcuts keep its closure and its violations: first passes that read the asserted
 facts alone where every derived fact's conclusion holds anyway (reason/order.py ``implied_first_passes``),
-readers of a key only claimed by the same pass looked up first (``Materializer._claims_hold``), checks
+readers of a key only claimed by the same pass looked up first (``Materializer._claims_hold``), class
+atoms another atom's key carries left out of a first pass (reason/order.py ``implied_atoms``), checks
 pairing two values kept to the subjects with two (reason/consistency.py ``several_values``); and a
 minimum of two values meets every kind of difference."""
 
@@ -15,7 +16,7 @@ import pytest
 from topostore import Ontology, OntologyWarning
 from topostore.rdf.vocab import AUX, ENTAILED, INFERRED
 from topostore.reason import materialize
-from topostore.reason.order import implied_first_passes
+from topostore.reason.order import implied_atoms, implied_first_passes, subject_classes
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))  # the benchmarks package lives beside src/
@@ -104,11 +105,12 @@ def closure(onto: Ontology) -> dict[str, set]:
 
 
 @pytest.mark.parametrize("source", ["example", "tbox", "map"])
-@pytest.mark.parametrize("shortcut", ["implied", "claims"])
+@pytest.mark.parametrize("shortcut", ["implied", "claims", "lean"])
 def test_a_full_reason_reaches_the_same_closure_with_and_without_the_shortcuts(
         source: str, shortcut: str, monkeypatch: pytest.MonkeyPatch) -> None:
     """``implied``: first passes over the asserted facts alone; ``claims``: readers of a key the pass
-    only claimed skipped when it has no fact after all."""
+    only claimed skipped when it has no fact after all; ``lean``: first passes without the class atoms
+    another atom's key carries."""
     from benchmarks import maps
     from topostore.resources import default_ontology_files
 
@@ -131,6 +133,10 @@ def test_a_full_reason_reaches_the_same_closure_with_and_without_the_shortcuts(
     assert implied_first_passes(onto.rules.inference_rules, ordered) or source == "tbox"
     if shortcut == "implied":
         monkeypatch.setattr(materialize, "implied_first_passes", lambda rules, ordered: set())
+    elif shortcut == "lean":
+        assert implied_atoms(onto.rules.inference_rules, without_same_as(onto.rules.inference_rules),
+                             (set(), set())) or source == "tbox"
+        monkeypatch.setattr(materialize, "implied_atoms", lambda rules, ordered, asserted: {})
     else:
         monkeypatch.setattr(materialize.Materializer, "_claims_hold", lambda self, i: True)
     onto.reason(mode="full")
@@ -147,6 +153,62 @@ def test_on_the_map_the_links_domain_reads_the_asserted_links_alone() -> None:
     chosen = {rules[i].origin for i in implied_first_passes(rules, list(range(len(rules))))}
     assert "connectedTo domain LOCATION" in chosen  # written by Connectability, whose doors say LOCATION
     assert "hasDoor domain LOCATION" not in chosen  # asserted only: it is what the others rest on
+
+
+# ---------------------------------------------------------------- class atoms another atom carries
+
+def test_on_the_map_the_intersections_first_pass_reads_the_restriction_alone() -> None:
+    """ROOM ≡ LOCATION ⊓ ∃hasDoor.DOOR and CORRIDOR ≡ LOCATION ⊓ ≥2 hasDoor.DOOR: every writer of the
+    restrictions' memberships reads hasDoor (whose domain is LOCATION) or a class that is a LOCATION."""
+    from topostore.resources import default_ontology_files
+
+    onto = Ontology()
+    for path in default_ontology_files():
+        onto.load(path)
+    rules = onto.rules.inference_rules
+    lean = implied_atoms(rules, without_same_as(rules), (set(), set()))
+    dropped = {(rules[i].head.o.rsplit("#", 1)[-1], rules[i].body[j].o.rsplit("#", 1)[-1])
+               for i, atoms in lean.items() for j in atoms}
+    assert {("ROOM>", "LOCATION>"), ("CORRIDOR>", "LOCATION>")} <= dropped
+    # a key with an asserted fact carries nothing: an asserted member need not be a LOCATION
+    ordered = without_same_as(rules)
+    room = ("t", "<" + MAP_NS + "ROOM>")
+    assert "<" + MAP_NS + "LOCATION>" in subject_classes(rules, ordered, (set(), set()))[room]
+    assert room not in subject_classes(rules, ordered, (set(), {room[1]}))
+    # eq-rep-s writes any class: where owl:sameAs may hold (it is ordered), no class key carries anything
+    assert not implied_atoms(rules, list(range(len(rules))), (set(), set()))
+
+
+def without_same_as(rules: list) -> list[int]:
+    """The rules a full REASON orders first on a map without owl:sameAs (eq-rep-s cannot fire there)."""
+    return [i for i, r in enumerate(rules) if r.stratum == 0 and not any("sameAs" in a.p for a in r.body)]
+
+
+MAP_NS = "http://bnc/exp-rob-lab/2022-23#"
+LEAN = PREFIXES + """:p a owl:ObjectProperty ; rdfs:domain :A . :q a owl:ObjectProperty ; rdfs:domain :B .
+:X owl:equivalentClass [ owl:intersectionOf ( :A [ a owl:Restriction ; owl:onProperty :p ; owl:someValuesFrom owl:Thing ] ) ] .
+:Y owl:equivalentClass [ owl:intersectionOf ( :B [ a owl:Restriction ; owl:onProperty :p ; owl:someValuesFrom owl:Thing ] ) ] .
+"""
+
+
+@pytest.mark.parametrize(("data", "members"), [
+    (":a :p :b .", {"X": {"a"}, "Y": set()}),  # p's domain A: the restriction vouches for A, not for B
+    (":a :p :b . :a :q :c .", {"X": {"a"}, "Y": {"a"}}),
+    (":a :q :c . :b :p :c .", {"X": {"b"}, "Y": set()}),
+])
+def test_a_left_out_atom_is_one_every_writer_of_the_other_implies(data: str, members: dict) -> None:
+    onto = loaded(LEAN + data)
+    assert onto.reason(mode="full").consistent
+    assert {c: {onto.short(i) for i in onto.instances(c)} for c in members} == members
+
+
+def test_an_asserted_member_of_the_witness_keeps_the_atom() -> None:
+    # Z ⊑ the restriction by an axiom, and :z asserted a Z: its membership is written by a rule whose body
+    # (Z) says nothing of A, so X's first pass must still ask for A
+    onto = loaded(LEAN + ":Z rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :p ; owl:someValuesFrom owl:Thing ] ."
+                  ":z a :Z . :a :p :b .")
+    assert onto.reason(mode="full").consistent
+    assert {onto.short(i) for i in onto.instances("X")} == {"a"}
 
 
 # ---------------------------------------------------------------- checks pairing two values
@@ -169,4 +231,27 @@ def test_a_check_pairing_two_values_reports_what_it_did_without_the_count(monkey
     found = sorted(str(v) for v in consistency.check_consistency(onto.store, onto.rules))
     assert any("x" in v for v in found) and any("y" in v for v in found)
     monkeypatch.setattr(consistency, "several_values", lambda rule, graphs: [])
+    assert sorted(str(v) for v in consistency.check_consistency(onto.store, onto.rules)) == found
+
+
+# ---------------------------------------------------------------- a disjointness check's classes, fewest members first
+
+NS = "http://example.org/card#"
+DISJOINT = PREFIXES + """:A a owl:Class . :B a owl:Class . :A owl:disjointWith :B .
+:a1 a :A . :a2 a :A . :a3 a :A . :both a :A , :B .
+"""
+
+
+def test_a_disjointness_check_reads_its_smaller_class_first_and_reports_the_same(
+        monkeypatch: pytest.MonkeyPatch) -> None:
+    from topostore.reason import consistency
+
+    onto = loaded(DISJOINT)
+    assert not onto.reason().consistent
+    check = next(r for r in onto.rules.checks if sorted(a.o for a in r.body) == [f"<{NS}A>", f"<{NS}B>"])
+    ordered = consistency.small_first(onto.store, check, {})
+    assert [a.o[-2] for a in ordered.body] == ["B", "A"]  # one B against four A
+    found = sorted(str(v) for v in consistency.check_consistency(onto.store, onto.rules))
+    assert any("both" in v for v in found)
+    monkeypatch.setattr(consistency, "small_first", lambda store, rule, graphs: rule)
     assert sorted(str(v) for v in consistency.check_consistency(onto.store, onto.rules)) == found

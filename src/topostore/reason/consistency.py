@@ -10,7 +10,8 @@ run, and an atom whose key lies in one graph is read in that graph, as a full RE
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
+from itertools import islice
 
 from pyoxigraph import Literal, NamedNode
 
@@ -87,6 +88,40 @@ def several_values(rule: Rule, graphs: dict[ReadKey, NamedNode]) -> list[str]:
     return out
 
 
+#: members counted per class when ordering a check's classes (a bound: only "small first" matters)
+SMALL_CLASS = 1000
+
+
+def small_first(store: Store, rule: Rule, graphs: dict[ReadKey, NamedNode]) -> Rule:
+    """``rule`` with its class atoms on one subject (a disjointness check: ``?x a C1 . ?x a C2``) ordered
+    by their members, fewest first.
+
+    The store joins the atoms in the order written: 10,000 doors each looked up among the robots cost
+    9.5 ms, the one robot looked up among the doors 0.06 ms (and 10,000 LOCATIONs among the doors 38 ms
+    against 9 ms the other way).  The members are counted from the index up to :data:`SMALL_CLASS`, so
+    only where a look-up costs no request (a store with round trips keeps the written order).
+    """
+    atoms = rule.body
+    if store.round_trips or len(atoms) < 2 or len({a.s for a in atoms}) != 1 \
+            or any(a.p != _TYPE or a.o.startswith("?") for a in atoms):
+        return rule
+    sizes = {a: _members(store, a, graphs) for a in atoms}
+    ordered = tuple(sorted(atoms, key=sizes.__getitem__))
+    return rule if ordered == atoms else replace(rule, body=ordered)
+
+
+def _members(store: Store, atom, graphs: dict[ReadKey, NamedNode]) -> int:
+    """The members of ``atom``'s class in the graphs it is read in, counted up to :data:`SMALL_CLASS`."""
+    cls = NamedNode(atom.o[1:-1])
+    one = AUX if atom.aux else graphs.get(atom.read_key())
+    count = 0
+    for graph in [one] if one is not None else GRAPHS:
+        count += sum(1 for _ in islice(store.triples(None, TYPE, cls, graph), SMALL_CLASS - count))
+        if count >= SMALL_CLASS:
+            break
+    return count
+
+
 def check_keys(rules: RuleSet) -> set[ReadKey]:
     """The read keys of the checks' body atoms."""
     return {atom.read_key() for rule in rules.checks for atom in rule.body}
@@ -129,8 +164,9 @@ def check_consistency(store: Store, rules: RuleSet, keys: KeyGraphs | None = Non
         graphs = one_graphs(rule, keys)
         if graphs is None:
             continue
+        text = check_text(small_first(store, rule, graphs), graphs)
         rows = [{v[1:]: solution[v[1:]] for v in rule.violation if solution[v[1:]] is not None}
-                for solution in store.query(check_text(rule, graphs), graphs=GRAPHS, prefixes=PREFIXES)]
+                for solution in store.query(text, graphs=GRAPHS, prefixes=PREFIXES)]
         # sorted, so that the report does not depend on evaluation order
         for row in sorted(rows, key=lambda r: [str(v) for v in r.values()]):
             key = (rule.name, rule.origin, frozenset(row.values()))

@@ -104,16 +104,7 @@ def implied_first_passes(rules: list[Rule], ordered: list[int]) -> set[int]:
     variable predicate or an upper stratum) reach the rule through its delta evaluations, which read
     every graph as before: the closure is the same.
     """
-    writers: dict[ReadKey, list[int]] = {}
-    for i in ordered:
-        writers.setdefault(rules[i].writes(), []).append(i)
-    any_class = writers.get(("p", TYPE_KEY), [])
-
-    def written(key: ReadKey) -> list[int]:
-        return writers.get(key, []) + (any_class if key[0] == "t" else [])
-
-    base = [rules[i] for i in ordered if len(rules[i].body) == 1 and not written(rules[i].body[0].read_key())]
-    implied = position_classes(base)
+    written, implied = _writers(rules, ordered)
     out: set[int] = set()
     for i in ordered:
         rule = rules[i]
@@ -123,6 +114,118 @@ def implied_first_passes(rules: list[Rule], ordered: list[int]) -> set[int]:
         if ws and i not in ws and all(_implies(rules[w], rule, implied) for w in ws):
             out.add(i)
     return out
+
+
+def _writers(rules: list[Rule], ordered: list[int]) -> tuple[Callable[[ReadKey], list[int]], dict]:
+    """The ordered rules writing each key (a head of any class writes every class), and the classes
+    each position implies through the *base* rules: one atom over a key no ordered rule writes,
+    whose evaluation reads every fact of it (:func:`implied_first_passes` says why only those)."""
+    writers: dict[ReadKey, list[int]] = {}
+    for i in ordered:
+        writers.setdefault(rules[i].writes(), []).append(i)
+    any_class = writers.get(("p", TYPE_KEY), [])
+
+    def written(key: ReadKey) -> list[int]:
+        return writers.get(key, []) + (any_class if key[0] == "t" else [])
+
+    base = [rules[i] for i in ordered if len(rules[i].body) == 1 and not written(rules[i].body[0].read_key())]
+    return written, position_classes(base)
+
+
+def implied_atoms(rules: list[Rule], ordered: list[int], asserted: Present) -> dict[int, tuple[int, ...]]:
+    """Per rule of the ordered first stratum, the class atoms its first pass can leave out.
+
+    ``C(v) ∧ K(v, …) ∧ … ⟹ H`` where every fact of K the ordered rules can write before the pass
+    carries ``C`` on its subject (:func:`subject_classes`): the pass may then read K alone
+    (``LOCATION ⊓ ≥2 hasDoor.DOOR``: the 5,000 members of the restriction instead of the 10,000
+    LOCATIONs, each looked up in the other).  Sound by induction over the writes: each fact an
+    evaluation writes has its rule's whole body in the closure (a first pass matching fewer atoms
+    matches only where the left-out atom holds there); complete because fewer atoms match more.
+    Facts of K written later (a rule of a variable predicate, an upper stratum) reach the rule
+    through delta evaluations of its whole body.  An atom left out never vouches for another.
+    """
+    candidates = [i for i in ordered if _has_class_atom_beside(rules[i])]
+    if not candidates:
+        return {}  # the table below reads every rule: not built where no body could use it
+    carried = subject_classes(rules, ordered, asserted)
+    out: dict[int, tuple[int, ...]] = {}
+    for i in candidates:
+        rule = rules[i]
+        dropped: list[int] = []
+        for j, atom in enumerate(rule.body):
+            if atom.p != TYPE_KEY or atom.o.startswith("?") or not atom.s.startswith("?"):
+                continue
+            if any(atom.o in carried.get(rule.body[k].read_key(), ()) and rule.body[k].s == atom.s
+                   and rule.writes() != rule.body[k].read_key()
+                   for k in range(len(rule.body)) if k != j and k not in dropped):
+                dropped.append(j)
+        if dropped:
+            out[i] = tuple(dropped)
+    return out
+
+
+def _has_class_atom_beside(rule: Rule) -> bool:
+    """A rule of the first stratum, positive, with a class atom and another atom on its subject."""
+    if len(rule.body) < 2 or rule.is_check or rule.stratum or rule.negates or rule.conditions_read_graph:
+        return False
+    return any(a.p == TYPE_KEY and not a.o.startswith("?") and a.s.startswith("?")
+               and any(b is not a and b.s == a.s for b in rule.body) for a in rule.body)
+
+
+def subject_classes(rules: list[Rule], ordered: list[int], asserted: Present) -> dict[ReadKey, frozenset[str]]:
+    """Per key the ordered rules write, the classes the subject of every fact of it has in the closure.
+
+    A key with an asserted fact, or written by a rule of any class, carries nothing; otherwise what
+    each writer's body says of the subject it writes, through its atoms (a class atom, a position a
+    one-atom rule types) and through what the keys of its atoms on that subject carry, in common to
+    all writers.  The greatest such table: true of every fact by induction over the writes (a fact's
+    writer read facts written before it), so a cycle of keys that only feed each other carries what
+    the cycle implies (it has no fact unless something outside it vouches).
+    """
+    written, _ = _writers(rules, ordered)
+    implied = position_classes(rules)  # the closure is closed under every rule
+    keys = {rules[i].writes() for i in ordered} - {None, ("*",), ("p", TYPE_KEY)}
+    keys = {k for k in keys if k[0] in ("p", "t") and k[1] not in asserted[0 if k[0] == "p" else 1]}
+    writers = {k: written(k) for k in keys}
+    # a key written by a rule whose head puts no variable at the subject, or by a rule of any class, carries nothing
+    keys = {k for k in keys if all(_writes_key(rules[w], k) for w in writers[k])}
+    carried: dict[ReadKey, frozenset[str] | None] = dict.fromkeys(keys)  # None: not yet bounded (every class)
+    readers: dict[ReadKey, set[ReadKey]] = {}
+    for k in keys:
+        for w in writers[k]:
+            for atom in rules[w].body:
+                readers.setdefault(atom.read_key(), set()).add(k)
+    work = list(keys)
+    while work:
+        k = work.pop()
+        found = None
+        for w in writers[k]:
+            got = _writer_classes(rules[w], implied, carried)
+            found = got if found is None else (found if got is None else found & got)
+        if found is not None and found != carried[k]:
+            carried[k] = found
+            work.extend(r for r in readers.get(k, ()) if r not in work)
+    return {k: v for k, v in carried.items() if v is not None}
+
+
+def _writes_key(rule: Rule, key: ReadKey) -> bool:
+    """Whether ``rule`` writes ``key`` itself (not any class or predicate) with a variable subject."""
+    head = rule.head
+    return head is not None and head.read_key() == key and head.s.startswith("?")
+
+
+def _writer_classes(rule: Rule, implied: dict, carried: dict) -> frozenset[str] | None:
+    """The classes ``rule``'s body gives the subject of its head (None: every class, from a key not
+    yet bounded in ``carried``)."""
+    term = rule.head.s
+    out = set(classes_of(term, rule.body, implied))
+    for atom in rule.body:
+        key = atom.read_key()
+        if atom.s == term and key in carried:
+            if carried[key] is None:
+                return None
+            out |= carried[key]
+    return frozenset(out)
 
 
 def _one_atom_to_class(rule: Rule) -> bool:
