@@ -34,6 +34,7 @@ universal and empty properties (``owl:topObjectProperty`` …), and, informative
 from __future__ import annotations
 
 from collections.abc import Iterator
+from functools import cached_property
 from itertools import islice
 
 from pyoxigraph import Literal, NamedNode
@@ -303,8 +304,20 @@ class ProfileReport:
                    for m, pos in self.on.get(p, ()))
 
     def disjoint(self, a: NamedNode, b: NamedNode) -> bool:
-        ta, tb_ = self.told(a), self.told(b)
-        return any((x in ta and y in tb_) or (y in ta and x in tb_) for x, y in self.owl.disjoint_pairs)
+        """Some told superclass of ``a`` (or ``a``) is told disjoint with one of ``b`` (or ``b``)."""
+        tb_ = self.told(b)
+        return any(not tb_.isdisjoint(self.disjoint_with.get(x, ())) for x in self.told(a))
+
+    @cached_property
+    def disjoint_with(self) -> dict[NamedNode, set[NamedNode]]:
+        """Each named class's told disjoint named classes, both ways: :meth:`disjoint` looks a class's
+        superclasses up here instead of scanning every disjoint pair (thousands in a TBox whose
+        siblings are made pairwise disjoint)."""
+        found: dict[NamedNode, set[NamedNode]] = {}
+        for x, y in self.owl.disjoint_pairs:
+            found.setdefault(x, set()).add(y)
+            found.setdefault(y, set()).add(x)
+        return found
 
     # ---------------------------------------------------------------- difference
     def difference(self) -> None:

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
-from functools import cached_property
+from functools import cached_property, lru_cache
 
 from pyoxigraph import NamedNode
 
@@ -79,12 +79,11 @@ def head_is_aux(p: str, o: str) -> bool:
 
 def _atom_score(atom: Atom, bound: set[str]) -> int:
     """Higher is cheaper to evaluate next, given the variables already bound."""
-    unbound = atom.variables() - bound
-    if not unbound:
+    if atom._vars <= bound:
         return 100  # a pure check on bound values
     s_known = not atom.s.startswith("?") or atom.s in bound
     o_known = not atom.o.startswith("?") or atom.o in bound
-    is_type = atom.p == str(TYPE)
+    is_type = atom.p == _TYPE_TEXT
     if atom.p.startswith("?"):
         return 20 if s_known else (15 if o_known else 0)
     if s_known and not is_type:
@@ -101,19 +100,28 @@ def join_order(atoms: tuple[Atom, ...], first: int | None = None, bound: Iterabl
     always take the atom that is cheapest given what is bound (``bound``: variables
     bound before the body), so that no rule starts from a cross product of class
     extensions."""
+    if len(atoms) <= 1 and first in (None, 0):
+        return list(range(len(atoms)))
+    return list(_join_order(tuple(atoms), first, frozenset(bound)))
+
+
+@lru_cache(maxsize=1 << 16)
+def _join_order(atoms: tuple[Atom, ...], first: int | None, bound: frozenset[str]) -> tuple[int, ...]:
+    """:func:`join_order`, kept per body: a compilation merges and a full REASON renders the same
+    bodies again and again (every round, every delta atom)."""
     remaining = list(range(len(atoms)))
     order: list[int] = []
-    bound = set(bound)
+    known = set(bound)
     if first is not None:
         order.append(first)
         remaining.remove(first)
-        bound |= atoms[first].variables()
+        known |= atoms[first]._vars
     while remaining:
-        best = max(remaining, key=lambda i: (_atom_score(atoms[i], bound), -i))
+        best = max(remaining, key=lambda i: (_atom_score(atoms[i], known), -i))
         order.append(best)
         remaining.remove(best)
-        bound |= atoms[best].variables()
-    return order
+        known |= atoms[best]._vars
+    return tuple(order)
 
 
 @dataclass(frozen=True)
@@ -207,6 +215,17 @@ class Rule:
         the order it is written.  ``graphs`` names the one graph that holds every fact of
         some read keys (see :func:`.atom_text`).
         """
+        if delta_index is None and not graphs:
+            return self._plain_where
+        return self._where(delta_index, delta_graph, graphs)
+
+    @cached_property
+    def _plain_where(self) -> str:
+        """The WHERE group over the default graphs, built once: it is the rule's identity when rule sets
+        are merged (:meth:`RuleSet.add`) and the text of most evaluations."""
+        return self._where(None, "", None)
+
+    def _where(self, delta_index: int | None, delta_graph: str, graphs: Mapping[ReadKey, NamedNode] | None) -> str:
         lines = [self.atom_text(i, delta_index, delta_graph, graphs) for i in join_order(self.body, delta_index)]
         if self.filters:
             lines.append(self.filters)
@@ -243,6 +262,11 @@ class Rule:
         return f"# {self.name}: {self.origin} (inconsistent when it matches)\nSELECT {proj}\nWHERE {{\n  {body}\n}}"
 
 
+def _identity(rule: Rule) -> tuple:
+    """What makes two rules one when rule sets are merged: the name, the WHERE text and the head."""
+    return rule.name, rule.where(), rule.head
+
+
 @dataclass
 class RuleSet:
     """All rules of one ontology, plus schema facts the query layer needs."""
@@ -259,14 +283,28 @@ class RuleSet:
     notices: list = field(default_factory=list)
     #: SQWRL queries of the ontology by name (compile.sqwrl.SqwrlQuery), run like named queries
     queries: dict = field(default_factory=dict)
+    #: (the list :meth:`add` last appended to, its length then, the identities of its rules)
+    _seen: tuple | None = field(default=None, init=False, repr=False, compare=False)
 
     def add(self, rules: Iterable[Rule]) -> None:
-        seen = {(r.name, r.where(), r.head) for r in self.rules}
+        """Append the rules not already in the set (same name, WHERE text and head).
+
+        The keys of the rules already held are kept between calls (a compilation adds a dozen batches
+        to tens of thousands of rules); they are read again only when :attr:`rules` was replaced or
+        changed in between."""
+        seen = self._seen_keys()
         for r in rules:
-            key = (r.name, r.where(), r.head)
+            key = _identity(r)
             if key not in seen:
                 seen.add(key)
                 self.rules.append(r)
+        self._seen = (self.rules, len(self.rules), seen)
+
+    def _seen_keys(self) -> set:
+        held = self._seen
+        if held is not None and held[0] is self.rules and held[1] == len(self.rules):
+            return held[2]
+        return {_identity(r) for r in self.rules}
 
     @property
     def inference_rules(self) -> list[Rule]:
