@@ -78,6 +78,8 @@ class OwlCompiler:
             (a.node, b.node) for a, b in tbox.disjoint if a.is_named and b.is_named
         ]
         self.told = self._told_superclasses()
+        #: :meth:`fillers_subsumed`'s answers by pair of fillers
+        self._fillers: dict[tuple, bool] = {}
         #: the rules of non-membership the complements need, a named part
         self.negation = NegativeMembership(self)
 
@@ -275,18 +277,34 @@ class OwlCompiler:
 
     def restriction_subsumption(self, exprs: list[Expr]) -> None:
         """≥n p.C ⊑ ≥m p.D (n ≥ m ≥ 1, C ⊑ D), with ∃ as ≥1 and = n as ≥ n; and = n p.C ⊑ = n p.D when
-        C ≡ D (two restrictions written alike are one class)."""
+        C ≡ D (two restrictions written alike are one class).
+
+        Only restrictions on one property are compared, and whether one filler is subsumed by another is
+        decided once per pair of fillers (:meth:`fillers_subsumed`): a tutorial-style TBox has hundreds of
+        existentials on one property over a few hundred fillers."""
         lower = [e for e in exprs if e.kind in ("some", "min", "exact")]
+        on: dict[Prop | None, list[Expr]] = {}
+        for e in lower:
+            on.setdefault(e.prop, []).append(e)
         for a in lower:
-            for b in lower:
-                if a.node == b.node or a.prop != b.prop:
+            na = 1 if a.kind == "some" else a.n
+            for b in on[a.prop]:
+                if a.node == b.node:
                     continue
-                if b.kind == "exact" and not (a.kind == "exact" and a.n == b.n and self.filler_subsumed(b, a)):
+                if b.kind == "exact" and not (a.kind == "exact" and a.n == b.n and self.fillers_subsumed(b, a)):
                     continue
-                na = 1 if a.kind == "some" else a.n
                 nb = 1 if b.kind == "some" else b.n
-                if na >= nb >= 1 and self.filler_subsumed(a, b):
+                if na >= nb >= 1 and self.fillers_subsumed(a, b):
                     self.instantiate(class_row(a, b), f"{a} is subsumed by {b}", "ext-card-sub")
+
+    def fillers_subsumed(self, a: Expr, b: Expr) -> bool:
+        """:meth:`filler_subsumed`, decided once per pair of fillers (the filler's node, or its datatype)."""
+        key = (a.filler.node if a.filler is not None else None, a.datatype,
+               b.filler.node if b.filler is not None else None, b.datatype)
+        found = self._fillers.get(key)
+        if found is None:
+            found = self._fillers[key] = self.filler_subsumed(a, b)
+        return found
 
     # ------------------------------------------------------------------ axioms
     def class_axioms(self) -> None:

@@ -134,16 +134,21 @@ def restriction_rules(owl: OwlCompiler) -> list[Rule]:
 
     lower = [e for e in exprs if e.kind in ("some", "min", "exact")]
     for a in lower:
+        above = supers.get(a.prop, ())
+        if not above:
+            continue  # no super-property: nothing to compare (the same property is ext-card-sub's)
         for b in lower:
-            if b.kind != "exact" and b.prop in supers.get(a.prop, ()):
+            if b.kind != "exact" and b.prop in above:
                 na, nb = (1 if a.kind == "some" else a.n), (1 if b.kind == "some" else b.n)
-                if na >= nb >= 1 and owl.filler_subsumed(a, b):
+                if na >= nb >= 1 and owl.fillers_subsumed(a, b):
                     subsume(a, b)
     alls = [e for e in exprs if e.kind == "all" and not e.prop.inverse]
     for a in alls:
+        if a.filler is None and a.datatype is None:
+            continue
         for b in alls:
-            if a.node != b.node and (a.prop == b.prop or a.prop in supers.get(b.prop, ())) and (
-                    a.filler is not None or a.datatype is not None) and owl.filler_subsumed(a, b):
+            if a.node != b.node and (a.prop == b.prop or a.prop in supers.get(b.prop, ())) and \
+                    owl.fillers_subsumed(a, b):
                 subsume(a, b)
     return rules
 

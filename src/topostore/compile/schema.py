@@ -29,7 +29,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass, field, replace
-from functools import cache
+from functools import cache, cached_property, lru_cache
 
 from pyoxigraph import NamedNode
 
@@ -82,9 +82,9 @@ class SchemaRule:
 
     def _substitute(self, atom: Atom, row: Row) -> Atom:
         bound = dict(zip(self.variables, row))
-        return Atom(*(bound.get(t, t) for t in (atom.s, atom.p, atom.o)), aux=atom.aux)
+        return _atom(bound.get(atom.s, atom.s), bound.get(atom.p, atom.p), bound.get(atom.o, atom.o), atom.aux)
 
-    @property
+    @cached_property
     def reported(self) -> tuple[str, ...]:
         """A check's reported variables once instantiated: the schema variables are constants there
         (the generic check reports them, so that its message can name the row's terms)."""
@@ -98,12 +98,17 @@ class SchemaRule:
         if len(row) != len(self.variables) or (labels is not None and len(labels) != len(row)):
             raise RuleCompileError(f"{self.name}: a row of {len(row)} terms for {len(self.variables)} variables")
         r = self.rule
-        head = self._substitute(r.head, row) if r.head is not None else None
+        bound = dict(zip(self.variables, row))
+
+        def put(a: Atom) -> Atom:
+            return _atom(bound.get(a.s, a.s), bound.get(a.p, a.p), bound.get(a.o, a.o), a.aux)
+
         message = r.message
-        for var, label in zip(self.variables, labels if labels is not None else [_short(t) for t in row]):
-            message = message.replace("{" + var[1:] + "}", label)
-        return Rule(r.name, origin, tuple(self._substitute(a, row) for a in r.body), head, r.conditions,
-                    r.filter_reads, self.reported, message, r.aux_head, r.stratum)
+        if message:
+            for var, label in zip(self.variables, labels if labels is not None else [_short(t) for t in row]):
+                message = message.replace("{" + var[1:] + "}", label)
+        return Rule(r.name, origin, tuple(put(a) for a in r.body), put(r.head) if r.head is not None else None,
+                    r.conditions, r.filter_reads, self.reported, message, r.aux_head, r.stratum)
 
     def row_of(self, rule: Rule) -> Row | None:
         """The row ``rule`` is the instantiation of, or None when it is not one (another name or shape).
@@ -191,6 +196,13 @@ class SchemaRule:
         where = "helper" if aux else "inferred"
         return Rule(r.name, f"{r.origin} (generic: the rows of {self.table}, conclusions in the {where} graph)",
                     r.body, r.head, conditions, r.filter_reads, r.violation, r.message, aux, r.stratum)
+
+
+@lru_cache(maxsize=1 << 16)
+def _atom(s: str, p: str, o: str, aux: bool) -> Atom:
+    """One :class:`Atom` per pattern: the rows of a table repeat their terms (a class in every row of
+    its disjoint siblings), and an instantiation then reuses the atom instead of deriving it again."""
+    return Atom(s, p, o, aux)
 
 
 @cache
