@@ -262,9 +262,10 @@ class Rule:
         return f"# {self.name}: {self.origin} (inconsistent when it matches)\nSELECT {proj}\nWHERE {{\n  {body}\n}}"
 
 
-def _identity(rule: Rule) -> tuple:
-    """What makes two rules one when rule sets are merged: the name, the WHERE text and the head."""
-    return rule.name, rule.where(), rule.head
+def _bucket(rule: Rule) -> tuple:
+    """What two rules with the same WHERE text and head share (the text lists the body's atoms in join
+    order, then the filters): a cheap key that only rules which may be one have in common."""
+    return rule.name, rule.head, frozenset(rule.body), len(rule.body), rule.filters
 
 
 @dataclass
@@ -283,28 +284,35 @@ class RuleSet:
     notices: list = field(default_factory=list)
     #: SQWRL queries of the ontology by name (compile.sqwrl.SqwrlQuery), run like named queries
     queries: dict = field(default_factory=dict)
-    #: (the list :meth:`add` last appended to, its length then, the identities of its rules)
+    #: (the list :meth:`add` last appended to, its length then, its rules by :func:`_bucket`)
     _seen: tuple | None = field(default=None, init=False, repr=False, compare=False)
 
     def add(self, rules: Iterable[Rule]) -> None:
-        """Append the rules not already in the set (same name, WHERE text and head).
+        """Append the rules not already in the set: two rules are one when their name, WHERE text and
+        head are the same (a body written in another order may give the same text).
 
-        The keys of the rules already held are kept between calls (a compilation adds a dozen batches
-        to tens of thousands of rules); they are read again only when :attr:`rules` was replaced or
-        changed in between."""
+        The WHERE text is compared only between rules of the same name, head, filters and body atoms
+        (:func:`_bucket`): most rules of a large TBox share that with no other, and their texts are
+        never built.  The buckets of the rules held are kept between calls (a compilation adds a dozen
+        batches to tens of thousands of rules); they are read again only when :attr:`rules` was
+        replaced or changed in between."""
         seen = self._seen_keys()
         for r in rules:
-            key = _identity(r)
-            if key not in seen:
-                seen.add(key)
-                self.rules.append(r)
+            bucket = seen.setdefault(_bucket(r), [])
+            if bucket and any(other.where() == r.where() for other in bucket):
+                continue
+            bucket.append(r)
+            self.rules.append(r)
         self._seen = (self.rules, len(self.rules), seen)
 
-    def _seen_keys(self) -> set:
+    def _seen_keys(self) -> dict[tuple, list[Rule]]:
         held = self._seen
         if held is not None and held[0] is self.rules and held[1] == len(self.rules):
             return held[2]
-        return {_identity(r) for r in self.rules}
+        seen: dict[tuple, list[Rule]] = {}
+        for r in self.rules:
+            seen.setdefault(_bucket(r), []).append(r)
+        return seen
 
     @property
     def inference_rules(self) -> list[Rule]:
