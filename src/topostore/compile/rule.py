@@ -9,9 +9,10 @@ classes a rule reads to skip rules nothing new can trigger.
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Mapping
+from collections.abc import Callable, Hashable, Iterable, Mapping
 from dataclasses import dataclass, field
 from functools import cached_property, lru_cache
+from typing import TypeVar
 
 from pyoxigraph import NamedNode
 
@@ -30,6 +31,8 @@ def key_pattern(key: ReadKey) -> tuple:
     return (None, TYPE, term) if key[0] == "t" else (None, term, None)
 
 _TYPE_TEXT = str(TYPE)
+
+T = TypeVar("T")
 
 
 @dataclass(frozen=True)
@@ -286,6 +289,19 @@ class RuleSet:
     queries: dict = field(default_factory=dict)
     #: (the list :meth:`add` last appended to, its length then, its rules by :func:`_bucket`)
     _seen: tuple | None = field(default=None, init=False, repr=False, compare=False)
+    #: what :meth:`derived` made from :attr:`rules`: key -> (the rules list, its length, the value)
+    _derived: dict = field(default_factory=dict, init=False, repr=False, compare=False)
+
+    def derived(self, key: Hashable, make: Callable[[], T]) -> T:
+        """``make()``, kept while :attr:`rules` is the same list of the same length: what every full
+        REASON derives from the rules alone (which rules run generically, over which rows) is then
+        derived once per compilation, not once per REASON."""
+        held = self._derived.get(key)
+        if held is not None and held[0] is self.rules and held[1] == len(self.rules):
+            return held[2]
+        value = make()
+        self._derived[key] = (self.rules, len(self.rules), value)
+        return value
 
     def add(self, rules: Iterable[Rule]) -> None:
         """Append the rules not already in the set: two rules are one when their name, WHERE text and

@@ -120,18 +120,27 @@ class SchemaRule:
                 or rule.violation != self.reported or rule.stratum != t.stratum or rule.aux_head != t.aux_head
                 or (rule.head is None) != (t.head is None)):
             return None
-        bound: dict[str, str] = {}
-        pairs = list(zip(t.body, rule.body)) + ([(t.head, rule.head)] if t.head is not None else [])
-        for want, got in pairs:
-            if want.aux != got.aux:
+        atoms = rule.body + (rule.head,) if t.head is not None else rule.body
+        bound: list[str | None] = [None] * len(self.variables)
+        for got, (aux, terms) in zip(atoms, self._plan):
+            if got.aux != aux:
                 return None
-            for w, g in ((want.s, got.s), (want.p, got.p), (want.o, got.o)):
-                if w in self.variables:
-                    if g.startswith("?") or bound.setdefault(w, g) != g:
+            for g, w in zip((got.s, got.p, got.o), terms):
+                if type(w) is int:  # a schema variable: the row's term, the same wherever it occurs
+                    if g.startswith("?") or (bound[w] is not None and bound[w] != g):
                         return None
+                    bound[w] = g
                 elif w != g:
                     return None
-        return tuple(bound[v] for v in self.variables)
+        return tuple(bound)  # type: ignore[arg-type]  # every schema variable occurs (checked at load)
+
+    @cached_property
+    def _plan(self) -> tuple[tuple[bool, tuple[str | int, ...]], ...]:
+        """Per atom of the template's body and head, what :meth:`row_of` compares: its helper flag, and
+        per term the schema variable's index in a row or the term itself."""
+        index = {v: i for i, v in enumerate(self.variables)}
+        atoms = self.rule.body + ((self.rule.head,) if self.rule.head is not None else ())
+        return tuple((a.aux, tuple(index.get(term, term) for term in (a.s, a.p, a.o))) for a in atoms)
 
     def triples(self, row: Row) -> list[str]:
         """The schema atoms of a row, as triples of SPARQL text (what the schema graph holds)."""
