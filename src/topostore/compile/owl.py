@@ -80,6 +80,8 @@ class OwlCompiler:
         self.told = self._told_superclasses()
         #: :meth:`fillers_subsumed`'s answers by pair of fillers
         self._fillers: dict[tuple, bool] = {}
+        #: :meth:`class_subsumed`'s answers by pair of nodes
+        self._subsumed: dict[tuple[NamedNode, NamedNode], bool] = {}
         #: the rules of non-membership the complements need, a named part
         self.negation = NegativeMembership(self)
 
@@ -209,7 +211,15 @@ class OwlCompiler:
     def class_subsumed(self, x: Expr, y: Expr) -> bool:
         """Told: ``x ⊑ y`` through named superclasses, a member of a union on the right (``C ⊑ C ⊔ D``)
         or every member of an intersection; on the left, a member of an intersection or every member
-        of a union."""
+        of a union.  Decided once per pair of nodes: comparing the unions of a TBox's universal
+        restrictions compares the same members again and again."""
+        key = (x.node, y.node)
+        found = self._subsumed.get(key)
+        if found is None:
+            found = self._subsumed[key] = self._class_subsumed(x, y)
+        return found
+
+    def _class_subsumed(self, x: Expr, y: Expr) -> bool:
         if x.node == y.node or (x.is_named and y.is_named and y.node in self.told.get(x.node, set())):
             return True
         if y.kind == "or" and any(self.class_subsumed(x, m) for m in y.members):
