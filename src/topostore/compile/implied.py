@@ -149,17 +149,20 @@ def classes_of(var: str, atoms: Iterable[Atom], implied: Mapping[Position, froze
 
 def simplify(rules: list[Rule]) -> list[Rule]:
     """The rules with every implied type atom dropped from their bodies (see the module docstring)."""
-    implied = _closure(_position_edges(rules))
-    return [_simplified(rule, implied) for rule in rules]
+    edges = _position_edges(rules)
+    implied = _closure(edges)
+    # a class no single-atom rule concludes is implied by nothing: its atoms need no search for a witness
+    targets = {c for found in edges.values() for kind, c in found if kind == "t"}
+    return [_simplified(rule, implied, targets) for rule in rules]
 
 
-def _simplified(rule: Rule, implied: Mapping[Position, frozenset[str]]) -> Rule:
+def _simplified(rule: Rule, implied: Mapping[Position, frozenset[str]], targets: set[str]) -> Rule:
     if len(rule.body) < 2:
         return rule  # a single atom has no other atom to be implied by
     kept = list(rule.body)
     dropped: list[Atom] = []
     for atom in rule.body:
-        if atom.p != _TYPE or not _is_var(atom.s) or _is_var(atom.o):
+        if atom.p != _TYPE or atom.o not in targets or not _is_var(atom.s) or _is_var(atom.o):
             continue
         others = [a for a in kept if a is not atom]
         witness = _witness(atom, others, implied)

@@ -136,6 +136,8 @@ class ProfileReport:
                 self.on.setdefault(e.prop, []).append((e, positive))
         self.uses_difference = uses_difference
         self.notices: dict[tuple[str, str], Notice] = {}
+        #: :meth:`single_valued`'s answers by property
+        self._single: dict[Prop, bool] = {}
 
     def note(self, kind: str, axiom: str, reason: str) -> None:
         self.notices.setdefault((kind, axiom), Notice(INCOMPLETE, axiom, reason, kind))
@@ -297,7 +299,14 @@ class ProfileReport:
         return out
 
     def single_valued(self, p: Prop, e: Expr) -> bool:
-        """At most one value of ``p`` at all: functional, or an unqualified maximum of one told."""
+        """At most one value of ``p`` at all: functional, or an unqualified maximum of one told (decided
+        once per property: asked for every existential on it)."""
+        found = self._single.get(p)
+        if found is None:
+            found = self._single[p] = self._single_valued(p)
+        return found
+
+    def _single_valued(self, p: Prop) -> bool:
         if self.tb.has("InverseFunctionalProperty" if p.inverse else "FunctionalProperty", p.iri):
             return True
         return any(pos and m.kind in ("max", "exact") and m.n <= 1 and m.filler is None and m.datatype is None
