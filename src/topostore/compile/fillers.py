@@ -24,27 +24,52 @@ if TYPE_CHECKING:
 
 
 class FillerIndex:
-    """The restrictions ``candidates`` (in their order), looked up by what their filler subsumes."""
+    """The restrictions ``candidates`` (in their order), looked up by what their filler subsumes.
+
+    A named filler is looked up exactly (:func:`named_supers`).  A union of named classes (a closure
+    axiom's ``only (A or B or C)``) can subsume a filler only if it is that very node or one of its
+    members is among :func:`named_parts` of the filler: those are the union's only candidates, then
+    tested.  Any other filler is tested against every restriction."""
 
     def __init__(self, owl: OwlCompiler, candidates: Sequence[Expr]) -> None:
         self.owl = owl
         self.by_named: dict[NamedNode, list[tuple[int, Expr]]] = {}
+        self.by_member: dict[NamedNode, list[tuple[int, Expr]]] = {}
         self.others: list[tuple[int, Expr]] = []
         for i, b in enumerate(candidates):
-            if b.filler is not None and b.filler.is_named and b.datatype is None:
-                self.by_named.setdefault(b.filler.node, []).append((i, b))
+            f = b.filler
+            if f is not None and f.is_named and b.datatype is None:
+                self.by_named.setdefault(f.node, []).append((i, b))
+            elif f is not None and b.datatype is None and f.kind == "or" and f.members \
+                    and all(m.is_named for m in f.members):
+                for node in {f.node, *(m.node for m in f.members)}:
+                    self.by_member.setdefault(node, []).append((i, b))
             else:
                 self.others.append((i, b))
 
     def subsuming(self, a: Expr) -> list[Expr]:
         """The candidates ``b`` with ``owl.filler_subsumed(a, b)``, in the candidates' order."""
-        found: list[tuple[int, Expr]] = []
+        found: dict[int, Expr] = {}
         if a.filler is not None and a.datatype is None:
             for node in named_supers(self.owl, a.filler):
-                found += self.by_named.get(node, ())
-        found += [(i, b) for i, b in self.others if self.owl.fillers_subsumed(a, b)]
-        found.sort(key=lambda pair: pair[0])
-        return [b for _, b in found]
+                found.update(self.by_named.get(node, ()))
+            for node in {a.filler.node, *named_parts(self.owl, a.filler)}:
+                found.update((i, b) for i, b in self.by_member.get(node, ())
+                             if i not in found and self.owl.fillers_subsumed(a, b))
+        found.update((i, b) for i, b in self.others if self.owl.fillers_subsumed(a, b))
+        return [found[i] for i in sorted(found)]
+
+
+def named_parts(owl: OwlCompiler, x: Expr) -> frozenset[NamedNode]:
+    """:func:`named_supers` of ``x`` and of the members of its intersections and unions, at any depth: a
+    union of named classes subsumes ``x`` only if one of its members is among them (or it is ``x``)."""
+    found = owl.named_parts.get(x.node)
+    if found is None:
+        found = named_supers(owl, x)
+        if x.kind in ("and", "or"):
+            found = found.union(*(named_parts(owl, m) for m in x.members))
+        owl.named_parts[x.node] = found
+    return found
 
 
 def named_supers(owl: OwlCompiler, x: Expr) -> frozenset[NamedNode]:
@@ -64,4 +89,4 @@ def named_supers(owl: OwlCompiler, x: Expr) -> frozenset[NamedNode]:
     return found
 
 
-__all__ = ["FillerIndex", "named_supers"]
+__all__ = ["FillerIndex", "named_parts", "named_supers"]

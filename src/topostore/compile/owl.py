@@ -85,6 +85,8 @@ class OwlCompiler:
         self._subsumed: dict[tuple[NamedNode, NamedNode], bool] = {}
         #: per class expression, the named classes it is told to be subsumed by (:func:`.fillers.named_supers`)
         self.named_supers: dict[NamedNode, frozenset[NamedNode]] = {}
+        #: per class expression, :func:`.fillers.named_parts`
+        self.named_parts: dict[NamedNode, frozenset[NamedNode]] = {}
         #: the rules of non-membership the complements need, a named part
         self.negation = NegativeMembership(self)
 
