@@ -14,7 +14,7 @@ from functools import cached_property
 from pyoxigraph import Literal, NamedNode
 
 from ..errors import RuleCompileError
-from ..rdf.terms import Term
+from ..rdf.terms import Term, sparql
 from ..rdf.vocab import EXPR_PREFIX, NOTHING, OWL, RDF, RDFS, THING, TYPE, XSD, is_skolem, owl
 from ..stores.base import Store
 from . import data_ranges
@@ -57,6 +57,11 @@ class Expr:
 
     def __str__(self) -> str:  # used in rule origins and error messages
         return describe(self)
+
+    @cached_property
+    def term(self) -> str:
+        """The node as SPARQL text (what a rule or a schema row writes), built once."""
+        return sparql(self.node)
 
     @cached_property
     def description(self) -> str:

@@ -87,6 +87,8 @@ class OwlCompiler:
         self.named_supers: dict[NamedNode, frozenset[NamedNode]] = {}
         #: per class expression, :func:`.fillers.named_parts`
         self.named_parts: dict[NamedNode, frozenset[NamedNode]] = {}
+        #: :meth:`all_expressions`, once walked
+        self._expressions: list[Expr] | None = None
         #: the rules of non-membership the complements need, a named part
         self.negation = NegativeMembership(self)
 
@@ -237,6 +239,15 @@ class OwlCompiler:
 
     # ------------------------------------------------------------------ expressions
     def all_expressions(self) -> list[Expr]:
+        """Every class expression of the axioms and the typed expressions, each once (by node).
+
+        Walked once per compiler (its TBox is read whole before the compiler is made): the parts of the
+        compilation ask for it again and again."""
+        if self._expressions is None:
+            self._expressions = self._walk_expressions()
+        return list(self._expressions)
+
+    def _walk_expressions(self) -> list[Expr]:
         found: dict[NamedNode, Expr] = {}
 
         def walk(e: Expr | None) -> None:

@@ -50,6 +50,7 @@ class Atom:
     # derived once: the reasoner asks for them thousands of times per REASON
     _key: ReadKey = field(init=False, repr=False, compare=False)
     _vars: frozenset = field(init=False, repr=False, compare=False)
+    _hash: int = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
         if self.p.startswith("?"):
@@ -60,6 +61,11 @@ class Atom:
             key = ("p", self.p)
         object.__setattr__(self, "_key", key)
         object.__setattr__(self, "_vars", frozenset(t for t in (self.s, self.p, self.o) if t.startswith("?")))
+        object.__setattr__(self, "_hash", hash((self.s, self.p, self.o, self.aux)))
+
+    def __hash__(self) -> int:
+        # kept: rule sets are merged and deduplicated by their atoms (tens of thousands on a large TBox)
+        return self._hash
 
     def text(self) -> str:
         return f"{self.s} {self.p} {self.o} ."

@@ -276,14 +276,14 @@ def class_row(a: Expr, b: Expr) -> Row | None:
     """``a ⊑ b`` (or one direction of ``a ≡ b``); None when it says nothing (a class of itself, owl:Thing)."""
     if a.node == b.node or THING in (a.node, b.node):
         return None
-    return sparql(a.node), sparql(b.node)
+    return a.term, b.term
 
 
 def disjoint_row(a: Expr, b: Expr) -> Row | None:
     """Disjoint ``a`` and ``b`` (in this order); None when one is owl:Thing (its rules read one class)."""
     if THING in (a.node, b.node):
         return None
-    return sparql(a.node), sparql(b.node)
+    return a.term, b.term
 
 
 def filler_row(e: Expr, data: bool) -> Row | None:
@@ -293,21 +293,21 @@ def filler_row(e: Expr, data: bool) -> Row | None:
     if data or e.prop is None or e.prop.inverse or e.datatype is not None or e.filler is None \
             or e.filler.node == THING:
         return None
-    return sparql(e.node), sparql(e.prop.iri), sparql(e.filler.node)
+    return e.term, sparql(e.prop.iri), e.filler.term
 
 
 def value_row(e: Expr) -> Row | None:
     """(restriction, property, value) of a hasValue restriction on a named property; None otherwise."""
     if e.prop is None or e.prop.inverse or e.value is None:
         return None
-    return sparql(e.node), sparql(e.prop.iri), sparql(e.value)
+    return e.term, sparql(e.prop.iri), sparql(e.value)
 
 
 def member_row(e: Expr, m: Expr) -> Row | None:
     """(intersection or union, member): a row per member; None for owl:Thing (it says nothing)."""
     if m.node == THING:
         return None
-    return sparql(e.node), sparql(m.node)
+    return e.term, m.term
 
 
 def chain_row(q: NamedNode, chain: Sequence[Prop]) -> Row | None:
@@ -322,7 +322,7 @@ def typing_row(p: Prop, c: Expr) -> Row | None:
     """A domain or range ``c`` of ``p``; None for owl:Thing or an inverse property expression."""
     if c.node == THING or p.inverse:
         return None
-    return sparql(p.iri), sparql(c.node)
+    return sparql(p.iri), c.term
 
 
 def subproperty_row(p: Prop, q: Prop) -> Row | None:
