@@ -340,9 +340,9 @@ class OwlCompiler:
         for a, b in self.tb.equivalent:
             self.instantiate(class_row(a, b), f"{a} EquivalentTo {b}", "cax-eqc1", "cax-eqc2")
         for a, b in self.tb.disjoint:
-            body = self.member("?x", a) + self.member("?x", b)
             if self.instantiate(disjoint_row(a, b), f"{a} DisjointWith {b}", "cax-dw", labels=(str(a), str(b))):
                 continue
+            body = self.member("?x", a) + self.member("?x", b)
             if body:  # with owl:Thing: a check of one class
                 self.emit("cax-dw", f"{a} DisjointWith {b}", body, violation=("?x",),
                           message=f"{{x}} is in the disjoint classes {a} and {b}")

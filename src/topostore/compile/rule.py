@@ -167,7 +167,7 @@ class Rule:
     _reads: frozenset = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "filters", render(self.conditions))
+        object.__setattr__(self, "filters", render(self.conditions) if self.conditions else "")
         object.__setattr__(self, "_reads", frozenset(a.read_key() for a in self.body) | self.filter_reads)
 
     @property
@@ -229,6 +229,12 @@ class Rule:
         return self._where(delta_index, delta_graph, graphs)
 
     @cached_property
+    def bucket(self) -> tuple:
+        """The name, head, body atoms (as a set, with their number) and filters: what :meth:`RuleSet.add`
+        groups rules by before it compares their WHERE texts (kept: a compilation merges twice)."""
+        return self.name, self.head, frozenset(self.body), len(self.body), self.filters
+
+    @cached_property
     def _plain_where(self) -> str:
         """The WHERE group over the default graphs, built once: it is the rule's identity when rule sets
         are merged (:meth:`RuleSet.add`) and the text of most evaluations."""
@@ -274,7 +280,7 @@ class Rule:
 def _bucket(rule: Rule) -> tuple:
     """What two rules with the same WHERE text and head share (the text lists the body's atoms in join
     order, then the filters): a cheap key that only rules which may be one have in common."""
-    return rule.name, rule.head, frozenset(rule.body), len(rule.body), rule.filters
+    return rule.bucket
 
 
 @dataclass
