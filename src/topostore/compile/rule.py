@@ -168,7 +168,7 @@ class Rule:
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "filters", render(self.conditions) if self.conditions else "")
-        object.__setattr__(self, "_reads", frozenset(a.read_key() for a in self.body) | self.filter_reads)
+        object.__setattr__(self, "_reads", frozenset([a._key for a in self.body]) | self.filter_reads)
 
     @property
     def premises(self) -> tuple[Atom, ...]:
