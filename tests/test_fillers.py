@@ -58,7 +58,7 @@ def test_the_index_finds_what_the_pairwise_test_finds() -> None:
         fillers += [f.members[0] for f in fillers if f.kind == "not"]  # a union's member may be shared
         restrictions = [make.restriction(fillers) for _ in range(30)]
         owl = OwlCompiler(tb)
-        index = FillerIndex(owl, restrictions)
+        index = FillerIndex(owl.subsumption, restrictions)
         for a in restrictions:
             expected = [b for b in restrictions if owl.filler_subsumed(a, b)]
             assert index.subsuming(a) == expected, (seed, a)

@@ -35,7 +35,7 @@ from ..rdf.vocab import NOTHING, SAME_AS, THING, TYPE
 from . import condition as cond
 from .condition import Condition
 from .datatypes import implied_ranges
-from .fillers import FillerIndex
+from .fillers import FillerIndex, Subsumption
 from .model import Expr, Prop, TBox
 from .negation import NegativeMembership
 from .notices import Notice
@@ -79,14 +79,8 @@ class OwlCompiler:
             (a.node, b.node) for a, b in tbox.disjoint if a.is_named and b.is_named
         ]
         self.told = self._told_superclasses()
-        #: :meth:`fillers_subsumed`'s answers by pair of fillers
-        self._fillers: dict[tuple, bool] = {}
-        #: :meth:`class_subsumed`'s answers by pair of nodes
-        self._subsumed: dict[tuple[NamedNode, NamedNode], bool] = {}
-        #: per class expression, the named classes it is told to be subsumed by (:func:`.fillers.named_supers`)
-        self.named_supers: dict[NamedNode, frozenset[NamedNode]] = {}
-        #: per class expression, :func:`.fillers.named_parts`
-        self.named_parts: dict[NamedNode, frozenset[NamedNode]] = {}
+        #: told subsumption between class expressions and fillers, each pair decided once
+        self.subsumption = Subsumption(self.told)
         #: :meth:`all_expressions`, once walked
         self._expressions: list[Expr] | None = None
         #: the rules of non-membership the complements need, a named part
@@ -204,38 +198,12 @@ class OwlCompiler:
         return closure
 
     def filler_subsumed(self, a: Expr, b: Expr) -> bool:
-        """Told: every instance of filler ``a`` is an instance of filler ``b`` (None = Thing); data
-        ranges by datatype subsumption (``xsd:byte`` values are ``xsd:short`` values)."""
-        if b.filler is None and b.datatype is None:
-            return True
-        if a.datatype is not None or b.datatype is not None:
-            return a.datatype is not None and b.datatype is not None and (
-                a.datatype == b.datatype or b.datatype in implied_ranges([a.datatype]))
-        if a.filler is None:
-            return False
-        return self.class_subsumed(a.filler, b.filler)
+        """Told: every instance of filler ``a`` is an instance of filler ``b`` (:class:`.fillers.Subsumption`)."""
+        return self.subsumption.fillers(a, b)
 
     def class_subsumed(self, x: Expr, y: Expr) -> bool:
-        """Told: ``x ⊑ y`` through named superclasses, a member of a union on the right (``C ⊑ C ⊔ D``)
-        or every member of an intersection; on the left, a member of an intersection or every member
-        of a union.  Decided once per pair of nodes: comparing the unions of a TBox's universal
-        restrictions compares the same members again and again."""
-        key = (x.node, y.node)
-        found = self._subsumed.get(key)
-        if found is None:
-            found = self._subsumed[key] = self._class_subsumed(x, y)
-        return found
-
-    def _class_subsumed(self, x: Expr, y: Expr) -> bool:
-        if x.node == y.node or (x.is_named and y.is_named and y.node in self.told.get(x.node, set())):
-            return True
-        if y.kind == "or" and any(self.class_subsumed(x, m) for m in y.members):
-            return True
-        if y.kind == "and" and y.members and all(self.class_subsumed(x, m) for m in y.members):
-            return True
-        if x.kind == "and" and any(self.class_subsumed(m, y) for m in x.members):
-            return True
-        return x.kind == "or" and bool(x.members) and all(self.class_subsumed(m, y) for m in x.members)
+        """Told: ``x ⊑ y`` (:meth:`.fillers.Subsumption.classes`)."""
+        return self.subsumption.classes(x, y)
 
     # ------------------------------------------------------------------ expressions
     def all_expressions(self) -> list[Expr]:
@@ -312,26 +280,17 @@ class OwlCompiler:
         on: dict[Prop | None, list[Expr]] = {}
         for e in lower:
             on.setdefault(e.prop, []).append(e)
-        index = {p: FillerIndex(self, group) for p, group in on.items()}
+        index = {p: FillerIndex(self.subsumption, group) for p, group in on.items()}
         for a in lower:
             na = 1 if a.kind == "some" else a.n
             for b in index[a.prop].subsuming(a):
                 if a.node == b.node:
                     continue
-                if b.kind == "exact" and not (a.kind == "exact" and a.n == b.n and self.fillers_subsumed(b, a)):
+                if b.kind == "exact" and not (a.kind == "exact" and a.n == b.n and self.filler_subsumed(b, a)):
                     continue
                 nb = 1 if b.kind == "some" else b.n
                 if na >= nb >= 1:
                     self.instantiate(class_row(a, b), f"{a} is subsumed by {b}", "ext-card-sub")
-
-    def fillers_subsumed(self, a: Expr, b: Expr) -> bool:
-        """:meth:`filler_subsumed`, decided once per pair of fillers (the filler's node, or its datatype)."""
-        key = (a.filler.node if a.filler is not None else None, a.datatype,
-               b.filler.node if b.filler is not None else None, b.datatype)
-        found = self._fillers.get(key)
-        if found is None:
-            found = self._fillers[key] = self.filler_subsumed(a, b)
-        return found
 
     # ------------------------------------------------------------------ axioms
     def class_axioms(self) -> None:

@@ -134,7 +134,7 @@ def restriction_rules(owl: OwlCompiler) -> list[Rule]:
                           (Atom("?x", str(TYPE), sparql(a.node)),), Atom("?x", str(TYPE), sparql(b.node))))
 
     lower = [e for e in exprs if e.kind in ("some", "min", "exact")]
-    wider = FillerIndex(owl, [e for e in lower if e.kind != "exact"])
+    wider = FillerIndex(owl.subsumption, [e for e in lower if e.kind != "exact"])
     for a in lower:
         above = supers.get(a.prop, ())
         if not above:
@@ -145,7 +145,7 @@ def restriction_rules(owl: OwlCompiler) -> list[Rule]:
                 if na >= nb >= 1:
                     subsume(a, b)
     alls = [e for e in exprs if e.kind == "all" and not e.prop.inverse]
-    index = FillerIndex(owl, alls)
+    index = FillerIndex(owl.subsumption, alls)
     for a in alls:
         if a.filler is None and a.datatype is None:
             continue
