@@ -190,10 +190,69 @@ def _pairwise_disjoint(names: list[str]) -> list[str]:
     return [f":{a} owl:disjointWith :{b} ." for i, a in enumerate(names) for b in names[i + 1:]]
 
 
-def main() -> None:
-    import sys
+def timing(classes: int, folder: Path) -> dict[str, float | int]:
+    """LOAD (``Ontology.from_file``: parse and compile) and two full REASONs of the TBox of ``classes``
+    classes, in seconds of this process's wall clock, with what grows with it (triples, compiled rules)."""
+    import logging
+    import time
+    import warnings
 
-    print(turtle(int(sys.argv[1]) if len(sys.argv) > 1 else 100), end="")
+    from topostore import Ontology
+
+    path = write(classes, folder)
+    triples = sum(1 for _ in parse(path=str(path), format=RdfFormat.N_TRIPLES))
+    notices = logging.getLogger("topostore.load")
+    level = notices.level
+    with warnings.catch_warnings():
+        # the LOAD notices (unions as superclasses, ...) are warned and logged: said, not measured
+        warnings.simplefilter("ignore")
+        notices.setLevel(logging.ERROR)
+        start = time.perf_counter()
+        onto = Ontology.from_file(path)
+        loaded = time.perf_counter()
+        onto.reason(mode="full")
+        first = time.perf_counter()
+        onto.reason(mode="full")
+        second = time.perf_counter()
+        notices.setLevel(level)
+    return {"classes": classes, "triples": triples, "rules": len(onto.rules.rules), "load_s": loaded - start,
+            "first_full_s": first - loaded, "second_full_s": second - first}
+
+
+def timing_table(sizes: list[int], folder: Path) -> list[str]:
+    """Markdown rows of :func:`timing` per size, then how LOAD grows from the smallest size to the largest."""
+    rows = [timing(n, folder) for n in sizes]
+    lines = ["| classes | triples | compiled rules | LOAD | first full REASON | second full REASON |",
+             "|---|---|---|---|---|---|"]
+    lines += [f"| {r['classes']} | {r['triples']:,} | {r['rules']:,} | {r['load_s']:.2f} s | {r['first_full_s']:.2f} s "
+              f"| {r['second_full_s']:.2f} s |" for r in rows]
+    if len(rows) > 1:
+        small, big = rows[0], rows[-1]
+        lines.append(f"growth from {small['classes']} to {big['classes']} classes: triples "
+                     f"×{big['triples'] / small['triples']:.1f}, LOAD ×{big['load_s'] / small['load_s']:.1f}, "
+                     f"first full REASON ×{big['first_full_s'] / small['first_full_s']:.1f}")
+    return lines
+
+
+def main(argv: list[str] | None = None) -> None:
+    """``python -m benchmarks.tbox [N]`` prints the Turtle of N classes; ``--time N [N ...]`` times the
+    LOAD and the full REASONs of each size instead."""
+    import argparse
+    import tempfile
+
+    parser = argparse.ArgumentParser(prog="python -m benchmarks.tbox", description=main.__doc__)
+    parser.add_argument("classes", nargs="*", type=int, help="named classes (default 100)")
+    parser.add_argument("--time", action="store_true", help="time LOAD and full REASON per size (a table)")
+    args = parser.parse_args(argv)
+    sizes = args.classes or [100]
+    if not args.time:
+        print(turtle(sizes[0]), end="")
+        return
+    from .limits import lift_time_limit
+
+    lift_time_limit()
+    with tempfile.TemporaryDirectory() as folder:
+        print("\n".join(timing_table(sizes, Path(folder))))
 
 
 if __name__ == "__main__":

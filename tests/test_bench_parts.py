@@ -111,6 +111,15 @@ def test_the_tutorial_style_tbox_has_what_the_tutorial_teaches(tmp_path: Path) -
         tbox.write(20, tmp_path)
 
 
+def test_the_tbox_timing_table_has_a_row_per_size_and_the_growth(tmp_path: Path) -> None:
+    lines = tbox.timing_table([50, 60], tmp_path)
+    assert lines[0].startswith("| classes |") and len(lines) == 5
+    assert lines[2].startswith("| 50 |") and lines[3].startswith("| 60 |")
+    assert lines[4].startswith("growth from 50 to 60 classes")
+    row = tbox.timing(50, tmp_path)
+    assert row["triples"] > 0 and row["rules"] > 0 and row["load_s"] > 0 and row["second_full_s"] > 0
+
+
 def test_full_reason_rows_of_topostore_and_owlrl_agree_on_a_small_tbox(tmp_path: Path) -> None:
     mine = full.run("topostore", "tbox:50", tmp_path / "a")
     other = full.run("owlrl", "tbox:50", tmp_path / "b")

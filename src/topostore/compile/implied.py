@@ -35,12 +35,12 @@ written, which explanations show as the premises.
 
 from __future__ import annotations
 
-from collections.abc import Iterable
+from collections.abc import Iterable, Iterator, Mapping
 from dataclasses import replace
 
 from ..rdf.vocab import TYPE
 from .condition import test
-from .reach import reachable
+from .reach import Reach
 from .rule import Atom, Rule
 
 _TYPE = str(TYPE)
@@ -97,22 +97,44 @@ def _positions(atom: Atom) -> list[tuple[str, Position]]:
     return out
 
 
-def _closure(edges: dict[Position, set[Position]]) -> dict[Position, frozenset[str]]:
+class ImpliedClasses(Mapping[Position, frozenset[str]]):
+    """Per position, the classes its terms belong to in the closure: walked when a position is first
+    asked for (a compilation asks of the few positions its multi-atom bodies hold, not of the tens of
+    thousands of classes a large TBox's single-atom rules link)."""
+
+    def __init__(self, edges: dict[Position, set[Position]]) -> None:
+        self._edges = edges
+        self._reach: Reach[Position] = Reach(lambda position: edges.get(position, ()))
+        self._classes: dict[Position, frozenset[str]] = {}
+
+    def __getitem__(self, start: Position) -> frozenset[str]:
+        if start not in self._edges:
+            raise KeyError(start)
+        found = self._classes.get(start)
+        if found is None:
+            found = self._classes[start] = frozenset(
+                c for kind, c in self._reach(start) if kind == "t" and (kind, c) != start)
+        return found
+
+    def __iter__(self) -> Iterator[Position]:
+        return iter(self._edges)
+
+    def __len__(self) -> int:
+        return len(self._edges)
+
+
+def _closure(edges: dict[Position, set[Position]]) -> ImpliedClasses:
     """Per position, the classes its terms belong to in the closure."""
-    out: dict[Position, frozenset[str]] = {}
-    for start in edges:
-        seen = reachable(start, lambda position: edges.get(position, ()))
-        out[start] = frozenset(c for kind, c in seen if kind == "t" and (kind, c) != start)
-    return out
+    return ImpliedClasses(edges)
 
 
-def position_classes(rules: Iterable[Rule]) -> dict[Position, frozenset[str]]:
+def position_classes(rules: Iterable[Rule]) -> Mapping[Position, frozenset[str]]:
     """Per position (subject or object of a property, instance of a class), the classes a term there
     belongs to in the closure, read off the single-atom rules as :func:`simplify` reads them."""
     return _closure(_position_edges(rules))
 
 
-def classes_of(var: str, atoms: Iterable[Atom], implied: dict[Position, frozenset[str]]) -> set[str]:
+def classes_of(var: str, atoms: Iterable[Atom], implied: Mapping[Position, frozenset[str]]) -> set[str]:
     """The classes ``var`` belongs to in the closure wherever ``atoms`` match: those they type it with
     and those the positions it holds imply (``implied``: :func:`position_classes`)."""
     out: set[str] = set()
@@ -127,15 +149,20 @@ def classes_of(var: str, atoms: Iterable[Atom], implied: dict[Position, frozense
 
 def simplify(rules: list[Rule]) -> list[Rule]:
     """The rules with every implied type atom dropped from their bodies (see the module docstring)."""
-    implied = _closure(_position_edges(rules))
-    return [_simplified(rule, implied) for rule in rules]
+    edges = _position_edges(rules)
+    implied = _closure(edges)
+    # a class no single-atom rule concludes is implied by nothing: its atoms need no search for a witness
+    targets = {c for found in edges.values() for kind, c in found if kind == "t"}
+    return [_simplified(rule, implied, targets) for rule in rules]
 
 
-def _simplified(rule: Rule, implied: dict[Position, frozenset[str]]) -> Rule:
+def _simplified(rule: Rule, implied: Mapping[Position, frozenset[str]], targets: set[str]) -> Rule:
+    if len(rule.body) < 2:
+        return rule  # a single atom has no other atom to be implied by
     kept = list(rule.body)
     dropped: list[Atom] = []
     for atom in rule.body:
-        if atom.p != _TYPE or not _is_var(atom.s) or _is_var(atom.o):
+        if atom.p != _TYPE or atom.o not in targets or not _is_var(atom.s) or _is_var(atom.o):
             continue
         others = [a for a in kept if a is not atom]
         witness = _witness(atom, others, implied)
@@ -152,7 +179,7 @@ def _simplified(rule: Rule, implied: dict[Position, frozenset[str]]) -> Rule:
                    written_conditions=rule.conditions)
 
 
-def _witness(atom: Atom, others: list[Atom], implied: dict[Position, frozenset[str]]) -> Atom | None:
+def _witness(atom: Atom, others: list[Atom], implied: Mapping[Position, frozenset[str]]) -> Atom | None:
     """An atom among ``others`` that implies ``atom`` (``?x rdf:type C``), or None."""
     for other in others:
         for var, pos in _positions(other):

@@ -9,11 +9,12 @@ from __future__ import annotations
 
 import hashlib
 from dataclasses import dataclass, field, replace
+from functools import cached_property
 
 from pyoxigraph import Literal, NamedNode
 
 from ..errors import RuleCompileError
-from ..rdf.terms import Term
+from ..rdf.terms import Term, sparql
 from ..rdf.vocab import EXPR_PREFIX, NOTHING, OWL, RDF, RDFS, THING, TYPE, XSD, is_skolem, owl
 from ..stores.base import Store
 from . import data_ranges
@@ -57,8 +58,24 @@ class Expr:
     def __str__(self) -> str:  # used in rule origins and error messages
         return describe(self)
 
+    @cached_property
+    def term(self) -> str:
+        """The node as SPARQL text (what a rule or a schema row writes), built once."""
+        return sparql(self.node)
+
+    @cached_property
+    def description(self) -> str:
+        """:func:`describe`'s text, built once: every rule made from the expression names it in its origin
+        (tens of thousands of rules on a large TBox)."""
+        return _describe(self)
+
 
 def describe(e: Expr) -> str:
+    """The expression in Manchester-like syntax, as the origins of rules and the notices show it."""
+    return e.description
+
+
+def _describe(e: Expr) -> str:
     def short(t: Term | None) -> str:
         if t is None:
             return "?"

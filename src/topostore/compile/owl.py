@@ -35,6 +35,7 @@ from ..rdf.vocab import NOTHING, SAME_AS, THING, TYPE
 from . import condition as cond
 from .condition import Condition
 from .datatypes import implied_ranges
+from .fillers import FillerIndex, Subsumption
 from .model import Expr, Prop, TBox
 from .negation import NegativeMembership
 from .notices import Notice
@@ -78,6 +79,10 @@ class OwlCompiler:
             (a.node, b.node) for a, b in tbox.disjoint if a.is_named and b.is_named
         ]
         self.told = self._told_superclasses()
+        #: told subsumption between class expressions and fillers, each pair decided once
+        self.subsumption = Subsumption(self.told)
+        #: :meth:`all_expressions`, once walked
+        self._expressions: list[Expr] | None = None
         #: the rules of non-membership the complements need, a named part
         self.negation = NegativeMembership(self)
 
@@ -193,33 +198,24 @@ class OwlCompiler:
         return closure
 
     def filler_subsumed(self, a: Expr, b: Expr) -> bool:
-        """Told: every instance of filler ``a`` is an instance of filler ``b`` (None = Thing); data
-        ranges by datatype subsumption (``xsd:byte`` values are ``xsd:short`` values)."""
-        if b.filler is None and b.datatype is None:
-            return True
-        if a.datatype is not None or b.datatype is not None:
-            return a.datatype is not None and b.datatype is not None and (
-                a.datatype == b.datatype or b.datatype in implied_ranges([a.datatype]))
-        if a.filler is None:
-            return False
-        return self.class_subsumed(a.filler, b.filler)
+        """Told: every instance of filler ``a`` is an instance of filler ``b`` (:class:`.fillers.Subsumption`)."""
+        return self.subsumption.fillers(a, b)
 
     def class_subsumed(self, x: Expr, y: Expr) -> bool:
-        """Told: ``x ⊑ y`` through named superclasses, a member of a union on the right (``C ⊑ C ⊔ D``)
-        or every member of an intersection; on the left, a member of an intersection or every member
-        of a union."""
-        if x.node == y.node or (x.is_named and y.is_named and y.node in self.told.get(x.node, set())):
-            return True
-        if y.kind == "or" and any(self.class_subsumed(x, m) for m in y.members):
-            return True
-        if y.kind == "and" and y.members and all(self.class_subsumed(x, m) for m in y.members):
-            return True
-        if x.kind == "and" and any(self.class_subsumed(m, y) for m in x.members):
-            return True
-        return x.kind == "or" and bool(x.members) and all(self.class_subsumed(m, y) for m in x.members)
+        """Told: ``x ⊑ y`` (:meth:`.fillers.Subsumption.classes`)."""
+        return self.subsumption.classes(x, y)
 
     # ------------------------------------------------------------------ expressions
     def all_expressions(self) -> list[Expr]:
+        """Every class expression of the axioms and the typed expressions, each once (by node).
+
+        Walked once per compiler (its TBox is read whole before the compiler is made): the parts of the
+        compilation ask for it again and again."""
+        if self._expressions is None:
+            self._expressions = self._walk_expressions()
+        return list(self._expressions)
+
+    def _walk_expressions(self) -> list[Expr]:
         found: dict[NamedNode, Expr] = {}
 
         def walk(e: Expr | None) -> None:
@@ -275,17 +271,25 @@ class OwlCompiler:
 
     def restriction_subsumption(self, exprs: list[Expr]) -> None:
         """≥n p.C ⊑ ≥m p.D (n ≥ m ≥ 1, C ⊑ D), with ∃ as ≥1 and = n as ≥ n; and = n p.C ⊑ = n p.D when
-        C ≡ D (two restrictions written alike are one class)."""
+        C ≡ D (two restrictions written alike are one class).
+
+        Only restrictions on one property are compared, those whose filler may subsume ``a``'s found
+        through an index (:class:`.fillers.FillerIndex`): a tutorial-style TBox has hundreds of
+        existentials on one property over a few hundred fillers."""
         lower = [e for e in exprs if e.kind in ("some", "min", "exact")]
+        on: dict[Prop | None, list[Expr]] = {}
+        for e in lower:
+            on.setdefault(e.prop, []).append(e)
+        index = {p: FillerIndex(self.subsumption, group) for p, group in on.items()}
         for a in lower:
-            for b in lower:
-                if a.node == b.node or a.prop != b.prop:
+            na = 1 if a.kind == "some" else a.n
+            for b in index[a.prop].subsuming(a):
+                if a.node == b.node:
                     continue
                 if b.kind == "exact" and not (a.kind == "exact" and a.n == b.n and self.filler_subsumed(b, a)):
                     continue
-                na = 1 if a.kind == "some" else a.n
                 nb = 1 if b.kind == "some" else b.n
-                if na >= nb >= 1 and self.filler_subsumed(a, b):
+                if na >= nb >= 1:
                     self.instantiate(class_row(a, b), f"{a} is subsumed by {b}", "ext-card-sub")
 
     # ------------------------------------------------------------------ axioms
@@ -295,9 +299,9 @@ class OwlCompiler:
         for a, b in self.tb.equivalent:
             self.instantiate(class_row(a, b), f"{a} EquivalentTo {b}", "cax-eqc1", "cax-eqc2")
         for a, b in self.tb.disjoint:
-            body = self.member("?x", a) + self.member("?x", b)
             if self.instantiate(disjoint_row(a, b), f"{a} DisjointWith {b}", "cax-dw", labels=(str(a), str(b))):
                 continue
+            body = self.member("?x", a) + self.member("?x", b)
             if body:  # with owl:Thing: a check of one class
                 self.emit("cax-dw", f"{a} DisjointWith {b}", body, violation=("?x",),
                           message=f"{{x}} is in the disjoint classes {a} and {b}")

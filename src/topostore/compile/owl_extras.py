@@ -32,6 +32,7 @@ from ..rdf.vocab import (
     TYPE,
 )
 from . import condition as cond
+from .fillers import FillerIndex
 from .model import Expr, Prop, TBox, describe
 from .owl import OwlCompiler
 from .rule import Atom, Rule
@@ -133,17 +134,23 @@ def restriction_rules(owl: OwlCompiler) -> list[Rule]:
                           (Atom("?x", str(TYPE), sparql(a.node)),), Atom("?x", str(TYPE), sparql(b.node))))
 
     lower = [e for e in exprs if e.kind in ("some", "min", "exact")]
+    wider = FillerIndex(owl.subsumption, [e for e in lower if e.kind != "exact"])
     for a in lower:
-        for b in lower:
-            if b.kind != "exact" and b.prop in supers.get(a.prop, ()):
+        above = supers.get(a.prop, ())
+        if not above:
+            continue  # no super-property: nothing to compare (the same property is ext-card-sub's)
+        for b in wider.subsuming(a):
+            if b.prop in above:
                 na, nb = (1 if a.kind == "some" else a.n), (1 if b.kind == "some" else b.n)
-                if na >= nb >= 1 and owl.filler_subsumed(a, b):
+                if na >= nb >= 1:
                     subsume(a, b)
     alls = [e for e in exprs if e.kind == "all" and not e.prop.inverse]
+    index = FillerIndex(owl.subsumption, alls)
     for a in alls:
-        for b in alls:
-            if a.node != b.node and (a.prop == b.prop or a.prop in supers.get(b.prop, ())) and (
-                    a.filler is not None or a.datatype is not None) and owl.filler_subsumed(a, b):
+        if a.filler is None and a.datatype is None:
+            continue
+        for b in index.subsuming(a):
+            if a.node != b.node and (a.prop == b.prop or a.prop in supers.get(b.prop, ())):
                 subsume(a, b)
     return rules
 

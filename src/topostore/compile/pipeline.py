@@ -5,6 +5,7 @@ from __future__ import annotations
 from pyoxigraph import NamedNode
 
 from ..stores.base import Store
+from .alike import merge_alike
 from .datatypes import empty_range_rules, range_rules
 from .fold import fold_equivalents
 from .generic import generic_rules
@@ -32,6 +33,7 @@ def compile_ontology(store: Store, graph: NamedNode) -> RuleSet:
     swrl = SwrlCompiler(store, graph, reader)
     swrl_rules = swrl.compile()
     tbox.typed_expressions.extend(swrl.expressions)
+    merge_alike(tbox)  # after the SWRL rules: the expressions they name are kept
     owl = OwlCompiler(tbox)
     rules = RuleSet()
     rules.add(generic_rules())

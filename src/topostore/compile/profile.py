@@ -34,6 +34,7 @@ universal and empty properties (``owl:topObjectProperty`` …), and, informative
 from __future__ import annotations
 
 from collections.abc import Iterator
+from functools import cached_property
 from itertools import islice
 
 from pyoxigraph import Literal, NamedNode
@@ -135,6 +136,8 @@ class ProfileReport:
                 self.on.setdefault(e.prop, []).append((e, positive))
         self.uses_difference = uses_difference
         self.notices: dict[tuple[str, str], Notice] = {}
+        #: :meth:`single_valued`'s answers by property
+        self._single: dict[Prop, bool] = {}
 
     def note(self, kind: str, axiom: str, reason: str) -> None:
         self.notices.setdefault((kind, axiom), Notice(INCOMPLETE, axiom, reason, kind))
@@ -296,15 +299,34 @@ class ProfileReport:
         return out
 
     def single_valued(self, p: Prop, e: Expr) -> bool:
-        """At most one value of ``p`` at all: functional, or an unqualified maximum of one told."""
+        """At most one value of ``p`` at all: functional, or an unqualified maximum of one told (decided
+        once per property: asked for every existential on it)."""
+        found = self._single.get(p)
+        if found is None:
+            found = self._single[p] = self._single_valued(p)
+        return found
+
+    def _single_valued(self, p: Prop) -> bool:
         if self.tb.has("InverseFunctionalProperty" if p.inverse else "FunctionalProperty", p.iri):
             return True
         return any(pos and m.kind in ("max", "exact") and m.n <= 1 and m.filler is None and m.datatype is None
                    for m, pos in self.on.get(p, ()))
 
     def disjoint(self, a: NamedNode, b: NamedNode) -> bool:
-        ta, tb_ = self.told(a), self.told(b)
-        return any((x in ta and y in tb_) or (y in ta and x in tb_) for x, y in self.owl.disjoint_pairs)
+        """Some told superclass of ``a`` (or ``a``) is told disjoint with one of ``b`` (or ``b``)."""
+        tb_ = self.told(b)
+        return any(not tb_.isdisjoint(self.disjoint_with.get(x, ())) for x in self.told(a))
+
+    @cached_property
+    def disjoint_with(self) -> dict[NamedNode, set[NamedNode]]:
+        """Each named class's told disjoint named classes, both ways: :meth:`disjoint` looks a class's
+        superclasses up here instead of scanning every disjoint pair (thousands in a TBox whose
+        siblings are made pairwise disjoint)."""
+        found: dict[NamedNode, set[NamedNode]] = {}
+        for x, y in self.owl.disjoint_pairs:
+            found.setdefault(x, set()).add(y)
+            found.setdefault(y, set()).add(x)
+        return found
 
     # ---------------------------------------------------------------- difference
     def difference(self) -> None:

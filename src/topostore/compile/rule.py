@@ -9,9 +9,10 @@ classes a rule reads to skip rules nothing new can trigger.
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Mapping
+from collections.abc import Callable, Hashable, Iterable, Mapping
 from dataclasses import dataclass, field
-from functools import cached_property
+from functools import cached_property, lru_cache
+from typing import TypeVar
 
 from pyoxigraph import NamedNode
 
@@ -31,6 +32,8 @@ def key_pattern(key: ReadKey) -> tuple:
 
 _TYPE_TEXT = str(TYPE)
 
+T = TypeVar("T")
+
 
 @dataclass(frozen=True)
 class Atom:
@@ -47,6 +50,7 @@ class Atom:
     # derived once: the reasoner asks for them thousands of times per REASON
     _key: ReadKey = field(init=False, repr=False, compare=False)
     _vars: frozenset = field(init=False, repr=False, compare=False)
+    _hash: int = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
         if self.p.startswith("?"):
@@ -57,6 +61,11 @@ class Atom:
             key = ("p", self.p)
         object.__setattr__(self, "_key", key)
         object.__setattr__(self, "_vars", frozenset(t for t in (self.s, self.p, self.o) if t.startswith("?")))
+        object.__setattr__(self, "_hash", hash((self.s, self.p, self.o, self.aux)))
+
+    def __hash__(self) -> int:
+        # kept: rule sets are merged and deduplicated by their atoms (tens of thousands on a large TBox)
+        return self._hash
 
     def text(self) -> str:
         return f"{self.s} {self.p} {self.o} ."
@@ -79,12 +88,11 @@ def head_is_aux(p: str, o: str) -> bool:
 
 def _atom_score(atom: Atom, bound: set[str]) -> int:
     """Higher is cheaper to evaluate next, given the variables already bound."""
-    unbound = atom.variables() - bound
-    if not unbound:
+    if atom._vars <= bound:
         return 100  # a pure check on bound values
     s_known = not atom.s.startswith("?") or atom.s in bound
     o_known = not atom.o.startswith("?") or atom.o in bound
-    is_type = atom.p == str(TYPE)
+    is_type = atom.p == _TYPE_TEXT
     if atom.p.startswith("?"):
         return 20 if s_known else (15 if o_known else 0)
     if s_known and not is_type:
@@ -101,19 +109,28 @@ def join_order(atoms: tuple[Atom, ...], first: int | None = None, bound: Iterabl
     always take the atom that is cheapest given what is bound (``bound``: variables
     bound before the body), so that no rule starts from a cross product of class
     extensions."""
+    if len(atoms) <= 1 and first in (None, 0):
+        return list(range(len(atoms)))
+    return list(_join_order(tuple(atoms), first, frozenset(bound)))
+
+
+@lru_cache(maxsize=1 << 16)
+def _join_order(atoms: tuple[Atom, ...], first: int | None, bound: frozenset[str]) -> tuple[int, ...]:
+    """:func:`join_order`, kept per body: a compilation merges and a full REASON renders the same
+    bodies again and again (every round, every delta atom)."""
     remaining = list(range(len(atoms)))
     order: list[int] = []
-    bound = set(bound)
+    known = set(bound)
     if first is not None:
         order.append(first)
         remaining.remove(first)
-        bound |= atoms[first].variables()
+        known |= atoms[first]._vars
     while remaining:
-        best = max(remaining, key=lambda i: (_atom_score(atoms[i], bound), -i))
+        best = max(remaining, key=lambda i: (_atom_score(atoms[i], known), -i))
         order.append(best)
         remaining.remove(best)
-        bound |= atoms[best].variables()
-    return order
+        known |= atoms[best]._vars
+    return tuple(order)
 
 
 @dataclass(frozen=True)
@@ -153,8 +170,8 @@ class Rule:
     _reads: frozenset = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "filters", render(self.conditions))
-        object.__setattr__(self, "_reads", frozenset(a.read_key() for a in self.body) | self.filter_reads)
+        object.__setattr__(self, "filters", render(self.conditions) if self.conditions else "")
+        object.__setattr__(self, "_reads", frozenset([a._key for a in self.body]) | self.filter_reads)
 
     @property
     def premises(self) -> tuple[Atom, ...]:
@@ -210,6 +227,23 @@ class Rule:
         the order it is written.  ``graphs`` names the one graph that holds every fact of
         some read keys (see :func:`.atom_text`).
         """
+        if delta_index is None and not graphs:
+            return self._plain_where
+        return self._where(delta_index, delta_graph, graphs)
+
+    @cached_property
+    def bucket(self) -> tuple:
+        """The name, head, body atoms (as a set, with their number) and filters: what :meth:`RuleSet.add`
+        groups rules by before it compares their WHERE texts (kept: a compilation merges twice)."""
+        return self.name, self.head, frozenset(self.body), len(self.body), self.filters
+
+    @cached_property
+    def _plain_where(self) -> str:
+        """The WHERE group over the default graphs, built once: it is the rule's identity when rule sets
+        are merged (:meth:`RuleSet.add`) and the text of most evaluations."""
+        return self._where(None, "", None)
+
+    def _where(self, delta_index: int | None, delta_graph: str, graphs: Mapping[ReadKey, NamedNode] | None) -> str:
         lines = [self.atom_text(i, delta_index, delta_graph, graphs) for i in join_order(self.body, delta_index)]
         if self.filters:
             lines.append(self.filters)
@@ -246,6 +280,12 @@ class Rule:
         return f"# {self.name}: {self.origin} (inconsistent when it matches)\nSELECT {proj}\nWHERE {{\n  {body}\n}}"
 
 
+def _bucket(rule: Rule) -> tuple:
+    """What two rules with the same WHERE text and head share (the text lists the body's atoms in join
+    order, then the filters): a cheap key that only rules which may be one have in common."""
+    return rule.bucket
+
+
 @dataclass
 class RuleSet:
     """All rules of one ontology, plus schema facts the query layer needs."""
@@ -262,14 +302,48 @@ class RuleSet:
     notices: list = field(default_factory=list)
     #: SQWRL queries of the ontology by name (compile.sqwrl.SqwrlQuery), run like named queries
     queries: dict = field(default_factory=dict)
+    #: (the list :meth:`add` last appended to, its length then, its rules by :func:`_bucket`)
+    _seen: tuple | None = field(default=None, init=False, repr=False, compare=False)
+    #: what :meth:`derived` made from :attr:`rules`: key -> (the rules list, its length, the value)
+    _derived: dict = field(default_factory=dict, init=False, repr=False, compare=False)
+
+    def derived(self, key: Hashable, make: Callable[[], T]) -> T:
+        """``make()``, kept while :attr:`rules` is the same list of the same length: what every full
+        REASON derives from the rules alone (which rules run generically, over which rows) is then
+        derived once per compilation, not once per REASON."""
+        held = self._derived.get(key)
+        if held is not None and held[0] is self.rules and held[1] == len(self.rules):
+            return held[2]
+        value = make()
+        self._derived[key] = (self.rules, len(self.rules), value)
+        return value
 
     def add(self, rules: Iterable[Rule]) -> None:
-        seen = {(r.name, r.where(), r.head) for r in self.rules}
+        """Append the rules not already in the set: two rules are one when their name, WHERE text and
+        head are the same (a body written in another order may give the same text).
+
+        The WHERE text is compared only between rules of the same name, head, filters and body atoms
+        (:func:`_bucket`): most rules of a large TBox share that with no other, and their texts are
+        never built.  The buckets of the rules held are kept between calls (a compilation adds a dozen
+        batches to tens of thousands of rules); they are read again only when :attr:`rules` was
+        replaced or changed in between."""
+        seen = self._seen_keys()
         for r in rules:
-            key = (r.name, r.where(), r.head)
-            if key not in seen:
-                seen.add(key)
-                self.rules.append(r)
+            bucket = seen.setdefault(_bucket(r), [])
+            if bucket and any(other.where() == r.where() for other in bucket):
+                continue
+            bucket.append(r)
+            self.rules.append(r)
+        self._seen = (self.rules, len(self.rules), seen)
+
+    def _seen_keys(self) -> dict[tuple, list[Rule]]:
+        held = self._seen
+        if held is not None and held[0] is self.rules and held[1] == len(self.rules):
+            return held[2]
+        seen: dict[tuple, list[Rule]] = {}
+        for r in self.rules:
+            seen.setdefault(_bucket(r), []).append(r)
+        return seen
 
     @property
     def inference_rules(self) -> list[Rule]:

@@ -29,7 +29,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass, field, replace
-from functools import cache
+from functools import cache, cached_property, lru_cache
 
 from pyoxigraph import NamedNode
 
@@ -82,9 +82,9 @@ class SchemaRule:
 
     def _substitute(self, atom: Atom, row: Row) -> Atom:
         bound = dict(zip(self.variables, row))
-        return Atom(*(bound.get(t, t) for t in (atom.s, atom.p, atom.o)), aux=atom.aux)
+        return _atom(bound.get(atom.s, atom.s), bound.get(atom.p, atom.p), bound.get(atom.o, atom.o), atom.aux)
 
-    @property
+    @cached_property
     def reported(self) -> tuple[str, ...]:
         """A check's reported variables once instantiated: the schema variables are constants there
         (the generic check reports them, so that its message can name the row's terms)."""
@@ -98,12 +98,17 @@ class SchemaRule:
         if len(row) != len(self.variables) or (labels is not None and len(labels) != len(row)):
             raise RuleCompileError(f"{self.name}: a row of {len(row)} terms for {len(self.variables)} variables")
         r = self.rule
-        head = self._substitute(r.head, row) if r.head is not None else None
+        bound = dict(zip(self.variables, row))
+
+        def put(a: Atom) -> Atom:
+            return _atom(bound.get(a.s, a.s), bound.get(a.p, a.p), bound.get(a.o, a.o), a.aux)
+
         message = r.message
-        for var, label in zip(self.variables, labels if labels is not None else [_short(t) for t in row]):
-            message = message.replace("{" + var[1:] + "}", label)
-        return Rule(r.name, origin, tuple(self._substitute(a, row) for a in r.body), head, r.conditions,
-                    r.filter_reads, self.reported, message, r.aux_head, r.stratum)
+        if message:
+            for var, label in zip(self.variables, labels if labels is not None else [_short(t) for t in row]):
+                message = message.replace("{" + var[1:] + "}", label)
+        return Rule(r.name, origin, tuple(put(a) for a in r.body), put(r.head) if r.head is not None else None,
+                    r.conditions, r.filter_reads, self.reported, message, r.aux_head, r.stratum)
 
     def row_of(self, rule: Rule) -> Row | None:
         """The row ``rule`` is the instantiation of, or None when it is not one (another name or shape).
@@ -115,18 +120,27 @@ class SchemaRule:
                 or rule.violation != self.reported or rule.stratum != t.stratum or rule.aux_head != t.aux_head
                 or (rule.head is None) != (t.head is None)):
             return None
-        bound: dict[str, str] = {}
-        pairs = list(zip(t.body, rule.body)) + ([(t.head, rule.head)] if t.head is not None else [])
-        for want, got in pairs:
-            if want.aux != got.aux:
+        atoms = rule.body + (rule.head,) if t.head is not None else rule.body
+        bound: list[str | None] = [None] * len(self.variables)
+        for got, (aux, terms) in zip(atoms, self._plan):
+            if got.aux != aux:
                 return None
-            for w, g in ((want.s, got.s), (want.p, got.p), (want.o, got.o)):
-                if w in self.variables:
-                    if g.startswith("?") or bound.setdefault(w, g) != g:
+            for g, w in zip((got.s, got.p, got.o), terms):
+                if type(w) is int:  # a schema variable: the row's term, the same wherever it occurs
+                    if g.startswith("?") or (bound[w] is not None and bound[w] != g):
                         return None
+                    bound[w] = g
                 elif w != g:
                     return None
-        return tuple(bound[v] for v in self.variables)
+        return tuple(bound)  # type: ignore[arg-type]  # every schema variable occurs (checked at load)
+
+    @cached_property
+    def _plan(self) -> tuple[tuple[bool, tuple[str | int, ...]], ...]:
+        """Per atom of the template's body and head, what :meth:`row_of` compares: its helper flag, and
+        per term the schema variable's index in a row or the term itself."""
+        index = {v: i for i, v in enumerate(self.variables)}
+        atoms = self.rule.body + ((self.rule.head,) if self.rule.head is not None else ())
+        return tuple((a.aux, tuple(index.get(term, term) for term in (a.s, a.p, a.o))) for a in atoms)
 
     def triples(self, row: Row) -> list[str]:
         """The schema atoms of a row, as triples of SPARQL text (what the schema graph holds)."""
@@ -193,6 +207,13 @@ class SchemaRule:
                     r.body, r.head, conditions, r.filter_reads, r.violation, r.message, aux, r.stratum)
 
 
+@lru_cache(maxsize=1 << 16)
+def _atom(s: str, p: str, o: str, aux: bool) -> Atom:
+    """One :class:`Atom` per pattern: the rows of a table repeat their terms (a class in every row of
+    its disjoint siblings), and an instantiation then reuses the atom instead of deriving it again."""
+    return Atom(s, p, o, aux)
+
+
 @cache
 def schema_rules() -> dict[str, SchemaRule]:
     """The generic OWL rules of ``rules/owl/``, by name."""
@@ -255,14 +276,14 @@ def class_row(a: Expr, b: Expr) -> Row | None:
     """``a ⊑ b`` (or one direction of ``a ≡ b``); None when it says nothing (a class of itself, owl:Thing)."""
     if a.node == b.node or THING in (a.node, b.node):
         return None
-    return sparql(a.node), sparql(b.node)
+    return a.term, b.term
 
 
 def disjoint_row(a: Expr, b: Expr) -> Row | None:
     """Disjoint ``a`` and ``b`` (in this order); None when one is owl:Thing (its rules read one class)."""
     if THING in (a.node, b.node):
         return None
-    return sparql(a.node), sparql(b.node)
+    return a.term, b.term
 
 
 def filler_row(e: Expr, data: bool) -> Row | None:
@@ -272,21 +293,21 @@ def filler_row(e: Expr, data: bool) -> Row | None:
     if data or e.prop is None or e.prop.inverse or e.datatype is not None or e.filler is None \
             or e.filler.node == THING:
         return None
-    return sparql(e.node), sparql(e.prop.iri), sparql(e.filler.node)
+    return e.term, sparql(e.prop.iri), e.filler.term
 
 
 def value_row(e: Expr) -> Row | None:
     """(restriction, property, value) of a hasValue restriction on a named property; None otherwise."""
     if e.prop is None or e.prop.inverse or e.value is None:
         return None
-    return sparql(e.node), sparql(e.prop.iri), sparql(e.value)
+    return e.term, sparql(e.prop.iri), sparql(e.value)
 
 
 def member_row(e: Expr, m: Expr) -> Row | None:
     """(intersection or union, member): a row per member; None for owl:Thing (it says nothing)."""
     if m.node == THING:
         return None
-    return sparql(e.node), sparql(m.node)
+    return e.term, m.term
 
 
 def chain_row(q: NamedNode, chain: Sequence[Prop]) -> Row | None:
@@ -301,7 +322,7 @@ def typing_row(p: Prop, c: Expr) -> Row | None:
     """A domain or range ``c`` of ``p``; None for owl:Thing or an inverse property expression."""
     if c.node == THING or p.inverse:
         return None
-    return sparql(p.iri), sparql(c.node)
+    return sparql(p.iri), c.term
 
 
 def subproperty_row(p: Prop, q: Prop) -> Row | None:

@@ -118,7 +118,15 @@ def rows_threshold(generic: SchemaRule) -> int:
 
 def full_program(ruleset: RuleSet, threshold: int | None = None) -> GenericProgram:
     """``ruleset`` with every generic rule of more than ``threshold`` instantiations run generically
-    (None: each rule's own, :func:`rows_threshold`)."""
+    (None: each rule's own, :func:`rows_threshold`).
+
+    Derived once per rule set (:meth:`.RuleSet.derived`): reading the rows back from tens of thousands
+    of instantiations and closing the hierarchies took most of a full REASON's own time on a large TBox.
+    The program is read, never changed, by the REASONs that run it."""
+    return ruleset.derived(("full-program", threshold), lambda: _full_program(ruleset, threshold))
+
+
+def _full_program(ruleset: RuleSet, threshold: int | None) -> GenericProgram:
     rules = ruleset.rules
     program = GenericProgram(ruleset)
     replaced: dict[int, list[Rule]] = {}
