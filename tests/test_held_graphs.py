@@ -84,8 +84,6 @@ def test_a_held_graph_costs_the_store_nothing_until_sparql_needs_it() -> None:
     assert len(store._ox) == 3
     store.drop_graphs(SCRATCH)
     assert len(store._ox) == 1
-    store.add_scratch([Triple(S[1], P[0], S[2])], g)  # held again after the drop
-    assert len(store._ox) == 1 and store.small_graph(g) is not None
 
 
 def test_a_held_graph_past_its_limit_goes_to_the_store() -> None:
@@ -113,3 +111,22 @@ def test_a_held_literal_is_found_in_any_spelling_as_the_index_finds_it() -> None
     assert list(held.triples(graph=g)) == list(plain.triples(graph=g))
     held.discard([Triple(S[0], P[0], O[3])], (g,))  # "5": the same value, the same stored term
     assert held.is_empty(g) and len(held._ox) == 0
+
+
+def test_after_a_reason_whose_sparql_needed_its_scratch_graphs_the_next_one_writes_to_the_store() -> None:
+    store = OxigraphStore()
+    store.hold_scratch(SCRATCH)
+    g, fact = SCRATCH[0], Triple(S[0], P[0], S[1])
+    store.add_scratch([fact], g)
+    store.update(f"INSERT {{ GRAPH {OTHER} {{ ?s ?p ?o }} }} WHERE {{ GRAPH {g} {{ ?s ?p ?o }} }}")
+    store.drop_graphs(SCRATCH)  # the end of a REASON that ran SPARQL
+    store.add_scratch([fact], g)
+    assert len(store._ox) == 2 and store.contains(fact, g)  # written to the store at once
+    store.drop_graphs(SCRATCH)  # a REASON without SPARQL
+    assert len(store._ox) == 1
+    store.add_scratch([fact], g)
+    assert len(store._ox) == 1 and store.contains(fact, g)  # held again
+    store.query(f"ASK {{ GRAPH {OTHER} {{ ?s ?p ?o }} }}")
+    store.drop_graphs(SCRATCH)
+    store.add_scratch([fact], g)
+    assert len(store._ox) == 2

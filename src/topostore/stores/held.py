@@ -37,7 +37,7 @@ def _stored(o):
 class HeldGraphs:
     """The scratch graphs of one store held in Python (see the module's docstring)."""
 
-    __slots__ = ("eligible", "graphs", "in_store")
+    __slots__ = ("active", "eligible", "graphs", "in_store", "needed", "reasoning")
 
     def __init__(self) -> None:
         #: graphs that may be held: a reasoner's scratch graphs, which only it reads and which it drops
@@ -46,10 +46,35 @@ class HeldGraphs:
         self.graphs: dict[NamedNode, dict[Quad, tuple]] = {}
         #: eligible graphs whose facts may be in the store (moved there, or open to SPARQL) until dropped
         self.in_store: set[NamedNode] = set()
+        #: whether writes are held in this REASON: not after a REASON whose SPARQL needed the scratch
+        #: graphs in the store (a map whose steps run SPARQL would only pay the move)
+        self.active = True
+        #: a scratch graph was written since the last drop of them all (a REASON is under way)
+        self.reasoning = False
+        #: SPARQL ran in the REASON under way
+        self.needed = False
 
     def holds(self, graph) -> bool:
-        """Whether writes to ``graph`` are held here (eligible, and nothing of it is in the store)."""
-        return graph in self.eligible and graph not in self.in_store
+        """Whether writes to ``graph`` are held here (eligible, and nothing of it is in the store);
+        an eligible graph written to the store instead is remembered as there."""
+        if graph not in self.eligible:
+            return False
+        self.reasoning = True
+        if self.active and graph not in self.in_store:
+            return True
+        self.in_store.add(graph)
+        return False
+
+    def sparql(self) -> None:
+        """SPARQL is about to run: where a REASON is under way, the next one writes to the store."""
+        if self.reasoning:
+            self.needed = True
+
+    def settle(self) -> None:
+        """Every scratch graph was dropped (a REASON ended): the next REASON holds its writes unless
+        this one ran SPARQL."""
+        self.active = not self.needed
+        self.reasoning = self.needed = False
 
     def add(self, triples: Iterable[Triple], graph: NamedNode) -> list[Quad] | None:
         """Hold ``triples`` in ``graph``; returns the quads the store must take instead when the graph

@@ -76,6 +76,7 @@ class OxigraphStore(Store):
     def _release_held(self, writes: bool = True) -> None:
         """Every held quad into the store: what follows may read any scratch graph there (``writes``:
         and write any, so none is held again until it is dropped)."""
+        self._held.sparql()
         if self._held.graphs:
             self._ox.extend(self._held.take(writes))
         elif writes and self._held.eligible:
@@ -170,7 +171,10 @@ class OxigraphStore(Store):
             super().drop_graphs(graphs)
             return
         self._flush_open()
+        graphs = list(graphs)
         dropped = [g for g in graphs if self._held.drop(g)]
+        if self._held.eligible and self._held.eligible.issubset(graphs):
+            self._held.settle()
         if not dropped:
             return
         self._writes += 1
