@@ -131,13 +131,18 @@ class HeldGraphs:
         self.graphs.clear()
         return quads
 
-    def drop(self, graph: NamedNode) -> bool:
-        """Forget ``graph``; whether the store may hold facts of it (then the store drops it too)."""
-        self.graphs.pop(graph, None)
-        if graph in self.in_store:
-            self.in_store.discard(graph)
-            return True
-        return graph not in self.eligible
+    def drop(self, graphs: list[NamedNode]) -> list[NamedNode]:
+        """Forget ``graphs``; those the store may hold facts of (the store drops them too).  Dropping
+        every eligible graph ends a REASON (:meth:`settle`)."""
+        in_store, eligible = self.in_store, self.eligible
+        dropped = [g for g in graphs if g in in_store or g not in eligible]
+        if self.graphs:
+            for g in graphs:
+                self.graphs.pop(g, None)
+        in_store.difference_update(graphs)
+        if eligible and eligible.issubset(graphs):
+            self.settle()
+        return dropped
 
 
 __all__ = ["HELD_MAX", "HeldGraphs"]

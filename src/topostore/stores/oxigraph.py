@@ -110,8 +110,9 @@ class OxigraphStore(Store):
     def add_scratch(self, triples, graph: NamedNode) -> None:
         """Bulk-add to a reasoner's scratch graph (one RocksDB transaction), or hold the triples in
         Python where the graph is held (see :meth:`hold_scratch`)."""
-        if self._held.holds(graph):
-            taken = self._held.add(triples, graph)
+        held = self._held
+        if graph in held.eligible and held.holds(graph):
+            taken = held.add(triples, graph)
             if taken is None:
                 return
             self._writes += 1
@@ -171,10 +172,7 @@ class OxigraphStore(Store):
             super().drop_graphs(graphs)
             return
         self._flush_open()
-        graphs = list(graphs)
-        dropped = [g for g in graphs if self._held.drop(g)]
-        if self._held.eligible and self._held.eligible.issubset(graphs):
-            self._held.settle()
+        dropped = self._held.drop(list(graphs))
         if not dropped:
             return
         self._writes += 1
