@@ -70,9 +70,9 @@ def every_graph(atom: Atom) -> tuple[NamedNode, ...]:
 
 def _read(store, pattern: tuple, graphs: tuple[NamedNode, ...], graph_set: frozenset) -> list[Triple]:
     """The distinct facts of ``pattern`` in ``graphs`` (at most FEW, else :class:`_Fallback`): one read
-    over every graph where the store offers it (``match_in``: a bound subject or object) and there are
-    several, else one per graph (``graph_set``: ``graphs`` as a set)."""
-    match_in = getattr(store, "match_in", None) if len(graphs) > 1 else None
+    over every graph where the store offers it (``match_in``: a bound subject or object), else one per
+    graph (``graph_set``: ``graphs`` as a set)."""
+    match_in = getattr(store, "match_in", None)
     found = match_in(*pattern, graph_set, direct.FEW) if match_in is not None else None
     if found is None:
         found = direct.facts_in(store, pattern, graphs)
