@@ -121,6 +121,10 @@ def is_monotone(rule: Rule) -> bool:
     return rule.stratum == 0 and not rule.negates
 
 
+#: the scratch graphs every REASON drops at its end
+DROPPED = (*SCRATCH, *PROGRAM_SCRATCH, DELTA, NEW_INFERRED, NEW_AUX)
+
+
 @dataclass
 class MaintenanceState:
     """What incremental maintenance needs to know about the previous REASON."""
@@ -173,6 +177,7 @@ class IncrementalReasoner:
         self._needed = self.triggers.needed_keys() | self.check_triggers.needed_keys()
         self.checks_monotone = all(not c.negates and c.stratum == 0 for c in self.checks)
         self.requests = RequestQueue(store, self.rules)
+        store.hold_scratch(DROPPED)  # only this reasoner reads them, and it drops them after every REASON
         self.flips = Flips(self.requests, self.triggers, self._monotone_set)
         self.deletion = Deletion(self.requests, self.triggers, self.monotone, self.provers)
         #: the compiled step (see :mod:`.program`); False runs the general phases for every change
@@ -628,7 +633,7 @@ class IncrementalReasoner:
     def _clear_scratch(self) -> None:
         """Drop the scratch graphs (with what the queue holds: one request)."""
         self.changed.forget()
-        self.requests.drop((*SCRATCH, *PROGRAM_SCRATCH, DELTA, NEW_INFERRED, NEW_AUX))
+        self.requests.drop(DROPPED)
         self.requests.flush()
 
 

@@ -61,21 +61,37 @@ class Unsupported(ValueError):
     """The text is outside the subset: its condition is never evaluated here."""
 
 
+#: literal -> its value (:func:`value`), for the next few thousand literals: a robot step reads the same
+#: visit times and threshold at every step, and reading a literal's parts makes new objects each time
+_VALUES: dict[Literal, object] = {}
+_VALUES_MAX = 4096
+
+
 def value(term) -> object:
     """A term's value as the evaluator models it: an int (xsd:integer), a :class:`_Str` (simple
     literal), the term itself for an IRI or a blank node, and the term for any other literal (which
     only the term tests accept).  A value a BIND computed is already one."""
     if isinstance(term, Literal):
-        if term.language is None:
-            dt = term.datatype.value
-            if dt == _STRING:
-                return _Str(term.value)
-            # 64 bits need at most 20 characters; a longer text is no value this evaluator models
-            if dt == _INTEGER and len(term.value) <= 20 and _CANONICAL.match(term.value):
-                n = int(term.value)
-                if _MIN <= n <= _MAX:
-                    return n
-        return term
+        found = _VALUES.get(term)
+        if found is None:
+            if len(_VALUES) >= _VALUES_MAX:
+                _VALUES.clear()
+            found = _VALUES[term] = _literal_value(term)
+        return found
+    return term
+
+
+def _literal_value(term: Literal) -> object:
+    """:func:`value` of a literal."""
+    if term.language is None:
+        dt = term.datatype.value
+        if dt == _STRING:
+            return _Str(term.value)
+        # 64 bits need at most 20 characters; a longer text is no value this evaluator models
+        if dt == _INTEGER and len(term.value) <= 20 and _CANONICAL.match(term.value):
+            n = int(term.value)
+            if _MIN <= n <= _MAX:
+                return n
     return term
 
 

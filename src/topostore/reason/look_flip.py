@@ -20,16 +20,17 @@ head as it stands, :func:`.flip.compact_possible`).
 
 from __future__ import annotations
 
-from pyoxigraph import Triple
+from collections.abc import Callable
 
-from ..compile.rule import Rule, join_order
-from ..rdf.vocab import AUX
+from pyoxigraph import NamedNode, Triple
+
+from ..compile.rule import Atom, Rule, join_order
 from . import direct
-from .delta_texts import FLIP_LOST, NEW_STATE
+from .delta_texts import FLIP_LOST
 from .direct import _bind, _instance, _match, _pattern, _terms
 from .flip import CHANGE_OLD, compact_possible
 from .look_filters import UNKNOWN
-from .look_join import Conditions, joinable
+from .look_join import Conditions, every_graph, joinable
 from .scratch import FLIP_GAINED
 
 
@@ -45,12 +46,14 @@ def flippable(rule: Rule, order: tuple[int, ...]) -> bool:
 class Flipped:
     """The flip of ``rule`` over its changed atoms ``order`` (see :func:`.delta_texts.flips`)."""
 
-    def __init__(self, rule: Rule, order: tuple[int, ...]) -> None:
+    def __init__(self, rule: Rule, order: tuple[int, ...],
+                 graphs_of: Callable[[Atom], tuple[NamedNode, ...]] = every_graph) -> None:
+        """``graphs_of``: the graphs an atom's facts may be in (:meth:`.look_join.StateGraphs.of`)."""
         self.order = order
         self.conditions = Conditions(rule)
         self._body = [_terms(a) for a in rule.body]
         self._head = _terms(rule.head)
-        self._aux = [a.aux for a in rule.body]
+        self._graphs = [graphs_of(a) for a in rule.body]
         self._plans = [[m for m in join_order(rule.body, k) if m != k] for k in order]
         #: the keys whose facts it reads: its atoms' and its head's
         self.reads = frozenset({a.read_key() for a in rule.body} | {rule.head.read_key()})
@@ -76,9 +79,6 @@ class Flipped:
             raise _Fallback
         return found
 
-    def _graphs(self, m: int) -> tuple:
-        return (AUX,) if self._aux[m] else NEW_STATE
-
     def _seeds(self, store, k: int):
         """The seed atom's replaced facts: its bindings with the new value, and its old value."""
         terms = self._body[k]
@@ -86,7 +86,7 @@ class Flipped:
             start = _match(terms, f)
             if start is None:
                 continue
-            for t in self._facts(store, _pattern(_bind(terms[:2] + ("?",), start)), NEW_STATE):
+            for t in self._facts(store, _pattern(_bind(terms[:2] + ("?",), start)), self._graphs[k]):
                 bound = _match(terms, t)  # subject and predicate read as bound: only the value is new
                 if bound is not None:
                     yield bound, {terms[2]: f.object}
@@ -99,7 +99,7 @@ class Flipped:
             return
         m = plan[at]
         terms = self._body[m]
-        for t in self._facts(store, _pattern(_bind(terms, bound)), self._graphs(m)):
+        for t in self._facts(store, _pattern(_bind(terms, bound)), self._graphs[m]):
             found = _match(terms, t)  # the read pattern holds every bound value: a fact read agrees with them
             if found is None:
                 continue

@@ -18,13 +18,13 @@ and its SPARQL text runs instead (before anything was written).
 
 from __future__ import annotations
 
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 
 from pyoxigraph import Literal, NamedNode, Triple
 
 from ..compile.condition import BIND, TEST
-from ..compile.rule import Rule, join_order
-from ..rdf.vocab import ASSERTED, AUX, INFERRED
+from ..compile.rule import Atom, ReadKey, Rule, join_order
+from ..rdf.vocab import ASSERTED, AUX, INFERRED, TYPE
 from . import direct
 from .delta_texts import KEEP
 from .direct import _bind, _instance, _match, _named_only, _pattern, _terms, _write_new
@@ -32,15 +32,48 @@ from .look_filters import UNKNOWN, Unsupported, all_of, compile_expression
 from .scratch import CANDIDATES, NEW_FACTS, OVERDELETED
 
 _STATE = (ASSERTED, INFERRED, AUX)
-#: the graph tuples an atom reads, as sets (for a membership test per quad)
-_SETS = {_STATE: frozenset(_STATE), (AUX,): frozenset((AUX,))}
+_TYPE_KEY = ("p", str(TYPE))
 
 
-def _read(store, pattern: tuple, graphs: tuple[NamedNode, ...]) -> list[Triple]:
+class StateGraphs:
+    """The graphs of the new state that may hold facts of an atom: the helper graph alone for a helper
+    atom, else the asserted graph, and the inferred and helper graphs only where some rule's head may
+    write the atom's key there (a rule writing any predicate, or ``rdf:type`` with a variable class,
+    writes every key it may match).  Only rules write those two graphs, so an atom on a predicate
+    no rule derives (a robot's clock, its visit times) is read from the asserted graph alone."""
+
+    def __init__(self, rules: list[Rule]) -> None:
+        self._by_key: dict[ReadKey, set[NamedNode]] = {}
+        for rule in rules:
+            if rule.head is not None:
+                self._by_key.setdefault(rule.writes(), set()).add(AUX if rule.head_aux() else INFERRED)
+
+    def of(self, atom: Atom) -> tuple[NamedNode, ...]:
+        """The graphs to read ``atom``'s facts from, in :data:`_STATE`'s order."""
+        if atom.aux:
+            return (AUX,)
+        key = atom.read_key()
+        if key[0] == "*":
+            return _STATE
+        found = set(self._by_key.get(("*",), ())) | self._by_key.get(key, set())
+        if key[0] == "t":
+            found |= self._by_key.get(_TYPE_KEY, set())
+        elif key == _TYPE_KEY:
+            found.update(*(g for k, g in self._by_key.items() if k[0] == "t"))
+        return (ASSERTED, *(g for g in (INFERRED, AUX) if g in found))
+
+
+def every_graph(atom: Atom) -> tuple[NamedNode, ...]:
+    """The graphs of the new state an atom is read from when nothing is known of the rules' heads."""
+    return (AUX,) if atom.aux else _STATE
+
+
+def _read(store, pattern: tuple, graphs: tuple[NamedNode, ...], graph_set: frozenset) -> list[Triple]:
     """The distinct facts of ``pattern`` in ``graphs`` (at most FEW, else :class:`_Fallback`): one read
-    over every graph where the store offers it (``match_in``: a bound subject or object), else one per graph."""
+    over every graph where the store offers it (``match_in``: a bound subject or object), else one per
+    graph (``graph_set``: ``graphs`` as a set)."""
     match_in = getattr(store, "match_in", None)
-    found = match_in(*pattern, _SETS[graphs], direct.FEW) if match_in is not None else None
+    found = match_in(*pattern, graph_set, direct.FEW) if match_in is not None else None
     if found is None:
         found = direct.facts_in(store, pattern, graphs)
     if found is None or len(found) > direct.FEW:
@@ -111,16 +144,18 @@ class Joined:
     """Rule ``rule`` (see :func:`joinable`), whose heads live in ``graph``: its recheck of candidates
     (as KEEP marks, or as the one-prover deletion) and its additions from an atom's new facts."""
 
-    def __init__(self, rule: Rule, graph: NamedNode, delta: int | None = None) -> None:
+    def __init__(self, rule: Rule, graph: NamedNode, delta: int | None = None,
+                 graphs_of: Callable[[Atom], tuple[NamedNode, ...]] = every_graph) -> None:
         """``delta``: the atom whose new facts the additions start from.  The recheck reads the new
-        state (a rule that only restates a premise is rechecked from asserted facts by its text)."""
+        state (a rule that only restates a premise is rechecked from asserted facts by its text);
+        ``graphs_of``: the graphs an atom's facts may be in (:meth:`StateGraphs.of`)."""
         self.rule = rule
         self.graph = graph
         self.delta = delta
         self.conditions = Conditions(rule)
         self._body = [_terms(a) for a in rule.body]
         self._head = _terms(rule.head)
-        self._graphs = [(AUX,) if a.aux else _STATE for a in rule.body]
+        self._graphs = [(g, frozenset(g)) for g in map(graphs_of, rule.body)]
         self._proof_order = join_order(rule.body, None, rule.head.variables())
         self._delta_order = join_order(rule.body, delta)[1:] if delta is not None else []
         #: the keys whose facts it reads: its atoms' and its head's
@@ -132,7 +167,7 @@ class Joined:
         fact read agrees with ``bound``; :func:`.direct._match` checks a variable repeated in the atom."""
         terms = self._body[k]
         out = []
-        for t in _read(store, _bind(terms, bound), self._graphs[k]):
+        for t in _read(store, _bind(terms, bound), *self._graphs[k]):
             m = _match(terms, t)
             if m is not None:
                 out.append({**bound, **m})
@@ -230,4 +265,4 @@ class Joined:
         return True
 
 
-__all__ = ["Conditions", "Joined", "joinable"]
+__all__ = ["Conditions", "Joined", "StateGraphs", "every_graph", "joinable"]

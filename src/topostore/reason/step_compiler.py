@@ -11,6 +11,7 @@ from ..compile.rule import ReadKey, Rule
 from ..rdf.vocab import TYPE
 from . import flip
 from .emit import Emitter
+from .look_join import StateGraphs
 from .order import strongly_connected
 from .program import (
     Refused,
@@ -45,6 +46,8 @@ class StepCompiler:
         self.filter_vars = {i: flip.filter_variables(rules[i]) for i in self.monotone}
         self._cover = cover
         self._covered: dict[int, ReadKey] | None = None
+        #: the graphs a look-up operation reads an atom's facts from (see :class:`.look_join.StateGraphs`)
+        self.state_graphs = StateGraphs(rules)
 
     @property
     def covered(self) -> dict[int, ReadKey]:

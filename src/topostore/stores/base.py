@@ -278,6 +278,11 @@ class Store:
         """Bulk-add to a reasoner's scratch graph (no literal forms recorded, no counting)."""
         self._write([Quad(t.subject, t.predicate, t.object, graph) for t in triples], [])
 
+    def hold_scratch(self, graphs: Iterable[NamedNode]) -> None:
+        """``graphs`` are a reasoner's scratch graphs, read only by it and dropped by it at the end of every
+        REASON: a store may hold what :meth:`add_scratch` writes to them outside its index until SPARQL
+        needs them (the in-memory store does, see :mod:`.held`); here they are written at once."""
+
     def discard(self, triples: Iterable[Triple], graphs: Iterable[NamedNode]) -> None:
         """Remove triples from reasoner graphs, present or not (no literal forms are kept for those)."""
         graphs = tuple(graphs)

@@ -20,6 +20,7 @@ from pyoxigraph import Literal, NamedNode, Quad
 from ..errors import QueryError, StoreError
 from .base import Store
 from .data_text import data_update, quad_data  # noqa: F401 - quad_data: named here since the first release
+from .held import HeldGraphs
 from .literal_forms import stored_literal
 from .reads import key_census
 
@@ -44,18 +45,48 @@ class OxigraphStore(Store):
         self._in_memory = path is None
         self._writes = 0  # write operations since the last compaction
         self._live_at_compaction = 0
+        #: a reasoner's scratch graphs held in Python while only the quad API reads them (in memory only)
+        self._held = HeldGraphs()
         if self.durable:
             self.forms.load()
 
     # ------------------------------------------------------------ primitives
     def _has(self, quad: Quad) -> bool:
+        held = self._held.graphs
+        if held and quad.graph_name in held:
+            return self._held.has(quad)
         return quad in self._ox
 
     def _match(self, s, p, o, graph) -> Iterator[Quad]:
+        held = self._held.graphs
+        if held:
+            if graph is None:
+                return chain(self._ox.quads_for_pattern(s, p, o, None), self._held.match(s, p, o, None))
+            if graph in held:
+                return self._held.match(s, p, o, graph)
         return iter(self._ox.quads_for_pattern(s, p, o, graph))
+
+    def hold_scratch(self, graphs: Iterable[NamedNode]) -> None:
+        """In memory, writes to ``graphs`` through :meth:`add_scratch` are held in Python until SPARQL
+        text or a transactional write needs them in the store (see :mod:`.held`); the reasoner that
+        names them drops them all at the end of every REASON (:meth:`drop_graphs`)."""
+        if self._in_memory:
+            self._held.eligible = self._held.eligible | frozenset(graphs)
+
+    def _release_held(self, writes: bool = True) -> None:
+        """Every held quad into the store: what follows may read any scratch graph there (``writes``:
+        and write any, so none is held again until it is dropped)."""
+        self._held.sparql()
+        if self._held.graphs:
+            self._ox.extend(self._held.take(writes))
+        elif writes and self._held.eligible:
+            self._held.take(writes)
 
     def _commit(self, adds: list[Quad], removes: list[Quad]) -> None:
         self._writes += 1
+        eligible = self._held.eligible
+        if eligible and any(q.graph_name in eligible for q in chain(adds, removes)):
+            self._release_held()
         if self._in_memory:
             for q in removes:
                 self._ox.remove(q)
@@ -73,13 +104,23 @@ class OxigraphStore(Store):
         of the graph takes 0.45 s)."""
         if not self._in_memory:
             return super()._commit_stream(quads, extra, count)
+        self._release_held()  # a bulk write may name any graph: not scanned for scratch graphs
         self._writes += 1
         before = len(self._ox) if count else 0
         self._ox.extend(chain(quads, extra))
         return len(self._ox) - before if count else None
 
     def add_scratch(self, triples, graph: NamedNode) -> None:
-        """Bulk-add to a reasoner's scratch graph (one RocksDB transaction)."""
+        """Bulk-add to a reasoner's scratch graph (one RocksDB transaction), or hold the triples in
+        Python where the graph is held (see :meth:`hold_scratch`)."""
+        held = self._held
+        if graph in held.eligible and held.holds(graph):
+            taken = held.add(triples, graph)
+            if taken is None:
+                return
+            self._writes += 1
+            self._ox.extend(taken)
+            return
         self._writes += 1
         self._ox.extend(Quad(t.subject, t.predicate, t.object, graph) for t in triples)
 
@@ -88,7 +129,8 @@ class OxigraphStore(Store):
         index read over every graph, filtered here, instead of one read per graph (each read costs its
         call and its iterator).  Only where the subject or the object is bound, so that the quads of other
         graphs are few; None where that does not hold (or a transaction is open): read each graph then."""
-        if (s is None and o is None) or self._pending is not None or self.listings is not None:
+        if (s is None and o is None) or self._pending is not None or self.listings is not None \
+                or (self._held.graphs and not graphs.isdisjoint(self._held.graphs)):
             return None
         found: dict = {}
         seen = 0
@@ -110,6 +152,10 @@ class OxigraphStore(Store):
             super().discard(triples, graphs)
             return
         graphs = tuple(graphs)
+        if self._held.graphs:
+            triples = list(triples)
+            for g in graphs:
+                self._held.discard(triples, g)
         self._writes += 1
         ox = self._ox
         for t in triples:
@@ -129,11 +175,15 @@ class OxigraphStore(Store):
             super().drop_graphs(graphs)
             return
         self._flush_open()
+        dropped = self._held.drop(list(graphs))
+        if not dropped:
+            return
         self._writes += 1
-        for g in graphs:
+        for g in dropped:
             self._ox.remove_graph(g)
 
     def _run_update(self, text: str, prefixes: dict[str, str] | None) -> None:
+        self._release_held()
         self._writes += 1
         try:
             self._ox.update(text, custom_functions=self.functions, prefixes=prefixes)
@@ -145,6 +195,7 @@ class OxigraphStore(Store):
     def _run_query(self, text: str, graphs: list[NamedNode] | None, named: list[NamedNode] | None = None,
                    **kwargs):
         kwargs.setdefault("custom_functions", self.functions)
+        self._release_held(writes=False)
         try:
             if graphs is not None:
                 named = graphs if named is None else named
@@ -158,6 +209,9 @@ class OxigraphStore(Store):
     # ------------------------------------------------------------ reasoner scratch graphs
     def small_graph(self, graph: NamedNode, limit: int = 2000) -> list[Quad] | None:
         self._flush_open()
+        held = self._held.graphs.get(graph)
+        if held is not None:
+            return list(held) if len(held) <= limit else None
         quads = list(islice(self._ox.quads_for_pattern(None, None, None, graph), limit + 1))
         return quads if len(quads) <= limit else None
 
@@ -177,6 +231,8 @@ class OxigraphStore(Store):
 
     def is_empty(self, graph: NamedNode) -> bool:
         self._flush_open()
+        if graph in self._held.graphs:
+            return False  # a held graph is never empty
         return next(iter(self._ox.quads_for_pattern(None, None, None, graph)), None) is None
 
     def close(self) -> None:

@@ -1,0 +1,132 @@
+"""Scratch graphs held in Python on the in-memory store (stores/held.py) answer as the store's index would."""
+
+from __future__ import annotations
+
+from hypothesis import given, settings
+from hypothesis import strategies as st
+from pyoxigraph import Literal, NamedNode, Triple
+
+from topostore.rdf.vocab import ASSERTED, XSD
+from topostore.stores.held import HELD_MAX
+from topostore.stores.oxigraph import OxigraphStore
+
+S = [NamedNode(f"urn:x:s{i}") for i in range(3)]
+P = [NamedNode(f"urn:x:p{i}") for i in range(2)]
+INTEGER, LONG = NamedNode(XSD + "integer"), NamedNode(XSD + "long")
+#: objects: IRIs and literals in several spellings of one value
+O = [*S, Literal("5", datatype=INTEGER), Literal("05", datatype=INTEGER), Literal("5", datatype=LONG),
+     Literal("7", datatype=INTEGER)]
+SCRATCH = [NamedNode(f"urn:x:scratch{i}") for i in range(3)]
+OTHER = NamedNode("urn:x:other")
+GRAPHS = [*SCRATCH, OTHER, ASSERTED]
+
+triples = st.lists(st.builds(Triple, st.sampled_from(S), st.sampled_from(P), st.sampled_from(O)), max_size=4)
+patterns = st.tuples(st.sampled_from([None, *S]), st.sampled_from([None, *P]), st.sampled_from([None, *O]),
+                     st.sampled_from([None, *GRAPHS]))
+operations = st.one_of(
+    st.tuples(st.just("add_scratch"), triples, st.sampled_from(GRAPHS)),
+    st.tuples(st.just("discard"), triples, st.sampled_from(GRAPHS)),
+    st.tuples(st.just("add"), triples, st.sampled_from(GRAPHS)),
+    st.tuples(st.just("read"), patterns),
+    st.tuples(st.just("contains"), triples, st.sampled_from(GRAPHS)),
+    st.tuples(st.just("small"), st.sampled_from(GRAPHS)),
+    st.tuples(st.just("copy"), st.sampled_from(SCRATCH), st.sampled_from(GRAPHS)),
+    st.tuples(st.just("count"), st.sampled_from(GRAPHS)),
+    st.tuples(st.just("drop"), st.lists(st.sampled_from(GRAPHS), min_size=1, max_size=3)),
+)
+
+
+def _run(store: OxigraphStore, op: tuple):
+    """One operation; what it answers, comparable between stores."""
+    kind = op[0]
+    if kind == "add_scratch":
+        store.add_scratch(op[1], op[2])
+    elif kind == "discard":
+        store.discard(op[1], (op[2],))
+    elif kind == "add":
+        store.add(op[1], op[2])
+    elif kind == "read":
+        return sorted(map(str, store.triples(*op[1])))
+    elif kind == "contains":
+        return store.contains_each(op[1], op[2]), [store.contains(t, op[2]) for t in op[1]]
+    elif kind == "small":
+        quads = store.small_graph(op[1])
+        return (sorted(map(str, quads)), store.is_empty(op[1]))
+    elif kind == "copy":  # SPARQL reading a scratch graph and writing one
+        store.update(f"INSERT {{ GRAPH {op[2]} {{ ?s ?p ?o }} }} WHERE {{ GRAPH {op[1]} {{ ?s ?p ?o }} }}")
+    elif kind == "count":
+        return store.count(op[1])
+    elif kind == "drop":
+        store.drop_graphs(op[1])
+    return None
+
+
+@settings(max_examples=300, deadline=None)
+@given(st.lists(operations, max_size=14))
+def test_held_scratch_graphs_answer_as_the_index(ops: list[tuple]) -> None:
+    held, plain = OxigraphStore(), OxigraphStore()
+    held.hold_scratch(SCRATCH)
+    for op in ops:
+        assert _run(held, op) == _run(plain, op), op
+    for g in GRAPHS:
+        assert sorted(map(str, held.triples(graph=g))) == sorted(map(str, plain.triples(graph=g)))
+
+
+def test_a_held_graph_costs_the_store_nothing_until_sparql_needs_it() -> None:
+    store = OxigraphStore()
+    store.hold_scratch(SCRATCH)
+    g = SCRATCH[0]
+    store.add_scratch([Triple(S[0], P[0], O[4])], g)
+    assert len(store._ox) == 0 and store.contains(Triple(S[0], P[0], O[5]), g)  # "05" is the stored "5"
+    store.update(f"INSERT {{ GRAPH {OTHER} {{ ?s ?p ?o }} }} WHERE {{ GRAPH {g} {{ ?s ?p ?o }} }}")
+    assert len(store._ox) == 2  # the held fact moved to the store before the update read it
+    store.add_scratch([Triple(S[1], P[0], S[2])], g)  # the graph stays in the store until dropped
+    assert len(store._ox) == 3
+    store.drop_graphs(SCRATCH)
+    assert len(store._ox) == 1
+
+
+def test_a_held_graph_past_its_limit_goes_to_the_store() -> None:
+    store = OxigraphStore()
+    store.hold_scratch(SCRATCH)
+    facts = [Triple(NamedNode(f"urn:x:n{i}"), P[0], S[0]) for i in range(HELD_MAX + 1)]
+    store.add_scratch(facts[:HELD_MAX], SCRATCH[0])
+    assert len(store._ox) == 0
+    store.add_scratch(facts[HELD_MAX:], SCRATCH[0])
+    assert len(store._ox) == HELD_MAX + 1
+    assert len(list(store.triples(None, P[0], None, SCRATCH[0]))) == HELD_MAX + 1
+
+
+def test_a_held_literal_is_found_in_any_spelling_as_the_index_finds_it() -> None:
+    held, plain = OxigraphStore(), OxigraphStore()
+    held.hold_scratch(SCRATCH)
+    g = SCRATCH[0]
+    for store in (held, plain):
+        store.add_scratch([Triple(S[0], P[0], O[5])], g)  # "05"
+    for o in O[3:]:
+        for s in (None, S[0]):
+            assert list(held.triples(s, P[0], o, g)) == list(plain.triples(s, P[0], o, g)), o
+            assert list(held.triples(s, P[0], o, None)) == list(plain.triples(s, P[0], o, None)), o
+        assert held.contains(Triple(S[0], P[0], o), g) == plain.contains(Triple(S[0], P[0], o), g), o
+    assert list(held.triples(graph=g)) == list(plain.triples(graph=g))
+    held.discard([Triple(S[0], P[0], O[3])], (g,))  # "5": the same value, the same stored term
+    assert held.is_empty(g) and len(held._ox) == 0
+
+
+def test_after_a_reason_whose_sparql_needed_its_scratch_graphs_the_next_one_writes_to_the_store() -> None:
+    store = OxigraphStore()
+    store.hold_scratch(SCRATCH)
+    g, fact = SCRATCH[0], Triple(S[0], P[0], S[1])
+    store.add_scratch([fact], g)
+    store.update(f"INSERT {{ GRAPH {OTHER} {{ ?s ?p ?o }} }} WHERE {{ GRAPH {g} {{ ?s ?p ?o }} }}")
+    store.drop_graphs(SCRATCH)  # the end of a REASON that ran SPARQL
+    store.add_scratch([fact], g)
+    assert len(store._ox) == 2 and store.contains(fact, g)  # written to the store at once
+    store.drop_graphs(SCRATCH)  # a REASON without SPARQL
+    assert len(store._ox) == 1
+    store.add_scratch([fact], g)
+    assert len(store._ox) == 1 and store.contains(fact, g)  # held again
+    store.query(f"ASK {{ GRAPH {OTHER} {{ ?s ?p ?o }} }}")
+    store.drop_graphs(SCRATCH)
+    store.add_scratch([fact], g)
+    assert len(store._ox) == 2
