@@ -73,3 +73,27 @@ def test_restrictions_that_differ_stay_apart() -> None:
                         ":K3 rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :p ; owl:onClass :A ; "
                         "owl:minQualifiedCardinality 2 ] .")
     assert rule_names(o)["cls-svf1"] == 3
+
+
+def test_a_type_added_later_to_a_merged_copy_is_read() -> None:
+    """Which copies are kept is decided when the rules are compiled: typing an individual with a copy
+    later is a schema change, so the rules are compiled again and the copy is kept."""
+    from pyoxigraph import NamedNode
+
+    from topostore.rdf.vocab import ASSERTED
+
+    o = Ontology()
+    o.load_data(PREFIXES + f""":K rdfs:subClassOf {SOME_A} .
+        {SOME_A[:-1]} ; rdfs:subClassOf :S ] . :S a owl:Class .""")
+    o.reason()
+    nodes = [t.subject for t in o.store.triples(None, NamedNode("http://www.w3.org/2002/07/owl#onProperty"),
+                                                 NamedNode("http://e.org/a#p"), ASSERTED)]
+    assert len(nodes) == 2
+    for n, node in enumerate(nodes):
+        o.add_type(NamedNode(f"http://e.org/a#i{n}"), node)
+    o.reason()
+    assert {o.short(i) for i in o.instances("S")} == {"i0", "i1"}
+    fresh = Ontology()
+    fresh.load_data(o.serialize("turtle"))
+    fresh.reason()
+    assert {fresh.short(i) for i in fresh.instances("S")} == {"i0", "i1"}

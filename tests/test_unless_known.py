@@ -126,3 +126,30 @@ def test_visit_times_made_equal_and_apart_on_an_undeclared_link() -> None:
     visit(onto, b, int(before.value))
     assert_same_as_scratch(onto)
     assert (a, b) in _entailed(onto, "connectedTo")
+
+
+
+def test_reachability_is_asked_where_equality_also_writes_links() -> None:
+    """Reachability's ask is left out only while every rule that may write ``connectedTo`` is
+    Connectability's conclusion: owl:sameAs replacement writes any predicate, so an alias's link is asked."""
+    from pyoxigraph import NamedNode
+
+    from topostore import Ontology
+    from topostore.resources import default_ontology_files
+
+    ns = "http://bnc/exp-rob-lab/2022-23#"
+    onto = Ontology.from_file(*default_ontology_files())
+    onto.load_data(f"""@prefix : <{ns}> . @prefix owl: <http://www.w3.org/2002/07/owl#> .
+        @prefix xsd: <http://www.w3.org/2001/XMLSchema#> .
+        :Y a :LOCATION ; :visitedAt "1665579000"^^xsd:long . :Z owl:sameAs :Y .""")
+    onto.reason()
+    onto.add(Triple(NamedNode(ns + "C1"), NamedNode(ns + "connectedTo"), NamedNode(ns + "Y")))
+
+    def reach() -> set[str]:
+        return {onto.short(t.object) for t in onto.store.triples(NamedNode(ns + "Robot1"), NamedNode(ns + "canReach"),
+                                                                 None, ENTAILED)}
+
+    onto.reason()
+    assert {"Y", "Z"} <= reach()
+    onto.reason(mode="full")
+    assert {"Y", "Z"} <= reach()

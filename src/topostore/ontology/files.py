@@ -39,6 +39,7 @@ from ..rdf.vocab import (
     SWRLB,
     TYPE,
     XSD,
+    is_skolem,
     owl,
 )
 from ..stores import check_rules, memory_store
@@ -57,6 +58,8 @@ def is_schema_triple(t: Triple) -> bool:
     """True for triples that change the rules (TBox axioms, SWRL rules), not just facts."""
     p = t.predicate
     if p == TYPE:
+        if is_skolem(t.object):  # a type that is an anonymous class expression: the compiler keeps its node
+            return True          # (compile/alike.py merges only expressions no individual is typed with)
         return isinstance(t.object, NamedNode) and t.object.value.startswith(SCHEMA_NAMESPACES) and t.object not in (
             owl("NamedIndividual"), owl("Thing"), owl("AllDifferent"))
     if p in _ABOX_PREDICATES:

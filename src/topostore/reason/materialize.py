@@ -32,7 +32,7 @@ from ..rdf.vocab import ASSERTED, AUX, DELTA, INFERRED, INTERNAL, NEW_AUX, NEW_I
 from ..stores.base import Store
 from . import limits
 from .key_pairs import grouped_form
-from .negation import evaluated_last, unless_known_text
+from .negation import Idle, evaluated_last, unless_known_text
 from .order import TYPE_KEY, evaluation_order, implied_atoms, implied_first_passes, reachable, single_graphs
 from .plan import KeyCounts, is_small, plan_where
 from .triggers import Present, Triggers
@@ -172,7 +172,7 @@ class Materializer:
         self._deferring: set[int] = set()
         #: of those, the ones asking nothing a twin could be published for on derived facts of a key
         #: (:func:`.negation.idle_asks`): by rule, that key, whose asserted facts alone they read
-        self._idle: dict[int, ReadKey] = {}
+        self._idle: dict[int, Idle] = {}
         #: rules of :meth:`run`'s ordered pass whose first evaluation leaves out class atoms another
         #: atom implies (:func:`.order.implied_atoms`), as the rule that first evaluation runs
         self._lean: dict[int, Rule] = {}
@@ -340,10 +340,14 @@ class Materializer:
         for i in rules:
             if not self.triggers.feasible(i, self.present):
                 continue
-            key = self._idle.get(i)
+            idle = self._idle.get(i)
+            if idle is not None and any(self.triggers.feasible(w, self.present) for w in idle.others):
+                idle = None  # a rule of a variable predicate may have written the key
+            key = idle.key if idle is not None else None
             if key is None:
                 text = insert_text(self.rules[i], None, self.planned, self._lateral, self._direct)
-                text = unless_known_text(text, self.rules[i])
+                if self.rules[i].unless_known is not None:
+                    text = unless_known_text(text, self.rules[i])
             elif next(iter(self.store.triples(*key_pattern(key), ASSERTED)), None) is not None:
                 # its asks on derived facts of the key are idle: the asserted ones alone
                 text = insert_text(self.rules[i], None, self.planned, self._lateral, self._direct, {key: ASSERTED})

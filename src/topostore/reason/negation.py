@@ -34,6 +34,7 @@ pairs whose ``H`` is not known:
 from __future__ import annotations
 
 from collections.abc import Collection, Mapping, Sequence
+from typing import NamedTuple
 
 from pyoxigraph import NamedNode
 
@@ -51,7 +52,16 @@ def deferred(rules: Sequence[Rule]) -> set[int]:
     return {i for i, r in enumerate(rules) if r.unless_known is not None and r.head is not None}
 
 
-def idle_asks(rules: Sequence[Rule], covered: Mapping[int, ReadKey]) -> dict[int, ReadKey]:
+class Idle(NamedTuple):
+    """A candidate rule's idle asks (:func:`idle_asks`): the key it is covered at, whose asserted facts
+    alone it reads, and the rules of a variable predicate that may write that key too (while one of
+    them can fire, the asks are not idle)."""
+
+    key: ReadKey
+    others: tuple[int, ...]
+
+
+def idle_asks(rules: Sequence[Rule], covered: Mapping[int, ReadKey]) -> dict[int, Idle]:
     """Candidate rules that ask nothing a twin could be published for, while the key they are covered at
     (:func:`.restate.covering`, by rule) has no asserted fact: by rule, that key.
 
@@ -60,27 +70,27 @@ def idle_asks(rules: Sequence[Rule], covered: Mapping[int, ReadKey]) -> dict[int
     longer does where ``connectedTo(l1, l2)`` is known; but when every rule deriving that key is a
     conclusion of the deferred rule's own SWRL rule (its head, joined with a declaration of the pair),
     each derived ``connectedTo(l1, l2)`` is a declared pair, so Reachability's own conclusion holds for
-    every match and its twin is never published: its asks may be left out as the step leaves them out."""
-    writers: dict[ReadKey, list[Rule]] = {}
-    for r in rules:
-        if r.head is not None:
-            writers.setdefault(r.writes(), []).append(r)
+    every match and its twin is never published: its asks may be left out as the step leaves them out.
+    A rule of a variable predicate (owl:sameAs replacement, a generic subproperty rule) may write the key
+    too: it is named in the result, and the asks are idle only while it cannot fire."""
     owners = [rules[i] for i in deferred(rules)]
-    out: dict[int, ReadKey] = {}
+    out: dict[int, Idle] = {}
     for i, key in covered.items():
         rule = rules[i]
         atom = next((a for a in rule.body if a.read_key() == key), None)
         if atom is None or rule.head is None or (rule.head.s, rule.head.o) != (atom.s, atom.o):
             continue
         owner = next((d for d in owners if d.unless_known.read_key() == key), None)
-        if owner is not None and writers.get(key) and all(
+        writers = [n for n, w in enumerate(rules) if w.head is not None and _may_write(w.writes(), key)]
+        exact = [rules[n] for n in writers if rules[n].writes() == key]
+        if owner is not None and exact and all(
                 w.name == owner.name and w.head == owner.unless_known and w.reads() > owner.reads()
-                for w in writers[key]):
-            out[i] = key
+                for w in exact):
+            out[i] = Idle(key, tuple(n for n in writers if rules[n].writes() != key))
     return out
 
 
-def evaluated_last(rules: Sequence[Rule]) -> tuple[set[int], dict[int, ReadKey]]:
+def evaluated_last(rules: Sequence[Rule]) -> tuple[set[int], dict[int, Idle]]:
     """The candidate rules a full REASON leaves out of its first stratum's fixpoint and runs after it:
     those asking unless a conclusion is known (:func:`deferred`), and those asking nothing a twin could
     be published for on derived facts of the key they are covered at, by rule, that key
@@ -159,4 +169,4 @@ def completion_text(rule: Rule, seed: NamedNode) -> str:
             f"  MINUS {{ {rule.unless_known.text()} }}\n}}")
 
 
-__all__ = ["ASKED", "Completion", "evaluated_last", "idle_asks", "completion_text", "deferred", "lost_any", "unless_known_text"]
+__all__ = ["ASKED", "Completion", "Idle", "evaluated_last", "idle_asks", "completion_text", "deferred", "lost_any", "unless_known_text"]
