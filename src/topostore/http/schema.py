@@ -1,7 +1,7 @@
 """Classes and properties as the inspector shows them: hierarchy, axioms, rules, each inference with its why.
 
 The axioms are read from the asserted graph with the compiler's own reader
-(:class:`~topostore.compile.model.TBoxReader`) and written as the rules'
+(:class:`~topostore.compile.tbox_reader.TBoxReader`) and written as the rules'
 origins are (``URGENT SubClassOf LOCATION``, ``ROOM EquivalentTo (LOCATION
 and (hasDoor some DOOR))``), so a proof's rule and the class page agree.
 
@@ -21,8 +21,9 @@ from typing import TYPE_CHECKING, Any
 from pyoxigraph import NamedNode, Triple
 
 from ..compile.builtins import FUNCTIONS
-from ..compile.model import Expr, Prop, TBox, TBoxReader
+from ..compile.model import Expr, Prop, TBox
 from ..compile.rule import Rule, RuleSet
+from ..compile.tbox_reader import TBoxReader
 from ..errors import RuleCompileError
 from ..ontology.explain import Explainer
 from ..rdf.terms import sparql
