@@ -14,8 +14,7 @@ the proof, with the prototype shown as ``(any ROOM)``.
 from __future__ import annotations
 
 import re
-import threading
-from collections import OrderedDict
+from functools import lru_cache
 from typing import TYPE_CHECKING, Any
 
 from pyoxigraph import NamedNode, Triple
@@ -225,23 +224,30 @@ def _assumed(node: dict[str, Any]) -> dict[str, Any]:
     return node
 
 
-_PROTOTYPES: OrderedDict[int, Prototypes] = OrderedDict()
-_PROTOTYPES_LOCK = threading.Lock()
+class _Same:
+    """A rule set as a cache key by identity: a RuleSet compares by value and has no hash, and a
+    recompiled one (the TBox changed) is a new object, so "the same object" is "the same rules"."""
+
+    __slots__ = ("rules",)
+
+    def __init__(self, rules: RuleSet) -> None:
+        self.rules = rules
+
+    def __hash__(self) -> int:
+        return id(self.rules)
+
+    def __eq__(self, other: object) -> bool:
+        return isinstance(other, _Same) and other.rules is self.rules
 
 
 def prototypes(rules: RuleSet) -> Prototypes:
     """The prototypes of ``rules`` (a few rule sets are kept: one per loaded reference in use)."""
-    with _PROTOTYPES_LOCK:
-        found = _PROTOTYPES.get(id(rules))
-        if found is not None and found.rules is rules:
-            _PROTOTYPES.move_to_end(id(rules))
-            return found
-    made = Prototypes(rules)
-    with _PROTOTYPES_LOCK:
-        _PROTOTYPES[id(rules)] = made
-        while len(_PROTOTYPES) > 8:
-            _PROTOTYPES.popitem(last=False)
-    return made
+    return _prototypes(_Same(rules))
+
+
+@lru_cache(maxsize=8)
+def _prototypes(key: _Same) -> Prototypes:
+    return Prototypes(key.rules)
 
 
 def hierarchy(view: View, cls: NamedNode) -> dict[str, list[dict[str, Any]]]:
