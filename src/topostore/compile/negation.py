@@ -33,6 +33,7 @@ whatever needs case analysis (y ∈ A ⊔ B with A and B each disjoint with U: y
 
 from __future__ import annotations
 
+from functools import cached_property
 from typing import TYPE_CHECKING
 
 from pyoxigraph import NamedNode
@@ -63,26 +64,48 @@ class NegativeMembership:
     """The rules of non-membership a TBox's complements need (see the module)."""
 
     def __init__(self, compiler: OwlCompiler) -> None:
+        """The tables below are built when first read: an ontology without complements reads none of them
+        (its :meth:`compile` stops at :attr:`complements`), so none of them is built for it."""
         self.compiler = compiler
-        tb = compiler.tb
-        self.partners: dict[NamedNode, list[Expr]] = {}
-        for a, b in compiler.disjoint_classes():
-            self.partners.setdefault(a.node, []).append(b)
-            self.partners.setdefault(b.node, []).append(a)
-        self.disjoint_nodes = {(a, b) for a, bs in self.partners.items() for b in (x.node for x in bs)}
-        #: told superclass expressions of each class (both sides of an equivalence)
-        self.supers: dict[NamedNode, list[Expr]] = {}
+
+    # ------------------------------------------------------------------ tables read from the TBox
+    @cached_property
+    def partners(self) -> dict[NamedNode, list[Expr]]:
+        """The expressions told disjoint with each class (both ways)."""
+        partners: dict[NamedNode, list[Expr]] = {}
+        for a, b in self.compiler.disjoint_classes():
+            partners.setdefault(a.node, []).append(b)
+            partners.setdefault(b.node, []).append(a)
+        return partners
+
+    @cached_property
+    def disjoint_nodes(self) -> set[tuple[NamedNode, NamedNode]]:
+        """The told disjoint pairs as nodes, both ways."""
+        return {(a, b) for a, bs in self.partners.items() for b in (x.node for x in bs)}
+
+    @cached_property
+    def supers(self) -> dict[NamedNode, list[Expr]]:
+        """Told superclass expressions of each class (both sides of an equivalence)."""
+        tb = self.compiler.tb
+        supers: dict[NamedNode, list[Expr]] = {}
         for a, b in tb.subclass:
-            self.supers.setdefault(a.node, []).append(b)
+            supers.setdefault(a.node, []).append(b)
         for a, b in tb.equivalent:
-            self.supers.setdefault(a.node, []).append(b)
-            self.supers.setdefault(b.node, []).append(a)
-        self.expressions = compiler.all_expressions()
-        self.complements = [e for e in self.expressions if e.kind == "not"]
-        self.needed = self._needed()
+            supers.setdefault(a.node, []).append(b)
+            supers.setdefault(b.node, []).append(a)
+        return supers
+
+    @cached_property
+    def expressions(self) -> list[Expr]:
+        return self.compiler.all_expressions()
+
+    @cached_property
+    def complements(self) -> list[Expr]:
+        return [e for e in self.expressions if e.kind == "not"]
 
     # ------------------------------------------------------------------ what is needed
-    def _needed(self) -> dict[NamedNode, Expr]:
+    @cached_property
+    def needed(self) -> dict[NamedNode, Expr]:
         """The classes whose non-membership a complement needs, closed backwards through the rules."""
         return self._closure([e.members[0] for e in self.complements])
 

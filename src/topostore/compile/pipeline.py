@@ -12,12 +12,12 @@ from .generic import generic_rules
 from .guard import guard_rules
 from .implied import simplify
 from .inline_difference import inline_difference, owl_asks
-from .model import TBoxReader
 from .owl import OwlCompiler
 from .owl_extras import key_rules, reflexive_rules, restriction_rules, thing_rules, unsatisfiable_rules
 from .profile import profile
 from .rule import RuleSet
 from .swrl import SwrlCompiler
+from .tbox_reader import TBoxReader
 
 
 def compile_ontology(store: Store, graph: NamedNode) -> RuleSet:

@@ -22,10 +22,11 @@ from . import builtins, sqwrl
 from . import condition as cond
 from .condition import Condition
 from .inline_difference import DifferenceAsk
-from .model import Expr, TBoxReader, is_datatype
+from .model import Expr, is_datatype
 from .notices import SQWRL_QUERY, Notice
 from .rule import Atom, Rule
 from .snippets import candidate_atom, different_atom, in_datatype
+from .tbox_reader import TBoxReader
 
 T = str(TYPE)
 

@@ -63,10 +63,10 @@ class _Index:
     """
 
     def __init__(self, triples: list[Triple], imps: dict[Term, None] | None = None) -> None:
-        """``imps``: the rules, when the caller has found them already (one term fewer read per triple)."""
+        """``imps``: the rules, when the caller has found them already; else they are found when first
+        asked (:meth:`imps`): an index only walked for reachability never needs them."""
         self._raw: dict[Term, list[Triple]] = {}
-        if imps is None:
-            imps = _imps(triples)
+        self._triples = triples
         self._imps = imps
         raw = self._raw
         for t in triples:
@@ -91,6 +91,8 @@ class _Index:
 
     def imps(self) -> list[Term]:
         """The rules (subjects typed swrl:Imp), in the order their subjects first appear."""
+        if self._imps is None:
+            self._imps = _imps(self._triples)
         if len(self._imps) < 2:
             return list(self._imps)
         return [s for s in self._raw if s in self._imps]
@@ -251,9 +253,7 @@ def repair_rules(triples: list[Triple]) -> tuple[list[Triple], list[Notice]]:
     if not found:
         return triples, []  # no rule: nothing to index (large ABox loads pay one scan)
     ix = _Index(triples, found)
-    imps = ix.imps()
-    if not imps:
-        return triples, []
+    imps = ix.imps()  # every rule found is a subject of the index: never empty here
     names = {imp: rule_name(ix, imp) for imp in imps}
     bodies = {}
     for imp in imps:

@@ -1,7 +1,7 @@
 """Classes and properties as the inspector shows them: hierarchy, axioms, rules, each inference with its why.
 
 The axioms are read from the asserted graph with the compiler's own reader
-(:class:`~topostore.compile.model.TBoxReader`) and written as the rules'
+(:class:`~topostore.compile.tbox_reader.TBoxReader`) and written as the rules'
 origins are (``URGENT SubClassOf LOCATION``, ``ROOM EquivalentTo (LOCATION
 and (hasDoor some DOOR))``), so a proof's rule and the class page agree.
 
@@ -14,15 +14,15 @@ the proof, with the prototype shown as ``(any ROOM)``.
 from __future__ import annotations
 
 import re
-import threading
-from collections import OrderedDict
+from functools import lru_cache
 from typing import TYPE_CHECKING, Any
 
 from pyoxigraph import NamedNode, Triple
 
 from ..compile.builtins import FUNCTIONS
-from ..compile.model import Expr, Prop, TBox, TBoxReader
+from ..compile.model import Expr, Prop, TBox
 from ..compile.rule import Rule, RuleSet
+from ..compile.tbox_reader import TBoxReader
 from ..errors import RuleCompileError
 from ..ontology.explain import Explainer
 from ..rdf.terms import sparql
@@ -224,23 +224,30 @@ def _assumed(node: dict[str, Any]) -> dict[str, Any]:
     return node
 
 
-_PROTOTYPES: OrderedDict[int, Prototypes] = OrderedDict()
-_PROTOTYPES_LOCK = threading.Lock()
+class _Same:
+    """A rule set as a cache key by identity: a RuleSet compares by value and has no hash, and a
+    recompiled one (the TBox changed) is a new object, so "the same object" is "the same rules"."""
+
+    __slots__ = ("rules",)
+
+    def __init__(self, rules: RuleSet) -> None:
+        self.rules = rules
+
+    def __hash__(self) -> int:
+        return id(self.rules)
+
+    def __eq__(self, other: object) -> bool:
+        return isinstance(other, _Same) and other.rules is self.rules
 
 
 def prototypes(rules: RuleSet) -> Prototypes:
     """The prototypes of ``rules`` (a few rule sets are kept: one per loaded reference in use)."""
-    with _PROTOTYPES_LOCK:
-        found = _PROTOTYPES.get(id(rules))
-        if found is not None and found.rules is rules:
-            _PROTOTYPES.move_to_end(id(rules))
-            return found
-    made = Prototypes(rules)
-    with _PROTOTYPES_LOCK:
-        _PROTOTYPES[id(rules)] = made
-        while len(_PROTOTYPES) > 8:
-            _PROTOTYPES.popitem(last=False)
-    return made
+    return _prototypes(_Same(rules))
+
+
+@lru_cache(maxsize=8)
+def _prototypes(key: _Same) -> Prototypes:
+    return Prototypes(key.rules)
 
 
 def hierarchy(view: View, cls: NamedNode) -> dict[str, list[dict[str, Any]]]:

@@ -5,10 +5,10 @@ namespace (``urn:topostore:graph:asserted`` becomes
 ``urn:topostore:ref:<name>:graph:asserted`` on the wire), so the engine's
 fixed graph names need no change.
 
-Every request is a round trip, so writes wait: the data change of a manipulation
-(``DELETE DATA``/``INSERT DATA``), the updates the reasoner sends while it runs
-(until its next read, or its end) and its drop of its scratch graphs at the end of
-a REASON are queued and go with the next request, joined
+Every request is a round trip, so writes wait (:mod:`.write_queue`): the data change
+of a manipulation (``DELETE DATA``/``INSERT DATA``), the updates the reasoner sends
+while it runs (until its next read, or its end) and its drop of its scratch graphs at
+the end of a REASON are queued and go with the next request, joined
 with ``;`` to the next update (one request, one transaction on the server), or sent
 before the next read so that the read sees it.  A queued change the server then
 refuses is undone in this process as well (literal forms, persisted state, what
@@ -38,27 +38,19 @@ import re
 import urllib.parse
 import weakref
 from collections.abc import Callable, Collection, Iterator
-from dataclasses import dataclass
-from functools import cached_property
 
 import httpx
 import pyoxigraph as ox
 from pyoxigraph import NamedNode, Quad, QueryResultsFormat, RdfFormat
 
-from ..errors import QueryError, StoreError, WritesLostError
+from ..errors import QueryError, StoreError
 from ..rdf.vocab import INTERNAL
 from .base import Store
 from .data_text import data_update
-from .literal_forms import FORMS
-from .meta import META
+from .write_queue import PROLOGUE, Queued, WriteQueue, with_prefixes
 
 logger = logging.getLogger("topostore.store")
 GRAPH_PREFIX = INTERNAL + "graph:"
-#: an update that only drops graphs named by full IRIs (what a reasoner does with its scratch graphs)
-_DROPS = re.compile(r"(?:\s*DROP\s+SILENT\s+GRAPH\s+<[^<>\s]+>\s*;?)+\s*", re.IGNORECASE)
-_DROPPED = re.compile(r"GRAPH\s+<([^<>\s]+)>", re.IGNORECASE)
-#: an update that declares its own prefixes or base (comments may come first)
-_PROLOGUE = re.compile(r"(?:\s|#[^\n]*\n)*(?:PREFIX|BASE)\b", re.IGNORECASE)
 _ACCEPT = "application/sparql-results+xml, application/n-triples;q=0.9, text/turtle;q=0.8"
 _TIMEOUT = httpx.Timeout(300.0, connect=10.0)
 #: Rows per presence check; keeps request bodies small.
@@ -81,41 +73,6 @@ def credentials() -> httpx.Auth | dict[str, str] | None:
     return None
 
 
-@dataclass
-class _Queued:
-    """A data change accepted by the store and not yet sent: its update text (graph names on the wire),
-    its quads, and how to undo what was recorded in memory for it."""
-
-    text: str
-    adds: list[Quad]
-    removes: list[Quad]
-    undo: Callable[[], None] | None
-    #: graphs the change drops whole (a reasoner's scratch graphs)
-    dropped: frozenset[NamedNode] = frozenset()
-    #: a reasoner's update, whatever it reads and writes: every read sends it first
-    opaque: bool = False
-    #: the prefixes its text uses (declared once at the head of the request that carries it)
-    prefixes: dict[str, str] | None = None
-
-    @cached_property
-    def _written(self) -> tuple[frozenset, frozenset]:
-        """The graphs and the (subject, predicate, graph) and (None, predicate, graph) patterns it writes."""
-        quads = (*self.adds, *self.removes)
-        return (frozenset(q.graph_name for q in quads) | self.dropped,
-                frozenset(k for q in quads for k in ((q.subject, q.predicate, q.graph_name),
-                                                       (None, q.predicate, q.graph_name))))
-
-    def touches(self, graphs: Collection[NamedNode] | None, patterns: Collection[tuple] | None) -> bool:
-        """Whether a read of ``graphs`` (None: any) or of (subject, predicate, graph) ``patterns`` (subject
-        None: any predicate's subject) sees it."""
-        if self.opaque or (graphs is None and patterns is None):
-            return True
-        written, keys = self._written
-        if patterns is None:
-            return not written.isdisjoint(graphs)
-        return not keys.isdisjoint(patterns) or any(p[2] in self.dropped for p in patterns)
-
-
 class RemoteStore(Store):
     """Graphs of one reference on a SPARQL 1.1 server, reached over HTTP."""
 
@@ -129,7 +86,7 @@ class RemoteStore(Store):
         super().__init__()
         #: data changes wait for the next request (see the module docstring)
         self.defer_writes = defer_writes
-        self._queue: list[_Queued] = []
+        self._queue = WriteQueue(lambda body: self._post(self.update_url, {"update": body}), self._writes_lost)
         _OPEN.add(self)  # a process that ends without closing its store still sends what it queued
         base = url.rstrip("/")
         single = base.endswith("/sparql")  # Virtuoso and others serve both on one path
@@ -175,80 +132,33 @@ class RemoteStore(Store):
     def _run_update(self, text: str, prefixes: dict[str, str] | None) -> None:
         if self._defer_drops(text) or self._defer_reasoning(text, prefixes):
             return
-        if _PROLOGUE.match(text) or _clash(self._queue, prefixes):  # one prologue per request: queue first
+        if PROLOGUE.match(text) or self._queue.clashes(prefixes):  # one prologue per request: queue first
             self.send_writes()
-        self._send(self._out(text), prefixes)
-
-    def _send(self, text: str = "", prefixes: dict[str, str] | None = None) -> None:
-        """One update request: the queued changes, then ``text`` (either may be empty); the prefixes of
-        all of them are declared once, first (the caller saw that they do not clash)."""
-        queued, self._queue = self._queue, []
-        body = " ;\n".join([q.text for q in queued] + ([text] if text else []))
-        if not body:
-            return
-        declared: dict[str, str] = {}
-        for q in queued:
-            declared.update(q.prefixes or {})
-        body = _with_prefixes(body, {**declared, **(prefixes or {})})
-        try:
-            self._post(self.update_url, {"update": body})
-        except StoreError as exc:  # no answer: the queued changes may or may not be there
-            if queued:
-                self._lose(queued, f"the server did not answer, so whether it applied them is unknown: {exc}",
-                           certain=False)
-            raise
-        except QueryError as exc:  # refused: nothing of the request was applied
-            if not queued:
-                raise
-            self._refused(queued, bool(text), exc)
-
-    def _refused(self, queued: list[_Queued], with_update: bool, exc: QueryError) -> None:
-        """A request carrying queued changes was refused.  The manipulations' data changes are not to be
-        lost for an update that went with them (the caller's, or the reasoner's queued ones): they are
-        sent again alone; what still fails is undone here and said (WritesLostError).  Re-raises
-        ``exc`` when the caller's update alone was at fault."""
-        data = [q for q in queued if not (q.opaque or q.dropped)]
-        reasoner = [q for q in queued if q.opaque or q.dropped]
-        if not data or not (with_update or reasoner):
-            self._lose(queued, f"the server refused them: {exc}")
-        try:
-            self._post(self.update_url, {"update": " ;\n".join(q.text for q in data)})
-        except (QueryError, StoreError) as again:
-            self._lose(queued, f"the server refused them: {exc}; sent alone: {again}",
-                       certain=isinstance(again, QueryError))
-        if reasoner:
-            self._lose(reasoner, f"the server refused them: {exc}")
-        raise exc
+        self._queue.send(self._out(text), prefixes)
 
     def _defer_reasoning(self, text: str, prefixes: dict[str, str] | None) -> bool:
         """Queue an update sent while the reasoner runs (inside :meth:`~topostore.stores.base.Store.keeping`):
         it goes with the reasoner's next update, or before its next read (any read: what it changes is not
         known here); whatever is queued goes when the reasoner is done (:meth:`_settle`).  The server runs
         the same operations in the same order, in fewer requests."""
-        if not self.defer_writes or self.listings is None or not self.listings.kept or _PROLOGUE.match(text):
+        if not self.defer_writes or self.listings is None or not self.listings.kept or PROLOGUE.match(text):
             return False
-        if _clash(self._queue, prefixes):
-            self.send_writes()
-        self._queue.append(_Queued(self._out(text), [], [], None, opaque=True, prefixes=prefixes))
+        self._queue.defer_reasoning(self._out(text), prefixes)
         return True
 
     def _settle(self) -> None:
         """The reasoner is done: its queued updates go now (a REASON says it succeeded only once its
         writes are on the server); a drop of its scratch graphs alone may wait for the next request."""
-        if any(q.opaque for q in self._queue):
-            self._send()
+        if self._queue.holds_reasoning():
+            self._queue.send()
 
     def _defer_drops(self, text: str) -> bool:
         """Queue an update that only drops graphs the caller declared its own (a reasoner clearing its
         scratch graphs, inside :meth:`~topostore.stores.base.Store.keeping`): it goes with the next
         request like a data change, and a read of one of those graphs sends it first."""
-        if not self.defer_writes or self.listings is None or not self.listings.kept or not _DROPS.fullmatch(text):
+        if not self.defer_writes or self.listings is None or not self.listings.kept:
             return False
-        dropped = frozenset(NamedNode(iri) for iri in _DROPPED.findall(text))
-        if dropped & (self.listings.kept | {META, FORMS}):
-            return False
-        self._queue.append(_Queued(self._out(text.strip().rstrip(";")), [], [], None, dropped))
-        return True
+        return self._queue.defer_drops(text, self._out, self.listings.kept)
 
     def send_writes(self, graphs: Collection[NamedNode] | None = None,
                     patterns: Collection[tuple] | None = None) -> None:
@@ -258,23 +168,8 @@ class RemoteStore(Store):
         A read sends them first when it may see one (a query's dataset, a look-up's patterns; the
         persisted state no query reads waits for the next update); so does :meth:`close`.
         """
-        if self._queue and any(q.touches(graphs, patterns) for q in self._queue):
-            self._send()
-
-    def _lose(self, queued: list[_Queued], why: str, certain: bool = True) -> None:
-        """Undo queued changes that did not reach the server, in this process; raises WritesLostError."""
-        for q in reversed(queued):
-            if q.undo is not None:
-                q.undo()
-        # a lost drop or reasoner update leaves graphs' content unknown here: as an unanswered request does
-        reasoner = sum(1 for q in queued if q.dropped or q.opaque)
-        self._writes_lost([(q.adds, q.removes) for q in queued], certain and not reasoner)
-        data = sum(1 for q in queued if any(x.graph_name != META for x in (*q.adds, *q.removes)))
-        what = f"{data} change(s) of the data" + (f", {reasoner} update(s) of the reasoner" if reasoner else "")
-        note = " (the next REASON is a full one)" if reasoner else ""
-        raise WritesLostError(f"{what} ({len(queued) - data - reasoner} of the persisted state) accepted earlier and "
-                              f"waiting to be written to the SPARQL server were not written, and were undone "
-                              f"here{note}: {why}")
+        if self._queue and self._queue.touched(graphs, patterns):
+            self._queue.send()
 
     def _run_query(self, text: str, graphs: list[NamedNode] | None, named: list[NamedNode] | None = None,
                    **kwargs):
@@ -285,7 +180,7 @@ class RemoteStore(Store):
     def _query(self, text: str, graphs: list[NamedNode] | None, named: list[NamedNode] | None = None, **kwargs):
         """One query request (the caller has sent the queued changes the query may see)."""
         kwargs.pop("custom_functions", None)
-        text = self._out(_with_prefixes(text, kwargs.pop("prefixes", None)))
+        text = self._out(with_prefixes(text, kwargs.pop("prefixes", None)))
         if kwargs:  # pyoxigraph-only options would otherwise be ignored silently
             raise QueryError(f"query options {', '.join(sorted(kwargs))} are not available on a remote SPARQL store")
         data: dict = {"query": text}
@@ -345,7 +240,7 @@ class RemoteStore(Store):
     def _commit(self, adds: list[Quad], removes: list[Quad]) -> None:
         text = self._data_text(adds, removes)
         if text:
-            self._send(text)
+            self._queue.send(text)
 
     def _write(self, adds: list[Quad], removes: list[Quad], undo: Callable[[], None] | None = None) -> None:
         """Queue the change for the next request (see the module docstring); at once without ``defer_writes``."""
@@ -354,7 +249,7 @@ class RemoteStore(Store):
             return
         text = self._data_text(adds, removes)
         if text:
-            self._queue.append(_Queued(text, adds, removes, undo))
+            self._queue.append(Queued(text, adds, removes, undo))
             self._written(adds, removes)
 
     def close(self) -> None:
@@ -379,20 +274,6 @@ def _send_at_exit() -> None:
             store.send_writes()
         except Exception as exc:  # noqa: BLE001 - at exit the log is the only place left to say it
             logger.error("at exit, changes queued for %s were not written: %s", store.update_url, exc)
-
-
-def _clash(queued: list[_Queued], prefixes: dict[str, str] | None) -> bool:
-    """Whether ``prefixes`` declare a name the queued updates use for another IRI (one request then
-    cannot declare both)."""
-    return bool(prefixes) and any(q.prefixes and any(q.prefixes.get(k, v) != v for k, v in prefixes.items())
-                                  for q in queued)
-
-
-def _with_prefixes(text: str, prefixes: dict[str, str] | None) -> str:
-    """PREFIX declarations for pyoxigraph's ``prefixes=`` argument, which servers do not have."""
-    if not prefixes:
-        return text
-    return "".join(f"PREFIX {p}: <{iri}>\n" for p, iri in prefixes.items()) + text
 
 
 def list_references(url: str, **kwargs) -> list[str]:

@@ -30,9 +30,9 @@ from functools import lru_cache
 from pyoxigraph import Literal, NamedNode, Triple
 
 from ...compile.generic import PREFIXES
-from ...compile.model import TBoxReader
 from ...compile.rule import Atom, Rule, join_order
 from ...compile.snippets import VALUE_CANDIDATE
+from ...compile.tbox_reader import TBoxReader
 from ...errors import QueryError, RuleCompileError
 from ...rdf.terms import Term, parse_term, sparql, value_key
 from ...rdf.vocab import (
