@@ -342,7 +342,8 @@ class Materializer:
                 continue
             key = self._idle.get(i)
             if key is None:
-                text = insert_text(self.rules[i], None, self.planned, self._lateral, self._direct)
+                text = insert_text(self.rules[i], None, self.planned, self._lateral, self._direct,
+                                   self._only_asserted(self.rules[i]))
                 text = unless_known_text(text, self.rules[i])
             elif next(iter(self.store.triples(*key_pattern(key), ASSERTED)), None) is not None:
                 # its asks on derived facts of the key are idle: the asserted ones alone
@@ -355,6 +356,29 @@ class Materializer:
             self._flush()
             stats.rounds += 1
             self.propagate(active, stats)
+
+    def _only_asserted(self, rule: Rule) -> dict[ReadKey, NamedNode]:
+        """The read keys of ``rule``'s body whose facts are all asserted so far in :meth:`run`: read
+        there alone (one index look-up per pattern instead of one per graph of the default dataset).
+
+        A key had asserted facts at the start and no rule of this run wrote it (:attr:`_derived`
+        holds every key written: the first passes add theirs, every round its delta's).  A rule of a
+        variable predicate may have written any key, one of a variable class any class: then the
+        keys they may cover stay on the default dataset.  The deferred ask of Connectability's
+        candidate reads its 20,000 door facts so: 65 → 54 ms at 10,000 locations.
+        """
+        if any(k[0] == "*" for k in self._derived):
+            return {}
+        any_class = ("p", TYPE_KEY) in self._derived
+        out: dict[ReadKey, NamedNode] = {}
+        for atom in rule.body:
+            key = atom.read_key()
+            if atom.aux or key[0] not in ("p", "t") or key == ("p", TYPE_KEY) or key in self._derived:
+                continue
+            if (key[0] == "t" and any_class) or not self._has_asserted(key):
+                continue
+            out[key] = ASSERTED
+        return out
 
     def _timed(self, text: str, name: str, stats: ReasonStats) -> None:
         """Queue ``text`` (sent by :meth:`_flush`, one request per round), or send it and time it under
