@@ -10,11 +10,13 @@ import warnings
 from pathlib import Path
 
 import pytest
+from pyoxigraph import NamedNode
 
 from topostore import Ontology, OntologyWarning
-from topostore.rdf.vocab import ASSERTED, AUX, ENTAILED, INFERRED
+from topostore.rdf.vocab import ASSERTED, AUX, ENTAILED, INFERRED, INTERNAL
 from topostore.reason import materialize
 from topostore.reason.class_unions import class_unions, lead_first, union_where
+from topostore.reason.order import asserted_paths, evaluation_order
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))  # the benchmarks package lives beside src/
@@ -22,6 +24,7 @@ from benchmarks import maps, tbox  # noqa: E402
 from benchmarks.cardinality import PREFIXES  # noqa: E402
 
 NS = "http://example.org/card#"
+DIFFERENT_KEY = NamedNode(INTERNAL + "differentKey")
 DOMAIN_AND_RANGE = PREFIXES + """
 :p a owl:ObjectProperty ; rdfs:domain :C . :q a owl:ObjectProperty ; rdfs:range :C .
 :v a owl:DatatypeProperty ; rdfs:domain :C . :C rdfs:subClassOf :D .
@@ -121,3 +124,34 @@ def test_a_full_reason_reaches_the_same_closure_with_and_without(source: str, sh
         monkeypatch.setattr(materialize.Materializer, "_only_asserted", lambda self, rule: {})
     onto.reason(mode="full")
     assert closure(onto) == joined
+
+
+GROUP = (DOMAIN_AND_RANGE + "@prefix rdf: <http://www.w3.org/1999/02/22-rdf-syntax-ns#> .\n"
+         "[] a owl:AllDifferent ; owl:distinctMembers (:a :b :c) .\n")
+
+
+def _path_rules(onto: Ontology) -> set[str]:
+    rules = onto.rules.inference_rules
+    ordered, _, _ = evaluation_order(rules, list(range(len(rules))))  # the variable predicates' rules apart
+    return {rules[i].name for i in asserted_paths(rules, [i for c in ordered for i in c])}
+
+
+def test_the_list_walk_reads_the_asserted_graph_only_while_no_rule_writes_a_list_key() -> None:
+    assert _path_rules(loaded(GROUP)) == {"all-different"}
+    # a rule writing rdf:rest (a subproperty's) may add list cells: the walk keeps the whole dataset
+    written = loaded(GROUP + ":next rdfs:subPropertyOf rdf:rest . :n1 :next :n2 .")
+    assert "all-different" not in _path_rules(written)
+    for onto in (loaded(GROUP), written):
+        assert onto.reason(mode="full").consistent
+        keys = {onto.short(t.subject) for t in onto.store.triples(None, DIFFERENT_KEY, None, AUX)}
+        assert keys == {"a", "b", "c"}
+
+
+@pytest.mark.parametrize("source", ["map", "group"])
+def test_the_keys_are_the_same_with_the_walk_on_every_graph(source: str, monkeypatch: pytest.MonkeyPatch) -> None:
+    onto = loaded(GROUP, "" if source == "group" else source)
+    onto.reason(mode="full")
+    walked = closure(onto)
+    monkeypatch.setattr(materialize, "asserted_paths", lambda rules, ordered: set())
+    onto.reason(mode="full")
+    assert closure(onto) == walked

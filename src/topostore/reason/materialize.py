@@ -34,7 +34,16 @@ from . import limits
 from .class_unions import class_unions, lead_first, union_where
 from .key_pairs import grouped_form
 from .negation import evaluated_last, unless_known_text
-from .order import TYPE_KEY, evaluation_order, implied_atoms, implied_first_passes, reachable, single_graphs
+from .order import (
+    TYPE_KEY,
+    asserted_paths,
+    evaluation_order,
+    implied_atoms,
+    implied_first_passes,
+    is_path,
+    reachable,
+    single_graphs,
+)
 from .plan import KeyCounts, is_small, plan_where
 from .triggers import Present, Triggers
 
@@ -186,6 +195,8 @@ class Materializer:
         #: first of each group the others, and every other
         self._unions: dict[int, tuple[int, ...]] = {}
         self._joined: set[int] = set()
+        #: rules of :meth:`run`'s ordered pass whose property paths read asserted facts alone
+        self._paths: set[int] = set()
 
     def _run(self, index: int, delta_index: int | None, stats: ReasonStats, asserted_only: bool = False,
              first: bool = False, union: tuple[int, ...] = ()) -> None:
@@ -204,6 +215,8 @@ class Materializer:
             graphs = self._graphs
             if asserted_only:
                 graphs = {**(graphs or {}), self.rules[index].body[0].read_key(): ASSERTED}
+            if graphs is not None and index in self._paths:
+                graphs = {**graphs, **{a.read_key(): ASSERTED for a in self.rules[index].body if is_path(a)}}
             rule = self._lean[index] if lean else self.rules[index]
             text = self._texts[key] = insert_text(rule, delta_index, self.planned, self._lateral,
                                                   self._direct, graphs, derived, [self.rules[j] for j in union])
@@ -492,6 +505,7 @@ class Materializer:
         self._unions = class_unions(self.rules, ordered, back, self._graphs, ASSERTED, distinct_pays,
                                     self._implied | set(self._lean) | self._deferring)
         self._joined = {j for others in self._unions.values() for j in others}
+        self._paths = asserted_paths(self.rules, [i for c in ordered for i in c])
         # a text reading a key in one graph holds only for this run's asserted keys: none is kept from before
         self._texts = {k: t for k, t in self._texts.items() if not k[4]}
         try:
@@ -500,7 +514,7 @@ class Materializer:
                 self.propagate(component, stats)
         finally:
             self._graphs = None
-            self._unions, self._joined = {}, set()
+            self._unions, self._joined, self._paths = {}, set(), set()
         for level in strata:
             active = [i for i, r in enumerate(self.rules) if r.stratum <= level]
             fresh = rest if level == strata[0] else [i for i in active if self.rules[i].stratum == level]
