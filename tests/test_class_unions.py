@@ -121,7 +121,7 @@ def test_a_full_reason_reaches_the_same_closure_with_and_without(source: str, sh
     if shortcut == "unions":
         monkeypatch.setattr(materialize, "class_unions", lambda *args, **kwargs: {})
     else:
-        monkeypatch.setattr(materialize.Materializer, "_only_asserted", lambda self, rule: {})
+        monkeypatch.setattr(materialize.Materializer, "_only_asserted", lambda self, rule, asking=(): {})
     onto.reason(mode="full")
     assert closure(onto) == joined
 
