@@ -9,7 +9,7 @@ asks on pairs whose conclusion is known.
 
 from __future__ import annotations
 
-from pyoxigraph import Triple
+from pyoxigraph import NamedNode, Triple
 from test_incremental import (
     N,
     all_different,
@@ -21,7 +21,9 @@ from test_incremental import (
     visit,
 )
 
-from topostore.rdf.vocab import AUX, ENTAILED, ENTAILED_PREFIX, INFERRED, owl
+from topostore.rdf.vocab import ASSERTED, AUX, ENTAILED, ENTAILED_PREFIX, INFERRED, owl
+
+RDFS_SUB_PROPERTY = NamedNode("http://www.w3.org/2000/01/rdf-schema#subPropertyOf")
 
 
 def _entailed(onto, name: str) -> set[tuple[str, str]]:
@@ -153,3 +155,20 @@ def test_reachability_is_asked_where_equality_also_writes_links() -> None:
     assert {"Y", "Z"} <= reach()
     onto.reason(mode="full")
     assert {"Y", "Z"} <= reach()
+
+
+def test_a_derived_door_of_an_undeclared_place_is_asked() -> None:
+    """The deferred ask reads a key in the asserted graph alone only while no rule derived it: a door
+    derived through a subproperty must still be asked about (and its twin published)."""
+    onto = new_map(8, 7, True)
+    room, _, door = next(iter(onto.store.triples(None, N("hasDoor"), None, ASSERTED)))
+    onto.add(Triple(N("hasEntrance"), RDFS_SUB_PROPERTY, N("hasDoor")),
+             Triple(N("Annex"), N("hasEntrance"), door))
+    visit(onto, "Annex", 3)
+    report = onto.reason(mode="full")
+    assert report.consistent
+    short = onto.short(room)
+    assert {("Annex", short), (short, "Annex")} <= _entailed(onto, "connectedTo")
+    sharing = {t.subject for t in onto.store.triples(None, N("hasDoor"), door, ASSERTED)}
+    assert _asked(onto) == 2 * len(sharing)  # Annex and each place of the door, both ways
+    assert_same_as_scratch(onto)

@@ -14,7 +14,7 @@ from collections.abc import Callable
 from pyoxigraph import NamedNode
 
 from ..compile.implied import classes_of, position_classes
-from ..compile.rule import ReadKey, Rule
+from ..compile.rule import Atom, ReadKey, Rule
 from ..rdf.vocab import TYPE
 from .triggers import Present, Triggers
 
@@ -362,3 +362,35 @@ def strongly_connected(nodes: list[int], succ: dict[int, list[int]]) -> list[lis
                 components.append(sorted(component))
     components.reverse()
     return components
+
+
+
+def is_path(atom: Atom) -> bool:
+    """A property path in the predicate's place (neither an IRI nor a variable)."""
+    return not atom.p.startswith(("<", "?"))
+
+
+def asserted_paths(rules: list[Rule], ordered: list[int]) -> set[int]:
+    """The rules of the ordered pass whose property paths (the AllDifferent keys walk a list) read only
+    keys no ordered rule writes, so that every fact a path reads is asserted while the pass runs (the
+    inferred and helper graphs are empty when a full run starts).
+
+    Such a path is read in the asserted graph alone: one index instead of the whole default dataset
+    (the keys of 10,000 AllDifferent members: 131 → 116 ms by hand).  The keys are the ones the rule
+    declares it reads (``# reads:``); a rule declaring none keeps its paths as written.
+    """
+    written = {rules[i].writes() for i in ordered}
+    out: set[int] = set()
+    for i in ordered:
+        rule = rules[i]
+        if rule.filter_reads and any(is_path(a) for a in rule.body) and all(
+                _unwritten(key, written) for key in rule.filter_reads):
+            out.add(i)
+    return out
+
+
+def _unwritten(key: ReadKey, written: set) -> bool:
+    """Whether no rule writing the keys ``written`` may write a fact of ``key`` (an IRI predicate)."""
+    if key[0] != "p" or key[1] == TYPE_KEY or not key[1].startswith("<") or ("*",) in written:
+        return False
+    return key not in written
