@@ -59,7 +59,8 @@ the asserted graph, where recomputation is as cheap as maintenance.  The mode
 and the reason are reported in :class:`~.materialize.ReasonStats`.
 
 Where the parts live: this module chooses the mode and runs additions, flips
-and checks; :mod:`.dred` holds the deletion phases (over-delete with proofs,
+and checks; :mod:`.change_checks` decides whether a check or a negated premise
+may match after maintenance; :mod:`.dred` holds the deletion phases (over-delete with proofs,
 rederive), :mod:`.requests` the batching of evaluations into update
 requests, :mod:`.scratch` the scratch graphs they share.
 """
@@ -72,7 +73,6 @@ from dataclasses import dataclass, field
 
 from pyoxigraph import NamedNode, Triple
 
-from ..compile.datatypes import surely_in
 from ..compile.generic import PREFIXES
 from ..compile.rule import Rule, RuleSet
 from ..compile.schema_program import full_program
@@ -83,7 +83,8 @@ from ..stores.base import Store, key_census
 from . import after as after_step
 from . import delta_texts as texts
 from . import flip
-from .changed import ChangedGraphs, Decisions, shape
+from .change_checks import ChangeChecks
+from .changed import ChangedGraphs, Decisions
 from .component import WHOLE_ROUNDS
 from .consistency import Violation, check_consistency
 from .dred import Deletion, can_prove
@@ -91,9 +92,8 @@ from .entailed import publish_entailed, refresh_entailed
 from .flips import Flips
 from .materialize import Materializer, ReasonStats
 from .negation import ASKED, Completion, completion_text, deferred
-from .plan import is_small, plan_where
 from .present import key_graphs, with_facts
-from .program import PROGRAM_SCRATCH, Refused, StepProgram, check_pair_atom, pair_atom, signature
+from .program import PROGRAM_SCRATCH, Refused, StepProgram, signature
 from .requests import RequestQueue
 from .scratch import ADDED, FLIP_GAINED, NEW_FACTS, OVERDELETED, REMOVED, SCRATCH
 from .staged import StagedRun
@@ -171,7 +171,6 @@ class IncrementalReasoner:
         self.checks = rules.checks
         self.check_triggers = Triggers(self.checks)
         self.negated = [r for r in self.rules if not is_monotone(r)]
-        self.negated_triggers = Triggers(self.negated)
         self.provers = [i for i in self.monotone if can_prove(self.rules[i])]
         #: the keys some rule or check body reads: the only ones :attr:`MaintenanceState.present` is asked about
         self._needed = self.triggers.needed_keys() | self.check_triggers.needed_keys()
@@ -193,17 +192,9 @@ class IncrementalReasoner:
         self._settle = False
         #: the clean replacements of the REASON under way, by predicate (see :func:`.flip.clean_replacements`)
         self._clean: dict = {}
-        #: the cleanly replaced predicates no rule derives, when the compiled step ran (else empty)
-        self._step_clean: frozenset = frozenset()
         self._heads: set = set()
-        #: the asserted triples the REASON under way adds (range checks decide known values without a query)
-        self._added_now: Collection[Triple] = ()
         #: the keys that may have lost facts in the last compiled step (the remote negated-premise read)
         self._lost: set = set()
-        #: SPARQL texts of the checks made once (the phases' texts live in the request queue)
-        self._texts: dict[tuple, str] = {}
-        #: :func:`.program.pair_atom` of a check's or negated rule's atom, by (kind, rule index, atom): rules never change
-        self._pairs: dict[tuple[str, int, int], bool] = {}
         #: what the reads after maintenance decided (the checks' ASK, whether a negated rule may match), by
         #: the shape of the change (:func:`.changed.shape`), until the next full run
         self._decided = Decisions(MAX_PROGRAMS)
@@ -211,6 +202,10 @@ class IncrementalReasoner:
         self._kind_only: dict[tuple[int, tuple[int, ...]], bool] = {}
         #: the scratch graphs of the REASON under way, read once by the reads after maintenance
         self.changed = ChangedGraphs(store, self.requests.flush)
+        #: whether a change may make a check or a negated-premise rule match (:mod:`.change_checks`)
+        self.change_checks = ChangeChecks(store, self.negated, self.checks, self.check_triggers, self.changed,
+                                          self._decided)
+        self.change_checks.state = self.state
         #: (individual, class) pairs whose type fact the last REASON may have changed; None after a full run
         self.touched_types: list[tuple[Term, NamedNode]] | None = None
 
@@ -228,8 +223,8 @@ class IncrementalReasoner:
         if why:
             return self.full(why, profile)
         start = time.perf_counter()
-        self._step_clean = frozenset()
-        self._added_now = added
+        self.change_checks.step_clean = frozenset()
+        self.change_checks.added_now = added
         stats = ReasonStats(mode="incremental", reason=self._incremental_reason(added, removed))
         self.requests.profile = profile
         self._incomplete = False
@@ -255,7 +250,7 @@ class IncrementalReasoner:
                 self.requests.discard(after.entailed_drop, (ENTAILED,))
                 self.touched_types = after.touched_types
             else:
-                if changed and self._negated_match():
+                if changed and self.change_checks.negated_match():
                     return self.full("the change makes a rule with a negated premise (stratum 1) match", profile)
                 violations = self._check(stats, changed)
                 self._publish_entailed(changed)
@@ -308,6 +303,7 @@ class IncrementalReasoner:
         # (a negated premise may have fired and stopped matching since, so ask the run)
         self.state = MaintenanceState(True, not materializer.upper_derived, self.store.count(ASSERTED), violations,
                                       with_facts(keys), with_facts(keys, ASSERTED))
+        self.change_checks.state = self.state
         stats.seconds += time.perf_counter() - start
         return stats, violations
 
@@ -424,7 +420,7 @@ class IncrementalReasoner:
             stats.per_rule["program"] = time.perf_counter() - start
         stats.flipped = program.flips
         stats.program = "compiled"
-        self._step_clean = program.clean
+        self.change_checks.step_clean = program.clean
         #: the keys the after-step reads ask about: the asserted changes' and what the program may add
         self._heads = set(program.heads) | set(sig.added)
         self._lost = set(program.heads) | set(sig.removed)
@@ -455,9 +451,9 @@ class IncrementalReasoner:
         classes: set[str] = set()
         for kind, key in self._heads:
             (preds if kind == "p" else classes).add(key)
-        checks = self._check_branches(preds, classes, lambda c, j: self.store.supports_lateral)
+        checks = self.change_checks.check_branches(preds, classes, lambda c, j: self.store.supports_lateral)
         lost = ({k for kind, k in self._lost if kind == "p"}, {k for kind, k in self._lost if kind == "t"})
-        negated = self._negated_branches((preds, classes), lost, lambda i, j: self.store.supports_lateral)
+        negated = self.change_checks.negated_branches((preds, classes), lost, lambda i, j: self.store.supports_lateral)
         text = after_step.query(negated, checks, sorted(self.ruleset.entailed_predicates, key=lambda t: t.value),
                                 self._settle)
         return after_step.read(self.store.query(text, prefixes=PREFIXES))
@@ -482,70 +478,13 @@ class IncrementalReasoner:
         return program
 
     # ------------------------------------------------------------------ after maintenance
-    def _negated_match(self) -> bool:
-        """Whether a rule with a negated premise matches after this maintenance (one semi-naive ASK,
-        made once per shape of change; none when the change cannot make one match)."""
-        if not self.negated:
-            return False
-        counts = self.changed.keys(NEW_FACTS, OVERDELETED)
-        text = self._decided.get(("negated", *shape(counts, self._step_clean, self.state.present)),
-                                 lambda: self._negated_ask(*counts))
-        return bool(text) and bool(self.store.query(text, prefixes=PREFIXES))
-
-    def _negated_ask(self, new: Present, lost: Present) -> str:
-        """The ASK of :meth:`_negated_branches` ("" when there is none)."""
-        branches = self._negated_branches(new, lost, lambda i, j: self.store.supports_lateral
-                                          and is_small(new, self.negated[i].body[j].read_key()))
-        if not branches:
-            return ""
-        head = f"FROM {ASSERTED} FROM {INFERRED} FROM {AUX} FROM NAMED {AUX} FROM NAMED {NEW_FACTS}"
-        return f"ASK {head} WHERE {{\n" + "\nUNION\n".join(branches) + "\n}"
-
-    def _negated_branches(self, new: Present, lost: Present, lateral) -> list[str]:
-        """The groups of the negated-premise rules that may match now, when none matched before (the
-        state is quiet): a rule whose filters read a key that gained or lost facts, whole; else one
-        group per body atom on a key that gained facts, that atom on NEW_FACTS (a lost positive
-        premise cannot make a rule match), except a pair of values of one subject on a cleanly
-        replaced predicate (:func:`.program.pair_atom`)."""
-        if not self.negated:
-            return []
-        preds = set(new[0]) | set(lost[0])
-        classes = set(new[1]) | set(lost[1])
-        out = []
-        for i, j in self.negated_triggers.evaluations(preds, classes, range(len(self.negated)), self.state.present):
-            rule = self.negated[i]
-            if j is None:
-                out.append(f"{{\n  {rule.where()}\n}}")
-                continue
-            key = rule.body[j].read_key()
-            if key != ("*",) and not matches(key, *new) or self._on_clean_pair("negated", i, rule, j):
-                continue
-            text_key = ("negated", i, j, lateral(i, j))
-            text = self._texts.get(text_key)
-            if text is None:
-                text = self._texts[text_key] = f"{{\n  {plan_where(rule, j, NEW_FACTS, lateral=lateral(i, j))}\n}}"
-            out.append(text)
-        return out
-
-    def _on_clean_pair(self, kind: str, i: int, rule: Rule, j: int) -> bool:
-        """Whether atom ``j`` of ``rule`` (``kind`` "check" or "negated", index ``i``) is a pair atom
-        (:func:`.program.pair_atom`) on a predicate the compiled step cleanly replaced: it cannot match a
-        change, since every changed subject has one value before and after."""
-        if rule.body[j].p not in self._step_clean:
-            return False
-        key = (kind, i, j)
-        pair = self._pairs.get(key)
-        if pair is None:  # a check's pair may also be kept apart by its difference atom
-            pair = self._pairs[key] = check_pair_atom(rule, j) if kind == "check" else pair_atom(rule, j)
-        return pair
-
     def _check(self, stats: ReasonStats, changed: bool) -> list[Violation]:
         """Consistency of the new state, running all checks only when one may have changed."""
         start = time.perf_counter()
         try:
             if not changed:
                 return list(self.state.violations)
-            if self.state.violations or not self.checks_monotone or self._new_violation_possible():
+            if self.state.violations or not self.checks_monotone or self.change_checks.violation_possible():
                 return check_consistency(self.store, self.ruleset)
             return []
         finally:
@@ -558,71 +497,6 @@ class IncrementalReasoner:
             self.requests.flush()
             refresh_entailed(self.store, self.ruleset, (NEW_FACTS, OVERDELETED), self.changed.quads)
 
-    def _new_violation_possible(self) -> bool:
-        """A check matches with at least one atom on a fact new in the closure (one semi-naive ASK)."""
-        counts, = self.changed.keys(NEW_FACTS)
-        lateral = self._lateral(counts)
-        # the same few shapes return: the groups are made once; range checks of known values are decided per run
-        fixed, ranged = self._decided.get(("check", *shape([counts], self._step_clean, self.state.present)),
-                                          lambda: self._violation_groups(counts))
-        branches = fixed + [self._check_text(c, j, lateral(c, j)) for c, j in ranged
-                            if not self._values_in_range(c, j)]
-        if not branches:
-            return False
-        head = f"FROM {ASSERTED} FROM {INFERRED} FROM {AUX} FROM NAMED {AUX} FROM NAMED {NEW_FACTS}"
-        return bool(self.store.query(f"ASK {head} WHERE {{\n" + "\nUNION\n".join(branches) + "\n}",
-                                     prefixes=PREFIXES))
-
-    def _lateral(self, counts: tuple[dict[str, int], dict[str, int]]):
-        return lambda c, j: j is not None and self.store.supports_lateral \
-            and is_small(counts, self.checks[c].body[j].read_key())
-
-    def _violation_groups(self, counts: tuple[dict[str, int], dict[str, int]]) -> tuple[list[str], list[tuple]]:
-        """The semi-naive groups of the checks a change of ``counts``' keys may make match, and apart the
-        (check, atom) pairs of range checks, whose values each run may decide (:meth:`_values_in_range`)."""
-        preds, classes = counts
-        pairs = self._check_pairs(preds, classes)
-        lateral = self._lateral(counts)
-        fixed = [self._check_text(c, j, lateral(c, j)) for c, j in pairs if self.checks[c].value_range is None]
-        return fixed, [(c, j) for c, j in pairs if self.checks[c].value_range is not None]
-
-    def _check_branches(self, preds: Collection[str], classes: Collection[str], lateral) -> list[str]:
-        """The semi-naive groups of the checks a change of ``preds``/``classes`` may make match (one per
-        check and changed atom), those that cannot match after the compiled step left out;
-        ``lateral(c, j)``: whether the group of check ``c`` on atom ``j`` runs per solution."""
-        return [self._check_text(c, j, lateral(c, j)) for c, j in self._check_pairs(preds, classes)
-                if not self._values_in_range(c, j)]
-
-    def _check_pairs(self, preds: Collection[str], classes: Collection[str]) -> list[tuple[int, int | None]]:
-        return [(c, j) for c, j in
-                self.check_triggers.evaluations(preds, classes, range(len(self.checks)), self.state.present)
-                if not self._cannot_match(c, j)]
-
-    def _cannot_match(self, c: int, j: int | None) -> bool:
-        """Whether check ``c`` with atom ``j`` on the new facts cannot match after the compiled step: a
-        pair of values of one subject on a cleanly replaced predicate (:func:`.program.pair_atom`)."""
-        return j is not None and self._on_clean_pair("check", c, self.checks[c], j)
-
-    def _values_in_range(self, c: int, j: int | None) -> bool:
-        """Whether a range check cannot match this run: its property was cleanly replaced by the compiled
-        step (no rule that can fire derives it), so its new facts are the asserted additions, and each
-        surely lies in the range (:func:`~..compile.datatypes.surely_in`)."""
-        check = self.checks[c]
-        if check.value_range is None or j != 0:
-            return False
-        p, datatype = check.value_range
-        if f"<{p}>" not in self._step_clean:
-            return False
-        return all(surely_in(t.object, datatype) for t in self._added_now if t.predicate.value == p)
-
-    def _check_text(self, c: int, j: int | None, lateral: bool) -> str:
-        key = ("check", c, j, lateral)
-        text = self._texts.get(key)
-        if text is None:
-            rule = self.checks[c]
-            where = rule.where() if j is None else plan_where(rule, j, NEW_FACTS, lateral=lateral)
-            text = self._texts[key] = f"{{\n  {where}\n}}"
-        return text
 
     def key_graphs(self) -> dict:
         """Which of the asserted, inferred and helper graphs hold facts of each key a rule or check
