@@ -59,7 +59,8 @@ the asserted graph, where recomputation is as cheap as maintenance.  The mode
 and the reason are reported in :class:`~.materialize.ReasonStats`.
 
 Where the parts live: this module chooses the mode and runs additions, flips
-and checks; :mod:`.change_checks` decides whether a check or a negated premise
+and checks; :mod:`.compiled_step` compiles each kind of change once and runs
+its program; :mod:`.change_checks` decides whether a check or a negated premise
 may match after maintenance; :mod:`.dred` holds the deletion phases (over-delete with proofs,
 rederive), :mod:`.requests` the batching of evaluations into update
 requests, :mod:`.scratch` the scratch graphs they share.
@@ -80,11 +81,10 @@ from ..rdf.lexer import negates_exists  # noqa: F401 - public here since the fir
 from ..rdf.terms import Term
 from ..rdf.vocab import ASSERTED, AUX, DELTA, ENTAILED, INFERRED, NEW_AUX, NEW_INFERRED
 from ..stores.base import Store, key_census
-from . import after as after_step
-from . import delta_texts as texts
 from . import flip
 from .change_checks import ChangeChecks
 from .changed import ChangedGraphs, Decisions
+from .compiled_step import MAX_PROGRAMS, CompiledStep
 from .component import WHOLE_ROUNDS
 from .consistency import Violation, check_consistency
 from .dred import Deletion, can_prove
@@ -93,18 +93,13 @@ from .flips import Flips
 from .materialize import Materializer, ReasonStats
 from .negation import ASKED, Completion, completion_text, deferred
 from .present import key_graphs, with_facts
-from .program import PROGRAM_SCRATCH, Refused, StepProgram, signature
+from .program import PROGRAM_SCRATCH
 from .requests import RequestQueue
 from .scratch import ADDED, FLIP_GAINED, NEW_FACTS, OVERDELETED, REMOVED, SCRATCH
-from .staged import StagedRun
-from .step_compiler import StepCompiler
-from .triggers import Present, Triggers, matches
+from .triggers import Present, Triggers
 
 #: Default share of the asserted graph above which a change is recomputed from scratch.
 DEFAULT_MAX_CHANGE_SHARE = 0.10
-
-#: Compiled steps kept (one per kind of change seen since the last full run, oldest dropped first).
-MAX_PROGRAMS = 256
 
 #: The reasoning modes: incremental when sound and the change is small, incremental whenever sound, full.
 MODES = ("auto", "incremental", "full")
@@ -179,33 +174,17 @@ class IncrementalReasoner:
         store.hold_scratch(DROPPED)  # only this reasoner reads them, and it drops them after every REASON
         self.flips = Flips(self.requests, self.triggers, self._monotone_set)
         self.deletion = Deletion(self.requests, self.triggers, self.monotone, self.provers)
-        #: the compiled step (see :mod:`.program`); False runs the general phases for every change
-        self.compiled = True
-        self.compiler = StepCompiler(self.rules, self.monotone, self.flips._by_frequency, store.supports_lateral,
-                                     cover=not store.round_trips)
-        #: compiled programs (or why a signature cannot be compiled) by signature, until the next full run
-        self._programs: dict = {}
-        #: signatures whose program in one request needed more rounds than it had: general phases for good
-        self._unsettled: set = set()
-        #: the last compiled step's signature, whether it had unrolled rounds, and the keys it may change
-        self._last_sig = None
-        self._settle = False
-        #: the clean replacements of the REASON under way, by predicate (see :func:`.flip.clean_replacements`)
-        self._clean: dict = {}
-        self._heads: set = set()
-        #: the keys that may have lost facts in the last compiled step (the remote negated-premise read)
-        self._lost: set = set()
         #: what the reads after maintenance decided (the checks' ASK, whether a negated rule may match), by
         #: the shape of the change (:func:`.changed.shape`), until the next full run
         self._decided = Decisions(MAX_PROGRAMS)
-        #: :func:`.flip.kind_tests_only` of a flip (rule index, changed atoms)
-        self._kind_only: dict[tuple[int, tuple[int, ...]], bool] = {}
         #: the scratch graphs of the REASON under way, read once by the reads after maintenance
         self.changed = ChangedGraphs(store, self.requests.flush)
         #: whether a change may make a check or a negated-premise rule match (:mod:`.change_checks`)
         self.change_checks = ChangeChecks(store, self.negated, self.checks, self.check_triggers, self.changed,
                                           self._decided)
         self.change_checks.state = self.state
+        #: the compiled step of each kind of change (see :mod:`.compiled_step`)
+        self.step = CompiledStep(store, rules, self.monotone, self.requests, self.flips, self.change_checks)
         #: (individual, class) pairs whose type fact the last REASON may have changed; None after a full run
         self.touched_types: list[tuple[Term, NamedNode]] | None = None
 
@@ -236,9 +215,9 @@ class IncrementalReasoner:
                                  "left pairs unasked for (see topostore.reason.negation)", profile)
             changed = bool(added or removed)
             if changed and self.store.round_trips and stats.program == "compiled":
-                after = self._read_after()
+                after = self.step.read_after()
                 if after.unsettled:
-                    self._unsettled.add(self._last_sig)  # once is enough: the general phases from now on
+                    self.step.unsettled.add(self.step.last_sig)  # once is enough: the general phases from now on
                     self._clear_scratch()
                     return self.full(f"the compiled step's {WHOLE_ROUNDS} rounds of a recursive component were "
                                      "not enough", profile)
@@ -275,7 +254,7 @@ class IncrementalReasoner:
         self.state.ready = False
         self.touched_types = None
         self.flips.forget()
-        self._programs.clear()  # compiled against the keys with facts, which a full run recounts
+        self.step.programs.clear()  # compiled against the keys with facts, which a full run recounts
         self._decided.clear()
         self._clear_scratch()
         program = full_program(self.ruleset)  # large schema tables as one generic rule each
@@ -349,9 +328,9 @@ class IncrementalReasoner:
         replaced = flip.replaced_in(self.store, added, removed, ASSERTED)
         ask_again = bool(self.deferred and removed) and self._completion.needed(
             self.state.present, key_census(removed), asserted=True)
-        if not ask_again and self._compiled(added, removed, replaced, stats):
+        if not ask_again and self.step.run(added, removed, replaced, stats, self.state):
             self._incomplete = bool(self.deferred and removed) and self._completion.needed(
-                self.state.present, _key_sets(self._lost))
+                self.state.present, _key_sets(self.step.lost))
             return
         requests.flush()  # the scratch copies are read from here on
         skip, lost, gained_rules = self.flips.find(self.state, added, removed, (preds, classes), stats, replaced)
@@ -385,97 +364,6 @@ class IncrementalReasoner:
             m.propagate(self.monotone, stats, seed=ASKED, record=NEW_FACTS)
         finally:
             self.store.update(f"DROP SILENT GRAPH {ASKED}")
-
-    # ------------------------------------------------------------------ the compiled step
-    def _compiled(self, added: Collection[Triple], removed: Collection[Triple], clean: dict,
-                  stats: ReasonStats) -> bool:
-        """Maintain with the compiled program of this kind of change (see :mod:`.program`); False
-        (with the reason in ``stats.program``) when it cannot be compiled.  ``clean``: the change's
-        clean replacements (:func:`.flip.replaced_in`)."""
-        if not self.compiled:
-            stats.program = "general: compiled step switched off"
-            return False
-        sig = signature(key_census(added), key_census(removed), clean)
-        self._clean = clean
-        program = self._program(sig)
-        if isinstance(program, str):
-            stats.program = f"general: {program}"
-            return False
-        self.requests.scratch([r.old for p in program.flipped for r in clean[p]], flip.CHANGE_OLD)
-        start = time.perf_counter()
-        self.flips.state = self.state
-        if self.store.round_trips and self.store.whole_programs:  # the whole program as one request
-            self.requests.flush()
-            self.requests.defer(program.text(self._flip_text))
-            self.requests.flush()
-            stats.evaluations += program.operations
-            self._last_sig, self._settle = sig, not program.whole
-        else:
-            self._settle = False  # the rounds run to their end here
-            self.requests.flush()
-            run = StagedRun(self.store, program, sig, self._flip_text, (added, removed))
-            run.run()
-            stats.evaluations += run.sent
-        if self.requests.profile:
-            stats.per_rule["program"] = time.perf_counter() - start
-        stats.flipped = program.flips
-        stats.program = "compiled"
-        self.change_checks.step_clean = program.clean
-        #: the keys the after-step reads ask about: the asserted changes' and what the program may add
-        self._heads = set(program.heads) | set(sig.added)
-        self._lost = set(program.heads) | set(sig.removed)
-        for kind, key in program.heads:
-            self.state.present[0 if kind == "p" else 1].add(key)
-        return True
-
-    def _flip_text(self, i: int, order: tuple[int, ...], text: str) -> str:
-        """A compiled flip's text for this run: "" when no value changed kind and the rule only tests
-        kinds (:func:`.flip.kind_tests_only`), else narrowed to the values in a window where one applies."""
-        rule = self.rules[i]
-        kinds = self._kind_only.get((i, order))
-        if kinds is None:  # a property of the rule: asked once
-            kinds = self._kind_only[(i, order)] = flip.kind_tests_only(rule, order)
-        if kinds and all(
-                flip.same_kind(r) for j in order for r in self._clean.get(rule.body[j].p, ())):
-            return ""
-        if self.flips.quiet(i, order, self._clean):
-            return ""  # a difference of values whose partners none may equal (see :mod:`.equal_values`)
-        windows = self.flips._windows(i, order)
-        if not windows:
-            return text
-        return texts.flips(self.rules[i], order, self.store.supports_lateral, i, windows)
-
-    def _read_after(self) -> after_step.After:
-        """The reads that follow a compiled step, as one query (see :mod:`.after`)."""
-        preds: set[str] = set()
-        classes: set[str] = set()
-        for kind, key in self._heads:
-            (preds if kind == "p" else classes).add(key)
-        checks = self.change_checks.check_branches(preds, classes, lambda c, j: self.store.supports_lateral)
-        lost = ({k for kind, k in self._lost if kind == "p"}, {k for kind, k in self._lost if kind == "t"})
-        negated = self.change_checks.negated_branches((preds, classes), lost, lambda i, j: self.store.supports_lateral)
-        text = after_step.query(negated, checks, sorted(self.ruleset.entailed_predicates, key=lambda t: t.value),
-                                self._settle)
-        return after_step.read(self.store.query(text, prefixes=PREFIXES))
-
-    def _program(self, sig) -> StepProgram | str:
-        """The compiled program of a signature, or why there is none (cached until the next full run)."""
-        if sig in self._unsettled and self.store.round_trips and self.store.whole_programs:
-            return f"a recursive component needed more than {WHOLE_ROUNDS} rounds in one request before"
-        program = self._programs.get(sig)
-        if isinstance(program, StepProgram) and (
-                any(matches(key, *self.state.present) for key in program.needs_absent)
-                or any(matches(key, *self.state.asserted) for key in program.needs_unasserted)):
-            program = None  # a key it left out has facts now
-        if program is None:
-            try:
-                program = self.compiler.compile(sig, self.state.present, self.state.asserted)
-            except Refused as why:
-                program = str(why)
-            if len(self._programs) >= MAX_PROGRAMS:  # the oldest kind of change is compiled again if it returns
-                del self._programs[next(iter(self._programs))]
-            self._programs[sig] = program
-        return program
 
     # ------------------------------------------------------------------ after maintenance
     def _check(self, stats: ReasonStats, changed: bool) -> list[Violation]:
