@@ -78,9 +78,10 @@ class ReasonReport:
 class Ontology:
     """One ontology: asserted and inferred graphs in an Oxigraph store, plus its rules.
 
-    This class holds the state, manipulations and reasoning, and delegates to named parts:
+    This class holds the state and reasoning, and delegates to named parts:
     loading and saving to ``files`` (:class:`~topostore.ontology.files.OntologyFiles`), the read
-    API to ``reads`` (:class:`~topostore.ontology.reads.OntologyQueries`), the record of asserted
+    API to ``reads`` (:class:`~topostore.ontology.reads.OntologyQueries`), the manipulations to
+    ``changes`` (:class:`~topostore.ontology.changes.AssertedChanges`), the record of asserted
     changes to ``ledger`` (:class:`~topostore.ontology.ledger.ChangeLedger`).
     """
 
