@@ -74,7 +74,7 @@ class CompiledStep:
         self._kind_only: dict[tuple[int, tuple[int, ...]], bool] = {}
 
     def run(self, added: Collection[Triple], removed: Collection[Triple], clean: dict,
-                  stats: ReasonStats, state: MaintenanceState) -> bool:
+            stats: ReasonStats, state: MaintenanceState) -> bool:
         """Maintain with the compiled program of this kind of change (see :mod:`.program`); False
         (with the reason in ``stats.program``) when it cannot be compiled.  ``clean``: the change's
         clean replacements (:func:`.flip.replaced_in`)."""
