@@ -1,4 +1,4 @@
-"""The condition evaluator of the look-up path (reason/look_filters.py) against pyoxigraph's own FILTER.
+"""The condition evaluator of the look-up path (reason/look_filters.py, reason/look_values.py) against pyoxigraph's own FILTER.
 
 Random small stores (typed literals near and beyond 64 bits, non-canonical and ill-typed spellings,
 simple, typed and language-tagged strings, IRIs, blank nodes) and random expressions of the subset
@@ -14,7 +14,8 @@ from hypothesis import strategies as st
 from profiles import property_examples
 from pyoxigraph import BlankNode, Literal, NamedNode, Quad, Store
 
-from topostore.reason.look_filters import UNKNOWN, Unsupported, compile_expression, ebv, filter_of
+from topostore.reason.look_filters import Unsupported, compile_expression
+from topostore.reason.look_values import UNKNOWN, ebv, filter_of
 
 XSD = "http://www.w3.org/2001/XMLSchema#"
 S = NamedNode("http://t/s")
@@ -142,7 +143,7 @@ def test_overflow_and_foreign_values_are_unknown() -> None:
 def test_an_integer_too_long_for_python_is_outside_the_subset_not_a_crash() -> None:
     """Python refuses to read integers of more than 4,300 digits; such a constant is refused as outside
     the subset, and such a stored value is no value the evaluator models."""
-    from topostore.reason.look_filters import value
+    from topostore.reason.look_values import value
     with pytest.raises(Unsupported):
         compile_expression("?a < " + "9" * 5000)
     huge = Literal("9" * 5000, datatype=NamedNode("http://www.w3.org/2001/XMLSchema#integer"))

@@ -252,13 +252,13 @@ def test_restating_rules_leave_no_recursive_component() -> None:
     onto.reason()
     reasoner = onto._reasoner
     key = f"<{NS}q>"
-    program = reasoner.compiler.compile(signature(({key: 1}, {}), ({key: 1}, {}), ()), reasoner.state.present,
+    program = reasoner.step.compiler.compile(signature(({key: 1}, {}), ({key: 1}, {}), ()), reasoner.state.present,
                                         reasoner.state.asserted)
     assert program.whole, describe(program)
     assert f"<{NS}r>" in describe(program)
     # an asserted K fact changes: the equivalence's way back is needed again, and the two form a cycle
     cls_key = f"<{NS}K>"
-    program = reasoner.compiler.compile(signature(({key: 1}, {cls_key: 1}), ({}, {}), ()), reasoner.state.present,
+    program = reasoner.step.compiler.compile(signature(({key: 1}, {cls_key: 1}), ({}, {}), ()), reasoner.state.present,
                                         reasoner.state.asserted)
     assert not program.whole
 
@@ -347,14 +347,14 @@ def test_the_covered_rule_is_left_out_until_a_fact_of_its_atom_is_asserted() -> 
     onto.reason()
     reasoner = onto._reasoner
     # link's domain and range: every derived link had two places with doors, whose domain says as much
-    assert {key for key in reasoner.compiler.covered.values()} == {("p", f"<{NS}link>")}
+    assert {key for key in reasoner.step.compiler.covered.values()} == {("p", f"<{NS}link>")}
     key = f"<{NS}at>"
     sig = signature(({key: 1}, {}), ({key: 1}, {}), (key,))
-    program = reasoner.compiler.compile(sig, reasoner.state.present, reasoner.state.asserted)
+    program = reasoner.step.compiler.compile(sig, reasoner.state.present, reasoner.state.asserted)
     assert ("p", f"<{NS}link>") in program.needs_unasserted
     onto.add(Triple(N("p2"), N("link"), N("p3")))
     onto.reason(mode="incremental")
-    program = reasoner.compiler.compile(sig, reasoner.state.present, reasoner.state.asserted)
+    program = reasoner.step.compiler.compile(sig, reasoner.state.present, reasoner.state.asserted)
     assert ("p", f"<{NS}link>") not in program.needs_unasserted
 
 

@@ -95,7 +95,7 @@ class Reference:
         delta = change.plan(onto)
         # a removed literal is recorded in the form its user wrote (the ledger asks the literal forms), so
         # an undo restores it exactly
-        added, removed = onto.change(delta.add, delta.remove)
+        added, removed = onto.changes.change(delta.add, delta.remove)
         return Applied(added, removed, delta.warning)
 
     def submit(self, changes: list[Change]) -> list[str]:

@@ -199,7 +199,7 @@ def _step_program(onto, props: list[str]) -> str:
     keys = {f"<{onto.iri(p).value}>": 1 for p in props}
     sig = signature((keys, {}), (keys, {}), keys)
     try:
-        program = reasoner.compiler.compile(sig, reasoner.state.present, reasoner.state.asserted)
+        program = reasoner.step.compiler.compile(sig, reasoner.state.present, reasoner.state.asserted)
     except Refused as why:
         return f"# not compiled: {why}"
     return describe(program)

@@ -19,7 +19,7 @@ while the ontology is inconsistent, as aRMOR does).
 from __future__ import annotations
 
 import os
-from collections.abc import Callable, Hashable, Iterable, Sequence
+from collections.abc import Callable, Hashable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -29,7 +29,7 @@ from ..compile import RuleSet, compile_ontology
 from ..compile.builtins import FUNCTIONS as RULE_FUNCTIONS
 from ..compile.notices import Notice
 from ..compile.swrl_text import removal_triples, rule_labels, rule_triples
-from ..rdf.terms import Term, check_literal, entity, literal_of, value_key
+from ..rdf.terms import Term, check_literal, entity, literal_of
 from ..rdf.vocab import (
     ASSERTED,
     AUX,
@@ -51,11 +51,11 @@ from ..stores.facts import Fact
 from ..stores.literal_forms import FORMS
 from ..stores.meta import META
 from . import state as durable_state
+from .changes import AssertedChanges
 from .events import EventHub
 from .files import OntologyFiles, is_schema_triple
 from .ledger import ChangeLedger, all_or_nothing
 from .named_queries import QueryItem
-from .nary import all_different, individual_triples
 from .reads import OntologyQueries
 from .views import ClassViews, Render
 
@@ -78,9 +78,10 @@ class ReasonReport:
 class Ontology:
     """One ontology: asserted and inferred graphs in an Oxigraph store, plus its rules.
 
-    This class holds the state, manipulations and reasoning, and delegates to named parts:
+    This class holds the state and reasoning, and delegates to named parts:
     loading and saving to ``files`` (:class:`~topostore.ontology.files.OntologyFiles`), the read
-    API to ``reads`` (:class:`~topostore.ontology.reads.OntologyQueries`), the record of asserted
+    API to ``reads`` (:class:`~topostore.ontology.reads.OntologyQueries`), the manipulations to
+    ``changes`` (:class:`~topostore.ontology.changes.AssertedChanges`), the record of asserted
     changes to ``ledger`` (:class:`~topostore.ontology.ledger.ChangeLedger`).
     """
 
@@ -110,6 +111,8 @@ class Ontology:
         #: the asserted changes since the last successful REASON: what incremental REASON, rollback and
         #: a unit of work's undo read (see topostore.ontology.ledger)
         self.ledger = ChangeLedger()
+        #: the manipulation path: every asserted change, recorded in the ledger
+        self.changes = AssertedChanges(self)
         self._reasoner: IncrementalReasoner | None = None
         #: share of the asserted graph above which REASON recomputes from scratch instead of incrementally
         self.max_change_share = DEFAULT_MAX_CHANGE_SHARE
@@ -164,99 +167,33 @@ class Ontology:
             return term.value
         return str(term)
 
-    # ------------------------------------------------------------------ manipulation
+    # ------------------------------------------------------------------ manipulation (the ``changes`` part)
     def add(self, *triples: Triple) -> int:
         """Assert triples; returns how many were new."""
-        triples = tuple(dict.fromkeys(triples))
-        for t in triples:
-            o = t.object  # each term taken from a triple is a new object: once here (a big load has millions)
-            if isinstance(o, Literal):
-                _validate_literal(o)
-        self._touch(triples)
-        if not self.ledger.tracking:  # nothing to record: a big first load takes the store's bulk path
-            return self.store.add(triples, ASSERTED, distinct=True)
-        return len(self._change(triples, added=True))
+        return self.changes.add(*triples)
 
     def remove(self, *triples: Triple) -> int:
         """Retract asserted triples (inferred ones cannot be removed, only their premises)."""
-        triples = tuple(dict.fromkeys(triples))
-        self._touch(triples)
-        return len(self._change(triples, added=False))
+        return self.changes.remove(*triples)
 
     def add_new(self, *triples: Triple) -> list[Triple]:
-        """Assert triples; returns those that were new (what a manipulation reports it did).  Unlike
-        :meth:`add`, only the new triples count as touched (a schema triple already there recompiles nothing)."""
-        triples = tuple(dict.fromkeys(triples))
-        for t in triples:
-            _validate(t)
-        new = self._change(triples, added=True)
-        self._touch(new)
-        return new
+        """Assert triples; returns those that were new (see :meth:`AssertedChanges.add_new`)."""
+        return self.changes.add_new(*triples)
 
     def remove_present(self, *triples: Triple) -> list[Triple]:
-        """Retract asserted triples; returns those that were asserted, as :meth:`add_new`."""
-        gone = self._change(tuple(dict.fromkeys(triples)), added=False)
-        self._touch(gone)
-        return gone
+        """Retract asserted triples; returns those that were asserted."""
+        return self.changes.remove_present(*triples)
 
     def change(self, add: Sequence[Triple | Fact], remove: Sequence[Triple | Fact]) -> tuple[list[Triple], list[Triple]]:
-        """Retract ``remove``, then assert ``add``, in one transaction: (added, removed), those that were new
-        and those that were asserted, as :meth:`add_new` and :meth:`remove_present` return them.  One
-        manipulation's delta (an aRMOR REPLACE) is one call: one transaction, one change limit, one touch.
+        """Retract ``remove``, then assert ``add``, in one transaction (see :meth:`AssertedChanges.change`)."""
+        return self.changes.change(add, remove)
 
-        The triples may come as facts (:class:`~topostore.stores.facts.Fact`, e.g. read by
-        :meth:`Store.read_facts`): their keys and forms, made once, serve the store, the ledger and the
-        literal forms alike."""
-        store = self.store
-        adds = []
-        for t in _distinct(add):  # every value is validated before anything changes
-            if type(t) is Fact:
-                if t.value is not None:
-                    _validate_literal(t.triple.object)
-            else:
-                _validate(t)
-                t = store.fact(t, ASSERTED)
-            adds.append(t)
-        removes = [t if type(t) is Fact else store.fact(t, ASSERTED, written=False) for t in _distinct(remove)]
-        ledger, limit = self.ledger, self._change_limit
-        with store.transaction():
-            removed = store.toggle_facts(removes, False) if removes else []
-            if removed:
-                ledger.record(store, removed, added=False, limit=limit)
-            added = store.toggle_facts(adds, True) if adds else []
-            if added:
-                ledger.record(store, added, added=True, limit=limit)
-        added_triples, removed_triples = [f.triple for f in added], [f.triple for f in removed]
-        self._touch(removed_triples + added_triples)
-        return added_triples, removed_triples
-
-    def _change(self, triples: tuple[Triple, ...], added: bool) -> list[Triple]:
-        """Add or remove in the asserted graph and record what changed in the ledger: one presence look-up
-        per triple (the store's), in one transaction with the change."""
-        store = self.store
-        facts = [store.fact(t, ASSERTED, written=added) for t in triples]
-        with store.transaction():
-            changed = store.toggle_facts(facts, added)
-            self.ledger.record(store, changed, added=added, limit=self._change_limit)
-        return [f.triple for f in changed]
-
-    def _touch(self, triples: Iterable[Triple]) -> None:
-        self.dirty = True
-        if self.store.durable:
-            durable_state.note_changed(self.store)
-        for t in triples:  # a loop, not any() over a generator: a manipulation touches one or two triples
-            if is_schema_triple(t):  # the rules, the classification and the namespace are read again
-                self._rules = None
-                self._superclasses = None
-                self._found_prefix = None
-                self.ledger.stop_incremental()
-                return
-
-    def _change_limit(self) -> float:
-        """Net changes above which an incremental REASON no longer pays off (a share of the asserted graph):
-        past it the ledger keeps the change for rollback only, and the next REASON is a full one."""
-        reasoner = self._reasoner
-        return self.max_change_share * (reasoner.state.asserted_size if reasoner else 0)
+    def schema_changed(self) -> None:
+        """A schema triple was added or removed: the rules, the classification and the namespace are read again."""
+        self._rules = None
+        self._superclasses = None
+        self._found_prefix = None
+        self.ledger.stop_incremental()
 
     def incremental_ready(self) -> bool:
         """Whether the reasoner can maintain its closure from the ledger's net changes."""
@@ -290,7 +227,7 @@ class Ontology:
     def value(self, value: object, datatype: str | None = None) -> Literal:
         """A validated literal from a Python value (int → xsd:integer, ...) or text + datatype."""
         if isinstance(value, Literal):
-            _validate_literal(value)
+            check_literal(value)
             return value
         if datatype is not None:
             if not isinstance(datatype, str):
@@ -311,19 +248,19 @@ class Ontology:
         return Triple(self.iri(subject), self.iri(prop), o)
 
     def add_fact(self, subject: str, prop: str, obj: object) -> int:
-        return self.add(self.fact(subject, prop, obj))
+        return self.changes.add(self.fact(subject, prop, obj))
 
     def remove_fact(self, subject: str, prop: str, obj: object) -> int:
-        return self.remove(self.fact(subject, prop, obj))
+        return self.changes.remove(self.fact(subject, prop, obj))
 
     def add_type(self, individual: str, cls: str) -> int:
-        return self.add(Triple(self.iri(individual), TYPE, self.iri(cls)))
+        return self.changes.add(Triple(self.iri(individual), TYPE, self.iri(cls)))
 
     def remove_type(self, individual: str, cls: str) -> int:
-        return self.remove(Triple(self.iri(individual), TYPE, self.iri(cls)))
+        return self.changes.remove(Triple(self.iri(individual), TYPE, self.iri(cls)))
 
     def add_data(self, prop: str, individual: str, value: object, datatype: str | None = None) -> int:
-        return self.add(Triple(self.iri(individual), self.iri(prop), self.value(value, datatype)))
+        return self.changes.add(Triple(self.iri(individual), self.iri(prop), self.value(value, datatype)))
 
     def replace(self, subject: str, prop: str, new: object, old: object | None = None) -> int:
         """Replace ``old`` by ``new`` (every current value when ``old`` is None); atomic.
@@ -331,28 +268,15 @@ class Ontology:
         Values are matched by data value, so ``7`` replaces a stored ``"7"^^xsd:long``.
         Returns how many old facts were removed.
         """
-        new_t = self.fact(subject, prop, new)
-        s, p = new_t.subject, new_t.predicate
-        with self.store.transaction():  # one commit: a durable store never holds half a REPLACE
-            if old is None:
-                olds = list(self.store.triples(s, p, None, ASSERTED))
-            else:
-                old_t = self.fact(subject, prop, old)
-                key = value_key(old_t.object)
-                olds = [t for t in self.store.triples(s, p, None, ASSERTED) if value_key(t.object) == key]
-            self.remove(*olds)
-            self.add(new_t)
-        return len(olds)
+        return self.changes.replace(subject, prop, new, old)
 
     def add_all_different(self, names: Sequence[str | NamedNode]) -> NamedNode:
         """One owl:AllDifferent over ``names`` (deduplicated): linear in size, never n² pairs."""
-        triples = all_different(list(dict.fromkeys(self.iri(n) for n in names)))
-        self.add(*triples)
-        return triples[0].subject
+        return self.changes.add_all_different(names)
 
     def remove_individual(self, name: str | NamedNode) -> int:
         """Remove every asserted triple mentioning the individual, and whole AllDifferent axioms containing it."""
-        return self.remove(*individual_triples(self.store, self.iri(name)))
+        return self.changes.remove_individual(name)
 
     def subscribe(self, callback, pattern: str | None = None, maxsize: int = 100):
         """Call ``callback(event)`` after each REASON that changed an inferred triple matching
@@ -379,7 +303,7 @@ class Ontology:
 
     def remove_rule(self, label: str) -> int:
         """Remove the SWRL rule(s) labelled ``label`` (loaded or added); RuleCompileError if none."""
-        return self.remove(*removal_triples(self.store, label))
+        return self.changes.remove(*removal_triples(self.store, label))
 
     def rule_labels(self) -> list[str]:
         return rule_labels(self.store)
@@ -548,21 +472,6 @@ class Ontology:
     def query_names(self) -> dict[str, str]:
         """The named queries this ontology runs by name (name → description)."""
         return self.reads.query_names()
-
-
-def _validate_literal(lit: Literal) -> None:
-    """Raise InvalidValueError when ``lit`` is not a valid value of its XSD type (kept as written otherwise)."""
-    check_literal(lit)
-
-
-def _distinct(items: Sequence[Triple | Fact]) -> Sequence[Triple | Fact]:
-    """``items`` without repeats (one triple, a manipulation's usual change, is not hashed for it)."""
-    return items if len(items) < 2 else list(dict.fromkeys(items))
-
-
-def _validate(t: Triple) -> None:
-    if isinstance(t.object, Literal):
-        _validate_literal(t.object)
 
 
 __all__ = ["Ontology", "ReasonReport", "is_schema_triple", "NOTHING", "AUX"]

@@ -70,7 +70,7 @@ def is_schema_triple(t: Triple) -> bool:
 class OntologyFiles:
     """Loading and saving: a named part of one :class:`~topostore.ontology.facade.Ontology` (``onto.files``).
 
-    It adds through the ontology (``add``, so the change ledger sees every triple) and reads its
+    It adds through the ontology's ``changes`` part (so the change ledger sees every triple) and reads its
     ``store``, ``prefix``, ``rules`` and ``visible_graphs``; the compiled rules a load checked are
     handed back to the ontology so they are not compiled twice.
     """
@@ -165,7 +165,7 @@ class OntologyFiles:
         except BaseException:
             store.clear(ASSERTED)
             raise
-        self.onto._touch([schema] if schema is not None else [])
+        self.onto.changes.touch([schema] if schema is not None else [])
         if rules is not None:
             self.onto._rules = rules
         return found.triples, self._kept(found.notices, known)
@@ -219,7 +219,7 @@ class OntologyFiles:
         """Add a document's triples through the ontology, the cycle collector paused (the compiling
         around it runs with the collector on: a big TBox's expressions may well make cycles)."""
         with _collector_paused():
-            return self.onto.add(*triples)
+            return self.onto.changes.add(*triples)
 
     def _in_place_possible(self) -> bool:
         """Whether a document may be compiled where it is added: the asserted graph is empty and
@@ -240,7 +240,7 @@ class OntologyFiles:
         try:
             rules = self._compiled_here(notices)
         except BaseException as exc:
-            self.onto.remove(*triples)
+            self.onto.changes.remove(*triples)
             self.onto.dirty = dirty
             if isinstance(exc, TopostoreError):
                 return None

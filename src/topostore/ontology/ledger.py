@@ -159,9 +159,9 @@ class ChangeLedger:
         with self._paused(), onto.store.transaction():
             for triples, added in reversed(steps):
                 if added:
-                    onto.remove(*triples)
+                    onto.changes.remove(*triples)
                 else:
-                    onto.add(*triples)
+                    onto.changes.add(*triples)
         del self._steps[start:]
 
     @contextmanager

@@ -59,7 +59,9 @@ the asserted graph, where recomputation is as cheap as maintenance.  The mode
 and the reason are reported in :class:`~.materialize.ReasonStats`.
 
 Where the parts live: this module chooses the mode and runs additions, flips
-and checks; :mod:`.dred` holds the deletion phases (over-delete with proofs,
+and checks; :mod:`.compiled_step` compiles each kind of change once and runs
+its program; :mod:`.change_checks` decides whether a check or a negated premise
+may match after maintenance; :mod:`.dred` holds the deletion phases (over-delete with proofs,
 rederive), :mod:`.requests` the batching of evaluations into update
 requests, :mod:`.scratch` the scratch graphs they share.
 """
@@ -72,7 +74,6 @@ from dataclasses import dataclass, field
 
 from pyoxigraph import NamedNode, Triple
 
-from ..compile.datatypes import surely_in
 from ..compile.generic import PREFIXES
 from ..compile.rule import Rule, RuleSet
 from ..compile.schema_program import full_program
@@ -80,10 +81,10 @@ from ..rdf.lexer import negates_exists  # noqa: F401 - public here since the fir
 from ..rdf.terms import Term
 from ..rdf.vocab import ASSERTED, AUX, DELTA, ENTAILED, INFERRED, NEW_AUX, NEW_INFERRED
 from ..stores.base import Store, key_census
-from . import after as after_step
-from . import delta_texts as texts
 from . import flip
-from .changed import ChangedGraphs, Decisions, shape
+from .change_checks import ChangeChecks
+from .changed import ChangedGraphs, Decisions
+from .compiled_step import MAX_PROGRAMS, CompiledStep
 from .component import WHOLE_ROUNDS
 from .consistency import Violation, check_consistency
 from .dred import Deletion, can_prove
@@ -91,20 +92,14 @@ from .entailed import publish_entailed, refresh_entailed
 from .flips import Flips
 from .materialize import Materializer, ReasonStats
 from .negation import ASKED, Completion, completion_text, deferred
-from .plan import is_small, plan_where
 from .present import key_graphs, with_facts
-from .program import PROGRAM_SCRATCH, Refused, StepProgram, check_pair_atom, pair_atom, signature
+from .program import PROGRAM_SCRATCH
 from .requests import RequestQueue
 from .scratch import ADDED, FLIP_GAINED, NEW_FACTS, OVERDELETED, REMOVED, SCRATCH
-from .staged import StagedRun
-from .step_compiler import StepCompiler
-from .triggers import Present, Triggers, matches
+from .triggers import Present, Triggers
 
 #: Default share of the asserted graph above which a change is recomputed from scratch.
 DEFAULT_MAX_CHANGE_SHARE = 0.10
-
-#: Compiled steps kept (one per kind of change seen since the last full run, oldest dropped first).
-MAX_PROGRAMS = 256
 
 #: The reasoning modes: incremental when sound and the change is small, incremental whenever sound, full.
 MODES = ("auto", "incremental", "full")
@@ -171,7 +166,6 @@ class IncrementalReasoner:
         self.checks = rules.checks
         self.check_triggers = Triggers(self.checks)
         self.negated = [r for r in self.rules if not is_monotone(r)]
-        self.negated_triggers = Triggers(self.negated)
         self.provers = [i for i in self.monotone if can_prove(self.rules[i])]
         #: the keys some rule or check body reads: the only ones :attr:`MaintenanceState.present` is asked about
         self._needed = self.triggers.needed_keys() | self.check_triggers.needed_keys()
@@ -180,37 +174,17 @@ class IncrementalReasoner:
         store.hold_scratch(DROPPED)  # only this reasoner reads them, and it drops them after every REASON
         self.flips = Flips(self.requests, self.triggers, self._monotone_set)
         self.deletion = Deletion(self.requests, self.triggers, self.monotone, self.provers)
-        #: the compiled step (see :mod:`.program`); False runs the general phases for every change
-        self.compiled = True
-        self.compiler = StepCompiler(self.rules, self.monotone, self.flips._by_frequency, store.supports_lateral,
-                                     cover=not store.round_trips)
-        #: compiled programs (or why a signature cannot be compiled) by signature, until the next full run
-        self._programs: dict = {}
-        #: signatures whose program in one request needed more rounds than it had: general phases for good
-        self._unsettled: set = set()
-        #: the last compiled step's signature, whether it had unrolled rounds, and the keys it may change
-        self._last_sig = None
-        self._settle = False
-        #: the clean replacements of the REASON under way, by predicate (see :func:`.flip.clean_replacements`)
-        self._clean: dict = {}
-        #: the cleanly replaced predicates no rule derives, when the compiled step ran (else empty)
-        self._step_clean: frozenset = frozenset()
-        self._heads: set = set()
-        #: the asserted triples the REASON under way adds (range checks decide known values without a query)
-        self._added_now: Collection[Triple] = ()
-        #: the keys that may have lost facts in the last compiled step (the remote negated-premise read)
-        self._lost: set = set()
-        #: SPARQL texts of the checks made once (the phases' texts live in the request queue)
-        self._texts: dict[tuple, str] = {}
-        #: :func:`.program.pair_atom` of a check's or negated rule's atom, by (kind, rule index, atom): rules never change
-        self._pairs: dict[tuple[str, int, int], bool] = {}
         #: what the reads after maintenance decided (the checks' ASK, whether a negated rule may match), by
         #: the shape of the change (:func:`.changed.shape`), until the next full run
         self._decided = Decisions(MAX_PROGRAMS)
-        #: :func:`.flip.kind_tests_only` of a flip (rule index, changed atoms)
-        self._kind_only: dict[tuple[int, tuple[int, ...]], bool] = {}
         #: the scratch graphs of the REASON under way, read once by the reads after maintenance
         self.changed = ChangedGraphs(store, self.requests.flush)
+        #: whether a change may make a check or a negated-premise rule match (:mod:`.change_checks`)
+        self.change_checks = ChangeChecks(store, self.negated, self.checks, self.check_triggers, self.changed,
+                                          self._decided)
+        self.change_checks.state = self.state
+        #: the compiled step of each kind of change (see :mod:`.compiled_step`)
+        self.step = CompiledStep(store, rules, self.monotone, self.requests, self.flips, self.change_checks)
         #: (individual, class) pairs whose type fact the last REASON may have changed; None after a full run
         self.touched_types: list[tuple[Term, NamedNode]] | None = None
 
@@ -228,8 +202,8 @@ class IncrementalReasoner:
         if why:
             return self.full(why, profile)
         start = time.perf_counter()
-        self._step_clean = frozenset()
-        self._added_now = added
+        self.change_checks.step_clean = frozenset()
+        self.change_checks.added_now = added
         stats = ReasonStats(mode="incremental", reason=self._incremental_reason(added, removed))
         self.requests.profile = profile
         self._incomplete = False
@@ -241,9 +215,9 @@ class IncrementalReasoner:
                                  "left pairs unasked for (see topostore.reason.negation)", profile)
             changed = bool(added or removed)
             if changed and self.store.round_trips and stats.program == "compiled":
-                after = self._read_after()
+                after = self.step.read_after()
                 if after.unsettled:
-                    self._unsettled.add(self._last_sig)  # once is enough: the general phases from now on
+                    self.step.unsettled.add(self.step.last_sig)  # once is enough: the general phases from now on
                     self._clear_scratch()
                     return self.full(f"the compiled step's {WHOLE_ROUNDS} rounds of a recursive component were "
                                      "not enough", profile)
@@ -255,7 +229,7 @@ class IncrementalReasoner:
                 self.requests.discard(after.entailed_drop, (ENTAILED,))
                 self.touched_types = after.touched_types
             else:
-                if changed and self._negated_match():
+                if changed and self.change_checks.negated_match():
                     return self.full("the change makes a rule with a negated premise (stratum 1) match", profile)
                 violations = self._check(stats, changed)
                 self._publish_entailed(changed)
@@ -280,7 +254,7 @@ class IncrementalReasoner:
         self.state.ready = False
         self.touched_types = None
         self.flips.forget()
-        self._programs.clear()  # compiled against the keys with facts, which a full run recounts
+        self.step.programs.clear()  # compiled against the keys with facts, which a full run recounts
         self._decided.clear()
         self._clear_scratch()
         program = full_program(self.ruleset)  # large schema tables as one generic rule each
@@ -308,6 +282,7 @@ class IncrementalReasoner:
         # (a negated premise may have fired and stopped matching since, so ask the run)
         self.state = MaintenanceState(True, not materializer.upper_derived, self.store.count(ASSERTED), violations,
                                       with_facts(keys), with_facts(keys, ASSERTED))
+        self.change_checks.state = self.state
         stats.seconds += time.perf_counter() - start
         return stats, violations
 
@@ -353,9 +328,9 @@ class IncrementalReasoner:
         replaced = flip.replaced_in(self.store, added, removed, ASSERTED)
         ask_again = bool(self.deferred and removed) and self._completion.needed(
             self.state.present, key_census(removed), asserted=True)
-        if not ask_again and self._compiled(added, removed, replaced, stats):
+        if not ask_again and self.step.run(added, removed, replaced, stats, self.state):
             self._incomplete = bool(self.deferred and removed) and self._completion.needed(
-                self.state.present, _key_sets(self._lost))
+                self.state.present, _key_sets(self.step.lost))
             return
         requests.flush()  # the scratch copies are read from here on
         skip, lost, gained_rules = self.flips.find(self.state, added, removed, (preds, classes), stats, replaced)
@@ -390,162 +365,14 @@ class IncrementalReasoner:
         finally:
             self.store.update(f"DROP SILENT GRAPH {ASKED}")
 
-    # ------------------------------------------------------------------ the compiled step
-    def _compiled(self, added: Collection[Triple], removed: Collection[Triple], clean: dict,
-                  stats: ReasonStats) -> bool:
-        """Maintain with the compiled program of this kind of change (see :mod:`.program`); False
-        (with the reason in ``stats.program``) when it cannot be compiled.  ``clean``: the change's
-        clean replacements (:func:`.flip.replaced_in`)."""
-        if not self.compiled:
-            stats.program = "general: compiled step switched off"
-            return False
-        sig = signature(key_census(added), key_census(removed), clean)
-        self._clean = clean
-        program = self._program(sig)
-        if isinstance(program, str):
-            stats.program = f"general: {program}"
-            return False
-        self.requests.scratch([r.old for p in program.flipped for r in clean[p]], flip.CHANGE_OLD)
-        start = time.perf_counter()
-        self.flips.state = self.state
-        if self.store.round_trips and self.store.whole_programs:  # the whole program as one request
-            self.requests.flush()
-            self.requests.defer(program.text(self._flip_text))
-            self.requests.flush()
-            stats.evaluations += program.operations
-            self._last_sig, self._settle = sig, not program.whole
-        else:
-            self._settle = False  # the rounds run to their end here
-            self.requests.flush()
-            run = StagedRun(self.store, program, sig, self._flip_text, (added, removed))
-            run.run()
-            stats.evaluations += run.sent
-        if self.requests.profile:
-            stats.per_rule["program"] = time.perf_counter() - start
-        stats.flipped = program.flips
-        stats.program = "compiled"
-        self._step_clean = program.clean
-        #: the keys the after-step reads ask about: the asserted changes' and what the program may add
-        self._heads = set(program.heads) | set(sig.added)
-        self._lost = set(program.heads) | set(sig.removed)
-        for kind, key in program.heads:
-            self.state.present[0 if kind == "p" else 1].add(key)
-        return True
-
-    def _flip_text(self, i: int, order: tuple[int, ...], text: str) -> str:
-        """A compiled flip's text for this run: "" when no value changed kind and the rule only tests
-        kinds (:func:`.flip.kind_tests_only`), else narrowed to the values in a window where one applies."""
-        rule = self.rules[i]
-        kinds = self._kind_only.get((i, order))
-        if kinds is None:  # a property of the rule: asked once
-            kinds = self._kind_only[(i, order)] = flip.kind_tests_only(rule, order)
-        if kinds and all(
-                flip.same_kind(r) for j in order for r in self._clean.get(rule.body[j].p, ())):
-            return ""
-        if self.flips.quiet(i, order, self._clean):
-            return ""  # a difference of values whose partners none may equal (see :mod:`.equal_values`)
-        windows = self.flips._windows(i, order)
-        if not windows:
-            return text
-        return texts.flips(self.rules[i], order, self.store.supports_lateral, i, windows)
-
-    def _read_after(self) -> after_step.After:
-        """The reads that follow a compiled step, as one query (see :mod:`.after`)."""
-        preds: set[str] = set()
-        classes: set[str] = set()
-        for kind, key in self._heads:
-            (preds if kind == "p" else classes).add(key)
-        checks = self._check_branches(preds, classes, lambda c, j: self.store.supports_lateral)
-        lost = ({k for kind, k in self._lost if kind == "p"}, {k for kind, k in self._lost if kind == "t"})
-        negated = self._negated_branches((preds, classes), lost, lambda i, j: self.store.supports_lateral)
-        text = after_step.query(negated, checks, sorted(self.ruleset.entailed_predicates, key=lambda t: t.value),
-                                self._settle)
-        return after_step.read(self.store.query(text, prefixes=PREFIXES))
-
-    def _program(self, sig) -> StepProgram | str:
-        """The compiled program of a signature, or why there is none (cached until the next full run)."""
-        if sig in self._unsettled and self.store.round_trips and self.store.whole_programs:
-            return f"a recursive component needed more than {WHOLE_ROUNDS} rounds in one request before"
-        program = self._programs.get(sig)
-        if isinstance(program, StepProgram) and (
-                any(matches(key, *self.state.present) for key in program.needs_absent)
-                or any(matches(key, *self.state.asserted) for key in program.needs_unasserted)):
-            program = None  # a key it left out has facts now
-        if program is None:
-            try:
-                program = self.compiler.compile(sig, self.state.present, self.state.asserted)
-            except Refused as why:
-                program = str(why)
-            if len(self._programs) >= MAX_PROGRAMS:  # the oldest kind of change is compiled again if it returns
-                del self._programs[next(iter(self._programs))]
-            self._programs[sig] = program
-        return program
-
     # ------------------------------------------------------------------ after maintenance
-    def _negated_match(self) -> bool:
-        """Whether a rule with a negated premise matches after this maintenance (one semi-naive ASK,
-        made once per shape of change; none when the change cannot make one match)."""
-        if not self.negated:
-            return False
-        counts = self.changed.keys(NEW_FACTS, OVERDELETED)
-        text = self._decided.get(("negated", *shape(counts, self._step_clean, self.state.present)),
-                                 lambda: self._negated_ask(*counts))
-        return bool(text) and bool(self.store.query(text, prefixes=PREFIXES))
-
-    def _negated_ask(self, new: Present, lost: Present) -> str:
-        """The ASK of :meth:`_negated_branches` ("" when there is none)."""
-        branches = self._negated_branches(new, lost, lambda i, j: self.store.supports_lateral
-                                          and is_small(new, self.negated[i].body[j].read_key()))
-        if not branches:
-            return ""
-        head = f"FROM {ASSERTED} FROM {INFERRED} FROM {AUX} FROM NAMED {AUX} FROM NAMED {NEW_FACTS}"
-        return f"ASK {head} WHERE {{\n" + "\nUNION\n".join(branches) + "\n}"
-
-    def _negated_branches(self, new: Present, lost: Present, lateral) -> list[str]:
-        """The groups of the negated-premise rules that may match now, when none matched before (the
-        state is quiet): a rule whose filters read a key that gained or lost facts, whole; else one
-        group per body atom on a key that gained facts, that atom on NEW_FACTS (a lost positive
-        premise cannot make a rule match), except a pair of values of one subject on a cleanly
-        replaced predicate (:func:`.program.pair_atom`)."""
-        if not self.negated:
-            return []
-        preds = set(new[0]) | set(lost[0])
-        classes = set(new[1]) | set(lost[1])
-        out = []
-        for i, j in self.negated_triggers.evaluations(preds, classes, range(len(self.negated)), self.state.present):
-            rule = self.negated[i]
-            if j is None:
-                out.append(f"{{\n  {rule.where()}\n}}")
-                continue
-            key = rule.body[j].read_key()
-            if key != ("*",) and not matches(key, *new) or self._on_clean_pair("negated", i, rule, j):
-                continue
-            text_key = ("negated", i, j, lateral(i, j))
-            text = self._texts.get(text_key)
-            if text is None:
-                text = self._texts[text_key] = f"{{\n  {plan_where(rule, j, NEW_FACTS, lateral=lateral(i, j))}\n}}"
-            out.append(text)
-        return out
-
-    def _on_clean_pair(self, kind: str, i: int, rule: Rule, j: int) -> bool:
-        """Whether atom ``j`` of ``rule`` (``kind`` "check" or "negated", index ``i``) is a pair atom
-        (:func:`.program.pair_atom`) on a predicate the compiled step cleanly replaced: it cannot match a
-        change, since every changed subject has one value before and after."""
-        if rule.body[j].p not in self._step_clean:
-            return False
-        key = (kind, i, j)
-        pair = self._pairs.get(key)
-        if pair is None:  # a check's pair may also be kept apart by its difference atom
-            pair = self._pairs[key] = check_pair_atom(rule, j) if kind == "check" else pair_atom(rule, j)
-        return pair
-
     def _check(self, stats: ReasonStats, changed: bool) -> list[Violation]:
         """Consistency of the new state, running all checks only when one may have changed."""
         start = time.perf_counter()
         try:
             if not changed:
                 return list(self.state.violations)
-            if self.state.violations or not self.checks_monotone or self._new_violation_possible():
+            if self.state.violations or not self.checks_monotone or self.change_checks.violation_possible():
                 return check_consistency(self.store, self.ruleset)
             return []
         finally:
@@ -558,71 +385,6 @@ class IncrementalReasoner:
             self.requests.flush()
             refresh_entailed(self.store, self.ruleset, (NEW_FACTS, OVERDELETED), self.changed.quads)
 
-    def _new_violation_possible(self) -> bool:
-        """A check matches with at least one atom on a fact new in the closure (one semi-naive ASK)."""
-        counts, = self.changed.keys(NEW_FACTS)
-        lateral = self._lateral(counts)
-        # the same few shapes return: the groups are made once; range checks of known values are decided per run
-        fixed, ranged = self._decided.get(("check", *shape([counts], self._step_clean, self.state.present)),
-                                          lambda: self._violation_groups(counts))
-        branches = fixed + [self._check_text(c, j, lateral(c, j)) for c, j in ranged
-                            if not self._values_in_range(c, j)]
-        if not branches:
-            return False
-        head = f"FROM {ASSERTED} FROM {INFERRED} FROM {AUX} FROM NAMED {AUX} FROM NAMED {NEW_FACTS}"
-        return bool(self.store.query(f"ASK {head} WHERE {{\n" + "\nUNION\n".join(branches) + "\n}",
-                                     prefixes=PREFIXES))
-
-    def _lateral(self, counts: tuple[dict[str, int], dict[str, int]]):
-        return lambda c, j: j is not None and self.store.supports_lateral \
-            and is_small(counts, self.checks[c].body[j].read_key())
-
-    def _violation_groups(self, counts: tuple[dict[str, int], dict[str, int]]) -> tuple[list[str], list[tuple]]:
-        """The semi-naive groups of the checks a change of ``counts``' keys may make match, and apart the
-        (check, atom) pairs of range checks, whose values each run may decide (:meth:`_values_in_range`)."""
-        preds, classes = counts
-        pairs = self._check_pairs(preds, classes)
-        lateral = self._lateral(counts)
-        fixed = [self._check_text(c, j, lateral(c, j)) for c, j in pairs if self.checks[c].value_range is None]
-        return fixed, [(c, j) for c, j in pairs if self.checks[c].value_range is not None]
-
-    def _check_branches(self, preds: Collection[str], classes: Collection[str], lateral) -> list[str]:
-        """The semi-naive groups of the checks a change of ``preds``/``classes`` may make match (one per
-        check and changed atom), those that cannot match after the compiled step left out;
-        ``lateral(c, j)``: whether the group of check ``c`` on atom ``j`` runs per solution."""
-        return [self._check_text(c, j, lateral(c, j)) for c, j in self._check_pairs(preds, classes)
-                if not self._values_in_range(c, j)]
-
-    def _check_pairs(self, preds: Collection[str], classes: Collection[str]) -> list[tuple[int, int | None]]:
-        return [(c, j) for c, j in
-                self.check_triggers.evaluations(preds, classes, range(len(self.checks)), self.state.present)
-                if not self._cannot_match(c, j)]
-
-    def _cannot_match(self, c: int, j: int | None) -> bool:
-        """Whether check ``c`` with atom ``j`` on the new facts cannot match after the compiled step: a
-        pair of values of one subject on a cleanly replaced predicate (:func:`.program.pair_atom`)."""
-        return j is not None and self._on_clean_pair("check", c, self.checks[c], j)
-
-    def _values_in_range(self, c: int, j: int | None) -> bool:
-        """Whether a range check cannot match this run: its property was cleanly replaced by the compiled
-        step (no rule that can fire derives it), so its new facts are the asserted additions, and each
-        surely lies in the range (:func:`~..compile.datatypes.surely_in`)."""
-        check = self.checks[c]
-        if check.value_range is None or j != 0:
-            return False
-        p, datatype = check.value_range
-        if f"<{p}>" not in self._step_clean:
-            return False
-        return all(surely_in(t.object, datatype) for t in self._added_now if t.predicate.value == p)
-
-    def _check_text(self, c: int, j: int | None, lateral: bool) -> str:
-        key = ("check", c, j, lateral)
-        text = self._texts.get(key)
-        if text is None:
-            rule = self.checks[c]
-            where = rule.where() if j is None else plan_where(rule, j, NEW_FACTS, lateral=lateral)
-            text = self._texts[key] = f"{{\n  {where}\n}}"
-        return text
 
     def key_graphs(self) -> dict:
         """Which of the asserted, inferred and helper graphs hold facts of each key a rule or check

@@ -29,8 +29,8 @@ from . import direct
 from .delta_texts import FLIP_LOST
 from .direct import _bind, _instance, _match, _pattern, _terms
 from .flip import CHANGE_OLD, compact_possible
-from .look_filters import UNKNOWN
 from .look_join import Conditions, every_graph, joinable
+from .look_values import UNKNOWN
 from .scratch import FLIP_GAINED
 
 

@@ -28,7 +28,8 @@ from ..rdf.vocab import ASSERTED, AUX, INFERRED, TYPE
 from . import direct
 from .delta_texts import KEEP
 from .direct import _bind, _instance, _match, _named_only, _pattern, _terms, _write_new
-from .look_filters import UNKNOWN, Unsupported, all_of, compile_expression
+from .look_filters import Unsupported, compile_expression
+from .look_values import UNKNOWN, all_of
 from .scratch import CANDIDATES, NEW_FACTS, OVERDELETED
 
 _STATE = (ASSERTED, INFERRED, AUX)

@@ -1,0 +1,170 @@
+"""The manipulation path: every change of the asserted graph, recorded in the change ledger.
+
+A manipulation validates its values before anything changes, changes the asserted graph and records
+the net change in the ledger in one transaction (what incremental REASON, rollback and a unit of
+work's undo read), and marks the ontology changed since its last reasoning; a schema triple makes
+the rules be compiled again.  A named part of one :class:`~topostore.ontology.facade.Ontology`
+(``onto.changes``); the ontology's ``add``, ``remove``, ``change`` and ``replace`` are these.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Sequence
+from typing import TYPE_CHECKING
+
+from pyoxigraph import Literal, NamedNode, Triple
+
+from ..rdf.terms import check_literal, value_key
+from ..rdf.vocab import ASSERTED
+from ..stores.facts import Fact
+from . import state as durable_state
+from .files import is_schema_triple
+from .nary import all_different, individual_triples
+
+if TYPE_CHECKING:
+    from .facade import Ontology
+
+
+class AssertedChanges:
+    """Adds and removes asserted triples for one ontology, recording each net change in its ledger."""
+
+    def __init__(self, onto: Ontology) -> None:
+        self.onto = onto
+        self.store = onto.store
+        self.ledger = onto.ledger
+
+    def add(self, *triples: Triple) -> int:
+        """Assert triples; returns how many were new."""
+        triples = tuple(dict.fromkeys(triples))
+        for t in triples:
+            o = t.object  # each term taken from a triple is a new object: once here (a big load has millions)
+            if isinstance(o, Literal):
+                _validate_literal(o)
+        self.touch(triples)
+        if not self.ledger.tracking:  # nothing to record: a big first load takes the store's bulk path
+            return self.store.add(triples, ASSERTED, distinct=True)
+        return len(self._change(triples, added=True))
+
+    def remove(self, *triples: Triple) -> int:
+        """Retract asserted triples (inferred ones cannot be removed, only their premises)."""
+        triples = tuple(dict.fromkeys(triples))
+        self.touch(triples)
+        return len(self._change(triples, added=False))
+
+    def add_new(self, *triples: Triple) -> list[Triple]:
+        """Assert triples; returns those that were new (what a manipulation reports it did).  Unlike
+        :meth:`add`, only the new triples count as touched (a schema triple already there recompiles nothing)."""
+        triples = tuple(dict.fromkeys(triples))
+        for t in triples:
+            _validate(t)
+        new = self._change(triples, added=True)
+        self.touch(new)
+        return new
+
+    def remove_present(self, *triples: Triple) -> list[Triple]:
+        """Retract asserted triples; returns those that were asserted, as :meth:`add_new`."""
+        gone = self._change(tuple(dict.fromkeys(triples)), added=False)
+        self.touch(gone)
+        return gone
+
+    def change(self, add: Sequence[Triple | Fact], remove: Sequence[Triple | Fact]) -> tuple[list[Triple], list[Triple]]:
+        """Retract ``remove``, then assert ``add``, in one transaction: (added, removed), those that were new
+        and those that were asserted, as :meth:`add_new` and :meth:`remove_present` return them.  One
+        manipulation's delta (an aRMOR REPLACE) is one call: one transaction, one change limit, one touch.
+
+        The triples may come as facts (:class:`~topostore.stores.facts.Fact`, e.g. read by
+        :meth:`Store.read_facts`): their keys and forms, made once, serve the store, the ledger and the
+        literal forms alike."""
+        store = self.store
+        adds = []
+        for t in _distinct(add):  # every value is validated before anything changes
+            if type(t) is Fact:
+                if t.value is not None:
+                    _validate_literal(t.triple.object)
+            else:
+                _validate(t)
+                t = store.fact(t, ASSERTED)
+            adds.append(t)
+        removes = [t if type(t) is Fact else store.fact(t, ASSERTED, written=False) for t in _distinct(remove)]
+        ledger, limit = self.ledger, self._change_limit
+        with store.transaction():
+            removed = store.toggle_facts(removes, False) if removes else []
+            if removed:
+                ledger.record(store, removed, added=False, limit=limit)
+            added = store.toggle_facts(adds, True) if adds else []
+            if added:
+                ledger.record(store, added, added=True, limit=limit)
+        added_triples, removed_triples = [f.triple for f in added], [f.triple for f in removed]
+        self.touch(removed_triples + added_triples)
+        return added_triples, removed_triples
+
+    def _change(self, triples: tuple[Triple, ...], added: bool) -> list[Triple]:
+        """Add or remove in the asserted graph and record what changed in the ledger: one presence look-up
+        per triple (the store's), in one transaction with the change."""
+        store = self.store
+        facts = [store.fact(t, ASSERTED, written=added) for t in triples]
+        with store.transaction():
+            changed = store.toggle_facts(facts, added)
+            self.ledger.record(store, changed, added=added, limit=self._change_limit)
+        return [f.triple for f in changed]
+
+    def touch(self, triples: Iterable[Triple]) -> None:
+        """Note that the asserted graph changed; a schema triple among ``triples`` makes the rules, the
+        classification and the namespace be read again."""
+        self.onto.dirty = True
+        if self.store.durable:
+            durable_state.note_changed(self.store)
+        for t in triples:  # a loop, not any() over a generator: a manipulation touches one or two triples
+            if is_schema_triple(t):
+                self.onto.schema_changed()
+                return
+
+    def _change_limit(self) -> float:
+        """Net changes above which an incremental REASON no longer pays off (a share of the asserted graph):
+        past it the ledger keeps the change for rollback only, and the next REASON is a full one."""
+        reasoner = self.onto._reasoner
+        return self.onto.max_change_share * (reasoner.state.asserted_size if reasoner else 0)
+
+    def replace(self, subject: str, prop: str, new: object, old: object | None = None) -> int:
+        """Replace ``old`` by ``new`` (every current value when ``old`` is None); atomic.
+
+        Values are matched by data value, so ``7`` replaces a stored ``"7"^^xsd:long``.
+        Returns how many old facts were removed.
+        """
+        new_t = self.onto.fact(subject, prop, new)
+        s, p = new_t.subject, new_t.predicate
+        with self.store.transaction():  # one commit: a durable store never holds half a REPLACE
+            if old is None:
+                olds = list(self.store.triples(s, p, None, ASSERTED))
+            else:
+                old_t = self.onto.fact(subject, prop, old)
+                key = value_key(old_t.object)
+                olds = [t for t in self.store.triples(s, p, None, ASSERTED) if value_key(t.object) == key]
+            self.remove(*olds)
+            self.add(new_t)
+        return len(olds)
+
+    def add_all_different(self, names: Sequence[str | NamedNode]) -> NamedNode:
+        """One owl:AllDifferent over ``names`` (deduplicated): linear in size, never n² pairs."""
+        triples = all_different(list(dict.fromkeys(self.onto.iri(n) for n in names)))
+        self.add(*triples)
+        return triples[0].subject
+
+    def remove_individual(self, name: str | NamedNode) -> int:
+        """Remove every asserted triple mentioning the individual, and whole AllDifferent axioms containing it."""
+        return self.remove(*individual_triples(self.store, self.onto.iri(name)))
+
+
+def _validate_literal(lit: Literal) -> None:
+    """Raise InvalidValueError when ``lit`` is not a valid value of its XSD type (kept as written otherwise)."""
+    check_literal(lit)
+
+
+def _distinct(items: Sequence[Triple | Fact]) -> Sequence[Triple | Fact]:
+    """``items`` without repeats (one triple, a manipulation's usual change, is not hashed for it)."""
+    return items if len(items) < 2 else list(dict.fromkeys(items))
+
+
+def _validate(t: Triple) -> None:
+    if isinstance(t.object, Literal):
+        _validate_literal(t.object)

@@ -1,0 +1,164 @@
+"""The compiled step: one program per kind of change, run in place of the general phases.
+
+A robot's steps repeat a few kinds of change (the same predicates and classes added and removed, the
+same values replaced); each kind is compiled once into a program of delta rules (see :mod:`.program`
+and :mod:`.step_compiler`) and kept until the next full run.  On a store where every request is a
+round trip the whole program is one request and the reads after it one query (:mod:`.after`);
+elsewhere its rounds run staged (:mod:`.staged`).  A kind of change that cannot be compiled, or whose
+program once needed more rounds than one request had, takes the general phases.
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Collection
+from typing import TYPE_CHECKING
+
+from pyoxigraph import Triple
+
+from ..compile.generic import PREFIXES
+from ..compile.rule import RuleSet
+from ..stores.base import Store, key_census
+from . import after as after_step
+from . import delta_texts as texts
+from . import flip
+from .change_checks import ChangeChecks
+from .component import WHOLE_ROUNDS
+from .flips import Flips
+from .materialize import ReasonStats
+from .program import Refused, StepProgram, signature
+from .requests import RequestQueue
+from .staged import StagedRun
+from .step_compiler import StepCompiler
+from .triggers import matches
+
+if TYPE_CHECKING:
+    from .incremental import MaintenanceState
+
+#: Compiled steps kept (one per kind of change seen since the last full run, oldest dropped first).
+MAX_PROGRAMS = 256
+
+
+class CompiledStep:
+    """Compiles each kind of change once and runs its program; remembers what the last run may change.
+
+    Shares the reasoner's request queue, flips and after-maintenance reads; the reasoner passes the
+    state of its last full run to each :meth:`run` and clears :attr:`programs` at a full run.
+    """
+
+    def __init__(self, store: Store, ruleset: RuleSet, monotone: list[int], requests: RequestQueue, flips: Flips,
+                 checks: ChangeChecks) -> None:
+        self.store = store
+        self.ruleset = ruleset
+        self.rules = ruleset.inference_rules
+        self.requests = requests
+        self.flips = flips
+        self.checks = checks
+        #: False runs the general phases for every change
+        self.enabled = True
+        self.compiler = StepCompiler(self.rules, monotone, flips._by_frequency, store.supports_lateral,
+                                     cover=not store.round_trips)
+        #: compiled programs (or why a signature cannot be compiled) by signature, until the next full run
+        self.programs: dict = {}
+        #: signatures whose program in one request needed more rounds than it had: general phases for good
+        self.unsettled: set = set()
+        #: the last compiled step's signature, whether it had unrolled rounds, and the keys it may change
+        self.last_sig = None
+        self._settle = False
+        #: the clean replacements of the REASON under way, by predicate (see :func:`.flip.clean_replacements`)
+        self._clean: dict = {}
+        self._heads: set = set()
+        #: the keys that may have lost facts in the last compiled step (the remote negated-premise read)
+        self.lost: set = set()
+        #: :func:`.flip.kind_tests_only` of a flip (rule index, changed atoms)
+        self._kind_only: dict[tuple[int, tuple[int, ...]], bool] = {}
+
+    def run(self, added: Collection[Triple], removed: Collection[Triple], clean: dict,
+            stats: ReasonStats, state: MaintenanceState) -> bool:
+        """Maintain with the compiled program of this kind of change (see :mod:`.program`); False
+        (with the reason in ``stats.program``) when it cannot be compiled.  ``clean``: the change's
+        clean replacements (:func:`.flip.replaced_in`)."""
+        if not self.enabled:
+            stats.program = "general: compiled step switched off"
+            return False
+        sig = signature(key_census(added), key_census(removed), clean)
+        self._clean = clean
+        program = self._program(sig, state)
+        if isinstance(program, str):
+            stats.program = f"general: {program}"
+            return False
+        self.requests.scratch([r.old for p in program.flipped for r in clean[p]], flip.CHANGE_OLD)
+        start = time.perf_counter()
+        self.flips.state = state
+        if self.store.round_trips and self.store.whole_programs:  # the whole program as one request
+            self.requests.flush()
+            self.requests.defer(program.text(self._flip_text))
+            self.requests.flush()
+            stats.evaluations += program.operations
+            self.last_sig, self._settle = sig, not program.whole
+        else:
+            self._settle = False  # the rounds run to their end here
+            self.requests.flush()
+            run = StagedRun(self.store, program, sig, self._flip_text, (added, removed))
+            run.run()
+            stats.evaluations += run.sent
+        if self.requests.profile:
+            stats.per_rule["program"] = time.perf_counter() - start
+        stats.flipped = program.flips
+        stats.program = "compiled"
+        self.checks.step_clean = program.clean
+        #: the keys the after-step reads ask about: the asserted changes' and what the program may add
+        self._heads = set(program.heads) | set(sig.added)
+        self.lost = set(program.heads) | set(sig.removed)
+        for kind, key in program.heads:
+            state.present[0 if kind == "p" else 1].add(key)
+        return True
+
+    def _flip_text(self, i: int, order: tuple[int, ...], text: str) -> str:
+        """A compiled flip's text for this run: "" when no value changed kind and the rule only tests
+        kinds (:func:`.flip.kind_tests_only`), else narrowed to the values in a window where one applies."""
+        rule = self.rules[i]
+        kinds = self._kind_only.get((i, order))
+        if kinds is None:  # a property of the rule: asked once
+            kinds = self._kind_only[(i, order)] = flip.kind_tests_only(rule, order)
+        if kinds and all(
+                flip.same_kind(r) for j in order for r in self._clean.get(rule.body[j].p, ())):
+            return ""
+        if self.flips.quiet(i, order, self._clean):
+            return ""  # a difference of values whose partners none may equal (see :mod:`.equal_values`)
+        windows = self.flips._windows(i, order)
+        if not windows:
+            return text
+        return texts.flips(self.rules[i], order, self.store.supports_lateral, i, windows)
+
+    def read_after(self) -> after_step.After:
+        """The reads that follow a compiled step, as one query (see :mod:`.after`)."""
+        preds: set[str] = set()
+        classes: set[str] = set()
+        for kind, key in self._heads:
+            (preds if kind == "p" else classes).add(key)
+        checks = self.checks.check_branches(preds, classes, lambda c, j: self.store.supports_lateral)
+        lost = ({k for kind, k in self.lost if kind == "p"}, {k for kind, k in self.lost if kind == "t"})
+        negated = self.checks.negated_branches((preds, classes), lost, lambda i, j: self.store.supports_lateral)
+        text = after_step.query(negated, checks, sorted(self.ruleset.entailed_predicates, key=lambda t: t.value),
+                                self._settle)
+        return after_step.read(self.store.query(text, prefixes=PREFIXES))
+
+    def _program(self, sig, state: MaintenanceState) -> StepProgram | str:
+        """The compiled program of a signature, or why there is none (cached until the next full run)."""
+        if sig in self.unsettled and self.store.round_trips and self.store.whole_programs:
+            return f"a recursive component needed more than {WHOLE_ROUNDS} rounds in one request before"
+        program = self.programs.get(sig)
+        if isinstance(program, StepProgram) and (
+                any(matches(key, *state.present) for key in program.needs_absent)
+                or any(matches(key, *state.asserted) for key in program.needs_unasserted)):
+            program = None  # a key it left out has facts now
+        if program is None:
+            try:
+                program = self.compiler.compile(sig, state.present, state.asserted)
+            except Refused as why:
+                program = str(why)
+            if len(self.programs) >= MAX_PROGRAMS:  # the oldest kind of change is compiled again if it returns
+                del self.programs[next(iter(self.programs))]
+            self.programs[sig] = program
+        return program
