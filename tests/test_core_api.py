@@ -9,7 +9,7 @@ from __future__ import annotations
 from pathlib import Path
 
 import pytest
-from pyoxigraph import NamedNode
+from pyoxigraph import BlankNode, NamedNode, Triple
 from support import NOW, NS, instances, long, types_of
 
 from topostore import InvalidValueError, Ontology, QueryError
@@ -154,3 +154,27 @@ def test_generated_map_of_1000_locations():
 
     # README: URGENT iff now - visitedAt > threshold
     assert instances(o, "URGENT") == {loc for loc, t in m.visited_at.items() if m.now - t > m.threshold}
+
+
+def test_blank_nodes_added_through_the_api_are_named_as_a_load_names_them():
+    """A restriction added as triples with a blank node is a class expression, as the same triples
+    loaded from a file; the triples read back (blank nodes again) remove it."""
+    def e(n: str) -> NamedNode:
+        return NamedNode("http://ex/#" + n)
+
+    owl = "http://www.w3.org/2002/07/owl#"
+    sub, a = NamedNode("http://www.w3.org/2000/01/rdf-schema#subClassOf"), NamedNode(
+        "http://www.w3.org/1999/02/22-rdf-syntax-ns#type")
+    b = BlankNode()
+    axiom = [Triple(e("A"), sub, b), Triple(b, a, NamedNode(owl + "Restriction")),
+             Triple(b, NamedNode(owl + "onProperty"), e("p")), Triple(b, NamedNode(owl + "someValuesFrom"), e("B")),
+             Triple(b, sub, e("S"))]
+    onto = Ontology()
+    onto.add(*axiom, Triple(e("z"), a, e("A")), Triple(e("S"), a, NamedNode(owl + "Class")))
+    onto.reason()
+    assert [i.value for i in onto.instances(e("S"))] == ["http://ex/#z"] and not onto.notice_lines()
+    stored = [t for t in onto.triples() if isinstance(t.subject, BlankNode) or isinstance(t.object, BlankNode)]
+    assert len(stored) == len(axiom)
+    assert onto.remove(*stored) == len(axiom)
+    onto.reason()
+    assert not onto.instances(e("S"))

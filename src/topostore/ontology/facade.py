@@ -29,6 +29,7 @@ from ..compile import RuleSet, compile_ontology
 from ..compile.builtins import FUNCTIONS as RULE_FUNCTIONS
 from ..compile.notices import Notice
 from ..compile.swrl_text import removal_triples, rule_labels, rule_triples
+from ..rdf.skolem import named
 from ..rdf.terms import Term, check_literal, entity, literal_of
 from ..rdf.vocab import (
     ASSERTED,
@@ -169,12 +170,12 @@ class Ontology:
 
     # ------------------------------------------------------------------ manipulation (the ``changes`` part)
     def add(self, *triples: Triple) -> int:
-        """Assert triples; returns how many were new."""
-        return self.changes.add(*triples)
+        """Assert triples (a blank node named as a load names it); returns how many were new."""
+        return self.changes.add(*named(triples))
 
     def remove(self, *triples: Triple) -> int:
         """Retract asserted triples (inferred ones cannot be removed, only their premises)."""
-        return self.changes.remove(*triples)
+        return self.changes.remove(*named(triples))
 
     def add_new(self, *triples: Triple) -> list[Triple]:
         """Assert triples; returns those that were new (see :meth:`AssertedChanges.add_new`)."""

@@ -8,6 +8,7 @@ IRI under :data:`~topostore.rdf.vocab.SKOLEM_PREFIX` on load and back on save.
 from __future__ import annotations
 
 import uuid
+from collections.abc import Iterable
 
 from pyoxigraph import BlankNode, NamedNode, Triple
 
@@ -26,6 +27,13 @@ def skolemize(t: Triple) -> Triple:
     return Triple(skolem(t.subject), t.predicate, skolem(t.object))
 
 
+def named(triples: Iterable[Triple]) -> tuple[Triple, ...]:
+    """``triples`` with their blank nodes as the skolem IRIs a load gives them: a triple a user adds with a
+    blank node names the same node as a loaded document's (and as :func:`unskolemize` gave it back)."""
+    return tuple(skolemize(t) if isinstance(t.subject, BlankNode) or isinstance(t.object, BlankNode) else t
+                 for t in triples)
+
+
 def unskolem(term: Term) -> Term:
     """A skolem IRI as the blank node it stands for; any other term unchanged."""
     if is_skolem(term):
@@ -42,4 +50,4 @@ def fresh_skolem() -> NamedNode:
     return NamedNode(SKOLEM_PREFIX + "n" + uuid.uuid4().hex)
 
 
-__all__ = ["SKOLEM_PREFIX", "skolem", "skolemize", "unskolem", "unskolemize", "fresh_skolem"]
+__all__ = ["SKOLEM_PREFIX", "named", "skolem", "skolemize", "unskolem", "unskolemize", "fresh_skolem"]
