@@ -22,6 +22,7 @@ from __future__ import annotations
 import time
 from collections.abc import Collection, Mapping, Sequence
 from dataclasses import dataclass, field, replace
+from itertools import islice
 
 from pyoxigraph import NamedNode
 
@@ -50,6 +51,10 @@ from .triggers import Present, Triggers
 DATASET = f"USING {ASSERTED} USING {INFERRED} USING {AUX} USING NAMED {AUX} USING NAMED {DELTA}"
 #: the other delta graph of a full run: each round reads one and fills the other
 DELTA_NEXT = NamedNode(INTERNAL + "graph:delta-next")
+#: at most this many solutions make a one-atom evaluation :meth:`Materializer._few` (a look-up each, ≈ 9 µs)
+FEW = 200
+#: ... against a head extent of more than this many facts per solution (reading one costs ≈ 1–1.6 µs)
+EXTENT_PER_SOLUTION = 8
 
 
 @dataclass
@@ -77,7 +82,7 @@ class ReasonStats:
 def insert_text(rule: Rule, delta_index: int | None = None, planned: bool = False, lateral: bool = True,
                 direct: tuple[NamedNode, NamedNode | None] | None = None,
                 graphs: Mapping[ReadKey, NamedNode] | None = None, derived: bool = False,
-                union: Sequence[Rule] = ()) -> str:
+                union: Sequence[Rule] = (), few: bool = False) -> str:
     """The INSERT evaluating ``rule`` (atom ``delta_index`` on the delta) into NEW_*.
 
     ``planned`` uses :func:`.plan.plan_where` for delta evaluations (delta atom
@@ -88,6 +93,8 @@ def insert_text(rule: Rule, delta_index: int | None = None, planned: bool = Fals
     there instead of in the whole default dataset (unplanned evaluations only).  ``derived``: the
     head's key already has derived facts, which a rule without delta keeps out too.  ``union``: rules
     concluding the same class, evaluated with ``rule`` as one (:mod:`.class_unions`; no delta).
+    ``few``: the evaluation has few solutions against a large head extent (:meth:`Materializer._few`),
+    so the heads known are kept out by a look-up per solution instead of reading the extent.
     """
     final = AUX if rule.head_aux() else INFERRED
     target = NEW_AUX if rule.head_aux() else NEW_INFERRED
@@ -112,12 +119,12 @@ def insert_text(rule: Rule, delta_index: int | None = None, planned: bool = Fals
     named = {graphs[a.read_key()] for r in (rule, *union) for a in r.body
              if not a.aux and a.read_key() in graphs} if graphs else set()
     named -= {AUX, delta}
-    known = new_only(rule, small)
+    known = new_only(rule, small or few)
     if direct is not None and direct[1] is None and not derived:
         # no delta and no derived fact of the head's key yet: only the asserted facts are kept out
         # (an inferred fact is never an asserted one); once another rule derived facts of the key,
         # writing them again costs more than the anti-join (a write looks up six indexes)
-        known = new_only(rule, small, ASSERTED)
+        known = new_only(rule, small or few, ASSERTED)
         named.add(ASSERTED)
     dataset += "".join(f" USING NAMED {g}" for g in sorted(named, key=str))
     return f"INSERT {{ {into} }}\n{dataset}\nWHERE {{\n  {where}\n  {known}\n}}"
@@ -170,6 +177,8 @@ class Materializer:
         #: i.e. the closure is not the fixpoint of the first stratum alone
         self.upper_derived = False
         self._queue: list[str] = []
+        #: the keys the evaluations in :attr:`_queue` may write (not in the store until :meth:`_flush`)
+        self._queued: set[ReadKey | None] = set()
         self._lateral = store.supports_lateral
         #: (delta read, next delta) while :meth:`run` writes derived facts straight to their graphs
         self._direct: tuple[NamedNode, NamedNode] | None = None
@@ -208,8 +217,10 @@ class Materializer:
             return
         derived = self._direct is not None and self.rules[index].writes() in self._derived
         lean = first and index in self._lean
+        few = self._direct is not None and delta_index is None and not union and self._few(
+            self._lean[index] if lean else self.rules[index])
         key = (index, delta_index, self._lateral, self._direct, self._graphs is not None, derived, asserted_only,
-               lean, union)
+               lean, union, few)
         text = self._texts.get(key)
         if text is None:
             graphs = self._graphs
@@ -219,9 +230,44 @@ class Materializer:
                 graphs = {**graphs, **{a.read_key(): ASSERTED for a in self.rules[index].body if is_path(a)}}
             rule = self._lean[index] if lean else self.rules[index]
             text = self._texts[key] = insert_text(rule, delta_index, self.planned, self._lateral,
-                                                  self._direct, graphs, derived, [self.rules[j] for j in union])
+                                                  self._direct, graphs, derived, [self.rules[j] for j in union], few)
         stats.evaluations += 1
+        self._queued.add(self.rules[index].writes())
         self._timed(text, self.rules[index].name, stats)
+
+    def _few(self, rule: Rule) -> bool:
+        """Whether a full run's evaluation of ``rule`` without delta keeps its known heads out by a
+        look-up per solution (``FILTER NOT EXISTS``) rather than by reading the head's whole extent
+        (``MINUS``): a body of one atom whose key has at most :data:`FEW` facts (so at most as many
+        solutions) against a head key with more than :data:`EXTENT_PER_SOLUTION` times as many.
+
+        A range over a handful of derived links (``canReach(r, y) ⟹ LOCATION(y)``, two links) anti-joined
+        with every LOCATION read 100,000 memberships: 11 ms at 10,000 locations, 167 ms at 100,000 (see
+        docs/benchmarks.md, "Full REASON from 10,000 to 100,000 locations").  Both forms mean the same
+        (:func:`new_only`); only stores read without a round trip are asked (bounded index reads, in
+        the graphs of the default dataset).  A body key an evaluation waiting in the queue may write
+        (:attr:`_queued`) is not counted: the store does not hold those facts yet.
+        """
+        if self.store.round_trips or len(rule.body) != 1 or rule.head is None or not rule.head.variables():
+            return False
+        body, head = rule.body[0].read_key(), rule.writes()
+        if any(k[0] not in ("p", "t") or not k[1].startswith("<") or k == ("p", TYPE_KEY) for k in (body, head)):
+            return False  # a key of any predicate or class, or a path: counted by no index read
+        queued = self._queued
+        if body in queued or ("*",) in queued or (body[0] == "t" and ("p", TYPE_KEY) in queued):
+            return False
+        solutions = self._facts(body, FEW)
+        return solutions <= FEW and self._facts(head, EXTENT_PER_SOLUTION * solutions) > EXTENT_PER_SOLUTION * solutions
+
+    def _facts(self, key: ReadKey, limit: int) -> int:
+        """The facts of ``key`` in the asserted, inferred and helper graphs, counted up to ``limit + 1``."""
+        pattern = key_pattern(key)
+        found = 0
+        for graph in (ASSERTED, INFERRED, AUX):
+            found += sum(1 for _ in islice(self.store.triples(*pattern, graph), limit + 1 - found))
+            if found > limit:
+                break
+        return found
 
     def _flush(self) -> None:
         """Send the queued evaluations of a round as one update request.
@@ -229,6 +275,7 @@ class Materializer:
         They all insert into NEW_* graphs, which none of them reads, so one
         request gives the same result and saves the per-request cost.
         """
+        self._queued.clear()
         if self._queue:
             text = " ;\n".join(self._queue)
             self._queue.clear()
@@ -381,6 +428,7 @@ class Materializer:
             else:
                 continue
             stats.evaluations += 1
+            self._queued.add(self.rules[i].writes())
             self._timed(text, self.rules[i].name, stats)
         if rules:
             self._flush()

@@ -1,0 +1,123 @@
+"""Every request of a full REASON, timed at two sizes: ``python -m benchmarks.full_trace 10000 100000``.
+
+:mod:`benchmarks.full_profile` sums the CPU per rule name; this module keeps each request apart (one
+evaluation per request: ``Materializer(profile=True)``, then the consistency checks) so that the
+requests of two sizes can be set side by side in their order and the growth of each read off: the one
+that grows more than the store's own floor (:mod:`benchmarks.full_floor`) is the one to look at.
+Each size runs in a process of its own, after LOAD and a first REASON; both sizes send the same
+requests in the same order on the chain maps (:mod:`benchmarks.maps`), which the report checks.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import re
+import subprocess
+import sys
+import tempfile
+import time
+import warnings
+from pathlib import Path
+from typing import Any
+
+from .limits import lift_time_limit
+
+#: requests under this many seconds at the larger size are left out of the report
+SHOWN = 0.02
+
+
+def trace(size: str) -> dict[str, Any]:
+    """The CPU seconds and text of every request of a full run's rules and checks at ``size`` locations."""
+    from topostore import Ontology
+    from topostore.reason.consistency import check_consistency
+    from topostore.reason.materialize import Materializer
+
+    from . import maps
+
+    warnings.simplefilter("ignore")  # the map's notices are not what is measured
+    lift_time_limit()
+    with tempfile.TemporaryDirectory(prefix="topostore-trace-") as tmp:
+        path, _ = maps.write(size, Path(tmp))
+        onto = Ontology()
+        onto.load(path)
+    onto.reason()
+    store = onto.store
+    start = time.process_time()
+    onto.reason(mode="full")
+    whole = time.process_time() - start
+    log: list[tuple[float, str]] = []
+    update, query = store.update, store.query
+
+    def timed_update(text: str, *args: Any, **kwargs: Any) -> None:
+        began = time.process_time()
+        update(text, *args, **kwargs)
+        log.append((time.process_time() - began, text))
+
+    def timed_query(text: str, *args: Any, **kwargs: Any) -> Any:
+        began = time.process_time()
+        result = query(text, *args, **kwargs)
+        try:
+            result = list(result)
+        except TypeError:  # an ASK answers a bool
+            pass
+        log.append((time.process_time() - began, "QUERY " + text))
+        return result
+
+    store.update, store.query = timed_update, timed_query
+    try:
+        Materializer(store, onto.rules, profile=True).run()
+        check_consistency(store, onto.rules, onto._reasoner.key_graphs())
+    finally:
+        del store.update, store.query  # the instance attributes go, the methods are back
+    return {"size": size, "full_cpu_s": whole, "requests": log}
+
+
+def short(text: str) -> str:
+    """A request on one line, without its dataset clauses and with the map's and store's names shortened."""
+    text = re.sub(r"\s+", " ", text)
+    text = re.sub(r"USING [^W]*WHERE", "WHERE", text)
+    for long, brief in (("http://bnc/exp-rob-lab/2022-23#", ":"), ("urn:topostore:graph:", "g:"),
+                        ("http://www.w3.org/1999/02/22-rdf-syntax-ns#type", "a")):
+        text = text.replace(long, brief)
+    return text
+
+
+def report(small: dict[str, Any], large: dict[str, Any], width: int = 150) -> str:
+    """The requests of the two sizes side by side (those of at least :data:`SHOWN` s at the larger)."""
+    a, b = small["requests"], large["requests"]
+    out = [f"full REASON CPU: {small['full_cpu_s']:.3f} s at {small['size']}, {large['full_cpu_s']:.3f} s at "
+           f"{large['size']} ({large['full_cpu_s'] / small['full_cpu_s']:.1f}x)"]
+    if len(a) != len(b):
+        out.append(f"the sizes sent {len(a)} and {len(b)} requests: their order is not comparable")
+        return "\n".join(out)
+    out.append(f"{'#':>3} {small['size']:>9} {large['size']:>9} {'growth':>7}  request (ms)")
+    for n, ((da, _), (db, text)) in enumerate(zip(a, b, strict=True)):
+        if db >= SHOWN:
+            growth = f"{db / da:6.1f}x" if da > 0 else "      -"
+            out.append(f"{n:>3} {da * 1e3:9.1f} {db * 1e3:9.1f} {growth}  {short(text)[:width]}")
+    out.append(f"sum {sum(d for d, _ in a) * 1e3:9.1f} {sum(d for d, _ in b) * 1e3:9.1f}")
+    return "\n".join(out)
+
+
+def _child(size: str) -> dict[str, Any]:
+    out = subprocess.run([sys.executable, "-m", "benchmarks.full_trace", "--one", size],
+                         capture_output=True, text=True, check=True)
+    return json.loads(out.stdout)
+
+
+def main(argv: list[str] | None = None) -> None:
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("sizes", nargs="+", help="two numbers of locations (even); with --one, one")
+    parser.add_argument("--one", action="store_true", help="trace the one size here and print JSON")
+    args = parser.parse_args(argv)
+    if args.one:
+        print(json.dumps(trace(args.sizes[0])))
+        return
+    if len(args.sizes) != 2:
+        parser.error("two sizes: the smaller first")
+    print(report(_child(args.sizes[0]), _child(args.sizes[1])))
+
+
+if __name__ == "__main__":
+    main()
