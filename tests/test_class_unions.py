@@ -1,6 +1,6 @@
 """One class concluded by several rules of asserted-only keys, evaluated as one union in a full
 REASON's first pass (reason/class_unions.py), and the deferred asks reading asserted-only keys in the
-asserted graph (``Materializer._only_asserted``): the same closure as the rules one by one."""
+asserted graph (reason/deferred_asks.py ``only_asserted``): the same closure as the rules one by one."""
 
 from __future__ import annotations
 
@@ -14,7 +14,7 @@ from pyoxigraph import NamedNode
 
 from topostore import Ontology, OntologyWarning
 from topostore.rdf.vocab import ASSERTED, AUX, ENTAILED, INFERRED, INTERNAL
-from topostore.reason import materialize
+from topostore.reason import deferred_asks, insert_text, materialize
 from topostore.reason.class_unions import class_unions, lead_first, union_where
 from topostore.reason.order import asserted_paths, evaluation_order
 
@@ -104,7 +104,7 @@ def test_a_key_written_in_the_pass_keeps_its_rule_apart() -> None:
     rules = onto.rules.inference_rules
     order = [[i] for i in range(len(rules))]
     graphs = {key: ASSERTED for r in rules for key in r.reads() if key != ("p", f"<{NS}t>")}
-    unions = class_unions(rules, order, set(), graphs, ASSERTED, materialize.distinct_pays, set())
+    unions = class_unions(rules, order, set(), graphs, ASSERTED, insert_text.distinct_pays, set())
     joined = {i for lead, others in unions.items() for i in (lead, *others)}
     assert all(("p", f"<{NS}t>") not in rules[i].reads() for i in joined)
     assert onto.reason(mode="full").consistent
@@ -121,7 +121,7 @@ def test_a_full_reason_reaches_the_same_closure_with_and_without(source: str, sh
     if shortcut == "unions":
         monkeypatch.setattr(materialize, "class_unions", lambda *args, **kwargs: {})
     else:
-        monkeypatch.setattr(materialize.Materializer, "_only_asserted", lambda self, rule, asking=(): {})
+        monkeypatch.setattr(deferred_asks, "only_asserted", lambda rule, derived, asserted, asking=(): {})
     onto.reason(mode="full")
     assert closure(onto) == joined
 

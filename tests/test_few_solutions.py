@@ -1,5 +1,5 @@
 """A full REASON's one-atom evaluation with few solutions against a large head extent keeps its known
-heads out by a look-up per solution (``Materializer._few``) instead of reading the whole extent: the
+heads out by a look-up per solution (reason/few_solutions.py) instead of reading the whole extent: the
 same closure, and the look-up form only where it is cheap."""
 
 from __future__ import annotations
@@ -13,7 +13,7 @@ import pytest
 
 from topostore import Ontology, OntologyWarning
 from topostore.rdf.vocab import AUX, ENTAILED, INFERRED
-from topostore.reason import materialize
+from topostore.reason import few_solutions, materialize
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))  # the benchmarks package lives beside src/
@@ -77,7 +77,7 @@ def test_the_same_closure_with_and_without_the_look_ups(text, monkeypatch):
     onto = loaded(text)  # one store: its blank nodes (and the group keys made of them) stay the same
     onto.reason(mode="full")
     with_few = closure(onto)
-    monkeypatch.setattr(materialize, "FEW", -1)  # no evaluation has few solutions
+    monkeypatch.setattr(few_solutions, "FEW", -1)  # no evaluation has few solutions
     onto.reason(mode="full")
     assert with_few == closure(onto)
     assert with_few[INFERRED.value]
@@ -89,11 +89,11 @@ def test_a_key_a_queued_evaluation_writes_is_not_counted():
     runner = materialize.Materializer(onto.store, onto.rules)
     rule = next(r for r in runner.rules if len(r.body) == 1 and "reaches" in r.body[0].read_key()[1]
                 and r.head is not None and "Place" in r.head.o)
-    assert runner._few(rule)
+    assert few_solutions.few_solutions(runner.store, rule, runner._queued)
     runner._queued.add(rule.body[0].read_key())  # an evaluation writing reaches waits in the queue
-    assert not runner._few(rule)
+    assert not few_solutions.few_solutions(runner.store, rule, runner._queued)
     runner._flush()
-    assert runner._few(rule)
+    assert few_solutions.few_solutions(runner.store, rule, runner._queued)
 
 
 def test_a_store_over_http_is_not_asked(monkeypatch):
@@ -103,4 +103,4 @@ def test_a_store_over_http_is_not_asked(monkeypatch):
     rule = next(r for r in runner.rules if len(r.body) == 1 and "reaches" in r.body[0].read_key()[1]
                 and r.head is not None and "Place" in r.head.o)
     monkeypatch.setattr(type(onto.store), "round_trips", True)
-    assert not runner._few(rule)
+    assert not few_solutions.few_solutions(runner.store, rule, runner._queued)

@@ -1,6 +1,6 @@
 """A full REASON's shortcuts keep its closure and its violations: first passes that read the asserted
 facts alone where every derived fact's conclusion holds anyway (reason/order.py ``implied_first_passes``),
-readers of a key only claimed by the same pass looked up first (``Materializer._claims_hold``), class
+readers of a key only claimed by the same pass looked up first (reason/first_pass.py ``claims_hold``), class
 atoms another atom's key carries left out of a first pass (reason/order.py ``implied_atoms``), checks
 pairing two values kept to the subjects with two (reason/consistency.py ``several_values``); and a
 minimum of two values meets every kind of difference."""
@@ -15,7 +15,7 @@ import pytest
 
 from topostore import Ontology, OntologyWarning
 from topostore.rdf.vocab import AUX, ENTAILED, INFERRED
-from topostore.reason import materialize
+from topostore.reason import first_pass, materialize
 from topostore.reason.order import implied_atoms, implied_first_passes, subject_classes
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -138,7 +138,7 @@ def test_a_full_reason_reaches_the_same_closure_with_and_without_the_shortcuts(
                              (set(), set())) or source == "tbox"
         monkeypatch.setattr(materialize, "implied_atoms", lambda rules, ordered, asserted: {})
     else:
-        monkeypatch.setattr(materialize.Materializer, "_claims_hold", lambda self, i: True)
+        monkeypatch.setattr(first_pass, "claims_hold", lambda run, i: True)
     onto.reason(mode="full")
     assert closure(onto) == restricted
 

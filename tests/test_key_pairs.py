@@ -14,7 +14,7 @@ import pytest
 from topostore import Ontology, OntologyWarning
 from topostore.compile.rule import Atom, Rule
 from topostore.rdf.vocab import AUX, ENTAILED, INFERRED
-from topostore.reason import materialize
+from topostore.reason import insert_text
 from topostore.reason.key_pairs import grouped_form
 from topostore.resources import default_ontology_files
 
@@ -104,7 +104,7 @@ def test_a_full_reason_reaches_the_same_closure_with_and_without_the_count(
     onto = loaded(source)
     first = onto.reason(mode="full")
     counted = closure(onto)
-    monkeypatch.setattr(materialize, "grouped_form", lambda rule: None)
+    monkeypatch.setattr(insert_text, "grouped_form", lambda rule: None)
     again = onto.reason(mode="full")
     assert closure(onto) == counted
     assert first.consistent == again.consistent

@@ -182,7 +182,7 @@ def _delta_rules(rule: Rule) -> str:
     Printed as plain SPARQL 1.1, the form remote stores run; on Oxigraph a small delta runs each further
     atom under LATERAL (once per delta fact), in the same order.
     """
-    from ..reason.materialize import insert_text
+    from ..reason.insert_text import insert_text
 
     blocks = []
     for j, atom in enumerate(rule.body):

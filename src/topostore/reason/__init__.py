@@ -8,6 +8,7 @@ needs a :class:`~topostore.compile.RuleSet` and a :class:`~topostore.stores.base
 from .classify import classify
 from .consistency import Violation, check_consistency
 from .incremental import IncrementalReasoner
-from .materialize import Materializer, ReasonStats
+from .materialize import Materializer
+from .stats import ReasonStats
 
 __all__ = ["IncrementalReasoner", "Materializer", "ReasonStats", "Violation", "check_consistency", "classify"]

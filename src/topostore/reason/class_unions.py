@@ -12,7 +12,7 @@ the second and later rules find every member known already and pay the anti-join
 When it holds
 -------------
 The rules of a group are singletons of the ordered first stratum (no cycle through them), write the
-same class key into the same graph, project on their one head variable (:func:`.materialize.distinct_pays`),
+same class key into the same graph, project on their one head variable (:func:`.insert_text.distinct_pays`),
 and read only keys whose every fact is asserted while the ordered pass runs (``graphs`` maps them to
 the asserted graph: no rule of the pass writes them).  Their inputs are then complete before the pass
 starts, so each may run at the place of the first of them; every reader of the class comes after all

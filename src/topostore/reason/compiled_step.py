@@ -25,10 +25,10 @@ from . import flip
 from .change_checks import ChangeChecks
 from .component import WHOLE_ROUNDS
 from .flips import Flips
-from .materialize import ReasonStats
 from .program import Refused, StepProgram, signature
 from .requests import RequestQueue
 from .staged import StagedRun
+from .stats import ReasonStats
 from .step_compiler import StepCompiler
 from .triggers import matches
 

@@ -15,10 +15,10 @@ from pyoxigraph import NamedNode, Triple
 from ..compile.rule import Rule
 from ..rdf.vocab import ASSERTED, AUX, INFERRED, NEW_AUX, NEW_INFERRED
 from . import limits
-from .materialize import ReasonStats
 from .plan import KeyCounts, plan_where
 from .requests import RequestQueue
 from .scratch import CANDIDATES, DEL_DELTA, NEW_PROVEN, OVERDELETED, PROVEN, REMOVED, SUBGOALS, dataset, target
+from .stats import ReasonStats
 from .triggers import Present, Triggers, matches
 
 

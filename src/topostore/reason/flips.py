@@ -23,10 +23,10 @@ from ..rdf.vocab import ASSERTED, AUX, INFERRED
 from ..stores.base import key_census
 from . import flip, window
 from .equal_values import EqualityIndex, difference_pairs, may_equal
-from .materialize import ReasonStats
 from .plan import KeyCounts
 from .requests import RequestQueue
 from .scratch import FLIP_GAINED, target
+from .stats import ReasonStats
 from .triggers import Triggers, matches
 
 #: a flip window is used from this many facts of the compared predicate on, up to this many bindings

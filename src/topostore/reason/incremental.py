@@ -56,7 +56,7 @@ inconsistent, or a check negates a premise) are all checks run.
 A change to schema triples recompiles the rules and forces a full run; so does
 a change touching more than :attr:`IncrementalReasoner.max_change_share` of
 the asserted graph, where recomputation is as cheap as maintenance.  The mode
-and the reason are reported in :class:`~.materialize.ReasonStats`.
+and the reason are reported in :class:`~.stats.ReasonStats`.
 
 Where the parts live: this module chooses the mode and runs additions, flips
 and checks; :mod:`.compiled_step` compiles each kind of change once and runs
@@ -90,12 +90,13 @@ from .consistency import Violation, check_consistency
 from .dred import Deletion, can_prove
 from .entailed import publish_entailed, refresh_entailed
 from .flips import Flips
-from .materialize import Materializer, ReasonStats
+from .materialize import Materializer
 from .negation import ASKED, Completion, completion_text, deferred
 from .present import key_graphs, with_facts
 from .program import PROGRAM_SCRATCH
 from .requests import RequestQueue
 from .scratch import ADDED, FLIP_GAINED, NEW_FACTS, OVERDELETED, REMOVED, SCRATCH
+from .stats import ReasonStats
 from .triggers import Present, Triggers
 
 #: Default share of the asserted graph above which a change is recomputed from scratch.

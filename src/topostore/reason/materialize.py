@@ -15,28 +15,34 @@ dropping the old delta, instead of copying every fact twice more (into the delta
 inferred graph), which was a third of a full REASON.  Rules with negated premises
 (``stratum`` 1: "y1 and y2 are not known to be different, so they are the same")
 join only after the positive rules reached their fixpoint.
+
+This module is the run's order and its rounds (the core loop); its parts live beside it:
+:mod:`.insert_text` writes the text of one evaluation and its forms, :mod:`.few_solutions`
+decides which evaluations keep their known heads out by a look-up per solution,
+:mod:`.first_pass` evaluates each ordered component once with its shortcuts, :mod:`.deferred_asks`
+runs the candidate rules after the first stratum's fixpoint, and :mod:`.stats` holds what a
+REASON reports.
 """
 
 from __future__ import annotations
 
 import time
-from collections.abc import Collection, Mapping, Sequence
-from dataclasses import dataclass, field, replace
-from itertools import islice
+from collections.abc import Collection
 
 from pyoxigraph import NamedNode
 
 from ..compile.generic import PREFIXES
 from ..compile.rule import ReadKey, Rule, RuleSet, key_pattern
-from ..compile.schema import schema_dataset
 from ..rdf.vocab import ASSERTED, AUX, DELTA, INFERRED, INTERNAL, NEW_AUX, NEW_INFERRED
 from ..stores.base import Store
 from . import limits
-from .class_unions import class_unions, lead_first, union_where
-from .key_pairs import grouped_form
-from .negation import Idle, evaluated_last, unless_known_text
+from .class_unions import class_unions
+from .deferred_asks import ask_unknown
+from .few_solutions import few_solutions
+from .first_pass import first_pass, without
+from .insert_text import distinct_pays, insert_text
+from .negation import Idle, evaluated_last
 from .order import (
-    TYPE_KEY,
     asserted_paths,
     evaluation_order,
     implied_atoms,
@@ -45,118 +51,12 @@ from .order import (
     reachable,
     single_graphs,
 )
-from .plan import KeyCounts, is_small, plan_where
+from .plan import KeyCounts, is_small
+from .stats import ReasonStats
 from .triggers import Present, Triggers
 
-DATASET = f"USING {ASSERTED} USING {INFERRED} USING {AUX} USING NAMED {AUX} USING NAMED {DELTA}"
 #: the other delta graph of a full run: each round reads one and fills the other
 DELTA_NEXT = NamedNode(INTERNAL + "graph:delta-next")
-#: at most this many solutions make a one-atom evaluation :meth:`Materializer._few` (a look-up each, ≈ 9 µs)
-FEW = 200
-#: ... against a head extent of more than this many facts per solution (reading one costs ≈ 1–1.6 µs)
-EXTENT_PER_SOLUTION = 8
-
-
-@dataclass
-class ReasonStats:
-    """What one REASON did: rounds, rule evaluations, facts derived, time."""
-
-    rounds: int = 0
-    evaluations: int = 0
-    derived: int = 0
-    seconds: float = 0.0
-    mode: str = "full"
-    #: why this mode was chosen (e.g. "schema changed", "change of 5000 triples > 10% of ...")
-    reason: str = ""
-    #: incremental maintenance only: facts over-deleted and put back by rederivation
-    overdeleted: int = 0
-    rederived: int = 0
-    #: incremental only: rule evaluations replaced by one flip query (replaced values only compared)
-    flipped: int = 0
-    #: incremental only: "compiled" when the compiled step ran (see :mod:`.program`), with what it handed
-    #: to the general phases; else why the general phases ran instead
-    program: str = ""
-    per_rule: dict[str, float] = field(default_factory=dict)
-
-
-def insert_text(rule: Rule, delta_index: int | None = None, planned: bool = False, lateral: bool = True,
-                direct: tuple[NamedNode, NamedNode | None] | None = None,
-                graphs: Mapping[ReadKey, NamedNode] | None = None, derived: bool = False,
-                union: Sequence[Rule] = (), few: bool = False) -> str:
-    """The INSERT evaluating ``rule`` (atom ``delta_index`` on the delta) into NEW_*.
-
-    ``planned`` uses :func:`.plan.plan_where` for delta evaluations (delta atom
-    first, rest per delta fact), whose cost follows the delta rather than the data.
-    ``direct`` = (delta read, next delta) writes the head into its final graph and into the
-    next delta (None: no delta) instead of NEW_* (the full run's rounds, see :meth:`Materializer.run`).
-    ``graphs``: the one graph holding each of some read keys (:func:`.order.single_graphs`), read
-    there instead of in the whole default dataset (unplanned evaluations only).  ``derived``: the
-    head's key already has derived facts, which a rule without delta keeps out too.  ``union``: rules
-    concluding the same class, evaluated with ``rule`` as one (:mod:`.class_unions`; no delta).
-    ``few``: the evaluation has few solutions against a large head extent (:meth:`Materializer._few`),
-    so the heads known are kept out by a look-up per solution instead of reading the extent.
-    """
-    final = AUX if rule.head_aux() else INFERRED
-    target = NEW_AUX if rule.head_aux() else NEW_INFERRED
-    head = rule.head.text()
-    delta = DELTA if direct is None else direct[0]
-    small = planned and delta_index is not None and lateral
-    if planned and delta_index is not None:
-        where = plan_where(rule, delta_index, delta, lateral=lateral)
-    else:
-        where = rule.where(delta_index, str(delta), graphs)
-    pair = grouped_form(rule) if direct is not None and delta_index is None else None
-    if union:
-        where = union_where((rule, *union), graphs)
-    elif pair is not None:
-        where = pair.where(graphs)
-    elif direct is not None and delta_index is None and distinct_pays(rule):
-        where = f"{{ SELECT DISTINCT {' '.join(sorted(rule.head.variables()))} WHERE {{\n  {where}\n  }} }}"
-    into = f"GRAPH {target} {{ {head} }}" if direct is None else f"GRAPH {final} {{ {head} }}"
-    if direct is not None and direct[1] is not None:
-        into += f" GRAPH {direct[1]} {{ {head} }}"
-    dataset = (DATASET if direct is None else DATASET.replace(str(DELTA), str(delta))) + schema_dataset(rule)
-    named = {graphs[a.read_key()] for r in (rule, *union) for a in r.body
-             if not a.aux and a.read_key() in graphs} if graphs else set()
-    named -= {AUX, delta}
-    known = new_only(rule, small or few)
-    if direct is not None and direct[1] is None and not derived:
-        # no delta and no derived fact of the head's key yet: only the asserted facts are kept out
-        # (an inferred fact is never an asserted one); once another rule derived facts of the key,
-        # writing them again costs more than the anti-join (a write looks up six indexes)
-        known = new_only(rule, small or few, ASSERTED)
-        named.add(ASSERTED)
-    dataset += "".join(f" USING NAMED {g}" for g in sorted(named, key=str))
-    return f"INSERT {{ {into} }}\n{dataset}\nWHERE {{\n  {where}\n  {known}\n}}"
-
-
-def distinct_pays(rule: Rule) -> bool:
-    """Whether a full run's evaluation of ``rule`` without delta projects its matches on the head first.
-
-    A class head on one variable from a body with more (a domain ``p(x, y) ⟹ C(x)``, a restriction
-    ``p(x, y1) ∧ p(x, y2) ∧ … ⟹ R(x)``) matches once per value: writing a membership again looks
-    up six indexes, hashing it away costs less (10,000 locations: ≥2 hasDoor 205 → 185 ms, ∃hasDoor
-    65 → 47 ms).  Where each match is a new head (two-variable heads such as a difference by
-    values) the hashing only costs (158 → 183 ms), so they keep the plain form.
-    """
-    head = rule.head
-    return (head is not None and head.p == TYPE_KEY and not head.o.startswith("?")
-            and len(head.variables()) == 1 and len({v for a in rule.body for v in a.variables()} | set(rule.binds)) > 1)
-
-
-def new_only(rule: Rule, small: bool, graph: NamedNode | None = None) -> str:
-    """The line that keeps the heads already known out of an evaluation.
-
-    ``FILTER NOT EXISTS`` is a look-up per solution (≈ 9 µs each in Oxigraph), right for a small
-    delta; ``MINUS`` reads the head's facts once and anti-joins them (a rule over 10,000 facts:
-    9 ms instead of 92 ms).  Both mean the same when the head has a variable, which every solution
-    binds (a rule's head variables come from its body); a ground head keeps ``NOT EXISTS``, as
-    ``MINUS`` with no shared variable removes nothing.  ``graph`` looks in that graph only.
-    """
-    head = rule.head.text() if graph is None else f"GRAPH {graph} {{ {rule.head.text()} }}"
-    if small or not rule.head.variables():
-        return f"FILTER NOT EXISTS {{ {head} }}"
-    return f"MINUS {{ {head} }}"
 
 
 class Materializer:
@@ -217,8 +117,8 @@ class Materializer:
             return
         derived = self._direct is not None and self.rules[index].writes() in self._derived
         lean = first and index in self._lean
-        few = self._direct is not None and delta_index is None and not union and self._few(
-            self._lean[index] if lean else self.rules[index])
+        few = self._direct is not None and delta_index is None and not union and few_solutions(
+            self.store, self._lean[index] if lean else self.rules[index], self._queued)
         key = (index, delta_index, self._lateral, self._direct, self._graphs is not None, derived, asserted_only,
                lean, union, few)
         text = self._texts.get(key)
@@ -234,40 +134,6 @@ class Materializer:
         stats.evaluations += 1
         self._queued.add(self.rules[index].writes())
         self._timed(text, self.rules[index].name, stats)
-
-    def _few(self, rule: Rule) -> bool:
-        """Whether a full run's evaluation of ``rule`` without delta keeps its known heads out by a
-        look-up per solution (``FILTER NOT EXISTS``) rather than by reading the head's whole extent
-        (``MINUS``): a body of one atom whose key has at most :data:`FEW` facts (so at most as many
-        solutions) against a head key with more than :data:`EXTENT_PER_SOLUTION` times as many.
-
-        A range over a handful of derived links (``canReach(r, y) ⟹ LOCATION(y)``, two links) anti-joined
-        with every LOCATION read 100,000 memberships: 11 ms at 10,000 locations, 167 ms at 100,000 (see
-        docs/benchmarks.md, "Full REASON from 10,000 to 100,000 locations").  Both forms mean the same
-        (:func:`new_only`); only stores read without a round trip are asked (bounded index reads, in
-        the graphs of the default dataset).  A body key an evaluation waiting in the queue may write
-        (:attr:`_queued`) is not counted: the store does not hold those facts yet.
-        """
-        if self.store.round_trips or len(rule.body) != 1 or rule.head is None or not rule.head.variables():
-            return False
-        body, head = rule.body[0].read_key(), rule.writes()
-        if any(k[0] not in ("p", "t") or not k[1].startswith("<") or k == ("p", TYPE_KEY) for k in (body, head)):
-            return False  # a key of any predicate or class, or a path: counted by no index read
-        queued = self._queued
-        if body in queued or ("*",) in queued or (body[0] == "t" and ("p", TYPE_KEY) in queued):
-            return False
-        solutions = self._facts(body, FEW)
-        return solutions <= FEW and self._facts(head, EXTENT_PER_SOLUTION * solutions) > EXTENT_PER_SOLUTION * solutions
-
-    def _facts(self, key: ReadKey, limit: int) -> int:
-        """The facts of ``key`` in the asserted, inferred and helper graphs, counted up to ``limit + 1``."""
-        pattern = key_pattern(key)
-        found = 0
-        for graph in (ASSERTED, INFERRED, AUX):
-            found += sum(1 for _ in islice(self.store.triples(*pattern, graph), limit + 1 - found))
-            if found > limit:
-                break
-        return found
 
     def _flush(self) -> None:
         """Send the queued evaluations of a round as one update request.
@@ -404,62 +270,6 @@ class Materializer:
         stats.seconds = time.perf_counter() - start
         return stats
 
-    def _ask_unknown(self, stats: ReasonStats, active: list[int]) -> None:
-        """After the first stratum's fixpoint: the deferred candidate rules without the pairs whose
-        conclusion is known (:mod:`.negation`), then the rounds their facts trigger among ``active``."""
-        rules, self._deferring = sorted(self._deferring), set()
-        # written by the asks queued before a later one reads them
-        asking = {w for i in rules if (w := self.rules[i].writes()) is not None}
-        for i in rules:
-            if not self.triggers.feasible(i, self.present):
-                continue
-            idle = self._idle.get(i)
-            if idle is not None and any(self.triggers.feasible(w, self.present) for w in idle.others):
-                idle = None  # a rule of a variable predicate may have written the key
-            key = idle.key if idle is not None else None
-            if key is None:
-                text = insert_text(self.rules[i], None, self.planned, self._lateral, self._direct,
-                                   self._only_asserted(self.rules[i], asking))
-                if self.rules[i].unless_known is not None:
-                    text = unless_known_text(text, self.rules[i])
-            elif next(iter(self.store.triples(*key_pattern(key), ASSERTED)), None) is not None:
-                # its asks on derived facts of the key are idle: the asserted ones alone
-                text = insert_text(self.rules[i], None, self.planned, self._lateral, self._direct, {key: ASSERTED})
-            else:
-                continue
-            stats.evaluations += 1
-            self._queued.add(self.rules[i].writes())
-            self._timed(text, self.rules[i].name, stats)
-        if rules:
-            self._flush()
-            stats.rounds += 1
-            self.propagate(active, stats)
-
-    def _only_asserted(self, rule: Rule, asking: Collection[ReadKey] = ()) -> dict[ReadKey, NamedNode]:
-        """The read keys of ``rule``'s body whose facts are all asserted so far in :meth:`run`: read
-        there alone (one index look-up per pattern instead of one per graph of the default dataset).
-
-        A key had asserted facts at the start and no rule of this run wrote it (:attr:`_derived`
-        holds every key written: the first passes add theirs, every round its delta's).  A rule of a
-        variable predicate may have written any key, one of a variable class any class: then the
-        keys they may cover stay on the default dataset.  The deferred ask of Connectability's
-        candidate reads its 20,000 door facts so: 65 → 54 ms at 10,000 locations.  ``asking``: the
-        keys the deferred asks write, which a later one of them may read before they reach a delta.
-        """
-        written = self._derived | set(asking)
-        if any(k[0] == "*" for k in written):
-            return {}
-        any_class = ("p", TYPE_KEY) in written or any(k[0] == "t" for k in asking)
-        out: dict[ReadKey, NamedNode] = {}
-        for atom in rule.body:
-            key = atom.read_key()
-            if atom.aux or key[0] not in ("p", "t") or key == ("p", TYPE_KEY) or key in written:
-                continue
-            if (key[0] == "t" and any_class) or not self._has_asserted(key):
-                continue
-            out[key] = ASSERTED
-        return out
-
     def _timed(self, text: str, name: str, stats: ReasonStats) -> None:
         """Queue ``text`` (sent by :meth:`_flush`, one request per round), or send it and time it under
         ``name`` when profiling."""
@@ -469,67 +279,6 @@ class Materializer:
         start = time.perf_counter()
         self.store.update(text, prefixes=PREFIXES)
         stats.per_rule[name] = stats.per_rule.get(name, 0.0) + time.perf_counter() - start
-
-    def _first_pass(self, component: list[int], back: set[int], stats: ReasonStats) -> None:
-        """Evaluate a component's rules once each, in order, in one request.
-
-        Operations of one request see what the earlier ones wrote, so a rule's facts are already
-        read by every later rule of the pass: they go to the next delta only for a rule in
-        ``back`` (a rule of the pass at or before it reads them) or with a head of any class or
-        predicate.  The key a rule without delta writes joins :attr:`present` at once (a
-        superset, as it must be), so later rules of the pass are not skipped for want of it.
-        """
-        read = self._direct
-        for i in component:
-            if i in self._joined:
-                continue  # evaluated with the first rule of its class union
-            members = [m for m in (i, *self._unions.get(i, ()))
-                       if self.triggers.feasible(m, self.present) and self._claims_hold(m)]
-            if not members:
-                continue
-            i, *union = lead_first(self.rules, members)
-            union = tuple(union)
-            asserted_only = i in self._implied
-            if asserted_only and not self._has_asserted(self.rules[i].body[0].read_key()):
-                continue  # every fact it reads is derived, and what it concludes of them holds already
-            key = self.rules[i].writes()
-            if i in back or key[0] == "*" or key == ("p", TYPE_KEY):
-                self._run(i, None, stats, asserted_only, first=True)
-                self._derived.add(key)
-                continue
-            self._direct = (read[0], None)
-            try:
-                self._run(i, None, stats, asserted_only, first=True, union=union)
-            finally:
-                self._direct = read
-            self._derived.add(key)
-            if key[1] not in self.present[1 if key[0] == "t" else 0]:
-                self._claimed.add(key)
-            self.present[1 if key[0] == "t" else 0].add(key[1])
-            if key[0] == "t":
-                self.present[0].add(TYPE_KEY)
-        self._flush()
-        stats.rounds += 1
-
-    def _claims_hold(self, i: int) -> bool:
-        """Whether rule ``i`` can still match once the keys it reads that earlier rules of the pass only
-        claimed (:attr:`_claimed`: put in :attr:`present` before their evaluation ran) are looked up.
-
-        A claim is a superset, as :attr:`present` must be; but a rule that wrote nothing leaves its
-        readers to scan for nothing (the six disjoint-classes rules over 10,000 doors and locations,
-        asking about pairs no rule asked about).  The queued evaluations are sent first, so that the
-        look-up sees what they wrote: one request more per pass that needs it.
-        """
-        keys = {a.read_key() for a in self.rules[i].body} & self._claimed
-        if not keys:
-            return True
-        self._flush()
-        for key in keys:
-            self._claimed.discard(key)
-            pattern = key_pattern(key)
-            if not any(next(iter(self.store.triples(*pattern, g)), None) is not None for g in (INFERRED, AUX, ASSERTED)):
-                self.present[1 if key[0] == "t" else 0].discard(key[1])
-        return self.triggers.feasible(i, self.present)
 
     def _has_asserted(self, key: ReadKey) -> bool:
         """Whether read key ``key`` had an asserted fact when :meth:`run` started."""
@@ -554,7 +303,7 @@ class Materializer:
         asserted = self._asserted = (set(self.present[0]), set(self.present[1]))
         self._claimed = set()
         self._implied = implied_first_passes(self.rules, [i for c in ordered for i in c])
-        self._lean = {i: _without(self.rules[i], atoms)
+        self._lean = {i: without(self.rules[i], atoms)
                       for i, atoms in implied_atoms(self.rules, [i for c in ordered for i in c], asserted).items()}
         self._graphs = single_graphs(self.rules, [i for c in ordered for i in c], self.triggers.needed_keys(),
                                      asserted, lambda r: AUX if r.head_aux() else INFERRED, ASSERTED)
@@ -566,7 +315,7 @@ class Materializer:
         self._texts = {k: t for k, t in self._texts.items() if not k[4]}
         try:
             for component in ordered:
-                self._first_pass(component, back, stats)
+                first_pass(self, component, back, stats)
                 self.propagate(component, stats)
         finally:
             self._graphs = None
@@ -583,12 +332,7 @@ class Materializer:
                 self.upper_derived = True
             self.propagate(active, stats)
             if level == strata[0]:  # before the upper strata, which may read what the asks derive
-                self._ask_unknown(stats, active)
-
-
-def _without(rule: Rule, atoms: tuple[int, ...]) -> Rule:
-    """``rule`` with the body atoms ``atoms`` left out (the body as written kept for explanations)."""
-    return replace(rule, body=tuple(a for n, a in enumerate(rule.body) if n not in atoms), written=rule.premises)
+                ask_unknown(self, stats, active)
 
 
 def _merge(parts) -> KeyCounts:

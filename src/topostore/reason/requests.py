@@ -17,9 +17,9 @@ from pyoxigraph import NamedNode, Quad, Triple
 from ..compile.generic import PREFIXES
 from ..compile.rule import Rule
 from ..stores.base import Store, data_update
-from .materialize import ReasonStats
 from .plan import KeyCounts, is_small, key_counts
 from .scratch import rule_start
+from .stats import ReasonStats
 
 
 class RequestQueue:
