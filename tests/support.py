@@ -10,7 +10,7 @@ from pathlib import Path
 from pyoxigraph import Literal, NamedNode
 
 from topostore import Ontology
-from topostore.rdf.vocab import XSD
+from topostore.rdf.vocab import AUX, ENTAILED, INFERRED, XSD
 
 ROOT = Path(__file__).resolve().parents[1]
 #: small project-owned files the tests read (saved maps, SQWRL queries)
@@ -25,6 +25,13 @@ IRI = "http://bnc/exp-rob-lab/2022-23"
 NS = IRI + "#"
 #: the example environment's clock (Robot1 now)
 NOW = 1665579740
+
+
+def closure(onto: Ontology) -> dict[str, set]:
+    """The inferred, helper and entailed-only quads of an in-memory ontology, by graph: what a shortcut of
+    the full REASON must leave as it was."""
+    ox = onto.store._ox
+    return {g.value: set(ox.quads_for_pattern(None, None, None, g)) for g in (INFERRED, AUX, ENTAILED)}
 
 
 def quiet_turtle(text: str) -> Ontology:

@@ -11,9 +11,10 @@ from pathlib import Path
 
 import pytest
 from pyoxigraph import NamedNode
+from support import closure
 
 from topostore import Ontology, OntologyWarning
-from topostore.rdf.vocab import ASSERTED, AUX, ENTAILED, INFERRED, INTERNAL
+from topostore.rdf.vocab import ASSERTED, AUX, INTERNAL
 from topostore.reason import deferred_asks, insert_text, materialize
 from topostore.reason.class_unions import class_unions, lead_first, union_where
 from topostore.reason.order import asserted_paths, evaluation_order
@@ -49,11 +50,6 @@ def loaded(text: str | None = None, source: str = "") -> Ontology:
         else:
             onto.load_data(text, "turtle")
     return onto
-
-
-def closure(onto: Ontology) -> dict[str, set]:
-    ox = onto.store._ox
-    return {g.value: set(ox.quads_for_pattern(None, None, None, g)) for g in (INFERRED, AUX, ENTAILED)}
 
 
 def names(onto: Ontology, cls: str) -> set[str]:

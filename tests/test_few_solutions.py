@@ -10,9 +10,10 @@ import warnings
 from pathlib import Path
 
 import pytest
+from support import closure
 
 from topostore import Ontology, OntologyWarning
-from topostore.rdf.vocab import AUX, ENTAILED, INFERRED
+from topostore.rdf.vocab import INFERRED
 from topostore.reason import few_solutions, materialize
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -38,11 +39,6 @@ def loaded(text: str | None = None) -> Ontology:
         else:
             onto.load_data(text, "turtle")
     return onto
-
-
-def closure(onto: Ontology) -> dict[str, set]:
-    ox = onto.store._ox
-    return {g.value: set(ox.quads_for_pattern(None, None, None, g)) for g in (INFERRED, AUX, ENTAILED)}
 
 
 def sent(onto: Ontology, monkeypatch) -> list[str]:

@@ -12,9 +12,9 @@ import warnings
 from pathlib import Path
 
 import pytest
+from support import closure
 
 from topostore import Ontology, OntologyWarning
-from topostore.rdf.vocab import AUX, ENTAILED, INFERRED
 from topostore.reason import first_pass, materialize
 from topostore.reason.order import implied_atoms, implied_first_passes, subject_classes
 
@@ -97,11 +97,6 @@ def test_asserted_facts_of_a_key_with_implied_writers_are_read() -> None:
     onto = loaded(CHAIN + ":a :r2 :b . :c :r :d . :e :t :f .")
     assert onto.reason().consistent
     assert {"a", "c", "e"} <= {onto.short(i) for i in onto.instances("E")}
-
-
-def closure(onto: Ontology) -> dict[str, set]:
-    ox = onto.store._ox
-    return {g.value: set(ox.quads_for_pattern(None, None, None, g)) for g in (INFERRED, AUX, ENTAILED)}
 
 
 @pytest.mark.parametrize("source", ["example", "tbox", "map"])

@@ -10,10 +10,10 @@ import warnings
 from pathlib import Path
 
 import pytest
+from support import closure
 
 from topostore import Ontology, OntologyWarning
 from topostore.compile.rule import Atom, Rule
-from topostore.rdf.vocab import AUX, ENTAILED, INFERRED
 from topostore.reason import insert_text
 from topostore.reason.key_pairs import grouped_form
 from topostore.resources import default_ontology_files
@@ -61,11 +61,6 @@ def test_two_values_and_two_keys_of_a_group_are_a_pair_different_in_both(size: i
             pairwise = any(a[0] != b[0] and a[1] != b[1] for a in pairs for b in pairs)
             counted = len({v for v, _ in pairs}) > 1 and len({k for _, k in pairs}) > 1
             assert pairwise == counted, pairs
-
-
-def closure(onto: Ontology) -> dict[str, set]:
-    ox = onto.store._ox
-    return {g.value: set(ox.quads_for_pattern(None, None, None, g)) for g in (INFERRED, AUX, ENTAILED)}
 
 
 MIN2 = PREFIXES + """:p a owl:ObjectProperty . :D a owl:Class .
