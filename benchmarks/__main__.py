@@ -6,7 +6,9 @@ that hangs is killed without taking the suite with it):
 * **steps**: the robot step on maps compared with warm Pellet, then topostore alone on big maps;
 * **drift**: 4,000 steps on the example map and on 1,000 locations (not in ``--quick``);
 * **remote**: the step on a real ``oxigraph serve``, HTTP requests per step counted;
-* **full**: full REASON of topostore and its peers on the same files (chain maps, a tutorial-style TBox).
+* **full**: full REASON of topostore and its peers on the same files (chain maps, a tutorial-style TBox),
+  then robot-like steps on that TBox (the first apart, median and p95 of the others, each held against a
+  full REASON from scratch).
 
 The warm Pellet peer is compiled once per run into a temporary folder.  Prints the machine, the
 tables, the ratios and the targets of issues 20 and 21 (met/missed), and writes ``table.md``,
@@ -42,6 +44,7 @@ REMOTE, QUICK_REMOTE = ["example", "50"], ["example"]
 #: full REASON: chain maps (topostore and reasonable) and the tutorial-style TBox (every engine)
 FULL_MAPS, QUICK_FULL_MAPS = ["1000", "10000", "100000"], ["1000", "10000"]
 MAP_ENGINES, TBOX_ENGINES, TBOX = ["topostore", "reasonable"], ["topostore", "reasonable", "owlrl", "pellet"], "tbox:100"
+TBOX_STEPS = 20
 
 
 def parse_args(argv: list[str] | None) -> argparse.Namespace:
@@ -67,6 +70,8 @@ def parse_args(argv: list[str] | None) -> argparse.Namespace:
     p.add_argument("--full-maps", nargs="*", help=f"chain maps of the full-REASON rows (default {' '.join(FULL_MAPS)}, "
                                                   f"{' '.join(QUICK_FULL_MAPS)} with --quick)")
     p.add_argument("--tbox", default=TBOX, help=f"the TBox-heavy input, tbox:N for N classes (default {TBOX})")
+    p.add_argument("--tbox-steps", type=int, default=TBOX_STEPS,
+                   help=f"robot-like steps on the TBox-heavy input (default {TBOX_STEPS})")
     p.add_argument("--out", type=Path, default=Path("out/bench"), help="output folder (default out/bench)")
     args = p.parse_args(argv)
     args.sizes = args.sizes if args.sizes is not None else QUICK_COMPARE if args.quick else COMPARE
@@ -142,6 +147,8 @@ def progress(row: dict[str, Any], seconds: float) -> str:
                     f"longest {_ms(row.get('longest_ms'))}")
     elif row["kind"] == "remote":
         bits.append(f"HTTP requests per step {row.get('requests_median')}, step median {_ms(row.get('median_ms'))}")
+    elif row["kind"] == "tbox_steps" and "median_ms" in row:
+        bits.append(f"first step {_ms(row['first_ms'])}, then median {_ms(row['median_ms'])}, p95 {_ms(row['p95_ms'])}")
     elif "reason_s" in row:
         bits.append(f"load {row['load_s']:.2f} s, REASON {row['reason_s']:.2f} s, peak RSS {row['peak_rss_mib']:.0f} MiB")
     if row.get("error"):
@@ -215,7 +222,9 @@ def full_rows(args: argparse.Namespace) -> list[dict[str, Any]]:
     """Full REASON of each engine on each input, one process each (900 s at most)."""
     jobs = [(engine, size) for size in args.full_maps for engine in MAP_ENGINES]
     jobs += [(engine, args.tbox) for engine in TBOX_ENGINES]
-    return [_timed(["benchmarks.full", engine, spec], 900, spec, "full", engine) for engine, spec in jobs]
+    rows = [_timed(["benchmarks.full", engine, spec], 900, spec, "full", engine) for engine, spec in jobs]
+    steps = ["benchmarks.tbox_steps", args.tbox, "--steps", str(args.tbox_steps)]
+    return rows + [_timed(steps, 300, args.tbox, "tbox_steps", "topostore")]  # killed then, keeping its progress
 
 
 def _timed(cmd: list[str], timeout: float, size: str, kind: str, engine: str | None = None) -> dict[str, Any]:

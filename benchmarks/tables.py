@@ -20,7 +20,8 @@ FULL_10K_S, FULL_100K_S, FULL_100K_MIB, GROWTH_MAX, TBOX_S = 1.0, 10.0, 1536, 12
 def extra_tables(rows: list[dict[str, Any]]) -> str:
     """Every table the rows call for, each followed by its targets; '' when there are no rows."""
     parts = []
-    for kind, render in (("drift", drift_table), ("remote", remote_table), ("full", full_table)):
+    for kind, render in (("drift", drift_table), ("remote", remote_table), ("full", full_table),
+                         ("tbox_steps", tbox_steps_table)):
         mine = [r for r in rows if r["kind"] == kind]
         if mine:
             parts.append(render(mine))
@@ -107,6 +108,25 @@ def full_targets(rows: list[dict[str, Any]], pellet: dict[str, list[str]] | None
                                "equal" if not diff else f"{len(diff)} individuals differ: " + "; ".join(diff[:4]),
                                not diff))
     return out or ["- not measured in this run"]
+
+
+def tbox_steps_table(rows: list[dict[str, Any]]) -> str:
+    """Robot-like steps on the TBox-heavy file: the first apart, then the median and p95 of the others."""
+    lines = ["Steps on the TBox-heavy file (topostore: type individuals, add and remove a property value, REASON; "
+             "every step's answers held against a full REASON from scratch):", "",
+             "| input | LOAD + full REASON | steps | first step | median | p95 | REASON modes | answers |",
+             "|---|---|---|---|---|---|---|---|"]
+    for r in rows:
+        if "median_ms" not in r:
+            why = r.get("killed") or f"failed: {str(r.get('error'))[:200]}"
+            lines.append(f"| {r['label']} | – | – | – | – | – | – | {why} |")
+            continue
+        modes = ", ".join(f"{m} {n}" for m, n in r["modes"].items())
+        answers = f"**MISMATCH** ({len(r['mismatches'])}): {r['mismatches'][0]}" if r["mismatches"] else \
+            f"equal to full REASON ({r['answers']} triples)"
+        lines.append(f"| {r['label']} | {_s(r['load_and_full_s'])} | {r['steps']} | {ms(r['first_ms'])} | "
+                     f"{ms(r['median_ms'])} | {ms(r['p95_ms'])} | {modes} | {answers} |")
+    return "\n".join(lines)
 
 
 def type_differences(mine: dict[str, list[str]], pellet: dict[str, list[str]]) -> list[str]:

@@ -126,10 +126,9 @@ def spiciness(category: int, leaf: int) -> str:
 
 def _pizzas(n: int, toppings: dict[str, list[str]]) -> list[str]:
     """Named pizzas: a base, 2-4 toppings (existential), a closure axiom over their union."""
-    leaves = [leaf for category in zip(*toppings.values()) for leaf in category]  # categories interleaved
     out, names = [], [f"Pizza{i + 1}" for i in range(n)]
     for i, name in enumerate(names):
-        mine = [leaves[(3 * i + j) % len(leaves)] for j in range(2 + i % 3)]
+        mine = _pizza_leaves(i, toppings)
         base = "ThinBase" if i % 2 else "DeepPanBase"
         some = ", ".join(f"[ a owl:Restriction ; owl:onProperty :hasTopping ; owl:someValuesFrom :{t} ]" for t in mine)
         out.append(f":{name} a owl:Class ; rdfs:subClassOf :NamedPizza, "
@@ -141,6 +140,25 @@ def _pizzas(n: int, toppings: dict[str, list[str]]) -> list[str]:
             out.append(f":{name} rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :hasCountryOfOrigin ; "
                        f"owl:hasValue :{country} ] .")
     return out + [":NamedPizza a owl:Class ; rdfs:subClassOf :Pizza ."] + _pairwise_disjoint(names)
+
+
+def _pizza_leaves(i: int, toppings: dict[str, list[str]]) -> list[str]:
+    """The 2-4 leaf toppings of the ``i``-th named pizza (0-based), categories interleaved."""
+    leaves = [leaf for category in zip(*toppings.values()) for leaf in category]
+    return [leaves[(3 * i + j) % len(leaves)] for j in range(2 + i % 3)]
+
+
+def pizza_toppings(classes: int) -> dict[str, list[str]]:
+    """Each named pizza class of the TBox of ``classes`` classes and the leaf toppings its closure allows."""
+    shape = Shape.of(classes)
+    toppings = _toppings(shape.toppings)
+    return {f"Pizza{i + 1}": _pizza_leaves(i, toppings) for i in range(shape.pizzas)}
+
+
+def leaf_spiciness(classes: int) -> dict[str, str]:
+    """The spiciness class each leaf topping class implies (see :func:`spiciness`)."""
+    toppings = _toppings(Shape.of(classes).toppings)
+    return {leaf: spiciness(k, i) for k, leaves in enumerate(toppings.values()) for i, leaf in enumerate(leaves)}
 
 
 def _defined_classes() -> list[str]:
@@ -234,25 +252,45 @@ def timing_table(sizes: list[int], folder: Path) -> list[str]:
     return lines
 
 
+def steps_table(sizes: list[int], steps: int, folder: Path) -> None:
+    """Print the table of :mod:`benchmarks.tbox_steps` for each size (in this process); exit 3 on a mismatch."""
+    import sys
+
+    from . import tables, tbox_steps
+
+    rows = []
+    for n in sizes:
+        (folder / str(n)).mkdir()
+        rows.append(tbox_steps.run(n, steps, folder / str(n)))
+    print(tables.tbox_steps_table(rows))
+    if any(r["mismatches"] for r in rows):
+        sys.exit(3)
+
+
 def main(argv: list[str] | None = None) -> None:
     """``python -m benchmarks.tbox [N]`` prints the Turtle of N classes; ``--time N [N ...]`` times the
-    LOAD and the full REASONs of each size instead."""
+    LOAD and the full REASONs of each size instead, ``--steps S N [N ...]`` S robot-like steps on each."""
     import argparse
     import tempfile
 
     parser = argparse.ArgumentParser(prog="python -m benchmarks.tbox", description=main.__doc__)
     parser.add_argument("classes", nargs="*", type=int, help="named classes (default 100)")
     parser.add_argument("--time", action="store_true", help="time LOAD and full REASON per size (a table)")
+    parser.add_argument("--steps", type=int, metavar="S",
+                        help="time S robot-like steps per size, each checked against a full REASON (a table)")
     args = parser.parse_args(argv)
     sizes = args.classes or [100]
-    if not args.time:
+    if not args.time and not args.steps:
         print(turtle(sizes[0]), end="")
         return
     from .limits import lift_time_limit
 
     lift_time_limit()
     with tempfile.TemporaryDirectory() as folder:
-        print("\n".join(timing_table(sizes, Path(folder))))
+        if args.time:
+            print("\n".join(timing_table(sizes, Path(folder))))
+        if args.steps:
+            steps_table(sizes, args.steps, Path(folder))
 
 
 if __name__ == "__main__":
