@@ -535,3 +535,33 @@ def test_parts_reading_apart_share_one_request(tmp_path) -> None:
             sent.clear()
             robot.step(move)
             assert len(sent) <= 2, sent
+
+
+def test_covering_finds_by_index_what_trying_every_writer_finds() -> None:
+    """reason/restate.py looks the rules that may derive a conclusion up by the keys they read; trying
+    every rule that writes the key must give the same covered rules, on the tutorial map and a TBox of
+    restrictions and disjointness (where thousands of rules write types)."""
+    import tempfile
+    from pathlib import Path
+
+    from benchmarks import tbox
+    from topostore.reason import restate
+    from topostore.resources import default_ontology_files
+
+    def every_writer(self, written, premises):
+        return [n for n, r in enumerate(self.rules) if r.head is not None and r.writes() == written]
+
+    with tempfile.TemporaryDirectory() as tmp:
+        sources = [default_ontology_files(), [tbox.write(60, Path(tmp))]]
+        covered = []
+        for files in sources:
+            onto = Ontology.from_file(*files)
+            rules = list(onto.rules.inference_rules)
+            asking = [i for i, r in enumerate(rules) if r.head is not None and r.head_aux()]
+            indexed = restate.covering(rules, asking)
+            with mock.patch.object(restate._Readers, "within", every_writer), \
+                    mock.patch.object(restate._Readers, "rules", rules, create=True):
+                tried = restate.covering(rules, asking)
+            assert indexed == tried
+            covered.append(indexed)
+    assert covered[0], "the tutorial's Reachability is covered by Connectability"

@@ -137,16 +137,39 @@ def covering(rules: list[Rule], candidates: Collection[int]) -> dict[int, ReadKe
     for n, rule in enumerate(rules):
         if rule.head is not None:
             writers.setdefault(rule.writes(), []).append(n)
+    readers = _Readers(rules)
     found: dict[int, ReadKey] = {}
     for i in candidates:
-        key = _covered_at(rules, i, writers)
+        key = _covered_at(rules, i, writers, readers)
         if key is not None:
             found[i] = key
     # a rule that helps cover another must stay
-    return {i: key for i, key in found.items() if not any(n in found for n in _helpers(rules, i, key, writers))}
+    return {i: key for i, key in found.items()
+            if not any(n in found for n in _helpers(rules, i, key, writers, readers))}
 
 
-def _covered_at(rules: list[Rule], i: int, writers: Mapping[ReadKey, list[int]]) -> ReadKey | None:
+class _Readers:
+    """Rules with a head by the key they write and the least key they read: the rules writing a key
+    and reading only keys among a writer's premises are found under those premises' keys, not by
+    trying every rule that writes the key (a TBox of hundreds of classes has thousands of them)."""
+
+    def __init__(self, rules: list[Rule]) -> None:
+        self._by: dict[tuple[ReadKey | None, ReadKey | None], list[int]] = {}
+        for n, rule in enumerate(rules):
+            if rule.head is not None:
+                reads = rule.reads()
+                self._by.setdefault((rule.writes(), min(reads) if reads else None), []).append(n)
+
+    def within(self, written: ReadKey | None, premises: Collection[ReadKey]) -> list[int]:
+        """The rules writing ``written`` whose every read key is among ``premises`` may be among these
+        (in rule order); the caller tests the whole set."""
+        found = set(self._by.get((written, None), ()))
+        for key in premises:
+            found.update(self._by.get((written, key), ()))
+        return sorted(found)
+
+
+def _covered_at(rules: list[Rule], i: int, writers: Mapping[ReadKey, list[int]], readers: _Readers) -> ReadKey | None:
     rule = rules[i]
     if rule.head is None or any(c.kind != TEST or c.reads_graph for c in rule.conditions):
         return None
@@ -154,17 +177,18 @@ def _covered_at(rules: list[Rule], i: int, writers: Mapping[ReadKey, list[int]])
         key = atom.read_key()
         if not atom.p.startswith("<") or key == rule.writes() or not writers.get(key):
             continue
-        if all(any(True for _ in _derivers(rules, i, atom, rules[w], writers)) for w in writers[key]):
+        if all(any(True for _ in _derivers(rules, i, atom, rules[w], readers)) for w in writers[key]):
             return key
     return None
 
 
-def _helpers(rules: list[Rule], i: int, key: ReadKey, writers: Mapping[ReadKey, list[int]]) -> set[int]:
+def _helpers(rules: list[Rule], i: int, key: ReadKey, writers: Mapping[ReadKey, list[int]],
+             readers: _Readers) -> set[int]:
     atom = next(a for a in rules[i].body if a.read_key() == key)
-    return {n for w in writers[key] for n in _derivers(rules, i, atom, rules[w], writers)}
+    return {n for w in writers[key] for n in _derivers(rules, i, atom, rules[w], readers)}
 
 
-def _derivers(rules: list[Rule], i: int, atom: Atom, writer: Rule, writers: Mapping[ReadKey, list[int]]) -> Iterator[int]:
+def _derivers(rules: list[Rule], i: int, atom: Atom, writer: Rule, readers: _Readers) -> Iterator[int]:
     """The rules other than ``i`` that derive rule ``i``'s conclusion from ``writer``'s evaluated premises,
     whenever ``writer`` derives a fact matching ``atom`` and rule ``i``'s filters hold."""
     rule = rules[i]
@@ -177,7 +201,7 @@ def _derivers(rules: list[Rule], i: int, atom: Atom, writer: Rule, writers: Mapp
     known = {_squash(c.text) for c in writer.conditions}
     known |= {_squash(_substitute(c.text, theta)) for c in rule.conditions if c.variables <= theta.keys()}
     premise_keys = {a.read_key() for a in writer.body}
-    for n in writers.get(rule.writes(), []):
+    for n in readers.within(rule.writes(), premise_keys):
         other = rules[n]
         if n == i or not other.reads() <= premise_keys \
                 or any(c.kind != TEST or c.reads_graph for c in other.conditions):
