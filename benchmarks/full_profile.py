@@ -24,11 +24,9 @@ import argparse
 import json
 import subprocess
 import sys
-import tempfile
 import time
 import warnings
 from collections.abc import Callable
-from pathlib import Path
 from typing import Any
 
 from .limits import lift_time_limit
@@ -43,7 +41,6 @@ def _cpu(fn: Callable[[], object]) -> float:
 
 def profile(size: str) -> dict[str, Any]:
     """The phases, graph sizes and per-rule CPU of a full REASON of the chain map of ``size`` locations."""
-    from topostore import Ontology
     from topostore.rdf.vocab import ASSERTED, INFERRED
     from topostore.reason.consistency import check_consistency
     from topostore.reason.entailed import publish_entailed
@@ -53,10 +50,7 @@ def profile(size: str) -> dict[str, Any]:
 
     warnings.simplefilter("ignore")  # the map's notices are not what is measured
     lift_time_limit()
-    with tempfile.TemporaryDirectory(prefix="topostore-profile-") as tmp:
-        path, _ = maps.write(size, Path(tmp))
-        onto = Ontology()
-        load = _cpu(lambda: onto.load(path))
+    onto, load = maps.loaded(size)
     first = _cpu(onto.reason)
     whole = _cpu(lambda: onto.reason(mode="full"))
     store, rules = onto.store, onto.rules

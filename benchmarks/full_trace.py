@@ -15,10 +15,8 @@ import json
 import re
 import subprocess
 import sys
-import tempfile
 import time
 import warnings
-from pathlib import Path
 from typing import Any
 
 from .limits import lift_time_limit
@@ -29,7 +27,6 @@ SHOWN = 0.02
 
 def trace(size: str) -> dict[str, Any]:
     """The CPU seconds and text of every request of a full run's rules and checks at ``size`` locations."""
-    from topostore import Ontology
     from topostore.reason.consistency import check_consistency
     from topostore.reason.materialize import Materializer
 
@@ -37,10 +34,7 @@ def trace(size: str) -> dict[str, Any]:
 
     warnings.simplefilter("ignore")  # the map's notices are not what is measured
     lift_time_limit()
-    with tempfile.TemporaryDirectory(prefix="topostore-trace-") as tmp:
-        path, _ = maps.write(size, Path(tmp))
-        onto = Ontology()
-        onto.load(path)
+    onto, _ = maps.loaded(size)
     onto.reason()
     store = onto.store
     start = time.process_time()

@@ -9,11 +9,14 @@ generated chain go through one code path.
 
 from __future__ import annotations
 
+import tempfile
+import time
 from dataclasses import dataclass, field
 from pathlib import Path
 
 from pyoxigraph import Literal, NamedNode, RdfFormat, Triple
 
+from topostore import Ontology
 from topostore.demo.mapgen import MAP_NS, generate
 from topostore.resources import default_ontology, ontology_dir
 from topostore.stores import memory_store
@@ -75,6 +78,17 @@ def write(size: str, folder: Path, fmt: RdfFormat = RdfFormat.RDF_XML) -> tuple[
     bench = read(size, data)
     bench.triples = len(triples)
     return path, bench
+
+
+def loaded(size: str) -> tuple[Ontology, float]:
+    """A new ontology holding the chain map of ``size`` (written to a temporary folder and loaded from
+    the file, as a user loads it), with the CPU seconds of that LOAD."""
+    with tempfile.TemporaryDirectory(prefix="topostore-map-") as tmp:
+        path, _ = write(size, Path(tmp))
+        onto = Ontology()
+        start = time.process_time()
+        onto.load(path)
+        return onto, time.process_time() - start
 
 
 def read(name: str, triples: list[Triple]) -> BenchMap:
