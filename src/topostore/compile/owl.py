@@ -201,10 +201,6 @@ class OwlCompiler:
         """Told: every instance of filler ``a`` is an instance of filler ``b`` (:class:`.fillers.Subsumption`)."""
         return self.subsumption.fillers(a, b)
 
-    def class_subsumed(self, x: Expr, y: Expr) -> bool:
-        """Told: ``x ⊑ y`` (:meth:`.fillers.Subsumption.classes`)."""
-        return self.subsumption.classes(x, y)
-
     # ------------------------------------------------------------------ expressions
     def all_expressions(self) -> list[Expr]:
         """Every class expression of the axioms and the typed expressions, each once (by node).

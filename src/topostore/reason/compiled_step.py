@@ -30,7 +30,7 @@ from .requests import RequestQueue
 from .staged import StagedRun
 from .stats import ReasonStats
 from .step_compiler import StepCompiler
-from .triggers import matches
+from .triggers import key_sets, matches
 
 if TYPE_CHECKING:
     from .incremental import MaintenanceState
@@ -133,12 +133,9 @@ class CompiledStep:
 
     def read_after(self) -> after_step.After:
         """The reads that follow a compiled step, as one query (see :mod:`.after`)."""
-        preds: set[str] = set()
-        classes: set[str] = set()
-        for kind, key in self._heads:
-            (preds if kind == "p" else classes).add(key)
+        preds, classes = key_sets(self._heads)
         checks = self.checks.check_branches(preds, classes, lambda c, j: self.store.supports_lateral)
-        lost = ({k for kind, k in self.lost if kind == "p"}, {k for kind, k in self.lost if kind == "t"})
+        lost = key_sets(self.lost)
         negated = self.checks.negated_branches((preds, classes), lost, lambda i, j: self.store.supports_lateral)
         text = after_step.query(negated, checks, sorted(self.ruleset.entailed_predicates, key=lambda t: t.value),
                                 self._settle)

@@ -97,7 +97,7 @@ from .program import PROGRAM_SCRATCH
 from .requests import RequestQueue
 from .scratch import ADDED, FLIP_GAINED, NEW_FACTS, OVERDELETED, REMOVED, SCRATCH
 from .stats import ReasonStats
-from .triggers import Present, Triggers
+from .triggers import Present, Triggers, key_sets
 
 #: Default share of the asserted graph above which a change is recomputed from scratch.
 DEFAULT_MAX_CHANGE_SHARE = 0.10
@@ -331,7 +331,7 @@ class IncrementalReasoner:
             self.state.present, key_census(removed), asserted=True)
         if not ask_again and self.step.run(added, removed, replaced, stats, self.state):
             self._incomplete = bool(self.deferred and removed) and self._completion.needed(
-                self.state.present, _key_sets(self.step.lost))
+                self.state.present, key_sets(self.step.lost))
             return
         requests.flush()  # the scratch copies are read from here on
         skip, lost, gained_rules = self.flips.find(self.state, added, removed, (preds, classes), stats, replaced)
@@ -398,11 +398,6 @@ class IncrementalReasoner:
         self.changed.forget()
         self.requests.drop(DROPPED)
         self.requests.flush()
-
-
-def _key_sets(keys: Collection[tuple[str, str]]) -> tuple[set[str], set[str]]:
-    """(predicates, classes) of read keys ``("p", iri)`` / ``("t", class)``."""
-    return {k for kind, k in keys if kind == "p"}, {k for kind, k in keys if kind == "t"}
 
 
 __all__ = ["IncrementalReasoner", "MaintenanceState", "DEFAULT_MAX_CHANGE_SHARE", "MODES", "can_prove", "check_mode",

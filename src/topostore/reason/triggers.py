@@ -106,4 +106,9 @@ def matches(key: ReadKey, changed_preds: Collection[str], changed_classes: Colle
     return key[1] in changed_preds
 
 
-__all__ = ["Evaluation", "Present", "Triggers", "matches"]
+
+def key_sets(keys: Collection[tuple[str, str]]) -> tuple[set[str], set[str]]:
+    """(predicates, classes) of read keys ``("p", iri)`` / ``("t", class)``."""
+    return {k for kind, k in keys if kind == "p"}, {k for kind, k in keys if kind == "t"}
+
+__all__ = ["key_sets", "Evaluation", "Present", "Triggers", "matches"]
