@@ -18,7 +18,7 @@ from .insert_text import insert_text
 from .negation import unless_known_text
 from .order import TYPE_KEY
 from .stats import ReasonStats
-from .triggers import Present
+from .triggers import Present, matches
 
 if TYPE_CHECKING:
     from .materialize import Materializer
@@ -77,7 +77,7 @@ def only_asserted(rule: Rule, derived: Collection[ReadKey], asserted: Present,
         key = atom.read_key()
         if atom.aux or key[0] not in ("p", "t") or key == ("p", TYPE_KEY) or key in written:
             continue
-        if (key[0] == "t" and any_class) or key[1] not in asserted[1 if key[0] == "t" else 0]:
+        if (key[0] == "t" and any_class) or not matches(key, *asserted):
             continue
         out[key] = ASSERTED
     return out
