@@ -52,19 +52,37 @@ class ChangeChecks:
         self.step_clean: frozenset = frozenset()
         #: the asserted triples the REASON under way adds (range checks decide known values without a query)
         self.added_now: Collection[Triple] = ()
+        #: what :meth:`_after` decided for the REASON under way, and its added values by predicate
+        self._now: tuple | None = None
+        self._added_values: dict[str, list] | None = None
         #: SPARQL texts of the groups made once
         self._texts: dict[tuple, str] = {}
         #: :func:`.program.pair_atom` of a check's or negated rule's atom, by (kind, rule index, atom): rules never change
         self._pairs: dict[tuple[str, int, int], bool] = {}
+
+    def begin(self, added: Collection[Triple]) -> None:
+        """A REASON adding the asserted triples ``added`` begins: forget what the last one settled."""
+        self.step_clean = frozenset()
+        self.added_now = added
+        self._now = None
+        self._added_values = None
+
+    def _after(self) -> tuple[str, list[str], list[tuple]]:
+        """What the shape of this REASON's change decides (once per REASON, once per shape): the negated
+        rules' ASK text ("" when none may match), the checks' groups and apart the range checks' pairs."""
+        if self._now is None:
+            counts = self.changed.keys(NEW_FACTS, OVERDELETED)
+            self._now = self._decided.get(("after", *shape(counts, self.step_clean, self.state.present)),
+                                          lambda: (self._negated_ask(*counts) if self.negated else "",
+                                                   *self._violation_groups(counts[0])))
+        return self._now
 
     def negated_match(self) -> bool:
         """Whether a rule with a negated premise matches after this maintenance (one semi-naive ASK,
         made once per shape of change; none when the change cannot make one match)."""
         if not self.negated:
             return False
-        counts = self.changed.keys(NEW_FACTS, OVERDELETED)
-        text = self._decided.get(("negated", *shape(counts, self.step_clean, self.state.present)),
-                                 lambda: self._negated_ask(*counts))
+        text = self._after()[0]
         return bool(text) and bool(self.store.query(text, prefixes=PREFIXES))
 
     def _negated_ask(self, new: Present, lost: Present) -> str:
@@ -116,13 +134,14 @@ class ChangeChecks:
 
     def violation_possible(self) -> bool:
         """A check matches with at least one atom on a fact new in the closure (one semi-naive ASK)."""
-        counts, = self.changed.keys(NEW_FACTS)
-        lateral = self._lateral(counts)
-        # the same few shapes return: the groups are made once; range checks of known values are decided per run
-        fixed, ranged = self._decided.get(("check", *shape([counts], self.step_clean, self.state.present)),
-                                          lambda: self._violation_groups(counts))
-        branches = fixed + [self._check_text(c, j, lateral(c, j)) for c, j in ranged
-                            if not self._values_in_range(c, j)]
+        _, fixed, ranged = self._after()
+        if ranged:
+            lateral = self._lateral(self.changed.keys(NEW_FACTS)[0])
+            # the same few shapes return: the groups are made once; range checks of known values are decided per run
+            branches = fixed + [self._check_text(c, j, lateral(c, j)) for c, j in ranged
+                                if not self._values_in_range(c, j)]
+        else:
+            branches = fixed
         if not branches:
             return False
         head = f"FROM {ASSERTED} FROM {INFERRED} FROM {AUX} FROM NAMED {AUX} FROM NAMED {NEW_FACTS}"
@@ -169,7 +188,12 @@ class ChangeChecks:
         p, datatype = check.value_range
         if f"<{p}>" not in self.step_clean:
             return False
-        return all(surely_in(t.object, datatype) for t in self.added_now if t.predicate.value == p)
+        values = self._added_values
+        if values is None:  # the added values by predicate, read once per REASON (each read makes new terms)
+            values = self._added_values = {}
+            for t in self.added_now:
+                values.setdefault(t.predicate.value, []).append(t.object)
+        return all(surely_in(o, datatype) for o in values.get(p, ()))
 
     def _check_text(self, c: int, j: int | None, lateral: bool) -> str:
         key = ("check", c, j, lateral)

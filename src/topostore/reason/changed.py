@@ -15,13 +15,13 @@ step after step, so :class:`Decisions` keeps what was decided for each (until th
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Iterable
 
-from pyoxigraph import NamedNode, Quad
+from pyoxigraph import NamedNode, Quad, Triple
 
 from ..rdf.terms import Term
 from ..rdf.vocab import TYPE
-from ..stores.base import Store, key_census
+from ..stores.base import Store
 from . import after
 from .entailed import ENTAILED_TYPE
 from .plan import LATERAL_MAX, KeyCounts
@@ -33,14 +33,25 @@ SMALL = 2000
 
 
 class ChangedGraphs:
-    """The scratch graphs of one REASON, each read at most once (:meth:`forget` when they are dropped)."""
+    """The scratch graphs of one REASON, each read at most once (:meth:`forget` when they are dropped).
 
-    def __init__(self, store: Store, flush: Callable[[], None]) -> None:
-        """``flush`` sends what the reasoner still queues (before a graph is read)."""
+    A graph read into memory is gone through once (:meth:`_scan`) for all four readers: its facts per
+    read key, its type facts (real or entailed-only) and its facts of the watched predicates (those
+    whose entailed-only conclusions are published, in real or internal form; :mod:`.entailed`)."""
+
+    def __init__(self, store: Store, flush: Callable[[], None],
+                 watched: dict[NamedNode, NamedNode] | None = None) -> None:
+        """``flush`` sends what the reasoner still queues (before a graph is read); ``watched``: each
+        form (real or internal) of a predicate whose touched triples :meth:`touched_watched` tells →
+        the real predicate."""
         self.store = store
         self._flush = flush
+        self.watched = watched or {}
         self._quads: dict[NamedNode, list[Quad] | None] = {}
         self._keys: dict[NamedNode, KeyCounts] = {}
+        #: per graph scanned: its (individual, class) type facts, and its watched facts (subject, form, object)
+        self._types: dict[NamedNode, list[tuple[Term, NamedNode]]] = {}
+        self._watched: dict[NamedNode, list[tuple[Term, NamedNode, Term]]] = {}
 
     def quads(self, graph: NamedNode) -> list[Quad] | None:
         """Every quad of ``graph``; None when it is large or the store is reached over HTTP (the caller
@@ -50,12 +61,40 @@ class ChangedGraphs:
             self._quads[graph] = self.store.small_graph(graph, SMALL)
         return self._quads[graph]
 
+    def _scan(self, graph: NamedNode) -> bool:
+        """Go through the quads of ``graph`` once (False when it is not read into memory)."""
+        if graph in self._keys:
+            return graph in self._types
+        quads = self.quads(graph)
+        if quads is None:
+            return False
+        preds: dict[str, int] = {}
+        classes: dict[str, int] = {}
+        types: list[tuple[Term, NamedNode]] = []
+        watched, seen = self.watched, []
+        for q in quads:  # each term read once: pyoxigraph makes a new object at every read
+            p = q.predicate
+            key = str(p)
+            preds[key] = preds.get(key, 0) + 1
+            if p == TYPE or p == ENTAILED_TYPE:
+                o = q.object
+                if p == TYPE:
+                    c = str(o)
+                    classes[c] = classes.get(c, 0) + 1
+                if isinstance(o, NamedNode):
+                    types.append((q.subject, o))
+            if watched and p in watched:
+                seen.append((q.subject, p, q.object))
+        self._keys[graph] = (preds, classes)
+        self._types[graph] = types
+        self._watched[graph] = seen
+        return True
+
     def keys(self, *graphs: NamedNode) -> list[KeyCounts]:
         """Facts per predicate and per class in each of ``graphs`` (their read keys): counted from the
         quads read, else those not counted yet by one census (one query where reads are round trips)."""
         for graph in graphs:
-            if graph not in self._keys and (quads := self.quads(graph)) is not None:
-                self._keys[graph] = key_census(quads)
+            self._scan(graph)
         if missing := [g for g in graphs if g not in self._keys]:
             self._keys.update(self.store.census_many(missing))
         return [self._keys[g] for g in graphs]
@@ -68,27 +107,47 @@ class ChangedGraphs:
             return [(r["s"], r["c"]) for r in self.store.query(text)]
         touched: dict[tuple[Term, NamedNode], None] = {}
         for graph in (NEW_FACTS, OVERDELETED):
-            quads = self.quads(graph)
-            found = (q for q in quads if q.predicate in (TYPE, ENTAILED_TYPE)) if quads is not None else \
-                (t for predicate in (TYPE, ENTAILED_TYPE) for t in self.store.triples(None, predicate, None, graph))
-            for t in found:
-                if isinstance(t.object, NamedNode):
-                    touched[(t.subject, t.object)] = None
+            if self._scan(graph):
+                touched.update(dict.fromkeys(self._types[graph]))
+                continue
+            for predicate in (TYPE, ENTAILED_TYPE):
+                for t in self.store.triples(None, predicate, None, graph):
+                    if isinstance(t.object, NamedNode):
+                        touched[(t.subject, t.object)] = None
         return list(touched)
+
+    def touched_watched(self, graphs: Iterable[NamedNode]) -> tuple[list[Triple], set[Triple]] | None:
+        """The triples of the watched predicates in ``graphs`` (as the real triple, without duplicates),
+        and those of them found in internal form; None when a graph is not read into memory."""
+        found: dict[Triple, None] = {}
+        internal: set[Triple] = set()
+        watched = self.watched
+        for graph in graphs:
+            if not self._scan(graph):
+                return None
+            for s, form, o in self._watched[graph]:
+                real = watched[form]
+                t = Triple(s, real, o)
+                found[t] = None
+                if form != real:
+                    internal.add(t)
+        return list(found), internal
 
     def forget(self) -> None:
         """The graphs were dropped (or are about to be written again)."""
         self._quads.clear()
         self._keys.clear()
+        self._types.clear()
+        self._watched.clear()
 
 
 def shape(counts: list[KeyCounts], clean: frozenset, present: Present) -> tuple:
-    """What a read after maintenance decides from: the changed keys (each with whether it is small,
-    :func:`.plan.is_small`), the cleanly replaced predicates and the keys with facts (a set that only
+    """What a read after maintenance decides from: the changed keys of each graph (each with whether it
+    is small, :func:`.plan.is_small`), the cleanly replaced predicates and the keys with facts (a set that only
     grows until the next full run, so its size tells it)."""
-    keys = frozenset((kind, key, n <= LATERAL_MAX) for preds, classes in counts
+    keys = frozenset((i, kind, key, n <= LATERAL_MAX) for i, (preds, classes) in enumerate(counts)
                      for kind, found in (("p", preds), ("t", classes)) for key, n in found.items())
-    small = all(sum(preds.values()) <= LATERAL_MAX for preds, _ in counts)
+    small = tuple(sum(preds.values()) <= LATERAL_MAX for preds, _ in counts)
     return keys, small, clean, len(present[0]), len(present[1])
 
 

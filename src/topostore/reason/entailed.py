@@ -19,7 +19,7 @@ for triples in the graphs of facts new in the closure or deleted from it.
 from __future__ import annotations
 
 import functools
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Collection, Sequence
 
 from pyoxigraph import NamedNode, Quad, Triple
 
@@ -51,16 +51,48 @@ def refresh_entailed(store: Store, rules: RuleSet, changed: Sequence[NamedNode],
     predicates = sorted(rules.entailed_predicates, key=lambda t: t.value)
     if not predicates:
         return
+    touched = _touched(store, predicates, changed, quads_in)
+    _publish(store, touched, _standings(store, touched))
+
+
+def refresh_touched(store: Store, touched: list[Triple], twin_changed: Collection[Triple]) -> None:
+    """:func:`refresh_entailed` of the touched triples a caller found (real triples of the entailed-only
+    predicates; ``twin_changed``: those whose internal twin was among the changed facts).
+
+    A triple whose twin was not changed and is absent now was absent before the maintenance too, so
+    the triple was not in ENTAILED and is not wanted there: one look-up decides it (the twin's), the
+    other three are asked only of the triples left."""
+    if not touched:
+        return
+    if store.round_trips:  # one batch of four look-ups each: one request
+        _publish(store, touched, _standings(store, touched))
+        return
+    aux = AUX
+    twins = store.contains_quads([Quad(t.subject, internal(t.predicate), t.object, aux)
+                                  for t in touched if t not in twin_changed])
+    found = iter(twins)
+    left = [t for t in touched if t in twin_changed or next(found)]
+    if left:
+        _publish(store, left, _standings(store, left))
+
+
+def _publish(store: Store, touched: list[Triple], standings: list[bool | None]) -> None:
+    """Add to ENTAILED and drop from it the touched triples whose :func:`standing` says so."""
     add: list[Triple] = []
     drop: list[Triple] = []
-    touched = _touched(store, predicates, changed, quads_in)
-    for t, change in zip(touched, _standings(store, touched), strict=True):
+    for t, change in zip(touched, standings, strict=True):
         if change is not None:
             (add if change else drop).append(t)
     if add:
         store.add_scratch(add, ENTAILED)
     if drop:
         store.discard(drop, (ENTAILED,))
+
+
+def watched_forms(rules: RuleSet) -> dict[NamedNode, NamedNode]:
+    """Real and internal form of each entailed-only predicate of ``rules`` → the real one (what
+    :class:`.changed.ChangedGraphs` watches for :func:`refresh_touched`)."""
+    return dict(_forms(tuple(sorted(rules.entailed_predicates, key=lambda t: t.value))))
 
 
 def _standings(store: Store, touched: list[Triple]) -> list[bool | None]:

@@ -88,7 +88,7 @@ from .compiled_step import MAX_PROGRAMS, CompiledStep
 from .component import WHOLE_ROUNDS
 from .consistency import Violation, check_consistency
 from .dred import Deletion, can_prove
-from .entailed import publish_entailed, refresh_entailed
+from .entailed import publish_entailed, refresh_entailed, refresh_touched, watched_forms
 from .flips import Flips
 from .materialize import Materializer
 from .negation import ASKED, Completion, completion_text, deferred
@@ -179,7 +179,7 @@ class IncrementalReasoner:
         #: the shape of the change (:func:`.changed.shape`), until the next full run
         self._decided = Decisions(MAX_PROGRAMS)
         #: the scratch graphs of the REASON under way, read once by the reads after maintenance
-        self.changed = ChangedGraphs(store, self.requests.flush)
+        self.changed = ChangedGraphs(store, self.requests.flush, watched_forms(rules))
         #: whether a change may make a check or a negated-premise rule match (:mod:`.change_checks`)
         self.change_checks = ChangeChecks(store, self.negated, self.checks, self.check_triggers, self.changed,
                                           self._decided)
@@ -203,8 +203,7 @@ class IncrementalReasoner:
         if why:
             return self.full(why, profile)
         start = time.perf_counter()
-        self.change_checks.step_clean = frozenset()
-        self.change_checks.added_now = added
+        self.change_checks.begin(added)
         stats = ReasonStats(mode="incremental", reason=self._incremental_reason(added, removed))
         self.requests.profile = profile
         self._incomplete = False
@@ -256,6 +255,7 @@ class IncrementalReasoner:
         self.touched_types = None
         self.flips.forget()
         self.step.programs.clear()  # compiled against the keys with facts, which a full run recounts
+        self._completion.forget()
         self._decided.clear()
         self._clear_scratch()
         program = full_program(self.ruleset)  # large schema tables as one generic rule each
@@ -333,6 +333,17 @@ class IncrementalReasoner:
             self._incomplete = bool(self.deferred and removed) and self._completion.needed(
                 self.state.present, key_sets(self.step.lost))
             return
+        try:
+            self._general(added, removed, stats, profile, (preds, classes), replaced)
+        finally:
+            self._completion.forget()  # the general phases may change the keys with facts either way
+
+    def _general(self, added: Collection[Triple], removed: Collection[Triple], stats: ReasonStats, profile: bool,
+                 census: tuple, replaced: dict) -> None:
+        """The general phases (flips, over-deletion and rederivation, semi-naive additions) of a change
+        no compiled step maintains."""
+        requests = self.requests
+        preds, classes = census
         requests.flush()  # the scratch copies are read from here on
         skip, lost, gained_rules = self.flips.find(self.state, added, removed, (preds, classes), stats, replaced)
         if removed:
@@ -356,6 +367,7 @@ class IncrementalReasoner:
         known, when this maintenance lost a fact that may have held such a conclusion (:mod:`.negation`);
         what the asks derive is propagated as new facts."""
         lost = self.store.census_many([OVERDELETED])[OVERDELETED]
+        self._completion.forget()  # the propagation changed the keys with facts
         if not self._completion.needed(self.state.present, lost, asserted=True):
             return
         try:
@@ -382,9 +394,14 @@ class IncrementalReasoner:
 
     def _publish_entailed(self, changed: bool) -> None:
         """Bring the ENTAILED graph up to date from what this maintenance touched (see :mod:`.entailed`)."""
-        if changed:
-            self.requests.flush()
+        if not changed or not self.ruleset.entailed_predicates:
+            return
+        self.requests.flush()
+        found = self.changed.touched_watched((NEW_FACTS, OVERDELETED))
+        if found is None:  # a graph too large to read into memory, or a store reached over HTTP
             refresh_entailed(self.store, self.ruleset, (NEW_FACTS, OVERDELETED), self.changed.quads)
+        else:
+            refresh_touched(self.store, *found)
 
 
     def key_graphs(self) -> dict:

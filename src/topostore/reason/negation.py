@@ -125,6 +125,10 @@ class Completion:
         self.writers: list[tuple[frozenset[ReadKey], frozenset[ReadKey]]] = []
         #: the known heads' keys (their asserted facts' removal matters)
         self.heads: set[ReadKey] = set()
+        #: what :meth:`_watched` decided, for the keys with facts it was asked with (and their sizes)
+        self._present: tuple | None = None
+        self._mark: tuple[int, int] = (0, 0)
+        self._keys: tuple[bool, frozenset, frozenset] = (False, frozenset(), frozenset())
         for i in deferred(rules):
             rule = rules[i]
             head_key = rule.unless_known.read_key()
@@ -142,8 +146,28 @@ class Completion:
         the loss is of asserted facts (a removed asserted head counts too)."""
         if asserted and lost_any(self.heads, *lost):
             return True
-        return any(lost_any(keys, *lost) for needs, keys in self.writers
-                   if all(matches(k, *present) for k in needs))
+        any_key, preds, classes = self._watched(present)
+        lost_preds, lost_classes = lost
+        return (any_key and bool(lost_preds)) or not preds.isdisjoint(lost_preds) \
+            or not classes.isdisjoint(lost_classes)
+
+    def _watched(self, present: tuple[Collection[str], Collection[str]]) -> tuple[bool, frozenset, frozenset]:
+        """The keys whose loss matters while ``present`` holds the keys with facts (the writers whose
+        every needed key has facts): whether any key does, the predicates, the classes.  ``present``
+        only grows between a reasoner's full runs and general phases (which call :meth:`forget`), so
+        its sizes tell it: a robot step asks twice per REASON and the answer is made once."""
+        mark = (len(present[0]), len(present[1]))
+        if present is self._present and mark == self._mark:
+            return self._keys
+        keys = {k for needs, watched in self.writers if all(matches(n, *present) for n in needs) for k in watched}
+        self._keys = (any(k[0] == "*" for k in keys), frozenset(k[1] for k in keys if k[0] == "p"),
+                      frozenset(k[1] for k in keys if k[0] == "t"))
+        self._present, self._mark = present, mark
+        return self._keys
+
+    def forget(self) -> None:
+        """The keys with facts may have shrunk (a full run, or the general phases): decide afresh."""
+        self._present = None
 
 
 def _may_write(written: ReadKey, key: ReadKey) -> bool:
