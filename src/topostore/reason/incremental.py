@@ -394,9 +394,11 @@ class IncrementalReasoner:
 
     def _publish_entailed(self, changed: bool) -> None:
         """Bring the ENTAILED graph up to date from what this maintenance touched (see :mod:`.entailed`)."""
-        if not changed or not self.ruleset.entailed_predicates:
+        if not changed:
             return
-        self.requests.flush()
+        self.requests.flush()  # what follows reads the store (the touched types too)
+        if not self.ruleset.entailed_predicates:
+            return
         found = self.changed.touched_watched((NEW_FACTS, OVERDELETED))
         if found is None:  # a graph too large to read into memory, or a store reached over HTTP
             refresh_entailed(self.store, self.ruleset, (NEW_FACTS, OVERDELETED), self.changed.quads)
