@@ -67,8 +67,7 @@ def refresh_touched(store: Store, touched: list[Triple], twin_changed: Collectio
     if store.round_trips:  # one batch of four look-ups each: one request
         _publish(store, touched, _standings(store, touched))
         return
-    aux = AUX
-    twins = store.contains_quads([Quad(t.subject, internal(t.predicate), t.object, aux)
+    twins = store.contains_quads([Quad(t.subject, internal(t.predicate), t.object, AUX)
                                   for t in touched if t not in twin_changed])
     found = iter(twins)
     left = [t for t in touched if t in twin_changed or next(found)]
