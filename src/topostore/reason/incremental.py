@@ -84,11 +84,12 @@ from ..stores.base import Store, key_census
 from . import flip
 from .change_checks import ChangeChecks
 from .changed import ChangedGraphs, Decisions
+from .closing import close_full
 from .compiled_step import MAX_PROGRAMS, CompiledStep
 from .component import WHOLE_ROUNDS
 from .consistency import Violation, check_consistency
 from .dred import Deletion, can_prove
-from .entailed import publish_entailed, refresh_entailed
+from .entailed import refresh_entailed
 from .flips import Flips
 from .materialize import Materializer
 from .negation import ASKED, Completion, completion_text, deferred
@@ -263,7 +264,7 @@ class IncrementalReasoner:
         try:
             program.write(self.store)
             materializer = Materializer(self.store, program.rules, profile=profile)
-            stats = materializer.run()
+            stats = materializer.run(count=False)  # counted after the fixpoint (close_full)
             failed = False
         finally:
             try:
@@ -274,14 +275,15 @@ class IncrementalReasoner:
                 # the run's own error is the one to report; the next full REASON drops these graphs first
         start = time.perf_counter()
         # where the keys the rules and checks read have facts: the checks read a key of one graph
-        # there, and maintenance starts from the keys with facts (one query for both)
-        keys = self.key_graphs()
-        violations = check_consistency(self.store, self.ruleset, keys)
-        publish_entailed(self.store, self.ruleset)
+        # there, and maintenance starts from the keys with facts (one query for both); the checks
+        # beside the publication where the store overlaps (:mod:`.closing`)
+        closed = close_full(self.store, self.ruleset, self.key_graphs)
+        keys, violations = closed.keys, closed.violations
+        stats.derived = closed.inferred
         stats.mode, stats.reason = "full", why
         # "quiet": the closure is the stratum-0 fixpoint, which maintenance keeps up to date
         # (a negated premise may have fired and stopped matching since, so ask the run)
-        self.state = MaintenanceState(True, not materializer.upper_derived, self.store.count(ASSERTED), violations,
+        self.state = MaintenanceState(True, not materializer.upper_derived, closed.asserted, violations,
                                       with_facts(keys), with_facts(keys, ASSERTED))
         self.change_checks.state = self.state
         stats.seconds += time.perf_counter() - start

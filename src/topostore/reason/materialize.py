@@ -240,8 +240,9 @@ class Materializer:
             " ; ".join(f"DROP SILENT GRAPH {g}" for g in (INFERRED, AUX, DELTA, DELTA_NEXT, NEW_INFERRED, NEW_AUX))
         )
 
-    def run(self) -> ReasonStats:
-        """Recompute the inferred graphs from the asserted graph alone.
+    def run(self, count: bool = True) -> ReasonStats:
+        """Recompute the inferred graphs from the asserted graph alone (``count``: the inferred graph's
+        size into the stats; a caller counting it beside other reads, :mod:`.closing`, says no).
 
         The first stratum is evaluated component by component of the rule
         dependency graph, in topological order (:func:`evaluation_order`): a rule
@@ -266,7 +267,8 @@ class Materializer:
             self._direct = None
             self._deferring = set()
             self.store.update(f"DROP SILENT GRAPH {DELTA} ; DROP SILENT GRAPH {DELTA_NEXT}")
-        stats.derived = self.store.count(INFERRED)
+        if count:
+            stats.derived = self.store.count(INFERRED)
         stats.seconds = time.perf_counter() - start
         return stats
 

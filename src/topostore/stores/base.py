@@ -72,6 +72,9 @@ class Store:
     whole_programs = True
     #: whether a literal read from this store is in the form Oxigraph stores it (its own stored form)
     canonical_reads = False
+    #: whether a read-only query may run in a second thread while this thread writes (in memory: the
+    #: store's own engine, which releases the GIL; :mod:`.overlap` holds the contract)
+    overlaps = False
 
     def __init__(self) -> None:
         #: how each committed literal was written (Oxigraph canonicalises numbers)
@@ -267,10 +270,13 @@ class Store:
         return parse_triples(data, fmt, base_iri, source, progress)
 
     # ------------------------------------------------------------ writes and reads an implementation specialises
-    def _commit_stream(self, quads: Iterator[Quad], extra: list[Quad], count: bool = False) -> int | None:
+    def _commit_stream(self, quads: Iterator[Quad], extra: list[Quad], count: bool = False,
+                       chunked: bool = False) -> int | None:
         """Add ``quads`` (made one by one) and ``extra`` in one commit; stores that can take a
         stream without a list override this.  Asked to ``count``: how many quads the store gained,
-        where it can tell that without a query (None otherwise, and here)."""
+        where it can tell that without a query (None otherwise, and here).  ``chunked``: the caller
+        takes the graph back to empty on an error, so the write need not be atomic (a store may then
+        write chunks as they come, see :mod:`.overlap`)."""
         self._commit([*quads, *extra], [])
         return None
 
