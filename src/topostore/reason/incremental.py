@@ -84,7 +84,7 @@ from ..stores.base import Store, key_census
 from . import flip
 from .change_checks import ChangeChecks
 from .changed import ChangedGraphs, Decisions
-from .closing import close_full
+from .closing import close_full, counting_asserted
 from .compiled_step import MAX_PROGRAMS, CompiledStep
 from .component import WHOLE_ROUNDS
 from .consistency import Violation, check_consistency
@@ -261,23 +261,24 @@ class IncrementalReasoner:
         self._clear_scratch()
         program = full_program(self.ruleset)  # large schema tables as one generic rule each
         failed = True
-        try:
-            program.write(self.store)
-            materializer = Materializer(self.store, program.rules, profile=profile)
-            stats = materializer.run(count=False)  # counted after the fixpoint (close_full)
-            failed = False
-        finally:
+        with counting_asserted(self.store) as asserted:  # beside the rules where the store overlaps
             try:
-                program.drop(self.store)
-            except Exception:
-                if not failed:
-                    raise
-                # the run's own error is the one to report; the next full REASON drops these graphs first
+                program.write(self.store)
+                materializer = Materializer(self.store, program.rules, profile=profile)
+                stats = materializer.run(count=False)  # counted after the fixpoint (close_full)
+                failed = False
+            finally:
+                try:
+                    program.drop(self.store)
+                except Exception:
+                    if not failed:
+                        raise
+                    # the run's own error is the one to report; the next full REASON drops these graphs first
         start = time.perf_counter()
         # where the keys the rules and checks read have facts: the checks read a key of one graph
         # there, and maintenance starts from the keys with facts (one query for both); the checks
         # beside the publication where the store overlaps (:mod:`.closing`)
-        closed = close_full(self.store, self.ruleset, self.key_graphs)
+        closed = close_full(self.store, self.ruleset, self.key_graphs, asserted.result())
         keys, violations = closed.keys, closed.violations
         stats.derived = closed.inferred
         stats.mode, stats.reason = "full", why

@@ -22,10 +22,15 @@ The contract, for both:
   keeps to it);
 * **in memory only**: a remote or durable store is not asked to overlap (its callers stay sequential,
   see :attr:`topostore.stores.base.Store.overlaps`).
+
+``TOPOSTORE_OVERLAP=0`` in the environment turns both off (:data:`ENABLED`): everything then runs in the
+caller's thread, in the order a sequential caller takes (a machine without a free core gains nothing
+from the second thread; the benchmarks compare the two ways in one tree).
 """
 
 from __future__ import annotations
 
+import os
 from collections.abc import Callable, Iterable
 from concurrent.futures import Future, ThreadPoolExecutor
 from itertools import islice
@@ -38,13 +43,19 @@ Q = TypeVar("Q")
 #: small enough that the first insertion starts early and two chunks in memory cost little
 CHUNK = 65_536
 
+#: whether the second thread is used at all (``TOPOSTORE_OVERLAP=0``: never)
+ENABLED = os.environ.get("TOPOSTORE_OVERLAP", "1") != "0"
 
-def pipelined_extend(write: Callable[[list[Q]], object], quads: Iterable[Q], chunk: int = CHUNK) -> None:
+
+def pipelined_extend(write: Callable[[Iterable[Q]], object], quads: Iterable[Q], chunk: int = CHUNK) -> None:
     """``write`` every quad of ``quads``, in order, chunk by chunk: chunk *n* is written in a worker thread
     while the caller's thread makes chunk *n + 1* (at most one write at a time, at most two chunks held).
 
     A document of one chunk is written in the caller's thread (no thread for a small write).  Not atomic:
     an error in ``quads`` or in a write leaves the chunks written before it; the caller takes them out."""
+    if not ENABLED:
+        write(quads)
+        return
     it = iter(quads)
     batch = list(islice(it, chunk))
     following = list(islice(it, chunk)) if len(batch) == chunk else []
@@ -86,7 +97,7 @@ class Beside(Generic[T]):
 
     def __init__(self, read: Callable[[], T], overlap: bool = True) -> None:
         self._read = read
-        self._overlap = overlap
+        self._overlap = overlap and ENABLED
         self._pool: ThreadPoolExecutor | None = None
         self._future: Future | None = None
         self._value: T | None = None
