@@ -1,5 +1,5 @@
-"""The one module that runs a second thread (topostore.stores.overlap) and its two users: a streamed load
-written chunk by chunk while the next chunk is parsed, and a full REASON's checks beside its publication."""
+"""The one module that runs a second thread (topostore.stores.overlap) and its user: a full REASON's
+census and checks beside its publication, its asserted graph counted beside its rules."""
 
 from __future__ import annotations
 
@@ -10,68 +10,16 @@ import pytest
 from pyoxigraph import Literal, NamedNode, Quad
 
 from topostore import Ontology
-from topostore.rdf.vocab import ASSERTED, INFERRED, SKOLEM_PREFIX
+from topostore.rdf.vocab import ASSERTED, SKOLEM_PREFIX
 from topostore.reason import closing
 from topostore.stores import memory_store
-from topostore.stores.overlap import Beside, pipelined_extend
+from topostore.stores.overlap import Beside
 
 EX = "http://example.org/o#"
 
 
 def _threads() -> set[threading.Thread]:
     return set(threading.enumerate())
-
-
-def test_pipelined_extend_writes_every_quad_in_order_one_at_a_time():
-    written: list[list[int]] = []
-    busy = threading.Lock()
-
-    def write(batch: list[int]) -> None:
-        assert busy.acquire(blocking=False), "two writes at once"
-        try:
-            written.append(batch)
-        finally:
-            busy.release()
-
-    before = _threads()
-    pipelined_extend(write, iter(range(10)), chunk=3)
-    assert [x for b in written for x in b] == list(range(10))
-    assert [len(b) for b in written] == [3, 3, 3, 1]
-    assert _threads() == before
-
-
-@pytest.mark.parametrize("n", [0, 1, 3])
-def test_pipelined_extend_of_one_chunk_stays_in_the_callers_thread(n):
-    caller = threading.current_thread()
-    seen = []
-    pipelined_extend(lambda b: seen.append((threading.current_thread(), b)), range(n), chunk=3)
-    assert seen == ([(caller, list(range(n)))] if n else [])
-
-
-def test_pipelined_extend_propagates_an_error_of_the_input_and_joins_its_thread():
-    written: list[int] = []
-
-    def quads():
-        yield from range(7)
-        raise ValueError("bad literal")
-
-    before = _threads()
-    with pytest.raises(ValueError, match="bad literal"):
-        pipelined_extend(written.extend, quads(), chunk=3)
-    # whole chunks made before the error, in order (the caller empties the graph)
-    assert written == list(range(len(written))) and len(written) % 3 == 0
-    assert _threads() == before
-
-
-def test_pipelined_extend_propagates_an_error_of_a_write():
-    def write(batch):
-        if batch[0] == 3:
-            raise OSError("disk full")
-
-    before = _threads()
-    with pytest.raises(OSError, match="disk full"):
-        pipelined_extend(write, range(10), chunk=3)
-    assert _threads() == before
 
 
 def test_beside_runs_in_another_thread_and_joins_it():
@@ -130,43 +78,12 @@ def _chain(n: int) -> str:
     return "\n".join(lines)
 
 
-def test_a_streamed_load_of_many_chunks_equals_one_write(tmp_path, monkeypatch):
-    path = tmp_path / "chain.ttl"
-    path.write_text(_chain(200))
-    one = Ontology()
-    monkeypatch.setattr("topostore.stores.overlap.CHUNK", 10**9)
-    n_one = one.load(path)
-    monkeypatch.undo()
-    monkeypatch.setattr("topostore.stores.oxigraph.pipelined_extend",
-                        lambda write, quads: pipelined_extend(write, quads, chunk=50))
-    many = Ontology()
-    n_many = many.load(path)
-    assert n_one == n_many
-    assert _shape(many, ASSERTED) == _shape(one, ASSERTED)
-    one.reason()
-    many.reason()
-    assert _shape(many, INFERRED) == _shape(one, INFERRED)
-
-
 def _shape(onto: Ontology, graph) -> Counter:
-    """The triples of ``graph``, each skolem IRI (named apart per document) as one placeholder."""
+    """The triples of ``graph`` (None: every graph), each skolem IRI (named apart per document) as one
+    placeholder."""
     def term(t):
         return "_:b" if isinstance(t, NamedNode) and t.value.startswith(SKOLEM_PREFIX) else t
     return Counter((term(t.subject), t.predicate, term(t.object)) for t in onto.store.triples(graph=graph))
-
-
-def test_a_streamed_load_failing_in_a_later_chunk_leaves_nothing(tmp_path, monkeypatch):
-    text = _chain(200) + '\n:bad :label "x"^^xsd:integer .'
-    path = tmp_path / "bad.ttl"
-    path.write_text(text)
-    monkeypatch.setattr("topostore.stores.oxigraph.pipelined_extend",
-                        lambda write, quads: pipelined_extend(write, quads, chunk=50))
-    onto = Ontology()
-    before = _threads()
-    with pytest.raises(Exception, match="(?i)integer|invalid"):
-        onto.load(path)
-    assert next(iter(onto.store.triples(graph=ASSERTED)), None) is None
-    assert _threads() == before
 
 
 def test_a_full_reason_with_checks_beside_equals_the_sequential_one(tmp_path, monkeypatch):
@@ -182,3 +99,36 @@ def test_a_full_reason_with_checks_beside_equals_the_sequential_one(tmp_path, mo
                         onto._reasoner.state.asserted_size, _shape(onto, None)))
     assert answers[0] == answers[1]
     assert answers[0][1], "the disjointness violation is found"
+
+
+def test_a_full_reason_reads_in_a_worker_thread_and_joins_it(tmp_path, monkeypatch):
+    path = tmp_path / "chain.ttl"
+    path.write_text(_chain(50))
+    onto = Ontology()
+    onto.load(path)
+    where = []
+    checks = closing.check_consistency
+    monkeypatch.setattr(closing, "check_consistency",
+                        lambda *a: where.append(threading.current_thread()) or checks(*a))
+    before = _threads()
+    onto.reason(mode="full")
+    assert where and where[0] is not threading.current_thread()
+    assert _threads() == before
+
+
+def test_a_failing_check_in_the_worker_fails_the_reason(tmp_path, monkeypatch):
+    path = tmp_path / "chain.ttl"
+    path.write_text(_chain(50))
+    onto = Ontology()
+    onto.load(path)
+
+    def broken(*args):
+        raise RuntimeError("check failed")
+
+    monkeypatch.setattr(closing, "check_consistency", broken)
+    before = _threads()
+    with pytest.raises(RuntimeError, match="check failed"):
+        onto.reason(mode="full")
+    assert _threads() == before
+    monkeypatch.undo()
+    assert onto.reason(mode="full").consistent  # the next REASON recomputes from scratch

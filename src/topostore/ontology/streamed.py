@@ -78,18 +78,15 @@ class _Literals:
 
 def stream_into_empty(store: Store, data: bytes | str, fmt: RdfFormat, base_iri: str | None, source: str,
                       progress: Callable[[int], None] | None = None) -> StreamedDocument:
-    """Write a document into the empty asserted graph of ``store`` in one pass, its literal forms recorded;
-    what it found.  An in-memory store writes it in chunks, each inserted while the next is parsed
-    (:func:`topostore.stores.overlap.pipelined_extend`), so an error (syntax, an invalid value) may leave
-    part of the document written: the caller takes the graph back to empty on any failure."""
+    """Write a document into the empty asserted graph of ``store`` in one pass (one commit), its literal
+    forms recorded; what it found.  An error (syntax, an invalid value) leaves the graph as it was only
+    where the commit is all or nothing: the caller takes the graph back to empty on any failure."""
     found = StreamedDocument()
     literals = _Literals(found)
     quads = parsed_quads(data, fmt, base_iri, source)
     if progress is not None:
         quads = _counted(quads, progress)
-    # chunked: the insertion of each chunk overlaps the parse and checks of the next (the caller empties
-    # the graph on any failure, so the write need not be all or nothing)
-    gained = store._commit_stream(_written(quads, literals, store), [], count=True, chunked=True)
+    gained = store._commit_stream(_written(quads, literals, store), [], count=True)
     if gained is None or store.durable:  # a durable store's gain counts the persisted forms too
         found.triples = _distinct_triples(store, len(literals.distinct))
     else:  # one quad per value written (its first spelling), every distinct literal triple counted

@@ -270,13 +270,10 @@ class Store:
         return parse_triples(data, fmt, base_iri, source, progress)
 
     # ------------------------------------------------------------ writes and reads an implementation specialises
-    def _commit_stream(self, quads: Iterator[Quad], extra: list[Quad], count: bool = False,
-                       chunked: bool = False) -> int | None:
+    def _commit_stream(self, quads: Iterator[Quad], extra: list[Quad], count: bool = False) -> int | None:
         """Add ``quads`` (made one by one) and ``extra`` in one commit; stores that can take a
         stream without a list override this.  Asked to ``count``: how many quads the store gained,
-        where it can tell that without a query (None otherwise, and here).  ``chunked``: the caller
-        takes the graph back to empty on an error, so the write need not be atomic (a store may then
-        write chunks as they come, see :mod:`.overlap`)."""
+        where it can tell that without a query (None otherwise, and here)."""
         self._commit([*quads, *extra], [])
         return None
 

@@ -1,29 +1,25 @@
-"""The store's native work overlapped with Python work: the one place topostore runs a second thread.
+"""A read-only query beside a write: the one place topostore runs a second thread.
 
-pyoxigraph 0.5 releases the GIL while it evaluates a query and while ``Store.extend`` inserts the quads
-it has read (reading them from Python holds the GIL), and it runs one writer at a time: two updates in
-two threads do not overlap, an update and a query do.  So, on a machine with a free core, two overlaps
-pay and no other does:
+pyoxigraph 0.5 releases the GIL while it evaluates a query, and it runs one writer at a time: two updates
+in two threads do not overlap, an update and a query do.  So, on a machine with a free core, a read-only
+evaluation in a worker thread while the caller's thread writes (:class:`Beside`) can take the read off
+the wall time; its users are a full REASON's reads (:mod:`topostore.reason.closing`).  (A big write cut
+into chunks, each inserted in a worker thread while the next is parsed, was measured and not kept: the
+insertion releases the GIL too, but the load cost 10-14 % more CPU and no less wall time.)
 
-* :func:`pipelined_extend`: a big write cut into chunks, each inserted by a worker thread while the
-  caller's thread makes the next chunk (a document's parse and checks, see
-  :mod:`topostore.ontology.streamed`);
-* :class:`Beside`: a read-only evaluation (a query) in a worker thread while the caller's thread writes.
+The contract:
 
-The contract, for both:
+* **one worker thread**, started and joined inside the ``with`` block: no thread outlives it, even when
+  either side raises;
+* **errors propagated**: the worker's exception is raised in the caller's thread by
+  :meth:`Beside.result`; when both sides fail, the caller's own error is the one raised;
+* **the worker reads only what the caller's thread does not change meanwhile**: the caller's writes
+  leave the graphs the reader reads alone (the caller says which, and keeps to it); the engine gives
+  each query a consistent snapshot;
+* **in memory only**: a remote or durable store, or one with a transaction open, is not asked to
+  overlap (its callers stay sequential, see :attr:`topostore.stores.base.Store.overlaps`).
 
-* **one worker thread**, started and joined inside the call (:class:`Beside`: inside its ``with``
-  block): no thread outlives the call, even when either side raises;
-* **errors propagated**: the worker's exception is raised in the caller's thread; when both sides fail,
-  the caller's own error is the one raised;
-* **the worker reads only what the caller's thread does not change meanwhile**: :func:`pipelined_extend`
-  writes chunks in the caller's order, one at a time, into graphs nothing reads until it returns; a
-  :class:`Beside` reader reads graphs the caller's writes leave alone (the caller says which, and
-  keeps to it);
-* **in memory only**: a remote or durable store is not asked to overlap (its callers stay sequential,
-  see :attr:`topostore.stores.base.Store.overlaps`).
-
-``TOPOSTORE_OVERLAP=0`` in the environment turns both off (:data:`ENABLED`): everything then runs in the
+``TOPOSTORE_OVERLAP=0`` in the environment turns it off (:data:`ENABLED`): everything then runs in the
 caller's thread, in the order a sequential caller takes (a machine without a free core gains nothing
 from the second thread; the benchmarks compare the two ways in one tree).
 """
@@ -31,48 +27,14 @@ from the second thread; the benchmarks compare the two ways in one tree).
 from __future__ import annotations
 
 import os
-from collections.abc import Callable, Iterable
+from collections.abc import Callable
 from concurrent.futures import Future, ThreadPoolExecutor
-from itertools import islice
 from typing import Generic, TypeVar
 
 T = TypeVar("T")
-Q = TypeVar("Q")
-
-#: quads per chunk of :func:`pipelined_extend`: big enough that a chunk's insertion outweighs a hand-over,
-#: small enough that the first insertion starts early and two chunks in memory cost little
-CHUNK = 65_536
 
 #: whether the second thread is used at all (``TOPOSTORE_OVERLAP=0``: never)
 ENABLED = os.environ.get("TOPOSTORE_OVERLAP", "1") != "0"
-
-
-def pipelined_extend(write: Callable[[Iterable[Q]], object], quads: Iterable[Q], chunk: int = CHUNK) -> None:
-    """``write`` every quad of ``quads``, in order, chunk by chunk: chunk *n* is written in a worker thread
-    while the caller's thread makes chunk *n + 1* (at most one write at a time, at most two chunks held).
-
-    A document of one chunk is written in the caller's thread (no thread for a small write).  Not atomic:
-    an error in ``quads`` or in a write leaves the chunks written before it; the caller takes them out."""
-    if not ENABLED:
-        write(quads)
-        return
-    it = iter(quads)
-    batch = list(islice(it, chunk))
-    following = list(islice(it, chunk)) if len(batch) == chunk else []
-    if not following:
-        if batch:
-            write(batch)
-        return
-    with ThreadPoolExecutor(max_workers=1, thread_name_prefix="topostore-write") as pool:
-        pending: Future = pool.submit(write, batch)
-        try:
-            while following:
-                batch, following = following, list(islice(it, chunk)) if len(following) == chunk else []
-                pending.result()  # the previous chunk is in: hand over the next one
-                pending = pool.submit(write, batch)
-        finally:
-            _settle(pending)
-        pending.result()
 
 
 def _settle(pending: Future) -> None:
@@ -125,4 +87,4 @@ class Beside(Generic[T]):
         return self._value  # type: ignore[return-value]
 
 
-__all__ = ["CHUNK", "Beside", "pipelined_extend"]
+__all__ = ["ENABLED", "Beside"]

@@ -22,7 +22,6 @@ from .base import Store
 from .data_text import data_update, quad_data  # noqa: F401 - quad_data: named here since the first release
 from .held import HeldGraphs
 from .literal_forms import stored_literal
-from .overlap import pipelined_extend
 from .reads import key_census
 
 
@@ -105,22 +104,17 @@ class OxigraphStore(Store):
             if self.sync:
                 self._ox.flush()
 
-    def _commit_stream(self, quads: Iterator[Quad], extra: list[Quad], count: bool = False,
-                       chunked: bool = False) -> int | None:
-        """In memory, the store takes the quads as they are made (one atomic ``extend``), or with ``chunked``
-        chunk by chunk, each chunk inserted in a worker thread while the next one is made
-        (:func:`.overlap.pipelined_extend`: the insertion releases the GIL); a chunked write is not atomic,
-        its caller empties the graph on an error.  Asked to ``count``, it counts its quads before and
-        after (0.08 s for 900,000 quads, where a SPARQL count of the graph takes 0.45 s)."""
+    def _commit_stream(self, quads: Iterator[Quad], extra: list[Quad], count: bool = False) -> int | None:
+        """In memory, the store takes the quads as they are made (one atomic ``extend``); asked to
+        ``count``, it counts its quads before and after (0.08 s for 900,000 quads, where a SPARQL count
+        of the graph takes 0.45 s).  Written in chunks, each inserted in a second thread while the next
+        is parsed, the same load cost 10-14 % more CPU and no less wall time (docs/benchmarks.md)."""
         if not self._in_memory:
-            return super()._commit_stream(quads, extra, count, chunked)
+            return super()._commit_stream(quads, extra, count)
         self._release_held()  # a bulk write may name any graph: not scanned for scratch graphs
         self._writes += 1
         before = len(self._ox) if count else 0
-        if chunked:
-            pipelined_extend(self._ox.extend, chain(quads, extra))
-        else:
-            self._ox.extend(chain(quads, extra))
+        self._ox.extend(chain(quads, extra))
         return len(self._ox) - before if count else None
 
     def add_scratch(self, triples, graph: NamedNode) -> None:
