@@ -38,6 +38,7 @@ from ..stores.base import Store
 from . import limits
 from .class_unions import class_unions
 from .deferred_asks import ask_unknown
+from .early_asks import EarlyAsks
 from .few_solutions import few_solutions
 from .first_pass import first_pass, without
 from .insert_text import distinct_pays, insert_text
@@ -106,6 +107,8 @@ class Materializer:
         self._joined: set[int] = set()
         #: rules of :meth:`run`'s ordered pass whose property paths read asserted facts alone
         self._paths: set[int] = set()
+        #: while :meth:`run` reaches its fixpoint: the deferred asks started early (:mod:`.early_asks`)
+        self._early: EarlyAsks | None = None
 
     def _run(self, index: int, delta_index: int | None, stats: ReasonStats, asserted_only: bool = False,
              first: bool = False, union: tuple[int, ...] = ()) -> None:
@@ -133,6 +136,8 @@ class Materializer:
                                                   self._direct, graphs, derived, [self.rules[j] for j in union], few)
         stats.evaluations += 1
         self._queued.add(self.rules[index].writes())
+        if self._early is not None:
+            self._early.wrote(self.rules[index].writes())
         self._timed(text, self.rules[index].name, stats)
 
     def _flush(self) -> None:
@@ -315,10 +320,23 @@ class Materializer:
         self._paths = asserted_paths(self.rules, [i for c in ordered for i in c])
         # a text reading a key in one graph holds only for this run's asserted keys: none is kept from before
         self._texts = {k: t for k, t in self._texts.items() if not k[4]}
+        self._early = EarlyAsks(self, ordered, rest)
         try:
-            for component in ordered:
+            self._fixpoint(stats, strata, ordered, rest, back)
+        finally:
+            self._early.close()
+            self._early = None
+
+    def _fixpoint(self, stats: ReasonStats, strata: list[int], ordered: list[list[int]], rest: list[int],
+                  back: set[int]) -> None:
+        """The ordered components, then the rest and the upper strata (see :meth:`run`); each deferred ask
+        started once the components writing what it reads are done (:mod:`.early_asks`)."""
+        self._early.after(-1)
+        try:
+            for c, component in enumerate(ordered):
                 first_pass(self, component, back, stats)
                 self.propagate(component, stats)
+                self._early.after(c)
         finally:
             self._graphs = None
             self._unions, self._joined, self._paths = {}, set(), set()
