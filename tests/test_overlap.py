@@ -11,7 +11,7 @@ from pyoxigraph import Literal, NamedNode, Quad
 
 from topostore import Ontology
 from topostore.rdf.vocab import ASSERTED, SKOLEM_PREFIX
-from topostore.reason import closing
+from topostore.reason import closing, early_reads
 from topostore.stores import memory_store
 from topostore.stores.overlap import Beside
 
@@ -92,6 +92,7 @@ def test_a_full_reason_with_checks_beside_equals_the_sequential_one(tmp_path, mo
     answers = []
     for overlap in (False, True):
         monkeypatch.setattr(closing, "Beside", lambda read, overlap=True, _o=overlap: Beside(read, overlap and _o))
+        monkeypatch.setattr(early_reads, "ENABLED", overlap)
         onto = Ontology()
         onto.load(path)
         report = onto.reason(mode="full")

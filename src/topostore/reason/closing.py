@@ -14,7 +14,7 @@ other, in the order a sequential REASON takes: census, checks, publication, coun
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 
 from ..compile.rule import RuleSet
@@ -47,18 +47,20 @@ def counting_asserted(store: Store) -> Beside[int]:
     return Beside(lambda: store.count(ASSERTED), overlap=store.overlaps)
 
 
-def close_full(store: Store, rules: RuleSet, census: Callable[[], KeyGraphs], asserted: int) -> Closed:
+def close_full(store: Store, rules: RuleSet, census: Callable[[], KeyGraphs], asserted: int,
+               checked: Mapping[int, list[dict]] | None = None) -> Closed:
     """The census (``census``), the consistency checks and the inferred graph's size, with the entailed-only
     graph published; where the store overlaps, the census and the checks in a worker thread while this one
-    publishes and counts.  ``asserted``: the asserted graph's size (:func:`counting_asserted`)."""
+    publishes and counts.  ``asserted``: the asserted graph's size (:func:`counting_asserted`); ``checked``:
+    the matches of the checks run beside the fixpoint already (:mod:`.early_reads`), by index."""
     def reads() -> tuple[KeyGraphs, list[Violation]]:
         keys = census()
-        return keys, check_consistency(store, rules, keys)
+        return keys, check_consistency(store, rules, keys, checked)
 
-    with Beside(reads, overlap=store.overlaps) as checked:
+    with Beside(reads, overlap=store.overlaps) as reading:
         publish_entailed(store, rules)
         inferred = store.count(INFERRED)
-    keys, violations = checked.result()
+    keys, violations = reading.result()
     return Closed(keys, violations, asserted, inferred)
 
 

@@ -38,7 +38,7 @@ def ask_unknown(run: Materializer, stats: ReasonStats, active: list[int]) -> Non
             idle = None  # a rule of a variable predicate may have written the key
         key = idle.key if idle is not None else None
         if key is None and run._early is not None and run._early.answer(i) is False:
-            continue  # asked early, beside the later components' writes: no match (:mod:`.early_asks`)
+            continue  # asked early, beside the later components' writes: no match (:mod:`.early_reads`)
         if key is None:
             text = insert_text(run.rules[i], None, run.planned, run._lateral, run._direct,
                                only_asserted(run.rules[i], run._derived, run._asserted, asking))

@@ -265,6 +265,7 @@ class IncrementalReasoner:
             try:
                 program.write(self.store)
                 materializer = Materializer(self.store, program.rules, profile=profile)
+                materializer.checks = self.ruleset.checks  # those final early run beside the fixpoint
                 stats = materializer.run(count=False)  # counted after the fixpoint (close_full)
                 failed = False
             finally:
@@ -278,7 +279,7 @@ class IncrementalReasoner:
         # where the keys the rules and checks read have facts: the checks read a key of one graph
         # there, and maintenance starts from the keys with facts (one query for both); the checks
         # beside the publication where the store overlaps (:mod:`.closing`)
-        closed = close_full(self.store, self.ruleset, self.key_graphs, asserted.result())
+        closed = close_full(self.store, self.ruleset, self.key_graphs, asserted.result(), materializer.checked)
         keys, violations = closed.keys, closed.violations
         stats.derived = closed.inferred
         stats.mode, stats.reason = "full", why

@@ -38,7 +38,7 @@ from ..stores.base import Store
 from . import limits
 from .class_unions import class_unions
 from .deferred_asks import ask_unknown
-from .early_asks import EarlyAsks
+from .early_reads import EarlyReads
 from .few_solutions import few_solutions
 from .first_pass import first_pass, without
 from .insert_text import distinct_pays, insert_text
@@ -107,8 +107,12 @@ class Materializer:
         self._joined: set[int] = set()
         #: rules of :meth:`run`'s ordered pass whose property paths read asserted facts alone
         self._paths: set[int] = set()
-        #: while :meth:`run` reaches its fixpoint: the deferred asks started early (:mod:`.early_asks`)
-        self._early: EarlyAsks | None = None
+        #: while :meth:`run` reaches its fixpoint: the deferred asks and checks started early (:mod:`.early_reads`)
+        self._early: EarlyReads | None = None
+        #: the consistency checks a caller will run after :meth:`run`: those whose keys are final early are
+        #: run beside the fixpoint, their matches left in :attr:`checked` by their index here
+        self.checks: list[Rule] = []
+        self.checked: dict[int, list[dict]] = {}
 
     def _run(self, index: int, delta_index: int | None, stats: ReasonStats, asserted_only: bool = False,
              first: bool = False, union: tuple[int, ...] = ()) -> None:
@@ -261,6 +265,7 @@ class Materializer:
         """
         start = time.perf_counter()
         stats = ReasonStats()
+        self.checked = {}
         self.clear()
         self._derived = set()
         self._direct = (DELTA, DELTA_NEXT)
@@ -320,17 +325,20 @@ class Materializer:
         self._paths = asserted_paths(self.rules, [i for c in ordered for i in c])
         # a text reading a key in one graph holds only for this run's asserted keys: none is kept from before
         self._texts = {k: t for k, t in self._texts.items() if not k[4]}
-        self._early = EarlyAsks(self, ordered, rest)
+        self._early = early = EarlyReads(self, ordered, rest, self.checks)
+        completed = False
         try:
             self._fixpoint(stats, strata, ordered, rest, back)
+            completed = True
         finally:
-            self._early.close()
             self._early = None
+            early.close(completed)
+        self.checked = early.checked
 
     def _fixpoint(self, stats: ReasonStats, strata: list[int], ordered: list[list[int]], rest: list[int],
                   back: set[int]) -> None:
         """The ordered components, then the rest and the upper strata (see :meth:`run`); each deferred ask
-        started once the components writing what it reads are done (:mod:`.early_asks`)."""
+        started once the components writing what it reads are done (:mod:`.early_reads`)."""
         self._early.after(-1)
         try:
             for c, component in enumerate(ordered):

@@ -2,15 +2,16 @@
 
 pyoxigraph 0.5 releases the GIL while it evaluates a query, and it runs one writer at a time: two updates
 in two threads do not overlap, an update and a query do.  So, on a machine with a free core, a read-only
-evaluation in a worker thread while the caller's thread writes (:class:`Beside`) can take the read off
-the wall time; its users are a full REASON's reads (:mod:`topostore.reason.closing`).  (A big write cut
+evaluation in a worker thread while the caller's thread writes (:class:`Beside`, or :class:`Reader` for a
+series of them) can take the read off the wall time; its users are a full REASON's reads
+(:mod:`topostore.reason.closing`, :mod:`topostore.reason.early_reads`).  (A big write cut
 into chunks, each inserted in a worker thread while the next is parsed, was measured and not kept: the
 insertion releases the GIL too, but the load cost 10-14 % more CPU and no less wall time.)
 
 The contract:
 
-* **one worker thread**, started and joined inside the ``with`` block: no thread outlives it, even when
-  either side raises;
+* **one worker thread** per :class:`Beside` or :class:`Reader`, started and joined inside its ``with``
+  block: no thread outlives it, even when either side raises;
 * **errors propagated**: the worker's exception is raised in the caller's thread by
   :meth:`Beside.result`; when both sides fail, the caller's own error is the one raised;
 * **the worker reads only what the caller's thread does not change meanwhile**: the caller's writes
@@ -87,4 +88,35 @@ class Beside(Generic[T]):
         return self._value  # type: ignore[return-value]
 
 
-__all__ = ["ENABLED", "Beside"]
+class Reader:
+    """One worker thread running read-only evaluations one after the other, in the order given, while the
+    caller's thread writes; for reads started at several points of a long run (:mod:`topostore.reason.early_reads`)::
+
+        with Reader() as reader:
+            answer = reader.submit(lambda: ask(store))   # a Future
+            ...                                          # writes the ask does not read
+            if answer.result(): ...                      # waits for it
+            answer.cancel()                              # or drops it, if not started yet
+
+    The thread starts with the first read and is joined when the block ends, also when it raises (reads
+    not started then are dropped).  Only used where the store overlaps and :data:`ENABLED` holds."""
+
+    def __init__(self) -> None:
+        self._pool: ThreadPoolExecutor | None = None
+
+    def __enter__(self) -> Reader:
+        return self
+
+    def submit(self, read: Callable[[], T]) -> Future:
+        """Queue ``read`` after the reads queued before it; its Future gives its value or raises its error."""
+        if self._pool is None:
+            self._pool = ThreadPoolExecutor(max_workers=1, thread_name_prefix="topostore-read")
+        return self._pool.submit(read)
+
+    def __exit__(self, *exc_info: object) -> None:
+        if self._pool is not None:
+            self._pool.shutdown(wait=True, cancel_futures=True)
+            self._pool = None
+
+
+__all__ = ["ENABLED", "Beside", "Reader"]
