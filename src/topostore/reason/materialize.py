@@ -338,7 +338,8 @@ class Materializer:
     def _fixpoint(self, stats: ReasonStats, strata: list[int], ordered: list[list[int]], rest: list[int],
                   back: set[int]) -> None:
         """The ordered components, then the rest and the upper strata (see :meth:`run`); each deferred ask
-        started once the components writing what it reads are done (:mod:`.early_reads`)."""
+        and check started in the reader thread once the components writing what it reads are done
+        (:mod:`.early_reads`)."""
         self._early.after(-1)
         try:
             for c, component in enumerate(ordered):
