@@ -148,3 +148,14 @@ def test_a_check_whose_key_is_written_after_its_start_runs_again(tmp_path, monke
     monkeypatch.setattr(early_reads, "ENABLED", False)
     late, _ = _reasoned(tmp_path, monkeypatch, [])
     assert late == early and early
+
+
+def test_what_a_write_touches():
+    from topostore.reason.early_reads import _touches
+    from topostore.reason.order import TYPE_KEY
+
+    door, place, link = ("t", "<c:Door>"), ("t", "<c:Place>"), ("p", "<p:link>")
+    assert _touches(door, {door}) and not _touches(door, {place, link})
+    assert _touches(door, {("p", TYPE_KEY)})  # ?x a ?c reads every class
+    assert _touches(("p", TYPE_KEY), {place}) and not _touches(("p", TYPE_KEY), {link})
+    assert _touches(("*",), {link}) and _touches(link, {("*",)}) and not _touches(None, {link})

@@ -76,11 +76,14 @@ def _reads(rule: Rule) -> frozenset[ReadKey]:
 
 
 def _touches(written: ReadKey | None, reads: Collection[ReadKey]) -> bool:
-    """Whether a rule writing ``written`` may have written a key among ``reads``."""
+    """Whether a rule writing ``written`` may have written a key among ``reads`` (a class membership is an
+    rdf:type fact too, read by an atom of a variable class: ``?x a ?c`` reads ``("p", rdf:type)``)."""
     if written is None:
         return False
     if written[0] == "*" or _ANY in reads or written in reads:
         return True
+    if written[0] == "t":
+        return ("p", TYPE_KEY) in reads
     return written == ("p", TYPE_KEY) and any(k[0] == "t" for k in reads)
 
 
