@@ -10,6 +10,7 @@ run, and an atom whose key lies in one graph is read in that graph, as a full RE
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import dataclass, field, replace
 from itertools import islice
 
@@ -149,24 +150,37 @@ def _message(rule: Rule, row: dict) -> str:
     return text
 
 
-def check_consistency(store: Store, rules: RuleSet, keys: KeyGraphs | None = None) -> list[Violation]:
+def check_consistency(store: Store, rules: RuleSet, keys: KeyGraphs | None = None,
+                      known: Mapping[int, list[dict]] | None = None) -> list[Violation]:
     """All violations of the check rules over asserted ∪ inferred knowledge.
 
     ``keys``: the graphs of :data:`GRAPHS` holding facts of each key the checks read
-    (:func:`.present.key_graphs`, asked here when not given)."""
+    (:func:`.present.key_graphs`, asked here when not given).  ``known``: the matches of some checks
+    (by their index in ``rules.checks``) found already, beside the rules' fixpoint (:mod:`.early_reads`)."""
     if not rules.checks:
         return []
     if keys is None:
         keys = key_graphs(store, check_keys(rules), GRAPHS)
+    known = known or {}
+    matches = [known[j] if j in known else check_rows(store, rule, keys) for j, rule in enumerate(rules.checks)]
+    return violations(rules.checks, matches)
+
+
+def check_rows(store: Store, rule: Rule, keys: KeyGraphs) -> list[dict]:
+    """The matches of one check (its violation variables), reading each key in the graphs ``keys`` gives."""
+    graphs = one_graphs(rule, keys)
+    if graphs is None:
+        return []
+    text = check_text(small_first(store, rule, graphs), graphs)
+    return [{v[1:]: solution[v[1:]] for v in rule.violation if solution[v[1:]] is not None}
+            for solution in store.query(text, graphs=GRAPHS, prefixes=PREFIXES)]
+
+
+def violations(checks: list[Rule], matches: list[list[dict]]) -> list[Violation]:
+    """The violations of ``checks`` from their matches, in check order, each reported once."""
     found: list[Violation] = []
     seen: set = set()
-    for rule in rules.checks:
-        graphs = one_graphs(rule, keys)
-        if graphs is None:
-            continue
-        text = check_text(small_first(store, rule, graphs), graphs)
-        rows = [{v[1:]: solution[v[1:]] for v in rule.violation if solution[v[1:]] is not None}
-                for solution in store.query(text, graphs=GRAPHS, prefixes=PREFIXES)]
+    for rule, rows in zip(checks, matches, strict=True):
         # sorted, so that the report does not depend on evaluation order
         for row in sorted(rows, key=lambda r: [str(v) for v in r.values()]):
             key = (rule.name, rule.origin, frozenset(row.values()))

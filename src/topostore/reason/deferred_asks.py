@@ -37,6 +37,8 @@ def ask_unknown(run: Materializer, stats: ReasonStats, active: list[int]) -> Non
         if idle is not None and any(run.triggers.feasible(w, run.present) for w in idle.others):
             idle = None  # a rule of a variable predicate may have written the key
         key = idle.key if idle is not None else None
+        if key is None and run._early is not None and run._early.answer(i) is False:
+            continue  # asked early, beside the later components' writes: no match (:mod:`.early_reads`)
         if key is None:
             text = insert_text(run.rules[i], None, run.planned, run._lateral, run._direct,
                                only_asserted(run.rules[i], run._derived, run._asserted, asking))
@@ -49,6 +51,8 @@ def ask_unknown(run: Materializer, stats: ReasonStats, active: list[int]) -> Non
             continue
         stats.evaluations += 1
         run._queued.add(run.rules[i].writes())
+        if run._early is not None:
+            run._early.wrote(run.rules[i].writes())
         run._timed(text, run.rules[i].name, stats)
     if rules:
         run._flush()

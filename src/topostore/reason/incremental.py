@@ -84,11 +84,12 @@ from ..stores.base import Store, key_census
 from . import flip
 from .change_checks import ChangeChecks
 from .changed import ChangedGraphs, Decisions
+from .closing import close_full, counting_asserted
 from .compiled_step import MAX_PROGRAMS, CompiledStep
 from .component import WHOLE_ROUNDS
 from .consistency import Violation, check_consistency
 from .dred import Deletion, can_prove
-from .entailed import publish_entailed, refresh_entailed, refresh_touched, watched_forms
+from .entailed import refresh_entailed, refresh_touched, watched_forms
 from .flips import Flips
 from .materialize import Materializer
 from .negation import ASKED, Completion, completion_text, deferred
@@ -260,28 +261,31 @@ class IncrementalReasoner:
         self._clear_scratch()
         program = full_program(self.ruleset)  # large schema tables as one generic rule each
         failed = True
-        try:
-            program.write(self.store)
-            materializer = Materializer(self.store, program.rules, profile=profile)
-            stats = materializer.run()
-            failed = False
-        finally:
+        with counting_asserted(self.store) as asserted:  # beside the rules where the store overlaps
             try:
-                program.drop(self.store)
-            except Exception:
-                if not failed:
-                    raise
-                # the run's own error is the one to report; the next full REASON drops these graphs first
+                program.write(self.store)
+                materializer = Materializer(self.store, program.rules, profile=profile)
+                materializer.checks = self.ruleset.checks  # those final early run beside the fixpoint
+                stats = materializer.run(count=False)  # counted after the fixpoint (close_full)
+                failed = False
+            finally:
+                try:
+                    program.drop(self.store)
+                except Exception:
+                    if not failed:
+                        raise
+                    # the run's own error is the one to report; the next full REASON drops these graphs first
         start = time.perf_counter()
         # where the keys the rules and checks read have facts: the checks read a key of one graph
-        # there, and maintenance starts from the keys with facts (one query for both)
-        keys = self.key_graphs()
-        violations = check_consistency(self.store, self.ruleset, keys)
-        publish_entailed(self.store, self.ruleset)
+        # there, and maintenance starts from the keys with facts (one query for both); the checks
+        # beside the publication where the store overlaps (:mod:`.closing`)
+        closed = close_full(self.store, self.ruleset, self.key_graphs, asserted.result(), materializer.checked)
+        keys, violations = closed.keys, closed.violations
+        stats.derived = closed.inferred
         stats.mode, stats.reason = "full", why
         # "quiet": the closure is the stratum-0 fixpoint, which maintenance keeps up to date
         # (a negated premise may have fired and stopped matching since, so ask the run)
-        self.state = MaintenanceState(True, not materializer.upper_derived, self.store.count(ASSERTED), violations,
+        self.state = MaintenanceState(True, not materializer.upper_derived, closed.asserted, violations,
                                       with_facts(keys), with_facts(keys, ASSERTED))
         self.change_checks.state = self.state
         stats.seconds += time.perf_counter() - start

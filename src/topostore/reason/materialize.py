@@ -38,6 +38,7 @@ from ..stores.base import Store
 from . import limits
 from .class_unions import class_unions
 from .deferred_asks import ask_unknown
+from .early_reads import EarlyReads
 from .few_solutions import few_solutions
 from .first_pass import first_pass, without
 from .insert_text import distinct_pays, insert_text
@@ -106,6 +107,12 @@ class Materializer:
         self._joined: set[int] = set()
         #: rules of :meth:`run`'s ordered pass whose property paths read asserted facts alone
         self._paths: set[int] = set()
+        #: while :meth:`run` reaches its fixpoint: the deferred asks and checks started early (:mod:`.early_reads`)
+        self._early: EarlyReads | None = None
+        #: the consistency checks a caller will run after :meth:`run`: those whose keys are final early are
+        #: run beside the fixpoint, their matches left in :attr:`checked` by their index here
+        self.checks: list[Rule] = []
+        self.checked: dict[int, list[dict]] = {}
 
     def _run(self, index: int, delta_index: int | None, stats: ReasonStats, asserted_only: bool = False,
              first: bool = False, union: tuple[int, ...] = ()) -> None:
@@ -133,6 +140,8 @@ class Materializer:
                                                   self._direct, graphs, derived, [self.rules[j] for j in union], few)
         stats.evaluations += 1
         self._queued.add(self.rules[index].writes())
+        if self._early is not None:
+            self._early.wrote(self.rules[index].writes())
         self._timed(text, self.rules[index].name, stats)
 
     def _flush(self) -> None:
@@ -240,8 +249,9 @@ class Materializer:
             " ; ".join(f"DROP SILENT GRAPH {g}" for g in (INFERRED, AUX, DELTA, DELTA_NEXT, NEW_INFERRED, NEW_AUX))
         )
 
-    def run(self) -> ReasonStats:
-        """Recompute the inferred graphs from the asserted graph alone.
+    def run(self, count: bool = True) -> ReasonStats:
+        """Recompute the inferred graphs from the asserted graph alone (``count``: the inferred graph's
+        size into the stats; a caller counting it beside other reads, :mod:`.closing`, says no).
 
         The first stratum is evaluated component by component of the rule
         dependency graph, in topological order (:func:`evaluation_order`): a rule
@@ -255,6 +265,7 @@ class Materializer:
         """
         start = time.perf_counter()
         stats = ReasonStats()
+        self.checked = {}
         self.clear()
         self._derived = set()
         self._direct = (DELTA, DELTA_NEXT)
@@ -266,7 +277,8 @@ class Materializer:
             self._direct = None
             self._deferring = set()
             self.store.update(f"DROP SILENT GRAPH {DELTA} ; DROP SILENT GRAPH {DELTA_NEXT}")
-        stats.derived = self.store.count(INFERRED)
+        if count:
+            stats.derived = self.store.count(INFERRED)
         stats.seconds = time.perf_counter() - start
         return stats
 
@@ -313,10 +325,27 @@ class Materializer:
         self._paths = asserted_paths(self.rules, [i for c in ordered for i in c])
         # a text reading a key in one graph holds only for this run's asserted keys: none is kept from before
         self._texts = {k: t for k, t in self._texts.items() if not k[4]}
+        self._early = early = EarlyReads(self, ordered, rest, self.checks)
+        completed = False
         try:
-            for component in ordered:
+            self._fixpoint(stats, strata, ordered, rest, back)
+            completed = True
+        finally:
+            self._early = None
+            early.close(completed)
+        self.checked = early.checked
+
+    def _fixpoint(self, stats: ReasonStats, strata: list[int], ordered: list[list[int]], rest: list[int],
+                  back: set[int]) -> None:
+        """The ordered components, then the rest and the upper strata (see :meth:`run`); each deferred ask
+        and check started in the reader thread once the components writing what it reads are done
+        (:mod:`.early_reads`)."""
+        self._early.after(-1)
+        try:
+            for c, component in enumerate(ordered):
                 first_pass(self, component, back, stats)
                 self.propagate(component, stats)
+                self._early.after(c)
         finally:
             self._graphs = None
             self._unions, self._joined, self._paths = {}, set(), set()

@@ -72,6 +72,9 @@ class Store:
     whole_programs = True
     #: whether a literal read from this store is in the form Oxigraph stores it (its own stored form)
     canonical_reads = False
+    #: whether a read-only query may run in a second thread while this thread writes (in memory: the
+    #: store's own engine, which releases the GIL; :mod:`.overlap` holds the contract)
+    overlaps = False
 
     def __init__(self) -> None:
         #: how each committed literal was written (Oxigraph canonicalises numbers)

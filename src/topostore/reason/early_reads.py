@@ -1,0 +1,202 @@
+"""Read-only evaluations of a full run started early, in a worker thread, while the run goes on writing.
+
+Two kinds: the deferred asks, whose answer the run needs at its first stratum's fixpoint, and the
+consistency checks, whose matches the REASON needs after the run (:mod:`.closing`).
+
+**Deferred asks.**
+A deferred ask (:mod:`.deferred_asks`) waits for the first stratum's fixpoint, then evaluates its body
+less the pairs whose conclusion is known; on a map whose links are all declared it adds nothing, and
+costs 0.64 s at 100,000 locations.  What it reads is often final long before the fixpoint: the asserted
+doors, and the conclusion (Connectability's ``connectedTo``) once the component writing it is done.  So,
+where the store overlaps (:attr:`topostore.stores.base.Store.overlaps`), the ask is started as an ``ASK``
+query in a worker thread (:class:`topostore.stores.overlap.Reader`) right after the last ordered
+component writing a key it reads, while this thread evaluates the later components.  When the ask's
+turn comes, its early answer is used only if
+
+* no evaluation since the start may have written a key it reads (every evaluation of the run is
+  noted, :meth:`EarlyReads.wrote`; a rule of a variable predicate or class counts as writing them all),
+* it reads each key in the same graphs it would read them in now (:func:`.deferred_asks.only_asserted`).
+
+Then "no match" skips the insert (nothing to write); a match, or an early answer that does not hold,
+sends the insert as before.
+
+**Checks.**  A check (:func:`.consistency.check_rows`) reads keys that are final once every rule that
+may write them is done, the upper strata's and the deferred asks' included: it is started (with the
+census of its own keys, :func:`.present.key_graphs`) right after the last ordered component writing one,
+when no later rule may.  Its matches are kept when the run ends (:meth:`EarlyReads.close`) unless an
+evaluation since its start may have written a key it reads; the REASON runs the others after the run.
+
+The reads run one after the other in one worker thread, in the order they were started; a read no longer
+holding is dropped if it has not started.  The worker is joined before the run returns
+(:meth:`EarlyReads.close`), also when it fails.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Collection, Mapping, Sequence
+from concurrent.futures import CancelledError, Future
+from typing import TYPE_CHECKING
+
+from pyoxigraph import NamedNode
+
+from ..compile.generic import PREFIXES
+from ..compile.rule import ReadKey, Rule
+from ..stores.overlap import ENABLED, Reader
+from .consistency import GRAPHS, check_rows
+from .insert_text import insert_text
+from .negation import unless_known_text
+from .order import TYPE_KEY
+from .present import key_graphs
+
+if TYPE_CHECKING:
+    from .materialize import Materializer
+
+#: a key standing for every key (a rule of a variable predicate reads or writes any)
+_ANY = ("*",)
+
+
+def ask_form(text: str) -> str:
+    """The ``ASK`` query of an evaluation text (``INSERT { … }`` / dataset line / ``WHERE { … }``, as
+    :func:`.insert_text.insert_text` writes it): true when the evaluation has a match."""
+    head, dataset, where = text.split("\n", 2)
+    if not head.startswith("INSERT") or not where.startswith("WHERE"):
+        raise ValueError(f"not an evaluation text: {head[:40]!r}")
+    words = dataset.replace("USING NAMED ", "FROM NAMED ").replace("USING ", "FROM ")
+    return f"ASK {words}\n{where}"
+
+
+def _reads(rule: Rule) -> frozenset[ReadKey]:
+    """Every key an evaluation of ``rule`` reads: its body, its filters, its known conclusion."""
+    keys = set(rule.reads())
+    if rule.conditions_read_graph and not rule.filter_reads:
+        keys.add(_ANY)
+    if rule.unless_known is not None:
+        keys.add(rule.unless_known.read_key())
+    return frozenset(keys)
+
+
+def _touches(written: ReadKey | None, reads: Collection[ReadKey]) -> bool:
+    """Whether a rule writing ``written`` may have written a key among ``reads`` (a class membership is an
+    rdf:type fact too, read by an atom of a variable class: ``?x a ?c`` reads ``("p", rdf:type)``)."""
+    if written is None:
+        return False
+    if written[0] == "*" or _ANY in reads or written in reads:
+        return True
+    if written[0] == "t":
+        return ("p", TYPE_KEY) in reads
+    return written == ("p", TYPE_KEY) and any(k[0] == "t" for k in reads)
+
+
+def _start_points(run: Materializer, ordered: list[list[int]], reads: Mapping[int, frozenset[ReadKey]],
+                  later: list[ReadKey | None]) -> dict[int, list[int]]:
+    """For each read (by its key in ``reads``): the ordered component after which it may start, the last
+    one writing a key it reads (-1: none), unless a key of ``later`` (written after the components) may be
+    one of them (then it is left out)."""
+    points: dict[int, list[int]] = {}
+    for n, keys in reads.items():
+        if any(_touches(w, keys) for w in later):
+            continue
+        last = max((c for c, component in enumerate(ordered)
+                    if any(_touches(run.rules[i].writes(), keys) for i in component)), default=-1)
+        points.setdefault(last, []).append(n)
+    return points
+
+
+class EarlyReads:
+    """The deferred asks and checks of one full run started early; see the module docstring."""
+
+    def __init__(self, run: Materializer, ordered: list[list[int]], rest: Collection[int],
+                 checks: Sequence[Rule] = ()) -> None:
+        self.run = run
+        self._reader = Reader()
+        #: the keys the deferred asks write (read by :func:`.deferred_asks.only_asserted`), fixed for the run
+        self._asking = {w for j in run._deferring if (w := run.rules[j].writes()) is not None}
+        self._checks = list(checks)
+        #: the keys each ask (by rule) and each check (by index) reads
+        self._ask_reads: dict[int, frozenset[ReadKey]] = {}
+        self._check_reads: dict[int, frozenset[ReadKey]] = {}
+        #: component index -> the asks and the checks to start after it (-1: before the first)
+        self._asks_after: dict[int, list[int]] = {}
+        self._checks_after: dict[int, list[int]] = {}
+        #: started and still holding: ask -> (the graphs it reads its keys in, its answer); check -> matches
+        self._asked: dict[int, tuple[Mapping[ReadKey, NamedNode], Future]] = {}
+        self._checking: dict[int, Future] = {}
+        #: check index -> its matches, once the run is over (:meth:`close`)
+        self.checked: dict[int, list[dict]] = {}
+        if not (ENABLED and run.store.overlaps):
+            return
+        ranked = {i for component in ordered for i in component}
+        feasible = [i for i in range(len(run.rules)) if run.triggers.feasible(i, run.present)]
+        asks = [i for i in sorted(run._deferring) if i not in run._idle and run.rules[i].unless_known is not None]
+        self._ask_reads = {i: _reads(run.rules[i]) for i in asks}
+        # an ask is answered before the upper strata run: only the rest and the asks write after the components
+        later = [run.rules[j].writes() for j in feasible if j in rest or j in run._deferring]
+        self._asks_after = _start_points(run, ordered, self._ask_reads, later)
+        # a check reads the run's end: the upper strata too (a rule that cannot match now and matches
+        # later drops the reads of what it writes, :meth:`wrote`)
+        self._check_reads = {j: _reads(rule) for j, rule in enumerate(self._checks)}
+        later = [run.rules[j].writes() for j in feasible if j not in ranked or j in rest or j in run._deferring]
+        self._checks_after = _start_points(run, ordered, self._check_reads, later)
+
+    def after(self, component: int) -> None:
+        """The ordered component ``component`` is done (-1: none yet): start the reads that waited for it."""
+        run = self.run
+        store = run.store
+        for i in self._asks_after.pop(component, ()):
+            if not run.triggers.feasible(i, run.present):
+                continue
+            graphs = self._graphs(i)
+            text = ask_form(self._text(i, graphs))
+            self._asked[i] = (graphs, self._reader.submit(lambda t=text: bool(store.query(t, prefixes=PREFIXES))))
+        for j in self._checks_after.pop(component, ()):
+            rule, keys = self._checks[j], self._check_reads[j]
+            self._checking[j] = self._reader.submit(lambda r=rule, k=keys: check_rows(store, r, key_graphs(store, k, GRAPHS)))
+
+    def wrote(self, key: ReadKey | None) -> None:
+        """An evaluation writing ``key`` was sent or queued: the early reads of it no longer hold."""
+        for i in [i for i in self._asked if _touches(key, self._ask_reads[i])]:
+            self._asked.pop(i)[1].cancel()
+        for j in [j for j in self._checking if _touches(key, self._check_reads[j])]:
+            self._checking.pop(j).cancel()
+
+    def answer(self, i: int) -> bool | None:
+        """Whether the ask of rule ``i`` has a match, from its early answer (None: ask it now)."""
+        started = self._asked.pop(i, None)
+        if started is None:
+            return None
+        graphs, answer = started
+        if graphs != self._graphs(i):
+            answer.cancel()
+            return None
+        try:
+            return answer.result()
+        except Exception:  # noqa: BLE001 - asked again now, as the insert, where its error is raised
+            return None
+
+    def close(self, completed: bool) -> None:
+        """Join the worker; ``completed`` (the run reached its fixpoint): keep the matches of the checks
+        that still hold in :attr:`checked` (a check that failed is left to the REASON, which runs it again
+        and reports its error)."""
+        if completed:
+            for j, matches in self._checking.items():
+                try:
+                    self.checked[j] = matches.result()
+                except (Exception, CancelledError):  # noqa: BLE001 - run again after the run, where it raises
+                    continue
+        self._asked.clear()
+        self._checking.clear()
+        self._reader.__exit__(None, None, None)
+
+    def _graphs(self, i: int) -> Mapping[ReadKey, NamedNode]:
+        from .deferred_asks import only_asserted
+
+        run = self.run
+        return only_asserted(run.rules[i], run._derived, run._asserted, self._asking)
+
+    def _text(self, i: int, graphs: Mapping[ReadKey, NamedNode]) -> str:
+        run = self.run
+        text = insert_text(run.rules[i], None, run.planned, run._lateral, run._direct, graphs)
+        return unless_known_text(text, run.rules[i])
+
+
+__all__ = ["EarlyReads", "ask_form"]

@@ -1,0 +1,122 @@
+"""A read-only query beside a write: the one place topostore runs a second thread.
+
+pyoxigraph 0.5 releases the GIL while it evaluates a query, and it runs one writer at a time: two updates
+in two threads do not overlap, an update and a query do.  So, on a machine with a free core, a read-only
+evaluation in a worker thread while the caller's thread writes (:class:`Beside`, or :class:`Reader` for a
+series of them) can take the read off the wall time; its users are a full REASON's reads
+(:mod:`topostore.reason.closing`, :mod:`topostore.reason.early_reads`).  (A big write cut
+into chunks, each inserted in a worker thread while the next is parsed, was measured and not kept: the
+insertion releases the GIL too, but the load cost 10-14 % more CPU and no less wall time.)
+
+The contract:
+
+* **one worker thread** per :class:`Beside` or :class:`Reader`, started and joined inside its ``with``
+  block: no thread outlives it, even when either side raises;
+* **errors propagated**: the worker's exception is raised in the caller's thread by
+  :meth:`Beside.result`; when both sides fail, the caller's own error is the one raised;
+* **the worker reads only what the caller's thread does not change meanwhile**: the caller's writes
+  leave the graphs the reader reads alone (the caller says which, and keeps to it); the engine gives
+  each query a consistent snapshot;
+* **in memory only**: a remote or durable store, or one with a transaction open, is not asked to
+  overlap (its callers stay sequential, see :attr:`topostore.stores.base.Store.overlaps`).
+
+``TOPOSTORE_OVERLAP=0`` in the environment turns it off (:data:`ENABLED`): everything then runs in the
+caller's thread, in the order a sequential caller takes (a machine without a free core gains nothing
+from the second thread; the benchmarks compare the two ways in one tree).
+"""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Callable
+from concurrent.futures import Future, ThreadPoolExecutor
+from typing import Generic, TypeVar
+
+T = TypeVar("T")
+
+#: whether the second thread is used at all (``TOPOSTORE_OVERLAP=0``: never)
+ENABLED = os.environ.get("TOPOSTORE_OVERLAP", "1") != "0"
+
+
+def _settle(pending: Future) -> None:
+    """Wait for ``pending`` to end, whatever the caller's thread is raising (the worker's error, if any,
+    is raised by :meth:`Future.result` afterwards, unless the caller's thread raises its own)."""
+    try:
+        pending.exception()
+    except BaseException:  # pragma: no cover - interrupted while waiting: the executor's exit still joins
+        pass
+
+
+class Beside(Generic[T]):
+    """A read-only evaluation run in a worker thread while the caller's thread goes on writing::
+
+        with Beside(lambda: check(store)) as checks:
+            publish(store)             # writes graphs ``check`` does not read
+        violations = checks.result()   # the worker is joined when the block ends
+
+    The worker is started on entering the block and joined on leaving it, also when the block raises.
+    With ``overlap=False`` the evaluation runs in the caller's thread on entering (the same order a
+    sequential caller would take, for stores that must stay sequential)."""
+
+    def __init__(self, read: Callable[[], T], overlap: bool = True) -> None:
+        self._read = read
+        self._overlap = overlap and ENABLED
+        self._pool: ThreadPoolExecutor | None = None
+        self._future: Future | None = None
+        self._value: T | None = None
+
+    def __enter__(self) -> Beside[T]:
+        if self._overlap:
+            self._pool = ThreadPoolExecutor(max_workers=1, thread_name_prefix="topostore-read")
+            self._future = self._pool.submit(self._read)
+        else:
+            self._value = self._read()
+        return self
+
+    def __exit__(self, *exc_info: object) -> None:
+        if self._pool is not None:
+            _settle(self._future)
+            self._pool.shutdown(wait=True)
+            self._pool = None
+
+    def result(self) -> T:
+        """The evaluation's value (its error raised here); only after the block."""
+        if self._pool is not None:
+            raise RuntimeError("Beside.result() is read after its with block, once the worker is joined")
+        if self._future is not None:
+            return self._future.result()
+        return self._value  # type: ignore[return-value]
+
+
+class Reader:
+    """One worker thread running read-only evaluations one after the other, in the order given, while the
+    caller's thread writes; for reads started at several points of a long run (:mod:`topostore.reason.early_reads`)::
+
+        with Reader() as reader:
+            answer = reader.submit(lambda: ask(store))   # a Future
+            ...                                          # writes the ask does not read
+            if answer.result(): ...                      # waits for it
+            answer.cancel()                              # or drops it, if not started yet
+
+    The thread starts with the first read and is joined when the block ends, also when it raises (reads
+    not started then are dropped).  Only used where the store overlaps and :data:`ENABLED` holds."""
+
+    def __init__(self) -> None:
+        self._pool: ThreadPoolExecutor | None = None
+
+    def __enter__(self) -> Reader:
+        return self
+
+    def submit(self, read: Callable[[], T]) -> Future:
+        """Queue ``read`` after the reads queued before it; its Future gives its value or raises its error."""
+        if self._pool is None:
+            self._pool = ThreadPoolExecutor(max_workers=1, thread_name_prefix="topostore-read")
+        return self._pool.submit(read)
+
+    def __exit__(self, *exc_info: object) -> None:
+        if self._pool is not None:
+            self._pool.shutdown(wait=True, cancel_futures=True)
+            self._pool = None
+
+
+__all__ = ["ENABLED", "Beside", "Reader"]
