@@ -565,3 +565,46 @@ def test_covering_finds_by_index_what_trying_every_writer_finds() -> None:
             assert indexed == tried
             covered.append(indexed)
     assert covered[0], "the tutorial's Reachability is covered by Connectability"
+
+
+def test_a_part_nothing_starts_is_passed_by_its_keys() -> None:
+    """The staged run groups the program by part once (reason/staged.segments): every operation in
+    order, a part with a flip or seeds always runs, and a part whose operations start only from keys
+    no part before it touched is not entered; where the tick flips something, it runs."""
+    from topostore.reason import staged
+
+    onto = new_ontology()
+    onto.replace(N("i3"), N("seen"), 95)
+    onto.reason()
+    reasoner = onto._reasoner
+    sig = signature(({f"<{NS}now>": 1}, {}), ({f"<{NS}now>": 1}, {}), (f"<{NS}now>",))
+    program = reasoner.step.compiler.compile(sig, reasoner.state.present, reasoner.state.asserted)
+    parts = staged.segments(program)
+    assert [index for part in parts for index, *_ in part.ops] == [
+        i for i, (tag, _) in enumerate(program.ops) if tag[0] != "component"]
+    for part in parts:
+        kinds = {kind for _, kind, _, _, _ in part.ops}
+        if any(flip is not None for *_, flip in part.ops) or kinds & {"seeds", "always", "changes"}:
+            assert part.always
+        assert part.minus == {key for _, kind, key, _, _ in part.ops if kind == "minus"}
+        assert part.plus == {key for _, kind, key, _, _ in part.ops if kind == "plus"}
+    # the subclasses of Hot (C, then A): only Hot's changes start C's part, only C's start A's
+    idle = [part.ops[0][0] for part in parts if not part.always]
+    assert len(idle) == 2, describe(program)
+    entered: list[int] = []
+    original = staged.StagedRun._part
+
+    def part_run(self, ops):
+        entered.append(ops[0][0])
+        return original(self, ops)
+
+    with mock.patch.object(staged.StagedRun, "_part", part_run):
+        for now, hot, runs in ((101, set(), False), (110, {"i3"}, True), (104, set(), True), (102, set(), False)):
+            entered.clear()
+            onto.replace(N("clock"), N("now"), now)
+            report = onto.reason(mode="incremental")
+            assert report.stats.program == "compiled", report.stats.program
+            assert {onto.short(i) for i in onto.instances(N("Hot"))} == hot
+            assert_as_from_scratch(onto, report)
+            # C's part is entered to look up whether Hot changed (its flip ran); A's only after C's ran
+            assert idle[0] in entered and (idle[1] in entered) == runs, (now, entered)

@@ -24,6 +24,7 @@ from pyoxigraph import BlankNode, Literal, NamedNode, Quad, Triple
 from ..compile.rule import Atom, ReadKey, Rule, key_pattern
 from ..rdf.terms import parse_term
 from ..rdf.vocab import ASSERTED, AUX, INFERRED
+from .atom_shape import Shape
 from .delta_texts import FLIP_LOST, KEEP
 from .scratch import CANDIDATES, FLIP_GAINED, NEW_FACTS, OVERDELETED
 
@@ -128,18 +129,19 @@ class OneAtom:
         self.atom = rule.body[0]
         self.head = rule.head
         self.graph = graph
-        self._body, self._head = _terms(self.atom), _terms(self.head)
+        self._body, self._head = Shape(_terms(self.atom)), Shape(_terms(self.head))
         #: the keys whose facts it reads: the atom's and the head's
         self.reads = frozenset((self.atom.read_key(), self.head.read_key()))
 
     def _heads(self, facts: list[Triple]) -> list[Triple] | None:
         """The heads the facts derive (None when one would hold a literal)."""
         out = []
+        bind = self._body.bind
         for t in facts:
-            bound = _match(self._body, t)
+            bound = bind(t)
             if bound is None:
                 continue
-            head = _instance(self._head, bound)
+            head = _instance(self._head.terms, bound)
             if head is False:
                 return None
             if head is not None:
@@ -148,7 +150,7 @@ class OneAtom:
 
     def candidates(self, store) -> bool:
         """:func:`.delta_texts.candidates`: heads present in the graph that a removed fact derived."""
-        facts = _facts(store, _pattern(self._body), OVERDELETED)
+        facts = _facts(store, self._body.free, OVERDELETED)
         heads = None if facts is None else self._heads(facts)
         if heads is None:
             return False
@@ -157,7 +159,7 @@ class OneAtom:
 
     def additions(self, store) -> bool:
         """:func:`.delta_texts.additions`: heads an added fact derives, not known yet."""
-        facts = _facts(store, _pattern(self._body), NEW_FACTS)
+        facts = _facts(store, self._body.free, NEW_FACTS)
         heads = None if facts is None else self._heads(facts)
         if heads is None:
             return False
@@ -166,16 +168,16 @@ class OneAtom:
 
     def keep(self, store) -> bool:
         """:func:`.delta_texts.keep`: the candidates the rule derives from the new state go to KEEP."""
-        candidates = _facts(store, _pattern(self._head), CANDIDATES)
+        candidates = _facts(store, self._head.free, CANDIDATES)
         if candidates is None:
             return False
         graphs = (AUX,) if self.atom.aux else _STATE
         kept = []
         for c in candidates:
-            bound = _match(self._head, c)
+            bound = self._head.bind(c)
             if bound is None:
                 continue
-            pattern = _bind(self._body, bound)
+            pattern = self._body.read(bound)
             if any(self._proves(store.triples(*pattern, g), bound) for g in graphs):
                 kept.append(c)
         store.add_scratch(kept, KEEP)
@@ -185,7 +187,7 @@ class OneAtom:
         """Whether one of ``facts`` matches the atom with the head's values ``bound`` (a variable
         the head leaves free but the atom repeats must take one value)."""
         for t in facts:
-            found = _match(self._body, t)
+            found = self._body.bind(t)
             if found is not None and all(found[x] == value for x, value in bound.items() if x in found):
                 return True
         return False
@@ -201,21 +203,21 @@ class Relaxed:
     and is used only while it stays as small as :data:`FEW` (else the exact SPARQL text runs)."""
 
     def __init__(self, rule: Rule, j: int, graph: NamedNode) -> None:
-        self._body, self._head = _terms(rule.body[j]), _terms(rule.head)
+        self._body, self._head = Shape(_terms(rule.body[j])), Shape(_terms(rule.head))
         self.graph = graph
         #: the keys whose facts it reads: atom ``j``'s and the head's
         self.reads = frozenset((rule.body[j].read_key(), rule.head.read_key()))
 
     def run(self, store) -> bool:
-        facts = _facts(store, _pattern(self._body), OVERDELETED)
+        facts = _facts(store, self._body.free, OVERDELETED)
         if facts is None:
             return False
         heads: dict[Triple, None] = {}
         for t in facts:
-            bound = _match(self._body, t)
+            bound = self._body.bind(t)
             if bound is None:
                 continue
-            found = _facts(store, _bind(self._head, bound), self.graph)
+            found = _facts(store, self._head.read(bound), self.graph)
             if found is None:
                 return False
             heads.update(dict.fromkeys(found))
@@ -257,27 +259,6 @@ def _term(text: str):
 def _terms(atom: Atom) -> tuple:
     """The atom's subject, predicate and object as :func:`_term` gives them."""
     return tuple(_term(t) for t in (atom.s, atom.p, atom.o))
-
-
-def _bind(terms: tuple, bound: dict[str, object]) -> tuple:
-    """``terms`` with the variables ``bound`` gives filled in (a free variable stays a name)."""
-    return tuple(bound.get(x) if isinstance(x, str) else x for x in terms)
-
-
-def _pattern(terms: tuple) -> tuple:
-    return tuple(None if isinstance(x, str) else x for x in terms)
-
-
-def _match(terms: tuple, t: Triple) -> dict[str, object] | None:
-    """The variables' values for which ``terms`` match ``t`` (None: no match)."""
-    bound: dict[str, object] = {}
-    for x, value in zip(terms, (t.subject, t.predicate, t.object)):
-        if isinstance(x, str):
-            if bound.setdefault(x, value) != value:
-                return None
-        elif x != value:
-            return None
-    return bound
 
 
 def _instance(terms: tuple, bound: dict[str, object]) -> Triple | None | bool:

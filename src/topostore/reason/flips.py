@@ -52,25 +52,33 @@ class Flips:
         self._indexes: dict[str, window.ValueIndex] = {}
         #: indexes of compared predicates' values by equality, for difference flips (see :mod:`.equal_values`)
         self._equal: dict[str, EqualityIndex] = {}
+        #: asserted facts of a compared predicate without a value index yet (counted up to
+        #: :data:`WINDOW_MIN` once, then kept by :meth:`note`; see :meth:`_fewer_than`)
+        self._counts: dict[str, int] = {}
         #: predicates by IRI text, for the fact counts of :meth:`_fewer_than`
         self._nodes: dict[str, NamedNode] = {}
         # per rule: the variables its filters mention
         self._filter_vars = [flip.filter_variables(r) for r in self.rules]
 
     def note(self, added: Collection[Triple], removed: Collection[Triple]) -> None:
-        """Keep the value indexes up to date with the asserted changes."""
-        for indexes in (self._indexes, self._equal):
-            for t in removed:
-                if (index := indexes.get(f"<{t.predicate.value}>")) is not None:
-                    index.discard(t)
-            for t in added:
-                if (index := indexes.get(f"<{t.predicate.value}>")) is not None:
-                    index.add(t)
+        """Keep the value indexes and the fact counts up to date with the asserted changes."""
+        if not (self._indexes or self._equal or self._counts):
+            return
+        for facts, sign in ((removed, -1), (added, 1)):
+            for t in facts:
+                p = f"<{t.predicate.value}>"
+                for indexes in (self._indexes, self._equal):
+                    if (index := indexes.get(p)) is not None:
+                        index.add(t) if sign > 0 else index.discard(t)
+                if p in self._counts:
+                    self._counts[p] += sign
 
     def forget(self) -> None:
-        """Drop the value indexes (after a full run or a failed REASON: rebuilt when next needed)."""
+        """Drop the value indexes and the fact counts (after a full run or a failed REASON: made again
+        when next needed)."""
         self._indexes.clear()
         self._equal.clear()
+        self._counts.clear()
 
     def quiet(self, i: int, order: tuple[int, ...], replaced: dict[str, list[flip.Replacement]]) -> bool:
         """Whether rule ``i``'s flip over its changed atoms ``order`` surely finds nothing: its tests on
@@ -186,28 +194,47 @@ class Flips:
     def _windows(self, i: int, order: tuple[int, ...]) -> dict[int, dict[int, list[Triple]]]:
         """For the branch seeded by the last changed atom (all others read settled), the facts of each
         other compared atom that lie in its window (see :mod:`.window`); {} where there is none."""
-        rule, k = self.rules[i], order[-1]
+        k = order[-1]
         found: dict[int, list[Triple]] = {}
-        for m, atom in enumerate(rule.body):
-            # an atom whose subject the seed binds is a look-up already; only an enumeration needs a window
-            if m == k or not flip.compared_only(rule, m) or atom.s in rule.body[k].variables() \
-                    or self.derivable(atom.p):
+        for m, p in self._window_atoms(i, k):
+            if self.derivable(p):
                 continue
             facts = self._window_facts(i, k, m)
             if facts is not None:
                 found[m] = facts
         return {k: found} if found else {}
 
+    def _window_atoms(self, i: int, k: int) -> list[tuple[int, str]]:
+        """The atoms of rule ``i`` (with their predicates) that a window may narrow when atom ``k`` seeds
+        the flip: compared only, not bound by the seed (a look-up already; only an enumeration needs a
+        window), and whose tests are linear in the seed's value.  A property of the rule: decided once."""
+        key = ("window-atoms", i, k)
+        found = self._plans.get(key)
+        if found is None:
+            rule = self.rules[i]
+            seed = rule.body[k]
+            tests = self._window_tests(i)
+            found = self._plans[key] = [
+                (m, atom.p) for m, atom in enumerate(rule.body)
+                if m != k and flip.compared_only(rule, m) and atom.s not in seed.variables()
+                and window.possible(tests, seed.o[1:])]
+        return found
+
+    def _window_tests(self, i: int) -> list:
+        """Rule ``i``'s tests as :func:`.window.tests` reads them (once per rule)."""
+        tests = self._plans.get(("window-tests", i))
+        if tests is None:
+            tests = self._plans[("window-tests", i)] = window.tests(self.rules[i])
+        return tests
+
     def _window_facts(self, i: int, k: int, m: int) -> list[Triple] | None:
         """The facts of atom ``m`` that a change of seed atom ``k``'s value may flip (None: no window)."""
         rule = self.rules[i]
-        tests = self._plans.get(("window-tests", i))
-        if tests is None:
-            tests = self._plans[("window-tests", i)] = window.tests(rule)
+        tests = self._window_tests(i)
         seed, atom = rule.body[k], rule.body[m]
         t, v = seed.o[1:], atom.o[1:]
-        if not window.possible(tests, t) or self._fewer_than(atom.p, WINDOW_MIN):
-            return None  # no linear test to solve, or so few values that scanning them is as cheap
+        if self._fewer_than(atom.p, WINDOW_MIN):
+            return None  # so few values that scanning them is as cheap (a linear test: :meth:`_window_atoms`)
         rest = sorted({n for test in tests if test.form for n in test.form[0]} - {t, v})
         text = self._texts.get(("window", i, k, m))
         if text is None:
@@ -251,12 +278,17 @@ class Flips:
     def _fewer_than(self, p: str, n: int) -> bool:
         """Whether predicate ``p`` has fewer than ``n`` numeric values in its index.  Until its index is
         built, fewer than ``n`` asserted facts of ``p`` (a superset of the indexed ones) answer without
-        building it: a small map then keeps no index up to date at every step (:meth:`note`).  Not on a
+        building it: a small map then keeps no index up to date at every step (:meth:`note`), only the
+        count, read from the store once.  Not on a
         store where each look-up is a round trip: the index, built once, answers there without one."""
         if p not in self._indexes and not self.store.round_trips:  # a count there is a request per step
-            facts = self.store.triples(None, self._node(p), None, ASSERTED)
-            if sum(1 for _ in islice(facts, n)) < n:
+            count = self._counts.get(p)
+            if count is None:
+                facts = self.store.triples(None, self._node(p), None, ASSERTED)
+                count = self._counts[p] = sum(1 for _ in islice(facts, n))
+            if count < n:
                 return True
+            del self._counts[p]  # the index is built now, and answers from here on
         return len(self._value_index(p)) < n
 
     def _node(self, p: str) -> NamedNode:

@@ -26,8 +26,9 @@ from pyoxigraph import NamedNode, Triple
 
 from ..compile.rule import Atom, Rule, join_order
 from . import direct
+from .atom_shape import Shape
 from .delta_texts import FLIP_LOST
-from .direct import _bind, _instance, _match, _pattern, _terms
+from .direct import _instance, _terms
 from .flip import CHANGE_OLD, compact_possible
 from .look_join import Conditions, every_graph, joinable
 from .look_values import UNKNOWN
@@ -51,7 +52,10 @@ class Flipped:
         """``graphs_of``: the graphs an atom's facts may be in (:meth:`.look_join.StateGraphs.of`)."""
         self.order = order
         self.conditions = Conditions(rule)
-        self._body = [_terms(a) for a in rule.body]
+        self._body = [Shape(_terms(a)) for a in rule.body]
+        #: per changed atom, its pattern with the object left free (its subject and predicate bound by
+        #: the replaced fact: only the value is new)
+        self._valued = [Shape(_terms(a)[:2] + ("?",)) for a in rule.body]
         self._head = _terms(rule.head)
         self._graphs = [graphs_of(a) for a in rule.body]
         self._plans = [[m for m in join_order(rule.body, k) if m != k] for k in order]
@@ -81,15 +85,16 @@ class Flipped:
 
     def _seeds(self, store, k: int):
         """The seed atom's replaced facts: its bindings with the new value, and its old value."""
-        terms = self._body[k]
-        for f in self._facts(store, _pattern(terms), (CHANGE_OLD,)):
-            start = _match(terms, f)
+        shape = self._body[k]
+        value = shape.terms[2]
+        for f in self._facts(store, shape.free, (CHANGE_OLD,)):
+            start = shape.bind(f)
             if start is None:
                 continue
-            for t in self._facts(store, _pattern(_bind(terms[:2] + ("?",), start)), self._graphs[k]):
-                bound = _match(terms, t)  # subject and predicate read as bound: only the value is new
+            for t in self._facts(store, self._valued[k].read(start), self._graphs[k]):
+                bound = shape.bind(t)  # subject and predicate read as bound: only the value is new
                 if bound is not None:
-                    yield bound, {terms[2]: f.object}
+                    yield bound, {value: f.object}
 
     def _extend(self, store, position: int, bound: dict, old: dict, at: int):
         """The solutions extending ``bound`` by the branch's other atoms, with the old values so far."""
@@ -98,17 +103,16 @@ class Flipped:
             yield bound, old
             return
         m = plan[at]
-        terms = self._body[m]
-        for t in self._facts(store, _pattern(_bind(terms, bound)), self._graphs[m]):
-            found = _match(terms, t)  # the read pattern holds every bound value: a fact read agrees with them
-            if found is None:
+        shape = self._body[m]
+        for t in self._facts(store, shape.read(bound), self._graphs[m]):
+            extended = shape.extend(bound, t)  # the read pattern holds every bound value: a fact read agrees
+            if extended is None:
                 continue
-            extended = {**bound, **found}
             if m in self.order[position + 1:]:  # paired: its old value where one was replaced
                 olds = [o.object for o in self._facts(store, (t.subject, t.predicate, None), (CHANGE_OLD,))] \
                     or [t.object]
                 for value in olds:
-                    yield from self._extend(store, position, extended, {**old, terms[2]: value}, at + 1)
+                    yield from self._extend(store, position, extended, {**old, shape.terms[2]: value}, at + 1)
             else:  # settled or not changed: the old value is the new one
                 yield from self._extend(store, position, extended, old, at + 1)
 

@@ -26,8 +26,9 @@ from ..compile.condition import BIND, TEST
 from ..compile.rule import Atom, ReadKey, Rule, join_order
 from ..rdf.vocab import ASSERTED, AUX, INFERRED, TYPE
 from . import direct
+from .atom_shape import Shape
 from .delta_texts import KEEP
-from .direct import _bind, _instance, _match, _named_only, _pattern, _terms, _write_new
+from .direct import _instance, _named_only, _terms, _write_new
 from .look_filters import Unsupported, compile_expression
 from .look_values import UNKNOWN, all_of
 from .scratch import CANDIDATES, NEW_FACTS, OVERDELETED
@@ -154,8 +155,8 @@ class Joined:
         self.graph = graph
         self.delta = delta
         self.conditions = Conditions(rule)
-        self._body = [_terms(a) for a in rule.body]
-        self._head = _terms(rule.head)
+        self._body = [Shape(_terms(a)) for a in rule.body]
+        self._head = Shape(_terms(rule.head))
         self._graphs = [(g, frozenset(g)) for g in map(graphs_of, rule.body)]
         self._proof_order = join_order(rule.body, None, rule.head.variables())
         self._delta_order = join_order(rule.body, delta)[1:] if delta is not None else []
@@ -164,14 +165,15 @@ class Joined:
 
     def _matches(self, store, k: int, bound: dict) -> list[dict]:
         """The extensions of ``bound`` by atom ``k`` (at most FEW, else :class:`_Fallback`).  The read
-        pattern holds every bound variable's value (:func:`.direct._bind` leaves a free one None), so a
-        fact read agrees with ``bound``; :func:`.direct._match` checks a variable repeated in the atom."""
-        terms = self._body[k]
+        pattern holds every bound variable's value (a free one None), so a fact read agrees with
+        ``bound``; the atom's :class:`~.atom_shape.Shape` checks a variable it repeats."""
+        shape = self._body[k]
+        extend = shape.extend
         out = []
-        for t in _read(store, _bind(terms, bound), *self._graphs[k]):
-            m = _match(terms, t)
+        for t in _read(store, shape.read(bound), *self._graphs[k]):
+            m = extend(bound, t)
             if m is not None:
-                out.append({**bound, **m})
+                out.append(m)
         return out
 
     def _solutions(self, store, order: list[int], bound: dict, at: int = 0) -> Iterator[dict]:
@@ -196,13 +198,13 @@ class Joined:
     def _decide(self, store) -> list[tuple[Triple, bool]] | None:
         """Each candidate of the head's pattern and whether the rule still derives it (None: the
         SPARQL text decides)."""
-        candidates = direct._facts(store, _pattern(self._head), CANDIDATES)
+        candidates = direct._facts(store, self._head.free, CANDIDATES)
         if candidates is None:
             return None
         out = []
         try:
             for c in candidates:
-                bound = _match(self._head, c)
+                bound = self._head.bind(c)
                 if bound is None:
                     continue
                 proven = self._proven(store, bound)
@@ -239,13 +241,14 @@ class Joined:
     def additions(self, store) -> bool:
         """:func:`.delta_texts.additions`: heads the rule derives with an added fact of the delta atom,
         not known yet, into the graph and NEW_FACTS."""
-        facts = direct._facts(store, _pattern(self._body[self.delta]), NEW_FACTS)
+        delta = self._body[self.delta]
+        facts = direct._facts(store, delta.free, NEW_FACTS)
         if facts is None:
             return False
         heads = []
         try:
             for t in facts:
-                start = _match(self._body[self.delta], t)
+                start = delta.bind(t)
                 if start is None:
                     continue
                 for solution in self._solutions(store, self._delta_order, start):
@@ -253,7 +256,7 @@ class Joined:
                     if b is UNKNOWN:
                         return False
                     if b:
-                        head = _instance(self._head, solution)
+                        head = _instance(self._head.terms, solution)
                         if head is False:
                             return False
                         if head is not None:

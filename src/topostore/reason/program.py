@@ -115,6 +115,8 @@ class StepProgram:
     #: key with a part, the keys its rules read and itself; by position of an operation in ``direct``,
     #: the keys its look-ups read
     reads: dict = field(default_factory=dict)
+    #: the operations grouped by part once, for key-by-key runs (:func:`.staged.segments`; built at the first run)
+    segments: list | None = field(default=None, compare=False, repr=False)
 
 
     @property

@@ -28,6 +28,56 @@ from .scratch import CANDIDATES, FLIP_GAINED, NEW_FACTS, OVERDELETED
 #: up to how many candidates a key's rechecks go one by one, stopping once every candidate is kept
 FEW = 32
 _AFTER = {"recheck": CANDIDATES, "lost": FLIP_LOST, "gained": FLIP_GAINED}
+#: operations sent whenever their part runs, and those after which the part's key may have candidates
+_SENT = frozenset(("always", "seeds", "changes"))
+_SEEDING = frozenset(("seeds", "minus", "lost"))
+
+
+class Segment:
+    """A key's part of a program (its operations up to its ``end``), or a recursive component, with
+    what decides in one set test whether any of its operations can run this time."""
+
+    __slots__ = ("always", "component", "keys", "minus", "ops", "plus")
+
+    def __init__(self, ops: list[tuple], component=None) -> None:
+        #: (position, kind, key, text, the flip's tag or None) per operation
+        self.ops = ops
+        self.component = component
+        kinds = {kind for _, kind, _, _, _ in ops}
+        #: an operation runs whatever changed (a flip, the asserted changes, a key's seeds), or the
+        #: part has no end (its key is not noted as the run expects): the part always runs
+        self.always = any(flip is not None for *_, flip in ops) or bool(kinds & _SENT) or "end" not in kinds
+        #: the keys whose lost / gained facts start an operation
+        self.minus = frozenset(key for _, kind, key, _, _ in ops if kind == "minus")
+        self.plus = frozenset(key for _, kind, key, _, _ in ops if kind == "plus")
+        self.keys = self.minus | self.plus
+
+
+def segments(program: StepProgram) -> list[Segment]:
+    """The program's operations grouped by part, each resolved once to its kind, key and flip tag.
+
+    Without a flip, the asserted changes or a key's seeds, a part's operations run only after a
+    ``minus`` or ``plus`` operation whose key lost or gained facts: its rechecks need candidates
+    (seeded by those), its flip results a flip of its own."""
+    out: list[Segment] = []
+    ops: list[tuple] = []
+    for index, (tag, text) in enumerate(program.ops):
+        if tag[0] == "component":
+            if ops:
+                out.append(Segment(ops))
+                ops = []
+            out.append(Segment([], tag[1]))
+            continue
+        flip = None
+        if tag[0] == "flip":
+            flip, tag = tag, tag[1]
+        ops.append((index, tag[0], tag[1] if len(tag) > 1 else None, text, flip))
+        if tag[0] == "end":
+            out.append(Segment(ops))
+            ops = []
+    if ops:
+        out.append(Segment(ops))
+    return out
 
 
 class StagedRun:
@@ -60,48 +110,61 @@ class StagedRun:
         self.unnoted: set = set()
 
     def run(self) -> None:
-        """Run the program: an operation is sent when the key it starts from changed, and a key's
+        """Run the program part by part (:func:`segments`): a part none of whose operations can run (no
+        operation sent whatever changed, and no key it starts from changed or may have) is passed by
+        one set test; the others run operation by operation (:meth:`_part`)."""
+        program = self.program
+        plan = program.segments
+        if plan is None:
+            plan = program.segments = segments(program)
+        minus, plus, unnoted = self.minus, self.plus, self.unnoted
+        for segment in plan:
+            if segment.component is not None:
+                self.flush()  # a component reads between its rounds whatever it likes
+                for key in list(unnoted):
+                    self._changed(key, minus)
+                run_component(self, segment.component)
+            elif segment.always or not (segment.minus.isdisjoint(minus) and segment.plus.isdisjoint(plus)
+                                        and segment.keys.isdisjoint(unnoted)):
+                self._part(segment.ops)
+        self.flush()
+
+    def _part(self, ops: list[tuple]) -> None:
+        """Run one part's operations: each is sent when the key it starts from changed, and a key's
         recheck and flip results only when there is something to recheck or add (index look-ups,
-        after sending what is queued)."""
-        seeded = queued = False
+        after sending what is queued).  A part's flipped facts come only from its own flips, so its
+        flip results are not looked up when none of its flips ran."""
+        seeded = queued = flipped = False
         found: dict[tuple, bool] = {}
         mark = self.sent
         part = self.program.part
-        for index, (tag, text) in enumerate(self.program.ops):
+        for index, kind, key, text, flip in ops:
             look_up = True
-            if tag[0] == "flip":
+            if flip is not None:
                 compiled = text
-                tag, text = tag[1], self._flip(index, tag, text)
+                text = self._flip(index, flip, text)
                 if not text:
                     continue  # nothing can flip this time
+                flipped = True
                 # a text narrowed by a value window: many facts, whose window query ran already
                 look_up = text is compiled or text in self.program.seeded.get(index, {}).values()
-            kind = tag[0]
             if kind == "changes" and self.changes is not None:
                 self.store.add_scratch(self.changes[0], NEW_FACTS)
                 self.store.add_scratch(self.changes[1], OVERDELETED)
             elif kind == "keep":
-                queued |= self._keep(found, tag[1], index, text, seeded)
+                queued |= self._keep(found, key, index, text, seeded)
             elif kind == "delete":
-                if not found.get(("kept", tag[1])) and self._holds(found, CANDIDATES, tag[1], seeded):
+                if not found.get(("kept", key)) and self._holds(found, CANDIDATES, key, seeded):
                     queued |= self._send(index, text, part[index])
-            elif kind in ("always", "seeds", "changes") or (kind == "minus" and self._changed(tag[1], self.minus)) \
-                    or (kind == "plus" and self._changed(tag[1], self.plus)) \
-                    or (kind in _AFTER and self._holds(found, _AFTER[kind], tag[1], seeded)):
+            elif kind in _SENT or (kind == "minus" and self._changed(key, self.minus)) \
+                    or (kind == "plus" and self._changed(key, self.plus)) \
+                    or (kind in _AFTER and (flipped or kind == "recheck")
+                        and self._holds(found, _AFTER[kind], key, seeded)):
                 queued |= self._send(index, text, part[index], look_up)
-                seeded |= kind in ("seeds", "minus", "lost")
+                seeded |= kind in _SEEDING
             elif kind == "end":
                 if queued or self.sent != mark:  # something ran for this key (a look-up may have sent it)
-                    self.unnoted.add(tag[1])  # looked up when a later part asks (after a flush if needed)
-                seeded = queued = False
-                found.clear()
-                mark = self.sent
-            elif kind == "component":
-                self.flush()  # a component reads between its rounds whatever it likes
-                for key in list(self.unnoted):
-                    self._changed(key, self.minus)
-                run_component(self, tag[1])
-        self.flush()
+                    self.unnoted.add(key)  # looked up when a later part asks (after a flush if needed)
 
     def _changed(self, key: ReadKey, changes: set) -> bool:
         """Whether ``key`` is in ``changes`` (:attr:`minus` or :attr:`plus`), looking up first whether
