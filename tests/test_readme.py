@@ -124,9 +124,14 @@ def test_the_tour_commands_run(tmp_path: Path) -> None:
     assert explain.stdout.startswith("R1 rdf:type URGENT  ← swrl:Urgency")
 
 
-def relative_links(path: Path) -> list[str]:
+def link_targets(path: Path) -> list[str]:
+    """The targets of a page's links outside code: inline ``[text](target)`` and reference ``[label]: target``."""
     text = re.sub(r"^```.*?^```$", "", path.read_text(encoding="utf-8"), flags=re.M | re.S)
-    return [t for t in re.findall(r"\]\(([^)\s]+)\)", text) if not re.match(r"[a-z]+:|#", t)]
+    return re.findall(r"\]\(([^)\s]+)\)", text) + re.findall(r"^ {0,3}\[[^\]]+\]:\s*(\S+)", text, flags=re.M)
+
+
+def relative_links(path: Path) -> list[str]:
+    return [t for t in link_targets(path) if not re.match(r"[a-z]+:|#", t)]
 
 
 @pytest.mark.parametrize("page", PAGES, ids=lambda p: str(p.relative_to(ROOT)))
@@ -152,8 +157,7 @@ def heading_anchors(path: Path) -> set[str]:
 
 def anchored_links(path: Path) -> list[tuple[Path, str]]:
     """Each link of a page to a heading (``#anchor`` or ``page.md#anchor``): the page it names and the anchor."""
-    text = re.sub(r"^```.*?^```$", "", path.read_text(encoding="utf-8"), flags=re.M | re.S)
-    links = [t for t in re.findall(r"\]\(([^)\s]+)\)", text) if "#" in t and not re.match(r"[a-z]+:", t)]
+    links = [t for t in link_targets(path) if "#" in t and not re.match(r"[a-z]+:", t)]
     return [(path.parent / t.split("#")[0] if not t.startswith("#") else path, t.split("#", 1)[1]) for t in links]
 
 
