@@ -18,7 +18,7 @@ map of N locations (:mod:`benchmarks.maps`) this prints:
   :mod:`topostore.compile.inline_difference` a rule with one difference atom (and an OWL minimum of
   two fillers) joins the declared-difference rules into its body, so only rules that still read the
   materialised relation are listed (two or more difference atoms); the list was how the join was
-  chosen (docs/benchmarks.md).  ``ts:valueCandidate`` in ``helper_facts`` are the pairs asked of
+  chosen (docs/benchmarks-history.md).  ``ts:valueCandidate`` in ``helper_facts`` are the pairs asked of
   the value rules alone (an entailed-only SWRL conclusion's).
 """
 

@@ -28,7 +28,7 @@ Variants (``NAME``: what it does):
   ``MINUS`` of the inferred head): what the value rules would need to be asked if the candidates
   left out declared pairs; ``candidates_not_grouped``: the same by ``FILTER NOT EXISTS`` over the keys.
 
-The last two are not monotone (a withdrawn declaration must add a candidate): docs/benchmarks.md
+The last two are not monotone (a withdrawn declaration must add a candidate): docs/benchmarks-history.md
 says what keeping them would need of the robot step.
 """
 

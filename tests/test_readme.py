@@ -7,7 +7,8 @@ server started with the section's own `topostore serve` line: its shell blocks
 through bash, its Python blocks in-process; the one change is the port (8765
 becomes a free one).  The front page's tour runs its `topostore reason` and
 `topostore explain` lines.  Shell blocks that are not run are listed below,
-each with the reason; every relative link of the pages names a file that exists.
+each with the reason; every relative link of the pages names a file that exists, and every link
+to a heading names one the page has.
 """
 
 from __future__ import annotations
@@ -20,6 +21,7 @@ import socket
 import subprocess
 import sys
 import time
+import unicodedata
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -122,15 +124,49 @@ def test_the_tour_commands_run(tmp_path: Path) -> None:
     assert explain.stdout.startswith("R1 rdf:type URGENT  ← swrl:Urgency")
 
 
-def relative_links(path: Path) -> list[str]:
+def link_targets(path: Path) -> list[str]:
+    """The targets of a page's links outside code: inline ``[text](target)`` and reference ``[label]: target``."""
     text = re.sub(r"^```.*?^```$", "", path.read_text(encoding="utf-8"), flags=re.M | re.S)
-    return [t for t in re.findall(r"\]\(([^)\s]+)\)", text) if not re.match(r"[a-z]+:|#", t)]
+    return re.findall(r"\]\(([^)\s]+)\)", text) + re.findall(r"^ {0,3}\[[^\]]+\]:\s*(\S+)", text, flags=re.M)
+
+
+def relative_links(path: Path) -> list[str]:
+    return [t for t in link_targets(path) if not re.match(r"[a-z]+:|#", t)]
 
 
 @pytest.mark.parametrize("page", PAGES, ids=lambda p: str(p.relative_to(ROOT)))
 def test_every_relative_link_names_a_file(page: Path) -> None:
     missing = [t for t in relative_links(page) if not (page.parent / t.split("#")[0]).exists()]
     assert not missing, f"{page.name} links to files that do not exist: {missing}"
+
+
+def heading_anchors(path: Path) -> set[str]:
+    """The anchors a Markdown renderer gives a page's headings, GitHub's way: lower case, every character
+    but letters, digits, spaces, hyphens and underscores dropped, spaces made hyphens, a repeat numbered."""
+    text = re.sub(r"^```.*?^```$", "", path.read_text(encoding="utf-8"), flags=re.M | re.S)
+    anchors: set[str] = set()
+    seen: dict[str, int] = {}
+    for title in re.findall(r"^#{1,6} +(.+?) *$", text, flags=re.M):
+        slug = "".join(c for c in title.lower()
+                       if c in " -_" or unicodedata.category(c)[0] in "LN" or unicodedata.category(c) == "Mn")
+        slug = slug.replace(" ", "-")
+        anchors.add(f"{slug}-{seen[slug]}" if slug in seen else slug)
+        seen[slug] = seen.get(slug, 0) + 1
+    return anchors
+
+
+def anchored_links(path: Path) -> list[tuple[Path, str]]:
+    """Each link of a page to a heading (``#anchor`` or ``page.md#anchor``): the page it names and the anchor."""
+    links = [t for t in link_targets(path) if "#" in t and not re.match(r"[a-z]+:", t)]
+    return [(path.parent / t.split("#")[0] if not t.startswith("#") else path, t.split("#", 1)[1]) for t in links]
+
+
+@pytest.mark.parametrize("page", PAGES, ids=lambda p: str(p.relative_to(ROOT)))
+def test_every_anchor_names_a_heading(page: Path) -> None:
+    """A section moved to another page (the benchmarks' history, say) leaves no link pointing at nothing."""
+    broken = [f"{target.name}#{anchor}" for target, anchor in anchored_links(page)
+              if target.suffix == ".md" and target.exists() and anchor not in heading_anchors(target)]
+    assert not broken, f"{page.name} links to headings that do not exist: {broken}"
 
 
 def test_every_page_is_in_the_index() -> None:

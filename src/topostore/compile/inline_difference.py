@@ -27,7 +27,7 @@ the SWRL rules too: a robot step replaces visit times, and a value test joined i
 maintained rule by rule (the connecting rule's flip, the reaching rule's deltas on both visit times
 besides its location), where the value rules over the asked pairs serve every rule once; measured,
 the joined form cost the example step 0.5 ms more, two sets of value rules 0.2 ms
-(docs/benchmarks.md).
+(docs/benchmarks-history.md).
 
 The entailed-only twin of a pair is published only where the rule's ordinary head is not known, so
 its value candidate rule carries that head as ``unless_known`` when the head names the asked pair

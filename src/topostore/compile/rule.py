@@ -256,7 +256,7 @@ class Rule:
 
         A default-graph pattern is looked up in each graph of the default dataset (asserted,
         inferred, helper); where the caller knows that one graph holds all the key's facts, one
-        look-up suffices (a quarter of a join's cost on the maps, docs/benchmarks.md).
+        look-up suffices (a quarter of a join's cost on the maps, docs/benchmarks-history.md).
         """
         atom = self.body[i]
         if i == delta_index:

@@ -25,7 +25,7 @@ from .rule import Rule, RuleSet
 from .schema import Row, SchemaRule, schema_rules
 
 #: A rule kind with more instantiations than this runs as its generic rule in a full REASON.
-#: Measured (docs/benchmarks.md, "Generic OWL rules"): on the tutorial-style TBox of 100 and 400
+#: Measured (docs/benchmarks-history.md, "Generic OWL rules"): on the tutorial-style TBox of 100 and 400
 #: classes, and on the 10,000-location map, whose kinds have at most a handful of rows.
 GENERIC_ROWS = 16
 

@@ -29,7 +29,7 @@ def few_solutions(store: Store, rule: Rule, queued: Collection[ReadKey | None]) 
 
     A range over a handful of derived links (``canReach(r, y) ⟹ LOCATION(y)``, two links) anti-joined
     with every LOCATION read 100,000 memberships: 11 ms at 10,000 locations, 167 ms at 100,000 (see
-    docs/benchmarks.md, "Full REASON from 10,000 to 100,000 locations").  Both forms mean the same
+    docs/benchmarks-history.md, "Full REASON from 10,000 to 100,000 locations").  Both forms mean the same
     (:func:`.insert_text.new_only`); only stores read without a round trip are asked (bounded index
     reads, in the graphs of the default dataset).  A body key an evaluation waiting in the queue may
     write (``queued``) is not counted: the store does not hold those facts yet.

@@ -108,7 +108,7 @@ class OxigraphStore(Store):
         """In memory, the store takes the quads as they are made (one atomic ``extend``); asked to
         ``count``, it counts its quads before and after (0.08 s for 900,000 quads, where a SPARQL count
         of the graph takes 0.45 s).  Written in chunks, each inserted in a second thread while the next
-        is parsed, the same load cost 10-14 % more CPU and no less wall time (docs/benchmarks.md)."""
+        is parsed, the same load cost 10-14 % more CPU and no less wall time (docs/benchmarks-history.md)."""
         if not self._in_memory:
             return super()._commit_stream(quads, extra, count)
         self._release_held()  # a bulk write may name any graph: not scanned for scratch graphs
