@@ -412,3 +412,16 @@ def test_armor_removals_equal_a_full_reason(seed: int, tmp_path: Path) -> None:
 def test_armor_removals_on_a_remote_store_equal_a_full_reason(oxigraph_url: str, tmp_path: Path) -> None:
     """The same through ``oxigraph serve``: the store's reads and writes go over SPARQL."""
     armor_walk(7, tmp_path, store=oxigraph_url, steps=5)
+
+
+def test_swrl_string_functions_give_strings_without_a_language_tag() -> None:
+    """swrlb:lowerCase, upperCase and substring are fn:lower-case, fn:upper-case and fn:substring, whose
+    result is an xs:string: "Hello"@en lower-cased equals "hello" (Pellet 2.3.1 concludes all three)."""
+    o = Ontology(prefix=EX)
+    o.load_data(HEAD + ':s a owl:DatatypeProperty . :Lower a owl:Class . :Upper a owl:Class . :Middle a owl:Class . '
+                       ':en :s "Hello"@en . :plain :s "Hello" .')
+    o.add_rule('s(?x, ?v) ^ swrlb:lowerCase(?l, ?v) ^ swrlb:equal(?l, "hello") -> Lower(?x)', "Lower")
+    o.add_rule('s(?x, ?v) ^ swrlb:upperCase(?u, ?v) ^ swrlb:equal(?u, "HELLO") -> Upper(?x)', "Upper")
+    o.add_rule('s(?x, ?v) ^ swrlb:substring(?m, ?v, 2, 3) ^ swrlb:equal(?m, "ell") -> Middle(?x)', "Middle")
+    assert o.reason().consistent
+    assert ex_types(o, "en") == ex_types(o, "plain") == {"Lower", "Upper", "Middle"}

@@ -110,10 +110,34 @@ def topostore(o: Ontology, names: list[str]) -> dict:
     return {"consistent": True, "individuals": out}
 
 
+@cache
 def consistent_cases() -> str:
-    """One document holding every consistent case (:data:`CASES`, :data:`KNOWN`), each in its own namespace:
-    one Pellet run answers them all."""
-    return "\n".join([*(document(name) for name in CASES), *(document(name, KNOWN[name][0]) for name in KNOWN)])
+    """One document holding every consistent case (:data:`CASES`, :data:`KNOWN`, the SWRL string functions),
+    each in its own namespace: one Pellet run answers them all."""
+    return "\n".join([*(document(name) for name in CASES), *(document(name, KNOWN[name][0]) for name in KNOWN),
+                      swrl_strings()])
+
+
+#: SWRL rules of a third-party style: string built-ins on a language-tagged and a plain string
+STRING_RULES = {
+    "Lower": 's(?x, ?v) ^ swrlb:lowerCase(?l, ?v) ^ swrlb:equal(?l, "hello") -> Lower(?x)',
+    "Upper": 's(?x, ?v) ^ swrlb:upperCase(?u, ?v) ^ swrlb:equal(?u, "HELLO") -> Upper(?x)',
+    "Middle": 's(?x, ?v) ^ swrlb:substring(?m, ?v, 2, 3) ^ swrlb:equal(?m, "ell") -> Middle(?x)',
+    "Long": 's(?x, ?v) ^ swrlb:stringLength(?n, ?v) ^ swrlb:greaterThan(?n, 4) -> Long(?x)',
+    "Joined": 's(?x, ?v) ^ swrlb:stringConcat(?j, ?v, "!") ^ swrlb:equal(?j, "Hello!") -> Joined(?x)',
+}
+
+
+def swrl_strings() -> str:
+    """The Turtle of an ontology with :data:`STRING_RULES`, as topostore SAVEs it."""
+    o = Ontology(prefix=namespace("swrl_strings"))
+    o.load_data(document("swrl_strings", ":s a owl:DatatypeProperty . "
+                         + " ".join(f":{c} a owl:Class ." for c in STRING_RULES)
+                         + ' :en a owl:NamedIndividual ; :s "Hello"@en . :plain a owl:NamedIndividual ; :s "Hello" .'
+                         + ' :other a owl:NamedIndividual ; :s "abc" .'))
+    for label, rule in STRING_RULES.items():
+        o.add_rule(rule, label)
+    return o.serialize("turtle").decode()
 
 
 def only(answers: dict, ns: str) -> dict:
@@ -127,7 +151,7 @@ def topostore_consistent_cases() -> dict:
     return topostore(loaded(consistent_cases()), sorted(pellet(consistent_cases())["individuals"]))
 
 
-@pytest.mark.parametrize("name", list(CASES))
+@pytest.mark.parametrize("name", [*CASES, "swrl_strings"])
 def test_cases_as_pellet(name: str) -> None:
     expected = pellet(consistent_cases())
     assert expected["consistent"]
