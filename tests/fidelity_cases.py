@@ -5,7 +5,7 @@ Each case is Turtle with ``:`` bound to its namespace; :func:`document` adds the
 consistent and fully reasoned by topostore (no notice), so every answer Pellet gives is one topostore must
 give: inverse, symmetric and transitive properties, chains, sameAs chains, hasValue, keys, qualified
 cardinalities with AllDifferent groups, datatype restrictions, punning, self restrictions, negative
-property assertions, literal forms.
+property assertions, literal forms, datatypes topostore does not check (a user's own, xsd:token).
 """
 
 from __future__ import annotations
@@ -91,6 +91,12 @@ CASES: dict[str, str] = {
 :A rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :p ; owl:allValuesFrom :D ] .
 :x a :D ; :p :y . :y a owl:NamedIndividual . :z a owl:NamedIndividual ; :q :x . :u a :A ; :p :w .
 :w a owl:NamedIndividual .
+""",
+    "datatypes_not_checked": """
+:d a owl:DatatypeProperty . :Small a rdfs:Datatype .
+:SomeSmall owl:equivalentClass [ a owl:Restriction ; owl:onProperty :d ; owl:someValuesFrom :Small ] .
+:SomeToken owl:equivalentClass [ a owl:Restriction ; owl:onProperty :d ; owl:someValuesFrom xsd:token ] .
+:x a owl:NamedIndividual ; :d 9 . :y a owl:NamedIndividual ; :d "hello" . :z a owl:NamedIndividual ; :d "ab"^^xsd:token .
 """,
 }
 

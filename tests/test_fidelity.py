@@ -425,3 +425,31 @@ def test_swrl_string_functions_give_strings_without_a_language_tag() -> None:
     o.add_rule('s(?x, ?v) ^ swrlb:substring(?m, ?v, 2, 3) ^ swrlb:equal(?m, "ell") -> Middle(?x)', "Middle")
     assert o.reason().consistent
     assert ex_types(o, "en") == ex_types(o, "plain") == {"Lower", "Upper", "Middle"}
+
+
+def test_datatypes_of_an_existential_hold_only_their_values() -> None:
+    """An existential on a datatype topostore does not check makes no member of a value outside it (it took
+    any literal: 9 and "hello" were values of an undeclared datatype of the ontology's own); the string types
+    derived by their characters hold the strings whose characters they allow (Pellet 2.3.1: "hello" is an
+    xsd:token, not "a  b", 5 or "x"@en)."""
+    o = quiet_turtle(HEAD + '''
+:d a owl:DatatypeProperty . :Small a rdfs:Datatype .
+:SomeSmall owl:equivalentClass [ a owl:Restriction ; owl:onProperty :d ; owl:someValuesFrom :Small ] .
+:T owl:equivalentClass [ a owl:Restriction ; owl:onProperty :d ; owl:someValuesFrom xsd:token ] .
+:N owl:equivalentClass [ a owl:Restriction ; owl:onProperty :d ; owl:someValuesFrom xsd:normalizedString ] .
+:S owl:equivalentClass [ a owl:Restriction ; owl:onProperty :d ; owl:someValuesFrom xsd:string ] .
+:L owl:equivalentClass [ a owl:Restriction ; owl:onProperty :d ; owl:someValuesFrom xsd:language ] .
+:a :d "hello" . :b :d "a  b" . :c :d "a\\tb" . :e :d "en-GB" . :f :d "x"@en . :g :d "ab"^^xsd:token . :h :d 9 .
+''')
+    assert o.reason().consistent
+    assert {name: ex_types(o, name) for name in "abcefgh"} == {
+        "a": {"S", "N", "T", "L"}, "b": {"S", "N"}, "c": {"S"}, "e": {"S", "N", "T", "L"}, "f": set(),
+        "g": {"S", "N", "T", "L"}, "h": set()}
+
+
+def test_a_value_outside_a_string_range_is_inconsistent() -> None:
+    ranged = HEAD + ":d a owl:DatatypeProperty ; rdfs:range xsd:token . "
+    assert not quiet_turtle(ranged + ':a :d "a  b" .').reason().consistent
+    assert quiet_turtle(ranged + ':a :d "ab" .').reason().consistent
+    assert quiet_turtle(HEAD + ':d a owl:DatatypeProperty ; rdfs:range xsd:string . :a :d "ab"^^xsd:token .'
+                        ).reason().consistent

@@ -171,14 +171,6 @@ KNOWN = {
 """, {"x": ["Three"], "y": ["Noon"]},
         "a data hasValue is matched by RDF term, not by value (rules/owl/cls-hv2.rq, compile/owl.py): 3.0 is 3, "
         "one instant in two time zones is one"),
-    "unknown_datatype_filler": (
-        """:d a owl:DatatypeProperty . :Small a rdfs:Datatype .
-:C owl:equivalentClass [ a owl:Restriction ; owl:onProperty :d ; owl:someValuesFrom :Small ] .
-:x a owl:NamedIndividual ; :d 9 . :y a owl:NamedIndividual ; :d "hello" .
-""", {"x": [], "y": []},
-        "a datatype topostore does not check (undefined, set aside, or an XSD type in_datatype does not know) is "
-        "taken as 'any literal' in a someValuesFrom or minimum (compile/owl_restrictions.py _filler_test, "
-        "compile/snippets.py in_datatype): unsound conclusions, and no notice"),
 }
 
 #: name -> (Turtle, where topostore's consistent verdict comes from): Pellet finds each inconsistent

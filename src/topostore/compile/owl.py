@@ -59,6 +59,7 @@ from .snippets import (
     distinct_values,
     in_datatype,
     not_different,
+    surely_in_datatype,
 )
 
 T = str(TYPE)
@@ -154,8 +155,8 @@ class OwlCompiler:
             if e.kind not in ("max", "exact") or e.n != 1 or e.prop.inverse or not self.is_data(e.prop, e):
                 continue
             tests = [cond.test(distinct_values(v1, v2))]
-            if e.datatype is not None and in_datatype(v1, e.datatype) and not self._range_within(e.prop.iri, e.datatype):
-                tests += [cond.test(f"{in_datatype(v1, e.datatype)} && {in_datatype(v2, e.datatype)}")]
+            if e.datatype is not None and not self._range_within(e.prop.iri, e.datatype):
+                tests += [cond.test(f"{surely_in_datatype(v1, e.datatype)} && {surely_in_datatype(v2, e.datatype)}")]
             for member in (a, b):
                 self.emit("different-values", f"class expression {e} allows one value",
                           [candidate_atom(a, b), Atom(member, T, sparql(e.node)),
