@@ -92,6 +92,17 @@ CASES: dict[str, str] = {
 :x a :D ; :p :y . :y a owl:NamedIndividual . :z a owl:NamedIndividual ; :q :x . :u a :A ; :p :w .
 :w a owl:NamedIndividual .
 """,
+    "values_by_value": """
+:d a owl:DatatypeProperty . :k a owl:DatatypeProperty .
+:Three owl:equivalentClass [ a owl:Restriction ; owl:onProperty :d ; owl:hasValue "3"^^xsd:integer ] .
+:Half owl:equivalentClass [ a owl:Restriction ; owl:onProperty :d ; owl:hasValue "0.50"^^xsd:decimal ] .
+:Noon owl:equivalentClass [ a owl:Restriction ; owl:onProperty :k ;
+    owl:hasValue "2020-01-01T12:00:00Z"^^xsd:dateTime ] .
+:x a owl:NamedIndividual ; :d "3.0"^^xsd:decimal . :y a owl:NamedIndividual ; :d "3"^^xsd:long .
+:z a owl:NamedIndividual ; :d ".5"^^xsd:decimal . :w a owl:NamedIndividual ; :d "3"^^xsd:string .
+:u a owl:NamedIndividual ; :k "2020-01-01T14:00:00+02:00"^^xsd:dateTime .
+:v a owl:NamedIndividual ; :k "2020-01-01T12:00:00"^^xsd:dateTime .
+""",
     "datatypes_not_checked": """
 :d a owl:DatatypeProperty . :Small a rdfs:Datatype .
 :SomeSmall owl:equivalentClass [ a owl:Restriction ; owl:onProperty :d ; owl:someValuesFrom :Small ] .

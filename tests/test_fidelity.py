@@ -453,3 +453,18 @@ def test_a_value_outside_a_string_range_is_inconsistent() -> None:
     assert quiet_turtle(ranged + ':a :d "ab" .').reason().consistent
     assert quiet_turtle(HEAD + ':d a owl:DatatypeProperty ; rdfs:range xsd:string . :a :d "ab"^^xsd:token .'
                         ).reason().consistent
+
+
+def test_data_values_are_matched_by_value() -> None:
+    """A data hasValue and a negative data property assertion compare values, not RDF terms: 3.0 and
+    "3"^^xsd:long are 3, .5 is 0.50, 14:00+02:00 is 12:00Z; "3" (a string) and an instant without a time
+    zone are not (Pellet 2.3.1 gives the same classes, and finds the assertion of 5.0 after "not 5"
+    inconsistent)."""
+    o = quiet_turtle(document("values_by_value"))
+    assert o.reason().consistent
+    ns = namespace("values_by_value")
+    assert {n: {t.value.removeprefix(ns) for t in o.types(NamedNode(ns + n))} for n in "xyzwuv"} == {
+        "x": {"Three"}, "y": {"Three"}, "z": {"Half"}, "w": set(), "u": {"Noon"}, "v": set()}
+    o.load_data(HEAD + '[] a owl:NegativePropertyAssertion ; owl:sourceIndividual :x ; owl:assertionProperty :d ; '
+                       'owl:targetValue 5 . :x :d "5.0"^^xsd:decimal .')
+    assert not o.reason().consistent

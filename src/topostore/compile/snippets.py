@@ -6,9 +6,9 @@ knows when a rule that uses it must be evaluated again.
 
 from __future__ import annotations
 
-from pyoxigraph import NamedNode
+from pyoxigraph import Literal, NamedNode
 
-from ..rdf.terms import INTEGER_TYPES
+from ..rdf.terms import INTEGER_TYPES, REAL_TYPES
 from ..rdf.vocab import AUX, DECLARED_DIFFERENT, DIFFERENCE_CANDIDATE, DIFFERENT, INTERNAL, OWL, RDF, RDFS, XSD
 from . import data_ranges
 from .condition import Condition, exists
@@ -124,3 +124,31 @@ def surely_in_datatype(var: str, datatype: NamedNode) -> str:
     if datatype.value.startswith(XSD) or datatype.value.startswith(RDF):
         return f"COALESCE((isLiteral({var}) && datatype({var}) = <{datatype.value}>), false)"
     return "false"
+
+
+#: a literal of the decimal family (xsd:integer, long, …): its value is a real number, written many ways
+_REAL_VALUE = "(isNumeric({v}) && !(datatype({v}) IN (xsd:float, xsd:double)))"
+
+
+def same_value(var: str, value: Literal) -> str | None:
+    """A SPARQL test that ``var`` is the data value ``value`` where one value has several literals that are
+    not one RDF term: a real number (``3``, ``"3.0"^^xsd:decimal``, ``"3"^^xsd:long``) or an instant
+    (``12:00Z``, ``14:00+02:00``).  None for the others, whose one term is their value.
+
+    Why: a rule matching the literal as a term (a hasValue's ``?x :d 3``) misses the value written
+    another way, which the store keeps as written (Oxigraph makes ``"3"^^xsd:long`` ``3``, not ``3.0``)."""
+    text = f'"{_escaped(value.value)}"^^<{value.datatype.value}>'
+    if value.datatype.value[len(XSD):] in REAL_TYPES and value.datatype.value.startswith(XSD):
+        return f"COALESCE(({_REAL_VALUE.format(v=var)} && {var} = {text}), false)"
+    if value.datatype.value == XSD + "dateTime" and _zoned(value.value):
+        return f"COALESCE((datatype({var}) = xsd:dateTime && TZ({var}) != \"\" && {var} = {text}), false)"
+    return None
+
+
+def _zoned(text: str) -> bool:
+    """Whether a dateTime's lexical form names its time zone (only such instants compare across zones)."""
+    return text.endswith("Z") or (len(text) > 6 and text[-6] in "+-" and text[-3] == ":")
+
+
+def _escaped(text: str) -> str:
+    return text.replace("\\", "\\\\").replace('"', '\\"')
