@@ -470,13 +470,10 @@ def test_data_values_are_matched_by_value() -> None:
     assert not o.reason().consistent
 
 
-@pytest.mark.xfail(strict=True, reason="ontology/nary.py individual_triples removes the triples naming the "
-                   "individual and the n-ary axioms listing it, not a class expression or a negative property "
-                   "assertion naming it: a restriction without its value, a one-of list without its first cell "
-                   "and an assertion without its source stay, and SAVE writes them")
 def test_removing_an_individual_removes_every_axiom_naming_it() -> None:
     """aRMOR's REMOVE IND removes every axiom mentioning the individual (OWL API's entity remover), so the
-    asserted graph holds no part of an axiom that named it."""
+    asserted graph holds no part of an axiom that named it (a restriction without its value, a one-of list
+    without its first cell and an assertion without its source stayed, and SAVE wrote them)."""
     o = quiet_turtle(HEAD + """:p a owl:ObjectProperty . :w a owl:NamedIndividual . :b :p :w .
 :C owl:equivalentClass [ a owl:Restriction ; owl:onProperty :p ; owl:hasValue :v ] .
 :O owl:equivalentClass [ owl:oneOf ( :v :w ) ] .
@@ -485,3 +482,22 @@ def test_removing_an_individual_removes_every_axiom_naming_it() -> None:
     kept = HEAD + ":p a owl:ObjectProperty . :w a owl:NamedIndividual . :b :p :w ."
     o.remove_individual(NamedNode(EX + "v"))
     assert canonical(o, ASSERTED) == canonical(quiet_turtle(kept), ASSERTED)
+
+
+def test_removing_an_individual_a_rule_names_removes_the_rule(tmp_path: Path) -> None:
+    """REMOVE IND of an individual a SWRL rule names removes the rule with it: the rule's atom lost its
+    argument, no REASON could compile the rules any more, and each reverted the removal."""
+    path = tmp_path / "named.ttl"
+    path.write_text(HEAD + ":p a owl:ObjectProperty . :C a owl:Class . :v a owl:NamedIndividual . :a :p :v .")
+    service = ArmorService()
+    try:
+        assert armor_command(service, "r", "LOAD", "FILE", "", [path, EX.rstrip("#"), "false", "PELLET", "true"]).success
+        assert armor_command(service, "r", "ADD", "SWRL", "", ["Named", "p(?x, v) -> C(?x)"]).success
+        assert armor_command(service, "r", "REASON", "", "", []).success
+        assert armor_command(service, "r", "QUERY", "IND", "CLASS", ["C"]).queried_objects == [f"<{EX}a>"]
+        assert armor_command(service, "r", "REMOVE", "IND", "", ["v"]).success
+        assert armor_command(service, "r", "REASON", "", "", []).success
+        assert armor_command(service, "r", "QUERY", "IND", "CLASS", ["C"]).queried_objects == []
+        assert armor_command(service, "r", "QUERY", "SWRL", "", []).queried_objects == []
+    finally:
+        service.close()
