@@ -45,7 +45,7 @@ def virtuoso_url() -> Iterator[str]:
 
 #: modules whose tests start a program from outside the virtual environment: roscore, a browser, a JVM
 EXTERNAL_MODULES = {"test_ros", "test_ros_events", "test_fuzz_ros", "test_live", "test_inspector_browser",
-                    "test_pellet_differential", "test_bench"}
+                    "test_pellet_differential", "test_fidelity_pellet", "test_bench"}
 #: modules whose tests take seconds each: fuzzing, property suites, kill loops, wheel builds, the W3C cases
 SLOW_MODULES = {"test_durable", "test_conformance", "test_fuzz_armor", "test_fuzz_http", "test_fuzz_files",
                 "test_fuzz_tbox", "test_incremental", "test_properties", "test_packaging", "test_load_tool"}

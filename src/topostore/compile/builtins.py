@@ -51,9 +51,10 @@ _FUNCTIONS: dict[str, tuple[int, int | None, Callable[[list[str]], str]]] = {
     "ceiling": (1, 1, lambda a: f"CEIL({a[0]})"),
     "stringConcat": (0, None, lambda a: "CONCAT(" + ", ".join(f"STR({x})" for x in a) + ")" if a else '""'),
     "stringLength": (1, 1, lambda a: f"STRLEN({a[0]})"),
-    "upperCase": (1, 1, lambda a: f"UCASE({a[0]})"),
-    "lowerCase": (1, 1, lambda a: f"LCASE({a[0]})"),
-    "substring": (2, 3, lambda a: f"SUBSTR({', '.join(a)})"),
+    # fn:upper-case, fn:lower-case and fn:substring give an xs:string: SPARQL's functions keep a language tag
+    "upperCase": (1, 1, lambda a: f"UCASE(STR({a[0]}))"),
+    "lowerCase": (1, 1, lambda a: f"LCASE(STR({a[0]}))"),
+    "substring": (2, 3, lambda a: f"SUBSTR({', '.join([f'STR({a[0]})', *a[1:]])})"),
 }
 
 _TESTS: dict[str, tuple[int, int, Callable[[list[str]], str]]] = {

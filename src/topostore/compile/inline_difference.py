@@ -100,12 +100,15 @@ def owl_asks(rules: list[Rule]) -> list[DifferenceAsk]:
     for r in rules:
         if not r.name.startswith("swrl:"):
             groups.setdefault(r.origin, []).append(r)
+    orphans = _orphan_readers(groups)
     asks = []
     for group in groups.values():
         candidates = [r for r in group if r.name == "different-candidate" and r.head.p == _CANDIDATE]
         if len(candidates) != 1:
             continue
         candidate = candidates[0]
+        if any(set(candidate.body) <= set(o.body) for o in orphans):
+            continue  # it also asks for another axiom, whose own copy of it was merged into it
         others = [r for r in group if r is not candidate]
         if any(r.is_check or ("p", _DIFFERENT) in r.filter_reads or r.negates for r in others):
             continue
@@ -114,6 +117,22 @@ def owl_asks(rules: list[Rule]) -> list[DifferenceAsk]:
         if readers and all(_difference_atom(r, ask) is not None and r.stratum == 0 for r in readers):
             asks.append(ask)
     return asks
+
+
+def _orphan_readers(groups: dict[str, list[Rule]]) -> list[Rule]:
+    """The rules reading ``ts:different`` (in the body or a filter) of an axiom without a candidate rule.
+
+    Why: a rule set keeps one of two rules alike but for their origin (:meth:`.rule.RuleSet.add`), so two
+    axioms whose fillers are written alike (``p min 2 F`` and ``p min 3 F``) share one candidate rule,
+    filed under the origin of whichever came first.  Joining that origin's readers and dropping the
+    candidate would leave the other axiom's readers with no pair ever asked: its candidate stays."""
+    orphans = []
+    for group in groups.values():
+        if any(r.name == "different-candidate" and r.head is not None and r.head.p == _CANDIDATE for r in group):
+            continue
+        orphans += [r for r in group if any(a.p in (_DIFFERENT, _DECLARED) for a in r.body)
+                    or ("p", _DIFFERENT) in r.filter_reads]
+    return orphans
 
 
 def inline_difference(rules: list[Rule], asks: list[DifferenceAsk]) -> list[Rule]:

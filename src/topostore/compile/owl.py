@@ -28,7 +28,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 
-from pyoxigraph import NamedNode
+from pyoxigraph import Literal, NamedNode
 
 from ..rdf.terms import sparql
 from ..rdf.vocab import NOTHING, SAME_AS, THING, TYPE
@@ -59,6 +59,8 @@ from .snippets import (
     distinct_values,
     in_datatype,
     not_different,
+    same_value,
+    surely_in_datatype,
 )
 
 T = str(TYPE)
@@ -154,8 +156,8 @@ class OwlCompiler:
             if e.kind not in ("max", "exact") or e.n != 1 or e.prop.inverse or not self.is_data(e.prop, e):
                 continue
             tests = [cond.test(distinct_values(v1, v2))]
-            if e.datatype is not None and in_datatype(v1, e.datatype) and not self._range_within(e.prop.iri, e.datatype):
-                tests += [cond.test(f"{in_datatype(v1, e.datatype)} && {in_datatype(v2, e.datatype)}")]
+            if e.datatype is not None and not self._range_within(e.prop.iri, e.datatype):
+                tests += [cond.test(f"{surely_in_datatype(v1, e.datatype)} && {surely_in_datatype(v2, e.datatype)}")]
             for member in (a, b):
                 self.emit("different-values", f"class expression {e} allows one value",
                           [candidate_atom(a, b), Atom(member, T, sparql(e.node)),
@@ -233,7 +235,7 @@ class OwlCompiler:
         return list(found.values())
 
     def expression_rules(self, e: Expr) -> None:
-        x = "?x"
+        x, y = "?x", "?y"
         node = sparql(e.node)
         origin = f"class expression {e}"
         if e.kind == "and":
@@ -251,6 +253,12 @@ class OwlCompiler:
         elif e.kind == "not":
             self.emit("cls-com", origin, [Atom(x, T, node)] + self.member(x, e.members[0]),
                       violation=(x,), message=f"an individual is in {e.members[0]} and in its complement")
+        elif e.kind == "value" and isinstance(e.value, Literal) and same_value(y, e.value) is not None:
+            # a value with other spellings (3.0 is 3): members by value; the value itself as usual
+            if not self.instantiate(value_row(e), origin, "cls-hv1"):
+                self.emit("cls-hv1", origin, [Atom(x, T, node)], self.prop_atom(x, e.prop, sparql(e.value)))
+            self.emit("cls-hv2", origin, [self.prop_atom(x, e.prop, y)], Atom(x, T, node),
+                      [cond.test(same_value(y, e.value))])
         elif e.kind == "value":
             if not self.instantiate(value_row(e), origin, "cls-hv1", "cls-hv2"):
                 self.emit("cls-hv1", origin, [Atom(x, T, node)], self.prop_atom(x, e.prop, sparql(e.value)))

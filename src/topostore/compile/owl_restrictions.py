@@ -33,6 +33,7 @@ from .snippets import (
     in_datatype,
     known_different,
     not_different,
+    surely_in_datatype,
 )
 
 T = str(TYPE)
@@ -120,8 +121,7 @@ class RestrictionRules:
 
     def _filler_test(self, var: str, e: Expr) -> tuple[list[Atom], Condition | None]:
         if e.datatype is not None:
-            test = in_datatype(var, e.datatype)
-            return [], cond.test(test or f"isLiteral({var})")
+            return [], cond.test(surely_in_datatype(var, e.datatype))
         if self.compiler.is_data(e.prop, e):
             return [], cond.test(f"isLiteral({var})")
         return self.compiler.member(var, e.filler), None

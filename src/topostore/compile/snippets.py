@@ -6,9 +6,9 @@ knows when a rule that uses it must be evaluated again.
 
 from __future__ import annotations
 
-from pyoxigraph import NamedNode
+from pyoxigraph import Literal, NamedNode
 
-from ..rdf.terms import INTEGER_TYPES
+from ..rdf.terms import INTEGER_TYPES, REAL_TYPES
 from ..rdf.vocab import AUX, DECLARED_DIFFERENT, DIFFERENCE_CANDIDATE, DIFFERENT, INTERNAL, OWL, RDF, RDFS, XSD
 from . import data_ranges
 from .condition import Condition, exists
@@ -62,6 +62,16 @@ def _real(var: str) -> str:
     return f"isNumeric({var}) && !(datatype({var}) IN ({_FLOATING}))"
 
 
+#: the string types derived by restricting characters (XSD 1.1 Part 2 §3.4.2-3.4.4), as SPARQL tests on ``{v}``
+_STRING_FORMS = {
+    "normalizedString": '!REGEX(STR({v}), "[\\r\\n\\t]")',
+    "token": '!REGEX(STR({v}), "[\\r\\n\\t]|^ | $|  ")',
+    "language": 'REGEX(STR({v}), "^[a-zA-Z]{{1,8}}(-[a-zA-Z0-9]{{1,8}})*$")',
+}
+#: the datatypes whose values are strings without a language tag
+_STRINGS = "xsd:string, xsd:normalizedString, xsd:token, xsd:language"
+
+
 def in_datatype(var: str, datatype: NamedNode) -> str | None:
     """A boolean SPARQL expression: ``var`` is a literal of ``datatype``'s value space.
 
@@ -70,7 +80,7 @@ def in_datatype(var: str, datatype: NamedNode) -> str | None:
     """
     restricted = data_ranges.parts(datatype)
     if restricted is not None:  # a datatype restricted by numeric facets: the base, then each facet
-        base = in_datatype(var, restricted[0]) or f"isLiteral({var})"
+        base = surely_in_datatype(var, restricted[0])
         facets = " && ".join(data_ranges.facet_tests(var, datatype))
         return f"COALESCE(({base} && {facets}), false)" if facets else base
     dt = datatype.value
@@ -89,9 +99,56 @@ def in_datatype(var: str, datatype: NamedNode) -> str | None:
     if local == "decimal" or dt in (OWL + "real", OWL + "rational"):
         return f"COALESCE(({_real(var)}), false)"
     if local == "string":
-        return f"COALESCE((isLiteral({var}) && datatype({var}) = <{XSD}string>), false)"
+        return f"COALESCE((isLiteral({var}) && datatype({var}) IN ({_STRINGS})), false)"
+    if local in _STRING_FORMS:  # a string whose characters the derived type allows is one of its values
+        return (f"COALESCE((isLiteral({var}) && datatype({var}) IN ({_STRINGS}) && "
+                f"{_STRING_FORMS[local].format(v=var)}), false)")
     if dt in (RDF + "PlainLiteral", RDF + "langString"):
         return f"COALESCE((isLiteral({var}) && (lang({var}) != \"\" || datatype({var}) = <{XSD}string>)), false)"
     if local in ("float", "double", "boolean", "dateTime", "date", "time", "anyURI", "dateTimeStamp", "duration"):
         return f"COALESCE((isLiteral({var}) && datatype({var}) = <{dt}> && str({var}) = str({var})), false)"
     return None
+
+
+def surely_in_datatype(var: str, datatype: NamedNode) -> str:
+    """A boolean SPARQL expression true only where ``var`` is surely in ``datatype``'s value space, for the
+    rules that conclude a membership from it (an existential, a minimum, a SWRL data range).
+
+    Why not "any literal" where :func:`in_datatype` does not check the datatype: a value outside it would
+    make its subject a member of the restriction, a wrong answer ("hello" a value of a user's datatype of
+    small integers).  A literal typed with a built-in datatype (``"ab"^^xsd:token``) is in it; a datatype of
+    the ontology's own, whose definition is not read, is never known to hold a value."""
+    checked = in_datatype(var, datatype)
+    if checked is not None:
+        return checked
+    if datatype.value.startswith(XSD) or datatype.value.startswith(RDF):
+        return f"COALESCE((isLiteral({var}) && datatype({var}) = <{datatype.value}>), false)"
+    return "false"
+
+
+#: a literal of the decimal family (xsd:integer, long, …): its value is a real number, written many ways
+_REAL_VALUE = "(isNumeric({v}) && !(datatype({v}) IN (xsd:float, xsd:double)))"
+
+
+def same_value(var: str, value: Literal) -> str | None:
+    """A SPARQL test that ``var`` is the data value ``value`` where one value has several literals that are
+    not one RDF term: a real number (``3``, ``"3.0"^^xsd:decimal``, ``"3"^^xsd:long``) or an instant
+    (``12:00Z``, ``14:00+02:00``).  None for the others, whose one term is their value.
+
+    Why: a rule matching the literal as a term (a hasValue's ``?x :d 3``) misses the value written
+    another way, which the store keeps as written (Oxigraph makes ``"3"^^xsd:long`` ``3``, not ``3.0``)."""
+    text = f'"{_escaped(value.value)}"^^<{value.datatype.value}>'
+    if value.datatype.value[len(XSD):] in REAL_TYPES and value.datatype.value.startswith(XSD):
+        return f"COALESCE(({_REAL_VALUE.format(v=var)} && {var} = {text}), false)"
+    if value.datatype.value == XSD + "dateTime" and _zoned(value.value):
+        return f"COALESCE((datatype({var}) = xsd:dateTime && TZ({var}) != \"\" && {var} = {text}), false)"
+    return None
+
+
+def _zoned(text: str) -> bool:
+    """Whether a dateTime's lexical form names its time zone (only such instants compare across zones)."""
+    return text.endswith("Z") or (len(text) > 6 and text[-6] in "+-" and text[-3] == ":")
+
+
+def _escaped(text: str) -> str:
+    return text.replace("\\", "\\\\").replace('"', '\\"')

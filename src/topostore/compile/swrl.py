@@ -25,7 +25,7 @@ from .inline_difference import DifferenceAsk
 from .model import Expr, is_datatype
 from .notices import SQWRL_QUERY, Notice
 from .rule import Atom, Rule
-from .snippets import candidate_atom, different_atom, in_datatype
+from .snippets import candidate_atom, different_atom, surely_in_datatype
 from .tbox_reader import TBoxReader
 
 T = str(TYPE)
@@ -333,7 +333,7 @@ class SwrlCompiler:
             self._need(a, 1)
             if not is_datatype(a.predicate):
                 raise RuleCompileError("only named datatypes are supported as data ranges")
-            test = in_datatype(arg(a.args[0]), a.predicate) or f"isLiteral({arg(a.args[0])})"
+            test = surely_in_datatype(arg(a.args[0]), a.predicate)
             body.deferred.append((cond.test(test), [arg(a.args[0])], a))
         elif k == "BuiltinAtom":
             pending.append(a)

@@ -17,7 +17,7 @@ from pyoxigraph import NamedNode, Triple
 
 from ..rdf.skolem import fresh_skolem
 from ..rdf.terms import Term
-from ..rdf.vocab import ASSERTED, FIRST, NIL, REST, TYPE, owl
+from ..rdf.vocab import ASSERTED, FIRST, NIL, REST, TYPE, is_skolem, owl, swrl
 from ..stores.base import Store
 
 #: the predicates that tie an n-ary axiom's group node to its list of members
@@ -82,12 +82,52 @@ def axiom_of_list_node(store: Store, node: Term, graph: NamedNode = ASSERTED) ->
 
 
 def individual_triples(store: Store, individual: NamedNode, graph: NamedNode = ASSERTED) -> list[Triple]:
-    """What removing ``individual`` removes: every triple naming it, and every n-ary axiom listing it whole."""
+    """What removing ``individual`` removes: every triple naming it, every n-ary axiom listing it whole, and
+    every axiom naming it from an anonymous node whole (a class expression, a negative property assertion,
+    a SWRL rule), as aRMOR's REMOVE IND (OWL API's entity remover) removes every axiom mentioning it."""
     doomed = list(store.triples(individual, None, None, graph)) + list(store.triples(None, None, individual, graph))
     for t in list(doomed):
-        if t.predicate == FIRST:
-            doomed += axiom_of_list_node(store, t.subject, graph)
+        whole = axiom_of_list_node(store, t.subject, graph) if t.predicate == FIRST else []
+        if not whole and t.subject != individual and is_skolem(t.subject):
+            whole = enclosing_axiom(store, t.subject, graph)
+        doomed += whole
     return list(dict.fromkeys(doomed))
+
+
+def enclosing_axiom(store: Store, node: Term, graph: NamedNode = ASSERTED) -> list[Triple]:
+    """Every triple of the axiom the anonymous ``node`` is part of: the SWRL rule it is in (named or not),
+    else the topmost anonymous node above it with all below it and the triples naming it (``C
+    owl:equivalentClass _:r``); nothing when that node is neither named nor typed (no axiom holds it).
+
+    Why whole: a restriction without its value, a list without a cell or an atom without an argument is no
+    axiom anyone can read (a rule missing an argument no longer compiles, so no REASON could run)."""
+    top, seen = node, {node}
+    while True:
+        parents = list(store.triples(None, None, top, graph))
+        rule = next((t.subject for t in parents if store.contains(Triple(t.subject, TYPE, swrl("Imp")), graph)), None)
+        if rule is not None:
+            return _below(store, rule, graph)
+        above = next((t.subject for t in parents if is_skolem(t.subject) and t.subject not in seen), None)
+        if above is None:
+            naming = [t for t in parents if not is_skolem(t.subject)]
+            if not naming and not list(store.triples(top, TYPE, None, graph)):
+                return []  # a structure no axiom holds (a bare list): only the triples naming the individual go
+            return naming + _below(store, top, graph)
+        top = above
+        seen.add(top)
+
+
+def _below(store: Store, root: Term, graph: NamedNode) -> list[Triple]:
+    """The triples of ``root`` and of every anonymous node reached from it."""
+    out: list[Triple] = []
+    todo, seen = [root], {root}
+    while todo:
+        for t in store.triples(todo.pop(), None, None, graph):
+            out.append(t)
+            if is_skolem(t.object) and t.object not in seen:
+                seen.add(t.object)
+                todo.append(t.object)
+    return out
 
 
 __all__ = [
@@ -96,5 +136,6 @@ __all__ = [
     "all_disjoint_classes",
     "axiom_of_list_node",
     "individual_triples",
+    "enclosing_axiom",
     "MEMBER_LISTS",
 ]

@@ -1,0 +1,123 @@
+"""Small ontologies beyond the tutorial's OWL, each in its own namespace, that the fidelity tests load along
+several paths (tests/test_fidelity.py) and give Pellet (tests/test_fidelity_pellet.py).
+
+Each case is Turtle with ``:`` bound to its namespace; :func:`document` adds the prefixes.  The cases are
+consistent and fully reasoned by topostore (no notice), so every answer Pellet gives is one topostore must
+give: inverse, symmetric and transitive properties, chains, sameAs chains, hasValue, keys, qualified
+cardinalities with AllDifferent groups, datatype restrictions, punning, self restrictions, negative
+property assertions, literal forms, datatypes topostore does not check (a user's own, xsd:token).
+"""
+
+from __future__ import annotations
+
+BASE = "http://example.org/fidelity/"
+
+CASES: dict[str, str] = {
+    "properties": """
+:p a owl:ObjectProperty ; owl:inverseOf :q . :q a owl:ObjectProperty .
+:s a owl:ObjectProperty, owl:SymmetricProperty . :t a owl:ObjectProperty, owl:TransitiveProperty .
+:ts a owl:ObjectProperty ; rdfs:subPropertyOf :t .
+:a :p :b ; :s :c ; :t :b . :b :t :c . :c :t :d . :d :ts :e .
+:a a owl:NamedIndividual . :b a owl:NamedIndividual . :c a owl:NamedIndividual . :d a owl:NamedIndividual .
+:e a owl:NamedIndividual .
+""",
+    "chains": """
+:hasParent a owl:ObjectProperty . :hasBrother a owl:ObjectProperty .
+:hasUncle a owl:ObjectProperty ; owl:propertyChainAxiom ( :hasParent :hasBrother ) .
+:greatGrandParent a owl:ObjectProperty ; owl:propertyChainAxiom ( :hasParent :hasParent :hasParent ) .
+:sibling a owl:ObjectProperty ; owl:propertyChainAxiom ( :hasParent [ owl:inverseOf :hasParent ] ) .
+:a :hasParent :b . :b :hasBrother :c ; :hasParent :x . :x :hasParent :y . :z :hasParent :b .
+:a a owl:NamedIndividual . :b a owl:NamedIndividual . :c a owl:NamedIndividual . :x a owl:NamedIndividual .
+:y a owl:NamedIndividual . :z a owl:NamedIndividual .
+""",
+    "same_as_chain": """
+:A a owl:Class . :p a owl:ObjectProperty . :d a owl:DatatypeProperty .
+:a a owl:NamedIndividual, :A ; owl:sameAs :b . :b a owl:NamedIndividual ; owl:sameAs :c .
+:c a owl:NamedIndividual ; :p :z ; :d 5 . :z a owl:NamedIndividual . :e a owl:NamedIndividual ; owl:differentFrom :a .
+""",
+    "has_value": """
+:p a owl:ObjectProperty . :d a owl:DatatypeProperty .
+:C owl:equivalentClass [ a owl:Restriction ; owl:onProperty :p ; owl:hasValue :v ] .
+:D owl:equivalentClass [ a owl:Restriction ; owl:onProperty :d ; owl:hasValue "3"^^xsd:integer ] .
+:v a owl:NamedIndividual . :a a owl:NamedIndividual ; :p :v . :b a owl:NamedIndividual, :C .
+:c a owl:NamedIndividual ; :d "03"^^xsd:integer . :e a owl:NamedIndividual, :D . :f a owl:NamedIndividual ; :d "3"^^xsd:long .
+""",
+    "keys": """
+:Person a owl:Class ; owl:hasKey ( :ssn ) . :ssn a owl:DatatypeProperty . :p a owl:ObjectProperty .
+:a a owl:NamedIndividual, :Person ; :ssn "1"^^xsd:integer ; :p :o . :o a owl:NamedIndividual .
+:b a owl:NamedIndividual, :Person ; :ssn "1.0"^^xsd:decimal . :c a owl:NamedIndividual, :Person ; :ssn "01"^^xsd:byte .
+:e a owl:NamedIndividual, :Person ; :ssn "2"^^xsd:integer .
+""",
+    "cardinalities": """
+:p a owl:ObjectProperty . :F a owl:Class .
+:Three owl:equivalentClass [ a owl:Restriction ; owl:onProperty :p ;
+    owl:minQualifiedCardinality "3"^^xsd:nonNegativeInteger ; owl:onClass :F ] .
+:Two owl:equivalentClass [ a owl:Restriction ; owl:onProperty :p ;
+    owl:minQualifiedCardinality "2"^^xsd:nonNegativeInteger ; owl:onClass :F ] .
+:a a owl:NamedIndividual ; :p :f1, :f2, :f3, :f4 . :f1 a :F . :f2 a :F . :f3 a :F . :f4 a owl:NamedIndividual .
+[] a owl:AllDifferent ; owl:distinctMembers ( :f1 :f2 :f3 :f4 ) .
+:b a owl:NamedIndividual ; :p :g1, :g2, :g3 . :g1 a :F . :g2 a :F . :g3 a :F .
+:g1 owl:differentFrom :g2 . :g2 owl:differentFrom :g3 . :g1 owl:differentFrom :g3 .
+:c a owl:NamedIndividual ; :p :h1, :h2, :h3 . :h1 a :F . :h2 a :F . :h3 a :F .
+[] a owl:AllDifferent ; owl:distinctMembers ( :h1 :h2 ) . [] a owl:AllDifferent ; owl:distinctMembers ( :h2 :h3 ) .
+[] a owl:AllDifferent ; owl:distinctMembers ( :h1 :h3 ) .
+:e a owl:NamedIndividual ; :p :k1, :k2 . :k1 a :F . :k2 a :F .
+""",
+    "maximum_merges": """
+:p a owl:ObjectProperty . :q a owl:ObjectProperty .
+:M rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :p ; owl:maxCardinality "1"^^xsd:nonNegativeInteger ] .
+:a a owl:NamedIndividual, :M ; :p :u, :v . :u a owl:NamedIndividual . :v a owl:NamedIndividual ; :q :w .
+:w a owl:NamedIndividual .
+""",
+    "datatype_restrictions": """
+:age a owl:DatatypeProperty .
+:Adult owl:equivalentClass [ a owl:Restriction ; owl:onProperty :age ; owl:someValuesFrom [ a rdfs:Datatype ;
+    owl:onDatatype xsd:integer ; owl:withRestrictions ( [ xsd:minInclusive 18 ] ) ] ] .
+:Teen owl:equivalentClass [ a owl:Restriction ; owl:onProperty :age ; owl:someValuesFrom [ a rdfs:Datatype ;
+    owl:onDatatype xsd:integer ; owl:withRestrictions ( [ xsd:minInclusive 13 ] [ xsd:maxExclusive 20 ] ) ] ] .
+:a a owl:NamedIndividual ; :age 18 . :b a owl:NamedIndividual ; :age "17"^^xsd:long .
+:c a owl:NamedIndividual ; :age "19.0"^^xsd:decimal . :e a owl:NamedIndividual ; :age "20"^^xsd:short .
+""",
+    "punning_and_self": """
+:Eagle a owl:Class, owl:NamedIndividual ; :status :Endangered . :status a owl:ObjectProperty .
+:Endangered a owl:NamedIndividual . :Bird a owl:Class . :Eagle rdfs:subClassOf :Bird . :e1 a :Eagle .
+:likes a owl:ObjectProperty . :Narcissist owl:equivalentClass [ a owl:Restriction ; owl:onProperty :likes ;
+    owl:hasSelf true ] .
+:n1 a owl:NamedIndividual ; :likes :n1 . :n2 a owl:NamedIndividual ; :likes :n1 .
+""",
+    "inverse_restrictions": """
+:p a owl:ObjectProperty . :q a owl:ObjectProperty ; owl:inverseOf :p . :D a owl:Class .
+:C owl:equivalentClass [ a owl:Restriction ; owl:onProperty [ owl:inverseOf :p ] ; owl:someValuesFrom :D ] .
+:A rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :p ; owl:allValuesFrom :D ] .
+:x a :D ; :p :y . :y a owl:NamedIndividual . :z a owl:NamedIndividual ; :q :x . :u a :A ; :p :w .
+:w a owl:NamedIndividual .
+""",
+    "values_by_value": """
+:d a owl:DatatypeProperty . :k a owl:DatatypeProperty .
+:Three owl:equivalentClass [ a owl:Restriction ; owl:onProperty :d ; owl:hasValue "3"^^xsd:integer ] .
+:Half owl:equivalentClass [ a owl:Restriction ; owl:onProperty :d ; owl:hasValue "0.50"^^xsd:decimal ] .
+:Noon owl:equivalentClass [ a owl:Restriction ; owl:onProperty :k ;
+    owl:hasValue "2020-01-01T12:00:00Z"^^xsd:dateTime ] .
+:x a owl:NamedIndividual ; :d "3.0"^^xsd:decimal . :y a owl:NamedIndividual ; :d "3"^^xsd:long .
+:z a owl:NamedIndividual ; :d ".5"^^xsd:decimal . :w a owl:NamedIndividual ; :d "3"^^xsd:string .
+:u a owl:NamedIndividual ; :k "2020-01-01T14:00:00+02:00"^^xsd:dateTime .
+:v a owl:NamedIndividual ; :k "2020-01-01T12:00:00"^^xsd:dateTime .
+""",
+    "datatypes_not_checked": """
+:d a owl:DatatypeProperty . :Small a rdfs:Datatype .
+:SomeSmall owl:equivalentClass [ a owl:Restriction ; owl:onProperty :d ; owl:someValuesFrom :Small ] .
+:SomeToken owl:equivalentClass [ a owl:Restriction ; owl:onProperty :d ; owl:someValuesFrom xsd:token ] .
+:x a owl:NamedIndividual ; :d 9 . :y a owl:NamedIndividual ; :d "hello" . :z a owl:NamedIndividual ; :d "ab"^^xsd:token .
+""",
+}
+
+
+def namespace(name: str) -> str:
+    return f"{BASE}{name}#"
+
+
+def document(name: str, body: str | None = None) -> str:
+    """The Turtle of case ``name`` (or of ``body`` in that case's namespace), prefixes included."""
+    return (f"@prefix : <{namespace(name)}> . @prefix owl: <http://www.w3.org/2002/07/owl#> .\n"
+            "@prefix rdfs: <http://www.w3.org/2000/01/rdf-schema#> . "
+            "@prefix xsd: <http://www.w3.org/2001/XMLSchema#> .\n" + (CASES[name] if body is None else body))
