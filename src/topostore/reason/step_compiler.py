@@ -4,7 +4,7 @@ maintains them (:class:`.program.StepProgram`); the operations themselves are wr
 
 from __future__ import annotations
 
-from collections.abc import Callable, Collection
+from collections.abc import Callable, Collection, Iterator, Mapping
 from dataclasses import replace
 
 from ..compile.rule import ReadKey, Rule
@@ -48,6 +48,22 @@ class StepCompiler:
         self._covered: dict[int, ReadKey] | None = None
         #: the graphs a look-up operation reads an atom's facts from (see :class:`.look_join.StateGraphs`)
         self.state_graphs = StateGraphs(rules)
+        #: the maintained rules by the keys they read, those reading any predicate or class apart, and by
+        #: the key they write: a step's compilation then visits the rules its change reaches, not all
+        #: of them (a 400-class TBox has tens of thousands)
+        self._readers: dict[ReadKey, list[int]] = {}
+        self._wild: list[int] = []
+        self._by_head: dict[ReadKey, list[int]] = {}
+        self._keys: dict[int, tuple[ReadKey, ...]] = {}
+        for i in self.monotone:
+            rule = self.rules[i]
+            reads = rule.reads()
+            if ("*",) in reads or ("p", _TYPE) in reads:
+                self._wild.append(i)
+            else:
+                for key in reads:
+                    self._readers.setdefault(key, []).append(i)
+            self._by_head.setdefault(rule.writes(), []).append(i)
 
     @property
     def covered(self) -> dict[int, ReadKey]:
@@ -61,8 +77,8 @@ class StepCompiler:
         """The program of ``sig`` given the keys with facts (``present``) and with asserted facts
         (``asserted``, a superset; None: any); raises :class:`Refused`."""
         left_out = self._left_out(sig, asserted)
-        active, affected, absent = self._affected(sig, present, left_out)
-        writers = self._writers(present, affected, absent, left_out)
+        active, affected, absent, missed = self._affected(sig, present, left_out)
+        writers = _Writers(self, present, affected, absent, left_out, active, missed)
         # a replaced value that a rule may also derive is not a clean replacement (see :mod:`.flip`)
         clean = {p for p in sig.clean if not writers.get(("p", p))}
         emitter = Emitter(self, sig, active, writers, frozenset(clean), asserted)
@@ -77,65 +93,56 @@ class StepCompiler:
         changed = sig.added | sig.removed
         return {i for i, key in self.covered.items() if key not in changed and not matches(key, *asserted)}
 
-    def _writers(self, present: Present, affected: set, absent: set,
-                 left_out: Collection[int]) -> dict[ReadKey, list[int]]:
-        """Every maintained rule that can fire (its body keys have facts, now or from this change), by
-        the key it writes: a recheck must ask all of them, changed premises or not."""
-        writers: dict[ReadKey, list[int]] = {}
-        for i in self.monotone:
-            if i in left_out:
+    def _affected(self, sig: Signature, present: Present,
+                  left_out: Collection[int]) -> tuple[list[int], set, set, dict[int, set]]:
+        """The rules a change of ``sig`` can make fire, the keys they may change, the keys whose
+        absence left rules out, and the rules left out by the keys they missed.
+
+        A worklist over the readers of each key as it becomes affected: a rule is looked at again only
+        when a key it reads joins (which is also when a key it missed may have), so the work follows
+        what the change reaches.  The rules are returned in rule order."""
+        affected = set(sig.added | sig.removed)
+        active: set[int] = set()
+        absent: set = set()
+        #: a rule left out, by the body keys it missed: only one of those joining can change that
+        missed: dict[int, set] = {}
+        # (rule, the key whose joining queued it: None for the change's own keys, looked at in any case)
+        todo: list[tuple[int, ReadKey | None]] = [(i, None) for key in affected for i in self._readers.get(key, ())]
+        if affected:
+            todo += [(i, None) for i in self._wild]
+        while todo:
+            i, joined = todo.pop()
+            if i in active or i in left_out or (i in missed and joined not in missed[i]):
                 continue
             rule = self.rules[i]
-            missing = self._missing(rule, present, affected)
+            missing = self._missing(i, present, affected)
             if missing:
                 absent |= missing
+                missed[i] = missing
                 continue
-            writers.setdefault(rule.writes(), []).append(i)
-        return writers
+            missed.pop(i, None)
+            self._check_compilable(rule, affected)
+            active.add(i)
+            key = rule.writes()
+            if key not in affected:
+                affected.add(key)
+                todo += [(n, key) for n in self._readers.get(key, ())]
+        return sorted(active), affected, absent, missed
 
-    def _affected(self, sig: Signature, present: Present, left_out: Collection[int]) -> tuple[list[int], set, set]:
-        """The rules a change of ``sig`` can make fire, the keys they may change, and the keys whose
-        absence left rules out."""
-        affected = set(sig.added | sig.removed)
-        active: dict[int, None] = {}
-        absent: set = set()
-        grew = True
-        while grew:
-            grew = False
-            for i in self.monotone:
-                rule = self.rules[i]
-                if i in active or i in left_out or not self._reaches(rule, affected):
-                    continue
-                missing = self._missing(rule, present, affected)
-                if missing:
-                    absent |= missing
-                    continue
-                self._check_compilable(rule, affected)
-                active[i] = None
-                if rule.writes() not in affected:
-                    affected.add(rule.writes())
-                    grew = True
-        return list(active), affected, absent
-
-    @staticmethod
-    def _reaches(rule: Rule, affected: set) -> bool:
-        reads = rule.reads()
-        if ("*",) in reads or ("p", _TYPE) in reads:
-            return bool(affected)
-        return bool(reads & affected)
-
-    @staticmethod
-    def _missing(rule: Rule, present: Present, affected: set) -> set:
-        """Body keys without any fact, now or from this change (the rule cannot match)."""
+    def _missing(self, i: int, present: Present, affected: set) -> set:
+        """Body keys of rule ``i`` without any fact, now or from this change (the rule cannot match)."""
         preds, classes = present
-        missing = set()
-        for atom in rule.body:
-            key = atom.read_key()
-            if not atom.p.startswith("<") or key in affected:
-                continue  # a variable predicate or a path may match anything
-            if key[1] not in (classes if key[0] == "t" else preds):
-                missing.add(key)
-        return missing
+        return {key for key in self._body_keys(i)
+                if key not in affected and key[1] not in (classes if key[0] == "t" else preds)}
+
+    def _body_keys(self, i: int) -> tuple[ReadKey, ...]:
+        """The read keys of rule ``i``'s body atoms with a named predicate (a variable predicate or a
+        path may match anything), kept: a step asks them of every rule its change reaches."""
+        keys = self._keys.get(i)
+        if keys is None:
+            keys = self._keys[i] = tuple(dict.fromkeys(
+                atom.read_key() for atom in self.rules[i].body if atom.p.startswith("<")))
+        return keys
 
     @staticmethod
     def _check_compilable(rule: Rule, affected: set) -> None:
@@ -175,6 +182,48 @@ class StepCompiler:
                 rule = replace(rule, body=tuple(replace(a, aux=False) for a in rule.body))
             self._flat[i] = rule
         return rule
+
+
+class _Writers(Mapping):
+    """Every maintained rule that can fire (its body keys have facts, now or from this change), by the
+    key it writes: a recheck must ask all of them, changed premises or not.
+
+    Found per key when the emitter first asks: it asks about the keys the change reaches and the
+    premises of their rules, a few of the keys the rules write.  A rule :meth:`StepCompiler._affected`
+    looked at is known (active, or left out by the keys it missed); the keys whose absence left a
+    rule out are added to ``absent`` as found (the program's ``needs_absent``, read when the emitter
+    is done)."""
+
+    def __init__(self, compiler: StepCompiler, present: Present, affected: set, absent: set,
+                 left_out: Collection[int], active: Collection[int], missed: dict[int, set]) -> None:
+        self._c, self._present, self._affected, self._absent = compiler, present, affected, absent
+        self._left_out, self._active, self._missed = left_out, frozenset(active), missed
+        self._found: dict[ReadKey, list[int]] = {}
+
+    def __getitem__(self, key: ReadKey) -> list[int]:
+        found = self._found.get(key)
+        if found is None:
+            found = self._found[key] = [i for i in self._c._by_head.get(key, ()) if self._fires(i)]
+        if not found:
+            raise KeyError(key)
+        return found
+
+    def _fires(self, i: int) -> bool:
+        if i in self._active:
+            return True
+        if i in self._left_out:
+            return False
+        missing = self._missed.get(i)
+        if missing is None:
+            missing = self._c._missing(i, self._present, self._affected)
+        self._absent |= missing
+        return not missing
+
+    def __iter__(self) -> Iterator[ReadKey]:
+        return iter(self._c._by_head)
+
+    def __len__(self) -> int:
+        return len(self._c._by_head)
 
 
 __all__ = ["StepCompiler"]
