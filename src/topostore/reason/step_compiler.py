@@ -48,22 +48,39 @@ class StepCompiler:
         self._covered: dict[int, ReadKey] | None = None
         #: the graphs a look-up operation reads an atom's facts from (see :class:`.look_join.StateGraphs`)
         self.state_graphs = StateGraphs(rules)
-        #: the maintained rules by the keys they read, those reading any predicate or class apart, and by
-        #: the key they write: a step's compilation then visits the rules its change reaches, not all
-        #: of them (a 400-class TBox has tens of thousands)
-        self._readers: dict[ReadKey, list[int]] = {}
+        #: the maintained rules by the keys they read (and then by a guard, see :meth:`_guard`), those
+        #: reading any predicate or class apart, and by the key they write (and a guard): a step's
+        #: compilation then visits the rules its change reaches whose guards have facts, not all of
+        #: them (a 400-class TBox has tens of thousands, most on classes without members)
+        self._readers: dict[ReadKey, dict[ReadKey | None, list[int]]] = {}
         self._wild: list[int] = []
-        self._by_head: dict[ReadKey, list[int]] = {}
+        self._by_head: dict[ReadKey, dict[ReadKey | None, list[int]]] = {}
         self._keys: dict[int, tuple[ReadKey, ...]] = {}
         for i in self.monotone:
             rule = self.rules[i]
             reads = rule.reads()
             if ("*",) in reads or ("p", _TYPE) in reads:
+                # reached by any change; looked at again when a key it missed joins (a body key)
                 self._wild.append(i)
+                for key in self._body_keys(i):
+                    self._readers.setdefault(key, {}).setdefault(None, []).append(i)
             else:
                 for key in reads:
-                    self._readers.setdefault(key, []).append(i)
-            self._by_head.setdefault(rule.writes(), []).append(i)
+                    self._readers.setdefault(key, {}).setdefault(self._guard(i, key), []).append(i)
+            self._by_head.setdefault(rule.writes(), {}).setdefault(self._guard(i, None), []).append(i)
+
+    def _guard(self, i: int, key: ReadKey | None) -> ReadKey | None:
+        """A body key of rule ``i`` other than ``key`` that must have facts for the rule to match (a class
+        first: most classes of a large TBox have no member), None when there is none.  A rule whose
+        guard has no facts is left out with that key alone as the reason: the rule cannot match before
+        the guard has facts, and then a program that named it is compiled again."""
+        keys = [k for k in self._body_keys(i) if k != key]
+        return next((k for k in keys if k[0] == "t"), keys[0] if keys else None)
+
+    @staticmethod
+    def _available(key: ReadKey, present: Present, affected: set) -> bool:
+        """Whether ``key`` has facts, now or from this change."""
+        return key in affected or key[1] in (present[1] if key[0] == "t" else present[0])
 
     @property
     def covered(self) -> dict[int, ReadKey]:
@@ -107,7 +124,19 @@ class StepCompiler:
         #: a rule left out, by the body keys it missed: only one of those joining can change that
         missed: dict[int, set] = {}
         # (rule, the key whose joining queued it: None for the change's own keys, looked at in any case)
-        todo: list[tuple[int, ReadKey | None]] = [(i, None) for key in affected for i in self._readers.get(key, ())]
+        todo: list[tuple[int, ReadKey | None]] = []
+
+        def reached(key: ReadKey, joined: ReadKey | None) -> None:
+            """Queue the readers of ``key`` whose guard has facts; a guard joining later queues them
+            as a key they read (a guard is a body key)."""
+            for guard, group in self._readers.get(key, {}).items():
+                if guard is None or self._available(guard, present, affected):
+                    todo.extend((n, joined) for n in group)
+                else:
+                    absent.add(guard)
+
+        for key in affected:
+            reached(key, None)
         if affected:
             todo += [(i, None) for i in self._wild]
         while todo:
@@ -126,7 +155,7 @@ class StepCompiler:
             key = rule.writes()
             if key not in affected:
                 affected.add(key)
-                todo += [(n, key) for n in self._readers.get(key, ())]
+                reached(key, key)
         return sorted(active), affected, absent, missed
 
     def _missing(self, i: int, present: Present, affected: set) -> set:
@@ -203,7 +232,13 @@ class _Writers(Mapping):
     def __getitem__(self, key: ReadKey) -> list[int]:
         found = self._found.get(key)
         if found is None:
-            found = self._found[key] = [i for i in self._c._by_head.get(key, ()) if self._fires(i)]
+            found = self._found[key] = []
+            for guard, group in self._c._by_head.get(key, {}).items():
+                if guard is None or self._c._available(guard, self._present, self._affected):
+                    found += [i for i in group if self._fires(i)]
+                elif any(i not in self._left_out for i in group):
+                    self._absent.add(guard)
+            found.sort()
         if not found:
             raise KeyError(key)
         return found
