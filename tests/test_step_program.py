@@ -20,7 +20,7 @@ from topostore import Ontology
 from topostore.rdf.vocab import ASSERTED, AUX, INFERRED, TYPE
 from topostore.reason import Materializer, check_consistency, direct, look_flip, look_join
 from topostore.reason.program import Refused, check_pair_atom, describe, pair_atom, signature
-from topostore.reason.step_compiler import StepCompiler
+from topostore.reason.step_compiler import StepCompiler, _Writers
 from topostore.stores import memory_store
 
 TBOX = PREFIXES + f"""
@@ -565,3 +565,63 @@ def test_covering_finds_by_index_what_trying_every_writer_finds() -> None:
             assert indexed == tried
             covered.append(indexed)
     assert covered[0], "the tutorial's Reachability is covered by Connectability"
+
+
+def _every_rule(compiler: StepCompiler, sig, present) -> tuple[set, set, dict]:
+    """What the step compiler finds by its indexes, found by trying every maintained rule until nothing
+    changes: (active rules, affected keys, the rules that can fire by written key)."""
+    affected, active = set(sig.added | sig.removed), set()
+    grew = True
+    while grew:
+        grew = False
+        for i in compiler.monotone:
+            rule = compiler.rules[i]
+            reads = rule.reads()
+            wild = ("*",) in reads or ("p", str(TYPE)) in reads
+            if i in active or not (bool(affected) if wild else reads & affected):
+                continue
+            if compiler._missing(i, present, affected):
+                continue
+            active.add(i)
+            if rule.writes() not in affected:
+                affected.add(rule.writes())
+                grew = True
+    writers: dict = {}
+    for i in compiler.monotone:
+        if not compiler._missing(i, present, affected):
+            writers.setdefault(compiler.rules[i].writes(), []).append(i)
+    return active, affected, writers
+
+
+def test_the_step_compiler_finds_by_index_what_trying_every_rule_finds() -> None:
+    """reason/step_compiler.py visits the readers of each key as it joins, and leaves a rule out by a
+    guard without facts: on a TBox of disjoint classes (thousands of rules on classes without members)
+    the rules, keys and writers must be those of trying every rule, and every rule left out must name
+    a key without facts that is in the program's ``needs_absent`` (else the program would be reused
+    after that key gets facts)."""
+    import tempfile
+    from pathlib import Path
+
+    from benchmarks import tbox, tbox_steps
+
+    with tempfile.TemporaryDirectory() as tmp:
+        onto = Ontology.from_file(tbox.write(60, Path(tmp)))
+    onto.reason(mode="full")
+    reasoner = onto._reasoner
+    compiler = StepCompiler(reasoner.rules, reasoner.monotone, lambda i, atoms: atoms, True, cover=False)
+    present = reasoner.state.present
+    for step in tbox_steps.plan(60, 4):
+        classes = {f"<{tbox.NS}{c}>": 1 for _, c in step.types if c != "NamedIndividual"}
+        preds = {f"<{tbox.NS}{p}>": 1 for _, p, _ in step.add}
+        sig = signature((preds, classes), ({f"<{tbox.NS}hasTopping>": 1}, {}), ())
+        active, affected, absent, _ = compiler._affected(sig, present, set())
+        want_active, want_affected, want_writers = _every_rule(compiler, sig, present)
+        assert (set(active), affected) == (want_active, want_affected)
+        program = compiler.compile(sig, present)
+        found = _Writers(compiler, present, affected, set(absent), set(), active, {})
+        for key in affected:
+            assert found.get(key, []) == want_writers.get(key, [])
+        for i in compiler.monotone:
+            missing = compiler._missing(i, present, want_affected)
+            if missing and compiler.rules[i].reads() & want_affected:
+                assert missing & program.needs_absent, compiler.rules[i]
