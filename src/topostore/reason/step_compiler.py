@@ -48,34 +48,15 @@ class StepCompiler:
         self._covered: dict[int, ReadKey] | None = None
         #: the graphs a look-up operation reads an atom's facts from (see :class:`.look_join.StateGraphs`)
         self.state_graphs = StateGraphs(rules)
-        #: the maintained rules by the keys they read (and then by a guard, see :meth:`_guard`), those
-        #: reading any predicate or class apart, and by the key they write (and a guard): a step's
-        #: compilation then visits the rules its change reaches whose guards have facts, not all of
-        #: them (a 400-class TBox has tens of thousands, most on classes without members)
-        self._readers: dict[ReadKey, dict[ReadKey | None, list[int]]] = {}
-        self._wild: list[int] = []
-        self._by_head: dict[ReadKey, dict[ReadKey | None, list[int]]] = {}
-        self._keys: dict[int, tuple[ReadKey, ...]] = {}
-        for i in self.monotone:
-            rule = self.rules[i]
-            reads = rule.reads()
-            if ("*",) in reads or ("p", _TYPE) in reads:
-                # reached by any change; looked at again when a key it missed joins (a body key)
-                self._wild.append(i)
-                for key in self._body_keys(i):
-                    self._readers.setdefault(key, {}).setdefault(None, []).append(i)
-            else:
-                for key in reads:
-                    self._readers.setdefault(key, {}).setdefault(self._guard(i, key), []).append(i)
-            self._by_head.setdefault(rule.writes(), {}).setdefault(self._guard(i, None), []).append(i)
+        self._index: _Index | None = None
 
-    def _guard(self, i: int, key: ReadKey | None) -> ReadKey | None:
-        """A body key of rule ``i`` other than ``key`` that must have facts for the rule to match (a class
-        first: most classes of a large TBox have no member), None when there is none.  A rule whose
-        guard has no facts is left out with that key alone as the reason: the rule cannot match before
-        the guard has facts, and then a program that named it is compiled again."""
-        keys = [k for k in self._body_keys(i) if k != key]
-        return next((k for k in keys if k[0] == "t"), keys[0] if keys else None)
+    @property
+    def index(self) -> _Index:
+        """The maintained rules indexed for a step's compilation, built by the first (a full REASON
+        does not need it)."""
+        if self._index is None:
+            self._index = _Index(self.rules, self.monotone)
+        return self._index
 
     @staticmethod
     def _available(key: ReadKey, present: Present, affected: set) -> bool:
@@ -129,7 +110,7 @@ class StepCompiler:
         def reached(key: ReadKey, joined: ReadKey | None) -> None:
             """Queue the readers of ``key`` whose guard has facts; a guard joining later queues them
             as a key they read (a guard is a body key)."""
-            for guard, group in self._readers.get(key, {}).items():
+            for guard, group in self.index.readers.get(key, {}).items():
                 if guard is None or self._available(guard, present, affected):
                     todo.extend((n, joined) for n in group)
                 else:
@@ -138,7 +119,7 @@ class StepCompiler:
         for key in affected:
             reached(key, None)
         if affected:
-            todo += [(i, None) for i in self._wild]
+            todo += [(i, None) for i in self.index.wild]
         while todo:
             i, joined = todo.pop()
             if i in active or i in left_out or (i in missed and joined not in missed[i]):
@@ -161,17 +142,8 @@ class StepCompiler:
     def _missing(self, i: int, present: Present, affected: set) -> set:
         """Body keys of rule ``i`` without any fact, now or from this change (the rule cannot match)."""
         preds, classes = present
-        return {key for key in self._body_keys(i)
+        return {key for key in self.index.keys[i]
                 if key not in affected and key[1] not in (classes if key[0] == "t" else preds)}
-
-    def _body_keys(self, i: int) -> tuple[ReadKey, ...]:
-        """The read keys of rule ``i``'s body atoms with a named predicate (a variable predicate or a
-        path may match anything), kept: a step asks them of every rule its change reaches."""
-        keys = self._keys.get(i)
-        if keys is None:
-            keys = self._keys[i] = tuple(dict.fromkeys(
-                atom.read_key() for atom in self.rules[i].body if atom.p.startswith("<")))
-        return keys
 
     @staticmethod
     def _check_compilable(rule: Rule, affected: set) -> None:
@@ -213,6 +185,47 @@ class StepCompiler:
         return rule
 
 
+class _Index:
+    """The maintained rules by the keys they read (and then by a guard), those reading any predicate or
+    class apart, and by the key they write (and a guard): a step's compilation then visits the rules
+    its change reaches whose guards have facts, not all of them (a 400-class TBox has tens of
+    thousands, most on classes without members).
+
+    A rule's guard is a body key other than the one it is found by that must have facts for the rule
+    to match, a class first (most classes of a large TBox have no member); None when there is none.
+    A rule whose guard has no facts is left out with that key alone as the reason: the rule cannot
+    match before the guard has facts, and then a program that named it is compiled again."""
+
+    def __init__(self, rules: list[Rule], monotone: Collection[int]) -> None:
+        self.readers: dict[ReadKey, dict[ReadKey | None, list[int]]] = {}
+        self.wild: list[int] = []
+        self.by_head: dict[ReadKey, dict[ReadKey | None, list[int]]] = {}
+        #: per rule, the read keys of its body atoms with a named predicate (a variable predicate or a
+        #: path may match anything)
+        self.keys: dict[int, tuple[ReadKey, ...]] = {}
+        for i in monotone:
+            rule = rules[i]
+            keys = self.keys[i] = tuple(dict.fromkeys(a.read_key() for a in rule.body if a.p.startswith("<")))
+            guard = _guard(keys, None)
+            reads = rule.reads()
+            if ("*",) in reads or ("p", _TYPE) in reads:
+                # reached by any change; looked at again when a key it missed joins (a body key)
+                self.wild.append(i)
+                for key in keys:
+                    self.readers.setdefault(key, {}).setdefault(None, []).append(i)
+            else:
+                for key in reads:
+                    by_guard = self.readers.setdefault(key, {})
+                    by_guard.setdefault(guard if guard != key else _guard(keys, key), []).append(i)
+            self.by_head.setdefault(rule.writes(), {}).setdefault(guard, []).append(i)
+
+
+def _guard(keys: tuple[ReadKey, ...], key: ReadKey | None) -> ReadKey | None:
+    """The first class key of ``keys`` other than ``key``, else the first other key, else None."""
+    others = [k for k in keys if k != key]
+    return next((k for k in others if k[0] == "t"), others[0] if others else None)
+
+
 class _Writers(Mapping):
     """Every maintained rule that can fire (its body keys have facts, now or from this change), by the
     key it writes: a recheck must ask all of them, changed premises or not.
@@ -233,7 +246,7 @@ class _Writers(Mapping):
         found = self._found.get(key)
         if found is None:
             found = self._found[key] = []
-            for guard, group in self._c._by_head.get(key, {}).items():
+            for guard, group in self._c.index.by_head.get(key, {}).items():
                 if guard is None or self._c._available(guard, self._present, self._affected):
                     found += [i for i in group if self._fires(i)]
                 elif any(i not in self._left_out for i in group):
@@ -255,10 +268,10 @@ class _Writers(Mapping):
         return not missing
 
     def __iter__(self) -> Iterator[ReadKey]:
-        return iter(self._c._by_head)
+        return iter(self._c.index.by_head)
 
     def __len__(self) -> int:
-        return len(self._c._by_head)
+        return len(self._c.index.by_head)
 
 
 __all__ = ["StepCompiler"]
