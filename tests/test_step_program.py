@@ -348,8 +348,10 @@ def test_the_covered_rule_is_left_out_until_a_fact_of_its_atom_is_asserted() -> 
     reasoner = onto._reasoner
     # link's domain and range: every derived link had two places with doors, whose domain says as much
     assert {key for key in reasoner.step.compiler.covered.values()} == {("p", f"<{NS}link>")}
-    key = f"<{NS}at>"
-    sig = signature(({key: 1}, {}), ({key: 1}, {}), (key,))
+    # a change of Link's premises reaches the links and their domain and range (a covered rule the
+    # change does not reach is not asked about, and names nothing: see step_compiler._LeftOut)
+    different = "<http://www.w3.org/2002/07/owl#differentFrom>"
+    sig = signature(({f"<{NS}door>": 1, different: 1}, {}), ({}, {}), ())
     program = reasoner.step.compiler.compile(sig, reasoner.state.present, reasoner.state.asserted)
     assert ("p", f"<{NS}link>") in program.needs_unasserted
     onto.add(Triple(N("p2"), N("link"), N("p3")))

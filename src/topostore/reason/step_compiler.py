@@ -18,7 +18,7 @@ from .program import (
     Signature,
     StepProgram,
 )
-from .restate import covering
+from .restate import Covering
 from .triggers import Present, matches
 
 _TYPE = str(TYPE)
@@ -45,7 +45,7 @@ class StepCompiler:
         self._flat: dict[int, Rule] = {}
         self.filter_vars = {i: flip.filter_variables(rules[i]) for i in self.monotone}
         self._cover = cover
-        self._covered: dict[int, ReadKey] | None = None
+        self._covering: Covering | None = None
         #: the graphs a look-up operation reads an atom's facts from (see :class:`.look_join.StateGraphs`)
         self.state_graphs = StateGraphs(rules)
         self._index: _Index | None = None
@@ -64,35 +64,37 @@ class StepCompiler:
         return key in affected or key[1] in (present[1] if key[0] == "t" else present[0])
 
     @property
-    def covered(self) -> dict[int, ReadKey]:
+    def covering(self) -> Covering | None:
         """Rules that add nothing while a premise only matches derived facts (see :func:`.restate.covering`),
-        found when the first step is compiled (a full REASON does not need them)."""
-        if self._covered is None:
-            self._covered = covering(self.rules, self.monotone) if self._cover else {}
-        return self._covered
+        asked rule by rule as steps reach them (a full REASON does not need them); None when covered
+        rules are kept."""
+        if self._covering is None and self._cover:
+            self._covering = Covering(self.rules, self.monotone)
+        return self._covering
+
+    @property
+    def covered(self) -> dict[int, ReadKey]:
+        """Every covered rule, by the premise key it is covered at (what the steps ask rule by rule)."""
+        found = self.covering
+        if found is None:
+            return {}
+        return {i: key for i in self.monotone if (key := found.key(i)) is not None}
 
     def compile(self, sig: Signature, present: Present, asserted: Present | None = None) -> StepProgram:
         """The program of ``sig`` given the keys with facts (``present``) and with asserted facts
         (``asserted``, a superset; None: any); raises :class:`Refused`."""
-        left_out = self._left_out(sig, asserted)
+        left_out = _LeftOut(self.covering if asserted is not None else None, sig, asserted)
         active, affected, absent, missed = self._affected(sig, present, left_out)
         writers = _Writers(self, present, affected, absent, left_out, active, missed)
         # a replaced value that a rule may also derive is not a clean replacement (see :mod:`.flip`)
         clean = {p for p in sig.clean if not writers.get(("p", p))}
         emitter = Emitter(self, sig, active, writers, frozenset(clean), asserted)
-        emitter.unasserted.update(self.covered[i] for i in left_out)
+        # the premises of the rules left out, as they are found (the emitter asks about writers too)
+        emitter.unasserted = left_out.unasserted
         return emitter.emit(self._components(active, affected, emitter.idle), absent)
 
-    def _left_out(self, sig: Signature, asserted: Present | None) -> set[int]:
-        """The covered rules whose premise has no asserted fact, now or from this change: they add
-        nothing (:func:`.restate.covering`).  None known of the asserted facts: none."""
-        if asserted is None:
-            return set()
-        changed = sig.added | sig.removed
-        return {i for i, key in self.covered.items() if key not in changed and not matches(key, *asserted)}
-
     def _affected(self, sig: Signature, present: Present,
-                  left_out: Collection[int]) -> tuple[list[int], set, set, dict[int, set]]:
+                  left_out: _LeftOut) -> tuple[list[int], set, set, dict[int, set]]:
         """The rules a change of ``sig`` can make fire, the keys they may change, the keys whose
         absence left rules out, and the rules left out by the keys they missed.
 
@@ -122,7 +124,7 @@ class StepCompiler:
             todo += [(i, None) for i in self.index.wild]
         while todo:
             i, joined = todo.pop()
-            if i in active or i in left_out or (i in missed and joined not in missed[i]):
+            if i in active or (i in missed and joined not in missed[i]):
                 continue
             rule = self.rules[i]
             missing = self._missing(i, present, affected)
@@ -131,6 +133,8 @@ class StepCompiler:
                 missed[i] = missing
                 continue
             missed.pop(i, None)
+            if i in left_out:  # asked of the rules that could fire only (a covering is found per rule)
+                continue
             self._check_compilable(rule, affected)
             active.add(i)
             key = rule.writes()
@@ -226,6 +230,30 @@ def _guard(keys: tuple[ReadKey, ...], key: ReadKey | None) -> ReadKey | None:
     return next((k for k in others if k[0] == "t"), others[0] if others else None)
 
 
+class _LeftOut:
+    """The covered rules whose premise has no asserted fact, now or from this change: they add nothing
+    (:func:`.restate.covering`).  Asked rule by rule; the premise keys of those found are collected in
+    ``unasserted`` (the program's ``needs_unasserted``: it is compiled again once they have asserted
+    facts).  No covering, or none known of the asserted facts: none."""
+
+    def __init__(self, covering: Covering | None, sig: Signature, asserted: Present | None) -> None:
+        self._covering, self._asserted = covering, asserted
+        self._changed = sig.added | sig.removed
+        self._seen: dict[int, bool] = {}
+        self.unasserted: set[ReadKey] = set()
+
+    def __contains__(self, i: object) -> bool:
+        if self._covering is None or self._asserted is None or not isinstance(i, int):
+            return False
+        out = self._seen.get(i)
+        if out is None:
+            key = self._covering.key(i)
+            out = self._seen[i] = key is not None and key not in self._changed and not matches(key, *self._asserted)
+            if out:
+                self.unasserted.add(key)
+        return out
+
+
 class _Writers(Mapping):
     """Every maintained rule that can fire (its body keys have facts, now or from this change), by the
     key it writes: a recheck must ask all of them, changed premises or not.
@@ -237,7 +265,7 @@ class _Writers(Mapping):
     is done)."""
 
     def __init__(self, compiler: StepCompiler, present: Present, affected: set, absent: set,
-                 left_out: Collection[int], active: Collection[int], missed: dict[int, set]) -> None:
+                 left_out: _LeftOut, active: Collection[int], missed: dict[int, set]) -> None:
         self._c, self._present, self._affected, self._absent = compiler, present, affected, absent
         self._left_out, self._active, self._missed = left_out, frozenset(active), missed
         self._found: dict[ReadKey, list[int]] = {}
@@ -249,7 +277,7 @@ class _Writers(Mapping):
             for guard, group in self._c.index.by_head.get(key, {}).items():
                 if guard is None or self._c._available(guard, self._present, self._affected):
                     found += [i for i in group if self._fires(i)]
-                elif any(i not in self._left_out for i in group):
+                else:
                     self._absent.add(guard)
             found.sort()
         if not found:
@@ -259,13 +287,11 @@ class _Writers(Mapping):
     def _fires(self, i: int) -> bool:
         if i in self._active:
             return True
-        if i in self._left_out:
-            return False
         missing = self._missed.get(i)
         if missing is None:
             missing = self._c._missing(i, self._present, self._affected)
         self._absent |= missing
-        return not missing
+        return not missing and i not in self._left_out
 
     def __iter__(self) -> Iterator[ReadKey]:
         return iter(self._c.index.by_head)
