@@ -209,7 +209,7 @@ class _Index:
         self.keys: dict[int, tuple[ReadKey, ...]] = {}
         for i in monotone:
             rule = rules[i]
-            keys = self.keys[i] = tuple(dict.fromkeys(a.read_key() for a in rule.body if a.p.startswith("<")))
+            keys = self.keys[i] = tuple(dict.fromkeys([a.read_key() for a in rule.body if a.p.startswith("<")]))
             guard = _guard(keys, None)
             reads = rule.reads()
             if ("*",) in reads or ("p", _TYPE) in reads:
@@ -226,8 +226,14 @@ class _Index:
 
 def _guard(keys: tuple[ReadKey, ...], key: ReadKey | None) -> ReadKey | None:
     """The first class key of ``keys`` other than ``key``, else the first other key, else None."""
-    others = [k for k in keys if k != key]
-    return next((k for k in others if k[0] == "t"), others[0] if others else None)
+    first = None
+    for k in keys:
+        if k != key:
+            if k[0] == "t":
+                return k
+            if first is None:
+                first = k
+    return first
 
 
 class _LeftOut:
