@@ -141,6 +141,8 @@ class StepCompiler:
             if key not in affected:
                 affected.add(key)
                 reached(key, key)
+        for i in active:  # a key a filter reads may have joined after its rule did
+            self._check_compilable(self.rules[i], affected)
         return sorted(active), affected, absent, missed
 
     def _missing(self, i: int, present: Present, affected: set) -> set:
