@@ -10,6 +10,7 @@ from __future__ import annotations
 import math
 import re
 from decimal import Decimal, InvalidOperation
+from functools import lru_cache
 
 from pyoxigraph import BlankNode, Literal, NamedNode, Quad, RdfFormat, Triple, parse
 
@@ -314,11 +315,14 @@ def sparql(term: Term) -> str:
     return str(term)
 
 
+@lru_cache(maxsize=1 << 16)
 def parse_term(text: str) -> Term | None:
     """The RDF term written in N-Triples syntax (``<iri>``, ``"lex"^^<dt>``), None when ``text`` is not one.
 
     Parsed by pyoxigraph as the object of a one-line document, so the rules of the
-    syntax (escapes, datatypes, language tags) are pyoxigraph's, not a hand-written lexer's.
+    syntax (escapes, datatypes, language tags) are pyoxigraph's, not a hand-written lexer's.  Kept
+    per text (a term is immutable): a robot step's look-ups read the terms of the rules they
+    compile, the same few hundred on every step of a large TBox.
     """
     line = f"{PLACEHOLDER_SUBJECT} {PLACEHOLDER_PREDICATE} {text} ."
     try:

@@ -47,6 +47,7 @@ class Emitter:
         self.clean = clean
         self.asserted = asserted
         self._restated: dict[int, bool] = {}
+        self._by_head: dict[ReadKey, list[int]] | None = None
         #: keys whose absence from the asserted graph let a recheck be left out
         self.unasserted: set[ReadKey] = set()
         #: keys that may have lost facts / gained facts so far (their changes are in OVERDELETED / NEW_FACTS)
@@ -80,7 +81,7 @@ class Emitter:
                 self.ops.append((("component", compile_component(self, item)), ""))
                 self.part += [None] * (len(self.ops) - len(self.part))
                 continue
-            writers = [i for i in self.active if self.rules[i].writes() == item]
+            writers = self._active_writers().get(item, [])
             # a removed asserted fact that some rule still derives stays, as inferred
             if writers or (item in self.sig.removed and self.writers.get(item)):
                 start = len(self.ops)
@@ -93,6 +94,15 @@ class Emitter:
         return StepProgram(self.ops, frozenset(absent), frozenset(self.graphs), frozenset(self.flipped),
                            self.flip_rules, self.clean, frozenset(self.unasserted), self.direct,
                            self.seeded, self.part, self.reads)
+
+    def _active_writers(self) -> dict[ReadKey, list[int]]:
+        """The active rules by the key they write, in rule order (found once: a program has a few
+        hundred keys and as many active rules on a large TBox)."""
+        if self._by_head is None:
+            self._by_head = {}
+            for i in self.active:
+                self._by_head.setdefault(self.rules[i].writes(), []).append(i)
+        return self._by_head
 
     def _plain(self, key: ReadKey, writers: list[int]) -> None:
         """A key no rule derives from itself: candidates, flips, recheck, additions."""

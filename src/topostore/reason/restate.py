@@ -133,19 +133,43 @@ def covering(rules: list[Rule], candidates: Collection[int]) -> dict[int, ReadKe
     The premises another rule ``r`` reads must be evaluated premises of each deriving rule ``w``, and
     ``r``'s filters must be among ``w``'s or the rule's own (as text); ``r`` must not itself be left out.
     """
-    writers: dict[ReadKey, list[int]] = {}
-    for n, rule in enumerate(rules):
-        if rule.head is not None:
-            writers.setdefault(rule.writes(), []).append(n)
-    readers = _Readers(rules)
-    found: dict[int, ReadKey] = {}
-    for i in candidates:
-        key = _covered_at(rules, i, writers, readers)
-        if key is not None:
-            found[i] = key
-    # a rule that helps cover another must stay
-    return {i: key for i, key in found.items()
-            if not any(n in found for n in _helpers(rules, i, key, writers, readers))}
+    found = Covering(rules, candidates)
+    return {i: key for i in sorted(found.candidates) if (key := found.key(i)) is not None}
+
+
+class Covering:
+    """:func:`covering` rule by rule, when asked: a robot step asks about the rules its change reaches,
+    a few of the tens of thousands a large TBox compiles to (trying them all took most of the first
+    step's time)."""
+
+    def __init__(self, rules: list[Rule], candidates: Collection[int]) -> None:
+        self.rules = rules
+        self.candidates = frozenset(candidates)
+        self.writers: dict[ReadKey, list[int]] = {}
+        for n, rule in enumerate(rules):
+            if rule.head is not None:
+                self.writers.setdefault(rule.writes(), []).append(n)
+        self.readers = _Readers(rules)
+        self._first: dict[int, ReadKey | None] = {}
+        self._key: dict[int, ReadKey | None] = {}
+
+    def key(self, i: int) -> ReadKey | None:
+        """The premise key rule ``i`` adds nothing from while it only matches derived facts, or None."""
+        if i not in self._key:
+            key = self._covered_at(i)
+            # a rule that helps cover another must stay
+            if key is not None and any(self._covered_at(n) is not None
+                                       for n in _helpers(self.rules, i, key, self.writers, self.readers)):
+                key = None
+            self._key[i] = key
+        return self._key[i]
+
+    def _covered_at(self, i: int) -> ReadKey | None:
+        if i not in self.candidates:
+            return None
+        if i not in self._first:
+            self._first[i] = _covered_at(self.rules, i, self.writers, self.readers)
+        return self._first[i]
 
 
 class _Readers:
@@ -242,4 +266,4 @@ def _squash(text: str) -> str:
     return " ".join(text.split())
 
 
-__all__ = ["covering", "restates"]
+__all__ = ["Covering", "covering", "restates"]

@@ -4,7 +4,7 @@ maintains them (:class:`.program.StepProgram`); the operations themselves are wr
 
 from __future__ import annotations
 
-from collections.abc import Callable, Collection
+from collections.abc import Callable, Collection, Iterator, Mapping
 from dataclasses import replace
 
 from ..compile.rule import ReadKey, Rule
@@ -18,7 +18,7 @@ from .program import (
     Signature,
     StepProgram,
 )
-from .restate import covering
+from .restate import Covering
 from .triggers import Present, matches
 
 _TYPE = str(TYPE)
@@ -45,97 +45,111 @@ class StepCompiler:
         self._flat: dict[int, Rule] = {}
         self.filter_vars = {i: flip.filter_variables(rules[i]) for i in self.monotone}
         self._cover = cover
-        self._covered: dict[int, ReadKey] | None = None
+        self._covering: Covering | None = None
         #: the graphs a look-up operation reads an atom's facts from (see :class:`.look_join.StateGraphs`)
         self.state_graphs = StateGraphs(rules)
+        self._index: _Index | None = None
+
+    @property
+    def index(self) -> _Index:
+        """The maintained rules indexed for a step's compilation, built by the first (a full REASON
+        does not need it)."""
+        if self._index is None:
+            self._index = _Index(self.rules, self.monotone)
+        return self._index
+
+    @staticmethod
+    def _available(key: ReadKey, present: Present, affected: set) -> bool:
+        """Whether ``key`` has facts, now or from this change."""
+        return key in affected or key[1] in (present[1] if key[0] == "t" else present[0])
+
+    @property
+    def covering(self) -> Covering | None:
+        """Rules that add nothing while a premise only matches derived facts (see :func:`.restate.covering`),
+        asked rule by rule as steps reach them (a full REASON does not need them); None when covered
+        rules are kept."""
+        if self._covering is None and self._cover:
+            self._covering = Covering(self.rules, self.monotone)
+        return self._covering
 
     @property
     def covered(self) -> dict[int, ReadKey]:
-        """Rules that add nothing while a premise only matches derived facts (see :func:`.restate.covering`),
-        found when the first step is compiled (a full REASON does not need them)."""
-        if self._covered is None:
-            self._covered = covering(self.rules, self.monotone) if self._cover else {}
-        return self._covered
+        """Every covered rule, by the premise key it is covered at (what the steps ask rule by rule)."""
+        found = self.covering
+        if found is None:
+            return {}
+        return {i: key for i in self.monotone if (key := found.key(i)) is not None}
 
     def compile(self, sig: Signature, present: Present, asserted: Present | None = None) -> StepProgram:
         """The program of ``sig`` given the keys with facts (``present``) and with asserted facts
         (``asserted``, a superset; None: any); raises :class:`Refused`."""
-        left_out = self._left_out(sig, asserted)
-        active, affected, absent = self._affected(sig, present, left_out)
-        writers = self._writers(present, affected, absent, left_out)
+        left_out = _LeftOut(self.covering if asserted is not None else None, sig, asserted)
+        active, affected, absent, missed = self._affected(sig, present, left_out)
+        writers = _Writers(self, present, affected, absent, left_out, active, missed)
         # a replaced value that a rule may also derive is not a clean replacement (see :mod:`.flip`)
         clean = {p for p in sig.clean if not writers.get(("p", p))}
         emitter = Emitter(self, sig, active, writers, frozenset(clean), asserted)
-        emitter.unasserted.update(self.covered[i] for i in left_out)
+        # the premises of the rules left out, as they are found (the emitter asks about writers too)
+        emitter.unasserted = left_out.unasserted
         return emitter.emit(self._components(active, affected, emitter.idle), absent)
 
-    def _left_out(self, sig: Signature, asserted: Present | None) -> set[int]:
-        """The covered rules whose premise has no asserted fact, now or from this change: they add
-        nothing (:func:`.restate.covering`).  None known of the asserted facts: none."""
-        if asserted is None:
-            return set()
-        changed = sig.added | sig.removed
-        return {i for i, key in self.covered.items() if key not in changed and not matches(key, *asserted)}
+    def _affected(self, sig: Signature, present: Present,
+                  left_out: _LeftOut) -> tuple[list[int], set, set, dict[int, set]]:
+        """The rules a change of ``sig`` can make fire, the keys they may change, the keys whose
+        absence left rules out, and the rules left out by the keys they missed.
 
-    def _writers(self, present: Present, affected: set, absent: set,
-                 left_out: Collection[int]) -> dict[ReadKey, list[int]]:
-        """Every maintained rule that can fire (its body keys have facts, now or from this change), by
-        the key it writes: a recheck must ask all of them, changed premises or not."""
-        writers: dict[ReadKey, list[int]] = {}
-        for i in self.monotone:
-            if i in left_out:
+        A worklist over the readers of each key as it becomes affected: a rule is looked at again only
+        when a key it reads joins (which is also when a key it missed may have), so the work follows
+        what the change reaches.  The rules are returned in rule order."""
+        affected = set(sig.added | sig.removed)
+        active: set[int] = set()
+        absent: set = set()
+        #: a rule left out, by the body keys it missed: only one of those joining can change that
+        missed: dict[int, set] = {}
+        # (rule, the key whose joining queued it: None for the change's own keys, looked at in any case)
+        todo: list[tuple[int, ReadKey | None]] = []
+
+        def reached(key: ReadKey, joined: ReadKey | None) -> None:
+            """Queue the readers of ``key`` whose guard has facts; a guard joining later queues them
+            as a key they read (a guard is a body key)."""
+            for guard, group in self.index.readers.get(key, {}).items():
+                if guard is None or self._available(guard, present, affected):
+                    todo.extend((n, joined) for n in group)
+                else:
+                    absent.add(guard)
+
+        for key in affected:
+            reached(key, None)
+        if affected:
+            todo += [(i, None) for i in self.index.wild]
+        while todo:
+            i, joined = todo.pop()
+            if i in active or (i in missed and joined not in missed[i]):
                 continue
             rule = self.rules[i]
-            missing = self._missing(rule, present, affected)
+            missing = self._missing(i, present, affected)
             if missing:
                 absent |= missing
+                missed[i] = missing
                 continue
-            writers.setdefault(rule.writes(), []).append(i)
-        return writers
+            missed.pop(i, None)
+            if i in left_out:  # asked of the rules that could fire only (a covering is found per rule)
+                continue
+            self._check_compilable(rule, affected)
+            active.add(i)
+            key = rule.writes()
+            if key not in affected:
+                affected.add(key)
+                reached(key, key)
+        for i in active:  # a key a filter reads may have joined after its rule did
+            self._check_compilable(self.rules[i], affected)
+        return sorted(active), affected, absent, missed
 
-    def _affected(self, sig: Signature, present: Present, left_out: Collection[int]) -> tuple[list[int], set, set]:
-        """The rules a change of ``sig`` can make fire, the keys they may change, and the keys whose
-        absence left rules out."""
-        affected = set(sig.added | sig.removed)
-        active: dict[int, None] = {}
-        absent: set = set()
-        grew = True
-        while grew:
-            grew = False
-            for i in self.monotone:
-                rule = self.rules[i]
-                if i in active or i in left_out or not self._reaches(rule, affected):
-                    continue
-                missing = self._missing(rule, present, affected)
-                if missing:
-                    absent |= missing
-                    continue
-                self._check_compilable(rule, affected)
-                active[i] = None
-                if rule.writes() not in affected:
-                    affected.add(rule.writes())
-                    grew = True
-        return list(active), affected, absent
-
-    @staticmethod
-    def _reaches(rule: Rule, affected: set) -> bool:
-        reads = rule.reads()
-        if ("*",) in reads or ("p", _TYPE) in reads:
-            return bool(affected)
-        return bool(reads & affected)
-
-    @staticmethod
-    def _missing(rule: Rule, present: Present, affected: set) -> set:
-        """Body keys without any fact, now or from this change (the rule cannot match)."""
+    def _missing(self, i: int, present: Present, affected: set) -> set:
+        """Body keys of rule ``i`` without any fact, now or from this change (the rule cannot match)."""
         preds, classes = present
-        missing = set()
-        for atom in rule.body:
-            key = atom.read_key()
-            if not atom.p.startswith("<") or key in affected:
-                continue  # a variable predicate or a path may match anything
-            if key[1] not in (classes if key[0] == "t" else preds):
-                missing.add(key)
-        return missing
+        return {key for key in self.index.keys[i]
+                if key not in affected and key[1] not in (classes if key[0] == "t" else preds)}
 
     @staticmethod
     def _check_compilable(rule: Rule, affected: set) -> None:
@@ -175,6 +189,123 @@ class StepCompiler:
                 rule = replace(rule, body=tuple(replace(a, aux=False) for a in rule.body))
             self._flat[i] = rule
         return rule
+
+
+class _Index:
+    """The maintained rules by the keys they read (and then by a guard), those reading any predicate or
+    class apart, and by the key they write (and a guard): a step's compilation then visits the rules
+    its change reaches whose guards have facts, not all of them (a 400-class TBox has tens of
+    thousands, most on classes without members).
+
+    A rule's guard is a body key other than the one it is found by that must have facts for the rule
+    to match, a class first (most classes of a large TBox have no member); None when there is none.
+    A rule whose guard has no facts is left out with that key alone as the reason: the rule cannot
+    match before the guard has facts, and then a program that named it is compiled again."""
+
+    def __init__(self, rules: list[Rule], monotone: Collection[int]) -> None:
+        self.readers: dict[ReadKey, dict[ReadKey | None, list[int]]] = {}
+        self.wild: list[int] = []
+        self.by_head: dict[ReadKey, dict[ReadKey | None, list[int]]] = {}
+        #: per rule, the read keys of its body atoms with a named predicate (a variable predicate or a
+        #: path may match anything)
+        self.keys: dict[int, tuple[ReadKey, ...]] = {}
+        for i in monotone:
+            rule = rules[i]
+            keys = self.keys[i] = tuple(dict.fromkeys([a.read_key() for a in rule.body if a.p.startswith("<")]))
+            guard = _guard(keys, None)
+            reads = rule.reads()
+            if ("*",) in reads or ("p", _TYPE) in reads:
+                # reached by any change; looked at again when a key it missed joins (a body key)
+                self.wild.append(i)
+                for key in keys:
+                    self.readers.setdefault(key, {}).setdefault(None, []).append(i)
+            else:
+                for key in reads:
+                    by_guard = self.readers.setdefault(key, {})
+                    by_guard.setdefault(guard if guard != key else _guard(keys, key), []).append(i)
+            self.by_head.setdefault(rule.writes(), {}).setdefault(guard, []).append(i)
+
+
+def _guard(keys: tuple[ReadKey, ...], key: ReadKey | None) -> ReadKey | None:
+    """The first class key of ``keys`` other than ``key``, else the first other key, else None."""
+    first = None
+    for k in keys:
+        if k != key:
+            if k[0] == "t":
+                return k
+            if first is None:
+                first = k
+    return first
+
+
+class _LeftOut:
+    """The covered rules whose premise has no asserted fact, now or from this change: they add nothing
+    (:func:`.restate.covering`).  Asked rule by rule; the premise keys of those found are collected in
+    ``unasserted`` (the program's ``needs_unasserted``: it is compiled again once they have asserted
+    facts).  No covering, or none known of the asserted facts: none."""
+
+    def __init__(self, covering: Covering | None, sig: Signature, asserted: Present | None) -> None:
+        self._covering, self._asserted = covering, asserted
+        self._changed = sig.added | sig.removed
+        self._seen: dict[int, bool] = {}
+        self.unasserted: set[ReadKey] = set()
+
+    def __contains__(self, i: object) -> bool:
+        if self._covering is None or self._asserted is None or not isinstance(i, int):
+            return False
+        out = self._seen.get(i)
+        if out is None:
+            key = self._covering.key(i)
+            out = self._seen[i] = key is not None and key not in self._changed and not matches(key, *self._asserted)
+            if out:
+                self.unasserted.add(key)
+        return out
+
+
+class _Writers(Mapping):
+    """Every maintained rule that can fire (its body keys have facts, now or from this change), by the
+    key it writes: a recheck must ask all of them, changed premises or not.
+
+    Found per key when the emitter first asks: it asks about the keys the change reaches and the
+    premises of their rules, a few of the keys the rules write.  A rule :meth:`StepCompiler._affected`
+    looked at is known (active, or left out by the keys it missed); the keys whose absence left a
+    rule out are added to ``absent`` as found (the program's ``needs_absent``, read when the emitter
+    is done)."""
+
+    def __init__(self, compiler: StepCompiler, present: Present, affected: set, absent: set,
+                 left_out: _LeftOut, active: Collection[int], missed: dict[int, set]) -> None:
+        self._c, self._present, self._affected, self._absent = compiler, present, affected, absent
+        self._left_out, self._active, self._missed = left_out, frozenset(active), missed
+        self._found: dict[ReadKey, list[int]] = {}
+
+    def __getitem__(self, key: ReadKey) -> list[int]:
+        found = self._found.get(key)
+        if found is None:
+            found = self._found[key] = []
+            for guard, group in self._c.index.by_head.get(key, {}).items():
+                if guard is None or self._c._available(guard, self._present, self._affected):
+                    found += [i for i in group if self._fires(i)]
+                else:
+                    self._absent.add(guard)
+            found.sort()
+        if not found:
+            raise KeyError(key)
+        return found
+
+    def _fires(self, i: int) -> bool:
+        if i in self._active:
+            return True
+        missing = self._missed.get(i)
+        if missing is None:
+            missing = self._c._missing(i, self._present, self._affected)
+        self._absent |= missing
+        return not missing and i not in self._left_out
+
+    def __iter__(self) -> Iterator[ReadKey]:
+        return iter(self._c.index.by_head)
+
+    def __len__(self) -> int:
+        return len(self._c.index.by_head)
 
 
 __all__ = ["StepCompiler"]
