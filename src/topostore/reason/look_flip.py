@@ -57,16 +57,7 @@ class Flipped:
         self._head = _terms(rule.head)
         #: per atom, the graphs of its facts (and as a set, for one read over all of them)
         self._graphs = [(g, frozenset(g)) for g in map(graphs_of, rule.body)]
-        #: per branch (seed position), its other atoms in join order, each with its shape, its graphs
-        #: and, for a changed atom after the seed (paired with its old value), its value's variable
-        self._plans = [
-            [(self._body[m], self._graphs[m], self._body[m].terms[2] if m in order[position + 1:] else None)
-             for m in join_order(rule.body, k) if m != k]
-            for position, k in enumerate(order)]
-        #: the changed atoms' predicates, each read once from CHANGE_OLD per run (None: every one, for
-        #: a changed atom whose predicate is a variable)
-        changed = [self._body[k].free[1] for k in order]
-        self._changed = (None,) if None in changed else tuple(dict.fromkeys(changed))
+        self._plans = [[m for m in join_order(rule.body, k) if m != k] for k in order]
         #: the keys whose facts it reads: its atoms' and its head's
         self.reads = frozenset({a.read_key() for a in rule.body} | {rule.head.read_key()})
 
@@ -75,15 +66,10 @@ class Flipped:
         gained: dict[Triple, None] = {}
         lost: dict[Triple, None] = {}
         try:
-            old = self._old_values(store)
             for position, k in enumerate(self.order):
-                rows = self._seeds(store, k, old)
-                for shape, graphs, paired in self._plans[position]:
-                    if not rows:
-                        break
-                    rows = self._grow(store, rows, shape, graphs, old if paired else None, paired)
-                for solution, olds in rows:
-                    self._decide(solution, olds, gained, lost)
+                for bound, old in self._seeds(store, k):
+                    for solution, olds in self._extend(store, position, bound, old, 0):
+                        self._decide(solution, olds, gained, lost)
         except _Fallback:
             return False
         store.add_scratch(list(gained), FLIP_GAINED)
@@ -95,52 +81,38 @@ class Flipped:
         """The facts of ``pattern`` in ``graphs`` (the graphs, and as a set: :func:`.look_join._read`)."""
         return _read(store, pattern, *graphs)
 
-    def _old_values(self, store) -> dict[tuple, list[Triple]]:
-        """The replaced facts of the changed atoms' predicates by (subject, predicate): one read each."""
-        old: dict[tuple, list[Triple]] = {}
-        for p in self._changed:
-            for f in self._facts(store, (None, p, None), _OLD):
-                old.setdefault((f.subject, f.predicate), []).append(f)
-        return old
-
-    def _seeds(self, store, k: int, old: dict[tuple, list[Triple]]) -> list[tuple[dict, dict]]:
+    def _seeds(self, store, k: int):
         """The seed atom's replaced facts: its bindings with the new value, and its old value."""
         shape = self._body[k]
-        subject, predicate = shape.free[:2]
         value = shape.terms[2]
-        rows = []
-        for (s, p), replaced in old.items():
-            if (subject is not None and s != subject) or (predicate is not None and p != predicate):
-                continue  # not a fact of the seed atom's pattern
-            for f in replaced:
-                start = shape.bind(f)
-                if start is None:
-                    continue
-                for t in self._facts(store, self._valued[k].read(start), self._graphs[k]):
-                    bound = shape.bind(t)  # subject and predicate read as bound: only the value is new
-                    if bound is not None:
-                        rows.append((bound, {value: f.object}))
-        return rows
+        for f in self._facts(store, shape.free, _OLD):
+            start = shape.bind(f)
+            if start is None:
+                continue
+            for t in self._facts(store, self._valued[k].read(start), self._graphs[k]):
+                bound = shape.bind(t)  # subject and predicate read as bound: only the value is new
+                if bound is not None:
+                    yield bound, {value: f.object}
 
-    def _grow(self, store, rows: list, shape: Shape, graphs: tuple, old: dict | None,
-              paired: str | None) -> list[tuple[dict, dict]]:
-        """The rows extended by one atom; a changed atom after the seed (``paired``: its value's
-        variable) pairs each fact with its old value where one was replaced (settled or unchanged
-        atoms: the old value is the new one)."""
-        out = []
-        read, extend = shape.read, shape.extend
-        for bound, olds in rows:
-            for t in self._facts(store, read(bound), graphs):
-                extended = extend(bound, t)  # the read pattern holds every bound value: a fact read agrees
-                if extended is None:
-                    continue
-                if old is None:
-                    out.append((extended, olds))
-                    continue
-                replaced = old.get((t.subject, t.predicate))
-                for value in [f.object for f in replaced] if replaced else (t.object,):
-                    out.append((extended, {**olds, paired: value}))
-        return out
+    def _extend(self, store, position: int, bound: dict, old: dict, at: int):
+        """The solutions extending ``bound`` by the branch's other atoms, with the old values so far."""
+        plan = self._plans[position]
+        if at == len(plan):
+            yield bound, old
+            return
+        m = plan[at]
+        shape = self._body[m]
+        for t in self._facts(store, shape.read(bound), self._graphs[m]):
+            extended = shape.extend(bound, t)  # the read pattern holds every bound value: a fact read agrees
+            if extended is None:
+                continue
+            if m in self.order[position + 1:]:  # paired: its old value where one was replaced
+                olds = [o.object for o in self._facts(store, (t.subject, t.predicate, None), _OLD)] \
+                    or [t.object]
+                for value in olds:
+                    yield from self._extend(store, position, extended, {**old, shape.terms[2]: value}, at + 1)
+            else:  # settled or not changed: the old value is the new one
+                yield from self._extend(store, position, extended, old, at + 1)
 
     def _ok(self, solution: dict) -> bool:
         """Whether every condition holds (each test's value must be a boolean, as the text's
