@@ -25,16 +25,18 @@ from collections.abc import Callable
 from pyoxigraph import NamedNode, Triple
 
 from ..compile.rule import Atom, Rule, join_order
+from . import direct
 from .atom_shape import Shape
 from .delta_texts import FLIP_LOST
 from .direct import _instance, _terms
 from .flip import CHANGE_OLD, compact_possible
-from .look_join import Conditions, _Fallback, _read, every_graph, joinable
+from .look_join import Conditions, every_graph, joinable
 from .look_values import UNKNOWN
 from .scratch import FLIP_GAINED
 
-#: the graph of the replaced facts' old values, as :func:`.look_join._read` takes it
-_OLD = ((CHANGE_OLD,), frozenset((CHANGE_OLD,)))
+
+class _Fallback(Exception):
+    """Too many matches, or a condition not decided: the SPARQL text runs."""
 
 
 def flippable(rule: Rule, order: tuple[int, ...]) -> bool:
@@ -55,8 +57,7 @@ class Flipped:
         #: the replaced fact: only the value is new)
         self._valued = [Shape(_terms(a)[:2] + ("?",)) for a in rule.body]
         self._head = _terms(rule.head)
-        #: per atom, the graphs of its facts (and as a set, for one read over all of them)
-        self._graphs = [(g, frozenset(g)) for g in map(graphs_of, rule.body)]
+        self._graphs = [graphs_of(a) for a in rule.body]
         self._plans = [[m for m in join_order(rule.body, k) if m != k] for k in order]
         #: the keys whose facts it reads: its atoms' and its head's
         self.reads = frozenset({a.read_key() for a in rule.body} | {rule.head.read_key()})
@@ -76,16 +77,17 @@ class Flipped:
         store.add_scratch(list(lost), FLIP_LOST)
         return True
 
-    @staticmethod
-    def _facts(store, pattern: tuple, graphs: tuple) -> list[Triple]:
-        """The facts of ``pattern`` in ``graphs`` (the graphs, and as a set: :func:`.look_join._read`)."""
-        return _read(store, pattern, *graphs)
+    def _facts(self, store, pattern: tuple, graphs) -> list[Triple]:
+        found = direct.facts_in(store, pattern, graphs)
+        if found is None:
+            raise _Fallback
+        return found
 
     def _seeds(self, store, k: int):
         """The seed atom's replaced facts: its bindings with the new value, and its old value."""
         shape = self._body[k]
         value = shape.terms[2]
-        for f in self._facts(store, shape.free, _OLD):
+        for f in self._facts(store, shape.free, (CHANGE_OLD,)):
             start = shape.bind(f)
             if start is None:
                 continue
@@ -107,7 +109,7 @@ class Flipped:
             if extended is None:
                 continue
             if m in self.order[position + 1:]:  # paired: its old value where one was replaced
-                olds = [o.object for o in self._facts(store, (t.subject, t.predicate, None), _OLD)] \
+                olds = [o.object for o in self._facts(store, (t.subject, t.predicate, None), (CHANGE_OLD,))] \
                     or [t.object]
                 for value in olds:
                     yield from self._extend(store, position, extended, {**old, shape.terms[2]: value}, at + 1)
@@ -117,9 +119,15 @@ class Flipped:
     def _ok(self, solution: dict) -> bool:
         """Whether every condition holds (each test's value must be a boolean, as the text's
         ``COALESCE(test, false)`` then is)."""
-        answer = self.conditions.strict(solution)
-        if answer is UNKNOWN:
+        s = self.conditions.bound(solution)
+        if s is UNKNOWN:
             raise _Fallback
+        answer = True
+        for test in self.conditions.raw:
+            found = test(s)
+            if type(found) is not bool:
+                raise _Fallback
+            answer = answer and found
         return answer
 
     def _decide(self, solution: dict, olds: dict, gained: dict, lost: dict) -> None:

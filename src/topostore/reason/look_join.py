@@ -19,7 +19,6 @@ and its SPARQL text runs instead (before anything was written).
 from __future__ import annotations
 
 from collections.abc import Callable, Iterator
-from operator import itemgetter
 
 from pyoxigraph import Literal, NamedNode, Triple
 
@@ -88,20 +87,11 @@ class _Fallback(Exception):
     """More matches than :data:`.direct.FEW`: the SPARQL text decides."""
 
 
-#: answers kept per rule's conditions (:class:`Conditions`), forgotten all at once past this many
-_ANSWERS_MAX = 4096
-
-
 class Conditions:
     """A rule's BINDs and FILTERs, compiled once (:class:`~.look_filters.Unsupported` outside the subset).
 
     A group's BINDs extend the solution in order, after its atoms (every rule text writes them there),
-    and its FILTERs apply to the whole group, so they are decided after every BIND.
-
-    The answers are kept by the terms of the variables the conditions read (:meth:`holds`,
-    :meth:`strict`): a condition of the subset is a function of those terms alone (no graph, no clock,
-    no randomness), and a robot step asks again about the same few: the keys of the locations it
-    passes, the visit times it did not change, the clock it had a step before."""
+    and its FILTERs apply to the whole group, so they are decided after every BIND."""
 
     def __init__(self, rule: Rule) -> None:
         self.binds = []
@@ -117,11 +107,6 @@ class Conditions:
                 self.raw.append(expr)
         #: the tests together, in SPARQL's three-valued logic
         self.test = all_of(self.raw)
-        inputs = set().union(*(c.variables for c in rule.conditions)) - {c.binds for c in rule.conditions}
-        #: the solution's terms the answers depend on (KeyError: a variable left unbound, not kept)
-        self._key = itemgetter(*sorted(inputs)) if inputs else (lambda s: ())
-        self._held: dict = {}
-        self._strict: dict = {}
 
     def bound(self, solution: dict) -> dict | object:
         """``solution`` extended by the BINDs in order; UNKNOWN where one is not exact."""
@@ -137,41 +122,8 @@ class Conditions:
 
     def holds(self, solution: dict) -> object:
         """True / False for a solution of the atoms, UNKNOWN where the evaluator is not exact."""
-        return self._kept(self._held, self._holds, solution)
-
-    def strict(self, solution: dict) -> object:
-        """True / False when every test's value is a boolean (as a text's ``COALESCE(test, false)``
-        needs to tell an error from a false), else UNKNOWN."""
-        return self._kept(self._strict, self._strict_of, solution)
-
-    def _kept(self, answers: dict, decide: Callable[[dict], object], solution: dict) -> object:
-        """``decide(solution)``, kept in ``answers`` by the terms it depends on."""
-        try:
-            key = self._key(solution)
-        except KeyError:
-            return decide(solution)
-        found = answers.get(key, answers)
-        if found is answers:
-            if len(answers) >= _ANSWERS_MAX:
-                answers.clear()
-            found = answers[key] = decide(solution)
-        return found
-
-    def _holds(self, solution: dict) -> object:
         solution = self.bound(solution)
         return UNKNOWN if solution is UNKNOWN else self.test(solution)
-
-    def _strict_of(self, solution: dict) -> object:
-        s = self.bound(solution)
-        if s is UNKNOWN:
-            return UNKNOWN
-        answer = True
-        for test in self.raw:
-            found = test(s)
-            if type(found) is not bool:
-                return UNKNOWN
-            answer = answer and found
-        return answer
 
 
 def joinable(rule: Rule) -> bool:
