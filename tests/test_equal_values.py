@@ -65,6 +65,31 @@ def test_the_index_knows_other_subjects_only() -> None:
     assert not index.other_subject(lit("5", "integer"), str(a))
 
 
+@pytest.mark.parametrize("a", VALUES, ids=str)
+def test_values_added_later_are_found_as_from_the_start(a: Literal) -> None:
+    """An index that held no xsd:float probes numbers in double precision only; a float added later
+    (and one added then removed, then added again for another subject) is still met in single precision."""
+    for b in VALUES:
+        if not sparql_equal(a, b):
+            continue
+        index = EqualityIndex([Triple(B, P, lit("7", "integer"))])
+        index.add(Triple(B, P, b))
+        assert index.other_subject(a, str(A)), (a, b)
+        index.discard(Triple(B, P, b))
+        index.add(Triple(NamedNode("urn:c"), P, b))
+        assert index.other_subject(a, str(A)), (a, b)
+
+
+def test_an_integer_meets_a_float_equal_only_in_single_precision() -> None:
+    """16777217 is no xsd:float; compared with the float 16777216 it is promoted, and then equal."""
+    a, f = lit("16777217", "integer"), lit("16777216", "float")
+    assert sparql_equal(a, f)
+    index = EqualityIndex([Triple(B, P, lit("3", "integer"))])
+    assert not index.other_subject(a, str(A))
+    index.add(Triple(B, P, f))
+    assert index.other_subject(a, str(A))
+
+
 def _difference_rule(onto):
     rules = onto.rules.inference_rules
     found = [r for r in rules if r.head.p == f"<{DIFFERENT.value}>" and len(r.conditions) == 1

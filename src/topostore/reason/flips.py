@@ -85,14 +85,15 @@ class Flips:
         the replaced values are differences of values (:func:`.equal_values.difference_pairs`), and no
         partner value may equal an old or a new value of a replacement (an index look-up per value)."""
         key = ("difference", i, order)
-        if key not in self._plans:
-            self._plans[key] = difference_pairs(self.rules[i], order)
-        pairs = self._plans[key]
-        if pairs is None:
+        compared = self._plans.get(key, key)
+        if compared is key:  # a property of the rule: the (predicate, partner's predicate) pairs, once
+            pairs = difference_pairs(self.rules[i], order)
+            body = self.rules[i].body
+            compared = self._plans[key] = None if pairs is None else tuple(sorted(
+                {(body[seed].p, body[partner].p) for x, y in pairs for seed, partner in ((x, y), (y, x))}))
+        if compared is None:
             return False
-        body = self.rules[i].body
-        compared = {(body[seed].p, body[partner].p) for x, y in pairs for seed, partner in ((x, y), (y, x))}
-        return not any(self._may_equal(p, q, replaced) for p, q in compared)
+        return not any(self._may_equal(p, q, replaced) for p, q in compared if p in replaced)
 
     def _may_equal(self, p: str, q: str, replaced: dict[str, list[flip.Replacement]]) -> bool:
         """Whether an old or new value of a replacement of ``p`` may equal a value of ``q`` held by
@@ -103,12 +104,14 @@ class Flips:
         if self.derivable(q):
             return True  # derived values are not in the index
         index = self._equality_index(q)
+        partners = replaced.get(q, ())
         for r in replacements:
-            own = str(r.old.subject) if p == q else None  # a subject's one value is not its own partner
+            own = r.old.subject if p == q else None  # a subject's one value is not its own partner
             # the values the replaced facts of q held before this change
-            before = [o.old.object for o in replaced.get(q, ()) if own is None or str(o.old.subject) != own]
+            before = [o.old.object for o in partners if own is None or o.old.subject != own]
             for value in (r.old.object, r.new.object):
-                if index.other_subject(value, own) or any(may_equal(value, old) for old in before):
+                if index.other_subject(value, None if own is None else str(own)) \
+                        or (before and any(may_equal(value, old) for old in before)):
                     return True
         return False
 
