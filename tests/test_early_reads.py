@@ -159,3 +159,29 @@ def test_what_a_write_touches():
     assert _touches(door, {("p", TYPE_KEY)})  # ?x a ?c reads every class
     assert _touches(("p", TYPE_KEY), {place}) and not _touches(("p", TYPE_KEY), {link})
     assert _touches(("*",), {link}) and _touches(link, {("*",)}) and not _touches(None, {link})
+
+
+def test_the_writes_index_answers_as_every_writer_asked_in_turn():
+    """`_Writes.last` (indexed by key) gives the last writer `_touches` finds by asking each writer."""
+    import random
+
+    from topostore.reason.early_reads import _ANY, _touches, _Writes
+    from topostore.reason.order import TYPE_KEY
+
+    keys = [("t", f"<c:{n}>") for n in range(4)] + [("p", f"<p:{n}>") for n in range(3)] + [("p", TYPE_KEY)]
+    rng = random.Random(7)
+    for _ in range(400):
+        written = [(rng.randrange(6), rng.choice([*keys, None, ("*",)])) for _ in range(rng.randrange(8))]
+        reads = set(rng.sample([*keys, _ANY], rng.randrange(1, 4)))
+        expected = max((pos for pos, key in written if _touches(key, reads)), default=-1)
+        assert _Writes(written).last(reads) == expected, (written, reads)
+
+
+def test_past_the_bound_every_check_runs_after_the_run(tmp_path, monkeypatch):
+    """With more checks than EARLY_CHECKS none starts early, and the violations are the same."""
+    monkeypatch.setattr(early_reads, "EARLY_CHECKS", 0)
+    bounded, checked = _reasoned(tmp_path, monkeypatch, [])
+    assert not checked and bounded
+    monkeypatch.setattr(early_reads, "ENABLED", False)
+    late, _ = _reasoned(tmp_path, monkeypatch, [])
+    assert late == bounded
