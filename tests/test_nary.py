@@ -138,3 +138,14 @@ def test_an_anonymous_individual_is_not_structure() -> None:
     kinds = {is_structure(onto.store, node): node for node in anonymous}
     assert set(kinds) == {True, False}
     assert onto.store.contains(Triple(kinds[False], TYPE, NamedNode(RI + "C")), ASSERTED)
+
+
+def test_a_class_assertion_of_the_removed_individual_takes_its_class_expression() -> None:
+    """``:a a [ owl:Restriction ... ]`` is one axiom: its restriction goes with it, never left without an
+    axiom holding it; a restriction another axiom shares stays for it."""
+    restriction = "[ a owl:Restriction ; owl:onProperty :p ; owl:someValuesFrom :C ]"
+    assert remaining_after_removing_a(f":a a {restriction} .") == {
+        t for t in graph_of("") if t.subject != NamedNode(RI + "a")}
+    shared = "_:x a owl:Restriction ; owl:onProperty :p ; owl:someValuesFrom :C . :a a _:x . :E rdfs:subClassOf _:x ."
+    assert remaining_after_removing_a(shared) == {
+        t for t in graph_of(f":E rdfs:subClassOf {restriction} .") if t.subject != NamedNode(RI + "a")}

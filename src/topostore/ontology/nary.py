@@ -126,12 +126,15 @@ def individual_triples(store: Store, individual: NamedNode, graph: NamedNode = A
     """What removing ``individual`` removes: every triple naming it, every n-ary axiom listing it whole, and
     every axiom naming it from an anonymous structure whole (a class expression, a negative property
     assertion, a SWRL rule), as aRMOR's REMOVE IND (OWL API's entity remover) removes every axiom mentioning
-    it.  A triple of an anonymous *individual* naming it (``_:b :p :a``) is one assertion: it goes alone."""
+    it, with the class expression of an assertion about it (``:a a [ owl:Restriction ... ]``).  A triple of
+    an anonymous *individual* naming it (``_:b :p :a``) is one assertion: it goes alone."""
     doomed = list(store.triples(individual, None, None, graph)) + list(store.triples(None, None, individual, graph))
     for t in list(doomed):
         whole = axiom_of_list_node(store, t.subject, graph) if t.predicate == FIRST else []
         if not whole and t.subject != individual and is_structure(store, t.subject, graph):
             whole = enclosing_axiom(store, t.subject, graph)
+        elif t.subject == individual and is_structure(store, t.object, graph):
+            whole = _below(store, t.object, graph)  # ``:a a [ owl:Restriction ... ]``: the assertion's expression
         doomed += whole
     return _keep_shared(store, list(dict.fromkeys(doomed)), graph)
 
