@@ -10,6 +10,7 @@ from support import names, typed
 
 from topostore import Ontology
 from topostore.errors import InvalidValueError
+from topostore.ontology.changes import SpellingKeptWarning
 from topostore.rdf import terms
 from topostore.rdf.vocab import ASSERTED, TYPE
 
@@ -82,3 +83,35 @@ def test_change_with_an_invalid_value_changes_nothing(onto: Ontology) -> None:
         onto.change([bad], [Triple(n("r1"), n("at"), n("a"))])
     assert asserted(onto, "at") == [f"<{EX}a>"] and asserted(onto, "speed") == [str(typed("7", "integer"))]
     assert onto.ledger.net_changes() == ([], [])
+
+
+def test_a_value_swapped_for_another_spelling_is_kept_and_said(onto: Ontology) -> None:
+    """Removing ``7`` and adding ``"7.0"^^xsd:decimal`` in one change nets out in the store (literals are keyed
+    by value): the asserted graph keeps ``7``, so the report and the ledger hold nothing, and a named warning
+    says which spelling stayed."""
+    with pytest.warns(SpellingKeptWarning, match="stays as written"):
+        added, removed = onto.change([Triple(n("r1"), n("speed"), typed("7.0", "decimal"))],
+                                     [Triple(n("r1"), n("speed"), typed("7", "long"))])
+    assert (added, removed) == ([], [])
+    assert asserted(onto, "speed") == [str(typed("7", "integer"))]
+    assert onto.ledger.net_changes() == ([], [])
+
+
+def test_an_armor_replace_by_another_spelling_says_which_stays(tmp_path) -> None:
+    """REPLACE DATAPROP of ``3`` by ``"3.0"^^xsd:decimal``: the reply says the spelling ``3`` stayed."""
+    from topostore.armor import ArmorService
+
+    path = tmp_path / "o.ttl"
+    path.write_text(TBOX + ":r1 :speed 3 .")
+    service = ArmorService()
+
+    def call(command: str, spec1: str, spec2: str, args: list[str]):
+        return service.call({"client_name": "c", "reference_name": "r", "command": command,
+                             "primary_command_spec": spec1, "secondary_command_spec": spec2, "args": args})
+    try:
+        assert call("LOAD", "FILE", "", [str(path), EX.rstrip("#"), "false", "PELLET", "true"]).success
+        reply = call("REPLACE", "DATAPROP", "IND", ["speed", "r1", "decimal", "3.0", "3"])
+        assert reply.success and "stays as written" in reply.error_description
+        assert call("QUERY", "DATAPROP", "IND", ["speed", "r1"]).queried_objects == ['"3"^^xsd:integer']
+    finally:
+        service.close()

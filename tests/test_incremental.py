@@ -458,3 +458,41 @@ def test_a_map_below_the_window_size_keeps_no_value_index() -> None:
                 assert onto.reason().stats.mode == "incremental"
                 assert_same_as_scratch(onto)
         assert bool(onto._reasoner.flips._indexes) is indexed
+
+
+SV = "http://example.org/sv#"
+COUNT_UP = f"""@prefix : <{SV}> . @prefix owl: <http://www.w3.org/2002/07/owl#> .
+@prefix swrl: <http://www.w3.org/2003/11/swrl#> . @prefix swrlb: <http://www.w3.org/2003/11/swrlb#> .
+:d a owl:DatatypeProperty . :a a owl:NamedIndividual .
+:x a swrl:Variable . :w a swrl:Variable . :u a swrl:Variable .
+[ a swrl:Imp ;
+  swrl:body ( [ a swrl:DatavaluedPropertyAtom ; swrl:propertyPredicate :d ; swrl:argument1 :x ; swrl:argument2 :w ]
+              [ a swrl:BuiltinAtom ; swrl:builtin swrlb:add ; swrl:arguments ( :u :w 1 ) ]
+              [ a swrl:BuiltinAtom ; swrl:builtin swrlb:lessThan ; swrl:arguments ( :u 5 ) ] ) ;
+  swrl:head ( [ a swrl:DatavaluedPropertyAtom ; swrl:propertyPredicate :d ; swrl:argument1 :x ; swrl:argument2 :u ] ) ] .
+:a :d 3 .
+"""
+
+
+def test_a_value_swapped_for_another_spelling_reasons_as_from_scratch() -> None:
+    """One change removing ``3`` and adding ``"3.0"^^xsd:decimal`` leaves ``3`` asserted (the store keys
+    literals by value); the incremental REASON must not derive from the spelling the graph does not hold."""
+    import warnings
+
+    from pyoxigraph import Literal
+
+    from topostore.ontology.changes import SpellingKeptWarning
+
+    xsd = "http://www.w3.org/2001/XMLSchema#"
+    a, d = NamedNode(SV + "a"), NamedNode(SV + "d")
+    onto = Ontology()
+    onto.load_data(COUNT_UP)
+    onto.reason()
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", SpellingKeptWarning)
+        onto.change([Triple(a, d, Literal("3.0", datatype=NamedNode(xsd + "decimal")))],
+                    [Triple(a, d, Literal("3", datatype=NamedNode(xsd + "integer")))])
+    onto.reason()
+    inferred = set(onto.store.triples(graph=INFERRED))
+    assert inferred == from_scratch(onto)[0]
+    assert Triple(a, d, Literal("4", datatype=NamedNode(xsd + "integer"))) in inferred

@@ -3,6 +3,8 @@
 from __future__ import annotations
 
 from pyoxigraph import NamedNode, Triple
+from support import quiet_turtle
+from test_fidelity import canonical
 
 from topostore import Ontology
 from topostore.ontology.nary import (
@@ -10,9 +12,10 @@ from topostore.ontology.nary import (
     all_disjoint_classes,
     axiom_of_list_node,
     individual_triples,
+    is_structure,
     rdf_list,
 )
-from topostore.rdf.vocab import ASSERTED, FIRST, NIL, REST, TYPE, owl
+from topostore.rdf.vocab import ASSERTED, FIRST, NIL, REST, TYPE, is_skolem, owl
 
 NS = "http://example.org/m#"
 A, B, C = (NamedNode(NS + n) for n in "ABC")
@@ -67,3 +70,82 @@ def test_a_list_outside_an_axiom_is_not_removed() -> None:
     onto.add(*triples)
     assert axiom_of_list_node(onto.store, head) == []
     assert len(individual_triples(onto.store, A)) == 1  # only the cell's rdf:first naming A
+
+
+RI = "http://example.org/ri#"
+RI_HEAD = f"""@prefix : <{RI}> . @prefix owl: <http://www.w3.org/2002/07/owl#> .
+@prefix rdfs: <http://www.w3.org/2000/01/rdf-schema#> .
+:C a owl:Class . :D a owl:Class . :E a owl:Class . :p a owl:ObjectProperty . :q a owl:ObjectProperty .
+:r a owl:ObjectProperty . :a a owl:NamedIndividual . :c a owl:NamedIndividual . :d a owl:NamedIndividual .
+"""
+
+
+def remaining_after_removing_a(text: str):
+    """The asserted graph of ``text`` after REMOVE IND :a, canonically (blank nodes by structure)."""
+    onto = quiet_turtle(RI_HEAD + text)
+    onto.remove_individual(NamedNode(RI + "a"))
+    return canonical(onto, ASSERTED)
+
+
+def graph_of(text: str):
+    return canonical(quiet_turtle(RI_HEAD + text), ASSERTED)
+
+
+def test_an_anonymous_individual_naming_the_removed_one_keeps_its_other_facts() -> None:
+    """``_:b :p :a`` is one property assertion: removing :a removes it, never ``_:b``'s type, its other
+    values or the assertions naming ``_:b`` (OWL API's entity remover keeps every axiom not mentioning :a)."""
+    kept = "_:b a :C ; :q :c . :d :r _:b ."
+    expected = {t for t in graph_of(kept) if t.subject != NamedNode(RI + "a")}
+    assert remaining_after_removing_a("_:b a :C ; :p :a ; :q :c . :d :r _:b .") == expected
+
+
+def test_a_negative_assertion_goes_whole_but_its_anonymous_target_stays() -> None:
+    doc = """_:b a :C ; :q :c .
+[ a owl:NegativePropertyAssertion ; owl:sourceIndividual :a ; owl:assertionProperty :p ; owl:targetIndividual _:b ] ."""
+    expected = {t for t in graph_of("_:b a :C ; :q :c .") if t.subject != NamedNode(RI + "a")}
+    assert remaining_after_removing_a(doc) == expected
+
+
+def test_a_class_assertion_of_an_anonymous_individual_goes_without_the_individual() -> None:
+    """``_:b a [ owl:hasValue :a ]`` is one class assertion: it goes whole (with its restriction); ``_:b``
+    keeps its other facts."""
+    doc = "_:b a :C , [ a owl:Restriction ; owl:onProperty :p ; owl:hasValue :a ] ; :q :c ."
+    expected = {t for t in graph_of("_:b a :C ; :q :c .") if t.subject != NamedNode(RI + "a")}
+    assert remaining_after_removing_a(doc) == expected
+
+
+def test_a_class_expression_shared_by_two_axioms_goes_from_both() -> None:
+    """Both axioms naming the shared expression mention :a, so both go whole; neither is left pointing at
+    an expression cut out of the graph."""
+    doc = """_:x a owl:Restriction ; owl:onProperty :p ; owl:hasValue :a .
+:C owl:equivalentClass [ owl:intersectionOf ( :D _:x ) ] .
+:E rdfs:subClassOf _:x ."""
+    assert remaining_after_removing_a(doc) == {t for t in graph_of("") if t.subject != NamedNode(RI + "a")}
+
+
+def test_a_shared_sub_expression_not_naming_the_individual_stays_for_the_other_axiom() -> None:
+    """An axiom that does not mention :a keeps every part, even one the removed axiom shared."""
+    doc = """_:s a owl:Restriction ; owl:onProperty :q ; owl:someValuesFrom :D .
+:C owl:equivalentClass [ owl:intersectionOf ( _:s [ a owl:Restriction ; owl:onProperty :p ; owl:hasValue :a ] ) ] .
+:E rdfs:subClassOf _:s ."""
+    kept = ":E rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :q ; owl:someValuesFrom :D ] ."
+    assert remaining_after_removing_a(doc) == {t for t in graph_of(kept) if t.subject != NamedNode(RI + "a")}
+
+
+def test_an_anonymous_individual_is_not_structure() -> None:
+    onto = quiet_turtle(RI_HEAD + "_:b a :C ; :p :a . :E owl:equivalentClass [ owl:oneOf ( :a ) ] .")
+    anonymous = {t.subject for t in onto.store.triples(None, None, None, ASSERTED) if is_skolem(t.subject)}
+    kinds = {is_structure(onto.store, node): node for node in anonymous}
+    assert set(kinds) == {True, False}
+    assert onto.store.contains(Triple(kinds[False], TYPE, NamedNode(RI + "C")), ASSERTED)
+
+
+def test_a_class_assertion_of_the_removed_individual_takes_its_class_expression() -> None:
+    """``:a a [ owl:Restriction ... ]`` is one axiom: its restriction goes with it, never left without an
+    axiom holding it; a restriction another axiom shares stays for it."""
+    restriction = "[ a owl:Restriction ; owl:onProperty :p ; owl:someValuesFrom :C ]"
+    assert remaining_after_removing_a(f":a a {restriction} .") == {
+        t for t in graph_of("") if t.subject != NamedNode(RI + "a")}
+    shared = "_:x a owl:Restriction ; owl:onProperty :p ; owl:someValuesFrom :C . :a a _:x . :E rdfs:subClassOf _:x ."
+    assert remaining_after_removing_a(shared) == {
+        t for t in graph_of(f":E rdfs:subClassOf {restriction} .") if t.subject != NamedNode(RI + "a")}

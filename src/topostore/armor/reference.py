@@ -95,8 +95,8 @@ class Reference:
         delta = change.plan(onto)
         # a removed literal is recorded in the form its user wrote (the ledger asks the literal forms), so
         # an undo restores it exactly
-        added, removed = onto.changes.change(delta.add, delta.remove)
-        return Applied(added, removed, delta.warning)
+        added, removed, notes = onto.changes.change_noted(delta.add, delta.remove)
+        return Applied(added, removed, "; ".join(filter(None, [delta.warning, *notes])))
 
     def submit(self, changes: list[Change]) -> list[str]:
         """Apply ``changes`` now, or queue them under manipulation buffering.

@@ -9,6 +9,8 @@ the rules be compiled again.  A named part of one :class:`~topostore.ontology.fa
 
 from __future__ import annotations
 
+import logging
+import warnings
 from collections.abc import Iterable, Sequence
 from typing import TYPE_CHECKING
 
@@ -22,7 +24,10 @@ from .files import is_schema_triple
 from .nary import all_different, individual_triples
 
 if TYPE_CHECKING:
+    from ..stores.base import Store
     from .facade import Ontology
+
+logger = logging.getLogger("topostore.changes")
 
 
 class AssertedChanges:
@@ -71,10 +76,27 @@ class AssertedChanges:
         """Retract ``remove``, then assert ``add``, in one transaction: (added, removed), those that were new
         and those that were asserted, as :meth:`add_new` and :meth:`remove_present` return them.  One
         manipulation's delta (an aRMOR REPLACE) is one call: one transaction, one change limit, one touch.
+        A value removed and added again in another spelling changes nothing (see :meth:`change_noted`); a
+        :class:`SpellingKeptWarning` says which spelling stays.
 
         The triples may come as facts (:class:`~topostore.stores.facts.Fact`, e.g. read by
         :meth:`Store.read_facts`): their keys and forms, made once, serve the store, the ledger and the
         literal forms alike."""
+        added, removed, notes = self.change_noted(add, remove)
+        for note in notes:
+            logger.warning("%s", note)
+            warnings.warn(note, SpellingKeptWarning, stacklevel=3)
+        return added, removed
+
+    def change_noted(self, add: Sequence[Triple | Fact],
+                     remove: Sequence[Triple | Fact]) -> tuple[list[Triple], list[Triple], list[str]]:
+        """:meth:`change`, with a note (not a warning) for each value removed and added in another spelling.
+
+        Why: the store keys a literal by its value, so removing ``"3"^^xsd:integer`` and adding
+        ``"3.0"^^xsd:decimal`` in one transaction nets out and the asserted graph keeps ``"3"``.  The
+        ledger keys by the spelling as stored, so it would record both, and an incremental REASON would
+        derive from a triple the asserted graph does not hold.  Such a pair is neither recorded nor
+        reported as added or removed: the ledger and the report say exactly what the graph gained and lost."""
         store = self.store
         adds = []
         for t in _distinct(add):  # every value is validated before anything changes
@@ -89,14 +111,15 @@ class AssertedChanges:
         ledger, limit = self.ledger, self._change_limit
         with store.transaction():
             removed = store.toggle_facts(removes, False) if removes else []
+            added = store.toggle_facts(adds, True) if adds else []
+            added, removed, notes = _respelled(store, added, removed)
             if removed:
                 ledger.record(store, removed, added=False, limit=limit)
-            added = store.toggle_facts(adds, True) if adds else []
             if added:
                 ledger.record(store, added, added=True, limit=limit)
         added_triples, removed_triples = [f.triple for f in added], [f.triple for f in removed]
         self.touch(removed_triples + added_triples)
-        return added_triples, removed_triples
+        return added_triples, removed_triples, notes
 
     def _change(self, triples: tuple[Triple, ...], added: bool) -> list[Triple]:
         """Add or remove in the asserted graph and record what changed in the ledger: one presence look-up
@@ -168,3 +191,30 @@ def _distinct(items: Sequence[Triple | Fact]) -> Sequence[Triple | Fact]:
 def _validate(t: Triple) -> None:
     if isinstance(t.object, Literal):
         _validate_literal(t.object)
+
+
+class SpellingKeptWarning(UserWarning):
+    """A change removed a literal and added the same value in another spelling: the asserted graph keeps
+    the spelling it had (``"3"^^xsd:integer`` and ``"3.0"^^xsd:decimal`` are one value, one fact)."""
+
+
+def _respelled(store: Store, added: list[Fact], removed: list[Fact]) -> tuple[list[Fact], list[Fact], list[str]]:
+    """``added`` and ``removed`` without the pairs of one value in two spellings, which the store netted out
+    (its pending write is keyed by value), with a note naming the spelling kept and the one not written.
+    A pair of one spelling stays: the ledger cancels it itself (it keys by the stored form)."""
+    if not added or not removed:
+        return added, removed, []
+    gone = {f.key: f for f in removed}
+    pairs = [(gone[f.key], f) for f in added if f.key in gone
+             and store.stored_form(gone[f.key].triple) != store.stored_form(f.triple)]
+    if not pairs:
+        return added, removed, []
+    kept = {id(f) for pair in pairs for f in pair}
+    notes = [f"{_show(store.written_fact(old))} stays as written: {_show(new.triple)} is the same value, "
+             "removed and added in one change (to change only the spelling, remove it in one change and add "
+             "the new one in the next)" for old, new in pairs]
+    return [f for f in added if id(f) not in kept], [f for f in removed if id(f) not in kept], notes
+
+
+def _show(t: Triple) -> str:
+    return f"{t.subject} {t.predicate} {t.object}"

@@ -17,7 +17,7 @@ from pyoxigraph import NamedNode, Triple
 
 from ..rdf.skolem import fresh_skolem
 from ..rdf.terms import Term
-from ..rdf.vocab import ASSERTED, FIRST, NIL, REST, TYPE, is_skolem, owl, swrl
+from ..rdf.vocab import ASSERTED, FIRST, NIL, REST, SWRL, TYPE, XSD, is_skolem, owl, rdf, rdfs, swrl
 from ..stores.base import Store
 
 #: the predicates that tie an n-ary axiom's group node to its list of members
@@ -81,53 +81,121 @@ def axiom_of_list_node(store: Store, node: Term, graph: NamedNode = ASSERTED) ->
     return out
 
 
+#: the types of an anonymous node that is part of an axiom's structure, never an individual
+STRUCTURE_TYPES = frozenset(
+    [owl(n) for n in ("Class", "Restriction", "NegativePropertyAssertion", "AllDifferent", "AllDisjointClasses",
+                      "AllDisjointProperties", "Axiom", "Annotation")]
+    + [rdfs("Datatype"), rdf("List")]
+)
+#: the predicates of an anonymous node that is part of an axiom's structure (class expressions, data ranges,
+#: inverse properties, negative property assertions, n-ary groups, reified axioms), besides SWRL's and facets
+STRUCTURE_PREDICATES = frozenset(
+    [FIRST, REST]
+    + [owl(n) for n in (
+        "onProperty", "onProperties", "someValuesFrom", "allValuesFrom", "hasValue", "hasSelf", "cardinality",
+        "minCardinality", "maxCardinality", "qualifiedCardinality", "minQualifiedCardinality",
+        "maxQualifiedCardinality", "onClass", "onDataRange", "unionOf", "intersectionOf", "complementOf", "oneOf",
+        "inverseOf", "onDatatype", "withRestrictions", "datatypeComplementOf", "sourceIndividual",
+        "assertionProperty", "targetIndividual", "targetValue", "members", "distinctMembers", "annotatedSource",
+        "annotatedProperty", "annotatedTarget",
+    )]
+)
+
+
+def is_structure(store: Store, node: Term, graph: NamedNode = ASSERTED) -> bool:
+    """True for an anonymous node that is part of an axiom (a class expression, a list cell, a restriction, a
+    negative property assertion, a SWRL rule or atom, ...); False for an anonymous individual.
+
+    Why: an anonymous individual is an entity with axioms of its own (``_:b a :C``, ``_:b :q :c``); an axiom
+    that only names it (``_:b :p :a``) is one assertion, and removing that axiom must leave its other facts."""
+    if not is_skolem(node):
+        return False
+    for t in store.triples(node, None, None, graph):
+        if t.predicate in STRUCTURE_PREDICATES or _in_namespace(t.predicate, (SWRL, XSD)):
+            return True
+        if t.predicate == TYPE and (t.object in STRUCTURE_TYPES or _in_namespace(t.object, (SWRL,))):
+            return True
+    return False
+
+
+def _in_namespace(term: Term, namespaces: tuple[str, ...]) -> bool:
+    return isinstance(term, NamedNode) and term.value.startswith(namespaces)
+
+
 def individual_triples(store: Store, individual: NamedNode, graph: NamedNode = ASSERTED) -> list[Triple]:
     """What removing ``individual`` removes: every triple naming it, every n-ary axiom listing it whole, and
-    every axiom naming it from an anonymous node whole (a class expression, a negative property assertion,
-    a SWRL rule), as aRMOR's REMOVE IND (OWL API's entity remover) removes every axiom mentioning it."""
+    every axiom naming it from an anonymous structure whole (a class expression, a negative property
+    assertion, a SWRL rule), as aRMOR's REMOVE IND (OWL API's entity remover) removes every axiom mentioning
+    it, with the class expression of an assertion about it (``:a a [ owl:Restriction ... ]``).  A triple of
+    an anonymous *individual* naming it (``_:b :p :a``) is one assertion: it goes alone."""
     doomed = list(store.triples(individual, None, None, graph)) + list(store.triples(None, None, individual, graph))
     for t in list(doomed):
         whole = axiom_of_list_node(store, t.subject, graph) if t.predicate == FIRST else []
-        if not whole and t.subject != individual and is_skolem(t.subject):
+        if not whole and t.subject != individual and is_structure(store, t.subject, graph):
             whole = enclosing_axiom(store, t.subject, graph)
+        elif t.subject == individual and is_structure(store, t.object, graph):
+            whole = _below(store, t.object, graph)  # ``:a a [ owl:Restriction ... ]``: the assertion's expression
         doomed += whole
-    return list(dict.fromkeys(doomed))
+    return _keep_shared(store, list(dict.fromkeys(doomed)), graph)
 
 
 def enclosing_axiom(store: Store, node: Term, graph: NamedNode = ASSERTED) -> list[Triple]:
-    """Every triple of the axiom the anonymous ``node`` is part of: the SWRL rule it is in (named or not),
-    else the topmost anonymous node above it with all below it and the triples naming it (``C
-    owl:equivalentClass _:r``); nothing when that node is neither named nor typed (no axiom holds it).
+    """Every triple of each axiom the anonymous structure ``node`` is part of: the SWRL rule it is in (named
+    or not), else each topmost anonymous structure above it with all the structure below it and the triples
+    naming any of them (``C owl:equivalentClass _:r``; a node shared by two axioms is in both, and both go);
+    nothing when no axiom holds it (a bare, untyped list naming no one).
 
     Why whole: a restriction without its value, a list without a cell or an atom without an argument is no
-    axiom anyone can read (a rule missing an argument no longer compiles, so no REASON could run)."""
-    top, seen = node, {node}
-    while True:
-        parents = list(store.triples(None, None, top, graph))
+    axiom anyone can read (a rule missing an argument no longer compiles, so no REASON could run).  The walk
+    stops at anonymous individuals: ``_:b a [ owl:Restriction ... ]`` takes that one triple, not ``_:b``."""
+    out: list[Triple] = []
+    todo, seen = [node], {node}
+    while todo:
+        current = todo.pop()
+        parents = list(store.triples(None, None, current, graph))
+        structural = [t for t in parents if is_structure(store, t.subject, graph)]
+        naming = [t for t in parents if t not in structural]
         rule = next((t.subject for t in parents if store.contains(Triple(t.subject, TYPE, swrl("Imp")), graph)), None)
         if rule is not None:
-            return _below(store, rule, graph)
-        above = next((t.subject for t in parents if is_skolem(t.subject) and t.subject not in seen), None)
-        if above is None:
-            naming = [t for t in parents if not is_skolem(t.subject)]
-            if not naming and not list(store.triples(top, TYPE, None, graph)):
-                return []  # a structure no axiom holds (a bare list): only the triples naming the individual go
-            return naming + _below(store, top, graph)
-        top = above
-        seen.add(top)
+            out += _below(store, rule, graph)
+            continue
+        held = naming or (not structural and list(store.triples(current, TYPE, None, graph)))
+        if held:
+            out += naming + _below(store, current, graph)
+        for t in structural:
+            if t.subject not in seen:
+                seen.add(t.subject)
+                todo.append(t.subject)
+    return out
 
 
 def _below(store: Store, root: Term, graph: NamedNode) -> list[Triple]:
-    """The triples of ``root`` and of every anonymous node reached from it."""
+    """The triples of ``root`` and of every anonymous structure reached from it (never of an anonymous
+    individual it only names)."""
     out: list[Triple] = []
     todo, seen = [root], {root}
     while todo:
         for t in store.triples(todo.pop(), None, None, graph):
             out.append(t)
-            if is_skolem(t.object) and t.object not in seen:
+            if t.object not in seen and is_structure(store, t.object, graph):
                 seen.add(t.object)
                 todo.append(t.object)
     return out
+
+
+def _keep_shared(store: Store, doomed: list[Triple], graph: NamedNode) -> list[Triple]:
+    """``doomed`` without the structure an axiom that stays still uses: a sub-expression that does not name
+    the individual yet is shared with another axiom keeps its triples (else that axiom would lose a part)."""
+    gone = set(doomed)
+    changed = True
+    while changed:
+        changed = False
+        for node in {t.subject for t in gone if is_skolem(t.subject)}:
+            kept_parent = any(p not in gone for p in store.triples(None, None, node, graph))
+            if kept_parent and is_structure(store, node, graph):
+                gone -= set(store.triples(node, None, None, graph))
+                changed = True
+    return [t for t in doomed if t in gone]
 
 
 __all__ = [
@@ -137,5 +205,6 @@ __all__ = [
     "axiom_of_list_node",
     "individual_triples",
     "enclosing_axiom",
+    "is_structure",
     "MEMBER_LISTS",
 ]
