@@ -115,11 +115,13 @@ class Unsatisfiable:
             self.disjoint.setdefault(a.node, set()).add(b.node)
             self.disjoint.setdefault(b.node, set()).add(a.node)
         for e in self.exprs.values():
-            if e.kind == "not":
+            if e.kind == "not" and e.members:
                 self.disjoint.setdefault(e.node, set()).add(e.members[0].node)
         #: node -> (why it has no member, whether existing rules already report its members)
         self.reason: dict[NamedNode, tuple[str, bool]] = {}
         self._open: set[frozenset[NamedNode]] = set()
+        #: :meth:`clash`'s answers in this round of the fixpoint (a meeting of fillers is asked again and again)
+        self._asked: dict[tuple[frozenset[NamedNode], bool], tuple[str, bool] | None] = {}
         self.notices: dict[tuple[NamedNode, NamedNode | str], Notice] = {}
         self._decide()
 
@@ -157,6 +159,7 @@ class Unsatisfiable:
         changed = True
         while changed:
             changed = False
+            self._asked.clear()
             for node in self.exprs:
                 if node not in self.reason:
                     found = self.clash(self.above[node])
@@ -174,12 +177,15 @@ class Unsatisfiable:
             if met:
                 return f"it is under the disjoint {self._name(x)} and {self._name(min(met, key=str))}", True
         if nodes in self._open:
-            return None
-        self._open.add(nodes)
-        try:
-            return self._restrictions([self.exprs[n] for n in nodes if n in self.exprs], note)
-        finally:
-            self._open.discard(nodes)
+            return None  # met again inside its own test: asked again in the fixpoint's next round
+        key = (nodes, note)
+        if key not in self._asked:
+            self._open.add(nodes)
+            try:
+                self._asked[key] = self._restrictions([self.exprs[n] for n in nodes if n in self.exprs], note)
+            finally:
+                self._open.discard(nodes)
+        return self._asked[key]
 
     def _restrictions(self, members: list[Expr], note: bool) -> tuple[str, bool] | None:
         lowers: dict[Prop, list[Bound]] = {}
@@ -263,10 +269,16 @@ class Unsatisfiable:
                 return (f"{low.text} needs a value that {describe(u)} puts in {describe(u.filler)}, and "
                         f"{self._filler_text(low)} and {describe(u.filler)} have no member in common "
                         f"({found[0]})", False)
-            if note and any(self.exprs[n].kind in _BEYOND for n in met if n in self.exprs):
+            if note and not self._within(low.filler, u.filler) \
+                    and any(self.exprs[n].kind in _BEYOND for n in met if n in self.exprs):
                 self._note(low, u, f"the value {low.text} needs is in {describe(u.filler)} too: whether "
                            "both can hold needs case analysis (a union, complement or one-of), not decided")
         return None
+
+    def _within(self, f: Expr | None, g: Expr) -> bool:
+        """Filler ``f`` is told under ``g`` (a member of a union, say): their meeting is ``f``, decided as ``f``
+        is (``None``, owl:Thing, meets ``g`` as ``g`` is: its own question, not the existential's)."""
+        return f is None or g.node in self.under(f) or self.owl.subsumption.classes(f, g)
 
     def _two_lowers(self, lows: list[Bound], ups: list[Bound]) -> tuple[str, bool] | None:
         for up in ups:
@@ -317,6 +329,7 @@ class Unsatisfiable:
 
     def undecided(self) -> list[Notice]:
         """The :data:`UNNAMED_CLASH` notices: the pairs met while testing the satisfiable classes."""
+        self._asked.clear()
         for node, nodes in self.above.items():
             if node not in self.reason:
                 self.clash(nodes, note=True)
