@@ -22,6 +22,7 @@ from pathlib import Path
 import pytest
 from fidelity_cases import BASE, CASES, document, namespace
 from pyoxigraph import NamedNode
+from unsat_cases import EMPTY, PREFIXES, SATISFIABLE
 
 from topostore import Ontology, OntologyWarning
 
@@ -162,31 +163,33 @@ def test_cases_as_pellet(name: str) -> None:
 # ---------------------------------------------------------------- wrong answers known today
 
 #: name -> (Turtle, where topostore's consistent verdict comes from): Pellet finds each inconsistent
-KNOWN_INCONSISTENT = {
-    "minimum_beyond_a_functional_property": (
-        """:p a owl:ObjectProperty, owl:FunctionalProperty .
-:C owl:equivalentClass [ a owl:Restriction ; owl:onProperty :p ; owl:minCardinality "3"^^xsd:nonNegativeInteger ] .
-:x a :C .
-""", "an unsatisfiable class by cardinalities of unnamed values is neither found nor named in a notice "
-        "(compile/profile.py)"),
-    "existential_meets_universal": (
-        """:p a owl:ObjectProperty . :A a owl:Class ; owl:disjointWith :B . :B a owl:Class .
-:C rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :p ; owl:someValuesFrom :A ] ,
-    [ a owl:Restriction ; owl:onProperty :p ; owl:allValuesFrom :B ] .
-:x a :C .
-""", "the unnamed value of an existential meeting a universal of the same individual is neither reasoned nor "
-        "named in a notice (compile/profile.py)"),
-    "existential_of_an_empty_class": (
-        """:p a owl:ObjectProperty . :A a owl:Class ; rdfs:subClassOf owl:Nothing . :B a owl:Class .
-:B rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :p ; owl:someValuesFrom :A ] .
-:x a :B .
-""", "an existential whose filler is owl:Nothing's subclass is neither reasoned nor named in a notice "
-        "(compile/profile.py)"),
-}
+KNOWN_INCONSISTENT: dict[str, tuple[str, str]] = {}
 
 
 #: inconsistent cases (Pellet and topostore agree)
 INCONSISTENT = {
+    "minimum_beyond_a_functional_property": """:p a owl:ObjectProperty, owl:FunctionalProperty .
+:C owl:equivalentClass [ a owl:Restriction ; owl:onProperty :p ; owl:minCardinality "3"^^xsd:nonNegativeInteger ] .
+:x a :C .
+""",
+    "minimum_beyond_a_maximum": """:p a owl:ObjectProperty .
+:C rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :p ; owl:minCardinality "2"^^xsd:nonNegativeInteger ] ,
+    [ a owl:Restriction ; owl:onProperty :p ; owl:maxCardinality "1"^^xsd:nonNegativeInteger ] .
+:x a :C .
+""",
+    "existential_meets_universal": """:p a owl:ObjectProperty . :A a owl:Class ; owl:disjointWith :B . :B a owl:Class .
+:C rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :p ; owl:someValuesFrom :A ] ,
+    [ a owl:Restriction ; owl:onProperty :p ; owl:allValuesFrom :B ] .
+:x a :C .
+""",
+    "existential_of_an_empty_class": """:p a owl:ObjectProperty . :A a owl:Class ; rdfs:subClassOf owl:Nothing . :B a owl:Class .
+:B rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :p ; owl:someValuesFrom :A ] .
+:x a :B .
+""",
+    "functional_data_value_outside_the_existential": """:d a owl:DatatypeProperty, owl:FunctionalProperty .
+:C a owl:Class ; rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :d ; owl:someValuesFrom xsd:string ] .
+:x a owl:NamedIndividual, :C ; :d 5 .
+""",
     "negative_data_assertion_by_value": """:d a owl:DatatypeProperty .
 [] a owl:NegativePropertyAssertion ; owl:sourceIndividual :x ; owl:assertionProperty :d ; owl:targetValue 5 .
 :x a owl:NamedIndividual ; :d "5.0"^^xsd:decimal .
@@ -210,3 +213,19 @@ def test_known_missed_inconsistencies_are_pellets_answers(name: str) -> None:
                                   for name, (_, why) in KNOWN_INCONSISTENT.items()])
 def test_known_missed_inconsistencies(name: str) -> None:
     assert not loaded(document(name, KNOWN_INCONSISTENT[name][0])).reason().consistent
+
+
+# ---------------------------------------------------------------- classes with no member (compile/unsatisfiable.py)
+
+@pytest.mark.parametrize("name", list(EMPTY))
+def test_empty_classes_as_pellet(name: str) -> None:
+    text = PREFIXES + EMPTY[name][0] + " :x a :C ."
+    assert pellet(text) == {"consistent": False}
+    assert not loaded(text).reason().consistent
+
+
+@pytest.mark.parametrize("name", list(SATISFIABLE))
+def test_satisfiable_look_alikes_as_pellet(name: str) -> None:
+    text = PREFIXES + SATISFIABLE[name] + " :x a :C ."
+    assert pellet(text)["consistent"]
+    assert loaded(text).reason().consistent

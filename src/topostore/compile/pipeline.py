@@ -18,6 +18,7 @@ from .profile import profile
 from .rule import RuleSet
 from .swrl import SwrlCompiler
 from .tbox_reader import TBoxReader
+from .unsatisfiable import unsatisfiable
 
 
 def compile_ontology(store: Store, graph: NamedNode) -> RuleSet:
@@ -45,7 +46,10 @@ def compile_ontology(store: Store, graph: NamedNode) -> RuleSet:
     rules.add(empty_range_rules(owl.all_expressions()))
     rules.add(restriction_rules(owl))
     rules.add(unsatisfiable_rules(owl))
+    empty_classes, undecided = unsatisfiable(owl)
+    rules.add(empty_classes)
     rules.notices += profile(store, graph, tbox, owl, swrl.used_as, swrl.uses_difference)
+    rules.notices += undecided
     rules.add(swrl_rules)
     rules.add(swrl.query_rules)
     rules.queries = dict(swrl.queries)
