@@ -86,7 +86,8 @@ def goal_match(rule: Rule, graph: NamedNode) -> tuple[str, str]:
     bind = rule.binds & head.variables()
     if not bind:
         return f"GRAPH {graph} {{ {head.text()} }}", ""
-    taken = {v for atom in (*rule.body, head) for v in atom.variables()} | set(rule.binds)
+    taken = {v for atom in (*rule.body, head) for v in atom.variables()}
+    taken.update(v for c in rule.conditions for v in c.variables)
     names: dict[str, str] = {}
     for var in sorted(bind):
         name = f"{var}_goal"
