@@ -129,16 +129,8 @@ def run_component(run, comp: Component) -> None:
         if text and (tag[0] != "minus" or tag[1] in run.minus):
             run.queue.append(text)
     run.flush()
-    while True:  # over-delete, round by round
-        limits.check()
-        for key in comp.keys:
-            if run.has(key, CANDIDATES):
-                run.queue += comp.confirm[key]
-        run.queue.append(f"DROP SILENT GRAPH {CANDIDATES}")  # decided: the next round's are new ones
-        run.flush()
-        if not _more(run, comp, OVER_NEXT, comp.inner_candidates):
-            break
-        _next_round(run, comp, OVER_NEXT, OVER_DELTA, comp.inner_candidates)
+    with limits.doing("the compiled step's over-deletion in a recursive component"):
+        _overdelete(run, comp)
     over = [key for key in comp.keys if run.has(key, OVER)]
     run.queue += [comp.delete[key] for key in over]  # every deletion before any rederivation
     for key in over:
@@ -153,6 +145,20 @@ def run_component(run, comp: Component) -> None:
         _next_round(run, comp, ADD_NEXT, ADD_DELTA, comp.inner_additions)
     for key in comp.keys:
         run.note(key)
+
+
+def _overdelete(run, comp: Component) -> None:
+    """Over-delete inside the component, round by round, confirming candidates from outside first."""
+    while True:
+        limits.check()
+        for key in comp.keys:
+            if run.has(key, CANDIDATES):
+                run.queue += comp.confirm[key]
+        run.queue.append(f"DROP SILENT GRAPH {CANDIDATES}")  # decided: the next round's are new ones
+        run.flush()
+        if not _more(run, comp, OVER_NEXT, comp.inner_candidates):
+            break
+        _next_round(run, comp, OVER_NEXT, OVER_DELTA, comp.inner_candidates)
 
 
 def _more(run, comp: Component, found: NamedNode, by_key: dict) -> bool:

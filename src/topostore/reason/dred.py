@@ -62,6 +62,11 @@ class Deletion:
         heads in ``lost`` (found by :class:`~.flips.Flips`).
         """
         self.state = state
+        with limits.doing("DRed's over-deletion"):
+            self._overdelete(stats, skip, lost)
+
+    def _overdelete(self, stats: ReasonStats, skip: set[tuple[int, int]], lost: list[Triple]) -> None:
+        """Propagate the removed facts to candidates round by round, proving those that still hold."""
         self.requests.defer(f"ADD SILENT {REMOVED} TO {DEL_DELTA} ; ADD SILENT {REMOVED} TO {OVERDELETED}")
         preds, classes = self.requests.start(REMOVED)  # what DEL_DELTA holds once the queue is sent
         while True:
@@ -75,7 +80,8 @@ class Deletion:
             counts = self.requests.keys(CANDIDATES)
             if not counts[0]:
                 break
-            self._prove(stats, counts)
+            with limits.doing("DRed's proof of the over-deletion candidates"):
+                self._prove(stats, counts)
             stats.overdeleted += self.store.count(CANDIDATES) if self.requests.profile else 0
             preds, classes = self.requests.start(CANDIDATES)  # the next DEL_DELTA
             self.requests.defer(f"DROP SILENT GRAPH {DEL_DELTA} ; ADD SILENT {CANDIDATES} TO {DEL_DELTA} ; "
@@ -149,6 +155,10 @@ class Deletion:
     def rederive(self, state, stats: ReasonStats) -> None:
         """DRed's second phase: over-deleted facts that still follow from what is left go to NEW_*."""
         self.state = state
+        with limits.doing("DRed's rederivation"):
+            self._rederive(stats)
+
+    def _rederive(self, stats: ReasonStats) -> None:
         preds, classes = self.requests.start(OVERDELETED)
         for i in self.monotone:
             key = self.rules[i].writes()

@@ -70,6 +70,8 @@ class Budget:
         self.deadline = time.monotonic() + limits.max_seconds
         self.rounds = 0
         self.inferred = 0
+        #: what the REASON is doing now (set by :func:`doing`), named when a limit stops it
+        self.activity = "semi-naive rounds"
 
     def round(self, rules: Callable[[], Iterable[str]] | Iterable[str] = ()) -> None:
         """Count one round; ``rules`` (or a function giving them) names who derived its facts."""
@@ -93,11 +95,13 @@ class Budget:
         names = sorted(set(rules() if callable(rules) else rules))
         shown = ", ".join(names[:5]) + (f" and {len(names) - 5} more" if len(names) > 5 else "")
         blame = f"; still deriving: {shown}" if names else ""
+        # only rounds that keep deriving facts point at a rule without a finite closure
+        cause = ("A rule that creates new values (e.g. with swrlb:add) may have no finite closure; the change"
+                 if names else "The change")
         raise ReasonLimitExceeded(
-            f"reasoning stopped after {what} ({self.rounds} rounds, {self.inferred} facts){blame}. "
-            "A rule that creates new values (e.g. with swrlb:add) may have no finite closure; "
-            "the change was rolled back (raise the limit with --reason-max-rounds/-inferred/-seconds "
-            "if the ontology really needs more)", names)
+            f"reasoning stopped after {what} while running {self.activity} "
+            f"({self.rounds} rounds, {self.inferred} facts){blame}. {cause} was rolled back "
+            "(raise the limit with --reason-max-rounds/-inferred/-seconds if the ontology really needs more)", names)
 
 
 _CURRENT: contextvars.ContextVar[Budget | None] = contextvars.ContextVar("topostore_reason_budget", default=None)
@@ -115,6 +119,20 @@ def budget(limits: ReasonLimits) -> Iterator[Budget]:
         yield _CURRENT.get()  # type: ignore[misc]
     finally:
         _CURRENT.reset(token)
+
+
+@contextlib.contextmanager
+def doing(activity: str) -> Iterator[None]:
+    """Name what the running REASON does inside the block, for the message of a limit that stops it."""
+    current = _CURRENT.get()
+    if current is None:
+        yield
+        return
+    outer, current.activity = current.activity, activity
+    try:
+        yield
+    finally:
+        current.activity = outer
 
 
 def tick(derived: int = 0, rules: Callable[[], Iterable[str]] | Iterable[str] = ()) -> None:
@@ -144,4 +162,4 @@ def writers(rules: Iterable, preds: dict[str, int], classes: dict[str, int]) -> 
     return out
 
 
-__all__ = ["DEFAULTS", "set_defaults", "ReasonLimits", "ReasonLimitExceeded", "Budget", "budget", "tick", "check", "writers"]
+__all__ = ["DEFAULTS", "set_defaults", "ReasonLimits", "ReasonLimitExceeded", "Budget", "budget", "doing", "tick", "check", "writers"]

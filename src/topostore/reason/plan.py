@@ -47,8 +47,8 @@ def plan_where(rule: Rule, delta: int | None = None, delta_graph: NamedNode | No
 
     With ``delta``, that atom reads only ``delta_graph``; with ``head_graph``,
     the head must be a fact of that graph, matched first so that it binds the
-    head's variables from a small graph (last, when a filter BINDs one of them).
-    Filters follow the atoms, as in :meth:`Rule.where`.
+    head's variables from a small graph (see :func:`goal_match` for a head
+    variable a filter BINDs).  Filters follow the atoms, as in :meth:`Rule.where`.
 
     With ``lateral`` (for a small start graph), each further atom is evaluated under its own LATERAL, i.e. once per
     solution so far, in the order of :func:`~topostore.compile.rule.join_order`: Oxigraph's own join
@@ -59,19 +59,45 @@ def plan_where(rule: Rule, delta: int | None = None, delta_graph: NamedNode | No
     evaluation costs more than Oxigraph's hash joins, so ``lateral=False``
     gives a flat group (start patterns first).
     """
-    head_line = f"GRAPH {head_graph} {{ {rule.head.text()} }}" if head_graph is not None else ""
-    head_last = bool(head_line) and bool(rule.binds & rule.head.variables())
-    bound = rule.head.variables() if head_line and not head_last else set()
-    start = [head_line] if head_line and not head_last else []
+    head_line, same = goal_match(rule, head_graph) if head_graph is not None else ("", "")
+    bound = rule.head.variables() - rule.binds if head_line else set()
+    filters = "\n  ".join(f for f in (rule.filters, same) if f)
+    start = [head_line] if head_line else []
     rest: list[str] = []
     for k in join_order(rule.body, delta, bound):
         (start if k == delta else rest).append(rule.atom_text(k, delta, str(delta_graph)))
     if not start:
-        return "\n  ".join(rest + ([rule.filters] if rule.filters else []))
+        return "\n  ".join(rest + ([filters] if filters else []))
     if not lateral:
-        return "\n  ".join(start + rest + ([rule.filters] if rule.filters else []))
-    where = "\n  ".join(start) + nested(rest, rule.filters)
-    return f"{{ {where} }}\n  {head_line}" if head_last else where
+        return "\n  ".join(start + rest + ([filters] if filters else []))
+    return "\n  ".join(start) + nested(rest, filters)
+
+
+def goal_match(rule: Rule, graph: NamedNode) -> tuple[str, str]:
+    """The head as a fact of ``graph`` (a pattern to match first), and the FILTER that ties it to the body.
+
+    A head variable that a filter BINDs cannot be bound before its BIND (SPARQL
+    forbids binding it twice), so in the pattern it gets a name of its own and the
+    FILTER, placed after the BINDs, requires the bound value to be that same term.
+    Without that condition the evaluation would range over every derivation of
+    the rule instead of the facts of ``graph`` (a DRed proof would never finish).
+    """
+    head = rule.head
+    bind = rule.binds & head.variables()
+    if not bind:
+        return f"GRAPH {graph} {{ {head.text()} }}", ""
+    taken = {v for atom in (*rule.body, head) for v in atom.variables()}
+    taken.update(v for c in rule.conditions for v in c.variables)
+    names: dict[str, str] = {}
+    for var in sorted(bind):
+        name = f"{var}_goal"
+        while name in taken:
+            name += "_"
+        names[var] = name
+        taken.add(name)
+    s, p, o = (names.get(t, t) for t in (head.s, head.p, head.o))
+    same = " && ".join(f"sameTerm({var}, {name})" for var, name in names.items())
+    return f"GRAPH {graph} {{ {s} {p} {o} . }}", f"FILTER({same})"
 
 
 def nested(patterns: list[str], filters: str) -> str:
@@ -82,4 +108,4 @@ def nested(patterns: list[str], filters: str) -> str:
     return text
 
 
-__all__ = ["KeyCounts", "LATERAL_MAX", "is_small", "key_counts", "nested", "plan_where"]
+__all__ = ["KeyCounts", "LATERAL_MAX", "goal_match", "is_small", "key_counts", "nested", "plan_where"]
