@@ -3,14 +3,30 @@ and short views of answers."""
 
 from __future__ import annotations
 
+import shutil
 import warnings
 from collections.abc import Callable
+from importlib.util import find_spec
 from pathlib import Path
 
+import pytest
 from pyoxigraph import Literal, NamedNode
 
 from topostore import Ontology
 from topostore.rdf.vocab import AUX, ENTAILED, INFERRED, XSD
+
+#: the marks of a test that runs Pellet (through Owlready2, on a Java runtime): skipped without either
+NEEDS_PELLET = [
+    pytest.mark.skipif(shutil.which("java") is None, reason="Pellet needs a Java runtime"),
+    pytest.mark.skipif(find_spec("owlready2") is None, reason="Owlready2 (which bundles Pellet) is not installed"),
+]
+
+
+def needs_pellet(test: Callable) -> Callable:
+    """``test`` with the marks of :data:`NEEDS_PELLET`."""
+    for mark in NEEDS_PELLET:
+        test = mark(test)
+    return test
 
 ROOT = Path(__file__).resolve().parents[1]
 #: small project-owned files the tests read (saved maps, SQWRL queries)

@@ -11,7 +11,6 @@ Skipped without Java or Owlready2, like tests/test_pellet_differential.py.
 from __future__ import annotations
 
 import json
-import shutil
 import subprocess
 import sys
 import tempfile
@@ -22,17 +21,12 @@ from pathlib import Path
 import pytest
 from fidelity_cases import BASE, CASES, document, namespace
 from pyoxigraph import NamedNode
+from support import NEEDS_PELLET
 from unsat_cases import EMPTY, PREFIXES, SATISFIABLE
 
 from topostore import Ontology, OntologyWarning
 
-pytestmark = [
-    pytest.mark.skipif(shutil.which("java") is None, reason="Pellet needs a Java runtime"),
-    pytest.mark.skipif(
-        subprocess.run([sys.executable, "-c", "import owlready2"], capture_output=True).returncode != 0,
-        reason="Owlready2 (which bundles Pellet) is not installed",
-    ),
-]
+pytestmark = NEEDS_PELLET
 
 PELLET_SCRIPT = r"""
 import json, sys, owlready2

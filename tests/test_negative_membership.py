@@ -4,15 +4,13 @@ text, the tutorial-style TBox against Pellet and a property over random pizzas."
 
 from __future__ import annotations
 
-import shutil
-import subprocess
-import sys
 import warnings
 from pathlib import Path
 
 import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
+from support import needs_pellet
 
 from topostore import Ontology, OntologyWarning
 from topostore.compile import profile as kinds
@@ -190,9 +188,7 @@ def test_a_pizza_is_non_vegetarian_exactly_when_a_topping_is_of_a_non_vegetarian
 
 
 # ---------------------------------------------------------------- the tutorial-style TBox against Pellet
-@pytest.mark.skipif(shutil.which("java") is None, reason="Pellet needs a Java runtime")
-@pytest.mark.skipif(subprocess.run([sys.executable, "-c", "import owlready2"], capture_output=True).returncode != 0,
-                    reason="Owlready2 (which bundles Pellet) is not installed")
+@needs_pellet
 def test_the_tutorial_tbox_types_every_individual_as_pellet(tmp_path: Path) -> None:
     from benchmarks import full
 

@@ -15,7 +15,6 @@ refutation, and it misses the clash between two integer values of very different
 from __future__ import annotations
 
 import json
-import shutil
 import subprocess
 import sys
 from pathlib import Path
@@ -23,20 +22,14 @@ from pathlib import Path
 import pytest
 from scenarios import NAMES, PROPS, SCENARIOS, damage, generated, topostore
 from support import ABOX_OWL as ABOX
-from support import DATA, NS
+from support import DATA, NEEDS_PELLET, NS
 
 from topostore import Ontology
 from topostore.demo import mapgen
 
 ROOT = Path(__file__).resolve().parents[1]
 
-pytestmark = [
-    pytest.mark.skipif(shutil.which("java") is None, reason="Pellet needs a Java runtime"),
-    pytest.mark.skipif(
-        subprocess.run([sys.executable, "-c", "import owlready2"], capture_output=True).returncode != 0,
-        reason="Owlready2 (which bundles Pellet) is not installed",
-    ),
-]
+pytestmark = NEEDS_PELLET
 
 PELLET_SCRIPT = r"""
 import json, sys, owlready2
