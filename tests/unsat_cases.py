@@ -6,6 +6,7 @@ from __future__ import annotations
 NS = "http://e.org/u#"
 PREFIXES = f"""@prefix : <{NS}> . @prefix owl: <http://www.w3.org/2002/07/owl#> .
 @prefix rdfs: <http://www.w3.org/2000/01/rdf-schema#> . @prefix xsd: <http://www.w3.org/2001/XMLSchema#> .
+@prefix rdf: <http://www.w3.org/1999/02/22-rdf-syntax-ns#> .
 :p a owl:ObjectProperty . :q a owl:ObjectProperty . :A a owl:Class . :B a owl:Class . :C a owl:Class .
 :D a owl:Class . :E a owl:Class .
 """
@@ -52,6 +53,9 @@ EMPTY = {
         ":d a owl:DatatypeProperty, owl:FunctionalProperty . "
         ":C rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :d ; owl:someValuesFrom xsd:string ] . :x :d 5 .",
         "cls-svf-fp"),
+    "minimum above the inverse of an inverse-functional property": (
+        f":p a owl:InverseFunctionalProperty ; owl:inverseOf :q . :C rdfs:subClassOf {card('min', 2, 'q')} .",
+        "cls-unsat"),
 }
 
 #: name -> TBox in which :C has members: no violation, no notice
@@ -67,4 +71,9 @@ SATISFIABLE = {
     "functional data property with a value inside the datatype": (
         ":d a owl:DatatypeProperty, owl:FunctionalProperty . "
         ":C rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :d ; owl:someValuesFrom xsd:string ] . :x :d \"5\" ."),
+    "minimum on the inverse of a functional property": (
+        f":p a owl:FunctionalProperty ; owl:inverseOf :q . :C rdfs:subClassOf {card('min', 2, 'q')} ."),
+    "functional data property with a derived string as a plain literal": (
+        ":d a owl:DatatypeProperty, owl:FunctionalProperty . :C rdfs:subClassOf [ a owl:Restriction ; "
+        "owl:onProperty :d ; owl:someValuesFrom rdf:PlainLiteral ] . :x :d \"ab\"^^xsd:normalizedString ."),
 }

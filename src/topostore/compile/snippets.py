@@ -103,8 +103,10 @@ def in_datatype(var: str, datatype: NamedNode) -> str | None:
     if local in _STRING_FORMS:  # a string whose characters the derived type allows is one of its values
         return (f"COALESCE((isLiteral({var}) && datatype({var}) IN ({_STRINGS}) && "
                 f"{_STRING_FORMS[local].format(v=var)}), false)")
-    if dt in (RDF + "PlainLiteral", RDF + "langString"):
-        return f"COALESCE((isLiteral({var}) && (lang({var}) != \"\" || datatype({var}) = <{XSD}string>)), false)"
+    if dt == RDF + "PlainLiteral":  # every string, with or without a language tag
+        return f"COALESCE((isLiteral({var}) && (lang({var}) != \"\" || datatype({var}) IN ({_STRINGS}))), false)"
+    if dt == RDF + "langString":  # the strings with a language tag alone
+        return f"COALESCE((isLiteral({var}) && lang({var}) != \"\"), false)"
     if local in ("float", "double", "boolean", "dateTime", "date", "time", "anyURI", "dateTimeStamp", "duration"):
         return f"COALESCE((isLiteral({var}) && datatype({var}) = <{dt}> && str({var}) = str({var})), false)"
     return None

@@ -212,8 +212,20 @@ class Unsatisfiable:
         return None
 
     def _functional(self, p: Prop) -> list[Bound]:
-        kind = "InverseFunctionalProperty" if p.inverse else "FunctionalProperty"
-        return [Bound(p, 1, None, None, None)] if self.tb.has(kind, p.iri) else []
+        """At most one value of ``p``: it is functional, or its inverse is inverse-functional, also where
+        the inverse is a property of its own (``owl:inverseOf``, either way round)."""
+        if self._at_most_one(p.iri, p.inverse) or any(
+                self._at_most_one(other, not p.inverse) for other in self._inverses(p.iri)):
+            return [Bound(p, 1, None, None, None)]
+        return []
+
+    def _at_most_one(self, iri: NamedNode, inverse: bool) -> bool:
+        return self.tb.has("InverseFunctionalProperty" if inverse else "FunctionalProperty", iri)
+
+    def _inverses(self, iri: NamedNode) -> list[NamedNode]:
+        """The named properties told inverse of ``iri`` (``owl:inverseOf`` read either way round)."""
+        return [b if a == iri else a for a, b in self.tb.inverse
+                if isinstance(b, NamedNode) and iri in (a, b)]
 
     def _filler_empty(self, low: Bound) -> tuple[str, bool] | None:
         if low.filler is None:
