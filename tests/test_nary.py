@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import pytest
 from pyoxigraph import NamedNode, Triple
 from support import quiet_turtle
 from test_fidelity import canonical
@@ -149,3 +150,36 @@ def test_a_class_assertion_of_the_removed_individual_takes_its_class_expression(
     shared = "_:x a owl:Restriction ; owl:onProperty :p ; owl:someValuesFrom :C . :a a _:x . :E rdfs:subClassOf _:x ."
     assert remaining_after_removing_a(shared) == {
         t for t in graph_of(f":E rdfs:subClassOf {restriction} .") if t.subject != NamedNode(RI + "a")}
+
+
+OTHERS = ":c a :C ; :q :d . :d :r :c ."
+
+
+UNTYPED_AXIOMS_NAMING_A = (
+    "[ owl:onProperty :p ; owl:hasValue :a ] rdfs:subClassOf :C .",
+    "[ owl:intersectionOf ( :D [ owl:onProperty :p ; owl:hasValue :a ] ) ] rdfs:subClassOf :E .",
+    ":a :p :c . [ owl:annotatedSource :a ; owl:annotatedProperty :p ; owl:annotatedTarget :c ;"
+    ' rdfs:comment "seen twice" ] .',
+    ":d :p :a . [ owl:annotatedSource :d ; owl:annotatedProperty :p ; owl:annotatedTarget :a ;"
+    ' rdfs:label "from the map" ] .',
+    "[ owl:sourceIndividual :a ; owl:assertionProperty :p ; owl:targetIndividual :c ] .",
+    "[ owl:sourceIndividual :d ; owl:assertionProperty :q ; owl:targetIndividual :a ] .",
+)
+
+
+@pytest.mark.parametrize("axiom", UNTYPED_AXIOMS_NAMING_A)
+def test_an_untyped_anonymous_axiom_naming_the_removed_individual_goes_whole(axiom: str) -> None:
+    """A topmost anonymous structure without ``rdf:type`` is still an axiom when its structural predicates say
+    so (a general class axiom's restriction, an owl:Axiom, an owl:NegativePropertyAssertion): removing :a takes
+    every triple of it, and every other individual's facts stay."""
+    expected = {t for t in graph_of(OTHERS) if t.subject != NamedNode(RI + "a")}
+    assert remaining_after_removing_a(f"{OTHERS}\n{axiom}") == expected
+
+
+def test_an_untyped_axiom_not_naming_the_individual_stays() -> None:
+    """Only the untyped axioms mentioning :a go: one naming :c alone is kept, every triple of it."""
+    kept = f"""{OTHERS}
+[ owl:onProperty :p ; owl:hasValue :c ] rdfs:subClassOf :C .
+[ owl:sourceIndividual :c ; owl:assertionProperty :p ; owl:targetIndividual :d ] ."""
+    doc = kept + "\n[ owl:onProperty :q ; owl:hasValue :a ] rdfs:subClassOf :D ."
+    assert remaining_after_removing_a(doc) == {t for t in graph_of(kept) if t.subject != NamedNode(RI + "a")}

@@ -142,8 +142,9 @@ def individual_triples(store: Store, individual: NamedNode, graph: NamedNode = A
 def enclosing_axiom(store: Store, node: Term, graph: NamedNode = ASSERTED) -> list[Triple]:
     """Every triple of each axiom the anonymous structure ``node`` is part of: the SWRL rule it is in (named
     or not), else each topmost anonymous structure above it with all the structure below it and the triples
-    naming any of them (``C owl:equivalentClass _:r``; a node shared by two axioms is in both, and both go);
-    nothing when no axiom holds it (a bare, untyped list naming no one).
+    naming any of them (``C owl:equivalentClass _:r``; a node shared by two axioms is in both, and both go;
+    a topmost one typed or recognised by its structural predicates is an axiom of its own, e.g. a general
+    class axiom's untyped restriction); nothing when no axiom holds it (a bare, untyped list naming no one).
 
     Why whole: a restriction without its value, a list without a cell or an atom without an argument is no
     axiom anyone can read (a rule missing an argument no longer compiles, so no REASON could run).  The walk
@@ -159,7 +160,7 @@ def enclosing_axiom(store: Store, node: Term, graph: NamedNode = ASSERTED) -> li
         if rule is not None:
             out += _below(store, rule, graph)
             continue
-        held = naming or (not structural and list(store.triples(current, TYPE, None, graph)))
+        held = naming or (not structural and _axiom_root(store, current, graph))
         if held:
             out += naming + _below(store, current, graph)
         for t in structural:
@@ -167,6 +168,22 @@ def enclosing_axiom(store: Store, node: Term, graph: NamedNode = ASSERTED) -> li
                 seen.add(t.subject)
                 todo.append(t.subject)
     return out
+
+
+#: the structural predicates that make a topmost anonymous node an axiom of its own even when untyped (a list
+#: cell's rdf:first / rdf:rest alone do not: a bare list is no axiom)
+_AXIOM_PREDICATES = STRUCTURE_PREDICATES - {FIRST, REST}
+
+
+def _axiom_root(store: Store, node: Term, graph: NamedNode) -> bool:
+    """True when the topmost anonymous ``node`` is an axiom by itself: it has a type, or it is recognised by
+    its structural predicates (``[ owl:onProperty :p ; owl:hasValue :a ] rdfs:subClassOf :C``, an untyped
+    owl:Axiom or owl:NegativePropertyAssertion).
+
+    Why: OWL's RDF mapping lets a parser read these without their ``rdf:type``; counting only typed roots left
+    half an axiom behind (``_:r owl:onProperty :p ; rdfs:subClassOf :C``) when an individual it names went."""
+    return any(t.predicate == TYPE or t.predicate in _AXIOM_PREDICATES
+               for t in store.triples(node, None, None, graph))
 
 
 def _below(store: Store, root: Term, graph: NamedNode) -> list[Triple]:
