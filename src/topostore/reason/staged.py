@@ -222,7 +222,10 @@ class StagedRun:
 
     def _keep(self, found: dict, key: ReadKey, index: int, text: str, seeded: bool) -> bool:
         """Queue one of a key's rechecks, unless every candidate is kept already: while the key has
-        few candidates, each recheck is sent alone and the candidates and kept ones counted after it."""
+        few candidates, each recheck is sent alone and the candidates and kept ones counted after it.
+        Kept ones are compared term by term, not through the store's value-keyed look-up: two spellings
+        of one value (``"8"^^xsd:integer``, ``"8"^^xsd:decimal``) are two facts here, and one kept does
+        not keep the other (the recheck deletes it unless a rule derives that very term)."""
         if found.get(("kept", key)) or not self._holds(found, CANDIDATES, key, seeded):
             return False
         queued = self._send(index, text, key)
@@ -232,7 +235,7 @@ class StagedRun:
         candidates = self.facts(key, CANDIDATES, FEW)
         if len(candidates) >= FEW:
             found[("many", key)] = True
-        elif all(self.store.contains_each(candidates, KEEP)):
+        elif set(candidates) <= set(self.facts(key, KEEP, FEW)):
             found[("kept", key)] = True
         return False
 
