@@ -48,6 +48,7 @@ from .insert_text import insert_text
 from .negation import unless_known_text
 from .order import TYPE_KEY
 from .present import key_graphs
+from .triggers import may_write
 
 if TYPE_CHECKING:
     from .materialize import Materializer
@@ -83,15 +84,11 @@ def _reads(rule: Rule) -> frozenset[ReadKey]:
 
 
 def _touches(written: ReadKey | None, reads: Collection[ReadKey]) -> bool:
-    """Whether a rule writing ``written`` may have written a key among ``reads`` (a class membership is an
-    rdf:type fact too, read by an atom of a variable class: ``?x a ?c`` reads ``("p", rdf:type)``)."""
+    """Whether a rule writing ``written`` may have written a key among ``reads`` (:func:`.triggers.may_write`;
+    a rule of a variable predicate touches every read)."""
     if written is None:
         return False
-    if written[0] == "*" or _ANY in reads or written in reads:
-        return True
-    if written[0] == "t":
-        return ("p", TYPE_KEY) in reads
-    return written == ("p", TYPE_KEY) and any(k[0] == "t" for k in reads)
+    return written[0] == "*" or any(may_write(written, key) for key in reads)
 
 
 class _Writes:

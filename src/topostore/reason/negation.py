@@ -39,9 +39,9 @@ from typing import NamedTuple
 from pyoxigraph import NamedNode
 
 from ..compile.rule import ReadKey, Rule
-from ..rdf.vocab import ASSERTED, AUX, INFERRED, INTERNAL, TYPE
+from ..rdf.vocab import ASSERTED, AUX, INFERRED, INTERNAL
 from .restate import covering
-from .triggers import matches
+from .triggers import matches, may_write
 
 #: the pairs a maintenance asks again, the first delta of the propagation that follows
 ASKED = NamedNode(INTERNAL + "graph:inc-asked")
@@ -81,7 +81,7 @@ def idle_asks(rules: Sequence[Rule], covered: Mapping[int, ReadKey]) -> dict[int
         if atom is None or rule.head is None or (rule.head.s, rule.head.o) != (atom.s, atom.o):
             continue
         owner = next((d for d in owners if d.unless_known.read_key() == key), None)
-        writers = [n for n, w in enumerate(rules) if w.head is not None and _may_write(w.writes(), key)]
+        writers = [n for n, w in enumerate(rules) if w.head is not None and may_write(w.writes(), key)]
         exact = [rules[n] for n in writers if rules[n].writes() == key]
         if owner is not None and exact and all(
                 w.name == owner.name and w.head == owner.unless_known and w.reads() > owner.reads()
@@ -135,7 +135,7 @@ class Completion:
             self.heads.add(head_key)
             body = frozenset(a.read_key() for a in rule.body)
             for other in rules:
-                if other is rule or other.head is None or not _may_write(other.writes(), head_key):
+                if other is rule or other.head is None or not may_write(other.writes(), head_key):
                     continue
                 needs = frozenset(k for k in other.reads() if k[0] != "*")
                 self.writers.append((needs, other.reads() - body if body <= other.reads() else other.reads()))
@@ -168,14 +168,6 @@ class Completion:
     def forget(self) -> None:
         """The keys with facts may have shrunk (a full run, or the general phases): decide afresh."""
         self._present = None
-
-
-def _may_write(written: ReadKey, key: ReadKey) -> bool:
-    """Whether facts written under ``written`` may be facts of ``key``."""
-    if written == key or written[0] == "*" or key[0] == "*":
-        return True
-    # a type atom of a variable class writes every class's facts
-    return written == ("p", str(TYPE)) and key[0] == "t"
 
 
 def lost_any(keys: Collection[ReadKey], preds: Collection[str], classes: Collection[str]) -> bool:

@@ -12,6 +12,7 @@ from __future__ import annotations
 from collections.abc import Collection
 
 from ..compile.rule import ReadKey, Rule
+from ..rdf.vocab import TYPE
 
 #: Predicates and classes that have (or may have) facts, as SPARQL text.
 Present = tuple[set[str], set[str]]
@@ -106,9 +107,24 @@ def matches(key: ReadKey, changed_preds: Collection[str], changed_classes: Colle
     return key[1] in changed_preds
 
 
+#: the read key of an rdf:type atom whose class is a variable (``?x a ?c``)
+_ANY_CLASS = ("p", str(TYPE))
+
+
+def may_write(written: ReadKey, key: ReadKey) -> bool:
+    """Whether facts a rule writes under ``written`` may be facts read under ``key``: the same key, either
+    standing for any key (``*``: a variable predicate), or a class membership against an rdf:type of a
+    variable class, either way round (a class's facts are rdf:type facts; an rdf:type head of a variable
+    class writes every class's)."""
+    if written == key or written[0] == "*" or key[0] == "*":
+        return True
+    if written[0] == "t":
+        return key == _ANY_CLASS
+    return written == _ANY_CLASS and key[0] == "t"
+
 
 def key_sets(keys: Collection[tuple[str, str]]) -> tuple[set[str], set[str]]:
     """(predicates, classes) of read keys ``("p", iri)`` / ``("t", class)``."""
     return {k for kind, k in keys if kind == "p"}, {k for kind, k in keys if kind == "t"}
 
-__all__ = ["key_sets", "Evaluation", "Present", "Triggers", "matches"]
+__all__ = ["key_sets", "Evaluation", "Present", "Triggers", "matches", "may_write"]
