@@ -18,7 +18,7 @@ and its SPARQL text runs instead (before anything was written).
 
 from __future__ import annotations
 
-from collections.abc import Callable, Iterator
+from collections.abc import Callable
 
 from pyoxigraph import Literal, NamedNode, Triple
 
@@ -29,11 +29,15 @@ from . import direct
 from .atom_shape import Shape
 from .delta_texts import KEEP
 from .direct import _instance, _named_only, _terms, _write_new
+from .join_code import Join, compile_join, interpreted
 from .look_filters import Unsupported, compile_expression
 from .look_values import UNKNOWN, all_of
 from .scratch import CANDIDATES, NEW_FACTS, OVERDELETED
 
 _STATE = (ASSERTED, INFERRED, AUX)
+#: False: joins are interpreted atom by atom (:func:`.join_code.interpreted`), the reference the tests
+#: compare the compiled joins against
+COMPILED_JOINS = True
 _TYPE_KEY = ("p", str(TYPE))
 
 
@@ -162,32 +166,23 @@ class Joined:
         self._delta_order = join_order(rule.body, delta)[1:] if delta is not None else []
         #: the keys whose facts it reads: its atoms' and its head's
         self.reads = frozenset({a.read_key() for a in rule.body} | {rule.head.read_key()})
+        #: the recheck's join from a candidate's head values, and the additions' from a delta fact's
+        #: bindings, each compiled once into a flat function (:mod:`.join_code`)
+        self._prove = self._join(self._proof_order, self._head)
+        self._derive = self._join(self._delta_order, self._body[delta]) if delta is not None else None
 
-    def _matches(self, store, k: int, bound: dict) -> list[dict]:
-        """The extensions of ``bound`` by atom ``k`` (at most FEW, else :class:`_Fallback`).  The read
-        pattern holds every bound variable's value (a free one None), so a fact read agrees with
-        ``bound``; the atom's :class:`~.atom_shape.Shape` checks a variable it repeats."""
-        shape = self._body[k]
-        extend = shape.extend
-        out = []
-        for t in _read(store, shape.read(bound), *self._graphs[k]):
-            m = extend(bound, t)
-            if m is not None:
-                out.append(m)
-        return out
-
-    def _solutions(self, store, order: list[int], bound: dict, at: int = 0) -> Iterator[dict]:
-        """The atoms' solutions extending ``bound``, atom by atom in ``order`` (depth first)."""
-        if at == len(order):
-            yield bound
-            return
-        for extended in self._matches(store, order[at], bound):
-            yield from self._solutions(store, order, extended, at + 1)
+    def _join(self, order: list[int], start: Shape) -> Join:
+        """The join of the atoms ``order`` from the solutions ``start``'s facts bind."""
+        terms = [shape.terms for shape in self._body]
+        given = {x for x in start.terms if isinstance(x, str)}
+        if COMPILED_JOINS:
+            return compile_join(terms, order, given, self._graphs, _read)
+        return interpreted(self._body, order, self._graphs, _read)
 
     def _proven(self, store, bound: dict) -> object:
         """Whether some derivation with the head's values ``bound`` holds (UNKNOWN: not decided)."""
         answer: object = False
-        for solution in self._solutions(store, self._proof_order, bound):
+        for solution in self._prove(store, bound):
             b = self.conditions.holds(solution)
             if b is True:
                 return True
@@ -251,7 +246,7 @@ class Joined:
                 start = delta.bind(t)
                 if start is None:
                     continue
-                for solution in self._solutions(store, self._delta_order, start):
+                for solution in self._derive(store, start):
                     b = self.conditions.holds(solution)
                     if b is UNKNOWN:
                         return False
