@@ -1,20 +1,31 @@
 """A look-up join compiled into a flat function (reason/join_code.py) gives the interpreted join's
 solutions, in the same order, with the same reads: random bodies (variables repeated within and
-across atoms, constants, a variable predicate) over random facts in two graphs."""
+across atoms, constants, a variable predicate) over random facts in two graphs; and a flip's
+compiled branches write what its interpreted ones write."""
 
 from __future__ import annotations
 
 from itertools import islice
+from unittest import mock
 
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 from profiles import property_examples
 from pyoxigraph import Literal, NamedNode, Triple
+from swrl_support import NS, PREFIXES, builtin, cls, data, rule
 
+from topostore import Ontology
+from topostore.rdf.vocab import ASSERTED
+from topostore.reason import look_flip, look_join
 from topostore.reason.atom_shape import Shape
+from topostore.reason.delta_texts import FLIP_LOST
+from topostore.reason.flip import CHANGE_OLD
 from topostore.reason.join_code import compile_join, interpreted
+from topostore.reason.scratch import FLIP_GAINED
 from topostore.stores import memory_store
+
+XSD_INTEGER = NamedNode("http://www.w3.org/2001/XMLSchema#integer")
 
 G1, G2 = NamedNode("urn:g:1"), NamedNode("urn:g:2")
 NODES = [NamedNode(f"urn:n:{k}") for k in range(3)]
@@ -97,3 +108,38 @@ def test_the_generated_text_names_no_term() -> None:
     store = memory_store()
     store.add([Triple(NODES[0], PREDS[0], odd)], G1)
     assert list(join(store, {})) == [{name: NODES[0]}]
+
+
+CLOCK = PREFIXES + f"""
+:now a owl:DatatypeProperty . :seen a owl:DatatypeProperty . :limit a owl:DatatypeProperty . :Hot a owl:Class .
+{rule([data(':now', '?c', '?t'), data(':seen', '?l', '?v'), data(':limit', '?c', '?h'),
+       builtin('subtract', '?d', '?t', '?v'), builtin('greaterThan', '?d', '?h')], [cls(':Hot', '?l')], 'Clock')}
+"""
+CLOCKS, PLACES = [NamedNode(NS + f"c{k}") for k in range(2)], [NamedNode(NS + f"l{k}") for k in range(3)]
+number = st.sampled_from([0, 4, 15, 30]).map(lambda n: Literal(str(n), datatype=XSD_INTEGER))
+values = st.lists(st.tuples(st.sampled_from(["now", "seen", "limit"]), st.integers(0, 2), number), min_size=3,
+                  max_size=10)
+
+
+@settings(max_examples=property_examples(200), deadline=None)
+@given(new=values, replaced=st.lists(st.tuples(st.integers(0, 9), number), max_size=4),
+       order=st.sampled_from([(0,), (1,), (0, 1), (1, 0), (1, 0, 2)]))
+def test_the_compiled_flip_is_the_interpreted_one(new: list, replaced: list, order: tuple) -> None:
+    """A flip (reason/look_flip.py) by its compiled branches writes what the interpreted branches write,
+    or falls back alike: random new values, and old values of some of those facts in CHANGE_OLD."""
+    old = [(new[i % len(new)][0], new[i % len(new)][1], value) for i, value in replaced]
+    onto = Ontology()
+    onto.load_data(CLOCK)
+    clock = next(r for r in onto.rules.inference_rules if r.name == "swrl:Clock" or r.name.endswith("Clock"))
+    results = []
+    for compiled in (True, False):
+        store = memory_store()
+        for graph, facts in ((ASSERTED, new), (CHANGE_OLD, old)):
+            store.add([Triple((CLOCKS + PLACES)[k] if p == "seen" else CLOCKS[k % 2], NamedNode(NS + p), v)
+                       for p, k, v in facts], graph)
+        with mock.patch.object(look_join, "COMPILED_JOINS", compiled):
+            flipped = look_flip.Flipped(clock, order)
+        assert (flipped._branches is not None) == compiled
+        answer = flipped.run(store)
+        results.append((answer, set(store.triples(graph=FLIP_GAINED)), set(store.triples(graph=FLIP_LOST))))
+    assert results[0] == results[1]
