@@ -32,7 +32,6 @@ from .direct import _instance, _terms
 from .flip import CHANGE_OLD, compact_possible
 from .join_code import compile_flip
 from .look_join import Conditions, every_graph, joinable
-from .look_values import UNKNOWN
 from .scratch import FLIP_GAINED
 
 
@@ -137,15 +136,9 @@ class Flipped:
     def _ok(self, solution: dict) -> bool:
         """Whether every condition holds (each test's value must be a boolean, as the text's
         ``COALESCE(test, false)`` then is)."""
-        s = self.conditions.bound(solution)
-        if s is UNKNOWN:
+        answer = self.conditions.exact(solution)
+        if answer is None:
             raise _Fallback
-        answer = True
-        for test in self.conditions.raw:
-            found = test(s)
-            if type(found) is not bool:
-                raise _Fallback
-            answer = answer and found
         return answer
 
     def _decide(self, solution: dict, olds: dict, gained: dict, lost: dict) -> None:

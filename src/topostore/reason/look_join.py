@@ -30,7 +30,8 @@ from .atom_shape import Shape
 from .delta_texts import KEEP
 from .direct import _instance, _named_only, _terms, _write_new
 from .join_code import Join, compile_join, interpreted
-from .look_filters import Unsupported, compile_expression
+from .look_code import compile_conditions
+from .look_filters import Unsupported, closure, parse_expression
 from .look_values import UNKNOWN, all_of
 from .scratch import CANDIDATES, NEW_FACTS, OVERDELETED
 
@@ -101,16 +102,22 @@ class Conditions:
         self.binds = []
         #: the tests' expressions, for a caller that needs their value rather than its truth
         self.raw = []
+        trees: tuple[list, list] = ([], [])
         for c in rule.conditions:
             if not c.plain or c.kind not in (BIND, TEST):
                 raise Unsupported(f"condition {c.text!r} reads the graph")
-            expr = compile_expression(c.expression)
+            tree = parse_expression(c.expression)
             if c.kind == BIND:
-                self.binds.append((c.binds, expr))
+                self.binds.append((c.binds, closure(tree)))
+                trees[0].append((c.binds, tree))
             else:
-                self.raw.append(expr)
+                self.raw.append(closure(tree))
+                trees[1].append(tree)
         #: the tests together, in SPARQL's three-valued logic
         self.test = all_of(self.raw)
+        #: the expression trees, generated into functions that take :meth:`holds` and :meth:`exact`'s
+        #: place at the first call (:mod:`.look_code`; :func:`joinable` only asks whether they parse)
+        self._trees = trees if COMPILED_JOINS else None
 
     def bound(self, solution: dict) -> dict | object:
         """``solution`` extended by the BINDs in order; UNKNOWN where one is not exact."""
@@ -126,8 +133,32 @@ class Conditions:
 
     def holds(self, solution: dict) -> object:
         """True / False for a solution of the atoms, UNKNOWN where the evaluator is not exact."""
+        if self._trees is not None:
+            return self._generate().holds(solution)
         solution = self.bound(solution)
         return UNKNOWN if solution is UNKNOWN else self.test(solution)
+
+    def _generate(self) -> Conditions:
+        """The generated :meth:`holds` and :meth:`exact` in the methods' place, for this instance."""
+        self.holds, self.exact = compile_conditions(*self._trees)  # type: ignore[method-assign]
+        self._trees = None
+        return self
+
+    def exact(self, solution: dict) -> bool | None:
+        """True / False where every BIND is exact and every test's value a boolean (as the flip text's
+        ``COALESCE(test, false)`` then is), else None."""
+        if self._trees is not None:
+            return self._generate().exact(solution)
+        s = self.bound(solution)
+        if s is UNKNOWN:
+            return None
+        answer = True
+        for test in self.raw:
+            found = test(s)
+            if type(found) is not bool:
+                return None
+            answer = answer and found
+        return answer
 
 
 def joinable(rule: Rule) -> bool:
