@@ -19,8 +19,9 @@ is true, as SPARQL's error rules give whatever the UNKNOWN stands for); ``sameTe
 range (a result outside it is an error there, UNKNOWN here); ``=`` / ``!=`` between two IRIs or
 blank nodes; the constants ``true``, ``false``, integers, IRIs and plain strings.
 
-Where the parts live: this module parses a condition's text into the closures of
-:mod:`.look_values`, which holds the modelled values and the operators that evaluate them.
+Where the parts live: this module parses a condition's text into a tree of tuples, made the closures
+of :mod:`.look_values` (which holds the modelled values and the operators that evaluate them) by
+:func:`closure`, or one generated function with a rule's other conditions by :mod:`.look_code`.
 """
 
 from __future__ import annotations
@@ -92,26 +93,26 @@ class _Parser:
         if not self.take(word):
             raise self.fail()
 
-    def parse(self) -> Expr:
+    def parse(self) -> tuple:
         expr = self.or_()
         self.skip()
         if self.i != len(self.text):
             raise self.fail()
         return expr
 
-    def or_(self) -> Expr:
+    def or_(self) -> tuple:
         parts = [self.and_()]
         while self.take("||"):
             parts.append(self.and_())
-        return parts[0] if len(parts) == 1 else any_of(parts)
+        return parts[0] if len(parts) == 1 else ("or", parts)
 
-    def and_(self) -> Expr:
+    def and_(self) -> tuple:
         parts = [self.relation()]
         while self.take("&&"):
             parts.append(self.relation())
-        return parts[0] if len(parts) == 1 else all_of(parts)
+        return parts[0] if len(parts) == 1 else ("and", parts)
 
-    def relation(self) -> Expr:
+    def relation(self) -> tuple:
         left = self.additive()
         self.skip()
         op = next((op for op in _RELATIONS if self.text.startswith(op, self.i)), None)
@@ -120,34 +121,34 @@ class _Parser:
         if op == "<" and _IRI.match(self.text, self.i):
             raise self.fail()  # ambiguous with an IRI: left to SPARQL
         self.i += len(op)
-        return compare(op, left, self.additive())
+        return ("compare", op, left, self.additive())
 
-    def additive(self) -> Expr:
+    def additive(self) -> tuple:
         expr = self.unary()
         while True:
             self.skip()
             if self.text.startswith(("+", "-"), self.i):
                 op = self.text[self.i]
                 self.i += 1
-                expr = arith(op, expr, self.unary())
+                expr = ("arith", op, expr, self.unary())
             elif self.text.startswith(("*", "/"), self.i):
                 raise self.fail()
             else:
                 return expr
 
-    def unary(self) -> Expr:
+    def unary(self) -> tuple:
         self.skip()
         if self.text.startswith("!=", self.i):
             raise self.fail()
         if self.take("!"):
-            return not_(self.unary())
+            return ("not", self.unary())
         if self.take("-"):
-            return negate(self.unary())
+            return ("negate", self.unary())
         if self.take("+"):
-            return plus(self.unary())
+            return ("plus", self.unary())
         return self.primary()
 
-    def primary(self) -> Expr:
+    def primary(self) -> tuple:
         self.skip()
         if self.take("("):
             expr = self.or_()
@@ -166,11 +167,10 @@ class _Parser:
         self.i = m.end()
         name = m.group(0)
         if name in ("true", "false"):
-            flag = name == "true"
-            return lambda _s: flag
+            return ("const", name == "true")
         return self.call(name.upper())
 
-    def literal(self, m: re.Match) -> Expr:
+    def literal(self, m: re.Match) -> tuple:
         """A string constant: simple, or typed ``xsd:integer`` / ``xsd:string`` (as the store reads it)."""
         raw = m.group(1) if m.group(1) is not None else m.group(2)
         lex = re.sub(r"\\(.)", lambda e: _ECHAR[e.group(1)], raw)
@@ -178,15 +178,14 @@ class _Parser:
         if typed is None:
             if self.text.startswith(("@", "^^"), self.i):
                 raise self.fail()
-            string = Str(lex)
-            return lambda _s: string
+            return ("const", Str(lex))
         self.i = typed.end()
         found = value(Literal(lex, datatype=NamedNode(typed.group(1))))
         if isinstance(found, Literal):
             raise self.fail()  # an ill-typed or non-canonical integer: left to SPARQL
-        return lambda _s: found
+        return ("const", found)
 
-    def call(self, name: str) -> Expr:
+    def call(self, name: str) -> tuple:
         self.expect("(")
         if name in ("SAMETERM", "ISIRI", "ISURI", "ISBLANK", "ISLITERAL"):
             args = [self.term_arg()]
@@ -195,51 +194,76 @@ class _Parser:
             self.expect(")")
             if len(args) != (2 if name == "SAMETERM" else 1):
                 raise self.fail()
-            return term_test(name, args)
+            return ("term_test", name, args)
         args = [self.or_()]
         while self.take(","):
             args.append(self.or_())
         self.expect(")")
         if name == "STR" and len(args) == 1:
-            return str_of(args[0])
+            return ("str", args[0])
         if name in ("STRBEFORE", "STRAFTER") and len(args) == 2:
-            return substring(name == "STRBEFORE", *args)
+            return ("substring", name == "STRBEFORE", *args)
         raise self.fail()
 
-    def term_arg(self) -> Expr:
+    def term_arg(self) -> tuple:
         """A term test's argument: a variable (its bound term) or an IRI."""
         self.skip()
         m = _VAR.match(self.text, self.i)
         if m is not None:
             self.i = m.end()
-            name = "?" + m.group(1)
-            return lambda s: term_of(s.get(name))
+            return ("term_of", "?" + m.group(1))
         m = _IRI.match(self.text, self.i)
         if m is not None:
             self.i = m.end()
-            iri = NamedNode(m.group(1))
-            return lambda _s: iri
+            return ("const", NamedNode(m.group(1)))
         raise self.fail()
 
 
 
-def _constant_or_variable(m: re.Match) -> Expr:
+def _constant_or_variable(m: re.Match) -> tuple:
     text = m.group(0)
     if text[0] in "?$":
-        name = "?" + m.group(1)
-        return lambda s: bound_value(s, name)
+        return ("var", "?" + m.group(1))
     if text[0] == "<":
-        iri = NamedNode(m.group(1))
-        return lambda _s: iri
+        return ("const", NamedNode(m.group(1)))
     n = int(text) if len(text) <= 20 else MAX + 1
     if n > MAX:
         raise Unsupported(f"integer beyond 64 bits: {text}")
-    return lambda _s: n
+    return ("const", n)
+
+
+def parse_expression(text: str) -> tuple:
+    """The expression ``text`` as a tree of tuples (kind first, as :func:`closure` reads them); raises
+    :class:`Unsupported` outside the subset."""
+    return _Parser(text).parse()
 
 
 def compile_expression(text: str) -> Expr:
     """The expression ``text`` as a function of a solution; raises :class:`Unsupported` outside the subset."""
-    return _Parser(text).parse()
+    return closure(parse_expression(text))
 
 
-__all__ = ["Unsupported", "compile_expression"]
+def closure(node: tuple) -> Expr:
+    """An expression tree (:func:`parse_expression`) as the closures of :mod:`.look_values`."""
+    kind = node[0]
+    if kind == "var":
+        name = node[1]
+        return lambda s: bound_value(s, name)
+    if kind == "term_of":
+        name = node[1]
+        return lambda s: term_of(s.get(name))
+    if kind == "const":
+        found = node[1]
+        return lambda _s: found
+    if kind in ("and", "or"):
+        return (all_of if kind == "and" else any_of)([closure(n) for n in node[1]])
+    if kind in ("compare", "arith"):
+        return (compare if kind == "compare" else arith)(node[1], closure(node[2]), closure(node[3]))
+    if kind == "term_test":
+        return term_test(node[1], [closure(n) for n in node[2]])
+    if kind == "substring":
+        return substring(node[1], closure(node[2]), closure(node[3]))
+    return {"not": not_, "negate": negate, "plus": plus, "str": str_of}[kind](closure(node[1]))
+
+
+__all__ = ["Unsupported", "closure", "compile_expression", "parse_expression"]

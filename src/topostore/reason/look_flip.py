@@ -25,13 +25,13 @@ from collections.abc import Callable
 from pyoxigraph import NamedNode, Triple
 
 from ..compile.rule import Atom, Rule, join_order
-from . import direct
+from . import direct, look_join
 from .atom_shape import Shape
 from .delta_texts import FLIP_LOST
 from .direct import _instance, _terms
 from .flip import CHANGE_OLD, compact_possible
+from .join_code import compile_flip
 from .look_join import Conditions, every_graph, joinable
-from .look_values import UNKNOWN
 from .scratch import FLIP_GAINED
 
 
@@ -61,16 +61,32 @@ class Flipped:
         self._plans = [[m for m in join_order(rule.body, k) if m != k] for k in order]
         #: the keys whose facts it reads: its atoms' and its head's
         self.reads = frozenset({a.read_key() for a in rule.body} | {rule.head.read_key()})
+        #: per changed atom, its branch compiled once into a flat function (:func:`.join_code.compile_flip`),
+        #: where every changed atom's compared value is a variable; else the branches are interpreted
+        self._branches = self._compile() if look_join.COMPILED_JOINS else None
+
+    def _compile(self) -> list | None:
+        terms = [shape.terms for shape in self._body]
+        if not all(isinstance(terms[k][2], str) for k in self.order):
+            return None
+        return [compile_flip(terms, k, self._plans[position], self.order[position + 1:],
+                             [(g,) for g in self._graphs], ((CHANGE_OLD,),), self._facts)
+                for position, k in enumerate(self.order)]
 
     def run(self, store) -> bool:
         """Write the flipped heads to FLIP_GAINED / FLIP_LOST; False (nothing written) where the text must run."""
         gained: dict[Triple, None] = {}
         lost: dict[Triple, None] = {}
         try:
-            for position, k in enumerate(self.order):
-                for bound, old in self._seeds(store, k):
-                    for solution, olds in self._extend(store, position, bound, old, 0):
+            if self._branches is not None:
+                for branch in self._branches:
+                    for solution, olds in branch(store):
                         self._decide(solution, olds, gained, lost)
+            else:
+                for position, k in enumerate(self.order):
+                    for bound, old in self._seeds(store, k):
+                        for solution, olds in self._extend(store, position, bound, old, 0):
+                            self._decide(solution, olds, gained, lost)
         except _Fallback:
             return False
         store.add_scratch(list(gained), FLIP_GAINED)
@@ -78,6 +94,7 @@ class Flipped:
         return True
 
     def _facts(self, store, pattern: tuple, graphs) -> list[Triple]:
+        """The distinct facts of ``pattern`` in ``graphs``; :class:`_Fallback` (the text runs) past FEW."""
         found = direct.facts_in(store, pattern, graphs)
         if found is None:
             raise _Fallback
@@ -119,15 +136,9 @@ class Flipped:
     def _ok(self, solution: dict) -> bool:
         """Whether every condition holds (each test's value must be a boolean, as the text's
         ``COALESCE(test, false)`` then is)."""
-        s = self.conditions.bound(solution)
-        if s is UNKNOWN:
+        answer = self.conditions.exact(solution)
+        if answer is None:
             raise _Fallback
-        answer = True
-        for test in self.conditions.raw:
-            found = test(s)
-            if type(found) is not bool:
-                raise _Fallback
-            answer = answer and found
         return answer
 
     def _decide(self, solution: dict, olds: dict, gained: dict, lost: dict) -> None:

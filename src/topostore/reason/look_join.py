@@ -18,7 +18,7 @@ and its SPARQL text runs instead (before anything was written).
 
 from __future__ import annotations
 
-from collections.abc import Callable, Iterator
+from collections.abc import Callable
 
 from pyoxigraph import Literal, NamedNode, Triple
 
@@ -29,11 +29,16 @@ from . import direct
 from .atom_shape import Shape
 from .delta_texts import KEEP
 from .direct import _instance, _named_only, _terms, _write_new
-from .look_filters import Unsupported, compile_expression
+from .join_code import Join, compile_join, interpreted
+from .look_code import compile_conditions
+from .look_filters import Unsupported, closure, parse_expression
 from .look_values import UNKNOWN, all_of
 from .scratch import CANDIDATES, NEW_FACTS, OVERDELETED
 
 _STATE = (ASSERTED, INFERRED, AUX)
+#: False: joins are interpreted atom by atom (:func:`.join_code.interpreted`), the reference the tests
+#: compare the compiled joins against
+COMPILED_JOINS = True
 _TYPE_KEY = ("p", str(TYPE))
 
 
@@ -97,16 +102,22 @@ class Conditions:
         self.binds = []
         #: the tests' expressions, for a caller that needs their value rather than its truth
         self.raw = []
+        trees: tuple[list, list] = ([], [])
         for c in rule.conditions:
             if not c.plain or c.kind not in (BIND, TEST):
                 raise Unsupported(f"condition {c.text!r} reads the graph")
-            expr = compile_expression(c.expression)
+            tree = parse_expression(c.expression)
             if c.kind == BIND:
-                self.binds.append((c.binds, expr))
+                self.binds.append((c.binds, closure(tree)))
+                trees[0].append((c.binds, tree))
             else:
-                self.raw.append(expr)
+                self.raw.append(closure(tree))
+                trees[1].append(tree)
         #: the tests together, in SPARQL's three-valued logic
         self.test = all_of(self.raw)
+        #: the expression trees, generated into functions that take :meth:`holds` and :meth:`exact`'s
+        #: place at the first call (:mod:`.look_code`; :func:`joinable` only asks whether they parse)
+        self._trees = trees if COMPILED_JOINS else None
 
     def bound(self, solution: dict) -> dict | object:
         """``solution`` extended by the BINDs in order; UNKNOWN where one is not exact."""
@@ -122,8 +133,32 @@ class Conditions:
 
     def holds(self, solution: dict) -> object:
         """True / False for a solution of the atoms, UNKNOWN where the evaluator is not exact."""
+        if self._trees is not None:
+            return self._generate().holds(solution)
         solution = self.bound(solution)
         return UNKNOWN if solution is UNKNOWN else self.test(solution)
+
+    def _generate(self) -> Conditions:
+        """The generated :meth:`holds` and :meth:`exact` in the methods' place, for this instance."""
+        self.holds, self.exact = compile_conditions(*self._trees)  # type: ignore[method-assign]
+        self._trees = None
+        return self
+
+    def exact(self, solution: dict) -> bool | None:
+        """True / False where every BIND is exact and every test's value a boolean (as the flip text's
+        ``COALESCE(test, false)`` then is), else None."""
+        if self._trees is not None:
+            return self._generate().exact(solution)
+        s = self.bound(solution)
+        if s is UNKNOWN:
+            return None
+        answer = True
+        for test in self.raw:
+            found = test(s)
+            if type(found) is not bool:
+                return None
+            answer = answer and found
+        return answer
 
 
 def joinable(rule: Rule) -> bool:
@@ -162,32 +197,23 @@ class Joined:
         self._delta_order = join_order(rule.body, delta)[1:] if delta is not None else []
         #: the keys whose facts it reads: its atoms' and its head's
         self.reads = frozenset({a.read_key() for a in rule.body} | {rule.head.read_key()})
+        #: the recheck's join from a candidate's head values, and the additions' from a delta fact's
+        #: bindings, each compiled once into a flat function (:mod:`.join_code`)
+        self._prove = self._join(self._proof_order, self._head)
+        self._derive = self._join(self._delta_order, self._body[delta]) if delta is not None else None
 
-    def _matches(self, store, k: int, bound: dict) -> list[dict]:
-        """The extensions of ``bound`` by atom ``k`` (at most FEW, else :class:`_Fallback`).  The read
-        pattern holds every bound variable's value (a free one None), so a fact read agrees with
-        ``bound``; the atom's :class:`~.atom_shape.Shape` checks a variable it repeats."""
-        shape = self._body[k]
-        extend = shape.extend
-        out = []
-        for t in _read(store, shape.read(bound), *self._graphs[k]):
-            m = extend(bound, t)
-            if m is not None:
-                out.append(m)
-        return out
-
-    def _solutions(self, store, order: list[int], bound: dict, at: int = 0) -> Iterator[dict]:
-        """The atoms' solutions extending ``bound``, atom by atom in ``order`` (depth first)."""
-        if at == len(order):
-            yield bound
-            return
-        for extended in self._matches(store, order[at], bound):
-            yield from self._solutions(store, order, extended, at + 1)
+    def _join(self, order: list[int], start: Shape) -> Join:
+        """The join of the atoms ``order`` from the solutions ``start``'s facts bind."""
+        terms = [shape.terms for shape in self._body]
+        given = {x for x in start.terms if isinstance(x, str)}
+        if COMPILED_JOINS:
+            return compile_join(terms, order, given, self._graphs, _read)
+        return interpreted(self._body, order, self._graphs, _read)
 
     def _proven(self, store, bound: dict) -> object:
         """Whether some derivation with the head's values ``bound`` holds (UNKNOWN: not decided)."""
         answer: object = False
-        for solution in self._solutions(store, self._proof_order, bound):
+        for solution in self._prove(store, bound):
             b = self.conditions.holds(solution)
             if b is True:
                 return True
@@ -251,7 +277,7 @@ class Joined:
                 start = delta.bind(t)
                 if start is None:
                     continue
-                for solution in self._solutions(store, self._delta_order, start):
+                for solution in self._derive(store, start):
                     b = self.conditions.holds(solution)
                     if b is UNKNOWN:
                         return False

@@ -1,0 +1,162 @@
+"""A look-up join compiled once into a flat Python function: one loop per atom, variables as locals.
+
+Why this exists
+---------------
+The look-up operations of the compiled step (:mod:`.look_join`, :mod:`.look_flip`) join a rule's atoms
+by index reads in an order fixed when the step is compiled.  Interpreted, every fact read cost a
+pattern built from the solution dictionary, a new dictionary merging the fact's bindings, and a
+generator frame per atom that every solution climbs back through.  But what the interpretation
+decides — the order, which positions of each atom are bound when it is read, which variable a
+position binds and which repeated variable it must agree with — depends only on the rule and the
+atom the join starts from.  So it is decided once here and written out as nested ``for`` loops
+whose read patterns name local variables; only a finished solution is made a dictionary (the
+conditions of :mod:`.look_filters` read one).
+
+The generated text holds no term and no name taken from the ontology: constants are passed in
+the function's namespace (``c0``, ``c1``, ...), variables are renamed ``v0``, ``v1``, ..., and a
+solution's keys are the variables' names as Python string literals (``repr``).  The solutions and
+their order are those of the interpreted join (:func:`interpreted`, kept as the reference the tests
+compare against), and so is every read: the same patterns, graphs and limit (``read`` raises when an
+atom has too many matches, and the caller's SPARQL text runs).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Collection, Iterator
+
+from .atom_shape import Shape
+
+_POSITION = ("subject", "predicate", "object")
+
+#: a join over given variables: ``join(store, bound)`` yields each solution extending ``bound``
+Join = Callable[[object, dict], Iterator[dict]]
+
+
+def compile_join(terms: list[tuple], order: list[int], given: Collection[str], graphs: list[tuple],
+                 read: Callable) -> Join:
+    """The join of the atoms ``order`` (each atom's terms: a variable's name, or the term itself, as
+    :func:`.direct._terms` gives them), starting from a solution binding exactly ``given``;
+    ``graphs[k]``: the extra arguments ``read(store, pattern, *graphs[k])`` takes for atom ``k``."""
+    code = _Code("def join(store, bound):", read)
+    for var in sorted(given):
+        code.line(f"{code.local(var)} = bound[{var!r}]")
+    for k in order:
+        code.read_atom(terms[k], code.const(graphs[k]))
+    code.line(f"yield {code.solution()}")
+    return code.function("join")
+
+
+def compile_flip(terms: list[tuple], seed: int, plan: list[int], paired: Collection[int], graphs: list[tuple],
+                 old_graphs: tuple, read: Callable) -> Callable[[object], Iterator[tuple[dict, dict]]]:
+    """One branch of a flip (see :mod:`.look_flip`) as a flat function: ``branch(store)`` yields each
+    solution with the new values and, apart, the old values of its compared variables.
+
+    The seed atom ``seed``'s replaced facts are read from ``old_graphs`` (their old value), and its new
+    facts by their subject and predicate; the atoms ``plan`` are joined after it, each from its
+    ``graphs``; an atom of ``paired`` (a changed atom after the seed) takes, besides its new value, each
+    old value its fact had (or the new one where it was not replaced).  Every changed atom's object
+    must be a variable (the value compared)."""
+    code = _Code("def branch(store):", read)
+    old = code.const(old_graphs)
+    s, p, value = terms[seed]
+    code.read_atom((s, p, value), old, fresh=True, name="f")
+    subject = s if not isinstance(s, str) else None
+    predicate = p if not isinstance(p, str) else None
+    code.read_atom(terms[seed], code.const(graphs[seed]), fresh=True,
+                   pattern=(code.term(s, subject), code.term(p, predicate), "None"))
+    olds = {value: "w0"}
+    code.line("w0 = f.object")
+    for m in plan:
+        code.read_atom(terms[m], code.const(graphs[m]))
+        if m in paired:
+            local = f"w{len(olds)}"
+            code.line(f"for {local} in ([o.object for o in read(store, (t.subject, t.predicate, None), *{old})]"
+                      " or (t.object,)):")
+            code.depth += 1
+            olds[terms[m][2]] = local
+    code.line(f"yield {code.solution()}, {{{', '.join(f'{var!r}: {w}' for var, w in olds.items())}}}")
+    return code.function("branch")
+
+
+class _Code:
+    """The text of one generated function: nested loops, their locals and constants."""
+
+    def __init__(self, header: str, read: Callable) -> None:
+        self.lines = [header]
+        self.depth = 1
+        #: variable name -> local name, in the order they are bound
+        self.names: dict[str, str] = {}
+        self.namespace: dict[str, object] = {"read": read}
+
+    def line(self, text: str) -> None:
+        self.lines.append("    " * self.depth + text)
+
+    def local(self, var: str) -> str:
+        """A variable's local (made at its first binding)."""
+        if var not in self.names:
+            self.names[var] = f"v{len(self.names)}"
+        return self.names[var]
+
+    def const(self, value: object) -> str:
+        """A constant's name in the function's namespace (never its text)."""
+        name = f"c{len(self.namespace)}"
+        self.namespace[name] = value
+        return name
+
+    def term(self, term, constant) -> str:
+        """A pattern's position: the constant's name, or the bound variable's local."""
+        return self.const(constant) if constant is not None else self.names[term]
+
+    def read_atom(self, terms: tuple, graphs: str, fresh: bool = False, name: str = "t",
+                  pattern: tuple | None = None) -> None:
+        """A loop over the atom's facts (read by the values bound so far, or ``pattern``), binding its
+        new variables and checking a variable it repeats; ``fresh``: every variable of the atom is
+        bound anew from the fact (its read matched those already bound)."""
+        bound = set() if fresh else set(self.names)
+        parts, binds, checks = [], [], []
+        seen: set[str] = set()
+        for position, term in zip(_POSITION, terms):
+            if not isinstance(term, str):
+                parts.append(self.const(term))
+            elif term in seen:
+                parts.append("None")
+                checks.append((self.names[term], position))
+            elif term in bound:
+                parts.append(self.names[term])
+            else:
+                seen.add(term)
+                parts.append("None")
+                binds.append((self.local(term), position))
+        self.line(f"for {name} in read(store, ({', '.join(pattern or parts)}), *{graphs}):")
+        self.depth += 1
+        for local, position in binds:
+            self.line(f"{local} = {name}.{position}")
+        for local, position in checks:
+            self.line(f"if {name}.{position} != {local}:")
+            self.line("    continue")
+
+    def solution(self) -> str:
+        return "{" + ", ".join(f"{var!r}: {local}" for var, local in self.names.items()) + "}"
+
+    def function(self, name: str) -> Callable:
+        exec(compile("\n".join(self.lines), f"<topostore {name}>", "exec"), self.namespace)  # noqa: S102 - made above
+        return self.namespace[name]  # type: ignore[return-value]
+
+
+def interpreted(shapes: list[Shape], order: list[int], graphs: list[tuple], read: Callable) -> Join:
+    """The same join interpreted atom by atom (the reference :func:`compile_join` is tested against)."""
+
+    def join(store, bound: dict, at: int = 0) -> Iterator[dict]:
+        if at == len(order):
+            yield bound
+            return
+        shape = shapes[order[at]]
+        for t in read(store, shape.read(bound), *graphs[order[at]]):
+            extended = shape.extend(bound, t)
+            if extended is not None:
+                yield from join(store, extended, at + 1)
+
+    return join
+
+
+__all__ = ["Join", "compile_join", "interpreted"]

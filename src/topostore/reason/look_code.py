@@ -1,0 +1,187 @@
+"""A rule's BINDs and FILTERs compiled into one generated Python function, for the look-up path.
+
+Why this exists
+---------------
+The conditions of a look-up join or flip (:mod:`.look_join`, :mod:`.look_flip`) are decided for every
+solution: the robot step's clock comparison and canReach's key test, a few dozen times a step.  As
+closures (:func:`.look_filters.closure`) each node of an expression is a call, each variable three (the
+node, the solution's look-up, its value), and the BINDs copy the solution.  Here the expression trees
+of :func:`.look_filters.parse_expression` are written out once as the statements of one function: each
+variable read from the solution once into a local, each node a line computing its value, a BIND's
+result a local the later conditions read.
+
+The values and answers are the closures' exactly (:mod:`.look_values`): UNKNOWN (None) where the
+closures answer it, SPARQL's three-valued ``&&`` / ``||`` (every operand is evaluated here, where the
+closures stop at the first decisive one: the operands have no effects and the answer depends only on
+their values), an arithmetic result outside 64 bits UNKNOWN.  A test compares the two on random
+expressions and values (``tests/test_look_code.py``).  The text holds no term: constants are in the
+function's namespace, variables' names only as string literals.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+
+from pyoxigraph import BlankNode, Literal, NamedNode
+
+from .look_values import MAX, Str, ebv, term_of, value
+
+_MIN = -(2 ** 63)
+_KINDS = {"ISIRI": NamedNode, "ISURI": NamedNode, "ISBLANK": BlankNode, "ISLITERAL": Literal}
+_PY = {"=": "==", "!=": "!=", "<": "<", "<=": "<=", ">": ">", ">=": ">="}
+
+
+def compile_conditions(binds: list[tuple[str, tuple]], tests: list[tuple]) -> tuple[Callable, Callable]:
+    """``holds(solution)``: the tests together in SPARQL's logic after the BINDs in order (True, False,
+    or None where a BIND or the answer is not exact), as :meth:`.look_join.Conditions.holds`; and
+    ``exact(solution)``: True / False where every BIND is exact and every test's value a boolean, else
+    None (a flip needs each test decided, see :mod:`.look_flip`)."""
+    code = _Code()
+    for var, node in binds:
+        local = code.node(node)
+        code.line(f"if {local} is None:")
+        code.line("    return None")
+        code.binds[var] = local
+    results = [code.node(node) for node in tests]
+    shared = code.lines
+    holds = _function("holds", shared, _holds(results), code.namespace)
+    exact = _function("exact", shared, _exact(results), code.namespace)
+    return holds, exact
+
+
+def _holds(results: list[str]) -> list[str]:
+    if not results:
+        return ["return True"]
+    flags = [f"ebv({r})" for r in results]
+    return [f"e{i} = {f}" for i, f in enumerate(flags)] + [
+        f"if {' or '.join(f'e{i} is False' for i in range(len(flags)))}:",
+        "    return False",
+        f"return None if {' or '.join(f'e{i} is None' for i in range(len(flags)))} else True"]
+
+
+def _exact(results: list[str]) -> list[str]:
+    if not results:
+        return ["return True"]
+    return [f"if {' or '.join(f'type({r}) is not bool' for r in results)}:",
+            "    return None",
+            f"return {' and '.join(results)}"]
+
+
+def _function(name: str, body: list[str], tail: list[str], namespace: dict) -> Callable:
+    text = "\n".join([f"def {name}(s):", *("    " + line for line in body + tail)])
+    scope = dict(namespace)
+    exec(compile(text, f"<topostore {name}>", "exec"), scope)  # noqa: S102 - text made here, no term in it
+    return scope[name]
+
+
+class _Code:
+    """The statements of one function over a solution ``s``; each node's value in a local ``xN``."""
+
+    def __init__(self) -> None:
+        self.lines: list[str] = []
+        self.namespace: dict[str, object] = {"value": value, "term_of": term_of, "ebv": ebv, "Str": Str,
+                                             "NamedNode": NamedNode, "BlankNode": BlankNode,
+                                             "Literal": Literal, "MIN": _MIN, "MAX": MAX}
+        #: a solution variable's value and term, each read once
+        self.values: dict[str, str] = {}
+        self.terms: dict[str, str] = {}
+        #: a BIND's variable -> the local holding its value (the later conditions read it)
+        self.binds: dict[str, str] = {}
+        self.count = 0
+
+    def line(self, text: str) -> None:
+        self.lines.append(text)
+
+    def new(self, expression: str) -> str:
+        local = f"x{self.count}"
+        self.count += 1
+        self.line(f"{local} = {expression}")
+        return local
+
+    def const(self, found: object) -> str:
+        name = f"k{len(self.namespace)}"
+        self.namespace[name] = found
+        return name
+
+    def node(self, node: tuple) -> str:
+        """The local holding ``node``'s value (None: UNKNOWN)."""
+        return getattr(self, "_" + node[0])(*node[1:])
+
+    def _var(self, name: str) -> str:
+        if name in self.binds:
+            return self.binds[name]  # a BIND's value is one already (value() of it is itself)
+        if name not in self.values:
+            term = self.new(f"s.get({name!r})")
+            self.values[name] = self.new(f"None if {term} is None else value({term})")
+        return self.values[name]
+
+    def _term_of(self, name: str) -> str:
+        if name in self.binds:
+            return self.new(f"term_of({self.binds[name]})")
+        if name not in self.terms:
+            self.terms[name] = self.new(f"term_of(s.get({name!r}))")
+        return self.terms[name]
+
+    def _const(self, found: object) -> str:
+        return self.const(found)
+
+    def _and(self, parts: list) -> str:
+        return self._junction([self.node(p) for p in parts], False)
+
+    def _or(self, parts: list) -> str:
+        return self._junction([self.node(p) for p in parts], True)
+
+    def _junction(self, locals_: list[str], decisive: bool) -> str:
+        flags = [self.new(f"ebv({x})") for x in locals_]
+        return self.new(f"{decisive} if ({' or '.join(f'{f} is {decisive}' for f in flags)}) else "
+                        f"(None if ({' or '.join(f'{f} is None' for f in flags)}) else {not decisive})")
+
+    def _compare(self, op: str, left: tuple, right: tuple) -> str:
+        a, b = self.node(left), self.node(right)
+        py = _PY[op]
+        ints = f"type({a}) is int and type({b}) is int"
+        if op not in ("=", "!="):
+            return self.new(f"({a} {py} {b}) if {ints} else None")
+        strings = f"type({a}) is Str and type({b}) is Str"
+        named = (f"isinstance({a}, (NamedNode, BlankNode)) and isinstance({b}, (NamedNode, BlankNode))")
+        return self.new(f"({a} {py} {b}) if {ints} else ((str({a}) {py} str({b})) if {strings} else "
+                        f"(({a} {py} {b}) if {named} else None))")
+
+    def _arith(self, op: str, left: tuple, right: tuple) -> str:
+        a, b = self.node(left), self.node(right)
+        raw = self.new(f"({a} {op} {b}) if type({a}) is int and type({b}) is int else None")
+        return self.new(f"{raw} if {raw} is not None and MIN <= {raw} <= MAX else None")
+
+    def _negate(self, arg: tuple) -> str:
+        a = self.node(arg)
+        raw = self.new(f"-{a} if type({a}) is int else None")
+        return self.new(f"{raw} if {raw} is not None and MIN <= {raw} <= MAX else None")
+
+    def _plus(self, arg: tuple) -> str:
+        a = self.node(arg)
+        return self.new(f"{a} if type({a}) is int else None")
+
+    def _not(self, arg: tuple) -> str:
+        flag = self.new(f"ebv({self.node(arg)})")
+        return self.new(f"None if {flag} is None else not {flag}")
+
+    def _term_test(self, name: str, args: list) -> str:
+        found = [self.node(a) for a in args]
+        if name == "SAMETERM":
+            a, b = found
+            return self.new(f"None if {a} is None or {b} is None else {a} == {b}")
+        kind = self.const(_KINDS[name])
+        return self.new(f"None if {found[0]} is None else isinstance({found[0]}, {kind})")
+
+    def _str(self, arg: tuple) -> str:
+        a = self.node(arg)
+        return self.new(f"Str({a}.value) if isinstance({a}, NamedNode) else ({a} if type({a}) is Str else None)")
+
+    def _substring(self, before: bool, text: tuple, sep: tuple) -> str:
+        a, b = self.node(text), self.node(sep)
+        at = self.new(f"{a}.find({b}) if type({a}) is Str and type({b}) is Str else None")
+        part = f"{a}[:{at}]" if before else f"{a}[{at} + len({b}):]"
+        return self.new(f"None if {at} is None else (Str('') if {at} < 0 else Str({part}))")
+
+
+__all__ = ["compile_conditions"]

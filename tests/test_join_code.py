@@ -1,0 +1,145 @@
+"""A look-up join compiled into a flat function (reason/join_code.py) gives the interpreted join's
+solutions, in the same order, with the same reads: random bodies (variables repeated within and
+across atoms, constants, a variable predicate) over random facts in two graphs; and a flip's
+compiled branches write what its interpreted ones write."""
+
+from __future__ import annotations
+
+from itertools import islice
+from unittest import mock
+
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+from profiles import property_examples
+from pyoxigraph import Literal, NamedNode, Triple
+from swrl_support import NS, PREFIXES, builtin, cls, data, rule
+
+from topostore import Ontology
+from topostore.rdf.vocab import ASSERTED
+from topostore.reason import look_flip, look_join
+from topostore.reason.atom_shape import Shape
+from topostore.reason.delta_texts import FLIP_LOST
+from topostore.reason.flip import CHANGE_OLD
+from topostore.reason.join_code import compile_join, interpreted
+from topostore.reason.scratch import FLIP_GAINED
+from topostore.stores import memory_store
+
+XSD_INTEGER = NamedNode("http://www.w3.org/2001/XMLSchema#integer")
+
+G1, G2 = NamedNode("urn:g:1"), NamedNode("urn:g:2")
+NODES = [NamedNode(f"urn:n:{k}") for k in range(3)]
+PREDS = [NamedNode(f"urn:p:{k}") for k in range(2)]
+VARS = ["?a", "?b", "?c"]
+
+node = st.sampled_from(NODES)
+facts = st.lists(st.tuples(node, st.sampled_from(PREDS), st.one_of(node, st.just(Literal("7"))),
+                           st.sampled_from([G1, G2])), min_size=4, max_size=16)
+subject = st.one_of(st.sampled_from(VARS), node)
+predicate = st.one_of(st.sampled_from(PREDS), st.just("?p"))
+obj = st.one_of(st.sampled_from(VARS), node)
+atoms = st.lists(st.tuples(subject, predicate, obj), min_size=1, max_size=3)
+
+
+def reader(log: list):
+    """A read as :func:`topostore.reason.look_join._read` does it (distinct facts of the graphs), logged."""
+
+    def read(store, pattern, graphs, graph_set):
+        log.append((pattern, graphs))
+        found: dict = {}
+        for g in graphs:
+            found.update(dict.fromkeys(islice(store.triples(*pattern, g), 64)))
+        return list(found)
+
+    return read
+
+
+@settings(max_examples=property_examples(300), deadline=None)
+@given(quads=facts, body=atoms, start=st.integers(0, 2), data=st.data())
+def test_the_compiled_join_is_the_interpreted_one(quads: list, body: list, start: int, data) -> None:
+    store = memory_store()
+    for s, p, o, g in quads:
+        store.add([Triple(s, p, o)], g)
+    start = min(start, len(body) - 1)
+    shapes = [Shape(terms) for terms in body]
+    order = [start] + data.draw(st.permutations([k for k in range(len(body)) if k != start]))
+    graphs = [((G1, G2), frozenset((G1, G2)))] * len(body)
+    given_vars = {x for x in body[start] if isinstance(x, str)}
+    first = shapes[start]
+    seeds = [b for t in store.triples(*first.free, None) if (b := first.bind(t)) is not None]
+    interpreted_log: list = []
+    compiled_log: list = []
+    reference = interpreted(shapes, order[1:], graphs, reader(interpreted_log))
+    compiled = compile_join(body, order[1:], given_vars, graphs, reader(compiled_log))
+    for bound in seeds:
+        assert outcome(compiled, store, bound) == outcome(reference, store, bound)
+    assert compiled_log == interpreted_log
+
+
+def outcome(join, store, bound: dict) -> list | str:
+    """The solutions, or the error's type (a literal read as a subject is refused by the store alike)."""
+    try:
+        return list(join(store, bound))
+    except TypeError as exc:
+        return type(exc).__name__
+
+
+def test_a_read_that_refuses_stops_the_compiled_join() -> None:
+    """The read's exception (too many matches: the SPARQL text runs) goes through the generated loops."""
+
+    class Many(Exception):
+        pass
+
+    def read(store, pattern, graphs, graph_set):
+        raise Many
+
+    join = compile_join([("?a", PREDS[0], "?b"), ("?b", PREDS[1], "?c")], [1], {"?a", "?b"},
+                        [((G1,), frozenset((G1,)))] * 2, read)
+    with pytest.raises(Many):
+        list(join(memory_store(), {"?a": NODES[0], "?b": NODES[1]}))
+
+
+def test_the_generated_text_names_no_term() -> None:
+    """Constants reach the function through its namespace, never as text, and a variable's name only
+    as a string literal (a literal constant and a name may hold any character)."""
+    odd = Literal('"), __import__("os").system("false"), ("')
+    name = "?a'\"\n)"
+    join = compile_join([(name, PREDS[0], odd)], [0], set(), [((G1,), frozenset((G1,)))], reader([]))
+    store = memory_store()
+    store.add([Triple(NODES[0], PREDS[0], odd)], G1)
+    assert list(join(store, {})) == [{name: NODES[0]}]
+
+
+CLOCK = PREFIXES + f"""
+:now a owl:DatatypeProperty . :seen a owl:DatatypeProperty . :limit a owl:DatatypeProperty . :Hot a owl:Class .
+{rule([data(':now', '?c', '?t'), data(':seen', '?l', '?v'), data(':limit', '?c', '?h'),
+       builtin('subtract', '?d', '?t', '?v'), builtin('greaterThan', '?d', '?h')], [cls(':Hot', '?l')], 'Clock')}
+"""
+CLOCKS, PLACES = [NamedNode(NS + f"c{k}") for k in range(2)], [NamedNode(NS + f"l{k}") for k in range(3)]
+number = st.sampled_from([0, 4, 15, 30]).map(lambda n: Literal(str(n), datatype=XSD_INTEGER))
+values = st.lists(st.tuples(st.sampled_from(["now", "seen", "limit"]), st.integers(0, 2), number), min_size=3,
+                  max_size=10)
+
+
+@settings(max_examples=property_examples(200), deadline=None)
+@given(new=values, replaced=st.lists(st.tuples(st.integers(0, 9), number), max_size=4),
+       order=st.sampled_from([(0,), (1,), (0, 1), (1, 0), (1, 0, 2)]))
+def test_the_compiled_flip_is_the_interpreted_one(new: list, replaced: list, order: tuple) -> None:
+    """A flip (reason/look_flip.py) by its compiled branches writes what the interpreted branches write,
+    or falls back alike: random new values, and old values of some of those facts in CHANGE_OLD."""
+    old = [(new[i % len(new)][0], new[i % len(new)][1], value) for i, value in replaced]
+    onto = Ontology()
+    onto.load_data(CLOCK)
+    clock = next(r for r in onto.rules.inference_rules if r.name == "swrl:Clock" or r.name.endswith("Clock"))
+    results = []
+    for compiled in (True, False):
+        store = memory_store()
+        for graph, facts in ((ASSERTED, new), (CHANGE_OLD, old)):
+            store.add([Triple((CLOCKS + PLACES)[k] if p == "seen" else CLOCKS[k % 2], NamedNode(NS + p), v)
+                       for p, k, v in facts], graph)
+        with mock.patch.object(look_join, "COMPILED_JOINS", compiled):
+            flipped = look_flip.Flipped(clock, order)
+        assert (flipped._branches is not None) == compiled
+        answer = flipped.run(store)
+        results.append((answer, set(store.triples(graph=FLIP_GAINED)), set(store.triples(graph=FLIP_LOST))))
+    assert results[0] == results[1]

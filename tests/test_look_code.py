@@ -1,0 +1,69 @@
+"""A rule's conditions generated into one function (reason/look_code.py) answer as the closures of
+reason/look_filters.py do, value for value: random expressions of the subset (and just outside it)
+over random terms, as FILTERs alone and after a BIND whose value they read."""
+
+from __future__ import annotations
+
+from hypothesis import given, settings
+from hypothesis import strategies as st
+from profiles import property_examples
+from test_look_filters import EXPRS, TERMS, VARS
+
+from topostore.reason.look_code import compile_conditions
+from topostore.reason.look_filters import Unsupported, closure, parse_expression
+from topostore.reason.look_values import UNKNOWN, all_of
+
+
+def reference(binds: list, tests: list, solution: dict) -> tuple[object, object]:
+    """``holds`` and ``exact`` by the closures (as reason/look_join.Conditions computes them interpreted)."""
+    s = dict(solution)
+    for var, tree in binds:
+        found = closure(tree)(s)
+        if found is UNKNOWN:
+            return UNKNOWN, None
+        s[var] = found
+    values = [closure(t)(s) for t in tests]
+    holds = all_of([closure(t) for t in tests])(s)
+    exact = None if any(type(v) is not bool for v in values) else all(values)
+    return holds, exact
+
+
+def trees(texts: list[str]) -> list | None:
+    try:
+        return [parse_expression(t) for t in texts]
+    except Unsupported:
+        return None
+
+
+@settings(max_examples=property_examples(1500), deadline=None)
+@given(terms=st.lists(TERMS, min_size=3, max_size=3), bound=st.one_of(st.none(), EXPRS),
+       texts=st.lists(EXPRS, max_size=3))
+def test_generated_conditions_answer_as_the_closures(terms: list, bound: str | None, texts: list[str]) -> None:
+    solution = dict(zip(VARS, terms))
+    parsed_binds = trees([bound]) if bound is not None else []
+    parsed_tests = trees([t.replace("?c", "?d") for t in texts])  # ?d: the BIND's value where there is one
+    if parsed_binds is None or parsed_tests is None:
+        return
+    binds = [("?d", tree) for tree in parsed_binds]
+    holds, exact = compile_conditions(binds, parsed_tests)
+    assert (holds(solution), exact(solution)) == reference(binds, parsed_tests, solution), (bound, texts, terms)
+
+
+def test_no_condition_holds() -> None:
+    holds, exact = compile_conditions([], [])
+    assert holds({}) is True and exact({}) is True
+
+
+def test_overflow_foreign_values_and_three_valued_logic_as_the_closures() -> None:
+    """The cases tests/test_look_filters.py names, through the generated function."""
+    from test_look_filters import BIG, typed
+    big, zero, one = typed(str(BIG - 1), "integer"), typed("0", "integer"), typed("1", "integer")
+    cases = [("?a + 1 > 0", {"?a": big}), ("?a - 1 > 0", {"?a": big}), ("-(?a) - 2 < 0", {"?a": big}),
+             ("?a > 0", {"?a": typed("1.5", "decimal")}), ("?a > 0 && ?b > 0", {"?a": zero, "?b": big}),
+             ("?a > 0 || ?b + 1 > 0", {"?a": one, "?b": big}), ("?a > 0 || ?b + 1 > 0", {"?a": zero, "?b": big}),
+             ('STRAFTER(STR(?a), "urn:") = ""', {"?a": typed("x", "string")}),
+             ('STRBEFORE("ab", "x") = ""', {}), ("!(?a)", {"?a": zero}), ("sameTerm(?a, ?b)", {"?a": one})]
+    for text, solution in cases:
+        tree = parse_expression(text)
+        holds, exact = compile_conditions([], [tree])
+        assert (holds(solution), exact(solution)) == reference([], [tree], solution), text
