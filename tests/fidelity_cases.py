@@ -5,7 +5,8 @@ Each case is Turtle with ``:`` bound to its namespace; :func:`document` adds the
 consistent and fully reasoned by topostore (no notice), so every answer Pellet gives is one topostore must
 give: inverse, symmetric and transitive properties, chains, sameAs chains, hasValue, keys, qualified
 cardinalities with AllDifferent groups, datatype restrictions, punning, self restrictions, negative
-property assertions, literal forms, datatypes topostore does not check (a user's own, xsd:token).
+property assertions, literal forms, datatypes topostore does not check (a user's own, xsd:token), the domain
+of an existential's subject through inverse, sub-, equivalent and symmetric properties.
 """
 
 from __future__ import annotations
@@ -108,6 +109,25 @@ CASES: dict[str, str] = {
 :SomeSmall owl:equivalentClass [ a owl:Restriction ; owl:onProperty :d ; owl:someValuesFrom :Small ] .
 :SomeToken owl:equivalentClass [ a owl:Restriction ; owl:onProperty :d ; owl:someValuesFrom xsd:token ] .
 :x a owl:NamedIndividual ; :d 9 . :y a owl:NamedIndividual ; :d "hello" . :z a owl:NamedIndividual ; :d "ab"^^xsd:token .
+""",
+    "property_hierarchy": """
+:F a owl:Class . :G a owl:Class . :H a owl:Class . :K a owl:Class . :M a owl:Class . :N a owl:Class .
+:D a owl:Class . :S a owl:Class . :U a owl:Class . :V a owl:Class . :W a owl:Class . :X a owl:Class .
+:q a owl:ObjectProperty . :p a owl:ObjectProperty ; rdfs:domain :F ; owl:inverseOf :q ; rdfs:subPropertyOf :q .
+:D owl:equivalentClass [ a owl:Restriction ; owl:onProperty :q ; owl:minQualifiedCardinality "2"^^xsd:nonNegativeInteger ;
+    owl:onClass :D ] .
+:i3 a owl:NamedIndividual, :D .
+:r a owl:ObjectProperty ; rdfs:range :G . :ri a owl:ObjectProperty ; owl:inverseOf :r .
+:S rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :ri ; owl:someValuesFrom owl:Thing ] . :s1 a owl:NamedIndividual, :S .
+:top a owl:ObjectProperty ; rdfs:domain :H . :mid a owl:ObjectProperty ; rdfs:subPropertyOf :top .
+:U rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :mid ; owl:someValuesFrom :F ] . :u1 a owl:NamedIndividual, :U .
+:low a owl:ObjectProperty ; rdfs:subPropertyOf [ owl:inverseOf :up ] . :up a owl:ObjectProperty ; rdfs:range :K .
+:V rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :low ; owl:someValuesFrom owl:Thing ] . :v1 a owl:NamedIndividual, :V .
+:sym a owl:ObjectProperty, owl:SymmetricProperty ; rdfs:range :M .
+:W rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :sym ; owl:minCardinality "1"^^xsd:nonNegativeInteger ] .
+:w1 a owl:NamedIndividual, :W .
+:dd a owl:DatatypeProperty ; rdfs:domain :N . :de a owl:DatatypeProperty ; owl:equivalentProperty :dd .
+:X rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :de ; owl:someValuesFrom xsd:integer ] . :x1 a owl:NamedIndividual, :X .
 """,
 }
 

@@ -38,8 +38,10 @@ CASES = {
                         "owl:onProperty :p ; owl:maxCardinality 1 ] .", kinds.MAX_LEFT, "max 1"),
     "max 2": (":B rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :p ; owl:maxCardinality 2 ] .",
               kinds.MAX_CASES, "max 2"),
-    "existential and domain": (":B rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :p ; "
-                               "owl:someValuesFrom :C ] . :p rdfs:domain :D .", kinds.EXISTENTIAL, "domain"),
+    "existential through a chain": (":q a owl:ObjectProperty . :t a owl:ObjectProperty ; rdfs:domain :D ; "
+                                    "owl:propertyChainAxiom ( :q :p ) . :B rdfs:subClassOf [ a owl:Restriction ; "
+                                    "owl:onProperty :p ; owl:someValuesFrom :C ] .", kinds.EXISTENTIAL,
+                                    "chain of t"),
     "existential and functional": (":p a owl:FunctionalProperty . :R rdfs:subClassOf [ a owl:Restriction ; "
                                    "owl:onProperty :p ; owl:someValuesFrom :L ] .", kinds.EXISTENTIAL,
                                    "at most one value"),

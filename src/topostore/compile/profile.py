@@ -18,8 +18,9 @@ complement, negatively              non-membership by case analysis (:mod:`.nega
 universal restriction, negatively   membership needs every value known
 max cardinality, negatively         idem, when a maximum can be told elsewhere
 max cardinality ≥ 2, positively     which of the values are equal is not known
-existential, positively             the unnamed value's consequences (domain, a single
-                                    value, disjoint classes, nested restrictions)
+existential, positively             the unnamed value's consequences (a single value,
+                                    disjoint classes, nested restrictions, chains through
+                                    it; the subject's domains are derived: .owl_extras)
 difference by irreflexivity         x p y ⇒ x ≠ y is not used where difference matters
 =================================  =====================================================
 
@@ -44,6 +45,7 @@ from ..stores.base import Store
 from .model import Expr, Prop, TBox, describe
 from .notices import INCOMPLETE, NOT_STORED, Notice
 from .owl import OwlCompiler
+from .property_hierarchy import inverse, subject_classes, super_expressions
 
 #: Axiom kinds of the report (the groups of the LOAD warning).
 UNION = "union or one-of as a superclass"
@@ -245,18 +247,12 @@ class ProfileReport:
     def existential(self, e: Expr, axiom: str, subject: NamedNode | None) -> None:
         """Consequences of the unnamed value of an existential that are not drawn."""
         p, what = e.prop, describe(e)
-        told = self.told(subject) if subject is not None else set()
-        # the subject's side: domain (range for an inverse)
-        side = self.tb.range if p.inverse else self.tb.domain
-        for q, c in side:
-            if q.iri == p.iri and c.node != THING and c.node not in told:
-                self.note(EXISTENTIAL, axiom, f"an instance of {what} is in {describe(c)} (the "
-                          f"{'range' if p.inverse else 'domain'} of {_name(p.iri)}) only through a told value")
-        supers = self.super_properties(p)
+        supers = self.supers.get(p, frozenset())
         if any(not pos and m.kind in ("some", "min", "exact") and not self.reaches(e, m)
                for q in supers for m, pos in self.on.get(q, ())):
             self.note(EXISTENTIAL, axiom, f"an instance of {what} is in the restrictions on the super-properties "
                       f"of {_name(p.iri)} only through a told value")
+        self.chain_links(e, axiom, {p, *supers})
         if self.owl.is_data(p, e):
             return
         value_classes = self.value_classes(p)
@@ -277,24 +273,34 @@ class ProfileReport:
         ne, nm_ = (1 if e.kind == "some" else e.n), (1 if m.kind == "some" else m.n)
         return m.kind != "exact" and ne >= nm_ >= 1 and self.owl.filler_subsumed(e, m)
 
-    def super_properties(self, p: Prop) -> set[Prop]:
-        """The strict told super-properties of ``p`` (closure of subPropertyOf)."""
-        found: set[Prop] = set()
-        todo = [p]
-        while todo:
-            q = todo.pop()
-            for a, b in self.tb.subproperty:
-                if a == q and b not in found and b != p:
-                    found.add(b)
-                    todo.append(b)
-        return found
+    @cached_property
+    def supers(self) -> dict[Prop, frozenset[Prop]]:
+        """Each property expression's strict super-expressions (:mod:`.property_hierarchy`)."""
+        return super_expressions(self.tb)
+
+    def chain_links(self, e: Expr, axiom: str, links: set[Prop]) -> None:
+        """A chain through the unnamed value of ``e`` links its ends by the chain's property, whose
+        consequences (a domain, a range, restrictions on it) are then drawn only through told values."""
+        for t, chain in self.tb.chains:
+            if not links.intersection(chain) and not {inverse(q) for q in links}.intersection(chain):
+                continue
+            if self.has_consequences(Prop(t)):
+                self.note(EXISTENTIAL, axiom, f"the unnamed value of {describe(e)} may complete the chain of "
+                          f"{_name(t)}, whose consequences are drawn only through told values")
+
+    def has_consequences(self, t: Prop) -> bool:
+        """Some class follows from a link by ``t``: a domain or range of it or of a super-expression, or a
+        restriction on one of them."""
+        wanted = {t, inverse(t), *self.supers.get(t, ()), *self.supers.get(inverse(t), ())}
+        return bool(subject_classes(self.tb, self.supers, t) or subject_classes(self.tb, self.supers, inverse(t))
+                    or any(self.on.get(q) for q in wanted))
 
     def value_classes(self, p: Prop) -> set[NamedNode]:
-        """Named classes every value of ``p`` is told to be in (range, domain for an inverse)."""
-        side = self.tb.domain if p.inverse else self.tb.range
+        """Named classes every value of ``p`` is told to be in: the range of ``p`` and of its super-expressions
+        (the domain of an inverse one), with their told superclasses."""
         out: set[NamedNode] = set()
-        for q, c in side:
-            if q.iri == p.iri and c.is_named:
+        for _, c in subject_classes(self.tb, self.supers, inverse(p)):
+            if c.is_named:
                 out |= self.told(c.node)
         return out
 
