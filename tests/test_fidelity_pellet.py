@@ -25,6 +25,7 @@ from support import NEEDS_PELLET
 from unsat_cases import EMPTY, PREFIXES, SATISFIABLE
 
 from topostore import Ontology, OntologyWarning
+from topostore.compile import profile
 
 pytestmark = NEEDS_PELLET
 
@@ -158,6 +159,28 @@ def test_cases_as_pellet(name: str) -> None:
 
 #: name -> (Turtle, where topostore's consistent verdict comes from): Pellet finds each inconsistent
 KNOWN_INCONSISTENT: dict[str, tuple[str, str]] = {}
+
+
+#: name -> (Turtle, the axiom kind of topostore's notice): Pellet finds each inconsistent, topostore consistent
+#: by decision, and says so.  A datatype neither in the OWL 2 datatype map nor defined may have any value space
+#: (OWL 2 Direct Semantics), so ``:d 3`` fits it; Pellet takes it as disjoint from the built-in datatypes.
+NAMED_DIFFERENCES: dict[str, tuple[str, str]] = {
+    "range_of_an_undeclared_datatype": (""":d a owl:DatatypeProperty ; rdfs:range :MyType .
+:x a owl:NamedIndividual ; :d 3 .
+""", profile.UNCHECKED_DATATYPE),
+    "range_of_a_declared_datatype": (""":MyType a rdfs:Datatype . :d a owl:DatatypeProperty ; rdfs:range :MyType .
+:x a owl:NamedIndividual ; :d "3"^^xsd:integer .
+""", profile.UNCHECKED_DATATYPE),
+}
+
+
+@pytest.mark.parametrize("name", list(NAMED_DIFFERENCES))
+def test_differences_by_decision_are_named(name: str) -> None:
+    text, kind = NAMED_DIFFERENCES[name]
+    assert pellet(document(name, text)) == {"consistent": False}
+    report = loaded(document(name, text)).reason()
+    assert report.consistent
+    assert any(n.axiom_kind == kind and "Pellet" in n.reason for n in report.incomplete), report.incomplete
 
 
 #: inconsistent cases (Pellet and topostore agree)

@@ -74,6 +74,11 @@ CASES = {
     "string facet": (":code a owl:DatatypeProperty . :B owl:equivalentClass [ a owl:Restriction ; "
                      "owl:onProperty :code ; owl:someValuesFrom [ a rdfs:Datatype ; owl:onDatatype xsd:string ; "
                      "owl:withRestrictions ( [ xsd:pattern \"A.*\" ] ) ] ] .", kinds.UNSUPPORTED, "set aside"),
+    "range of an undeclared datatype": (":d a owl:DatatypeProperty ; rdfs:range :MyType . :x :d 3 .",
+                                        kinds.UNCHECKED_DATATYPE, "not declared rdfs:Datatype"),
+    "universal into an own datatype": (":Small a rdfs:Datatype . :d a owl:DatatypeProperty . :A rdfs:subClassOf "
+                                       "[ a owl:Restriction ; owl:onProperty :d ; owl:allValuesFrom :Small ] .",
+                                       kinds.UNCHECKED_DATATYPE, "Small is not a datatype of the OWL 2"),
     "data one-of": (":code a owl:DatatypeProperty . :B owl:equivalentClass [ a owl:Restriction ; "
                     "owl:onProperty :code ; owl:someValuesFrom [ a rdfs:Datatype ; owl:oneOf ( 1 2 ) ] ] .",
                     kinds.UNSUPPORTED, "set aside"),

@@ -22,6 +22,8 @@ existential, positively             the unnamed value's consequences (a single v
                                     disjoint classes, nested restrictions, chains through
                                     it; the subject's domains are derived: .owl_extras)
 difference by irreflexivity         x p y ⇒ x ≠ y is not used where difference matters
+range or universal into a datatype  a value outside a datatype topostore does not test (a
+not tested                          user's own, undefined) is not found
 =================================  =====================================================
 
 plus the axioms the reader set aside (:attr:`TBox.unsupported`), those read
@@ -40,12 +42,14 @@ from itertools import islice
 
 from pyoxigraph import Literal, NamedNode
 
-from ..rdf.vocab import FIRST, NIL, REST, SAME_AS, THING, TYPE, is_skolem, owl
+from ..rdf.vocab import FIRST, NIL, RDFS, REST, SAME_AS, THING, TYPE, is_skolem, owl
 from ..stores.base import Store
-from .model import Expr, Prop, TBox, describe
+from . import data_ranges
+from .model import Expr, Prop, TBox, describe, is_datatype
 from .notices import INCOMPLETE, NOT_STORED, Notice
 from .owl import OwlCompiler
 from .property_hierarchy import inverse, subject_classes, super_expressions
+from .snippets import in_datatype
 
 #: Axiom kinds of the report (the groups of the LOAD warning).
 UNION = "union or one-of as a superclass"
@@ -56,6 +60,7 @@ MAX_CASES = "maximum cardinality needing case analysis"
 EXISTENTIAL = "existential with consequences for an unnamed value"
 DIFFERENCE = "difference entailed by a property characteristic"
 UNSUPPORTED = "not supported"
+UNCHECKED_DATATYPE = "values of a datatype not checked"
 
 #: The universal and the empty properties, with what they mean.
 _TOP_AND_BOTTOM = {
@@ -159,11 +164,39 @@ class ProfileReport:
             self.note(UNSUPPORTED, axiom, f"set aside: {reason}")
         for axiom, kind, reason in self.tb.partial:
             self.note(kind, axiom, reason)
+        self.unchecked_datatypes(store, graph)
         self.list_vocabulary(store, graph)
         self.imports(store, graph)
         self.top_and_bottom(store, graph)
         self.reflexive_equality(store, graph)
         return list(self.notices.values())
+
+    # ---------------------------------------------------------------- datatypes
+    def unchecked_datatypes(self, store: Store, graph: NamedNode) -> None:
+        """A range or a universal restriction into a datatype whose values topostore does not test: a value
+        outside it is not found.  For a datatype of the ontology's own (not in the OWL 2 datatype map, not
+        defined) that is the OWL 2 Direct Semantics (its value space is any set of values, so no value is
+        known to be outside it), but Pellet takes such a datatype as disjoint from the built-in ones and finds
+        ``:d 3`` with ``:d rdfs:range :MyType`` inconsistent: the difference is said, never silent."""
+        for p, dt in self.tb.data_range:
+            self.unchecked(dt, f"{_name(p)} range {_name(dt)}", store, graph)
+        for e, positive, axiom, _ in self.uses:
+            if positive and e.kind == "all" and e.datatype is not None:
+                self.unchecked(e.datatype, axiom, store, graph)
+
+    def unchecked(self, dt: NamedNode, axiom: str, store: Store, graph: NamedNode) -> None:
+        if in_datatype("?v", dt) is not None or is_skolem(dt) or dt.value.startswith(data_ranges.PREFIX):
+            return
+        if is_datatype(dt):
+            self.note(UNCHECKED_DATATYPE, axiom, f"{_name(dt)} is a datatype whose values topostore does not "
+                      "test: a value outside it is not found inconsistent")
+            return
+        declared = NamedNode(RDFS + "Datatype") in store.objects(dt, TYPE, graph)
+        self.note(UNCHECKED_DATATYPE, axiom, f"{_name(dt)} is not a datatype of the OWL 2 datatype map"
+                  + ("" if declared else " and is not declared rdfs:Datatype (as OWL 2 DL requires)")
+                  + ", nor defined: its value space may be any set of values (OWL 2 Direct Semantics), so no "
+                  "value is checked against it; a reasoner that takes it as disjoint from the built-in datatypes "
+                  "(Pellet) finds a value of another datatype inconsistent")
 
     # ---------------------------------------------------------------- RDF vocabulary
     def list_vocabulary(self, store: Store, graph: NamedNode) -> None:
@@ -359,5 +392,5 @@ def profile(store: Store, graph: NamedNode, tb: TBox, owl_compiler: OwlCompiler,
     return ProfileReport(tb, owl_compiler, rule_uses, uses_difference).run(store, graph)
 
 
-__all__ = ["COMPLEMENT", "DIFFERENCE", "EXISTENTIAL", "MAX_CASES", "MAX_LEFT", "UNION", "UNIVERSAL", "UNSUPPORTED",
-           "profile"]
+__all__ = ["COMPLEMENT", "DIFFERENCE", "EXISTENTIAL", "MAX_CASES", "MAX_LEFT", "UNCHECKED_DATATYPE", "UNION",
+           "UNIVERSAL", "UNSUPPORTED", "profile"]
