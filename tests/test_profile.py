@@ -38,6 +38,10 @@ CASES = {
                         "owl:onProperty :p ; owl:maxCardinality 1 ] .", kinds.MAX_LEFT, "max 1"),
     "max 2": (":B rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :p ; owl:maxCardinality 2 ] .",
               kinds.MAX_CASES, "max 2"),
+    "existential into a class linked to an individual": (
+        ":q a owl:ObjectProperty ; rdfs:range :R . :A rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :p ; "
+        "owl:someValuesFrom :F ] . :F rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :q ; owl:hasValue :i ] .",
+        kinds.EXISTENTIAL, "a link to i"),
     "existential through a chain": (":q a owl:ObjectProperty . :t a owl:ObjectProperty ; rdfs:domain :D ; "
                                     "owl:propertyChainAxiom ( :q :p ) . :B rdfs:subClassOf [ a owl:Restriction ; "
                                     "owl:onProperty :p ; owl:someValuesFrom :C ] .", kinds.EXISTENTIAL,

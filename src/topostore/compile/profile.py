@@ -290,6 +290,8 @@ class ProfileReport:
             return
         value_classes = self.value_classes(p)
         filler = e.filler
+        if filler is not None and filler.is_named:
+            self.links_back(e, filler.node, axiom)
         if filler is not None and not filler.is_named:
             self.note(EXISTENTIAL, axiom, f"the unnamed value of {what} is in {describe(filler)}: its own "
                       "restrictions are not reasoned")
@@ -300,6 +302,29 @@ class ProfileReport:
             if any(self.disjoint(filler.node, c) for c in value_classes):
                 self.note(EXISTENTIAL, axiom, f"the unnamed value of {what} would be in disjoint classes "
                           f"({describe(filler)} and the range of {_name(p.iri)}): the inconsistency is not found")
+
+    def links_back(self, e: Expr, filler: NamedNode, axiom: str) -> None:
+        """The unnamed value of ``e`` is in ``filler``, whose told ``(q value i)`` links it to the named ``i``:
+        what ``i`` gains by that link (a range of ``q``, a restriction on an inverse of ``q``) is not drawn."""
+        for c in self.told(filler):
+            for v in self.told_values.get(c, ()):
+                q = inverse(v.prop)
+                gains = subject_classes(self.tb, self.supers, q) or any(
+                    not pos for r in (q, *self.supers.get(q, ())) for _, pos in self.on.get(r, ()))
+                if gains:
+                    self.note(EXISTENTIAL, axiom, f"the unnamed value of {describe(e)} is in {describe(v)}, a link "
+                              f"to {_name(v.value)}: what {_name(v.value)} gains by it is drawn only through a "
+                              "told value")
+
+    @cached_property
+    def told_values(self) -> dict[NamedNode, list[Expr]]:
+        """Each named class's told object ``hasValue`` restrictions (superclasses or definitions)."""
+        found: dict[NamedNode, list[Expr]] = {}
+        for e, positive, _, subject in self.uses:
+            if positive and subject is not None and e.kind == "value" and not self.owl.is_data(e.prop, e) \
+                    and isinstance(e.value, NamedNode):
+                found.setdefault(subject, []).append(e)
+        return found
 
     def reaches(self, e: Expr, m: Expr) -> bool:
         """Whether membership of ``e`` gives membership of ``m`` on a super-property (ext-restriction-sub)."""
