@@ -141,3 +141,69 @@ def document(name: str, body: str | None = None) -> str:
     return (f"@prefix : <{namespace(name)}> . @prefix owl: <http://www.w3.org/2002/07/owl#> .\n"
             "@prefix rdfs: <http://www.w3.org/2000/01/rdf-schema#> . "
             "@prefix xsd: <http://www.w3.org/2001/XMLSchema#> .\n" + (CASES[name] if body is None else body))
+
+
+def random_horn(seed: int, ns: str) -> str:
+    """A small random ontology of namespace ``ns`` (N-Triples-style IRIs, no prefix needed): four properties
+    linked by inverses, sub-, equivalent and symmetric properties, domains and ranges, a chain, existential,
+    minimum, hasValue and self restrictions, a few facts.  Horn, so consistent, and OWL 2 DL (the chain's
+    property has a fresh super-property).  Left out, as Pellet 2.3.1 answers them wrongly (tests of
+    tests/test_fidelity_pellet.py show it): a self restriction used as a subclass, a domain on a chain."""
+    import random
+
+    rng = random.Random(seed)
+    props = [f"<{ns}p{i}>" for i in range(4)]
+    classes = [f"<{ns}A{i}>" for i in range(4)]
+    names = [f"<{ns}i{i}>" for i in range(4)]
+    out = [f"{p} a owl:ObjectProperty ." for p in props] + [f"{c} a owl:Class ." for c in classes]
+    out += [f"{i} a owl:NamedIndividual ." for i in names]
+
+    def prop() -> str:
+        p = rng.choice(props)
+        return f"[ owl:inverseOf {p} ]" if rng.random() < 0.2 else p
+
+    def restriction(left: bool) -> str:
+        k = rng.random()
+        if k < 0.6:
+            return f"[ a owl:Restriction ; owl:onProperty {prop()} ; owl:someValuesFrom {rng.choice(classes)} ]"
+        if k < 0.7 and not left:
+            return f"[ a owl:Restriction ; owl:onProperty {rng.choice(props)} ; owl:hasSelf true ]"
+        if k < 0.85:
+            return f"[ a owl:Restriction ; owl:onProperty {prop()} ; owl:hasValue {rng.choice(names)} ]"
+        return (f"[ a owl:Restriction ; owl:onProperty {rng.choice(props)} ; owl:minQualifiedCardinality "
+                f"\"1\"^^xsd:nonNegativeInteger ; owl:onClass {rng.choice(classes)} ]")
+
+    chain = False
+    for _ in range(rng.randint(3, 7)):
+        k = rng.random()
+        a, b = rng.sample(props, 2)
+        if k < 0.15:
+            out.append(f"{a} owl:inverseOf {b} .")
+        elif k < 0.4:
+            out.append(f"{a} rdfs:subPropertyOf {b} .")
+        elif k < 0.47:
+            out.append(f"{a} owl:equivalentProperty {b} .")
+        elif k < 0.55:
+            out.append(f"{a} a owl:SymmetricProperty .")
+        elif k < 0.72:
+            out.append(f"{a} rdfs:domain {rng.choice(classes)} .")
+        elif k < 0.88:
+            out.append(f"{a} rdfs:range {rng.choice(classes)} .")
+        elif not chain:
+            chain = True
+            out.append(f"<{ns}c0> a owl:ObjectProperty ; owl:propertyChainAxiom ( {a} {b} ) ; "
+                       f"rdfs:subPropertyOf <{ns}top> . <{ns}top> a owl:ObjectProperty .")
+    for _ in range(rng.randint(2, 5)):
+        c = rng.choice(classes)
+        if rng.random() < 0.4:
+            out.append(f"{c} owl:equivalentClass {restriction(True)} .")
+        elif rng.random() < 0.5:
+            out.append(f"{c} rdfs:subClassOf {restriction(False)} .")
+        else:
+            out.append(f"{restriction(True)} rdfs:subClassOf {c} .")
+    for _ in range(rng.randint(2, 6)):
+        if rng.random() < 0.5:
+            out.append(f"{rng.choice(names)} a {rng.choice(classes)} .")
+        else:
+            out.append(f"{rng.choice(names)} {rng.choice(props)} {rng.choice(names)} .")
+    return "\n".join(out) + "\n"

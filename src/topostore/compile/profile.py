@@ -50,6 +50,7 @@ from .notices import INCOMPLETE, NOT_STORED, Notice
 from .owl import OwlCompiler
 from .property_hierarchy import inverse, subject_classes, super_expressions
 from .snippets import in_datatype
+from .unnamed_values import UnnamedValues
 
 #: Axiom kinds of the report (the groups of the LOAD warning).
 UNION = "union or one-of as a superclass"
@@ -145,9 +146,14 @@ class ProfileReport:
         self.notices: dict[tuple[str, str], Notice] = {}
         #: :meth:`single_valued`'s answers by property
         self._single: dict[Prop, bool] = {}
+        #: what an existential's unnamed value implies beyond its own restriction (:mod:`.unnamed_values`)
+        self.unnamed = UnnamedValues(self)
 
     def note(self, kind: str, axiom: str, reason: str) -> None:
         self.notices.setdefault((kind, axiom), Notice(INCOMPLETE, axiom, reason, kind))
+
+    def note_existential(self, axiom: str, reason: str) -> None:
+        self.note(EXISTENTIAL, axiom, reason)
 
     def told(self, c: NamedNode) -> set[NamedNode]:
         """``c`` and its told named superclasses."""
@@ -285,13 +291,14 @@ class ProfileReport:
                for q in supers for m, pos in self.on.get(q, ())):
             self.note(EXISTENTIAL, axiom, f"an instance of {what} is in the restrictions on the super-properties "
                       f"of {_name(p.iri)} only through a told value")
-        self.chain_links(e, axiom, {p, *supers})
+        self.unnamed.chain_links(e, axiom, {p, *supers})
         if self.owl.is_data(p, e):
             return
         value_classes = self.value_classes(p)
         filler = e.filler
         if filler is not None and filler.is_named:
-            self.links_back(e, filler.node, axiom)
+            self.unnamed.links_back(e, filler.node, axiom)
+            self.unnamed.wider_filler(e, filler.node, axiom, {p, *supers})
         if filler is not None and not filler.is_named:
             self.note(EXISTENTIAL, axiom, f"the unnamed value of {what} is in {describe(filler)}: its own "
                       "restrictions are not reasoned")
@@ -303,29 +310,6 @@ class ProfileReport:
                 self.note(EXISTENTIAL, axiom, f"the unnamed value of {what} would be in disjoint classes "
                           f"({describe(filler)} and the range of {_name(p.iri)}): the inconsistency is not found")
 
-    def links_back(self, e: Expr, filler: NamedNode, axiom: str) -> None:
-        """The unnamed value of ``e`` is in ``filler``, whose told ``(q value i)`` links it to the named ``i``:
-        what ``i`` gains by that link (a range of ``q``, a restriction on an inverse of ``q``) is not drawn."""
-        for c in self.told(filler):
-            for v in self.told_values.get(c, ()):
-                q = inverse(v.prop)
-                gains = subject_classes(self.tb, self.supers, q) or any(
-                    not pos for r in (q, *self.supers.get(q, ())) for _, pos in self.on.get(r, ()))
-                if gains:
-                    self.note(EXISTENTIAL, axiom, f"the unnamed value of {describe(e)} is in {describe(v)}, a link "
-                              f"to {_name(v.value)}: what {_name(v.value)} gains by it is drawn only through a "
-                              "told value")
-
-    @cached_property
-    def told_values(self) -> dict[NamedNode, list[Expr]]:
-        """Each named class's told object ``hasValue`` restrictions (superclasses or definitions)."""
-        found: dict[NamedNode, list[Expr]] = {}
-        for e, positive, _, subject in self.uses:
-            if positive and subject is not None and e.kind == "value" and not self.owl.is_data(e.prop, e) \
-                    and isinstance(e.value, NamedNode):
-                found.setdefault(subject, []).append(e)
-        return found
-
     def reaches(self, e: Expr, m: Expr) -> bool:
         """Whether membership of ``e`` gives membership of ``m`` on a super-property (ext-restriction-sub)."""
         ne, nm_ = (1 if e.kind == "some" else e.n), (1 if m.kind == "some" else m.n)
@@ -335,23 +319,6 @@ class ProfileReport:
     def supers(self) -> dict[Prop, frozenset[Prop]]:
         """Each property expression's strict super-expressions (:mod:`.property_hierarchy`)."""
         return super_expressions(self.tb)
-
-    def chain_links(self, e: Expr, axiom: str, links: set[Prop]) -> None:
-        """A chain through the unnamed value of ``e`` links its ends by the chain's property, whose
-        consequences (a domain, a range, restrictions on it) are then drawn only through told values."""
-        for t, chain in self.tb.chains:
-            if not links.intersection(chain) and not {inverse(q) for q in links}.intersection(chain):
-                continue
-            if self.has_consequences(Prop(t)):
-                self.note(EXISTENTIAL, axiom, f"the unnamed value of {describe(e)} may complete the chain of "
-                          f"{_name(t)}, whose consequences are drawn only through told values")
-
-    def has_consequences(self, t: Prop) -> bool:
-        """Some class follows from a link by ``t``: a domain or range of it or of a super-expression, or a
-        restriction on one of them."""
-        wanted = {t, inverse(t), *self.supers.get(t, ()), *self.supers.get(inverse(t), ())}
-        return bool(subject_classes(self.tb, self.supers, t) or subject_classes(self.tb, self.supers, inverse(t))
-                    or any(self.on.get(q) for q in wanted))
 
     def value_classes(self, p: Prop) -> set[NamedNode]:
         """Named classes every value of ``p`` is told to be in: the range of ``p`` and of its super-expressions
