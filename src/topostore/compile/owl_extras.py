@@ -19,6 +19,10 @@
 
 from __future__ import annotations
 
+from collections.abc import Iterable
+
+from pyoxigraph import NamedNode
+
 from ..rdf.terms import sparql
 from ..rdf.vocab import (
     DECLARATION_TYPES,
@@ -146,15 +150,26 @@ def existential(e: Expr) -> bool:
     return e.kind == "some" or (e.kind in ("min", "exact") and e.n >= 1)
 
 
-def existential_domain_rules(owl: OwlCompiler) -> list[Rule]:
+def existential_domain_rules(owl: OwlCompiler, uses: Iterable[tuple[Expr, bool, str, NamedNode | None]]) -> list[Rule]:
     """``x ∈ ∃p.C ⇒ x ∈ D`` for each domain ``D`` of ``p`` or of a super-property expression of ``p`` (a range
-    for an inverse one): prp-dom, for a value no one named, so that no told value is needed."""
+    for an inverse one): prp-dom, for a value no one named, so that no told value is needed.
+
+    ``uses``: where each expression occurs (:func:`.profile.all_uses`).  A member of the restriction is one
+    by a told value of ``p`` (then in ``D`` by prp-dom already) or by an axiom that puts it there: a rule
+    is made only where such an axiom's subject is not told to be in ``D`` (``ROOM ≡ LOCATION ⊓ ∃hasDoor.DOOR``
+    needs none), so the rules that compare classes read no more than before where nothing is missed."""
     supers = super_expressions(owl.tb)
+    subjects: dict[NamedNode, set[NamedNode | None]] = {}
+    for e, positive, _, subject in uses:
+        if positive and existential(e):
+            subjects.setdefault(e.node, set()).add(subject)
     rules = []
     for e in owl.all_expressions():
-        if not existential(e):
+        if not existential(e) or e.node not in subjects:
             continue
         for axiom, c in subject_classes(owl.tb, supers, e.prop):
+            if all(s is not None and (s == c.node or c.node in owl.told.get(s, ())) for s in subjects[e.node]):
+                continue
             rules.append(Rule("ext-domain", f"a member of {describe(e)} is in {describe(c)} ({axiom})",
                               (Atom("?x", str(TYPE), sparql(e.node)),), Atom("?x", str(TYPE), sparql(c.node))))
     return rules
