@@ -38,8 +38,14 @@ CASES = {
                         "owl:onProperty :p ; owl:maxCardinality 1 ] .", kinds.MAX_LEFT, "max 1"),
     "max 2": (":B rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :p ; owl:maxCardinality 2 ] .",
               kinds.MAX_CASES, "max 2"),
-    "existential and domain": (":B rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :p ; "
-                               "owl:someValuesFrom :C ] . :p rdfs:domain :D .", kinds.EXISTENTIAL, "domain"),
+    "existential into a class linked to an individual": (
+        ":q a owl:ObjectProperty ; rdfs:range :R . :A rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :p ; "
+        "owl:someValuesFrom :F ] . :F rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :q ; owl:hasValue :i ] .",
+        kinds.EXISTENTIAL, "a link to i"),
+    "existential through a chain": (":q a owl:ObjectProperty . :t a owl:ObjectProperty ; rdfs:domain :D ; "
+                                    "owl:propertyChainAxiom ( :q :p ) . :B rdfs:subClassOf [ a owl:Restriction ; "
+                                    "owl:onProperty :p ; owl:someValuesFrom :C ] .", kinds.EXISTENTIAL,
+                                    "chain of t"),
     "existential and functional": (":p a owl:FunctionalProperty . :R rdfs:subClassOf [ a owl:Restriction ; "
                                    "owl:onProperty :p ; owl:someValuesFrom :L ] .", kinds.EXISTENTIAL,
                                    "at most one value"),
@@ -72,6 +78,11 @@ CASES = {
     "string facet": (":code a owl:DatatypeProperty . :B owl:equivalentClass [ a owl:Restriction ; "
                      "owl:onProperty :code ; owl:someValuesFrom [ a rdfs:Datatype ; owl:onDatatype xsd:string ; "
                      "owl:withRestrictions ( [ xsd:pattern \"A.*\" ] ) ] ] .", kinds.UNSUPPORTED, "set aside"),
+    "range of an undeclared datatype": (":d a owl:DatatypeProperty ; rdfs:range :MyType . :x :d 3 .",
+                                        kinds.UNCHECKED_DATATYPE, "not declared rdfs:Datatype"),
+    "universal into an own datatype": (":Small a rdfs:Datatype . :d a owl:DatatypeProperty . :A rdfs:subClassOf "
+                                       "[ a owl:Restriction ; owl:onProperty :d ; owl:allValuesFrom :Small ] .",
+                                       kinds.UNCHECKED_DATATYPE, "Small is not a datatype of the OWL 2"),
     "data one-of": (":code a owl:DatatypeProperty . :B owl:equivalentClass [ a owl:Restriction ; "
                     "owl:onProperty :code ; owl:someValuesFrom [ a rdfs:Datatype ; owl:oneOf ( 1 2 ) ] ] .",
                     kinds.UNSUPPORTED, "set aside"),

@@ -126,7 +126,9 @@ class Context:
 
     def render(self, items: list) -> list[str]:
         """Render terms in the service's mode; sorted so answers are reproducible."""
-        return sorted(self.service.renderer.terms([t for t in items if not hidden(t)]))
+        rendered = self.service.renderer.terms([t for t in items if not hidden(t)])
+        tags = self.onto.store.forms.tags  # language tags as the loaded documents spell them
+        return sorted(tags.rendered(text) for text in rendered) if tags else sorted(rendered)
 
     def submit(self, *changes: Change) -> Reply:
         """Apply (or queue) manipulations; a failure of the reasoner undoes them (209)."""

@@ -11,10 +11,17 @@
 * Restrictions subsumed through sub-properties and fillers: ``≥n p.C ⊑ ≥m q.D`` when ``p ⊑ q``,
   ``n ≥ m`` and ``C ⊑ D`` (the same property is :mod:`.owl`'s ext-card-sub), and ``∀q.C ⊑ ∀p.D``
   when ``p ⊑ q`` (or ``p = q``) and ``C ⊑ D`` — Horn, and what RDF-Based Semantics documents
-  compare restrictions by.
+  compare restrictions by.  The sub-properties are those of the whole hierarchy of property expressions
+  (:mod:`.property_hierarchy`: through inverses and symmetry too).
+* The subject of an existential (``∃p.C``, ``≥n p.C`` with n ≥ 1) is in the domain of ``p`` and of each of its
+  super-properties (the range for an inverse one), its value unnamed: ``x ∈ ∃p.C ⇒ x ∈ D``.
 """
 
 from __future__ import annotations
+
+from collections.abc import Iterable
+
+from pyoxigraph import NamedNode
 
 from ..rdf.terms import sparql
 from ..rdf.vocab import (
@@ -35,6 +42,7 @@ from . import condition as cond
 from .fillers import FillerIndex
 from .model import Expr, Prop, TBox, describe
 from .owl import OwlCompiler
+from .property_hierarchy import subject_classes, super_expressions
 from .rule import Atom, Rule
 
 
@@ -96,24 +104,6 @@ def thing_rules(tb: TBox) -> list[Rule]:
     return rules
 
 
-def _super_properties(tb: TBox) -> dict[Prop, set[Prop]]:
-    """Each property's strict told super-properties (named, not inverse)."""
-    edges: dict[Prop, set[Prop]] = {}
-    for a, b in tb.subproperty:
-        if a != b and not a.inverse and not b.inverse:
-            edges.setdefault(a, set()).add(b)
-    closure: dict[Prop, set[Prop]] = {}
-    for start in edges:
-        seen, todo = set(), [start]
-        while todo:
-            for nxt in edges.get(todo.pop(), ()):
-                if nxt not in seen and nxt != start:
-                    seen.add(nxt)
-                    todo.append(nxt)
-        closure[start] = seen
-    return closure
-
-
 def unsatisfiable_rules(owl: OwlCompiler) -> list[Rule]:
     """``x ∈ ∃p.⊥ ⇒ x ∈ ⊥`` (and for minimum and exact cardinalities of at least one into owl:Nothing)."""
     return [Rule("cls-svf-nothing", f"{describe(e)} has no instance", (Atom("?x", str(TYPE), sparql(e.node)),),
@@ -125,7 +115,7 @@ def unsatisfiable_rules(owl: OwlCompiler) -> list[Rule]:
 
 def restriction_rules(owl: OwlCompiler) -> list[Rule]:
     """``x ∈ a ⇒ x ∈ b`` for the restriction pairs subsumed through properties (see the module)."""
-    supers = _super_properties(owl.tb)
+    supers = super_expressions(owl.tb)
     exprs = owl.all_expressions()
     rules = []
 
@@ -155,4 +145,35 @@ def restriction_rules(owl: OwlCompiler) -> list[Rule]:
     return rules
 
 
-__all__ = ["key_rule", "key_rules", "reflexive_rules", "restriction_rules"]
+def existential(e: Expr) -> bool:
+    """``e`` is an existential: every member has a value of its property, perhaps unnamed."""
+    return e.kind == "some" or (e.kind in ("min", "exact") and e.n >= 1)
+
+
+def existential_domain_rules(owl: OwlCompiler, uses: Iterable[tuple[Expr, bool, str, NamedNode | None]]) -> list[Rule]:
+    """``x ∈ ∃p.C ⇒ x ∈ D`` for each domain ``D`` of ``p`` or of a super-property expression of ``p`` (a range
+    for an inverse one): prp-dom, for a value no one named, so that no told value is needed.
+
+    ``uses``: where each expression occurs (:func:`.profile.all_uses`).  A member of the restriction is one
+    by a told value of ``p`` (then in ``D`` by prp-dom already) or by an axiom that puts it there: a rule
+    is made only where such an axiom's subject is not told to be in ``D`` (``ROOM ≡ LOCATION ⊓ ∃hasDoor.DOOR``
+    needs none), so the rules that compare classes read no more than before where nothing is missed."""
+    supers = super_expressions(owl.tb)
+    subjects: dict[NamedNode, set[NamedNode | None]] = {}
+    for e, positive, _, subject in uses:
+        if positive and existential(e):
+            subjects.setdefault(e.node, set()).add(subject)
+    rules = []
+    for e in owl.all_expressions():
+        if not existential(e) or e.node not in subjects:
+            continue
+        for axiom, c in subject_classes(owl.tb, supers, e.prop):
+            if all(s is not None and (s == c.node or c.node in owl.told.get(s, ())) for s in subjects[e.node]):
+                continue
+            rules.append(Rule("ext-domain", f"a member of {describe(e)} is in {describe(c)} ({axiom})",
+                              (Atom("?x", str(TYPE), sparql(e.node)),), Atom("?x", str(TYPE), sparql(c.node))))
+    return rules
+
+
+__all__ = ["existential", "existential_domain_rules", "key_rule", "key_rules", "reflexive_rules",
+           "restriction_rules"]

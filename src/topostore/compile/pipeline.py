@@ -13,8 +13,15 @@ from .guard import guard_rules
 from .implied import simplify
 from .inline_difference import inline_difference, owl_asks
 from .owl import OwlCompiler
-from .owl_extras import key_rules, reflexive_rules, restriction_rules, thing_rules, unsatisfiable_rules
-from .profile import profile
+from .owl_extras import (
+    existential_domain_rules,
+    key_rules,
+    reflexive_rules,
+    restriction_rules,
+    thing_rules,
+    unsatisfiable_rules,
+)
+from .profile import all_uses, profile
 from .rule import RuleSet
 from .swrl import SwrlCompiler
 from .tbox_reader import TBoxReader
@@ -45,6 +52,7 @@ def compile_ontology(store: Store, graph: NamedNode) -> RuleSet:
     rules.add(range_rules(tbox))
     rules.add(empty_range_rules(owl.all_expressions()))
     rules.add(restriction_rules(owl))
+    rules.add(existential_domain_rules(owl, all_uses(tbox, swrl.used_as)))
     rules.add(unsatisfiable_rules(owl))
     empty_classes, undecided = unsatisfiable(owl)
     rules.add(empty_classes)

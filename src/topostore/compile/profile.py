@@ -18,9 +18,12 @@ complement, negatively              non-membership by case analysis (:mod:`.nega
 universal restriction, negatively   membership needs every value known
 max cardinality, negatively         idem, when a maximum can be told elsewhere
 max cardinality ≥ 2, positively     which of the values are equal is not known
-existential, positively             the unnamed value's consequences (domain, a single
-                                    value, disjoint classes, nested restrictions)
+existential, positively             the unnamed value's consequences (a single value,
+                                    disjoint classes, nested restrictions, chains through
+                                    it; the subject's domains are derived: .owl_extras)
 difference by irreflexivity         x p y ⇒ x ≠ y is not used where difference matters
+range or universal into a datatype  a value outside a datatype topostore does not test (a
+not tested                          user's own, undefined) is not found
 =================================  =====================================================
 
 plus the axioms the reader set aside (:attr:`TBox.unsupported`), those read
@@ -39,11 +42,15 @@ from itertools import islice
 
 from pyoxigraph import Literal, NamedNode
 
-from ..rdf.vocab import FIRST, NIL, REST, SAME_AS, THING, TYPE, is_skolem, owl
+from ..rdf.vocab import FIRST, NIL, RDFS, REST, SAME_AS, THING, TYPE, is_skolem, owl
 from ..stores.base import Store
-from .model import Expr, Prop, TBox, describe
+from . import data_ranges
+from .model import Expr, Prop, TBox, describe, is_datatype
 from .notices import INCOMPLETE, NOT_STORED, Notice
 from .owl import OwlCompiler
+from .property_hierarchy import inverse, subject_classes, super_expressions
+from .snippets import in_datatype
+from .unnamed_values import UnnamedValues
 
 #: Axiom kinds of the report (the groups of the LOAD warning).
 UNION = "union or one-of as a superclass"
@@ -54,6 +61,7 @@ MAX_CASES = "maximum cardinality needing case analysis"
 EXISTENTIAL = "existential with consequences for an unnamed value"
 DIFFERENCE = "difference entailed by a property characteristic"
 UNSUPPORTED = "not supported"
+UNCHECKED_DATATYPE = "values of a datatype not checked"
 
 #: The universal and the empty properties, with what they mean.
 _TOP_AND_BOTTOM = {
@@ -138,9 +146,14 @@ class ProfileReport:
         self.notices: dict[tuple[str, str], Notice] = {}
         #: :meth:`single_valued`'s answers by property
         self._single: dict[Prop, bool] = {}
+        #: what an existential's unnamed value implies beyond its own restriction (:mod:`.unnamed_values`)
+        self.unnamed = UnnamedValues(self)
 
     def note(self, kind: str, axiom: str, reason: str) -> None:
         self.notices.setdefault((kind, axiom), Notice(INCOMPLETE, axiom, reason, kind))
+
+    def note_existential(self, axiom: str, reason: str) -> None:
+        self.note(EXISTENTIAL, axiom, reason)
 
     def told(self, c: NamedNode) -> set[NamedNode]:
         """``c`` and its told named superclasses."""
@@ -157,11 +170,39 @@ class ProfileReport:
             self.note(UNSUPPORTED, axiom, f"set aside: {reason}")
         for axiom, kind, reason in self.tb.partial:
             self.note(kind, axiom, reason)
+        self.unchecked_datatypes(store, graph)
         self.list_vocabulary(store, graph)
         self.imports(store, graph)
         self.top_and_bottom(store, graph)
         self.reflexive_equality(store, graph)
         return list(self.notices.values())
+
+    # ---------------------------------------------------------------- datatypes
+    def unchecked_datatypes(self, store: Store, graph: NamedNode) -> None:
+        """A range or a universal restriction into a datatype whose values topostore does not test: a value
+        outside it is not found.  For a datatype of the ontology's own (not in the OWL 2 datatype map, not
+        defined) that is the OWL 2 Direct Semantics (its value space is any set of values, so no value is
+        known to be outside it), but Pellet takes such a datatype as disjoint from the built-in ones and finds
+        ``:d 3`` with ``:d rdfs:range :MyType`` inconsistent: the difference is said, never silent."""
+        for p, dt in self.tb.data_range:
+            self.unchecked(dt, f"{_name(p)} range {_name(dt)}", store, graph)
+        for e, positive, axiom, _ in self.uses:
+            if positive and e.kind == "all" and e.datatype is not None:
+                self.unchecked(e.datatype, axiom, store, graph)
+
+    def unchecked(self, dt: NamedNode, axiom: str, store: Store, graph: NamedNode) -> None:
+        if in_datatype("?v", dt) is not None or is_skolem(dt) or dt.value.startswith(data_ranges.PREFIX):
+            return
+        if is_datatype(dt):
+            self.note(UNCHECKED_DATATYPE, axiom, f"{_name(dt)} is a datatype whose values topostore does not "
+                      "test: a value outside it is not found inconsistent")
+            return
+        declared = NamedNode(RDFS + "Datatype") in store.objects(dt, TYPE, graph)
+        self.note(UNCHECKED_DATATYPE, axiom, f"{_name(dt)} is not a datatype of the OWL 2 datatype map"
+                  + ("" if declared else " and is not declared rdfs:Datatype (as OWL 2 DL requires)")
+                  + ", nor defined: its value space may be any set of values (OWL 2 Direct Semantics), so no "
+                  "value is checked against it; a reasoner that takes it as disjoint from the built-in datatypes "
+                  "(Pellet) finds a value of another datatype inconsistent")
 
     # ---------------------------------------------------------------- RDF vocabulary
     def list_vocabulary(self, store: Store, graph: NamedNode) -> None:
@@ -245,22 +286,19 @@ class ProfileReport:
     def existential(self, e: Expr, axiom: str, subject: NamedNode | None) -> None:
         """Consequences of the unnamed value of an existential that are not drawn."""
         p, what = e.prop, describe(e)
-        told = self.told(subject) if subject is not None else set()
-        # the subject's side: domain (range for an inverse)
-        side = self.tb.range if p.inverse else self.tb.domain
-        for q, c in side:
-            if q.iri == p.iri and c.node != THING and c.node not in told:
-                self.note(EXISTENTIAL, axiom, f"an instance of {what} is in {describe(c)} (the "
-                          f"{'range' if p.inverse else 'domain'} of {_name(p.iri)}) only through a told value")
-        supers = self.super_properties(p)
+        supers = self.supers.get(p, frozenset())
         if any(not pos and m.kind in ("some", "min", "exact") and not self.reaches(e, m)
                for q in supers for m, pos in self.on.get(q, ())):
             self.note(EXISTENTIAL, axiom, f"an instance of {what} is in the restrictions on the super-properties "
                       f"of {_name(p.iri)} only through a told value")
+        self.unnamed.chain_links(e, axiom, {p, *supers})
         if self.owl.is_data(p, e):
             return
         value_classes = self.value_classes(p)
         filler = e.filler
+        if filler is not None and filler.is_named:
+            self.unnamed.links_back(e, filler.node, axiom)
+            self.unnamed.wider_filler(e, filler.node, axiom, {p, *supers})
         if filler is not None and not filler.is_named:
             self.note(EXISTENTIAL, axiom, f"the unnamed value of {what} is in {describe(filler)}: its own "
                       "restrictions are not reasoned")
@@ -277,24 +315,17 @@ class ProfileReport:
         ne, nm_ = (1 if e.kind == "some" else e.n), (1 if m.kind == "some" else m.n)
         return m.kind != "exact" and ne >= nm_ >= 1 and self.owl.filler_subsumed(e, m)
 
-    def super_properties(self, p: Prop) -> set[Prop]:
-        """The strict told super-properties of ``p`` (closure of subPropertyOf)."""
-        found: set[Prop] = set()
-        todo = [p]
-        while todo:
-            q = todo.pop()
-            for a, b in self.tb.subproperty:
-                if a == q and b not in found and b != p:
-                    found.add(b)
-                    todo.append(b)
-        return found
+    @cached_property
+    def supers(self) -> dict[Prop, frozenset[Prop]]:
+        """Each property expression's strict super-expressions (:mod:`.property_hierarchy`)."""
+        return super_expressions(self.tb)
 
     def value_classes(self, p: Prop) -> set[NamedNode]:
-        """Named classes every value of ``p`` is told to be in (range, domain for an inverse)."""
-        side = self.tb.domain if p.inverse else self.tb.range
+        """Named classes every value of ``p`` is told to be in: the range of ``p`` and of its super-expressions
+        (the domain of an inverse one), with their told superclasses."""
         out: set[NamedNode] = set()
-        for q, c in side:
-            if q.iri == p.iri and c.is_named:
+        for _, c in subject_classes(self.tb, self.supers, inverse(p)):
+            if c.is_named:
                 out |= self.told(c.node)
         return out
 
@@ -353,5 +384,5 @@ def profile(store: Store, graph: NamedNode, tb: TBox, owl_compiler: OwlCompiler,
     return ProfileReport(tb, owl_compiler, rule_uses, uses_difference).run(store, graph)
 
 
-__all__ = ["COMPLEMENT", "DIFFERENCE", "EXISTENTIAL", "MAX_CASES", "MAX_LEFT", "UNION", "UNIVERSAL", "UNSUPPORTED",
-           "profile"]
+__all__ = ["COMPLEMENT", "DIFFERENCE", "EXISTENTIAL", "MAX_CASES", "MAX_LEFT", "UNCHECKED_DATATYPE", "UNION",
+           "UNIVERSAL", "UNSUPPORTED", "profile"]

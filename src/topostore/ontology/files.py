@@ -86,18 +86,22 @@ class OntologyFiles:
         cannot be translated is refused and leaves the ontology as it was.
         ``progress(n)`` is told how many triples have been parsed so far.
         """
+        data = read_regular_file(path)  # regular files only, size-limited (LoadError otherwise)
+        rdf_format = guess_format(path, fmt)
         if self._streaming_possible():
-            data = read_regular_file(path)  # regular files only, size-limited (LoadError otherwise)
-            added, shown = self._load_bytes(data, guess_format(path, fmt), base_iri, str(path), progress)
+            added, shown = self._load_bytes(data, rdf_format, base_iri, str(path), progress)
         else:
             with _collector_paused():
-                triples = self.onto.store.parse_file(path, fmt, base_iri, progress)
+                triples = self.onto.store.parse_bytes(data, rdf_format, base_iri, source=str(path), progress=progress)
             added, shown = self._add_document(triples)
+        self.onto.store.forms.learn_tags(data, rdf_format)  # once the document is in (all or nothing)
         _published(shown, str(path))
         return added
 
     def load_data(self, data: str | bytes, fmt: str = "turtle", base_iri: str | None = None) -> int:
-        added, shown = self._load_bytes(data, guess_format("x", fmt), base_iri, "<data>")
+        rdf_format = guess_format("x", fmt)
+        added, shown = self._load_bytes(data, rdf_format, base_iri, "<data>")
+        self.onto.store.forms.learn_tags(data, rdf_format)
         _published(shown, "<data>")
         return added
 
@@ -265,7 +269,8 @@ class OntologyFiles:
         rdf_format = guess_format("x", fmt) if isinstance(fmt, str) else fmt
         prefixes = {"owl": OWL, "rdf": RDF, "rdfs": RDFS, "xsd": XSD, "swrl": SWRL,
                     "swrlb": SWRLB, "": self.onto.prefix}
-        return serialize(self.triples(inferred), rdf_format, prefixes)
+        written = serialize(self.triples(inferred), rdf_format, prefixes)
+        return self.onto.store.forms.tags.respell(written, rdf_format)  # pyoxigraph lowers language tags
 
     def save(self, path: str | os.PathLike[str], fmt: str | None = None, inferred: bool = False) -> Path:
         """Write asserted (or asserted + inferred) triples; the format follows the extension."""

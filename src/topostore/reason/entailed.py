@@ -67,7 +67,7 @@ def refresh_touched(store: Store, touched: list[Triple], twin_changed: Collectio
     if store.round_trips:  # one batch of four look-ups each: one request
         _publish(store, touched, _standings(store, touched))
         return
-    twins = store.contains_quads([Quad(t.subject, internal(t.predicate), t.object, AUX)
+    twins = store.contains_terms([Quad(t.subject, internal(t.predicate), t.object, AUX)
                                   for t in touched if t not in twin_changed])
     found = iter(twins)
     left = [t for t in touched if t in twin_changed or next(found)]
@@ -96,12 +96,14 @@ def watched_forms(rules: RuleSet) -> dict[NamedNode, NamedNode]:
 
 def _standings(store: Store, touched: list[Triple]) -> list[bool | None]:
     """:func:`standing` of each touched triple, from its four look-ups, all in one batch (one request
-    where reads are round trips; in memory one pass over the index for the step's few triples)."""
+    where reads are round trips; in memory one pass over the index for the step's few triples).  By term:
+    ENTAILED holds each spelling of a value its rule derived, as a REASON from scratch's SPARQL writes it,
+    and two spellings asked by value would take one answer (the second's twin gone drops the first)."""
     def quads(t: Triple) -> tuple[Quad, ...]:
         s, p, o = t.subject, t.predicate, t.object
         return Quad(s, internal(p), o, AUX), Quad(s, p, o, INFERRED), Quad(s, p, o, ASSERTED), Quad(s, p, o, ENTAILED)
 
-    found = store.contains_quads([q for t in touched for q in quads(t)])
+    found = store.contains_terms([q for t in touched for q in quads(t)])  # by term, as a REASON from scratch
     return [standing(*found[4 * n:4 * n + 4]) for n in range(len(touched))]
 
 

@@ -15,7 +15,7 @@ import time
 from collections.abc import Collection
 from itertools import islice
 
-from pyoxigraph import NamedNode, Triple
+from pyoxigraph import NamedNode, Quad, Triple
 
 from ..compile.generic import PREFIXES
 from ..compile.rule import Rule
@@ -161,8 +161,8 @@ class Flips:
             if flip.gained(row):
                 self.store.add_scratch([head], FLIP_GAINED)
                 gained_rules.add(i)
-            elif self.store.contains(head, target(self.rules[i])):
-                lost.append(head)
+            elif self.store.contains_terms([Quad(head.subject, head.predicate, head.object, target(self.rules[i]))])[0]:
+                lost.append(head)  # by term: a derived graph holds each spelling a rule derived
         return skip, lost, gained_rules
 
     def _flip_rows(self, wanted: tuple[tuple[int, tuple[int, ...]], ...], stats: ReasonStats) -> list:

@@ -158,6 +158,7 @@ class Store:
     contains = reads.contains
     contains_each = reads.contains_each
     contains_quads = reads.contains_quads
+    contains_terms = reads.contains_terms
     census = reads.census
     census_many = reads.census_many
     small_graph = reads.small_graph

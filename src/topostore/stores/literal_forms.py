@@ -14,10 +14,11 @@ from collections.abc import Callable
 from typing import TYPE_CHECKING
 
 import pyoxigraph as ox
-from pyoxigraph import Literal, NamedNode, Quad, Triple
+from pyoxigraph import Literal, NamedNode, Quad, RdfFormat, Triple
 
 from ..rdf.terms import Term, parse_term, triple, value_key
 from ..rdf.vocab import INTERNAL
+from .language_tags import LanguageTags
 from .meta import META
 
 if TYPE_CHECKING:
@@ -45,6 +46,14 @@ class LiteralForms:
         self._literal_forms: dict[tuple, Literal] = {}
         # value key -> {literal as written: number of asserted triples using it}
         self._value_forms: dict[tuple, dict[Literal, int]] = {}
+        #: the language tags' spellings (pyoxigraph lowers every tag)
+        self.tags = LanguageTags()
+
+    def learn_tags(self, data: bytes | str, fmt: RdfFormat) -> None:
+        """Remember how a loaded document spells its language tags (persisted on a durable store)."""
+        new = self.tags.learn(data, fmt)
+        if new and self._store.durable:
+            self._store._write(self.tags.quads(new, FORMS), [])
 
     def record(self, adds: list[Quad], removes: list[Quad], undo: bool = False) -> tuple[list[Quad], list[Quad]]:
         """Remember (or forget) how committed literals were written; the quads persisting that on a durable store."""
@@ -130,6 +139,8 @@ class LiteralForms:
         """Read the persisted literal forms back (a durable store opened again)."""
         self._literal_forms = {}
         for q in self._store._match(None, None, None, FORMS):
+            if self.tags.restore(q):
+                continue
             graph, _, text = q.object.value.partition(" ")
             lit = _parse_literal(text)
             if lit is not None:

@@ -118,6 +118,30 @@ def contains_quads(store: Store, quads: list[Quad]) -> list[bool]:
     return store._present(quads)
 
 
+def contains_terms(store: Store, quads: list[Quad]) -> list[bool]:
+    """Whether each quad is in the store as that very term, not another spelling of its literal's value.
+
+    For the reasoner's own graphs, which hold each spelling a rule derived (a REASON from scratch keeps
+    ``"8"^^xsd:integer`` and ``"8.0"^^xsd:decimal`` apart there): :meth:`contains_quads` answers by value,
+    and gives two spellings asked together one answer.  Asked in batches in which no two quads share a
+    value (one batch but for such pairs), so that no store's by-value answer mixes them."""
+    store._flush_open()
+    answers = [False] * len(quads)
+    left = list(range(len(quads)))
+    while left:
+        batch: list[int] = []
+        later: list[int] = []
+        seen: set = set()
+        for i in left:
+            k = store._key(quads[i])
+            (later if k in seen else batch).append(i)
+            seen.add(k)
+        for i, found in zip(batch, store._has_many([quads[i] for i in batch]), strict=True):
+            answers[i] = found
+        left = later
+    return answers
+
+
 def census(store: Store, graph: NamedNode) -> tuple[dict[str, int], dict[str, int]]:
     """Facts per predicate and per class (objects of rdf:type) in ``graph``, keyed by SPARQL text."""
     return store.census_many([graph])[graph]

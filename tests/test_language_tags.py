@@ -1,0 +1,90 @@
+"""A language tag keeps the spelling its document gave it (``"colour"@en-GB``) through LOAD, SAVE in each
+format, a durable store reopened, and the aRMOR query replies, although pyoxigraph lowers every tag."""
+
+from __future__ import annotations
+
+import warnings
+from pathlib import Path
+
+import pytest
+from pyoxigraph import NamedNode
+from support import armor_load
+
+from topostore import LoadError, Ontology, OntologyWarning
+from topostore.armor import ArmorService
+
+NS = "http://e.org/lang#"
+TURTLE = f"""@prefix : <{NS}> . @prefix owl: <http://www.w3.org/2002/07/owl#> .
+<http://e.org/lang> a owl:Ontology . :s a owl:DatatypeProperty . :x a owl:NamedIndividual .
+:x :s "colour"@en-GB , "hello"@EN-us , "plain"@fr , "says \\"@en-GB\\" inside"@de-CH .
+"""
+RDF_XML = f"""<?xml version="1.0"?>
+<rdf:RDF xmlns:rdf="http://www.w3.org/1999/02/22-rdf-syntax-ns#" xmlns:owl="http://www.w3.org/2002/07/owl#">
+  <owl:DatatypeProperty rdf:about="{NS}s"/>
+  <owl:NamedIndividual rdf:about="{NS}x"><s xmlns="{NS}" xml:lang="en-GB">colour</s></owl:NamedIndividual>
+</rdf:RDF>
+"""
+
+
+def quiet(o: Ontology, text: str, fmt: str = "turtle") -> Ontology:
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", OntologyWarning)
+        o.load_data(text, fmt)
+    return o
+
+
+@pytest.mark.parametrize("suffix", ["ttl", "nt", "owl"])
+def test_save_spells_tags_as_loaded_and_a_reload_keeps_them(suffix: str, tmp_path: Path) -> None:
+    path = quiet(Ontology(), TURTLE).save(tmp_path / f"saved.{suffix}")
+    spelled(path.read_text(), suffix)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", OntologyWarning)
+        again = Ontology.from_file(path)
+    spelled(again.save(tmp_path / f"again.{suffix}").read_text(), suffix)
+
+
+def spelled(text: str, suffix: str) -> None:
+    if suffix == "owl":
+        assert 'xml:lang="en-GB"' in text and 'xml:lang="EN-us"' in text and 'xml:lang="fr"' in text
+        assert 'xml:lang="de-CH"' in text
+    else:
+        assert '"colour"@en-GB' in text and '"hello"@EN-us' in text and '"plain"@fr' in text
+        assert r'"says \"@en-GB\" inside"@de-CH' in text  # a quote inside a string is no tag
+
+
+def test_rdf_xml_spellings_are_kept() -> None:
+    assert b'"colour"@en-GB' in quiet(Ontology(), RDF_XML, "xml").serialize("ntriples")
+
+
+def test_lowered_stored_values_are_unchanged() -> None:
+    """The tag is one value whatever its case: the store's answers are pyoxigraph's literals, lowered."""
+    o = quiet(Ontology(), TURTLE)
+    assert {v.language for v in o.data_values(NamedNode(f"{NS}s"), NamedNode(f"{NS}x"))} == {"en-gb", "en-us", "fr", "de-ch"}
+
+
+def test_a_refused_load_learns_no_spelling() -> None:
+    o = Ontology()
+    with pytest.raises(LoadError):
+        o.load_data(TURTLE + ' :y :s "z"@pt-BR . this is not turtle', "turtle")
+    assert not o.store.forms.tags
+    quiet(o, f'@prefix : <{NS}> . :y :s "z"@pt-br .')
+    assert b'"z"@pt-br' in o.serialize("ntriples")
+
+
+def test_a_durable_store_keeps_the_spellings(tmp_path: Path) -> None:
+    o = quiet(Ontology(store=tmp_path / "db"), TURTLE)
+    o.store.close()
+    again = Ontology(store=tmp_path / "db")
+    assert b'"colour"@en-GB' in again.serialize("ntriples")
+
+
+def test_armor_replies_spell_tags_as_loaded(tmp_path: Path) -> None:
+    path = tmp_path / "lang.ttl"
+    path.write_text(TURTLE)
+    service = ArmorService()
+    assert armor_load(service, path, "http://e.org/lang").success
+    reply = service.call({"client_name": "c", "reference_name": "ref", "command": "QUERY",
+                          "primary_command_spec": "DATAPROP", "secondary_command_spec": "IND", "args": ["s", "x"]})
+    assert reply.success, reply
+    assert '"colour"@en-GB' in reply.queried_objects and '"hello"@EN-us' in reply.queried_objects
+    assert '"plain"@fr' in reply.queried_objects
