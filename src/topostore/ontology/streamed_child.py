@@ -70,13 +70,12 @@ def stream_through_child(store: Store, data: bytes | str, fmt: RdfFormat, base_i
     summary_read, summary_write = os.pipe()
     try:
         proc = subprocess.Popen(
-            [sys.executable, "-m", __name__, fmt.media_type, base_iri or "", source, str(summary_write)],
-            stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=subprocess.DEVNULL,
+            _command(fmt, base_iri, source, summary_write), stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=subprocess.DEVNULL,
             pass_fds=(summary_write,), env=_child_env())
     except OSError as exc:
         os.close(summary_read)
         os.close(summary_write)
-        log.warning("LOAD %s: no child process to parse it (%s); parsed here", source, exc)
+        log.warning("LOAD %s: no child process to parse it (%s); parsed the ordinary way", source, exc)
         raise LoadError(f"{source}: no child process to parse it: {exc}") from exc
     os.close(summary_write)
     feeder = threading.Thread(target=_feed, args=(proc.stdin, data), name="topostore-load-feed", daemon=True)
@@ -102,14 +101,15 @@ def _bulk_loaded(store: Store, pipe: IO[bytes], progress: Callable[[int], None] 
     reader: Any = pipe if progress is None else _Counted(pipe, progress)
     try:
         return store.bulk_stream(reader, ASSERTED)
-    except (SyntaxError, OSError, ValueError) as exc:
+    except (SyntaxError, OSError, ValueError) as exc:  # the child's own text never breaks off: it died
+        log.warning("LOAD %s: the parsing child's output broke off (%s); parsed the ordinary way", source, exc)
         raise LoadError(f"{source}: the parsing child's output broke off: {exc}") from exc
 
 
 def _summary(raw: bytes, source: str) -> dict:
     """What the child reported: its findings, or the error that stopped it (raised here as a LoadError)."""
     if not raw:
-        log.warning("LOAD %s: the parsing child ended without a word; parsed here", source)
+        log.warning("LOAD %s: the parsing child ended without a report; parsed the ordinary way", source)
         raise LoadError(f"{source}: the parsing child ended without a report")
     result = pickle.loads(raw)  # written by this module in the child just started, never by anything else
     if "error" in result:
@@ -155,6 +155,11 @@ def _end(proc: subprocess.Popen, feeder: threading.Thread, read_whole: bool) -> 
     feeder.join()
     if proc.stdout is not None:
         proc.stdout.close()
+
+
+def _command(fmt: RdfFormat, base_iri: str | None, source: str, report_fd: int) -> list[str]:
+    """The child's command line: this module run by this interpreter."""
+    return [sys.executable, "-m", __name__, fmt.media_type, base_iri or "", source, str(report_fd)]
 
 
 def _child_env() -> dict[str, str]:
