@@ -38,6 +38,7 @@ def children(monkeypatch: pytest.MonkeyPatch) -> list[subprocess.Popen]:
 
     monkeypatch.setattr(streamed_child, "CHILD_FROM", 0)
     monkeypatch.setattr(streamed_child, "ENABLED", True)
+    monkeypatch.setattr(streamed_child, "core_free", lambda: True)
     monkeypatch.setattr(streamed_child.subprocess, "Popen", popen)
     return started
 
@@ -138,6 +139,7 @@ def test_no_child_process_to_start_leaves_the_document_to_the_ordinary_load(monk
 
     monkeypatch.setattr(streamed_child, "CHILD_FROM", 0)
     monkeypatch.setattr(streamed_child, "ENABLED", True)
+    monkeypatch.setattr(streamed_child, "core_free", lambda: True)
     monkeypatch.setattr(streamed_child.subprocess, "Popen", refuse)
     with caplog.at_level(logging.WARNING, logger=streamed_child.__name__):
         onto, n, _ = loaded(DOCUMENT, stream=True)
@@ -161,7 +163,11 @@ def test_small_documents_and_other_stores_stay_in_process(monkeypatch: pytest.Mo
     onto.load_data(PREFIXES + ":a :p :b .", "turtle")
     assert taken == [] and onto.store.count(ASSERTED) == 1
     big = PREFIXES + " " * streamed_child.CHILD_FROM
-    assert streamed_child.child_wanted(Ontology().store, big) == streamed_child.ENABLED
+    for free in (True, False):
+        monkeypatch.setattr(streamed_child, "core_free", lambda free=free: free)
+        assert streamed_child.child_wanted(Ontology().store, big) == (streamed_child.ENABLED and free)
+    monkeypatch.setattr(streamed_child, "core_free", lambda: True)
+    assert not streamed_child.child_wanted(Ontology().store, big[:streamed_child.CHILD_FROM - 1])
     from topostore.stores import open_store
 
     durable = open_store(str(tmp_path / "db"))

@@ -17,8 +17,9 @@ raised once the child is gone; the caller takes the graph back to empty and load
 way, whose answer (the same ``file:line: cause``) is the one given.  No child outlives the call.
 
 Below :data:`CHILD_FROM` bytes the interpreter's start (about 0.3 s of imports) costs more than the second core
-gives back, and the document is written in the parent.  ``TOPOSTORE_LOAD_CHILD=0`` in the environment turns
-the child off (:data:`ENABLED`).
+gives back, and the document is written in the parent; so it is where no core is free (:func:`core_free`).
+``TOPOSTORE_LOAD_CHILD=0`` in the environment turns the child off (:data:`ENABLED`), ``=1`` takes it for
+every big document (:data:`FORCED`).
 """
 
 from __future__ import annotations
@@ -49,14 +50,32 @@ log = logging.getLogger(__name__)
 
 #: documents of this many bytes or more are parsed in a child process (measured: docs/benchmarks-history.md)
 CHILD_FROM = 16_000_000
-#: whether a child is used at all (``TOPOSTORE_LOAD_CHILD=0``: never)
-ENABLED = os.environ.get("TOPOSTORE_LOAD_CHILD", "1") != "0"
+#: ``TOPOSTORE_LOAD_CHILD``: ``0`` never a child, ``1`` a child for every big document even on busy cores (to
+#: measure it), unset: a child for a big document when a core is free
+_SETTING = os.environ.get("TOPOSTORE_LOAD_CHILD", "")
+#: whether a child is used at all
+ENABLED = _SETTING != "0"
+#: whether a big document goes to a child whatever the load of the machine
+FORCED = _SETTING == "1"
 
 
 def child_wanted(store: Store, data: bytes | str) -> bool:
-    """Whether ``data`` goes through a child: big enough, and a store that bulk-loads in memory."""
+    """Whether ``data`` goes through a child: big enough, a store that streams N-Triples in memory, and a
+    core to spare (:func:`core_free`)."""
     return ENABLED and len(data) >= CHILD_FROM and callable(getattr(store, "bulk_stream", None)) \
-        and store.bulk_stream_possible()
+        and store.bulk_stream_possible() and (FORCED or core_free())
+
+
+def core_free() -> bool:
+    """Whether the machine has a core the child may take beside this process: the one-minute load average
+    below the cores less one and a half (two cores: under 0.5).  The child costs 25-30 % more CPU in all
+    (a second interpreter, the text written and read again); where the cores are busy it lengthens the load
+    instead of shortening it (docs/benchmarks-history.md)."""
+    try:
+        load = os.getloadavg()[0]
+    except OSError:  # pragma: no cover - no load average on this system: the cores are not known to be free
+        return False
+    return load < (os.cpu_count() or 1) - 1.5
 
 
 def stream_through_child(store: Store, data: bytes | str, fmt: RdfFormat, base_iri: str | None, source: str,
