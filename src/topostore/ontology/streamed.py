@@ -3,11 +3,14 @@
 The ordinary load (:mod:`.files`) parses a document into a list of triples that every check reads in turn
 (skolemisation, XML literals, the SWRL repair's scan, literal validation and forms, the schema test, the
 deduplication) before the store is written.  Into an empty in-memory graph a document can be written as
-the parser makes its quads (one ``extend``), each term read once, because taking it out again leaves
-exactly what was there; the checks run on the few triples that need them, as the quads go by or read
-back from the graph:
+the parser makes its quads, each term read once, because taking it out again leaves exactly what was there;
+the checks run on the few triples that need them, as the quads go by or read back from the graph.  In
+memory the triples go to the store as N-Triples text, a piece at a time (:func:`written_triples`: a new
+triple only where a term changes; the store reads the text without a Python object per quad); elsewhere as
+quads of the asserted graph (one ``extend``).  A big document may be parsed in a child process instead
+(:mod:`.streamed_child`), through this very pass.
 
-* a blank node becomes its skolem IRI as its quad is made;
+* a blank node becomes its skolem IRI as its triple is made;
 * a literal is validated, an rdf:XMLLiteral put in canonical form, and only the first spelling of a value
   for a (subject, predicate) is written (document order, as the ordinary load keeps it) and recorded as
   the form users wrote;

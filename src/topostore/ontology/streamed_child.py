@@ -16,8 +16,9 @@ Any failure (a syntax error, an invalid value, a child that died or could not st
 raised once the child is gone; the caller takes the graph back to empty and loads the document the ordinary
 way, whose answer (the same ``file:line: cause``) is the one given.  No child outlives the call.
 
-Below :data:`CHILD_FROM` bytes the interpreter's start (about 0.3 s of imports) costs more than the second core
-gives back, and the document is written in the parent; so it is where no core is free (:func:`core_free`).
+Below :data:`CHILD_FROM` bytes the child's start (an interpreter and 0.16 s of imports) and its extra work (the
+text written and read again: 20-30 % more CPU in all) cost more than the second core gives back, and the
+document is written in the parent; so it is where no core is free (:func:`core_free`).
 ``TOPOSTORE_LOAD_CHILD=0`` in the environment turns the child off (:data:`ENABLED`), ``=1`` takes it for
 every big document (:data:`FORCED`).
 """
