@@ -172,3 +172,27 @@ def test_small_documents_and_other_stores_stay_in_process(monkeypatch: pytest.Mo
 
     durable = open_store(str(tmp_path / "db"))
     assert not streamed_child.child_wanted(durable, big)
+
+
+#: terms whose N-Triples text must read back as they were: escapes, a NUL, an astral character, a line
+#: separator, an empty language string, an unknown datatype, a triple term, a base direction, IRI escapes
+ODD_TERMS = [
+    PREFIXES + ':a :p "x\\u0000y\\ttab\\nnl \\\\ back \\"q\\" \\U0001F600" , ""@en , "ab"@en-GB , '
+               '"5"^^<http://e.org/dt> , "a\\u2028b" .',
+    PREFIXES + ":a :p <<( :s :p :o )>> .",
+    PREFIXES + ':a :p "x"@en--ltr .',
+    PREFIXES + "<http://e.org/a#%20x> :p <http://e.org/\u00e9> .",
+]
+
+
+@pytest.mark.parametrize("text", ODD_TERMS)
+def test_odd_terms_read_back_through_the_text_as_the_ordinary_load_keeps_them(
+        children, monkeypatch: pytest.MonkeyPatch, text: str) -> None:
+    """Both the child and the in-process stream write N-Triples text the store reads back."""
+    by_child, n_child, _ = loaded(text, stream=True)
+    assert len(children) == 1
+    here, n, _ = loaded(text, stream=False)
+    assert n_child == n and shape(by_child) == shape(here)
+    monkeypatch.setattr(streamed_child, "ENABLED", False)
+    in_process, n_in_process, _ = loaded(text, stream=True)
+    assert len(children) == 1 and n_in_process == n and shape(in_process) == shape(here)

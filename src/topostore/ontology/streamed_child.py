@@ -63,7 +63,7 @@ FORCED = _SETTING == "1"
 def child_wanted(store: Store, data: bytes | str) -> bool:
     """Whether ``data`` goes through a child: big enough, a store that streams N-Triples in memory, and a
     core to spare (:func:`core_free`)."""
-    return ENABLED and len(data) >= CHILD_FROM and callable(getattr(store, "bulk_stream", None)) \
+    return ENABLED and bool(sys.executable) and len(data) >= CHILD_FROM and callable(getattr(store, "bulk_stream", None)) \
         and store.bulk_stream_possible() and (FORCED or core_free())
 
 
@@ -74,7 +74,7 @@ def core_free() -> bool:
     instead of shortening it (docs/benchmarks-history.md)."""
     try:
         load = os.getloadavg()[0]
-    except OSError:  # pragma: no cover - no load average on this system: the cores are not known to be free
+    except (OSError, AttributeError):  # pragma: no cover - no load average here: no core known to be free
         return False
     return load < (os.cpu_count() or 1) - 1.5
 
