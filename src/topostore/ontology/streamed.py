@@ -174,7 +174,7 @@ def _written_as_text(store: Store, quads: Iterator[Quad], literals: _Literals) -
     gained = store.quad_total() - before
     extra = store.forms.record_loaded(ASSERTED, list(literals.spelled.items()))
     if extra:  # pragma: no cover - in memory, literal forms are not persisted as quads
-        store.add(extra)
+        store._commit(extra, [])
     return gained
 
 

@@ -17,7 +17,7 @@ raised once the child is gone; the caller takes the graph back to empty and load
 way, whose answer (the same ``file:line: cause``) is the one given.  No child outlives the call.
 
 Below :data:`CHILD_FROM` bytes the child's start (an interpreter and 0.16 s of imports) and its extra work (the
-text written and read again: 20-30 % more CPU in all) cost more than the second core gives back, and the
+text written and read again: about 20 % more CPU in all) cost more than the second core gives back, and the
 document is written in the parent; so it is where no core is free (:func:`core_free`).
 ``TOPOSTORE_LOAD_CHILD=0`` in the environment turns the child off (:data:`ENABLED`), ``=1`` takes it for
 every big document (:data:`FORCED`).
@@ -63,13 +63,14 @@ FORCED = _SETTING == "1"
 def child_wanted(store: Store, data: bytes | str) -> bool:
     """Whether ``data`` goes through a child: big enough, a store that streams N-Triples in memory, and a
     core to spare (:func:`core_free`)."""
-    return ENABLED and bool(sys.executable) and len(data) >= CHILD_FROM and callable(getattr(store, "bulk_stream", None)) \
-        and store.bulk_stream_possible() and (FORCED or core_free())
+    return (ENABLED and bool(sys.executable) and len(data) >= CHILD_FROM
+            and callable(getattr(store, "bulk_stream", None)) and store.bulk_stream_possible()
+            and (FORCED or core_free()))
 
 
 def core_free() -> bool:
     """Whether the machine has a core the child may take beside this process: the one-minute load average
-    below the cores less one and a half (two cores: under 0.5).  The child costs 25-30 % more CPU in all
+    below the cores less one and a half (two cores: under 0.5).  The child costs about 20 % more CPU in all
     (a second interpreter, the text written and read again); where the cores are busy it lengthens the load
     instead of shortening it (docs/benchmarks-history.md)."""
     try:
@@ -88,8 +89,8 @@ def stream_through_child(store: Store, data: bytes | str, fmt: RdfFormat, base_i
     summary_read, summary_write = os.pipe()
     try:
         proc = subprocess.Popen(
-            _command(fmt, base_iri, source, summary_write), stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=subprocess.DEVNULL,
-            pass_fds=(summary_write,))
+            _command(fmt, base_iri, source, summary_write), stdin=subprocess.PIPE, stdout=subprocess.PIPE,
+            stderr=subprocess.DEVNULL, pass_fds=(summary_write,))
     except OSError as exc:
         os.close(summary_read)
         os.close(summary_write)
@@ -144,7 +145,7 @@ def _found(store: Store, gained: int, result: dict) -> StreamedDocument:
                for t in ox.parse(result["spelled"], format=RdfFormat.N_TRIPLES)]
     extra = store.forms.record_loaded(ASSERTED, spelled)
     if extra:  # pragma: no cover - bulk_stream is for in-memory stores, which persist no forms
-        store._ox.extend(extra)
+        store._commit(extra, [])
     found.triples = gained - len(spelled) + result["distinct"]
     return found
 
