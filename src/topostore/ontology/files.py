@@ -45,6 +45,7 @@ from ..rdf.vocab import (
 from ..stores import check_rules, memory_store
 from ..stores.base import guess_format, serialize
 from .streamed import rules_need_repair, schema_triples, stream_into_empty
+from .streamed_child import child_wanted, stream_through_child
 from .xml_literals import canonical_xml_literals
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -158,7 +159,8 @@ class OntologyFiles:
         known = self._known_notices()
         try:
             with _collector_paused():
-                found = stream_into_empty(store, data, fmt, base_iri, source, progress)
+                stream = stream_through_child if child_wanted(store, data) else stream_into_empty
+                found = stream(store, data, fmt, base_iri, source, progress)
                 schema = next(schema_triples(store, found.predicates, is_schema_triple), None)
                 if schema is not None and rules_need_repair(store, found.predicates):
                     raise _Ordinary

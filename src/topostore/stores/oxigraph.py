@@ -117,6 +117,26 @@ class OxigraphStore(Store):
         self._ox.extend(chain(quads, extra))
         return len(self._ox) - before if count else None
 
+    def bulk_stream_possible(self) -> bool:
+        """Whether :meth:`bulk_stream` may write here: in memory, with no transaction open."""
+        return self._in_memory and self._pending is None
+
+    def quad_total(self) -> int:
+        """The quads of every graph (the engine counts them: 0.08 s for 900,000 in memory, so once per load,
+        never per piece of one)."""
+        return len(self._ox)
+
+    def bulk_stream(self, source, graph: NamedNode) -> None:
+        """N-Triples read from ``source`` (a binary reader, read as it fills) into ``graph``: the store parses
+        and indexes without a Python object per triple and without the GIL, so that whoever writes ``source``
+        runs beside it.  ``load``, not ``bulk_load``: in memory both cost the same CPU (2.1-2.2 s for 900,000
+        triples), but ``bulk_load`` indexes only once the stream has ended, ``load`` as it reads.  The
+        caller empties the graph on failure.  ``lenient``: the text is pyoxigraph's own serialisation of
+        terms it built, so IRIs are valid."""
+        self._release_held()  # a bulk write may name any graph: not scanned for scratch graphs
+        self._writes += 1
+        self._ox.load(input=source, format=ox.RdfFormat.N_TRIPLES, to_graph=graph, lenient=True)
+
     def add_scratch(self, triples, graph: NamedNode) -> None:
         """Bulk-add to a reasoner's scratch graph (one RocksDB transaction), or hold the triples in
         Python where the graph is held (see :meth:`hold_scratch`)."""
