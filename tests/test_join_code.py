@@ -143,3 +143,31 @@ def test_the_compiled_flip_is_the_interpreted_one(new: list, replaced: list, ord
         answer = flipped.run(store)
         results.append((answer, set(store.triples(graph=FLIP_GAINED)), set(store.triples(graph=FLIP_LOST))))
     assert results[0] == results[1]
+
+
+def test_a_rule_longer_than_python_nests_is_interpreted_and_reasons_incrementally() -> None:
+    """A SWRL chain of 24 atoms: Python refuses a function of more than 20 nested blocks, so its join
+    is interpreted, and a step after a change still equals a REASON from scratch (it once failed and
+    rolled back every REASON)."""
+    from swrl_support import obj
+    from test_incremental import from_scratch
+
+    from topostore.rdf.vocab import INFERRED
+    from topostore.reason.join_code import MAX_LOOPS
+
+    n = 24
+    assert compile_join([("?a", PREDS[0], "?b")] * n, list(range(n)), set(),
+                        [((G1,), frozenset((G1,)))] * n, reader([])) is None
+    assert n > MAX_LOOPS
+    text = (PREFIXES + ":p a owl:ObjectProperty . :End a owl:Class .\n"
+            + "".join(f":n{i} a owl:NamedIndividual ; :p :n{i + 1} .\n" for i in range(n))
+            + f":n{n} a owl:NamedIndividual .\n"
+            + rule([obj(":p", f"?x{i}", f"?x{i + 1}") for i in range(n)], [cls(":End", "?x0")], "Long"))
+    onto = Ontology()
+    onto.load_data(text)
+    onto.reason()
+    onto.add(onto.fact(NamedNode(NS + "m"), NamedNode(NS + "p"), NamedNode(NS + "n1")))
+    assert onto.reason().consistent
+    inferred = {t for t in onto.store.triples(graph=INFERRED) if t.object == NamedNode(NS + "End")}
+    scratch = {t for t in from_scratch(onto)[0] if t.object == NamedNode(NS + "End")}
+    assert inferred == scratch and {t.subject for t in inferred} == {NamedNode(NS + "n0"), NamedNode(NS + "m")}

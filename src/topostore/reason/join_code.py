@@ -31,12 +31,19 @@ _POSITION = ("subject", "predicate", "object")
 #: a join over given variables: ``join(store, bound)`` yields each solution extending ``bound``
 Join = Callable[[object, dict], Iterator[dict]]
 
+#: the most loops one generated function nests: Python refuses more than 20 statically nested blocks
+#: (a rule of 21 atoms), so a longer join or flip is interpreted (:func:`interpreted`) instead
+MAX_LOOPS = 18
+
 
 def compile_join(terms: list[tuple], order: list[int], given: Collection[str], graphs: list[tuple],
-                 read: Callable) -> Join:
+                 read: Callable) -> Join | None:
     """The join of the atoms ``order`` (each atom's terms: a variable's name, or the term itself, as
     :func:`.direct._terms` gives them), starting from a solution binding exactly ``given``;
-    ``graphs[k]``: the extra arguments ``read(store, pattern, *graphs[k])`` takes for atom ``k``."""
+    ``graphs[k]``: the extra arguments ``read(store, pattern, *graphs[k])`` takes for atom ``k``.
+    None where the join nests more than :data:`MAX_LOOPS` loops (the caller interprets it)."""
+    if len(order) > MAX_LOOPS:
+        return None
     code = _Code("def join(store, bound):", read)
     for var in sorted(given):
         code.line(f"{code.local(var)} = bound[{var!r}]")
@@ -47,7 +54,7 @@ def compile_join(terms: list[tuple], order: list[int], given: Collection[str], g
 
 
 def compile_flip(terms: list[tuple], seed: int, plan: list[int], paired: Collection[int], graphs: list[tuple],
-                 old_graphs: tuple, read: Callable) -> Callable[[object], Iterator[tuple[dict, dict]]]:
+                 old_graphs: tuple, read: Callable) -> Callable[[object], Iterator[tuple[dict, dict]]] | None:
     """One branch of a flip (see :mod:`.look_flip`) as a flat function: ``branch(store)`` yields each
     solution with the new values and, apart, the old values of its compared variables.
 
@@ -55,7 +62,9 @@ def compile_flip(terms: list[tuple], seed: int, plan: list[int], paired: Collect
     facts by their subject and predicate; the atoms ``plan`` are joined after it, each from its
     ``graphs``; an atom of ``paired`` (a changed atom after the seed) takes, besides its new value, each
     old value its fact had (or the new one where it was not replaced).  Every changed atom's object
-    must be a variable (the value compared)."""
+    must be a variable (the value compared).  None where it nests more than :data:`MAX_LOOPS` loops."""
+    if 2 + len(plan) + len(set(plan) & set(paired)) > MAX_LOOPS:
+        return None
     code = _Code("def branch(store):", read)
     old = code.const(old_graphs)
     s, p, value = terms[seed]
@@ -69,7 +78,7 @@ def compile_flip(terms: list[tuple], seed: int, plan: list[int], paired: Collect
     for m in plan:
         code.read_atom(terms[m], code.const(graphs[m]))
         if m in paired:
-            local = f"w{len(olds)}"
+            local = f"w{len(code.lines)}"  # unique even where a paired atom's variable is bound twice
             code.line(f"for {local} in ([o.object for o in read(store, (t.subject, t.predicate, None), *{old})]"
                       " or (t.object,)):")
             code.depth += 1

@@ -69,9 +69,10 @@ class Flipped:
         terms = [shape.terms for shape in self._body]
         if not all(isinstance(terms[k][2], str) for k in self.order):
             return None
-        return [compile_flip(terms, k, self._plans[position], self.order[position + 1:],
-                             [(g,) for g in self._graphs], ((CHANGE_OLD,),), self._facts)
-                for position, k in enumerate(self.order)]
+        branches = [compile_flip(terms, k, self._plans[position], self.order[position + 1:],
+                                 [(g,) for g in self._graphs], ((CHANGE_OLD,),), self._facts)
+                    for position, k in enumerate(self.order)]
+        return None if None in branches else branches
 
     def run(self, store) -> bool:
         """Write the flipped heads to FLIP_GAINED / FLIP_LOST; False (nothing written) where the text must run."""

@@ -206,9 +206,8 @@ class Joined:
         """The join of the atoms ``order`` from the solutions ``start``'s facts bind."""
         terms = [shape.terms for shape in self._body]
         given = {x for x in start.terms if isinstance(x, str)}
-        if COMPILED_JOINS:
-            return compile_join(terms, order, given, self._graphs, _read)
-        return interpreted(self._body, order, self._graphs, _read)
+        compiled = compile_join(terms, order, given, self._graphs, _read) if COMPILED_JOINS else None
+        return compiled or interpreted(self._body, order, self._graphs, _read)
 
     def _proven(self, store, bound: dict) -> object:
         """Whether some derivation with the head's values ``bound`` holds (UNKNOWN: not decided)."""
