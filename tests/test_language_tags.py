@@ -88,3 +88,33 @@ def test_armor_replies_spell_tags_as_loaded(tmp_path: Path) -> None:
     assert reply.success, reply
     assert '"colour"@en-GB' in reply.queried_objects and '"hello"@EN-us' in reply.queried_objects
     assert '"plain"@fr' in reply.queried_objects
+
+
+def test_an_escaped_quote_before_an_at_sign_is_no_tag() -> None:
+    """``\\"@EN\\"`` inside a string is text: the document's real ``@en`` stays as written."""
+    text = (f'@prefix : <{NS}> . :s a <http://www.w3.org/2002/07/owl#DatatypeProperty> .\n'
+            ':x :s "the mail said \\"@EN\\" twice"@fr , "hello"@en .\n')
+    saved = quiet(Ontology(), text).serialize("ntriples")
+    assert b'"hello"@en .' in saved and b"@EN ." not in saved
+
+
+def test_the_first_spelling_wins_even_when_lowered() -> None:
+    """Two documents spelling one tag ``en-gb`` then ``EN-GB``: the first (lower-case) spelling stays."""
+    o = quiet(Ontology(), f'@prefix : <{NS}> . :x :s "a"@en-gb .\n')
+    quiet(o, f'@prefix : <{NS}> . :x :s "b"@EN-GB .\n')
+    saved = o.serialize("ntriples")
+    assert b'"a"@en-gb' in saved and b'"b"@en-gb' in saved
+
+
+def test_short_name_replies_show_values_unchanged(tmp_path: Path) -> None:
+    """In the short-names mode a literal is its bare value: a value ending in ``"@en-gb`` is not respelled."""
+    path = tmp_path / "lang.ttl"
+    path.write_text(f'@prefix : <{NS}> . @prefix owl: <http://www.w3.org/2002/07/owl#> .\n'
+                    '<http://e.org/lang> a owl:Ontology . :s a owl:DatatypeProperty . :x a owl:NamedIndividual .\n'
+                    ':x :s "colour"@en-GB , "quote \\"@en-gb" .\n')
+    service = ArmorService(short_names=True)
+    assert armor_load(service, path, "http://e.org/lang").success
+    reply = service.call({"client_name": "c", "reference_name": "ref", "command": "QUERY",
+                          "primary_command_spec": "DATAPROP", "secondary_command_spec": "IND", "args": ["s", "x"]})
+    assert reply.success, reply
+    assert sorted(reply.queried_objects) == ["colour", 'quote "@en-gb']

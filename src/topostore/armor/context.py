@@ -126,9 +126,12 @@ class Context:
 
     def render(self, items: list) -> list[str]:
         """Render terms in the service's mode; sorted so answers are reproducible."""
-        rendered = self.service.renderer.terms([t for t in items if not hidden(t)])
+        renderer = self.service.renderer
+        rendered = renderer.terms([t for t in items if not hidden(t)])
         tags = self.onto.store.forms.tags  # language tags as the loaded documents spell them
-        return sorted(tags.rendered(text) for text in rendered) if tags else sorted(rendered)
+        if not tags or renderer.short_names:  # a short name shows a literal's bare value: no tag to spell
+            return sorted(rendered)
+        return sorted(tags.rendered(text) for text in rendered)
 
     def submit(self, *changes: Change) -> Reply:
         """Apply (or queue) manipulations; a failure of the reasoner undoes them (209)."""

@@ -136,7 +136,8 @@ class TBox:
         return p in self.characteristics.get(characteristic, set())
 
 
-_DATATYPE_NAMESPACES = (XSD, RDFS + "Literal", RDF + "PlainLiteral", RDF + "langString", OWL + "real", OWL + "rational")
+_DATATYPE_NAMESPACES = (XSD, RDFS + "Literal", RDF + "PlainLiteral", RDF + "langString", RDF + "XMLLiteral",
+                        OWL + "real", OWL + "rational")
 
 
 def is_datatype(node: Term) -> bool:

@@ -37,10 +37,13 @@ class LanguageTags:
     """Each lowered language tag's spelling as first written, where it is not the lowered one."""
 
     def __init__(self) -> None:
+        #: each lowered tag's first spelling, lowered ones included (a later capital does not respell it)
         self._spelled: dict[str, str] = {}
+        #: whether some first spelling differs from its lowered tag (else nothing is ever respelled)
+        self._capitals = False
 
     def __bool__(self) -> bool:
-        return bool(self._spelled)
+        return self._capitals
 
     def learn(self, data: bytes | str, fmt: RdfFormat) -> list[Quad]:
         """Read the spellings of a document's tags (one that never spells a tag with a capital costs one
@@ -50,12 +53,13 @@ class LanguageTags:
         xml = fmt == RdfFormat.RDF_XML
         new = []
         for m in _WRITTEN["xml" if xml else "text"].finditer(data):
-            if not xml and (m.start() == 0 or data[m.start() - 1] not in _QUOTES):
-                continue  # @prefix, @base, an e-mail address in a string
+            if not xml and not _closes_string(data, m.start()):
+                continue  # @prefix, @base, an e-mail address or an escaped quote in a string
             tag = m.group(1).decode("ascii")
             lowered = tag.lower()
-            if tag != lowered and lowered not in self._spelled:
+            if lowered not in self._spelled:
                 self._spelled[lowered] = tag
+                self._capitals |= tag != lowered
                 new.append(tag)
         return new
 
@@ -90,8 +94,18 @@ class LanguageTags:
         if quad.subject != SPELLING or not isinstance(quad.object, Literal):
             return False
         tag = quad.object.value
-        self._spelled.setdefault(tag.lower(), tag)
+        self._capitals |= self._spelled.setdefault(tag.lower(), tag) != tag.lower()
         return True
+
+
+def _closes_string(data: bytes, at: int) -> bool:
+    """Whether the byte before ``at`` is a quote that is not escaped (an even run of backslashes before it)."""
+    if at == 0 or data[at - 1] not in _QUOTES:
+        return False
+    backslashes = 0
+    while at - 2 - backslashes >= 0 and data[at - 2 - backslashes] == ord("\\"):
+        backslashes += 1
+    return backslashes % 2 == 0
 
 
 __all__ = ["SPELLING", "LanguageTags"]
