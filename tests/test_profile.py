@@ -80,7 +80,8 @@ CASES = {
                      "owl:withRestrictions ( [ xsd:pattern \"A.*\" ] ) ] ] .", kinds.UNSUPPORTED, "set aside"),
     "range of an undeclared datatype": (":d a owl:DatatypeProperty ; rdfs:range :MyType . :x :d 3 .",
                                         kinds.UNCHECKED_DATATYPE, "not declared rdfs:Datatype"),
-    "range of rdf:XMLLiteral (in the datatype map)": (":d a owl:DatatypeProperty ; rdfs:range <http://www.w3.org/1999/02/22-rdf-syntax-ns#XMLLiteral> .",
+    "range of rdf:XMLLiteral (in the datatype map)": (":d a owl:DatatypeProperty ; rdfs:range "
+                                                     "<http://www.w3.org/1999/02/22-rdf-syntax-ns#XMLLiteral> .",
                                                      kinds.UNCHECKED_DATATYPE, "XMLLiteral is a datatype whose values"),
     "universal into an own datatype": (":Small a rdfs:Datatype . :d a owl:DatatypeProperty . :A rdfs:subClassOf "
                                        "[ a owl:Restriction ; owl:onProperty :d ; owl:allValuesFrom :Small ] .",
