@@ -196,3 +196,19 @@ def test_odd_terms_read_back_through_the_text_as_the_ordinary_load_keeps_them(
     monkeypatch.setattr(streamed_child, "ENABLED", False)
     in_process, n_in_process, _ = loaded(text, stream=True)
     assert len(children) == 1 and n_in_process == n and shape(in_process) == shape(here)
+
+
+def test_a_free_core_is_seen_from_the_other_processes_work(monkeypatch: pytest.MonkeyPatch) -> None:
+    """core_free reads the machine's CPU counters while this process sleeps: its own busy minute (a map
+    just made, a document just read), which the load average would count, does not take the child away."""
+    monkeypatch.setattr(streamed_child.os, "cpu_count", lambda: 2)
+    monkeypatch.setattr(streamed_child.time, "sleep", lambda s: None)
+    reads = iter([[100, 0, 100, 800, 0, 0, 0], [110, 0, 100, 990, 0, 0, 0]])
+    monkeypatch.setattr(streamed_child, "_cpu_times", lambda: next(reads))
+    assert streamed_child.core_free()  # 10 of 200 ticks busy: 0.1 of a core
+    reads = iter([[0, 0, 0, 100, 0], [90, 0, 0, 110, 0]])  # 90 of 100 ticks busy: 1.8 cores
+    monkeypatch.setattr(streamed_child, "_cpu_times", lambda: next(reads))
+    assert not streamed_child.core_free()
+    monkeypatch.setattr(streamed_child, "_cpu_times", lambda: None)
+    monkeypatch.setattr(streamed_child.os, "getloadavg", lambda: (1.2, 1.0, 1.0))
+    assert streamed_child.core_free()  # no counters: the load average less this process's own core

@@ -33,6 +33,7 @@ import pickle
 import subprocess
 import sys
 import threading
+import time
 from collections.abc import Callable
 from pathlib import Path
 from typing import IO, Any
@@ -69,15 +70,52 @@ def child_wanted(store: Store, data: bytes | str) -> bool:
 
 
 def core_free() -> bool:
-    """Whether the machine has a core the child may take beside this process: the one-minute load average
-    below the cores less one and a half (two cores: under 0.5).  The child costs about 20 % more CPU in all
-    (a second interpreter, the text written and read again); where the cores are busy it lengthens the load
-    instead of shortening it (docs/benchmarks-history.md)."""
+    """Whether the machine has a core the child may take beside this process: the other processes busy
+    less than the cores less one and a half (two cores: under half a core).  The child costs about 20 %
+    more CPU in all (a second interpreter, the text written and read again); where the cores are busy it
+    lengthens the load instead of shortening it (docs/benchmarks-history.md).
+
+    Measured over :data:`_SAMPLE_S` of ``/proc/stat`` while this process sleeps, so that its own work (the
+    document just read, a map just made) does not count, as it would in the load average; where there
+    is no ``/proc/stat``, the one-minute load average less this process's one core."""
+    cores = os.cpu_count() or 1
+    busy = _others_busy()
+    if busy is None:
+        try:
+            busy = os.getloadavg()[0] - 1
+        except (OSError, AttributeError):  # pragma: no cover - no load average here: no core known to be free
+            return False
+    return busy < cores - 1.5
+
+
+#: how long :func:`core_free` watches the machine's cores (seconds)
+_SAMPLE_S = 0.05
+
+
+def _others_busy() -> float | None:
+    """How many cores the machine kept busy over :data:`_SAMPLE_S` (None: no ``/proc/stat`` to read)."""
+    first = _cpu_times()
+    if first is None:
+        return None
+    time.sleep(_SAMPLE_S)
+    second = _cpu_times()
+    if second is None:
+        return None
+    total = sum(second) - sum(first)
+    idle = (second[3] + second[4]) - (first[3] + first[4])  # idle and iowait
+    return (os.cpu_count() or 1) * (total - idle) / total if total > 0 else 0.0
+
+
+def _cpu_times() -> list[int] | None:
+    """The machine's CPU time counters (the first line of ``/proc/stat``), or None where there are none."""
     try:
-        load = os.getloadavg()[0]
-    except (OSError, AttributeError):  # pragma: no cover - no load average here: no core known to be free
-        return False
-    return load < (os.cpu_count() or 1) - 1.5
+        with open("/proc/stat", "rb") as stat:
+            fields = stat.readline().split()
+    except OSError:
+        return None
+    if not fields or fields[0] != b"cpu" or len(fields) < 6:
+        return None
+    return [int(v) for v in fields[1:]]
 
 
 def stream_through_child(store: Store, data: bytes | str, fmt: RdfFormat, base_iri: str | None, source: str,
