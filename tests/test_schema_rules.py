@@ -154,7 +154,7 @@ EVERY_KIND = PREFIXES + """\
 def test_the_compiled_rules_of_those_kinds_are_instantiations_with_their_axioms() -> None:
     onto = Ontology()
     onto.load_data(EVERY_KIND, "turtle")
-    rules = [r for r in onto.rules.rules if r.name in KINDS]
+    rules = [r for r in onto.rules.all_rules if r.name in KINDS]
     texts = {(r.name, r.origin, " ".join(a.text() for a in r.body), r.head and r.head.text()) for r in rules}
     p, q, r_, a, b = (f"<{NS}{n}>" for n in ("p", "q", "r", "A", "B"))
     assert ("cax-sco", "A SubClassOf B", f"?x {TYPE} {a} .", f"?x {TYPE} {b} .") in texts
@@ -221,7 +221,7 @@ def test_the_tutorial_maps_rules_of_those_kinds_are_the_ones_it_always_had() -> 
     onto = Ontology()
     onto.load(default_ontology())
     got = [(r.name, r.origin, " ".join(_short(a) for a in r.body), _short(r.head) if r.head else r.message)
-           for r in onto.rules.rules if r.name in KINDS]
+           for r in onto.rules.all_rules if r.name in KINDS]
     assert len(got) == len(TUTORIAL_RULES) and set(got) == TUTORIAL_RULES
 
 

@@ -134,7 +134,7 @@ def rules(files: tuple[str, ...], show_all: bool, deltas: bool, step: str | None
         return
     generic = {(r.name, r.where(), r.head) for r in generic_rules()}
     groups: dict[str, list] = {g: [] for g in RULE_GROUPS}
-    for rule in onto.rules.rules:
+    for rule in onto.rules.all_rules:  # the pairs of disjoint classes too, one rule per row
         if (rule.name, rule.where(), rule.head) in generic:
             groups["Generic OWL 2 RL rules"].append(rule)
         elif rule.name.startswith("swrl:"):

@@ -35,6 +35,7 @@ from ..rdf.vocab import NOTHING, SAME_AS, THING, TYPE
 from . import condition as cond
 from .condition import Condition
 from .datatypes import implied_ranges
+from .disjointness import Disjointness
 from .fillers import FillerIndex, Subsumption
 from .model import Expr, Prop, TBox
 from .negation import NegativeMembership
@@ -76,6 +77,8 @@ class OwlCompiler:
         self.restrictions = RestrictionRules(self)
         self.rules: list[Rule] = []
         self.notices: list[Notice] = []
+        #: the pairs of disjoint classes, as rows: no rule is emitted per pair (see :mod:`.disjointness`)
+        self.disjointness = Disjointness()
         #: the told disjoint pairs of named classes (read by the parts of the compiler)
         self.disjoint_pairs = [
             (a.node, b.node) for a, b in tbox.disjoint if a.is_named and b.is_named
@@ -146,7 +149,7 @@ class OwlCompiler:
         a, b, v1, v2 = "?a", "?b", "?v1", "?v2"
         for c1, c2 in self.disjoint_classes():
             for x, y in ((c1, c2), (c2, c1)):
-                self.instantiate(disjoint_row(x, y), f"{x} and {y} are disjoint", "different-disjoint")
+                self.disjointness.add_different(disjoint_row(x, y), f"{x} and {y} are disjoint")
         for p in sorted(self.tb.characteristics.get("FunctionalProperty", ()), key=lambda t: t.value):
             if p in self.tb.data_properties:
                 self.emit("different-values", f"{nm(p)} is functional",
@@ -303,7 +306,7 @@ class OwlCompiler:
         for a, b in self.tb.equivalent:
             self.instantiate(class_row(a, b), f"{a} EquivalentTo {b}", "cax-eqc1", "cax-eqc2")
         for a, b in self.tb.disjoint:
-            if self.instantiate(disjoint_row(a, b), f"{a} DisjointWith {b}", "cax-dw", labels=(str(a), str(b))):
+            if self.disjointness.add_told(disjoint_row(a, b), f"{a} DisjointWith {b}", (str(a), str(b))):
                 continue
             body = self.member("?x", a) + self.member("?x", b)
             if body:  # with owl:Thing: a check of one class

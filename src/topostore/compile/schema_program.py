@@ -21,6 +21,7 @@ from dataclasses import dataclass, field, replace
 from pyoxigraph import NamedNode
 
 from ..stores.base import Store
+from .disjointness import DIFFERENT
 from .rule import Rule, RuleSet
 from .schema import Row, SchemaRule, schema_rules
 
@@ -130,6 +131,7 @@ def _full_program(ruleset: RuleSet, threshold: int | None) -> GenericProgram:
     rules = ruleset.rules
     program = GenericProgram(ruleset)
     replaced: dict[int, list[Rule]] = {}
+    held = _held_rows(ruleset, threshold, program)
     for name, found in _instances(rules).items():
         generic = schema_rules()[name]
         if len(found) <= (rows_threshold(generic) if threshold is None else threshold):
@@ -139,10 +141,26 @@ def _full_program(ruleset: RuleSet, threshold: int | None) -> GenericProgram:
         first = found[0][0]
         replaced[first] = _evaluables(generic, rows)
         replaced.update({i: [] for i, _ in found[1:]})
-    if replaced:
+    if replaced or ruleset.disjointness is not None:
         new = [r for i, rule in enumerate(rules) for r in replaced.get(i, [rule])]
-        program.rules = replace(ruleset, rules=new)
+        # the rows held apart join as the other tables' rules do; the checks stay the rule set's
+        # (:func:`..reason.consistency.check_consistency` runs the told pairs' check generically)
+        program.rules = replace(ruleset, rules=new + held, disjointness=None)
     return program
+
+
+def _held_rows(ruleset: RuleSet, threshold: int | None, program: GenericProgram) -> list[Rule]:
+    """The inference rules of the rows the rule set holds apart (:mod:`.disjointness`): the generic
+    rule over them (its rows recorded in ``program``) above the threshold, else their instantiations."""
+    table = ruleset.disjointness
+    if table is None or not table.different:
+        return []
+    generic = schema_rules()[DIFFERENT]
+    rows = list(table.different)
+    if len(rows) <= (rows_threshold(generic) if threshold is None else threshold):
+        return table.rules()[0]
+    program.rows[DIFFERENT] = rows
+    return _evaluables(generic, rows)
 
 
 __all__ = ["GENERIC_ROWS", "GenericProgram", "closed", "full_program", "rows_threshold"]
