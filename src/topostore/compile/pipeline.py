@@ -7,11 +7,11 @@ from pyoxigraph import NamedNode
 from ..stores.base import Store
 from .alike import merge_alike
 from .datatypes import empty_range_rules, range_rules
+from .disjointness import Disjointness
 from .fold import equivalent_names, fold_equivalents
 from .generic import generic_rules
 from .guard import guard_rules
 from .implied import simplify
-from .disjointness import Disjointness
 from .inline_difference import MAX_DISJOINT_SOURCES, inline_difference, owl_asks
 from .owl import OwlCompiler
 from .owl_extras import key_rules, reflexive_rules, restriction_rules, thing_rules, unsatisfiable_rules
