@@ -88,6 +88,8 @@ class OwlCompiler:
         self.subsumption = Subsumption(self.told)
         #: :meth:`all_expressions`, once walked
         self._expressions: list[Expr] | None = None
+        #: :meth:`disjoint_classes`, once found
+        self._disjoint: list[tuple[Expr, Expr]] | None = None
         #: the rules of non-membership the complements need, a named part
         self.negation = NegativeMembership(self)
 
@@ -128,12 +130,15 @@ class OwlCompiler:
     def disjoint_classes(self) -> list[tuple[Expr, Expr]]:
         """Every pair of disjoint class expressions: disjointWith, AllDisjointClasses, the parts of a
         disjoint union, and an expression with its complement (owl:Thing left out: it says nothing
-        of a pair)."""
-        pairs = {(a.node, b.node): (a, b) for a, b in self.tb.disjoint}
-        for e in self.all_expressions():
-            if e.kind == "not":
-                pairs.setdefault((e.node, e.members[0].node), (e, e.members[0]))
-        return [(a, b) for a, b in pairs.values() if a.node != b.node and THING not in (a.node, b.node)]
+        of a pair).  Found once per compiler (the TBox is read whole before): the difference rows and
+        the negation part both ask, and a TBox of siblings made disjoint has tens of thousands."""
+        if self._disjoint is None:
+            pairs = {(a.node, b.node): (a, b) for a, b in self.tb.disjoint}
+            for e in self.all_expressions():
+                if e.kind == "not":
+                    pairs.setdefault((e.node, e.members[0].node), (e, e.members[0]))
+            self._disjoint = [(a, b) for a, b in pairs.values() if a.node != b.node and THING not in (a.node, b.node)]
+        return list(self._disjoint)
 
     def difference_rules(self) -> None:
         """When asked about a pair, conclude it is different if equality would be
