@@ -21,6 +21,8 @@ from __future__ import annotations
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
 
+from ..rdf.terms import sparql
+from ..rdf.vocab import TYPE
 from .rule import Rule
 from .schema import Row, schema_rule
 
@@ -103,7 +105,7 @@ class Disjointness:
 def check_query(pairs: list[ToldPair], limit: int) -> str:
     """The generic check over ``pairs`` (one query): an individual in both classes of a pair."""
     values = " ".join(f"({a} {b})" for a, b in (p.row for p in pairs))
-    t = "<http://www.w3.org/1999/02/22-rdf-syntax-ns#type>"
+    t = sparql(TYPE)
     return (f"SELECT DISTINCT ?x ?c ?d WHERE {{\n  VALUES (?c ?d) {{ {values} }}\n  ?x {t} ?c .\n  ?x {t} ?d .\n}}"
             f" LIMIT {limit}")
 

@@ -21,7 +21,8 @@ restrictions by kind, restriction subsumption) are not written here: they are th
 of ``rules/owl/`` instantiated with the axiom's row of its schema table (:mod:`.schema`); a full
 REASON reads those rows back from the rules and may run the generic rule over them instead
 (:mod:`.schema_program`).  An axiom without a row (an inverse property, a longer chain) keeps the
-rule written here.
+rule written here.  The pairs of disjoint classes are not even instantiated: they are rows
+(:mod:`.disjointness`), instantiated only for what maintains them rule by rule.
 """
 
 from __future__ import annotations

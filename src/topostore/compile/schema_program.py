@@ -12,6 +12,11 @@ the passes after compilation did (a class folded into its anonymous equivalent, 
 duplicate) is kept, and the generic rule over those rows is, by construction, the union of the rules
 it replaces.  A chaining rule's rows (cax-sco, prp-spo1) are closed first: the hierarchy is then
 one row deep, and its closure takes one evaluation instead of one round per level.
+
+The pairs of disjoint classes are not compiled rules at all: the rule set holds them as rows
+(:mod:`.disjointness`), and the program takes them from there (the generic ``different-disjoint`` above
+the threshold, else its instantiations); the told pairs' check runs over the rows in
+:func:`..reason.consistency.check_consistency`.
 """
 
 from __future__ import annotations
@@ -90,9 +95,9 @@ def closed(rows: list[Row]) -> list[Row]:
 def _instances(rules: list[Rule]) -> dict[str, list[tuple[int, Row]]]:
     """Per generic inference rule, the compiled rules that are its instantiations: (index, row).
 
-    A check (cax-dw) stays instantiated: a full REASON runs the checks after the materialisation,
-    once the schema graphs are dropped, and a check whose classes have no member is skipped
-    without a query (:func:`..reason.consistency.one_graphs`), so its instantiations cost little."""
+    A check is left as it is: a full REASON runs the checks after the materialisation, once the
+    schema graphs are dropped (the told pairs of disjoint classes, held as rows, are checked there
+    in one query over the pairs whose classes have members)."""
     generic = schema_rules()
     found: dict[str, list[tuple[int, Row]]] = {}
     for i, rule in enumerate(rules):
