@@ -92,6 +92,14 @@ class Disjointness:
                            [check.instantiate(p.row, p.origin, p.labels) for p in self.told.values()])
         return self._rules
 
+    def representatives(self) -> list[Rule]:
+        """One ``different-disjoint`` rule and one check per class of the rows, on that class alone: their
+        body keys are the keys every instantiation reads (a row's keys are its classes' keys), found
+        without making a rule per pair."""
+        different, check = schema_rule(DIFFERENT), schema_rule(CHECK)
+        classes = sorted({c for row in self.different for c in row})
+        return [r for c in classes for r in (different.instantiate((c, c), ""), check.instantiate((c, c), ""))]
+
     def classes(self) -> set[str]:
         """Every class a told pair names (the keys the generic check reads)."""
         return {c for pair in self.told.values() for c in pair.row}

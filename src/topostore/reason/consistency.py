@@ -161,19 +161,37 @@ def check_consistency(store: Store, rules: RuleSet, keys: KeyGraphs | None = Non
 
     ``keys``: the graphs of :data:`GRAPHS` holding facts of each key the checks read
     (:func:`.present.key_graphs`, asked here when not given).  ``known``: the matches of some checks
-    (by their index in ``rules.checks``) found already, beside the rules' fixpoint (:mod:`.early_reads`)."""
-    checks = rules.checks
-    if not checks:
+    (by their index in ``rules.checks``) found already, beside the rules' fixpoint (:mod:`.early_reads`).
+
+    The told pairs of disjoint classes (after the other checks in ``rules.checks``) are checked in one
+    query (:func:`disjoint_violations`) unless all were found already: their checks are then never
+    made one per pair."""
+    base = rules.base_checks
+    table = rules.disjointness
+    told = len(table.told) if table is not None else 0
+    if not base and not told:
         return []
     if keys is None:
         keys = key_graphs(store, check_keys(rules), GRAPHS)
     known = known or {}
-    base = rules.base_checks
-    if rules.disjointness is None or all(j in known for j in range(len(base), len(checks))):
-        matches = [known[j] if j in known else check_rows(store, rule, keys) for j, rule in enumerate(checks)]
-        return violations(checks, matches)
-    matches = [known[j] if j in known else check_rows(store, rule, keys) for j, rule in enumerate(base)]
-    return violations(base, matches) + disjoint_violations(store, rules.disjointness, keys)
+    if told and not all(j in known for j in range(len(base), len(base) + told)):
+        matches = [known[j] if j in known else check_rows(store, rule, keys) for j, rule in enumerate(base)]
+        return violations(base, matches) + disjoint_violations(store, table, keys)
+    checks = rules.checks
+    matches = [known[j] if j in known else check_rows(store, rule, keys) for j, rule in enumerate(checks)]
+    return violations(checks, matches)
+
+
+def early_checks(rules: RuleSet) -> list[Rule]:
+    """The checks a full REASON may start beside its fixpoint (:mod:`.early_reads`): every check when
+    they are few, else those other than the told pairs of disjoint classes (which are then checked in
+    one query after the fixpoint, and never made one per pair)."""
+    from .early_reads import EARLY_CHECKS  # it reads the checks of this module
+
+    table = rules.disjointness
+    if table is None or len(table.told) <= EARLY_CHECKS:
+        return rules.checks
+    return rules.base_checks
 
 
 def disjoint_violations(store: Store, table: Disjointness, keys: KeyGraphs) -> list[Violation]:
