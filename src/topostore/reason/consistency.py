@@ -182,18 +182,6 @@ def check_consistency(store: Store, rules: RuleSet, keys: KeyGraphs | None = Non
     return violations(checks, matches)
 
 
-def early_checks(rules: RuleSet) -> list[Rule]:
-    """The checks a full REASON may start beside its fixpoint (:mod:`.early_reads`): every check when
-    they are few, else those other than the told pairs of disjoint classes (which are then checked in
-    one query after the fixpoint, and never made one per pair)."""
-    from .early_reads import EARLY_CHECKS  # it reads the checks of this module
-
-    table = rules.disjointness
-    if table is None or len(table.told) <= EARLY_CHECKS:
-        return rules.checks
-    return rules.base_checks
-
-
 def disjoint_violations(store: Store, table: Disjointness, keys: KeyGraphs) -> list[Violation]:
     """The violations of the told pairs of disjoint classes: one query over the pairs whose classes
     both have facts, each violation named as the pair's own check (``cax-dw``) names it."""

@@ -87,8 +87,9 @@ from .changed import ChangedGraphs, Decisions
 from .closing import close_full, counting_asserted
 from .compiled_step import MAX_PROGRAMS, CompiledStep
 from .component import WHOLE_ROUNDS
-from .consistency import Violation, check_consistency, early_checks
+from .consistency import Violation, check_consistency
 from .dred import Deletion, can_prove
+from .early_reads import EARLY_CHECKS
 from .entailed import refresh_entailed, refresh_touched, watched_forms
 from .flips import Flips
 from .materialize import Materializer
@@ -474,6 +475,16 @@ class _Maintenance:
         self.change_checks.state = reasoner.state
         #: the compiled step of each kind of change (see :mod:`.compiled_step`)
         self.step = CompiledStep(store, rules, self.monotone, self.requests, self.flips, self.change_checks)
+
+
+def early_checks(rules: RuleSet) -> list[Rule]:
+    """The checks a full REASON may start beside its fixpoint (:mod:`.early_reads`): every check when
+    they are few, else those other than the told pairs of disjoint classes (which are then checked in
+    one query after the fixpoint, and never made one per pair)."""
+    table = rules.disjointness
+    if table is None or len(table.told) <= EARLY_CHECKS:
+        return rules.checks
+    return rules.base_checks
 
 
 def needed_keys(rules: RuleSet) -> set:
