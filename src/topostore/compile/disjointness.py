@@ -23,6 +23,7 @@ from dataclasses import dataclass, field
 
 from ..rdf.terms import sparql
 from ..rdf.vocab import TYPE
+from .model import Expr
 from .rule import Rule
 from .schema import Row, schema_rule
 
@@ -32,12 +33,21 @@ DIFFERENT, CHECK = "different-disjoint", "cax-dw"
 
 @dataclass(frozen=True)
 class ToldPair:
-    """A told pair of disjoint classes (``cax-dw``): its row, the axiom it comes from, and how a
-    violation's message names the two classes."""
+    """A told pair of disjoint classes (``cax-dw``): its row and the two class expressions of the axiom
+    (the axiom and the violation's message name them; written only when asked: a TBox of thousands
+    of siblings has hundreds of thousands of pairs, few ever violated)."""
 
     row: Row
-    origin: str
-    labels: tuple[str, str]
+    a: Expr
+    b: Expr
+
+    @property
+    def origin(self) -> str:
+        return f"{self.a} DisjointWith {self.b}"
+
+    @property
+    def labels(self) -> tuple[str, str]:
+        return str(self.a), str(self.b)
 
 
 @dataclass
@@ -45,26 +55,26 @@ class Disjointness:
     """The rows of disjointness: ordered pairs for ``different-disjoint`` (members of disjoint classes
     are different), told pairs for the check ``cax-dw``."""
 
-    #: (C, D) with C and D disjoint class expressions, both orders, each once: row -> origin
-    different: dict[Row, str] = field(default_factory=dict)
+    #: (C, D) with C and D disjoint class expressions, both orders, each once: row -> the expressions
+    different: dict[Row, tuple[Expr, Expr]] = field(default_factory=dict)
     #: the told pairs, each once (one axiom each way is one pair: its check was one rule), by the
     #: pair's terms in sorted order
     told: dict[Row, ToldPair] = field(default_factory=dict)
     _rules: tuple[list[Rule], list[Rule]] | None = field(default=None, init=False, repr=False, compare=False)
 
-    def add_different(self, row: Row | None, origin: str) -> bool:
+    def add_different(self, row: Row | None, a: Expr, b: Expr) -> bool:
         """Record an ordered pair of disjoint expressions; False when there is no row (owl:Thing)."""
         if row is None:
             return False
-        self.different.setdefault(row, origin)
+        self.different.setdefault(row, (a, b))
         self._rules = None
         return True
 
-    def add_told(self, row: Row | None, origin: str, labels: tuple[str, str]) -> bool:
+    def add_told(self, row: Row | None, a: Expr, b: Expr) -> bool:
         """Record a told pair for the check; False when there is no row (owl:Thing: a check of one class)."""
         if row is None:
             return False
-        self.told.setdefault(tuple(sorted(row)), ToldPair(row, origin, labels))
+        self.told.setdefault(tuple(sorted(row)), ToldPair(row, a, b))
         self._rules = None
         return True
 
@@ -77,18 +87,19 @@ class Disjointness:
         if not names or not any(c in names for row in self.different for c in row):
             return self  # the told pairs are among the ordered ones: nothing to rename
         out = Disjointness()
-        for (a, b), origin in self.different.items():
-            out.add_different((names.get(a, a), names.get(b, b)), origin)
+        for (a, b), exprs in self.different.items():
+            out.add_different((names.get(a, a), names.get(b, b)), *exprs)
         for pair in self.told.values():
             a, b = pair.row
-            out.add_told((names.get(a, a), names.get(b, b)), pair.origin, pair.labels)
+            out.add_told((names.get(a, a), names.get(b, b)), pair.a, pair.b)
         return out
 
     def rules(self) -> tuple[list[Rule], list[Rule]]:
         """(the ``different-disjoint`` rules, the ``cax-dw`` checks): one per row, made once."""
         if self._rules is None:
             different, check = schema_rule(DIFFERENT), schema_rule(CHECK)
-            self._rules = ([different.instantiate(row, origin) for row, origin in self.different.items()],
+            self._rules = ([different.instantiate(row, f"{a} and {b} are disjoint")
+                            for row, (a, b) in self.different.items()],
                            [check.instantiate(p.row, p.origin, p.labels) for p in self.told.values()])
         return self._rules
 

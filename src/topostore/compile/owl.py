@@ -155,7 +155,7 @@ class OwlCompiler:
         a, b, v1, v2 = "?a", "?b", "?v1", "?v2"
         for c1, c2 in self.disjoint_classes():
             for x, y in ((c1, c2), (c2, c1)):
-                self.disjointness.add_different(disjoint_row(x, y), f"{x} and {y} are disjoint")
+                self.disjointness.add_different(disjoint_row(x, y), x, y)
         for p in sorted(self.tb.characteristics.get("FunctionalProperty", ()), key=lambda t: t.value):
             if p in self.tb.data_properties:
                 self.emit("different-values", f"{nm(p)} is functional",
@@ -312,7 +312,7 @@ class OwlCompiler:
         for a, b in self.tb.equivalent:
             self.instantiate(class_row(a, b), f"{a} EquivalentTo {b}", "cax-eqc1", "cax-eqc2")
         for a, b in self.tb.disjoint:
-            if self.disjointness.add_told(disjoint_row(a, b), f"{a} DisjointWith {b}", (str(a), str(b))):
+            if self.disjointness.add_told(disjoint_row(a, b), a, b):
                 continue
             body = self.member("?x", a) + self.member("?x", b)
             if body:  # with owl:Thing: a check of one class
