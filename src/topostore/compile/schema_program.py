@@ -112,6 +112,9 @@ def _instances(rules: list[Rule]) -> dict[str, list[tuple[int, Row]]]:
 
 def _evaluables(generic: SchemaRule, rows: list[Row]) -> list[Rule]:
     """The generic rule once per head graph its rows' instantiations write (inferred, helper, or both)."""
+    r = generic.rule
+    if r.aux_head is not None or r.head is None:  # one graph whatever the row (different-disjoint's helper)
+        return [generic.evaluable(bool(r.aux_head))]
     graphs = {generic.row_aux(row) for row in rows}
     return [generic.evaluable(aux) for aux in (False, True) if aux in graphs]
 
