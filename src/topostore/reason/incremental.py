@@ -141,7 +141,9 @@ class MaintenanceState:
 
 
 class _Part:
-    """An attribute of the reasoner that is one of its maintenance parts (:class:`_Maintenance`)."""
+    """An attribute of the reasoner that is one of its maintenance parts (:class:`_Maintenance`): its
+    first read makes the parts, which then become the reasoner's own attributes (a step reads them
+    as any other)."""
 
     def __set_name__(self, owner: type, name: str) -> None:
         self.name = name
@@ -203,6 +205,8 @@ class IncrementalReasoner:
         """The maintenance parts, made on first use."""
         if self._parts is None:
             self._parts = _Maintenance(self)
+            # read as plain attributes from now on (a :class:`_Part` gives way to the instance's own)
+            self.__dict__.update(vars(self._parts))
         return self._parts
 
     # ------------------------------------------------------------------ entry point
