@@ -373,6 +373,14 @@ class RuleSet:
         return list(self.derived(("all-rules", id(self.disjointness)), lambda: self.rules + self._per_pair()[0]
                                  + self._per_pair()[1]))
 
+    def count_text(self) -> str:
+        """How many rules, and the pairs of disjoint classes held as rows (what the CLI reports)."""
+        text = f"{len(self.rules)} rules"
+        table = self.disjointness
+        if table is not None:
+            text += f" and {len(table.different)} ordered pairs of disjoint classes as rows"  # type: ignore[attr-defined]
+        return text
+
     def _per_pair(self) -> tuple[list[Rule], list[Rule]]:
         if self.disjointness is None:
             return [], []
