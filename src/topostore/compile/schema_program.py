@@ -57,6 +57,9 @@ class GenericProgram:
         self.drop(store)
         for name, rows in self.rows.items():
             generic = schema_rules()[name]
+            if not store.round_trips:  # in process: one bulk write of terms, no text to parse
+                store.add_scratch(generic.triple_terms(rows), generic.graph)
+                continue
             triples = [t for row in rows for t in generic.triples(row)]
             for start in range(0, len(triples), _CHUNK):
                 store.update(f"INSERT DATA {{ GRAPH {generic.graph} {{ {' '.join(triples[start:start + _CHUNK])} }} }}")
