@@ -393,3 +393,15 @@ def test_generic_equals_instantiated_beyond_owl_rl(tbox, abox) -> None:
     onto = Ontology()
     onto.load_data(PREFIXES + _declarations() + "\n" + "\n".join(tbox + abox) + "\n", "turtle")
     assert _materialize(onto, 0) == _materialize(onto, sys.maxsize)
+
+
+def test_the_rows_as_terms_are_the_rows_as_text() -> None:
+    """What a full REASON writes in process (terms) is what a store with round trips is sent (text)."""
+    from pyoxigraph import RdfFormat, parse
+
+    rows = {"cax-sco": [(f"<{NS}A>", f"<{NS}B>")], "cls-hv1": [(f"<{NS}R>", f"<{NS}p>", '"3.0"^^<http://www.w3.org/2001/XMLSchema#decimal>')],
+            "prp-spo2": [(f"<{NS}p>", f"<{NS}q>", f"<{NS}r>")]}
+    for name, table in rows.items():
+        generic = schema_rules()[name]
+        text = "\n".join(t for row in table for t in generic.triples(row))
+        assert list(generic.triple_terms(table)) == [q.triple for q in parse(text.encode(), format=RdfFormat.N_TRIPLES)]
