@@ -31,7 +31,7 @@ from .schema import Row, schema_rule
 DIFFERENT, CHECK = "different-disjoint", "cax-dw"
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, slots=True)
 class ToldPair:
     """A told pair of disjoint classes (``cax-dw``): its row and the two class expressions of the axiom
     (the axiom and the violation's message name them; written only when asked: a TBox of thousands
