@@ -61,7 +61,7 @@ def own_rules(rules: RuleSet) -> dict[str, list[Rule]]:
     """The rules compiled from the ontology (not the generic ones), by name."""
     generic = {(r.name, r.origin) for r in generic_rules()}
     out: dict[str, list[Rule]] = {}
-    for r in rules.rules:
+    for r in rules.all_rules:
         if (r.name, r.origin) not in generic:
             out.setdefault(r.name, []).append(r)
     return out

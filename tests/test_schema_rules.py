@@ -154,7 +154,7 @@ EVERY_KIND = PREFIXES + """\
 def test_the_compiled_rules_of_those_kinds_are_instantiations_with_their_axioms() -> None:
     onto = Ontology()
     onto.load_data(EVERY_KIND, "turtle")
-    rules = [r for r in onto.rules.rules if r.name in KINDS]
+    rules = [r for r in onto.rules.all_rules if r.name in KINDS]
     texts = {(r.name, r.origin, " ".join(a.text() for a in r.body), r.head and r.head.text()) for r in rules}
     p, q, r_, a, b = (f"<{NS}{n}>" for n in ("p", "q", "r", "A", "B"))
     assert ("cax-sco", "A SubClassOf B", f"?x {TYPE} {a} .", f"?x {TYPE} {b} .") in texts
@@ -221,7 +221,7 @@ def test_the_tutorial_maps_rules_of_those_kinds_are_the_ones_it_always_had() -> 
     onto = Ontology()
     onto.load(default_ontology())
     got = [(r.name, r.origin, " ".join(_short(a) for a in r.body), _short(r.head) if r.head else r.message)
-           for r in onto.rules.rules if r.name in KINDS]
+           for r in onto.rules.all_rules if r.name in KINDS]
     assert len(got) == len(TUTORIAL_RULES) and set(got) == TUTORIAL_RULES
 
 
@@ -393,3 +393,15 @@ def test_generic_equals_instantiated_beyond_owl_rl(tbox, abox) -> None:
     onto = Ontology()
     onto.load_data(PREFIXES + _declarations() + "\n" + "\n".join(tbox + abox) + "\n", "turtle")
     assert _materialize(onto, 0) == _materialize(onto, sys.maxsize)
+
+
+def test_the_rows_as_terms_are_the_rows_as_text() -> None:
+    """What a full REASON writes in process (terms) is what a store with round trips is sent (text)."""
+    from pyoxigraph import RdfFormat, parse
+
+    rows = {"cax-sco": [(f"<{NS}A>", f"<{NS}B>")], "cls-hv1": [(f"<{NS}R>", f"<{NS}p>", '"3.0"^^<http://www.w3.org/2001/XMLSchema#decimal>')],
+            "prp-spo2": [(f"<{NS}p>", f"<{NS}q>", f"<{NS}r>")]}
+    for name, table in rows.items():
+        generic = schema_rules()[name]
+        text = "\n".join(t for row in table for t in generic.triples(row))
+        assert list(generic.triple_terms(table)) == [q.triple for q in parse(text.encode(), format=RdfFormat.N_TRIPLES)]

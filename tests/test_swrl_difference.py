@@ -72,7 +72,7 @@ def test_difference_by_disjoint_classes_is_retracted_with_the_type() -> None:
 
 def test_disjoint_classes_make_plain_difference_not_entailed_only() -> None:
     o = family(":Man owl:disjointWith :Woman . :a a :Woman .")
-    rules = [r for r in o.rules.rules if r.name == "different-disjoint"]
+    rules = [r for r in o.rules.all_rules if r.name == "different-disjoint"]
     assert rules and all(r.head.p == str(DECLARED_DIFFERENT) for r in rules)
     assert not any(True for _ in o.store.triples(None, None, None, ENTAILED))
 

@@ -37,7 +37,7 @@ def check(files: tuple[str, ...], strict: bool, input_format: str | None) -> Non
     notices = onto.notices
     rules = onto.rules
     swrl = sorted({r.name for r in rules.rules if r.name.startswith("swrl:")})
-    click.echo(f"Loaded {len(files)} file(s): {len(swrl)} SWRL rule(s) compiled, {len(rules.rules)} rules in all")
+    click.echo(f"Loaded {len(files)} file(s): {len(swrl)} SWRL rule(s) compiled, {rules.count_text()} in all")
     if not notices:
         click.echo("Every axiom and rule is reasoned completely; nothing was repaired or skipped.")
         return

@@ -67,7 +67,7 @@ def reason(
     click.echo(f"Loaded {len(files)} file(s): {asserted} asserted triples in {loaded:.3f} s")
     click.echo(
         f"Reasoned in {report.stats.seconds:.3f} s ({report.stats.rounds} rounds, "
-        f"{len(onto.rules.rules)} rules): {inferred} inferred triples"
+        f"{onto.rules.count_text()}): {inferred} inferred triples"
     )
     for notice in report.incomplete:
         click.echo(f"warning: {notice}", err=True)
@@ -134,7 +134,7 @@ def rules(files: tuple[str, ...], show_all: bool, deltas: bool, step: str | None
         return
     generic = {(r.name, r.where(), r.head) for r in generic_rules()}
     groups: dict[str, list] = {g: [] for g in RULE_GROUPS}
-    for rule in onto.rules.rules:
+    for rule in onto.rules.all_rules:  # the pairs of disjoint classes too, one rule per row
         if (rule.name, rule.where(), rule.head) in generic:
             groups["Generic OWL 2 RL rules"].append(rule)
         elif rule.name.startswith("swrl:"):
@@ -155,7 +155,7 @@ def rules(files: tuple[str, ...], show_all: bool, deltas: bool, step: str | None
                 click.echo(_delta_rules(rule))
         shown += len(members)
     if show_all:
-        click.echo(_templates(onto.rules.rules))
+        click.echo(_templates(onto.rules.all_rules))
     hidden = "" if show_all else f", {len(groups['Generic OWL 2 RL rules'])} generic rules not shown (--all)"
     click.echo(f"# {shown} rules{hidden}")
 

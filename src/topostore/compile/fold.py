@@ -120,4 +120,10 @@ def _condition(c: Condition, names: dict[str, str]) -> Condition:
                                                                                 written=written)
 
 
-__all__ = ["fold_equivalents"]
+def equivalent_names(rules: list[Rule]) -> dict[str, str]:
+    """The anonymous classes :func:`fold_equivalents` replaces, with their named equivalents (what
+    the rows of a schema table held apart from the rules are renamed by)."""
+    return _equivalents(rules)
+
+
+__all__ = ["equivalent_names", "fold_equivalents"]

@@ -71,6 +71,9 @@ from .snippets import VALUE_CANDIDATE
 
 #: joined rules per SWRL rule beyond which its candidates stay materialised
 MAX_JOINED = 16
+#: ordered pairs of disjoint classes beyond which no ask is joined (each is a declared source: with
+#: more, every join would pass :data:`MAX_JOINED` but where the disjointness itself prunes nearly all)
+MAX_DISJOINT_SOURCES = 8 * MAX_JOINED
 
 _CANDIDATE, _DECLARED, _DIFFERENT, _TYPE = str(DIFFERENCE_CANDIDATE), str(DECLARED_DIFFERENT), str(DIFFERENT), str(TYPE)
 _VALUE_CANDIDATE = str(VALUE_CANDIDATE)
@@ -135,12 +138,21 @@ def _orphan_readers(groups: dict[str, list[Rule]]) -> list[Rule]:
     return orphans
 
 
-def inline_difference(rules: list[Rule], asks: list[DifferenceAsk]) -> list[Rule]:
+def inline_difference(rules: list[Rule], asks: list[DifferenceAsk], disjoint: list[Rule] | None = None,
+                      disjoint_rows: int = 0) -> list[Rule]:
     """``rules`` with each ask's conclusions joined with the sources, a SWRL rule's entailed-only
-    conclusion reading the value sources' answers for its pairs (see the module docstring)."""
+    conclusion reading the value sources' answers for its pairs (see the module docstring).
+
+    ``disjoint``: the ``different-disjoint`` sources, which the rule set holds as rows
+    (:mod:`.disjointness`), instantiated by the caller; ``disjoint_rows``: how many there are, to
+    be given instead of them past :data:`MAX_DISJOINT_SOURCES` (no ask is joined then, and nothing
+    is instantiated)."""
+    if disjoint_rows > MAX_DISJOINT_SOURCES:
+        return rules
     sources = _sources(rules)
     if sources is None or not asks:
         return rules
+    sources += disjoint or []
     declared = [s for s in sources if s.head.p == _DECLARED]
     values = [s for s in sources if s.head.p == _DIFFERENT]
     apart = _Apart(rules, declared)

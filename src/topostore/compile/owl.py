@@ -21,7 +21,8 @@ restrictions by kind, restriction subsumption) are not written here: they are th
 of ``rules/owl/`` instantiated with the axiom's row of its schema table (:mod:`.schema`); a full
 REASON reads those rows back from the rules and may run the generic rule over them instead
 (:mod:`.schema_program`).  An axiom without a row (an inverse property, a longer chain) keeps the
-rule written here.
+rule written here.  The pairs of disjoint classes are not even instantiated: they are rows
+(:mod:`.disjointness`), instantiated only for what maintains them rule by rule.
 """
 
 from __future__ import annotations
@@ -35,6 +36,7 @@ from ..rdf.vocab import NOTHING, SAME_AS, THING, TYPE
 from . import condition as cond
 from .condition import Condition
 from .datatypes import implied_ranges
+from .disjointness import Disjointness
 from .fillers import FillerIndex, Subsumption
 from .model import Expr, Prop, TBox
 from .negation import NegativeMembership
@@ -76,6 +78,8 @@ class OwlCompiler:
         self.restrictions = RestrictionRules(self)
         self.rules: list[Rule] = []
         self.notices: list[Notice] = []
+        #: the pairs of disjoint classes, as rows: no rule is emitted per pair (see :mod:`.disjointness`)
+        self.disjointness = Disjointness()
         #: the told disjoint pairs of named classes (read by the parts of the compiler)
         self.disjoint_pairs = [
             (a.node, b.node) for a, b in tbox.disjoint if a.is_named and b.is_named
@@ -85,6 +89,8 @@ class OwlCompiler:
         self.subsumption = Subsumption(self.told)
         #: :meth:`all_expressions`, once walked
         self._expressions: list[Expr] | None = None
+        #: :meth:`disjoint_classes`, once found
+        self._disjoint: list[tuple[Expr, Expr]] | None = None
         #: the rules of non-membership the complements need, a named part
         self.negation = NegativeMembership(self)
 
@@ -125,12 +131,15 @@ class OwlCompiler:
     def disjoint_classes(self) -> list[tuple[Expr, Expr]]:
         """Every pair of disjoint class expressions: disjointWith, AllDisjointClasses, the parts of a
         disjoint union, and an expression with its complement (owl:Thing left out: it says nothing
-        of a pair)."""
-        pairs = {(a.node, b.node): (a, b) for a, b in self.tb.disjoint}
-        for e in self.all_expressions():
-            if e.kind == "not":
-                pairs.setdefault((e.node, e.members[0].node), (e, e.members[0]))
-        return [(a, b) for a, b in pairs.values() if a.node != b.node and THING not in (a.node, b.node)]
+        of a pair).  Found once per compiler (the TBox is read whole before): the difference rows and
+        the negation part both ask, and a TBox of siblings made disjoint has tens of thousands."""
+        if self._disjoint is None:
+            pairs = {(a.node, b.node): (a, b) for a, b in self.tb.disjoint}
+            for e in self.all_expressions():
+                if e.kind == "not":
+                    pairs.setdefault((e.node, e.members[0].node), (e, e.members[0]))
+            self._disjoint = [(a, b) for a, b in pairs.values() if a.node != b.node and THING not in (a.node, b.node)]
+        return list(self._disjoint)
 
     def difference_rules(self) -> None:
         """When asked about a pair, conclude it is different if equality would be
@@ -146,7 +155,7 @@ class OwlCompiler:
         a, b, v1, v2 = "?a", "?b", "?v1", "?v2"
         for c1, c2 in self.disjoint_classes():
             for x, y in ((c1, c2), (c2, c1)):
-                self.instantiate(disjoint_row(x, y), f"{x} and {y} are disjoint", "different-disjoint")
+                self.disjointness.add_different(disjoint_row(x, y), x, y)
         for p in sorted(self.tb.characteristics.get("FunctionalProperty", ()), key=lambda t: t.value):
             if p in self.tb.data_properties:
                 self.emit("different-values", f"{nm(p)} is functional",
@@ -303,7 +312,7 @@ class OwlCompiler:
         for a, b in self.tb.equivalent:
             self.instantiate(class_row(a, b), f"{a} EquivalentTo {b}", "cax-eqc1", "cax-eqc2")
         for a, b in self.tb.disjoint:
-            if self.instantiate(disjoint_row(a, b), f"{a} DisjointWith {b}", "cax-dw", labels=(str(a), str(b))):
+            if self.disjointness.add_told(disjoint_row(a, b), a, b):
                 continue
             body = self.member("?x", a) + self.member("?x", b)
             if body:  # with owl:Thing: a check of one class

@@ -7,11 +7,12 @@ from pyoxigraph import NamedNode
 from ..stores.base import Store
 from .alike import merge_alike
 from .datatypes import empty_range_rules, range_rules
-from .fold import fold_equivalents
+from .disjointness import Disjointness
+from .fold import equivalent_names, fold_equivalents
 from .generic import generic_rules
 from .guard import guard_rules
 from .implied import simplify
-from .inline_difference import inline_difference, owl_asks
+from .inline_difference import MAX_DISJOINT_SOURCES, inline_difference, owl_asks
 from .owl import OwlCompiler
 from .owl_extras import (
     existential_domain_rules,
@@ -22,7 +23,7 @@ from .owl_extras import (
     unsatisfiable_rules,
 )
 from .profile import all_uses, profile
-from .rule import RuleSet
+from .rule import Rule, RuleSet
 from .swrl import SwrlCompiler
 from .tbox_reader import TBoxReader
 from .unsatisfiable import unsatisfiable
@@ -62,8 +63,10 @@ def compile_ontology(store: Store, graph: NamedNode) -> RuleSet:
     rules.add(swrl.query_rules)
     rules.queries = dict(swrl.queries)
     rules.notices += swrl.notices
+    disjointness = owl.disjointness.renamed(equivalent_names(rules.rules))
+    rules.disjointness = disjointness if len(disjointness) else None
     rules.rules = fold_equivalents(rules.rules)  # before the joins: they then see the named classes
-    rules.rules = inline_difference(rules.rules, swrl.asks + owl_asks(rules.rules))
+    rules.rules = inline_difference(rules.rules, swrl.asks + owl_asks(rules.rules), *_disjoint_sources(disjointness))
     simplified = RuleSet()
     simplified.add(simplify(rules.rules))  # rules that differed only in implied atoms become one
     rules.rules = simplified.rules
@@ -74,3 +77,10 @@ def compile_ontology(store: Store, graph: NamedNode) -> RuleSet:
     rules.notices += owl.notices
     guard_rules(rules)
     return rules
+
+
+def _disjoint_sources(disjointness: Disjointness) -> tuple[list[Rule] | None, int]:
+    """The ``different-disjoint`` rules :func:`.inline_difference.inline_difference` may join, and how
+    many rows there are (past :data:`.inline_difference.MAX_DISJOINT_SOURCES` none is made)."""
+    count = len(disjointness.different)
+    return (disjointness.rules()[0] if count <= MAX_DISJOINT_SOURCES else None), count

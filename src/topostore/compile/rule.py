@@ -302,6 +302,9 @@ class RuleSet:
     notices: list = field(default_factory=list)
     #: SQWRL queries of the ontology by name (compile.sqwrl.SqwrlQuery), run like named queries
     queries: dict = field(default_factory=dict)
+    #: the pairs of disjoint classes as rows (:class:`.disjointness.Disjointness`), None when there are
+    #: none: :attr:`rules` holds no rule per pair, :attr:`inference_rules` and :attr:`checks` do
+    disjointness: object | None = None
     #: (the list :meth:`add` last appended to, its length then, its rules by :func:`_bucket`)
     _seen: tuple | None = field(default=None, init=False, repr=False, compare=False)
     #: what :meth:`derived` made from :attr:`rules`: key -> (the rules list, its length, the value)
@@ -347,8 +350,38 @@ class RuleSet:
 
     @property
     def inference_rules(self) -> list[Rule]:
-        return [r for r in self.rules if not r.is_check]
+        """The inference rules, with a rule per ordered pair of disjoint classes (what a robot step
+        maintains rule by rule)."""
+        return list(self.derived(("inference-rules", id(self.disjointness)), lambda: [
+            r for r in self.rules if not r.is_check] + self._per_pair()[0]))
 
     @property
     def checks(self) -> list[Rule]:
-        return [r for r in self.rules if r.is_check]
+        """The checks, with a ``cax-dw`` check per told pair of disjoint classes after the others."""
+        return list(self.derived(("checks", id(self.disjointness)), lambda: [
+            r for r in self.rules if r.is_check] + self._per_pair()[1]))
+
+    @property
+    def base_checks(self) -> list[Rule]:
+        """The checks other than the disjointness of a told pair (:attr:`checks` begins with them)."""
+        return list(self.derived(("base-checks",), lambda: [r for r in self.rules if r.is_check]))
+
+    @property
+    def all_rules(self) -> list[Rule]:
+        """Every rule, the instantiations of the disjointness rows included (what an explanation and
+        ``topostore rules --all`` read)."""
+        return list(self.derived(("all-rules", id(self.disjointness)), lambda: self.rules + self._per_pair()[0]
+                                 + self._per_pair()[1]))
+
+    def count_text(self) -> str:
+        """How many rules, and the pairs of disjoint classes held as rows (what the CLI reports)."""
+        text = f"{len(self.rules)} rules"
+        table = self.disjointness
+        if table is not None:
+            text += f" and {len(table.different)} ordered pairs of disjoint classes as rows"  # type: ignore[attr-defined]
+        return text
+
+    def _per_pair(self) -> tuple[list[Rule], list[Rule]]:
+        if self.disjointness is None:
+            return [], []
+        return self.disjointness.rules()  # type: ignore[attr-defined]

@@ -27,14 +27,14 @@ message names the row's terms.
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Iterable, Iterator, Sequence
 from dataclasses import dataclass, field, replace
 from functools import cache, cached_property, lru_cache
 
-from pyoxigraph import NamedNode
+from pyoxigraph import NamedNode, Triple
 
 from ..errors import RuleCompileError
-from ..rdf.terms import sparql
+from ..rdf.terms import parse_term, sparql
 from ..rdf.vocab import INTERNAL, SCHEMA_PREFIX, SKOLEM_PREFIX, THING, TYPE
 from . import condition as cond
 from .generic import parse_rule_text
@@ -147,6 +147,18 @@ class SchemaRule:
         bound = dict(zip(self.variables, row))
         return [f"{bound.get(a.s, a.s)} {bound.get(a.p, a.p)} {bound.get(a.o, a.o)} ." for a in self.schema]
 
+    def triple_terms(self, rows: Iterable[Row]) -> Iterator[Triple]:
+        """The schema atoms of ``rows`` as RDF triples (what :meth:`triples` writes as text), for a bulk
+        write: a TBox of thousands of disjoint siblings has millions of rows, and text to parse per row
+        cost most of a full REASON's write."""
+        plan = [tuple((term, None) if term.startswith("?") else (None, _term(term)) for term in (a.s, a.p, a.o))
+                for a in self.schema]
+        index = {v: i for i, v in enumerate(self.variables)}
+        for row in rows:
+            for atom in plan:
+                s, p, o = (_term(row[index[var]]) if var is not None else fixed for var, fixed in atom)
+                yield Triple(s, p, o)
+
     @property
     def graph(self) -> NamedNode:
         """The graph a full REASON writes this rule's rows into (one per rule: rules sharing a table,
@@ -205,6 +217,14 @@ class SchemaRule:
         where = "helper" if aux else "inferred"
         return Rule(r.name, f"{r.origin} (generic: the rows of {self.table}, conclusions in the {where} graph)",
                     r.body, r.head, conditions, r.filter_reads, r.violation, r.message, aux, r.stratum)
+
+
+def _term(text: str):
+    """The RDF term a row's SPARQL text names (:func:`..rdf.terms.parse_term`, kept per text)."""
+    term = parse_term(text)
+    if term is None:
+        raise RuleCompileError(f"a schema row term is not an RDF term: {text!r}")
+    return term
 
 
 @lru_cache(maxsize=1 << 16)

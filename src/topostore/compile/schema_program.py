@@ -12,6 +12,11 @@ the passes after compilation did (a class folded into its anonymous equivalent, 
 duplicate) is kept, and the generic rule over those rows is, by construction, the union of the rules
 it replaces.  A chaining rule's rows (cax-sco, prp-spo1) are closed first: the hierarchy is then
 one row deep, and its closure takes one evaluation instead of one round per level.
+
+The pairs of disjoint classes are not compiled rules at all: the rule set holds them as rows
+(:mod:`.disjointness`), and the program takes them from there (the generic ``different-disjoint`` above
+the threshold, else its instantiations); the told pairs' check runs over the rows in
+:func:`..reason.consistency.check_consistency`.
 """
 
 from __future__ import annotations
@@ -21,6 +26,7 @@ from dataclasses import dataclass, field, replace
 from pyoxigraph import NamedNode
 
 from ..stores.base import Store
+from .disjointness import DIFFERENT
 from .rule import Rule, RuleSet
 from .schema import Row, SchemaRule, schema_rules
 
@@ -51,6 +57,9 @@ class GenericProgram:
         self.drop(store)
         for name, rows in self.rows.items():
             generic = schema_rules()[name]
+            if not store.round_trips:  # in process: one bulk write of terms, no text to parse
+                store.add_scratch(generic.triple_terms(rows), generic.graph)
+                continue
             triples = [t for row in rows for t in generic.triples(row)]
             for start in range(0, len(triples), _CHUNK):
                 store.update(f"INSERT DATA {{ GRAPH {generic.graph} {{ {' '.join(triples[start:start + _CHUNK])} }} }}")
@@ -89,9 +98,9 @@ def closed(rows: list[Row]) -> list[Row]:
 def _instances(rules: list[Rule]) -> dict[str, list[tuple[int, Row]]]:
     """Per generic inference rule, the compiled rules that are its instantiations: (index, row).
 
-    A check (cax-dw) stays instantiated: a full REASON runs the checks after the materialisation,
-    once the schema graphs are dropped, and a check whose classes have no member is skipped
-    without a query (:func:`..reason.consistency.one_graphs`), so its instantiations cost little."""
+    A check is left as it is: a full REASON runs the checks after the materialisation, once the
+    schema graphs are dropped (the told pairs of disjoint classes, held as rows, are checked there
+    in one query over the pairs whose classes have members)."""
     generic = schema_rules()
     found: dict[str, list[tuple[int, Row]]] = {}
     for i, rule in enumerate(rules):
@@ -106,6 +115,9 @@ def _instances(rules: list[Rule]) -> dict[str, list[tuple[int, Row]]]:
 
 def _evaluables(generic: SchemaRule, rows: list[Row]) -> list[Rule]:
     """The generic rule once per head graph its rows' instantiations write (inferred, helper, or both)."""
+    r = generic.rule
+    if r.aux_head is not None or r.head is None:  # one graph whatever the row (different-disjoint's helper)
+        return [generic.evaluable(bool(r.aux_head))]
     graphs = {generic.row_aux(row) for row in rows}
     return [generic.evaluable(aux) for aux in (False, True) if aux in graphs]
 
@@ -130,6 +142,7 @@ def _full_program(ruleset: RuleSet, threshold: int | None) -> GenericProgram:
     rules = ruleset.rules
     program = GenericProgram(ruleset)
     replaced: dict[int, list[Rule]] = {}
+    held = _held_rows(ruleset, threshold, program)
     for name, found in _instances(rules).items():
         generic = schema_rules()[name]
         if len(found) <= (rows_threshold(generic) if threshold is None else threshold):
@@ -139,10 +152,26 @@ def _full_program(ruleset: RuleSet, threshold: int | None) -> GenericProgram:
         first = found[0][0]
         replaced[first] = _evaluables(generic, rows)
         replaced.update({i: [] for i, _ in found[1:]})
-    if replaced:
+    if replaced or ruleset.disjointness is not None:
         new = [r for i, rule in enumerate(rules) for r in replaced.get(i, [rule])]
-        program.rules = replace(ruleset, rules=new)
+        # the rows held apart join as the other tables' rules do; the checks stay the rule set's
+        # (:func:`..reason.consistency.check_consistency` runs the told pairs' check generically)
+        program.rules = replace(ruleset, rules=new + held, disjointness=None)
     return program
+
+
+def _held_rows(ruleset: RuleSet, threshold: int | None, program: GenericProgram) -> list[Rule]:
+    """The inference rules of the rows the rule set holds apart (:mod:`.disjointness`): the generic
+    rule over them (its rows recorded in ``program``) above the threshold, else their instantiations."""
+    table = ruleset.disjointness
+    if table is None or not table.different:
+        return []
+    generic = schema_rules()[DIFFERENT]
+    rows = list(table.different)
+    if len(rows) <= (rows_threshold(generic) if threshold is None else threshold):
+        return table.rules()[0]
+    program.rows[DIFFERENT] = rows
+    return _evaluables(generic, rows)
 
 
 __all__ = ["GENERIC_ROWS", "GenericProgram", "closed", "full_program", "rows_threshold"]

@@ -103,7 +103,7 @@ class View:
     @property
     def explainer(self) -> Explainer:
         if self._explainer is None:
-            self._explainer = Explainer(self.onto.store, self.onto.rules.rules, self.onto.short)
+            self._explainer = Explainer(self.onto.store, self.onto.rules.all_rules, self.onto.short)
         return self._explainer
 
     def graphs(self) -> list[NamedNode]:

@@ -208,7 +208,7 @@ class Prototypes:
             cls = self.names.get(t)
             return f"(any {onto.short(cls)})" if cls is not None else onto.short(t)
 
-        explainer = _PrototypeExplainer(self.store, self.rules.rules, short, TBoxReader(onto.store, ASSERTED))
+        explainer = _PrototypeExplainer(self.store, self.rules.all_rules, short, TBoxReader(onto.store, ASSERTED))
         tree = _assumed(explainer.explain(Triple(proto, TYPE, sup)).to_dict())
         return {"triple": f"{onto.short(sub)} rdfs:subClassOf {onto.short(sup)}", "status": "inferred",
                 "rule": "classification", "origin": f"every {onto.short(sub)} is a {onto.short(sup)}",

@@ -17,9 +17,12 @@ from itertools import islice
 from pyoxigraph import Literal, NamedNode
 
 from ..compile.condition import TEST
+from ..compile.disjointness import CHECK, Disjointness, check_query
 from ..compile.generic import PREFIXES
 from ..compile.owl_restrictions import term_before
 from ..compile.rule import ReadKey, Rule, RuleSet
+from ..compile.schema import Row, schema_rule
+from ..rdf.terms import sparql
 from ..rdf.vocab import ASSERTED, AUX, INFERRED, TYPE
 from ..stores.base import Store, unskolem
 from .present import KeyGraphs, key_graphs
@@ -124,8 +127,10 @@ def _members(store: Store, atom, graphs: dict[ReadKey, NamedNode]) -> int:
 
 
 def check_keys(rules: RuleSet) -> set[ReadKey]:
-    """The read keys of the checks' body atoms."""
-    return {atom.read_key() for rule in rules.checks for atom in rule.body}
+    """The read keys of the checks' body atoms (the told pairs of disjoint classes read their classes)."""
+    keys = {atom.read_key() for rule in rules.base_checks for atom in rule.body}
+    table = rules.disjointness
+    return keys | {("t", c) for c in table.classes()} if table is not None else keys
 
 
 def one_graphs(rule: Rule, found: KeyGraphs) -> dict[ReadKey, NamedNode] | None:
@@ -156,14 +161,42 @@ def check_consistency(store: Store, rules: RuleSet, keys: KeyGraphs | None = Non
 
     ``keys``: the graphs of :data:`GRAPHS` holding facts of each key the checks read
     (:func:`.present.key_graphs`, asked here when not given).  ``known``: the matches of some checks
-    (by their index in ``rules.checks``) found already, beside the rules' fixpoint (:mod:`.early_reads`)."""
-    if not rules.checks:
+    (by their index in ``rules.checks``) found already, beside the rules' fixpoint (:mod:`.early_reads`).
+
+    The told pairs of disjoint classes (after the other checks in ``rules.checks``) are checked in one
+    query (:func:`disjoint_violations`) unless all were found already: their checks are then never
+    made one per pair."""
+    base = rules.base_checks
+    table = rules.disjointness
+    told = len(table.told) if table is not None else 0
+    if not base and not told:
         return []
     if keys is None:
         keys = key_graphs(store, check_keys(rules), GRAPHS)
     known = known or {}
-    matches = [known[j] if j in known else check_rows(store, rule, keys) for j, rule in enumerate(rules.checks)]
-    return violations(rules.checks, matches)
+    if told and not all(j in known for j in range(len(base), len(base) + told)):
+        matches = [known[j] if j in known else check_rows(store, rule, keys) for j, rule in enumerate(base)]
+        return violations(base, matches) + disjoint_violations(store, table, keys)
+    checks = rules.checks
+    matches = [known[j] if j in known else check_rows(store, rule, keys) for j, rule in enumerate(checks)]
+    return violations(checks, matches)
+
+
+def disjoint_violations(store: Store, table: Disjointness, keys: KeyGraphs) -> list[Violation]:
+    """The violations of the told pairs of disjoint classes: one query over the pairs whose classes
+    both have facts, each violation named as the pair's own check (``cax-dw``) names it."""
+    pairs = table.told_among(key for (kind, key), where in keys.items() if kind == "t" and where)
+    if not pairs:
+        return []
+    by_row = {pair.row: pair for pair in pairs}
+    found: dict[Row, list[dict]] = {}
+    for solution in store.query(check_query(pairs, MAX_REPORTED * len(pairs)), graphs=GRAPHS, prefixes=PREFIXES):
+        pair = by_row.get((sparql(solution["c"]), sparql(solution["d"])))
+        if pair is not None and len(found.setdefault(pair.row, [])) < MAX_REPORTED:
+            found[pair.row].append({"x": solution["x"]})
+    check = schema_rule(CHECK)
+    instantiated = [check.instantiate(row, by_row[row].origin, by_row[row].labels) for row in found]
+    return violations(instantiated, list(found.values()))
 
 
 def check_rows(store: Store, rule: Rule, keys: KeyGraphs) -> list[dict]:

@@ -89,6 +89,7 @@ from .compiled_step import MAX_PROGRAMS, CompiledStep
 from .component import WHOLE_ROUNDS
 from .consistency import Violation, check_consistency
 from .dred import Deletion, can_prove
+from .early_reads import EARLY_CHECKS
 from .entailed import refresh_entailed, refresh_touched, watched_forms
 from .flips import Flips
 from .materialize import Materializer
@@ -139,6 +140,18 @@ class MaintenanceState:
     asserted: Present = field(default_factory=lambda: (set(), set()))
 
 
+class _Part:
+    """An attribute of the reasoner that is one of its maintenance parts (:class:`_Maintenance`): its
+    first read makes the parts, which then become the reasoner's own attributes (a step reads them
+    as any other)."""
+
+    def __set_name__(self, owner: type, name: str) -> None:
+        self.name = name
+
+    def __get__(self, obj: IncrementalReasoner | None, owner: type | None = None):
+        return self if obj is None else getattr(obj.parts, self.name)
+
+
 class IncrementalReasoner:
     """Keeps the inferred graphs of one store equal to the closure of its asserted graph.
 
@@ -155,40 +168,46 @@ class IncrementalReasoner:
         self.ruleset = rules
         self.max_change_share = max_change_share
         self.state = MaintenanceState()
-        self.rules = rules.inference_rules
-        self.monotone = [i for i, r in enumerate(self.rules) if is_monotone(r)]
-        self._monotone_set = set(self.monotone)
-        #: candidate rules a full REASON evaluates without the pairs whose conclusion is known, and the
-        #: keys whose loss (derived; asserted) makes maintenance ask those pairs again (:mod:`.negation`)
-        self.deferred = sorted(deferred(self.rules))
-        self._completion = Completion(self.rules)
         #: set by a compiled step that may have lost such a key: the REASON is then run in full
         self._incomplete = False
-        self.triggers = Triggers(self.rules)
-        self.checks = rules.checks
-        self.check_triggers = Triggers(self.checks)
-        self.negated = [r for r in self.rules if not is_monotone(r)]
-        self.provers = [i for i in self.monotone if can_prove(self.rules[i])]
-        #: the keys some rule or check body reads: the only ones :attr:`MaintenanceState.present` is asked about
-        self._needed = self.triggers.needed_keys() | self.check_triggers.needed_keys()
-        self.checks_monotone = all(not c.negates and c.stratum == 0 for c in self.checks)
-        self.requests = RequestQueue(store, self.rules)
+        #: the keys some rule or check body reads: the only ones :attr:`MaintenanceState.present` is asked
+        #: about (found without the rule per pair of disjoint classes: :func:`needed_keys`)
+        self._needed = needed_keys(rules)
         store.hold_scratch(DROPPED)  # only this reasoner reads them, and it drops them after every REASON
-        self.flips = Flips(self.requests, self.triggers, self._monotone_set)
-        self.deletion = Deletion(self.requests, self.triggers, self.monotone, self.provers)
         #: what the reads after maintenance decided (the checks' ASK, whether a negated rule may match), by
         #: the shape of the change (:func:`.changed.shape`), until the next full run
         self._decided = Decisions(MAX_PROGRAMS)
-        #: the scratch graphs of the REASON under way, read once by the reads after maintenance
-        self.changed = ChangedGraphs(store, self.requests.flush, watched_forms(rules))
-        #: whether a change may make a check or a negated-premise rule match (:mod:`.change_checks`)
-        self.change_checks = ChangeChecks(store, self.negated, self.checks, self.check_triggers, self.changed,
-                                          self._decided)
-        self.change_checks.state = self.state
-        #: the compiled step of each kind of change (see :mod:`.compiled_step`)
-        self.step = CompiledStep(store, rules, self.monotone, self.requests, self.flips, self.change_checks)
+        #: the parts of maintenance, made by the first REASON that maintains (:attr:`parts`)
+        self._parts: _Maintenance | None = None
         #: (individual, class) pairs whose type fact the last REASON may have changed; None after a full run
         self.touched_types: list[tuple[Term, NamedNode]] | None = None
+
+    rules = _Part()
+    monotone = _Part()
+    _monotone_set = _Part()
+    deferred = _Part()
+    _completion = _Part()
+    triggers = _Part()
+    checks = _Part()
+    check_triggers = _Part()
+    negated = _Part()
+    provers = _Part()
+    checks_monotone = _Part()
+    requests = _Part()
+    flips = _Part()
+    deletion = _Part()
+    changed = _Part()
+    change_checks = _Part()
+    step = _Part()
+
+    @property
+    def parts(self) -> _Maintenance:
+        """The maintenance parts, made on first use."""
+        if self._parts is None:
+            self._parts = _Maintenance(self)
+            # read as plain attributes from now on (a :class:`_Part` gives way to the instance's own)
+            self.__dict__.update(vars(self._parts))
+        return self._parts
 
     # ------------------------------------------------------------------ entry point
     def reason(self, added: Collection[Triple] = (), removed: Collection[Triple] = (), mode: str = "auto",
@@ -254,18 +273,19 @@ class IncrementalReasoner:
         """Recompute everything from the asserted graph; records the state maintenance starts from."""
         self.state.ready = False
         self.touched_types = None
-        self.flips.forget()
-        self.step.programs.clear()  # compiled against the keys with facts, which a full run recounts
-        self._completion.forget()
+        if self._parts is not None:
+            self.flips.forget()
+            self.step.programs.clear()  # compiled against the keys with facts, which a full run recounts
+            self._completion.forget()
+            self._clear_scratch()
         self._decided.clear()
-        self._clear_scratch()
         program = full_program(self.ruleset)  # large schema tables as one generic rule each
         failed = True
         with counting_asserted(self.store) as asserted:  # beside the rules where the store overlaps
             try:
                 program.write(self.store)
                 materializer = Materializer(self.store, program.rules, profile=profile)
-                materializer.checks = self.ruleset.checks  # those final early run beside the fixpoint
+                materializer.checks = early_checks(self.ruleset)  # those final early run beside the fixpoint
                 stats = materializer.run(count=False)  # counted after the fixpoint (close_full)
                 failed = False
             finally:
@@ -287,7 +307,8 @@ class IncrementalReasoner:
         # (a negated premise may have fired and stopped matching since, so ask the run)
         self.state = MaintenanceState(True, not materializer.upper_derived, closed.asserted, violations,
                                       with_facts(keys), with_facts(keys, ASSERTED))
-        self.change_checks.state = self.state
+        if self._parts is not None:
+            self.change_checks.state = self.state
         stats.seconds += time.perf_counter() - start
         return stats, violations
 
@@ -421,6 +442,61 @@ class IncrementalReasoner:
         self.changed.forget()
         self.requests.drop(DROPPED)
         self.requests.flush()
+
+
+class _Maintenance:
+    """What maintenance reads of the rules: the indexes of the maintained rules and checks (the rule
+    per pair of disjoint classes among them), the request queue, the flips, the deletion phases, the
+    reads after maintenance and the compiled step.
+
+    Made by the first REASON that maintains: a full REASON needs none of it, and on a TBox of
+    thousands of disjoint siblings the rules per pair are millions (:mod:`..compile.disjointness`)."""
+
+    def __init__(self, reasoner: IncrementalReasoner) -> None:
+        rules = reasoner.ruleset
+        store = reasoner.store
+        self.rules = rules.inference_rules
+        self.monotone = [i for i, r in enumerate(self.rules) if is_monotone(r)]
+        self._monotone_set = set(self.monotone)
+        #: candidate rules a full REASON evaluates without the pairs whose conclusion is known, and the
+        #: keys whose loss (derived; asserted) makes maintenance ask those pairs again (:mod:`.negation`)
+        self.deferred = sorted(deferred(self.rules))
+        self._completion = Completion(self.rules)
+        self.triggers = Triggers(self.rules)
+        self.checks = rules.checks
+        self.check_triggers = Triggers(self.checks)
+        self.negated = [r for r in self.rules if not is_monotone(r)]
+        self.provers = [i for i in self.monotone if can_prove(self.rules[i])]
+        self.checks_monotone = all(not c.negates and c.stratum == 0 for c in self.checks)
+        self.requests = RequestQueue(store, self.rules)
+        self.flips = Flips(self.requests, self.triggers, self._monotone_set)
+        self.deletion = Deletion(self.requests, self.triggers, self.monotone, self.provers)
+        #: the scratch graphs of the REASON under way, read once by the reads after maintenance
+        self.changed = ChangedGraphs(store, self.requests.flush, watched_forms(rules))
+        #: whether a change may make a check or a negated-premise rule match (:mod:`.change_checks`)
+        self.change_checks = ChangeChecks(store, self.negated, self.checks, self.check_triggers, self.changed,
+                                          reasoner._decided)
+        self.change_checks.state = reasoner.state
+        #: the compiled step of each kind of change (see :mod:`.compiled_step`)
+        self.step = CompiledStep(store, rules, self.monotone, self.requests, self.flips, self.change_checks)
+
+
+def early_checks(rules: RuleSet) -> list[Rule]:
+    """The checks a full REASON may start beside its fixpoint (:mod:`.early_reads`): every check when
+    they are few, else those other than the told pairs of disjoint classes (which are then checked in
+    one query after the fixpoint, and never made one per pair)."""
+    table = rules.disjointness
+    if table is None or len(table.told) <= EARLY_CHECKS:
+        return rules.checks
+    return rules.base_checks
+
+
+def needed_keys(rules: RuleSet) -> set:
+    """The keys the maintained rules' and checks' bodies read: the rule set's own rules, and for the
+    rows of disjoint classes one rule and one check per class (a row's keys are its classes' keys)."""
+    table = rules.disjointness
+    extra = table.representatives() if table is not None else []  # type: ignore[attr-defined]
+    return Triggers([r for r in rules.rules] + extra).needed_keys()
 
 
 __all__ = ["IncrementalReasoner", "MaintenanceState", "DEFAULT_MAX_CHANGE_SHARE", "MODES", "can_prove", "check_mode",

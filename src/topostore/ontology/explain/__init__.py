@@ -23,7 +23,7 @@ def explain(onto: Ontology, s: str | Term, p: str | Term, o: object) -> Explanat
     if onto.report is None:
         onto.reason()
     t = resolve_triple(onto, s, p, o)
-    return Explainer(onto.store, onto.rules.rules, onto.short).explain(t)
+    return Explainer(onto.store, onto.rules.all_rules, onto.short).explain(t)
 
 
 __all__ = ["Explanation", "Explainer", "explain", "parse_triple_text", "resolve_triple", "unify", "constant"]

@@ -1,0 +1,89 @@
+"""Pairs of disjoint classes held as rows (compile/disjointness.py): the rule set does not grow with the
+pairs, and what the pairs conclude (difference, inconsistency) is the same through the generic rule and
+check of a full REASON as through the per-pair rules a robot step maintains."""
+
+from __future__ import annotations
+
+import warnings
+
+import pytest
+
+from topostore import Ontology
+from topostore.compile.schema_program import GENERIC_ROWS
+
+NS = "http://example.org/d#"
+PREFIXES = f"""@prefix : <{NS}> .
+@prefix owl: <http://www.w3.org/2002/07/owl#> .
+@prefix rdf: <http://www.w3.org/1999/02/22-rdf-syntax-ns#> .
+@prefix rdfs: <http://www.w3.org/2000/01/rdf-schema#> .
+"""
+
+
+def siblings(k: int) -> str:
+    """``k`` sibling classes made pairwise disjoint (one axiom per pair), a functional property."""
+    lines = [":Thing0 a owl:Class .", ":owner a owl:ObjectProperty , owl:FunctionalProperty ."]
+    lines += [f":S{i} a owl:Class ; rdfs:subClassOf :Thing0 ." for i in range(k)]
+    lines += [f":S{i} owl:disjointWith :S{j} ." for i in range(k) for j in range(i + 1, k)]
+    return PREFIXES + "\n".join(lines) + "\n"
+
+
+def loaded(text: str) -> Ontology:
+    onto = Ontology(prefix=NS)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        onto.load_data(text, "turtle")
+    return onto
+
+
+@pytest.mark.parametrize("k", [10, 40])
+def test_the_rule_set_does_not_grow_with_the_pairs(k: int) -> None:
+    onto = loaded(siblings(k))
+    pairs = k * (k - 1) // 2
+    rules = onto.rules
+    names = [r.name for r in rules.rules]
+    assert "different-disjoint" not in names and "cax-dw" not in names
+    assert len(rules.rules) <= 60 + 2 * k  # the subclass axioms and the fixed rules: linear in the classes
+    assert len(rules.disjointness.different) == 2 * pairs and len(rules.disjointness.told) == pairs
+    # the maintained rules and checks have one per row, as a robot step needs them
+    assert sum(r.name == "different-disjoint" for r in rules.inference_rules) == 2 * pairs
+    assert sum(r.name == "cax-dw" for r in rules.checks) == pairs
+
+
+def test_an_inconsistency_found_by_the_generic_check_names_the_axiom() -> None:
+    k = 12  # 66 told pairs: more than a full REASON keeps instantiated
+    assert k * (k - 1) // 2 > GENERIC_ROWS
+    onto = loaded(siblings(k) + ":x a :S3 , :S7 .\n:y a :S1 .\n")
+    report = onto.reason(mode="full")
+    assert not report.consistent
+    assert [(v.rule, v.axiom, v.message) for v in report.violations] == [
+        ("cax-dw", "S3 DisjointWith S7", "x is in the disjoint classes S3 and S7")]
+
+
+def test_a_step_reaching_a_pair_equals_a_reason_from_scratch() -> None:
+    onto = loaded(siblings(12) + ":x a :S1 .\n:y a :S2 .\n:z a :S5 .\n")
+    assert onto.reason(mode="full").consistent
+    # a step: x becomes a member of S4 as well, an inconsistency found by a per-pair check
+    onto.add_type("x", "S4")
+    step = onto.reason()
+    assert step.stats.mode == "incremental"
+    fresh = loaded(siblings(12) + ":x a :S1 , :S4 .\n:y a :S2 .\n:z a :S5 .\n").reason(mode="full")
+    assert [(v.rule, v.axiom, v.message) for v in step.violations] == \
+        [(v.rule, v.axiom, v.message) for v in fresh.violations] == [
+            ("cax-dw", "S1 DisjointWith S4", "x is in the disjoint classes S1 and S4")]
+    onto.remove_type("x", "S4")
+    assert onto.reason().consistent
+
+
+def test_members_of_disjoint_classes_are_different_in_a_full_reason_and_a_step() -> None:
+    # a functional property with two values of disjoint classes: they cannot be one individual
+    text = siblings(12) + ":x :owner :a , :b .\n:a a :S2 .\n"
+    onto = loaded(text + ":b a :S9 .\n")
+    report = onto.reason(mode="full")
+    assert not report.consistent and {v.rule for v in report.violations} == {"prp-fp"}
+    onto.remove_type("b", "S9")
+    assert onto.reason().consistent  # a and b may be one individual now
+    onto.add_type("b", "S9")
+    step = onto.reason()
+    fresh = loaded(text + ":b a :S9 .\n").reason(mode="full")
+    assert [str(v) for v in step.violations] == [str(v) for v in fresh.violations]
+    assert not step.consistent
