@@ -22,7 +22,9 @@ atom has too many matches, and the caller's SPARQL text runs).
 
 from __future__ import annotations
 
+import functools
 from collections.abc import Callable, Collection, Iterator
+from types import CodeType
 
 from .atom_shape import Shape
 
@@ -148,8 +150,16 @@ class _Code:
         return "{" + ", ".join(f"{var!r}: {local}" for var, local in self.names.items()) + "}"
 
     def function(self, name: str) -> Callable:
-        exec(compile("\n".join(self.lines), f"<topostore {name}>", "exec"), self.namespace)  # noqa: S102 - made above
+        exec(_compiled("\n".join(self.lines), name), self.namespace)  # noqa: S102 - made above
         return self.namespace[name]  # type: ignore[return-value]
+
+
+@functools.lru_cache(maxsize=4096)
+def _compiled(text: str, name: str) -> CodeType:
+    """The code object of a generated text, compiled once: the text names no term (constants are the
+    namespace's ``c0``, ``c1``, ...), so rules of one shape share it, and Python's compiler is most of
+    what a first step spends making its look-ups."""
+    return compile(text, f"<topostore {name}>", "exec")
 
 
 def interpreted(shapes: list[Shape], order: list[int], graphs: list[tuple], read: Callable) -> Join:
