@@ -87,3 +87,29 @@ def test_members_of_disjoint_classes_are_different_in_a_full_reason_and_a_step()
     fresh = loaded(text + ":b a :S9 .\n").reason(mode="full")
     assert [str(v) for v in step.violations] == [str(v) for v in fresh.violations]
     assert not step.consistent
+
+
+@pytest.mark.parametrize(("busy", "other"), [((0, 1), (10, 11)), ((5, 6), (2, 9))])
+def test_a_busy_violated_pair_does_not_hide_another(busy: tuple[int, int], other: tuple[int, int]) -> None:
+    """The one-query check's LIMIT counts rows: 400 individuals in one pair once took every row, and the
+    other violated pair went unnamed."""
+    lines = [f":x{n} a :S{busy[0]} , :S{busy[1]} ." for n in range(400)]
+    lines.append(f":y a :S{other[0]} , :S{other[1]} .")
+    onto = loaded(siblings(12) + "\n".join(lines) + "\n")
+    report = onto.reason(mode="full")
+    assert not report.consistent
+    named = {v.axiom for v in report.violations}
+    assert named == {f"S{busy[0]} DisjointWith S{busy[1]}", f"S{other[0]} DisjointWith S{other[1]}"}
+
+
+def test_a_class_expression_disjoint_with_itself_and_folded_into_its_name() -> None:
+    """``N ≡ ∃p.B`` with ``∃p.B`` disjoint with itself: the fold renames the expression N, and the told
+    row (never among the ordered ones, which leave a class with itself out) must be renamed too."""
+    onto = loaded(PREFIXES + """:p a owl:ObjectProperty . :B a owl:Class . :N a owl:Class .
+:N owl:equivalentClass _:r . _:r a owl:Restriction ; owl:onProperty :p ; owl:someValuesFrom :B .
+_:r owl:disjointWith _:r .
+:x :p :y . :y a :B .
+""")
+    report = onto.reason(mode="full")
+    assert not report.consistent
+    assert [v.rule for v in report.violations] == ["cax-dw"]

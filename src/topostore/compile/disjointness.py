@@ -84,8 +84,9 @@ class Disjointness:
     def renamed(self, names: Mapping[str, str]) -> Disjointness:
         """The rows with each class of ``names`` replaced by its name there (an anonymous class folded
         into its one named equivalent, as :mod:`.fold` does in the rules); rows that become one are one."""
-        if not names or not any(c in names for row in self.different for c in row):
-            return self  # the told pairs are among the ordered ones: nothing to rename
+        rows = [*self.different, *(pair.row for pair in self.told.values())]
+        if not names or not any(c in names for row in rows for c in row):
+            return self  # no row names a folded class (a class disjoint with itself is a told row only)
         out = Disjointness()
         for (a, b), exprs in self.different.items():
             out.add_different((names.get(a, a), names.get(b, b)), *exprs)
