@@ -212,3 +212,30 @@ def test_a_free_core_is_seen_from_the_other_processes_work(monkeypatch: pytest.M
     monkeypatch.setattr(streamed_child, "_cpu_times", lambda: None)
     monkeypatch.setattr(streamed_child.os, "getloadavg", lambda: (1.2, 1.0, 1.0))
     assert streamed_child.core_free()  # no counters: the load average less this process's own core
+
+
+def test_a_child_that_hangs_is_killed_at_its_deadline(children, monkeypatch: pytest.MonkeyPatch, tmp_path: Path,
+                                                     caplog: pytest.LogCaptureFixture) -> None:
+    """A stopped child (SIGSTOP: it neither writes nor ends) is killed at its deadline, and the document is
+    loaded the ordinary way: LOAD is bounded in time."""
+    import os
+    import signal
+
+    real = streamed_child.subprocess.Popen
+
+    def stopped(*args, **kwargs) -> subprocess.Popen:
+        proc = real(*args, **kwargs)
+        os.kill(proc.pid, signal.SIGSTOP)
+        return proc
+
+    monkeypatch.setattr(streamed_child.subprocess, "Popen", stopped)
+    monkeypatch.setattr(streamed_child, "CHILD_MIN_SECONDS", 0.5)
+    monkeypatch.setattr(streamed_child, "CHILD_SECONDS_PER_MB", 0.0)
+    path = tmp_path / "h.nt"
+    path.write_text("".join(f'<{A}s{i}> <{A}p> "v{i}" .\n' for i in range(1000)))
+    with caplog.at_level(logging.WARNING, logger=streamed_child.__name__):
+        onto = Ontology(prefix=A)
+        onto.load(path)
+    assert len(list(onto.store.triples(graph=ASSERTED))) == 1000
+    assert any("did not finish" in r.getMessage() for r in caplog.records)
+    assert streamed_child.child_deadline(100_000_000) == pytest.approx(130.0)

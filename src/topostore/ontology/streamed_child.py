@@ -136,9 +136,11 @@ def stream_through_child(store: Store, data: bytes | str, fmt: RdfFormat, base_i
         raise LoadError(f"{source}: no child process to parse it: {exc}") from exc
     os.close(summary_write)
     feeder = threading.Thread(target=_feed, args=(proc.stdin, data), name="topostore-load-feed", daemon=True)
+    watchdog = _Watchdog(proc, child_deadline(len(data)), source)
     read_whole = False
     try:
         feeder.start()
+        watchdog.start()
         gained = _bulk_loaded(store, proc.stdout, progress, source)
         with os.fdopen(summary_read, "rb") as summary:
             summary_read = -1
@@ -146,10 +148,46 @@ def stream_through_child(store: Store, data: bytes | str, fmt: RdfFormat, base_i
         read_whole = True
         result = _summary(raw, source)
     finally:
+        watchdog.cancel()
         _end(proc, feeder, read_whole)
         if summary_read >= 0:
             os.close(summary_read)
     return _found(store, gained, result)
+
+
+#: a child gets this long at least, and :data:`CHILD_SECONDS_PER_MB` more per megabyte of its document
+#: (it parses 100 MB of RDF/XML in 3-4 s: the bound is for a child that hangs, not a slow one)
+CHILD_MIN_SECONDS = 30.0
+CHILD_SECONDS_PER_MB = 1.0
+
+
+def child_deadline(size: int) -> float:
+    """How long a child may take over a document of ``size`` bytes before it is killed (its document is
+    then loaded the ordinary way)."""
+    return CHILD_MIN_SECONDS + CHILD_SECONDS_PER_MB * size / 1_000_000
+
+
+class _Watchdog:
+    """Kills a child that has not finished by its deadline: the parent's read of the pipe then ends, the
+    load is a LoadError, and the document is parsed the ordinary way (a stopped or hung child must not
+    hold LOAD for ever)."""
+
+    def __init__(self, proc: subprocess.Popen, seconds: float, source: str) -> None:
+        self._timer = threading.Timer(seconds, self._kill, args=(proc, seconds, source))
+        self._timer.daemon = True
+
+    def start(self) -> None:
+        self._timer.start()
+
+    def cancel(self) -> None:
+        self._timer.cancel()
+
+    @staticmethod
+    def _kill(proc: subprocess.Popen, seconds: float, source: str) -> None:
+        if proc.poll() is None:
+            log.warning("LOAD %s: the parsing child did not finish in %.0f s; killed, parsed the ordinary way",
+                        source, seconds)
+            proc.kill()
 
 
 def _bulk_loaded(store: Store, pipe: IO[bytes], progress: Callable[[int], None] | None, source: str) -> int:
