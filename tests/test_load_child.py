@@ -228,6 +228,7 @@ def test_a_child_that_hangs_is_killed_at_its_deadline(children, monkeypatch: pyt
         os.kill(proc.pid, signal.SIGSTOP)
         return proc
 
+    assert streamed_child.child_deadline(100_000_000) == pytest.approx(130.0)  # 100 MB: minutes, not hours
     monkeypatch.setattr(streamed_child.subprocess, "Popen", stopped)
     monkeypatch.setattr(streamed_child, "CHILD_MIN_SECONDS", 0.5)
     monkeypatch.setattr(streamed_child, "CHILD_SECONDS_PER_MB", 0.0)
@@ -238,4 +239,3 @@ def test_a_child_that_hangs_is_killed_at_its_deadline(children, monkeypatch: pyt
         onto.load(path)
     assert len(list(onto.store.triples(graph=ASSERTED))) == 1000
     assert any("did not finish" in r.getMessage() for r in caplog.records)
-    assert streamed_child.child_deadline(100_000_000) == pytest.approx(130.0)
