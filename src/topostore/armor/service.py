@@ -31,7 +31,7 @@ from ..stores import kind as store_kind
 from ..stores.base import guess_format
 from . import codes
 from .codes import CommandError
-from .commands import COMMANDS, Command, Context, Reply
+from .commands import COMMANDS, Context, Reply
 from .durable import DurableReferences
 from .reference import Reference
 from .render import Renderer
@@ -44,27 +44,6 @@ _WEB_MAX_BYTES = 64 * 1024 * 1024
 DEFAULT_MAX_QUERY_SECONDS = 30.0
 _ONTOLOGY_SUFFIXES = {".owl", ".rdf", ".xml", ".ttl", ".turtle", ".nt", ".ntriples", ".n3", ".jsonld", ".nq", ".trig"}
 
-
-
-#: the command of each (COMMAND, SPEC1, SPEC2) as clients spell it (None: unknown), so that a client's
-#: repeated command is one look-up, not three upper-casings and a table look-up; bounded, as the
-#: spellings come from clients
-_RESOLVED: dict[tuple[str, str, str], Command | None] = {}
-_RESOLVED_MAX = 1024
-
-
-def _resolve(command: str, primary: str, secondary: str) -> Command | None:
-    """The table entry of a command key in any case (spec §3: the fields are case-insensitive)."""
-    spelled = (command, primary, secondary)
-    try:
-        return _RESOLVED[spelled]
-    except KeyError:
-        pass
-    found = COMMANDS.get((command.upper(), primary.upper(), secondary.upper()))
-    if len(_RESOLVED) >= _RESOLVED_MAX:
-        _RESOLVED.clear()
-    _RESOLVED[spelled] = found
-    return found
 
 
 class ArmorService:
@@ -114,8 +93,8 @@ class ArmorService:
     # ------------------------------------------------------------ entry points
     def call(self, request: ArmorRequest | Mapping[str, Any]) -> ArmorResponse:
         """Execute one request and return its response; never raises."""
-        try:  # a request already made (in-process callers, the benchmark) is taken as it is
-            req = request if type(request) is ArmorRequest else ArmorRequest.from_dict(request)
+        try:
+            req = ArmorRequest.from_dict(request)
         except (TypeError, ValueError) as exc:
             return ArmorResponse(False, codes.INVALID_ARGUMENT, f"malformed request: {exc}")
         try:
@@ -151,9 +130,9 @@ class ArmorService:
             return ArmorResponse(False, codes.EMPTY_REFERENCE, "reference_name is empty; every command needs one")
         if req.command == "":
             return self._failure(req, codes.EMPTY_COMMAND, "command is empty")
-        command = _resolve(req.command, req.primary_command_spec, req.secondary_command_spec)
+        key = (req.command.upper(), req.primary_command_spec.upper(), req.secondary_command_spec.upper())
+        command = COMMANDS.get(key)
         if command is None:
-            key = (req.command.upper(), req.primary_command_spec.upper(), req.secondary_command_spec.upper())
             return self._failure(req, codes.UNKNOWN_COMMAND, f"unknown command {' '.join(repr(k) for k in key)}: "
                                  "check the spelling and that unused specs are empty strings")
         try:
@@ -172,18 +151,16 @@ class ArmorService:
                     raise CommandError(codes.MOUNTED_BY_OTHER, f"reference {req.reference_name!r} is mounted by client "
                                        f"{ctx.ref.owner!r}; client {req.client_name!r} may query it but not change it")
                 reply = command.handler(ctx)
-                return self._reply(req, reply, self._held_consistency(req.reference_name, ctx.ref))
+                return self._reply(req, reply)
         except CommandError as exc:
             return self._failure(req, exc.code, exc.message)
 
-    def _reply(self, req: ArmorRequest, reply: Reply, consistent: bool | None = None) -> ArmorResponse:
-        """The response of a handler's reply; ``consistent``: the reference's consistency when the caller
-        read it already (under the reference's lock), else it is read here."""
+    def _reply(self, req: ArmorRequest, reply: Reply) -> ArmorResponse:
         return ArmorResponse(
             success=reply.success,
             exit_code=reply.exit_code,
-            error_description="; ".join(reply.warnings) if reply.warnings else "",
-            is_consistent=self._consistency(req.reference_name) if consistent is None else consistent,
+            error_description="; ".join(reply.warnings),
+            is_consistent=self._consistency(req.reference_name),
             timeout=reply.timeout,
             queried_objects=reply.queried_objects,
             sparql_queried_objects=reply.sparql_queried_objects,
@@ -191,16 +168,6 @@ class ArmorService:
 
     def _failure(self, req: ArmorRequest, code: int, message: str) -> ArmorResponse:
         return ArmorResponse(False, code, message, is_consistent=self._consistency(req.reference_name))
-
-    def _held_consistency(self, name: str, ref: Reference) -> bool:
-        """:meth:`_consistency` of ``name`` while its reference ``ref`` is locked by this thread: read from
-        ``ref`` when ``name`` still names it (a handler may have dropped or replaced it: then looked up)."""
-        if self._references.get(name) is not ref:
-            return self._consistency(name)
-        try:
-            return ref.is_consistent
-        except TopostoreError:  # as in _consistency
-            return False
 
     def _consistency(self, name: str) -> bool:
         """``is_consistent`` of spec §2.6: the reference's state at its last reasoning; false if unknown."""
