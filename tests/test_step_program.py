@@ -381,6 +381,36 @@ def test_the_covered_rule_is_left_out_until_a_fact_of_its_atom_is_asserted() -> 
     assert ("p", f"<{NS}link>") not in program.needs_unasserted
 
 
+def test_a_kind_of_change_run_again_is_checked_again_once_a_key_gains_facts() -> None:
+    """A program run again with no new key with facts reuses what its last run noted (the keys it left
+    out have none still); once a key gains facts, it is checked again, and the general phases forget
+    every such record."""
+    onto = turtle(MAP)
+    onto.add(Triple(N("bot"), N("at"), N("p0")), Triple(N("p0"), N("door"), N("d0")),
+             Triple(N("p1"), N("door"), N("d0")))
+    onto.reason()
+    step = onto._reasoner.step
+    for place in ("p5", "p6"):  # one kind of change twice: the second run takes what the first noted
+        onto.add(Triple(N(place), N("door"), N("d1")))
+        report = onto.reason(mode="incremental")
+        assert report.stats.program == "compiled", report.stats.program
+        assert_as_from_scratch(onto, report)
+    (sig, ran), = step._ran.items()
+    assert step._unchanged(sig, onto._reasoner.state) is ran
+    onto.add(Triple(N("p2"), N("link"), N("p3")))  # link: a key with no asserted fact until now
+    onto.reason(mode="incremental")
+    assert step._unchanged(sig, onto._reasoner.state) is None  # the asserted keys grew
+    onto.add(Triple(N("p7"), N("door"), N("d1")))
+    report = onto.reason(mode="incremental")
+    assert report.stats.program == "compiled", report.stats.program
+    assert_as_from_scratch(onto, report)
+    assert step._unchanged(sig, onto._reasoner.state) is step._ran[sig]
+    with mock.patch.object(step, "enabled", False):  # the general phases forget every record
+        onto.add(Triple(N("p8"), N("door"), N("d1")))
+        assert_as_from_scratch(onto, onto.reason(mode="incremental"))
+    assert not step._ran
+
+
 def test_a_check_pair_kept_apart_by_difference_is_skipped_after_a_clean_replacement() -> None:
     """prp-fp (two values of a functional property known different) pairs the values of one subject
     through its difference atom: after a clean replacement it cannot match anew (a value different

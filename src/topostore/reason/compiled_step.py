@@ -72,18 +72,28 @@ class CompiledStep:
         self.lost: set = set()
         #: :func:`.flip.kind_tests_only` of a flip (rule index, changed atoms)
         self._kind_only: dict[tuple[int, tuple[int, ...]], bool] = {}
+        #: per signature, after its program last ran: (program, state, :func:`_sizes` of the state, the
+        #: after-step keys, the lost keys); see :meth:`_unchanged`
+        self._ran: dict = {}
+
+    def forget_runs(self) -> None:
+        """The keys with facts may have changed outside a compiled step (the general phases, a full run):
+        every program's keys are checked and noted again at its next run."""
+        self._ran.clear()
 
     def run(self, added: Collection[Triple], removed: Collection[Triple], clean: dict,
-            stats: ReasonStats, state: MaintenanceState) -> bool:
+            stats: ReasonStats, state: MaintenanceState, census: tuple | None = None) -> bool:
         """Maintain with the compiled program of this kind of change (see :mod:`.program`); False
         (with the reason in ``stats.program``) when it cannot be compiled.  ``clean``: the change's
-        clean replacements (:func:`.flip.replaced_in`)."""
+        clean replacements (:func:`.flip.replaced_in`); ``census``: :func:`key_census` of ``added``
+        when the caller made it."""
         if not self.enabled:
             stats.program = "general: compiled step switched off"
             return False
-        sig = signature(key_census(added), key_census(removed), clean)
+        sig = signature(census if census is not None else key_census(added), key_census(removed), clean)
         self._clean = clean
-        program = self._program(sig, state)
+        ran = self._unchanged(sig, state)
+        program = ran[0] if ran is not None else self._program(sig, state)
         if isinstance(program, str):
             stats.program = f"general: {program}"
             return False
@@ -107,12 +117,30 @@ class CompiledStep:
         stats.flipped = program.flips
         stats.program = "compiled"
         self.checks.step_clean = program.clean
-        #: the keys the after-step reads ask about: the asserted changes' and what the program may add
-        self._heads = set(program.heads) | set(sig.added)
-        self.lost = set(program.heads) | set(sig.removed)
-        for kind, key in program.heads:
-            state.present[0 if kind == "p" else 1].add(key)
+        if ran is None:
+            #: the keys the after-step reads ask about: the asserted changes' and what the program may add
+            written = frozenset(program.heads)
+            heads, lost = written | frozenset(sig.added), written | frozenset(sig.removed)
+            for kind, key in program.heads:
+                state.present[0 if kind == "p" else 1].add(key)
+            self._ran[sig] = (program, state, _sizes(state), heads, lost)
+        else:
+            heads, lost = ran[3], ran[4]  # the heads are among the keys with facts already
+        self._heads, self.lost = heads, lost
         return True
+
+    def _unchanged(self, sig, state: MaintenanceState) -> tuple | None:
+        """What the last run of ``sig``'s program noted, when nothing its checks read changed since: the
+        same program and state, and the keys with facts (asserted or not) no more than then.  Between
+        full runs those sets only grow, in :meth:`run` and with the asserted changes, and the general
+        phases clear this record (:meth:`forget_runs`): the same sizes are the same keys.  Then the keys
+        the program left out still have no facts and its heads are noted already; else None."""
+        ran = self._ran.get(sig)
+        if ran is None or sig in self.unsettled or ran[1] is not state or ran[0] is not self.programs.get(sig):
+            return None
+        if ran[2] != _sizes(state):
+            return None
+        return ran
 
     def _flip_text(self, i: int, order: tuple[int, ...], text: str) -> str:
         """A compiled flip's text for this run: "" when no value changed kind and the rule only tests
@@ -159,3 +187,8 @@ class CompiledStep:
                 del self.programs[next(iter(self.programs))]
             self.programs[sig] = program
         return program
+
+
+def _sizes(state: MaintenanceState) -> tuple[int, int, int, int]:
+    """How many predicates and classes have facts, and asserted facts (sets that only grow between full runs)."""
+    return len(state.present[0]), len(state.present[1]), len(state.asserted[0]), len(state.asserted[1])

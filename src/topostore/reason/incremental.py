@@ -191,6 +191,7 @@ class IncrementalReasoner:
     checks = _Part()
     check_triggers = _Part()
     negated = _Part()
+    _unmaintainable = _Part()
     provers = _Part()
     checks_monotone = _Part()
     requests = _Part()
@@ -276,6 +277,7 @@ class IncrementalReasoner:
         if self._parts is not None:
             self.flips.forget()
             self.step.programs.clear()  # compiled against the keys with facts, which a full run recounts
+            self.step.forget_runs()
             self._completion.forget()
             self._clear_scratch()
         self._decided.clear()
@@ -318,9 +320,8 @@ class IncrementalReasoner:
             return "full rematerialisation requested"
         if not self.state.ready:
             return "no previous materialisation with the current rules (first REASON or schema changed)"
-        if len(self.monotone) + len([r for r in self.negated if r.stratum > 0]) < len(self.rules):
-            names = sorted({r.name for r in self.negated if r.stratum == 0})
-            return f"rules with negated premises in stratum 0 cannot be maintained: {', '.join(names)}"
+        if self._unmaintainable:
+            return f"rules with negated premises in stratum 0 cannot be maintained: {', '.join(self._unmaintainable)}"
         if not self.state.quiet:
             return "a rule with a negated premise (stratum 1, e.g. owl:sameAs by 'not known different') matched before"
         limit = self.max_change_share * max(self.state.asserted_size, 1)
@@ -354,14 +355,15 @@ class IncrementalReasoner:
         replaced = flip.replaced_in(self.store, added, removed, ASSERTED)
         ask_again = bool(self.deferred and removed) and self._completion.needed(
             self.state.present, key_census(removed), asserted=True)
-        if not ask_again and self.step.run(added, removed, replaced, stats, self.state):
+        if not ask_again and self.step.run(added, removed, replaced, stats, self.state, (preds, classes)):
             self._incomplete = bool(self.deferred and removed) and self._completion.needed(
                 self.state.present, key_sets(self.step.lost))
             return
+        self.step.forget_runs()  # the general phases may change the keys with facts either way
         try:
             self._general(added, removed, stats, profile, (preds, classes), replaced)
         finally:
-            self._completion.forget()  # the general phases may change the keys with facts either way
+            self._completion.forget()
 
     def _general(self, added: Collection[Triple], removed: Collection[Triple], stats: ReasonStats, profile: bool,
                  census: tuple, replaced: dict) -> None:
@@ -467,6 +469,10 @@ class _Maintenance:
         self.check_triggers = Triggers(self.checks)
         self.negated = [r for r in self.rules if not is_monotone(r)]
         self.provers = [i for i in self.monotone if can_prove(self.rules[i])]
+        #: the rules with negated premises in stratum 0, which maintenance cannot keep (a property of the
+        #: rules: decided here once, not at every REASON)
+        self._unmaintainable = sorted({r.name for r in self.negated if r.stratum == 0}) \
+            if len(self.monotone) + len([r for r in self.negated if r.stratum > 0]) < len(self.rules) else []
         self.checks_monotone = all(not c.negates and c.stratum == 0 for c in self.checks)
         self.requests = RequestQueue(store, self.rules)
         self.flips = Flips(self.requests, self.triggers, self._monotone_set)
