@@ -113,3 +113,22 @@ _:r owl:disjointWith _:r .
     report = onto.reason(mode="full")
     assert not report.consistent
     assert [v.rule for v in report.violations] == ["cax-dw"]
+
+
+@pytest.mark.parametrize(("first", "second"), [(25, 30), (30, 25)])
+def test_each_violated_pair_lists_as_many_individuals_as_its_own_check(first: int, second: int) -> None:
+    """A pair that got a few rows before the shared LIMIT was reached is asked again: each pair lists
+    MAX_REPORTED individuals, as its own per-pair check does."""
+    from topostore.reason.consistency import MAX_REPORTED
+
+    lines = [f":S{i} a owl:Class ." for i in range(5)] + [":S0 owl:disjointWith :S1 . :S2 owl:disjointWith :S3 ."]
+    lines += [f":a{n} a :S0 , :S1 ." for n in range(first)] + [f":b{n} a :S2 , :S3 ." for n in range(second)]
+    onto = loaded(PREFIXES + "\n".join(lines) + "\n")
+    full = onto.reason(mode="full")
+    onto.add_type("w", "S4")  # an unrelated change: the step's check runs over the told pairs in one query
+    step = onto.reason(mode="incremental")
+    for report in (full, step):
+        counts: dict[str, int] = {}
+        for v in report.violations:
+            counts[v.axiom] = counts.get(v.axiom, 0) + 1
+        assert counts == {"S0 DisjointWith S1": MAX_REPORTED, "S2 DisjointWith S3": MAX_REPORTED}

@@ -721,3 +721,19 @@ def test_the_step_compiler_finds_by_index_what_trying_every_rule_finds() -> None
             missing = compiler._missing(i, present, want_affected)
             if missing and compiler.rules[i].reads() & want_affected:
                 assert missing & program.needs_absent, compiler.rules[i]
+
+
+def test_run_records_are_dropped_with_their_evicted_programs() -> None:
+    """The record of a kind of change's last run names its program: when the program is evicted the record
+    goes too (else every evicted kind of change kept one alive until the next full run)."""
+    from topostore.reason import compiled_step
+
+    onto = new_ontology()
+    kinds = [Triple(N("i0"), N("p"), N("i1")), Triple(N("i1"), N("q"), N("i2")), Triple(N("i2"), N("r"), N("i3")),
+             Triple(N("i3"), N("s"), N("i4")), Triple(N("i4"), TYPE, N("B"))]
+    with mock.patch.object(compiled_step, "MAX_PROGRAMS", 2):
+        for triple in kinds:
+            onto.add(triple)
+            onto.reason(mode="incremental")
+            step = onto._reasoner.step
+            assert len(step._ran) <= len(step.programs) <= 2

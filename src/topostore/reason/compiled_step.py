@@ -184,7 +184,9 @@ class CompiledStep:
             except Refused as why:
                 program = str(why)
             if len(self.programs) >= MAX_PROGRAMS:  # the oldest kind of change is compiled again if it returns
-                del self.programs[next(iter(self.programs))]
+                oldest = next(iter(self.programs))
+                del self.programs[oldest]
+                self._ran.pop(oldest, None)  # its run record names the evicted program: never reused
             self.programs[sig] = program
         return program
 

@@ -192,10 +192,11 @@ def disjoint_violations(store: Store, table: Disjointness, keys: KeyGraphs) -> l
     found: dict[Row, list[dict]] = {}
     limit = MAX_REPORTED * len(pairs)
     if _collect(store, check_query(pairs, limit), by_row, found) >= limit:
-        # the LIMIT counts rows, not pairs: one busy pair may have taken every row, so each pair still
-        # unnamed is asked on its own (an inconsistent ontology: rare, and each answer is small)
+        # the LIMIT counts rows, not pairs: a busy pair may have taken the rows of others, so each pair
+        # not yet full is asked again on its own (an inconsistent ontology: rare, and each answer is small)
         for pair in pairs:
-            if pair.row not in found:
+            if len(found.get(pair.row, ())) < MAX_REPORTED:
+                found.pop(pair.row, None)
                 _collect(store, check_query([pair], MAX_REPORTED), by_row, found)
     check = schema_rule(CHECK)
     rows = [pair.row for pair in pairs if pair.row in found]  # the told order, whichever query found them
