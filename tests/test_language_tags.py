@@ -118,3 +118,25 @@ def test_short_name_replies_show_values_unchanged(tmp_path: Path) -> None:
                           "primary_command_spec": "DATAPROP", "secondary_command_spec": "IND", "args": ["s", "x"]})
     assert reply.success, reply
     assert sorted(reply.queried_objects) == ["colour", 'quote "@en-gb']
+
+
+@pytest.mark.parametrize("decoy", [
+    ":a :s 'the spec writes \"colour\"@EN-gb here' .",  # inside a single-quoted string
+    ':a :s """a long string "colour"@EN-gb inside""" .',  # inside a long string
+    '# a comment writes "colour"@EN-gb once',  # a comment
+])
+def test_text_that_only_looks_like_a_tag_is_no_spelling(decoy: str) -> None:
+    text = f"@prefix : <{NS}> .\n{decoy}\n:b :s \"colour\"@en-GB .\n"
+    saved = quiet(Ontology(), text).serialize("ntriples")
+    assert b'"colour"@en-GB' in saved and b"@EN-gb ." not in saved
+
+
+def test_xml_text_and_comments_that_look_like_xml_lang_are_no_spelling() -> None:
+    text = f"""<?xml version="1.0"?>
+<rdf:RDF xmlns:rdf="http://www.w3.org/1999/02/22-rdf-syntax-ns#" xmlns:m="{NS}">
+  <!-- an old version had xml:lang="EN-gb" here -->
+  <rdf:Description rdf:about="{NS}a"><m:note>write xml:lang="EN-gb" on it</m:note></rdf:Description>
+  <rdf:Description rdf:about="{NS}b"><m:s xml:lang="en-GB">colour</m:s></rdf:Description>
+</rdf:RDF>
+"""
+    assert b'"colour"@en-GB' in quiet(Ontology(), text, "xml").serialize("ntriples")

@@ -26,6 +26,12 @@ _WRITTEN = {
     "xml": re.compile(rb"xml:lang\s*=\s*[\"'](" + _TAG + rb")[\"']"),
 }
 _QUOTES = (ord('"'), ord("'"))
+#: Turtle / N-Triples read token by token: a string whole (its tag captured), a comment, an IRI, or a run of
+#: anything else; a quote or '@' inside a string, a comment or an IRI is then never taken for a tag
+_TEXT_TOKEN = re.compile(
+    rb'(?:"""(?:[^"\\]|\\.|"(?!""))*"""' rb"|'''(?:[^'\\]|\\.|'(?!''))*'''"
+    rb'|"(?:[^"\\\n]|\\.)*"' rb"|'(?:[^'\\\n]|\\.)*')(?:@(" + _TAG + rb"))?"
+    rb"|#[^\n]*|<[^>\s]*>|[^\"'#<]+|[\"'#<]", re.S)
 _WHOLE_TAG = re.compile(_TAG.decode())
 #: a whole string literal and its tag as pyoxigraph writes Turtle and N-Triples (escapes kept whole)
 _TEXT_LITERAL = re.compile(rb'"(?:[^"\\\n]|\\.)*"@(' + _TAG + rb")")
@@ -50,12 +56,8 @@ class LanguageTags:
         scan); the quads persisting the new ones on a durable store (in ``graph``, see :meth:`quads`)."""
         if isinstance(data, str):
             data = data.encode("utf-8", errors="surrogatepass")
-        xml = fmt == RdfFormat.RDF_XML
         new = []
-        for m in _WRITTEN["xml" if xml else "text"].finditer(data):
-            if not xml and not _closes_string(data, m.start()):
-                continue  # @prefix, @base, an e-mail address or an escaped quote in a string
-            tag = m.group(1).decode("ascii")
+        for tag in _written_tags(data, fmt == RdfFormat.RDF_XML):
             lowered = tag.lower()
             if lowered not in self._spelled:
                 self._spelled[lowered] = tag
@@ -96,6 +98,36 @@ class LanguageTags:
         tag = quad.object.value
         self._capitals |= self._spelled.setdefault(tag.lower(), tag) != tag.lower()
         return True
+
+
+def _written_tags(data: bytes, xml: bool) -> list[str]:
+    """The document's tags in the order written, each spelling where a literal first carries it.
+
+    A fast search for ``@tag`` (or ``xml:lang=``) finds the candidates; where one of them has a capital
+    (the spelling then matters), a Turtle document is read again token by token (:data:`_TEXT_TOKEN`,
+    ten times slower) so that text inside a string, a comment or an IRI is never taken for a tag; the
+    reading stops once each candidate's tag has been met on a real literal."""
+    if xml:
+        return [m.group(1).decode("ascii") for m in _WRITTEN["xml"].finditer(data) if _in_xml_tag(data, m.start())]
+    found = [m.group(1).decode("ascii") for m in _WRITTEN["text"].finditer(data) if _closes_string(data, m.start())]
+    if all(tag == tag.lower() for tag in found):
+        return found  # every spelling the lowered one: which of them are real literals changes nothing
+    wanted = {tag.lower() for tag in found}
+    first: dict[str, str] = {}
+    for m in _TEXT_TOKEN.finditer(data):
+        tag = m.group(1)
+        if tag is not None:
+            first.setdefault(tag.decode("ascii").lower(), tag.decode("ascii"))
+            if wanted <= first.keys():
+                break
+    return list(first.values())
+
+
+def _in_xml_tag(data: bytes, at: int) -> bool:
+    """Whether position ``at`` of an RDF/XML document lies inside an element's tag: not in text content
+    (where no raw '<' may stand), a comment, CDATA or a processing instruction."""
+    start = data.rfind(b"<", 0, at)
+    return start >= 0 and data.rfind(b">", start, at) < 0 and data[start + 1:start + 2] not in (b"!", b"?")
 
 
 def _closes_string(data: bytes, at: int) -> bool:
