@@ -16,7 +16,7 @@ from pathlib import Path
 
 import pytest
 from pyoxigraph import NamedNode
-from test_load_streamed import DOCUMENT, PREFIXES, loaded, shape
+from test_load_streamed import DOCUMENT, ENTITY_DOCUMENT, PREFIXES, loaded, shape
 
 from topostore import InvalidValueError, LoadError, Ontology
 from topostore.ontology import files as files_module
@@ -105,10 +105,7 @@ def test_a_refused_document_gives_the_same_error_and_leaves_nothing(children, te
 
 def test_entity_declarations_are_refused_in_the_child(children, tmp_path: Path) -> None:
     path = tmp_path / "entities.owl"
-    path.write_text('<?xml version="1.0"?><!DOCTYPE rdf:RDF [<!ENTITY e SYSTEM "file:///etc/hostname">]>'
-                    '<rdf:RDF xmlns:rdf="http://www.w3.org/1999/02/22-rdf-syntax-ns#">'
-                    '<rdf:Description rdf:about="http://e.org/a#a"><rdf:value>&e;</rdf:value></rdf:Description>'
-                    '</rdf:RDF>')
+    path.write_text(ENTITY_DOCUMENT)
     onto = Ontology()
     with pytest.raises(LoadError, match="external or parameter entity 'e' refused"):
         onto.load(path)
