@@ -69,6 +69,8 @@ def _rename(text: str, names: Collection[str], suffix: str) -> str:
 
 def filter_variables(rule: Rule) -> set[str]:
     """Names (without ``?``) of the variables the filters mention."""
+    if not rule.conditions:
+        return set()  # most rules (every rule per pair of disjoint classes): asked once per rule
     return {v[1:] for c in rule.conditions for v in c.variables}
 
 

@@ -209,21 +209,23 @@ class _Index:
         #: per rule, the read keys of its body atoms with a named predicate (a variable predicate or a
         #: path may match anything)
         self.keys: dict[int, tuple[ReadKey, ...]] = {}
+        readers, by_head, all_keys = self.readers, self.by_head, self.keys  # bound once: a large TBox
+        wild = (("*",), ("p", _TYPE))  # gives tens of thousands of rules, one per pair of disjoint classes
         for i in monotone:
             rule = rules[i]
-            keys = self.keys[i] = tuple(dict.fromkeys([a.read_key() for a in rule.body if a.p.startswith("<")]))
+            keys = all_keys[i] = tuple(dict.fromkeys([a.read_key() for a in rule.body if a.p[0] == "<"]))
             guard = _guard(keys, None)
             reads = rule.reads()
-            if ("*",) in reads or ("p", _TYPE) in reads:
+            if wild[0] in reads or wild[1] in reads:
                 # reached by any change; looked at again when a key it missed joins (a body key)
                 self.wild.append(i)
                 for key in keys:
-                    self.readers.setdefault(key, {}).setdefault(None, []).append(i)
+                    readers.setdefault(key, {}).setdefault(None, []).append(i)
             else:
                 for key in reads:
-                    by_guard = self.readers.setdefault(key, {})
+                    by_guard = readers.setdefault(key, {})
                     by_guard.setdefault(guard if guard != key else _guard(keys, key), []).append(i)
-            self.by_head.setdefault(rule.writes(), {}).setdefault(guard, []).append(i)
+            by_head.setdefault(rule.head.read_key() if rule.head is not None else None, {}).setdefault(guard, []).append(i)
 
 
 def _guard(keys: tuple[ReadKey, ...], key: ReadKey | None) -> ReadKey | None:
