@@ -103,7 +103,7 @@ class SchemaRule:
         if message:
             for var, label in zip(self.variables, labels if labels is not None else [_short(t) for t in row]):
                 message = message.replace("{" + var[1:] + "}", label)
-        body = tuple([_put(plan, row) for plan in body_plan])
+        body = tuple([plan if plan.__class__ is Atom else _put(plan, row) for plan in body_plan])
         # built from the template's prototype instead of through the dataclass's __init__: a robot's
         # first step on a large TBox instantiates a rule per pair of disjoint classes (tens of
         # thousands); the fields :meth:`Rule.__post_init__` derives are the prototype's but the reads

@@ -74,6 +74,7 @@ from dataclasses import dataclass, field
 
 from pyoxigraph import NamedNode, Triple
 
+from ..collector import collector_paused
 from ..compile.generic import PREFIXES
 from ..compile.rule import Rule, RuleSet
 from ..compile.schema_program import full_program
@@ -204,7 +205,8 @@ class IncrementalReasoner:
     def parts(self) -> _Maintenance:
         """The maintenance parts, made on first use."""
         if self._parts is None:
-            self._parts = _Maintenance(self)
+            with collector_paused():  # a rule per pair of disjoint classes indexed: see ..collector
+                self._parts = _Maintenance(self)
             # read as plain attributes from now on (a :class:`_Part` gives way to the instance's own)
             self.__dict__.update(vars(self._parts))
         return self._parts

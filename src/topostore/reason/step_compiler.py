@@ -7,6 +7,7 @@ from __future__ import annotations
 from collections.abc import Callable, Collection, Iterator, Mapping
 from dataclasses import replace
 
+from ..collector import collector_paused
 from ..compile.rule import ReadKey, Rule
 from ..rdf.vocab import TYPE
 from . import flip
@@ -55,7 +56,8 @@ class StepCompiler:
         """The maintained rules indexed for a step's compilation, built by the first (a full REASON
         does not need it)."""
         if self._index is None:
-            self._index = _Index(self.rules, self.monotone)
+            with collector_paused():  # a rule per pair of disjoint classes indexed: see ..collector
+                self._index = _Index(self.rules, self.monotone)
         return self._index
 
     @staticmethod
