@@ -71,7 +71,8 @@ class StepCompiler:
         asked rule by rule as steps reach them (a full REASON does not need them); None when covered
         rules are kept."""
         if self._covering is None and self._cover:
-            self._covering = Covering(self.rules, self.monotone)
+            with collector_paused():  # every rule indexed (one per pair of disjoint classes): see ..collector
+                self._covering = Covering(self.rules, self.monotone)
         return self._covering
 
     @property
