@@ -1,5 +1,5 @@
 """The rules per pair of disjoint classes a robot step maintains, built cheaply (compile/schema.py's
-instantiation from a prototype, topostore.collector): each is the rule the dataclass builds from the
+instantiation from a prototype, topostore.rdf.collector): each is the rule the dataclass builds from the
 substituted template, field for field, with the same derived reads, filters and graph of its head."""
 
 from __future__ import annotations
@@ -8,11 +8,11 @@ import gc
 
 import pytest
 
-from topostore.collector import collector_paused
 from topostore.compile import condition as cond
 from topostore.compile.disjointness import CHECK, DIFFERENT
 from topostore.compile.rule import Rule
 from topostore.compile.schema import schema_rule, schema_rules
+from topostore.rdf.collector import collector_paused
 from topostore.rdf.vocab import INTERNAL, SKOLEM_PREFIX
 from topostore.reason.flip import filter_variables
 

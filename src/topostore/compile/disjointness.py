@@ -21,7 +21,7 @@ from __future__ import annotations
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
 
-from ..collector import collector_paused
+from ..rdf.collector import collector_paused
 from ..rdf.terms import sparql
 from ..rdf.vocab import TYPE
 from .model import Expr
@@ -100,7 +100,7 @@ class Disjointness:
         """(the ``different-disjoint`` rules, the ``cax-dw`` checks): one per row, made once."""
         if self._rules is None:
             different, check = schema_rule(DIFFERENT), schema_rule(CHECK)
-            with collector_paused():  # tens of thousands of rules on a large TBox: see ..collector
+            with collector_paused():  # tens of thousands of rules on a large TBox: see ..rdf.collector
                 self._rules = ([different.instantiate(row, f"{a} and {b} are disjoint")
                                 for row, (a, b) in self.different.items()],
                                [_check(check, p) for p in self.told.values()])

@@ -19,11 +19,11 @@ from typing import TYPE_CHECKING
 
 from pyoxigraph import NamedNode, RdfFormat, Triple
 
-from ..collector import collector_paused
 from ..compile import RuleSet, compile_ontology
 from ..compile.notices import RULE_REPAIRED, RULE_SKIPPED, Notice, grouped, publish
 from ..compile.swrl_repair import repair_rules, skip_rule
 from ..errors import IncompleteOntologyError, RuleCompileError, TopostoreError
+from ..rdf.collector import collector_paused
 from ..rdf.safeio import atomic_write, read_regular_file
 from ..rdf.vocab import (
     ASSERTED,

@@ -7,8 +7,8 @@ from __future__ import annotations
 from collections.abc import Callable, Collection, Iterator, Mapping
 from dataclasses import replace
 
-from ..collector import collector_paused
 from ..compile.rule import ReadKey, Rule
+from ..rdf.collector import collector_paused
 from ..rdf.vocab import TYPE
 from . import flip
 from .emit import Emitter
@@ -56,7 +56,7 @@ class StepCompiler:
         """The maintained rules indexed for a step's compilation, built by the first (a full REASON
         does not need it)."""
         if self._index is None:
-            with collector_paused():  # a rule per pair of disjoint classes indexed: see ..collector
+            with collector_paused():  # a rule per pair of disjoint classes indexed: see ..rdf.collector
                 self._index = _Index(self.rules, self.monotone)
         return self._index
 
@@ -71,7 +71,7 @@ class StepCompiler:
         asked rule by rule as steps reach them (a full REASON does not need them); None when covered
         rules are kept."""
         if self._covering is None and self._cover:
-            with collector_paused():  # every rule indexed (one per pair of disjoint classes): see ..collector
+            with collector_paused():  # every rule indexed (one per pair of disjoint classes): see ..rdf.collector
                 self._covering = Covering(self.rules, self.monotone)
         return self._covering
 
