@@ -21,11 +21,12 @@ from __future__ import annotations
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
 
+from ..rdf.collector import collector_paused
 from ..rdf.terms import sparql
 from ..rdf.vocab import TYPE
 from .model import Expr
 from .rule import Rule
-from .schema import Row, schema_rule
+from .schema import Row, SchemaRule, schema_rule
 
 #: the generic rules the rows instantiate
 DIFFERENT, CHECK = "different-disjoint", "cax-dw"
@@ -99,9 +100,10 @@ class Disjointness:
         """(the ``different-disjoint`` rules, the ``cax-dw`` checks): one per row, made once."""
         if self._rules is None:
             different, check = schema_rule(DIFFERENT), schema_rule(CHECK)
-            self._rules = ([different.instantiate(row, f"{a} and {b} are disjoint")
-                            for row, (a, b) in self.different.items()],
-                           [check.instantiate(p.row, p.origin, p.labels) for p in self.told.values()])
+            with collector_paused():  # tens of thousands of rules on a large TBox: see ..rdf.collector
+                self._rules = ([different.instantiate(row, f"{a} and {b} are disjoint")
+                                for row, (a, b) in self.different.items()],
+                               [_check(check, p) for p in self.told.values()])
         return self._rules
 
     def representatives(self) -> list[Rule]:
@@ -120,6 +122,13 @@ class Disjointness:
         """The told pairs whose two classes both have members: the only ones the check can match."""
         have = set(with_members)
         return [p for p in self.told.values() if p.row[0] in have and p.row[1] in have]
+
+
+def _check(check: SchemaRule, pair: ToldPair) -> Rule:
+    """The ``cax-dw`` check of one told pair (each expression written once: its label names it in the
+    origin too)."""
+    labels = pair.labels
+    return check.instantiate(pair.row, f"{labels[0]} DisjointWith {labels[1]}", labels)
 
 
 def check_query(pairs: list[ToldPair], limit: int) -> str:

@@ -98,17 +98,51 @@ class SchemaRule:
         if len(row) != len(self.variables) or (labels is not None and len(labels) != len(row)):
             raise RuleCompileError(f"{self.name}: a row of {len(row)} terms for {len(self.variables)} variables")
         r = self.rule
-        bound = dict(zip(self.variables, row))
-
-        def put(a: Atom) -> Atom:
-            return _atom(bound.get(a.s, a.s), bound.get(a.p, a.p), bound.get(a.o, a.o), a.aux)
-
+        body_plan, head_plan, head_aux = self._instance_plan
         message = r.message
         if message:
             for var, label in zip(self.variables, labels if labels is not None else [_short(t) for t in row]):
                 message = message.replace("{" + var[1:] + "}", label)
-        return Rule(r.name, origin, tuple(put(a) for a in r.body), put(r.head) if r.head is not None else None,
-                    r.conditions, r.filter_reads, self.reported, message, r.aux_head, r.stratum)
+        body = tuple([plan if plan.__class__ is Atom else _put(plan, row) for plan in body_plan])
+        # built from the template's prototype instead of through the dataclass's __init__: a robot's
+        # first step on a large TBox instantiates a rule per pair of disjoint classes (tens of
+        # thousands); the fields :meth:`Rule.__post_init__` derives are the prototype's but the reads
+        rule = object.__new__(Rule)
+        fields = rule.__dict__
+        fields.update(self._prototype)
+        fields["origin"], fields["body"], fields["message"] = origin, body, message
+        fields["head"] = _put(head_plan, row) if head_plan is not None else None
+        fields["_reads"] = frozenset([a._key for a in body]) | r.filter_reads
+        if head_aux is not None:
+            # the head names no schema variable: where it goes is the template's answer, decided once
+            # (a robot step's first indexes ask it of every instantiation)
+            fields["_head_aux"] = head_aux
+        return rule
+
+    @cached_property
+    def _prototype(self) -> dict:
+        """The fields every instantiation shares (:meth:`instantiate` replaces the row's)."""
+        r = self.rule
+        made = Rule(r.name, r.origin, r.body, r.head, r.conditions, r.filter_reads, self.reported, r.message,
+                    r.aux_head, r.stratum)
+        return {k: v for k, v in vars(made).items() if k != "_head_aux"}
+
+    @cached_property
+    def _instance_plan(self) -> tuple[tuple[_Plan, ...], _Plan | None, bool | None]:
+        """How an instantiation is built, worked out once per template rather than per row: per body
+        atom (and the head) the atom itself when it names no schema variable, else its terms with each
+        schema variable replaced by its position in the row; and the head's graph when the head names
+        no schema variable (None: decided per instantiation)."""
+        position = {v: i for i, v in enumerate(self.variables)}
+
+        def plan(a: Atom) -> _Plan:
+            terms = tuple(position.get(t, t) for t in (a.s, a.p, a.o))
+            return a if all(isinstance(t, str) for t in terms) else (terms, a.aux)
+
+        r = self.rule
+        head = plan(r.head) if r.head is not None else None
+        head_aux = r.head_aux() if isinstance(head, Atom) else None
+        return tuple(plan(a) for a in r.body), head, head_aux
 
     def row_of(self, rule: Rule) -> Row | None:
         """The row ``rule`` is the instantiation of, or None when it is not one (another name or shape).
@@ -225,6 +259,25 @@ def _term(text: str):
     if term is None:
         raise RuleCompileError(f"a schema row term is not an RDF term: {text!r}")
     return term
+
+
+#: an atom of a template as an instantiation builds it: the atom itself (no schema variable), or its
+#: (subject, predicate, object) with a schema variable as its position in the row, and its ``aux``
+_Plan = Atom | tuple[tuple[str | int, str | int, str | int], bool]
+
+
+def _put(plan: _Plan, row: Row) -> Atom:
+    """The atom of ``plan`` for ``row`` (:meth:`SchemaRule._instance_plan`)."""
+    if plan.__class__ is Atom:
+        return plan  # type: ignore[return-value]
+    (s, p, o), aux = plan  # type: ignore[misc]
+    if s.__class__ is int:
+        s = row[s]
+    if p.__class__ is int:
+        p = row[p]
+    if o.__class__ is int:
+        o = row[o]
+    return _atom(s, p, o, aux)
 
 
 @lru_cache(maxsize=1 << 16)

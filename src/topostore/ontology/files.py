@@ -12,10 +12,8 @@ rules repaired, a refusal's message).
 
 from __future__ import annotations
 
-import gc
 import os
-from collections.abc import Callable, Iterator
-from contextlib import contextmanager
+from collections.abc import Callable
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -25,6 +23,7 @@ from ..compile import RuleSet, compile_ontology
 from ..compile.notices import RULE_REPAIRED, RULE_SKIPPED, Notice, grouped, publish
 from ..compile.swrl_repair import repair_rules, skip_rule
 from ..errors import IncompleteOntologyError, RuleCompileError, TopostoreError
+from ..rdf.collector import collector_paused
 from ..rdf.safeio import atomic_write, read_regular_file
 from ..rdf.vocab import (
     ASSERTED,
@@ -92,7 +91,7 @@ class OntologyFiles:
         if self._streaming_possible():
             added, shown = self._load_bytes(data, rdf_format, base_iri, str(path), progress)
         else:
-            with _collector_paused():
+            with collector_paused():
                 triples = self.onto.store.parse_bytes(data, rdf_format, base_iri, source=str(path), progress=progress)
             added, shown = self._add_document(triples)
         self.onto.store.forms.learn_tags(data, rdf_format)  # once the document is in (all or nothing)
@@ -115,7 +114,7 @@ class OntologyFiles:
             done = self._streamed(data, fmt, base_iri, source, progress)
             if done is not None:
                 return done
-        with _collector_paused():
+        with collector_paused():
             triples = self.onto.store.parse_bytes(data, fmt, base_iri, source=source, progress=progress)
         return self._add_document(triples)
 
@@ -123,7 +122,7 @@ class OntologyFiles:
         """Add a document: its SWRL rules repaired first (:mod:`.compile.swrl_repair`), then
         checked; what was repaired or set aside is kept in :attr:`load_notices` once the document is
         in.  (Triples added, notices to publish.)"""
-        with _collector_paused():
+        with collector_paused():
             triples, unreadable = canonical_xml_literals(triples)
             triples, notices = repair_rules(triples)
         notices += unreadable
@@ -158,7 +157,7 @@ class OntologyFiles:
         store = self.onto.store
         known = self._known_notices()
         try:
-            with _collector_paused():
+            with collector_paused():
                 stream = stream_through_child if child_wanted(store, data) else stream_into_empty
                 found = stream(store, data, fmt, base_iri, source, progress)
                 schema = next(schema_triples(store, found.predicates, is_schema_triple), None)
@@ -224,7 +223,7 @@ class OntologyFiles:
     def _add_all(self, triples: list[Triple]) -> int:
         """Add a document's triples through the ontology, the cycle collector paused (the compiling
         around it runs with the collector on: a big TBox's expressions may well make cycles)."""
-        with _collector_paused():
+        with collector_paused():
             return self.onto.changes.add(*triples)
 
     def _in_place_possible(self) -> bool:
@@ -288,24 +287,6 @@ def _published(notices: list[Notice], source: str) -> None:
 
 class _Ordinary(Exception):
     """A document streamed into the empty graph needs what only the ordinary load does (its rules repaired)."""
-
-
-@contextmanager
-def _collector_paused() -> Iterator[None]:
-    """Python's cycle collector off while a document is loaded, as it was after.
-
-    A load makes millions of objects that live until it ends (triples, keys, index
-    tables) and no cycle that must be freed before then; the collector would scan them
-    again and again as they pile up (a sixth of a 100,000-location load).  Whatever
-    cycles the load (or another thread meanwhile) leaves are collected as usual once it is
-    on again; a collector found off is left off."""
-    enabled = gc.isenabled()
-    gc.disable()
-    try:
-        yield
-    finally:
-        if enabled:
-            gc.enable()
 
 
 def _refuse_incomplete(notices: list[Notice]) -> None:

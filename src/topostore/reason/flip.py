@@ -67,9 +67,15 @@ def _rename(text: str, names: Collection[str], suffix: str) -> str:
     return "".join(out)
 
 
-def filter_variables(rule: Rule) -> set[str]:
+#: the filter variables of a rule without filters (most rules: every rule per pair of disjoint classes)
+_NONE: frozenset[str] = frozenset()
+
+
+def filter_variables(rule: Rule) -> frozenset[str]:
     """Names (without ``?``) of the variables the filters mention."""
-    return {v[1:] for c in rule.conditions for v in c.variables}
+    if not rule.conditions:
+        return _NONE
+    return frozenset(v[1:] for c in rule.conditions for v in c.variables)
 
 
 def plain_filters(rule: Rule) -> bool:

@@ -77,6 +77,7 @@ from pyoxigraph import NamedNode, Triple
 from ..compile.generic import PREFIXES
 from ..compile.rule import Rule, RuleSet
 from ..compile.schema_program import full_program
+from ..rdf.collector import collector_paused
 from ..rdf.lexer import negates_exists  # noqa: F401 - public here since the first release
 from ..rdf.terms import Term
 from ..rdf.vocab import ASSERTED, AUX, DELTA, ENTAILED, INFERRED, NEW_AUX, NEW_INFERRED
@@ -205,7 +206,8 @@ class IncrementalReasoner:
     def parts(self) -> _Maintenance:
         """The maintenance parts, made on first use."""
         if self._parts is None:
-            self._parts = _Maintenance(self)
+            with collector_paused():  # a rule per pair of disjoint classes indexed: see ..rdf.collector
+                self._parts = _Maintenance(self)
             # read as plain attributes from now on (a :class:`_Part` gives way to the instance's own)
             self.__dict__.update(vars(self._parts))
         return self._parts

@@ -146,9 +146,10 @@ class Covering:
         self.rules = rules
         self.candidates = frozenset(candidates)
         self.writers: dict[ReadKey, list[int]] = {}
+        writers = self.writers
         for n, rule in enumerate(rules):
             if rule.head is not None:
-                self.writers.setdefault(rule.writes(), []).append(n)
+                writers.setdefault(rule.head.read_key(), []).append(n)
         self.readers = _Readers(rules)
         self._first: dict[int, ReadKey | None] = {}
         self._key: dict[int, ReadKey | None] = {}
@@ -179,10 +180,11 @@ class _Readers:
 
     def __init__(self, rules: list[Rule]) -> None:
         self._by: dict[tuple[ReadKey | None, ReadKey | None], list[int]] = {}
+        by = self._by
         for n, rule in enumerate(rules):
             if rule.head is not None:
                 reads = rule.reads()
-                self._by.setdefault((rule.writes(), min(reads) if reads else None), []).append(n)
+                by.setdefault((rule.head.read_key(), min(reads) if reads else None), []).append(n)
 
     def within(self, written: ReadKey | None, premises: Collection[ReadKey]) -> list[int]:
         """The rules writing ``written`` whose every read key is among ``premises`` may be among these

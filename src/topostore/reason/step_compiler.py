@@ -8,6 +8,7 @@ from collections.abc import Callable, Collection, Iterator, Mapping
 from dataclasses import replace
 
 from ..compile.rule import ReadKey, Rule
+from ..rdf.collector import collector_paused
 from ..rdf.vocab import TYPE
 from . import flip
 from .emit import Emitter
@@ -55,7 +56,8 @@ class StepCompiler:
         """The maintained rules indexed for a step's compilation, built by the first (a full REASON
         does not need it)."""
         if self._index is None:
-            self._index = _Index(self.rules, self.monotone)
+            with collector_paused():  # a rule per pair of disjoint classes indexed: see ..rdf.collector
+                self._index = _Index(self.rules, self.monotone)
         return self._index
 
     @staticmethod
@@ -69,7 +71,8 @@ class StepCompiler:
         asked rule by rule as steps reach them (a full REASON does not need them); None when covered
         rules are kept."""
         if self._covering is None and self._cover:
-            self._covering = Covering(self.rules, self.monotone)
+            with collector_paused():  # every rule indexed (one per pair of disjoint classes): see ..rdf.collector
+                self._covering = Covering(self.rules, self.monotone)
         return self._covering
 
     @property
@@ -209,21 +212,23 @@ class _Index:
         #: per rule, the read keys of its body atoms with a named predicate (a variable predicate or a
         #: path may match anything)
         self.keys: dict[int, tuple[ReadKey, ...]] = {}
+        readers, by_head, all_keys = self.readers, self.by_head, self.keys  # bound once: a large TBox
+        wild = (("*",), ("p", _TYPE))  # gives tens of thousands of rules, one per pair of disjoint classes
         for i in monotone:
             rule = rules[i]
-            keys = self.keys[i] = tuple(dict.fromkeys([a.read_key() for a in rule.body if a.p.startswith("<")]))
+            keys = all_keys[i] = tuple(dict.fromkeys([a.read_key() for a in rule.body if a.p[0] == "<"]))
             guard = _guard(keys, None)
             reads = rule.reads()
-            if ("*",) in reads or ("p", _TYPE) in reads:
+            if wild[0] in reads or wild[1] in reads:
                 # reached by any change; looked at again when a key it missed joins (a body key)
                 self.wild.append(i)
                 for key in keys:
-                    self.readers.setdefault(key, {}).setdefault(None, []).append(i)
+                    readers.setdefault(key, {}).setdefault(None, []).append(i)
             else:
                 for key in reads:
-                    by_guard = self.readers.setdefault(key, {})
+                    by_guard = readers.setdefault(key, {})
                     by_guard.setdefault(guard if guard != key else _guard(keys, key), []).append(i)
-            self.by_head.setdefault(rule.writes(), {}).setdefault(guard, []).append(i)
+            by_head.setdefault(rule.head.read_key() if rule.head is not None else None, {}).setdefault(guard, []).append(i)
 
 
 def _guard(keys: tuple[ReadKey, ...], key: ReadKey | None) -> ReadKey | None:

@@ -31,14 +31,23 @@ class Triggers:
         self._writers: dict[ReadKey, list[int]] = {}
         #: per rule, per body atom: the key that must have facts for the atom to match (None: any may)
         self._needs: list[tuple[ReadKey | None, ...]] = []
+        # one pass with the lookups bound locally: a large TBox gives tens of thousands of rules (one
+        # per pair of disjoint classes), all indexed by a robot's first step
+        atoms, filters, writers, needs = self._atoms, self._filters, self._writers, self._needs.append
         for i, rule in enumerate(rules):
-            for j, atom in enumerate(rule.body):
-                self._atoms.setdefault(atom.read_key(), []).append((i, j))
+            body = rule.body
+            keys = [a.read_key() for a in body]
+            for j, key in enumerate(keys):
+                found = atoms.get(key)
+                if found is None:
+                    atoms[key] = [(i, j)]
+                else:
+                    found.append((i, j))
             for key in rule.filter_reads:
-                self._filters.setdefault(key, []).append(i)
-            self._needs.append(tuple(a.read_key() if a.p.startswith("<") else None for a in rule.body))
+                filters.setdefault(key, []).append(i)
+            needs(tuple([key if a.p[0] == "<" else None for a, key in zip(body, keys)]))
             if rule.head is not None:
-                self._writers.setdefault(rule.writes(), []).append(i)
+                writers.setdefault(rule.head.read_key(), []).append(i)
 
     def evaluations(self, preds: Collection[str], classes: Collection[str], active: Collection[int],
                     present: Present | None = None, skip: Collection[tuple[int, int]] = ()) -> list[Evaluation]:
