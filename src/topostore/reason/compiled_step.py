@@ -33,7 +33,7 @@ from .step_compiler import StepCompiler
 from .triggers import key_sets, matches
 
 if TYPE_CHECKING:
-    from .incremental import MaintenanceState
+    from .maintenance import MaintenanceState
 
 #: Compiled steps kept (one per kind of change seen since the last full run, oldest dropped first).
 MAX_PROGRAMS = 256

@@ -59,7 +59,8 @@ the asserted graph, where recomputation is as cheap as maintenance.  The mode
 and the reason are reported in :class:`~.stats.ReasonStats`.
 
 Where the parts live: this module chooses the mode and runs additions, flips
-and checks; :mod:`.compiled_step` compiles each kind of change once and runs
+and checks; :mod:`.maintenance` holds the state kept between REASONs and the
+parts made for maintenance; :mod:`.compiled_step` compiles each kind of change once and runs
 its program; :mod:`.change_checks` decides whether a check or a negated premise
 may match after maintenance; :mod:`.dred` holds the deletion phases (over-delete with proofs,
 rederive), :mod:`.requests` the batching of evaluations into update
@@ -70,12 +71,11 @@ from __future__ import annotations
 
 import time
 from collections.abc import Collection
-from dataclasses import dataclass, field
 
 from pyoxigraph import NamedNode, Triple
 
 from ..compile.generic import PREFIXES
-from ..compile.rule import Rule, RuleSet
+from ..compile.rule import RuleSet
 from ..compile.schema_program import full_program
 from ..rdf.collector import collector_paused
 from ..rdf.lexer import negates_exists  # noqa: F401 - public here since the first release
@@ -83,24 +83,21 @@ from ..rdf.terms import Term
 from ..rdf.vocab import ASSERTED, AUX, DELTA, ENTAILED, INFERRED, NEW_AUX, NEW_INFERRED
 from ..stores.base import Store, key_census
 from . import flip
-from .change_checks import ChangeChecks
-from .changed import ChangedGraphs, Decisions
+from .changed import Decisions
 from .closing import close_full, counting_asserted
-from .compiled_step import MAX_PROGRAMS, CompiledStep
+from .compiled_step import MAX_PROGRAMS
 from .component import WHOLE_ROUNDS
 from .consistency import Violation, check_consistency
-from .dred import Deletion, can_prove
-from .early_reads import EARLY_CHECKS
-from .entailed import refresh_entailed, refresh_touched, watched_forms
-from .flips import Flips
+from .dred import can_prove
+from .entailed import refresh_entailed, refresh_touched
+from .maintenance import MaintenanceParts, MaintenanceState, Part, early_checks, is_monotone, needed_keys
 from .materialize import Materializer
-from .negation import ASKED, Completion, completion_text, deferred
+from .negation import ASKED, completion_text
 from .present import key_graphs, with_facts
 from .program import PROGRAM_SCRATCH
-from .requests import RequestQueue
 from .scratch import ADDED, FLIP_GAINED, NEW_FACTS, OVERDELETED, REMOVED, SCRATCH
 from .stats import ReasonStats
-from .triggers import Present, Triggers, key_sets
+from .triggers import key_sets
 
 #: Default share of the asserted graph above which a change is recomputed from scratch.
 DEFAULT_MAX_CHANGE_SHARE = 0.10
@@ -115,42 +112,8 @@ def check_mode(mode: str) -> None:
         raise ValueError(f"unknown reasoning mode {mode!r}; use auto, incremental or full")
 
 
-def is_monotone(rule: Rule) -> bool:
-    """A rule whose matches can only grow when facts are added (DRed needs this)."""
-    return rule.stratum == 0 and not rule.negates
-
-
 #: the scratch graphs every REASON drops at its end
 DROPPED = (*SCRATCH, *PROGRAM_SCRATCH, DELTA, NEW_INFERRED, NEW_AUX)
-
-
-@dataclass
-class MaintenanceState:
-    """What incremental maintenance needs to know about the previous REASON."""
-
-    #: a full run with these rules has happened on this store
-    ready: bool = False
-    #: no rule with a negated premise (stratum > 0) matched in the previous state
-    quiet: bool = False
-    asserted_size: int = 0
-    violations: list[Violation] = field(default_factory=list)
-    #: predicates and classes with facts (a superset of those the rules and checks read: no other
-    #: is asked about), to skip evaluations that cannot match
-    present: Present = field(default_factory=lambda: (set(), set()))
-    #: predicates and classes of asserted facts (a superset), to skip proofs that cannot succeed
-    asserted: Present = field(default_factory=lambda: (set(), set()))
-
-
-class _Part:
-    """An attribute of the reasoner that is one of its maintenance parts (:class:`_Maintenance`): its
-    first read makes the parts, which then become the reasoner's own attributes (a step reads them
-    as any other)."""
-
-    def __set_name__(self, owner: type, name: str) -> None:
-        self.name = name
-
-    def __get__(self, obj: IncrementalReasoner | None, owner: type | None = None):
-        return self if obj is None else getattr(obj.parts, self.name)
 
 
 class IncrementalReasoner:
@@ -179,36 +142,36 @@ class IncrementalReasoner:
         #: the shape of the change (:func:`.changed.shape`), until the next full run
         self._decided = Decisions(MAX_PROGRAMS)
         #: the parts of maintenance, made by the first REASON that maintains (:attr:`parts`)
-        self._parts: _Maintenance | None = None
+        self._parts: MaintenanceParts | None = None
         #: (individual, class) pairs whose type fact the last REASON may have changed; None after a full run
         self.touched_types: list[tuple[Term, NamedNode]] | None = None
 
-    rules = _Part()
-    monotone = _Part()
-    _monotone_set = _Part()
-    deferred = _Part()
-    _completion = _Part()
-    triggers = _Part()
-    checks = _Part()
-    check_triggers = _Part()
-    negated = _Part()
-    _unmaintainable = _Part()
-    provers = _Part()
-    checks_monotone = _Part()
-    requests = _Part()
-    flips = _Part()
-    deletion = _Part()
-    changed = _Part()
-    change_checks = _Part()
-    step = _Part()
+    rules = Part()
+    monotone = Part()
+    _monotone_set = Part()
+    deferred = Part()
+    _completion = Part()
+    triggers = Part()
+    checks = Part()
+    check_triggers = Part()
+    negated = Part()
+    _unmaintainable = Part()
+    provers = Part()
+    checks_monotone = Part()
+    requests = Part()
+    flips = Part()
+    deletion = Part()
+    changed = Part()
+    change_checks = Part()
+    step = Part()
 
     @property
-    def parts(self) -> _Maintenance:
+    def parts(self) -> MaintenanceParts:
         """The maintenance parts, made on first use."""
         if self._parts is None:
             with collector_paused():  # a rule per pair of disjoint classes indexed: see ..rdf.collector
-                self._parts = _Maintenance(self)
-            # read as plain attributes from now on (a :class:`_Part` gives way to the instance's own)
+                self._parts = MaintenanceParts(self)
+            # read as plain attributes from now on (a :class:`.maintenance.Part` gives way to the instance's own)
             self.__dict__.update(vars(self._parts))
         return self._parts
 
@@ -446,65 +409,6 @@ class IncrementalReasoner:
         self.changed.forget()
         self.requests.drop(DROPPED)
         self.requests.flush()
-
-
-class _Maintenance:
-    """What maintenance reads of the rules: the indexes of the maintained rules and checks (the rule
-    per pair of disjoint classes among them), the request queue, the flips, the deletion phases, the
-    reads after maintenance and the compiled step.
-
-    Made by the first REASON that maintains: a full REASON needs none of it, and on a TBox of
-    thousands of disjoint siblings the rules per pair are millions (:mod:`..compile.disjointness`)."""
-
-    def __init__(self, reasoner: IncrementalReasoner) -> None:
-        rules = reasoner.ruleset
-        store = reasoner.store
-        self.rules = rules.inference_rules
-        self.monotone = [i for i, r in enumerate(self.rules) if is_monotone(r)]
-        self._monotone_set = set(self.monotone)
-        #: candidate rules a full REASON evaluates without the pairs whose conclusion is known, and the
-        #: keys whose loss (derived; asserted) makes maintenance ask those pairs again (:mod:`.negation`)
-        self.deferred = sorted(deferred(self.rules))
-        self._completion = Completion(self.rules)
-        self.triggers = Triggers(self.rules)
-        self.checks = rules.checks
-        self.check_triggers = Triggers(self.checks)
-        self.negated = [r for r in self.rules if not is_monotone(r)]
-        self.provers = [i for i in self.monotone if can_prove(self.rules[i])]
-        #: the rules with negated premises in stratum 0, which maintenance cannot keep (a property of the
-        #: rules: decided here once, not at every REASON)
-        self._unmaintainable = sorted({r.name for r in self.negated if r.stratum == 0}) \
-            if len(self.monotone) + len([r for r in self.negated if r.stratum > 0]) < len(self.rules) else []
-        self.checks_monotone = all(not c.negates and c.stratum == 0 for c in self.checks)
-        self.requests = RequestQueue(store, self.rules)
-        self.flips = Flips(self.requests, self.triggers, self._monotone_set)
-        self.deletion = Deletion(self.requests, self.triggers, self.monotone, self.provers)
-        #: the scratch graphs of the REASON under way, read once by the reads after maintenance
-        self.changed = ChangedGraphs(store, self.requests.flush, watched_forms(rules))
-        #: whether a change may make a check or a negated-premise rule match (:mod:`.change_checks`)
-        self.change_checks = ChangeChecks(store, self.negated, self.checks, self.check_triggers, self.changed,
-                                          reasoner._decided)
-        self.change_checks.state = reasoner.state
-        #: the compiled step of each kind of change (see :mod:`.compiled_step`)
-        self.step = CompiledStep(store, rules, self.monotone, self.requests, self.flips, self.change_checks)
-
-
-def early_checks(rules: RuleSet) -> list[Rule]:
-    """The checks a full REASON may start beside its fixpoint (:mod:`.early_reads`): every check when
-    they are few, else those other than the told pairs of disjoint classes (which are then checked in
-    one query after the fixpoint, and never made one per pair)."""
-    table = rules.disjointness
-    if table is None or len(table.told) <= EARLY_CHECKS:
-        return rules.checks
-    return rules.base_checks
-
-
-def needed_keys(rules: RuleSet) -> set:
-    """The keys the maintained rules' and checks' bodies read: the rule set's own rules, and for the
-    rows of disjoint classes one rule and one check per class (a row's keys are its classes' keys)."""
-    table = rules.disjointness
-    extra = table.representatives() if table is not None else []  # type: ignore[attr-defined]
-    return Triggers([r for r in rules.rules] + extra).needed_keys()
 
 
 __all__ = ["IncrementalReasoner", "MaintenanceState", "DEFAULT_MAX_CHANGE_SHARE", "MODES", "can_prove", "check_mode",
