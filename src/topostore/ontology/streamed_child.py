@@ -19,8 +19,11 @@ way, whose answer (the same ``file:line: cause``) is the one given.  No child ou
 Below :data:`CHILD_FROM` bytes the child's start (an interpreter and 0.16 s of imports) and its extra work (the
 text written and read again: about 20 % more CPU in all) cost more than the second core gives back, and the
 document is written in the parent; so it is where no core is free (:func:`core_free`).
-``TOPOSTORE_LOAD_CHILD=0`` in the environment turns the child off (:data:`ENABLED`), ``=1`` takes it for
-every big document (:data:`FORCED`).
+The child is off unless asked for: on this 2-core machine, quiet, a 100,000-location map (100 MB of RDF/XML)
+took 7.6-8.1 s of wall time through the child against 5.8-6.1 s in process (docs/benchmarks.md), so the second
+core does not pay for the text written and read again.  ``TOPOSTORE_LOAD_CHILD=auto`` in the environment
+takes it for a big document when a core is free, ``=1`` for every big document (:data:`ENABLED`,
+:data:`FORCED`): for machines where it may pay, and to measure it.
 """
 
 from __future__ import annotations
@@ -52,11 +55,11 @@ log = logging.getLogger(__name__)
 
 #: documents of this many bytes or more are parsed in a child process (measured: docs/benchmarks-history.md)
 CHILD_FROM = 16_000_000
-#: ``TOPOSTORE_LOAD_CHILD``: ``0`` never a child, ``1`` a child for every big document even on busy cores (to
-#: measure it), unset: a child for a big document when a core is free
+#: ``TOPOSTORE_LOAD_CHILD``: unset or ``0`` never a child, ``auto`` a child for a big document when a core is
+#: free, ``1`` a child for every big document even on busy cores (to measure it)
 _SETTING = os.environ.get("TOPOSTORE_LOAD_CHILD", "")
 #: whether a child is used at all
-ENABLED = _SETTING != "0"
+ENABLED = _SETTING in ("1", "auto")
 #: whether a big document goes to a child whatever the load of the machine
 FORCED = _SETTING == "1"
 
