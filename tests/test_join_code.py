@@ -137,10 +137,10 @@ def test_the_compiled_flip_is_the_interpreted_one(new: list, replaced: list, ord
         for graph, facts in ((ASSERTED, new), (CHANGE_OLD, old)):
             store.add([Triple((CLOCKS + PLACES)[k] if p == "seen" else CLOCKS[k % 2], NamedNode(NS + p), v)
                        for p, k, v in facts], graph)
-        with mock.patch.object(look_join, "COMPILED_JOINS", compiled):
+        with mock.patch.object(look_join, "COMPILED_JOINS", compiled), mock.patch.object(look_join, "COMPILE_AFTER", 1):
             flipped = look_flip.Flipped(clock, order)
+        answer = flipped.run(store)  # compiled at its first run (COMPILE_AFTER 1)
         assert (flipped._branches is not None) == compiled
-        answer = flipped.run(store)
         results.append((answer, set(store.triples(graph=FLIP_GAINED)), set(store.triples(graph=FLIP_LOST))))
     assert results[0] == results[1]
 

@@ -139,7 +139,7 @@ def test_compiled_joins_leave_the_store_of_interpreted_ones(batches: list) -> No
     told = "\n".join(f"{t} ." for t in new_ontology().store.triples(graph=ASSERTED))  # one set of blank node names
     stores = []
     for compiled in (True, False):
-        with mock.patch.object(look_join, "COMPILED_JOINS", compiled):
+        with mock.patch.object(look_join, "COMPILED_JOINS", compiled), mock.patch.object(look_join, "COMPILE_AFTER", 1):
             onto = turtle(told)
             onto.reason()
             states = []

@@ -62,8 +62,10 @@ class Flipped:
         #: the keys whose facts it reads: its atoms' and its head's
         self.reads = frozenset({a.read_key() for a in rule.body} | {rule.head.read_key()})
         #: per changed atom, its branch compiled once into a flat function (:func:`.join_code.compile_flip`),
-        #: where every changed atom's compared value is a variable; else the branches are interpreted
-        self._branches = self._compile() if look_join.COMPILED_JOINS else None
+        #: where every changed atom's compared value is a variable; else the branches are interpreted.  Made
+        #: at the :data:`.look_join.COMPILE_AFTER`-th run (a flip that runs once is cheaper interpreted)
+        self._branches: list | None = None
+        self._runs_left = look_join.COMPILE_AFTER if look_join.COMPILED_JOINS else -1
 
     def _compile(self) -> list | None:
         terms = [shape.terms for shape in self._body]
@@ -78,6 +80,10 @@ class Flipped:
         """Write the flipped heads to FLIP_GAINED / FLIP_LOST; False (nothing written) where the text must run."""
         gained: dict[Triple, None] = {}
         lost: dict[Triple, None] = {}
+        if self._runs_left > 0:
+            self._runs_left -= 1
+            if not self._runs_left:
+                self._branches = self._compile()
         try:
             if self._branches is not None:
                 for branch in self._branches:

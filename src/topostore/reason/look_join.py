@@ -18,7 +18,7 @@ and its SPARQL text runs instead (before anything was written).
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
 
 from pyoxigraph import Literal, NamedNode, Triple
 
@@ -177,6 +177,32 @@ def joinable(rule: Rule) -> bool:
     return True
 
 
+#: a join runs interpreted this many times before its code is generated: a step program of a TBox-heavy
+#: ontology makes thousands of joins that run once or never, and generating their code cost more than
+#: it saved (a tutorial-style TBox's steps spent a third of their time in it)
+COMPILE_AFTER = 2
+
+
+class _Compiling:
+    """A join run interpreted until its :data:`COMPILE_AFTER`-th run, which compiles it and puts the
+    compiled join (or the interpreted one, where it cannot be compiled) in its owner's attribute: later
+    runs call that directly."""
+
+    __slots__ = ("_owner", "_name", "_make", "_slow", "_left")
+
+    def __init__(self, owner: object, name: str, make: Callable[[], Join | None], slow: Join) -> None:
+        self._owner, self._name, self._make, self._slow = owner, name, make, slow
+        self._left = COMPILE_AFTER
+
+    def __call__(self, store, bound: dict) -> Iterator[dict]:
+        self._left -= 1
+        if self._left > 0:
+            return self._slow(store, bound)
+        join = self._make() or self._slow
+        setattr(self._owner, self._name, join)
+        return join(store, bound)
+
+
 class Joined:
     """Rule ``rule`` (see :func:`joinable`), whose heads live in ``graph``: its recheck of candidates
     (as KEEP marks, or as the one-prover deletion) and its additions from an atom's new facts."""
@@ -199,15 +225,18 @@ class Joined:
         self.reads = frozenset({a.read_key() for a in rule.body} | {rule.head.read_key()})
         #: the recheck's join from a candidate's head values, and the additions' from a delta fact's
         #: bindings, each compiled once into a flat function (:mod:`.join_code`)
-        self._prove = self._join(self._proof_order, self._head)
-        self._derive = self._join(self._delta_order, self._body[delta]) if delta is not None else None
+        self._prove = self._join(self._proof_order, self._head, "_prove")
+        self._derive = self._join(self._delta_order, self._body[delta], "_derive") if delta is not None else None
 
-    def _join(self, order: list[int], start: Shape) -> Join:
-        """The join of the atoms ``order`` from the solutions ``start``'s facts bind."""
+    def _join(self, order: list[int], start: Shape, name: str) -> Join:
+        """The join of the atoms ``order`` from the solutions ``start``'s facts bind, interpreted until
+        it has run :data:`COMPILE_AFTER` times, then compiled into attribute ``name``."""
+        slow = interpreted(self._body, order, self._graphs, _read)
+        if not COMPILED_JOINS:
+            return slow
         terms = [shape.terms for shape in self._body]
         given = {x for x in start.terms if isinstance(x, str)}
-        compiled = compile_join(terms, order, given, self._graphs, _read) if COMPILED_JOINS else None
-        return compiled or interpreted(self._body, order, self._graphs, _read)
+        return _Compiling(self, name, lambda: compile_join(terms, order, given, self._graphs, _read), slow)
 
     def _proven(self, store, bound: dict) -> object:
         """Whether some derivation with the head's values ``bound`` holds (UNKNOWN: not decided)."""
