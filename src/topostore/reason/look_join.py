@@ -184,22 +184,29 @@ COMPILE_AFTER = 2
 
 
 class _Compiling:
-    """A join run interpreted until its :data:`COMPILE_AFTER`-th run, which compiles it and puts the
+    """A join made on its first run (interpreted) and compiled on its :data:`COMPILE_AFTER`-th, which puts the
     compiled join (or the interpreted one, where it cannot be compiled) in its owner's attribute: later
-    runs call that directly."""
+    runs call that directly.  Until its first run it holds no closure: a step program of a TBox-heavy
+    ontology makes thousands of joins that never run, and every object they hold is walked by each full
+    collection of the cycle collector."""
 
-    __slots__ = ("_owner", "_name", "_make", "_slow", "_left")
+    __slots__ = ("_owner", "_name", "_order", "_given", "_slow", "_left")
 
-    def __init__(self, owner: object, name: str, make: Callable[[], Join | None], slow: Join) -> None:
-        self._owner, self._name, self._make, self._slow = owner, name, make, slow
+    def __init__(self, owner: Joined, name: str, order: list[int], given: set[str]) -> None:
+        self._owner, self._name, self._order, self._given = owner, name, order, given
+        self._slow: Join | None = None
         self._left = COMPILE_AFTER
 
     def __call__(self, store, bound: dict) -> Iterator[dict]:
+        owner = self._owner
+        if self._slow is None:
+            self._slow = interpreted(owner._body, self._order, owner._graphs, _read)
         self._left -= 1
         if self._left > 0:
             return self._slow(store, bound)
-        join = self._make() or self._slow
-        setattr(self._owner, self._name, join)
+        terms = [shape.terms for shape in owner._body]
+        join = compile_join(terms, self._order, self._given, owner._graphs, _read) or self._slow
+        setattr(owner, self._name, join)
         return join(store, bound)
 
 
@@ -231,12 +238,9 @@ class Joined:
     def _join(self, order: list[int], start: Shape, name: str) -> Join:
         """The join of the atoms ``order`` from the solutions ``start``'s facts bind, interpreted until
         it has run :data:`COMPILE_AFTER` times, then compiled into attribute ``name``."""
-        slow = interpreted(self._body, order, self._graphs, _read)
         if not COMPILED_JOINS:
-            return slow
-        terms = [shape.terms for shape in self._body]
-        given = {x for x in start.terms if isinstance(x, str)}
-        return _Compiling(self, name, lambda: compile_join(terms, order, given, self._graphs, _read), slow)
+            return interpreted(self._body, order, self._graphs, _read)
+        return _Compiling(self, name, order, {x for x in start.terms if isinstance(x, str)})
 
     def _proven(self, store, bound: dict) -> object:
         """Whether some derivation with the head's values ``bound`` holds (UNKNOWN: not decided)."""
