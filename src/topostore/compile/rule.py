@@ -12,12 +12,15 @@ from __future__ import annotations
 from collections.abc import Callable, Hashable, Iterable, Mapping
 from dataclasses import dataclass, field
 from functools import cached_property, lru_cache
-from typing import TypeVar
+from typing import TYPE_CHECKING, TypeVar
 
 from pyoxigraph import NamedNode
 
 from ..rdf.vocab import AUX, TYPE, is_internal, is_skolem
 from .condition import Condition, render
+
+if TYPE_CHECKING:
+    from .disjointness import Disjointness
 
 #: A read key: ("p", predicate IRI), ("t", class IRI) for ``?x rdf:type <C>``,
 #: or ("*",) for a pattern with a variable predicate (reads everything).
@@ -304,7 +307,7 @@ class RuleSet:
     queries: dict = field(default_factory=dict)
     #: the pairs of disjoint classes as rows (:class:`.disjointness.Disjointness`), None when there are
     #: none: :attr:`rules` holds no rule per pair, :attr:`inference_rules` and :attr:`checks` do
-    disjointness: object | None = None
+    disjointness: Disjointness | None = None
     #: (the list :meth:`add` last appended to, its length then, its rules by :func:`_bucket`)
     _seen: tuple | None = field(default=None, init=False, repr=False, compare=False)
     #: what :meth:`derived` made from :attr:`rules`: key -> (the rules list, its length, the value)
@@ -378,10 +381,10 @@ class RuleSet:
         text = f"{len(self.rules)} rules"
         table = self.disjointness
         if table is not None:
-            text += f" and {len(table.different)} ordered pairs of disjoint classes as rows"  # type: ignore[attr-defined]
+            text += f" and {len(table.different)} ordered pairs of disjoint classes as rows"
         return text
 
     def _per_pair(self) -> tuple[list[Rule], list[Rule]]:
         if self.disjointness is None:
             return [], []
-        return self.disjointness.rules()  # type: ignore[attr-defined]
+        return self.disjointness.rules()

@@ -119,7 +119,7 @@ def needed_keys(rules: RuleSet) -> set:
     """The keys the maintained rules' and checks' bodies read: the rule set's own rules, and for the
     rows of disjoint classes one rule and one check per class (a row's keys are its classes' keys)."""
     table = rules.disjointness
-    extra = table.representatives() if table is not None else []  # type: ignore[attr-defined]
+    extra = table.representatives() if table is not None else []
     return Triggers([r for r in rules.rules] + extra).needed_keys()
 
 

@@ -149,7 +149,7 @@ class Covering:
         writers = self.writers
         for n, rule in enumerate(rules):
             if rule.head is not None:
-                writers.setdefault(rule.head.read_key(), []).append(n)
+                writers.setdefault(rule.writes(), []).append(n)
         self.readers = _Readers(rules)
         self._first: dict[int, ReadKey | None] = {}
         self._key: dict[int, ReadKey | None] = {}
@@ -184,7 +184,7 @@ class _Readers:
         for n, rule in enumerate(rules):
             if rule.head is not None:
                 reads = rule.reads()
-                by.setdefault((rule.head.read_key(), min(reads) if reads else None), []).append(n)
+                by.setdefault((rule.writes(), min(reads) if reads else None), []).append(n)
 
     def within(self, written: ReadKey | None, premises: Collection[ReadKey]) -> list[int]:
         """The rules writing ``written`` whose every read key is among ``premises`` may be among these

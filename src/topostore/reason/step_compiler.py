@@ -228,7 +228,7 @@ class _Index:
                 for key in reads:
                     by_guard = readers.setdefault(key, {})
                     by_guard.setdefault(guard if guard != key else _guard(keys, key), []).append(i)
-            by_head.setdefault(rule.head.read_key() if rule.head is not None else None, {}).setdefault(guard, []).append(i)
+            by_head.setdefault(rule.writes(), {}).setdefault(guard, []).append(i)
 
 
 def _guard(keys: tuple[ReadKey, ...], key: ReadKey | None) -> ReadKey | None:

@@ -47,7 +47,7 @@ class Triggers:
                 filters.setdefault(key, []).append(i)
             needs(tuple([key if a.p[0] == "<" else None for a, key in zip(body, keys)]))
             if rule.head is not None:
-                writers.setdefault(rule.head.read_key(), []).append(i)
+                writers.setdefault(rule.writes(), []).append(i)
 
     def evaluations(self, preds: Collection[str], classes: Collection[str], active: Collection[int],
                     present: Present | None = None, skip: Collection[tuple[int, int]] = ()) -> list[Evaluation]:
