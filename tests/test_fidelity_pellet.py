@@ -243,6 +243,48 @@ def test_misses_are_named(name: str) -> None:
     assert any(n.axiom_kind == profile.EXISTENTIAL for n in report.incomplete), report.incomplete
 
 
+#: a chain through an existential's unnamed value: the unnamed value's class gives it the chain's second
+#: link to a named individual, so its subject is linked by the chain to that individual (Pellet's answer)
+CHAIN_THROUGH_AN_UNNAMED_VALUE = """:p a owl:ObjectProperty . :s a owl:ObjectProperty . :F a owl:Class . :A a owl:Class .
+:t a owl:ObjectProperty ; owl:propertyChainAxiom ( :p :s ) .
+:A rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :p ; owl:someValuesFrom :F ] .
+:F rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :s ; owl:hasValue :i ] .
+:a a owl:NamedIndividual, :A . :i a owl:NamedIndividual .
+"""
+#: the same chain over named individuals only, beside an existential whose value's class has no second link
+CHAIN_OVER_NAMED_INDIVIDUALS = """:p a owl:ObjectProperty . :s a owl:ObjectProperty . :F a owl:Class . :A a owl:Class .
+:D a owl:Class . :t a owl:ObjectProperty ; owl:propertyChainAxiom ( :p :s ) .
+:A rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :p ; owl:someValuesFrom :F ] .
+[ a owl:Restriction ; owl:onProperty :t ; owl:someValuesFrom owl:Thing ] rdfs:subClassOf :D .
+:a a owl:NamedIndividual, :A ; :p :b . :b a owl:NamedIndividual ; :s :c . :c a owl:NamedIndividual .
+"""
+
+
+def test_a_chain_through_an_unnamed_value_is_named_where_pellet_draws_more() -> None:
+    ns = namespace("chain_through_an_unnamed_value")
+    text = document("chain_through_an_unnamed_value", CHAIN_THROUGH_AN_UNNAMED_VALUE)
+    assert ns + "i" in pellet(text)["individuals"][ns + "a"].get(ns + "t", [])
+    o = loaded(text)
+    report = o.reason()
+    assert NamedNode(ns + "i") not in o.object_values(NamedNode(ns + "t"), NamedNode(ns + "a"), names=False)
+    assert any(n.axiom_kind == profile.EXISTENTIAL and "chain of t" in n.reason for n in report.incomplete), \
+        report.incomplete
+
+
+def test_a_chain_over_named_individuals_only_is_not_named_and_equals_pellet() -> None:
+    ns = namespace("chain_over_named_individuals")
+    text = document("chain_over_named_individuals", CHAIN_OVER_NAMED_INDIVIDUALS)
+    theirs = pellet(text)["individuals"]
+    o = loaded(text)
+    report = o.reason()
+    assert report.incomplete == []
+    for name in ("a", "b", "c"):
+        ours = {t.value for t in o.types(NamedNode(ns + name))}
+        assert ours == set(theirs[ns + name]["types"]) - {"http://www.w3.org/2002/07/owl#Thing"}, name
+    assert [v.value for v in o.object_values(NamedNode(ns + "t"), NamedNode(ns + "a"), names=False)] == \
+        theirs[ns + "a"][ns + "t"] == [ns + "c"]
+
+
 #: name -> (Turtle, individual, class or (property, value) OWL 2 entails, why Pellet 2.3.1 misses it):
 #: topostore's answer is the entailed one; the probes of random ontologies avoid these shapes
 PELLET_MISSES: dict[str, tuple[str, str, str | tuple[str, str], str]] = {

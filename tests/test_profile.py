@@ -46,6 +46,14 @@ CASES = {
                                     "owl:propertyChainAxiom ( :q :p ) . :B rdfs:subClassOf [ a owl:Restriction ; "
                                     "owl:onProperty :p ; owl:someValuesFrom :C ] .", kinds.EXISTENTIAL,
                                     "chain of t"),
+    "existential through a chain to a named value": (
+        ":s a owl:ObjectProperty . :t a owl:ObjectProperty ; owl:propertyChainAxiom ( :p :s ) . :A rdfs:subClassOf "
+        "[ a owl:Restriction ; owl:onProperty :p ; owl:someValuesFrom :F ] . :F rdfs:subClassOf "
+        "[ a owl:Restriction ; owl:onProperty :s ; owl:hasValue :i ] .", kinds.EXISTENTIAL, "chain of t"),
+    "existential starting a chain read backwards": (
+        ":s a owl:ObjectProperty . :t a owl:ObjectProperty ; rdfs:range :R ; owl:propertyChainAxiom "
+        "( [ owl:inverseOf :p ] :s ) . :A rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :p ; "
+        "owl:someValuesFrom :F ] .", kinds.EXISTENTIAL, "chain of t"),
     "existential and functional": (":p a owl:FunctionalProperty . :R rdfs:subClassOf [ a owl:Restriction ; "
                                    "owl:onProperty :p ; owl:someValuesFrom :L ] .", kinds.EXISTENTIAL,
                                    "at most one value"),
@@ -130,6 +138,19 @@ def test_horn_axioms_give_no_notice() -> None:
                 "owl:someValuesFrom :B ] ) ] . [ owl:unionOf ( :A :B ) ] rdfs:subClassOf :D . "
                 ":E rdfs:subClassOf [ owl:complementOf :A ] . :p rdfs:domain :A ; rdfs:range :B .")
     assert o.notices == []
+
+
+@pytest.mark.parametrize("second", [
+    "",  # the unnamed value's class has no second link: the chain goes through named individuals only
+    ":F rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :p ; owl:hasValue :i ] .",  # a link, not by s
+])
+def test_a_chain_that_cannot_pass_through_an_unnamed_value_is_not_named(second: str) -> None:
+    o = quietly(":s a owl:ObjectProperty . :t a owl:ObjectProperty ; rdfs:domain :D ; rdfs:range :R ; "
+                "owl:propertyChainAxiom ( :p :s ) . :A rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :p ; "
+                f"owl:someValuesFrom :F ] . {second} :a a :A ; :p :b . :b :s :c .")
+    assert o.notices == [] and o.reason().incomplete == []
+    assert [v.value for v in o.object_values("t", "a", names=False)] == ["http://e.org/a#c"]
+    assert "http://e.org/a#D" in {c.value for c in o.types("a")}
 
 
 def test_one_warning_per_kind_naming_every_axiom() -> None:

@@ -160,8 +160,8 @@ class ProfileReport:
         return {c, *self.owl.told.get(c, set())}
 
     def run(self, store: Store, graph: NamedNode) -> list[Notice]:
-        for e, positive, axiom, subject in self.uses:
-            self.expression(e, positive, axiom, subject)
+        for e, positive, axiom, _ in self.uses:
+            self.expression(e, positive, axiom)
         self.difference()
         for a, b in self.tb.same_properties:
             self.note(UNSUPPORTED, f"{_name(a)} sameAs {_name(b)}", "properties made the same are not "
@@ -242,7 +242,7 @@ class ProfileReport:
             self.notices.setdefault((NOT_STORED, "owl:sameAs"), Notice(NOT_STORED, subject, REFLEXIVE_SAME_AS))
 
     # ---------------------------------------------------------------- expressions
-    def expression(self, e: Expr, positive: bool, axiom: str, subject: NamedNode | None) -> None:
+    def expression(self, e: Expr, positive: bool, axiom: str) -> None:
         k = e.kind
         if positive and k == "or" and all(m.node != THING for m in e.members):
             self.note(UNION, axiom, f"an instance of {describe(e)} is in one of its members, which one is not "
@@ -261,7 +261,7 @@ class ProfileReport:
             self.note(MAX_CASES, axiom, f"more than {e.n} values not known to be different: which are equal "
                       "needs case analysis, not drawn")
         if positive and k in ("some", "min", "exact") and (k == "some" or e.n >= 1):
-            self.existential(e, axiom, subject)
+            self.existential(e, axiom)
 
     def complement_gap(self, e: Expr) -> str:
         """What of a complement's membership is not derived: the rules of :mod:`.negation` derive that an
@@ -283,7 +283,7 @@ class ProfileReport:
             return True
         return any(pos and e.kind in ("max", "exact") for e, pos in self.on.get(p, ()))
 
-    def existential(self, e: Expr, axiom: str, subject: NamedNode | None) -> None:
+    def existential(self, e: Expr, axiom: str) -> None:
         """Consequences of the unnamed value of an existential that are not drawn."""
         p, what = e.prop, describe(e)
         supers = self.supers.get(p, frozenset())

@@ -101,13 +101,74 @@ class UnnamedValues:
         return found
 
     def chain_links(self, e: Expr, axiom: str, links: set[Prop]) -> None:
-        """A chain through the unnamed value of ``e`` links its ends by the chain's property, whose
-        consequences (a domain, a range, restrictions on it) are then drawn only through told values."""
-        both = links | {inverse(q) for q in links}
+        """A chain whose conclusion passes through the unnamed value ``u`` of ``e`` (``x p u``; ``links``:
+        ``p`` and its super-expressions) and is not drawn, since no fact of ``u`` is stored.  ``x p u`` is
+        the chain's k-th link read forwards (``p`` ⊑ its k-th property) or backwards (``p`` ⊑ its inverse);
+        the chain then either ends at ``u`` (its named end gains a link by the chain's property to a value no
+        one named: missed where that link has consequences at the named end), or goes on from ``u`` by the
+        next link, which only ``u``'s classes can give it (a told value: a link to a named individual is
+        missed; an existential: missed where the chain's property has consequences).  A chain that ``x p u``
+        can serve but that cannot go on from ``u`` concludes nothing through it, and is not named."""
+        restrictions: list[Expr] | None = None
         for t, chain in self.report.tb.chains:
-            if both.intersection(chain) and self.has_consequences(Prop(t)):
-                self.report.note_existential(axiom, f"the unnamed value of {describe(e)} may complete the chain "
-                                             f"of {_name(t)}, whose consequences are drawn only through told values")
+            for k, q in enumerate(chain):
+                if q in links:  # x q u: the chain goes on from u by its next property
+                    onward = chain[k + 1] if k + 1 < len(chain) else None
+                    end = Prop(t)  # ...or ends at u: the start x' gains x' t u
+                elif inverse(q) in links:  # u q x: the chain comes to u by the inverse of its previous property
+                    onward = inverse(chain[k - 1]) if k > 0 else None
+                    end = inverse(Prop(t))  # ...or starts at u: the end x' gains u t x'
+                else:
+                    continue
+                if onward is None:
+                    missed = self.subject_consequences(end)
+                else:
+                    if restrictions is None:
+                        restrictions = self.restrictions_of_value(e, links)
+                    link = self.link_by(restrictions, onward)
+                    missed = link == "value" or (link == "some" and self.has_consequences(Prop(t)))
+                if missed:
+                    self.report.note_existential(axiom, f"the unnamed value of {describe(e)} completes the chain "
+                                                 f"of {_name(t)}, whose conclusion through it is not drawn")
+                    return
+
+    def subject_consequences(self, t: Prop) -> bool:
+        """A subject of ``t`` gains a class by the link alone: a domain of ``t`` or of a super-expression,
+        or a restriction on one of them used on the left."""
+        return bool(self.sides(t) or self.used_left((t, *self.report.supers.get(t, ()))))
+
+    def restrictions_of_value(self, e: Expr, links: set[Prop]) -> list[Expr]:
+        """The restrictions the unnamed value of ``e`` is told to satisfy: its filler's own (an anonymous
+        filler, or an intersection's members) and those of its named classes (the filler's and the range's
+        told superclasses, with the domains of their existentials)."""
+        found: list[Expr] = []
+        named: set[NamedNode] = set()
+        filler = e.filler
+        if filler is not None:
+            for m in (filler, *filler.members) if filler.kind == "and" else (filler,):
+                if m.is_named:
+                    named |= self.implied(m.node)
+                else:
+                    found.append(m)
+        for q in links:
+            for _, c in subject_classes(self.report.tb, self.report.supers, inverse(q)):
+                if c.is_named:
+                    named |= self.implied(c.node)
+        for c in named:
+            found += self.told_existentials.get(c, ())
+            found += self.told_values.get(c, ())
+        return found
+
+    def link_by(self, restrictions: list[Expr], r: Prop) -> str | None:
+        """How ``restrictions`` give a link by ``r`` (on ``r`` or a sub-property of it): "value" for a told
+        named value, "some" for an unnamed one, None for none."""
+        supers = self.report.supers
+        on_r = [m for m in restrictions if m.prop is not None and (m.prop == r or r in supers.get(m.prop, ()))]
+        if any(m.kind == "value" and isinstance(m.value, NamedNode) for m in on_r):
+            return "value"
+        if any(m.kind == "some" or (m.kind in ("min", "exact") and m.n >= 1) for m in on_r):
+            return "some"
+        return None
 
     def has_consequences(self, t: Prop) -> bool:
         """Some class follows from a link by ``t``: a domain or range of it or of a super-expression, or a
