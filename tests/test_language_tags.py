@@ -3,15 +3,21 @@ format, a durable store reopened, and the aRMOR query replies, although pyoxigra
 
 from __future__ import annotations
 
+import time
 import warnings
 from pathlib import Path
 
 import pytest
+from http_support import config, in_process
 from pyoxigraph import NamedNode
 from support import armor_load
+from test_standard_clients import gsp
 
 from topostore import LoadError, Ontology, OntologyWarning
 from topostore.armor import ArmorService
+from topostore.armor.reference import Reference
+from topostore.errors import InvalidValueError
+from topostore.sparql.execute import Job, run_update
 
 NS = "http://e.org/lang#"
 TURTLE = f"""@prefix : <{NS}> . @prefix owl: <http://www.w3.org/2002/07/owl#> .
@@ -140,3 +146,105 @@ def test_xml_text_and_comments_that_look_like_xml_lang_are_no_spelling() -> None
 </rdf:RDF>
 """
     assert b'"colour"@en-GB' in quiet(Ontology(), text, "xml").serialize("ntriples")
+
+
+# ---------------------------------------------------------------- the other ways in than a document
+def mapped() -> Ontology:
+    """The TBox of :data:`TURTLE` without its literals (no spelling learned from a document)."""
+    return quiet(Ontology(), f"@prefix : <{NS}> . @prefix owl: <http://www.w3.org/2002/07/owl#> .\n"
+                 "<http://e.org/lang> a owl:Ontology . :s a owl:DatatypeProperty . :x a owl:NamedIndividual .\n")
+
+
+@pytest.mark.parametrize("way", ["add", "add_new", "change", "add_data", "add_fact", "replace"])
+def test_the_python_api_keeps_the_spelling_given_with_a_value(way: str) -> None:
+    o = mapped()
+    colour = o.value("colour", language="en-GB")
+    assert colour.language == "en-gb"  # pyoxigraph's literal, lowered: the store's value is unchanged
+    fact = o.fact("x", "s", colour)
+    {"add": lambda: o.add(fact), "add_new": lambda: o.add_new(fact), "change": lambda: o.change([fact], []),
+     "add_data": lambda: o.add_data("s", "x", colour), "add_fact": lambda: o.add_fact("x", "s", colour),
+     "replace": lambda: o.replace("x", "s", colour)}[way]()
+    assert b'"colour"@en-GB' in o.serialize("ntriples")
+    assert [v.language for v in o.data_values("s", "x")] == ["en-gb"]
+
+
+def test_a_value_made_but_never_asserted_spells_nothing() -> None:
+    """A spelling given to ``value`` waits for a literal of its tag to be asserted: a document loaded first spells it."""
+    o = mapped()
+    o.value("colour", language="EN-gb")
+    quiet(o, f'@prefix : <{NS}> . :x :s "grey"@en-GB .')
+    o.add_data("s", "x", o.value("colour", language="EN-gb"))
+    saved = o.serialize("ntriples")
+    assert b'"colour"@en-GB' in saved and b'"grey"@en-GB' in saved and b"EN-gb" not in saved
+
+
+def test_the_first_spelling_wins_over_a_value_given_later() -> None:
+    o = quiet(mapped(), f'@prefix : <{NS}> . :x :s "a"@en-gb .')
+    o.add_data("s", "x", o.value("b", language="EN-GB"))
+    assert b'"b"@en-gb' in o.serialize("ntriples")
+
+
+def test_a_bad_tag_is_refused_and_changes_nothing() -> None:
+    o = mapped()
+    with pytest.raises(InvalidValueError, match="language tag"):
+        o.value("colour", language="en GB")
+    with pytest.raises(InvalidValueError, match="not both"):
+        o.value("colour", datatype="string", language="en-GB")
+    assert not o.store.forms.tags
+
+
+def test_a_durable_store_keeps_a_spelling_given_through_the_api(tmp_path: Path) -> None:
+    o = Ontology(store=tmp_path / "db")
+    o.add_data("s", "x", o.value("colour", language="en-GB"))
+    o.store.close()
+    assert b'"colour"@en-GB' in Ontology(store=tmp_path / "db").serialize("ntriples")
+
+
+def sparql_update(o: Ontology, text: str) -> None:
+    """A SPARQL update run as the HTTP service runs one (sparql.execute.run_update)."""
+    run_update(Reference("ref", o, "http://e.org/lang"), text, Job(time.monotonic() + 60), 60.0)
+
+
+@pytest.mark.parametrize("update", [
+    f'INSERT DATA {{ <{NS}x> <{NS}s> "colour"@en-GB }}',
+    f'PREFIX : <{NS}> INSERT {{ ?x :s "colour"@en-GB }} WHERE {{ ?x a <http://www.w3.org/2002/07/owl#NamedIndividual> }}',
+])
+def test_a_sparql_update_keeps_the_spelling_of_what_it_inserts(update: str, tmp_path: Path) -> None:
+    o = Ontology(store=tmp_path / "db")
+    quiet(o, f"@prefix : <{NS}> . @prefix owl: <http://www.w3.org/2002/07/owl#> .\n"
+          "<http://e.org/lang> a owl:Ontology . :s a owl:DatatypeProperty . :x a owl:NamedIndividual .\n")
+    sparql_update(o, update)
+    assert b'"colour"@en-GB' in o.serialize("ntriples")
+    o.store.close()
+    assert b'"colour"@en-GB' in Ontology(store=tmp_path / "db").serialize("ntriples")
+
+
+def test_a_tag_an_update_only_deletes_or_matches_is_no_spelling() -> None:
+    o = quiet(mapped(), f'@prefix : <{NS}> . :x :s "old"@fr .')
+    sparql_update(o, f'PREFIX : <{NS}> DELETE DATA {{ :x :s "old"@FR }} ; '
+                  f'INSERT {{ :x :s "new"@fr-CA }} WHERE {{ FILTER(LANG("a"@EN-US) != "") }}')
+    saved = o.serialize("ntriples")
+    assert b'"new"@fr-CA' in saved and b"@FR" not in saved
+
+
+def test_armor_replies_spell_a_tag_a_sparql_update_wrote(tmp_path: Path) -> None:
+    path = tmp_path / "lang.ttl"
+    path.write_text(f"@prefix : <{NS}> . @prefix owl: <http://www.w3.org/2002/07/owl#> .\n"
+                    "<http://e.org/lang> a owl:Ontology . :s a owl:DatatypeProperty . :x a owl:NamedIndividual .\n")
+    service = ArmorService()
+    assert armor_load(service, path, "http://e.org/lang").success
+    run_update(service.reference("ref"), f'INSERT DATA {{ <{NS}x> <{NS}s> "colour"@en-GB }}',
+               Job(time.monotonic() + 60), 60.0)
+    reply = service.call({"client_name": "c", "reference_name": "ref", "command": "QUERY",
+                          "primary_command_spec": "DATAPROP", "secondary_command_spec": "IND", "args": ["s", "x"]})
+    assert reply.queried_objects == ['"colour"@en-GB']
+
+
+def test_the_graph_store_keeps_the_spelling_of_an_upload(tmp_path: Path) -> None:
+    with in_process(config(tmp_path / "data", allow_update=True)) as server:
+        body = TURTLE.encode()
+        assert gsp(server, "lang", "PUT", body, "text/turtle")[0] == 201
+        added = f'<{NS}y> <{NS}s> "grey"@en-AU .\n'.encode()
+        status, _, reply = gsp(server, "lang", "POST", added, "application/n-triples")
+        assert status == 200, reply
+        assert server.ok("QUERY", "DATAPROP", "IND", ["s", "y"], ref="lang")["queried_objects"] == ['"grey"@en-AU']

@@ -36,6 +36,7 @@ from ..errors import TopostoreError
 from ..ontology.facade import Ontology
 from ..rdf.vocab import ASSERTED, ENTAILED, INFERRED, OWL, RDF, RDFS, TYPE, XSD
 from ..sparql.results import GRAPH_FORMATS, NotAcceptable, choose_format, render_graph
+from ..stores.language_tags import literal_tags
 from .security import error
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -160,10 +161,13 @@ class GraphStore:
             raise GraphStoreError(405, "the inferred graph is read-only: change what is asserted and the reasoner "
                                   "updates it")
         triples: list[Triple] = []
+        written = None
         if request.method != "DELETE":
-            triples = await run_in_threadpool(parse_upload, request, await request.body(), ref.iri or None)
+            body = await request.body()
+            triples = await run_in_threadpool(parse_upload, request, body, ref.iri or None)
+            written = (body, UPLOAD_FORMATS[request.headers.get("content-type", "").split(";")[0].strip().lower()])
         plan = _plan(request.method, triples)
-        outcome = await run_in_threadpool(_apply, ref, plan, request.method)
+        outcome = await run_in_threadpool(_apply, ref, plan, request.method, written)
         return JSONResponse(outcome)
 
     async def create(self, request: Request, name: str) -> Response:
@@ -199,8 +203,11 @@ def _plan(method: str, uploaded: list[Triple]) -> Callable[[Ontology], Delta]:
     return plan
 
 
-def _apply(ref: Reference, plan: Callable[[Ontology], Delta], method: str) -> dict[str, Any]:
-    """One all-or-nothing manipulation of the asserted graph, reasoned as aRMOR manipulations are."""
+def _apply(ref: Reference, plan: Callable[[Ontology], Delta], method: str,
+           written: tuple[bytes, RdfFormat | None] | None = None) -> dict[str, Any]:
+    """One all-or-nothing manipulation of the asserted graph, reasoned as aRMOR manipulations are;
+    ``written``: the uploaded document and its format, whose spellings of the added literals' language
+    tags are kept (pyoxigraph lowers them)."""
     with ref.lock:
         if ref.owner is not None:
             raise GraphStoreError(403, f"reference {ref.name!r} is mounted by client {ref.owner!r}; only that client "
@@ -210,6 +217,8 @@ def _apply(ref: Reference, plan: Callable[[Ontology], Delta], method: str) -> di
             warnings = ref.run([Change(f"Graph Store {method}", lambda _onto: delta)])
         except TopostoreError as exc:
             raise GraphStoreError(400, f"the graph was not stored: {exc}") from None
+        if written is not None:
+            ref.ontology.store.forms.learn_tags(*written, only=literal_tags(delta.add))
         return {"added": len(delta.add), "removed": len(delta.remove), "is_consistent": ref.is_consistent,
                 "warnings": warnings}
 

@@ -19,61 +19,35 @@ while the ontology is inconsistent, as aRMOR does).
 from __future__ import annotations
 
 import os
-from collections.abc import Callable, Hashable, Sequence
-from dataclasses import dataclass, field
-from pathlib import Path
+from collections.abc import Callable, Sequence
 
-from pyoxigraph import Literal, NamedNode, Quad, RdfFormat, Triple
+from pyoxigraph import Literal, NamedNode, Triple
 
-from ..compile import RuleSet, compile_ontology
+from ..compile import RuleSet
 from ..compile.builtins import FUNCTIONS as RULE_FUNCTIONS
 from ..compile.notices import Notice
 from ..compile.swrl_text import removal_triples, rule_labels, rule_triples
 from ..rdf.skolem import named
-from ..rdf.terms import Term, check_literal, entity, literal_of
-from ..rdf.vocab import (
-    ASSERTED,
-    AUX,
-    DEFAULT_PREFIX,
-    ENTAILED,
-    INFERRED,
-    NOTHING,
-    TYPE,
-    XSD,
-    owl,
-)
-from ..reason import ReasonStats, Violation, classify
+from ..rdf.terms import Term
+from ..rdf.vocab import ASSERTED, AUX, ENTAILED, INFERRED, NOTHING
+from ..reason import Violation
 from ..reason import limits as reason_limits
 from ..reason.incremental import DEFAULT_MAX_CHANGE_SHARE, IncrementalReasoner
 from ..reason.limits import ReasonLimits
-from ..stores import StoreSpec, check_rules, open_store
+from ..stores import StoreSpec, open_store
 from ..stores.base import Store
 from ..stores.facts import Fact
-from ..stores.literal_forms import FORMS
-from ..stores.meta import META
 from . import state as durable_state
 from .changes import AssertedChanges
+from .delegation import forward
 from .events import EventHub
 from .files import OntologyFiles, is_schema_triple
 from .ledger import ChangeLedger, all_or_nothing
-from .named_queries import QueryItem
+from .namespace import Namespace
 from .reads import OntologyQueries
-from .views import ClassViews, Render
-
-
-@dataclass
-class ReasonReport:
-    """The outcome of :meth:`Ontology.reason`."""
-
-    consistent: bool
-    violations: list[Violation] = field(default_factory=list)
-    stats: ReasonStats = field(default_factory=ReasonStats)
-    #: axioms not reasoned completely (non-Horn or unsupported), each with the reason
-    #: (:class:`topostore.compile.notices.Notice`); empty when the answers are complete
-    incomplete: list[Notice] = field(default_factory=list)
-
-    def explain(self) -> str:
-        return "consistent" if self.consistent else "; ".join(str(v) for v in self.violations)
+from .reasoning import OntologyReasoning, ReasonReport
+from .values import OntologyValues
+from .views import ClassViews
 
 
 class Ontology:
@@ -83,7 +57,9 @@ class Ontology:
     loading and saving to ``files`` (:class:`~topostore.ontology.files.OntologyFiles`), the read
     API to ``reads`` (:class:`~topostore.ontology.reads.OntologyQueries`), the manipulations to
     ``changes`` (:class:`~topostore.ontology.changes.AssertedChanges`), the record of asserted
-    changes to ``ledger`` (:class:`~topostore.ontology.ledger.ChangeLedger`).
+    changes to ``ledger`` (:class:`~topostore.ontology.ledger.ChangeLedger`), the rules, the reasoner
+    and the report to ``reasoning`` (:class:`~topostore.ontology.reasoning.OntologyReasoning`), the
+    values made from Python ones to ``values`` (:class:`~topostore.ontology.values.OntologyValues`).
     """
 
     def __init__(self, prefix: str | None = None, store: Store | StoreSpec = None, strict: bool = False) -> None:
@@ -101,8 +77,12 @@ class Ontology:
         self.files = OntologyFiles(self)
         #: the read API (types, instances, values, SPARQL, named queries)
         self.reads = OntologyQueries(self)
-        self._prefix = prefix
-        self._found_prefix: str | None = None
+        #: the compiled rules, the reasoner and the last REASON's report
+        self.reasoning = OntologyReasoning(self)
+        #: literals and facts made from Python values (with the language tags' spellings given)
+        self.values = OntologyValues(self)
+        #: the namespace entity names are read in
+        self.names = Namespace(self.store, prefix)
         self._rules: RuleSet | None = None
         self._superclasses: dict | None = None
         self._report: ReasonReport | None = None
@@ -123,55 +103,32 @@ class Ontology:
         self.views = ClassViews()
         #: change notifications: subscribe with ``onto.events.subscribe(callback, "rdf:type URGENT")``
         self.events = EventHub(lambda: self.prefix)
-        self.store.on_lost.append(self._writes_lost)
+        self.store.on_lost.append(self.reasoning.writes_lost)
         #: how a durable store was found: "new", "reopened" or "rebuilt" (see topostore.ontology.state)
         self.opened = durable_state.reopen(self)
 
-    def restore_report(self, consistent: bool, dirty: bool) -> None:
-        """State of a reopened durable ontology: its last REASON's outcome (no violations kept)."""
-        self._report = ReasonReport(consistent)
-        self.dirty = dirty
+    restore_report = forward("reasoning", OntologyReasoning.restore_report, "State of a reopened durable ontology: "
+                             "its last REASON's outcome (no violations kept).")
 
     @property
     def prefix(self) -> str:
         """Namespace for entity names: the ontology IRI + '#' unless given."""
-        if self._prefix is None:
-            if self._found_prefix is None:  # looked up once per schema change (a round trip on a server)
-                found = DEFAULT_PREFIX
-                # kept only once the read succeeded: a read that fails (a remote store's queued writes
-                # refused on the way) must not leave the default namespace behind for good
-                for t in self.store.triples(None, TYPE, owl("Ontology"), ASSERTED):
-                    if isinstance(t.subject, NamedNode):
-                        iri = t.subject.value
-                        found = iri if iri.endswith(("#", "/")) else iri + "#"
-                        break
-                self._found_prefix = found
-            return self._found_prefix
-        return self._prefix
+        return self.names.prefix
 
     @prefix.setter
     def prefix(self, value: str) -> None:
-        self._prefix = value
+        self.names.given = value
 
-    def iri(self, name: str | NamedNode) -> NamedNode:
-        """IRI of a named entity (``<full IRI>`` or a name in :attr:`prefix`)."""
-        if not isinstance(name, (str, NamedNode)):
-            raise TypeError(f"an entity name must be a string or a NamedNode, not {type(name).__name__}")
-        return name if isinstance(name, NamedNode) else entity(name, self.prefix)
-
-    def short(self, term: Term) -> str:
-        """Name of a term relative to :attr:`prefix` (full IRI otherwise); literals as text."""
-        if isinstance(term, NamedNode):
-            v = term.value
-            return v[len(self.prefix):] if v.startswith(self.prefix) else v
-        if isinstance(term, Literal):
-            return term.value
-        return str(term)
+    iri = forward("names", Namespace.iri, "IRI of a named entity (``<full IRI>`` or a name in :attr:`prefix`).")
+    short = forward("names", Namespace.short, "Name of a term relative to :attr:`prefix` (full IRI otherwise); "
+                    "literals as text.")
 
     # ------------------------------------------------------------------ manipulation (the ``changes`` part)
     def add(self, *triples: Triple) -> int:
         """Assert triples (a blank node named as a load names it); returns how many were new."""
-        return self.changes.add(*named(triples))
+        added = self.changes.add(*named(triples))
+        self.values.asserted(triples)
+        return added
 
     def remove(self, *triples: Triple) -> int:
         """Retract asserted triples (inferred ones cannot be removed, only their premises)."""
@@ -179,21 +136,25 @@ class Ontology:
 
     def add_new(self, *triples: Triple) -> list[Triple]:
         """Assert triples; returns those that were new (see :meth:`AssertedChanges.add_new`)."""
-        return self.changes.add_new(*triples)
+        new = self.changes.add_new(*triples)
+        self.values.asserted(new)
+        return new
 
-    def remove_present(self, *triples: Triple) -> list[Triple]:
-        """Retract asserted triples; returns those that were asserted."""
-        return self.changes.remove_present(*triples)
+    remove_present = forward("changes", AssertedChanges.remove_present, "Retract asserted triples; returns those "
+                             "that were asserted.")
 
     def change(self, add: Sequence[Triple | Fact], remove: Sequence[Triple | Fact]) -> tuple[list[Triple], list[Triple]]:
         """Retract ``remove``, then assert ``add``, in one transaction (see :meth:`AssertedChanges.change`)."""
-        return self.changes.change(add, remove)
+        added, removed = self.changes.change(add, remove)
+        self.values.asserted(added)
+        return added, removed
 
     def schema_changed(self) -> None:
         """A schema triple was added or removed: the rules, the classification and the namespace are read again."""
+        self.reasoning.collector.rebuilding()
         self._rules = None
         self._superclasses = None
-        self._found_prefix = None
+        self.names.forget()
         self.ledger.stop_incremental()
 
     def incremental_ready(self) -> bool:
@@ -202,83 +163,32 @@ class Ontology:
 
     def forget_reasoning(self) -> None:
         """Drop the compiled rules and the reasoner: the asserted graph was changed underneath them (rollback)."""
-        self._rules = None
-        self._superclasses = None
-        self._reasoner = None
-        self.ledger.stop_incremental()
-        self.dirty = True
+        self.reasoning.forget()
 
-    def _writes_lost(self, lost: list[tuple[list[Quad], list[Quad]]], certain: bool) -> None:
-        """The store could not write changes it had accepted (a remote store defers them): undo them
-        here too.  The ledger is set back exactly; a lost write of the reasoner's graphs, or a loss the
-        store cannot state exactly (``certain`` false: a server that did not answer may hold the changes
-        after all; a lost drop of scratch graphs), makes the next REASON a full one over what the server
-        holds; class views wait for the next REASON."""
-        def asserted(quads: list[Quad]) -> list[Triple]:
-            return [q.triple for q in quads if q.graph_name == ASSERTED]
+    def value(self, value: object, datatype: str | None = None, language: str | None = None) -> Literal:
+        """A validated literal from a Python value (int → xsd:integer, ...) or text + datatype.
 
-        self.ledger.lost(self.store, [(asserted(adds), asserted(removes)) for adds, removes in lost])
-        if not certain or any(q.graph_name not in (ASSERTED, FORMS, META) for adds, removes in lost
-                              for q in adds + removes):
-            self._reasoner = None
-            self.ledger.stop_incremental()
-        self.dirty = True
-        self.views.clear()
+        ``language``: text tagged so (``value("colour", language="en-GB")``); the tag is kept as spelled
+        once a change asserts the literal (pyoxigraph lowers tags: see :mod:`topostore.ontology.values`)."""
+        return self.values.value(value, datatype, language)
 
-    def value(self, value: object, datatype: str | None = None) -> Literal:
-        """A validated literal from a Python value (int → xsd:integer, ...) or text + datatype."""
-        if isinstance(value, Literal):
-            check_literal(value)
-            return value
-        if datatype is not None:
-            if not isinstance(datatype, str):
-                raise TypeError(f"a datatype must be a string, not {type(datatype).__name__}")
-            local = datatype[len(XSD):] if datatype.startswith(XSD) else datatype
-            return literal_of(str(value), local)
-        if isinstance(value, bool):
-            return literal_of(str(value).lower(), "boolean")
-        if isinstance(value, int):
-            return literal_of(str(value), "integer")
-        if isinstance(value, float):
-            return literal_of(repr(value), "double")
-        return Literal(str(value))
+    fact = forward("values", OntologyValues.fact, "A triple from names: ``obj`` is an individual name, a Literal or "
+                   "a Python value.")
+    add_fact = forward("values", OntologyValues.add_fact)
+    remove_fact = forward("values", OntologyValues.remove_fact)
+    add_type = forward("values", OntologyValues.add_type)
+    remove_type = forward("values", OntologyValues.remove_type)
+    add_data = forward("values", OntologyValues.add_data)
+    replace = forward("values", OntologyValues.replace, """Replace ``old`` by ``new`` (every current value when \
+``old`` is None); atomic.
 
-    def fact(self, subject: str, prop: str, obj: object) -> Triple:
-        """A triple from names: ``obj`` is an individual name, a Literal or a Python value."""
-        o = self.iri(obj) if isinstance(obj, (str, NamedNode)) and not isinstance(obj, Literal) else self.value(obj)
-        return Triple(self.iri(subject), self.iri(prop), o)
+Values are matched by data value, so ``7`` replaces a stored ``"7"^^xsd:long``.
+Returns how many old facts were removed.""")
 
-    def add_fact(self, subject: str, prop: str, obj: object) -> int:
-        return self.changes.add(self.fact(subject, prop, obj))
-
-    def remove_fact(self, subject: str, prop: str, obj: object) -> int:
-        return self.changes.remove(self.fact(subject, prop, obj))
-
-    def add_type(self, individual: str, cls: str) -> int:
-        return self.changes.add(Triple(self.iri(individual), TYPE, self.iri(cls)))
-
-    def remove_type(self, individual: str, cls: str) -> int:
-        return self.changes.remove(Triple(self.iri(individual), TYPE, self.iri(cls)))
-
-    def add_data(self, prop: str, individual: str, value: object, datatype: str | None = None) -> int:
-        return self.changes.add(Triple(self.iri(individual), self.iri(prop), self.value(value, datatype)))
-
-    def replace(self, subject: str, prop: str, new: object, old: object | None = None) -> int:
-        """Replace ``old`` by ``new`` (every current value when ``old`` is None); atomic.
-
-        Values are matched by data value, so ``7`` replaces a stored ``"7"^^xsd:long``.
-        Returns how many old facts were removed.
-        """
-        return self.changes.replace(subject, prop, new, old)
-
-    def add_all_different(self, names: Sequence[str | NamedNode]) -> NamedNode:
-        """One owl:AllDifferent over ``names`` (deduplicated): linear in size, never n² pairs."""
-        return self.changes.add_all_different(names)
-
-    def remove_individual(self, name: str | NamedNode) -> int:
-        """Remove every asserted triple mentioning the individual, and whole AllDifferent axioms containing it."""
-        return self.changes.remove_individual(name)
-
+    add_all_different = forward("changes", AssertedChanges.add_all_different, "One owl:AllDifferent over ``names`` "
+                                "(deduplicated): linear in size, never n² pairs.")
+    remove_individual = forward("changes", AssertedChanges.remove_individual, "Remove every asserted triple "
+                                "mentioning the individual, and whole AllDifferent axioms containing it.")
     def subscribe(self, callback, pattern: str | None = None, maxsize: int = 100):
         """Call ``callback(event)`` after each REASON that changed an inferred triple matching
         ``pattern`` (e.g. ``"rdf:type URGENT"``) or the consistency; see :mod:`topostore.ontology.events`."""
@@ -313,11 +223,7 @@ class Ontology:
     @property
     def rules(self) -> RuleSet:
         """The compiled rules (recompiled when the TBox or the SWRL rules change)."""
-        if self._rules is None:
-            rules = compile_ontology(self.store, ASSERTED)
-            check_rules(self.store, rules)
-            self._rules = rules
-        return self._rules
+        return self.reasoning.rules()
 
     @all_or_nothing  # under self.limits; a failure restores the state of the last successful REASON
     def reason(self, profile: bool = False, mode: str = "auto") -> ReasonReport:
@@ -329,33 +235,7 @@ class Ontology:
         result is the same in every mode; ``report.stats.mode`` and
         ``.reason`` say which was used and why.
         """
-        rules = self.rules  # the mode was checked by all_or_nothing
-        forced = ""
-        if self._reasoner is None or self._reasoner.ruleset is not rules:
-            self._reasoner = IncrementalReasoner(self.store, rules)
-        elif self.dirty and not self.ledger.incremental:
-            forced = "asserted changes were not tracked (too many since the last REASON)"
-        self._reasoner.max_change_share = self.max_change_share
-        before = self.events.before_reason(self.store, None if self._report is None else self._report.consistent)
-        added, removed = self.ledger.net_changes()
-        durable_state.begin_reason(self.store)
-        with self.store.keeping((ASSERTED,)):  # the reasoner writes its own graphs only
-            stats, violations = self._reasoner.reason(added, removed, mode=mode, profile=profile,
-                                                      forced_reason=forced)
-        self.store.maybe_compact()
-        previous, self._report = self._report, ReasonReport(not violations, violations, stats,
-                                                            [n for n in rules.notices if n.incomplete])
-        self._advance_views(previous)
-        self.dirty = False
-        self.events.after_reason(self.store, self._report.consistent, before, stats.seconds)
-        durable_state.end_reason(self.store, self._report.consistent)
-        return self._report
-
-    def _advance_views(self, previous: ReasonReport | None) -> None:
-        """Bring the class views to the new report (dropped when the visible graphs changed or the run was full)."""
-        same_graphs = previous is not None and previous.consistent == self._report.consistent
-        touched = self._reasoner.touched_types if same_graphs else None
-        self.views.advance(previous, self._report, touched, self.reads._instance_flags)
+        return self.reasoning.reason(profile, mode)  # the mode was checked by all_or_nothing
 
     @property
     def report(self) -> ReasonReport | None:
@@ -384,17 +264,11 @@ class Ontology:
         return [ASSERTED, INFERRED, ENTAILED]
 
     def superclasses(self, cls: str | NamedNode) -> set[NamedNode]:
-        if self._superclasses is None:
-            self._superclasses = classify(self.rules)
-        return set(self._superclasses.get(self.iri(cls), set()))
+        return self.reasoning.superclasses(self.iri(cls))
 
     def subclasses(self, cls: str | NamedNode) -> set[NamedNode]:
         """Named classes subsumed by ``cls`` (direct and indirect; never owl:Nothing)."""
-        target = self.iri(cls)
-        if self._superclasses is None:
-            self._superclasses = classify(self.rules)
-        return {c for c, sups in self._superclasses.items() if target in sups and c != target}
-
+        return self.reasoning.subclasses(self.iri(cls))
 
     # ------------------------------------------------------------------ files (the ``files`` part)
     @classmethod
@@ -409,70 +283,46 @@ class Ontology:
     def load(self, path: str | os.PathLike[str], fmt: str | None = None, base_iri: str | None = None,
              progress: Callable[[int], None] | None = None) -> int:
         """Add a document's triples to the asserted graph; all or nothing (see :meth:`OntologyFiles.load`)."""
-        return self.files.load(path, fmt, base_iri, progress)
+        added = self.files.load(path, fmt, base_iri, progress)
+        self.reasoning.collector.settled()
+        return added
 
     def load_data(self, data: str | bytes, fmt: str = "turtle", base_iri: str | None = None) -> int:
         """Add a document given as text or bytes; all or nothing."""
-        return self.files.load_data(data, fmt, base_iri)
+        added = self.files.load_data(data, fmt, base_iri)
+        self.reasoning.collector.settled()
+        return added
 
     @property
     def notices(self) -> list[Notice]:
         """What loading repaired or set aside, then what the current rules set aside or reason only in part."""
         return self.files.notices
 
-    def notice_lines(self) -> list[str]:
-        """:attr:`notices` one line per kind (and axiom kind), naming each rule or axiom with its reason."""
-        return self.files.notice_lines()
-
-    def triples(self, inferred: bool = False) -> list[Triple]:
-        """The asserted (or visible) triples, literals as the user wrote them."""
-        return self.files.triples(inferred)
-
-    def serialize(self, fmt: str | RdfFormat = "turtle", inferred: bool = False) -> bytes:
-        return self.files.serialize(fmt, inferred)
-
-    def save(self, path: str | os.PathLike[str], fmt: str | None = None, inferred: bool = False) -> Path:
-        """Write asserted (or asserted + inferred) triples; the format follows the extension."""
-        return self.files.save(path, fmt, inferred)
+    notice_lines = forward("files", OntologyFiles.notice_lines, """:attr:`notices` one line per kind (and axiom \
+kind), naming each rule or axiom with its reason.""")
+    triples = forward("files", OntologyFiles.triples, "The asserted (or visible) triples, literals as the user wrote them.")
+    serialize = forward("files", OntologyFiles.serialize)
+    save = forward("files", OntologyFiles.save, "Write asserted (or asserted + inferred) triples; the format follows "
+                   "the extension.")
 
     # ------------------------------------------------------------------ reads (the ``reads`` part)
-    def types(self, individual: str | NamedNode) -> list[NamedNode]:
-        """Named classes of an individual (asserted ∪ inferred), without owl:Thing."""
-        return self.reads.types(individual)
-
-    def instances(self, cls: str | NamedNode) -> list[NamedNode]:
-        """Individuals of a class (asserted ∪ inferred); a class asked again after REASON is read from its view."""
-        return self.reads.instances(cls)
-
-    def rendered_instances(self, cls: str | NamedNode, key: Hashable, render: Render) -> list[str]:
-        """:meth:`instances` rendered by ``render`` (None leaves a member out), sorted, without duplicates."""
-        return self.reads.rendered_instances(cls, key, render)
-
-    def object_values(self, prop: str | NamedNode, individual: str | NamedNode, names: bool = True) -> list:
-        return self.reads.object_values(prop, individual, names)
-
-    def data_values(self, prop: str | NamedNode, individual: str | NamedNode) -> list[Literal]:
-        return self.reads.data_values(prop, individual)
-
-    def properties_of(self, individual: str | NamedNode, data: bool) -> list[NamedNode]:
-        return self.reads.properties_of(individual, data)
-
-    def sparql(self, text: str, bindings: dict[str, Term] | None = None, **kwargs):
-        """Raw SPARQL over the visible graphs, through the one guard on user SPARQL."""
-        return self.reads.sparql(text, bindings, **kwargs)
-
-    def select(self, text: str, bindings: dict[str, Term] | None = None, timeout: float | None = None):
-        """(variables, rows, timed_out) of a SELECT query over the visible graphs."""
-        return self.reads.select(text, bindings, timeout)
-
-    def query(self, name_or_text: str, params: dict[str, object] | None = None,
-              timeout: float | None = None) -> list[QueryItem]:
-        """Run a named query (or SELECT text) and return ``QueryItem`` results."""
-        return self.reads.query(name_or_text, params, timeout)
-
-    def query_names(self) -> dict[str, str]:
-        """The named queries this ontology runs by name (name → description)."""
-        return self.reads.query_names()
+    types = forward("reads", OntologyQueries.types, "Named classes of an individual (asserted ∪ inferred), without "
+                    "owl:Thing.")
+    instances = forward("reads", OntologyQueries.instances, "Individuals of a class (asserted ∪ inferred); a class "
+                        "asked again after REASON is read from its view.")
+    rendered_instances = forward("reads", OntologyQueries.rendered_instances, ":meth:`instances` rendered by "
+                                 "``render`` (None leaves a member out), sorted, without duplicates.")
+    object_values = forward("reads", OntologyQueries.object_values)
+    data_values = forward("reads", OntologyQueries.data_values)
+    properties_of = forward("reads", OntologyQueries.properties_of)
+    sparql = forward("reads", OntologyQueries.sparql, "Raw SPARQL over the visible graphs, through the one guard on "
+                     "user SPARQL.")
+    select = forward("reads", OntologyQueries.select, "(variables, rows, timed_out) of a SELECT query over the "
+                     "visible graphs.")
+    query = forward("reads", OntologyQueries.query, "Run a named query (or SELECT text) and return ``QueryItem`` "
+                    "results.")
+    query_names = forward("reads", OntologyQueries.query_names, "The named queries this ontology runs by name "
+                          "(name → description).")
 
 
 __all__ = ["Ontology", "ReasonReport", "is_schema_triple", "NOTHING", "AUX"]

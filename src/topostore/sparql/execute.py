@@ -27,6 +27,7 @@ from pyoxigraph import DefaultGraph, Literal, Quad, QueryBoolean, QuerySolutions
 from ..errors import QueryError
 from ..rdf.vocab import ASSERTED, OWL, RDF, RDFS, XSD
 from ..stores.base import skolemize
+from ..stores.language_tags import literal_tags
 from .guard import check_user_sparql
 from .results import ResultFormat, boolean_json, choose_format, render_graph, render_table, solutions_json
 from .target import LockedOntology, WritableOntology
@@ -218,6 +219,8 @@ def run_update(ref: WritableOntology, text: str, job: Job, limit: float) -> Upda
         if not job.claim():
             raise SparqlTimeout(timeout_message(limit))
         warnings = ref.manipulate("SPARQL update", delta.add, delta.remove)
+        # the tags of the literals it added, as the update's text spells them (pyoxigraph lowered them)
+        ref.ontology.store.forms.learn_tags(text, None, only=literal_tags(delta.add))
         return UpdateOutcome(len(delta.add), len(delta.remove), ref.is_consistent, warnings)
 
 

@@ -3,15 +3,18 @@
 Language tags are case-insensitive (BCP 47), and pyoxigraph lowers them wherever a literal is made
 (``Literal("x", language="en-GB").language == "en-gb"``), so no stored literal keeps the case.  The
 documents loaded are read for their tags' spellings (:meth:`LanguageTags.learn`); what topostore writes
-back (a SAVEd file, an aRMOR reply) spells each tag as first written.  One spelling per tag: a tag is one
+back (a SAVEd file, an aRMOR reply) spells each tag as first written.  A change made another way learns the
+spellings of the literals it added, from the text it was written in (a SPARQL update, a Graph Store upload:
+:meth:`LanguageTags.learn` with ``only``) or as given (the Python API: :meth:`LanguageTags.adopt`).  One spelling per tag: a tag is one
 value whatever its case, so ``en-GB`` written first makes every ``en-gb`` literal of the store ``en-GB``.
 """
 
 from __future__ import annotations
 
 import re
+from collections.abc import Collection, Iterable
 
-from pyoxigraph import Literal, NamedNode, Quad, RdfFormat
+from pyoxigraph import Literal, NamedNode, Quad, RdfFormat, Triple
 
 from ..rdf.vocab import INTERNAL
 
@@ -51,19 +54,34 @@ class LanguageTags:
     def __bool__(self) -> bool:
         return self._capitals
 
-    def learn(self, data: bytes | str, fmt: RdfFormat) -> list[Quad]:
+    def learn(self, data: bytes | str, fmt: RdfFormat | None, only: Collection[str] | None = None) -> list[str]:
         """Read the spellings of a document's tags (one that never spells a tag with a capital costs one
-        scan); the quads persisting the new ones on a durable store (in ``graph``, see :meth:`quads`)."""
+        scan); the new ones, for the caller to persist on a durable store (see :meth:`quads`).
+
+        ``fmt`` None reads Turtle-like text that is no document: a SPARQL update, whose literals are written
+        as Turtle's.  ``only``: the lowered tags to take (those of the literals a change added; a tag
+        the text writes elsewhere, in a pattern or a deleted triple, is no spelling of what is stored)."""
         if isinstance(data, str):
             data = data.encode("utf-8", errors="surrogatepass")
+        if only is not None and not only:
+            return []
+        tags = _written_tags(data, fmt == RdfFormat.RDF_XML)
+        return self.adopt(tags if only is None else [t for t in tags if t.lower() in only])
+
+    def adopt(self, tags: Iterable[str]) -> list[str]:
+        """Take ``tags`` as written (the first spelling of each lowered tag wins); the new ones."""
         new = []
-        for tag in _written_tags(data, fmt == RdfFormat.RDF_XML):
+        for tag in tags:
             lowered = tag.lower()
             if lowered not in self._spelled:
                 self._spelled[lowered] = tag
                 self._capitals |= tag != lowered
                 new.append(tag)
         return new
+
+    def known(self, tag: str) -> bool:
+        """Whether ``tag`` (any case) has a spelling already: a later one does not respell it."""
+        return tag.lower() in self._spelled
 
     def spelled(self, tag: str) -> str:
         """``tag`` as first written (itself when never written with a capital)."""
@@ -98,6 +116,11 @@ class LanguageTags:
         tag = quad.object.value
         self._capitals |= self._spelled.setdefault(tag.lower(), tag) != tag.lower()
         return True
+
+
+def literal_tags(triples: Iterable[Triple]) -> set[str]:
+    """The (lowered) language tags of the literals among ``triples``' objects."""
+    return {o.language for t in triples if isinstance(o := t.object, Literal) and o.language}
 
 
 def _written_tags(data: bytes, xml: bool) -> list[str]:
@@ -140,4 +163,4 @@ def _closes_string(data: bytes, at: int) -> bool:
     return backslashes % 2 == 0
 
 
-__all__ = ["SPELLING", "LanguageTags"]
+__all__ = ["SPELLING", "LanguageTags", "literal_tags"]

@@ -10,7 +10,7 @@ durable store persists them in the ``FORMS`` graph.
 from __future__ import annotations
 
 import threading
-from collections.abc import Callable
+from collections.abc import Callable, Collection, Iterable
 from typing import TYPE_CHECKING
 
 import pyoxigraph as ox
@@ -49,9 +49,16 @@ class LiteralForms:
         #: the language tags' spellings (pyoxigraph lowers every tag)
         self.tags = LanguageTags()
 
-    def learn_tags(self, data: bytes | str, fmt: RdfFormat) -> None:
-        """Remember how a loaded document spells its language tags (persisted on a durable store)."""
-        new = self.tags.learn(data, fmt)
+    def learn_tags(self, data: bytes | str, fmt: RdfFormat | None, only: Collection[str] | None = None) -> None:
+        """Remember how a loaded document (or a change's text: ``only`` its added literals' tags, see
+        :meth:`LanguageTags.learn`) spells its language tags (persisted on a durable store)."""
+        self._persist_tags(self.tags.learn(data, fmt, only))
+
+    def adopt_tags(self, tags: Iterable[str]) -> None:
+        """Remember language tags spelled as given (the first spelling wins; persisted on a durable store)."""
+        self._persist_tags(self.tags.adopt(tags))
+
+    def _persist_tags(self, new: list[str]) -> None:
         if new and self._store.durable:
             self._store._write(self.tags.quads(new, FORMS), [])
 

@@ -1,0 +1,148 @@
+"""The reasoning part of an ontology: its compiled rules, its reasoner, the last REASON's report.
+
+A named part of one :class:`~topostore.ontology.facade.Ontology` (``onto.reasoning``); the ontology's
+``rules``, ``reason``, ``superclasses`` and ``subclasses`` are these.  The state it works on (the
+compiled rules ``onto._rules``, the reasoner ``onto._reasoner``, the report ``onto._report``, the
+classification ``onto._superclasses``, ``onto.dirty``) stays on the ontology, where the loading, the
+manipulation path and the ledger's rollback read and reset it too.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
+
+from pyoxigraph import NamedNode, Quad, Triple
+
+from ..compile import RuleSet, compile_ontology
+from ..compile.notices import Notice
+from ..rdf.vocab import ASSERTED
+from ..reason import ReasonStats, Violation, classify
+from ..reason.incremental import IncrementalReasoner
+from ..stores import check_rules
+from ..stores.literal_forms import FORMS
+from ..stores.meta import META
+from . import state as durable_state
+from .collector import CollectorPolicy
+
+if TYPE_CHECKING:
+    from .facade import Ontology
+
+
+@dataclass
+class ReasonReport:
+    """The outcome of :meth:`Ontology.reason`."""
+
+    consistent: bool
+    violations: list[Violation] = field(default_factory=list)
+    stats: ReasonStats = field(default_factory=ReasonStats)
+    #: axioms not reasoned completely (non-Horn or unsupported), each with the reason
+    #: (:class:`topostore.compile.notices.Notice`); empty when the answers are complete
+    incomplete: list[Notice] = field(default_factory=list)
+
+    def explain(self) -> str:
+        return "consistent" if self.consistent else "; ".join(str(v) for v in self.violations)
+
+
+class OntologyReasoning:
+    """Compiles one ontology's rules, runs its reasoner and keeps what the last REASON found."""
+
+    def __init__(self, onto: Ontology) -> None:
+        self.onto = onto
+        #: when the cycle collector may skip the long-lived compiled rules (see :mod:`.collector`)
+        self.collector = CollectorPolicy()
+
+    def rules(self) -> RuleSet:
+        """The compiled rules, compiled again when the TBox or the SWRL rules changed."""
+        onto = self.onto
+        if onto._rules is None:
+            rules = compile_ontology(onto.store, ASSERTED)
+            check_rules(onto.store, rules)
+            onto._rules = rules
+        return onto._rules
+
+    def reason(self, profile: bool, mode: str) -> ReasonReport:
+        """The body of :meth:`Ontology.reason` (its mode checked and its failure undone by the ledger)."""
+        onto = self.onto
+        rules = self.rules()
+        forced = ""
+        if onto._reasoner is None or onto._reasoner.ruleset is not rules:
+            if onto._reasoner is not None:  # the old reasoner's state is dropped
+                self.collector.rebuilding()
+            onto._reasoner = IncrementalReasoner(onto.store, rules)
+        elif onto.dirty and not onto.ledger.incremental:
+            forced = "asserted changes were not tracked (too many since the last REASON)"
+        onto._reasoner.max_change_share = onto.max_change_share
+        before = onto.events.before_reason(onto.store, None if onto._report is None else onto._report.consistent)
+        added, removed = onto.ledger.net_changes()
+        durable_state.begin_reason(onto.store)
+        with onto.store.keeping((ASSERTED,)):  # the reasoner writes its own graphs only
+            stats, violations = onto._reasoner.reason(added, removed, mode=mode, profile=profile,
+                                                      forced_reason=forced)
+        onto.store.maybe_compact()
+        previous, onto._report = onto._report, ReasonReport(not violations, violations, stats,
+                                                            [n for n in rules.notices if n.incomplete])
+        self._advance_views(previous)
+        onto.dirty = False
+        onto.events.after_reason(onto.store, onto._report.consistent, before, stats.seconds)
+        durable_state.end_reason(onto.store, onto._report.consistent)
+        if stats.mode == "full":
+            self.collector.settled()
+        return onto._report
+
+    def _advance_views(self, previous: ReasonReport | None) -> None:
+        """Bring the class views to the new report (dropped when the visible graphs changed or the run was full)."""
+        onto = self.onto
+        same_graphs = previous is not None and previous.consistent == onto._report.consistent
+        touched = onto._reasoner.touched_types if same_graphs else None
+        onto.views.advance(previous, onto._report, touched, onto.reads._instance_flags)
+
+    def forget(self) -> None:
+        """Drop the compiled rules and the reasoner: the asserted graph was changed underneath them (rollback)."""
+        onto = self.onto
+        self.collector.rebuilding()
+        onto._rules = None
+        onto._superclasses = None
+        onto._reasoner = None
+        onto.ledger.stop_incremental()
+        onto.dirty = True
+
+    def restore_report(self, consistent: bool, dirty: bool) -> None:
+        """State of a reopened durable ontology: its last REASON's outcome (no violations kept)."""
+        self.onto._report = ReasonReport(consistent)
+        self.onto.dirty = dirty
+
+    def writes_lost(self, lost: list[tuple[list[Quad], list[Quad]]], certain: bool) -> None:
+        """The store could not write changes it had accepted (a remote store defers them): undo them
+        here too.  The ledger is set back exactly; a lost write of the reasoner's graphs, or a loss the
+        store cannot state exactly (``certain`` false: a server that did not answer may hold the changes
+        after all; a lost drop of scratch graphs), makes the next REASON a full one over what the server
+        holds; class views wait for the next REASON."""
+        def asserted(quads: list[Quad]) -> list[Triple]:
+            return [q.triple for q in quads if q.graph_name == ASSERTED]
+
+        onto = self.onto
+        onto.ledger.lost(onto.store, [(asserted(adds), asserted(removes)) for adds, removes in lost])
+        if not certain or any(q.graph_name not in (ASSERTED, FORMS, META) for adds, removes in lost
+                              for q in adds + removes):
+            onto._reasoner = None
+            onto.ledger.stop_incremental()
+        onto.dirty = True
+        onto.views.clear()
+
+    def classification(self) -> dict[NamedNode, set[NamedNode]]:
+        """Each named class's superclasses, classified once per compiled rule set."""
+        onto = self.onto
+        if onto._superclasses is None:
+            onto._superclasses = classify(self.rules())
+        return onto._superclasses
+
+    def superclasses(self, cls: NamedNode) -> set[NamedNode]:
+        return set(self.classification().get(cls, set()))
+
+    def subclasses(self, target: NamedNode) -> set[NamedNode]:
+        """Named classes subsumed by ``target`` (direct and indirect; never owl:Nothing)."""
+        return {c for c, sups in self.classification().items() if target in sups and c != target}
+
+
+__all__ = ["OntologyReasoning", "ReasonReport"]

@@ -1,0 +1,124 @@
+"""Values and facts made from Python values and names, with the language tags' spellings users gave.
+
+A named part of one :class:`~topostore.ontology.facade.Ontology` (``onto.values``); the ontology's
+``value`` and ``fact``, and its changes by names (``add_fact``, ``add_data``, ``replace``, ...), are these.
+
+pyoxigraph lowers a language tag as a literal is made
+(``Literal("colour", language="en-GB").language == "en-gb"``), so a tag's spelling can reach topostore
+only beside the literal: ``onto.value("colour", language="en-GB")`` keeps it until a change asserts a
+literal with that tag (:meth:`OntologyValues.asserted`), and the store then spells it so (the first
+spelling wins, as for documents: :mod:`topostore.stores.language_tags`).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+from typing import TYPE_CHECKING
+
+from pyoxigraph import Literal, NamedNode, Triple
+
+from ..errors import InvalidValueError
+from ..rdf.terms import check_literal, literal_of
+from ..rdf.vocab import TYPE, XSD
+
+if TYPE_CHECKING:
+    from .facade import Ontology
+
+
+class OntologyValues:
+    """Makes one ontology's literals and facts; keeps the tag spellings given with them until asserted."""
+
+    def __init__(self, onto: Ontology) -> None:
+        self.onto = onto
+        #: lowered tag -> spelling given to :meth:`value`, not yet asserted in a literal
+        self._pending: dict[str, str] = {}
+
+    def value(self, value: object, datatype: str | None = None, language: str | None = None) -> Literal:
+        """A validated literal from a Python value (int → xsd:integer, ...), text + datatype or text + tag."""
+        if language is not None:
+            return self._tagged(value, datatype, language)
+        if isinstance(value, Literal):
+            check_literal(value)
+            return value
+        if datatype is not None:
+            if not isinstance(datatype, str):
+                raise TypeError(f"a datatype must be a string, not {type(datatype).__name__}")
+            local = datatype[len(XSD):] if datatype.startswith(XSD) else datatype
+            return literal_of(str(value), local)
+        if isinstance(value, bool):
+            return literal_of(str(value).lower(), "boolean")
+        if isinstance(value, int):
+            return literal_of(str(value), "integer")
+        if isinstance(value, float):
+            return literal_of(repr(value), "double")
+        return Literal(str(value))
+
+    def _tagged(self, value: object, datatype: str | None, language: str) -> Literal:
+        """``value`` as text tagged ``language``, the tag's spelling kept until the literal is asserted."""
+        if not isinstance(language, str):
+            raise TypeError(f"a language tag must be a string, not {type(language).__name__}")
+        if datatype is not None:
+            raise InvalidValueError("a literal has a datatype or a language tag, not both")
+        text = value.value if isinstance(value, Literal) else value
+        if not isinstance(text, str):
+            raise InvalidValueError(f"a language-tagged literal is text, not {type(value).__name__}")
+        try:
+            made = Literal(text, language=language)
+        except ValueError as exc:
+            raise InvalidValueError(f"{language!r} is not a valid language tag: {exc}") from None
+        if not self.onto.store.forms.tags.known(made.language):
+            self._pending.setdefault(made.language, language)
+        return made
+
+    def fact(self, subject: str, prop: str, obj: object) -> Triple:
+        """A triple from names: ``obj`` is an individual name, a Literal or a Python value."""
+        onto = self.onto
+        o = onto.iri(obj) if isinstance(obj, (str, NamedNode)) and not isinstance(obj, Literal) else self.value(obj)
+        return Triple(onto.iri(subject), onto.iri(prop), o)
+
+    # ---------------------------------------------------------------- changes by names (the ontology's)
+    def add_fact(self, subject: str, prop: str, obj: object) -> int:
+        return self._add(self.fact(subject, prop, obj))
+
+    def remove_fact(self, subject: str, prop: str, obj: object) -> int:
+        return self.onto.changes.remove(self.fact(subject, prop, obj))
+
+    def add_type(self, individual: str, cls: str) -> int:
+        return self.onto.changes.add(Triple(self.onto.iri(individual), TYPE, self.onto.iri(cls)))
+
+    def remove_type(self, individual: str, cls: str) -> int:
+        return self.onto.changes.remove(Triple(self.onto.iri(individual), TYPE, self.onto.iri(cls)))
+
+    def add_data(self, prop: str, individual: str, value: object, datatype: str | None = None) -> int:
+        return self._add(Triple(self.onto.iri(individual), self.onto.iri(prop), self.value(value, datatype)))
+
+    def replace(self, subject: str, prop: str, new: object, old: object | None = None) -> int:
+        """:meth:`AssertedChanges.replace`, then the spelling given for ``new``'s tag kept."""
+        removed = self.onto.changes.replace(subject, prop, new, old)
+        if self._pending:
+            self.asserted([self.fact(subject, prop, new)])
+        return removed
+
+    def _add(self, t: Triple) -> int:
+        """Assert one triple made from names (no blank node to name)."""
+        added = self.onto.changes.add(t)
+        self.asserted((t,))
+        return added
+
+    @property
+    def waiting(self) -> bool:
+        """Whether a spelling given to :meth:`value` waits for its literal to be asserted."""
+        return bool(self._pending)
+
+    def asserted(self, triples: Iterable[Triple]) -> None:
+        """``triples`` were asserted: the spellings given for their literals' tags are the store's now
+        (one look per literal while a spelling waits; none otherwise)."""
+        if not self._pending:
+            return
+        given = [self._pending.pop(o.language) for t in triples
+                 if isinstance(o := t.object, Literal) and o.language in self._pending]
+        if given:
+            self.onto.store.forms.adopt_tags(given)
+
+
+__all__ = ["OntologyValues"]
