@@ -85,3 +85,18 @@ def test_the_full_part_runs_the_steps_in_a_bounded_process_of_their_own(monkeypa
     rows = suite.full_rows(args)
     assert calls[-1] == (["benchmarks.tbox_steps", "tbox:60", "--steps", "5"], 300)
     assert rows[-1]["kind"] == "tbox_steps" and "failed: not run" in tables.extra_tables(rows[-1:])
+
+
+@pytest.mark.parametrize("freeze", ["none", "first-step"])
+def test_the_collector_measurement_runs_each_policy_and_leaves_nothing_frozen(freeze: str) -> None:
+    """benchmarks.tbox_gc, tiny: the row says what it measured; a frozen run is thawed for the rest of the tests."""
+    import gc
+
+    from benchmarks import tbox_gc
+
+    try:
+        row = tbox_gc.run(50, 3, freeze)
+        assert row["freeze"] == freeze and row["median_ms"] > 0 and row["full_collections"] >= 0
+        assert (row["frozen"] > 0) == (freeze != "none")
+    finally:
+        gc.unfreeze()

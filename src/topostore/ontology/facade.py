@@ -19,7 +19,7 @@ while the ontology is inconsistent, as aRMOR does).
 from __future__ import annotations
 
 import os
-from collections.abc import Callable, Sequence
+from collections.abc import Sequence
 
 from pyoxigraph import Literal, NamedNode, Triple
 
@@ -151,7 +151,6 @@ class Ontology:
 
     def schema_changed(self) -> None:
         """A schema triple was added or removed: the rules, the classification and the namespace are read again."""
-        self.reasoning.collector.rebuilding()
         self._rules = None
         self._superclasses = None
         self.names.forget()
@@ -280,18 +279,9 @@ Returns how many old facts were removed.""")
             onto.load(p, fmt=fmt, base_iri=base_iri)
         return onto
 
-    def load(self, path: str | os.PathLike[str], fmt: str | None = None, base_iri: str | None = None,
-             progress: Callable[[int], None] | None = None) -> int:
-        """Add a document's triples to the asserted graph; all or nothing (see :meth:`OntologyFiles.load`)."""
-        added = self.files.load(path, fmt, base_iri, progress)
-        self.reasoning.collector.settled()
-        return added
-
-    def load_data(self, data: str | bytes, fmt: str = "turtle", base_iri: str | None = None) -> int:
-        """Add a document given as text or bytes; all or nothing."""
-        added = self.files.load_data(data, fmt, base_iri)
-        self.reasoning.collector.settled()
-        return added
+    load = forward("files", OntologyFiles.load, "Add a document's triples to the asserted graph; all or nothing (see "
+                   ":meth:`OntologyFiles.load`).")
+    load_data = forward("files", OntologyFiles.load_data, "Add a document given as text or bytes; all or nothing.")
 
     @property
     def notices(self) -> list[Notice]:

@@ -23,7 +23,6 @@ from ..stores import check_rules
 from ..stores.literal_forms import FORMS
 from ..stores.meta import META
 from . import state as durable_state
-from .collector import CollectorPolicy
 
 if TYPE_CHECKING:
     from .facade import Ontology
@@ -49,8 +48,6 @@ class OntologyReasoning:
 
     def __init__(self, onto: Ontology) -> None:
         self.onto = onto
-        #: when the cycle collector may skip the long-lived compiled rules (see :mod:`.collector`)
-        self.collector = CollectorPolicy()
 
     def rules(self) -> RuleSet:
         """The compiled rules, compiled again when the TBox or the SWRL rules changed."""
@@ -67,8 +64,6 @@ class OntologyReasoning:
         rules = self.rules()
         forced = ""
         if onto._reasoner is None or onto._reasoner.ruleset is not rules:
-            if onto._reasoner is not None:  # the old reasoner's state is dropped
-                self.collector.rebuilding()
             onto._reasoner = IncrementalReasoner(onto.store, rules)
         elif onto.dirty and not onto.ledger.incremental:
             forced = "asserted changes were not tracked (too many since the last REASON)"
@@ -86,8 +81,6 @@ class OntologyReasoning:
         onto.dirty = False
         onto.events.after_reason(onto.store, onto._report.consistent, before, stats.seconds)
         durable_state.end_reason(onto.store, onto._report.consistent)
-        if stats.mode == "full":
-            self.collector.settled()
         return onto._report
 
     def _advance_views(self, previous: ReasonReport | None) -> None:
@@ -100,7 +93,6 @@ class OntologyReasoning:
     def forget(self) -> None:
         """Drop the compiled rules and the reasoner: the asserted graph was changed underneath them (rollback)."""
         onto = self.onto
-        self.collector.rebuilding()
         onto._rules = None
         onto._superclasses = None
         onto._reasoner = None
