@@ -11,7 +11,6 @@ import pytest
 from http_support import config, in_process
 from pyoxigraph import NamedNode
 from support import armor_load
-from test_standard_clients import gsp
 
 from topostore import LoadError, Ontology, OntologyWarning
 from topostore.armor import ArmorService
@@ -242,9 +241,11 @@ def test_armor_replies_spell_a_tag_a_sparql_update_wrote(tmp_path: Path) -> None
 
 def test_the_graph_store_keeps_the_spelling_of_an_upload(tmp_path: Path) -> None:
     with in_process(config(tmp_path / "data", allow_update=True)) as server:
-        body = TURTLE.encode()
-        assert gsp(server, "lang", "PUT", body, "text/turtle")[0] == 201
+        status, _, reply = server.request("/references/lang/data?default", TURTLE.encode(),
+                                          {"Content-Type": "text/turtle"}, "PUT")
+        assert status == 201, reply
         added = f'<{NS}y> <{NS}s> "grey"@en-AU .\n'.encode()
-        status, _, reply = gsp(server, "lang", "POST", added, "application/n-triples")
+        status, _, reply = server.request("/references/lang/data?default", added,
+                                          {"Content-Type": "application/n-triples"}, "POST")
         assert status == 200, reply
         assert server.ok("QUERY", "DATAPROP", "IND", ["s", "y"], ref="lang")["queried_objects"] == ['"grey"@en-AU']
