@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import inspect
 from collections.abc import Callable
+from operator import attrgetter
 from typing import Any
 
 
@@ -17,9 +18,10 @@ def forward(part: str, method: Callable[..., Any], doc: str | None = None) -> Ca
     """A method calling ``self.<part>.<method's name>`` with its arguments: the signature is ``method``'s
     (the part's), the docstring ``doc`` (the facade's; None for none)."""
     name = method.__name__
+    bound = attrgetter(f"{part}.{name}")  # the part's bound method, read in one call
 
     def call(self: Any, *args: Any, **kwargs: Any) -> Any:
-        return getattr(getattr(self, part), name)(*args, **kwargs)
+        return bound(self)(*args, **kwargs)
 
     call.__name__ = name
     call.__qualname__ = f"Ontology.{name}"

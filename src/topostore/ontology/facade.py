@@ -188,6 +188,7 @@ Returns how many old facts were removed.""")
                                 "(deduplicated): linear in size, never n² pairs.")
     remove_individual = forward("changes", AssertedChanges.remove_individual, "Remove every asserted triple "
                                 "mentioning the individual, and whole AllDifferent axioms containing it.")
+
     def subscribe(self, callback, pattern: str | None = None, maxsize: int = 100):
         """Call ``callback(event)`` after each REASON that changed an inferred triple matching
         ``pattern`` (e.g. ``"rdf:type URGENT"``) or the consistency; see :mod:`topostore.ontology.events`."""
