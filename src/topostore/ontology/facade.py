@@ -113,7 +113,7 @@ class Ontology:
     @property
     def prefix(self) -> str:
         """Namespace for entity names: the ontology IRI + '#' unless given."""
-        return self.names.prefix
+        return self.names.known or self.names.prefix  # read for every name of every command: known, no call
 
     @prefix.setter
     def prefix(self, value: str) -> None:
@@ -223,7 +223,7 @@ Returns how many old facts were removed.""")
     @property
     def rules(self) -> RuleSet:
         """The compiled rules (recompiled when the TBox or the SWRL rules change)."""
-        return self.reasoning.rules()
+        return self._rules if self._rules is not None else self.reasoning.rules()
 
     @all_or_nothing  # under self.limits; a failure restores the state of the last successful REASON
     def reason(self, profile: bool = False, mode: str = "auto") -> ReasonReport:

@@ -18,30 +18,41 @@ class Namespace:
 
     def __init__(self, store: Store, given: str | None) -> None:
         self.store = store
-        #: the namespace given (None: found from the asserted owl:Ontology)
-        self.given = given
+        self._given = given
         self._found: str | None = None
+        #: the namespace when known without a look-up (given, or found since the last schema change), else None
+        self.known = given
+
+    @property
+    def given(self) -> str | None:
+        """The namespace given (None: found from the asserted owl:Ontology)."""
+        return self._given
+
+    @given.setter
+    def given(self, value: str | None) -> None:
+        self._given = value
+        self.known = value if value is not None else self._found
 
     @property
     def prefix(self) -> str:
         """Namespace for entity names: the ontology IRI + '#' unless given."""
-        if self.given is not None:
-            return self.given
-        if self._found is None:  # looked up once per schema change (a round trip on a server)
-            found = DEFAULT_PREFIX
-            # kept only once the read succeeded: a read that fails (a remote store's queued writes
-            # refused on the way) must not leave the default namespace behind for good
-            for t in self.store.triples(None, TYPE, owl("Ontology"), ASSERTED):
-                if isinstance(t.subject, NamedNode):
-                    iri = t.subject.value
-                    found = iri if iri.endswith(("#", "/")) else iri + "#"
-                    break
-            self._found = found
-        return self._found
+        if self.known is not None:
+            return self.known
+        found = DEFAULT_PREFIX  # looked up once per schema change (a round trip on a server)
+        # kept only once the read succeeded: a read that fails (a remote store's queued writes
+        # refused on the way) must not leave the default namespace behind for good
+        for t in self.store.triples(None, TYPE, owl("Ontology"), ASSERTED):
+            if isinstance(t.subject, NamedNode):
+                iri = t.subject.value
+                found = iri if iri.endswith(("#", "/")) else iri + "#"
+                break
+        self._found = self.known = found
+        return found
 
     def forget(self) -> None:
         """The schema changed: the ontology IRI is looked up again."""
         self._found = None
+        self.known = self._given
 
     def iri(self, name: str | NamedNode) -> NamedNode:
         """IRI of a named entity (``<full IRI>`` or a name in :attr:`prefix`)."""
