@@ -16,6 +16,7 @@ from topostore import LoadError, Ontology, OntologyWarning
 from topostore.armor import ArmorService
 from topostore.armor.reference import Reference
 from topostore.errors import InvalidValueError
+from topostore.rdf.vocab import ASSERTED
 from topostore.sparql.execute import Job, run_update
 
 NS = "http://e.org/lang#"
@@ -249,3 +250,13 @@ def test_the_graph_store_keeps_the_spelling_of_an_upload(tmp_path: Path) -> None
                                           {"Content-Type": "application/n-triples"}, "POST")
         assert status == 200, reply
         assert server.ok("QUERY", "DATAPROP", "IND", ["s", "y"], ref="lang")["queried_objects"] == ['"grey"@en-AU']
+
+
+def test_a_refused_sparql_update_learns_no_spelling() -> None:
+    o = mapped()
+    with pytest.raises(Exception, match="integer"):
+        sparql_update(o, f'INSERT DATA {{ <{NS}x> <{NS}s> "colour"@en-GB . <{NS}x> <{NS}n> '
+                      '"many"^^<http://www.w3.org/2001/XMLSchema#integer> }')
+    assert not o.store.forms.tags
+    o.add_data("s", "x", "colour")
+    assert o.store.count(ASSERTED) == 4
