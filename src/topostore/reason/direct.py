@@ -17,7 +17,6 @@ program as one request (:meth:`.program.StepProgram.text`) is unchanged.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from itertools import islice
 
 from pyoxigraph import BlankNode, Literal, NamedNode, Quad, Triple
 
@@ -36,19 +35,13 @@ _STATE = (ASSERTED, INFERRED, AUX)
 
 def _facts(store, pattern: tuple, graph: NamedNode) -> list[Triple] | None:
     """The facts of ``pattern`` in ``graph``, None when there are more than :data:`FEW`."""
-    found = list(islice(store.triples(*pattern, graph), FEW + 1))
-    return None if len(found) > FEW else found
+    return store.few_facts(*pattern, (graph,), FEW)
 
 
 def facts_in(store, pattern: tuple, graphs) -> list[Triple] | None:
     """The distinct facts of ``pattern`` in any of ``graphs`` (one read per graph), None when there
     are more than :data:`FEW`."""
-    seen: dict[Triple, None] = {}
-    for g in graphs:
-        seen.update(dict.fromkeys(islice(store.triples(*pattern, g), FEW + 1)))
-        if len(seen) > FEW:
-            return None
-    return list(seen)
+    return store.few_facts(*pattern, graphs, FEW)
 
 
 def _known(store, facts: list[Triple], graphs: tuple[NamedNode, ...]) -> list[bool]:

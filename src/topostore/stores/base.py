@@ -151,6 +151,7 @@ class Store:
 
     # ------------------------------------------------------------ the reads (see .reads), bound as methods
     triples = reads.triples
+    few_facts = reads.few_facts
     objects = reads.objects
     objects_many = reads.objects_many
     subjects = reads.subjects

@@ -42,7 +42,8 @@ class HeldGraphs:
     def __init__(self) -> None:
         #: graphs that may be held: a reasoner's scratch graphs, which only it reads and which it drops
         self.eligible: frozenset[NamedNode] = frozenset()
-        #: held graph -> {quad: (subject, predicate, object)}; a graph is absent once empty or in the store
+        #: held graph -> {quad: (subject, predicate, object, triple)} (the triple as read back, made once
+        #: when held); a graph is absent once empty or in the store
         self.graphs: dict[NamedNode, dict[Quad, tuple]] = {}
         #: eligible graphs whose facts may be in the store (moved there, or open to SPARQL) until dropped
         self.in_store: set[NamedNode] = set()
@@ -83,8 +84,12 @@ class HeldGraphs:
         if held is None:
             held = self.graphs[graph] = {}
         for t in triples:
-            s, p, o = t.subject, t.predicate, _stored(t.object)
-            held[Quad(s, p, o, graph)] = (s, p, o)
+            s, p, o = t.subject, t.predicate, t.object
+            if isinstance(o, Literal):
+                stored = stored_literal(o)
+                if stored != o:
+                    o, t = stored, Triple(s, p, stored)
+            held[Quad(s, p, o, graph)] = (s, p, o, t)
         if not held:
             del self.graphs[graph]
             return None
@@ -99,8 +104,16 @@ class HeldGraphs:
         if o is not None:
             o = _stored(o)
         graphs = self.graphs.values() if graph is None else (self.graphs.get(graph, {}),)
-        return iter([q for held in graphs for q, (qs, qp, qo) in held.items()
+        return iter([q for held in graphs for q, (qs, qp, qo, _) in held.items()
                      if (s is None or qs == s) and (p is None or qp == p) and (o is None or qo == o)])
+
+    def triples(self, s, p, o, held: dict) -> list[Triple]:
+        """The triples of one held graph's ``held`` quads matching the pattern (None: any), as
+        :meth:`match` finds them but without a quad's triple made per read."""
+        if o is not None:
+            o = _stored(o)
+        return [t for qs, qp, qo, t in held.values()
+                if (s is None or qs == s) and (p is None or qp == p) and (o is None or qo == o)]
 
     def has(self, quad: Quad) -> bool:
         """Whether a quad of a held graph is there (its literal compared as the store would)."""
