@@ -283,7 +283,7 @@ class OxigraphStore(Store):
         self._flush_open()
         held = self._held.graphs.get(graph)
         if held is not None:
-            return list(held) if len(held) <= limit else None
+            return self._held.quads(graph) if len(held) <= limit else None
         quads = list(islice(self._ox.quads_for_pattern(None, None, None, graph), limit + 1))
         return quads if len(quads) <= limit else None
 
