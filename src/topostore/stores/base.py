@@ -163,6 +163,7 @@ class Store:
     census = reads.census
     census_many = reads.census_many
     small_graph = reads.small_graph
+    small_terms = reads.small_terms
     count = reads.count
     is_empty = reads.is_empty
     dump = reads.dump

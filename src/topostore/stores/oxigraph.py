@@ -287,6 +287,14 @@ class OxigraphStore(Store):
         quads = list(islice(self._ox.quads_for_pattern(None, None, None, graph), limit + 1))
         return quads if len(quads) <= limit else None
 
+    def small_terms(self, graph: NamedNode, limit: int = 2000) -> list[tuple] | None:
+        """:func:`.reads.small_terms`; a held graph's facts as they are held (no quad made)."""
+        self._flush_open()
+        held = self._held.graphs.get(graph)
+        if held is not None:
+            return list(held) if len(held) <= limit else None
+        return reads.small_terms(self, graph, limit)
+
     def census(self, graph: NamedNode, small: int = 2000) -> tuple[dict[str, int], dict[str, int]]:
         """Facts per predicate and per class in ``graph``, counted from the index up to ``small`` quads.
 

@@ -190,6 +190,13 @@ def small_graph(store: Store, graph: NamedNode, limit: int = 2000) -> list[Quad]
     return None
 
 
+def small_terms(store: Store, graph: NamedNode, limit: int = 2000) -> list[tuple] | None:
+    """:func:`small_graph` as each quad's (subject, predicate, object): what a reader that goes through a
+    scratch graph once needs, each term read once (pyoxigraph makes a new object at every read)."""
+    quads = store.small_graph(graph, limit)
+    return None if quads is None else [(q.subject, q.predicate, q.object) for q in quads]
+
+
 def count(store: Store, graph: NamedNode) -> int:
     """Quads in ``graph`` (one query; pending writes committed first)."""
     result = store.query(f"SELECT (COUNT(*) AS ?n) WHERE {{ GRAPH {graph} {{ ?s ?p ?o }} }}")
