@@ -43,12 +43,6 @@ def _facts(store, pattern: tuple, graph: NamedNode) -> list[Triple] | None:
     return store.few_facts(*pattern, (graph,), FEW)
 
 
-def facts_in(store, pattern: tuple, graphs) -> list[Triple] | None:
-    """The distinct facts of ``pattern`` in any of ``graphs`` (one read per graph), None when there
-    are more than :data:`FEW`."""
-    return store.few_facts(*pattern, graphs, FEW)
-
-
 def _known(store, facts: list[Triple], graphs: tuple[NamedNode, ...]) -> list[bool]:
     """Whether each fact is in one of ``graphs`` (one look-up batch)."""
     present = store.contains_quads([Quad(t.subject, t.predicate, t.object, g) for t in facts for g in graphs])
