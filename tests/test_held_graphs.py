@@ -7,8 +7,10 @@ from hypothesis import strategies as st
 from pyoxigraph import Literal, NamedNode, Triple
 
 from topostore.rdf.vocab import ASSERTED, XSD
+from topostore.stores import reads
 from topostore.stores.held import HELD_MAX
 from topostore.stores.oxigraph import OxigraphStore
+from topostore.stores.work import transaction
 
 S = [NamedNode(f"urn:x:s{i}") for i in range(3)]
 P = [NamedNode(f"urn:x:p{i}") for i in range(2)]
@@ -28,6 +30,8 @@ operations = st.one_of(
     st.tuples(st.just("discard"), triples, st.sampled_from(GRAPHS)),
     st.tuples(st.just("add"), triples, st.sampled_from(GRAPHS)),
     st.tuples(st.just("read"), patterns),
+    st.tuples(st.just("few"), patterns, st.lists(st.sampled_from(GRAPHS), max_size=3), st.integers(0, 3)),
+    st.tuples(st.just("pending"), triples, st.sampled_from(GRAPHS), patterns),
     st.tuples(st.just("contains"), triples, st.sampled_from(GRAPHS)),
     st.tuples(st.just("small"), st.sampled_from(GRAPHS)),
     st.tuples(st.just("copy"), st.sampled_from(SCRATCH), st.sampled_from(GRAPHS)),
@@ -46,7 +50,20 @@ def _run(store: OxigraphStore, op: tuple):
     elif kind == "add":
         store.add(op[1], op[2])
     elif kind == "read":
-        return sorted(map(str, store.triples(*op[1])))
+        found = sorted(map(str, store.triples(*op[1])))
+        assert found == sorted(map(str, reads.triples(store, *op[1])))  # the direct read is the general one
+        return found
+    elif kind == "few":
+        (s, p, o, _), graphs, limit = op[1:]
+        found = store.few_facts(s, p, o, graphs, limit)
+        general = reads.few_facts(store, s, p, o, graphs, limit)
+        assert (found is None) == (general is None) and sorted(map(str, found or [])) == sorted(map(str, general or []))
+        return None if found is None else sorted(map(str, found))
+    elif kind == "pending":  # a read inside a transaction sees its pending writes
+        with transaction(store):
+            store.add(op[1], op[2])
+            s, p, o, _ = op[3]
+            return sorted(map(str, store.triples(*op[3]))), store.few_facts(s, p, o, (op[2],), 2) is None
     elif kind == "contains":
         return store.contains_each(op[1], op[2]), [store.contains(t, op[2]) for t in op[1]]
     elif kind == "small":

@@ -17,7 +17,7 @@ from __future__ import annotations
 
 from collections.abc import Callable, Iterable
 
-from pyoxigraph import NamedNode, Quad, Triple
+from pyoxigraph import NamedNode, Triple
 
 from ..rdf.terms import Term
 from ..rdf.vocab import TYPE
@@ -47,18 +47,18 @@ class ChangedGraphs:
         self.store = store
         self._flush = flush
         self.watched = watched or {}
-        self._quads: dict[NamedNode, list[Quad] | None] = {}
+        self._quads: dict[NamedNode, list[tuple] | None] = {}
         self._keys: dict[NamedNode, KeyCounts] = {}
         #: per graph scanned: its (individual, class) type facts, and its watched facts (subject, form, object)
         self._types: dict[NamedNode, list[tuple[Term, NamedNode]]] = {}
         self._watched: dict[NamedNode, list[tuple[Term, NamedNode, Term]]] = {}
 
-    def quads(self, graph: NamedNode) -> list[Quad] | None:
-        """Every quad of ``graph``; None when it is large or the store is reached over HTTP (the caller
-        then reads by pattern or query)."""
+    def quads(self, graph: NamedNode) -> list[tuple] | None:
+        """Every fact of ``graph`` as its (subject, predicate, object) (:meth:`.Store.small_terms`); None
+        when it is large or the store is reached over HTTP (the caller then reads by pattern or query)."""
         if graph not in self._quads:
             self._flush()
-            self._quads[graph] = self.store.small_graph(graph, SMALL)
+            self._quads[graph] = self.store.small_terms(graph, SMALL)
         return self._quads[graph]
 
     def _scan(self, graph: NamedNode) -> bool:
@@ -72,19 +72,17 @@ class ChangedGraphs:
         classes: dict[str, int] = {}
         types: list[tuple[Term, NamedNode]] = []
         watched, seen = self.watched, []
-        for q in quads:  # each term read once: pyoxigraph makes a new object at every read
-            p = q.predicate
+        for s, p, o in quads:
             key = str(p)
             preds[key] = preds.get(key, 0) + 1
             if p == TYPE or p == ENTAILED_TYPE:
-                o = q.object
                 if p == TYPE:
                     c = str(o)
                     classes[c] = classes.get(c, 0) + 1
                 if isinstance(o, NamedNode):
-                    types.append((q.subject, o))
+                    types.append((s, o))
             if watched and p in watched:
-                seen.append((q.subject, p, q.object))
+                seen.append((s, p, o))
         self._keys[graph] = (preds, classes)
         self._types[graph] = types
         self._watched[graph] = seen

@@ -16,8 +16,8 @@ program as one request (:meth:`.program.StepProgram.text`) is unchanged.
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass
-from itertools import islice
 
 from pyoxigraph import BlankNode, Literal, NamedNode, Quad, Triple
 
@@ -31,24 +31,16 @@ from .scratch import CANDIDATES, FLIP_GAINED, NEW_FACTS, OVERDELETED
 #: at most this many facts are moved through look-ups; more go through the SPARQL text
 FEW = 16
 
+#: :func:`~..compile.rule.key_pattern` kept per key: a step looks its keys up a dozen times, and each
+#: pattern made anew parses its IRI into a term
+pattern_of = functools.lru_cache(maxsize=4096)(key_pattern)
+
 _STATE = (ASSERTED, INFERRED, AUX)
 
 
 def _facts(store, pattern: tuple, graph: NamedNode) -> list[Triple] | None:
     """The facts of ``pattern`` in ``graph``, None when there are more than :data:`FEW`."""
-    found = list(islice(store.triples(*pattern, graph), FEW + 1))
-    return None if len(found) > FEW else found
-
-
-def facts_in(store, pattern: tuple, graphs) -> list[Triple] | None:
-    """The distinct facts of ``pattern`` in any of ``graphs`` (one read per graph), None when there
-    are more than :data:`FEW`."""
-    seen: dict[Triple, None] = {}
-    for g in graphs:
-        seen.update(dict.fromkeys(islice(store.triples(*pattern, g), FEW + 1)))
-        if len(seen) > FEW:
-            return None
-    return list(seen)
+    return store.few_facts(*pattern, (graph,), FEW)
 
 
 def _known(store, facts: list[Triple], graphs: tuple[NamedNode, ...]) -> list[bool]:
@@ -61,7 +53,7 @@ def _known(store, facts: list[Triple], graphs: tuple[NamedNode, ...]) -> list[bo
 def _flipped(store, key: ReadKey, graph: NamedNode) -> list[Triple] | None:
     """The flipped facts of ``key`` in ``graph``; None when they are too many or one holds a
     literal (the SPARQL text then moves them: a literal may be stored in another spelling)."""
-    facts = _facts(store, key_pattern(key), graph)
+    facts = _facts(store, pattern_of(key), graph)
     if facts is None or any(isinstance(t.object, Literal) for t in facts):
         return None
     return facts

@@ -102,7 +102,7 @@ class Flipped:
 
     def _facts(self, store, pattern: tuple, graphs) -> list[Triple]:
         """The distinct facts of ``pattern`` in ``graphs``; :class:`_Fallback` (the text runs) past FEW."""
-        found = direct.facts_in(store, pattern, graphs)
+        found = store.few_facts(*pattern, graphs, direct.FEW)
         if found is None:
             raise _Fallback
         return found

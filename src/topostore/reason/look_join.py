@@ -82,7 +82,7 @@ def _read(store, pattern: tuple, graphs: tuple[NamedNode, ...], graph_set: froze
     match_in = getattr(store, "match_in", None)
     found = match_in(*pattern, graph_set, direct.FEW) if match_in is not None else None
     if found is None:
-        found = direct.facts_in(store, pattern, graphs)
+        found = store.few_facts(*pattern, graphs, direct.FEW)
     if found is None or len(found) > direct.FEW:
         raise _Fallback
     return found

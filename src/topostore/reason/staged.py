@@ -16,10 +16,11 @@ from itertools import islice
 from pyoxigraph import NamedNode, Triple
 
 from ..compile.generic import PREFIXES
-from ..compile.rule import ReadKey, key_pattern
+from ..compile.rule import ReadKey
 from ..rdf.vocab import ASSERTED
 from .component import run_component
 from .delta_texts import FLIP_LOST, KEEP
+from .direct import pattern_of
 from .program import Signature, StepProgram
 from .scratch import CANDIDATES, FLIP_GAINED, NEW_FACTS, OVERDELETED
 
@@ -259,11 +260,11 @@ class StagedRun:
 
     def has(self, key: ReadKey, graph: NamedNode) -> bool:
         """Whether ``graph`` holds a fact of ``key`` (an index look-up)."""
-        return next(iter(self.store.triples(*key_pattern(key), graph)), None) is not None
+        return next(iter(self.store.triples(*pattern_of(key), graph)), None) is not None
 
     def facts(self, key: ReadKey, graph: NamedNode, limit: int) -> list[Triple]:
         """The facts of ``key`` in ``graph``, at most ``limit`` of them."""
-        return list(islice(self.store.triples(*key_pattern(key), graph), limit))
+        return list(islice(self.store.triples(*pattern_of(key), graph), limit))
 
     def has_any(self, graph: NamedNode) -> bool:
         return next(iter(self.store.triples(None, None, None, graph)), None) is not None

@@ -151,6 +151,7 @@ class Store:
 
     # ------------------------------------------------------------ the reads (see .reads), bound as methods
     triples = reads.triples
+    few_facts = reads.few_facts
     objects = reads.objects
     objects_many = reads.objects_many
     subjects = reads.subjects
@@ -162,6 +163,7 @@ class Store:
     census = reads.census
     census_many = reads.census_many
     small_graph = reads.small_graph
+    small_terms = reads.small_terms
     count = reads.count
     is_empty = reads.is_empty
     dump = reads.dump

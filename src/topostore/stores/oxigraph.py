@@ -13,16 +13,21 @@ from __future__ import annotations
 import os
 from collections.abc import Iterable, Iterator
 from itertools import chain, islice
+from operator import attrgetter
 
 import pyoxigraph as ox
-from pyoxigraph import Literal, NamedNode, Quad
+from pyoxigraph import Literal, NamedNode, Quad, Triple
 
 from ..errors import QueryError, StoreError
+from . import reads
 from .base import Store
 from .data_text import data_update, quad_data  # noqa: F401 - quad_data: named here since the first release
 from .held import HeldGraphs
 from .literal_forms import stored_literal
 from .reads import key_census
+
+#: a quad's triple (read in C by :func:`map`)
+_TRIPLE = attrgetter("triple")
 
 
 class OxigraphStore(Store):
@@ -71,6 +76,46 @@ class OxigraphStore(Store):
             if graph in held:
                 return self._held.match(s, p, o, graph)
         return iter(self._ox.quads_for_pattern(s, p, o, graph))
+
+    def triples(self, s=None, p=None, o=None, graph=None) -> Iterator[Triple]:
+        """:func:`.reads.triples` without its layers where no transaction is open (the reasoner's
+        look-ups, each a few facts): a held graph's matches, or the index's quads mapped to their
+        triples in C, instead of a generator over :meth:`_match`'s iterator."""
+        if self._pending is not None or self.listings is not None:
+            return reads.triples(self, s, p, o, graph)
+        held = self._held.graphs
+        if held:
+            if graph is None:
+                return chain(map(_TRIPLE, self._ox.quads_for_pattern(s, p, o, None)),
+                             (t for g in held.values() for t in self._held.triples(s, p, o, g)))
+            found = held.get(graph)
+            if found is not None:
+                return iter(self._held.triples(s, p, o, found))
+        return map(_TRIPLE, self._ox.quads_for_pattern(s, p, o, graph))
+
+    def few_facts(self, s, p, o, graphs, limit: int) -> list[Triple] | None:
+        """:func:`.reads.few_facts` read here directly where no transaction is open: a held graph's
+        matches, or the index's first ``limit + 1`` quads mapped to their triples in C; one graph's
+        facts are distinct as read (no dictionary between the index and the caller)."""
+        if self._pending is not None or self.listings is not None:
+            return reads.few_facts(self, s, p, o, graphs, limit)
+        held = self._held.graphs
+        found: list[Triple] | dict[Triple, None] | None = None
+        for g in graphs:
+            kept = held.get(g) if held else None
+            facts = self._held.triples(s, p, o, kept) if kept is not None \
+                else list(islice(map(_TRIPLE, self._ox.quads_for_pattern(s, p, o, g)), limit + 1))
+            if found is None:
+                found = facts
+            elif facts:
+                if type(found) is list:
+                    found = dict.fromkeys(found)
+                found.update(dict.fromkeys(facts))
+            if len(found) > limit:
+                return None
+        if found is None:
+            return []
+        return found if type(found) is list else list(found)
 
     def hold_scratch(self, graphs: Iterable[NamedNode]) -> None:
         """In memory, writes to ``graphs`` through :meth:`add_scratch` are held in Python until SPARQL
@@ -238,9 +283,17 @@ class OxigraphStore(Store):
         self._flush_open()
         held = self._held.graphs.get(graph)
         if held is not None:
-            return list(held) if len(held) <= limit else None
+            return self._held.quads(graph) if len(held) <= limit else None
         quads = list(islice(self._ox.quads_for_pattern(None, None, None, graph), limit + 1))
         return quads if len(quads) <= limit else None
+
+    def small_terms(self, graph: NamedNode, limit: int = 2000) -> list[tuple] | None:
+        """:func:`.reads.small_terms`; a held graph's facts as they are held (no quad made)."""
+        self._flush_open()
+        held = self._held.graphs.get(graph)
+        if held is not None:
+            return list(held) if len(held) <= limit else None
+        return reads.small_terms(self, graph, limit)
 
     def census(self, graph: NamedNode, small: int = 2000) -> tuple[dict[str, int], dict[str, int]]:
         """Facts per predicate and per class in ``graph``, counted from the index up to ``small`` quads.

@@ -11,6 +11,7 @@ in-memory store counts a small graph from its index).
 from __future__ import annotations
 
 from collections.abc import Iterable, Iterator
+from itertools import islice
 from typing import TYPE_CHECKING
 
 from pyoxigraph import Literal, NamedNode, Quad, Triple
@@ -66,6 +67,19 @@ def triples(
     for q, present in list(pending.values()):
         if present and _matches(q, s, p, o, graph):
             yield q.triple
+
+
+def few_facts(store: Store, s: Term | None, p: NamedNode | None, o: Term | None, graphs: Iterable[NamedNode],
+              limit: int) -> list[Triple] | None:
+    """The distinct triples of a pattern (None: any) in any of ``graphs`` (one read per graph), None when
+    there are more than ``limit``: what the reasoner's look-ups read before deciding that their few
+    facts are few (else their SPARQL text runs)."""
+    seen: dict[Triple, None] = {}
+    for g in graphs:
+        seen.update(dict.fromkeys(islice(store.triples(s, p, o, g), limit + 1)))
+        if len(seen) > limit:
+            return None
+    return list(seen)
 
 
 def objects(store: Store, s: Term, p: NamedNode, graph: NamedNode) -> list[Term]:
@@ -174,6 +188,13 @@ def small_graph(store: Store, graph: NamedNode, limit: int = 2000) -> list[Quad]
     """Every quad of ``graph`` when there are at most ``limit`` and reading them is an index scan
     (in memory or on disk), else None: the caller reads by pattern or query instead."""
     return None
+
+
+def small_terms(store: Store, graph: NamedNode, limit: int = 2000) -> list[tuple] | None:
+    """:func:`small_graph` as each quad's (subject, predicate, object): what a reader that goes through a
+    scratch graph once needs, each term read once (pyoxigraph makes a new object at every read)."""
+    quads = store.small_graph(graph, limit)
+    return None if quads is None else [(q.subject, q.predicate, q.object) for q in quads]
 
 
 def count(store: Store, graph: NamedNode) -> int:
