@@ -78,14 +78,13 @@ class _Literals:
             o, notice = canonical_xml_literal(p, o)
             if notice is not None:
                 self.found.notices.append(notice)
-        triple = (s, p, o)
-        if triple in self.distinct:  # written (or skipped) already: each distinct triple is met once
+        distinct = self.distinct
+        before = len(distinct)
+        distinct.add((s, p, o))  # one hash of the triple, where a test then an add took two
+        if len(distinct) == before:  # written (or skipped) already: each distinct triple is met once
             return None
-        self.distinct.add(triple)
-        key = (s, p, value_key(o))
-        if key in self.spelled:
+        if self.spelled.setdefault((s, p, value_key(o)), o) is not o:  # an earlier spelling of the value
             return None
-        self.spelled[key] = o
         return o
 
     def kept_lines(self, lines: list[bytes]) -> list[bytes]:
@@ -235,12 +234,12 @@ def _text_pass(store: Store, data: bytes, fmt: RdfFormat, base_iri: str | None, 
             writer.write(_named_text(text, literals, predicates))
             if progress is not None:
                 parsed = _told(progress, parsed, text.count(b"\n"))
-    gained = store.quad_total() - before
-    literals.found.predicates.update(NamedNode(p[1:-1].decode()) for p in predicates)
-    extra = store.forms.record_loaded(ASSERTED, list(literals.spelled.items()))
+        # while the worker indexes the last pieces (the caller's clear of a failed load forgets the forms)
+        literals.found.predicates.update(NamedNode(p[1:-1].decode()) for p in predicates)
+        extra = store.forms.record_loaded(ASSERTED, list(literals.spelled.items()))
     if extra:  # pragma: no cover - in memory, literal forms are not persisted as quads
         store._commit(extra, [])
-    return gained
+    return store.quad_total() - before
 
 
 def _named_text(text: bytes, literals: _Literals, predicates: set[bytes]) -> bytes:
