@@ -11,6 +11,7 @@ here so that every document crosses many of them and the worker thread runs.
 
 from __future__ import annotations
 
+import os
 import re
 import threading
 import warnings
@@ -31,6 +32,8 @@ from topostore.rdf.ntriples_text import PLACE, literal_lines, named_blank_nodes,
 from topostore.rdf.skolem import unskolem
 from topostore.rdf.vocab import ASSERTED, SKOLEM_PREFIX
 from topostore.resources import default_ontology
+from topostore.stores import text_writer
+from topostore.stores.cores import CoreWatch, busy_cores, spare
 from topostore.stores.text_writer import TextWriter
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -57,8 +60,10 @@ TRIPLE_TERMS = PREFIXES + """
 
 @pytest.fixture(autouse=True)
 def small_pieces(monkeypatch: pytest.MonkeyPatch) -> None:
-    """Pieces of five triples: every document crosses several, and the worker thread runs."""
+    """Pieces of five triples: every document crosses several, and the worker thread runs (as on a machine
+    with a core free)."""
     monkeypatch.setattr(streamed, "TEXT_CHUNK", 5)
+    monkeypatch.setattr(text_writer, "_SETTING", "1")
 
 
 def through_text(load) -> Ontology:
@@ -282,7 +287,7 @@ def test_a_lone_piece_is_loaded_in_the_calling_thread() -> None:
 
 def test_pieces_are_loaded_in_order_by_the_worker_before_the_end() -> None:
     loaded: list[tuple[bytes, str]] = []
-    with TextWriter(lambda t: loaded.append((t, threading.current_thread().name))) as writer:
+    with TextWriter(lambda t: loaded.append((t, threading.current_thread().name)), lambda: True) as writer:
         for n in range(20):
             writer.write(str(n).encode())
     assert [t for t, _ in loaded] == [str(n).encode() for n in range(20)]
@@ -298,7 +303,7 @@ def test_the_workers_failure_is_raised_in_the_caller_and_stops_the_loads() -> No
         loaded.append(text)
 
     with pytest.raises(OSError, match="disk full"):
-        with TextWriter(load) as writer:
+        with TextWriter(load, lambda: True) as writer:
             for n in range(10):
                 writer.write(str(n).encode())
     assert loaded == [b"0", b"1"]
@@ -315,7 +320,7 @@ def test_a_failing_caller_waits_for_the_worker_and_loads_no_piece_still_queued()
         loaded.append(text)
 
     with pytest.raises(RuntimeError, match="parse failed"):
-        with TextWriter(load) as writer:
+        with TextWriter(load, lambda: True) as writer:
             writer.write(b"0")
             writer.write(b"1")  # the worker starts on "0"
             started.wait(5)
@@ -324,3 +329,25 @@ def test_a_failing_caller_waits_for_the_worker_and_loads_no_piece_still_queued()
             raise RuntimeError("parse failed")
     assert loaded[:1] == [b"0"] and b"2" not in loaded
     assert not [t for t in threading.enumerate() if t.name == "topostore-text-load"]
+
+
+@pytest.mark.parametrize(("answers", "inline"), [([False] * 9, 10), ([None, None, True], 2), ([None] * 9, 10)])
+def test_the_worker_starts_only_once_a_core_is_known_to_be_free(answers: list, inline: int) -> None:
+    """Busy cores (False) or not yet known (None): each piece loaded in the calling thread, in order; from
+    the first True on, by the worker."""
+    loaded: list[tuple[bytes, str]] = []
+    asked = iter(answers)
+    with TextWriter(lambda t: loaded.append((t, threading.current_thread().name)), lambda: next(asked)) as writer:
+        for n in range(10):
+            writer.write(str(n).encode())
+    assert [t for t, _ in loaded] == [str(n).encode() for n in range(10)]
+    here = threading.current_thread().name
+    assert [name == here for _, name in loaded] == [True] * inline + [False] * (10 - inline)
+
+
+def test_a_free_core_is_read_from_the_machines_counters_less_this_process() -> None:
+    cores = os.cpu_count() or 1
+    idle, busy = [0, 0, 0, 100 * cores, 0, 0, 0], [100 * cores, 0, 0, 0, 0, 0, 0]
+    assert busy_cores([0] * 7, idle) == 0.0 and busy_cores([0] * 7, busy) == cores
+    assert spare(0.4) == (cores >= 2) and not spare(cores - 1.0)
+    assert CoreWatch().free() is None  # no window read yet
