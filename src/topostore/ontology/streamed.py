@@ -5,10 +5,13 @@ The ordinary load (:mod:`.files`) parses a document into a list of triples that 
 deduplication) before the store is written.  Into an empty in-memory graph a document can be written as
 the parser makes its quads, each term read once, because taking it out again leaves exactly what was there;
 the checks run on the few triples that need them, as the quads go by or read back from the graph.  In
-memory the triples go to the store as N-Triples text, a piece at a time (:func:`written_triples`: a new
-triple only where a term changes; the store reads the text without a Python object per quad); elsewhere as
-quads of the asserted graph (one ``extend``).  A big document may be parsed in a child process instead
-(:mod:`.streamed_child`), through this very pass.
+memory the triples go to the store as N-Triples text, a piece at a time, each piece indexed in a second
+thread where a core is free (:mod:`topostore.stores.text_writer`).  RDF/XML, Turtle and N-Triples are
+serialised by pyoxigraph as it parses, and the text changed as bytes (:func:`_text_pass`,
+:mod:`topostore.rdf.ntriples_text`: no Python frame per triple, only the literal lines read as terms);
+JSON-LD and N3 quad by quad (:func:`written_triples`: a new triple only where a term changes).  Elsewhere
+the triples go as quads of the asserted graph (one ``extend``).  A big document may be parsed in a child
+process instead (:mod:`.streamed_child`), through :func:`written_triples`.
 
 * a blank node becomes its skolem IRI as its triple is made;
 * a literal is validated, an rdf:XMLLiteral put in canonical form, and only the first spelling of a value
