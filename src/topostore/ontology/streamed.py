@@ -5,10 +5,13 @@ The ordinary load (:mod:`.files`) parses a document into a list of triples that 
 deduplication) before the store is written.  Into an empty in-memory graph a document can be written as
 the parser makes its quads, each term read once, because taking it out again leaves exactly what was there;
 the checks run on the few triples that need them, as the quads go by or read back from the graph.  In
-memory the triples go to the store as N-Triples text, a piece at a time (:func:`written_triples`: a new
-triple only where a term changes; the store reads the text without a Python object per quad); elsewhere as
-quads of the asserted graph (one ``extend``).  A big document may be parsed in a child process instead
-(:mod:`.streamed_child`), through this very pass.
+memory the triples go to the store as N-Triples text, a piece at a time, each piece indexed in a second
+thread where a core is free (:mod:`topostore.stores.text_writer`).  RDF/XML, Turtle and N-Triples are
+serialised by pyoxigraph as it parses, and the text changed as bytes (:func:`_text_pass`,
+:mod:`topostore.rdf.ntriples_text`: no Python frame per triple, only the literal lines read as terms);
+JSON-LD and N3 quad by quad (:func:`written_triples`: a new triple only where a term changes).  Elsewhere
+the triples go as quads of the asserted graph (one ``extend``).  A big document may be parsed in a child
+process instead (:mod:`.streamed_child`), through :func:`written_triples`.
 
 * a blank node becomes its skolem IRI as its triple is made;
 * a literal is validated, an rdf:XMLLiteral put in canonical form, and only the first spelling of a value
@@ -23,23 +26,28 @@ load would repair, skip or refuse takes the document out again and goes the ordi
 
 from __future__ import annotations
 
-import io
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass, field
 from itertools import islice
 
 from pyoxigraph import BlankNode, Literal, NamedNode, Quad, RdfFormat, Triple, serialize
+from pyoxigraph import parse as ox_parse
 
 from ..compile.notices import Notice
 from ..compile.swrl_repair import needs_repair
-from ..rdf.syntax import PROGRESS_EVERY, parsed_quads
+from ..rdf.ntriples_text import literal_lines, named_blank_nodes, put_back, subject_named
+from ..rdf.ntriples_text import predicates as line_predicates
+from ..rdf.syntax import PROGRESS_EVERY, document_bytes, parse_error, parsed_quads, parser
 from ..rdf.terms import Term, check_literal, value_key
 from ..rdf.vocab import ASSERTED, SKOLEM_PREFIX, TYPE, swrl
 from ..stores.base import Store
 from .xml_literals import XML_LITERAL, canonical_xml_literal
 
-#: triples per piece of N-Triples text written into the store (about 8 MB of text at 65,536)
-TEXT_CHUNK = 65536
+#: triples per piece of N-Triples text written into the store (about 2 MB of text at 16,384)
+TEXT_CHUNK = 16384
+#: the formats whose parser gives triples of the default graph only, each written on one N-Triples line by
+#: the serialiser (:func:`_text_pass`); the others (JSON-LD, N3) are read quad by quad (:func:`written_triples`)
+TEXT_FORMATS = frozenset({RdfFormat.RDF_XML, RdfFormat.TURTLE, RdfFormat.N_TRIPLES})
 
 
 @dataclass
@@ -73,15 +81,42 @@ class _Literals:
             o, notice = canonical_xml_literal(p, o)
             if notice is not None:
                 self.found.notices.append(notice)
-        triple = (s, p, o)
-        if triple in self.distinct:  # written (or skipped) already: each distinct triple is met once
+        distinct = self.distinct
+        before = len(distinct)
+        distinct.add((s, p, o))  # one hash of the triple, where a test then an add took two
+        if len(distinct) == before:  # written (or skipped) already: each distinct triple is met once
             return None
-        self.distinct.add(triple)
-        key = (s, p, value_key(o))
-        if key in self.spelled:
+        if self.spelled.setdefault((s, p, value_key(o)), o) is not o:  # an earlier spelling of the value
             return None
-        self.spelled[key] = o
         return o
+
+    def kept_lines(self, lines: list[bytes]) -> list[bytes]:
+        """The lines of the serialiser's text whose object is a literal (:func:`literal_lines`), as they are to
+        be written: each read back as terms (one quad per line, in order) and decided by :meth:`written`, its
+        line kept as it is where the literal is (a blank subject renamed in the text), a new line where the
+        literal is respelled, an empty one where an earlier spelling of its value was written.  A line whose
+        object is an RDF 1.2 triple term holding a literal is kept, its subject named (the object is, as
+        ever)."""
+        kept: list[bytes] = []
+        blank, literal, named, prefix, written = BlankNode, Literal, NamedNode, SKOLEM_PREFIX, self.written
+        add, append = self.found.predicates.add, kept.append
+        for line, q in zip(lines, ox_parse(b"".join(lines), format=RdfFormat.N_TRIPLES, lenient=True)):
+            s, p, o = q.subject, q.predicate, q.object
+            add(p)
+            if type(s) is blank:
+                s = named(prefix + s.value)
+                line = subject_named(line, prefix)
+            if type(o) is not literal:
+                append(line)
+                continue
+            spelled = written(s, p, o)
+            if spelled is o:
+                append(line)
+            elif spelled is None:
+                append(b"")
+            else:
+                append(serialize([Triple(s, p, spelled)], None, RdfFormat.N_TRIPLES))
+        return kept
 
 
 def stream_into_empty(store: Store, data: bytes | str, fmt: RdfFormat, base_iri: str | None, source: str,
@@ -91,18 +126,25 @@ def stream_into_empty(store: Store, data: bytes | str, fmt: RdfFormat, base_iri:
     where the commit is all or nothing: the caller takes the graph back to empty on any failure."""
     found = StreamedDocument()
     literals = _Literals(found)
-    quads = parsed_quads(data, fmt, base_iri, source)
-    if progress is not None:
-        quads = _counted(quads, progress)
-    if callable(getattr(store, "bulk_stream", None)) and store.bulk_stream_possible():
-        gained: int | None = _written_as_text(store, quads, literals)
+    if callable(getattr(store, "text_writer", None)) and store.bulk_stream_possible():
+        if fmt in TEXT_FORMATS:
+            gained: int | None = _text_pass(store, document_bytes(data), fmt, base_iri, source, literals, progress)
+        else:
+            gained = _written_as_text(store, _parsed(data, fmt, base_iri, source, progress), literals)
     else:
+        quads = _parsed(data, fmt, base_iri, source, progress)
         gained = store._commit_stream(_written(quads, literals, store), [], count=True)
     if gained is None or store.durable:  # a durable store's gain counts the persisted forms too
         found.triples = _distinct_triples(store, len(literals.distinct))
     else:  # one quad per value written (its first spelling), every distinct literal triple counted
         found.triples = gained - len(literals.spelled) + len(literals.distinct)
     return found
+
+
+def _parsed(data: bytes | str, fmt: RdfFormat, base_iri: str | None, source: str,
+            progress: Callable[[int], None] | None) -> Iterator[Quad]:
+    quads = parsed_quads(data, fmt, base_iri, source)
+    return quads if progress is None else _counted(quads, progress)
 
 
 def _written(quads: Iterator[Quad], literals: _Literals, store: Store) -> Iterator[Quad]:
@@ -158,24 +200,70 @@ def written_triples(quads: Iterator[Quad], literals: _Literals) -> Iterator[Quad
 
 
 def _written_as_text(store: Store, quads: Iterator[Quad], literals: _Literals) -> int:
-    """The document written through N-Triples text, :data:`TEXT_CHUNK` triples at a time, then its literal
-    forms recorded; the quads gained.  A quad of the asserted graph made per triple and ``extend`` cost more
+    """The document written through N-Triples text, :data:`TEXT_CHUNK` triples at a time, each piece indexed
+    by the store in a second thread while the next is made (``store.text_writer``), then its literal forms
+    recorded; the quads gained.  A quad of the asserted graph made per triple and ``extend`` cost more
     than a triple made only where a blank node is renamed or a literal respelled, serialised and read
     by the store (100,000 locations: 5.2-5.4 against 4.8-5.0 s CPU); a chunk bounds the text held."""
     triples = written_triples(quads, literals)
     before = store.quad_total()
-    while True:
-        text = io.BytesIO()
-        serialize(islice(triples, TEXT_CHUNK), text, RdfFormat.N_TRIPLES)
-        if not text.tell():
-            break
-        text.seek(0)
-        store.bulk_stream(text, ASSERTED)
+    with store.text_writer(ASSERTED) as writer:
+        while text := serialize(islice(triples, TEXT_CHUNK), None, RdfFormat.N_TRIPLES):
+            writer.write(text)
     gained = store.quad_total() - before
     extra = store.forms.record_loaded(ASSERTED, list(literals.spelled.items()))
     if extra:  # pragma: no cover - in memory, literal forms are not persisted as quads
         store._commit(extra, [])
     return gained
+
+
+def _text_pass(store: Store, data: bytes, fmt: RdfFormat, base_iri: str | None, source: str, literals: _Literals,
+               progress: Callable[[int], None] | None) -> int:
+    """The document written through pyoxigraph's own N-Triples text, changed as bytes
+    (:mod:`topostore.rdf.ntriples_text`): the parser's quads pulled by the serialiser in C, :data:`TEXT_CHUNK` at
+    a time, with no Python frame per triple; then in each piece the blank nodes renamed by whole-text
+    replacements and only the lines holding a literal read as terms (:meth:`_Literals.kept_text`); each piece
+    indexed by the store in a second thread while the next is made.  The quads gained."""
+    quads = parser(data, fmt, base_iri, source)
+    before, parsed, predicates = store.quad_total(), 0, set()
+    with store.text_writer(ASSERTED) as writer:
+        while True:
+            try:
+                text = serialize(islice(quads, TEXT_CHUNK), None, RdfFormat.N_TRIPLES)
+            except (SyntaxError, ValueError) as exc:
+                raise parse_error(exc, data, fmt, source) from exc
+            if not text:
+                break
+            writer.write(_named_text(text, literals, predicates))
+            if progress is not None:
+                parsed = _told(progress, parsed, text.count(b"\n"))
+        # while the worker indexes the last pieces (the caller's clear of a failed load forgets the forms)
+        literals.found.predicates.update(NamedNode(p[1:-1].decode()) for p in predicates)
+        extra = store.forms.record_loaded(ASSERTED, list(literals.spelled.items()))
+    if extra:  # pragma: no cover - in memory, literal forms are not persisted as quads
+        store._commit(extra, [])
+    return store.quad_total() - before
+
+
+def _named_text(text: bytes, literals: _Literals, predicates: set[bytes]) -> bytes:
+    """One piece of the serialiser's text as the asserted graph is to hold it, in the same order: blank
+    nodes as skolem IRIs, the literal lines decided one by one, the predicates of the others added to
+    ``predicates``.  A piece that may hold an RDF 1.2 triple term (``<<(``: its inner terms are separated
+    by spaces too) is read as terms instead, as :func:`written_triples` reads it."""
+    if b"<<(" in text:
+        return serialize(written_triples(ox_parse(text, format=RdfFormat.N_TRIPLES), literals), None,
+                         RdfFormat.N_TRIPLES)
+    plain, literal = literal_lines(text)
+    predicates |= line_predicates(plain)
+    return put_back(named_blank_nodes(plain, SKOLEM_PREFIX), literals.kept_lines(literal))
+
+
+def _told(progress: Callable[[int], None], before: int, more: int) -> int:
+    """Tell ``progress`` each multiple of ``PROGRESS_EVERY`` from ``before`` to ``before + more`` triples."""
+    after = before + more
+    for n in range(before - before % PROGRESS_EVERY + PROGRESS_EVERY, after + 1, PROGRESS_EVERY):
+        progress(n)
+    return after
 
 
 def _counted(quads: Iterator[Quad], progress: Callable[[int], None]) -> Iterator[Quad]:

@@ -49,6 +49,8 @@ from ..rdf.syntax import PROGRESS_EVERY, parsed_quads
 from ..rdf.terms import value_key
 from ..rdf.vocab import ASSERTED
 from ..stores.base import Store
+from ..stores.cores import busy_cores, spare
+from ..stores.cores import cpu_times as _cpu_times
 from .streamed import StreamedDocument, _Literals, written_triples
 
 log = logging.getLogger(__name__)
@@ -81,14 +83,13 @@ def core_free() -> bool:
     Measured over :data:`_SAMPLE_S` of ``/proc/stat`` while this process sleeps, so that its own work (the
     document just read, a map just made) does not count, as it would in the load average; where there
     is no ``/proc/stat``, the one-minute load average less this process's one core."""
-    cores = os.cpu_count() or 1
     busy = _others_busy()
     if busy is None:
         try:
             busy = os.getloadavg()[0] - 1
         except (OSError, AttributeError):  # pragma: no cover - no load average here: no core known to be free
             return False
-    return busy < cores - 1.5
+    return spare(busy)
 
 
 #: how long :func:`core_free` watches the machine's cores (seconds)
@@ -104,21 +105,7 @@ def _others_busy() -> float | None:
     second = _cpu_times()
     if second is None:
         return None
-    total = sum(second) - sum(first)
-    idle = (second[3] + second[4]) - (first[3] + first[4])  # idle and iowait
-    return (os.cpu_count() or 1) * (total - idle) / total if total > 0 else 0.0
-
-
-def _cpu_times() -> list[int] | None:
-    """The machine's CPU time counters (the first line of ``/proc/stat``), or None where there are none."""
-    try:
-        with open("/proc/stat", "rb") as stat:
-            fields = stat.readline().split()
-    except OSError:
-        return None
-    if not fields or fields[0] != b"cpu" or len(fields) < 6:
-        return None
-    return [int(v) for v in fields[1:]]
+    return busy_cores(first, second)
 
 
 def stream_through_child(store: Store, data: bytes | str, fmt: RdfFormat, base_iri: str | None, source: str,

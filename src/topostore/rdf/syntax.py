@@ -97,16 +97,37 @@ def parsed_quads(data: bytes | str, fmt: RdfFormat, base_iri: str | None = None,
     skolemised): RDF/XML refused before a byte is parsed when it declares entities, a syntax error raised
     as :class:`LoadError` ``file:line: cause`` where the parser stops (so a caller writing the quads as they
     come takes them out again)."""
-    if isinstance(data, str):
-        data = data.encode("utf-8", errors="surrogatepass")
+    data = document_bytes(data)
+    quads = parser(data, fmt, base_iri, source)
+    try:
+        yield from quads
+    except (SyntaxError, ValueError) as exc:
+        raise parse_error(exc, data, fmt, source) from exc
+
+
+def document_bytes(data: bytes | str) -> bytes:
+    """A document as the parser reads it (text as UTF-8, lone surrogates kept for the parser to refuse)."""
+    return data.encode("utf-8", errors="surrogatepass") if isinstance(data, str) else data
+
+
+def parser(data: bytes, fmt: RdfFormat, base_iri: str | None, source: str) -> Iterator[ox.Quad]:
+    """pyoxigraph's own iterator over a document's quads (blank nodes renamed apart from every other
+    document's), for a caller that hands it to pyoxigraph whole (no Python frame per quad); RDF/XML
+    declaring entities refused first.  What it raises midway is turned into the load's error by
+    :func:`parse_error`."""
     if fmt == RdfFormat.RDF_XML:
         check_xml_entities(data, source)
     try:
-        yield from ox.parse(data, format=fmt, base_iri=base_iri, rename_blank_nodes=True)
-    except SyntaxError as exc:
-        raise LoadError(_syntax_error_message(source, exc, data, fmt)) from exc
-    except ValueError as exc:
-        raise LoadError(f"{source}: {exc}") from exc
+        return ox.parse(data, format=fmt, base_iri=base_iri, rename_blank_nodes=True)
+    except (SyntaxError, ValueError) as exc:
+        raise parse_error(exc, data, fmt, source) from exc
+
+
+def parse_error(exc: SyntaxError | ValueError, data: bytes, fmt: RdfFormat, source: str) -> LoadError:
+    """What parsing ``data`` raised, as the load's error: ``file:line: cause`` for a syntax error."""
+    if isinstance(exc, SyntaxError):
+        return LoadError(_syntax_error_message(source, exc, data, fmt))
+    return LoadError(f"{source}: {exc}")
 
 
 def _skolemised(quads: Iterable[ox.Quad], progress: Callable[[int], None] | None) -> list[Triple]:
@@ -132,4 +153,5 @@ def serialize(triples: Iterable[Triple], fmt: RdfFormat, prefixes: dict[str, str
     return ox.serialize(list(triples), format=fmt, prefixes=prefixes or None)
 
 
-__all__ = ["FORMAT_NAMES", "PROGRESS_EVERY", "guess_format", "parse_triples", "parsed_quads", "serialize"]
+__all__ = ["FORMAT_NAMES", "PROGRESS_EVERY", "document_bytes", "guess_format", "parse_error", "parse_triples",
+           "parsed_quads", "parser", "serialize"]

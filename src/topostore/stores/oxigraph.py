@@ -25,6 +25,7 @@ from .data_text import data_update, quad_data  # noqa: F401 - quad_data: named h
 from .held import HeldGraphs
 from .literal_forms import stored_literal
 from .reads import key_census
+from .text_writer import TextWriter
 
 #: a quad's triple (read in C by :func:`map`)
 _TRIPLE = attrgetter("triple")
@@ -181,6 +182,16 @@ class OxigraphStore(Store):
         self._release_held()  # a bulk write may name any graph: not scanned for scratch graphs
         self._writes += 1
         self._ox.load(input=source, format=ox.RdfFormat.N_TRIPLES, to_graph=graph, lenient=True)
+
+    def text_writer(self, graph: NamedNode) -> TextWriter:
+        """A writer of N-Triples pieces (``bytes``) into ``graph``, each indexed in a second thread while the
+        caller makes the next (:mod:`.text_writer`): ``Store.load`` of bytes holds no GIL.  ``lenient`` as in
+        :meth:`bulk_stream`: the text is pyoxigraph's own serialisation of terms it built.  Only where
+        :meth:`bulk_stream_possible`; the caller empties the graph on failure."""
+        self._release_held()  # a bulk write may name any graph: not scanned for scratch graphs
+        self._writes += 1
+        load, nt = self._ox.load, ox.RdfFormat.N_TRIPLES
+        return TextWriter(lambda text: load(text, format=nt, to_graph=graph, lenient=True))
 
     def add_scratch(self, triples, graph: NamedNode) -> None:
         """Bulk-add to a reasoner's scratch graph (one RocksDB transaction), or hold the triples in
