@@ -314,7 +314,7 @@ class Materializer:
         # write, so a key's facts lie where its asserted facts and its writers put them
         asserted = self._asserted = (set(self.present[0]), set(self.present[1]))
         self._claimed = set()
-        self._implied = implied_first_passes(self.rules, [i for c in ordered for i in c])
+        self._implied = implied_first_passes(self.rules, [i for c in ordered for i in c], asserted)
         self._lean = {i: without(self.rules[i], atoms)
                       for i, atoms in implied_atoms(self.rules, [i for c in ordered for i in c], asserted).items()}
         self._graphs = single_graphs(self.rules, [i for c in ordered for i in c], self.triggers.needed_keys(),

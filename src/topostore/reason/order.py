@@ -16,6 +16,7 @@ from pyoxigraph import NamedNode
 from ..compile.implied import classes_of, position_classes
 from ..compile.rule import Atom, ReadKey, Rule
 from ..rdf.vocab import TYPE
+from .guarded import Guarded, guarded_classes, guarded_rules
 from .triggers import Present, Triggers
 
 #: the read key of ``rdf:type`` as a predicate (an atom or head ``?x rdf:type ?c``)
@@ -88,7 +89,7 @@ def single_graphs(rules: list[Rule], writers: list[int], needed: set[tuple[str, 
     return out
 
 
-def implied_first_passes(rules: list[Rule], ordered: list[int]) -> set[int]:
+def implied_first_passes(rules: list[Rule], ordered: list[int], asserted: Present | None = None) -> set[int]:
     """The rules of the ordered first stratum whose first pass needs only the asserted facts it reads.
 
     A rule ``A ⟹ C(v)`` of one atom (a domain, a range, a subclass, an intersection's part) reads
@@ -98,20 +99,27 @@ def implied_first_passes(rules: list[Rule], ordered: list[int]) -> set[int]:
     concluding what the locations' doors concluded before) can read the asserted facts alone.
     "Implies" is read off the writer's evaluated body: ``C`` of the term as an atom, or through a
     rule of one atom over a key no ordered rule writes (``hasDoor(x, y) ⟹ LOCATION(x)``, whose own
-    evaluation reads every fact of its key).  Those *base* rules are never restricted themselves,
+    evaluation reads every fact of its key), or a base rule whose one condition is a non-literal guard the
+    writer's body meets (:mod:`.guarded`: ``hasDoor(x, y1) ⟹ ∃hasDoor.DOOR(x)`` for the writers of
+    ``≥2 hasDoor.DOOR``).  Those *base* rules are never restricted themselves,
     which keeps the argument from resting on a restricted rule (``D ⟹ C`` justified by ``q ⟹ D``
     and itself would leave the derived ``D`` facts without ``C``).  Later facts of K (from rules of a
     variable predicate or an upper stratum) reach the rule through its delta evaluations, which read
-    every graph as before: the closure is the same.
+    every graph as before: the closure is the same.  With ``asserted`` (the keys with asserted facts),
+    a writer that only returns K facts already held (:func:`_returns`) needs to imply nothing.
     """
     written, implied = _writers(rules, ordered)
+    guarded = guarded_rules(rules[i] for i in ordered
+                            if len(rules[i].body) == 1 and not written(rules[i].body[0].read_key()))
     out: set[int] = set()
     for i in ordered:
         rule = rules[i]
         if not _one_atom_to_class(rule):
             continue
-        ws = written(rule.body[0].read_key())
-        if ws and i not in ws and all(_implies(rules[w], rule, implied) for w in ws):
+        key = rule.body[0].read_key()
+        ws = written(key)
+        if ws and i not in ws and all(_implies(rules[w], rule, implied, guarded)
+                                      or _returns(rules[w], key, written, rules, asserted) for w in ws):
             out.add(i)
     return out
 
@@ -237,14 +245,40 @@ def _one_atom_to_class(rule: Rule) -> bool:
             and not atom.p.startswith("?") and head.s in (atom.s, atom.o))
 
 
-def _implies(writer: Rule, rule: Rule, implied: dict) -> bool:
-    """Whether ``writer``'s body implies ``rule``'s head class of the term its head puts at the head's place."""
+def _implies(writer: Rule, rule: Rule, implied: dict, guarded: list[Guarded] = ()) -> bool:
+    """Whether ``writer``'s body implies ``rule``'s head class of the term its head puts at the head's place
+    (through the one-atom rules ``implied`` follows, or a base rule with a non-literal guard, :mod:`.guarded`)."""
     (atom,), head = rule.body, rule.head
     wrote = writer.head
     if wrote is None or wrote.p != atom.p or (atom.p == TYPE_KEY and wrote.o != atom.o):
         return False
     term = wrote.s if head.s == atom.s else wrote.o
-    return term.startswith("?") and head.o in classes_of(term, writer.body, implied)
+    return term.startswith("?") and (head.o in classes_of(term, writer.body, implied)
+                                      or head.o in guarded_classes(term, writer, guarded, implied))
+
+
+def _returns(writer: Rule, key: ReadKey, written: Callable[[ReadKey], list[int]], rules: list[Rule],
+             asserted: Present | None) -> bool:
+    """Whether ``writer`` (``B(x) ⟹ A(x)``, ``key`` being A's) writes no fact of A that is not held already.
+
+    So it is where B has no asserted fact and every rule writing B concludes it of a term its body
+    holds an A atom of (an intersection's part back to a member: ``CORRIDOR ⟹ ≥2 hasDoor.DOOR`` where
+    CORRIDOR's one writer reads ``LOCATION(x) ∧ ≥2 hasDoor.DOOR(x)``): each B fact then stands on an A
+    fact of its subject, which is the fact the writer writes.  Unknown asserted keys (None) say no.
+    """
+    if asserted is None or key[0] != "t" or len(writer.body) != 1 or writer.head is None:
+        return False
+    (atom,), head = writer.body, writer.head
+    if (atom.p != TYPE_KEY or atom.o.startswith("?") or atom.s != head.s or not head.s.startswith("?")
+            or atom.o in asserted[1]):
+        return False
+    for w in written(atom.read_key()):
+        back = rules[w].head
+        if back is None or back.read_key() != atom.read_key() or not back.s.startswith("?"):
+            return False  # a rule of any class, or of a constant subject
+        if not any(a.p == TYPE_KEY and a.o == key[1] and a.s == back.s for a in rules[w].body):
+            return False
+    return True
 
 
 def evaluation_order(rules: list[Rule], indexes: list[int]) -> tuple[list[list[int]], list[int], set[int]]:
