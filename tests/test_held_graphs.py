@@ -147,3 +147,23 @@ def test_after_a_reason_whose_sparql_needed_its_scratch_graphs_the_next_one_writ
     store.drop_graphs(SCRATCH)
     store.add_scratch([fact], g)
     assert len(store._ox) == 2
+
+
+def test_a_read_of_every_graph_lists_the_held_facts_when_asked() -> None:
+    """A scratch write made while a read over every graph is iterated neither shows up in it nor breaks it
+    (the held graphs' matches are listed when the read is asked, as the general read does)."""
+    store = OxigraphStore()
+    first, second = NamedNode("urn:scratch:1"), NamedNode("urn:scratch:2")
+    store.hold_scratch([first, second])
+
+    def fact(i: int) -> Triple:
+        return Triple(NamedNode(f"http://e/s{i}"), NamedNode("http://e/p"), NamedNode("http://e/o"))
+
+    store.add_scratch([fact(1)], first)
+    read = store.triples(None, None, None)
+    store.add_scratch([fact(2)], second)
+    assert [t.subject.value for t in read] == ["http://e/s1"]
+    read = store.triples(None, None, None)
+    assert next(read).subject.value in {"http://e/s1", "http://e/s2"}
+    store.add_scratch([fact(3)], second)
+    assert len(list(read)) == 1

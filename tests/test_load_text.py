@@ -18,7 +18,7 @@ import warnings
 from pathlib import Path
 
 import pytest
-from hypothesis import given
+from hypothesis import given, settings
 from hypothesis import strategies as st
 from pyoxigraph import BlankNode, CanonicalizationAlgorithm, Dataset, Literal, NamedNode, Quad, RdfFormat, Triple
 from pyoxigraph import serialize as ox_serialize
@@ -263,6 +263,7 @@ def outcome(document: bytes) -> Ontology | str:
         return f"{type(exc).__name__}: {exc}"
 
 
+@settings(deadline=None)  # each example loads a document twice: seconds on a busy machine
 @given(documents())
 def test_any_small_document_loads_the_same_both_ways(document: bytes) -> None:
     with pytest.MonkeyPatch.context() as patch:

@@ -39,10 +39,11 @@ def publish_entailed(store: Store, rules: RuleSet) -> None:
 
 
 def refresh_entailed(store: Store, rules: RuleSet, changed: Sequence[NamedNode],
-                     quads_in: Callable[[NamedNode], Sequence[Quad] | None] | None = None) -> None:
+                     quads_in: Callable[[NamedNode], Sequence[tuple] | None] | None = None) -> None:
     """Bring ENTAILED up to date after maintenance; ``changed``: graphs holding every triple whose
     presence in the asserted, inferred or helper graph changed (in either form, real or internal);
-    ``quads_in(graph)``: every quad of such a graph when the caller has read it (else None).
+    ``quads_in(graph)``: every fact of such a graph as its (subject, predicate, object) when the caller
+    has read it (else None).
 
     The few touched triples are found (index reads in memory, one query where reads are round trips)
     and decided one by one (index look-ups); a set-at-a-time update over them let the planner scan
@@ -134,9 +135,10 @@ def standing(internal_fact: bool, inferred: bool, asserted: bool, shown: bool) -
 
 
 def _touched(store: Store, predicates: Sequence[NamedNode], changed: Sequence[NamedNode],
-             quads_in: Callable[[NamedNode], Sequence[Quad] | None] | None) -> list[Triple]:
+             quads_in: Callable[[NamedNode], Sequence[tuple] | None] | None) -> list[Triple]:
     """The triples of ``predicates`` (real or internal form, as the real triple) in the ``changed`` graphs,
-    without duplicates: from the quads the caller read, or an index read per predicate, form and graph (in
+    without duplicates: from the facts the caller read (each a (subject, predicate, object) sequence:
+    :meth:`.Store.small_terms`' tuples or triples), or an index read per predicate, form and graph (in
     memory, microseconds where parsing and planning the UNION query costs a tenth of a millisecond)."""
     if store.round_trips:
         return [Triple(row["s"], row["p"], row["o"]) for row in store.query(_touched_query(predicates, changed))]
@@ -146,10 +148,10 @@ def _touched(store: Store, predicates: Sequence[NamedNode], changed: Sequence[Na
         quads = quads_in(g) if quads_in is not None else None
         if quads is None:
             quads = [q for form in real for q in store.triples(None, form, None, g)]
-        for q in quads:
-            p = real.get(q.predicate)
+        for subject, predicate, obj in quads:
+            p = real.get(predicate)
             if p is not None:
-                found[Triple(q.subject, p, q.object)] = None
+                found[Triple(subject, p, obj)] = None
     return list(found)
 
 

@@ -87,8 +87,10 @@ class OxigraphStore(Store):
         held = self._held.graphs
         if held:
             if graph is None:
+                # the held graphs' matches listed now, as the general read does: a write made while
+                # the caller iterates neither shows up nor breaks the iteration
                 return chain(map(_TRIPLE, self._ox.quads_for_pattern(s, p, o, None)),
-                             (t for g in held.values() for t in self._held.triples(s, p, o, g)))
+                             [t for g in held.values() for t in self._held.triples(s, p, o, g)])
             found = held.get(graph)
             if found is not None:
                 return iter(self._held.triples(s, p, o, found))
