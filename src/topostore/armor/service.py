@@ -31,7 +31,7 @@ from ..stores import kind as store_kind
 from ..stores.base import guess_format
 from . import codes
 from .codes import CommandError
-from .commands import COMMANDS, Command, Context, Reply
+from .commands import COMMANDS, Context, Reply
 from .durable import DurableReferences
 from .reference import Reference
 from .render import Renderer
@@ -42,10 +42,6 @@ logger = logging.getLogger("topostore.armor")
 _WEB_TIMEOUT_SECONDS = 20.0
 _WEB_MAX_BYTES = 64 * 1024 * 1024
 DEFAULT_MAX_QUERY_SECONDS = 30.0
-#: (command, spec 1, spec 2 as the client spelled them, argument count) → the table entry whose arity that count
-#: passes: the command key upper-cased, looked up and its arity checked once per shape, not per call
-_SHAPES: dict[tuple[str, str, str, int], Command] = {}
-_SHAPES_MAX = 1024
 _ONTOLOGY_SUFFIXES = {".owl", ".rdf", ".xml", ".ttl", ".turtle", ".nt", ".ntriples", ".n3", ".jsonld", ".nq", ".trig"}
 
 
@@ -134,19 +130,14 @@ class ArmorService:
             return ArmorResponse(False, codes.EMPTY_REFERENCE, "reference_name is empty; every command needs one")
         if req.command == "":
             return self._failure(req, codes.EMPTY_COMMAND, "command is empty")
-        shape = (req.command, req.primary_command_spec, req.secondary_command_spec, len(req.args))
-        command = _SHAPES.get(shape)  # a robot sends the same few shapes every step: each resolved once
+        key = (req.command.upper(), req.primary_command_spec.upper(), req.secondary_command_spec.upper())
+        command = COMMANDS.get(key)
+        if command is None:
+            return self._failure(req, codes.UNKNOWN_COMMAND, f"unknown command {' '.join(repr(k) for k in key)}: "
+                                 "check the spelling and that unused specs are empty strings")
         try:
-            if command is None:
-                command = self._resolve(req)
-                if command is None:
-                    key = (req.command.upper(), req.primary_command_spec.upper(), req.secondary_command_spec.upper())
-                    return self._failure(req, codes.UNKNOWN_COMMAND, f"unknown command {' '.join(repr(k) for k in key)}"
-                                         ": check the spelling and that unused specs are empty strings")
-                if command.max_args != 0 or not req.args:  # ['x'] fails where [''] passed: not by count alone
-                    if len(_SHAPES) >= _SHAPES_MAX:
-                        _SHAPES.clear()
-                    _SHAPES[shape] = command
+            # aRMOR ignores the arguments of argument-less commands; rosservice YAML and tutorials send args: ['']
+            command.check_arity(0 if command.max_args == 0 and not any(req.args) else len(req.args))
             ctx = Context(self, req)
             if not command.needs_ref:
                 reply = command.handler(ctx)
@@ -163,17 +154,6 @@ class ArmorService:
                 return self._reply(req, reply)
         except CommandError as exc:
             return self._failure(req, exc.code, exc.message)
-
-    @staticmethod
-    def _resolve(req: ArmorRequest) -> Command | None:
-        """The table entry of ``req``'s command, its arity checked (208 if wrong); None if unknown.  A shape
-        resolved without error is kept (:data:`_SHAPES`): its entry and its argument count do not change."""
-        command = COMMANDS.get((req.command.upper(), req.primary_command_spec.upper(),
-                                req.secondary_command_spec.upper()))
-        if command is not None:
-            # aRMOR ignores the arguments of argument-less commands; rosservice YAML and tutorials send args: ['']
-            command.check_arity(0 if command.max_args == 0 and not any(req.args) else len(req.args))
-        return command
 
     def _reply(self, req: ArmorRequest, reply: Reply) -> ArmorResponse:
         return ArmorResponse(
