@@ -145,6 +145,20 @@ def test_empty_spec_is_significant(svc: ArmorService) -> None:
     assert ok(svc, "QUERY", "IND", "CLASS", ["DOOR"]).queried_objects == [full("D1"), full("D2")]
 
 
+def test_a_shape_resolved_once_still_checks_what_its_count_does_not_say(svc: ArmorService) -> None:
+    """A command's table entry is kept per spelling and argument count; an argument-less command's
+    tolerance of ``['']`` is decided by the arguments' contents, every call."""
+    for _ in range(2):
+        assert ok(svc, "REASON", "", "", [""]).exit_code == 0
+        res = call(svc, "REASON", "", "", ["x"])
+        assert (res.success, res.exit_code) == (False, 208) and "expected 0 argument(s)" in res.error_description
+        res = call(svc, "ADD", "IND", "", ["a", "b"])
+        assert (res.success, res.exit_code) == (False, 208)
+        assert call(svc, "add", "ind", "", ["A_NEW"]).success
+        res = call(svc, "add", "ind", "x", ["A_NEW"])
+        assert (res.success, res.exit_code) == (False, 205)
+
+
 def test_unknown_reference_is_207() -> None:
     svc = ArmorService()
     for command, spec1, spec2, args in [("QUERY", "IND", "CLASS", ["ROOM"]), ("ADD", "IND", "", ["x"]),

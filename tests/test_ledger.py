@@ -91,6 +91,21 @@ def test_a_unit_of_work_is_undone_newest_first_when_it_fails(onto: Ontology) -> 
     assert onto.ledger.added == {} and onto.ledger.removed == {}  # the undo cancelled the net record too
 
 
+def test_a_change_is_one_step_of_a_unit_of_work_and_is_undone_whole(onto: Ontology) -> None:
+    """A REPLACE's removal and addition are recorded by one call: one step, undone addition first."""
+    before = asserted(onto)
+    old, new = Triple(n("r1"), n("speed"), typed("7", "long")), Triple(n("r1"), n("speed"), typed("9", "long"))
+    with pytest.raises(KeyError), onto.ledger.undoable(onto):
+        onto.change([new], [old])
+        assert onto.ledger._steps == [([new], [old])]
+        onto.change([Triple(n("r3"), TYPE, n("Robot"))], [new])
+        assert len(onto.ledger._steps) == 2
+        raise KeyError("a later step failed")
+    assert asserted(onto) == before
+    assert onto.data_values("speed", "r1") == [typed("7", "long")]
+    assert onto.ledger.added == {} and onto.ledger.removed == {} and onto.ledger._steps == []
+
+
 def test_a_unit_of_work_that_succeeds_keeps_its_changes_and_works_before_any_reason() -> None:
     o = Ontology(prefix=EX)
     with o.ledger.undoable(o):

@@ -113,10 +113,8 @@ class AssertedChanges:
             removed = store.toggle_facts(removes, False) if removes else []
             added = store.toggle_facts(adds, True) if adds else []
             added, removed, notes = _respelled(store, added, removed)
-            if removed:
-                ledger.record(store, removed, added=False, limit=limit)
-            if added:
-                ledger.record(store, added, added=True, limit=limit)
+            if removed or added:  # one record of the change: the ledger's unit-of-work step undoes both
+                ledger.record_change(store, added, removed, limit)
         added_triples, removed_triples = [f.triple for f in added], [f.triple for f in removed]
         self.touch(removed_triples + added_triples)
         return added_triples, removed_triples, notes

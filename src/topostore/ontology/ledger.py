@@ -60,8 +60,8 @@ class ChangeLedger:
         self.recording = False
         #: whether the record may drive an incremental REASON (false after a schema change or a large change)
         self.incremental = False
-        #: (triples, added) steps applied since the outermost open unit of work began
-        self._steps: list[tuple[list[Triple], bool]] = []
+        #: (added, removed) triples of each change applied since the outermost open unit of work began
+        self._steps: list[tuple[list[Triple], list[Triple]]] = []
         self._open = 0
 
     # ------------------------------------------------------------ recording
@@ -71,32 +71,37 @@ class ChangeLedger:
         return self.recording or bool(self._open)
 
     def record(self, store: Store, changed: list[Fact], added: bool, limit: Callable[[], float] | None = None) -> None:
-        """Record ``changed``: facts (:class:`~topostore.stores.facts.Fact`) whose presence in the asserted
-        graph the caller's change flips (added while absent, removed while present), as
-        :meth:`Store.toggle_facts` returns them.  Call inside the transaction making the change, so that a
-        removed literal is still known in the form the user asserted.  Each fact's stored form (the key
-        both sides share, so an addition and a removal cancel) and written form (what an undo restores)
-        are read from it, not made again.
+        """Record ``changed``, all added or all removed: :meth:`record_change` of one side."""
+        if added:
+            self.record_change(store, changed, [], limit)
+        else:
+            self.record_change(store, [], changed, limit)
+
+    def record_change(self, store: Store, added: list[Fact], removed: list[Fact],
+                      limit: Callable[[], float] | None = None) -> None:
+        """Record one change: facts (:class:`~topostore.stores.facts.Fact`) whose presence in the asserted
+        graph the caller's change flips (``removed`` while present, then ``added`` while absent), as
+        :meth:`Store.toggle_facts` returns them.  One call and one unit-of-work step per manipulation (a
+        REPLACE's removal and addition together), so that undoing it undoes both.  Call inside the
+        transaction making the change, so that a removed literal is still known in the form the user
+        asserted.  Each fact's stored form (the key both sides share, so an addition and a removal cancel)
+        and written form (what an undo restores) are read from it, not made again.
 
         ``limit``: gives the number of net changes above which an incremental REASON no longer pays off
         (at least :data:`MIN_TRACKED`; asked only past that); past it the record only serves rollback.
         """
         if not self.recording and not self._open:
             return
-        written = [f.triple for f in changed] if added else [store.written_fact(f) for f in changed]
+        gone = [store.written_fact(f) for f in removed] if removed else []
+        made = [f.triple for f in added] if added else []
         if self._open:
-            self._steps.append((written, added))
+            self._steps.append((made, gone))
         if not self.recording:
             return
-        mine, other = (self.added, self.removed) if added else (self.removed, self.added)
-        for f, as_written in zip(changed, written, strict=True):
-            key = f.stored
-            if key is None:  # both sides hold triples as the store does, so they cancel
-                key = f.stored = store.stored_form(f.triple)
-            if key in other:
-                del other[key]
-            else:
-                mine[key] = as_written
+        if removed:
+            _net(store, removed, gone, self.removed, self.added)
+        if added:
+            _net(store, added, made, self.added, self.removed)
         if self.incremental:
             size = len(self.added) + len(self.removed)
             if size > MIN_TRACKED and (limit is None or size > limit()):
@@ -157,11 +162,11 @@ class ChangeLedger:
         """Undo the steps recorded since ``start`` (newest first) and forget them."""
         steps = self._steps[start:]
         with self._paused(), onto.store.transaction():
-            for triples, added in reversed(steps):
+            for added, removed in reversed(steps):  # a change removed, then added: undone the other way
                 if added:
-                    onto.changes.remove(*triples)
-                else:
-                    onto.changes.add(*triples)
+                    onto.changes.remove(*added)
+                if removed:
+                    onto.changes.add(*removed)
         del self._steps[start:]
 
     @contextmanager
@@ -173,6 +178,19 @@ class ChangeLedger:
             yield
         finally:
             self._steps = steps
+
+
+def _net(store: Store, facts: list[Fact], written: list[Triple], mine: dict[Triple, Triple],
+         other: dict[Triple, Triple]) -> None:
+    """Note ``facts`` (as ``written``) on their side ``mine`` of the net record, or cancel them on ``other``."""
+    for f, as_written in zip(facts, written, strict=True):
+        key = f.stored
+        if key is None:  # both sides hold triples as the store does, so they cancel
+            key = f.stored = store.stored_form(f.triple)
+        if key in other:
+            del other[key]
+        else:
+            mine[key] = as_written
 
 
 class _UnitOfWork:
