@@ -196,6 +196,9 @@ def test_a_chain_whose_conclusion_through_an_unnamed_value_carries_nothing_is_no
     ":R owl:disjointWith :F .",  # the value may be in disjoint classes
     ":t a owl:FunctionalProperty .",  # values of t may be merged
     "[ a owl:Restriction ; owl:onProperty :t ; owl:someValuesFrom :G ] rdfs:subClassOf :H .",  # read on the left
+    # the value is in a restriction on the inverse read on the left, or its range is a filler read there
+    "[ a owl:Restriction ; owl:onProperty [ owl:inverseOf :t ] ; owl:someValuesFrom :A ] rdfs:subClassOf :H .",
+    "[ a owl:Restriction ; owl:onProperty :q ; owl:someValuesFrom :R ] rdfs:subClassOf :H .",
 ])
 def test_a_chain_to_a_second_unnamed_value_is_named_unless_shown_to_carry_nothing(extra: str) -> None:
     o = quietly(":s a owl:ObjectProperty . :q a owl:ObjectProperty . :t a owl:ObjectProperty ; rdfs:range :R ; "

@@ -164,10 +164,13 @@ class UnnamedValues:
         return self.value_inert(t) and self.property_inert(t, restrictions)
 
     def value_inert(self, t: Prop) -> bool:
-        """Whether the classes a value of ``t`` is told to be in (the range of ``t`` and its super-expressions,
-        their told superclasses) are plain names: no restriction or other expression told of them (a
-        universal on the inverse brings a class back to the subject), no disjointness, no use inside an
-        expression on the left."""
+        """Whether the value of ``t`` gains nothing that says more of it: no restriction on the inverse of
+        ``t`` (or a super-expression) used on the left, and the classes it is told to be in (the range of
+        ``t`` and its super-expressions, their told superclasses) plain names: no restriction or other
+        expression told of them (a universal on the inverse brings a class back to the subject), no
+        disjointness, no use inside an expression on the left (a member, a filler)."""
+        if self.used_left((inverse(t), *self.report.supers.get(inverse(t), ()))):
+            return False
         named: set[NamedNode] = set()
         for _, c in subject_classes(self.report.tb, self.report.supers, inverse(t)):
             if not c.is_named:
@@ -182,7 +185,8 @@ class UnnamedValues:
                 continue
             if positive and subject in named:
                 return False
-            if not positive and any(m.is_named and m.node in named for m in e.members):
+            if not positive and any(m is not None and m.is_named and m.node in named
+                                    for m in (*e.members, e.filler)):
                 return False
         return True
 
