@@ -149,6 +149,8 @@ def _added_spellings(data: bytes, added: Collection[Added], update: bool) -> lis
     last, as its literal's form is not written."""
     inserting = not update  # a document's literals are all added
     best: dict[str, tuple[int, str]] = {}  # lowered tag -> (rank, first spelling of that rank)
+    tags = {t for _, t in added}
+    settled = 0  # how many of ``tags`` have a spelling of the best rank: the reading stops once all have
     for m in _TEXT_TOKEN.finditer(data):
         raw = m.group(1)
         if raw is None:
@@ -159,9 +161,12 @@ def _added_spellings(data: bytes, added: Collection[Added], update: bool) -> lis
             continue
         tag = raw.decode("ascii")
         if (_lexical(m.group(0)[:m.start(1) - m.start(0) - 1]), tag.lower()) in added:
+            if inserting and best.get(tag.lower(), (1,))[0] > 0:
+                settled += 1  # its first spelling of the best rank
             _prefer(best, tag, 0 if inserting else 1)
-    if update:
-        tags = {t for _, t in added}
+            if settled == len(tags):
+                break
+    if update and settled < len(tags):
         for m in _STRLANG.finditer(data):
             if (tag := m.group(2).decode("ascii")).lower() in tags:
                 _prefer(best, tag, 2)
