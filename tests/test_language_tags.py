@@ -355,3 +355,16 @@ def test_a_unit_of_work_that_succeeds_keeps_the_spelling_and_an_inner_undo_only_
         assert not o.store.forms.tags  # held until the outermost unit ends
     saved = o.serialize("ntriples")
     assert b'"kept"@en-GB' in saved and b"undone" not in saved and not o.store.forms.tags.known("fr-ca")
+
+
+@pytest.mark.parametrize(("accept", "written"), [
+    ("application/n-triples", b'"colour"@en-GB'), ("text/turtle", b'"colour"@en-GB'),
+    ("application/rdf+xml", b'xml:lang="en-GB"'), ("application/ld+json", b'"@language": "en-GB"'),
+])
+def test_a_graph_store_read_spells_tags_as_loaded(accept: str, written: bytes, tmp_path: Path) -> None:
+    with in_process(config(tmp_path / "data", allow_update=True)) as server:
+        status, _, reply = server.request("/references/lang/data?default", TURTLE.encode(),
+                                          {"Content-Type": "text/turtle"}, "PUT")
+        assert status == 201, reply
+        status, _, body = server.request("/references/lang/data?default", None, {"Accept": accept}, "GET")
+        assert status == 200 and written in body and b"en-gb" not in body, body[:400]

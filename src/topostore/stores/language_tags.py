@@ -112,6 +112,8 @@ class LanguageTags:
             return data
         if fmt == RdfFormat.RDF_XML:
             return _XML_LANG.sub(lambda m: m.group(1) + self._bytes(m.group(2)) + m.group(3), data)
+        if fmt in (RdfFormat.JSON_LD, RdfFormat.STREAMING_JSON_LD):
+            return self._json_ld(data)
         return _TEXT_LITERAL.sub(lambda m: m.group(0)[:m.start(1) - m.start(0)] + self._bytes(m.group(1)), data)
 
     def rendered(self, text: str) -> str:
@@ -120,6 +122,21 @@ class LanguageTags:
             return text
         body, quote, tag = text.rpartition('"@')
         return f'{body}"@{self.spelled(tag)}' if quote and _WHOLE_TAG.fullmatch(tag) else text
+
+    def _json_ld(self, data: bytes) -> bytes:
+        """A JSON-LD document with each ``@language`` value spelled as first written (read as JSON: a
+        lexical form that looks like one is left alone)."""
+        doc = json.loads(data)
+        todo = [doc]
+        while todo:
+            node = todo.pop()
+            if isinstance(node, dict):
+                if isinstance(lang := node.get("@language"), str):
+                    node["@language"] = self.spelled(lang)
+                todo.extend(v for v in node.values() if isinstance(v, (dict, list)))
+            elif isinstance(node, list):
+                todo.extend(v for v in node if isinstance(v, (dict, list)))
+        return json.dumps(doc, ensure_ascii=False).encode("utf-8")
 
     def _bytes(self, tag: bytes) -> bytes:
         return self.spelled(tag.decode("ascii")).encode("ascii")
