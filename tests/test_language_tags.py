@@ -3,13 +3,14 @@ format, a durable store reopened, and the aRMOR query replies, although pyoxigra
 
 from __future__ import annotations
 
+import json
 import time
 import warnings
 from pathlib import Path
 
 import pytest
 from http_support import config, in_process
-from pyoxigraph import NamedNode
+from pyoxigraph import Literal, NamedNode
 from support import armor_load
 
 from topostore import LoadError, Ontology, OntologyWarning
@@ -260,3 +261,110 @@ def test_a_refused_sparql_update_learns_no_spelling() -> None:
     assert not o.store.forms.tags
     o.add_data("s", "x", "colour")
     assert o.store.count(ASSERTED) == 4
+
+
+# ---------------------------------------------------------------- a spelling only from what a change added
+@pytest.mark.parametrize(("update", "kept"), [
+    # a DELETE template spells the tag before the INSERT template that adds the literal
+    (f'PREFIX : <{NS}> DELETE {{ ?x :s "gone"@EN-gb }} INSERT {{ ?x :s "new"@en-GB }} WHERE {{ ?x :s "old" }}',
+     b'"new"@en-GB'),
+    # an earlier operation writes a literal of that tag which a later one deletes: not what is stored
+    (f'PREFIX : <{NS}> INSERT DATA {{ :x :s "a"@EN-GB . :y :s "b"@en-gb }} ; DELETE DATA {{ :x :s "a"@en-gb }}',
+     b'"b"@en-gb'),
+    # a pattern of an earlier operation
+    (f'PREFIX : <{NS}> DELETE WHERE {{ ?x :s "zz"@EN-GB }} ; INSERT DATA {{ :x :s "c"@en-gb }}', b'"c"@en-gb'),
+    # the literal written in the WHERE's VALUES and inserted through a variable
+    (f'PREFIX : <{NS}> INSERT {{ :x :s ?l }} WHERE {{ VALUES ?l {{ "colour"@en-GB }} }}', b'"colour"@en-GB'),
+    # the same literal in a WHERE first and in the INSERT template: the INSERT's spelling
+    (f'PREFIX : <{NS}> INSERT {{ ?x :s "new"@en-GB }} WHERE {{ ?x :s "old" OPTIONAL {{ ?x :s "new"@EN-gb }} }}',
+     b'"new"@en-GB'),
+    # STRLANG's tag argument, its literal's form being nowhere written
+    (f'PREFIX : <{NS}> INSERT {{ :x :s ?l }} WHERE {{ BIND(STRLANG("colour", "en-GB") AS ?l) }}', b'"colour"@en-GB'),
+    # an escaped lexical form is compared as read
+    (f'PREFIX : <{NS}> INSERT DATA {{ :x :s "tab\\there"@EN-gb . :y :s "tab\\u0009here"@en-GB }}',
+     b'"tab\\there"@EN-gb'),
+])
+def test_an_update_spells_a_tag_only_from_a_literal_it_added(update: str, kept: bytes, tmp_path: Path) -> None:
+    o = quiet(Ontology(store=tmp_path / "db"), f"@prefix : <{NS}> . @prefix owl: <http://www.w3.org/2002/07/owl#> .\n"
+              "<http://e.org/lang> a owl:Ontology . :s a owl:DatatypeProperty . :x a owl:NamedIndividual .\n"
+              ':y a owl:NamedIndividual . :x :s "old" .\n')
+    sparql_update(o, update)
+    assert kept in o.serialize("ntriples")
+    o.store.close()
+    assert kept in Ontology(store=tmp_path / "db").serialize("ntriples")  # the spelling persisted is that one
+
+
+@pytest.mark.parametrize("how", ["upload", "load"])
+def test_a_json_ld_document_keeps_its_spellings(how: str, tmp_path: Path) -> None:
+    doc = json.dumps([{"@id": NS + "y", NS + "s": {"@value": "grey", "@language": "en-AU"}},
+                      {"@context": {"@language": "fr-CA"}, "@id": NS + "z", NS + "s": "gris"}]).encode()
+    if how == "load":
+        path = tmp_path / "doc.jsonld"
+        path.write_bytes(doc)
+        o = mapped()
+        o.load(path)
+        saved = o.serialize("ntriples")
+        assert b'"grey"@en-AU' in saved and b'"gris"@fr-CA' in saved
+        return
+    with in_process(config(tmp_path / "data", allow_update=True)) as server:
+        status, _, reply = server.request("/references/lang/data?default", TURTLE.encode(),
+                                          {"Content-Type": "text/turtle"}, "PUT")
+        assert status == 201, reply
+        status, _, reply = server.request("/references/lang/data?default", doc,
+                                          {"Content-Type": "application/ld+json"}, "POST")
+        assert status == 200, reply
+        assert server.ok("QUERY", "DATAPROP", "IND", ["s", "y"], ref="lang")["queried_objects"] == ['"grey"@en-AU']
+        assert server.ok("QUERY", "DATAPROP", "IND", ["s", "z"], ref="lang")["queried_objects"] == ['"gris"@fr-CA']
+
+
+def test_a_spelling_given_to_a_value_never_asserted_is_not_the_stores() -> None:
+    o = mapped()
+    o.remove_fact("x", "s", o.value("a", language="EN-gb"))  # nothing asserted
+    o.add_data("s", "x", o.value("b", language="en-GB"))
+    saved = o.serialize("ntriples")
+    assert b'"b"@en-GB' in saved and b"EN-gb" not in saved
+
+
+def test_a_spelling_given_to_one_value_is_not_taken_by_another_literal() -> None:
+    o = mapped()
+    o.value("a", language="EN-GB")
+    o.add_data("s", "x", Literal("c", language="en-gb"))
+    assert b'"c"@en-gb' in o.serialize("ntriples")
+    o.add_data("s", "x", o.value("a", language="EN-GB"))  # that value asserted: its spelling now
+    assert b'"a"@EN-GB' in o.serialize("ntriples")
+
+
+def test_an_assertion_a_unit_of_work_undoes_spells_nothing() -> None:
+    o = mapped()
+    o.reason()
+    with pytest.raises(RuntimeError), o.ledger.undoable(o):
+        o.add_data("s", "x", o.value("d", language="EN-gb"))
+        raise RuntimeError("a later step failed")
+    assert not o.store.forms.tags
+    o.add_data("s", "x", o.value("e", language="en-GB"))
+    assert b'"e"@en-GB' in o.serialize("ntriples")
+
+
+def test_a_unit_of_work_that_succeeds_keeps_the_spelling_and_an_inner_undo_only_its_own() -> None:
+    o = mapped()
+    with o.ledger.undoable(o):
+        o.add_data("s", "x", o.value("kept", language="en-GB"))
+        with pytest.raises(RuntimeError), o.ledger.undoable(o):
+            o.add_data("s", "x", o.value("undone", language="fr-CA"))
+            raise RuntimeError("an inner step failed")
+        assert not o.store.forms.tags  # held until the outermost unit ends
+    saved = o.serialize("ntriples")
+    assert b'"kept"@en-GB' in saved and b"undone" not in saved and not o.store.forms.tags.known("fr-ca")
+
+
+@pytest.mark.parametrize(("accept", "written"), [
+    ("application/n-triples", b'"colour"@en-GB'), ("text/turtle", b'"colour"@en-GB'),
+    ("application/rdf+xml", b'xml:lang="en-GB"'), ("application/ld+json", b'"@language": "en-GB"'),
+])
+def test_a_graph_store_read_spells_tags_as_loaded(accept: str, written: bytes, tmp_path: Path) -> None:
+    with in_process(config(tmp_path / "data", allow_update=True)) as server:
+        status, _, reply = server.request("/references/lang/data?default", TURTLE.encode(),
+                                          {"Content-Type": "text/turtle"}, "PUT")
+        assert status == 201, reply
+        status, _, body = server.request("/references/lang/data?default", None, {"Accept": accept}, "GET")
+        assert status == 200 and written in body and b"en-gb" not in body, body[:400]

@@ -54,6 +54,30 @@ CASES = {
         ":s a owl:ObjectProperty . :t a owl:ObjectProperty ; rdfs:range :R ; owl:propertyChainAxiom "
         "( [ owl:inverseOf :p ] :s ) . :A rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :p ; "
         "owl:someValuesFrom :F ] .", kinds.EXISTENTIAL, "chain of t"),
+    "existential whose value links to itself in a chain": (
+        ":s a owl:ObjectProperty . :t a owl:ObjectProperty ; owl:propertyChainAxiom ( :p :s ) . "
+        "[ a owl:Restriction ; owl:onProperty :t ; owl:someValuesFrom owl:Thing ] rdfs:subClassOf :D . "
+        ":A rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :p ; owl:someValuesFrom :F ] . "
+        ":F rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :s ; owl:hasSelf true ] .", kinds.EXISTENTIAL,
+        "chain of t"),
+    "existential ending a chain whose range flows back": (
+        ":s a owl:ObjectProperty . :t a owl:ObjectProperty ; rdfs:range :R ; owl:propertyChainAxiom ( :s :p ) . "
+        ":R rdfs:subClassOf [ a owl:Restriction ; owl:onProperty [ owl:inverseOf :t ] ; owl:allValuesFrom :D ] . "
+        ":A rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :p ; owl:someValuesFrom owl:Thing ] .",
+        kinds.EXISTENTIAL, "chain of t"),
+    "existential whose value links back in a chain": (
+        ":t a owl:ObjectProperty ; owl:propertyChainAxiom ( :p [ owl:inverseOf :p ] ) . "
+        ":A rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :p ; owl:someValuesFrom owl:Thing ] .",
+        kinds.EXISTENTIAL, "chain of t"),
+    "existential in a chain read both ways": (
+        ":p a owl:SymmetricProperty . :s a owl:ObjectProperty . :t a owl:ObjectProperty ; "
+        "owl:propertyChainAxiom ( :s :p ) . :A rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :p ; "
+        "owl:someValuesFrom :F ] . :F rdfs:subClassOf [ a owl:Restriction ; owl:onProperty [ owl:inverseOf :s ] ; "
+        "owl:hasValue :i ] .", kinds.EXISTENTIAL, "chain of t"),
+    "existential on a transitive property to a named value": (
+        ":t a owl:ObjectProperty, owl:TransitiveProperty . :A rdfs:subClassOf [ a owl:Restriction ; "
+        "owl:onProperty :t ; owl:someValuesFrom :F ] . :F rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :t ; "
+        "owl:hasValue :i ] .", kinds.EXISTENTIAL, "chain of t"),
     "existential and functional": (":p a owl:FunctionalProperty . :R rdfs:subClassOf [ a owl:Restriction ; "
                                    "owl:onProperty :p ; owl:someValuesFrom :L ] .", kinds.EXISTENTIAL,
                                    "at most one value"),
@@ -151,6 +175,37 @@ def test_a_chain_that_cannot_pass_through_an_unnamed_value_is_not_named(second: 
     assert o.notices == [] and o.reason().incomplete == []
     assert [v.value for v in o.object_values("t", "a", names=False)] == ["http://e.org/a#c"]
     assert "http://e.org/a#D" in {c.value for c in o.types("a")}
+
+
+@pytest.mark.parametrize("tbox", [
+    # the chain goes on to a second unnamed value, and a link by t to it gives nothing: t has a range only
+    ":s a owl:ObjectProperty . :t a owl:ObjectProperty ; rdfs:range :R ; owl:propertyChainAxiom ( :p :s ) . "
+    ":A rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :p ; owl:someValuesFrom :F ] . "
+    ":F rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :s ; owl:someValuesFrom :G ] .",
+    # transitive t with a domain: the subject already has that domain by its stored link, the value no t link
+    ":t a owl:ObjectProperty, owl:TransitiveProperty ; rdfs:domain :D ; rdfs:range :D . :p rdfs:subPropertyOf :t . "
+    ":A rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :p ; owl:someValuesFrom :F ] .",
+])
+def test_a_chain_whose_conclusion_through_an_unnamed_value_carries_nothing_is_not_named(tbox: str) -> None:
+    o = quietly(tbox + " :a a :A . :b :t :a .")
+    assert o.notices == [] and o.reason().incomplete == []
+
+
+@pytest.mark.parametrize("extra", [
+    ":R rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :q ; owl:someValuesFrom :G ] .",  # the value says more
+    ":R owl:disjointWith :F .",  # the value may be in disjoint classes
+    ":t a owl:FunctionalProperty .",  # values of t may be merged
+    "[ a owl:Restriction ; owl:onProperty :t ; owl:someValuesFrom :G ] rdfs:subClassOf :H .",  # read on the left
+    # the value is in a restriction on the inverse read on the left, or its range is a filler read there
+    "[ a owl:Restriction ; owl:onProperty [ owl:inverseOf :t ] ; owl:someValuesFrom :A ] rdfs:subClassOf :H .",
+    "[ a owl:Restriction ; owl:onProperty :q ; owl:someValuesFrom :R ] rdfs:subClassOf :H .",
+])
+def test_a_chain_to_a_second_unnamed_value_is_named_unless_shown_to_carry_nothing(extra: str) -> None:
+    o = quietly(":s a owl:ObjectProperty . :q a owl:ObjectProperty . :t a owl:ObjectProperty ; rdfs:range :R ; "
+                "owl:propertyChainAxiom ( :p :s ) . :A rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :p ; "
+                "owl:someValuesFrom :F ] . :F rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :s ; "
+                f"owl:someValuesFrom :G ] . {extra} :a a :A .")
+    assert any("chain of t" in n.reason for n in o.reason().incomplete)
 
 
 def test_one_warning_per_kind_naming_every_axiom() -> None:

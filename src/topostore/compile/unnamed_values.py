@@ -83,9 +83,10 @@ class UnnamedValues:
 
     @cached_property
     def told_existentials(self) -> dict[NamedNode, list[Expr]]:
-        """Each named class's told existential restrictions (superclasses or definitions)."""
-        return self._told(lambda e: e.prop is not None and (e.kind == "some" or (e.kind in ("min", "exact")
-                                                                                 and e.n >= 1)))
+        """Each named class's told existential restrictions (superclasses or definitions), a ``Self`` one
+        among them (a link, to the individual itself)."""
+        return self._told(lambda e: e.prop is not None and (e.kind in ("some", "self")
+                                                            or (e.kind in ("min", "exact") and e.n >= 1)))
 
     @cached_property
     def told_values(self) -> dict[NamedNode, list[Expr]]:
@@ -102,35 +103,113 @@ class UnnamedValues:
 
     def chain_links(self, e: Expr, axiom: str, links: set[Prop]) -> None:
         """A chain whose conclusion passes through the unnamed value ``u`` of ``e`` (``x p u``; ``links``:
-        ``p`` and its super-expressions) and is not drawn, since no fact of ``u`` is stored.  ``x p u`` is
-        the chain's k-th link read forwards (``p`` ⊑ its k-th property) or backwards (``p`` ⊑ its inverse);
-        the chain then either ends at ``u`` (its named end gains a link by the chain's property to a value no
-        one named: missed where that link has consequences at the named end), or goes on from ``u`` by the
-        next link, which only ``u``'s classes can give it (a told value: a link to a named individual is
-        missed; an existential: missed where the chain's property has consequences).  A chain that ``x p u``
-        can serve but that cannot go on from ``u`` concludes nothing through it, and is not named."""
+        ``p`` and its super-expressions) and is not drawn, since no fact of ``u`` is stored.  A transitive
+        property ``t`` is the chain ``t ∘ t``.  ``x p u`` is the chain's k-th link read forwards (``p`` ⊑ its
+        k-th property) and, where ``p`` is also below the inverse (a symmetric one), backwards; the chain then
+        either ends at ``u`` (its named end gains a link by the chain's property to a value no one named), or
+        goes on from ``u`` by the next link, which only ``u``'s classes (or the link back to ``x``) can give
+        it: a link to a named individual is missed; one to another unnamed value (or to ``u`` itself, a
+        ``Self``) is missed unless the chain ends there and the conclusion is shown to carry nothing
+        (:meth:`conclusion_inert`).  A chain that ``x p u`` can serve but that cannot go on from ``u``
+        concludes nothing through it, and is not named."""
         restrictions: list[Expr] | None = None
-        for t, chain in self.report.tb.chains:
+        for t, chain in self.chains:
             for k, q in enumerate(chain):
-                if q in links:  # x q u: the chain goes on from u by its next property
-                    onward = chain[k + 1] if k + 1 < len(chain) else None
-                    end = Prop(t)  # ...or ends at u: the start x' gains x' t u
-                elif inverse(q) in links:  # u q x: the chain comes to u by the inverse of its previous property
-                    onward = inverse(chain[k - 1]) if k > 0 else None
-                    end = inverse(Prop(t))  # ...or starts at u: the end x' gains u t x'
-                else:
-                    continue
-                if onward is None:
-                    missed = self.subject_consequences(end)
-                else:
+                for onward, end, last in self._readings(t, chain, k, q, links):
                     if restrictions is None:
                         restrictions = self.restrictions_of_value(e, links)
-                    link = self.link_by(restrictions, onward)
-                    missed = link == "value" or (link == "some" and self.has_consequences(Prop(t)))
-                if missed:
-                    self.report.note_existential(axiom, f"the unnamed value of {describe(e)} completes the chain "
-                                                 f"of {_name(t)}, whose conclusion through it is not drawn")
-                    return
+                    if onward is None:  # the named side is linked to it by the chain's first (last) property
+                        first = chain[0] if end == Prop(t) else inverse(chain[-1])
+                        linked = len(chain) > 1 and (first == end or end in self.report.supers.get(first, ()))
+                        missed = not self.conclusion_inert(end, linked, restrictions)
+                    else:
+                        link = "value" if inverse(onward) in links else self.link_by(restrictions, onward)
+                        missed = link == "value" or (link == "some"
+                                                     and not (last and self.conclusion_inert(end, False, None)))
+                    if missed:
+                        self.report.note_existential(axiom, f"the unnamed value of {describe(e)} completes the "
+                                                     f"chain of {_name(t)}, whose conclusion through it is not "
+                                                     "drawn")
+                        return
+
+    @staticmethod
+    def _readings(t: NamedNode, chain: tuple[Prop, ...], k: int, q: Prop,
+                  links: set[Prop]) -> list[tuple[Prop | None, Prop, bool]]:
+        """How ``x p u`` serves the chain's k-th link: (the link the chain needs next from ``u``, None where
+        the chain ends or starts at ``u``; the conclusion's property read from the named side; whether that
+        next link is the chain's last, so the conclusion ends at the value it reaches)."""
+        found = []
+        if q in links:  # x q u: the chain goes on from u by its next property, or ends at u
+            onward = chain[k + 1] if k + 1 < len(chain) else None
+            found.append((onward, Prop(t), k + 2 == len(chain)))
+        if inverse(q) in links:  # u q x: the chain comes to u by the inverse of its previous one, or starts at u
+            found.append((inverse(chain[k - 1]) if k > 0 else None, inverse(Prop(t)), k == 1))
+        return found
+
+    @cached_property
+    def chains(self) -> list[tuple[NamedNode, tuple[Prop, ...]]]:
+        """The TBox's property chains, with ``t ∘ t`` for each transitive property ``t``."""
+        transitive = sorted(self.report.tb.characteristics.get("TransitiveProperty", ()), key=str)
+        return [*self.report.tb.chains, *((t, (Prop(t), Prop(t))) for t in transitive)]
+
+    def conclusion_inert(self, t: Prop, linked: bool, restrictions: list[Expr] | None) -> bool:
+        """Whether a link by ``t`` from a named individual to an unnamed value is shown to entail nothing:
+        no class of the subject (a domain, unless ``linked``: the subject has a stored link by a
+        sub-property of ``t`` already, which gave it; a restriction used on the left, whose filler the value
+        may satisfy), no class of the value that says more of it (:meth:`value_inert`), nothing from ``t``'s
+        characteristics and chains (:meth:`property_inert`; ``restrictions``: what the value is told, None
+        where not known)."""
+        if (self.sides(t) and not linked) or self.used_left((t, *self.report.supers.get(t, ()))):
+            return False
+        return self.value_inert(t) and self.property_inert(t, restrictions)
+
+    def value_inert(self, t: Prop) -> bool:
+        """Whether the value of ``t`` gains nothing that says more of it: no restriction on the inverse of
+        ``t`` (or a super-expression) used on the left, and the classes it is told to be in (the range of
+        ``t`` and its super-expressions, their told superclasses) plain names: no restriction or other
+        expression told of them (a universal on the inverse brings a class back to the subject), no
+        disjointness, no use inside an expression on the left (a member, a filler)."""
+        if self.used_left((inverse(t), *self.report.supers.get(inverse(t), ()))):
+            return False
+        named: set[NamedNode] = set()
+        for _, c in subject_classes(self.report.tb, self.report.supers, inverse(t)):
+            if not c.is_named:
+                return False
+            named |= self.report.told(c.node)
+        if not named:
+            return True
+        if any(c in self.report.disjoint_with for c in named):
+            return False
+        for e, positive, _, subject in self.report.uses:
+            if e.is_named:
+                continue
+            if positive and subject in named:
+                return False
+            if not positive and any(m is not None and m.is_named and m.node in named
+                                    for m in (*e.members, e.filler)):
+                return False
+        return True
+
+    def property_inert(self, t: Prop, restrictions: list[Expr] | None) -> bool:
+        """Whether neither ``t`` nor a super-expression has a characteristic, takes part in a chain or a key,
+        or is told disjoint with another property (each could make the new link say more).  A transitive
+        one is no exception only where the value is told no link by it (``restrictions``: what it is told;
+        None where not known): a link onwards from it is what transitivity would carry back."""
+        tb = self.report.tb
+        props = (t, *self.report.supers.get(t, ()))
+        iris = {q.iri for q in props}
+        for kind, found in tb.characteristics.items():
+            if iris.isdisjoint(found):
+                continue
+            if kind != "TransitiveProperty" or restrictions is None:
+                return False
+            if any(self.link_by(restrictions, q) is not None for q in props if q.iri in found):
+                return False
+        if any(a in iris or b in iris for a, b in tb.disjoint_props):
+            return False
+        if any(q.iri in iris for _, chain in tb.chains for q in chain):
+            return False
+        return not any(q.iri in iris for _, props in tb.keys for q in props)
 
     def subject_consequences(self, t: Prop) -> bool:
         """A subject of ``t`` gains a class by the link alone: a domain of ``t`` or of a super-expression,
@@ -161,21 +240,14 @@ class UnnamedValues:
 
     def link_by(self, restrictions: list[Expr], r: Prop) -> str | None:
         """How ``restrictions`` give a link by ``r`` (on ``r`` or a sub-property of it): "value" for a told
-        named value, "some" for an unnamed one, None for none."""
+        named value, "some" for an unnamed one (``u`` itself for a ``Self``), None for none."""
         supers = self.report.supers
         on_r = [m for m in restrictions if m.prop is not None and (m.prop == r or r in supers.get(m.prop, ()))]
         if any(m.kind == "value" and isinstance(m.value, NamedNode) for m in on_r):
             return "value"
-        if any(m.kind == "some" or (m.kind in ("min", "exact") and m.n >= 1) for m in on_r):
-            return "some"
+        if any(m.kind in ("some", "self") or (m.kind in ("min", "exact") and m.n >= 1) for m in on_r):
+            return "some"  # a Self links u to itself: unnamed as well
         return None
-
-    def has_consequences(self, t: Prop) -> bool:
-        """Some class follows from a link by ``t``: a domain or range of it or of a super-expression, or a
-        restriction on one of them."""
-        supers = self.report.supers
-        wanted = {t, inverse(t), *supers.get(t, ()), *supers.get(inverse(t), ())}
-        return bool(self.sides(t) or self.sides(inverse(t)) or any(self.report.on.get(q) for q in wanted))
 
 
 __all__ = ["UnnamedValues"]

@@ -144,6 +144,8 @@ class GraphStore:
         triples = await run_in_threadpool(graph_triples, ref, which)
         prefixes = {"owl": OWL, "rdf": RDF, "rdfs": RDFS, "xsd": XSD, "": ref.prefix}
         body = await run_in_threadpool(render_graph, triples, fmt, prefixes)
+        if isinstance(fmt.ox_format, RdfFormat):  # pyoxigraph lowers language tags: spelled as first written
+            body = await run_in_threadpool(ref.ontology.store.forms.tags.respell, body, fmt.ox_format)
         return Response(body, media_type=fmt.content_type, headers={"Vary": "Accept"})
 
     async def write(self, request: Request) -> Response:

@@ -70,6 +70,12 @@ class ChangeLedger:
         """Whether changes are being recorded (since the first successful REASON, or in a unit of work)."""
         return self.recording or bool(self._open)
 
+    @property
+    def unit_step(self) -> int | None:
+        """Within an open unit of work, the number of its steps so far (what an undo back to a unit's start
+        drops is at or past that start); None outside one."""
+        return len(self._steps) if self._open else None
+
     def record(self, store: Store, changed: list[Fact], added: bool, limit: Callable[[], float] | None = None) -> None:
         """Record ``changed``, all added or all removed: :meth:`record_change` of one side."""
         if added:
@@ -212,10 +218,12 @@ class _UnitOfWork:
         try:
             if kind is not None:
                 ledger._undo_since(self.onto, self.start)
+                self.onto.values.undone(self.start)
         finally:
             ledger._open -= 1
             if not ledger._open:
                 ledger._steps.clear()
+                self.onto.values.settled()
 
 
 def all_or_nothing(reason: F) -> F:

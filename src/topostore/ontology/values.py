@@ -5,9 +5,11 @@ A named part of one :class:`~topostore.ontology.facade.Ontology` (``onto.values`
 
 pyoxigraph lowers a language tag as a literal is made
 (``Literal("colour", language="en-GB").language == "en-gb"``), so a tag's spelling can reach topostore
-only beside the literal: ``onto.value("colour", language="en-GB")`` keeps it until a change asserts a
-literal with that tag (:meth:`OntologyValues.asserted`), and the store then spells it so (the first
-spelling wins, as for documents: :mod:`topostore.stores.language_tags`).
+only beside the literal: ``onto.value("colour", language="en-GB")`` keeps it until a change asserts that
+literal (same lexical form and tag: :meth:`OntologyValues.asserted`), and the store then spells its tag so
+(the first spelling wins, as for documents: :mod:`topostore.stores.language_tags`).  Inside a unit of work
+(:meth:`.ledger.ChangeLedger.undoable`) the spelling is the store's only once the unit succeeds: an
+assertion it undoes gives none.
 """
 
 from __future__ import annotations
@@ -30,8 +32,11 @@ class OntologyValues:
 
     def __init__(self, onto: Ontology) -> None:
         self.onto = onto
-        #: lowered tag -> spelling given to :meth:`value`, not yet asserted in a literal
-        self._pending: dict[str, str] = {}
+        #: (lexical form, lowered tag) -> spelling given to :meth:`value` for that literal, not yet asserted
+        self._pending: dict[tuple[str, str], str] = {}
+        #: spellings of literals asserted inside an open unit of work: (the index of the step that asserted
+        #: them, literal, spelling)
+        self._held: list[tuple[int, tuple[str, str], str]] = []
 
     def value(self, value: object, datatype: str | None = None, language: str | None = None) -> Literal:
         """A validated literal from a Python value (int → xsd:integer, ...), text + datatype or text + tag."""
@@ -67,7 +72,7 @@ class OntologyValues:
         except ValueError as exc:
             raise InvalidValueError(f"{language!r} is not a valid language tag: {exc}") from None
         if not self.onto.store.forms.tags.known(made.language):
-            self._pending.setdefault(made.language, language)
+            self._pending.setdefault((made.value, made.language), language)
         return made
 
     def fact(self, subject: str, prop: str, obj: object) -> Triple:
@@ -111,14 +116,34 @@ class OntologyValues:
         return bool(self._pending)
 
     def asserted(self, triples: Iterable[Triple]) -> None:
-        """``triples`` were asserted: the spellings given for their literals' tags are the store's now
-        (one look per literal while a spelling waits; none otherwise)."""
+        """``triples`` were asserted (the change committed): the spellings given for their literals are the
+        store's now, or once the open unit of work succeeds (one look per literal while a spelling waits;
+        none otherwise)."""
         if not self._pending:
             return
-        given = [self._pending.pop(o.language) for t in triples
-                 if isinstance(o := t.object, Literal) and o.language in self._pending]
-        if given:
-            self.onto.store.forms.adopt_tags(given)
+        given = [(key, self._pending.pop(key)) for t in triples if isinstance(o := t.object, Literal)
+                 and o.language and (key := (o.value, o.language)) in self._pending]
+        if not given:
+            return
+        step = self.onto.ledger.unit_step
+        if step is None:
+            self.onto.store.forms.adopt_tags([spelling for _, spelling in given])
+        else:
+            self._held += [(step - 1, key, spelling) for key, spelling in given]
+
+    def undone(self, start: int) -> None:
+        """A unit of work undid its steps from ``start`` on: the spellings of the literals asserted there
+        wait again (for that literal to be asserted by a change that stays)."""
+        for step, key, spelling in self._held:
+            if step >= start:
+                self._pending.setdefault(key, spelling)
+        self._held = [h for h in self._held if h[0] < start]
+
+    def settled(self) -> None:
+        """The outermost unit of work ended and its changes stay: the spellings held for it are the store's."""
+        if self._held:
+            held, self._held = self._held, []
+            self.onto.store.forms.adopt_tags([spelling for _, _, spelling in held])
 
 
 __all__ = ["OntologyValues"]

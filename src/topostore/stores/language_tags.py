@@ -11,6 +11,7 @@ value whatever its case, so ``en-GB`` written first makes every ``en-gb`` litera
 
 from __future__ import annotations
 
+import json
 import re
 from collections.abc import Collection, Iterable
 
@@ -40,6 +41,17 @@ _WHOLE_TAG = re.compile(_TAG.decode())
 _TEXT_LITERAL = re.compile(rb'"(?:[^"\\\n]|\\.)*"@(' + _TAG + rb")")
 #: an xml:lang attribute inside a tag of pyoxigraph's RDF/XML (text content holds no raw '<')
 _XML_LANG = re.compile(rb'(<[^<>]*\sxml:lang=")(' + _TAG + rb')(")')
+#: the SPARQL Update keywords that open a part whose literals are inserted (INSERT) or not (DELETE, WHERE);
+#: a prefixed name or a variable that merely ends so is no keyword
+_UPDATE_PART = re.compile(rb"(?<![\w:?$])(INSERT|DELETE|WHERE)(?![\w:-])", re.I)
+#: a STRLANG call whose tag argument is a plain string (the literal it makes has no written ``@tag``)
+_STRLANG = re.compile(rb"(?<![\w:?$])STRLANG\s*\((?:[^,()]|\([^()]*\))*,\s*(\"|')(" + _TAG + rb")\1\s*\)", re.I)
+#: a string's escapes (Turtle and SPARQL): a character escape or a code point
+_ESCAPE = re.compile(r"\\(?:([tbnrf\"'\\])|u([0-9A-Fa-f]{4})|U([0-9A-Fa-f]{8}))")
+_ESCAPED = {"t": "\t", "b": "\b", "n": "\n", "r": "\r", "f": "\f", '"': '"', "'": "'", "\\": "\\"}
+
+#: an added literal as pyoxigraph keeps it: its lexical form and its lowered tag
+Added = tuple[str, str]
 
 
 class LanguageTags:
@@ -54,19 +66,26 @@ class LanguageTags:
     def __bool__(self) -> bool:
         return self._capitals
 
-    def learn(self, data: bytes | str, fmt: RdfFormat | None, only: Collection[str] | None = None) -> list[str]:
+    def learn(self, data: bytes | str, fmt: RdfFormat | None, only: Collection[Added] | None = None) -> list[str]:
         """Read the spellings of a document's tags (one that never spells a tag with a capital costs one
         scan); the new ones, for the caller to persist on a durable store (see :meth:`quads`).
 
         ``fmt`` None reads Turtle-like text that is no document: a SPARQL update, whose literals are written
-        as Turtle's.  ``only``: the lowered tags to take (those of the literals a change added; a tag
-        the text writes elsewhere, in a pattern or a deleted triple, is no spelling of what is stored)."""
+        as Turtle's.  ``only``: the literals a change added (:func:`literal_tags`); a spelling is taken only
+        from a written literal of the same lexical form and tag (one the text writes elsewhere, in a pattern
+        or a deleted triple, is no spelling of what is stored), an update's INSERT parts before the rest."""
         if isinstance(data, str):
             data = data.encode("utf-8", errors="surrogatepass")
         if only is not None and not only:
             return []
-        tags = _written_tags(data, fmt == RdfFormat.RDF_XML)
-        return self.adopt(tags if only is None else [t for t in tags if t.lower() in only])
+        if fmt in (RdfFormat.JSON_LD, RdfFormat.STREAMING_JSON_LD):
+            tags = _json_ld_tags(data)
+        elif only is None or fmt == RdfFormat.RDF_XML:
+            tags = _written_tags(data, fmt == RdfFormat.RDF_XML)
+        else:
+            return self.adopt(_added_spellings(data, only, update=fmt is None))
+        wanted = None if only is None else {tag for _, tag in only}
+        return self.adopt(tags if wanted is None else [t for t in tags if t.lower() in wanted])
 
     def adopt(self, tags: Iterable[str]) -> list[str]:
         """Take ``tags`` as written (the first spelling of each lowered tag wins); the new ones."""
@@ -93,6 +112,8 @@ class LanguageTags:
             return data
         if fmt == RdfFormat.RDF_XML:
             return _XML_LANG.sub(lambda m: m.group(1) + self._bytes(m.group(2)) + m.group(3), data)
+        if fmt in (RdfFormat.JSON_LD, RdfFormat.STREAMING_JSON_LD):
+            return self._json_ld(data)
         return _TEXT_LITERAL.sub(lambda m: m.group(0)[:m.start(1) - m.start(0)] + self._bytes(m.group(1)), data)
 
     def rendered(self, text: str) -> str:
@@ -101,6 +122,21 @@ class LanguageTags:
             return text
         body, quote, tag = text.rpartition('"@')
         return f'{body}"@{self.spelled(tag)}' if quote and _WHOLE_TAG.fullmatch(tag) else text
+
+    def _json_ld(self, data: bytes) -> bytes:
+        """A JSON-LD document with each ``@language`` value spelled as first written (read as JSON: a
+        lexical form that looks like one is left alone)."""
+        doc = json.loads(data)
+        todo = [doc]
+        while todo:
+            node = todo.pop()
+            if isinstance(node, dict):
+                if isinstance(lang := node.get("@language"), str):
+                    node["@language"] = self.spelled(lang)
+                todo.extend(v for v in node.values() if isinstance(v, (dict, list)))
+            elif isinstance(node, list):
+                todo.extend(v for v in node if isinstance(v, (dict, list)))
+        return json.dumps(doc, ensure_ascii=False).encode("utf-8")
 
     def _bytes(self, tag: bytes) -> bytes:
         return self.spelled(tag.decode("ascii")).encode("ascii")
@@ -118,9 +154,84 @@ class LanguageTags:
         return True
 
 
-def literal_tags(triples: Iterable[Triple]) -> set[str]:
-    """The (lowered) language tags of the literals among ``triples``' objects."""
-    return {o.language for t in triples if isinstance(o := t.object, Literal) and o.language}
+def literal_tags(triples: Iterable[Triple]) -> set[Added]:
+    """The tagged literals among ``triples``' objects: each one's lexical form and (lowered) tag."""
+    return {(o.value, o.language) for t in triples if isinstance(o := t.object, Literal) and o.language}
+
+
+def _added_spellings(data: bytes, added: Collection[Added], update: bool) -> list[str]:
+    """The spellings of ``added``'s tags where the text writes one of those literals (same lexical form,
+    same tag in any case); in an update, a literal written in an INSERT part (INSERT DATA or an INSERT
+    template) before one written elsewhere (a WHERE's VALUES), and the tag argument of a STRLANG call
+    last, as its literal's form is not written."""
+    inserting = not update  # a document's literals are all added
+    best: dict[str, tuple[int, str]] = {}  # lowered tag -> (rank, first spelling of that rank)
+    tags = {t for _, t in added}
+    settled = 0  # how many of ``tags`` have a spelling of the best rank: the reading stops once all have
+    for m in _TEXT_TOKEN.finditer(data):
+        raw = m.group(1)
+        if raw is None:
+            if update and m.group(0)[0] not in b"\"'#<":
+                parts = _UPDATE_PART.findall(m.group(0))
+                if parts:
+                    inserting = parts[-1].upper() == b"INSERT"
+            continue
+        tag = raw.decode("ascii")
+        if (_lexical(m.group(0)[:m.start(1) - m.start(0) - 1]), tag.lower()) in added:
+            if inserting and best.get(tag.lower(), (1,))[0] > 0:
+                settled += 1  # its first spelling of the best rank
+            _prefer(best, tag, 0 if inserting else 1)
+            if settled == len(tags):
+                break
+    if update and settled < len(tags):
+        for m in _STRLANG.finditer(data):
+            if (tag := m.group(2).decode("ascii")).lower() in tags:
+                _prefer(best, tag, 2)
+    return [spelling for _, spelling in best.values()]
+
+
+def _prefer(best: dict[str, tuple[int, str]], tag: str, rank: int) -> None:
+    """Keep ``tag`` as its lowered tag's spelling if no spelling of a better (lower) rank was met first."""
+    held = best.get(tag.lower())
+    if held is None or rank < held[0]:
+        best[tag.lower()] = (rank, tag)
+
+
+def _lexical(token: bytes) -> str:
+    """A written string's lexical form: its quotes off, its escapes read."""
+    quotes = 3 if token[:3] in (b'"""', b"'''") else 1
+    body = token[quotes:-quotes].decode("utf-8", errors="surrogatepass")
+    return _ESCAPE.sub(_unescaped, body) if "\\" in body else body
+
+
+def _unescaped(m: re.Match[str]) -> str:
+    if m.group(1):
+        return _ESCAPED[m.group(1)]
+    try:
+        return chr(int(m.group(2) or m.group(3), 16))
+    except ValueError:  # past the last code point: pyoxigraph refuses it before this is read
+        return m.group(0)
+
+
+def _json_ld_tags(data: bytes) -> list[str]:
+    """A JSON-LD document's ``@language`` values in the order written (a context's default included);
+    nothing from a document that is no JSON (pyoxigraph read it first and would have refused it)."""
+    try:
+        doc = json.loads(data)
+    except (ValueError, RecursionError):
+        return []
+    found: list[str] = []
+    todo = [doc]
+    while todo:
+        node = todo.pop()
+        if isinstance(node, dict):
+            lang = node.get("@language")
+            if isinstance(lang, str) and _WHOLE_TAG.fullmatch(lang):
+                found.append(lang)
+            todo.extend(reversed([v for v in node.values() if isinstance(v, (dict, list))]))
+        elif isinstance(node, list):
+            todo.extend(reversed([v for v in node if isinstance(v, (dict, list))]))
+    return found
 
 
 def _written_tags(data: bytes, xml: bool) -> list[str]:

@@ -54,7 +54,7 @@ class LiteralForms:
         #: the language tags' spellings (pyoxigraph lowers every tag)
         self.tags = LanguageTags()
 
-    def learn_tags(self, data: bytes | str, fmt: RdfFormat | None, only: Collection[str] | None = None) -> None:
+    def learn_tags(self, data: bytes | str, fmt: RdfFormat | None, only: Collection[tuple[str, str]] | None = None) -> None:
         """Remember how a loaded document (or a change's text: ``only`` its added literals' tags, see
         :meth:`LanguageTags.learn`) spells its language tags (persisted on a durable store)."""
         self._persist_tags(self.tags.learn(data, fmt, only))
