@@ -240,6 +240,43 @@ def test_failed_reason_restores_the_state_before_the_change(data_dir: Path) -> N
     assert call(svc, "REASON").exit_code == 0
 
 
+def test_failed_reason_on_a_reopened_durable_store_restores_the_state_as_reopened(data_dir: Path, tmp_path: Path) -> None:
+    """A store closed after a successful REASON and reopened: a change and a REASON that fails are undone
+    as in memory (the reopened state is the one to return to), and the reply is true."""
+    store = tmp_path / "stores"
+    svc = ArmorService(data_dir=data_dir, store=store)
+    assert call(svc, "LOAD", "FILE", "", ["map.owl", IRI, "true", "PELLET", "true"]).exit_code == 0
+    svc.close()
+    svc = ArmorService(data_dir=data_dir, store=store)
+    before = graphs(svc)
+    assert before[1], "the reopened store keeps its inferred facts"
+    ref = svc.reference("ref")
+    ref.ontology.limits = ReasonLimits(max_rounds=100, max_inferred=100_000, max_seconds=30)
+    with ref.lock:  # a rule with no finite closure, asserted by the Python API: the next REASON fails
+        ref.ontology.load_data(PREFIXES + RUNAWAY + ':R1 :counter "0"^^xsd:integer .\n', "turtle")
+    res = call(svc, "REASON")
+    assert (res.success, res.exit_code) == (False, 209)
+    assert "were undone" in res.error_description
+    assert graphs(svc) == before
+    assert call(svc, "REASON").exit_code == 0
+    svc.close()
+
+
+def test_a_failed_first_reason_leaves_no_half_written_closure() -> None:
+    """With no successful REASON to return to, a failed one keeps the asserted facts and clears what it
+    had inferred (never a partial closure that queries would read as an answer)."""
+    onto = Ontology()
+    onto.load(ABOX)
+    asserted = sorted(map(str, onto.store.triples(graph=ASSERTED)))
+    onto.limits = ReasonLimits(max_inferred=5)
+    with pytest.raises(ReasonLimitExceeded):
+        onto.reason()
+    assert sorted(map(str, onto.store.triples(graph=ASSERTED))) == asserted
+    assert not list(onto.store.triples(graph=INFERRED))
+    onto.limits = ReasonLimits()
+    assert onto.reason().consistent and list(onto.store.triples(graph=INFERRED))
+
+
 # --------------------------------------------------------------------------- V5 entity expansion, file size
 
 LAUGHS = b"""<?xml version="1.0"?>

@@ -286,16 +286,18 @@ def apply_buffer(ctx: Context) -> Reply:
 def reason(ctx: Context) -> Reply:
     """REASON: apply pending changes and bring the inferences up to date (incrementally), also after an inconsistency."""
     ref = ctx.reference
+    # on failure the ontology is back at its last good state: its last successful REASON, or as reopened
+    undone = ref.ontology.ledger.recording
     try:
         warnings = ref.flush(reason=False)
-        ref.ontology.reason()  # on failure the ontology is back at its last successful REASON
+        ref.ontology.reason()
     except (TopostoreError, OSError) as exc:  # reasoning, the store or its files failed
         # the buffered changes that broke it are dropped too, or every later REASON would fail the same way
         dropped = ref.discard_buffer()
         note = f"; {dropped} buffered change(s) were discarded" if dropped else ""
-        raise CommandError(
-            codes.REASONER_OR_QUERY_FAILURE,
-            f"reasoning failed and the changes since the last successful REASON were undone: {exc}{note}",
-        ) from exc
+        outcome = ("the changes since the last successful REASON were undone" if undone else
+                   "there was no successful REASON to return to: the asserted facts were kept and the "
+                   "inferred ones cleared")
+        raise CommandError(codes.REASONER_OR_QUERY_FAILURE, f"reasoning failed and {outcome}: {exc}{note}") from exc
     return Reply(warnings=warnings)
 

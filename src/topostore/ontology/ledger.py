@@ -239,6 +239,8 @@ def all_or_nothing(reason: F) -> F:
         except Exception:
             if self.ledger.recording:
                 _restore(self, reason)
+            else:  # no good state to return to: never leave a half-written closure readable
+                _clear_inferred(self)
             raise
         self.ledger.succeeded(self.incremental_ready())
         return report
@@ -257,8 +259,14 @@ def _restore(onto: Ontology, reason: Callable[..., Any]) -> None:
         onto.ledger.succeeded(onto.incremental_ready())
     except TopostoreError:  # even the previous state cannot be reasoned (e.g. limits lowered): asserted facts only
         logger.exception("the state before the change could not be reasoned either; inferred facts cleared")
-        onto.store.update(" ; ".join(f"DROP SILENT GRAPH {g}" for g in (INFERRED, AUX, ENTAILED)))
-        onto.forget_reasoning()
+        _clear_inferred(onto)
+
+
+def _clear_inferred(onto: Ontology) -> None:
+    """Leave the asserted facts alone: the reasoner's graphs dropped and its state forgotten (a durable
+    store's mark stays "building", so reopening it reasons again)."""
+    onto.store.update(" ; ".join(f"DROP SILENT GRAPH {g}" for g in (INFERRED, AUX, ENTAILED)))
+    onto.forget_reasoning()
 
 
 __all__ = ["ChangeLedger", "all_or_nothing", "check_mode"]

@@ -50,7 +50,9 @@ def reopen(onto: Ontology) -> str:
     had); unfinished ones, or an inconsistent state whose explanations are
     needed, are rebuilt by a full REASON over the asserted graph.  That REASON
     runs while the :class:`Ontology` is being built (its constructor calls this),
-    so it is said on the ``topostore.store`` log and in the result ("rebuilt").
+    so it is said on the ``topostore.store`` log and in the result ("rebuilt").  A reopened state is
+    the one a later failed REASON returns to: changes made before it was closed without a REASON since
+    (``dirty``) are kept, as they were when it was opened.
     """
     store = onto.store
     if not store.durable or store.is_empty(ASSERTED):
@@ -58,6 +60,8 @@ def reopen(onto: Ontology) -> str:
     meta = store.meta
     if meta.get("inferred") == "valid" and (meta.get("consistent") is True or meta.get("dirty")):
         onto.restore_report(bool(meta.get("consistent")), dirty=bool(meta.get("dirty")))
+        # the state as reopened is the one a failed REASON returns to (its changes since are recorded)
+        onto.ledger.succeeded(incremental_ready=False)
         return "reopened"
     why = "unfinished" if meta.get("inferred") != "valid" else "inconsistent (its violations are not kept)"
     logger.warning("the store's inferred graphs are %s: rebuilding them with a full REASON while opening it", why)
