@@ -97,6 +97,17 @@ def test_a_value_swapped_for_another_spelling_is_kept_and_said(onto: Ontology) -
     assert onto.ledger.net_changes() == ([], [])
 
 
+def test_a_spelling_of_one_stored_form_swapped_is_kept_and_said(onto: Ontology) -> None:
+    """``"0100"`` and ``"100"`` as xsd:long are one stored form: replaced in one change they cancel in the
+    ledger, so the spelling written first stays; the change reports nothing done and says so."""
+    first = Triple(n("r1"), n("count"), typed("0100", "long"))
+    onto.change([first], [])
+    with pytest.warns(SpellingKeptWarning, match="stays as written"):
+        added, removed = onto.change([Triple(n("r1"), n("count"), typed("100", "long"))], [first])
+    assert (added, removed) == ([], [])
+    assert [str(v) for v in onto.data_values("count", "r1")] == [str(typed("0100", "long"))]
+
+
 def test_an_armor_replace_by_another_spelling_says_which_stays(tmp_path) -> None:
     """REPLACE DATAPROP of ``3`` by ``"3.0"^^xsd:decimal``: the reply says the spelling ``3`` stayed."""
     from topostore.armor import ArmorService

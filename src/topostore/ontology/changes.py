@@ -203,8 +203,7 @@ def _respelled(store: Store, added: list[Fact], removed: list[Fact]) -> tuple[li
     if not added or not removed:
         return added, removed, []
     gone = {f.key: f for f in removed}
-    pairs = [(gone[f.key], f) for f in added if f.key in gone
-             and store.stored_form(gone[f.key].triple) != store.stored_form(f.triple)]
+    pairs = [(gone[f.key], f) for f in added if f.key in gone and _spelled_apart(store, gone[f.key], f)]
     if not pairs:
         return added, removed, []
     kept = {id(f) for pair in pairs for f in pair}
@@ -212,6 +211,15 @@ def _respelled(store: Store, added: list[Fact], removed: list[Fact]) -> tuple[li
              "removed and added in one change (to change only the spelling, remove it in one change and add "
              "the new one in the next)" for old, new in pairs]
     return [f for f in added if id(f) not in kept], [f for f in removed if id(f) not in kept], notes
+
+
+def _spelled_apart(store: Store, old: Fact, new: Fact) -> bool:
+    """Whether ``new`` writes the value of ``old`` in another spelling: other stored forms (the store nets
+    them out) or one stored form written otherwise (``"0100"`` and ``"100"`` as xsd:long: the ledger
+    cancels them and the spelling written first stays)."""
+    if store.stored_form(old.triple) != store.stored_form(new.triple):
+        return True
+    return store.written_fact(old).object != new.triple.object
 
 
 def _show(t: Triple) -> str:
