@@ -7,10 +7,11 @@ door, then the test that both keys name one group).  Before the key's form is ch
 each candidate form is timed here on the same reasoned store, in one process, the forms in turns
 (``--reps`` rounds), as ``SELECT (COUNT(*))`` over the WHERE the reasoner sends (the census's graphs):
 
-* the join: as compiled; without the key atoms (its floor); the group as a term of its own
-  (``?x inGroup ?g`` twice, no string test: the floor of a key whose group is compared by term
-  equality); the keys looked up by their object (``?k keyOf ?x``: a location holds fewer quads as an
-  object than as a subject, and the in-memory store walks a term's quads to look one up); the keys
+* the join: as compiled (each key found from its member as an object, ``?k ts:differentKeyOf ?x``);
+  without the key atoms (its floor); the group as a term of its own (``?x inGroup ?g`` twice, no
+  string test: the floor of a key whose group is compared by term equality); the keys looked up by
+  their member as a subject (``?x key ?k``, the form before: a location holds far more quads as a
+  subject than as an object, and the in-memory store walks a term's quads to look one up); the keys
   joined by hash (each key atom its own subquery);
 * the key's making: the list walk alone, the walk with its ``rdf:first``, the key with two MD5s, with the
   group's MD5 only, with no MD5, and each written into a scratch graph.
@@ -27,7 +28,7 @@ import sys
 import time
 import warnings
 
-from topostore.rdf.vocab import ASSERTED, AUX, DIFFERENT_KEY, KEY_PREFIX
+from topostore.rdf.vocab import ASSERTED, AUX, DIFFERENT_KEY_OF, KEY_PREFIX
 
 from . import maps
 from .limits import lift_time_limit
@@ -36,9 +37,9 @@ _OWL = "http://www.w3.org/2002/07/owl#"
 _RDF = "http://www.w3.org/1999/02/22-rdf-syntax-ns#"
 _SCRATCH = "urn:topostore:bench:keys:"
 _HAS_DOOR = f"<{maps.MAP_NS}hasDoor>"
-_A, _X, _K = f"<{ASSERTED.value}>", f"<{AUX.value}>", f"<{DIFFERENT_KEY.value}>"
-_REV, _GRP, _OUT = f"<{_SCRATCH}rev>", f"<{_SCRATCH}group>", f"<{_SCRATCH}out>"
-_KEY_OF, _IN_GROUP = f"<{_SCRATCH}keyOf>", f"<{_SCRATCH}inGroup>"
+_A, _X, _K = f"<{ASSERTED.value}>", f"<{AUX.value}>", f"<{DIFFERENT_KEY_OF.value}>"
+_SUBJ, _GRP, _OUT = f"<{_SCRATCH}subject>", f"<{_SCRATCH}group>", f"<{_SCRATCH}out>"
+_KEY, _IN_GROUP = f"<{_SCRATCH}key>", f"<{_SCRATCH}inGroup>"
 _GROUP_TEST = (f'STRBEFORE(STRAFTER(STR(?k1), "{KEY_PREFIX}"), ":") = '
                f'STRBEFORE(STRAFTER(STR(?k2), "{KEY_PREFIX}"), ":")')
 _DOORS = f"GRAPH {_A} {{ ?l2 {_HAS_DOOR} ?d }} GRAPH {_A} {{ ?l1 {_HAS_DOOR} ?d }} FILTER(!isLiteral(?d)) " \
@@ -54,14 +55,14 @@ def _key(group: str, member: str) -> str:
 
 #: the connecting rule's join, form by form (WHERE groups counted as they are)
 JOINS = {
-    "as compiled": f"{_DOORS} GRAPH {_X} {{ ?l2 {_K} ?k2 }} GRAPH {_X} {{ ?l1 {_K} ?k1 }} "
+    "as compiled": f"{_DOORS} GRAPH {_X} {{ ?k2 {_K} ?l2 }} GRAPH {_X} {{ ?k1 {_K} ?l1 }} "
                    f"FILTER(!sameTerm(?k1, ?k2) && {_GROUP_TEST})",
     "no key atoms": _DOORS,
     "group as a term": f"{_DOORS} GRAPH {_GRP} {{ ?l2 {_IN_GROUP} ?g }} GRAPH {_GRP} {{ ?l1 {_IN_GROUP} ?g }}",
-    "keys by object": f"{_DOORS} GRAPH {_REV} {{ ?k2 {_KEY_OF} ?l2 }} GRAPH {_REV} {{ ?k1 {_KEY_OF} ?l1 }} "
-                      f"FILTER(!sameTerm(?k1, ?k2) && {_GROUP_TEST})",
-    "keys by hash": f"{_DOORS} {{ SELECT ?l1 ?k1 WHERE {{ GRAPH {_X} {{ ?l1 {_K} ?k1 }} }} }} "
-                    f"{{ SELECT ?l2 ?k2 WHERE {{ GRAPH {_X} {{ ?l2 {_K} ?k2 }} }} }} "
+    "keys by subject": f"{_DOORS} GRAPH {_SUBJ} {{ ?l2 {_KEY} ?k2 }} GRAPH {_SUBJ} {{ ?l1 {_KEY} ?k1 }} "
+                       f"FILTER(!sameTerm(?k1, ?k2) && {_GROUP_TEST})",
+    "keys by hash": f"{_DOORS} {{ SELECT ?l1 ?k1 WHERE {{ GRAPH {_X} {{ ?k1 {_K} ?l1 }} }} }} "
+                    f"{{ SELECT ?l2 ?k2 WHERE {{ GRAPH {_X} {{ ?k2 {_K} ?l2 }} }} }} "
                     f"FILTER(!sameTerm(?k1, ?k2) && {_GROUP_TEST})",
 }
 #: the key's making, part by part (counted, and the keyed forms written into a scratch graph)
@@ -76,7 +77,7 @@ MAKING = {
 
 def _scratch(ox) -> None:
     """The alternative forms' facts, from the reasoned helper graph and the asserted lists (not timed)."""
-    ox.update(f"INSERT {{ GRAPH {_REV} {{ ?k {_KEY_OF} ?x }} }} WHERE {{ GRAPH {_X} {{ ?x {_K} ?k }} }}")
+    ox.update(f"INSERT {{ GRAPH {_SUBJ} {{ ?x {_KEY} ?k }} }} WHERE {{ GRAPH {_X} {{ ?k {_K} ?x }} }}")
     ox.update(f"INSERT {{ GRAPH {_GRP} {{ ?x {_IN_GROUP} ?group }} }} WHERE {{ {_WALK} {_MEMBER} }}")
 
 
@@ -89,7 +90,7 @@ def _cpu_count(ox, where: str) -> tuple[float, int]:
 def _cpu_write(ox, where: str) -> float:
     ox.update(f"DROP SILENT GRAPH {_OUT}")
     start = time.process_time()
-    ox.update(f"INSERT {{ GRAPH {_OUT} {{ ?x {_K} ?key }} }} WHERE {{ {where} }}")
+    ox.update(f"INSERT {{ GRAPH {_OUT} {{ ?key {_K} ?x }} }} WHERE {{ {where} }}")
     return time.process_time() - start
 
 
@@ -111,7 +112,7 @@ def measure(size: str, reps: int) -> dict[str, list[float]]:
                 if "key," in name:
                     times.setdefault(name + ", written", []).append(_cpu_write(ox, where))
     finally:
-        ox.update(f"DROP SILENT GRAPH {_REV} ; DROP SILENT GRAPH {_GRP} ; DROP SILENT GRAPH {_OUT}")
+        ox.update(f"DROP SILENT GRAPH {_SUBJ} ; DROP SILENT GRAPH {_GRP} ; DROP SILENT GRAPH {_OUT}")
     for name, n in rows.items():
         print(f"{size} {name:<22} rows {n:>8}")
     return times
