@@ -46,13 +46,13 @@ from .limits import lift_time_limit
 DIFFERENCE_NAMES = ("different", "different-candidate", "different-disjoint", "different-values", "all-different")
 DATASET = f"FROM {ASSERTED} FROM {INFERRED} FROM {AUX} FROM NAMED {AUX}"
 PROLOGUE = "".join(f"PREFIX {p}: <{iri}>\n" for p, iri in PREFIXES.items())
-KEY = f"<{INTERNAL}differentKey>"
+KEY_OF = f"<{INTERNAL}differentKeyOf>"
 
 
 def group_test(a: str, b: str) -> str:
     """EXISTS: ``a`` and ``b`` hold two different keys of one AllDifferent group (rules/different-by-group.rq)."""
     group = 'STRBEFORE(STRAFTER(STR({k}), "urn:topostore:key:"), ":")'
-    return (f"EXISTS {{ GRAPH {AUX} {{ {a} {KEY} ?k1_ . {b} {KEY} ?k2_ }} "
+    return (f"EXISTS {{ GRAPH {AUX} {{ ?k1_ {KEY_OF} {a} . ?k2_ {KEY_OF} {b} }} "
             f"FILTER(!sameTerm(?k1_, ?k2_) && {group.format(k='?k1_')} = {group.format(k='?k2_')}) }}")
 
 

@@ -53,6 +53,8 @@ A, I, X = f"<{ASSERTED.value}>", f"<{INFERRED.value}>", f"<{AUX.value}>"
 #: the dataset every rule of a full REASON is evaluated over, plus the scratch graph by name
 USING = f"USING {A} USING {I} USING {X} USING NAMED {X} USING NAMED {A} USING NAMED {I} USING NAMED {SCRATCH}"
 KEY, VALUE_CANDIDATE, DIFFERENT = f"<{INTERNAL}differentKey>", f"<{INTERNAL}valueCandidate>", f"<{INTERNAL}different>"
+#: the helper graph's keys, key first (the scratch forms above keep the member first)
+KEY_OF = f"<{INTERNAL}differentKeyOf>"
 M = maps.MAP_NS
 MEMBERS = f"<{OWL}distinctMembers>|<{OWL}members>"
 LIST = f"({MEMBERS})/<{RDF}rest>*/<{RDF}first>"
@@ -87,9 +89,9 @@ VARIANTS: dict[str, tuple[tuple[str, ...], str]] = {
     "keys_typed": ((), _member_key("STRDT(STR(?x), ?group)")),
     "groups": ((), _member_key("?group")),
     "pairs": ((), _insert(f"?l1 <{M}connectedTo> ?l2", DOOR_PAIRS)),
-    "pairs_keys": ((), _keyed(f"GRAPH {X} {{ ?l1 {KEY} ?k1 . ?l2 {KEY} ?k2 . }}",
+    "pairs_keys": ((), _keyed(f"GRAPH {X} {{ ?k1 {KEY_OF} ?l1 . ?k2 {KEY_OF} ?l2 . }}",
                               f"!sameTerm(?k1, ?k2) && {GROUP_OF.format(k='?k1')} = {GROUP_OF.format(k='?k2')}")),
-    "pairs_keys_sameterm": ((), _keyed(f"GRAPH {X} {{ ?l1 {KEY} ?k1 . ?l2 {KEY} ?k2 . }}", "!sameTerm(?k1, ?k2)")),
+    "pairs_keys_sameterm": ((), _keyed(f"GRAPH {X} {{ ?k1 {KEY_OF} ?l1 . ?k2 {KEY_OF} ?l2 . }}", "!sameTerm(?k1, ?k2)")),
     "pairs_typed": ((_member_key("STRDT(STR(?x), ?group)"),),
                     _keyed(f"GRAPH {SCRATCH} {{ ?l1 {KEY} ?k1 . ?l2 {KEY} ?k2 . }}",
                            "!sameTerm(?k1, ?k2) && sameTerm(DATATYPE(?k1), DATATYPE(?k2))")),
@@ -104,7 +106,7 @@ VARIANTS: dict[str, tuple[tuple[str, ...], str]] = {
                                           f"{DOOR_PAIRS} MINUS {{ GRAPH {I} {{ ?l1 <{M}connectedTo> ?l2 }} }}")),
     "candidates_not_grouped": ((), _insert(
         f"?l1 {VALUE_CANDIDATE} ?l2",
-        f"{DOOR_PAIRS} FILTER NOT EXISTS {{ GRAPH {X} {{ ?l1 {KEY} ?k1 . ?l2 {KEY} ?k2 . }} "
+        f"{DOOR_PAIRS} FILTER NOT EXISTS {{ GRAPH {X} {{ ?k1 {KEY_OF} ?l1 . ?k2 {KEY_OF} ?l2 . }} "
         f"FILTER(!sameTerm(?k1, ?k2) && {GROUP_OF.format(k='?k1')} = {GROUP_OF.format(k='?k2')}) }}")),
 }
 

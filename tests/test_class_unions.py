@@ -25,7 +25,7 @@ from benchmarks import maps, tbox  # noqa: E402
 from benchmarks.cardinality import PREFIXES  # noqa: E402
 
 NS = "http://example.org/card#"
-DIFFERENT_KEY = NamedNode(INTERNAL + "differentKey")
+DIFFERENT_KEY_OF = NamedNode(INTERNAL + "differentKeyOf")
 DOMAIN_AND_RANGE = PREFIXES + """
 :p a owl:ObjectProperty ; rdfs:domain :C . :q a owl:ObjectProperty ; rdfs:range :C .
 :v a owl:DatatypeProperty ; rdfs:domain :C . :C rdfs:subClassOf :D .
@@ -139,7 +139,7 @@ def test_the_list_walk_reads_the_asserted_graph_only_while_no_rule_writes_a_list
     assert "all-different" not in _path_rules(written)
     for onto in (loaded(GROUP), written):
         assert onto.reason(mode="full").consistent
-        keys = {onto.short(t.subject) for t in onto.store.triples(None, DIFFERENT_KEY, None, AUX)}
+        keys = {onto.short(t.object) for t in onto.store.triples(None, DIFFERENT_KEY_OF, None, AUX)}
         assert keys == {"a", "b", "c"}
 
 

@@ -45,7 +45,7 @@ def test_each_form_of_the_conclusion_writes_the_inferred_links(tmp_path: Path) -
 
 def test_the_keys_are_the_rules_keys(tmp_path: Path) -> None:
     onto = _reasoned("200", tmp_path)
-    keys = {(t.subject.value, t.object.value) for t in onto.store.triples(None, NamedNode(INTERNAL + "differentKey"), None, AUX)}
+    keys = {(t.object.value, t.subject.value) for t in onto.store.triples(None, NamedNode(INTERNAL + "differentKeyOf"), None, AUX)}
     assert _written_pairs(onto, "keys") == keys
     assert {s for s, _ in _written_pairs(onto, "keys_typed")} == {s for s, _ in keys}
 

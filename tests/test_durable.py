@@ -31,7 +31,7 @@ from swrl_support import PREFIXES, builtin, data, rule
 from topostore import Ontology, RuleCompileError
 from topostore.armor import ArmorService
 from topostore.rdf import safeio
-from topostore.rdf.vocab import ASSERTED, INFERRED
+from topostore.rdf.vocab import ASSERTED, AUX, DIFFERENT_KEY_OF, INFERRED, LEGACY_DIFFERENT_KEY
 from topostore.stores import open_store
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -220,6 +220,32 @@ def test_reason_interrupted_is_rebuilt_on_reopening(tmp_path: Path) -> None:
     assert again.opened == "rebuilt"
     assert sorted(map(str, again.store.triples(graph=INFERRED))) == expected
     assert again.store.meta["inferred"] == "valid"
+
+
+def test_keys_of_an_earlier_format_are_rebuilt_on_reopening(tmp_path: Path) -> None:
+    """A store whose helper graph holds the AllDifferent keys member first (``m ts:differentKey k``, as
+    earlier versions wrote them) is rebuilt when opened: read as it is, an incremental REASON would find
+    no key of the old members and miss their differences."""
+    onto = Ontology.from_file(TBOX, ROOT / "ontology" / "topological_map_abox.ttl", store=tmp_path / "db")
+    onto.reason()
+    expected = sorted(map(str, onto.store.triples(graph=INFERRED)))
+    keys = list(onto.store.triples(None, DIFFERENT_KEY_OF, None, AUX))
+    assert keys
+    onto.store.remove(keys, AUX)
+    onto.store.add([Triple(t.object, LEGACY_DIFFERENT_KEY, t.subject) for t in keys], AUX)
+    onto.store.close()
+    again = Ontology(store=tmp_path / "db")
+    assert again.opened == "rebuilt"
+    assert sorted(map(str, again.store.triples(graph=INFERRED))) == expected
+    assert sorted(map(str, again.store.triples(None, DIFFERENT_KEY_OF, None, AUX))) == sorted(map(str, keys))
+    assert not list(again.store.triples(None, LEGACY_DIFFERENT_KEY, None, AUX))
+    # the old members' keys serve an incremental REASON: a door shared by R1 and R2 connects them
+    r1, r2, door = (NamedNode(IRI + "#" + name) for name in ("R1", "R2", "D2"))
+    again.add(Triple(r1, NamedNode(IRI + "#hasDoor"), door))
+    again.reason()
+    assert Triple(r1, NamedNode(IRI + "#connectedTo"), r2) in set(again.store.triples(graph=INFERRED))
+    reopened = Ontology(store=tmp_path / "db2")
+    assert reopened.opened == "new"
 
 
 def test_save_interrupted_keeps_the_old_file(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:

@@ -29,7 +29,7 @@ from __future__ import annotations
 
 import re
 
-from ..rdf.vocab import AUX, DIFFERENT_KEY, KEY_PREFIX, XSD
+from ..rdf.vocab import AUX, DIFFERENT_KEY_OF, KEY_PREFIX, XSD
 from . import condition as cond
 from .condition import Condition
 from .notices import INCOMPLETE, Notice
@@ -72,8 +72,8 @@ def group_of(key: str) -> str:
 
 
 def key_atom(individual: str, key: str) -> Atom:
-    """Body atom: ``individual`` holds the AllDifferent key ``key`` (helper graph)."""
-    return Atom(individual, f"<{DIFFERENT_KEY.value}>", key, aux=True)
+    """Body atom: ``individual`` holds the AllDifferent key ``key`` (helper graph; the key is the subject)."""
+    return Atom(key, f"<{DIFFERENT_KEY_OF.value}>", individual, aux=True)
 
 
 def _pattern_text(atoms: list[Atom], conditions: list[Condition]) -> str:

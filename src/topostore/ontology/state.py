@@ -13,7 +13,7 @@ from __future__ import annotations
 import logging
 from typing import TYPE_CHECKING
 
-from ..rdf.vocab import ASSERTED
+from ..rdf.vocab import ASSERTED, AUX, LEGACY_DIFFERENT_KEY
 
 if TYPE_CHECKING:  # pragma: no cover
     from ..stores.base import Store
@@ -48,7 +48,8 @@ def reopen(onto: Ontology) -> str:
 
     Finished inferred graphs are kept as they are (with the consistency they
     had); unfinished ones, or an inconsistent state whose explanations are
-    needed, are rebuilt by a full REASON over the asserted graph.  That REASON
+    needed, or a helper graph holding keys of an earlier format (:func:`_legacy_keys`), are rebuilt by a
+    full REASON over the asserted graph.  That REASON
     runs while the :class:`Ontology` is being built (its constructor calls this),
     so it is said on the ``topostore.store`` log and in the result ("rebuilt").  A reopened state is
     the one a later failed REASON returns to: changes made before it was closed without a REASON since
@@ -58,15 +59,26 @@ def reopen(onto: Ontology) -> str:
     if not store.durable or store.is_empty(ASSERTED):
         return "new"
     meta = store.meta
-    if meta.get("inferred") == "valid" and (meta.get("consistent") is True or meta.get("dirty")):
+    legacy = _legacy_keys(store)
+    if not legacy and meta.get("inferred") == "valid" and (meta.get("consistent") is True or meta.get("dirty")):
         onto.restore_report(bool(meta.get("consistent")), dirty=bool(meta.get("dirty")))
         # the state as reopened is the one a failed REASON returns to (its changes since are recorded)
         onto.ledger.succeeded(incremental_ready=False)
         return "reopened"
-    why = "unfinished" if meta.get("inferred") != "valid" else "inconsistent (its violations are not kept)"
+    if legacy:
+        why = "written with AllDifferent keys of an earlier format"
+    else:
+        why = "unfinished" if meta.get("inferred") != "valid" else "inconsistent (its violations are not kept)"
     logger.warning("the store's inferred graphs are %s: rebuilding them with a full REASON while opening it", why)
     onto.reason(mode="full")
     return "rebuilt"
+
+
+def _legacy_keys(store: Store) -> bool:
+    """Whether the helper graph holds AllDifferent keys written member first (``m ts:differentKey k``):
+    the rules now read them key first, so an incremental REASON over such a store would miss the
+    differences of the old members; a full REASON clears the helper graph and writes them anew."""
+    return next(iter(store.triples(None, LEGACY_DIFFERENT_KEY, None, AUX)), None) is not None
 
 
 __all__ = ["note_changed", "begin_reason", "end_reason", "reopen"]

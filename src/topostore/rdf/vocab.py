@@ -49,10 +49,17 @@ NEW_AUX = NamedNode(INTERNAL + "graph:new-aux")
 SCHEMA_PREFIX = INTERNAL + "graph:schema:"
 
 #: aux predicate indexing owl:AllDifferent axioms in linear size (never n²
-#: pairs): member ``m`` of group ``g`` gets ``m ts:differentKey k`` with
+#: pairs): member ``m`` of group ``g`` gets ``k ts:differentKeyOf m`` with
 #: ``k = urn:topostore:key:<md5(g)>:<md5(m)>``; two individuals holding
-#: different keys with the same group part are declared different.
-DIFFERENT_KEY = NamedNode(INTERNAL + "differentKey")
+#: different keys with the same group part are declared different.  The key is the
+#: subject and the individual the object: a join looks the key up from the individual,
+#: and the store walks a term's quads to do so, which an individual has far fewer of as an
+#: object than as a subject (the connecting rule's join at 100,000 locations 1.56 -> 1.02 s,
+#: docs/benchmarks-history.md).
+DIFFERENT_KEY_OF = NamedNode(INTERNAL + "differentKeyOf")
+#: the same index written the other way (``m ts:differentKey k``) by earlier versions: a durable
+#: store whose helper graph still holds it is rebuilt when it is opened (ontology/state.py)
+LEGACY_DIFFERENT_KEY = NamedNode(INTERNAL + "differentKey")
 #: aux predicates of the difference check.  A rule that needs "a and b are
 #: different" first derives ``a ts:differenceCandidate b`` for the pairs its body
 #: can produce; generic rules then derive ``a ts:different b`` for the candidates
@@ -80,7 +87,7 @@ EXPR_PREFIX = INTERNAL + "expr:"
 #: Blank nodes are skolemised on load to IRIs under this prefix (stores/base.py): the rule
 #: compiler must name class expressions and SWRL atoms inside SPARQL text.
 SKOLEM_PREFIX = INTERNAL + "bnode:"
-#: Prefix of the AllDifferent membership keys (see DIFFERENT_KEY).
+#: Prefix of the AllDifferent membership keys (see DIFFERENT_KEY_OF).
 KEY_PREFIX = INTERNAL + "key:"
 #: Prefix of topostore's SPARQL extension functions; user SPARQL may not call them.
 FUNCTION_PREFIX = INTERNAL + "fn:"

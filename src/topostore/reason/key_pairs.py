@@ -4,7 +4,7 @@ Why
 ---
 A minimum of two values (``hasDoor min 2 DOOR``) compiles, for the difference by
 ``owl:AllDifferent`` groups, to a pairwise rule: two values ``?y1 ?y2`` of the subject, each
-value's group key (``?y ts:differentKey ?k``), two keys of one group and two different values.
+value's group key (``?k ts:differentKeyOf ?y``), two keys of one group and two different values.
 Evaluated as written, the store enumerates every ordered pair of values and looks up two keys
 per pair (at 10,000 locations 50,000 pairs, 0.2 s, the biggest OWL rule of a full REASON).
 The rule stays as it is (explanations show its two values; the robot step maintains it as any
@@ -34,9 +34,9 @@ from ..compile import condition as cond
 from ..compile.counting import group_of
 from ..compile.owl_restrictions import term_before
 from ..compile.rule import Atom, Rule
-from ..rdf.vocab import DIFFERENT_KEY
+from ..rdf.vocab import DIFFERENT_KEY_OF
 
-_KEY = f"<{DIFFERENT_KEY.value}>"
+_KEY = f"<{DIFFERENT_KEY_OF.value}>"
 
 
 @dataclass(frozen=True)
@@ -62,7 +62,7 @@ class GroupedPair:
 def grouped_form(rule: Rule) -> GroupedPair | None:
     """The count form of ``rule`` when it is a pair of values different by group keys, else None.
 
-    The shape: two helper atoms ``?a ts:differentKey ?ka`` and ``?b ts:differentKey ?kb``, the
+    The shape: two helper atoms ``?ka ts:differentKeyOf ?a`` and ``?kb ts:differentKeyOf ?b``, the
     condition "two keys of one group" on them, ``!sameTerm(?a, ?b)`` or the order test; every other
     atom and condition mentions at most one of ``?a``, ``?b``, and those of ``?b`` are those of ``?a``
     renamed; a plain head (a class of variables of the rest), no BIND, no graph pattern in a condition.
@@ -82,7 +82,7 @@ def grouped_form(rule: Rule) -> GroupedPair | None:
 
 def _pair(rule: Rule, ka: Atom, kb: Atom) -> GroupedPair | None:
     """:func:`grouped_form` with ``ka`` the first value's key atom and ``kb`` the second's."""
-    a, b, k1, k2 = ka.s, kb.s, ka.o, kb.o
+    a, b, k1, k2 = ka.o, kb.o, ka.s, kb.s
     if len({a, b, k1, k2}) < 4:
         return None
     pair_tests = {f"!sameTerm({k1}, {k2}) && {group_of(k1)} = {group_of(k2)}"}

@@ -41,7 +41,7 @@ from ...rdf.vocab import (
     DECLARED_DIFFERENT,
     DIFFERENCE_CANDIDATE,
     DIFFERENT,
-    DIFFERENT_KEY,
+    DIFFERENT_KEY_OF,
     ENTAILED,
     ENTAILED_PREFIX,
     INFERRED,
@@ -212,9 +212,9 @@ class Explainer:
     def render(self, t: Triple) -> str:
         p = t.predicate
         s, o = self.render_term(t.subject), self.render_term(t.object)
-        if p == DIFFERENT_KEY:
-            key = self.render_key(t.object)
-            return f"{s} in {key.split(' in ', 1)[1] if key.startswith('key of ') else key}"
+        if p == DIFFERENT_KEY_OF:  # the key is the subject, the member the object
+            key = self.render_key(t.subject)
+            return f"{o} in {key.split(' in ', 1)[1] if key.startswith('key of ') else key}"
         if p in _HELPER_NAMES:
             return f"{s} {_HELPER_NAMES[p]} {o}"
         if isinstance(p, NamedNode) and p.value.startswith(ENTAILED_PREFIX):
