@@ -10,7 +10,7 @@ from pathlib import Path
 
 import pytest
 from http_support import config, in_process
-from pyoxigraph import Literal, NamedNode
+from pyoxigraph import Literal, NamedNode, RdfFormat, parse
 from support import armor_load
 
 from topostore import LoadError, Ontology, OntologyWarning
@@ -368,3 +368,52 @@ def test_a_graph_store_read_spells_tags_as_loaded(accept: str, written: bytes, t
         assert status == 201, reply
         status, _, body = server.request("/references/lang/data?default", None, {"Accept": accept}, "GET")
         assert status == 200 and written in body and b"en-gb" not in body, body[:400]
+
+
+# ---------------------------------------------------------------- respelling never touches a string's text
+TRICKY = f"""@prefix : <{NS}> . @prefix owl: <http://www.w3.org/2002/07/owl#> .
+<http://e.org/lang> a owl:Ontology . :s a owl:DatatypeProperty . :x a owl:NamedIndividual .
+:x :s "colour"@en-GB , "q" , "@en-gb is a tag" , "b\\"@en-gb" , "\\\\" , "@en-gb next" , "@fr-ca"@fr-CA .
+:x :s \"\"\"a long
+string "@en-gb" with "quotes\\" @en-gb\"\"\" , "q2" , "@en-gb" , "x"@en-gb , "<@en-gb>" .
+"""
+
+
+FORMATS = {"turtle": RdfFormat.TURTLE, "ntriples": RdfFormat.N_TRIPLES, "xml": RdfFormat.RDF_XML,
+           "json-ld": RdfFormat.JSON_LD, "nquads": RdfFormat.N_QUADS, "trig": RdfFormat.TRIG}
+
+
+def literals_of(data: bytes, fmt: RdfFormat) -> set[tuple[str, str | None]]:
+    """Each literal a document holds (its text and its lowered tag), the tags checked spelled as first written."""
+    if fmt == RdfFormat.RDF_XML:
+        assert b'xml:lang="en-GB"' in data and b'xml:lang="fr-CA"' in data and b'xml:lang="en-gb"' not in data
+    elif fmt == RdfFormat.JSON_LD:
+        assert b'"@language": "en-GB"' in data and b'"@language": "fr-CA"' in data and b'"en-gb"' not in data
+    else:
+        assert b'"colour"@en-GB' in data and b'"x"@en-GB' in data and b'"@fr-ca"@fr-CA' in data
+    return {(q.object.value, q.object.language) for q in parse(data, fmt) if isinstance(q.object, Literal)}
+
+
+WRITTEN = {(q.object.value, q.object.language) for q in parse(TRICKY.encode(), RdfFormat.TURTLE)
+           if isinstance(q.object, Literal)}
+
+
+@pytest.mark.parametrize("fmt", list(FORMATS))
+def test_respelling_changes_no_strings_text(fmt: str) -> None:
+    assert ("@en-gb is a tag", None) in WRITTEN and ('b"@en-gb', None) in WRITTEN
+    o = quiet(Ontology(), TRICKY)
+    assert literals_of(o.serialize(FORMATS[fmt]), FORMATS[fmt]) == WRITTEN
+
+
+@pytest.mark.parametrize("accept", ["text/turtle", "application/n-triples", "application/rdf+xml",
+                                    "application/ld+json"])
+def test_a_graph_store_read_changes_no_strings_text(accept: str, tmp_path: Path) -> None:
+    fmt = {"text/turtle": RdfFormat.TURTLE, "application/n-triples": RdfFormat.N_TRIPLES,
+           "application/rdf+xml": RdfFormat.RDF_XML, "application/ld+json": RdfFormat.JSON_LD}[accept]
+    with in_process(config(tmp_path / "data", allow_update=True)) as server:
+        status, _, reply = server.request("/references/lang/data?default", TRICKY.encode(),
+                                          {"Content-Type": "text/turtle"}, "PUT")
+        assert status == 201, reply
+        status, _, body = server.request("/references/lang/data?default", None, {"Accept": accept}, "GET")
+        assert status == 200, body[:400]
+    assert WRITTEN <= literals_of(body, fmt)

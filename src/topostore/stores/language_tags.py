@@ -37,8 +37,10 @@ _TEXT_TOKEN = re.compile(
     rb'|"(?:[^"\\\n]|\\.)*"' rb"|'(?:[^'\\\n]|\\.)*')(?:@(" + _TAG + rb"))?"
     rb"|#[^\n]*|<[^>\s]*>|[^\"'#<]+|[\"'#<]", re.S)
 _WHOLE_TAG = re.compile(_TAG.decode())
-#: a whole string literal and its tag as pyoxigraph writes Turtle and N-Triples (escapes kept whole)
-_TEXT_LITERAL = re.compile(rb'"(?:[^"\\\n]|\\.)*"@(' + _TAG + rb")")
+#: pyoxigraph's Turtle, TriG, N-Triples and N-Quads read token by token: an IRI whole, or a string whole and
+#: its tag if it has one (pyoxigraph writes each string on one line between '"', its escapes kept whole); the
+#: search moves on only past whole tokens, so a quote or an '@' inside a string is never taken for a tag
+_TEXT_LITERAL = re.compile(rb'<[^<>"\s]*>|"(?:[^"\\\n]|\\.)*"(?:@(' + _TAG + rb"))?")
 #: an xml:lang attribute inside a tag of pyoxigraph's RDF/XML (text content holds no raw '<')
 _XML_LANG = re.compile(rb'(<[^<>]*\sxml:lang=")(' + _TAG + rb')(")')
 #: the SPARQL Update keywords that open a part whose literals are inserted (INSERT) or not (DELETE, WHERE);
@@ -114,7 +116,7 @@ class LanguageTags:
             return _XML_LANG.sub(lambda m: m.group(1) + self._bytes(m.group(2)) + m.group(3), data)
         if fmt in (RdfFormat.JSON_LD, RdfFormat.STREAMING_JSON_LD):
             return self._json_ld(data)
-        return _TEXT_LITERAL.sub(lambda m: m.group(0)[:m.start(1) - m.start(0)] + self._bytes(m.group(1)), data)
+        return _TEXT_LITERAL.sub(self._respelled_token, data)
 
     def rendered(self, text: str) -> str:
         """An aRMOR rendering of a term (``"lex"@tag``), its tag spelled as first written."""
@@ -137,6 +139,12 @@ class LanguageTags:
             elif isinstance(node, list):
                 todo.extend(v for v in node if isinstance(v, (dict, list)))
         return json.dumps(doc, ensure_ascii=False).encode("utf-8")
+
+    def _respelled_token(self, m: re.Match[bytes]) -> bytes:
+        """A token of :data:`_TEXT_LITERAL`: a tagged string with its tag spelled as first written, else as it was."""
+        if m.group(1) is None:
+            return m.group(0)
+        return m.group(0)[:m.start(1) - m.start(0)] + self._bytes(m.group(1))
 
     def _bytes(self, tag: bytes) -> bytes:
         return self.spelled(tag.decode("ascii")).encode("ascii")
