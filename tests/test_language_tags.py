@@ -10,14 +10,14 @@ from pathlib import Path
 
 import pytest
 from http_support import config, in_process
-from pyoxigraph import Literal, NamedNode, RdfFormat, parse
+from pyoxigraph import Literal, NamedNode, RdfFormat, Triple, parse
 from support import armor_load
 
 from topostore import LoadError, Ontology, OntologyWarning
 from topostore.armor import ArmorService
 from topostore.armor.reference import Reference
-from topostore.errors import InvalidValueError
-from topostore.rdf.vocab import ASSERTED
+from topostore.errors import InvalidValueError, RuleCompileError
+from topostore.rdf.vocab import ASSERTED, SWRL
 from topostore.sparql.execute import Job, run_update
 
 NS = "http://e.org/lang#"
@@ -417,3 +417,56 @@ def test_a_graph_store_read_changes_no_strings_text(accept: str, tmp_path: Path)
         status, _, body = server.request("/references/lang/data?default", None, {"Accept": accept}, "GET")
         assert status == 200, body[:400]
     assert WRITTEN <= literals_of(body, fmt)
+
+
+# ---------------------------------------------------------------- a failed REASON reverts a spelling with its literal
+HEADLESS = Triple(NamedNode(NS + "rule"), NamedNode("http://www.w3.org/1999/02/22-rdf-syntax-ns#type"), NamedNode(SWRL + "Imp"))
+
+
+def failed_reason(o: Ontology) -> None:
+    """A REASON that fails (a rule without a head): every asserted change since the last good one reverted."""
+    o.add(HEADLESS)
+    with pytest.raises(RuleCompileError):
+        o.reason()
+
+
+@pytest.mark.parametrize("durable", [False, True])
+def test_a_failed_reason_drops_the_spelling_of_a_literal_it_reverts(durable: bool, tmp_path: Path) -> None:
+    o = mapped() if not durable else quiet(Ontology(store=tmp_path / "db"), mapped().serialize("turtle").decode())
+    o.reason()
+    o.add_data("s", "x", o.value("colour", language="en-GB"))
+    assert o.store.forms.tags.known("en-gb")
+    failed_reason(o)
+    assert not o.store.forms.tags.known("en-gb") and b"colour" not in o.serialize("ntriples")
+    o.add_data("s", "x", Literal("grey", language="en-gb"))  # written lowered: no reverted spelling for it
+    assert b'"grey"@en-gb' in o.serialize("ntriples")
+    if durable:
+        o.store.close()
+        assert b'"grey"@en-gb' in Ontology(store=tmp_path / "db").serialize("ntriples")
+    else:  # the value given again, asserted by a change that stays: its spelling now
+        o.add_data("s", "x", o.value("colour", language="en-GB"))
+        assert b'"colour"@en-GB' in o.serialize("ntriples")
+
+
+def test_a_failed_reason_inside_a_unit_drops_the_spellings_it_held() -> None:
+    o = mapped()
+    o.reason()
+    with o.ledger.undoable(o):
+        o.add_data("s", "x", o.value("before", language="en-GB"))  # a step before the inner unit's start
+        with pytest.raises(RuleCompileError), o.ledger.undoable(o):
+            o.add_data("s", "x", o.value("inner", language="fr-CA"))
+            o.add(HEADLESS)
+            o.reason()
+    assert not o.store.forms.tags and b"before" not in o.serialize("ntriples")
+
+
+def test_a_failed_reason_keeps_the_spelling_of_a_literal_asserted_before_the_last_good_one() -> None:
+    o = mapped()
+    o.reason()
+    with o.ledger.undoable(o):
+        o.add_data("s", "x", o.value("kept", language="en-GB"))
+        o.reason()
+        o.add_data("s", "x", o.value("gone", language="fr-CA"))
+        failed_reason(o)
+    saved = o.serialize("ntriples")
+    assert b'"kept"@en-GB' in saved and b"gone" not in saved and not o.store.forms.tags.known("fr-ca")

@@ -21,7 +21,7 @@ from pyoxigraph import Literal, NamedNode, Triple
 
 from ..errors import InvalidValueError
 from ..rdf.terms import check_literal, literal_of
-from ..rdf.vocab import TYPE, XSD
+from ..rdf.vocab import ASSERTED, TYPE, XSD
 
 if TYPE_CHECKING:
     from .facade import Ontology
@@ -37,6 +37,9 @@ class OntologyValues:
         #: spellings of literals asserted inside an open unit of work: (the index of the step that asserted
         #: them, literal, spelling)
         self._held: list[tuple[int, tuple[str, str], str]] = []
+        #: spellings the store took from literals asserted since the last successful REASON (a failed one
+        #: reverts those literals: :meth:`reverted`)
+        self._adopted: list[tuple[tuple[str, str], str]] = []
 
     def value(self, value: object, datatype: str | None = None, language: str | None = None) -> Literal:
         """A validated literal from a Python value (int → xsd:integer, ...), text + datatype or text + tag."""
@@ -127,7 +130,7 @@ class OntologyValues:
             return
         step = self.onto.ledger.unit_step
         if step is None:
-            self.onto.store.forms.adopt_tags([spelling for _, spelling in given])
+            self._adopt(given)
         else:
             self._held += [(step - 1, key, spelling) for key, spelling in given]
 
@@ -143,7 +146,35 @@ class OntologyValues:
         """The outermost unit of work ended and its changes stay: the spellings held for it are the store's."""
         if self._held:
             held, self._held = self._held, []
-            self.onto.store.forms.adopt_tags([spelling for _, _, spelling in held])
+            self._adopt([(key, spelling) for _, key, spelling in held])
+
+    def _adopt(self, given: list[tuple[tuple[str, str], str]]) -> None:
+        """The spellings of asserted literals are the store's; the new ones noted while a failed REASON
+        would revert their literals."""
+        new = set(self.onto.store.forms.adopt_tags([spelling for _, spelling in given]))
+        if new and self.onto.ledger.recording:
+            self._adopted += [(key, spelling) for key, spelling in given if spelling in new]
+
+    def reasoned(self) -> None:
+        """A REASON succeeded: the literals asserted before it are no longer reverted by a failed one."""
+        self._adopted.clear()
+
+    def reverted(self) -> None:
+        """A failed REASON reverted every asserted change since the last good one (and ended the open units'
+        steps): a spelling stays the store's only while its literal is asserted; the others wait again, as
+        after an undone unit of work."""
+        held = [(key, spelling) for _, key, spelling in self._held]
+        adopted, self._adopted, self._held = self._adopted, [], []
+        gone = [(key, spelling) for key, spelling in adopted + held if not self._is_asserted(key)]
+        self.onto.store.forms.forget_tags([spelling for key, spelling in gone if (key, spelling) in adopted])
+        for key, spelling in gone:
+            self._pending.setdefault(key, spelling)
+        self._adopt([h for h in held if h not in gone])  # asserted before the reverted changes: they stay
+
+    def _is_asserted(self, key: tuple[str, str]) -> bool:
+        """Whether the literal ``key`` (lexical form, lowered tag) is the object of an asserted triple."""
+        literal = Literal(key[0], language=key[1])
+        return next(iter(self.onto.store.triples(None, None, literal, ASSERTED)), None) is not None
 
 
 __all__ = ["OntologyValues"]

@@ -100,6 +100,16 @@ class LanguageTags:
                 new.append(tag)
         return new
 
+    def forget(self, tags: Iterable[str]) -> list[str]:
+        """Drop ``tags`` as spellings (each only where it is its lowered tag's spelling): the literal it came
+        with was reverted.  The ones dropped, for the caller to unpersist (see :meth:`quads`)."""
+        dropped = [tag for tag in dict.fromkeys(tags) if self._spelled.get(tag.lower()) == tag]
+        for tag in dropped:
+            del self._spelled[tag.lower()]
+        if dropped:
+            self._capitals = any(tag != lowered for lowered, tag in self._spelled.items())
+        return dropped
+
     def known(self, tag: str) -> bool:
         """Whether ``tag`` (any case) has a spelling already: a later one does not respell it."""
         return tag.lower() in self._spelled
