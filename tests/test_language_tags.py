@@ -470,3 +470,22 @@ def test_a_failed_reason_keeps_the_spelling_of_a_literal_asserted_before_the_las
         failed_reason(o)
     saved = o.serialize("ntriples")
     assert b'"kept"@en-GB' in saved and b"gone" not in saved and not o.store.forms.tags.known("fr-ca")
+
+
+# ---------------------------------------------------------------- a document's spelling only from a literal it added
+ADDED_ONLY = {
+    RdfFormat.TURTLE: f'<{NS}x> <{NS}s> "old"@EN-gb , "new"@en-GB .',
+    RdfFormat.RDF_XML: f"""<?xml version="1.0"?><rdf:RDF xmlns:rdf="http://www.w3.org/1999/02/22-rdf-syntax-ns#"
+ xmlns:l="{NS}"><rdf:Description rdf:about="{NS}x" xml:lang="EN-gb"><l:s>old</l:s>
+ <l:s rdf:resource="{NS}y"/><l:s xml:lang="en-GB">new</l:s></rdf:Description></rdf:RDF>""",
+    RdfFormat.JSON_LD: json.dumps([{"@context": {"@language": "EN-gb"}, "@id": NS + "x", NS + "s": "old"},
+                                   {"@id": NS + "x", NS + "s": [{"@value": "new", "@language": "en-GB"}]}]),
+}
+
+
+@pytest.mark.parametrize("fmt", list(ADDED_ONLY), ids=lambda f: f.name)
+def test_a_document_spells_a_tag_only_from_a_literal_the_change_added(fmt: RdfFormat) -> None:
+    from topostore.stores.language_tags import LanguageTags
+    tags = LanguageTags()
+    assert tags.learn(ADDED_ONLY[fmt].encode(), fmt, only={("new", "en-gb")}) == ["en-GB"]
+    assert LanguageTags().learn(ADDED_ONLY[fmt].encode(), fmt, only={("old", "en-gb")}) == ["EN-gb"]

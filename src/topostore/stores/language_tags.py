@@ -11,8 +11,11 @@ value whatever its case, so ``en-GB`` written first makes every ``en-gb`` litera
 
 from __future__ import annotations
 
+import io
 import json
 import re
+import xml.sax
+import xml.sax.handler
 from collections.abc import Collection, Iterable
 
 from pyoxigraph import Literal, NamedNode, Quad, RdfFormat, Triple
@@ -80,14 +83,13 @@ class LanguageTags:
             data = data.encode("utf-8", errors="surrogatepass")
         if only is not None and not only:
             return []
-        if fmt in (RdfFormat.JSON_LD, RdfFormat.STREAMING_JSON_LD):
-            tags = _json_ld_tags(data)
-        elif only is None or fmt == RdfFormat.RDF_XML:
-            tags = _written_tags(data, fmt == RdfFormat.RDF_XML)
-        else:
-            return self.adopt(_added_spellings(data, only, update=fmt is None))
-        wanted = None if only is None else {tag for _, tag in only}
-        return self.adopt(tags if wanted is None else [t for t in tags if t.lower() in wanted])
+        json_ld = fmt in (RdfFormat.JSON_LD, RdfFormat.STREAMING_JSON_LD)
+        if only is None:
+            return self.adopt(_json_ld_tags(data) if json_ld else _written_tags(data, fmt == RdfFormat.RDF_XML))
+        if json_ld or fmt == RdfFormat.RDF_XML:
+            written = _json_ld_literals(data) if json_ld else _xml_literals(data)
+            return self.adopt([tag for lexical, tag in written if (lexical, tag.lower()) in only])
+        return self.adopt(_added_spellings(data, only, update=fmt is None))
 
     def adopt(self, tags: Iterable[str]) -> list[str]:
         """Take ``tags`` as written (the first spelling of each lowered tag wins); the new ones."""
@@ -250,6 +252,123 @@ def _json_ld_tags(data: bytes) -> list[str]:
         elif isinstance(node, list):
             todo.extend(reversed([v for v in node if isinstance(v, (dict, list))]))
     return found
+
+
+def _json_ld_literals(data: bytes) -> list[tuple[str, str]]:
+    """A JSON-LD document's tagged literals (lexical form, tag as written) in the order written: value
+    objects with ``@language``, and plain strings under a term whose context (the node's or an enclosing
+    one's) gives a default ``@language`` or the term's own; nothing from a document that is no JSON."""
+    try:
+        doc = json.loads(data)
+    except (ValueError, RecursionError):
+        return []
+    found: list[tuple[str, str]] = []
+    todo: list[tuple[object, _Scope]] = [(doc, _Scope(None, {}))]
+    while todo:
+        node, scope = todo.pop()
+        if isinstance(node, list):
+            todo.extend(reversed([(v, scope) for v in node]))
+            continue
+        if not isinstance(node, dict):
+            continue
+        scope = scope.within(node.get("@context"))
+        if isinstance(value := node.get("@value"), str):
+            if isinstance(lang := node.get("@language"), str) and _WHOLE_TAG.fullmatch(lang):
+                found.append((value, lang))
+            continue
+        later = []
+        for key, v in node.items():
+            if key.startswith("@") and key not in ("@graph", "@included", "@reverse", "@list", "@set"):
+                continue
+            for item in v if isinstance(v, list) else (v,):
+                lang = scope.language(key)
+                if isinstance(item, str) and not key.startswith("@") and lang is not None:
+                    later.append((item, lang))
+                elif isinstance(item, (dict, list)):
+                    later.append(((item, scope), None))
+        for item, lang in later:  # kept in the order written: a string now, a nested node once read
+            if lang is None:
+                todo.append(item)  # type: ignore[arg-type]
+            else:
+                found.append((item, lang))  # type: ignore[arg-type]
+    return found
+
+
+class _Scope:
+    """The language a JSON-LD context in force gives a plain string: its default, or a term's own."""
+
+    def __init__(self, default: str | None, terms: dict[str, str | None]) -> None:
+        self.default, self.terms = default, terms
+
+    def within(self, context: object) -> _Scope:
+        """The scope inside a node with ``context`` (a context object or a list of them; IRIs not read)."""
+        default, terms = self.default, self.terms
+        for c in context if isinstance(context, list) else (context,):
+            if isinstance(c, dict):
+                if "@language" in c:
+                    lang = c["@language"]
+                    default = lang if isinstance(lang, str) and _WHOLE_TAG.fullmatch(lang) else None
+                for term, definition in c.items():
+                    if isinstance(definition, dict) and ("@language" in definition or "@type" in definition):
+                        lang = definition.get("@language")
+                        terms = {**terms, term: lang if isinstance(lang, str) and _WHOLE_TAG.fullmatch(lang)
+                                 else None}
+        return self if (default, terms) == (self.default, self.terms) else _Scope(default, terms)
+
+    def language(self, term: str) -> str | None:
+        return self.terms[term] if term in self.terms else self.default
+
+
+def _xml_literals(data: bytes) -> list[tuple[str, str]]:
+    """An RDF/XML document's tagged literals (lexical form, tag as written) in the order written: the text
+    of a property element with no child element, or a property attribute, where an ``xml:lang`` is in force
+    (its own or an ancestor's); nothing from a document that is no XML (the parser refused it first)."""
+    handler = _XmlLiterals()
+    parser = xml.sax.make_parser()
+    parser.setFeature(xml.sax.handler.feature_namespaces, True)
+    parser.setFeature(xml.sax.handler.feature_external_ges, False)
+    parser.setFeature(xml.sax.handler.feature_external_pes, False)
+    parser.setContentHandler(handler)
+    try:
+        parser.parse(io.BytesIO(data))
+    except (xml.sax.SAXException, ValueError):
+        return []
+    return handler.found
+
+
+_XML_NS = "http://www.w3.org/XML/1998/namespace"
+_RDF_NS = "http://www.w3.org/1999/02/22-rdf-syntax-ns#"
+
+
+class _XmlLiterals(xml.sax.handler.ContentHandler):
+    """Collects :func:`_xml_literals`: a stack of (language in force, text so far, whether the element's text
+    is no literal: it has a child element or an ``rdf:`` attribute)."""
+
+    def __init__(self) -> None:
+        super().__init__()
+        self.found: list[tuple[str, str]] = []
+        self._open: list[tuple[str | None, list[str], list[bool]]] = []
+
+    def startElementNS(self, name, qname, attrs) -> None:  # noqa: ANN001, N802 - the SAX interface
+        lang = attrs.get((_XML_NS, "lang"), self._open[-1][0] if self._open else None)
+        if self._open:
+            self._open[-1][2][0] = True
+        if lang:
+            for (uri, _local), value in attrs.items():
+                if uri not in (_XML_NS, _RDF_NS, None):
+                    self.found.append((value, lang))
+        # an element with rdf:resource, rdf:datatype, ... holds no tagged text (its children may)
+        literal = not any(uri == _RDF_NS and local != "ID" for uri, local in attrs.keys())
+        self._open.append((lang or None, [], [not literal]))
+
+    def characters(self, content: str) -> None:
+        if self._open:
+            self._open[-1][1].append(content)
+
+    def endElementNS(self, name, qname) -> None:  # noqa: ANN001, N802
+        lang, text, no_text = self._open.pop()
+        if lang and not no_text[0] and name[0] != _RDF_NS:
+            self.found.append(("".join(text), lang))
 
 
 def _written_tags(data: bytes, xml: bool) -> list[str]:
