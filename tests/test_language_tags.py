@@ -280,6 +280,10 @@ def test_a_refused_sparql_update_learns_no_spelling() -> None:
      b'"new"@en-GB'),
     # STRLANG's tag argument, its literal's form being nowhere written
     (f'PREFIX : <{NS}> INSERT {{ :x :s ?l }} WHERE {{ BIND(STRLANG("colour", "en-GB") AS ?l) }}', b'"colour"@en-GB'),
+    # a STRLANG call whose first argument nests calls, or holds a comma or a parenthesis in a string
+    (f'PREFIX : <{NS}> INSERT {{ :x :s ?l }} WHERE {{ BIND(STRLANG(CONCAT(STR("a"), "b"), "en-GB") AS ?l) }}',
+     b'"ab"@en-GB'),
+    (f'PREFIX : <{NS}> INSERT {{ :x :s ?l }} WHERE {{ BIND(STRLANG("a,b)", \'en-GB\') AS ?l) }}', b'"a,b)"@en-GB'),
     # an escaped lexical form is compared as read
     (f'PREFIX : <{NS}> INSERT DATA {{ :x :s "tab\\there"@EN-gb . :y :s "tab\\u0009here"@en-GB }}',
      b'"tab\\there"@EN-gb'),

@@ -49,8 +49,15 @@ _XML_LANG = re.compile(rb'(<[^<>]*\sxml:lang=")(' + _TAG + rb')(")')
 #: the SPARQL Update keywords that open a part whose literals are inserted (INSERT) or not (DELETE, WHERE);
 #: a prefixed name or a variable that merely ends so is no keyword
 _UPDATE_PART = re.compile(rb"(?<![\w:?$])(INSERT|DELETE|WHERE)(?![\w:-])", re.I)
-#: a STRLANG call whose tag argument is a plain string (the literal it makes has no written ``@tag``)
-_STRLANG = re.compile(rb"(?<![\w:?$])STRLANG\s*\((?:[^,()]|\([^()]*\))*,\s*(\"|')(" + _TAG + rb")\1\s*\)", re.I)
+#: the opening of a STRLANG call (the literal it makes has no written ``@tag``: its tag is the last argument)
+_STRLANG = re.compile(rb"(?<![\w:?$])STRLANG\s*\(", re.I)
+#: a SPARQL expression read token by token: a string whole, an IRI, a parenthesis, a comma, or a run of
+#: anything else (a comma or a parenthesis inside a string is never taken for the call's own)
+_ARGUMENT_TOKEN = re.compile(
+    rb'"""(?:[^"\\]|\\.|"(?!""))*"""' rb"|'''(?:[^'\\]|\\.|'(?!''))*'''"
+    rb'|"(?:[^"\\\n]|\\.)*"' rb"|'(?:[^'\\\n]|\\.)*'" rb'|<[^<>"\s]*>|[(),]|[^"' rb"'(),<]+|[<\"']", re.S)
+#: a plain string argument holding a tag
+_TAG_ARGUMENT = re.compile(rb"(\"|')(" + _TAG + rb")\1")
 #: a string's escapes (Turtle and SPARQL): a character escape or a code point
 _ESCAPE = re.compile(r"\\(?:([tbnrf\"'\\])|u([0-9A-Fa-f]{4})|U([0-9A-Fa-f]{8}))")
 _ESCAPED = {"t": "\t", "b": "\b", "n": "\n", "r": "\r", "f": "\f", '"': '"', "'": "'", "\\": "\\"}
@@ -204,10 +211,32 @@ def _added_spellings(data: bytes, added: Collection[Added], update: bool) -> lis
             if settled == len(tags):
                 break
     if update and settled < len(tags):
-        for m in _STRLANG.finditer(data):
-            if (tag := m.group(2).decode("ascii")).lower() in tags:
+        for tag in _strlang_tags(data):
+            if tag.lower() in tags:
                 _prefer(best, tag, 2)
     return [spelling for _, spelling in best.values()]
+
+
+def _strlang_tags(data: bytes) -> list[str]:
+    """The tags STRLANG calls give as a plain string, their last argument: each call read token by token
+    (:data:`_ARGUMENT_TOKEN`), so that a nested call or a comma inside a string does not end an argument."""
+    found = []
+    for m in _STRLANG.finditer(data):
+        depth, last = 0, m.end()
+        for token in _ARGUMENT_TOKEN.finditer(data, m.end()):
+            text = token.group(0)
+            if text == b"(":
+                depth += 1
+            elif text == b"," and depth == 0:
+                last = token.end()
+            elif text == b")":
+                if depth == 0:
+                    argument = _TAG_ARGUMENT.fullmatch(data[last:token.start()].strip())
+                    if argument is not None and last > m.end():
+                        found.append(argument.group(2).decode("ascii"))
+                    break
+                depth -= 1
+    return found
 
 
 def _prefer(best: dict[str, tuple[int, str]], tag: str, rank: int) -> None:
