@@ -493,3 +493,16 @@ def test_a_document_spells_a_tag_only_from_a_literal_the_change_added(fmt: RdfFo
     tags = LanguageTags()
     assert tags.learn(ADDED_ONLY[fmt].encode(), fmt, only={("new", "en-gb")}) == ["en-GB"]
     assert LanguageTags().learn(ADDED_ONLY[fmt].encode(), fmt, only={("old", "en-gb")}) == ["EN-gb"]
+
+
+def test_the_spellings_waiting_for_their_literal_are_bounded() -> None:
+    from topostore.ontology.values import PENDING
+    o = mapped()
+    first = o.value("first", language="EN-gb")
+    for i in range(PENDING + 50):
+        o.value(f"reading {i}", language="en-GB")  # made to query or remove, never asserted
+    assert len(o.values._pending) == PENDING
+    o.add_data("s", "x", first)  # the oldest was dropped: its spelling no longer waits
+    o.add_data("s", "x", o.value(f"reading {PENDING + 49}", language="en-GB"))  # a recent one still does
+    saved = o.serialize("ntriples")
+    assert b'"first"@en-GB' in saved and b"EN-gb" not in saved

@@ -7,7 +7,9 @@ pyoxigraph lowers a language tag as a literal is made
 (``Literal("colour", language="en-GB").language == "en-gb"``), so a tag's spelling can reach topostore
 only beside the literal: ``onto.value("colour", language="en-GB")`` keeps it until a change asserts that
 literal (same lexical form and tag: :meth:`OntologyValues.asserted`), and the store then spells its tag so
-(the first spelling wins, as for documents: :mod:`topostore.stores.language_tags`).  Inside a unit of work
+(the first spelling wins, as for documents: :mod:`topostore.stores.language_tags`).  The spellings of
+the last :data:`PENDING` literals made wait (a value made to query or remove, never asserted, would
+otherwise be held for ever); an older one asserted later is shown with its tag lowered.  Inside a unit of work
 (:meth:`.ledger.ChangeLedger.undoable`) the spelling is the store's only once the unit succeeds: an
 assertion it undoes gives none.
 """
@@ -25,6 +27,10 @@ from ..rdf.vocab import ASSERTED, TYPE, XSD
 
 if TYPE_CHECKING:
     from .facade import Ontology
+
+
+#: how many literals made with a tag's spelling wait to be asserted, at most (the oldest is dropped first)
+PENDING = 4096
 
 
 class OntologyValues:
@@ -75,8 +81,16 @@ class OntologyValues:
         except ValueError as exc:
             raise InvalidValueError(f"{language!r} is not a valid language tag: {exc}") from None
         if not self.onto.store.forms.tags.known(made.language):
-            self._pending.setdefault((made.value, made.language), language)
+            self._wait((made.value, made.language), language)
         return made
+
+    def _wait(self, key: tuple[str, str], spelling: str) -> None:
+        """Keep ``spelling`` until the literal ``key`` is asserted (the first one given for it wins; past
+        :data:`PENDING` literals waiting, the oldest is dropped)."""
+        if key not in self._pending:
+            self._pending[key] = spelling
+            if len(self._pending) > PENDING:
+                del self._pending[next(iter(self._pending))]
 
     def fact(self, subject: str, prop: str, obj: object) -> Triple:
         """A triple from names: ``obj`` is an individual name, a Literal or a Python value."""
@@ -139,7 +153,7 @@ class OntologyValues:
         wait again (for that literal to be asserted by a change that stays)."""
         for step, key, spelling in self._held:
             if step >= start:
-                self._pending.setdefault(key, spelling)
+                self._wait(key, spelling)
         self._held = [h for h in self._held if h[0] < start]
 
     def settled(self) -> None:
@@ -168,7 +182,7 @@ class OntologyValues:
         gone = [(key, spelling) for key, spelling in adopted + held if not self._is_asserted(key)]
         self.onto.store.forms.forget_tags([spelling for key, spelling in gone if (key, spelling) in adopted])
         for key, spelling in gone:
-            self._pending.setdefault(key, spelling)
+            self._wait(key, spelling)
         self._adopt([h for h in held if h not in gone])  # asserted before the reverted changes: they stay
 
     def _is_asserted(self, key: tuple[str, str]) -> bool:
@@ -177,4 +191,4 @@ class OntologyValues:
         return next(iter(self.onto.store.triples(None, None, literal, ASSERTED)), None) is not None
 
 
-__all__ = ["OntologyValues"]
+__all__ = ["PENDING", "OntologyValues"]
