@@ -16,6 +16,8 @@ import xml.sax
 import xml.sax.handler
 from collections.abc import Collection
 
+from ..rdf.vocab import RDF, XML
+
 _TAG = rb"[A-Za-z]+(?:-[A-Za-z0-9]+)*"
 #: a tag after a Turtle / N-Triples string's closing quote (the quote is checked apart: a pattern that begins
 #: with '@' is searched for five times faster), or as an RDF/XML xml:lang value
@@ -230,8 +232,6 @@ def xml_literals(data: bytes) -> list[tuple[str, str]]:
     return handler.found
 
 
-_XML_NS = "http://www.w3.org/XML/1998/namespace"
-_RDF_NS = "http://www.w3.org/1999/02/22-rdf-syntax-ns#"
 
 
 class _XmlLiterals(xml.sax.handler.ContentHandler):
@@ -244,15 +244,15 @@ class _XmlLiterals(xml.sax.handler.ContentHandler):
         self._open: list[tuple[str | None, list[str], list[bool]]] = []
 
     def startElementNS(self, name, qname, attrs) -> None:  # noqa: ANN001, N802 - the SAX interface
-        lang = attrs.get((_XML_NS, "lang"), self._open[-1][0] if self._open else None)
+        lang = attrs.get((XML, "lang"), self._open[-1][0] if self._open else None)
         if self._open:
             self._open[-1][2][0] = True
         if lang:
             for (uri, _local), value in attrs.items():
-                if uri not in (_XML_NS, _RDF_NS, None):
+                if uri not in (XML, RDF, None):
                     self.found.append((value, lang))
         # an element with rdf:resource, rdf:datatype, ... holds no tagged text (its children may)
-        literal = not any(uri == _RDF_NS and local != "ID" for uri, local in attrs.keys())
+        literal = not any(uri == RDF and local != "ID" for uri, local in attrs.keys())
         self._open.append((lang or None, [], [not literal]))
 
     def characters(self, content: str) -> None:
@@ -261,7 +261,7 @@ class _XmlLiterals(xml.sax.handler.ContentHandler):
 
     def endElementNS(self, name, qname) -> None:  # noqa: ANN001, N802
         lang, text, no_text = self._open.pop()
-        if lang and not no_text[0] and name[0] != _RDF_NS:
+        if lang and not no_text[0] and name[0] != RDF:
             self.found.append(("".join(text), lang))
 
 
