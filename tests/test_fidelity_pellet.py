@@ -219,6 +219,23 @@ def test_differences_by_decision_are_named(name: str) -> None:
     assert any(n.axiom_kind == kind and "Pellet" in n.reason for n in report.incomplete), report.incomplete
 
 
+DECLARED = """:p a owl:ObjectProperty . :s a owl:ObjectProperty . :F a owl:Class . :G a owl:Class .
+:A a owl:Class . :D a owl:Class .
+"""
+
+
+def SOME(p: str, f: str) -> str:  # noqa: N802 - read as the restriction it writes
+    return f"[ a owl:Restriction ; owl:onProperty {p} ; owl:someValuesFrom {f} ]"
+
+
+def ONLY(p: str, f: str) -> str:  # noqa: N802
+    return f"[ a owl:Restriction ; owl:onProperty {p} ; owl:allValuesFrom {f} ]"
+
+
+def VALUE(p: str, i: str) -> str:  # noqa: N802
+    return f"[ a owl:Restriction ; owl:onProperty {p} ; owl:hasValue {i} ]"
+
+
 #: name -> (Turtle, individual, class): Pellet puts the individual in the class, topostore does not and names
 #: why (an existential's unnamed value linked back to a named individual by its class's hasValue)
 NOTICED_MISSES: dict[str, tuple[str, str, str]] = {
@@ -229,6 +246,38 @@ NOTICED_MISSES: dict[str, tuple[str, str, str]] = {
 [ a owl:Restriction ; owl:onProperty [ owl:inverseOf :p3 ] ; owl:someValuesFrom :A1 ] rdfs:subClassOf :A1 .
 :i1 a owl:NamedIndividual, :A1 . :i0 a owl:NamedIndividual .
 """, "i0", "A1"),
+    # what the unnamed value's own classes (its filler, a range, a universal on the subject's class) say
+    # of the individual linked to it, or of a named individual they link it to
+    "a_filler_whose_universal_on_the_inverse_flows_back": (DECLARED + f""":F rdfs:subClassOf {ONLY('[ owl:inverseOf :p ]', ':D')} .
+:A rdfs:subClassOf {SOME(':p', ':F')} . :a a owl:NamedIndividual, :A .
+""", "a", "D"),
+    "a_range_whose_universal_on_the_inverse_flows_back": (DECLARED + f""":p rdfs:range :F .
+:F rdfs:subClassOf {ONLY('[ owl:inverseOf :p ]', ':D')} .
+:A rdfs:subClassOf {SOME(':p', 'owl:Thing')} . :a a owl:NamedIndividual, :A .
+""", "a", "D"),
+    "a_universals_class_whose_universal_on_the_inverse_flows_back": (DECLARED + f"""
+:F rdfs:subClassOf {ONLY('[ owl:inverseOf :p ]', ':D')} .
+:A rdfs:subClassOf {SOME(':p', 'owl:Thing')} , {ONLY(':p', ':F')} . :a a owl:NamedIndividual, :A .
+""", "a", "D"),
+    "a_universals_class_linked_to_a_named_individual": (DECLARED + f""":s rdfs:range :D .
+:F rdfs:subClassOf {VALUE(':s', ':i')} . :A rdfs:subClassOf {SOME(':p', 'owl:Thing')} , {ONLY(':p', ':F')} .
+:a a owl:NamedIndividual, :A . :i a owl:NamedIndividual .
+""", "i", "D"),
+    "a_chain_ending_at_a_value_whose_filler_flows_back": (DECLARED + f"""
+:t a owl:ObjectProperty ; owl:propertyChainAxiom ( :s :p ) .
+:A rdfs:subClassOf {SOME(':p', ':F')} . :F rdfs:subClassOf {ONLY('[ owl:inverseOf :t ]', ':D')} .
+:b a owl:NamedIndividual ; :s :a . :a a owl:NamedIndividual, :A .
+""", "b", "D"),
+    "a_chain_going_on_to_a_value_whose_filler_flows_back": (DECLARED + f"""
+:t a owl:ObjectProperty ; owl:propertyChainAxiom ( :p :s ) .
+:A rdfs:subClassOf {SOME(':p', ':F')} . :F rdfs:subClassOf {SOME(':s', ':G')} .
+:G rdfs:subClassOf {ONLY('[ owl:inverseOf :t ]', ':D')} . :a a owl:NamedIndividual, :A .
+""", "a", "D"),
+    "a_chain_going_on_to_a_value_whose_range_flows_back": (DECLARED + f""":s rdfs:range :G .
+:t a owl:ObjectProperty ; owl:propertyChainAxiom ( :p :s ) .
+:A rdfs:subClassOf {SOME(':p', ':F')} . :F rdfs:subClassOf {SOME(':s', 'owl:Thing')} .
+:G rdfs:subClassOf {ONLY('[ owl:inverseOf :t ]', ':D')} . :a a owl:NamedIndividual, :A .
+""", "a", "D"),
 }
 
 
@@ -332,6 +381,12 @@ CHAINS_THROUGH_UNNAMED_VALUES = {
 :F rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :s ; owl:someValuesFrom :G ] .
 :a a owl:NamedIndividual, :A .
 """, False),
+    # the unnamed value's class comes from a universal on the subject's class: a t i
+    "chain_through_a_value_classed_by_a_universal": (DECLARED + f"""
+:t a owl:ObjectProperty ; owl:propertyChainAxiom ( :p :s ) .
+:A rdfs:subClassOf {SOME(':p', 'owl:Thing')} , {ONLY(':p', ':F')} . :F rdfs:subClassOf {VALUE(':s', ':i')} .
+:a a owl:NamedIndividual, :A . :i a owl:NamedIndividual .
+""", True),
 }
 
 

@@ -10,14 +10,14 @@ from pathlib import Path
 
 import pytest
 from http_support import config, in_process
-from pyoxigraph import Literal, NamedNode
+from pyoxigraph import Literal, NamedNode, RdfFormat, Triple, parse
 from support import armor_load
 
 from topostore import LoadError, Ontology, OntologyWarning
 from topostore.armor import ArmorService
 from topostore.armor.reference import Reference
-from topostore.errors import InvalidValueError
-from topostore.rdf.vocab import ASSERTED
+from topostore.errors import InvalidValueError, RuleCompileError
+from topostore.rdf.vocab import ASSERTED, SWRL
 from topostore.sparql.execute import Job, run_update
 
 NS = "http://e.org/lang#"
@@ -280,6 +280,10 @@ def test_a_refused_sparql_update_learns_no_spelling() -> None:
      b'"new"@en-GB'),
     # STRLANG's tag argument, its literal's form being nowhere written
     (f'PREFIX : <{NS}> INSERT {{ :x :s ?l }} WHERE {{ BIND(STRLANG("colour", "en-GB") AS ?l) }}', b'"colour"@en-GB'),
+    # a STRLANG call whose first argument nests calls, or holds a comma or a parenthesis in a string
+    (f'PREFIX : <{NS}> INSERT {{ :x :s ?l }} WHERE {{ BIND(STRLANG(CONCAT(STR("a"), "b"), "en-GB") AS ?l) }}',
+     b'"ab"@en-GB'),
+    (f'PREFIX : <{NS}> INSERT {{ :x :s ?l }} WHERE {{ BIND(STRLANG("a,b)", \'en-GB\') AS ?l) }}', b'"a,b)"@en-GB'),
     # an escaped lexical form is compared as read
     (f'PREFIX : <{NS}> INSERT DATA {{ :x :s "tab\\there"@EN-gb . :y :s "tab\\u0009here"@en-GB }}',
      b'"tab\\there"@EN-gb'),
@@ -368,3 +372,137 @@ def test_a_graph_store_read_spells_tags_as_loaded(accept: str, written: bytes, t
         assert status == 201, reply
         status, _, body = server.request("/references/lang/data?default", None, {"Accept": accept}, "GET")
         assert status == 200 and written in body and b"en-gb" not in body, body[:400]
+
+
+# ---------------------------------------------------------------- respelling never touches a string's text
+TRICKY = f"""@prefix : <{NS}> . @prefix owl: <http://www.w3.org/2002/07/owl#> .
+<http://e.org/lang> a owl:Ontology . :s a owl:DatatypeProperty . :x a owl:NamedIndividual .
+:x :s "colour"@en-GB , "q" , "@en-gb is a tag" , "b\\"@en-gb" , "\\\\" , "@en-gb next" , "@fr-ca"@fr-CA .
+:x :s \"\"\"a long
+string "@en-gb" with "quotes\\" @en-gb\"\"\" , "q2" , "@en-gb" , "x"@en-gb , "<@en-gb>" .
+"""
+
+
+FORMATS = {"turtle": RdfFormat.TURTLE, "ntriples": RdfFormat.N_TRIPLES, "xml": RdfFormat.RDF_XML,
+           "json-ld": RdfFormat.JSON_LD, "nquads": RdfFormat.N_QUADS, "trig": RdfFormat.TRIG}
+
+
+def literals_of(data: bytes, fmt: RdfFormat) -> set[tuple[str, str | None]]:
+    """Each literal a document holds (its text and its lowered tag), the tags checked spelled as first written."""
+    if fmt == RdfFormat.RDF_XML:
+        assert b'xml:lang="en-GB"' in data and b'xml:lang="fr-CA"' in data and b'xml:lang="en-gb"' not in data
+    elif fmt == RdfFormat.JSON_LD:
+        assert b'"@language": "en-GB"' in data and b'"@language": "fr-CA"' in data and b'"en-gb"' not in data
+    else:
+        assert b'"colour"@en-GB' in data and b'"x"@en-GB' in data and b'"@fr-ca"@fr-CA' in data
+    return {(q.object.value, q.object.language) for q in parse(data, fmt) if isinstance(q.object, Literal)}
+
+
+WRITTEN = {(q.object.value, q.object.language) for q in parse(TRICKY.encode(), RdfFormat.TURTLE)
+           if isinstance(q.object, Literal)}
+
+
+@pytest.mark.parametrize("fmt", list(FORMATS))
+def test_respelling_changes_no_strings_text(fmt: str) -> None:
+    assert ("@en-gb is a tag", None) in WRITTEN and ('b"@en-gb', None) in WRITTEN
+    o = quiet(Ontology(), TRICKY)
+    assert literals_of(o.serialize(FORMATS[fmt]), FORMATS[fmt]) == WRITTEN
+
+
+@pytest.mark.parametrize("accept", ["text/turtle", "application/n-triples", "application/rdf+xml",
+                                    "application/ld+json"])
+def test_a_graph_store_read_changes_no_strings_text(accept: str, tmp_path: Path) -> None:
+    fmt = {"text/turtle": RdfFormat.TURTLE, "application/n-triples": RdfFormat.N_TRIPLES,
+           "application/rdf+xml": RdfFormat.RDF_XML, "application/ld+json": RdfFormat.JSON_LD}[accept]
+    with in_process(config(tmp_path / "data", allow_update=True)) as server:
+        status, _, reply = server.request("/references/lang/data?default", TRICKY.encode(),
+                                          {"Content-Type": "text/turtle"}, "PUT")
+        assert status == 201, reply
+        status, _, body = server.request("/references/lang/data?default", None, {"Accept": accept}, "GET")
+        assert status == 200, body[:400]
+    assert WRITTEN <= literals_of(body, fmt)
+
+
+# ---------------------------------------------------------------- a failed REASON reverts a spelling with its literal
+HEADLESS = Triple(NamedNode(NS + "rule"), NamedNode("http://www.w3.org/1999/02/22-rdf-syntax-ns#type"), NamedNode(SWRL + "Imp"))
+
+
+def failed_reason(o: Ontology) -> None:
+    """A REASON that fails (a rule without a head): every asserted change since the last good one reverted."""
+    o.add(HEADLESS)
+    with pytest.raises(RuleCompileError):
+        o.reason()
+
+
+@pytest.mark.parametrize("durable", [False, True])
+def test_a_failed_reason_drops_the_spelling_of_a_literal_it_reverts(durable: bool, tmp_path: Path) -> None:
+    o = mapped() if not durable else quiet(Ontology(store=tmp_path / "db"), mapped().serialize("turtle").decode())
+    o.reason()
+    o.add_data("s", "x", o.value("colour", language="en-GB"))
+    assert o.store.forms.tags.known("en-gb")
+    failed_reason(o)
+    assert not o.store.forms.tags.known("en-gb") and b"colour" not in o.serialize("ntriples")
+    o.add_data("s", "x", Literal("grey", language="en-gb"))  # written lowered: no reverted spelling for it
+    assert b'"grey"@en-gb' in o.serialize("ntriples")
+    if durable:
+        o.store.close()
+        assert b'"grey"@en-gb' in Ontology(store=tmp_path / "db").serialize("ntriples")
+    else:  # the value given again, asserted by a change that stays: its spelling now
+        o.add_data("s", "x", o.value("colour", language="en-GB"))
+        assert b'"colour"@en-GB' in o.serialize("ntriples")
+
+
+def test_a_failed_reason_inside_a_unit_drops_the_spellings_it_held() -> None:
+    o = mapped()
+    o.reason()
+    with o.ledger.undoable(o):
+        o.add_data("s", "x", o.value("before", language="en-GB"))  # a step before the inner unit's start
+        with pytest.raises(RuleCompileError), o.ledger.undoable(o):
+            o.add_data("s", "x", o.value("inner", language="fr-CA"))
+            o.add(HEADLESS)
+            o.reason()
+    assert not o.store.forms.tags and b"before" not in o.serialize("ntriples")
+
+
+def test_a_failed_reason_keeps_the_spelling_of_a_literal_asserted_before_the_last_good_one() -> None:
+    o = mapped()
+    o.reason()
+    with o.ledger.undoable(o):
+        o.add_data("s", "x", o.value("kept", language="en-GB"))
+        o.reason()
+        o.add_data("s", "x", o.value("gone", language="fr-CA"))
+        failed_reason(o)
+    saved = o.serialize("ntriples")
+    assert b'"kept"@en-GB' in saved and b"gone" not in saved and not o.store.forms.tags.known("fr-ca")
+
+
+# ---------------------------------------------------------------- a document's spelling only from a literal it added
+ADDED_ONLY = {
+    RdfFormat.TURTLE: f'<{NS}x> <{NS}s> "old"@EN-gb , "new"@en-GB .',
+    RdfFormat.RDF_XML: f"""<?xml version="1.0"?><rdf:RDF xmlns:rdf="http://www.w3.org/1999/02/22-rdf-syntax-ns#"
+ xmlns:l="{NS}"><rdf:Description rdf:about="{NS}x" xml:lang="EN-gb"><l:s>old</l:s>
+ <l:s rdf:resource="{NS}y"/><l:s xml:lang="en-GB">new</l:s></rdf:Description></rdf:RDF>""",
+    RdfFormat.JSON_LD: json.dumps([{"@context": {"@language": "EN-gb"}, "@id": NS + "x", NS + "s": "old"},
+                                   {"@id": NS + "x", NS + "s": [{"@value": "new", "@language": "en-GB"}]}]),
+}
+
+
+@pytest.mark.parametrize("fmt", list(ADDED_ONLY), ids=lambda f: f.name)
+def test_a_document_spells_a_tag_only_from_a_literal_the_change_added(fmt: RdfFormat) -> None:
+    from topostore.stores.language_tags import LanguageTags
+    tags = LanguageTags()
+    assert tags.learn(ADDED_ONLY[fmt].encode(), fmt, only={("new", "en-gb")}) == ["en-GB"]
+    assert LanguageTags().learn(ADDED_ONLY[fmt].encode(), fmt, only={("old", "en-gb")}) == ["EN-gb"]
+
+
+def test_the_spellings_waiting_for_their_literal_are_bounded() -> None:
+    from topostore.ontology.values import PENDING
+    o = mapped()
+    first = o.value("first", language="EN-gb")
+    for i in range(PENDING + 50):
+        o.value(f"reading {i}", language="en-GB")  # made to query or remove, never asserted
+    assert len(o.values._pending) == PENDING
+    o.add_data("s", "x", first)  # the oldest was dropped: its spelling no longer waits
+    o.add_data("s", "x", o.value(f"reading {PENDING + 49}", language="en-GB"))  # a recent one still does
+    saved = o.serialize("ntriples")
+    assert b'"first"@en-GB' in saved and b"EN-gb" not in saved

@@ -92,6 +92,21 @@ CASES = {
                                          "owl:someValuesFrom :C ] . :D owl:equivalentClass [ a owl:Restriction ; "
                                          "owl:onProperty :q ; owl:minCardinality 2 ] .", kinds.EXISTENTIAL,
                                          "super-properties"),
+    "existential into a class whose universal on the inverse flows back": (
+        ":A rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :p ; owl:someValuesFrom :F ] . :F rdfs:subClassOf "
+        "[ a owl:Restriction ; owl:onProperty [ owl:inverseOf :p ] ; owl:allValuesFrom :D ] .", kinds.EXISTENTIAL,
+        "says more of the individual linked to it"),
+    "existential whose universal's class is linked to an individual": (
+        ":s a owl:ObjectProperty ; rdfs:range :D . :A rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :p ; "
+        "owl:someValuesFrom owl:Thing ] , [ a owl:Restriction ; owl:onProperty :p ; owl:allValuesFrom :F ] . "
+        ":F rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :s ; owl:hasValue :i ] .", kinds.EXISTENTIAL,
+        "a link to i"),
+    "existential going on in a chain to a value whose class flows back": (
+        ":s a owl:ObjectProperty . :t a owl:ObjectProperty ; owl:propertyChainAxiom ( :p :s ) . "
+        ":A rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :p ; owl:someValuesFrom :F ] . "
+        ":F rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :s ; owl:someValuesFrom :G ] . "
+        ":G rdfs:subClassOf [ a owl:Restriction ; owl:onProperty [ owl:inverseOf :t ] ; owl:allValuesFrom :D ] .",
+        kinds.EXISTENTIAL, "chain of t"),
     "properties made the same": (":a :p :b . :p owl:sameAs :q .", kinds.UNSUPPORTED, "p sameAs q"),
     "irreflexive difference": (":p a owl:IrreflexiveProperty , owl:FunctionalProperty .", kinds.DIFFERENCE,
                                "irreflexive"),

@@ -160,8 +160,8 @@ class ProfileReport:
         return {c, *self.owl.told.get(c, set())}
 
     def run(self, store: Store, graph: NamedNode) -> list[Notice]:
-        for e, positive, axiom, _ in self.uses:
-            self.expression(e, positive, axiom)
+        for e, positive, axiom, subject in self.uses:
+            self.expression(e, positive, axiom, subject)
         self.difference()
         for a, b in self.tb.same_properties:
             self.note(UNSUPPORTED, f"{_name(a)} sameAs {_name(b)}", "properties made the same are not "
@@ -242,7 +242,7 @@ class ProfileReport:
             self.notices.setdefault((NOT_STORED, "owl:sameAs"), Notice(NOT_STORED, subject, REFLEXIVE_SAME_AS))
 
     # ---------------------------------------------------------------- expressions
-    def expression(self, e: Expr, positive: bool, axiom: str) -> None:
+    def expression(self, e: Expr, positive: bool, axiom: str, subject: NamedNode | None = None) -> None:
         k = e.kind
         if positive and k == "or" and all(m.node != THING for m in e.members):
             self.note(UNION, axiom, f"an instance of {describe(e)} is in one of its members, which one is not "
@@ -261,7 +261,7 @@ class ProfileReport:
             self.note(MAX_CASES, axiom, f"more than {e.n} values not known to be different: which are equal "
                       "needs case analysis, not drawn")
         if positive and k in ("some", "min", "exact") and (k == "some" or e.n >= 1):
-            self.existential(e, axiom)
+            self.existential(e, axiom, subject)
 
     def complement_gap(self, e: Expr) -> str:
         """What of a complement's membership is not derived: the rules of :mod:`.negation` derive that an
@@ -283,21 +283,24 @@ class ProfileReport:
             return True
         return any(pos and e.kind in ("max", "exact") for e, pos in self.on.get(p, ()))
 
-    def existential(self, e: Expr, axiom: str) -> None:
-        """Consequences of the unnamed value of an existential that are not drawn."""
+    def existential(self, e: Expr, axiom: str, subject: NamedNode | None = None) -> None:
+        """Consequences of the unnamed value of an existential that are not drawn (``subject``: the named
+        class it is told of, None where it is nested, a rule atom or an individual's type)."""
         p, what = e.prop, describe(e)
         supers = self.supers.get(p, frozenset())
         if any(not pos and m.kind in ("some", "min", "exact") and not self.reaches(e, m)
                for q in supers for m, pos in self.on.get(q, ())):
             self.note(EXISTENTIAL, axiom, f"an instance of {what} is in the restrictions on the super-properties "
                       f"of {_name(p.iri)} only through a told value")
-        self.unnamed.chain_links(e, axiom, {p, *supers})
+        self.unnamed.chain_links(e, axiom, {p, *supers}, subject)
         if self.owl.is_data(p, e):
             return
         value_classes = self.value_classes(p)
+        classes = self.unnamed.value_classes(e, {p, *supers}, subject)
+        self.unnamed.links_back(e, classes, axiom)
+        self.unnamed.gives_back(e, classes, axiom)
         filler = e.filler
         if filler is not None and filler.is_named:
-            self.unnamed.links_back(e, filler.node, axiom)
             self.unnamed.wider_filler(e, filler.node, axiom, {p, *supers})
         if filler is not None and not filler.is_named:
             self.note(EXISTENTIAL, axiom, f"the unnamed value of {what} is in {describe(filler)}: its own "

@@ -42,10 +42,11 @@ class UnnamedValues:
         on = self.report.on
         return [m for q in props for m, positive in on.get(q, ()) if not positive]
 
-    def links_back(self, e: Expr, filler: NamedNode, axiom: str) -> None:
-        """The unnamed value of ``e`` is in ``filler``, whose told ``(q value i)`` links it to the named ``i``:
-        what ``i`` gains by that link (a range of ``q``, a restriction on an inverse of ``q``) is not drawn."""
-        for c in self.report.told(filler):
+    def links_back(self, e: Expr, classes: set[NamedNode], axiom: str) -> None:
+        """The unnamed value of ``e`` is in ``classes`` (:meth:`value_classes`), whose told ``(q value i)``
+        links it to the named ``i``: what ``i`` gains by that link (a range of ``q``, a restriction on an
+        inverse of ``q``) is not drawn."""
+        for c in classes:
             for v in self.told_values.get(c, ()):
                 q = inverse(v.prop)
                 if self.sides(q) or self.used_left((q, *self.report.supers.get(q, ()))):
@@ -64,6 +65,51 @@ class UnnamedValues:
             self.report.note_existential(axiom, f"the unnamed value of {describe(e)} is in the domain of an "
                                          f"existential of {_name(filler)}: a restriction into that domain is "
                                          "reached only through a told value")
+
+    def gives_back(self, e: Expr, classes: set[NamedNode], axiom: str) -> None:
+        """The unnamed value ``u`` of ``e`` (``x p u``) is in ``classes``, one of which tells a restriction on
+        the inverse of ``p`` (``F ⊑ ∀p⁻.D``): what it says of ``x`` is not drawn."""
+        back = self.back_restriction(classes, e.prop)
+        if back is not None:
+            self.report.note_existential(axiom, f"the unnamed value of {describe(e)} is in {describe(back)}, "
+                                         "which says more of the individual linked to it: not drawn")
+
+    def back_restriction(self, classes: set[NamedNode], t: Prop) -> Expr | None:
+        """A restriction told of one of ``classes`` (the classes of the value ``u`` of a link ``x t u``) that
+        bears on ``x``: on the inverse of ``t`` or a super-expression of it, of any kind but an existential
+        (``x`` may not be the value it asks for)."""
+        props = {inverse(t), *self.report.supers.get(inverse(t), ())}
+        for c in classes:
+            for m in self.told_restrictions.get(c, ()):
+                if m.prop in props and m.kind not in ("some", "min"):
+                    return m
+        return None
+
+    def value_classes(self, e: Expr, links: set[Prop], subject: NamedNode | None) -> set[NamedNode]:
+        """The named classes the unnamed value of ``e`` is told to be in, with their told superclasses and
+        the domains of their existentials (:meth:`implied`): the filler's named members, the ranges of
+        ``links`` (``e``'s property and its super-expressions), and the named fillers of universals on
+        ``links`` told of ``subject``'s classes (of any class where the subject is not named: an expression
+        nested in another, a rule atom, a typed individual)."""
+        named: set[NamedNode] = set()
+        fillers = [e.filler] if e.filler is not None else []
+        fillers += [m.filler for m in self.universals(links, subject) if m.filler is not None]
+        for f in fillers:
+            for m in (f, *f.members) if f.kind == "and" else (f,):
+                if m.is_named:
+                    named |= self.implied(m.node)
+        for q in links:
+            for _, c in subject_classes(self.report.tb, self.report.supers, inverse(q)):
+                if c.is_named:
+                    named |= self.implied(c.node)
+        return named
+
+    def universals(self, links: set[Prop], subject: NamedNode | None) -> list[Expr]:
+        """The universals on ``links`` told of ``subject``'s classes (every positive one where not named)."""
+        if subject is None:
+            return [m for q in links for m, positive in self.report.on.get(q, ()) if positive and m.kind == "all"]
+        return [m for c in self.report.told(subject) for m in self.told_restrictions.get(c, ())
+                if m.kind == "all" and m.prop in links]
 
     def implied(self, c: NamedNode) -> set[NamedNode]:
         """``c``'s told superclasses with the domains of their existentials (and so on), found once."""
@@ -89,6 +135,11 @@ class UnnamedValues:
                                                             or (e.kind in ("min", "exact") and e.n >= 1)))
 
     @cached_property
+    def told_restrictions(self) -> dict[NamedNode, list[Expr]]:
+        """Each named class's told restrictions of every kind (superclasses or definitions)."""
+        return self._told(lambda e: e.prop is not None)
+
+    @cached_property
     def told_values(self) -> dict[NamedNode, list[Expr]]:
         """Each named class's told object ``hasValue`` restrictions (superclasses or definitions)."""
         return self._told(lambda e: e.kind == "value" and isinstance(e.value, NamedNode)
@@ -101,7 +152,7 @@ class UnnamedValues:
                 found.setdefault(subject, []).append(e)
         return found
 
-    def chain_links(self, e: Expr, axiom: str, links: set[Prop]) -> None:
+    def chain_links(self, e: Expr, axiom: str, links: set[Prop], subject: NamedNode | None) -> None:
         """A chain whose conclusion passes through the unnamed value ``u`` of ``e`` (``x p u``; ``links``:
         ``p`` and its super-expressions) and is not drawn, since no fact of ``u`` is stored.  A transitive
         property ``t`` is the chain ``t ∘ t``.  ``x p u`` is the chain's k-th link read forwards (``p`` ⊑ its
@@ -110,22 +161,25 @@ class UnnamedValues:
         goes on from ``u`` by the next link, which only ``u``'s classes (or the link back to ``x``) can give
         it: a link to a named individual is missed; one to another unnamed value (or to ``u`` itself, a
         ``Self``) is missed unless the chain ends there and the conclusion is shown to carry nothing
-        (:meth:`conclusion_inert`).  A chain that ``x p u`` can serve but that cannot go on from ``u``
-        concludes nothing through it, and is not named."""
+        (:meth:`conclusion_inert`, with the classes of the value the conclusion reaches).  A chain that
+        ``x p u`` can serve but that cannot go on from ``u`` concludes nothing through it, and is not named.
+        ``subject``: the class ``e`` is told of (None where not named), whose universals give ``u`` classes."""
         restrictions: list[Expr] | None = None
+        classes: set[NamedNode] = set()
         for t, chain in self.chains:
             for k, q in enumerate(chain):
                 for onward, end, last in self._readings(t, chain, k, q, links):
                     if restrictions is None:
-                        restrictions = self.restrictions_of_value(e, links)
+                        classes = self.value_classes(e, links, subject)
+                        restrictions = self.restrictions_of_value(e, links, subject, classes)
                     if onward is None:  # the named side is linked to it by the chain's first (last) property
                         first = chain[0] if end == Prop(t) else inverse(chain[-1])
                         linked = len(chain) > 1 and (first == end or end in self.report.supers.get(first, ()))
-                        missed = not self.conclusion_inert(end, linked, restrictions)
+                        missed = not self.conclusion_inert(end, linked, restrictions, classes)
                     else:
                         link = "value" if inverse(onward) in links else self.link_by(restrictions, onward)
-                        missed = link == "value" or (link == "some"
-                                                     and not (last and self.conclusion_inert(end, False, None)))
+                        missed = link == "value" or (link == "some" and not (last and self.conclusion_inert(
+                            end, False, None, self.onward_classes(restrictions, onward, classes))))
                     if missed:
                         self.report.note_existential(axiom, f"the unnamed value of {describe(e)} completes the "
                                                      f"chain of {_name(t)}, whose conclusion through it is not "
@@ -152,14 +206,18 @@ class UnnamedValues:
         transitive = sorted(self.report.tb.characteristics.get("TransitiveProperty", ()), key=str)
         return [*self.report.tb.chains, *((t, (Prop(t), Prop(t))) for t in transitive)]
 
-    def conclusion_inert(self, t: Prop, linked: bool, restrictions: list[Expr] | None) -> bool:
+    def conclusion_inert(self, t: Prop, linked: bool, restrictions: list[Expr] | None,
+                         classes: set[NamedNode] | None) -> bool:
         """Whether a link by ``t`` from a named individual to an unnamed value is shown to entail nothing:
         no class of the subject (a domain, unless ``linked``: the subject has a stored link by a
         sub-property of ``t`` already, which gave it; a restriction used on the left, whose filler the value
         may satisfy), no class of the value that says more of it (:meth:`value_inert`), nothing from ``t``'s
         characteristics and chains (:meth:`property_inert`; ``restrictions``: what the value is told, None
-        where not known)."""
+        where not known), no restriction of the value's own ``classes`` that bears back on the subject
+        (:meth:`back_restriction`; ``classes`` None where they are not known: never shown inert)."""
         if (self.sides(t) and not linked) or self.used_left((t, *self.report.supers.get(t, ()))):
+            return False
+        if classes is None or self.back_restriction(classes, t) is not None:
             return False
         return self.value_inert(t) and self.property_inert(t, restrictions)
 
@@ -216,27 +274,42 @@ class UnnamedValues:
         or a restriction on one of them used on the left."""
         return bool(self.sides(t) or self.used_left((t, *self.report.supers.get(t, ()))))
 
-    def restrictions_of_value(self, e: Expr, links: set[Prop]) -> list[Expr]:
-        """The restrictions the unnamed value of ``e`` is told to satisfy: its filler's own (an anonymous
-        filler, or an intersection's members) and those of its named classes (the filler's and the range's
-        told superclasses, with the domains of their existentials)."""
+    def restrictions_of_value(self, e: Expr, links: set[Prop], subject: NamedNode | None,
+                              classes: set[NamedNode]) -> list[Expr]:
+        """The restrictions the unnamed value of ``e`` is told to satisfy: its filler's own and those of the
+        universals on ``links`` told of ``subject`` (an anonymous filler, or an intersection's members), and
+        those of its named ``classes`` (:meth:`value_classes`)."""
         found: list[Expr] = []
-        named: set[NamedNode] = set()
-        filler = e.filler
-        if filler is not None:
-            for m in (filler, *filler.members) if filler.kind == "and" else (filler,):
-                if m.is_named:
-                    named |= self.implied(m.node)
-                else:
-                    found.append(m)
-        for q in links:
-            for _, c in subject_classes(self.report.tb, self.report.supers, inverse(q)):
-                if c.is_named:
-                    named |= self.implied(c.node)
-        for c in named:
+        fillers = [e.filler] if e.filler is not None else []
+        fillers += [m.filler for m in self.universals(links, subject) if m.filler is not None]
+        for f in fillers:
+            found += [m for m in ((f, *f.members) if f.kind == "and" else (f,)) if not m.is_named]
+        for c in classes:
             found += self.told_existentials.get(c, ())
             found += self.told_values.get(c, ())
         return found
+
+    def onward_classes(self, restrictions: list[Expr], onward: Prop, classes: set[NamedNode]) -> set[NamedNode] | None:
+        """The named classes of the value ``v`` that ``restrictions`` (told of ``u``, whose named ``classes``
+        are given) link ``u`` to by ``onward``: their named fillers (``u``'s own classes for a ``Self``) and
+        the range of ``onward``, with their told superclasses; None where one is anonymous (not known)."""
+        supers = self.report.supers
+        named: set[NamedNode] = set()
+        for m in restrictions:
+            if m.prop is None or not (m.prop == onward or onward in supers.get(m.prop, ())):
+                continue
+            if m.kind == "self":
+                named |= classes
+            elif m.filler is not None:
+                for f in (m.filler, *m.filler.members) if m.filler.kind == "and" else (m.filler,):
+                    if not f.is_named:
+                        return None
+                    named |= self.implied(f.node)
+        for _, c in subject_classes(self.report.tb, supers, inverse(onward)):
+            if not c.is_named:
+                return None
+            named |= self.implied(c.node)
+        return named
 
     def link_by(self, restrictions: list[Expr], r: Prop) -> str | None:
         """How ``restrictions`` give a link by ``r`` (on ``r`` or a sub-property of it): "value" for a told

@@ -243,6 +243,7 @@ def all_or_nothing(reason: F) -> F:
                 _clear_inferred(self)
             raise
         self.ledger.succeeded(self.incremental_ready())
+        self.values.reasoned()
         return report
 
     return wrapper  # type: ignore[return-value]
@@ -251,12 +252,14 @@ def all_or_nothing(reason: F) -> F:
 def _restore(onto: Ontology, reason: Callable[..., Any]) -> None:
     """Revert the asserted changes since the last good REASON and recompute its closure."""
     reverted = onto.ledger.revert(onto.store)
+    onto.values.reverted()  # the spellings that came with the reverted literals go with them
     onto.forget_reasoning()
     logger.warning("reasoning failed; %d asserted change(s) since the last successful REASON were reverted", reverted)
     try:
         with limits.budget(onto.limits):
             reason(onto, mode="full")
         onto.ledger.succeeded(onto.incremental_ready())
+        onto.values.reasoned()
     except TopostoreError:  # even the previous state cannot be reasoned (e.g. limits lowered): asserted facts only
         logger.exception("the state before the change could not be reasoned either; inferred facts cleared")
         _clear_inferred(onto)

@@ -7,7 +7,9 @@ pyoxigraph lowers a language tag as a literal is made
 (``Literal("colour", language="en-GB").language == "en-gb"``), so a tag's spelling can reach topostore
 only beside the literal: ``onto.value("colour", language="en-GB")`` keeps it until a change asserts that
 literal (same lexical form and tag: :meth:`OntologyValues.asserted`), and the store then spells its tag so
-(the first spelling wins, as for documents: :mod:`topostore.stores.language_tags`).  Inside a unit of work
+(the first spelling wins, as for documents: :mod:`topostore.stores.language_tags`).  The spellings of
+the last :data:`PENDING` literals made wait (a value made to query or remove, never asserted, would
+otherwise be held for ever); an older one asserted later is shown with its tag lowered.  Inside a unit of work
 (:meth:`.ledger.ChangeLedger.undoable`) the spelling is the store's only once the unit succeeds: an
 assertion it undoes gives none.
 """
@@ -21,10 +23,14 @@ from pyoxigraph import Literal, NamedNode, Triple
 
 from ..errors import InvalidValueError
 from ..rdf.terms import check_literal, literal_of
-from ..rdf.vocab import TYPE, XSD
+from ..rdf.vocab import ASSERTED, TYPE, XSD
 
 if TYPE_CHECKING:
     from .facade import Ontology
+
+
+#: how many literals made with a tag's spelling wait to be asserted, at most (the oldest is dropped first)
+PENDING = 4096
 
 
 class OntologyValues:
@@ -37,6 +43,9 @@ class OntologyValues:
         #: spellings of literals asserted inside an open unit of work: (the index of the step that asserted
         #: them, literal, spelling)
         self._held: list[tuple[int, tuple[str, str], str]] = []
+        #: spellings the store took from literals asserted since the last successful REASON (a failed one
+        #: reverts those literals: :meth:`reverted`)
+        self._adopted: list[tuple[tuple[str, str], str]] = []
 
     def value(self, value: object, datatype: str | None = None, language: str | None = None) -> Literal:
         """A validated literal from a Python value (int → xsd:integer, ...), text + datatype or text + tag."""
@@ -72,8 +81,16 @@ class OntologyValues:
         except ValueError as exc:
             raise InvalidValueError(f"{language!r} is not a valid language tag: {exc}") from None
         if not self.onto.store.forms.tags.known(made.language):
-            self._pending.setdefault((made.value, made.language), language)
+            self._wait((made.value, made.language), language)
         return made
+
+    def _wait(self, key: tuple[str, str], spelling: str) -> None:
+        """Keep ``spelling`` until the literal ``key`` is asserted (the first one given for it wins; past
+        :data:`PENDING` literals waiting, the oldest is dropped)."""
+        if key not in self._pending:
+            self._pending[key] = spelling
+            if len(self._pending) > PENDING:
+                del self._pending[next(iter(self._pending))]
 
     def fact(self, subject: str, prop: str, obj: object) -> Triple:
         """A triple from names: ``obj`` is an individual name, a Literal or a Python value."""
@@ -127,7 +144,7 @@ class OntologyValues:
             return
         step = self.onto.ledger.unit_step
         if step is None:
-            self.onto.store.forms.adopt_tags([spelling for _, spelling in given])
+            self._adopt(given)
         else:
             self._held += [(step - 1, key, spelling) for key, spelling in given]
 
@@ -136,14 +153,42 @@ class OntologyValues:
         wait again (for that literal to be asserted by a change that stays)."""
         for step, key, spelling in self._held:
             if step >= start:
-                self._pending.setdefault(key, spelling)
+                self._wait(key, spelling)
         self._held = [h for h in self._held if h[0] < start]
 
     def settled(self) -> None:
         """The outermost unit of work ended and its changes stay: the spellings held for it are the store's."""
         if self._held:
             held, self._held = self._held, []
-            self.onto.store.forms.adopt_tags([spelling for _, _, spelling in held])
+            self._adopt([(key, spelling) for _, key, spelling in held])
+
+    def _adopt(self, given: list[tuple[tuple[str, str], str]]) -> None:
+        """The spellings of asserted literals are the store's; the new ones noted while a failed REASON
+        would revert their literals."""
+        new = set(self.onto.store.forms.adopt_tags([spelling for _, spelling in given]))
+        if new and self.onto.ledger.recording:
+            self._adopted += [(key, spelling) for key, spelling in given if spelling in new]
+
+    def reasoned(self) -> None:
+        """A REASON succeeded: the literals asserted before it are no longer reverted by a failed one."""
+        self._adopted.clear()
+
+    def reverted(self) -> None:
+        """A failed REASON reverted every asserted change since the last good one (and ended the open units'
+        steps): a spelling stays the store's only while its literal is asserted; the others wait again, as
+        after an undone unit of work."""
+        held = [(key, spelling) for _, key, spelling in self._held]
+        adopted, self._adopted, self._held = self._adopted, [], []
+        gone = [(key, spelling) for key, spelling in adopted + held if not self._is_asserted(key)]
+        self.onto.store.forms.forget_tags([spelling for key, spelling in gone if (key, spelling) in adopted])
+        for key, spelling in gone:
+            self._wait(key, spelling)
+        self._adopt([h for h in held if h not in gone])  # asserted before the reverted changes: they stay
+
+    def _is_asserted(self, key: tuple[str, str]) -> bool:
+        """Whether the literal ``key`` (lexical form, lowered tag) is the object of an asserted triple."""
+        literal = Literal(key[0], language=key[1])
+        return next(iter(self.onto.store.triples(None, None, literal, ASSERTED)), None) is not None
 
 
-__all__ = ["OntologyValues"]
+__all__ = ["PENDING", "OntologyValues"]

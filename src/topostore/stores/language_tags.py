@@ -18,40 +18,26 @@ from collections.abc import Collection, Iterable
 from pyoxigraph import Literal, NamedNode, Quad, RdfFormat, Triple
 
 from ..rdf.vocab import INTERNAL
+from .written_tags import (
+    WHOLE_TAG,
+    Added,
+    added_spellings,
+    json_ld_literals,
+    json_ld_tags,
+    written_tags,
+    xml_literals,
+)
 
 #: the node a durable store keeps the spellings under (in the literal forms' graph)
 SPELLING = NamedNode(INTERNAL + "language-tag")
 
 _TAG = rb"[A-Za-z]+(?:-[A-Za-z0-9]+)*"
-#: a tag after a Turtle / N-Triples string's closing quote (the quote is checked apart: a pattern that begins
-#: with '@' is searched for five times faster), or as an RDF/XML xml:lang value
-_WRITTEN = {
-    "text": re.compile(rb"@(" + _TAG + rb")"),
-    "xml": re.compile(rb"xml:lang\s*=\s*[\"'](" + _TAG + rb")[\"']"),
-}
-_QUOTES = (ord('"'), ord("'"))
-#: Turtle / N-Triples read token by token: a string whole (its tag captured), a comment, an IRI, or a run of
-#: anything else; a quote or '@' inside a string, a comment or an IRI is then never taken for a tag
-_TEXT_TOKEN = re.compile(
-    rb'(?:"""(?:[^"\\]|\\.|"(?!""))*"""' rb"|'''(?:[^'\\]|\\.|'(?!''))*'''"
-    rb'|"(?:[^"\\\n]|\\.)*"' rb"|'(?:[^'\\\n]|\\.)*')(?:@(" + _TAG + rb"))?"
-    rb"|#[^\n]*|<[^>\s]*>|[^\"'#<]+|[\"'#<]", re.S)
-_WHOLE_TAG = re.compile(_TAG.decode())
-#: a whole string literal and its tag as pyoxigraph writes Turtle and N-Triples (escapes kept whole)
-_TEXT_LITERAL = re.compile(rb'"(?:[^"\\\n]|\\.)*"@(' + _TAG + rb")")
+#: pyoxigraph's Turtle, TriG, N-Triples and N-Quads read token by token: an IRI whole, or a string whole and
+#: its tag if it has one (pyoxigraph writes each string on one line between '"', its escapes kept whole); the
+#: search moves on only past whole tokens, so a quote or an '@' inside a string is never taken for a tag
+_TEXT_LITERAL = re.compile(rb'<[^<>"\s]*>|"(?:[^"\\\n]|\\.)*"(?:@(' + _TAG + rb"))?")
 #: an xml:lang attribute inside a tag of pyoxigraph's RDF/XML (text content holds no raw '<')
 _XML_LANG = re.compile(rb'(<[^<>]*\sxml:lang=")(' + _TAG + rb')(")')
-#: the SPARQL Update keywords that open a part whose literals are inserted (INSERT) or not (DELETE, WHERE);
-#: a prefixed name or a variable that merely ends so is no keyword
-_UPDATE_PART = re.compile(rb"(?<![\w:?$])(INSERT|DELETE|WHERE)(?![\w:-])", re.I)
-#: a STRLANG call whose tag argument is a plain string (the literal it makes has no written ``@tag``)
-_STRLANG = re.compile(rb"(?<![\w:?$])STRLANG\s*\((?:[^,()]|\([^()]*\))*,\s*(\"|')(" + _TAG + rb")\1\s*\)", re.I)
-#: a string's escapes (Turtle and SPARQL): a character escape or a code point
-_ESCAPE = re.compile(r"\\(?:([tbnrf\"'\\])|u([0-9A-Fa-f]{4})|U([0-9A-Fa-f]{8}))")
-_ESCAPED = {"t": "\t", "b": "\b", "n": "\n", "r": "\r", "f": "\f", '"': '"', "'": "'", "\\": "\\"}
-
-#: an added literal as pyoxigraph keeps it: its lexical form and its lowered tag
-Added = tuple[str, str]
 
 
 class LanguageTags:
@@ -78,14 +64,13 @@ class LanguageTags:
             data = data.encode("utf-8", errors="surrogatepass")
         if only is not None and not only:
             return []
-        if fmt in (RdfFormat.JSON_LD, RdfFormat.STREAMING_JSON_LD):
-            tags = _json_ld_tags(data)
-        elif only is None or fmt == RdfFormat.RDF_XML:
-            tags = _written_tags(data, fmt == RdfFormat.RDF_XML)
-        else:
-            return self.adopt(_added_spellings(data, only, update=fmt is None))
-        wanted = None if only is None else {tag for _, tag in only}
-        return self.adopt(tags if wanted is None else [t for t in tags if t.lower() in wanted])
+        json_ld = fmt in (RdfFormat.JSON_LD, RdfFormat.STREAMING_JSON_LD)
+        if only is None:
+            return self.adopt(json_ld_tags(data) if json_ld else written_tags(data, fmt == RdfFormat.RDF_XML))
+        if json_ld or fmt == RdfFormat.RDF_XML:
+            written = json_ld_literals(data) if json_ld else xml_literals(data)
+            return self.adopt([tag for lexical, tag in written if (lexical, tag.lower()) in only])
+        return self.adopt(added_spellings(data, only, update=fmt is None))
 
     def adopt(self, tags: Iterable[str]) -> list[str]:
         """Take ``tags`` as written (the first spelling of each lowered tag wins); the new ones."""
@@ -97,6 +82,16 @@ class LanguageTags:
                 self._capitals |= tag != lowered
                 new.append(tag)
         return new
+
+    def forget(self, tags: Iterable[str]) -> list[str]:
+        """Drop ``tags`` as spellings (each only where it is its lowered tag's spelling): the literal it came
+        with was reverted.  The ones dropped, for the caller to unpersist (see :meth:`quads`)."""
+        dropped = [tag for tag in dict.fromkeys(tags) if self._spelled.get(tag.lower()) == tag]
+        for tag in dropped:
+            del self._spelled[tag.lower()]
+        if dropped:
+            self._capitals = any(tag != lowered for lowered, tag in self._spelled.items())
+        return dropped
 
     def known(self, tag: str) -> bool:
         """Whether ``tag`` (any case) has a spelling already: a later one does not respell it."""
@@ -114,14 +109,14 @@ class LanguageTags:
             return _XML_LANG.sub(lambda m: m.group(1) + self._bytes(m.group(2)) + m.group(3), data)
         if fmt in (RdfFormat.JSON_LD, RdfFormat.STREAMING_JSON_LD):
             return self._json_ld(data)
-        return _TEXT_LITERAL.sub(lambda m: m.group(0)[:m.start(1) - m.start(0)] + self._bytes(m.group(1)), data)
+        return _TEXT_LITERAL.sub(self._respelled_token, data)
 
     def rendered(self, text: str) -> str:
         """An aRMOR rendering of a term (``"lex"@tag``), its tag spelled as first written."""
         if not self._spelled:
             return text
         body, quote, tag = text.rpartition('"@')
-        return f'{body}"@{self.spelled(tag)}' if quote and _WHOLE_TAG.fullmatch(tag) else text
+        return f'{body}"@{self.spelled(tag)}' if quote and WHOLE_TAG.fullmatch(tag) else text
 
     def _json_ld(self, data: bytes) -> bytes:
         """A JSON-LD document with each ``@language`` value spelled as first written (read as JSON: a
@@ -137,6 +132,12 @@ class LanguageTags:
             elif isinstance(node, list):
                 todo.extend(v for v in node if isinstance(v, (dict, list)))
         return json.dumps(doc, ensure_ascii=False).encode("utf-8")
+
+    def _respelled_token(self, m: re.Match[bytes]) -> bytes:
+        """A token of :data:`_TEXT_LITERAL`: a tagged string with its tag spelled as first written, else as it was."""
+        if m.group(1) is None:
+            return m.group(0)
+        return m.group(0)[:m.start(1) - m.start(0)] + self._bytes(m.group(1))
 
     def _bytes(self, tag: bytes) -> bytes:
         return self.spelled(tag.decode("ascii")).encode("ascii")
@@ -158,120 +159,6 @@ def literal_tags(triples: Iterable[Triple]) -> set[Added]:
     """The tagged literals among ``triples``' objects: each one's lexical form and (lowered) tag."""
     return {(o.value, o.language) for t in triples if isinstance(o := t.object, Literal) and o.language}
 
-
-def _added_spellings(data: bytes, added: Collection[Added], update: bool) -> list[str]:
-    """The spellings of ``added``'s tags where the text writes one of those literals (same lexical form,
-    same tag in any case); in an update, a literal written in an INSERT part (INSERT DATA or an INSERT
-    template) before one written elsewhere (a WHERE's VALUES), and the tag argument of a STRLANG call
-    last, as its literal's form is not written."""
-    inserting = not update  # a document's literals are all added
-    best: dict[str, tuple[int, str]] = {}  # lowered tag -> (rank, first spelling of that rank)
-    tags = {t for _, t in added}
-    settled = 0  # how many of ``tags`` have a spelling of the best rank: the reading stops once all have
-    for m in _TEXT_TOKEN.finditer(data):
-        raw = m.group(1)
-        if raw is None:
-            if update and m.group(0)[0] not in b"\"'#<":
-                parts = _UPDATE_PART.findall(m.group(0))
-                if parts:
-                    inserting = parts[-1].upper() == b"INSERT"
-            continue
-        tag = raw.decode("ascii")
-        if (_lexical(m.group(0)[:m.start(1) - m.start(0) - 1]), tag.lower()) in added:
-            if inserting and best.get(tag.lower(), (1,))[0] > 0:
-                settled += 1  # its first spelling of the best rank
-            _prefer(best, tag, 0 if inserting else 1)
-            if settled == len(tags):
-                break
-    if update and settled < len(tags):
-        for m in _STRLANG.finditer(data):
-            if (tag := m.group(2).decode("ascii")).lower() in tags:
-                _prefer(best, tag, 2)
-    return [spelling for _, spelling in best.values()]
-
-
-def _prefer(best: dict[str, tuple[int, str]], tag: str, rank: int) -> None:
-    """Keep ``tag`` as its lowered tag's spelling if no spelling of a better (lower) rank was met first."""
-    held = best.get(tag.lower())
-    if held is None or rank < held[0]:
-        best[tag.lower()] = (rank, tag)
-
-
-def _lexical(token: bytes) -> str:
-    """A written string's lexical form: its quotes off, its escapes read."""
-    quotes = 3 if token[:3] in (b'"""', b"'''") else 1
-    body = token[quotes:-quotes].decode("utf-8", errors="surrogatepass")
-    return _ESCAPE.sub(_unescaped, body) if "\\" in body else body
-
-
-def _unescaped(m: re.Match[str]) -> str:
-    if m.group(1):
-        return _ESCAPED[m.group(1)]
-    try:
-        return chr(int(m.group(2) or m.group(3), 16))
-    except ValueError:  # past the last code point: pyoxigraph refuses it before this is read
-        return m.group(0)
-
-
-def _json_ld_tags(data: bytes) -> list[str]:
-    """A JSON-LD document's ``@language`` values in the order written (a context's default included);
-    nothing from a document that is no JSON (pyoxigraph read it first and would have refused it)."""
-    try:
-        doc = json.loads(data)
-    except (ValueError, RecursionError):
-        return []
-    found: list[str] = []
-    todo = [doc]
-    while todo:
-        node = todo.pop()
-        if isinstance(node, dict):
-            lang = node.get("@language")
-            if isinstance(lang, str) and _WHOLE_TAG.fullmatch(lang):
-                found.append(lang)
-            todo.extend(reversed([v for v in node.values() if isinstance(v, (dict, list))]))
-        elif isinstance(node, list):
-            todo.extend(reversed([v for v in node if isinstance(v, (dict, list))]))
-    return found
-
-
-def _written_tags(data: bytes, xml: bool) -> list[str]:
-    """The document's tags in the order written, each spelling where a literal first carries it.
-
-    A fast search for ``@tag`` (or ``xml:lang=``) finds the candidates; where one of them has a capital
-    (the spelling then matters), a Turtle document is read again token by token (:data:`_TEXT_TOKEN`,
-    ten times slower) so that text inside a string, a comment or an IRI is never taken for a tag; the
-    reading stops once each candidate's tag has been met on a real literal."""
-    if xml:
-        return [m.group(1).decode("ascii") for m in _WRITTEN["xml"].finditer(data) if _in_xml_tag(data, m.start())]
-    found = [m.group(1).decode("ascii") for m in _WRITTEN["text"].finditer(data) if _closes_string(data, m.start())]
-    if all(tag == tag.lower() for tag in found):
-        return found  # every spelling the lowered one: which of them are real literals changes nothing
-    wanted = {tag.lower() for tag in found}
-    first: dict[str, str] = {}
-    for m in _TEXT_TOKEN.finditer(data):
-        tag = m.group(1)
-        if tag is not None:
-            first.setdefault(tag.decode("ascii").lower(), tag.decode("ascii"))
-            if wanted <= first.keys():
-                break
-    return list(first.values())
-
-
-def _in_xml_tag(data: bytes, at: int) -> bool:
-    """Whether position ``at`` of an RDF/XML document lies inside an element's tag: not in text content
-    (where no raw '<' may stand), a comment, CDATA or a processing instruction."""
-    start = data.rfind(b"<", 0, at)
-    return start >= 0 and data.rfind(b">", start, at) < 0 and data[start + 1:start + 2] not in (b"!", b"?")
-
-
-def _closes_string(data: bytes, at: int) -> bool:
-    """Whether the byte before ``at`` is a quote that is not escaped (an even run of backslashes before it)."""
-    if at == 0 or data[at - 1] not in _QUOTES:
-        return False
-    backslashes = 0
-    while at - 2 - backslashes >= 0 and data[at - 2 - backslashes] == ord("\\"):
-        backslashes += 1
-    return backslashes % 2 == 0
 
 
 __all__ = ["SPELLING", "LanguageTags", "literal_tags"]

@@ -59,9 +59,18 @@ class LiteralForms:
         :meth:`LanguageTags.learn`) spells its language tags (persisted on a durable store)."""
         self._persist_tags(self.tags.learn(data, fmt, only))
 
-    def adopt_tags(self, tags: Iterable[str]) -> None:
-        """Remember language tags spelled as given (the first spelling wins; persisted on a durable store)."""
-        self._persist_tags(self.tags.adopt(tags))
+    def adopt_tags(self, tags: Iterable[str]) -> list[str]:
+        """Remember language tags spelled as given (the first spelling wins; persisted on a durable store);
+        the new ones."""
+        new = self.tags.adopt(tags)
+        self._persist_tags(new)
+        return new
+
+    def forget_tags(self, tags: Iterable[str]) -> None:
+        """Drop spellings :meth:`adopt_tags` took (their literals were reverted), on a durable store too."""
+        dropped = self.tags.forget(tags)
+        if dropped and self._store.durable:
+            self._store._write([], self.tags.quads(dropped, FORMS))
 
     def _persist_tags(self, new: list[str]) -> None:
         if new and self._store.durable:
