@@ -506,3 +506,30 @@ def test_the_spellings_waiting_for_their_literal_are_bounded() -> None:
     o.add_data("s", "x", o.value(f"reading {PENDING + 49}", language="en-GB"))  # a recent one still does
     saved = o.serialize("ntriples")
     assert b'"first"@en-GB' in saved and b"EN-gb" not in saved
+
+
+def test_json_ld_literals_are_read_in_the_order_written() -> None:
+    """Nested value objects and properties come out in document order (the first spelling wins)."""
+    import json
+
+    from topostore.stores.written_tags import json_ld_literals
+
+    doc = {"@id": "http://ex.org/x#r1",
+           "http://ex.org/x#a": [{"@value": "colour", "@language": "en-GB"},
+                                 {"@value": "colour", "@language": "en-gb"}],
+           "http://ex.org/x#b": {"@value": "y", "@language": "fr-CA"}}
+    assert json_ld_literals(json.dumps(doc).encode()) == [("colour", "en-GB"), ("colour", "en-gb"), ("y", "fr-CA")]
+
+
+def test_a_literal_made_again_counts_as_made_now_among_the_waiting_spellings() -> None:
+    from topostore import Ontology
+    from topostore.ontology.values import PENDING
+
+    onto = Ontology(prefix="http://ex.org/x#")
+    onto.value("colour", language="en-GB")
+    for i in range(PENDING - 1):
+        onto.value(f"v{i}", language="fr-CA")
+    made = onto.value("colour", language="en-GB")  # made again: among the last PENDING made
+    onto.value("one more", language="fr-CA")
+    onto.add_fact("r1", "label", made)
+    assert onto.store.forms.tags.spelled("en-gb") == "en-GB"

@@ -262,6 +262,34 @@ def test_failed_reason_on_a_reopened_durable_store_restores_the_state_as_reopene
     svc.close()
 
 
+def test_a_store_closed_with_a_change_that_cannot_be_reasoned_still_opens_and_says_so(
+        data_dir: Path, tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """A runaway rule asserted without a REASON, then the store closed: its REASON fails and the reply says
+    the inferred facts were cleared (not that the changes were undone); a restart opens the reference with
+    its asserted facts only instead of failing the whole service."""
+    store = tmp_path / "stores"
+    svc = ArmorService(data_dir=data_dir, store=store)
+    assert call(svc, "LOAD", "FILE", "", ["map.owl", IRI, "true", "PELLET", "true"]).exit_code == 0
+    ref = svc.reference("ref")
+    with ref.lock:
+        ref.ontology.load_data(PREFIXES + RUNAWAY + ':R1 :counter "0"^^xsd:integer .\n', "turtle")
+    svc.close()
+    svc = ArmorService(data_dir=data_dir, store=store)
+    svc.reference("ref").ontology.limits = ReasonLimits(max_rounds=100, max_inferred=100_000, max_seconds=30)
+    res = call(svc, "REASON")
+    assert (res.success, res.exit_code) == (False, 209)
+    assert "inferred ones cleared" in res.error_description and "were undone" not in res.error_description
+    assert not graphs(svc)[1]
+    svc.close()
+    from topostore.reason import limits
+
+    monkeypatch.setattr(limits, "DEFAULTS", ReasonLimits(max_rounds=100))  # what a reopened ontology runs under
+    svc = ArmorService(data_dir=data_dir, store=store)  # the rebuild at opening fails: opened all the same
+    assert svc.reference("ref").ontology.opened == "asserted only"
+    assert call(svc, "QUERY", "IND", "CLASS", ["ROOM"]).exit_code == 0
+    svc.close()
+
+
 def test_a_failed_first_reason_leaves_no_half_written_closure() -> None:
     """With no successful REASON to return to, a failed one keeps the asserted facts and clears what it
     had inferred (never a partial closure that queries would read as an answer)."""

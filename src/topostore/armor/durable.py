@@ -140,7 +140,11 @@ class DurableReferences:
         if not ref.buffered_reasoner and onto.dirty:
             # a live reasoner has seen every applied change: a change committed by a process killed
             # before its REASON finished is reasoned now (the change itself was never acknowledged)
-            onto.reason()
+            try:
+                onto.reason()
+            except TopostoreError as exc:  # the reference still opens, its asserted facts only
+                logger.warning("reference %r: its unreasoned change could not be reasoned (%s); opened with "
+                               "its asserted facts only", name, exc)
         self._replay(service, ref, data.get("buffer") or [])
         ref.persist = self.persist
         logger.info("reference %r reopened from %s (%s, %d buffered)", name, self.spec, onto.opened, len(ref.buffer))

@@ -286,8 +286,6 @@ def apply_buffer(ctx: Context) -> Reply:
 def reason(ctx: Context) -> Reply:
     """REASON: apply pending changes and bring the inferences up to date (incrementally), also after an inconsistency."""
     ref = ctx.reference
-    # on failure the ontology is back at its last good state: its last successful REASON, or as reopened
-    undone = ref.ontology.ledger.recording
     try:
         warnings = ref.flush(reason=False)
         ref.ontology.reason()
@@ -295,9 +293,12 @@ def reason(ctx: Context) -> Reply:
         # the buffered changes that broke it are dropped too, or every later REASON would fail the same way
         dropped = ref.discard_buffer()
         note = f"; {dropped} buffered change(s) were discarded" if dropped else ""
-        outcome = ("the changes since the last successful REASON were undone" if undone else
-                   "there was no successful REASON to return to: the asserted facts were kept and the "
-                   "inferred ones cleared")
+        # the ontology is back at its last good state (its last successful REASON, or as reopened), or,
+        # where there is none or it cannot be reasoned either, holds its asserted facts only
+        outcome = ("the changes since the last successful REASON were undone"
+                   if ref.ontology.ledger.last_failure == "undone" else
+                   "the ontology could not be brought back to a reasoned state: its asserted facts were kept "
+                   "and its inferred ones cleared (REASON again once the cause is removed)")
         raise CommandError(codes.REASONER_OR_QUERY_FAILURE, f"reasoning failed and {outcome}: {exc}{note}") from exc
     return Reply(warnings=warnings)
 

@@ -104,7 +104,8 @@ class Ontology:
         #: change notifications: subscribe with ``onto.events.subscribe(callback, "rdf:type URGENT")``
         self.events = EventHub(lambda: self.prefix)
         self.store.on_lost.append(self.reasoning.writes_lost)
-        #: how a durable store was found: "new", "reopened" or "rebuilt" (see topostore.ontology.state)
+        #: how a durable store was found: "new", "reopened", "rebuilt" or "asserted only" (see
+        #: topostore.ontology.state)
         self.opened = durable_state.reopen(self)
 
     restore_report = forward("reasoning", OntologyReasoning.restore_report, "State of a reopened durable ontology: "

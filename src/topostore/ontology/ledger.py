@@ -63,6 +63,9 @@ class ChangeLedger:
         #: (added, removed) triples of each change applied since the outermost open unit of work began
         self._steps: list[tuple[list[Triple], list[Triple]]] = []
         self._open = 0
+        #: how the last failed REASON left the ontology: "undone" (back at its last good state, reasoned
+        #: again) or "cleared" (the asserted facts kept, the inferred graphs dropped); None before any
+        self.last_failure: str | None = None
 
     # ------------------------------------------------------------ recording
     @property
@@ -237,10 +240,12 @@ def all_or_nothing(reason: F) -> F:
             with limits.budget(self.limits):
                 report = reason(self, *args, **kwargs)
         except Exception:
-            if self.ledger.recording:
-                _restore(self, reason)
-            else:  # no good state to return to: never leave a half-written closure readable
-                _clear_inferred(self)
+            if self.ledger.recording and _restore(self, reason):
+                self.ledger.last_failure = "undone"
+            else:  # no good state to return to, or it cannot be reasoned: never a half-written closure
+                if not self.ledger.recording:
+                    _clear_inferred(self)
+                self.ledger.last_failure = "cleared"
             raise
         self.ledger.succeeded(self.incremental_ready())
         self.values.reasoned()
@@ -249,8 +254,9 @@ def all_or_nothing(reason: F) -> F:
     return wrapper  # type: ignore[return-value]
 
 
-def _restore(onto: Ontology, reason: Callable[..., Any]) -> None:
-    """Revert the asserted changes since the last good REASON and recompute its closure."""
+def _restore(onto: Ontology, reason: Callable[..., Any]) -> bool:
+    """Revert the asserted changes since the last good REASON and recompute its closure; False where
+    that closure cannot be computed either (its inferred graphs are then cleared)."""
     reverted = onto.ledger.revert(onto.store)
     onto.values.reverted()  # the spellings that came with the reverted literals go with them
     onto.forget_reasoning()
@@ -260,9 +266,11 @@ def _restore(onto: Ontology, reason: Callable[..., Any]) -> None:
             reason(onto, mode="full")
         onto.ledger.succeeded(onto.incremental_ready())
         onto.values.reasoned()
+        return True
     except TopostoreError:  # even the previous state cannot be reasoned (e.g. limits lowered): asserted facts only
         logger.exception("the state before the change could not be reasoned either; inferred facts cleared")
         _clear_inferred(onto)
+        return False
 
 
 def _clear_inferred(onto: Ontology) -> None:

@@ -13,6 +13,7 @@ from __future__ import annotations
 import logging
 from typing import TYPE_CHECKING
 
+from ..errors import TopostoreError
 from ..rdf.vocab import ASSERTED, AUX, LEGACY_DIFFERENT_KEY
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -44,7 +45,8 @@ def end_reason(store: Store, consistent: bool) -> None:
 
 
 def reopen(onto: Ontology) -> str:
-    """Bring an ontology opened on a durable store to a sound state; says how ("new", "reopened", "rebuilt").
+    """Bring an ontology opened on a durable store to a sound state; says how ("new", "reopened", "rebuilt",
+    or "asserted only" where the rebuilding REASON failed: the inferred graphs are then left empty).
 
     Finished inferred graphs are kept as they are (with the consistency they
     had); unfinished ones, or an inconsistent state whose explanations are
@@ -70,7 +72,12 @@ def reopen(onto: Ontology) -> str:
     else:
         why = "unfinished" if meta.get("inferred") != "valid" else "inconsistent (its violations are not kept)"
     logger.warning("the store's inferred graphs are %s: rebuilding them with a full REASON while opening it", why)
-    onto.reason(mode="full")
+    try:
+        onto.reason(mode="full")
+    except TopostoreError as exc:  # one store that cannot be reasoned must not stop the process opening it
+        logger.warning("the store's inferred graphs could not be rebuilt (%s): opened with its asserted facts "
+                       "only; REASON again once the cause is removed", exc)
+        return "asserted only"
     return "rebuilt"
 
 

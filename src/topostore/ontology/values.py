@@ -86,11 +86,12 @@ class OntologyValues:
 
     def _wait(self, key: tuple[str, str], spelling: str) -> None:
         """Keep ``spelling`` until the literal ``key`` is asserted (the first one given for it wins; past
-        :data:`PENDING` literals waiting, the oldest is dropped)."""
-        if key not in self._pending:
-            self._pending[key] = spelling
-            if len(self._pending) > PENDING:
-                del self._pending[next(iter(self._pending))]
+        :data:`PENDING` literals waiting, the one made longest ago is dropped: a literal made again counts
+        as made now)."""
+        first = self._pending.pop(key, spelling)
+        self._pending[key] = first
+        if len(self._pending) > PENDING:
+            del self._pending[next(iter(self._pending))]
 
     def fact(self, subject: str, prop: str, obj: object) -> Triple:
         """A triple from names: ``obj`` is an individual name, a Literal or a Python value."""

@@ -159,9 +159,13 @@ def json_ld_literals(data: bytes) -> list[tuple[str, str]]:
     except (ValueError, RecursionError):
         return []
     found: list[tuple[str, str]] = []
-    todo: list[tuple[object, _Scope]] = [(doc, _Scope(None, {}))]
+    # a stack of nodes to read and of strings already read, popped in the order they are written
+    todo: list[tuple[object, _Scope | None]] = [(doc, _Scope(None, {}))]
     while todo:
         node, scope = todo.pop()
+        if scope is None:  # a tagged string, reached in its place
+            found.append(node)  # type: ignore[arg-type]
+            continue
         if isinstance(node, list):
             todo.extend(reversed([(v, scope) for v in node]))
             continue
@@ -172,21 +176,17 @@ def json_ld_literals(data: bytes) -> list[tuple[str, str]]:
             if isinstance(lang := node.get("@language"), str) and WHOLE_TAG.fullmatch(lang):
                 found.append((value, lang))
             continue
-        later = []
+        later: list[tuple[object, _Scope | None]] = []
         for key, v in node.items():
             if key.startswith("@") and key not in ("@graph", "@included", "@reverse", "@list", "@set"):
                 continue
             for item in v if isinstance(v, list) else (v,):
                 lang = scope.language(key)
                 if isinstance(item, str) and not key.startswith("@") and lang is not None:
-                    later.append((item, lang))
+                    later.append(((item, lang), None))
                 elif isinstance(item, (dict, list)):
-                    later.append(((item, scope), None))
-        for item, lang in later:  # kept in the order written: a string now, a nested node once read
-            if lang is None:
-                todo.append(item)  # type: ignore[arg-type]
-            else:
-                found.append((item, lang))  # type: ignore[arg-type]
+                    later.append((item, scope))
+        todo.extend(reversed(later))  # strings and nested nodes read in the order written
     return found
 
 
