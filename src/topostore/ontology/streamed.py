@@ -222,7 +222,7 @@ def _text_pass(store: Store, data: bytes, fmt: RdfFormat, base_iri: str | None, 
     """The document written through pyoxigraph's own N-Triples text, changed as bytes
     (:mod:`topostore.rdf.ntriples_text`): the parser's quads pulled by the serialiser in C, :data:`TEXT_CHUNK` at
     a time, with no Python frame per triple; then in each piece the blank nodes renamed by whole-text
-    replacements and only the lines holding a literal read as terms (:meth:`_Literals.kept_text`); each piece
+    replacements and only the lines holding a literal read as terms (:meth:`_Literals.kept_lines`); each piece
     indexed by the store in a second thread while the next is made.  The quads gained."""
     quads = parser(data, fmt, base_iri, source)
     before, parsed, predicates = store.quad_total(), 0, set()

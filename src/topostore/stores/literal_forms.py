@@ -138,14 +138,9 @@ class LiteralForms:
             return []
         name, durable = graph.value, self._store.durable
         forms_add: list[Quad] = []
-        literal_forms, value_forms = self._literal_forms, self._value_forms
         for (s, p, key), lit in spelled:
-            literal_forms[(name, s, p, key)] = lit
-            counted = value_forms.get(key)  # _count_form(key, lit, +1), inline: one call fewer per literal
-            if counted is None:
-                value_forms[key] = {lit: 1}
-            else:
-                counted[lit] = counted.get(lit, 0) + 1
+            self._literal_forms[(name, s, p, key)] = lit
+            self._count_form(key, lit, +1)
             if durable:
                 forms_add.append(_form_quad(name, s, p, lit))
         return forms_add
