@@ -548,6 +548,80 @@ def test_a_flip_seeded_by_a_clock_needs_every_clock_replaced() -> None:
     assert {onto.short(i) for i in onto.instances(N("Hot"))} == {"i2"}
 
 
+def test_a_flip_run_by_look_ups_reads_no_clock_for_a_text_it_does_not_send() -> None:
+    """Whether every ``now`` fact was replaced only picks the text a flip queues: the flip's look-ups
+    read no asserted facts for it, and a flip whose look-ups give way sends the one seeded branch."""
+    from topostore.reason.staged import StagedRun
+
+    asked: list[str] = []
+    all_replaced = StagedRun._all_replaced
+
+    def counted(run, p):
+        asked.append(p)
+        return all_replaced(run, p)
+
+    def ticks(onto: Ontology) -> None:
+        onto.max_change_share = 1.0
+        onto.replace(N("i1"), N("seen"), 95)
+        assert_as_from_scratch(onto, onto.reason())
+        for tick in (105, 111, 100):
+            onto.replace(N("i1"), N("seen"), tick - 1 if tick > 100 else 80)
+            onto.replace(N("clock"), N("now"), tick)
+            report = onto.reason(mode="incremental")
+            assert report.stats.program == "compiled", report.stats.program
+            assert_as_from_scratch(onto, report)
+        assert {onto.short(i) for i in onto.instances(N("Hot"))} == {"i1"}
+
+    with mock.patch.object(StagedRun, "_all_replaced", counted):
+        ticks(new_ontology())
+        assert asked == []
+        with mock.patch.object(look_flip.Flipped, "run", lambda self, store: False):  # the text runs
+            ticks(new_ontology())
+    assert asked, "the queued flip chose its text"
+
+
+def test_a_step_run_by_look_ups_copies_no_change_for_text() -> None:
+    """The asserted changes go to the scratch graphs SPARQL text reads them from (ADDED, REMOVED) only
+    where a text is sent: not in the clock's steps once every operation runs by look-ups (the first
+    sends a text), and before the first text of steps whose operations run as text (as from scratch)."""
+    from topostore.reason.scratch import ADDED, REMOVED
+    from topostore.reason.staged import StagedRun
+
+    def steps(onto: Ontology, joined: bool) -> list[set]:
+        """The scratch graphs each step wrote."""
+        written: list[set] = []
+        add_scratch = onto.store.add_scratch
+
+        def spied(triples, graph):
+            written[-1].add(graph)
+            return add_scratch(triples, graph)
+
+        onto.max_change_share = 1.0
+        with mock.patch.object(onto.store, "add_scratch", spied):
+            for tick, (a, b) in enumerate([("i1", "i2"), ("i2", "i3"), ("i3", "i1"), ("i1", "i2")]):
+                written.append(set())
+                if joined:  # the join rules' operations: sent as text
+                    toggle(onto, Triple(N(a), N("p"), N(b)))
+                onto.replace(N("i1"), N("seen"), 90 + tick)
+                onto.replace(N("clock"), N("now"), 101 + tick)
+                report = onto.reason(mode="incremental")
+                assert report.stats.program == "compiled", report.stats.program
+                assert_as_from_scratch(onto, report)
+        return written
+
+    copies = {ADDED, REMOVED}
+    assert [copies & graphs for graphs in steps(new_ontology(), False)[1:]] == [set()] * 3
+    assert any(copies <= graphs for graphs in steps(new_ontology(), True))
+    init = StagedRun.__init__
+
+    def as_text(run, *args, **kwargs):
+        init(run, *args, **kwargs)
+        run.direct = {}  # every operation sent as its text
+
+    with mock.patch.object(StagedRun, "__init__", as_text):
+        assert all(copies <= graphs for graphs in steps(new_ontology(), False))
+
+
 def test_a_look_up_waits_for_the_queued_deletion_of_a_key_it_reads() -> None:
     """Hot's deletion is queued when the clock goes back; C's candidates and rechecks, made by look-ups
     (C ⊑ A, Hot ⊑ C: one-atom rules), read Hot: the deletion is sent before them, and C and A of the

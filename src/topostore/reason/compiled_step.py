@@ -11,7 +11,7 @@ program once needed more rounds than one request had, takes the general phases.
 from __future__ import annotations
 
 import time
-from collections.abc import Collection
+from collections.abc import Callable, Collection
 from typing import TYPE_CHECKING
 
 from pyoxigraph import Triple
@@ -82,11 +82,13 @@ class CompiledStep:
         self._ran.clear()
 
     def run(self, added: Collection[Triple], removed: Collection[Triple], clean: dict,
-            stats: ReasonStats, state: MaintenanceState, census: tuple | None = None) -> bool:
+            stats: ReasonStats, state: MaintenanceState, census: tuple | None = None,
+            copy_changes: Callable[[], None] = lambda: None) -> bool:
         """Maintain with the compiled program of this kind of change (see :mod:`.program`); False
         (with the reason in ``stats.program``) when it cannot be compiled.  ``clean``: the change's
         clean replacements (:func:`.flip.replaced_in`); ``census``: :func:`key_census` of ``added``
-        when the caller made it."""
+        when the caller made it; ``copy_changes``: writes the changes to the scratch graphs SPARQL
+        text reads them from (called before the first text is sent)."""
         if not self.enabled:
             stats.program = "general: compiled step switched off"
             return False
@@ -101,6 +103,7 @@ class CompiledStep:
         start = time.perf_counter()
         self.flips.state = state
         if self.store.round_trips and self.store.whole_programs:  # the whole program as one request
+            copy_changes()
             self.requests.flush()
             self.requests.defer(program.text(self._flip_text))
             self.requests.flush()
@@ -109,7 +112,7 @@ class CompiledStep:
         else:
             self._settle = False  # the rounds run to their end here
             self.requests.flush()
-            run = StagedRun(self.store, program, sig, self._flip_text, (added, removed))
+            run = StagedRun(self.store, program, sig, self._flip_text, (added, removed), copy_changes)
             run.run()
             stats.evaluations += run.sent
         if self.requests.profile:

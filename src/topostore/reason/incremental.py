@@ -95,6 +95,7 @@ from .materialize import Materializer
 from .negation import ASKED, completion_text
 from .present import key_graphs, with_facts
 from .program import PROGRAM_SCRATCH
+from .requests import LaterCopies
 from .scratch import ADDED, FLIP_GAINED, NEW_FACTS, OVERDELETED, REMOVED, SCRATCH
 from .stats import ReasonStats
 from .triggers import key_sets
@@ -308,8 +309,9 @@ class IncrementalReasoner:
             return
         self.flips.note(added, removed)
         requests = self.requests
-        requests.scratch(added, ADDED)
-        requests.scratch(removed, REMOVED)
+        copy_changes = LaterCopies(requests, ((added, ADDED), (removed, REMOVED)))
+        if self.store.round_trips:
+            copy_changes()  # queued with the program's request
         preds, classes = key_census(added)
         for keys in (self.state.present, self.state.asserted):
             keys[0].update(preds)
@@ -320,10 +322,12 @@ class IncrementalReasoner:
         replaced = flip.replaced_in(self.store, added, removed, ASSERTED)
         ask_again = bool(self.deferred and removed) and self._completion.needed(
             self.state.present, key_census(removed), asserted=True)
-        if not ask_again and self.step.run(added, removed, replaced, stats, self.state, (preds, classes)):
+        if not ask_again and self.step.run(added, removed, replaced, stats, self.state, (preds, classes),
+                                           copy_changes):
             self._incomplete = bool(self.deferred and removed) and self._completion.needed(
                 self.state.present, key_sets(self.step.lost))
             return
+        copy_changes()
         self.step.forget_runs()  # the general phases may change the keys with facts either way
         try:
             self._general(added, removed, stats, profile, (preds, classes), replaced)

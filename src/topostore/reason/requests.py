@@ -127,4 +127,24 @@ class RequestQueue:
         self.queue.clear()
 
 
-__all__ = ["RequestQueue"]
+class LaterCopies:
+    """Scratch copies written once, when first called: a REASON's asserted changes go to ADDED and
+    REMOVED only where SPARQL text reads them (the general phases, a compiled operation sent as text);
+    a compiled step run by look-ups alone writes the changes where it reads them and needs no copy."""
+
+    __slots__ = ("copies", "done", "requests")
+
+    def __init__(self, requests: RequestQueue, copies: tuple[tuple[Collection[Triple], NamedNode], ...]) -> None:
+        self.requests = requests
+        #: (triples, scratch graph) pairs
+        self.copies = copies
+        self.done = False
+
+    def __call__(self) -> None:
+        if not self.done:
+            self.done = True
+            for triples, graph in self.copies:
+                self.requests.scratch(triples, graph)
+
+
+__all__ = ["LaterCopies", "RequestQueue"]

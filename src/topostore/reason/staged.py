@@ -86,11 +86,14 @@ class StagedRun:
 
     def __init__(self, store, program: StepProgram, sig: Signature,
                  flip_text: Callable[[int, tuple, str], str],
-                 changes: tuple[Collection[Triple], Collection[Triple]] | None = None) -> None:
+                 changes: tuple[Collection[Triple], Collection[Triple]] | None = None,
+                 before_text: Callable[[], None] | None = None) -> None:
         """``changes``: the added and removed asserted triples, written to the step's first lost and
-        gained facts directly instead of by the program's first operation."""
+        gained facts directly instead of by the program's first operation; ``before_text``: called
+        once before the first text is sent (the copies of the changes its operations read)."""
         self.store = store
         self.changes = changes
+        self.before_text = before_text
         self.program = program
         #: a flip operation's text for this run (narrowed by a value window where one applies)
         self.flip_text = flip_text
@@ -148,7 +151,7 @@ class StagedRun:
                     continue  # nothing can flip this time
                 flipped = True
                 # a text narrowed by a value window: many facts, whose window query ran already
-                look_up = text is compiled or text in self.program.seeded.get(index, {}).values()
+                look_up = text is compiled
             if kind == "changes" and self.changes is not None:
                 self.store.add_scratch(self.changes[0], NEW_FACTS)
                 self.store.add_scratch(self.changes[1], OVERDELETED)
@@ -186,17 +189,22 @@ class StagedRun:
         return self.program.reads[key] if key is not None else (None,)
 
     def _flip(self, index: int, tag: tuple, text: str) -> str:
-        """The flip's text for this run (:attr:`flip_text`); where that is the compiled text and every
-        fact of a compared predicate was replaced, the one branch seeded by it instead of the UNION."""
+        """The flip's text for this run (:attr:`flip_text`): "" when nothing can flip, the compiled text,
+        or one narrowed by a value window."""
         self._reading(self._reads(index))  # a value window's query reads the rule's premises
-        found = self.flip_text(tag[2], tag[3], text)
+        return self.flip_text(tag[2], tag[3], text)
+
+    def _seeded(self, index: int, text: str) -> str:
+        """The text to queue for flip ``index`` whose compiled ``text`` runs: where every fact of a
+        compared predicate was replaced, the one branch seeded by it instead of the UNION.  Asked only
+        when the text is queued (an operation's look-ups do not read it)."""
         seeded = self.program.seeded.get(index)
-        if found is not text or not seeded or self.changes is None or self.store.round_trips:
-            return found
+        if not seeded or self.changes is None or self.store.round_trips:
+            return text
         for p, single in seeded.items():
             if self._all_replaced(p):
                 return single
-        return found
+        return text
 
     def _all_replaced(self, p: str) -> bool:
         """Whether every fact of predicate ``p`` (IRI text; asserted only, no rule derives it) was
@@ -217,6 +225,8 @@ class StagedRun:
             if direct(self.store):
                 self.sent += 1
                 return False
+        if look_up and index in self.program.seeded:  # a flip's compiled text
+            text = self._seeded(index, text)
         self.queue.append(text)
         self.dirty.add(key)
         return True
@@ -253,6 +263,9 @@ class StagedRun:
     def flush(self) -> None:
         """Send what is queued as one update request."""
         if self.queue:
+            if self.before_text is not None:
+                self.before_text()
+                self.before_text = None
             self.sent += len(self.queue)
             self.store.update(" ;\n".join(self.queue), prefixes=PREFIXES)
             self.queue.clear()
