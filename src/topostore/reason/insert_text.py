@@ -17,6 +17,7 @@ from ..compile.schema import schema_dataset
 from ..rdf.vocab import ASSERTED, AUX, DELTA, INFERRED, NEW_AUX, NEW_INFERRED
 from .class_unions import union_where
 from .key_pairs import grouped_form
+from .one_group import without_group_tests
 from .order import TYPE_KEY
 from .plan import plan_where
 
@@ -26,7 +27,7 @@ DATASET = f"USING {ASSERTED} USING {INFERRED} USING {AUX} USING NAMED {AUX} USIN
 def insert_text(rule: Rule, delta_index: int | None = None, planned: bool = False, lateral: bool = True,
                 direct: tuple[NamedNode, NamedNode | None] | None = None,
                 graphs: Mapping[ReadKey, NamedNode] | None = None, derived: bool = False,
-                union: Sequence[Rule] = (), few: bool = False) -> str:
+                union: Sequence[Rule] = (), few: bool = False, one_group: bool = False) -> str:
     """The INSERT evaluating ``rule`` (atom ``delta_index`` on the delta) into NEW_*.
 
     ``planned`` uses :func:`.plan.plan_where` for delta evaluations (delta atom
@@ -39,21 +40,25 @@ def insert_text(rule: Rule, delta_index: int | None = None, planned: bool = Fals
     concluding the same class, evaluated with ``rule`` as one (:mod:`.class_unions`; no delta).
     ``few``: the evaluation has few solutions against a large head extent (:func:`.few_solutions.few_solutions`),
     so the heads known are kept out by a look-up per solution instead of reading the extent.
+    ``one_group``: every AllDifferent key is of one group (:func:`.one_group.one_group`; no delta), so the
+    "two keys of one group" tests are left out.
     """
     final = AUX if rule.head_aux() else INFERRED
     target = NEW_AUX if rule.head_aux() else NEW_INFERRED
     head = rule.head.text()
     delta = DELTA if direct is None else direct[0]
     small = planned and delta_index is not None and lateral
+    pair = grouped_form(rule) if direct is not None and delta_index is None else None
+    if one_group and pair is None and not union and delta_index is None:
+        rule = without_group_tests(rule) or rule
     if planned and delta_index is not None:
         where = plan_where(rule, delta_index, delta, lateral=lateral)
     else:
         where = rule.where(delta_index, str(delta), graphs)
-    pair = grouped_form(rule) if direct is not None and delta_index is None else None
     if union:
         where = union_where((rule, *union), graphs)
     elif pair is not None:
-        where = pair.where(graphs)
+        where = pair.where(graphs, one_group)
     elif direct is not None and delta_index is None and distinct_pays(rule):
         where = f"{{ SELECT DISTINCT {' '.join(sorted(rule.head.variables()))} WHERE {{\n  {where}\n  }} }}"
     into = f"GRAPH {target} {{ {head} }}" if direct is None else f"GRAPH {final} {{ {head} }}"

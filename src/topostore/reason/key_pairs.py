@@ -49,13 +49,19 @@ class GroupedPair:
     key: str
     shared: tuple[str, ...]
 
-    def where(self, graphs=None) -> str:
-        """The WHERE group: the head's variables of the bindings with two values and two keys of one group."""
+    def where(self, graphs=None, one_group: bool = False) -> str:
+        """The WHERE group: the head's variables of the bindings with two values and two keys of one group.
+
+        ``one_group``: every key is of one group (:mod:`.one_group`), so the bindings are grouped by the
+        other variables alone, without reading each key's group part (when there are other variables)."""
         head = " ".join(sorted(self.rule.head.variables()))
         inner = self.rule.where(None, "", graphs)
         group = "?pair_group"
-        return (f"{{ SELECT DISTINCT {head} WHERE {{\n  {inner}\n  BIND({group_of(self.key)} AS {group})\n  }}"
-                f" GROUP BY {' '.join(self.shared)} {group}"
+        bind = f"\n  BIND({group_of(self.key)} AS {group})"
+        if one_group and self.shared:
+            bind, group = "", ""
+        return (f"{{ SELECT DISTINCT {head} WHERE {{\n  {inner}{bind}\n  }}"
+                f" GROUP BY {' '.join((*self.shared, group)).strip()}"
                 f" HAVING (COUNT(DISTINCT {self.key}) > 1 && COUNT(DISTINCT {self.value}) > 1) }}")
 
 

@@ -43,6 +43,7 @@ from .few_solutions import few_solutions
 from .first_pass import first_pass, without
 from .insert_text import distinct_pays, insert_text
 from .negation import Idle, evaluated_last
+from .one_group import keys_kept_by_group, one_group, without_group_tests
 from .order import (
     asserted_paths,
     evaluation_order,
@@ -113,6 +114,10 @@ class Materializer:
         #: run beside the fixpoint, their matches left in :attr:`checked` by their index here
         self.checks: list[Rule] = []
         self.checked: dict[int, list[dict]] = {}
+        #: rules with a "two keys of one group" test, left out of their evaluations without delta of a
+        #: full run while the store holds one AllDifferent group (:mod:`.one_group`)
+        self._grouped: set[int] = ({i for i, r in enumerate(self.rules) if without_group_tests(r) is not None}
+                                   if keys_kept_by_group(self.rules) else set())
 
     def _run(self, index: int, delta_index: int | None, stats: ReasonStats, asserted_only: bool = False,
              first: bool = False, union: tuple[int, ...] = ()) -> None:
@@ -126,8 +131,10 @@ class Materializer:
         lean = first and index in self._lean
         few = self._direct is not None and delta_index is None and not union and few_solutions(
             self.store, self._lean[index] if lean else self.rules[index], self._queued)
+        one = (self._direct is not None and delta_index is None and index in self._grouped
+               and one_group(self.store, self._queued))
         key = (index, delta_index, self._lateral, self._direct, self._graphs is not None, derived, asserted_only,
-               lean, union, few)
+               lean, union, few, one)
         text = self._texts.get(key)
         if text is None:
             graphs = self._graphs
@@ -137,7 +144,7 @@ class Materializer:
                 graphs = {**graphs, **{a.read_key(): ASSERTED for a in self.rules[index].body if is_path(a)}}
             rule = self._lean[index] if lean else self.rules[index]
             text = self._texts[key] = insert_text(rule, delta_index, self.planned, self._lateral,
-                                                  self._direct, graphs, derived, [self.rules[j] for j in union], few)
+                                                  self._direct, graphs, derived, [self.rules[j] for j in union], few, one)
         stats.evaluations += 1
         self._queued.add(self.rules[index].writes())
         if self._early is not None:
