@@ -239,13 +239,15 @@ def all_or_nothing(reason: F) -> F:
         try:
             with limits.budget(self.limits):
                 report = reason(self, *args, **kwargs)
-        except Exception:
+        except Exception as exc:
             if self.ledger.recording and _restore(self, reason):
                 self.ledger.last_failure = "undone"
             else:  # no good state to return to, or it cannot be reasoned: never a half-written closure
                 if not self.ledger.recording:
                     _clear_inferred(self)
                 self.ledger.last_failure = "cleared"
+            if isinstance(exc, limits.ReasonLimitExceeded):
+                exc.outcome = self.ledger.last_failure  # its text says what was left, now that it is known
             raise
         self.ledger.succeeded(self.incremental_ready())
         self.values.reasoned()
