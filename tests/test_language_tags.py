@@ -533,3 +533,29 @@ def test_a_literal_made_again_counts_as_made_now_among_the_waiting_spellings() -
     onto.value("one more", language="fr-CA")
     onto.add_fact("r1", "label", made)
     assert onto.store.forms.tags.spelled("en-gb") == "en-GB"
+
+
+@pytest.mark.parametrize("way", ["document", "sparql update", "buffered sparql update"])
+def test_a_failed_reason_drops_a_spelling_a_document_or_an_update_brought(way: str) -> None:
+    """A spelling read from a document or an update's text goes with the literals a failed REASON reverts,
+    also where a literal asserted before carries its tag: that one is shown as it was before."""
+    o = mapped()
+    o.add_data("s", "x", Literal("kept", language="fr-ca"))
+    o.reason()
+    if way == "document":
+        quiet(o, f'<{NS}x> <{NS}s> "colour"@en-GB , "bonjour"@FR-ca .')
+    else:
+        ref = Reference("ref", o, "http://e.org/lang", buffered_reasoner=way.startswith("buffered"))
+        run_update(ref, f'INSERT DATA {{ <{NS}x> <{NS}s> "colour"@en-GB , "bonjour"@FR-ca }}',
+                   Job(time.monotonic() + 60), 60.0)
+        if not ref.buffered_reasoner:  # reasoned with the update: its spellings stay with its literals
+            failed_reason(o)
+            assert b'"colour"@en-GB' in o.serialize("ntriples")
+            return
+    assert o.store.forms.tags.known("en-gb") and o.store.forms.tags.spelled("fr-ca") == "FR-ca"
+    failed_reason(o)
+    saved = o.serialize("ntriples")
+    assert b"colour" not in saved and not o.store.forms.tags.known("en-gb")
+    assert b'"kept"@fr-ca' in saved and b"FR-ca" not in saved
+    o.add_data("s", "x", Literal("grey", language="en-gb"))
+    assert b'"grey"@en-gb' in o.serialize("ntriples")

@@ -220,7 +220,7 @@ def run_update(ref: WritableOntology, text: str, job: Job, limit: float) -> Upda
             raise SparqlTimeout(timeout_message(limit))
         warnings = ref.manipulate("SPARQL update", delta.add, delta.remove)
         # the tags of the literals it added, as the update's text spells them (pyoxigraph lowered them)
-        ref.ontology.store.forms.learn_tags(text, None, only=literal_tags(delta.add))
+        ref.ontology.values.learned(text, None, only=literal_tags(delta.add))
         return UpdateOutcome(len(delta.add), len(delta.remove), ref.is_consistent, warnings)
 
 
