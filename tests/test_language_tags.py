@@ -559,3 +559,19 @@ def test_a_failed_reason_drops_a_spelling_a_document_or_an_update_brought(way: s
     assert b'"kept"@fr-ca' in saved and b"FR-ca" not in saved
     o.add_data("s", "x", Literal("grey", language="en-gb"))
     assert b'"grey"@en-gb' in o.serialize("ntriples")
+
+
+@pytest.mark.parametrize("accept", ["application/sparql-results+json", "application/sparql-results+xml",
+                                    "text/tab-separated-values", "text/turtle", "application/n-triples"])
+def test_sparql_query_answers_spell_tags_as_written(accept: str, tmp_path: Path) -> None:
+    """SELECT and CONSTRUCT answers over HTTP spell a tag as its literal was written (pyoxigraph lowers it)."""
+    query = (f"CONSTRUCT {{ ?x <{NS}s> ?v }} WHERE {{ ?x <{NS}s> ?v }}" if "results" not in accept and
+             "tab" not in accept else f"SELECT ?v WHERE {{ ?x <{NS}s> ?v }}")
+    with in_process(config(tmp_path / "data", allow_update=True)) as server:
+        status, _, reply = server.request("/references/lang/data?default", TURTLE.encode(),
+                                          {"Content-Type": "text/turtle"}, "PUT")
+        assert status == 201, reply
+        status, _, body = server.sparql_get(query, accept, ref="lang")
+        assert status == 200, body[:400]
+    assert b"en-GB" in body and b"EN-us" in body and b"de-CH" in body, body[:600]
+    assert b"en-gb" not in body.replace(b'\\"@en-GB\\"', b"") and b"en-us" not in body
