@@ -122,6 +122,22 @@ def test_the_inspector_in_a_real_browser(live_map: Server, tmp_path: Path) -> No
             live_map.ok("ADD", "IND", "CLASS", ["R1", "DOOR"])
             page.wait_for_function("() => document.body.dataset.consistent === 'false'")
             assert page.inner_text("#status") == "INCONSISTENT"
+            # an entity page still fetching when the user goes elsewhere is never drawn over the view asked for:
+            # its answer is held back until the consistency view is shown, then let through
+            held: list = []
+            page.route("**/entities/C1", lambda route: held.append(route))
+            with page.expect_request("**/entities/C1"):
+                page.evaluate("() => { location.hash = '#entity/C1'; }")
+            page.evaluate("() => { location.hash = '#consistency'; }")
+            page.wait_for_selector("#consistency .violation")
+            assert held, "the entity page was not held back"
+            with page.expect_response("**/entities/C1"):
+                held[0].continue_()
+            page.unroute("**/entities/C1")
+            page.wait_for_timeout(300)  # the late answer handled
+            assert page.locator("#entity").is_hidden() and page.locator("#consistency").is_visible()
+            page.evaluate("() => { location.hash = '#entity/R1'; }")
+            page.wait_for_function("() => !document.getElementById('entity').hidden")
             page.click("#status")
             page.wait_for_selector("#consistency .violation")
             report = page.inner_text("#consistency")

@@ -140,3 +140,26 @@ def test_add_new_and_remove_present_return_and_record_what_changed(onto: Ontolog
     assert onto.remove_present(*gone) == [] and onto.add(known) == 0 and onto.remove(fresh) == 1
     assert onto.ledger.added == {}
     assert {t for t in asserted(onto) if t.subject in (n("r1"), n("r2"))} == {known}
+
+
+@pytest.mark.parametrize("kind", ["add", "remove", "replace"])
+def test_a_unit_of_work_around_a_store_transaction_that_fails_leaves_nothing_in_the_record(
+        onto: Ontology, kind: str) -> None:
+    """The transaction rolls the store back before the unit of work undoes its steps: the steps whose
+    change never landed are taken out of the record too, so the next REASON is not told of them."""
+    before = asserted(onto)
+    old = Triple(n("r1"), n("speed"), typed("7", "long"))
+    new = Triple(n("r1"), n("speed"), typed("9", "long"))
+    with pytest.raises(RuntimeError), onto.ledger.undoable(onto), onto.store.transaction():
+        if kind != "add":
+            onto.changes.remove(old)
+        if kind != "remove":
+            onto.changes.add(new)
+        onto.changes.add(Triple(n("r3"), TYPE, n("Robot")))
+        raise RuntimeError("the caller's own failure")
+    assert asserted(onto) == before
+    assert onto.ledger.added == {} and onto.ledger.removed == {}
+    onto.add(Triple(n("r4"), TYPE, n("Robot")))  # a later change is recorded as itself alone
+    assert onto.ledger.net_changes() == ([Triple(n("r4"), TYPE, n("Robot"))], [])
+    onto.reason()
+    assert n("Thing2") in set(onto.types("r4")) and n("Thing2") not in set(onto.types("r3"))

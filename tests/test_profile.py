@@ -81,6 +81,14 @@ CASES = {
     "existential and functional": (":p a owl:FunctionalProperty . :R rdfs:subClassOf [ a owl:Restriction ; "
                                    "owl:onProperty :p ; owl:someValuesFrom :L ] .", kinds.EXISTENTIAL,
                                    "at most one value"),
+    "existential under a maximum told on another class": (
+        ":A rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :p ; owl:maxCardinality 1 ] . :B rdfs:subClassOf "
+        "[ a owl:Restriction ; owl:onProperty :p ; owl:someValuesFrom :F ] .", kinds.EXISTENTIAL,
+        "on instances of (p max 1"),
+    "minimum of two under a maximum told on another class": (
+        ":A rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :p ; owl:maxCardinality 1 ] . :B rdfs:subClassOf "
+        "[ a owl:Restriction ; owl:onProperty :p ; owl:minQualifiedCardinality 2 ; owl:onClass :F ] .",
+        kinds.EXISTENTIAL, "in both (p min 2 F) and (p max 1"),
     "existential into disjoint classes": (":A rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :p ; "
                                           "owl:someValuesFrom :B ] . :p rdfs:range :C . :B owl:disjointWith :C .",
                                           kinds.EXISTENTIAL, "disjoint"),

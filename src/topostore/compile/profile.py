@@ -145,7 +145,7 @@ class ProfileReport:
         self.uses_difference = uses_difference
         self.notices: dict[tuple[str, str], Notice] = {}
         #: :meth:`single_valued`'s answers by property
-        self._single: dict[Prop, bool] = {}
+        self._single: dict[Prop, str | None] = {}
         #: what an existential's unnamed value implies beyond its own restriction (:mod:`.unnamed_values`)
         self.unnamed = UnnamedValues(self)
 
@@ -306,9 +306,10 @@ class ProfileReport:
             self.note(EXISTENTIAL, axiom, f"the unnamed value of {what} is in {describe(filler)}: its own "
                       "restrictions are not reasoned")
         elif filler is not None and filler.node not in value_classes:
-            if self.single_valued(p, e):
-                self.note(EXISTENTIAL, axiom, f"{_name(p.iri)} has at most one value, so the told value is "
-                          f"the one in {describe(filler)}: not derived")
+            single = self.single_valued(p, e)
+            said = None if single is None else self._single_valued_gap(e, single)
+            if said:
+                self.note(EXISTENTIAL, axiom, said)
             if any(self.disjoint(filler.node, c) for c in value_classes):
                 self.note(EXISTENTIAL, axiom, f"the unnamed value of {what} would be in disjoint classes "
                           f"({describe(filler)} and the range of {_name(p.iri)}): the inconsistency is not found")
@@ -332,19 +333,38 @@ class ProfileReport:
                 out |= self.told(c.node)
         return out
 
-    def single_valued(self, p: Prop, e: Expr) -> bool:
-        """At most one value of ``p`` at all: functional, or an unqualified maximum of one told (decided
-        once per property: asked for every existential on it)."""
-        found = self._single.get(p)
-        if found is None:
-            found = self._single[p] = self._single_valued(p)
-        return found
+    def single_valued(self, p: Prop, e: Expr) -> str | None:
+        """Why ``p`` may have at most one value: "" where it is functional (every subject), the told
+        unqualified maximum of one where only that restriction's instances are bounded, None where
+        nothing bounds it (decided once per property: asked for every existential on it)."""
+        if p not in self._single:
+            self._single[p] = self._single_valued(p)
+        return self._single[p]
 
-    def _single_valued(self, p: Prop) -> bool:
+    def _single_valued(self, p: Prop) -> str | None:
         if self.tb.has("InverseFunctionalProperty" if p.inverse else "FunctionalProperty", p.iri):
-            return True
-        return any(pos and m.kind in ("max", "exact") and m.n <= 1 and m.filler is None and m.datatype is None
-                   for m, pos in self.on.get(p, ()))
+            return ""
+        for m, pos in self.on.get(p, ()):
+            if pos and m.kind in ("max", "exact") and m.n <= 1 and m.filler is None and m.datatype is None:
+                return describe(m)
+        return None
+
+    @staticmethod
+    def _single_valued_gap(e: Expr, single: str) -> str | None:
+        """The notice for an existential on a property with at most one value (None: nothing is missed).
+
+        A functional property's told value is the unnamed one (a minimum of two or more on it is found
+        inconsistent); a maximum told in a restriction bounds that restriction's instances only, so the
+        notice says where it applies, and for a minimum of two or more that the clash is what is missed."""
+        name, filler = _name(e.prop.iri), describe(e.filler) if e.filler is not None else "owl:Thing"
+        many = e.kind in ("min", "exact") and e.n >= 2
+        if not single:
+            return None if many else \
+                f"{name} has at most one value, so the told value is the one in {filler}: not derived"
+        if many:
+            return f"an individual in both {describe(e)} and {single} is inconsistent: not found"
+        return (f"on instances of {single}, {name} has at most one value, so the told value is the one "
+                f"in {filler}: not derived")
 
     def disjoint(self, a: NamedNode, b: NamedNode) -> bool:
         """Some told superclass of ``a`` (or ``a``) is told disjoint with one of ``b`` (or ``b``)."""

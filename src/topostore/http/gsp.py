@@ -220,7 +220,7 @@ def _apply(ref: Reference, plan: Callable[[Ontology], Delta], method: str,
         except TopostoreError as exc:
             raise GraphStoreError(400, f"the graph was not stored: {exc}") from None
         if written is not None:
-            ref.ontology.store.forms.learn_tags(*written, only=literal_tags(delta.add))
+            ref.ontology.values.learned(*written, only=literal_tags(delta.add))
         return {"added": len(delta.add), "removed": len(delta.remove), "is_consistent": ref.is_consistent,
                 "warnings": warnings}
 

@@ -94,14 +94,14 @@ class OntologyFiles:
             with collector_paused():
                 triples = self.onto.store.parse_bytes(data, rdf_format, base_iri, source=str(path), progress=progress)
             added, shown = self._add_document(triples)
-        self.onto.store.forms.learn_tags(data, rdf_format)  # once the document is in (all or nothing)
+        self.onto.values.learned(data, rdf_format)  # once the document is in (all or nothing)
         _published(shown, str(path))
         return added
 
     def load_data(self, data: str | bytes, fmt: str = "turtle", base_iri: str | None = None) -> int:
         rdf_format = guess_format("x", fmt)
         added, shown = self._load_bytes(data, rdf_format, base_iri, "<data>")
-        self.onto.store.forms.learn_tags(data, rdf_format)
+        self.onto.values.learned(data, rdf_format)
         _published(shown, "<data>")
         return added
 

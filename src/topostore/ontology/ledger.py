@@ -36,6 +36,7 @@ from ..errors import TopostoreError
 from ..rdf.vocab import ASSERTED, AUX, ENTAILED, INFERRED
 from ..reason import limits
 from ..reason.incremental import check_mode
+from ..stores.reads import contains
 
 if TYPE_CHECKING:  # pragma: no cover
     from ..stores.base import Store
@@ -168,14 +169,25 @@ class ChangeLedger:
         return _UnitOfWork(self, onto)
 
     def _undo_since(self, onto: Ontology, start: int) -> None:
-        """Undo the steps recorded since ``start`` (newest first) and forget them."""
+        """Undo the steps recorded since ``start`` (newest first) and forget them.
+
+        A step the store no longer shows (a store transaction inside the unit, rolled back before the
+        unit's own undo) never landed: it leaves the record as :meth:`lost` sets it back, since undoing
+        it through the store would flip nothing and record nothing."""
         steps = self._steps[start:]
-        with self._paused(), onto.store.transaction():
+        store = onto.store
+        with self._paused(), store.transaction():
             for added, removed in reversed(steps):  # a change removed, then added: undone the other way
-                if added:
-                    onto.changes.remove(*added)
-                if removed:
-                    onto.changes.add(*removed)
+                landed_add = [t for t in added if contains(store, t, ASSERTED)]
+                landed_remove = [t for t in removed if not contains(store, t, ASSERTED)]
+                if len(landed_add) < len(added) or len(landed_remove) < len(removed):
+                    kept_add, kept_remove = set(landed_add), set(landed_remove)
+                    self.lost(store, [([t for t in added if t not in kept_add],
+                                       [t for t in removed if t not in kept_remove])])
+                if landed_add:
+                    onto.changes.remove(*landed_add)
+                if landed_remove:
+                    onto.changes.add(*landed_remove)
         del self._steps[start:]
 
     @contextmanager
@@ -239,13 +251,15 @@ def all_or_nothing(reason: F) -> F:
         try:
             with limits.budget(self.limits):
                 report = reason(self, *args, **kwargs)
-        except Exception:
+        except Exception as exc:
             if self.ledger.recording and _restore(self, reason):
                 self.ledger.last_failure = "undone"
             else:  # no good state to return to, or it cannot be reasoned: never a half-written closure
                 if not self.ledger.recording:
                     _clear_inferred(self)
                 self.ledger.last_failure = "cleared"
+            if isinstance(exc, limits.ReasonLimitExceeded):
+                exc.outcome = self.ledger.last_failure  # its text says what was left, now that it is known
             raise
         self.ledger.succeeded(self.incremental_ready())
         self.values.reasoned()

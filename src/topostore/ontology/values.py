@@ -16,10 +16,10 @@ assertion it undoes gives none.
 
 from __future__ import annotations
 
-from collections.abc import Iterable
+from collections.abc import Collection, Iterable
 from typing import TYPE_CHECKING
 
-from pyoxigraph import Literal, NamedNode, Triple
+from pyoxigraph import Literal, NamedNode, RdfFormat, Triple
 
 from ..errors import InvalidValueError
 from ..rdf.terms import check_literal, literal_of
@@ -46,6 +46,9 @@ class OntologyValues:
         #: spellings the store took from literals asserted since the last successful REASON (a failed one
         #: reverts those literals: :meth:`reverted`)
         self._adopted: list[tuple[tuple[str, str], str]] = []
+        #: spellings the store read from documents, updates and uploads since the last successful REASON
+        #: (:meth:`learned`): a failed one, reverting every change since, forgets them
+        self._learned: list[str] = []
 
     def value(self, value: object, datatype: str | None = None, language: str | None = None) -> Literal:
         """A validated literal from a Python value (int → xsd:integer, ...), text + datatype or text + tag."""
@@ -170,9 +173,21 @@ class OntologyValues:
         if new and self.onto.ledger.recording:
             self._adopted += [(key, spelling) for key, spelling in given if spelling in new]
 
+    def learned(self, data: bytes | str, fmt: RdfFormat | None,
+                only: Collection[tuple[str, str]] | None = None) -> None:
+        """A document, a SPARQL update or an upload is in: the store learns its tags' spellings
+        (:meth:`~topostore.stores.literal_forms.LiteralForms.learn_tags`), noted while a failed REASON
+        would revert the literals they came with."""
+        new = self.onto.store.forms.learn_tags(data, fmt, only)
+        ledger = self.onto.ledger
+        # a change reasoned before its text is read (a live reasoner's update) left nothing to revert
+        if new and ledger.recording and ledger.added:
+            self._learned += new
+
     def reasoned(self) -> None:
         """A REASON succeeded: the literals asserted before it are no longer reverted by a failed one."""
         self._adopted.clear()
+        self._learned.clear()
 
     def reverted(self) -> None:
         """A failed REASON reverted every asserted change since the last good one (and ended the open units'
@@ -185,6 +200,10 @@ class OntologyValues:
         for key, spelling in gone:
             self._wait(key, spelling)
         self._adopt([h for h in held if h not in gone])  # asserted before the reverted changes: they stay
+        # every literal added since the last good REASON is reverted, so are the spellings read with them
+        # (one read from a document that also restated a literal kept included: it was not there before)
+        learned, self._learned = self._learned, []
+        self.onto.store.forms.forget_tags(learned)
 
     def _is_asserted(self, key: tuple[str, str]) -> bool:
         """Whether the literal ``key`` (lexical form, lowered tag) is the object of an asserted triple."""

@@ -54,12 +54,31 @@ def set_defaults(limits: ReasonLimits) -> None:
     DEFAULTS = limits
 
 
-class ReasonLimitExceeded(TopostoreError):
-    """A REASON ran past one of its limits; the change that caused it was rolled back."""
+#: what a failed REASON left, as the error's text says it (:attr:`ReasonLimitExceeded.outcome`)
+OUTCOMES = {
+    "undone": "The change was rolled back",
+    "cleared": "There was no reasoned state to return to: the asserted facts were kept and the inferred ones "
+               "cleared",
+}
+#: the text's last words, whatever the outcome
+RAISE = "(raise the limit with --reason-max-rounds/-inferred/-seconds if the ontology really needs more)"
 
-    def __init__(self, message: str, rules: list[str]) -> None:
+
+class ReasonLimitExceeded(TopostoreError):
+    """A REASON ran past one of its limits; what that left (the change rolled back, or the inferred facts
+    cleared where no reasoned state could be returned to) is set by the REASON that caught it."""
+
+    def __init__(self, message: str, rules: list[str], cause: str = "") -> None:
         super().__init__(message)
         self.rules = rules
+        #: why it may have happened ("" where nothing was deriving)
+        self.cause = cause
+        #: "undone" or "cleared" once the failed REASON has restored what it could ("" before)
+        self.outcome = ""
+
+    def __str__(self) -> str:
+        parts = [super().__str__(), self.cause, OUTCOMES.get(self.outcome, "")]
+        return ". ".join(p for p in parts if p) + " " + RAISE
 
 
 class Budget:
@@ -96,12 +115,10 @@ class Budget:
         shown = ", ".join(names[:5]) + (f" and {len(names) - 5} more" if len(names) > 5 else "")
         blame = f"; still deriving: {shown}" if names else ""
         # only rounds that keep deriving facts point at a rule without a finite closure
-        cause = ("A rule that creates new values (e.g. with swrlb:add) may have no finite closure; the change"
-                 if names else "The change")
+        cause = "A rule that creates new values (e.g. with swrlb:add) may have no finite closure" if names else ""
         raise ReasonLimitExceeded(
             f"reasoning stopped after {what} while running {self.activity} "
-            f"({self.rounds} rounds, {self.inferred} facts){blame}. {cause} was rolled back "
-            "(raise the limit with --reason-max-rounds/-inferred/-seconds if the ontology really needs more)", names)
+            f"({self.rounds} rounds, {self.inferred} facts){blame}", names, cause)
 
 
 _CURRENT: contextvars.ContextVar[Budget | None] = contextvars.ContextVar("topostore_reason_budget", default=None)

@@ -151,9 +151,12 @@ def _read(ref: LockedOntology, onto, result, accept: str | None, explicit_format
                 raise SparqlTimeout(timeout_message(limit))
             if len(rows) > max_rows:
                 raise ResultTooLarge(too_large_message(max_rows))
-        with ref.lock:  # literal forms are bookkeeping shared with writers
+        with ref.lock:  # literal forms and tag spellings are bookkeeping shared with writers
             rows = [[_restore(onto, t) for t in row] for row in rows]
-        return QueryOutcome(render_table(solutions_json(variables, rows), fmt), fmt, "solutions", len(rows))
+            tags = onto.store.forms.tags
+            table = render_table(solutions_json(variables, rows, tags.spelled if tags else str), fmt)
+            table = tags.respell_results(table, fmt.ox_format)  # what pyoxigraph wrote again, lowered
+        return QueryOutcome(table, fmt, "solutions", len(rows))
     fmt = choose_format(accept, graph=True, explicit=explicit_format)
     triples: list[Triple] = []
     for t in result:
@@ -164,8 +167,9 @@ def _read(ref: LockedOntology, onto, result, accept: str | None, explicit_format
             raise ResultTooLarge(too_large_message(max_rows))
     with ref.lock:
         triples = [Triple(t.subject, t.predicate, _restore(onto, t.object)) for t in triples]
+        tags = onto.store.forms.tags
     prefixes = {"owl": OWL, "rdf": RDF, "rdfs": RDFS, "xsd": XSD, "": onto.prefix}
-    return QueryOutcome(render_graph(triples, fmt, prefixes), fmt, "graph", len(triples))
+    return QueryOutcome(tags.respell(render_graph(triples, fmt, prefixes), fmt.ox_format), fmt, "graph", len(triples))
 
 
 def _restore(onto, term):
@@ -220,7 +224,7 @@ def run_update(ref: WritableOntology, text: str, job: Job, limit: float) -> Upda
             raise SparqlTimeout(timeout_message(limit))
         warnings = ref.manipulate("SPARQL update", delta.add, delta.remove)
         # the tags of the literals it added, as the update's text spells them (pyoxigraph lowered them)
-        ref.ontology.store.forms.learn_tags(text, None, only=literal_tags(delta.add))
+        ref.ontology.values.learned(text, None, only=literal_tags(delta.add))
         return UpdateOutcome(len(delta.add), len(delta.remove), ref.is_consistent, warnings)
 
 

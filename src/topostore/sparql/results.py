@@ -15,7 +15,7 @@ Going through pyoxigraph means no hand-written escaping for any format.
 from __future__ import annotations
 
 import json
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
 import mimeparse
@@ -112,8 +112,9 @@ def choose_format(accept: str | None, graph: bool, explicit: str | None = None) 
 
 # --------------------------------------------------------------------------- SELECT / ASK
 
-def term_json(term: object) -> dict[str, object]:
-    """A term as an object of the SPARQL 1.1 JSON results format."""
+def term_json(term: object, spelled: Callable[[str], str] = str) -> dict[str, object]:
+    """A term as an object of the SPARQL 1.1 JSON results format; ``spelled`` gives a language tag's
+    spelling (the store lowers tags: :class:`~topostore.stores.language_tags.LanguageTags`)."""
     if isinstance(term, NamedNode):
         return {"type": "uri", "value": term.value}
     if isinstance(term, BlankNode):
@@ -121,19 +122,21 @@ def term_json(term: object) -> dict[str, object]:
     if isinstance(term, Literal):
         out: dict[str, object] = {"type": "literal", "value": term.value}
         if term.language:
-            out["xml:lang"] = term.language
+            out["xml:lang"] = spelled(term.language)
         elif term.datatype.value not in (_XSD_STRING, _RDF_LANG_STRING):
             out["datatype"] = term.datatype.value
         return out
     if isinstance(term, Triple):
-        return {"type": "triple", "value": {"subject": term_json(term.subject), "predicate": term_json(term.predicate),
-                                            "object": term_json(term.object)}}
+        return {"type": "triple", "value": {"subject": term_json(term.subject, spelled),
+                                            "predicate": term_json(term.predicate, spelled),
+                                            "object": term_json(term.object, spelled)}}
     raise TypeError(f"not an RDF term: {term!r}")
 
 
-def solutions_json(variables: Sequence[str], rows: Sequence[Sequence[object | None]]) -> bytes:
+def solutions_json(variables: Sequence[str], rows: Sequence[Sequence[object | None]],
+                   spelled: Callable[[str], str] = str) -> bytes:
     """SPARQL JSON for a SELECT result; unbound values are left out of their row."""
-    bindings = [{v: term_json(t) for v, t in zip(variables, row) if t is not None} for row in rows]
+    bindings = [{v: term_json(t, spelled) for v, t in zip(variables, row) if t is not None} for row in rows]
     return json.dumps({"head": {"vars": list(variables)}, "results": {"bindings": bindings}},
                       ensure_ascii=False).encode("utf-8")
 

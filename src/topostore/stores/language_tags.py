@@ -15,7 +15,7 @@ import json
 import re
 from collections.abc import Collection, Iterable
 
-from pyoxigraph import Literal, NamedNode, Quad, RdfFormat, Triple
+from pyoxigraph import Literal, NamedNode, Quad, QueryResultsFormat, RdfFormat, Triple
 
 from ..rdf.vocab import INTERNAL
 from .written_tags import (
@@ -110,6 +110,17 @@ class LanguageTags:
         if fmt in (RdfFormat.JSON_LD, RdfFormat.STREAMING_JSON_LD):
             return self._json_ld(data)
         return _TEXT_LITERAL.sub(self._respelled_token, data)
+
+    def respell_results(self, data: bytes, fmt: QueryResultsFormat) -> bytes:
+        """SPARQL results pyoxigraph serialised (XML, TSV), each language tag spelled as first written;
+        JSON is spelled as it is built (:func:`~topostore.sparql.results.solutions_json`), CSV has no tags."""
+        if not self._spelled:
+            return data
+        if fmt == QueryResultsFormat.XML:  # text content escapes '<': a tag's attribute is all it can match
+            return _XML_LANG.sub(lambda m: m.group(1) + self._bytes(m.group(2)) + m.group(3), data)
+        if fmt == QueryResultsFormat.TSV:  # terms written as in Turtle
+            return _TEXT_LITERAL.sub(self._respelled_token, data)
+        return data
 
     def rendered(self, text: str) -> str:
         """An aRMOR rendering of a term (``"lex"@tag``), its tag spelled as first written."""

@@ -54,10 +54,13 @@ class LiteralForms:
         #: the language tags' spellings (pyoxigraph lowers every tag)
         self.tags = LanguageTags()
 
-    def learn_tags(self, data: bytes | str, fmt: RdfFormat | None, only: Collection[tuple[str, str]] | None = None) -> None:
+    def learn_tags(self, data: bytes | str, fmt: RdfFormat | None,
+                   only: Collection[tuple[str, str]] | None = None) -> list[str]:
         """Remember how a loaded document (or a change's text: ``only`` its added literals' tags, see
-        :meth:`LanguageTags.learn`) spells its language tags (persisted on a durable store)."""
-        self._persist_tags(self.tags.learn(data, fmt, only))
+        :meth:`LanguageTags.learn`) spells its language tags (persisted on a durable store); the new ones."""
+        new = self.tags.learn(data, fmt, only)
+        self._persist_tags(new)
+        return new
 
     def adopt_tags(self, tags: Iterable[str]) -> list[str]:
         """Remember language tags spelled as given (the first spelling wins; persisted on a durable store);

@@ -18,7 +18,18 @@
     return body;
   }
 
+  // the view the address asks for now ("entity/R1", "sparql", "history", "consistency" or "overview")
+  function asked() {
+    const hash = decodeURIComponent(location.hash.replace(/^#/, ""));
+    if (hash.startsWith("entity/")) return hash;
+    return ["sparql", "history", "consistency"].includes(hash) ? hash : "overview";
+  }
+
+  // a view drawn for an earlier address (a redraw still fetching when the user went elsewhere) is
+  // dropped: whichever fetch ends last, the view shown is the one the address asks for
   function show(id, ...content) {
+    const want = asked();
+    if (want !== id && !(id === "entity" && want.startsWith("entity/"))) return;
     document.querySelectorAll("section.view").forEach(s => { s.hidden = s.id !== id; });
     document.querySelectorAll("header nav a[data-view]").forEach(a =>
       a.classList.toggle("active", a.dataset.view === id));
@@ -84,6 +95,7 @@
   async function showEntity(entity) {
     try {
       const e = await getJson("/entities/" + encodeURIComponent(entity));
+      if (asked() !== "entity/" + entity) return;  // another entity or view was asked for meanwhile
       show("entity", ...entityPage(e));
       document.title = "topostore — " + e.name;
       document.getElementById("entity").dataset.iri = e.iri;
