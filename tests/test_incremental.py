@@ -15,10 +15,11 @@ from __future__ import annotations
 from functools import cache
 from unittest import mock
 
+import pytest
 from hypothesis import HealthCheck, example, given, settings
 from hypothesis import strategies as st
 from profiles import property_examples
-from pyoxigraph import NamedNode, Triple
+from pyoxigraph import Literal, NamedNode, Triple
 from support import TBOX_OWL as TBOX
 
 from topostore import Ontology
@@ -496,3 +497,19 @@ def test_a_value_swapped_for_another_spelling_reasons_as_from_scratch() -> None:
     inferred = set(onto.store.triples(graph=INFERRED))
     assert inferred == from_scratch(onto)[0]
     assert Triple(a, d, Literal("4", datatype=NamedNode(xsd + "integer"))) in inferred
+
+
+@pytest.mark.parametrize("prop", ["isIn", "hasDoor", "connectedTo", "canReach", "visitedAt"])
+@pytest.mark.parametrize("subject", ["Robot1", "C1", "R1", "D1"])
+def test_a_literal_given_to_an_object_property_is_reasoned_as_from_scratch(prop: str, subject: str) -> None:
+    """A data value given to a property the TBox uses between individuals (aRMOR's ``REPLACE DATAPROP IND
+    isIn Robot1 LONG 1 1`` does it) is a value no rule can join on as a subject: the incremental REASON
+    matches nothing on it, as the rules' SPARQL does, instead of failing."""
+    onto = new_map(6, 3, all_different=True)
+    onto.reason()
+    value = Literal("1", datatype=NamedNode("http://www.w3.org/2001/XMLSchema#long"))
+    subject_node = N(subject) if subject != "D1" else next(iter(onto.store.triples(None, N("hasDoor"), None))).object
+    onto.add(Triple(N(subject) if subject != "D1" else subject_node, N(prop), value))
+    assert_same_as_scratch(onto)
+    onto.remove(Triple(N(subject) if subject != "D1" else subject_node, N(prop), value))
+    assert_same_as_scratch(onto)

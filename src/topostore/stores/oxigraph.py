@@ -70,6 +70,8 @@ class OxigraphStore(Store):
         return quad in self._ox
 
     def _match(self, s, p, o, graph) -> Iterator[Quad]:
+        if type(s) is Literal:
+            return iter(())  # a literal is no subject (:meth:`few_facts`)
         held = self._held.graphs
         if held:
             if graph is None:
@@ -84,6 +86,8 @@ class OxigraphStore(Store):
         triples in C, instead of a generator over :meth:`_match`'s iterator."""
         if self._pending is not None or self.listings is not None:
             return reads.triples(self, s, p, o, graph)
+        if type(s) is Literal:
+            return iter(())  # a literal is no subject (:meth:`few_facts`)
         held = self._held.graphs
         if held:
             if graph is None:
@@ -102,6 +106,8 @@ class OxigraphStore(Store):
         facts are distinct as read (no dictionary between the index and the caller)."""
         if self._pending is not None or self.listings is not None:
             return reads.few_facts(self, s, p, o, graphs, limit)
+        if type(s) is Literal:
+            return []  # a value bound by a rule's join is no subject: no fact has it (as in SPARQL)
         held = self._held.graphs
         found: list[Triple] | dict[Triple, None] | None = None
         for g in graphs:
@@ -217,6 +223,8 @@ class OxigraphStore(Store):
         if (s is None and o is None) or self._pending is not None or self.listings is not None \
                 or (self._held.graphs and not graphs.isdisjoint(self._held.graphs)):
             return None
+        if type(s) is Literal:
+            return []  # a literal is no subject (:meth:`few_facts`)
         found: dict = {}
         seen = 0
         for q in self._ox.quads_for_pattern(s, p, o, None):
