@@ -595,3 +595,22 @@ def test_ros_style_message_objects_are_accepted() -> None:
                                            "secondary_command_spec": "REFS", "args": []}}).success
     refused = service.call(SimpleNamespace(command="GET"))
     assert not refused.success and "mapping or a message" in refused.error_description
+
+
+@pytest.mark.parametrize("buffered", ["false", "true"])
+def test_a_data_value_given_to_an_object_property_is_stored_reasoned_and_said(buffered: str) -> None:
+    """aRMOR's OWL API makes such a property a data property too; here the value is kept as given, the next
+    REASON succeeds and answers as before for the individuals, and the reply says what the value does."""
+    s = ArmorService()
+    load(s, buf_reasoner=buffered)
+    ok(s, "REASON")
+    before = sorted(ok(s, "QUERY", "OBJECTPROP", "IND", ["canReach", "Robot1"]).queried_objects)
+    res = ok(s, "REPLACE", "DATAPROP", "IND", ["isIn", "Robot1", "LONG", "1", "1"])
+    assert "isIn is an object property" in res.error_description
+    added = ok(s, "ADD", "DATAPROP", "IND", ["isIn", "Robot1", "LONG", "2"])
+    assert "isIn is an object property" in added.error_description
+    ok(s, "REASON")
+    assert sorted(ok(s, "QUERY", "OBJECTPROP", "IND", ["canReach", "Robot1"]).queried_objects) == before
+    assert sorted(ok(s, "QUERY", "DATAPROP", "IND", ["isIn", "Robot1"]).queried_objects) == ['"1"^^xsd:long', '"2"^^xsd:long']
+    clock = ok(s, "REPLACE", "DATAPROP", "IND", ["now", "Robot1", "LONG", "1665579750", "1665579740"])
+    assert "object property" not in clock.error_description  # a data property says nothing of the kind

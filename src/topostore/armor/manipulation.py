@@ -66,9 +66,21 @@ def add_dataprop_ind(ctx: Context) -> Reply:
 
     def plan(onto: Ontology) -> Delta:
         present = any(terms.value_key(t.object) == key for t in asserted(onto, ind, prop))
-        return Delta(add=[] if present else [terms.triple(ind, prop, value)])
+        return Delta(add=[] if present else [terms.triple(ind, prop, value)],
+                     warning="" if present else _object_property_note(onto, prop, "ADD DATAPROP IND"))
 
     return ctx.submit(Change("ADD DATAPROP IND", plan))
+
+
+def _object_property_note(onto: Ontology, prop: NamedNode, description: str) -> str:
+    """What a data value given to a declared object property does ("" for any other property): aRMOR's
+    OWL API would make the property a data property as well, which OWL 2 DL forbids; here the value is
+    stored, queried as given, and no rule joins on it as an individual."""
+    if not any(True for _ in onto.store.triples(prop, TYPE, owl("ObjectProperty"), ASSERTED)):
+        return ""
+    return (f"{description}: {prop.value} is an object property: the data value is stored and answered as "
+            "given; what reads the property's values as individuals (its range, the rules joining through it) "
+            "skips it")
 
 
 def add_objectprop_ind(ctx: Context) -> Reply:
@@ -211,6 +223,8 @@ def _replace(ind: NamedNode, prop: NamedNode, new, old, description: str) -> Cha
                 "the new value was added and the existing values were kept"
             )
         )
+        if isinstance(new, Literal) and not present:
+            warning = "; ".join(filter(None, [warning, _object_property_note(onto, prop, description)]))
         return Delta(add=[] if present else [terms.triple(ind, prop, new)], remove=olds, warning=warning)
 
     return Change(description, plan)
