@@ -163,3 +163,19 @@ def test_a_unit_of_work_around_a_store_transaction_that_fails_leaves_nothing_in_
     assert onto.ledger.net_changes() == ([Triple(n("r4"), TYPE, n("Robot"))], [])
     onto.reason()
     assert n("Thing2") in set(onto.types("r4")) and n("Thing2") not in set(onto.types("r3"))
+
+
+def test_a_change_made_again_after_a_failed_transaction_inside_one_unit_is_undone_exactly(onto: Ontology) -> None:
+    """Inside one unit: a store transaction adds a fact and fails, the caller adds it again (it lands), then
+    the unit fails: the record holds nothing (the fact was never there before the unit)."""
+    before = asserted(onto)
+    t = Triple(n("r3"), TYPE, n("Robot"))
+    with pytest.raises(KeyError), onto.ledger.undoable(onto):
+        with pytest.raises(RuntimeError), onto.store.transaction():
+            onto.changes.add(t)
+            raise RuntimeError("the transaction's own failure")
+        assert onto.ledger.added == {}  # rolled back: never made
+        onto.changes.add(t)
+        raise KeyError("the unit's failure")
+    assert asserted(onto) == before
+    assert onto.ledger.added == {} and onto.ledger.removed == {}

@@ -76,7 +76,11 @@ def _object_property_note(onto: Ontology, prop: NamedNode, description: str) -> 
     """What a data value given to a declared object property does ("" for any other property): aRMOR's
     OWL API would make the property a data property as well, which OWL 2 DL forbids; here the value is
     stored, queried as given, and no rule joins on it as an individual."""
-    if not any(True for _ in onto.store.triples(prop, TYPE, owl("ObjectProperty"), ASSERTED)):
+    try:  # the compiled rules' schema (compiled already for the REASON that follows): no store read
+        rules = onto.rules
+    except TopostoreError:  # a schema that does not compile is said by the REASON
+        return ""
+    if prop not in rules.object_properties or prop in rules.data_properties:
         return ""
     return (f"{description}: {prop.value} is an object property: the data value is stored and answered as "
             "given; what reads the property's values as individuals (its range, the rules joining through it) "

@@ -104,6 +104,7 @@ class Ontology:
         #: change notifications: subscribe with ``onto.events.subscribe(callback, "rdf:type URGENT")``
         self.events = EventHub(lambda: self.prefix)
         self.store.on_lost.append(self.reasoning.writes_lost)
+        self.store.on_rolled_back.append(self.reasoning.rolled_back)
         #: how a durable store was found: "new", "reopened", "rebuilt" or "asserted only" (see
         #: topostore.ontology.state)
         self.opened = durable_state.reopen(self)

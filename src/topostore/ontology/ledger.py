@@ -36,7 +36,6 @@ from ..errors import TopostoreError
 from ..rdf.vocab import ASSERTED, AUX, ENTAILED, INFERRED
 from ..reason import limits
 from ..reason.incremental import check_mode
-from ..stores.reads import contains
 
 if TYPE_CHECKING:  # pragma: no cover
     from ..stores.base import Store
@@ -169,26 +168,24 @@ class ChangeLedger:
         return _UnitOfWork(self, onto)
 
     def _undo_since(self, onto: Ontology, start: int) -> None:
-        """Undo the steps recorded since ``start`` (newest first) and forget them.
-
-        A step the store no longer shows (a store transaction inside the unit, rolled back before the
-        unit's own undo) never landed: it leaves the record as :meth:`lost` sets it back, since undoing
-        it through the store would flip nothing and record nothing."""
+        """Undo the steps recorded since ``start`` (newest first) and forget them.  A step a failed store
+        transaction never wrote was taken out of the record when it rolled back (:meth:`rolled_back`):
+        undoing it here flips nothing and records nothing."""
         steps = self._steps[start:]
-        store = onto.store
-        with self._paused(), store.transaction():
+        with self._paused(), onto.store.transaction():
             for added, removed in reversed(steps):  # a change removed, then added: undone the other way
-                landed_add = [t for t in added if contains(store, t, ASSERTED)]
-                landed_remove = [t for t in removed if not contains(store, t, ASSERTED)]
-                if len(landed_add) < len(added) or len(landed_remove) < len(removed):
-                    kept_add, kept_remove = set(landed_add), set(landed_remove)
-                    self.lost(store, [([t for t in added if t not in kept_add],
-                                       [t for t in removed if t not in kept_remove])])
-                if landed_add:
-                    onto.changes.remove(*landed_add)
-                if landed_remove:
-                    onto.changes.add(*landed_remove)
+                if added:
+                    onto.changes.remove(*added)
+                if removed:
+                    onto.changes.add(*removed)
         del self._steps[start:]
+
+    def rolled_back(self, store: Store, adds: list[Triple], removes: list[Triple]) -> None:
+        """A store transaction failed: the asserted changes it held pending (``adds`` absent from the
+        committed store, ``removes`` present there: exactly what never reached it) were recorded when
+        made; the record is set back as :meth:`lost` sets back refused writes."""
+        if adds or removes:
+            self.lost(store, [(adds, removes)])
 
     @contextmanager
     def _paused(self) -> Iterator[None]:

@@ -104,6 +104,15 @@ class OntologyReasoning:
         self.onto._report = ReasonReport(consistent)
         self.onto.dirty = dirty
 
+    def rolled_back(self, adds: list[Quad], removes: list[Quad]) -> None:
+        """A store transaction failed with asserted changes pending: the ledger forgets them (they were
+        recorded as made); the reasoner's own graphs are its own business (a failed REASON restores them)."""
+        def asserted(quads: list[Quad]) -> list[Triple]:
+            return [q.triple for q in quads if q.graph_name == ASSERTED]
+
+        onto = self.onto
+        onto.ledger.rolled_back(onto.store, asserted(adds), asserted(removes))
+
     def writes_lost(self, lost: list[tuple[list[Quad], list[Quad]]], certain: bool) -> None:
         """The store could not write changes it had accepted (a remote store defers them): undo them
         here too.  The ledger is set back exactly; a lost write of the reasoner's graphs, or a loss the

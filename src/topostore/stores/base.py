@@ -95,6 +95,9 @@ class Store:
         #: called with the writes a store that defers them could not apply, and whether that is certain
         #: (see :meth:`_writes_lost`)
         self.on_lost: list[Callable[[list[tuple[list[Quad], list[Quad]]], bool], None]] = []
+        #: called with the writes (adds, removes) an outermost transaction held pending when it failed:
+        #: never written, they are undone by whoever recorded them as made (the ontology's ledger)
+        self.on_rolled_back: list[Callable[[list[Quad], list[Quad]], None]] = []
 
     def use_functions(self, functions: Mapping[NamedNode, Callable[..., Term | None]]) -> None:
         """Let SPARQL run on this store call ``functions`` (IRI -> Python function of RDF terms).

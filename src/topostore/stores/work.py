@@ -72,8 +72,13 @@ def end(store: Store, failed: bool) -> None:
     if store._depth:
         return
     if failed:
-        store._pending, store._known = None, {}
+        pending, store._pending, store._known = store._pending, None, {}
         store.persisted.pending = {}
+        if pending and store.on_rolled_back:
+            adds = [q for q, present in pending.values() if present]
+            removes = [q for q, present in pending.values() if not present]
+            for listener in list(store.on_rolled_back):
+                listener(adds, removes)
         return
     store._flush()
     store._pending, store._known = None, {}
