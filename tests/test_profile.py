@@ -89,6 +89,14 @@ CASES = {
         ":A rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :p ; owl:maxCardinality 1 ] . :B rdfs:subClassOf "
         "[ a owl:Restriction ; owl:onProperty :p ; owl:minQualifiedCardinality 2 ; owl:onClass :F ] .",
         kinds.EXISTENTIAL, "in both (p min 2 F) and (p max 1"),
+    "unqualified minimum of two under a maximum told on another class": (
+        ":A rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :p ; owl:maxCardinality 1 ] . :B rdfs:subClassOf "
+        "[ a owl:Restriction ; owl:onProperty :p ; owl:minCardinality 2 ] .", kinds.EXISTENTIAL,
+        "in both (p min 2 Thing) and (p max 1"),
+    "data minimum of two under a maximum told on another class": (
+        ":d a owl:DatatypeProperty . :A rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :d ; "
+        "owl:maxCardinality 1 ] . :B rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :d ; "
+        "owl:cardinality 2 ] .", kinds.EXISTENTIAL, "is inconsistent: not found"),
     "existential into disjoint classes": (":A rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :p ; "
                                           "owl:someValuesFrom :B ] . :p rdfs:range :C . :B owl:disjointWith :C .",
                                           kinds.EXISTENTIAL, "disjoint"),

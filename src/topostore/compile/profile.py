@@ -293,6 +293,11 @@ class ProfileReport:
             self.note(EXISTENTIAL, axiom, f"an instance of {what} is in the restrictions on the super-properties "
                       f"of {_name(p.iri)} only through a told value")
         self.unnamed.chain_links(e, axiom, {p, *supers}, subject)
+        bound = self.single_valued(p, e)
+        if bound and e.kind in ("min", "exact") and e.n >= 2 and (e.filler is None or e.filler.node == THING
+                                                                  or self.owl.is_data(p, e)):
+            # a qualified minimum on an object property is said below, with its filler
+            self.note(EXISTENTIAL, axiom, self._single_valued_gap(e, bound) or "")
         if self.owl.is_data(p, e):
             return
         value_classes = self.value_classes(p)
