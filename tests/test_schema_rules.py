@@ -217,6 +217,22 @@ def _short(atom: Atom) -> str:
     return " ".join(term(t) for t in (atom.s, atom.p, atom.o))
 
 
+def test_the_rule_set_holds_one_rule_per_file_and_its_table() -> None:
+    """No instantiation of rules/owl/ is a rule of the rule set: each is a row of its table, bound one
+    by one for maintenance (``inference_rules``) and read back by the full REASON's program."""
+    onto = Ontology()
+    onto.load_data(EVERY_KIND, "turtle")
+    ruleset = onto.rules
+    held = ruleset.held_rules()
+    assert not [r for r in ruleset.rules if r.name in KINDS - CHECKS and schema_rule(r.name).row_of(r) is not None]
+    assert ruleset.tables is not None and {r.name for r in held} == set(ruleset.tables.held)
+    assert set(ruleset.tables.held) == KINDS - CHECKS - {"different-disjoint"}  # the pairs: held apart already
+    maintained = ruleset.inference_rules
+    assert all(r in maintained for r in held) and all(r in ruleset.all_rules for r in held)
+    assert ruleset.tables.rows("cax-sco") == [schema_rule("cax-sco").row_of(r) for r in ruleset.tables.held["cax-sco"]]
+    assert "schema rows in" in ruleset.count_text()
+
+
 def test_the_tutorial_maps_rules_of_those_kinds_are_the_ones_it_always_had() -> None:
     onto = Ontology()
     onto.load(default_ontology())
