@@ -263,6 +263,22 @@ def test_generic_equals_instantiated_on_every_kind_with_a_class_expression() -> 
     assert _materialize(onto, 0) == instantiated
 
 
+def test_the_rows_bound_keep_the_order_the_compiler_gave_them(monkeypatch) -> None:
+    """What a REASON evaluates (the rows bound, among the other rules) is in the compiler's order, as
+    when every axiom was a rule of its own."""
+    import topostore.compile.pipeline as pipeline
+    from topostore.rdf.vocab import ASSERTED
+
+    onto = Ontology()
+    onto.load_data(EVERY_KIND, "turtle")
+    held = onto.rules
+    monkeypatch.setattr(pipeline, "hold_tables", lambda rules: (rules, None))
+    unheld = pipeline.compile_ontology(onto.store, ASSERTED)
+    assert held.tables is not None and unheld.tables is None and len(held.rules) < len(unheld.rules)
+    assert [(r.name, r.origin, r.where(), r.head) for r in held.compiled_rules()] == \
+        [(r.name, r.origin, r.where(), r.head) for r in unheld.rules]
+
+
 def test_restrictions_subsumed_through_properties_are_a_table() -> None:
     """∃p.C ⊑ ∃q.C for p ⊑ q is a row of ext-restriction-sub: no rule of its own in the rule set, the same
     closure generic or row by row, and maintained as a step adds a member."""

@@ -360,11 +360,15 @@ class RuleSet:
         """The inference rules, with the rows of the schema tables bound one by one and a rule per ordered
         pair of disjoint classes (what a robot step maintains rule by rule)."""
         return list(self.derived(("inference-rules", id(self.disjointness), id(self.tables)), lambda: [
-            r for r in self.rules if not r.is_check] + self.held_rules() + self._per_pair()[0]))
+            r for r in self.compiled_rules() if not r.is_check] + self._per_pair()[0]))
 
     def held_rules(self) -> list[Rule]:
         """The instantiations of the schema tables (none when the rule set holds no table)."""
         return [] if self.tables is None else self.tables.rules()
+
+    def compiled_rules(self) -> list[Rule]:
+        """:attr:`rules` with the schema tables' rows bound, each where the compiler emitted it."""
+        return self.rules if self.tables is None else self.tables.merged(self.rules)
 
     @property
     def checks(self) -> list[Rule]:
@@ -381,8 +385,8 @@ class RuleSet:
     def all_rules(self) -> list[Rule]:
         """Every rule, the instantiations of the schema tables and of the disjointness rows included (what an explanation and
         ``topostore rules --all`` read)."""
-        return list(self.derived(("all-rules", id(self.disjointness), id(self.tables)), lambda: self.rules
-                                 + self.held_rules() + self._per_pair()[0] + self._per_pair()[1]))
+        return list(self.derived(("all-rules", id(self.disjointness), id(self.tables)), lambda:
+                                 self.compiled_rules() + self._per_pair()[0] + self._per_pair()[1]))
 
     def count_text(self) -> str:
         """How many rules, and the pairs of disjoint classes held as rows (what the CLI reports)."""

@@ -139,7 +139,7 @@ def full_program(ruleset: RuleSet, threshold: int | None = None) -> GenericProgr
 
 
 def _full_program(ruleset: RuleSet, threshold: int | None) -> GenericProgram:
-    rules = ruleset.rules + ruleset.held_rules()  # the schema tables' rows bound, then generic where large
+    rules = ruleset.compiled_rules()  # the schema tables' rows bound, then generic where large
     program = GenericProgram(ruleset)
     replaced: dict[int, list[Rule]] = {}
     held = _held_rows(ruleset, threshold, program)
