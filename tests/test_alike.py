@@ -29,7 +29,7 @@ def copies(n: int) -> str:
 
 
 def rule_names(o: Ontology) -> Counter:
-    return Counter(r.name for r in o.rules.rules)
+    return Counter(r.name for r in o.rules.all_rules)
 
 
 def test_copies_of_a_restriction_conclude_what_each_did() -> None:

@@ -86,7 +86,8 @@ def test_rules_are_grouped_with_origin() -> None:
     out = result.output
     assert "### SWRL rules" in out and "### OWL axioms" in out and "### Consistency checks" in out
     assert "# swrl:Urgency: SWRL rule Urgency" in out
-    assert "# cax-dw: DOOR DisjointWith LOCATION (inconsistent when it matches)" in out
+    assert "# cax-dw: one rule over its table disjointWith" in out  # the told pairs: one check, its rows
+    assert "(DOOR DisjointWith LOCATION)" in out
     assert "CONSTRUCT {" in out
     assert "Generic OWL 2 RL rules" not in out
     everything = run("rules", "--all", TBOX).output
@@ -109,6 +110,26 @@ def test_rules_all_prints_the_owl_rule_files_with_their_instantiations(tmp_path:
     assert "# prp-dom: 1 instantiation(s)" in out
     assert "# prp-rng: 0 instantiation(s)" in out
     assert "GRAPH ts:graph:schema" in out
+
+
+def test_rules_prints_each_owl_rule_file_once_whatever_the_axioms(tmp_path: Path) -> None:
+    """The OWL axioms of a kind are one rule of rules/owl/ over a table: more axioms are more rows, not
+    more rules."""
+    def printed(classes: int) -> str:
+        onto = tmp_path / f"chain{classes}.ttl"
+        onto.write_text("@prefix : <http://example.org/k#> . @prefix owl: <http://www.w3.org/2002/07/owl#> .\n"
+                        "@prefix rdfs: <http://www.w3.org/2000/01/rdf-schema#> .\n"
+                        + "".join(f":C{i} a owl:Class ; rdfs:subClassOf :C{i + 1} .\n" for i in range(classes)))
+        result = run("rules", str(onto))
+        assert result.exit_code == 0, result.output
+        return result.output
+
+    small, large = printed(2), printed(30)
+    assert "# cax-sco: one rule over its table subClassOf (2 rows)" in small
+    assert "# cax-sco: one rule over its table subClassOf (30 rows)" in large
+    assert large.count("# name: cax-sco") == small.count("# name: cax-sco") == 1
+    assert small.splitlines()[-1].split(",")[0] == large.splitlines()[-1].split(",")[0]  # "# N rules"
+    assert "(C7 SubClassOf C8)" in large
 
 
 def test_rules_deltas_are_one_plain_update_per_body_atom(tmp_path: Path) -> None:

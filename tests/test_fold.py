@@ -42,9 +42,9 @@ def test_the_named_class_stands_for_its_equivalent_expression() -> None:
     assert members(o, "Whole") == ["w"]
     # only the restriction inside the intersection keeps a helper membership
     assert anonymous_memberships(o) == 1
-    written = {a.o for r in o.rules.rules if r.head is not None for a in (*r.body, r.head) if a.p == str(TYPE)}
+    written = {a.o for r in o.rules.all_rules if r.head is not None for a in (*r.body, r.head) if a.p == str(TYPE)}
     intersection = [t for t in written if is_skolem(t[1:-1]) and any(
-        r.name == "cls-int1" and r.head.o == t for r in o.rules.rules)]
+        r.name == "cls-int1" and r.head.o == t for r in o.rules.all_rules)]
     assert not intersection  # cls-int1 concludes Whole itself
 
 
@@ -55,7 +55,7 @@ def test_a_member_of_the_named_class_gets_the_expression_parts() -> None:
 
 def test_a_membership_of_the_expression_told_in_the_data_still_counts() -> None:
     o = load(":w a :Thing2 .")
-    rules = o.rules.rules
+    rules = o.rules.all_rules
     bridge = [r for r in rules if r.name == "cax-eqc2"]
     assert bridge and is_skolem(bridge[0].body[0].o[1:-1])
     anon = NamedNode(bridge[0].body[0].o[1:-1])
@@ -71,7 +71,7 @@ def test_two_named_equivalents_of_one_expression_are_not_folded() -> None:
     o = load(text)
     assert members(o, "A") == members(o, "B") == ["v", "w"]
     assert members(o, "Thing2") == ["v", "w"]
-    assert any(r.name == "cax-eqc1" and is_skolem(r.head.o[1:-1]) for r in o.rules.rules)
+    assert any(r.name == "cax-eqc1" and is_skolem(r.head.o[1:-1]) for r in o.rules.all_rules)
 
 
 def test_the_tutorial_map_keeps_its_answers_without_the_helper_memberships() -> None:
@@ -83,5 +83,5 @@ def test_the_tutorial_map_keeps_its_answers_without_the_helper_memberships() -> 
     # LOCATION (visitedAt exactly 1), ROBOT (isIn exactly 1), ROOM and CORRIDOR (intersections) stand for
     # their expressions: what is left are the restrictions inside the intersections (∃hasDoor, ≥ 2 hasDoor)
     assert anonymous_memberships(o) == 4  # was 12: 3 + 3 + 3 + 1 + 1 + 1
-    assert not any(r.name == "cax-eqc1" and is_skolem(r.head.o[1:-1]) for r in o.rules.rules)
-    assert fold_equivalents(o.rules.rules) == o.rules.rules  # nothing left to fold
+    assert not any(r.name == "cax-eqc1" and is_skolem(r.head.o[1:-1]) for r in o.rules.all_rules)
+    assert fold_equivalents(o.rules.all_rules) == o.rules.all_rules  # nothing left to fold

@@ -18,7 +18,7 @@ import rdflib
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 from profiles import property_examples
-from pyoxigraph import NamedNode
+from pyoxigraph import NamedNode, Triple
 
 from topostore import Ontology
 from topostore.compile.rule import Atom
@@ -34,7 +34,10 @@ NS = "http://example.org/schema#"
 TYPE = "<http://www.w3.org/1999/02/22-rdf-syntax-ns#type>"
 KINDS = {"cax-sco", "cax-eqc1", "cax-eqc2", "prp-dom", "prp-rng", "prp-spo1", "prp-inv1", "prp-inv2", "prp-symp",
          "prp-trp", "cax-dw", "different-disjoint", "ext-card-sub", "cls-svf1", "cls-avf", "cls-hv1", "cls-hv2",
-         "cls-int2", "cls-uni", "prp-spo2"}
+         "cls-int2", "cls-uni", "prp-spo2", "ext-restriction-sub"}
+#: the kinds the ontology EVERY_KIND has no axiom of (a restriction on a sub-property: see
+#: test_restrictions_subsumed_through_properties_are_a_table)
+ELSEWHERE = {"ext-restriction-sub"}
 #: the generic checks: the compiler emits their instantiations; a full REASON keeps them instantiated
 CHECKS = {"cax-dw"}
 PREFIXES = f"""\
@@ -105,6 +108,7 @@ def test_a_helper_head_of_a_rule_file_is_a_helper_atom() -> None:
 
 def test_only_copying_rules_chain_and_their_rows_close() -> None:
     assert {n for n, r in schema_rules().items() if r.chains} == {"cax-sco", "cax-eqc1", "prp-spo1", "ext-card-sub",
+                                                                     "ext-restriction-sub",
                                                                      "cls-int2"}
     assert sorted(closed([("a", "b"), ("b", "c"), ("c", "a")])) == [
         ("a", "b"), ("a", "c"), ("b", "a"), ("b", "c"), ("c", "a"), ("c", "b")]
@@ -217,6 +221,22 @@ def _short(atom: Atom) -> str:
     return " ".join(term(t) for t in (atom.s, atom.p, atom.o))
 
 
+def test_the_rule_set_holds_one_rule_per_file_and_its_table() -> None:
+    """No instantiation of rules/owl/ is a rule of the rule set: each is a row of its table, bound one
+    by one for maintenance (``inference_rules``) and read back by the full REASON's program."""
+    onto = Ontology()
+    onto.load_data(EVERY_KIND, "turtle")
+    ruleset = onto.rules
+    held = ruleset.held_rules()
+    assert not [r for r in ruleset.rules if r.name in KINDS - CHECKS and schema_rule(r.name).row_of(r) is not None]
+    assert ruleset.tables is not None and {r.name for r in held} == set(ruleset.tables.held)
+    assert set(ruleset.tables.held) == KINDS - CHECKS - ELSEWHERE - {"different-disjoint"}  # the pairs: apart
+    maintained = ruleset.inference_rules
+    assert all(r in maintained for r in held) and all(r in ruleset.all_rules for r in held)
+    assert ruleset.tables.rows("cax-sco") == [schema_rule("cax-sco").row_of(r) for r in ruleset.tables.held["cax-sco"]]
+    assert "schema rows in" in ruleset.count_text()
+
+
 def test_the_tutorial_maps_rules_of_those_kinds_are_the_ones_it_always_had() -> None:
     onto = Ontology()
     onto.load(default_ontology())
@@ -230,7 +250,7 @@ def test_generic_equals_instantiated_on_every_kind_with_a_class_expression() -> 
     onto = Ontology()
     onto.load_data(EVERY_KIND, "turtle")
     program = full_program(onto.rules, 0)
-    assert set(program.rows) == KINDS - CHECKS
+    assert set(program.rows) == KINDS - CHECKS - ELSEWHERE
     assert any(r.head_aux() for r in program.rules.rules if r.name == "cax-sco")  # D into (A and E)
     instantiated = _materialize(onto, sys.maxsize)
     assert (NamedNode(NS + "k"), NamedNode("http://www.w3.org/1999/02/22-rdf-syntax-ns#type"),
@@ -241,6 +261,40 @@ def test_generic_equals_instantiated_on_every_kind_with_a_class_expression() -> 
         assert (NamedNode(NS + s), rdf_type, NamedNode(NS + c)) in instantiated[0], (s, c)
     assert (NamedNode(NS + "m"), NamedNode(NS + "v"), NamedNode(NS + "h")) in instantiated[0]  # p o s
     assert _materialize(onto, 0) == instantiated
+
+
+def test_the_rows_bound_keep_the_order_the_compiler_gave_them(monkeypatch) -> None:
+    """What a REASON evaluates (the rows bound, among the other rules) is in the compiler's order, as
+    when every axiom was a rule of its own."""
+    import topostore.compile.pipeline as pipeline
+    from topostore.rdf.vocab import ASSERTED
+
+    onto = Ontology()
+    onto.load_data(EVERY_KIND, "turtle")
+    held = onto.rules
+    monkeypatch.setattr(pipeline, "hold_tables", lambda rules: (rules, None))
+    unheld = pipeline.compile_ontology(onto.store, ASSERTED)
+    assert held.tables is not None and unheld.tables is None and len(held.rules) < len(unheld.rules)
+    assert [(r.name, r.origin, r.where(), r.head) for r in held.compiled_rules()] == \
+        [(r.name, r.origin, r.where(), r.head) for r in unheld.rules]
+
+
+def test_restrictions_subsumed_through_properties_are_a_table() -> None:
+    """∃p.C ⊑ ∃q.C for p ⊑ q is a row of ext-restriction-sub: no rule of its own in the rule set, the same
+    closure generic or row by row, and maintained as a step adds a member."""
+    onto = Ontology()
+    onto.load_data(PREFIXES + ":p a owl:ObjectProperty ; rdfs:subPropertyOf :q . :q a owl:ObjectProperty .\n"
+                   ":C a owl:Class . :A rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :p ; owl:someValuesFrom :C ] .\n"
+                   ":B owl:equivalentClass [ a owl:Restriction ; owl:onProperty :q ; owl:someValuesFrom :C ] .\n"
+                   ":x a :A .\n", "turtle")
+    assert not any(r.name == "ext-restriction-sub" for r in onto.rules.rules)
+    assert onto.rules.tables is not None and len(onto.rules.tables.held["ext-restriction-sub"]) == 1
+    assert _materialize(onto, 0) == _materialize(onto, sys.maxsize)
+    onto.reason()
+    assert NamedNode(NS + "B") in onto.types(NamedNode(NS + "x"))
+    onto.add(Triple(NamedNode(NS + "y"), NamedNode(TYPE[1:-1]), NamedNode(NS + "A")))  # maintained, row by row
+    onto.reason()
+    assert NamedNode(NS + "B") in onto.types(NamedNode(NS + "y"))
 
 
 def test_generic_equals_instantiated_on_the_tutorial_map() -> None:

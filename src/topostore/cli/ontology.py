@@ -134,7 +134,7 @@ def rules(files: tuple[str, ...], show_all: bool, deltas: bool, step: str | None
         return
     generic = {(r.name, r.where(), r.head) for r in generic_rules()}
     groups: dict[str, list] = {g: [] for g in RULE_GROUPS}
-    for rule in onto.rules.all_rules:  # the pairs of disjoint classes too, one rule per row
+    for rule in onto.rules.rules:  # the rows of rules/owl/ are shown by table below
         if (rule.name, rule.where(), rule.head) in generic:
             groups["Generic OWL 2 RL rules"].append(rule)
         elif rule.name.startswith("swrl:"):
@@ -143,6 +143,8 @@ def rules(files: tuple[str, ...], show_all: bool, deltas: bool, step: str | None
             groups["Consistency checks"].append(rule)
         else:
             groups["OWL axioms"].append(rule)
+    for name, rules_of in _tables(onto.rules).items():
+        groups["Consistency checks" if rules_of[0].is_check else "OWL axioms"].append((name, rules_of))
     shown = 0
     for title in RULE_GROUPS:
         if title == "Generic OWL 2 RL rules" and not show_all:
@@ -150,6 +152,9 @@ def rules(files: tuple[str, ...], show_all: bool, deltas: bool, step: str | None
         members = groups[title]
         click.echo(f"### {title} ({len(members)})\n")
         for rule in members:
+            if isinstance(rule, tuple):
+                click.echo(_table_text(*rule, deltas))
+                continue
             click.echo(rule.sparql() + "\n")
             if deltas and not rule.is_check:
                 click.echo(_delta_rules(rule))
@@ -158,6 +163,35 @@ def rules(files: tuple[str, ...], show_all: bool, deltas: bool, step: str | None
         click.echo(_templates(onto.rules.all_rules))
     hidden = "" if show_all else f", {len(groups['Generic OWL 2 RL rules'])} generic rules not shown (--all)"
     click.echo(f"# {shown} rules{hidden}")
+
+
+def _tables(ruleset) -> dict[str, list[Rule]]:
+    """Per rule of ``rules/owl/`` the rule set holds as a table, the rows bound one by one (the schema
+    tables, then the pairs of disjoint classes)."""
+    found: dict[str, list[Rule]] = {}
+    for rule in [*ruleset.held_rules(), *ruleset._per_pair()[0], *ruleset._per_pair()[1]]:
+        found.setdefault(rule.name, []).append(rule)
+    return found
+
+
+def _table_text(name: str, rows: list[Rule], deltas: bool) -> str:
+    """A rule of ``rules/owl/`` held as a table: the file's rule once, its schema rows (each with the
+    axiom it comes from), and with ``deltas`` the delta rules maintenance runs for each row, whose
+    terms the changed class or predicate binds."""
+    from ..compile.schema import schema_rule
+    from ..resources import rules_dir
+
+    template = schema_rule(name)
+    text = (rules_dir() / "owl" / f"{name}.rq").read_text().rstrip()
+    lines = [f"# {name}: one rule over its table {template.table} ({len(rows)} rows)", text,
+             f"# rows of {template.table} ({', '.join(template.variables)}):"]
+    for rule in rows:
+        row = template.row_of(rule)
+        lines.append(f"#   {' '.join(row) if row is not None else '?'}   ({rule.origin})")
+    out = "\n".join(lines) + "\n"
+    if deltas and not rows[0].is_check:
+        out += "\n" + "\n".join(_delta_rules(rule) for rule in rows)
+    return out
 
 
 def _templates(compiled: list[Rule]) -> str:

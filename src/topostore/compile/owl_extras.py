@@ -44,6 +44,7 @@ from .model import Expr, Prop, TBox, describe
 from .owl import OwlCompiler
 from .property_hierarchy import subject_classes, super_expressions
 from .rule import Atom, Rule
+from .schema import schema_rule
 
 
 def _prop_atom(s: str, p: Prop, o: str) -> Atom:
@@ -120,8 +121,8 @@ def restriction_rules(owl: OwlCompiler) -> list[Rule]:
     rules = []
 
     def subsume(a: Expr, b: Expr) -> None:
-        rules.append(Rule("ext-restriction-sub", f"{describe(a)} is subsumed by {describe(b)}",
-                          (Atom("?x", str(TYPE), sparql(a.node)),), Atom("?x", str(TYPE), sparql(b.node))))
+        rules.append(schema_rule("ext-restriction-sub").instantiate((a.term, b.term),
+                                                                    f"{describe(a)} is subsumed by {describe(b)}"))
 
     lower = [e for e in exprs if e.kind in ("some", "min", "exact")]
     wider = FillerIndex(owl.subsumption, [e for e in lower if e.kind != "exact"])

@@ -24,6 +24,7 @@ from .owl_extras import (
 )
 from .profile import all_uses, profile
 from .rule import Rule, RuleSet
+from .schema_tables import hold_tables
 from .swrl import SwrlCompiler
 from .tbox_reader import TBoxReader
 from .unsatisfiable import unsatisfiable
@@ -76,6 +77,7 @@ def compile_ontology(store: Store, graph: NamedNode) -> RuleSet:
     rules.entailed_predicates = set(swrl.entailed_predicates)
     rules.notices += owl.notices
     guard_rules(rules)
+    rules.rules, rules.tables = hold_tables(rules.rules)  # one generic rule per file of rules/owl/
     return rules
 
 

@@ -21,6 +21,7 @@ from .condition import Condition, render
 
 if TYPE_CHECKING:
     from .disjointness import Disjointness
+    from .schema_tables import SchemaTables
 
 #: A read key: ("p", predicate IRI), ("t", class IRI) for ``?x rdf:type <C>``,
 #: or ("*",) for a pattern with a variable predicate (reads everything).
@@ -308,6 +309,9 @@ class RuleSet:
     #: the pairs of disjoint classes as rows (:class:`.disjointness.Disjointness`), None when there are
     #: none: :attr:`rules` holds no rule per pair, :attr:`inference_rules` and :attr:`checks` do
     disjointness: Disjointness | None = None
+    #: the instantiations of the rules of ``rules/owl/`` as tables (:class:`.schema_tables.SchemaTables`),
+    #: None when there are none: :attr:`rules` holds none of them, :attr:`inference_rules` does
+    tables: SchemaTables | None = None
     #: (the list :meth:`add` last appended to, its length then, its rules by :func:`_bucket`)
     _seen: tuple | None = field(default=None, init=False, repr=False, compare=False)
     #: what :meth:`derived` made from :attr:`rules`: key -> (the rules list, its length, the value)
@@ -353,10 +357,18 @@ class RuleSet:
 
     @property
     def inference_rules(self) -> list[Rule]:
-        """The inference rules, with a rule per ordered pair of disjoint classes (what a robot step
-        maintains rule by rule)."""
-        return list(self.derived(("inference-rules", id(self.disjointness)), lambda: [
-            r for r in self.rules if not r.is_check] + self._per_pair()[0]))
+        """The inference rules, with the rows of the schema tables bound one by one and a rule per ordered
+        pair of disjoint classes (what a robot step maintains rule by rule)."""
+        return list(self.derived(("inference-rules", id(self.disjointness), id(self.tables)), lambda: [
+            r for r in self.compiled_rules() if not r.is_check] + self._per_pair()[0]))
+
+    def held_rules(self) -> list[Rule]:
+        """The instantiations of the schema tables (none when the rule set holds no table)."""
+        return [] if self.tables is None else self.tables.rules()
+
+    def compiled_rules(self) -> list[Rule]:
+        """:attr:`rules` with the schema tables' rows bound, each where the compiler emitted it."""
+        return self.rules if self.tables is None else self.tables.merged(self.rules)
 
     @property
     def checks(self) -> list[Rule]:
@@ -371,14 +383,16 @@ class RuleSet:
 
     @property
     def all_rules(self) -> list[Rule]:
-        """Every rule, the instantiations of the disjointness rows included (what an explanation and
+        """Every rule, the instantiations of the schema tables and of the disjointness rows included (what an explanation and
         ``topostore rules --all`` read)."""
-        return list(self.derived(("all-rules", id(self.disjointness)), lambda: self.rules + self._per_pair()[0]
-                                 + self._per_pair()[1]))
+        return list(self.derived(("all-rules", id(self.disjointness), id(self.tables)), lambda:
+                                 self.compiled_rules() + self._per_pair()[0] + self._per_pair()[1]))
 
     def count_text(self) -> str:
         """How many rules, and the pairs of disjoint classes held as rows (what the CLI reports)."""
         text = f"{len(self.rules)} rules"
+        if self.tables is not None:
+            text += f" ({len(self.tables)} schema rows in {len(self.tables.held)} tables)"
         table = self.disjointness
         if table is not None:
             text += f" and {len(table.different)} ordered pairs of disjoint classes as rows"

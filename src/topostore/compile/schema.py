@@ -5,15 +5,17 @@ The OWL rules whose axioms fit a row of fixed width — class hierarchy (cax-sco
 EquivalentProperties axiom as two sub-property rows), domain (prp-dom), range (prp-rng), inverse
 (prp-inv1/2), symmetric (prp-symp), transitive (prp-trp), chains of two properties (prp-spo2),
 disjointness (the check cax-dw, and different-disjoint), restrictions by kind (cls-svf1, cls-avf,
-cls-hv1/2, one row per member for cls-int2 and cls-uni) and restriction subsumption (ext-card-sub)
+cls-hv1/2, one row per member for cls-int2 and cls-uni) and restriction subsumption (ext-card-sub, and
+ext-restriction-sub through the property hierarchy)
 — are written once, as SPARQL files in
 ``rules/owl/``, each with *schema atoms* ``GRAPH ts:graph:schema { ... }`` that read a row of the
 TBox's tables.  Those files are the single source of these rules, used two ways:
 
 * **instantiated** (partial evaluation): a row's constants are substituted into the rule and the
   schema atom is dropped, giving one rule per axiom (:meth:`SchemaRule.instantiate`).  This is what
-  the compiler emits (:mod:`.owl`), so the robot step, whose delta rules need constants, sees the
-  rules it always saw;
+  the compiler emits (:mod:`.owl`), and what the rule set holds as rows of a table once the passes
+  after compilation are done (:mod:`.schema_tables`): the robot step, whose delta rules need
+  constants, reads them row by row;
 * **generic**: the rule runs once against the rows written into a schema graph, whatever the number
   of axioms (:mod:`.schema_program`, chosen by a full REASON when a table is large).
 

@@ -139,7 +139,7 @@ def full_program(ruleset: RuleSet, threshold: int | None = None) -> GenericProgr
 
 
 def _full_program(ruleset: RuleSet, threshold: int | None) -> GenericProgram:
-    rules = ruleset.rules
+    rules = ruleset.compiled_rules()  # the schema tables' rows bound, then generic where large
     program = GenericProgram(ruleset)
     replaced: dict[int, list[Rule]] = {}
     held = _held_rows(ruleset, threshold, program)
@@ -152,11 +152,11 @@ def _full_program(ruleset: RuleSet, threshold: int | None) -> GenericProgram:
         first = found[0][0]
         replaced[first] = _evaluables(generic, rows)
         replaced.update({i: [] for i, _ in found[1:]})
-    if replaced or ruleset.disjointness is not None:
+    if replaced or ruleset.disjointness is not None or ruleset.tables is not None:
         new = [r for i, rule in enumerate(rules) for r in replaced.get(i, [rule])]
         # the rows held apart join as the other tables' rules do; the checks stay the rule set's
         # (:func:`..reason.consistency.check_consistency` runs the told pairs' check generically)
-        program.rules = replace(ruleset, rules=new + held, disjointness=None)
+        program.rules = replace(ruleset, rules=new + held, disjointness=None, tables=None)
     return program
 
 

@@ -116,11 +116,12 @@ def early_checks(rules: RuleSet) -> list[Rule]:
 
 
 def needed_keys(rules: RuleSet) -> set:
-    """The keys the maintained rules' and checks' bodies read: the rule set's own rules, and for the
+    """The keys the maintained rules' and checks' bodies read: the rule set's own rules and the rows of its
+    schema tables bound, and for the
     rows of disjoint classes one rule and one check per class (a row's keys are its classes' keys)."""
     table = rules.disjointness
     extra = table.representatives() if table is not None else []
-    return Triggers([r for r in rules.rules] + extra).needed_keys()
+    return Triggers([*rules.rules, *rules.held_rules(), *extra]).needed_keys()
 
 
 __all__ = ["EARLY_CHECKS", "MaintenanceParts", "MaintenanceState", "Part", "early_checks", "is_monotone", "needed_keys"]
