@@ -79,7 +79,7 @@ def measure(kind: str, n: int, fillers: int, qualified: bool, data: bool) -> dic
         seconds = time.perf_counter() - start
         members = [onto.short(i) for i in onto.instances("C")]
     return {"seconds": round(seconds, 3), "consistent": report.consistent, "x_in_C": "x" in members,
-            "rules": len(onto.rules.rules)}
+            "rules": len(onto.rules.rules), "schema_rows": len(onto.rules.compiled_rules()) - len(onto.rules.rules)}
 
 
 def run_child(src: Path | None, kind: str, n: int, fillers: int, qualified: bool, data: bool,
