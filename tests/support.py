@@ -107,3 +107,41 @@ def armor_load(service, path: Path | str, iri: str):
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", OntologyWarning)
         return service.call(request)
+
+
+def map_or_text(text: str | None = None) -> Ontology:
+    """An ontology of Turtle ``text``, or with None of the 200-location benchmark map, loaded with LOAD's
+    notices silenced (the full-run tests read what a full REASON sends on either)."""
+    from topostore import OntologyWarning
+
+    onto = Ontology()
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", OntologyWarning)
+        if text is None:
+            import sys
+            import tempfile
+
+            sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # benchmarks/ beside src/
+            from benchmarks import maps
+
+            with tempfile.TemporaryDirectory() as tmp:
+                path, _ = maps.write("200", Path(tmp))
+                onto.load(path)
+        else:
+            onto.load_data(text, "turtle")
+    return onto
+
+
+def full_run_updates(onto: Ontology, monkeypatch: pytest.MonkeyPatch) -> list[str]:
+    """The update texts a full REASON of ``onto`` sends, in order."""
+    texts: list[str] = []
+    update = onto.store.update
+
+    def recording(text: str, *args, **kwargs):
+        texts.append(text)
+        return update(text, *args, **kwargs)
+
+    monkeypatch.setattr(onto.store, "update", recording)
+    onto.reason(mode="full")
+    monkeypatch.undo()
+    return texts

@@ -5,20 +5,16 @@ same closure, and the look-up form only where it is cheap."""
 from __future__ import annotations
 
 import sys
-import tempfile
-import warnings
 from pathlib import Path
 
 import pytest
-from support import closure
+from support import closure, full_run_updates, map_or_text
 
-from topostore import Ontology, OntologyWarning
 from topostore.rdf.vocab import INFERRED
 from topostore.reason import few_solutions, materialize
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))  # the benchmarks package lives beside src/
-from benchmarks import maps  # noqa: E402
 from benchmarks.cardinality import PREFIXES  # noqa: E402
 
 #: a range over two links into a class of 300 members, and a range over 300 links into a class of 300
@@ -28,38 +24,10 @@ SMALL_INTO_LARGE = PREFIXES + "\n".join(
     + [f":p{i} a :Place . :box :holds :t{i} . :t{i} a :Thing ." for i in range(300)])
 
 
-def loaded(text: str | None = None) -> Ontology:
-    onto = Ontology()
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", OntologyWarning)
-        if text is None:
-            with tempfile.TemporaryDirectory() as tmp:
-                path, _ = maps.write("200", Path(tmp))
-                onto.load(path)
-        else:
-            onto.load_data(text, "turtle")
-    return onto
-
-
-def sent(onto: Ontology, monkeypatch) -> list[str]:
-    """The update texts of a full REASON."""
-    texts: list[str] = []
-    update = onto.store.update
-
-    def recording(text, *args, **kwargs):
-        texts.append(text)
-        return update(text, *args, **kwargs)
-
-    monkeypatch.setattr(onto.store, "update", recording)
-    onto.reason(mode="full")
-    monkeypatch.undo()
-    return texts
-
-
 def test_a_range_over_few_links_looks_each_up(monkeypatch):
-    onto = loaded(SMALL_INTO_LARGE)
+    onto = map_or_text(SMALL_INTO_LARGE)
     onto.reason()
-    texts = sent(onto, monkeypatch)
+    texts = full_run_updates(onto, monkeypatch)
     reaches = [t for t in texts if "reaches> ?y" in t and "Place>" in t and "INSERT" in t]
     assert reaches and all("FILTER NOT EXISTS" in t and "MINUS" not in t for t in reaches)
     # 300 links into 300 members: the extent is read once (MINUS), as before
@@ -70,7 +38,7 @@ def test_a_range_over_few_links_looks_each_up(monkeypatch):
 
 @pytest.mark.parametrize("text", [SMALL_INTO_LARGE, None], ids=["small-into-large", "map-200"])
 def test_the_same_closure_with_and_without_the_look_ups(text, monkeypatch):
-    onto = loaded(text)  # one store: its blank nodes (and the group keys made of them) stay the same
+    onto = map_or_text(text)  # one store: its blank nodes (and the group keys made of them) stay the same
     onto.reason(mode="full")
     with_few = closure(onto)
     monkeypatch.setattr(few_solutions, "FEW", -1)  # no evaluation has few solutions
@@ -80,7 +48,7 @@ def test_the_same_closure_with_and_without_the_look_ups(text, monkeypatch):
 
 
 def test_a_key_a_queued_evaluation_writes_is_not_counted():
-    onto = loaded(SMALL_INTO_LARGE)
+    onto = map_or_text(SMALL_INTO_LARGE)
     onto.reason()
     runner = materialize.Materializer(onto.store, onto.rules)
     rule = next(r for r in runner.rules if len(r.body) == 1 and "reaches" in r.body[0].read_key()[1]
@@ -93,7 +61,7 @@ def test_a_key_a_queued_evaluation_writes_is_not_counted():
 
 
 def test_a_store_over_http_is_not_asked(monkeypatch):
-    onto = loaded(SMALL_INTO_LARGE)
+    onto = map_or_text(SMALL_INTO_LARGE)
     onto.reason()
     runner = materialize.Materializer(onto.store, onto.rules)
     rule = next(r for r in runner.rules if len(r.body) == 1 and "reaches" in r.body[0].read_key()[1]

@@ -5,14 +5,12 @@ from __future__ import annotations
 
 import itertools
 import sys
-import tempfile
-import warnings
 from pathlib import Path
 
 import pytest
-from support import closure
+from support import closure, map_or_text
 
-from topostore import Ontology, OntologyWarning
+from topostore import Ontology
 from topostore.compile.rule import Atom, Rule
 from topostore.reason import insert_text
 from topostore.reason.key_pairs import grouped_form
@@ -20,7 +18,6 @@ from topostore.resources import default_ontology_files
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))  # the benchmarks package lives beside src/
-from benchmarks import maps  # noqa: E402
 from benchmarks.cardinality import PREFIXES  # noqa: E402
 
 
@@ -81,16 +78,7 @@ CASES = [
 def loaded(source: str) -> Ontology:
     if source == "example":
         return example()
-    onto = Ontology()
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", OntologyWarning)
-        if source == "map":
-            with tempfile.TemporaryDirectory() as tmp:
-                path, _ = maps.write("200", Path(tmp))
-                onto.load(path)
-        else:
-            onto.load_data(MIN2 + CASES[int(source)], "turtle")
-    return onto
+    return map_or_text(None if source == "map" else MIN2 + CASES[int(source)])
 
 
 @pytest.mark.parametrize("source", ["example", "map"] + [str(i) for i in range(len(CASES))])

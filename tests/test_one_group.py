@@ -4,21 +4,18 @@
 from __future__ import annotations
 
 import sys
-import tempfile
-import warnings
 from pathlib import Path
 
 import pytest
-from support import closure
+from support import closure, full_run_updates, map_or_text
 
-from topostore import Ontology, OntologyWarning
+from topostore import Ontology
 from topostore.compile.counting import group_of
 from topostore.reason import materialize
 from topostore.reason.one_group import keys_kept_by_group, without_group_tests
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))  # the benchmarks package lives beside src/
-from benchmarks import maps  # noqa: E402
 from benchmarks.cardinality import PREFIXES  # noqa: E402
 
 GROUP_PART = group_of("?")[:8]  # the text every group test starts its comparison with (STRBEFORE)
@@ -47,48 +44,20 @@ CASES = {
 }
 
 
-def loaded(source: str) -> Ontology:
-    onto = Ontology()
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", OntologyWarning)
-        if source == "map":
-            with tempfile.TemporaryDirectory() as tmp:
-                path, _ = maps.write("200", Path(tmp))
-                onto.load(path)
-        else:
-            onto.load_data(MIN2 + CASES[source], "turtle")
-    return onto
-
-
-def full_texts(onto: Ontology, monkeypatch: pytest.MonkeyPatch) -> list[str]:
-    """The texts of the evaluations a full REASON sends (its updates), in order."""
-    sent: list[str] = []
-    update = onto.store.update
-
-    def spy(text: str, *args, **kwargs):
-        sent.append(text)
-        return update(text, *args, **kwargs)
-
-    monkeypatch.setattr(onto.store, "update", spy)
-    onto.reason(mode="full")
-    monkeypatch.undo()
-    return sent
-
-
 @pytest.mark.parametrize("source", ["map", "one group"])
 def test_a_full_run_over_one_group_compares_no_group_parts(source: str, monkeypatch: pytest.MonkeyPatch) -> None:
     onto = loaded(source)
     assert keys_kept_by_group(onto.rules.inference_rules)
     grouped = [r for r in onto.rules.inference_rules if without_group_tests(r) is not None]
     assert grouped  # the rules read keys of one group: the test is there to leave out
-    texts = full_texts(onto, monkeypatch)
+    texts = full_run_updates(onto, monkeypatch)
     assert any("differentKeyOf" in t for t in texts)
     assert not any(GROUP_PART in t and "differentKeyOf" in t for t in texts)
 
 
 @pytest.mark.parametrize("source", ["two groups", "a second group by sameAs"])
 def test_a_second_group_keeps_the_test(source: str, monkeypatch: pytest.MonkeyPatch) -> None:
-    texts = full_texts(loaded(source), monkeypatch)
+    texts = full_run_updates(loaded(source), monkeypatch)
     assert any(GROUP_PART in t and "differentKeyOf" in t for t in texts)
 
 
@@ -124,3 +93,7 @@ def _x_type():
 
     from topostore.rdf.vocab import INFERRED, TYPE
     return NamedNode(PREFIXES_NS + "x"), TYPE, INFERRED
+
+
+def loaded(source: str) -> Ontology:
+    return map_or_text(None if source == "map" else MIN2 + CASES[source])
