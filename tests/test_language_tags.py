@@ -575,3 +575,28 @@ def test_sparql_query_answers_spell_tags_as_written(accept: str, tmp_path: Path)
         assert status == 200, body[:400]
     assert b"en-GB" in body and b"EN-us" in body and b"de-CH" in body, body[:600]
     assert b"en-gb" not in body.replace(b'\\"@en-GB\\"', b"") and b"en-us" not in body
+
+
+@pytest.mark.parametrize("first, second", [("long", "integer"), ("integer", "long")])
+def test_a_graph_store_upload_respelling_a_stored_value_says_so_and_counts_nothing(first: str, second: str,
+                                                                                    tmp_path: Path) -> None:
+    """A PUT that spells a stored value otherwise (``"7"^^xsd:integer`` where ``"7"^^xsd:long`` was written)
+    changes nothing: the reply counts nothing added or removed and says which spelling stays, whichever of
+    the two the store keeps as its canonical form; a POST of it adds nothing either."""
+    head = f"@prefix : <{NS}> . @prefix owl: <http://www.w3.org/2002/07/owl#> . <http://e.org/lang> a owl:Ontology . "
+    xsd = "http://www.w3.org/2001/XMLSchema#"
+    with in_process(config(tmp_path / "data", allow_update=True)) as server:
+        def upload(kind: str, method: str) -> dict:
+            doc = head + f':x :s "7"^^<{xsd}{kind}> .'
+            status, _, reply = server.request("/references/lang/data?default", doc.encode(),
+                                              {"Content-Type": "text/turtle"}, method)
+            assert status in (200, 201), reply
+            return json.loads(reply)
+
+        upload(first, "PUT")
+        for method in ("PUT", "POST"):
+            body = upload(second, method)
+            assert body["added"] == 0 and body["removed"] == 0, body
+            assert method == "POST" or any("stays as written" in w for w in body["warnings"]), body
+            _, _, saved = server.request("/references/lang/data?default", None, {"Accept": "application/n-triples"})
+            assert f'"7"^^<{xsd}{first}>'.encode() in saved

@@ -118,7 +118,13 @@ class Reference:
         return self.run(changes)
 
     def run(self, changes: list[Change], reason: bool | None = None) -> list[str]:
-        """Apply changes in order, all or nothing, then reason if ``reason`` (default: live reasoner).
+        """Apply changes in order, all or nothing, then reason if ``reason`` (default: live reasoner); the
+        changes' warnings (see :meth:`applied`)."""
+        return [a.warning for a in self.applied(changes, reason) if a.warning]
+
+    def applied(self, changes: list[Change], reason: bool | None = None) -> list[Applied]:
+        """:meth:`run`, returning what each change really did (a value removed and added again in another
+        spelling is neither: a reply counts from these, not from the plans).
 
         A live (non-buffered) reasoner sees every applied change, so the
         reference is re-reasoned after each applied manipulation.
@@ -141,7 +147,7 @@ class Reference:
             if reason:
                 self._reason_quietly()
             raise
-        return [a.warning for a in applied if a.warning]
+        return applied
 
     def manipulate(self, description: str, add: list[Triple], remove: list[Triple]) -> list[str]:
         """One all-or-nothing manipulation of the asserted graph, then reasoning (sparql.target.WritableOntology)."""

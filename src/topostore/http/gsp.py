@@ -24,7 +24,7 @@ from __future__ import annotations
 from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
-from pyoxigraph import NamedNode, RdfFormat, Triple
+from pyoxigraph import Literal, NamedNode, RdfFormat, Triple
 from starlette.concurrency import run_in_threadpool
 from starlette.requests import Request
 from starlette.responses import JSONResponse, Response
@@ -194,7 +194,12 @@ def _plan(method: str, uploaded: list[Triple]) -> Callable[[Ontology], Delta]:
     """What PUT (replace), POST (merge) or DELETE (empty) does, computed against the state when applied."""
 
     def plan(onto: Ontology) -> Delta:
-        current = set(onto.store.triples(graph=ASSERTED))
+        # as written (the store keeps a canonical form of some literals): a document that spells a stored
+        # value otherwise then reaches the change as a respelling, which is said (SpellingKeptWarning), not
+        # taken for the value already there
+        store = onto.store
+        current = {Triple(t.subject, t.predicate, store.original_literal(ASSERTED, t.subject, t.predicate, t.object))
+                   if isinstance(t.object, Literal) else t for t in store.triples(graph=ASSERTED)}
         new = set(uploaded)
         if method == "POST":
             return Delta(add=sorted(new - current, key=str))
@@ -216,13 +221,14 @@ def _apply(ref: Reference, plan: Callable[[Ontology], Delta], method: str,
                                   "may change it")
         delta = plan(ref.ontology)
         try:
-            warnings = ref.run([Change(f"Graph Store {method}", lambda _onto: delta)])
+            done = ref.applied([Change(f"Graph Store {method}", lambda _onto: delta)])
         except TopostoreError as exc:
             raise GraphStoreError(400, f"the graph was not stored: {exc}") from None
+        added = [t for a in done for t in a.added]
         if written is not None:
-            ref.ontology.values.learned(*written, only=literal_tags(delta.add))
-        return {"added": len(delta.add), "removed": len(delta.remove), "is_consistent": ref.is_consistent,
-                "warnings": warnings}
+            ref.ontology.values.learned(*written, only=literal_tags(added))
+        return {"added": len(added), "removed": sum(len(a.removed) for a in done), "is_consistent": ref.is_consistent,
+                "warnings": [a.warning for a in done if a.warning]}
 
 
 def _new_reference(api: Api, name: str, iri: str, body: bytes, fmt: RdfFormat | None) -> Reference:
