@@ -600,3 +600,24 @@ def test_a_graph_store_upload_respelling_a_stored_value_says_so_and_counts_nothi
             assert method == "POST" or any("stays as written" in w for w in body["warnings"]), body
             _, _, saved = server.request("/references/lang/data?default", None, {"Accept": "application/n-triples"})
             assert f'"7"^^<{xsd}{first}>'.encode() in saved
+
+
+def test_a_graph_store_upload_writing_one_value_twice_counts_and_says_it_once(tmp_path: Path) -> None:
+    """``"07"^^xsd:long`` and ``"7"^^xsd:integer`` in one document are one value: the upload is read with the
+    first spelling of each value, so over a stored ``"7"^^xsd:long`` the reply counts nothing and the
+    spelling it says stays is the one that does."""
+    head = f"@prefix : <{NS}> . @prefix owl: <http://www.w3.org/2002/07/owl#> . <http://e.org/lang> a owl:Ontology . "
+    xsd = "http://www.w3.org/2001/XMLSchema#"
+    with in_process(config(tmp_path / "data", allow_update=True)) as server:
+        def put(values: str) -> dict:
+            status, _, reply = server.request("/references/lang/data?default", (head + f":x :s {values} .").encode(),
+                                              {"Content-Type": "text/turtle"}, "PUT")
+            assert status in (200, 201), reply
+            return json.loads(reply)
+
+        put(f'"7"^^<{xsd}long>')
+        body = put(f'"07"^^<{xsd}long> , "7"^^<{xsd}integer>')
+        assert body["added"] == 0 and body["removed"] == 0, body
+        assert len(body["warnings"]) == 1 and f'"7"^^<{xsd}long> stays as written' in body["warnings"][0], body
+        _, _, saved = server.request("/references/lang/data?default", None, {"Accept": "application/n-triples"})
+    assert f'"7"^^<{xsd}long>'.encode() in saved and b'"07"' not in saved

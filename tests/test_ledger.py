@@ -179,3 +179,31 @@ def test_a_change_made_again_after_a_failed_transaction_inside_one_unit_is_undon
         raise KeyError("the unit's failure")
     assert asserted(onto) == before
     assert onto.ledger.added == {} and onto.ledger.removed == {}
+
+
+def test_a_schema_change_a_failed_transaction_rolled_back_leaves_no_rule_compiled_from_it(onto: Ontology) -> None:
+    subclass = NamedNode("http://www.w3.org/2000/01/rdf-schema#subClassOf")
+    with pytest.raises(RuntimeError), onto.store.transaction():
+        onto.changes.add(Triple(n("Robot"), subclass, n("Thing3")))
+        assert onto.rules is not None  # compiled while the axiom was pending
+        raise RuntimeError("the transaction's own failure")
+    onto.add(Triple(n("r2"), TYPE, n("Robot")))
+    onto.reason(mode="full")
+    assert set(onto.types("r2")) == {n("Robot"), n("Thing2")}
+
+
+def test_a_commit_that_fails_while_writing_leaves_nothing_in_the_record(
+        onto: Ontology, monkeypatch: pytest.MonkeyPatch) -> None:
+    t = Triple(n("r2"), TYPE, n("Robot"))
+
+    def full_disk(*_args, **_kwargs) -> None:
+        raise OSError("no space left on the device")
+
+    with monkeypatch.context() as patched:
+        patched.setattr(onto.store, "_write", full_disk)
+        with pytest.raises(OSError):
+            onto.add(t)
+    assert t not in asserted(onto)
+    assert onto.ledger.added == {} and onto.ledger.removed == {}
+    onto.reason(mode="incremental")
+    assert onto.types("r2") == []

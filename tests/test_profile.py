@@ -96,7 +96,11 @@ CASES = {
     "data minimum of two under a maximum told on another class": (
         ":d a owl:DatatypeProperty . :A rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :d ; "
         "owl:maxCardinality 1 ] . :B rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :d ; "
-        "owl:cardinality 2 ] .", kinds.EXISTENTIAL, "is inconsistent: not found"),
+        "owl:cardinality 2 ] .", kinds.EXISTENTIAL, "not where the individual is in two classes"),
+    "existential under a maximum of none told on another class": (
+        ":A rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :p ; owl:maxCardinality 0 ] . :B rdfs:subClassOf "
+        "[ a owl:Restriction ; owl:onProperty :p ; owl:someValuesFrom :F ] .", kinds.EXISTENTIAL,
+        "in both (p some F) and (p max 0"),
     "existential into disjoint classes": (":A rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :p ; "
                                           "owl:someValuesFrom :B ] . :p rdfs:range :C . :B owl:disjointWith :C .",
                                           kinds.EXISTENTIAL, "disjoint"),

@@ -145,7 +145,7 @@ class ProfileReport:
         self.uses_difference = uses_difference
         self.notices: dict[tuple[str, str], Notice] = {}
         #: :meth:`single_valued`'s answers by property
-        self._single: dict[Prop, str | None] = {}
+        self._single: dict[Prop, Expr | str | None] = {}
         #: what an existential's unnamed value implies beyond its own restriction (:mod:`.unnamed_values`)
         self.unnamed = UnnamedValues(self)
 
@@ -294,8 +294,8 @@ class ProfileReport:
                       f"of {_name(p.iri)} only through a told value")
         self.unnamed.chain_links(e, axiom, {p, *supers}, subject)
         bound = self.single_valued(p, e)
-        if bound and e.kind in ("min", "exact") and e.n >= 2 and (e.filler is None or e.filler.node == THING
-                                                                  or self.owl.is_data(p, e)):
+        if isinstance(bound, Expr) and e.kind in ("min", "exact") and e.n >= 2 and (
+                e.filler is None or e.filler.node == THING or self.owl.is_data(p, e)):
             # a qualified minimum on an object property is said below, with its filler
             self.note(EXISTENTIAL, axiom, self._single_valued_gap(e, bound) or "")
         if self.owl.is_data(p, e):
@@ -338,37 +338,41 @@ class ProfileReport:
                 out |= self.told(c.node)
         return out
 
-    def single_valued(self, p: Prop, e: Expr) -> str | None:
+    def single_valued(self, p: Prop, e: Expr) -> Expr | str | None:
         """Why ``p`` may have at most one value: "" where it is functional (every subject), the told
-        unqualified maximum of one where only that restriction's instances are bounded, None where
+        unqualified maximum of one (or none) where only that restriction's instances are bounded, None where
         nothing bounds it (decided once per property: asked for every existential on it)."""
         if p not in self._single:
             self._single[p] = self._single_valued(p)
         return self._single[p]
 
-    def _single_valued(self, p: Prop) -> str | None:
+    def _single_valued(self, p: Prop) -> Expr | str | None:
         if self.tb.has("InverseFunctionalProperty" if p.inverse else "FunctionalProperty", p.iri):
             return ""
         for m, pos in self.on.get(p, ()):
             if pos and m.kind in ("max", "exact") and m.n <= 1 and m.filler is None and m.datatype is None:
-                return describe(m)
+                return m
         return None
 
     @staticmethod
-    def _single_valued_gap(e: Expr, single: str) -> str | None:
+    def _single_valued_gap(e: Expr, single: Expr | str) -> str | None:
         """The notice for an existential on a property with at most one value (None: nothing is missed).
 
         A functional property's told value is the unnamed one (a minimum of two or more on it is found
         inconsistent); a maximum told in a restriction bounds that restriction's instances only, so the
-        notice says where it applies, and for a minimum of two or more that the clash is what is missed."""
+        notice says where it applies. Where the two cannot hold together (a minimum of two or more, or a
+        maximum of none), the clash is found for a class under both restrictions (it is unsatisfiable), not
+        for an individual typed with two classes that carry one each: that is what the notice says."""
         name, filler = _name(e.prop.iri), describe(e.filler) if e.filler is not None else "owl:Thing"
         many = e.kind in ("min", "exact") and e.n >= 2
-        if not single:
+        if isinstance(single, str):
             return None if many else \
                 f"{name} has at most one value, so the told value is the one in {filler}: not derived"
-        if many:
-            return f"an individual in both {describe(e)} and {single} is inconsistent: not found"
-        return (f"on instances of {single}, {name} has at most one value, so the told value is the one "
+        bound = describe(single)
+        if many or single.n == 0:
+            return (f"an individual in both {describe(e)} and {bound} is inconsistent: found where a class is "
+                    "under both, not where the individual is in two classes that carry one each")
+        return (f"on instances of {bound}, {name} has at most one value, so the told value is the one "
                 f"in {filler}: not derived")
 
     def disjoint(self, a: NamedNode, b: NamedNode) -> bool:

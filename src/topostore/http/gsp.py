@@ -34,6 +34,7 @@ from ..armor.codes import CommandError
 from ..armor.reference import Change, Delta, Reference
 from ..errors import TopostoreError
 from ..ontology.facade import Ontology
+from ..rdf.terms import value_key
 from ..rdf.vocab import ASSERTED, ENTAILED, INFERRED, OWL, RDF, RDFS, TYPE, XSD
 from ..sparql.results import GRAPH_FORMATS, NotAcceptable, choose_format, render_graph
 from ..stores.language_tags import literal_tags
@@ -200,7 +201,7 @@ def _plan(method: str, uploaded: list[Triple]) -> Callable[[Ontology], Delta]:
         store = onto.store
         current = {Triple(t.subject, t.predicate, store.original_literal(ASSERTED, t.subject, t.predicate, t.object))
                    if isinstance(t.object, Literal) else t for t in store.triples(graph=ASSERTED)}
-        new = set(uploaded)
+        new = set(_one_spelling(uploaded))
         if method == "POST":
             return Delta(add=sorted(new - current, key=str))
         if method == "PUT":
@@ -208,6 +209,20 @@ def _plan(method: str, uploaded: list[Triple]) -> Callable[[Ontology], Delta]:
         return Delta(remove=sorted(current, key=str))
 
     return plan
+
+
+def _one_spelling(triples: list[Triple]) -> list[Triple]:
+    """``triples`` with one spelling per value (the first written): the store keeps one value once, so a
+    document writing ``"7"^^xsd:long`` and ``"07"^^xsd:long`` asserts one fact, counted and said once."""
+    seen: set = set()
+    kept = []
+    for t in triples:
+        o = t.object
+        key = (t.subject, t.predicate, value_key(o)) if isinstance(o, Literal) else t
+        if key not in seen:
+            seen.add(key)
+            kept.append(t)
+    return kept
 
 
 def _apply(ref: Reference, plan: Callable[[Ontology], Delta], method: str,

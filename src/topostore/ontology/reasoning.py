@@ -111,7 +111,10 @@ class OntologyReasoning:
             return [q.triple for q in quads if q.graph_name == ASSERTED]
 
         onto = self.onto
-        onto.ledger.rolled_back(onto.store, asserted(adds), asserted(removes))
+        added, removed = asserted(adds), asserted(removes)
+        onto.ledger.rolled_back(onto.store, added, removed)
+        if added or removed:  # a schema triple among them: rules compiled meanwhile read what never landed
+            onto.changes.touch(added + removed)
 
     def writes_lost(self, lost: list[tuple[list[Quad], list[Quad]]], certain: bool) -> None:
         """The store could not write changes it had accepted (a remote store defers them): undo them

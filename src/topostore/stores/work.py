@@ -74,14 +74,27 @@ def end(store: Store, failed: bool) -> None:
     if failed:
         pending, store._pending, store._known = store._pending, None, {}
         store.persisted.pending = {}
-        if pending and store.on_rolled_back:
-            adds = [q for q, present in pending.values() if present]
-            removes = [q for q, present in pending.values() if not present]
-            for listener in list(store.on_rolled_back):
-                listener(adds, removes)
+        _rolled_back(store, pending)
         return
-    store._flush()
+    pending = dict(store._pending or {})
+    try:
+        store._flush()  # one write, undone as a whole where it fails
+    except BaseException:
+        store._pending, store._known = None, {}
+        store.persisted.pending = {}
+        _rolled_back(store, pending)
+        raise
     store._pending, store._known = None, {}
+
+
+def _rolled_back(store: Store, pending: dict | None) -> None:
+    """Tell :attr:`Store.on_rolled_back` what a transaction held pending and never wrote (a failure in
+    the block, or in the commit's own write)."""
+    if pending and store.on_rolled_back:
+        adds = [q for q, present in pending.values() if present]
+        removes = [q for q, present in pending.values() if not present]
+        for listener in list(store.on_rolled_back):
+            listener(adds, removes)
 
 
 def flush(store: Store) -> None:
