@@ -169,7 +169,8 @@ class ChangeLedger:
 
     def _undo_since(self, onto: Ontology, start: int) -> None:
         """Undo the steps recorded since ``start`` (newest first) and forget them.  A step a failed store
-        transaction never wrote was taken out of the record when it rolled back (:meth:`rolled_back`):
+        transaction never wrote was taken out of the record when it rolled back (:meth:`lost`, told by
+        ``Store.on_rolled_back``):
         undoing it here flips nothing and records nothing."""
         steps = self._steps[start:]
         with self._paused(), onto.store.transaction():
@@ -179,13 +180,6 @@ class ChangeLedger:
                 if removed:
                     onto.changes.add(*removed)
         del self._steps[start:]
-
-    def rolled_back(self, store: Store, adds: list[Triple], removes: list[Triple]) -> None:
-        """A store transaction failed: the asserted changes it held pending (``adds`` absent from the
-        committed store, ``removes`` present there: exactly what never reached it) were recorded when
-        made; the record is set back as :meth:`lost` sets back refused writes."""
-        if adds or removes:
-            self.lost(store, [(adds, removes)])
 
     @contextmanager
     def _paused(self) -> Iterator[None]:

@@ -106,15 +106,13 @@ class OntologyReasoning:
 
     def rolled_back(self, adds: list[Quad], removes: list[Quad]) -> None:
         """A store transaction failed with asserted changes pending: the ledger forgets them (they were
-        recorded as made); the reasoner's own graphs are its own business (a failed REASON restores them)."""
-        def asserted(quads: list[Quad]) -> list[Triple]:
-            return [q.triple for q in quads if q.graph_name == ASSERTED]
-
+        recorded as made, set back as refused writes are); the reasoner's own graphs are its own business
+        (a failed REASON restores them)."""
         onto = self.onto
-        added, removed = asserted(adds), asserted(removes)
-        onto.ledger.rolled_back(onto.store, added, removed)
-        if added or removed:  # a schema triple among them: rules compiled meanwhile read what never landed
-            onto.changes.touch(added + removed)
+        added, removed = _asserted(adds), _asserted(removes)
+        if added or removed:
+            onto.ledger.lost(onto.store, [(added, removed)])
+            onto.changes.touch(added + removed)  # a schema triple among them: rules compiled meanwhile are stale
 
     def writes_lost(self, lost: list[tuple[list[Quad], list[Quad]]], certain: bool) -> None:
         """The store could not write changes it had accepted (a remote store defers them): undo them
@@ -122,11 +120,8 @@ class OntologyReasoning:
         store cannot state exactly (``certain`` false: a server that did not answer may hold the changes
         after all; a lost drop of scratch graphs), makes the next REASON a full one over what the server
         holds; class views wait for the next REASON."""
-        def asserted(quads: list[Quad]) -> list[Triple]:
-            return [q.triple for q in quads if q.graph_name == ASSERTED]
-
         onto = self.onto
-        onto.ledger.lost(onto.store, [(asserted(adds), asserted(removes)) for adds, removes in lost])
+        onto.ledger.lost(onto.store, [(_asserted(adds), _asserted(removes)) for adds, removes in lost])
         if not certain or any(q.graph_name not in (ASSERTED, FORMS, META) for adds, removes in lost
                               for q in adds + removes):
             onto._reasoner = None
@@ -147,6 +142,11 @@ class OntologyReasoning:
     def subclasses(self, target: NamedNode) -> set[NamedNode]:
         """Named classes subsumed by ``target`` (direct and indirect; never owl:Nothing)."""
         return {c for c, sups in self.classification().items() if target in sups and c != target}
+
+
+def _asserted(quads: list[Quad]) -> list[Triple]:
+    """The triples of the asserted graph among ``quads`` (what the change ledger records)."""
+    return [q.triple for q in quads if q.graph_name == ASSERTED]
 
 
 __all__ = ["OntologyReasoning", "ReasonReport"]

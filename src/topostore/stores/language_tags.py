@@ -106,21 +106,30 @@ class LanguageTags:
         if not self._spelled:
             return data
         if fmt == RdfFormat.RDF_XML:
-            return _XML_LANG.sub(lambda m: m.group(1) + self._bytes(m.group(2)) + m.group(3), data)
+            return self._xml(data)
         if fmt in (RdfFormat.JSON_LD, RdfFormat.STREAMING_JSON_LD):
             return self._json_ld(data)
-        return _TEXT_LITERAL.sub(self._respelled_token, data)
+        return self._text(data)
 
     def respell_results(self, data: bytes, fmt: QueryResultsFormat) -> bytes:
         """SPARQL results pyoxigraph serialised (XML, TSV), each language tag spelled as first written;
         JSON is spelled as it is built (:func:`~topostore.sparql.results.solutions_json`), CSV has no tags."""
         if not self._spelled:
             return data
-        if fmt == QueryResultsFormat.XML:  # text content escapes '<': a tag's attribute is all it can match
-            return _XML_LANG.sub(lambda m: m.group(1) + self._bytes(m.group(2)) + m.group(3), data)
+        if fmt == QueryResultsFormat.XML:
+            return self._xml(data)
         if fmt == QueryResultsFormat.TSV:  # terms written as in Turtle
-            return _TEXT_LITERAL.sub(self._respelled_token, data)
+            return self._text(data)
         return data
+
+    def _xml(self, data: bytes) -> bytes:
+        """XML (RDF/XML, SPARQL XML results) with each ``xml:lang`` attribute's tag spelled as first written
+        (text content escapes '<': a tag's attribute is all the pattern can match)."""
+        return _XML_LANG.sub(lambda m: m.group(1) + self._bytes(m.group(2)) + m.group(3), data)
+
+    def _text(self, data: bytes) -> bytes:
+        """Turtle-like text (Turtle, N-Triples, N-Quads, TriG, TSV results): each tagged string respelled."""
+        return _TEXT_LITERAL.sub(self._respelled_token, data)
 
     def rendered(self, text: str) -> str:
         """An aRMOR rendering of a term (``"lex"@tag``), its tag spelled as first written."""

@@ -71,25 +71,23 @@ def end(store: Store, failed: bool) -> None:
     store._depth -= 1
     if store._depth:
         return
+    pending = store._pending  # the commit takes it whole and leaves it as it was (see flush)
     if failed:
-        pending, store._pending, store._known = store._pending, None, {}
-        store.persisted.pending = {}
-        _rolled_back(store, pending)
+        _abandon(store, pending)
         return
-    pending = dict(store._pending or {})
     try:
         store._flush()  # one write, undone as a whole where it fails
     except BaseException:
-        store._pending, store._known = None, {}
-        store.persisted.pending = {}
-        _rolled_back(store, pending)
+        _abandon(store, pending)
         raise
     store._pending, store._known = None, {}
 
 
-def _rolled_back(store: Store, pending: dict | None) -> None:
-    """Tell :attr:`Store.on_rolled_back` what a transaction held pending and never wrote (a failure in
-    the block, or in the commit's own write)."""
+def _abandon(store: Store, pending: dict | None) -> None:
+    """Forget what a transaction held pending and never wrote (a failure in the block, or in the commit's
+    own write), and tell :attr:`Store.on_rolled_back` about it."""
+    store._pending, store._known = None, {}
+    store.persisted.pending = {}
     if pending and store.on_rolled_back:
         adds = [q for q, present in pending.values() if present]
         removes = [q for q, present in pending.values() if not present]
