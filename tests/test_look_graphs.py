@@ -35,3 +35,27 @@ def test_rules_writing_any_predicate_or_any_class_reach_every_key_they_may_match
     graphs = StateGraphs([_rule("same-as", Atom("?x", "?p", "?y"))])
     assert graphs.of(Atom("?a", "<urn:x:clock>", "?t")) == (ASSERTED, INFERRED)
     assert graphs.of(Atom("?a", T, "<urn:x:C>")) == (ASSERTED, INFERRED)
+
+
+def test_a_change_is_derivable_only_where_a_rule_that_can_fire_writes_one_of_its_keys() -> None:
+    """The keys of asserted facts (:func:`key_census`) a rule may have inferred: only those facts are
+    discarded from the inferred and helper graphs when they are asserted.  A rule one of whose premises
+    never had a fact (``present``) never fired."""
+    graphs = StateGraphs([_rule("q", Atom("?x", "<urn:x:q>", "?y")),
+                          _rule("c", Atom("?x", T, "<urn:x:C>")),
+                          _rule("h", Atom("?x", "<urn:x:h>", "?y"), aux=True)])
+    present = ({"<urn:x:p>"}, set())
+    assert not graphs.derived(({"<urn:x:clock>": 1, "<urn:x:p>": 2}, {}), present)
+    assert graphs.derived(({"<urn:x:clock>": 1, "<urn:x:q>": 1}, {}), present)
+    grows: tuple[set, set] = (set(), set())
+    assert not graphs.derived(({"<urn:x:clock>": 1, "<urn:x:q>": 1}, {}), grows)  # :p never had facts
+    grows[0].add("<urn:x:p>")  # asked again once the keys with facts grew
+    assert graphs.derived(({"<urn:x:clock>": 1, "<urn:x:q>": 1}, {}), grows)
+    assert graphs.derived(({"<urn:x:h>": 1}, {}), present)
+    assert graphs.derived(({T: 1}, {"<urn:x:C>": 1}), present)
+    assert not graphs.derived(({T: 1}, {"<urn:x:D>": 1}), present)  # rdf:type alone is no key: its classes are
+    assert StateGraphs([_rule("types", Atom("?x", T, "?c"))]).derived(({T: 1}, {"<urn:x:D>": 1}), present)
+    same_as = StateGraphs([Rule("eq-rep", "test", (Atom("?x", "<urn:x:same>", "?z"), Atom("?x", "?p", "?y")),
+                                Atom("?z", "?p", "?y"))])
+    assert not same_as.derived(({"<urn:x:clock>": 1}, {}), present)
+    assert same_as.derived(({"<urn:x:clock>": 1}, {}), ({"<urn:x:same>"}, set()))

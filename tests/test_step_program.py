@@ -811,3 +811,30 @@ def test_run_records_are_dropped_with_their_evicted_programs() -> None:
             onto.reason(mode="incremental")
             step = onto._reasoner.step
             assert len(step._ran) <= len(step.programs) <= 2
+
+
+def test_only_a_change_a_rule_may_have_inferred_is_discarded_from_the_inferred_graphs() -> None:
+    """A clock tick or a visit time (no rule writes :now or :seen) discards nothing from the inferred and
+    helper graphs; a type fact a rule inferred, once asserted, leaves the inferred graph (as from scratch)."""
+    onto = new_ontology()
+    onto.max_change_share = 1.0
+    onto.add(Triple(N("i1"), N("p"), N("i2")))
+    onto.reason(mode="incremental")
+    inferred = Triple(N("i1"), TYPE, N("A"))
+    assert inferred in set(onto.store.triples(graph=INFERRED))
+    discarded: list[list] = []
+    discard = onto.store.discard
+
+    def spied(triples, graphs):
+        discarded.append(list(triples))
+        return discard(triples, graphs)
+
+    with mock.patch.object(onto.store, "discard", spied):
+        onto.replace(N("clock"), N("now"), 120)
+        onto.replace(N("i1"), N("seen"), 95)
+        assert_as_from_scratch(onto, onto.reason(mode="incremental"))
+        assert discarded == []
+        onto.add(inferred)
+        assert_as_from_scratch(onto, onto.reason(mode="incremental"))
+    assert [inferred] in discarded
+    assert inferred not in set(onto.store.triples(graph=INFERRED))

@@ -316,8 +316,9 @@ class IncrementalReasoner:
         for keys in (self.state.present, self.state.asserted):
             keys[0].update(preds)
             keys[1].update(classes)
-        # a newly asserted fact that was inferred is now asserted only (as from scratch)
-        if added:
+        # a newly asserted fact that was inferred is now asserted only (as from scratch); none can have
+        # been inferred where no rule that can fire writes its predicate or class (a robot's clock)
+        if added and self.step.compiler.state_graphs.derived((preds, classes), self.state.present):
             requests.discard(added, (INFERRED, AUX))
         replaced = flip.replaced_in(self.store, added, removed, ASSERTED)
         ask_again = bool(self.deferred and removed) and self._completion.needed(

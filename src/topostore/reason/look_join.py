@@ -18,7 +18,7 @@ and its SPARQL text runs instead (before anything was written).
 
 from __future__ import annotations
 
-from collections.abc import Callable, Iterator
+from collections.abc import Callable, Iterator, Mapping
 
 from pyoxigraph import Literal, NamedNode, Triple
 
@@ -34,6 +34,7 @@ from .look_code import compile_conditions
 from .look_filters import Unsupported, closure, parse_expression
 from .look_values import UNKNOWN, all_of
 from .scratch import CANDIDATES, NEW_FACTS, OVERDELETED
+from .triggers import Present, matches
 
 _STATE = (ASSERTED, INFERRED, AUX)
 #: False: joins are interpreted atom by atom (:func:`.join_code.interpreted`), the reference the tests
@@ -51,6 +52,12 @@ class StateGraphs:
 
     def __init__(self, rules: list[Rule]) -> None:
         self._by_key: dict[ReadKey, set[NamedNode]] = {}
+        self._rules = rules
+        #: per key, the named keys of the body of each rule writing it (made at the first :meth:`derived`)
+        self._bodies: dict[ReadKey, list[tuple[ReadKey, ...]]] | None = None
+        #: :meth:`derived` per key, with the sizes of the ``present`` sets it was answered for
+        self._present: Present | None = None
+        self._seen: dict[ReadKey, tuple[tuple[int, int], bool]] = {}
         for rule in rules:
             if rule.head is not None:
                 self._by_key.setdefault(rule.writes(), set()).add(AUX if rule.head_aux() else INFERRED)
@@ -59,7 +66,48 @@ class StateGraphs:
         """The graphs to read ``atom``'s facts from, in :data:`_STATE`'s order."""
         if atom.aux:
             return (AUX,)
-        key = atom.read_key()
+        return self.of_key(atom.read_key())
+
+    def derived(self, census: tuple[Mapping[str, int], Mapping[str, int]], present: Present) -> bool:
+        """Whether a fact of a key of ``census`` (:func:`~..stores.base.key_census`: predicates, and the
+        classes of type facts) may be in the inferred or the helper graph: some rule writes the key there
+        and every key its body names had facts (``present``, the keys with facts since the last full run,
+        a superset).  Else no such fact is there to discard when it is asserted: a rule one of whose
+        premises never had a fact (owl:sameAs replacement, on a map without equalities) never fired.
+
+        Answered once per key while ``present`` keeps its sizes: its sets only grow until a full run
+        makes new ones, so the same sets of the same sizes hold the same keys."""
+        if present is not self._present:
+            self._present, self._seen = present, {}
+        sizes = (len(present[0]), len(present[1]))
+        seen = self._seen
+        preds, classes = census
+        for kind, names in (("t", classes), ("p", preds)):
+            for name in names:
+                found = seen.get((kind, name))
+                if found is None or found[0] != sizes:
+                    found = seen[(kind, name)] = (sizes, self._written(kind, name, present))
+                if found[1]:
+                    return True
+        return False
+
+    def _written(self, kind: str, name: str, present: Present) -> bool:
+        """:meth:`derived` of one key (rdf:type itself is no key: its facts' classes are)."""
+        if kind == "p" and name == _TYPE_KEY[1]:
+            return False
+        if self._bodies is None:
+            self._bodies = {}
+            for rule in self._rules:
+                if rule.head is not None:
+                    named = tuple(dict.fromkeys(a.read_key() for a in rule.body if a.p[0] == "<"))
+                    self._bodies.setdefault(rule.writes(), []).append(named)
+        key = (kind, name)
+        writers = (key, ("*",), _TYPE_KEY) if kind == "t" else (key, ("*",))
+        return any(all(matches(k, *present) for k in body) for writer in writers
+                   for body in self._bodies.get(writer, ()))
+
+    def of_key(self, key: ReadKey) -> tuple[NamedNode, ...]:
+        """The graphs of the new state that may hold facts of ``key`` (not a helper atom's)."""
         if key[0] == "*":
             return _STATE
         found = set(self._by_key.get(("*",), ())) | self._by_key.get(key, set())
