@@ -167,3 +167,23 @@ def test_a_read_of_every_graph_lists_the_held_facts_when_asked() -> None:
     assert next(read).subject.value in {"http://e/s1", "http://e/s2"}
     store.add_scratch([fact(3)], second)
     assert len(list(read)) == 1
+
+
+def test_a_drop_of_the_same_graphs_again_answers_for_the_graphs_as_they_are_now() -> None:
+    """What a drop finds of its list of graphs is kept for the next drop of the same list: the graphs in
+    the store are still those of this drop, and a grown set of eligible graphs is no longer covered."""
+    from topostore.stores.held import HeldGraphs
+
+    held = HeldGraphs()
+    held.eligible = frozenset(SCRATCH[:2])
+    names = [*SCRATCH[:2], OTHER]
+    assert held.drop(names) == [OTHER]
+    held.in_store.add(SCRATCH[1])
+    held.graphs[SCRATCH[0]] = {(S[0], P[0], S[1]): None}
+    held.reasoning = True
+    assert sorted(held.drop(list(names)), key=str) == sorted([OTHER, SCRATCH[1]], key=str)
+    assert not held.graphs and not held.in_store and not held.reasoning  # every eligible graph dropped: settled
+    held.eligible = held.eligible | {SCRATCH[2]}
+    held.reasoning = True
+    assert held.drop(names) == [OTHER]
+    assert held.reasoning  # SCRATCH[2] is eligible and not dropped: the REASON is not over

@@ -37,7 +37,7 @@ def _stored(o):
 class HeldGraphs:
     """The scratch graphs of one store held in Python (see the module's docstring)."""
 
-    __slots__ = ("active", "eligible", "graphs", "in_store", "needed", "reasoning")
+    __slots__ = ("_last", "active", "eligible", "graphs", "in_store", "needed", "reasoning")
 
     def __init__(self) -> None:
         #: graphs that may be held: a reasoner's scratch graphs, which only it reads and which it drops
@@ -54,6 +54,8 @@ class HeldGraphs:
         self.reasoning = False
         #: SPARQL ran in the REASON under way
         self.needed = False
+        #: (the eligible graphs, the graphs last dropped, what :meth:`_dropping` found of them)
+        self._last: tuple | None = None
 
     def holds(self, graph) -> bool:
         """Whether writes to ``graph`` are held here (eligible, and nothing of it is in the store);
@@ -159,15 +161,32 @@ class HeldGraphs:
     def drop(self, graphs: list[NamedNode]) -> list[NamedNode]:
         """Forget ``graphs``; those the store may hold facts of (the store drops them too).  Dropping
         every eligible graph ends a REASON (:meth:`settle`)."""
-        in_store, eligible = self.in_store, self.eligible
-        dropped = [g for g in graphs if g in in_store or g not in eligible]
-        if self.graphs:
-            for g in graphs:
-                self.graphs.pop(g, None)
-        in_store.difference_update(graphs)
-        if eligible and eligible.issubset(graphs):
+        members, outside, covers = self._dropping(graphs)
+        in_store = self.in_store
+        dropped = list(dict.fromkeys([*outside, *(g for g in in_store if g in members)])) if in_store else list(outside)
+        held = self.graphs
+        if held:
+            for g in [g for g in held if g in members]:
+                del held[g]
+        if in_store:
+            in_store.difference_update(members)
+        if covers:
             self.settle()
         return dropped
+
+    def _dropping(self, graphs: list[NamedNode]) -> tuple[frozenset[NamedNode], list[NamedNode], bool]:
+        """``graphs`` as a set, those of them not eligible, and whether they are every eligible graph;
+        kept for the last list asked about while the eligible graphs stay the same (a reasoner drops the
+        same two dozen graphs after every REASON, and hashing a term costs pyoxigraph a call each)."""
+        graphs = tuple(graphs)
+        last = self._last
+        if last is not None and last[0] is self.eligible and last[1] == graphs:
+            return last[2]
+        members = frozenset(graphs)
+        eligible = self.eligible
+        found = (members, [g for g in graphs if g not in eligible], bool(eligible) and eligible <= members)
+        self._last = (eligible, graphs, found)
+        return found
 
 
 __all__ = ["HELD_MAX", "HeldGraphs"]
