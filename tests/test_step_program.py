@@ -838,3 +838,30 @@ def test_only_a_change_a_rule_may_have_inferred_is_discarded_from_the_inferred_g
         assert_as_from_scratch(onto, onto.reason(mode="incremental"))
     assert [inferred] in discarded
     assert inferred not in set(onto.store.triples(graph=INFERRED))
+
+
+def test_the_clean_replacements_of_a_change_read_only_the_pairs_replaced_once() -> None:
+    """A change's clean replacements (:func:`.flip.replaced_in`) read the asserted values of the pairs
+    with one triple added and one removed only (each once), and are those of the values read."""
+    from topostore.reason import flip
+
+    store = memory_store()
+    a, b, c = N("i1"), N("i2"), N("i3")
+    p, q, r = N("p"), N("q"), N("r")
+    store.add([Triple(a, p, b), Triple(a, q, b), Triple(a, q, c), Triple(b, p, c), Triple(b, r, c), Triple(b, r, a),
+               Triple(c, TYPE, N("B"))], ASSERTED)
+    added = [Triple(a, p, b), Triple(a, q, c), Triple(b, p, c), Triple(b, r, c), Triple(b, r, a), Triple(c, TYPE, N("B"))]
+    removed = [Triple(a, p, c), Triple(a, q, a), Triple(b, p, b), Triple(b, r, b), Triple(c, TYPE, N("A"))]
+    asked: list[tuple] = []
+    objects = store.objects
+
+    def spied(s, pred, graph):
+        asked.append((s, pred))
+        return objects(s, pred, graph)
+
+    with mock.patch.object(store, "objects", spied):
+        found = flip.replaced_in(store, added, removed, ASSERTED)
+    assert sorted(asked, key=str) == sorted([(a, p), (a, q), (b, p)], key=str)  # (b, r): two added; types: never
+    assert found == flip.clean_replacements(added, removed, lambda s, pred: objects(s, pred, ASSERTED))
+    assert sorted(found) == [f"<{p.value}>"]  # (a, q) holds two values now, (b, r) had two added
+    assert sorted(str(x.new.subject) for x in found[f"<{p.value}>"]) == sorted([str(a), str(b)])

@@ -106,16 +106,28 @@ def clean_replacements(added: Iterable[Triple], removed: Iterable[Triple], value
 
     ``values_now(s, p)`` gives the current values of ``(s, p)`` in the asserted graph.
     """
-    by_key: dict[tuple, tuple[list[Triple], list[Triple]]] = {}
+    return _clean(_by_pair(added, removed), lambda pair: values_now(*pair))
+
+
+def _by_pair(added: Iterable[Triple], removed: Iterable[Triple]) -> dict[tuple, tuple[list[Triple], list[Triple]]]:
+    """The added and the removed triples of each (subject, predicate)."""
+    by_pair: dict[tuple, tuple[list[Triple], list[Triple]]] = {}
     for t in added:
-        by_key.setdefault((t.subject, t.predicate), ([], []))[0].append(t)
+        by_pair.setdefault((t.subject, t.predicate), ([], []))[0].append(t)
     for t in removed:
-        by_key.setdefault((t.subject, t.predicate), ([], []))[1].append(t)
+        by_pair.setdefault((t.subject, t.predicate), ([], []))[1].append(t)
+    return by_pair
+
+
+def _clean(by_pair: dict, values_now) -> dict[str, list[Replacement]]:
+    """:func:`clean_replacements` of the changes ``by_pair`` (:func:`_by_pair`); ``values_now(pair)`` is
+    asked only of a pair with one triple added and one removed."""
     clean: dict[str, list[Replacement]] = {}
     dirty: set[str] = set()
-    for (s, p), (adds, rems) in by_key.items():
+    for pair, (adds, rems) in by_pair.items():
+        p = pair[1]
         key = f"<{p.value}>"
-        if p == TYPE or len(adds) != 1 or len(rems) != 1 or len(values_now(s, p)) != 1:
+        if p == TYPE or len(adds) != 1 or len(rems) != 1 or len(values_now(pair)) != 1:
             dirty.add(key)
             continue
         clean.setdefault(key, []).append(Replacement(rems[0], adds[0]))
@@ -138,11 +150,15 @@ def same_kind(r: Replacement) -> bool:
 
 
 def replaced_in(store, added: Collection[Triple], removed: Collection[Triple], graph) -> dict[str, list[Replacement]]:
-    """:func:`clean_replacements` of a change, the subjects' values read from ``graph`` of ``store`` (one
-    batch of look-ups)."""
-    replaced = [(t.subject, t.predicate) for t in added if t.predicate != TYPE]
-    now = store.objects_many(list(dict.fromkeys(replaced)), graph) if replaced else {}
-    return clean_replacements(added, removed, lambda s, p: now.get((s, p), ()))
+    """:func:`clean_replacements` of a change, the subjects' values read from ``graph`` of ``store``: of
+    the pairs with one triple added and one removed only, one look-up each, or one batch where reads
+    are round trips (each pair is hashed once: a pyoxigraph term's hash is a call)."""
+    by_pair = _by_pair(added, removed)
+    if not store.round_trips:
+        return _clean(by_pair, lambda pair: store.objects(pair[0], pair[1], graph))
+    single = [pair for pair, (adds, rems) in by_pair.items() if len(adds) == 1 and len(rems) == 1 and pair[1] != TYPE]
+    now = store.objects_many(single, graph) if single else {}
+    return _clean(by_pair, lambda pair: now.get(pair, ()))
 
 
 def flip_atoms(rule: Rule, clean: Collection[str], changed) -> tuple[int, ...] | None:
