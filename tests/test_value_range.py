@@ -70,6 +70,12 @@ def test_two_values_in_range_still_make_two_places_different() -> None:
     (Literal("5.0", datatype=NamedNode(XSD_("decimal"))), XSD_("long"), False),
     (Literal("5"), XSD_("long"), False),
     (Literal("5", datatype=NamedNode(XSD_("long"))), XSD_("string"), False),
+    (Literal("5", datatype=NamedNode(XSD_("long"))), "http://www.w3.org/2002/07/owl#real", True),
+    (Literal("5", datatype=NamedNode(XSD_("long"))), "http://www.w3.org/2002/07/owl#rational", True),
+    (Literal("5", datatype=NamedNode(XSD_("long"))), "http://e.org/v#decimal", False),  # not XSD's decimal
+    (Literal("-1", datatype=NamedNode(XSD_("nonNegativeInteger"))), XSD_("integer"), False),  # ill-typed
+    (Literal("1" * 41, datatype=NamedNode(XSD_("integer"))), XSD_("decimal"), False),  # too long to read here
+    (NamedNode(XSD_("long")), XSD_("long"), False),
 ])
 def test_a_known_value_is_decided_only_when_it_surely_lies_in_the_range(value, datatype: str, sure: bool) -> None:
     assert surely_in(value, datatype) is sure

@@ -139,19 +139,24 @@ def implied_ranges(told: Iterable[NamedNode]) -> set[NamedNode]:
 def surely_in(value: Term, datatype: str) -> bool:
     """Whether ``value`` certainly lies in ``datatype``'s value space, as the compiled range test
     (:func:`.snippets.in_datatype`) would find: decided here only for an integer literal of an XSD
-    integer type in a named integer (or decimal, real, rational) datatype; False means "ask"."""
-    if not isinstance(value, Literal) or not value.datatype.value.startswith(XSD):
+    integer type in a named integer (or decimal, real, rational) datatype; False means "ask".
+    (A robot's range checks ask it of each step's clock and visit time: each part of the literal is
+    read once.)"""
+    if not isinstance(value, Literal):
         return False
-    local, target = value.datatype.value[len(XSD):], datatype[len(XSD):] if datatype.startswith(XSD) else None
-    if local not in INTEGER_TYPES or not _INTEGER_TEXT.fullmatch(value.value) or len(value.value) > 40:
+    dt = value.datatype.value
+    own = INTEGER_TYPES.get(dt[len(XSD):]) if dt.startswith(XSD) else None
+    if own is None:
         return False
-    number = int(value.value)
-    ranges = [INTEGER_TYPES[local]]
-    if target in INTEGER_TYPES:
-        ranges.append(INTEGER_TYPES[target])
-    elif target != "decimal" and datatype not in (OWL + "real", OWL + "rational"):
+    text = value.value
+    if len(text) > 40 or not _INTEGER_TEXT.fullmatch(text):
         return False
-    return all((low is None or number >= low) and (high is None or number <= high) for low, high in ranges)
+    target = INTEGER_TYPES.get(datatype[len(XSD):]) if datatype.startswith(XSD) else None
+    if target is None and datatype not in (XSD + "decimal", OWL + "real", OWL + "rational"):
+        return False
+    number = int(text)
+    return all((low is None or number >= low) and (high is None or number <= high)
+               for low, high in ((own,) if target is None else (own, target)))
 
 
 def _float_bounds(width: str, facets: list[tuple[str, str]]) -> tuple[float, float] | None:
