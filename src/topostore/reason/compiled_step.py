@@ -68,12 +68,14 @@ class CompiledStep:
         #: the clean replacements of the REASON under way, by predicate (see :func:`.flip.clean_replacements`)
         self._clean: dict = {}
         self._heads: set = set()
-        #: the keys that may have lost facts in the last compiled step (the remote negated-premise read)
+        #: the keys that may have lost facts in the last compiled step (the remote negated-premise read),
+        #: and as (predicates, classes) (:func:`.triggers.key_sets`, made once per kind of change)
         self.lost: set = set()
+        self.lost_keys: tuple[set, set] = (set(), set())
         #: :func:`.flip.kind_tests_only` of a flip (rule index, changed atoms)
         self._kind_only: dict[tuple[int, tuple[int, ...]], bool] = {}
         #: per signature, after its program last ran: (program, state, :func:`_sizes` of the state, the
-        #: after-step keys, the lost keys); see :meth:`_unchanged`
+        #: after-step keys, the lost keys, and those as :func:`.triggers.key_sets`); see :meth:`_unchanged`
         self._ran: dict = {}
 
     def forget_runs(self) -> None:
@@ -126,10 +128,10 @@ class CompiledStep:
             heads, lost = written | frozenset(sig.added), written | frozenset(sig.removed)
             for kind, key in program.heads:
                 state.present[0 if kind == "p" else 1].add(key)
-            self._ran[sig] = (program, state, _sizes(state), heads, lost)
+            ran = self._ran[sig] = (program, state, _sizes(state), heads, lost, key_sets(lost))
         else:
             heads, lost = ran[3], ran[4]  # the heads are among the keys with facts already
-        self._heads, self.lost = heads, lost
+        self._heads, self.lost, self.lost_keys = heads, lost, ran[5]
         return True
 
     def _unchanged(self, sig, state: MaintenanceState) -> tuple | None:
@@ -166,8 +168,7 @@ class CompiledStep:
         """The reads that follow a compiled step, as one query (see :mod:`.after`)."""
         preds, classes = key_sets(self._heads)
         checks = self.checks.check_branches(preds, classes, lambda c, j: self.store.supports_lateral)
-        lost = key_sets(self.lost)
-        negated = self.checks.negated_branches((preds, classes), lost, lambda i, j: self.store.supports_lateral)
+        negated = self.checks.negated_branches((preds, classes), self.lost_keys, lambda i, j: self.store.supports_lateral)
         text = after_step.query(negated, checks, sorted(self.ruleset.entailed_predicates, key=lambda t: t.value),
                                 self._settle)
         return after_step.read(self.store.query(text, prefixes=PREFIXES))

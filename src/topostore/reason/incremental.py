@@ -98,7 +98,6 @@ from .program import PROGRAM_SCRATCH
 from .requests import LaterCopies
 from .scratch import ADDED, FLIP_GAINED, NEW_FACTS, OVERDELETED, REMOVED, SCRATCH
 from .stats import ReasonStats
-from .triggers import key_sets
 
 #: Default share of the asserted graph above which a change is recomputed from scratch.
 DEFAULT_MAX_CHANGE_SHARE = 0.10
@@ -326,7 +325,7 @@ class IncrementalReasoner:
         if not ask_again and self.step.run(added, removed, replaced, stats, self.state, (preds, classes),
                                            copy_changes):
             self._incomplete = bool(self.deferred and removed) and self._completion.needed(
-                self.state.present, key_sets(self.step.lost))
+                self.state.present, self.step.lost_keys)
             return
         copy_changes()
         self.step.forget_runs()  # the general phases may change the keys with facts either way
