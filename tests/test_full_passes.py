@@ -16,7 +16,7 @@ from support import closure
 
 from topostore import Ontology, OntologyWarning
 from topostore.reason import first_pass, materialize
-from topostore.reason.order import implied_atoms, implied_first_passes, subject_classes
+from topostore.reason.implied_passes import implied_atoms, implied_first_passes, subject_classes
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))  # the benchmarks package lives beside src/

@@ -9,10 +9,10 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from functools import cached_property
 
-from pyoxigraph import NamedNode
+from pyoxigraph import Literal, NamedNode
 
 from ..rdf.terms import Term, sparql
-from ..rdf.vocab import OWL, RDF, RDFS, XSD
+from ..rdf.vocab import OWL, RDF, RDFS, XSD, is_skolem
 from . import data_ranges
 
 
@@ -64,6 +64,15 @@ class Expr:
         """:func:`describe`'s text, built once: every rule made from the expression names it in its origin
         (tens of thousands of rules on a large TBox)."""
         return _describe(self)
+
+
+def short_name(t: Term) -> str:
+    """A term as the notices name it: an IRI by its local name, a literal as written, an unnamed node (a
+    skolem IRI) as ``[]``."""
+    if not isinstance(t, NamedNode) or is_skolem(t):
+        return "[]" if not isinstance(t, Literal) else str(t)
+    v = t.value
+    return v.rsplit("#", 1)[-1] if "#" in v else v.rsplit("/", 1)[-1]
 
 
 def describe(e: Expr) -> str:

@@ -33,6 +33,7 @@ whatever needs case analysis (y ∈ A ⊔ B with A and B each disjoint with U: y
 
 from __future__ import annotations
 
+import weakref
 from functools import cached_property
 from typing import TYPE_CHECKING
 
@@ -65,8 +66,10 @@ class NegativeMembership:
 
     def __init__(self, compiler: OwlCompiler) -> None:
         """The tables below are built when first read: an ontology without complements reads none of them
-        (its :meth:`compile` stops at :attr:`complements`), so none of them is built for it."""
-        self.compiler = compiler
+        (its :meth:`compile` stops at :attr:`complements`), so none of them is built for it.  The compiler
+        is held weakly: it holds this part, and a cycle would outlive the compilation (see
+        :class:`.owl_restrictions.RestrictionRules`)."""
+        self.compiler = weakref.proxy(compiler)
 
     # ------------------------------------------------------------------ tables read from the TBox
     @cached_property

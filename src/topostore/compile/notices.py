@@ -25,6 +25,18 @@ INCOMPLETE = "not reasoned completely"
 #: Informative: an entailment every ontology of the kind has, answered by convention instead of stored.
 NOT_STORED = "entailed, not stored"
 
+#: Axiom kinds of the profile report, the ``axiom_kind`` of an ``INCOMPLETE`` notice (the groups of the LOAD
+#: warning): :mod:`.profile` and :mod:`.graph_notices`.
+UNION = "union or one-of as a superclass"
+COMPLEMENT = "complement on the left"
+UNIVERSAL = "universal restriction on the left"
+MAX_LEFT = "maximum cardinality on the left"
+MAX_CASES = "maximum cardinality needing case analysis"
+EXISTENTIAL = "existential with consequences for an unnamed value"
+DIFFERENCE = "difference entailed by a property characteristic"
+UNSUPPORTED = "not supported"
+UNCHECKED_DATATYPE = "values of a datatype not checked"
+
 
 class OntologyWarning(UserWarning):
     """A loaded ontology was repaired, has parts set aside, or is not reasoned completely."""

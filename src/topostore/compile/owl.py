@@ -68,6 +68,28 @@ from .snippets import (
 T = str(TYPE)
 
 
+def _link(edges: dict[NamedNode, set[NamedNode]], a: Expr, b: Expr) -> None:
+    """The told edge a ⊑ b between named classes into ``edges`` (b's named members for an intersection).
+    A function of the module, not a closure: a nested function calling itself is a cycle, which would keep
+    what it reads alive past the compilation until a full collection (tests/test_compile_cycles.py)."""
+    if a.is_named and b.is_named:
+        edges.setdefault(a.node, set()).add(b.node)
+    elif a.is_named and b.kind == "and":
+        for m in b.members:
+            _link(edges, a, m)
+
+
+def _walk(found: dict[NamedNode, Expr], e: Expr | None) -> None:
+    """``e`` and its sub-expressions into ``found`` by node, each once, in the order met (as :func:`_link`,
+    a function of the module)."""
+    if e is None or e.node in found:
+        return
+    found[e.node] = e
+    for m in e.members:
+        _walk(found, m)
+    _walk(found, e.filler)
+
+
 class OwlCompiler:
     """TBox → rules.  The rules of restrictions with fillers are a named part (:attr:`restrictions`)
     that emits through this compiler's :meth:`emit` and reads its TBox helpers."""
@@ -184,19 +206,11 @@ class OwlCompiler:
     def _told_superclasses(self) -> dict[NamedNode, set[NamedNode]]:
         """Named-class subsumption told by the axioms (closure), for comparing fillers."""
         edges: dict[NamedNode, set[NamedNode]] = {}
-
-        def link(a: Expr, b: Expr) -> None:
-            if a.is_named and b.is_named:
-                edges.setdefault(a.node, set()).add(b.node)
-            elif a.is_named and b.kind == "and":
-                for m in b.members:
-                    link(a, m)
-
         for a, b in self.tb.subclass:
-            link(a, b)
+            _link(edges, a, b)
         for a, b in self.tb.equivalent:
-            link(a, b)
-            link(b, a)
+            _link(edges, a, b)
+            _link(edges, b, a)
         closure: dict[NamedNode, set[NamedNode]] = {}
         for start in edges:
             seen, todo = set(), [start]
@@ -224,23 +238,14 @@ class OwlCompiler:
 
     def _walk_expressions(self) -> list[Expr]:
         found: dict[NamedNode, Expr] = {}
-
-        def walk(e: Expr | None) -> None:
-            if e is None or e.node in found:
-                return
-            found[e.node] = e
-            for m in e.members:
-                walk(m)
-            walk(e.filler)
-
         tb = self.tb
         for a, b in tb.subclass + tb.equivalent + tb.disjoint:
-            walk(a)
-            walk(b)
+            _walk(found, a)
+            _walk(found, b)
         for _, e in tb.domain + tb.range:
-            walk(e)
+            _walk(found, e)
         for e in tb.typed_expressions:
-            walk(e)
+            _walk(found, e)
         return list(found.values())
 
     def expression_rules(self, e: Expr) -> None:

@@ -8,6 +8,7 @@ OWL 2 RL (see :mod:`.owl`).
 
 from __future__ import annotations
 
+import weakref
 from itertools import combinations
 from typing import TYPE_CHECKING
 
@@ -64,7 +65,9 @@ class RestrictionRules:
     """
 
     def __init__(self, compiler: OwlCompiler) -> None:
-        self.compiler = compiler
+        # a weak reference: the compiler holds this part, and a cycle would keep both (and the whole
+        # TBox) alive past the compilation, until a full collection (tests/test_compile_cycles.py)
+        self.compiler = weakref.proxy(compiler)
 
     @staticmethod
     def counts(n: int) -> bool:

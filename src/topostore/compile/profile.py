@@ -27,9 +27,9 @@ not tested                          user's own, undefined) is not found
 =================================  =====================================================
 
 plus the axioms the reader set aside (:attr:`TBox.unsupported`), those read
-in part (:attr:`TBox.partial`: a disjoint union's covering), statements about the
-RDF list vocabulary (``rdf:nil`` with a first element or a rest: inconsistent under
-the RDF-Based semantics, not reasoned), imports of ontologies not loaded, the
+in part (:attr:`TBox.partial`: a disjoint union's covering), and what is read off the graph itself
+(:mod:`.graph_notices`): statements about the RDF list vocabulary (``rdf:nil`` with a first element or
+a rest: inconsistent under the RDF-Based semantics, not reasoned), imports of ontologies not loaded, the
 universal and empty properties (``owl:topObjectProperty`` …), and, informatively, the reflexivity of
 ``owl:sameAs`` (:data:`~.notices.NOT_STORED`) when a file uses it.
 """
@@ -38,44 +38,30 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 from functools import cached_property
-from itertools import islice
 
-from pyoxigraph import Literal, NamedNode
+from pyoxigraph import NamedNode
 
-from ..rdf.vocab import FIRST, NIL, RDFS, REST, SAME_AS, THING, TYPE, is_skolem, owl
+from ..rdf.vocab import THING
 from ..stores.base import Store
-from . import data_ranges
-from .model import Expr, Prop, TBox, describe, is_datatype
-from .notices import INCOMPLETE, NOT_STORED, Notice
+from . import graph_notices
+from .model import Expr, Prop, TBox, describe, short_name
+from .notices import (
+    COMPLEMENT,
+    DIFFERENCE,
+    EXISTENTIAL,
+    INCOMPLETE,
+    MAX_CASES,
+    MAX_LEFT,
+    NOT_STORED,
+    UNCHECKED_DATATYPE,
+    UNION,
+    UNIVERSAL,
+    UNSUPPORTED,
+    Notice,
+)
 from .owl import OwlCompiler
 from .property_hierarchy import inverse, subject_classes, super_expressions
-from .snippets import in_datatype
 from .unnamed_values import UnnamedValues
-
-#: Axiom kinds of the report (the groups of the LOAD warning).
-UNION = "union or one-of as a superclass"
-COMPLEMENT = "complement on the left"
-UNIVERSAL = "universal restriction on the left"
-MAX_LEFT = "maximum cardinality on the left"
-MAX_CASES = "maximum cardinality needing case analysis"
-EXISTENTIAL = "existential with consequences for an unnamed value"
-DIFFERENCE = "difference entailed by a property characteristic"
-UNSUPPORTED = "not supported"
-UNCHECKED_DATATYPE = "values of a datatype not checked"
-
-#: The universal and the empty properties, with what they mean.
-_TOP_AND_BOTTOM = {
-    "topObjectProperty": "the universal property (every two individuals are linked by it)",
-    "topDataProperty": "the universal data property (every individual has every literal as its value)",
-    "bottomObjectProperty": "the empty property (a link by it, or an existential on it, is inconsistent)",
-    "bottomDataProperty": "the empty data property (a value of it, or an existential on it, is inconsistent)",
-}
-
-#: Why ``x owl:sameAs x`` is not stored, said whenever a file uses owl:sameAs.
-REFLEXIVE_SAME_AS = ("owl:sameAs is reflexive: x sameAs x holds for every individual, but is not stored (it "
-                     "would add a triple per term and list each individual as its own alias); every fact of an "
-                     "individual is copied to each of its names, so only the triple x sameAs x itself is not "
-                     "answered")
 
 #: (expression, positive?, the axiom it occurs in, the axiom's named subject or None)
 Use = tuple[Expr, bool, str, NamedNode | None]
@@ -111,23 +97,16 @@ def all_uses(tb: TBox, rule_uses: list[tuple[Expr, bool]]) -> list[Use]:
         axiom = f"{describe(a)} DisjointWith {describe(b)}"
         out += [*_uses(a, False, axiom, None), *_uses(b, False, axiom, None)]
     for p, c in tb.domain:
-        out += list(_uses(c, True, f"{_name(p.iri)} domain {describe(c)}", None))
+        out += list(_uses(c, True, f"{short_name(p.iri)} domain {describe(c)}", None))
     for p, c in tb.range:
-        out += list(_uses(c, True, f"{_name(p.iri)} range {describe(c)}", None))
+        out += list(_uses(c, True, f"{short_name(p.iri)} range {describe(c)}", None))
     for e in tb.typed_expressions:
         out += list(_uses(e, True, f"an individual typed {describe(e)}", None))
     for c, props in tb.keys:
-        out += list(_uses(c, False, f"{describe(c)} HasKey ({' '.join(_name(p.iri) for p in props)})", None))
+        out += list(_uses(c, False, f"{describe(c)} HasKey ({' '.join(short_name(p.iri) for p in props)})", None))
     for e, head in rule_uses:
         out += list(_uses(e, head, f"a SWRL rule {'head' if head else 'body'} atom {describe(e)}", None))
     return out
-
-
-def _name(t: NamedNode) -> str:
-    if not isinstance(t, NamedNode) or is_skolem(t):
-        return "[]" if not isinstance(t, Literal) else str(t)
-    v = t.value
-    return v.rsplit("#", 1)[-1] if "#" in v else v.rsplit("/", 1)[-1]
 
 
 class ProfileReport:
@@ -164,82 +143,20 @@ class ProfileReport:
             self.expression(e, positive, axiom, subject)
         self.difference()
         for a, b in self.tb.same_properties:
-            self.note(UNSUPPORTED, f"{_name(a)} sameAs {_name(b)}", "properties made the same are not "
+            self.note(UNSUPPORTED, f"{short_name(a)} sameAs {short_name(b)}", "properties made the same are not "
                       "substituted for each other (owl:equivalentProperty is)")
         for axiom, reason in self.tb.unsupported:
             self.note(UNSUPPORTED, axiom, f"set aside: {reason}")
         for axiom, kind, reason in self.tb.partial:
             self.note(kind, axiom, reason)
-        self.unchecked_datatypes(store, graph)
-        self.list_vocabulary(store, graph)
-        self.imports(store, graph)
-        self.top_and_bottom(store, graph)
-        self.reflexive_equality(store, graph)
+        graph_notices.unchecked_datatypes(self.note, self.tb.data_range, self.uses, store, graph)
+        graph_notices.list_vocabulary(self.note, store, graph)
+        graph_notices.imports(self.note, store, graph)
+        graph_notices.top_and_bottom(self.note, store, graph)
+        same_as = graph_notices.reflexive_equality(store, graph)
+        if same_as is not None:
+            self.notices.setdefault((NOT_STORED, "owl:sameAs"), same_as)
         return list(self.notices.values())
-
-    # ---------------------------------------------------------------- datatypes
-    def unchecked_datatypes(self, store: Store, graph: NamedNode) -> None:
-        """A range or a universal restriction into a datatype whose values topostore does not test: a value
-        outside it is not found.  For a datatype of the ontology's own (not in the OWL 2 datatype map, not
-        defined) that is the OWL 2 Direct Semantics (its value space is any set of values, so no value is
-        known to be outside it), but Pellet takes such a datatype as disjoint from the built-in ones and finds
-        ``:d 3`` with ``:d rdfs:range :MyType`` inconsistent: the difference is said, never silent."""
-        for p, dt in self.tb.data_range:
-            self.unchecked(dt, f"{_name(p)} range {_name(dt)}", store, graph)
-        for e, positive, axiom, _ in self.uses:
-            if positive and e.kind == "all" and e.datatype is not None:
-                self.unchecked(e.datatype, axiom, store, graph)
-
-    def unchecked(self, dt: NamedNode, axiom: str, store: Store, graph: NamedNode) -> None:
-        if in_datatype("?v", dt) is not None or is_skolem(dt) or dt.value.startswith(data_ranges.PREFIX):
-            return
-        if is_datatype(dt):
-            self.note(UNCHECKED_DATATYPE, axiom, f"{_name(dt)} is a datatype whose values topostore does not "
-                      "test: a value outside it is not found inconsistent")
-            return
-        declared = NamedNode(RDFS + "Datatype") in store.objects(dt, TYPE, graph)
-        self.note(UNCHECKED_DATATYPE, axiom, f"{_name(dt)} is not a datatype of the OWL 2 datatype map"
-                  + ("" if declared else " and is not declared rdfs:Datatype (as OWL 2 DL requires)")
-                  + ", nor defined: its value space may be any set of values (OWL 2 Direct Semantics), so no "
-                  "value is checked against it; a reasoner that takes it as disjoint from the built-in datatypes "
-                  "(Pellet) finds a value of another datatype inconsistent")
-
-    # ---------------------------------------------------------------- RDF vocabulary
-    def list_vocabulary(self, store: Store, graph: NamedNode) -> None:
-        """``rdf:nil`` is the empty list: a first element or a rest of it is a contradiction under the
-        RDF-Based semantics, which topostore does not find (it reads lists, it does not reason about them)."""
-        for p in (FIRST, REST):
-            for t in islice(store.triples(NIL, p, None, graph), 1):
-                self.note(UNSUPPORTED, f"nil {_name(p)} {_name(t.object)}", "rdf:nil is the empty list, which has "
-                          "no first element and no rest: inconsistent under the RDF-Based semantics; the RDF "
-                          "list vocabulary is not reasoned, the statement is kept as a plain triple")
-
-    def imports(self, store: Store, graph: NamedNode) -> None:
-        """An ``owl:imports`` of an ontology not loaded: its axioms are missing (topostore fetches no URL)."""
-        imported = [t.object for t in store.triples(None, owl("imports"), None, graph)]
-        if not imported:
-            return
-        loaded = {t.subject for t in store.triples(None, TYPE, owl("Ontology"), graph)}
-        loaded |= {t.object for t in store.triples(None, owl("versionIRI"), None, graph)}
-        for target in imported:
-            if target not in loaded:
-                self.note(UNSUPPORTED, f"imports {target.value}", "the imported ontology is not loaded and "
-                          "not fetched (topostore reads no URL): its axioms are not reasoned; load its file too")
-
-    def top_and_bottom(self, store: Store, graph: NamedNode) -> None:
-        """The universal and the empty properties have no rules: named wherever a file uses them."""
-        for name, meaning in _TOP_AND_BOTTOM.items():
-            p = owl(name)
-            if any(next(iter(store.triples(*pattern, graph)), None) is not None
-                   for pattern in ((p, None, None), (None, p, None), (None, None, p))):
-                self.note(UNSUPPORTED, f"owl:{name}", f"{meaning}: not reasoned, used as any other property")
-
-    def reflexive_equality(self, store: Store, graph: NamedNode) -> None:
-        """Said once when the file states an equality: see :data:`REFLEXIVE_SAME_AS` for why."""
-        first = next(iter(store.triples(None, SAME_AS, None, graph)), None)
-        if first is not None:
-            subject = f"owl:sameAs (as in {_name(first.subject)} sameAs {_name(first.object)})"
-            self.notices.setdefault((NOT_STORED, "owl:sameAs"), Notice(NOT_STORED, subject, REFLEXIVE_SAME_AS))
 
     # ---------------------------------------------------------------- expressions
     def expression(self, e: Expr, positive: bool, axiom: str, subject: NamedNode | None = None) -> None:
@@ -291,7 +208,7 @@ class ProfileReport:
         if any(not pos and m.kind in ("some", "min", "exact") and not self.reaches(e, m)
                for q in supers for m, pos in self.on.get(q, ())):
             self.note(EXISTENTIAL, axiom, f"an instance of {what} is in the restrictions on the super-properties "
-                      f"of {_name(p.iri)} only through a told value")
+                      f"of {short_name(p.iri)} only through a told value")
         self.unnamed.chain_links(e, axiom, {p, *supers}, subject)
         bound = self.single_valued(p, e)
         if isinstance(bound, Expr) and e.kind in ("min", "exact") and e.n >= 2 and (
@@ -317,7 +234,7 @@ class ProfileReport:
                 self.note(EXISTENTIAL, axiom, said)
             if any(self.disjoint(filler.node, c) for c in value_classes):
                 self.note(EXISTENTIAL, axiom, f"the unnamed value of {what} would be in disjoint classes "
-                          f"({describe(filler)} and the range of {_name(p.iri)}): the inconsistency is not found")
+                          f"({describe(filler)} and the range of {short_name(p.iri)}): the inconsistency is not found")
 
     def reaches(self, e: Expr, m: Expr) -> bool:
         """Whether membership of ``e`` gives membership of ``m`` on a super-property (ext-restriction-sub)."""
@@ -363,7 +280,7 @@ class ProfileReport:
         notice says where it applies. Where the two cannot hold together (a minimum of two or more, or a
         maximum of none), the clash is found for a class under both restrictions (it is unsatisfiable), not
         for an individual typed with two classes that carry one each: that is what the notice says."""
-        name, filler = _name(e.prop.iri), describe(e.filler) if e.filler is not None else "owl:Thing"
+        name, filler = short_name(e.prop.iri), describe(e.filler) if e.filler is not None else "owl:Thing"
         many = e.kind in ("min", "exact") and e.n >= 2
         if isinstance(single, str):
             return None if many else \
@@ -399,8 +316,8 @@ class ProfileReport:
             return
         for kind in ("IrreflexiveProperty", "AsymmetricProperty"):
             for p in sorted(self.tb.characteristics.get(kind, ()), key=lambda t: t.value):
-                self.note(DIFFERENCE, f"{_name(p)} is {kind[:-len('Property')].lower()}",
-                          f"x {_name(p)} y makes x and y different: not used where difference matters")
+                self.note(DIFFERENCE, f"{short_name(p)} is {kind[:-len('Property')].lower()}",
+                          f"x {short_name(p)} y makes x and y different: not used where difference matters")
 
     def difference_matters(self) -> bool:
         if self.uses_difference or self.tb.characteristics.get("FunctionalProperty") or \

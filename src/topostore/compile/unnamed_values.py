@@ -8,6 +8,7 @@ of :class:`.profile.ProfileReport` (existential with consequences for an unnamed
 
 from __future__ import annotations
 
+import weakref
 from functools import cached_property
 from typing import TYPE_CHECKING
 
@@ -29,7 +30,9 @@ class UnnamedValues:
     """The checks of an existential's unnamed value, on the report's TBox and hierarchy."""
 
     def __init__(self, report: ProfileReport) -> None:
-        self.report = report
+        # weakly: the report holds this part, and a cycle would keep the report's uses (two per disjoint
+        # pair) alive past the LOAD (see :class:`.owl_restrictions.RestrictionRules`)
+        self.report = weakref.proxy(report)
         #: :meth:`implied`'s answers by class
         self._implied: dict[NamedNode, set[NamedNode]] = {}
 

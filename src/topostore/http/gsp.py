@@ -33,6 +33,7 @@ from starlette.routing import Route
 from ..armor.codes import CommandError
 from ..armor.reference import Change, Delta, Reference
 from ..errors import TopostoreError
+from ..ontology.changes import spelling_kept
 from ..ontology.facade import Ontology
 from ..rdf.terms import value_key
 from ..rdf.vocab import ASSERTED, ENTAILED, INFERRED, OWL, RDF, RDFS, TYPE, XSD
@@ -185,44 +186,85 @@ class GraphStore:
                                   "add ?iri=http://... (names are resolved against IRI#)")
         media = request.headers.get("content-type", "").split(";")[0].strip().lower()
         ref = await run_in_threadpool(_new_reference, self.api, name, iri, body, UPLOAD_FORMATS[media])
-        with ref.lock:
-            counts = {"reference": name, "iri": iri, "added": len(triples), "removed": 0,
-                      "is_consistent": ref.is_consistent}
+        counts = await run_in_threadpool(_created, ref, triples)
         return JSONResponse(counts, status_code=201, headers={"Location": f"/references/{name}/data?default"})
 
 
+#: why a POST does not take a value's spelling, and how to change only the spelling
+_HELD = "already in the graph (to change only its spelling, remove it first and add it then)"
+#: why a document's second spelling of one value is not taken
+_AGAIN = "written again in the document"
+
+
 def _plan(method: str, uploaded: list[Triple]) -> Callable[[Ontology], Delta]:
-    """What PUT (replace), POST (merge) or DELETE (empty) does, computed against the state when applied."""
+    """What PUT (replace), POST (merge) or DELETE (empty) does, computed against the state when applied;
+    the delta's warning names each spelling written but not taken, and the one that stays instead."""
 
     def plan(onto: Ontology) -> Delta:
-        # as written (the store keeps a canonical form of some literals): a document that spells a stored
-        # value otherwise then reaches the change as a respelling, which is said (SpellingKeptWarning), not
-        # taken for the value already there
-        store = onto.store
-        current = {Triple(t.subject, t.predicate, store.original_literal(ASSERTED, t.subject, t.predicate, t.object))
-                   if isinstance(t.object, Literal) else t for t in store.triples(graph=ASSERTED)}
-        new = set(_one_spelling(uploaded))
-        if method == "POST":
-            return Delta(add=sorted(new - current, key=str))
-        if method == "PUT":
-            return Delta(add=sorted(new - current, key=str), remove=sorted(current - new, key=str))
-        return Delta(remove=sorted(current, key=str))
+        current = _as_written(onto)
+        if method == "DELETE":
+            return Delta(remove=sorted(current, key=str))
+        held = {_value_of(t): t for t in current if isinstance(t.object, Literal)}
+        new, again = _one_spelling(uploaded)
+        notes = _again_notes(again, lambda first: held.get(_value_of(first), first))
+        added = [t for t in new if t not in current]
+        if method == "PUT":  # a stored value respelled is removed and added in one change: the change says it
+            gone = current.difference(new)
+            return Delta(add=sorted(added, key=str), remove=sorted(gone, key=str), warning=_joined(notes))
+        taken = []  # POST: the store keeps one value once, in the spelling it holds
+        for t in added:
+            old = held.get(_value_of(t)) if isinstance(t.object, Literal) else None
+            if old is None:
+                taken.append(t)
+            else:
+                notes.append(spelling_kept(old, t, _HELD))
+        return Delta(add=sorted(taken, key=str), warning=_joined(notes))
 
     return plan
 
 
-def _one_spelling(triples: list[Triple]) -> list[Triple]:
-    """``triples`` with one spelling per value (the first written): the store keeps one value once, so a
-    document writing ``"7"^^xsd:long`` and ``"07"^^xsd:long`` asserts one fact, counted and said once."""
-    seen: set = set()
-    kept = []
+def _as_written(onto: Ontology) -> set[Triple]:
+    """The asserted graph with each literal as written (the store keeps a canonical form of some): a
+    document that spells a stored value otherwise is then seen as a respelling, not as the value there."""
+    store = onto.store
+    return {Triple(t.subject, t.predicate, store.original_literal(ASSERTED, t.subject, t.predicate, t.object))
+            if isinstance(t.object, Literal) else t for t in store.triples(graph=ASSERTED)}
+
+
+def _value_of(t: Triple) -> tuple:
+    """The key of the fact ``t`` writes: one per value of a literal, whatever its spelling."""
+    return (t.subject, t.predicate, value_key(t.object))
+
+
+def _one_spelling(triples: list[Triple]) -> tuple[list[Triple], list[tuple[Triple, Triple]]]:
+    """``triples`` with one spelling per value (the first written), and each later spelling with the first:
+    the store keeps one value once, so a document writing ``"7"^^xsd:long`` and ``"07"^^xsd:long`` asserts
+    one fact, counted once and said once.  A triple written twice is one fact, nothing to say."""
+    first: dict[tuple, Triple] = {}
+    kept, again = [], {}
     for t in triples:
-        o = t.object
-        key = (t.subject, t.predicate, value_key(o)) if isinstance(o, Literal) else t
-        if key not in seen:
-            seen.add(key)
+        if not isinstance(t.object, Literal):
+            if t not in first:
+                first[t] = t
+                kept.append(t)
+            continue
+        seen = first.setdefault(_value_of(t), t)
+        if seen is t:
             kept.append(t)
-    return kept
+        elif seen != t:
+            again.setdefault(t, seen)
+    return kept, [(seen, later) for later, seen in again.items()]
+
+
+def _again_notes(again: list[tuple[Triple, Triple]], stays: Callable[[Triple], Triple]) -> list[str]:
+    """The notes for a document's later spellings of a value (``again``: (first, later) pairs), ``stays``
+    giving the spelling the graph keeps of a first one (a stored one, if the graph had the value)."""
+    pairs = [(stays(first), later) for first, later in again]
+    return [spelling_kept(kept, later, _AGAIN) for kept, later in pairs if kept != later]
+
+
+def _joined(notes: list[str]) -> str:
+    return "; ".join(dict.fromkeys(notes))
 
 
 def _apply(ref: Reference, plan: Callable[[Ontology], Delta], method: str,
@@ -244,6 +286,23 @@ def _apply(ref: Reference, plan: Callable[[Ontology], Delta], method: str,
             ref.ontology.values.learned(*written, only=literal_tags(added))
         return {"added": len(added), "removed": sum(len(a.removed) for a in done), "is_consistent": ref.is_consistent,
                 "warnings": [a.warning for a in done if a.warning]}
+
+
+def _created(ref: Reference, uploaded: list[Triple]) -> dict[str, Any]:
+    """The reply to a PUT that made ``ref``: the triples its graph holds (a document may write one fact
+    twice, or one value in two spellings), what its load says (as a LOAD's reply) and each spelling
+    written but not taken, with the one the graph keeps."""
+    with ref.lock:
+        onto = ref.ontology
+        store = onto.store
+
+        def stays(first: Triple) -> Triple:
+            lit = store.original_literal(ASSERTED, first.subject, first.predicate, first.object)
+            return Triple(first.subject, first.predicate, lit)
+
+        notes = _again_notes(_one_spelling(uploaded)[1], stays)
+        return {"reference": ref.name, "iri": ref.iri, "added": store.count(ASSERTED), "removed": 0,
+                "is_consistent": ref.is_consistent, "warnings": [*onto.notice_lines(), *filter(None, [_joined(notes)])]}
 
 
 def _new_reference(api: Api, name: str, iri: str, body: bytes, fmt: RdfFormat | None) -> Reference:

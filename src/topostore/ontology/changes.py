@@ -207,10 +207,17 @@ def _respelled(store: Store, added: list[Fact], removed: list[Fact]) -> tuple[li
     if not pairs:
         return added, removed, []
     kept = {id(f) for pair in pairs for f in pair}
-    notes = [f"{_show(store.written_fact(old))} stays as written: {_show(new.triple)} is the same value, "
-             "removed and added in one change (to change only the spelling, remove it in one change and add "
-             "the new one in the next)" for old, new in pairs]
+    notes = [spelling_kept(store.written_fact(old), new.triple, "removed and added in one change (to change only "
+                           "the spelling, remove it in one change and add the new one in the next)")
+             for old, new in pairs]
     return [f for f in added if id(f) not in kept], [f for f in removed if id(f) not in kept], notes
+
+
+def spelling_kept(kept: Triple, other: Triple, why: str) -> str:
+    """The note that ``kept`` stays the asserted graph's spelling of the value ``other`` writes too, ``why``
+    the other is not taken: one wording wherever a written spelling is not stored (a change here, a Graph
+    Store upload)."""
+    return f"{_show(kept)} stays as written: {_show(other)} is the same value, {why}"
 
 
 def _spelled_apart(store: Store, old: Fact, new: Fact) -> bool:

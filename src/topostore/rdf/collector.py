@@ -21,7 +21,9 @@ def collector_paused() -> Iterator[None]:
     """The cycle collector off for the block, as it was after.
 
     Whatever cycles the block (or another thread meanwhile) leaves are collected as usual once it is
-    on again; a collector found off is left off (blocks nest)."""
+    on again, which for those reaching old objects means at the next full collection: rare once
+    millions of objects live, so what a block must free soon (the rule compiler after a LOAD) makes no
+    cycle (tests/test_compile_cycles.py).  A collector found off is left off (blocks nest)."""
     enabled = gc.isenabled()
     gc.disable()
     try:

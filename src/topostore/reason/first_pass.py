@@ -2,8 +2,8 @@
 
 Each component of the rule dependency graph is evaluated once, rule by rule, in one request, before
 its semi-naive rounds.  Its shortcuts: a rule whose every read fact is asserted reads the asserted
-graph alone (:func:`.order.implied_first_passes`), a rule leaves out the class atoms another atom
-implies (:func:`.order.implied_atoms`, as the rule :func:`without` gives), rules concluding one
+graph alone (:func:`.implied_passes.implied_first_passes`), a rule leaves out the class atoms another atom
+implies (:func:`.implied_passes.implied_atoms`, as the rule :func:`without` gives), rules concluding one
 class run as one (:mod:`.class_unions`), and a key only claimed by an earlier rule of the pass is
 looked up before its readers run (:func:`claims_hold`).
 """

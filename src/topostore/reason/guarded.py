@@ -1,6 +1,6 @@
 """Classes a writer's body implies through a one-atom rule whose only condition is a non-literal guard.
 
-:func:`.order.implied_first_passes` lets a rule ``A ⟹ C(v)`` read the asserted facts of ``A`` alone
+:func:`.implied_passes.implied_first_passes` lets a rule ``A ⟹ C(v)`` read the asserted facts of ``A`` alone
 when every rule writing ``A`` implies ``C`` of the term it writes; "implies" is read off the writer's
 body through the one-atom rules :func:`..compile.implied.position_classes` follows, which take no rule
 with a condition.  A restriction's rule often has one: ``hasDoor(x, y1) ⟹ ∃hasDoor.DOOR(x)`` left the
@@ -13,7 +13,7 @@ A writer implies the guarded rule's head of a term when its body holds an atom t
 atom maps onto, the term at the head's place, and every guarded variable lands on a term that is no
 literal wherever the writer matches: an IRI, the subject of one of the writer's atoms (a subject is
 never a literal), or a variable the writer guards the same way.  The guarded rules must read a key
-no ordered rule writes (the *base* of :func:`.order.implied_first_passes`): their own evaluation
+no ordered rule writes (the *base* of :func:`.implied_passes.implied_first_passes`): their own evaluation
 reads every fact of it, so the argument never rests on a restricted rule.
 """
 

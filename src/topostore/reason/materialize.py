@@ -41,14 +41,13 @@ from .deferred_asks import ask_unknown
 from .early_reads import EarlyReads
 from .few_solutions import few_solutions
 from .first_pass import first_pass, without
+from .implied_passes import implied_atoms, implied_first_passes
 from .insert_text import distinct_pays, insert_text
 from .negation import Idle, evaluated_last
 from .one_group import keys_kept_by_group, one_group, without_group_tests
 from .order import (
     asserted_paths,
     evaluation_order,
-    implied_atoms,
-    implied_first_passes,
     is_path,
     reachable,
     single_graphs,
@@ -89,7 +88,7 @@ class Materializer:
         #: the keys rules of :meth:`run` have written so far
         self._derived: set[ReadKey] = set()
         #: the needed keys with asserted facts at the start of :meth:`run`, and the rules of its ordered
-        #: pass whose first evaluation reads those alone (:func:`.order.implied_first_passes`)
+        #: pass whose first evaluation reads those alone (:func:`.implied_passes.implied_first_passes`)
         self._asserted: Present = (set(), set())
         self._implied: set[int] = set()
         #: keys put in :attr:`present` by a first pass before the evaluation writing them ran
@@ -100,7 +99,7 @@ class Materializer:
         #: (:func:`.negation.idle_asks`): by rule, that key, whose asserted facts alone they read
         self._idle: dict[int, Idle] = {}
         #: rules of :meth:`run`'s ordered pass whose first evaluation leaves out class atoms another
-        #: atom implies (:func:`.order.implied_atoms`), as the rule that first evaluation runs
+        #: atom implies (:func:`.implied_passes.implied_atoms`), as the rule that first evaluation runs
         self._lean: dict[int, Rule] = {}
         #: rules of :meth:`run`'s ordered pass evaluated as one per class (:mod:`.class_unions`): by the
         #: first of each group the others, and every other
@@ -122,7 +121,7 @@ class Materializer:
     def _run(self, index: int, delta_index: int | None, stats: ReasonStats, asserted_only: bool = False,
              first: bool = False, union: tuple[int, ...] = ()) -> None:
         """Evaluate rule ``index`` (its atom ``delta_index`` on the delta); ``asserted_only``: its one
-        atom reads the asserted graph alone (see :func:`.order.implied_first_passes`); ``first``: the
+        atom reads the asserted graph alone (see :func:`.implied_passes.implied_first_passes`); ``first``: the
         first pass of the ordered stratum, which leaves out the atoms :attr:`_lean` says are implied;
         ``union``: rules evaluated with it as one (:mod:`.class_unions`)."""
         if index in self._deferring:

@@ -1,0 +1,113 @@
+"""What the profile report reads off the asserted graph itself rather than off the TBox's expressions.
+
+A datatype whose values are not tested, the RDF list vocabulary, imports not loaded, the universal and
+the empty properties, and the reflexivity of ``owl:sameAs``: each is found by looking the graph up, not
+by where a class expression is used (:mod:`.profile`, which runs these beside its own checks).  ``note``
+is the report's: (axiom kind, axiom, reason) → one :data:`~.notices.INCOMPLETE` notice.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Iterable
+from itertools import islice
+
+from pyoxigraph import NamedNode
+
+from ..rdf.vocab import FIRST, NIL, RDFS, REST, SAME_AS, TYPE, is_skolem, owl
+from ..stores.base import Store
+from . import data_ranges
+from .model import Expr, is_datatype, short_name
+from .notices import NOT_STORED, UNCHECKED_DATATYPE, UNSUPPORTED, Notice
+from .snippets import in_datatype
+
+#: the report's note: (axiom kind, axiom, reason)
+Note = Callable[[str, str, str], None]
+
+#: The universal and the empty properties, with what they mean.
+_TOP_AND_BOTTOM = {
+    "topObjectProperty": "the universal property (every two individuals are linked by it)",
+    "topDataProperty": "the universal data property (every individual has every literal as its value)",
+    "bottomObjectProperty": "the empty property (a link by it, or an existential on it, is inconsistent)",
+    "bottomDataProperty": "the empty data property (a value of it, or an existential on it, is inconsistent)",
+}
+
+#: Why ``x owl:sameAs x`` is not stored, said whenever a file uses owl:sameAs.
+REFLEXIVE_SAME_AS = ("owl:sameAs is reflexive: x sameAs x holds for every individual, but is not stored (it "
+                     "would add a triple per term and list each individual as its own alias); every fact of an "
+                     "individual is copied to each of its names, so only the triple x sameAs x itself is not "
+                     "answered")
+
+
+def unchecked_datatypes(note: Note, data_range: Iterable[tuple[NamedNode, NamedNode]],
+                        uses: Iterable[tuple[Expr, bool, str, NamedNode | None]], store: Store,
+                        graph: NamedNode) -> None:
+    """A range or a universal restriction into a datatype whose values topostore does not test: a value
+    outside it is not found.  For a datatype of the ontology's own (not in the OWL 2 datatype map, not
+    defined) that is the OWL 2 Direct Semantics (its value space is any set of values, so no value is
+    known to be outside it), but Pellet takes such a datatype as disjoint from the built-in ones and finds
+    ``:d 3`` with ``:d rdfs:range :MyType`` inconsistent: the difference is said, never silent."""
+    for p, dt in data_range:
+        unchecked(note, dt, f"{short_name(p)} range {short_name(dt)}", store, graph)
+    for e, positive, axiom, _ in uses:
+        if positive and e.kind == "all" and e.datatype is not None:
+            unchecked(note, e.datatype, axiom, store, graph)
+
+
+def unchecked(note: Note, dt: NamedNode, axiom: str, store: Store, graph: NamedNode) -> None:
+    if in_datatype("?v", dt) is not None or is_skolem(dt) or dt.value.startswith(data_ranges.PREFIX):
+        return
+    if is_datatype(dt):
+        note(UNCHECKED_DATATYPE, axiom, f"{short_name(dt)} is a datatype whose values topostore does not "
+             "test: a value outside it is not found inconsistent")
+        return
+    declared = NamedNode(RDFS + "Datatype") in store.objects(dt, TYPE, graph)
+    note(UNCHECKED_DATATYPE, axiom, f"{short_name(dt)} is not a datatype of the OWL 2 datatype map"
+         + ("" if declared else " and is not declared rdfs:Datatype (as OWL 2 DL requires)")
+         + ", nor defined: its value space may be any set of values (OWL 2 Direct Semantics), so no "
+         "value is checked against it; a reasoner that takes it as disjoint from the built-in datatypes "
+         "(Pellet) finds a value of another datatype inconsistent")
+
+
+def list_vocabulary(note: Note, store: Store, graph: NamedNode) -> None:
+    """``rdf:nil`` is the empty list: a first element or a rest of it is a contradiction under the
+    RDF-Based semantics, which topostore does not find (it reads lists, it does not reason about them)."""
+    for p in (FIRST, REST):
+        for t in islice(store.triples(NIL, p, None, graph), 1):
+            note(UNSUPPORTED, f"nil {short_name(p)} {short_name(t.object)}", "rdf:nil is the empty list, which "
+                 "has no first element and no rest: inconsistent under the RDF-Based semantics; the RDF "
+                 "list vocabulary is not reasoned, the statement is kept as a plain triple")
+
+
+def imports(note: Note, store: Store, graph: NamedNode) -> None:
+    """An ``owl:imports`` of an ontology not loaded: its axioms are missing (topostore fetches no URL)."""
+    imported = [t.object for t in store.triples(None, owl("imports"), None, graph)]
+    if not imported:
+        return
+    loaded = {t.subject for t in store.triples(None, TYPE, owl("Ontology"), graph)}
+    loaded |= {t.object for t in store.triples(None, owl("versionIRI"), None, graph)}
+    for target in imported:
+        if target not in loaded:
+            note(UNSUPPORTED, f"imports {target.value}", "the imported ontology is not loaded and "
+                 "not fetched (topostore reads no URL): its axioms are not reasoned; load its file too")
+
+
+def top_and_bottom(note: Note, store: Store, graph: NamedNode) -> None:
+    """The universal and the empty properties have no rules: named wherever a file uses them."""
+    for name, meaning in _TOP_AND_BOTTOM.items():
+        p = owl(name)
+        if any(next(iter(store.triples(*pattern, graph)), None) is not None
+               for pattern in ((p, None, None), (None, p, None), (None, None, p))):
+            note(UNSUPPORTED, f"owl:{name}", f"{meaning}: not reasoned, used as any other property")
+
+
+def reflexive_equality(store: Store, graph: NamedNode) -> Notice | None:
+    """Said once when the file states an equality: see :data:`REFLEXIVE_SAME_AS` for why."""
+    first = next(iter(store.triples(None, SAME_AS, None, graph)), None)
+    if first is None:
+        return None
+    subject = f"owl:sameAs (as in {short_name(first.subject)} sameAs {short_name(first.object)})"
+    return Notice(NOT_STORED, subject, REFLEXIVE_SAME_AS)
+
+
+__all__ = ["REFLEXIVE_SAME_AS", "imports", "list_vocabulary", "reflexive_equality", "top_and_bottom",
+           "unchecked_datatypes"]

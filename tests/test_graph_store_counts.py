@@ -1,0 +1,89 @@
+"""The Graph Store's write replies count what the asserted graph gained and lost, not the triples a
+document wrote, and say which spelling stays wherever a written spelling of a value is not taken."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import pytest
+from http_support import InProcess, config, in_process
+
+NS = "http://e.org/counts#"
+XSD = "http://www.w3.org/2001/XMLSchema#"
+HEAD = (f"@prefix : <{NS}> . @prefix owl: <http://www.w3.org/2002/07/owl#> . "
+        "<http://e.org/counts> a owl:Ontology . :s a owl:DatatypeProperty . ")
+#: three facts written as seven triples: one value in two spellings of one datatype and repeated, one in two
+#: datatypes the store keeps as one value, one plain string repeated
+REPEATS = (f':x :s "1"^^<{XSD}int> , "01"^^<{XSD}int> . :x :s "1"^^<{XSD}int> . '
+           f':y :s "2"^^<{XSD}integer> , "2"^^<{XSD}int> . :z :s "5" , "5" .')
+
+
+@pytest.fixture
+def server(tmp_path: Path):
+    with in_process(config(tmp_path / "data", allow_update=True)) as s:
+        yield s
+
+
+def send(server: InProcess, method: str, body: str | None = None) -> tuple[int, dict]:
+    headers = {"Content-Type": "text/turtle"} if body is not None else None
+    status, _, reply = server.request("/references/counts/data?default",
+                                      None if body is None else (HEAD + body).encode(), headers, method)
+    assert status in (200, 201), reply
+    return status, json.loads(reply)
+
+
+def saved(server: InProcess) -> bytes:
+    _, _, body = server.request("/references/counts/data?default", None, {"Accept": "application/n-triples"})
+    return body
+
+
+def test_a_created_reference_counts_the_triples_stored_and_says_which_spelling_stays(server: InProcess) -> None:
+    """A PUT that creates the reference (201) counts the five triples the graph holds, not the nine parsed;
+    each value written in a second spelling is named with the spelling that stays."""
+    status, body = send(server, "PUT", REPEATS)
+    assert status == 201 and body["added"] == 5 and body["removed"] == 0, body
+    text = " ".join(body["warnings"])
+    assert f'"1"^^<{XSD}int> stays as written: <{NS}x> <{NS}s> "01"^^<{XSD}int> is the same value' in text, body
+    assert f'"2"^^<{XSD}integer> stays as written: <{NS}y> <{NS}s> "2"^^<{XSD}int> is the same value' in text, body
+    assert "5" not in text  # a repeated triple is one fact: nothing to say
+    _, deleted = send(server, "DELETE")
+    assert deleted["removed"] == 5 and deleted["added"] == 0, deleted
+
+
+def test_put_and_post_count_what_the_graph_gained(server: InProcess) -> None:
+    """Over a graph that holds the three facts, a PUT or POST of the same document gains nothing; a POST
+    that adds one fact, written twice, counts one; a PUT that keeps one fact counts the others removed."""
+    send(server, "PUT", REPEATS)
+    for method in ("PUT", "POST"):
+        _, body = send(server, method, REPEATS)
+        assert body["added"] == 0 and body["removed"] == 0, (method, body)
+    _, body = send(server, "POST", ':w :s "9" . :w :s "9" .')
+    assert body["added"] == 1 and body["removed"] == 0 and body["warnings"] == [], body
+    _, body = send(server, "POST", f':v :s "3"^^<{XSD}long> , "03"^^<{XSD}long> , "3"^^<{XSD}long> .')
+    assert body["added"] == 1 and len(body["warnings"]) == 1, body
+    assert body["warnings"][0].startswith(f'<{NS}v> <{NS}s> "3"^^<{XSD}long> stays as written: <{NS}v> <{NS}s> '
+                                          f'"03"^^<{XSD}long> is the same value, written again'), body
+    _, body = send(server, "DELETE")
+    assert body["removed"] == 7, body
+    send(server, "PUT", REPEATS)
+    _, body = send(server, "POST", ':w :s "9" .')
+    assert body["added"] == 1, body
+    _, body = send(server, "PUT", f':x :s "1"^^<{XSD}int> , "1"^^<{XSD}int> .')
+    assert body["added"] == 0 and body["removed"] == 3, body  # :y, :z and :w go
+    assert f'"1"^^<{XSD}int>'.encode() in saved(server)
+
+
+@pytest.mark.parametrize("held, posted", [("int", "01\"^^<{xsd}int"), ("int", "1\"^^<{xsd}integer"),
+                                          ("integer", "1\"^^<{xsd}int"), ("long", "+1\"^^<{xsd}integer")])
+def test_a_post_of_a_value_held_in_another_spelling_says_which_stays(held: str, posted: str,
+                                                                      server: InProcess) -> None:
+    """A POST writing a stored value in another spelling adds nothing and says so, in the words a PUT uses."""
+    send(server, "PUT", f':x :s "1"^^<{XSD}{held}> .')
+    written = '"' + posted.format(xsd=XSD) + ">"
+    _, body = send(server, "POST", f":x :s {written} .")
+    assert body["added"] == 0 and body["removed"] == 0, body
+    assert len(body["warnings"]) == 1, body
+    assert body["warnings"][0].startswith(f'<{NS}x> <{NS}s> "1"^^<{XSD}{held}> stays as written: '
+                                          f'<{NS}x> <{NS}s> {written} is the same value'), body
+    assert f'"1"^^<{XSD}{held}>'.encode() in saved(server) and written.encode() not in saved(server)
