@@ -150,11 +150,12 @@ class SchemaRule:
         """The row ``rule`` is the instantiation of, or None when it is not one (another name or shape).
 
         What the passes after compilation made of a rule (a folded class, atoms dropped as implied)
-        is kept: a rule matches only when its evaluated body, head and filters are the template's."""
+        is kept: a rule matches only when its evaluated body, head and filters are the template's, and
+        so are the settings an instantiation never has (:func:`_own_settings`)."""
         t = self.rule
         if (rule.name != t.name or len(rule.body) != len(t.body) or rule.conditions != t.conditions
                 or rule.violation != self.reported or rule.stratum != t.stratum or rule.aux_head != t.aux_head
-                or (rule.head is None) != (t.head is None)):
+                or (rule.head is None) != (t.head is None) or _own_settings(rule)):
             return None
         atoms = rule.body + (rule.head,) if t.head is not None else rule.body
         bound: list[str | None] = [None] * len(self.variables)
@@ -253,6 +254,15 @@ class SchemaRule:
         where = "helper" if aux else "inferred"
         return Rule(r.name, f"{r.origin} (generic: the rows of {self.table}, conclusions in the {where} graph)",
                     r.body, r.head, conditions, r.filter_reads, r.violation, r.message, aux, r.stratum)
+
+
+def _own_settings(rule: Rule) -> bool:
+    """Whether ``rule`` carries what no instantiation of a file has: a body or filters as written (an
+    explanation's premises), a known conclusion that makes its asks idle (``unless_known``, which a
+    full REASON's ask reads), a range to decide values by.  Such a rule is no row of the file: read as
+    one, the generic rule over the table would stand for it and those settings would be lost."""
+    return (bool(rule.written) or rule.written_conditions is not None or rule.unless_known is not None
+            or rule.value_range is not None)
 
 
 def _term(text: str):
