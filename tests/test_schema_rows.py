@@ -47,3 +47,81 @@ def test_the_rule_set_and_a_full_reason_keep_such_a_rule_as_it_is() -> None:
     run = program.rules.rules
     assert [r.written for r in run if r.written] == [premises]
     assert [r.unless_known for r in run if r.unless_known is not None] == [rules[7].head]
+
+
+# ---------------------------------------------------------------------- the non-memberships and one-ofs as tables
+NS = "http://example.org/rows#"
+COMPLEMENTS = f"""\
+@prefix : <{NS}> .
+@prefix owl: <http://www.w3.org/2002/07/owl#> .
+@prefix rdfs: <http://www.w3.org/2000/01/rdf-schema#> .
+:Meat owl:disjointWith :Veg . :Salami rdfs:subClassOf :Meat . :VegTopping rdfs:subClassOf :Veg .
+:Veggie owl:equivalentClass [ owl:intersectionOf ( :Pizza [ owl:onProperty :top ; owl:allValuesFrom :Veg ] ) ] .
+:NonVeggie owl:equivalentClass [ owl:intersectionOf ( :Pizza [ owl:complementOf :Veggie ] ) ] .
+:MeatPizza rdfs:subClassOf [ owl:onProperty :top ; owl:someValuesFrom :Meat ] .
+:Back owl:equivalentClass [ owl:onProperty [ owl:inverseOf :top ] ; owl:allValuesFrom :Veg ] .
+:Front owl:equivalentClass [ owl:complementOf :Back ] .
+:Shade owl:equivalentClass [ owl:oneOf ( :red :green :blue ) ] .
+:p1 a :Pizza ; :top :s1 . :s1 a :Salami .
+:p2 a :Pizza , :MeatPizza .
+:p3 a :Pizza ; :top :v1 . :v1 a :VegTopping .
+"""
+NEGATION = {"neg-dw", "neg-svf", "neg-sco", "neg-int", "neg-com", "neg-avf", "cls-oo"}
+
+
+def _loaded(text: str):
+    import warnings
+
+    from topostore import Ontology
+
+    onto = Ontology()
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # the complement's incompleteness is named: not what is tested here
+        onto.load_data(text, "turtle")
+    return onto
+
+
+def test_the_non_memberships_and_one_ofs_are_rows_of_their_files() -> None:
+    onto = _loaded(COMPLEMENTS)
+    tables = onto.rules.tables
+    assert tables is not None and NEGATION <= set(tables.held)
+    assert not [r for r in onto.rules.rules if r.name in NEGATION and not r.is_check and r.name != "neg-avf"]
+    [inverse] = [r for r in onto.rules.rules if r.name == "neg-avf"]  # on an inverse property: no row
+    assert inverse.body[0].s == "?y"
+    assert len(tables.rows("cls-oo")) == 3 and tables.rows("neg-dw")
+
+
+def test_the_non_membership_tables_run_generically_to_the_same_closure() -> None:
+    from pyoxigraph import NamedNode
+
+    from topostore.rdf.vocab import AUX, INFERRED
+    from topostore.reason.materialize import Materializer
+
+    onto = _loaded(COMPLEMENTS)
+
+    def closure(threshold: int) -> tuple[set, set]:
+        program = full_program(onto.rules, threshold)
+        program.write(onto.store)
+        try:
+            Materializer(onto.store, program.rules).run()
+        finally:
+            program.drop(onto.store)
+        assert threshold or NEGATION <= set(program.rows)
+        return tuple({(t.subject, t.predicate, t.object) for t in onto.store.triples(None, None, None, g)}
+                     for g in (INFERRED, AUX))
+
+    generic, instantiated = closure(0), closure(1 << 30)
+    assert generic == instantiated
+    non_veggie, shade = NamedNode(NS + "NonVeggie"), NamedNode(NS + "Shade")
+    inferred = generic[0]
+    typed = {(s, o) for s, p, o in inferred if p.value.endswith("#type")}
+    assert {(NamedNode(NS + "p1"), non_veggie), (NamedNode(NS + "p2"), non_veggie)} <= typed
+    assert (NamedNode(NS + "p3"), non_veggie) not in typed and (NamedNode(NS + "red"), shade) in typed
+
+
+def test_the_rules_of_a_growing_tbox_stay_as_many() -> None:
+    """The tutorial-style TBox of 100 and of 400 classes: more axioms are more rows, not more rules."""
+    from benchmarks import tbox
+
+    counts = [len(_loaded(tbox.turtle(n)).rules.rules) for n in (100, 400)]
+    assert counts[0] == counts[1]

@@ -258,7 +258,7 @@ class OwlCompiler:
                 self.instantiate(member_row(e, m), origin, "cls-uni")
         elif e.kind == "oneof":
             for ind in e.individuals:
-                self.emit("cls-oo", origin, [], Atom(sparql(ind), T, node))
+                self.instantiate((node, sparql(ind)), origin, "cls-oo")
         elif e.kind == "not":
             self.emit("cls-com", origin, [Atom(x, T, node)] + self.member(x, e.members[0]),
                       violation=(x,), message=f"an individual is in {e.members[0]} and in its complement")

@@ -216,7 +216,7 @@ class SchemaRule:
         """SPARQL that holds when a row's conclusion goes to the helper graph, as :func:`.rule.head_is_aux`
         decides it for the row's instantiation; None when no row's does (no schema term in the head)."""
         h = self.rule.head
-        if h is None:
+        if h is None or h.aux:  # no row's (None) or every row's: a constant helper term (ts:notType)
             return None
         parts = []
         for term in (h.p, h.o):
