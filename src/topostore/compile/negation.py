@@ -22,6 +22,11 @@ neg-com    x ∉ C ⇒ x ∈ ¬C (then cls-int1 and the equivalences conclude th
 neg-clash  x ∈ C and x ∉ C: inconsistent (a check)
 =========  ==========================================================================================
 
+The rules of one premise and the universal's neg-avf on a named property are files of ``rules/owl/``,
+emitted as rows of their tables (:mod:`.schema`): more complemented classes are more rows, not more
+rules.  neg-uni (a premise per member), neg-avf on an inverse property and the neg-clash checks are
+written here.
+
 Only the classes whose non-membership some complement needs get rules: the closure of the complemented
 classes backwards through the rules above (a complement of C needs x ∉ C; x ∉ A ⊓ B needs x ∉ A or x ∉ B;
 …).  An ontology without complements gets none, so its rule set (and a robot step) is unchanged.

@@ -5,8 +5,10 @@ The OWL rules whose axioms fit a row of fixed width — class hierarchy (cax-sco
 EquivalentProperties axiom as two sub-property rows), domain (prp-dom), range (prp-rng), inverse
 (prp-inv1/2), symmetric (prp-symp), transitive (prp-trp), chains of two properties (prp-spo2),
 disjointness (the check cax-dw, and different-disjoint), restrictions by kind (cls-svf1, cls-avf,
-cls-hv1/2, one row per member for cls-int2 and cls-uni) and restriction subsumption (ext-card-sub, and
-ext-restriction-sub through the property hierarchy)
+cls-hv1/2, one row per member for cls-int2 and cls-uni, one per individual for cls-oo), restriction
+subsumption (ext-card-sub, and ext-restriction-sub through the property hierarchy) and the
+non-memberships a complement needs (neg-dw, neg-svf, neg-sco, neg-int, neg-com, neg-avf: a
+``ts:notType`` head, a helper atom)
 — are written once, as SPARQL files in
 ``rules/owl/``, each with *schema atoms* ``GRAPH ts:graph:schema { ... }`` that read a row of the
 TBox's tables.  Those files are the single source of these rules, used two ways:
