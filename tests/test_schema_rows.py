@@ -154,3 +154,59 @@ def test_generic_equals_instantiated_on_generated_complements(tbox, abox) -> Non
     on the left is beyond OWL 2 RL)."""
     onto = _loaded(PREFIXES + _declarations() + "\n" + "\n".join(tbox + abox) + "\n")
     assert _materialize(onto, 0) == _materialize(onto, 1 << 30)
+
+
+# ---------------------------------------------------------------------- intersections: a file per width
+INTERSECTIONS = f"""\
+@prefix : <{NS}> .
+@prefix owl: <http://www.w3.org/2002/07/owl#> .
+:Two owl:equivalentClass [ owl:intersectionOf ( :A :B ) ] .
+:Three owl:equivalentClass [ owl:intersectionOf ( :A :B :C ) ] .
+:Four owl:equivalentClass [ owl:intersectionOf ( :A :B :C :D ) ] .
+:Five owl:equivalentClass [ owl:intersectionOf ( :A :B :C :D :E ) ] .
+:TwoAndThing owl:equivalentClass [ owl:intersectionOf ( :A owl:Thing :E ) ] .
+:x a :A , :B , :C , :D . :y a :A , :B , :C , :D , :E .
+"""
+
+
+def test_an_intersection_is_a_row_of_the_file_of_its_width() -> None:
+    """cls-int1 of 2, 3 and 4 members (owl:Thing left out) are rows of cls-int1-2/3/4, still named cls-int1
+    (what an explanation shows); five members keep a rule of their own."""
+    onto = _loaded(INTERSECTIONS)
+    tables = onto.rules.tables
+    assert tables is not None
+    assert [len(tables.rows(f"cls-int1-{n}")) for n in (2, 3, 4)] == [2, 1, 1]
+    assert all(r.name == "cls-int1" for n in (2, 3, 4) for r in tables.held[f"cls-int1-{n}"])
+    [five] = [r for r in onto.rules.rules if r.name == "cls-int1"]
+    assert len(five.body) == 5
+
+
+def test_the_intersection_files_run_generically_to_the_same_closure() -> None:
+    onto = _loaded(INTERSECTIONS)
+    generic = _materialize(onto, 0)
+    assert generic == _materialize(onto, 1 << 30)
+    typed = {(s.value.rsplit("#", 1)[-1], o.value.rsplit("#", 1)[-1]) for s, p, o in generic[0]
+             if p.value.endswith("#type")}
+    assert {("x", "Two"), ("x", "Three"), ("x", "Four"), ("y", "Five"), ("y", "TwoAndThing")} <= typed
+    assert ("x", "Five") not in typed and ("x", "TwoAndThing") not in typed
+
+
+def test_a_file_of_a_width_is_named_by_its_rule_and_width(tmp_path, monkeypatch) -> None:
+    import pytest
+
+    from topostore import resources
+    from topostore.compile import schema
+    from topostore.errors import RuleCompileError
+
+    (tmp_path / "owl").mkdir()
+    text = (resources.rules_dir() / "owl" / "cls-int1-2.rq").read_text()
+    (tmp_path / "owl" / "cls-int1-3.rq").write_text(text)  # two body atoms in a file named for three
+    monkeypatch.setattr(resources, "rules_dir", lambda: tmp_path)
+    schema.schema_rules.cache_clear()
+    try:
+        with pytest.raises(RuleCompileError, match="cls-int1-2.rq"):
+            schema.schema_rules()
+    finally:
+        monkeypatch.undo()
+        schema.schema_rules.cache_clear()
+        schema._by_shape.cache_clear()

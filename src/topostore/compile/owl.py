@@ -50,6 +50,7 @@ from .schema import (
     disjoint_row,
     member_row,
     schema_rule,
+    schema_rules,
     subproperty_row,
     typing_row,
     value_row,
@@ -249,7 +250,9 @@ class OwlCompiler:
         origin = f"class expression {e}"
         if e.kind == "and":
             body = [a for m in e.members for a in self.member(x, m)]
-            if body:  # n members: a rule per intersection (a table row has a fixed number of terms)
+            width = f"cls-int1-{len(body)}"  # a file of rules/owl/ per number of members, up to the widest
+            if body and (width not in schema_rules() or not self.instantiate((node, *(a.o for a in body)), origin,
+                                                                               width)):
                 self.emit("cls-int1", origin, body, Atom(x, T, node))
             for m in e.members:
                 self.instantiate(member_row(e, m), origin, "cls-int2")

@@ -65,6 +65,9 @@ class SchemaRule:
     #: above how many instantiations a full REASON runs the rule generically (the file's
     #: ``# generic-rows:`` header; None: :data:`.schema_program.GENERIC_ROWS`)
     generic_rows: int | None = None
+    #: the file's name without ``.rq``: the rule's name, or the name and the body's width where one
+    #: rule of n atoms is a file per n (``cls-int1-2``: an intersection of two members)
+    key: str = ""
     #: the schema atoms' variables, in order of first appearance: a row binds them in this order
     variables: tuple[str, ...] = field(init=False)
 
@@ -202,7 +205,7 @@ class SchemaRule:
     def graph(self) -> NamedNode:
         """The graph a full REASON writes this rule's rows into (one per rule: rules sharing a table,
         such as cax-eqc1 and cax-eqc2, may be left different rows by the passes after compilation)."""
-        return NamedNode(SCHEMA_PREFIX + self.name)
+        return NamedNode(SCHEMA_PREFIX + (self.key or self.name))
 
     @property
     def chains(self) -> bool:
@@ -312,9 +315,23 @@ def schema_rules() -> dict[str, SchemaRule]:
         if not schema or not headers.get("schema"):
             raise RuleCompileError(f"{path}: a rule of rules/owl/ needs a '# schema:' header and a schema atom "
                                    f"(GRAPH {_SCHEMA_GRAPH_TEXT} {{ ... }})")
-        found[rule.name] = SchemaRule(_marked_head(rule), schema, headers["schema"].split()[0],
-                                      _rows_header(path, headers.get("generic-rows")))
+        if path.stem not in (rule.name, f"{rule.name}-{len(rule.body)}"):
+            raise RuleCompileError(f"{path}: the file is named as its rule ({rule.name}.rq), or as its rule and "
+                                   f"the number of its body atoms ({rule.name}-{len(rule.body)}.rq)")
+        found[path.stem] = SchemaRule(_marked_head(rule), schema, headers["schema"].split()[0],
+                                      _rows_header(path, headers.get("generic-rows")), path.stem)
     return found
+
+
+@cache
+def _by_shape() -> dict[tuple[str, int], SchemaRule]:
+    """The generic rules by (name, number of body atoms): a rule written as a file per width has several."""
+    return {(t.name, len(t.rule.body)): t for t in schema_rules().values()}
+
+
+def template_of(rule: Rule) -> SchemaRule | None:
+    """The file of ``rules/owl/`` ``rule`` may be an instantiation of (by its name and width), or None."""
+    return _by_shape().get((rule.name, len(rule.body)))
 
 
 def _rows_header(path, text: str | None) -> int | None:
@@ -339,7 +356,7 @@ def _marked_head(rule: Rule) -> Rule:
 def schema_dataset(rule: Rule) -> str:
     """The ``USING NAMED`` clause of the schema graph a generic rule joins ("" for any other rule):
     an update's GRAPH pattern sees only the graphs its dataset names."""
-    generic = schema_rules().get(rule.name)
+    generic = template_of(rule)
     if generic is None or not any(str(generic.graph) in c.text for c in rule.conditions):
         return ""
     return f" USING NAMED {generic.graph}"
@@ -420,4 +437,4 @@ def subproperty_row(p: Prop, q: Prop) -> Row | None:
 
 
 __all__ = ["Row", "SchemaRule", "chain_row", "class_row", "disjoint_row", "filler_row", "member_row", "schema_dataset",
-           "schema_rule", "schema_rules", "subproperty_row", "typing_row", "value_row"]
+           "schema_rule", "schema_rules", "subproperty_row", "template_of", "typing_row", "value_row"]
