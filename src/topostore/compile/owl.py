@@ -43,18 +43,8 @@ from .negation import NegativeMembership
 from .notices import Notice
 from .owl_restrictions import RestrictionRules, nm
 from .rule import Atom, Rule
-from .schema import (
-    Row,
-    chain_row,
-    class_row,
-    disjoint_row,
-    member_row,
-    schema_rule,
-    schema_rules,
-    subproperty_row,
-    typing_row,
-    value_row,
-)
+from .schema import Row, schema_rule, schema_rules
+from .schema_rows import chain_row, class_row, disjoint_row, member_row, subproperty_row, typing_row, value_row
 from .snippets import (
     NOT_DIFFERENT_READS,
     candidate_atom,

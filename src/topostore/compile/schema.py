@@ -21,12 +21,14 @@ TBox's tables.  Those files are the single source of these rules, used two ways:
 * **generic**: the rule runs once against the rows written into a schema graph, whatever the number
   of axioms (:mod:`.schema_program`, chosen by a full REASON when a table is large).
 
-The rows of a table are what an axiom contributes, as SPARQL terms in the order the schema atom's
-variables first appear (``(C, D)`` for ``C SubClassOf D``).  Axioms on an inverse property
+The rows of a table are what an axiom contributes (:mod:`.schema_rows`), as SPARQL terms in the order
+the schema atom's variables first appear (``(C, D)`` for ``C SubClassOf D``).  Axioms on an inverse property
 expression have no row (no generic rule reads property expressions), nor have shapes of another width
-(an intersection's n members in one body, a chain of three): the compiler keeps emitting their rules
-directly.  A check's instantiation reports the individuals only (:attr:`SchemaRule.reported`); its
-message names the row's terms.
+(a chain of three, an intersection of five members): the compiler keeps emitting their rules directly.
+A rule of n body atoms may be a file per n (``cls-int1-2.rq`` … ``cls-int1-4.rq``, each rule named
+``cls-int1``): a file is keyed by its name (:attr:`SchemaRule.key`), and :func:`template_of` finds a
+rule's file by its name and width.  A check's instantiation reports the individuals only
+(:attr:`SchemaRule.reported`); its message names the row's terms.
 """
 
 from __future__ import annotations
@@ -38,11 +40,10 @@ from functools import cache, cached_property, lru_cache
 from pyoxigraph import NamedNode, Triple
 
 from ..errors import RuleCompileError
-from ..rdf.terms import parse_term, sparql
-from ..rdf.vocab import INTERNAL, SCHEMA_PREFIX, SKOLEM_PREFIX, THING, TYPE
+from ..rdf.terms import parse_term
+from ..rdf.vocab import INTERNAL, SCHEMA_PREFIX, SKOLEM_PREFIX, TYPE
 from . import condition as cond
 from .generic import parse_rule_text
-from .model import Expr, Prop
 from .rule import Atom, Rule, head_is_aux
 
 #: A row of a schema table: the SPARQL terms bound to the schema atom's variables, in order.
@@ -375,66 +376,4 @@ def _short(term: str) -> str:
     return value.rsplit("#", 1)[-1] if "#" in value else value.rsplit("/", 1)[-1]
 
 
-# ---------------------------------------------------------------------- rows of axioms
-def class_row(a: Expr, b: Expr) -> Row | None:
-    """``a ⊑ b`` (or one direction of ``a ≡ b``); None when it says nothing (a class of itself, owl:Thing)."""
-    if a.node == b.node or THING in (a.node, b.node):
-        return None
-    return a.term, b.term
-
-
-def disjoint_row(a: Expr, b: Expr) -> Row | None:
-    """Disjoint ``a`` and ``b`` (in this order); None when one is owl:Thing (its rules read one class)."""
-    if THING in (a.node, b.node):
-        return None
-    return a.term, b.term
-
-
-def filler_row(e: Expr, data: bool) -> Row | None:
-    """(restriction, property, filler) of a some/all restriction ``e`` on a named object property with a
-    class filler other than owl:Thing; None otherwise (a data or inverse property, an unqualified
-    filler: those rules have other shapes and stay as the compiler writes them)."""
-    if data or e.prop is None or e.prop.inverse or e.datatype is not None or e.filler is None \
-            or e.filler.node == THING:
-        return None
-    return e.term, sparql(e.prop.iri), e.filler.term
-
-
-def value_row(e: Expr) -> Row | None:
-    """(restriction, property, value) of a hasValue restriction on a named property; None otherwise."""
-    if e.prop is None or e.prop.inverse or e.value is None:
-        return None
-    return e.term, sparql(e.prop.iri), sparql(e.value)
-
-
-def member_row(e: Expr, m: Expr) -> Row | None:
-    """(intersection or union, member): a row per member; None for owl:Thing (it says nothing)."""
-    if m.node == THING:
-        return None
-    return e.term, m.term
-
-
-def chain_row(q: NamedNode, chain: Sequence[Prop]) -> Row | None:
-    """(first, second, super-property) of a chain of two named properties; None for another length
-    or an inverse link (a row has a fixed number of terms: a longer chain keeps a rule of its own)."""
-    if len(chain) != 2 or any(p.inverse for p in chain):
-        return None
-    return sparql(chain[0].iri), sparql(chain[1].iri), sparql(q)
-
-
-def typing_row(p: Prop, c: Expr) -> Row | None:
-    """A domain or range ``c`` of ``p``; None for owl:Thing or an inverse property expression."""
-    if c.node == THING or p.inverse:
-        return None
-    return sparql(p.iri), c.term
-
-
-def subproperty_row(p: Prop, q: Prop) -> Row | None:
-    """``p ⊑ q`` of two named properties; None otherwise."""
-    if p == q or p.inverse or q.inverse:
-        return None
-    return sparql(p.iri), sparql(q.iri)
-
-
-__all__ = ["Row", "SchemaRule", "chain_row", "class_row", "disjoint_row", "filler_row", "member_row", "schema_dataset",
-           "schema_rule", "schema_rules", "subproperty_row", "template_of", "typing_row", "value_row"]
+__all__ = ["Row", "SchemaRule", "schema_dataset", "schema_rule", "schema_rules", "template_of"]
