@@ -168,9 +168,12 @@ def rules(files: tuple[str, ...], show_all: bool, deltas: bool, step: str | None
 def _tables(ruleset) -> dict[str, list[Rule]]:
     """Per rule of ``rules/owl/`` the rule set holds as a table, the rows bound one by one (the schema
     tables, then the pairs of disjoint classes)."""
+    from ..compile.schema import template_of
+
     found: dict[str, list[Rule]] = {}
     for rule in [*ruleset.held_rules(), *ruleset._per_pair()[0], *ruleset._per_pair()[1]]:
-        found.setdefault(rule.name, []).append(rule)
+        template = template_of(rule)
+        found.setdefault(template.key if template is not None else rule.name, []).append(rule)
     return found
 
 
@@ -197,13 +200,13 @@ def _table_text(name: str, rows: list[Rule], deltas: bool) -> str:
 def _templates(compiled: list[Rule]) -> str:
     """The rule files of ``rules/owl/`` as written, each with how many of the compiled rules instantiate
     it: the OWL axioms' rules of those kinds are these files with one axiom's schema row filled in."""
-    from ..compile.schema import schema_rules
+    from ..compile.schema import schema_rules, template_of
     from ..resources import rules_dir
 
     templates = schema_rules()
     out = [f"### OWL rule files of rules/owl/ ({len(templates)})\n"]
     for name, template in sorted(templates.items()):
-        count = sum(1 for rule in compiled if rule.name == name and template.row_of(rule) is not None)
+        count = sum(1 for rule in compiled if template_of(rule) is template and template.row_of(rule) is not None)
         text = (rules_dir() / "owl" / f"{name}.rq").read_text().rstrip()
         out.append(f"# {name}: {count} instantiation(s) among the OWL axioms' rules\n{text}\n")
     return "\n".join(out)

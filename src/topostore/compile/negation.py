@@ -22,6 +22,11 @@ neg-com    x ∉ C ⇒ x ∈ ¬C (then cls-int1 and the equivalences conclude th
 neg-clash  x ∈ C and x ∉ C: inconsistent (a check)
 =========  ==========================================================================================
 
+The rules of one premise and the universal's neg-avf on a named property are files of ``rules/owl/``,
+emitted as rows of their tables (:mod:`.schema`): more complemented classes are more rows, not more
+rules.  neg-uni (a premise per member), neg-avf on an inverse property and the neg-clash checks are
+written here.
+
 Only the classes whose non-membership some complement needs get rules: the closure of the complemented
 classes backwards through the rules above (a complement of C needs x ∉ C; x ∉ A ⊓ B needs x ∉ A or x ∉ B;
 …).  An ontology without complements gets none, so its rule set (and a robot step) is unchanged.
@@ -144,25 +149,25 @@ class NegativeMembership:
     def compile(self) -> None:
         """Emit the rules and checks (nothing when the TBox has no complement)."""
         for e in self.complements:
-            self.compiler.emit("neg-com", f"class expression {e}", [not_type("?x", e.members[0])],
-                               Atom("?x", T, sparql(e.node)))
+            self.compiler.instantiate((e.term, e.members[0].term), f"class expression {e}", "neg-com")
         for c in self.needed.values():
             self._rules_for(c)
 
     def _rules_for(self, c: Expr) -> None:
         emit, x, origin = self.compiler.emit, "?x", f"not in {describe(c)}"
-        head = not_type(x, c)
+        head, row = not_type(x, c), self.compiler.instantiate
         for d in self.partners.get(c.node, ()):
-            emit("neg-dw", f"{describe(d)} and {describe(c)} are disjoint", [Atom(x, T, sparql(d.node))], head)
+            row((d.term, c.term), f"{describe(d)} and {describe(c)} are disjoint", "neg-dw")
         for b in self.supers.get(c.node, ()):
             if b.node != THING:
-                emit("neg-sco", f"{describe(c)} is subsumed by {describe(b)}", [not_type(x, b)], head)
+                row((c.term, b.term), f"{describe(c)} is subsumed by {describe(b)}", "neg-sco")
         if c.kind == "or" and c.members and all(m.node != THING for m in c.members):
+            # n members in one body: a rule per union (a table row has a fixed number of terms)
             emit("neg-uni", origin, [not_type(x, m) for m in c.members], head)
         elif c.kind == "and":
             for m in c.members:
                 if m.node != THING:
-                    emit("neg-int", origin, [not_type(x, m)], head)
+                    row((c.term, m.term), origin, "neg-int")
         elif c.kind == "all" and self._class_filler(c) is not None:
             self._universal(c, head)
         if c.node != NOTHING:
@@ -174,15 +179,17 @@ class NegativeMembership:
         u = self._class_filler(c)
         assert u is not None and c.prop is not None
         x, y = "?x", "?y"
-        self.compiler.emit("neg-avf", f"not in {describe(c)}", [self.compiler.prop_atom(x, c.prop, y), not_type(y, u)],
-                           head)
+        named = None if c.prop.inverse else (c.term, sparql(c.prop.iri), u.term)
+        if not self.compiler.instantiate(named, f"not in {describe(c)}", "neg-avf"):  # an inverse: no row
+            self.compiler.emit("neg-avf", f"not in {describe(c)}",
+                               [self.compiler.prop_atom(x, c.prop, y), not_type(y, u)], head)
         below = self._sub_properties(c.prop)
         for e in self.expressions:
             if e.prop not in below or e.kind not in ("some", "min", "exact") or (e.kind != "some" and e.n < 1):
                 continue
             if e.filler is not None and self.class_disjoint(e.filler, u):
-                self.compiler.emit("neg-svf", f"the value of {describe(e)} is not in {describe(u)}",
-                                   [Atom(x, T, sparql(e.node))], head)
+                self.compiler.instantiate((e.term, c.term), f"the value of {describe(e)} is not in {describe(u)}",
+                                          "neg-svf")
 
     def _sub_properties(self, p: Prop) -> set[Prop]:
         """``p`` and its told sub-properties (closure; q ⊑ p gives q⁻ ⊑ p⁻): a value by any of them is a

@@ -43,17 +43,8 @@ from .negation import NegativeMembership
 from .notices import Notice
 from .owl_restrictions import RestrictionRules, nm
 from .rule import Atom, Rule
-from .schema import (
-    Row,
-    chain_row,
-    class_row,
-    disjoint_row,
-    member_row,
-    schema_rule,
-    subproperty_row,
-    typing_row,
-    value_row,
-)
+from .schema import Row, schema_rule, schema_rules
+from .schema_rows import chain_row, class_row, disjoint_row, member_row, subproperty_row, typing_row, value_row
 from .snippets import (
     NOT_DIFFERENT_READS,
     candidate_atom,
@@ -254,7 +245,9 @@ class OwlCompiler:
         origin = f"class expression {e}"
         if e.kind == "and":
             body = [a for m in e.members for a in self.member(x, m)]
-            if body:  # n members: a rule per intersection (a table row has a fixed number of terms)
+            width = f"cls-int1-{len(body)}"  # a file of rules/owl/ per number of members, up to the widest
+            if body and (width not in schema_rules() or not self.instantiate((node, *(a.o for a in body)), origin,
+                                                                               width)):
                 self.emit("cls-int1", origin, body, Atom(x, T, node))
             for m in e.members:
                 self.instantiate(member_row(e, m), origin, "cls-int2")
@@ -263,7 +256,7 @@ class OwlCompiler:
                 self.instantiate(member_row(e, m), origin, "cls-uni")
         elif e.kind == "oneof":
             for ind in e.individuals:
-                self.emit("cls-oo", origin, [], Atom(sparql(ind), T, node))
+                self.instantiate((node, sparql(ind)), origin, "cls-oo")
         elif e.kind == "not":
             self.emit("cls-com", origin, [Atom(x, T, node)] + self.member(x, e.members[0]),
                       violation=(x,), message=f"an individual is in {e.members[0]} and in its complement")

@@ -22,7 +22,7 @@ from .condition import Condition
 from .counting import PAIRWISE_MAX, UNREACHABLE, count_at_least, counting_notice
 from .model import Expr
 from .rule import Atom
-from .schema import filler_row
+from .schema_rows import filler_row
 
 if TYPE_CHECKING:
     from .owl import OwlCompiler

@@ -5,8 +5,10 @@ The OWL rules whose axioms fit a row of fixed width — class hierarchy (cax-sco
 EquivalentProperties axiom as two sub-property rows), domain (prp-dom), range (prp-rng), inverse
 (prp-inv1/2), symmetric (prp-symp), transitive (prp-trp), chains of two properties (prp-spo2),
 disjointness (the check cax-dw, and different-disjoint), restrictions by kind (cls-svf1, cls-avf,
-cls-hv1/2, one row per member for cls-int2 and cls-uni) and restriction subsumption (ext-card-sub, and
-ext-restriction-sub through the property hierarchy)
+cls-hv1/2, one row per member for cls-int2 and cls-uni, one per individual for cls-oo), restriction
+subsumption (ext-card-sub, and ext-restriction-sub through the property hierarchy) and the
+non-memberships a complement needs (neg-dw, neg-svf, neg-sco, neg-int, neg-com, neg-avf: a
+``ts:notType`` head, a helper atom)
 — are written once, as SPARQL files in
 ``rules/owl/``, each with *schema atoms* ``GRAPH ts:graph:schema { ... }`` that read a row of the
 TBox's tables.  Those files are the single source of these rules, used two ways:
@@ -19,12 +21,14 @@ TBox's tables.  Those files are the single source of these rules, used two ways:
 * **generic**: the rule runs once against the rows written into a schema graph, whatever the number
   of axioms (:mod:`.schema_program`, chosen by a full REASON when a table is large).
 
-The rows of a table are what an axiom contributes, as SPARQL terms in the order the schema atom's
-variables first appear (``(C, D)`` for ``C SubClassOf D``).  Axioms on an inverse property
+The rows of a table are what an axiom contributes (:mod:`.schema_rows`), as SPARQL terms in the order
+the schema atom's variables first appear (``(C, D)`` for ``C SubClassOf D``).  Axioms on an inverse property
 expression have no row (no generic rule reads property expressions), nor have shapes of another width
-(an intersection's n members in one body, a chain of three): the compiler keeps emitting their rules
-directly.  A check's instantiation reports the individuals only (:attr:`SchemaRule.reported`); its
-message names the row's terms.
+(a chain of three, an intersection of five members): the compiler keeps emitting their rules directly.
+A rule of n body atoms may be a file per n (``cls-int1-2.rq`` … ``cls-int1-4.rq``, each rule named
+``cls-int1``): a file is keyed by its name (:attr:`SchemaRule.key`), and :func:`template_of` finds a
+rule's file by its name and width.  A check's instantiation reports the individuals only
+(:attr:`SchemaRule.reported`); its message names the row's terms.
 """
 
 from __future__ import annotations
@@ -36,11 +40,10 @@ from functools import cache, cached_property, lru_cache
 from pyoxigraph import NamedNode, Triple
 
 from ..errors import RuleCompileError
-from ..rdf.terms import parse_term, sparql
-from ..rdf.vocab import INTERNAL, SCHEMA_PREFIX, SKOLEM_PREFIX, THING, TYPE
+from ..rdf.terms import parse_term
+from ..rdf.vocab import INTERNAL, SCHEMA_PREFIX, SKOLEM_PREFIX, TYPE
 from . import condition as cond
 from .generic import parse_rule_text
-from .model import Expr, Prop
 from .rule import Atom, Rule, head_is_aux
 
 #: A row of a schema table: the SPARQL terms bound to the schema atom's variables, in order.
@@ -63,6 +66,9 @@ class SchemaRule:
     #: above how many instantiations a full REASON runs the rule generically (the file's
     #: ``# generic-rows:`` header; None: :data:`.schema_program.GENERIC_ROWS`)
     generic_rows: int | None = None
+    #: the file's name without ``.rq``: the rule's name, or the name and the body's width where one
+    #: rule of n atoms is a file per n (``cls-int1-2``: an intersection of two members)
+    key: str = ""
     #: the schema atoms' variables, in order of first appearance: a row binds them in this order
     variables: tuple[str, ...] = field(init=False)
 
@@ -150,11 +156,12 @@ class SchemaRule:
         """The row ``rule`` is the instantiation of, or None when it is not one (another name or shape).
 
         What the passes after compilation made of a rule (a folded class, atoms dropped as implied)
-        is kept: a rule matches only when its evaluated body, head and filters are the template's."""
+        is kept: a rule matches only when its evaluated body, head and filters are the template's, and
+        so are the settings an instantiation never has (:func:`_own_settings`)."""
         t = self.rule
         if (rule.name != t.name or len(rule.body) != len(t.body) or rule.conditions != t.conditions
                 or rule.violation != self.reported or rule.stratum != t.stratum or rule.aux_head != t.aux_head
-                or (rule.head is None) != (t.head is None)):
+                or (rule.head is None) != (t.head is None) or _own_settings(rule)):
             return None
         atoms = rule.body + (rule.head,) if t.head is not None else rule.body
         bound: list[str | None] = [None] * len(self.variables)
@@ -199,7 +206,7 @@ class SchemaRule:
     def graph(self) -> NamedNode:
         """The graph a full REASON writes this rule's rows into (one per rule: rules sharing a table,
         such as cax-eqc1 and cax-eqc2, may be left different rows by the passes after compilation)."""
-        return NamedNode(SCHEMA_PREFIX + self.name)
+        return NamedNode(SCHEMA_PREFIX + (self.key or self.name))
 
     @property
     def chains(self) -> bool:
@@ -215,7 +222,7 @@ class SchemaRule:
         """SPARQL that holds when a row's conclusion goes to the helper graph, as :func:`.rule.head_is_aux`
         decides it for the row's instantiation; None when no row's does (no schema term in the head)."""
         h = self.rule.head
-        if h is None:
+        if h is None or h.aux:  # no row's (None) or every row's: a constant helper term (ts:notType)
             return None
         parts = []
         for term in (h.p, h.o):
@@ -253,6 +260,15 @@ class SchemaRule:
         where = "helper" if aux else "inferred"
         return Rule(r.name, f"{r.origin} (generic: the rows of {self.table}, conclusions in the {where} graph)",
                     r.body, r.head, conditions, r.filter_reads, r.violation, r.message, aux, r.stratum)
+
+
+def _own_settings(rule: Rule) -> bool:
+    """Whether ``rule`` carries what no instantiation of a file has: a body or filters as written (an
+    explanation's premises), a known conclusion that makes its asks idle (``unless_known``, which a
+    full REASON's ask reads), a range to decide values by.  Such a rule is no row of the file: read as
+    one, the generic rule over the table would stand for it and those settings would be lost."""
+    return (bool(rule.written) or rule.written_conditions is not None or rule.unless_known is not None
+            or rule.value_range is not None)
 
 
 def _term(text: str):
@@ -300,9 +316,23 @@ def schema_rules() -> dict[str, SchemaRule]:
         if not schema or not headers.get("schema"):
             raise RuleCompileError(f"{path}: a rule of rules/owl/ needs a '# schema:' header and a schema atom "
                                    f"(GRAPH {_SCHEMA_GRAPH_TEXT} {{ ... }})")
-        found[rule.name] = SchemaRule(_marked_head(rule), schema, headers["schema"].split()[0],
-                                      _rows_header(path, headers.get("generic-rows")))
+        if path.stem not in (rule.name, f"{rule.name}-{len(rule.body)}"):
+            raise RuleCompileError(f"{path}: the file is named as its rule ({rule.name}.rq), or as its rule and "
+                                   f"the number of its body atoms ({rule.name}-{len(rule.body)}.rq)")
+        found[path.stem] = SchemaRule(_marked_head(rule), schema, headers["schema"].split()[0],
+                                      _rows_header(path, headers.get("generic-rows")), path.stem)
     return found
+
+
+@cache
+def _by_shape() -> dict[tuple[str, int], SchemaRule]:
+    """The generic rules by (name, number of body atoms): a rule written as a file per width has several."""
+    return {(t.name, len(t.rule.body)): t for t in schema_rules().values()}
+
+
+def template_of(rule: Rule) -> SchemaRule | None:
+    """The file of ``rules/owl/`` ``rule`` may be an instantiation of (by its name and width), or None."""
+    return _by_shape().get((rule.name, len(rule.body)))
 
 
 def _rows_header(path, text: str | None) -> int | None:
@@ -327,7 +357,7 @@ def _marked_head(rule: Rule) -> Rule:
 def schema_dataset(rule: Rule) -> str:
     """The ``USING NAMED`` clause of the schema graph a generic rule joins ("" for any other rule):
     an update's GRAPH pattern sees only the graphs its dataset names."""
-    generic = schema_rules().get(rule.name)
+    generic = template_of(rule)
     if generic is None or not any(str(generic.graph) in c.text for c in rule.conditions):
         return ""
     return f" USING NAMED {generic.graph}"
@@ -346,66 +376,4 @@ def _short(term: str) -> str:
     return value.rsplit("#", 1)[-1] if "#" in value else value.rsplit("/", 1)[-1]
 
 
-# ---------------------------------------------------------------------- rows of axioms
-def class_row(a: Expr, b: Expr) -> Row | None:
-    """``a ⊑ b`` (or one direction of ``a ≡ b``); None when it says nothing (a class of itself, owl:Thing)."""
-    if a.node == b.node or THING in (a.node, b.node):
-        return None
-    return a.term, b.term
-
-
-def disjoint_row(a: Expr, b: Expr) -> Row | None:
-    """Disjoint ``a`` and ``b`` (in this order); None when one is owl:Thing (its rules read one class)."""
-    if THING in (a.node, b.node):
-        return None
-    return a.term, b.term
-
-
-def filler_row(e: Expr, data: bool) -> Row | None:
-    """(restriction, property, filler) of a some/all restriction ``e`` on a named object property with a
-    class filler other than owl:Thing; None otherwise (a data or inverse property, an unqualified
-    filler: those rules have other shapes and stay as the compiler writes them)."""
-    if data or e.prop is None or e.prop.inverse or e.datatype is not None or e.filler is None \
-            or e.filler.node == THING:
-        return None
-    return e.term, sparql(e.prop.iri), e.filler.term
-
-
-def value_row(e: Expr) -> Row | None:
-    """(restriction, property, value) of a hasValue restriction on a named property; None otherwise."""
-    if e.prop is None or e.prop.inverse or e.value is None:
-        return None
-    return e.term, sparql(e.prop.iri), sparql(e.value)
-
-
-def member_row(e: Expr, m: Expr) -> Row | None:
-    """(intersection or union, member): a row per member; None for owl:Thing (it says nothing)."""
-    if m.node == THING:
-        return None
-    return e.term, m.term
-
-
-def chain_row(q: NamedNode, chain: Sequence[Prop]) -> Row | None:
-    """(first, second, super-property) of a chain of two named properties; None for another length
-    or an inverse link (a row has a fixed number of terms: a longer chain keeps a rule of its own)."""
-    if len(chain) != 2 or any(p.inverse for p in chain):
-        return None
-    return sparql(chain[0].iri), sparql(chain[1].iri), sparql(q)
-
-
-def typing_row(p: Prop, c: Expr) -> Row | None:
-    """A domain or range ``c`` of ``p``; None for owl:Thing or an inverse property expression."""
-    if c.node == THING or p.inverse:
-        return None
-    return sparql(p.iri), c.term
-
-
-def subproperty_row(p: Prop, q: Prop) -> Row | None:
-    """``p ⊑ q`` of two named properties; None otherwise."""
-    if p == q or p.inverse or q.inverse:
-        return None
-    return sparql(p.iri), sparql(q.iri)
-
-
-__all__ = ["Row", "SchemaRule", "chain_row", "class_row", "disjoint_row", "filler_row", "member_row", "schema_dataset",
-           "schema_rule", "schema_rules", "subproperty_row", "typing_row", "value_row"]
+__all__ = ["Row", "SchemaRule", "schema_dataset", "schema_rule", "schema_rules", "template_of"]

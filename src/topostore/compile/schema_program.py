@@ -28,7 +28,7 @@ from pyoxigraph import NamedNode
 from ..stores.base import Store
 from .disjointness import DIFFERENT
 from .rule import Rule, RuleSet
-from .schema import Row, SchemaRule, schema_rules
+from .schema import Row, SchemaRule, schema_rules, template_of
 
 #: A rule kind with more instantiations than this runs as its generic rule in a full REASON.
 #: Measured (docs/benchmarks-history.md, "Generic OWL rules"): on the tutorial-style TBox of 100 and 400
@@ -96,20 +96,19 @@ def closed(rows: list[Row]) -> list[Row]:
 
 
 def _instances(rules: list[Rule]) -> dict[str, list[tuple[int, Row]]]:
-    """Per generic inference rule, the compiled rules that are its instantiations: (index, row).
+    """Per generic inference rule (its file's name), the compiled rules that are its instantiations: (index, row).
 
     A check is left as it is: a full REASON runs the checks after the materialisation, once the
     schema graphs are dropped (the told pairs of disjoint classes, held as rows, are checked there
     in one query over the pairs whose classes have members)."""
-    generic = schema_rules()
     found: dict[str, list[tuple[int, Row]]] = {}
     for i, rule in enumerate(rules):
-        template = generic.get(rule.name)
         if rule.is_check:
             continue
+        template = template_of(rule)
         row = template.row_of(rule) if template is not None else None
         if row is not None:
-            found.setdefault(rule.name, []).append((i, row))
+            found.setdefault(template.key, []).append((i, row))
     return found
 
 

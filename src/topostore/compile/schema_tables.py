@@ -28,7 +28,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 from .rule import Rule
-from .schema import Row, SchemaRule, schema_rules
+from .schema import Row, SchemaRule, schema_rules, template_of
 
 #: the rules of ``rules/owl/`` the pairs of disjoint classes use are held apart already (:mod:`.disjointness`)
 _HELD_APART = frozenset({"different-disjoint", "cax-dw"})
@@ -38,7 +38,8 @@ _HELD_APART = frozenset({"different-disjoint", "cax-dw"})
 class SchemaTables:
     """Per generic rule of ``rules/owl/``, its instantiations (each the generic rule with one row bound)."""
 
-    #: generic rule name -> its instantiations, in the order the compiler emitted them
+    #: generic rule (its file's name, :attr:`.SchemaRule.key`) -> its instantiations, in the order the
+    #: compiler emitted them
     held: dict[str, list[Rule]] = field(default_factory=dict)
     #: (position in the compiled list, rule) of each instantiation, and that list's length
     placed: list[tuple[int, Rule]] = field(default_factory=list)
@@ -87,16 +88,15 @@ def hold_tables(rules: list[Rule]) -> tuple[list[Rule], SchemaTables | None]:
 
     A check stays a rule of its own (a full REASON runs the checks after the fixpoint, rule by rule),
     as do the rules of the disjoint pairs, held as rows already."""
-    templates = schema_rules()
     kept: list[Rule] = []
     tables = SchemaTables()
     for i, rule in enumerate(rules):
-        template = templates.get(rule.name)
+        template = template_of(rule)
         if (template is None or rule.name in _HELD_APART or rule.is_check
                 or template.row_of(rule) is None):
             kept.append(rule)
             continue
-        tables.held.setdefault(rule.name, []).append(rule)
+        tables.held.setdefault(template.key, []).append(rule)
         tables.placed.append((i, rule))
     tables.length = len(rules)
     return kept, (tables if tables.held else None)
