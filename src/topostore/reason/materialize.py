@@ -56,7 +56,7 @@ from .order import (
 )
 from .plan import KeyCounts, is_small
 from .stats import ReasonStats
-from .triggers import Present, Triggers, may_write
+from .triggers import Present, Triggers, may_hold
 
 #: the other delta graph of a full run: each round reads one and fills the other
 DELTA_NEXT = NamedNode(INTERNAL + "graph:delta-next")
@@ -309,14 +309,14 @@ class Materializer:
         graph: none derived so far nor queued, none asserted (:func:`.insert_text.insert_text`'s ``bare``).
         A remote store keeps its anti-joins: a look-up there is a request of its own."""
         key = self.rules[index].writes()
-        return (self._direct is not None and not self.store.round_trips and key is not None and key not in self._derived
-                and not any(q is None or may_write(q, key) for q in self._queued) and not self._head_asserted(key))
+        if self._direct is None or self.store.round_trips or key is None or key[0] == "*" or key == ("p", TYPE_KEY):
+            return False  # not a full run, a remote store, or a head of any predicate or class
+        return (not may_hold(self._derived, key) and None not in self._queued and not may_hold(self._queued, key)
+                and not self._head_asserted(key))
 
     def _head_asserted(self, key: ReadKey) -> bool:
-        """Whether the asserted graph may hold a fact of head key ``key`` (one look-up per key and run;
-        a variable predicate or class may be any)."""
-        if key[0] == "*" or key == ("p", TYPE_KEY):
-            return True
+        """Whether the asserted graph holds a fact of head key ``key``, a predicate or a class (one look-up
+        per key and run)."""
         found = self._asserted_heads.get(key)
         if found is None:
             found = self._asserted_heads[key] = next(

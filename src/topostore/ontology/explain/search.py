@@ -288,6 +288,7 @@ class Explainer:
                 return f"key of {self.render_term(m)} in {self._group_text(group)}"
         return f"a key in {self._group_text(group)}"
 
+
 def _variables(rule: Rule) -> list[str]:
     """Variables of the body atoms and of the filters (a BIND's result, e.g. ?d = ?t - ?v)."""
     names = {v for c in rule.conditions for v in c.variables}
