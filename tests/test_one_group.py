@@ -106,3 +106,17 @@ def _x_type():
 
 def loaded(source: str) -> Ontology:
     return map_or_text(None if source == "map" else MIN2 + CASES[source])
+
+
+
+def test_a_list_added_to_a_node_later_is_a_group_of_its_own() -> None:
+    """A second member list given to an AllDifferent node by a later change (the robot step's path): its
+    members are not different from the first list's, as a full REASON from scratch says."""
+    onto = map_or_text(MIN2 + ":x :p :a, :b . :g a owl:AllDifferent ; owl:distinctMembers (:a :c) .")
+    onto.reason()
+    onto.load_data(PREFIXES + ":g owl:members (:b :d) .", "turtle")
+    onto.reason()
+    stepped = closure(onto)
+    assert f"<{PREFIXES_NS}C>" not in {str(c) for c in onto.store.objects(*_x_type())}
+    onto.reason(mode="full")
+    assert closure(onto) == stepped
