@@ -57,7 +57,7 @@ KEY, VALUE_CANDIDATE, DIFFERENT = f"<{INTERNAL}differentKey>", f"<{INTERNAL}valu
 KEY_OF = f"<{INTERNAL}differentKeyOf>"
 M = maps.MAP_NS
 MEMBERS = f"<{OWL}distinctMembers>|<{OWL}members>"
-LIST = f"({MEMBERS})/<{RDF}rest>*/<{RDF}first>"
+LIST = f"<{RDF}rest>*/<{RDF}first>"
 GROUP_OF = 'STRBEFORE(STRAFTER(STR({k}), "urn:topostore:key:"), ":")'
 DOOR_PAIRS = (f"GRAPH {A} {{ ?l2 <{M}hasDoor> ?d . }} GRAPH {A} {{ ?l1 <{M}hasDoor> ?d . }} "
               "FILTER(!isLiteral(?d)) FILTER(!sameTerm(?l1, ?l2))")
@@ -75,8 +75,9 @@ def _keyed(where_keys: str, test: str) -> str:
 
 
 def _member_key(bind: str) -> str:
-    return _insert(f"?x {KEY} ?key", f"GRAPH {A} {{ ?group a <{OWL}AllDifferent> }} ?group {LIST} ?x . "
-                   f"BIND({bind} AS ?key)")
+    """The keys of the members of each AllDifferent's member list ``?group`` (the group is the list)."""
+    return _insert(f"?x {KEY} ?key", f"GRAPH {A} {{ ?node a <{OWL}AllDifferent> }} ?node {MEMBERS} ?group . "
+                   f"?group {LIST} ?x . BIND({bind} AS ?key)")
 
 
 #: the twin's evaluations as the rules ran them before :mod:`topostore.reason.negation`, each reading

@@ -69,9 +69,9 @@ JOINS = {
 MAKING = {
     "list walk": _WALK,
     "walk + rdf:first": f"{_WALK} {_MEMBER}",
-    "key, two MD5s": f"{_WALK} {_MEMBER} {_key('MD5(STR(?group))', 'MD5(STR(?x))')}",
-    "key, group MD5": f"{_WALK} {_MEMBER} {_key('MD5(STR(?group))', 'STR(?x)')}",
-    "key, no MD5": f"{_WALK} {_MEMBER} {_key('STR(?group)', 'STR(?x)')}",
+    "key, two MD5s": f"{_WALK} {_MEMBER} {_key('MD5(STR(?list))', 'MD5(STR(?x))')}",
+    "key, group MD5": f"{_WALK} {_MEMBER} {_key('MD5(STR(?list))', 'STR(?x)')}",
+    "key, no MD5": f"{_WALK} {_MEMBER} {_key('STR(?list)', 'STR(?x)')}",
 }
 
 

@@ -63,6 +63,8 @@ CASES: dict[str, str] = {
 [] a owl:AllDifferent ; owl:distinctMembers ( :h1 :h2 ) . [] a owl:AllDifferent ; owl:distinctMembers ( :h2 :h3 ) .
 [] a owl:AllDifferent ; owl:distinctMembers ( :h1 :h3 ) .
 :e a owl:NamedIndividual ; :p :k1, :k2 . :k1 a :F . :k2 a :F .
+:d a owl:NamedIndividual ; :p :m1, :m2 . :m1 a :F . :m2 a :F . :m3 a owl:NamedIndividual . :m4 a owl:NamedIndividual .
+[] a owl:AllDifferent ; owl:members ( :m1 :m3 ) ; owl:distinctMembers ( :m2 :m4 ) .
 """,
     "maximum_merges": """
 :p a owl:ObjectProperty . :q a owl:ObjectProperty .

@@ -12,6 +12,7 @@
 
 from __future__ import annotations
 
+import hashlib
 import random
 import shutil
 import signal
@@ -30,8 +31,9 @@ from swrl_support import PREFIXES, builtin, data, rule
 
 from topostore import Ontology, RuleCompileError
 from topostore.armor import ArmorService
+from topostore.ontology import state
 from topostore.rdf import safeio
-from topostore.rdf.vocab import ASSERTED, AUX, DIFFERENT_KEY_OF, INFERRED, LEGACY_DIFFERENT_KEY
+from topostore.rdf.vocab import ASSERTED, AUX, DIFFERENT_KEY_OF, INFERRED, KEY_PREFIX, LEGACY_DIFFERENT_KEY, OWL, TYPE
 from topostore.stores import open_store
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -246,6 +248,26 @@ def test_keys_of_an_earlier_format_are_rebuilt_on_reopening(tmp_path: Path) -> N
     assert Triple(r1, NamedNode(IRI + "#connectedTo"), r2) in set(again.store.triples(graph=INFERRED))
     reopened = Ontology(store=tmp_path / "db2")
     assert reopened.opened == "new"
+
+
+def test_keys_grouped_by_node_are_rebuilt_on_reopening(tmp_path: Path) -> None:
+    """A store whose last REASON wrote the AllDifferent keys grouped by the AllDifferent node (earlier
+    versions: members of one node's two lists then shared a group) is rebuilt when opened, its keys
+    grouped by list again."""
+    onto = Ontology.from_file(TBOX, ROOT / "ontology" / "topological_map_abox.ttl", store=tmp_path / "db")
+    onto.reason()
+    keys = sorted(map(str, onto.store.triples(None, DIFFERENT_KEY_OF, None, AUX)))
+    assert keys
+    node = next(iter(onto.store.subjects(TYPE, NamedNode(str(OWL) + "AllDifferent"), ASSERTED)))
+    by_node = NamedNode(KEY_PREFIX + hashlib.md5(node.value.encode()).hexdigest() + ":x")
+    onto.store.add([Triple(by_node, DIFFERENT_KEY_OF, node)], AUX)
+    onto.store.meta_set(state.KEY_FORMAT, None)
+    onto.store.close()
+    again = Ontology(store=tmp_path / "db")
+    assert again.opened == "rebuilt"
+    assert sorted(map(str, again.store.triples(None, DIFFERENT_KEY_OF, None, AUX))) == keys
+    again.store.close()
+    assert Ontology(store=tmp_path / "db").opened == "reopened"
 
 
 def test_save_interrupted_keeps_the_old_file(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:

@@ -41,14 +41,16 @@ C1 rdf:type CORRIDOR  ← cls-int1: class expression (LOCATION and (hasDoor min 
     C1 hasDoor D6  [asserted]
     D6 rdf:type DOOR  ← prp-rng: hasDoor range DOOR
       R5 hasDoor D6  [asserted]
-    D1 in AllDifferent(C1, C2, R1, R2, R3, R4, … 15 members)  ← all-different: OWL 2 RL eq-diff2/eq-diff3 support: each member of an owl:AllDifferent gets a key naming the group and the member (one triple per member, never n² pairs)
-      where BIND(IRI(CONCAT("urn:topostore:key:", MD5(STR(?group)), ":", MD5(STR(?x)))) AS ?key)  with ?group = AllDifferent(C1, C2, R1, R2, R3, R4, … 15 members), ?key = key of D1 in AllDifferent(C1, C2, R1, R2, R3, R4, … 15 members), ?x = D1
+    D1 in AllDifferent(C1, C2, R1, R2, R3, R4, … 15 members)  ← all-different: OWL 2 RL eq-diff2/eq-diff3 support: each member of an owl:AllDifferent's member list gets a key naming the list (its group) and the member (one triple per member, never n² pairs)
+      where BIND(IRI(CONCAT("urn:topostore:key:", MD5(STR(?list)), ":", MD5(STR(?x)))) AS ?key)  with ?group = AllDifferent(C1, C2, R1, R2, R3, R4, … 15 members), ?key = key of D1 in AllDifferent(C1, C2, R1, R2, R3, R4, … 15 members), ?list = _:mapgen-l, ?x = D1
       AllDifferent(C1, C2, R1, R2, R3, R4, … 15 members) rdf:type owl:AllDifferent  [asserted]
-      D1 listed in AllDifferent(C1, C2, R1, R2, R3, R4, … 15 members)  [asserted]
-    D6 in AllDifferent(C1, C2, R1, R2, R3, R4, … 15 members)  ← all-different: OWL 2 RL eq-diff2/eq-diff3 support: each member of an owl:AllDifferent gets a key naming the group and the member (one triple per member, never n² pairs)
-      where BIND(IRI(CONCAT("urn:topostore:key:", MD5(STR(?group)), ":", MD5(STR(?x)))) AS ?key)  with ?group = AllDifferent(C1, C2, R1, R2, R3, R4, … 15 members), ?key = key of D6 in AllDifferent(C1, C2, R1, R2, R3, R4, … 15 members), ?x = D6
+      AllDifferent(C1, C2, R1, R2, R3, R4, … 15 members) has the member list _:mapgen-l  [asserted]
+      D1 listed in _:mapgen-l  [asserted]
+    D6 in AllDifferent(C1, C2, R1, R2, R3, R4, … 15 members)  ← all-different: OWL 2 RL eq-diff2/eq-diff3 support: each member of an owl:AllDifferent's member list gets a key naming the list (its group) and the member (one triple per member, never n² pairs)
+      where BIND(IRI(CONCAT("urn:topostore:key:", MD5(STR(?list)), ":", MD5(STR(?x)))) AS ?key)  with ?group = AllDifferent(C1, C2, R1, R2, R3, R4, … 15 members), ?key = key of D6 in AllDifferent(C1, C2, R1, R2, R3, R4, … 15 members), ?list = _:mapgen-l, ?x = D6
       AllDifferent(C1, C2, R1, R2, R3, R4, … 15 members) rdf:type owl:AllDifferent  [asserted]
-      D6 listed in AllDifferent(C1, C2, R1, R2, R3, R4, … 15 members)  [asserted]"""
+      AllDifferent(C1, C2, R1, R2, R3, R4, … 15 members) has the member list _:mapgen-l  [asserted]
+      D6 listed in _:mapgen-l  [asserted]"""
 
 
 @pytest.fixture(scope="module")

@@ -14,13 +14,18 @@ import logging
 from typing import TYPE_CHECKING
 
 from ..errors import TopostoreError
-from ..rdf.vocab import ASSERTED, AUX, LEGACY_DIFFERENT_KEY
+from ..rdf.vocab import ASSERTED, AUX, DIFFERENT_KEY_OF, LEGACY_DIFFERENT_KEY
 
 if TYPE_CHECKING:  # pragma: no cover
     from ..stores.base import Store
     from .facade import Ontology
 
 logger = logging.getLogger("topostore.store")
+
+#: the persisted key saying how the helper graph's AllDifferent keys name their group, and its value
+#: now: the member list (``urn:topostore:key:<md5(list)>:<md5(member)>``); earlier versions named the
+#: AllDifferent node, which made members of a node's two lists different
+KEY_FORMAT, BY_LIST = "different-keys", "by-list"
 
 
 def note_changed(store: Store) -> None:
@@ -42,6 +47,7 @@ def end_reason(store: Store, consistent: bool) -> None:
             store.meta_set("inferred", "valid")
             store.meta_set("dirty", False)
             store.meta_set("consistent", consistent)
+            store.meta_set(KEY_FORMAT, BY_LIST)
 
 
 def reopen(onto: Ontology) -> str:
@@ -82,10 +88,15 @@ def reopen(onto: Ontology) -> str:
 
 
 def _legacy_keys(store: Store) -> bool:
-    """Whether the helper graph holds AllDifferent keys written member first (``m ts:differentKey k``):
-    the rules now read them key first, so an incremental REASON over such a store would miss the
-    differences of the old members; a full REASON clears the helper graph and writes them anew."""
-    return next(iter(store.triples(None, LEGACY_DIFFERENT_KEY, None, AUX)), None) is not None
+    """Whether the helper graph holds AllDifferent keys of an earlier format: written member first
+    (``m ts:differentKey k``; the rules now read them key first), or grouped by the AllDifferent node
+    (a store whose last REASON did not record :data:`BY_LIST`). An incremental REASON over such a store
+    would miss the differences of the old members or find wrong ones; a full REASON clears the helper
+    graph and writes them anew."""
+    if next(iter(store.triples(None, LEGACY_DIFFERENT_KEY, None, AUX)), None) is not None:
+        return True
+    return (store.meta.get(KEY_FORMAT) != BY_LIST
+            and next(iter(store.triples(None, DIFFERENT_KEY_OF, None, AUX)), None) is not None)
 
 
 __all__ = ["note_changed", "begin_reason", "end_reason", "reopen"]

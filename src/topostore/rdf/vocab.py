@@ -49,8 +49,9 @@ NEW_AUX = NamedNode(INTERNAL + "graph:new-aux")
 SCHEMA_PREFIX = INTERNAL + "graph:schema:"
 
 #: aux predicate indexing owl:AllDifferent axioms in linear size (never n²
-#: pairs): member ``m`` of group ``g`` gets ``k ts:differentKeyOf m`` with
-#: ``k = urn:topostore:key:<md5(g)>:<md5(m)>``; two individuals holding
+#: pairs): member ``m`` of member list ``g`` of an AllDifferent node gets ``k ts:differentKeyOf m`` with
+#: ``k = urn:topostore:key:<md5(g)>:<md5(m)>`` (the group is the list: a node with two lists is two
+#: groups, as OWL 2 RL's eq-diff2/eq-diff3 read them); two individuals holding
 #: different keys with the same group part are declared different.  The key is the
 #: subject and the individual the object: a join looks the key up from the individual,
 #: and the store walks a term's quads to do so, which an individual has far fewer of as an

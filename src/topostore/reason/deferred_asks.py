@@ -41,12 +41,13 @@ def ask_unknown(run: Materializer, stats: ReasonStats, active: list[int]) -> Non
             continue  # asked early, beside the later components' writes: no match (:mod:`.early_reads`)
         if key is None:
             text = insert_text(run.rules[i], None, run.planned, run._lateral, run._direct,
-                               only_asserted(run.rules[i], run._derived, run._asserted, asking))
+                               only_asserted(run.rules[i], run._derived, run._asserted, asking), bare=run.bare(i))
             if run.rules[i].unless_known is not None:
                 text = unless_known_text(text, run.rules[i])
         elif next(iter(run.store.triples(*key_pattern(key), ASSERTED)), None) is not None:
             # its asks on derived facts of the key are idle: the asserted ones alone
-            text = insert_text(run.rules[i], None, run.planned, run._lateral, run._direct, {key: ASSERTED})
+            text = insert_text(run.rules[i], None, run.planned, run._lateral, run._direct, {key: ASSERTED},
+                               bare=run.bare(i))
         else:
             continue
         stats.evaluations += 1

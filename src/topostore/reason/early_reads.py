@@ -234,7 +234,8 @@ class EarlyReads:
 
     def _text(self, i: int, graphs: Mapping[ReadKey, NamedNode]) -> str:
         run = self.run
-        text = insert_text(run.rules[i], None, run.planned, run._lateral, run._direct, graphs)
+        # bare: an ask matching more than the deferred insert only sends that insert (see the module)
+        text = insert_text(run.rules[i], None, run.planned, run._lateral, run._direct, graphs, bare=run.bare(i))
         return unless_known_text(text, run.rules[i])
 
 

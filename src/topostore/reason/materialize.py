@@ -46,6 +46,7 @@ from .insert_text import distinct_pays, insert_text
 from .negation import Idle, evaluated_last
 from .one_group import keys_kept_by_group, one_group, without_group_tests
 from .order import (
+    TYPE_KEY,
     asserted_paths,
     evaluation_order,
     is_path,
@@ -54,7 +55,7 @@ from .order import (
 )
 from .plan import KeyCounts, is_small
 from .stats import ReasonStats
-from .triggers import Present, Triggers
+from .triggers import Present, Triggers, may_hold
 
 #: the other delta graph of a full run: each round reads one and fills the other
 DELTA_NEXT = NamedNode(INTERNAL + "graph:delta-next")
@@ -90,6 +91,8 @@ class Materializer:
         #: the needed keys with asserted facts at the start of :meth:`run`, and the rules of its ordered
         #: pass whose first evaluation reads those alone (:func:`.implied_passes.implied_first_passes`)
         self._asserted: Present = (set(), set())
+        #: while :meth:`run` runs: whether the asserted graph holds a fact of a head's key, by key
+        self._asserted_heads: dict[ReadKey, bool] = {}
         self._implied: set[int] = set()
         #: keys put in :attr:`present` by a first pass before the evaluation writing them ran
         self._claimed: set[ReadKey] = set()
@@ -127,13 +130,14 @@ class Materializer:
         if index in self._deferring:
             return
         derived = self._direct is not None and self.rules[index].writes() in self._derived
+        bare = self.bare(index)
         lean = first and index in self._lean
         few = self._direct is not None and delta_index is None and not union and few_solutions(
             self.store, self._lean[index] if lean else self.rules[index], self._queued)
         one = (self._direct is not None and delta_index is None and index in self._grouped
                and one_group(self.store, self._queued))
         key = (index, delta_index, self._lateral, self._direct, self._graphs is not None, derived, asserted_only,
-               lean, union, few, one)
+               lean, union, few, one, bare)
         text = self._texts.get(key)
         if text is None:
             graphs = self._graphs
@@ -143,7 +147,8 @@ class Materializer:
                 graphs = {**graphs, **{a.read_key(): ASSERTED for a in self.rules[index].body if is_path(a)}}
             rule = self._lean[index] if lean else self.rules[index]
             text = self._texts[key] = insert_text(rule, delta_index, self.planned, self._lateral,
-                                                  self._direct, graphs, derived, [self.rules[j] for j in union], few, one)
+                                                  self._direct, graphs, derived, [self.rules[j] for j in union], few, one,
+                                                  bare)
         stats.evaluations += 1
         self._queued.add(self.rules[index].writes())
         if self._early is not None:
@@ -298,6 +303,25 @@ class Materializer:
         self.store.update(text, prefixes=PREFIXES)
         stats.per_rule[name] = stats.per_rule.get(name, 0.0) + time.perf_counter() - start
 
+    def bare(self, index: int) -> bool:
+        """Whether an evaluation of rule ``index`` in a full run finds no fact of its head's key in any
+        graph: none derived so far nor queued, none asserted (:func:`.insert_text.insert_text`'s ``bare``).
+        A remote store keeps its anti-joins: a look-up there is a request of its own."""
+        key = self.rules[index].writes()
+        if self._direct is None or self.store.round_trips or key is None or key[0] == "*" or key == ("p", TYPE_KEY):
+            return False  # not a full run, a remote store, or a head of any predicate or class
+        return (not may_hold(self._derived, key) and None not in self._queued and not may_hold(self._queued, key)
+                and not self._head_asserted(key))
+
+    def _head_asserted(self, key: ReadKey) -> bool:
+        """Whether the asserted graph holds a fact of head key ``key``, a predicate or a class (one look-up
+        per key and run)."""
+        found = self._asserted_heads.get(key)
+        if found is None:
+            found = self._asserted_heads[key] = next(
+                iter(self.store.triples(*key_pattern(key), ASSERTED)), None) is not None
+        return found
+
     def _has_asserted(self, key: ReadKey) -> bool:
         """Whether read key ``key`` had an asserted fact when :meth:`run` started."""
         return key[1] in self._asserted[1 if key[0] == "t" else 0]
@@ -307,6 +331,7 @@ class Materializer:
         # keys with facts so far; each round's delta adds its keys (_delta_round), so a rule
         # skipped here for an empty key runs as soon as that key gets a fact, with it as the delta
         self.present = self._asserted_keys()
+        self._asserted_heads = {}
         strata = sorted({r.stratum for r in self.rules}) or [0]
         first = [i for i, r in enumerate(self.rules) if r.stratum == strata[0]]
         # rules that cannot fire in the first stratum stay out of its order: left in, one such rule

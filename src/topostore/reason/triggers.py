@@ -132,8 +132,14 @@ def may_write(written: ReadKey, key: ReadKey) -> bool:
     return written == _ANY_CLASS and key[0] == "t"
 
 
+def may_hold(written: Collection[ReadKey | None], key: ReadKey) -> bool:
+    """Whether evaluations writing the keys ``written`` may have written a fact of ``key``, a predicate or
+    a class: :func:`may_write` against each, by set look-ups (the keys standing for many are few)."""
+    return key in written or ("*",) in written or (key[0] == "t" and _ANY_CLASS in written)
+
+
 def key_sets(keys: Collection[tuple[str, str]]) -> tuple[set[str], set[str]]:
     """(predicates, classes) of read keys ``("p", iri)`` / ``("t", class)``."""
     return {k for kind, k in keys if kind == "p"}, {k for kind, k in keys if kind == "t"}
 
-__all__ = ["key_sets", "Evaluation", "Present", "Triggers", "matches", "may_write"]
+__all__ = ["key_sets", "Evaluation", "Present", "Triggers", "matches", "may_hold", "may_write"]

@@ -96,7 +96,7 @@ class Explainer:
         self._proved: dict[Triple, Explanation] = {}
         self._failed: dict[Triple, int] = {}
         self._reader: TBoxReader | None = None
-        self._groups: dict[str, Term] | None = None
+        self._groups: dict[str, tuple[Term, Term]] | None = None
         self._texts: dict[Term, str] = {}  # readable forms of AllDifferent groups and keys
 
     # ------------------------------------------------------------ facts
@@ -146,12 +146,15 @@ class Explainer:
         return None, pruned
 
     def _path_premise(self, atom: Atom, binding: dict) -> Explanation:
-        """A property-path premise (list membership of an AllDifferent), checked by the rule's query."""
+        """A property-path premise (an AllDifferent's member list, a member of that list), checked by the
+        rule's query."""
         s = binding.get(atom.s)
         o = binding.get(atom.o)
         s_text = self.render_term(s) if s is not None else atom.s
         o_text = self.render_term(o) if o is not None else atom.o
         if "distinctMembers" in atom.p:
+            return Explanation(f"{s_text} has the member list {o_text}", "asserted")
+        if "rdf:first" in atom.p:
             return Explanation(f"{o_text} listed in {s_text}", "asserted")
         return Explanation(f"{s_text} {self._readable_filters(atom.p)} {o_text}", "condition")
 
@@ -262,7 +265,7 @@ class Explainer:
         return "AllDifferent(" + ", ".join(shown) + ")"
 
     def render_key(self, key: Term) -> str:
-        """``urn:topostore:key:<md5(group)>:<md5(member)>`` → the member and the AllDifferent group it names."""
+        """``urn:topostore:key:<md5(list)>:<md5(member)>`` → the member and the AllDifferent group it names."""
         if key not in self._texts:
             self._texts[key] = self._render_key_uncached(key)
         return self._texts[key]
@@ -271,17 +274,18 @@ class Explainer:
         if self._groups is None:
             self._groups = {}
             for g in self.store.subjects(TYPE, owl("AllDifferent"), ASSERTED):
-                self._groups[hashlib.md5(g.value.encode()).hexdigest()] = g
+                for p in (owl("distinctMembers"), owl("members")):
+                    for head in self.store.objects(g, p, ASSERTED):
+                        self._groups[hashlib.md5(head.value.encode()).hexdigest()] = (g, head)
         digest = key.value.split(":")[3] if isinstance(key, NamedNode) and key.value.count(":") >= 4 else ""
-        group = self._groups.get(digest)
-        if group is None:
+        found = self._groups.get(digest)
+        if found is None:
             return "an AllDifferent key"
+        group, head = found
         member = key.value.split(":")[4]
-        for p in (owl("distinctMembers"), owl("members")):
-            for head in self.store.objects(group, p, ASSERTED):
-                for m in self.store.list_items(head, ASSERTED):
-                    if hashlib.md5(m.value.encode()).hexdigest() == member:
-                        return f"key of {self.render_term(m)} in {self._group_text(group)}"
+        for m in self.store.list_items(head, ASSERTED):
+            if hashlib.md5(m.value.encode()).hexdigest() == member:
+                return f"key of {self.render_term(m)} in {self._group_text(group)}"
         return f"a key in {self._group_text(group)}"
 
 
