@@ -4,6 +4,7 @@ document wrote, and say which spelling stays wherever a written spelling of a va
 from __future__ import annotations
 
 import json
+import re
 from pathlib import Path
 
 import pytest
@@ -87,3 +88,88 @@ def test_a_post_of_a_value_held_in_another_spelling_says_which_stays(held: str, 
     assert body["warnings"][0].startswith(f'<{NS}x> <{NS}s> "1"^^<{XSD}{held}> stays as written: '
                                           f'<{NS}x> <{NS}s> {written} is the same value'), body
     assert f'"1"^^<{XSD}{held}>'.encode() in saved(server) and written.encode() not in saved(server)
+
+
+#: one value of a blank node written in two spellings: the note names the node
+BLANK = f':x :o [ :s "1"^^<{XSD}int> , "01"^^<{XSD}int> ] .'
+
+
+@pytest.mark.parametrize("methods", [["PUT"], ["PUT", "PUT"], ["PUT", "POST"]], ids=["create", "put", "post"])
+def test_a_note_names_a_blank_node_as_the_graph_holds_it(methods: list[str], server: InProcess) -> None:
+    """The note of a spelling not taken names a blank node as GET writes the stored graph (``_:id``), on the
+    PUT that creates the reference, a PUT and a POST: the node the graph holds, not the name of a parse."""
+    if len(methods) > 1:
+        send(server, "PUT", ':w :s "9" .')
+    _, body = send(server, methods[-1], BLANK)
+    stored = re.findall(r"_:\w+", saved(server).decode())
+    assert len(set(stored)) == 1, saved(server)
+    node = stored[0]
+    assert body["warnings"] == [f'{node} <{NS}s> "1"^^<{XSD}int> stays as written: {node} <{NS}s> "01"^^<{XSD}int> '
+                                "is the same value, written again in the document"], body
+
+
+#: why a language tag's spelling is not taken, as the notes say it
+TAG_KEPT = "is the same value, its language tag spelled otherwise (a tag keeps the spelling it was first written with)"
+
+
+def tag_note(subject: str, kept: str, other: str, value: str = "a") -> str:
+    return (f'<{NS}{subject}> <{NS}s> "{value}"@{kept} stays as written: '
+            f'<{NS}{subject}> <{NS}s> "{value}"@{other} {TAG_KEPT}')
+
+
+def test_a_post_of_a_held_value_with_its_tag_spelled_otherwise_says_which_stays(server: InProcess) -> None:
+    """pyoxigraph lowers tags, so ``"chat"@EN-gb`` over a held ``"chat"@en-GB`` is the triple held: nothing
+    is added, and the reply says the tag keeps its spelling (GET shows it)."""
+    send(server, "PUT", ':x :s "chat"@en-GB .')
+    _, body = send(server, "POST", ':x :s "chat"@EN-gb .')
+    assert body["added"] == 0 and body["warnings"] == [tag_note("x", "en-GB", "EN-gb", "chat")], body
+    assert b'"chat"@en-GB' in saved(server) and b"EN-gb" not in saved(server)
+    _, body = send(server, "POST", ':x :s "chat"@en-GB .')
+    assert body["added"] == 0 and body["warnings"] == [], body  # the spelling kept: nothing to say
+
+
+@pytest.mark.parametrize("methods", [["PUT"], ["PUT", "PUT"], ["PUT", "POST"]], ids=["create", "put", "post"])
+def test_one_value_written_with_two_tag_spellings_keeps_the_first(methods: list[str], server: InProcess) -> None:
+    """``"a"@FR , "a"@fr`` is one triple: the first spelling stays, and the other is said, on each write."""
+    if len(methods) > 1:
+        send(server, "PUT", ':w :s "9" .')
+    _, body = send(server, methods[-1], ':y :s "a"@FR , "a"@fr .')
+    assert body["added"] == (3 if len(methods) == 1 else 1), body
+    assert body["warnings"] == [tag_note("y", "FR", "fr")], body
+    assert b'"a"@FR' in saved(server) and b'"a"@fr' not in saved(server)
+
+
+def test_a_tag_spelling_not_taken_is_said_in_rdf_xml(server: InProcess) -> None:
+    """An RDF/XML upload's ``xml:lang`` spellings are read too (the parser lowers them as Turtle's)."""
+    send(server, "PUT", ':y :s "a"@FR .')
+    doc = (f'<rdf:RDF xmlns:rdf="http://www.w3.org/1999/02/22-rdf-syntax-ns#" xmlns:c="{NS}">'
+           f'<rdf:Description rdf:about="{NS}y"><c:s xml:lang="Fr">a</c:s></rdf:Description></rdf:RDF>')
+    status, _, reply = server.request("/references/counts/data?default", doc.encode(),
+                                      {"Content-Type": "application/rdf+xml"}, "POST")
+    body = json.loads(reply)
+    assert status == 200 and body["added"] == 0 and body["warnings"] == [tag_note("y", "FR", "Fr")], body
+
+
+def test_a_tag_spelling_not_taken_is_said_in_json_ld(server: InProcess) -> None:
+    """A JSON-LD upload's ``@language`` spellings are read too."""
+    send(server, "PUT", ':y :s "a"@FR .')
+    doc = json.dumps({"@id": f"{NS}y", f"{NS}s": {"@value": "a", "@language": "fR"}})
+    status, _, reply = server.request("/references/counts/data?default", doc.encode(),
+                                      {"Content-Type": "application/ld+json"}, "POST")
+    body = json.loads(reply)
+    assert status == 200 and body["added"] == 0 and body["warnings"] == [tag_note("y", "FR", "fR")], body
+
+
+def test_text_that_looks_like_a_tag_is_no_spelling(server: InProcess) -> None:
+    """A string or a comment holding ``"a"@fr`` writes no tag: only real literals are said."""
+    send(server, "PUT", ':y :s "a"@FR .')
+    _, body = send(server, "POST", ':y :s "a\\"@fr" . # :y :s "a"@fr\n:y :s "b" .')
+    assert body["added"] == 2 and body["warnings"] == [], body
+
+
+def test_a_created_reference_names_a_blank_node_whose_tag_is_spelled_twice(server: InProcess) -> None:
+    """A document whose blank node holds one tagged value in two spellings: the 201's note names the node
+    the graph holds, with the spelling that stays."""
+    _, body = send(server, "PUT", ':x :o [ :s "a"@FR , "a"@fr ] .')
+    node = re.findall(r"_:\w+", saved(server).decode())[0]
+    assert body["warnings"] == [f'{node} <{NS}s> "a"@FR stays as written: {node} <{NS}s> "a"@fr {TAG_KEPT}'], body

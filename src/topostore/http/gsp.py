@@ -33,12 +33,12 @@ from starlette.routing import Route
 from ..armor.codes import CommandError
 from ..armor.reference import Change, Delta, Reference
 from ..errors import TopostoreError
-from ..ontology.changes import spelling_kept
+from ..ontology.changes import shown, spelling_kept
 from ..ontology.facade import Ontology
 from ..rdf.terms import value_key
-from ..rdf.vocab import ASSERTED, ENTAILED, INFERRED, OWL, RDF, RDFS, TYPE, XSD
+from ..rdf.vocab import ASSERTED, ENTAILED, INFERRED, OWL, RDF, RDFS, TYPE, XSD, is_skolem
 from ..sparql.results import GRAPH_FORMATS, NotAcceptable, choose_format, render_graph
-from ..stores.language_tags import literal_tags
+from ..stores.language_tags import LanguageTags, literal_tags
 from .security import error
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -98,8 +98,12 @@ def parse_upload(request: Request, body: bytes, base_iri: str | None) -> list[Tr
     if media not in UPLOAD_FORMATS or UPLOAD_FORMATS[media] is None:
         raise GraphStoreError(415, f"send the graph as one of {', '.join(m for m, f in UPLOAD_FORMATS.items() if f)}, "
                               f"not {media or 'no content type'!r} (OWL files from Protégé: application/rdf+xml)")
+    return _parsed(body, UPLOAD_FORMATS[media], base_iri)
+
+
+def _parsed(body: bytes, fmt: RdfFormat | None, base_iri: str | None) -> list[Triple]:
     try:
-        return Ontology().store.parse_bytes(body, UPLOAD_FORMATS[media], base_iri, source="the request body")
+        return Ontology().store.parse_bytes(body, fmt, base_iri, source="the request body")
     except TopostoreError as exc:
         raise GraphStoreError(400, f"the graph was not stored: {exc}") from None
 
@@ -171,7 +175,7 @@ class GraphStore:
             triples = await run_in_threadpool(parse_upload, request, body, ref.iri or None)
             written = (body, UPLOAD_FORMATS[request.headers.get("content-type", "").split(";")[0].strip().lower()])
         plan = _plan(request.method, triples)
-        outcome = await run_in_threadpool(_apply, ref, plan, request.method, written)
+        outcome = await run_in_threadpool(_apply, ref, plan, request.method, triples, written)
         return JSONResponse(outcome)
 
     async def create(self, request: Request, name: str) -> Response:
@@ -185,8 +189,9 @@ class GraphStore:
             raise GraphStoreError(400, "cannot tell the ontology IRI: the document declares no single owl:Ontology; "
                                   "add ?iri=http://... (names are resolved against IRI#)")
         media = request.headers.get("content-type", "").split(";")[0].strip().lower()
-        ref = await run_in_threadpool(_new_reference, self.api, name, iri, body, UPLOAD_FORMATS[media])
-        counts = await run_in_threadpool(_created, ref, triples)
+        upload = _Upload(triples, (body, UPLOAD_FORMATS[media]), read_against=request.query_params.get("iri"))
+        ref = await run_in_threadpool(_new_reference, self.api, name, iri, upload)
+        counts = await run_in_threadpool(_created, ref, upload)
         return JSONResponse(counts, status_code=201, headers={"Location": f"/references/{name}/data?default"})
 
 
@@ -194,6 +199,8 @@ class GraphStore:
 _HELD = "already in the graph (to change only its spelling, remove it first and add it then)"
 #: why a document's second spelling of one value is not taken
 _AGAIN = "written again in the document"
+#: why a language tag's spelling is not taken
+_TAG_KEPT = "its language tag spelled otherwise (a tag keeps the spelling it was first written with)"
 
 
 def _plan(method: str, uploaded: list[Triple]) -> Callable[[Ontology], Delta]:
@@ -263,15 +270,31 @@ def _again_notes(again: list[tuple[Triple, Triple]], stays: Callable[[Triple], T
     return [spelling_kept(kept, later, _AGAIN) for kept, later in pairs if kept != later]
 
 
+def _tag_notes(ref: Reference, uploaded: list[Triple], written: tuple[bytes, RdfFormat | None]) -> list[str]:
+    """A note for each spelling of an uploaded literal's language tag that the graph does not show: the
+    parser lowers tags, so two spellings of one literal meet as one triple, and the store spells each tag
+    one way, as first written (:mod:`~topostore.stores.language_tags`)."""
+    tags = ref.ontology.store.forms.tags
+    others: dict[tuple[str, str], list[str]] = {}
+    for key, tag in tags.not_taken(*written, literal_tags(uploaded)):
+        others.setdefault(key, []).append(tag)
+    notes = []
+    for t in uploaded if others else ():
+        lit = t.object
+        for tag in others.get((lit.value, lit.language), ()) if isinstance(lit, Literal) else ():
+            notes.append(spelling_kept(shown(t, tags.spelled(tag)), shown(t, tag), _TAG_KEPT))
+    return notes
+
+
 def _joined(notes: list[str]) -> str:
     return "; ".join(dict.fromkeys(notes))
 
 
-def _apply(ref: Reference, plan: Callable[[Ontology], Delta], method: str,
+def _apply(ref: Reference, plan: Callable[[Ontology], Delta], method: str, uploaded: list[Triple],
            written: tuple[bytes, RdfFormat | None] | None = None) -> dict[str, Any]:
     """One all-or-nothing manipulation of the asserted graph, reasoned as aRMOR manipulations are;
     ``written``: the uploaded document and its format, whose spellings of the added literals' language
-    tags are kept (pyoxigraph lowers them)."""
+    tags are kept (pyoxigraph lowers them), and whose ``uploaded`` triples' other spellings are said."""
     with ref.lock:
         if ref.owner is not None:
             raise GraphStoreError(403, f"reference {ref.name!r} is mounted by client {ref.owner!r}; only that client "
@@ -282,13 +305,43 @@ def _apply(ref: Reference, plan: Callable[[Ontology], Delta], method: str,
         except TopostoreError as exc:
             raise GraphStoreError(400, f"the graph was not stored: {exc}") from None
         added = [t for a in done for t in a.added]
+        notes = []
         if written is not None:
             ref.ontology.values.learned(*written, only=literal_tags(added))
+            notes = _tag_notes(ref, uploaded, written)
         return {"added": len(added), "removed": sum(len(a.removed) for a in done), "is_consistent": ref.is_consistent,
-                "warnings": [a.warning for a in done if a.warning]}
+                "warnings": [*(a.warning for a in done if a.warning), *filter(None, [_joined(notes)])]}
 
 
-def _created(ref: Reference, uploaded: list[Triple]) -> dict[str, Any]:
+class _Upload:
+    """The document a PUT creates a reference from: its bytes and format, and its triples as parsed, with
+    the base IRI they were read against (``read_against``)."""
+
+    def __init__(self, triples: list[Triple], written: tuple[bytes, RdfFormat | None],
+                 read_against: str | None) -> None:
+        self.triples, self.written, self.read_against = triples, written, read_against
+        self.again = _one_spelling(triples)[1]
+
+    def names_a_blank_node(self) -> bool:
+        """Whether a note of the reply may name a blank node: one of its values written in two spellings, or
+        its tag spelled otherwise (the new store spells each tag as first written in the document)."""
+        if any(is_skolem(first.subject) for first, _ in self.again):
+            return True
+        tags = LanguageTags()
+        tags.learn(*self.written)
+        blank = literal_tags(t for t in self.triples if is_skolem(t.subject))
+        return bool(tags.not_taken(*self.written, blank))
+
+    def read_as_stored(self, iri: str) -> list[Triple]:
+        """The triples the reference is made of when the notes must name its blank nodes: the document read
+        against ``iri`` as a load reads it, once, so that the notes and the graph name one node alike."""
+        if self.read_against != iri:
+            self.triples, self.read_against = _parsed(self.written[0], self.written[1], iri), iri
+            self.again = _one_spelling(self.triples)[1]
+        return self.triples
+
+
+def _created(ref: Reference, upload: _Upload) -> dict[str, Any]:
     """The reply to a PUT that made ``ref``: the triples its graph holds (a document may write one fact
     twice, or one value in two spellings), what its load says (as a LOAD's reply) and each spelling
     written but not taken, with the one the graph keeps."""
@@ -300,15 +353,22 @@ def _created(ref: Reference, uploaded: list[Triple]) -> dict[str, Any]:
             lit = store.original_literal(ASSERTED, first.subject, first.predicate, first.object)
             return Triple(first.subject, first.predicate, lit)
 
-        notes = _again_notes(_one_spelling(uploaded)[1], stays)
+        notes = [*_again_notes(upload.again, stays), *_tag_notes(ref, upload.triples, upload.written)]
         return {"reference": ref.name, "iri": ref.iri, "added": store.count(ASSERTED), "removed": 0,
                 "is_consistent": ref.is_consistent, "warnings": [*onto.notice_lines(), *filter(None, [_joined(notes)])]}
 
 
-def _new_reference(api: Api, name: str, iri: str, body: bytes, fmt: RdfFormat | None) -> Reference:
+def _new_reference(api: Api, name: str, iri: str, upload: _Upload) -> Reference:
+    """The reference a PUT creates from ``upload``: loaded from its parsed triples when the reply's notes
+    name a blank node (a second parse, as the faster streamed load makes, names blank nodes anew)."""
+    body, fmt = upload.written
     onto = Ontology(prefix=iri + "#")
-    try:
-        onto.load_data(body, fmt, base_iri=iri)  # compiles the rules first: all or nothing
+    try:  # each way compiles the rules first: all or nothing
+        if upload.names_a_blank_node():
+            assert fmt is not None  # parse_upload refused the formats it cannot read
+            onto.files.load_parsed(upload.read_as_stored(iri), body, fmt)
+        else:
+            onto.load_data(body, fmt, base_iri=iri)
         onto.reason()
     except TopostoreError as exc:
         raise GraphStoreError(400, f"the ontology was not loaded: {exc}") from None

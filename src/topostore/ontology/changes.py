@@ -16,6 +16,7 @@ from typing import TYPE_CHECKING
 
 from pyoxigraph import Literal, NamedNode, Triple
 
+from ..rdf.skolem import unskolem
 from ..rdf.terms import check_literal, value_key
 from ..rdf.vocab import ASSERTED
 from ..stores.facts import Fact
@@ -213,11 +214,14 @@ def _respelled(store: Store, added: list[Fact], removed: list[Fact]) -> tuple[li
     return [f for f in added if id(f) not in kept], [f for f in removed if id(f) not in kept], notes
 
 
-def spelling_kept(kept: Triple, other: Triple, why: str) -> str:
+def spelling_kept(kept: Triple | str, other: Triple | str, why: str) -> str:
     """The note that ``kept`` stays the asserted graph's spelling of the value ``other`` writes too, ``why``
     the other is not taken: one wording wherever a written spelling is not stored (a change here, a Graph
-    Store upload)."""
-    return f"{_show(kept)} stays as written: {_show(other)} is the same value, {why}"
+    Store upload).  Each is a triple or a triple already written by :func:`shown` (a tag spelled)."""
+    def text(t: Triple | str) -> str:
+        return shown(t) if isinstance(t, Triple) else t
+
+    return f"{text(kept)} stays as written: {text(other)} is the same value, {why}"
 
 
 def _spelled_apart(store: Store, old: Fact, new: Fact) -> bool:
@@ -229,5 +233,10 @@ def _spelled_apart(store: Store, old: Fact, new: Fact) -> bool:
     return store.written_fact(old).object != new.triple.object
 
 
-def _show(t: Triple) -> str:
-    return f"{t.subject} {t.predicate} {t.object}"
+def shown(t: Triple, tag: str | None = None) -> str:
+    """``t`` as a GET of the graph writes it: a blank node as ``_:id`` (the store names it by a skolem
+    IRI), and the object's language tag spelled ``tag`` when given (pyoxigraph lowers every tag)."""
+    obj = str(unskolem(t.object))
+    if tag is not None and isinstance(t.object, Literal) and t.object.language:
+        obj = obj[:-len(t.object.language)] + tag
+    return f"{unskolem(t.subject)} {t.predicate} {obj}"

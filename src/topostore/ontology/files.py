@@ -105,6 +105,15 @@ class OntologyFiles:
         _published(shown, "<data>")
         return added
 
+    def load_parsed(self, triples: list[Triple], data: str | bytes, fmt: RdfFormat, source: str = "<data>") -> int:
+        """Add a document already parsed into ``triples`` (``data``, its text, gives its tags' spellings); all
+        or nothing.  Its blank nodes keep the names that parse gave them, so what a caller says of the
+        triples names what is stored (a second parse would name them anew)."""
+        added, shown = self._add_document(triples)
+        self.onto.values.learned(data, fmt)
+        _published(shown, source)
+        return added
+
     def _load_bytes(self, data: str | bytes, fmt: RdfFormat, base_iri: str | None, source: str,
                     progress: Callable[[int], None] | None = None) -> tuple[int, list[Notice]]:
         """A document given as its bytes: streamed into an empty graph where that is possible, else (or

@@ -22,8 +22,10 @@ from .written_tags import (
     WHOLE_TAG,
     Added,
     added_spellings,
+    candidate_tags,
     json_ld_literals,
     json_ld_tags,
+    written_literals,
     written_tags,
     xml_literals,
 )
@@ -92,6 +94,21 @@ class LanguageTags:
         if dropped:
             self._capitals = any(tag != lowered for lowered, tag in self._spelled.items())
         return dropped
+
+    def not_taken(self, data: bytes, fmt: RdfFormat | None,
+                  literals: Collection[Added]) -> list[tuple[Added, str]]:
+        """Each of ``literals`` (lexical form, lowered tag) that ``data`` writes with its tag spelled other
+        than as the store spells it, with that spelling: what a document wrote and the store does not show
+        (one spelling per tag).  A document whose every possible tag is spelled as kept costs one search."""
+        if not literals:
+            return []
+        json_ld = fmt in (RdfFormat.JSON_LD, RdfFormat.STREAMING_JSON_LD)
+        xml = fmt == RdfFormat.RDF_XML
+        if not json_ld and all(self.spelled(tag) == tag for tag in candidate_tags(data, xml)):
+            return []
+        syntax = "json-ld" if json_ld else "xml" if xml else "text"
+        found = dict.fromkeys(((lexical, tag.lower()), tag) for lexical, tag in written_literals(data, syntax))
+        return [(key, tag) for key, tag in found if key in literals and tag != self.spelled(tag)]
 
     def known(self, tag: str) -> bool:
         """Whether ``tag`` (any case) has a spelling already: a later one does not respell it."""

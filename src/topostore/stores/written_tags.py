@@ -265,6 +265,22 @@ class _XmlLiterals(xml.sax.handler.ContentHandler):
             self.found.append(("".join(text), lang))
 
 
+def written_literals(data: bytes, syntax: str) -> list[tuple[str, str]]:
+    """A document's tagged literals (lexical form, tag as written) in the order written; ``syntax`` is
+    ``"json-ld"``, ``"xml"`` (RDF/XML) or ``"text"`` (Turtle, N-Triples, N3), read token by token."""
+    if syntax == "json-ld":
+        return json_ld_literals(data)
+    if syntax == "xml":
+        return xml_literals(data)
+    return [(_lexical(m.group(0)[:m.start(1) - m.start(0) - 1]), m.group(1).decode("ascii"))
+            for m in _TEXT_TOKEN.finditer(data) if m.group(1) is not None]
+
+
+def candidate_tags(data: bytes, xml: bool) -> set[str]:
+    """Every spelling a fast search finds where a tag may be written (a superset of the real ones)."""
+    return {m.group(1).decode("ascii") for m in _WRITTEN["xml" if xml else "text"].finditer(data)}
+
+
 def written_tags(data: bytes, xml: bool) -> list[str]:
     """The document's tags in the order written, each spelling where a literal first carries it.
 
