@@ -44,13 +44,13 @@ C1 rdf:type CORRIDOR  ← cls-int1: class expression (LOCATION and (hasDoor min 
     D1 in AllDifferent(C1, C2, R1, R2, R3, R4, … 15 members)  ← all-different: OWL 2 RL eq-diff2/eq-diff3 support: each member of an owl:AllDifferent's member list gets a key naming the list (its group) and the member (one triple per member, never n² pairs)
       where BIND(IRI(CONCAT("urn:topostore:key:", MD5(STR(?list)), ":", MD5(STR(?x)))) AS ?key)  with ?group = AllDifferent(C1, C2, R1, R2, R3, R4, … 15 members), ?key = key of D1 in AllDifferent(C1, C2, R1, R2, R3, R4, … 15 members), ?list = _:mapgen-l, ?x = D1
       AllDifferent(C1, C2, R1, R2, R3, R4, … 15 members) rdf:type owl:AllDifferent  [asserted]
-      AllDifferent(C1, C2, R1, R2, R3, R4, … 15 members) has the member list _:mapgen-l  [asserted]
-      D1 listed in _:mapgen-l  [asserted]
+      AllDifferent(C1, C2, R1, R2, R3, R4, … 15 members) has the member list (C1, C2, R1, R2, R3, R4, … 15 members)  [asserted]
+      D1 listed in (C1, C2, R1, R2, R3, R4, … 15 members)  [asserted]
     D6 in AllDifferent(C1, C2, R1, R2, R3, R4, … 15 members)  ← all-different: OWL 2 RL eq-diff2/eq-diff3 support: each member of an owl:AllDifferent's member list gets a key naming the list (its group) and the member (one triple per member, never n² pairs)
       where BIND(IRI(CONCAT("urn:topostore:key:", MD5(STR(?list)), ":", MD5(STR(?x)))) AS ?key)  with ?group = AllDifferent(C1, C2, R1, R2, R3, R4, … 15 members), ?key = key of D6 in AllDifferent(C1, C2, R1, R2, R3, R4, … 15 members), ?list = _:mapgen-l, ?x = D6
       AllDifferent(C1, C2, R1, R2, R3, R4, … 15 members) rdf:type owl:AllDifferent  [asserted]
-      AllDifferent(C1, C2, R1, R2, R3, R4, … 15 members) has the member list _:mapgen-l  [asserted]
-      D6 listed in _:mapgen-l  [asserted]"""
+      AllDifferent(C1, C2, R1, R2, R3, R4, … 15 members) has the member list (C1, C2, R1, R2, R3, R4, … 15 members)  [asserted]
+      D6 listed in (C1, C2, R1, R2, R3, R4, … 15 members)  [asserted]"""
 
 
 @pytest.fixture(scope="module")
@@ -76,6 +76,23 @@ def test_corridor_by_cardinality_on_a_generated_map() -> None:
     onto.reason()
     tree = onto.explain("C1", "rdf:type", "CORRIDOR")
     assert str(tree) == CORRIDOR_C1
+
+
+def test_a_key_names_its_own_member_list_when_a_node_has_two() -> None:
+    """One owl:AllDifferent node with two member lists is two groups: the key and the list premises show
+    the list that made the members different, not every member of the node."""
+    onto = Ontology()
+    onto.load_data("""@prefix : <urn:topostore:default#> . @prefix owl: <http://www.w3.org/2002/07/owl#> .
+        :p a owl:ObjectProperty . :D a owl:Class .
+        :C owl:equivalentClass [ a owl:Restriction ; owl:onProperty :p ; owl:minQualifiedCardinality 2 ;
+                                 owl:onClass :D ] .
+        :a a :D . :b a :D . :c a :D . :d a :D . :x :p :a, :b .
+        [] a owl:AllDifferent ; owl:members (:a :b) , (:c :d) .""", "turtle")
+    onto.reason()
+    text = str(onto.explain("x", "rdf:type", "C"))
+    assert "key of a in AllDifferent(a, b)" in text and "key of b in AllDifferent(a, b)" in text
+    assert "has the member list (a, b)" in text and "a listed in (a, b)" in text
+    assert "key of a in AllDifferent(c, d, a, b)" not in text and "key of a in AllDifferent(a, b, c, d)" not in text
 
 
 def test_asserted_and_not_entailed(example: Ontology) -> None:

@@ -97,7 +97,7 @@ class Explainer:
         self._failed: dict[Triple, int] = {}
         self._reader: TBoxReader | None = None
         self._groups: dict[str, tuple[Term, Term]] | None = None
-        self._texts: dict[Term, str] = {}  # readable forms of AllDifferent groups and keys
+        self._texts: dict[object, str] = {}  # readable forms of AllDifferent groups and keys
 
     # ------------------------------------------------------------ facts
     def holds(self, t: Triple) -> bool:
@@ -153,9 +153,10 @@ class Explainer:
         s_text = self.render_term(s) if s is not None else atom.s
         o_text = self.render_term(o) if o is not None else atom.o
         if "distinctMembers" in atom.p:
-            return Explanation(f"{s_text} has the member list {o_text}", "asserted")
+            return Explanation(f"{s_text} has the member list {self._list_text(o) if o is not None else o_text}",
+                               "asserted")
         if "rdf:first" in atom.p:
-            return Explanation(f"{o_text} listed in {s_text}", "asserted")
+            return Explanation(f"{o_text} listed in {self._list_text(s) if s is not None else s_text}", "asserted")
         return Explanation(f"{s_text} {self._readable_filters(atom.p)} {o_text}", "condition")
 
     def _node(self, t: Triple, c: Candidate, premises: list[Explanation]) -> Explanation:
@@ -259,10 +260,20 @@ class Explainer:
         for p in (owl("distinctMembers"), owl("members")):
             for head in self.store.objects(group, p, ASSERTED):
                 members += self.store.list_items(head, ASSERTED)
+        return "AllDifferent" + self._members_text(members)
+
+    def _list_text(self, head: Term) -> str:
+        """One member list by its members: a key's group is its list, so a node with two lists shows
+        only the list that made its members different."""
+        if ("list", head) not in self._texts:
+            self._texts[("list", head)] = self._members_text(self.store.list_items(head, ASSERTED))
+        return self._texts[("list", head)]
+
+    def _members_text(self, members: list) -> str:
         shown = [self.render_term(m) for m in members[:GROUP_SHOWN]]
         if len(members) > GROUP_SHOWN:
             shown.append(f"… {len(members)} members")
-        return "AllDifferent(" + ", ".join(shown) + ")"
+        return "(" + ", ".join(shown) + ")"
 
     def render_key(self, key: Term) -> str:
         """``urn:topostore:key:<md5(list)>:<md5(member)>`` → the member and the AllDifferent group it names."""
@@ -285,8 +296,8 @@ class Explainer:
         member = key.value.split(":")[4]
         for m in self.store.list_items(head, ASSERTED):
             if hashlib.md5(m.value.encode()).hexdigest() == member:
-                return f"key of {self.render_term(m)} in {self._group_text(group)}"
-        return f"a key in {self._group_text(group)}"
+                return f"key of {self.render_term(m)} in AllDifferent{self._list_text(head)}"
+        return f"a key in AllDifferent{self._list_text(head)}"
 
 
 def _variables(rule: Rule) -> list[str]:
