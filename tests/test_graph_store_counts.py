@@ -139,25 +139,21 @@ def test_one_value_written_with_two_tag_spellings_keeps_the_first(methods: list[
     assert b'"a"@FR' in saved(server) and b'"a"@fr' not in saved(server)
 
 
-def test_a_tag_spelling_not_taken_is_said_in_rdf_xml(server: InProcess) -> None:
-    """An RDF/XML upload's ``xml:lang`` spellings are read too (the parser lowers them as Turtle's)."""
-    send(server, "PUT", ':y :s "a"@FR .')
-    doc = (f'<rdf:RDF xmlns:rdf="http://www.w3.org/1999/02/22-rdf-syntax-ns#" xmlns:c="{NS}">'
-           f'<rdf:Description rdf:about="{NS}y"><c:s xml:lang="Fr">a</c:s></rdf:Description></rdf:RDF>')
-    status, _, reply = server.request("/references/counts/data?default", doc.encode(),
-                                      {"Content-Type": "application/rdf+xml"}, "POST")
-    body = json.loads(reply)
-    assert status == 200 and body["added"] == 0 and body["warnings"] == [tag_note("y", "FR", "Fr")], body
+RDF_XML_FR = (f'<rdf:RDF xmlns:rdf="http://www.w3.org/1999/02/22-rdf-syntax-ns#" xmlns:c="{NS}">'
+              f'<rdf:Description rdf:about="{NS}y"><c:s xml:lang="Fr">a</c:s></rdf:Description></rdf:RDF>')
+JSON_LD_FR = json.dumps({"@id": f"{NS}y", f"{NS}s": {"@value": "a", "@language": "fR"}})
 
 
-def test_a_tag_spelling_not_taken_is_said_in_json_ld(server: InProcess) -> None:
-    """A JSON-LD upload's ``@language`` spellings are read too."""
+@pytest.mark.parametrize(("media", "doc", "spelled"), [
+    ("application/rdf+xml", RDF_XML_FR, "Fr"), ("application/ld+json", JSON_LD_FR, "fR")], ids=["rdf-xml", "json-ld"])
+def test_a_tag_spelling_not_taken_is_said_in_other_syntaxes(server: InProcess, media: str, doc: str,
+                                                           spelled: str) -> None:
+    """RDF/XML's ``xml:lang`` and JSON-LD's ``@language`` spellings are read too (the parsers lower them as
+    Turtle's)."""
     send(server, "PUT", ':y :s "a"@FR .')
-    doc = json.dumps({"@id": f"{NS}y", f"{NS}s": {"@value": "a", "@language": "fR"}})
-    status, _, reply = server.request("/references/counts/data?default", doc.encode(),
-                                      {"Content-Type": "application/ld+json"}, "POST")
+    status, _, reply = server.request("/references/counts/data?default", doc.encode(), {"Content-Type": media}, "POST")
     body = json.loads(reply)
-    assert status == 200 and body["added"] == 0 and body["warnings"] == [tag_note("y", "FR", "fR")], body
+    assert status == 200 and body["added"] == 0 and body["warnings"] == [tag_note("y", "FR", spelled)], body
 
 
 def test_text_that_looks_like_a_tag_is_no_spelling(server: InProcess) -> None:

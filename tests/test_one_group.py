@@ -7,7 +7,7 @@ import sys
 from pathlib import Path
 
 import pytest
-from support import closure, full_run_updates, map_or_text
+from support import closure, full_run_updates, map_or_text, same_closure_without
 
 from topostore import Ontology
 from topostore.compile.counting import group_of
@@ -71,13 +71,7 @@ def test_a_second_group_keeps_the_test(source: str, monkeypatch: pytest.MonkeyPa
 @pytest.mark.parametrize("source", ["map", *CASES])
 def test_a_full_reason_reaches_the_same_closure_with_and_without_the_shortcut(
         source: str, monkeypatch: pytest.MonkeyPatch) -> None:
-    onto = loaded(source)
-    first = onto.reason(mode="full")
-    shortcut = closure(onto)
-    monkeypatch.setattr(materialize, "one_group", lambda store, queued: False)
-    again = onto.reason(mode="full")
-    assert closure(onto) == shortcut
-    assert first.consistent == again.consistent
+    same_closure_without(loaded(source), monkeypatch, materialize, "one_group", lambda store, queued: False)
 
 
 def test_only_members_of_one_group_are_different_by_keys() -> None:
