@@ -121,3 +121,17 @@ def test_a_held_value_whose_tag_a_later_document_spells_otherwise_is_the_same_va
         f"tag spelled otherwise (a tag keeps the spelling it was first written with); <{NS}y> <{NS}s> \"b\"@fr is "
         f'stored as <{NS}y> <{NS}s> "b"@FR: a new value, its language tag spelled as the store spells it (a tag '
         "keeps the spelling it was first written with)")
+
+
+@pytest.mark.parametrize(("held", "written"), [("1", "01"), ("1.0", "1")])
+def test_a_value_held_in_another_spelling_is_said_by_a_later_load(held: str, written: str) -> None:
+    """A document writing a value the graph holds in another spelling stores nothing and says which stays,
+    in the Graph Store's words; a value it writes in the spelling held is not named."""
+    onto = Ontology(prefix=NS)
+    onto.load_data(HEAD + f':x :s "{held}"^^<{XSD}decimal> .')
+    with pytest.warns(SpellingKeptWarning) as said:
+        assert onto.load_data(HEAD + f':x :s "{written}"^^<{XSD}decimal> , "{held}"^^<{XSD}decimal> .') == 0
+    assert str(said[0].message) == (
+        f'<data>: <{NS}x> <{NS}s> "{held}"^^<{XSD}decimal> stays as written: <{NS}x> <{NS}s> '
+        f'"{written}"^^<{XSD}decimal> is the same value, already in the graph (to change only its spelling, remove '
+        "it first and add it then)")

@@ -22,7 +22,7 @@ from pyoxigraph import Literal, RdfFormat, Triple
 from ..compile.notices import OntologyWarning
 from ..rdf.skolem import unskolem
 from ..rdf.terms import value_key
-from ..rdf.vocab import ASSERTED
+from ..rdf.vocab import ASSERTED, RDF
 
 if TYPE_CHECKING:  # pragma: no cover
     from ..stores.base import Store
@@ -31,6 +31,8 @@ if TYPE_CHECKING:  # pragma: no cover
 #: the load notices' log (:mod:`topostore.compile.notices`): the CLI shows it as ``warning:`` lines
 logger = logging.getLogger("topostore.load")
 
+#: rdf:XMLLiteral, whose values are stored in canonical form
+XML_LITERAL = RDF + "XMLLiteral"
 #: why a document's second spelling of one value is not taken
 AGAIN = "written again in the document"
 #: why an upload's spelling of a value the graph holds is not taken, and how to change only the spelling
@@ -161,12 +163,14 @@ def published(notes: list[str], source: str) -> None:
 @dataclass
 class Written:
     """What a loaded document wrote that the graph may not show as written: each later spelling of a value
-    with the first (``again``), its triples (None: streamed into an empty graph, read back from there) and
-    its tagged triples the graph held before it came (``held``)."""
+    with the first (``again``), its triples (None: streamed into an empty graph, read back from there), its
+    tagged triples the graph held before it came (``held``), and whether it gained fewer facts than it has
+    triples (``short``: only then may a value it wrote be held in another spelling)."""
 
     again: list[tuple[Triple, Triple]] = field(default_factory=list)
     triples: list[Triple] | None = None
     held: frozenset[Triple] = frozenset()
+    short: bool = False
 
     @classmethod
     def before(cls, triples: list[Triple], store: Store, data: bytes | str, fmt: RdfFormat) -> Written:
@@ -187,6 +191,7 @@ class Written:
         where a subject and property have two literals (a value key made for those alone)."""
         if self.triples is None or added == len(self.triples):
             return
+        self.short = True
         by_pair: dict[tuple, list[Triple]] = {}
         for t in self.triples:
             if isinstance(t.object, Literal):
@@ -205,7 +210,24 @@ class Written:
             return [t for lexical, tag in keys for t in store.triples(None, None, Literal(lexical, language=tag),
                                                                      ASSERTED)]
 
-        return [*again_notes(self.again, stays), *tag_notes(store.forms.tags, (data, fmt), holders, self.held.__contains__)]
+        return [*self._held_notes(stays), *again_notes(self.again, stays),
+                *tag_notes(store.forms.tags, (data, fmt), holders, self.held.__contains__)]
+
+    def _held_notes(self, stays: Callable[[Triple], Triple]) -> list[str]:
+        """A note for each value the document wrote that the graph held already in another spelling (a
+        later spelling of the document's own is said by :func:`again_notes`; an rdf:XMLLiteral is stored
+        in canonical form, said by its own notice)."""
+        if not self.short or self.triples is None:
+            return []
+        later = {t for _, t in self.again}
+        notes = []
+        for t in self.triples:
+            o = t.object
+            if isinstance(o, Literal) and o.datatype.value != XML_LITERAL and t not in later:
+                kept = stays(t)
+                if kept != t:
+                    notes.append(spelling_kept(kept, t, HELD))
+        return notes
 
 
 __all__ = ["AGAIN", "HELD", "TAG_KEPT", "SpellingKeptWarning", "Written", "again_notes", "holding", "joined",
