@@ -169,3 +169,15 @@ def test_a_created_reference_names_a_blank_node_whose_tag_is_spelled_twice(serve
     _, body = send(server, "PUT", ':x :o [ :s "a"@FR , "a"@fr ] .')
     node = re.findall(r"_:\w+", saved(server).decode())[0]
     assert body["warnings"] == [f'{node} <{NS}s> "a"@FR stays as written: {node} <{NS}s> "a"@fr {TAG_KEPT}'], body
+
+
+def test_a_new_value_whose_tag_is_spelled_otherwise_is_no_same_value(server: InProcess) -> None:
+    """``"b"@fr`` over a graph that spells the tag ``FR`` adds a new value, shown as ``"b"@FR``: the note
+    says it is stored so, not that ``"b"@FR`` stays as written (it never was)."""
+    send(server, "PUT", ':y :s "a"@FR .')
+    _, body = send(server, "POST", ':y :s "b"@fr .')
+    assert body["added"] == 1, body
+    assert body["warnings"] == [f'<{NS}y> <{NS}s> "b"@fr is stored as <{NS}y> <{NS}s> "b"@FR: a new value, its '
+                                "language tag spelled as the store spells it (a tag keeps the spelling it was "
+                                "first written with)"], body
+    assert b'"b"@FR' in saved(server)

@@ -18,13 +18,14 @@ from .errors import (
 )
 from .ontology.facade import Ontology, ReasonReport
 from .ontology.named_queries import QueryItem
+from .ontology.spellings import SpellingKeptWarning
 
 __version__ = "0.1.0"
 
 __all__ = [
     "Ontology", "ReasonReport", "QueryItem", "TopostoreError", "InvalidNameError", "InvalidValueError",
     "UnknownTypeError", "LoadError", "QueryError", "QueryTimeout", "RuleCompileError", "OntologyWarning", "Notice",
-    "IncompleteOntologyError",
+    "IncompleteOntologyError", "SpellingKeptWarning",
 ]
 
 from .armor import ArmorRequest, ArmorResponse, ArmorService  # noqa: E402  (aRMOR command interface)

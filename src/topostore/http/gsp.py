@@ -33,12 +33,20 @@ from starlette.routing import Route
 from ..armor.codes import CommandError
 from ..armor.reference import Change, Delta, Reference
 from ..errors import TopostoreError
-from ..ontology.changes import shown, spelling_kept
 from ..ontology.facade import Ontology
-from ..rdf.terms import value_key
-from ..rdf.vocab import ASSERTED, ENTAILED, INFERRED, OWL, RDF, RDFS, TYPE, XSD, is_skolem
+from ..ontology.spellings import (
+    HELD,
+    again_notes,
+    holding,
+    joined,
+    one_spelling,
+    spelling_kept,
+    tag_notes,
+    value_of,
+)
+from ..rdf.vocab import ASSERTED, ENTAILED, INFERRED, OWL, RDF, RDFS, TYPE, XSD
 from ..sparql.results import GRAPH_FORMATS, NotAcceptable, choose_format, render_graph
-from ..stores.language_tags import LanguageTags, literal_tags
+from ..stores.language_tags import literal_tags
 from .security import error
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -189,18 +197,9 @@ class GraphStore:
             raise GraphStoreError(400, "cannot tell the ontology IRI: the document declares no single owl:Ontology; "
                                   "add ?iri=http://... (names are resolved against IRI#)")
         media = request.headers.get("content-type", "").split(";")[0].strip().lower()
-        upload = _Upload(triples, (body, UPLOAD_FORMATS[media]), read_against=request.query_params.get("iri"))
-        ref = await run_in_threadpool(_new_reference, self.api, name, iri, upload)
-        counts = await run_in_threadpool(_created, ref, upload)
+        ref = await run_in_threadpool(_new_reference, self.api, name, iri, body, UPLOAD_FORMATS[media])
+        counts = await run_in_threadpool(_created, ref)
         return JSONResponse(counts, status_code=201, headers={"Location": f"/references/{name}/data?default"})
-
-
-#: why a POST does not take a value's spelling, and how to change only the spelling
-_HELD = "already in the graph (to change only its spelling, remove it first and add it then)"
-#: why a document's second spelling of one value is not taken
-_AGAIN = "written again in the document"
-#: why a language tag's spelling is not taken
-_TAG_KEPT = "its language tag spelled otherwise (a tag keeps the spelling it was first written with)"
 
 
 def _plan(method: str, uploaded: list[Triple]) -> Callable[[Ontology], Delta]:
@@ -211,21 +210,21 @@ def _plan(method: str, uploaded: list[Triple]) -> Callable[[Ontology], Delta]:
         current = _as_written(onto)
         if method == "DELETE":
             return Delta(remove=sorted(current, key=str))
-        held = {_value_of(t): t for t in current if isinstance(t.object, Literal)}
-        new, again = _one_spelling(uploaded)
-        notes = _again_notes(again, lambda first: held.get(_value_of(first), first))
+        held = {value_of(t): t for t in current if isinstance(t.object, Literal)}
+        new, again = one_spelling(uploaded)
+        notes = again_notes(again, lambda first: held.get(value_of(first), first))
         added = [t for t in new if t not in current]
         if method == "PUT":  # a stored value respelled is removed and added in one change: the change says it
             gone = current.difference(new)
-            return Delta(add=sorted(added, key=str), remove=sorted(gone, key=str), warning=_joined(notes))
+            return Delta(add=sorted(added, key=str), remove=sorted(gone, key=str), warning=joined(notes))
         taken = []  # POST: the store keeps one value once, in the spelling it holds
         for t in added:
-            old = held.get(_value_of(t)) if isinstance(t.object, Literal) else None
+            old = held.get(value_of(t)) if isinstance(t.object, Literal) else None
             if old is None:
                 taken.append(t)
             else:
-                notes.append(spelling_kept(old, t, _HELD))
-        return Delta(add=sorted(taken, key=str), warning=_joined(notes))
+                notes.append(spelling_kept(old, t, HELD))
+        return Delta(add=sorted(taken, key=str), warning=joined(notes))
 
     return plan
 
@@ -236,58 +235,6 @@ def _as_written(onto: Ontology) -> set[Triple]:
     store = onto.store
     return {Triple(t.subject, t.predicate, store.original_literal(ASSERTED, t.subject, t.predicate, t.object))
             if isinstance(t.object, Literal) else t for t in store.triples(graph=ASSERTED)}
-
-
-def _value_of(t: Triple) -> tuple:
-    """The key of the fact ``t`` writes: one per value of a literal, whatever its spelling."""
-    return (t.subject, t.predicate, value_key(t.object))
-
-
-def _one_spelling(triples: list[Triple]) -> tuple[list[Triple], list[tuple[Triple, Triple]]]:
-    """``triples`` with one spelling per value (the first written), and each later spelling with the first:
-    the store keeps one value once, so a document writing ``"7"^^xsd:long`` and ``"07"^^xsd:long`` asserts
-    one fact, counted once and said once.  A triple written twice is one fact, nothing to say."""
-    first: dict[tuple, Triple] = {}
-    kept, again = [], {}
-    for t in triples:
-        if not isinstance(t.object, Literal):
-            if t not in first:
-                first[t] = t
-                kept.append(t)
-            continue
-        seen = first.setdefault(_value_of(t), t)
-        if seen is t:
-            kept.append(t)
-        elif seen != t:
-            again.setdefault(t, seen)
-    return kept, [(seen, later) for later, seen in again.items()]
-
-
-def _again_notes(again: list[tuple[Triple, Triple]], stays: Callable[[Triple], Triple]) -> list[str]:
-    """The notes for a document's later spellings of a value (``again``: (first, later) pairs), ``stays``
-    giving the spelling the graph keeps of a first one (a stored one, if the graph had the value)."""
-    pairs = [(stays(first), later) for first, later in again]
-    return [spelling_kept(kept, later, _AGAIN) for kept, later in pairs if kept != later]
-
-
-def _tag_notes(ref: Reference, uploaded: list[Triple], written: tuple[bytes, RdfFormat | None]) -> list[str]:
-    """A note for each spelling of an uploaded literal's language tag that the graph does not show: the
-    parser lowers tags, so two spellings of one literal meet as one triple, and the store spells each tag
-    one way, as first written (:mod:`~topostore.stores.language_tags`)."""
-    tags = ref.ontology.store.forms.tags
-    others: dict[tuple[str, str], list[str]] = {}
-    for key, tag in tags.not_taken(*written, literal_tags(uploaded)):
-        others.setdefault(key, []).append(tag)
-    notes = []
-    for t in uploaded if others else ():
-        lit = t.object
-        for tag in others.get((lit.value, lit.language), ()) if isinstance(lit, Literal) else ():
-            notes.append(spelling_kept(shown(t, tags.spelled(tag)), shown(t, tag), _TAG_KEPT))
-    return notes
-
-
-def _joined(notes: list[str]) -> str:
-    return "; ".join(dict.fromkeys(notes))
 
 
 def _apply(ref: Reference, plan: Callable[[Ontology], Delta], method: str, uploaded: list[Triple],
@@ -308,67 +255,35 @@ def _apply(ref: Reference, plan: Callable[[Ontology], Delta], method: str, uploa
         notes = []
         if written is not None:
             ref.ontology.values.learned(*written, only=literal_tags(added))
-            notes = _tag_notes(ref, uploaded, written)
+            notes = _tag_notes(ref, uploaded, written, set(added))
         return {"added": len(added), "removed": sum(len(a.removed) for a in done), "is_consistent": ref.is_consistent,
-                "warnings": [*(a.warning for a in done if a.warning), *filter(None, [_joined(notes)])]}
+                "warnings": [*(a.warning for a in done if a.warning), *filter(None, [joined(notes)])]}
 
 
-class _Upload:
-    """The document a PUT creates a reference from: its bytes and format, and its triples as parsed, with
-    the base IRI they were read against (``read_against``)."""
-
-    def __init__(self, triples: list[Triple], written: tuple[bytes, RdfFormat | None],
-                 read_against: str | None) -> None:
-        self.triples, self.written, self.read_against = triples, written, read_against
-        self.again = _one_spelling(triples)[1]
-
-    def names_a_blank_node(self) -> bool:
-        """Whether a note of the reply may name a blank node: one of its values written in two spellings, or
-        its tag spelled otherwise (the new store spells each tag as first written in the document)."""
-        if any(is_skolem(first.subject) for first, _ in self.again):
-            return True
-        tags = LanguageTags()
-        tags.learn(*self.written)
-        blank = literal_tags(t for t in self.triples if is_skolem(t.subject))
-        return bool(tags.not_taken(*self.written, blank))
-
-    def read_as_stored(self, iri: str) -> list[Triple]:
-        """The triples the reference is made of when the notes must name its blank nodes: the document read
-        against ``iri`` as a load reads it, once, so that the notes and the graph name one node alike."""
-        if self.read_against != iri:
-            self.triples, self.read_against = _parsed(self.written[0], self.written[1], iri), iri
-            self.again = _one_spelling(self.triples)[1]
-        return self.triples
+def _tag_notes(ref: Reference, uploaded: list[Triple], written: tuple[bytes, RdfFormat | None],
+               added: set[Triple]) -> list[str]:
+    """The notes of the uploaded literals whose language tag the graph spells otherwise: the same value
+    where the graph held it before (not among the triples ``added``), else a new value spelled as stored."""
+    return tag_notes(ref.ontology.store.forms.tags, written, lambda keys: holding(uploaded, keys),
+                     lambda t: t not in added, literal_tags(uploaded))
 
 
-def _created(ref: Reference, upload: _Upload) -> dict[str, Any]:
-    """The reply to a PUT that made ``ref``: the triples its graph holds (a document may write one fact
-    twice, or one value in two spellings), what its load says (as a LOAD's reply) and each spelling
-    written but not taken, with the one the graph keeps."""
+def _created(ref: Reference) -> dict[str, Any]:
+    """The reply to a PUT that made ``ref``: the facts its graph holds (a document may write one fact twice,
+    or one value in two spellings) and what its load says, as a LOAD's reply (each spelling written but not
+    taken among it, with the one the graph keeps)."""
     with ref.lock:
         onto = ref.ontology
-        store = onto.store
-
-        def stays(first: Triple) -> Triple:
-            lit = store.original_literal(ASSERTED, first.subject, first.predicate, first.object)
-            return Triple(first.subject, first.predicate, lit)
-
-        notes = [*_again_notes(upload.again, stays), *_tag_notes(ref, upload.triples, upload.written)]
-        return {"reference": ref.name, "iri": ref.iri, "added": store.count(ASSERTED), "removed": 0,
-                "is_consistent": ref.is_consistent, "warnings": [*onto.notice_lines(), *filter(None, [_joined(notes)])]}
+        return {"reference": ref.name, "iri": ref.iri, "added": onto.store.count(ASSERTED), "removed": 0,
+                "is_consistent": ref.is_consistent, "warnings": onto.notice_lines()}
 
 
-def _new_reference(api: Api, name: str, iri: str, upload: _Upload) -> Reference:
-    """The reference a PUT creates from ``upload``: loaded from its parsed triples when the reply's notes
-    name a blank node (a second parse, as the faster streamed load makes, names blank nodes anew)."""
-    body, fmt = upload.written
+def _new_reference(api: Api, name: str, iri: str, body: bytes, fmt: RdfFormat | None) -> Reference:
+    """The reference a PUT creates from the document ``body`` (its rules compiled first: all or nothing)."""
     onto = Ontology(prefix=iri + "#")
-    try:  # each way compiles the rules first: all or nothing
-        if upload.names_a_blank_node():
-            assert fmt is not None  # parse_upload refused the formats it cannot read
-            onto.files.load_parsed(upload.read_as_stored(iri), body, fmt)
-        else:
-            onto.load_data(body, fmt, base_iri=iri)
+    try:
+        assert fmt is not None  # parse_upload refused the formats it cannot read
+        onto.load_data(body, fmt, base_iri=iri)
         onto.reason()
     except TopostoreError as exc:
         raise GraphStoreError(400, f"the ontology was not loaded: {exc}") from None

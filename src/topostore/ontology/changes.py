@@ -16,13 +16,13 @@ from typing import TYPE_CHECKING
 
 from pyoxigraph import Literal, NamedNode, Triple
 
-from ..rdf.skolem import unskolem
 from ..rdf.terms import check_literal, value_key
 from ..rdf.vocab import ASSERTED
 from ..stores.facts import Fact
 from . import state as durable_state
 from .files import is_schema_triple
 from .nary import all_different, individual_triples
+from .spellings import SpellingKeptWarning, spelling_kept
 
 if TYPE_CHECKING:
     from ..stores.base import Store
@@ -192,11 +192,6 @@ def _validate(t: Triple) -> None:
         _validate_literal(t.object)
 
 
-class SpellingKeptWarning(UserWarning):
-    """A change removed a literal and added the same value in another spelling: the asserted graph keeps
-    the spelling it had (``"3"^^xsd:integer`` and ``"3.0"^^xsd:decimal`` are one value, one fact)."""
-
-
 def _respelled(store: Store, added: list[Fact], removed: list[Fact]) -> tuple[list[Fact], list[Fact], list[str]]:
     """``added`` and ``removed`` without the pairs of one value in two spellings, which the store netted out
     (its pending write is keyed by value), with a note naming the spelling kept and the one not written.
@@ -214,16 +209,6 @@ def _respelled(store: Store, added: list[Fact], removed: list[Fact]) -> tuple[li
     return [f for f in added if id(f) not in kept], [f for f in removed if id(f) not in kept], notes
 
 
-def spelling_kept(kept: Triple | str, other: Triple | str, why: str) -> str:
-    """The note that ``kept`` stays the asserted graph's spelling of the value ``other`` writes too, ``why``
-    the other is not taken: one wording wherever a written spelling is not stored (a change here, a Graph
-    Store upload).  Each is a triple or a triple already written by :func:`shown` (a tag spelled)."""
-    def text(t: Triple | str) -> str:
-        return shown(t) if isinstance(t, Triple) else t
-
-    return f"{text(kept)} stays as written: {text(other)} is the same value, {why}"
-
-
 def _spelled_apart(store: Store, old: Fact, new: Fact) -> bool:
     """Whether ``new`` writes the value of ``old`` in another spelling: other stored forms (the store nets
     them out) or one stored form written otherwise (``"0100"`` and ``"100"`` as xsd:long: the ledger
@@ -231,12 +216,3 @@ def _spelled_apart(store: Store, old: Fact, new: Fact) -> bool:
     if store.stored_form(old.triple) != store.stored_form(new.triple):
         return True
     return store.written_fact(old).object != new.triple.object
-
-
-def shown(t: Triple, tag: str | None = None) -> str:
-    """``t`` as a GET of the graph writes it: a blank node as ``_:id`` (the store names it by a skolem
-    IRI), and the object's language tag spelled ``tag`` when given (pyoxigraph lowers every tag)."""
-    obj = str(unskolem(t.object))
-    if tag is not None and isinstance(t.object, Literal) and t.object.language:
-        obj = obj[:-len(t.object.language)] + tag
-    return f"{unskolem(t.subject)} {t.predicate} {obj}"

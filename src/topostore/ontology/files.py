@@ -43,6 +43,7 @@ from ..rdf.vocab import (
 )
 from ..stores import check_rules, memory_store
 from ..stores.base import guess_format, serialize
+from .spellings import Written, joined, published
 from .streamed import rules_need_repair, schema_triples, stream_into_empty
 from .streamed_child import child_wanted, stream_through_child
 from .xml_literals import canonical_xml_literals
@@ -77,6 +78,8 @@ class OntologyFiles:
 
     def __init__(self, onto: Ontology) -> None:
         self.onto = onto
+        #: what the documents loaded wrote and the graph does not show as written (:mod:`.spellings`)
+        self.spelling_notes: list[str] = []
 
     def load(self, path: str | os.PathLike[str], fmt: str | None = None, base_iri: str | None = None,
              progress: Callable[[int], None] | None = None) -> int:
@@ -87,50 +90,49 @@ class OntologyFiles:
         ``progress(n)`` is told how many triples have been parsed so far.
         """
         data = read_regular_file(path)  # regular files only, size-limited (LoadError otherwise)
-        rdf_format = guess_format(path, fmt)
-        if self._streaming_possible():
-            added, shown = self._load_bytes(data, rdf_format, base_iri, str(path), progress)
-        else:
-            with collector_paused():
-                triples = self.onto.store.parse_bytes(data, rdf_format, base_iri, source=str(path), progress=progress)
-            added, shown = self._add_document(triples)
-        self.onto.values.learned(data, rdf_format)  # once the document is in (all or nothing)
-        _published(shown, str(path))
+        added, shown, notes = self._loaded(data, guess_format(path, fmt), base_iri, str(path), progress)
+        _published(shown, notes, str(path))
         return added
 
     def load_data(self, data: str | bytes, fmt: str = "turtle", base_iri: str | None = None) -> int:
-        rdf_format = guess_format("x", fmt)
-        added, shown = self._load_bytes(data, rdf_format, base_iri, "<data>")
-        self.onto.values.learned(data, rdf_format)
-        _published(shown, "<data>")
+        """Add a document given as text or bytes; all or nothing.  How many facts the asserted graph
+        gained, as :meth:`load` counts them."""
+        added, shown, notes = self._loaded(data, guess_format("x", fmt), base_iri, "<data>")
+        _published(shown, notes, "<data>")
         return added
 
-    def load_parsed(self, triples: list[Triple], data: str | bytes, fmt: RdfFormat, source: str = "<data>") -> int:
-        """Add a document already parsed into ``triples`` (``data``, its text, gives its tags' spellings); all
-        or nothing.  Its blank nodes keep the names that parse gave them, so what a caller says of the
-        triples names what is stored (a second parse would name them anew)."""
-        added, shown = self._add_document(triples)
-        self.onto.values.learned(data, fmt)
-        _published(shown, source)
-        return added
+    def _loaded(self, data: str | bytes, fmt: RdfFormat, base_iri: str | None, source: str,
+                progress: Callable[[int], None] | None = None) -> tuple[int, list[Notice], list[str]]:
+        """Load a document: how many facts the asserted graph gained (a value is one fact, whatever its
+        spellings in the document), what loading it repaired or set aside, and what it wrote that the
+        graph does not show as written: a value's later spelling, a language tag spelled otherwise
+        (:mod:`.spellings`, kept for :meth:`notice_lines`)."""
+        added, shown, written = self._load_bytes(data, fmt, base_iri, source, progress)
+        self.onto.values.learned(data, fmt)  # once the document is in (all or nothing)
+        notes = written.notes(self.onto.store, data, fmt)
+        self.spelling_notes += notes
+        return added, shown, notes
 
     def _load_bytes(self, data: str | bytes, fmt: RdfFormat, base_iri: str | None, source: str,
-                    progress: Callable[[int], None] | None = None) -> tuple[int, list[Notice]]:
+                    progress: Callable[[int], None] | None = None) -> tuple[int, list[Notice], Written]:
         """A document given as its bytes: streamed into an empty graph where that is possible, else (or
         when the stream finds what only the ordinary load handles) parsed into triples and added.
-        (Triples added, notices to publish.)"""
+        (Facts added, notices to publish, what it wrote that may not be stored as written.)"""
         if self._streaming_possible():
             done = self._streamed(data, fmt, base_iri, source, progress)
             if done is not None:
                 return done
         with collector_paused():
             triples = self.onto.store.parse_bytes(data, fmt, base_iri, source=source, progress=progress)
-        return self._add_document(triples)
+            written = Written.before(triples, self.onto.store, data, fmt)
+        added, notices = self._add_document(triples)
+        written.after(added)
+        return added, notices, written
 
     def _add_document(self, triples: list[Triple]) -> tuple[int, list[Notice]]:
         """Add a document: its SWRL rules repaired first (:mod:`.compile.swrl_repair`), then
         checked; what was repaired or set aside is kept in :attr:`load_notices` once the document is
-        in.  (Triples added, notices to publish.)"""
+        in.  (Facts added, notices to publish.)"""
         with collector_paused():
             triples, unreadable = canonical_xml_literals(triples)
             triples, notices = repair_rules(triples)
@@ -158,7 +160,7 @@ class OntologyFiles:
         return (not self.onto.ledger.tracking and not self.onto.store._depth and self._in_place_possible())
 
     def _streamed(self, data: str | bytes, fmt: RdfFormat, base_iri: str | None, source: str,
-                  progress: Callable[[int], None] | None) -> tuple[int, list[Notice]] | None:
+                  progress: Callable[[int], None] | None) -> tuple[int, list[Notice], Written] | None:
         """Stream the document into the empty asserted graph, then test and compile it there.  None when it
         is taken out again for the ordinary load, whose answer (repair, skip, refusal, error) is then the one
         given: an error of any kind, a rule that needs repair, a rule that cannot be compiled, strict loading
@@ -182,7 +184,7 @@ class OntologyFiles:
         self.onto.changes.touch([schema] if schema is not None else [])
         if rules is not None:
             self.onto._rules = rules
-        return found.triples, self._kept(found.notices, known)
+        return found.triples, self._kept(found.notices, known), Written(found.again)
 
     def _compiled_here(self, notices: list[Notice]) -> RuleSet:
         """The rules of the asserted graph as it now is, checked as the ordinary load checks them."""
@@ -268,8 +270,10 @@ class OntologyFiles:
         return [*self.onto.load_notices, *self.onto.rules.notices]
 
     def notice_lines(self) -> list[str]:
-        """:attr:`notices` one line per kind (and axiom kind), naming each rule or axiom with its reason."""
-        return grouped(self.notices)
+        """:attr:`notices` one line per kind (and axiom kind), naming each rule or axiom with its reason;
+        then, in one line, each spelling a loaded document wrote and the graph does not show
+        (:attr:`spelling_notes`)."""
+        return [*grouped(self.notices), *filter(None, [joined(self.spelling_notes)])]
 
     def triples(self, inferred: bool = False) -> list[Triple]:
         graphs = self.onto.visible_graphs() if inferred else [ASSERTED]
@@ -289,9 +293,11 @@ class OntologyFiles:
         return atomic_write(path, data)  # temporary file beside it, never through a symlink, removed on failure
 
 
-def _published(notices: list[Notice], source: str) -> None:
-    """Warn of and log what loading a document repaired, set aside or reasons only in part."""
+def _published(notices: list[Notice], notes: list[str], source: str) -> None:
+    """Warn of and log what loading a document repaired, set aside or reasons only in part, and what it
+    wrote that the graph does not show as written."""
     publish(notices, source)  # its warnings point at the caller of Ontology.load / load_data
+    published(notes, source)
 
 
 class _Ordinary(Exception):

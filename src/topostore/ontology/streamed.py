@@ -54,17 +54,19 @@ TEXT_FORMATS = frozenset({RdfFormat.RDF_XML, RdfFormat.TURTLE, RdfFormat.N_TRIPL
 class StreamedDocument:
     """What writing one document into the empty asserted graph found."""
 
-    #: the distinct triples of the document, as the ordinary load counts them (every spelling of a value)
+    #: the facts the document stored, as the ordinary load counts them (one per value, whatever its spellings)
     triples: int = 0
     #: every predicate the document uses
     predicates: set[NamedNode] = field(default_factory=set)
     #: rdf:XMLLiteral objects that are not well-formed XML (kept as written), in document order
     notices: list[Notice] = field(default_factory=list)
+    #: each later spelling of a value the document wrote, with the first (which the graph keeps): (first, later)
+    again: list[tuple[Triple, Triple]] = field(default_factory=list)
 
 
 class _Literals:
     """The literal objects of one document as the pass meets them: validated, XML in canonical form, the
-    first spelling of each (subject, predicate, value) kept, every distinct literal triple counted."""
+    first spelling of each (subject, predicate, value) kept, each later one noted (``found.again``)."""
 
     def __init__(self, found: StreamedDocument) -> None:
         self.found = found
@@ -86,7 +88,9 @@ class _Literals:
         distinct.add((s, p, o))  # one hash of the triple, where a test then an add took two
         if len(distinct) == before:  # written (or skipped) already: each distinct triple is met once
             return None
-        if self.spelled.setdefault((s, p, value_key(o)), o) is not o:  # an earlier spelling of the value
+        first = self.spelled.setdefault((s, p, value_key(o)), o)
+        if first is not o:  # an earlier spelling of the value: said, not written
+            self.found.again.append((Triple(s, p, first), Triple(s, p, o)))
             return None
         return o
 
@@ -134,10 +138,8 @@ def stream_into_empty(store: Store, data: bytes | str, fmt: RdfFormat, base_iri:
     else:
         quads = _parsed(data, fmt, base_iri, source, progress)
         gained = store._commit_stream(_written(quads, literals, store), [], count=True)
-    if gained is None or store.durable:  # a durable store's gain counts the persisted forms too
-        found.triples = _distinct_triples(store, len(literals.distinct))
-    else:  # one quad per value written (its first spelling), every distinct literal triple counted
-        found.triples = gained - len(literals.spelled) + len(literals.distinct)
+    # one quad per fact: a value's first spelling; a durable store's gain counts the persisted forms too
+    found.triples = store.count(ASSERTED) if gained is None or store.durable else gained
     return found
 
 
@@ -274,16 +276,6 @@ def _counted(quads: Iterator[Quad], progress: Callable[[int], None]) -> Iterator
         n += 1
         if n % PROGRESS_EVERY == 0:
             progress(n)
-
-
-def _distinct_triples(store: Store, literal_triples: int) -> int:
-    """The document's distinct triples from the graph it was written to: its quads without a literal (the
-    store keeps each once) and every distinct literal triple as written (the store keeps one quad per value)."""
-    rows = store.query(f"SELECT (COUNT(*) AS ?n) (SUM(IF(isLiteral(?o), 1, 0)) AS ?l) "
-                       f"WHERE {{ GRAPH {ASSERTED} {{ ?s ?p ?o }} }}")
-    row = next(iter(rows))
-    stored_literals = row["l"]
-    return int(row["n"].value) - (int(stored_literals.value) if stored_literals is not None else 0) + literal_triples
 
 
 def schema_triples(store: Store, predicates: set[NamedNode], is_schema: Callable[[Triple], bool]) -> Iterator[Triple]:

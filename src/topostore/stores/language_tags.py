@@ -94,17 +94,24 @@ class LanguageTags:
         return dropped
 
     def not_taken(self, data: bytes, fmt: RdfFormat | None,
-                  literals: Collection[Added]) -> list[tuple[Added, str]]:
-        """Each of ``literals`` (lexical form, lowered tag) that ``data`` writes with its tag spelled other
-        than as the store spells it, with that spelling: what a document wrote and the store does not show
-        (one spelling per tag).  A document whose every possible tag is spelled as kept costs one search."""
-        if not literals:
+                  literals: Collection[Added] | None = None) -> list[tuple[Added, str]]:
+        """Each of ``literals`` (lexical form, lowered tag; None: every literal ``data`` writes) that ``data``
+        writes with its tag spelled other than as the store spells it, with that spelling: what a document
+        wrote and the store does not show (one spelling per tag).  A document whose every possible tag is
+        spelled as kept costs one search."""
+        if literals is not None and not literals:
             return []
         syntax = _syntax(fmt)
         if syntax != "json-ld" and all(self.spelled(tag) == tag for tag in candidate_tags(data, syntax == "xml")):
             return []
         found = dict.fromkeys(((lexical, tag.lower()), tag) for lexical, tag in written_literals(data, syntax))
-        return [(key, tag) for key, tag in found if key in literals and tag != self.spelled(tag)]
+        return [(key, tag) for key, tag in found
+                if (literals is None or key in literals) and tag != self.spelled(tag)]
+
+    @staticmethod
+    def written(data: bytes, fmt: RdfFormat | None) -> list[tuple[str, str]]:
+        """A document's tagged literals as written (lexical form, tag as spelled), in the order written."""
+        return written_literals(data, _syntax(fmt))
 
     def known(self, tag: str) -> bool:
         """Whether ``tag`` (any case) has a spelling already: a later one does not respell it."""

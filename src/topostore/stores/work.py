@@ -169,8 +169,9 @@ def present(store: Store, quads: list[Quad], keys: list[tuple] | None = None) ->
 
 # ------------------------------------------------------------ quads
 def add(store: Store, triples: Iterable[Triple], graph: NamedNode, distinct: bool = False) -> int:
-    """Add triples to ``graph``; returns how many were new (``distinct``: the caller has
-    removed repeated triples already, so a big load does not hash each one again)."""
+    """Add triples to ``graph``; returns how many facts were new: a value written in two spellings is one
+    fact, stored in the first (``distinct``: the caller has removed repeated triples already, so a big load
+    does not hash each one again)."""
     triples = triples if isinstance(triples, (list, tuple)) else list(triples)
     if store._depth == 0 and len(triples) >= BULK_ADD and store.is_empty(graph):
         return store._add_to_empty(triples, graph, distinct)
@@ -178,8 +179,9 @@ def add(store: Store, triples: Iterable[Triple], graph: NamedNode, distinct: boo
 
 
 def add_new(store: Store, triples: Iterable[Triple], graph: NamedNode) -> list[Triple]:
-    """Add triples to ``graph``; returns those that were not there (deduplicated): what a caller
-    recording the change needs, from the one presence look-up the addition makes anyway."""
+    """Add triples to ``graph``; returns those that were not there (deduplicated, a value's later spellings
+    left out): what a caller recording the change needs, from the one presence look-up the addition makes
+    anyway."""
     return store._toggle_each(triples, graph, True)
 
 
@@ -222,6 +224,8 @@ def toggle_absent(store: Store, quads: list[Quad], triples: list[Triple], keys: 
             pending[k] = (q, add)
         elif entry[1] != add:
             del pending[k]
+        else:  # the value pending already, in another spelling: one fact, changed once (its first spelling)
+            continue
         changed.append(t)
     return changed
 
@@ -232,10 +236,11 @@ def add_to_empty(store: Store, triples: list[Triple] | tuple[Triple, ...], graph
     is looked up (a big load's look-ups cost as much as writing it), and quads are made only
     as the store takes them (one quad object is ≈ 440 bytes: a list of them for a map of
     100,000 locations was ≈ 800 MB).  As :meth:`add`, the first spelling of a value is
-    written and every distinct triple counts as new."""
+    written, and counts as new: one fact per value, whatever its spellings."""
     unique = triples if distinct else tuple(dict.fromkeys(triples))
     spelled: dict[tuple, Literal] = {}  # (subject, predicate, value key) -> the literal kept
     recorded: list[bool] = []
+    respelled: list[bool] = []  # one per later spelling of a value (not written)
 
     def quads() -> Iterator[Quad]:
         """The quads to write, each triple's terms taken once; then the literal forms' quads."""
@@ -244,6 +249,7 @@ def add_to_empty(store: Store, triples: list[Triple] | tuple[Triple, ...], graph
             if isinstance(o, Literal):
                 key = (s, p, value_key(o))
                 if key in spelled:
+                    respelled.append(True)
                     continue
                 spelled[key] = o
             yield Quad(s, p, o, graph)
@@ -257,7 +263,7 @@ def add_to_empty(store: Store, triples: list[Triple] | tuple[Triple, ...], graph
         if recorded:
             store.forms.record([], [Quad(s, p, o, graph) for (s, p, _), o in spelled.items()], undo=True)
         raise
-    return len(unique)
+    return len(unique) - len(respelled)
 
 
 # ------------------------------------------------------------ facts: a change's triples with their keys made once
@@ -334,6 +340,8 @@ def toggle_facts(store: Store, facts: list[Fact], add: bool) -> list[Fact]:
             pending[k] = (f.quad if add else store._removal_quad(f), add)
         elif entry[1] != add:
             del pending[k]
+        else:  # the value pending already, in another spelling: one fact, changed once (its first spelling)
+            continue
         changed.append(f)
     return changed
 
