@@ -23,11 +23,9 @@ from .written_tags import (
     Added,
     added_spellings,
     candidate_tags,
-    json_ld_literals,
     json_ld_tags,
     written_literals,
     written_tags,
-    xml_literals,
 )
 
 #: the node a durable store keeps the spellings under (in the literal forms' graph)
@@ -70,7 +68,7 @@ class LanguageTags:
         if only is None:
             return self.adopt(json_ld_tags(data) if json_ld else written_tags(data, fmt == RdfFormat.RDF_XML))
         if json_ld or fmt == RdfFormat.RDF_XML:
-            written = json_ld_literals(data) if json_ld else xml_literals(data)
+            written = written_literals(data, _syntax(fmt))
             return self.adopt([tag for lexical, tag in written if (lexical, tag.lower()) in only])
         return self.adopt(added_spellings(data, only, update=fmt is None))
 
@@ -102,11 +100,9 @@ class LanguageTags:
         (one spelling per tag).  A document whose every possible tag is spelled as kept costs one search."""
         if not literals:
             return []
-        json_ld = fmt in (RdfFormat.JSON_LD, RdfFormat.STREAMING_JSON_LD)
-        xml = fmt == RdfFormat.RDF_XML
-        if not json_ld and all(self.spelled(tag) == tag for tag in candidate_tags(data, xml)):
+        syntax = _syntax(fmt)
+        if syntax != "json-ld" and all(self.spelled(tag) == tag for tag in candidate_tags(data, syntax == "xml")):
             return []
-        syntax = "json-ld" if json_ld else "xml" if xml else "text"
         found = dict.fromkeys(((lexical, tag.lower()), tag) for lexical, tag in written_literals(data, syntax))
         return [(key, tag) for key, tag in found if key in literals and tag != self.spelled(tag)]
 
@@ -199,3 +195,10 @@ def literal_tags(triples: Iterable[Triple]) -> set[Added]:
 
 
 __all__ = ["SPELLING", "LanguageTags", "literal_tags"]
+
+
+def _syntax(fmt: RdfFormat | None) -> str:
+    """How :func:`.written_tags.written_literals` reads a document of format ``fmt``."""
+    if fmt in (RdfFormat.JSON_LD, RdfFormat.STREAMING_JSON_LD):
+        return "json-ld"
+    return "xml" if fmt == RdfFormat.RDF_XML else "text"

@@ -71,7 +71,7 @@ def added_spellings(data: bytes, added: Collection[Added], update: bool) -> list
                     inserting = parts[-1].upper() == b"INSERT"
             continue
         tag = raw.decode("ascii")
-        if (_lexical(m.group(0)[:m.start(1) - m.start(0) - 1]), tag.lower()) in added:
+        if (_token_lexical(m), tag.lower()) in added:
             if inserting and best.get(tag.lower(), (1,))[0] > 0:
                 settled += 1  # its first spelling of the best rank
             _prefer(best, tag, 0 if inserting else 1)
@@ -111,6 +111,11 @@ def _prefer(best: dict[str, tuple[int, str]], tag: str, rank: int) -> None:
     held = best.get(tag.lower())
     if held is None or rank < held[0]:
         best[tag.lower()] = (rank, tag)
+
+
+def _token_lexical(m: re.Match[bytes]) -> str:
+    """The lexical form of a tagged literal token of :data:`_TEXT_TOKEN` (the token up to its ``@``)."""
+    return _lexical(m.group(0)[:m.start(1) - m.start(0) - 1])
 
 
 def _lexical(token: bytes) -> str:
@@ -272,8 +277,7 @@ def written_literals(data: bytes, syntax: str) -> list[tuple[str, str]]:
         return json_ld_literals(data)
     if syntax == "xml":
         return xml_literals(data)
-    return [(_lexical(m.group(0)[:m.start(1) - m.start(0) - 1]), m.group(1).decode("ascii"))
-            for m in _TEXT_TOKEN.finditer(data) if m.group(1) is not None]
+    return [(_token_lexical(m), m.group(1).decode("ascii")) for m in _TEXT_TOKEN.finditer(data) if m.group(1) is not None]
 
 
 def candidate_tags(data: bytes, xml: bool) -> set[str]:
