@@ -22,10 +22,11 @@ neg-com    x ∉ C ⇒ x ∈ ¬C (then cls-int1 and the equivalences conclude th
 neg-clash  x ∈ C and x ∉ C: inconsistent (a check)
 =========  ==========================================================================================
 
-The rules of one premise, neg-uni of two to four members (a file per number of members) and the
-universal's neg-avf on a named property are files of ``rules/owl/``, emitted as rows of their tables
-(:mod:`.schema`): more complemented classes are more rows, not more rules.  neg-uni of five members or
-more, neg-avf on an inverse property and the neg-clash checks are written here.
+The rules of one premise, neg-uni of two to eight members (a file per number of members, its rows
+joined before its premises: :func:`.condition.leading`) and the universal's neg-avf on a named property
+are files of ``rules/owl/``, emitted as rows of their tables (:mod:`.schema`): more complemented classes
+are more rows, not more rules.  neg-uni of nine members or more, neg-avf on an inverse property and the
+neg-clash checks are written here.
 
 Only the classes whose non-membership some complement needs get rules: the closure of the complemented
 classes backwards through the rules above (a complement of C needs x ∉ C; x ∉ A ⊓ B needs x ∉ A or x ∉ B;
