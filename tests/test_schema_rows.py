@@ -129,6 +129,17 @@ complements = st.lists(st.one_of(
     st.builds(":{} owl:disjointWith :{} .".format, _c, _c),
     st.builds("[ a owl:AllDisjointClasses ; owl:members ( :{} :{} :{} ) ] .".format, _c, _c, _c),
     st.builds(":{} owl:equivalentClass [ owl:oneOf ( :{} :{} ) ] .".format, _c, _i, _i),
+    st.builds(":{} owl:equivalentClass [ owl:complementOf [ owl:unionOf ( :{} :{} ) ] ] .".format, _c, _c, _c),
+    st.builds(":{} owl:equivalentClass [ owl:complementOf [ owl:unionOf ( :{} :{} :{} ) ] ] .".format,
+              _c, _c, _c, _c),
+    st.builds(":{} owl:equivalentClass [ owl:complementOf [ owl:unionOf ( :{} :{} :{} :{} :{} ) ] ] .".format,
+              _c, _c, _c, _c, _c, _c),
+    st.builds(":{} owl:equivalentClass [ owl:intersectionOf ( :{} :{} :{} :{} :{} ) ] .".format,
+              _c, _c, _c, _c, _c, _c),
+    st.builds(":{} owl:equivalentClass [ owl:complementOf [ owl:unionOf ( :{} :{} :{} :{} :{} :{} :{} :{} ) ] ] ."
+              .format, _c, _c, _c, _c, _c, _c, _c, _c, _c),
+    st.builds(":{} owl:equivalentClass [ owl:intersectionOf ( :{} :{} :{} :{} :{} :{} :{} :{} ) ] .".format,
+              _c, _c, _c, _c, _c, _c, _c, _c, _c),
 ), max_size=10)
 
 
@@ -151,20 +162,22 @@ INTERSECTIONS = f"""\
 :Four owl:equivalentClass [ owl:intersectionOf ( :A :B :C :D ) ] .
 :Five owl:equivalentClass [ owl:intersectionOf ( :A :B :C :D :E ) ] .
 :TwoAndThing owl:equivalentClass [ owl:intersectionOf ( :A owl:Thing :E ) ] .
-:x a :A , :B , :C , :D . :y a :A , :B , :C , :D , :E .
+:Eight owl:equivalentClass [ owl:intersectionOf ( :A :B :C :D :E :F :G :H ) ] .
+:Nine owl:equivalentClass [ owl:intersectionOf ( :A :B :C :D :E :F :G :H :I ) ] .
+:x a :A , :B , :C , :D . :y a :A , :B , :C , :D , :E . :z a :A , :B , :C , :D , :E , :F , :G , :H , :I .
 """
 
 
 def test_an_intersection_is_a_row_of_the_file_of_its_width() -> None:
-    """cls-int1 of 2, 3 and 4 members (owl:Thing left out) are rows of cls-int1-2/3/4, still named cls-int1
-    (what an explanation shows); five members keep a rule of their own."""
+    """cls-int1 of 2 to 8 members (owl:Thing left out) are rows of cls-int1-2 … cls-int1-8, still named
+    cls-int1 (what an explanation shows); nine members keep a rule of their own."""
     onto = _loaded(INTERSECTIONS)
     tables = onto.rules.tables
     assert tables is not None
-    assert [len(tables.rows(f"cls-int1-{n}")) for n in (2, 3, 4)] == [2, 1, 1]
-    assert all(r.name == "cls-int1" for n in (2, 3, 4) for r in tables.held[f"cls-int1-{n}"])
-    [five] = [r for r in onto.rules.rules if r.name == "cls-int1"]
-    assert len(five.body) == 5
+    assert [len(tables.rows(f"cls-int1-{n}")) for n in range(2, 9)] == [2, 1, 1, 1, 0, 0, 1]
+    assert all(r.name == "cls-int1" for n in (2, 3, 4, 5, 8) for r in tables.held[f"cls-int1-{n}"])
+    [nine] = [r for r in onto.rules.rules if r.name == "cls-int1"]
+    assert len(nine.body) == 9
 
 
 def test_the_intersection_files_run_generically_to_the_same_closure() -> None:
@@ -174,7 +187,8 @@ def test_the_intersection_files_run_generically_to_the_same_closure() -> None:
     typed = {(s.value.rsplit("#", 1)[-1], o.value.rsplit("#", 1)[-1]) for s, p, o in generic[0]
              if p.value.endswith("#type")}
     assert {("x", "Two"), ("x", "Three"), ("x", "Four"), ("y", "Five"), ("y", "TwoAndThing")} <= typed
-    assert ("x", "Five") not in typed and ("x", "TwoAndThing") not in typed
+    assert {("z", "Eight"), ("z", "Nine")} <= typed
+    assert ("x", "Five") not in typed and ("x", "TwoAndThing") not in typed and ("y", "Eight") not in typed
 
 
 def test_a_file_of_a_width_is_named_by_its_rule_and_width(tmp_path, monkeypatch) -> None:
@@ -196,3 +210,42 @@ def test_a_file_of_a_width_is_named_by_its_rule_and_width(tmp_path, monkeypatch)
         monkeypatch.undo()
         schema.schema_rules.cache_clear()
         schema._by_shape.cache_clear()
+
+
+# ---------------------------------------------------------------------- unions' non-memberships: a file per width
+UNIONS = f"""\
+@prefix : <{NS}> .
+@prefix owl: <http://www.w3.org/2002/07/owl#> .
+:Out owl:disjointWith :A , :B , :C , :D . :Near owl:disjointWith :A , :B , :C , :D , :E .
+:Far owl:disjointWith :A , :B , :C , :D , :E , :F , :G , :H . :Beyond owl:disjointWith :A , :B , :C , :D , :E , :F , :G , :H , :I .
+:NotTwo owl:equivalentClass [ owl:complementOf [ owl:unionOf ( :A :B ) ] ] .
+:NotThree owl:equivalentClass [ owl:complementOf [ owl:unionOf ( :A :B :C ) ] ] .
+:NotFour owl:equivalentClass [ owl:complementOf [ owl:unionOf ( :A :B :C :D ) ] ] .
+:NotFive owl:equivalentClass [ owl:complementOf [ owl:unionOf ( :A :B :C :D :E ) ] ] .
+:NotEight owl:equivalentClass [ owl:complementOf [ owl:unionOf ( :A :B :C :D :E :F :G :H ) ] ] .
+:NotNine owl:equivalentClass [ owl:complementOf [ owl:unionOf ( :A :B :C :D :E :F :G :H :I ) ] ] .
+:x a :Out . :y a :Near . :z a :Far . :w a :Beyond .
+"""
+
+
+def test_a_union_s_non_membership_is_a_row_of_the_file_of_its_width() -> None:
+    """neg-uni of 2 to 8 members are rows of neg-uni-2 … neg-uni-8, still named neg-uni (what an explanation
+    shows); nine members keep a rule of their own."""
+    onto = _loaded(UNIONS)
+    tables = onto.rules.tables
+    assert tables is not None
+    assert [len(tables.rows(f"neg-uni-{n}")) for n in range(2, 9)] == [1, 1, 1, 1, 0, 0, 1]
+    assert all(r.name == "neg-uni" for n in (2, 3, 4, 5, 8) for r in tables.held[f"neg-uni-{n}"])
+    assert [len(r.body) for r in onto.rules.rules if r.name == "neg-uni"] == [9]
+
+
+def test_the_union_files_run_generically_to_the_same_closure() -> None:
+    onto = _loaded(UNIONS)
+    assert {"neg-uni-2", "neg-uni-3", "neg-uni-4", "neg-uni-5", "neg-uni-8"} <= set(full_program(onto.rules, 0).rows)
+    generic = _materialize(onto, 0)
+    assert generic == _materialize(onto, 1 << 30)
+    typed = {(s.value.rsplit("#", 1)[-1], o.value.rsplit("#", 1)[-1]) for s, p, o in generic[0]
+             if p.value.endswith("#type")}
+    assert {("x", "NotTwo"), ("x", "NotThree"), ("x", "NotFour"), ("y", "NotFive")} <= typed
+    assert {("z", "NotEight"), ("w", "NotNine")} <= typed
+    assert ("x", "NotFive") not in typed and ("y", "NotEight") not in typed and ("z", "NotNine") not in typed

@@ -35,12 +35,13 @@ TYPE = "<http://www.w3.org/1999/02/22-rdf-syntax-ns#type>"
 KINDS = {"cax-sco", "cax-eqc1", "cax-eqc2", "prp-dom", "prp-rng", "prp-spo1", "prp-inv1", "prp-inv2", "prp-symp",
          "prp-trp", "cax-dw", "different-disjoint", "ext-card-sub", "cls-svf1", "cls-avf", "cls-hv1", "cls-hv2",
          "cls-int2", "cls-uni", "prp-spo2", "ext-restriction-sub", "cls-oo", "neg-dw", "neg-svf", "neg-sco",
-         "neg-int", "neg-com", "neg-avf", "cls-int1-2", "cls-int1-3", "cls-int1-4"}
+         "neg-int", "neg-com", "neg-avf", *(f"cls-int1-{n}" for n in range(2, 9)),
+         *(f"neg-uni-{n}" for n in range(2, 9))}
 #: the kinds the ontology EVERY_KIND has no axiom of (a restriction on a sub-property: see
 #: test_restrictions_subsumed_through_properties_are_a_table; a one-of and the non-memberships a
 #: complement needs: tests/test_schema_rows.py)
 ELSEWHERE = {"ext-restriction-sub", "cls-oo", "neg-dw", "neg-svf", "neg-sco", "neg-int", "neg-com", "neg-avf",
-             "cls-int1-3", "cls-int1-4"}
+             *(f"cls-int1-{n}" for n in range(3, 9)), *(f"neg-uni-{n}" for n in range(2, 9))}
 #: the generic checks: the compiler emits their instantiations; a full REASON keeps them instantiated
 CHECKS = {"cax-dw"}
 PREFIXES = f"""\

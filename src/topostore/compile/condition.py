@@ -41,6 +41,8 @@ class Condition:
     reads_graph: bool = False
     #: the rendering, when the condition was read as text (a rule file) rather than built
     written: str = ""
+    #: a graph pattern rendered before the body's atoms (:func:`leading`), not after them
+    leads: bool = False
     text: str = field(init=False, compare=False)
     #: the variables mentioned (``?name``), the bound one included
     variables: frozenset[str] = field(init=False, compare=False)
@@ -94,9 +96,18 @@ def parse(line: str) -> Condition:
     return Condition(PATTERN, line, negated=negated, reads_graph=True, written=line)
 
 
+def leading(pattern: str) -> Condition:
+    """A graph pattern written before the body's atoms: a generic rule's schema rows.  Oxigraph joins
+    equally estimated patterns in the order written, and a body of n ``ts:notType`` atoms joined
+    before the rows that tie their classes together is every n-tuple of an individual's
+    non-memberships (a union of four members over thirty of them did not end in a minute); the
+    rows first bind every class, and each atom is then a look-up."""
+    return Condition(PATTERN, pattern, reads_graph=True, written=pattern, leads=True)
+
+
 def render(conditions: tuple[Condition, ...]) -> str:
     """The conditions as the lines of a WHERE group (the form every rendering of a rule uses)."""
     return "\n  ".join(c.text for c in conditions)
 
 
-__all__ = ["BIND", "Condition", "EXISTS", "PATTERN", "TEST", "bind", "exists", "parse", "render", "test"]
+__all__ = ["BIND", "Condition", "EXISTS", "PATTERN", "TEST", "bind", "exists", "leading", "parse", "render", "test"]

@@ -22,10 +22,11 @@ neg-com    x ∉ C ⇒ x ∈ ¬C (then cls-int1 and the equivalences conclude th
 neg-clash  x ∈ C and x ∉ C: inconsistent (a check)
 =========  ==========================================================================================
 
-The rules of one premise and the universal's neg-avf on a named property are files of ``rules/owl/``,
-emitted as rows of their tables (:mod:`.schema`): more complemented classes are more rows, not more
-rules.  neg-uni (a premise per member), neg-avf on an inverse property and the neg-clash checks are
-written here.
+The rules of one premise, neg-uni of two to eight members (a file per number of members, its rows
+joined before its premises: :func:`.condition.leading`) and the universal's neg-avf on a named property
+are files of ``rules/owl/``, emitted as rows of their tables (:mod:`.schema`): more complemented classes
+are more rows, not more rules.  neg-uni of nine members or more, neg-avf on an inverse property and the
+neg-clash checks are written here.
 
 Only the classes whose non-membership some complement needs get rules: the closure of the complemented
 classes backwards through the rules above (a complement of C needs x ∉ C; x ∉ A ⊓ B needs x ∉ A or x ∉ B;
@@ -49,6 +50,7 @@ from ..rdf.vocab import INTERNAL, NOTHING, THING, TYPE
 from .model import Expr, Prop, describe
 from .reach import reachable
 from .rule import Atom
+from .schema import schema_rules
 
 if TYPE_CHECKING:
     from .owl import OwlCompiler
@@ -162,8 +164,10 @@ class NegativeMembership:
             if b.node != THING:
                 row((c.term, b.term), f"{describe(c)} is subsumed by {describe(b)}", "neg-sco")
         if c.kind == "or" and c.members and all(m.node != THING for m in c.members):
-            # n members in one body: a rule per union (a table row has a fixed number of terms)
-            emit("neg-uni", origin, [not_type(x, m) for m in c.members], head)
+            # n members, n premises: a file of rules/owl/ per number of members, up to the widest
+            width = f"neg-uni-{len(c.members)}"
+            if width not in schema_rules() or not row((c.term, *(m.term for m in c.members)), origin, width):
+                emit("neg-uni", origin, [not_type(x, m) for m in c.members], head)
         elif c.kind == "and":
             for m in c.members:
                 if m.node != THING:

@@ -11,13 +11,14 @@ from __future__ import annotations
 
 from collections.abc import Callable, Hashable, Iterable, Mapping
 from dataclasses import dataclass, field
-from functools import cached_property, lru_cache
+from functools import cached_property
 from typing import TYPE_CHECKING, TypeVar
 
 from pyoxigraph import NamedNode
 
 from ..rdf.vocab import AUX, TYPE, is_internal, is_skolem
 from .condition import Condition, render
+from .join_order import join_order
 
 if TYPE_CHECKING:
     from .disjointness import Disjointness
@@ -88,53 +89,6 @@ def head_is_aux(p: str, o: str) -> bool:
             return True
     # memberships of anonymous class expressions (skolemised blank nodes)
     return p == str(TYPE) and o.startswith("<") and is_skolem(o[1:-1])
-
-
-def _atom_score(atom: Atom, bound: set[str]) -> int:
-    """Higher is cheaper to evaluate next, given the variables already bound."""
-    if atom._vars <= bound:
-        return 100  # a pure check on bound values
-    s_known = not atom.s.startswith("?") or atom.s in bound
-    o_known = not atom.o.startswith("?") or atom.o in bound
-    is_type = atom.p == _TYPE_TEXT
-    if atom.p.startswith("?"):
-        return 20 if s_known else (15 if o_known else 0)
-    if s_known and not is_type:
-        return 60
-    if o_known and not is_type:
-        return 55
-    if is_type:
-        return 10  # enumerate the instances of a class
-    return 30  # enumerate a property
-
-
-def join_order(atoms: tuple[Atom, ...], first: int | None = None, bound: Iterable[str] = ()) -> list[int]:
-    """A greedy join order: start from ``first`` (or the most selective atom), then
-    always take the atom that is cheapest given what is bound (``bound``: variables
-    bound before the body), so that no rule starts from a cross product of class
-    extensions."""
-    if len(atoms) <= 1 and first in (None, 0):
-        return list(range(len(atoms)))
-    return list(_join_order(tuple(atoms), first, frozenset(bound)))
-
-
-@lru_cache(maxsize=1 << 16)
-def _join_order(atoms: tuple[Atom, ...], first: int | None, bound: frozenset[str]) -> tuple[int, ...]:
-    """:func:`join_order`, kept per body: a compilation merges and a full REASON renders the same
-    bodies again and again (every round, every delta atom)."""
-    remaining = list(range(len(atoms)))
-    order: list[int] = []
-    known = set(bound)
-    if first is not None:
-        order.append(first)
-        remaining.remove(first)
-        known |= atoms[first]._vars
-    while remaining:
-        best = max(remaining, key=lambda i: (_atom_score(atoms[i], known), -i))
-        order.append(best)
-        remaining.remove(best)
-        known |= atoms[best]._vars
-    return tuple(order)
 
 
 @dataclass(frozen=True)
@@ -247,10 +201,22 @@ class Rule:
         are merged (:meth:`RuleSet.add`) and the text of most evaluations."""
         return self._where(None, "", None)
 
+    @cached_property
+    def placed(self) -> tuple[str, frozenset[str], str]:
+        """The conditions as a WHERE places them: the leading ones' lines (a generic rule's schema rows,
+        :func:`.condition.leading`), the variables those bind, and the other conditions' lines."""
+        lead = tuple(c for c in self.conditions if c.leads)
+        if not lead:
+            return "", frozenset(), self.filters
+        return render(lead), frozenset().union(*(c.variables for c in lead)), render(
+            tuple(c for c in self.conditions if not c.leads))
+
     def _where(self, delta_index: int | None, delta_graph: str, graphs: Mapping[ReadKey, NamedNode] | None) -> str:
-        lines = [self.atom_text(i, delta_index, delta_graph, graphs) for i in join_order(self.body, delta_index)]
-        if self.filters:
-            lines.append(self.filters)
+        lead, bound, filters = self.placed
+        order = join_order(self.body, delta_index, bound)
+        lines = ([lead] if lead else []) + [self.atom_text(i, delta_index, delta_graph, graphs) for i in order]
+        if filters:
+            lines.append(filters)
         return "\n  ".join(lines)
 
     def atom_text(self, i: int, delta_index: int | None = None, delta_graph: str = "",

@@ -5,9 +5,10 @@ The OWL rules whose axioms fit a row of fixed width — class hierarchy (cax-sco
 EquivalentProperties axiom as two sub-property rows), domain (prp-dom), range (prp-rng), inverse
 (prp-inv1/2), symmetric (prp-symp), transitive (prp-trp), chains of two properties (prp-spo2),
 disjointness (the check cax-dw, and different-disjoint), restrictions by kind (cls-svf1, cls-avf,
-cls-hv1/2, one row per member for cls-int2 and cls-uni, one per individual for cls-oo), restriction
+cls-hv1/2, one row per member for cls-int2 and cls-uni, one per individual for cls-oo, a file per
+number of members for cls-int1), restriction
 subsumption (ext-card-sub, and ext-restriction-sub through the property hierarchy) and the
-non-memberships a complement needs (neg-dw, neg-svf, neg-sco, neg-int, neg-com, neg-avf: a
+non-memberships a complement needs (neg-dw, neg-svf, neg-sco, neg-int, neg-com, neg-avf, neg-uni: a
 ``ts:notType`` head, a helper atom)
 — are written once, as SPARQL files in
 ``rules/owl/``, each with *schema atoms* ``GRAPH ts:graph:schema { ... }`` that read a row of the
@@ -19,14 +20,16 @@ TBox's tables.  Those files are the single source of these rules, used two ways:
   after compilation are done (:mod:`.schema_tables`): the robot step, whose delta rules need
   constants, reads them row by row;
 * **generic**: the rule runs once against the rows written into a schema graph, whatever the number
-  of axioms (:mod:`.schema_program`, chosen by a full REASON when a table is large).
+  of axioms (:mod:`.schema_program`, chosen by a full REASON when a table is large), its rows read
+  before its body (:func:`.condition.leading`): a body of n atoms over one individual's facts is then n
+  look-ups per row, not every n-tuple of the individual's facts.
 
 The rows of a table are what an axiom contributes (:mod:`.schema_rows`), as SPARQL terms in the order
 the schema atom's variables first appear (``(C, D)`` for ``C SubClassOf D``).  Axioms on an inverse property
 expression have no row (no generic rule reads property expressions), nor have shapes of another width
-(a chain of three, an intersection of five members): the compiler keeps emitting their rules directly.
-A rule of n body atoms may be a file per n (``cls-int1-2.rq`` … ``cls-int1-4.rq``, each rule named
-``cls-int1``): a file is keyed by its name (:attr:`SchemaRule.key`), and :func:`template_of` finds a
+(a chain of three, an intersection of nine members): the compiler keeps emitting their rules directly.
+A rule of n body atoms may be a file per n (``cls-int1-2.rq`` … ``cls-int1-8.rq``, each rule named
+``cls-int1``; ``neg-uni-2.rq`` … ``neg-uni-8.rq``): a file is keyed by its name (:attr:`SchemaRule.key`), and :func:`template_of` finds a
 rule's file by its name and width.  A check's instantiation reports the individuals only
 (:attr:`SchemaRule.reported`); its message names the row's terms.
 """
@@ -252,7 +255,8 @@ class SchemaRule:
         """The generic rule: one rule joining the rows of :attr:`graph`, whatever their number, for the
         rows whose conclusions go to the helper graph (``aux``) or to the inferred graph."""
         pattern = " ".join(a.text() for a in self.schema)
-        conditions = self.rule.conditions + (cond.parse(f"GRAPH {self.graph} {{ {pattern} }}"),)
+        # the rows first: every body atom is then a look-up of bound classes (:func:`.condition.leading`)
+        conditions = self.rule.conditions + (cond.leading(f"GRAPH {self.graph} {{ {pattern} }}"),)
         test = self.aux_test()
         if test is not None:
             conditions += (cond.test(test if aux else f"!({test})"),)

@@ -61,10 +61,11 @@ def plan_where(rule: Rule, delta: int | None = None, delta_graph: NamedNode | No
     """
     head_line, same = goal_match(rule, head_graph) if head_graph is not None else ("", "")
     bound = rule.head.variables() - rule.binds if head_line else set()
-    filters = "\n  ".join(f for f in (rule.filters, same) if f)
-    start = [head_line] if head_line else []
+    lead, lead_bound, own = rule.placed  # a generic rule's schema rows start the group
+    filters = "\n  ".join(f for f in (own, same) if f)
+    start = [line for line in (head_line, lead) if line]
     rest: list[str] = []
-    for k in join_order(rule.body, delta, bound):
+    for k in join_order(rule.body, delta, bound | lead_bound):
         (start if k == delta else rest).append(rule.atom_text(k, delta, str(delta_graph)))
     if not start:
         return "\n  ".join(rest + ([filters] if filters else []))
