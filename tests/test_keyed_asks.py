@@ -12,7 +12,7 @@ from test_swrl_difference import PREFIXES
 from topostore import Ontology
 from topostore.compile.rule import Atom, Rule
 from topostore.rdf.vocab import DIFFERENT_KEY_OF
-from topostore.reason import keyed_asks
+from topostore.reason import early_reads, keyed_asks
 from topostore.reason.keyed_asks import KeyCensus, key_censuses
 
 SIBLINGS = ":c :hasParent :t . "
@@ -75,8 +75,10 @@ def test_a_census_wrongly_covering_loses_an_answer(monkeypatch: pytest.MonkeyPat
     assert entailed_siblings(onto) != CASES["a sibling outside"][1]
 
 
+@pytest.mark.parametrize("early", [True, False], ids=["asked early", "asked at its turn"])
 @pytest.mark.parametrize("case", ["map", "one group"])
-def test_a_covered_ask_never_reads_its_body(case: str, monkeypatch: pytest.MonkeyPatch) -> None:
+def test_a_covered_ask_never_reads_its_body(case: str, early: bool, monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.setattr(early_reads, "ENABLED", early and early_reads.ENABLED)
     onto = map_or_text() if case == "map" else family(case)
     onto.reason()
     minus = f"MINUS {{ {onto.rules.inference_rules[_deferred(onto)].unless_known.text()} }}"

@@ -82,6 +82,9 @@ def key_censuses(rules: Sequence[Rule]) -> dict[int, KeyCensus]:
         return {}
     out = {}
     for i in sorted(deferred(rules)):
+        pair = (rules[i].head.s, rules[i].head.o)
+        if not all(any(v in (a.s, a.p, a.o) for a in rules[i].body) for v in pair):
+            continue  # a term of the pair is not the body's to count
         if any(keyed_conclusion(rules[i], other) for other in rules):
             out[i] = KeyCensus(rules[i])
     return out
@@ -123,18 +126,20 @@ def census_text(rule: Rule, graphs: Mapping[ReadKey, NamedNode]) -> str:
     taken = _variables(rule)
     key, member, held = (_free(name, taken) for name in ("census_key", "census_member", "census_held"))
     branches = [f"GRAPH {AUX} {{ {key} {_KEY} {member} . }} BIND({member} AS {held})"]
+    named = {str(AUX): AUX}
     for v in (rule.head.s, rule.head.o):
         atom = next(a for a in rule.body if v in (a.s, a.p, a.o))
         renamed = Atom(*(member if t == v else t for t in (atom.s, atom.p, atom.o)), atom.aux)
         graph = AUX if atom.aux else graphs.get(atom.read_key())
         branch = renamed.text() if graph is None else f"GRAPH {graph} {{ {renamed.text()} }}"
+        if graph is not None:
+            named[str(graph)] = graph
         if branch not in branches:
             branches.append(branch)
     union = " UNION ".join(f"{{ {b} }}" for b in branches)
     return (f"SELECT (COUNT({key}) AS ?pairs) (COUNT(DISTINCT {key}) AS ?keys) (COUNT(DISTINCT {held}) AS ?held) "
             f"(COUNT(DISTINCT {member}) AS ?all)\nFROM {ASSERTED} FROM {INFERRED} FROM {AUX} "
-            f"FROM NAMED {AUX} FROM NAMED {ASSERTED}\n"
-            f"WHERE {{ {union} }}")
+            f"{' '.join(f'FROM NAMED {g}' for g in named.values())}\nWHERE {{ {union} }}")
 
 
 def _form(c: cond.Condition) -> tuple:
