@@ -1,7 +1,8 @@
 """The deferred asks of a full run: the candidate rules evaluated after the first stratum's fixpoint.
 
 Rules with a negated premise ("not known to be different") ask only once every fact they could
-ask about is derived (:mod:`.negation`); they read the keys whose facts are all asserted in the
+ask about is derived (:mod:`.negation`), unless a census of the AllDifferent keys shows them empty
+(:mod:`.keyed_asks`); they read the keys whose facts are all asserted in the
 asserted graph alone, and what they derive then runs its own semi-naive rounds.
 """
 
@@ -15,6 +16,7 @@ from pyoxigraph import NamedNode
 from ..compile.rule import ReadKey, Rule, key_pattern
 from ..rdf.vocab import ASSERTED
 from .insert_text import insert_text
+from .keyed_asks import covered
 from .negation import unless_known_text
 from .order import TYPE_KEY
 from .stats import ReasonStats
@@ -37,11 +39,14 @@ def ask_unknown(run: Materializer, stats: ReasonStats, active: list[int]) -> Non
         if idle is not None and any(run.triggers.feasible(w, run.present) for w in idle.others):
             idle = None  # a rule of a variable predicate may have written the key
         key = idle.key if idle is not None else None
-        if key is None and run._early is not None and run._early.answer(i) is False:
+        early = run._early.answer(i) if key is None and run._early is not None else None
+        if early is False:
             continue  # asked early, beside the later components' writes: no match (:mod:`.early_reads`)
+        graphs = only_asserted(run.rules[i], run._derived, run._asserted, asking) if key is None else {}
+        if key is None and early is None and covered(run.store, run.censuses.get(i), run._queued, graphs):
+            continue  # every body pair's conclusion is known by the AllDifferent keys (:mod:`.keyed_asks`)
         if key is None:
-            text = insert_text(run.rules[i], None, run.planned, run._lateral, run._direct,
-                               only_asserted(run.rules[i], run._derived, run._asserted, asking), bare=run.bare(i))
+            text = insert_text(run.rules[i], None, run.planned, run._lateral, run._direct, graphs, bare=run.bare(i))
             if run.rules[i].unless_known is not None:
                 text = unless_known_text(text, run.rules[i])
         elif next(iter(run.store.triples(*key_pattern(key), ASSERTED)), None) is not None:

@@ -18,7 +18,8 @@ turn comes, its early answer is used only if
 * it reads each key in the same graphs it would read them in now (:func:`.deferred_asks.only_asserted`).
 
 Then "no match" skips the insert (nothing to write); a match, or an early answer that does not hold,
-sends the insert as before.
+sends the insert as before.  Where a census of the AllDifferent keys may show the ask empty
+(:mod:`.keyed_asks`), the census is asked first, and the ``ASK`` only when it does not.
 
 **Checks.**  A check (:func:`.consistency.check_rows`) reads keys that are final once every rule that
 may write them is done, the upper strata's and the deferred asks' included: it is started (with the
@@ -42,10 +43,13 @@ from pyoxigraph import NamedNode
 
 from ..compile.generic import PREFIXES
 from ..compile.rule import ReadKey, Rule
+from ..stores.base import Store
 from ..stores.overlap import ENABLED, Reader
 from .consistency import GRAPHS, check_rows
 from .insert_text import insert_text
+from .keyed_asks import GROUP_READS, KeyCensus
 from .negation import unless_known_text
+from .one_group import one_group
 from .order import TYPE_KEY
 from .present import key_graphs
 from .triggers import may_write
@@ -139,6 +143,14 @@ def _start_points(run: Materializer, ordered: list[list[int]], reads: Mapping[in
     return points
 
 
+def _has_match(store: Store, text: str, census: KeyCensus | None, graphs: Mapping[ReadKey, NamedNode]) -> bool:
+    """Whether the ask ``text`` (reading its keys in ``graphs``) has a match: none when ``census`` shows it
+    empty (:mod:`.keyed_asks`; the store held one AllDifferent group when it was started), else by asking it."""
+    if census is not None and census.covers(store, graphs):
+        return False
+    return bool(store.query(text, prefixes=PREFIXES))
+
+
 class EarlyReads:
     """The deferred asks and checks of one full run started early; see the module docstring."""
 
@@ -165,7 +177,7 @@ class EarlyReads:
         ranked = {i for component in ordered for i in component}
         feasible = [i for i in range(len(run.rules)) if run.triggers.feasible(i, run.present)]
         asks = [i for i in sorted(run._deferring) if i not in run._idle and run.rules[i].unless_known is not None]
-        self._ask_reads = {i: _reads(run.rules[i]) for i in asks}
+        self._ask_reads = {i: _reads(run.rules[i]) | (GROUP_READS if i in run.censuses else frozenset()) for i in asks}
         # an ask is answered before the upper strata run: only the rest and the asks write after the components
         later = [run.rules[j].writes() for j in feasible if j in rest or j in run._deferring]
         self._asks_after = _start_points(run, ordered, self._ask_reads, later)
@@ -186,7 +198,8 @@ class EarlyReads:
                 continue
             graphs = self._graphs(i)
             text = ask_form(self._text(i, graphs))
-            self._asked[i] = (graphs, self._reader.submit(lambda t=text: bool(store.query(t, prefixes=PREFIXES))))
+            census = run.censuses.get(i) if one_group(store, run._queued) else None
+            self._asked[i] = (graphs, self._reader.submit(lambda t=text, c=census, g=graphs: _has_match(store, t, c, g)))
         for j in self._checks_after.pop(component, ()):
             rule, keys = self._checks[j], self._check_reads[j]
             self._checking[j] = self._reader.submit(lambda r=rule, k=keys: check_rows(store, r, key_graphs(store, k, GRAPHS)))

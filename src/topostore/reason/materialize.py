@@ -43,6 +43,7 @@ from .few_solutions import few_solutions
 from .first_pass import first_pass, without
 from .implied_passes import implied_atoms, implied_first_passes
 from .insert_text import distinct_pays, insert_text
+from .keyed_asks import key_censuses
 from .negation import Idle, evaluated_last
 from .one_group import keys_kept_by_group, one_group, without_group_tests
 from .order import (
@@ -120,6 +121,8 @@ class Materializer:
         #: full run while the store holds one AllDifferent group (:mod:`.one_group`)
         self._grouped: set[int] = ({i for i, r in enumerate(self.rules) if without_group_tests(r) is not None}
                                    if keys_kept_by_group(self.rules) else set())
+        #: deferred asks a census of the AllDifferent keys may show empty (:mod:`.keyed_asks`), by rule
+        self.censuses = key_censuses(self.rules)
 
     def _run(self, index: int, delta_index: int | None, stats: ReasonStats, asserted_only: bool = False,
              first: bool = False, union: tuple[int, ...] = ()) -> None:

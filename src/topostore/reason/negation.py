@@ -20,7 +20,8 @@ What is done instead: a candidate rule may carry ``unless_known = H`` (set by th
 pairs whose ``H`` is not known:
 
 * a full REASON evaluates such a rule last, once the fixpoint is reached, as ``body MINUS { H }``
-  (:func:`unless_known_text`), and propagates what it adds (the value rules, the twins);
+  (:func:`unless_known_text`), and propagates what it adds (the value rules, the twins); where a census
+  of the AllDifferent keys shows every body pair's ``H`` known, it is left out (:mod:`.keyed_asks`);
 * incremental maintenance evaluates the rule as written (a superset: a twin whose head is known is
   never published), so the robot step's compiled program is the same as before;
 * only a lost ``H(x, y)`` whose body still holds needs a pair asked that was left out.  ``H`` is
