@@ -464,6 +464,13 @@ INCONSISTENT = {
 :B rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :p ; owl:someValuesFrom :A ] .
 :x a :B .
 """,
+    "intersection_with_nothing": """:A a owl:Class .
+:I owl:equivalentClass [ owl:intersectionOf ( :A owl:Nothing ) ] .
+:x a owl:NamedIndividual, :I .
+""",
+    "union_of_nothing_alone": """:B a owl:Class ; rdfs:subClassOf [ owl:unionOf ( owl:Nothing ) ] .
+:x a owl:NamedIndividual, :B .
+""",
     "functional_data_value_outside_the_existential": """:d a owl:DatatypeProperty, owl:FunctionalProperty .
 :C a owl:Class ; rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :d ; owl:someValuesFrom xsd:string ] .
 :x a owl:NamedIndividual, :C ; :d 5 .
@@ -491,6 +498,38 @@ def test_known_missed_inconsistencies_are_pellets_answers(name: str) -> None:
                                   for name, (_, why) in KNOWN_INCONSISTENT.items()])
 def test_known_missed_inconsistencies(name: str) -> None:
     assert not loaded(document(name, KNOWN_INCONSISTENT[name][0])).reason().consistent
+
+
+# ---------------------------------------------------------------- owl:Thing and owl:Nothing as members
+
+#: the classes with owl:Nothing or owl:Thing among their members or as a filler, each named class told
+#: neither empty nor everything (the Pellet script reads named superclasses, not equivalents of owl:Thing)
+TOP_AND_BOTTOM_DECLARED = """:A a owl:Class . :B a owl:Class . :Out a owl:Class ; owl:disjointWith :A . :p a owl:ObjectProperty .
+:a a owl:NamedIndividual, :A . :b a owl:NamedIndividual, :B . :x a owl:NamedIndividual, :Out .
+"""
+TOP_AND_BOTTOM = {
+    "union_with_nothing": ":N owl:equivalentClass [ owl:complementOf [ owl:unionOf ( :A owl:Nothing ) ] ] .",
+    "union_with_thing": ":U owl:equivalentClass [ owl:intersectionOf ( :B [ owl:unionOf ( :A owl:Thing ) ] ) ] .",
+    "complement_of_nothing": ":C owl:equivalentClass [ owl:intersectionOf ( :B [ owl:complementOf owl:Nothing ] ) ] .",
+    "intersection_with_thing": ":I owl:equivalentClass [ owl:intersectionOf ( :A owl:Thing ) ] .",
+    "intersection_with_nothing": """:N owl:equivalentClass [ owl:complementOf [ owl:unionOf ( :A
+    [ owl:intersectionOf ( :B owl:Nothing ) ] ) ] ] .""",
+    "existential_into_nothing": """:N owl:equivalentClass [ owl:complementOf [ owl:unionOf ( :A
+    [ a owl:Restriction ; owl:onProperty :p ; owl:someValuesFrom owl:Nothing ] ) ] ] .""",
+    "union_of_nothing_alone": """:N owl:equivalentClass [ owl:intersectionOf ( :B
+    [ owl:complementOf [ owl:unionOf ( owl:Nothing ) ] ] ) ] .""",
+}
+
+
+@pytest.mark.parametrize("name", list(TOP_AND_BOTTOM))
+def test_thing_and_nothing_members_as_pellet(name: str) -> None:
+    """owl:Nothing changes no union, owl:Thing no intersection; nothing is in owl:Nothing or in an
+    existential into it, which a complement reading them needs."""
+    text, ns = document(name, TOP_AND_BOTTOM_DECLARED + TOP_AND_BOTTOM[name]), namespace(name)
+    theirs = _in_namespace(only(pellet(text), ns), ns)
+    ours = _in_namespace(only(topostore(loaded(text), list(pellet(text)["individuals"])), ns), ns)
+    assert ours == theirs
+    assert len({c for facts in theirs.values() for c in facts.get("types", ())} - {ns + c for c in ("A", "B", "Out")})
 
 
 # ---------------------------------------------------------------- classes with no member (compile/unsatisfiable.py)

@@ -19,6 +19,7 @@ neg-svf    x ∈ ∃q.X (≥ n q.X, = n q.X with n ≥ 1), q = p or a told sub-p
            as told ⇒ x ∉ ∀p.U: the value the existential promises, named or not, is outside U
 neg-sco    x ∉ B, A ⊑ B ⇒ x ∉ A (both ways for A ≡ E)
 neg-com    x ∉ C ⇒ x ∈ ¬C (then cls-int1 and the equivalences conclude the named class)
+neg-empty  x an individual ⇒ x ∉ C, for C with no instance: owl:Nothing, ∃p.⊥ (≥ n p.⊥, = n p.⊥, n ≥ 1)
 neg-clash  x ∈ C and x ∉ C: inconsistent (a check)
 =========  ==========================================================================================
 
@@ -47,6 +48,7 @@ from pyoxigraph import NamedNode
 
 from ..rdf.terms import sparql
 from ..rdf.vocab import INTERNAL, NOTHING, THING, TYPE
+from .every_individual import for_every_individual
 from .model import Expr, Prop, describe
 from .reach import reachable
 from .rule import Atom
@@ -158,6 +160,9 @@ class NegativeMembership:
     def _rules_for(self, c: Expr) -> None:
         emit, x, origin = self.compiler.emit, "?x", f"not in {describe(c)}"
         head, row = not_type(x, c), self.compiler.instantiate
+        if has_no_instance(c):
+            self.compiler.rules += for_every_individual("neg-empty", f"{describe(c)} has no instance", head)
+            return
         for d in self.partners.get(c.node, ()):
             row((d.term, c.term), f"{describe(d)} and {describe(c)} are disjoint", "neg-dw")
         for b in self.supers.get(c.node, ()):
@@ -224,8 +229,18 @@ class NegativeMembership:
     # ------------------------------------------------------------------ what the warning says
     def gaps(self, complement: Expr) -> list[Expr]:
         """The expressions, in the closure a complement needs, whose non-membership no rule derives."""
-        return [c for c in self._closure([complement.members[0]]).values()
-                if c.kind not in _WITH_RULES or (c.kind == "all" and self._class_filler(c) is None)]
+        return [c for c in self._closure([complement.members[0]]).values() if not has_no_instance(c)
+                and (c.kind not in _WITH_RULES or (c.kind == "all" and self._class_filler(c) is None))]
 
 
-__all__ = ["NOT_TYPE", "NegativeMembership", "not_type"]
+def has_no_instance(c: Expr) -> bool:
+    """Whether ``c`` is empty whatever the facts: owl:Nothing, or an existential (a minimum or exact
+    cardinality of at least one) into it.  Every individual is outside it, which the rules of a complement
+    reading it need (``¬(A ⊔ ∃p.⊥)``): nothing else derives "x is not in owl:Nothing"."""
+    if c.node == NOTHING:
+        return True
+    return (c.kind == "some" or (c.kind in ("min", "exact") and c.n >= 1)) and c.filler is not None \
+        and c.filler.node == NOTHING
+
+
+__all__ = ["NOT_TYPE", "NegativeMembership", "has_no_instance", "not_type"]

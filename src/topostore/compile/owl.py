@@ -254,6 +254,8 @@ class OwlCompiler:
         elif e.kind == "or":
             for m in e.members:
                 self.instantiate(member_row(e, m), origin, "cls-uni")
+            if len(e.members) == 1:  # a union of one member (owl:Nothing ones dropped) is that member
+                self.instantiate(member_row(e, e.members[0]), origin, "cls-int2")
         elif e.kind == "oneof":
             for ind in e.individuals:
                 self.instantiate((node, sparql(ind)), origin, "cls-oo")

@@ -25,20 +25,14 @@ from pyoxigraph import NamedNode
 
 from ..rdf.terms import sparql
 from ..rdf.vocab import (
-    DECLARATION_TYPES,
-    INTERNAL,
-    NAMED_INDIVIDUAL,
     NOTHING,
-    OWL,
-    RDF,
-    RDFS,
     SAME_AS,
     SKOLEM_PREFIX,
-    SWRL,
     THING,
     TYPE,
 )
 from . import condition as cond
+from .every_individual import for_every_individual
 from .fillers import FillerIndex
 from .model import Expr, Prop, TBox, describe
 from .owl import OwlCompiler
@@ -68,39 +62,25 @@ def key_rules(tb: TBox) -> list[Rule]:
     return [key_rule(cls, props) for cls, props in tb.keys if props]
 
 
-def _not_schema(var: str) -> str:
-    """SPARQL test: ``var`` is no RDF, RDFS, OWL, SWRL or internal IRI."""
-    return " && ".join(f'!STRSTARTS(STR({var}), "{ns}")' for ns in (RDF, RDFS, OWL, SWRL, INTERNAL))
-
-
-def _for_every_individual(name: str, origin: str, head: Atom) -> list[Rule]:
-    """``head`` (about ``?x``) for every individual ``?x``: every node typed with a class (not a
-    declaration such as ``owl:Class``), or linked by a property of the ontology (not a schema one)."""
-    declarations = ", ".join(f"<{t}>" for t in sorted(DECLARATION_TYPES) if t != NAMED_INDIVIDUAL.value)
-    rules = [Rule(name, origin, (Atom("?x", str(TYPE), "?c"),), head,
-                  (cond.test(f"isIRI(?x) && ?c NOT IN ({declarations}) && !isBlank(?c)"),))]
-    for body in (Atom("?x", "?q", "?o"), Atom("?o", "?q", "?x")):
-        rules.append(Rule(name, origin, (body,), head, (cond.test(f"isIRI(?x) && {_not_schema('?q')}"),)))
-    return rules
-
-
 def reflexive_rules(tb: TBox) -> list[Rule]:
     """``x p x`` for every individual, for each reflexive property ``p``."""
     rules = []
     for p in sorted(tb.characteristics.get("ReflexiveProperty", ()), key=lambda t: t.value):
-        rules += _for_every_individual("prp-refl", f"{p.value.rsplit('#', 1)[-1]} is reflexive",
+        rules += for_every_individual("prp-refl", f"{p.value.rsplit('#', 1)[-1]} is reflexive",
                                        Atom("?x", sparql(p), "?x"))
     return rules
 
 
-def thing_rules(tb: TBox) -> list[Rule]:
+def thing_rules(tb: TBox, expressions: Iterable[Expr] = ()) -> list[Rule]:
     """``owl:Thing ⊑ C`` (or ``owl:Thing ≡ C``): every individual is a member of ``C`` — how a range or
-    a property's universal restriction is often written (``owl:Thing ⊑ ∀p.A``)."""
+    a property's universal restriction is often written (``owl:Thing ⊑ ∀p.A``); and of a union among
+    ``expressions`` with owl:Thing as a member (no rule types an individual with owl:Thing itself)."""
     supers = {b for a, b in tb.subclass if a.node == THING and b.node != THING}
+    supers |= {e for e in expressions if e.kind == "or" and any(m.node == THING for m in e.members)}
     supers |= {y for a, b in tb.equivalent for x, y in ((a, b), (b, a)) if x.node == THING and y.node != THING}
     rules = []
     for b in sorted(supers, key=lambda e: e.node.value):
-        rules += _for_every_individual("cax-sco-thing", f"Thing SubClassOf {describe(b)}",
+        rules += for_every_individual("cax-sco-thing", f"Thing SubClassOf {describe(b)}",
                                        Atom("?x", str(TYPE), sparql(b.node)))
     return rules
 

@@ -50,7 +50,7 @@ def compile_ontology(store: Store, graph: NamedNode) -> RuleSet:
     rules.add(owl.compile())
     rules.add(key_rules(tbox))
     rules.add(reflexive_rules(tbox))
-    rules.add(thing_rules(tbox))
+    rules.add(thing_rules(tbox, owl.all_expressions()))
     rules.add(range_rules(tbox))
     rules.add(empty_range_rules(owl.all_expressions()))
     rules.add(restriction_rules(owl))

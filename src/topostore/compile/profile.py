@@ -161,7 +161,7 @@ class ProfileReport:
     # ---------------------------------------------------------------- expressions
     def expression(self, e: Expr, positive: bool, axiom: str, subject: NamedNode | None = None) -> None:
         k = e.kind
-        if positive and k == "or" and all(m.node != THING for m in e.members):
+        if positive and k == "or" and len(e.members) > 1 and all(m.node != THING for m in e.members):
             self.note(UNION, axiom, f"an instance of {describe(e)} is in one of its members, which one is not "
                       "known: conclusions by case analysis are not drawn")
         elif positive and k == "oneof":

@@ -85,7 +85,7 @@ class TBoxReader:
         for kind, pred in (("and", "intersectionOf"), ("or", "unionOf")):
             head = self._one(node, OWL + pred)
             if head is not None:
-                return Expr(node, kind, members=tuple(self.expr(m) for m in self._list(head)))
+                return boolean(node, kind, [self.expr(m) for m in self._list(head)])
         comp = self._one(node, OWL + "complementOf")
         if comp is not None:
             return Expr(node, "not", members=(self.expr(comp),))
@@ -208,7 +208,7 @@ class TBoxReader:
                 elif kind == "not":
                     e = Expr(node, kind, members=(self.expr(t.object),))
                 else:
-                    e = Expr(node, kind, members=tuple(self.expr(m) for m in self._list(t.object)))
+                    e = boolean(node, kind, [self.expr(m) for m in self._list(t.object)])
                 tb.equivalent.append((Expr(t.subject, "named"), e))
             self._each(tb, OWL + pred, define)
 
@@ -319,6 +319,16 @@ class TBoxReader:
             if e.is_named and e.node not in (THING, NOTHING) and not is_datatype(e.node):
                 tb.named_classes.add(e.node)
         return tb
+
+
+def boolean(node: NamedNode, kind: str, members: list[Expr]) -> Expr:
+    """A union ("or") without its owl:Nothing members, an intersection ("and") without its owl:Thing
+    members: they change nothing, and a rule reading them would wait for a fact no rule gives ("x is not in
+    owl:Nothing", "x is in owl:Thing" where nothing typed it so).  What is left empty keeps its unit as its
+    one member: an empty union is owl:Nothing, an empty intersection owl:Thing."""
+    unit = NOTHING if kind == "or" else THING
+    kept = tuple(m for m in members if m.node != unit)
+    return Expr(node, kind, members=kept or (Expr(unit, "named"),))
 
 
 def _expression_nodes(store: Store, graph: NamedNode) -> list[NamedNode]:

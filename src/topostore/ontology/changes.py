@@ -20,7 +20,7 @@ from ..rdf.terms import check_literal, value_key
 from ..rdf.vocab import ASSERTED
 from ..stores.facts import Fact
 from . import state as durable_state
-from .files import is_schema_triple
+from .files import changes_schema
 from .nary import all_different, individual_triples
 from .spellings import SpellingKeptWarning, spelling_kept
 
@@ -136,10 +136,8 @@ class AssertedChanges:
         self.onto.dirty = True
         if self.store.durable:
             durable_state.note_changed(self.store)
-        for t in triples:  # a loop, not any() over a generator: a manipulation touches one or two triples
-            if is_schema_triple(t):
-                self.onto.schema_changed()
-                return
+        if changes_schema(self.store, triples if isinstance(triples, Sequence) else list(triples)):
+            self.onto.schema_changed()
 
     def _change_limit(self) -> float:
         """Net changes above which an incremental REASON no longer pays off (a share of the asserted graph):

@@ -13,7 +13,7 @@ rules repaired, a refusal's message).
 from __future__ import annotations
 
 import os
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -42,7 +42,8 @@ from ..rdf.vocab import (
     owl,
 )
 from ..stores import check_rules, memory_store
-from ..stores.base import guess_format, serialize
+from ..stores.base import Store, guess_format, serialize
+from .schema_lists import LIST_LINKS, list_change_is_schema
 from .spellings import Written, joined, published
 from .streamed import rules_need_repair, schema_triples, stream_into_empty
 from .streamed_child import child_wanted, stream_through_child
@@ -66,6 +67,18 @@ def is_schema_triple(t: Triple) -> bool:
     if p in _ABOX_PREDICATES:
         return False
     return p.value.startswith(SCHEMA_NAMESPACES)
+
+
+def changes_schema(store: Store, triples: Sequence[Triple]) -> bool:
+    """True when the change ``triples`` changes the rules: a schema triple, or the cell of a list the TBox
+    reads (a union's members, a property chain, a rule's atoms: :mod:`.schema_lists`), which
+    :func:`is_schema_triple` cannot tell from the triple alone."""
+    lists = False
+    for t in triples:  # a loop, not any() over a generator: a manipulation changes one or two triples
+        if is_schema_triple(t):
+            return True
+        lists = lists or t.predicate in LIST_LINKS
+    return lists and list_change_is_schema(store, triples, is_schema_triple)
 
 
 class OntologyFiles:
@@ -204,7 +217,7 @@ class OntologyFiles:
         untranslatable rule refuses it.  Returns (triples added, notices).
         """
         notices = list(repaired or [])
-        if not any(is_schema_triple(t) for t in triples):
+        if not changes_schema(self.onto.store, triples):
             return self._add_all(triples), notices
         if self._in_place_possible():
             done = self._add_compiled_in_place(triples, notices)
@@ -311,4 +324,4 @@ def _refuse_incomplete(notices: list[Notice]) -> None:
         raise IncompleteOntologyError("refused (strict): " + "; ".join(grouped(blocking)))
 
 
-__all__ = ["OntologyFiles", "is_schema_triple"]
+__all__ = ["OntologyFiles", "changes_schema", "is_schema_triple"]
