@@ -43,7 +43,7 @@ from ..rdf.vocab import (
 )
 from ..stores import check_rules, memory_store
 from ..stores.base import Store, guess_format, serialize
-from .schema_lists import LIST_LINKS, list_change_is_schema
+from .schema_lists import list_change_is_schema
 from .spellings import Written, joined, published
 from .streamed import rules_need_repair, schema_triples, stream_into_empty
 from .streamed_child import child_wanted, stream_through_child
@@ -73,12 +73,10 @@ def changes_schema(store: Store, triples: Sequence[Triple]) -> bool:
     """True when the change ``triples`` changes the rules: a schema triple, or the cell of a list the TBox
     reads (a union's members, a property chain, a rule's atoms: :mod:`.schema_lists`), which
     :func:`is_schema_triple` cannot tell from the triple alone."""
-    lists = False
     for t in triples:  # a loop, not any() over a generator: a manipulation changes one or two triples
         if is_schema_triple(t):
             return True
-        lists = lists or t.predicate in LIST_LINKS
-    return lists and list_change_is_schema(store, triples, is_schema_triple)
+    return list_change_is_schema(store, triples, is_schema_triple)
 
 
 class OntologyFiles:

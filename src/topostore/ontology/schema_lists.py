@@ -14,7 +14,6 @@ is no longer there when the change is noted.
 
 from __future__ import annotations
 
-from collections import defaultdict
 from collections.abc import Callable, Iterable, Sequence
 
 from pyoxigraph import Triple
@@ -25,42 +24,55 @@ from ..stores.base import Store
 _CELL_LINKS = frozenset({FIRST, REST})
 _MEMBER_LINKS = frozenset({owl("members"), owl("distinctMembers")})
 _ABOX_GROUP = owl("AllDifferent")
-
-
-#: the predicates whose triples :func:`list_change_is_schema` decides
-LIST_LINKS = _CELL_LINKS | _MEMBER_LINKS
+#: what the one pass over a change reads, by predicate (a member link is itself)
+_KINDS = {REST: REST, FIRST: FIRST, TYPE: TYPE, **{p: p for p in _MEMBER_LINKS}}
 
 
 def list_change_is_schema(store: Store, triples: Sequence[Triple], is_schema: Callable[[Triple], bool]) -> bool:
     """Whether one of ``triples`` (a change, in the store or about to be; none of them a schema triple by
     ``is_schema``, the caller's per-triple test) edits a list the TBox reads.
 
-    The change is searched first: a cell the change itself names (a list added or removed whole) asks the
-    store nothing, so a map's AllDifferent of thousands of cells is decided without a look-up per cell."""
-    cells = [t for t in triples if t.predicate in _CELL_LINKS]
-    members = [t for t in triples if t.predicate in _MEMBER_LINKS]
-    if not cells and not members:
-        return False
-    walk = _ListWalk(store, triples, is_schema)
-    return any(walk.axiom_group(t.subject) for t in members) or any(walk.read_by_tbox(t.subject) for t in cells)
+    One pass over the change finds its cells and the cells its rdf:rest links lead to; only the others (the
+    first cells of what it adds or removes) are walked up, through the store.  A chain of the change's links
+    ends at one of them, and a head the change names is named by a schema triple (the caller's answer) or
+    by a member link (its group is tested here): so a map's AllDifferent of thousands of cells, added with
+    its group, asks the store about its first cell only."""
+    walk = _ListWalk(store, is_schema)
+    firsts = walk.read(triples)
+    return any(walk.axiom_group(t.subject) for t in walk.member_links) or any(map(walk.read_by_tbox, firsts))
 
 
 class _ListWalk:
     """The walk from list cells up to the triples naming their heads, remembering the cells already passed."""
 
-    def __init__(self, store: Store, change: Iterable[Triple], is_schema: Callable[[Triple], bool]) -> None:
+    def __init__(self, store: Store, is_schema: Callable[[Triple], bool]) -> None:
         self.store = store
         self.is_schema = is_schema
-        #: the change's links by object (its other triples name no list the TBox reads: none is a schema triple)
-        self.naming: defaultdict[object, list[Triple]] = defaultdict(list)
+        self.member_links: list[Triple] = []  # the change's owl:members and owl:distinctMembers
         self.groups: set[object] = set()  # the change's nodes typed owl:AllDifferent
-        for t in change:
-            p = t.predicate
-            if p in LIST_LINKS:
-                self.naming[t.object].append(t)
-            elif p == TYPE and t.object == _ABOX_GROUP:
-                self.groups.add(t.subject)
         self.seen: set[object] = set()
+
+    def read(self, change: Iterable[Triple]) -> list[object]:
+        """Index ``change`` (one pass): its cells no rdf:rest link of the change leads to.  Cells are keyed
+        by their IRI or blank node id (hashing a str is cheaper than hashing a term, and a map's change has
+        tens of thousands of cells); an IRI always has a colon, a blank node id never."""
+        cells: dict[str, object] = {}
+        following: set[str] = set()
+        for t in change:
+            kind = _KINDS.get(t.predicate)  # one look-up for the many triples that are none of these
+            if kind is None:
+                continue
+            if kind is REST or kind is FIRST:
+                cell = t.subject
+                cells[cell.value] = cell
+                if kind is REST:
+                    following.add(t.object.value)
+            elif kind is TYPE:
+                if t.object == _ABOX_GROUP:
+                    self.groups.add(t.subject)
+            else:
+                self.member_links.append(t)
+        return [cell for key, cell in cells.items() if key not in following]
 
     def axiom_group(self, node: object) -> bool:
         """Whether ``node``, the subject of a members link, is a TBox axiom: anything but an owl:AllDifferent
@@ -70,14 +82,15 @@ class _ListWalk:
         return next(self.store.triples(node, TYPE, _ABOX_GROUP, ASSERTED), None) is None
 
     def read_by_tbox(self, cell: object) -> bool:
-        """Whether the list with ``cell`` (or a list it is nested in) is named by a schema triple."""
+        """Whether the list with ``cell`` (or a list it is nested in) is named, in the store, by a schema
+        triple or a TBox axiom's member link."""
         todo = [cell]
         while todo:
             node = todo.pop()
             if node in self.seen:
                 continue
             self.seen.add(node)
-            for t in self._named_by(node):
+            for t in self.store.triples(None, None, node, ASSERTED):
                 if t.predicate in _CELL_LINKS:
                     todo.append(t.subject)  # the previous cell, or the cell of a list this one is a member of
                 elif t.predicate in _MEMBER_LINKS:
@@ -87,13 +100,5 @@ class _ListWalk:
                     return True
         return False
 
-    def _named_by(self, node: object) -> list[Triple]:
-        """The triples whose object is ``node``: the change's when it names the node (a well-formed cell has
-        one previous cell or naming triple), else the store's."""
-        found = self.naming.get(node)
-        if found:
-            return found
-        return list(self.store.triples(None, None, node, ASSERTED))
 
-
-__all__ = ["LIST_LINKS", "list_change_is_schema"]
+__all__ = ["list_change_is_schema"]
