@@ -199,6 +199,16 @@ def test_horn_axioms_give_no_notice() -> None:
     assert o.notices == []
 
 
+def test_a_union_of_one_member_as_a_superclass_is_that_member() -> None:
+    """What is left of a union once its owl:Nothing members are dropped may be one class: no case analysis."""
+    o = quietly(":A rdfs:subClassOf [ owl:unionOf ( :B owl:Nothing ) ] . :U owl:equivalentClass [ owl:unionOf "
+                "( :C ) ] . :a a :A . :u a :U .")
+    assert o.notices == []
+    o.reason()
+    assert {t.value.rsplit("#", 1)[-1] for t in o.types("a")} >= {"A", "B"}
+    assert {t.value.rsplit("#", 1)[-1] for t in o.types("u")} >= {"U", "C"}
+
+
 @pytest.mark.parametrize("second", [
     "",  # the unnamed value's class has no second link: the chain goes through named individuals only
     ":F rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :p ; owl:hasValue :i ] .",  # a link, not by s
