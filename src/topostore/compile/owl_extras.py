@@ -67,7 +67,7 @@ def reflexive_rules(tb: TBox) -> list[Rule]:
     rules = []
     for p in sorted(tb.characteristics.get("ReflexiveProperty", ()), key=lambda t: t.value):
         rules += for_every_individual("prp-refl", f"{p.value.rsplit('#', 1)[-1]} is reflexive",
-                                       Atom("?x", sparql(p), "?x"))
+                                      Atom("?x", sparql(p), "?x"))
     return rules
 
 
@@ -81,7 +81,7 @@ def thing_rules(tb: TBox, expressions: Iterable[Expr] = ()) -> list[Rule]:
     rules = []
     for b in sorted(supers, key=lambda e: e.node.value):
         rules += for_every_individual("cax-sco-thing", f"Thing SubClassOf {describe(b)}",
-                                       Atom("?x", str(TYPE), sparql(b.node)))
+                                      Atom("?x", str(TYPE), sparql(b.node)))
     return rules
 
 
