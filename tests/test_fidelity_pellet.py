@@ -512,6 +512,8 @@ TOP_AND_BOTTOM = {
     "union_with_thing": ":U owl:equivalentClass [ owl:intersectionOf ( :B [ owl:unionOf ( :A owl:Thing ) ] ) ] .",
     "complement_of_nothing": ":C owl:equivalentClass [ owl:intersectionOf ( :B [ owl:complementOf owl:Nothing ] ) ] .",
     "intersection_with_thing": ":I owl:equivalentClass [ owl:intersectionOf ( :A owl:Thing ) ] .",
+    "intersection_of_thing_alone": """:I owl:equivalentClass [ owl:intersectionOf ( :B
+    [ owl:intersectionOf ( owl:Thing owl:Thing ) ] ) ] .""",
     "intersection_with_nothing": """:N owl:equivalentClass [ owl:complementOf [ owl:unionOf ( :A
     [ owl:intersectionOf ( :B owl:Nothing ) ] ) ] ] .""",
     "existential_into_nothing": """:N owl:equivalentClass [ owl:complementOf [ owl:unionOf ( :A

@@ -74,9 +74,11 @@ def reflexive_rules(tb: TBox) -> list[Rule]:
 def thing_rules(tb: TBox, expressions: Iterable[Expr] = ()) -> list[Rule]:
     """``owl:Thing ⊑ C`` (or ``owl:Thing ≡ C``): every individual is a member of ``C`` — how a range or
     a property's universal restriction is often written (``owl:Thing ⊑ ∀p.A``); and of a union among
-    ``expressions`` with owl:Thing as a member (no rule types an individual with owl:Thing itself)."""
+    ``expressions`` with owl:Thing as a member, or an intersection of owl:Thing alone (no rule types an
+    individual with owl:Thing itself)."""
     supers = {b for a, b in tb.subclass if a.node == THING and b.node != THING}
-    supers |= {e for e in expressions if e.kind == "or" and any(m.node == THING for m in e.members)}
+    supers |= {e for e in expressions if (e.kind == "or" and any(m.node == THING for m in e.members))
+               or (e.kind == "and" and all(m.node == THING for m in e.members))}
     supers |= {y for a, b in tb.equivalent for x, y in ((a, b), (b, a)) if x.node == THING and y.node != THING}
     rules = []
     for b in sorted(supers, key=lambda e: e.node.value):
