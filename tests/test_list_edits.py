@@ -15,6 +15,7 @@ import pytest
 from pyoxigraph import Triple
 
 from topostore import IncompleteOntologyError, Ontology
+from topostore.rdf.vocab import FIRST, NIL, REST, owl
 
 NS = "http://example.org/t#"
 PREFIXES = (f"@prefix : <{NS}> . @prefix owl: <http://www.w3.org/2002/07/owl#> . "
@@ -147,3 +148,20 @@ def test_a_document_editing_a_tbox_list_is_compiled_before_it_is_added() -> None
     with pytest.raises(IncompleteOntologyError, match="literal"):
         onto.load_data(PREFIXES + ':l2 rdf:first "x" .')
     assert set(onto.triples()) == before
+
+
+def test_a_union_added_with_blank_nodes_then_cut_changes_the_rules() -> None:
+    """Cells a user adds as blank nodes are the skolem IRIs a load gives them; the walk finds them so."""
+    onto = reasoned(":a a :X1 . :b a :X2 .")
+    head, second = ox.BlankNode(), ox.BlankNode()
+    union = ox.NamedNode(NS + "U")
+    cells = [Triple(head, FIRST, ox.NamedNode(NS + "X1")), Triple(head, REST, second),
+             Triple(second, FIRST, ox.NamedNode(NS + "X2")), Triple(second, REST, NIL)]
+    onto.add(Triple(union, owl("equivalentClass"), ox.BlankNode("u")), Triple(ox.BlankNode("u"), owl("unionOf"), head),
+             *cells)
+    onto.reason()
+    onto.rules  # noqa: B018 - compiled
+    onto.change([Triple(head, REST, NIL)], [Triple(head, REST, second)])
+    assert onto._rules is None
+    onto.reason()
+    assert conclusions(onto) == from_scratch(onto)

@@ -18,10 +18,11 @@ from collections.abc import Callable, Iterable, Sequence
 
 from pyoxigraph import Triple
 
+from ..rdf.skolem import skolem
+from ..rdf.terms import sparql
 from ..rdf.vocab import ASSERTED, FIRST, REST, TYPE, owl
 from ..stores.base import Store
 
-_CELL_LINKS = frozenset({FIRST, REST})
 _MEMBER_LINKS = frozenset({owl("members"), owl("distinctMembers")})
 _ABOX_GROUP = owl("AllDifferent")
 #: what the one pass over a change reads, by predicate (a member link is itself)
@@ -79,26 +80,33 @@ class _ListWalk:
         (an untyped group included: reading the rules again is the safe side)."""
         if node in self.groups:
             return False
-        return next(self.store.triples(node, TYPE, _ABOX_GROUP, ASSERTED), None) is None
+        return next(self.store.triples(skolem(node), TYPE, _ABOX_GROUP, ASSERTED), None) is None
 
     def read_by_tbox(self, cell: object) -> bool:
         """Whether the list with ``cell`` (or a list it is nested in) is named, in the store, by a schema
-        triple or a TBox axiom's member link."""
+        triple or a TBox axiom's member link.  The store's rdf:rest links are followed back by one query
+        per list (a property path): a cell near the end of an AllDifferent of thousands is one request."""
         todo = [cell]
         while todo:
             node = todo.pop()
             if node in self.seen:
                 continue
             self.seen.add(node)
-            for t in self.store.triples(None, None, node, ASSERTED):
-                if t.predicate in _CELL_LINKS:
-                    todo.append(t.subject)  # the previous cell, or the cell of a list this one is a member of
+            for t in self._naming(node):
+                if t.predicate == FIRST:
+                    todo.append(t.subject)  # the cell of a list this one is a member of
                 elif t.predicate in _MEMBER_LINKS:
                     if self.axiom_group(t.subject):
                         return True
                 elif self.is_schema(t):
                     return True
         return False
+
+    def _naming(self, node: object) -> list[Triple]:
+        """The store's triples naming ``node`` or a cell before it in its list, rdf:rest links aside."""
+        rows = self.store.query(f"SELECT ?s ?p ?h WHERE {{ GRAPH {ASSERTED} {{ ?h {REST}* {sparql(skolem(node))} . "
+                                f"?s ?p ?h . FILTER(?p != {REST}) }} }}")
+        return [Triple(row["s"], row["p"], row["h"]) for row in rows]
 
 
 __all__ = ["list_change_is_schema"]
