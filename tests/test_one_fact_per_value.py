@@ -12,7 +12,7 @@ import time
 import warnings
 
 import pytest
-from pyoxigraph import Literal, NamedNode, Triple
+from pyoxigraph import Literal, NamedNode, Quad, Triple
 from test_value_spellings import N, assert_same_as_scratch
 from test_value_spellings import ontology as rule_ontology
 
@@ -20,6 +20,7 @@ from topostore import Ontology, SpellingKeptWarning
 from topostore.armor.reference import Reference
 from topostore.rdf.vocab import ASSERTED, XSD
 from topostore.sparql.execute import Job, run_update
+from topostore.stores import memory_store
 
 NS = "http://example.org/onefact#"
 S, P = NamedNode(NS + "s"), NamedNode(NS + "p")
@@ -162,3 +163,23 @@ def test_a_value_removed_and_added_in_another_spelling_by_two_changes_of_one_tra
         o.change([new], [])
     assert o.ledger.net_changes() == ([], [])
     assert_same_as_scratch(o)
+
+
+GRAPH = NamedNode(NS + "graph")
+
+
+def test_the_store_removes_a_value_held_as_the_other_term() -> None:
+    store = memory_store()
+    store.add([INT], GRAPH)
+    assert store.add([DECIMAL], GRAPH) == 0
+    assert store.remove([DECIMAL], GRAPH) == 1
+    assert list(store.triples(S, P, None, GRAPH)) == []
+
+
+def test_a_graph_holding_both_terms_loses_only_the_one_removed() -> None:
+    """A reasoner's graph keeps each spelling a rule derived: a removal there takes its own term only."""
+    store = memory_store()
+    store.add([INT], GRAPH)
+    store._write([Quad(S, P, DECIMAL.object, GRAPH)], [])
+    assert store.remove([DECIMAL], GRAPH) == 1
+    assert [str(t.object) for t in store.triples(S, P, None, GRAPH)] == [str(INTEGER.object)]

@@ -21,7 +21,7 @@ from typing import TYPE_CHECKING
 
 from pyoxigraph import Literal, NamedNode, Quad, Triple
 
-from ..rdf.terms import Term, quad, triple, value_key
+from ..rdf.terms import Term, quad, real_twin, triple, value_key
 from .facts import Fact, fact_of, fact_read
 from .presence import has_value
 
@@ -193,13 +193,14 @@ def toggle_absent(store: Store, quads: list[Quad], triples: list[Triple], keys: 
 
 
 def _held_quad(store: Store, q: Quad, k: Hashable) -> Quad:
-    """The quad a removal of ``q`` writes: the fact in the spelling kept for it (``"1.0"^^xsd:decimal``
-    removes a held ``"1"^^xsd:int``, a term of its own in the store), else ``q`` itself."""
+    """The quad a removal of ``q`` writes: ``q``, or where the store holds its value as the other term (a
+    held ``"1"^^xsd:int`` removed as ``"1.0"^^xsd:decimal``) that term, in the spelling kept for the fact.
+    A graph may hold both terms (the reasoner's keep each spelling a rule derived): ``q`` itself goes then."""
     o = q.object
-    if type(o) is not Literal:
+    if type(o) is not Literal or (twin := real_twin(o)) is None or store._has(q):
         return q
     kept = store.forms.recorded(q.graph_name, q.subject, q.predicate, k[2])  # type: ignore[index]
-    return q if kept is None or kept == o else quad(q.subject, q.predicate, kept, q.graph_name)
+    return quad(q.subject, q.predicate, kept if kept is not None else twin, q.graph_name)
 
 
 def add_to_empty(store: Store, triples: list[Triple] | tuple[Triple, ...], graph: NamedNode,
