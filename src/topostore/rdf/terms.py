@@ -275,34 +275,6 @@ def _literal_key(term: Literal) -> tuple:
     return ("literal", term.value, dt, term.language)
 
 
-#: the other stored form of integral reals lately asked (see :func:`real_twin`)
-_TWINS: dict[Literal, Literal | None] = {}
-_TWINS_MAX = 4096
-_INTEGER = NamedNode(XSD + "integer")
-_DECIMAL = NamedNode(XSD + "decimal")
-
-
-def real_twin(lit: Literal) -> Literal | None:
-    """The literal of the same OWL value that the store keeps as a separate term, or None.
-
-    Oxigraph stores every integer type as one ``xsd:integer`` term (``"01"^^xsd:long`` is
-    ``"1"^^xsd:integer``) but an ``xsd:decimal`` as a decimal term, though ``"1.0"^^xsd:decimal`` and
-    ``"1"^^xsd:int`` are one value (:func:`value_key`).  A look-up of a quad finds only its own term, so
-    presence by value asks this twin too: an integral decimal's integer, an integer's decimal."""
-    if lit in _TWINS:
-        return _TWINS[lit]
-    key = value_key(lit)
-    twin = None
-    if key[0] == "real" and key[1] == key[1].to_integral_value():
-        dt = lit.datatype.value[len(XSD):]
-        number = str(int(key[1]))
-        twin = Literal(number, datatype=_INTEGER if dt == "decimal" else _DECIMAL)
-    if len(_TWINS) >= _TWINS_MAX:
-        _TWINS.clear()
-    _TWINS[lit] = twin
-    return twin
-
-
 #: triples and quads with a literal object made lately, by their terms: pyoxigraph takes a literal argument
 #: only after trying it as a NamedNode and a BlankNode (building an error for each), ten times an IRI's
 #: cost, and a manipulation makes the same few again (a step's clock value is written, and removed as

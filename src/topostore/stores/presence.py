@@ -1,10 +1,11 @@
 """Whether a fact is in a store, by value: the one presence look-up of the unit of work (:mod:`.work`).
 
-A pending write is keyed by its value (``1`` = ``"01"^^xsd:int``), and so is presence: a literal the store
-keeps as another term than a spelling of the same value (``"1.0"^^xsd:decimal`` beside ``"1"^^xsd:int``:
-Oxigraph keeps every integer type as one ``xsd:integer`` term, a decimal as a term of its own) is looked up
-as that twin too.  One value is then one fact, stored in the spelling written first, whatever the path
-that writes it (a load, a change, a SPARQL update, a Graph Store write) and however many calls it takes.
+A pending write is keyed by its value (``1`` = ``"01"^^xsd:int``), and so is presence: a literal not found
+as written is looked up in the spelling the literal forms keep for its fact, where the store keeps that as
+another term (``"1.0"^^xsd:decimal`` beside a held ``"1"^^xsd:int``: Oxigraph keeps every integer type as
+one ``xsd:integer`` term, a decimal as a term of its own).  One value is then one fact, stored in the
+spelling written first, whatever the path that writes it (a load, a change, a SPARQL update, a Graph Store
+write) and however many calls it takes.
 Functions of the store, bound as its methods as those of :mod:`.work` are.
 """
 
@@ -15,7 +16,7 @@ from typing import TYPE_CHECKING
 
 from pyoxigraph import Literal, Quad
 
-from ..rdf.terms import quad, real_twin, value_key
+from ..rdf.terms import quad, value_key
 
 if TYPE_CHECKING:
     from .base import Store
@@ -66,27 +67,43 @@ def present(store: Store, quads: list[Quad], keys: list[tuple] | None = None) ->
 
 def has_values(store: Store, quads: list[Quad]) -> list[bool]:
     """Whether the committed store holds each quad's fact, by value: the one presence look-up of the unit
-    of work.  A quad with an integral real literal absent as written is asked again as its twin
-    (:func:`~topostore.rdf.terms.real_twin`): the store keeps ``"1"^^xsd:int`` and ``"1.0"^^xsd:decimal``
-    as two terms, yet they are one fact, stored once in the spelling written first."""
+    of work.  A literal quad absent as written is asked again in the spelling the literal forms keep for
+    its fact (:func:`kept_quad`), where that is another term."""
     found = store._has_many(quads)
-    twins: list[tuple[int, Quad]] = []
+    kept: list[tuple[int, Quad]] = []
     for i, (q, there) in enumerate(zip(quads, found, strict=True)):
-        if not there and type(o := q.object) is Literal and (twin := real_twin(o)) is not None:
-            twins.append((i, quad(q.subject, q.predicate, twin, q.graph_name)))
-    if twins:  # one more batch (one request on a remote store)
-        for (i, _), there in zip(twins, store._has_many([q for _, q in twins]), strict=True):
+        if not there and (held := kept_quad(store, q, None)) is not None:
+            kept.append((i, held))
+    if kept:  # one more batch (one request on a remote store)
+        for (i, _), there in zip(kept, store._has_many([q for _, q in kept]), strict=True):
             found[i] = there
     return found
 
 
-def has_value(store: Store, q: Quad) -> bool:
-    """:func:`has_values` of one quad (a manipulation's usual change), without a batch."""
+def has_value(store: Store, q: Quad, value: tuple | None) -> bool:
+    """:func:`has_values` of one quad (a manipulation's usual change, ``value``: its literal's value key
+    where known), without a batch."""
     if store._has(q):
         return True
+    held = kept_quad(store, q, value)
+    return held is not None and store._has(held)
+
+
+def kept_quad(store: Store, q: Quad, value: tuple | None) -> Quad | None:
+    """The quad of ``q``'s fact in the spelling kept for it (the literal forms: one per graph, subject,
+    predicate and value) where that is another literal than ``q``'s, else None.
+
+    Why: Oxigraph keeps every integer type as one ``xsd:integer`` term but a decimal as a term of its own
+    (``"1"^^xsd:int`` and ``"1.0"^^xsd:decimal`` are one OWL value, two terms), and a store that keeps
+    literals as written (a remote one) keeps every spelling apart: the quad as written finds only its own
+    term.  A dictionary look-up, asked only when that quad was not found."""
     o = q.object
-    twin = real_twin(o) if type(o) is Literal else None
-    return twin is not None and store._has(quad(q.subject, q.predicate, twin, q.graph_name))
+    if type(o) is not Literal:
+        return None
+    kept = store.forms.recorded(q.graph_name, q.subject, q.predicate, value if value is not None else value_key(o))
+    if kept is None or kept == o:
+        return None
+    return quad(q.subject, q.predicate, kept, q.graph_name)
 
 
-__all__ = ["has_value", "has_values", "key", "present"]
+__all__ = ["has_value", "has_values", "kept_quad", "key", "present"]

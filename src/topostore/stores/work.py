@@ -21,9 +21,9 @@ from typing import TYPE_CHECKING
 
 from pyoxigraph import Literal, NamedNode, Quad, Triple
 
-from ..rdf.terms import Term, quad, real_twin, triple, value_key
+from ..rdf.terms import Term, quad, triple, value_key
 from .facts import Fact, fact_of, fact_read
-from .presence import has_value
+from .presence import has_value, kept_quad
 
 if TYPE_CHECKING:
     from .base import Store
@@ -193,14 +193,13 @@ def toggle_absent(store: Store, quads: list[Quad], triples: list[Triple], keys: 
 
 
 def _held_quad(store: Store, q: Quad, k: Hashable) -> Quad:
-    """The quad a removal of ``q`` writes: ``q``, or where the store holds its value as the other term (a
-    held ``"1"^^xsd:int`` removed as ``"1.0"^^xsd:decimal``) that term, in the spelling kept for the fact.
-    A graph may hold both terms (the reasoner's keep each spelling a rule derived): ``q`` itself goes then."""
-    o = q.object
-    if type(o) is not Literal or (twin := real_twin(o)) is None or store._has(q):
+    """The quad a removal of ``q`` writes: ``q``, or where the store holds its value as another term (a
+    held ``"1"^^xsd:int`` removed as ``"1.0"^^xsd:decimal``) that term, as the literal forms keep it.  A
+    graph may hold both terms (the reasoner's keep each spelling a rule derived): ``q`` itself goes then."""
+    if type(q.object) is not Literal or store._has(q):
         return q
-    kept = store.forms.recorded(q.graph_name, q.subject, q.predicate, k[2])  # type: ignore[index]
-    return quad(q.subject, q.predicate, kept if kept is not None else twin, q.graph_name)
+    held = kept_quad(store, q, k[2])  # type: ignore[index]
+    return q if held is None else held
 
 
 def add_to_empty(store: Store, triples: list[Triple] | tuple[Triple, ...], graph: NamedNode,
@@ -294,7 +293,7 @@ def toggle_facts(store: Store, facts: list[Fact], add: bool) -> list[Fact]:
         else:
             present = store._known.get(k)
             if present is None and store.listings is None:
-                present = store._known[k] = has_value(store, f.quad)
+                present = store._known[k] = has_value(store, f.quad, f.value)
             elif present is None:
                 present = store._present([f.quad], [k])[0]
         if present != add:
