@@ -238,7 +238,7 @@ def _held_before(store: Store, triples: Sequence[Triple]) -> list[str]:
 def _respelled(store: Store, added: list[Fact], removed: list[Fact]) -> tuple[list[Fact], list[Fact], list[str]]:
     """``added`` and ``removed`` without the pairs of one value in two spellings, which the store netted out
     (its pending write is keyed by value), with a note naming the spelling kept and the one not written.
-    A pair of one spelling stays: the ledger cancels it itself (it keys by value)."""
+    A pair of one spelling stays: the ledger cancels it itself (it keys by the stored form)."""
     if not added or not removed:
         return added, removed, []
     gone = {f.key: f for f in removed}
