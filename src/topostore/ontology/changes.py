@@ -16,13 +16,13 @@ from typing import TYPE_CHECKING
 
 from pyoxigraph import Literal, NamedNode, Triple
 
-from ..rdf.terms import check_literal, value_key
+from ..rdf.terms import check_literal, triple, value_key
 from ..rdf.vocab import ASSERTED
 from ..stores.facts import Fact
 from . import state as durable_state
 from .files import changes_schema
 from .nary import all_different, individual_triples
-from .spellings import SpellingKeptWarning, spelling_kept
+from .spellings import HELD, SpellingKeptWarning, one_spelling, spelling_kept
 
 if TYPE_CHECKING:
     from ..stores.base import Store
@@ -39,8 +39,9 @@ class AssertedChanges:
         self.store = onto.store
         self.ledger = onto.ledger
 
-    def add(self, *triples: Triple) -> int:
-        """Assert triples; returns how many were new."""
+    def add(self, *triples: Triple, said: bool = False) -> int:
+        """Assert triples; returns how many were new (``said``: warn of each value held already in another
+        spelling, as :meth:`add_new` does; a load says it in its own notes, an undo has nothing to say)."""
         triples = tuple(dict.fromkeys(triples))
         for t in triples:
             o = t.object  # each term taken from a triple is a new object: once here (a big load has millions)
@@ -48,8 +49,11 @@ class AssertedChanges:
                 _validate_literal(o)
         self.touch(triples)
         if not self.ledger.tracking:  # nothing to record: a big first load takes the store's bulk path
-            return self.store.add(triples, ASSERTED, distinct=True)
-        return len(self._change(triples, added=True))
+            added = self.store.add(triples, ASSERTED, distinct=True)
+            if said and added < len(triples):  # some were there already: in another spelling, said
+                _warn(_held_before(self.store, triples), stacklevel=4)
+            return added
+        return len(self._change(triples, added=True, said=said))
 
     def remove(self, *triples: Triple) -> int:
         """Retract asserted triples (inferred ones cannot be removed, only their premises)."""
@@ -63,7 +67,7 @@ class AssertedChanges:
         triples = tuple(dict.fromkeys(triples))
         for t in triples:
             _validate(t)
-        new = self._change(triples, added=True)
+        new = self._change(triples, added=True, said=True)
         self.touch(new)
         return new
 
@@ -84,9 +88,7 @@ class AssertedChanges:
         :meth:`Store.read_facts`): their keys and forms, made once, serve the store, the ledger and the
         literal forms alike."""
         added, removed, notes = self.change_noted(add, remove)
-        for note in notes:
-            logger.warning("%s", note)
-            warnings.warn(note, SpellingKeptWarning, stacklevel=3)
+        _warn(notes, stacklevel=4)
         return added, removed
 
     def change_noted(self, add: Sequence[Triple | Fact],
@@ -113,21 +115,26 @@ class AssertedChanges:
         with store.transaction():
             removed = store.toggle_facts(removes, False) if removes else []
             added = store.toggle_facts(adds, True) if adds else []
-            added, removed, notes = _respelled(store, added, removed)
+            notes = _held(store, adds, added)
+            added, removed, respelled = _respelled(store, added, removed)
+            notes += respelled
             if removed or added:  # one record of the change: the ledger's unit-of-work step undoes both
                 ledger.record_change(store, added, removed, limit)
         added_triples, removed_triples = [f.triple for f in added], [f.triple for f in removed]
         self.touch(removed_triples + added_triples)
         return added_triples, removed_triples, notes
 
-    def _change(self, triples: tuple[Triple, ...], added: bool) -> list[Triple]:
+    def _change(self, triples: tuple[Triple, ...], added: bool, said: bool = False) -> list[Triple]:
         """Add or remove in the asserted graph and record what changed in the ledger: one presence look-up
-        per triple (the store's), in one transaction with the change."""
+        per triple (the store's), in one transaction with the change (``said``: warn of each value not
+        added because the graph held it in another spelling)."""
         store = self.store
         facts = [store.fact(t, ASSERTED, written=added) for t in triples]
         with store.transaction():
             changed = store.toggle_facts(facts, added)
             self.ledger.record(store, changed, added=added, limit=self._change_limit)
+            notes = _held(store, facts, changed) if said else []
+        _warn(notes, stacklevel=5)  # the caller of Ontology.add
         return [f.triple for f in changed]
 
     def touch(self, triples: Iterable[Triple]) -> None:
@@ -188,6 +195,42 @@ def _distinct(items: Sequence[Triple | Fact]) -> Sequence[Triple | Fact]:
 def _validate(t: Triple) -> None:
     if isinstance(t.object, Literal):
         _validate_literal(t.object)
+
+
+def _warn(notes: list[str], stacklevel: int = 4) -> None:
+    """Log and warn (:class:`SpellingKeptWarning`) of each spelling a change wrote and did not store."""
+    for note in notes:
+        logger.warning("%s", note)
+        warnings.warn(note, SpellingKeptWarning, stacklevel=stacklevel)
+
+
+def _held(store: Store, adds: list[Fact], added: list[Fact]) -> list[str]:
+    """A note for each added literal not stored because the graph held its value in another spelling (the
+    spelling kept is the committed one's, so a value written twice in this change is not named here)."""
+    if len(added) == len(adds):  # every fact new: the usual change, nothing looked up
+        return []
+    taken = {id(f) for f in added}
+    notes = []
+    for f in adds:
+        if id(f) in taken or f.value is None:
+            continue
+        t = f.triple
+        kept = store.forms.recorded(f.quad.graph_name, t.subject, t.predicate, f.value)
+        if kept is not None and kept != t.object:
+            notes.append(spelling_kept(triple(t.subject, t.predicate, kept), t, HELD))
+    return notes
+
+
+def _held_before(store: Store, triples: Sequence[Triple]) -> list[str]:
+    """:func:`_held` of triples added without facts (already committed): a value's first spelling in
+    ``triples`` not kept as written was held before in the spelling kept (a later one is the call's own)."""
+    firsts, _ = one_spelling(t for t in triples if isinstance(t.object, Literal))
+    notes = []
+    for t in firsts:
+        kept = store.forms.recorded(ASSERTED, t.subject, t.predicate, value_key(t.object))
+        if kept is not None and kept != t.object:
+            notes.append(spelling_kept(triple(t.subject, t.predicate, kept), t, HELD))
+    return notes
 
 
 def _respelled(store: Store, added: list[Fact], removed: list[Fact]) -> tuple[list[Fact], list[Fact], list[str]]:

@@ -128,7 +128,7 @@ class Ontology:
     # ------------------------------------------------------------------ manipulation (the ``changes`` part)
     def add(self, *triples: Triple) -> int:
         """Assert triples (a blank node named as a load names it); returns how many were new."""
-        added = self.changes.add(*named(triples))
+        added = self.changes.add(*named(triples), said=True)
         self.values.asserted(triples)
         return added
 

@@ -28,7 +28,7 @@ from ..rdf.skolem import fresh_skolem, skolem, skolemize, unskolem, unskolemize
 from ..rdf.syntax import FORMAT_NAMES, PROGRESS_EVERY, guess_format, parse_triples, serialize
 from ..rdf.terms import Term
 from ..rdf.vocab import SKOLEM_PREFIX
-from . import reads, work
+from . import presence, reads, work
 from .batched import BatchedReads
 from .data_text import data_update, quad_data
 from .listings import Listings
@@ -137,8 +137,8 @@ class Store:
     _end = work.end
     _flush = work.flush
     _flush_open = work.flush_open
-    _key = work.key
-    _present = work.present
+    _key = presence.key
+    _present = presence.present
     add = work.add
     add_new = work.add_new
     remove_present = work.remove_present

@@ -5,6 +5,9 @@ its pending writes.  Its state lives on the store (``_pending``: quad key -> (qu
 ``_known``: quad key -> present in the committed store, learnt during the transaction; ``_depth``), which
 the reads (:mod:`.reads`, :mod:`.batched`) consult too.
 
+Presence is by value (:mod:`.presence`); within one call a value is changed once, in its first spelling,
+a later spelling of it left out.
+
 These are functions of the store, bound as its methods in :class:`~topostore.stores.base.Store` (``add =
 work.add``): a robot step calls them hundreds of times, and a delegating method or a separate object
 would add a call (or an attribute look-up) to each.  They call one another through the store, so an
@@ -20,6 +23,7 @@ from pyoxigraph import Literal, NamedNode, Quad, Triple
 
 from ..rdf.terms import Term, quad, triple, value_key
 from .facts import Fact, fact_of, fact_read
+from .presence import has_value, kept_quad
 
 if TYPE_CHECKING:
     from .base import Store
@@ -124,49 +128,6 @@ def flush_open(store: Store) -> None:
     store._known = {}
 
 
-def key(store: Store, quad: Quad) -> Hashable:
-    """What identifies a quad: itself, or with a literal object its value (``1`` = ``"01"^^xsd:int``)."""
-    o = quad.object
-    if isinstance(o, Literal):
-        return (quad.subject, quad.predicate, value_key(o), quad.graph_name)
-    return quad
-
-
-def present(store: Store, quads: list[Quad], keys: list[tuple] | None = None) -> list[bool]:
-    """Whether each quad is in the store as the open transaction sees it (``keys``: their :meth:`_key`)."""
-    if store._pending is None and store.listings is None and not any(isinstance(q.object, Literal) for q in quads):
-        return store._has_many(quads)  # no transaction, no value keys: each quad is its own key
-    pending, known, listings = store._pending or {}, store._known, store.listings
-    keys = keys if keys is not None else [store._key(q) for q in quads]
-    answers: list[bool | None] = []
-    unknown: list[int] = []  # positions neither the transaction nor the listings can answer
-    for i, k in enumerate(keys):
-        entry = pending.get(k)
-        if entry is not None:
-            answers.append(entry[1])
-            continue
-        present = known.get(k)
-        if present is None and listings is not None:
-            present = listings.presence(quads[i], k)
-            if present is not None and store._pending is not None:
-                known[k] = present
-        if present is None:
-            unknown.append(i)
-        answers.append(present)
-    if len(unknown) == 1:  # a manipulation's one new triple
-        i = unknown[0]
-        answers[i] = store._has_many([quads[i]])[0]
-        if store._pending is not None:
-            known[keys[i]] = answers[i]
-    elif unknown:  # one batch (one request on a remote store); a value asked twice takes the last answer
-        found = dict(zip((keys[i] for i in unknown), store._has_many([quads[i] for i in unknown]), strict=True))
-        if store._pending is not None:
-            known.update(found)
-        for i in unknown:
-            answers[i] = found[keys[i]]
-    return answers  # type: ignore[return-value] - every position is answered by now
-
-
 # ------------------------------------------------------------ quads
 def add(store: Store, triples: Iterable[Triple], graph: NamedNode, distinct: bool = False) -> int:
     """Add triples to ``graph``; returns how many facts were new: a value written in two spellings is one
@@ -215,19 +176,30 @@ def toggle_each(store: Store, triples: Iterable[Triple], graph: NamedNode, add: 
 def toggle_absent(store: Store, quads: list[Quad], triples: list[Triple], keys: list[Hashable],
                   add: bool) -> list[Triple]:
     """:meth:`_toggle_each` inside an open transaction."""
-    pending, changed = store._pending, []
+    pending, changed, seen = store._pending, [], set()
     for q, t, k, present in zip(quads, triples, keys, store._present(quads, keys), strict=True):
-        if present == add:
+        if present == add or k in seen:  # a later spelling of a value this call changed: one fact, changed once
             continue
+        seen.add(k)
         entry = pending.get(k)  # pending True is absent from the committed store, False present; a change the other way cancels it
         if entry is None:
-            pending[k] = (q, add)
+            pending[k] = (q if add else _held_quad(store, q, k), add)
         elif entry[1] != add:
             del pending[k]
         else:  # the value pending already, in another spelling: one fact, changed once (its first spelling)
             continue
         changed.append(t)
     return changed
+
+
+def _held_quad(store: Store, q: Quad, k: Hashable) -> Quad:
+    """The quad a removal of ``q`` writes: ``q``, or where the store holds its value as another term (a
+    held ``"1"^^xsd:int`` removed as ``"1.0"^^xsd:decimal``) that term, as the literal forms keep it.  A
+    graph may hold both terms (the reasoner's keep each spelling a rule derived): ``q`` itself goes then."""
+    if type(q.object) is not Literal or store._has(q):
+        return q
+    held = kept_quad(store, q, k[2])  # type: ignore[index]
+    return q if held is None else held
 
 
 def add_to_empty(store: Store, triples: list[Triple] | tuple[Triple, ...], graph: NamedNode,
@@ -321,29 +293,38 @@ def toggle_facts(store: Store, facts: list[Fact], add: bool) -> list[Fact]:
         else:
             present = store._known.get(k)
             if present is None and store.listings is None:
-                present = store._known[k] = store._has(f.quad)
+                present = store._known[k] = has_value(store, f.quad, f.value)
             elif present is None:
                 present = store._present([f.quad], [k])[0]
         if present != add:
             if entry is None:
                 pending[k] = (f.quad if add else store._removal_quad(f), add)
             else:
-                del pending[k]
+                _cancel(store, pending, k, f)
             changed.append(f)
         return changed
-    keys = [f.key for f in facts]
+    keys, seen = [f.key for f in facts], set()
     for f, k, present in zip(facts, keys, store._present([f.quad for f in facts], keys), strict=True):
-        if present == add:
+        if present == add or k in seen:  # a later spelling of a value this call changed: one fact, changed once
             continue
+        seen.add(k)
         entry = pending.get(k)
         if entry is None:
             pending[k] = (f.quad if add else store._removal_quad(f), add)
         elif entry[1] != add:
-            del pending[k]
+            _cancel(store, pending, k, f)
         else:  # the value pending already, in another spelling: one fact, changed once (its first spelling)
             continue
         changed.append(f)
     return changed
+
+
+def _cancel(store: Store, pending: dict, k: Hashable, f: Fact) -> None:
+    """``f`` undoes the write pending for its value (an earlier change of this transaction): the store is
+    left as it was, in the spelling it held.  The fact is given that spelling's stored form, which the
+    change ledger keys by, so that it cancels the earlier change there too (``"1.0"^^xsd:decimal`` added
+    after ``"1"^^xsd:int`` was removed is no change, not a removed integer and an added decimal)."""
+    f.stored = store.stored_form(pending.pop(k)[0].triple)
 
 
 def removal_quad(store: Store, f: Fact) -> Quad:
