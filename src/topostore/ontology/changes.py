@@ -210,27 +210,25 @@ def _held(store: Store, adds: list[Fact], added: list[Fact]) -> list[str]:
     if len(added) == len(adds):  # every fact new: the usual change, nothing looked up
         return []
     taken = {id(f) for f in added}
-    notes = []
-    for f in adds:
-        if id(f) in taken or f.value is None:
-            continue
-        t = f.triple
-        kept = store.forms.recorded(f.quad.graph_name, t.subject, t.predicate, f.value)
-        if kept is not None and kept != t.object:
-            notes.append(spelling_kept(triple(t.subject, t.predicate, kept), t, HELD))
-    return notes
+    notes = (_held_note(store, f.quad.graph_name, f.triple, f.value) for f in adds
+             if id(f) not in taken and f.value is not None)
+    return [note for note in notes if note is not None]
 
 
 def _held_before(store: Store, triples: Sequence[Triple]) -> list[str]:
     """:func:`_held` of triples added without facts (already committed): a value's first spelling in
     ``triples`` not kept as written was held before in the spelling kept (a later one is the call's own)."""
     firsts, _ = one_spelling(t for t in triples if isinstance(t.object, Literal))
-    notes = []
-    for t in firsts:
-        kept = store.forms.recorded(ASSERTED, t.subject, t.predicate, value_key(t.object))
-        if kept is not None and kept != t.object:
-            notes.append(spelling_kept(triple(t.subject, t.predicate, kept), t, HELD))
-    return notes
+    notes = (_held_note(store, ASSERTED, t, value_key(t.object)) for t in firsts)
+    return [note for note in notes if note is not None]
+
+
+def _held_note(store: Store, graph: NamedNode, t: Triple, value: tuple) -> str | None:
+    """The HELD note of ``t`` where ``graph`` keeps its value in another spelling (the literal forms), else None."""
+    kept = store.forms.recorded(graph, t.subject, t.predicate, value)
+    if kept is None or kept == t.object:
+        return None
+    return spelling_kept(triple(t.subject, t.predicate, kept), t, HELD)
 
 
 def _respelled(store: Store, added: list[Fact], removed: list[Fact]) -> tuple[list[Fact], list[Fact], list[str]]:

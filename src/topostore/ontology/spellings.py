@@ -158,8 +158,6 @@ def published(notes: list[str], source: str) -> None:
     warnings.warn(line, SpellingKeptWarning, stacklevel=5)
 
 
-
-
 @dataclass
 class Written:
     """What a loaded document wrote that the graph may not show as written: each later spelling of a value

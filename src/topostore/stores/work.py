@@ -186,8 +186,6 @@ def toggle_absent(store: Store, quads: list[Quad], triples: list[Triple], keys: 
             pending[k] = (q if add else _held_quad(store, q, k), add)
         elif entry[1] != add:
             del pending[k]
-        else:  # the value pending already, in another spelling: one fact, changed once (its first spelling)
-            continue
         changed.append(t)
     return changed
 
@@ -313,8 +311,6 @@ def toggle_facts(store: Store, facts: list[Fact], add: bool) -> list[Fact]:
             pending[k] = (f.quad if add else store._removal_quad(f), add)
         elif entry[1] != add:
             _cancel(store, pending, k, f)
-        else:  # the value pending already, in another spelling: one fact, changed once (its first spelling)
-            continue
         changed.append(f)
     return changed
 
