@@ -167,3 +167,46 @@ def test_a_fact_with_no_form_kept_is_removed_as_read_not_in_another_subjects_spe
     assert r2 not in store._ox
     assert store.written_fact(store.read_facts(n("r1"), n("speed"), ASSERTED)[0]).object == typed("07", "long")
     assert store.forms.restore(typed("7", "integer")) == typed("07", "long")  # :r1's form still counted
+
+
+def _replace_reply(service: ArmorService, *args: str) -> None:
+    reply = service.call({"reference_name": "ref", "command": "REPLACE", "primary_command_spec": args[0],
+                          "secondary_command_spec": "IND", "args": list(args[1:])})
+    assert reply.success, reply.error_description
+
+
+def _service() -> tuple[ArmorService, Ontology]:
+    service, onto = ArmorService(), Ontology(prefix=EX)
+    onto.load_data(TBOX)
+    onto.reason()
+    service.add_reference(Reference("ref", onto, EX.rstrip("#"), buffered_reasoner=True))  # as a robot runs
+    return service, onto
+
+
+def test_a_replace_asks_no_presence_of_the_value_its_read_did_not_find(monkeypatch: pytest.MonkeyPatch) -> None:
+    # the plan read every value of (r1, speed): a new value not among them is absent from the store in
+    # every spelling, so the unit of work asks no presence look-up of it (as written, nor in a kept spelling)
+    service, onto = _service()
+    asked: list[Quad] = []
+    has = type(onto.store)._has
+    monkeypatch.setattr(type(onto.store), "_has", lambda store, q: asked.append(q) or has(store, q))
+    _replace_reply(service, "DATAPROP", "speed", "r1", "LONG", "9", "7")
+    _replace_reply(service, "OBJECTPROP", "at", "r1", "b", "a")
+    assert asked == []
+    assert [str(v) for v in onto.data_values("speed", "r1")] == [str(typed("9", "long"))]
+    assert onto.ledger.net_changes()[0] == [Triple(n("r1"), n("speed"), typed("9", "integer")),
+                                            Triple(n("r1"), n("at"), n("b"))]
+
+
+def test_a_value_read_present_stays_present_when_noted_unread(onto: Ontology) -> None:
+    # an earlier change of the same unit removed the value: the read does not list it, the committed store
+    # holds it, and adding it back cancels the pending removal (no change at all)
+    store = onto.store
+    with store.transaction():
+        facts = store.read_facts(n("r1"), n("speed"), ASSERTED)
+        assert [f.triple for f in store.toggle_facts(facts, False)] == [f.triple for f in facts]
+        assert store.read_facts(n("r1"), n("speed"), ASSERTED) == []
+        back = store.unread_fact(Triple(n("r1"), n("speed"), typed("7", "long")), ASSERTED)
+        assert store.toggle_facts([back], True) == [back]
+        assert store._pending == {}
+    assert [str(v) for v in onto.data_values("speed", "r1")] == [str(typed("07", "long"))]

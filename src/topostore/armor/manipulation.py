@@ -229,7 +229,9 @@ def _replace(ind: NamedNode, prop: NamedNode, new, old, description: str) -> Cha
         )
         if isinstance(new, Literal) and not present:
             warning = "; ".join(filter(None, [warning, _object_property_note(onto, prop, description)]))
-        return Delta(add=[] if present else [terms.triple(ind, prop, new)], remove=olds, warning=warning)
+        # the value read absent is noted so in the transaction: its addition asks the store nothing again
+        added = [] if present else [onto.store.unread_fact(terms.triple(ind, prop, new), ASSERTED)]
+        return Delta(add=added, remove=olds, warning=warning)
 
     return Change(description, plan)
 

@@ -143,7 +143,8 @@ class AssertedChanges:
         self.onto.dirty = True
         if self.store.durable:
             durable_state.note_changed(self.store)
-        if changes_schema(self.store, triples if isinstance(triples, Sequence) else list(triples)):
+        if changes_schema(self.store, triples if type(triples) is list or isinstance(triples, Sequence)
+                          else list(triples)):
             self.onto.schema_changed()
 
     def _change_limit(self) -> float:
@@ -237,6 +238,8 @@ def _respelled(store: Store, added: list[Fact], removed: list[Fact]) -> tuple[li
     A pair of one spelling stays: the ledger cancels it itself (it keys by the stored form)."""
     if not added or not removed:
         return added, removed, []
+    if len(added) == 1 and len(removed) == 1 and added[0].key != removed[0].key:
+        return added, removed, []  # a REPLACE of one value by another: no pair, nothing built to find one
     gone = {f.key: f for f in removed}
     pairs = [(gone[f.key], f) for f in added if f.key in gone and _spelled_apart(store, gone[f.key], f)]
     if not pairs:

@@ -27,6 +27,8 @@ _MEMBER_LINKS = frozenset({owl("members"), owl("distinctMembers")})
 _ABOX_GROUP = owl("AllDifferent")
 #: what the one pass over a change reads, by predicate (a member link is itself)
 _KINDS = {REST: REST, FIRST: FIRST, TYPE: TYPE, **{p: p for p in _MEMBER_LINKS}}
+#: the predicates that start a walk: a change with none of them (a robot's REPLACE) edits no list
+_CELL_LINKS = frozenset({REST, FIRST, *_MEMBER_LINKS})
 
 
 def list_change_is_schema(store: Store, triples: Sequence[Triple], is_schema: Callable[[Triple], bool]) -> bool:
@@ -37,7 +39,13 @@ def list_change_is_schema(store: Store, triples: Sequence[Triple], is_schema: Ca
     first cells of what it adds or removes) are walked up, through the store.  A chain of the change's links
     ends at one of them, and a head the change names is named by a schema triple (the caller's answer) or
     by a member link (its group is tested here): so a map's AllDifferent of thousands of cells, added with
-    its group, asks the store about its first cell only."""
+    its group, asks the store about its first cell only.  A change with no cell or member link (every
+    change of a robot's step) answers before any walk is set up."""
+    for t in triples:  # a loop, not any() over a generator: a manipulation changes one or two triples
+        if t.predicate in _CELL_LINKS:
+            break
+    else:
+        return False
     walk = _ListWalk(store, is_schema)
     firsts = walk.read(triples)
     return any(walk.axiom_group(t.subject) for t in walk.member_links) or any(map(walk.read_by_tbox, firsts))

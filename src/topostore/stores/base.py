@@ -148,6 +148,7 @@ class Store:
     _add_to_empty = work.add_to_empty
     fact = work.fact
     read_facts = work.read_facts
+    unread_fact = work.unread_fact
     written_fact = work.written_fact
     toggle_facts = work.toggle_facts
     _removal_quad = work.removal_quad

@@ -145,8 +145,11 @@ class OxigraphStore(Store):
     def _commit(self, adds: list[Quad], removes: list[Quad]) -> None:
         self._writes += 1
         eligible = self._held.eligible
-        if eligible and any(q.graph_name in eligible for q in chain(adds, removes)):
-            self._release_held()
+        if eligible:
+            for q in chain(adds, removes):  # a loop, not any() over a generator: a manipulation writes one or two
+                if q.graph_name in eligible:
+                    self._release_held()
+                    break
         if self._in_memory:
             for q in removes:
                 self._ox.remove(q)

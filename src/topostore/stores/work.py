@@ -263,6 +263,18 @@ def read_facts(store: Store, s: Term, p: NamedNode, graph: NamedNode) -> list[Fa
     return out
 
 
+def unread_fact(store: Store, t: Triple, graph: NamedNode) -> Fact:
+    """:meth:`fact` of a triple the caller adds after its :meth:`read_facts` of the same subject, predicate
+    and graph, in this transaction, found no fact of its value.  That read saw every committed value of
+    them, in every spelling, so the fact is noted absent from the committed store: its addition
+    (:meth:`toggle_facts`) then asks no presence look-up (the quad as written, then the spelling kept),
+    which a REPLACE would otherwise pay for a value it has just read."""
+    f = fact_of(t, graph)
+    if store._pending is not None and store.listings is None:  # read_facts noted what it read (see there)
+        store._known.setdefault(f.key, False)  # a value the read found stays present
+    return f
+
+
 def written_fact(store: Store, f: Fact) -> Triple:
     """The triple of ``f`` as its user wrote it (kept in ``f.written``): what a removal reports and
     an undo restores."""
