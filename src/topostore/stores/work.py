@@ -49,16 +49,33 @@ class _Transaction:
         self.store._end(kind is not None)
 
 
+class _Joined:
+    """The context manager of a transaction opened inside an open one: it joins it, so there is nothing to
+    begin or end (the outer one commits, or forgets on an exception that reaches it)."""
+
+    __slots__ = ()
+
+    def __enter__(self) -> None:
+        return None
+
+    def __exit__(self, kind, value, traceback) -> None:
+        return None
+
+
+_JOINED = _Joined()
+
+
 # ------------------------------------------------------------ transactions
-def transaction(store: Store) -> _Transaction:
+def transaction(store: Store) -> _Transaction | _Joined:
     """Group writes into one atomic commit (nested calls join the outer one).
 
     On an exception nothing of the transaction is written.  A SPARQL query
     or update inside a transaction first commits what is pending, so that it
     sees it; manipulations only read through the quad methods, so they stay
-    one commit.  (A plain context manager class: a robot step opens a dozen of them.)
+    one commit.  (A plain context manager class: a robot step opens a dozen of them, most inside
+    another, which are joined without a count: a REPLACE's change inside its unit of work.)
     """
-    return _Transaction(store)
+    return _JOINED if store._depth else _Transaction(store)
 
 
 def begin(store: Store) -> None:
@@ -103,12 +120,19 @@ def flush(store: Store) -> None:
     """Commit the pending writes of the open transaction (also the persisted state)."""
     pending, store._pending = store._pending or {}, ({} if store._depth else None)
     meta = store.persisted.take_pending()
-    keyed_adds = [(q, k) for k, (q, present) in pending.items() if present]
-    keyed_removes = [(q, k) for k, (q, present) in pending.items() if not present]
-    if not keyed_adds and not keyed_removes and not meta:
+    if not pending and not meta:
         return
-    adds = [q for q, _ in keyed_adds]
-    removes = [q for q, _ in keyed_removes]
+    keyed_adds: list[tuple[Quad, Hashable]] = []
+    keyed_removes: list[tuple[Quad, Hashable]] = []
+    adds: list[Quad] = []
+    removes: list[Quad] = []
+    for k, (q, present) in pending.items():  # one pass (a manipulation's commit holds one or two writes)
+        if present:
+            keyed_adds.append((q, k))
+            adds.append(q)
+        else:
+            keyed_removes.append((q, k))
+            removes.append(q)
     # undo: the literal forms as they were (the removed literals as their users wrote them)
     forms_add, forms_remove, undo = store.forms.record_keyed(keyed_adds, keyed_removes)
     meta_add, meta_remove = store.persisted.quads(meta) if meta else ([], [])
