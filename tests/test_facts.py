@@ -210,3 +210,18 @@ def test_a_value_read_present_stays_present_when_noted_unread(onto: Ontology) ->
         assert store.toggle_facts([back], True) == [back]
         assert store._pending == {}
     assert [str(v) for v in onto.data_values("speed", "r1")] == [str(typed("07", "long"))]
+
+
+@pytest.mark.parametrize("lit", [typed("007", "long"), typed("1.50", "decimal"), typed("+3", "int"),
+                                 typed("1.0E1", "double"), Literal("chat", language="FR"), Literal("plain")])
+def test_the_probe_given_a_changes_quad_finds_the_stored_form_it_finds_alone(lit: Literal) -> None:
+    from topostore.stores import literal_forms
+
+    literal_forms._STORED.clear()
+    alone = literal_forms.stored_literal(lit)
+    literal_forms._STORED.clear()
+    assert literal_forms.stored_literal(lit, Quad(n("r1"), n("speed"), lit, ASSERTED)) == alone
+    literal_forms._STORED.clear()
+    t = Triple(n("r1"), n("speed"), lit)
+    assert Ontology(prefix=EX).store.stored_form(t, Quad(n("r1"), n("speed"), lit, ASSERTED)) == \
+        Triple(n("r1"), n("speed"), alone)

@@ -127,9 +127,10 @@ class Store:
         """A literal as users wrote it, when that value was written in one form only."""
         return self.forms.restore(term)
 
-    def stored_form(self, t: Triple) -> Triple:
-        """The triple as this store holds it once added (Oxigraph canonicalises some literals)."""
-        return self.forms.stored_form(t)
+    def stored_form(self, t: Triple, written: Quad | None = None) -> Triple:
+        """The triple as this store holds it once added (Oxigraph canonicalises some literals); ``written``:
+        a quad of it made already (see :meth:`LiteralForms.stored_form`)."""
+        return self.forms.stored_form(t, written)
 
     # ------------------------------------------------------------ the unit of work (see .work), bound as methods
     transaction = work.transaction
