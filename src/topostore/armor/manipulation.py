@@ -230,7 +230,7 @@ def _replace(ind: NamedNode, prop: NamedNode, new, old, description: str) -> Cha
         if isinstance(new, Literal) and not present:
             warning = "; ".join(filter(None, [warning, _object_property_note(onto, prop, description)]))
         # the value read absent is noted so in the transaction: its addition asks the store nothing again
-        added = [] if present else [onto.store.unread_fact(terms.triple(ind, prop, new), ASSERTED)]
+        added = [] if present else [onto.store.unread_fact(ind, prop, new, ASSERTED)]
         return Delta(add=added, remove=olds, warning=warning)
 
     return Change(description, plan)

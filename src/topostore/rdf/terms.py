@@ -257,6 +257,19 @@ def value_key(term: Term) -> tuple:
     return key
 
 
+def note_stored_value(stored: Literal, written: Literal) -> None:
+    """``stored`` is how the store holds ``written`` (``"5"^^xsd:integer`` for ``"5"^^xsd:long``): where
+    ``written``'s value key is known and is a number's or a boolean's (the store's canonical form is the
+    same value), ``stored`` gets it too, so that reading the stored form back (a REPLACE reads the value it
+    replaces a step later) computes no key again.  A string's key names its form (a language tag's case),
+    so it is left to be computed."""
+    key = _VALUE_KEYS.get(written)
+    if key is not None and key[0] != "literal" and stored not in _VALUE_KEYS:
+        if len(_VALUE_KEYS) >= _VALUE_KEYS_MAX:
+            _VALUE_KEYS.clear()
+        _VALUE_KEYS[stored] = key
+
+
 def _literal_key(term: Literal) -> tuple:
     """:func:`value_key` of a literal, computed."""
     dt = term.datatype.value
@@ -290,6 +303,13 @@ def triple(s: Term, p: NamedNode, o: Term) -> Triple:
     key = (s, p, o)
     made = _MADE.get(key)
     return made if made is not None else _keep(key, Triple(s, p, o))
+
+
+def keep_triple(s: Term, p: NamedNode, o: Literal, made: Triple) -> None:
+    """``made`` is ``Triple(s, p, o)``, taken from a quad (pyoxigraph makes that without trying the kinds of
+    term): kept for :func:`triple` to answer with, as one it made itself (a step later, the same value is
+    named again as the old value it replaces)."""
+    _keep((s, p, o), made)
 
 
 def quad(s: Term, p: NamedNode, o: Term, g: NamedNode) -> Quad:

@@ -55,6 +55,17 @@ def fact_of(t: Triple, graph: NamedNode, written: bool = True) -> Fact:
     return Fact(t, quad(s, p, o, graph), (s, p, value, graph), value, None, t if written else None)
 
 
+def fact_written(q: Quad) -> Fact:
+    """:func:`fact_of` of a quad the caller made for the write: its triple is taken from it (pyoxigraph
+    makes it from the quad's terms, where a ``Triple`` given a literal costs ≈ 1.7 µs to make)."""
+    t = q.triple
+    o = t.object
+    if not isinstance(o, Literal):
+        return Fact(t, q, q, None, t, t)
+    value = value_key(o)
+    return Fact(t, q, (t.subject, t.predicate, value, q.graph_name), value, None, t)
+
+
 def fact_read(q: Quad, canonical: bool) -> Fact:
     """The fact of a quad read from a store (``canonical``: the store holds literals as Oxigraph stores
     them, so the read triple is its own stored form); its written form is asked when it is removed."""
@@ -66,4 +77,4 @@ def fact_read(q: Quad, canonical: bool) -> Fact:
     return Fact(t, q, (t.subject, t.predicate, value, q.graph_name), value, t if canonical else None, None)
 
 
-__all__ = ["Fact", "fact_of", "fact_read"]
+__all__ = ["Fact", "fact_of", "fact_read", "fact_written"]

@@ -21,8 +21,8 @@ from typing import TYPE_CHECKING
 
 from pyoxigraph import Literal, NamedNode, Quad, Triple
 
-from ..rdf.terms import Term, quad, triple, value_key
-from .facts import Fact, fact_of, fact_read
+from ..rdf.terms import Term, keep_triple, quad, triple, value_key
+from .facts import Fact, fact_of, fact_read, fact_written
 from .presence import has_value, kept_quad
 
 if TYPE_CHECKING:
@@ -287,13 +287,16 @@ def read_facts(store: Store, s: Term, p: NamedNode, graph: NamedNode) -> list[Fa
     return out
 
 
-def unread_fact(store: Store, t: Triple, graph: NamedNode) -> Fact:
-    """:meth:`fact` of a triple the caller adds after its :meth:`read_facts` of the same subject, predicate
-    and graph, in this transaction, found no fact of its value.  That read saw every committed value of
+def unread_fact(store: Store, s: Term, p: NamedNode, o: Term, graph: NamedNode) -> Fact:
+    """:meth:`fact` of the triple (s, p, o) the caller adds after its :meth:`read_facts` of the same subject,
+    predicate and graph, in this transaction, found no fact of its value (its quad made first, the triple
+    taken from it: :func:`~.facts.fact_written`).  That read saw every committed value of
     them, in every spelling, so the fact is noted absent from the committed store: its addition
     (:meth:`toggle_facts`) then asks no presence look-up (the quad as written, then the spelling kept),
     which a REPLACE would otherwise pay for a value it has just read."""
-    f = fact_of(t, graph)
+    f = fact_written(quad(s, p, o, graph))
+    if type(o) is Literal:
+        keep_triple(s, p, o, f.triple)
     if store._pending is not None and store.listings is None:  # read_facts noted what it read (see there)
         store._known.setdefault(f.key, False)  # a value the read found stays present
     return f
