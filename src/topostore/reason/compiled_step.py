@@ -57,7 +57,7 @@ class CompiledStep:
         #: False runs the general phases for every change
         self.enabled = True
         self.compiler = StepCompiler(self.rules, monotone, flips._by_frequency, store.supports_lateral,
-                                     cover=not store.round_trips)
+                                     cover=not store.round_trips, values=flips.sorted_values)
         #: compiled programs (or why a signature cannot be compiled) by signature, until the next full run
         self.programs: dict = {}
         #: signatures whose program in one request needed more rounds than it had: general phases for good
