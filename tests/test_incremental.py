@@ -460,6 +460,27 @@ def test_the_look_up_flip_reads_only_the_visit_times_in_its_window() -> None:
     assert any(found for found in reads)
 
 
+def test_visit_times_of_other_numeric_types_keep_the_look_up_window_exact() -> None:
+    """Decimal and double visit times, a string among them (no number: never in the window, and no flip),
+    the clock moving forward and back across them, to decimal and double values too (the window then
+    computed in fractions, widened for a double)."""
+    onto = new_map(30, 2, True)
+    onto.max_change_share = 1.0
+    onto.reason()
+    base = 1665579740
+    for k, (text, datatype) in enumerate([(f"{base - 90}.5", "decimal"), (f"{base - 60}.25", "decimal"),
+                                          (f"{base - 30}.0", "double"), ("soon", "string")]):
+        onto.replace(N(f"R{k + 1}"), N("visitedAt"), onto.value(text, datatype))
+    onto.reason()
+    assert_same_as_scratch(onto)
+    clock = [onto.value(t, "long") for t in (base + 30, base + 70)] + [onto.value(f"{base + 10}.75", "decimal"),
+                                                                         onto.value(f"{base + 120}.5", "double")]
+    for value in [*clock, onto.value(base - 40, "long")]:
+        onto.replace(N("Robot1"), N("now"), value)
+        assert onto.reason().stats.program == "compiled"
+        assert_same_as_scratch(onto)
+
+
 def test_a_look_up_flip_that_gives_up_leaves_the_flip_to_the_text_narrowed_by_a_window_query() -> None:
     """Where the look-up flip reading its own window gives up (too many facts in the window, a value it
     does not decide), the flip's text runs narrowed by a window query, as when no look-up reads one."""
