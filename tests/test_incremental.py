@@ -12,6 +12,7 @@ those, and what they derive, as long as the conclusion holds (:func:`assert_help
 
 from __future__ import annotations
 
+import contextlib
 from functools import cache
 from unittest import mock
 
@@ -27,7 +28,7 @@ from topostore.compile.rule import RuleSet
 from topostore.compile.snippets import VALUE_CANDIDATE
 from topostore.demo.mapgen import MAP_NS, generate
 from topostore.rdf.vocab import ASSERTED, AUX, DIFFERENT, DIFFERENT_FROM, ENTAILED, ENTAILED_PREFIX, INFERRED, TYPE, owl
-from topostore.reason import Materializer, check_consistency, flips
+from topostore.reason import Materializer, check_consistency, direct, flips, look_flip
 from topostore.reason.entailed import publish_entailed
 from topostore.reason.incremental import is_monotone, negates_exists
 from topostore.stores import memory_store
@@ -412,21 +413,89 @@ clock_change = st.one_of(
 
 @settings(max_examples=property_examples(60), deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(n=st.integers(2, 10), seed=st.integers(0, 3), steps=st.lists(st.lists(clock_change, min_size=1, max_size=4),
-                                                                        min_size=1, max_size=6))
-def test_clock_changes_equal_from_scratch(n: int, seed: int, steps: list) -> None:
+                                                                        min_size=1, max_size=6),
+       windows=st.sampled_from([("WINDOW_MIN",), ("LOOKUP_WINDOW_MIN",), ("WINDOW_MIN", "LOOKUP_WINDOW_MIN")]))
+def test_clock_changes_equal_from_scratch(n: int, seed: int, steps: list, windows: tuple) -> None:
     """Clocks jumping forward and back, thresholds and visit times changing, two robots: the
     replaced values only meet in the Urgency rule's comparison, which maintenance evaluates as
-    a flip; every REASON must still equal a from-scratch run."""
+    a flip; every REASON must still equal a from-scratch run, with the flip's windows found by a
+    query (WINDOW_MIN) or read by the look-up flip (LOOKUP_WINDOW_MIN) on these small maps too."""
     onto = Ontology()
     onto.add(*tbox_triples())
     onto.add(*generate(n, seed=seed, robots=2).triples(all_different=True))
     onto.max_change_share = 1.0
     onto.reason()
-    with mock.patch.object(flips, "WINDOW_MIN", 0):  # flip windows on these small maps too
+    with contextlib.ExitStack() as patches:
+        for name in windows:
+            patches.enter_context(mock.patch.object(flips, name, 0))
         for batch in steps:
             for op, *args in batch:
                 op(onto, *args)
             assert_same_as_scratch(onto)
+
+
+def test_the_look_up_flip_reads_only_the_visit_times_in_its_window() -> None:
+    """A clock tick on a map with more visit times than a look-up reads at once: the look-up flip reads
+    the few in the window between the old and the new threshold (no SPARQL text for the flip), and
+    its answer is the from-scratch one, forward and back."""
+    onto = new_map(30, 2, True)
+    onto.max_change_share = 1.0
+    onto.reason()
+    reads: list = []
+    windowed = look_flip.Flipped._windowed
+
+    def spy(self, store, m, bound, old, index):
+        found = windowed(self, store, m, bound, old, index)
+        reads.append(found)
+        return found
+
+    with mock.patch.object(look_flip.Flipped, "_windowed", spy):
+        for t in (1665579770, 1665579800, 1665579750, 1665579900):
+            set_clock(onto, "Robot1", t)
+            report = onto.reason()
+            assert report.stats.mode == "incremental"
+            assert report.stats.program == "compiled"
+            assert_same_as_scratch(onto)
+    assert reads and all(found is not None and len(found) <= direct.FEW for found in reads)
+    assert any(found for found in reads)
+
+
+def test_visit_times_of_other_numeric_types_keep_the_look_up_window_exact() -> None:
+    """Decimal and double visit times, a string among them (no number: never in the window, and no flip),
+    the clock moving forward and back across them, to decimal and double values too (the window then
+    computed in fractions, widened for a double)."""
+    onto = new_map(30, 2, True)
+    onto.max_change_share = 1.0
+    onto.reason()
+    base = 1665579740
+    for k, (text, datatype) in enumerate([(f"{base - 90}.5", "decimal"), (f"{base - 60}.25", "decimal"),
+                                          (f"{base - 30}.0", "double"), ("soon", "string")]):
+        onto.replace(N(f"R{k + 1}"), N("visitedAt"), onto.value(text, datatype))
+    onto.reason()
+    assert_same_as_scratch(onto)
+    clock = [onto.value(t, "long") for t in (base + 30, base + 70)] + [onto.value(f"{base + 10}.75", "decimal"),
+                                                                         onto.value(f"{base + 120}.5", "double")]
+    for value in [*clock, onto.value(base - 40, "long")]:
+        onto.replace(N("Robot1"), N("now"), value)
+        assert onto.reason().stats.program == "compiled"
+        assert_same_as_scratch(onto)
+
+
+def test_a_look_up_flip_that_gives_up_leaves_the_flip_to_the_text_narrowed_by_a_window_query() -> None:
+    """Where the look-up flip reading its own window gives up (too many facts in the window, a value it
+    does not decide), the flip's text runs narrowed by a window query, as when no look-up reads one."""
+    onto = new_map(30, 2, True)
+    onto.max_change_share = 1.0
+    onto.reason()
+    windows = mock.Mock(wraps=onto._reasoner.flips._windows)
+    with mock.patch.object(look_flip.Flipped, "run", lambda self, store: False), \
+            mock.patch.object(flips, "WINDOW_MIN", 5), mock.patch.object(onto._reasoner.flips, "_windows", windows):
+        for t in (1665579770, 1665579800, 1665579750):
+            set_clock(onto, "Robot1", t)
+            report = onto.reason()
+            assert report.stats.program == "compiled"
+            assert_same_as_scratch(onto)
+    assert windows.call_count >= 3
 
 
 def test_clock_tick_is_evaluated_as_a_flip() -> None:
@@ -452,7 +521,8 @@ def test_a_map_below_the_window_size_keeps_no_value_index() -> None:
         onto = new_map(30, 2, True)
         onto.max_change_share = 1.0
         onto.reason()
-        with mock.patch.object(flips, "WINDOW_MIN", window_min):
+        with mock.patch.object(flips, "WINDOW_MIN", window_min), \
+                mock.patch.object(flips, "LOOKUP_WINDOW_MIN", max(window_min, flips.LOOKUP_WINDOW_MIN)):
             for tick in range(1, 4):
                 set_clock(onto, "Robot1", 1665579740 + 40 * tick)
                 revisit(onto, f"R{tick}", 1665579740 + 40 * tick)

@@ -1,7 +1,8 @@
 """A look-up join compiled into a flat function (reason/join_code.py) gives the interpreted join's
-solutions, in the same order, with the same reads: random bodies (variables repeated within and
-across atoms, constants, a variable predicate) over random facts in two graphs; and a flip's
-compiled branches write what its interpreted ones write."""
+solutions, in the same order, with the same reads but for the repeats of a read the inner loops do
+not change: random bodies (variables repeated within and across atoms, constants, a variable
+predicate) over random facts in two graphs; and a flip's compiled branches write what its
+interpreted ones write."""
 
 from __future__ import annotations
 
@@ -73,7 +74,43 @@ def test_the_compiled_join_is_the_interpreted_one(quads: list, body: list, start
     compiled = compile_join(body, order[1:], given_vars, graphs, reader(compiled_log))
     for bound in seeds:
         assert outcome(compiled, store, bound) == outcome(reference, store, bound)
-    assert compiled_log == interpreted_log
+    assert_fewer_of_the_same(compiled_log, interpreted_log)
+
+
+def assert_fewer_of_the_same(compiled: list, reference: list) -> None:
+    """``compiled`` is ``reference`` with some reads left out, each of them a read made before."""
+    it = iter(reference)
+    made: set = set()
+    for read in compiled:
+        for expected in it:
+            if expected == read:
+                break
+            assert expected in made, f"{expected} left out but never read before"
+        else:
+            raise AssertionError(f"{read} read by the compiled join only, or out of order")
+        made.add(read)
+    assert all(rest in made for rest in it)
+
+
+def test_a_read_the_inner_loops_do_not_change_is_made_once_per_turn_of_its_own() -> None:
+    """canReach's shape: the key of the robot's location is read once, not once per connected location;
+    the key of each connected location once per location."""
+    a, b = NamedNode("urn:p:connected"), NamedNode("urn:p:key")
+    body = [("?l1", a, "?l2"), ("?k1", b, "?l1"), ("?k2", b, "?l2")]
+    store = memory_store()
+    here, keys = NODES[0], [NamedNode(f"urn:k:{k}") for k in range(3)]
+    store.add([Triple(here, a, NODES[1]), Triple(here, a, NODES[2])]
+              + [Triple(keys[k], b, NODES[k]) for k in range(3)], G1)
+    graphs = [((G1,), frozenset((G1,)))] * 3
+    log: list = []
+    join = compile_join(body, [0, 1, 2], {"?l1"}, graphs, reader(log))
+    reference: list = []
+    assert list(join(store, {"?l1": here})) == list(interpreted([Shape(t) for t in body], [0, 1, 2], graphs,
+                                                                reader(reference))(store, {"?l1": here}))
+    patterns = [pattern for pattern, _ in log]
+    assert patterns[:2] == [(here, a, None), (None, b, here)]
+    assert sorted(str(p[2]) for p in patterns[2:]) == [str(NODES[1]), str(NODES[2])]
+    assert len(reference) == 5  # the key of l1 read again for the second connected location
 
 
 def outcome(join, store, bound: dict) -> list | str:

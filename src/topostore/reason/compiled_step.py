@@ -57,7 +57,7 @@ class CompiledStep:
         #: False runs the general phases for every change
         self.enabled = True
         self.compiler = StepCompiler(self.rules, monotone, flips._by_frequency, store.supports_lateral,
-                                     cover=not store.round_trips)
+                                     cover=not store.round_trips, values=flips.sorted_values)
         #: compiled programs (or why a signature cannot be compiled) by signature, until the next full run
         self.programs: dict = {}
         #: signatures whose program in one request needed more rounds than it had: general phases for good
@@ -147,9 +147,11 @@ class CompiledStep:
             return None
         return ran
 
-    def _flip_text(self, i: int, order: tuple[int, ...], text: str) -> str:
+    def _flip_text(self, i: int, order: tuple[int, ...], text: str, own_window: bool = False) -> str:
         """A compiled flip's text for this run: "" when no value changed kind and the rule only tests
-        kinds (:func:`.flip.kind_tests_only`), else narrowed to the values in a window where one applies."""
+        kinds (:func:`.flip.kind_tests_only`), else narrowed to the values in a window where one applies.
+        ``own_window``: the flip's look-up operation reads its window itself (:mod:`.look_flip`): the
+        compiled text is given (the look-up runs in its place), and no query is made for a window."""
         rule = self.rules[i]
         kinds = self._kind_only.get((i, order))
         if kinds is None:  # a property of the rule: asked once
@@ -159,6 +161,8 @@ class CompiledStep:
             return ""
         if self.flips.quiet(i, order, self._clean):
             return ""  # a difference of values whose partners none may equal (see :mod:`.equal_values`)
+        if own_window:
+            return text
         windows = self.flips._windows(i, order)
         if not windows:
             return text

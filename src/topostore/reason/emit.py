@@ -229,7 +229,7 @@ class Emitter:
                     rule.body[j].p: texts.flips(rule, (j, *(m for m in order if m != j)), self.c.lateral, i, seeded=True)
                     for j in order}
             if ops is self.ops and flippable(rule, order):
-                flipped = Flipped(rule, order, self.c.state_graphs.of)
+                flipped = Flipped(rule, order, self.c.state_graphs.of, self.c.values)
                 self.direct[len(ops)], self.reads[len(ops)] = flipped.run, flipped.reads
             ops.append((("flip", tag, i, order), texts.flips(rule, order, self.c.lateral, i)))
             found.append(i)

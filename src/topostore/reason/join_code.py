@@ -83,7 +83,7 @@ def compile_flip(terms: list[tuple], seed: int, plan: list[int], paired: Collect
             local = f"w{len(code.lines)}"  # unique even where a paired atom's variable is bound twice
             code.line(f"for {local} in ([o.object for o in read(store, (t.subject, t.predicate, None), *{old})]"
                       " or (t.object,)):")
-            code.depth += 1
+            code.open()
             olds[terms[m][2]] = local
     code.line(f"yield {code.solution()}, {{{', '.join(f'{var!r}: {w}' for var, w in olds.items())}}}")
     return code.function("branch")
@@ -98,15 +98,36 @@ class _Code:
         #: variable name -> local name, in the order they are bound
         self.names: dict[str, str] = {}
         self.namespace: dict[str, object] = {"read": read}
+        #: local name -> the depth of the loop body that binds it (1: bound before any loop)
+        self.levels: dict[str, int] = {}
+        #: per depth, the line where the body of its loop starts, after the loop's bindings and checks
+        #: (where a read that does not depend on deeper loops is forgotten: see :meth:`read_atom`)
+        self.starts: dict[int, int] = {1: 1}
+        self.hoisted = 0
 
     def line(self, text: str) -> None:
         self.lines.append("    " * self.depth + text)
 
     def local(self, var: str) -> str:
-        """A variable's local (made at its first binding)."""
+        """A variable's local (made at its first binding, at the current depth)."""
         if var not in self.names:
             self.names[var] = f"v{len(self.names)}"
+            self.levels[self.names[var]] = self.depth
         return self.names[var]
+
+    def open(self) -> None:
+        """A loop's body starts here (its header written, its bindings not yet)."""
+        self.depth += 1
+        self.starts[self.depth] = len(self.lines)
+
+    def _insert(self, depth: int, text: str) -> None:
+        """A line at the start of the body of the loop at ``depth`` (after its bindings and checks)."""
+        at = self.starts[depth]
+        self.lines.insert(at, "    " * depth + text)
+        for d, start in self.starts.items():
+            if start >= at and d != depth:
+                self.starts[d] = start + 1
+        self.starts[depth] = at + 1
 
     def const(self, value: object) -> str:
         """A constant's name in the function's namespace (never its text)."""
@@ -138,13 +159,27 @@ class _Code:
                 seen.add(term)
                 parts.append("None")
                 binds.append((self.local(term), position))
-        self.line(f"for {name} in read(store, ({', '.join(pattern or parts)}), *{graphs}):")
-        self.depth += 1
+        call = f"read(store, ({', '.join(pattern or parts)}), *{graphs})"
+        # a read none of whose values the innermost loops bind gives the same facts at each of their
+        # turns: made at the first, kept until the loop it depends on moves on (never made sooner,
+        # so a read that refuses refuses at the same point)
+        home = max((self.levels[x] for x in parts if x in self.levels), default=1)
+        if pattern is None and not fresh and home < self.depth:
+            self.hoisted += 1
+            kept = f"h{self.hoisted}"
+            self._insert(home, f"{kept} = None")
+            self.line(f"if {kept} is None:")
+            self.line(f"    {kept} = {call}")
+            call = kept
+        self.line(f"for {name} in {call}:")
+        self.open()
         for local, position in binds:
+            self.levels[local] = self.depth
             self.line(f"{local} = {name}.{position}")
         for local, position in checks:
             self.line(f"if {name}.{position} != {local}:")
             self.line("    continue")
+        self.starts[self.depth] = len(self.lines)
 
     def solution(self) -> str:
         return "{" + ", ".join(f"{var!r}: {local}" for var, local in self.names.items()) + "}"

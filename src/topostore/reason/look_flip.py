@@ -11,6 +11,13 @@ the ones after it paired with their old value where one was replaced, the other 
 state; the conditions are decided by :mod:`.look_filters` for the old and for the new values, and a
 head whose answer differs goes to FLIP_GAINED (true now) or FLIP_LOST.
 
+The branch seeded by the last changed atom (the others read settled) enumerates every fact of a compared
+atom not bound by the seed (every location's visit time, for a clock's move).  Where its tests are linear
+(:mod:`.window`), only the facts whose value lies between the two thresholds can flip: that branch reads
+the subjects in that window from the predicate's sorted value index (``values``, kept between REASONs) and
+their facts by subject, instead of every fact; a bound that is not a number, a non-linear test or a wide
+window keeps the full read.
+
 Exact or nothing: an atom with more than :data:`.direct.FEW` matches, a condition the evaluator does
 not decide to a boolean (the text's ``COALESCE(test, false)`` would need to know an error from an
 unmodelled value), or a head holding a literal makes it answer False before writing anything, and
@@ -21,22 +28,63 @@ head as it stands, :func:`.flip.compact_possible`).
 from __future__ import annotations
 
 from collections.abc import Callable
+from dataclasses import dataclass
 
 from pyoxigraph import NamedNode, Triple
 
 from ..compile.rule import Atom, Rule, join_order
-from . import direct, look_join
+from . import direct, look_join, window
 from .atom_shape import Shape
 from .delta_texts import FLIP_LOST
 from .direct import _instance, _terms
-from .flip import CHANGE_OLD, compact_possible
+from .flip import CHANGE_OLD, compact_possible, compared_only
 from .join_code import compile_flip
 from .look_join import Conditions, every_graph, joinable
+from .look_values import value
 from .scratch import FLIP_GAINED
 
 
 class _Fallback(Exception):
     """Too many matches, or a condition not decided: the SPARQL text runs."""
+
+
+@dataclass(frozen=True)
+class _Window:
+    """Where the last seed's branch may read a compared atom through a value window: its plan's ``at``-th
+    atom, of predicate ``predicate``, whose value variable ``v`` the linear ``tests`` compare with the seed's
+    ``t`` and the variables ``rest`` (names without ``?``), all bound before it."""
+
+    at: int
+    predicate: NamedNode
+    t: str
+    v: str
+    rest: tuple[str, ...]
+    tests: tuple
+    #: the tests as :func:`.window.integer_forms` reads them (None: in fractions only)
+    forms: tuple | None
+
+
+def _window_of(rule: Rule, order: tuple[int, ...], plan: list[int]) -> _Window | None:
+    """The window of the branch seeded by ``order[-1]`` (every other changed atom read settled, so only the
+    seed's value differs between the old and the new state), or None.  The first atom of ``plan`` that
+    enumerates a compared value (its subject and value unbound when it is read) and whose tests are
+    linear in the seed's value, with every other variable of those tests bound before it."""
+    seed = rule.body[order[-1]]
+    t = seed.o[1:]
+    tests = window.tests(rule)
+    if not seed.o.startswith("?") or not window.possible(tests, t):
+        return None
+    known = set(seed.variables())
+    for at, m in enumerate(plan):
+        atom = rule.body[m]
+        if compared_only(rule, m) and atom.s.startswith("?") and atom.s not in known and atom.o not in known:
+            v = atom.o[1:]
+            rest = sorted({n for test in tests if test.form for n in test.form[0]} - {t, v})
+            if all(f"?{n}" in known for n in rest):
+                return _Window(at, NamedNode(atom.p[1:-1]), t, v, tuple(rest), tuple(tests),
+                               window.integer_forms(tests, v, t))
+        known |= atom.variables()
+    return None
 
 
 def flippable(rule: Rule, order: tuple[int, ...]) -> bool:
@@ -48,8 +96,11 @@ class Flipped:
     """The flip of ``rule`` over its changed atoms ``order`` (see :func:`.delta_texts.flips`)."""
 
     def __init__(self, rule: Rule, order: tuple[int, ...],
-                 graphs_of: Callable[[Atom], tuple[NamedNode, ...]] = every_graph) -> None:
-        """``graphs_of``: the graphs an atom's facts may be in (:meth:`.look_join.StateGraphs.of`)."""
+                 graphs_of: Callable[[Atom], tuple[NamedNode, ...]] = every_graph,
+                 values: Callable[[str], window.ValueIndex | None] | None = None) -> None:
+        """``graphs_of``: the graphs an atom's facts may be in (:meth:`.look_join.StateGraphs.of`);
+        ``values``: a predicate's (IRI text) sorted value index, None where it has none (see
+        :meth:`.flips.Flips.sorted_values`); without it every branch reads every compared fact."""
         self.order = order
         self.conditions = Conditions(rule)
         self._body = [Shape(_terms(a)) for a in rule.body]
@@ -59,6 +110,10 @@ class Flipped:
         self._head = _terms(rule.head)
         self._graphs = [graphs_of(a) for a in rule.body]
         self._plans = [[m for m in join_order(rule.body, k) if m != k] for k in order]
+        self._values = values
+        #: the last seed's branch read through a value window (see :func:`_window_of`), or None
+        self._window = None if values is None else _window_of(rule, order, self._plans[-1])
+        self._window_key = None if self._window is None else f"<{self._window.predicate.value}>"
         #: the keys whose facts it reads: its atoms' and its head's
         self.reads = frozenset({a.read_key() for a in rule.body} | {rule.head.read_key()})
         #: per changed atom, its branch compiled once into a flat function (:func:`.join_code.compile_flip`),
@@ -66,6 +121,11 @@ class Flipped:
         #: at the :data:`.look_join.COMPILE_AFTER`-th run (a flip that runs once is cheaper interpreted)
         self._branches: list | None = None
         self._runs_left = look_join.COMPILE_AFTER if look_join.COMPILED_JOINS else -1
+
+    def reads_window(self) -> bool:
+        """Whether :meth:`run` reads the last seed's compared facts through a value window this time (an
+        index is kept for their predicate), so that no query need find one."""
+        return self._window is not None and self._values(self._window_key) is not None
 
     def _compile(self) -> list | None:
         terms = [shape.terms for shape in self._body]
@@ -84,16 +144,21 @@ class Flipped:
             self._runs_left -= 1
             if not self._runs_left:
                 self._branches = self._compile()
+        index = None if self._window is None else self._values(self._window_key)
+        last = len(self.order) - 1
         try:
-            if self._branches is not None:
-                for branch in self._branches:
-                    for solution, olds in branch(store):
-                        self._decide(solution, olds, gained, lost)
-            else:
-                for position, k in enumerate(self.order):
-                    for bound, old in self._seeds(store, k):
-                        for solution, olds in self._extend(store, position, bound, old, 0):
+            for position, k in enumerate(self.order):
+                if index is None or position != last:
+                    if self._branches is not None:
+                        for solution, olds in self._branches[position](store):
                             self._decide(solution, olds, gained, lost)
+                        continue
+                    index_here = None
+                else:
+                    index_here = index  # the windowed branch is interpreted: it reads few facts
+                for bound, old in self._seeds(store, k):
+                    for solution, olds in self._extend(store, position, bound, old, 0, index_here):
+                        self._decide(solution, olds, gained, lost)
         except _Fallback:
             return False
         store.add_scratch(list(gained), FLIP_GAINED)
@@ -120,15 +185,21 @@ class Flipped:
                 if bound is not None:
                     yield bound, {value: f.object}
 
-    def _extend(self, store, position: int, bound: dict, old: dict, at: int):
-        """The solutions extending ``bound`` by the branch's other atoms, with the old values so far."""
+    def _extend(self, store, position: int, bound: dict, old: dict, at: int, index=None):
+        """The solutions extending ``bound`` by the branch's other atoms, with the old values so far;
+        ``index``: the windowed atom's sorted values (the last seed's branch only)."""
         plan = self._plans[position]
         if at == len(plan):
             yield bound, old
             return
         m = plan[at]
         shape = self._body[m]
-        for t in self._facts(store, shape.read(bound), self._graphs[m]):
+        facts = None
+        if index is not None and at == self._window.at:
+            facts = self._windowed(store, m, bound, old, index)
+        if facts is None:
+            facts = self._facts(store, shape.read(bound), self._graphs[m])
+        for t in facts:
             extended = shape.extend(bound, t)  # the read pattern holds every bound value: a fact read agrees
             if extended is None:
                 continue
@@ -136,9 +207,37 @@ class Flipped:
                 olds = [o.object for o in self._facts(store, (t.subject, t.predicate, None), (CHANGE_OLD,))] \
                     or [t.object]
                 for value in olds:
-                    yield from self._extend(store, position, extended, {**old, shape.terms[2]: value}, at + 1)
+                    yield from self._extend(store, position, extended, {**old, shape.terms[2]: value}, at + 1, index)
             else:  # settled or not changed: the old value is the new one
-                yield from self._extend(store, position, extended, old, at + 1)
+                yield from self._extend(store, position, extended, old, at + 1, index)
+
+    def _windowed(self, store, m: int, bound: dict, old: dict, index: window.ValueIndex) -> list[Triple] | None:
+        """Atom ``m``'s facts whose value may flip: those of the subjects whose value lies in the window
+        of the seed's old and new value (:func:`.window.interval`), read by subject (the stored facts,
+        whatever spelling the index kept); None where there is no window (every fact is read)."""
+        w = self._window
+        t = f"?{w.t}"
+        terms = [old.get(t), bound.get(t), *(bound.get(f"?{n}") for n in w.rest)]
+        values = [value(term) for term in terms]
+        if w.forms is not None and all(type(x) is int for x in values):  # xsd:integer values: exact in ints
+            span = window.integer_interval(w.forms, values[0], values[1], dict(zip(w.rest, values[2:])))
+        else:
+            values = [window.number(term) for term in terms]
+            if any(x is None for x in values):
+                return None
+            span = window.interval(w.tests, w.v, w.t, values[0], values[1], dict(zip(w.rest, values[2:])),
+                                   window.margin(terms, values))
+        if span is None:
+            return None
+        if span is False:
+            return []  # no test reads the seed's value in a way that changed
+        inside = index.between(span[0], span[1], direct.FEW)
+        if inside is None:
+            return None
+        facts: list[Triple] = []
+        for subject in dict.fromkeys(f.subject for f in inside):
+            facts += self._facts(store, (subject, w.predicate, None), self._graphs[m])
+        return facts
 
     def _ok(self, solution: dict) -> bool:
         """Whether every condition holds (each test's value must be a boolean, as the text's

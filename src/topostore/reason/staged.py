@@ -85,12 +85,14 @@ class StagedRun:
     """One key-by-key run of a :class:`~.program.StepProgram` on a store."""
 
     def __init__(self, store, program: StepProgram, sig: Signature,
-                 flip_text: Callable[[int, tuple, str], str],
+                 flip_text: Callable[..., str],
                  changes: tuple[Collection[Triple], Collection[Triple]] | None = None,
                  before_text: Callable[[], None] | None = None) -> None:
-        """``changes``: the added and removed asserted triples, written to the step's first lost and
-        gained facts directly instead of by the program's first operation; ``before_text``: called
-        once before the first text is sent (the copies of the changes its operations read)."""
+        """``flip_text(rule, order, text[, own_window])``: a flip's text for this run
+        (:meth:`.compiled_step.CompiledStep._flip_text`); ``changes``: the added and removed asserted
+        triples, written to the step's first lost and gained facts directly instead of by the program's
+        first operation; ``before_text``: called once before the first text is sent (the copies of the
+        changes its operations read)."""
         self.store = store
         self.changes = changes
         self.before_text = before_text
@@ -144,14 +146,18 @@ class StagedRun:
         part = self.program.part
         for index, kind, key, text, flip in ops:
             look_up = True
+            fallback = None
             if flip is not None:
                 compiled = text
-                text = self._flip(index, flip, text)
+                own = self._own_window(index)
+                text = self._flip(index, flip, text, own)
                 if not text:
                     continue  # nothing can flip this time
                 flipped = True
                 # a text narrowed by a value window: many facts, whose window query ran already
                 look_up = text is compiled
+                if own:  # where the look-up gives up, the text narrowed by a window query runs
+                    fallback = (flip, compiled)
             if kind == "changes" and self.changes is not None:
                 self.store.add_scratch(self.changes[0], NEW_FACTS)
                 self.store.add_scratch(self.changes[1], OVERDELETED)
@@ -164,7 +170,7 @@ class StagedRun:
                     or (kind == "plus" and self._changed(key, self.plus)) \
                     or (kind in _AFTER and (flipped or kind == "recheck")
                         and self._holds(found, _AFTER[kind], key, seeded)):
-                queued |= self._send(index, text, part[index], look_up)
+                queued |= self._send(index, text, part[index], look_up, fallback)
                 seeded |= kind in _SEEDING
             elif kind == "end":
                 if queued or self.sent != mark:  # something ran for this key (a look-up may have sent it)
@@ -188,11 +194,18 @@ class StagedRun:
         key = self.program.part[index]
         return self.program.reads[key] if key is not None else (None,)
 
-    def _flip(self, index: int, tag: tuple, text: str) -> str:
+    def _flip(self, index: int, tag: tuple, text: str, own_window: bool = False) -> str:
         """The flip's text for this run (:attr:`flip_text`): "" when nothing can flip, the compiled text,
-        or one narrowed by a value window."""
+        or one narrowed by a value window (not where the look-up reads its own: ``own_window``)."""
         self._reading(self._reads(index))  # a value window's query reads the rule's premises
-        return self.flip_text(tag[2], tag[3], text)
+        return self.flip_text(tag[2], tag[3], text, own_window) if own_window \
+            else self.flip_text(tag[2], tag[3], text)
+
+    def _own_window(self, index: int) -> bool:
+        """Whether flip ``index``'s look-up operation reads its compared facts through its own value
+        window this time (:meth:`.look_flip.Flipped.reads_window`)."""
+        reads_window = getattr(getattr(self.direct.get(index), "__self__", None), "reads_window", None)
+        return reads_window is not None and reads_window()
 
     def _seeded(self, index: int, text: str) -> str:
         """The text to queue for flip ``index`` whose compiled ``text`` runs: where every fact of a
@@ -215,16 +228,25 @@ class StagedRun:
         facts = islice(self.store.triples(None, NamedNode(p[1:-1]), None, ASSERTED), len(subjects) + 1)
         return sum(1 for _ in facts) == len(subjects)
 
-    def _send(self, index: int, text: str, key: ReadKey | None, look_up: bool = True) -> bool:
+    def _send(self, index: int, text: str, key: ReadKey | None, look_up: bool = True,
+              fallback: tuple | None = None) -> bool:
         """Run operation ``index`` (of ``key``'s part, None: of no key's) through look-ups where it has
         that equivalent, ``look_up`` allows it and its facts are few (after sending what is queued and
-        may write what it reads), else queue its text.  Whether it was queued."""
+        may write what it reads), else queue its text.  Whether it was queued.  ``fallback``: a flip's
+        tag and compiled text, whose text for this run is made again without the look-up's own window
+        where the look-up gives up (a window query then narrows it)."""
         direct = self.direct.get(index) if look_up else None
         if direct is not None:
             self._reading(self.program.reads[index])
             if direct(self.store):
                 self.sent += 1
                 return False
+            if fallback is not None:
+                tag, compiled = fallback
+                text = self._flip(index, tag, compiled)
+                if not text:
+                    return False
+                look_up = text is compiled
         if look_up and index in self.program.seeded:  # a flip's compiled text
             text = self._seeded(index, text)
         self.queue.append(text)

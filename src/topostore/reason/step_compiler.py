@@ -38,8 +38,12 @@ class StepCompiler:
     """
 
     def __init__(self, rules: list[Rule], monotone: Collection[int],
-                 order: Callable[[int, tuple[int, ...]], tuple[int, ...]], lateral: bool, cover: bool = True) -> None:
+                 order: Callable[[int, tuple[int, ...]], tuple[int, ...]], lateral: bool, cover: bool = True,
+                 values: Callable[[str], object] | None = None) -> None:
+        """``values``: a compared predicate's sorted value index, or None (see :meth:`.flips.Flips.sorted_values`),
+        for the windows of the look-up flips; None: they read every compared fact."""
         self.rules = rules
+        self.values = values
         self.monotone = sorted(monotone)
         self.order = order
         self.lateral = lateral

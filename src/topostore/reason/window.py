@@ -47,6 +47,7 @@ from ..compile.condition import BIND, TEST
 from ..compile.rule import Rule
 from ..rdf.terms import Term
 from ..rdf.vocab import XSD
+from .look_values import value as literal_value
 
 #: A linear form: coefficient per variable name (without ``?``) and a constant.
 Linear = tuple[dict[str, Fraction], Fraction]
@@ -238,6 +239,52 @@ def interval(found: list[Test], v: str, t: str, old: Fraction, new: Fraction,
     return lo - margin, hi + margin
 
 
+#: a linear test read for :func:`integer_interval`: the coefficients of ``v`` and ``t``, the other
+#: variables' coefficients and the constant, all ints
+IntegerForm = tuple[int, int, tuple[tuple[str, int], ...], int]
+
+
+def integer_forms(found: list[Test], v: str, t: str) -> tuple[IntegerForm, ...] | None:
+    """The tests that read ``t`` as :data:`IntegerForm` (tests that cannot flip left out), for
+    :func:`integer_interval`; None where one is not linear or has a coefficient that is not an integer
+    (:func:`interval` then computes in fractions).  A property of the rule: made once."""
+    out = []
+    for test in found:
+        if t not in test.variables:
+            continue
+        if test.form is None:
+            return None
+        coefs, const = test.form
+        if any(x.denominator != 1 for x in (*coefs.values(), const)):
+            return None
+        c = int(coefs.get(t, 0))
+        if c:
+            others = tuple((k, int(x)) for k, x in coefs.items() if k not in (v, t))
+            out.append((int(coefs.get(v, 0)), c, others, int(const)))
+    return tuple(out)
+
+
+def integer_interval(forms: tuple[IntegerForm, ...], old: int, new: int,
+                     rest: dict[str, int]) -> tuple[int | Fraction, int | Fraction] | None | bool:
+    """:func:`interval` for :func:`integer_forms` and int values (no margin: the arithmetic is exact),
+    without making a fraction unless a coefficient of ``v`` is not ±1 (a clock's test: every step)."""
+    lo = hi = None
+    for a, c, others, const in forms:
+        if any(k not in rest for k, _ in others):
+            return None
+        r = const + sum(x * rest[k] for k, x in others)
+        if not a:
+            if c * old == c * new:
+                continue
+            return None
+        ends = [-(c * x + r) * a if a in (1, -1) else Fraction(-(c * x + r), a) for x in (old, new)]
+        lo = min(ends) if lo is None else min(lo, *ends)
+        hi = max(ends) if hi is None else max(hi, *ends)
+    if lo is None:
+        return False
+    return lo, hi
+
+
 class ValueIndex:
     """The facts of one predicate sorted by their numeric object; non-numbers are left out."""
 
@@ -249,7 +296,11 @@ class ValueIndex:
         self._keys.sort()
 
     def _key(self, t: Triple) -> tuple[Fraction, str, str] | None:
-        value = number(t.object)
+        """The fact's sort key: an int for a canonical xsd:integer (read as :mod:`.look_values` reads it,
+        cheaper than a fraction and equal to it), else its :func:`number`."""
+        value = literal_value(t.object)
+        if type(value) is not int:
+            value = number(t.object)
         return None if value is None else (value, str(t.subject), str(t.object))
 
     def add(self, t: Triple, insort: bool = True) -> None:
@@ -284,4 +335,5 @@ class ValueIndex:
         return len(self._keys)
 
 
-__all__ = ["Linear", "Test", "ValueIndex", "interval", "margin", "number", "possible", "tests"]
+__all__ = ["IntegerForm", "Linear", "Test", "ValueIndex", "integer_forms", "integer_interval", "interval", "margin",
+           "number", "possible", "tests"]
