@@ -197,8 +197,8 @@ def _net(store: Store, facts: list[Fact], written: list[Triple], mine: dict[Trip
     """Note ``facts`` (as ``written``) on their side ``mine`` of the net record, or cancel them on ``other``."""
     for f, as_written in zip(facts, written, strict=True):
         key = f.stored
-        if key is None:  # both sides hold triples as the store does, so they cancel
-            key = f.stored = store.stored_form(f.triple)
+        if key is None:  # both sides hold triples as the store does, so they cancel (a removal named in
+            key = f.stored = store.stored_form(as_written)  # another spelling: the one the store held)
         if key in other:
             del other[key]
         else:

@@ -35,6 +35,8 @@ logger = logging.getLogger("topostore.load")
 XML_LITERAL = RDF + "XMLLiteral"
 #: why a document's second spelling of one value is not taken
 AGAIN = "written again in the document"
+#: why a change's second spelling of one value is not taken
+AGAIN_IN_CHANGE = "written again in the same change"
 #: why an upload's spelling of a value the graph holds is not taken, and how to change only the spelling
 HELD = "already in the graph (to change only its spelling, remove it first and add it then)"
 #: why a language tag's spelling is not taken
@@ -228,5 +230,5 @@ class Written:
         return notes
 
 
-__all__ = ["AGAIN", "HELD", "TAG_KEPT", "SpellingKeptWarning", "Written", "again_notes", "holding", "joined",
+__all__ = ["AGAIN", "AGAIN_IN_CHANGE", "HELD", "TAG_KEPT", "SpellingKeptWarning", "Written", "again_notes", "holding", "joined",
            "one_spelling", "published", "shown", "spelling_kept", "tag_notes", "tag_respelled", "value_of"]

@@ -149,6 +149,7 @@ class Store:
     fact = work.fact
     read_facts = work.read_facts
     written_fact = work.written_fact
+    writes = work.writes
     toggle_facts = work.toggle_facts
     _removal_quad = work.removal_quad
 

@@ -323,6 +323,13 @@ def _cancel(store: Store, pending: dict, k: Hashable, f: Fact) -> None:
     f.stored = store.stored_form(pending.pop(k)[0].triple)
 
 
+def writes(store: Store, k: Hashable) -> bool:
+    """Whether the open transaction has a write pending for the fact keyed ``k`` (see :meth:`_key`): a
+    change that removed and added one value left none where the store keeps it as it was."""
+    pending = store._pending
+    return pending is not None and k in pending
+
+
 def removal_quad(store: Store, f: Fact) -> Quad:
     """The quad a removal writes: the literal in the form kept for this fact, as it was asserted (a
     store that keeps literals as written, a remote one, matches it exactly); a fact with no form kept
