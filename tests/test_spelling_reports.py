@@ -16,6 +16,8 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 from pyoxigraph import Literal, NamedNode, Triple
 from test_one_fact_per_value import DECIMAL, HEAD, INT, INTEGER, NS, P, S, holding, shown, stored
+from test_value_spellings import N, assert_same_as_scratch
+from test_value_spellings import ontology as rule_ontology
 
 from topostore import Ontology, SpellingKeptWarning
 from topostore.armor.reference import Reference
@@ -144,6 +146,26 @@ def test_a_value_removed_and_added_in_one_spelling_is_no_change() -> None:
     assert o.change([INT], [INT]) == ([], [])
     assert o.ledger.net_changes() == ([], [])
     assert shown(o) == [INT.object]
+
+
+def test_a_value_written_earlier_in_the_transaction_is_respelled_by_a_change_and_reported_so() -> None:
+    """Added by one change and removed and added in another spelling by the next, in one transaction: the
+    graph never held the first spelling, so the store writes the second, and the report and the ledger say
+    the second change removed one and added the other (an incremental REASON reads the decimal)."""
+    o = rule_ontology()
+    o.add(Triple(N("x"), N("limit"), Literal(5)))
+    o.reason()
+    eight = Triple(N("x"), N("score"), Literal("8", datatype=NamedNode(XSD + "integer")))
+    decimal = Triple(N("x"), N("score"), Literal("8.0", datatype=NamedNode(XSD + "decimal")))
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", SpellingKeptWarning)
+        with o.store.transaction():
+            o.change([eight], [])
+            assert o.change([decimal], [eight]) == ([decimal], [eight])
+    assert [t.object for t in o.triples() if t.predicate == N("score")] == [decimal.object]
+    assert [value_key(t.object) for t in o.ledger.net_changes()[0] if t.predicate == N("score")] == \
+        [value_key(decimal.object)]
+    assert_same_as_scratch(o)
 
 
 # ---------------------------------------------------------------------------------------------- the model

@@ -42,7 +42,8 @@ class AssertedChanges:
 
     def add(self, *triples: Triple, said: bool = False) -> int:
         """Assert triples; returns how many were new (``said``: warn of each value held already in another
-        spelling, as :meth:`add_new` does; a load says it in its own notes, an undo has nothing to say)."""
+        spelling, or written again here in another, as :meth:`add_new` does; a load says it in its own
+        notes, an undo has nothing to say)."""
         triples = tuple(dict.fromkeys(triples))
         for t in triples:
             o = t.object  # each term taken from a triple is a new object: once here (a big load has millions)
@@ -51,7 +52,7 @@ class AssertedChanges:
         self.touch(triples)
         if not self.ledger.tracking:  # nothing to record: a big first load takes the store's bulk path
             added = self.store.add(triples, ASSERTED, distinct=True)
-            if said and added < len(triples):  # some were there already or twice here: in another spelling, said
+            if said and added < len(triples):  # held already, or written twice here: a spelling said
                 _warn(_held_before(self.store, triples))
             return added
         return len(self._change(triples, added=True, said=said))
