@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import time
 import warnings
+from contextlib import nullcontext
 
 import pytest
 from hypothesis import HealthCheck, given, settings
@@ -187,14 +188,17 @@ def value(t: Triple) -> tuple:
     return value_key(t.object)
 
 
-def model_call(kept: dict[tuple, Literal], call: str, add: list[Triple],
+def model_call(kept: dict[tuple, Literal], committed: dict[tuple, Literal] | None, call: str, add: list[Triple],
                remove: list[Triple]) -> tuple[dict[tuple, Literal], set[tuple], set[tuple], set[Literal]]:
-    """The values after ``call``, those it added and removed, and the spellings it wrote and did not store.
+    """The values after ``call`` (value → spelling), those it added and removed (a value whose spelling
+    changed counts as both), and the spellings it wrote and did not store.
 
-    A change removes, then adds, in one transaction: a value removed and added again keeps the spelling the
-    graph held; a value added twice keeps the spelling written first."""
+    A call is one transaction unless ``committed`` gives the values the graph held when the open one began.
+    A value removed and added again in one transaction keeps the spelling the graph held when it began (the
+    store's pending write of it is taken back); a value added twice keeps the spelling written first."""
     before = dict(kept)
     after = dict(kept)
+    held = before if committed is None else committed
     if call == "replace":
         remove = [Triple(S, P, o) for o in kept.values()]
     for t in remove:
@@ -202,9 +206,10 @@ def model_call(kept: dict[tuple, Literal], call: str, add: list[Triple],
     for t in add:
         v = value(t)
         if v not in after:
-            after[v] = before[v] if v in before and call in ("change", "replace") else t.object
+            after[v] = held[v] if v in held and (call in ("change", "replace") or committed is not None) else t.object
+    respelled = {v for v in before.keys() & after.keys() if before[v] != after[v]}
     not_stored = {t.object for t in add if after[value(t)] != t.object}
-    return after, after.keys() - before.keys(), before.keys() - after.keys(), not_stored
+    return after, (after.keys() - before.keys()) | respelled, (before.keys() - after.keys()) | respelled, not_stored
 
 
 def run_call(o: Ontology, call: str, add: list[Triple], remove: list[Triple]) -> tuple[list | None, list]:
@@ -226,32 +231,54 @@ def spellings(o: Ontology) -> dict[tuple, Literal]:
     return {value_key(lit): lit for lit in shown(o)}
 
 
-@settings(max_examples=200, deadline=None, suppress_health_check=[HealthCheck.too_slow])
-@given(calls=CALLS, reasoned=st.booleans())
-def test_reports_store_ledger_and_undo_agree_with_a_model_of_values(calls: list, reasoned: bool) -> None:
-    o = fresh(reasoned)
-    kept: dict[tuple, Literal] = {}
+@settings(max_examples=300, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(initial=st.lists(SPELLINGS, max_size=3), calls=CALLS, reasoned=st.booleans(), one_transaction=st.booleans())
+def test_reports_store_ledger_and_undo_agree_with_a_model_of_values(initial: list[Triple], calls: list,
+                                                                     reasoned: bool, one_transaction: bool) -> None:
+    o = fresh(False)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", SpellingKeptWarning)
+        o.add(*initial)
+    if reasoned:
+        o.reason()
+    start = spellings(o)
+    kept = dict(start)
     with pytest.raises(Failed), o.ledger.undoable(o):
-        for call, add, remove in calls:
-            after, gained, lost, not_stored = model_call(kept, call, add, remove)
-            with warnings.catch_warnings(record=True) as caught:
-                warnings.simplefilter("always")
-                added, removed = run_call(o, call, add, remove)
-            assert added is None or len(added) == len(gained), (call, add, remove)
-            assert len(removed) == len(lost), (call, add, remove)
-            if call in ("add_new", "change"):
-                assert set(added) == gained and set(removed) <= lost | {None}
-            if call == "change":
-                assert set(removed) == lost
-            assert spellings(o) == after, (call, add, remove)
-            notes = said(caught)
-            for lit in not_stored:
-                assert any(str(lit) in n for n in notes), (call, add, remove, lit, notes)
-            assert bool(notes) == bool(not_stored), (call, add, remove, notes)
-            kept = after
+        with o.store.transaction() if one_transaction else nullcontext():
+            for call, add, remove in calls:
+                after, gained, lost, not_stored = model_call(kept, start if one_transaction else None, call, add,
+                                                             remove)
+                with warnings.catch_warnings(record=True) as caught:
+                    warnings.simplefilter("always")
+                    added, removed = run_call(o, call, add, remove)
+                where = (call, add, remove)
+                assert added is None or len(added) == len(gained), where
+                assert len(removed) == len(lost), where
+                if call in ("add_new", "change"):
+                    assert set(added) == gained, where
+                if call == "change":
+                    assert set(removed) == lost, where
+                assert spellings(o) == after, where
+                notes = said(caught)
+                for lit in not_stored:
+                    assert any(str(lit) in n for n in notes), (*where, lit, notes)
+                assert bool(notes) == bool(not_stored), (*where, notes)
+                kept = after
         if reasoned:
             net_added, net_removed = o.ledger.net_changes()
-            assert {value(t) for t in net_added} == kept.keys()
-            assert net_removed == []
+            was = {o.store.stored_form(Triple(S, P, lit)) for lit in start.values()}
+            now = {o.store.stored_form(Triple(S, P, lit)) for lit in kept.values()}
+            assert (set(net_added), set(net_removed)) == (now - was, was - now)
         raise Failed
-    assert shown(o) == []
+    assert spellings(o).keys() == start.keys()  # the values come back; their spellings: see the test below
+
+
+@pytest.mark.xfail(strict=True, reason="an undo's removal and addition of one value cancel in its transaction: the "
+                   "value comes back in the spelling the undone changes left")
+def test_an_undo_restores_the_spelling_a_value_was_held_in() -> None:
+    o = holding(INT, reasoned=False)
+    with pytest.raises(Failed), o.ledger.undoable(o):
+        o.remove(INT)
+        o.add(DECIMAL)
+        raise Failed
+    assert shown(o) == [INT.object]

@@ -210,6 +210,11 @@ def _warn(notes: list[str]) -> None:
         warnings.warn(note, SpellingKeptWarning, stacklevel=level)
 
 
+#: why a spelling added after its value was removed, in one transaction, is not taken
+AGAIN_IN_TRANSACTION = ("removed and added in one transaction (to change only the spelling, remove it in one "
+                        "transaction and add the new one in the next)")
+#: why a spelling of a value an earlier change of the open transaction added is not taken
+EARLIER = "written earlier in the same transaction"
 #: the source folder of topostore: the frames a warning does not point at
 _PACKAGE = __file__[: -len("ontology/changes.py")]
 
@@ -218,22 +223,36 @@ def _held(store: Store, adds: list[Fact], added: list[Fact], netted: dict) -> li
     """A note for each added literal not stored: written again in this change in another spelling of its
     value (the spelling kept: the graph's, where ``netted`` (key → fact removed) says this change removed
     and added it again; else the one this change took), or held by the graph in another spelling."""
+    notes = _restored(added, netted)
     if len(added) == len(adds):  # every fact new: the usual change, nothing looked up
-        return []
+        return notes
     taken = {id(f) for f in added}
-    here = {f.key: f.triple for f in added}
-    notes = []
+    here = {f.key: f.triple if f.written is None else f.written for f in added}
     for f in adds:
         if id(f) in taken or f.value is None:
             continue
         gone = netted.get(f.key)
         kept = store.written_fact(gone) if gone is not None else here.get(f.key)
-        if kept is None:
-            note = _held_note(store, f.quad.graph_name, f.triple, f.value)
-        else:
+        if kept is not None:
             note = spelling_kept(kept, f.triple, AGAIN_IN_CHANGE) if kept.object != f.triple.object else None
+        elif (kept := store.pending_add(f.key)) is not None:
+            note = spelling_kept(kept, f.triple, EARLIER) if kept.object != f.triple.object else None
+        else:
+            note = _held_note(store, f.quad.graph_name, f.triple, f.value)
         if note is not None:
             notes.append(note)
+    return notes
+
+
+def _restored(added: list[Fact], netted: dict) -> list[str]:
+    """A note for each added literal that took back a removal of its value earlier in the transaction
+    (:meth:`Store.toggle_facts` gives it the spelling the store keeps as its written form) in another
+    spelling; one this change removed itself (``netted``) is said by :func:`_netted`."""
+    notes = []
+    for f in added:
+        kept = f.written
+        if kept is not None and kept is not f.triple and kept.object != f.triple.object and f.key not in netted:
+            notes.append(spelling_kept(kept, f.triple, AGAIN_IN_TRANSACTION))
     return notes
 
 
@@ -264,11 +283,13 @@ def _netted(store: Store, adds: list[Fact], added: list[Fact],
     holds as it did (its pending write is keyed by value: the second toggle took back the first), and the
     notes of the spellings written and not stored.  A value removed and added in another spelling keeps
     the spelling held (said); in one spelling, nothing is said.  Where the transaction had written the
-    value before this change, the store writes the added spelling: that pair is a change and stays."""
+    value before this change, the store writes the added spelling: in another spelling than that write's,
+    that pair is a change and stays."""
     if not added or not removed:
         return added, removed, _held(store, adds, added, {})
     gone = {f.key: f for f in removed}
-    pairs = [(gone[f.key], f) for f in added if f.key in gone and not store.writes(f.key)]
+    pairs = [(old, f) for f in added if (old := gone.get(f.key)) is not None
+             and (store.pending_add(f.key) is None or store.written_fact(old).object == f.triple.object)]
     if not pairs:
         return added, removed, _held(store, adds, added, {})
     netted = {new.key: old for old, new in pairs}

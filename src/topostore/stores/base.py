@@ -149,7 +149,7 @@ class Store:
     fact = work.fact
     read_facts = work.read_facts
     written_fact = work.written_fact
-    writes = work.writes
+    pending_add = work.pending_add
     toggle_facts = work.toggle_facts
     _removal_quad = work.removal_quad
 
