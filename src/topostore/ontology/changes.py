@@ -23,7 +23,16 @@ from ..stores.facts import Fact
 from . import state as durable_state
 from .files import changes_schema
 from .nary import all_different, individual_triples
-from .spellings import AGAIN_IN_CHANGE, HELD, SpellingKeptWarning, one_spelling, spelling_kept
+from .spellings import (
+    AGAIN_IN_CHANGE,
+    EARLIER_IN_TRANSACTION,
+    HELD,
+    REMOVED_AND_ADDED,
+    REMOVED_AND_ADDED_IN_TRANSACTION,
+    SpellingKeptWarning,
+    one_spelling,
+    spelling_kept,
+)
 
 if TYPE_CHECKING:
     from ..stores.base import Store
@@ -210,11 +219,6 @@ def _warn(notes: list[str]) -> None:
         warnings.warn(note, SpellingKeptWarning, stacklevel=level)
 
 
-#: why a spelling added after its value was removed, in one transaction, is not taken
-AGAIN_IN_TRANSACTION = ("removed and added in one transaction (to change only the spelling, remove it in one "
-                        "transaction and add the new one in the next)")
-#: why a spelling of a value an earlier change of the open transaction added is not taken
-EARLIER = "written earlier in the same transaction"
 #: the source folder of topostore: the frames a warning does not point at
 _PACKAGE = __file__[: -len("ontology/changes.py")]
 
@@ -236,7 +240,7 @@ def _held(store: Store, adds: list[Fact], added: list[Fact], netted: dict) -> li
         if kept is not None:
             note = spelling_kept(kept, f.triple, AGAIN_IN_CHANGE) if kept.object != f.triple.object else None
         elif (kept := store.pending_add(f.key)) is not None:
-            note = spelling_kept(kept, f.triple, EARLIER) if kept.object != f.triple.object else None
+            note = spelling_kept(kept, f.triple, EARLIER_IN_TRANSACTION) if kept.object != f.triple.object else None
         else:
             note = _held_note(store, f.quad.graph_name, f.triple, f.value)
         if note is not None:
@@ -252,7 +256,7 @@ def _restored(added: list[Fact], netted: dict) -> list[str]:
     for f in added:
         kept = f.written
         if kept is not None and kept is not f.triple and kept.object != f.triple.object and f.key not in netted:
-            notes.append(spelling_kept(kept, f.triple, AGAIN_IN_TRANSACTION))
+            notes.append(spelling_kept(kept, f.triple, REMOVED_AND_ADDED_IN_TRANSACTION))
     return notes
 
 
@@ -293,9 +297,8 @@ def _netted(store: Store, adds: list[Fact], added: list[Fact],
     if not pairs:
         return added, removed, _held(store, adds, added, {})
     netted = {new.key: old for old, new in pairs}
-    notes = [spelling_kept(kept, new.triple, "removed and added in one change (to change only the spelling, "
-                           "remove it in one change and add the new one in the next)")
-             for old, new in pairs if (kept := store.written_fact(old)).object != new.triple.object]
+    notes = [spelling_kept(kept, new.triple, REMOVED_AND_ADDED) for old, new in pairs
+             if (kept := store.written_fact(old)).object != new.triple.object]
     notes += _held(store, adds, added, netted)
     out = {id(f) for pair in pairs for f in pair}
     return [f for f in added if id(f) not in out], [f for f in removed if id(f) not in out], notes
