@@ -181,3 +181,16 @@ def test_a_new_value_whose_tag_is_spelled_otherwise_is_no_same_value(server: InP
                                 "language tag spelled as the store spells it (a tag keeps the spelling it was "
                                 "first written with)"], body
     assert b'"b"@FR' in saved(server)
+
+
+def test_a_sparql_update_counts_what_the_graph_took(server: InProcess) -> None:
+    """An INSERT DATA of a value the graph holds in another spelling adds nothing: the answer counts 0, not
+    the one triple the update planned, and says which spelling stays."""
+    send(server, "PUT", f':x :s "1"^^<{XSD}int> .')
+    update = f'INSERT DATA {{ <{NS}x> <{NS}s> "1.0"^^<{XSD}decimal> }}'
+    status, _, reply = server.request("/references/counts/sparql", update.encode(),
+                                      {"Content-Type": "application/sparql-update"}, "POST")
+    body = json.loads(reply)
+    assert status == 200 and body["added"] == 0 and body["removed"] == 0, body
+    assert len(body["warnings"]) == 1 and "already in the graph" in body["warnings"][0], body
+    assert f'"1"^^<{XSD}int>'.encode() in saved(server)

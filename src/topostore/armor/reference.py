@@ -149,10 +149,13 @@ class Reference:
             raise
         return applied
 
-    def manipulate(self, description: str, add: list[Triple], remove: list[Triple]) -> list[str]:
-        """One all-or-nothing manipulation of the asserted graph, then reasoning (sparql.target.WritableOntology)."""
+    def manipulate(self, description: str, add: list[Triple],
+                   remove: list[Triple]) -> tuple[list[Triple], list[Triple], list[str]]:
+        """One all-or-nothing manipulation of the asserted graph, then reasoning (sparql.target.WritableOntology):
+        what the store took (added, removed) and the warnings."""
         delta = Delta(list(add), list(remove))
-        return self.run([Change(description, lambda _onto: delta)])
+        (done,) = self.applied([Change(description, lambda _onto: delta)])
+        return done.added, done.removed, [done.warning] if done.warning else []
 
     def flush(self, reason: bool | None = None) -> list[str]:
         """Apply the manipulation buffer (APPLY/REASON); the buffer is emptied only on success."""

@@ -10,6 +10,7 @@ the rules be compiled again.  A named part of one :class:`~topostore.ontology.fa
 from __future__ import annotations
 
 import logging
+import sys
 import warnings
 from collections.abc import Iterable, Sequence
 from typing import TYPE_CHECKING
@@ -22,7 +23,16 @@ from ..stores.facts import Fact
 from . import state as durable_state
 from .files import changes_schema
 from .nary import all_different, individual_triples
-from .spellings import HELD, SpellingKeptWarning, one_spelling, spelling_kept
+from .spellings import (
+    AGAIN_IN_CHANGE,
+    EARLIER_IN_TRANSACTION,
+    HELD,
+    REMOVED_AND_ADDED,
+    REMOVED_AND_ADDED_IN_TRANSACTION,
+    SpellingKeptWarning,
+    one_spelling,
+    spelling_kept,
+)
 
 if TYPE_CHECKING:
     from ..stores.base import Store
@@ -41,7 +51,8 @@ class AssertedChanges:
 
     def add(self, *triples: Triple, said: bool = False) -> int:
         """Assert triples; returns how many were new (``said``: warn of each value held already in another
-        spelling, as :meth:`add_new` does; a load says it in its own notes, an undo has nothing to say)."""
+        spelling, or written again here in another, as :meth:`add_new` does; a load says it in its own
+        notes, an undo has nothing to say)."""
         triples = tuple(dict.fromkeys(triples))
         for t in triples:
             o = t.object  # each term taken from a triple is a new object: once here (a big load has millions)
@@ -50,8 +61,8 @@ class AssertedChanges:
         self.touch(triples)
         if not self.ledger.tracking:  # nothing to record: a big first load takes the store's bulk path
             added = self.store.add(triples, ASSERTED, distinct=True)
-            if said and added < len(triples):  # some were there already: in another spelling, said
-                _warn(_held_before(self.store, triples), stacklevel=4)
+            if said and added < len(triples):  # held already, or written twice here: a spelling said
+                _warn(_held_before(self.store, triples))
             return added
         return len(self._change(triples, added=True, said=said))
 
@@ -88,7 +99,7 @@ class AssertedChanges:
         :meth:`Store.read_facts`): their keys and forms, made once, serve the store, the ledger and the
         literal forms alike."""
         added, removed, notes = self.change_noted(add, remove)
-        _warn(notes, stacklevel=4)
+        _warn(notes)
         return added, removed
 
     def change_noted(self, add: Sequence[Triple | Fact],
@@ -99,7 +110,9 @@ class AssertedChanges:
         ``"3.0"^^xsd:decimal`` in one transaction nets out and the asserted graph keeps ``"3"``.  The
         ledger keys by the spelling as stored, so it would record both, and an incremental REASON would
         derive from a triple the asserted graph does not hold.  Such a pair is neither recorded nor
-        reported as added or removed: the ledger and the report say exactly what the graph gained and lost."""
+        reported as added or removed, nor is one removed and added again in one spelling: the ledger and
+        the report say exactly what the graph gained and lost, and each spelling written and not stored
+        (held already, or written again in this change) is said."""
         store = self.store
         adds = []
         for t in _distinct(add):  # every value is validated before anything changes
@@ -115,9 +128,7 @@ class AssertedChanges:
         with store.transaction():
             removed = store.toggle_facts(removes, False) if removes else []
             added = store.toggle_facts(adds, True) if adds else []
-            notes = _held(store, adds, added)
-            added, removed, respelled = _respelled(store, added, removed)
-            notes += respelled
+            added, removed, notes = _netted(store, adds, added, removed)
             if removed or added:  # one record of the change: the ledger's unit-of-work step undoes both
                 ledger.record_change(store, added, removed, limit)
         added_triples, removed_triples = [f.triple for f in added], [f.triple for f in removed]
@@ -133,8 +144,8 @@ class AssertedChanges:
         with store.transaction():
             changed = store.toggle_facts(facts, added)
             self.ledger.record(store, changed, added=added, limit=self._change_limit)
-            notes = _held(store, facts, changed) if said else []
-        _warn(notes, stacklevel=5)  # the caller of Ontology.add
+            notes = _held(store, facts, changed, {}) if said else []
+        _warn(notes)
         return [f.triple for f in changed]
 
     def touch(self, triples: Iterable[Triple]) -> None:
@@ -154,23 +165,21 @@ class AssertedChanges:
         return self.onto.max_change_share * (reasoner.state.asserted_size if reasoner else 0)
 
     def replace(self, subject: str, prop: str, new: object, old: object | None = None) -> int:
-        """Replace ``old`` by ``new`` (every current value when ``old`` is None); atomic.
+        """Replace ``old`` by ``new`` (every current value when ``old`` is None); atomic: one :meth:`change`.
 
         Values are matched by data value, so ``7`` replaces a stored ``"7"^^xsd:long``.
-        Returns how many old facts were removed.
+        Returns how many old facts were removed: a value replaced by itself (in any spelling) is not
+        (the graph keeps it as held, and a spelling it did not take is said).
         """
         new_t = self.onto.fact(subject, prop, new)
         s, p = new_t.subject, new_t.predicate
         with self.store.transaction():  # one commit: a durable store never holds half a REPLACE
-            if old is None:
-                olds = list(self.store.triples(s, p, None, ASSERTED))
-            else:
-                old_t = self.onto.fact(subject, prop, old)
-                key = value_key(old_t.object)
-                olds = [t for t in self.store.triples(s, p, None, ASSERTED) if value_key(t.object) == key]
-            self.remove(*olds)
-            self.add(new_t)
-        return len(olds)
+            olds = list(self.store.triples(s, p, None, ASSERTED))
+            if old is not None:
+                key = value_key(self.onto.fact(subject, prop, old).object)
+                olds = [t for t in olds if value_key(t.object) == key]
+            _, removed = self.change([new_t], olds)
+        return len(removed)
 
     def add_all_different(self, names: Sequence[str | NamedNode]) -> NamedNode:
         """One owl:AllDifferent over ``names`` (deduplicated): linear in size, never n² pairs."""
@@ -198,30 +207,71 @@ def _validate(t: Triple) -> None:
         _validate_literal(t.object)
 
 
-def _warn(notes: list[str], stacklevel: int = 4) -> None:
-    """Log and warn (:class:`SpellingKeptWarning`) of each spelling a change wrote and did not store."""
+def _warn(notes: list[str]) -> None:
+    """Log and warn (:class:`SpellingKeptWarning`) of each spelling a change wrote and did not store, the
+    warning pointing at the first caller outside topostore (whichever public method it came through)."""
+    if not notes:
+        return
+    level, frame = 1, sys._getframe(0)
+    while frame is not None and frame.f_code.co_filename.startswith(_PACKAGE):
+        frame, level = frame.f_back, level + 1
     for note in notes:
         logger.warning("%s", note)
-        warnings.warn(note, SpellingKeptWarning, stacklevel=stacklevel)
+        warnings.warn(note, SpellingKeptWarning, stacklevel=level)
 
 
-def _held(store: Store, adds: list[Fact], added: list[Fact]) -> list[str]:
-    """A note for each added literal not stored because the graph held its value in another spelling (the
-    spelling kept is the committed one's, so a value written twice in this change is not named here)."""
+#: the source folder of topostore: the frames a warning does not point at
+_PACKAGE = __file__[: -len("ontology/changes.py")]
+
+
+def _held(store: Store, adds: list[Fact], added: list[Fact], netted: dict) -> list[str]:
+    """A note for each added literal not stored: written again in this change in another spelling of its
+    value (the spelling kept: the graph's, where ``netted`` (key → fact removed) says this change removed
+    and added it again; else the one this change took), or held by the graph in another spelling."""
+    notes = _restored(added, netted)
     if len(added) == len(adds):  # every fact new: the usual change, nothing looked up
-        return []
+        return notes
     taken = {id(f) for f in added}
-    notes = (_held_note(store, f.quad.graph_name, f.triple, f.value) for f in adds
-             if id(f) not in taken and f.value is not None)
-    return [note for note in notes if note is not None]
+    here = {f.key: f.triple if f.written is None else f.written for f in added}
+    for f in adds:
+        if id(f) in taken or f.value is None:
+            continue
+        gone = netted.get(f.key)
+        kept = store.written_fact(gone) if gone is not None else here.get(f.key)
+        if kept is not None:
+            note = spelling_kept(kept, f.triple, AGAIN_IN_CHANGE) if kept.object != f.triple.object else None
+        elif (kept := store.pending_add(f.key)) is not None:
+            note = spelling_kept(kept, f.triple, EARLIER_IN_TRANSACTION) if kept.object != f.triple.object else None
+        else:
+            note = _held_note(store, f.quad.graph_name, f.triple, f.value)
+        if note is not None:
+            notes.append(note)
+    return notes
+
+
+def _restored(added: list[Fact], netted: dict) -> list[str]:
+    """A note for each added literal that took back a removal of its value earlier in the transaction
+    (:meth:`Store.toggle_facts` gives it the spelling the store keeps as its written form) in another
+    spelling; one this change removed itself (``netted``) is said by :func:`_netted`."""
+    notes = []
+    for f in added:
+        kept = f.written
+        if kept is not None and kept is not f.triple and kept.object != f.triple.object and f.key not in netted:
+            notes.append(spelling_kept(kept, f.triple, REMOVED_AND_ADDED_IN_TRANSACTION))
+    return notes
 
 
 def _held_before(store: Store, triples: Sequence[Triple]) -> list[str]:
     """:func:`_held` of triples added without facts (already committed): a value's first spelling in
-    ``triples`` not kept as written was held before in the spelling kept (a later one is the call's own)."""
-    firsts, _ = one_spelling(t for t in triples if isinstance(t.object, Literal))
+    ``triples`` not kept as written was held before in the spelling kept; a later one is said beside the
+    spelling the graph keeps."""
+    firsts, again = one_spelling(t for t in triples if isinstance(t.object, Literal))
     notes = (_held_note(store, ASSERTED, t, value_key(t.object)) for t in firsts)
-    return [note for note in notes if note is not None]
+    kept = ((triple(first.subject, first.predicate, store.original_literal(ASSERTED, first.subject, first.predicate,
+                                                                          first.object)), later)
+            for first, later in again)
+    return [note for note in notes if note is not None] + [spelling_kept(k, later, AGAIN_IN_CHANGE)
+                                                           for k, later in kept if k.object != later.object]
 
 
 def _held_note(store: Store, graph: NamedNode, t: Triple, value: tuple) -> str | None:
@@ -232,29 +282,26 @@ def _held_note(store: Store, graph: NamedNode, t: Triple, value: tuple) -> str |
     return spelling_kept(triple(t.subject, t.predicate, kept), t, HELD)
 
 
-def _respelled(store: Store, added: list[Fact], removed: list[Fact]) -> tuple[list[Fact], list[Fact], list[str]]:
-    """``added`` and ``removed`` without the pairs of one value in two spellings, which the store netted out
-    (its pending write is keyed by value), with a note naming the spelling kept and the one not written.
-    A pair of one spelling stays: the ledger cancels it itself (it keys by the stored form)."""
+def _netted(store: Store, adds: list[Fact], added: list[Fact],
+            removed: list[Fact]) -> tuple[list[Fact], list[Fact], list[str]]:
+    """``added`` and ``removed`` without the values this change removed and added again and the store
+    holds as it did (its pending write is keyed by value: the second toggle took back the first), and the
+    notes of the spellings written and not stored.  A value removed and added in another spelling keeps
+    the spelling held (said); in one spelling, nothing is said.  Where the transaction had written the
+    value before this change, the store writes the added spelling: in another spelling than that write's,
+    that pair is a change and stays."""
     if not added or not removed:
-        return added, removed, []
+        return added, removed, _held(store, adds, added, {})
     if len(added) == 1 and len(removed) == 1 and added[0].key != removed[0].key:
-        return added, removed, []  # a REPLACE of one value by another: no pair, nothing built to find one
+        return added, removed, _held(store, adds, added, {})  # a REPLACE of one value by another: no pair
     gone = {f.key: f for f in removed}
-    pairs = [(gone[f.key], f) for f in added if f.key in gone and _spelled_apart(store, gone[f.key], f)]
+    pairs = [(old, f) for f in added if (old := gone.get(f.key)) is not None
+             and (store.pending_add(f.key) is None or store.written_fact(old).object == f.triple.object)]
     if not pairs:
-        return added, removed, []
-    kept = {id(f) for pair in pairs for f in pair}
-    notes = [spelling_kept(store.written_fact(old), new.triple, "removed and added in one change (to change only "
-                           "the spelling, remove it in one change and add the new one in the next)")
-             for old, new in pairs]
-    return [f for f in added if id(f) not in kept], [f for f in removed if id(f) not in kept], notes
-
-
-def _spelled_apart(store: Store, old: Fact, new: Fact) -> bool:
-    """Whether ``new`` writes the value of ``old`` in another spelling: other stored forms (the store nets
-    them out) or one stored form written otherwise (``"0100"`` and ``"100"`` as xsd:long: the ledger
-    cancels them and the spelling written first stays)."""
-    if store.stored_form(old.triple) != store.stored_form(new.triple):
-        return True
-    return store.written_fact(old).object != new.triple.object
+        return added, removed, _held(store, adds, added, {})
+    netted = {new.key: old for old, new in pairs}
+    notes = [spelling_kept(kept, new.triple, REMOVED_AND_ADDED) for old, new in pairs
+             if (kept := store.written_fact(old)).object != new.triple.object]
+    notes += _held(store, adds, added, netted)
+    out = {id(f) for pair in pairs for f in pair}
+    return [f for f in added if id(f) not in out], [f for f in removed if id(f) not in out], notes

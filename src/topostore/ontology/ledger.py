@@ -197,8 +197,10 @@ def _net(store: Store, facts: list[Fact], written: list[Triple], mine: dict[Trip
     """Note ``facts`` (as ``written``) on their side ``mine`` of the net record, or cancel them on ``other``."""
     for f, as_written in zip(facts, written, strict=True):
         key = f.stored
-        if key is None:  # both sides hold triples as the store does, so they cancel (the probe takes the
-            key = f.stored = store.stored_form(f.triple, f.quad)  # fact's quad, made for its write already)
+        if key is None:  # both sides hold triples as the store does, so they cancel (a removal named in
+            # another spelling: the one the store held; the probe takes the fact's quad, made for its write
+            # already, where the triple is the one written)
+            key = f.stored = store.stored_form(as_written, f.quad if as_written is f.triple else None)
         if key in other:
             del other[key]
         else:

@@ -35,6 +35,16 @@ logger = logging.getLogger("topostore.load")
 XML_LITERAL = RDF + "XMLLiteral"
 #: why a document's second spelling of one value is not taken
 AGAIN = "written again in the document"
+#: why a change's second spelling of one value is not taken
+AGAIN_IN_CHANGE = "written again in the same change"
+#: why a change's spelling of a value an earlier change of the open transaction added is not taken
+EARLIER_IN_TRANSACTION = "written earlier in the same transaction"
+#: why a change's spelling of a value it removes too is not taken
+REMOVED_AND_ADDED = ("removed and added in one change (to change only the spelling, remove it in one change and "
+                     "add the new one in the next)")
+#: why a spelling of a value an earlier change of the open transaction removed is not taken
+REMOVED_AND_ADDED_IN_TRANSACTION = ("removed and added in one transaction (to change only the spelling, remove it "
+                                    "in one transaction and add the new one in the next)")
 #: why an upload's spelling of a value the graph holds is not taken, and how to change only the spelling
 HELD = "already in the graph (to change only its spelling, remove it first and add it then)"
 #: why a language tag's spelling is not taken
@@ -228,5 +238,6 @@ class Written:
         return notes
 
 
-__all__ = ["AGAIN", "HELD", "TAG_KEPT", "SpellingKeptWarning", "Written", "again_notes", "holding", "joined",
-           "one_spelling", "published", "shown", "spelling_kept", "tag_notes", "tag_respelled", "value_of"]
+__all__ = ["AGAIN", "AGAIN_IN_CHANGE", "EARLIER_IN_TRANSACTION", "HELD", "REMOVED_AND_ADDED",
+           "REMOVED_AND_ADDED_IN_TRANSACTION", "TAG_KEPT", "SpellingKeptWarning", "Written", "again_notes", "holding",
+           "joined", "one_spelling", "published", "shown", "spelling_kept", "tag_notes", "tag_respelled", "value_of"]

@@ -126,8 +126,9 @@ class OntologyValues:
         return removed
 
     def _add(self, t: Triple) -> int:
-        """Assert one triple made from names (no blank node to name)."""
-        added = self.onto.changes.add(t)
+        """Assert one triple made from names (no blank node to name); a value held already in another
+        spelling is said, as :meth:`Ontology.add` says it."""
+        added = self.onto.changes.add(t, said=True)
         self.asserted((t,))
         return added
 

@@ -222,10 +222,10 @@ def run_update(ref: WritableOntology, text: str, job: Job, limit: float) -> Upda
         delta = update_delta(asserted, text)
         if not job.claim():
             raise SparqlTimeout(timeout_message(limit))
-        warnings = ref.manipulate("SPARQL update", delta.add, delta.remove)
+        added, removed, warnings = ref.manipulate("SPARQL update", delta.add, delta.remove)
         # the tags of the literals it added, as the update's text spells them (pyoxigraph lowered them)
-        ref.ontology.values.learned(text, None, only=literal_tags(delta.add))
-        return UpdateOutcome(len(delta.add), len(delta.remove), ref.is_consistent, warnings)
+        ref.ontology.values.learned(text, None, only=literal_tags(added))
+        return UpdateOutcome(len(added), len(removed), ref.is_consistent, warnings)
 
 
 __all__ = ["QueryOutcome", "UpdateOutcome", "SparqlTimeout", "ResultTooLarge", "ReferenceMounted", "Job", "run_query", "run_update",

@@ -40,8 +40,10 @@ class WritableOntology(LockedOntology, Protocol):
     @property
     def is_consistent(self) -> bool: ...
 
-    def manipulate(self, description: str, add: list[Triple], remove: list[Triple]) -> list[str]:
-        """Add and remove asserted triples as one manipulation (undone whole if reasoning fails); its warnings."""
+    def manipulate(self, description: str, add: list[Triple],
+                   remove: list[Triple]) -> tuple[list[Triple], list[Triple], list[str]]:
+        """Add and remove asserted triples as one manipulation (undone whole if reasoning fails): the triples
+        the store took (added, removed: a value held in another spelling is neither) and its warnings."""
         ...
 
 

@@ -151,6 +151,7 @@ class Store:
     read_facts = work.read_facts
     unread_fact = work.unread_fact
     written_fact = work.written_fact
+    pending_add = work.pending_add
     toggle_facts = work.toggle_facts
     _removal_quad = work.removal_quad
 

@@ -358,8 +358,22 @@ def _cancel(store: Store, pending: dict, k: Hashable, f: Fact) -> None:
     """``f`` undoes the write pending for its value (an earlier change of this transaction): the store is
     left as it was, in the spelling it held.  The fact is given that spelling's stored form, which the
     change ledger keys by, so that it cancels the earlier change there too (``"1.0"^^xsd:decimal`` added
-    after ``"1"^^xsd:int`` was removed is no change, not a removed integer and an added decimal)."""
-    f.stored = store.stored_form(pending.pop(k)[0].triple)
+    after ``"1"^^xsd:int`` was removed is no change, not a removed integer and an added decimal), and
+    that spelling as its written form: what a removal reports and an undo restores, what a change says
+    stays where ``f`` writes the value otherwise."""
+    held = pending.pop(k)[0].triple
+    f.stored = store.stored_form(held)
+    if f.value is not None:
+        f.written = held
+
+
+def pending_add(store: Store, k: Hashable) -> Triple | None:
+    """The triple (as written) the open transaction's pending write of the fact keyed ``k`` (see
+    :meth:`_key`) adds; None when none is pending or it removes: a change that removed and added one
+    value left none where the store keeps the value as it was."""
+    pending = store._pending
+    entry = pending.get(k) if pending is not None else None
+    return entry[0].triple if entry is not None and entry[1] else None
 
 
 def removal_quad(store: Store, f: Fact) -> Quad:
