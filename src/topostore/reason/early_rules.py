@@ -23,9 +23,11 @@ The early triples are used only if the evaluation at the rule's turn would be th
 
 Otherwise the early triples are dropped and the rule is evaluated as before.  Only evaluations that write
 to one graph qualify (a first pass's rule whose facts are not read again as a delta: not in ``back``, a
-head of one predicate or class), and only those whose text computes terms (a ``BIND``: the keys'
-hashes): for a plain join, writing its solutions from Python costs the main thread about as much as
-evaluating it there (1.46 against 1.00 s per 300,000 quads written, docs/benchmarks-history.md).
+head of one predicate or class), only those that hash (:func:`hashes`: the keys' MD5s), and only those
+with first-pass work of the main thread between their start and their turn: for a plain join or an
+arithmetic ``BIND``, writing the solutions costs the main thread about as much as evaluating them there
+(1.46 against 1.00 s per 300,000 quads written, docs/benchmarks-history.md), and with nothing to do
+meanwhile the pass would only wait for the worker.
 Without the second thread (``TOPOSTORE_OVERLAP=0``, a durable or remote store) nothing starts early and
 the run is the sequential one, in the same order.
 """
@@ -42,7 +44,7 @@ from typing import TYPE_CHECKING
 from pyoxigraph import NamedNode, RdfFormat
 
 from ..compile.generic import PREFIXES
-from ..compile.rule import ReadKey
+from ..compile.rule import ReadKey, Rule
 from ..stores.base import Store
 from ..stores.overlap import Reader
 from .order import TYPE_KEY
@@ -51,6 +53,9 @@ from .stats import ReasonStats
 
 if TYPE_CHECKING:
     from .materialize import Materializer
+
+#: a SPARQL hash function
+_HASH = re.compile(r"\b(MD5|SHA1|SHA256|SHA384|SHA512)\(", re.IGNORECASE)
 
 #: an evaluation text's head writing into one graph: ``INSERT { GRAPH <g> { … } }``
 _ONE_GRAPH = re.compile(r"INSERT \{ GRAPH (<[^>]+>) \{ ([^{}]*) \} \}")
@@ -99,6 +104,14 @@ def write_found(store: Store, found: Found, name: str, stats: ReasonStats, profi
     stats.per_rule[name] = stats.per_rule.get(name, 0.0) + perf_counter() - start
 
 
+def hashes(rule: Rule) -> bool:
+    """Whether ``rule`` binds a term made with a hash function (the AllDifferent keys' two MD5s per member):
+    such an evaluation costs far more than writing its solutions, so the worker takes it.  Not a BIND of
+    arithmetic: Urgency's subtraction at 100,000 locations cost the worker 0.32 s and the main thread 0.39 s
+    to write its 100,000 memberships, against 0.36 s evaluating it there."""
+    return any(c.binds and _HASH.search(c.expression) for c in rule.conditions)
+
+
 class EarlyRules:
     """The first-pass evaluations of one full run started early; see the module docstring."""
 
@@ -130,11 +143,11 @@ class EarlyRules:
             evaluated.append(evaluated[c] + sum(1 for i in component if self._evaluated(i)))
 
     def _eligible(self, i: int, back: Collection[int]) -> bool:
-        """Whether rule ``i``'s first-pass evaluation computes terms (a ``BIND``) and writes into one graph
-        alone (see the module)."""
+        """Whether rule ``i``'s first-pass evaluation hashes (:func:`hashes`) and writes into one graph alone
+        (see the module)."""
         run = self.run
         key = run.rules[i].writes()
-        return (bool(run.rules[i].binds) and i not in back and i not in run._deferring and i not in run._unions and i not in run._joined
+        return (hashes(run.rules[i]) and i not in back and i not in run._deferring and i not in run._unions and i not in run._joined
                 and key is not None and key[0] != "*" and key != ("p", TYPE_KEY)
                 and run.triggers.feasible(i, run.present))
 
