@@ -2,7 +2,7 @@
 
 Two kinds: the deferred asks, whose answer the run needs at its first stratum's fixpoint, and the
 consistency checks, whose matches the REASON needs after the run (:mod:`.closing`); a third, the
-first pass's evaluations that compute terms (the AllDifferent keys), lives in :mod:`.early_rules`
+first pass's evaluations that hash (the AllDifferent keys), lives in :mod:`.early_rules`
 and shares the worker, its evaluations queued first (the pass waits for them soonest).
 
 **Deferred asks.**
@@ -128,7 +128,8 @@ class EarlyReads:
         ranked = {i for component in ordered for i in component}
         feasible = [i for i in range(len(run.rules)) if run.triggers.feasible(i, run.present)]
         asks = [i for i in sorted(run._deferring) if i not in run._idle and run.rules[i].unless_known is not None]
-        self._ask_reads = {i: evaluation_reads(run.rules[i]) | (GROUP_READS if i in run.censuses else frozenset()) for i in asks}
+        self._ask_reads = {i: evaluation_reads(run.rules[i]) | (GROUP_READS if i in run.censuses else frozenset())
+                           for i in asks}
         # an ask is answered before the upper strata run: only the rest and the asks write after the components
         later = [run.rules[j].writes() for j in feasible if j in rest or j in run._deferring]
         self._asks_after = _start_points(run, ordered, self._ask_reads, later)

@@ -147,8 +147,8 @@ class EarlyRules:
         (see the module)."""
         run = self.run
         key = run.rules[i].writes()
-        return (hashes(run.rules[i]) and i not in back and i not in run._deferring and i not in run._unions and i not in run._joined
-                and key is not None and key[0] != "*" and key != ("p", TYPE_KEY)
+        return (hashes(run.rules[i]) and i not in back and i not in run._deferring and i not in run._unions
+                and i not in run._joined and key is not None and key[0] != "*" and key != ("p", TYPE_KEY)
                 and run.triggers.feasible(i, run.present))
 
     def _evaluated(self, i: int) -> bool:
