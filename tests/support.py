@@ -145,9 +145,13 @@ def map_or_text(text: str | None = None) -> Ontology:
 
 
 def full_run_updates(onto: Ontology, monkeypatch: pytest.MonkeyPatch) -> list[str]:
-    """The update texts a full REASON of ``onto`` sends, in order."""
+    """The update texts a full REASON of ``onto`` sends, in order: every evaluation as an update (none of
+    them found beside the run in the worker thread, :mod:`topostore.reason.early_rules`)."""
+    from topostore.reason import early_reads
+
     texts: list[str] = []
     update = onto.store.update
+    monkeypatch.setattr(early_reads, "ENABLED", False)
 
     def recording(text: str, *args, **kwargs):
         texts.append(text)

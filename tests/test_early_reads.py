@@ -151,8 +151,8 @@ def test_a_check_whose_key_is_written_after_its_start_runs_again(tmp_path, monke
 
 
 def test_what_a_write_touches():
-    from topostore.reason.early_reads import _touches
     from topostore.reason.order import TYPE_KEY
+    from topostore.reason.read_keys import touches as _touches
 
     door, place, link = ("t", "<c:Door>"), ("t", "<c:Place>"), ("p", "<p:link>")
     assert _touches(door, {door}) and not _touches(door, {place, link})
@@ -165,8 +165,10 @@ def test_the_writes_index_answers_as_every_writer_asked_in_turn():
     """`_Writes.last` (indexed by key) gives the last writer `_touches` finds by asking each writer."""
     import random
 
-    from topostore.reason.early_reads import _ANY, _touches, _Writes
     from topostore.reason.order import TYPE_KEY
+    from topostore.reason.read_keys import ANY as _ANY
+    from topostore.reason.read_keys import Writes as _Writes
+    from topostore.reason.read_keys import touches as _touches
 
     keys = [("t", f"<c:{n}>") for n in range(4)] + [("p", f"<p:{n}>") for n in range(3)] + [("p", TYPE_KEY)]
     rng = random.Random(7)

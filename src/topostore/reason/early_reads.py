@@ -1,7 +1,9 @@
 """Read-only evaluations of a full run started early, in a worker thread, while the run goes on writing.
 
 Two kinds: the deferred asks, whose answer the run needs at its first stratum's fixpoint, and the
-consistency checks, whose matches the REASON needs after the run (:mod:`.closing`).
+consistency checks, whose matches the REASON needs after the run (:mod:`.closing`); a third, the
+first pass's evaluations that hash (the AllDifferent keys), lives in :mod:`.early_rules`
+and shares the worker, its evaluations queued first (the pass waits for them soonest).
 
 **Deferred asks.**
 A deferred ask (:mod:`.deferred_asks`) waits for the first stratum's fixpoint, then evaluates its body
@@ -46,19 +48,16 @@ from ..compile.rule import ReadKey, Rule
 from ..stores.base import Store
 from ..stores.overlap import ENABLED, Reader
 from .consistency import GRAPHS, check_rows
+from .early_rules import EarlyRules, Found
 from .insert_text import insert_text
 from .keyed_asks import GROUP_READS, KeyCensus
 from .negation import unless_known_text
 from .one_group import one_group
-from .order import TYPE_KEY
 from .present import key_graphs
-from .triggers import may_write
+from .read_keys import Writes, evaluation_reads, touches
 
 if TYPE_CHECKING:
     from .materialize import Materializer
-
-#: a key standing for every key (a rule of a variable predicate reads or writes any)
-_ANY = ("*",)
 
 #: at most this many checks are started early; with more (a TBox of 400 classes has 11,000 disjointness
 #: checks) each early check would be a census and a query of its own in the worker, where the REASON's
@@ -77,64 +76,13 @@ def ask_form(text: str) -> str:
     return f"ASK {words}\n{where}"
 
 
-def _reads(rule: Rule) -> frozenset[ReadKey]:
-    """Every key an evaluation of ``rule`` reads: its body, its filters, its known conclusion."""
-    keys = set(rule.reads())
-    if rule.conditions_read_graph and not rule.filter_reads:
-        keys.add(_ANY)
-    if rule.unless_known is not None:
-        keys.add(rule.unless_known.read_key())
-    return frozenset(keys)
-
-
-def _touches(written: ReadKey | None, reads: Collection[ReadKey]) -> bool:
-    """Whether a rule writing ``written`` may have written a key among ``reads`` (:func:`.triggers.may_write`;
-    a rule of a variable predicate touches every read)."""
-    if written is None:
-        return False
-    return written[0] == "*" or any(may_write(written, key) for key in reads)
-
-
-class _Writes:
-    """Which keys a list of writers (each a written key, or None) may write, indexed so that asking whether
-    one of them may have written a key among a read's keys costs that read's keys, not the writers
-    (the same answer as :func:`_touches` over every writer: a TBox of 400 classes has 11,000 checks)."""
-
-    def __init__(self, written: Sequence[tuple[int, ReadKey | None]]) -> None:
-        #: key -> the last position writing it; the last position writing any key, any class, rdf:type, "*"
-        self.last_by_key: dict[ReadKey, int] = {}
-        self.last_any = self.last_class = self.last_star = -1
-        for position, key in written:
-            if key is None:
-                continue
-            self.last_any = max(self.last_any, position)
-            if key[0] == "*":
-                self.last_star = max(self.last_star, position)
-            elif key[0] == "t":
-                self.last_class = max(self.last_class, position)
-            self.last_by_key[key] = max(self.last_by_key.get(key, -1), position)
-
-    def last(self, reads: Collection[ReadKey]) -> int:
-        """The last position whose writer may write a key among ``reads`` (-1: none)."""
-        if _ANY in reads:
-            return self.last_any
-        found = self.last_star
-        for key in reads:
-            found = max(found, self.last_by_key.get(key, -1))
-            if key[0] == "t":
-                found = max(found, self.last_by_key.get(("p", TYPE_KEY), -1))
-        if ("p", TYPE_KEY) in reads:
-            found = max(found, self.last_class)
-        return found
-
-
 def _start_points(run: Materializer, ordered: list[list[int]], reads: Mapping[int, frozenset[ReadKey]],
                   later: list[ReadKey | None]) -> dict[int, list[int]]:
     """For each read (by its key in ``reads``): the ordered component after which it may start, the last
     one writing a key it reads (-1: none), unless a key of ``later`` (written after the components) may be
     one of them (then it is left out)."""
-    after = _Writes([(0, key) for key in later])
-    components = _Writes([(c, run.rules[i].writes()) for c, component in enumerate(ordered) for i in component])
+    after = Writes([(0, key) for key in later])
+    components = Writes([(c, run.rules[i].writes()) for c, component in enumerate(ordered) for i in component])
     points: dict[int, list[int]] = {}
     for n, keys in reads.items():
         if after.last(keys) >= 0:
@@ -155,9 +103,11 @@ class EarlyReads:
     """The deferred asks and checks of one full run started early; see the module docstring."""
 
     def __init__(self, run: Materializer, ordered: list[list[int]], rest: Collection[int],
-                 checks: Sequence[Rule] = ()) -> None:
+                 checks: Sequence[Rule] = (), back: Collection[int] = ()) -> None:
         self.run = run
         self._reader = Reader()
+        #: the first pass's evaluations found in the worker (:mod:`.early_rules`): none without it
+        self.rules: EarlyRules | None = None
         #: the keys the deferred asks write (read by :func:`.deferred_asks.only_asserted`), fixed for the run
         self._asking = {w for j in run._deferring if (w := run.rules[j].writes()) is not None}
         self._checks = list(checks)
@@ -174,10 +124,12 @@ class EarlyReads:
         self.checked: dict[int, list[dict]] = {}
         if not (ENABLED and run.store.overlaps):
             return
+        self.rules = EarlyRules(run, ordered, back, self._reader)
         ranked = {i for component in ordered for i in component}
         feasible = [i for i in range(len(run.rules)) if run.triggers.feasible(i, run.present)]
         asks = [i for i in sorted(run._deferring) if i not in run._idle and run.rules[i].unless_known is not None]
-        self._ask_reads = {i: _reads(run.rules[i]) | (GROUP_READS if i in run.censuses else frozenset()) for i in asks}
+        self._ask_reads = {i: evaluation_reads(run.rules[i]) | (GROUP_READS if i in run.censuses else frozenset())
+                           for i in asks}
         # an ask is answered before the upper strata run: only the rest and the asks write after the components
         later = [run.rules[j].writes() for j in feasible if j in rest or j in run._deferring]
         self._asks_after = _start_points(run, ordered, self._ask_reads, later)
@@ -185,7 +137,7 @@ class EarlyReads:
         # later drops the reads of what it writes, :meth:`wrote`)
         if len(self._checks) > EARLY_CHECKS:
             return
-        self._check_reads = {j: _reads(rule) for j, rule in enumerate(self._checks)}
+        self._check_reads = {j: evaluation_reads(rule) for j, rule in enumerate(self._checks)}
         later = [run.rules[j].writes() for j in feasible if j not in ranked or j in rest or j in run._deferring]
         self._checks_after = _start_points(run, ordered, self._check_reads, later)
 
@@ -193,6 +145,8 @@ class EarlyReads:
         """The ordered component ``component`` is done (-1: none yet): start the reads that waited for it."""
         run = self.run
         store = run.store
+        if self.rules is not None:  # first: the pass waits for them, the asks and checks come later
+            self.rules.after(component)
         for i in self._asks_after.pop(component, ()):
             if not run.triggers.feasible(i, run.present):
                 continue
@@ -206,10 +160,17 @@ class EarlyReads:
 
     def wrote(self, key: ReadKey | None) -> None:
         """An evaluation writing ``key`` was sent or queued: the early reads of it no longer hold."""
-        for i in [i for i in self._asked if _touches(key, self._ask_reads[i])]:
+        if self.rules is not None:
+            self.rules.wrote(key)
+        for i in [i for i in self._asked if touches(key, self._ask_reads[i])]:
             self._asked.pop(i)[1].cancel()
-        for j in [j for j in self._checking if _touches(key, self._check_reads[j])]:
+        for j in [j for j in self._checking if touches(key, self._check_reads[j])]:
             self._checking.pop(j).cancel()
+
+    def evaluated(self, i: int, text: str) -> Found | None:
+        """The solutions of rule ``i``'s first-pass evaluation ``text`` found in the worker (None: evaluate
+        it now), see :mod:`.early_rules`."""
+        return self.rules.evaluated(i, text) if self.rules is not None else None
 
     def answer(self, i: int) -> bool | None:
         """Whether the ask of rule ``i`` has a match, from its early answer (None: ask it now)."""
@@ -237,6 +198,8 @@ class EarlyReads:
                     continue
         self._asked.clear()
         self._checking.clear()
+        if self.rules is not None:
+            self.rules.close()
         self._reader.__exit__(None, None, None)
 
     def _graphs(self, i: int) -> Mapping[ReadKey, NamedNode]:

@@ -39,6 +39,7 @@ from . import limits
 from .class_unions import class_unions
 from .deferred_asks import ask_unknown
 from .early_reads import EarlyReads
+from .early_rules import write_found
 from .few_solutions import few_solutions
 from .first_pass import first_pass, without
 from .implied_passes import implied_atoms, implied_first_passes
@@ -129,9 +130,27 @@ class Materializer:
         """Evaluate rule ``index`` (its atom ``delta_index`` on the delta); ``asserted_only``: its one
         atom reads the asserted graph alone (see :func:`.implied_passes.implied_first_passes`); ``first``: the
         first pass of the ordered stratum, which leaves out the atoms :attr:`_lean` says are implied;
-        ``union``: rules evaluated with it as one (:mod:`.class_unions`)."""
+        ``union``: rules evaluated with it as one (:mod:`.class_unions`).  An evaluation whose solutions
+        the worker found already (:mod:`.early_rules`) has them written instead."""
         if index in self._deferring:
             return
+        text = self.evaluation_text(index, delta_index, asserted_only, first, union)
+        stats.evaluations += 1
+        written = self.rules[index].writes()
+        found = self._early.evaluated(index, text) if self._early is not None else None
+        if found is not None:
+            self._flush()  # the evaluations queued before it are sent first, as in one request
+            self._early.wrote(written)
+            write_found(self.store, found, self.rules[index].name, stats, self.profile)
+            return
+        self._queued.add(written)
+        if self._early is not None:
+            self._early.wrote(written)
+        self._timed(text, self.rules[index].name, stats)
+
+    def evaluation_text(self, index: int, delta_index: int | None, asserted_only: bool = False,
+                        first: bool = False, union: tuple[int, ...] = ()) -> str:
+        """The text :meth:`_run` sends for these arguments in the run's present state (kept by its form)."""
         derived = self._direct is not None and self.rules[index].writes() in self._derived
         bare = self.bare(index)
         lean = first and index in self._lean
@@ -152,11 +171,7 @@ class Materializer:
             text = self._texts[key] = insert_text(rule, delta_index, self.planned, self._lateral,
                                                   self._direct, graphs, derived, [self.rules[j] for j in union], few, one,
                                                   bare)
-        stats.evaluations += 1
-        self._queued.add(self.rules[index].writes())
-        if self._early is not None:
-            self._early.wrote(self.rules[index].writes())
-        self._timed(text, self.rules[index].name, stats)
+        return text
 
     def _flush(self) -> None:
         """Send the queued evaluations of a round as one update request.
@@ -359,7 +374,7 @@ class Materializer:
         self._paths = asserted_paths(self.rules, [i for c in ordered for i in c])
         # a text reading a key in one graph holds only for this run's asserted keys: none is kept from before
         self._texts = {k: t for k, t in self._texts.items() if not k[4]}
-        self._early = early = EarlyReads(self, ordered, rest, self.checks)
+        self._early = early = EarlyReads(self, ordered, rest, self.checks, back)
         completed = False
         try:
             self._fixpoint(stats, strata, ordered, rest, back)

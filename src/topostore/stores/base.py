@@ -325,6 +325,11 @@ class Store:
             self.listings.updated()
         self._run_update(text, prefixes)
 
+    def add_ntriples(self, text: bytes, graph: NamedNode) -> None:
+        """Add the triples of ``text`` (N-Triples this engine serialised: a query's answer) to ``graph``, as a
+        SPARQL update inserting them would (no literal forms recorded: a reasoner's graph)."""
+        self.update(f"INSERT DATA {{ GRAPH {graph} {{\n{text.decode()}\n}} }}")
+
     def query(self, text: str, graphs: list[NamedNode] | None = None, named: list[NamedNode] | None = None,
               **kwargs):
         """Run a query whose default graph is the union of ``graphs`` (the named graphs: ``named``,
