@@ -143,9 +143,12 @@ def shape(counts: list[KeyCounts], clean: frozenset, present: Present) -> tuple:
     """What a read after maintenance decides from: the changed keys of each graph (each with whether it
     is small, :func:`.plan.is_small`), the cleanly replaced predicates and the keys with facts (a set that only
     grows until the next full run, so its size tells it)."""
-    keys = frozenset((i, kind, key, n <= LATERAL_MAX) for i, (preds, classes) in enumerate(counts)
-                     for kind, found in (("p", preds), ("t", classes)) for key, n in found.items())
     small = tuple(sum(preds.values()) <= LATERAL_MAX for preds, _ in counts)
+    # in a small graph every key is small (a class's type facts are among its facts): the keys alone tell it
+    keys = tuple((frozenset(preds), frozenset(classes)) if few else
+                 frozenset((kind, key, n <= LATERAL_MAX) for kind, found in (("p", preds), ("t", classes))
+                           for key, n in found.items())
+                 for (preds, classes), few in zip(counts, small, strict=True))
     return keys, small, clean, len(present[0]), len(present[1])
 
 
