@@ -101,3 +101,18 @@ def test_robot_steps_with_entailed_conclusions_stay_exact() -> None:
     for k, where in enumerate(["R3", "C2", "R7", "C1", "R3"]):
         robot_step(onto, where, 1665579750 + 400 * k)
         assert_same_as_scratch(onto)
+
+
+def test_a_touched_triple_whose_twin_did_not_change_is_still_shown_where_its_twin_is() -> None:
+    """No twin among the changed facts: the helper graph is read once per predicate, and a predicate
+    with a twin there decides its triples one by one (another predicate's lack of twins decides nothing)."""
+    other = NamedNode(EX + "sees")
+    shown = Triple(NamedNode(EX + "s1"), P, NamedNode(EX + "o1"))
+    touched = [Triple(NamedNode(EX + "s0"), other, NamedNode(EX + "o0")), shown,
+               Triple(NamedNode(EX + "s2"), P, NamedNode(EX + "o2"))]
+    store = OxigraphStore()
+    _state(store, shown, True, False, False, False)
+    refresh_touched(store, touched, set())
+    assert set(store.triples(graph=ENTAILED)) == {shown}
+    refresh_touched(store, touched[:1], set())  # no twin of `sees` anywhere: nothing to decide
+    assert set(store.triples(graph=ENTAILED)) == {shown}

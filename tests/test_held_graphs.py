@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from hypothesis import given, settings
 from hypothesis import strategies as st
-from pyoxigraph import Literal, NamedNode, Triple
+from pyoxigraph import Literal, NamedNode, Quad, Triple
 
 from topostore.rdf.vocab import ASSERTED, XSD
 from topostore.stores import reads
@@ -187,3 +187,19 @@ def test_a_drop_of_the_same_graphs_again_answers_for_the_graphs_as_they_are_now(
     held.reasoning = True
     assert held.drop(names) == [OTHER]
     assert held.reasoning  # SCRATCH[2] is eligible and not dropped: the REASON is not over
+
+
+def test_a_fact_known_in_some_graphs_is_answered_as_the_presence_batch_answers() -> None:
+    """``known_in`` (one read per fact over every graph) answers as the presence look-ups per graph: a
+    fact only in another graph is not known; a literal, or a held graph asked about, is left to them."""
+    store = OxigraphStore()
+    store.hold_scratch(SCRATCH)
+    state = frozenset([ASSERTED, OTHER])
+    facts = [Triple(S[0], P[0], S[1]), Triple(S[1], P[0], S[2]), Triple(S[2], P[1], S[0]), Triple(S[0], P[1], S[0])]
+    store._ox.extend([Quad(*facts[0], ASSERTED), Quad(*facts[1], SCRATCH[1]), Quad(*facts[2], OTHER),
+                      Quad(*facts[2], SCRATCH[2]), Quad(*facts[3], SCRATCH[1])])
+    by_quads = [any(store.contains_quads([Quad(*t, g) for g in state])) for t in facts]
+    assert store.known_in(facts, state) == by_quads == [True, False, True, False]
+    assert store.known_in([Triple(S[0], P[0], O[4])], state) is None  # by value: the presence batch
+    store.add_scratch([facts[1]], SCRATCH[0])
+    assert store.known_in(facts, state | {SCRATCH[0]}) is None  # a held graph: its facts are not in the index

@@ -93,3 +93,19 @@ def test_a_replaced_value_outside_the_range_is_still_a_violation() -> None:
     assert not report.consistent and [v.rule for v in report.violations] == ["dt-range"]
     o.replace("a", "seen", Literal("8", datatype=NamedNode(XSD_("long"))))
     assert o.reason(mode="incremental").consistent
+
+
+
+@pytest.mark.parametrize("narrow_first", [False, True])
+def test_one_new_value_is_decided_for_each_range_it_must_lie_in(narrow_first: bool) -> None:
+    """A REASON's new value under two range checks (a robot's clock and visit time) is decided once per
+    range: in a long, not in a short, whichever check comes first (the checks follow the told ranges)."""
+    ranges = [":seen rdfs:range xsd:long .", ":small a owl:DatatypeProperty ; rdfs:range xsd:short ."]
+    o = load(" ".join(reversed(ranges) if narrow_first else ranges) + " :a :seen 5 ; :small 5 .")
+    assert o.reason().consistent
+    for value, consistent in (("7", True), ("40000", False)):
+        for p in ("seen", "small"):
+            o.replace("a", p, Literal(value, datatype=NamedNode(XSD_("integer"))))
+        report = o.reason(mode="incremental")
+        assert report.stats.mode == "incremental" and report.consistent is consistent
+    assert [v.rule for v in report.violations] == ["dt-range"]

@@ -55,6 +55,8 @@ class ChangeChecks:
         #: what :meth:`_after` decided for the REASON under way, and its added values by predicate
         self._now: tuple | None = None
         self._added_values: dict[str, list] | None = None
+        #: :func:`~..compile.datatypes.surely_in` of an added value and a range, decided once per REASON
+        self._in_range: dict[tuple, bool] = {}
         #: SPARQL texts of the groups made once
         self._texts: dict[tuple, str] = {}
         #: :func:`.program.pair_atom` of a check's or negated rule's atom, by (kind, rule index, atom): rules never change
@@ -66,6 +68,7 @@ class ChangeChecks:
         self.added_now = added
         self._now = None
         self._added_values = None
+        self._in_range = {}
 
     def _after(self) -> tuple[str, list[str], list[tuple]]:
         """What the shape of this REASON's change decides (once per REASON, once per shape): the negated
@@ -135,11 +138,11 @@ class ChangeChecks:
     def violation_possible(self) -> bool:
         """A check matches with at least one atom on a fact new in the closure (one semi-naive ASK)."""
         _, fixed, ranged = self._after()
-        if ranged:
+        # the same few shapes return: the groups are made once; range checks of known values are decided per run
+        left = [(c, j) for c, j in ranged if not self._values_in_range(c, j)] if ranged else ranged
+        if left:
             lateral = self._lateral(self.changed.keys(NEW_FACTS)[0])
-            # the same few shapes return: the groups are made once; range checks of known values are decided per run
-            branches = fixed + [self._check_text(c, j, lateral(c, j)) for c, j in ranged
-                                if not self._values_in_range(c, j)]
+            branches = fixed + [self._check_text(c, j, lateral(c, j)) for c, j in left]
         else:
             branches = fixed
         if not branches:
@@ -193,7 +196,14 @@ class ChangeChecks:
             values = self._added_values = {}
             for t in self.added_now:
                 values.setdefault(t.predicate.value, []).append(t.object)
-        return all(surely_in(o, datatype) for o in values.get(p, ()))
+        decided = self._in_range  # a robot's clock and visit time: one value, two range checks
+        for o in values.get(p, ()):
+            known = decided.get((o, datatype))
+            if known is None:
+                known = decided[(o, datatype)] = surely_in(o, datatype)
+            if not known:
+                return False
+        return True
 
     def _check_text(self, c: int, j: int | None, lateral: bool) -> str:
         key = ("check", c, j, lateral)

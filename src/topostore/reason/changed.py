@@ -28,6 +28,8 @@ from .plan import LATERAL_MAX, KeyCounts
 from .scratch import NEW_FACTS, OVERDELETED
 from .triggers import Present
 
+_TYPE_KEY, _ENTAILED_TYPE_KEY = str(TYPE), str(ENTAILED_TYPE)
+
 #: quads of a scratch graph read into memory at most; a larger graph is read by pattern or counted by query
 SMALL = 2000
 
@@ -47,6 +49,8 @@ class ChangedGraphs:
         self.store = store
         self._flush = flush
         self.watched = watched or {}
+        #: the watched forms' texts (what :meth:`_scan` compares)
+        self._watched_keys = frozenset(str(form) for form in self.watched)
         self._quads: dict[NamedNode, list[tuple] | None] = {}
         self._keys: dict[NamedNode, KeyCounts] = {}
         #: per graph scanned: its (individual, class) type facts, and its watched facts (subject, form, object)
@@ -71,17 +75,17 @@ class ChangedGraphs:
         preds: dict[str, int] = {}
         classes: dict[str, int] = {}
         types: list[tuple[Term, NamedNode]] = []
-        watched, seen = self.watched, []
-        for s, p, o in quads:
+        watched, seen = self._watched_keys, []
+        for s, p, o in quads:  # compared by their text: a pyoxigraph term's equality or hash is a call
             key = str(p)
             preds[key] = preds.get(key, 0) + 1
-            if p == TYPE or p == ENTAILED_TYPE:
-                if p == TYPE:
+            if key == _TYPE_KEY or key == _ENTAILED_TYPE_KEY:
+                if key == _TYPE_KEY:
                     c = str(o)
                     classes[c] = classes.get(c, 0) + 1
                 if isinstance(o, NamedNode):
                     types.append((s, o))
-            if watched and p in watched:
+            if watched and key in watched:
                 seen.append((s, p, o))
         self._keys[graph] = (preds, classes)
         self._types[graph] = types
@@ -143,9 +147,12 @@ def shape(counts: list[KeyCounts], clean: frozenset, present: Present) -> tuple:
     """What a read after maintenance decides from: the changed keys of each graph (each with whether it
     is small, :func:`.plan.is_small`), the cleanly replaced predicates and the keys with facts (a set that only
     grows until the next full run, so its size tells it)."""
-    keys = frozenset((i, kind, key, n <= LATERAL_MAX) for i, (preds, classes) in enumerate(counts)
-                     for kind, found in (("p", preds), ("t", classes)) for key, n in found.items())
     small = tuple(sum(preds.values()) <= LATERAL_MAX for preds, _ in counts)
+    # in a small graph every key is small (a class's type facts are among its facts): the keys alone tell it
+    keys = tuple((frozenset(preds), frozenset(classes)) if few else
+                 frozenset((kind, key, n <= LATERAL_MAX) for kind, found in (("p", preds), ("t", classes))
+                           for key, n in found.items())
+                 for (preds, classes), few in zip(counts, small, strict=True))
     return keys, small, clean, len(present[0]), len(present[1])
 
 

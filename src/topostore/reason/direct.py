@@ -36,6 +36,7 @@ FEW = 16
 pattern_of = functools.lru_cache(maxsize=4096)(key_pattern)
 
 _STATE = (ASSERTED, INFERRED, AUX)
+_STATE_SET = frozenset(_STATE)
 
 
 def _facts(store, pattern: tuple, graph: NamedNode) -> list[Triple] | None:
@@ -44,7 +45,13 @@ def _facts(store, pattern: tuple, graph: NamedNode) -> list[Triple] | None:
 
 
 def _known(store, facts: list[Triple], graphs: tuple[NamedNode, ...]) -> list[bool]:
-    """Whether each fact is in one of ``graphs`` (one look-up batch)."""
+    """Whether each fact is in one of ``graphs`` (one read per fact over every graph where the store
+    offers it, else one look-up batch)."""
+    known_in = getattr(store, "known_in", None)
+    if known_in is not None:
+        found = known_in(facts, _STATE_SET if graphs is _STATE else frozenset(graphs))
+        if found is not None:
+            return found
     present = store.contains_quads([Quad(t.subject, t.predicate, t.object, g) for t in facts for g in graphs])
     n = len(graphs)
     return [any(present[i * n:(i + 1) * n]) for i in range(len(facts))]

@@ -36,7 +36,7 @@ from __future__ import annotations
 
 import re
 from collections.abc import Collection, Iterable
-from dataclasses import dataclass
+from typing import NamedTuple
 
 from pyoxigraph import Literal, NamedNode, Triple
 
@@ -93,9 +93,9 @@ def compared_only(rule: Rule, j: int) -> bool:
     return all(atom.o not in other.variables() for k, other in enumerate(rule.body) if k != j)
 
 
-@dataclass(frozen=True)
-class Replacement:
-    """One clean replacement of the single value of ``(s, p)``."""
+class Replacement(NamedTuple):
+    """One clean replacement of the single value of ``(s, p)`` (a tuple: made for every replaced value
+    of every step, where a frozen dataclass sets each field through ``object.__setattr__``)."""
 
     old: Triple
     new: Triple

@@ -124,18 +124,32 @@ class Budget:
 _CURRENT: contextvars.ContextVar[Budget | None] = contextvars.ContextVar("topostore_reason_budget", default=None)
 
 
-@contextlib.contextmanager
-def budget(limits: ReasonLimits) -> Iterator[Budget]:
+class _Block:
+    """The block of :func:`budget`: a class, not a generator (a REASON enters one per robot step)."""
+
+    __slots__ = ("limits", "token")
+
+    def __init__(self, limits: ReasonLimits) -> None:
+        self.limits = limits
+        self.token: contextvars.Token | None = None
+
+    def __enter__(self) -> Budget:
+        outer = _CURRENT.get()
+        if outer is not None:
+            return outer
+        fresh = Budget(self.limits)
+        self.token = _CURRENT.set(fresh)
+        return fresh
+
+    def __exit__(self, *exc: object) -> None:
+        if self.token is not None:
+            _CURRENT.reset(self.token)
+            self.token = None
+
+
+def budget(limits: ReasonLimits) -> _Block:
     """Run the block under a fresh budget (nested blocks keep the outer one: one REASON, one budget)."""
-    outer = _CURRENT.get()
-    if outer is not None:
-        yield outer
-        return
-    token = _CURRENT.set(Budget(limits))
-    try:
-        yield _CURRENT.get()  # type: ignore[misc]
-    finally:
-        _CURRENT.reset(token)
+    return _Block(limits)
 
 
 @contextlib.contextmanager

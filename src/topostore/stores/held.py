@@ -163,6 +163,12 @@ class HeldGraphs:
         every eligible graph ends a REASON (:meth:`settle`)."""
         members, outside, covers = self._dropping(graphs)
         in_store = self.in_store
+        if covers:  # every held graph and every graph in the store is eligible: forgotten without a hash each
+            dropped = [*outside, *in_store]
+            self.graphs.clear()
+            in_store.clear()
+            self.settle()
+            return dropped
         dropped = list(dict.fromkeys([*outside, *(g for g in in_store if g in members)])) if in_store else list(outside)
         held = self.graphs
         if held:
@@ -170,8 +176,6 @@ class HeldGraphs:
                 del held[g]
         if in_store:
             in_store.difference_update(members)
-        if covers:
-            self.settle()
         return dropped
 
     def _dropping(self, graphs: list[NamedNode]) -> tuple[frozenset[NamedNode], list[NamedNode], bool]:
