@@ -291,6 +291,26 @@ def test_an_undo_restores_the_spelling_a_value_was_held_in(reasoned: bool, later
     assert o.ledger.net_changes() == ([], [])
 
 
+def test_an_undo_on_a_durable_store_keeps_the_restored_spelling_when_reopened(tmp_path) -> None:
+    """The respelling's forms are persisted with it: reopened, the store shows the spelling held."""
+    o = Ontology(store=str(tmp_path))
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        o.load_data(HEAD + ":p a owl:DatatypeProperty .", "turtle")
+    o.add(INT)
+    o.reason()
+    with pytest.raises(Failed), o.ledger.undoable(o):
+        o.remove(INT)
+        o.add(DECIMAL)
+        raise Failed
+    o.store.close()
+    again = Ontology(store=str(tmp_path))
+    try:
+        assert (shown(again), stored(again)) == ([INT.object], [str(INTEGER.object)])
+    finally:
+        again.store.close()
+
+
 def undone_in_open_transaction(o: Ontology) -> None:
     """Inside an open transaction, a unit of work that removed :s :p 1 and added it as a decimal, each change
     committed (as a SPARQL query inside the transaction would), is undone."""
