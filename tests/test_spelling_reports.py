@@ -25,6 +25,7 @@ from topostore.armor.reference import Reference
 from topostore.rdf.terms import value_key
 from topostore.rdf.vocab import ASSERTED, XSD
 from topostore.sparql.execute import Job, run_update
+from topostore.stores import open_store
 
 SAID = "stays as written"
 
@@ -309,6 +310,30 @@ def test_an_undo_on_a_durable_store_keeps_the_restored_spelling_when_reopened(tm
         assert (shown(again), stored(again)) == ([INT.object], [str(INTEGER.object)])
     finally:
         again.store.close()
+
+
+def test_an_undo_on_a_remote_store_restores_the_spelling_on_the_server(oxigraph_url: str) -> None:
+    """A store that keeps literals as written (a remote one) is sent the respelling as one update."""
+    o = Ontology(store=open_store(oxigraph_url, reference="undo-respelled"))
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            o.load_data(HEAD + ":p a owl:DatatypeProperty .", "turtle")
+        o.add(INT)
+        o.reason()
+        with pytest.raises(Failed), o.ledger.undoable(o):
+            o.remove(INT)
+            o.add(DECIMAL)
+            raise Failed
+        o.store.send_writes()
+        assert shown(o) == [INT.object]
+    finally:
+        o.store.close()
+    server = open_store(oxigraph_url, reference="undo-respelled")  # what the server holds, nothing cached
+    try:
+        assert [t.object.datatype for t in server.triples(S, P, None, ASSERTED)] == [INTEGER.object.datatype]
+    finally:
+        server.close()
 
 
 def undone_in_open_transaction(o: Ontology) -> None:
