@@ -72,6 +72,19 @@ class AssertedChanges:
         self.touch(triples)
         return len(self._change(triples, added=False))
 
+    def restore(self, *triples: Triple) -> int:
+        """Assert triples an undo gives back, each in the spelling it was held in; returns how many changed
+        the graph.  Unlike :meth:`add`, a value this transaction removed in another spelling is respelled
+        (:meth:`Store.restore_facts`), not kept as the undone changes left it; recorded as :meth:`add` is."""
+        triples = tuple(dict.fromkeys(triples))
+        store = self.store
+        facts = [store.fact(t, ASSERTED) for t in triples]
+        with store.transaction():
+            changed = store.restore_facts(facts)
+            self.ledger.record(store, changed, added=True, limit=self._change_limit)
+        self.touch([f.triple for f in changed])
+        return len(changed)
+
     def add_new(self, *triples: Triple) -> list[Triple]:
         """Assert triples; returns those that were new (what a manipulation reports it did).  Unlike
         :meth:`add`, only the new triples count as touched (a schema triple already there recompiles nothing)."""

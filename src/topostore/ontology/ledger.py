@@ -159,8 +159,8 @@ class ChangeLedger:
         self.removed.clear()
         self._steps.clear()
         self.incremental = False
-        with store.transaction():
-            return store.remove(added, ASSERTED) + store.add(removed, ASSERTED)
+        with store.transaction():  # each removed triple back in the spelling it was held in
+            return store.remove(added, ASSERTED) + len(store.restore_facts([store.fact(t, ASSERTED) for t in removed]))
 
     def undoable(self, onto: Ontology) -> _UnitOfWork:
         """A unit of work: the asserted changes made inside are undone (newest first) if it raises.
@@ -177,8 +177,8 @@ class ChangeLedger:
             for added, removed in reversed(steps):  # a change removed, then added: undone the other way
                 if added:
                     onto.changes.remove(*added)
-                if removed:
-                    onto.changes.add(*removed)
+                if removed:  # in the spelling it was held in, where the undone steps left another
+                    onto.changes.restore(*removed)
         del self._steps[start:]
 
     @contextmanager

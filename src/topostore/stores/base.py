@@ -28,7 +28,7 @@ from ..rdf.skolem import fresh_skolem, skolem, skolemize, unskolem, unskolemize
 from ..rdf.syntax import FORMAT_NAMES, PROGRESS_EVERY, guess_format, parse_triples, serialize
 from ..rdf.terms import Term
 from ..rdf.vocab import SKOLEM_PREFIX
-from . import presence, reads, work
+from . import presence, reads, respelling, work
 from .batched import BatchedReads
 from .data_text import data_update, quad_data
 from .listings import Listings
@@ -153,6 +153,7 @@ class Store:
     written_fact = work.written_fact
     pending_add = work.pending_add
     toggle_facts = work.toggle_facts
+    restore_facts = respelling.restore_facts
     _removal_quad = work.removal_quad
 
     # ------------------------------------------------------------ the reads (see .reads), bound as methods

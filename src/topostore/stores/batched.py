@@ -48,7 +48,7 @@ class BatchedReads:
             key = store._key(q)
             store._known[key] = True
             entry = pending.get(key)
-            if entry is None or entry[1]:
+            if entry is None:  # a pending write of its value stands for it (adding a held value: a respelling)
                 out.append(q.triple)
         out += [q.triple for q, present in list(pending.values())
                 if present and q.subject == s and q.predicate == p and q.graph_name == graph]

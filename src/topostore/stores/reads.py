@@ -62,7 +62,7 @@ def triples(
         key = store._key(q)
         store._known[key] = True
         entry = pending.get(key)
-        if entry is None or entry[1]:
+        if entry is None:  # a pending write of its value stands for it (adding a held value: a respelling)
             yield q.triple
     for q, present in list(pending.values()):
         if present and _matches(q, s, p, o, graph):

@@ -2,7 +2,8 @@
 
 A transaction gathers writes (``add``/``remove``/``meta_set``) into one atomic commit; reads inside it see
 its pending writes.  Its state lives on the store (``_pending``: quad key -> (quad, present after commit);
-``_known``: quad key -> present in the committed store, learnt during the transaction; ``_depth``), which
+``_known``: quad key -> present in the committed store, learnt during the transaction; ``_depth``; a
+respelling, :mod:`.respelling`, adds one more removal keyed by its quad), which
 the reads (:mod:`.reads`, :mod:`.batched`) consult too.
 
 Presence is by value (:mod:`.presence`); within one call a value is changed once, in its first spelling,
@@ -24,6 +25,7 @@ from pyoxigraph import Literal, NamedNode, Quad, Triple
 from ..rdf.terms import Term, keep_triple, quad, triple, value_key
 from .facts import Fact, fact_of, fact_read, fact_written
 from .presence import has_value, kept_quad
+from .respelling import unrespell
 
 if TYPE_CHECKING:
     from .base import Store
@@ -279,7 +281,7 @@ def read_facts(store: Store, s: Term, p: NamedNode, graph: NamedNode) -> list[Fa
         f = fact_read(q, canonical)
         known[f.key] = True
         entry = pending.get(f.key)
-        if entry is None or entry[1]:
+        if entry is None:  # a pending write of its value stands for it (adding a held value: a respelling)
             out.append(f)
     for q, present in list(pending.values()):
         if present and q.subject == s and q.predicate == p and q.graph_name == graph:
@@ -360,11 +362,15 @@ def _cancel(store: Store, pending: dict, k: Hashable, f: Fact) -> None:
     change ledger keys by, so that it cancels the earlier change there too (``"1.0"^^xsd:decimal`` added
     after ``"1"^^xsd:int`` was removed is no change, not a removed integer and an added decimal), and
     that spelling as its written form: what a removal reports and an undo restores, what a change says
-    stays where ``f`` writes the value otherwise."""
-    held = pending.pop(k)[0].triple
-    f.stored = store.stored_form(held)
+    stays where ``f`` writes the value otherwise.  A respelling's addition (:func:`.respelling.restore_facts`) taken
+    back leaves its removal of the spelling held."""
+    held, added = pending.pop(k)
+    if added and store._known.get(k):  # only a respelling adds a value the committed store holds
+        unrespell(store, pending, k)
+    held_triple = held.triple
+    f.stored = store.stored_form(held_triple)
     if f.value is not None:
-        f.written = held
+        f.written = held_triple
 
 
 def pending_add(store: Store, k: Hashable) -> Triple | None:
