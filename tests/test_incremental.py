@@ -481,6 +481,32 @@ def test_visit_times_of_other_numeric_types_keep_the_look_up_window_exact() -> N
         assert_same_as_scratch(onto)
 
 
+@pytest.mark.parametrize("windows", ["look-up", "query"])
+def test_single_precision_values_take_no_window(windows: str) -> None:
+    """An ``xsd:float`` clock or visit time is compared in single precision (near 1.6e9 only multiples
+    of 128): a window computed exactly would leave out locations whose test flips, so with a float in
+    play the flip reads every value, by the look-up flip or by the text (the window query)."""
+    onto = new_map(40, 12, True)
+    onto.max_change_share = 1.0
+    onto.reason()
+    with contextlib.ExitStack() as patches:
+        if windows == "query":
+            patches.enter_context(mock.patch.object(look_flip.Flipped, "run", lambda self, store: False))
+            patches.enter_context(mock.patch.object(flips, "WINDOW_MIN", 5))
+        for text, datatype in [("1665579767.0", "float"), ("1665579797", "integer")]:
+            onto.replace(N("Robot1"), N("now"), onto.value(text, datatype))
+            onto.reason()
+            assert_same_as_scratch(onto)
+        for k in range(1, 6):
+            onto.replace(N(f"R{k}"), N("visitedAt"), onto.value(str(1665579760 + 10 * k), "float"))
+        onto.reason()
+        assert_same_as_scratch(onto)
+        for now in (1665579790, 1665579800, 1665579830, 1665579900):
+            onto.replace(N("Robot1"), N("now"), onto.value(str(now), "integer"))
+            assert onto.reason().stats.program == "compiled"
+            assert_same_as_scratch(onto)
+
+
 def test_a_look_up_flip_that_gives_up_leaves_the_flip_to_the_text_narrowed_by_a_window_query() -> None:
     """Where the look-up flip reading its own window gives up (too many facts in the window, a value it
     does not decide), the flip's text runs narrowed by a window query, as when no look-up reads one."""

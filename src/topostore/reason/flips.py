@@ -252,8 +252,11 @@ class Flips:
         if len(rows) > WINDOW_ROWS:
             return None
         facts: dict[Triple, None] = {}
+        index = self._value_index(atom.p)
         for row in rows:
             terms = [row[f"{t}__o"], row[f"{t}__n"], *(row[n] for n in rest)]
+            if index.single or window.single_precision(terms):
+                return None
             values = [window.number(term) for term in terms]
             if any(x is None for x in values):
                 return None
@@ -263,7 +266,7 @@ class Flips:
                 return None
             if span is False:
                 continue
-            inside = self._value_index(atom.p).between(span[0], span[1], WINDOW_FACTS)
+            inside = index.between(span[0], span[1], WINDOW_FACTS)
             if inside is None:
                 return None
             facts.update(dict.fromkeys(inside))

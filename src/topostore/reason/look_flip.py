@@ -218,6 +218,8 @@ class Flipped:
         w = self._window
         t = f"?{w.t}"
         terms = [old.get(t), bound.get(t), *(bound.get(f"?{n}") for n in w.rest)]
+        if index.single or window.single_precision(terms):
+            return None
         values = [value(term) for term in terms]
         if w.forms is not None and all(type(x) is int for x in values):  # xsd:integer values: exact in ints
             span = window.integer_interval(w.forms, values[0], values[1], dict(zip(w.rest, values[2:])))

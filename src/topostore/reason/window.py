@@ -41,7 +41,7 @@ from dataclasses import dataclass
 from decimal import Decimal, InvalidOperation
 from fractions import Fraction
 
-from pyoxigraph import Literal, Triple
+from pyoxigraph import Literal, NamedNode, Triple
 
 from ..compile.condition import BIND, TEST
 from ..compile.rule import Rule
@@ -53,6 +53,7 @@ from .look_values import value as literal_value
 Linear = tuple[dict[str, Fraction], Fraction]
 
 _TOKEN = re.compile(r"\s*(?:(\?\w+)|(\d+(?:\.\d*)?|\.\d+)|(>=|<=|!=|=|>|<|\+|-|\(|\)))")
+_FLOAT = NamedNode(XSD + "float")
 _COMPARISON = (">=", "<=", "!=", "=", ">", "<")
 #: numeric datatypes whose lexical form Python reads exactly (others: float)
 _EXACT = ("integer", "decimal", "long", "int", "short", "byte", "nonNegativeInteger", "positiveInteger",
@@ -185,6 +186,13 @@ def margin(terms: list[Term], values: list[Fraction]) -> Fraction:
     return Fraction(0) if exact else Fraction(1, 10**9) * (1 + sum(abs(x) for x in values))
 
 
+def single_precision(terms: Iterable[Term | None]) -> bool:
+    """Whether one of ``terms`` is an ``xsd:float``: SPARQL computes with it in single precision (a
+    24-bit mantissa: near 1.6e9 only multiples of 128), so a window's bounds, computed exactly, could
+    leave out a value whose test flips; such a window is not taken (every fact is read)."""
+    return any(isinstance(term, Literal) and term.datatype == _FLOAT for term in terms)
+
+
 def possible(found: list[Test], t: str) -> bool:
     """Whether a window can exist: every test that reads ``t`` is linear (checked before any query)."""
     return all(test.form is not None for test in found if t in test.variables)
@@ -286,11 +294,15 @@ def integer_interval(forms: tuple[IntegerForm, ...], old: int, new: int,
 
 
 class ValueIndex:
-    """The facts of one predicate sorted by their numeric object; non-numbers are left out."""
+    """The facts of one predicate sorted by their numeric object; non-numbers are left out.
+    :attr:`single` counts the ``xsd:float`` values held (a window over them is not exact, see
+    :func:`single_precision`)."""
 
     def __init__(self, triples: Iterable[Triple]) -> None:
         self._keys: list[tuple[Fraction, str, str]] = []
         self._facts: dict[tuple[Fraction, str, str], Triple] = {}
+        #: how many of the values held are ``xsd:float``
+        self.single = 0
         for t in triples:
             self.add(t, insort=False)
         self._keys.sort()
@@ -308,6 +320,8 @@ class ValueIndex:
         if key is None or key in self._facts:
             return
         self._facts[key] = t
+        if type(key[0]) is not int and t.object.datatype == _FLOAT:
+            self.single += 1
         if insort:
             bisect.insort(self._keys, key)
         else:
@@ -317,6 +331,8 @@ class ValueIndex:
         key = self._key(t)
         if key is None or self._facts.pop(key, None) is None:
             return
+        if type(key[0]) is not int and t.object.datatype == _FLOAT:
+            self.single -= 1
         del self._keys[bisect.bisect_left(self._keys, key)]
 
     def between(self, lo: Fraction, hi: Fraction, limit: int) -> list[Triple] | None:
@@ -336,4 +352,4 @@ class ValueIndex:
 
 
 __all__ = ["IntegerForm", "Linear", "Test", "ValueIndex", "integer_forms", "integer_interval", "interval", "margin",
-           "number", "possible", "tests"]
+           "number", "possible", "single_precision", "tests"]
