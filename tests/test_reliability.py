@@ -202,6 +202,24 @@ def test_runaway_rule_planted_by_armor_commands_is_refused_and_the_service_answe
     assert (res.exit_code, res.queried_objects) == (0, ["ROOM", "URGENT"])
 
 
+def test_a_reason_failing_after_manipulations_gives_back_the_spelling_held(data_dir: Path) -> None:
+    """A value held as ``"01665579700"^^xsd:long`` (as loaded), replaced by 5, then by its canonical
+    spelling (the same stored term), then by 6, each manipulation on its own and the reasoner buffered: the
+    REASON that fails reverts them, and the value comes back as it was held at the last good REASON."""
+    svc = ArmorService(data_dir=data_dir)
+    assert call(svc, "LOAD", "FILE", "", ["map.owl", IRI, "false", "PELLET", "true"]).exit_code == 0
+    onto = svc.reference("ref").ontology
+    held = Literal("01665579700", datatype=NamedNode("http://www.w3.org/2001/XMLSchema#long"))
+    onto.load_data(f"<{IRI}#R3> <{IRI}#visitedAt> {held} .\n", "turtle")
+    assert call(svc, "REASON").exit_code == 0
+    for new, old in (("5", "1665579700"), ("1665579700", "5"), ("6", "1665579700")):
+        assert call(svc, "REPLACE", "DATAPROP", "IND", ["visitedAt", "R3", "LONG", new, old]).exit_code == 0
+    onto.limits = ReasonLimits(max_rounds=50, max_inferred=10_000, max_seconds=20)
+    onto.load_data(PREFIXES + RUNAWAY + ':c1 :counter "0"^^xsd:integer .\n', "turtle")
+    assert call(svc, "REASON").exit_code != 0
+    assert onto.data_values("visitedAt", "R3") == [held]
+
+
 def test_cardinality_min_check_is_not_exponential(svc: ArmorService) -> None:
     """A minimum of 20 compiles to one counting subquery, not a 20-way join of pairwise different fillers
     (its cost is measured by ``python -m benchmarks.cardinality``)."""

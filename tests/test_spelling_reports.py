@@ -13,7 +13,7 @@ import warnings
 from contextlib import nullcontext
 
 import pytest
-from hypothesis import HealthCheck, given, settings
+from hypothesis import HealthCheck, example, given, settings
 from hypothesis import strategies as st
 from pyoxigraph import Literal, NamedNode, Triple
 from test_one_fact_per_value import DECIMAL, HEAD, INT, INTEGER, NS, P, S, holding, shown, stored
@@ -232,10 +232,45 @@ def spellings(o: Ontology) -> dict[tuple, Literal]:
     return {value_key(lit): lit for lit in shown(o)}
 
 
+def run_calls(o: Ontology, calls: list, start: dict[tuple, Literal], one_transaction: bool) -> dict[tuple, Literal]:
+    """The calls on the ontology, each checked against the model (what it reports, stores and says); the
+    values left (value → spelling)."""
+    kept = dict(start)
+    with o.store.transaction() if one_transaction else nullcontext():
+        for call, add, remove in calls:
+            after, gained, lost, not_stored = model_call(kept, start if one_transaction else None, call, add, remove)
+            with warnings.catch_warnings(record=True) as caught:
+                warnings.simplefilter("always")
+                added, removed = run_call(o, call, add, remove)
+            where = (call, add, remove)
+            assert added is None or len(added) == len(gained), where
+            assert len(removed) == len(lost), where
+            if call in ("add_new", "change"):
+                assert set(added) == gained, where
+            if call == "change":
+                assert set(removed) == lost, where
+            assert spellings(o) == after, where
+            notes = said(caught)
+            for lit in not_stored:
+                assert any(str(lit) in n for n in notes), (*where, lit, notes)
+            assert bool(notes) == bool(not_stored), (*where, notes)
+            kept = after
+    return kept
+
+
 @settings(max_examples=300, deadline=None, suppress_health_check=[HealthCheck.too_slow])
-@given(initial=st.lists(SPELLINGS, max_size=3), calls=CALLS, reasoned=st.booleans(), one_transaction=st.booleans())
+@given(initial=st.lists(SPELLINGS, max_size=3), calls=CALLS, reasoned=st.booleans(), one_transaction=st.booleans(),
+       revert=st.booleans())
+@example(initial=[INT], calls=[("replace", [TWO[0]], []), ("add", [INTEGER], [])], reasoned=True,
+         one_transaction=False, revert=True)  # the value back in another spelling of its stored term
+@example(initial=[INT], calls=[("replace", [TWO[0]], []), ("replace", [ONE[3]], []), ("replace", [TWO[2]], [])],
+         reasoned=True, one_transaction=False, revert=True)  # ... and removed again in that spelling
 def test_reports_store_ledger_and_undo_agree_with_a_model_of_values(initial: list[Triple], calls: list,
-                                                                     reasoned: bool, one_transaction: bool) -> None:
+                                                                     reasoned: bool, one_transaction: bool,
+                                                                     revert: bool) -> None:
+    """Each call agrees with the model; then the calls are undone, by the unit of work they ran in failing or
+    (reasoned) by a revert of the ledger (a failed REASON's), and every value is back in the spelling held
+    before them, the one the store held at the last REASON."""
     o = fresh(False)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", SpellingKeptWarning)
@@ -243,34 +278,18 @@ def test_reports_store_ledger_and_undo_agree_with_a_model_of_values(initial: lis
     if reasoned:
         o.reason()
     start = spellings(o)
-    kept = dict(start)
-    with pytest.raises(Failed), o.ledger.undoable(o):
-        with o.store.transaction() if one_transaction else nullcontext():
-            for call, add, remove in calls:
-                after, gained, lost, not_stored = model_call(kept, start if one_transaction else None, call, add,
-                                                             remove)
-                with warnings.catch_warnings(record=True) as caught:
-                    warnings.simplefilter("always")
-                    added, removed = run_call(o, call, add, remove)
-                where = (call, add, remove)
-                assert added is None or len(added) == len(gained), where
-                assert len(removed) == len(lost), where
-                if call in ("add_new", "change"):
-                    assert set(added) == gained, where
-                if call == "change":
-                    assert set(removed) == lost, where
-                assert spellings(o) == after, where
-                notes = said(caught)
-                for lit in not_stored:
-                    assert any(str(lit) in n for n in notes), (*where, lit, notes)
-                assert bool(notes) == bool(not_stored), (*where, notes)
-                kept = after
+    revert = revert and reasoned
+    with nullcontext() if revert else pytest.raises(Failed), o.ledger.undoable(o):
+        kept = run_calls(o, calls, start, one_transaction)
         if reasoned:
             net_added, net_removed = o.ledger.net_changes()
             was = {o.store.stored_form(Triple(S, P, lit)) for lit in start.values()}
             now = {o.store.stored_form(Triple(S, P, lit)) for lit in kept.values()}
             assert (set(net_added), set(net_removed)) == (now - was, was - now)
-        raise Failed
+        if not revert:
+            raise Failed
+    if revert:
+        o.ledger.revert(o.store)
     assert spellings(o) == start  # the values come back, each in the spelling it was held in
     if reasoned:
         assert o.ledger.net_changes() == ([], [])
@@ -393,3 +412,25 @@ def test_a_failed_reason_reverts_a_value_to_the_spelling_it_was_held_in() -> Non
     reverted = o.ledger.revert(o.store)
     assert reverted == 2
     assert shown(o) == [INT.object]
+
+
+def double(lexical: str) -> Literal:
+    return Literal(lexical, datatype=NamedNode(XSD + "double"))
+
+
+@pytest.mark.parametrize("steps", [
+    [Literal(3), double("1.5E0"), Literal("03", datatype=NamedNode(XSD + "int"))],
+    [Literal(3), double("1.5E0")],
+], ids=["removed again in the other spelling", "held in the other spelling"])
+def test_a_revert_gives_back_the_spelling_held_at_the_last_reason(steps: list[Literal]) -> None:
+    """``"1.5"`` replaced by 3, then by ``"1.5E0"`` (the stored term of ``"1.5"``: its addition cancels the
+    removal in the ledger), then by 03: the revert (a failed REASON's) gives back ``"1.5"``, not the spelling
+    of the later removal, nor the one the graph holds."""
+    o = holding(Triple(S, P, double("1.5")), reasoned=True)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", SpellingKeptWarning)
+        for lit in steps:
+            o.replace(f"<{NS}s>", f"<{NS}p>", lit)
+    o.ledger.revert(o.store)
+    assert shown(o) == [double("1.5")]
+    assert o.ledger.net_changes() == ([], [])

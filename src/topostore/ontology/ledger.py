@@ -19,7 +19,8 @@ The record starts at the first successful REASON (before it there is no state to
 a large file loaded before reasoning is not copied) and is emptied by each successful REASON, so
 it stays as small as the change.  Triples are keyed as the store holds them (Oxigraph
 canonicalises numbers), and a removed literal is kept in the form the user asserted, so an undo
-restores it exactly.
+restores it exactly; where an addition in another spelling cancelled a removal, the spelling held at the
+last REASON is kept aside (``ChangeLedger.held``) for a revert.
 """
 
 from __future__ import annotations
@@ -56,6 +57,9 @@ class ChangeLedger:
         #: stored form → triple as written, for triples added / removed since the last successful REASON
         self.added: dict[Triple, Triple] = {}
         self.removed: dict[Triple, Triple] = {}
+        #: stored form → triple as written at the last successful REASON, for a value whose removal an
+        #: addition in another spelling cancelled (the net record keeps no side of it, a revert gives it back)
+        self.held: dict[Triple, Triple] = {}
         #: recording starts at the first successful REASON
         self.recording = False
         #: whether the record may drive an incremental REASON (false after a schema change or a large change)
@@ -110,7 +114,7 @@ class ChangeLedger:
         if removed:
             _net(store, removed, gone, self.removed, self.added)
         if added:
-            _net(store, added, made, self.added, self.removed)
+            _net(store, added, made, self.added, self.removed, self.held)
         if self.incremental:
             size = len(self.added) + len(self.removed)
             if size > MIN_TRACKED and (limit is None or size > limit()):
@@ -146,6 +150,7 @@ class ChangeLedger:
         """A REASON succeeded: its state is the one to return to from now on."""
         self.added.clear()
         self.removed.clear()
+        self.held.clear()
         self.recording = True
         self.incremental = incremental_ready
 
@@ -154,13 +159,35 @@ class ChangeLedger:
         """Undo every recorded change since the last successful REASON on the asserted graph (the caller
         forgets its reasoning state); returns how many triples changed.  Open units of work have nothing
         left to undo afterwards."""
-        added, removed = list(self.added.values()), list(self.removed.values())
+        removed, respelled = self._held_at_reason(store)
+        added = list(self.added.values()) + respelled  # a respelled value goes, then comes back as held
         self.added.clear()
         self.removed.clear()
+        self.held.clear()
         self._steps.clear()
         self.incremental = False
         with store.transaction():  # each removed triple back in the spelling it was held in
             return store.remove(added, ASSERTED) + len(store.restore_facts([store.fact(t, ASSERTED) for t in removed]))
+
+    def _held_at_reason(self, store: Store) -> tuple[list[Triple], list[Triple]]:
+        """What a revert gives back: each removed triple as it was held at the last successful REASON, and
+        the spellings the graph holds of those it still holds otherwise (to remove first, as written: one
+        transaction's removal and addition of a value in two spellings is a respelling the store writes).
+
+        Why: the record is keyed by stored form, so an addition of a removed value in another spelling
+        (``"1.5E0"^^xsd:double`` after ``"1.5"`` went) cancels the removal, and a later removal records the
+        spelling then held; :attr:`held` kept the first one."""
+        if not self.held:
+            return list(self.removed.values()), []
+        back = [self.held.get(key, t) for key, t in self.removed.items()]
+        respelled = []
+        for key, t in self.held.items():
+            if key not in self.removed:
+                now = store.written_fact(store.fact(t, ASSERTED, written=False))
+                if now != t:
+                    back.append(t)
+                    respelled.append(now)
+        return back, respelled
 
     def undoable(self, onto: Ontology) -> _UnitOfWork:
         """A unit of work: the asserted changes made inside are undone (newest first) if it raises.
@@ -193,8 +220,10 @@ class ChangeLedger:
 
 
 def _net(store: Store, facts: list[Fact], written: list[Triple], mine: dict[Triple, Triple],
-         other: dict[Triple, Triple]) -> None:
-    """Note ``facts`` (as ``written``) on their side ``mine`` of the net record, or cancel them on ``other``."""
+         other: dict[Triple, Triple], held: dict[Triple, Triple] | None = None) -> None:
+    """Note ``facts`` (as ``written``) on their side ``mine`` of the net record, or cancel them on ``other``;
+    an addition cancelling a removal written otherwise keeps the removed spelling in ``held`` (the first one:
+    the spelling at the last REASON)."""
     for f, as_written in zip(facts, written, strict=True):
         key = f.stored
         if key is None:  # both sides hold triples as the store does, so they cancel (a removal named in
@@ -202,7 +231,9 @@ def _net(store: Store, facts: list[Fact], written: list[Triple], mine: dict[Trip
             # already, where the triple is the one written)
             key = f.stored = store.stored_form(as_written, f.quad if as_written is f.triple else None)
         if key in other:
-            del other[key]
+            was = other.pop(key)
+            if held is not None and was is not as_written and was != as_written:  # a respelling: rare
+                held.setdefault(key, was)
         else:
             mine[key] = as_written
 
