@@ -15,7 +15,7 @@ from support import closure
 
 from topostore import Ontology, OntologyWarning
 from topostore.rdf.vocab import ASSERTED, AUX, INTERNAL
-from topostore.reason import deferred_asks, insert_text, materialize
+from topostore.reason import deferred_asks, full_passes, insert_text
 from topostore.reason.class_unions import class_unions, lead_first, union_where
 from topostore.reason.order import asserted_paths, evaluation_order
 
@@ -69,17 +69,17 @@ def test_the_union_groups_the_rules_of_one_class_with_asserted_keys_only() -> No
     onto = loaded(DOMAIN_AND_RANGE)
     rules = onto.rules.inference_rules
     seen: list[dict] = []
-    real = materialize.class_unions
+    real = full_passes.class_unions
 
     def spy(*args, **kwargs):
         seen.append(real(*args, **kwargs))
         return seen[-1]
 
-    materialize.class_unions = spy
+    full_passes.class_unions = spy
     try:
         onto.reason(mode="full")
     finally:
-        materialize.class_unions = real
+        full_passes.class_unions = real
     groups = [(lead, others) for found in seen for lead, others in found.items()]
     assert len(groups) == 1
     lead, others = groups[0]
@@ -115,7 +115,7 @@ def test_a_full_reason_reaches_the_same_closure_with_and_without(source: str, sh
     onto.reason(mode="full")
     joined = closure(onto)
     if shortcut == "unions":
-        monkeypatch.setattr(materialize, "class_unions", lambda *args, **kwargs: {})
+        monkeypatch.setattr(full_passes, "class_unions", lambda *args, **kwargs: {})
     else:
         monkeypatch.setattr(deferred_asks, "only_asserted", lambda rule, derived, asserted, asking=(): {})
     onto.reason(mode="full")
@@ -148,6 +148,6 @@ def test_the_keys_are_the_same_with_the_walk_on_every_graph(source: str, monkeyp
     onto = loaded(GROUP, "" if source == "group" else source)
     onto.reason(mode="full")
     walked = closure(onto)
-    monkeypatch.setattr(materialize, "asserted_paths", lambda rules, ordered: set())
+    monkeypatch.setattr(full_passes, "asserted_paths", lambda rules, ordered: set())
     onto.reason(mode="full")
     assert closure(onto) == walked

@@ -16,7 +16,7 @@ from support import closure
 from topostore import Ontology, OntologyWarning
 from topostore.compile.condition import test as guard
 from topostore.compile.rule import Atom, Rule
-from topostore.reason import materialize
+from topostore.reason import full_passes
 from topostore.reason.guarded import guarded_classes, guarded_rules
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -91,8 +91,8 @@ def test_on_the_map_the_minimum_s_subsumption_is_left_to_the_existential(monkeyp
     report = onto.reason(mode="full", profile=True)
     assert "ext-card-sub" not in report.stats.per_rule
     shortened = closure(onto)
-    real = materialize.implied_first_passes
-    monkeypatch.setattr(materialize, "implied_first_passes", lambda rules, ordered, asserted=None: real(rules, ordered))
+    real = full_passes.implied_first_passes
+    monkeypatch.setattr(full_passes, "implied_first_passes", lambda rules, ordered, asserted=None: real(rules, ordered))
     report = onto.reason(mode="full", profile=True)
     assert "ext-card-sub" in report.stats.per_rule
     assert closure(onto) == shortened

@@ -15,7 +15,7 @@ import pytest
 from support import closure
 
 from topostore import Ontology, OntologyWarning
-from topostore.reason import first_pass, materialize
+from topostore.reason import first_pass, full_passes
 from topostore.reason.implied_passes import implied_atoms, implied_first_passes, subject_classes
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -127,11 +127,11 @@ def test_a_full_reason_reaches_the_same_closure_with_and_without_the_shortcuts(
     ordered = list(range(len(onto.rules.inference_rules)))
     assert implied_first_passes(onto.rules.inference_rules, ordered) or source == "tbox"
     if shortcut == "implied":
-        monkeypatch.setattr(materialize, "implied_first_passes", lambda rules, ordered, asserted=None: set())
+        monkeypatch.setattr(full_passes, "implied_first_passes", lambda rules, ordered, asserted=None: set())
     elif shortcut == "lean":
         assert implied_atoms(onto.rules.inference_rules, without_same_as(onto.rules.inference_rules),
                              (set(), set())) or source == "tbox"
-        monkeypatch.setattr(materialize, "implied_atoms", lambda rules, ordered, asserted: {})
+        monkeypatch.setattr(full_passes, "implied_atoms", lambda rules, ordered, asserted: {})
     else:
         monkeypatch.setattr(first_pass, "claims_hold", lambda run, i: True)
     onto.reason(mode="full")

@@ -19,7 +19,7 @@ from topostore.compile import condition as cond
 from topostore.compile.rule import Atom, Rule
 from topostore.rdf.lexer import COMMENT, IRI, KEYWORD, NAME, PUNCT, STRING, VARIABLE, negates_exists, tokens, variables
 from topostore.rdf.vocab import ASSERTED, AUX, INFERRED, TYPE
-from topostore.reason import materialize
+from topostore.reason import full_passes, materialize
 from topostore.reason.order import reachable, single_graphs, strongly_connected, within
 from topostore.reason.triggers import Triggers, matches
 
@@ -250,7 +250,7 @@ def test_full_reason_reading_single_graphs_finds_the_closure_of_the_default_data
     read_apart = closure()
     ns = "http://bnc/exp-rob-lab/2022-23#"
     assert f"<{ns}A> <{ns}connectedTo> <{ns}E> {INFERRED}" in read_apart  # by A sameAs B
-    monkeypatch.setattr(materialize, "single_graphs", lambda *args: {})
+    monkeypatch.setattr(full_passes, "single_graphs", lambda *args: {})
     assert closure() == read_apart
 
 

@@ -16,12 +16,12 @@ inferred graph), which was a third of a full REASON.  Rules with negated premise
 (``stratum`` 1: "y1 and y2 are not known to be different, so they are the same")
 join only after the positive rules reached their fixpoint.
 
-This module is the run's order and its rounds (the core loop); its parts live beside it:
-:mod:`.insert_text` writes the text of one evaluation and its forms, :mod:`.few_solutions`
-decides which evaluations keep their known heads out by a look-up per solution,
-:mod:`.first_pass` evaluates each ordered component once with its shortcuts, :mod:`.deferred_asks`
-runs the candidate rules after the first stratum's fixpoint, and :mod:`.stats` holds what a
-REASON reports.
+This module is the run's rounds (the core loop); its parts live beside it: :mod:`.full_passes`
+sets up a full run's passes and runs them in order, :mod:`.insert_text` writes the text of one
+evaluation and its forms, :mod:`.few_solutions` decides which evaluations keep their known heads
+out by a look-up per solution, :mod:`.first_pass` evaluates each ordered component once with its
+shortcuts, :mod:`.deferred_asks` runs the candidate rules after the first stratum's fixpoint, and
+:mod:`.stats` holds what a REASON reports.
 """
 
 from __future__ import annotations
@@ -36,25 +36,15 @@ from ..compile.rule import ReadKey, Rule, RuleSet, key_pattern
 from ..rdf.vocab import ASSERTED, AUX, DELTA, INFERRED, INTERNAL, NEW_AUX, NEW_INFERRED
 from ..stores.base import Store
 from . import limits
-from .class_unions import class_unions
-from .deferred_asks import ask_unknown
 from .early_reads import EarlyReads
 from .early_rules import write_found
 from .few_solutions import few_solutions
-from .first_pass import first_pass, without
-from .implied_passes import implied_atoms, implied_first_passes
-from .insert_text import distinct_pays, insert_text
+from .full_passes import full_passes
+from .insert_text import insert_text
 from .keyed_asks import key_censuses
 from .negation import Idle, evaluated_last
 from .one_group import keys_kept_by_group, one_group, without_group_tests
-from .order import (
-    TYPE_KEY,
-    asserted_paths,
-    evaluation_order,
-    is_path,
-    reachable,
-    single_graphs,
-)
+from .order import TYPE_KEY, is_path
 from .plan import KeyCounts, is_small
 from .stats import ReasonStats
 from .triggers import Present, Triggers, may_hold
@@ -264,15 +254,6 @@ class Materializer:
             return range(len(self.rules))
         return set(active)
 
-    def _asserted_keys(self) -> Present:
-        """The predicates and classes rule bodies need that have an asserted fact (one look-up each)."""
-        preds: set[str] = set()
-        classes: set[str] = set()
-        for kind, key in self.triggers.needed_keys():
-            if next(iter(self.store.triples(*key_pattern((kind, key)), ASSERTED)), None) is not None:
-                (classes if kind == "t" else preds).add(key)
-        return preds, classes
-
     def clear(self) -> None:
         self.store.update(
             " ; ".join(f"DROP SILENT GRAPH {g}" for g in (INFERRED, AUX, DELTA, DELTA_NEXT, NEW_INFERRED, NEW_AUX))
@@ -301,7 +282,7 @@ class Materializer:
         later, self._idle = evaluated_last(self.rules)
         self._deferring = later | set(self._idle)
         try:
-            self._materialize(stats)
+            full_passes(self, stats)
         finally:
             self._direct = None
             self._deferring = set()
@@ -343,74 +324,6 @@ class Materializer:
     def _has_asserted(self, key: ReadKey) -> bool:
         """Whether read key ``key`` had an asserted fact when :meth:`run` started."""
         return key[1] in self._asserted[1 if key[0] == "t" else 0]
-
-    def _materialize(self, stats: ReasonStats) -> None:
-        """The passes of :meth:`run`: components in order, then the rest and the upper strata."""
-        # keys with facts so far; each round's delta adds its keys (_delta_round), so a rule
-        # skipped here for an empty key runs as soon as that key gets a fact, with it as the delta
-        self.present = self._asserted_keys()
-        self._asserted_heads = {}
-        strata = sorted({r.stratum for r in self.rules}) or [0]
-        first = [i for i, r in enumerate(self.rules) if r.stratum == strata[0]]
-        # rules that cannot fire in the first stratum stay out of its order: left in, one such rule
-        # (eq-rep-s without any owl:sameAs) ties every class reader and writer into one component
-        # whose rules are then evaluated round after round; a key they need that an upper stratum
-        # derives triggers them on its delta, which finds all they derive
-        possible = reachable(self.triggers, first, self.present)
-        first = [i for i in first if self.triggers.feasible(i, possible)]
-        ordered, rest, back = evaluation_order(self.rules, first)
-        # until the rules of a variable predicate and the upper strata run, only the ordered rules
-        # write, so a key's facts lie where its asserted facts and its writers put them
-        asserted = self._asserted = (set(self.present[0]), set(self.present[1]))
-        self._claimed = set()
-        self._implied = implied_first_passes(self.rules, [i for c in ordered for i in c], asserted)
-        self._lean = {i: without(self.rules[i], atoms)
-                      for i, atoms in implied_atoms(self.rules, [i for c in ordered for i in c], asserted).items()}
-        self._graphs = single_graphs(self.rules, [i for c in ordered for i in c], self.triggers.needed_keys(),
-                                     asserted, lambda r: AUX if r.head_aux() else INFERRED, ASSERTED)
-        self._unions = class_unions(self.rules, ordered, back, self._graphs, ASSERTED, distinct_pays,
-                                    self._implied | set(self._lean) | self._deferring)
-        self._joined = {j for others in self._unions.values() for j in others}
-        self._paths = asserted_paths(self.rules, [i for c in ordered for i in c])
-        # a text reading a key in one graph holds only for this run's asserted keys: none is kept from before
-        self._texts = {k: t for k, t in self._texts.items() if not k[4]}
-        self._early = early = EarlyReads(self, ordered, rest, self.checks, back)
-        completed = False
-        try:
-            self._fixpoint(stats, strata, ordered, rest, back)
-            completed = True
-        finally:
-            self._early = None
-            early.close(completed)
-        self.checked = early.checked
-
-    def _fixpoint(self, stats: ReasonStats, strata: list[int], ordered: list[list[int]], rest: list[int],
-                  back: set[int]) -> None:
-        """The ordered components, then the rest and the upper strata (see :meth:`run`); each deferred ask
-        and check started in the reader thread once the components writing what it reads are done
-        (:mod:`.early_reads`)."""
-        self._early.after(-1)
-        try:
-            for c, component in enumerate(ordered):
-                first_pass(self, component, back, stats)
-                self.propagate(component, stats)
-                self._early.after(c)
-        finally:
-            self._graphs = None
-            self._unions, self._joined, self._paths = {}, set(), set()
-        for level in strata:
-            active = [i for i, r in enumerate(self.rules) if r.stratum <= level]
-            fresh = rest if level == strata[0] else [i for i in active if self.rules[i].stratum == level]
-            for i in fresh:
-                if self.triggers.feasible(i, self.present):
-                    self._run(i, None, stats)
-            self._flush()
-            stats.rounds += 1
-            if level > strata[0] and not self.store.is_empty(self._direct[1]):
-                self.upper_derived = True
-            self.propagate(active, stats)
-            if level == strata[0]:  # before the upper strata, which may read what the asks derive
-                ask_unknown(self, stats, active)
 
 
 def _merge(parts) -> KeyCounts:
