@@ -46,7 +46,7 @@ from pyoxigraph import NamedNode
 from ..compile.generic import PREFIXES
 from ..compile.rule import ReadKey, Rule
 from ..stores.base import Store
-from ..stores.overlap import ENABLED, Reader
+from ..stores.overlap import ENABLED, Reader, early_result
 from .consistency import GRAPHS, check_rows
 from .early_rules import EarlyRules, Found
 from .insert_text import insert_text
@@ -177,14 +177,7 @@ class EarlyReads:
         started = self._asked.pop(i, None)
         if started is None:
             return None
-        graphs, answer = started
-        if graphs != self._graphs(i):
-            answer.cancel()
-            return None
-        try:
-            return answer.result()
-        except Exception:  # noqa: BLE001 - asked again now, as the insert, where its error is raised
-            return None
+        return early_result(started, self._graphs(i))
 
     def close(self, completed: bool) -> None:
         """Join the worker; ``completed`` (the run reached its fixpoint): keep the matches of the checks

@@ -46,7 +46,7 @@ from pyoxigraph import NamedNode, RdfFormat
 from ..compile.generic import PREFIXES
 from ..compile.rule import ReadKey, Rule
 from ..stores.base import Store
-from ..stores.overlap import Reader
+from ..stores.overlap import Reader, early_result
 from .order import TYPE_KEY
 from .read_keys import Writes, evaluation_reads, touches
 from .stats import ReasonStats
@@ -184,14 +184,7 @@ class EarlyRules:
         started = self._started.pop(i, None)
         if started is None:
             return None
-        early, solutions = started
-        if _without_delta(text, self.run._direct[0]) != early:
-            solutions.cancel()
-            return None
-        try:
-            return solutions.result()
-        except Exception:  # noqa: BLE001 - evaluated again now, as the insert, where its error is raised
-            return None
+        return early_result(started, _without_delta(text, self.run._direct[0]))
 
     def close(self) -> None:
         """Drop what was not used (the reader is joined by its owner)."""

@@ -119,4 +119,21 @@ class Reader:
             self._pool = None
 
 
-__all__ = ["ENABLED", "Beside", "Reader"]
+def early_result(started: tuple[object, Future[T]] | None, made_for: object) -> T | None:
+    """The result of a read started early, where it was started for what the caller asks now
+    (``made_for``: its text, or the graphs it read); else the read is cancelled and None returned, and
+    the caller runs it again itself.  A read that failed in the worker gives None too: run again in the
+    caller's thread, its error is raised where the caller handles it."""
+    if started is None:
+        return None
+    expected, pending = started
+    if expected != made_for:
+        pending.cancel()
+        return None
+    try:
+        return pending.result()
+    except Exception:  # noqa: BLE001 - run again by the caller, where its error is raised
+        return None
+
+
+__all__ = ["ENABLED", "Beside", "Reader", "early_result"]
