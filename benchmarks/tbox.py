@@ -46,8 +46,9 @@ class Shape:
         return cls(toppings=rest - pizzas, pizzas=pizzas)
 
 
-def turtle(classes: int = 100) -> str:
-    """The TBox and its individuals as Turtle text."""
+def turtle(classes: int = 100, functional: int = 0) -> str:
+    """The TBox and its individuals as Turtle text (``functional``: that many more functional properties,
+    :func:`_functional`)."""
     shape = Shape.of(classes)
     lines = [f"@prefix : <{NS}> .", "@prefix owl: <http://www.w3.org/2002/07/owl#> .",
              "@prefix rdf: <http://www.w3.org/1999/02/22-rdf-syntax-ns#> .",
@@ -56,14 +57,14 @@ def turtle(classes: int = 100) -> str:
     toppings = _toppings(shape.toppings)
     lines += _topping_axioms(toppings)
     lines += _pizzas(shape.pizzas, toppings)
-    lines += _defined_classes() + _individuals(toppings)
+    lines += _defined_classes() + _individuals(toppings) + _functional(functional)
     return "\n".join(lines) + "\n"
 
 
-def write(classes: int, folder: Path) -> Path:
+def write(classes: int, folder: Path, functional: int = 0) -> Path:
     """The TBox as one N-Triples file in ``folder``."""
-    path = folder / f"tbox-{classes}.nt"
-    quads = parse(turtle(classes).encode(), RdfFormat.TURTLE)
+    path = folder / (f"tbox-{classes}-f{functional}.nt" if functional else f"tbox-{classes}.nt")
+    quads = parse(turtle(classes, functional).encode(), RdfFormat.TURTLE)
     path.write_bytes(serialize(quads, format=RdfFormat.N_TRIPLES) or b"")
     return path
 
@@ -204,11 +205,28 @@ def _individuals(toppings: dict[str, list[str]]) -> list[str]:
             ":snack1 a owl:NamedIndividual ; :isToppingOf :pizzaB ."]
 
 
+def _functional(n: int) -> list[str]:
+    """``n`` more properties, in turn a functional object property whose two values merge, an
+    inverse-functional one whose two subjects merge and a functional data property with one value: a
+    TBox whose rules grew by several per property before those properties were rows of a table."""
+    lines = []
+    for i in range(n):
+        kind = i % 3
+        if kind == 0:
+            lines.append(f":fp{i} a owl:ObjectProperty, owl:FunctionalProperty . :fa{i} :fp{i} :fu{i}, :fv{i} .")
+        elif kind == 1:
+            lines.append(f":fp{i} a owl:ObjectProperty, owl:InverseFunctionalProperty . "
+                         f":fa{i} :fp{i} :fo{i} . :fb{i} :fp{i} :fo{i} .")
+        else:
+            lines.append(f":fp{i} a owl:DatatypeProperty, owl:FunctionalProperty . :fa{i} :fp{i} {i} .")
+    return lines
+
+
 def _pairwise_disjoint(names: list[str]) -> list[str]:
     return [f":{a} owl:disjointWith :{b} ." for i, a in enumerate(names) for b in names[i + 1:]]
 
 
-def timing(classes: int, folder: Path) -> dict[str, float | int]:
+def timing(classes: int, folder: Path, functional: int = 0) -> dict[str, float | int]:
     """LOAD (``Ontology.from_file``: parse and compile) and two full REASONs of the TBox of ``classes``
     classes, in seconds of this process's wall clock, with what grows with it (triples, rules and their schema rows)."""
     import logging
@@ -217,7 +235,7 @@ def timing(classes: int, folder: Path) -> dict[str, float | int]:
 
     from topostore import Ontology
 
-    path = write(classes, folder)
+    path = write(classes, folder, functional)
     triples = sum(1 for _ in parse(path=str(path), format=RdfFormat.N_TRIPLES))
     notices = logging.getLogger("topostore.load")
     level = notices.level
@@ -239,9 +257,9 @@ def timing(classes: int, folder: Path) -> dict[str, float | int]:
             "first_full_s": first - loaded, "second_full_s": second - first}
 
 
-def timing_table(sizes: list[int], folder: Path) -> list[str]:
+def timing_table(sizes: list[int], folder: Path, functional: int = 0) -> list[str]:
     """Markdown rows of :func:`timing` per size, then how LOAD grows from the smallest size to the largest."""
-    rows = [timing(n, folder) for n in sizes]
+    rows = [timing(n, folder, functional) for n in sizes]
     lines = ["| classes | triples | rules (+ schema rows) | LOAD | first full REASON | second full REASON |",
              "|---|---|---|---|---|---|"]
     lines += [f"| {r['classes']} | {r['triples']:,} | {r['rules']:,} (+ {r['rows']:,}) | {r['load_s']:.2f} s "
@@ -281,17 +299,19 @@ def main(argv: list[str] | None = None) -> None:
     parser.add_argument("--time", action="store_true", help="time LOAD and full REASON per size (a table)")
     parser.add_argument("--steps", type=int, metavar="S",
                         help="time S robot-like steps per size, each checked against a full REASON (a table)")
+    parser.add_argument("--functional", type=int, default=0, metavar="F",
+                        help="F more functional, inverse-functional and functional data properties, in turn")
     args = parser.parse_args(argv)
     sizes = args.classes or [100]
     if not args.time and not args.steps:
-        print(turtle(sizes[0]), end="")
+        print(turtle(sizes[0], args.functional), end="")
         return
     from .limits import lift_time_limit
 
     lift_time_limit()
     with tempfile.TemporaryDirectory() as folder:
         if args.time:
-            print("\n".join(timing_table(sizes, Path(folder))))
+            print("\n".join(timing_table(sizes, Path(folder), args.functional)))
         if args.steps:
             steps_table(sizes, args.steps, Path(folder))
 

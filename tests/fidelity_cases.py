@@ -6,7 +6,8 @@ consistent and fully reasoned by topostore (no notice), so every answer Pellet g
 give: inverse, symmetric and transitive properties, chains, sameAs chains, hasValue, keys, qualified
 cardinalities with AllDifferent groups, datatype restrictions, punning, self restrictions, negative
 property assertions, literal forms, datatypes topostore does not check (a user's own, xsd:token), the domain
-of an existential's subject through inverse, sub-, equivalent and symmetric properties.
+of an existential's subject through inverse, sub-, equivalent and symmetric properties, inverse-functional
+properties merging their subjects (a functional object property's values Owlready2 reports as one).
 """
 
 from __future__ import annotations
@@ -130,6 +131,12 @@ CASES: dict[str, str] = {
 :w1 a owl:NamedIndividual, :W .
 :dd a owl:DatatypeProperty ; rdfs:domain :N . :de a owl:DatatypeProperty ; owl:equivalentProperty :dd .
 :X rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :de ; owl:someValuesFrom xsd:integer ] . :x1 a owl:NamedIndividual, :X .
+""",
+    "functional_properties": """
+:g a owl:ObjectProperty, owl:InverseFunctionalProperty . :q a owl:ObjectProperty . :C a owl:Class .
+:d a owl:DatatypeProperty, owl:FunctionalProperty .
+:m a owl:NamedIndividual, :C ; :g :o ; :d 5 . :n a owl:NamedIndividual ; :g :o ; :q :w . :o a owl:NamedIndividual .
+:w a owl:NamedIndividual ; :g :z ; :d 5 . :z a owl:NamedIndividual . :k a owl:NamedIndividual ; :g :z ; :q :m .
 """,
 }
 

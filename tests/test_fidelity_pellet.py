@@ -475,6 +475,20 @@ INCONSISTENT = {
 :C a owl:Class ; rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :d ; owl:someValuesFrom xsd:string ] .
 :x a owl:NamedIndividual, :C ; :d 5 .
 """,
+    "functional_object_values_known_different": """:f a owl:ObjectProperty, owl:FunctionalProperty .
+:a a owl:NamedIndividual ; :f :u, :v . :u a owl:NamedIndividual ; owl:differentFrom :v . :v a owl:NamedIndividual .
+""",
+    "functional_values_in_disjoint_classes": """:f a owl:ObjectProperty, owl:FunctionalProperty .
+:A a owl:Class ; owl:disjointWith :B . :B a owl:Class .
+:a a owl:NamedIndividual ; :f :u, :v . :u a owl:NamedIndividual, :A . :v a owl:NamedIndividual, :B .
+""",
+    "inverse_functional_subjects_known_different": """:g a owl:ObjectProperty, owl:InverseFunctionalProperty .
+:m a owl:NamedIndividual ; :g :o . :n a owl:NamedIndividual ; :g :o . :o a owl:NamedIndividual .
+[] a owl:AllDifferent ; owl:distinctMembers ( :m :n ) .
+""",
+    "functional_data_property_two_values": """:d a owl:DatatypeProperty, owl:FunctionalProperty .
+:x a owl:NamedIndividual ; :d 5, 6 .
+""",
     "negative_data_assertion_by_value": """:d a owl:DatatypeProperty .
 [] a owl:NegativePropertyAssertion ; owl:sourceIndividual :x ; owl:assertionProperty :d ; owl:targetValue 5 .
 :x a owl:NamedIndividual ; :d "5.0"^^xsd:decimal .

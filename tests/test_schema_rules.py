@@ -36,11 +36,12 @@ KINDS = {"cax-sco", "cax-eqc1", "cax-eqc2", "prp-dom", "prp-rng", "prp-spo1", "p
          "prp-trp", "cax-dw", "different-disjoint", "ext-card-sub", "cls-svf1", "cls-avf", "cls-hv1", "cls-hv2",
          "cls-int2", "cls-uni", "prp-spo2", "ext-restriction-sub", "cls-oo", "neg-dw", "neg-svf", "neg-sco",
          "neg-int", "neg-com", "neg-avf", *(f"cls-int1-{n}" for n in range(2, 9)),
-         *(f"neg-uni-{n}" for n in range(2, 9))}
+         *(f"neg-uni-{n}" for n in range(2, 9)), "prp-fp", "prp-ifp"}
 #: the kinds the ontology EVERY_KIND has no axiom of (a restriction on a sub-property: see
 #: test_restrictions_subsumed_through_properties_are_a_table; a one-of and the non-memberships a
-#: complement needs: tests/test_schema_rows.py)
-ELSEWHERE = {"ext-restriction-sub", "cls-oo", "neg-dw", "neg-svf", "neg-sco", "neg-int", "neg-com", "neg-avf",
+#: complement needs: tests/test_schema_rows.py; the sameAs rules of functional properties:
+#: tests/test_functional_rows.py)
+ELSEWHERE = {"ext-restriction-sub", "cls-oo", "prp-fp", "prp-ifp", "neg-dw", "neg-svf", "neg-sco", "neg-int", "neg-com", "neg-avf",
              *(f"cls-int1-{n}" for n in range(3, 9)), *(f"neg-uni-{n}" for n in range(2, 9))}
 #: the generic checks: the compiler emits their instantiations; a full REASON keeps them instantiated
 CHECKS = {"cax-dw"}
@@ -192,6 +193,9 @@ def test_the_compiled_rules_of_those_kinds_are_instantiations_with_their_axioms(
 
 TUTORIAL_RULES = {  # as the compiler wrote them before the rules moved to rules/owl/ (same texts, origins, order)
     ("cax-sco", "URGENT SubClassOf LOCATION", "?x a URGENT", "?x a LOCATION"),
+    ("prp-fp", "isIn is functional", "?x isIn ?y1 ?x isIn ?y2", "?y1 sameAs ?y2"),
+    ("prp-fp", "isIn is functional", "?x isIn ?y1 ?x isIn ?y2 ?y1 _ ?y2",
+     "{x} has the different values {y1} and {y2} of the functional property isIn"),
     ("cax-eqc2", "ROBOT EquivalentTo (isIn exact 1 LOCATION)", "?x a _", "?x a ROBOT"),
     ("cax-eqc2", "CORRIDOR EquivalentTo (LOCATION and (hasDoor min 2 DOOR))", "?x a _", "?x a CORRIDOR"),
     ("cax-eqc2", "ROOM EquivalentTo (LOCATION and (hasDoor some DOOR))", "?x a _", "?x a ROOM"),
@@ -391,6 +395,8 @@ axioms = st.lists(st.one_of(
     st.builds("[ a owl:AllDisjointClasses ; owl:members ( :{} :{} :{} ) ] .".format, _c, _c, _c),
     st.builds("[ owl:unionOf ( :{} :{} ) ] rdfs:subClassOf :{} .".format, _c, _c, _c),
     st.builds(":{} owl:propertyChainAxiom ( :{} :{} ) .".format, _p, _p, _p),
+    st.builds(":{} a owl:FunctionalProperty .".format, _p),
+    st.builds(":{} a owl:InverseFunctionalProperty .".format, _p),
 ), max_size=10)
 #: axioms beyond OWL 2 RL (what a tableau reasoner concludes from cardinalities, restriction subsumption
 #: and the difference of members of disjoint classes): generic = instantiated, no owlrl to compare with
@@ -401,6 +407,7 @@ beyond_rl = st.lists(st.one_of(
     st.builds("[ owl:onProperty :{} ; owl:someValuesFrom :{} ] rdfs:subClassOf :{} .".format, _p, _c, _c),
     st.builds(":{} owl:equivalentClass [ owl:onProperty :{} ; owl:maxCardinality 1 ] .".format, _c, _p),
     st.builds(":{} a owl:FunctionalProperty .".format, _p),
+    st.builds(":{} a owl:InverseFunctionalProperty .".format, _p),
     st.builds(":{} rdfs:subClassOf :{} .".format, _c, _c),
     st.builds(":{} owl:disjointWith :{} .".format, _c, _c),
     st.builds("[ a owl:AllDisjointClasses ; owl:members ( :{} :{} :{} ) ] .".format, _c, _c, _c),

@@ -18,7 +18,7 @@ from collections.abc import Sequence
 from pyoxigraph import NamedNode
 
 from .datatypes import implied_ranges
-from .model import Expr
+from .model import Expr, TBox
 
 
 class Subsumption:
@@ -140,4 +140,35 @@ class FillerIndex:
         return [found[i] for i in sorted(found)]
 
 
-__all__ = ["FillerIndex", "Subsumption"]
+def _link(edges: dict[NamedNode, set[NamedNode]], a: Expr, b: Expr) -> None:
+    """The told edge a ⊑ b between named classes into ``edges`` (b's named members for an intersection).
+    A function of the module, not a closure: a nested function calling itself is a cycle, which would keep
+    what it reads alive past the compilation until a full collection (tests/test_compile_cycles.py)."""
+    if a.is_named and b.is_named:
+        edges.setdefault(a.node, set()).add(b.node)
+    elif a.is_named and b.kind == "and":
+        for m in b.members:
+            _link(edges, a, m)
+
+
+def told_superclasses(tbox: TBox) -> dict[NamedNode, set[NamedNode]]:
+    """Named-class subsumption told by the axioms (closure), for comparing fillers."""
+    edges: dict[NamedNode, set[NamedNode]] = {}
+    for a, b in tbox.subclass:
+        _link(edges, a, b)
+    for a, b in tbox.equivalent:
+        _link(edges, a, b)
+        _link(edges, b, a)
+    closure: dict[NamedNode, set[NamedNode]] = {}
+    for start in edges:
+        seen, todo = set(), [start]
+        while todo:
+            for nxt in edges.get(todo.pop(), ()):
+                if nxt not in seen:
+                    seen.add(nxt)
+                    todo.append(nxt)
+        closure[start] = seen
+    return closure
+
+
+__all__ = ["FillerIndex", "Subsumption", "told_superclasses"]

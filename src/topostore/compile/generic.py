@@ -7,6 +7,8 @@ a consistency check) preceded by ``# key: value`` header lines:
 * ``reads`` — read keys of FILTER/path lines (``p <iri-or-prefixed>``, ``t <class>``);
 * ``message`` — for checks, the explanation, with ``{var}`` placeholders;
 * ``head-graph: aux`` — the head goes to the helper graph;
+* ``stratum`` — the rule's evaluation stratum (default 0): a rule with a negated premise ("not known
+  different") runs once what it negates has reached its fixpoint;
 * ``schema`` — for the OWL rules of ``rules/owl/``, the schema table the rule joins;
   ``generic-rows`` — above how many instantiations a full REASON runs such a rule generically
   (default: :data:`.schema_program.GENERIC_ROWS`).
@@ -100,8 +102,19 @@ def parse_rule_text(path: Path) -> tuple[Rule, tuple[Atom, ...], dict[str, str]]
         violation = tuple(select.group(1).split())
     aux_head = True if headers.get("head-graph", "") == "aux" else None
     rule = Rule(headers["name"], headers.get("origin", path.name), tuple(body), head,
-                tuple(filters), reads, violation, headers.get("message", ""), aux_head)
+                tuple(filters), reads, violation, headers.get("message", ""), aux_head,
+                _stratum(path, headers.get("stratum")))
     return rule, tuple(schema), headers
+
+
+def _stratum(path: Path, text: str | None) -> int:
+    """The ``# stratum:`` header, a number (its first word; 0 when absent)."""
+    if text is None:
+        return 0
+    word = text.split()[0] if text.split() else ""
+    if not word.isdigit():
+        raise RuleCompileError(f"{path}: '# stratum:' needs a number, not {text!r}")
+    return int(word)
 
 
 @cache

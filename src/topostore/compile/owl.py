@@ -17,7 +17,8 @@ the extensions; the origin says which axiom the rule was made from.
 
 The rules of the kinds of axiom that fit a row of fixed width (class and property hierarchies,
 equivalent classes, domain, range, inverse, symmetric, transitive, chains of two, disjointness,
-restrictions by kind, restriction subsumption) are not written here: they are the generic rules
+restrictions by kind, restriction subsumption, the sameAs rule of a functional or inverse-functional object
+property) are not written here: they are the generic rules
 of ``rules/owl/`` instantiated with the axiom's row of its schema table (:mod:`.schema`); a full
 REASON reads those rows back from the rules and may run the generic rule over them instead
 (:mod:`.schema_program`).  An axiom without a row (an inverse property, a longer chain) keeps the
@@ -32,12 +33,12 @@ from collections.abc import Sequence
 from pyoxigraph import Literal, NamedNode
 
 from ..rdf.terms import sparql
-from ..rdf.vocab import NOTHING, SAME_AS, THING, TYPE
+from ..rdf.vocab import NOTHING, THING, TYPE
 from . import condition as cond
 from .condition import Condition
 from .datatypes import implied_ranges
 from .disjointness import Disjointness
-from .fillers import FillerIndex, Subsumption
+from .fillers import FillerIndex, Subsumption, told_superclasses
 from .model import Expr, Prop, TBox
 from .negation import NegativeMembership
 from .notices import Notice
@@ -46,28 +47,15 @@ from .rule import Atom, Rule
 from .schema import Row, schema_rule, schema_rules
 from .schema_rows import chain_row, class_row, disjoint_row, member_row, subproperty_row, typing_row, value_row
 from .snippets import (
-    NOT_DIFFERENT_READS,
     candidate_atom,
     different_atom,
     distinct_values,
     in_datatype,
-    not_different,
     same_value,
     surely_in_datatype,
 )
 
 T = str(TYPE)
-
-
-def _link(edges: dict[NamedNode, set[NamedNode]], a: Expr, b: Expr) -> None:
-    """The told edge a ⊑ b between named classes into ``edges`` (b's named members for an intersection).
-    A function of the module, not a closure: a nested function calling itself is a cycle, which would keep
-    what it reads alive past the compilation until a full collection (tests/test_compile_cycles.py)."""
-    if a.is_named and b.is_named:
-        edges.setdefault(a.node, set()).add(b.node)
-    elif a.is_named and b.kind == "and":
-        for m in b.members:
-            _link(edges, a, m)
 
 
 def _walk(found: dict[NamedNode, Expr], e: Expr | None) -> None:
@@ -97,7 +85,7 @@ class OwlCompiler:
         self.disjoint_pairs = [
             (a.node, b.node) for a, b in tbox.disjoint if a.is_named and b.is_named
         ]
-        self.told = self._told_superclasses()
+        self.told = told_superclasses(tbox)
         #: told subsumption between class expressions and fillers, each pair decided once
         self.subsumption = Subsumption(self.told)
         #: :meth:`all_expressions`, once walked
@@ -193,25 +181,6 @@ class OwlCompiler:
         rule short (a robot step parses its text: the SWRL rules that join this difference too)."""
         told = [dt for q, dt in self.tb.data_range if q == p]
         return bool(told) and all(in_datatype("?v", dt) for dt in told) and datatype in implied_ranges(told)
-
-    def _told_superclasses(self) -> dict[NamedNode, set[NamedNode]]:
-        """Named-class subsumption told by the axioms (closure), for comparing fillers."""
-        edges: dict[NamedNode, set[NamedNode]] = {}
-        for a, b in self.tb.subclass:
-            _link(edges, a, b)
-        for a, b in self.tb.equivalent:
-            _link(edges, a, b)
-            _link(edges, b, a)
-        closure: dict[NamedNode, set[NamedNode]] = {}
-        for start in edges:
-            seen, todo = set(), [start]
-            while todo:
-                for nxt in edges.get(todo.pop(), ()):
-                    if nxt not in seen:
-                        seen.add(nxt)
-                        todo.append(nxt)
-            closure[start] = seen
-        return closure
 
     def filler_subsumed(self, a: Expr, b: Expr) -> bool:
         """Told: every instance of filler ``a`` is an instance of filler ``b`` (:class:`.fillers.Subsumption`)."""
@@ -387,9 +356,7 @@ class OwlCompiler:
             return
         self.emit(name, origin, body + self.restrictions.ask_different([(y1, y2)], body, [], origin), violation=(x, y1, y2),
                   message=message)
-        self.emit(name, origin, body, Atom(y1, str(SAME_AS), y2),
-                  [cond.test(f"!sameTerm({y1}, {y2}) && isIRI({y1}) && isIRI({y2})"), not_different(y1, y2)],
-                  NOT_DIFFERENT_READS, stratum=1)
+        self.instantiate((sparql(p),), origin, name)  # the sameAs rule: a row of rules/owl/prp-fp.rq, prp-ifp.rq
 
     def compile(self) -> list[Rule]:
         exprs = self.all_expressions()
