@@ -96,12 +96,10 @@ def write_found(store: Store, found: Found, name: str, stats: ReasonStats, profi
     """Write an evaluation's early solutions into their graph (timed under ``name`` when profiling)."""
     if not found.triples:
         return
-    if not profile:
-        store.add_ntriples(found.triples, found.graph)
-        return
     start = perf_counter()
     store.add_ntriples(found.triples, found.graph)
-    stats.per_rule[name] = stats.per_rule.get(name, 0.0) + perf_counter() - start
+    if profile:
+        stats.per_rule[name] = stats.per_rule.get(name, 0.0) + perf_counter() - start
 
 
 def hashes(rule: Rule) -> bool:
