@@ -255,7 +255,7 @@ class Flips:
         index = self._value_index(atom.p)
         for row in rows:
             terms = [row[f"{t}__o"], row[f"{t}__n"], *(row[n] for n in rest)]
-            if index.single or window.single_precision(terms):
+            if not index.exact_for(terms):
                 return None
             values = [window.number(term) for term in terms]
             if any(x is None for x in values):

@@ -218,7 +218,7 @@ class Flipped:
         w = self._window
         t = f"?{w.t}"
         terms = [old.get(t), bound.get(t), *(bound.get(f"?{n}") for n in w.rest)]
-        if index.single or window.single_precision(terms):
+        if not index.exact_for(terms):
             return None
         values = [value(term) for term in terms]
         if w.forms is not None and all(type(x) is int for x in values):  # xsd:integer values: exact in ints

@@ -335,6 +335,11 @@ class ValueIndex:
             self.single -= 1
         del self._keys[bisect.bisect_left(self._keys, key)]
 
+    def exact_for(self, terms: Iterable[Term | None]) -> bool:
+        """Whether a window over these values, bounded by ``terms``, is exact: no ``xsd:float`` on either
+        side (see :func:`single_precision`)."""
+        return not self.single and not single_precision(terms)
+
     def between(self, lo: Fraction, hi: Fraction, limit: int) -> list[Triple] | None:
         """The facts with lo ≤ value ≤ hi (None when more than ``limit``: a scan is as cheap)."""
         start = bisect.bisect_left(self._keys, (lo,))
