@@ -3,8 +3,9 @@
 The sameAs rule of such a property (its two values, or two subjects, are one individual unless known
 different) is the file's rule with the property as its row: the rule set holds a table, not a rule per
 property, and a full REASON runs the generic rule over the table when it is large.  The checks (two values
-known different, two distinct values of a functional data property) stay a rule per property.  Generic
-equals instantiated, closure and violations; incremental equals from scratch.
+known different, two distinct values of a functional data property), the candidate rules asking whether two
+values differ and the rules finding two individuals different by their values are rows of their files too.
+Generic equals instantiated, closure and violations; incremental equals from scratch.
 """
 
 from __future__ import annotations
@@ -76,8 +77,16 @@ def test_the_same_as_rules_are_rows_of_their_files() -> None:
     assert sorted(rules.tables.rows("prp-ifp")) == sorted((f"<{NS}g{i}>",) for i in range(20))
     same_as = [r for r in rules.rules if r.head is not None and r.head.p == str(SAME_AS) and r.name in ("prp-fp", "prp-ifp")]
     assert same_as == []  # held as rows, not rules of their own
-    checks = [r for r in rules.rules if r.name in ("prp-fp", "prp-ifp") and r.is_check]
-    assert len(checks) == 60  # two values known different (f, g), two distinct data values (d)
+    assert [r for r in rules.rules if r.name in ("prp-fp", "prp-ifp")] == []  # the checks too: rows
+    checks = [r for r in rules.checks if r.name in ("prp-fp", "prp-ifp")]
+    assert len(checks) == 60  # two values known different (f, g), two distinct data values (d), bound back
+    for key, prop in (("prp-fp-3", "f"), ("prp-ifp-3", "g"), ("prp-fp-2-data", "d")):
+        assert sorted(rules.tables.rows(key)) == sorted((f"<{NS}{prop}{i}>",) for i in range(20)), key
+    kinds = {"prp-fp-3": "functional", "prp-ifp-3": "inverse functional", "prp-fp-2-data": "functional"}
+    for key, kind in kinds.items():  # the message names the property as the compiler's did
+        check = rules.tables.held[key][0]
+        assert check.is_check and check.violation == ("?x", "?y1", "?y2")
+        assert check.message.endswith(f"of the {kind} property {check.origin.split()[0]}"), check.message
     instance = rules.tables.held["prp-fp"][0]
     assert instance.stratum == 1 and not instance.is_check and fp.row_of(instance) in rules.tables.rows("prp-fp")
 
@@ -171,3 +180,63 @@ def test_the_files_filters_are_the_compilers_texts() -> None:
         tests, negated = schema_rule(name).rule.conditions
         assert negated.text == not_different("?y1", "?y2").text
         assert tests.text == "FILTER(!sameTerm(?y1, ?y2) && isIRI(?y1) && isIRI(?y2))"
+
+
+# ---------------------------------------------------------------- the difference rules as rows
+def difference_tbox(n: int) -> str:
+    """:func:`functional_tbox` with two values of each functional object property made different by their
+    values of a functional data property (:y, :z) and by a class allowing one value of a data property (:r,
+    :s): every such pair a violation of the property's check, found through the difference rules."""
+    lines = [functional_tbox(n), ":xsdint a owl:Class ."]
+    for i in range(n):
+        lines += [f":e{i} a owl:DatatypeProperty .",
+                  f":One{i} owl:equivalentClass [ a owl:Restriction ; owl:onProperty :e{i} ; "
+                  f'owl:maxCardinality "1"^^xsd:nonNegativeInteger ] .',
+                  f":h{i} :f{i} :y{i}, :z{i} . :y{i} :d{i} 1 . :z{i} :d{i} 2 .",
+                  f":j{i} :g{i} :w{i} . :k{i} :g{i} :w{i} . :j{i} :d{i} 3 . :k{i} :d{i} 4 .",
+                  f":r{i} :f{i} :p{i}, :q{i} . :p{i} a :One{i} ; :e{i} 1 . :q{i} :e{i} 2 ."]
+    return "\n".join(lines) + "\n"
+
+
+def test_the_difference_rules_are_rows_of_their_files() -> None:
+    onto = _loaded(difference_tbox(20))
+    tables = onto.rules.tables
+    assert tables is not None
+    props = {"f": "different-candidate-2-fp", "g": "different-candidate-2-ifp", "d": "different-values-3"}
+    for prop, key in props.items():
+        assert sorted(tables.rows(key)) == sorted((f"<{NS}{prop}{i}>",) for i in range(20)), key
+    for key in ("different-values-4-a", "different-values-4-b"):
+        assert len(tables.rows(key)) == 20 and {row[1] for row in tables.rows(key)} == {f"<{NS}e{i}>" for i in range(20)}
+    own = [r for r in onto.rules.rules if r.name in ("different-candidate", "different-values")
+           and r.origin.endswith(("is functional", "is inverse functional", "allows one value"))]
+    assert own == []  # held as rows, not a rule per property
+
+
+def test_the_difference_rules_generic_equal_instantiated() -> None:
+    onto = _loaded(difference_tbox(20))
+    program = full_program(onto.rules, 0)
+    assert {"different-candidate-2-fp", "different-candidate-2-ifp", "different-values-3",
+            "different-values-4-a", "different-values-4-b"} <= set(program.rows)
+    instantiated = _materialize(onto, sys.maxsize)
+    broken = _violations(onto)
+    generic = _materialize(onto, 0)
+    assert generic == instantiated and _violations(onto) == broken
+    found = {v[2] for v in broken}
+    for i in range(20):  # different by values: each pair reported by its property's check
+        for pair in (("y", "z"), ("j", "k"), ("p", "q")):
+            assert any(f"{NS}{pair[0]}{i}>" in " ".join(t) and f"{NS}{pair[1]}{i}>" in " ".join(t) for t in found), pair
+    assert onto.reason(mode="full").consistent is False
+
+
+def test_a_datatype_the_ranges_do_not_keep_stays_a_rule_of_its_own() -> None:
+    """A max 1 restriction on a datatype tests each value's datatype, a filter naming the datatype: the
+    files' filters read no schema term, so its rules are the compiler's, not rows."""
+    onto = _loaded(PREFIXES + """:e a owl:DatatypeProperty .
+:One owl:equivalentClass [ a owl:Restriction ; owl:onProperty :e ;
+  owl:maxQualifiedCardinality "1"^^xsd:nonNegativeInteger ; owl:onDataRange xsd:integer ] .
+:x a :One ; :e 1 . :y :e 2 . :x owl:sameAs :y .
+""")
+    own = [r for r in onto.rules.rules if r.name == "different-values"]
+    assert len(own) == 2
+    assert onto.rules.tables is None or "different-values-4-a" not in onto.rules.tables.held
+    assert not onto.reason(mode="full").consistent

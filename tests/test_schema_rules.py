@@ -36,15 +36,19 @@ KINDS = {"cax-sco", "cax-eqc1", "cax-eqc2", "prp-dom", "prp-rng", "prp-spo1", "p
          "prp-trp", "cax-dw", "different-disjoint", "ext-card-sub", "cls-svf1", "cls-avf", "cls-hv1", "cls-hv2",
          "cls-int2", "cls-uni", "prp-spo2", "ext-restriction-sub", "cls-oo", "neg-dw", "neg-svf", "neg-sco",
          "neg-int", "neg-com", "neg-avf", *(f"cls-int1-{n}" for n in range(2, 9)),
-         *(f"neg-uni-{n}" for n in range(2, 9)), "prp-fp", "prp-ifp"}
+         *(f"neg-uni-{n}" for n in range(2, 9)), "prp-fp", "prp-ifp",
+         "different-candidate-2-fp", "different-candidate-2-ifp", "different-values-3", "different-values-4-a",
+         "different-values-4-b", "prp-fp-3", "prp-ifp-3", "prp-fp-2-data"}
 #: the kinds the ontology EVERY_KIND has no axiom of (a restriction on a sub-property: see
 #: test_restrictions_subsumed_through_properties_are_a_table; a one-of and the non-memberships a
 #: complement needs: tests/test_schema_rows.py; the sameAs rules of functional properties:
-#: tests/test_functional_rows.py)
-ELSEWHERE = {"ext-restriction-sub", "cls-oo", "prp-fp", "prp-ifp", "neg-dw", "neg-svf", "neg-sco", "neg-int", "neg-com", "neg-avf",
+#: tests/test_functional_rows.py, with their difference rules)
+ELSEWHERE = {"ext-restriction-sub", "cls-oo", "prp-fp", "prp-ifp", "different-candidate-2-fp", "different-candidate-2-ifp",
+             "different-values-3", "different-values-4-a", "different-values-4-b", "neg-dw", "neg-svf", "neg-sco",
+             "neg-int", "neg-com", "neg-avf",
              *(f"cls-int1-{n}" for n in range(3, 9)), *(f"neg-uni-{n}" for n in range(2, 9))}
-#: the generic checks: the compiler emits their instantiations; a full REASON keeps them instantiated
-CHECKS = {"cax-dw"}
+#: the generic checks (by file): the compiler emits their instantiations; a full REASON keeps them instantiated
+CHECKS = {"cax-dw", "prp-fp-3", "prp-ifp-3", "prp-fp-2-data"}
 PREFIXES = f"""\
 @prefix : <{NS}> .
 @prefix owl: <http://www.w3.org/2002/07/owl#> .
@@ -77,7 +81,7 @@ def _no_schema_graph(onto: Ontology) -> bool:
 def test_every_kind_has_its_file_with_a_schema_atom() -> None:
     assert set(schema_rules()) == KINDS
     for rule in schema_rules().values():
-        assert rule.schema and rule.variables and (rule.rule.head is None) == (rule.name in CHECKS)
+        assert rule.schema and rule.variables and (rule.rule.head is None) == (rule.key in CHECKS)
 
 
 def test_instantiation_and_row_of_are_inverse() -> None:

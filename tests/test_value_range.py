@@ -30,7 +30,7 @@ def load(text: str) -> Ontology:
 
 
 def value_rules(o: Ontology) -> list:
-    return [r for r in o.rules.rules if r.name == "different-values"]
+    return [r for r in o.rules.compiled_rules() if r.name == "different-values"]
 
 
 @pytest.mark.parametrize(("ranges", "tested"), [

@@ -17,8 +17,9 @@ the extensions; the origin says which axiom the rule was made from.
 
 The rules of the kinds of axiom that fit a row of fixed width (class and property hierarchies,
 equivalent classes, domain, range, inverse, symmetric, transitive, chains of two, disjointness,
-restrictions by kind, restriction subsumption, the sameAs rule of a functional or inverse-functional object
-property) are not written here: they are the generic rules
+restrictions by kind, restriction subsumption, a functional or inverse-functional property's sameAs rule,
+check and candidate rule, the rules finding two individuals different by two values of a data property
+allowing one) are not written here: they are the generic rules
 of ``rules/owl/`` instantiated with the axiom's row of its schema table (:mod:`.schema`); a full
 REASON reads those rows back from the rules and may run the generic rule over them instead
 (:mod:`.schema_program`).  An axiom without a row (an inverse property, a longer chain) keeps the
@@ -158,18 +159,19 @@ class OwlCompiler:
             for x, y in ((c1, c2), (c2, c1)):
                 self.disjointness.add_different(disjoint_row(x, y), x, y)
         for p in sorted(self.tb.characteristics.get("FunctionalProperty", ()), key=lambda t: t.value):
-            if p in self.tb.data_properties:
-                self.emit("different-values", f"{nm(p)} is functional",
-                          [candidate_atom(a, b), Atom(a, sparql(p), v1), Atom(b, sparql(p), v2)], different_atom(a, b),
-                          [cond.test(distinct_values(v1, v2))])
+            if p in self.tb.data_properties:  # a row of rules/owl/different-values-3.rq
+                self.instantiate((sparql(p),), f"{nm(p)} is functional", "different-values-3")
         for e in self.all_expressions():
             if e.kind not in ("max", "exact") or e.n != 1 or e.prop.inverse or not self.is_data(e.prop, e):
                 continue
-            tests = [cond.test(distinct_values(v1, v2))]
-            if e.datatype is not None and not self._range_within(e.prop.iri, e.datatype):
-                tests += [cond.test(f"{surely_in_datatype(v1, e.datatype)} && {surely_in_datatype(v2, e.datatype)}")]
-            for member in (a, b):
-                self.emit("different-values", f"class expression {e} allows one value",
+            origin = f"class expression {e} allows one value"
+            if e.datatype is None or self._range_within(e.prop.iri, e.datatype):  # rows of different-values-4-*
+                self.instantiate((e.term, sparql(e.prop.iri)), origin, "different-values-4-a", "different-values-4-b")
+                continue
+            tests = [cond.test(distinct_values(v1, v2)),
+                     cond.test(f"{surely_in_datatype(v1, e.datatype)} && {surely_in_datatype(v2, e.datatype)}")]
+            for member in (a, b):  # a filter naming the datatype: no row (the files' filters read no schema term)
+                self.emit("different-values", origin,
                           [candidate_atom(a, b), Atom(member, T, sparql(e.node)),
                            Atom(a, sparql(e.prop.iri), v1), Atom(b, sparql(e.prop.iri), v2)],
                           different_atom(a, b), tests)
@@ -342,21 +344,18 @@ class OwlCompiler:
             self._functional(p, inverse=True)
 
     def _functional(self, p: NamedNode, inverse: bool) -> None:
-        x, y1, y2 = "?x", "?y1", "?y2"
-        prop = Prop(p, inverse)
-        data = not inverse and p in self.tb.data_properties
-        body = [self.prop_atom(x, prop, y1), self.prop_atom(x, prop, y2)]
+        """Rows of the property's files: its check (two values, or two subjects, known different; two
+        distinct values of a data property), and for an object property the candidate rule asking whether
+        the two differ and the sameAs rule (rules/owl/prp-fp*.rq, prp-ifp*.rq, different-candidate-2-*.rq)."""
         name = "prp-ifp" if inverse else "prp-fp"
-        kind = "inverse functional" if inverse else "functional"
-        origin = f"{nm(p)} is {kind}"
-        message = f"{{x}} has the different values {{y1}} and {{y2}} of the {kind} property {nm(p)}"
-        if data:
-            self.emit(name, origin, body, filters=[cond.test(distinct_values(y1, y2))], violation=(x, y1, y2),
-                      message=message)
+        origin = f"{nm(p)} is {'inverse functional' if inverse else 'functional'}"
+        row, labels = (sparql(p),), [nm(p)]
+        if not inverse and p in self.tb.data_properties:
+            self.instantiate(row, origin, "prp-fp-2-data", labels=labels)
             return
-        self.emit(name, origin, body + self.restrictions.ask_different([(y1, y2)], body, [], origin), violation=(x, y1, y2),
-                  message=message)
-        self.instantiate((sparql(p),), origin, name)  # the sameAs rule: a row of rules/owl/prp-fp.rq, prp-ifp.rq
+        self.instantiate(row, origin, f"different-candidate-2-{name[4:]}")
+        self.instantiate(row, origin, f"{name}-3", labels=labels)
+        self.instantiate(row, origin, name)
 
     def compile(self) -> list[Rule]:
         exprs = self.all_expressions()

@@ -339,13 +339,14 @@ class RuleSet:
     @property
     def checks(self) -> list[Rule]:
         """The checks, with a ``cax-dw`` check per told pair of disjoint classes after the others."""
-        return list(self.derived(("checks", id(self.disjointness)), lambda: [
-            r for r in self.rules if r.is_check] + self._per_pair()[1]))
+        return list(self.derived(("checks", id(self.disjointness), id(self.tables)), lambda: [
+            r for r in self.compiled_rules() if r.is_check] + self._per_pair()[1]))
 
     @property
     def base_checks(self) -> list[Rule]:
         """The checks other than the disjointness of a told pair (:attr:`checks` begins with them)."""
-        return list(self.derived(("base-checks",), lambda: [r for r in self.rules if r.is_check]))
+        return list(self.derived(("base-checks", id(self.tables)), lambda: [
+            r for r in self.compiled_rules() if r.is_check]))
 
     @property
     def all_rules(self) -> list[Rule]:

@@ -29,9 +29,11 @@ the schema atom's variables first appear (``(C, D)`` for ``C SubClassOf D``).  A
 expression have no row (no generic rule reads property expressions), nor have shapes of another width
 (a chain of three, an intersection of nine members): the compiler keeps emitting their rules directly.
 A rule of n body atoms may be a file per n (``cls-int1-2.rq`` … ``cls-int1-8.rq``, each rule named
-``cls-int1``; ``neg-uni-2.rq`` … ``neg-uni-8.rq``): a file is keyed by its name (:attr:`SchemaRule.key`), and :func:`template_of` finds a
-rule's file by its name and width.  A check's instantiation reports the individuals only
-(:attr:`SchemaRule.reported`); its message names the row's terms.
+``cls-int1``; ``neg-uni-2.rq`` … ``neg-uni-8.rq``), and rules of one name and width a file each, labelled
+(``different-candidate-2-fp.rq`` and ``-2-ifp.rq``, ``prp-fp.rq`` and the data property's check
+``prp-fp-2-data.rq``): a file is keyed by its name (:attr:`SchemaRule.key`), and :func:`template_of` finds a
+rule's file by its name and width, and among several by the row the rule is of.  A check's instantiation
+reports the individuals only (:attr:`SchemaRule.reported`); its message names the row's terms.
 """
 
 from __future__ import annotations
@@ -320,23 +322,41 @@ def schema_rules() -> dict[str, SchemaRule]:
         if not schema or not headers.get("schema"):
             raise RuleCompileError(f"{path}: a rule of rules/owl/ needs a '# schema:' header and a schema atom "
                                    f"(GRAPH {_SCHEMA_GRAPH_TEXT} {{ ... }})")
-        if path.stem not in (rule.name, f"{rule.name}-{len(rule.body)}"):
+        width = f"{rule.name}-{len(rule.body)}"
+        if path.stem not in (rule.name, width) and not path.stem.startswith(width + "-"):
             raise RuleCompileError(f"{path}: the file is named as its rule ({rule.name}.rq), or as its rule and "
-                                   f"the number of its body atoms ({rule.name}-{len(rule.body)}.rq)")
+                                   f"the number of its body atoms ({width}.rq, {width}-LABEL.rq for several "
+                                   f"files of one width)")
         found[path.stem] = SchemaRule(_marked_head(rule), schema, headers["schema"].split()[0],
                                       _rows_header(path, headers.get("generic-rows")), path.stem)
     return found
 
 
 @cache
-def _by_shape() -> dict[tuple[str, int], SchemaRule]:
-    """The generic rules by (name, number of body atoms): a rule written as a file per width has several."""
-    return {(t.name, len(t.rule.body)): t for t in schema_rules().values()}
+def _by_shape() -> dict[tuple[str, int], tuple[SchemaRule, ...]]:
+    """The generic rules by (name, number of body atoms): a rule written as a file per width has several,
+    and a width may have several files (``different-candidate-2-fp``, ``-2-ifp``: two atoms each)."""
+    found: dict[tuple[str, int], list[SchemaRule]] = {}
+    for t in schema_rules().values():
+        found.setdefault((t.name, len(t.rule.body)), []).append(t)
+    return {shape: tuple(files) for shape, files in found.items()}
 
 
 def template_of(rule: Rule) -> SchemaRule | None:
-    """The file of ``rules/owl/`` ``rule`` may be an instantiation of (by its name and width), or None."""
-    return _by_shape().get((rule.name, len(rule.body)))
+    """The file of ``rules/owl/`` ``rule`` may be an instantiation of (by its name and width), or None.
+
+    Where several files have that shape, the one ``rule`` is a row of, or whose graph its conditions
+    read (a generic rule), else the first."""
+    files = _by_shape().get((rule.name, len(rule.body)))
+    if files is None or len(files) == 1:
+        return files[0] if files else None
+    for t in files:
+        if t.row_of(rule) is not None:
+            return t
+    for t in files:
+        if any(str(t.graph) in c.text for c in rule.conditions):
+            return t
+    return files[0]
 
 
 def _rows_header(path, text: str | None) -> int | None:

@@ -86,14 +86,13 @@ class SchemaTables:
 def hold_tables(rules: list[Rule]) -> tuple[list[Rule], SchemaTables | None]:
     """(the rules other than the instantiations of ``rules/owl/``, those instantiations as tables).
 
-    A check stays a rule of its own (a full REASON runs the checks after the fixpoint, rule by rule),
-    as do the rules of the disjoint pairs, held as rows already."""
+    A check is held as any rule (:attr:`.rule.RuleSet.checks` binds its rows back where the compiler
+    emitted it); the rules of the disjoint pairs are held as rows already, apart."""
     kept: list[Rule] = []
     tables = SchemaTables()
     for i, rule in enumerate(rules):
         template = template_of(rule)
-        if (template is None or rule.name in _HELD_APART or rule.is_check
-                or template.row_of(rule) is None):
+        if template is None or rule.name in _HELD_APART or template.row_of(rule) is None:
             kept.append(rule)
             continue
         tables.held.setdefault(template.key, []).append(rule)
