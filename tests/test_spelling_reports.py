@@ -435,7 +435,7 @@ def test_a_revert_gives_back_the_spelling_held_at_the_last_reason(steps: list[Li
 
 def test_inside_an_open_transaction_a_respelled_value_shows_the_spelling_written() -> None:
     """Read-your-writes: the undo's respelling pending in the open transaction is what the ontology shows
-    (and saves) before the commit, not the spelling the committed store holds."""
+    before the commit, not the spelling the committed store holds."""
     o = holding(INT)
     with o.store.transaction():
         undone_in_open_transaction(o)
