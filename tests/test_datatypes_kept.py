@@ -2,9 +2,12 @@
 
 Oxigraph stores ``"5"^^xsd:long`` as ``"5"^^xsd:integer``; the literal forms remember the written one.  A path
 that writes a value back from what the store holds (the canonical term) instead of the form kept for it shows
-``xsd:integer`` where a user wrote ``xsd:long``: a revert of the change ledger once did.  Each path here is
-given a value held as ``xsd:long`` beside the same number held as ``xsd:integer`` by another individual (so no
-single spelling of the value can answer for both), and must show each as written.
+``xsd:integer`` where a user wrote ``xsd:long``: a revert of the change ledger once did (its removal of the
+spelling the undone changes left and its addition of the one held before, keyed by value in one transaction,
+cancelled, and the graph kept the later spelling), and a SPARQL update did (its delta is computed on a scratch
+Oxigraph store).  Each path is given a value held as ``xsd:long`` (beside the same
+numbers held as ``xsd:integer`` by another individual, so that no one spelling of a value answers for both, where
+the ontology is this module's) and must show each as written.
 """
 
 from __future__ import annotations
