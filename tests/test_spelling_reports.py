@@ -431,3 +431,41 @@ def test_a_revert_gives_back_the_spelling_held_at_the_last_reason(steps: list[Li
     o.ledger.revert(o.store)
     assert shown(o) == [double("1.5")]
     assert o.ledger.net_changes() == ([], [])
+
+
+def test_inside_an_open_transaction_a_respelled_value_shows_the_spelling_written() -> None:
+    """Read-your-writes: the undo's respelling pending in the open transaction is what the ontology shows
+    before the commit, not the spelling the committed store holds."""
+    o = holding(INT)
+    with o.store.transaction():
+        undone_in_open_transaction(o)
+        assert shown(o) == [INT.object]
+        assert o.data_values(P, S) == [INT.object]
+    assert shown(o) == [INT.object]
+
+
+@pytest.mark.parametrize("reasoned", [False, True], ids=["bulk add before the first REASON", "recorded add"])
+def test_inside_an_open_transaction_a_spelling_not_stored_is_said_beside_the_one_pending(reasoned: bool) -> None:
+    """A value added earlier in the open transaction and added again in another spelling: the warning names the
+    spelling the transaction wrote (pending, not committed yet), and the ontology shows it."""
+    o = fresh(reasoned)
+    with o.store.transaction():
+        assert o.add(INT) == 1
+        with pytest.warns(SpellingKeptWarning, match=SAID) as caught:
+            assert o.add(DECIMAL) == 0
+        assert [str(INT.object) in str(w.message) for w in caught if w.category is SpellingKeptWarning] == [True]
+        assert shown(o) == [INT.object]
+    assert shown(o) == [INT.object]
+
+
+def test_inside_an_open_transaction_a_respelled_value_written_again_is_said_beside_the_pending_spelling() -> None:
+    """The committed store holds the decimal; the undo's respelling pending gives the integer back: adding the
+    value in a third spelling names the integer as the one kept."""
+    o = holding(INT)
+    with o.store.transaction():
+        undone_in_open_transaction(o)
+        with pytest.warns(SpellingKeptWarning, match=SAID) as caught:
+            assert o.add(INTEGER) == 0
+        texts = [str(w.message) for w in caught if w.category is SpellingKeptWarning]
+        assert len(texts) == 1 and texts[0].startswith(f"{S} {P} {INT.object}"), texts
+    assert shown(o) == [INT.object]

@@ -18,6 +18,7 @@ from .errors import (
 )
 from .ontology.facade import Ontology, ReasonReport
 from .ontology.named_queries import QueryItem
+from .ontology.pellet_values import PelletDifferenceWarning
 from .ontology.spellings import SpellingKeptWarning
 
 __version__ = "0.1.0"
@@ -25,7 +26,7 @@ __version__ = "0.1.0"
 __all__ = [
     "Ontology", "ReasonReport", "QueryItem", "TopostoreError", "InvalidNameError", "InvalidValueError",
     "UnknownTypeError", "LoadError", "QueryError", "QueryTimeout", "RuleCompileError", "OntologyWarning", "Notice",
-    "IncompleteOntologyError", "SpellingKeptWarning",
+    "IncompleteOntologyError", "SpellingKeptWarning", "PelletDifferenceWarning",
 ]
 
 from .armor import ArmorRequest, ArmorResponse, ArmorService  # noqa: E402  (aRMOR command interface)

@@ -289,7 +289,7 @@ def _held_before(store: Store, triples: Sequence[Triple]) -> list[str]:
 
 def _held_note(store: Store, graph: NamedNode, t: Triple, value: tuple) -> str | None:
     """The HELD note of ``t`` where ``graph`` keeps its value in another spelling (the literal forms), else None."""
-    kept = store.forms.recorded(graph, t.subject, t.predicate, value)
+    kept = store.kept_literal(graph, t.subject, t.predicate, value)
     if kept is None or kept == t.object:
         return None
     return spelling_kept(triple(t.subject, t.predicate, kept), t, HELD)

@@ -31,6 +31,7 @@ from ..stores.language_tags import literal_tags
 from .guard import check_user_sparql
 from .results import ResultFormat, boolean_json, choose_format, render_graph, render_table, solutions_json
 from .target import LockedOntology, WritableOntology
+from .written import as_written
 
 
 class SparqlTimeout(QueryError):
@@ -205,7 +206,7 @@ def update_delta(asserted: list[Triple], text: str) -> TripleDelta:
                          "writable graph, the default graph (leave out GRAPH and WITH)")
     after = {skolemize(Triple(q.subject, q.predicate, q.object)) for q in scratch.quads_for_pattern(None, None, None, DefaultGraph())}
     before = set(asserted)
-    return TripleDelta(add=sorted(after - before, key=str), remove=sorted(before - after, key=str))
+    return TripleDelta(add=as_written(sorted(after - before, key=str), text), remove=sorted(before - after, key=str))
 
 
 def run_update(ref: WritableOntology, text: str, job: Job, limit: float) -> UpdateOutcome:

@@ -26,7 +26,7 @@ from pyoxigraph import DefaultGraph, Literal, NamedNode, Quad, RdfFormat, Triple
 from ..rdf.safeio import read_regular_file
 from ..rdf.skolem import fresh_skolem, skolem, skolemize, unskolem, unskolemize
 from ..rdf.syntax import FORMAT_NAMES, PROGRESS_EVERY, guess_format, parse_triples, serialize
-from ..rdf.terms import Term
+from ..rdf.terms import Term, value_key
 from ..rdf.vocab import SKOLEM_PREFIX
 from . import presence, reads, respelling, work
 from .batched import BatchedReads
@@ -120,8 +120,19 @@ class Store:
         self.persisted.set(key, value)
 
     def original_literal(self, graph: NamedNode, s: Term, p: NamedNode, o: Literal) -> Literal:
-        """The literal as the user asserted it (lexical form and datatype)."""
-        return self.forms.original_literal(graph, s, p, o)
+        """The literal as the user asserted it (lexical form and datatype); inside a transaction, as its pending
+        write adds it (read-your-writes: the literal forms learn it at the commit)."""
+        if not self._pending:
+            return self.forms.original_literal(graph, s, p, o)
+        value = value_key(o)
+        pending = work.pending_literal(self, graph, s, p, value)
+        return pending if pending is not None else self.forms.written(graph, s, p, o, value)
+
+    def kept_literal(self, graph: NamedNode, s: Term, p: NamedNode, value: tuple | None) -> Literal | None:
+        """The spelling kept for this one fact (``value``: its value key): the open transaction's pending
+        addition of it, else the form kept at the last commit; None when neither is."""
+        pending = work.pending_literal(self, graph, s, p, value) if self._pending else None
+        return pending if pending is not None else self.forms.recorded(graph, s, p, value)
 
     def restore(self, term: Term) -> Term:
         """A literal as users wrote it, when that value was written in one form only."""

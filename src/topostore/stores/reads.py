@@ -214,7 +214,7 @@ def dump(store: Store, graphs: list[NamedNode], restore_literals_from: NamedNode
     for g in graphs:
         for t in store.triples(graph=g):
             if isinstance(t.object, Literal):
-                form = store.forms.original_literal(restore_literals_from or g, t.subject, t.predicate, t.object)
+                form = store.original_literal(restore_literals_from or g, t.subject, t.predicate, t.object)
                 t = Triple(t.subject, t.predicate, form)
             out[unskolemize(t)] = None
     return list(out)

@@ -382,6 +382,17 @@ def pending_add(store: Store, k: Hashable) -> Triple | None:
     return entry[0].triple if entry is not None and entry[1] else None
 
 
+def pending_literal(store: Store, graph: NamedNode, s: Term, p: NamedNode, value: tuple | None) -> Literal | None:
+    """The literal the open transaction's pending write adds as the fact (s, p, ``value``) of ``graph``, None
+    when none is pending or it removes.  Why: the literal forms learn a spelling at the commit, so a read (or
+    a change's warning) inside the transaction would otherwise name the spelling committed before it."""
+    pending = store._pending
+    if not pending or value is None:
+        return None
+    entry = pending.get((s, p, value, graph))
+    return entry[0].object if entry is not None and entry[1] else None  # type: ignore[return-value]
+
+
 def removal_quad(store: Store, f: Fact) -> Quad:
     """The quad a removal writes: the literal in the form kept for this fact, as it was asserted (a
     store that keeps literals as written, a remote one, matches it exactly); a fact with no form kept
