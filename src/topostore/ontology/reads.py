@@ -97,8 +97,9 @@ class OntologyQueries:
         return [s for s in self.onto.store.batched.subjects_in(TYPE, c, self.onto.visible_graphs()) if _shown(s)]
 
     def _instance_flags(self, pairs: list[tuple[Term, NamedNode]]) -> list[bool]:
-        """Whether each (individual, class) pair is one of :meth:`instances` (what a class view re-decides),
-        in one batch of look-ups per visible graph."""
+        """Whether each (individual, class) pair is one of :meth:`instances` (what a class view re-decides):
+        one index read per pair over every graph where the store offers it, else one batch of look-ups of a
+        quad per pair and visible graph."""
         graphs, store = self.onto.visible_graphs(), self.onto.store
         known_in = getattr(store, "known_in", None)  # one index read per pair over every graph, no quad made
         found = None if known_in is None else known_in([Triple(s, TYPE, c) for s, c in pairs], frozenset(graphs))

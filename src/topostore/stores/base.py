@@ -160,11 +160,6 @@ class Store:
     triples = reads.triples
     few_facts = reads.few_facts
     objects = reads.objects
-
-    def objects_by_graph(self, s: Term, p: NamedNode, graphs: list[NamedNode]) -> dict[NamedNode, list[Term]]:
-        """:meth:`objects` of one (subject, predicate) in each of ``graphs`` (a store reading its own
-        index may read them all at once)."""
-        return {g: self.objects(s, p, g) for g in graphs}
     objects_many = reads.objects_many
     subjects = reads.subjects
     list_items = reads.list_items
@@ -179,6 +174,11 @@ class Store:
     count = reads.count
     is_empty = reads.is_empty
     dump = reads.dump
+
+    def objects_by_graph(self, s: Term, p: NamedNode, graphs: list[NamedNode]) -> dict[NamedNode, list[Term]]:
+        """:meth:`objects` of one (subject, predicate) in each of ``graphs`` (a store reading its own
+        index may read them all at once)."""
+        return {g: self.objects(s, p, g) for g in graphs}
 
     # ------------------------------------------------------------ primitives (implementations)
     def _has(self, quad: Quad) -> bool:
