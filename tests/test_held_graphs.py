@@ -203,3 +203,23 @@ def test_a_fact_known_in_some_graphs_is_answered_as_the_presence_batch_answers()
     assert store.known_in([Triple(S[0], P[0], O[4])], state) is None  # by value: the presence batch
     store.add_scratch([facts[1]], SCRATCH[0])
     assert store.known_in(facts, state | {SCRATCH[0]}) is None  # a held graph: its facts are not in the index
+
+
+def test_a_subjects_values_by_graph_in_one_read_answer_as_each_graphs_read() -> None:
+    """``objects_by_graph`` (one index read over every graph) answers as one read per graph: a value in
+    a graph not asked about is left out, each graph keeps its own values; an open transaction or a held
+    graph asked about is read graph by graph."""
+    store = OxigraphStore()
+    store.hold_scratch(SCRATCH)
+    asked = [ASSERTED, OTHER]
+    store._ox.extend([Quad(S[0], P[0], S[1], ASSERTED), Quad(S[0], P[0], S[2], OTHER),
+                      Quad(S[0], P[0], O[3], SCRATCH[1]), Quad(S[0], P[1], S[2], ASSERTED)])
+    each = {g: store.objects(S[0], P[0], g) for g in asked}
+    assert store.objects_by_graph(S[0], P[0], asked) == each == {ASSERTED: [S[1]], OTHER: [S[2]]}
+    assert store.objects_by_graph(S[0], P[0], [OTHER]) == {OTHER: [S[2]]}
+    store.add_scratch([Triple(S[0], P[0], S[0])], SCRATCH[0])
+    assert store.objects_by_graph(S[0], P[0], [SCRATCH[0], ASSERTED]) == {SCRATCH[0]: [S[0]], ASSERTED: [S[1]]}
+    with transaction(store):
+        store.add([Triple(S[0], P[0], S[0])], ASSERTED)
+        found = store.objects_by_graph(S[0], P[0], asked)
+        assert {g: sorted(v, key=str) for g, v in found.items()} == {ASSERTED: [S[0], S[1]], OTHER: [S[2]]}

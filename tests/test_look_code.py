@@ -67,3 +67,21 @@ def test_overflow_foreign_values_and_three_valued_logic_as_the_closures() -> Non
         tree = parse_expression(text)
         holds, exact = compile_conditions([], [tree])
         assert (holds(solution), exact(solution)) == reference([], [tree], solution), text
+
+
+def test_a_literals_value_read_from_the_cache_or_made_answers_alike() -> None:
+    """The generated code reads a literal's value from :func:`value`'s cache inline: a value made fresh, one
+    cached, and one cached as a falsy value (0, the empty string) answer as the closures, again and again."""
+    from pyoxigraph import Literal, NamedNode
+
+    from topostore.reason.look_values import _VALUES
+
+    integer = NamedNode("http://www.w3.org/2001/XMLSchema#integer")
+    tests = trees(["?a < ?b", "?c = \"\""])
+    holds, exact = compile_conditions([], tests)
+    for a, b in (("0", "1"), ("-3", "0"), ("1", "0")):
+        solution = {"?a": Literal(a, datatype=integer), "?b": Literal(b, datatype=integer), "?c": Literal("")}
+        _VALUES.pop(solution["?a"], None)
+        first = (holds(solution), exact(solution))
+        assert first == (holds(solution), exact(solution)) == reference([], tests, solution), (a, b)
+        assert first[1] == (int(a) < int(b))

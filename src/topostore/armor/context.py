@@ -127,7 +127,7 @@ class Context:
     def render(self, items: list) -> list[str]:
         """Render terms in the service's mode; sorted so answers are reproducible."""
         renderer = self.service.renderer
-        rendered = renderer.terms([t for t in items if not hidden(t)])
+        rendered = renderer.texts(t for t in items if not hidden(t))
         tags = self.onto.store.forms.tags  # language tags as the loaded documents spell them
         if not tags or renderer.short_names:  # a short name shows a literal's bare value: no tag to spell
             return sorted(rendered)

@@ -10,6 +10,7 @@ entities by their local name, literals by their lexical form.
 from __future__ import annotations
 
 import functools
+from collections.abc import Iterable
 from dataclasses import dataclass
 
 from pyoxigraph import BlankNode, Literal, NamedNode
@@ -74,6 +75,11 @@ class Renderer:
     def terms(self, terms: list[Term]) -> list[str]:
         """Render a list, dropping duplicates (aRMOR answers are sets)."""
         return list(dict.fromkeys(self.term(t) for t in terms))
+
+    def texts(self, terms: Iterable[Term]) -> set[str]:
+        """The terms rendered, as a set (an answer is sorted and has no duplicates: no order to keep)."""
+        short = self.short_names
+        return {_rendered(t, short) for t in terms}
 
 
 @functools.lru_cache(maxsize=1 << 17)

@@ -130,8 +130,11 @@ class ArmorService:
             return ArmorResponse(False, codes.EMPTY_REFERENCE, "reference_name is empty; every command needs one")
         if req.command == "":
             return self._failure(req, codes.EMPTY_COMMAND, "command is empty")
-        key = (req.command.upper(), req.primary_command_spec.upper(), req.secondary_command_spec.upper())
-        command = COMMANDS.get(key)
+        key = (req.command, req.primary_command_spec, req.secondary_command_spec)
+        command = COMMANDS.get(key)  # a client spelling the table's upper case (every robot) finds it at once
+        if command is None:
+            key = (key[0].upper(), key[1].upper(), key[2].upper())
+            command = COMMANDS.get(key)
         if command is None:
             return self._failure(req, codes.UNKNOWN_COMMAND, f"unknown command {' '.join(repr(k) for k in key)}: "
                                  "check the spelling and that unused specs are empty strings")
@@ -151,16 +154,19 @@ class ArmorService:
                     raise CommandError(codes.MOUNTED_BY_OTHER, f"reference {req.reference_name!r} is mounted by client "
                                        f"{ctx.ref.owner!r}; client {req.client_name!r} may query it but not change it")
                 reply = command.handler(ctx)
-                return self._reply(req, reply)
+                return self._reply(req, reply, ctx.ref)
         except CommandError as exc:
             return self._failure(req, exc.code, exc.message)
 
-    def _reply(self, req: ArmorRequest, reply: Reply) -> ArmorResponse:
+    def _reply(self, req: ArmorRequest, reply: Reply, ref: Reference | None = None) -> ArmorResponse:
+        """The response to ``req``; ``ref``: its reference, when the caller holds its lock (its consistency
+        is read without locking it again, while the name still stands for it)."""
+        held = ref is not None and self._references.get(req.reference_name) is ref
         return ArmorResponse(
             success=reply.success,
             exit_code=reply.exit_code,
             error_description="; ".join(reply.warnings),
-            is_consistent=self._consistency(req.reference_name),
+            is_consistent=_consistent(ref) if held else self._consistency(req.reference_name),
             timeout=reply.timeout,
             queried_objects=reply.queried_objects,
             sparql_queried_objects=reply.sparql_queried_objects,
@@ -175,10 +181,7 @@ class ArmorService:
         if ref is None:
             return False
         with ref.lock:
-            try:
-                return ref.is_consistent
-            except TopostoreError:  # a reasoner that cannot run (limits, store) says nothing about consistency
-                return False
+            return _consistent(ref)
 
     # ------------------------------------------------------------ registry
     def reference(self, name: str) -> Reference:
@@ -331,6 +334,15 @@ class ArmorService:
         """Debug detail only while a log destination is switched on."""
         on = self._file_handler is not None or self._screen_handler is not None
         logger.setLevel(logging.DEBUG if on else logging.NOTSET)
+
+
+def _consistent(ref: Reference) -> bool:
+    """``ref``'s consistency (its lock held); false when a reasoner that cannot run (limits, store) says
+    nothing about it."""
+    try:
+        return ref.is_consistent
+    except TopostoreError:
+        return False
 
 
 def _describe(req: ArmorRequest) -> str:

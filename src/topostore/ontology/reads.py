@@ -10,7 +10,7 @@ from __future__ import annotations
 from collections.abc import Hashable
 from typing import TYPE_CHECKING
 
-from pyoxigraph import Literal, NamedNode, Quad
+from pyoxigraph import Literal, NamedNode, Quad, Triple
 
 from ..errors import QueryError
 from ..rdf.terms import Term, value_key
@@ -48,8 +48,10 @@ class OntologyQueries:
         """The values of (s, p) in each visible graph; a read that goes to the store carries the class
         views' pending decisions with it (one request for both, see :mod:`.views`)."""
         graphs, store = self.onto.visible_graphs(), self.onto.store
+        if not store.round_trips:  # a read costs no request: the views decide their own pairs
+            return store.batched.objects_in(s, p, graphs)
         owner = self._view_owner()
-        pairs = self.onto.views.pending(owner) if owner is not None and store.round_trips else []
+        pairs = self.onto.views.pending(owner) if owner is not None else []
         if not pairs:
             return store.batched.objects_in(s, p, graphs)
         values, found = store.batched.objects_and_presence(s, p, graphs, self._type_quads(pairs, graphs))
@@ -95,10 +97,15 @@ class OntologyQueries:
         return [s for s in self.onto.store.batched.subjects_in(TYPE, c, self.onto.visible_graphs()) if _shown(s)]
 
     def _instance_flags(self, pairs: list[tuple[Term, NamedNode]]) -> list[bool]:
-        """Whether each (individual, class) pair is one of :meth:`instances` (what a class view re-decides),
-        in one batch of look-ups per visible graph."""
-        graphs = self.onto.visible_graphs()
-        return self._members(pairs, self.onto.store.contains_quads(self._type_quads(pairs, graphs)), len(graphs))
+        """Whether each (individual, class) pair is one of :meth:`instances` (what a class view re-decides):
+        one index read per pair over every graph where the store offers it, else one batch of look-ups of a
+        quad per pair and visible graph."""
+        graphs, store = self.onto.visible_graphs(), self.onto.store
+        known_in = getattr(store, "known_in", None)  # one index read per pair over every graph, no quad made
+        found = None if known_in is None else known_in([Triple(s, TYPE, c) for s, c in pairs], frozenset(graphs))
+        if found is not None:
+            return [known and _shown(s) for known, (s, _) in zip(found, pairs, strict=True)]
+        return self._members(pairs, store.contains_quads(self._type_quads(pairs, graphs)), len(graphs))
 
     def object_values(self, prop: str | NamedNode, individual: str | NamedNode, names: bool = True) -> list:
         vals = [o for o in self._objects(self.onto.iri(individual), self.onto.iri(prop)) if isinstance(o, NamedNode)]

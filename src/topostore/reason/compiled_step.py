@@ -85,16 +85,17 @@ class CompiledStep:
 
     def run(self, added: Collection[Triple], removed: Collection[Triple], clean: dict,
             stats: ReasonStats, state: MaintenanceState, census: tuple | None = None,
-            copy_changes: Callable[[], None] = lambda: None) -> bool:
+            copy_changes: Callable[[], None] = lambda: None, lost: tuple | None = None) -> bool:
         """Maintain with the compiled program of this kind of change (see :mod:`.program`); False
         (with the reason in ``stats.program``) when it cannot be compiled.  ``clean``: the change's
         clean replacements (:func:`.flip.replaced_in`); ``census``: :func:`key_census` of ``added``
-        when the caller made it; ``copy_changes``: writes the changes to the scratch graphs SPARQL
-        text reads them from (called before the first text is sent)."""
+        when the caller made it (``lost``: that of ``removed``); ``copy_changes``: writes the changes to the
+        scratch graphs SPARQL text reads them from (called before the first text is sent)."""
         if not self.enabled:
             stats.program = "general: compiled step switched off"
             return False
-        sig = signature(census if census is not None else key_census(added), key_census(removed), clean)
+        sig = signature(census if census is not None else key_census(added),
+                        lost if lost is not None else key_census(removed), clean)
         self._clean = clean
         ran = self._unchanged(sig, state)
         program = ran[0] if ran is not None else self._program(sig, state)

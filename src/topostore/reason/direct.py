@@ -263,7 +263,10 @@ def _terms(atom: Atom) -> tuple:
 def _instance(terms: tuple, bound: dict[str, object]) -> Triple | None | bool:
     """The head for ``bound``: None where SPARQL would not write it (a literal subject, a predicate
     that is not an IRI), False where a literal object would leave its spelling to this code."""
-    s, p, o = (bound[x] if isinstance(x, str) else x for x in terms)
+    s, p, o = terms  # each a variable's name or a term (no generator: a step makes a few heads per part)
+    s = bound[s] if isinstance(s, str) else s
+    p = bound[p] if isinstance(p, str) else p
+    o = bound[o] if isinstance(o, str) else o
     if not isinstance(s, (NamedNode, BlankNode)) or not isinstance(p, NamedNode):
         return None
     if isinstance(o, Literal):

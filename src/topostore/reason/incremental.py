@@ -320,10 +320,11 @@ class IncrementalReasoner:
         if added and self.step.compiler.state_graphs.derived((preds, classes), self.state.present):
             requests.discard(added, (INFERRED, AUX))
         replaced = flip.replaced_in(self.store, added, removed, ASSERTED)
-        ask_again = bool(self.deferred and removed) and self._completion.needed(
-            self.state.present, key_census(removed), asserted=True)
+        lost = key_census(removed)  # read by the completion's decision and the program's signature alike
+        ask_again = bool(self.deferred and removed) and self._completion.needed(self.state.present, lost,
+                                                                                asserted=True)
         if not ask_again and self.step.run(added, removed, replaced, stats, self.state, (preds, classes),
-                                           copy_changes):
+                                           copy_changes, lost):
             self._incomplete = bool(self.deferred and removed) and self._completion.needed(
                 self.state.present, self.step.lost_keys)
             return

@@ -24,7 +24,7 @@ from collections.abc import Callable
 
 from pyoxigraph import BlankNode, Literal, NamedNode
 
-from .look_values import MAX, Str, ebv, term_of, value
+from .look_values import _VALUES, MAX, Str, ebv, term_of, value  # _VALUES: value()'s cache, read inline
 
 _MIN = -(2 ** 63)
 _KINDS = {"ISIRI": NamedNode, "ISURI": NamedNode, "ISBLANK": BlankNode, "ISLITERAL": Literal}
@@ -79,7 +79,8 @@ class _Code:
 
     def __init__(self) -> None:
         self.lines: list[str] = []
-        self.namespace: dict[str, object] = {"value": value, "term_of": term_of, "ebv": ebv, "Str": Str,
+        self.namespace: dict[str, object] = {"value": value, "VALUES": _VALUES, "term_of": term_of,
+                                             "ebv": ebv, "Str": Str,
                                              "NamedNode": NamedNode, "BlankNode": BlankNode,
                                              "Literal": Literal, "MIN": _MIN, "MAX": MAX}
         #: a solution variable's value and term, each read once
@@ -112,7 +113,9 @@ class _Code:
             return self.binds[name]  # a BIND's value is one already (value() of it is itself)
         if name not in self.values:
             term = self.new(f"s.get({name!r})")
-            self.values[name] = self.new(f"None if {term} is None else value({term})")
+            # a literal's value read from value()'s own cache where it is there (no call), an IRI's is itself
+            self.values[name] = self.new(f"{term} if type({term}) is not Literal else "
+                                         f"(VALUES.get({term}) or value({term}))")
         return self.values[name]
 
     def _term_of(self, name: str) -> str:

@@ -241,17 +241,12 @@ class Flipped:
             facts += self._facts(store, (subject, w.predicate, None), self._graphs[m])
         return facts
 
-    def _ok(self, solution: dict) -> bool:
-        """Whether every condition holds (each test's value must be a boolean, as the text's
-        ``COALESCE(test, false)`` then is)."""
-        answer = self.conditions.exact(solution)
-        if answer is None:
-            raise _Fallback
-        return answer
-
     def _decide(self, solution: dict, olds: dict, gained: dict, lost: dict) -> None:
         before = {**solution, **olds}  # settled and unchanged atoms: the old value is the new one
-        now, then = self._ok(solution), self._ok(before)
+        exact = self.conditions.exact  # each test's value a boolean (as the text's COALESCE(test, false))
+        now, then = exact(solution), exact(before)
+        if now is None or then is None:
+            raise _Fallback
         if now == then:
             return
         head = _instance(self._head, solution)

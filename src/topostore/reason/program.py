@@ -54,6 +54,7 @@ from __future__ import annotations
 import re
 from collections.abc import Callable, Collection
 from dataclasses import dataclass, field
+from typing import NamedTuple
 
 from ..compile.condition import TEST
 from ..compile.owl_restrictions import term_before
@@ -73,10 +74,12 @@ _TYPE = str(TYPE)
 _APART = re.compile(r"(?:^|&&)\s*!sameTerm\((\?\w+), (\?\w+)\)")
 
 
-@dataclass(frozen=True)
-class Signature:
+class Signature(NamedTuple):
     """What kind of change a REASON maintains: read keys of the added and removed asserted facts,
-    and the predicates all of whose changes are clean replacements (see :func:`.flip.clean_replacements`)."""
+    and the predicates all of whose changes are clean replacements (see :func:`.flip.clean_replacements`).
+
+    A named tuple: a REASON hashes and compares its signature four or five times (the programs, the last
+    runs, the unsettled ones), a tuple's hash and equality in C where a frozen dataclass's are Python calls."""
 
     added: frozenset
     removed: frozenset

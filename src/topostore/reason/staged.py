@@ -185,7 +185,8 @@ class StagedRun:
         return key in changes
 
     def _reading(self, keys: Collection) -> None:
-        """Send what is queued when it may write facts of ``keys``, which Python is about to read."""
+        """Send what is queued when it may write facts of ``keys``, which Python is about to read (callers
+        test ``dirty`` first: most reads find nothing queued)."""
         if self.dirty and (None in self.dirty or not self.dirty.isdisjoint(keys)):
             self.flush()
 
@@ -197,7 +198,8 @@ class StagedRun:
     def _flip(self, index: int, tag: tuple, text: str, own_window: bool = False) -> str:
         """The flip's text for this run (:attr:`flip_text`): "" when nothing can flip, the compiled text,
         or one narrowed by a value window (not where the look-up reads its own: ``own_window``)."""
-        self._reading(self._reads(index))  # a value window's query reads the rule's premises
+        if self.dirty:  # a value window's query reads the rule's premises
+            self._reading(self._reads(index))
         return self.flip_text(tag[2], tag[3], text, own_window) if own_window \
             else self.flip_text(tag[2], tag[3], text)
 
@@ -237,7 +239,8 @@ class StagedRun:
         where the look-up gives up (a window query then narrows it)."""
         direct = self.direct.get(index) if look_up else None
         if direct is not None:
-            self._reading(self.program.reads[index])
+            if self.dirty:  # nothing queued: nothing to send first (no call)
+                self._reading(self.program.reads[index])
             if direct(self.store):
                 self.sent += 1
                 return False
@@ -264,7 +267,8 @@ class StagedRun:
         queued = self._send(index, text, key)
         if found.get(("many", key)):
             return queued
-        self._reading((key,))
+        if self.dirty:
+            self._reading((key,))
         candidates = self.facts(key, CANDIDATES, FEW)
         if len(candidates) >= FEW:
             found[("many", key)] = True
@@ -278,7 +282,8 @@ class StagedRun:
             return False  # nothing could have made candidates
         answer = found.get((graph, key))
         if answer is None:
-            self._reading((key,))
+            if self.dirty:
+                self._reading((key,))
             answer = found[(graph, key)] = self.has(key, graph)
         return answer
 
@@ -306,8 +311,8 @@ class StagedRun:
 
     def note(self, key: ReadKey) -> None:
         """Record whether ``key`` lost or gained facts."""
-        self._reading((key,))
-
+        if self.dirty:
+            self._reading((key,))
         if self.has(key, OVERDELETED):
             self.minus.add(key)
         if self.has(key, NEW_FACTS):

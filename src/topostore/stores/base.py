@@ -186,6 +186,11 @@ class Store:
     is_empty = reads.is_empty
     dump = reads.dump
 
+    def objects_by_graph(self, s: Term, p: NamedNode, graphs: list[NamedNode]) -> dict[NamedNode, list[Term]]:
+        """:meth:`objects` of one (subject, predicate) in each of ``graphs`` (a store reading its own
+        index may read them all at once)."""
+        return {g: self.objects(s, p, g) for g in graphs}
+
     # ------------------------------------------------------------ primitives (implementations)
     def _has(self, quad: Quad) -> bool:
         raise NotImplementedError

@@ -88,7 +88,7 @@ class BatchedReads:
         trips, from the listings and one query for the graphs not known (then kept)."""
         store, listings = self._store, self._store.listings
         if listings is None or store._pending is not None:
-            return {g: store.objects(s, p, g) for g in graphs}
+            return store.objects_by_graph(s, p, graphs)
         found: dict[NamedNode, list[Term]] = {}
         for g in graphs:
             quads = listings.get(s, p, g)
