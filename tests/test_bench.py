@@ -99,3 +99,34 @@ def test_a_size_that_dies_mid_run_is_a_failure_not_its_last_progress_row(tmp_pat
     monkeypatch.setenv("PYTHONPATH", str(tmp_path))  # the size runs as `python -m dies`
     row = run_size(["dies"], 60, "8", "scale")
     assert row["error"].startswith("exit -9 (SIGKILL)") and "during load + first REASON" in row["error"]
+
+
+def test_the_scale_bench_collects_the_maps_garbage_before_the_timed_load(tmp_path: Path,
+                                                                         monkeypatch: pytest.MonkeyPatch) -> None:
+    """The LOAD is timed as a fresh service's: what making the map left is collected before it, not in it."""
+    import gc
+
+    events: list[str] = []
+    written = maps.write
+
+    def write(*args, **kwargs):
+        events.append("map written")
+        return written(*args, **kwargs)
+
+    class Robot(scale.ArmorRobot):
+        def __init__(self, path: Path) -> None:
+            events.append("LOAD")
+            super().__init__(path)
+
+    def collected(phase: str, info: dict) -> None:
+        if phase == "stop" and info["generation"] == 2 and events[-1:] == ["map written"]:
+            events.append("collected")
+
+    monkeypatch.setattr(scale.maps, "write", write)
+    monkeypatch.setattr(scale, "ArmorRobot", Robot)
+    gc.callbacks.append(collected)
+    try:
+        scale.run("8", steps=1, budget_s=60.0, work=tmp_path, min_steps=1)
+    finally:
+        gc.callbacks.remove(collected)
+    assert events[:3] == ["map written", "collected", "LOAD"]

@@ -352,3 +352,13 @@ def test_a_free_core_is_read_from_the_machines_counters_less_this_process() -> N
     assert busy_cores([0] * 7, idle) == 0.0 and busy_cores([0] * 7, busy) == cores
     assert spare(0.4) == (cores >= 2) and not spare(cores - 1.0)
     assert CoreWatch().free() is (None if cpu_times() is not None else False)  # no window read yet, or no counters
+
+
+def test_a_busy_spell_says_busy_for_its_own_window_only(monkeypatch: pytest.MonkeyPatch) -> None:
+    """A second of every core busy, then a second of every core idle: the first answer is busy, the second
+    free (a window from the creation on still read one core busy of two, and said busy to the end)."""
+    monkeypatch.setattr(os, "cpu_count", lambda: 2)
+    readings = iter([[0, 0, 0, 0, 0], [200, 0, 0, 0, 0], [200, 0, 0, 200, 0], [400, 0, 0, 200, 0]])
+    clock = iter([0.0, 1.0, 2.0, 3.0])
+    watch = CoreWatch(lambda: next(readings), lambda: next(clock), lambda: 0.0)
+    assert [watch.free(), watch.free(), watch.free()] == [False, True, False]

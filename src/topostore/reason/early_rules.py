@@ -138,38 +138,27 @@ class EarlyRules:
                     self._after.setdefault(start, []).append(i)
             for i in component:
                 before.add(c, run.rules[i].writes())
-            evaluated.append(evaluated[c] + sum(1 for i in component if self._evaluated(i)))
+            evaluated.append(evaluated[c] + sum(1 for i in component if run.first_pass_evaluates(i)))
 
     def _eligible(self, i: int, back: Collection[int]) -> bool:
         """Whether rule ``i``'s first-pass evaluation hashes (:func:`hashes`) and writes into one graph alone
         (see the module)."""
-        run = self.run
-        key = run.rules[i].writes()
-        return (hashes(run.rules[i]) and i not in back and i not in run._deferring and i not in run._unions
-                and i not in run._joined and key is not None and key[0] != "*" and key != ("p", TYPE_KEY)
-                and run.triggers.feasible(i, run.present))
-
-    def _evaluated(self, i: int) -> bool:
-        """Whether the first pass evaluates rule ``i`` (as far as the run's start tells)."""
-        run = self.run
-        return i not in run._deferring and i not in run._joined and run.triggers.feasible(i, run.present)
+        key = self.run.rules[i].writes()
+        return (hashes(self.run.rules[i]) and i not in back and key is not None and key[0] != "*"
+                and key != ("p", TYPE_KEY) and self.run.first_pass_alone(i))
 
     def after(self, component: int) -> None:
         """The ordered component ``component`` is done (-1: none yet): start the evaluations that waited."""
         run = self.run
         store = run.store
+        delta = run.delta_read
         for i in self._after.pop(component, ()):
-            read = run._direct
-            run._direct = (read[0], None)  # as the first pass evaluates it
-            try:
-                text = run.evaluation_text(i, None, i in run._implied, first=True)
-            finally:
-                run._direct = read
-            form = construct_form(text, read[0])
+            text = run.first_pass_text(i)
+            form = construct_form(text, delta)
             if form is None:
                 continue
             query, graph = form
-            self._started[i] = (_without_delta(text, read[0]),
+            self._started[i] = (_without_delta(text, delta),
                                 self._reader.submit(lambda q=query, g=graph: _evaluate(store, q, g)))
 
     def wrote(self, key: ReadKey | None) -> None:
@@ -182,7 +171,7 @@ class EarlyRules:
         started = self._started.pop(i, None)
         if started is None:
             return None
-        return early_result(started, _without_delta(text, self.run._direct[0]))
+        return early_result(started, _without_delta(text, self.run.delta_read))
 
     def close(self) -> None:
         """Drop what was not used (the reader is joined by its owner)."""

@@ -163,6 +163,33 @@ class Materializer:
                                                   bare)
         return text
 
+    @property
+    def delta_read(self) -> NamedNode | None:
+        """The delta graph evaluations read while :meth:`run` writes straight to the graphs (None outside)."""
+        return self._direct[0] if self._direct is not None else None
+
+    def first_pass_evaluates(self, index: int) -> bool:
+        """Whether the ordered first pass of :meth:`run` evaluates rule ``index``, as far as the run's start
+        tells: not deferred to the end, not evaluated as part of another rule's class union, its keys able
+        to hold facts."""
+        return (index not in self._deferring and index not in self._joined
+                and self.triggers.feasible(index, self.present))
+
+    def first_pass_alone(self, index: int) -> bool:
+        """Whether that evaluation is rule ``index``'s alone (no class union led by it)."""
+        return index not in self._unions and self.first_pass_evaluates(index)
+
+    def first_pass_text(self, index: int) -> str:
+        """The text the ordered first pass sends for rule ``index``, evaluated without a delta, in the run's
+        present state (its shortcuts and the heads it keeps out as they stand now)."""
+        read = self._direct
+        if read is not None:
+            self._direct = (read[0], None)  # as the first pass evaluates it: no next delta written
+        try:
+            return self.evaluation_text(index, None, index in self._implied, first=True)
+        finally:
+            self._direct = read
+
     def _flush(self) -> None:
         """Send the queued evaluations of a round as one update request.
 

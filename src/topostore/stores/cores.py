@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import os
 import time
+from collections.abc import Callable
 
 
 def cpu_times() -> list[int] | None:
@@ -41,28 +42,42 @@ def spare(others: float) -> bool:
 
 class CoreWatch:
     """Watches the machine from its creation: :meth:`free` says whether the other processes left a core
-    free over that time (this process's own CPU time taken out), once :data:`WINDOW_S` have passed."""
+    free over the last window (this process's own CPU time taken out), once :data:`WINDOW_S` have passed.
+
+    Each answer "busy" starts the next window where it was read: a busy spell (another process's short
+    burst, the kernel writing back a file just written) says no for its own window only, where a window
+    from the creation on kept it in every later answer (a 100,000-location LOAD once took no worker at
+    all).  On cores busy throughout, every window says busy, as one long window did."""
 
     #: the shortest window read (the kernel counts in ticks of 10 ms)
     WINDOW_S = 0.05
 
-    def __init__(self) -> None:
-        self._first = cpu_times()
-        self._since = time.monotonic()
-        self._own = time.process_time()
+    def __init__(self, counters: Callable[[], list[int] | None] = cpu_times,
+                 clock: Callable[[], float] = time.monotonic,
+                 own_cpu: Callable[[], float] = time.process_time) -> None:
+        """``counters``, ``clock`` and ``own_cpu``: the machine's counters, the time and this process's CPU
+        time (the kernel's, by default)."""
+        self._counters, self._clock, self._own_cpu = counters, clock, own_cpu
+        self._first = counters()
+        self._since = clock()
+        self._own = own_cpu()
 
     def free(self) -> bool | None:
         """True or False once the window is long enough, None before; False where nothing is known."""
         if self._first is None:
             return False
-        elapsed = time.monotonic() - self._since
+        now = self._clock()
+        elapsed = now - self._since
         if elapsed < self.WINDOW_S:
             return None
-        second = cpu_times()
+        second = self._counters()
         if second is None:
             return False
-        own = (time.process_time() - self._own) / elapsed
-        return spare(busy_cores(self._first, second) - own)
+        own_now = self._own_cpu()
+        answer = spare(busy_cores(self._first, second) - (own_now - self._own) / elapsed)
+        if not answer:  # the next answer reads the machine from here on
+            self._first, self._since, self._own = second, now, own_now
+        return answer
 
 
 __all__ = ["CoreWatch", "busy_cores", "cpu_times", "spare"]
