@@ -81,17 +81,40 @@ def test_wide_rows_over_many_individuals_run_generically_in_bounded_time() -> No
 
 
 def test_a_generic_rule_reads_its_rows_before_its_body() -> None:
-    """The schema graph's pattern opens every WHERE of a generic rule: without delta, with one atom on
-    the delta, and planned per delta fact (flat or LATERAL); the delta atom follows it."""
+    """The schema graph's pattern opens a generic rule's WHERE without delta and planned per delta fact
+    (flat or LATERAL), the delta atom after it, and a full round's delta evaluation where its rows are of
+    more than two terms; rows of two (``cax-sco``) follow the delta, which binds one of their terms."""
     for key in ("neg-uni-4", "neg-uni-8", "cls-int1-8", "cax-sco", "prp-spo2"):
         generic = schema_rules()[key]
         rule = generic.evaluable(False)
         schema = f"GRAPH {generic.graph} "
-        texts = [rule.where(), rule.where(0, str(DELTA)), plan_where(rule, 0, DELTA, lateral=False),
-                 plan_where(rule, 0, DELTA, lateral=True)]
+        texts = [rule.where(), plan_where(rule, 0, DELTA, lateral=False), plan_where(rule, 0, DELTA, lateral=True)]
+        if key != "cax-sco":
+            texts.append(rule.where(0, str(DELTA)))
         for text in texts:
             lines = text.split("\n")
             assert lines[0].strip().startswith(schema), (key, text)
             assert text.count(schema) == 1
         for text in texts[1:]:
             assert text.split("\n")[1].strip().startswith(f"GRAPH {DELTA} "), (key, text)
+    rule = schema_rules()["cax-sco"].evaluable(False)
+    lines = [line.strip() for line in rule.where(0, str(DELTA)).split("\n")]
+    assert lines[0].startswith(f"GRAPH {DELTA} ") and lines[1].startswith(f"GRAPH {schema_rules()['cax-sco'].graph} ")
+
+
+def test_a_delta_that_binds_no_row_term_reads_on_before_the_rows() -> None:
+    """``different-disjoint``'s rows (every pair of disjoint classes: tens of thousands on a large TBox)
+    are read once a class is bound: after a new candidate pair, its first member's classes; after a new
+    class fact, the pairs of candidates it has (helper facts, few) before the classes disjoint with it."""
+    generic = schema_rules()["different-disjoint"]
+    rule = generic.evaluable(True)
+    schema = f"GRAPH {generic.graph} "
+    atoms = [a.text() for a in rule.body]
+    candidate, typed = atoms.index("?a <urn:topostore:differenceCandidate> ?b ."), atoms.index(
+        "?a <http://www.w3.org/1999/02/22-rdf-syntax-ns#type> ?c .")
+    lines = [line.strip() for line in rule.where(candidate, str(DELTA)).split("\n")]
+    assert lines[0].startswith(f"GRAPH {DELTA} ") and "rdf-syntax-ns#type" in lines[1], lines
+    assert lines[2].startswith(schema), lines
+    lines = [line.strip() for line in rule.where(typed, str(DELTA)).split("\n")]
+    assert lines[0].startswith(f"GRAPH {DELTA} ") and "differenceCandidate" in lines[1], lines
+    assert lines[2].startswith(schema), lines

@@ -213,8 +213,14 @@ class Rule:
 
     def _where(self, delta_index: int | None, delta_graph: str, graphs: Mapping[ReadKey, NamedNode] | None) -> str:
         lead, bound, filters = self.placed
-        order = join_order(self.body, delta_index, bound)
-        lines = ([lead] if lead else []) + [self.atom_text(i, delta_index, delta_graph, graphs) for i in order]
+        if lead and delta_index is not None and len(bound) <= 2:  # the delta first, then a pair's rows
+            order = join_order(self.body, delta_index)
+            atoms = [self.atom_text(i, delta_index, delta_graph, graphs) for i in order]
+            lines = atoms[:1 + _binding(self.body, order, bound)]
+            lines += [lead] + atoms[len(lines):]
+        else:
+            order = join_order(self.body, delta_index, bound)
+            lines = ([lead] if lead else []) + [self.atom_text(i, delta_index, delta_graph, graphs) for i in order]
         if filters:
             lines.append(filters)
         return "\n  ".join(lines)
@@ -369,3 +375,23 @@ class RuleSet:
         if self.disjointness is None:
             return [], []
         return self.disjointness.rules()
+
+
+def _binding(body: tuple[Atom, ...], order: list[int], lead_vars: frozenset[str]) -> int:
+    """How many atoms of ``order`` after the first (the delta) a generic rule's schema rows follow
+    (:meth:`Rule._where`): the first atoms until one of the rows' variables is bound, and a helper-graph
+    atom of a bound term after it (its facts are few: ``different-disjoint``'s candidate pairs of a new
+    class fact, not every class disjoint with it).
+
+    Why not the rows first, as without delta: a table scanned whole per delta evaluation costs its size
+    each round (``different-disjoint`` at 400 classes + 400 functional properties: 0.2 s of a full REASON's 0.6 s
+    CPU, docs/benchmarks-history.md); read by a bound term it costs the delta's matches.  Rows of more
+    than two terms (a union's or an intersection's members, a restriction's property and filler) still
+    lead: ``neg-uni-8`` read after its delta did not end in a minute (the engine joined its other
+    non-memberships before the rows bound their classes)."""
+    known = set(body[order[0]]._vars)
+    for n, i in enumerate(order[1:]):
+        if known & lead_vars and not (body[i].aux and known & body[i]._vars):
+            return n
+        known |= body[i]._vars
+    return len(order) - 1
