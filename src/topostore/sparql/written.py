@@ -24,6 +24,7 @@ from pyoxigraph import BlankNode, Literal, NamedNode, RdfFormat, Triple, parse
 
 from ..rdf.lexer import IRI, KEYWORD, PUNCT, VARIABLE, Token, tokens
 from ..rdf.terms import Term
+from ..rdf.vocab import INTERNAL
 from ..stores.literal_forms import stored_literal
 
 #: a bare SPARQL number (INTEGER, DECIMAL or DOUBLE, signed or not), not part of a name or a variable
@@ -31,7 +32,7 @@ _NUMBER = re.compile(r"(?<![\w:.?$\-])[+-]?(?:\d+\.\d*[eE][+-]?\d+|\d*\.\d+(?:[e
 #: the numbers Oxigraph stores as written (no sign "+", no leading or trailing zero, no exponent)
 _CANONICAL = re.compile(r"-?(?:0|[1-9]\d*)(?:\.\d*[1-9])?")
 #: what a template's variable becomes in the Turtle read of it (any term, at that position)
-_ANY = NamedNode("urn:x-topostore:template-variable")
+_ANY = NamedNode(INTERNAL + "template-variable")
 
 #: a template triple: its subject and predicate (None: any term) and the literal written as its object
 Template = tuple[NamedNode | None, NamedNode | None, Literal]
