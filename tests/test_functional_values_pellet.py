@@ -191,3 +191,22 @@ def test_a_change_to_values_pellet_does_not_tell_apart_is_said_at_the_reason() -
         warnings.simplefilter("always")
         assert not o.reason().consistent
     assert not [w for w in caught if w.category is PelletDifferenceWarning]
+
+
+def test_the_warning_turned_into_an_error_leaves_the_reason_done() -> None:
+    """Under ``warnings.simplefilter("error")`` the warning reaches the caller as an error, after the REASON
+    has completed: the user's change stays and the report says inconsistent (nothing is undone)."""
+    o = Ontology()
+    o.load_data(document("strict", ":d a owl:DatatypeProperty, owl:FunctionalProperty .\n"
+                                   ":q a owl:DatatypeProperty .\n:x :d 5 ."), "turtle")
+    assert o.reason().consistent
+    x, d, q = (NamedNode(namespace("strict") + n) for n in ("x", "d", "q"))
+    o.add(Triple(x, d, Literal("five")), Triple(x, q, Literal("kept")))
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        with pytest.raises(PelletDifferenceWarning):
+            o.reason()
+    assert o.data_values(q, x) == [Literal("kept")]
+    assert Literal("five") in o.data_values(d, x)
+    assert o.report is not None and not o.report.consistent
+    assert not o.dirty

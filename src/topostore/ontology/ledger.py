@@ -37,6 +37,7 @@ from ..errors import TopostoreError
 from ..rdf.vocab import ASSERTED, AUX, ENTAILED, INFERRED
 from ..reason import limits
 from ..reason.incremental import check_mode
+from .pellet_values import warn_pellet_differences
 
 if TYPE_CHECKING:  # pragma: no cover
     from ..stores.base import Store
@@ -287,6 +288,8 @@ def all_or_nothing(reason: F) -> F:
             raise
         self.ledger.succeeded(self.incremental_ready())
         self.values.reasoned()
+        # said once the REASON has completed: a warning turned into an error must not undo a good REASON
+        warn_pellet_differences(report.violations)
         return report
 
     return wrapper  # type: ignore[return-value]

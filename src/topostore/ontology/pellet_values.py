@@ -17,7 +17,11 @@ Two values in different classes are taken as possibly equal: Pellet merges them,
 on the order it reads them in) and misses the clash, unless another axiom (a range) rules the kept one out.
 That departs from OWL 2, and a robot does not write it in a day's work (it writes one datatype per property,
 and a REPLACE leaves one value), so topostore follows OWL 2 and says where it answers otherwise than Pellet:
-a :class:`PelletDifferenceWarning` naming the inconsistency.
+a :class:`PelletDifferenceWarning` naming the inconsistency, said once the REASON has completed (by
+:func:`topostore.ontology.ledger.all_or_nothing`: a warning turned into an error must not undo a good REASON).
+It names an inconsistency resting on the two values themselves (the violation holds both); one resting on them
+only indirectly (two individuals told different by such values, then merged by a functional object property)
+is reported without it: telling that apart would mean tracing why the individuals differ.
 """
 
 from __future__ import annotations

@@ -23,7 +23,6 @@ from ..stores import check_rules
 from ..stores.literal_forms import FORMS
 from ..stores.meta import META
 from . import state as durable_state
-from .pellet_values import warn_pellet_differences
 
 if TYPE_CHECKING:
     from .facade import Ontology
@@ -76,7 +75,6 @@ class OntologyReasoning:
             stats, violations = onto._reasoner.reason(added, removed, mode=mode, profile=profile,
                                                       forced_reason=forced)
         onto.store.maybe_compact()
-        warn_pellet_differences(violations)
         previous, onto._report = onto._report, ReasonReport(not violations, violations, stats,
                                                             [n for n in rules.notices if n.incomplete])
         self._advance_views(previous)

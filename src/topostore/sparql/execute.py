@@ -19,12 +19,14 @@ from __future__ import annotations
 
 import threading
 import time
+from collections.abc import Callable
 from dataclasses import dataclass, field
 
 import pyoxigraph as ox
 from pyoxigraph import DefaultGraph, Literal, Quad, QueryBoolean, QuerySolutions, Triple
 
 from ..errors import QueryError
+from ..rdf.terms import Term
 from ..rdf.vocab import ASSERTED, OWL, RDF, RDFS, XSD
 from ..stores.base import skolemize
 from ..stores.language_tags import literal_tags
@@ -190,8 +192,9 @@ class UpdateOutcome:
                 "warnings": self.warnings}
 
 
-def update_delta(asserted: list[Triple], text: str) -> TripleDelta:
-    """What ``text`` adds to and removes from ``asserted``, computed on a scratch store."""
+def update_delta(asserted: list[Triple], text: str, held: Callable[[Literal], Term] | None = None) -> TripleDelta:
+    """What ``text`` adds to and removes from ``asserted``, computed on a scratch store; each added literal
+    spelled as the text wrote it at its position, else as ``held`` gives its value (:func:`.written.as_written`)."""
     scratch = ox.Store()
     scratch.extend([Quad(t.subject, t.predicate, t.object, DefaultGraph()) for t in asserted])
     try:
@@ -206,7 +209,7 @@ def update_delta(asserted: list[Triple], text: str) -> TripleDelta:
                          "writable graph, the default graph (leave out GRAPH and WITH)")
     after = {skolemize(Triple(q.subject, q.predicate, q.object)) for q in scratch.quads_for_pattern(None, None, None, DefaultGraph())}
     before = set(asserted)
-    return TripleDelta(add=as_written(sorted(after - before, key=str), text), remove=sorted(before - after, key=str))
+    return TripleDelta(add=as_written(sorted(after - before, key=str), text, held), remove=sorted(before - after, key=str))
 
 
 def run_update(ref: WritableOntology, text: str, job: Job, limit: float) -> UpdateOutcome:
@@ -220,7 +223,7 @@ def run_update(ref: WritableOntology, text: str, job: Job, limit: float) -> Upda
             raise ReferenceMounted(f"reference {ref.name!r} is mounted by client {ref.owner!r}; "
                                    "only that client may change it")
         asserted = list(ref.ontology.store.triples(graph=ASSERTED))
-        delta = update_delta(asserted, text)
+        delta = update_delta(asserted, text, ref.ontology.store.restore)
         if not job.claim():
             raise SparqlTimeout(timeout_message(limit))
         added, removed, warnings = ref.manipulate("SPARQL update", delta.add, delta.remove)
