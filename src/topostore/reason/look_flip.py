@@ -40,8 +40,9 @@ from .direct import _instance, _terms
 from .flip import CHANGE_OLD, compact_possible, compared_only
 from .join_code import compile_flip
 from .look_join import Conditions, every_graph, joinable
-from .look_values import value
+from .look_values import VALUES, value
 from .scratch import FLIP_GAINED
+from .window import INT_BOUND
 
 
 class _Fallback(Exception):
@@ -259,10 +260,13 @@ class Flipped:
         between the two states, and a linear test answers differently only inside the span; the tests
         that do not read it answer alike.  ``spans``: per seed's terms, this run's span (True: none)."""
         v, t, rest = self._skip
-        x = value(solution.get(v))
-        if type(x) is not int or not -window.INT_BOUND <= x <= window.INT_BOUND:
+        term = solution.get(v)
+        x = VALUES.get(term)  # value()'s own cache first (no call)
+        if x is None:
+            x = value(term)
+        if type(x) is not int or not -INT_BOUND <= x <= INT_BOUND:
             return False
-        terms = (olds.get(t), solution.get(t), *[solution.get(n) for n in rest])
+        terms = (olds.get(t), solution.get(t), *map(solution.get, rest))
         span = spans.get(terms)
         if span is None:
             span = spans[terms] = self._span(terms)
@@ -272,7 +276,7 @@ class Flipped:
         """:func:`.window.integer_interval` of the seed's old and new value and the other values (terms),
         False where no test can flip, True where there is none (a value not an int within the bound)."""
         values = [value(term) for term in terms]
-        if not all(type(x) is int and -window.INT_BOUND <= x <= window.INT_BOUND for x in values):
+        if not all(type(x) is int and -INT_BOUND <= x <= INT_BOUND for x in values):
             return True
         w = self._window
         span = window.integer_interval(w.forms, values[0], values[1], dict(zip(w.rest, values[2:])))
