@@ -40,9 +40,8 @@ from .direct import _instance, _terms
 from .flip import CHANGE_OLD, compact_possible, compared_only
 from .join_code import compile_flip
 from .look_join import Conditions, every_graph, joinable
-from .look_values import VALUES, value
+from .look_values import value
 from .scratch import FLIP_GAINED
-from .window import INT_BOUND
 
 
 class _Fallback(Exception):
@@ -115,12 +114,6 @@ class Flipped:
         #: the last seed's branch read through a value window (see :func:`_window_of`), or None
         self._window = None if values is None else _window_of(rule, order, self._plans[-1])
         self._window_key = None if self._window is None else f"<{self._window.predicate.value}>"
-        #: without a value index, the last seed's scanned candidates that cannot flip are left out
-        #: (:meth:`_outside`): its value's, its seed's old and new value's and the other values' keys
-        w = self._window
-        self._skip = None if w is None or w.forms is None \
-            or not window.overflow_free(rule, w.t, frozenset((w.t, w.v, *w.rest))) \
-            else (f"?{w.v}", f"?{w.t}", tuple(f"?{n}" for n in w.rest))
         #: the keys whose facts it reads: its atoms' and its head's
         self.reads = frozenset({a.read_key() for a in rule.body} | {rule.head.read_key()})
         #: per changed atom, its branch compiled once into a flat function (:func:`.join_code.compile_flip`),
@@ -155,21 +148,17 @@ class Flipped:
         last = len(self.order) - 1
         try:
             for position, k in enumerate(self.order):
-                # the span of each seed's values in the last branch, where it scans (no index) and may skip
-                spans = {} if position == last and index is None and self._skip is not None else None
                 if index is None or position != last:
                     if self._branches is not None:
                         for solution, olds in self._branches[position](store):
-                            if spans is None or not self._outside(solution, olds, spans):
-                                self._decide(solution, olds, gained, lost)
+                            self._decide(solution, olds, gained, lost)
                         continue
                     index_here = None
                 else:
                     index_here = index  # the windowed branch is interpreted: it reads few facts
                 for bound, old in self._seeds(store, k):
                     for solution, olds in self._extend(store, position, bound, old, 0, index_here):
-                        if spans is None or not self._outside(solution, olds, spans):
-                            self._decide(solution, olds, gained, lost)
+                        self._decide(solution, olds, gained, lost)
         except _Fallback:
             return False
         store.add_scratch(list(gained), FLIP_GAINED)
@@ -251,36 +240,6 @@ class Flipped:
         for subject in dict.fromkeys(f.subject for f in inside):
             facts += self._facts(store, (subject, w.predicate, None), self._graphs[m])
         return facts
-
-    def _outside(self, solution: dict, olds: dict, spans: dict) -> bool:
-        """Whether a scanned candidate of the last seed's branch answers alike before and after: its
-        value an int outside the window's span (:func:`.window.integer_interval`) of the seed's old and new
-        value and the other values the tests read, every one an int of at most :data:`.window.INT_BOUND`
-        (the tests then compute exactly, :func:`.window.overflow_free`).  Only the seed's value differs
-        between the two states, and a linear test answers differently only inside the span; the tests
-        that do not read it answer alike.  ``spans``: per seed's terms, this run's span (True: none)."""
-        v, t, rest = self._skip
-        term = solution.get(v)
-        x = VALUES.get(term)  # value()'s own cache first (no call)
-        if x is None:
-            x = value(term)
-        if type(x) is not int or not -INT_BOUND <= x <= INT_BOUND:
-            return False
-        terms = (olds.get(t), solution.get(t), *map(solution.get, rest))
-        span = spans.get(terms)
-        if span is None:
-            span = spans[terms] = self._span(terms)
-        return span is False or (span is not True and (x < span[0] or x > span[1]))
-
-    def _span(self, terms: tuple) -> tuple | bool:
-        """:func:`.window.integer_interval` of the seed's old and new value and the other values (terms),
-        False where no test can flip, True where there is none (a value not an int within the bound)."""
-        values = [value(term) for term in terms]
-        if not all(type(x) is int and -INT_BOUND <= x <= INT_BOUND for x in values):
-            return True
-        w = self._window
-        span = window.integer_interval(w.forms, values[0], values[1], dict(zip(w.rest, values[2:])))
-        return True if span is None else span
 
     def _decide(self, solution: dict, olds: dict, gained: dict, lost: dict) -> None:
         before = {**solution, **olds}  # settled and unchanged atoms: the old value is the new one

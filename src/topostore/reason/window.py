@@ -272,39 +272,6 @@ def integer_forms(found: list[Test], v: str, t: str) -> tuple[IntegerForm, ...] 
     return tuple(out)
 
 
-#: the magnitude up to which :func:`overflow_free` vouches for a value of the tests it accepts
-INT_BOUND = 2 ** 40
-
-
-def overflow_free(rule: Rule, t: str, names: frozenset[str]) -> bool:
-    """Whether every test and BIND of ``rule`` that reads ``t`` stays within 64-bit integers (the
-    evaluator's and SPARQL's integer range) whenever the variables ``names`` they read hold ints of at
-    most :data:`INT_BOUND`: each is linear, reads only ``names``, and its absolute form (every ``-`` read
-    as ``+``, BINDs substituted, bounding every value computed on the way) has coefficients summing to
-    at most 2**20 and a constant of at most 2**60.  A property of the rule: asked once."""
-    binds: dict[str, Linear] = {}
-    deps: dict[str, frozenset[str]] = {}
-    for c in rule.conditions:
-        own = frozenset(v[1:] for v in c.variables) - ({c.binds[1:]} if c.binds else set())
-        reads = frozenset().union(*(deps.get(n, frozenset({n})) for n in own))
-        if c.kind == BIND:
-            deps[c.binds[1:]] = reads
-        if t not in reads:
-            continue
-        if c.kind not in (BIND, TEST) or not reads <= names:
-            return False
-        try:
-            tokens = ["+" if tok == "-" or tok in _COMPARISON else tok for tok in _tokens(c.expression)]
-        except _NotLinear:
-            return False
-        form = _linear(tokens, binds)
-        if form is None or sum(form[0].values()) > 2 ** 20 or form[1] > 2 ** 60:
-            return False
-        if c.kind == BIND:
-            binds[c.binds[1:]] = form
-    return True
-
-
 def integer_interval(forms: tuple[IntegerForm, ...], old: int, new: int,
                      rest: dict[str, int]) -> tuple[int | Fraction, int | Fraction] | None | bool:
     """:func:`interval` for :func:`integer_forms` and int values (no margin: the arithmetic is exact),
@@ -389,5 +356,5 @@ class ValueIndex:
         return len(self._keys)
 
 
-__all__ = ["INT_BOUND", "IntegerForm", "Linear", "Test", "ValueIndex", "integer_forms", "integer_interval", "interval", "margin",
-           "number", "overflow_free", "possible", "single_precision", "tests"]
+__all__ = ["IntegerForm", "Linear", "Test", "ValueIndex", "integer_forms", "integer_interval", "interval", "margin",
+           "number", "possible", "single_precision", "tests"]
