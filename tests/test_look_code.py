@@ -74,14 +74,14 @@ def test_a_literals_value_read_from_the_cache_or_made_answers_alike() -> None:
     cached, and one cached as a falsy value (0, the empty string) answer as the closures, again and again."""
     from pyoxigraph import Literal, NamedNode
 
-    from topostore.reason.look_values import _VALUES
+    from topostore.reason.look_values import VALUES
 
     integer = NamedNode("http://www.w3.org/2001/XMLSchema#integer")
     tests = trees(["?a < ?b", "?c = \"\""])
     holds, exact = compile_conditions([], tests)
     for a, b in (("0", "1"), ("-3", "0"), ("1", "0")):
         solution = {"?a": Literal(a, datatype=integer), "?b": Literal(b, datatype=integer), "?c": Literal("")}
-        _VALUES.pop(solution["?a"], None)
+        VALUES.pop(solution["?a"], None)
         first = (holds(solution), exact(solution))
         assert first == (holds(solution), exact(solution)) == reference([], tests, solution), (a, b)
         assert first[1] == (int(a) < int(b))

@@ -710,11 +710,15 @@ def test_a_part_nothing_starts_is_passed_by_its_keys() -> None:
     assert [index for part in parts for index, *_ in part.ops] == [
         i for i, (tag, _) in enumerate(program.ops) if tag[0] != "component"]
     for part in parts:
-        kinds = {kind for _, kind, _, _, _ in part.ops}
-        if any(flip is not None for *_, flip in part.ops) or kinds & {"seeds", "always", "changes"}:
+        kinds = {op[1] for op in part.ops}
+        if any(op[4] is not None for op in part.ops) or kinds & {"seeds", "always", "changes"}:
             assert part.always
-        assert part.minus == {key for _, kind, key, _, _ in part.ops if kind == "minus"}
-        assert part.plus == {key for _, kind, key, _, _ in part.ops if kind == "plus"}
+        assert part.minus == {op[2] for op in part.ops if op[1] == "minus"}
+        assert part.plus == {op[2] for op in part.ops if op[1] == "plus"}
+        for index, _, _, text, _, key, found, reads, seeded, _, _ in part.ops:  # bound once per program
+            assert (text, key, found, seeded) == (program.ops[index][1], program.part[index],
+                                                   program.direct.get(index), index in program.seeded)
+            assert reads == (program.reads[index] if found is not None else None)
     # the subclasses of Hot (C, then A): only Hot's changes start C's part, only C's start A's
     idle = [part.ops[0][0] for part in parts if not part.always]
     assert len(idle) == 2, describe(program)
@@ -865,3 +869,37 @@ def test_the_clean_replacements_of_a_change_read_only_the_pairs_replaced_once() 
     assert found == flip.clean_replacements(added, removed, lambda s, pred: objects(s, pred, ASSERTED))
     assert sorted(found) == [f"<{p.value}>"]  # (a, q) holds two values now, (b, r) had two added
     assert sorted(str(x.new.subject) for x in found[f"<{p.value}>"]) == sorted([str(a), str(b)])
+
+
+def test_a_tbox_change_between_reasons_drops_the_operations_bound_per_program() -> None:
+    """What a run looks up about each operation is bound once per program (reason/staged._bound); a
+    TBox change between two clock ticks drops the programs: the next tick's run reads a new program's
+    operations, and a member of Hot is now also one of B (a stale program would leave it out)."""
+    from topostore.reason import staged
+
+    onto = new_ontology()
+    for k in range(4):
+        onto.replace(N(f"i{k}"), N("seen"), 90 + 2 * k)
+    onto.reason()
+    programs: list = []
+    original = staged.StagedRun.run
+
+    def run(self):
+        original(self)
+        programs.append((self.program, self.program.segments))
+
+    with mock.patch.object(staged.StagedRun, "run", run):
+        for now in (101, 103):
+            onto.replace(N("clock"), N("now"), now)
+            assert_as_from_scratch(onto, onto.reason())
+        onto.add(Triple(N("Hot"), NamedNode("http://www.w3.org/2000/01/rdf-schema#subClassOf"), N("B")))
+        onto.reason()
+        for now in (105, 107):
+            onto.replace(N("clock"), N("now"), now)
+            report = onto.reason()
+            assert report.stats.program == "compiled"
+            assert_as_from_scratch(onto, report)
+    assert programs[0][0] is programs[1][0] and programs[0][1] is programs[1][1]  # bound once, kept
+    assert programs[2][0] is not programs[1][0] and programs[2][1] is not programs[1][1]
+    assert programs[2][1] is programs[3][1]
+    assert any(t.object == N("B") for t in onto.store.triples(None, TYPE, None, INFERRED))

@@ -24,7 +24,7 @@ from collections.abc import Callable
 
 from pyoxigraph import BlankNode, Literal, NamedNode
 
-from .look_values import _VALUES, MAX, Str, ebv, term_of, value  # _VALUES: value()'s cache, read inline
+from .look_values import MAX, VALUES, Str, ebv, term_of, value
 
 _MIN = -(2 ** 63)
 _KINDS = {"ISIRI": NamedNode, "ISURI": NamedNode, "ISBLANK": BlankNode, "ISLITERAL": Literal}
@@ -79,7 +79,7 @@ class _Code:
 
     def __init__(self) -> None:
         self.lines: list[str] = []
-        self.namespace: dict[str, object] = {"value": value, "VALUES": _VALUES, "term_of": term_of,
+        self.namespace: dict[str, object] = {"value": value, "VALUES": VALUES, "term_of": term_of,
                                              "ebv": ebv, "Str": Str,
                                              "NamedNode": NamedNode, "BlankNode": BlankNode,
                                              "Literal": Literal, "MIN": _MIN, "MAX": MAX}

@@ -36,9 +36,10 @@ Expr = Callable[[Mapping[str, object]], object]
 
 
 #: literal -> its value (:func:`value`), for the next few thousand literals: a robot step reads the same
-#: visit times and threshold at every step, and reading a literal's parts makes new objects each time
-_VALUES: dict[Literal, object] = {}
-_VALUES_MAX = 4096
+#: visit times and threshold at every step, and reading a literal's parts makes new objects each time;
+#: public because the generated conditions read it inline (:mod:`.look_code`)
+VALUES: dict[Literal, object] = {}
+VALUES_MAX = 4096
 
 
 def value(term) -> object:
@@ -46,11 +47,11 @@ def value(term) -> object:
     literal), the term itself for an IRI or a blank node, and the term for any other literal (which
     only the term tests accept).  A value a BIND computed is already one."""
     if isinstance(term, Literal):
-        found = _VALUES.get(term)
+        found = VALUES.get(term)
         if found is None:
-            if len(_VALUES) >= _VALUES_MAX:
-                _VALUES.clear()
-            found = _VALUES[term] = _literal_value(term)
+            if len(VALUES) >= VALUES_MAX:
+                VALUES.clear()
+            found = VALUES[term] = _literal_value(term)
         return found
     return term
 
@@ -228,5 +229,5 @@ def term_of(x: object) -> object:
     return x
 
 
-__all__ = ["UNKNOWN", "Expr", "Str", "all_of", "any_of", "arith", "bound_value", "compare", "ebv", "filter_of",
+__all__ = ["UNKNOWN", "VALUES", "Expr", "Str", "all_of", "any_of", "arith", "bound_value", "compare", "ebv", "filter_of",
            "negate", "not_", "plus", "str_of", "substring", "term_of", "term_test", "value"]

@@ -41,21 +41,22 @@ class Segment:
     __slots__ = ("always", "component", "keys", "minus", "ops", "plus")
 
     def __init__(self, ops: list[tuple], component=None) -> None:
-        #: (position, kind, key, text, the flip's tag or None) per operation
+        #: per operation, what :meth:`StagedRun._part` reads of it (:func:`_bound`)
         self.ops = ops
         self.component = component
-        kinds = {kind for _, kind, _, _, _ in ops}
+        kinds = {op[1] for op in ops}
         #: an operation runs whatever changed (a flip, the asserted changes, a key's seeds), or the
         #: part has no end (its key is not noted as the run expects): the part always runs
-        self.always = any(flip is not None for *_, flip in ops) or bool(kinds & _SENT) or "end" not in kinds
+        self.always = any(op[4] is not None for op in ops) or bool(kinds & _SENT) or "end" not in kinds
         #: the keys whose lost / gained facts start an operation
-        self.minus = frozenset(key for _, kind, key, _, _ in ops if kind == "minus")
-        self.plus = frozenset(key for _, kind, key, _, _ in ops if kind == "plus")
+        self.minus = frozenset(op[2] for op in ops if op[1] == "minus")
+        self.plus = frozenset(op[2] for op in ops if op[1] == "plus")
         self.keys = self.minus | self.plus
 
 
-def segments(program: StepProgram) -> list[Segment]:
-    """The program's operations grouped by part, each resolved once to its kind, key and flip tag.
+def segments(program: StepProgram, direct: dict | None = None) -> list[Segment]:
+    """The program's operations grouped by part, each resolved once to its kind, key, flip tag and what
+    a run looks up about it (:func:`_bound`; ``direct``: the look-up operations a run uses, by position).
 
     Without a flip, the asserted changes or a key's seeds, a part's operations run only after a
     ``minus`` or ``plus`` operation whose key lost or gained facts: its rechecks need candidates
@@ -72,13 +73,27 @@ def segments(program: StepProgram) -> list[Segment]:
         flip = None
         if tag[0] == "flip":
             flip, tag = tag, tag[1]
-        ops.append((index, tag[0], tag[1] if len(tag) > 1 else None, text, flip))
+        ops.append(_bound(program, direct if direct is not None else program.direct, index, tag, text, flip))
         if tag[0] == "end":
             out.append(Segment(ops))
             ops = []
     if ops:
         out.append(Segment(ops))
     return out
+
+
+def _bound(program: StepProgram, direct: dict, index: int, tag: tuple, text: str, flip: tuple | None) -> tuple:
+    """Operation ``index`` with what every run would look up about it, once per program (a program is
+    its change signature's; a TBox or rule change drops them all): its position, kind, key, text and flip
+    tag, the key of its part, its look-up equivalent (None: none) and the keys that one reads, whether it
+    has a seeded text, its flip's own value window test (:meth:`.look_flip.Flipped.reads_window`) and
+    the keys its part reads (those a flip's window query reads)."""
+    part = program.part[index]
+    found = direct.get(index)
+    window = getattr(getattr(found, "__self__", None), "reads_window", None) if flip is not None else None
+    return (index, tag[0], tag[1] if len(tag) > 1 else None, text, flip, part, found,
+            program.reads[index] if found is not None else None, index in program.seeded, window,
+            (program.reads[part] if part is not None else (None,)) if flip is not None else None)
 
 
 class StagedRun:
@@ -122,7 +137,7 @@ class StagedRun:
         program = self.program
         plan = program.segments
         if plan is None:
-            plan = program.segments = segments(program)
+            plan = program.segments = segments(program, self.direct)
         minus, plus, unnoted = self.minus, self.plus, self.unnoted
         for segment in plan:
             if segment.component is not None:
@@ -143,34 +158,34 @@ class StagedRun:
         seeded = queued = flipped = False
         found: dict[tuple, bool] = {}
         mark = self.sent
-        part = self.program.part
-        for index, kind, key, text, flip in ops:
+        for index, kind, key, text, flip, part, direct, reads, has_seeded, window, part_reads in ops:
             look_up = True
             fallback = None
             if flip is not None:
                 compiled = text
-                own = self._own_window(index)
-                text = self._flip(index, flip, text, own)
+                own = window is not None and window()
+                text = self._flip(part_reads, flip, text, own)
                 if not text:
                     continue  # nothing can flip this time
                 flipped = True
                 # a text narrowed by a value window: many facts, whose window query ran already
                 look_up = text is compiled
                 if own:  # where the look-up gives up, the text narrowed by a window query runs
-                    fallback = (flip, compiled)
+                    fallback = (flip, compiled, part_reads)
             if kind == "changes" and self.changes is not None:
                 self.store.add_scratch(self.changes[0], NEW_FACTS)
                 self.store.add_scratch(self.changes[1], OVERDELETED)
             elif kind == "keep":
-                queued |= self._keep(found, key, index, text, seeded)
+                queued |= self._keep(found, key, text, seeded, direct, reads, has_seeded and index)
             elif kind == "delete":
                 if not found.get(("kept", key)) and self._holds(found, CANDIDATES, key, seeded):
-                    queued |= self._send(index, text, part[index])
+                    queued |= self._send(text, part, direct, reads, has_seeded and index)
             elif kind in _SENT or (kind == "minus" and self._changed(key, self.minus)) \
                     or (kind == "plus" and self._changed(key, self.plus)) \
                     or (kind in _AFTER and (flipped or kind == "recheck")
                         and self._holds(found, _AFTER[kind], key, seeded)):
-                queued |= self._send(index, text, part[index], look_up, fallback)
+                queued |= self._send(text, part, direct if look_up else None, reads, has_seeded and index,
+                                     look_up, fallback)
                 seeded |= kind in _SEEDING
             elif kind == "end":
                 if queued or self.sent != mark:  # something ran for this key (a look-up may have sent it)
@@ -190,24 +205,14 @@ class StagedRun:
         if self.dirty and (None in self.dirty or not self.dirty.isdisjoint(keys)):
             self.flush()
 
-    def _reads(self, index: int) -> Collection:
-        """The keys operation ``index``'s part may read (its rules' premises and its own key)."""
-        key = self.program.part[index]
-        return self.program.reads[key] if key is not None else (None,)
-
-    def _flip(self, index: int, tag: tuple, text: str, own_window: bool = False) -> str:
+    def _flip(self, part_reads: Collection, tag: tuple, text: str, own_window: bool = False) -> str:
         """The flip's text for this run (:attr:`flip_text`): "" when nothing can flip, the compiled text,
-        or one narrowed by a value window (not where the look-up reads its own: ``own_window``)."""
+        or one narrowed by a value window (not where the look-up reads its own: ``own_window``);
+        ``part_reads``: the keys its part may read (its rules' premises and its own key)."""
         if self.dirty:  # a value window's query reads the rule's premises
-            self._reading(self._reads(index))
+            self._reading(part_reads)
         return self.flip_text(tag[2], tag[3], text, own_window) if own_window \
             else self.flip_text(tag[2], tag[3], text)
-
-    def _own_window(self, index: int) -> bool:
-        """Whether flip ``index``'s look-up operation reads its compared facts through its own value
-        window this time (:meth:`.look_flip.Flipped.reads_window`)."""
-        reads_window = getattr(getattr(self.direct.get(index), "__self__", None), "reads_window", None)
-        return reads_window is not None and reads_window()
 
     def _seeded(self, index: int, text: str) -> str:
         """The text to queue for flip ``index`` whose compiled ``text`` runs: where every fact of a
@@ -230,33 +235,34 @@ class StagedRun:
         facts = islice(self.store.triples(None, NamedNode(p[1:-1]), None, ASSERTED), len(subjects) + 1)
         return sum(1 for _ in facts) == len(subjects)
 
-    def _send(self, index: int, text: str, key: ReadKey | None, look_up: bool = True,
-              fallback: tuple | None = None) -> bool:
-        """Run operation ``index`` (of ``key``'s part, None: of no key's) through look-ups where it has
-        that equivalent, ``look_up`` allows it and its facts are few (after sending what is queued and
-        may write what it reads), else queue its text.  Whether it was queued.  ``fallback``: a flip's
-        tag and compiled text, whose text for this run is made again without the look-up's own window
-        where the look-up gives up (a window query then narrows it)."""
-        direct = self.direct.get(index) if look_up else None
+    def _send(self, text: str, key: ReadKey | None, direct: Callable | None, reads: Collection | None,
+              seeded: int | bool, look_up: bool = True, fallback: tuple | None = None) -> bool:
+        """Run an operation (of ``key``'s part, None: of no key's) through its look-up equivalent
+        ``direct`` (None: none, or not this time) where its facts are few (after sending what is queued
+        and may write ``reads``, what it reads), else queue its text.  Whether it was queued.
+        ``seeded``: the operation's position where it has a seeded text (:meth:`_seeded`), else False;
+        ``fallback``: a flip's tag, compiled text and its part's reads, whose text for this run is made
+        again without the look-up's own window where the look-up gives up (a window query narrows it)."""
         if direct is not None:
             if self.dirty:  # nothing queued: nothing to send first (no call)
-                self._reading(self.program.reads[index])
+                self._reading(reads)
             if direct(self.store):
                 self.sent += 1
                 return False
             if fallback is not None:
-                tag, compiled = fallback
-                text = self._flip(index, tag, compiled)
+                tag, compiled, part_reads = fallback
+                text = self._flip(part_reads, tag, compiled)
                 if not text:
                     return False
                 look_up = text is compiled
-        if look_up and index in self.program.seeded:  # a flip's compiled text
-            text = self._seeded(index, text)
+        if look_up and seeded is not False:  # a flip's compiled text
+            text = self._seeded(seeded, text)
         self.queue.append(text)
         self.dirty.add(key)
         return True
 
-    def _keep(self, found: dict, key: ReadKey, index: int, text: str, seeded: bool) -> bool:
+    def _keep(self, found: dict, key: ReadKey, text: str, seeded: bool, direct: Callable | None,
+              reads: Collection | None, has_seeded: int | bool) -> bool:
         """Queue one of a key's rechecks, unless every candidate is kept already: while the key has
         few candidates, each recheck is sent alone and the candidates and kept ones counted after it.
         Kept ones are compared term by term, not through the store's value-keyed look-up: two spellings
@@ -264,7 +270,7 @@ class StagedRun:
         not keep the other (the recheck deletes it unless a rule derives that very term)."""
         if found.get(("kept", key)) or not self._holds(found, CANDIDATES, key, seeded):
             return False
-        queued = self._send(index, text, key)
+        queued = self._send(text, key, direct, reads, has_seeded)
         if found.get(("many", key)):
             return queued
         if self.dirty:

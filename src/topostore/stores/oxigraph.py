@@ -22,6 +22,7 @@ from ..errors import QueryError, StoreError
 from ..rdf.terms import Term
 from . import reads
 from .base import Store
+from .compaction import compacted
 from .data_text import data_update, quad_data  # noqa: F401 - quad_data: named here since the first release
 from .held import HeldGraphs
 from .literal_forms import stored_literal
@@ -391,29 +392,14 @@ class OxigraphStore(Store):
 
     # ------------------------------------------------------------ housekeeping
     def maybe_compact(self) -> bool:
-        """Rebuild the in-memory store once enough writes have piled up.
-
-        Oxigraph's in-memory store keeps removed quads around (for its
-        transactions), so a long-running reasoner that derives and drops the same
-        facts step after step gets slower and bigger.  Copying the live quads into
-        a fresh store resets that; it is done when the writes since the last
-        compaction outnumber a fiftieth of the live quads (at least 200), which
-        keeps its amortised cost small.  The live quads are counted when first
-        needed, so that a store loaded with a big map is not rebuilt after its
-        first 200 writes (0.8 s at 10,000 locations).  On-disk stores compact
-        themselves.
-        """
-        if not self._in_memory or self._writes < 200:
+        """Rebuild the in-memory store once enough writes have piled up (:mod:`.compaction`)."""
+        if not self._in_memory:
             return False
-        if not self._live_at_compaction:
-            self._live_at_compaction = len(self._ox)
-        if self._writes < max(200, self._live_at_compaction // 50):
+        fresh, self._live_at_compaction = compacted(self._ox, self._writes, self._live_at_compaction)
+        if fresh is None:
             return False
-        fresh = ox.Store()
-        fresh.extend(self._ox)
         self._ox = fresh
         self._writes = 0
-        self._live_at_compaction = len(fresh)
         return True
 
 
