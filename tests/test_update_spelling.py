@@ -106,6 +106,31 @@ def test_a_value_bound_from_the_store_keeps_its_held_spelling() -> None:
     assert values(o, "level", "t") == [typed("6", "long")]
 
 
+@pytest.mark.parametrize("held", ["6.0", '"6"^^xsd:long', '"6"^^xsd:double', '"06"^^xsd:integer'])
+@pytest.mark.parametrize("also", ["", " . k:r k:p0 1.50"])
+def test_a_value_written_in_the_template_keeps_its_spelling_beside_a_held_one(held: str, also: str) -> None:
+    """The store holding the value in another spelling (of another subject) does not respell what the
+    template wrote, whether or not the text is read for spellings (a bare 6 stays xsd:integer)."""
+    o = ontology(f"<{NS}q> <{NS}level> {held} .")
+    update(o, PROLOGUE + f"INSERT DATA {{ k:r k:battery 6{also} }}")
+    assert values(o, "battery", "r") == [typed("6", "integer")]
+
+
+def test_a_template_at_the_triples_own_subject_spells_it_before_one_under_a_variable() -> None:
+    o = ontology()
+    update(o, PROLOGUE + 'INSERT { ?s k:battery "6"^^xsd:long . k:r k:battery "6"^^xsd:int } '
+                         "WHERE { VALUES ?s { k:q } }")
+    assert values(o, "battery", "r") == [typed("6", "int")]
+    assert values(o, "battery", "q") == [typed("6", "long")]
+
+
+def test_the_last_operation_that_wrote_a_triple_spells_it() -> None:
+    o = ontology()
+    update(o, PROLOGUE + 'INSERT DATA { k:r k:battery "6"^^xsd:long } ; DELETE DATA { k:r k:battery "6"^^xsd:long } ; '
+                         'INSERT DATA { k:r k:battery "6"^^xsd:int }')
+    assert values(o, "battery", "r") == [typed("6", "int")]
+
+
 def test_a_plain_update_is_not_read_for_spellings() -> None:
     assert not may_respell(PROLOGUE + "INSERT DATA { k:r100 k:battery 100 ; k:level -2.5, 0 }")
     assert may_respell(PROLOGUE + "INSERT DATA { k:r k:battery 1.50 }")

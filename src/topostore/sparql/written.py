@@ -51,26 +51,45 @@ def _canonical(number: str) -> bool:
 def as_written(added: list[Triple], text: str, held: Callable[[Literal], Term] | None = None) -> list[Triple]:
     """``added`` (an update's added triples, as the scratch store gave them) with each literal the update's
     insert template wrote for it given back in that spelling; ``held``: the spelling the store holds for a
-    value (:meth:`.Store.restore`), given to a literal no template wrote (bound from the store by ``WHERE``)."""
-    by_stored: dict[Literal, list[Template]] = {}
-    if may_respell(text):
-        for s, p, o in insert_templates(text):  # a literal written as stored keeps its position too
-            by_stored.setdefault(stored_literal(o), []).append((s, p, o))
-    if held is None and all(o == stored for stored, ts in by_stored.items() for _, _, o in ts):
-        return added
-    return [_respelled(t, by_stored, held) for t in added]
+    value (:meth:`.Store.restore`), given to a literal no template wrote (bound from the store by ``WHERE``).
+
+    The templates are read where the text may spell a literal otherwise than Oxigraph stores it, or where the
+    store holds an added value in another spelling (a template writing it there keeps what it wrote)."""
+    written = _Written(text)
+    respell = may_respell(text)
+    out = []
+    for t in added:
+        o = t.object
+        spelled = written.at(t) if respell and isinstance(o, Literal) else None
+        if spelled is None and held is not None and isinstance(o, Literal):
+            kept = held(o)
+            if isinstance(kept, Literal) and kept != o:
+                spelled = written.at(t) or kept
+        out.append(t if spelled is None or spelled == o else Triple(t.subject, t.predicate, spelled))
+    return out
 
 
-def _respelled(t: Triple, by_stored: dict[Literal, list[Template]], held: Callable[[Literal], Term] | None) -> Triple:
-    """``t`` with the literal the first template that can produce it wrote, else with the held spelling of its
-    value (``t`` itself where there is neither)."""
-    if not isinstance(t.object, Literal):
-        return t
-    for s, p, o in by_stored.get(t.object, ()):
-        if (s is None or s == t.subject) and (p is None or p == t.predicate):
-            return t if o == t.object else Triple(t.subject, t.predicate, o)
-    o = t.object if held is None else held(t.object)
-    return t if o == t.object or not isinstance(o, Literal) else Triple(t.subject, t.predicate, o)
+class _Written:
+    """The update's template literals by stored form, read once when first asked."""
+
+    def __init__(self, text: str) -> None:
+        self._text = text
+        self._by_stored: dict[Literal, list[Template]] | None = None
+
+    def at(self, t: Triple) -> Literal | None:
+        """The literal a template wrote that produces ``t``: one written at ``t``'s own subject and predicate
+        before one written under a variable or a blank node, and of those the last operation's."""
+        if self._by_stored is None:
+            self._by_stored = {}
+            for s, p, o in reversed(list(insert_templates(self._text))):
+                self._by_stored.setdefault(stored_literal(o), []).append((s, p, o))
+        best, rank = None, -1
+        for s, p, o in self._by_stored.get(t.object, ()):  # type: ignore[call-overload]
+            if (s is None or s == t.subject) and (p is None or p == t.predicate):
+                score = (s is not None) * 2 + (p is not None)
+                if score > rank:
+                    best, rank = o, score
+        return best
 
 
 def insert_templates(text: str) -> Iterator[Template]:
