@@ -210,3 +210,38 @@ def test_the_warning_turned_into_an_error_leaves_the_reason_done() -> None:
     assert Literal("five") in o.data_values(d, x)
     assert o.report is not None and not o.report.consistent
     assert not o.dirty
+
+
+def test_the_warning_turned_into_an_error_undoes_no_command_that_reasoned() -> None:
+    """A REASON run inside a command's unit of work (a SPARQL Update with a live reasoner) says the warning
+    when the command has ended well: as an error it reaches the caller, and the command's changes stay."""
+    o = Ontology()
+    o.load_data(document("command", ":d a owl:DatatypeProperty, owl:FunctionalProperty .\n"
+                                    ":q a owl:DatatypeProperty .\n:x :d 5 ."), "turtle")
+    assert o.reason().consistent
+    ns = namespace("command")
+    x, d, q = (NamedNode(ns + n) for n in ("x", "d", "q"))
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        with pytest.raises(PelletDifferenceWarning):
+            with o.ledger.undoable(o):
+                o.add(Triple(x, d, Literal("five")), Triple(x, q, Literal("kept")))
+                o.reason()
+    assert o.data_values(q, x) == [Literal("kept")]
+    assert o.report is not None and not o.report.consistent
+
+
+def test_a_command_undone_says_nothing_of_the_reason_it_ran() -> None:
+    o = Ontology()
+    o.load_data(document("undone", ":d a owl:DatatypeProperty, owl:FunctionalProperty .\n:x :d 5 ."), "turtle")
+    assert o.reason().consistent
+    x, d = (NamedNode(namespace("undone") + n) for n in ("x", "d"))
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        with pytest.raises(RuntimeError):
+            with o.ledger.undoable(o):
+                o.add(Triple(x, d, Literal("five")))
+                o.reason()
+                raise RuntimeError("the command fails after its REASON")
+    assert not [w for w in caught if w.category is PelletDifferenceWarning]
+    assert o.data_values(d, x) == [Literal("5", datatype=NamedNode(XSD + "integer"))]

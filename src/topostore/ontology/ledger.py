@@ -40,6 +40,7 @@ from ..reason.incremental import check_mode
 from .pellet_values import warn_pellet_differences
 
 if TYPE_CHECKING:  # pragma: no cover
+    from ..reason import Violation
     from ..stores.base import Store
     from ..stores.facts import Fact
     from .facade import Ontology
@@ -68,6 +69,8 @@ class ChangeLedger:
         #: (added, removed) triples of each change applied since the outermost open unit of work began
         self._steps: list[tuple[list[Triple], list[Triple]]] = []
         self._open = 0
+        #: what REASONs inside an open unit of work found to say, said when the outermost unit ends well
+        self._unsaid: list[Violation] = []
         #: how the last failed REASON left the ontology: "undone" (back at its last good state, reasoned
         #: again) or "cleared" (the asserted facts kept, the inferred graphs dropped); None before any
         self.last_failure: str | None = None
@@ -190,6 +193,14 @@ class ChangeLedger:
                     respelled.append(now)
         return back, respelled
 
+    def say(self, violations: list[Violation]) -> None:
+        """Warn of what a REASON found that Pellet would answer otherwise: now, or where a unit of work is
+        open, when the outermost one ends without an error (an undone command says nothing)."""
+        if self._open:
+            self._unsaid.extend(violations)
+        else:
+            warn_pellet_differences(violations)
+
     def undoable(self, onto: Ontology) -> _UnitOfWork:
         """A unit of work: the asserted changes made inside are undone (newest first) if it raises.
         (A plain context manager class: every manipulation opens one.)"""
@@ -255,6 +266,7 @@ class _UnitOfWork:
 
     def __exit__(self, kind, value, traceback) -> None:
         ledger = self.ledger
+        unsaid: list[Violation] = []
         try:
             if kind is not None:
                 ledger._undo_since(self.onto, self.start)
@@ -264,6 +276,9 @@ class _UnitOfWork:
             if not ledger._open:
                 ledger._steps.clear()
                 self.onto.values.settled()
+                unsaid, ledger._unsaid = ledger._unsaid, []
+        if kind is None and unsaid:
+            warn_pellet_differences(unsaid)
 
 
 def all_or_nothing(reason: F) -> F:
@@ -288,8 +303,9 @@ def all_or_nothing(reason: F) -> F:
             raise
         self.ledger.succeeded(self.incremental_ready())
         self.values.reasoned()
-        # said once the REASON has completed: a warning turned into an error must not undo a good REASON
-        warn_pellet_differences(report.violations)
+        # said once the REASON has completed, and inside a command's unit of work once that ends: a warning
+        # turned into an error must not undo a good REASON or the command that ran it
+        self.ledger.say(report.violations)
         return report
 
     return wrapper  # type: ignore[return-value]
