@@ -11,7 +11,9 @@ Generic equals instantiated, closure and violations; incremental equals from scr
 from __future__ import annotations
 
 import sys
+from collections.abc import Callable
 from pathlib import Path
+from typing import Any
 
 import pytest
 from hypothesis import HealthCheck, given, settings
@@ -150,18 +152,14 @@ def _triple(fact: tuple) -> Triple:
     return Triple(NamedNode(NS + s), pred, obj)
 
 
-@settings(max_examples=property_examples(30), deadline=None, suppress_health_check=[HealthCheck.too_slow])
-@given(st.lists(st.tuples(st.lists(_fact, max_size=3), st.lists(st.integers(0, 20), max_size=2)), min_size=1,
-                max_size=5))
-def test_incremental_equals_from_scratch(steps: list) -> None:
-    """Each step adds facts and removes facts added before (by index): merges made and undone, values
-    made known different and no longer."""
-    onto = _loaded(_TBOX)
+def _walk(onto: Ontology, steps: list, triple: Callable[[Any], Triple]) -> None:
+    """Add each step's facts, remove facts added before (by index), and hold the closure against a
+    REASON from scratch after each step."""
     onto.max_change_share = 1.0
     assert_same_as_scratch(onto)
     added: list[Triple] = []
     for facts, removed in steps:
-        triples = [_triple(f) for f in facts]
+        triples = [triple(f) for f in facts]
         onto.add(*triples)
         added += triples
         gone = list(dict.fromkeys(added[i] for i in removed if i < len(added)))
@@ -169,6 +167,16 @@ def test_incremental_equals_from_scratch(steps: list) -> None:
             onto.remove(*gone)
             added = [t for t in added if t not in gone]
         assert_same_as_scratch(onto)
+
+
+@settings(max_examples=property_examples(30), deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(st.lists(st.tuples(st.lists(_fact, max_size=3), st.lists(st.integers(0, 20), max_size=2)), min_size=1,
+                max_size=5))
+def test_incremental_equals_from_scratch(steps: list) -> None:
+    """Each step adds facts and removes facts added before (by index): merges made and undone, values
+    made known different and no longer."""
+    onto = _loaded(_TBOX)
+    _walk(onto, steps, _triple)
 
 
 def test_the_files_filters_are_the_compilers_texts() -> None:
@@ -269,15 +277,4 @@ def test_incremental_equals_from_scratch_with_one_value_classes(steps: list) -> 
     individuals asked about (two values of ``f``, two subjects of ``g``) made different by their values."""
     onto = _loaded(_ONE_TBOX)
     assert {"different-values-4-a", "different-values-4-b", "different-values-3"} <= set(onto.rules.tables.held)
-    onto.max_change_share = 1.0
-    assert_same_as_scratch(onto)
-    added: list[Triple] = []
-    for facts, removed in steps:
-        triples = [_one_triple(f) for f in facts]
-        onto.add(*triples)
-        added += triples
-        gone = list(dict.fromkeys(added[i] for i in removed if i < len(added)))
-        if gone:
-            onto.remove(*gone)
-            added = [t for t in added if t not in gone]
-        assert_same_as_scratch(onto)
+    _walk(onto, steps, _one_triple)
