@@ -199,10 +199,16 @@ def test_a_fact_known_in_some_graphs_is_answered_as_the_presence_batch_answers()
     store._ox.extend([Quad(*facts[0], ASSERTED), Quad(*facts[1], SCRATCH[1]), Quad(*facts[2], OTHER),
                       Quad(*facts[2], SCRATCH[2]), Quad(*facts[3], SCRATCH[1])])
     by_quads = [any(store.contains_quads([Quad(*t, g) for g in state])) for t in facts]
+    batches: list[int] = []
+    present = store._present
+    store._present = lambda quads: batches.append(len(quads)) or present(quads)  # type: ignore[method-assign]
     assert store.known_in(facts, state) == by_quads == [True, False, True, False]
-    assert store.known_in([Triple(S[0], P[0], O[4])], state) is None  # by value: the presence batch
+    assert not batches  # one index read per fact
+    assert store.known_in([Triple(S[0], P[0], O[4])], state) == [False]
+    assert batches == [2]  # by value: the presence batch, a quad per graph
     store.add_scratch([facts[1]], SCRATCH[0])
-    assert store.known_in(facts, state | {SCRATCH[0]}) is None  # a held graph: its facts are not in the index
+    assert store.known_in(facts, state | {SCRATCH[0]}) == [True, True, True, False]
+    assert batches == [2, 12]  # a held graph: its facts are not in the index, the batch answers
 
 
 def test_a_subjects_values_by_graph_in_one_read_answer_as_each_graphs_read() -> None:

@@ -36,7 +36,7 @@ def test_a_views_touched_members_are_decided_as_the_presence_batch_decides_them(
 
 def test_a_store_without_one_read_per_pair_decides_by_the_presence_batch() -> None:
     onto = _ontology()
-    onto.store.known_in = lambda triples, graphs: None  # e.g. a transaction open
+    onto.store._one_read = lambda graphs: False  # e.g. a transaction open
     assert onto.reads._instance_flags(PAIRS) == [True, False, True, False, False]
 
 

@@ -99,13 +99,9 @@ class OntologyQueries:
     def _instance_flags(self, pairs: list[tuple[Term, NamedNode]]) -> list[bool]:
         """Whether each (individual, class) pair is one of :meth:`instances` (what a class view re-decides):
         one index read per pair over every graph where the store offers it, else one batch of look-ups of a
-        quad per pair and visible graph."""
-        graphs, store = self.onto.visible_graphs(), self.onto.store
-        known_in = getattr(store, "known_in", None)  # one index read per pair over every graph, no quad made
-        found = None if known_in is None else known_in([Triple(s, TYPE, c) for s, c in pairs], frozenset(graphs))
-        if found is not None:
-            return [known and _shown(s) for known, (s, _) in zip(found, pairs, strict=True)]
-        return self._members(pairs, store.contains_quads(self._type_quads(pairs, graphs)), len(graphs))
+        quad per pair and visible graph (:meth:`.Store.known_in`)."""
+        found = self.onto.store.known_in([Triple(s, TYPE, c) for s, c in pairs], frozenset(self.onto.visible_graphs()))
+        return [known and _shown(s) for known, (s, _) in zip(found, pairs, strict=True)]
 
     def object_values(self, prop: str | NamedNode, individual: str | NamedNode, names: bool = True) -> list:
         vals = [o for o in self._objects(self.onto.iri(individual), self.onto.iri(prop)) if isinstance(o, NamedNode)]

@@ -19,7 +19,7 @@ from __future__ import annotations
 import functools
 from dataclasses import dataclass
 
-from pyoxigraph import BlankNode, Literal, NamedNode, Quad, Triple
+from pyoxigraph import BlankNode, Literal, NamedNode, Triple
 
 from ..compile.rule import Atom, ReadKey, Rule, key_pattern
 from ..rdf.terms import parse_term
@@ -45,16 +45,9 @@ def _facts(store, pattern: tuple, graph: NamedNode) -> list[Triple] | None:
 
 
 def _known(store, facts: list[Triple], graphs: tuple[NamedNode, ...]) -> list[bool]:
-    """Whether each fact is in one of ``graphs`` (one read per fact over every graph where the store
-    offers it, else one look-up batch)."""
-    known_in = getattr(store, "known_in", None)
-    if known_in is not None:
-        found = known_in(facts, _STATE_SET if graphs is _STATE else frozenset(graphs))
-        if found is not None:
-            return found
-    present = store.contains_quads([Quad(t.subject, t.predicate, t.object, g) for t in facts for g in graphs])
-    n = len(graphs)
-    return [any(present[i * n:(i + 1) * n]) for i in range(len(facts))]
+    """Whether each fact is in one of ``graphs`` (:meth:`.Store.known_in`: one read per fact over every
+    graph where the store offers it, else one look-up batch)."""
+    return store.known_in(facts, _STATE_SET if graphs is _STATE else frozenset(graphs))
 
 
 def _flipped(store, key: ReadKey, graph: NamedNode) -> list[Triple] | None:

@@ -177,6 +177,7 @@ class Store:
     contains = reads.contains
     contains_each = reads.contains_each
     contains_quads = reads.contains_quads
+    known_in = reads.known_in
     contains_terms = reads.contains_terms
     census = reads.census
     census_many = reads.census_many

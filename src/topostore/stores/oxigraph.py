@@ -11,7 +11,7 @@ commit (see docs/stores.md).
 from __future__ import annotations
 
 import os
-from collections.abc import Iterable, Iterator
+from collections.abc import Collection, Iterable, Iterator
 from itertools import chain, islice
 from operator import attrgetter
 
@@ -258,9 +258,7 @@ class OxigraphStore(Store):
         out here (a query's answer, e.g. the asserted, inferred and entailed values of a property, is
         three reads otherwise, each its call and its iterator); per graph where a transaction is open,
         literal forms are listed or a held graph is among ``graphs``."""
-        held = self._held.graphs
-        if self._pending is not None or self.listings is not None or type(s) is Literal \
-                or (held and any(g in held for g in graphs)):
+        if type(s) is Literal or not self._one_read(graphs):
             return super().objects_by_graph(s, p, graphs)
         found: dict[NamedNode, list[Term]] = {g: [] for g in graphs}
         for q in self._ox.quads_for_pattern(s, p, None, None):
@@ -269,22 +267,27 @@ class OxigraphStore(Store):
                 values.append(q.object)
         return found
 
-    def known_in(self, triples: list[Triple], graphs: frozenset) -> list[bool] | None:
+    def known_in(self, triples: list[Triple], graphs: Collection[NamedNode]) -> list[bool]:
         """Whether each triple is in one of ``graphs``, as :func:`.presence.present` answers it: one index
         read per triple over every graph (a fact is in a few), where the presence batch makes a quad per
-        triple and graph.  None where that does not hold: a transaction open, literal forms listed, a
-        held graph among ``graphs``, or a literal object (presence is then by value)."""
-        if self._pending is not None or self.listings is not None \
-                or (self._held.graphs and not graphs.isdisjoint(self._held.graphs)):
-            return None
+        triple and graph; that batch (:func:`.reads.known_in`) where the one read does not hold
+        (:meth:`_one_read`) or a triple's object is a literal (presence is then by value)."""
+        if not self._one_read(graphs):
+            return super().known_in(triples, graphs)
         match = self._ox.quads_for_pattern
         out = []
         for t in triples:
             o = t.object
             if type(o) is Literal:
-                return None
+                return super().known_in(triples, graphs)
             out.append(any(q.graph_name in graphs for q in match(t.subject, t.predicate, o, None)))
         return out
+
+    def _one_read(self, graphs: Collection[NamedNode]) -> bool:
+        """Whether one index read over every graph answers for ``graphs`` as the per-graph reads do: no
+        transaction open, no literal forms listed, no held graph among them."""
+        held = self._held.graphs
+        return self._pending is None and self.listings is None and not (held and any(g in held for g in graphs))
 
     def discard(self, triples, graphs: Iterable[NamedNode]) -> None:
         """In memory, a triple with a literal object is found by its subject and predicate and removed as

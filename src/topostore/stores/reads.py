@@ -10,7 +10,7 @@ in-memory store counts a small graph from its index).
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Iterator
+from collections.abc import Collection, Iterable, Iterator
 from itertools import islice
 from typing import TYPE_CHECKING
 
@@ -130,6 +130,15 @@ def contains_each(store: Store, triples: list[Triple], graph: NamedNode) -> list
 def contains_quads(store: Store, quads: list[Quad]) -> list[bool]:
     """Whether each quad (triple and graph) is in the store: one look-up batch, as :meth:`contains_each`."""
     return store._present(quads)
+
+
+def known_in(store: Store, triples: list[Triple], graphs: Collection[NamedNode]) -> list[bool]:
+    """Whether each triple is in one of ``graphs`` (a literal by its value, as :meth:`contains_quads`):
+    one look-up batch of a quad per triple and graph (one request on a remote store)."""
+    order = tuple(graphs)
+    n = len(order)
+    present = store._present([Quad(t.subject, t.predicate, t.object, g) for t in triples for g in order])
+    return [any(present[i * n:(i + 1) * n]) for i in range(len(triples))]
 
 
 def contains_terms(store: Store, quads: list[Quad]) -> list[bool]:
