@@ -12,6 +12,7 @@ from __future__ import annotations
 
 from collections.abc import Callable, Collection
 from itertools import islice
+from typing import NamedTuple
 
 from pyoxigraph import NamedNode, Triple
 
@@ -34,23 +35,44 @@ _SENT = frozenset(("always", "seeds", "changes"))
 _SEEDING = frozenset(("seeds", "minus", "lost"))
 
 
+class BoundOp(NamedTuple):
+    """One operation of a program with what every run would look up about it, bound once (:func:`_bound`);
+    a run unpacks it as a plain tuple."""
+
+    index: int
+    kind: str
+    key: ReadKey | None
+    text: str
+    flip: tuple | None
+    #: the key of its part (None: of no key's)
+    part: ReadKey | None
+    #: its look-up equivalent (None: none) and the keys that one reads
+    direct: Callable | None
+    reads: Collection | None
+    has_seeded: bool
+    #: its flip's own value window test (:meth:`.look_flip.Flipped.reads_window`), None without one
+    window: Callable[[], bool] | None
+    #: for a flip, the keys its part reads (those its window query reads)
+    part_reads: Collection | None
+
+
 class Segment:
     """A key's part of a program (its operations up to its ``end``), or a recursive component, with
     what decides in one set test whether any of its operations can run this time."""
 
     __slots__ = ("always", "component", "keys", "minus", "ops", "plus")
 
-    def __init__(self, ops: list[tuple], component=None) -> None:
+    def __init__(self, ops: list[BoundOp], component=None) -> None:
         #: per operation, what :meth:`StagedRun._part` reads of it (:func:`_bound`)
         self.ops = ops
         self.component = component
-        kinds = {op[1] for op in ops}
+        kinds = {op.kind for op in ops}
         #: an operation runs whatever changed (a flip, the asserted changes, a key's seeds), or the
         #: part has no end (its key is not noted as the run expects): the part always runs
-        self.always = any(op[4] is not None for op in ops) or bool(kinds & _SENT) or "end" not in kinds
+        self.always = any(op.flip is not None for op in ops) or bool(kinds & _SENT) or "end" not in kinds
         #: the keys whose lost / gained facts start an operation
-        self.minus = frozenset(op[2] for op in ops if op[1] == "minus")
-        self.plus = frozenset(op[2] for op in ops if op[1] == "plus")
+        self.minus = frozenset(op.key for op in ops if op.kind == "minus")
+        self.plus = frozenset(op.key for op in ops if op.kind == "plus")
         self.keys = self.minus | self.plus
 
 
@@ -62,7 +84,7 @@ def segments(program: StepProgram, direct: dict | None = None) -> list[Segment]:
     ``minus`` or ``plus`` operation whose key lost or gained facts: its rechecks need candidates
     (seeded by those), its flip results a flip of its own."""
     out: list[Segment] = []
-    ops: list[tuple] = []
+    ops: list[BoundOp] = []
     for index, (tag, text) in enumerate(program.ops):
         if tag[0] == "component":
             if ops:
@@ -82,18 +104,15 @@ def segments(program: StepProgram, direct: dict | None = None) -> list[Segment]:
     return out
 
 
-def _bound(program: StepProgram, direct: dict, index: int, tag: tuple, text: str, flip: tuple | None) -> tuple:
-    """Operation ``index`` with what every run would look up about it, once per program (a program is
-    its change signature's; a TBox or rule change drops them all): its position, kind, key, text and flip
-    tag, the key of its part, its look-up equivalent (None: none) and the keys that one reads, whether it
-    has a seeded text, its flip's own value window test (:meth:`.look_flip.Flipped.reads_window`) and
-    the keys its part reads (those a flip's window query reads)."""
+def _bound(program: StepProgram, direct: dict, index: int, tag: tuple, text: str, flip: tuple | None) -> BoundOp:
+    """Operation ``index`` with what every run would look up about it (:class:`BoundOp`), once per program
+    (a program is its change signature's; a TBox or rule change drops them all)."""
     part = program.part[index]
     found = direct.get(index)
     window = getattr(getattr(found, "__self__", None), "reads_window", None) if flip is not None else None
-    return (index, tag[0], tag[1] if len(tag) > 1 else None, text, flip, part, found,
-            program.reads[index] if found is not None else None, index in program.seeded, window,
-            (program.reads[part] if part is not None else (None,)) if flip is not None else None)
+    return BoundOp(index, tag[0], tag[1] if len(tag) > 1 else None, text, flip, part, found,
+                   program.reads[index] if found is not None else None, index in program.seeded, window,
+                   (program.reads[part] if part is not None else (None,)) if flip is not None else None)
 
 
 class StagedRun:
@@ -150,7 +169,7 @@ class StagedRun:
                 self._part(segment.ops)
         self.flush()
 
-    def _part(self, ops: list[tuple]) -> None:
+    def _part(self, ops: list[BoundOp]) -> None:
         """Run one part's operations: each is sent when the key it starts from changed, and a key's
         recheck and flip results only when there is something to recheck or add (index look-ups,
         after sending what is queued).  A part's flipped facts come only from its own flips, so its
