@@ -13,7 +13,7 @@ instead of evaluating the rule.
 
 The early triples are used only if the evaluation at the rule's turn would be the same one:
 
-* **the same text**: the text the pass would send now (:meth:`.materialize.Materializer.evaluation_text`:
+* **the same text**: the text the pass would send now (:meth:`.materialize.Materializer.first_pass_text`:
   its shortcuts, the heads it keeps out, its one-group form) equals the text evaluated early, but for the
   name of the delta graph, which an evaluation without delta does not read;
 * **the same data**: no evaluation since the start may have written a key it reads, its head's key
