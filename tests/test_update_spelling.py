@@ -3,7 +3,8 @@
 The update's delta is computed on a scratch Oxigraph store, which keeps numbers canonical (``"100"^^xsd:int`` as
 ``"100"^^xsd:integer``, ``1.50`` as ``1.5``); :mod:`topostore.sparql.written` gives each added literal back the
 spelling the insert template wrote at its position.  A literal written elsewhere (another triple, a FILTER, a
-DELETE) spells nothing added, and a value a WHERE binds from the store keeps the spelling the store holds.
+DELETE) spells nothing added, and a value a WHERE binds from the store keeps the spelling the store holds.  A
+value VALUES or BIND gives a variable keeps the spelling written there, and a blank node's values theirs.
 """
 
 from __future__ import annotations
@@ -116,6 +117,47 @@ def test_a_value_written_in_the_template_keeps_its_spelling_beside_a_held_one(he
     assert values(o, "battery", "r") == [typed("6", "integer")]
 
 
+@pytest.mark.parametrize("where", ['VALUES ?v { "007"^^xsd:long }', 'VALUES (?s ?v) { (k:q "007"^^xsd:long) }',
+                                   'BIND("007"^^xsd:long AS ?v)'])
+def test_a_value_bound_by_values_or_bind_keeps_its_spelling(where: str) -> None:
+    o = ontology()
+    update(o, PROLOGUE + f"INSERT {{ k:r k:battery ?v }} WHERE {{ {where} }}")
+    assert values(o, "battery", "r") == [typed("007", "long")]
+
+
+def test_a_value_bound_only_in_another_operation_spells_nothing() -> None:
+    o = ontology()
+    update(o, PROLOGUE + 'INSERT { k:q k:level ?v } WHERE { BIND("1.50"^^xsd:decimal AS ?v) } ; '
+                         "INSERT { k:r k:battery ?v } WHERE { BIND(1.5 AS ?v) }")
+    assert values(o, "level", "q") == [typed("1.50", "decimal")]
+    assert values(o, "battery", "r") == [typed("1.5", "decimal")]
+
+
+def test_a_value_computed_in_bind_has_no_spelling_in_the_text() -> None:
+    o = ontology()
+    update(o, PROLOGUE + 'INSERT { k:r k:battery ?v } WHERE { BIND("007"^^xsd:long + 0 AS ?v) }')
+    assert values(o, "battery", "r") == [typed("7", "integer")]
+
+
+def blank_values(o: Ontology) -> list[str]:
+    saved = o.serialize("ntriples").decode().splitlines()
+    return sorted(line.split(" ", 2)[2] for line in saved if line.startswith("_:") and f"<{NS}battery>" in line)
+
+
+@pytest.mark.parametrize("nodes", ['k:s k:old [ k:battery "007"^^xsd:long ]', '_:b k:battery "007"^^xsd:long',
+                                   '[ k:battery "007"^^xsd:long ] . k:s k:battery "7"^^xsd:int'])
+def test_a_blank_nodes_value_keeps_its_spelling(nodes: str) -> None:
+    o = ontology()
+    update(o, PROLOGUE + f"INSERT DATA {{ {nodes} }}")
+    assert blank_values(o) == [f'"007"^^<{XSD}long> .']
+
+
+def test_two_blank_nodes_holding_one_value_keep_a_spelling_each() -> None:
+    o = ontology()
+    update(o, PROLOGUE + 'INSERT DATA { k:s k:old [ k:battery "007"^^xsd:long ], [ k:battery "7"^^xsd:int ] }')
+    assert blank_values(o) == [f'"007"^^<{XSD}long> .', f'"7"^^<{XSD}int> .']
+
+
 def test_a_template_at_the_triples_own_subject_spells_it_before_one_under_a_variable() -> None:
     o = ontology()
     update(o, PROLOGUE + 'INSERT { ?s k:battery "6"^^xsd:long . k:r k:battery "6"^^xsd:int } '
@@ -154,13 +196,25 @@ def spelled_updates(draw: st.DrawFn) -> tuple[str, dict[tuple[str, str], str]]:
                               min_size=1, max_size=5, unique=True))
     at = {pos: draw(st.sampled_from(words)) for pos in positions}
     other = draw(st.sampled_from(words))
-    if draw(st.booleans()):
+    form = draw(st.sampled_from(["data", "subjects bound", "values bound"]))
+    if form == "data":
         body = " ".join(f"k:{s} k:{p} {w} ." for (s, p), w in at.items())
         text = f"DELETE DATA {{ k:a k:old {other} }} ; INSERT DATA {{ {body} }}"
-    else:  # the subjects through variables bound by VALUES
+    elif form == "subjects bound":  # the subjects through variables bound by VALUES
         body = " ".join(f"?{s} k:{p} {w} ." for (s, p), w in at.items())
         text = (f"DELETE {{ k:a k:old {other} }} INSERT {{ {body} }} "
                 f"WHERE {{ VALUES (?a ?b ?c) {{ (k:a k:b k:c) }} FILTER({other} = {other}) }}")
+    else:  # the values through variables, each bound by VALUES (one variable or a row of several) or BIND
+        body = " ".join(f"k:{s} k:{p} ?v{i} ." for i, (s, p) in enumerate(at))
+        binds = [draw(st.sampled_from(["values", "row", "bind"])) for _ in at]
+        row = [i for i, b in enumerate(binds) if b == "row"]
+        where = [f"VALUES ?v{i} {{ {w} }}" if b == "values" else f"BIND({w} AS ?v{i})"
+                 for i, (b, w) in enumerate(zip(binds, at.values(), strict=True)) if b != "row"]
+        if row:
+            words = list(at.values())
+            where.append(f"VALUES ({' '.join(f'?v{i}' for i in row)}) {{ ({' '.join(words[i] for i in row)}) }}")
+        text = (f"DELETE {{ k:a k:old {other} }} INSERT {{ {body} }} "
+                f"WHERE {{ {' '.join(where)} FILTER({other} = {other}) }}")
     return PROLOGUE + text, at
 
 
