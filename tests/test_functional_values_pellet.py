@@ -245,3 +245,55 @@ def test_a_command_undone_says_nothing_of_the_reason_it_ran() -> None:
                 raise RuntimeError("the command fails after its REASON")
     assert not [w for w in caught if w.category is PelletDifferenceWarning]
     assert o.data_values(d, x) == [Literal("5", datatype=NamedNode(XSD + "integer"))]
+
+
+#: inconsistencies resting on two values after equality: individuals held different by their values of a functional
+#: data property, merged by a functional object property, an inverse-functional one or owl:sameAs (through an
+#: equal's values too); name -> (Turtle body, Pellet consistent).  Where Pellet tells a pair of the values apart,
+#: or the individuals are declared different, it finds the inconsistency too.
+MERGING = (":d a owl:DatatypeProperty, owl:FunctionalProperty .\n:e a owl:DatatypeProperty, owl:FunctionalProperty .\n"
+           ":f a owl:ObjectProperty, owl:FunctionalProperty .\n:g a owl:ObjectProperty, owl:InverseFunctionalProperty .\n")
+MERGED = {
+    "merged_by_functional": (':x :d 5 . :y :d "five" . :a :f :x, :y .', True),
+    "merged_by_inverse_functional": (':x :d 5 . :y :d "five" . :x :g :a . :y :g :a .', True),
+    "merged_through_an_equal": (':x owl:sameAs :x2 . :x2 :d 5 . :y :d "five" . :a :f :x, :y .', True),
+    "merged_by_same_as": (':x :d 5 . :y :d "five" . :x owl:sameAs :y .', True),
+    "merged_values_told_apart": (":x :d 5 . :y :d 6 . :a :f :x, :y .", False),
+    "merged_one_pair_told_apart": (':x :d 5 ; :e 1 . :y :d "five" ; :e 2 . :a :f :x, :y .', False),
+    "merged_declared_different": (':x :d 5 . :y :d "five" . :x owl:differentFrom :y . :a :f :x, :y .', False),
+}
+
+
+def merged_document(name: str) -> str:
+    return document(name, MERGING + MERGED[name][0])
+
+
+@pytest.mark.external
+@NEEDS_PELLET[0]
+@NEEDS_PELLET[1]
+@pytest.mark.parametrize("name", list(MERGED))
+def test_values_after_equality_are_pellets(name: str) -> None:
+    assert pellet(merged_document(name))["consistent"] == MERGED[name][1]
+
+
+@pytest.mark.parametrize("name", list(MERGED))
+def test_an_inconsistency_resting_on_values_after_equality_is_said(name: str) -> None:
+    """topostore finds each inconsistent (OWL 2), and names it where Pellet finds it consistent."""
+    o = loaded(merged_document(name))
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        assert not o.reason().consistent
+    said = [str(w.message) for w in caught if w.category is PelletDifferenceWarning]
+    assert bool(said) == MERGED[name][1], said
+    assert all("five" in s for s in said)
+
+
+def test_a_change_merging_individuals_told_apart_by_such_values_is_said_at_the_reason() -> None:
+    """The warning after equality follows a change, on an incremental REASON too."""
+    o = Ontology()
+    o.load_data(document("merging", MERGING + ':x :d 5 . :y :d "five" . :a :f :x .'), "turtle")
+    assert o.reason().consistent
+    a, f, y = (NamedNode(namespace("merging") + n) for n in ("a", "f", "y"))
+    o.add(Triple(a, f, y))
+    with pytest.warns(PelletDifferenceWarning, match="five"):
+        assert not o.reason().consistent

@@ -37,10 +37,9 @@ from ..errors import TopostoreError
 from ..rdf.vocab import ASSERTED, AUX, ENTAILED, INFERRED
 from ..reason import limits
 from ..reason.incremental import check_mode
-from .pellet_values import warn_pellet_differences
+from .pellet_values import missed_by_pellet, warn_pellet_differences
 
 if TYPE_CHECKING:  # pragma: no cover
-    from ..reason import Violation
     from ..stores.base import Store
     from ..stores.facts import Fact
     from .facade import Ontology
@@ -70,7 +69,7 @@ class ChangeLedger:
         self._steps: list[tuple[list[Triple], list[Triple]]] = []
         self._open = 0
         #: what REASONs inside an open unit of work found to say, said when the outermost unit ends well
-        self._unsaid: list[Violation] = []
+        self._unsaid: list[str] = []
         #: how the last failed REASON left the ontology: "undone" (back at its last good state, reasoned
         #: again) or "cleared" (the asserted facts kept, the inferred graphs dropped); None before any
         self.last_failure: str | None = None
@@ -193,13 +192,14 @@ class ChangeLedger:
                     respelled.append(now)
         return back, respelled
 
-    def say(self, violations: list[Violation]) -> None:
-        """Warn of what a REASON found that Pellet would answer otherwise: now, or where a unit of work is
-        open, when the outermost one ends without an error (an undone command says nothing)."""
+    def say(self, texts: list[str]) -> None:
+        """Warn of what a REASON found that Pellet would answer otherwise (:func:`missed_by_pellet`): now, or
+        where a unit of work is open, when the outermost one ends without an error (an undone command says
+        nothing)."""
         if self._open:
-            self._unsaid.extend(violations)
+            self._unsaid.extend(texts)
         else:
-            warn_pellet_differences(violations)
+            warn_pellet_differences(texts)
 
     def undoable(self, onto: Ontology) -> _UnitOfWork:
         """A unit of work: the asserted changes made inside are undone (newest first) if it raises.
@@ -266,7 +266,7 @@ class _UnitOfWork:
 
     def __exit__(self, kind, value, traceback) -> None:
         ledger = self.ledger
-        unsaid: list[Violation] = []
+        unsaid: list[str] = []
         try:
             if kind is not None:
                 ledger._undo_since(self.onto, self.start)
@@ -305,7 +305,7 @@ def all_or_nothing(reason: F) -> F:
         self.values.reasoned()
         # said once the REASON has completed, and inside a command's unit of work once that ends: a warning
         # turned into an error must not undo a good REASON or the command that ran it
-        self.ledger.say(report.violations)
+        self.ledger.say(missed_by_pellet(self.store, report.violations) if report.violations else [])
         return report
 
     return wrapper  # type: ignore[return-value]

@@ -19,9 +19,11 @@ That departs from OWL 2, and a robot does not write it in a day's work (it write
 and a REPLACE leaves one value), so topostore follows OWL 2 and says where it answers otherwise than Pellet:
 a :class:`PelletDifferenceWarning` naming the inconsistency, said once the REASON has completed (by
 :func:`topostore.ontology.ledger.all_or_nothing`: a warning turned into an error must not undo a good REASON).
-It names an inconsistency resting on the two values themselves (the violation holds both); one resting on them
-only indirectly (two individuals told different by such values, then merged by a functional object property)
-is reported without it: telling that apart would mean tracing why the individuals differ.
+It names an inconsistency resting on the two values themselves (the violation holds both), and one resting on
+them after equality: two individuals of the violation held different only by entailment (not declared
+different) whose values of a functional data property differ, none of them told apart by Pellet (a functional
+object property, an inverse-functional one or ``owl:sameAs`` merging individuals whose values tell them
+apart in OWL 2 alone).  The values are those topostore holds of each individual, its equals' included.
 """
 
 from __future__ import annotations
@@ -30,12 +32,18 @@ import logging
 import warnings
 from collections.abc import Iterable
 from decimal import Decimal, InvalidOperation
+from itertools import combinations
+from typing import TYPE_CHECKING
 
-from pyoxigraph import Literal
+from pyoxigraph import Literal, NamedNode
 
 from ..compile.notices import OntologyWarning
-from ..rdf.vocab import XSD
+from ..rdf.terms import sparql
+from ..rdf.vocab import ASSERTED, AUX, DECLARED_DIFFERENT, DIFFERENT, INFERRED, TYPE, XSD, owl
 from ..reason import Violation
+
+if TYPE_CHECKING:  # pragma: no cover
+    from ..stores.base import Store
 
 logger = logging.getLogger("topostore.reason")
 
@@ -95,18 +103,60 @@ def not_told_apart(violation: Violation) -> bool:
     return len(values) == 2 and not told_apart(*values)
 
 
-def warn_pellet_differences(violations: Iterable[Violation]) -> list[Violation]:
-    """Say (a :class:`PelletDifferenceWarning`, and the log) which inconsistencies Pellet 2.3.1 would miss;
-    returns them."""
-    missed = [v for v in violations if not_told_apart(v)]
-    for v in missed:
-        text = (f"{v.message} [{v.rule}]: inconsistent in OWL 2; Pellet 2.3.1 does not tell these two values apart "
-                "and finds the ontology consistent unless another axiom rules out the one it keeps (its datatype "
-                "reasoner compares values only within one of its classes: integers of one magnitude, decimals, floats, "
-                "doubles, booleans, dates and times, strings, strings of one language tag)")
+def missed_by_pellet(store: Store, violations: Iterable[Violation]) -> list[str]:
+    """What to say of each inconsistency Pellet 2.3.1 would miss (a REASON's ``violations``, read on ``store``
+    as the REASON left it): resting on two values it does not tell apart, directly or after equality."""
+    texts = []
+    for v in violations:
+        if not_told_apart(v):
+            texts.append(_said(v))
+        elif (merged := _merged_values(store, v)) is not None:
+            a, b, p, one, other = merged
+            texts.append(_said(v, f", resting on the values {store.restore(one)} of {a} and {store.restore(other)} "
+                                  f"of {b} of the functional property {p}, which alone make them different"))
+    return texts
+
+
+def _said(v: Violation, resting: str = "") -> str:
+    return (f"{v.message} [{v.rule}]{resting}: inconsistent in OWL 2; Pellet 2.3.1 does not tell these two values "
+            "apart and finds the ontology consistent unless another axiom rules out the one it keeps (its datatype "
+            "reasoner compares values only within one of its classes: integers of one magnitude, decimals, floats, "
+            "doubles, booleans, dates and times, strings, strings of one language tag)")
+
+
+#: the values of a functional data property two individuals hold, distinct in OWL 2, where the individuals are
+#: held different by entailment only (not declared different): asked of two individuals of a violation
+_APART_BY_VALUES = """SELECT ?p ?v1 ?v2 WHERE {{
+  GRAPH {aux} {{ {{ {a} {different} {b} }} UNION {{ {b} {different} {a} }}
+    FILTER NOT EXISTS {{ {{ {a} {declared} {b} }} UNION {{ {b} {declared} {a} }} }} }}
+  {a} ?p ?v1 . {b} ?p ?v2 . ?p {type} {functional} .
+  FILTER(isLiteral(?v1) && isLiteral(?v2) && !sameTerm(?v1, ?v2) && COALESCE(?v1 != ?v2, true))
+}}"""
+
+
+def _merged_values(store: Store, v: Violation) -> tuple[NamedNode, NamedNode, NamedNode, Literal, Literal] | None:
+    """Two individuals of ``v`` that only values Pellet 2.3.1 does not tell apart hold different, with a
+    property and the two values: (a, b, property, a's value, b's value); None where there are none."""
+    terms = list(v.individuals.values())
+    if any(isinstance(t, Literal) for t in terms):
+        return None
+    for a, b in combinations(dict.fromkeys(t for t in terms if isinstance(t, NamedNode)), 2):
+        rows = list(store.query(_APART_BY_VALUES.format(
+            aux=AUX, a=sparql(a), b=sparql(b), different=DIFFERENT, declared=DECLARED_DIFFERENT, type=TYPE,
+            functional=sparql(owl("FunctionalProperty"))), graphs=[ASSERTED, INFERRED], named=[AUX]))
+        pairs = [(r["p"], r["v1"], r["v2"]) for r in rows]
+        if pairs and not any(told_apart(one, other) for _, one, other in pairs):
+            p, one, other = pairs[0]
+            return a, b, p, one, other
+    return None
+
+
+def warn_pellet_differences(texts: Iterable[str]) -> None:
+    """Say (a :class:`PelletDifferenceWarning`, and the log) each inconsistency Pellet 2.3.1 would miss, as
+    :func:`missed_by_pellet` wrote it."""
+    for text in texts:
         logger.warning(text)
         warnings.warn(text, PelletDifferenceWarning, stacklevel=3)
-    return missed
 
 
-__all__ = ["PelletDifferenceWarning", "not_told_apart", "told_apart", "value_class", "warn_pellet_differences"]
+__all__ = ["PelletDifferenceWarning", "missed_by_pellet", "not_told_apart", "told_apart", "value_class", "warn_pellet_differences"]
