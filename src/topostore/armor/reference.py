@@ -15,8 +15,10 @@ from pathlib import Path
 
 from pyoxigraph import Triple
 
+from ..compile.notices import answered, unsaid
 from ..errors import TopostoreError
 from ..ontology.facade import Ontology
+from ..ontology.pellet_values import PelletDifferenceWarning
 from ..stores.facts import Fact
 
 #: Reasoner names accepted at LOAD (spec §5.2); all run topostore's reasoner.
@@ -127,14 +129,16 @@ class Reference:
         spelling is neither: a reply counts from these, not from the plans).
 
         A live (non-buffered) reasoner sees every applied change, so the
-        reference is re-reasoned after each applied manipulation.
+        reference is re-reasoned after each applied manipulation.  The warnings its REASON gives (a
+        :class:`~topostore.PelletDifferenceWarning`, said once the unit of work has ended well) are the last
+        change's too: a command answers them, and never raises them, whatever the warnings filter.
         """
         if reason is None:
             reason = not self.buffered_reasoner and bool(changes)
         applied: list[Applied] = []
         onto = self.ontology
         try:
-            with onto.ledger.undoable(onto):  # a failure below undoes the changes applied here
+            with answered(PelletDifferenceWarning) as heard, onto.ledger.undoable(onto):  # a failure below undoes the changes applied here
                 with onto.store.transaction():  # the changes and the persisted buffer: one commit
                     for change in changes:
                         applied.append(self.apply_change(change))
@@ -147,6 +151,12 @@ class Reference:
             if reason:
                 self._reason_quietly()
             raise
+        said = unsaid(heard, (a.warning for a in applied)) if heard else []
+        for text in said:  # on the service's log (LOG FILE / SCREEN) as well as the reasoner's
+            logger.warning("reference %r: %s", self.name, text)
+        if said and applied:
+            last = applied[-1]
+            last.warning = "; ".join(filter(None, [last.warning, *said]))
         return applied
 
     def manipulate(self, description: str, add: list[Triple],
@@ -181,7 +191,8 @@ class Reference:
     def _reason_quietly(self) -> None:
         """Bring the inferred graph back after an undo; a failure here is already being reported."""
         try:
-            self.ontology.reason()
+            with answered():  # an undone command says nothing of a REASON (its warnings stay on the log)
+                self.ontology.reason()
         except TopostoreError as exc:  # the original error is the one reported; this one is only logged
             logger.warning("reasoning again after undoing a failed manipulation failed too: %s", exc)
 

@@ -23,8 +23,10 @@ from collections.abc import Iterable, Mapping
 from pathlib import Path
 from typing import Any
 
+from ..compile.notices import answered, unsaid
 from ..errors import LoadError, RuleCompileError, TopostoreError
 from ..ontology.facade import Ontology
+from ..ontology.pellet_values import PelletDifferenceWarning
 from ..rdf.safeio import open_log
 from ..stores import StoreSpec
 from ..stores import kind as store_kind
@@ -98,7 +100,10 @@ class ArmorService:
         except (TypeError, ValueError) as exc:
             return ArmorResponse(False, codes.INVALID_ARGUMENT, f"malformed request: {exc}")
         try:
-            response = self._dispatch(req)
+            with answered(PelletDifferenceWarning) as heard:  # a warning is no fault: it is answered, whatever the warnings filter
+                response = self._dispatch(req)
+            if heard and response.success:
+                _answer(req, response, heard)
         # The protocol's one boundary: ArmorService.call never raises (a ROS service or an HTTP route
         # waits on its reply), so anything unexpected, i.e. a bug, becomes a logged 209 reply.
         except Exception as exc:
@@ -343,6 +348,16 @@ def _consistent(ref: Reference) -> bool:
         return ref.is_consistent
     except TopostoreError:
         return False
+
+
+def _answer(req: ArmorRequest, response: ArmorResponse, heard: list[str]) -> None:
+    """Put what a command's REASON warned of (:class:`~topostore.PelletDifferenceWarning`) in its reply's
+    ``error_description`` where it does not hold it already (a load's notices are there by design), and log it."""
+    said = response.error_description
+    for text in unsaid(heard, [said]):
+        logger.warning("%s: %s", _describe(req), text)
+        said = f"{said}; {text}" if said else text
+    response.error_description = said
 
 
 def _describe(req: ArmorRequest) -> str:

@@ -22,6 +22,9 @@ from ..compile.notices import logger as notices_logger
 from ..ontology.facade import Ontology, ReasonReport
 from ..rdf.vocab import ASSERTED
 
+#: the log a REASON says its warnings on (topostore.ontology.pellet_values)
+REASON_LOG = "topostore.reason"
+
 err_console = Console(stderr=True, highlight=False)
 
 
@@ -79,9 +82,10 @@ class _ConsoleHandler(logging.Handler):
 
 
 @contextmanager
-def _notices_shown(console: Console) -> Iterator[None]:
-    """A load's notices (topostore.compile.notices) as one ``warning:`` line each, not as Python warnings."""
-    log = logging.getLogger(notices_logger.name)
+def _notices_shown(console: Console, log_name: str = notices_logger.name) -> Iterator[None]:
+    """A load's notices (topostore.compile.notices; or what the log ``log_name`` says) as one ``warning:`` line
+    each, not as Python warnings."""
+    log = logging.getLogger(log_name)
     handler = _ConsoleHandler(console)
     log.addHandler(handler)
     try:
@@ -93,9 +97,12 @@ def _notices_shown(console: Console) -> Iterator[None]:
 
 
 def reason_with_progress(onto: Ontology, console: Console | None = None) -> ReasonReport:
+    """REASON with a progress line; what it warns of (a :class:`~topostore.PelletDifferenceWarning`) shown as one
+    ``warning:`` line each, as a load's notices are, whatever the warnings filter (``python -W error``)."""
     with _progress(console=console) as progress:
         progress.add_task(f"reasoning over {onto.store.count(ASSERTED):,} asserted triples", detail="")
-        return onto.reason()
+        with _notices_shown(console or err_console, REASON_LOG):
+            return onto.reason()
 
 
 def _existing(files: Sequence[str]) -> None:

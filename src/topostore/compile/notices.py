@@ -6,13 +6,21 @@ rule, why).  Loading publishes them grouped by kind, once per kind and load, as
 an :class:`OntologyWarning` (Python ``warnings``) and on the ``topostore`` log; the
 aRMOR LOAD reply carries them in ``error_description``; ``topostore check`` prints
 them; :attr:`topostore.ReasonReport.incomplete` holds the incompleteness ones.
+
+Every warning topostore gives (an :class:`OntologyWarning` or a subclass) goes through :func:`warn`, so that a
+command layer answering them itself (an aRMOR reply's ``error_description``, an HTTP reply's ``warnings``)
+collects the texts of the categories its answers do not hold already (:func:`answered`): a warning is no fault
+of a command, so one the caller's filter turns into an error (``warnings.simplefilter("error")``,
+``python -W error``) is not raised there.
 """
 
 from __future__ import annotations
 
 import logging
 import warnings
-from collections.abc import Iterable
+from collections.abc import Iterable, Iterator
+from contextlib import contextmanager
+from contextvars import ContextVar
 from dataclasses import dataclass, field
 
 logger = logging.getLogger("topostore.load")
@@ -40,6 +48,48 @@ UNCHECKED_DATATYPE = "values of a datatype not checked"
 
 class OntologyWarning(UserWarning):
     """A loaded ontology was repaired, has parts set aside, or is not reasoned completely."""
+
+
+#: while a command layer answers warnings itself: the texts it puts in its answer, and of which categories
+#: (None: no such layer; per thread)
+_HEARD: ContextVar[tuple[list[str], tuple[type[Warning], ...]] | None] = ContextVar("topostore_warnings_answered",
+                                                                                   default=None)
+
+
+def warn(text: str, category: type[OntologyWarning], stacklevel: int = 1) -> None:
+    """Give ``text`` as a Python warning of ``category`` (``stacklevel`` counted from the caller); inside
+    :func:`answered`, not raised where the caller's filter makes it an error, and given to the answer where it
+    takes that category."""
+    heard = _HEARD.get()
+    if heard is None:
+        warnings.warn(text, category, stacklevel=stacklevel + 1)
+        return
+    texts, categories = heard
+    if issubclass(category, categories):
+        texts.append(text)
+    try:
+        warnings.warn(text, category, stacklevel=stacklevel + 1)
+    except category:  # turned into an error by the caller's filter: the answer carries it, the command stands
+        pass
+
+
+@contextmanager
+def answered(*categories: type[Warning]) -> Iterator[list[str]]:
+    """The texts of the warnings of ``categories`` said inside the block, which a command layer puts in its
+    answer; no warning raises inside it, whatever the warnings filter (one of another category, such as a
+    load's notices, is in the answer already, or said on the log only)."""
+    heard: list[str] = []
+    token = _HEARD.set((heard, categories))
+    try:
+        yield heard
+    finally:
+        _HEARD.reset(token)
+
+
+def unsaid(heard: list[str], said: Iterable[str]) -> list[str]:
+    """The texts of ``heard`` that no line of ``said`` (an answer's warnings) holds already, each once."""
+    lines = list(said)
+    return [text for text in dict.fromkeys(heard) if not any(text in line for line in lines)]
 
 
 @dataclass(frozen=True)
@@ -87,9 +137,9 @@ def publish(notices: Iterable[Notice], source: str = "") -> list[str]:
     for line in lines:
         logger.warning("%s%s", where, line)
         # the caller of Ontology.load/load_data: publish ← _published ← OntologyFiles.load* ← Ontology.load*
-        warnings.warn(where + line, OntologyWarning, stacklevel=5)
+        warn(where + line, OntologyWarning, stacklevel=5)
     return lines
 
 
-__all__ = ["INCOMPLETE", "NOT_STORED", "RULE_REPAIRED", "RULE_SKIPPED", "SQWRL_QUERY", "Notice", "OntologyWarning", "grouped",
-           "publish"]
+__all__ = ["INCOMPLETE", "NOT_STORED", "RULE_REPAIRED", "RULE_SKIPPED", "SQWRL_QUERY", "Notice", "OntologyWarning", "answered",
+           "grouped", "publish", "unsaid", "warn"]

@@ -32,8 +32,10 @@ from starlette.routing import Route
 
 from ..armor.codes import CommandError
 from ..armor.reference import Change, Delta, Reference
+from ..compile.notices import answered, unsaid
 from ..errors import TopostoreError
 from ..ontology.facade import Ontology
+from ..ontology.pellet_values import PelletDifferenceWarning
 from ..ontology.spellings import (
     HELD,
     again_notes,
@@ -197,8 +199,8 @@ class GraphStore:
             raise GraphStoreError(400, "cannot tell the ontology IRI: the document declares no single owl:Ontology; "
                                   "add ?iri=http://... (names are resolved against IRI#)")
         media = request.headers.get("content-type", "").split(";")[0].strip().lower()
-        ref = await run_in_threadpool(_new_reference, self.api, name, iri, body, UPLOAD_FORMATS[media])
-        counts = await run_in_threadpool(_created, ref)
+        ref, heard = await run_in_threadpool(_new_reference, self.api, name, iri, body, UPLOAD_FORMATS[media])
+        counts = await run_in_threadpool(_created, ref, heard)
         return JSONResponse(counts, status_code=201, headers={"Location": f"/references/{name}/data?default"})
 
 
@@ -268,30 +270,33 @@ def _tag_notes(ref: Reference, uploaded: list[Triple], written: tuple[bytes, Rdf
                      lambda t: t not in added, literal_tags(uploaded))
 
 
-def _created(ref: Reference) -> dict[str, Any]:
+def _created(ref: Reference, heard: list[str]) -> dict[str, Any]:
     """The reply to a PUT that made ``ref``: the facts its graph holds (a document may write one fact twice,
     or one value in two spellings) and what its load says, as a LOAD's reply (each spelling written but not
-    taken among it, with the one the graph keeps)."""
+    taken among it, with the one the graph keeps), and what else its load and REASON warned of (``heard``)."""
     with ref.lock:
         onto = ref.ontology
+        lines = onto.notice_lines()
         return {"reference": ref.name, "iri": ref.iri, "added": onto.store.count(ASSERTED), "removed": 0,
-                "is_consistent": ref.is_consistent, "warnings": onto.notice_lines()}
+                "is_consistent": ref.is_consistent, "warnings": [*lines, *unsaid(heard, lines)]}
 
 
-def _new_reference(api: Api, name: str, iri: str, body: bytes, fmt: RdfFormat | None) -> Reference:
-    """The reference a PUT creates from the document ``body`` (its rules compiled first: all or nothing)."""
+def _new_reference(api: Api, name: str, iri: str, body: bytes, fmt: RdfFormat | None) -> tuple[Reference, list[str]]:
+    """The reference a PUT creates from the document ``body`` (its rules compiled first: all or nothing), and
+    the warnings its load and REASON gave (answered, whatever the warnings filter)."""
     onto = Ontology(prefix=iri + "#")
     try:
         assert fmt is not None  # parse_upload refused the formats it cannot read
-        onto.load_data(body, fmt, base_iri=iri)
-        onto.reason()
+        with answered(PelletDifferenceWarning) as heard:
+            onto.load_data(body, fmt, base_iri=iri)
+            onto.reason()
     except TopostoreError as exc:
         raise GraphStoreError(400, f"the ontology was not loaded: {exc}") from None
     ref, created = api.service.add_reference(Reference(name, onto, iri))
     if not created:
         raise GraphStoreError(409, f"reference {name!r} was created by another request meanwhile; PUT again to "
                               "replace its graph")
-    return ref
+    return ref, heard
 
 
 __all__ = ["GraphStore", "GraphStoreError", "UPLOAD_FORMATS", "target_graph", "ontology_iri", "GRAPH_FORMATS"]

@@ -11,12 +11,12 @@ from __future__ import annotations
 
 import logging
 import sys
-import warnings
 from collections.abc import Iterable, Sequence
 from typing import TYPE_CHECKING
 
 from pyoxigraph import Literal, NamedNode, Triple
 
+from ..compile.notices import warn
 from ..rdf.terms import check_literal, triple, value_key
 from ..rdf.vocab import ASSERTED
 from ..stores.facts import Fact
@@ -230,7 +230,7 @@ def _warn(notes: list[str]) -> None:
         frame, level = frame.f_back, level + 1
     for note in notes:
         logger.warning("%s", note)
-        warnings.warn(note, SpellingKeptWarning, stacklevel=level)
+        warn(note, SpellingKeptWarning, stacklevel=level)
 
 
 #: the source folder of topostore: the frames a warning does not point at

@@ -29,7 +29,6 @@ apart in OWL 2 alone).  The values are those topostore holds of each individual,
 from __future__ import annotations
 
 import logging
-import warnings
 from collections.abc import Iterable
 from decimal import Decimal, InvalidOperation
 from itertools import combinations
@@ -37,7 +36,7 @@ from typing import TYPE_CHECKING
 
 from pyoxigraph import Literal, NamedNode
 
-from ..compile.notices import OntologyWarning
+from ..compile.notices import OntologyWarning, warn
 from ..rdf.terms import sparql
 from ..rdf.vocab import ASSERTED, AUX, DECLARED_DIFFERENT, DIFFERENT, INFERRED, TYPE, XSD, owl
 from ..reason import Violation
@@ -156,7 +155,7 @@ def warn_pellet_differences(texts: Iterable[str]) -> None:
     :func:`missed_by_pellet` wrote it."""
     for text in texts:
         logger.warning(text)
-        warnings.warn(text, PelletDifferenceWarning, stacklevel=3)
+        warn(text, PelletDifferenceWarning, stacklevel=3)
 
 
 __all__ = ["PelletDifferenceWarning", "missed_by_pellet", "not_told_apart", "told_apart", "value_class", "warn_pellet_differences"]

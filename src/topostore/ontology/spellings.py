@@ -12,14 +12,13 @@ them in its reply; a change (:mod:`.changes`) warns of them.
 from __future__ import annotations
 
 import logging
-import warnings
 from collections.abc import Callable, Collection, Iterable
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
 from pyoxigraph import Literal, RdfFormat, Triple
 
-from ..compile.notices import OntologyWarning
+from ..compile.notices import OntologyWarning, warn
 from ..rdf.skolem import unskolem
 from ..rdf.terms import value_key
 from ..rdf.vocab import ASSERTED, RDF
@@ -165,7 +164,7 @@ def published(notes: list[str], source: str) -> None:
     line = f"{source}: {joined(notes)}"
     logger.warning("%s", line)
     # the caller of Ontology.load/load_data: published ← _published ← OntologyFiles.load* ← Ontology.load*
-    warnings.warn(line, SpellingKeptWarning, stacklevel=5)
+    warn(line, SpellingKeptWarning, stacklevel=5)
 
 
 @dataclass
