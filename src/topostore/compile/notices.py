@@ -18,8 +18,7 @@ from __future__ import annotations
 
 import logging
 import warnings
-from collections.abc import Iterable, Iterator
-from contextlib import contextmanager
+from collections.abc import Iterable
 from contextvars import ContextVar
 from dataclasses import dataclass, field
 
@@ -73,17 +72,24 @@ def warn(text: str, category: type[OntologyWarning], stacklevel: int = 1) -> Non
         pass
 
 
-@contextmanager
-def answered(*categories: type[Warning]) -> Iterator[list[str]]:
+class answered:  # noqa: N801 - used as a function: ``with answered(Category) as heard:``
     """The texts of the warnings of ``categories`` said inside the block, which a command layer puts in its
     answer; no warning raises inside it, whatever the warnings filter (one of another category, such as a
-    load's notices, is in the answer already, or said on the log only)."""
-    heard: list[str] = []
-    token = _HEARD.set((heard, categories))
-    try:
-        yield heard
-    finally:
-        _HEARD.reset(token)
+    load's notices, is in the answer already, or said on the log only).  A class, not a generator: every
+    aRMOR command opens one."""
+
+    __slots__ = ("heard", "categories", "token")
+
+    def __init__(self, *categories: type[Warning]) -> None:
+        self.heard: list[str] = []
+        self.categories = categories
+
+    def __enter__(self) -> list[str]:
+        self.token = _HEARD.set((self.heard, self.categories))
+        return self.heard
+
+    def __exit__(self, *exc: object) -> None:
+        _HEARD.reset(self.token)
 
 
 def unsaid(heard: list[str], said: Iterable[str]) -> list[str]:
