@@ -54,7 +54,12 @@ def _flipped(store, key: ReadKey, graph: NamedNode) -> list[Triple] | None:
     """The flipped facts of ``key`` in ``graph``; None when they are too many or one holds a
     literal (the SPARQL text then moves them: a literal may be stored in another spelling)."""
     facts = _facts(store, pattern_of(key), graph)
-    if facts is None or any(isinstance(t.object, Literal) for t in facts):
+    return None if facts is None else _movable(facts)
+
+
+def _movable(facts: list[Triple]) -> list[Triple] | None:
+    """``facts`` where look-ups may move them: at most :data:`FEW`, none holding a literal; else None."""
+    if len(facts) > FEW or any(isinstance(t.object, Literal) for t in facts):
         return None
     return facts
 
@@ -78,6 +83,15 @@ class Lost:
         _add_candidates(store, facts, self.graph)
         return True
 
+    def handed(self, store, facts: list[Triple]) -> bool:
+        """:meth:`run` with the flipped-false facts of ``key`` given (a staged run's flips found them
+        and wrote them nowhere); False where the text must run (which reads them from FLIP_LOST)."""
+        facts = _movable(facts)
+        if facts is None:
+            return False
+        _add_candidates(store, facts, self.graph)
+        return True
+
 
 @dataclass(frozen=True)
 class Gained:
@@ -93,6 +107,14 @@ class Gained:
 
     def run(self, store) -> bool:
         facts = _flipped(store, self.key, FLIP_GAINED)
+        if facts is None:
+            return False
+        _write_new(store, facts, self.graph)
+        return True
+
+    def handed(self, store, facts: list[Triple]) -> bool:
+        """:meth:`run` with the flipped-true facts of ``key`` given (see :meth:`Lost.handed`)."""
+        facts = _movable(facts)
         if facts is None:
             return False
         _write_new(store, facts, self.graph)
