@@ -268,6 +268,48 @@ def test_flipped_heads_kept_in_python_join_those_of_a_flip_run_as_text(by_text: 
     assert True in by_look_ups and False in by_look_ups
 
 
+GUARDED = PREFIXES + f"""
+:B a owl:Class . :p a owl:ObjectProperty . :q a owl:ObjectProperty . :r a owl:ObjectProperty .
+:s a owl:ObjectProperty .
+{rule([obj(':s', '?y', '?z'), cls(':B', '?z')], [obj(':q', '?y', '?z')], 'Writer')}
+{rule([obj(':p', '?x', '?y'), obj(':q', '?y', '?z')], [obj(':r', '?x', '?z')], 'Joiner')}
+:h a :B . :x a :B .
+"""
+
+
+def test_additions_joining_a_premise_without_facts_are_left_out_until_it_has_some() -> None:
+    """A staged run leaves out the additions that join a premise without facts (no facts before the run,
+    none written by it so far: reason/staged.py ``needs``); the keys with facts grow by what each run
+    wrote.  The same kind of change three times: q has no facts (the Joiner's additions left out), q
+    gains its first fact in the run that joins it, then q has facts from the run before."""
+    skipped: list[bool] = []
+    from topostore.reason import staged
+
+    original = staged.StagedRun._without_facts
+
+    def counted(run, keys):
+        skipped.append(original(run, keys))
+        return skipped[-1]
+
+    onto = turtle(GUARDED)
+    onto.max_change_share = 1.0
+    onto.reason()
+    left_out = []
+    with mock.patch.object(staged.StagedRun, "_without_facts", counted):
+        for (a, b), (c, d), r in ((("a", "b"), ("e", "f"), set()), (("c", "g"), ("g", "h"), {("c", "h")}),
+                                  (("k", "g"), ("m", "n"), {("c", "h"), ("k", "h")})):
+            onto.add(Triple(N(a), N("p"), N(b)))
+            onto.add(Triple(N(c), N("s"), N(d)))
+            skipped.clear()
+            report = onto.reason(mode="incremental")
+            left_out.append(True in skipped)
+            assert report.stats.program == "compiled", report.stats.program
+            assert_as_from_scratch(onto, report)
+            found = {(onto.short(t.subject), onto.short(t.object)) for t in onto.store.triples(None, N("r"), None)}
+            assert found == r
+    assert left_out == [True, False, False]
+
+
 def test_a_flip_runs_by_look_ups_and_falls_back_on_an_overflow() -> None:
     """The clock's flip through look-ups (reason/look_flip.py) gives the text's heads; a visit time whose
     difference from the clock overflows 64 bits is no boolean the evaluator decides: the text runs."""
@@ -783,7 +825,7 @@ def test_a_part_nothing_starts_is_passed_by_its_keys() -> None:
             assert part.always
         assert part.minus == {op[2] for op in part.ops if op[1] == "minus"}
         assert part.plus == {op[2] for op in part.ops if op[1] == "plus"}
-        for index, _, _, text, _, key, found, reads, seeded, _, _, _ in part.ops:  # bound once per program
+        for index, _, _, text, _, key, found, reads, seeded, _, _, _, _ in part.ops:  # bound once per program
             assert (text, key, found, seeded) == (program.ops[index][1], program.part[index],
                                                    program.direct.get(index), index in program.seeded)
             assert reads == (program.reads[index] if found is not None else None)

@@ -24,6 +24,7 @@ from .direct import pattern_of
 from .program import Signature, StepProgram
 from .scratch import CANDIDATES, FLIP_GAINED, NEW_FACTS, OVERDELETED
 from .staged_plan import AFTER, HANDED, SEEDING, SENT, BoundOp, Segment, segments
+from .triggers import Present, matches
 
 #: up to how many candidates a key's rechecks go one by one, stopping once every candidate is kept
 FEW = 32
@@ -35,12 +36,13 @@ class StagedRun:
     def __init__(self, store, program: StepProgram, sig: Signature,
                  flip_text: Callable[..., str],
                  changes: tuple[Collection[Triple], Collection[Triple]] | None = None,
-                 before_text: Callable[[], None] | None = None) -> None:
+                 before_text: Callable[[], None] | None = None, present: Present | None = None) -> None:
         """``flip_text(rule, order, text[, own_window])``: a flip's text for this run
         (:meth:`.compiled_step.CompiledStep._flip_text`); ``changes``: the added and removed asserted
         triples, written to the step's first lost and gained facts directly instead of by the program's
         first operation; ``before_text``: called once before the first text is sent (the copies of the
-        changes its operations read)."""
+        changes its operations read); ``present``: the keys with facts before the run (a superset; None:
+        any), whose absence leaves out an operation that would find nothing (:attr:`.staged_plan.BoundOp.needs`)."""
         self.store = store
         self.changes = changes
         self.before_text = before_text
@@ -62,6 +64,9 @@ class StagedRun:
         self.dirty: set = set()
         #: keys whose part ran, not yet looked up for lost or gained facts (done when a later part asks)
         self.unnoted: set = set()
+        self.present = present
+        #: SPARQL text was sent (it may write facts of any key its part writes, without a note)
+        self.texts = False
 
     def run(self) -> None:
         """Run the program part by part (:func:`segments`): a part none of whose operations can run (no
@@ -99,7 +104,7 @@ class StagedRun:
         #: the flips' heads by the graph they would be written to; None: none yet, False: written there
         handed: dict | bool | None = None
         taken: set = set()  # the graphs whose heads an operation took
-        for index, kind, key, text, flip, part, direct, reads, has_seeded, window, part_reads, hand in ops:
+        for index, kind, key, text, flip, part, direct, reads, has_seeded, window, part_reads, hand, needs in ops:
             look_up = True
             fallback = None
             if flip is not None:
@@ -150,6 +155,8 @@ class StagedRun:
                     or (kind == "plus" and self._changed(key, self.plus)) \
                     or (kind in AFTER and (flipped or kind == "recheck")
                         and self._holds(found, AFTER[kind], key, seeded)):
+                if needs is not None and self._without_facts(needs):
+                    continue  # it joins a key without facts: it finds nothing
                 queued |= self._send(text, part, direct if look_up else None, reads, has_seeded and index,
                                      look_up, fallback)
                 seeded |= kind in SEEDING
@@ -161,6 +168,28 @@ class StagedRun:
                     self.unnoted.add(key)  # looked up when a later part asks (after a flush if needed)
         if handed and len(taken) < len(handed):
             self._spill(handed, taken)
+
+    def _without_facts(self, keys: frozenset) -> bool:
+        """Whether one of ``keys`` surely has no facts now: none before the run (:attr:`present`), and none
+        gained since (looked up where its part ran unnoted; nothing queued that may write it)."""
+        present, dirty = self.present, self.dirty
+        if present is None or None in dirty:
+            return False
+        for key in keys:
+            if matches(key, *present) or key in dirty:
+                continue
+            if key in self.unnoted:
+                self._changed(key, self.plus)
+            if key not in self.plus:
+                return True
+        return False
+
+    def gained(self) -> set | None:
+        """The keys that may have gained facts in this run (those noted as gaining, and those whose part
+        ran unnoted); None where text ran or a component did (any key its operations write may have)."""
+        if self.texts or self.components:
+            return None
+        return self.plus | self.unnoted
 
     def _heads(self, hand: Callable, reads: Collection | None) -> tuple | None:
         """A flip's heads by look-ups (:meth:`.look_flip.Flipped.heads`), after sending what is queued
@@ -288,6 +317,7 @@ class StagedRun:
                 self.before_text()
                 self.before_text = None
             self.sent += len(self.queue)
+            self.texts = True
             self.store.update(" ;\n".join(self.queue), prefixes=PREFIXES)
             self.queue.clear()
         self.dirty.clear()

@@ -24,6 +24,10 @@ SENT = frozenset(("always", "seeds", "changes"))
 SEEDING = frozenset(("seeds", "minus", "lost"))
 #: the operations a part's flips hand their heads to, and the graph each would read them from
 HANDED = {"lost": FLIP_LOST, "gained": FLIP_GAINED}
+#: the operations left out where a key they join has no facts (:attr:`BoundOp.needs`): the candidates
+#: from a key's lost facts and the additions from its gained ones, which add to scratch or state graphs
+#: only what they find (never a recheck, which deletes what it does not find)
+NEEDING = frozenset(("minus", "plus"))
 
 
 class BoundOp(NamedTuple):
@@ -48,6 +52,8 @@ class BoundOp(NamedTuple):
     #: a flip's heads found without writing them (:meth:`.look_flip.Flipped.heads`), or a lost or gained
     #: operation given them (:meth:`.direct.Lost.handed`); None: the operation has no such form
     hand: Callable | None = None
+    #: keys of the new state without whose facts its look-up equivalent finds nothing (its ``needs``)
+    needs: frozenset | None = None
 
 
 class Segment:
@@ -107,9 +113,11 @@ def _bound(program: StepProgram, direct: dict, index: int, tag: tuple, text: str
     window = getattr(owner, "reads_window", None) if flip is not None else None
     hand = getattr(owner, "heads" if flip is not None else "handed", None) \
         if flip is not None or tag[0] in HANDED else None
+    needs = getattr(owner, "needs", {}).get(getattr(found, "__name__", None)) if tag[0] in NEEDING else None
     return BoundOp(index, tag[0], tag[1] if len(tag) > 1 else None, text, flip, part, found,
                    program.reads[index] if found is not None else None, index in program.seeded, window,
-                   (program.reads[part] if part is not None else (None,)) if flip is not None else None, hand)
+                   (program.reads[part] if part is not None else (None,)) if flip is not None else None, hand,
+                   needs)
 
 
-__all__ = ["AFTER", "HANDED", "SEEDING", "SENT", "BoundOp", "Segment", "segments"]
+__all__ = ["AFTER", "HANDED", "NEEDING", "SEEDING", "SENT", "BoundOp", "Segment", "segments"]
