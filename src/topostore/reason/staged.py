@@ -108,6 +108,8 @@ class StagedRun:
             look_up = True
             fallback = None
             if flip is not None:
+                if needs and self._without_facts(needs):
+                    continue  # an atom it joins has no facts: nothing can flip
                 compiled = text
                 own = window is not None and window()
                 text = self._flip(part_reads, flip, text, own)

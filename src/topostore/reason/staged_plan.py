@@ -52,7 +52,8 @@ class BoundOp(NamedTuple):
     #: a flip's heads found without writing them (:meth:`.look_flip.Flipped.heads`), or a lost or gained
     #: operation given them (:meth:`.direct.Lost.handed`); None: the operation has no such form
     hand: Callable | None = None
-    #: keys of the new state without whose facts its look-up equivalent finds nothing (its ``needs``)
+    #: keys of the new state without whose facts it finds nothing: a flip's atoms it does not compare
+    #: (:attr:`.program.StepProgram.needs`), the premises an addition joins (its look-up's ``needs``)
     needs: frozenset | None = None
 
 
@@ -113,7 +114,10 @@ def _bound(program: StepProgram, direct: dict, index: int, tag: tuple, text: str
     window = getattr(owner, "reads_window", None) if flip is not None else None
     hand = getattr(owner, "heads" if flip is not None else "handed", None) \
         if flip is not None or tag[0] in HANDED else None
-    needs = getattr(owner, "needs", {}).get(getattr(found, "__name__", None)) if tag[0] in NEEDING else None
+    if flip is not None:
+        needs = program.needs.get(index)
+    else:
+        needs = getattr(owner, "needs", {}).get(getattr(found, "__name__", None)) if tag[0] in NEEDING else None
     return BoundOp(index, tag[0], tag[1] if len(tag) > 1 else None, text, flip, part, found,
                    program.reads[index] if found is not None else None, index in program.seeded, window,
                    (program.reads[part] if part is not None else (None,)) if flip is not None else None, hand,
