@@ -221,6 +221,9 @@ class Relaxed:
         self.graph = graph
         #: the keys whose facts it reads: atom ``j``'s and the head's
         self.reads = frozenset((rule.body[j].read_key(), rule.head.read_key()))
+        #: keys without whose facts before the change the rule derived nothing through a lost fact of atom
+        #: ``j`` (its other atoms): no candidate is needed then, however wide this one's would be
+        self.needs = {"run": frozenset(a.read_key() for m, a in enumerate(rule.body) if m != j)}
 
     def run(self, store) -> bool:
         facts = _facts(store, self._body.free, OVERDELETED)

@@ -24,7 +24,7 @@ from .direct import pattern_of
 from .program import Signature, StepProgram
 from .scratch import CANDIDATES, FLIP_GAINED, NEW_FACTS, OVERDELETED
 from .staged_plan import AFTER, HANDED, SEEDING, SENT, BoundOp, Segment, segments
-from .triggers import Present, matches
+from .triggers import Present
 
 #: up to how many candidates a key's rechecks go one by one, stopping once every candidate is kept
 FEW = 32
@@ -171,14 +171,15 @@ class StagedRun:
         if handed and len(taken) < len(handed):
             self._spill(handed, taken)
 
-    def _without_facts(self, keys: frozenset) -> bool:
-        """Whether one of ``keys`` surely has no facts now: none before the run (:attr:`present`), and none
-        gained since (looked up where its part ran unnoted; nothing queued that may write it)."""
+    def _without_facts(self, keys: tuple) -> bool:
+        """Whether one of ``keys`` (:attr:`.staged_plan.BoundOp.needs`) surely has no facts now: none before
+        the run (:attr:`present`), and none gained since (looked up where its part ran unnoted; nothing
+        queued that may write it)."""
         present, dirty = self.present, self.dirty
         if present is None or None in dirty:
             return False
-        for key in keys:
-            if matches(key, *present) or key in dirty:
+        for key, which, name in keys:
+            if name in present[which] or key in dirty:
                 continue
             if key in self.unnoted:
                 self._changed(key, self.plus)

@@ -25,8 +25,9 @@ SEEDING = frozenset(("seeds", "minus", "lost"))
 #: the operations a part's flips hand their heads to, and the graph each would read them from
 HANDED = {"lost": FLIP_LOST, "gained": FLIP_GAINED}
 #: the operations left out where a key they join has no facts (:attr:`BoundOp.needs`): the candidates
-#: from a key's lost facts and the additions from its gained ones, which add to scratch or state graphs
-#: only what they find (never a recheck, which deletes what it does not find)
+#: from a key's lost facts (no derivation through them before the change) and the additions from its
+#: gained ones, which add to scratch or state graphs only what they find (never a recheck, which deletes
+#: what it does not find)
 NEEDING = frozenset(("minus", "plus"))
 
 
@@ -53,8 +54,17 @@ class BoundOp(NamedTuple):
     #: operation given them (:meth:`.direct.Lost.handed`); None: the operation has no such form
     hand: Callable | None = None
     #: keys of the new state without whose facts it finds nothing: a flip's atoms it does not compare
-    #: (:attr:`.program.StepProgram.needs`), the premises an addition joins (its look-up's ``needs``)
-    needs: frozenset | None = None
+    #: (:attr:`.program.StepProgram.needs`), the premises an addition joins (its look-up's ``needs``); each
+    #: as (key, 0 for a predicate or 1 for a class, name) (:func:`_named`)
+    needs: tuple | None = None
+
+
+def _named(keys: Collection | None) -> tuple | None:
+    """``keys`` as a run tests them (:meth:`.staged.StagedRun._without_facts`): each with the set of the
+    keys with facts it is looked up in (0: predicates, 1: classes) and its name; a key of any predicate
+    is left out (it is never without facts), and None where none is left."""
+    found = tuple((key, 1 if key[0] == "t" else 0, key[1]) for key in keys or () if key[0] != "*")
+    return found or None
 
 
 class Segment:
@@ -115,9 +125,10 @@ def _bound(program: StepProgram, direct: dict, index: int, tag: tuple, text: str
     hand = getattr(owner, "heads" if flip is not None else "handed", None) \
         if flip is not None or tag[0] in HANDED else None
     if flip is not None:
-        needs = program.needs.get(index)
+        needs = _named(program.needs.get(index))
     else:
-        needs = getattr(owner, "needs", {}).get(getattr(found, "__name__", None)) if tag[0] in NEEDING else None
+        needs = _named(getattr(owner, "needs", {}).get(getattr(found, "__name__", None))) \
+            if tag[0] in NEEDING else None
     return BoundOp(index, tag[0], tag[1] if len(tag) > 1 else None, text, flip, part, found,
                    program.reads[index] if found is not None else None, index in program.seeded, window,
                    (program.reads[part] if part is not None else (None,)) if flip is not None else None, hand,
