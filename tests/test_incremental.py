@@ -491,7 +491,7 @@ def test_single_precision_values_take_no_window(windows: str) -> None:
     onto.reason()
     with contextlib.ExitStack() as patches:
         if windows == "query":
-            patches.enter_context(mock.patch.object(look_flip.Flipped, "run", lambda self, store: False))
+            patches.enter_context(mock.patch.object(look_flip.Flipped, "heads", lambda self, store: None))
             patches.enter_context(mock.patch.object(flips, "WINDOW_MIN", 5))
         for text, datatype in [("1665579767.0", "float"), ("1665579797", "integer")]:
             onto.replace(N("Robot1"), N("now"), onto.value(text, datatype))
@@ -514,7 +514,7 @@ def test_a_look_up_flip_that_gives_up_leaves_the_flip_to_the_text_narrowed_by_a_
     onto.max_change_share = 1.0
     onto.reason()
     windows = mock.Mock(wraps=onto._reasoner.flips._windows)
-    with mock.patch.object(look_flip.Flipped, "run", lambda self, store: False), \
+    with mock.patch.object(look_flip.Flipped, "heads", lambda self, store: None), \
             mock.patch.object(flips, "WINDOW_MIN", 5), mock.patch.object(onto._reasoner.flips, "_windows", windows):
         for t in (1665579770, 1665579800, 1665579750):
             set_clock(onto, "Robot1", t)

@@ -105,6 +105,7 @@ class CompiledStep:
         self.requests.scratch([r.old for p in program.flipped for r in clean[p]], flip.CHANGE_OLD)
         start = time.perf_counter()
         self.flips.state = state
+        gained = None  # the keys that may have gained facts (None: any the program writes)
         if self.store.round_trips and self.store.whole_programs:  # the whole program as one request
             copy_changes()
             self.requests.flush()
@@ -115,32 +116,35 @@ class CompiledStep:
         else:
             self._settle = False  # the rounds run to their end here
             self.requests.flush()
-            run = StagedRun(self.store, program, sig, self._flip_text, (added, removed), copy_changes)
+            run = StagedRun(self.store, program, sig, self._flip_text, (added, removed), copy_changes, state.present)
             run.run()
             stats.evaluations += run.sent
+            gained = run.gained()
         if self.requests.profile:
             stats.per_rule["program"] = time.perf_counter() - start
         stats.flipped = program.flips
         stats.program = "compiled"
         self.checks.step_clean = program.clean
+        # the keys with facts stay a superset, and no larger: a head the program never wrote keeps the
+        # operations joining it left out (a staged run's ``needs``) and the program that left it out valid
+        for kind, key in program.heads if gained is None else gained:
+            state.present[0 if kind == "p" else 1].add(key)
         if ran is None:
             #: the keys the after-step reads ask about: the asserted changes' and what the program may add
             written = frozenset(program.heads)
             heads, lost = written | frozenset(sig.added), written | frozenset(sig.removed)
-            for kind, key in program.heads:
-                state.present[0 if kind == "p" else 1].add(key)
             ran = self._ran[sig] = (program, state, _sizes(state), heads, lost, key_sets(lost))
         else:
-            heads, lost = ran[3], ran[4]  # the heads are among the keys with facts already
+            heads, lost = ran[3], ran[4]  # recorded at the program's first run
         self._heads, self.lost, self.lost_keys = heads, lost, ran[5]
         return True
 
     def _unchanged(self, sig, state: MaintenanceState) -> tuple | None:
         """What the last run of ``sig``'s program noted, when nothing its checks read changed since: the
         same program and state, and the keys with facts (asserted or not) no more than then.  Between
-        full runs those sets only grow, in :meth:`run` and with the asserted changes, and the general
-        phases clear this record (:meth:`forget_runs`): the same sizes are the same keys.  Then the keys
-        the program left out still have no facts and its heads are noted already; else None."""
+        full runs those sets only grow, in :meth:`run` (by the keys a run gained facts of) and with the
+        asserted changes, and the general phases clear this record (:meth:`forget_runs`): the same sizes
+        are the same keys.  Then the keys the program left out still have no facts; else None."""
         ran = self._ran.get(sig)
         if ran is None or sig in self.unsettled or ran[1] is not state or ran[0] is not self.programs.get(sig):
             return None

@@ -54,7 +54,12 @@ def _flipped(store, key: ReadKey, graph: NamedNode) -> list[Triple] | None:
     """The flipped facts of ``key`` in ``graph``; None when they are too many or one holds a
     literal (the SPARQL text then moves them: a literal may be stored in another spelling)."""
     facts = _facts(store, pattern_of(key), graph)
-    if facts is None or any(isinstance(t.object, Literal) for t in facts):
+    return None if facts is None else _movable(facts)
+
+
+def _movable(facts: list[Triple]) -> list[Triple] | None:
+    """``facts`` where look-ups may move them: at most :data:`FEW`, none holding a literal; else None."""
+    if len(facts) > FEW or any(isinstance(t.object, Literal) for t in facts):
         return None
     return facts
 
@@ -78,6 +83,15 @@ class Lost:
         _add_candidates(store, facts, self.graph)
         return True
 
+    def handed(self, store, facts: list[Triple]) -> bool:
+        """:meth:`run` with the flipped-false facts of ``key`` given (a staged run's flips found them
+        and wrote them nowhere); False where the text must run (which reads them from FLIP_LOST)."""
+        facts = _movable(facts)
+        if facts is None:
+            return False
+        _add_candidates(store, facts, self.graph)
+        return True
+
 
 @dataclass(frozen=True)
 class Gained:
@@ -93,6 +107,14 @@ class Gained:
 
     def run(self, store) -> bool:
         facts = _flipped(store, self.key, FLIP_GAINED)
+        if facts is None:
+            return False
+        _write_new(store, facts, self.graph)
+        return True
+
+    def handed(self, store, facts: list[Triple]) -> bool:
+        """:meth:`run` with the flipped-true facts of ``key`` given (see :meth:`Lost.handed`)."""
+        facts = _movable(facts)
         if facts is None:
             return False
         _write_new(store, facts, self.graph)
@@ -199,6 +221,9 @@ class Relaxed:
         self.graph = graph
         #: the keys whose facts it reads: atom ``j``'s and the head's
         self.reads = frozenset((rule.body[j].read_key(), rule.head.read_key()))
+        #: keys without whose facts before the change the rule derived nothing through a lost fact of atom
+        #: ``j`` (its other atoms): no candidate is needed then, however wide this one's would be
+        self.needs = {"run": frozenset(a.read_key() for m, a in enumerate(rule.body) if m != j)}
 
     def run(self, store) -> bool:
         facts = _facts(store, self._body.free, OVERDELETED)

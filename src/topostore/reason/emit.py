@@ -66,6 +66,8 @@ class Emitter:
         #: the key of each operation's part, and what each part reads (see :attr:`StepProgram.part`)
         self.part: list[ReadKey | None] = []
         self.reads: dict[ReadKey, frozenset] = {}
+        #: by position of a flip, the keys of its rule's atoms it does not compare (see :attr:`StepProgram.needs`)
+        self.needs: dict[int, frozenset] = {}
 
     def op(self, ops: list, tag: tuple, text: str, direct: Callable | None = None) -> None:
         """Append an operation to ``ops`` (the program's own: with its look-up equivalent, if any, a
@@ -93,7 +95,7 @@ class Emitter:
         self.part += [None] * (len(self.ops) - len(self.part))
         return StepProgram(self.ops, frozenset(absent), frozenset(self.graphs), frozenset(self.flipped),
                            self.flip_rules, self.clean, frozenset(self.unasserted), self.direct,
-                           self.seeded, self.part, self.reads)
+                           self.seeded, self.part, self.reads, self.needs)
 
     def _active_writers(self) -> dict[ReadKey, list[int]]:
         """The active rules by the key they write, in rule order (found once: a program has a few
@@ -228,6 +230,8 @@ class Emitter:
                 self.seeded[len(ops)] = {
                     rule.body[j].p: texts.flips(rule, (j, *(m for m in order if m != j)), self.c.lateral, i, seeded=True)
                     for j in order}
+            if ops is self.ops:
+                self.needs[len(ops)] = frozenset(a.read_key() for m, a in enumerate(rule.body) if m not in order)
             if ops is self.ops and flippable(rule, order):
                 flipped = Flipped(rule, order, self.c.state_graphs.of, self.c.values)
                 self.direct[len(ops)], self.reads[len(ops)] = flipped.run, flipped.reads

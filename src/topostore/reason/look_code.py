@@ -24,7 +24,7 @@ from collections.abc import Callable
 
 from pyoxigraph import BlankNode, Literal, NamedNode
 
-from .look_values import MAX, VALUES, Str, ebv, term_of, value
+from .look_values import MAX, VALUES, Str, term_of, value
 
 _MIN = -(2 ** 63)
 _KINDS = {"ISIRI": NamedNode, "ISURI": NamedNode, "ISBLANK": BlankNode, "ISLITERAL": Literal}
@@ -49,10 +49,16 @@ def compile_conditions(binds: list[tuple[str, tuple]], tests: list[tuple]) -> tu
     return holds, exact
 
 
+def _ebv(x: str) -> str:
+    """:func:`.look_values.ebv` of local ``x`` written out (no call per test of a solution)."""
+    return (f"({x} if type({x}) is bool else (({x} != 0) if type({x}) is int else "
+            f"((len({x}) > 0) if type({x}) is Str else None)))")
+
+
 def _holds(results: list[str]) -> list[str]:
     if not results:
         return ["return True"]
-    flags = [f"ebv({r})" for r in results]
+    flags = [_ebv(r) for r in results]
     return [f"e{i} = {f}" for i, f in enumerate(flags)] + [
         f"if {' or '.join(f'e{i} is False' for i in range(len(flags)))}:",
         "    return False",
@@ -79,8 +85,7 @@ class _Code:
 
     def __init__(self) -> None:
         self.lines: list[str] = []
-        self.namespace: dict[str, object] = {"value": value, "VALUES": VALUES, "term_of": term_of,
-                                             "ebv": ebv, "Str": Str,
+        self.namespace: dict[str, object] = {"value": value, "VALUES": VALUES, "term_of": term_of, "Str": Str,
                                              "NamedNode": NamedNode, "BlankNode": BlankNode,
                                              "Literal": Literal, "MIN": _MIN, "MAX": MAX}
         #: a solution variable's value and term, each read once
@@ -120,10 +125,14 @@ class _Code:
 
     def _term_of(self, name: str) -> str:
         if name in self.binds:
-            return self.new(f"term_of({self.binds[name]})")
+            return self._as_term(self.binds[name])
         if name not in self.terms:
-            self.terms[name] = self.new(f"term_of(s.get({name!r}))")
+            self.terms[name] = self._as_term(self.new(f"s.get({name!r})"))
         return self.terms[name]
+
+    def _as_term(self, x: str) -> str:
+        """:func:`.look_values.term_of` of local ``x``, called only for a computed value (a term is itself)."""
+        return self.new(f"term_of({x}) if type({x}) is bool or type({x}) is int or type({x}) is Str else {x}")
 
     def _const(self, found: object) -> str:
         return self.const(found)
@@ -135,7 +144,7 @@ class _Code:
         return self._junction([self.node(p) for p in parts], True)
 
     def _junction(self, locals_: list[str], decisive: bool) -> str:
-        flags = [self.new(f"ebv({x})") for x in locals_]
+        flags = [self.new(_ebv(x)) for x in locals_]
         return self.new(f"{decisive} if ({' or '.join(f'{f} is {decisive}' for f in flags)}) else "
                         f"(None if ({' or '.join(f'{f} is None' for f in flags)}) else {not decisive})")
 
@@ -165,7 +174,7 @@ class _Code:
         return self.new(f"{a} if type({a}) is int else None")
 
     def _not(self, arg: tuple) -> str:
-        flag = self.new(f"ebv({self.node(arg)})")
+        flag = self.new(_ebv(self.node(arg)))
         return self.new(f"None if {flag} is None else not {flag}")
 
     def _term_test(self, name: str, args: list) -> str:

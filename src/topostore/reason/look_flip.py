@@ -138,6 +138,17 @@ class Flipped:
 
     def run(self, store) -> bool:
         """Write the flipped heads to FLIP_GAINED / FLIP_LOST; False (nothing written) where the text must run."""
+        found = self.heads(store)
+        if found is None:
+            return False
+        store.add_scratch(found[0], FLIP_GAINED)
+        store.add_scratch(found[1], FLIP_LOST)
+        return True
+
+    def heads(self, store) -> tuple[list[Triple], list[Triple]] | None:
+        """The flipped heads, true now and true before (each without duplicates), written nowhere: a
+        staged run hands them to its part's lost and gained operations (:mod:`.staged`); None where
+        the text must run."""
         gained: dict[Triple, None] = {}
         lost: dict[Triple, None] = {}
         if self._runs_left > 0:
@@ -160,10 +171,8 @@ class Flipped:
                     for solution, olds in self._extend(store, position, bound, old, 0, index_here):
                         self._decide(solution, olds, gained, lost)
         except _Fallback:
-            return False
-        store.add_scratch(list(gained), FLIP_GAINED)
-        store.add_scratch(list(lost), FLIP_LOST)
-        return True
+            return None
+        return list(gained), list(lost)
 
     def _facts(self, store, pattern: tuple, graphs) -> list[Triple]:
         """The distinct facts of ``pattern`` in ``graphs``; :class:`_Fallback` (the text runs) past FEW."""

@@ -278,6 +278,9 @@ class Joined:
         self._delta_order = join_order(rule.body, delta)[1:] if delta is not None else []
         #: the keys whose facts it reads: its atoms' and its head's
         self.reads = frozenset({a.read_key() for a in rule.body} | {rule.head.read_key()})
+        #: per operation, keys of the new state without whose facts it finds nothing: the atoms the
+        #: additions join to a delta fact (premises: the keys with facts are kept for them)
+        self.needs = {"additions": frozenset(rule.body[m].read_key() for m in self._delta_order)}
         #: the recheck's join from a candidate's head values, and the additions' from a delta fact's
         #: bindings, each compiled once into a flat function (:mod:`.join_code`)
         self._prove = self._join(self._proof_order, self._head, "_prove")

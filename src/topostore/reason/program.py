@@ -118,6 +118,9 @@ class StepProgram:
     #: key with a part, the keys its rules read and itself; by position of an operation in ``direct``,
     #: the keys its look-ups read
     reads: dict = field(default_factory=dict)
+    #: by position of a flip in ``ops``: the keys of its rule's atoms it does not compare, without whose
+    #: facts in the new state it finds nothing (see :class:`.staged.StagedRun`)
+    needs: dict = field(default_factory=dict)
     #: the operations grouped by part once, for key-by-key runs (:func:`.staged.segments`; built at the first run)
     segments: list | None = field(default=None, compare=False, repr=False)
 

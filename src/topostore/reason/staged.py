@@ -12,7 +12,6 @@ from __future__ import annotations
 
 from collections.abc import Callable, Collection
 from itertools import islice
-from typing import NamedTuple
 
 from pyoxigraph import NamedNode, Triple
 
@@ -24,95 +23,11 @@ from .delta_texts import FLIP_LOST, KEEP
 from .direct import pattern_of
 from .program import Signature, StepProgram
 from .scratch import CANDIDATES, FLIP_GAINED, NEW_FACTS, OVERDELETED
+from .staged_plan import AFTER, HANDED, SEEDING, SENT, BoundOp, Segment, segments
+from .triggers import Present
 
-#: operations that run only when a graph holds facts of their key: the key's candidates are rechecked,
-#: its flipped-false facts become candidates, its flipped-true facts are added
 #: up to how many candidates a key's rechecks go one by one, stopping once every candidate is kept
 FEW = 32
-_AFTER = {"recheck": CANDIDATES, "lost": FLIP_LOST, "gained": FLIP_GAINED}
-#: operations sent whenever their part runs, and those after which the part's key may have candidates
-_SENT = frozenset(("always", "seeds", "changes"))
-_SEEDING = frozenset(("seeds", "minus", "lost"))
-
-
-class BoundOp(NamedTuple):
-    """One operation of a program with what every run would look up about it, bound once (:func:`_bound`);
-    a run unpacks it as a plain tuple."""
-
-    index: int
-    kind: str
-    key: ReadKey | None
-    text: str
-    flip: tuple | None
-    #: the key of its part (None: of no key's)
-    part: ReadKey | None
-    #: its look-up equivalent (None: none) and the keys that one reads
-    direct: Callable | None
-    reads: Collection | None
-    has_seeded: bool
-    #: its flip's own value window test (:meth:`.look_flip.Flipped.reads_window`), None without one
-    window: Callable[[], bool] | None
-    #: for a flip, the keys its part reads (those its window query reads)
-    part_reads: Collection | None
-
-
-class Segment:
-    """A key's part of a program (its operations up to its ``end``), or a recursive component, with
-    what decides in one set test whether any of its operations can run this time."""
-
-    __slots__ = ("always", "component", "keys", "minus", "ops", "plus")
-
-    def __init__(self, ops: list[BoundOp], component=None) -> None:
-        #: per operation, what :meth:`StagedRun._part` reads of it (:func:`_bound`)
-        self.ops = ops
-        self.component = component
-        kinds = {op.kind for op in ops}
-        #: an operation runs whatever changed (a flip, the asserted changes, a key's seeds), or the
-        #: part has no end (its key is not noted as the run expects): the part always runs
-        self.always = any(op.flip is not None for op in ops) or bool(kinds & _SENT) or "end" not in kinds
-        #: the keys whose lost / gained facts start an operation
-        self.minus = frozenset(op.key for op in ops if op.kind == "minus")
-        self.plus = frozenset(op.key for op in ops if op.kind == "plus")
-        self.keys = self.minus | self.plus
-
-
-def segments(program: StepProgram, direct: dict | None = None) -> list[Segment]:
-    """The program's operations grouped by part, each resolved once to its kind, key, flip tag and what
-    a run looks up about it (:func:`_bound`; ``direct``: the look-up operations a run uses, by position).
-
-    Without a flip, the asserted changes or a key's seeds, a part's operations run only after a
-    ``minus`` or ``plus`` operation whose key lost or gained facts: its rechecks need candidates
-    (seeded by those), its flip results a flip of its own."""
-    out: list[Segment] = []
-    ops: list[BoundOp] = []
-    for index, (tag, text) in enumerate(program.ops):
-        if tag[0] == "component":
-            if ops:
-                out.append(Segment(ops))
-                ops = []
-            out.append(Segment([], tag[1]))
-            continue
-        flip = None
-        if tag[0] == "flip":
-            flip, tag = tag, tag[1]
-        ops.append(_bound(program, direct if direct is not None else program.direct, index, tag, text, flip))
-        if tag[0] == "end":
-            out.append(Segment(ops))
-            ops = []
-    if ops:
-        out.append(Segment(ops))
-    return out
-
-
-def _bound(program: StepProgram, direct: dict, index: int, tag: tuple, text: str, flip: tuple | None) -> BoundOp:
-    """Operation ``index`` with what every run would look up about it (:class:`BoundOp`), once per program
-    (a program is its change signature's; a TBox or rule change drops them all)."""
-    part = program.part[index]
-    found = direct.get(index)
-    window = getattr(getattr(found, "__self__", None), "reads_window", None) if flip is not None else None
-    return BoundOp(index, tag[0], tag[1] if len(tag) > 1 else None, text, flip, part, found,
-                   program.reads[index] if found is not None else None, index in program.seeded, window,
-                   (program.reads[part] if part is not None else (None,)) if flip is not None else None)
 
 
 class StagedRun:
@@ -121,12 +36,13 @@ class StagedRun:
     def __init__(self, store, program: StepProgram, sig: Signature,
                  flip_text: Callable[..., str],
                  changes: tuple[Collection[Triple], Collection[Triple]] | None = None,
-                 before_text: Callable[[], None] | None = None) -> None:
+                 before_text: Callable[[], None] | None = None, present: Present | None = None) -> None:
         """``flip_text(rule, order, text[, own_window])``: a flip's text for this run
         (:meth:`.compiled_step.CompiledStep._flip_text`); ``changes``: the added and removed asserted
         triples, written to the step's first lost and gained facts directly instead of by the program's
         first operation; ``before_text``: called once before the first text is sent (the copies of the
-        changes its operations read)."""
+        changes its operations read); ``present``: the keys with facts before the run (a superset; None:
+        any), whose absence leaves out an operation that would find nothing (:attr:`.staged_plan.BoundOp.needs`)."""
         self.store = store
         self.changes = changes
         self.before_text = before_text
@@ -148,6 +64,9 @@ class StagedRun:
         self.dirty: set = set()
         #: keys whose part ran, not yet looked up for lost or gained facts (done when a later part asks)
         self.unnoted: set = set()
+        self.present = present
+        #: SPARQL text was sent (it may write facts of any key its part writes, without a note)
+        self.texts = False
 
     def run(self) -> None:
         """Run the program part by part (:func:`segments`): a part none of whose operations can run (no
@@ -173,14 +92,24 @@ class StagedRun:
         """Run one part's operations: each is sent when the key it starts from changed, and a key's
         recheck and flip results only when there is something to recheck or add (index look-ups,
         after sending what is queued).  A part's flipped facts come only from its own flips, so its
-        flip results are not looked up when none of its flips ran."""
+        flip results are not looked up when none of its flips ran.
+
+        While every flip of the part that ran did by look-ups, their heads are kept here (``handed``)
+        and given to the part's lost and gained operations, not written to FLIP_LOST and FLIP_GAINED
+        and read back: those graphs' only readers are these operations.  What one of them cannot take
+        (its SPARQL text runs), and everything once a flip runs otherwise, is written there first."""
         seeded = queued = flipped = False
         found: dict[tuple, bool] = {}
         mark = self.sent
-        for index, kind, key, text, flip, part, direct, reads, has_seeded, window, part_reads in ops:
+        #: the flips' heads by the graph they would be written to; None: none yet, False: written there
+        handed: dict | bool | None = None
+        taken: set = set()  # the graphs whose heads an operation took
+        for index, kind, key, text, flip, part, direct, reads, has_seeded, window, part_reads, hand, needs in ops:
             look_up = True
             fallback = None
             if flip is not None:
+                if needs and self._without_facts(needs):
+                    continue  # an atom it joins has no facts: nothing can flip
                 compiled = text
                 own = window is not None and window()
                 text = self._flip(part_reads, flip, text, own)
@@ -191,6 +120,31 @@ class StagedRun:
                 look_up = text is compiled
                 if own:  # where the look-up gives up, the text narrowed by a window query runs
                     fallback = (flip, compiled, part_reads)
+                if hand is not None and look_up and handed is not False:
+                    heads = self._heads(hand, reads)
+                    if heads is not None:
+                        if handed is None:
+                            handed = {FLIP_GAINED: {}, FLIP_LOST: {}}
+                        handed[FLIP_GAINED].update(dict.fromkeys(heads[0]))
+                        handed[FLIP_LOST].update(dict.fromkeys(heads[1]))
+                        continue
+                if handed:
+                    self._spill(handed)
+                handed = False
+            elif handed and kind in HANDED:
+                graph = HANDED[kind]
+                facts = list(handed[graph])
+                taken.add(graph)  # kept for another such operation, and for a flip's text after it
+                if facts:
+                    if self.dirty:
+                        self._reading(reads)
+                    if hand is not None and hand(self.store, facts):
+                        self.sent += 1
+                    else:  # its text reads them from the graph
+                        self.store.add_scratch(facts, HANDED[kind])
+                        queued |= self._send(text, part, None, reads, False)
+                    seeded |= kind in SEEDING
+                continue
             if kind == "changes" and self.changes is not None:
                 self.store.add_scratch(self.changes[0], NEW_FACTS)
                 self.store.add_scratch(self.changes[1], OVERDELETED)
@@ -199,16 +153,63 @@ class StagedRun:
             elif kind == "delete":
                 if not found.get(("kept", key)) and self._holds(found, CANDIDATES, key, seeded):
                     queued |= self._send(text, part, direct, reads, has_seeded and index)
-            elif kind in _SENT or (kind == "minus" and self._changed(key, self.minus)) \
+            elif kind in SENT or (kind == "minus" and self._changed(key, self.minus)) \
                     or (kind == "plus" and self._changed(key, self.plus)) \
-                    or (kind in _AFTER and (flipped or kind == "recheck")
-                        and self._holds(found, _AFTER[kind], key, seeded)):
+                    or (kind in AFTER and (flipped or kind == "recheck")
+                        and self._holds(found, AFTER[kind], key, seeded)):
+                if needs is not None and self._without_facts(needs):
+                    continue  # it joins a key without facts: it finds nothing
                 queued |= self._send(text, part, direct if look_up else None, reads, has_seeded and index,
                                      look_up, fallback)
-                seeded |= kind in _SEEDING
+                seeded |= kind in SEEDING
             elif kind == "end":
+                if handed and len(taken) < len(handed):  # heads no operation took: where the graphs would have them
+                    self._spill(handed, taken)
+                    handed = False
                 if queued or self.sent != mark:  # something ran for this key (a look-up may have sent it)
                     self.unnoted.add(key)  # looked up when a later part asks (after a flush if needed)
+        if handed and len(taken) < len(handed):
+            self._spill(handed, taken)
+
+    def _without_facts(self, keys: tuple) -> bool:
+        """Whether one of ``keys`` (:attr:`.staged_plan.BoundOp.needs`) surely has no facts now: none before
+        the run (:attr:`present`), and none gained since (looked up where its part ran unnoted; nothing
+        queued that may write it)."""
+        present, dirty = self.present, self.dirty
+        if present is None or None in dirty:
+            return False
+        for key, which, name in keys:
+            if name in present[which] or key in dirty:
+                continue
+            if key in self.unnoted:
+                self._changed(key, self.plus)
+            if key not in self.plus:
+                return True
+        return False
+
+    def gained(self) -> set | None:
+        """The keys that may have gained facts in this run (those noted as gaining, and those whose part
+        ran unnoted); None where text ran or a component did (any key its operations write may have)."""
+        if self.texts or self.components:
+            return None
+        return self.plus | self.unnoted
+
+    def _heads(self, hand: Callable, reads: Collection | None) -> tuple | None:
+        """A flip's heads by look-ups (:meth:`.look_flip.Flipped.heads`), after sending what is queued
+        and may write what it ``reads``; counted as sent where found."""
+        if self.dirty:
+            self._reading(reads)
+        heads = hand(self.store)
+        if heads is not None:
+            self.sent += 1
+        return heads
+
+    def _spill(self, handed: dict, taken: Collection = ()) -> None:
+        """Write the heads kept for a part's lost and gained operations where their texts read them
+        (but those of ``taken`` graphs, once no operation can read them any more)."""
+        for graph, facts in handed.items():
+            if facts and graph not in taken:
+                self.store.add_scratch(list(facts), graph)
 
     def _changed(self, key: ReadKey, changes: set) -> bool:
         """Whether ``key`` is in ``changes`` (:attr:`minus` or :attr:`plus`), looking up first whether
@@ -319,6 +320,7 @@ class StagedRun:
                 self.before_text()
                 self.before_text = None
             self.sent += len(self.queue)
+            self.texts = True
             self.store.update(" ;\n".join(self.queue), prefixes=PREFIXES)
             self.queue.clear()
         self.dirty.clear()
@@ -344,4 +346,4 @@ class StagedRun:
             self.plus.add(key)
 
 
-__all__ = ["StagedRun"]
+__all__ = ["BoundOp", "Segment", "StagedRun", "segments"]
