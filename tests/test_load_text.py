@@ -162,6 +162,20 @@ def test_edge_terms_are_kept_as_written() -> None:
     assert onto.n == ordinary.load_data(EDGES, "turtle") == 17  # type: ignore[attr-defined]  # every fact stored
 
 
+@pytest.mark.parametrize("fmt", ["ntriples", "turtle"])
+def test_a_later_spelling_written_twice_is_said_once_and_a_repeated_triple_stored_once(
+        fmt: str, monkeypatch: pytest.MonkeyPatch) -> None:
+    lines = [f'<{A}s> <{A}at> "{v}"^^<http://www.w3.org/2001/XMLSchema#{t}> .' for v, t in
+             [("1", "int"), ("01", "int"), ("7", "long"), ("01", "int"), ("1", "int"), ("07", "long")] * 3]
+    document = "\n".join(lines) + "\n"  # N-Triples, Turtle as well
+    text = through_text(lambda o: o.load_data(document, fmt))
+    quads = through_quads(lambda o: o.load_data(document, fmt), monkeypatch)
+    assert_same(text, quads)
+    assert text.files.spelling_notes == quads.files.spelling_notes
+    assert len(text.files.spelling_notes) == 2  # "01" after "1", "07" after "7": each said once
+    assert {t.object.value for t in text.store.triples(None, NamedNode(A + "at"), None, ASSERTED)} == {"1", "7"}
+
+
 def test_a_syntax_error_after_many_pieces_leaves_nothing_behind(monkeypatch: pytest.MonkeyPatch) -> None:
     document = PREFIXES + "".join(f':i{n} :p :i{n + 1} ; :v "{n}"^^xsd:long .\n' for n in range(200)) + ":x :p"
     onto = Ontology()

@@ -72,8 +72,8 @@ class _Literals:
         self.found = found
         #: (subject, predicate, value key) -> the spelling written
         self.spelled: dict[tuple, Literal] = {}
-        #: each distinct literal triple (subject, predicate, literal as written)
-        self.distinct: set[tuple] = set()
+        #: each later spelling noted in ``found.again`` (a document may repeat one: it is noted once)
+        self._noted: set[tuple] = set()
 
     def written(self, s: Term, p: NamedNode, o: Literal) -> Literal | None:
         """``o`` as it is written, or None when an earlier spelling of its value was (InvalidValueError
@@ -83,16 +83,19 @@ class _Literals:
             o, notice = canonical_xml_literal(p, o)
             if notice is not None:
                 self.found.notices.append(notice)
-        distinct = self.distinct
-        before = len(distinct)
-        distinct.add((s, p, o))  # one hash of the triple, where a test then an add took two
-        if len(distinct) == before:  # written (or skipped) already: each distinct triple is met once
-            return None
+        return self._first(s, p, o)
+
+    def _first(self, s: Term, p: NamedNode, o: Literal) -> Literal | None:
+        """``o`` where it is the first spelling of its value for (``s``, ``p``); None where it repeats that
+        spelling (one triple, met again) or spells the value otherwise (noted once).  One hash of the
+        (subject, predicate, value) key per literal: the spelling kept answers both tests."""
         first = self.spelled.setdefault((s, p, value_key(o)), o)
-        if first is not o:  # an earlier spelling of the value: said, not written
+        if first is o:
+            return o
+        if first != o and (later := (s, p, o)) not in self._noted:  # an earlier spelling: said, not written
+            self._noted.add(later)
             self.found.again.append((Triple(s, p, first), Triple(s, p, o)))
-            return None
-        return o
+        return None
 
     def kept_lines(self, lines: list[bytes]) -> list[bytes]:
         """The lines of the serialiser's text whose object is a literal (:func:`literal_lines`), as they are to
@@ -100,11 +103,14 @@ class _Literals:
         line kept as it is where the literal is (a blank subject renamed in the text), a new line where the
         literal is respelled, an empty one where an earlier spelling of its value was written.  A line whose
         object is an RDF 1.2 triple term holding a literal is kept, its subject named (the object is, as
-        ever)."""
+        ever).  Where no line names rdf:XMLLiteral, the literals are only checked and their first spellings
+        kept (:meth:`_first`): no datatype read per literal."""
         kept: list[bytes] = []
-        blank, literal, named, prefix, written = BlankNode, Literal, NamedNode, SKOLEM_PREFIX, self.written
+        text = b"".join(lines)
+        blank, literal, named, prefix = BlankNode, Literal, NamedNode, SKOLEM_PREFIX
+        written = self.written if _XML_LITERAL_IRI in text else self._checked
         add, append = self.found.predicates.add, kept.append
-        for line, q in zip(lines, ox_parse(b"".join(lines), format=RdfFormat.N_TRIPLES, lenient=True)):
+        for line, q in zip(lines, ox_parse(text, format=RdfFormat.N_TRIPLES, lenient=True)):
             s, p, o = q.subject, q.predicate, q.object
             add(p)
             if type(s) is blank:
@@ -121,6 +127,15 @@ class _Literals:
             else:
                 append(serialize([Triple(s, p, spelled)], None, RdfFormat.N_TRIPLES))
         return kept
+
+    def _checked(self, s: Term, p: NamedNode, o: Literal) -> Literal | None:
+        """:meth:`written` of a literal known not to be an rdf:XMLLiteral."""
+        check_literal(o)
+        return self._first(s, p, o)
+
+
+#: the datatype IRI of an XML literal as the serialiser writes it (a text without it holds none)
+_XML_LITERAL_IRI = f"<{XML_LITERAL}>".encode()
 
 
 def stream_into_empty(store: Store, data: bytes | str, fmt: RdfFormat, base_iri: str | None, source: str,

@@ -35,7 +35,7 @@ def literal_lines(text: bytes) -> tuple[bytes, list[bytes]]:
     find, rfind = text.find, text.rfind
     start = 0
     while (quote := find(b'"', start)) >= 0:
-        first = max(rfind(b"\n", start, quote) + 1, start)
+        first = rfind(b"\n", start, quote) + 1 or start  # 0 only where no newline is found: a line found ends past start
         end = find(b"\n", quote) + 1 or len(text)
         plain.append(text[start:first])
         literal.append(text[first:end])

@@ -139,14 +139,18 @@ class LiteralForms:
         made or a key computed per literal; the quads persisting that on a durable store."""
         if _is_scratch(graph):
             return []
-        name, durable = graph.value, self._store.durable
-        forms_add: list[Quad] = []
-        for (s, p, key), lit in spelled:
-            self._literal_forms[(name, s, p, key)] = lit
-            self._count_form(key, lit, +1)
-            if durable:
-                forms_add.append(_form_quad(name, s, p, lit))
-        return forms_add
+        name = graph.value
+        literal_forms, value_forms = self._literal_forms, self._value_forms
+        for (s, p, key), lit in spelled:  # _count_form(key, lit, +1) inline: no dict made per literal
+            literal_forms[(name, s, p, key)] = lit
+            forms = value_forms.get(key)
+            if forms is None:
+                value_forms[key] = {lit: 1}
+            else:
+                forms[lit] = forms.get(lit, 0) + 1
+        if not self._store.durable:
+            return []
+        return [_form_quad(name, s, p, lit) for (s, p, _), lit in spelled]
 
     def _count_form(self, key: tuple, lit: Literal, delta: int) -> None:
         forms = self._value_forms.setdefault(key, {})
