@@ -92,6 +92,14 @@ class answered:  # noqa: N801 - used as a function: ``with answered(Category) as
         _HEARD.reset(self.token)
 
 
+def collecting(category: type[Warning]) -> list[str] | None:
+    """The list the innermost :func:`answered` block collects the texts of ``category`` in, where it collects
+    that category alone (None: no such block): a layer inside a command reads what it heard from there
+    rather than open a block of its own, one a command (an aRMOR service call opens one per command)."""
+    heard = _HEARD.get()
+    return heard[0] if heard is not None and heard[1] == (category,) else None
+
+
 def unsaid(heard: list[str], said: Iterable[str]) -> list[str]:
     """The texts of ``heard`` that no line of ``said`` (an answer's warnings) holds already, each once."""
     lines = list(said)
@@ -148,4 +156,4 @@ def publish(notices: Iterable[Notice], source: str = "") -> list[str]:
 
 
 __all__ = ["INCOMPLETE", "NOT_STORED", "RULE_REPAIRED", "RULE_SKIPPED", "SQWRL_QUERY", "Notice", "OntologyWarning", "answered",
-           "grouped", "publish", "unsaid", "warn"]
+           "collecting", "grouped", "publish", "unsaid", "warn"]
