@@ -11,7 +11,8 @@ Every warning topostore gives (an :class:`OntologyWarning` or a subclass) goes t
 command layer answering them itself (an aRMOR reply's ``error_description``, an HTTP reply's ``warnings``)
 collects the texts of the categories its answers do not hold already (:func:`answered`): a warning is no fault
 of a command, so one the caller's filter turns into an error (``warnings.simplefilter("error")``,
-``python -W error``) is not raised there.
+``python -W error``) is not raised there.  A layer inside such a command (a reference's manipulation inside an
+aRMOR command) reads what it heard from the command's block (:func:`collecting`) rather than open one of its own.
 """
 
 from __future__ import annotations
