@@ -123,12 +123,14 @@ def _delay(ordered: list[list[int]], rules: list[Rule], eligible: Callable[[int,
             taken.append(component)
         for i in component:
             _claim(present, rules[i].writes())
+    if not taken:
+        return
+    reads = {id(c): frozenset().union(*(evaluation_reads(rules[j]) for j in c)) for c in ordered}
     for component in reversed(taken):
         at = next(n for n, c in enumerate(ordered) if c is component)
         written = [rules[i].writes() for i in component]
         to = at
-        while to + 1 < len(ordered) and not any(
-                touches(w, evaluation_reads(rules[j])) for j in ordered[to + 1] for w in written):
+        while to + 1 < len(ordered) and not any(touches(w, reads[id(ordered[to + 1])]) for w in written):
             to += 1
         ordered.insert(to, ordered.pop(at))
 
