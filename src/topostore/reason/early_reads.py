@@ -2,8 +2,9 @@
 
 Two kinds: the deferred asks, whose answer the run needs at its first stratum's fixpoint, and the
 consistency checks, whose matches the REASON needs after the run (:mod:`.closing`); a third, the
-first pass's evaluations that hash (the AllDifferent keys), lives in :mod:`.early_rules`
-and shares the worker, its evaluations queued first (the pass waits for them soonest).
+first pass's evaluations that read far more than they write (the AllDifferent keys, a minimum's count),
+found and written by the worker, lives in :mod:`.early_rules` and shares the worker, its evaluations
+queued first (the pass waits for them soonest).
 
 **Deferred asks.**
 A deferred ask (:mod:`.deferred_asks`) waits for the first stratum's fixpoint, then evaluates its body

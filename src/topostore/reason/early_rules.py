@@ -1,17 +1,21 @@
-"""Rule evaluations of a full run's first pass found early, in the worker thread, and written at their turn.
+"""Rule evaluations of a full run's first pass found and written early, in the worker thread.
 
 At 100,000 locations the AllDifferent keys (``rules/all-different-key.rq``: the member list walked by
 ``rdf:rest*/rdf:first``, two MD5s per member) cost 1.7 s of a full REASON's 8.4, evaluated in the main
-thread.  What that evaluation reads (the asserted AllDifferent list) is final before the run starts,
-and the first rule reading the keys comes after a dozen components that never touch the list.  So,
-where the store overlaps (:attr:`topostore.stores.base.Store.overlaps`), such an evaluation's WHERE is
-evaluated as a ``CONSTRUCT`` in the worker thread (:class:`topostore.stores.overlap.Reader`, the one
-:mod:`.early_reads` uses) from the component after which its reads are final, and serialised there as
-N-Triples (neither holds the GIL); when the pass reaches the rule, the main thread sends what it queued,
-then writes the triples (:func:`write_found`: the engine parses and inserts them, 0.5 s for 100,000 keys)
-instead of evaluating the rule.
+thread, and the minimum of two doors (``ext-min-card``, counted per group by :mod:`.key_pairs`) 0.8 s for
+50,000 memberships: both read far more than they write.  What the keys read (the asserted AllDifferent
+list) is final before the run starts, and what the count reads (the doors and the keys) once the keys are
+written.  So, where the store overlaps (:attr:`topostore.stores.base.Store.overlaps`), such an
+evaluation's WHERE is evaluated as a ``CONSTRUCT`` in the worker thread (:class:`topostore.stores.overlap.Reader`,
+the one :mod:`.early_reads` uses) from the component after which its reads are final, serialised there as
+N-Triples and loaded there into its graph (:meth:`.Store.add_ntriples_beside`; the engine takes one writer
+at a time, so the main thread's next update waits for the load, but neither the read nor the parse is the
+main thread's).  An early evaluation whose facts a later one reads counts as written where it started: the
+worker runs its reads in the order they were started, so the reader (the count after the keys) is
+started at the same point, after it.  When the pass reaches the rule, it has nothing to write.
 
-The early triples are used only if the evaluation at the rule's turn would be the same one:
+The early facts are kept as the rule's evaluation only if the evaluation at the rule's turn would be the
+same one:
 
 * **the same text**: the text the pass would send now (:meth:`.materialize.Materializer.first_pass_text`:
   its shortcuts, the heads it keeps out, its one-group form) equals the text evaluated early, but for the
@@ -21,24 +25,25 @@ The early triples are used only if the evaluation at the rule's turn would be th
   :meth:`.early_reads.EarlyReads.wrote` does); a rule of a variable predicate or class counts as writing
   every key.
 
-Otherwise the early triples are dropped and the rule is evaluated as before.  Only evaluations that write
+Otherwise the rule is evaluated at its turn as before.  The facts loaded early stay: only evaluations
+without negation are started early (:func:`positive`: no ``MINUS``, ``NOT EXISTS`` or ``OPTIONAL``; a
+count's ``HAVING (COUNT(…) > 1)`` only grows with the data), so what one found on the data of its start
+holds on the final data too, and the evaluation at the turn adds the rest.  Only evaluations that write
 to one graph qualify (a first pass's rule whose facts are not read again as a delta: not in ``back``, a
-head of one predicate or class), only those that hash (:func:`hashes`: the keys' MD5s), and only those
-with first-pass work of the main thread between their start and their turn: for a plain join or an
-arithmetic ``BIND``, writing the solutions costs the main thread about as much as evaluating them there
-(1.46 against 1.00 s per 300,000 quads written, docs/benchmarks-history.md), and with nothing to do
-meanwhile the pass would only wait for the worker.
-Without the second thread (``TOPOSTORE_OVERLAP=0``, a durable or remote store) nothing starts early and
-the run is the sequential one, in the same order.
+head of one predicate or class), only those that hash or count (:func:`costly`), and only those with
+first-pass work of the main thread between their start and their turn: for a plain join or an arithmetic
+``BIND``, writing the solutions costs about as much as evaluating them (1.46 against 1.00 s per 300,000
+quads written, docs/benchmarks-history.md), and with nothing to do meanwhile the pass would only wait for
+the worker.  Without the second thread (``TOPOSTORE_OVERLAP=0``, a durable or remote store) nothing
+starts early and the run is the sequential one, in the same order.
 """
 
 from __future__ import annotations
 
 import re
-from collections.abc import Collection
+from collections.abc import Callable, Collection
 from concurrent.futures import Future
 from dataclasses import dataclass
-from time import perf_counter
 from typing import TYPE_CHECKING
 
 from pyoxigraph import NamedNode, RdfFormat
@@ -47,9 +52,10 @@ from ..compile.generic import PREFIXES
 from ..compile.rule import ReadKey, Rule
 from ..stores.base import Store
 from ..stores.overlap import Reader, early_result
+from .key_pairs import grouped_form
 from .order import TYPE_KEY
 from .read_keys import Writes, evaluation_reads, touches
-from .stats import ReasonStats
+from .triggers import Present
 
 if TYPE_CHECKING:
     from .materialize import Materializer
@@ -60,25 +66,34 @@ _HASH = re.compile(r"\b(MD5|SHA1|SHA256|SHA384|SHA512)\(", re.IGNORECASE)
 #: an evaluation text's head writing into one graph: ``INSERT { GRAPH <g> { … } }``
 _ONE_GRAPH = re.compile(r"INSERT \{ GRAPH (<[^>]+>) \{ ([^{}]*) \} \}")
 
+#: what makes a WHERE able to lose a match when the data grows
+_NEGATION = re.compile(r"\b(MINUS|NOT\s+EXISTS|OPTIONAL)\b", re.IGNORECASE)
+
 
 @dataclass(frozen=True)
 class Found:
-    """The solutions of an evaluation found early: its head's triples as N-Triples, and their graph."""
+    """An evaluation found and written early: the graph its facts went to, and their N-Triples' size."""
 
-    triples: bytes
     graph: NamedNode
+    size: int
 
 
 def construct_form(text: str, delta: NamedNode) -> tuple[str, NamedNode] | None:
     """The ``CONSTRUCT`` query of an evaluation text writing its head into one graph (and that graph), its
-    dataset without the delta graph ``delta``; None for a text of another shape, or one whose WHERE reads
-    the delta graph."""
+    dataset without the delta graph ``delta``; None for a text of another shape, one whose WHERE reads
+    the delta graph, or one whose WHERE is not :func:`positive`."""
     head, dataset, where = text.split("\n", 2)
     found = _ONE_GRAPH.fullmatch(head)
-    if found is None or not where.startswith("WHERE") or str(delta) in where:
+    if found is None or not where.startswith("WHERE") or str(delta) in where or not positive(where):
         return None
     words = _without_delta(dataset, delta).replace("USING NAMED ", "FROM NAMED ").replace("USING ", "FROM ")
     return f"CONSTRUCT {{ {found.group(2)} }}\n{words}\n{where}", NamedNode(found.group(1)[1:-1])
+
+
+def positive(where: str) -> bool:
+    """Whether a WHERE has no negation (``MINUS``, ``NOT EXISTS``, ``OPTIONAL``): its matches on some data
+    stay matches on more, so its facts found on the data of its start hold at the fixpoint."""
+    return _NEGATION.search(where) is None
 
 
 def _without_delta(text: str, delta: NamedNode) -> str:
@@ -87,27 +102,62 @@ def _without_delta(text: str, delta: NamedNode) -> str:
 
 
 def _evaluate(store: Store, query: str, graph: NamedNode) -> Found:
-    """The worker's part: the ``CONSTRUCT`` evaluated and serialised by the engine (no GIL held)."""
-    triples = store.query(query, prefixes=PREFIXES).serialize(format=RdfFormat.N_TRIPLES)
-    return Found(triples or b"", graph)
+    """The worker's part: the ``CONSTRUCT`` evaluated and serialised by the engine (no GIL held), then
+    loaded into ``graph`` by the engine, after the main thread's update under way."""
+    triples = store.query(query, prefixes=PREFIXES).serialize(format=RdfFormat.N_TRIPLES) or b""
+    if triples:
+        store.add_ntriples_beside(triples, graph)
+    return Found(graph, len(triples))
 
 
-def write_found(store: Store, found: Found, name: str, stats: ReasonStats, profile: bool) -> None:
-    """Write an evaluation's early solutions into their graph (timed under ``name`` when profiling)."""
-    if not found.triples:
+def _delay(ordered: list[list[int]], rules: list[Rule], eligible: Callable[[int, Present], bool],
+           start: Present) -> None:
+    """Move each component holding an evaluation the worker may take (``eligible`` with the keys that may
+    hold facts by its turn) after the components that follow it and read nothing it writes, in place: the
+    main thread evaluates those while the worker evaluates it.  The order stays one where every reader
+    follows its writers (a component moves only past components that read nothing it writes)."""
+    present = (set(start[0]), set(start[1]))
+    taken = []
+    for component in ordered:
+        if any(eligible(i, present) for i in component):
+            taken.append(component)
+        for i in component:
+            _claim(present, rules[i].writes())
+    if not taken:
         return
-    start = perf_counter()
-    store.add_ntriples(found.triples, found.graph)
-    if profile:
-        stats.per_rule[name] = stats.per_rule.get(name, 0.0) + perf_counter() - start
+    reads = {id(c): frozenset().union(*(evaluation_reads(rules[j]) for j in c)) for c in ordered}
+    for component in reversed(taken):
+        at = next(n for n, c in enumerate(ordered) if c is component)
+        written = [rules[i].writes() for i in component]
+        to = at
+        while to + 1 < len(ordered) and not any(touches(w, reads[id(ordered[to + 1])]) for w in written):
+            to += 1
+        ordered.insert(to, ordered.pop(at))
+
+
+def _claim(present: Present, key: ReadKey | None) -> None:
+    """Add the key a rule of the ordered pass writes to ``present``, as the first pass does once it evaluated
+    the rule (a rule of a variable predicate is never in that pass)."""
+    if key is None or key[0] == "*":
+        return
+    present[1 if key[0] == "t" else 0].add(key[1])
+    if key[0] == "t":
+        present[0].add(TYPE_KEY)
 
 
 def hashes(rule: Rule) -> bool:
-    """Whether ``rule`` binds a term made with a hash function (the AllDifferent keys' two MD5s per member):
-    such an evaluation costs far more than writing its solutions, so the worker takes it.  Not a BIND of
-    arithmetic: Urgency's subtraction at 100,000 locations cost the worker 0.32 s and the main thread 0.39 s
-    to write its 100,000 memberships, against 0.36 s evaluating it there."""
+    """Whether ``rule`` binds a term made with a hash function (the AllDifferent keys' two MD5s per member).
+    Not a BIND of arithmetic: Urgency's subtraction at 100,000 locations cost the worker 0.32 s and the
+    main thread 0.39 s to write its 100,000 memberships, against 0.36 s evaluating it there."""
     return any(c.binds and _HASH.search(c.expression) for c in rule.conditions)
+
+
+def costly(rule: Rule) -> bool:
+    """Whether an evaluation of ``rule`` reads far more than it writes, so that the worker takes it: it
+    hashes (:func:`hashes`), or a full run counts it per group (:func:`.key_pairs.grouped_form`: every
+    pair of a subject's values and their keys read for one membership; a plain join such as
+    Connectability writes about one fact per match, and stays in the pass)."""
+    return hashes(rule) or grouped_form(rule) is not None
 
 
 class EarlyRules:
@@ -120,15 +170,21 @@ class EarlyRules:
         self._after: dict[int, list[int]] = {}
         #: rule -> the keys its evaluation reads (its head's key included)
         self._reads: dict[int, frozenset[ReadKey]] = {}
-        #: started and still holding: rule -> (its text without the delta graph, its solutions)
+        #: started and still holding: rule -> (its text without the delta graph, its facts written)
         self._started: dict[int, tuple[str, Future]] = {}
-        before = Writes()  # the writers of the components before the one looked at
+        _delay(ordered, run.rules, lambda i, present: self._eligible(i, back, present), run.present)
+        #: the writers of the components before the one looked at, an early one where it starts (the worker
+        #: writes its facts before it runs the reads started after it)
+        before = Writes()
         #: how many rules the first pass evaluates in the components before each (the main thread's work
         #: while the worker evaluates: none, and the pass would only wait for it)
         evaluated = [0]
+        #: the keys that may hold facts at each component's turn: the start's, and what the pass before wrote
+        present = (set(run.present[0]), set(run.present[1]))
         for c, component in enumerate(ordered):
             for i in component:
-                if not self._eligible(i, back):
+                if not self._eligible(i, back, present):
+                    before.add(c, run.rules[i].writes())
                     continue
                 keys = evaluation_reads(run.rules[i]) | {run.rules[i].writes()}
                 beside = Writes([(0, run.rules[j].writes()) for j in component if j != i])
@@ -136,16 +192,17 @@ class EarlyRules:
                 if beside.last(keys) < 0 and evaluated[c] > evaluated[start + 1]:
                     self._reads[i] = keys
                     self._after.setdefault(start, []).append(i)
+                before.add(start if i in self._reads else c, run.rules[i].writes())
+            evaluated.append(evaluated[c] + sum(1 for i in component if run.first_pass_evaluates(i, present)))
             for i in component:
-                before.add(c, run.rules[i].writes())
-            evaluated.append(evaluated[c] + sum(1 for i in component if run.first_pass_evaluates(i)))
+                _claim(present, run.rules[i].writes())
 
-    def _eligible(self, i: int, back: Collection[int]) -> bool:
-        """Whether rule ``i``'s first-pass evaluation hashes (:func:`hashes`) and writes into one graph alone
-        (see the module)."""
+    def _eligible(self, i: int, back: Collection[int], present: Present) -> bool:
+        """Whether rule ``i``'s first-pass evaluation reads far more than it writes (:func:`costly`) and
+        writes into one graph alone (see the module), its keys able to hold facts by its turn (``present``)."""
         key = self.run.rules[i].writes()
-        return (hashes(self.run.rules[i]) and i not in back and key is not None and key[0] != "*"
-                and key != ("p", TYPE_KEY) and self.run.first_pass_alone(i))
+        return (costly(self.run.rules[i]) and i not in back and key is not None and key[0] != "*"
+                and key != ("p", TYPE_KEY) and self.run.first_pass_alone(i, present))
 
     def after(self, component: int) -> None:
         """The ordered component ``component`` is done (-1: none yet): start the evaluations that waited."""
@@ -167,7 +224,8 @@ class EarlyRules:
             self._started.pop(i)[1].cancel()
 
     def evaluated(self, i: int, text: str) -> Found | None:
-        """The solutions of rule ``i``'s evaluation ``text``, found early (None: evaluate it now)."""
+        """Rule ``i``'s evaluation ``text`` found and written early (None: evaluate it now; an early reader
+        of what it writes no longer holds once the pass notes that evaluation, :meth:`wrote`)."""
         started = self._started.pop(i, None)
         if started is None:
             return None
@@ -180,4 +238,4 @@ class EarlyRules:
         self._started.clear()
 
 
-__all__ = ["EarlyRules", "Found", "construct_form", "write_found"]
+__all__ = ["EarlyRules", "Found", "construct_form", "costly", "positive"]

@@ -37,7 +37,6 @@ from ..rdf.vocab import ASSERTED, AUX, DELTA, INFERRED, INTERNAL, NEW_AUX, NEW_I
 from ..stores.base import Store
 from . import limits
 from .early_reads import EarlyReads
-from .early_rules import write_found
 from .few_solutions import few_solutions
 from .full_passes import full_passes
 from .insert_text import insert_text
@@ -121,7 +120,7 @@ class Materializer:
         atom reads the asserted graph alone (see :func:`.implied_passes.implied_first_passes`); ``first``: the
         first pass of the ordered stratum, which leaves out the atoms :attr:`_lean` says are implied;
         ``union``: rules evaluated with it as one (:mod:`.class_unions`).  An evaluation whose solutions
-        the worker found already (:mod:`.early_rules`) has them written instead."""
+        the worker found and wrote already (:mod:`.early_rules`) has nothing left to write."""
         if index in self._deferring:
             return
         text = self.evaluation_text(index, delta_index, asserted_only, first, union)
@@ -129,10 +128,7 @@ class Materializer:
         written = self.rules[index].writes()
         found = self._early.evaluated(index, text) if self._early is not None else None
         if found is not None:
-            self._flush()  # the evaluations queued before it are sent first, as in one request
-            self._early.wrote(written)
-            write_found(self.store, found, self.rules[index].name, stats, self.profile)
-            return
+            return  # its facts were written by the worker before any read started after its own
         self._queued.add(written)
         if self._early is not None:
             self._early.wrote(written)
@@ -168,16 +164,16 @@ class Materializer:
         """The delta graph evaluations read while :meth:`run` writes straight to the graphs (None outside)."""
         return self._direct[0] if self._direct is not None else None
 
-    def first_pass_evaluates(self, index: int) -> bool:
+    def first_pass_evaluates(self, index: int, present: Present | None = None) -> bool:
         """Whether the ordered first pass of :meth:`run` evaluates rule ``index``, as far as the run's start
         tells: not deferred to the end, not evaluated as part of another rule's class union, its keys able
-        to hold facts."""
+        to hold facts (in ``present``: by default the keys with facts now)."""
         return (index not in self._deferring and index not in self._joined
-                and self.triggers.feasible(index, self.present))
+                and self.triggers.feasible(index, self.present if present is None else present))
 
-    def first_pass_alone(self, index: int) -> bool:
+    def first_pass_alone(self, index: int, present: Present | None = None) -> bool:
         """Whether that evaluation is rule ``index``'s alone (no class union led by it)."""
-        return index not in self._unions and self.first_pass_evaluates(index)
+        return index not in self._unions and self.first_pass_evaluates(index, present)
 
     def first_pass_text(self, index: int) -> str:
         """The text the ordered first pass sends for rule ``index``, evaluated without a delta, in the run's

@@ -348,6 +348,10 @@ class Store:
         SPARQL update inserting them would (no literal forms recorded: a reasoner's graph)."""
         self.update(f"INSERT DATA {{ GRAPH {graph} {{\n{text.decode()}\n}} }}")
 
+    def add_ntriples_beside(self, text: bytes, graph: NamedNode) -> None:
+        """:meth:`add_ntriples` from a second thread (:mod:`.overlap`), only where :attr:`overlaps` held."""
+        self.add_ntriples(text, graph)
+
     def query(self, text: str, graphs: list[NamedNode] | None = None, named: list[NamedNode] | None = None,
               **kwargs):
         """Run a query whose default graph is the union of ``graphs`` (the named graphs: ``named``,

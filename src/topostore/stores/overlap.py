@@ -17,6 +17,10 @@ The contract:
 * **the worker reads only what the caller's thread does not change meanwhile**: the caller's writes
   leave the graphs the reader reads alone (the caller says which, and keeps to it); the engine gives
   each query a consistent snapshot;
+* **a write by the worker waits its turn**: the engine runs one writer at a time, so a load the worker
+  sends (:meth:`topostore.stores.base.Store.add_ntriples_beside`: a full run's evaluations found early,
+  :mod:`topostore.reason.early_rules`) and the caller's updates follow one another, each whole; the
+  caller reads those facts only after it has waited for that read;
 * **in memory only**: a remote or durable store, or one with a transaction open, is not asked to
   overlap (its callers stay sequential, see :attr:`topostore.stores.base.Store.overlaps`).
 

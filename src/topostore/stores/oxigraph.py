@@ -207,6 +207,12 @@ class OxigraphStore(Store):
         self._writes += 1
         self._ox.load(text, format=ox.RdfFormat.N_TRIPLES, to_graph=graph, lenient=True)
 
+    def add_ntriples_beside(self, text: bytes, graph: NamedNode) -> None:
+        """:meth:`add_ntriples` from the worker thread of :mod:`.overlap`, started where :attr:`overlaps` held
+        (nothing open or held here to release): the engine's load alone, which waits for the caller's update."""
+        self._writes += 1
+        self._ox.load(text, format=ox.RdfFormat.N_TRIPLES, to_graph=graph, lenient=True)
+
     def text_writer(self, graph: NamedNode) -> TextWriter:
         """A writer of N-Triples pieces (``bytes``) into ``graph``, each indexed in a second thread while the
         caller makes the next (:mod:`.text_writer`): ``Store.load`` of bytes holds no GIL.  ``lenient`` as in
