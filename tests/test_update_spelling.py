@@ -125,6 +125,19 @@ def test_a_value_bound_by_values_or_bind_keeps_its_spelling(where: str) -> None:
     assert values(o, "battery", "r") == [typed("007", "long")]
 
 
+@pytest.mark.parametrize("where", [
+    'k:q k:battery ?v OPTIONAL { k:nothing k:p0 ?w BIND("007"^^xsd:long AS ?v) }',
+    'k:q k:battery ?v { SELECT ?x WHERE { VALUES ?v { "007"^^xsd:long } BIND(1 AS ?x) } }',
+    '{ k:q k:battery ?v } UNION { VALUES ?v { "007"^^xsd:long } FILTER(false) }',
+    'k:q k:battery ?v FILTER NOT EXISTS { VALUES ?v { "007"^^xsd:long } k:nothing k:p0 ?v }'])
+def test_a_value_bound_inside_a_nested_group_does_not_respell_one_from_the_store(where: str) -> None:
+    """A VALUES or BIND inside an OPTIONAL, a subquery, a UNION branch or EXISTS may bind none of the rows
+    inserted: the value the WHERE matched in the store keeps the store's spelling (xsd:int, not xsd:long)."""
+    o = ontology(f'<{NS}q> <{NS}battery> "7"^^xsd:int .')
+    update(o, PROLOGUE + f"INSERT {{ k:r k:level ?v }} WHERE {{ {where} }}")
+    assert values(o, "level", "r") == [typed("7", "int")]
+
+
 def test_a_value_bound_only_in_another_operation_spells_nothing() -> None:
     o = ontology()
     update(o, PROLOGUE + 'INSERT { k:q k:level ?v } WHERE { BIND("1.50"^^xsd:decimal AS ?v) } ; '

@@ -30,17 +30,26 @@ Bound = dict[str, list[Literal | NamedNode]]
 
 def bound_literals(text: str, toks: list[Token], declarations: list[str]) -> Bound:
     """The literals and IRIs each variable is given by a ``VALUES`` block or a ``BIND`` of one term in ``toks`` (one
-    operation's tokens of ``text``); ``declarations``: the Turtle of the prefixes and base in force."""
+    operation's tokens of ``text``); ``declarations``: the Turtle of the prefixes and base in force.
+
+    Only a block in the ``WHERE`` clause's own group binds every solution: one inside an
+    ``OPTIONAL``, a ``UNION`` branch, ``MINUS``, ``EXISTS`` or a subquery may bind none of the rows inserted, whose
+    value then comes from the store and keeps the store's spelling, so those are not read."""
     out: Bound = {}
-    i = 0
+    i, depth, where = 0, 0, False
     while i < len(toks):
         t = toks[i]
-        if t.kind == KEYWORD and t.word == "VALUES":
+        if t.kind == PUNCT and t.text in "{}":
+            depth += 1 if t.text == "{" else -1
+        elif t.kind == KEYWORD and t.word == "WHERE" and depth == 0:
+            where = True
+        elif where and depth == 1 and t.kind == KEYWORD and t.word == "VALUES":
             i = _values(text, toks, i + 1, declarations, out)
-        elif t.kind == KEYWORD and t.word == "BIND":
+            continue
+        elif where and depth == 1 and t.kind == KEYWORD and t.word == "BIND":
             i = _bind(text, toks, i + 1, declarations, out)
-        else:
-            i += 1
+            continue
+        i += 1
     return out
 
 
