@@ -252,7 +252,8 @@ def test_a_command_undone_says_nothing_of_the_reason_it_ran() -> None:
 #: equal's values too); name -> (Turtle body, Pellet consistent).  Where Pellet tells a pair of the values apart,
 #: or the individuals are declared different, it finds the inconsistency too.
 MERGING = (":d a owl:DatatypeProperty, owl:FunctionalProperty .\n:e a owl:DatatypeProperty, owl:FunctionalProperty .\n"
-           ":f a owl:ObjectProperty, owl:FunctionalProperty .\n:g a owl:ObjectProperty, owl:InverseFunctionalProperty .\n")
+           ":f a owl:ObjectProperty, owl:FunctionalProperty .\n:g a owl:ObjectProperty, owl:InverseFunctionalProperty .\n"
+           ":q a owl:ObjectProperty, owl:IrreflexiveProperty .\n:w a owl:ObjectProperty, owl:AsymmetricProperty .\n")
 MERGED = {
     "merged_by_functional": (':x :d 5 . :y :d "five" . :a :f :x, :y .', True),
     "merged_by_inverse_functional": (':x :d 5 . :y :d "five" . :x :g :a . :y :g :a .', True),
@@ -261,6 +262,9 @@ MERGED = {
     "merged_values_told_apart": (":x :d 5 . :y :d 6 . :a :f :x, :y .", False),
     "merged_one_pair_told_apart": (':x :d 5 ; :e 1 . :y :d "five" ; :e 2 . :a :f :x, :y .', False),
     "merged_declared_different": (':x :d 5 . :y :d "five" . :x owl:differentFrom :y . :a :f :x, :y .', False),
+    # merged, they clash in Pellet through a property between them
+    "merged_linked_irreflexive": (':x :d 5 . :y :d "five" . :a :f :x, :y . :x :q :y .', False),
+    "merged_linked_asymmetric": (':x :d 5 . :y :d "five" . :a :f :x, :y . :x :w :y . :y :w :x .', False),
 }
 
 

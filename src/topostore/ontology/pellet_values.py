@@ -104,7 +104,10 @@ def not_told_apart(violation: Violation) -> bool:
 
 def missed_by_pellet(store: Store, violations: Iterable[Violation]) -> list[str]:
     """What to say of each inconsistency Pellet 2.3.1 would miss (a REASON's ``violations``, read on ``store``
-    as the REASON left it): resting on two values it does not tell apart, directly or after equality."""
+    as the REASON left it): resting on two values it does not tell apart, directly or after equality.
+
+    Each such violation is named, even beside another that rests on no such values: Pellet finds that other
+    one, but it may rest on a value Pellet dropped when it merged two (a range the dropped value is outside)."""
     texts = []
     for v in violations:
         if not_told_apart(v):
@@ -112,37 +115,46 @@ def missed_by_pellet(store: Store, violations: Iterable[Violation]) -> list[str]
         elif (merged := _merged_values(store, v)) is not None:
             a, b, p, one, other = merged
             texts.append(_said(v, f", resting on the values {store.restore(one)} of {a} and {store.restore(other)} "
-                                  f"of {b} of the functional property {p}, which alone make them different"))
+                                  f"of {b} of the functional property {p}, which alone make them different",
+                               "; or unless another axiom makes the two individuals clash once merged"))
     return texts
 
 
-def _said(v: Violation, resting: str = "") -> str:
+def _said(v: Violation, resting: str = "", unless: str = "") -> str:
     return (f"{v.message} [{v.rule}]{resting}: inconsistent in OWL 2; Pellet 2.3.1 does not tell these two values "
-            "apart and finds the ontology consistent unless another axiom rules out the one it keeps (its datatype "
-            "reasoner compares values only within one of its classes: integers of one magnitude, decimals, floats, "
-            "doubles, booleans, dates and times, strings, strings of one language tag)")
+            f"apart and finds the ontology consistent unless another axiom rules out the one it keeps{unless} (its "
+            "datatype reasoner compares values only within one of its classes: integers of one magnitude, decimals, "
+            "floats, doubles, booleans, dates and times, strings, strings of one language tag)")
 
 
 #: the values of a functional data property two individuals hold, distinct in OWL 2, where the individuals are
-#: held different by entailment only (not declared different): asked of two individuals of a violation
+#: held different by entailment only (not declared different, nor linked by an irreflexive or asymmetric
+#: property, which clashes in Pellet once it merges them): asked of two individuals of a violation
 _APART_BY_VALUES = """SELECT ?p ?v1 ?v2 WHERE {{
   GRAPH {aux} {{ {{ {a} {different} {b} }} UNION {{ {b} {different} {a} }}
     FILTER NOT EXISTS {{ {{ {a} {declared} {b} }} UNION {{ {b} {declared} {a} }} }} }}
   {a} ?p ?v1 . {b} ?p ?v2 . ?p {type} {functional} .
+  FILTER NOT EXISTS {{ {{ {a} ?q {b} }} UNION {{ {b} ?q {a} }} ?q {type} ?kind . VALUES ?kind {{ {linked} }} }}
   FILTER(isLiteral(?v1) && isLiteral(?v2) && !sameTerm(?v1, ?v2) && COALESCE(?v1 != ?v2, true))
 }}"""
+
+
+#: the violations that rest on two individuals being different (a functional or inverse-functional property's
+#: two values, a maximum cardinality's, sameAs against a difference): only those can rest on a merge
+_RESTS_ON_DIFFERENCE = ("prp-fp", "prp-ifp", "cls-maxc", "cls-maxqc", "eq-diff")
+_LINKED = f"{sparql(owl('IrreflexiveProperty'))} {sparql(owl('AsymmetricProperty'))}"
 
 
 def _merged_values(store: Store, v: Violation) -> tuple[NamedNode, NamedNode, NamedNode, Literal, Literal] | None:
     """Two individuals of ``v`` that only values Pellet 2.3.1 does not tell apart hold different, with a
     property and the two values: (a, b, property, a's value, b's value); None where there are none."""
     terms = list(v.individuals.values())
-    if any(isinstance(t, Literal) for t in terms):
+    if not v.rule.startswith(_RESTS_ON_DIFFERENCE) or any(isinstance(t, Literal) for t in terms):
         return None
     for a, b in combinations(dict.fromkeys(t for t in terms if isinstance(t, NamedNode)), 2):
         rows = list(store.query(_APART_BY_VALUES.format(
             aux=AUX, a=sparql(a), b=sparql(b), different=DIFFERENT, declared=DECLARED_DIFFERENT, type=TYPE,
-            functional=sparql(owl("FunctionalProperty"))), graphs=[ASSERTED, INFERRED], named=[AUX]))
+            functional=sparql(owl("FunctionalProperty")), linked=_LINKED), graphs=[ASSERTED, INFERRED], named=[AUX]))
         pairs = [(r["p"], r["v1"], r["v2"]) for r in rows]
         if pairs and not any(told_apart(one, other) for _, one, other in pairs):
             p, one, other = pairs[0]
