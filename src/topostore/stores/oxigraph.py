@@ -204,8 +204,7 @@ class OxigraphStore(Store):
             return
         self._flush_open()
         self._release_held()
-        self._writes += 1
-        self._ox.load(text, format=ox.RdfFormat.N_TRIPLES, to_graph=graph, lenient=True)
+        self.add_ntriples_beside(text, graph)
 
     def add_ntriples_beside(self, text: bytes, graph: NamedNode) -> None:
         """:meth:`add_ntriples` from the worker thread of :mod:`.overlap`, started where :attr:`overlaps` held
