@@ -201,6 +201,19 @@ def test_clock_tick_is_compiled_as_a_flip() -> None:
     assert set(onto.instances(N("Hot"))) == set()
 
 
+def _clock_walk(onto: Ontology) -> None:
+    """Three visit times, then the clock moved forward, back and forward again, each move one compiled flip whose
+    Hot individuals equal a REASON from scratch's."""
+    for k, v in enumerate([99, 80, 60]):
+        onto.replace(N(PEOPLE[k]), N("seen"), v)
+    onto.reason()
+    for now, hot in ((115, {"i0", "i1", "i2"}), (70, set()), (100, {"i1", "i2"})):
+        onto.replace(N("clock"), N("now"), now)
+        report = onto.reason(mode="incremental")
+        assert report.stats.program == "compiled" and report.stats.flipped == 1
+        assert {onto.short(i) for i in onto.instances(N("Hot"))} == hot
+        assert_as_from_scratch(onto, report)
+
 
 def test_flipped_heads_a_lost_or_gained_operation_cannot_take_reach_its_text() -> None:
     """A staged run hands a flip's heads to its part's lost and gained operations instead of writing them
@@ -216,15 +229,7 @@ def test_flipped_heads_a_lost_or_gained_operation_cannot_take_reach_its_text() -
     handed = mock.Mock(wraps=look_flip.Flipped.heads)
     with mock.patch.object(look_flip.Flipped, "heads", lambda self, store: handed(self, store)), \
             mock.patch.object(direct, "_movable", refuse):
-        for k, v in enumerate([99, 80, 60]):
-            onto.replace(N(PEOPLE[k]), N("seen"), v)
-        onto.reason()
-        for now, hot in ((115, {"i0", "i1", "i2"}), (70, set()), (100, {"i1", "i2"})):
-            onto.replace(N("clock"), N("now"), now)
-            report = onto.reason(mode="incremental")
-            assert report.stats.program == "compiled" and report.stats.flipped == 1
-            assert {onto.short(i) for i in onto.instances(N("Hot"))} == hot
-            assert_as_from_scratch(onto, report)
+        _clock_walk(onto)
     assert handed.call_count >= 3 and sum(refused) >= 5
 
 
@@ -395,15 +400,7 @@ def test_a_flip_runs_by_look_ups_and_falls_back_on_an_overflow() -> None:
 
     onto = new_ontology()
     with mock.patch.object(look_flip.Flipped, "heads", counted):
-        for k, v in enumerate([99, 80, 60]):
-            onto.replace(N(PEOPLE[k]), N("seen"), v)
-        onto.reason()
-        for now, hot in ((115, {"i0", "i1", "i2"}), (70, set()), (100, {"i1", "i2"})):
-            onto.replace(N("clock"), N("now"), now)
-            report = onto.reason(mode="incremental")
-            assert report.stats.program == "compiled" and report.stats.flipped == 1
-            assert {onto.short(i) for i in onto.instances(N("Hot"))} == hot
-            assert_as_from_scratch(onto, report)
+        _clock_walk(onto)
         assert answers[-1] is True
         onto.replace(N(PEOPLE[3]), N("seen"), -(2 ** 63))
         onto.reason(mode="incremental")
