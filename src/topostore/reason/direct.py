@@ -50,15 +50,9 @@ def _known(store, facts: list[Triple], graphs: tuple[NamedNode, ...]) -> list[bo
     return store.known_in(facts, _STATE_SET if graphs is _STATE else frozenset(graphs))
 
 
-def _flipped(store, key: ReadKey, graph: NamedNode) -> list[Triple] | None:
-    """The flipped facts of ``key`` in ``graph``; None when they are too many or one holds a
-    literal (the SPARQL text then moves them: a literal may be stored in another spelling)."""
-    facts = _facts(store, pattern_of(key), graph)
-    return None if facts is None else _movable(facts)
-
-
 def _movable(facts: list[Triple]) -> list[Triple] | None:
-    """``facts`` where look-ups may move them: at most :data:`FEW`, none holding a literal; else None."""
+    """``facts`` where look-ups may move them: at most :data:`FEW`, none holding a literal (the SPARQL text
+    moves those: a literal may be stored in another spelling); else None."""
     if len(facts) > FEW or any(isinstance(t.object, Literal) for t in facts):
         return None
     return facts
@@ -77,11 +71,8 @@ class Lost:
         return frozenset((self.key,))
 
     def run(self, store) -> bool:
-        facts = _flipped(store, self.key, FLIP_LOST)
-        if facts is None:
-            return False
-        _add_candidates(store, facts, self.graph)
-        return True
+        facts = _facts(store, pattern_of(self.key), FLIP_LOST)
+        return facts is not None and self.handed(store, facts)
 
     def handed(self, store, facts: list[Triple]) -> bool:
         """:meth:`run` with the flipped-false facts of ``key`` given (a staged run's flips found them
@@ -106,11 +97,8 @@ class Gained:
         return frozenset((self.key,))
 
     def run(self, store) -> bool:
-        facts = _flipped(store, self.key, FLIP_GAINED)
-        if facts is None:
-            return False
-        _write_new(store, facts, self.graph)
-        return True
+        facts = _facts(store, pattern_of(self.key), FLIP_GAINED)
+        return facts is not None and self.handed(store, facts)
 
     def handed(self, store, facts: list[Triple]) -> bool:
         """:meth:`run` with the flipped-true facts of ``key`` given (see :meth:`Lost.handed`)."""
