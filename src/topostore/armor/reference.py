@@ -15,7 +15,7 @@ from pathlib import Path
 
 from pyoxigraph import Triple
 
-from ..compile.notices import answered, collecting, unsaid
+from ..compile.notices import answered, unsaid
 from ..errors import TopostoreError
 from ..ontology.facade import Ontology
 from ..ontology.pellet_values import PelletDifferenceWarning
@@ -135,18 +135,14 @@ class Reference:
         """
         if reason is None:
             reason = not self.buffered_reasoner and bool(changes)
-        heard = collecting(PelletDifferenceWarning)
-        if heard is None:
-            with answered(PelletDifferenceWarning) as heard:
-                return self._applied(changes, reason, heard)
-        return self._applied(changes, reason, heard)
+        with answered(PelletDifferenceWarning) as heard:
+            return self._applied(changes, reason, heard)
 
     def _applied(self, changes: list[Change], reason: bool, heard: list[str]) -> list[Applied]:
-        """:meth:`applied` inside a block answering warnings, whose texts ``heard`` collects: the texts this
-        call added are taken out of it into the last change's warning, as a block of its own would keep them."""
+        """:meth:`applied` inside its block answering warnings, whose texts ``heard`` collects: they go into
+        the last change's warning."""
         applied: list[Applied] = []
         onto = self.ontology
-        start = len(heard)
         try:
             with onto.ledger.undoable(onto):  # a failure below undoes the changes applied here
                 with onto.store.transaction():  # the changes and the persisted buffer: one commit
@@ -158,15 +154,12 @@ class Reference:
                 else:
                     onto.rules  # noqa: B018 - compile now: a change no rules can be compiled from is refused
         except Exception:
-            del heard[start:]
             if reason:
                 self._reason_quietly()
             raise
-        mine = heard[start:]
-        if not mine:
+        if not heard:
             return applied
-        del heard[start:]
-        said = unsaid(mine, (a.warning for a in applied))
+        said = unsaid(heard, (a.warning for a in applied))
         for text in said:  # on the service's log (LOG FILE / SCREEN) as well as the reasoner's
             logger.warning("reference %r: %s", self.name, text)
         if said and applied:

@@ -11,8 +11,8 @@ Every warning topostore gives (an :class:`OntologyWarning` or a subclass) goes t
 command layer answering them itself (an aRMOR reply's ``error_description``, an HTTP reply's ``warnings``)
 collects the texts of the categories its answers do not hold already (:func:`answered`): a warning is no fault
 of a command, so one the caller's filter turns into an error (``warnings.simplefilter("error")``,
-``python -W error``) is not raised there.  A layer inside such a command (a reference's manipulation inside an
-aRMOR command) reads what it heard from the command's block (:func:`collecting`) rather than open one of its own.
+``python -W error``) is not raised there.  Blocks nest: a layer inside such a command (a reference's
+manipulation inside an aRMOR command) opens its own, and the innermost one hears what is said.
 """
 
 from __future__ import annotations
@@ -93,14 +93,6 @@ class answered:  # noqa: N801 - used as a function: ``with answered(Category) as
         _HEARD.reset(self.token)
 
 
-def collecting(category: type[Warning]) -> list[str] | None:
-    """The list the innermost :func:`answered` block collects the texts of ``category`` in, where it collects
-    that category alone (None: no such block): a layer inside a command reads what it heard from there
-    rather than open a block of its own, one a command (an aRMOR service call opens one per command)."""
-    heard = _HEARD.get()
-    return heard[0] if heard is not None and heard[1] == (category,) else None
-
-
 def unsaid(heard: list[str], said: Iterable[str]) -> list[str]:
     """The texts of ``heard`` that no line of ``said`` (an answer's warnings) holds already, each once."""
     lines = list(said)
@@ -157,4 +149,4 @@ def publish(notices: Iterable[Notice], source: str = "") -> list[str]:
 
 
 __all__ = ["INCOMPLETE", "NOT_STORED", "RULE_REPAIRED", "RULE_SKIPPED", "SQWRL_QUERY", "Notice", "OntologyWarning", "answered",
-           "collecting", "grouped", "publish", "unsaid", "warn"]
+           "grouped", "publish", "unsaid", "warn"]
