@@ -58,13 +58,16 @@ class Context:
 
     A plain class with slots: every command makes one, and its handler reads ``args`` a few times."""
 
-    __slots__ = ("service", "request", "ref", "args")
+    __slots__ = ("service", "request", "ref", "args", "prefix")
 
     def __init__(self, service: ArmorService, request: ArmorRequest, ref: Reference | None = None) -> None:
         self.service = service
         self.request = request
         self.ref = ref
         self.args: list[str] = request.args
+        #: the reference's namespace for entity names, read at the first name (a handler reads every
+        #: argument before it changes anything)
+        self.prefix: str | None = None
 
     def __repr__(self) -> str:
         return f"Context({self.request!r}, ref={None if self.ref is None else self.ref.name!r})"
@@ -80,9 +83,12 @@ class Context:
 
     def iri(self, position: int, what: str) -> NamedNode:
         """Entity IRI of ``args[position]``; 208 with the reason when the name is illegal."""
-        ref = self.ref
-        assert ref is not None, "command registered without needs_ref"
-        key = (self.args[position], ref.ontology.prefix)
+        prefix = self.prefix
+        if prefix is None:
+            ref = self.ref
+            assert ref is not None, "command registered without needs_ref"
+            prefix = self.prefix = ref.ontology.prefix
+        key = (self.args[position], prefix)
         found = _ENTITIES.get(key)
         if found is not None:
             return found
@@ -135,10 +141,11 @@ class Context:
 
     def submit(self, *changes: Change) -> Reply:
         """Apply (or queue) manipulations; a failure of the reasoner undoes them (209)."""
-        if changes and self.reference.buffered_manipulation:  # the request that made them, kept so that a
+        ref = self.reference
+        if changes and ref.buffered_manipulation:  # the request that made them, kept so that a
             changes[0].origin = self.request.to_dict()  # durable store can persist the buffer they wait in
         try:
-            warnings = self.reference.submit(list(changes))
+            warnings = ref.submit(list(changes))
         except (TopostoreError, OSError) as exc:  # reasoning, the store or its files failed; a bug surfaces as one
             raise CommandError(
                 codes.REASONER_OR_QUERY_FAILURE, f"the change was undone because reasoning failed: {exc}"

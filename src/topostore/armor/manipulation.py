@@ -216,9 +216,9 @@ def _replace(ind: NamedNode, prop: NamedNode, new, old, description: str) -> Cha
         # read once (on a remote store each read is a round trip) as facts: each value keyed once, and the
         # removed ones go on to the store and the ledger with their keys
         facts = onto.store.read_facts(ind, prop, ASSERTED)
-        olds = [f for f in facts if _same_value(f, old, old_key)]
+        olds, held = _values(facts, old, old_key, new, new_key)
         # the new value stays if it is there already, unless it is the old value (removed, then added)
-        present = not (olds and new_key == old_key) and any(_same_value(f, new, new_key) for f in facts)
+        present = held and not (olds and new_key == old_key)
         warning = (
             ""
             if olds
@@ -236,11 +236,24 @@ def _replace(ind: NamedNode, prop: NamedNode, new, old, description: str) -> Cha
     return Change(description, plan)
 
 
-def _same_value(f: Fact, term, key: tuple) -> bool:
-    """Whether the fact's object is the same data value (``key``: the value key of ``term``) or the same
-    individual as ``term``."""
-    value = f.value
-    return value == key if value is not None else f.triple.object == term
+def _values(facts: list[Fact], old, old_key: tuple, new, new_key: tuple) -> tuple[list[Fact], bool]:
+    """The facts whose object is the same data value as ``old`` (``old_key``: its value key) or the same
+    individual, and whether one is the same as ``new``: one pass, each fact's object read once."""
+    olds, held = [], False
+    for f in facts:
+        value = f.value
+        if value is not None:  # a literal: compared by value (an individual's key is never a literal's)
+            if value == old_key:
+                olds.append(f)
+            if value == new_key:
+                held = True
+        else:
+            o = f.triple.object
+            if o == old:
+                olds.append(f)
+            if o == new:
+                held = True
+    return olds, held
 
 
 def replace_dataprop_ind(ctx: Context) -> Reply:

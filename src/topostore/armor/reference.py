@@ -98,7 +98,7 @@ class Reference:
         # a removed literal is recorded in the form its user wrote (the ledger asks the literal forms), so
         # an undo restores it exactly
         added, removed, notes = onto.changes.change_noted(delta.add, delta.remove)
-        return Applied(added, removed, "; ".join(filter(None, [delta.warning, *notes])))
+        return Applied(added, removed, "; ".join(filter(None, [delta.warning, *notes])) if notes else delta.warning)
 
     def submit(self, changes: list[Change]) -> list[str]:
         """Apply ``changes`` now, or queue them under manipulation buffering.
@@ -117,7 +117,7 @@ class Reference:
                     del self.buffer[len(self.buffer) - len(changes):]
                     raise
             return []
-        return self.run(changes)
+        return [a.warning for a in self.applied(changes) if a.warning]  # run, without its call
 
     def run(self, changes: list[Change], reason: bool | None = None) -> list[str]:
         """Apply changes in order, all or nothing, then reason if ``reason`` (default: live reasoner); the
@@ -148,7 +148,8 @@ class Reference:
                 with onto.store.transaction():  # the changes and the persisted buffer: one commit
                     for change in changes:
                         applied.append(self.apply_change(change))
-                    self.save_state()
+                    if self.persist is not None:  # save_state (a memory reference has nothing to persist)
+                        self.persist(self)
                 if reason:
                     onto.reason()  # a failed REASON itself goes back to the last successful one
                 else:

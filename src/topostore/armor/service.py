@@ -95,8 +95,8 @@ class ArmorService:
     # ------------------------------------------------------------ entry points
     def call(self, request: ArmorRequest | Mapping[str, Any]) -> ArmorResponse:
         """Execute one request and return its response; never raises."""
-        try:
-            req = ArmorRequest.from_dict(request)
+        try:  # a request object (every in-process client's) is taken as it is
+            req = request if type(request) is ArmorRequest else ArmorRequest.from_dict(request)
         except (TypeError, ValueError) as exc:
             return ArmorResponse(False, codes.INVALID_ARGUMENT, f"malformed request: {exc}")
         try:
@@ -145,13 +145,16 @@ class ArmorService:
                                  "check the spelling and that unused specs are empty strings")
         try:
             # aRMOR ignores the arguments of argument-less commands; rosservice YAML and tutorials send args: ['']
-            command.check_arity(0 if command.max_args == 0 and not any(req.args) else len(req.args))
+            count = 0 if command.max_args == 0 and not any(req.args) else len(req.args)
+            if count < command.min_args or (command.max_args is not None and count > command.max_args):
+                command.check_arity(count)  # says what it expected
             ctx = Context(self, req)
             if not command.needs_ref:
                 reply = command.handler(ctx)
                 return self._reply(req, reply)
-            ctx.ref = self.reference(req.reference_name)
-            with ctx.ref.lock:
+            # one dictionary read (atomic): the registry's lock guards its changes; a name not loaded is 207
+            ref = ctx.ref = self._references.get(req.reference_name) or self.reference(req.reference_name)
+            with ref.lock:
                 if command.manipulation and self.durable is not None and not self.durable.held(req.reference_name):
                     raise CommandError(codes.MOUNTED_BY_OTHER, f"reference {req.reference_name!r}: this service lost "
                                        "its writer lock to another topostore process; it may be queried, not changed")
@@ -345,7 +348,7 @@ def _consistent(ref: Reference) -> bool:
     """``ref``'s consistency (its lock held); false when a reasoner that cannot run (limits, store) says
     nothing about it."""
     try:
-        return ref.is_consistent
+        return ref.ontology.is_consistent  # Reference.is_consistent, read without its forwarding call
     except TopostoreError:
         return False
 

@@ -128,23 +128,30 @@ class AssertedChanges:
         (held already, or written again in this change) is said."""
         store = self.store
         adds = []
-        for t in _distinct(add):  # every value is validated before anything changes
+        for t in add if len(add) < 2 else _distinct(add):  # every value is validated before anything changes
             if type(t) is Fact:
                 if t.value is not None:
-                    _validate_literal(t.triple.object)
+                    check_literal(t.triple.object)  # _validate_literal, without its call
             else:
                 _validate(t)
                 t = store.fact(t, ASSERTED)
             adds.append(t)
-        removes = [t if type(t) is Fact else store.fact(t, ASSERTED, written=False) for t in _distinct(remove)]
+        removes = remove if len(remove) < 2 and (not remove or type(remove[0]) is Fact) else \
+            [t if type(t) is Fact else store.fact(t, ASSERTED, written=False) for t in _distinct(remove)]
         ledger, limit = self.ledger, self._change_limit
         with store.transaction():
             removed = store.toggle_facts(removes, False) if removes else []
             added = store.toggle_facts(adds, True) if adds else []
-            added, removed, notes = _netted(store, adds, added, removed)
+            if len(adds) == 1 and len(added) == 1 and len(removed) == 1 and added[0].key != removed[0].key \
+                    and added[0].written is added[0].triple:
+                notes = []  # one value replaced by another, written as given: no pair, no spelling to say
+            else:
+                added, removed, notes = _netted(store, adds, added, removed)
             if removed or added:  # one record of the change: the ledger's unit-of-work step undoes both
                 ledger.record_change(store, added, removed, limit)
-        added_triples, removed_triples = [f.triple for f in added], [f.triple for f in removed]
+        # a REPLACE's one fact each side without a comprehension's call
+        added_triples = [added[0].triple] if len(added) == 1 else [f.triple for f in added]
+        removed_triples = [removed[0].triple] if len(removed) == 1 else [f.triple for f in removed]
         self.touch(removed_triples + added_triples)
         return added_triples, removed_triples, notes
 

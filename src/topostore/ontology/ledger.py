@@ -108,8 +108,9 @@ class ChangeLedger:
         """
         if not self.recording and not self._open:
             return
-        gone = [store.written_fact(f) for f in removed] if removed else []
-        made = [f.triple for f in added] if added else []
+        # a REPLACE's one fact each side without a comprehension's call
+        gone = [store.written_fact(removed[0])] if len(removed) == 1 else [store.written_fact(f) for f in removed]
+        made = [added[0].triple] if len(added) == 1 else [f.triple for f in added]
         if self._open:
             self._steps.append((made, gone))
         if not self.recording:

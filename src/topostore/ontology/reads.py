@@ -83,7 +83,7 @@ class OntologyQueries:
         After a REASON the answer is kept as a view (see :mod:`topostore.ontology.views`), so asking for a
         big class every step costs the change, not the class.
         """
-        c = self.onto.iri(cls)
+        c = cls if type(cls) is NamedNode else self.onto.iri(cls)  # an aRMOR QUERY's class is an IRI already
         owner = self._view_owner()
         if owner is None:
             return sorted({text for m in self._instances(c) if (text := render(m)) is not None})
@@ -104,11 +104,18 @@ class OntologyQueries:
         return [known and _shown(s) for known, (s, _) in zip(found, pairs, strict=True)]
 
     def object_values(self, prop: str | NamedNode, individual: str | NamedNode, names: bool = True) -> list:
-        vals = [o for o in self._objects(self.onto.iri(individual), self.onto.iri(prop)) if isinstance(o, NamedNode)]
+        vals = [o for o in self._objects(*self._pair(individual, prop)) if isinstance(o, NamedNode)]
         return [self.onto.short(v) for v in vals] if names else vals
 
     def data_values(self, prop: str | NamedNode, individual: str | NamedNode) -> list[Literal]:
-        return [o for o in self._objects(self.onto.iri(individual), self.onto.iri(prop)) if isinstance(o, Literal)]
+        return [o for o in self._objects(*self._pair(individual, prop)) if isinstance(o, Literal)]
+
+    def _pair(self, individual: str | NamedNode, prop: str | NamedNode) -> tuple[NamedNode, NamedNode]:
+        """The IRIs of an individual and a property; those given as IRIs (an aRMOR QUERY's, every robot
+        step) are taken as they are, without the facade's two forwarded calls each."""
+        if type(individual) is NamedNode and type(prop) is NamedNode:
+            return individual, prop
+        return self.onto.iri(individual), self.onto.iri(prop)
 
     def properties_of(self, individual: str | NamedNode, data: bool) -> list[NamedNode]:
         s = self.onto.iri(individual)

@@ -121,7 +121,10 @@ def _abandon(store: Store, pending: dict | None) -> None:
 def flush(store: Store) -> None:
     """Commit the pending writes of the open transaction (also the persisted state)."""
     pending, store._pending = store._pending or {}, ({} if store._depth else None)
-    meta = store.persisted.take_pending()
+    persisted = store.persisted
+    meta = persisted.pending  # PersistedState.take_pending, without its call where none is pending (every
+    if meta:  # manipulation of a memory store)
+        meta = persisted.take_pending()
     if not pending and not meta:
         return
     keyed_adds: list[tuple[Quad, Hashable]] = []
@@ -143,7 +146,8 @@ def flush(store: Store) -> None:
     except BaseException:
         undo()
         raise
-    store.persisted.committed(meta)
+    if meta:
+        persisted.committed(meta)
 
 
 def flush_open(store: Store) -> None:
