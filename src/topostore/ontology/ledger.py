@@ -306,7 +306,8 @@ def all_or_nothing(reason: F) -> F:
         self.values.reasoned()
         # said once the REASON has completed, and inside a command's unit of work once that ends: a warning
         # turned into an error must not undo a good REASON or the command that ran it
-        self.ledger.say(missed_by_pellet(self.store, report.violations) if report.violations else [])
+        if report.violations:
+            self.ledger.say(missed_by_pellet(self.store, report.violations))
         return report
 
     return wrapper  # type: ignore[return-value]
