@@ -169,6 +169,23 @@ def test_unknown_reference_is_207() -> None:
         assert "LOAD it first" in res.error_description
 
 
+def test_each_command_names_entities_in_its_own_references_namespace(tmp_path: Path) -> None:
+    """One argument names an entity of the reference the command is sent to: a command on a reference of
+    another namespace, between two on this one, reads its own (a name is read as the reference's IRI at
+    each command, never as the last command's)."""
+    svc = ArmorService()
+    other = "http://example.org/other"
+    path = tmp_path / "other.ttl"
+    path.write_text(f"@prefix : <{other}#> . @prefix owl: <http://www.w3.org/2002/07/owl#> .\n"
+                    ":Robot a owl:Class . :r1 a :Robot .")
+    load(svc)
+    ok(svc, "LOAD", "FILE", "", [str(path), other, "false", "PELLET", "false"], ref="other")
+    for ref, ns in (("ref", NS), ("other", other + "#"), ("ref", NS), ("other", other + "#")):
+        ok(svc, "ADD", "IND", "CLASS", ["twin", "Robot"], ref=ref)
+        members = call(svc, "QUERY", "IND", "CLASS", ["Robot"], ref=ref).queried_objects
+        assert f"<{ns}twin>" in members and not any("twin" in m and ns not in m for m in members), (ref, members)
+
+
 def test_malformed_request_dict_is_208() -> None:
     res = ArmorService().call({"reference_name": "r", "command": "ADD", "args": "notalist"})
     assert (res.success, res.exit_code) == (False, 208)

@@ -127,3 +127,49 @@ def test_an_armor_replace_by_another_spelling_says_which_stays(tmp_path) -> None
         assert call("QUERY", "DATAPROP", "IND", ["speed", "r1"]).queried_objects == ['"3"^^xsd:integer']
     finally:
         service.close()
+
+
+def test_one_value_replaced_by_another_that_takes_back_an_earlier_removal_says_the_spelling_kept(
+        onto: Ontology) -> None:
+    """One value removed and one of another value added (a REPLACE's shape), where the added one, written as
+    ``"7.0"^^xsd:decimal``, takes back the removal of ``"7"^^xsd:long`` earlier in the transaction: the store
+    keeps ``7`` as it was, and the change says so (the shape alone does not say the added spelling was
+    stored)."""
+    nine = Triple(n("r1"), n("speed"), typed("9", "long"))
+    onto.change([nine], [])
+    with pytest.warns(SpellingKeptWarning, match="removed and added in one transaction"), onto.store.transaction():
+        onto.remove(Triple(n("r1"), n("speed"), typed("7", "long")))
+        added, removed = onto.change([Triple(n("r1"), n("speed"), typed("7.0", "decimal"))], [nine])
+    assert removed == [nine] and len(added) == 1
+    assert asserted(onto, "speed") == [str(typed("7", "integer"))]
+    assert [str(v) for v in onto.data_values("speed", "r1")] == [str(typed("7", "long"))]
+
+
+def test_an_armor_replace_finds_the_old_and_the_new_value_among_several(tmp_path) -> None:
+    """REPLACE reads every value of the pair once: the old one is removed whatever its place among them, a
+    new one held already is not added again (no warning of an old value missing), and an individual's
+    REPLACE compares individuals, a value's compares values (``"5"^^xsd:long`` is ``5``)."""
+    from topostore.armor import ArmorService
+
+    path = tmp_path / "o.ttl"
+    path.write_text(TBOX + ":r1 :speed 3 , 5 , 8 . :r1 :at :a , :b , :c .")
+    service = ArmorService()
+
+    def call(command: str, spec1: str, spec2: str, args: list[str]):
+        return service.call({"client_name": "c", "reference_name": "r", "command": command,
+                             "primary_command_spec": spec1, "secondary_command_spec": spec2, "args": args})
+    try:
+        assert call("LOAD", "FILE", "", [str(path), EX.rstrip("#"), "false", "PELLET", "true"]).success
+        reply = call("REPLACE", "DATAPROP", "IND", ["speed", "r1", "long", "5", "8"])
+        assert reply.success and reply.error_description == ""
+        assert call("QUERY", "DATAPROP", "IND", ["speed", "r1"]).queried_objects == \
+            ['"3"^^xsd:integer', '"5"^^xsd:integer']
+        reply = call("REPLACE", "OBJECTPROP", "IND", ["at", "r1", "c", "a"])
+        assert reply.success and reply.error_description == ""
+        assert call("QUERY", "OBJECTPROP", "IND", ["at", "r1"]).queried_objects == [f"<{EX}b>", f"<{EX}c>"]
+        reply = call("REPLACE", "OBJECTPROP", "IND", ["at", "r1", "d", "a"])  # a is gone: d added, b, c kept
+        assert reply.success and "was not asserted" in reply.error_description
+        assert call("QUERY", "OBJECTPROP", "IND", ["at", "r1"]).queried_objects == \
+            [f"<{EX}b>", f"<{EX}c>", f"<{EX}d>"]
+    finally:
+        service.close()
