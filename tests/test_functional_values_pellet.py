@@ -290,6 +290,7 @@ def test_an_inconsistency_resting_on_values_after_equality_is_said(name: str) ->
     said = [str(w.message) for w in caught if w.category is PelletDifferenceWarning]
     assert bool(said) == MERGED[name][1], said
     assert all("five" in s for s in said)
+    assert not any("<http" in s for s in said), said  # individuals and properties by their short names
 
 
 def test_a_change_merging_individuals_told_apart_by_such_values_is_said_at_the_reason() -> None:

@@ -40,6 +40,7 @@ from ..compile.notices import OntologyWarning, warn
 from ..rdf.terms import sparql
 from ..rdf.vocab import ASSERTED, AUX, DECLARED_DIFFERENT, DIFFERENT, INFERRED, TYPE, XSD, owl
 from ..reason import Violation
+from ..reason.consistency import short, spelled
 
 if TYPE_CHECKING:  # pragma: no cover
     from ..stores.base import Store
@@ -114,8 +115,9 @@ def missed_by_pellet(store: Store, violations: Iterable[Violation]) -> list[str]
             texts.append(_said(v))
         elif (merged := _merged_values(store, v)) is not None:
             a, b, p, one, other = merged
-            texts.append(_said(v, f", resting on the values {store.restore(one)} of {a} and {store.restore(other)} "
-                                  f"of {b} of the functional property {p}, which alone make them different",
+            texts.append(_said(v, f", resting on the values {spelled(store.restore(one))} of {short(a)} and "
+                                  f"{spelled(store.restore(other))} of {short(b)} of the functional property {short(p)}, "
+                                  "which alone make them different",
                                "; or unless another axiom makes the two individuals clash once merged"))
     return texts
 

@@ -23,7 +23,7 @@ from ..compile.owl_restrictions import term_before
 from ..compile.rule import ReadKey, Rule, RuleSet
 from ..compile.schema import Row, schema_rule
 from ..rdf.terms import sparql
-from ..rdf.vocab import ASSERTED, AUX, INFERRED, TYPE
+from ..rdf.vocab import ASSERTED, AUX, INFERRED, TYPE, XSD
 from ..stores.base import Store, unskolem
 from .present import KeyGraphs, key_graphs
 
@@ -33,13 +33,28 @@ MAX_REPORTED = 20
 
 
 def short(term) -> str:
+    """``term`` as a message names it: an IRI by its local name, a literal as :func:`spelled`."""
     term = unskolem(term)
     if isinstance(term, Literal):
-        return str(term)
+        return spelled(term)
     if isinstance(term, NamedNode):
         v = term.value
         return v.rsplit("#", 1)[-1] if "#" in v else v.rsplit("/", 1)[-1]
     return str(term)
+
+
+def spelled(value: Literal) -> str:
+    """``value`` as a reader writes it in Turtle: an XML Schema datatype by its ``xsd:`` name, ``xsd:string``
+    left out: a message names values, not their datatypes' full IRIs."""
+    lexical = str(Literal(value.value))
+    if value.language:
+        return f"{lexical}@{value.language}"
+    datatype = value.datatype.value
+    if datatype == XSD + "string":
+        return lexical
+    if datatype.startswith(XSD):
+        return f"{lexical}^^xsd:{datatype[len(XSD):]}"
+    return f"{lexical}^^<{datatype}>"
 
 
 @dataclass(frozen=True)
