@@ -20,7 +20,7 @@ function's namespace, variables' names only as string literals.
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Collection
 
 from pyoxigraph import BlankNode, Literal, NamedNode
 
@@ -37,16 +37,44 @@ def compile_conditions(binds: list[tuple[str, tuple]], tests: list[tuple]) -> tu
     ``exact(solution)``: True / False where every BIND is exact and every test's value a boolean, else
     None (a flip needs each test decided, see :mod:`.look_flip`)."""
     code = _Code()
+    results = _conditions(code, binds, tests)
+    shared = code.lines
+    holds = _function("holds", shared, _holds(results), code.namespace)
+    exact = _function("exact", shared, _exact(results), code.namespace)
+    return holds, exact
+
+
+def compile_pair(binds: list[tuple[str, tuple]], tests: list[tuple], changed: Collection[str]) -> Callable:
+    """``pair(s, o)``: a flip's two answers in one call (:meth:`.look_flip.Flipped.heads` decides every
+    solution before and after the change): ``exact`` of ``s`` and of ``s`` with ``o``'s values over it,
+    as ``(now, then)``, or None where either is None.  ``o`` holds only variables of ``changed`` (the
+    compared values); every other variable's value is read once and serves both answers, and no merged
+    solution is made."""
+    now = _Code()
+    now_results = _conditions(now, binds, tests)
+    then = _Code()
+    then.namespace, then.lines, then.count = now.namespace, now.lines, now.count
+    then.values = {name: local for name, local in now.values.items() if name not in changed}
+    then.terms = {name: local for name, local in now.terms.items() if name not in changed}
+    then.read_terms = {name: local for name, local in now.read_terms.items() if name not in changed}
+    then.changed = {name: now.read_terms.get(name, "None") for name in changed}
+    then_results = _conditions(then, binds, tests)
+    results = now_results + then_results
+    tail = ["return (True, True)"] if not results else [
+        f"if {' or '.join(f'type({r}) is not bool' for r in results)}:",
+        "    return None",
+        f"return ({' and '.join(now_results) or 'True'}), ({' and '.join(then_results) or 'True'})"]
+    return _function("pair", now.lines, tail, now.namespace, "s, o")
+
+
+def _conditions(code: _Code, binds: list[tuple[str, tuple]], tests: list[tuple]) -> list[str]:
+    """The BINDs' statements (returning None where one is not exact) and the tests' locals."""
     for var, node in binds:
         local = code.node(node)
         code.line(f"if {local} is None:")
         code.line("    return None")
         code.binds[var] = local
-    results = [code.node(node) for node in tests]
-    shared = code.lines
-    holds = _function("holds", shared, _holds(results), code.namespace)
-    exact = _function("exact", shared, _exact(results), code.namespace)
-    return holds, exact
+    return [code.node(node) for node in tests]
 
 
 def _ebv(x: str) -> str:
@@ -73,11 +101,47 @@ def _exact(results: list[str]) -> list[str]:
             f"return {' and '.join(results)}"]
 
 
-def _function(name: str, body: list[str], tail: list[str], namespace: dict) -> Callable:
-    text = "\n".join([f"def {name}(s):", *("    " + line for line in body + tail)])
+def _function(name: str, body: list[str], tail: list[str], namespace: dict, params: str = "s") -> Callable:
+    text = "\n".join([f"def {name}({params}):", *("    " + line for line in body + tail)])
     scope = dict(namespace)
     exec(compile(text, f"<topostore {name}>", "exec"), scope)  # noqa: S102 - text made here, no term in it
     return scope[name]
+
+
+#: the string functions whose value :meth:`_Code._kept` keeps per term
+_STRINGS = frozenset(("str", "substring"))
+#: terms whose string value one expression keeps (then forgotten together)
+KEPT_MAX = 4096
+_MISS = object()
+
+
+def _children(node: tuple) -> list[tuple]:
+    """The expression nodes directly under ``node``."""
+    out = []
+    for arg in node[1:]:
+        if type(arg) is tuple:
+            out.append(arg)
+        elif type(arg) is list:
+            out.extend(a for a in arg if type(a) is tuple)
+    return [] if node[0] == "const" else out
+
+
+def _kinds(node: tuple) -> set[str]:
+    """The kinds of ``node`` and of every node under it."""
+    found = {node[0]}
+    for child in _children(node):
+        found |= _kinds(child)
+    return found
+
+
+def _variables(node: tuple) -> set[str]:
+    """The variables ``node``'s value reads (as values or as terms)."""
+    if node[0] in ("var", "term_of"):
+        return {node[1]}
+    found: set[str] = set()
+    for child in _children(node):
+        found |= _variables(child)
+    return found
 
 
 class _Code:
@@ -87,16 +151,33 @@ class _Code:
         self.lines: list[str] = []
         self.namespace: dict[str, object] = {"value": value, "VALUES": VALUES, "term_of": term_of, "Str": Str,
                                              "NamedNode": NamedNode, "BlankNode": BlankNode,
-                                             "Literal": Literal, "MIN": _MIN, "MAX": MAX}
+                                             "Literal": Literal, "MIN": _MIN, "MAX": MAX, "MISS": _MISS,
+                                             "KEPT_MAX": KEPT_MAX}
         #: a solution variable's value and term, each read once
         self.values: dict[str, str] = {}
         self.terms: dict[str, str] = {}
         #: a BIND's variable -> the local holding its value (the later conditions read it)
         self.binds: dict[str, str] = {}
         self.count = 0
+        #: the statements' indentation (a kept string's statements run only where it is not kept yet)
+        self.indent = ""
+        #: a solution variable's term, each read once (its local)
+        self.read_terms: dict[str, str] = {}
+        #: variables read from ``o`` where it has them (:func:`compile_pair`'s answer before the change),
+        #: else the local of the term read from ``s``
+        self.changed: dict[str, str] = {}
+
+    def read(self, name: str) -> str:
+        """The local of a solution variable's term, read once."""
+        if name not in self.read_terms:
+            if name in self.changed:
+                self.read_terms[name] = self.new(f"o.get({name!r}, {self.changed[name]})")
+            else:
+                self.read_terms[name] = self.new(f"s.get({name!r})")
+        return self.read_terms[name]
 
     def line(self, text: str) -> None:
-        self.lines.append(text)
+        self.lines.append(self.indent + text)
 
     def new(self, expression: str) -> str:
         local = f"x{self.count}"
@@ -111,13 +192,41 @@ class _Code:
 
     def node(self, node: tuple) -> str:
         """The local holding ``node``'s value (None: UNKNOWN)."""
+        if node[0] in _STRINGS and not self.indent:
+            names = _variables(node)
+            if len(names) == 1 and not names & self.binds.keys():
+                return self._kept(node, next(iter(names)))
         return getattr(self, "_" + node[0])(*node[1:])
+
+    def _kept(self, node: tuple, name: str) -> str:
+        """A string function of one variable's term (an AllDifferent key's group, read from its IRI by
+        STRBEFORE(STRAFTER(STR(?k), ...))) computed once per term and kept (:data:`KEPT_MAX` per
+        expression): every one of them is a function of the term alone, and making its strings costs
+        a microsecond per solution.  The variable's value and term are read before (the statements
+        after this one read those locals whether or not the string was kept)."""
+        kinds = _kinds(node)
+        if "var" in kinds:
+            self._var(name)
+        if "term_of" in kinds:
+            self._term_of(name)
+        term = self.read(name)
+        kept = self.const({})
+        out = self.new(f"{kept}.get({term}, MISS)")
+        self.line(f"if {out} is MISS:")
+        self.indent = "    "
+        found = getattr(self, "_" + node[0])(*node[1:])
+        self.line(f"{out} = {found}")
+        self.line(f"if len({kept}) >= KEPT_MAX:")
+        self.line(f"    {kept}.clear()")
+        self.line(f"{kept}[{term}] = {out}")
+        self.indent = ""
+        return out
 
     def _var(self, name: str) -> str:
         if name in self.binds:
             return self.binds[name]  # a BIND's value is one already (value() of it is itself)
         if name not in self.values:
-            term = self.new(f"s.get({name!r})")
+            term = self.read(name)
             # a literal's value read from value()'s own cache where it is there (no call), an IRI's is itself
             self.values[name] = self.new(f"{term} if type({term}) is not Literal else "
                                          f"(VALUES.get({term}) or value({term}))")
@@ -127,7 +236,7 @@ class _Code:
         if name in self.binds:
             return self._as_term(self.binds[name])
         if name not in self.terms:
-            self.terms[name] = self._as_term(self.new(f"s.get({name!r})"))
+            self.terms[name] = self._as_term(self.read(name))
         return self.terms[name]
 
     def _as_term(self, x: str) -> str:
@@ -196,4 +305,4 @@ class _Code:
         return self.new(f"None if {at} is None else (Str('') if {at} < 0 else Str({part}))")
 
 
-__all__ = ["compile_conditions"]
+__all__ = ["compile_conditions", "compile_pair"]
