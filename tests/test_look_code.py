@@ -10,7 +10,7 @@ from profiles import property_examples
 from test_look_filters import EXPRS, TERMS, VARS
 
 from topostore.reason import look_code
-from topostore.reason.look_code import compile_conditions, compile_pair
+from topostore.reason.look_code import compile_conditions
 from topostore.reason.look_filters import Unsupported, closure, parse_expression
 from topostore.reason.look_values import UNKNOWN, all_of
 
@@ -51,32 +51,6 @@ def test_generated_conditions_answer_as_the_closures(terms: list, bound: str | N
     assert (holds(solution), exact(solution)) == expected, (bound, texts, terms)
     # again: a string of one term is kept from the first call, and answers as made
     assert (holds(solution), exact(solution)) == expected, (bound, texts, terms)
-
-
-def pair_reference(binds: list, tests: list, solution: dict, olds: dict) -> tuple | None:
-    """A flip's two answers as two calls of ``exact`` (reason/look_flip.py before they were one call)."""
-    now, then = reference(binds, tests, solution)[1], reference(binds, tests, {**solution, **olds})[1]
-    return None if now is None or then is None else (now, then)
-
-
-@settings(max_examples=property_examples(1500), deadline=None)
-@given(terms=st.lists(TERMS, min_size=3, max_size=3), olds=st.lists(st.one_of(st.none(), TERMS), min_size=2, max_size=2),
-       bound=st.one_of(st.none(), EXPRS), texts=st.lists(EXPRS, max_size=3))
-def test_a_flips_two_answers_in_one_call_are_exact_of_the_new_and_the_old_values(
-        terms: list, olds: list, bound: str | None, texts: list[str]) -> None:
-    """``compile_pair``: ?a and ?b are the compared values (an old value given for either, both or none),
-    ?c is read once for both answers; a BIND reads the old values in the answer before the change."""
-    solution = dict(zip(VARS, terms))
-    given_olds = {var: term for var, term in zip(VARS[:2], olds) if term is not None}
-    parsed_binds = trees([bound]) if bound is not None else []
-    parsed_tests = trees([t.replace("?c", "?d") for t in texts] + texts[:1])
-    if parsed_binds is None or parsed_tests is None:
-        return
-    binds = [("?d", tree) for tree in parsed_binds]
-    pair = compile_pair(binds, parsed_tests, frozenset(VARS[:2]))
-    expected = pair_reference(binds, parsed_tests, solution, given_olds)
-    assert pair(solution, given_olds) == expected, (bound, texts, terms, olds)
-    assert pair(solution, given_olds) == expected, (bound, texts, terms, olds)
 
 
 def test_a_kept_string_is_the_one_of_its_own_term(monkeypatch) -> None:
@@ -133,21 +107,3 @@ def test_a_literals_value_read_from_the_cache_or_made_answers_alike() -> None:
         assert first == (holds(solution), exact(solution)) == reference([], tests, solution), (a, b)
         assert first[1] == (int(a) < int(b))
 
-
-def test_a_clock_flips_two_answers_read_the_old_values_given_and_the_new_ones_else() -> None:
-    """The robot's clock rule (BIND(?a - ?b AS ?d) FILTER(?d > ?c)) with an old clock, an old visit time,
-    both and neither: each pair of answers is the two calls', and they differ where the tick flips it (an
-    answer before the change made from a new value, or the BIND's value kept from the new one, fails)."""
-    from test_look_filters import typed
-    binds = [("?d", parse_expression("?a - ?b"))]
-    tests = [parse_expression("?d > ?c")]
-    pair = compile_pair(binds, tests, frozenset(("?a", "?b")))
-    n = {k: typed(str(v), "integer") for k, v in (("10", 10), ("3", 3), ("5", 5), ("8", 8), ("1", 1))}
-    solution = {"?a": n["10"], "?b": n["3"], "?c": n["5"]}
-    flipped = 0
-    for olds in ({}, {"?a": n["8"]}, {"?b": n["5"]}, {"?a": n["8"], "?b": n["1"]}, {"?a": n["10"]}):
-        expected = pair_reference(binds, tests, solution, olds)
-        assert pair(solution, olds) == expected, olds
-        flipped += expected[0] != expected[1]
-    assert flipped == 2
-    assert pair({"?a": n["10"], "?b": typed("x", "integer"), "?c": n["5"]}, {}) is None  # not exact: the text runs

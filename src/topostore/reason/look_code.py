@@ -20,7 +20,7 @@ function's namespace, variables' names only as string literals.
 
 from __future__ import annotations
 
-from collections.abc import Callable, Collection
+from collections.abc import Callable
 
 from pyoxigraph import BlankNode, Literal, NamedNode
 
@@ -42,29 +42,6 @@ def compile_conditions(binds: list[tuple[str, tuple]], tests: list[tuple]) -> tu
     holds = _function("holds", shared, _holds(results), code.namespace)
     exact = _function("exact", shared, _exact(results), code.namespace)
     return holds, exact
-
-
-def compile_pair(binds: list[tuple[str, tuple]], tests: list[tuple], changed: Collection[str]) -> Callable:
-    """``pair(s, o)``: a flip's two answers in one call (:meth:`.look_flip.Flipped.heads` decides every
-    solution before and after the change): ``exact`` of ``s`` and of ``s`` with ``o``'s values over it,
-    as ``(now, then)``, or None where either is None.  ``o`` holds only variables of ``changed`` (the
-    compared values); every other variable's value is read once and serves both answers, and no merged
-    solution is made."""
-    now = _Code()
-    now_results = _conditions(now, binds, tests)
-    then = _Code()
-    then.namespace, then.lines, then.count = now.namespace, now.lines, now.count
-    then.values = {name: local for name, local in now.values.items() if name not in changed}
-    then.terms = {name: local for name, local in now.terms.items() if name not in changed}
-    then.read_terms = {name: local for name, local in now.read_terms.items() if name not in changed}
-    then.changed = {name: now.read_terms.get(name, "None") for name in changed}
-    then_results = _conditions(then, binds, tests)
-    results = now_results + then_results
-    tail = ["return (True, True)"] if not results else [
-        f"if {' or '.join(f'type({r}) is not bool' for r in results)}:",
-        "    return None",
-        f"return ({' and '.join(now_results) or 'True'}), ({' and '.join(then_results) or 'True'})"]
-    return _function("pair", now.lines, tail, now.namespace, "s, o")
 
 
 def _conditions(code: _Code, binds: list[tuple[str, tuple]], tests: list[tuple]) -> list[str]:
@@ -101,8 +78,8 @@ def _exact(results: list[str]) -> list[str]:
             f"return {' and '.join(results)}"]
 
 
-def _function(name: str, body: list[str], tail: list[str], namespace: dict, params: str = "s") -> Callable:
-    text = "\n".join([f"def {name}({params}):", *("    " + line for line in body + tail)])
+def _function(name: str, body: list[str], tail: list[str], namespace: dict) -> Callable:
+    text = "\n".join([f"def {name}(s):", *("    " + line for line in body + tail)])
     scope = dict(namespace)
     exec(compile(text, f"<topostore {name}>", "exec"), scope)  # noqa: S102 - text made here, no term in it
     return scope[name]
@@ -163,17 +140,11 @@ class _Code:
         self.indent = ""
         #: a solution variable's term, each read once (its local)
         self.read_terms: dict[str, str] = {}
-        #: variables read from ``o`` where it has them (:func:`compile_pair`'s answer before the change),
-        #: else the local of the term read from ``s``
-        self.changed: dict[str, str] = {}
 
     def read(self, name: str) -> str:
         """The local of a solution variable's term, read once."""
         if name not in self.read_terms:
-            if name in self.changed:
-                self.read_terms[name] = self.new(f"o.get({name!r}, {self.changed[name]})")
-            else:
-                self.read_terms[name] = self.new(f"s.get({name!r})")
+            self.read_terms[name] = self.new(f"s.get({name!r})")
         return self.read_terms[name]
 
     def line(self, text: str) -> None:
@@ -305,4 +276,4 @@ class _Code:
         return self.new(f"None if {at} is None else (Str('') if {at} < 0 else Str({part}))")
 
 
-__all__ = ["compile_conditions", "compile_pair"]
+__all__ = ["compile_conditions"]

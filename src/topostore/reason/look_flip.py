@@ -103,10 +103,6 @@ class Flipped:
         :meth:`.flips.Flips.sorted_values`); without it every branch reads every compared fact."""
         self.order = order
         self.conditions = Conditions(rule)
-        #: the compared values' variables (those an old value may be given for) and the conditions' two
-        #: answers in one call, made at the first solution decided
-        self._compared = frozenset(rule.body[k].o for k in order)
-        self._pair: Callable | None = None
         self._body = [Shape(_terms(a)) for a in rule.body]
         #: per changed atom, its pattern with the object left free (its subject and predicate bound by
         #: the replaced fact: only the value is new)
@@ -255,16 +251,11 @@ class Flipped:
         return facts
 
     def _decide(self, solution: dict, olds: dict, gained: dict, lost: dict) -> None:
-        """The head of ``solution`` into ``gained`` or ``lost`` where the conditions' answer with the new
-        values differs from that with ``olds`` over them (settled and unchanged atoms: the old value is the
-        new one); each test's value a boolean, as the text's COALESCE(test, false), else the text runs."""
-        pair = self._pair
-        if pair is None:  # both answers in one call, the unchanged values read once (:meth:`.Conditions.pair`)
-            pair = self._pair = self.conditions.pair(self._compared)
-        answers = pair(solution, olds)
-        if answers is None:
+        before = {**solution, **olds}  # settled and unchanged atoms: the old value is the new one
+        exact = self.conditions.exact  # each test's value a boolean (as the text's COALESCE(test, false))
+        now, then = exact(solution), exact(before)
+        if now is None or then is None:
             raise _Fallback
-        now, then = answers
         if now == then:
             return
         head = _instance(self._head, solution)

@@ -30,7 +30,7 @@ from .atom_shape import Shape
 from .delta_texts import KEEP
 from .direct import _instance, _named_only, _terms, _write_new
 from .join_code import Join, compile_join, interpreted
-from .look_code import compile_conditions, compile_pair
+from .look_code import compile_conditions
 from .look_filters import Unsupported, closure, parse_expression
 from .look_values import UNKNOWN, all_of
 from .scratch import CANDIDATES, NEW_FACTS, OVERDELETED
@@ -196,8 +196,6 @@ class Conditions:
         #: the expression trees, generated into functions that take :meth:`holds` and :meth:`exact`'s
         #: place at the first call (:mod:`.look_code`; :func:`joinable` only asks whether they parse)
         self._trees = trees if COMPILED_JOINS else None
-        #: the trees again, for :meth:`pair` (``_trees`` is emptied once :meth:`holds` and :meth:`exact` are made)
-        self._pair_trees = self._trees
 
     def bound(self, solution: dict) -> dict | object:
         """``solution`` extended by the BINDs in order; UNKNOWN where one is not exact."""
@@ -223,20 +221,6 @@ class Conditions:
         self.holds, self.exact = compile_conditions(*self._trees)  # type: ignore[method-assign]
         self._trees = None
         return self
-
-    def pair(self, changed: frozenset[str]) -> Callable[[dict, dict], tuple[bool, bool] | None]:
-        """A flip's two answers in one call: ``pair(solution, olds)`` is (:meth:`exact` of ``solution``,
-        :meth:`exact` of ``solution`` with ``olds``' values over it), None where either is None; ``olds``
-        holds only variables of ``changed``.  Generated (:func:`.look_code.compile_pair`) where the
-        conditions are; else the two calls."""
-        if self._pair_trees is not None:
-            return compile_pair(*self._pair_trees, changed)
-        exact = self.exact
-
-        def pair(solution: dict, olds: dict) -> tuple[bool, bool] | None:
-            now, then = exact(solution), exact({**solution, **olds})
-            return None if now is None or then is None else (now, then)
-        return pair
 
     def exact(self, solution: dict) -> bool | None:
         """True / False where every BIND is exact and every test's value a boolean (as the flip text's
