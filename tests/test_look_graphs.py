@@ -59,3 +59,20 @@ def test_a_change_is_derivable_only_where_a_rule_that_can_fire_writes_one_of_its
                                 Atom("?z", "?p", "?y"))])
     assert not same_as.derived(({"<urn:x:clock>": 1}, {}), present)
     assert same_as.derived(({"<urn:x:clock>": 1}, {}), ({"<urn:x:same>"}, set()))
+
+
+def test_a_look_up_reads_the_graphs_of_the_rules_that_can_have_fired_and_notes_what_left_one_out() -> None:
+    """:meth:`StateGraphs.firing`: owl:sameAs replacement writes any predicate, but a rule whose premise had
+    no fact since the last full run (nor gets one from the change) never wrote it: the clock is read from the
+    asserted graph alone, and the premise joins ``absent`` (the program is compiled again once it has
+    facts).  A premise with facts, or one the change gives some, keeps the graph."""
+    same_as = Rule("eq-rep", "test", (Atom("?x", "<urn:x:same>", "?z"), Atom("?x", "?p", "?y")), Atom("?z", "?p", "?y"))
+    graphs = StateGraphs([same_as, _rule("h", Atom("?x", "<urn:x:h>", "?y"), aux=True)])
+    clock, helper = Atom("?a", "<urn:x:clock>", "?t"), Atom("?a", "<urn:x:h>", "?t")
+    absent: set = set()
+    assert graphs.firing(clock, ({"<urn:x:p>"}, set()), set(), absent) == (ASSERTED,)
+    assert absent == {("p", "<urn:x:same>")}
+    assert graphs.firing(helper, ({"<urn:x:p>"}, set()), set(), set()) == (ASSERTED, AUX)
+    assert graphs.firing(clock, ({"<urn:x:same>"}, set()), set(), set()) == (ASSERTED, INFERRED)
+    assert graphs.firing(clock, (set(), set()), {("p", "<urn:x:same>")}, set()) == (ASSERTED, INFERRED)
+    assert graphs.firing(Atom("?a", "?p", "?o"), (set(), set()), set(), set()) == graphs.of(Atom("?a", "?p", "?o"))

@@ -1082,3 +1082,23 @@ def test_a_tbox_change_between_reasons_drops_the_operations_bound_per_program() 
     assert programs[2][0] is not programs[1][0] and programs[2][1] is not programs[1][1]
     assert programs[2][1] is programs[3][1]
     assert any(t.object == N("B") for t in onto.store.triples(None, TYPE, None, INFERRED))
+
+
+def test_a_clock_flip_reads_the_inferred_graph_once_a_rule_writing_its_keys_can_fire() -> None:
+    """The look-ups of a program read an atom's facts from the graphs of the rules that can have written it
+    (reason/look_join.StateGraphs.firing): ``seen2`` is a subproperty of ``seen``, but while no ``seen2``
+    fact exists its rule never fired, and the clock flip reads visit times from the asserted graph alone.
+    Once j has one, j's visit time is inferred only, and the next tick's flip must read it there: j is Hot
+    as from scratch (the tick's program kept from before, reading the asserted graph, misses it)."""
+    onto = turtle(TBOX + ":seen2 a owl:DatatypeProperty ; rdfs:subPropertyOf :seen .\n")
+    onto.add(Triple(N("clock"), N("now"), Literal("100", datatype=NamedNode("http://www.w3.org/2001/XMLSchema#long"))))
+    onto.reason()
+    _clock_walk(onto)  # the tick's program compiled: no seen2 fact yet
+    onto.replace(N("j"), N("seen2"), 99)
+    onto.reason(mode="incremental")
+    for now, hot in ((115, {"i0", "i1", "i2", "j"}), (70, set()), (116, {"i0", "i1", "i2", "j"})):
+        onto.replace(N("clock"), N("now"), now)
+        report = onto.reason(mode="incremental")
+        assert report.stats.program == "compiled" and report.stats.flipped == 1
+        assert_as_from_scratch(onto, report)
+        assert {onto.short(i) for i in onto.instances(N("Hot"))} == hot

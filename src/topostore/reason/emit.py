@@ -44,6 +44,9 @@ class Emitter:
         self.active = active
         #: every rule that can fire, by written key (the recheck's provers)
         self.writers = writers
+        #: the graphs a look-up operation reads an atom from: those of the rules that can have written it
+        #: (:meth:`.step_compiler._Writers.graphs_of`), else those of every rule writing it
+        self.graphs_of = getattr(writers, "graphs_of", compiler.state_graphs.of)
         self.clean = clean
         self.asserted = asserted
         self._restated: dict[int, bool] = {}
@@ -233,7 +236,7 @@ class Emitter:
             if ops is self.ops:
                 self.needs[len(ops)] = frozenset(a.read_key() for m, a in enumerate(rule.body) if m not in order)
             if ops is self.ops and flippable(rule, order):
-                flipped = Flipped(rule, order, self.c.state_graphs.of, self.c.values)
+                flipped = Flipped(rule, order, self.graphs_of, self.c.values)
                 self.direct[len(ops)], self.reads[len(ops)] = flipped.run, flipped.reads
             ops.append((("flip", tag, i, order), texts.flips(rule, order, self.c.lateral, i)))
             found.append(i)
@@ -277,7 +280,7 @@ class Emitter:
         rule = self.rules[i]
         if not joinable(rule):
             return None
-        return getattr(Joined(rule, graph, j, self.c.state_graphs.of), what)
+        return getattr(Joined(rule, graph, j, self.graphs_of), what)
 
 
 __all__ = ["Emitter"]

@@ -37,16 +37,21 @@ def compile_conditions(binds: list[tuple[str, tuple]], tests: list[tuple]) -> tu
     ``exact(solution)``: True / False where every BIND is exact and every test's value a boolean, else
     None (a flip needs each test decided, see :mod:`.look_flip`)."""
     code = _Code()
+    results = _conditions(code, binds, tests)
+    shared = code.lines
+    holds = _function("holds", shared, _holds(results), code.namespace)
+    exact = _function("exact", shared, _exact(results), code.namespace)
+    return holds, exact
+
+
+def _conditions(code: _Code, binds: list[tuple[str, tuple]], tests: list[tuple]) -> list[str]:
+    """The BINDs' statements (returning None where one is not exact) and the tests' locals."""
     for var, node in binds:
         local = code.node(node)
         code.line(f"if {local} is None:")
         code.line("    return None")
         code.binds[var] = local
-    results = [code.node(node) for node in tests]
-    shared = code.lines
-    holds = _function("holds", shared, _holds(results), code.namespace)
-    exact = _function("exact", shared, _exact(results), code.namespace)
-    return holds, exact
+    return [code.node(node) for node in tests]
 
 
 def _ebv(x: str) -> str:
@@ -80,6 +85,42 @@ def _function(name: str, body: list[str], tail: list[str], namespace: dict) -> C
     return scope[name]
 
 
+#: the string functions whose value :meth:`_Code._kept` keeps per term
+_STRINGS = frozenset(("str", "substring"))
+#: terms whose string value one expression keeps (then forgotten together)
+KEPT_MAX = 4096
+_MISS = object()
+
+
+def _children(node: tuple) -> list[tuple]:
+    """The expression nodes directly under ``node``."""
+    out = []
+    for arg in node[1:]:
+        if type(arg) is tuple:
+            out.append(arg)
+        elif type(arg) is list:
+            out.extend(a for a in arg if type(a) is tuple)
+    return [] if node[0] == "const" else out
+
+
+def _kinds(node: tuple) -> set[str]:
+    """The kinds of ``node`` and of every node under it."""
+    found = {node[0]}
+    for child in _children(node):
+        found |= _kinds(child)
+    return found
+
+
+def _variables(node: tuple) -> set[str]:
+    """The variables ``node``'s value reads (as values or as terms)."""
+    if node[0] in ("var", "term_of"):
+        return {node[1]}
+    found: set[str] = set()
+    for child in _children(node):
+        found |= _variables(child)
+    return found
+
+
 class _Code:
     """The statements of one function over a solution ``s``; each node's value in a local ``xN``."""
 
@@ -87,16 +128,27 @@ class _Code:
         self.lines: list[str] = []
         self.namespace: dict[str, object] = {"value": value, "VALUES": VALUES, "term_of": term_of, "Str": Str,
                                              "NamedNode": NamedNode, "BlankNode": BlankNode,
-                                             "Literal": Literal, "MIN": _MIN, "MAX": MAX}
+                                             "Literal": Literal, "MIN": _MIN, "MAX": MAX, "MISS": _MISS,
+                                             "KEPT_MAX": KEPT_MAX}
         #: a solution variable's value and term, each read once
         self.values: dict[str, str] = {}
         self.terms: dict[str, str] = {}
         #: a BIND's variable -> the local holding its value (the later conditions read it)
         self.binds: dict[str, str] = {}
         self.count = 0
+        #: the statements' indentation (a kept string's statements run only where it is not kept yet)
+        self.indent = ""
+        #: a solution variable's term, each read once (its local)
+        self.read_terms: dict[str, str] = {}
+
+    def read(self, name: str) -> str:
+        """The local of a solution variable's term, read once."""
+        if name not in self.read_terms:
+            self.read_terms[name] = self.new(f"s.get({name!r})")
+        return self.read_terms[name]
 
     def line(self, text: str) -> None:
-        self.lines.append(text)
+        self.lines.append(self.indent + text)
 
     def new(self, expression: str) -> str:
         local = f"x{self.count}"
@@ -111,13 +163,41 @@ class _Code:
 
     def node(self, node: tuple) -> str:
         """The local holding ``node``'s value (None: UNKNOWN)."""
+        if node[0] in _STRINGS and not self.indent:
+            names = _variables(node)
+            if len(names) == 1 and not names & self.binds.keys():
+                return self._kept(node, next(iter(names)))
         return getattr(self, "_" + node[0])(*node[1:])
+
+    def _kept(self, node: tuple, name: str) -> str:
+        """A string function of one variable's term (an AllDifferent key's group, read from its IRI by
+        STRBEFORE(STRAFTER(STR(?k), ...))) computed once per term and kept (:data:`KEPT_MAX` per
+        expression): every one of them is a function of the term alone, and making its strings costs
+        a microsecond per solution.  The variable's value and term are read before (the statements
+        after this one read those locals whether or not the string was kept)."""
+        kinds = _kinds(node)
+        if "var" in kinds:
+            self._var(name)
+        if "term_of" in kinds:
+            self._term_of(name)
+        term = self.read(name)
+        kept = self.const({})
+        out = self.new(f"{kept}.get({term}, MISS)")
+        self.line(f"if {out} is MISS:")
+        self.indent = "    "
+        found = getattr(self, "_" + node[0])(*node[1:])
+        self.line(f"{out} = {found}")
+        self.line(f"if len({kept}) >= KEPT_MAX:")
+        self.line(f"    {kept}.clear()")
+        self.line(f"{kept}[{term}] = {out}")
+        self.indent = ""
+        return out
 
     def _var(self, name: str) -> str:
         if name in self.binds:
             return self.binds[name]  # a BIND's value is one already (value() of it is itself)
         if name not in self.values:
-            term = self.new(f"s.get({name!r})")
+            term = self.read(name)
             # a literal's value read from value()'s own cache where it is there (no call), an IRI's is itself
             self.values[name] = self.new(f"{term} if type({term}) is not Literal else "
                                          f"(VALUES.get({term}) or value({term}))")
@@ -127,7 +207,7 @@ class _Code:
         if name in self.binds:
             return self._as_term(self.binds[name])
         if name not in self.terms:
-            self.terms[name] = self._as_term(self.new(f"s.get({name!r})"))
+            self.terms[name] = self._as_term(self.read(name))
         return self.terms[name]
 
     def _as_term(self, x: str) -> str:

@@ -18,7 +18,7 @@ and its SPARQL text runs instead (before anything was written).
 
 from __future__ import annotations
 
-from collections.abc import Callable, Iterator, Mapping
+from collections.abc import Callable, Collection, Iterator, Mapping
 
 from pyoxigraph import Literal, NamedNode, Triple
 
@@ -55,6 +55,8 @@ class StateGraphs:
         self._rules = rules
         #: per key, the named keys of the body of each rule writing it (made at the first :meth:`derived`)
         self._bodies: dict[ReadKey, list[tuple[ReadKey, ...]]] | None = None
+        #: the same per key, each with the graph the rule writes (:meth:`firing`)
+        self._heads: dict[ReadKey, list[tuple[NamedNode, tuple[ReadKey, ...]]]] = {}
         #: :meth:`derived` per key, with the sizes of the ``present`` sets it was answered for
         self._present: Present | None = None
         self._seen: dict[ReadKey, tuple[tuple[int, int], bool]] = {}
@@ -96,15 +98,43 @@ class StateGraphs:
         if kind == "p" and name == _TYPE_KEY[1]:
             return False
         if self._bodies is None:
-            self._bodies = {}
-            for rule in self._rules:
-                if rule.head is not None:
-                    named = tuple(dict.fromkeys(a.read_key() for a in rule.body if a.p[0] == "<"))
-                    self._bodies.setdefault(rule.writes(), []).append(named)
+            self._index_bodies()
         key = (kind, name)
         writers = (key, ("*",), _TYPE_KEY) if kind == "t" else (key, ("*",))
         return any(all(matches(k, *present) for k in body) for writer in writers
                    for body in self._bodies.get(writer, ()))
+
+    def firing(self, atom: Atom, present: Present, affected: Collection[ReadKey], absent: set) -> tuple[NamedNode, ...]:
+        """:meth:`of` narrowed to the graphs of the rules that can have written ``atom``'s key: a rule some
+        named premise of which has had no fact since the last full run (``present``, a superset) and gets
+        none from the change (``affected``) never fired, and wrote nothing there (owl:sameAs replacement,
+        which writes any predicate, on a map without equalities: every atom was read from the inferred
+        graph too).  Each premise that left a graph out joins ``absent`` (the program's ``needs_absent``:
+        it is compiled again once one has facts)."""
+        graphs = self.of(atom)
+        key = atom.read_key()
+        if len(graphs) == 1 or key[0] == "*" or key == _TYPE_KEY:
+            return graphs
+        if self._bodies is None:
+            self._index_bodies()
+        found = set()
+        for writer in ((key, ("*",), _TYPE_KEY) if key[0] == "t" else (key, ("*",))):
+            for graph, body in self._heads.get(writer, ()):
+                missing = [k for k in body if k not in affected and not matches(k, *present)]
+                if missing:
+                    absent.update(missing)
+                else:
+                    found.add(graph)
+        return (ASSERTED, *(g for g in (INFERRED, AUX) if g in found))
+
+    def _index_bodies(self) -> None:
+        """The named premises of each rule writing a key (:meth:`derived`), and with its graph (:meth:`firing`)."""
+        self._bodies, self._heads = {}, {}
+        for rule in self._rules:
+            if rule.head is not None:
+                named = tuple(dict.fromkeys(a.read_key() for a in rule.body if a.p[0] == "<"))
+                self._bodies.setdefault(rule.writes(), []).append(named)
+                self._heads.setdefault(rule.writes(), []).append((AUX if rule.head_aux() else INFERRED, named))
 
     def of_key(self, key: ReadKey) -> tuple[NamedNode, ...]:
         """The graphs of the new state that may hold facts of ``key`` (not a helper atom's)."""

@@ -301,6 +301,12 @@ class _Writers(Mapping):
             raise KeyError(key)
         return found
 
+    def graphs_of(self, atom) -> tuple:
+        """The graphs a look-up operation reads ``atom``'s facts from: those of the rules writing its key
+        that can have fired (:meth:`.look_join.StateGraphs.firing`; the premises that left a graph out
+        join the program's ``needs_absent``)."""
+        return self._c.state_graphs.firing(atom, self._present, self._affected, self._absent)
+
     def _fires(self, i: int) -> bool:
         if i in self._active:
             return True

@@ -234,7 +234,7 @@ class OxigraphStore(Store):
             self._ox.extend(taken)
             return
         self._writes += 1
-        self._ox.extend(Quad(t.subject, t.predicate, t.object, graph) for t in triples)
+        self._ox.extend([Quad(t.subject, t.predicate, t.object, graph) for t in triples])
 
     def match_in(self, s, p, o, graphs: frozenset, limit: int) -> list | None:
         """The distinct triples of ``(s, p, o)`` in any of ``graphs``, at most ``limit + 1`` of them: one
@@ -285,14 +285,19 @@ class OxigraphStore(Store):
             o = t.object
             if type(o) is Literal:
                 return super().known_in(triples, graphs)
-            out.append(any(q.graph_name in graphs for q in match(t.subject, t.predicate, o, None)))
+            found = False
+            for q in match(t.subject, t.predicate, o, None):  # a loop, not any() over a generator: a fact is in one or two
+                if q.graph_name in graphs:
+                    found = True
+                    break
+            out.append(found)
         return out
 
     def _one_read(self, graphs: Collection[NamedNode]) -> bool:
         """Whether one index read over every graph answers for ``graphs`` as the per-graph reads do: no
         transaction open, no literal forms listed, no held graph among them."""
         held = self._held.graphs
-        return self._pending is None and self.listings is None and not (held and any(g in held for g in graphs))
+        return self._pending is None and self.listings is None and not (held and not held.keys().isdisjoint(graphs))
 
     def discard(self, triples, graphs: Iterable[NamedNode]) -> None:
         """In memory, a triple with a literal object is found by its subject and predicate and removed as
