@@ -11,8 +11,9 @@ from test_swrl_difference import PREFIXES
 
 from topostore import Ontology
 from topostore.rdf.vocab import DIFFERENT_KEY_OF
-from topostore.reason import early_reads
+from topostore.reason import early_reads, early_rules
 from topostore.reason.early_rules import EarlyRules
+from topostore.reason.keyed_asks import KeyCensus
 
 SIBLINGS = ":c :hasParent :t . :a :born 1990 . :b :born 1992 . "
 #: case -> (Turtle, whether the census covers at the keyed conclusion's turn)
@@ -119,3 +120,27 @@ def test_without_the_worker_the_keys_stay(monkeypatch: pytest.MonkeyPatch) -> No
     onto = family("one group")
     assert onto.reason(mode="full").consistent
     assert not log
+
+
+@pytest.mark.skipif(not early_reads.ENABLED, reason="the census is taken in the worker thread")
+def test_the_census_is_queued_after_the_keys_and_before_the_count(monkeypatch: pytest.MonkeyPatch) -> None:
+    """The census starts at the same point as the minimum's count (right after the keys) but is awaited
+    sooner, at Connectability's turn: the worker runs it before the count, not behind it."""
+    ran: list[str] = []
+    evaluate, covers = early_rules._evaluate, KeyCensus.covers
+
+    def logged(store, query, graph):
+        ran.append("keys" if "MD5" in query else "count" if "HAVING" in query else query)
+        return evaluate(store, query, graph)
+
+    def census(self, store, graphs=None):
+        ran.append("census")
+        return covers(self, store, graphs)
+
+    monkeypatch.setattr(early_rules, "_evaluate", logged)
+    monkeypatch.setattr(KeyCensus, "covers", census)
+    log = _keyless(monkeypatch)
+    onto = map_or_text()
+    onto.reason(mode="full")
+    assert ran[:3] == ["keys", "census", "count"], ran
+    assert log == [("swrl:Connectability", True)]
