@@ -168,6 +168,11 @@ class EarlyReads:
         for j in [j for j in self._checking if touches(key, self._check_reads[j])]:
             self._checking.pop(j).cancel()
 
+    def keyless(self, i: int) -> bool:
+        """Whether rule ``i``'s first pass leaves its keys out (:mod:`.keyed_first_pass`), by the census the
+        worker took for it: False without one."""
+        return self.rules is not None and self.rules.keyless(i)
+
     def evaluated(self, i: int, text: str) -> Found | None:
         """The solutions of rule ``i``'s first-pass evaluation ``text`` found in the worker (None: evaluate
         it now), see :mod:`.early_rules`."""

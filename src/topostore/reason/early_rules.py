@@ -36,6 +36,12 @@ first-pass work of the main thread between their start and their turn: for a pla
 quads written, docs/benchmarks-history.md), and with nothing to do meanwhile the pass would only wait for
 the worker.  Without the second thread (``TOPOSTORE_OVERLAP=0``, a durable or remote store) nothing
 starts early and the run is the sequential one, in the same order.
+
+The worker also takes the census of a keyed conclusion (:mod:`.keyed_first_pass`), started where its reads
+are final and awaited at the conclusion's turn, which then leaves its key atoms out where it covers.  Of the
+reads started at one point, a census goes right after the last early evaluation writing a key it reads (the
+keys), ahead of the others (the minimum's count): the conclusion's turn comes before the count's, and queued
+behind the count the census kept the main thread waiting for both (1.2 s at 100,000 locations).
 """
 
 from __future__ import annotations
@@ -53,9 +59,10 @@ from ..compile.rule import ReadKey, Rule
 from ..stores.base import Store
 from ..stores.overlap import Reader, early_result
 from .key_pairs import grouped_form
+from .one_group import one_group
 from .order import TYPE_KEY
 from .read_keys import Writes, evaluation_reads, touches
-from .triggers import Present
+from .triggers import Present, may_hold
 
 if TYPE_CHECKING:
     from .materialize import Materializer
@@ -172,6 +179,10 @@ class EarlyRules:
         self._reads: dict[int, frozenset[ReadKey]] = {}
         #: started and still holding: rule -> (its text without the delta graph, its facts written)
         self._started: dict[int, tuple[str, Future]] = {}
+        #: the keyed conclusions' censuses (:mod:`.keyed_first_pass`): component -> those started after it;
+        #: started and still holding: rule -> whether its census covers
+        self._census_after: dict[int, list[int]] = {}
+        self._censused: dict[int, Future] = {}
         _delay(ordered, run.rules, lambda i, present: self._eligible(i, back, present), run.present)
         #: the writers of the components before the one looked at, an early one where it starts (the worker
         #: writes its facts before it runs the reads started after it)
@@ -183,6 +194,8 @@ class EarlyRules:
         present = (set(run.present[0]), set(run.present[1]))
         for c, component in enumerate(ordered):
             for i in component:
+                if i in run.keyed:
+                    self._census_point(i, c, component, before)
                 if not self._eligible(i, back, present):
                     before.add(c, run.rules[i].writes())
                     continue
@@ -197,6 +210,17 @@ class EarlyRules:
             for i in component:
                 _claim(present, run.rules[i].writes())
 
+    def _census_point(self, i: int, c: int, component: list[int], before: Writes) -> None:
+        """Note where the census of keyed conclusion ``i`` (of component ``c``) starts: after the last
+        component writing a key it reads (an early writer where it starts), none where a rule of its own
+        component may write one (the census would not see the data of its turn)."""
+        reads = self.run.keyed[i].reads
+        if Writes([(0, self.run.rules[j].writes()) for j in component if j != i]).last(reads) >= 0:
+            return
+        start = before.last(reads)
+        if start < c:
+            self._census_after.setdefault(start, []).append(i)
+
     def _eligible(self, i: int, back: Collection[int], present: Present) -> bool:
         """Whether rule ``i``'s first-pass evaluation reads far more than it writes (:func:`costly`) and
         writes into one graph alone (see the module), its keys able to hold facts by its turn (``present``)."""
@@ -209,7 +233,10 @@ class EarlyRules:
         run = self.run
         store = run.store
         delta = run.delta_read
-        for i in self._after.pop(component, ()):
+        early = self._after.pop(component, [])
+        censuses = self._census_after.pop(component, [])
+        for n, i in enumerate(early):
+            censuses = self._census(censuses, early[n:])
             text = run.first_pass_text(i)
             form = construct_form(text, delta)
             if form is None:
@@ -217,11 +244,50 @@ class EarlyRules:
             query, graph = form
             self._started[i] = (_without_delta(text, delta),
                                 self._reader.submit(lambda q=query, g=graph: _evaluate(store, q, g)))
+            self.wrote(run.rules[i].writes(), censuses_only=True)  # loaded after the censuses started before
+        self._census(censuses, [])
 
-    def wrote(self, key: ReadKey | None) -> None:
-        """An evaluation writing ``key`` was sent or queued: the early evaluations reading it no longer hold."""
+    def _census(self, waiting: list[int], later: list[int]) -> list[int]:
+        """Start the censuses of ``waiting`` that no early evaluation of ``later`` (started after them at the
+        same point) writes a key of, and return the others.  A census is awaited at its conclusion's turn,
+        the count of a minimum (queued beside it) only at a later component's: queued first, the census is
+        ready when the conclusion's turn comes instead of waiting for the count in the worker."""
+        store = self.run.store
+        rest = []
+        for i in waiting:
+            if any(touches(self.run.rules[j].writes(), self.run.keyed[i].reads) for j in later):
+                rest.append(i)
+                continue
+            census = self.run.keyed[i].census
+            # the group read in the worker too: after the early writes started before it
+            self._censused[i] = self._reader.submit(lambda c=census: one_group(store, ()) and c.covers(store))
+        return rest
+
+    def wrote(self, key: ReadKey | None, censuses_only: bool = False) -> None:
+        """An evaluation writing ``key`` was sent, queued or started early: the early evaluations and the
+        censuses reading it no longer hold (``censuses_only``: the censuses alone)."""
+        for i in [i for i in self._censused if touches(key, self.run.keyed[i].reads)]:
+            self._censused.pop(i).cancel()
+        if censuses_only:
+            return
         for i in [i for i in self._started if touches(key, self._reads[i])]:
             self._started.pop(i)[1].cancel()
+
+    def keyless(self, i: int) -> bool:
+        """Whether keyed conclusion ``i``'s first pass leaves its keys out: its census, started in the worker
+        on the data of its turn (:meth:`wrote` drops it otherwise), covers, and nothing queued may write
+        what it read (:mod:`.keyed_first_pass`)."""
+        started = self._censused.pop(i, None)
+        if started is None:
+            return False
+        queued = self.run._queued
+        if None in queued or any(may_hold(queued, k) for k in self.run.keyed[i].reads):
+            started.cancel()
+            return False
+        try:
+            return started.result() is True
+        except Exception:  # noqa: BLE001 - the keys are kept: the pass evaluates the rule as written
+            return False
 
     def evaluated(self, i: int, text: str) -> Found | None:
         """Rule ``i``'s evaluation ``text`` found and written early (None: evaluate it now; an early reader
@@ -236,6 +302,9 @@ class EarlyRules:
         for _, solutions in self._started.values():
             solutions.cancel()
         self._started.clear()
+        for census in self._censused.values():
+            census.cancel()
+        self._censused.clear()
 
 
 __all__ = ["EarlyRules", "Found", "construct_form", "costly", "positive"]

@@ -41,6 +41,7 @@ from .few_solutions import few_solutions
 from .full_passes import full_passes
 from .insert_text import insert_text
 from .keyed_asks import key_censuses
+from .keyed_first_pass import keyed_passes
 from .negation import Idle, evaluated_last
 from .one_group import keys_kept_by_group, one_group, without_group_tests
 from .order import TYPE_KEY, is_path
@@ -113,6 +114,8 @@ class Materializer:
                                    if keys_kept_by_group(self.rules) else set())
         #: deferred asks a census of the AllDifferent keys may show empty (:mod:`.keyed_asks`), by rule
         self.censuses = key_censuses(self.rules)
+        #: their keyed conclusions, whose first pass may leave the keys out (:mod:`.keyed_first_pass`)
+        self.keyed = keyed_passes(self.rules, self.censuses)
 
     def _run(self, index: int, delta_index: int | None, stats: ReasonStats, asserted_only: bool = False,
              first: bool = False, union: tuple[int, ...] = ()) -> None:
@@ -120,10 +123,13 @@ class Materializer:
         atom reads the asserted graph alone (see :func:`.implied_passes.implied_first_passes`); ``first``: the
         first pass of the ordered stratum, which leaves out the atoms :attr:`_lean` says are implied;
         ``union``: rules evaluated with it as one (:mod:`.class_unions`).  An evaluation whose solutions
-        the worker found and wrote already (:mod:`.early_rules`) has nothing left to write."""
+        the worker found and wrote already (:mod:`.early_rules`) has nothing left to write; a keyed
+        conclusion's first pass the census covers leaves its keys out (:mod:`.keyed_first_pass`)."""
         if index in self._deferring:
             return
-        text = self.evaluation_text(index, delta_index, asserted_only, first, union)
+        keyless = (first and delta_index is None and not union and self._early is not None
+                   and self._early.keyless(index))
+        text = self.evaluation_text(index, delta_index, asserted_only, first, union, keyless)
         stats.evaluations += 1
         written = self.rules[index].writes()
         found = self._early.evaluated(index, text) if self._early is not None else None
@@ -135,17 +141,21 @@ class Materializer:
         self._timed(text, self.rules[index].name, stats)
 
     def evaluation_text(self, index: int, delta_index: int | None, asserted_only: bool = False,
-                        first: bool = False, union: tuple[int, ...] = ()) -> str:
-        """The text :meth:`_run` sends for these arguments in the run's present state (kept by its form)."""
+                        first: bool = False, union: tuple[int, ...] = (), keyless: bool = False) -> str:
+        """The text :meth:`_run` sends for these arguments in the run's present state (kept by its form);
+        ``keyless``: a keyed conclusion without its key atoms (:mod:`.keyed_first_pass`)."""
         derived = self._direct is not None and self.rules[index].writes() in self._derived
         bare = self.bare(index)
         lean = first and index in self._lean
+        rule = self._lean[index] if lean else self.rules[index]
+        if keyless:
+            rule = self.keyed[index].lean(rule)
         few = self._direct is not None and delta_index is None and not union and few_solutions(
-            self.store, self._lean[index] if lean else self.rules[index], self._queued)
-        one = (self._direct is not None and delta_index is None and index in self._grouped
+            self.store, rule, self._queued)
+        one = (self._direct is not None and delta_index is None and index in self._grouped and not keyless
                and one_group(self.store, self._queued))
         key = (index, delta_index, self._lateral, self._direct, self._graphs is not None, derived, asserted_only,
-               lean, union, few, one, bare)
+               lean, union, few, one, bare, keyless)
         text = self._texts.get(key)
         if text is None:
             graphs = self._graphs
@@ -153,7 +163,6 @@ class Materializer:
                 graphs = {**(graphs or {}), self.rules[index].body[0].read_key(): ASSERTED}
             if graphs is not None and index in self._paths:
                 graphs = {**graphs, **{a.read_key(): ASSERTED for a in self.rules[index].body if is_path(a)}}
-            rule = self._lean[index] if lean else self.rules[index]
             text = self._texts[key] = insert_text(rule, delta_index, self.planned, self._lateral,
                                                   self._direct, graphs, derived, [self.rules[j] for j in union], few, one,
                                                   bare)
