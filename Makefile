@@ -21,11 +21,13 @@ run: $(STAMP)
 COV_FLOOR := 93
 
 # The tests that need nothing outside the venv run on two workers (pytest-xdist, `-n 2` in pyproject.toml); those
-# that start roscore, Virtuoso, a browser or a JVM run in one process after them; coverage adds both up.
+# that start roscore, Virtuoso, a browser or a JVM run after them on two workers too, each ROS module's tests
+# (one roscore and node) and the Virtuoso tests kept on one worker (`--dist loadgroup`, tests/conftest.py);
+# coverage adds both up.
 test: $(STAMP) browser ros-deps virtuoso java
 	$(BIN)/ruff check src tests benchmarks
 	$(BIN)/python -m pytest -m "not external" --durations=10 --cov=topostore --cov-report=
-	$(BIN)/python -m pytest -m external -n 0 --durations=5 --cov=topostore --cov-append \
+	$(BIN)/python -m pytest -m external --dist loadgroup --durations=5 --cov=topostore --cov-append \
 	  --cov-report=term-missing:skip-covered --cov-fail-under=$(COV_FLOOR)
 
 # The live-map page is tested in Debian's chromium (driven by Playwright, a test extra); as

@@ -51,15 +51,25 @@ SLOW_MODULES = {"test_durable", "test_conformance", "test_fuzz_armor", "test_fuz
                 "test_fuzz_tbox", "test_incremental", "test_properties", "test_packaging", "test_load_tool"}
 
 
+#: modules whose tests share one ROS world (a module-scoped roscore and node): on two workers
+#: (``--dist loadgroup``) each module stays on one worker, so its world is started once
+ROS_MODULES = {"test_ros", "test_ros_events", "test_fuzz_ros"}
+
+
 def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:
-    """Mark tests ``external`` (a Virtuoso server counts too, wherever it is used) and ``slow`` by module."""
+    """Mark tests ``external`` (a Virtuoso server counts too, wherever it is used) and ``slow`` by module; keep
+    the tests of one ROS world, and those of the Virtuoso server, on one worker each (``xdist_group``)."""
     for item in items:
         module = item.module.__name__ if getattr(item, "module", None) else ""
-        if module in EXTERNAL_MODULES or "virtuoso_url" in getattr(item, "fixturenames", ()) \
-                or "virtuoso" in item.nodeid:
+        virtuoso = "virtuoso_url" in getattr(item, "fixturenames", ()) or "virtuoso" in item.nodeid
+        if module in EXTERNAL_MODULES or virtuoso:
             item.add_marker(pytest.mark.external)
         if module in SLOW_MODULES:
             item.add_marker(pytest.mark.slow)
+        if module in ROS_MODULES:
+            item.add_marker(pytest.mark.xdist_group(module))
+        elif virtuoso:
+            item.add_marker(pytest.mark.xdist_group("virtuoso"))
 
 
 def pytest_sessionfinish(session: pytest.Session) -> None:

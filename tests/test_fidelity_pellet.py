@@ -11,6 +11,7 @@ Skipped without Java or Owlready2, like tests/test_pellet_differential.py.
 from __future__ import annotations
 
 import json
+import os
 import subprocess
 import sys
 import tempfile
@@ -21,7 +22,7 @@ from pathlib import Path
 import pytest
 from fidelity_cases import BASE, CASES, document, namespace, random_horn
 from pyoxigraph import NamedNode
-from support import NEEDS_PELLET
+from support import NEEDS_PELLET, pellet_env
 from unsat_cases import EMPTY, PREFIXES, SATISFIABLE
 
 from topostore import Ontology, OntologyWarning
@@ -67,7 +68,7 @@ def pellet(text: str) -> dict:
     namespaces with its named classes and object property values (IRIs)."""
     path = saved(text)
     run = subprocess.run([sys.executable, "-c", PELLET_SCRIPT, path.resolve().as_uri(), BASE],
-                         capture_output=True, text=True, timeout=300)
+                         capture_output=True, text=True, timeout=300, env=pellet_env())
     assert run.returncode == 0, run.stderr[-2000:]
     return json.loads(run.stdout.strip().splitlines()[-1])
 
@@ -86,7 +87,10 @@ def saved(text: str) -> Path:
         o = Ontology()
         o.load_data(text)
     FILES.mkdir(parents=True, exist_ok=True)
-    return o.save(FILES / f"{abs(hash(text)):x}.nt", fmt="ntriples")
+    # written beside and renamed: another test process (xdist worker) may be reading the same file
+    path = FILES / f"{abs(hash(text)):x}.nt"
+    written = o.save(path.with_suffix(f".{os.getpid()}.nt"), fmt="ntriples")
+    return written.replace(path)
 
 
 def topostore(o: Ontology, names: list[str]) -> dict:

@@ -22,7 +22,7 @@ from pathlib import Path
 import pytest
 from scenarios import NAMES, PROPS, SCENARIOS, damage, generated, topostore
 from support import ABOX_OWL as ABOX
-from support import DATA, NEEDS_PELLET, NS
+from support import DATA, NEEDS_PELLET, NS, pellet_env
 
 from topostore import Ontology
 from topostore.demo import mapgen
@@ -66,10 +66,19 @@ def pellet(path: Path, names: list[str], ns: str = NS, props: list[str] = PROPS)
     names_file.write_text(json.dumps(names))
     run = subprocess.run(
         [sys.executable, "-c", PELLET_SCRIPT, path.resolve().as_uri(), ns, str(names_file), json.dumps(props)],
-        capture_output=True, text=True, timeout=300,
+        capture_output=True, text=True, timeout=300, env=pellet_env(),
     )
     assert run.returncode == 0, run.stderr[-2000:]
     return json.loads(run.stdout.strip().splitlines()[-1])
+
+
+def test_pellet_runs_in_a_jvm_with_the_quick_jit_only() -> None:
+    """The ``java`` launcher of a Pellet run reads :func:`pellet_env`'s options (and says so on stderr)."""
+    run = subprocess.run(["java", "-XX:+PrintFlagsFinal", "-version"], env=pellet_env(), capture_output=True,
+                         text=True, timeout=60, check=True)
+    assert "Picked up JDK_JAVA_OPTIONS" in run.stderr
+    assert any(line.split()[:1] == ["intx"] and "TieredStopAtLevel" in line and line.split()[3] == "1"
+               for line in run.stdout.splitlines())
 
 
 @pytest.mark.parametrize("name", list(SCENARIOS))
