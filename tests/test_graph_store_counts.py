@@ -194,3 +194,21 @@ def test_a_sparql_update_counts_what_the_graph_took(server: InProcess) -> None:
     assert status == 200 and body["added"] == 0 and body["removed"] == 0, body
     assert len(body["warnings"]) == 1 and "already in the graph" in body["warnings"][0], body
     assert f'"1"^^<{XSD}int>'.encode() in saved(server)
+
+
+def test_a_sparql_update_writing_one_value_twice_keeps_the_first_spelling_as_a_post_does(server: InProcess) -> None:
+    """``"007"`` and ``"7"`` of one xsd:long: the endpoint keeps the first, as a POST of the same two triples does,
+    and says the other once."""
+    send(server, "PUT", "")
+    update = (f'INSERT DATA {{ <{NS}x> <{NS}s> "007"^^<{XSD}long> }} ; '
+              f'INSERT DATA {{ <{NS}x> <{NS}s> "7"^^<{XSD}long> , "7"^^<{XSD}long> }}')
+    status, _, reply = server.request("/references/counts/sparql", update.encode(),
+                                      {"Content-Type": "application/sparql-update"}, "POST")
+    body = json.loads(reply)
+    assert status == 200 and body["added"] == 1 and body["removed"] == 0, body
+    assert len(body["warnings"]) == 1 and "written again in the same change" in body["warnings"][0], body
+    assert f'"007"^^<{XSD}long>'.encode() in saved(server)
+    assert f'"7"^^<{XSD}long>'.encode() not in saved(server)
+    send(server, "PUT", "")
+    _, posted = send(server, "POST", f':x :s "007"^^<{XSD}long> , "7"^^<{XSD}long> .')
+    assert f'"007"^^<{XSD}long>'.encode() in saved(server) and posted["added"] == 1, posted
