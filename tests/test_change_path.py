@@ -35,6 +35,27 @@ def asserted(onto: Ontology, p: str) -> list:
     return sorted(str(t.object) for t in onto.store.triples(n("r1"), n(p), None, ASSERTED))
 
 
+@pytest.fixture
+def armor():
+    """A call to an in-process aRMOR service (``armor(command, spec1, spec2, args)``), closed after the test."""
+    from topostore.armor import ArmorService
+
+    service = ArmorService()
+
+    def call(command: str, spec1: str, spec2: str, args: list[str]):
+        return service.call({"client_name": "c", "reference_name": "r", "command": command,
+                             "primary_command_spec": spec1, "secondary_command_spec": spec2, "args": args})
+    yield call
+    service.close()
+
+
+def loaded_by_armor(armor, tmp_path, data: str) -> None:
+    """LOAD of the TBox and ``data`` through ``armor``."""
+    path = tmp_path / "o.ttl"
+    path.write_text(TBOX + data)
+    assert armor("LOAD", "FILE", "", [str(path), EX.rstrip("#"), "false", "PELLET", "true"]).success
+
+
 def test_terms_made_equal_the_constructors_and_literal_ones_are_kept() -> None:
     lit = typed("12", "long")
     made = terms.triple(n("s"), n("p"), lit)
@@ -109,24 +130,12 @@ def test_a_spelling_of_one_stored_form_swapped_is_kept_and_said(onto: Ontology) 
     assert [str(v) for v in onto.data_values("count", "r1")] == [str(typed("0100", "long"))]
 
 
-def test_an_armor_replace_by_another_spelling_says_which_stays(tmp_path) -> None:
+def test_an_armor_replace_by_another_spelling_says_which_stays(armor, tmp_path) -> None:
     """REPLACE DATAPROP of ``3`` by ``"3.0"^^xsd:decimal``: the reply says the spelling ``3`` stayed."""
-    from topostore.armor import ArmorService
-
-    path = tmp_path / "o.ttl"
-    path.write_text(TBOX + ":r1 :speed 3 .")
-    service = ArmorService()
-
-    def call(command: str, spec1: str, spec2: str, args: list[str]):
-        return service.call({"client_name": "c", "reference_name": "r", "command": command,
-                             "primary_command_spec": spec1, "secondary_command_spec": spec2, "args": args})
-    try:
-        assert call("LOAD", "FILE", "", [str(path), EX.rstrip("#"), "false", "PELLET", "true"]).success
-        reply = call("REPLACE", "DATAPROP", "IND", ["speed", "r1", "decimal", "3.0", "3"])
-        assert reply.success and "stays as written" in reply.error_description
-        assert call("QUERY", "DATAPROP", "IND", ["speed", "r1"]).queried_objects == ['"3"^^xsd:integer']
-    finally:
-        service.close()
+    loaded_by_armor(armor, tmp_path, ":r1 :speed 3 .")
+    reply = armor("REPLACE", "DATAPROP", "IND", ["speed", "r1", "decimal", "3.0", "3"])
+    assert reply.success and "stays as written" in reply.error_description
+    assert armor("QUERY", "DATAPROP", "IND", ["speed", "r1"]).queried_objects == ['"3"^^xsd:integer']
 
 
 def test_one_value_replaced_by_another_that_takes_back_an_earlier_removal_says_the_spelling_kept(
@@ -145,31 +154,19 @@ def test_one_value_replaced_by_another_that_takes_back_an_earlier_removal_says_t
     assert [str(v) for v in onto.data_values("speed", "r1")] == [str(typed("7", "long"))]
 
 
-def test_an_armor_replace_finds_the_old_and_the_new_value_among_several(tmp_path) -> None:
+def test_an_armor_replace_finds_the_old_and_the_new_value_among_several(armor, tmp_path) -> None:
     """REPLACE reads every value of the pair once: the old one is removed whatever its place among them, a
     new one held already is not added again (no warning of an old value missing), and an individual's
     REPLACE compares individuals, a value's compares values (``"5"^^xsd:long`` is ``5``)."""
-    from topostore.armor import ArmorService
-
-    path = tmp_path / "o.ttl"
-    path.write_text(TBOX + ":r1 :speed 3 , 5 , 8 . :r1 :at :a , :b , :c .")
-    service = ArmorService()
-
-    def call(command: str, spec1: str, spec2: str, args: list[str]):
-        return service.call({"client_name": "c", "reference_name": "r", "command": command,
-                             "primary_command_spec": spec1, "secondary_command_spec": spec2, "args": args})
-    try:
-        assert call("LOAD", "FILE", "", [str(path), EX.rstrip("#"), "false", "PELLET", "true"]).success
-        reply = call("REPLACE", "DATAPROP", "IND", ["speed", "r1", "long", "5", "8"])
-        assert reply.success and reply.error_description == ""
-        assert call("QUERY", "DATAPROP", "IND", ["speed", "r1"]).queried_objects == \
-            ['"3"^^xsd:integer', '"5"^^xsd:integer']
-        reply = call("REPLACE", "OBJECTPROP", "IND", ["at", "r1", "c", "a"])
-        assert reply.success and reply.error_description == ""
-        assert call("QUERY", "OBJECTPROP", "IND", ["at", "r1"]).queried_objects == [f"<{EX}b>", f"<{EX}c>"]
-        reply = call("REPLACE", "OBJECTPROP", "IND", ["at", "r1", "d", "a"])  # a is gone: d added, b, c kept
-        assert reply.success and "was not asserted" in reply.error_description
-        assert call("QUERY", "OBJECTPROP", "IND", ["at", "r1"]).queried_objects == \
-            [f"<{EX}b>", f"<{EX}c>", f"<{EX}d>"]
-    finally:
-        service.close()
+    loaded_by_armor(armor, tmp_path, ":r1 :speed 3 , 5 , 8 . :r1 :at :a , :b , :c .")
+    reply = armor("REPLACE", "DATAPROP", "IND", ["speed", "r1", "long", "5", "8"])
+    assert reply.success and reply.error_description == ""
+    assert armor("QUERY", "DATAPROP", "IND", ["speed", "r1"]).queried_objects == \
+        ['"3"^^xsd:integer', '"5"^^xsd:integer']
+    reply = armor("REPLACE", "OBJECTPROP", "IND", ["at", "r1", "c", "a"])
+    assert reply.success and reply.error_description == ""
+    assert armor("QUERY", "OBJECTPROP", "IND", ["at", "r1"]).queried_objects == [f"<{EX}b>", f"<{EX}c>"]
+    reply = armor("REPLACE", "OBJECTPROP", "IND", ["at", "r1", "d", "a"])  # a is gone: d added, b, c kept
+    assert reply.success and "was not asserted" in reply.error_description
+    assert armor("QUERY", "OBJECTPROP", "IND", ["at", "r1"]).queried_objects == \
+        [f"<{EX}b>", f"<{EX}c>", f"<{EX}d>"]
