@@ -18,9 +18,8 @@ from hypothesis import given
 from hypothesis import strategies as st
 from pyoxigraph import Literal, NamedNode, RdfFormat, parse
 
-from topostore import Ontology, OntologyWarning, SpellingKeptWarning
+from topostore import Ontology, OntologyWarning
 from topostore.armor.reference import Reference
-from topostore.ontology.spellings import AGAIN_IN_CHANGE, HELD
 from topostore.rdf.vocab import XSD
 from topostore.sparql.execute import Job, run_update
 from topostore.sparql.written import may_respell
@@ -202,8 +201,8 @@ def spellings(n: int) -> list[str]:
 @st.composite
 def spelled_updates(draw: st.DrawFn) -> tuple[str, dict[tuple[str, str], str]]:
     """An INSERT DATA or DELETE/INSERT/WHERE text writing one value in several spellings at several positions
-    (distinct subjects and predicates), the first position perhaps again in another spelling, with other
-    spellings of it in a DELETE and a FILTER; the spelling written first at each position."""
+    (distinct subjects and predicates), with other spellings of it in a DELETE and a FILTER; the spelling
+    written at each position."""
     n = draw(st.integers(min_value=1, max_value=9))
     words = spellings(n)
     positions = draw(st.lists(st.tuples(st.sampled_from(["a", "b", "c"]), st.sampled_from(["p0", "p1", "p2", "p3"])),
@@ -211,16 +210,11 @@ def spelled_updates(draw: st.DrawFn) -> tuple[str, dict[tuple[str, str], str]]:
     at = {pos: draw(st.sampled_from(words)) for pos in positions}
     other = draw(st.sampled_from(words))
     form = draw(st.sampled_from(["data", "subjects bound", "values bound"]))
-    # the first position written again, later, in another spelling of its value (the first spelling stays)
-    same = [w for w in words if w not in (f"{n}.50", f"{n}e0")]  # of one value (xsd:double's values are apart)
-    again = draw(st.none() | st.sampled_from(same)) if at[positions[0]] in same else None
     if form == "data":
         body = " ".join(f"k:{s} k:{p} {w} ." for (s, p), w in at.items())
-        body += f" k:{positions[0][0]} k:{positions[0][1]} {again} ." if again is not None else ""
         text = f"DELETE DATA {{ k:a k:old {other} }} ; INSERT DATA {{ {body} }}"
     elif form == "subjects bound":  # the subjects through variables bound by VALUES
         body = " ".join(f"?{s} k:{p} {w} ." for (s, p), w in at.items())
-        body += f" ?{positions[0][0]} k:{positions[0][1]} {again} ." if again is not None else ""
         text = (f"DELETE {{ k:a k:old {other} }} INSERT {{ {body} }} "
                 f"WHERE {{ VALUES (?a ?b ?c) {{ (k:a k:b k:c) }} FILTER({other} = {other}) }}")
     else:  # the values through variables, each bound by VALUES (one variable or a row of several) or BIND
@@ -246,77 +240,3 @@ def test_every_added_literal_is_spelled_as_written_at_its_position(case: tuple[s
     update(o, text)
     for (s, p), spelling in at.items():
         assert values(o, p, s) == [written(spelling)], (text, s, p)
-
-
-def notes(o: Ontology, text: str) -> list[str]:
-    """The warnings of an update of ``o`` (its notes of spellings not stored among them)."""
-    return run_update(Reference("ref", o, NS), text, Job(time.monotonic() + 60), 60.0).warnings
-
-
-def loaded_notes(o: Ontology, data: str) -> list[str]:
-    """The spelling notices of a load of ``data`` into ``o``."""
-    with warnings.catch_warnings(record=True) as caught:
-        warnings.simplefilter("always")
-        o.load_data(data, "turtle")
-    return [str(w.message) for w in caught if issubclass(w.category, SpellingKeptWarning)]
-
-
-LONG_7 = f'"7"^^<{XSD}long>'
-LONG_007 = f'"007"^^<{XSD}long>'
-TWICE = {
-    "insert_data": 'INSERT DATA { k:r k:battery "007"^^xsd:long , "7"^^xsd:long }',
-    "two_template_triples": 'INSERT { k:r k:battery "007"^^xsd:long . k:r k:battery "7"^^xsd:long } WHERE { }',
-    "two_operations": 'INSERT DATA { k:r k:battery "007"^^xsd:long } ; INSERT DATA { k:r k:battery "7"^^xsd:long }',
-    "three_writes": 'INSERT DATA { k:r k:battery "007"^^xsd:long , "7"^^xsd:long } ; '
-                    'INSERT { k:r k:battery "7"^^xsd:long } WHERE { }',
-}
-
-
-@pytest.mark.parametrize("other", [LONG_7, f'"7.0"^^<{XSD}decimal>'])
-@pytest.mark.parametrize("name", list(TWICE))
-def test_one_value_written_in_two_spellings_keeps_the_first_and_says_the_other_once(name: str, other: str) -> None:
-    """As a load of the same triples: ``"007"`` stays, and the other (of its datatype or another one the
-    scratch store keeps apart) is said once, as a change says it."""
-    loaded = ontology()
-    said = loaded_notes(loaded, f"<{NS}r> <{NS}battery> {LONG_007}, {other} .")
-    assert len(said) == 1 and f"{LONG_007} stays as written" in said[0]
-    o = ontology()
-    warned = notes(o, PROLOGUE + TWICE[name].replace('"7"^^xsd:long', other))
-    assert values(o, "battery", "r") == values(loaded, "battery", "r") == [typed("007", "long")]
-    assert len(warned) == 1, warned
-    assert warned[0] == f"<{NS}r> <{NS}battery> {LONG_007} stays as written: <{NS}r> <{NS}battery> {other} is " \
-                        f"the same value, {AGAIN_IN_CHANGE}"
-
-
-@pytest.mark.parametrize("spelling", ['"007"^^xsd:long', '"7"^^xsd:int'])
-def test_an_update_writing_a_held_value_in_another_spelling_keeps_the_held_one_and_says_so(spelling: str) -> None:
-    """As a load and a change: the graph keeps the spelling it holds, and the one written is said."""
-    held = f"<{NS}r> <{NS}battery> {LONG_7} ."
-    loaded = ontology(held)
-    said = loaded_notes(loaded, f"@prefix xsd: <{XSD}> . <{NS}r> <{NS}battery> {spelling} .")
-    o = ontology(held)
-    warned = notes(o, PROLOGUE + f"INSERT DATA {{ k:r k:battery {spelling} }}")
-    assert values(o, "battery", "r") == values(loaded, "battery", "r") == [typed("7", "long")]
-    assert len(said) == len(warned) == 1 and HELD in said[0] and HELD in warned[0], (said, warned)
-    assert warned[0] == said[0].split(": ", 1)[1]
-
-
-def test_a_spelling_written_after_a_delete_of_its_value_is_the_first() -> None:
-    """A spelling an earlier operation wrote and a DELETE removed spells nothing (a change of the value
-    removed and added again is left as it is)."""
-    o = ontology()
-    warned = notes(o, PROLOGUE + 'INSERT DATA { k:r k:battery "07"^^xsd:long } ; DELETE WHERE { k:r k:battery ?v } ; '
-                                 'INSERT DATA { k:r k:battery "007"^^xsd:long , "7"^^xsd:long }')
-    assert values(o, "battery", "r") == [typed("007", "long")]
-    assert len(warned) == 1 and f"{LONG_7} is the same value, {AGAIN_IN_CHANGE}" in warned[0], warned
-
-
-@pytest.mark.parametrize("held", ["", f"<{NS}r> <{NS}battery> {LONG_7} ."])
-def test_a_template_that_may_have_written_nothing_spells_nothing_first_and_says_nothing(held: str) -> None:
-    """A template of a WHERE that matched nothing wrote nothing: its spelling is not kept before a later one,
-    nor said beside the graph's."""
-    o = ontology(held)
-    warned = notes(o, PROLOGUE + 'INSERT { k:r k:battery "007"^^xsd:long } WHERE { k:nothing k:p0 ?x } ; '
-                                 'INSERT DATA { k:r k:battery "7"^^xsd:long }')
-    assert values(o, "battery", "r") == [typed("7", "long")]
-    assert warned == []

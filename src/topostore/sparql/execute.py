@@ -194,8 +194,7 @@ class UpdateOutcome:
 
 def update_delta(asserted: list[Triple], text: str, held: Callable[[Literal], Term] | None = None) -> TripleDelta:
     """What ``text`` adds to and removes from ``asserted``, computed on a scratch store; each added literal
-    spelled as the text wrote it at its position, else as ``held`` gives its value (:func:`.written.as_written`);
-    each other spelling the text wrote of a value follows the one kept, for the change to say it is not stored."""
+    spelled as the text wrote it at its position, else as ``held`` gives its value (:func:`.written.as_written`)."""
     scratch = ox.Store()
     scratch.extend([Quad(t.subject, t.predicate, t.object, DefaultGraph()) for t in asserted])
     try:
@@ -210,8 +209,7 @@ def update_delta(asserted: list[Triple], text: str, held: Callable[[Literal], Te
                          "writable graph, the default graph (leave out GRAPH and WITH)")
     after = {skolemize(Triple(q.subject, q.predicate, q.object)) for q in scratch.quads_for_pattern(None, None, None, DefaultGraph())}
     before = set(asserted)
-    added = as_written(sorted(after - before, key=str), text, held, after.__contains__)
-    return TripleDelta(add=added, remove=sorted(before - after, key=str))
+    return TripleDelta(add=as_written(sorted(after - before, key=str), text, held), remove=sorted(before - after, key=str))
 
 
 def run_update(ref: WritableOntology, text: str, job: Job, limit: float) -> UpdateOutcome:

@@ -15,13 +15,6 @@ template's blank node (``[ k:p "007"^^xsd:long ]``) becomes a fresh node of the 
 with the added node of the same shape (its values and links, as stored), so two blank nodes holding one value
 in two spellings keep one each.
 
-One value written at one subject and predicate in several spellings keeps the first, as a load of the same
-triples does (``"007"^^xsd:long , "7"^^xsd:long``: ``"007"``), across the operations of a request in their order,
-from where a ``DELETE`` may last have removed it; each other spelling goes to the change after the first, which
-says it is not stored (as it says one the graph holds already in another spelling).  Only spellings surely
-written count so: by ``INSERT DATA``, or all by one operation (a template whose ``WHERE`` matched nothing wrote
-nothing; with several such operations the last one's spelling is given, and nothing said).
-
 The parse runs only when the text may hold a literal Oxigraph stores otherwise (a ``^^`` or a bare number not
 in canonical form), so a plain update pays one regular-expression scan.
 """
@@ -49,8 +42,6 @@ _VARIABLE = INTERNAL + "template-variable/"
 #: a template triple: its subject (None: any term; a blank node: the added node paired with it) and predicate
 #: (None: any term), and the literal written as its object
 Template = tuple[NamedNode | BlankNode | None, NamedNode | None, Literal]
-#: a spelling written at one position: the literal, the operation that wrote it, whether by ``INSERT DATA``
-Spelling = tuple[Literal, int, bool]
 
 
 def may_respell(text: str) -> bool:
@@ -63,18 +54,13 @@ def _canonical(number: str) -> bool:
     return number != "-0" and _CANONICAL.fullmatch(number) is not None
 
 
-def as_written(added: list[Triple], text: str, held: Callable[[Literal], Term] | None = None,
-               present: Callable[[Triple], bool] | None = None) -> list[Triple]:
+def as_written(added: list[Triple], text: str, held: Callable[[Literal], Term] | None = None) -> list[Triple]:
     """``added`` (an update's added triples, as the scratch store gave them) with each literal the update's
     insert template wrote for it given back in that spelling; ``held``: the spelling the store holds for a
     value (:meth:`.Store.restore`), given to a literal no template wrote (bound from the store by ``WHERE``).
 
     The templates are read where the text may spell a literal otherwise than Oxigraph stores it, or where the
-    store holds an added value in another spelling (a template writing it there keeps what it wrote).  A value
-    written at one subject and predicate in several spellings keeps the first, as a load does: each other
-    spelling follows it, for the change to say it is not stored, and so does each spelling of a value the
-    graph held before and still holds (``present``: whether the scratch store ends with a triple), for the
-    change to say the graph keeps its own."""
+    store holds an added value in another spelling (a template writing it there keeps what it wrote)."""
     written = _Written(text, added)
     respell = may_respell(text)
     out = []
@@ -86,11 +72,7 @@ def as_written(added: list[Triple], text: str, held: Callable[[Literal], Term] |
             if isinstance(kept, Literal) and kept != o:
                 spelled = written.at(t) or kept
         out.append(t if spelled is None or spelled == o else Triple(t.subject, t.predicate, spelled))
-        if respell and isinstance(o, Literal):
-            out.extend(Triple(t.subject, t.predicate, lit) for lit in written.others(t, out[-1].object))
-    if respell and present is not None:
-        out.extend(written.unchanged(added, present))
-    return sorted(out, key=written.order) if respell else out
+    return out
 
 
 class _Written:
@@ -102,84 +84,20 @@ class _Written:
         self._added = added
         self._by_stored: dict[Literal, list[Template]] | None = None
         self._paired: dict[NamedNode, BlankNode] = {}
-        #: (subject, predicate, stored form) → the spellings written there since a DELETE last may have removed
-        #: it, in the order written, and whether a DELETE may have
-        self._spelled: dict[tuple[NamedNode, NamedNode, Literal], tuple[list[Spelling], bool]] = {}
-        #: (subject, predicate, literal as written) → when it was first written there since such a DELETE
-        self._when: dict[tuple[NamedNode, NamedNode, Literal], int] = {}
-
-    def _read(self) -> dict[Literal, list[Template]]:
-        """The templates, read once."""
-        if self._by_stored is None:
-            self._by_stored = {}
-            shapes: list[Triple] = []
-            inserted: list[Template] = []
-            operation = 0
-            for kind, s, p, o in _read_writes(self._text, shapes):
-                if kind == "operation":
-                    operation += 1
-                elif kind == "delete":
-                    self._deleted(s, p, o)
-                elif isinstance(o, Literal):
-                    inserted.append((s, p, o))
-                    if isinstance(s, NamedNode) and p is not None:
-                        spelled, _ = self._spelled.setdefault((s, p, stored_literal(o)), ([], False))
-                        if all(o != lit for lit, _, _ in spelled):
-                            spelled.append((o, operation, kind == "data"))
-                            self._when[s, p, o] = len(self._when)
-            for s, p, o in reversed(inserted):
-                self._by_stored.setdefault(stored_literal(o), []).append((s, p, o))
-            self._paired = _paired(shapes, self._added)
-        return self._by_stored
-
-    def _deleted(self, s: object, p: object, o: object) -> None:
-        """A DELETE template (None: any term there) may remove what was written before at its positions."""
-        for key in list(self._spelled):
-            ks, kp, value = key
-            if (s is None or s == ks) and (p is None or p == kp) and \
-                    (o is None or (isinstance(o, Literal) and stored_literal(o) == value)):
-                self._spelled[key] = ([], True)
-
-    def _written(self, t: Triple) -> list[Literal]:
-        """The spellings of ``t``'s value written at its subject and predicate since a DELETE may have removed
-        it, where each was surely written: by ``INSERT DATA``, or all by one operation (whose template writes
-        each of them if it writes any; templates of several operations may have had no solution)."""
-        self._read()
-        spelled, _ = self._spelled.get((t.subject, t.predicate, t.object), ([], False))  # type: ignore[arg-type]
-        if all(data for _, _, data in spelled) or len({op for _, op, _ in spelled}) == 1:
-            return [lit for lit, _, _ in spelled]
-        return []
-
-    def others(self, t: Triple, kept: object) -> list[Literal]:
-        """The spellings of ``t``'s value written at its subject and predicate other than ``kept``."""
-        return [lit for lit in self._written(t) if lit != kept]
-
-    def order(self, t: Triple) -> float:
-        """When ``t`` was written at its subject and predicate (never: last): one value written in spellings
-        the scratch store keeps apart (``"7"^^xsd:int``, ``7.0``) reaches the change in the order written."""
-        return self._when.get((t.subject, t.predicate, t.object), float("inf"))  # type: ignore[arg-type]
-
-    def unchanged(self, added: list[Triple], present: Callable[[Triple], bool]) -> list[Triple]:
-        """The triples written of a value the graph held before the update and holds after it, no DELETE
-        of the update touching it: the graph keeps its own spelling (a spelling it does not show is said)."""
-        self._read()
-        new = {(t.subject, t.predicate, t.object) for t in added}
-        return [Triple(s, p, lit) for (s, p, value), (spelled, touched) in self._spelled.items()
-                if not touched and spelled and all(data for _, _, data in spelled) and (s, p, value) not in new
-                and present(Triple(s, p, value)) for lit, _, _ in spelled]
 
     def at(self, t: Triple) -> Literal | None:
         """The literal a template wrote that produces ``t``: one written at ``t``'s own subject (or its paired
         blank node) and predicate before one written under a variable or an unpaired blank node, and of those
-        the first surely written since a DELETE last may have removed it (a load keeps a value's first spelling
-        too), else the last operation's."""
-        by_stored = self._read()
-        spelled = self._written(t)
-        if spelled:
-            return spelled[0]
+        the last operation's."""
+        if self._by_stored is None:
+            self._by_stored = {}
+            shapes: list[Triple] = []
+            for s, p, o in reversed(list(_read_templates(self._text, shapes))):
+                self._by_stored.setdefault(stored_literal(o), []).append((s, p, o))
+            self._paired = _paired(shapes, self._added)
         node = self._paired.get(t.subject)  # type: ignore[call-overload]
         best, rank = None, -1
-        for s, p, o in by_stored.get(t.object, ()):  # type: ignore[call-overload]
+        for s, p, o in self._by_stored.get(t.object, ()):  # type: ignore[call-overload]
             if isinstance(s, BlankNode):
                 s = t.subject if s == node else None if node is None else s
             if (s is None or s == t.subject) and (p is None or p == t.predicate):
@@ -232,25 +150,15 @@ def insert_templates(text: str) -> Iterator[Template]:
     """The triples with a literal object of each ``INSERT DATA`` and ``INSERT`` block of ``text``, literals as
     written (a block that does not read as Turtle, such as one holding ``GRAPH``, gives none: the update is
     refused or its literals stay as the scratch store gives them)."""
-    return ((s, p, o) for kind, s, p, o in _read_writes(text, []) if kind in ("data", "insert")
-            and isinstance(o, Literal))
+    return _read_templates(text, [])
 
 
-#: what an update writes, in its order: ("data" or "insert", subject, predicate, literal) of an ``INSERT DATA``
-#: or ``INSERT`` template, ("delete", subject, predicate, object) of a DELETE template (None: any term there),
-#: and ("operation", None, None, None) where each operation starts
-Write = tuple[str, NamedNode | BlankNode | None, NamedNode | None, object]
-
-
-def _read_writes(text: str, shapes: list[Triple]) -> Iterator[Write]:
-    """The insert templates of :func:`insert_templates` and the DELETE templates, in the order the update runs
-    them (an operation's DELETE before its INSERT), each insert block's triples (variables as placeholders)
-    also added to ``shapes``; an object variable given literals by the operation's ``VALUES`` or ``BIND``
-    writes each of them there."""
+def _read_templates(text: str, shapes: list[Triple]) -> Iterator[Template]:
+    """:func:`insert_templates`, each block's triples (variables as placeholders) also added to ``shapes``; an
+    object variable given literals by the operation's ``VALUES`` or ``BIND`` writes each of them there."""
     declarations: list[str] = []
     for toks in operations([t for t in tokens(text) if t.kind != "comment"]):
         bound: Bound | None = None
-        yield "operation", None, None, None
         i = 0
         while i < len(toks):
             t = toks[i]
@@ -258,40 +166,19 @@ def _read_writes(text: str, shapes: list[Triple]) -> Iterator[Write]:
                 declarations.append(f"@prefix {toks[i + 1].text} {toks[i + 2].text} .")
             elif t.kind == KEYWORD and t.word == "BASE" and i + 1 < len(toks) and toks[i + 1].kind == IRI:
                 declarations.append(f"@base {toks[i + 1].text} .")
-            elif t.kind == KEYWORD and t.word == "DELETE":
-                block = _block(toks, i + 1)
-                yield from _deletes(text, toks, block, declarations)
-                if block is not None:
-                    i = block[1]
             elif t.kind == KEYWORD and t.word == "INSERT":
                 block = _block(toks, i + 1)
                 if block is not None:
                     if bound is None:
                         bound = bound_literals(text, toks, declarations)
-                    kind = "data" if toks[i + 1].kind == KEYWORD and toks[i + 1].word == "DATA" else "insert"
-                    for s, p, o in _templates(text, toks, block, declarations, bound, shapes):
-                        yield kind, s, p, o
+                    yield from _templates(text, toks, block, declarations, bound, shapes)
                     i = block[1]
             i += 1
 
 
-def _deletes(text: str, toks: list[Token], block: tuple[int, int] | None,
-             declarations: list[str]) -> Iterator[Write]:
-    """The triples of one DELETE block, a variable as any term (a block that does not read as Turtle: one
-    that may delete anything)."""
-    triples = _block_triples(text, toks, block, declarations) if block is not None else None
-    if triples is None:
-        yield "delete", None, None, None
-        return
-    for tr in triples:
-        o = tr.object
-        yield "delete", _position(tr.subject), _position(tr.predicate), \
-            None if isinstance(o, NamedNode) and o.value.startswith(_VARIABLE) else o
-
-
 def _block(toks: list[Token], i: int) -> tuple[int, int] | None:
     """The indices of the braces of the block that starts at ``toks[i]`` (after an optional ``DATA``)."""
-    if i < len(toks) and toks[i].kind == KEYWORD and toks[i].word in ("DATA", "WHERE"):
+    if i < len(toks) and toks[i].kind == KEYWORD and toks[i].word == "DATA":
         i += 1
     if i >= len(toks) or toks[i].text != "{":
         return None
@@ -308,25 +195,6 @@ def _templates(text: str, toks: list[Token], block: tuple[int, int], declaration
                shapes: list[Triple]) -> Iterator[Template]:
     """The template triples of one block with a literal object, read as Turtle (an object variable: each literal
     ``bound`` gives it)."""
-    triples = _block_triples(text, toks, block, declarations)
-    if triples is None:
-        return
-    shapes.extend(triples)
-    for tr in triples:
-        o, p = tr.object, _position(tr.predicate)
-        if isinstance(o, NamedNode) and o.value.startswith(_VARIABLE):
-            written = [lit for lit in bound.get(o.value[len(_VARIABLE):], ()) if isinstance(lit, Literal)]
-        else:
-            written = [o] if isinstance(o, Literal) else []
-        for subject in _subjects(tr.subject, bound) if written else ():
-            for lit in written:
-                yield subject, p, lit
-
-
-def _block_triples(text: str, toks: list[Token], block: tuple[int, int],
-                   declarations: list[str]) -> list[Triple] | None:
-    """The triples of the block between the braces ``block``, read as Turtle (each variable a placeholder
-    IRI); None where it does not read as Turtle."""
     opened, closed = block
     parts: list[str] = []
     pos = toks[opened].start + 1
@@ -339,10 +207,20 @@ def _block_triples(text: str, toks: list[Token], block: tuple[int, int],
     if body and not body.endswith("."):
         body += " ."
     try:
-        return [Triple(q.subject, q.predicate, q.object)
-                for q in parse("\n".join([*declarations, body]), RdfFormat.TURTLE)]
+        triples = [Triple(q.subject, q.predicate, q.object)
+                   for q in parse("\n".join([*declarations, body]), RdfFormat.TURTLE)]
     except (SyntaxError, ValueError):
-        return None
+        return
+    shapes.extend(triples)
+    for tr in triples:
+        o, p = tr.object, _position(tr.predicate)
+        if isinstance(o, NamedNode) and o.value.startswith(_VARIABLE):
+            written = [lit for lit in bound.get(o.value[len(_VARIABLE):], ()) if isinstance(lit, Literal)]
+        else:
+            written = [o] if isinstance(o, Literal) else []
+        for subject in _subjects(tr.subject, bound) if written else ():
+            for lit in written:
+                yield subject, p, lit
 
 
 def _subjects(term: object, bound: Bound) -> list[NamedNode | BlankNode | None]:
