@@ -98,8 +98,7 @@ class LiteralForms:
         popped: list[tuple[tuple, Literal, Literal, str, Term, NamedNode]] = []
         for q, k in removes:  # each term read once: pyoxigraph makes a new object at every read
             o = q.object
-            if isinstance(o, Literal) and (graph := q.graph_name) != FORMS and graph != META \
-                    and isinstance(graph, NamedNode):  # not _is_scratch(graph), without its call
+            if isinstance(o, Literal) and not _is_scratch(graph := q.graph_name):
                 s, p = q.subject, q.predicate
                 key = k[2] if type(k) is tuple else value_key(o)
                 name = graph.value
@@ -107,32 +106,19 @@ class LiteralForms:
                 # a fact with no form kept for it was never counted: its removal changes no count
                 if found is not None:
                     popped.append((key, found, found, name, s, p))
-        value_forms = self._value_forms
         for key, counted, _, name, s, p in popped:
-            forms = value_forms.get(key)  # count(key, counted, -1) inline: a REPLACE's one form
-            left = (forms.get(counted, 0) if forms is not None else 0) - 1
-            if forms is None:
-                value_forms[key] = {}
-            elif left > 0:
-                forms[counted] = left
-            else:
-                forms.pop(counted, None)
+            count(key, counted, -1)
             if persist:
                 forms_remove.append(_form_quad(name, s, p, counted))
         added: list[tuple[tuple, Literal, str, Term, NamedNode]] = []
         for q, k in adds:
             o = q.object
-            if isinstance(o, Literal) and (graph := q.graph_name) != FORMS and graph != META \
-                    and isinstance(graph, NamedNode):  # not _is_scratch(graph), without its call
+            if isinstance(o, Literal) and not _is_scratch(graph := q.graph_name):
                 s, p = q.subject, q.predicate
                 key = k[2] if type(k) is tuple else value_key(o)
                 name = graph.value
                 literal_forms[(name, s, p, key)] = o
-                forms = value_forms.get(key)  # count(key, o, +1) inline
-                if forms is None:
-                    value_forms[key] = {o: 1}
-                else:
-                    forms[o] = forms.get(o, 0) + 1
+                count(key, o, +1)
                 added.append((key, o, name, s, p))
                 if persist:
                     forms_add.append(_form_quad(name, s, p, o))
