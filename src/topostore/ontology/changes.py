@@ -57,7 +57,7 @@ class AssertedChanges:
         for t in triples:
             o = t.object  # each term taken from a triple is a new object: once here (a big load has millions)
             if isinstance(o, Literal):
-                _validate_literal(o)
+                check_literal(o)
         self.touch(triples)
         if not self.ledger.tracking:  # nothing to record: a big first load takes the store's bulk path
             added = self.store.add(triples, ASSERTED, distinct=True)
@@ -131,7 +131,7 @@ class AssertedChanges:
         for t in add if len(add) < 2 else _distinct(add):  # every value is validated before anything changes
             if type(t) is Fact:
                 if t.value is not None:
-                    check_literal(t.triple.object)  # _validate_literal, without its call
+                    check_literal(t.triple.object)  # InvalidValueError: not a value of its type
             else:
                 _validate(t)
                 t = store.fact(t, ASSERTED)
@@ -212,11 +212,6 @@ class AssertedChanges:
         return self.remove(*individual_triples(self.store, self.onto.iri(name)))
 
 
-def _validate_literal(lit: Literal) -> None:
-    """Raise InvalidValueError when ``lit`` is not a valid value of its XSD type (kept as written otherwise)."""
-    check_literal(lit)
-
-
 def _distinct(items: Sequence[Triple | Fact]) -> Sequence[Triple | Fact]:
     """``items`` without repeats (one triple, a manipulation's usual change, is not hashed for it)."""
     return items if len(items) < 2 else list(dict.fromkeys(items))
@@ -224,7 +219,7 @@ def _distinct(items: Sequence[Triple | Fact]) -> Sequence[Triple | Fact]:
 
 def _validate(t: Triple) -> None:
     if isinstance(t.object, Literal):
-        _validate_literal(t.object)
+        check_literal(t.object)
 
 
 def _warn(notes: list[str]) -> None:
