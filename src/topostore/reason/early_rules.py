@@ -62,7 +62,7 @@ from .key_pairs import grouped_form
 from .one_group import one_group
 from .order import TYPE_KEY
 from .read_keys import Writes, evaluation_reads, touches
-from .triggers import Present, may_hold
+from .triggers import Present, may_write_any
 
 if TYPE_CHECKING:
     from .materialize import Materializer
@@ -280,8 +280,7 @@ class EarlyRules:
         started = self._censused.pop(i, None)
         if started is None:
             return False
-        queued = self.run._queued
-        if None in queued or any(may_hold(queued, k) for k in self.run.keyed[i].reads):
+        if may_write_any(self.run._queued, self.run.keyed[i].reads):
             started.cancel()
             return False
         try:

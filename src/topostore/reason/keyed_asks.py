@@ -49,7 +49,7 @@ from ..rdf.vocab import ASSERTED, AUX, DIFFERENT_KEY_OF, INFERRED, owl
 from ..stores.base import Store
 from .negation import deferred
 from .one_group import group_test, keys_kept_by_group, one_group
-from .triggers import may_hold
+from .triggers import may_write_any
 
 _KEY = f"<{DIFFERENT_KEY_OF.value}>"
 #: what one AllDifferent group and the keys' census read besides the ask's own keys
@@ -95,7 +95,7 @@ def covered(store: Store, census: KeyCensus | None, queued: Collection[ReadKey |
     """Whether the deferred ask with ``census`` is empty now (conditions 1 to 3); ``queued``: the keys the
     evaluations waiting in the queue may write (none of them may be one the census reads); ``graphs``:
     as :meth:`KeyCensus.covers`."""
-    if census is None or None in queued or any(may_hold(queued, k) for k in census.rule.reads() | GROUP_READS):
+    if census is None or may_write_any(queued, census.rule.reads() | GROUP_READS):
         return False
     return one_group(store, queued) and census.covers(store, graphs)
 

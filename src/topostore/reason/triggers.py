@@ -9,7 +9,7 @@ built once per rule set.
 
 from __future__ import annotations
 
-from collections.abc import Collection
+from collections.abc import Collection, Iterable
 
 from ..compile.rule import ReadKey, Rule
 from ..rdf.vocab import TYPE
@@ -138,8 +138,14 @@ def may_hold(written: Collection[ReadKey | None], key: ReadKey) -> bool:
     return key in written or ("*",) in written or (key[0] == "t" and _ANY_CLASS in written)
 
 
+def may_write_any(queued: Collection[ReadKey | None], keys: Iterable[ReadKey]) -> bool:
+    """Whether evaluations writing the keys ``queued`` (None among them: a key not known, so any) may have
+    written a fact of one of ``keys`` (:func:`may_hold` of each)."""
+    return None in queued or any(may_hold(queued, k) for k in keys)
+
+
 def key_sets(keys: Collection[tuple[str, str]]) -> tuple[set[str], set[str]]:
     """(predicates, classes) of read keys ``("p", iri)`` / ``("t", class)``."""
     return {k for kind, k in keys if kind == "p"}, {k for kind, k in keys if kind == "t"}
 
-__all__ = ["key_sets", "Evaluation", "Present", "Triggers", "matches", "may_hold", "may_write"]
+__all__ = ["key_sets", "Evaluation", "Present", "Triggers", "matches", "may_hold", "may_write", "may_write_any"]
