@@ -128,7 +128,7 @@ class AssertedChanges:
         (held already, or written again in this change) is said."""
         store = self.store
         adds = []
-        for t in add if len(add) < 2 else _distinct(add):  # every value is validated before anything changes
+        for t in _distinct(add):  # every value is validated before anything changes
             if type(t) is Fact:
                 if t.value is not None:
                     check_literal(t.triple.object)  # InvalidValueError: not a value of its type
