@@ -194,3 +194,15 @@ def test_a_sparql_update_counts_what_the_graph_took(server: InProcess) -> None:
     assert status == 200 and body["added"] == 0 and body["removed"] == 0, body
     assert len(body["warnings"]) == 1 and "already in the graph" in body["warnings"][0], body
     assert f'"1"^^<{XSD}int>'.encode() in saved(server)
+
+
+def test_one_instant_spelled_twice_is_one_triple_and_said(server: InProcess) -> None:
+    """``…Z`` and ``…+00:00`` name one instant in one zone, which the store holds as one triple: counted once
+    and the second spelling named; the same instant in another zone is another triple of the store."""
+    instant = f'"2020-01-01T00:00:00Z"^^<{XSD}dateTime>'
+    status, body = send(server, "PUT", f':w :s {instant} , "2020-01-01T00:00:00+00:00"^^<{XSD}dateTime> , '
+                                       f'"2020-01-01T01:00:00+01:00"^^<{XSD}dateTime> .')
+    assert status == 201 and body["added"] == 4, body  # the two instants and the head's two triples
+    assert f'{instant} stays as written' in " ".join(body["warnings"]), body
+    _, again = send(server, "POST", f':w :s "2020-01-01T00:00:00.000+00:00"^^<{XSD}dateTime> .')
+    assert again["added"] == 0, again

@@ -153,3 +153,29 @@ def test_value_key_is_the_same_when_asked_again() -> None:
     assert value_key(five) == value_key(five) == value_key(lit("5", "integer"))
     nan = lit("NaN", "float")
     assert value_key(nan) != value_key(nan)
+
+
+MOMENTS = [("2020-01-01T00:00:00Z", "dateTime"), ("2020-01-01T00:00:00+00:00", "dateTime"),
+           ("2020-01-01T00:00:00-00:00", "dateTime"), ("2020-01-01T00:00:00.000Z", "dateTime"),
+           ("2020-01-01T01:00:00+01:00", "dateTime"), ("2020-01-01T00:00:00", "dateTime"),
+           ("2019-12-31T24:00:00Z", "dateTime"), ("2019-12-31T23:30:00-00:30", "dateTime"),
+           ("2020-01-01T00:00:00.5Z", "dateTime"), ("2020-01-01T00:00:00.50Z", "dateTime"),
+           ("10000-01-01T00:00:00Z", "dateTime"), ("2020-02-30T00:00:00Z", "dateTime"),
+           ("2020-01-01", "date"), ("2020-01-01Z", "date"), ("2020-01-01+00:00", "date"),
+           ("2020-01-02+01:00", "date"), ("2020-01-01T00:00:00Z", "date")]
+
+
+def test_value_key_of_instants_is_equal_exactly_where_the_store_keeps_one_triple() -> None:
+    """An instant spelled with ``Z``, ``+00:00`` or trailing zeros is one triple of the store, and a change
+    of it must be one fact too (one ``added``, the other spelling said); the same instant in another zone is
+    two triples of the store, and two keys."""
+    from pyoxigraph import Quad, Store
+
+    s = NamedNode("urn:s")
+    terms = [Literal(text, datatype=NamedNode("http://www.w3.org/2001/XMLSchema#" + local)) for text, local in MOMENTS]
+    for i, a in enumerate(terms):
+        for b in terms[i + 1:]:
+            store = Store()
+            store.add(Quad(s, s, a))
+            store.add(Quad(s, s, b))
+            assert (len(store) == 1) == (value_key(a) == value_key(b)), (a, b)

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import math
 import re
+from datetime import date
 from decimal import Decimal, InvalidOperation
 from functools import lru_cache
 
@@ -283,9 +284,38 @@ def _literal_key(term: Literal) -> tuple:
             return ("double", float(term.value.replace("INF", "inf")))
         if local == "boolean":
             return ("boolean", term.value in ("true", "1"))
+        if local in ("dateTime", "date"):
+            moment = _moment(term.value, local)
+            if moment is not None:
+                return (local, *moment)
     except (InvalidOperation, ValueError):
         pass
     return ("literal", term.value, dt, term.language)
+
+
+_MOMENT_RE = re.compile(r"^(\d{4})-(\d{2})-(\d{2})(?:T(\d{2}):(\d{2}):(\d{2}(?:\.\d+)?))?(Z|[+-]\d{2}:\d{2})?$")
+
+
+def _moment(text: str, local: str) -> tuple[Decimal, int | None] | None:
+    """An ``xsd:dateTime`` or ``xsd:date`` as the store tells it apart: the seconds of its instant on the
+    timeline and its zone's offset in minutes (``None`` without a zone).  ``…T00:00:00Z``,
+    ``…T00:00:00+00:00`` and ``…T00:00:00.000Z`` are one triple in the store and one key here; the same
+    instant written in another zone stays apart, as the store keeps both.  Years outside 1–9999 keep
+    their lexical key (``None`` here)."""
+    match = _MOMENT_RE.match(text.strip())
+    if match is None or (local == "date") != (match.group(4) is None):
+        return None
+    year, month, day = (int(match.group(i)) for i in (1, 2, 3))
+    if year == 0:
+        return None
+    days = date(year, month, day).toordinal()
+    hour, minute = int(match.group(4) or 0), int(match.group(5) or 0)
+    seconds = Decimal(days * 86400 + hour * 3600 + minute * 60) + Decimal(match.group(6) or 0)
+    zone = match.group(7)
+    if zone is None:
+        return seconds.normalize(), None
+    offset = 0 if zone == "Z" else (1 if zone[0] == "+" else -1) * (int(zone[1:3]) * 60 + int(zone[4:6]))
+    return (seconds - offset * 60).normalize(), offset
 
 
 #: triples and quads with a literal object made lately, by their terms: pyoxigraph takes a literal argument
