@@ -524,6 +524,34 @@ def test_a_look_up_flip_that_gives_up_leaves_the_flip_to_the_text_narrowed_by_a_
     assert windows.call_count >= 3
 
 
+def test_a_look_up_flip_that_answers_makes_no_window_for_its_text() -> None:
+    """A flip with a look-up form runs it first: the value window its text would be narrowed by is made
+    only where the look-up gives up (the test above), never beside a look-up that answers.  With a
+    window size of 5 on a map of 8 locations (no value index of the look-up's own), the window was made
+    at every tick and the narrowed text ran instead of the look-up."""
+    onto = new_map(8, 2, True)
+    onto.max_change_share = 1.0
+    onto.reason()
+    windows = mock.Mock(wraps=onto._reasoner.flips._windows)
+    answered = []
+    heads = look_flip.Flipped.heads
+
+    def answering(self, store):
+        found = heads(self, store)
+        answered.append(found is not None)
+        return found
+
+    with mock.patch.object(flips, "WINDOW_MIN", 5), mock.patch.object(onto._reasoner.flips, "_windows", windows), \
+            mock.patch.object(look_flip.Flipped, "heads", answering):
+        for t in (1665579770, 1665579800, 1665579750, 1665579900):
+            set_clock(onto, "Robot1", t)
+            report = onto.reason()
+            assert report.stats.program == "compiled"
+            assert_same_as_scratch(onto)
+    assert len(answered) >= 4 and all(answered)
+    assert windows.call_count == 0
+
+
 def test_clock_tick_is_evaluated_as_a_flip() -> None:
     """A clock tick re-examines the Urgency rule once, not every URGENT fact."""
     onto = new_map(30, 2, True)

@@ -152,11 +152,12 @@ class CompiledStep:
             return None
         return ran
 
-    def _flip_text(self, i: int, order: tuple[int, ...], text: str, own_window: bool = False) -> str:
+    def _flip_text(self, i: int, order: tuple[int, ...], text: str, look_up_first: bool = False) -> str:
         """A compiled flip's text for this run: "" when no value changed kind and the rule only tests
         kinds (:func:`.flip.kind_tests_only`), else narrowed to the values in a window where one applies.
-        ``own_window``: the flip's look-up operation reads its window itself (:mod:`.look_flip`): the
-        compiled text is given (the look-up runs in its place), and no query is made for a window."""
+        ``look_up_first``: the flip's look-up operation (:mod:`.look_flip`) runs in the text's place and
+        this text is asked again only where it gives up: the compiled text is given, no window made
+        (finding that none applies costs a step at 8 locations ≈ 6 µs, for a text that does not run)."""
         rule = self.rules[i]
         kinds = self._kind_only.get((i, order))
         if kinds is None:  # a property of the rule: asked once
@@ -166,7 +167,7 @@ class CompiledStep:
             return ""
         if self.flips.quiet(i, order, self._clean):
             return ""  # a difference of values whose partners none may equal (see :mod:`.equal_values`)
-        if own_window:
+        if look_up_first:
             return text
         windows = self.flips._windows(i, order)
         if not windows:

@@ -122,11 +122,6 @@ class Flipped:
         self._branches: list | None = None
         self._runs_left = look_join.COMPILE_AFTER if look_join.COMPILED_JOINS else -1
 
-    def reads_window(self) -> bool:
-        """Whether :meth:`run` reads the last seed's compared facts through a value window this time (an
-        index is kept for their predicate), so that no query need find one."""
-        return self._window is not None and self._values(self._window_key) is not None
-
     def _compile(self) -> list | None:
         terms = [shape.terms for shape in self._body]
         if not all(isinstance(terms[k][2], str) for k in self.order):

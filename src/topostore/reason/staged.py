@@ -37,7 +37,7 @@ class StagedRun:
                  flip_text: Callable[..., str],
                  changes: tuple[Collection[Triple], Collection[Triple]] | None = None,
                  before_text: Callable[[], None] | None = None, present: Present | None = None) -> None:
-        """``flip_text(rule, order, text[, own_window])``: a flip's text for this run
+        """``flip_text(rule, order, text[, look_up_first])``: a flip's text for this run
         (:meth:`.compiled_step.CompiledStep._flip_text`); ``changes``: the added and removed asserted
         triples, written to the step's first lost and gained facts directly instead of by the program's
         first operation; ``before_text``: called once before the first text is sent (the copies of the
@@ -104,21 +104,23 @@ class StagedRun:
         #: the flips' heads by the graph they would be written to; None: none yet, False: written there
         handed: dict | bool | None = None
         taken: set = set()  # the graphs whose heads an operation took
-        for index, kind, key, text, flip, part, direct, reads, has_seeded, window, part_reads, hand, needs in ops:
+        for index, kind, key, text, flip, part, direct, reads, has_seeded, part_reads, hand, needs in ops:
             look_up = True
             fallback = None
             if flip is not None:
                 if needs and self._without_facts(needs):
                     continue  # an atom it joins has no facts: nothing can flip
                 compiled = text
-                own = window is not None and window()
-                text = self._flip(part_reads, flip, text, own)
+                # a flip with a look-up form tries it first: a value window (its query, or only finding
+                # that none applies) is made for the text alone, where the look-up gives up
+                lazy = direct is not None
+                text = self._flip(part_reads, flip, text, lazy)
                 if not text:
                     continue  # nothing can flip this time
                 flipped = True
                 # a text narrowed by a value window: many facts, whose window query ran already
                 look_up = text is compiled
-                if own:  # where the look-up gives up, the text narrowed by a window query runs
+                if lazy:  # where the look-up gives up, the text narrowed by a window query runs
                     fallback = (flip, compiled, part_reads)
                 if hand is not None and look_up and handed is not False:
                     heads = self._heads(hand, reads)
@@ -225,14 +227,13 @@ class StagedRun:
         if self.dirty and (None in self.dirty or not self.dirty.isdisjoint(keys)):
             self.flush()
 
-    def _flip(self, part_reads: Collection, tag: tuple, text: str, own_window: bool = False) -> str:
+    def _flip(self, part_reads: Collection, tag: tuple, text: str, look_up_first: bool = False) -> str:
         """The flip's text for this run (:attr:`flip_text`): "" when nothing can flip, the compiled text,
-        or one narrowed by a value window (not where the look-up reads its own: ``own_window``);
+        or one narrowed by a value window (not while its look-up runs first: ``look_up_first``);
         ``part_reads``: the keys its part may read (its rules' premises and its own key)."""
         if self.dirty:  # a value window's query reads the rule's premises
             self._reading(part_reads)
-        return self.flip_text(tag[2], tag[3], text, own_window) if own_window \
-            else self.flip_text(tag[2], tag[3], text)
+        return self.flip_text(tag[2], tag[3], text, True) if look_up_first else self.flip_text(tag[2], tag[3], text)
 
     def _seeded(self, index: int, text: str) -> str:
         """The text to queue for flip ``index`` whose compiled ``text`` runs: where every fact of a
@@ -262,7 +263,7 @@ class StagedRun:
         and may write ``reads``, what it reads), else queue its text.  Whether it was queued.
         ``seeded``: the operation's position where it has a seeded text (:meth:`_seeded`), else False;
         ``fallback``: a flip's tag, compiled text and its part's reads, whose text for this run is made
-        again without the look-up's own window where the look-up gives up (a window query narrows it)."""
+        where the look-up gives up (a window query may narrow it)."""
         if direct is not None:
             if self.dirty:  # nothing queued: nothing to send first (no call)
                 self._reading(reads)

@@ -2,7 +2,7 @@
 
 A staged run (:mod:`.staged`) goes through a program part by part, many times between two full runs;
 what it would look up about each operation at every run (the key of its part, its look-up equivalent
-and the keys that one reads, its flip's window test, the form its heads are handed in) depends only on
+and the keys that one reads, the form its heads are handed in) depends only on
 the program, which is its change signature's: it is bound here once, when the program first runs.
 """
 
@@ -46,8 +46,6 @@ class BoundOp(NamedTuple):
     direct: Callable | None
     reads: Collection | None
     has_seeded: bool
-    #: its flip's own value window test (:meth:`.look_flip.Flipped.reads_window`), None without one
-    window: Callable[[], bool] | None
     #: for a flip, the keys its part reads (those its window query reads)
     part_reads: Collection | None
     #: a flip's heads found without writing them (:meth:`.look_flip.Flipped.heads`), or a lost or gained
@@ -121,7 +119,6 @@ def _bound(program: StepProgram, direct: dict, index: int, tag: tuple, text: str
     part = program.part[index]
     found = direct.get(index)
     owner = getattr(found, "__self__", None)
-    window = getattr(owner, "reads_window", None) if flip is not None else None
     hand = getattr(owner, "heads" if flip is not None else "handed", None) \
         if flip is not None or tag[0] in HANDED else None
     if flip is not None:
@@ -130,7 +127,7 @@ def _bound(program: StepProgram, direct: dict, index: int, tag: tuple, text: str
         needs = _named(getattr(owner, "needs", {}).get(getattr(found, "__name__", None))) \
             if tag[0] in NEEDING else None
     return BoundOp(index, tag[0], tag[1] if len(tag) > 1 else None, text, flip, part, found,
-                   program.reads[index] if found is not None else None, index in program.seeded, window,
+                   program.reads[index] if found is not None else None, index in program.seeded,
                    (program.reads[part] if part is not None else (None,)) if flip is not None else None, hand,
                    needs)
 
