@@ -18,7 +18,7 @@ from pyoxigraph import Literal, NamedNode
 
 from topostore import Ontology, OntologyWarning
 from topostore.armor.reference import Reference
-from topostore.ontology.spellings import AGAIN_IN_CHANGE, HELD, REMOVED_AND_ADDED
+from topostore.ontology.spellings import AGAIN_IN_CHANGE, HELD, REMOVED_AND_ADDED, TAG_KEPT
 from topostore.rdf.vocab import ASSERTED, XSD
 from topostore.sparql.execute import Job, run_update, update_delta
 
@@ -232,3 +232,31 @@ def test_an_insert_then_a_delete_costs_work_linear_in_the_triples() -> None:
     _lines(50)  # the caches and first imports warmed
     small, large = _lines(400), _lines(800)
     assert large < 2.4 * small, (small, large)  # measured ≈ 2.0; a quadratic removal ≈ 3.3 (at 400) and growing
+
+
+NAME = f"<{NS}name> a <http://www.w3.org/2002/07/owl#DatatypeProperty> . "
+R_NAME = f"<{NS}r> <{NS}name>"
+
+
+@pytest.mark.parametrize(("held", "text", "document", "kept", "other"), [
+    ("", 'INSERT DATA { k:r k:name "a"@EN , "a"@en }', f'{R_NAME} "a"@EN , "a"@en .', "EN", "en"),
+    ("", 'INSERT DATA { k:r k:name "a"@en } ; INSERT DATA { k:r k:name "a"@EN }', f'{R_NAME} "a"@en , "a"@EN .',
+     "en", "EN"),
+    (f'{R_NAME} "a"@en .', 'INSERT DATA { k:r k:name "a"@EN }', f'{R_NAME} "a"@EN .', "en", "EN"),
+])
+def test_a_tag_spelled_otherwise_is_said_as_a_load_says_it(held: str, text: str, document: str, kept: str,
+                                                           other: str) -> None:
+    """``document``: the same triples as a load reads them."""
+    note = f'{R_NAME} "a"@{kept} stays as written: {R_NAME} "a"@{other} is the same value, {TAG_KEPT}'
+    assert notes_of(update(ontology(NAME + held), text)) == [note]
+    loaded = ontology(NAME + held)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        loaded.load_data(document, "turtle")
+    assert [str(w.message).removeprefix("<data>: ") for w in caught if TAG_KEPT in str(w.message)] == [note]
+
+
+def test_a_tag_removed_again_is_not_said() -> None:
+    o = ontology(NAME)
+    assert update(o, 'INSERT DATA { k:r k:name "a"@en } ; INSERT DATA { k:r k:name "a"@EN } ; '
+                     'DELETE DATA { k:r k:name "a"@en }') == []

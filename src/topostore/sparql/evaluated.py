@@ -187,6 +187,19 @@ def _default_graph(op: Operation, block: tuple[int, int] | None) -> list[Triple]
         return None
 
 
+def data_document(text: str) -> str:
+    """The triples of ``text``'s ``INSERT DATA`` operations as one Turtle document (the prefixes and base in
+    force declared before each): what a load of them reads, language tags as written."""
+    parts = []
+    for op in split(text):
+        for i, t in enumerate(op.toks[:-1]):
+            if t.kind == KEYWORD and t.word == "INSERT" and op.toks[i + 1].kind == KEYWORD \
+                    and op.toks[i + 1].word == "DATA" and (block := braced(op.toks, i + 1)) is not None:
+                body = op.source[op.toks[block[0]].start + 1:op.toks[block[1]].start].rstrip()
+                parts.extend([*op.declarations, body if not body or body.endswith(".") else f"{body} ."])
+    return "\n".join(parts)
+
+
 def _modify(scratch: ox.Store, op: Operation, seen: Spellings) -> None:
     """A ``DELETE`` / ``INSERT`` … ``WHERE``: its removals, then its writes, over the solutions of its ``WHERE``."""
     toks, depth, at = op.toks, 0, {}
@@ -369,4 +382,4 @@ def _held(seen: Spellings, used: set[Key], present: Callable[[object, object], I
     return removed
 
 
-__all__ = ["Operation", "Spellings", "added_as_written", "run", "split"]
+__all__ = ["Operation", "Spellings", "added_as_written", "data_document", "run", "split"]

@@ -252,6 +252,9 @@ def run_update(ref: WritableOntology, text: str, job: Job, limit: float) -> Upda
         added, removed, warnings = ref.manipulate("SPARQL update", delta.add, delta.remove)
         # the tags of the literals it added, as the update's text spells them (pyoxigraph lowered them)
         ref.ontology.values.learned(text, None, only=literal_tags(added))
+        if "@" in text and (document := evaluated.data_document(text)):  # a tag spelled otherwise, said
+            notes = ref.ontology.values.data_tag_notes(document, set(added))
+            warnings = [*warnings, "; ".join(dict.fromkeys(notes))] if notes else warnings
         return UpdateOutcome(len(added), len(removed), ref.is_consistent, warnings)
 
 
