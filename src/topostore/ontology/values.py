@@ -19,11 +19,13 @@ from __future__ import annotations
 from collections.abc import Collection, Iterable
 from typing import TYPE_CHECKING
 
-from pyoxigraph import Literal, NamedNode, RdfFormat, Triple
+from pyoxigraph import Literal, NamedNode, RdfFormat, Triple, parse
 
 from ..errors import InvalidValueError
 from ..rdf.terms import check_literal, literal_of
 from ..rdf.vocab import ASSERTED, TYPE, XSD
+from ..stores.language_tags import literal_tags
+from .spellings import holding, tag_notes
 
 if TYPE_CHECKING:
     from .facade import Ontology
@@ -184,6 +186,21 @@ class OntologyValues:
         # a change reasoned before its text is read (a live reasoner's update) left nothing to revert
         if new and ledger.recording and ledger.added:
             self._learned += new
+
+    def data_tag_notes(self, document: str, added: Collection[Triple]) -> list[str]:
+        """The notes of the tagged literals an update's ``INSERT DATA`` s wrote (``document``: their triples as
+        Turtle, tags as written) with a tag the graph spells otherwise, as a Graph Store write says them: the
+        same value where the graph held it before (not among ``added``), else a new one spelled as stored.  Only
+        a triple the graph holds after the update is said (one it removed again keeps no spelling)."""
+        try:
+            written = [Triple(q.subject, q.predicate, q.object) for q in parse(document, RdfFormat.TURTLE)
+                       if isinstance(q.object, Literal) and q.object.language and isinstance(q.subject, NamedNode)]
+        except (SyntaxError, ValueError):
+            return []
+        store = self.onto.store
+        held = [t for t, present in zip(written, store.contains_each(written, ASSERTED), strict=True) if present]
+        return tag_notes(store.forms.tags, (document, RdfFormat.TURTLE), lambda keys: holding(held, keys),
+                         lambda t: t not in added, literal_tags(held))
 
     def reasoned(self) -> None:
         """A REASON succeeded: the literals asserted before it are no longer reverted by a failed one."""

@@ -14,6 +14,7 @@ The data blocks are read as Turtle, as the templates are: a ``VALUES`` block's r
 from __future__ import annotations
 
 from collections.abc import Iterator
+from dataclasses import dataclass
 
 from pyoxigraph import BlankNode, Literal, NamedNode, RdfFormat, parse
 
@@ -36,6 +37,34 @@ def bound_literals(text: str, toks: list[Token], declarations: list[str]) -> Bou
     ``OPTIONAL``, a ``UNION`` branch, ``MINUS``, ``EXISTS`` or a subquery may bind none of the rows inserted, whose
     value then comes from the store and keeps the store's spelling, so those are not read."""
     out: Bound = {}
+    blocks, binds = where_bindings(text, toks, declarations)
+    for block in blocks:
+        for row in block.rows:
+            for name, cell in zip(block.names, row, strict=True):
+                if cell is not None:
+                    out.setdefault(name, []).append(cell)
+    for name, term in binds:
+        out.setdefault(name, []).append(term)
+    return out
+
+
+@dataclass
+class ValuesBlock:
+    """A ``VALUES`` block of a ``WHERE`` clause's own group: where it is in the text (``start``, ``end``), its
+    variables' names and its rows (a term per variable, None for ``UNDEF`` or a cell not read as a term)."""
+
+    start: int
+    end: int
+    names: list[str]
+    rows: list[list[Literal | NamedNode | None]]
+
+
+def where_bindings(text: str, toks: list[Token],
+                   declarations: list[str]) -> tuple[list[ValuesBlock], list[tuple[str, Literal | NamedNode]]]:
+    """The ``VALUES`` blocks and the ``BIND`` s of one term (variable name, term) of the ``WHERE`` clause's own
+    group in ``toks`` (see :func:`bound_literals`)."""
+    blocks: list[ValuesBlock] = []
+    binds: list[tuple[str, Literal | NamedNode]] = []
     i, depth, where = 0, 0, False
     while i < len(toks):
         t = toks[i]
@@ -44,17 +73,18 @@ def bound_literals(text: str, toks: list[Token], declarations: list[str]) -> Bou
         elif t.kind == KEYWORD and t.word == "WHERE" and depth == 0:
             where = True
         elif where and depth == 1 and t.kind == KEYWORD and t.word == "VALUES":
-            i = _values(text, toks, i + 1, declarations, out)
+            i = _values(text, toks, i + 1, declarations, blocks)
             continue
         elif where and depth == 1 and t.kind == KEYWORD and t.word == "BIND":
-            i = _bind(text, toks, i + 1, declarations, out)
+            i = _bind(text, toks, i + 1, declarations, binds)
             continue
         i += 1
-    return out
+    return blocks, binds
 
 
-def _values(text: str, toks: list[Token], i: int, declarations: list[str], out: Bound) -> int:
+def _values(text: str, toks: list[Token], i: int, declarations: list[str], out: list[ValuesBlock]) -> int:
     """Read the VALUES block whose variables start at ``toks[i]`` into ``out``; the index after it."""
+    start = toks[i - 1].start
     names: list[str] = []
     single = i < len(toks) and toks[i].kind == VARIABLE
     if single:
@@ -72,15 +102,20 @@ def _values(text: str, toks: list[Token], i: int, declarations: list[str], out: 
     if closed is None:
         return i + 1
     rows = _read(text, toks, i, closed, declarations)
-    for row in rows or ():
-        cells = [row] if single else row if isinstance(row, list) else []
-        for name, cell in zip(names, cells, strict=False):
-            if isinstance(cell, Literal | NamedNode) and cell != _UNDEF:
-                out.setdefault(name, []).append(cell)
+    if rows is not None:
+        cells = [[row] if single else row if isinstance(row, list) else [] for row in rows]
+        out.append(ValuesBlock(start, toks[closed].start + 1, names,
+                               [[_term(row[k]) if k < len(row) else None for k in range(len(names))] for row in cells]))
     return closed + 1
 
 
-def _bind(text: str, toks: list[Token], i: int, declarations: list[str], out: Bound) -> int:
+def _term(cell: object) -> Literal | NamedNode | None:
+    """A VALUES cell's term (None: UNDEF, or a cell not read as one term)."""
+    return cell if isinstance(cell, Literal | NamedNode) and cell != _UNDEF else None
+
+
+def _bind(text: str, toks: list[Token], i: int, declarations: list[str],
+          out: list[tuple[str, Literal | NamedNode]]) -> int:
     """Read ``BIND ( term AS ?v )`` starting at its ``(`` (``toks[i]``) into ``out``; the index after it."""
     if i >= len(toks) or toks[i].text != "(":
         return i
@@ -94,7 +129,7 @@ def _bind(text: str, toks: list[Token], i: int, declarations: list[str], out: Bo
                 and toks[j + 1].kind == VARIABLE:
             value = _one_term(text[toks[i].start + 1:toks[j].start], declarations)
             if isinstance(value, Literal | NamedNode):
-                out.setdefault(toks[j + 1].text[1:], []).append(value)
+                out.append((toks[j + 1].text[1:], value))
         j += 1
     return j
 
@@ -163,4 +198,4 @@ def operations(toks: list[Token]) -> Iterator[list[Token]]:
     yield toks[start:]
 
 
-__all__ = ["Bound", "bound_literals", "operations"]
+__all__ = ["Bound", "ValuesBlock", "bound_literals", "operations", "where_bindings"]

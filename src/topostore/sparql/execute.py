@@ -30,10 +30,11 @@ from ..rdf.terms import Term
 from ..rdf.vocab import ASSERTED, OWL, RDF, RDFS, XSD
 from ..stores.base import skolemize
 from ..stores.language_tags import literal_tags
+from . import evaluated
 from .guard import check_user_sparql
 from .results import ResultFormat, boolean_json, choose_format, render_graph, render_table, solutions_json
 from .target import LockedOntology, WritableOntology
-from .written import as_written
+from .written import as_written, may_respell
 
 
 class SparqlTimeout(QueryError):
@@ -194,22 +195,44 @@ class UpdateOutcome:
 
 def update_delta(asserted: list[Triple], text: str, held: Callable[[Literal], Term] | None = None) -> TripleDelta:
     """What ``text`` adds to and removes from ``asserted``, computed on a scratch store; each added literal
-    spelled as the text wrote it at its position, else as ``held`` gives its value (:func:`.written.as_written`)."""
-    scratch = ox.Store()
-    scratch.extend([Quad(t.subject, t.predicate, t.object, DefaultGraph()) for t in asserted])
-    try:
-        scratch.update(text)
-    except SyntaxError as exc:
-        raise QueryError(f"malformed SPARQL update: {exc}") from exc
-    except (OSError, RuntimeError) as exc:
-        raise QueryError(f"SPARQL update failed: {exc}") from exc
+    spelled as the text wrote it at its position, else as ``held`` gives its value (:func:`.written.as_written`).
+    Where the text may respell a literal, the update runs one operation at a time and each value takes the first
+    spelling its evaluation wrote at its position, the others following it for the change to say them, and so do
+    the spellings written of a value the graph holds (:mod:`.evaluated`)."""
+    scratch = _scratch(asserted)
+    seen = evaluated.run(scratch, text) if may_respell(text) else None
+    if seen is None:
+        if may_respell(text):  # an operation that does not run alone: the whole text, with its own error
+            scratch = _scratch(asserted)
+        try:
+            scratch.update(text)
+        except SyntaxError as exc:
+            raise QueryError(f"malformed SPARQL update: {exc}") from exc
+        except (OSError, RuntimeError) as exc:
+            raise QueryError(f"SPARQL update failed: {exc}") from exc
     named = {q.graph_name.value for q in scratch.quads_for_pattern(None, None, None) if not isinstance(q.graph_name, DefaultGraph)}
     if named:
         raise QueryError(f"the update writes to the named graph(s) {', '.join(sorted(named))}; a reference has one "
                          "writable graph, the default graph (leave out GRAPH and WITH)")
     after = {skolemize(Triple(q.subject, q.predicate, q.object)) for q in scratch.quads_for_pattern(None, None, None, DefaultGraph())}
     before = set(asserted)
-    return TripleDelta(add=as_written(sorted(after - before, key=str), text, held), remove=sorted(before - after, key=str))
+    added, removed = sorted(after - before, key=str), sorted(before - after, key=str)
+    if seen is None or not seen.followed:
+        return TripleDelta(add=as_written(added, text, held), remove=removed)
+
+    def present(s: object, p: object) -> list[Triple]:
+        return [skolemize(Triple(q.subject, q.predicate, q.object))
+                for q in scratch.quads_for_pattern(s, p, None, DefaultGraph())]  # type: ignore[arg-type]
+
+    add, held_removed = evaluated.added_as_written(added, seen, text, held, present)
+    return TripleDelta(add=add, remove=removed + held_removed)
+
+
+def _scratch(asserted: list[Triple]) -> ox.Store:
+    """A store holding ``asserted`` in its default graph, for an update to run on."""
+    scratch = ox.Store()
+    scratch.extend([Quad(t.subject, t.predicate, t.object, DefaultGraph()) for t in asserted])
+    return scratch
 
 
 def run_update(ref: WritableOntology, text: str, job: Job, limit: float) -> UpdateOutcome:
@@ -229,6 +252,9 @@ def run_update(ref: WritableOntology, text: str, job: Job, limit: float) -> Upda
         added, removed, warnings = ref.manipulate("SPARQL update", delta.add, delta.remove)
         # the tags of the literals it added, as the update's text spells them (pyoxigraph lowered them)
         ref.ontology.values.learned(text, None, only=literal_tags(added))
+        if "@" in text and (document := evaluated.data_document(text)):  # a tag spelled otherwise, said
+            notes = ref.ontology.values.data_tag_notes(document, set(added))
+            warnings = [*warnings, "; ".join(dict.fromkeys(notes))] if notes else warnings
         return UpdateOutcome(len(added), len(removed), ref.is_consistent, warnings)
 
 

@@ -15,6 +15,10 @@ template's blank node (``[ k:p "007"^^xsd:long ]``) becomes a fresh node of the 
 with the added node of the same shape (its values and links, as stored), so two blank nodes holding one value
 in two spellings keep one each.
 
+Which of several spellings of one value written at one position stays, and what is said of the others, is read
+from the update's evaluation (:mod:`.evaluated`); the reading here gives the spelling of an added literal where
+that evaluation shows none (a value bound from the store, computed, or one a ``FILTER`` reads).
+
 The parse runs only when the text may hold a literal Oxigraph stores otherwise (a ``^^`` or a bare number not
 in canonical form), so a plain update pays one regular-expression scan.
 """
@@ -94,7 +98,7 @@ class _Written:
             shapes: list[Triple] = []
             for s, p, o in reversed(list(_read_templates(self._text, shapes))):
                 self._by_stored.setdefault(stored_literal(o), []).append((s, p, o))
-            self._paired = _paired(shapes, self._added)
+            self._paired = paired(shapes, self._added)
         node = self._paired.get(t.subject)  # type: ignore[call-overload]
         best, rank = None, -1
         for s, p, o in self._by_stored.get(t.object, ()):  # type: ignore[call-overload]
@@ -107,7 +111,7 @@ class _Written:
         return best
 
 
-def _paired(template: list[Triple], added: list[Triple]) -> dict[NamedNode, BlankNode]:
+def paired(template: list[Triple], added: list[Triple]) -> dict[NamedNode, BlankNode]:
     """Each added blank node (a skolem IRI) → the template blank node of its shape, where the shape's template
     nodes and added nodes are as many (an ``INSERT DATA``'s nodes; a template run for several solutions makes
     more nodes than it writes, and its literals then stay matched by position alone)."""
@@ -130,7 +134,8 @@ def _paired(template: list[Triple], added: list[Triple]) -> dict[NamedNode, Blan
 
 
 def _shapes(triples: list[Triple], is_node: Callable[[object], bool], stored: bool) -> dict[object, tuple]:
-    """Each node's shape: its links in and out, other nodes as one mark, literals in their stored form."""
+    """Each node's shape: its links in and out (each once: one value written twice is one fact), other nodes as
+    one mark, literals in their stored form."""
     def term(x: object) -> str:
         if is_node(x):
             return "[]"
@@ -142,7 +147,7 @@ def _shapes(triples: list[Triple], is_node: Callable[[object], bool], stored: bo
             links.setdefault(t.subject, []).append(f"> {t.predicate} {term(t.object)}")
         if is_node(t.object):
             links.setdefault(t.object, []).append(f"< {term(t.subject)} {t.predicate}")
-    return {node: tuple(sorted(shape)) for node, shape in links.items()
+    return {node: tuple(sorted(set(shape))) for node, shape in links.items()
             if not any(_VARIABLE in link for link in shape)}
 
 
@@ -167,7 +172,7 @@ def _read_templates(text: str, shapes: list[Triple]) -> Iterator[Template]:
             elif t.kind == KEYWORD and t.word == "BASE" and i + 1 < len(toks) and toks[i + 1].kind == IRI:
                 declarations.append(f"@base {toks[i + 1].text} .")
             elif t.kind == KEYWORD and t.word == "INSERT":
-                block = _block(toks, i + 1)
+                block = braced(toks, i + 1)
                 if block is not None:
                     if bound is None:
                         bound = bound_literals(text, toks, declarations)
@@ -176,7 +181,7 @@ def _read_templates(text: str, shapes: list[Triple]) -> Iterator[Template]:
             i += 1
 
 
-def _block(toks: list[Token], i: int) -> tuple[int, int] | None:
+def braced(toks: list[Token], i: int) -> tuple[int, int] | None:
     """The indices of the braces of the block that starts at ``toks[i]`` (after an optional ``DATA``)."""
     if i < len(toks) and toks[i].kind == KEYWORD and toks[i].word == "DATA":
         i += 1
@@ -195,6 +200,26 @@ def _templates(text: str, toks: list[Token], block: tuple[int, int], declaration
                shapes: list[Triple]) -> Iterator[Template]:
     """The template triples of one block with a literal object, read as Turtle (an object variable: each literal
     ``bound`` gives it)."""
+    triples = block_triples(text, toks, block, declarations)
+    if triples is None:
+        return
+    shapes.extend(triples)
+    for tr in triples:
+        o, p = tr.object, _position(tr.predicate)
+        if isinstance(o, NamedNode) and o.value.startswith(_VARIABLE):
+            written = [lit for lit in bound.get(o.value[len(_VARIABLE):], ()) if isinstance(lit, Literal)]
+        else:
+            written = [o] if isinstance(o, Literal) else []
+        for subject in _subjects(tr.subject, bound) if written else ():
+            for lit in written:
+                yield subject, p, lit
+
+
+def block_triples(text: str, toks: list[Token], block: tuple[int, int],
+                  declarations: list[str]) -> list[Triple] | None:
+    """The triples of the block between the braces ``block`` read as Turtle, in the order written, each
+    variable a placeholder IRI (:func:`variable_name` reads it back); None where it does not read as Turtle
+    (such as a block holding ``GRAPH``)."""
     opened, closed = block
     parts: list[str] = []
     pos = toks[opened].start + 1
@@ -207,20 +232,17 @@ def _templates(text: str, toks: list[Token], block: tuple[int, int], declaration
     if body and not body.endswith("."):
         body += " ."
     try:
-        triples = [Triple(q.subject, q.predicate, q.object)
-                   for q in parse("\n".join([*declarations, body]), RdfFormat.TURTLE)]
+        return [Triple(q.subject, q.predicate, q.object)
+                for q in parse("\n".join([*declarations, body]), RdfFormat.TURTLE)]
     except (SyntaxError, ValueError):
-        return
-    shapes.extend(triples)
-    for tr in triples:
-        o, p = tr.object, _position(tr.predicate)
-        if isinstance(o, NamedNode) and o.value.startswith(_VARIABLE):
-            written = [lit for lit in bound.get(o.value[len(_VARIABLE):], ()) if isinstance(lit, Literal)]
-        else:
-            written = [o] if isinstance(o, Literal) else []
-        for subject in _subjects(tr.subject, bound) if written else ():
-            for lit in written:
-                yield subject, p, lit
+        return None
+
+
+def variable_name(term: object) -> str | None:
+    """The variable a template term of :func:`block_triples` stands for (None: a term written as such)."""
+    if isinstance(term, NamedNode) and term.value.startswith(_VARIABLE):
+        return term.value[len(_VARIABLE):]
+    return None
 
 
 def _subjects(term: object, bound: Bound) -> list[NamedNode | BlankNode | None]:
@@ -241,4 +263,4 @@ def _position(term: object) -> NamedNode | BlankNode | None:
     return term
 
 
-__all__ = ["as_written", "insert_templates", "may_respell"]
+__all__ = ["as_written", "block_triples", "braced", "insert_templates", "may_respell", "paired", "variable_name"]
