@@ -293,29 +293,41 @@ def _literal_key(term: Literal) -> tuple:
     return ("literal", term.value, dt, term.language)
 
 
-_MOMENT_RE = re.compile(r"^(\d{4})-(\d{2})-(\d{2})(?:T(\d{2}):(\d{2}):(\d{2}(?:\.\d+)?))?(Z|[+-]\d{2}:\d{2})?$")
+_MOMENT_RE = re.compile(r"(\d{4})-(\d{2})-(\d{2})(?:T(\d{2}):(\d{2}):(\d{2})(?:\.(\d+))?)?(?:(Z)|([+-])(\d{2}):(\d{2}))?")
+#: the fractional digits of a second the store keeps (a longer fraction is not read as an instant)
+_SECOND_DIGITS = 18
 
 
-def _moment(text: str, local: str) -> tuple[Decimal, int | None] | None:
-    """An ``xsd:dateTime`` or ``xsd:date`` as the store tells it apart: the seconds of its instant on the
-    timeline and its zone's offset in minutes (``None`` without a zone).  ``…T00:00:00Z``,
-    ``…T00:00:00+00:00`` and ``…T00:00:00.000Z`` are one triple in the store and one key here; the same
-    instant written in another zone stays apart, as the store keeps both.  Years outside 1–9999 keep
-    their lexical key (``None`` here)."""
-    match = _MOMENT_RE.match(text.strip())
+def _moment(text: str, local: str) -> tuple[int, int, int | None] | None:
+    """An ``xsd:dateTime`` or ``xsd:date`` as the store tells it apart: its instant on the timeline (whole
+    seconds and the fraction in units of 10⁻¹⁸ s) and its zone's offset in minutes (``None`` without a zone).
+    ``…T00:00:00Z``, ``…T00:00:00+00:00`` and ``…T00:00:00.000Z`` are one triple of the store and one key
+    here; the same instant in another zone stays apart, as the store keeps both.  ``None`` (the lexical key)
+    for whatever the store may not read as an instant: a field out of range, spaces, a year outside
+    1–9999, a fraction finer than it keeps.  Two keys may differ where the store keeps one triple (a
+    second count twice); never the reverse, which would lose a value."""
+    match = _MOMENT_RE.fullmatch(text)
     if match is None or (local == "date") != (match.group(4) is None):
         return None
-    year, month, day = (int(match.group(i)) for i in (1, 2, 3))
-    if year == 0:
+    year, month, day, hour, minute, second = (int(match.group(i) or 0) for i in range(1, 7))
+    fraction = (match.group(7) or "").rstrip("0")
+    if (year == 0 or minute > 59 or second > 59 or len(fraction) > _SECOND_DIGITS
+            or hour > 24 or (hour == 24 and (minute or second or fraction))):
         return None
-    days = date(year, month, day).toordinal()
-    hour, minute = int(match.group(4) or 0), int(match.group(5) or 0)
-    seconds = Decimal(days * 86400 + hour * 3600 + minute * 60) + Decimal(match.group(6) or 0)
-    zone = match.group(7)
-    if zone is None:
-        return seconds.normalize(), None
-    offset = 0 if zone == "Z" else (1 if zone[0] == "+" else -1) * (int(zone[1:3]) * 60 + int(zone[4:6]))
-    return (seconds - offset * 60).normalize(), offset
+    offset = None
+    if match.group(8):
+        offset = 0
+    elif match.group(9):
+        zone_hours, zone_minutes = int(match.group(10)), int(match.group(11))
+        if zone_minutes > 59 or zone_hours * 60 + zone_minutes > 14 * 60:
+            return None
+        offset = (1 if match.group(9) == "+" else -1) * (zone_hours * 60 + zone_minutes)
+    try:
+        days = date(year, month, day).toordinal()
+    except ValueError:
+        return None
+    seconds = days * 86400 + hour * 3600 + minute * 60 + second - (offset or 0) * 60
+    return seconds, int(fraction.ljust(_SECOND_DIGITS, "0") or 0), offset
 
 
 #: triples and quads with a literal object made lately, by their terms: pyoxigraph takes a literal argument
