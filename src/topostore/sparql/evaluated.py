@@ -29,7 +29,7 @@ from dataclasses import dataclass, field
 import pyoxigraph as ox
 from pyoxigraph import BlankNode, DefaultGraph, Literal, NamedNode, QuerySolutions, RdfFormat, Triple, parse
 
-from ..rdf.lexer import IRI, KEYWORD, VARIABLE, Token, tokens
+from ..rdf.lexer import IRI, KEYWORD, NAME, VARIABLE, Token, tokens
 from ..rdf.terms import Term, value_key
 from .bound import ValuesBlock, operations, where_bindings
 from .written import as_written, block_triples, braced, paired, variable_name
@@ -114,13 +114,32 @@ def run(scratch: ox.Store, text: str) -> Spellings | None:
     first; None where an operation does not run alone (the caller runs the whole text, whose error is the
     user's)."""
     seen = Spellings()
-    for op in split(text):
+    ops = split(text)
+    if not _runs_apart(ops):
+        return None
+    for op in ops:
         try:
             _read(scratch, op, seen)
             scratch.update(op.text)
         except (SyntaxError, OSError, RuntimeError, ValueError):
             return None
     return seen
+
+
+def _runs_apart(ops: list[Operation]) -> bool:
+    """Whether each operation run alone is what the whole text does: not where a blank node label is written
+    in two operations (the request is refused as a whole: a label may not be shared by two blocks) nor where a
+    later operation declares a prefix or base (Oxigraph refuses a prologue after ``;``).  Elsewhere the text's
+    own error is the user's, and the whole text is run to give it."""
+    labels: set[str] = set()
+    for n, op in enumerate(ops):
+        if n and any(t.kind == KEYWORD and t.word in ("PREFIX", "BASE") for t in op.toks):
+            return False
+        own = {t.text for t in op.toks if t.kind == NAME and t.text.startswith("_:")}
+        if not labels.isdisjoint(own):
+            return False
+        labels |= own
+    return True
 
 
 def _read(scratch: ox.Store, op: Operation, seen: Spellings) -> None:
@@ -187,11 +206,20 @@ def _default_graph(op: Operation, block: tuple[int, int] | None) -> list[Triple]
         return None
 
 
+#: the operations that may remove triples of the default graph
+_REMOVING = frozenset({"DELETE", "CLEAR", "DROP", "MOVE", "COPY"})
+
+
 def data_document(text: str) -> str:
     """The triples of ``text``'s ``INSERT DATA`` operations as one Turtle document (the prefixes and base in
-    force declared before each): what a load of them reads, language tags as written."""
+    force declared before each): what a load of them reads, language tags as written.  Empty where the request
+    also removes (``DELETE``, ``CLEAR``, ``DROP``, ``MOVE``, ``COPY``): a removal between two writes starts
+    their count again, which a document of the writes alone cannot show, so no tag note is given there."""
     parts = []
-    for op in split(text):
+    ops = split(text)
+    if any(t.kind == KEYWORD and t.word in _REMOVING for op in ops for t in op.toks):
+        return ""
+    for op in ops:
         for i, t in enumerate(op.toks[:-1]):
             if t.kind == KEYWORD and t.word == "INSERT" and op.toks[i + 1].kind == KEYWORD \
                     and op.toks[i + 1].word == "DATA" and (block := braced(op.toks, i + 1)) is not None:
