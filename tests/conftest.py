@@ -5,6 +5,7 @@ everything); the fuzz figures (cases tried, violations found) printed at the end
 
 from __future__ import annotations
 
+import inspect
 import json
 import sys
 from collections.abc import Iterator
@@ -54,6 +55,32 @@ SLOW_MODULES = {"test_durable", "test_conformance", "test_fuzz_armor", "test_fuz
 #: modules whose tests share one ROS world (a module-scoped roscore and node): on two workers
 #: (``--dist loadgroup``) each module stays on one worker, so its world is started once
 ROS_MODULES = {"test_ros", "test_ros_events", "test_fuzz_ros"}
+
+
+def pytest_generate_tests(metafunc: pytest.Metafunc) -> None:
+    """Run every test naming REPLACE twice: with REPLACE's short lane (armor/one_value.py) and with every REPLACE
+    on the general path, so that each holds of both (not in a ROS world: its service runs in another process)."""
+    if metafunc.module.__name__ in ROS_MODULES or "replace_lane" in metafunc.fixturenames:
+        return
+    try:
+        source = inspect.getsource(metafunc.function)
+    except (OSError, TypeError):  # pragma: no cover - a test made at run time
+        return
+    if "REPLACE" in source:
+        metafunc.fixturenames.append("replace_lane")
+        metafunc.parametrize("replace_lane", ["lane", "general"], indirect=True, scope="module")
+
+
+@pytest.fixture(scope="module")
+def replace_lane(request: pytest.FixtureRequest) -> Iterator[str]:
+    """REPLACE's short lane on ("lane") or off ("general") for the tests of one module."""
+    from topostore.armor import one_value
+
+    was, one_value.ENABLED = one_value.ENABLED, request.param == "lane"
+    try:
+        yield request.param
+    finally:
+        one_value.ENABLED = was
 
 
 def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:

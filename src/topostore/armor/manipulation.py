@@ -17,8 +17,7 @@ from ..ontology.nary import all_different, all_disjoint_classes, individual_trip
 from ..rdf import terms
 from ..rdf.vocab import ASSERTED, OWL, RDF, RDFS, STANFORD_SWRL, SWRL, SWRLB, THING, TYPE, XSD, is_internal, owl, rdfs
 from ..stores.base import fresh_skolem
-from ..stores.facts import Fact
-from . import codes
+from . import codes, one_value
 from .codes import CommandError
 from .context import Context, Handler, Reply, asserted, fixed, hidden
 from .reference import Change, Delta
@@ -216,7 +215,7 @@ def _replace(ind: NamedNode, prop: NamedNode, new, old, description: str) -> Cha
         # read once (on a remote store each read is a round trip) as facts: each value keyed once, and the
         # removed ones go on to the store and the ledger with their keys
         facts = onto.store.read_facts(ind, prop, ASSERTED)
-        olds, held = _values(facts, old, old_key, new, new_key)
+        olds, held = one_value.values(facts, old, old_key, new, new_key)
         # the new value stays if it is there already, unless it is the old value (removed, then added)
         present = held and not (olds and new_key == old_key)
         warning = (
@@ -236,36 +235,24 @@ def _replace(ind: NamedNode, prop: NamedNode, new, old, description: str) -> Cha
     return Change(description, plan)
 
 
-def _values(facts: list[Fact], old, old_key: tuple, new, new_key: tuple) -> tuple[list[Fact], bool]:
-    """The facts whose object is the same data value as ``old`` (``old_key``: its value key) or the same
-    individual, and whether one is the same as ``new``: one pass, each fact's object read once."""
-    olds, held = [], False
-    for f in facts:
-        value = f.value
-        if value is not None:  # a literal: compared by value (an individual's key is never a literal's)
-            if value == old_key:
-                olds.append(f)
-            if value == new_key:
-                held = True
-        else:
-            o = f.triple.object
-            if o == old:
-                olds.append(f)
-            if o == new:
-                held = True
-    return olds, held
-
-
 def replace_dataprop_ind(ctx: Context) -> Reply:
     prop, ind = ctx.iri(0, "data property"), ctx.iri(1, "individual")
     new, old = ctx.literal(3, 2), ctx.literal(4, 2)
-    return ctx.submit(_replace(ind, prop, new, old, "REPLACE DATAPROP IND"))
+    return _replace_one(ctx, ind, prop, new, old, "REPLACE DATAPROP IND")
 
 
 def replace_objectprop_ind(ctx: Context) -> Reply:
     prop, ind = ctx.iri(0, "object property"), ctx.iri(1, "individual")
     new, old = ctx.iri(2, "new value"), ctx.iri(3, "old value")
-    return ctx.submit(_replace(ind, prop, new, old, "REPLACE OBJECTPROP IND"))
+    return _replace_one(ctx, ind, prop, new, old, "REPLACE OBJECTPROP IND")
+
+
+def _replace_one(ctx: Context, ind: NamedNode, prop: NamedNode, new, old, description: str) -> Reply:
+    """A REPLACE through the short lane where it is the plain case (:mod:`.one_value`), else the general path."""
+    warnings = one_value.replace(ctx.reference, ind, prop, new, old, description, _object_property_note)
+    if warnings is not None:
+        return Reply(warnings=warnings)
+    return ctx.submit(_replace(ind, prop, new, old, description))
 
 
 def rename(kind: str) -> Handler:
