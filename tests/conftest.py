@@ -59,8 +59,10 @@ ROS_MODULES = {"test_ros", "test_ros_events", "test_fuzz_ros"}
 
 def pytest_generate_tests(metafunc: pytest.Metafunc) -> None:
     """Run every test naming REPLACE twice: with REPLACE's short lane (armor/one_value.py) and with every REPLACE
-    on the general path, so that each holds of both (not in a ROS world: its service runs in another process)."""
-    if metafunc.module.__name__ in ROS_MODULES or "replace_lane" in metafunc.fixturenames:
+    on the general path, so that each holds of both (not in a ROS world: its service runs in another process;
+    not the lane's own tests, which compare the two themselves)."""
+    if (metafunc.module.__name__ in ROS_MODULES or metafunc.module.__name__ == "test_one_value"
+            or "replace_lane" in metafunc.fixturenames):
         return
     try:
         source = inspect.getsource(metafunc.function)
