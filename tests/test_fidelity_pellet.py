@@ -115,7 +115,7 @@ def topostore(o: Ontology, names: list[str]) -> dict:
 def consistent_cases() -> str:
     """One document holding every consistent case (:data:`CASES`, the SWRL string functions), each in its own
     namespace: one Pellet run answers them all."""
-    return "\n".join([*(document(name) for name in CASES), swrl_strings()])
+    return "\n".join([*(document(name) for name in CASES), swrl_strings(), swrl_builtins()])
 
 
 #: SWRL rules of a third-party style: string built-ins on a language-tagged and a plain string
@@ -140,6 +140,25 @@ def swrl_strings() -> str:
     return o.serialize("turtle").decode()
 
 
+#: SWRL built-ins where Pellet's evaluation decides: a value that cannot be computed (the built-in fails)
+BUILTIN_RULES = {
+    "Added": "d(?x, ?v) ^ swrlb:add(?z, ?v, 1) -> Added(?x)",
+    "Divided": "d(?x, ?v) ^ swrlb:divide(?z, ?v, 0) -> Divided(?x)",
+}
+
+
+def swrl_builtins() -> str:
+    """The Turtle of an ontology with :data:`BUILTIN_RULES`, as topostore SAVEs it."""
+    o = Ontology(prefix=namespace("swrl_builtins"))
+    o.load_data(document("swrl_builtins", ":d a owl:DatatypeProperty . "
+                         + " ".join(f":{c} a owl:Class ." for c in BUILTIN_RULES)
+                         + ' :text a owl:NamedIndividual ; :d "abc" . :four a owl:NamedIndividual ; :d 4 .'
+                         + ' :half a owl:NamedIndividual ; :d 2.5 .'))
+    for label, rule in BUILTIN_RULES.items():
+        o.add_rule(rule, label)
+    return o.serialize("turtle").decode()
+
+
 def only(answers: dict, ns: str) -> dict:
     """The individuals of namespace ``ns`` in ``answers``."""
     return {k: v for k, v in answers["individuals"].items() if k.startswith(ns)}
@@ -151,7 +170,7 @@ def topostore_consistent_cases() -> dict:
     return topostore(loaded(consistent_cases()), sorted(pellet(consistent_cases())["individuals"]))
 
 
-@pytest.mark.parametrize("name", [*CASES, "swrl_strings"])
+@pytest.mark.parametrize("name", [*CASES, "swrl_strings", "swrl_builtins"])
 def test_cases_as_pellet(name: str) -> None:
     expected = pellet(consistent_cases())
     assert expected["consistent"]

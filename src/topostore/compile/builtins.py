@@ -2,7 +2,8 @@
 
 Each built-in either *tests* its arguments (a FILTER) or, for the arithmetic and
 string functions whose first argument is the result, *binds* the first argument
-when it is still unbound (a BIND) and compares it when it is bound (a FILTER).
+when it is still unbound (a BIND) and compares it when it is bound (a FILTER).  A BIND is
+followed by :func:`defined`: the built-in holds only where its value could be computed.
 """
 
 from __future__ import annotations
@@ -106,6 +107,16 @@ def translate(name: str, args: list[str], bound: set[str]) -> Condition | None:
     if is_bound(args[0]):
         return test(f"{args[0]} = {expr}")
     return bind(expr, args[0])
+
+
+def defined(variable: str) -> Condition:
+    """The test that a built-in's computed result (or a data value it reads) is a data value.
+
+    A SPARQL error in ``BIND(expr AS ?r)`` leaves ``?r`` unbound and keeps the row, so without it a
+    rule whose built-in cannot be computed (``"abc" + 1``, a division by zero) would still fire; Pellet's
+    built-in then fails.  ``isLiteral`` of an unbound variable is an error, hence false.
+    """
+    return test(f"isLiteral({variable})")
 
 
 # --------------------------------------------------------------------------- run time

@@ -265,6 +265,9 @@ class SwrlCompiler:
                     body.conditions.append(placed_as)
                     if placed_as.binds:
                         body.bound.add(placed_as.binds)
+                        # an error leaves the BIND's variable unbound and keeps the row: the built-in holds
+                        # only where its value is defined (isLiteral of an unbound variable is false)
+                        body.conditions.append(builtins.defined(placed_as.binds))
                     pending.remove(a)
                     placed = True
             if not placed:
