@@ -144,13 +144,16 @@ def swrl_strings() -> str:
 BUILTIN_RULES = {
     "Added": "d(?x, ?v) ^ swrlb:add(?z, ?v, 1) -> Added(?x)",
     "Divided": "d(?x, ?v) ^ swrlb:divide(?z, ?v, 0) -> Divided(?x)",
+    # an individual as a built-in's argument: the IRI holds "builtins", and ?x = ?x
+    "Named": 'D(?x) ^ swrlb:contains(?x, "builtins") -> Named(?x)',
+    "Itself": "D(?x) ^ D(?y) ^ swrlb:equal(?x, ?y) -> Itself(?x)",
 }
 
 
 def swrl_builtins() -> str:
     """The Turtle of an ontology with :data:`BUILTIN_RULES`, as topostore SAVEs it."""
     o = Ontology(prefix=namespace("swrl_builtins"))
-    o.load_data(document("swrl_builtins", ":d a owl:DatatypeProperty . "
+    o.load_data(document("swrl_builtins", ":d a owl:DatatypeProperty . :D a owl:Class . :text a :D . "
                          + " ".join(f":{c} a owl:Class ." for c in BUILTIN_RULES)
                          + ' :text a owl:NamedIndividual ; :d "abc" . :four a owl:NamedIndividual ; :d 4 .'
                          + ' :half a owl:NamedIndividual ; :d 2.5 .'))

@@ -110,7 +110,10 @@ def translate(name: str, args: list[str], bound: set[str]) -> Condition | None:
 
 
 def defined(variable: str) -> Condition:
-    """The test that a built-in's computed result (or a data value it reads) is a data value.
+    """The test that a built-in's computed result, or an argument it reads, is a data value.
+
+    Pellet's built-ins take data values only: on an individual (its IRI) they are false, where
+    SPARQL's functions would read the IRI's text (``STR``) or compare IRIs (``=``).
 
     A SPARQL error in ``BIND(expr AS ?r)`` leaves ``?r`` unbound and keeps the row, so without it a
     rule whose built-in cannot be computed (``"abc" + 1``, a division by zero) would still fire; Pellet's

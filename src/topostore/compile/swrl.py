@@ -255,19 +255,24 @@ class SwrlCompiler:
     def _builtins(name: str, pending: list[SwrlAtom], arg: _Names, body: _Body) -> None:
         """Place each built-in as soon as its inputs are bound (a BIND binds its result)."""
         pending = list(pending)
+        guarded: set[str] = set()
         while pending:
             placed = False
             for a in list(pending):
+                texts = [arg(x) for x in a.args]
                 with _about(name, a):
-                    placed_as = builtins.translate(a.predicate.value if a.predicate else "",
-                                                   [arg(x) for x in a.args], body.bound)
+                    placed_as = builtins.translate(a.predicate.value if a.predicate else "", texts, body.bound)
                 if placed_as is not None:
                     body.conditions.append(placed_as)
+                    # a built-in's arguments are data values: on an individual it is false, as in Pellet;
+                    # and an error leaves a BIND's variable unbound but keeps the row, so the built-in
+                    # holds only where its value is defined (isLiteral of an unbound variable is false)
+                    for v in dict.fromkeys([*(t for t in texts if t in body.bound), placed_as.binds or ""]):
+                        if v and v not in guarded:
+                            body.conditions.append(builtins.defined(v))
+                            guarded.add(v)
                     if placed_as.binds:
                         body.bound.add(placed_as.binds)
-                        # an error leaves the BIND's variable unbound and keeps the row: the built-in holds
-                        # only where its value is defined (isLiteral of an unbound variable is false)
-                        body.conditions.append(builtins.defined(placed_as.binds))
                     pending.remove(a)
                     placed = True
             if not placed:
