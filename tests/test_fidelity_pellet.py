@@ -147,6 +147,8 @@ BUILTIN_RULES = {
     # an individual as a built-in's argument: the IRI holds "builtins", and ?x = ?x
     "Named": 'D(?x) ^ swrlb:contains(?x, "builtins") -> Named(?x)',
     "Itself": "D(?x) ^ D(?y) ^ swrlb:equal(?x, ?y) -> Itself(?x)",
+    # a string built-in on a number reads its lexical form
+    "Three": "d(?x, ?v) ^ swrlb:stringLength(?n, ?v) ^ swrlb:equal(?n, 3) -> Three(?x)",
 }
 
 

@@ -73,3 +73,14 @@ def test_a_built_in_on_an_individual_is_false() -> None:
     assert members(o, "Named") == set()  # the IRI's text is not a data value
     assert members(o, "Itself") == set()
     assert members(o, "Kept") == {"a"}
+
+
+def test_string_built_ins_read_a_number_s_lexical_form() -> None:
+    o = ontology(":d a owl:DatatypeProperty . :Three a owl:Class . :Two a owl:Class . "
+                 ':a :d 123 . :b :d "123" . :c :d 2.5 . :e :d "ab"@en .', {
+                     "Three": "d(?x, ?v) ^ swrlb:stringLength(?n, ?v) ^ swrlb:equal(?n, 3) -> Three(?x)",
+                     "Two": "d(?x, ?v) ^ swrlb:stringLength(2, ?v) -> Two(?x)",
+                 })
+    assert o.reason().consistent
+    assert members(o, "Three") == {"a", "b", "c"}
+    assert members(o, "Two") == {"e"}

@@ -51,7 +51,8 @@ _FUNCTIONS: dict[str, tuple[int, int | None, Callable[[list[str]], str]]] = {
     "floor": (1, 1, lambda a: f"FLOOR({a[0]})"),
     "ceiling": (1, 1, lambda a: f"CEIL({a[0]})"),
     "stringConcat": (0, None, lambda a: "CONCAT(" + ", ".join(f"STR({x})" for x in a) + ")" if a else '""'),
-    "stringLength": (1, 1, lambda a: f"STRLEN({a[0]})"),
+    # the string built-ins read a value's lexical form, as Pellet does (the length of 123 is 3)
+    "stringLength": (1, 1, lambda a: f"STRLEN(STR({a[0]}))"),
     # fn:upper-case, fn:lower-case and fn:substring give an xs:string: SPARQL's functions keep a language tag
     "upperCase": (1, 1, lambda a: f"UCASE(STR({a[0]}))"),
     "lowerCase": (1, 1, lambda a: f"LCASE(STR({a[0]}))"),
