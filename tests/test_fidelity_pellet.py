@@ -115,7 +115,7 @@ def topostore(o: Ontology, names: list[str]) -> dict:
 def consistent_cases() -> str:
     """One document holding every consistent case (:data:`CASES`, the SWRL string functions), each in its own
     namespace: one Pellet run answers them all."""
-    return "\n".join([*(document(name) for name in CASES), swrl_strings(), swrl_builtins()])
+    return "\n".join([*(document(name) for name in CASES), swrl_strings(), swrl_builtins(), swrl_same_as()])
 
 
 #: SWRL rules of a third-party style: string built-ins on a language-tagged and a plain string
@@ -152,16 +152,31 @@ BUILTIN_RULES = {
 }
 
 
-def swrl_builtins() -> str:
-    """The Turtle of an ontology with :data:`BUILTIN_RULES`, as topostore SAVEs it."""
-    o = Ontology(prefix=namespace("swrl_builtins"))
-    o.load_data(document("swrl_builtins", ":d a owl:DatatypeProperty . :D a owl:Class . :text a :D . "
-                         + " ".join(f":{c} a owl:Class ." for c in BUILTIN_RULES)
-                         + ' :text a owl:NamedIndividual ; :d "abc" . :four a owl:NamedIndividual ; :d 4 .'
-                         + ' :half a owl:NamedIndividual ; :d 2.5 .'))
-    for label, rule in BUILTIN_RULES.items():
+#: a variable bound only by a sameAs atom ranges over the other's aliases and itself (sameAs is reflexive)
+SAME_AS_RULES = {"Alias": "D(?x) ^ sameAs(?x, ?y) -> Alias(?y)"}
+
+
+def swrl_document(name: str, facts: str, rules: dict[str, str]) -> str:
+    """The Turtle of an ontology of namespace ``name`` with ``facts`` and ``rules``, as topostore SAVEs it."""
+    o = Ontology(prefix=namespace(name))
+    o.load_data(document(name, facts + " ".join(f" :{c} a owl:Class ." for c in rules)))
+    for label, rule in rules.items():
         o.add_rule(rule, label)
     return o.serialize("turtle").decode()
+
+
+def swrl_builtins() -> str:
+    """The Turtle of an ontology with :data:`BUILTIN_RULES`."""
+    return swrl_document("swrl_builtins", ":d a owl:DatatypeProperty . :D a owl:Class . :text a :D . "
+                         ':text a owl:NamedIndividual ; :d "abc" . :four a owl:NamedIndividual ; :d 4 . '
+                         ":half a owl:NamedIndividual ; :d 2.5 .", BUILTIN_RULES)
+
+
+def swrl_same_as() -> str:
+    """The Turtle of an ontology with :data:`SAME_AS_RULES`."""
+    return swrl_document("swrl_same_as", ":D a owl:Class . :a a owl:NamedIndividual, :D . "
+                         ":b a owl:NamedIndividual ; owl:sameAs :c . :c a owl:NamedIndividual, :D . "
+                         ":e a owl:NamedIndividual .", SAME_AS_RULES)
 
 
 def only(answers: dict, ns: str) -> dict:
@@ -175,7 +190,7 @@ def topostore_consistent_cases() -> dict:
     return topostore(loaded(consistent_cases()), sorted(pellet(consistent_cases())["individuals"]))
 
 
-@pytest.mark.parametrize("name", [*CASES, "swrl_strings", "swrl_builtins"])
+@pytest.mark.parametrize("name", [*CASES, "swrl_strings", "swrl_builtins", "swrl_same_as"])
 def test_cases_as_pellet(name: str) -> None:
     expected = pellet(consistent_cases())
     assert expected["consistent"]

@@ -101,6 +101,39 @@ def _require_bound(name: str, a: SwrlAtom, needs: Iterable[str], bound: set[str]
                                "is not bound by the body")
 
 
+#: the body atoms whose arguments a graph pattern binds
+_BINDING = ("ClassAtom", "IndividualPropertyAtom", "DatavaluedPropertyAtom")
+
+
+def _same_as_forms(body: list[SwrlAtom], head: list[SwrlAtom],
+                   variables: set[Term]) -> list[tuple[list[SwrlAtom], list[SwrlAtom]]]:
+    """The rule as bodies and heads without a ``sameAs`` atom that binds a variable.
+
+    ``sameAs(?x, ?y)`` with ``?y`` bound by no other atom binds it (the rule is DL-safe): sameAs is
+    reflexive, so ``?y`` ranges over ``?x`` itself and its aliases.  The store holds no reflexive
+    ``owl:sameAs``, so such a rule is two: one with ``?y`` replaced by ``?x`` everywhere, one with the
+    atom read as the graph pattern ``?x owl:sameAs ?y`` (a body atom the delta and step forms read like any other).
+    """
+    bound = {t for a in body if a.kind in _BINDING for t in a.args if t in variables}
+    for i, a in enumerate(body):
+        if a.kind != "SameIndividualAtom" or len(a.args) != 2:
+            continue
+        free = [t for t in a.args if t in variables and t not in bound]
+        if len(free) != 1:
+            continue
+        y = free[0]
+        x = a.args[1] if a.args[0] == y else a.args[0]
+        rest = body[:i] + body[i + 1:]
+
+        def put(atoms: list[SwrlAtom], x: Term = x, y: Term = y) -> list[SwrlAtom]:
+            return [SwrlAtom(b.kind, b.predicate, tuple(x if t == y else t for t in b.args), b.node) for b in atoms]
+
+        pattern = SwrlAtom("IndividualPropertyAtom", SAME_AS, (x, y), a.node)
+        return [*_same_as_forms(put(rest), put(head), variables),
+                *_same_as_forms(body[:i] + [pattern] + body[i + 1:], head, variables)]
+    return [(body, head)]
+
+
 class SwrlCompiler:
     def __init__(self, store: Store, graph: NamedNode, reader: TBoxReader) -> None:
         self.store, self.graph, self.reader = store, graph, reader
@@ -225,16 +258,19 @@ class SwrlCompiler:
         head_atoms = self.atoms(self._one(node, swrl("head")), name)
         if not head_atoms:
             raise RuleCompileError(f"SWRL rule {name!r} has no head atom")
-        arg = _Names(self.variables)
-        body = self._body(name, body_atoms, arg)
-        rules = self._difference_rules(name, body)
-        heads: list[Rule] = []
-        for a in head_atoms:
-            heads += self._head_rules(name, a, arg, body)
-        if len(body.different) == 1:  # tested where it is asked, once the difference rules are known
-            x, y, _ = body.different[0]
-            self.asks.append(DifferenceAsk(x, y, rules[0], heads))
-        return rules + heads
+        out: list[Rule] = []
+        for body_form, head_form in _same_as_forms(body_atoms, head_atoms, self.variables):
+            arg = _Names(self.variables)
+            body = self._body(name, body_form, arg)
+            rules = self._difference_rules(name, body)
+            heads: list[Rule] = []
+            for a in head_form:
+                heads += self._head_rules(name, a, arg, body)
+            if len(body.different) == 1:  # tested where it is asked, once the difference rules are known
+                x, y, _ = body.different[0]
+                self.asks.append(DifferenceAsk(x, y, rules[0], heads))
+            out += rules + heads
+        return out
 
     def _body(self, name: str, atoms: list[SwrlAtom], arg: _Names) -> _Body:
         """Patterns first, then the built-ins in an order where each one's inputs are bound,
