@@ -149,6 +149,11 @@ BUILTIN_RULES = {
     "Itself": "D(?x) ^ D(?y) ^ swrlb:equal(?x, ?y) -> Itself(?x)",
     # a string built-in on a number reads its lexical form
     "Three": "d(?x, ?v) ^ swrlb:stringLength(?n, ?v) ^ swrlb:equal(?n, 3) -> Three(?x)",
+    # swrlb:matches: the whole string, flags ignored
+    "Part": 'd(?x, ?v) ^ swrlb:matches(?v, "b") -> Part(?x)',
+    "Either": 'd(?x, ?v) ^ swrlb:matches(?v, "a|c") -> Either(?x)',
+    "Whole": 'd(?x, ?v) ^ swrlb:matches(?v, "a.c|4") -> Whole(?x)',
+    "Caseless": 'd(?x, ?v) ^ swrlb:matches(?v, "ABC", "i") -> Caseless(?x)',
 }
 
 

@@ -84,3 +84,23 @@ def test_string_built_ins_read_a_number_s_lexical_form() -> None:
     assert o.reason().consistent
     assert members(o, "Three") == {"a", "b", "c"}
     assert members(o, "Two") == {"e"}
+
+
+def test_matches_takes_the_whole_string_and_ignores_flags() -> None:
+    o = ontology(":d a owl:DatatypeProperty . :p a owl:DatatypeProperty . "
+                 + " ".join(f":{c} a owl:Class ." for c in ("Part", "Either", "Whole", "Own", "Caseless", "Given"))
+                 + ' :a :d "Hello" ; :p "H.*" . :b :d "ell" ; :p "e" .', {
+                     "Part": 'd(?x, ?v) ^ swrlb:matches(?v, "ell") -> Part(?x)',
+                     "Either": 'd(?x, ?v) ^ swrlb:matches(?v, "H|o") -> Either(?x)',
+                     "Whole": 'd(?x, ?v) ^ swrlb:matches(?v, "H.*|e.*") -> Whole(?x)',
+                     "Own": 'd(?x, ?v) ^ swrlb:matches(?v, "^H.*o$") -> Own(?x)',
+                     "Caseless": 'd(?x, ?v) ^ swrlb:matches(?v, "hello", "i") -> Caseless(?x)',
+                     "Given": "d(?x, ?v) ^ p(?x, ?r) ^ swrlb:matches(?v, ?r) -> Given(?x)",
+                 })
+    assert o.reason().consistent
+    assert members(o, "Part") == {"b"}
+    assert members(o, "Either") == set()
+    assert members(o, "Whole") == {"a", "b"}
+    assert members(o, "Own") == {"a"}
+    assert members(o, "Caseless") == set()
+    assert members(o, "Given") == {"a"}

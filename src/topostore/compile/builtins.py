@@ -8,6 +8,7 @@ followed by :func:`defined`: the built-in holds only where its value could be co
 
 from __future__ import annotations
 
+import re
 from collections.abc import Callable, Mapping
 
 from pyoxigraph import Literal, NamedNode
@@ -64,8 +65,21 @@ _TESTS: dict[str, tuple[int, int, Callable[[list[str]], str]]] = {
     "containsIgnoreCase": (2, 2, lambda a: f"CONTAINS(LCASE(STR({a[0]})), LCASE(STR({a[1]})))"),
     "startsWith": (2, 2, lambda a: f"STRSTARTS(STR({a[0]}), STR({a[1]}))"),
     "endsWith": (2, 2, lambda a: f"STRENDS(STR({a[0]}), STR({a[1]}))"),
-    "matches": (2, 3, lambda a: f"REGEX(STR({a[0]}), {', '.join(a[1:])})"),
+    "matches": (2, 3, lambda a: f"REGEX(STR({a[0]}), {_whole(a[1])})"),
 }
+
+_PLAIN_STRING = re.compile(r'"((?:[^"\\\n\r]|\\.)*)"')
+
+
+def _whole(pattern: str) -> str:
+    """swrlb:matches as Pellet evaluates it: the pattern matches the whole string (Java's
+    ``Pattern.matches``), and a flags argument is ignored.  SPARQL's REGEX searches, so the pattern is
+    anchored as a group: ``a|b`` stays ``^(?:a|b)$``, and a pattern's own ``^``/``$`` still hold."""
+    plain = _PLAIN_STRING.fullmatch(pattern)
+    if plain is not None:
+        return f'"^(?:{plain.group(1)})$"'
+    return f'CONCAT("^(?:", STR({pattern}), ")$")'
+
 
 SUPPORTED = sorted(set(_COMPARISONS) | set(_FUNCTIONS) | set(_TESTS))
 
