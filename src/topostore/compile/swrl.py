@@ -26,6 +26,7 @@ from .model import Expr, is_datatype
 from .notices import SQWRL_QUERY, Notice
 from .rule import Atom, Rule
 from .snippets import candidate_atom, different_atom, surely_in_datatype
+from .swrl_same_as import same_as_forms
 from .tbox_reader import TBoxReader
 
 T = str(TYPE)
@@ -99,39 +100,6 @@ def _require_bound(name: str, a: SwrlAtom, needs: Iterable[str], bound: set[str]
     if missing:
         raise RuleCompileError(f"SWRL rule {name!r}, {where}atom {a.describe(name)}: variable {missing[0]} "
                                "is not bound by the body")
-
-
-#: the body atoms whose arguments a graph pattern binds
-_BINDING = ("ClassAtom", "IndividualPropertyAtom", "DatavaluedPropertyAtom")
-
-
-def _same_as_forms(body: list[SwrlAtom], head: list[SwrlAtom],
-                   variables: set[Term]) -> list[tuple[list[SwrlAtom], list[SwrlAtom]]]:
-    """The rule as bodies and heads without a ``sameAs`` atom that binds a variable.
-
-    ``sameAs(?x, ?y)`` with ``?y`` bound by no other atom binds it (the rule is DL-safe): sameAs is
-    reflexive, so ``?y`` ranges over ``?x`` itself and its aliases.  The store holds no reflexive
-    ``owl:sameAs``, so such a rule is two: one with ``?y`` replaced by ``?x`` everywhere, one with the
-    atom read as the graph pattern ``?x owl:sameAs ?y`` (a body atom the delta and step forms read like any other).
-    """
-    bound = {t for a in body if a.kind in _BINDING for t in a.args if t in variables}
-    for i, a in enumerate(body):
-        if a.kind != "SameIndividualAtom" or len(a.args) != 2:
-            continue
-        free = [t for t in a.args if t in variables and t not in bound]
-        if len(free) != 1:
-            continue
-        y = free[0]
-        x = a.args[1] if a.args[0] == y else a.args[0]
-        rest = body[:i] + body[i + 1:]
-
-        def put(atoms: list[SwrlAtom], x: Term = x, y: Term = y) -> list[SwrlAtom]:
-            return [SwrlAtom(b.kind, b.predicate, tuple(x if t == y else t for t in b.args), b.node) for b in atoms]
-
-        pattern = SwrlAtom("IndividualPropertyAtom", SAME_AS, (x, y), a.node)
-        return [*_same_as_forms(put(rest), put(head), variables),
-                *_same_as_forms(body[:i] + [pattern] + body[i + 1:], head, variables)]
-    return [(body, head)]
 
 
 class SwrlCompiler:
@@ -259,7 +227,7 @@ class SwrlCompiler:
         if not head_atoms:
             raise RuleCompileError(f"SWRL rule {name!r} has no head atom")
         out: list[Rule] = []
-        for body_form, head_form in _same_as_forms(body_atoms, head_atoms, self.variables):
+        for body_form, head_form in same_as_forms(body_atoms, head_atoms, self.variables):
             arg = _Names(self.variables)
             body = self._body(name, body_form, arg)
             rules = self._difference_rules(name, body)
