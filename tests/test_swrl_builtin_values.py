@@ -64,14 +64,18 @@ def test_an_incremental_reason_keeps_a_built_in_error_from_firing() -> None:
 
 def test_a_built_in_on_an_individual_is_false() -> None:
     o = ontology(":D a owl:Class . :Named a owl:Class . :Itself a owl:Class . :Kept a owl:Class . "
+                 ":AtMost a owl:Class . :Length a owl:Class . "
                  ":d a owl:DatatypeProperty . :a a :D ; :d \"example\" . :b a :D .", {
                      "Named": 'D(?x) ^ swrlb:contains(?x, "example") -> Named(?x)',
                      "Itself": "D(?x) ^ D(?y) ^ swrlb:equal(?x, ?y) -> Itself(?x)",
+                     "AtMost": "D(?x) ^ swrlb:lessThanOrEqual(?x, ?x) -> AtMost(?x)",
+                     "Length": "D(?x) ^ swrlb:stringLength(?n, ?x) -> Length(?x)",
                      "Kept": 'D(?x) ^ d(?x, ?v) ^ swrlb:contains(?v, "example") -> Kept(?x)',
                  })
     assert o.reason().consistent
     assert members(o, "Named") == set()  # the IRI's text is not a data value
     assert members(o, "Itself") == set()
+    assert members(o, "AtMost") == members(o, "Length") == set()
     assert members(o, "Kept") == {"a"}
 
 

@@ -124,6 +124,17 @@ def translate(name: str, args: list[str], bound: set[str]) -> Condition | None:
     return bind(expr, args[0])
 
 
+#: built-ins false (a SPARQL error) on any argument that is not a data value: an IRI has no number,
+#: and ``<``/``>`` compare no IRIs; ``=``, ``<=`` and the string functions (``STR``) do take one
+_STRICT = frozenset(_FUNCTIONS) - {"stringConcat", "stringLength", "upperCase", "lowerCase", "substring"} \
+    | {"lessThan", "greaterThan"}
+
+
+def is_strict(name: str) -> bool:
+    """Whether built-in ``name`` (full IRI) already fails where an argument is not a data value."""
+    return name.removeprefix(SWRLB) in _STRICT
+
+
 def defined(variable: str) -> Condition:
     """The test that a built-in's computed result, or an argument it reads, is a data value.
 

@@ -259,29 +259,35 @@ class SwrlCompiler:
     def _builtins(name: str, pending: list[SwrlAtom], arg: _Names, body: _Body) -> None:
         """Place each built-in as soon as its inputs are bound (a BIND binds its result)."""
         pending = list(pending)
-        guarded: set[str] = set()
+        #: variables to test for a data value, and those a strict built-in's condition already proves one
+        needs: dict[str, None] = {}
+        proven: set[str] = set()
         while pending:
             placed = False
             for a in list(pending):
                 texts = [arg(x) for x in a.args]
+                iri = a.predicate.value if a.predicate else ""
                 with _about(name, a):
-                    placed_as = builtins.translate(a.predicate.value if a.predicate else "", texts, body.bound)
+                    placed_as = builtins.translate(iri, texts, body.bound)
                 if placed_as is not None:
                     body.conditions.append(placed_as)
                     # a built-in's arguments are data values: on an individual it is false, as in Pellet;
                     # and an error leaves a BIND's variable unbound but keeps the row, so the built-in
                     # holds only where its value is defined (isLiteral of an unbound variable is false)
-                    for v in dict.fromkeys([*(t for t in texts if t in body.bound), placed_as.binds or ""]):
-                        if v and v not in guarded:
-                            body.conditions.append(builtins.defined(v))
-                            guarded.add(v)
+                    inputs = [t for t in texts if t in body.bound]
+                    if builtins.is_strict(iri):
+                        proven.update(inputs)
+                    else:
+                        needs.update(dict.fromkeys(inputs))
                     if placed_as.binds:
+                        needs[placed_as.binds] = None
                         body.bound.add(placed_as.binds)
                     pending.remove(a)
                     placed = True
             if not placed:
                 raise RuleCompileError(f"SWRL rule {name!r}, atom {pending[0].describe(name)}: its input variables "
                                        "are never bound (rule is not DL-safe)")
+        body.conditions += [builtins.defined(v) for v in needs if v not in proven]
 
     @staticmethod
     def _difference_rules(name: str, body: _Body) -> list[Rule]:
