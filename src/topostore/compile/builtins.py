@@ -2,11 +2,13 @@
 
 Each built-in either *tests* its arguments (a FILTER) or, for the arithmetic and
 string functions whose first argument is the result, *binds* the first argument
-when it is still unbound (a BIND) and compares it when it is bound (a FILTER).
+when it is still unbound (a BIND) and compares it when it is bound (a FILTER).  A BIND is
+followed by :func:`defined`: the built-in holds only where its value could be computed.
 """
 
 from __future__ import annotations
 
+import re
 from collections.abc import Callable, Mapping
 
 from pyoxigraph import Literal, NamedNode
@@ -50,7 +52,8 @@ _FUNCTIONS: dict[str, tuple[int, int | None, Callable[[list[str]], str]]] = {
     "floor": (1, 1, lambda a: f"FLOOR({a[0]})"),
     "ceiling": (1, 1, lambda a: f"CEIL({a[0]})"),
     "stringConcat": (0, None, lambda a: "CONCAT(" + ", ".join(f"STR({x})" for x in a) + ")" if a else '""'),
-    "stringLength": (1, 1, lambda a: f"STRLEN({a[0]})"),
+    # the string built-ins read a value's lexical form, as Pellet does (the length of 123 is 3)
+    "stringLength": (1, 1, lambda a: f"STRLEN(STR({a[0]}))"),
     # fn:upper-case, fn:lower-case and fn:substring give an xs:string: SPARQL's functions keep a language tag
     "upperCase": (1, 1, lambda a: f"UCASE(STR({a[0]}))"),
     "lowerCase": (1, 1, lambda a: f"LCASE(STR({a[0]}))"),
@@ -62,8 +65,21 @@ _TESTS: dict[str, tuple[int, int, Callable[[list[str]], str]]] = {
     "containsIgnoreCase": (2, 2, lambda a: f"CONTAINS(LCASE(STR({a[0]})), LCASE(STR({a[1]})))"),
     "startsWith": (2, 2, lambda a: f"STRSTARTS(STR({a[0]}), STR({a[1]}))"),
     "endsWith": (2, 2, lambda a: f"STRENDS(STR({a[0]}), STR({a[1]}))"),
-    "matches": (2, 3, lambda a: f"REGEX(STR({a[0]}), {', '.join(a[1:])})"),
+    "matches": (2, 3, lambda a: f"REGEX(STR({a[0]}), {_whole(a[1])})"),
 }
+
+_PLAIN_STRING = re.compile(r'"((?:[^"\\\n\r]|\\.)*)"')
+
+
+def _whole(pattern: str) -> str:
+    """swrlb:matches as Pellet evaluates it: the pattern matches the whole string (Java's
+    ``Pattern.matches``), and a flags argument is ignored.  SPARQL's REGEX searches, so the pattern is
+    anchored as a group: ``a|b`` stays ``^(?:a|b)$``, and a pattern's own ``^``/``$`` still hold."""
+    plain = _PLAIN_STRING.fullmatch(pattern)
+    if plain is not None:
+        return f'"^(?:{plain.group(1)})$"'
+    return f'CONCAT("^(?:", STR({pattern}), ")$")'
+
 
 SUPPORTED = sorted(set(_COMPARISONS) | set(_FUNCTIONS) | set(_TESTS))
 
@@ -106,6 +122,30 @@ def translate(name: str, args: list[str], bound: set[str]) -> Condition | None:
     if is_bound(args[0]):
         return test(f"{args[0]} = {expr}")
     return bind(expr, args[0])
+
+
+#: built-ins false (a SPARQL error) on any argument that is not a data value: an IRI has no number,
+#: and ``<``/``>`` compare no IRIs; ``=``, ``<=`` and the string functions (``STR``) do take one
+_STRICT = frozenset(_FUNCTIONS) - {"stringConcat", "stringLength", "upperCase", "lowerCase", "substring"} \
+    | {"lessThan", "greaterThan"}
+
+
+def is_strict(name: str) -> bool:
+    """Whether built-in ``name`` (full IRI) already fails where an argument is not a data value."""
+    return name.removeprefix(SWRLB) in _STRICT
+
+
+def defined(variable: str) -> Condition:
+    """The test that a built-in's computed result, or an argument it reads, is a data value.
+
+    Pellet's built-ins take data values only: on an individual (its IRI) they are false, where
+    SPARQL's functions would read the IRI's text (``STR``) or compare IRIs (``=``).
+
+    A SPARQL error in ``BIND(expr AS ?r)`` leaves ``?r`` unbound and keeps the row, so without it a
+    rule whose built-in cannot be computed (``"abc" + 1``, a division by zero) would still fire; Pellet's
+    built-in then fails.  ``isLiteral`` of an unbound variable is an error, hence false.
+    """
+    return test(f"isLiteral({variable})")
 
 
 # --------------------------------------------------------------------------- run time

@@ -26,6 +26,7 @@ from .model import Expr, is_datatype
 from .notices import SQWRL_QUERY, Notice
 from .rule import Atom, Rule
 from .snippets import candidate_atom, different_atom, surely_in_datatype
+from .swrl_same_as import same_as_forms
 from .tbox_reader import TBoxReader
 
 T = str(TYPE)
@@ -225,16 +226,19 @@ class SwrlCompiler:
         head_atoms = self.atoms(self._one(node, swrl("head")), name)
         if not head_atoms:
             raise RuleCompileError(f"SWRL rule {name!r} has no head atom")
-        arg = _Names(self.variables)
-        body = self._body(name, body_atoms, arg)
-        rules = self._difference_rules(name, body)
-        heads: list[Rule] = []
-        for a in head_atoms:
-            heads += self._head_rules(name, a, arg, body)
-        if len(body.different) == 1:  # tested where it is asked, once the difference rules are known
-            x, y, _ = body.different[0]
-            self.asks.append(DifferenceAsk(x, y, rules[0], heads))
-        return rules + heads
+        out: list[Rule] = []
+        for body_form, head_form in same_as_forms(body_atoms, head_atoms, self.variables):
+            arg = _Names(self.variables)
+            body = self._body(name, body_form, arg)
+            rules = self._difference_rules(name, body)
+            heads: list[Rule] = []
+            for a in head_form:
+                heads += self._head_rules(name, a, arg, body)
+            if len(body.different) == 1:  # tested where it is asked, once the difference rules are known
+                x, y, _ = body.different[0]
+                self.asks.append(DifferenceAsk(x, y, rules[0], heads))
+            out += rules + heads
+        return out
 
     def _body(self, name: str, atoms: list[SwrlAtom], arg: _Names) -> _Body:
         """Patterns first, then the built-ins in an order where each one's inputs are bound,
@@ -255,21 +259,35 @@ class SwrlCompiler:
     def _builtins(name: str, pending: list[SwrlAtom], arg: _Names, body: _Body) -> None:
         """Place each built-in as soon as its inputs are bound (a BIND binds its result)."""
         pending = list(pending)
+        #: variables to test for a data value, and those a strict built-in's condition already proves one
+        needs: dict[str, None] = {}
+        proven: set[str] = set()
         while pending:
             placed = False
             for a in list(pending):
+                texts = [arg(x) for x in a.args]
+                iri = a.predicate.value if a.predicate else ""
                 with _about(name, a):
-                    placed_as = builtins.translate(a.predicate.value if a.predicate else "",
-                                                   [arg(x) for x in a.args], body.bound)
+                    placed_as = builtins.translate(iri, texts, body.bound)
                 if placed_as is not None:
                     body.conditions.append(placed_as)
+                    # a built-in's arguments are data values: on an individual it is false, as in Pellet;
+                    # and an error leaves a BIND's variable unbound but keeps the row, so the built-in
+                    # holds only where its value is defined (isLiteral of an unbound variable is false)
+                    inputs = [t for t in texts if t in body.bound]
+                    if builtins.is_strict(iri):
+                        proven.update(inputs)
+                    else:
+                        needs.update(dict.fromkeys(inputs))
                     if placed_as.binds:
+                        needs[placed_as.binds] = None
                         body.bound.add(placed_as.binds)
                     pending.remove(a)
                     placed = True
             if not placed:
                 raise RuleCompileError(f"SWRL rule {name!r}, atom {pending[0].describe(name)}: its input variables "
                                        "are never bound (rule is not DL-safe)")
+        body.conditions += [builtins.defined(v) for v in needs if v not in proven]
 
     @staticmethod
     def _difference_rules(name: str, body: _Body) -> list[Rule]:
