@@ -66,8 +66,12 @@ FILES = Path(tempfile.gettempdir()) / "topostore-fidelity"
 def pellet(text: str) -> dict:
     """Pellet's answers for a Turtle document: consistency, and each individual of :data:`BASE`'s
     namespaces with its named classes and object property values (IRIs)."""
-    path = saved(text)
-    run = subprocess.run([sys.executable, "-c", PELLET_SCRIPT, path.resolve().as_uri(), BASE],
+    return pellet_of_file(saved(text))
+
+
+def pellet_of_file(path: Path, base: str = BASE) -> dict:
+    """:func:`pellet`'s answers for an ontology file, for the individuals of namespaces under ``base``."""
+    run = subprocess.run([sys.executable, "-c", PELLET_SCRIPT, path.resolve().as_uri(), base],
                          capture_output=True, text=True, timeout=300, env=pellet_env())
     assert run.returncode == 0, run.stderr[-2000:]
     return json.loads(run.stdout.strip().splitlines()[-1])
@@ -610,3 +614,69 @@ def test_satisfiable_look_alikes_as_pellet(name: str) -> None:
     text = PREFIXES + SATISFIABLE[name] + " :x a :C ."
     assert pellet(text)["consistent"]
     assert loaded(text).reason().consistent
+
+
+# ---------------------------------------------------------------- SAVE declares what it writes (rdf/declarations.py)
+
+def test_saved_manipulations_read_by_pellet_as_topostore(tmp_path: Path) -> None:
+    """Individuals and properties the commands introduced are declared in the saved file, so Owlready2 (and
+    Pellet through it) sees them, with topostore's classes; the stored graph holds no new declaration."""
+    from support import ABOX_OWL, IRI
+
+    from topostore.armor import ArmorService
+
+    def ok(command: str, spec1: str = "", spec2: str = "", *args: str):
+        reply = svc.call({"client_name": "c", "reference_name": "ref", "command": command,
+                          "primary_command_spec": spec1, "secondary_command_spec": spec2, "args": list(args)})
+        assert reply.success and reply.exit_code == 0, reply
+        return reply
+
+    svc, ns = ArmorService(), IRI + "#"
+    ok("LOAD", "FILE", "", str(ABOX_OWL), IRI, "true", "PELLET", "true")
+    ok("ADD", "DATAPROP", "IND", "visitedAt", "R9", "LONG", "1665579200")
+    ok("ADD", "OBJECTPROP", "IND", "hasDoor", "C9", "D9")
+    ok("ADD", "OBJECTPROP", "IND", "hasDoor", "C9", "D2")
+    ok("DISJOINT", "IND", "", "D9", "D2")
+    ok("REASON")
+    before = svc.reference("ref").ontology.triples()
+    ok("SAVE", "", "", str(tmp_path / "saved.owl"))
+    assert svc.reference("ref").ontology.triples() == before
+    theirs = pellet_of_file(tmp_path / "saved.owl", ns)
+    assert theirs["consistent"]
+    for name in ("R9", "C9", "D9"):
+        ours = sorted(t.strip("<>") for t in ok("QUERY", "IND", "", name).queried_objects if t.startswith("<" + ns))
+        assert ns + name in theirs["individuals"], name
+        assert theirs["individuals"][ns + name]["types"] == ours, name
+    assert any(t.endswith("#CORRIDOR>") for t in ok("QUERY", "IND", "", "C9").queried_objects)
+
+
+# ---------------------------------------------------------------- OWL 2 datatype definitions (compile/datatype_definitions.py)
+
+SMALL = (":Small a rdfs:Datatype ; owl:equivalentClass [ a rdfs:Datatype ; owl:onDatatype xsd:integer ; "
+         "owl:withRestrictions ( [ xsd:maxInclusive 10 ] ) ] . :d a owl:DatatypeProperty . ")
+#: name -> Turtle with a named datatype defined as a range, used where the range itself may stand
+DATATYPE_DEFINITIONS = {
+    "dtdef_range": SMALL + ":d rdfs:range :Small . :a a owl:NamedIndividual ; :d 50 .",
+    "dtdef_range_within": SMALL + ":d rdfs:range :Small . :a a owl:NamedIndividual ; :d 5 .",
+    "dtdef_some": SMALL + ":C owl:equivalentClass [ a owl:Restriction ; owl:onProperty :d ; owl:someValuesFrom :Small ] ."
+                          " :a a owl:NamedIndividual ; :d 5 . :b a owl:NamedIndividual ; :d 50 .",
+    "dtdef_all": SMALL + ":C rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :d ; owl:allValuesFrom :Small ] ."
+                         " :a a owl:NamedIndividual, :C ; :d 50 .",
+    "dtdef_chain": SMALL + ":Tiny a rdfs:Datatype ; owl:equivalentClass :Small . :d rdfs:range :Tiny ."
+                           " :a a owl:NamedIndividual ; :d 50 .",
+}
+
+
+@pytest.mark.parametrize("name", list(DATATYPE_DEFINITIONS))
+def test_datatype_definitions_as_pellet(name: str) -> None:
+    """A named datatype defined as a range with numeric facets is that range: consistency and classes are Pellet's,
+    and the definition is no class axiom set aside."""
+    text, ns = document(name, DATATYPE_DEFINITIONS[name]), namespace(name)
+    theirs = pellet(text)
+    o = loaded(text)
+    assert not [n for n in o.notices if "Small" in str(n) or "Tiny" in str(n)]
+    if not theirs["consistent"]:
+        assert not o.reason().consistent
+        return
+    ours = topostore(o, list(theirs["individuals"]))
+    assert _in_namespace(only(ours, ns), ns) == _in_namespace(only(theirs, ns), ns)

@@ -16,6 +16,7 @@ from rich.table import Table
 
 from ..compile.rule import Rule
 from ..ontology.named_queries import QueryItem, named_queries
+from ..rdf.declarations import declared
 from ..rdf.vocab import ASSERTED, INFERRED, OWL, RDF, RDFS, XSD
 from ..stores.base import guess_format, serialize
 from .loading import _existing, load_files, reason_with_progress
@@ -80,7 +81,7 @@ def reason(
             triples = onto.triples(inferred=True)
         prefixes = {"owl": OWL, "rdf": RDF, "rdfs": RDFS, "xsd": XSD, "": onto.prefix}
         out.parent.mkdir(parents=True, exist_ok=True)
-        out.write_bytes(serialize(triples, rdf_format, prefixes))
+        out.write_bytes(serialize(declared(triples), rdf_format, prefixes))
         click.echo(f"Wrote {len(triples)} triples to {out}")
     if report.consistent:
         click.echo("Consistent.")

@@ -17,6 +17,7 @@ from ..rdf.terms import Term
 from ..rdf.vocab import EXPR_PREFIX, NOTHING, OWL, RDFS, THING, TYPE, XSD, is_skolem, owl
 from ..stores.base import Store
 from . import data_ranges
+from .datatype_definitions import is_definition, read_definitions
 from .model import Expr, Prop, TBox, describe, is_datatype
 
 _CHARACTERISTICS = (
@@ -39,6 +40,8 @@ class TBoxReader:
         self._depth = 0
         self._declared_data = {s for s in store.subjects(TYPE, owl("DatatypeProperty"), graph) if isinstance(s, NamedNode)}
         self._declared_object = {s for s in store.subjects(TYPE, owl("ObjectProperty"), graph) if isinstance(s, NamedNode)}
+        #: each named datatype defined as a data range, and the range it stands for (read first by :meth:`read`)
+        self.datatype_defs: dict[NamedNode, NamedNode] = {}
 
     # ---------------------------------------------------------------- helpers
     def _one(self, s: Term, p: str) -> Term | None:
@@ -110,7 +113,7 @@ class TBoxReader:
                 return None, self.data_range(value, f"restriction on {prop.iri.value}")
             if not isinstance(value, NamedNode):
                 raise RuleCompileError(f"unsupported data range in restriction on {prop.iri.value}")
-            return None, value
+            return None, self.datatype_defs.get(value, value)
         if value == THING:
             return None, None
         return self.expr(value), None
@@ -175,7 +178,8 @@ class TBoxReader:
     def _class_axioms(self, tb: TBox) -> None:
         expr, st, g = self.expr, self.store, self.graph
         self._each(tb, RDFS + "subClassOf", lambda t: tb.subclass.append((expr(t.subject), expr(t.object))))
-        self._each(tb, OWL + "equivalentClass", lambda t: tb.equivalent.append((expr(t.subject), expr(t.object))))
+        self._each(tb, OWL + "equivalentClass", lambda t: is_definition(t, self) or
+                   tb.equivalent.append((expr(t.subject), expr(t.object))))
         self._each(tb, OWL + "disjointWith", lambda t: tb.disjoint.append((expr(t.subject), expr(t.object))))
         for node in st.subjects(TYPE, owl("AllDisjointClasses"), g):
             try:
@@ -260,10 +264,13 @@ class TBoxReader:
 
         def range_(t) -> None:
             p = prop(t.subject)
-            if is_datatype(t.object) or p.iri in tb.data_properties:
+            if is_datatype(t.object) or p.iri in tb.data_properties or t.object in self.datatype_defs:
                 tb.data_properties.add(p.iri)
                 if isinstance(t.object, NamedNode) and not is_skolem(t.object):
-                    tb.data_range.append((p.iri, t.object))
+                    dt = self.datatype_defs.get(t.object, t.object)
+                    tb.data_range.append((p.iri, dt))
+                    if dt != t.object:
+                        tb.data_range_node[(p.iri, dt)] = t.object
                 elif isinstance(t.object, NamedNode):
                     dt = self.data_range(t.object, f"the range of {p.iri.value}")
                     tb.data_range.append((p.iri, dt))
@@ -303,6 +310,8 @@ class TBoxReader:
         for name in _CHARACTERISTICS:
             tb.characteristics[name] = {s for s in st.subjects(TYPE, owl(name), g) if isinstance(s, NamedNode)}
         tb.named_classes = {s for s in st.subjects(TYPE, owl("Class"), g) if not is_skolem(s)}
+        self.datatype_defs, aside = read_definitions(self)
+        tb.unsupported += aside
 
         self._class_axioms(tb)
         self._named_definitions(tb)
@@ -358,7 +367,7 @@ _EXPRESSION_PREDICATES = ("onProperty", "intersectionOf", "unionOf", "complement
 
 def pred_is_data(value: Term, prop: Prop, reader: TBoxReader) -> bool:
     """Whether a restriction filler is a data range (by the filler or by the property's declaration)."""
-    if is_datatype(value):
+    if is_datatype(value) or value in reader.datatype_defs:
         return True
     if is_skolem(value):
         # a data range expression (datatype restriction, oneOf of literals)

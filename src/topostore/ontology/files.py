@@ -24,6 +24,7 @@ from ..compile.notices import RULE_REPAIRED, RULE_SKIPPED, Notice, grouped, publ
 from ..compile.swrl_repair import repair_rules, skip_rule
 from ..errors import IncompleteOntologyError, RuleCompileError, TopostoreError
 from ..rdf.collector import collector_paused
+from ..rdf.declarations import declared
 from ..rdf.safeio import atomic_write, read_regular_file
 from ..rdf.vocab import (
     ASSERTED,
@@ -291,10 +292,12 @@ class OntologyFiles:
         return self.onto.store.dump(graphs, restore_literals_from=ASSERTED)
 
     def serialize(self, fmt: str | RdfFormat = "turtle", inferred: bool = False) -> bytes:
+        """The ontology as a document, with the declarations its facts need and the graph may lack
+        (:mod:`topostore.rdf.declarations`); the stored graph is unchanged."""
         rdf_format = guess_format("x", fmt) if isinstance(fmt, str) else fmt
         prefixes = {"owl": OWL, "rdf": RDF, "rdfs": RDFS, "xsd": XSD, "swrl": SWRL,
                     "swrlb": SWRLB, "": self.onto.prefix}
-        written = serialize(self.triples(inferred), rdf_format, prefixes)
+        written = serialize(declared(self.triples(inferred)), rdf_format, prefixes)
         return self.onto.store.forms.tags.respell(written, rdf_format)  # pyoxigraph lowers language tags
 
     def save(self, path: str | os.PathLike[str], fmt: str | None = None, inferred: bool = False) -> Path:

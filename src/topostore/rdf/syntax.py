@@ -16,6 +16,7 @@ import pyoxigraph as ox
 from pyoxigraph import BlankNode, RdfFormat, Triple
 
 from ..errors import LoadError
+from .owl_syntaxes import refuse_owl_syntaxes
 from .safeio import check_xml_entities
 from .skolem import skolem
 
@@ -114,7 +115,8 @@ def parser(data: bytes, fmt: RdfFormat, base_iri: str | None, source: str) -> It
     """pyoxigraph's own iterator over a document's quads (blank nodes renamed apart from every other
     document's), for a caller that hands it to pyoxigraph whole (no Python frame per quad); RDF/XML
     declaring entities refused first.  What it raises midway is turned into the load's error by
-    :func:`parse_error`."""
+    :func:`parse_error`.  A document in one of OWL's own syntaxes is refused by name first."""
+    refuse_owl_syntaxes(data, source)
     if fmt == RdfFormat.RDF_XML:
         check_xml_entities(data, source)
     try:

@@ -1,0 +1,77 @@
+"""OWL 2 datatype definitions: a named datatype equal to a data range (``:Small owl:equivalentClass
+[ a rdfs:Datatype ; owl:onDatatype xsd:integer ; owl:withRestrictions ( [ xsd:maxInclusive 10 ] ) ]``).
+
+OWL 2 maps ``DatatypeDefinition(:Small DR)`` to an ``owl:equivalentClass`` triple, so the class axioms
+would read it as a class equivalence and set it aside as a malformed class expression.  Read here
+first instead: the name stands for the range wherever the range itself may stand (a property's range,
+a restriction's filler), as the IRI :mod:`.data_ranges` gives it, or as the built-in datatype it is
+made equal to.  A definition by a range topostore does not test (a data one-of, a union, a string
+facet) is set aside with its reason, and the name stays undefined.
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+from pyoxigraph import NamedNode, Triple
+
+from ..errors import RuleCompileError
+from ..rdf.vocab import OWL, RDFS, TYPE, is_skolem
+from .model import is_datatype
+
+if TYPE_CHECKING:  # pragma: no cover
+    from .tbox_reader import TBoxReader
+
+_DATATYPE = NamedNode(RDFS + "Datatype")
+_EQUIVALENT = NamedNode(OWL + "equivalentClass")
+
+
+def is_definition(t: Triple, reader: TBoxReader) -> bool:
+    """Whether an ``owl:equivalentClass`` triple defines a datatype: a named datatype made equal to a data
+    range (a node restricting a datatype, one typed ``rdfs:Datatype``, or a named datatype: a built-in one, one
+    declared ``rdfs:Datatype``)."""
+    if not isinstance(t.subject, NamedNode) or is_skolem(t.subject):
+        return False
+    declared = _DATATYPE in reader.store.objects(t.subject, TYPE, reader.graph)
+    if not isinstance(t.object, NamedNode):
+        return False
+    if is_skolem(t.object):
+        return bool(reader.store.objects(t.object, NamedNode(OWL + "onDatatype"), reader.graph)) or \
+            _DATATYPE in reader.store.objects(t.object, TYPE, reader.graph)
+    return declared and (is_datatype(t.object) or _DATATYPE in reader.store.objects(t.object, TYPE, reader.graph))
+
+
+def read_definitions(reader: TBoxReader) -> tuple[dict[NamedNode, NamedNode], list[tuple[str, str]]]:
+    """({named datatype: the range it stands for}, [(axiom, why set aside)]): every datatype definition
+    of the graph, a chain of names (``:A`` defined as ``:B``, ``:B`` as a range) followed to its end."""
+    told: dict[NamedNode, NamedNode] = {}
+    aside: list[tuple[str, str]] = []
+    for t in reader.store.triples(None, _EQUIVALENT, None, reader.graph):
+        if not is_definition(t, reader):
+            continue
+        name = t.subject
+        if not is_skolem(t.object):
+            told[name] = t.object
+            continue
+        try:
+            told[name] = reader.data_range(t.object, f"the definition of {_short(name)}")
+        except RuleCompileError as exc:
+            aside.append((f"{_short(name)} DatatypeDefinition", f"{exc}: {_short(name)} stays undefined"))
+    return {name: _end(name, told) for name in told}, aside
+
+
+def _end(name: NamedNode, told: dict[NamedNode, NamedNode]) -> NamedNode:
+    """What a chain of defined names ends in (the last name of a cycle, which stays a name)."""
+    seen = {name}
+    while (nxt := told.get(name)) is not None and nxt not in seen:
+        seen.add(nxt)
+        name = nxt
+    return name
+
+
+def _short(t: NamedNode) -> str:
+    v = t.value
+    return v.rsplit("#", 1)[-1] if "#" in v else v.rsplit("/", 1)[-1]
+
+
+__all__ = ["is_definition", "read_definitions"]
