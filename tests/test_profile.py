@@ -36,6 +36,10 @@ CASES = {
                               "owl:allValuesFrom :C ] .", kinds.UNIVERSAL, "only C"),
     "max on the left": (":p a owl:FunctionalProperty . :B owl:equivalentClass [ a owl:Restriction ; "
                         "owl:onProperty :p ; owl:maxCardinality 1 ] .", kinds.MAX_LEFT, "max 1"),
+    "max on the left under a functional property": (
+        ":f a owl:ObjectProperty, owl:FunctionalProperty . :p rdfs:subPropertyOf :f . "
+        "[ a owl:Restriction ; owl:onProperty :p ; owl:maxCardinality 1 ] rdfs:subClassOf :B .", kinds.MAX_LEFT,
+        "max 1"),
     "max 2": (":B rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :p ; owl:maxCardinality 2 ] .",
               kinds.MAX_CASES, "max 2"),
     "existential into a class linked to an individual": (

@@ -44,6 +44,7 @@ from .model import Expr, Prop, TBox
 from .negation import NegativeMembership
 from .notices import Notice
 from .owl_restrictions import RestrictionRules, nm
+from .property_hierarchy import single_valued
 from .rule import Atom, Rule
 from .schema import Row, schema_rule, schema_rules
 from .schema_rows import chain_row, class_row, disjoint_row, member_row, subproperty_row, typing_row, value_row
@@ -95,6 +96,8 @@ class OwlCompiler:
         self._disjoint: list[tuple[Expr, Expr]] | None = None
         #: the rules of non-membership the complements need, a named part
         self.negation = NegativeMembership(self)
+        #: the property expressions with at most one value (a functional one's sub-properties too)
+        self.single_valued = single_valued(tbox)
 
     # ------------------------------------------------------------------ helpers
     @staticmethod

@@ -209,7 +209,7 @@ class ProfileReport:
 
     def max_told(self, p: Prop) -> bool:
         """Some axiom or characteristic tells a maximum on ``p`` (so a reasoner may derive membership)."""
-        if self.tb.has("InverseFunctionalProperty" if p.inverse else "FunctionalProperty", p.iri):
+        if p in self.owl.single_valued:  # functional, or under a functional property
             return True
         return any(pos and e.kind in ("max", "exact") for e, pos in self.on.get(p, ()))
 
