@@ -588,3 +588,13 @@ def test_annotation_property_axioms_have_no_logical_meaning_as_in_pellet() -> No
     assert ours["consistent"]
     assert ({k: v["types"] for k, v in ours["individuals"].items()}
             == {k: v["types"] for k, v in expected["individuals"].items()})
+
+
+def test_an_individual_as_the_value_of_a_data_property_with_a_datatype_range_is_consistent_as_in_pellet() -> None:
+    """Punning a data property as an object property (what aRMOR's ADD OBJECTPROP IND does with a data
+    property's name): Pellet reads two properties, so the datatype range does not check the individual."""
+    text = """:d a owl:DatatypeProperty ; rdfs:range xsd:long . :a a owl:NamedIndividual ; :d :b , "5"^^xsd:long .
+:b a owl:NamedIndividual .
+"""
+    assert pellet(document("punned_data_property", text))["consistent"]
+    assert loaded(document("punned_data_property", text)).reason().consistent

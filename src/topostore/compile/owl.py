@@ -310,7 +310,7 @@ class OwlCompiler:
             test = in_datatype(y, dt)
             if test:
                 self.emit("dt-range", f"{nm(p)} range {nm(dt)}", [Atom(x, sparql(p), y)],
-                          filters=[cond.test(f"!({test})")],
+                          filters=[cond.test(f"isLITERAL({y}) && !({test})")],  # an IRI: a punned use, not a value
                           violation=(x, y), message=f"{{x}} has the value {{y}} of {nm(p)}, outside its range {nm(dt)}",
                           value_range=(p.value, dt.value))
         for p, q in tb.subproperty:
