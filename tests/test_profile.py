@@ -24,6 +24,8 @@ PREFIXES = """@prefix : <http://e.org/a#> . @prefix owl: <http://www.w3.org/2002
 <http://e.org/a> a owl:Ontology . :p a owl:ObjectProperty .
 """
 
+RDF = "http://www.w3.org/1999/02/22-rdf-syntax-ns#"
+
 #: name -> (Turtle, axiom kind expected, a word of the axiom named)
 CASES = {
     "union superclass": (":A rdfs:subClassOf [ owl:unionOf (:B :C) ] . :a a :A .", kinds.UNION, "A SubClassOf"),
@@ -40,6 +42,15 @@ CASES = {
         ":f a owl:ObjectProperty, owl:FunctionalProperty . :p rdfs:subPropertyOf :f . "
         "[ a owl:Restriction ; owl:onProperty :p ; owl:maxCardinality 1 ] rdfs:subClassOf :B .", kinds.MAX_LEFT,
         "max 1"),
+    "a class list looping back": (
+        ":E owl:equivalentClass [ owl:intersectionOf _:l1 ] . _:l1 <%sfirst> :C ; <%srest> _:l2 . "
+        "_:l2 <%sfirst> :D ; <%srest> _:l1 ." % ((RDF,) * 4), kinds.UNSUPPORTED, "loops back"),
+    "a class list cell with two firsts": (
+        ":E owl:equivalentClass [ owl:intersectionOf _:l1 ] . _:l1 <%sfirst> :C, :D ; <%srest> <%snil> ."
+        % ((RDF,) * 3), kinds.UNSUPPORTED, "2 rdf:first"),
+    "an AllDifferent list looping back": (
+        "[] a owl:AllDifferent ; owl:distinctMembers _:l1 . _:l1 <%sfirst> :a ; <%srest> _:l2 . "
+        "_:l2 <%sfirst> :b ; <%srest> _:l1 ." % ((RDF,) * 4), kinds.UNSUPPORTED, "does not end in rdf:nil"),
     "max 2": (":B rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :p ; owl:maxCardinality 2 ] .",
               kinds.MAX_CASES, "max 2"),
     "existential into a class linked to an individual": (

@@ -13,7 +13,7 @@ from itertools import islice
 
 from pyoxigraph import NamedNode
 
-from ..rdf.vocab import FIRST, NIL, RDFS, REST, SAME_AS, TYPE, is_skolem, owl
+from ..rdf.vocab import FIRST, NIL, OWL, RDFS, REST, SAME_AS, TYPE, is_skolem, owl
 from ..stores.base import Store
 from . import data_ranges
 from .model import Expr, is_datatype, short_name
@@ -78,6 +78,23 @@ def list_vocabulary(note: Note, store: Store, graph: NamedNode) -> None:
                  "list vocabulary is not reasoned, the statement is kept as a plain triple")
 
 
+def malformed_lists(note: Note, store: Store, graph: NamedNode) -> None:
+    """An ``owl:AllDifferent`` member list that does not end in ``rdf:nil`` (it loops back on itself, or is
+    cut short), and any list cell with two ``rdf:first``: a group's keys hold every member reached, a reader
+    one of the two (the TBox's own lists are named as the reader reads them).  Two queries of a few ms on a
+    map of 40,000 list cells: a count of the cells against their first elements, one walk per group."""
+    heads = f"?group a <{OWL}AllDifferent> ; <{OWL}distinctMembers>|<{OWL}members> ?list ."
+    ends = f"SELECT ?list WHERE {{ {heads} FILTER NOT EXISTS {{ ?list <{REST.value}>* <{NIL.value}> }} }} LIMIT 1"
+    if any(True for _ in store.query(ends, graphs=[graph])):
+        note(UNSUPPORTED, "an AllDifferent axiom whose member list does not end in rdf:nil", "a malformed RDF "
+             "list (it loops back on itself or is cut short): its group holds the members reached")
+    count = f"SELECT (COUNT(*) AS ?n) (COUNT(DISTINCT ?c) AS ?m) WHERE {{ ?c <{FIRST.value}> ?x }}"
+    for row in store.query(count, graphs=[graph]):
+        if row["n"] != row["m"]:
+            note(UNSUPPORTED, "an RDF list with a cell of two rdf:first", "a malformed RDF list: an axiom reading "
+                 "it takes one of the two, an AllDifferent group both")
+
+
 def imports(note: Note, store: Store, graph: NamedNode) -> None:
     """An ``owl:imports`` of an ontology not loaded: its axioms are missing (topostore fetches no URL)."""
     imported = [t.object for t in store.triples(None, owl("imports"), None, graph)]
@@ -109,5 +126,5 @@ def reflexive_equality(store: Store, graph: NamedNode) -> Notice | None:
     return Notice(NOT_STORED, subject, REFLEXIVE_SAME_AS)
 
 
-__all__ = ["REFLEXIVE_SAME_AS", "imports", "list_vocabulary", "reflexive_equality", "top_and_bottom",
+__all__ = ["REFLEXIVE_SAME_AS", "malformed_lists", "imports", "list_vocabulary", "reflexive_equality", "top_and_bottom",
            "unchecked_datatypes"]

@@ -153,6 +153,7 @@ class ProfileReport:
         self.annotation_notices()
         graph_notices.unchecked_datatypes(self.note, self.tb.data_range, self.uses, store, graph)
         graph_notices.list_vocabulary(self.note, store, graph)
+        graph_notices.malformed_lists(self.note, store, graph)
         graph_notices.imports(self.note, store, graph)
         graph_notices.top_and_bottom(self.note, store, graph)
         same_as = graph_notices.reflexive_equality(store, graph)

@@ -18,6 +18,7 @@ from ..rdf.vocab import BUILTIN_ANNOTATION_PROPERTIES, EXPR_PREFIX, NOTHING, OWL
 from ..stores.base import Store
 from . import data_ranges
 from .model import Expr, Prop, TBox, describe, is_datatype
+from .notices import UNSUPPORTED
 
 _CHARACTERISTICS = (
     "FunctionalProperty", "InverseFunctionalProperty", "TransitiveProperty", "SymmetricProperty",
@@ -37,6 +38,8 @@ class TBoxReader:
         self.graph = graph
         self._cache: dict[Term, Expr] = {}
         self._depth = 0
+        #: the malformed lists read, by head: (members read, what is wrong)
+        self._list_faults: dict[Term, tuple[list[Term], str]] = {}
         self._declared_data = {s for s in store.subjects(TYPE, owl("DatatypeProperty"), graph) if isinstance(s, NamedNode)}
         self._declared_object = {s for s in store.subjects(TYPE, owl("ObjectProperty"), graph) if isinstance(s, NamedNode)}
         declared = {s for s in store.subjects(TYPE, owl("AnnotationProperty"), graph) if isinstance(s, NamedNode)}
@@ -51,7 +54,12 @@ class TBoxReader:
         return values[0] if values else None
 
     def _list(self, head: Term) -> list[Term]:
-        return self.store.list_items(head, self.graph)
+        """The members of a list an axiom reads; a malformed one (looping back, a cell with two rdf:first) is
+        kept for the notice that names it."""
+        items, fault = self.store.list_read(head, self.graph)
+        if fault:
+            self._list_faults.setdefault(head, (items, fault))
+        return items
 
     def prop(self, node: Term) -> Prop:
         if is_skolem(node):
@@ -340,6 +348,9 @@ class TBoxReader:
             tb.disjoint_props += [(a, b) for i, a in enumerate(members) for b in members[i + 1:]]
 
         self._typed_expressions(tb)
+        for items, fault in self._list_faults.values():
+            tb.partial.append((f"a list ({' '.join(_short(m) for m in items)})", UNSUPPORTED,
+                               f"a malformed RDF list: {fault}"))
         for e in self._cache.values():
             if e.is_named and e.node not in (THING, NOTHING) and not is_datatype(e.node):
                 tb.named_classes.add(e.node)

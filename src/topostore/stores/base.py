@@ -174,6 +174,7 @@ class Store:
     objects_many = reads.objects_many
     subjects = reads.subjects
     list_items = reads.list_items
+    list_read = reads.list_read
     contains = reads.contains
     contains_each = reads.contains_each
     contains_quads = reads.contains_quads
