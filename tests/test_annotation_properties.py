@@ -60,7 +60,10 @@ def test_declaring_an_annotation_property_later_sets_its_axioms_aside_as_a_load_
     report = o.reason()
     assert report.consistent and ex("C") not in o.types(ex("a"))
     assert [n.subject for n in o.notices if n.kind == ANNOTATION] == ["ap"]
-    scratch, _ = load(body + ":ap a owl:AnnotationProperty .\n")
+    o.add(Triple(ex("c"), ex("ap"), ex("d")))  # an assertion after it: an incremental REASON, the same rules
+    assert o.reason(mode="incremental").stats.mode == "incremental"
+    assert ex("C") not in o.types(ex("c"))
+    scratch, _ = load(body + ":ap a owl:AnnotationProperty . :c :ap :d .\n")
     scratch.reason()
     assert set(o.store.triples(graph=INFERRED)) == set(scratch.store.triples(graph=INFERRED))
     o.remove(declaration)
