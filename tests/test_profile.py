@@ -389,3 +389,22 @@ def test_an_import_is_named_only_while_its_ontology_is_not_loaded() -> None:
     o = quietly("<http://e.org/a> owl:imports <http://e.org/b> , <http://e.org/c> . "
                 "<http://e.org/b> a owl:Ontology . <http://e.org/d> owl:versionIRI <http://e.org/c> .")
     assert not any("imports" in n.subject for n in o.notices)
+
+
+def test_a_malformed_list_is_named_inside_an_open_transaction_which_stays_undoable() -> None:
+    """Read inside a transaction (the rules compiled while a change is pending), the lists are checked without
+    committing the pending writes: the transaction's failure still takes them back."""
+    text, kind, word = CASES["an AllDifferent list looping back"]
+    o = Ontology()
+    o.load_data(PREFIXES)
+    scratch = Ontology()
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", OntologyWarning)
+        scratch.load_data(PREFIXES + text)
+    triples = list(scratch.store.triples(graph=ASSERTED))
+    before = set(o.store.triples(graph=ASSERTED))
+    with pytest.raises(RuntimeError), o.store.transaction():
+        o.changes.add(*triples)
+        assert any(word in str(n) for n in o.notices if n.axiom_kind == kind)
+        raise RuntimeError("the transaction's own failure")
+    assert set(o.store.triples(graph=ASSERTED)) == before
