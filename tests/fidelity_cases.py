@@ -138,6 +138,27 @@ CASES: dict[str, str] = {
 :m a owl:NamedIndividual, :C ; :g :o ; :d 5 . :n a owl:NamedIndividual ; :g :o ; :q :w . :o a owl:NamedIndividual .
 :w a owl:NamedIndividual ; :g :z ; :d 5 . :z a owl:NamedIndividual . :k a owl:NamedIndividual ; :g :z ; :q :m .
 """,
+    # a property under a functional one (sub-, equivalent, inverse of an inverse-functional) has at most one
+    # value, so exactly one is known from one; a functional property's super-property has no maximum
+    "functional_super_properties": """
+:p a owl:ObjectProperty, owl:FunctionalProperty . :q a owl:ObjectProperty ; rdfs:subPropertyOf :p . :D a owl:Class .
+:r a owl:ObjectProperty . :p rdfs:subPropertyOf :r .
+:C owl:equivalentClass [ a owl:Restriction ; owl:onProperty :q ; owl:qualifiedCardinality "1"^^xsd:nonNegativeInteger ;
+    owl:onClass :D ] .
+:R owl:equivalentClass [ a owl:Restriction ; owl:onProperty :r ; owl:qualifiedCardinality "1"^^xsd:nonNegativeInteger ;
+    owl:onClass :D ] .
+:e a owl:DatatypeProperty, owl:FunctionalProperty . :d a owl:DatatypeProperty ; rdfs:subPropertyOf :e .
+:CD owl:equivalentClass [ a owl:Restriction ; owl:onProperty :d ; owl:qualifiedCardinality "1"^^xsd:nonNegativeInteger ;
+    owl:onDataRange xsd:integer ] .
+:f a owl:ObjectProperty, owl:FunctionalProperty . :g a owl:ObjectProperty ; owl:equivalentProperty :f .
+:CE owl:equivalentClass [ a owl:Restriction ; owl:onProperty :g ; owl:qualifiedCardinality "1"^^xsd:nonNegativeInteger ;
+    owl:onClass :D ] .
+:h a owl:ObjectProperty, owl:FunctionalProperty . :hi a owl:ObjectProperty ; owl:inverseOf :h .
+:CI owl:equivalentClass [ a owl:Restriction ; owl:onProperty [ owl:inverseOf :hi ] ;
+    owl:qualifiedCardinality "1"^^xsd:nonNegativeInteger ; owl:onClass :D ] .
+:a a owl:NamedIndividual ; :q :b . :b a owl:NamedIndividual, :D . :c a owl:NamedIndividual ; :d 5 .
+:k a owl:NamedIndividual ; :g :b . :m a owl:NamedIndividual ; :h :b . :n a owl:NamedIndividual ; :r :b .
+""",
 }
 
 

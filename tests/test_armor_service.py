@@ -634,3 +634,17 @@ def test_a_data_value_given_to_an_object_property_is_stored_reasoned_and_said(bu
     assert sorted(ok(s, "QUERY", "DATAPROP", "IND", ["isIn", "Robot1"]).queried_objects) == ['"1"^^xsd:long', '"2"^^xsd:long']
     clock = ok(s, "REPLACE", "DATAPROP", "IND", ["now", "Robot1", "LONG", "1665579750", "1665579740"])
     assert "object property" not in clock.error_description  # a data property says nothing of the kind
+
+
+@pytest.mark.parametrize("buffered", ["false", "true"])
+def test_an_individual_given_to_a_data_property_is_stored_reasoned_and_said(buffered: str) -> None:
+    """The reverse mistake: the individual is kept as given, its data range does not check it (Pellet, on the
+    SAVEd file, reads the two uses as two properties and stays consistent), and the reply says so."""
+    s = ArmorService()
+    load(s, buf_reasoner=buffered)
+    added = ok(s, "ADD", "OBJECTPROP", "IND", ["visitedAt", "R1", "C1"])
+    assert "visitedAt is a data property" in added.error_description
+    assert ok(s, "REASON").is_consistent
+    assert ok(s, "QUERY", "IND", "CLASS", ["ROOM"]).is_consistent
+    link = ok(s, "ADD", "OBJECTPROP", "IND", ["isIn", "Robot1", "C1"])
+    assert "data property" not in link.error_description  # an object property says nothing of the kind

@@ -680,3 +680,35 @@ def test_datatype_definitions_as_pellet(name: str) -> None:
         return
     ours = topostore(o, list(theirs["individuals"]))
     assert _in_namespace(only(ours, ns), ns) == _in_namespace(only(theirs, ns), ns)
+
+
+#: annotation properties, declared and built in, told a domain, a range (a datatype, a class disjoint with a
+#: value's) and a super-property, as Protégé writes them: no logical meaning, so Pellet's types and verdict
+ANNOTATIONS = """:ap a owl:AnnotationProperty ; rdfs:domain :C ; rdfs:subPropertyOf :p . :C a owl:Class .
+:p a owl:ObjectProperty ; rdfs:domain :E . :E a owl:Class .
+:src a owl:AnnotationProperty ; rdfs:range xsd:anyURI . :created a owl:AnnotationProperty ; rdfs:range xsd:dateTime .
+:definition a owl:AnnotationProperty ; rdfs:range xsd:string . :see a owl:AnnotationProperty ; rdfs:range :Doc .
+:Doc a owl:Class ; owl:disjointWith :Person . :Person a owl:Class . rdfs:label rdfs:domain :L . :L a owl:Class .
+:a a owl:NamedIndividual ; :ap :b ; :src <http://example.org/page> ; :see :bob ; rdfs:label "a" .
+:b a owl:NamedIndividual . :bob a owl:NamedIndividual, :Person .
+:C :created "yesterday" ; :definition "a thing"@en .
+"""
+
+
+def test_annotation_property_axioms_have_no_logical_meaning_as_in_pellet() -> None:
+    expected = pellet(document("annotations", ANNOTATIONS))
+    assert expected["consistent"]
+    ours = topostore(loaded(document("annotations", ANNOTATIONS)), sorted(expected["individuals"]))
+    assert ours["consistent"]
+    assert ({k: v["types"] for k, v in ours["individuals"].items()}
+            == {k: v["types"] for k, v in expected["individuals"].items()})
+
+
+def test_an_individual_as_the_value_of_a_data_property_with_a_datatype_range_is_consistent_as_in_pellet() -> None:
+    """Punning a data property as an object property (what aRMOR's ADD OBJECTPROP IND does with a data
+    property's name): Pellet reads two properties, so the datatype range does not check the individual."""
+    text = """:d a owl:DatatypeProperty ; rdfs:range xsd:long . :a a owl:NamedIndividual ; :d :b , "5"^^xsd:long .
+:b a owl:NamedIndividual .
+"""
+    assert pellet(document("punned_data_property", text))["consistent"]
+    assert loaded(document("punned_data_property", text)).reason().consistent

@@ -24,6 +24,8 @@ PREFIXES = """@prefix : <http://e.org/a#> . @prefix owl: <http://www.w3.org/2002
 <http://e.org/a> a owl:Ontology . :p a owl:ObjectProperty .
 """
 
+RDF = "http://www.w3.org/1999/02/22-rdf-syntax-ns#"
+
 #: name -> (Turtle, axiom kind expected, a word of the axiom named)
 CASES = {
     "union superclass": (":A rdfs:subClassOf [ owl:unionOf (:B :C) ] . :a a :A .", kinds.UNION, "A SubClassOf"),
@@ -36,6 +38,19 @@ CASES = {
                               "owl:allValuesFrom :C ] .", kinds.UNIVERSAL, "only C"),
     "max on the left": (":p a owl:FunctionalProperty . :B owl:equivalentClass [ a owl:Restriction ; "
                         "owl:onProperty :p ; owl:maxCardinality 1 ] .", kinds.MAX_LEFT, "max 1"),
+    "max on the left under a functional property": (
+        ":f a owl:ObjectProperty, owl:FunctionalProperty . :p rdfs:subPropertyOf :f . "
+        "[ a owl:Restriction ; owl:onProperty :p ; owl:maxCardinality 1 ] rdfs:subClassOf :B .", kinds.MAX_LEFT,
+        "max 1"),
+    "a class list looping back": (
+        ":E owl:equivalentClass [ owl:intersectionOf _:l1 ] . _:l1 <%sfirst> :C ; <%srest> _:l2 . "
+        "_:l2 <%sfirst> :D ; <%srest> _:l1 ." % ((RDF,) * 4), kinds.UNSUPPORTED, "loops back"),
+    "a class list cell with two firsts": (
+        ":E owl:equivalentClass [ owl:intersectionOf _:l1 ] . _:l1 <%sfirst> :C, :D ; <%srest> <%snil> ."
+        % ((RDF,) * 3), kinds.UNSUPPORTED, "2 rdf:first"),
+    "an AllDifferent list looping back": (
+        "[] a owl:AllDifferent ; owl:distinctMembers _:l1 . _:l1 <%sfirst> :a ; <%srest> _:l2 . "
+        "_:l2 <%sfirst> :b ; <%srest> _:l1 ." % ((RDF,) * 4), kinds.UNSUPPORTED, "does not end in rdf:nil"),
     "max 2": (":B rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :p ; owl:maxCardinality 2 ] .",
               kinds.MAX_CASES, "max 2"),
     "existential into a class linked to an individual": (
@@ -374,3 +389,22 @@ def test_an_import_is_named_only_while_its_ontology_is_not_loaded() -> None:
     o = quietly("<http://e.org/a> owl:imports <http://e.org/b> , <http://e.org/c> . "
                 "<http://e.org/b> a owl:Ontology . <http://e.org/d> owl:versionIRI <http://e.org/c> .")
     assert not any("imports" in n.subject for n in o.notices)
+
+
+def test_a_malformed_list_is_named_inside_an_open_transaction_which_stays_undoable() -> None:
+    """Read inside a transaction (the rules compiled while a change is pending), the lists are checked without
+    committing the pending writes: the transaction's failure still takes them back."""
+    text, kind, word = CASES["an AllDifferent list looping back"]
+    o = Ontology()
+    o.load_data(PREFIXES)
+    scratch = Ontology()
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", OntologyWarning)
+        scratch.load_data(PREFIXES + text)
+    triples = list(scratch.store.triples(graph=ASSERTED))
+    before = set(o.store.triples(graph=ASSERTED))
+    with pytest.raises(RuntimeError), o.store.transaction():
+        o.changes.add(*triples)
+        assert any(word in str(n) for n in o.notices if n.axiom_kind == kind)
+        raise RuntimeError("the transaction's own failure")
+    assert set(o.store.triples(graph=ASSERTED)) == before

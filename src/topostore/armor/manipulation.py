@@ -86,9 +86,25 @@ def _object_property_note(onto: Ontology, prop: NamedNode, description: str) -> 
             "skips it")
 
 
+def _data_property_note(onto: Ontology, prop: NamedNode, description: str) -> str:
+    """What an individual given to a declared data property does ("" for any other property), the reverse of
+    :func:`_object_property_note`: stored and answered as given, never checked against the data range (Pellet
+    reads the two uses as two properties)."""
+    try:
+        rules = onto.rules
+    except TopostoreError:
+        return ""
+    if prop not in rules.data_properties or prop in rules.object_properties:
+        return ""
+    return (f"{description}: {prop.value} is a data property: the individual is stored and answered as given; "
+            "what reads the property's values as data values (its range, the rules comparing them) skips it")
+
+
 def add_objectprop_ind(ctx: Context) -> Reply:
     prop, ind, value = ctx.iri(0, "object property"), ctx.iri(1, "individual"), ctx.iri(2, "value individual")
-    return ctx.submit(fixed("ADD OBJECTPROP IND", add=[Triple(ind, prop, value)]))
+    triple = Triple(ind, prop, value)
+    return ctx.submit(Change("ADD OBJECTPROP IND", lambda onto: Delta(
+        add=[triple], warning=_data_property_note(onto, prop, "ADD OBJECTPROP IND"))))
 
 
 def add_cardinality_min(ctx: Context) -> Reply:

@@ -13,7 +13,7 @@ from itertools import islice
 
 from pyoxigraph import NamedNode
 
-from ..rdf.vocab import FIRST, NIL, RDFS, REST, SAME_AS, TYPE, is_skolem, owl
+from ..rdf.vocab import FIRST, NIL, OWL, RDFS, REST, SAME_AS, TYPE, is_skolem, owl
 from ..stores.base import Store
 from . import data_ranges
 from .model import Expr, is_datatype, short_name
@@ -82,6 +82,46 @@ def list_vocabulary(note: Note, store: Store, graph: NamedNode) -> None:
                  "list vocabulary is not reasoned, the statement is kept as a plain triple")
 
 
+def malformed_lists(note: Note, store: Store, graph: NamedNode) -> None:
+    """An ``owl:AllDifferent`` member list that does not end in ``rdf:nil`` (it loops back on itself, or is
+    cut short), and any list cell with two ``rdf:first``: a group's keys hold every member reached, a reader
+    one of the two (the TBox's own lists are named as the reader reads them)."""
+    if store.writes_pending:  # a query would commit them: the quad reads see them and leave them undoable
+        two_firsts, open_end = _malformed_by_quads(store, graph)
+    else:  # two queries, 15 ms and 31 ms CPU on a map of 40,000 list cells (the quad reads: 170 ms)
+        count = f"SELECT (COUNT(*) AS ?n) (COUNT(DISTINCT ?c) AS ?m) WHERE {{ ?c <{FIRST.value}> ?x }}"
+        two_firsts = any(row["n"] != row["m"] for row in store.query(count, graphs=[graph]))
+        ends = (f"SELECT ?list WHERE {{ ?group a <{OWL}AllDifferent> ; <{OWL}distinctMembers>|<{OWL}members> "
+                f"?list . FILTER NOT EXISTS {{ ?list <{REST.value}>* <{NIL.value}> }} }} LIMIT 1")
+        open_end = any(True for _ in store.query(ends, graphs=[graph]))
+    if two_firsts:
+        note(UNSUPPORTED, "an RDF list with a cell of two rdf:first", "a malformed RDF list: an axiom "
+             "reading it takes one of the two, an AllDifferent group both")
+    if open_end:
+        note(UNSUPPORTED, "an AllDifferent axiom whose member list does not end in rdf:nil", "a malformed "
+             "RDF list (it loops back on itself or is cut short): its group holds the members reached")
+
+
+def _malformed_by_quads(store: Store, graph: NamedNode) -> tuple[bool, bool]:
+    """:func:`malformed_lists`' two tests by the quad reads: (a cell with two rdf:first, an AllDifferent
+    member list not ending in rdf:nil)."""
+    cells: set = set()
+    two_firsts = False
+    for t in store.triples(None, FIRST, None, graph):
+        two_firsts = two_firsts or t.subject in cells
+        cells.add(t.subject)
+    groups = store.subjects(TYPE, owl("AllDifferent"), graph)
+    rest = {t.subject: t.object for t in store.triples(None, REST, None, graph)} if groups else {}
+    for head in (h for g in groups for p in (owl("distinctMembers"), owl("members")) for h in store.objects(g, p, graph)):
+        node, seen = head, set()
+        while node != NIL and node not in seen and node in rest:
+            seen.add(node)
+            node = rest[node]
+        if node != NIL:
+            return two_firsts, True
+    return two_firsts, False
+
+
 def imports(note: Note, store: Store, graph: NamedNode) -> None:
     """An ``owl:imports`` of an ontology not loaded: its axioms are missing (topostore fetches no URL)."""
     imported = [t.object for t in store.triples(None, owl("imports"), None, graph)]
@@ -113,5 +153,5 @@ def reflexive_equality(store: Store, graph: NamedNode) -> Notice | None:
     return Notice(NOT_STORED, subject, REFLEXIVE_SAME_AS)
 
 
-__all__ = ["REFLEXIVE_SAME_AS", "imports", "list_vocabulary", "reflexive_equality", "top_and_bottom",
+__all__ = ["REFLEXIVE_SAME_AS", "malformed_lists", "imports", "list_vocabulary", "reflexive_equality", "top_and_bottom",
            "unchecked_datatypes"]

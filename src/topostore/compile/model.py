@@ -140,6 +140,10 @@ class TBox:
     keys: list[tuple[Expr, tuple[Prop, ...]]] = field(default_factory=list)
     #: axioms read without rules of their own (hasKey, disjoint unions' covering, ...): (axiom, kind, why)
     partial: list[tuple[str, str, str]] = field(default_factory=list)
+    #: annotation properties whose axioms were set aside, each with those axioms (as text): no logical meaning
+    annotation_axioms: dict[NamedNode, list[str]] = field(default_factory=dict)
+    #: IRIs declared both an annotation property and an object or data property: read as the latter
+    annotation_punned: set[NamedNode] = field(default_factory=set)
 
     def has(self, characteristic: str, p: NamedNode) -> bool:
         return p in self.characteristics.get(characteristic, set())

@@ -32,6 +32,8 @@ SQWRL_QUERY = "SQWRL query"
 INCOMPLETE = "not reasoned completely"
 #: Informative: an entailment every ontology of the kind has, answered by convention instead of stored.
 NOT_STORED = "entailed, not stored"
+#: Informative: an annotation property's axioms (domain, range, super-property), set aside as OWL 2 and Pellet do.
+ANNOTATION = "annotation property axioms without logical meaning"
 
 #: Axiom kinds of the profile report, the ``axiom_kind`` of an ``INCOMPLETE`` notice (the groups of the LOAD
 #: warning): :mod:`.profile` and :mod:`.graph_notices`.
@@ -148,5 +150,6 @@ def publish(notices: Iterable[Notice], source: str = "") -> list[str]:
     return lines
 
 
-__all__ = ["INCOMPLETE", "NOT_STORED", "RULE_REPAIRED", "RULE_SKIPPED", "SQWRL_QUERY", "Notice", "OntologyWarning", "answered",
+__all__ = ["ANNOTATION", "INCOMPLETE", "NOT_STORED",
+           "RULE_REPAIRED", "RULE_SKIPPED", "SQWRL_QUERY", "Notice", "OntologyWarning", "answered",
            "grouped", "publish", "unsaid", "warn"]

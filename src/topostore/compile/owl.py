@@ -44,6 +44,7 @@ from .model import Expr, Prop, TBox
 from .negation import NegativeMembership
 from .notices import Notice
 from .owl_restrictions import RestrictionRules, nm
+from .property_hierarchy import single_valued
 from .rule import Atom, Rule
 from .schema import Row, schema_rule, schema_rules
 from .schema_rows import chain_row, class_row, disjoint_row, member_row, subproperty_row, typing_row, value_row
@@ -95,6 +96,8 @@ class OwlCompiler:
         self._disjoint: list[tuple[Expr, Expr]] | None = None
         #: the rules of non-membership the complements need, a named part
         self.negation = NegativeMembership(self)
+        #: the property expressions with at most one value (a functional one's sub-properties too)
+        self.single_valued = single_valued(tbox)
 
     # ------------------------------------------------------------------ helpers
     @staticmethod
@@ -307,7 +310,7 @@ class OwlCompiler:
             test = in_datatype(y, dt)
             if test:
                 self.emit("dt-range", f"{nm(p)} range {nm(dt)}", [Atom(x, sparql(p), y)],
-                          filters=[cond.test(f"!({test})")],
+                          filters=[cond.test(f"isLITERAL({y}) && !({test})")],  # an IRI: a punned use, not a value
                           violation=(x, y), message=f"{{x}} has the value {{y}} of {nm(p)}, outside its range {nm(dt)}",
                           value_range=(p.value, dt.value))
         for p, q in tb.subproperty:

@@ -21,6 +21,7 @@ from . import data_ranges
 from .condition import Condition
 from .counting import PAIRWISE_MAX, UNREACHABLE, count_at_least, counting_notice
 from .model import Expr
+from .property_hierarchy import name as prop_name
 from .rule import Atom
 from .schema_rows import filler_row
 
@@ -170,8 +171,10 @@ class RestrictionRules:
             self.compiler.emit(name, origin, atoms, Atom(x, T, node), filters, reads)
             return
         # exact: the minimum is met; a maximum must be known too
-        if e.n == 1 and not e.prop.inverse and self.compiler.tb.has("FunctionalProperty", e.prop.iri):
-            self.compiler.emit(name, origin + " (functional property)", atoms, Atom(x, T, node), filters, reads)
+        told = self.compiler.single_valued.get(e.prop) if e.n == 1 else None
+        if told is not None:
+            why = "functional property" if told == e.prop else f"at most one value, as {prop_name(told)} is functional"
+            self.compiler.emit(name, origin + f" ({why})", atoms, Atom(x, T, node), filters, reads)
         for m in self.compiler.all_expressions():
             if m.node != e.node and m.kind in ("max", "exact") and m.prop == e.prop and m.n <= e.n \
                     and self.compiler.filler_subsumed(e, m):

@@ -46,6 +46,7 @@ from ..stores.base import Store
 from . import graph_notices
 from .model import Expr, Prop, TBox, describe, short_name
 from .notices import (
+    ANNOTATION,
     COMPLEMENT,
     DIFFERENCE,
     EXISTENTIAL,
@@ -149,14 +150,27 @@ class ProfileReport:
             self.note(UNSUPPORTED, axiom, f"set aside: {reason}")
         for axiom, kind, reason in self.tb.partial:
             self.note(kind, axiom, reason)
+        self.annotation_notices()
         graph_notices.unchecked_datatypes(self.note, self.tb.data_range, self.uses, store, graph)
         graph_notices.list_vocabulary(self.note, store, graph)
+        graph_notices.malformed_lists(self.note, store, graph)
         graph_notices.imports(self.note, store, graph)
         graph_notices.top_and_bottom(self.note, store, graph)
         same_as = graph_notices.reflexive_equality(store, graph)
         if same_as is not None:
             self.notices.setdefault((NOT_STORED, "owl:sameAs"), same_as)
         return list(self.notices.values())
+
+    def annotation_notices(self) -> None:
+        """One notice per annotation property whose axioms were set aside, and per IRI declared both an
+        annotation and an object or data property (OWL 2 DL forbids it; the object or data reading is kept)."""
+        for p, axioms in self.tb.annotation_axioms.items():
+            self.notices.setdefault((ANNOTATION, p.value), Notice(
+                ANNOTATION, short_name(p), f"an annotation property: {'; '.join(axioms)} set aside, as Pellet does"))
+        for p in sorted(self.tb.annotation_punned, key=lambda n: n.value):
+            self.notices.setdefault((ANNOTATION, p.value), Notice(
+                ANNOTATION, short_name(p), "declared both an annotation property and an object or data property, "
+                "which OWL 2 DL forbids: read as the object or data property"))
 
     # ---------------------------------------------------------------- expressions
     def expression(self, e: Expr, positive: bool, axiom: str, subject: NamedNode | None = None) -> None:
@@ -196,7 +210,7 @@ class ProfileReport:
 
     def max_told(self, p: Prop) -> bool:
         """Some axiom or characteristic tells a maximum on ``p`` (so a reasoner may derive membership)."""
-        if self.tb.has("InverseFunctionalProperty" if p.inverse else "FunctionalProperty", p.iri):
+        if p in self.owl.single_valued:  # functional, or under a functional property
             return True
         return any(pos and e.kind in ("max", "exact") for e, pos in self.on.get(p, ()))
 

@@ -57,6 +57,21 @@ def super_expressions(tb: TBox) -> dict[Prop, frozenset[Prop]]:
     return closure
 
 
+def single_valued(tb: TBox) -> dict[Prop, Prop]:
+    """Each property expression that has at most one value, with the told one that says so (itself or a
+    super-expression): a sub-property of a functional property is functional, and so is the inverse of an
+    inverse-functional one (``q ⊑ p`` and ``p`` functional: ``q`` has at most one value, OWL 2 and Pellet)."""
+    ch = tb.characteristics
+    told = {Prop(p) for p in ch.get("FunctionalProperty", ())} | {
+        Prop(p, True) for p in ch.get("InverseFunctionalProperty", ())}
+    out = {p: p for p in told}
+    for p, supers in super_expressions(tb).items():
+        found = sorted(supers & told, key=name)
+        if p not in out and found:
+            out[p] = found[0]
+    return out
+
+
 def subject_classes(tb: TBox, supers: dict[Prop, frozenset[Prop]], p: Prop) -> list[tuple[str, Expr]]:
     """The classes every subject of ``p`` is in, each with the axiom it comes from ("domain of q"): the
     domain of each of ``p``'s super-expressions (itself included), the range of an inverse one; owl:Thing

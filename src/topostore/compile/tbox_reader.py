@@ -14,11 +14,12 @@ from pyoxigraph import Literal, NamedNode
 
 from ..errors import RuleCompileError
 from ..rdf.terms import Term
-from ..rdf.vocab import EXPR_PREFIX, NOTHING, OWL, RDFS, THING, TYPE, XSD, is_skolem, owl
+from ..rdf.vocab import BUILTIN_ANNOTATION_PROPERTIES, EXPR_PREFIX, NOTHING, OWL, RDFS, THING, TYPE, XSD, is_skolem, owl
 from ..stores.base import Store
 from . import data_ranges
 from .datatype_definitions import is_definition, read_definitions
 from .model import Expr, Prop, TBox, describe, is_datatype
+from .notices import UNSUPPORTED
 
 _CHARACTERISTICS = (
     "FunctionalProperty", "InverseFunctionalProperty", "TransitiveProperty", "SymmetricProperty",
@@ -38,10 +39,17 @@ class TBoxReader:
         self.graph = graph
         self._cache: dict[Term, Expr] = {}
         self._depth = 0
+        #: the malformed lists read, by head: (members read, what is wrong)
+        self._list_faults: dict[Term, tuple[list[Term], str]] = {}
         self._declared_data = {s for s in store.subjects(TYPE, owl("DatatypeProperty"), graph) if isinstance(s, NamedNode)}
         self._declared_object = {s for s in store.subjects(TYPE, owl("ObjectProperty"), graph) if isinstance(s, NamedNode)}
         #: each named datatype defined as a data range, and the range it stands for (read first by :meth:`read`)
         self.datatype_defs: dict[NamedNode, NamedNode] = {}
+        declared = {s for s in store.subjects(TYPE, owl("AnnotationProperty"), graph) if isinstance(s, NamedNode)}
+        #: IRIs declared both an annotation and an object or data property (illegal punning): the latter reading kept
+        self._punned = declared & (self._declared_data | self._declared_object)
+        #: the annotation properties (declared or built in) whose axioms carry no logical meaning
+        self._annotation = (declared | BUILTIN_ANNOTATION_PROPERTIES) - self._declared_data - self._declared_object
 
     # ---------------------------------------------------------------- helpers
     def _one(self, s: Term, p: str) -> Term | None:
@@ -49,7 +57,12 @@ class TBoxReader:
         return values[0] if values else None
 
     def _list(self, head: Term) -> list[Term]:
-        return self.store.list_items(head, self.graph)
+        """The members of a list an axiom reads; a malformed one (looping back, a cell with two rdf:first) is
+        kept for the notice that names it."""
+        items, fault = self.store.list_read(head, self.graph)
+        if fault:
+            self._list_faults.setdefault(head, (items, fault))
+        return items
 
     def prop(self, node: Term) -> Prop:
         if is_skolem(node):
@@ -258,11 +271,29 @@ class TBoxReader:
         self._each(tb, OWL + "hasKey", lambda t: tb.keys.append(
             (self.expr(t.subject), tuple(self.prop(p) for p in self._list(t.object)))))
 
+    def _annotation_axiom(self, tb: TBox, t) -> bool:
+        """Whether triple ``t`` is an axiom about an annotation property (its subject's, or a super-property's):
+        OWL 2 gives such axioms no logical meaning (Pellet ignores them), so it is set aside and kept for the
+        notice naming the property once."""
+        for node in (t.subject, t.object) if t.predicate.value.endswith("subPropertyOf") else (t.subject,):
+            if node in self._annotation:
+                tb.annotation_axioms.setdefault(node, []).append(
+                    f"{_short(t.subject)} {_short(t.predicate)} {_short(t.object)}")
+                return True
+        return False
+
     def _property_axioms(self, tb: TBox) -> None:
         expr, prop = self.expr, self.prop
-        self._each(tb, RDFS + "domain", lambda t: tb.domain.append((prop(t.subject), expr(t.object))))
+
+        def domain(t) -> None:
+            if not self._annotation_axiom(tb, t):
+                tb.domain.append((prop(t.subject), expr(t.object)))
+
+        self._each(tb, RDFS + "domain", domain)
 
         def range_(t) -> None:
+            if self._annotation_axiom(tb, t):
+                return
             p = prop(t.subject)
             if is_datatype(t.object) or p.iri in tb.data_properties or t.object in self.datatype_defs:
                 tb.data_properties.add(p.iri)
@@ -283,7 +314,8 @@ class TBoxReader:
             tb.subproperty.extend([(a, b), (b, a)])
 
         self._each(tb, RDFS + "range", range_)
-        self._each(tb, RDFS + "subPropertyOf", lambda t: tb.subproperty.append((prop(t.subject), prop(t.object))))
+        self._each(tb, RDFS + "subPropertyOf", lambda t: self._annotation_axiom(tb, t) or tb.subproperty.append(
+            (prop(t.subject), prop(t.object))))
         self._each(tb, OWL + "equivalentProperty", equivalent)
         for t in self.store.triples(None, owl("inverseOf"), None, self.graph):
             if isinstance(t.subject, NamedNode) and not is_skolem(t.subject):
@@ -307,6 +339,7 @@ class TBoxReader:
         st, g = self.store, self.graph
         tb.data_properties = set(self._declared_data)
         tb.object_properties = set(self._declared_object)
+        tb.annotation_punned = set(self._punned)
         for name in _CHARACTERISTICS:
             tb.characteristics[name] = {s for s in st.subjects(TYPE, owl(name), g) if isinstance(s, NamedNode)}
         tb.named_classes = {s for s in st.subjects(TYPE, owl("Class"), g) if not is_skolem(s)}
@@ -324,6 +357,9 @@ class TBoxReader:
             tb.disjoint_props += [(a, b) for i, a in enumerate(members) for b in members[i + 1:]]
 
         self._typed_expressions(tb)
+        for items, fault in self._list_faults.values():
+            tb.partial.append((f"a list ({' '.join(_short(m) for m in items)})", UNSUPPORTED,
+                               f"a malformed RDF list: {fault}"))
         for e in self._cache.values():
             if e.is_named and e.node not in (THING, NOTHING) and not is_datatype(e.node):
                 tb.named_classes.add(e.node)

@@ -133,6 +133,12 @@ THING = owl("Thing")
 NOTHING = owl("Nothing")
 NAMED_INDIVIDUAL = owl("NamedIndividual")
 
+#: The annotation properties OWL 2 builds in: an axiom about one (a domain, a range, a super-property) and an
+#: assertion of one have no logical meaning, as for a declared owl:AnnotationProperty.
+BUILTIN_ANNOTATION_PROPERTIES = frozenset(
+    [rdfs(n) for n in ("label", "comment", "seeAlso", "isDefinedBy")]
+    + [owl(n) for n in ("versionInfo", "priorVersion", "backwardCompatibleWith", "incompatibleWith", "deprecated")])
+
 #: Types that say what kind of entity a node is, not which class it belongs to.
 DECLARATION_TYPES = frozenset(
     OWL + n

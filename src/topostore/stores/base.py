@@ -119,6 +119,12 @@ class Store:
         """Persist ``key`` (JSON value) with the current transaction; no-op on a memory store."""
         self.persisted.set(key, value)
 
+    @property
+    def writes_pending(self) -> bool:
+        """Whether the open transaction holds writes not committed yet: a SPARQL query would commit them
+        first (so that it sees them), which a reader that must leave the transaction undoable avoids."""
+        return bool(self._pending)
+
     def original_literal(self, graph: NamedNode, s: Term, p: NamedNode, o: Literal) -> Literal:
         """The literal as the user asserted it (lexical form and datatype); inside a transaction, as its pending
         write adds it (read-your-writes: the literal forms learn it at the commit)."""
@@ -174,6 +180,7 @@ class Store:
     objects_many = reads.objects_many
     subjects = reads.subjects
     list_items = reads.list_items
+    list_read = reads.list_read
     contains = reads.contains
     contains_each = reads.contains_each
     contains_quads = reads.contains_quads

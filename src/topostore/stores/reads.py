@@ -101,20 +101,33 @@ def subjects(store: Store, p: NamedNode, o: Term, graph: NamedNode) -> list[Term
 
 def list_items(store: Store, head: Term, graph: NamedNode) -> list[Term]:
     """Members of an RDF collection (rdf:first/rdf:rest), in order."""
+    return list_read(store, head, graph)[0]
+
+
+def list_read(store: Store, head: Term, graph: NamedNode) -> tuple[list[Term], str]:
+    """Members of an RDF collection, in order, and what is wrong with its shape ("" when nothing): a list
+    that loops back on itself is read once around, a cell with several rdf:first or rdf:rest by the first
+    the store gives (a reader that takes it says so, rather than reading a malformed list silently)."""
     items: list[Term] = []
     seen = set()
+    faults: list[str] = []
     node = head
-    while node != NIL and node not in seen:
+    while node != NIL:
+        if node in seen:
+            faults.append("it loops back on itself (read once around)")
+            break
         seen.add(node)
         firsts = store.objects(node, FIRST, graph)
         if not firsts:
             break
         items.append(firsts[0])
         rests = store.objects(node, REST, graph)
+        if len(firsts) > 1 or len(rests) > 1:
+            faults.append(f"a cell has {len(firsts)} rdf:first and {len(rests)} rdf:rest (one of each read)")
         if not rests:
             break
         node = rests[0]
-    return items
+    return items, "; ".join(dict.fromkeys(faults))
 
 
 def contains(store: Store, t: Triple, graph: NamedNode) -> bool:
