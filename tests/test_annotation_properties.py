@@ -78,3 +78,16 @@ def test_an_annotation_property_also_declared_an_object_property_keeps_the_objec
     o.reason()
     assert ex("C") in o.types(ex("a"))
     assert any(ANNOTATION in text and "p (declared both" in text for text in said), said
+
+
+def test_an_annotation_property_told_an_object_property_axiom_keeps_the_object_reading() -> None:
+    """Transitive, or the inverse of an object property: Pellet reads it as an object property, its range
+    applies (``:b`` is a ``C``), and the punning is said; its range is not set aside."""
+    for told in (":ap a owl:TransitiveProperty .", ":q a owl:ObjectProperty ; owl:inverseOf :ap ."):
+        o, said = load(f""":ap a owl:AnnotationProperty ; rdfs:range :C . :C a owl:Class . {told}
+:a a owl:NamedIndividual ; :ap :b . :b a owl:NamedIndividual .
+""")
+        assert o.reason().consistent
+        assert ex("C") in o.types(ex("b")), told
+        assert any("declared both an annotation property" in text for text in said), said
+        assert not any("set aside, as Pellet does" in text for text in said), said

@@ -648,3 +648,7 @@ def test_an_individual_given_to_a_data_property_is_stored_reasoned_and_said(buff
     assert ok(s, "QUERY", "IND", "CLASS", ["ROOM"]).is_consistent
     link = ok(s, "ADD", "OBJECTPROP", "IND", ["isIn", "Robot1", "C1"])
     assert "data property" not in link.error_description  # an object property says nothing of the kind
+    replaced = ok(s, "REPLACE", "OBJECTPROP", "IND", ["visitedAt", "R1", "C2", "C1"])  # a REPLACE says it as ADD does
+    assert "REPLACE OBJECTPROP IND" in replaced.error_description and "visitedAt is a data property" in replaced.error_description
+    moved = ok(s, "REPLACE", "OBJECTPROP", "IND", ["isIn", "Robot1", "R1", "C1"])
+    assert "data property" not in moved.error_description

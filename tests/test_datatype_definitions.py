@@ -35,3 +35,17 @@ def test_an_unsupported_definition_is_said_and_its_uses_are_not_called_undefined
     assert any("d range Code" in t and "its definition is set aside" in t for t in texts), texts
     assert not any("nor defined" in t or "anonymous expression" in t for t in texts), texts
     assert o.reason().consistent
+
+
+def test_a_datatype_defined_twice_is_set_aside_saying_so_whatever_the_order() -> None:
+    """Both definitions hold (their intersection); neither one alone may stand for the name, whichever is read
+    first: the name stays undefined and its uses are said unchecked."""
+    most = ":Small owl:equivalentClass [ a rdfs:Datatype ; owl:onDatatype xsd:integer ; " \
+           "owl:withRestrictions ( [ xsd:maxInclusive 10 ] ) ] .\n"
+    least = most.replace("maxInclusive 10", "minInclusive 0")
+    for first, second in ((most, least), (least, most)):
+        o = loaded(":Small a rdfs:Datatype .\n" + first + second +
+                   ":d a owl:DatatypeProperty ; rdfs:range :Small . :a :d -5 .")
+        texts = [str(n) for n in o.notices]
+        assert any("Small DatatypeDefinition" in t and "defined 2 times" in t for t in texts), texts
+        assert any("d range Small" in t and "its definition is set aside" in t for t in texts), texts

@@ -9,6 +9,7 @@ import pytest
 from topostore import Ontology
 from topostore.armor import ArmorService
 from topostore.errors import LoadError
+from topostore.rdf.owl_syntaxes import owl_syntax
 
 OWL_XML = """<?xml version="1.0"?>
 <!-- saved by Protégé -->
@@ -69,3 +70,16 @@ def test_rdf_alike_documents_still_load(text: str, fmt: str) -> None:
     """RDF whose root element is an owl:Ontology node, or Turtle naming such words, is RDF."""
     o = Ontology()
     assert o.load_data(text, fmt=fmt) == 1
+
+
+def test_rdf_xml_with_an_owl_ontology_root_and_no_about_is_rdf() -> None:
+    """A typed node element as the root, without rdf:about: RDF/XML, not OWL/XML (which names an ontologyIRI or
+    holds axioms as elements of their own)."""
+    data = b'''<?xml version="1.0"?>
+<owl:Ontology xmlns:rdf="http://www.w3.org/1999/02/22-rdf-syntax-ns#" xmlns:owl="http://www.w3.org/2002/07/owl#"
+    xmlns:rdfs="http://www.w3.org/2000/01/rdf-schema#">
+  <rdfs:comment>a map</rdfs:comment>
+</owl:Ontology>'''
+    assert owl_syntax(data) is None
+    assert owl_syntax(data.replace(b"<rdfs:comment>a map</rdfs:comment>", b'<Declaration><Class IRI="#C"/></Declaration>')
+                      .replace(b"owl:Ontology", b"Ontology").replace(b"xmlns:owl=", b"xmlns=")) == "OWL/XML"

@@ -8,6 +8,8 @@ and individual removal are written by :mod:`topostore.ontology.nary`, as in the 
 
 from __future__ import annotations
 
+from collections.abc import Callable
+
 from pyoxigraph import Literal, NamedNode, Triple
 
 from ..errors import InvalidValueError, TopostoreError
@@ -98,6 +100,12 @@ def _data_property_note(onto: Ontology, prop: NamedNode, description: str) -> st
         return ""
     return (f"{description}: {prop.value} is a data property: the individual is stored and answered as given; "
             "what reads the property's values as data values (its range, the rules comparing them) skips it")
+
+
+def _note_for(value: object) -> Callable[[Ontology, NamedNode, str], str]:
+    """The note a value given to a property of the other kind earns: a data value to an object property, an
+    individual to a data property."""
+    return _object_property_note if isinstance(value, Literal) else _data_property_note
 
 
 def add_objectprop_ind(ctx: Context) -> Reply:
@@ -242,8 +250,8 @@ def _replace(ind: NamedNode, prop: NamedNode, new, old, description: str) -> Cha
                 "the new value was added and the existing values were kept"
             )
         )
-        if isinstance(new, Literal) and not present:
-            warning = "; ".join(filter(None, [warning, _object_property_note(onto, prop, description)]))
+        if not present:
+            warning = "; ".join(filter(None, [warning, _note_for(new)(onto, prop, description)]))
         # the value read absent is noted so in the transaction: its addition asks the store nothing again
         added = [] if present else [onto.store.unread_fact(ind, prop, new, ASSERTED)]
         return Delta(add=added, remove=olds, warning=warning)
@@ -265,7 +273,7 @@ def replace_objectprop_ind(ctx: Context) -> Reply:
 
 def _replace_one(ctx: Context, ind: NamedNode, prop: NamedNode, new, old, description: str) -> Reply:
     """A REPLACE through the short lane where it is the plain case (:mod:`.one_value`), else the general path."""
-    warnings = one_value.replace(ctx.reference, ind, prop, new, old, description, _object_property_note)
+    warnings = one_value.replace(ctx.reference, ind, prop, new, old, description, _note_for(new))
     if warnings is not None:
         return Reply(warnings=warnings)
     return ctx.submit(_replace(ind, prop, new, old, description))

@@ -11,14 +11,15 @@ path's.  Anything else, or any doubt, returns None before anything changed, and 
 The plain case: the reference applies manipulations at once (unbuffered), its reasoner is buffered (no REASON
 follows the change), nothing persists its state (a memory reference), no unit of work or transaction is open,
 the rules compile, exactly one asserted value is the old one, the new value is not held and is another value,
-and a literal value gives no note (see :func:`~.manipulation._object_property_note`).
+and the value gives no note (a data value to an object property, an individual to a data property: see
+:func:`~.manipulation._note_for`).
 """
 
 from __future__ import annotations
 
 from collections.abc import Callable
 
-from pyoxigraph import Literal, NamedNode
+from pyoxigraph import NamedNode
 
 from ..errors import TopostoreError
 from ..ontology.facade import Ontology
@@ -32,7 +33,7 @@ from .reference import Reference
 #: whether REPLACE takes the short lane where it can (off: every REPLACE takes the general path)
 ENABLED = True
 
-#: the note a data value given to a property earns ("" for none): (ontology, property, description) → text
+#: the note a value given to a property of the other kind earns ("" for none): (ontology, property, description) → text
 Note = Callable[[Ontology, NamedNode, str], str]
 
 
@@ -43,7 +44,7 @@ def replace(ref: Reference, ind: NamedNode, prop: NamedNode, new, old, descripti
     if not ENABLED or not _plain_reference(ref):
         return None
     onto = ref.ontology
-    if type(new) is Literal and not _no_note(onto, prop, description, note):
+    if not _no_note(onto, prop, description, note):
         return None
     try:
         with onto.ledger.undoable(onto):  # as Reference.applied: a failure below undoes the change
@@ -70,7 +71,7 @@ def _plain_reference(ref: Reference) -> bool:
 
 
 def _no_note(onto: Ontology, prop: NamedNode, description: str, note: Note) -> bool:
-    """Whether a data value given to ``prop`` earns no note (the general path says it)."""
+    """Whether the value given to ``prop`` earns no note (the general path says it)."""
     return note(onto, prop, description) == ""
 
 

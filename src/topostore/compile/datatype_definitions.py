@@ -46,10 +46,16 @@ def read_definitions(reader: TBoxReader) -> tuple[dict[NamedNode, NamedNode], li
     of the graph, a chain of names (``:A`` defined as ``:B``, ``:B`` as a range) followed to its end."""
     told: dict[NamedNode, NamedNode] = {}
     aside: list[tuple[str, str]] = []
+    definitions: dict[NamedNode, list] = {}
     for t in reader.store.triples(None, _EQUIVALENT, None, reader.graph):
-        if not is_definition(t, reader):
+        if is_definition(t, reader):
+            definitions.setdefault(t.subject, []).append(t)
+    for name, ts in definitions.items():
+        if len(ts) > 1:  # both hold: their intersection, which no one range here stands for
+            aside.append((f"{_short(name)} DatatypeDefinition", f"defined {len(ts)} times (the values of both "
+                          f"definitions): {_short(name)} stays undefined"))
             continue
-        name = t.subject
+        t = ts[0]
         if not is_skolem(t.object):
             told[name] = t.object
             continue

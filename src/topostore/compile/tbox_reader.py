@@ -46,10 +46,24 @@ class TBoxReader:
         #: each named datatype defined as a data range, and the range it stands for (read first by :meth:`read`)
         self.datatype_defs: dict[NamedNode, NamedNode] = {}
         declared = {s for s in store.subjects(TYPE, owl("AnnotationProperty"), graph) if isinstance(s, NamedNode)}
-        #: IRIs declared both an annotation and an object or data property (illegal punning): the latter reading kept
-        self._punned = declared & (self._declared_data | self._declared_object)
+        #: IRIs declared an annotation property and declared, or used by a property axiom, as an object or data
+        #: property (illegal punning): the latter reading kept
+        self._punned = declared & (self._declared_data | self._declared_object | self._logical_properties())
         #: the annotation properties (declared or built in) whose axioms carry no logical meaning
-        self._annotation = (declared | BUILTIN_ANNOTATION_PROPERTIES) - self._declared_data - self._declared_object
+        self._annotation = (declared | BUILTIN_ANNOTATION_PROPERTIES) - self._declared_data - self._declared_object \
+            - self._punned
+
+    def _logical_properties(self) -> set[NamedNode]:
+        """The IRIs a property axiom only an object or data property can have names: a characteristic
+        (functional, transitive ...), an inverse, a chain, an equivalent or a disjoint property.  An annotation
+        property so told is read as an object or data property, as Pellet does (its range then applies)."""
+        st, g = self.store, self.graph
+        out = {s for name in _CHARACTERISTICS for s in st.subjects(TYPE, owl(name), g)}
+        for name in ("inverseOf", "equivalentProperty", "propertyDisjointWith"):
+            for t in st.triples(None, owl(name), None, g):
+                out |= {t.subject, t.object}
+        out |= set(st.subjects(owl("propertyChainAxiom"), None, g))
+        return {s for s in out if isinstance(s, NamedNode)}
 
     # ---------------------------------------------------------------- helpers
     def _one(self, s: Term, p: str) -> Term | None:

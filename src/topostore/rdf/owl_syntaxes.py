@@ -20,6 +20,9 @@ _HEAD = 8192
 _XML_PREAMBLE = re.compile(rb"\s*(?:<\?.*?\?>|<!--.*?-->|<!DOCTYPE[^\[>]*(?:\[.*?\])?\s*>|\s+)*", re.S)
 _ROOT = re.compile(rb"<(?:[\w.-]+:)?Ontology\b[^>]*>", re.S)
 _RDF_NODE_ATTRIBUTE = re.compile(rb"\s[\w.-]+:(?:about|ID|nodeID)\s*=")
+#: an element only OWL/XML has (an RDF/XML document whose root is an ``owl:Ontology`` node has none)
+_OWL_XML_AXIOM = re.compile(rb"<(?:[\w.-]+:)?(?:Prefix|Import|Declaration|SubClassOf|EquivalentClasses|ClassAssertion|"
+                            rb"ObjectPropertyAssertion|DataPropertyAssertion|AnnotationAssertion|DLSafeRule)\b")
 _FIRST_LINE = re.compile(rb"\A(?:\s*(?:#[^\n]*)?\n)*\s*(\S[^\n]*)")
 _MANCHESTER = re.compile(rb"(?:Prefix|Ontology|Import|Class|ObjectProperty|DataProperty|Individual):(?:\s|$)")
 _FUNCTIONAL = re.compile(rb"(?:Prefix|Ontology|Import)\s*\(")
@@ -30,7 +33,8 @@ def owl_syntax(data: bytes) -> str | None:
     None for anything else (an RDF document, or one no parser reads, which the RDF parser then refuses)."""
     head = data[:_HEAD].lstrip(b"\xef\xbb\xbf")
     root = _ROOT.match(head, _XML_PREAMBLE.match(head).end())  # type: ignore[union-attr]
-    if root and OWL.encode() in root.group() and not _RDF_NODE_ATTRIBUTE.search(root.group()):
+    if (root and OWL.encode() in root.group() and not _RDF_NODE_ATTRIBUTE.search(root.group())
+            and (b"ontologyIRI" in root.group() or _OWL_XML_AXIOM.search(head, root.end()))):
         return "OWL/XML"
     first = _FIRST_LINE.match(head)
     if first is None:
