@@ -15,6 +15,7 @@ from pathlib import Path
 import pytest
 from http_support import config, in_process
 from pyoxigraph import Literal, NamedNode
+from support import reasoned_turtle
 
 from topostore import Ontology, OntologyWarning
 from topostore.armor.reference import Reference
@@ -30,12 +31,7 @@ HELD_7 = f'<{NS}r> <{NS}battery> "7"^^<{XSD}long> .'
 
 
 def ontology(data: str = "") -> Ontology:
-    o = Ontology()
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", OntologyWarning)
-        o.load_data(HEAD + data, "turtle")
-    o.reason()
-    return o
+    return reasoned_turtle(HEAD + data)
 
 
 def update(o: Ontology, text: str) -> list[str]:

@@ -10,15 +10,15 @@ value VALUES or BIND gives a variable keeps the spelling written there, and a bl
 from __future__ import annotations
 
 import time
-import warnings
 
 import pytest
 from fuzz_support import count_case, fuzz_settings
 from hypothesis import given
 from hypothesis import strategies as st
 from pyoxigraph import Literal, NamedNode, RdfFormat, parse
+from support import reasoned_turtle
 
-from topostore import Ontology, OntologyWarning
+from topostore import Ontology
 from topostore.armor.reference import Reference
 from topostore.rdf.vocab import XSD
 from topostore.sparql.execute import Job, run_update
@@ -32,12 +32,7 @@ PROLOGUE = f"PREFIX xsd: <{XSD}> PREFIX k: <{NS}> "
 
 
 def ontology(data: str = "") -> Ontology:
-    o = Ontology()
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", OntologyWarning)
-        o.load_data(HEAD + data, "turtle")
-    o.reason()
-    return o
+    return reasoned_turtle(HEAD + data)
 
 
 def update(o: Ontology, text: str) -> None:

@@ -22,10 +22,9 @@ from collections.abc import Iterable
 
 from pyoxigraph import Literal, NamedNode, Triple
 
-from .vocab import OWL, RDF, RDFS, STANFORD_SWRL, SWRL, SWRLB, TYPE, XSD, is_skolem, owl
+from .vocab import NAMED_INDIVIDUAL, OWL, RDF, RDFS, STANFORD_SWRL, SWRL, SWRLB, TYPE, XSD, is_skolem, owl
 
 _BUILT_IN = (RDF, RDFS, OWL, XSD, SWRL, SWRLB, STANFORD_SWRL)
-NAMED_INDIVIDUAL = owl("NamedIndividual")
 CLASS = owl("Class")
 OBJECT_PROPERTY = owl("ObjectProperty")
 DATATYPE_PROPERTY = owl("DatatypeProperty")
