@@ -14,17 +14,13 @@ from pyoxigraph import Literal, NamedNode
 
 from ..errors import RuleCompileError
 from ..rdf.terms import Term
-from ..rdf.vocab import BUILTIN_ANNOTATION_PROPERTIES, EXPR_PREFIX, NOTHING, OWL, RDFS, THING, TYPE, XSD, is_skolem, owl
+from ..rdf.vocab import EXPR_PREFIX, NOTHING, OWL, RDFS, THING, TYPE, XSD, is_skolem, owl
 from ..stores.base import Store
 from . import data_ranges
+from .annotation_properties import CHARACTERISTICS, AnnotationProperties
 from .datatype_definitions import is_definition, read_definitions
 from .model import Expr, Prop, TBox, describe, is_datatype
 from .notices import UNSUPPORTED
-
-_CHARACTERISTICS = (
-    "FunctionalProperty", "InverseFunctionalProperty", "TransitiveProperty", "SymmetricProperty",
-    "AsymmetricProperty", "IrreflexiveProperty", "ReflexiveProperty",
-)
 
 #: class expressions nested deeper than this are refused: reading, describing and compiling them
 #: recurse once per level, and Python's stack ends near 1,000 frames (no real TBox nests 100 deep)
@@ -45,25 +41,8 @@ class TBoxReader:
         self._declared_object = {s for s in store.subjects(TYPE, owl("ObjectProperty"), graph) if isinstance(s, NamedNode)}
         #: each named datatype defined as a data range, and the range it stands for (read first by :meth:`read`)
         self.datatype_defs: dict[NamedNode, NamedNode] = {}
-        declared = {s for s in store.subjects(TYPE, owl("AnnotationProperty"), graph) if isinstance(s, NamedNode)}
-        #: IRIs declared an annotation property and declared, or used by a property axiom, as an object or data
-        #: property (illegal punning): the latter reading kept
-        self._punned = declared & (self._declared_data | self._declared_object | self._logical_properties())
-        #: the annotation properties (declared or built in) whose axioms carry no logical meaning
-        self._annotation = (declared | BUILTIN_ANNOTATION_PROPERTIES) - self._declared_data - self._declared_object \
-            - self._punned
-
-    def _logical_properties(self) -> set[NamedNode]:
-        """The IRIs a property axiom only an object or data property can have names: a characteristic
-        (functional, transitive ...), an inverse, a chain, an equivalent or a disjoint property.  An annotation
-        property so told is read as an object or data property, as Pellet does (its range then applies)."""
-        st, g = self.store, self.graph
-        out = {s for name in _CHARACTERISTICS for s in st.subjects(TYPE, owl(name), g)}
-        for name in ("inverseOf", "equivalentProperty", "propertyDisjointWith"):
-            for t in st.triples(None, owl(name), None, g):
-                out |= {t.subject, t.object}
-        out |= set(st.subjects(owl("propertyChainAxiom"), None, g))
-        return {s for s in out if isinstance(s, NamedNode)}
+        #: the annotation properties, whose axioms are set aside (:mod:`.annotation_properties`)
+        self.annotations = AnnotationProperties(store, graph, self._declared_data | self._declared_object)
 
     # ---------------------------------------------------------------- helpers
     def _one(self, s: Term, p: str) -> Term | None:
@@ -285,28 +264,17 @@ class TBoxReader:
         self._each(tb, OWL + "hasKey", lambda t: tb.keys.append(
             (self.expr(t.subject), tuple(self.prop(p) for p in self._list(t.object)))))
 
-    def _annotation_axiom(self, tb: TBox, t) -> bool:
-        """Whether triple ``t`` is an axiom about an annotation property (its subject's, or a super-property's):
-        OWL 2 gives such axioms no logical meaning (Pellet ignores them), so it is set aside and kept for the
-        notice naming the property once."""
-        for node in (t.subject, t.object) if t.predicate.value.endswith("subPropertyOf") else (t.subject,):
-            if node in self._annotation:
-                tb.annotation_axioms.setdefault(node, []).append(
-                    f"{_short(t.subject)} {_short(t.predicate)} {_short(t.object)}")
-                return True
-        return False
-
     def _property_axioms(self, tb: TBox) -> None:
         expr, prop = self.expr, self.prop
 
         def domain(t) -> None:
-            if not self._annotation_axiom(tb, t):
+            if not self.annotations.set_aside(tb, t, _short):
                 tb.domain.append((prop(t.subject), expr(t.object)))
 
         self._each(tb, RDFS + "domain", domain)
 
         def range_(t) -> None:
-            if self._annotation_axiom(tb, t):
+            if self.annotations.set_aside(tb, t, _short):
                 return
             p = prop(t.subject)
             if is_datatype(t.object) or p.iri in tb.data_properties or t.object in self.datatype_defs:
@@ -328,7 +296,7 @@ class TBoxReader:
             tb.subproperty.extend([(a, b), (b, a)])
 
         self._each(tb, RDFS + "range", range_)
-        self._each(tb, RDFS + "subPropertyOf", lambda t: self._annotation_axiom(tb, t) or tb.subproperty.append(
+        self._each(tb, RDFS + "subPropertyOf", lambda t: self.annotations.set_aside(tb, t, _short) or tb.subproperty.append(
             (prop(t.subject), prop(t.object))))
         self._each(tb, OWL + "equivalentProperty", equivalent)
         for t in self.store.triples(None, owl("inverseOf"), None, self.graph):
@@ -353,8 +321,8 @@ class TBoxReader:
         st, g = self.store, self.graph
         tb.data_properties = set(self._declared_data)
         tb.object_properties = set(self._declared_object)
-        tb.annotation_punned = set(self._punned)
-        for name in _CHARACTERISTICS:
+        tb.annotation_punned = set(self.annotations.punned)
+        for name in CHARACTERISTICS:
             tb.characteristics[name] = {s for s in st.subjects(TYPE, owl(name), g) if isinstance(s, NamedNode)}
         tb.named_classes = {s for s in st.subjects(TYPE, owl("Class"), g) if not is_skolem(s)}
         self.datatype_defs, aside = read_definitions(self)
