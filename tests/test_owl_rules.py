@@ -369,3 +369,17 @@ def test_all_different_is_not_expanded_to_pairs():
     # the group still separates its members: a merge is inconsistent
     o.add_fact("m1", "<http://www.w3.org/2002/07/owl#sameAs>", "m2")
     assert not o.reason().consistent
+
+
+def test_an_inverse_of_an_inverse_is_the_property_itself():
+    """``inverseOf(inverseOf(p))`` (not OWL 2 DL syntax) is read as ``p``, as Pellet reads it, not dropped; three
+    levels deep, the inverse."""
+    o = reasoned(""":p a owl:ObjectProperty .
+:C owl:equivalentClass [ a owl:Restriction ; owl:onProperty [ owl:inverseOf [ owl:inverseOf :p ] ] ;
+    owl:someValuesFrom owl:Thing ] .
+:D owl:equivalentClass [ a owl:Restriction ; owl:onProperty [ owl:inverseOf [ owl:inverseOf [ owl:inverseOf :p ] ] ] ;
+    owl:someValuesFrom owl:Thing ] .
+:a a owl:NamedIndividual ; :p :b . :b a owl:NamedIndividual .
+""")
+    assert "C" in types_of(o, "a") and "D" not in types_of(o, "a")
+    assert "D" in types_of(o, "b") and "C" not in types_of(o, "b")

@@ -57,11 +57,14 @@ class TBoxReader:
             self._list_faults.setdefault(head, (items, fault))
         return items
 
-    def prop(self, node: Term) -> Prop:
+    def prop(self, node: Term, depth: int = 0) -> Prop:
+        """The property expression ``node``: a named property or the inverse of one; an inverse of an
+        inverse is the property itself (not OWL 2 DL syntax, but what it means, as Pellet reads it)."""
         if is_skolem(node):
             inner = self._one(node, OWL + "inverseOf")
-            if isinstance(inner, NamedNode):
-                return Prop(inner, inverse=True)
+            if inner is not None and depth < MAX_NESTING:
+                p = self.prop(inner, depth + 1)
+                return Prop(p.iri, inverse=not p.inverse)
             raise RuleCompileError(f"unsupported property expression {node}")
         if not isinstance(node, NamedNode):
             raise RuleCompileError(f"unsupported property expression {node}")
