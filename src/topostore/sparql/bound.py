@@ -18,7 +18,7 @@ from dataclasses import dataclass
 
 from pyoxigraph import BlankNode, Literal, NamedNode, RdfFormat, parse
 
-from ..rdf.lexer import KEYWORD, PUNCT, VARIABLE, Token
+from ..rdf.lexer import IRI, KEYWORD, PUNCT, VARIABLE, Token, tokens
 from ..rdf.vocab import INTERNAL, RDF
 
 #: what UNDEF becomes in the Turtle read of a VALUES block (no value written)
@@ -198,4 +198,38 @@ def operations(toks: list[Token]) -> Iterator[list[Token]]:
     yield toks[start:]
 
 
-__all__ = ["Bound", "ValuesBlock", "bound_literals", "operations", "where_bindings"]
+@dataclass
+class Operation:
+    """One operation of an update: its text runnable alone (the prologue in force before it), the update's
+    text (``source``) and the operation's tokens in it, the Turtle declarations and the SPARQL prologue in
+    force in it (its own too), for the queries that read what it writes."""
+
+    text: str
+    source: str
+    toks: list[Token]
+    declarations: list[str]
+    prologue: str
+
+
+def split(text: str) -> list[Operation]:
+    """``text``'s operations, each with the ``PREFIX`` and ``BASE`` declarations of those before it."""
+    declarations: list[str] = []
+    prologue: list[str] = []
+    out = []
+    for toks in operations([t for t in tokens(text) if t.kind != "comment"]):
+        before = " ".join(prologue)
+        for i, t in enumerate(toks):
+            if t.kind == KEYWORD and t.word == "PREFIX" and i + 2 < len(toks) and toks[i + 2].kind == IRI:
+                declarations.append(f"@prefix {toks[i + 1].text} {toks[i + 2].text} .")
+                prologue.append(f"PREFIX {toks[i + 1].text} {toks[i + 2].text}")
+            elif t.kind == KEYWORD and t.word == "BASE" and i + 1 < len(toks) and toks[i + 1].kind == IRI:
+                declarations.append(f"@base {toks[i + 1].text} .")
+                prologue.append(f"BASE {toks[i + 1].text}")
+        if toks:
+            end = toks[-1].start + len(toks[-1].text)
+            out.append(Operation(f"{before}\n{text[toks[0].start:end]}", text, toks, list(declarations),
+                                 " ".join(prologue)))
+    return out
+
+
+__all__ = ["Bound", "Operation", "ValuesBlock", "bound_literals", "operations", "split", "where_bindings"]

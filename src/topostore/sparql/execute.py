@@ -200,9 +200,10 @@ def update_delta(asserted: list[Triple], text: str, held: Callable[[Literal], Te
     spelling its evaluation wrote at its position, the others following it for the change to say them, and so do
     the spellings written of a value the graph holds (:mod:`.evaluated`)."""
     scratch = _scratch(asserted)
-    seen = evaluated.run(scratch, text) if may_respell(text) else None
+    respell = may_respell(text)
+    seen = evaluated.run(scratch, text) if respell else None
     if seen is None:
-        if may_respell(text):  # an operation that does not run alone: the whole text, with its own error
+        if respell:  # an operation that does not run alone: the whole text, with its own error
             scratch = _scratch(asserted)
         try:
             scratch.update(text)

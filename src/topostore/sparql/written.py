@@ -30,11 +30,11 @@ from collections.abc import Callable, Iterator
 
 from pyoxigraph import BlankNode, Literal, NamedNode, RdfFormat, Triple, parse
 
-from ..rdf.lexer import IRI, KEYWORD, PUNCT, VARIABLE, Token, tokens
+from ..rdf.lexer import KEYWORD, PUNCT, VARIABLE, Token
 from ..rdf.terms import Term
 from ..rdf.vocab import INTERNAL, SKOLEM_PREFIX
 from ..stores.literal_forms import stored_literal
-from .bound import Bound, bound_literals, operations
+from .bound import Bound, bound_literals, split
 
 #: a bare SPARQL number (INTEGER, DECIMAL or DOUBLE, signed or not), not part of a name or a variable
 _NUMBER = re.compile(r"(?<![\w:.?$\-])[+-]?(?:\d+\.\d*[eE][+-]?\d+|\d*\.\d+(?:[eE][+-]?\d+)?|\d+(?:[eE][+-]?\d+)?)")
@@ -161,17 +161,13 @@ def insert_templates(text: str) -> Iterator[Template]:
 def _read_templates(text: str, shapes: list[Triple]) -> Iterator[Template]:
     """:func:`insert_templates`, each block's triples (variables as placeholders) also added to ``shapes``; an
     object variable given literals by the operation's ``VALUES`` or ``BIND`` writes each of them there."""
-    declarations: list[str] = []
-    for toks in operations([t for t in tokens(text) if t.kind != "comment"]):
+    for op in split(text):
+        toks, declarations = op.toks, op.declarations
         bound: Bound | None = None
         i = 0
         while i < len(toks):
             t = toks[i]
-            if t.kind == KEYWORD and t.word == "PREFIX" and i + 2 < len(toks) and toks[i + 2].kind == IRI:
-                declarations.append(f"@prefix {toks[i + 1].text} {toks[i + 2].text} .")
-            elif t.kind == KEYWORD and t.word == "BASE" and i + 1 < len(toks) and toks[i + 1].kind == IRI:
-                declarations.append(f"@base {toks[i + 1].text} .")
-            elif t.kind == KEYWORD and t.word == "INSERT":
+            if t.kind == KEYWORD and t.word == "INSERT":
                 block = braced(toks, i + 1)
                 if block is not None:
                     if bound is None:
@@ -206,8 +202,8 @@ def _templates(text: str, toks: list[Token], block: tuple[int, int], declaration
     shapes.extend(triples)
     for tr in triples:
         o, p = tr.object, _position(tr.predicate)
-        if isinstance(o, NamedNode) and o.value.startswith(_VARIABLE):
-            written = [lit for lit in bound.get(o.value[len(_VARIABLE):], ()) if isinstance(lit, Literal)]
+        if (name := variable_name(o)) is not None:
+            written = [lit for lit in bound.get(name, ()) if isinstance(lit, Literal)]
         else:
             written = [o] if isinstance(o, Literal) else []
         for subject in _subjects(tr.subject, bound) if written else ():
