@@ -8,8 +8,6 @@ and individual removal are written by :mod:`topostore.ontology.nary`, as in the 
 
 from __future__ import annotations
 
-from collections.abc import Callable
-
 from pyoxigraph import Literal, NamedNode, Triple
 
 from ..errors import InvalidValueError, TopostoreError
@@ -102,7 +100,7 @@ def _data_property_note(onto: Ontology, prop: NamedNode, description: str) -> st
             "what reads the property's values as data values (its range, the rules comparing them) skips it")
 
 
-def _note_for(value: object) -> Callable[[Ontology, NamedNode, str], str]:
+def _note_for(value: object) -> one_value.Note:
     """The note a value given to a property of the other kind earns: a data value to an object property, an
     individual to a data property."""
     return _object_property_note if isinstance(value, Literal) else _data_property_note

@@ -44,7 +44,7 @@ def replace(ref: Reference, ind: NamedNode, prop: NamedNode, new, old, descripti
     if not ENABLED or not _plain_reference(ref):
         return None
     onto = ref.ontology
-    if not _no_note(onto, prop, description, note):
+    if note(onto, prop, description):  # a value of the other kind: the general path says it
         return None
     try:
         with onto.ledger.undoable(onto):  # as Reference.applied: a failure below undoes the change
@@ -68,11 +68,6 @@ def _plain_reference(ref: Reference) -> bool:
         return False
     onto = ref.ontology  # compiled rules: the note and the check after the change read them, never compile
     return not onto.store._depth and onto.ledger.unit_step is None and onto._rules is not None
-
-
-def _no_note(onto: Ontology, prop: NamedNode, description: str, note: Note) -> bool:
-    """Whether the value given to ``prop`` earns no note (the general path says it)."""
-    return note(onto, prop, description) == ""
 
 
 def _one_old(onto: Ontology, ind: NamedNode, prop: NamedNode, new, old) -> Fact | None:
