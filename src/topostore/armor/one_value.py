@@ -2,29 +2,36 @@
 
 Why: the general path (a :class:`~.reference.Change` whose plan runs inside :meth:`Reference.applied`) serves
 every manipulation, buffered or not, live reasoner or not, durable or not, and each of its layers costs a few
-microseconds a robot pays three times a step.  The plain case takes none of them: it reads the values once,
-and where it is the plain case hands the same facts to the same store-level change
-(:meth:`AssertedChanges.change_noted`) inside the same unit of work and transaction, so the asserted graph,
-the literal forms, the ledger (what an incremental REASON and an undo read) and the reply are the general
-path's.  Anything else, or any doubt, returns None before anything changed, and the general path runs.
+microseconds a robot pays three times a step: and below it the store-level change
+(:meth:`AssertedChanges.change_noted`) inside a unit of work and a store transaction, which serve any
+change too.  The plain case takes none of them: it reads the committed values once and hands the one old
+fact and the new one to :meth:`AssertedChanges.replace_fact`, which writes the two quads, the literal forms
+and the ledger's record straight (:mod:`~..stores.one_fact`), so the asserted graph, the literal forms, the
+ledger (what an incremental REASON and an undo read) and the reply are the general path's.  Anything else,
+or any doubt, returns None before anything changed, and the general path runs.
 
 The plain case: the reference applies manipulations at once (unbuffered), its reasoner is buffered (no REASON
 follows the change), nothing persists its state (a memory reference), no unit of work or transaction is open,
-the rules compile, exactly one asserted value is the old one, the new value is not held and is another value,
-and the value gives no note (a data value to an object property, an individual to a data property: see
-:func:`~.manipulation._note_for`).
+the store writes straight (:func:`~..stores.one_fact.direct`: in memory, no listings, nothing pending), the
+rules are compiled, the property names facts only (:func:`~..ontology.changes.fact_property`: no triple of it
+changes the rules), exactly one asserted value is the old one, the new value is not held and is another
+value, and the value gives no note (a data value to an object property, an individual to a data property: see
+:func:`~.manipulation._note_for`).  No unit of work is needed around it: every check is made before the one
+write, and what follows the write (the forms, the ledger's dictionaries) cannot fail.
 """
 
 from __future__ import annotations
 
 from collections.abc import Callable
 
-from pyoxigraph import NamedNode
+from pyoxigraph import Literal, NamedNode
 
 from ..errors import TopostoreError
+from ..ontology.changes import fact_property
 from ..ontology.facade import Ontology
 from ..rdf import terms
 from ..rdf.vocab import ASSERTED
+from ..stores import one_fact
 from ..stores.facts import Fact
 from . import codes
 from .codes import CommandError
@@ -44,21 +51,19 @@ def replace(ref: Reference, ind: NamedNode, prop: NamedNode, new, old, descripti
     if not ENABLED or not _plain_reference(ref):
         return None
     onto = ref.ontology
-    if note(onto, prop, description):  # a value of the other kind: the general path says it
+    store = onto.store
+    if not one_fact.direct(store) or not fact_property(prop) or note(onto, prop, description):
+        return None  # a store change the unit of work must hold, a schema property, a value of the other kind
+    facts = one_fact.read(store, ind, prop, ASSERTED)
+    old_fact = _one_old(facts, new, old)
+    if old_fact is None:
         return None
     try:
-        with onto.ledger.undoable(onto):  # as Reference.applied: a failure below undoes the change
-            with onto.store.transaction():
-                old_fact = _one_old(onto, ind, prop, new, old)
-                if old_fact is None:  # not the plain case: nothing was written, the transaction commits nothing
-                    return None
-                added = onto.store.unread_fact(ind, prop, new, ASSERTED)
-                _, _, notes = onto.changes.change_noted([added], [old_fact])
-            onto.rules  # noqa: B018 - as Reference.applied: compiled (a cached read where the TBox is unchanged)
-    except (TopostoreError, OSError) as exc:  # as Context.submit says it
+        onto.changes.replace_fact(old_fact, one_fact.new_fact(ind, prop, new, ASSERTED), len(facts) == 1)
+    except (TopostoreError, OSError) as exc:  # as Context.submit says it (nothing was changed)
         raise CommandError(codes.REASONER_OR_QUERY_FAILURE,
                            f"the change was undone because reasoning failed: {exc}") from exc
-    return ["; ".join(notes)] if notes else []
+    return []
 
 
 def _plain_reference(ref: Reference) -> bool:
@@ -66,22 +71,29 @@ def _plain_reference(ref: Reference) -> bool:
     state to persist, no unit of work or transaction open around it."""
     if ref.buffered_manipulation or ref.buffer or not ref.buffered_reasoner or ref.persist is not None:
         return False
-    onto = ref.ontology  # compiled rules: the note and the check after the change read them, never compile
-    return not onto.store._depth and onto.ledger.unit_step is None and onto._rules is not None
+    onto = ref.ontology  # compiled rules: the note reads them, never compiles (and a fact changes none)
+    return onto.ledger.unit_step is None and onto._rules is not None
 
 
-def _one_old(onto: Ontology, ind: NamedNode, prop: NamedNode, new, old) -> Fact | None:
-    """The one asserted fact holding ``old`` where the new value is another and not held, else None."""
-    old_key, new_key = terms.value_key(old), terms.value_key(new)
-    if old_key == new_key:
+def _one_old(facts: list[Fact], new, old) -> Fact | None:
+    """The one fact of ``facts`` holding ``old`` where the new value is another and not held, else None.  An
+    individual's value key is never a literal's: two individuals are compared as they are."""
+    if type(old) is Literal or type(new) is Literal:
+        old_key, new_key = terms.value_key(old), terms.value_key(new)
+        if old_key == new_key:
+            return None
+    elif old == new:
         return None
-    olds, held = values(onto.store.read_facts(ind, prop, ASSERTED), old, old_key, new, new_key)
+    else:
+        old_key = new_key = None
+    olds, held = values(facts, old, old_key, new, new_key)
     return olds[0] if len(olds) == 1 and not held else None
 
 
-def values(facts: list[Fact], old, old_key: tuple, new, new_key: tuple) -> tuple[list[Fact], bool]:
-    """The facts whose object is the same data value as ``old`` (``old_key``: its value key) or the same
-    individual, and whether one is the same as ``new``: one pass, each fact's object read once."""
+def values(facts: list[Fact], old, old_key: tuple | None, new, new_key: tuple | None) -> tuple[list[Fact], bool]:
+    """The facts whose object is the same data value as ``old`` (``old_key``: its value key; None for an
+    individual, which only a fact of that individual holds) or the same individual, and whether one is the same
+    as ``new``: one pass, each fact's object read once."""
     olds, held = [], False
     for f in facts:
         value = f.value

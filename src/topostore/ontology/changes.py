@@ -19,9 +19,10 @@ from pyoxigraph import Literal, NamedNode, Triple
 from ..compile.notices import warn
 from ..rdf.terms import check_literal, triple, value_key
 from ..rdf.vocab import ASSERTED
+from ..stores import one_fact
 from ..stores.facts import Fact
 from . import state as durable_state
-from .files import changes_schema
+from .files import SCHEMA_NAMESPACES, changes_schema
 from .nary import all_different, individual_triples
 from .spellings import (
     AGAIN_IN_CHANGE,
@@ -155,6 +156,22 @@ class AssertedChanges:
         self.touch(removed_triples + added_triples)
         return added_triples, removed_triples, notes
 
+    def replace_fact(self, old: Fact, new: Fact, alone: bool) -> None:
+        """:meth:`change_noted` of one fact for another, written straight (:mod:`~..stores.one_fact`): ``old``
+        read from the committed store by :func:`one_fact.read`, ``new`` of another value that read did not
+        find, of a property :func:`fact_property` accepts, on a store :func:`one_fact.direct` accepts, with
+        no unit of work open (the caller checks all of that); ``alone``: ``old`` is the one fact that read
+        found (see :func:`one_fact.replace`).  One write, the literal forms, the ledger's
+        record and the ontology marked changed, as :meth:`change_noted` leaves them for that change (which
+        says no spelling for it: one value replaced by another, written as given)."""
+        store = self.store
+        if new.value is not None:
+            check_literal(new.triple.object)  # InvalidValueError: not a value of its type, nothing changed
+        gone = store.written_fact(old)  # as written: read before the write takes its form
+        one_fact.replace(store, old, new, alone)
+        self.ledger.record_replaced(store, new, old, gone, self._change_limit)
+        self.onto.dirty = True  # touch: a fact property names no schema triple, a memory store no durable state
+
     def _change(self, triples: tuple[Triple, ...], added: bool, said: bool = False) -> list[Triple]:
         """Add or remove in the asserted graph and record what changed in the ledger: one presence look-up
         per triple (the store's), in one transaction with the change (``said``: warn of each value not
@@ -210,6 +227,13 @@ class AssertedChanges:
     def remove_individual(self, name: str | NamedNode) -> int:
         """Remove every asserted triple mentioning the individual, and whole AllDifferent axioms containing it."""
         return self.remove(*individual_triples(self.store, self.onto.iri(name)))
+
+
+def fact_property(p: NamedNode) -> bool:
+    """Whether every triple of ``p`` is a fact: a property outside the RDF, RDFS, OWL and SWRL vocabularies,
+    whose triples :func:`~.files.changes_schema` never takes for a schema triple or a list cell the TBox
+    reads (each of those is named by a property of these vocabularies), told by the property alone."""
+    return not p.value.startswith(SCHEMA_NAMESPACES)
 
 
 def _distinct(items: Sequence[Triple | Fact]) -> Sequence[Triple | Fact]:

@@ -120,9 +120,27 @@ class ChangeLedger:
         if added:
             _net(store, added, made, self.added, self.removed, self.held)
         if self.incremental:
-            size = len(self.added) + len(self.removed)
-            if size > MIN_TRACKED and (limit is None or size > limit()):
-                self.incremental = False
+            self._check_size(limit)
+
+    def record_replaced(self, store: Store, added: Fact, removed: Fact, gone: Triple,
+                        limit: Callable[[], float] | None = None) -> None:
+        """:meth:`record_change` of one removed fact (``gone``: as written, read before the change) and one
+        added fact of another value, the change written already (``AssertedChanges.replace_fact``: the
+        stored form of either is no read of the store): no list made for either side."""
+        if self._open:
+            self._steps.append(([added.triple], [gone]))
+        if not self.recording:
+            return
+        _net_one(store, removed, gone, self.removed, self.added, None)
+        _net_one(store, added, added.triple, self.added, self.removed, self.held)
+        if self.incremental:
+            self._check_size(limit)
+
+    def _check_size(self, limit: Callable[[], float] | None) -> None:
+        """Past :data:`MIN_TRACKED` net changes and ``limit``, the record serves rollback only."""
+        size = len(self.added) + len(self.removed)
+        if size > MIN_TRACKED and (limit is None or size > limit()):
+            self.incremental = False
 
     def lost(self, store: Store, changes: list[tuple[list[Triple], list[Triple]]]) -> None:
         """Recorded changes (added, removed; oldest first) that never reached the store: a store that
@@ -238,17 +256,23 @@ def _net(store: Store, facts: list[Fact], written: list[Triple], mine: dict[Trip
     an addition cancelling a removal written otherwise keeps the removed spelling in ``held`` (the first one:
     the spelling at the last REASON)."""
     for f, as_written in zip(facts, written, strict=True):
-        key = f.stored
-        if key is None:  # both sides hold triples as the store does, so they cancel (a removal named in
-            # another spelling: the one the store held; the probe takes the fact's quad, made for its write
-            # already, where the triple is the one written)
-            key = f.stored = store.stored_form(as_written, f.quad if as_written is f.triple else None)
-        if key in other:
-            was = other.pop(key)
-            if held is not None and was is not as_written and was != as_written:  # a respelling: rare
-                held.setdefault(key, was)
-        else:
-            mine[key] = as_written
+        _net_one(store, f, as_written, mine, other, held)
+
+
+def _net_one(store: Store, f: Fact, as_written: Triple, mine: dict[Triple, Triple], other: dict[Triple, Triple],
+             held: dict[Triple, Triple] | None) -> None:
+    """:func:`_net` of one fact."""
+    key = f.stored
+    if key is None:  # both sides hold triples as the store does, so they cancel (a removal named in
+        # another spelling: the one the store held; the probe takes the fact's quad, made for its write
+        # already, where the triple is the one written)
+        key = f.stored = store.stored_form(as_written, f.quad if as_written is f.triple else None)
+    if key in other:
+        was = other.pop(key)
+        if held is not None and was is not as_written and was != as_written:  # a respelling: rare
+            held.setdefault(key, was)
+    else:
+        mine[key] = as_written
 
 
 class _UnitOfWork:

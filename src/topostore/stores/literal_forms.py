@@ -133,6 +133,20 @@ class LiteralForms:
 
         return forms_add, forms_remove, take_back
 
+    def replaced(self, graph: NamedNode, s: Term, p: NamedNode, old_value: tuple | None, new: Term,
+                 new_value: tuple | None) -> None:
+        """:meth:`record_keyed` of one removed fact (``old_value``: its value key, None for no literal) and
+        one added (``new``, of value key ``new_value``) of (s, p) in ``graph``, committed on a store that
+        persists no forms: the removed form forgotten and uncounted, the new one kept and counted."""
+        name = graph.value
+        if old_value is not None:
+            found = self._literal_forms.pop((name, s, p, old_value), None)
+            if found is not None:  # a fact with no form kept for it was never counted
+                self._count_form(old_value, found, -1)
+        if new_value is not None:
+            self._literal_forms[(name, s, p, new_value)] = new  # type: ignore[assignment] - a literal
+            self._count_form(new_value, new, +1)  # type: ignore[arg-type]
+
     def record_loaded(self, graph: NamedNode, spelled: list[tuple[tuple, Literal]]) -> list[Quad]:
         """Remember the literals of a bulk load into ``graph`` (``spelled``: ((subject, predicate,
         value key), literal) each, keys computed once by the caller): :meth:`record` without a quad
@@ -260,6 +274,16 @@ def _probed(lit: Literal, written: Quad | None) -> Quad:
         stored = _STORED[lit] = _STORED[quad.object] = quad.object  # the stored form is its own (a reasoner's
         note_stored_value(stored, lit)  # discard asks it), and a number's value is the written one's
     return quad
+
+
+def stored_seen(lit: Literal, stored: Literal) -> None:
+    """``stored`` is how an Oxigraph store holds ``lit``, read back from it after a write of it: remembered
+    as :func:`_probed` remembers a probe's answer (the same engine's term), so that no probe is paid for it."""
+    with _PROBE_LOCK:
+        if len(_STORED) >= _STORED_MAX:
+            _STORED.clear()
+        _STORED[lit] = _STORED[stored] = stored
+        note_stored_value(stored, lit)
 
 
 def _is_scratch(graph) -> bool:

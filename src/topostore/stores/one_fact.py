@@ -1,0 +1,75 @@
+"""One committed fact replaced by another, written straight to the store: a robot's REPLACE.
+
+Why: the unit of work (:mod:`.work`) serves every change: a transaction whose pending writes are keyed by
+value, presence learnt and asked through them, a commit that sorts them by sign and records the literal
+forms with an undo for a write that fails.  The change of one fact read from the committed store for one
+of another value that read found absent needs none of it: its presence is known from the read, nothing
+else is pending, and one write of two quads is atomic by itself.  Written here it is the same write (the
+removal the quad read: the index's own term, which the spelling the literal forms keep,
+:meth:`Store._removal_quad`'s, names for a store that canonicalises) and the same literal forms, without a
+transaction around them.
+
+Only where the store writes at once and keeps nothing beside its index (:func:`direct`); anywhere else the
+caller takes the unit of work.
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+from pyoxigraph import Literal, NamedNode, Quad
+
+from ..rdf.terms import Term, keep_triple
+from .facts import Fact, fact_read, fact_written
+from .literal_forms import stored_seen
+
+if TYPE_CHECKING:
+    from .base import Store
+
+
+def direct(store: Store) -> bool:
+    """Whether a change may be written straight: no transaction open and no persisted state pending (the
+    change would join them), a store that answers from its own index in the spelling it stores (no
+    listings, canonical reads: a fact read is its own stored form) and persists no literal forms (a durable
+    store writes them in the same commit)."""
+    return not store._depth and store.listings is None and store.canonical_reads and not store.durable \
+        and not store.persisted.pending
+
+
+def read(store: Store, s: Term, p: NamedNode, graph: NamedNode) -> list[Fact]:
+    """The committed facts (s, p, ?, graph), each quad keyed once: :meth:`Store.read_facts` with no
+    transaction open (nothing pending to stand for a value, nothing to note as present)."""
+    canonical = store.canonical_reads
+    return [fact_read(q, canonical) for q in store._match(s, p, None, graph)]
+
+
+def new_fact(s: Term, p: NamedNode, o: Term, graph: NamedNode) -> Fact:
+    """The fact of (s, p, o) added after :func:`read` found no fact of its value: :meth:`Store.unread_fact`
+    with no transaction to note it in.  Its quad is made here, not kept (a clock value is never named again
+    as the same quad: the next step removes the quad it reads); its triple is kept (:func:`keep_triple`),
+    since the next step's removal names it again as written."""
+    f = fact_written(Quad(s, p, o, graph))
+    if type(o) is Literal:
+        keep_triple(s, p, o, f.triple)
+    return f
+
+
+def replace(store: Store, old: Fact, new: Fact, alone: bool) -> None:
+    """Remove ``old`` (a fact :func:`read` found) and add ``new`` (of a value that read did not find) in one
+    write, then the literal forms: what a transaction's commit of the two toggles writes.  The forms follow
+    the write, so a write that fails leaves them as they were.
+
+    ``alone``: ``old`` was the one fact that read found, so the new one is the one fact of its subject and
+    property now: a literal's stored form (what the change ledger keys it by) is read back from the index
+    (one look-up of one fact) instead of asked of the probe store (a write and a removal of it there)."""
+    store._write([new.quad], [old.quad])  # read from the index: the quad as stored (canonical reads)
+    t = old.triple
+    s, p, o = t.subject, t.predicate, new.triple.object
+    store.forms.replaced(old.quad.graph_name, s, p, old.value, o, new.value)
+    if alone and new.stored is None:
+        for q in store._match(s, p, None, old.quad.graph_name):
+            new.stored = q.triple
+            stored_seen(o, q.object)  # type: ignore[arg-type] - a fact with no stored form is a literal's
+
+
+__all__ = ["direct", "new_fact", "read", "replace"]
