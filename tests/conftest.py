@@ -58,9 +58,12 @@ ROS_MODULES = {"test_ros", "test_ros_events", "test_fuzz_ros"}
 
 
 def pytest_generate_tests(metafunc: pytest.Metafunc) -> None:
-    """Run every test naming REPLACE twice: with REPLACE's short lane (armor/one_value.py) and with every REPLACE
-    on the general path, so that each holds of both (not in a ROS world: its service runs in another process;
-    not the lane's own tests, which compare the two themselves)."""
+    """Run the step tests (those using ``staged_form``, as a module's ``pytestmark``) with the compiled step's
+    staged runs generated and interpreted; and every test naming REPLACE twice: with REPLACE's short lane
+    (armor/one_value.py) and with every REPLACE on the general path, so that each holds of both (not in a ROS
+    world: its service runs in another process; not the lane's own tests, which compare the two themselves)."""
+    if "staged_form" in metafunc.fixturenames:
+        metafunc.parametrize("staged_form", ["generated", "interpreted"], indirect=True, scope="module")
     if (metafunc.module.__name__ in ROS_MODULES or metafunc.module.__name__ == "test_one_value"
             or "replace_lane" in metafunc.fixturenames):
         return
@@ -83,6 +86,18 @@ def replace_lane(request: pytest.FixtureRequest) -> Iterator[str]:
         yield request.param
     finally:
         one_value.ENABLED = was
+
+
+@pytest.fixture(scope="module")
+def staged_form(request: pytest.FixtureRequest) -> Iterator[str]:
+    """The compiled step's staged runs as generated functions ("generated") or interpreted ("interpreted")."""
+    from topostore.reason import staged_code
+
+    was, staged_code.GENERATED = staged_code.GENERATED, request.param == "generated"
+    try:
+        yield request.param
+    finally:
+        staged_code.GENERATED = was
 
 
 def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:

@@ -33,6 +33,9 @@ from topostore.reason.entailed import publish_entailed
 from topostore.reason.incremental import is_monotone, negates_exists
 from topostore.stores import memory_store
 
+#: every test twice: the compiled step's staged runs generated and interpreted (reason/staged_code.py)
+pytestmark = pytest.mark.usefixtures("staged_form")
+
 
 def N(name: str) -> NamedNode:
     return NamedNode(MAP_NS + name)

@@ -26,6 +26,9 @@ from topostore.reason.join_code import compile_join, interpreted
 from topostore.reason.scratch import FLIP_GAINED
 from topostore.stores import memory_store
 
+#: every test twice: the compiled step's staged runs generated and interpreted (reason/staged_code.py)
+pytestmark = pytest.mark.usefixtures("staged_form")
+
 XSD_INTEGER = NamedNode("http://www.w3.org/2001/XMLSchema#integer")
 
 G1, G2 = NamedNode("urn:g:1"), NamedNode("urn:g:2")

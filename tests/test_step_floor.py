@@ -6,6 +6,9 @@ import pytest
 
 from benchmarks import step_floor
 
+#: every test twice: the compiled step's staged runs generated and interpreted (reason/staged_code.py)
+pytestmark = pytest.mark.usefixtures("staged_form")
+
 
 @pytest.mark.parametrize("size", ["example", "8"])
 def test_the_floor_answers_as_topostore(size: str) -> None:

@@ -19,10 +19,13 @@ from swrl_support import NS, PREFIXES, builtin, cls, data, diff, obj, rule
 
 from topostore import Ontology
 from topostore.rdf.vocab import ASSERTED, AUX, INFERRED, TYPE
-from topostore.reason import Materializer, check_consistency, direct, look_flip, look_join
+from topostore.reason import Materializer, check_consistency, direct, look_flip, look_join, staged_code
 from topostore.reason.program import Refused, check_pair_atom, describe, pair_atom, signature
 from topostore.reason.step_compiler import StepCompiler, _Writers
 from topostore.stores import memory_store
+
+#: every test twice: the compiled step's staged runs generated and interpreted (reason/staged_code.py)
+pytestmark = pytest.mark.usefixtures("staged_form")
 
 TBOX = PREFIXES + f"""
 :A a owl:Class . :B a owl:Class . :C a owl:Class ; rdfs:subClassOf :A . :Hot a owl:Class ; rdfs:subClassOf :C .
@@ -908,7 +911,7 @@ def test_a_part_nothing_starts_is_passed_by_its_keys() -> None:
         entered.append(ops[0][0])
         return original(self, ops)
 
-    with mock.patch.object(staged.StagedRun, "_part", part_run):
+    with mock.patch.object(staged.StagedRun, "_part", part_run), mock.patch.object(staged_code, "GENERATED", False):
         for now, hot, runs in ((101, set(), False), (110, {"i3"}, True), (104, set(), True), (102, set(), False)):
             entered.clear()
             onto.replace(N("clock"), N("now"), now)
@@ -1054,20 +1057,21 @@ def test_a_tbox_change_between_reasons_drops_the_operations_bound_per_program() 
     """What a run looks up about each operation is bound once per program (reason/staged._bound); a
     TBox change between two clock ticks drops the programs: the next tick's run reads a new program's
     operations, and a member of Hot is now also one of B (a stale program would leave it out)."""
-    from topostore.reason import staged
 
     onto = new_ontology()
     for k in range(4):
         onto.replace(N(f"i{k}"), N("seen"), 90 + 2 * k)
     onto.reason()
     programs: list = []
-    original = staged.StagedRun.run
+    original = staged_code.run
 
-    def run(self):
-        original(self)
-        programs.append((self.program, self.program.segments))
+    def run(staged_run):
+        form = original(staged_run)
+        program = staged_run.program
+        programs.append((program, program.segments, program.fused))
+        return form
 
-    with mock.patch.object(staged.StagedRun, "run", run):
+    with mock.patch.object(staged_code, "run", run):
         for now in (101, 103):
             onto.replace(N("clock"), N("now"), now)
             assert_as_from_scratch(onto, onto.reason())
@@ -1079,8 +1083,11 @@ def test_a_tbox_change_between_reasons_drops_the_operations_bound_per_program() 
             assert report.stats.program == "compiled"
             assert_as_from_scratch(onto, report)
     assert programs[0][0] is programs[1][0] and programs[0][1] is programs[1][1]  # bound once, kept
+    assert programs[0][2] is programs[1][2]  # generated once (None where interpreted)
     assert programs[2][0] is not programs[1][0] and programs[2][1] is not programs[1][1]
-    assert programs[2][1] is programs[3][1]
+    assert programs[2][1] is programs[3][1] and programs[2][2] is programs[3][2]
+    if staged_code.GENERATED:
+        assert programs[2][2] is not programs[1][2]
     assert any(t.object == N("B") for t in onto.store.triples(None, TYPE, None, INFERRED))
 
 

@@ -21,7 +21,7 @@ from ..compile.rule import RuleSet
 from ..stores.base import Store, key_census
 from . import after as after_step
 from . import delta_texts as texts
-from . import flip
+from . import flip, staged_code
 from .change_checks import ChangeChecks
 from .component import WHOLE_ROUNDS
 from .flips import Flips
@@ -117,7 +117,7 @@ class CompiledStep:
             self._settle = False  # the rounds run to their end here
             self.requests.flush()
             run = StagedRun(self.store, program, sig, self._flip_text, (added, removed), copy_changes, state.present)
-            run.run()
+            stats.staged = staged_code.run(run)
             stats.evaluations += run.sent
             gained = run.gained()
         if self.requests.profile:

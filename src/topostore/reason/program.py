@@ -123,6 +123,8 @@ class StepProgram:
     needs: dict = field(default_factory=dict)
     #: the operations grouped by part once, for key-by-key runs (:func:`.staged.segments`; built at the first run)
     segments: list | None = field(default=None, compare=False, repr=False)
+    #: those parts as one generated function (:func:`.staged_code.generate`; made at the first run)
+    fused: Callable | None = field(default=None, compare=False, repr=False)
 
 
     @property

@@ -270,12 +270,20 @@ class StagedRun:
             if direct(self.store):
                 self.sent += 1
                 return False
-            if fallback is not None:
-                tag, compiled, part_reads = fallback
-                text = self._flip(part_reads, tag, compiled)
-                if not text:
-                    return False
-                look_up = text is compiled
+            return self._queue(text, key, seeded, look_up, fallback)
+        return self._queue(text, key, seeded, look_up)
+
+    def _queue(self, text: str, key: ReadKey | None, seeded: int | bool, look_up: bool = True,
+               fallback: tuple | None = None) -> bool:
+        """Queue an operation's text (:meth:`_send`'s second half, once no look-up answered); ``fallback``:
+        a flip's tag, compiled text and part's reads where its look-up gave up (its text for this run is
+        made now: "" queues nothing).  Whether it was queued."""
+        if fallback is not None:
+            tag, compiled, part_reads = fallback
+            text = self._flip(part_reads, tag, compiled)
+            if not text:
+                return False
+            look_up = text is compiled
         if look_up and seeded is not False:  # a flip's compiled text
             text = self._seeded(seeded, text)
         self.queue.append(text)

@@ -24,4 +24,7 @@ class ReasonStats:
     #: incremental only: "compiled" when the compiled step ran (see :mod:`.program`), with what it handed
     #: to the general phases; else why the general phases ran instead
     program: str = ""
+    #: incremental only, where the compiled step ran key by key: "generated" (its program as one generated
+    #: function, :mod:`.staged_code`), else "interpreted: " and why
+    staged: str = ""
     per_rule: dict[str, float] = field(default_factory=dict)

@@ -1,0 +1,116 @@
+"""A compiled step's staged run as one generated function (reason/staged_code.py): the robot's moves run it,
+it writes what the interpreted run writes, and a rule or TBox change never runs a function made before it."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from unittest import mock
+
+import pytest
+from pyoxigraph import NamedNode, Triple
+from test_step_program import N, assert_as_from_scratch, new_ontology
+
+from benchmarks import maps
+from benchmarks.armor_robot import ArmorRobot
+from benchmarks.walk import plan
+from topostore.rdf.vocab import ASSERTED, AUX, INFERRED, INTERNAL, SKOLEM_PREFIX, TYPE
+from topostore.reason import staged_code
+
+NAMED_APART = (SKOLEM_PREFIX, INTERNAL + "key:")
+
+
+def _graphs(robot: ArmorRobot) -> list[tuple[int, set]]:
+    """Each graph's size and its triples without a skolemised blank node or a key made from one (two loads name
+    those apart)."""
+    store = robot.ontology.store
+    out = []
+    for graph in (ASSERTED, INFERRED, AUX):
+        triples = list(store.triples(graph=graph))
+        out.append((len(triples), {t for t in triples if not any(n in f"{t.subject} {t.object}" for n in NAMED_APART)}))
+    return out
+
+
+def _recording() -> tuple[list, object]:
+    """A wrapper of :func:`staged_code.run` recording each run's form and program."""
+    forms: list = []
+    original = staged_code.run
+
+    def run(staged_run):
+        form = original(staged_run)
+        forms.append((form, staged_run.program))
+        return form
+
+    return forms, run
+
+
+@pytest.mark.parametrize("size", ["example", "8"])
+def test_the_robots_moves_run_generated_and_write_what_the_interpreted_run_writes(size: str, tmp_path: Path) -> None:
+    """Two robots walk the same moves, one REASON generated, the other interpreted: every graph equal after
+    every step, and no move of the walk (to a room, a corridor, the clock's jumps) falls back."""
+    path, bench = maps.write(size, tmp_path)
+    generated, interpreted = ArmorRobot(path), ArmorRobot(path)
+    forms, run = _recording()
+    with mock.patch.object(staged_code, "run", run):
+        for move in plan(bench, 40):
+            with mock.patch.object(staged_code, "GENERATED", True):
+                generated.step(move)
+            with mock.patch.object(staged_code, "GENERATED", False):
+                interpreted.step(move)
+            assert _graphs(generated) == _graphs(interpreted), move
+    assert [f for f, _ in forms[0::2]] == ["generated"] * 40
+    assert {f for f, _ in forms[1::2]} == {"interpreted: generated form switched off"}
+
+
+def test_a_store_whose_look_ups_are_round_trips_runs_interpreted_and_says_so() -> None:
+    """The generated form inlines the look-ups' decisions; where a run has none (a round-trip store's), the
+    interpreted run goes, and the form says why (never silent)."""
+    onto = new_ontology()
+    for k in range(3):
+        onto.replace(N(f"i{k}"), N("seen"), 90 + 2 * k)
+    onto.reason()
+    forms, run = _recording()
+
+    def staged(staged_run):
+        staged_run.direct = {}  # as a round-trip store's run has it
+        return run(staged_run)
+
+    with mock.patch.object(staged_code, "run", staged):
+        onto.replace(N("clock"), N("now"), 104)
+        report = onto.reason(mode="incremental")
+    assert report.stats.staged == "interpreted: look-ups are round trips"
+    assert_as_from_scratch(onto, report)
+
+
+def test_a_rule_or_axiom_added_after_the_first_step_is_never_run_by_a_function_made_before_it() -> None:
+    """Ticks generate the clock's function; a SWRL rule (Hot members are B) and then a TBox axiom (B below D,
+    so B's members are D) change the rules: the next ticks run new functions, and their answers are those
+    from scratch (the function made before either change writes no B and no D of a new Hot member)."""
+    onto = new_ontology()
+    for k in range(4):
+        onto.replace(N(f"i{k}"), N("seen"), 90 + 2 * k)
+    onto.reason()
+    forms, run = _recording()
+    with mock.patch.object(staged_code, "run", run):
+        onto.replace(N("clock"), N("now"), 101)
+        assert_as_from_scratch(onto, onto.reason())
+        before = forms[-1][1].fused
+        assert before is not None
+        onto.add_rule("Hot(?x) -> B(?x)", "HotB")
+        onto.reason()
+        onto.replace(N("clock"), N("now"), 103)
+        report = onto.reason()
+        assert report.stats.program == "compiled" and report.stats.staged == "generated"
+        assert_as_from_scratch(onto, report)
+        after_rule = forms[-1][1].fused
+        assert after_rule is not before
+        onto.add(Triple(N("D"), TYPE, NamedNode("http://www.w3.org/2002/07/owl#Class")))
+        onto.add(Triple(N("B"), NamedNode("http://www.w3.org/2000/01/rdf-schema#subClassOf"), N("D")))
+        onto.reason()
+        for now in (105, 108):
+            onto.replace(N("clock"), N("now"), now)
+            report = onto.reason()
+            assert report.stats.staged == "generated"
+            assert_as_from_scratch(onto, report)
+        assert forms[-1][1].fused is not after_rule
+    hot = {onto.short(i) for i in onto.instances(N("Hot"))}
+    assert hot and {onto.short(i) for i in onto.instances(N("D"))} >= hot
