@@ -76,6 +76,15 @@ def pytest_generate_tests(metafunc: pytest.Metafunc) -> None:
         metafunc.parametrize("replace_lane", ["lane", "general"], indirect=True, scope="module")
 
 
+@pytest.fixture(autouse=True)
+def _replace_lane_set(request: pytest.FixtureRequest) -> None:
+    """Set up ``replace_lane`` where :func:`pytest_generate_tests` parametrized it: a name appended to a test's
+    fixture names while its tests are generated is parametrized but not set up by itself."""
+    callspec = getattr(request.node, "callspec", None)
+    if callspec is not None and "replace_lane" in callspec.params:
+        request.getfixturevalue("replace_lane")
+
+
 @pytest.fixture(scope="module")
 def replace_lane(request: pytest.FixtureRequest) -> Iterator[str]:
     """REPLACE's short lane on ("lane") or off ("general") for the tests of one module."""
