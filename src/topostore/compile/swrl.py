@@ -29,7 +29,7 @@ from .notices import INCOMPLETE, RULE_SET_ASIDE, SQWRL_QUERY, Notice
 from .rule import Atom, Rule
 from .snippets import candidate_atom, different_atom, surely_in_datatype
 from .swrl_atoms import Names, SwrlAtom, read_atoms
-from .swrl_same_as import same_as_forms
+from .swrl_same_as import rebinding, same_as_forms
 from .tbox_reader import TBoxReader
 
 T = str(TYPE)
@@ -176,20 +176,27 @@ class SwrlCompiler:
                 raise RuleCompileError(f"sqwrl:{sqwrl.operator(a.predicate)} in a query body (collections) "
                                        "is not supported")
         arg = Names(self.variables)
-        body = self._body(name, body_atoms, arg)
+        wheres, candidates, bound = [], [], set()
+        for form, _ in same_as_forms(body_atoms, [], self.variables):  # a union of the forms, each variable kept
+            body = self._body(name, form, arg)
+            patterns = body.patterns + [different_atom(x, y) for x, y, _ in body.different]
+            where = Rule(f"sqwrl:{name}", f"SQWRL query {name}", tuple(patterns), None, tuple(body.conditions),
+                         frozenset(body.reads)).where()
+            again = [(arg(y), arg(x)) for y, x in rebinding(body_atoms, form, self.variables)]
+            wheres.append(where + "".join(f"\n  BIND({x} AS {y})" for y, x in again))
+            bound = body.bound | {y for y, _ in again}
+            candidates += self._difference_rules(name, body)
         parts = []
         for a in head_atoms:
             if a.kind != "BuiltinAtom" or not sqwrl.is_sqwrl(a.predicate):
                 raise RuleCompileError(f"{a.describe(name)} beside SQWRL built-ins in a head")
             texts = [arg(x) for x in a.args]
-            _require_bound(name, a, texts, body.bound, "head ")
+            _require_bound(name, a, texts, bound, "head ")
             parts.append((sqwrl.operator(a.predicate), texts, list(a.args)))
         head = sqwrl.read_head(parts)
-        patterns = body.patterns + [different_atom(x, y) for x, y, _ in body.different]
-        where = Rule(f"sqwrl:{name}", f"SQWRL query {name}", tuple(patterns), None, tuple(body.conditions),
-                     frozenset(body.reads)).where()
+        where = wheres[0] if len(wheres) == 1 else "\n  UNION\n  ".join(f"{{ {w} }}" for w in wheres)
         text, columns = sqwrl.select_text(head, where)
-        return sqwrl.SqwrlQuery(name, text, columns, f"SQWRL query {name}"), self._difference_rules(name, body)
+        return sqwrl.SqwrlQuery(name, text, columns, f"SQWRL query {name}"), candidates
 
     # ------------------------------------------------------------------ translation
     def compile_rule(self, node: Term) -> list[Rule]:
