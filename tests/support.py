@@ -11,10 +11,21 @@ from importlib.util import find_spec
 from pathlib import Path
 
 import pytest
-from pyoxigraph import Literal, NamedNode
+from pyoxigraph import Literal, NamedNode, RdfFormat, Triple, parse
 
 from topostore import Ontology
 from topostore.rdf.vocab import AUX, ENTAILED, INFERRED, XSD
+
+
+def too_large_axiom(ns: str) -> list[Triple]:
+    """The triples of an axiom (in namespace ``ns``) whose rule is too large for the store to evaluate safely
+    (``compile/guard.py``): a REASON after they are added fails (RuleCompileError) and reverts every change since
+    the last successful one."""
+    members = " ".join(f"<{ns}A{i}>" for i in range(300))
+    text = f"<{ns}C> <http://www.w3.org/2002/07/owl#equivalentClass> " \
+           f"[ <http://www.w3.org/2002/07/owl#intersectionOf> ({members}) ] ."
+    return list(parse(text, RdfFormat.TURTLE))
+
 
 #: the marks of a test that runs Pellet (through Owlready2, on a Java runtime): skipped without either
 NEEDS_PELLET = [

@@ -91,3 +91,20 @@ def test_an_annotation_property_told_an_object_property_axiom_keeps_the_object_r
         assert ex("C") in o.types(ex("b")), told
         assert any("declared both an annotation property" in text for text in said), said
         assert not any("set aside, as Pellet does" in text for text in said), said
+
+
+def test_an_annotation_property_declared_functional_stays_one_and_its_characteristic_is_set_aside() -> None:
+    """Functional (or inverse functional), a characteristic a data property may have too: Pellet's loader gives
+    the property no other type and reads its values as annotations, so two values are neither merged nor a clash
+    (Pellet's answers: tests/test_fidelity_pellet.py)."""
+    for characteristic in ("FunctionalProperty", "InverseFunctionalProperty"):
+        o, said = load(f""":ap a owl:AnnotationProperty , owl:{characteristic} . :D a owl:Class . :E a owl:Class .
+:a a owl:NamedIndividual ; :ap :b , :c ; :ap "x" , "y" . :z a owl:NamedIndividual ; :ap :c .
+:b a owl:NamedIndividual , :D ; owl:differentFrom :c . :c a owl:NamedIndividual , :E .
+:C a owl:Class ; :ap "one" , "two" .
+""")
+        report = o.reason()
+        assert report.consistent, characteristic
+        assert o.types(ex("b")) == [ex("D")] and o.types(ex("c")) == [ex("E")] and o.types(ex("z")) == []
+        assert any(f"ap (an annotation property: ap a {characteristic} set aside" in text for text in said), said
+        assert not any("declared both" in text for text in said), said

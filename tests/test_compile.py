@@ -15,7 +15,7 @@ from topostore.compile import Atom, Rule, RuleSet, compile_ontology
 from topostore.compile.builtins import SUPPORTED, translate
 from topostore.compile.generic import expand, generic_rules, parse_rule_file
 from topostore.compile.snippets import distinct_values, in_datatype
-from topostore.compile.swrl_text import removal_triples, rule_labels, rule_triples
+from topostore.compile.swrl_text import removal_triples, rule_labels, rule_triples, rules_among
 from topostore.errors import RuleCompileError
 from topostore.rdf.vocab import ASSERTED, SWRLB, XSD
 
@@ -302,10 +302,19 @@ def test_swrl_text_becomes_standard_rdf_and_one_rule() -> None:
     ("LOCATION(?l) -> ex:URGENT(?l)", "unknown prefix 'ex'"),
 ])
 def test_rules_that_cannot_compile_are_refused_naming_the_problem(text: str, message: str) -> None:
+    """A rule the caller adds (``refuse``) is refused, not set aside."""
     onto, _ = compiled(SWRL_TBOX)
     with pytest.raises(RuleCompileError, match=message.replace("?", r"\?").replace("(", r"\(")):
-        onto.store.add(rule_triples(text, "Bad", onto.store, NS), ASSERTED)
-        compile_ontology(onto.store, ASSERTED)
+        triples = rule_triples(text, "Bad", onto.store, NS)
+        onto.store.add(triples, ASSERTED)
+        compile_ontology(onto.store, ASSERTED, refuse=rules_among(triples))
+
+
+def test_a_rule_that_cannot_compile_is_set_aside_unless_refused() -> None:
+    onto, _ = compiled(SWRL_TBOX)
+    onto.store.add(rule_triples("LOCATION(?l) ^ swrlb:sqrt(?r, ?l) -> URGENT(?l)", "Bad", onto.store, NS), ASSERTED)
+    (notice,) = [n for n in compile_ontology(onto.store, ASSERTED).notices if n.subject == "Bad"]
+    assert notice.incomplete and "sqrt" in notice.reason and "SWRL rule set aside" in str(notice)
 
 
 def test_rule_labels_must_be_given_and_unique() -> None:

@@ -27,6 +27,7 @@ from unsat_cases import EMPTY, PREFIXES, SATISFIABLE
 
 from topostore import Ontology, OntologyWarning
 from topostore.compile import profile
+from topostore.compile.notices import RULE_SET_ASIDE
 
 pytestmark = NEEDS_PELLET
 
@@ -119,7 +120,8 @@ def topostore(o: Ontology, names: list[str]) -> dict:
 def consistent_cases() -> str:
     """One document holding every consistent case (:data:`CASES`, the SWRL string functions), each in its own
     namespace: one Pellet run answers them all."""
-    return "\n".join([*(document(name) for name in CASES), swrl_strings(), swrl_builtins(), swrl_same_as()])
+    return "\n".join([*(document(name) for name in CASES), swrl_strings(), swrl_builtins(), swrl_same_as(),
+                      swrl_comparisons(), document("swrl_third_party", SWRL_THIRD_PARTY)])
 
 
 #: SWRL rules of a third-party style: string built-ins on a language-tagged and a plain string
@@ -188,6 +190,65 @@ def swrl_same_as() -> str:
                          ":e a owl:NamedIndividual .", SAME_AS_RULES)
 
 
+#: SWRL comparisons of values of different kinds, as Pellet's testers answer them (compile/comparisons.py)
+COMPARISON_RULES = {f"{op[0].upper()}{op[1:]}": f"d(?x, ?v) ^ e(?x, ?w) ^ swrlb:{op}(?v, ?w) -> {op[0].upper()}{op[1:]}(?x)"
+                    for op in ("equal", "notEqual", "lessThan", "lessThanOrEqual", "greaterThan", "greaterThanOrEqual")}
+#: each individual's two values: a number, strings of several types, booleans, dates, URIs, a tagged string
+COMPARED_PAIRS = {
+    "token_number": ('"5"^^xsd:token', "5"), "string_token": ('"ab"', '"ab"^^xsd:token'),
+    "token_string": ('"abc"^^xsd:token', '"abd"'), "name_string": ('"abc"^^xsd:NCName', '"abc"'),
+    "booleans": ("true", '"1"^^xsd:boolean'), "boolean_number": ("true", "1"),
+    "date_string": ('"2020-01-01"^^xsd:date', '"2020-01-01"'), "dates": ('"2020-01-01"^^xsd:date', '"2021-01-01"^^xsd:date'),
+    "date_instant": ('"2020-01-01"^^xsd:date', '"2020-01-01T00:00:00Z"^^xsd:dateTime'),
+    "uris": ('"http://a10"^^xsd:anyURI', '"http://a2"^^xsd:anyURI'), "uri_string": ('"http://a"^^xsd:anyURI', '"http://a"'),
+    "tagged": ('"a"@en', '"b"@en'), "tagged_plain": ('"a"@en', '"a"'), "numbers": ("5", '"5.0"^^xsd:double'),
+}
+
+
+def swrl_comparisons() -> str:
+    """The Turtle of an ontology with :data:`COMPARISON_RULES` over :data:`COMPARED_PAIRS`."""
+    facts = " ".join(f":{name} a owl:NamedIndividual ; :d {a} ; :e {b} ." for name, (a, b) in COMPARED_PAIRS.items())
+    return swrl_document("swrl_comparisons", ":d a owl:DatatypeProperty . :e a owl:DatatypeProperty . " + facts,
+                         COMPARISON_RULES)
+
+
+#: SWRL rules as a third party writes them: rules Pellet ignores (an unknown built-in, a head variable the body does
+#: not bind, an atom without its argument; topostore sets them aside), data range atoms on a datatype defined by
+#: facets (named, or written in the atom), built-ins given an individual, and a plain rule beside them
+SWRL_THIRD_PARTY = """@prefix swrl: <http://www.w3.org/2003/11/swrl#> . @prefix swrlb: <http://www.w3.org/2003/11/swrlb#> .
+@prefix var: <urn:fidelity:var#> .
+:d a owl:DatatypeProperty . :p a owl:ObjectProperty . :D a owl:Class .
+:Small a rdfs:Datatype ; owl:equivalentClass [ a rdfs:Datatype ; owl:onDatatype xsd:integer ;
+  owl:withRestrictions ( [ xsd:maxInclusive 10 ] ) ] .
+:a a owl:NamedIndividual, :D ; :d 5 ; :p :c . :b a owl:NamedIndividual, :D ; :d 50 . :c a owl:NamedIndividual ; :d "x" .
+var:x a swrl:Variable . var:v a swrl:Variable . var:y a swrl:Variable .
+""" + "".join(f":{head} a owl:Class . [ a swrl:Imp ; rdfs:label \"{head}\" ; swrl:body ( {body} ) ; swrl:head ( "
+              f"[ a swrl:ClassAtom ; swrl:classPredicate :{head} ; swrl:argument1 var:x ] ) ] .\n" for head, body in {
+    "Plain": "[ a swrl:ClassAtom ; swrl:classPredicate :D ; swrl:argument1 var:x ]",
+    "Unknown": "[ a swrl:DatavaluedPropertyAtom ; swrl:propertyPredicate :d ; swrl:argument1 var:x ; swrl:argument2 var:v ]"
+               " [ a swrl:BuiltinAtom ; swrl:builtin swrlb:frobnicate ; swrl:arguments ( var:v 3 ) ]",
+    "NoArgument": "[ a swrl:ClassAtom ; swrl:classPredicate :D ; swrl:argument1 var:x ] [ a swrl:ClassAtom ; "
+                  "swrl:classPredicate :D ]",
+    "SmallNamed": "[ a swrl:DatavaluedPropertyAtom ; swrl:propertyPredicate :d ; swrl:argument1 var:x ; "
+                  "swrl:argument2 var:v ] [ a swrl:DataRangeAtom ; swrl:dataRange :Small ; swrl:argument1 var:v ]",
+    "SmallWritten": "[ a swrl:DatavaluedPropertyAtom ; swrl:propertyPredicate :d ; swrl:argument1 var:x ; "
+                    "swrl:argument2 var:v ] [ a swrl:DataRangeAtom ; swrl:argument1 var:v ; swrl:dataRange [ a rdfs:Datatype ;"
+                    " owl:onDatatype xsd:integer ; owl:withRestrictions ( [ xsd:maxInclusive 10 ] ) ] ]",
+    "EqualToIndividual": "[ a swrl:ClassAtom ; swrl:classPredicate :D ; swrl:argument1 var:x ] "
+                         "[ a swrl:BuiltinAtom ; swrl:builtin swrlb:equal ; swrl:arguments ( var:x :a ) ]",
+    "OtherThanIndividual": "[ a swrl:DatavaluedPropertyAtom ; swrl:propertyPredicate :d ; swrl:argument1 var:x ; "
+                           "swrl:argument2 var:v ] [ a swrl:BuiltinAtom ; swrl:builtin swrlb:notEqual ; "
+                           "swrl:arguments ( var:v :a ) ]",
+    "IndividualText": "[ a swrl:ClassAtom ; swrl:classPredicate :D ; swrl:argument1 var:x ] [ a swrl:BuiltinAtom ; "
+                      "swrl:builtin swrlb:contains ; swrl:arguments ( :a \"fidelity\" ) ]",
+}.items()) + """[ a swrl:Imp ; rdfs:label "Unsafe" ; swrl:body ( [ a swrl:ClassAtom ; swrl:classPredicate :D ; swrl:argument1 var:x ] ) ;
+  swrl:head ( [ a swrl:IndividualPropertyAtom ; swrl:propertyPredicate :p ; swrl:argument1 var:x ;
+  swrl:argument2 var:y ] ) ] .
+"""
+#: the rules of :data:`SWRL_THIRD_PARTY` set aside, as Pellet ignores them
+SET_ASIDE = {"Unknown", "NoArgument", "Unsafe"}
+
+
 def only(answers: dict, ns: str) -> dict:
     """The individuals of namespace ``ns`` in ``answers``."""
     return {k: v for k, v in answers["individuals"].items() if k.startswith(ns)}
@@ -199,12 +260,21 @@ def topostore_consistent_cases() -> dict:
     return topostore(loaded(consistent_cases()), sorted(pellet(consistent_cases())["individuals"]))
 
 
-@pytest.mark.parametrize("name", [*CASES, "swrl_strings", "swrl_builtins", "swrl_same_as"])
+@pytest.mark.parametrize("name", [*CASES, "swrl_strings", "swrl_builtins", "swrl_same_as", "swrl_comparisons",
+                                  "swrl_third_party"])
 def test_cases_as_pellet(name: str) -> None:
     expected = pellet(consistent_cases())
     assert expected["consistent"]
     assert len(only(expected, namespace(name))) >= 3
     assert only(topostore_consistent_cases(), namespace(name)) == only(expected, namespace(name))
+
+
+def test_the_rules_pellet_ignores_are_set_aside_and_named() -> None:
+    """Of :data:`SWRL_THIRD_PARTY`, the rules Pellet ignores are loaded, set aside and named, no other."""
+    with pytest.warns(OntologyWarning, match="SWRL rule set aside"):
+        o = Ontology.from_file(saved(document("swrl_third_party", SWRL_THIRD_PARTY)))
+    aside = {n.subject for n in o.reason().incomplete if n.axiom_kind == RULE_SET_ASIDE}
+    assert aside == SET_ASIDE and len(o.rule_labels()) == 9
 
 
 # ---------------------------------------------------------------- random small ontologies
@@ -683,8 +753,11 @@ def test_datatype_definitions_as_pellet(name: str) -> None:
 
 
 #: annotation properties, declared and built in, told a domain, a range (a datatype, a class disjoint with a
-#: value's) and a super-property, as Protégé writes them: no logical meaning, so Pellet's types and verdict
+#: value's), a super-property, functional and inverse functional, as Protégé writes them: no logical meaning, so
+#: Pellet's types and verdict
 ANNOTATIONS = """:ap a owl:AnnotationProperty ; rdfs:domain :C ; rdfs:subPropertyOf :p . :C a owl:Class .
+:fa a owl:AnnotationProperty , owl:FunctionalProperty . :ifa a owl:AnnotationProperty , owl:InverseFunctionalProperty .
+:a :fa :b , :bob . :b owl:differentFrom :bob . :c2 a owl:NamedIndividual , :Doc ; :ifa :b . :c3 a owl:NamedIndividual ; :ifa :b .
 :p a owl:ObjectProperty ; rdfs:domain :E . :E a owl:Class .
 :src a owl:AnnotationProperty ; rdfs:range xsd:anyURI . :created a owl:AnnotationProperty ; rdfs:range xsd:dateTime .
 :definition a owl:AnnotationProperty ; rdfs:range xsd:string . :see a owl:AnnotationProperty ; rdfs:range :Doc .

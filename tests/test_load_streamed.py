@@ -115,10 +115,8 @@ def test_a_canonical_xml_literal_is_stored() -> None:
 @pytest.mark.parametrize(("text", "error", "message"), [
     (PREFIXES + ':a :p "abc"^^xsd:integer . :b :q :c .', InvalidValueError, "abc"),
     (PREFIXES + ":a :p :b .\n:a :p", LoadError, r"<data>:\d+: not valid Turtle"),
-    (PREFIXES + ":p rdfs:domain :D . [ a swrl:Imp ; swrl:body [ a swrl:AtomList ; rdf:first [ a swrl:ClassAtom ;"
-     " swrl:classPredicate :D ; swrl:argument1 :x ] ; rdf:rest rdf:nil ] ; swrl:head [ a swrl:AtomList ;"
-     " rdf:first [ a swrl:BuiltinAtom ; swrl:builtin <http://e.org/nosuch> ; swrl:arguments ( :x ) ] ;"
-     " rdf:rest rdf:nil ] ] . :x a swrl:Variable .", RuleCompileError, "nosuch"),
+    (PREFIXES + ":p rdfs:domain :D . :C owl:equivalentClass [ owl:intersectionOf ({}) ] ."
+     .format(" ".join(f":A{i}" for i in range(300))), RuleCompileError, "too large"),
 ])
 def test_a_refused_first_document_leaves_nothing_behind(text: str, error: type, message: str) -> None:
     onto = Ontology()

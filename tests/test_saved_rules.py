@@ -13,12 +13,13 @@ from pathlib import Path
 
 import pytest
 from click.testing import CliRunner
+from pyoxigraph import NamedNode
 from scenarios import damage
 from support import ABOX_OWL as ABOX
 from support import DATA, armor_load
 from support import TBOX_OWL as TBOX
 
-from topostore import Ontology, OntologyWarning, RuleCompileError
+from topostore import Ontology, OntologyWarning
 from topostore.armor import ArmorService
 from topostore.cli.group import cli
 from topostore.compile.notices import RULE_REPAIRED, RULE_SKIPPED
@@ -85,6 +86,31 @@ def test_armor_load_reply_names_repaired_and_skipped_rules() -> None:
     assert "SWRL rule skipped: Broken" in res.error_description
 
 
+def test_armor_load_of_a_rule_that_cannot_compile_succeeds_and_names_it(tmp_path: Path) -> None:
+    """A third-party file whose rule uses a built-in topostore does not evaluate: LOAD succeeds (it was refused
+    with 209), the reply names the rule set aside, and the other rules are reasoned."""
+    path = tmp_path / "tan.ttl"
+    path.write_text("""
+    @prefix : <http://example.org/u#> . @prefix swrl: <http://www.w3.org/2003/11/swrl#> .
+    @prefix swrlb: <http://www.w3.org/2003/11/swrlb#> . @prefix owl: <http://www.w3.org/2002/07/owl#> .
+    @prefix rdfs: <http://www.w3.org/2000/01/rdf-schema#> .
+    :A a owl:Class . :B a owl:Class . :C a owl:Class . :d a owl:DatatypeProperty . :x a swrl:Variable .
+    :v a swrl:Variable . :r a swrl:Variable . :i a owl:NamedIndividual , :A ; :d 1 .
+    [] a swrl:Imp ; rdfs:label "Trig" ;
+       swrl:body ( [ a swrl:DatavaluedPropertyAtom ; swrl:propertyPredicate :d ; swrl:argument1 :x ; swrl:argument2 :v ]
+                   [ a swrl:BuiltinAtom ; swrl:builtin swrlb:tan ; swrl:arguments ( :r :v ) ] ) ;
+       swrl:head ( [ a swrl:ClassAtom ; swrl:classPredicate :C ; swrl:argument1 :x ] ) .
+    [] a swrl:Imp ; rdfs:label "Plain" ; swrl:body ( [ a swrl:ClassAtom ; swrl:classPredicate :A ; swrl:argument1 :x ] ) ;
+       swrl:head ( [ a swrl:ClassAtom ; swrl:classPredicate :B ; swrl:argument1 :x ] ) .
+    """)
+    service = ArmorService()
+    res = armor_load(service, path, "http://example.org/u")
+    assert res.success and res.exit_code == 0
+    assert "SWRL rule set aside: Trig (atom BuiltinAtom(tan, r, v): unsupported built-in" in res.error_description
+    assert [c.value for c in service.reference("ref").ontology.types("i")] == ["http://example.org/u#A",
+                                                                             "http://example.org/u#B"]
+
+
 def test_check_command_prints_the_report() -> None:
     result = CliRunner().invoke(cli, ["check", str(SAVED)])
     assert result.exit_code == 0, result.output
@@ -117,20 +143,23 @@ def test_a_repaired_rule_that_still_cannot_compile_is_skipped() -> None:
     assert [onto.short(i) for i in onto.instances("A")] == ["i"]
 
 
-def test_an_untouched_untranslatable_rule_still_refuses_the_file() -> None:
+def test_an_untouched_untranslatable_rule_is_set_aside_and_kept() -> None:
+    """A rule no save damaged that cannot be compiled: loaded as written, set aside with a warning naming it."""
     onto = Ontology()
-    with pytest.raises(RuleCompileError):
+    with pytest.warns(OntologyWarning, match="SWRL rule set aside: Unsafe .*not bound"):
         onto.load_data("""
         @prefix : <http://example.org/u#> . @prefix swrl: <http://www.w3.org/2003/11/swrl#> .
         @prefix rdf: <http://www.w3.org/1999/02/22-rdf-syntax-ns#> . @prefix owl: <http://www.w3.org/2002/07/owl#> .
-        :A a owl:Class . :B a owl:Class . :x a swrl:Variable . :z a swrl:Variable .
-        [] a swrl:Imp ;
+        @prefix rdfs: <http://www.w3.org/2000/01/rdf-schema#> .
+        :A a owl:Class . :B a owl:Class . :x a swrl:Variable . :z a swrl:Variable . :i a :A .
+        [] a swrl:Imp ; rdfs:label "Unsafe" ;
            swrl:body [ a swrl:AtomList ; rdf:rest rdf:nil ;
                        rdf:first [ a swrl:ClassAtom ; swrl:classPredicate :A ; swrl:argument1 :x ] ] ;
            swrl:head [ a swrl:AtomList ; rdf:rest rdf:nil ;
                        rdf:first [ a swrl:ClassAtom ; swrl:classPredicate :B ; swrl:argument1 :z ] ] .
         """)
-    assert onto.store.count(ASSERTED) == 0
+    assert onto.load_notices == [] and onto.rule_labels() == ["Unsafe"]
+    assert onto.reason().consistent and not list(onto.store.triples(None, TYPE, NamedNode("http://example.org/u#B")))
 
 
 def test_well_formed_rules_are_not_touched() -> None:

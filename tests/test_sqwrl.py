@@ -135,3 +135,44 @@ def test_cli_runs_and_lists_them() -> None:
 def test_armor_load_reply_names_the_queries() -> None:
     res = armor_load(ArmorService(), QUERIES, "http://example.org/people")
     assert res.success and "SQWRL query" in res.error_description and "residents" in res.error_description
+
+
+def test_a_variable_bound_only_by_a_same_as_atom_ranges_over_the_aliases() -> None:
+    """``D(?x) ^ sameAs(?x, ?y) -> sqwrl:select(?x, ?y)``: ?y is ?x itself and each alias (sameAs is reflexive),
+    as in a rule (it was set aside with a notice, the variable "not bound by the body")."""
+    o = Ontology()
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", OntologyWarning)
+        o.load_data(PREFIXES + """
+        <http://example.org/people> a owl:Ontology . :D a owl:Class . :x a swrl:Variable . :y a swrl:Variable .
+        :a a owl:NamedIndividual , :D . :b a owl:NamedIndividual ; owl:sameAs :c . :c a owl:NamedIndividual , :D .
+        :e a owl:NamedIndividual .
+        [] a swrl:Imp ; rdfs:label "aliases" ;
+           swrl:body ( [ a swrl:ClassAtom ; swrl:classPredicate :D ; swrl:argument1 :x ]
+                       [ a swrl:SameIndividualAtom ; swrl:argument1 :x ; swrl:argument2 :y ] ) ;
+           swrl:head ( [ a swrl:BuiltinAtom ; swrl:builtin q:select ; swrl:arguments ( :x :y ) ]
+                       [ a swrl:BuiltinAtom ; swrl:builtin q:orderBy ; swrl:arguments ( :x :y ) ] ) .
+        """)
+    assert o.reason().consistent
+    assert "aliases" in o.rules.queries
+    assert rows(o.query("aliases"), 2) == [("a", "a"), ("b", "b"), ("b", "c"), ("c", "b"), ("c", "c")]
+
+
+def test_a_chain_of_same_as_atoms_binds_each_variable_to_the_aliases() -> None:
+    """``sameAs(?x, ?y) ^ sameAs(?y, ?z)``: every (x, y, z) of one individual's names, once each."""
+    o = Ontology()
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", OntologyWarning)
+        o.load_data(PREFIXES + """
+        <http://example.org/people> a owl:Ontology . :D a owl:Class .
+        :x a swrl:Variable . :y a swrl:Variable . :z a swrl:Variable .
+        :a a owl:NamedIndividual , :D . :b a owl:NamedIndividual ; owl:sameAs :c . :c a owl:NamedIndividual , :D .
+        [] a swrl:Imp ; rdfs:label "chain" ;
+           swrl:body ( [ a swrl:ClassAtom ; swrl:classPredicate :D ; swrl:argument1 :x ]
+                       [ a swrl:SameIndividualAtom ; swrl:argument1 :x ; swrl:argument2 :y ]
+                       [ a swrl:SameIndividualAtom ; swrl:argument1 :y ; swrl:argument2 :z ] ) ;
+           swrl:head ( [ a swrl:BuiltinAtom ; swrl:builtin q:select ; swrl:arguments ( :x :y :z ) ] ) .
+        """)
+    o.reason()
+    names = [("a", "a", "a")] + [(x, y, z) for x in "bc" for y in "bc" for z in "bc"]
+    assert sorted(rows(o.query("chain"), 3)) == names

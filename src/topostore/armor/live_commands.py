@@ -24,7 +24,7 @@ from __future__ import annotations
 import json
 
 from ..compile.pipeline import compile_ontology
-from ..compile.swrl_text import removal_triples, rule_labels, rule_triples
+from ..compile.swrl_text import removal_triples, rule_labels, rule_triples, rules_among
 from ..errors import InvalidNameError, RuleCompileError, TopostoreError
 from ..ontology.explain import resolve_triple
 from ..rdf.vocab import ASSERTED
@@ -65,7 +65,7 @@ def add_swrl(ctx: Context) -> Reply:
         scratch = memory_store()
         scratch.add(onto.store.triples(graph=ASSERTED), ASSERTED)
         scratch.add(triples, ASSERTED)
-        compile_ontology(scratch, ASSERTED)
+        compile_ontology(scratch, ASSERTED, refuse=rules_among(triples))
     except (RuleCompileError, InvalidNameError) as exc:
         raise CommandError(codes.INVALID_ARGUMENT, f"SWRL rule {label!r} refused: {exc}") from None
     return ctx.submit(fixed("ADD SWRL", add=triples))

@@ -11,9 +11,12 @@ from pathlib import Path
 
 import click
 
+from ..compile import compile_ontology
 from ..compile.notices import RULE_SKIPPED, grouped
 from ..compile.swrl_repair import replace_rules
+from ..compile.swrl_text import rules_among
 from ..ontology.facade import Ontology
+from ..rdf.vocab import ASSERTED
 from ..stores import memory_store
 from .loading import _existing, load_files
 
@@ -66,7 +69,8 @@ def repair(saved: str, original: str, output: str) -> None:
     triples, removed, put = replace_rules(store.parse_file(saved), store.parse_file(original))
     onto = Ontology()
     onto.add(*triples)
-    onto.rules  # noqa: B018  (compiles: a rule that cannot be translated refuses the output, nothing written)
+    # the rules put back are the user's: one that cannot be translated refuses the output, nothing written
+    compile_ontology(onto.store, ASSERTED, refuse=rules_among(triples))
     path = onto.save(Path(output))
     click.echo(f"{saved}: {removed} SWRL rule(s) removed, {put} put back from {original}; wrote {path}")
 

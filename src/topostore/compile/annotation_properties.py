@@ -4,13 +4,16 @@ Why: OWL 2 gives an annotation property's domain, range and super-properties no 
 Pellet ignores them; Protégé writes them all the same (``:source rdfs:range xsd:anyURI``), so reasoning
 over them types individuals wrongly and makes ontologies inconsistent.  An IRI declared an annotation
 property and also an object or data property (declared so, or told an axiom only those have: a
-characteristic, an inverse, a chain, an equivalent or disjoint property) is illegal punning in OWL 2 DL;
-it keeps the object or data reading, as Pellet does, and is named.
+characteristic only an object property has, an inverse, a chain, an equivalent or disjoint property) is
+illegal punning in OWL 2 DL; it keeps the object or data reading, as Pellet does, and is named.  Declared
+functional or inverse functional, characteristics a data property may have too, an annotation property stays
+one: Pellet's loader gives such a declaration no property type and reads the values as annotations (no merge,
+no clash), so the characteristic is set aside with its other axioms.
 """
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Iterable
 
 from pyoxigraph import NamedNode, Triple
 
@@ -23,6 +26,9 @@ CHARACTERISTICS = (
     "FunctionalProperty", "InverseFunctionalProperty", "TransitiveProperty", "SymmetricProperty",
     "AsymmetricProperty", "IrreflexiveProperty", "ReflexiveProperty",
 )
+#: the characteristics that make an IRI an object property (told of an annotation property: illegal punning);
+#: functional and inverse functional, which Pellet leaves untyped, do not
+OBJECT_CHARACTERISTICS = CHARACTERISTICS[2:]
 
 
 class AnnotationProperties:
@@ -36,6 +42,18 @@ class AnnotationProperties:
         #: the annotation properties (declared or built in) whose axioms carry no logical meaning
         self.properties = (declared | BUILTIN_ANNOTATION_PROPERTIES) - logical - self.punned
 
+    def characteristic(self, tb: TBox, name: str, subjects: Iterable[NamedNode],
+                       short: Callable[[object], str]) -> set[NamedNode]:
+        """The ``subjects`` declared characteristic ``name`` that are not annotation properties; those that are (a
+        functional annotation property) are kept in ``tb`` for the notice, the characteristic set aside."""
+        kept = set()
+        for s in subjects:
+            if s in self.properties:
+                tb.annotation_axioms.setdefault(s, []).append(f"{short(s)} a {name}")
+            else:
+                kept.add(s)
+        return kept
+
     def set_aside(self, tb: TBox, t: Triple, short: Callable[[object], str]) -> bool:
         """Whether triple ``t`` is an axiom about an annotation property (its subject's, or a super-property's):
         if so it is kept in ``tb`` for the notice naming the property once, and not read as an axiom."""
@@ -47,9 +65,9 @@ class AnnotationProperties:
 
 
 def _told_logical_axioms(store: Store, graph: NamedNode) -> set[NamedNode]:
-    """The IRIs a property axiom only an object or data property can have names: a characteristic, an
-    inverse, a chain, an equivalent or a disjoint property."""
-    out = {s for name in CHARACTERISTICS for s in store.subjects(TYPE, owl(name), graph)}
+    """The IRIs a property axiom only an object or data property can have names: a characteristic of object
+    properties, an inverse, a chain, an equivalent or a disjoint property."""
+    out = {s for name in OBJECT_CHARACTERISTICS for s in store.subjects(TYPE, owl(name), graph)}
     for name in ("inverseOf", "equivalentProperty", "propertyDisjointWith"):
         for t in store.triples(None, owl(name), None, graph):
             out |= {t.subject, t.object}
@@ -57,4 +75,4 @@ def _told_logical_axioms(store: Store, graph: NamedNode) -> set[NamedNode]:
     return {s for s in out if isinstance(s, NamedNode)}
 
 
-__all__ = ["CHARACTERISTICS", "AnnotationProperties"]
+__all__ = ["CHARACTERISTICS", "OBJECT_CHARACTERISTICS", "AnnotationProperties"]

@@ -9,19 +9,17 @@ followed by :func:`defined`: the built-in holds only where its value could be co
 from __future__ import annotations
 
 import re
-from collections.abc import Callable, Mapping
+from collections.abc import Callable, Collection, Mapping
 
 from pyoxigraph import Literal, NamedNode
 
 from ..errors import RuleCompileError
 from ..rdf.terms import Term
 from ..rdf.vocab import POW_FUNCTION, SWRLB, XSD, xsd
+from .comparisons import OPERATORS, comparison
 from .condition import Condition, bind, test
 
-_COMPARISONS = {
-    "equal": "=", "notEqual": "!=", "lessThan": "<", "lessThanOrEqual": "<=",
-    "greaterThan": ">", "greaterThanOrEqual": ">=",
-}
+_COMPARISONS = OPERATORS
 
 
 def _trunc_div(a: str, b: str) -> str:
@@ -84,8 +82,9 @@ def _whole(pattern: str) -> str:
 SUPPORTED = sorted(set(_COMPARISONS) | set(_FUNCTIONS) | set(_TESTS))
 
 
-def translate(name: str, args: list[str], bound: set[str]) -> Condition | None:
-    """The condition for built-in ``name`` with argument texts ``args``.
+def translate(name: str, args: list[str], bound: set[str], numbers: Collection[str] = ()) -> Condition | None:
+    """The condition for built-in ``name`` with argument texts ``args`` (``numbers``: the variables known to hold
+    a number, :func:`gives_number`).
 
     Returns a test (``FILTER(...)``), a BIND of the first argument (``?r``,
     :attr:`Condition.binds`) when it is still unbound, or None when it cannot run yet (some input
@@ -103,7 +102,7 @@ def translate(name: str, args: list[str], bound: set[str]) -> Condition | None:
         if len(args) != 2:
             raise RuleCompileError(f"swrlb:{local} takes 2 arguments, got {len(args)}")
         if all(is_bound(a) for a in args):
-            return test(f"{args[0]} {_COMPARISONS[local]} {args[1]}")
+            return test(comparison(local, args[0], args[1], numbers))
         if local == "equal" and is_bound(args[1]):
             return bind(args[1], args[0])
         return None
@@ -128,6 +127,15 @@ def translate(name: str, args: list[str], bound: set[str]) -> Condition | None:
 #: and ``<``/``>`` compare no IRIs; ``=``, ``<=`` and the string functions (``STR``) do take one
 _STRICT = frozenset(_FUNCTIONS) - {"stringConcat", "stringLength", "upperCase", "lowerCase", "substring"} \
     | {"lessThan", "greaterThan"}
+
+
+#: the functions whose result is a number (the arithmetic ones, and a string's length)
+_NUMBER_RESULTS = frozenset(_FUNCTIONS) - {"stringConcat", "upperCase", "lowerCase", "substring"}
+
+
+def gives_number(name: str) -> bool:
+    """Whether function built-in ``name`` (full IRI) binds its result to a number, where it binds one."""
+    return name.removeprefix(SWRLB) in _NUMBER_RESULTS
 
 
 def is_strict(name: str) -> bool:

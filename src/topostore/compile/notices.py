@@ -46,6 +46,8 @@ EXISTENTIAL = "existential with consequences for an unnamed value"
 DIFFERENCE = "difference entailed by a property characteristic"
 UNSUPPORTED = "not supported"
 UNCHECKED_DATATYPE = "values of a datatype not checked"
+#: a SWRL rule that cannot be compiled (an unknown built-in, a malformed atom): kept in the graph, not reasoned
+RULE_SET_ASIDE = "SWRL rule set aside"
 
 
 class OntologyWarning(UserWarning):
@@ -151,5 +153,5 @@ def publish(notices: Iterable[Notice], source: str = "") -> list[str]:
 
 
 __all__ = ["ANNOTATION", "INCOMPLETE", "NOT_STORED",
-           "RULE_REPAIRED", "RULE_SKIPPED", "SQWRL_QUERY", "Notice", "OntologyWarning", "answered",
+           "RULE_REPAIRED", "RULE_SET_ASIDE", "RULE_SKIPPED", "SQWRL_QUERY", "Notice", "OntologyWarning", "answered",
            "grouped", "publish", "unsaid", "warn"]

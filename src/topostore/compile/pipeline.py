@@ -2,8 +2,11 @@
 
 from __future__ import annotations
 
+from collections.abc import Collection
+
 from pyoxigraph import NamedNode
 
+from ..rdf.terms import Term
 from ..stores.base import Store
 from .alike import merge_alike
 from .datatypes import empty_range_rules, range_rules
@@ -30,17 +33,18 @@ from .tbox_reader import TBoxReader
 from .unsatisfiable import unsatisfiable
 
 
-def compile_ontology(store: Store, graph: NamedNode) -> RuleSet:
+def compile_ontology(store: Store, graph: NamedNode, refuse: Collection[Term] = ()) -> RuleSet:
     """All rules for the ontology in ``graph``.
 
-    Raises :class:`~topostore.errors.RuleCompileError` naming the rule and atom
-    when a SWRL rule or an axiom cannot be translated, or when a rule would be
-    too large for the store to evaluate safely (:mod:`.guard`).  What the rules
-    do not reason completely is in ``notices`` (published at LOAD, see :mod:`topostore.compile.notices`).
+    A SWRL rule that cannot be translated is set aside with a notice naming it and why, unless it is one of
+    ``refuse`` (its ``swrl:Imp`` node): then, as when a rule would be too large for the store to evaluate
+    safely (:mod:`.guard`), :class:`~topostore.errors.RuleCompileError` is raised naming the rule and atom.
+    What the rules do not reason completely is in ``notices`` (published at LOAD, see
+    :mod:`topostore.compile.notices`).
     """
     reader = TBoxReader(store, graph)
     tbox = reader.read()
-    swrl = SwrlCompiler(store, graph, reader)
+    swrl = SwrlCompiler(store, graph, reader, refuse)
     swrl_rules = swrl.compile()
     tbox.typed_expressions.extend(swrl.expressions)
     merge_alike(tbox)  # after the SWRL rules: the expressions they name are kept

@@ -170,8 +170,8 @@ class ProfileReport:
         for p in sorted(self.tb.annotation_punned, key=lambda n: n.value):
             self.notices.setdefault((ANNOTATION, p.value), Notice(
                 ANNOTATION, short_name(p), "declared both an annotation property and an object or data property "
-                "(or told an axiom only those have: a characteristic, an inverse, a chain), which OWL 2 DL forbids: "
-                "read as the object or data property"))
+                "(or told an axiom only those have: a characteristic of object properties, an inverse, a chain), which "
+                "OWL 2 DL forbids: read as the object or data property"))
 
     # ---------------------------------------------------------------- expressions
     def expression(self, e: Expr, positive: bool, axiom: str, subject: NamedNode | None = None) -> None:

@@ -1,14 +1,16 @@
 """SWRL rules (standard RDF vocabulary, as Protégé writes them) → rules.
 
 Every enabled ``swrl:Imp`` becomes one rule per head atom.  A rule that cannot
-be translated is refused with a message naming the rule (label or IRI) and the
-atom, never dropped silently.
+be translated (an unknown built-in, an atom of no known kind, an atom missing its
+predicate or arguments, a variable the body does not bind) is set aside, as Pellet
+ignores it, with a notice naming the rule (label or IRI), the atom and why; the
+other rules are compiled.  A rule the caller adds itself (``refuse``) is refused
+instead, naming the same.
 """
 
 from __future__ import annotations
 
-import re
-from collections.abc import Iterable, Iterator
+from collections.abc import Collection, Iterable, Iterator
 from contextlib import contextmanager
 from dataclasses import dataclass, field
 
@@ -16,57 +18,21 @@ from pyoxigraph import Literal, NamedNode
 
 from ..errors import RuleCompileError
 from ..rdf.terms import Term, sparql
-from ..rdf.vocab import DIFFERENT_FROM, ENTAILED_PREFIX, SAME_AS, SWRL, SWRLA, TYPE, is_skolem, rdfs, swrl
+from ..rdf.vocab import DIFFERENT_FROM, ENTAILED_PREFIX, SAME_AS, SWRLA, TYPE, is_skolem, rdfs, swrl
 from ..stores.base import Store
-from . import builtins, sqwrl
+from . import builtins, data_ranges, sqwrl
 from . import condition as cond
 from .condition import Condition
 from .inline_difference import DifferenceAsk
 from .model import Expr, is_datatype
-from .notices import SQWRL_QUERY, Notice
+from .notices import INCOMPLETE, RULE_SET_ASIDE, SQWRL_QUERY, Notice
 from .rule import Atom, Rule
 from .snippets import candidate_atom, different_atom, surely_in_datatype
-from .swrl_same_as import same_as_forms
+from .swrl_atoms import Names, SwrlAtom, read_atoms
+from .swrl_same_as import rebinding, same_as_forms
 from .tbox_reader import TBoxReader
 
 T = str(TYPE)
-
-
-@dataclass(frozen=True)
-class SwrlAtom:
-    kind: str  # ClassAtom, IndividualPropertyAtom, ...
-    predicate: Term | None
-    args: tuple[Term, ...]
-    node: Term
-
-    def describe(self, rule_name: str) -> str:
-        def short(t: Term | None) -> str:
-            if t is None:
-                return ""
-            v = getattr(t, "value", str(t))
-            return v.rsplit("#", 1)[-1].rsplit("/", 1)[-1]
-
-        args = ", ".join(short(a) for a in self.args)
-        return f"{self.kind}({short(self.predicate)}{', ' if self.predicate else ''}{args})"
-
-
-class _Names:
-    """SPARQL text of a rule's arguments: ``?local`` for each SWRL variable (unique per rule), terms rendered."""
-
-    def __init__(self, variables: set[Term]) -> None:
-        self.variables = variables
-        self.names: dict[Term, str] = {}
-
-    def __call__(self, t: Term) -> str:
-        if t not in self.variables:
-            return sparql(t)
-        if t not in self.names:
-            local = re.sub(r"[^A-Za-z0-9_]", "_", t.value.rsplit("#", 1)[-1].rsplit("/", 1)[-1]) or "v"
-            candidate = f"?{local}"
-            while candidate in self.names.values():
-                candidate += "_"
-            self.names[t] = candidate
-        return self.names[t]
 
 
 @dataclass
@@ -94,6 +60,15 @@ def _about(name: str, a: SwrlAtom, what: str = "atom") -> Iterator[None]:
         raise RuleCompileError(f"SWRL rule {name!r}, {what} {a.describe(name)}: {exc}") from None
 
 
+def _why(name: str, exc: RuleCompileError) -> str:
+    """A compile error's text without the rule's name it starts with (the notice names the rule)."""
+    text = str(exc)
+    for prefix in (f"SWRL rule {name!r}, ", f"SWRL rule {name!r} "):
+        if text.startswith(prefix):
+            return text[len(prefix):]
+    return text
+
+
 def _require_bound(name: str, a: SwrlAtom, needs: Iterable[str], bound: set[str], where: str) -> None:
     """Refuse an atom using a variable the body does not bind."""
     missing = [v for v in needs if v.startswith("?") and v not in bound]
@@ -103,8 +78,11 @@ def _require_bound(name: str, a: SwrlAtom, needs: Iterable[str], bound: set[str]
 
 
 class SwrlCompiler:
-    def __init__(self, store: Store, graph: NamedNode, reader: TBoxReader) -> None:
+    def __init__(self, store: Store, graph: NamedNode, reader: TBoxReader, refuse: Collection[Term] = ()) -> None:
+        """``refuse``: the rules (their ``swrl:Imp`` nodes) refused with a RuleCompileError when they cannot be
+        compiled, rather than set aside (a rule a command adds, a rule a loader repaired)."""
         self.store, self.graph, self.reader = store, graph, reader
+        self.refuse = refuse
         self.variables = {v for v in store.subjects(TYPE, swrl("Variable"), graph)}
         self.expressions: list[Expr] = []
         #: anonymous class expressions of rule atoms: (expression, in a head)
@@ -141,31 +119,27 @@ class SwrlCompiler:
                 self.compile_query(node)
                 continue
             try:
-                rules += self.compile_rule(node)
+                with self._undone_on_failure():
+                    rules += self.compile_rule(node)
             except RuleCompileError as exc:
-                exc.rule = node  # which rule, so that a loader may set a repaired one aside
-                raise
+                if node in self.refuse:
+                    exc.rule = node  # which rule, so that a loader may set a repaired one aside
+                    raise
+                name = self.rule_name(node)
+                self.notices.append(Notice(INCOMPLETE, name, _why(name, exc), RULE_SET_ASIDE, node=node))
         return rules
 
-    # ------------------------------------------------------------------ reading
-    def atoms(self, head: Term | None, name: str) -> list[SwrlAtom]:
-        if head is None:
-            return []
-        out = []
-        for node in self.store.list_items(head, self.graph):
-            kinds = [t.value[len(SWRL):] for t in self.store.objects(node, TYPE, self.graph)
-                     if t.value.startswith(SWRL)]
-            kind = kinds[0] if kinds else "?"
-            pred = (self._one(node, swrl("classPredicate")) or self._one(node, swrl("propertyPredicate"))
-                    or self._one(node, swrl("dataRange")) or self._one(node, swrl("builtin")))
-            if kind == "BuiltinAtom":
-                lst = self._one(node, swrl("arguments"))
-                args = tuple(self.store.list_items(lst, self.graph)) if lst is not None else ()
-            else:
-                args = tuple(a for a in (self._one(node, swrl("argument1")), self._one(node, swrl("argument2")))
-                             if a is not None)
-            out.append(SwrlAtom(kind, pred, args, node))
-        return out
+    @contextmanager
+    def _undone_on_failure(self) -> Iterator[None]:
+        """What compiling one rule recorded (expressions it names, difference asks) taken back if it fails."""
+        sizes = (len(self.expressions), len(self.used_as), len(self.asks))
+        entailed, difference = set(self.entailed_predicates), self.uses_difference
+        try:
+            yield
+        except RuleCompileError:
+            del self.expressions[sizes[0]:], self.used_as[sizes[1]:], self.asks[sizes[2]:]
+            self.entailed_predicates, self.uses_difference = entailed, difference
+            raise
 
     # ------------------------------------------------------------------ SQWRL
     def is_query(self, node: Term) -> bool:
@@ -195,40 +169,47 @@ class SwrlCompiler:
                                    node=node))
 
     def _query(self, name: str, node: Term) -> tuple[sqwrl.SqwrlQuery, list[Rule]]:
-        body_atoms = self.atoms(self._one(node, swrl("body")), name)
-        head_atoms = self.atoms(self._one(node, swrl("head")), name)
+        body_atoms = read_atoms(self.store, self.graph, self._one(node, swrl("body")))
+        head_atoms = read_atoms(self.store, self.graph, self._one(node, swrl("head")))
         for a in body_atoms:
             if a.kind == "BuiltinAtom" and sqwrl.is_sqwrl(a.predicate):
                 raise RuleCompileError(f"sqwrl:{sqwrl.operator(a.predicate)} in a query body (collections) "
                                        "is not supported")
-        arg = _Names(self.variables)
-        body = self._body(name, body_atoms, arg)
+        arg = Names(self.variables)
+        wheres, candidates, bound = [], [], set()
+        for form, _ in same_as_forms(body_atoms, [], self.variables):  # a union of the forms, each variable kept
+            body = self._body(name, form, arg)
+            patterns = body.patterns + [different_atom(x, y) for x, y, _ in body.different]
+            where = Rule(f"sqwrl:{name}", f"SQWRL query {name}", tuple(patterns), None, tuple(body.conditions),
+                         frozenset(body.reads)).where()
+            again = [(arg(y), arg(x)) for y, x in rebinding(body_atoms, form, self.variables)]
+            wheres.append(where + "".join(f"\n  BIND({x} AS {y})" for y, x in again))
+            bound = body.bound | {y for y, _ in again}
+            candidates += self._difference_rules(name, body)
         parts = []
         for a in head_atoms:
             if a.kind != "BuiltinAtom" or not sqwrl.is_sqwrl(a.predicate):
                 raise RuleCompileError(f"{a.describe(name)} beside SQWRL built-ins in a head")
             texts = [arg(x) for x in a.args]
-            _require_bound(name, a, texts, body.bound, "head ")
+            _require_bound(name, a, texts, bound, "head ")
             parts.append((sqwrl.operator(a.predicate), texts, list(a.args)))
         head = sqwrl.read_head(parts)
-        patterns = body.patterns + [different_atom(x, y) for x, y, _ in body.different]
-        where = Rule(f"sqwrl:{name}", f"SQWRL query {name}", tuple(patterns), None, tuple(body.conditions),
-                     frozenset(body.reads)).where()
+        where = wheres[0] if len(wheres) == 1 else "\n  UNION\n  ".join(f"{{ {w} }}" for w in wheres)
         text, columns = sqwrl.select_text(head, where)
-        return sqwrl.SqwrlQuery(name, text, columns, f"SQWRL query {name}"), self._difference_rules(name, body)
+        return sqwrl.SqwrlQuery(name, text, columns, f"SQWRL query {name}"), candidates
 
     # ------------------------------------------------------------------ translation
     def compile_rule(self, node: Term) -> list[Rule]:
         """The rules of one ``swrl:Imp``: one per head atom (two when difference is only entailed),
         plus a candidate rule per DifferentIndividualsAtom of the body."""
         name = self.rule_name(node)
-        body_atoms = self.atoms(self._one(node, swrl("body")), name)
-        head_atoms = self.atoms(self._one(node, swrl("head")), name)
+        body_atoms = read_atoms(self.store, self.graph, self._one(node, swrl("body")))
+        head_atoms = read_atoms(self.store, self.graph, self._one(node, swrl("head")))
         if not head_atoms:
             raise RuleCompileError(f"SWRL rule {name!r} has no head atom")
         out: list[Rule] = []
         for body_form, head_form in same_as_forms(body_atoms, head_atoms, self.variables):
-            arg = _Names(self.variables)
+            arg = Names(self.variables)
             body = self._body(name, body_form, arg)
             rules = self._difference_rules(name, body)
             heads: list[Rule] = []
@@ -240,7 +221,7 @@ class SwrlCompiler:
             out += rules + heads
         return out
 
-    def _body(self, name: str, atoms: list[SwrlAtom], arg: _Names) -> _Body:
+    def _body(self, name: str, atoms: list[SwrlAtom], arg: Names) -> _Body:
         """Patterns first, then the built-ins in an order where each one's inputs are bound,
         then the tests that need every variable bound."""
         body = _Body()
@@ -256,21 +237,25 @@ class SwrlCompiler:
         return body
 
     @staticmethod
-    def _builtins(name: str, pending: list[SwrlAtom], arg: _Names, body: _Body) -> None:
+    def _builtins(name: str, pending: list[SwrlAtom], arg: Names, body: _Body) -> None:
         """Place each built-in as soon as its inputs are bound (a BIND binds its result)."""
         pending = list(pending)
         #: variables to test for a data value, and those a strict built-in's condition already proves one
         needs: dict[str, None] = {}
         proven: set[str] = set()
+        #: variables a built-in bound to a number (an arithmetic result): compared as SPARQL compares numbers
+        numbers: set[str] = set()
         while pending:
             placed = False
             for a in list(pending):
                 texts = [arg(x) for x in a.args]
                 iri = a.predicate.value if a.predicate else ""
                 with _about(name, a):
-                    placed_as = builtins.translate(iri, texts, body.bound)
+                    placed_as = builtins.translate(iri, texts, body.bound, numbers)
                 if placed_as is not None:
                     body.conditions.append(placed_as)
+                    if any(t.startswith("<") for t in texts):  # an individual (an IRI) given as an argument
+                        body.conditions.append(cond.test("false"))
                     # a built-in's arguments are data values: on an individual it is false, as in Pellet;
                     # and an error leaves a BIND's variable unbound but keeps the row, so the built-in
                     # holds only where its value is defined (isLiteral of an unbound variable is false)
@@ -282,6 +267,8 @@ class SwrlCompiler:
                     if placed_as.binds:
                         needs[placed_as.binds] = None
                         body.bound.add(placed_as.binds)
+                        if builtins.gives_number(iri):
+                            numbers.add(placed_as.binds)
                     pending.remove(a)
                     placed = True
             if not placed:
@@ -300,7 +287,7 @@ class SwrlCompiler:
                               (*body.conditions, cond.test(f"!sameTerm({x}, {y})")), frozenset(body.reads)))
         return rules
 
-    def _head_rules(self, name: str, a: SwrlAtom, arg: _Names, body: _Body) -> list[Rule]:
+    def _head_rules(self, name: str, a: SwrlAtom, arg: Names, body: _Body) -> list[Rule]:
         """The rule concluding head atom ``a``; with difference atoms in the body, a second rule for
         individuals different by entailment only (its conclusion holds but fires no other rule)."""
         with _about(name, a, "head atom"):
@@ -326,7 +313,7 @@ class SwrlCompiler:
             self.used_as.append((e, head))
         return sparql(e.node)
 
-    def _body_atom(self, a: SwrlAtom, arg: _Names, body: _Body, pending: list[SwrlAtom]) -> None:
+    def _body_atom(self, a: SwrlAtom, arg: Names, body: _Body, pending: list[SwrlAtom]) -> None:
         k = a.kind
         if k == "ClassAtom":
             self._need(a, 1)
@@ -349,21 +336,31 @@ class SwrlCompiler:
             self.uses_difference = True
         elif k == "DataRangeAtom":
             self._need(a, 1)
-            if not is_datatype(a.predicate):
-                raise RuleCompileError("only named datatypes are supported as data ranges")
-            test = surely_in_datatype(arg(a.args[0]), a.predicate)
+            test = surely_in_datatype(arg(a.args[0]), self._data_range(a.predicate))
             body.deferred.append((cond.test(test), [arg(a.args[0])], a))
         elif k == "BuiltinAtom":
             pending.append(a)
         else:
             raise RuleCompileError(f"unsupported atom type swrl:{k}")
 
+    def _data_range(self, pred: Term | None) -> NamedNode:
+        """The datatype a DataRangeAtom tests: a named one of the datatype map, a name defined by a data range
+        (:mod:`.datatype_definitions`), or a datatype restricted by numeric facets written in the atom, the last
+        two as the IRI :mod:`.data_ranges` names them (the value test of a range or a restriction)."""
+        if isinstance(pred, NamedNode) and is_skolem(pred):
+            return self.reader.data_range(pred, "a data range atom")
+        datatype = self.reader.datatype_defs.get(pred, pred) if isinstance(pred, NamedNode) else None
+        if datatype is None or not (is_datatype(datatype) or data_ranges.parts(datatype) is not None):
+            raise RuleCompileError("its data range is neither a datatype of the OWL 2 datatype map nor one defined "
+                                   "by numeric facets")
+        return datatype
+
     @staticmethod
     def _need(a: SwrlAtom, n: int) -> None:
         if len(a.args) < n:
             raise RuleCompileError(f"expects {n} argument(s), found {len(a.args)}")
 
-    def _head_atom(self, a: SwrlAtom, arg: _Names) -> Atom:
+    def _head_atom(self, a: SwrlAtom, arg: Names) -> Atom:
         k = a.kind
         if k == "ClassAtom":
             self._need(a, 1)

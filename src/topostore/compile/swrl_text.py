@@ -169,6 +169,13 @@ def rule_triples(text: str, label: str, store: Store, prefix: str, comment: str 
     return list(dict.fromkeys(writer.triples))
 
 
+def rules_among(triples: list[Triple]) -> set[Term]:
+    """The rules (``swrl:Imp`` nodes) ``triples`` type: those a command adds, refused rather than set aside
+    when they cannot be compiled (:func:`topostore.compile.compile_ontology`'s ``refuse``)."""
+    imp = swrl("Imp")
+    return {t.subject for t in triples if t.predicate == TYPE and t.object == imp}
+
+
 def imp_nodes(store: Store, label: str, graph: NamedNode = ASSERTED) -> list[Term]:
     """The swrl:Imp nodes labelled ``label``."""
     return [s for s in store.subjects(TYPE, swrl("Imp"), graph)

@@ -326,7 +326,8 @@ class TBoxReader:
         tb.object_properties = set(self._declared_object)
         tb.annotation_punned = set(self.annotations.punned)
         for name in CHARACTERISTICS:
-            tb.characteristics[name] = {s for s in st.subjects(TYPE, owl(name), g) if isinstance(s, NamedNode)}
+            told = (s for s in st.subjects(TYPE, owl(name), g) if isinstance(s, NamedNode))
+            tb.characteristics[name] = self.annotations.characteristic(tb, name, told, _short)
         tb.named_classes = {s for s in st.subjects(TYPE, owl("Class"), g) if not is_skolem(s)}
         self.datatype_defs, aside = read_definitions(self)
         tb.unsupported += aside

@@ -212,7 +212,7 @@ Returns how many old facts were removed.""")
         rule; a rule that cannot be parsed or compiled is refused naming the
         atom (RuleCompileError) and nothing changes.  Takes effect at the next REASON.
         """
-        return self.files._add_checked(rule_triples(text, label, self.store, self.prefix, comment))[0]
+        return self.files._add_checked(rule_triples(text, label, self.store, self.prefix, comment), added_rules=True)[0]
 
     def remove_rule(self, label: str) -> int:
         """Remove the SWRL rule(s) labelled ``label`` (loaded or added); RuleCompileError if none."""

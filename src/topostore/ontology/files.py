@@ -13,7 +13,7 @@ rules repaired, a refusal's message).
 from __future__ import annotations
 
 import os
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Collection, Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -22,10 +22,12 @@ from pyoxigraph import NamedNode, RdfFormat, Triple
 from ..compile import RuleSet, compile_ontology
 from ..compile.notices import RULE_REPAIRED, RULE_SKIPPED, Notice, grouped, publish
 from ..compile.swrl_repair import repair_rules, skip_rule
+from ..compile.swrl_text import rules_among
 from ..errors import IncompleteOntologyError, RuleCompileError, TopostoreError
 from ..rdf.collector import collector_paused
 from ..rdf.declarations import declared
 from ..rdf.safeio import atomic_write, read_regular_file
+from ..rdf.terms import Term
 from ..rdf.vocab import (
     ASSERTED,
     DIFFERENT_FROM,
@@ -198,28 +200,31 @@ class OntologyFiles:
             self.onto._rules = rules
         return found.triples, self._kept(found.notices, known), Written(found.again)
 
-    def _compiled_here(self, notices: list[Notice]) -> RuleSet:
-        """The rules of the asserted graph as it now is, checked as the ordinary load checks them."""
-        rules = compile_ontology(self.onto.store, ASSERTED)
+    def _compiled_here(self, notices: list[Notice], refuse: Collection[Term] = ()) -> RuleSet:
+        """The rules of the asserted graph as it now is, checked as the ordinary load checks them (the rules of
+        ``refuse`` refused, not set aside, when they cannot be compiled)."""
+        rules = compile_ontology(self.onto.store, ASSERTED, refuse)
         if self.onto.strict:
             _refuse_incomplete([*notices, *rules.notices])
         check_rules(self.onto.store, rules)
         return rules
 
-    def _add_checked(self, triples: list[Triple], repaired: list[Notice] | None = None) -> tuple[int, list[Notice]]:
+    def _add_checked(self, triples: list[Triple], repaired: list[Notice] | None = None,
+                     added_rules: bool = False) -> tuple[int, list[Notice]]:
         """Add loaded triples; when they change the rules, compile first on a copy,
-        so that an untranslatable rule leaves the ontology untouched, and keep
+        so that a refused rule leaves the ontology untouched, and keep
         that compilation (it is the one the new asserted graph gives).
 
-        A rule that was repaired (``repaired``) and still cannot be translated is
-        set aside (a notice) rather than refusing the document; any other
-        untranslatable rule refuses it.  Returns (triples added, notices).
+        A rule that cannot be translated is set aside with a notice; one that was repaired (``repaired``) is
+        skipped (a notice, its triples not added); the rules of ``triples`` when they are ``added_rules`` (a
+        rule a command adds) refuse them.  Returns (triples added, notices).
         """
         notices = list(repaired or [])
         if not changes_schema(self.onto.store, triples):
             return self._add_all(triples), notices
+        refuse = {n.node for n in notices if n.kind == RULE_REPAIRED} | (rules_among(triples) if added_rules else set())
         if self._in_place_possible():
-            done = self._add_compiled_in_place(triples, notices)
+            done = self._add_compiled_in_place(triples, notices, refuse)
             if done is not None:
                 return done
         while True:
@@ -227,7 +232,7 @@ class OntologyFiles:
             scratch.add(self.onto.store.triples(graph=ASSERTED), ASSERTED)
             scratch.add(triples, ASSERTED)
             try:
-                rules = compile_ontology(scratch, ASSERTED)  # raises RuleCompileError, nothing added
+                rules = compile_ontology(scratch, ASSERTED, refuse)  # raises RuleCompileError, nothing added
                 break
             except RuleCompileError as exc:
                 done = next((n for n in notices if n.kind == RULE_REPAIRED and n.node == exc.rule), None)
@@ -236,6 +241,7 @@ class OntologyFiles:
                 triples, skipped = skip_rule(triples, exc.rule, f"repaired ({done.reason}) but "
                                              f"it still cannot be translated: {exc}")
                 notices = [skipped if n is done else n for n in notices]
+                refuse.discard(exc.rule)
         if self.onto.strict:
             _refuse_incomplete([*notices, *rules.notices])
         check_rules(self.onto.store, rules)
@@ -256,7 +262,8 @@ class OntologyFiles:
         store = self.onto.store
         return not store.durable and not store.round_trips and store.is_empty(ASSERTED)
 
-    def _add_compiled_in_place(self, triples: list[Triple], notices: list[Notice]) -> tuple[int, list[Notice]] | None:
+    def _add_compiled_in_place(self, triples: list[Triple], notices: list[Notice],
+                               refuse: Collection[Term]) -> tuple[int, list[Notice]] | None:
         """Add the document, then compile the asserted graph it makes (no scratch copy).
 
         A refusal (an untranslatable rule, strict loading, a rule too large for the store) takes
@@ -266,7 +273,7 @@ class OntologyFiles:
         dirty = self.onto.dirty
         added = self._add_all(triples)
         try:
-            rules = self._compiled_here(notices)
+            rules = self._compiled_here(notices, refuse)
         except BaseException as exc:
             self.onto.changes.remove(*triples)
             self.onto.dirty = dirty
