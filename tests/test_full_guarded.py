@@ -81,8 +81,9 @@ def test_a_minimum_implies_the_existential_in_both_modes(data: str, some: set) -
 
 
 def test_on_the_map_the_minimum_s_subsumption_is_left_to_the_existential(monkeypatch: pytest.MonkeyPatch) -> None:
-    """ext-card-sub (≥2 hasDoor.DOOR ⊑ ∃hasDoor.DOOR) has nothing asserted to read on the map: not
-    evaluated, with the closure unchanged against a run that reads every member of the minimum."""
+    """ext-card-sub (≥2 hasDoor.DOOR ⊑ ∃hasDoor.DOOR, now CORRIDOR ⊑ ROOM) has nothing asserted to read on
+    the map: not evaluated, with the closure unchanged against a run whose one-atom first passes read
+    every member."""
     onto = Ontology()
     with tempfile.TemporaryDirectory() as tmp, warnings.catch_warnings():
         warnings.simplefilter("ignore", OntologyWarning)
@@ -93,6 +94,5 @@ def test_on_the_map_the_minimum_s_subsumption_is_left_to_the_existential(monkeyp
     shortened = closure(onto)
     real = full_passes.implied_first_passes
     monkeypatch.setattr(full_passes, "implied_first_passes", lambda rules, ordered, asserted=None: real(rules, ordered))
-    report = onto.reason(mode="full", profile=True)
-    assert "ext-card-sub" in report.stats.per_rule
+    onto.reason(mode="full", profile=True)
     assert closure(onto) == shortened

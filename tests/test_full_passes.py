@@ -152,19 +152,17 @@ def test_on_the_map_the_links_domain_reads_the_asserted_links_alone() -> None:
 
 # ---------------------------------------------------------------- class atoms another atom carries
 
-def test_on_the_map_the_intersections_first_pass_reads_the_restriction_alone() -> None:
-    """ROOM ≡ LOCATION ⊓ ∃hasDoor.DOOR and CORRIDOR ≡ LOCATION ⊓ ≥2 hasDoor.DOOR: every writer of the
-    restrictions' memberships reads hasDoor (whose domain is LOCATION) or a class that is a LOCATION."""
+def test_on_the_map_no_intersection_is_left_to_read_location() -> None:
+    """ROOM ≡ LOCATION ⊓ ∃hasDoor.DOOR and CORRIDOR ≡ LOCATION ⊓ ≥2 hasDoor.DOOR: hasDoor's domain is
+    LOCATION, so the restrictions are ROOM and CORRIDOR themselves (compile/fold.py) and no first pass
+    of an intersection copies them; what implies LOCATION is still read off the rules."""
     from topostore.resources import default_ontology_files
 
     onto = Ontology()
     for path in default_ontology_files():
         onto.load(path)
     rules = onto.rules.inference_rules
-    lean = implied_atoms(rules, without_same_as(rules), (set(), set()))
-    dropped = {(rules[i].head.o.rsplit("#", 1)[-1], rules[i].body[j].o.rsplit("#", 1)[-1])
-               for i, atoms in lean.items() for j in atoms}
-    assert {("ROOM>", "LOCATION>"), ("CORRIDOR>", "LOCATION>")} <= dropped
+    assert not [r for r in rules if r.name == "cls-int1" and r.head.o.endswith(("#ROOM>", "#CORRIDOR>"))]
     # a key with an asserted fact carries nothing: an asserted member need not be a LOCATION
     ordered = without_same_as(rules)
     room = ("t", "<" + MAP_NS + "ROOM>")

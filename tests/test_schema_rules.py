@@ -209,13 +209,16 @@ TUTORIAL_RULES = {  # as the compiler wrote them before the rules moved to rules
         ("connectedTo", "LOCATION"), ("isIn", "ROBOT"), ("hasDoor", "LOCATION"))),
     *(("prp-rng", f"{p} range {c}", f"?x {p} ?y", f"?y a {c}") for p, c in (
         ("canReach", "LOCATION"), ("connectedTo", "LOCATION"), ("isIn", "LOCATION"), ("hasDoor", "DOOR"))),
-    ("ext-card-sub", "(hasDoor min 2 DOOR) is subsumed by (hasDoor some DOOR)", "?x a _", "?x a _"),
-    # the class is folded into its intersection (the rule reads CORRIDOR); the filler's atom is implied by the
-    # range of hasDoor and dropped: both left as the passes after compilation made them
-    *(("cls-int2", f"class expression (LOCATION and {r})", f"?x a {c}", head)
-      for c, r in (("CORRIDOR", "(hasDoor min 2 DOOR)"), ("ROOM", "(hasDoor some DOOR)"))
-      for head in ("?x a LOCATION", "?x a _")),
-    ("cls-svf1", "class expression (hasDoor some DOOR)", "?x hasDoor ?y1", "?x a _"),
+    # the class is folded into its intersection, and the restriction too (hasDoor's domain is LOCATION, the
+    # intersection's other part): the rules read and write CORRIDOR and ROOM; the filler's atom is implied by
+    # the range of hasDoor and dropped: both left as the passes after compilation made them
+    ("ext-card-sub", "(hasDoor min 2 DOOR) is subsumed by (hasDoor some DOOR)", "?x a CORRIDOR", "?x a ROOM"),
+    *(("cls-int2", f"class expression (LOCATION and {r})", f"?x a {c}", "?x a LOCATION")
+      for c, r in (("CORRIDOR", "(hasDoor min 2 DOOR)"), ("ROOM", "(hasDoor some DOOR)"))),
+    # what the intersection's rule left: a membership of the restriction told in the data is one of the class
+    *(("cax-eqc2", f"class expression (LOCATION and {r})", "?x a _", f"?x a {c}")
+      for c, r in (("CORRIDOR", "(hasDoor min 2 DOOR)"), ("ROOM", "(hasDoor some DOOR)"))),
+    ("cls-svf1", "class expression (hasDoor some DOOR)", "?x hasDoor ?y1", "?x a ROOM"),
     *(("cax-dw", f"{a} DisjointWith {b}", f"?x a {a} ?x a {b}", f"{{x}} is in the disjoint classes {a} and {b}")
       for a, b in (("DOOR", "LOCATION"), ("DOOR", "ROBOT"), ("LOCATION", "ROBOT"))),
     *(("different-disjoint", f"{a} and {b} are disjoint", f"?a _ ?b ?a a {a} ?b a {b}", "?a _ ?b")

@@ -81,13 +81,19 @@ def _parts(e: Expr, found: set[NamedNode]) -> set[NamedNode]:
     return found
 
 
+def kept_nodes(tb: TBox) -> set[NamedNode]:
+    """The nodes named outside the axioms: the typed expressions' and every part of them."""
+    kept: set[NamedNode] = set()
+    for e in tb.typed_expressions:
+        _parts(e, kept)
+    return kept
+
+
 def merge_alike(tb: TBox) -> TBox:
     """``tb`` with its axioms' anonymous expressions written alike made one (see the module).
 
     The TBox is changed in place (its axiom lists replaced) and returned."""
-    kept: set[NamedNode] = set()
-    for e in tb.typed_expressions:
-        _parts(e, kept)
+    kept = kept_nodes(tb)
     one = Alike(kept)
     for e in tb.typed_expressions:
         one(e)  # a kept expression is the one its copies in the axioms become

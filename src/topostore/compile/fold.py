@@ -19,22 +19,42 @@ Same closure
 In the closure ``E(x) ⟺ C(x)``: a rule matching ``E(x)`` matches ``C(x)`` for the same bindings,
 and a rule concluding ``E(x)`` concludes what ``cax-eqc2`` turned into ``C(x)``.  What is no longer
 derived is only ``E(x)`` itself, a helper fact no query shows (anonymous classes are not answered).
+
+A restriction an intersection already implies its other part of
+----------------------------------------------------------------
+In ``ROOM ≡ LOCATION ⊓ ∃hasDoor.DOOR`` with ``hasDoor``'s domain LOCATION, every instance of the
+restriction ``R = ∃hasDoor.DOOR`` has a ``hasDoor`` value, so is a LOCATION: ``R ⊑ LOCATION``, the
+intersection is ``R`` itself, and ``ROOM ≡ R`` in every model.  Left as it is, the closure holds a helper
+fact ``R(x)`` per room (100,000 at 100,000 locations) copied into ROOM by the intersection's rule.
+:func:`restriction_names` finds such restrictions (``∃p.X``, ``≥n p.X`` or ``=n p.X`` with ``n ≥ 1``,
+on a property whose subjects, or objects for an inverse, the single-atom rules put in the other part;
+the intersection of two parts with one named equivalent; no fact or rule outside the axioms naming the
+restriction), and :func:`fold_equivalents` then reads and writes the named class for the restriction
+as well: its own rule (``cls-svf1``, a minimum's count) concludes ROOM, and the intersection's rules,
+now concluding what they read, disappear.
 """
 
 from __future__ import annotations
 
+from collections.abc import Iterable, Mapping
 from dataclasses import replace
 
+from pyoxigraph import NamedNode
+
+from ..rdf.terms import sparql
 from ..rdf.vocab import TYPE, is_skolem
 from .condition import Condition
+from .model import Expr
 from .rule import Atom, Rule
 
 _TYPE = str(TYPE)
 
 
-def fold_equivalents(rules: list[Rule]) -> list[Rule]:
-    """``rules`` with each anonymous class that has exactly one named equivalent replaced by it."""
-    names = _equivalents(rules)
+def fold_equivalents(rules: list[Rule], more: Mapping[str, str] | None = None) -> list[Rule]:
+    """``rules`` with each anonymous class that has exactly one named equivalent replaced by it (and the
+    restrictions of ``more``, :func:`restriction_names`, by theirs); a rule then concluding one of the
+    atoms it reads is left out."""
+    names = {**_equivalents(rules), **(more or {})}
     if not names:
         return rules
     out: list[Rule] = []
@@ -46,11 +66,28 @@ def fold_equivalents(rules: list[Rule]) -> list[Rule]:
             out.append(rule)  # E(x) ⟹ C(x) stays, for a membership of E told in the data
             continue
         folded = _folded(rule, names)
+        if folded.head is not None and not folded.is_check and folded.head in folded.body:
+            folded = _told(rule, folded, more or {})  # C(x) ∧ A(x) ⟹ C(x) concludes what it reads
+            if folded is None:
+                continue
         key = (folded.name, folded.body, folded.head, folded.conditions, folded.violation)
         if key not in seen:
             seen.add(key)
             out.append(folded)
     return out
+
+
+def _told(rule: Rule, folded: Rule, more: Mapping[str, str]) -> Rule | None:
+    """For an intersection's rule reading a restriction of ``more``, the copy ``R(x) ⟹ C(x)`` left in its
+    place, for a membership of ``R`` told in the data (as ``cax-eqc2`` stays for an expression): every
+    ``R`` is an ``A``, so ``C`` holds of it.  None for any other rule."""
+    head = folded.head
+    for atom in rule.body:
+        if atom.p == _TYPE and atom.s == head.s and more.get(atom.o) == head.o:
+            told = Atom(atom.s, atom.p, atom.o)  # read wherever it is told, not in the helper graph alone
+            return replace(rule, name="cax-eqc2", body=(told,), conditions=(), filter_reads=frozenset(),
+                           written=(told,), written_conditions=None, head=head)
+    return None
 
 
 def _pair(rule: Rule) -> tuple[str, str] | None:
@@ -126,4 +163,32 @@ def equivalent_names(rules: list[Rule]) -> dict[str, str]:
     return _equivalents(rules)
 
 
-__all__ = ["equivalent_names", "fold_equivalents"]
+def restriction_names(expressions: Iterable[Expr], kept: Iterable[NamedNode], rules: list[Rule],
+                      implied: Mapping[tuple[str, str], frozenset[str]]) -> dict[str, str]:
+    """Restriction → the named class equivalent to the one intersection it makes with a class it already
+    implies (see the module): ``implied`` gives the classes of a property's subjects or objects in the
+    closure (:func:`.implied.position_classes`); ``kept``, the nodes named outside the axioms."""
+    names = _equivalents(rules)
+    held = {sparql(node) for node in kept}
+    found: dict[str, set[str]] = {}
+    for e in expressions:
+        named = names.get(sparql(e.node)) if e.kind == "and" and len(e.members) == 2 else None
+        if named is None:
+            continue
+        for r, other in (e.members, e.members[::-1]):
+            node = sparql(r.node)
+            if node not in held and node != named and _implies(r, sparql(other.node), implied):
+                found.setdefault(node, set()).add(named)
+    return {node: next(iter(named)) for node, named in found.items() if len(named) == 1 and node not in names}
+
+
+def _implies(r: Expr, other: str, implied: Mapping[tuple[str, str], frozenset[str]]) -> bool:
+    """Whether every instance of restriction ``r`` is an instance of class ``other``: ``r`` asks for at
+    least one value of its property, whose subjects (objects, for an inverse) are ``other``'s."""
+    if r.is_named or r.prop is None or r.kind not in ("some", "min", "exact") or (r.kind != "some" and r.n < 1):
+        return False
+    position = ("o" if r.prop.inverse else "s", sparql(r.prop.iri))
+    return other in implied.get(position, frozenset())
+
+
+__all__ = ["equivalent_names", "fold_equivalents", "restriction_names"]

@@ -8,13 +8,13 @@ from pyoxigraph import NamedNode
 
 from ..rdf.terms import Term
 from ..stores.base import Store
-from .alike import merge_alike
+from .alike import kept_nodes, merge_alike
 from .datatypes import empty_range_rules, range_rules
 from .disjointness import Disjointness
-from .fold import equivalent_names, fold_equivalents
+from .fold import equivalent_names, fold_equivalents, restriction_names
 from .generic import generic_rules
 from .guard import guard_rules
-from .implied import simplify
+from .implied import position_classes, simplify
 from .inline_difference import MAX_DISJOINT_SOURCES, inline_difference, owl_asks
 from .owl import OwlCompiler
 from .owl_extras import (
@@ -68,9 +68,12 @@ def compile_ontology(store: Store, graph: NamedNode, refuse: Collection[Term] = 
     rules.add(swrl.query_rules)
     rules.queries = dict(swrl.queries)
     rules.notices += swrl.notices
-    disjointness = owl.disjointness.renamed(equivalent_names(rules.rules))
+    # what the axioms imply of a property's terms: a DL-safe SWRL rule says nothing of a value only known to exist
+    axioms = position_classes([r for r in rules.rules if not r.name.startswith("swrl:")])
+    more = restriction_names(owl.all_expressions(), kept_nodes(tbox), rules.rules, axioms)
+    disjointness = owl.disjointness.renamed({**equivalent_names(rules.rules), **more})
     rules.disjointness = disjointness if len(disjointness) else None
-    rules.rules = fold_equivalents(rules.rules)  # before the joins: they then see the named classes
+    rules.rules = fold_equivalents(rules.rules, more)  # before the joins: they then see the named classes
     rules.rules = inline_difference(rules.rules, swrl.asks + owl_asks(rules.rules), *_disjoint_sources(disjointness))
     simplified = RuleSet()
     simplified.add(simplify(rules.rules))  # rules that differed only in implied atoms become one

@@ -120,9 +120,12 @@ def _evaluate(store: Store, query: str, graph: NamedNode) -> Found:
 def _delay(ordered: list[list[int]], rules: list[Rule], eligible: Callable[[int, Present], bool],
            start: Present) -> None:
     """Move each component holding an evaluation the worker may take (``eligible`` with the keys that may
-    hold facts by its turn) after the components that follow it and read nothing it writes, in place: the
-    main thread evaluates those while the worker evaluates it.  The order stays one where every reader
-    follows its writers (a component moves only past components that read nothing it writes)."""
+    hold facts by its turn), with the later components reading what it writes or what they write in turn,
+    after the later components reading none of it, in place: the main thread evaluates those while the
+    worker evaluates it (a minimum's count concluding CORRIDOR, read by CORRIDOR's copies into ROOM and
+    LOCATION, goes after Connectability with them).  The order stays one where every reader follows its
+    writers (a component moves only past components that read nothing it, or what moves with it, writes;
+    those moving keep their order)."""
     present = (set(start[0]), set(start[1]))
     taken = []
     for component in ordered:
@@ -136,10 +139,14 @@ def _delay(ordered: list[list[int]], rules: list[Rule], eligible: Callable[[int,
     for component in reversed(taken):
         at = next(n for n, c in enumerate(ordered) if c is component)
         written = [rules[i].writes() for i in component]
-        to = at
-        while to + 1 < len(ordered) and not any(touches(w, reads[id(ordered[to + 1])]) for w in written):
-            to += 1
-        ordered.insert(to, ordered.pop(at))
+        moved, passed = [component], []
+        for later in ordered[at + 1:]:
+            if any(touches(w, reads[id(later)]) for w in written):
+                moved.append(later)
+                written += [rules[i].writes() for i in later]
+            else:
+                passed.append(later)
+        ordered[at:] = passed + moved
 
 
 def _claim(present: Present, key: ReadKey | None) -> None:
