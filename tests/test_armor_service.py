@@ -227,8 +227,11 @@ def test_query_class_ind_bottom(svc: ArmorService) -> None:
     assert ok(svc, "QUERY", "CLASS", "IND", ["R1", "true"]).queried_objects == ["ROOM", "URGENT"]
     assert ok(svc, "QUERY", "CLASS", "IND", ["R1"]).queried_objects == [full("LOCATION"), full("ROOM"), full("URGENT")]
     assert ok(svc, "QUERY", "CLASS", "IND", ["Nobody", "true"]).queried_objects == []
-    res = call(svc, "QUERY", "CLASS", "IND", ["R1", "maybe"])
-    assert (res.success, res.exit_code) == (False, 208)
+    # read as aRMOR's Java reads it (Boolean.parseBoolean): "true" in any case, everything else false
+    every = [full("LOCATION"), full("ROOM"), full("URGENT")]
+    assert ok(svc, "QUERY", "CLASS", "IND", ["R1", "TRUE"]).queried_objects == ["ROOM", "URGENT"]
+    for other in ("1", "yes", "maybe", "", " true"):
+        assert ok(svc, "QUERY", "CLASS", "IND", ["R1", other]).queried_objects == every
 
 
 def test_query_class_class_has_no_owl_nothing(svc: ArmorService) -> None:

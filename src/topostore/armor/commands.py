@@ -57,7 +57,6 @@ from .query import (
     most_specific,
     query_class_class,
     query_class_ind,
-    query_class_restrictions,
     query_dataprop_ind,
     query_ind,
     query_ind_class,
@@ -68,6 +67,7 @@ from .query import (
     query_sparql_formatted,
     run_select,
 )
+from .restrictions import query_class_restrictions
 
 
 def _table() -> dict[tuple[str, str, str], Command]:

@@ -22,7 +22,7 @@ from ..errors import InvalidNameError, InvalidValueError, TopostoreError, Unknow
 from ..ontology.facade import Ontology
 from ..ontology.named_queries import QueryItem
 from ..rdf import terms
-from ..rdf.vocab import ASSERTED, NOTHING, THING, is_internal
+from ..rdf.vocab import ASSERTED, NOTHING, THING, is_internal, rdfs
 from . import codes
 from .codes import CommandError
 from .reference import Change, Delta, Reference
@@ -130,6 +130,11 @@ class Context:
             f"argument {position + 1} ({what}) must be true or false, got {self.args[position]!r}",
         )
 
+    def java_boolean(self, position: int) -> bool:
+        """A boolean argument read as aRMOR's Java reads it (``Boolean.parseBoolean``): ``true`` in any case
+        is true, anything else (``1``, ``yes``, `` true``) false, never refused."""
+        return self.args[position].lower() == "true"
+
     def render(self, items: list) -> list[str]:
         """Render terms in the service's mode; sorted so answers are reproducible."""
         renderer = self.service.renderer
@@ -195,4 +200,15 @@ def asserted(onto: Ontology, s=None, p=None, o=None) -> list[Triple]:
     return list(onto.store.triples(s, p, o, ASSERTED))
 
 
-__all__ = ["Reply", "Context", "Command", "Handler", "hidden", "fixed", "asserted"]
+def subclasses(onto: Ontology, cls: NamedNode) -> list[NamedNode]:
+    """The subclasses aRMOR answers for ``cls`` (QUERY CLASS CLASS, DISJOINT CLASS CLASS), sorted: the
+    reasoner's ``getSubClasses(cls, false)``, which leaves out the classes equivalent to ``cls`` (its own
+    node), with the told ``SubClassOf(X cls)`` added (the union of spec §2.5); never owl:Nothing or an
+    internal class (spec §7 item 6).  An unsatisfiable class is under every class."""
+    above = onto.superclasses(cls)
+    told = {t.subject for t in asserted(onto, None, rdfs("subClassOf"), cls)}
+    return sorted((c for c in onto.subclasses(cls) if not hidden(c) and (c not in above or c in told)),
+                  key=lambda n: n.value)
+
+
+__all__ = ["Reply", "Context", "Command", "Handler", "hidden", "fixed", "asserted", "subclasses"]

@@ -19,7 +19,7 @@ from ..rdf.vocab import ASSERTED, OWL, RDF, RDFS, STANFORD_SWRL, SWRL, SWRLB, TH
 from ..stores.base import fresh_skolem
 from . import codes, one_value
 from .codes import CommandError
-from .context import Context, Handler, Reply, asserted, fixed, hidden
+from .context import Context, Handler, Reply, asserted, fixed, hidden, subclasses
 from .reference import Change, Delta
 
 SUBCLASS_OF = rdfs("subClassOf")
@@ -157,7 +157,7 @@ def disjoint_class_class(ctx: Context) -> Reply:
     cls = ctx.iri(0, "class")
 
     def plan(onto: Ontology) -> Delta:
-        members = sorted((c for c in onto.subclasses(cls) if not hidden(c)), key=lambda n: n.value)
+        members = subclasses(onto, cls)
         if len(members) < 2:
             return Delta(warning=f"{cls.value} has {len(members)} subclass(es); no axiom added")
         return Delta(add=all_disjoint_classes(members))

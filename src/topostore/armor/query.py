@@ -14,20 +14,70 @@ from pyoxigraph import NamedNode, Triple
 from ..errors import QueryError
 from ..ontology.facade import Ontology
 from ..ontology.named_queries import QueryItem, render_jena
-from ..rdf.vocab import ASSERTED, THING, TYPE, XSD, is_internal, owl, rdfs
+from ..rdf.vocab import (
+    DIFFERENT_FROM,
+    FIRST,
+    INTERNAL,
+    NAMED_INDIVIDUAL,
+    OWL,
+    RDF,
+    RDFS,
+    REST,
+    SAME_AS,
+    SWRL,
+    THING,
+    TYPE,
+    owl,
+)
+from ..reason.classify import unsatisfiable_text
 from . import codes
 from .codes import CommandError
-from .context import Context, Reply, asserted, hidden
-from .manipulation import EQUIVALENT_CLASS, SUBCLASS_OF
+from .context import Context, Reply, hidden, subclasses
 from .render import short_name
+
+#: namespaces whose properties are schema, not facts of an individual (owl:sameAs and owl:differentFrom aside)
+_SCHEMA = (RDF, RDFS, OWL, SWRL, INTERNAL)
+#: the types that make their subject an individual although in OWL's namespace
+_INDIVIDUAL_TYPES = (THING, NAMED_INDIVIDUAL)
+
+
+def _fact(predicate: NamedNode) -> bool:
+    """Whether a triple of ``predicate`` states a fact of its individuals (not a schema axiom)."""
+    return predicate in (SAME_AS, DIFFERENT_FROM) or not predicate.value.startswith(_SCHEMA)
+
+
+def _typed(t: Triple) -> bool:
+    """Whether ``t`` (an rdf:type triple) types an individual: with owl:Thing, owl:NamedIndividual or a class."""
+    return t.object in _INDIVIDUAL_TYPES or not (
+        isinstance(t.object, NamedNode) and t.object.value.startswith((RDF, RDFS, OWL)))
 
 
 def _occurs(onto: Ontology, ind: NamedNode) -> bool:
+    """Whether ``ind`` occurs as an individual: typed, holding or held by a property value, named in an
+    equality, a difference or an AllDifferent, as the reasoner aRMOR asks knows its individuals.  A class
+    or property named in axioms only is none (aRMOR answers ``success=false`` for it)."""
     for graph in onto.visible_graphs():
-        if next(onto.store.triples(ind, None, None, graph), None) or next(
-            onto.store.triples(None, None, ind, graph), None
-        ):
+        for t in onto.store.triples(ind, None, None, graph):
+            if (_typed(t) if t.predicate == TYPE else _fact(t.predicate)):
+                return True
+        for t in onto.store.triples(None, None, ind, graph):
+            if _fact(t.predicate) or (t.predicate == FIRST and _in_all_different(onto, t.subject, graph)):
+                return True
+    return False
+
+
+def _in_all_different(onto: Ontology, cell, graph: NamedNode) -> bool:
+    """Whether the list cell ``cell`` belongs to the member list of an owl:AllDifferent (walked back to its
+    head; a list that loops is left at its first repeated cell)."""
+    seen = set()
+    while cell not in seen:
+        seen.add(cell)
+        if any(onto.store.triples(None, p, cell, graph) for p in (owl("distinctMembers"), owl("members"))):
             return True
+        before = next(onto.store.triples(None, REST, cell, graph), None)
+        if before is None:
+            return False
+        cell = before.subject
     return False
 
 
@@ -71,7 +121,7 @@ def most_specific(onto: Ontology, classes: list[NamedNode]) -> list[NamedNode]:
 def query_class_ind(ctx: Context) -> Reply:
     """QUERY CLASS IND [ind, bottom?]: all classes, or the most specific ones as sorted short names."""
     ind = ctx.iri(0, "individual")
-    bottom = ctx.flag(1, "bottom") if len(ctx.args) > 1 else False
+    bottom = ctx.java_boolean(1) if len(ctx.args) > 1 else False
     classes = [c for c in ctx.onto.types(ind) if not hidden(c)]
     if not bottom:
         return Reply(queried_objects=ctx.render(classes))
@@ -79,7 +129,11 @@ def query_class_ind(ctx: Context) -> Reply:
 
 
 def query_class_class(ctx: Context) -> Reply:
-    return Reply(queried_objects=ctx.render(list(ctx.onto.subclasses(ctx.iri(0, "class")))))
+    """QUERY CLASS CLASS: :func:`.context.subclasses`; an unsatisfiable class among them is named in the
+    reply, never listed under every class without a word."""
+    found = subclasses(ctx.onto, ctx.iri(0, "class"))
+    empty = [c for c in ctx.onto.reasoning.unsatisfiable() if c in found]
+    return Reply(queried_objects=ctx.render(found), warnings=[unsatisfiable_text(empty)] if empty else [])
 
 
 def query_ind_dataprop(ctx: Context) -> Reply:
@@ -88,85 +142,6 @@ def query_ind_dataprop(ctx: Context) -> Reply:
 
 def query_ind_objectprop(ctx: Context) -> Reply:
     return Reply(queried_objects=ctx.render(ctx.onto.properties_of(ctx.iri(0, "individual"), data=False)))
-
-
-_CARDINALITIES = (
-    ("MIN", ("minQualifiedCardinality", "minCardinality")),
-    ("MAX", ("maxQualifiedCardinality", "maxCardinality")),
-    ("EXACT", ("qualifiedCardinality", "cardinality")),
-)
-
-
-def _is_data_restriction(onto: Ontology, prop, filler) -> bool:
-    if onto.store.contains(Triple(prop, TYPE, owl("DatatypeProperty")), ASSERTED):
-        return True
-    return isinstance(filler, NamedNode) and (
-        filler.value.startswith(XSD)
-        or filler == rdfs("Literal")
-        or onto.store.contains(Triple(filler, TYPE, rdfs("Datatype")), ASSERTED)
-    )
-
-
-def _one(onto: Ontology, node, name: str):
-    values = onto.store.objects(node, owl(name), ASSERTED)
-    return values[0] if values else None
-
-
-def restriction_item(onto: Ontology, subject: str, node) -> str | None:
-    """One restriction in aRMOR's grammar, e.g. ``C-DEFINITION_MIN_OBJECT : CORRIDOR -> hasDoor 2(DOOR)``."""
-    prop = _one(onto, node, "onProperty")
-    if prop is None:
-        return None
-    for kind, names in _CARDINALITIES:
-        for name in names:
-            count = _one(onto, node, name)
-            if count is not None:
-                filler = _one(onto, node, "onClass") or _one(onto, node, "onDataRange")
-                data = _is_data_restriction(onto, prop, filler)
-                filler = filler or (rdfs("Literal") if data else THING)
-                return (
-                    f"C-DEFINITION_{kind}_{'DATA' if data else 'OBJECT'} : {subject} -> "
-                    f"{short_name(prop)} {count.value}({short_name(filler)})"
-                )
-    for kind, name in (("SOME", "someValuesFrom"), ("ALL", "allValuesFrom")):
-        filler = _one(onto, node, name)
-        if filler is not None:
-            data = _is_data_restriction(onto, prop, filler)
-            shape = f"{kind}_{'DATA' if data else 'OBJECT'}"
-            return f"C-DEFINITION_{shape} : {subject} -> {short_name(prop)}({short_name(filler)})"
-    return None
-
-
-def restriction_items(onto: Ontology, cls: NamedNode, expression) -> list[str]:
-    """Items of one class expression: named classes and restrictions, intersections flattened."""
-    subject = short_name(cls)
-    if isinstance(expression, NamedNode) and not is_internal(expression):
-        return [] if expression in (cls, THING) else [f"C-DEFINITION_CLASS : {subject} -> ({short_name(expression)})"]
-    operands = onto.store.objects(expression, owl("intersectionOf"), ASSERTED)
-    if operands:
-        return [
-            item
-            for member in onto.store.list_items(operands[0], ASSERTED)
-            for item in restriction_items(onto, cls, member)
-        ]
-    item = restriction_item(onto, subject, expression)
-    return [item] if item else []
-
-
-def query_class_restrictions(ctx: Context) -> Reply:
-    """QUERY CLASS RESTRICTIONS: one element per SubClassOf/EquivalentClasses axiom with a restriction."""
-    onto, cls = ctx.onto, ctx.iri(0, "class")
-    expressions = (
-        [t.object for t in asserted(onto, cls, SUBCLASS_OF)]
-        + [t.object for t in asserted(onto, cls, EQUIVALENT_CLASS)]
-        + [t.subject for t in asserted(onto, None, EQUIVALENT_CLASS, cls)]
-    )
-    answers = []
-    for expression in dict.fromkeys(expressions):
-        items = restriction_items(onto, cls, expression)
-        if any(not i.startswith("C-DEFINITION_CLASS") for i in items):
-            answers.append("[" + ", ".join(sorted(items)) + "]")  # sorted: reproducible answers
-    return Reply(queried_objects=sorted(answers))
 
 
 def run_select(onto: Ontology, text: str, timeout: float | None) -> tuple[list[str], list[list], bool]:
@@ -258,4 +233,4 @@ def query_sparql_formatted(ctx: Context) -> Reply:
     return Reply(sparql_queried_objects=items, timeout=timed_out)
 
 
-__all__ = ["run_select", "most_specific", "restriction_item", "restriction_items"]
+__all__ = ["run_select", "most_specific"]

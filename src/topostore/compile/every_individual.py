@@ -7,7 +7,19 @@ way a node shows up as one, and both the positive rules (:mod:`.owl_extras`) and
 
 from __future__ import annotations
 
-from ..rdf.vocab import DECLARATION_TYPES, INTERNAL, NAMED_INDIVIDUAL, OWL, RDF, RDFS, SWRL, TYPE
+from ..rdf.vocab import (
+    DECLARATION_TYPES,
+    DIFFERENT_FROM,
+    DIFFERENT_KEY_OF,
+    INTERNAL,
+    NAMED_INDIVIDUAL,
+    OWL,
+    RDF,
+    RDFS,
+    SAME_AS,
+    SWRL,
+    TYPE,
+)
 from . import condition as cond
 from .rule import Atom, Rule
 
@@ -25,6 +37,12 @@ def for_every_individual(name: str, origin: str, head: Atom) -> list[Rule]:
                   (cond.test(f"isIRI(?x) && ?c NOT IN ({declarations}) && !isBlank(?c)"),))]
     for body in (Atom("?x", "?q", "?o"), Atom("?o", "?q", "?x")):
         rules.append(Rule(name, origin, (body,), head, (cond.test(f"isIRI(?x) && {_not_schema('?q')}"),)))
+    # named only in an equality or a difference (how aRMOR's DISJOINT IND introduces names): still individuals
+    for p in (SAME_AS, DIFFERENT_FROM):
+        for body in (Atom("?x", str(p), "?o"), Atom("?o", str(p), "?x")):
+            rules.append(Rule(name, origin, (body,), head, (cond.test("isIRI(?x)"),)))
+    rules.append(Rule(name, origin, (Atom("?k", str(DIFFERENT_KEY_OF), "?x", aux=True),), head,
+                      (cond.test("isIRI(?x)"),)))
     return rules
 
 

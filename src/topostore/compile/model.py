@@ -22,6 +22,9 @@ class Prop:
 
     iri: NamedNode
     inverse: bool = False
+    #: a declared data property, as an unqualified cardinality's text says (``d min 1 Literal``); no part of
+    #: the property's identity
+    data: bool = field(default=False, compare=False)
 
 
 @dataclass(frozen=True)
@@ -92,7 +95,8 @@ def _describe(e: Expr) -> str:
     if e.kind == "named":
         return short(e.node)
     p = ("inverse " if e.prop and e.prop.inverse else "") + short(e.prop.iri if e.prop else None)
-    f = short(e.datatype) if e.datatype is not None else (describe(e.filler) if e.filler else "Thing")
+    f = short(e.datatype) if e.datatype is not None else (
+        describe(e.filler) if e.filler else "Literal" if e.prop and e.prop.data else "Thing")
     if e.kind in ("and", "or"):
         joiner = " and " if e.kind == "and" else " or "
         return "(" + joiner.join(describe(m) for m in e.members) + ")"

@@ -171,6 +171,8 @@ class TBoxReader:
                     if not isinstance(n, Literal) or not n.value.strip().isdigit():
                         raise RuleCompileError(f"cardinality {n} of a restriction on {prop.iri.value} is not a number")
                     filler, dt = self._filler(node, prop, None)
+                    if filler is None and dt is None and prop.iri in self._declared_data:
+                        prop = replace(prop, data=True)  # named as a data restriction, read as written
                     return Expr(node, kind, prop=prop, filler=filler, datatype=dt, n=int(n.value))
         raise RuleCompileError(f"unsupported restriction on {prop.iri.value}")
 

@@ -210,9 +210,11 @@ class Prototypes:
 
         explainer = _PrototypeExplainer(self.store, self.rules.all_rules, short, TBoxReader(onto.store, ASSERTED))
         tree = _assumed(explainer.explain(Triple(proto, TYPE, sup)).to_dict())
+        origin = f"every {onto.short(sub)} is a {onto.short(sup)}"
+        if tree["status"] == "not entailed" and sub in onto.reasoning.unsatisfiable():
+            tree, origin = None, f"{onto.short(sub)} is unsatisfiable (no individual can be a member): under every class"
         return {"triple": f"{onto.short(sub)} rdfs:subClassOf {onto.short(sup)}", "status": "inferred",
-                "rule": "classification", "origin": f"every {onto.short(sub)} is a {onto.short(sup)}",
-                "bindings": {}, "premises": [tree]}
+                "rule": "classification", "origin": origin, "bindings": {}, "premises": [tree] if tree else []}
 
 
 def _assumed(node: dict[str, Any]) -> dict[str, Any]:

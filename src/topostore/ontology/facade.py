@@ -269,7 +269,8 @@ Returns how many old facts were removed.""")
         return self.reasoning.superclasses(self.iri(cls))
 
     def subclasses(self, cls: str | NamedNode) -> set[NamedNode]:
-        """Named classes subsumed by ``cls`` (direct and indirect; never owl:Nothing)."""
+        """Named classes subsumed by ``cls`` (direct and indirect, its equivalents included; never owl:Nothing;
+        an unsatisfiable class is under every class, see :meth:`OntologyReasoning.unsatisfiable`)."""
         return self.reasoning.subclasses(self.iri(cls))
 
     # ------------------------------------------------------------------ files (the ``files`` part)

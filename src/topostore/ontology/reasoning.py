@@ -15,9 +15,10 @@ from typing import TYPE_CHECKING
 from pyoxigraph import NamedNode, Quad, Triple
 
 from ..compile import RuleSet, compile_ontology
-from ..compile.notices import Notice
+from ..compile.notices import Notice, OntologyWarning, warn
 from ..rdf.vocab import ASSERTED
 from ..reason import ReasonStats, Violation, classify
+from ..reason.classify import unsatisfiable, unsatisfiable_text
 from ..reason.incremental import IncrementalReasoner
 from ..stores import check_rules
 from ..stores.literal_forms import FORMS
@@ -134,7 +135,14 @@ class OntologyReasoning:
         onto = self.onto
         if onto._superclasses is None:
             onto._superclasses = classify(self.rules())
+            empty = unsatisfiable(onto._superclasses)
+            if empty:
+                warn(unsatisfiable_text(empty), OntologyWarning)
         return onto._superclasses
+
+    def unsatisfiable(self) -> list[NamedNode]:
+        """The named classes no individual can be a member of (each under every class, as Pellet has it)."""
+        return unsatisfiable(self.classification())
 
     def superclasses(self, cls: NamedNode) -> set[NamedNode]:
         return set(self.classification().get(cls, set()))
