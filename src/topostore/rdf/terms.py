@@ -284,10 +284,12 @@ def _literal_key(term: Literal) -> tuple:
             return ("double", float(term.value.replace("INF", "inf")))
         if local == "boolean":
             return ("boolean", term.value in ("true", "1"))
-        if local in ("dateTime", "date"):
-            moment = _moment(term.value, local)
-            if moment is not None:
-                return (local, *moment)
+        if local in ("dateTime", "date", "dateTimeStamp"):
+            # a dateTimeStamp is a dateTime with a time zone, which the store keeps as an xsd:dateTime
+            kind = "dateTime" if local == "dateTimeStamp" else local
+            moment = _moment(term.value, kind)
+            if moment is not None and (local != "dateTimeStamp" or moment[2] is not None):
+                return (kind, *moment)
     except (InvalidOperation, ValueError):
         pass
     return ("literal", term.value, dt, term.language)
