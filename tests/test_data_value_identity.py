@@ -183,3 +183,10 @@ def test_any_uri_and_the_string_of_its_characters_are_two_values_and_pellet_agre
 def test_a_plain_string_is_written_back_as_given() -> None:
     o, _, _ = reasoned(':d a owl:DatatypeProperty .\n:x :d "a", "a"^^xsd:token .')
     assert sorted(o.data_values(ex("d"), ex("x")), key=str) == sorted([Literal("a"), typed("a", "token")], key=str)
+
+
+def test_a_negative_assertion_of_a_string_forbids_the_same_string_of_a_derived_type() -> None:
+    _, consistent, _ = reasoned(
+        ':d a owl:DatatypeProperty .\n:x :d "a"^^xsd:token .\n'
+        '[] a owl:NegativePropertyAssertion ; owl:sourceIndividual :x ; owl:assertionProperty :d ; owl:targetValue "a" .')
+    assert not consistent
