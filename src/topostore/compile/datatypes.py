@@ -155,12 +155,12 @@ def disjoint_datatypes(a: NamedNode, b: NamedNode) -> bool:
     where that is not known (a datatype of the ontology's own)."""
     if is_empty(a) or is_empty(b):
         return True
-    (base_a, _), (base_b, _) = _base(a), _base(b)
-    lang = RDF + "langString"
-    if lang in (base_a, base_b):
-        other = base_b if base_a == lang else base_a
-        return other != lang and (XSD + "string" in _ancestors(other) or _family(other) not in (None, RDF + "PlainLiteral"))
-    return _none_in_all([(base_a, _base(a)[1]), (base_b, _base(b)[1])])
+    bases = [_base(a), _base(b)]
+    tagged = [base for base, _ in bases if base == RDF + "langString"]
+    if len(tagged) == 1:  # rdf:langString is under rdf:PlainLiteral, beside xsd:string
+        other = next(base for base, _ in bases if base != RDF + "langString")
+        return XSD + "string" in _ancestors(other) or _family(other) not in (None, RDF + "PlainLiteral")
+    return _none_in_all(bases)
 
 
 def surely_in(value: Term, datatype: str) -> bool:

@@ -285,10 +285,11 @@ def _literal_key(term: Literal) -> tuple:
         if local == "boolean":
             return ("boolean", term.value in ("true", "1"))
         if local in ("dateTime", "date", "dateTimeStamp"):
-            # a dateTimeStamp is a dateTime with a time zone, which the store keeps as an xsd:dateTime
+            # a dateTimeStamp is a dateTime with a time zone: the store keeps it as an xsd:dateTime (one without
+            # a zone, ill-typed, too), so its key is that dateTime's, under which its written form is found
             kind = "dateTime" if local == "dateTimeStamp" else local
             moment = _moment(term.value, kind)
-            if moment is not None and (local != "dateTimeStamp" or moment[2] is not None):
+            if moment is not None:
                 return (kind, *moment)
     except (InvalidOperation, ValueError):
         pass
