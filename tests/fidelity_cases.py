@@ -5,7 +5,8 @@ Each case is Turtle with ``:`` bound to its namespace; :func:`document` adds the
 consistent and fully reasoned by topostore (no notice), so every answer Pellet gives is one topostore must
 give: inverse, symmetric and transitive properties, chains, sameAs chains, hasValue, keys, qualified
 cardinalities with AllDifferent groups, datatype restrictions, punning, self restrictions, negative
-property assertions, literal forms, datatypes topostore does not check (a user's own, xsd:token), the domain
+property assertions, literal forms, xsd:dateTimeStamp, strings of the types derived from xsd:string (one value
+with the plain string), datatypes topostore does not check (a user's own, xsd:token), the domain
 of an existential's subject through inverse, sub-, equivalent and symmetric properties, inverse-functional
 properties merging their subjects (a functional object property's values Owlready2 reports as one).
 """
