@@ -5,7 +5,8 @@ Each case is Turtle with ``:`` bound to its namespace; :func:`document` adds the
 consistent and fully reasoned by topostore (no notice), so every answer Pellet gives is one topostore must
 give: inverse, symmetric and transitive properties, chains, sameAs chains, hasValue, keys, qualified
 cardinalities with AllDifferent groups, datatype restrictions, punning, self restrictions, negative
-property assertions, literal forms, datatypes topostore does not check (a user's own, xsd:token), the domain
+property assertions, literal forms, xsd:dateTimeStamp, strings of the types derived from xsd:string (one value
+with the plain string), datatypes topostore does not check (a user's own, xsd:token), the domain
 of an existential's subject through inverse, sub-, equivalent and symmetric properties, inverse-functional
 properties merging their subjects (a functional object property's values Owlready2 reports as one).
 """
@@ -106,6 +107,28 @@ CASES: dict[str, str] = {
 :z a owl:NamedIndividual ; :d ".5"^^xsd:decimal . :w a owl:NamedIndividual ; :d "3"^^xsd:string .
 :u a owl:NamedIndividual ; :k "2020-01-01T14:00:00+02:00"^^xsd:dateTime .
 :v a owl:NamedIndividual ; :k "2020-01-01T12:00:00"^^xsd:dateTime .
+""",
+    # xsd:dateTimeStamp is an xsd:dateTime with a time zone (the store keeps it as an xsd:dateTime)
+    "date_time_stamps": """
+:t a owl:DatatypeProperty ; rdfs:range xsd:dateTimeStamp . :u a owl:DatatypeProperty .
+:Stamped owl:equivalentClass [ a owl:Restriction ; owl:onProperty :u ; owl:someValuesFrom xsd:dateTimeStamp ] .
+:Only rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :u ; owl:allValuesFrom xsd:dateTimeStamp ] .
+:c a owl:NamedIndividual ; :t "2021-05-01T00:00:00Z"^^xsd:dateTimeStamp ; :u "2021-05-01T00:00:00Z"^^xsd:dateTimeStamp .
+:e a owl:NamedIndividual, :Only ; :t "2019-05-01T00:00:00+02:00"^^xsd:dateTime ; :u "2019-05-01T00:00:00Z"^^xsd:dateTime .
+:n a owl:NamedIndividual ; :u "2019-05-01T00:00:00+01:00"^^xsd:dateTime .
+""",
+    # the value spaces of xsd:string's derived types are subsets of its own: "a"^^xsd:token is the string "a"
+    "derived_strings": """
+:t a owl:DatatypeProperty . :d a owl:DatatypeProperty . :m a owl:ObjectProperty .
+:A owl:equivalentClass [ a owl:Restriction ; owl:onProperty :t ; owl:hasValue "a" ] .
+:Two owl:equivalentClass [ a owl:Restriction ; owl:onProperty :d ; owl:minCardinality "2"^^xsd:nonNegativeInteger ] .
+:Four owl:equivalentClass [ a owl:Restriction ; owl:onProperty :d ; owl:minCardinality "4"^^xsd:nonNegativeInteger ] .
+:K a owl:Class ; owl:hasKey ( :t ) .
+:x a owl:NamedIndividual, :K ; :t "a"^^xsd:token ; :m :x1 . :y a owl:NamedIndividual ; :t "a"^^xsd:normalizedString .
+:w a owl:NamedIndividual, :K ; :t "a" ; :m :w1 . :x1 a owl:NamedIndividual . :w1 a owl:NamedIndividual .
+:z a owl:NamedIndividual ; :d "a", "a"^^xsd:token, "a"^^xsd:Name . :z2 a owl:NamedIndividual ; :d "a", "b"^^xsd:NCName .
+:z4 a owl:NamedIndividual ; :d "a", "a"^^xsd:token, "a"^^xsd:Name, "b", "b"^^xsd:language, "c"^^xsd:NCName .
+:z5 a owl:NamedIndividual ; :d "a", "a"^^xsd:token, "b"^^xsd:normalizedString, "c", "d"^^xsd:language .
 """,
     "datatypes_not_checked": """
 :d a owl:DatatypeProperty . :Small a rdfs:Datatype .

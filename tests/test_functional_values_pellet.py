@@ -45,11 +45,17 @@ MATRIX: dict[str, tuple[str, str, bool, bool]] = {
     "string_and_any_uri": ('"x"', '"http://x"^^xsd:anyURI', True, False),
     "two_any_uris": ('"http://a"^^xsd:anyURI', '"http://b"^^xsd:anyURI', True, False),
     "one_language_tag": ('"a"@en', '"b"@en', True, False),
+    "string_and_any_uri_of_one_text": ('"a"', '"a"^^xsd:anyURI', True, False),
     # one value, spelled twice: both consistent
     "plain_and_xsd_string": ('"a"', '"a"^^xsd:string', False, True),
     "integer_and_equal_decimal": ("1", '"1.0"^^xsd:decimal', False, True),
     "int_and_equal_long": ('"1"^^xsd:int', '"1"^^xsd:long', False, True),
     "tag_in_two_cases": ('"a"@en', '"a"@EN', False, True),
+    # the value spaces of xsd:string's derived types are subsets of its own: "a"^^xsd:token is the string "a"
+    "string_and_equal_token": ('"a"', '"a"^^xsd:token', False, True),
+    "string_and_equal_normalized_string": ('"a"', '"a"^^xsd:normalizedString', False, True),
+    "string_and_equal_language": ('"en"', '"en"^^xsd:language', False, True),
+    "name_and_equal_ncname": ('"x"^^xsd:Name', '"x"^^xsd:NCName', False, True),
     "one_instant_in_two_zones": ('"2020-01-01T12:00:00Z"^^xsd:dateTime',
                                  '"2020-01-01T14:00:00+02:00"^^xsd:dateTime', False, True),
     # two values in OWL 2 (the value spaces of double, float and owl:real are disjoint), one value to
@@ -73,6 +79,9 @@ MATRIX: dict[str, tuple[str, str, bool, bool]] = {
     "two_tags_two_texts": ('"a"@en', '"b"@fr', False, False),
     "tag_and_plain": ('"a"@en', '"a"', False, False),
     "tag_and_plain_two_texts": ('"a"@en', '"b"', False, False),
+    # one value in OWL 2 (xsd:NMTOKEN's values are strings), two to Pellet 2.3.1, which does not read NMTOKEN as a
+    # string type: consistent in topostore, inconsistent in Pellet (docs/reasoning.md)
+    "string_and_equal_nmtoken": ('"a"', '"a"^^xsd:NMTOKEN', True, True),
 }
 
 
@@ -112,7 +121,7 @@ def cases() -> dict[str, tuple[str, bool, bool]]:
     for form, text in FORMS.items():
         for pair in MATRIX if form == "functional" else FEW:
             a, b, apart, one = MATRIX[pair]
-            out[f"{pair}_{form}"] = (text(a, b), one or not apart, one)
+            out[f"{pair}_{form}"] = (text(a, b), not apart, one)
     return out
 
 
@@ -121,9 +130,14 @@ CASES = cases()
 #: two it merged), one of an integer lets the string through (the one value checked is the integer)
 CASES["integer_and_string_range_string"] = (ranged("xsd:string")("5", '"five"'), False, False)
 CASES["integer_and_string_range_integer"] = (ranged("xsd:integer")("5", '"five"'), True, False)
+#: a string and a token of the same text, one value: under a maximum, and as two individuals told the same
+CASES["string_and_equal_token_max_1"] = (maximum("maxCardinality")('"a"', '"a"^^xsd:token'), True, True)
+CASES["name_and_equal_ncname_same_as"] = (same_individual('"x"^^xsd:Name', '"x"^^xsd:NCName'), True, True)
 
 AGREE_INCONSISTENT = [n for n, (_, theirs, ours) in CASES.items() if not theirs and not ours]
 CONSISTENT = [n for n, (_, theirs, _) in CASES.items() if theirs]
+#: one value in OWL 2 that Pellet 2.3.1 takes for two (docs/reasoning.md)
+ONE_VALUE_IN_OWL_2 = [n for n, (_, theirs, ours) in CASES.items() if not theirs and ours]
 
 
 def reasoned(name: str) -> tuple[bool, list[str]]:
@@ -162,6 +176,12 @@ def test_consistent_as_pellet_or_inconsistent_in_owl_2_and_said(name: str) -> No
     assert consistent == CASES[name][2]
     assert bool(said) == (not consistent), said
     assert all("Pellet 2.3.1" in s and "OWL 2" in s for s in said)
+
+
+@pytest.mark.parametrize("name", ONE_VALUE_IN_OWL_2)
+def test_one_value_in_owl_2_is_consistent(name: str) -> None:
+    consistent, said = reasoned(name)
+    assert consistent and not said
 
 
 def values(a: str, b: str) -> tuple[Literal, Literal]:

@@ -53,6 +53,12 @@ EMPTY = {
         ":d a owl:DatatypeProperty, owl:FunctionalProperty . "
         ":C rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :d ; owl:someValuesFrom xsd:string ] . :x :d 5 .",
         "cls-svf-fp"),
+    **{f"two existentials of {a} and {b} on a functional data property": (
+        f":d a owl:DatatypeProperty, owl:FunctionalProperty . :C rdfs:subClassOf {some('d', a)} , {some('d', b)} .",
+        "cls-unsat") for a, b in (("xsd:boolean", "xsd:integer"), ("xsd:double", "owl:real"),
+                                  ("xsd:string", "rdf:langString"), ("xsd:anyURI", "xsd:string"),
+                                  ("xsd:negativeInteger", "xsd:nonNegativeInteger"), ("xsd:float", "xsd:double"),
+                                  ("xsd:hexBinary", "xsd:base64Binary"), ("xsd:token", "rdf:langString"))},
     "minimum above the inverse of an inverse-functional property": (
         f":p a owl:InverseFunctionalProperty ; owl:inverseOf :q . :C rdfs:subClassOf {card('min', 2, 'q')} .",
         "cls-unsat"),
@@ -73,6 +79,10 @@ SATISFIABLE = {
         ":C rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :d ; owl:someValuesFrom xsd:string ] . :x :d \"5\" ."),
     "minimum on the inverse of a functional property": (
         f":p a owl:FunctionalProperty ; owl:inverseOf :q . :C rdfs:subClassOf {card('min', 2, 'q')} ."),
+    **{f"two existentials of {a} and {b} on a functional data property": (
+        f":d a owl:DatatypeProperty, owl:FunctionalProperty . :C rdfs:subClassOf {some('d', a)} , {some('d', b)} .")
+       for a, b in (("xsd:byte", "xsd:unsignedInt"), ("xsd:string", "xsd:token"), ("xsd:dateTime", "xsd:dateTimeStamp"),
+                    ("xsd:integer", "xsd:decimal"), ("rdf:PlainLiteral", "xsd:string"))},
     "functional data property with a derived string as a plain literal": (
         ":d a owl:DatatypeProperty, owl:FunctionalProperty . :C rdfs:subClassOf [ a owl:Restriction ; "
         "owl:onProperty :d ; owl:someValuesFrom rdf:PlainLiteral ] . :x :d \"ab\"^^xsd:normalizedString ."),

@@ -34,6 +34,7 @@ from . import condition as cond
 from .condition import Condition
 from .notices import INCOMPLETE, Notice
 from .rule import Atom
+from .snippets import STRINGS
 
 #: up to this n, cardinalities keep the pairwise form (exact for every kind of difference);
 #: its cost grows as C(k, n) for k values, so it stays small
@@ -53,13 +54,14 @@ def literal_key(var: str) -> str:
     map to their decimal value (``1``, ``"01"^^xsd:int`` and ``1.0e0`` are one
     value, as SPARQL's ``=`` says); NaN and the infinities keep their double form;
     a dateTime with a timezone maps to its distance from the epoch (one instant
-    in two timezones is one value); any other literal is its datatype, lower-case
-    language tag and lexical form.  One difference from the pairwise test's
+    in two timezones is one value); any other literal is its datatype (one for xsd:string and the
+    types derived from it), lower-case language tag and lexical form.  One difference from the pairwise test's
     ``!=``: a float whose decimal expansion is not the decimal it was written as
     (``"0.1"^^xsd:float`` against ``0.1``) is a second value here, as OWL's disjoint
     value spaces say, where ``!=`` compares both as floats and finds them equal.
     """
-    term = f'CONCAT("l:", STR(DATATYPE({var})), "|", LCASE(LANG({var})), "|", STR({var}))'
+    kind = f'IF(DATATYPE({var}) IN ({STRINGS}), "s", STR(DATATYPE({var})))'  # "a" is "a"^^xsd:token
+    term = f'CONCAT("l:", {kind}, "|", LCASE(LANG({var})), "|", STR({var}))'
     number = f'COALESCE(CONCAT("n:", STR(<{XSD}decimal>({var}))), CONCAT("d:", STR({var})))'
     instant = f'COALESCE(CONCAT("t:", STR({var} - {_EPOCH})), {term})'
     return (f"IF(isNumeric({var}), {number}, "

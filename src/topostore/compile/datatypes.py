@@ -114,9 +114,22 @@ def implied_ranges(told: Iterable[NamedNode]) -> set[NamedNode]:
     ranges can have (told ones included).  An empty intersection (no value possible): every
     datatype of the table."""
     bases = [_base(dt) for dt in told]
-    families = {_family(b) for b, _ in bases} - {None}
-    integers = _Interval()
-    is_integer = False
+    integers = _integers(bases)
+    everything = set(_PARENTS) | {p for ps in _PARENTS.values() for p in ps} | set(_FAMILY_TOPS) | {
+        XSD + k for k in INTEGER_TYPES}
+    if _none_in_all(bases):
+        return {NamedNode(dt) for dt in everything}
+    out: set[str] = set()
+    for base, _ in bases:
+        out |= _ancestors(base)
+    if integers is not None:
+        out |= {XSD + k for k, (low, high) in INTEGER_TYPES.items() if integers.within(low, high)}
+    return {NamedNode(dt) for dt in out}
+
+
+def _integers(bases: list[tuple[str, list[tuple[str, str]]]]) -> _Interval | None:
+    """The integers every integer datatype of ``bases`` (named, facets) holds; None where there is none."""
+    integers, is_integer = _Interval(), False
     for base, facets in bases:
         local = base[len(XSD):] if base.startswith(XSD) else ""
         if local in INTEGER_TYPES:
@@ -124,16 +137,30 @@ def implied_ranges(told: Iterable[NamedNode]) -> set[NamedNode]:
             integers.narrow(*INTEGER_TYPES[local])
             for op, literal in facets:
                 integers.narrow(*_facet_bounds(op, literal))
-    everything = set(_PARENTS) | {p for ps in _PARENTS.values() for p in ps} | set(_FAMILY_TOPS) | {
-        XSD + k for k in INTEGER_TYPES}
-    if len(families) > 1 or (is_integer and integers.empty):
-        return {NamedNode(dt) for dt in everything}
-    out: set[str] = set()
-    for base, _ in bases:
-        out |= _ancestors(base)
-    if is_integer:
-        out |= {XSD + k for k, (low, high) in INTEGER_TYPES.items() if integers.within(low, high)}
-    return {NamedNode(dt) for dt in out}
+    return integers if is_integer else None
+
+
+def _none_in_all(bases: list[tuple[str, list[tuple[str, str]]]]) -> bool:
+    """Whether no value lies in every one of ``bases``: two of disjoint families, or integer ranges that
+    do not meet."""
+    families = {_family(b) for b, _ in bases} - {None}
+    integers = _integers(bases)
+    return len(families) > 1 or (integers is not None and integers.empty)
+
+
+def disjoint_datatypes(a: NamedNode, b: NamedNode) -> bool:
+    """Whether no value lies in both ``a`` and ``b`` (each a named datatype or one restricted by numeric
+    facets): they are of two disjoint families, one of them is empty, or they are integer ranges that do
+    not overlap, or one is the strings with a language tag and the other the strings without one.  False
+    where that is not known (a datatype of the ontology's own)."""
+    if is_empty(a) or is_empty(b):
+        return True
+    bases = [_base(a), _base(b)]
+    tagged = [base for base, _ in bases if base == RDF + "langString"]
+    if len(tagged) == 1:  # rdf:langString is under rdf:PlainLiteral, beside xsd:string
+        other = next(base for base, _ in bases if base != RDF + "langString")
+        return XSD + "string" in _ancestors(other) or _family(other) not in (None, RDF + "PlainLiteral")
+    return _none_in_all(bases)
 
 
 def surely_in(value: Term, datatype: str) -> bool:

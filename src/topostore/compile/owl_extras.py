@@ -39,6 +39,7 @@ from .owl import OwlCompiler
 from .property_hierarchy import subject_classes, super_expressions
 from .rule import Atom, Rule
 from .schema import schema_rule
+from .snippets import DERIVED_STRINGS, one_string
 
 
 def _prop_atom(s: str, p: Prop, o: str) -> Atom:
@@ -58,8 +59,33 @@ def key_rule(cls: Expr, props: tuple[Prop, ...]) -> Rule:
                 (cond.test(named),))
 
 
+def key_string_rule(cls: Expr, props: tuple[Prop, ...], i: int) -> Rule:
+    """The prp-key rule of one key matching the ``i``-th property's values as strings: ``x``'s value of a
+    type derived from xsd:string (``"a"^^xsd:token``) is the string ``y`` holds as another literal (``"a"``,
+    one value, two terms, which :func:`key_rule`'s join by term does not meet); the other properties' values
+    by term or as one string.  Asking the derived type of ``x``'s value keeps the rule to the few such literals."""
+    rule = key_rule(cls, props)
+    body = [a for a in rule.body if a.p == str(TYPE)]
+    tests = [rule.conditions[0]]
+    for k, p in enumerate(props):
+        z, w = f"?z{k}", f"?w{k}"
+        body += [_prop_atom("?x", p, z), _prop_atom("?y", p, w)]
+        if k == i:
+            tests.append(cond.test(f"isLiteral({z}) && datatype({z}) IN ({DERIVED_STRINGS}) && {one_string(z, w)}"))
+        else:
+            tests.append(cond.test(f"sameTerm({z}, {w}) || COALESCE(({one_string(z, w)}), false)"))
+    return Rule("prp-key", rule.origin, tuple(body), rule.head, tuple(tests))
+
+
 def key_rules(tb: TBox) -> list[Rule]:
-    return [key_rule(cls, props) for cls, props in tb.keys if props]
+    """The prp-key rules of every key: by term, and by string for each property that may hold data values."""
+    rules = []
+    for cls, props in tb.keys:
+        if props:
+            rules.append(key_rule(cls, props))
+            rules += [key_string_rule(cls, props, i) for i, p in enumerate(props)
+                      if not p.inverse and p.iri not in tb.object_properties]
+    return rules
 
 
 def reflexive_rules(tb: TBox) -> list[Rule]:

@@ -44,8 +44,16 @@ def known_different(a: str, b: str) -> Condition:
 
 
 def distinct_values(a: str, b: str) -> str:
-    """Two data values that are different (an incomparable pair counts as different)."""
-    return f"(!sameTerm({a}, {b}) && COALESCE({a} != {b}, true))"
+    """Two data values that are different (an incomparable pair counts as different, but for two strings of
+    the same characters: ``"a"`` and ``"a"^^xsd:token`` are one value, the string "a", which SPARQL's ``!=``
+    does not compare, its operands of a type it does not know)."""
+    return f"(!sameTerm({a}, {b}) && COALESCE({a} != {b}, !({one_string(a, b)}), true))"
+
+
+def one_string(a: str, b: str) -> str:
+    """``a`` and ``b`` are one string: both of xsd:string or a type derived from it (their value spaces
+    are subsets of xsd:string's), written with the same characters."""
+    return f"STR({a}) = STR({b}) && datatype({a}) IN ({STRINGS}) && datatype({b}) IN ({STRINGS})"
 
 
 #: Numeric literals that are not of an integer or decimal type.
@@ -68,8 +76,11 @@ _STRING_FORMS = {
     "token": '!REGEX(STR({v}), "[\\r\\n\\t]|^ | $|  ")',
     "language": 'REGEX(STR({v}), "^[a-zA-Z]{{1,8}}(-[a-zA-Z0-9]{{1,8}})*$")',
 }
-#: the datatypes whose values are strings without a language tag
-_STRINGS = "xsd:string, xsd:normalizedString, xsd:token, xsd:language"
+#: the datatypes whose values are strings without a language tag (xsd:string and the types derived from it)
+STRING_TYPES = ("string", "normalizedString", "token", "language", "NMTOKEN", "Name", "NCName")
+STRINGS = ", ".join(f"xsd:{t}" for t in STRING_TYPES)
+#: the datatypes derived from xsd:string (one of their literals is a string written as another term)
+DERIVED_STRINGS = ", ".join(f"xsd:{t}" for t in STRING_TYPES[1:])
 
 
 def in_datatype(var: str, datatype: NamedNode) -> str | None:
@@ -99,15 +110,17 @@ def in_datatype(var: str, datatype: NamedNode) -> str | None:
     if local == "decimal" or dt in (OWL + "real", OWL + "rational"):
         return f"COALESCE(({_real(var)}), false)"
     if local == "string":
-        return f"COALESCE((isLiteral({var}) && datatype({var}) IN ({_STRINGS})), false)"
+        return f"COALESCE((isLiteral({var}) && datatype({var}) IN ({STRINGS})), false)"
     if local in _STRING_FORMS:  # a string whose characters the derived type allows is one of its values
-        return (f"COALESCE((isLiteral({var}) && datatype({var}) IN ({_STRINGS}) && "
+        return (f"COALESCE((isLiteral({var}) && datatype({var}) IN ({STRINGS}) && "
                 f"{_STRING_FORMS[local].format(v=var)}), false)")
     if dt == RDF + "PlainLiteral":  # every string, with or without a language tag
-        return f"COALESCE((isLiteral({var}) && (lang({var}) != \"\" || datatype({var}) IN ({_STRINGS}))), false)"
+        return f"COALESCE((isLiteral({var}) && (lang({var}) != \"\" || datatype({var}) IN ({STRINGS}))), false)"
     if dt == RDF + "langString":  # the strings with a language tag alone
         return f"COALESCE((isLiteral({var}) && lang({var}) != \"\"), false)"
-    if local in ("float", "double", "boolean", "dateTime", "date", "time", "anyURI", "dateTimeStamp", "duration"):
+    if local == "dateTimeStamp":  # a dateTime with a time zone (the store keeps it as an xsd:dateTime)
+        return f"COALESCE((isLiteral({var}) && datatype({var}) = xsd:dateTime && TZ({var}) != \"\"), false)"
+    if local in ("float", "double", "boolean", "dateTime", "date", "time", "anyURI", "duration"):
         return f"COALESCE((isLiteral({var}) && datatype({var}) = <{dt}> && str({var}) = str({var})), false)"
     return None
 
@@ -134,23 +147,27 @@ _REAL_VALUE = "(isNumeric({v}) && !(datatype({v}) IN (xsd:float, xsd:double)))"
 
 def same_value(var: str, value: Literal) -> str | None:
     """A SPARQL test that ``var`` is the data value ``value`` where one value has several literals that are
-    not one RDF term: a real number (``3``, ``"3.0"^^xsd:decimal``, ``"3"^^xsd:long``) or an instant
-    (``12:00Z``, ``14:00+02:00``).  None for the others, whose one term is their value.
+    not one RDF term: a real number (``3``, ``"3.0"^^xsd:decimal``, ``"3"^^xsd:long``), an instant
+    (``12:00Z``, ``14:00+02:00``) or a string (``"a"``, ``"a"^^xsd:token``).  None for the others, whose one term is their value.
 
     Why: a rule matching the literal as a term (a hasValue's ``?x :d 3``) misses the value written
     another way, which the store keeps as written (Oxigraph makes ``"3"^^xsd:long`` ``3``, not ``3.0``)."""
     text = f'"{_escaped(value.value)}"^^<{value.datatype.value}>'
     if value.datatype.value[len(XSD):] in REAL_TYPES and value.datatype.value.startswith(XSD):
         return f"COALESCE(({_REAL_VALUE.format(v=var)} && {var} = {text}), false)"
-    if value.datatype.value == XSD + "dateTime" and _zoned(value.value):
+    if value.language is None and value.datatype.value.startswith(XSD) \
+            and value.datatype.value[len(XSD):] in STRING_TYPES:  # "a" is "a"^^xsd:token
+        return (f"COALESCE((isLiteral({var}) && datatype({var}) IN ({STRINGS}) && "
+                f"STR({var}) = \"{_escaped(value.value)}\"), false)")
+    if value.datatype.value == XSD + "dateTime" and zoned(value.value):
         return f"COALESCE((datatype({var}) = xsd:dateTime && TZ({var}) != \"\" && {var} = {text}), false)"
     return None
 
 
-def _zoned(text: str) -> bool:
+def zoned(text: str) -> bool:
     """Whether a dateTime's lexical form names its time zone (only such instants compare across zones)."""
     return text.endswith("Z") or (len(text) > 6 and text[-6] in "+-" and text[-3] == ":")
 
 
 def _escaped(text: str) -> str:
-    return text.replace("\\", "\\\\").replace('"', '\\"')
+    return text.replace("\\", "\\\\").replace('"', '\\"').replace("\n", "\\n").replace("\r", "\\r")

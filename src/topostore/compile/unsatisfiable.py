@@ -17,7 +17,8 @@ equivalents, the members of an intersection, closed), and is unsatisfiable when 
   unsatisfiable;
 * a lower bound of ``n`` values in ``F`` and an upper bound (``max m``, ``exact m``, a functional
   property: ``m = 1``) of ``m < n`` values in ``G`` with ``F`` under ``G``; or two lower bounds under
-  the same upper bound whose fillers cannot meet and whose values together exceed it;
+  the same upper bound whose fillers cannot meet (disjoint classes, or datatypes whose value spaces do not
+  meet) and whose values together exceed it;
 * a lower bound in ``F`` and a universal ``∀p.G`` on the same property where ``F ⊓ G`` is unsatisfiable
   by these same tests (disjoint classes, owl:Nothing, a complement, restrictions of both).
 
@@ -45,6 +46,7 @@ from pyoxigraph import NamedNode
 from ..rdf.terms import sparql
 from ..rdf.vocab import NOTHING, THING, TYPE
 from . import condition as cond
+from .datatypes import disjoint_datatypes
 from .model import Expr, Prop, describe
 from .notices import INCOMPLETE, Notice
 from .owl import OwlCompiler
@@ -259,7 +261,10 @@ class Unsatisfiable:
         return None
 
     def _apart(self, a: Bound, b: Bound) -> bool:
-        """The fillers of ``a`` and ``b`` cannot share a value (told disjoint, or their meeting is empty)."""
+        """The fillers of ``a`` and ``b`` cannot share a value (told disjoint, or their meeting is empty; two
+        datatypes by their value spaces)."""
+        if a.datatype is not None and b.datatype is not None:
+            return disjoint_datatypes(a.datatype, b.datatype)
         if a.datatype is not None or b.datatype is not None or a.filler is None or b.filler is None:
             return False
         found = self.clash(self.under(a.filler) | self.under(b.filler))

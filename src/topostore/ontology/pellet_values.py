@@ -9,7 +9,8 @@ Owlready2 (``tests/test_functional_values_pellet.py``):
   short, an int, a long, a bigger integer (``5`` and ``300`` are never found different, ``300`` and ``400``
   are);
 * a decimal with a fraction; a float; a double; a boolean; a date or time of any XSD date/time type;
-* a string (plain, ``xsd:string`` and its derived types, ``xsd:anyURI``), compared by its lexical form;
+* a string (plain, ``xsd:string`` and its derived types, ``xsd:anyURI``), compared by its lexical form, but an
+  ``xsd:anyURI`` is never a string's value (``"a"^^xsd:anyURI`` and ``"a"`` are two values, as in OWL 2);
 * a string of one language tag (``"a"@en`` and ``"b"@en`` are two values; ``"a"@en`` and ``"b"@fr``, or
   ``"a"@en`` and ``"b"``, are never found different).
 
@@ -37,6 +38,7 @@ from typing import TYPE_CHECKING
 from pyoxigraph import Literal, NamedNode
 
 from ..compile.notices import OntologyWarning, warn
+from ..compile.snippets import distinct_values, zoned
 from ..rdf.terms import sparql
 from ..rdf.vocab import ASSERTED, AUX, DECLARED_DIFFERENT, DIFFERENT, INFERRED, TYPE, XSD, owl
 from ..reason import Violation
@@ -94,7 +96,11 @@ def told_apart(a: Literal, b: Literal) -> bool:
     kind = value_class(a)
     if kind != value_class(b):
         return False
-    return not kind.startswith("string") or a.value != b.value
+    return not kind.startswith("string") or a.value != b.value or _uri(a) != _uri(b)
+
+
+def _uri(lit: Literal) -> bool:
+    return lit.datatype.value == XSD + "anyURI"
 
 
 def not_told_apart(violation: Violation) -> bool:
@@ -113,6 +119,10 @@ def missed_by_pellet(store: Store, violations: Iterable[Violation]) -> list[str]
     for v in violations:
         if not_told_apart(v):
             texts.append(_said(v))
+        elif unzoned_stamp(v):
+            texts.append(f"{v.message} [{v.rule}]: inconsistent in OWL 2 (an xsd:dateTimeStamp is an xsd:dateTime "
+                         "with a time zone); Pellet 2.3.1 takes every xsd:dateTime for an xsd:dateTimeStamp and finds "
+                         "the ontology consistent unless another axiom rules the value out")
         elif (merged := _merged_values(store, v)) is not None:
             a, b, p, one, other = merged
             texts.append(_said(v, f", resting on the values {spelled(store.restore(one))} of {short(a)} and "
@@ -120,6 +130,14 @@ def missed_by_pellet(store: Store, violations: Iterable[Violation]) -> list[str]
                                   "which alone make them different",
                                "; or unless another axiom makes the two individuals clash once merged"))
     return texts
+
+
+def unzoned_stamp(violation: Violation) -> bool:
+    """Whether ``violation`` rests on an xsd:dateTime without a time zone being outside xsd:dateTimeStamp (a
+    range, a universal, a functional property's existential into it), which Pellet 2.3.1 takes it to be in."""
+    values = [v for v in violation.individuals.values() if isinstance(v, Literal)]
+    return ("dateTimeStamp" in violation.axiom and len(values) == 1 and values[0].datatype.value == XSD + "dateTime"
+            and not zoned(values[0].value))
 
 
 def _said(v: Violation, resting: str = "", unless: str = "") -> str:
@@ -132,12 +150,12 @@ def _said(v: Violation, resting: str = "", unless: str = "") -> str:
 #: the values of a functional data property two individuals hold, distinct in OWL 2, where the individuals are
 #: held different by entailment only (not declared different, nor linked by an irreflexive or asymmetric
 #: property, which clashes in Pellet once it merges them): asked of two individuals of a violation
-_APART_BY_VALUES = """SELECT ?p ?v1 ?v2 WHERE {{
+_APART_BY_VALUES = f"PREFIX xsd: <{XSD}> " + """SELECT ?p ?v1 ?v2 WHERE {{
   GRAPH {aux} {{ {{ {a} {different} {b} }} UNION {{ {b} {different} {a} }}
     FILTER NOT EXISTS {{ {{ {a} {declared} {b} }} UNION {{ {b} {declared} {a} }} }} }}
   {a} ?p ?v1 . {b} ?p ?v2 . ?p {type} {functional} .
   FILTER NOT EXISTS {{ {{ {a} ?q {b} }} UNION {{ {b} ?q {a} }} ?q {type} ?kind . VALUES ?kind {{ {linked} }} }}
-  FILTER(isLiteral(?v1) && isLiteral(?v2) && !sameTerm(?v1, ?v2) && COALESCE(?v1 != ?v2, true))
+  FILTER(isLiteral(?v1) && isLiteral(?v2) && {distinct})
 }}"""
 
 
@@ -156,7 +174,8 @@ def _merged_values(store: Store, v: Violation) -> tuple[NamedNode, NamedNode, Na
     for a, b in combinations(dict.fromkeys(t for t in terms if isinstance(t, NamedNode)), 2):
         rows = list(store.query(_APART_BY_VALUES.format(
             aux=AUX, a=sparql(a), b=sparql(b), different=DIFFERENT, declared=DECLARED_DIFFERENT, type=TYPE,
-            functional=sparql(owl("FunctionalProperty")), linked=_LINKED), graphs=[ASSERTED, INFERRED], named=[AUX]))
+            functional=sparql(owl("FunctionalProperty")), linked=_LINKED,
+            distinct=distinct_values("?v1", "?v2")), graphs=[ASSERTED, INFERRED], named=[AUX]))
         pairs = [(r["p"], r["v1"], r["v2"]) for r in rows]
         if pairs and not any(told_apart(one, other) for _, one, other in pairs):
             p, one, other = pairs[0]
@@ -172,4 +191,5 @@ def warn_pellet_differences(texts: Iterable[str]) -> None:
         warn(text, PelletDifferenceWarning, stacklevel=3)
 
 
-__all__ = ["PelletDifferenceWarning", "missed_by_pellet", "not_told_apart", "told_apart", "value_class", "warn_pellet_differences"]
+__all__ = ["PelletDifferenceWarning", "missed_by_pellet", "not_told_apart", "told_apart", "unzoned_stamp", "value_class",
+           "warn_pellet_differences"]

@@ -284,10 +284,13 @@ def _literal_key(term: Literal) -> tuple:
             return ("double", float(term.value.replace("INF", "inf")))
         if local == "boolean":
             return ("boolean", term.value in ("true", "1"))
-        if local in ("dateTime", "date"):
-            moment = _moment(term.value, local)
+        if local in ("dateTime", "date", "dateTimeStamp"):
+            # a dateTimeStamp is a dateTime with a time zone: the store keeps it as an xsd:dateTime (one without
+            # a zone, ill-typed, too), so its key is that dateTime's, under which its written form is found
+            kind = "dateTime" if local == "dateTimeStamp" else local
+            moment = _moment(term.value, kind)
             if moment is not None:
-                return (local, *moment)
+                return (kind, *moment)
     except (InvalidOperation, ValueError):
         pass
     return ("literal", term.value, dt, term.language)
