@@ -236,6 +236,7 @@ class ProfileReport:
         classes = self.unnamed.value_classes(e, {p, *supers}, subject)
         self.unnamed.links_back(e, classes, axiom)
         self.unnamed.gives_back(e, classes, axiom)
+        self.unnamed.defined_filler(e, classes, axiom, {p, *supers})
         filler = e.filler
         if filler is not None and filler.is_named:
             self.unnamed.wider_filler(e, filler.node, axiom, {p, *supers})
