@@ -175,9 +175,11 @@ class ExistentialValues:
         """The existentials ``∃p'.X`` (a bound of one) with ``p'`` ``u``'s property or a super-expression of it
         and ``X`` told to hold ``u``'s filler with the ranges of its property: a member of ``u`` with any value
         of that property is in them, whatever the existential that gave the value (ext-all-value)."""
-        value = self.join(self.filler(u), self.ranges(u.prop))
+        ranges = self.ranges(u.prop)
         probe = Expr(u.node, "some", prop=u.prop)
-        return [b for b in self.reached(probe, value, lambda b: False) if lower_bound(b) == 1]
+        # what the ranges give alone, every existential below gives already (ext-restriction-sub)
+        return [b for b in self.reached(probe, self.join(self.filler(u), ranges), lambda b: self.holds(ranges, b))
+                if lower_bound(b) == 1]
 
     def with_universals(self) -> tuple[list[tuple[Expr, Prop]], list[tuple[Expr, Expr]], list[tuple[Expr, Expr, Expr]]]:
         """What a universal says of an existential's value: the rows of ext-some-value (an existential, a
