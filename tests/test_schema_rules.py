@@ -38,14 +38,14 @@ KINDS = {"cax-sco", "cax-eqc1", "cax-eqc2", "prp-dom", "prp-rng", "prp-spo1", "p
          "neg-int", "neg-com", "neg-avf", *(f"cls-int1-{n}" for n in range(2, 9)),
          *(f"neg-uni-{n}" for n in range(2, 9)), "prp-fp", "prp-ifp",
          "different-candidate-2-fp", "different-candidate-2-ifp", "different-values-3", "different-values-4-a",
-         "different-values-4-b", "prp-fp-3", "prp-ifp-3", "prp-fp-2-data"}
+         "different-values-4-b", "prp-fp-3", "prp-ifp-3", "prp-fp-2-data", "ext-some-value", "ext-all-value"}
 #: the kinds the ontology EVERY_KIND has no axiom of (a restriction on a sub-property: see
 #: test_restrictions_subsumed_through_properties_are_a_table; a one-of and the non-memberships a
 #: complement needs: tests/test_schema_rows.py; the sameAs rules of functional properties:
 #: tests/test_functional_rows.py, with their difference rules)
 ELSEWHERE = {"ext-restriction-sub", "cls-oo", "prp-fp", "prp-ifp", "different-candidate-2-fp", "different-candidate-2-ifp",
              "different-values-3", "different-values-4-a", "different-values-4-b", "neg-dw", "neg-svf", "neg-sco",
-             "neg-int", "neg-com", "neg-avf",
+             "neg-int", "neg-com", "neg-avf", "ext-some-value", "ext-all-value",
              *(f"cls-int1-{n}" for n in range(3, 9)), *(f"neg-uni-{n}" for n in range(2, 9))}
 #: the generic checks (by file): the compiler emits their instantiations; a full REASON keeps them instantiated
 CHECKS = {"cax-dw", "prp-fp-3", "prp-ifp-3", "prp-fp-2-data"}
@@ -311,6 +311,31 @@ def test_restrictions_subsumed_through_properties_are_a_table() -> None:
     onto.add(Triple(NamedNode(NS + "y"), NamedNode(TYPE[1:-1]), NamedNode(NS + "A")))  # maintained, row by row
     onto.reason()
     assert NamedNode(NS + "B") in onto.types(NamedNode(NS + "y"))
+
+
+def test_a_universal_meeting_an_existentials_value_is_two_tables() -> None:
+    """``x ∈ ∃p.D`` (a value of ``p`` and of its super-property ``q``, ext-some-value) and ``x ∈ ∀q.G`` put ``x`` in
+    ``∃q.G`` (ext-all-value): rows of two tables, the same closure generic or row by row, maintained as a step
+    adds a member."""
+    onto = Ontology()
+    onto.load_data(PREFIXES + ":p a owl:ObjectProperty ; rdfs:subPropertyOf :q . :q a owl:ObjectProperty .\n"
+                   ":D a owl:Class . :G a owl:Class .\n"
+                   ":A rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :p ; owl:someValuesFrom :D ] .\n"
+                   ":U rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :q ; owl:allValuesFrom :G ] .\n"
+                   ":B owl:equivalentClass [ a owl:Restriction ; owl:onProperty :q ; owl:someValuesFrom :G ] .\n"
+                   ":x a :A , :U .\n", "turtle")
+    assert not any(r.name in ("ext-some-value", "ext-all-value") for r in onto.rules.rules)
+    assert onto.rules.tables is not None and len(onto.rules.tables.held["ext-all-value"]) == 1
+    assert _materialize(onto, 0) == _materialize(onto, sys.maxsize)
+    onto.reason()
+    assert NamedNode(NS + "B") in onto.types(NamedNode(NS + "x"))
+    y = NamedNode(NS + "y")
+    onto.add(Triple(y, NamedNode(TYPE[1:-1]), NamedNode(NS + "A")))  # maintained, row by row
+    onto.reason()
+    assert NamedNode(NS + "B") not in onto.types(y)
+    onto.add(Triple(y, NamedNode(TYPE[1:-1]), NamedNode(NS + "U")))
+    onto.reason()
+    assert NamedNode(NS + "B") in onto.types(y)
 
 
 def test_generic_equals_instantiated_on_the_tutorial_map() -> None:

@@ -12,7 +12,8 @@
   ``n ≥ m`` and ``C ⊑ D`` (the same property is :mod:`.owl`'s ext-card-sub), and ``∀q.C ⊑ ∀p.D``
   when ``p ⊑ q`` (or ``p = q``) and ``C ⊑ D`` — Horn, and what RDF-Based Semantics documents
   compare restrictions by.  The sub-properties are those of the whole hierarchy of property expressions
-  (:mod:`.property_hierarchy`: through inverses and symmetry too).
+  (:mod:`.property_hierarchy`: through inverses and symmetry too).  What an existential's unnamed value
+  is besides its filler (its property's ranges, a universal of its subject) is :mod:`.existential_values`'.
 * The subject of an existential (``∃p.C``, ``≥n p.C`` with n ≥ 1) is in the domain of ``p`` and of each of its
   super-properties (the range for an inverse one), its value unnamed: ``x ∈ ∃p.C ⇒ x ∈ D``.
 """
@@ -33,6 +34,7 @@ from ..rdf.vocab import (
 )
 from . import condition as cond
 from .every_individual import for_every_individual
+from .existential_values import existential_value_rules
 from .fillers import FillerIndex
 from .model import Expr, Prop, TBox, describe
 from .owl import OwlCompiler
@@ -151,6 +153,8 @@ def restriction_rules(owl: OwlCompiler) -> list[Rule]:
         for b in index.subsuming(a):
             if a.node != b.node and (a.prop == b.prop or a.prop in supers.get(b.prop, ())):
                 subsume(a, b)
+    rules += existential_value_rules(owl.tb, owl.subsumption, supers, exprs, lambda a, b, origin: rules.append(
+        schema_rule("ext-restriction-sub").instantiate((a.term, b.term), origin)))
     return rules
 
 

@@ -64,9 +64,6 @@ from .owl import OwlCompiler
 from .property_hierarchy import inverse, subject_classes, super_expressions
 from .unnamed_values import UnnamedValues
 
-#: The axiom kind of a subsumption that rests on an individual's classes (a hasValue under an existential).
-VALUE_CLASSIFICATION = "class hierarchy through an individual's classes"
-
 #: (expression, positive?, the axiom it occurs in, the axiom's named subject or None)
 Use = tuple[Expr, bool, str, NamedNode | None]
 
@@ -197,20 +194,6 @@ class ProfileReport:
                       "needs case analysis, not drawn")
         if positive and k in ("some", "min", "exact") and (k == "some" or e.n >= 1):
             self.existential(e, axiom, subject)
-        if positive and k == "value" and subject is not None:
-            self.value_classification(e, axiom)
-
-    def value_classification(self, e: Expr, axiom: str) -> None:
-        """A class told under ``p value a`` is under ``∃p.K`` where ``a`` is a K: the class hierarchy
-        (QUERY CLASS CLASS) is computed from the TBox alone, so that subsumption is not found (the members
-        of the class are: their value is ``a`` itself)."""
-        ranges = self.value_classes(e.prop)  # what the TBox alone gives every value: classified already
-        for m, pos in self.on.get(e.prop, ()):
-            if not pos and m.kind in ("some", "min") and m.filler is not None and m.filler.is_named \
-                    and m.filler.node not in (THING, *ranges):
-                self.note(VALUE_CLASSIFICATION, axiom, f"whether {short_name(e.value)} is in "
-                          f"{describe(m.filler)}, which would place the class under {describe(m)}, is not read "
-                          "by the class hierarchy; its members are found")
 
     def complement_gap(self, e: Expr) -> str:
         """What of a complement's membership is not derived: the rules of :mod:`.negation` derive that an
@@ -253,6 +236,7 @@ class ProfileReport:
         classes = self.unnamed.value_classes(e, {p, *supers}, subject)
         self.unnamed.links_back(e, classes, axiom)
         self.unnamed.gives_back(e, classes, axiom)
+        self.unnamed.defined_filler(e, classes, axiom, {p, *supers})
         filler = e.filler
         if filler is not None and filler.is_named:
             self.unnamed.wider_filler(e, filler.node, axiom, {p, *supers})

@@ -77,6 +77,31 @@ class UnnamedValues:
             self.report.note_existential(axiom, f"the unnamed value of {describe(e)} is in {describe(back)}, "
                                          "which says more of the individual linked to it: not drawn")
 
+    def defined_filler(self, e: Expr, classes: set[NamedNode], axiom: str, links: set[Prop]) -> None:
+        """The unnamed value of ``e`` is in ``classes``, told restrictions of their own: an existential on the
+        left into a named class defined otherwise than as an intersection of named classes (``X ≡ ∃q.F``) may hold
+        it by those restrictions, which only a told value's facts show (told subsumption compares names)."""
+        if not any(self.told_restrictions.get(c) for c in classes):
+            return
+        for m in self.used_left(links):
+            f = m.filler
+            if m.kind in ("some", "min") and f is not None and f.is_named and f.node not in classes \
+                    and f.node in self.defined:
+                self.report.note_existential(axiom, f"the unnamed value of {describe(e)} has restrictions of its "
+                                             f"own: whether it is in {_name(f.node)}, defined by "
+                                             f"{describe(self.defined[f.node])}, is drawn only through a told value")
+                return
+
+    @cached_property
+    def defined(self) -> dict[NamedNode, Expr]:
+        """The named classes defined by an expression that is not an intersection of named classes."""
+        found: dict[NamedNode, Expr] = {}
+        for a, b in self.report.tb.equivalent:
+            for named, d in ((a, b), (b, a)):
+                if named.is_named and not d.is_named and not (d.kind == "and" and all(m.is_named for m in d.members)):
+                    found.setdefault(named.node, d)
+        return found
+
     def back_restriction(self, classes: set[NamedNode], t: Prop) -> Expr | None:
         """A restriction told of one of ``classes`` (the classes of the value ``u`` of a link ``x t u``) that
         bears on ``x``: on the inverse of ``t`` or a super-expression of it, of any kind but an existential

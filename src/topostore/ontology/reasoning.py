@@ -16,7 +16,7 @@ from pyoxigraph import NamedNode, Quad, Triple
 
 from ..compile import RuleSet, compile_ontology
 from ..compile.notices import Notice, OntologyWarning, warn
-from ..rdf.vocab import ASSERTED
+from ..rdf.vocab import ASSERTED, HAS_VALUE, INFERRED, TYPE
 from ..reason import ReasonStats, Violation, classify
 from ..reason.classify import unsatisfiable, unsatisfiable_text
 from ..reason.incremental import IncrementalReasoner
@@ -49,6 +49,8 @@ class OntologyReasoning:
 
     def __init__(self, onto: Ontology) -> None:
         self.onto = onto
+        #: the types of the values of hasValue restrictions the classification was found with
+        self._classified_with: frozenset[Triple] = frozenset()
 
     def rules(self) -> RuleSet:
         """The compiled rules, compiled again when the TBox or the SWRL rules changed."""
@@ -133,8 +135,10 @@ class OntologyReasoning:
     def classification(self) -> dict[NamedNode, set[NamedNode]]:
         """Each named class's superclasses, classified once per compiled rule set."""
         onto = self.onto
-        if onto._superclasses is None:
-            onto._superclasses = classify(self.rules())
+        values = self.value_types()
+        if onto._superclasses is None or values != self._classified_with:
+            onto._superclasses = classify(self.rules(), values)
+            self._classified_with = values
             empty = unsatisfiable(onto._superclasses)
             if empty:
                 warn(unsatisfiable_text(empty), OntologyWarning)
@@ -143,6 +147,15 @@ class OntologyReasoning:
     def unsatisfiable(self) -> list[NamedNode]:
         """The named classes no individual can be a member of (each under every class, as Pellet has it)."""
         return unsatisfiable(self.classification())
+
+    def value_types(self) -> frozenset[Triple]:
+        """The classes (told and inferred) of the named individuals hasValue restrictions give as values: a
+        class told ``∃p.{a}`` is under ``∃p.K`` where ``a`` is a ``K``, which classification's prototypes
+        see only with ``a``'s classes beside them."""
+        store = self.onto.store
+        values = {t.object for t in store.triples(None, HAS_VALUE, None, ASSERTED) if isinstance(t.object, NamedNode)}
+        return frozenset(Triple(a, TYPE, t.object) for a in values for g in (ASSERTED, INFERRED)
+                         for t in store.triples(a, TYPE, None, g) if isinstance(t.object, NamedNode))
 
     def superclasses(self, cls: NamedNode) -> set[NamedNode]:
         return set(self.classification().get(cls, set()))

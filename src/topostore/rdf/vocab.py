@@ -132,6 +132,7 @@ DIFFERENT_FROM = owl("differentFrom")
 THING = owl("Thing")
 NOTHING = owl("Nothing")
 NAMED_INDIVIDUAL = owl("NamedIndividual")
+HAS_VALUE = owl("hasValue")
 
 #: The annotation properties OWL 2 builds in: an axiom about one (a domain, a range, a super-property) and an
 #: assertion of one have no logical meaning, as for a declared owl:AnnotationProperty.

@@ -3,7 +3,9 @@
 Uses the rules themselves: one prototype individual per class is asserted in a
 scratch store and the rules run to their fixpoint; the prototype's types are
 the class's superclasses.  This finds what the rules know about restrictions
-too (every ``≥2 hasDoor.DOOR`` is a ``∃hasDoor.DOOR``, so CORRIDOR ⊑ ROOM).
+too (every ``≥2 hasDoor.DOOR`` is a ``∃hasDoor.DOOR``, so CORRIDOR ⊑ ROOM).  The ``known`` facts of named
+individuals a class's restrictions link to (a hasValue's value and its classes) are asserted beside
+them: ``E ⊑ ∃p.{a}`` with ``a`` a ``K`` is under ``∃p.K``.
 
 SWRL rules are left out: they are DL-safe, binding named individuals only, so
 ``R(?x) -> K(?x)`` makes every named member of R a K but entails no ``R ⊑ K``
@@ -18,6 +20,7 @@ classifies it, and its superclasses hold owl:Nothing so that a reader can name i
 
 from __future__ import annotations
 
+from collections.abc import Iterable
 from dataclasses import replace
 
 from pyoxigraph import NamedNode, Triple
@@ -30,13 +33,14 @@ from .consistency import check_consistency
 from .materialize import Materializer
 
 
-def classify(rules: RuleSet) -> dict[NamedNode, set[NamedNode]]:
-    """Each named class's named superclasses (itself and owl:Thing left out)."""
+def classify(rules: RuleSet, known: Iterable[Triple] = ()) -> dict[NamedNode, set[NamedNode]]:
+    """Each named class's named superclasses (itself and owl:Thing left out); ``known``: facts asserted
+    beside the prototypes (see the module's docstring)."""
     scratch = memory_store()
     scratch.use_functions(FUNCTIONS)
     classes = sorted(rules.named_classes, key=lambda c: c.value)
     protos = {c: NamedNode(f"{PROTOTYPE_PREFIX}{i}") for i, c in enumerate(classes)}
-    scratch.add([Triple(p, TYPE, c) for c, p in protos.items()], ASSERTED)
+    scratch.add([*(Triple(p, TYPE, c) for c, p in protos.items()), *known], ASSERTED)
     dl_rules = _without_swrl(rules)
     Materializer(scratch, dl_rules).run()
     supers: dict[NamedNode, set[NamedNode]] = {}
