@@ -187,3 +187,51 @@ def test_lane_and_general_path_agree_on(monkeypatch: pytest.MonkeyPatch, buffere
         request = _request(*command)
         assert _call(on, request, True, monkeypatch) == _call(off, request, False, monkeypatch), request
         assert _state(on) == _state(off), request
+
+
+class _AddFails:
+    """An in-memory engine whose next ``extend`` fails (after the removal the same write made)."""
+
+    def __init__(self, inner) -> None:
+        self.inner, self.armed = inner, True
+
+    def __getattr__(self, name: str):
+        return getattr(self.inner, name)
+
+    def __iter__(self):
+        return iter(self.inner)
+
+    def __len__(self) -> int:
+        return len(self.inner)
+
+    def __contains__(self, quad) -> bool:
+        return quad in self.inner
+
+    def extend(self, quads) -> None:
+        if self.armed:
+            self.armed = False
+            raise OSError("no space left (injected)")
+        self.inner.extend(quads)
+
+
+@pytest.mark.parametrize("lane", [True, False], ids=["lane", "general"])
+def test_a_write_failing_half_way_changes_nothing(monkeypatch: pytest.MonkeyPatch, lane: bool) -> None:
+    """The engine removes, then adds: where the addition fails, the REPLACE is refused, the old value is held
+    again and the next REASON answers as one from scratch, on the lane as on the general path."""
+    monkeypatch.setattr(one_value, "ENABLED", lane)
+    svc = _service(True)
+    onto = svc.reference("ref").ontology
+    robot, is_in = onto.iri("Robot1"), onto.iri("isIn")
+    before = set(onto.store.triples(robot, is_in, None, ASSERTED))
+    engine = onto.store._ox
+    onto.store._ox = _AddFails(engine)
+    try:
+        reply = svc.call(_request("REPLACE", "OBJECTPROP", "IND", ["isIn", "Robot1", "R1", "C1"]))
+    finally:
+        onto.store._ox = engine
+    assert not reply.success and "undone" in reply.error_description
+    assert set(onto.store.triples(robot, is_in, None, ASSERTED)) == before
+    assert svc.call(_request("REASON", "", "", [])).success
+    inferred = set(onto.store.triples(graph=INFERRED))
+    onto.reason(mode="full")
+    assert set(onto.store.triples(graph=INFERRED)) == inferred

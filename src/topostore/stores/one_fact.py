@@ -4,10 +4,10 @@ Why: the unit of work (:mod:`.work`) serves every change: a transaction whose pe
 value, presence learnt and asked through them, a commit that sorts them by sign and records the literal
 forms with an undo for a write that fails.  The change of one fact read from the committed store for one
 of another value that read found absent needs none of it: its presence is known from the read, nothing
-else is pending, and one write of two quads is atomic by itself.  Written here it is the same write (the
-removal the quad read: the index's own term, which the spelling the literal forms keep,
-:meth:`Store._removal_quad`'s, names for a store that canonicalises) and the same literal forms, without a
-transaction around them.
+else is pending, and a failure of the one write of two quads is undone by putting the old quad back.
+Written here it is the same write (the removal the quad read: the index's own term, which the spelling the
+literal forms keep, :meth:`Store._removal_quad`'s, names for a store that canonicalises) and the same
+literal forms, without a transaction around them.
 
 Only where the store writes at once and keeps nothing beside its index (:func:`direct`); anywhere else the
 caller takes the unit of work.
@@ -62,7 +62,7 @@ def replace(store: Store, old: Fact, new: Fact, alone: bool) -> None:
     ``alone``: ``old`` was the one fact that read found, so the new one is the one fact of its subject and
     property now: a literal's stored form (what the change ledger keys it by) is read back from the index
     (one look-up of one fact) instead of asked of the probe store (a write and a removal of it there)."""
-    store._write([new.quad], [old.quad])  # read from the index: the quad as stored (canonical reads)
+    _write_or_restore(store, old.quad, new.quad)
     t = old.triple
     s, p, o = t.subject, t.predicate, new.triple.object
     store.forms.replaced(old.quad.graph_name, s, p, old.value, o, new.value)
@@ -70,6 +70,18 @@ def replace(store: Store, old: Fact, new: Fact, alone: bool) -> None:
         for q in store._match(s, p, None, old.quad.graph_name):
             new.stored = q.triple
             stored_seen(o, q.object)  # type: ignore[arg-type] - a fact with no stored form is a literal's
+
+
+def _write_or_restore(store: Store, old: Quad, new: Quad) -> None:
+    """One write removing ``old`` (read from the index: the quad as stored, canonical reads) and adding ``new``.
+    The engine removes, then adds: where the addition fails the old quad is put back before the failure is
+    raised, so that nothing changed, as the command's reply then says (a transaction's undo, for the one
+    write this path makes)."""
+    try:
+        store._write([new], [old])
+    except BaseException:
+        store._commit([old], [new])
+        raise
 
 
 __all__ = ["direct", "new_fact", "read", "replace"]
