@@ -197,3 +197,37 @@ def test_the_inspector_says_why_an_unsatisfiable_class_is_under_every_class() ->
         proof = prototypes(o.rules).proof(o, o.iri("U"), o.iri("Z"))
     assert proof["origin"] == "U is unsatisfiable (no individual can be a member): under every class"
     assert proof["premises"] == []
+
+
+#: ``A ⊑ p value o``, ``B ⊑ p value o``, p inverse functional: a member of A and one of B are one individual
+SHARED_VALUE = """:p a owl:ObjectProperty , owl:InverseFunctionalProperty . :o a owl:NamedIndividual . :K a owl:Class .
+:A a owl:Class ; rdfs:subClassOf :K , [ a owl:Restriction ; owl:onProperty :p ; owl:hasValue :o ] .
+:B a owl:Class ; rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :p ; owl:hasValue :o ] . :Z a owl:Class ."""
+
+
+def test_classes_whose_members_would_be_one_individual_are_classified_apart(tmp_path: Path) -> None:
+    """Merged in one run, A's and B's prototypes took each other's classes: B is no subclass of K (only A is),
+    and A disjoint with B makes neither unsatisfiable (each has members; only their intersection is empty):
+    Pellet's getSubClasses."""
+    s = Service(tmp_path, SHARED_VALUE)
+    assert s.names("QUERY", "CLASS", "CLASS", "K") == ["A"]
+    assert s.names("QUERY", "CLASS", "CLASS", "A") == [] and s.names("QUERY", "CLASS", "CLASS", "B") == []
+    s2 = Service(tmp_path, SHARED_VALUE + "\n:A owl:disjointWith :B .")
+    assert s2.names("QUERY", "CLASS", "CLASS", "Z") == []
+    reply = s2("QUERY", "CLASS", "CLASS", "Z")
+    assert "unsatisfiable" not in reply.error_description
+
+
+def test_an_unsatisfiable_class_is_under_a_class_used_as_a_type_only(tmp_path: Path) -> None:
+    """Y2 is named in a type only (no axiom): U, unsatisfiable, is under it as under every class."""
+    s = Service(tmp_path, UNSATISFIABLE + "\n:z a owl:NamedIndividual , :Y2 .")
+    assert s.names("QUERY", "CLASS", "CLASS", "Y2") == ["U"]
+
+
+def test_restrictions_of_an_expression_nested_in_itself_are_answered(tmp_path: Path) -> None:
+    """RDF can nest a restriction or a complement in itself (not OWL): the query answers, once round."""
+    s = Service(tmp_path, """:p a owl:ObjectProperty . :C a owl:Class ; rdfs:subClassOf _:r .
+_:r a owl:Restriction ; owl:onProperty :p ; owl:someValuesFrom _:r .
+:D a owl:Class ; rdfs:subClassOf _:n . _:n a owl:Class ; owl:complementOf _:n .""")
+    assert len(s.names("QUERY", "CLASS", "RESTRICTIONS", "C")) == 1
+    assert s.names("QUERY", "CLASS", "RESTRICTIONS", "D") == []

@@ -62,28 +62,33 @@ def heuristic(text: str) -> str:
     return text
 
 
-def api_text(onto: Ontology, node) -> str:
+def api_text(onto: Ontology, node, seen: frozenset = frozenset()) -> str:
     """``node`` as the OWL API's ``toString`` writes it (functional syntax, full IRIs in angle brackets,
-    the well-known vocabularies abbreviated, the operands of a set sorted)."""
+    the well-known vocabularies abbreviated, the operands of a set sorted); ``seen``: the anonymous
+    expressions it is nested in, so that one nested in itself (not OWL, but RDF can say it) is written
+    ``(cyclic)`` once round."""
     if isinstance(node, Literal):
         return f'"{node.value}"^^{abbreviate(node.datatype.value) or f"<{node.datatype.value}>"}'
     if _named(node):
         return abbreviate(node.value) or f"<{node.value}>"
+    if node in seen:
+        return "(cyclic)"
+    seen = seen | {node}
     inverse = _one(onto, node, "inverseOf")
     if inverse is not None:
-        return f"ObjectInverseOf({api_text(onto, inverse)})"
+        return f"ObjectInverseOf({api_text(onto, inverse, seen)})"
     for name, api in _LISTS:
         head = _one(onto, node, name)
         if head is not None:
-            members = sorted(api_text(onto, m) for m in onto.store.list_items(head, ASSERTED))
+            members = sorted(api_text(onto, m, seen) for m in onto.store.list_items(head, ASSERTED))
             return f"{api}({' '.join(members)})"
     operand = _one(onto, node, "complementOf")
     if operand is not None:
-        return f"ObjectComplementOf({api_text(onto, operand)})"
-    return _restriction_text(onto, node)
+        return f"ObjectComplementOf({api_text(onto, operand, seen)})"
+    return _restriction_text(onto, node, seen)
 
 
-def _restriction_text(onto: Ontology, node) -> str:
+def _restriction_text(onto: Ontology, node, seen: frozenset) -> str:
     prop = _one(onto, node, "onProperty")
     for name, api in _API_NAMES.items():
         value = _one(onto, node, name)
@@ -92,9 +97,9 @@ def _restriction_text(onto: Ontology, node) -> str:
         filler = _one(onto, node, "onClass") or _one(onto, node, "onDataRange")
         kind = "Data" if _is_data_restriction(onto, prop, filler if "Cardinality" in api else value) else "Object"
         if "Cardinality" in api:
-            tail = f" {api_text(onto, filler)}" if filler is not None else ""
-            return f"{kind}{api}({value.value} {api_text(onto, prop)}{tail})"
-        return f"{kind}{api}({api_text(onto, prop)} {api_text(onto, value)})"
+            tail = f" {api_text(onto, filler, seen)}" if filler is not None else ""
+            return f"{kind}{api}({value.value} {api_text(onto, prop, seen)}{tail})"
+        return f"{kind}{api}({api_text(onto, prop, seen)} {api_text(onto, value, seen)})"
     return str(node)
 
 
@@ -137,24 +142,29 @@ def _filler(onto: Ontology, node):
     return None
 
 
-def restriction_items(onto: Ontology, cls: NamedNode, expression, classes: bool = True) -> list[str]:
+def restriction_items(onto: Ontology, cls: NamedNode, expression, classes: bool = True,
+                      seen: frozenset = frozenset()) -> list[str]:
     """Items of one class expression and of every expression nested in it: named classes (not inside a
-    filler: ``classes`` false) and restrictions, intersections, unions and complements opened."""
+    filler: ``classes`` false) and restrictions, intersections, unions and complements opened (``seen``: the
+    anonymous expressions it is nested in: one nested in itself is opened once)."""
     subject = short_name(cls)
     if _named(expression):
         shown = classes and expression not in (cls, THING)
         return [f"C-DEFINITION_CLASS : {subject} -> ({short_name(expression)})"] if shown else []
+    if expression in seen:
+        return []
+    seen = seen | {expression}
     for name in ("intersectionOf", "unionOf"):
         operands = onto.store.objects(expression, owl(name), ASSERTED)
         if operands:
             return [item for member in onto.store.list_items(operands[0], ASSERTED)
-                    for item in restriction_items(onto, cls, member, classes)]
+                    for item in restriction_items(onto, cls, member, classes, seen)]
     operand = _one(onto, expression, "complementOf")
     if operand is not None:
-        return restriction_items(onto, cls, operand, classes)
+        return restriction_items(onto, cls, operand, classes, seen)
     item = restriction_item(onto, subject, expression)
     filler = _filler(onto, expression)
-    nested = restriction_items(onto, cls, filler, False) if filler is not None and not _named(filler) else []
+    nested = restriction_items(onto, cls, filler, False, seen) if filler is not None and not _named(filler) else []
     return ([item] if item else []) + nested
 
 

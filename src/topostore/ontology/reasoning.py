@@ -161,8 +161,14 @@ class OntologyReasoning:
         return set(self.classification().get(cls, set()))
 
     def subclasses(self, target: NamedNode) -> set[NamedNode]:
-        """Named classes subsumed by ``target`` (direct and indirect; never owl:Nothing)."""
-        return {c for c, sups in self.classification().items() if target in sups and c != target}
+        """Named classes subsumed by ``target`` (direct and indirect; never owl:Nothing).  A class the rules do
+        not name (used as a type only) has only the unsatisfiable classes under it, which are under every
+        class."""
+        classes = self.classification()
+        found = {c for c, sups in classes.items() if target in sups and c != target}
+        if target not in classes:
+            found.update(c for c in unsatisfiable(classes) if c != target)
+        return found
 
 
 def _asserted(quads: list[Quad]) -> list[Triple]:

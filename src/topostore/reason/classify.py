@@ -27,7 +27,7 @@ from pyoxigraph import NamedNode, Triple
 
 from ..compile.builtins import FUNCTIONS
 from ..compile.rule import RuleSet
-from ..rdf.vocab import ASSERTED, INFERRED, NOTHING, PROTOTYPE_PREFIX, THING, TYPE, is_internal
+from ..rdf.vocab import ASSERTED, INFERRED, NOTHING, PROTOTYPE_PREFIX, SAME_AS, THING, TYPE, is_internal
 from ..stores import memory_store
 from .consistency import check_consistency
 from .materialize import Materializer
@@ -35,23 +35,59 @@ from .materialize import Materializer
 
 def classify(rules: RuleSet, known: Iterable[Triple] = ()) -> dict[NamedNode, set[NamedNode]]:
     """Each named class's named superclasses (itself and owl:Thing left out); ``known``: facts asserted
-    beside the prototypes (see the module's docstring)."""
-    scratch = memory_store()
-    scratch.use_functions(FUNCTIONS)
+    beside the prototypes (see the module's docstring).
+
+    The prototypes share one run, so the rules may make two of them the same individual (an inverse
+    functional property with a hasValue, a key, a oneOf): each would then take the other's classes and
+    violations, where its class has members without the other's; or a check may name two of them together
+    (two prototypes that must be one individual but are different).  A class whose prototype was merged with
+    another, or named by a check with another, is classified again alone."""
+    known = list(known)
     classes = sorted(rules.named_classes, key=lambda c: c.value)
     protos = {c: NamedNode(f"{PROTOTYPE_PREFIX}{i}") for i, c in enumerate(classes)}
-    scratch.add([*(Triple(p, TYPE, c) for c, p in protos.items()), *known], ASSERTED)
     dl_rules = _without_swrl(rules)
-    Materializer(scratch, dl_rules).run()
+    scratch = _run(dl_rules, protos, known)
+    named = _violations(scratch, dl_rules, set(protos.values()))
+    empty = {p for group in named for p in group}
+    tangled = _merged(scratch, set(protos.values())) | {p for group in named if len(group) > 1 for p in group}
     supers: dict[NamedNode, set[NamedNode]] = {}
     for c, p in protos.items():
-        types = {t.object for g in (ASSERTED, INFERRED) for t in scratch.triples(p, TYPE, None, g)}
-        supers[c] = {t for t in types if isinstance(t, NamedNode) and t != c and t != THING and not is_internal(t)}
-    empty = _violating(scratch, dl_rules, set(protos.values()))
-    for c, p in protos.items():
-        if p in empty or NOTHING in supers[c]:
+        if p in tangled:
+            alone = _run(dl_rules, {c: p}, known)
+            supers[c] = _named_types(alone, p, c)
+            unsatisfiable = any(_violations(alone, dl_rules, {p}))
+        else:
+            supers[c] = _named_types(scratch, p, c)
+            unsatisfiable = p in empty
+        if unsatisfiable or NOTHING in supers[c]:
             supers[c] = {d for d in classes if d != c} | {NOTHING}
     return supers
+
+
+def _run(rules: RuleSet, protos: dict[NamedNode, NamedNode], known: list[Triple]):
+    """A scratch store holding each prototype as a member of its class, ``known`` beside them, closed under
+    ``rules``."""
+    scratch = memory_store()
+    scratch.use_functions(FUNCTIONS)
+    scratch.add([*(Triple(p, TYPE, c) for c, p in protos.items()), *known], ASSERTED)
+    Materializer(scratch, rules).run()
+    return scratch
+
+
+def _named_types(scratch, p: NamedNode, c: NamedNode) -> set[NamedNode]:
+    """The named classes of prototype ``p`` of ``c`` (``c``, owl:Thing and internal classes left out)."""
+    types = {t.object for g in (ASSERTED, INFERRED) for t in scratch.triples(p, TYPE, None, g)}
+    return {t for t in types if isinstance(t, NamedNode) and t != c and t != THING and not is_internal(t)}
+
+
+def _merged(scratch, protos: set[NamedNode]) -> set[NamedNode]:
+    """The prototypes the run made the same individual as another prototype."""
+    found: set[NamedNode] = set()
+    for g in (ASSERTED, INFERRED):
+        for t in scratch.triples(None, SAME_AS, None, g):
+            if t.subject != t.object and t.subject in protos and t.object in protos:
+                found.update((t.subject, t.object))
+    return found
 
 
 def unsatisfiable(supers: dict[NamedNode, set[NamedNode]]) -> list[NamedNode]:
@@ -73,7 +109,8 @@ def _without_swrl(rules: RuleSet) -> RuleSet:
     return replace(rules, rules=[r for r in rules.rules if not r.name.startswith("swrl:")])
 
 
-def _violating(scratch, rules: RuleSet, protos: set[NamedNode]) -> set[NamedNode]:
-    """The prototypes a check names: their classes have no member."""
-    return {v for violation in check_consistency(scratch, rules) for v in violation.individuals.values()
-            if v in protos}
+def _violations(scratch, rules: RuleSet, protos: set[NamedNode]) -> list[set[NamedNode]]:
+    """The prototypes each check names (checks naming none left out): their classes have no member, where a
+    check names one alone."""
+    named = ({v for v in violation.individuals.values() if v in protos} for violation in check_consistency(scratch, rules))
+    return [group for group in named if group]
