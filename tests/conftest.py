@@ -9,6 +9,7 @@ import inspect
 import json
 import sys
 from collections.abc import Iterator
+from contextlib import contextmanager
 from pathlib import Path
 
 import pytest
@@ -85,16 +86,24 @@ def _replace_lane_set(request: pytest.FixtureRequest) -> None:
         request.getfixturevalue("replace_lane")
 
 
+@contextmanager
+def _switched(module: object, name: str, on: bool) -> Iterator[None]:
+    """A module's switch set to ``on`` for the block, and back after it."""
+    was = getattr(module, name)
+    setattr(module, name, on)
+    try:
+        yield
+    finally:
+        setattr(module, name, was)
+
+
 @pytest.fixture(scope="module")
 def replace_lane(request: pytest.FixtureRequest) -> Iterator[str]:
     """REPLACE's short lane on ("lane") or off ("general") for the tests of one module."""
     from topostore.armor import one_value
 
-    was, one_value.ENABLED = one_value.ENABLED, request.param == "lane"
-    try:
+    with _switched(one_value, "ENABLED", request.param == "lane"):
         yield request.param
-    finally:
-        one_value.ENABLED = was
 
 
 @pytest.fixture(scope="module")
@@ -102,11 +111,8 @@ def staged_form(request: pytest.FixtureRequest) -> Iterator[str]:
     """The compiled step's staged runs as generated functions ("generated") or interpreted ("interpreted")."""
     from topostore.reason import staged_code
 
-    was, staged_code.GENERATED = staged_code.GENERATED, request.param == "generated"
-    try:
+    with _switched(staged_code, "GENERATED", request.param == "generated"):
         yield request.param
-    finally:
-        staged_code.GENERATED = was
 
 
 def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:
