@@ -231,3 +231,38 @@ _:r a owl:Restriction ; owl:onProperty :p ; owl:someValuesFrom _:r .
 :D a owl:Class ; rdfs:subClassOf _:n . _:n a owl:Class ; owl:complementOf _:n .""")
     assert len(s.names("QUERY", "CLASS", "RESTRICTIONS", "C")) == 1
     assert s.names("QUERY", "CLASS", "RESTRICTIONS", "D") == []
+
+
+def test_a_key_binds_no_prototype(tmp_path: Path) -> None:
+    """A key binds named individuals only: K ⊑ p value v with K's key p does not merge K's prototype with o (a
+    K, and an L, named by E's hasValue), so A ⊑ K, A disjoint with L, stays satisfiable and K is no L
+    (Pellet: QUERY CLASS CLASS L and Z are empty)."""
+    s = Service(tmp_path, """:p a owl:ObjectProperty . :q a owl:ObjectProperty . :v a owl:NamedIndividual .
+:K a owl:Class ; owl:hasKey ( :p ) ; rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :p ; owl:hasValue :v ] .
+:L a owl:Class . :A a owl:Class ; rdfs:subClassOf :K ; owl:disjointWith :L .
+:E a owl:Class ; rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :q ; owl:hasValue :o ] .
+:o a owl:NamedIndividual , :K , :L . :Z a owl:Class .""")
+    assert s.names("QUERY", "CLASS", "CLASS", "L") == [] and s.names("QUERY", "CLASS", "CLASS", "Z") == []
+    assert s.names("QUERY", "CLASS", "CLASS", "K") == ["A"]
+
+
+@pytest.mark.parametrize("name", ["Typo", "p"])
+def test_no_unsatisfiable_class_under_what_is_no_class(tmp_path: Path, name: str) -> None:
+    """Unsatisfiable classes are under every class, not under a name nothing uses, or a property."""
+    s = Service(tmp_path, UNSATISFIABLE + "\n:p a owl:ObjectProperty .")
+    assert s.names("QUERY", "CLASS", "CLASS", "Z") == ["U"]
+    assert s.names("QUERY", "CLASS", "CLASS", name) == []
+
+
+def test_no_class_under_nothing() -> None:
+    """owl:Nothing has no subclass to show (the OWL API answers none for a class equivalent to it), though an
+    unsatisfiable class is under every other class."""
+    from pyoxigraph import NamedNode
+
+    o = Ontology(prefix=NS)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", OntologyWarning)
+        o.load_data(PREFIXES + UNSATISFIABLE, "turtle")
+        o.reason()
+        assert o.subclasses("Z") == {o.iri("U")}
+        assert o.subclasses(NamedNode("http://www.w3.org/2002/07/owl#Nothing")) == set()

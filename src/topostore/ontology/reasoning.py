@@ -16,7 +16,7 @@ from pyoxigraph import NamedNode, Quad, Triple
 
 from ..compile import RuleSet, compile_ontology
 from ..compile.notices import Notice, OntologyWarning, warn
-from ..rdf.vocab import ASSERTED, HAS_VALUE, INFERRED, TYPE
+from ..rdf.vocab import ASSERTED, HAS_VALUE, INFERRED, NOTHING, TYPE
 from ..reason import ReasonStats, Violation, classify
 from ..reason.classify import unsatisfiable, unsatisfiable_text
 from ..reason.incremental import IncrementalReasoner
@@ -162,13 +162,20 @@ class OntologyReasoning:
 
     def subclasses(self, target: NamedNode) -> set[NamedNode]:
         """Named classes subsumed by ``target`` (direct and indirect; never owl:Nothing).  A class the rules do
-        not name (used as a type only) has only the unsatisfiable classes under it, which are under every
-        class."""
+        not name but a fact types with (used as a type only) has only the unsatisfiable classes under it, which
+        are under every class; owl:Nothing has none (the OWL API's answer), nor has a name that is no class."""
+        if target == NOTHING:
+            return set()
         classes = self.classification()
         found = {c for c, sups in classes.items() if target in sups and c != target}
-        if target not in classes:
+        if target not in classes and self._typed_with(target):
             found.update(c for c in unsatisfiable(classes) if c != target)
         return found
+
+    def _typed_with(self, cls: NamedNode) -> bool:
+        """Whether a fact types some individual with ``cls`` (asserted or inferred)."""
+        store = self.onto.store
+        return any(True for g in (ASSERTED, INFERRED) for _ in store.triples(None, TYPE, cls, g))
 
 
 def _asserted(quads: list[Quad]) -> list[Triple]:

@@ -7,10 +7,10 @@ too (every ``≥2 hasDoor.DOOR`` is a ``∃hasDoor.DOOR``, so CORRIDOR ⊑ ROOM)
 individuals a class's restrictions link to (a hasValue's value and its classes) are asserted beside
 them: ``E ⊑ ∃p.{a}`` with ``a`` a ``K`` is under ``∃p.K``.
 
-SWRL rules are left out: they are DL-safe, binding named individuals only, so
+SWRL rules and keys are left out: they are DL-safe, binding named individuals only, so
 ``R(?x) -> K(?x)`` makes every named member of R a K but entails no ``R ⊑ K``
 (Pellet's, and so aRMOR's, ``getSubClasses``), while a prototype is a named
-individual the rule would bind.
+individual the rule would bind (a key would merge it with a named individual).
 
 A class whose prototype violates a check (a member of owl:Nothing, of two
 disjoint classes, …) is unsatisfiable: it is under every class, as Pellet
@@ -103,10 +103,16 @@ def unsatisfiable_text(classes: list[NamedNode]) -> str:
 
 
 def _without_swrl(rules: RuleSet) -> RuleSet:
-    """``rules`` without the SWRL rules (the same set when it has none)."""
-    if not any(r.name.startswith("swrl:") for r in rules.rules):
+    """``rules`` without those that bind named individuals only: the SWRL rules and the keys' (``prp-key``),
+    which bind a prototype where Pellet's classification has none (the same set when it has neither)."""
+    if not any(_named_only(r.name) for r in rules.rules):
         return rules
-    return replace(rules, rules=[r for r in rules.rules if not r.name.startswith("swrl:")])
+    return replace(rules, rules=[r for r in rules.rules if not _named_only(r.name)])
+
+
+def _named_only(name: str) -> bool:
+    """Whether a rule binds named individuals only (DL-safe): a SWRL rule or a key's."""
+    return name.startswith("swrl:") or name == "prp-key"
 
 
 def _violations(scratch, rules: RuleSet, protos: set[NamedNode]) -> list[set[NamedNode]]:
