@@ -266,3 +266,14 @@ def test_no_class_under_nothing() -> None:
         o.reason()
         assert o.subclasses("Z") == {o.iri("U")}
         assert o.subclasses(NamedNode("http://www.w3.org/2002/07/owl#Nothing")) == set()
+
+
+def test_annotation_assertions_are_no_property_values(tmp_path: Path) -> None:
+    """An individual's annotation assertions (a declared owl:AnnotationProperty, as Protégé writes dc:creator or
+    skos:prefLabel) are not listed by QUERY IND OBJECTPROP / DATAPROP (the OWL API keeps them apart); a property
+    declared both ways is listed."""
+    s = Service(tmp_path, """:note a owl:AnnotationProperty . :see a owl:AnnotationProperty . :d a owl:DatatypeProperty .
+:p a owl:ObjectProperty . :both a owl:AnnotationProperty , owl:DatatypeProperty .
+:x a owl:NamedIndividual ; :note "n" ; :see :y ; :d 1 ; :p :y ; :both 2 . :y a owl:NamedIndividual .""")
+    assert sorted(s.names("QUERY", "IND", "DATAPROP", "x")) == ["both", "d"]
+    assert s.names("QUERY", "IND", "OBJECTPROP", "x") == ["p"]

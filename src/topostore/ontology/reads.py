@@ -14,7 +14,7 @@ from pyoxigraph import Literal, NamedNode, Quad, Triple
 
 from ..errors import QueryError
 from ..rdf.terms import Term, value_key
-from ..rdf.vocab import ASSERTED, AUX, DECLARATION_TYPES, INFERRED, THING, TYPE, is_internal, is_skolem
+from ..rdf.vocab import ASSERTED, AUX, DECLARATION_TYPES, INFERRED, THING, TYPE, is_internal, is_skolem, owl
 from ..sparql.guard import check_user_sparql
 from .files import SCHEMA_NAMESPACES
 from .named_queries import QueryItem, collect, get_named_query, named_queries, render_jena, substitutions, to_items
@@ -118,6 +118,8 @@ class OntologyQueries:
         return self.onto.iri(individual), self.onto.iri(prop)
 
     def properties_of(self, individual: str | NamedNode, data: bool) -> list[NamedNode]:
+        """The object (``data`` false) or data properties ``individual`` has values of, as aRMOR lists them:
+        an annotation property's assertions are no property values (the OWL API keeps them apart)."""
         s = self.onto.iri(individual)
         props: dict = {}
         for g in self.onto.visible_graphs():
@@ -125,7 +127,12 @@ class OntologyQueries:
                 p = t.predicate
                 if isinstance(t.object, Literal) == data and not _is_schema_or_internal(p):
                     props[p] = None
-        return list(props)
+        return [p for p in props if not self._annotation_only(p)]
+
+    def _annotation_only(self, p: NamedNode) -> bool:
+        """Whether ``p`` is declared an annotation property and not also an object or data property."""
+        kinds = {t.object for t in self.onto.store.triples(p, TYPE, None, ASSERTED)}
+        return ANNOTATION_PROPERTY in kinds and not kinds & PROPERTY_KINDS
 
     def sparql(self, text: str, bindings: dict[str, Term] | None = None, **kwargs):
         """Raw SPARQL over the visible graphs (asserted ∪ inferred).
@@ -212,6 +219,10 @@ def _shown(individual: Term) -> bool:
     """Whether :meth:`OntologyQueries.instances` shows an individual: not the reasoner's own nodes
     (skolemised blank nodes of the data are shown)."""
     return not is_internal(individual) or is_skolem(individual)
+
+
+ANNOTATION_PROPERTY = owl("AnnotationProperty")
+PROPERTY_KINDS = frozenset((owl("ObjectProperty"), owl("DatatypeProperty")))
 
 
 def _is_schema_or_internal(p: NamedNode) -> bool:
