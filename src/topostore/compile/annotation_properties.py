@@ -64,6 +64,14 @@ class AnnotationProperties:
         return False
 
 
+def annotation_properties(store: Store, graph: NamedNode) -> set[NamedNode]:
+    """The annotation properties of ``graph`` as the TBox reader reads them (:class:`AnnotationProperties`): an
+    IRI declared an object or data property as well, or told an axiom only those have, is not one."""
+    logical = {s for kind in ("ObjectProperty", "DatatypeProperty") for s in store.subjects(TYPE, owl(kind), graph)
+               if isinstance(s, NamedNode)}
+    return AnnotationProperties(store, graph, logical).properties
+
+
 def _told_logical_axioms(store: Store, graph: NamedNode) -> set[NamedNode]:
     """The IRIs a property axiom only an object or data property can have names: a characteristic of object
     properties, an inverse, a chain, an equivalent or a disjoint property."""
@@ -75,4 +83,4 @@ def _told_logical_axioms(store: Store, graph: NamedNode) -> set[NamedNode]:
     return {s for s in out if isinstance(s, NamedNode)}
 
 
-__all__ = ["CHARACTERISTICS", "OBJECT_CHARACTERISTICS", "AnnotationProperties"]
+__all__ = ["CHARACTERISTICS", "OBJECT_CHARACTERISTICS", "AnnotationProperties", "annotation_properties"]

@@ -12,9 +12,10 @@ from typing import TYPE_CHECKING
 
 from pyoxigraph import Literal, NamedNode, Quad, Triple
 
+from ..compile.annotation_properties import annotation_properties
 from ..errors import QueryError
 from ..rdf.terms import Term, value_key
-from ..rdf.vocab import ASSERTED, AUX, DECLARATION_TYPES, INFERRED, THING, TYPE, is_internal, is_skolem, owl
+from ..rdf.vocab import ASSERTED, AUX, DECLARATION_TYPES, INFERRED, THING, TYPE, is_internal, is_skolem
 from ..sparql.guard import check_user_sparql
 from .files import SCHEMA_NAMESPACES
 from .named_queries import QueryItem, collect, get_named_query, named_queries, render_jena, substitutions, to_items
@@ -127,12 +128,10 @@ class OntologyQueries:
                 p = t.predicate
                 if isinstance(t.object, Literal) == data and not _is_schema_or_internal(p):
                     props[p] = None
-        return [p for p in props if not self._annotation_only(p)]
-
-    def _annotation_only(self, p: NamedNode) -> bool:
-        """Whether ``p`` is declared an annotation property and not also an object or data property."""
-        kinds = {t.object for t in self.onto.store.triples(p, TYPE, None, ASSERTED)}
-        return ANNOTATION_PROPERTY in kinds and not kinds & PROPERTY_KINDS
+        if not props:
+            return []
+        annotations = annotation_properties(self.onto.store, ASSERTED)  # as the reasoner reads them
+        return [p for p in props if p not in annotations]
 
     def sparql(self, text: str, bindings: dict[str, Term] | None = None, **kwargs):
         """Raw SPARQL over the visible graphs (asserted ∪ inferred).
@@ -219,10 +218,6 @@ def _shown(individual: Term) -> bool:
     """Whether :meth:`OntologyQueries.instances` shows an individual: not the reasoner's own nodes
     (skolemised blank nodes of the data are shown)."""
     return not is_internal(individual) or is_skolem(individual)
-
-
-ANNOTATION_PROPERTY = owl("AnnotationProperty")
-PROPERTY_KINDS = frozenset((owl("ObjectProperty"), owl("DatatypeProperty")))
 
 
 def _is_schema_or_internal(p: NamedNode) -> bool:
