@@ -26,21 +26,20 @@ from collections.abc import Collection
 
 from pyoxigraph import Literal
 
-from ..rdf.terms import REAL_TYPES, parse_term
+from ..rdf.terms import CALENDAR_TYPES, NUMERIC_TYPES, parse_term
 from ..rdf.vocab import XSD
+from .snippets import STRING_TYPES
 
 OPERATORS = {
     "equal": "=", "notEqual": "!=", "lessThan": "<", "lessThanOrEqual": "<=",
     "greaterThan": ">", "greaterThanOrEqual": ">=",
 }
-#: the string datatypes Pellet compares by their characters, across the types
-_STRINGS = ", ".join(f"<{XSD}{t}>" for t in ("string", "normalizedString", "token", "language", "Name", "NCName"))
+#: the string datatypes Pellet compares by their characters, across the types: OWL 2's, NMTOKEN left out
+_STRINGS = ", ".join(f"<{XSD}{t}>" for t in STRING_TYPES if t != "NMTOKEN")
 #: the datatypes of instants and dates, compared on the time line (SPARQL's operators, as Pellet's facets do)
-_TEMPORAL = ", ".join(f"<{XSD}{t}>" for t in ("dateTime", "dateTimeStamp", "date", "time", "gYear", "gYearMonth",
-                                                 "gMonth", "gMonthDay", "gDay"))
+_TEMPORAL = ", ".join(f"<{XSD}{t}>" for t in sorted(CALENDAR_TYPES))
 #: the datatypes whose values are not ordered by their characters (strings, instants, booleans)
 _BY_VALUE = f"{_STRINGS}, {_TEMPORAL}, <{XSD}boolean>"
-_NUMBERS = REAL_TYPES | {"double", "float"}
 
 
 def comparison(name: str, a: str, b: str, numbers: Collection[str]) -> str:
@@ -80,7 +79,7 @@ def _number(text: str, numbers: Collection[str]) -> bool:
         return text in numbers
     term = parse_term(text)
     return isinstance(term, Literal) and term.datatype.value.startswith(XSD) \
-        and term.datatype.value[len(XSD):] in _NUMBERS
+        and term.datatype.value[len(XSD):] in NUMERIC_TYPES
 
 
 __all__ = ["OPERATORS", "comparison"]

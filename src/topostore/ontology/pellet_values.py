@@ -39,7 +39,7 @@ from pyoxigraph import Literal, NamedNode
 
 from ..compile.notices import OntologyWarning, warn
 from ..compile.snippets import distinct_values, zoned
-from ..rdf.terms import sparql
+from ..rdf.terms import CALENDAR_TYPES, REAL_TYPES, sparql
 from ..rdf.vocab import ASSERTED, AUX, DECLARED_DIFFERENT, DIFFERENT, INFERRED, TYPE, XSD, owl
 from ..reason import Violation
 from ..reason.consistency import short, spelled
@@ -51,11 +51,8 @@ logger = logging.getLogger("topostore.reason")
 
 #: the integer classes of Pellet's datatype reasoner, by magnitude (Java's byte, short, int and long)
 _INTEGER_BOUNDS = (("byte", 2 ** 7), ("short", 2 ** 15), ("int", 2 ** 31), ("long", 2 ** 63))
-_NUMBERS = {XSD + n for n in ("decimal", "integer", "nonNegativeInteger", "nonPositiveInteger", "negativeInteger",
-                              "positiveInteger", "long", "int", "short", "byte", "unsignedLong", "unsignedInt",
-                              "unsignedShort", "unsignedByte")}
-_CALENDAR = {XSD + n for n in ("dateTime", "dateTimeStamp", "date", "time", "gYear", "gYearMonth", "gMonth",
-                               "gMonthDay", "gDay")}
+_NUMBERS = {XSD + n for n in REAL_TYPES}
+_CALENDAR = {XSD + n for n in CALENDAR_TYPES}
 _STRINGS = {XSD + n for n in ("string", "normalizedString", "token", "language", "Name", "NCName", "NMTOKEN",
                               "anyURI")}
 _SINGLE = {XSD + "float": "float", XSD + "double": "double", XSD + "boolean": "boolean"}

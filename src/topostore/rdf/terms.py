@@ -84,6 +84,11 @@ INTEGER_TYPES: dict[str, tuple[int | None, int | None]] = {
     "unsignedByte": (0, 2**8 - 1),
 }
 REAL_TYPES = set(INTEGER_TYPES) | {"decimal"}
+#: XSD types SPARQL compares as numbers (promoted to a common type)
+NUMERIC_TYPES = REAL_TYPES | {"float", "double"}
+#: XSD types whose values lie on the time line: instants, dates and their parts
+CALENDAR_TYPES = frozenset(("dateTime", "dateTimeStamp", "date", "time", "gYear", "gYearMonth", "gMonth",
+                            "gMonthDay", "gDay"))
 
 #: aRMOR value type names (case-insensitive) → XSD local name.  DOUBLE is a
 #: real xsd:double here (aRMOR narrowed it to float: a bug, spec §7 item 9).

@@ -31,15 +31,14 @@ from pyoxigraph import Literal, Triple
 from ..compile.condition import BIND, TEST
 from ..compile.rule import Rule
 from ..compile.snippets import distinct_values
-from ..rdf.terms import REAL_TYPES
+from ..rdf.terms import CALENDAR_TYPES, NUMERIC_TYPES, REAL_TYPES
 from ..rdf.vocab import XSD
 from .flip import compared_only
 
 #: XSD types whose values SPARQL compares as numbers (promoted to a common type)
-_NUMERIC = REAL_TYPES | {"float", "double"}
+_NUMERIC = NUMERIC_TYPES
 #: XSD types whose values SPARQL compares by value in ways not modelled here (time zones): one key for all
-_TEMPORAL = {"dateTime", "dateTimeStamp", "date", "time", "gYear", "gYearMonth", "gMonth", "gMonthDay", "gDay",
-             "duration", "dayTimeDuration", "yearMonthDuration"}
+_TEMPORAL = CALENDAR_TYPES | {"duration", "dayTimeDuration", "yearMonthDuration"}
 
 
 def _double(local: str, text: str) -> float | None:
