@@ -100,3 +100,15 @@ def test_the_collector_measurement_runs_each_policy_and_leaves_nothing_frozen(fr
         assert (row["frozen"] > 0) == (freeze != "none")
     finally:
         gc.unfreeze()
+
+
+@pytest.mark.parametrize(("argv", "compare", "scale"), [([], "200", "20"), (["--quick"], "50", "10"),
+                                                        (["--compare-steps", "7", "--steps", "3"], "7", "3")])
+def test_the_compared_maps_take_their_own_number_of_steps(monkeypatch: pytest.MonkeyPatch, argv: list[str],
+                                                          compare: str, scale: str) -> None:
+    calls: list[list[str]] = []
+    monkeypatch.setattr(suite, "_timed", lambda cmd, timeout, size, kind: calls.append(cmd) or {})
+    args = suite.parse_args([*argv, "--no-pellet", "--sizes", "example", "--scale-sizes", "1000"])
+    suite.step_rows(args)
+    assert calls[0][:4] == ["benchmarks.compare", "example", "--steps", compare]
+    assert calls[1][:4] == ["benchmarks.scale", "1000", "--steps", scale]
