@@ -168,22 +168,44 @@ def surely_in(value: Term, datatype: str) -> bool:
     (:func:`.snippets.in_datatype`) would find: decided here only for an integer literal of an XSD
     integer type in a named integer (or decimal, real, rational) datatype; False means "ask".
     (A robot's range checks ask it of each step's clock and visit time: each part of the literal is
-    read once.)"""
+    read once, and the bounds of the pair of types are made once, :func:`_integer_bounds`.)"""
     if not isinstance(value, Literal):
         return False
-    dt = value.datatype.value
-    own = INTEGER_TYPES.get(dt[len(XSD):]) if dt.startswith(XSD) else None
-    if own is None:
+    bounds = _integer_bounds(value.datatype.value, datatype)
+    if bounds is None:
         return False
     text = value.value
     if len(text) > 40 or not _INTEGER_TEXT.fullmatch(text):
         return False
-    target = INTEGER_TYPES.get(datatype[len(XSD):]) if datatype.startswith(XSD) else None
-    if target is None and datatype not in (XSD + "decimal", OWL + "real", OWL + "rational"):
-        return False
     number = int(text)
-    return all((low is None or number >= low) and (high is None or number <= high)
-               for low, high in ((own,) if target is None else (own, target)))
+    low, high = bounds
+    return (low is None or number >= low) and (high is None or number <= high)
+
+
+#: :func:`_integer_bounds` by (literal's datatype, range datatype): a few pairs per ontology
+_BOUNDS: dict[tuple[str, str], tuple[int | None, int | None] | None] = {}
+_BOUNDS_MAX = 1024
+
+
+def _integer_bounds(own_type: str, datatype: str) -> tuple[int | None, int | None] | None:
+    """(least, greatest) integer (None: unbounded) that lies in the XSD integer type ``own_type`` and in
+    ``datatype`` (a named integer type, or decimal, real, rational: unbounded); None where either is not
+    such a type (:func:`surely_in` then says "ask")."""
+    key = (own_type, datatype)
+    if key in _BOUNDS:
+        return _BOUNDS[key]
+    own = INTEGER_TYPES.get(own_type[len(XSD):]) if own_type.startswith(XSD) else None
+    target = INTEGER_TYPES.get(datatype[len(XSD):]) if datatype.startswith(XSD) else None
+    if own is None or (target is None and datatype not in (XSD + "decimal", OWL + "real", OWL + "rational")):
+        found = None
+    else:
+        lows = [b for b in (own[0], None if target is None else target[0]) if b is not None]
+        highs = [b for b in (own[1], None if target is None else target[1]) if b is not None]
+        found = (max(lows) if lows else None, min(highs) if highs else None)
+    if len(_BOUNDS) >= _BOUNDS_MAX:
+        _BOUNDS.clear()
+    _BOUNDS[key] = found
+    return found
 
 
 def _float_bounds(width: str, facets: list[tuple[str, str]]) -> tuple[float, float] | None:

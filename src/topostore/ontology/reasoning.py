@@ -9,6 +9,7 @@ manipulation path and the ledger's rollback read and reset it too.
 
 from __future__ import annotations
 
+from contextlib import nullcontext
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
@@ -74,7 +75,8 @@ class OntologyReasoning:
         before = onto.events.before_reason(onto.store, None if onto._report is None else onto._report.consistent)
         added, removed = onto.ledger.net_changes()
         durable_state.begin_reason(onto.store)
-        with onto.store.keeping((ASSERTED,)):  # the reasoner writes its own graphs only
+        # the reasoner writes its own graphs only (what a store with listings keeps of the asserted graph stays)
+        with onto.store.keeping((ASSERTED,)) if onto.store.listings is not None else nullcontext():
             stats, violations = onto._reasoner.reason(added, removed, mode=mode, profile=profile,
                                                       forced_reason=forced)
         onto.store.maybe_compact()

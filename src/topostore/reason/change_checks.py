@@ -18,13 +18,16 @@ from pyoxigraph import Triple
 from ..compile.datatypes import surely_in
 from ..compile.generic import PREFIXES
 from ..compile.rule import Rule
-from ..rdf.vocab import ASSERTED, AUX, INFERRED
+from ..rdf.vocab import ASSERTED, AUX, INFERRED, TYPE
 from ..stores.base import Store
 from .changed import ChangedGraphs, Decisions, shape
 from .plan import is_small, plan_where
 from .program import check_pair_atom, pair_atom
 from .scratch import NEW_FACTS, OVERDELETED
-from .triggers import Present, Triggers, matches
+from .triggers import Present, Triggers, key_sets, matches
+
+#: rdf:type as a read key's text
+_TYPE_KEY = str(TYPE)
 
 
 class ChangeChecks:
@@ -61,6 +64,10 @@ class ChangeChecks:
         self._texts: dict[tuple, str] = {}
         #: :func:`.program.pair_atom` of a check's or negated rule's atom, by (kind, rule index, atom): rules never change
         self._pairs: dict[tuple[str, int, int], bool] = {}
+        #: what the keys the staged compiled step of the REASON under way changed decide (:meth:`after_step`):
+        #: (a negated-premise group may match, a check group other than a range check's may, the range
+        #: checks' (check, atom) pairs); None: the reads decide from the changed graphs
+        self._step: tuple[bool, bool, list[tuple]] | None = None
 
     def begin(self, added: Collection[Triple]) -> None:
         """A REASON adding the asserted triples ``added`` begins: forget what the last one settled."""
@@ -69,7 +76,30 @@ class ChangeChecks:
         self._now = None
         self._added_values = None
         self._in_range = {}
+        self._step = None
 
+    def after_step(self, gained: set, lost: set) -> None:
+        """A staged compiled step ran whose facts new in the closure are of the keys ``gained`` at most,
+        and those it lost of ``lost`` (:meth:`.staged.StagedRun.gained`, :meth:`~.staged.StagedRun.lost`:
+        its index look-ups tell them, supersets of the keys of NEW_FACTS and OVERDELETED).  The groups those
+        keys start are a superset of those the changed graphs' keys start; where that superset holds no
+        negated-premise group, or no check group but range checks, :meth:`negated_match` and
+        :meth:`violation_possible` say so without counting the changed graphs.  Decided once per such
+        keys, cleanly replaced predicates and keys with facts (a robot repeats a few)."""
+        present = self.state.present
+        key = ("step", frozenset(gained), frozenset(lost), self.step_clean, len(present[0]), len(present[1]))
+        self._step = self._decided.get(key, lambda: self._step_groups(step_keys(gained), step_keys(lost)))
+
+    def _step_groups(self, new: tuple[set, set] | None,
+                     lost: tuple[set, set] | None) -> tuple[bool, bool, list[tuple]] | None:
+        """:attr:`_step` of a step that may have made facts of ``new`` and lost facts of ``lost`` (as
+        (predicates, classes), :func:`step_keys`; None: any, nothing is decided)."""
+        if new is None or lost is None:
+            return None
+        negated = bool(self.negated_branches(new, lost, lambda i, j: False))
+        pairs = self._check_pairs(*new)
+        ranged = [(c, j) for c, j in pairs if self.checks[c].value_range is not None]
+        return negated, len(ranged) < len(pairs), ranged
     def _after(self) -> tuple[str, list[str], list[tuple]]:
         """What the shape of this REASON's change decides (once per REASON, once per shape): the negated
         rules' ASK text ("" when none may match), the checks' groups and apart the range checks' pairs."""
@@ -83,7 +113,7 @@ class ChangeChecks:
     def negated_match(self) -> bool:
         """Whether a rule with a negated premise matches after this maintenance (one semi-naive ASK,
         made once per shape of change; none when the change cannot make one match)."""
-        if not self.negated:
+        if not self.negated or (self._step is not None and not self._step[0]):
             return False
         text = self._after()[0]
         return bool(text) and bool(self.store.query(text, prefixes=PREFIXES))
@@ -137,6 +167,9 @@ class ChangeChecks:
 
     def violation_possible(self) -> bool:
         """A check matches with at least one atom on a fact new in the closure (one semi-naive ASK)."""
+        step = self._step
+        if step is not None and not step[1] and all(self._values_in_range(c, j) for c, j in step[2]):
+            return False  # the step's keys start range checks only, and its new values lie in their ranges
         _, fixed, ranged = self._after()
         # the same few shapes return: the groups are made once; range checks of known values are decided per run
         left = [(c, j) for c, j in ranged if not self._values_in_range(c, j)] if ranged else ranged
@@ -213,3 +246,15 @@ class ChangeChecks:
             where = rule.where() if j is None else plan_where(rule, j, NEW_FACTS, lateral=lateral)
             text = self._texts[key] = f"{{\n  {where}\n}}"
         return text
+
+
+def step_keys(keys: Collection[tuple]) -> tuple[set[str], set[str]] | None:
+    """(predicates, classes) of a staged run's read keys as the changed graphs' census counts them: a class's
+    facts are rdf:type facts, so rdf:type is among the predicates where a class is; None where a key
+    stands for any predicate (nothing is decided from such keys)."""
+    preds, classes = key_sets(keys)
+    if len(preds) + len(classes) < len(keys):
+        return None
+    if classes:
+        preds.add(_TYPE_KEY)
+    return preds, classes

@@ -105,7 +105,7 @@ class CompiledStep:
         self.requests.scratch([r.old for p in program.flipped for r in clean[p]], flip.CHANGE_OLD)
         start = time.perf_counter()
         self.flips.state = state
-        gained = None  # the keys that may have gained facts (None: any the program writes)
+        gained = lost_now = None  # the keys that may have gained / lost facts (None: any the program writes)
         if self.store.round_trips and self.store.whole_programs:  # the whole program as one request
             copy_changes()
             self.requests.flush()
@@ -120,6 +120,7 @@ class CompiledStep:
             stats.staged = staged_code.run(run)
             stats.evaluations += run.sent
             gained = run.gained()
+            lost_now = run.lost()
         if self.requests.profile:
             stats.per_rule["program"] = time.perf_counter() - start
         stats.flipped = program.flips
@@ -129,6 +130,8 @@ class CompiledStep:
         # operations joining it left out (a staged run's ``needs``) and the program that left it out valid
         for kind, key in program.heads if gained is None else gained:
             state.present[0 if kind == "p" else 1].add(key)
+        if gained is not None and lost_now is not None:  # what the reads after a staged run may leave out
+            self.checks.after_step(gained, lost_now)
         if ran is None:
             #: the keys the after-step reads ask about: the asserted changes' and what the program may add
             written = frozenset(program.heads)

@@ -112,6 +112,9 @@ def check_mode(mode: str) -> None:
         raise ValueError(f"unknown reasoning mode {mode!r}; use auto, incremental or full")
 
 
+#: :meth:`IncrementalReasoner._incremental_reason` by (added, removed) sizes
+_REASONS: dict[tuple[int, int], str] = {}
+
 #: the scratch graphs every REASON drops at its end
 DROPPED = (*SCRATCH, *PROGRAM_SCRATCH, DELTA, NEW_INFERRED, NEW_AUX)
 
@@ -297,9 +300,15 @@ class IncrementalReasoner:
 
     @staticmethod
     def _incremental_reason(added: Collection[Triple], removed: Collection[Triple]) -> str:
-        if not added and not removed:
-            return "no asserted change"
-        return f"{len(added)} added, {len(removed)} removed asserted triples"
+        """Why the run was incremental, by the sizes of the change (a robot's every step: one text)."""
+        sizes = (len(added), len(removed))
+        text = _REASONS.get(sizes)
+        if text is None:
+            if len(_REASONS) >= 256:
+                _REASONS.clear()
+            text = _REASONS[sizes] = (f"{sizes[0]} added, {sizes[1]} removed asserted triples" if any(sizes)
+                                      else "no asserted change")
+        return text
 
     # ------------------------------------------------------------------ maintenance
     def _maintain(self, added: Collection[Triple], removed: Collection[Triple], stats: ReasonStats,

@@ -196,6 +196,12 @@ class StagedRun:
             return None
         return self.plus | self.unnoted
 
+    def lost(self) -> set | None:
+        """The keys that may have lost facts in this run, as :meth:`gained` says of those that may have gained."""
+        if self.texts or self.components:
+            return None
+        return self.minus | self.unnoted
+
     def _heads(self, hand: Callable, reads: Collection | None) -> tuple | None:
         """A flip's heads by look-ups (:meth:`.look_flip.Flipped.heads`), after sending what is queued
         and may write what it ``reads``; counted as sent where found."""

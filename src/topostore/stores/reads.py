@@ -32,10 +32,13 @@ def key_census(facts: Iterable[Triple | Quad]) -> tuple[dict[str, int], dict[str
     for f in facts:
         p = str(f.predicate)
         preds[p] = preds.get(p, 0) + 1
-        if f.predicate == TYPE:
+        if p == _TYPE_TEXT:  # by its text: a pyoxigraph term's equality is a call
             c = str(f.object)
             classes[c] = classes.get(c, 0) + 1
     return preds, classes
+
+
+_TYPE_TEXT = str(TYPE)
 
 
 def _matches(q: Quad, s, p, o, graph) -> bool:
