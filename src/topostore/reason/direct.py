@@ -273,6 +273,11 @@ def _instance(terms: tuple, bound: dict[str, object]) -> Triple | None | bool:
     s = bound[s] if isinstance(s, str) else s
     p = bound[p] if isinstance(p, str) else p
     o = bound[o] if isinstance(o, str) else o
+    return triple_of(s, p, o)
+
+
+def triple_of(s, p, o) -> Triple | None | bool:
+    """A head of terms ``s``, ``p``, ``o`` as :func:`_instance` gives it (a generated flip branch's heads)."""
     if not isinstance(s, (NamedNode, BlankNode)) or not isinstance(p, NamedNode):
         return None
     if isinstance(o, Literal):

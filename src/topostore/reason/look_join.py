@@ -30,7 +30,7 @@ from .atom_shape import Shape
 from .delta_texts import KEEP
 from .direct import _instance, _named_only, _terms, _write_new
 from .join_code import Join, compile_join, interpreted
-from .look_code import compile_conditions
+from .look_code import compile_conditions, compile_exact_over
 from .look_filters import Unsupported, closure, parse_expression
 from .look_values import UNKNOWN, all_of
 from .scratch import CANDIDATES, NEW_FACTS, OVERDELETED
@@ -196,6 +196,7 @@ class Conditions:
         #: the expression trees, generated into functions that take :meth:`holds` and :meth:`exact`'s
         #: place at the first call (:mod:`.look_code`; :func:`joinable` only asks whether they parse)
         self._trees = trees if COMPILED_JOINS else None
+        self._parsed = trees
 
     def bound(self, solution: dict) -> dict | object:
         """``solution`` extended by the BINDs in order; UNKNOWN where one is not exact."""
@@ -221,6 +222,11 @@ class Conditions:
         self.holds, self.exact = compile_conditions(*self._trees)  # type: ignore[method-assign]
         self._trees = None
         return self
+
+    def exact_over(self, names: list[str]) -> Callable:
+        """:meth:`exact` generated as a function of the values of ``names``, in that order
+        (:func:`.look_code.compile_exact_over`), for a generated flip branch to call with its locals."""
+        return compile_exact_over(*self._parsed, names)
 
     def exact(self, solution: dict) -> bool | None:
         """True / False where every BIND is exact and every test's value a boolean (as the flip text's
