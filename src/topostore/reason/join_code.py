@@ -39,20 +39,70 @@ Join = Callable[[object, dict], Iterator[dict]]
 MAX_LOOPS = 18
 
 
+class JoinDecision(NamedTuple):
+    """What a generated join decides each solution with, in place of yielding it: ``holds``, the rule's
+    conditions as a function of the values of ``names`` in that order (True, False, or None where not
+    decided: :meth:`.look_join.Conditions.holds_over`), and, for additions, the head's terms,
+    ``instance(s, p, o)`` (the head fact, None where none is written, False where the caller's text must
+    write it) and the most heads the look-up writes."""
+
+    holds: Callable
+    names: tuple[str, ...]
+    head: tuple | None = None
+    instance: Callable | None = None
+    limit: int = 0
+
+
 def compile_join(terms: list[tuple], order: list[int], given: Collection[str], graphs: list[tuple],
-                 read: Callable) -> Join | None:
+                 read: Callable, decision: JoinDecision | None = None) -> Callable | None:
     """The join of the atoms ``order`` (each atom's terms: a variable's name, or the term itself, as
     :func:`.direct._terms` gives them), starting from a solution binding exactly ``given``;
     ``graphs[k]``: the extra arguments ``read(store, pattern, *graphs[k])`` takes for atom ``k``.
-    None where the join nests more than :data:`MAX_LOOPS` loops (the caller interprets it)."""
+    None where the join nests more than :data:`MAX_LOOPS` loops (the caller interprets it).
+
+    With a ``decision`` its solutions are decided where they are found (the conditions called with the
+    loop's locals, no dictionary per solution): without a head, ``prove(store, bound)`` answers whether
+    one holds (True at the first, None where none does and one is not decided, else False), as
+    :meth:`.look_join.Joined._proven`; with a head, ``derive(store, bound, heads)`` appends the head of
+    each solution that holds to ``heads`` and answers False (the caller's text runs) where one is not
+    decided, a head holds a literal or the heads grow past ``decision.limit``, as
+    :meth:`.look_join.Joined.additions`."""
     if len(order) > MAX_LOOPS:
         return None
-    code = _Code("def join(store, bound):", read)
+    deriving = decision is not None and decision.head is not None
+    code = _Code("def join(store, bound, heads):" if deriving else "def join(store, bound):", read)
+    if decision is not None and decision.head is None:
+        code.line("answer = False")
     for var in sorted(given):
         code.line(f"{code.local(var)} = bound[{var!r}]")
     for k in order:
         code.read_atom(terms[k], code.const(graphs[k]))
-    code.line(f"yield {code.solution()}")
+    if decision is None:
+        code.line(f"yield {code.solution()}")
+        return code.function("join")
+    holds = code.const(decision.holds)
+    code.line(f"b = {holds}({', '.join(code.names.get(name, 'None') for name in decision.names)})")
+    if decision.head is None:
+        code.line("if b is True:")
+        code.line("    return True")
+        code.line("if b is None:")
+        code.line("    answer = None")
+        code.close_all()
+        code.line("return answer")
+    else:
+        head = ", ".join(code.names[x] if isinstance(x, str) else code.const(x) for x in decision.head)
+        code.line("if b is None:")
+        code.line("    return False")
+        code.line("if b:")
+        code.line(f"    head = {code.const(decision.instance)}({head})")
+        code.line("    if head is False:")
+        code.line("        return False")
+        code.line("    if head is not None:")
+        code.line("        heads.append(head)")
+        code.line(f"        if len(heads) > {int(decision.limit)}:")
+        code.line("            return False")
+        code.close_all()
+        code.line("return True")
     return code.function("join")
 
 
@@ -223,6 +273,10 @@ class _Code:
         self.line("    if head is not None:")
         self.line("        (gained if now else lost)[head] = None")
 
+    def close_all(self) -> None:
+        """Back to the function's body, after every loop (its closing statements follow)."""
+        self.depth = 1
+
     def solution(self) -> str:
         return "{" + ", ".join(f"{var!r}: {local}" for var, local in self.names.items()) + "}"
 
@@ -255,4 +309,4 @@ def interpreted(shapes: list[Shape], order: list[int], graphs: list[tuple], read
     return join
 
 
-__all__ = ["FlipDecision", "Join", "compile_flip", "compile_join", "interpreted"]
+__all__ = ["FlipDecision", "Join", "JoinDecision", "compile_flip", "compile_join", "interpreted"]

@@ -49,10 +49,20 @@ def compile_exact_over(binds: list[tuple[str, tuple]], tests: list[tuple], names
     ``names`` in that order (a variable not among them is unbound), instead of a dictionary: a generated
     flip branch (:func:`.join_code.compile_flip`) calls it with its locals, twice per solution (the new
     values and the old), where a dictionary per call cost more than the test."""
-    code = _Code({name: f"a{i}" for i, name in enumerate(names)})
+    return _over("exact", binds, tests, names)
+
+
+def compile_holds_over(binds: list[tuple[str, tuple]], tests: list[tuple], names: list[str]) -> Callable:
+    """:func:`compile_conditions`'s ``holds`` taking the solution's values as arguments, as
+    :func:`compile_exact_over` (a generated join deciding its solutions: :func:`.join_code.compile_join`)."""
+    return _over("holds", binds, tests, names)
+
+
+def _over(name: str, binds: list[tuple[str, tuple]], tests: list[tuple], names: list[str]) -> Callable:
+    code = _Code({var: f"a{i}" for i, var in enumerate(names)})
     results = _conditions(code, binds, tests)
-    return _function("exact", code.lines, _exact(results), code.namespace,
-                     ", ".join(f"a{i}" for i in range(len(names))))
+    tail = _exact(results) if name == "exact" else _holds(results)
+    return _function(name, code.lines, tail, code.namespace, ", ".join(f"a{i}" for i in range(len(names))))
 
 
 def _conditions(code: _Code, binds: list[tuple[str, tuple]], tests: list[tuple]) -> list[str]:
@@ -292,4 +302,4 @@ class _Code:
         return self.new(f"None if {at} is None else (Str('') if {at} < 0 else Str({part}))")
 
 
-__all__ = ["compile_conditions", "compile_exact_over"]
+__all__ = ["compile_conditions", "compile_exact_over", "compile_holds_over"]

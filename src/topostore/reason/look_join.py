@@ -28,9 +28,9 @@ from ..rdf.vocab import ASSERTED, AUX, INFERRED, TYPE
 from . import direct
 from .atom_shape import Shape
 from .delta_texts import KEEP
-from .direct import _instance, _named_only, _terms, _write_new
-from .join_code import Join, compile_join, interpreted
-from .look_code import compile_conditions, compile_exact_over
+from .direct import _instance, _named_only, _terms, _write_new, triple_of
+from .join_code import Join, JoinDecision, compile_join, interpreted
+from .look_code import compile_conditions, compile_exact_over, compile_holds_over
 from .look_filters import Unsupported, closure, parse_expression
 from .look_values import UNKNOWN, all_of
 from .scratch import CANDIDATES, NEW_FACTS, OVERDELETED
@@ -228,6 +228,11 @@ class Conditions:
         (:func:`.look_code.compile_exact_over`), for a generated flip branch to call with its locals."""
         return compile_exact_over(*self._parsed, names)
 
+    def holds_over(self, names: list[str]) -> Callable:
+        """:meth:`holds` as a function of the values of ``names`` (:func:`.look_code.compile_holds_over`),
+        for a generated join deciding its solutions to call with its locals."""
+        return compile_holds_over(*self._parsed, names)
+
     def exact(self, solution: dict) -> bool | None:
         """True / False where every BIND is exact and every test's value a boolean (as the flip text's
         ``COALESCE(test, false)`` then is), else None."""
@@ -291,6 +296,9 @@ class _Compiling:
         terms = [shape.terms for shape in owner._body]
         join = compile_join(terms, self._order, self._given, owner._graphs, _read) or self._slow
         setattr(owner, self._name, join)
+        # the same join deciding its solutions where it finds them (its owner calls that one from now on)
+        setattr(owner, f"{self._name}_decided",
+                compile_join(terms, self._order, self._given, owner._graphs, _read, owner._decision(self._name)))
         return join(store, bound)
 
 
@@ -321,6 +329,18 @@ class Joined:
         #: bindings, each compiled once into a flat function (:mod:`.join_code`)
         self._prove = self._join(self._proof_order, self._head, "_prove")
         self._derive = self._join(self._delta_order, self._body[delta], "_derive") if delta is not None else None
+        #: the compiled joins deciding their solutions where they find them (:class:`.join_code.JoinDecision`):
+        #: made with the compiled joins, None until then (or where a join is too long to compile)
+        self._prove_decided: Callable | None = None
+        self._derive_decided: Callable | None = None
+
+    def _decision(self, name: str) -> JoinDecision:
+        """What the compiled join ``name`` ("_prove" or "_derive") decides its solutions with."""
+        names = tuple(sorted({x for shape in self._body for x in shape.terms if isinstance(x, str)}))
+        holds = self.conditions.holds_over(list(names))
+        if name == "_prove":
+            return JoinDecision(holds, names)
+        return JoinDecision(holds, names, self._head.terms, triple_of, direct.FEW)
 
     def _join(self, order: list[int], start: Shape, name: str) -> Join:
         """The join of the atoms ``order`` from the solutions ``start``'s facts bind, interpreted until
@@ -331,6 +351,8 @@ class Joined:
 
     def _proven(self, store, bound: dict) -> object:
         """Whether some derivation with the head's values ``bound`` holds (UNKNOWN: not decided)."""
+        if self._prove_decided is not None:
+            return self._prove_decided(store, bound)
         answer: object = False
         for solution in self._prove(store, bound):
             b = self.conditions.holds(solution)
@@ -395,6 +417,10 @@ class Joined:
             for t in facts:
                 start = delta.bind(t)
                 if start is None:
+                    continue
+                if self._derive_decided is not None:
+                    if not self._derive_decided(store, start, heads):
+                        return False
                     continue
                 for solution in self._derive(store, start):
                     b = self.conditions.holds(solution)
