@@ -317,6 +317,8 @@ class Joined:
         self.conditions = Conditions(rule)
         self._body = [Shape(_terms(a)) for a in rule.body]
         self._head = Shape(_terms(rule.head))
+        #: whether its recheck reads every candidate of its key, each bound (:func:`.direct.whole_key`)
+        self._whole = direct.whole_key(self._head, rule.head.read_key())
         self._graphs = [(g, frozenset(g)) for g in map(graphs_of, rule.body)]
         self._proof_order = join_order(rule.body, None, rule.head.variables())
         self._delta_order = join_order(rule.body, delta)[1:] if delta is not None else []
@@ -383,12 +385,14 @@ class Joined:
         return out
 
     def keep(self, store) -> bool:
-        """:func:`.delta_texts.keep`: the candidates the rule derives from the new state go to KEEP."""
+        """:func:`.delta_texts.keep`: the candidates the rule derives from the new state go to KEEP
+        (:data:`.direct.ALL_KEPT` where that is every candidate of its key)."""
         decided = self._decide(store)
         if decided is None:
             return False
-        store.add_scratch([c for c, proven in decided if proven], KEEP)
-        return True
+        kept = [c for c, proven in decided if proven]
+        store.add_scratch(kept, KEEP)
+        return direct.ALL_KEPT if self._whole and len(kept) == len(decided) else True
 
     def delete(self, store) -> bool:
         """:func:`.delta_texts.recheck_one`: the candidates the rule no longer derives and not asserted
