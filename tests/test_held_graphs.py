@@ -229,3 +229,26 @@ def test_a_subjects_values_by_graph_in_one_read_answer_as_each_graphs_read() -> 
         store.add([Triple(S[0], P[0], S[0])], ASSERTED)
         found = store.objects_by_graph(S[0], P[0], asked)
         assert {g: sorted(v, key=str) for g, v in found.items()} == {ASSERTED: [S[0], S[1]], OTHER: [S[2]]}
+
+
+def test_a_fact_in_one_graph_is_answered_by_one_test_as_the_presence_batch_answers() -> None:
+    """``contains_each`` tests each fact of IRIs in the held graph or the index, answering as the presence
+    batch; a literal (presence by value) or an open transaction is left to that batch."""
+    store = OxigraphStore()
+    store.hold_scratch(SCRATCH)
+    facts = [Triple(S[0], P[0], S[1]), Triple(S[1], P[0], S[2]), Triple(S[2], P[1], S[0])]
+    store._ox.extend([Quad(*facts[0], ASSERTED), Quad(*facts[1], OTHER)])
+    store.add_scratch([facts[2]], SCRATCH[0])
+    batches: list[int] = []
+    present = store._present
+    store._present = lambda quads, *keys: batches.append(len(quads)) or present(quads, *keys)  # type: ignore[method-assign]
+    assert store.contains_each(facts, ASSERTED) == [True, False, False]
+    assert store.contains_each(facts, SCRATCH[0]) == [False, False, True]
+    assert not batches  # one test per fact
+    assert store.contains_each([facts[0], Triple(S[0], P[0], O[4])], ASSERTED) == [True, False]
+    assert batches == [2]  # a literal: the presence batch
+    with transaction(store):
+        store.add([facts[1]], ASSERTED)
+        batches.clear()
+        assert store.contains_each(facts, ASSERTED) == [True, True, False]
+        assert batches == [3]  # an open transaction: the batch sees its pending writes

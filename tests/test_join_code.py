@@ -185,6 +185,49 @@ def test_the_compiled_flip_is_the_interpreted_one(new: list, replaced: list, ord
     assert results[0] == results[1]
 
 
+@settings(max_examples=property_examples(200), deadline=None)
+@given(new=st.lists(st.tuples(st.sampled_from(["now", "seen", "limit"]), st.integers(0, 2),
+                              st.one_of(number, st.just(Literal("soon")))), min_size=3, max_size=10),
+       hot=st.lists(st.integers(0, 4), max_size=4), delta=st.integers(0, 2), many=st.booleans())
+def test_the_deciding_joins_are_the_interpreted_recheck_and_additions(new: list, hot: list, delta: int,
+                                                                      many: bool) -> None:
+    """A look-up rule's recheck and additions (reason/look_join.py) through its compiled joins deciding
+    each solution where they find it (the conditions called with the loops' locals) keep, delete and add
+    what the interpreted joins do, or give up alike: random clock values (a string among them, which no
+    comparison decides), candidates and new facts (and more new facts than a look-up writes, which it
+    leaves to the text)."""
+    from topostore.rdf.vocab import INFERRED, TYPE
+    from topostore.reason.delta_texts import KEEP
+    from topostore.reason.scratch import CANDIDATES, NEW_FACTS, OVERDELETED
+
+    onto = Ontology()
+    onto.load_data(CLOCK)
+    clock = next(r for r in onto.rules.inference_rules if r.name == "swrl:Clock" or r.name.endswith("Clock"))
+    facts = [Triple((CLOCKS + PLACES)[k] if p == "seen" else CLOCKS[k % 2], NamedNode(NS + p), v) for p, k, v in new]
+    hot_facts = [Triple((CLOCKS + PLACES)[k], TYPE, NamedNode(NS + "Hot")) for k in hot]
+    delta_pred = NamedNode(NS + ("now", "seen", "limit")[delta])
+    extra = [Triple(NamedNode(f"{NS}x{k}"), delta_pred, Literal("1", datatype=XSD_INTEGER)) for k in range(20)] \
+        if many else []
+    results = []
+    for compiled in (True, False):
+        store = memory_store()
+        store.add(facts, ASSERTED)
+        store.add(hot_facts, INFERRED)
+        store.add(hot_facts, CANDIDATES)
+        store.add([t for t in facts if t.predicate == delta_pred] + extra, NEW_FACTS)
+        with mock.patch.object(look_join, "COMPILED_JOINS", compiled), mock.patch.object(look_join, "COMPILE_AFTER", 1):
+            atom = next(j for j, a in enumerate(clock.body) if a.p == f"<{delta_pred.value}>")
+            joined = look_join.Joined(clock, INFERRED, atom)
+            answers = [joined.keep(store), joined.additions(store), joined.delete(store), joined.additions(store)]
+        if compiled and hot:  # a candidate was rechecked: its join compiled at its first run
+            assert joined._prove_decided is not None
+        if not compiled:
+            assert joined._prove_decided is None and joined._derive_decided is None
+        results.append((answers, *(sorted(map(str, store.triples(graph=g)))
+                                   for g in (KEEP, INFERRED, NEW_FACTS, OVERDELETED))))
+    assert results[0] == results[1]
+
+
 def test_a_rule_longer_than_python_nests_is_interpreted_and_reasons_incrementally() -> None:
     """A SWRL chain of 24 atoms: Python refuses a function of more than 20 nested blocks, so its join
     is interpreted, and a step after a change still equals a REASON from scratch (it once failed and

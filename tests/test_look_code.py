@@ -10,7 +10,7 @@ from profiles import property_examples
 from test_look_filters import EXPRS, TERMS, VARS
 
 from topostore.reason import look_code
-from topostore.reason.look_code import compile_conditions
+from topostore.reason.look_code import compile_conditions, compile_exact_over
 from topostore.reason.look_filters import Unsupported, closure, parse_expression
 from topostore.reason.look_values import UNKNOWN, all_of
 
@@ -51,6 +51,11 @@ def test_generated_conditions_answer_as_the_closures(terms: list, bound: str | N
     assert (holds(solution), exact(solution)) == expected, (bound, texts, terms)
     # again: a string of one term is kept from the first call, and answers as made
     assert (holds(solution), exact(solution)) == expected, (bound, texts, terms)
+    # the values as arguments (a generated flip branch's locals), the last variable left unbound
+    names = sorted(solution)
+    over = compile_exact_over(binds, parsed_tests, names[:-1])
+    assert over(*(solution[n] for n in names[:-1])) == reference(binds, parsed_tests, {
+        n: solution[n] for n in names[:-1]})[1], (bound, texts, terms)
 
 
 def test_a_kept_string_is_the_one_of_its_own_term(monkeypatch) -> None:

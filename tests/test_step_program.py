@@ -846,6 +846,46 @@ def test_parts_reading_apart_share_one_request(tmp_path) -> None:
             assert len(sent) <= 2, sent
 
 
+def test_a_recheck_keeping_every_candidate_by_look_ups_reads_none_back(tmp_path, staged_form: str) -> None:
+    """The example map's robot step: the old location's LOCATION is a candidate, rechecked by one-atom
+    look-ups; one that keeps every candidate of the key answers so (direct.ALL_KEPT), and the generated run
+    reads neither the candidates nor the kept facts back to learn it (the interpreted run still does, as
+    both do after a recheck that kept only some)."""
+    import sys
+    from pathlib import Path
+
+    sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # the benchmarks package lives beside src/
+    from benchmarks import maps
+    from benchmarks.armor_robot import ArmorRobot
+    from benchmarks.walk import plan
+    from topostore.reason.delta_texts import KEEP
+
+    kept_reads, answers = [], []
+    keep = direct.OneAtom.keep
+
+    def counted(self, store):
+        answers.append(keep(self, store))
+        return answers[-1]
+
+    path, bench = maps.write("example", tmp_path)
+    moves = plan(bench, 30)
+    with mock.patch.object(direct.OneAtom, "keep", counted):  # bound when the program is
+        robot = ArmorRobot(path)
+        for move in moves[:10]:
+            robot.step(move)
+        store = robot.ontology.store
+        triples = store.triples
+        answers.clear()
+        with mock.patch.object(store, "triples", lambda *a, **k: (
+                kept_reads.append(a) if KEEP in (*a, k.get("graph")) else None, triples(*a, **k))[1]):
+            for move in moves[10:]:
+                robot.step(move)
+    assert direct.ALL_KEPT in answers and True in answers
+    # one read of the kept facts after each recheck, but (generated) after one that kept every candidate
+    assert len(kept_reads) == (answers.count(True) if staged_form == "generated" else len(answers)), \
+        (staged_form, answers, len(kept_reads))
+
+
 def test_covering_finds_by_index_what_trying_every_writer_finds() -> None:
     """reason/restate.py looks the rules that may derive a conclusion up by the keys they read; trying
     every rule that writes the key must give the same covered rules, on the tutorial map and a TBox of

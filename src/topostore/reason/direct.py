@@ -39,6 +39,27 @@ _STATE = (ASSERTED, INFERRED, AUX)
 _STATE_SET = frozenset(_STATE)
 
 
+class _AllKept:
+    """A recheck's answer (truthy, as True is) where every candidate of its key is now kept: it read them
+    all (its head's pattern is its key's, no variable repeated) and proved each, so a staged run need not
+    read the key's candidates and kept facts back to find that out (:mod:`.staged_code`)."""
+
+    __slots__ = ()
+
+    def __repr__(self) -> str:
+        return "ALL_KEPT"
+
+
+ALL_KEPT = _AllKept()
+
+
+def whole_key(head: Shape, key: ReadKey) -> bool:
+    """Whether a head's candidates, read by its free pattern, are every candidate of ``key`` each bound
+    (:data:`ALL_KEPT` may be answered): the pattern is the key's and no variable is repeated."""
+    names = [x for x in head.terms if isinstance(x, str)]
+    return head.free == pattern_of(key) and len(set(names)) == len(names)
+
+
 def _facts(store, pattern: tuple, graph: NamedNode) -> list[Triple] | None:
     """The facts of ``pattern`` in ``graph``, None when there are more than :data:`FEW`."""
     return store.few_facts(*pattern, (graph,), FEW)
@@ -134,6 +155,8 @@ class OneAtom:
         self._body, self._head = Shape(_terms(self.atom)), Shape(_terms(self.head))
         #: the keys whose facts it reads: the atom's and the head's
         self.reads = frozenset((self.atom.read_key(), self.head.read_key()))
+        #: whether its recheck reads every candidate of its key (:func:`whole_key`)
+        self._whole = whole_key(self._head, self.head.read_key())
 
     def _heads(self, facts: list[Triple]) -> list[Triple] | None:
         """The heads the facts derive (None when one would hold a literal)."""
@@ -183,7 +206,7 @@ class OneAtom:
             if any(self._proves(store.triples(*pattern, g), bound) for g in graphs):
                 kept.append(c)
         store.add_scratch(kept, KEEP)
-        return True
+        return ALL_KEPT if self._whole and len(kept) == len(candidates) else True
 
     def _proves(self, facts, bound: dict[str, object]) -> bool:
         """Whether one of ``facts`` matches the atom with the head's values ``bound`` (a variable
@@ -273,6 +296,11 @@ def _instance(terms: tuple, bound: dict[str, object]) -> Triple | None | bool:
     s = bound[s] if isinstance(s, str) else s
     p = bound[p] if isinstance(p, str) else p
     o = bound[o] if isinstance(o, str) else o
+    return triple_of(s, p, o)
+
+
+def triple_of(s, p, o) -> Triple | None | bool:
+    """A head of terms ``s``, ``p``, ``o`` as :func:`_instance` gives it (a generated flip branch's heads)."""
     if not isinstance(s, (NamedNode, BlankNode)) or not isinstance(p, NamedNode):
         return None
     if isinstance(o, Literal):
@@ -280,4 +308,4 @@ def _instance(terms: tuple, bound: dict[str, object]) -> Triple | None | bool:
     return Triple(s, p, o)
 
 
-__all__ = ["FEW", "Gained", "Lost", "OneAtom", "Relaxed", "one_atom", "relaxable"]
+__all__ = ["ALL_KEPT", "FEW", "Gained", "Lost", "OneAtom", "Relaxed", "one_atom", "relaxable", "whole_key"]

@@ -25,6 +25,7 @@ from __future__ import annotations
 import functools
 from collections.abc import Callable, Collection, Iterator
 from types import CodeType
+from typing import NamedTuple
 
 from .atom_shape import Shape
 
@@ -38,27 +39,95 @@ Join = Callable[[object, dict], Iterator[dict]]
 MAX_LOOPS = 18
 
 
+class JoinDecision(NamedTuple):
+    """What a generated join decides each solution with, in place of yielding it: ``holds``, the rule's
+    conditions as a function of the values of ``names`` in that order (True, False, or None where not
+    decided: :meth:`.look_join.Conditions.holds_over`), and, for additions, the head's terms,
+    ``instance(s, p, o)`` (the head fact, None where none is written, False where the caller's text must
+    write it) and the most heads the look-up writes."""
+
+    holds: Callable
+    names: tuple[str, ...]
+    head: tuple | None = None
+    instance: Callable | None = None
+    limit: int = 0
+
+
 def compile_join(terms: list[tuple], order: list[int], given: Collection[str], graphs: list[tuple],
-                 read: Callable) -> Join | None:
+                 read: Callable, decision: JoinDecision | None = None) -> Callable | None:
     """The join of the atoms ``order`` (each atom's terms: a variable's name, or the term itself, as
     :func:`.direct._terms` gives them), starting from a solution binding exactly ``given``;
     ``graphs[k]``: the extra arguments ``read(store, pattern, *graphs[k])`` takes for atom ``k``.
-    None where the join nests more than :data:`MAX_LOOPS` loops (the caller interprets it)."""
+    None where the join nests more than :data:`MAX_LOOPS` loops (the caller interprets it).
+
+    With a ``decision`` its solutions are decided where they are found (the conditions called with the
+    loop's locals, no dictionary per solution): without a head, ``prove(store, bound)`` answers whether
+    one holds (True at the first, None where none does and one is not decided, else False), as
+    :meth:`.look_join.Joined._proven`; with a head, ``derive(store, bound, heads)`` appends the head of
+    each solution that holds to ``heads`` and answers False (the caller's text runs) where one is not
+    decided, a head holds a literal or the heads grow past ``decision.limit``, as
+    :meth:`.look_join.Joined.additions`."""
     if len(order) > MAX_LOOPS:
         return None
-    code = _Code("def join(store, bound):", read)
+    deriving = decision is not None and decision.head is not None
+    code = _Code("def join(store, bound, heads):" if deriving else "def join(store, bound):", read)
+    if decision is not None and decision.head is None:
+        code.line("answer = False")
     for var in sorted(given):
         code.line(f"{code.local(var)} = bound[{var!r}]")
     for k in order:
         code.read_atom(terms[k], code.const(graphs[k]))
-    code.line(f"yield {code.solution()}")
+    if decision is None:
+        code.line(f"yield {code.solution()}")
+        return code.function("join")
+    holds = code.const(decision.holds)
+    code.line(f"b = {holds}({', '.join(code.names.get(name, 'None') for name in decision.names)})")
+    if decision.head is None:
+        code.line("if b is True:")
+        code.line("    return True")
+        code.line("if b is None:")
+        code.line("    answer = None")
+        code.close_all()
+        code.line("return answer")
+    else:
+        head = ", ".join(code.names[x] if isinstance(x, str) else code.const(x) for x in decision.head)
+        code.line("if b is None:")
+        code.line("    return False")
+        code.line("if b:")
+        code.line(f"    head = {code.const(decision.instance)}({head})")
+        code.line("    if head is False:")
+        code.line("        return False")
+        code.line("    if head is not None:")
+        code.line("        heads.append(head)")
+        code.line(f"        if len(heads) > {int(decision.limit)}:")
+        code.line("            return False")
+        code.close_all()
+        code.line("return True")
     return code.function("join")
 
 
+class FlipDecision(NamedTuple):
+    """What a generated flip branch decides each solution with, in place of yielding it: ``exact``, the
+    rule's conditions as a function of the values of ``names`` in that order (each test a boolean, else
+    None: :meth:`.look_join.Conditions.exact_over`), the head's terms, ``instance(s, p, o)`` (the head
+    fact, None where none is written, False where the caller's text must write it) and the exception
+    that hands the flip to its text."""
+
+    exact: Callable
+    names: tuple[str, ...]
+    head: tuple
+    instance: Callable
+    fallback: type[Exception]
+
+
 def compile_flip(terms: list[tuple], seed: int, plan: list[int], paired: Collection[int], graphs: list[tuple],
-                 old_graphs: tuple, read: Callable) -> Callable[[object], Iterator[tuple[dict, dict]]] | None:
+                 old_graphs: tuple, read: Callable, decision: FlipDecision | None = None) -> Callable | None:
     """One branch of a flip (see :mod:`.look_flip`) as a flat function: ``branch(store)`` yields each
-    solution with the new values and, apart, the old values of its compared variables.
+    solution with the new values and, apart, the old values of its compared variables; with a
+    ``decision``, ``branch(store, gained, lost)`` decides each solution where it is found instead (the
+    conditions called with the loop's locals, no dictionary per solution), putting a head whose answer
+    differs into ``gained`` (true now) or ``lost``, and raising ``decision.fallback`` where one is not
+    decided or its head holds a literal (as :meth:`.look_flip.Flipped._decide`).
 
     The seed atom ``seed``'s replaced facts are read from ``old_graphs`` (their old value), and its new
     facts by their subject and predicate; the atoms ``plan`` are joined after it, each from its
@@ -67,7 +136,7 @@ def compile_flip(terms: list[tuple], seed: int, plan: list[int], paired: Collect
     must be a variable (the value compared).  None where it nests more than :data:`MAX_LOOPS` loops."""
     if 2 + len(plan) + len(set(plan) & set(paired)) > MAX_LOOPS:
         return None
-    code = _Code("def branch(store):", read)
+    code = _Code("def branch(store, gained, lost):" if decision else "def branch(store):", read)
     old = code.const(old_graphs)
     s, p, value = terms[seed]
     code.read_atom((s, p, value), old, fresh=True, name="f")
@@ -85,7 +154,10 @@ def compile_flip(terms: list[tuple], seed: int, plan: list[int], paired: Collect
                       " or (t.object,)):")
             code.open()
             olds[terms[m][2]] = local
-    code.line(f"yield {code.solution()}, {{{', '.join(f'{var!r}: {w}' for var, w in olds.items())}}}")
+    if decision is None:
+        code.line(f"yield {code.solution()}, {{{', '.join(f'{var!r}: {w}' for var, w in olds.items())}}}")
+    else:
+        code.decide(decision, olds)
     return code.function("branch")
 
 
@@ -181,6 +253,30 @@ class _Code:
             self.line("    continue")
         self.starts[self.depth] = len(self.lines)
 
+    def decide(self, decision: FlipDecision, olds: dict[str, str]) -> None:
+        """The innermost statements of a flip branch with ``decision``: the conditions over the new values
+        and over the old ones (``olds``: a compared variable's local holding its old value), and the head
+        put where its answer went."""
+        exact, fallback, instance = self.const(decision.exact), self.const(decision.fallback), \
+            self.const(decision.instance)
+        now = ", ".join(self.names.get(name, "None") for name in decision.names)
+        then = ", ".join(olds.get(name, self.names.get(name, "None")) for name in decision.names)
+        head = ", ".join(self.names[x] if isinstance(x, str) else self.const(x) for x in decision.head)
+        self.line(f"now = {exact}({now})")
+        self.line(f"then = {exact}({then})")
+        self.line("if now is None or then is None:")
+        self.line(f"    raise {fallback}")
+        self.line("if now != then:")
+        self.line(f"    head = {instance}({head})")
+        self.line("    if head is False:")
+        self.line(f"        raise {fallback}")
+        self.line("    if head is not None:")
+        self.line("        (gained if now else lost)[head] = None")
+
+    def close_all(self) -> None:
+        """Back to the function's body, after every loop (its closing statements follow)."""
+        self.depth = 1
+
     def solution(self) -> str:
         return "{" + ", ".join(f"{var!r}: {local}" for var, local in self.names.items()) + "}"
 
@@ -213,4 +309,4 @@ def interpreted(shapes: list[Shape], order: list[int], graphs: list[tuple], read
     return join
 
 
-__all__ = ["Join", "compile_join", "interpreted"]
+__all__ = ["FlipDecision", "Join", "JoinDecision", "compile_flip", "compile_join", "interpreted"]

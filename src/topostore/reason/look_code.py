@@ -44,6 +44,27 @@ def compile_conditions(binds: list[tuple[str, tuple]], tests: list[tuple]) -> tu
     return holds, exact
 
 
+def compile_exact_over(binds: list[tuple[str, tuple]], tests: list[tuple], names: list[str]) -> Callable:
+    """:func:`compile_conditions`'s ``exact`` taking the solution's values as arguments, one per name of
+    ``names`` in that order (a variable not among them is unbound), instead of a dictionary: a generated
+    flip branch (:func:`.join_code.compile_flip`) calls it with its locals, twice per solution (the new
+    values and the old), where a dictionary per call cost more than the test."""
+    return _over("exact", binds, tests, names)
+
+
+def compile_holds_over(binds: list[tuple[str, tuple]], tests: list[tuple], names: list[str]) -> Callable:
+    """:func:`compile_conditions`'s ``holds`` taking the solution's values as arguments, as
+    :func:`compile_exact_over` (a generated join deciding its solutions: :func:`.join_code.compile_join`)."""
+    return _over("holds", binds, tests, names)
+
+
+def _over(name: str, binds: list[tuple[str, tuple]], tests: list[tuple], names: list[str]) -> Callable:
+    code = _Code({var: f"a{i}" for i, var in enumerate(names)})
+    results = _conditions(code, binds, tests)
+    tail = _exact(results) if name == "exact" else _holds(results)
+    return _function(name, code.lines, tail, code.namespace, ", ".join(f"a{i}" for i in range(len(names))))
+
+
 def _conditions(code: _Code, binds: list[tuple[str, tuple]], tests: list[tuple]) -> list[str]:
     """The BINDs' statements (returning None where one is not exact) and the tests' locals."""
     for var, node in binds:
@@ -78,8 +99,8 @@ def _exact(results: list[str]) -> list[str]:
             f"return {' and '.join(results)}"]
 
 
-def _function(name: str, body: list[str], tail: list[str], namespace: dict) -> Callable:
-    text = "\n".join([f"def {name}(s):", *("    " + line for line in body + tail)])
+def _function(name: str, body: list[str], tail: list[str], namespace: dict, parameters: str = "s") -> Callable:
+    text = "\n".join([f"def {name}({parameters}):", *("    " + line for line in body + tail)])
     scope = dict(namespace)
     exec(compile(text, f"<topostore {name}>", "exec"), scope)  # noqa: S102 - text made here, no term in it
     return scope[name]
@@ -124,7 +145,9 @@ def _variables(node: tuple) -> set[str]:
 class _Code:
     """The statements of one function over a solution ``s``; each node's value in a local ``xN``."""
 
-    def __init__(self) -> None:
+    def __init__(self, arguments: dict[str, str] | None = None) -> None:
+        #: a solution variable's parameter, where the values are arguments rather than a dictionary ``s``
+        self.arguments = arguments
         self.lines: list[str] = []
         self.namespace: dict[str, object] = {"value": value, "VALUES": VALUES, "term_of": term_of, "Str": Str,
                                              "NamedNode": NamedNode, "BlankNode": BlankNode,
@@ -144,7 +167,10 @@ class _Code:
     def read(self, name: str) -> str:
         """The local of a solution variable's term, read once."""
         if name not in self.read_terms:
-            self.read_terms[name] = self.new(f"s.get({name!r})")
+            if self.arguments is not None:
+                self.read_terms[name] = self.arguments.get(name, "None")
+            else:
+                self.read_terms[name] = self.new(f"s.get({name!r})")
         return self.read_terms[name]
 
     def line(self, text: str) -> None:
@@ -276,4 +302,4 @@ class _Code:
         return self.new(f"None if {at} is None else (Str('') if {at} < 0 else Str({part}))")
 
 
-__all__ = ["compile_conditions"]
+__all__ = ["compile_conditions", "compile_exact_over", "compile_holds_over"]

@@ -36,9 +36,9 @@ from ..compile.rule import Atom, Rule, join_order
 from . import direct, look_join, window
 from .atom_shape import Shape
 from .delta_texts import FLIP_LOST
-from .direct import _instance, _terms
+from .direct import _instance, _terms, triple_of
 from .flip import CHANGE_OLD, compact_possible, compared_only
-from .join_code import compile_flip
+from .join_code import FlipDecision, compile_flip
 from .look_join import Conditions, every_graph, joinable
 from .look_values import value
 from .scratch import FLIP_GAINED
@@ -126,8 +126,10 @@ class Flipped:
         terms = [shape.terms for shape in self._body]
         if not all(isinstance(terms[k][2], str) for k in self.order):
             return None
+        names = tuple(sorted({x for atom in terms for x in atom if isinstance(x, str)}))
+        decision = FlipDecision(self.conditions.exact_over(list(names)), names, self._head, triple_of, _Fallback)
         branches = [compile_flip(terms, k, self._plans[position], self.order[position + 1:],
-                                 [(g,) for g in self._graphs], ((CHANGE_OLD,),), self._facts)
+                                 [(g,) for g in self._graphs], ((CHANGE_OLD,),), self._facts, decision)
                     for position, k in enumerate(self.order)]
         return None if None in branches else branches
 
@@ -155,9 +157,8 @@ class Flipped:
         try:
             for position, k in enumerate(self.order):
                 if index is None or position != last:
-                    if self._branches is not None:
-                        for solution, olds in self._branches[position](store):
-                            self._decide(solution, olds, gained, lost)
+                    if self._branches is not None:  # each solution decided where the branch finds it
+                        self._branches[position](store, gained, lost)
                         continue
                     index_here = None
                 else:

@@ -28,9 +28,9 @@ from ..rdf.vocab import ASSERTED, AUX, INFERRED, TYPE
 from . import direct
 from .atom_shape import Shape
 from .delta_texts import KEEP
-from .direct import _instance, _named_only, _terms, _write_new
-from .join_code import Join, compile_join, interpreted
-from .look_code import compile_conditions
+from .direct import _instance, _named_only, _terms, _write_new, triple_of
+from .join_code import Join, JoinDecision, compile_join, interpreted
+from .look_code import compile_conditions, compile_exact_over, compile_holds_over
 from .look_filters import Unsupported, closure, parse_expression
 from .look_values import UNKNOWN, all_of
 from .scratch import CANDIDATES, NEW_FACTS, OVERDELETED
@@ -196,6 +196,7 @@ class Conditions:
         #: the expression trees, generated into functions that take :meth:`holds` and :meth:`exact`'s
         #: place at the first call (:mod:`.look_code`; :func:`joinable` only asks whether they parse)
         self._trees = trees if COMPILED_JOINS else None
+        self._parsed = trees
 
     def bound(self, solution: dict) -> dict | object:
         """``solution`` extended by the BINDs in order; UNKNOWN where one is not exact."""
@@ -221,6 +222,16 @@ class Conditions:
         self.holds, self.exact = compile_conditions(*self._trees)  # type: ignore[method-assign]
         self._trees = None
         return self
+
+    def exact_over(self, names: list[str]) -> Callable:
+        """:meth:`exact` generated as a function of the values of ``names``, in that order
+        (:func:`.look_code.compile_exact_over`), for a generated flip branch to call with its locals."""
+        return compile_exact_over(*self._parsed, names)
+
+    def holds_over(self, names: list[str]) -> Callable:
+        """:meth:`holds` as a function of the values of ``names`` (:func:`.look_code.compile_holds_over`),
+        for a generated join deciding its solutions to call with its locals."""
+        return compile_holds_over(*self._parsed, names)
 
     def exact(self, solution: dict) -> bool | None:
         """True / False where every BIND is exact and every test's value a boolean (as the flip text's
@@ -285,6 +296,9 @@ class _Compiling:
         terms = [shape.terms for shape in owner._body]
         join = compile_join(terms, self._order, self._given, owner._graphs, _read) or self._slow
         setattr(owner, self._name, join)
+        # the same join deciding its solutions where it finds them (its owner calls that one from now on)
+        setattr(owner, f"{self._name}_decided",
+                compile_join(terms, self._order, self._given, owner._graphs, _read, owner._decision(self._name)))
         return join(store, bound)
 
 
@@ -303,6 +317,8 @@ class Joined:
         self.conditions = Conditions(rule)
         self._body = [Shape(_terms(a)) for a in rule.body]
         self._head = Shape(_terms(rule.head))
+        #: whether its recheck reads every candidate of its key, each bound (:func:`.direct.whole_key`)
+        self._whole = direct.whole_key(self._head, rule.head.read_key())
         self._graphs = [(g, frozenset(g)) for g in map(graphs_of, rule.body)]
         self._proof_order = join_order(rule.body, None, rule.head.variables())
         self._delta_order = join_order(rule.body, delta)[1:] if delta is not None else []
@@ -315,6 +331,18 @@ class Joined:
         #: bindings, each compiled once into a flat function (:mod:`.join_code`)
         self._prove = self._join(self._proof_order, self._head, "_prove")
         self._derive = self._join(self._delta_order, self._body[delta], "_derive") if delta is not None else None
+        #: the compiled joins deciding their solutions where they find them (:class:`.join_code.JoinDecision`):
+        #: made with the compiled joins, None until then (or where a join is too long to compile)
+        self._prove_decided: Callable | None = None
+        self._derive_decided: Callable | None = None
+
+    def _decision(self, name: str) -> JoinDecision:
+        """What the compiled join ``name`` ("_prove" or "_derive") decides its solutions with."""
+        names = tuple(sorted({x for shape in self._body for x in shape.terms if isinstance(x, str)}))
+        holds = self.conditions.holds_over(list(names))
+        if name == "_prove":
+            return JoinDecision(holds, names)
+        return JoinDecision(holds, names, self._head.terms, triple_of, direct.FEW)
 
     def _join(self, order: list[int], start: Shape, name: str) -> Join:
         """The join of the atoms ``order`` from the solutions ``start``'s facts bind, interpreted until
@@ -325,6 +353,8 @@ class Joined:
 
     def _proven(self, store, bound: dict) -> object:
         """Whether some derivation with the head's values ``bound`` holds (UNKNOWN: not decided)."""
+        if self._prove_decided is not None:
+            return self._prove_decided(store, bound)
         answer: object = False
         for solution in self._prove(store, bound):
             b = self.conditions.holds(solution)
@@ -355,12 +385,14 @@ class Joined:
         return out
 
     def keep(self, store) -> bool:
-        """:func:`.delta_texts.keep`: the candidates the rule derives from the new state go to KEEP."""
+        """:func:`.delta_texts.keep`: the candidates the rule derives from the new state go to KEEP
+        (:data:`.direct.ALL_KEPT` where that is every candidate of its key)."""
         decided = self._decide(store)
         if decided is None:
             return False
-        store.add_scratch([c for c, proven in decided if proven], KEEP)
-        return True
+        kept = [c for c, proven in decided if proven]
+        store.add_scratch(kept, KEEP)
+        return direct.ALL_KEPT if self._whole and len(kept) == len(decided) else True
 
     def delete(self, store) -> bool:
         """:func:`.delta_texts.recheck_one`: the candidates the rule no longer derives and not asserted
@@ -389,6 +421,10 @@ class Joined:
             for t in facts:
                 start = delta.bind(t)
                 if start is None:
+                    continue
+                if self._derive_decided is not None:
+                    if not self._derive_decided(store, start, heads):
+                        return False
                     continue
                 for solution in self._derive(store, start):
                     b = self.conditions.holds(solution)

@@ -24,7 +24,7 @@ from itertools import islice
 
 from .component import run_component
 from .delta_texts import FLIP_LOST, KEEP
-from .direct import pattern_of
+from .direct import ALL_KEPT, pattern_of
 from .scratch import CANDIDATES, FLIP_GAINED, NEW_FACTS, OVERDELETED
 from .staged import FEW
 from .staged_plan import AFTER, HANDED, SEEDING, SENT, BoundOp, Segment, segments
@@ -63,6 +63,7 @@ def generate(plan: list[Segment]) -> Callable:
             code.segment(segment)
     code.line("r.flush()")
     namespace = dict(code.consts, run_component=run_component, islice=islice, FEW=FEW, CANDIDATES=CANDIDATES,
+                     ALL_KEPT=ALL_KEPT,
                      KEEP=KEEP, FLIP_GAINED=FLIP_GAINED, FLIP_LOST=FLIP_LOST, NEW_FACTS=NEW_FACTS,
                      OVERDELETED=OVERDELETED)
     text = "def fused(r):\n" + "\n".join(code.lines) + "\n"
@@ -265,10 +266,10 @@ class _Part:
         holds = self._holds(CANDIDATES, op.key, extra, f"not {kept}")
         self.line(f"if not {kept} and {holds}:", extra)
         self.line("q = False", extra + 1)
-        self._send(op, text, "True", "None", extra + 1, needs=False, key=op.key, into="q")
+        self._send(op, text, "True", "None", extra + 1, needs=False, key=op.key, into="q", kept=kept)
         self.line(f"if {many}:", extra + 1)
         self.line("queued |= q", extra + 2)  # else it is looked up (sent) below: ``_keep`` answers False
-        self.line("else:", extra + 1)
+        self.line(f"elif not {kept}:", extra + 1)  # its look-up kept every candidate (ALL_KEPT): nothing to read
         self.line("if dirty:", extra + 2)
         self.line(f"r._reading({c((op.key,))})", extra + 3)
         pattern = c(pattern_of(op.key))
@@ -303,9 +304,10 @@ class _Part:
         return repr(op.index) if op.has_seeded else "False"
 
     def _send(self, op: BoundOp, text: str, look_up: str, fallback: str, extra: int, needs: bool = True,
-              key: object = None, into: str = "queued") -> None:
+              key: object = None, into: str = "queued", kept: str | None = None) -> None:
         """``_part``'s send of one operation: left out where a key it joins has no facts, through its look-up
-        where one answers (inline), else queued by :meth:`.staged.StagedRun._queue`."""
+        where one answers (inline), else queued by :meth:`.staged.StagedRun._queue`; ``kept``: a recheck's
+        local set where its look-up answers that every candidate of its key is kept (:data:`.direct.ALL_KEPT`)."""
         c = self.code.const
         if needs and op.needs is not None:
             self.line(f"if not r._without_facts({c(op.needs)}):", extra)
@@ -323,8 +325,14 @@ class _Part:
                 inner += 1
             self.line("if dirty:", inner)
             self.line(f"r._reading({reads})", inner + 1)
-            self.line(f"if {c(op.direct)}(store):", inner)
-            self.line("r.sent += 1", inner + 1)
+            if kept is None:
+                self.line(f"if {c(op.direct)}(store):", inner)
+                self.line("r.sent += 1", inner + 1)
+            else:
+                self.line(f"answer = {c(op.direct)}(store)", inner)
+                self.line("if answer:", inner)
+                self.line("r.sent += 1", inner + 1)
+                self.line(f"{kept} = answer is ALL_KEPT", inner + 1)
             self.line("else:", inner)
             self.line(f"{into} |= r._queue({text}, {part}, {position}, {look_up}, {fallback})", inner + 1)
         if op.kind in SEEDING:

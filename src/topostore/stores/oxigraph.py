@@ -293,6 +293,24 @@ class OxigraphStore(Store):
             out.append(found)
         return out
 
+    def contains_each(self, triples: list[Triple], graph: NamedNode) -> list[bool]:
+        """Whether each triple is in ``graph``, as :func:`.reads.contains_each` answers it: where no
+        transaction is open and no literal forms are listed, one membership test per triple (the held
+        graph's dictionary, or the index), not a quad batch through the presence layers; that batch for a
+        literal (presence is then by value)."""
+        if self._pending is not None or self.listings is not None:
+            return super().contains_each(triples, graph)
+        held = self._held.graphs.get(graph) if self._held.graphs else None
+        ox = self._ox
+        out = []
+        for t in triples:
+            o = t.object
+            if type(o) is Literal:
+                return super().contains_each(triples, graph)
+            out.append((t.subject, t.predicate, o) in held if held is not None
+                       else Quad(t.subject, t.predicate, o, graph) in ox)
+        return out
+
     def _one_read(self, graphs: Collection[NamedNode]) -> bool:
         """Whether one index read over every graph answers for ``graphs`` as the per-graph reads do: no
         transaction open, no literal forms listed, no held graph among them."""
