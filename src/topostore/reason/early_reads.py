@@ -100,6 +100,13 @@ def _has_match(store: Store, text: str, census: KeyCensus | None, graphs: Mappin
     return bool(store.query(text, prefixes=PREFIXES))
 
 
+def _answered(value: bool) -> Future:
+    """A read answered without the worker, as a done Future."""
+    done: Future = Future()
+    done.set_result(value)
+    return done
+
+
 class EarlyReads:
     """The deferred asks and checks of one full run started early; see the module docstring."""
 
@@ -154,6 +161,9 @@ class EarlyReads:
             graphs = self._graphs(i)
             text = ask_form(self._text(i, graphs))
             census = run.censuses.get(i) if one_group(store, run._queued) else None
+            if census is not None and self.covered(census, graphs):
+                self._asked[i] = (graphs, _answered(False))  # no match: the census covers as it did
+                continue
             self._asked[i] = (graphs, self._reader.submit(lambda t=text, c=census, g=graphs: _has_match(store, t, c, g)))
         for j in self._checks_after.pop(component, ()):
             rule, keys = self._checks[j], self._check_reads[j]
@@ -177,6 +187,11 @@ class EarlyReads:
         """The solutions of rule ``i``'s first-pass evaluation ``text`` found in the worker (None: evaluate
         it now), see :mod:`.early_rules`."""
         return self.rules.evaluated(i, text) if self.rules is not None else None
+
+    def covered(self, census: KeyCensus, graphs: Mapping[ReadKey, NamedNode]) -> bool:
+        """Whether ``census`` covers without being taken again (:meth:`.early_rules.EarlyRules.covered`);
+        the caller knows the store holds one AllDifferent group."""
+        return self.rules is not None and self.rules.covered(census, graphs)
 
     def answer(self, i: int) -> bool | None:
         """Whether the ask of rule ``i`` has a match, from its early answer (None: ask it now)."""
