@@ -167,7 +167,8 @@ class EarlyReads:
             self._asked[i] = (graphs, self._reader.submit(lambda t=text, c=census, g=graphs: _has_match(store, t, c, g)))
         for j in self._checks_after.pop(component, ()):
             rule, keys = self._checks[j], self._check_reads[j]
-            self._checking[j] = self._reader.submit(lambda r=rule, k=keys: check_rows(store, r, key_graphs(store, k, GRAPHS)))
+            self._checking[j] = self._reader.submit(lambda r=rule, k=keys: check_rows(store, r, key_graphs(store, k, GRAPHS)),
+                                                    shared=self._shared(keys))
 
     def wrote(self, key: ReadKey | None) -> None:
         """An evaluation writing ``key`` was sent or queued: the early reads of it no longer hold."""
@@ -193,11 +194,19 @@ class EarlyReads:
         the caller knows the store holds one AllDifferent group."""
         return self.rules is not None and self.rules.covered(census, graphs)
 
+    def _shared(self, reads: frozenset[ReadKey]) -> bool:
+        """Whether a read of ``reads`` may be run by this thread instead of the worker (:meth:`.Reader.help`):
+        no evaluation started early writes a key it reads, so it does not need the worker to have loaded
+        one first."""
+        return self.rules is not None and not self.rules.loading(reads)
+
     def answer(self, i: int) -> bool | None:
         """Whether the ask of rule ``i`` has a match, from its early answer (None: ask it now)."""
         started = self._asked.pop(i, None)
         if started is None:
             return None
+        if not started[1].done():
+            self._reader.help()
         return early_result(started, self._graphs(i))
 
     def close(self, completed: bool) -> None:
@@ -205,6 +214,7 @@ class EarlyReads:
         that still hold in :attr:`checked` (a check that failed is left to the REASON, which runs it again
         and reports its error)."""
         if completed:
+            self._reader.help()
             for j, matches in self._checking.items():
                 try:
                     self.checked[j] = matches.result()

@@ -296,6 +296,8 @@ class EarlyRules:
         if may_write_any(self.run._queued, self.run.keyed[i].reads):
             started.cancel()
             return False
+        if not started.done():
+            self._reader.help()
         try:
             covers = started.result() is True
         except Exception:  # noqa: BLE001 - the keys are kept: the pass evaluates the rule as written
@@ -320,7 +322,14 @@ class EarlyRules:
         started = self._started.pop(i, None)
         if started is None:
             return None
+        if not started[1].done():
+            self._reader.help()
         return early_result(started, _without_delta(text, self.run.delta_read))
+
+    def loading(self, reads: frozenset[ReadKey]) -> bool:
+        """Whether an evaluation started early writes a key of ``reads`` (its facts loaded by the worker,
+        before the reads queued after it)."""
+        return any(touches(self.run.rules[i].writes(), reads) for i in self._started)
 
     def close(self) -> None:
         """Drop what was not used (the reader is joined by its owner)."""
