@@ -22,7 +22,9 @@ turn comes, its early answer is used only if
 
 Then "no match" skips the insert (nothing to write); a match, or an early answer that does not hold,
 sends the insert as before.  Where a census of the AllDifferent keys may show the ask empty
-(:mod:`.keyed_asks`), the census is asked first, and the ``ASK`` only when it does not.
+(:mod:`.keyed_asks`), the census is asked first, and the ``ASK`` only when it does not; a census that
+covered at its keyed conclusion's turn (:mod:`.keyed_first_pass`), nothing it counts written since, is not
+counted again (:meth:`.early_rules.EarlyRules.covered`).
 
 **Checks.**  A check (:func:`.consistency.check_rows`) reads keys that are final once every rule that
 may write them is done, the upper strata's and the deferred asks' included: it is started (with the
@@ -30,6 +32,10 @@ census of its own keys, :func:`.present.key_graphs`) right after the last ordere
 when no later rule may.  Its matches are kept when the run ends (:meth:`EarlyReads.close`) unless an
 evaluation since its start may have written a key it reads; the REASON runs the others after the run.
 Past :data:`EARLY_CHECKS` checks none is started early: they all run after the run, sharing one census.
+A check reading no key that an evaluation started early writes (:mod:`.early_rules`: the worker loads its
+facts before the reads queued after it) is queued as shared: when this thread would wait for the worker
+(an early evaluation's turn, a census, an ask, the close), it runs such checks not started yet itself
+(:meth:`.Reader.help`) rather than leaving them behind the keys and the count.
 
 The reads run one after the other in one worker thread, in the order they were started; a read no longer
 holding is dropped if it has not started.  The worker is joined before the run returns

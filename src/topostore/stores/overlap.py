@@ -21,6 +21,9 @@ The contract:
   sends (:meth:`topostore.stores.base.Store.add_ntriples_beside`: a full run's evaluations found early,
   :mod:`topostore.reason.early_rules`) and the caller's updates follow one another, each whole; the
   caller reads those facts only after it has waited for that read;
+* **a shared read may run in the caller's thread**: a read queued with ``shared`` needs none of the reads
+  queued before it to have run; the caller about to wait for the worker runs those not started yet itself
+  (:meth:`Reader.help`), each once, so that they are not left behind a long read while the caller idles;
 * **in memory only**: a remote or durable store, or one with a transaction open, is not asked to
   overlap (its callers stay sequential, see :attr:`topostore.stores.base.Store.overlaps`).
 
