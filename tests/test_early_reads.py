@@ -187,3 +187,34 @@ def test_past_the_bound_every_check_runs_after_the_run(tmp_path, monkeypatch):
     monkeypatch.setattr(early_reads, "ENABLED", False)
     late, _ = _reasoned(tmp_path, monkeypatch, [])
     assert late == bounded
+
+
+def test_checks_the_worker_has_not_started_are_run_by_the_waiting_thread(monkeypatch):
+    """The worker held on the AllDifferent keys: the thread waiting for them runs the checks queued behind
+    them that read nothing an early evaluation writes, and the REASON finds what it finds without that."""
+    from support import closure, map_or_text
+
+    from topostore.reason import early_rules
+
+    evaluate, checks = early_rules._evaluate, early_reads.check_rows
+    ran: list[tuple[str, bool]] = []
+
+    def slow(store, query, graph):
+        threading.Event().wait(0.3)  # the keys, as at 100,000 locations, still under way at their turn
+        return evaluate(store, query, graph)
+
+    def check_rows(store, rule, keys):
+        ran.append((rule.name, threading.current_thread() is threading.main_thread()))
+        return checks(store, rule, keys)
+
+    monkeypatch.setattr(early_rules, "_evaluate", slow)
+    monkeypatch.setattr(early_reads, "check_rows", check_rows)
+    onto = map_or_text()
+    report = onto.reason(mode="full")
+    assert any(main for _, main in ran), ran
+    shared = closure(onto), sorted(map(str, report.violations))
+    monkeypatch.setattr(early_reads.EarlyReads, "_shared", lambda self, reads: False)
+    ran.clear()
+    report = onto.reason(mode="full")
+    assert not any(main for _, main in ran), ran
+    assert (closure(onto), sorted(map(str, report.violations))) == shared

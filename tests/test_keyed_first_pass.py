@@ -144,3 +144,51 @@ def test_the_census_is_queued_after_the_keys_and_before_the_count(monkeypatch: p
     onto.reason(mode="full")
     assert ran[:3] == ["keys", "census", "count"], ran
     assert log == [("swrl:Connectability", True)]
+
+
+def _censuses(monkeypatch: pytest.MonkeyPatch) -> list[bool]:
+    """The answers of every census counted (a census answered by one taken before is not counted)."""
+    counted: list[bool] = []
+    covers = KeyCensus.covers
+
+    def logged(self, store, graphs=None):
+        counted.append(covers(self, store, graphs))
+        return counted[-1]
+
+    monkeypatch.setattr(KeyCensus, "covers", logged)
+    return counted
+
+
+@pytest.mark.skipif(not early_reads.ENABLED, reason="the census is taken in the worker thread")
+@pytest.mark.parametrize("case", ["map", "one group"])
+def test_the_deferred_ask_reads_the_census_taken_at_the_conclusions_turn(
+        case: str, monkeypatch: pytest.MonkeyPatch) -> None:
+    """The deferred ask's census counts what the keyed conclusion's did (nothing it reads written since):
+    counted once, and the closure the same as with the keys kept."""
+    onto = map_or_text() if case == "map" else family(case)
+    kept, consistent = _with_keys(onto, monkeypatch)
+    counted = _censuses(monkeypatch)
+    report = onto.reason(mode="full")
+    assert counted == [True]
+    assert closure(onto) == kept and report.consistent == consistent
+
+
+@pytest.mark.skipif(not early_reads.ENABLED, reason="the census is taken in the worker thread")
+@pytest.mark.parametrize("read", ["a body key", "the keys", "the group"])
+def test_a_census_written_since_its_conclusions_turn_is_counted_again(
+        read: str, monkeypatch: pytest.MonkeyPatch) -> None:
+    """A write of a key the census reads after the keyed conclusion's turn: the deferred ask counts again."""
+    written = {"a body key": ("p", "<http://e.org/f#hasParent>"), "the keys": ("p", f"<{DIFFERENT_KEY_OF.value}>"),
+               "the group": ("t", "<http://www.w3.org/2002/07/owl#AllDifferent>")}[read]
+    keyless = EarlyRules.keyless
+
+    def written_after(self, i):
+        found = keyless(self, i)
+        if i in self.run.keyed:
+            self.wrote(written)  # as an evaluation sent right after the conclusion
+        return found
+
+    monkeypatch.setattr(EarlyRules, "keyless", written_after)
+    counted = _censuses(monkeypatch)
+    assert family("one group").reason(mode="full").consistent
+    assert counted == [True, True]

@@ -13,7 +13,7 @@ from topostore import Ontology
 from topostore.rdf.vocab import ASSERTED, SKOLEM_PREFIX
 from topostore.reason import closing, early_reads
 from topostore.stores import memory_store
-from topostore.stores.overlap import Beside
+from topostore.stores.overlap import Beside, Reader
 
 EX = "http://example.org/o#"
 
@@ -133,3 +133,41 @@ def test_a_failing_check_in_the_worker_fails_the_reason(tmp_path, monkeypatch):
     assert _threads() == before
     monkeypatch.undo()
     assert onto.reason(mode="full").consistent  # the next REASON recomputes from scratch
+
+
+def test_a_shared_read_is_run_by_the_caller_waiting_for_the_one_ahead_of_it():
+    """While the worker is on a long read, the caller about to wait runs the shared reads queued behind it
+    itself, once each; a cancelled one is run by neither; one left untaken is dropped with the reader."""
+    release = threading.Event()
+    ran: list[tuple[str, threading.Thread]] = []
+
+    def read(name):
+        ran.append((name, threading.current_thread()))
+        return name
+
+    with Reader() as reader:
+        long = reader.submit(lambda: release.wait(5) and read("long"))
+        shared = reader.submit(lambda: read("shared"), shared=True)
+        dropped = reader.submit(lambda: read("dropped"), shared=True)
+        assert dropped.cancel()
+        reader.help()
+        assert shared.result(timeout=0) == "shared"
+        release.set()
+        assert long.result(timeout=5) == "long"
+    assert [name for name, _ in ran] == ["shared", "long"]
+    assert ran[0][1] is threading.current_thread() and ran[1][1] is not threading.current_thread()
+    later = threading.Event()
+    with Reader() as reader:
+        reader.submit(lambda: later.wait(5))
+        untaken = reader.submit(lambda: read("behind"), shared=True)
+        threading.Timer(0.2, later.set).start()
+    assert untaken.cancelled() and len(ran) == 2
+
+
+def test_a_shared_read_failing_in_the_caller_raises_where_it_is_read():
+    with Reader() as reader:
+        reader.submit(lambda: threading.Event().wait(0.2))
+        failing = reader.submit(lambda: 1 / 0, shared=True)
+        reader.help()
+        with pytest.raises(ZeroDivisionError):
+            failing.result(timeout=0)

@@ -43,7 +43,9 @@ def ask_unknown(run: Materializer, stats: ReasonStats, active: list[int]) -> Non
         if early is False:
             continue  # asked early, beside the later components' writes: no match (:mod:`.early_reads`)
         graphs = only_asserted(run.rules[i], run._derived, run._asserted, asking) if key is None else {}
-        if key is None and early is None and covered(run.store, run.censuses.get(i), run._queued, graphs):
+        census = run.censuses.get(i)
+        taken = census is not None and run._early is not None and run._early.covered(census, graphs)
+        if key is None and early is None and covered(run.store, census, run._queued, graphs, taken):
             continue  # every body pair's conclusion is known by the AllDifferent keys (:mod:`.keyed_asks`)
         if key is None:
             text = insert_text(run.rules[i], None, run.planned, run._lateral, run._direct, graphs, bare=run.bare(i))

@@ -22,7 +22,9 @@ turn comes, its early answer is used only if
 
 Then "no match" skips the insert (nothing to write); a match, or an early answer that does not hold,
 sends the insert as before.  Where a census of the AllDifferent keys may show the ask empty
-(:mod:`.keyed_asks`), the census is asked first, and the ``ASK`` only when it does not.
+(:mod:`.keyed_asks`), the census is asked first, and the ``ASK`` only when it does not; a census that
+covered at its keyed conclusion's turn (:mod:`.keyed_first_pass`), nothing it counts written since, is not
+counted again (:meth:`.early_rules.EarlyRules.covered`).
 
 **Checks.**  A check (:func:`.consistency.check_rows`) reads keys that are final once every rule that
 may write them is done, the upper strata's and the deferred asks' included: it is started (with the
@@ -30,6 +32,10 @@ census of its own keys, :func:`.present.key_graphs`) right after the last ordere
 when no later rule may.  Its matches are kept when the run ends (:meth:`EarlyReads.close`) unless an
 evaluation since its start may have written a key it reads; the REASON runs the others after the run.
 Past :data:`EARLY_CHECKS` checks none is started early: they all run after the run, sharing one census.
+A check reading no key that an evaluation started early writes (:mod:`.early_rules`: the worker loads its
+facts before the reads queued after it) is queued as shared: when this thread would wait for the worker
+(an early evaluation's turn, a census, an ask, the close), it runs such checks not started yet itself
+(:meth:`.Reader.help`) rather than leaving them behind the keys and the count.
 
 The reads run one after the other in one worker thread, in the order they were started; a read no longer
 holding is dropped if it has not started.  The worker is joined before the run returns
@@ -100,6 +106,13 @@ def _has_match(store: Store, text: str, census: KeyCensus | None, graphs: Mappin
     return bool(store.query(text, prefixes=PREFIXES))
 
 
+def _answered(value: bool) -> Future:
+    """A read answered without the worker, as a done Future."""
+    done: Future = Future()
+    done.set_result(value)
+    return done
+
+
 class EarlyReads:
     """The deferred asks and checks of one full run started early; see the module docstring."""
 
@@ -154,10 +167,14 @@ class EarlyReads:
             graphs = self._graphs(i)
             text = ask_form(self._text(i, graphs))
             census = run.censuses.get(i) if one_group(store, run._queued) else None
+            if census is not None and self.covered(census, graphs):
+                self._asked[i] = (graphs, _answered(False))  # no match: the census covers as it did
+                continue
             self._asked[i] = (graphs, self._reader.submit(lambda t=text, c=census, g=graphs: _has_match(store, t, c, g)))
         for j in self._checks_after.pop(component, ()):
             rule, keys = self._checks[j], self._check_reads[j]
-            self._checking[j] = self._reader.submit(lambda r=rule, k=keys: check_rows(store, r, key_graphs(store, k, GRAPHS)))
+            self._checking[j] = self._reader.submit(lambda r=rule, k=keys: check_rows(store, r, key_graphs(store, k, GRAPHS)),
+                                                    shared=self._shared(keys))
 
     def wrote(self, key: ReadKey | None) -> None:
         """An evaluation writing ``key`` was sent or queued: the early reads of it no longer hold."""
@@ -178,11 +195,24 @@ class EarlyReads:
         it now), see :mod:`.early_rules`."""
         return self.rules.evaluated(i, text) if self.rules is not None else None
 
+    def covered(self, census: KeyCensus, graphs: Mapping[ReadKey, NamedNode]) -> bool:
+        """Whether ``census`` covers without being taken again (:meth:`.early_rules.EarlyRules.covered`);
+        the caller knows the store holds one AllDifferent group."""
+        return self.rules is not None and self.rules.covered(census, graphs)
+
+    def _shared(self, reads: frozenset[ReadKey]) -> bool:
+        """Whether a read of ``reads`` may be run by this thread instead of the worker (:meth:`.Reader.help`):
+        no evaluation started early writes a key it reads, so it does not need the worker to have loaded
+        one first."""
+        return self.rules is not None and not self.rules.loading(reads)
+
     def answer(self, i: int) -> bool | None:
         """Whether the ask of rule ``i`` has a match, from its early answer (None: ask it now)."""
         started = self._asked.pop(i, None)
         if started is None:
             return None
+        if not started[1].done():
+            self._reader.help()
         return early_result(started, self._graphs(i))
 
     def close(self, completed: bool) -> None:
@@ -190,6 +220,7 @@ class EarlyReads:
         that still hold in :attr:`checked` (a check that failed is left to the REASON, which runs it again
         and reports its error)."""
         if completed:
+            self._reader.help()
             for j, matches in self._checking.items():
                 try:
                     self.checked[j] = matches.result()

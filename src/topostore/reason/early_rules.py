@@ -47,7 +47,7 @@ behind the count the census kept the main thread waiting for both (1.2 s at 100,
 from __future__ import annotations
 
 import re
-from collections.abc import Callable, Collection
+from collections.abc import Callable, Collection, Mapping
 from concurrent.futures import Future
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
@@ -59,6 +59,7 @@ from ..compile.rule import ReadKey, Rule
 from ..stores.base import Store
 from ..stores.overlap import Reader, early_result
 from .key_pairs import grouped_form
+from .keyed_asks import KeyCensus
 from .one_group import one_group
 from .order import TYPE_KEY
 from .read_keys import Writes, evaluation_reads, touches
@@ -190,6 +191,9 @@ class EarlyRules:
         #: started and still holding: rule -> whether its census covers
         self._census_after: dict[int, list[int]] = {}
         self._censused: dict[int, Future] = {}
+        #: the censuses that covered at their conclusion's turn and whose reads nothing written since
+        #: touches (by ``id``): the deferred ask of the same census is answered by it (:meth:`covered`)
+        self._covering: dict[int, KeyCensus] = {}
         _delay(ordered, run.rules, lambda i, present: self._eligible(i, back, present), run.present)
         #: the writers of the components before the one looked at, an early one where it starts (the worker
         #: writes its facts before it runs the reads started after it)
@@ -275,6 +279,8 @@ class EarlyRules:
         censuses reading it no longer hold (``censuses_only``: the censuses alone)."""
         for i in [i for i in self._censused if touches(key, self.run.keyed[i].reads)]:
             self._censused.pop(i).cancel()
+        for c in [c for c, census in self._covering.items() if touches(key, census.reads())]:
+            del self._covering[c]
         if censuses_only:
             return
         for i in [i for i in self._started if touches(key, self._reads[i])]:
@@ -290,10 +296,25 @@ class EarlyRules:
         if may_write_any(self.run._queued, self.run.keyed[i].reads):
             started.cancel()
             return False
+        if not started.done():
+            self._reader.help()
         try:
-            return started.result() is True
+            covers = started.result() is True
         except Exception:  # noqa: BLE001 - the keys are kept: the pass evaluates the rule as written
             return False
+        if covers:
+            census = self.run.keyed[i].census
+            self._covering[id(census)] = census
+        return covers
+
+    def covered(self, census: KeyCensus, graphs: Mapping[ReadKey, NamedNode]) -> bool:
+        """Whether ``census``, read with the pair's atoms in ``graphs``, covers now without being taken
+        again: it covered at its conclusion's turn (:meth:`keyless`), nothing written, queued or loaded
+        since touches what it counts (:meth:`wrote`; the data only grows in a full run, so its counts are
+        the same), and ``graphs`` reads a part of what it read (:meth:`.KeyCensus.covers_as_read`).  At
+        100,000 locations the deferred ask's census is the same count of 400,000 rows, 0.3 s of the
+        worker's, at the end of its queue."""
+        return id(census) in self._covering and census.covers_as_read(graphs)
 
     def evaluated(self, i: int, text: str) -> Found | None:
         """Rule ``i``'s evaluation ``text`` found and written early (None: evaluate it now; an early reader
@@ -301,7 +322,14 @@ class EarlyRules:
         started = self._started.pop(i, None)
         if started is None:
             return None
+        if not started[1].done():
+            self._reader.help()
         return early_result(started, _without_delta(text, self.run.delta_read))
+
+    def loading(self, reads: frozenset[ReadKey]) -> bool:
+        """Whether an evaluation started early writes a key of ``reads`` (its facts loaded by the worker,
+        before the reads queued after it)."""
+        return any(touches(self.run.rules[i].writes(), reads) for i in self._started)
 
     def close(self) -> None:
         """Drop what was not used (the reader is joined by its owner)."""
@@ -311,6 +339,7 @@ class EarlyRules:
         for census in self._censused.values():
             census.cancel()
         self._censused.clear()
+        self._covering.clear()
 
 
 __all__ = ["EarlyRules", "Found", "construct_form", "costly", "positive"]

@@ -57,6 +57,8 @@ GROUP_READS: frozenset[ReadKey] = frozenset({
     ("p", _KEY), ("t", f"<{owl('AllDifferent').value}>"),
     *(("p", f"<{p.value}>") for p in (owl("distinctMembers"), owl("members")))})
 _COUNTS = ("pairs", "keys", "held", "all")
+#: the census's default dataset (:func:`census_text`)
+_DEFAULT = frozenset({ASSERTED, INFERRED, AUX})
 
 
 @dataclass(frozen=True)
@@ -73,6 +75,17 @@ class KeyCensus:
             return False
         counts = {int(rows[0][name].value) for name in _COUNTS}
         return len(counts) == 1
+
+    def reads(self) -> frozenset[ReadKey]:
+        """The keys the census counts (:func:`census_text`): the keys, the AllDifferent group and the body
+        atoms holding the asked pair; nothing written to them, its answer on more data is the same."""
+        return GROUP_READS | {a.read_key() for a in _pair_atoms(self.rule)}
+
+    def covers_as_read(self, graphs: Mapping[ReadKey, NamedNode]) -> bool:
+        """Whether a census reading the pair's atoms in ``graphs`` counts what it counts when it covered
+        reading them in the default dataset: each graph is one of the default dataset's, so the values
+        it counts of the pair are a subset of those, all of them key holders, and its key counts the same."""
+        return all(g in _DEFAULT for g in graphs.values())
 
 
 def key_censuses(rules: Sequence[Rule]) -> dict[int, KeyCensus]:
@@ -91,13 +104,14 @@ def key_censuses(rules: Sequence[Rule]) -> dict[int, KeyCensus]:
 
 
 def covered(store: Store, census: KeyCensus | None, queued: Collection[ReadKey | None],
-            graphs: Mapping[ReadKey, NamedNode] | None = None) -> bool:
+            graphs: Mapping[ReadKey, NamedNode] | None = None, taken: bool = False) -> bool:
     """Whether the deferred ask with ``census`` is empty now (conditions 1 to 3); ``queued``: the keys the
     evaluations waiting in the queue may write (none of them may be one the census reads); ``graphs``:
-    as :meth:`KeyCensus.covers`."""
+    as :meth:`KeyCensus.covers`; ``taken``: the census is known to cover on the data now (taken before,
+    nothing it counts written since), so it is not counted again."""
     if census is None or may_write_any(queued, census.rule.reads() | GROUP_READS):
         return False
-    return one_group(store, queued) and census.covers(store, graphs)
+    return one_group(store, queued) and (taken or census.covers(store, graphs))
 
 
 def keyed_conclusion(rule: Rule, other: Rule) -> bool:
@@ -127,8 +141,7 @@ def census_text(rule: Rule, graphs: Mapping[ReadKey, NamedNode]) -> str:
     key, member, held = (_free(name, taken) for name in ("census_key", "census_member", "census_held"))
     branches = [f"GRAPH {AUX} {{ {key} {_KEY} {member} . }} BIND({member} AS {held})"]
     named = {str(AUX): AUX}
-    for v in (rule.head.s, rule.head.o):
-        atom = next(a for a in rule.body if v in (a.s, a.p, a.o))
+    for v, atom in zip((rule.head.s, rule.head.o), _pair_atoms(rule), strict=True):
         renamed = Atom(*(member if t == v else t for t in (atom.s, atom.p, atom.o)), atom.aux)
         graph = AUX if atom.aux else graphs.get(atom.read_key())
         branch = renamed.text() if graph is None else f"GRAPH {graph} {{ {renamed.text()} }}"
@@ -140,6 +153,12 @@ def census_text(rule: Rule, graphs: Mapping[ReadKey, NamedNode]) -> str:
     return (f"SELECT (COUNT({key}) AS ?pairs) (COUNT(DISTINCT {key}) AS ?keys) (COUNT(DISTINCT {held}) AS ?held) "
             f"(COUNT(DISTINCT {member}) AS ?all)\nFROM {ASSERTED} FROM {INFERRED} FROM {AUX} "
             f"{' '.join(f'FROM NAMED {g}' for g in named.values())}\nWHERE {{ {union} }}")
+
+
+def _pair_atoms(rule: Rule) -> tuple[Atom, Atom]:
+    """The body atom the census reads each term of the asked pair in: the first holding it."""
+    x, y = (next(a for a in rule.body if v in (a.s, a.p, a.o)) for v in (rule.head.s, rule.head.o))
+    return x, y
 
 
 def _form(c: cond.Condition) -> tuple:
