@@ -619,6 +619,22 @@ INCONSISTENT = {
 [] a owl:NegativePropertyAssertion ; owl:sourceIndividual :x ; owl:assertionProperty :d ; owl:targetValue 5 .
 :x a owl:NamedIndividual ; :d "5.0"^^xsd:decimal .
 """,
+    # x ∈ {b} is x sameAs b, which a difference contradicts: a type, a range, a universal, a named class
+    "instance_of_a_single_individual_one_of_known_different": """:c a owl:NamedIndividual, [ a owl:Class ; owl:oneOf ( :b ) ] .
+:b a owl:NamedIndividual . :c owl:differentFrom :b .
+""",
+    "range_of_a_single_individual_one_of": """:p a owl:ObjectProperty ; rdfs:range [ a owl:Class ; owl:oneOf ( :b ) ] .
+:a a owl:NamedIndividual ; :p :c . :b a owl:NamedIndividual . :c a owl:NamedIndividual .
+[] a owl:AllDifferent ; owl:distinctMembers ( :b :c ) .
+""",
+    "universal_into_a_single_individual_one_of": """:p a owl:ObjectProperty .
+:C rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :p ; owl:allValuesFrom [ a owl:Class ; owl:oneOf ( :b ) ] ] .
+:a a owl:NamedIndividual, :C ; :p :c . :b a owl:NamedIndividual . :c a owl:NamedIndividual ; owl:differentFrom :b .
+""",
+    "class_defined_as_a_single_individual_in_a_disjoint_class": """:B a owl:Class ; owl:oneOf ( :b ) .
+:E a owl:Class ; owl:disjointWith :F . :F a owl:Class .
+:b a owl:NamedIndividual, :E . :c a owl:NamedIndividual, :B, :F .
+""",
 }
 
 
