@@ -161,6 +161,16 @@ CASES: dict[str, str] = {
 :m a owl:NamedIndividual, :C ; :g :o ; :d 5 . :n a owl:NamedIndividual ; :g :o ; :q :w . :o a owl:NamedIndividual .
 :w a owl:NamedIndividual ; :g :z ; :d 5 . :z a owl:NamedIndividual . :k a owl:NamedIndividual ; :g :z ; :q :m .
 """,
+    # a one-of of a single individual: its instance is that individual (x ∈ {b} ⇒ x sameAs b), by a type, a
+    # range, a universal, a named class defined as {b}, and a subclass of a one-of of one individual twice
+    "single_individual_one_of": """
+:p a owl:ObjectProperty . :r a owl:ObjectProperty ; rdfs:range [ a owl:Class ; owl:oneOf ( :e ) ] .
+:C a owl:Class ; rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :p ; owl:allValuesFrom [ a owl:Class ; owl:oneOf ( :b ) ] ] .
+:B a owl:Class ; owl:oneOf ( :b ) . :D a owl:Class ; rdfs:subClassOf [ a owl:Class ; owl:oneOf ( :h :h ) ] .
+:a a owl:NamedIndividual, :C ; :p :c . :b a owl:NamedIndividual . :c a owl:NamedIndividual ; :r :f .
+:e a owl:NamedIndividual . :f a owl:NamedIndividual . :g a owl:NamedIndividual, :B ; :p :e .
+:h a owl:NamedIndividual . :k a owl:NamedIndividual, :D, [ a owl:Class ; owl:oneOf ( :m ) ] ; :p :a . :m a owl:NamedIndividual .
+""",
     # a property under a functional one (sub-, equivalent, inverse of an inverse-functional) has at most one
     # value, so exactly one is known from one; a functional property's super-property has no maximum
     "functional_super_properties": """

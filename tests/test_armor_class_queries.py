@@ -277,3 +277,31 @@ def test_annotation_assertions_are_no_property_values(tmp_path: Path) -> None:
 :x a owl:NamedIndividual ; :note "n" ; :see :y ; :d 1 ; :p :y ; :both 2 . :y a owl:NamedIndividual .""")
     assert sorted(s.names("QUERY", "IND", "DATAPROP", "x")) == ["both", "d"]
     assert s.names("QUERY", "IND", "OBJECTPROP", "x") == ["p"]
+
+
+#: ``S ⊑ B ⊑ A``, E ≡ A, a told ``C ⊑ C`` and an anonymous subclass of A; D and A disjoint
+TOLD = """:A a owl:Class ; owl:disjointWith :D . :B a owl:Class ; rdfs:subClassOf :A . :S a owl:Class ; rdfs:subClassOf :B .
+:E a owl:Class ; owl:equivalentClass :A . :C a owl:Class ; rdfs:subClassOf :C . :D a owl:Class .
+[ a owl:Restriction ; owl:onProperty :p ; owl:someValuesFrom :D ] rdfs:subClassOf :A . :p a owl:ObjectProperty .
+:k a owl:NamedIndividual , :C , :S ."""
+
+
+def test_told_subclass_of_itself_is_listed_as_armor_does(tmp_path: Path) -> None:
+    """aRMOR adds the told SubClassOf(X C) of a named X to the reasoner's answer: C itself when C ⊑ C is told."""
+    s = Service(tmp_path, TOLD)
+    assert s.names("QUERY", "CLASS", "CLASS", "C") == ["C"]
+    assert s.names("QUERY", "CLASS", "CLASS", "A") == ["B", "S"]
+
+
+def test_subclasses_while_inconsistent_are_the_told_ones(tmp_path: Path) -> None:
+    """While the ontology is inconsistent aRMOR answers from the asserted axioms only, as every query: the
+    told SubClassOf(X A) of a named X, not the classified hierarchy (S under B under A); it again once consistent."""
+    s = Service(tmp_path, TOLD)
+    assert s("ADD", "IND", "CLASS", "k", "D").success
+    s("REASON")
+    assert s("QUERY", "IND", "CLASS", "A").is_consistent is False
+    assert s.names("QUERY", "CLASS", "CLASS", "A") == ["B"]
+    assert s.names("QUERY", "CLASS", "CLASS", "C") == ["C"]
+    assert s("REMOVE", "IND", "CLASS", "k", "D").success
+    s("REASON")
+    assert s.names("QUERY", "CLASS", "CLASS", "A") == ["B", "S"]

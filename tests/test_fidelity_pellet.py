@@ -25,11 +25,11 @@ from existential_value_cases import CASES as EXISTENTIAL_CASES
 from existential_value_cases import all_cases as all_existential_cases
 from existential_value_cases import namespace as existential_namespace
 from fidelity_cases import BASE, CASES, document, namespace, random_horn
-from pyoxigraph import NamedNode
+from pyoxigraph import NamedNode, RdfFormat, parse, serialize
 from support import NEEDS_PELLET, pellet_env
 from unsat_cases import EMPTY, PREFIXES, SATISFIABLE
 
-from topostore import Ontology, OntologyWarning
+from topostore import InvalidValueError, Ontology, OntologyWarning
 from topostore.compile import profile
 from topostore.compile.notices import RULE_SET_ASIDE
 
@@ -619,6 +619,22 @@ INCONSISTENT = {
 [] a owl:NegativePropertyAssertion ; owl:sourceIndividual :x ; owl:assertionProperty :d ; owl:targetValue 5 .
 :x a owl:NamedIndividual ; :d "5.0"^^xsd:decimal .
 """,
+    # x ∈ {b} is x sameAs b, which a difference contradicts: a type, a range, a universal, a named class
+    "instance_of_a_single_individual_one_of_known_different": """:c a owl:NamedIndividual, [ a owl:Class ; owl:oneOf ( :b ) ] .
+:b a owl:NamedIndividual . :c owl:differentFrom :b .
+""",
+    "range_of_a_single_individual_one_of": """:p a owl:ObjectProperty ; rdfs:range [ a owl:Class ; owl:oneOf ( :b ) ] .
+:a a owl:NamedIndividual ; :p :c . :b a owl:NamedIndividual . :c a owl:NamedIndividual .
+[] a owl:AllDifferent ; owl:distinctMembers ( :b :c ) .
+""",
+    "universal_into_a_single_individual_one_of": """:p a owl:ObjectProperty .
+:C rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :p ; owl:allValuesFrom [ a owl:Class ; owl:oneOf ( :b ) ] ] .
+:a a owl:NamedIndividual, :C ; :p :c . :b a owl:NamedIndividual . :c a owl:NamedIndividual ; owl:differentFrom :b .
+""",
+    "class_defined_as_a_single_individual_in_a_disjoint_class": """:B a owl:Class ; owl:oneOf ( :b ) .
+:E a owl:Class ; owl:disjointWith :F . :F a owl:Class .
+:b a owl:NamedIndividual, :E . :c a owl:NamedIndividual, :B, :F .
+""",
 }
 
 
@@ -627,6 +643,30 @@ def test_inconsistent_as_pellet(name: str) -> None:
     text = document(name, INCONSISTENT[name])
     assert pellet(text) == {"consistent": False}
     assert not loaded(text).reason().consistent
+
+
+#: ill-typed literals: Pellet finds each ontology inconsistent; topostore refuses each, as every ill-typed literal
+#: (a double written finite beyond its range, which Pellet reads as "Infinity"; owl:real, which has no lexical
+#: forms; an owl:rational that is not n/d).  A float beyond its range is refused alike (tests/test_terms.py): Pellet
+#: through the OWL API finds it inconsistent too, but Owlready2 hands Pellet the Python float, not the literal.
+ILL_TYPED = {
+    "double_beyond_its_range": '"1e400"^^xsd:double', "negative_double_beyond_its_range": '"-1E309"^^xsd:double',
+    "real": '"3"^^owl:real', "rational_without_a_denominator": '"3"^^owl:rational',
+    "rational_over_zero": '"1/0"^^owl:rational',
+}
+
+
+@pytest.mark.parametrize("name", list(ILL_TYPED))
+def test_ill_typed_literals_are_refused_where_pellet_finds_them_inconsistent(name: str) -> None:
+    text = document(name, f":d a owl:DatatypeProperty . :x a owl:NamedIndividual ; :d {ILL_TYPED[name]} .")
+    FILES.mkdir(parents=True, exist_ok=True)
+    path = FILES / f"{name}.{os.getpid()}.nt"  # written by pyoxigraph: topostore refuses to load it
+    path.write_bytes(serialize(parse(text.encode(), format=RdfFormat.TURTLE), format=RdfFormat.N_TRIPLES))
+    assert pellet_of_file(path) == {"consistent": False}
+    o = Ontology()
+    with pytest.raises(InvalidValueError, match="out of range|not a valid"):
+        o.load_data(text)
+    assert not list(o.store.triples())
 
 
 @pytest.mark.parametrize("name", list(KNOWN_INCONSISTENT))

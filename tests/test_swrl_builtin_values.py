@@ -108,3 +108,36 @@ def test_matches_takes_the_whole_string_and_ignores_flags() -> None:
     assert members(o, "Own") == {"a"}
     assert members(o, "Caseless") == set()
     assert members(o, "Given") == {"a"}
+
+
+#: Pellet's testers compare numbers by Java's compareTo (checked against Pellet through the OWL API: Owlready2
+#: hands Pellet a Python float, not the literal "NaN"): NaN equals NaN, float or double, and is above every other
+#: number, INF included; never comparable with a value of another kind
+COMPARISONS = {"Eq": "equal", "Ne": "notEqual", "Lt": "lessThan", "Le": "lessThanOrEqual", "Gt": "greaterThan",
+               "Ge": "greaterThanOrEqual"}
+NAN_PAIRS = {"dd": ('"NaN"^^xsd:double', '"NaN"^^xsd:double', 0), "fd": ('"NaN"^^xsd:float', '"NaN"^^xsd:double', 0),
+             "dn": ('"NaN"^^xsd:double', "5", 1), "nf": ('"2.5"^^xsd:decimal', '"NaN"^^xsd:float', -1),
+             "fi": ('"NaN"^^xsd:float', '"INF"^^xsd:double', 1), "ds": ('"NaN"^^xsd:double', '"NaN"', None)}
+
+
+def _holds(label: str, order: int | None) -> bool:
+    """Whether comparison ``label`` holds of two values ``order`` (compareTo's sign; None: not comparable)."""
+    if order is None:
+        return label == "Ne"
+    return {"Eq": order == 0, "Ne": order != 0, "Lt": order < 0, "Le": order <= 0, "Gt": order > 0,
+            "Ge": order >= 0}[label]
+
+
+def test_comparisons_with_nan_follow_javas_compare_to_as_pellet() -> None:
+    rules = {c: f"d(?x, ?v) ^ e(?x, ?w) ^ swrlb:{op}(?v, ?w) -> {c}(?x)" for c, op in COMPARISONS.items()}
+    rules |= {"Above": "d(?x, ?v) ^ swrlb:greaterThan(?v, 5) -> Above(?x)",  # a constant: NaN is above it
+              "Below": "d(?x, ?v) ^ swrlb:lessThanOrEqual(5, ?v) -> Below(?x)"}
+    facts = ":d a owl:DatatypeProperty . :e a owl:DatatypeProperty . " + " ".join(
+        f":{n} :d {a} ; :e {b} ." for n, (a, b, _) in NAN_PAIRS.items()) + " ".join(f" :{c} a owl:Class ." for c in rules)
+    o = ontology(facts, rules)
+    assert o.reason().consistent
+    for label in COMPARISONS:
+        assert members(o, label) == {n for n, (_, _, order) in NAN_PAIRS.items() if _holds(label, order)}, label
+    assert members(o, "Above") == members(o, "Below") == set(NAN_PAIRS) - {"nf"}  # each d a NaN but nf's 2.5
+    inferred, _aux, _entailed, _ok = from_scratch(o)
+    assert set(o.store.triples(graph=INFERRED)) == inferred

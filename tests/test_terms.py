@@ -7,7 +7,8 @@ from pyoxigraph import BlankNode, Literal, NamedNode
 from support import NS
 
 from topostore.errors import InvalidNameError, InvalidValueError, UnknownTypeError
-from topostore.rdf.terms import entity, iri, literal_of, sparql, typed_literal, validate_name, value_key
+from topostore.rdf.terms import check_literal, entity, iri, literal_of, sparql, typed_literal, validate_name, value_key
+from topostore.rdf.vocab import OWL
 
 XSD = "http://www.w3.org/2001/XMLSchema#"
 
@@ -91,7 +92,8 @@ def test_typed_literal(value: str, type_name: str, expected: Literal) -> None:
     ("2147483648", "INT", "'2147483648' is out of range for xsd:int"),
     ("9223372036854775808", "LONG", "'9223372036854775808' is out of range for xsd:long"),
     ("128", "BYTE", "'128' is out of range for xsd:byte"),
-    ("1e39", "FLOAT", "'1e39' is out of range for xsd:float"),
+    ("1e39", "FLOAT", "'1e39' is out of range for xsd:float (write INF or -INF for an infinity)"),
+    ("-1e400", "DOUBLE", "'-1e400' is out of range for xsd:double (write INF or -INF for an infinity)"),
     ("one", "DOUBLE", "'one' is not a valid xsd:double"),
     ("1.2.3", "DECIMAL", "'1.2.3' is not a valid xsd:decimal"),
     ("yes", "BOOLEAN", "'yes' is not a valid xsd:boolean (true/false)"),
@@ -122,6 +124,25 @@ def test_literal_of_covers_the_unsigned_and_sign_restricted_types() -> None:
                          ("-1", "unsignedByte"), ("256", "unsignedByte")):
         with pytest.raises(InvalidValueError, match=f"out of range for xsd:{local}"):
             literal_of(value, local)
+
+
+def test_check_literal_refuses_floats_and_doubles_beyond_their_range_and_ill_typed_owl_numbers() -> None:
+    """Read as ±INF by XSD 1.1 and as ill-typed by Pellet 2.3.1: refused alike for float and double; owl:real
+    has no lexical forms, owl:rational's are n/d with d positive."""
+    for text, local in (("1e40", "float"), ("-3.5e38", "float"), ("1e400", "double"), ("-1E309", "double")):
+        with pytest.raises(InvalidValueError, match=f"out of range for xsd:{local}"):
+            check_literal(lit(text, local))
+    for text, local in (("INF", "float"), ("-INF", "double"), ("3.4028235e38", "float"), ("1e-50", "float"),
+                        ("1.7976931348623157e308", "double"), ("NaN", "double")):
+        check_literal(lit(text, local))
+    for text in ("3", "1/3", "0.5"):
+        with pytest.raises(InvalidValueError, match="not a valid owl:real"):
+            check_literal(Literal(text, datatype=NamedNode(OWL + "real")))
+    for text in ("3", "1/0", "1/-3", "a/b", "1.5/2"):
+        with pytest.raises(InvalidValueError, match="not a valid owl:rational"):
+            check_literal(Literal(text, datatype=NamedNode(OWL + "rational")))
+    for text in ("1/3", "-2/04", "0/1"):
+        check_literal(Literal(text, datatype=NamedNode(OWL + "rational")))
 
 
 # ---------------------------------------------------------------- data-value keys and SPARQL text

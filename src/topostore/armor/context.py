@@ -22,7 +22,7 @@ from ..errors import InvalidNameError, InvalidValueError, TopostoreError, Unknow
 from ..ontology.facade import Ontology
 from ..ontology.named_queries import QueryItem
 from ..rdf import terms
-from ..rdf.vocab import ASSERTED, NOTHING, THING, is_internal, rdfs
+from ..rdf.vocab import ASSERTED, INFERRED, NOTHING, THING, is_internal, rdfs
 from . import codes
 from .codes import CommandError
 from .reference import Change, Delta, Reference
@@ -203,12 +203,15 @@ def asserted(onto: Ontology, s=None, p=None, o=None) -> list[Triple]:
 def subclasses(onto: Ontology, cls: NamedNode) -> list[NamedNode]:
     """The subclasses aRMOR answers for ``cls`` (QUERY CLASS CLASS, DISJOINT CLASS CLASS), sorted: the
     reasoner's ``getSubClasses(cls, false)``, which leaves out the classes equivalent to ``cls`` (its own
-    node), with the told ``SubClassOf(X cls)`` added (the union of spec §2.5); never owl:Nothing or an
-    internal class (spec §7 item 6).  An unsatisfiable class is under every class."""
-    above = onto.superclasses(cls)
-    told = {t.subject for t in asserted(onto, None, rdfs("subClassOf"), cls)}
-    return sorted((c for c in onto.subclasses(cls) if not hidden(c) and (c not in above or c in told)),
-                  key=lambda n: n.value)
+    node), with the told ``SubClassOf(X cls)`` of a named X added (the union of spec §2.5: ``cls`` itself
+    when ``SubClassOf(cls cls)`` is told); the told ones only while the ontology is inconsistent (aRMOR
+    asks the reasoner nothing then, as for every query); never owl:Nothing or an internal class (spec §7
+    item 6).  An unsatisfiable class is under every class."""
+    told = {t.subject for t in asserted(onto, None, rdfs("subClassOf"), cls) if isinstance(t.subject, NamedNode)}
+    if INFERRED in onto.visible_graphs():  # consistent (or not reasoned yet): the reasoner's answer too
+        above = onto.superclasses(cls)
+        told |= {c for c in onto.subclasses(cls) if c not in above}
+    return sorted((c for c in told if not hidden(c)), key=lambda n: n.value)
 
 
 __all__ = ["Reply", "Context", "Command", "Handler", "hidden", "fixed", "asserted", "subclasses"]

@@ -9,6 +9,7 @@ Why not SPARQL's operators alone: SPARQL compares values of one kind and makes e
   booleans by value, two instants by time line, two literals of one other datatype as written);
 * ``notEqual``: exactly where ``equal`` is false, between any two data values (``"5"^^xsd:token`` is not
   equal to 5, a boolean to a date, ``"a"@en`` to ``"a"``);
+* NaN (float or double) as Java's ``compareTo`` has it: equal to a NaN, above every other number (``NaN > INF``);
 * the orderings: numbers by value; the strings above by their characters, across those types; two instants
   of comparable types by time line; two literals of one datatype and language tag Pellet does not order by
   value (``xsd:anyURI``, ``xsd:hexBinary``, a tagged string, a datatype of the ontology's own) by their
@@ -47,20 +48,44 @@ def comparison(name: str, a: str, b: str, numbers: Collection[str]) -> str:
     bound; ``numbers``: the variables known to hold a number."""
     op = OPERATORS[name]
     if _number(a, numbers) or _number(b, numbers):
-        return f"COALESCE({a} != {b}, true)" if name == "notEqual" else f"{a} {op} {b}"
+        if name == "notEqual":
+            return f"COALESCE({a} != {b}, true)"
+        # NaN above every number: a value read from the graph may be NaN; a number computed by an arithmetic
+        # built-in is taken as none (a NaN result is not followed), so a robot's greaterThan(?elapsed,
+        # ?threshold) keeps its plain form (a NaN threshold answers false there, as Pellet does)
+        above = b if name in ("lessThan", "lessThanOrEqual") else a if name.startswith("greater") else None
+        if above is not None and above.startswith("?") and not _number(above, numbers):
+            return f"({a} {op} {b} || {_nan(above)})"
+        return f"{a} {op} {b}"
     if name == "equal":
         return _equal(a, b)
     if name == "notEqual":
         return f"(isLiteral({a}) && isLiteral({b}) && !{_equal(a, b)})"
-    return (f"COALESCE(IF({_string(a)} && {_string(b)}, STR({a}) {op} STR({b}), "
+    return (f"COALESCE(IF({_nan(a)} || {_nan(b)}, {_nan_order(name, a, b)}, "
+            f"IF({_string(a)} && {_string(b)}, STR({a}) {op} STR({b}), "
             f"IF({_by_characters(a)} && sameTerm(datatype({a}), datatype({b})) && lang({a}) = lang({b}), "
-            f"STR({a}) {op} STR({b}), (isNumeric({a}) || datatype({a}) IN ({_TEMPORAL})) && {a} {op} {b})), false)")
+            f"STR({a}) {op} STR({b}), (isNumeric({a}) || datatype({a}) IN ({_TEMPORAL})) && {a} {op} {b}))), false)")
+
+
+def _nan(v: str) -> str:
+    """``v`` is a NaN (float or double): the one number SPARQL finds unequal to itself."""
+    return f"COALESCE(isNumeric({v}) && {v} != {v}, false)"
+
+
+def _nan_order(name: str, a: str, b: str) -> str:
+    """An ordering with a NaN, as Java's ``compareTo`` in Pellet's testers: NaN equals NaN and is above every
+    other number (never comparable with a value of another kind)."""
+    a_above = f"({_nan(a)} && isNumeric({b}))"  # a >= b
+    b_above = f"({_nan(b)} && isNumeric({a}))"  # a <= b
+    return {"lessThan": f"(!{_nan(a)} && {b_above})", "lessThanOrEqual": b_above,
+            "greaterThan": f"(!{_nan(b)} && {a_above})", "greaterThanOrEqual": a_above}[name]
 
 
 def _equal(a: str, b: str) -> str:
-    """Pellet's equality: SPARQL's, and two strings of the string types by their characters."""
+    """Pellet's equality: SPARQL's, two strings of the string types by their characters, and two NaNs (float
+    or double: Java's ``compareTo``, where SPARQL's ``=`` follows IEEE 754)."""
     return (f"(COALESCE({a} = {b}, false) || "
-            f"COALESCE({_string(a)} && {_string(b)} && STR({a}) = STR({b}), false))")
+            f"COALESCE({_string(a)} && {_string(b)} && STR({a}) = STR({b}), false) || ({_nan(a)} && {_nan(b)}))")
 
 
 def _string(v: str) -> str:

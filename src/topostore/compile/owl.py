@@ -34,7 +34,7 @@ from collections.abc import Sequence
 from pyoxigraph import Literal, NamedNode
 
 from ..rdf.terms import sparql
-from ..rdf.vocab import NOTHING, THING, TYPE
+from ..rdf.vocab import NOTHING, SAME_AS, THING, TYPE
 from . import condition as cond
 from .condition import Condition
 from .datatypes import implied_ranges
@@ -233,6 +233,10 @@ class OwlCompiler:
         elif e.kind == "oneof":
             for ind in e.individuals:
                 self.instantiate((node, sparql(ind)), origin, "cls-oo")
+            if len(set(e.individuals)) == 1:  # x ∈ {b} is x sameAs b: Horn (not in OWL 2 RL), no choice to make
+                one = sparql(e.individuals[0])
+                self.emit("cls-oo1", origin, [Atom(x, T, node)], Atom(x, sparql(SAME_AS), one),
+                          [cond.test(f"!sameTerm({x}, {one})")])
         elif e.kind == "not":
             self.emit("cls-com", origin, [Atom(x, T, node)] + self.member(x, e.members[0]),
                       violation=(x,), message=f"an individual is in {e.members[0]} and in its complement")

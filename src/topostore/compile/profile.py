@@ -13,7 +13,8 @@ expression is used, so that such a difference is never silent:
   membership must be derived.
 
 =================================  =====================================================
-union / one-of, positively          non-Horn: which member is not known
+union / one-of, positively          non-Horn: which member is not known (a one-of of one
+                                    individual is Horn: x ∈ {b} ⇒ x sameAs b, .owl)
 complement, negatively              non-membership by case analysis (:mod:`.negation`)
 universal restriction, negatively   membership needs every value known
 max cardinality, negatively         idem, when a maximum can be told elsewhere
@@ -179,7 +180,7 @@ class ProfileReport:
         if positive and k == "or" and len(e.members) > 1 and all(m.node != THING for m in e.members):
             self.note(UNION, axiom, f"an instance of {describe(e)} is in one of its members, which one is not "
                       "known: conclusions by case analysis are not drawn")
-        elif positive and k == "oneof":
+        elif positive and k == "oneof" and len(set(e.individuals)) > 1:  # {b}: x sameAs b is derived
             self.note(UNION, axiom, f"an instance of {describe(e)} is one of those individuals: which one "
                       "(owl:sameAs) is not derived")
         elif not positive and k == "not":

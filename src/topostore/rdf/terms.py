@@ -16,7 +16,7 @@ from functools import lru_cache
 from pyoxigraph import BlankNode, Literal, NamedNode, Quad, RdfFormat, Triple, parse
 
 from ..errors import InvalidNameError, InvalidValueError, UnknownTypeError
-from .vocab import PLACEHOLDER_PREDICATE, PLACEHOLDER_SUBJECT, XSD
+from .vocab import OWL, PLACEHOLDER_PREDICATE, PLACEHOLDER_SUBJECT, XSD
 
 Term = NamedNode | BlankNode | Literal
 
@@ -111,6 +111,10 @@ ARMOR_TYPES: dict[str, str] = {
 _INT_RE = re.compile(r"^[+-]?[0-9]+$")
 _DEC_RE = re.compile(r"^[+-]?([0-9]+(\.[0-9]*)?|\.[0-9]+)$")
 _FLOAT_RE = re.compile(r"^[+-]?(([0-9]+(\.[0-9]*)?|\.[0-9]+)([eE][+-]?[0-9]+)?|INF|NaN)$")
+#: owl:rational's lexical space (OWL 2 Structural Specification §4.1): a numerator, "/", a positive denominator
+_RATIONAL_RE = re.compile(r"^[+-]?[0-9]+/0*[1-9][0-9]*$")
+#: the largest finite xsd:float; a float or double written finite that reads beyond its type's range is refused
+_FLOAT_MAX = 3.4028235e38
 
 
 def _java_float_text(value: float) -> str:
@@ -158,8 +162,9 @@ _VALID_MAX = 4096
 
 
 def check_literal(lit: Literal) -> None:
-    """Raise :class:`InvalidValueError` when ``lit`` is not a valid value of its XSD type (a literal of a
-    datatype topostore does not validate, xsd:anyURI, xsd:gYear, ..., is kept as written)."""
+    """Raise :class:`InvalidValueError` when ``lit`` is not a valid value of its XSD type, or of owl:real
+    (none is) or owl:rational (a literal of a datatype topostore does not validate, xsd:anyURI, xsd:gYear,
+    ..., is kept as written)."""
     if lit in _VALID:
         return
     dt = lit.datatype.value
@@ -168,6 +173,12 @@ def check_literal(lit: Literal) -> None:
             literal_of(lit.value, dt[len(XSD):])  # an invalid value of a type topostore knows raises
         except UnknownTypeError:
             pass
+    elif dt == OWL + "real":  # Pellet 2.3.1 finds such a literal ill-typed (inconsistent), as OWL 2 makes it
+        raise InvalidValueError(f"{lit.value[:40]!r} is not a valid owl:real: owl:real has no lexical forms "
+                                "(write an xsd:decimal or an owl:rational such as \"1/3\")")
+    elif dt == OWL + "rational" and not _RATIONAL_RE.match(lit.value.strip()):
+        raise InvalidValueError(f"{lit.value[:40]!r} is not a valid owl:rational (a numerator, '/' and a "
+                                "positive denominator, such as \"1/3\")")
     _known_valid(lit)
 
 
@@ -214,8 +225,10 @@ def literal_of(value: str, local: str) -> Literal:
         if not _FLOAT_RE.match(text):
             raise InvalidValueError(f"{value!r} is not a valid xsd:{local}")
         number = float(text.replace("INF", "inf"))
-        if local == "float" and not math.isinf(number) and abs(number) > 3.4028235e38:
-            raise InvalidValueError(f"{value!r} is out of range for xsd:float")
+        if "INF" not in text and (math.isinf(number) or (local == "float" and abs(number) > _FLOAT_MAX)):
+            # XSD 1.1 would read it as ±INF; Pellet 2.3.1 (through the OWL API's "Infinity") finds the
+            # ontology inconsistent, as it does for every ill-typed literal: refused as those are
+            raise InvalidValueError(f"{value!r} is out of range for xsd:{local} (write INF or -INF for an infinity)")
         return Literal(_java_float_text(number), datatype=datatype)
     if local == "boolean":
         # aRMOR: true iff equal to "true" ignoring case; we also accept 1/0 and
