@@ -84,7 +84,7 @@ def kept_simple(tb: TBox, expressions: list[Expr]) -> dict[NamedNode, list[str]]
     subs = _sub_properties(tb)
     kept: dict[NamedNode, list[str]] = {}
     for used in sorted(uses, key=str):
-        why = f"{_short(used)} is {' and '.join(uses[used])}"
+        what = " and ".join(uses[used])
         seen: set[Node] = set()
         todo: list[Node] = [(used, False)]
         while todo:
@@ -92,7 +92,10 @@ def kept_simple(tb: TBox, expressions: list[Expr]) -> dict[NamedNode, list[str]]
             if node in seen:
                 continue
             seen.add(node)
-            kept.setdefault(node[0], []).append(why)
+            name, inverse = node
+            kept.setdefault(name, []).append(
+                f"{_short(used)} is {what}" if node == (used, False) else
+                f"{'the inverse of ' if inverse else ''}{_short(name)} is a sub-property of {_short(used)}, which is {what}")
             todo.extend(subs.get(node, ()))
     return kept
 
@@ -116,8 +119,8 @@ def ignore_non_simple(tb: TBox, expressions: list[Expr]) -> None:
     for p in sorted(dropped, key=str):
         why = "; ".join(dict.fromkeys(kept[p]))
         tb.partial.append((", ".join(dropped[p]), NON_SIMPLE,
-                           f"ignored, as Pellet ignores it: {why}, which OWL 2 DL allows only of a simple property "
-                           "(one neither transitive nor defined by a chain)"))
+                           f"ignored, as Pellet ignores it: {why}; OWL 2 DL allows only a simple property there, one "
+                           "neither transitive nor the super-property of a chain, nor above such a property"))
 
 
 def _text(p: Prop) -> str:
