@@ -31,6 +31,7 @@ from unsat_cases import EMPTY, PREFIXES, SATISFIABLE
 
 from topostore import InvalidValueError, Ontology, OntologyWarning
 from topostore.compile import profile
+from topostore.compile.notices import NON_SIMPLE as NON_SIMPLE_KIND
 from topostore.compile.notices import RULE_SET_ASIDE
 
 pytestmark = NEEDS_PELLET
@@ -888,3 +889,58 @@ def test_the_value_of_an_existential_as_pellet(name: str) -> None:
     supers = {c: sorted(t.value for t in o.superclasses(NamedNode(c)) if t.value.startswith(ns))
               for c in expected["supers"] if c.startswith(ns)}
     assert supers == {c: v for c, v in expected["supers"].items() if c.startswith(ns)}
+
+
+# ---------------------------------------------------------------- non-simple properties where simple ones are wanted
+
+NON_SIMPLE_DECLARED = """:p a owl:ObjectProperty . :q a owl:ObjectProperty . :r a owl:ObjectProperty . :s a owl:ObjectProperty .
+:t a owl:ObjectProperty . :C a owl:Class . :M a owl:Class .
+:a a owl:NamedIndividual . :b a owl:NamedIndividual . :c a owl:NamedIndividual . :d a owl:NamedIndividual .
+"""
+#: name -> (Turtle, whether an axiom is ignored): a transitive or chain-defined property (or one above it) used
+#: where OWL 2 DL wants a simple property; Pellet ignores the transitivity and chains of the property used and of
+#: its sub-properties (through inverses and equivalences), and keeps a super-property's
+NON_SIMPLE = {
+    "transitive_functional_only": (":p a owl:TransitiveProperty, owl:FunctionalProperty . :a :p :b . :b :p :c ."
+                                   " :a a [ a owl:Restriction ; owl:onProperty :p ; owl:allValuesFrom :C ] .", True),
+    "transitive_below_a_functional": (":q a owl:TransitiveProperty ; rdfs:subPropertyOf :p . :p a owl:FunctionalProperty ."
+                                      " :a :q :b . :b :q :c . :b owl:differentFrom :c .", True),
+    "transitive_inverse_of_a_functional": (":q owl:inverseOf :p ; a owl:TransitiveProperty . :p a owl:FunctionalProperty ."
+                                           " :a :p :b . :b :p :c .", True),
+    "transitive_equivalent_of_a_functional": (":q owl:equivalentProperty :p ; a owl:TransitiveProperty ."
+                                              " :p a owl:FunctionalProperty . :a :p :b . :b :p :c .", True),
+    "chain_below_an_inverse_functional": (":t owl:propertyChainAxiom ( :r :s ) ; rdfs:subPropertyOf :p ."
+                                          " :p a owl:InverseFunctionalProperty . :a :r :c . :c :s :d . :b :p :d .", True),
+    "chain_below_an_irreflexive": (":p owl:propertyChainAxiom ( :r :r ) ; rdfs:subPropertyOf :q . :q a owl:IrreflexiveProperty ."
+                                   " :a :r :b . :b :r :a .", True),
+    "transitive_asymmetric": (":p a owl:TransitiveProperty, owl:AsymmetricProperty . :a :p :b . :b :p :c . :c :p :a .", True),
+    "transitive_disjoint_with_another": (":s owl:propertyDisjointWith :p . :p a owl:TransitiveProperty ."
+                                         " :a :p :b . :b :p :c . :a :s :c .", True),
+    "transitive_in_a_self_restriction": (":p a owl:TransitiveProperty . :a :p :b . :b :p :a . :C owl:equivalentClass"
+                                         " [ a owl:Restriction ; owl:onProperty :p ; owl:hasSelf true ] .", True),
+    "transitive_inverse_in_a_qualified_maximum": (
+        ":p a owl:TransitiveProperty . :M rdfs:subClassOf [ a owl:Restriction ; owl:onProperty [ owl:inverseOf :p ] ;"
+        " owl:maxQualifiedCardinality \"1\"^^xsd:nonNegativeInteger ; owl:onClass owl:Thing ] ."
+        " :c a :M . :a :p :b . :b :p :c . :a owl:differentFrom :b .", True),
+    "transitive_in_a_minimum": (":p a owl:TransitiveProperty . :a :p :b . :b :p :c . :M rdfs:subClassOf [ a owl:Restriction ;"
+                                " owl:onProperty :p ; owl:minCardinality \"1\"^^xsd:nonNegativeInteger ] .", True),
+    "transitive_above_a_functional": (":p rdfs:subPropertyOf :q . :q a owl:TransitiveProperty . :p a owl:FunctionalProperty ."
+                                      " :a :p :b . :b :p :c .", False),
+    "chain_above_a_functional": (":p owl:propertyChainAxiom ( :r :s ) . :q rdfs:subPropertyOf :p ; a owl:FunctionalProperty ."
+                                 " :a :r :c . :c :s :d . :a :q :b .", False),
+}
+
+
+@pytest.mark.parametrize("name", list(NON_SIMPLE))
+def test_non_simple_properties_in_simple_positions_as_pellet(name: str) -> None:
+    """Consistency, classes and values are Pellet's, and each ignored axiom is named."""
+    body, ignored = NON_SIMPLE[name]
+    text, ns = document(name, NON_SIMPLE_DECLARED + body), namespace(name)
+    theirs = pellet(text)
+    o = loaded(text)
+    assert bool([n for n in o.notices if n.axiom_kind == NON_SIMPLE_KIND]) == ignored
+    if not theirs["consistent"]:
+        assert not o.reason().consistent
+        return
+    ours = topostore(o, list(theirs["individuals"]))
+    assert _in_namespace(only(ours, ns), ns) == _in_namespace(only(theirs, ns), ns)

@@ -15,7 +15,7 @@ from topostore import IncompleteOntologyError, Ontology, OntologyWarning
 from topostore.armor import ArmorService
 from topostore.cli.group import cli
 from topostore.compile import profile as kinds
-from topostore.compile.notices import NOT_STORED
+from topostore.compile.notices import NON_SIMPLE, NOT_STORED
 from topostore.rdf.vocab import ASSERTED
 from topostore.resources import default_ontology_files
 
@@ -254,7 +254,6 @@ def test_a_chain_whose_conclusion_through_an_unnamed_value_carries_nothing_is_no
 @pytest.mark.parametrize("extra", [
     ":R rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :q ; owl:someValuesFrom :G ] .",  # the value says more
     ":R owl:disjointWith :F .",  # the value may be in disjoint classes
-    ":t a owl:FunctionalProperty .",  # values of t may be merged
     "[ a owl:Restriction ; owl:onProperty :t ; owl:someValuesFrom :G ] rdfs:subClassOf :H .",  # read on the left
     # the value is in a restriction on the inverse read on the left, or its range is a filler read there
     "[ a owl:Restriction ; owl:onProperty [ owl:inverseOf :t ] ; owl:someValuesFrom :A ] rdfs:subClassOf :H .",
@@ -266,6 +265,17 @@ def test_a_chain_to_a_second_unnamed_value_is_named_unless_shown_to_carry_nothin
                 "owl:someValuesFrom :F ] . :F rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :s ; "
                 f"owl:someValuesFrom :G ] . {extra} :a a :A .")
     assert any("chain of t" in n.reason for n in o.reason().incomplete)
+
+
+def test_a_chain_of_a_functional_property_is_ignored_as_pellet_ignores_it_not_named_as_through_a_value() -> None:
+    """t functional and defined by a chain is outside OWL 2 DL: its chain is ignored (as Pellet ignores it) and named so."""
+    o = quietly(":s a owl:ObjectProperty . :t a owl:ObjectProperty, owl:FunctionalProperty ; rdfs:range :R ; "
+                "owl:propertyChainAxiom ( :p :s ) . :A rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :p ; "
+                "owl:someValuesFrom :F ] . :F rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :s ; "
+                "owl:someValuesFrom :G ] . :a a :A .")
+    incomplete = o.reason().incomplete
+    assert not any("chain of t" in n.reason for n in incomplete)
+    assert [n.subject for n in incomplete if n.axiom_kind == NON_SIMPLE] == ["t chain of p o s"]
 
 
 def test_one_warning_per_kind_naming_every_axiom() -> None:

@@ -46,6 +46,8 @@ EXISTENTIAL = "existential with consequences for an unnamed value"
 DIFFERENCE = "difference entailed by a property characteristic"
 UNSUPPORTED = "not supported"
 UNCHECKED_DATATYPE = "values of a datatype not checked"
+#: the transitivity or chain of a property OWL 2 DL wants simple where it is used, ignored as Pellet ignores it
+NON_SIMPLE = "non-simple property where a simple one is wanted"
 #: a SWRL rule that cannot be compiled (an unknown built-in, a malformed atom): kept in the graph, not reasoned
 RULE_SET_ASIDE = "SWRL rule set aside"
 

@@ -28,6 +28,7 @@ from .owl_extras import (
 from .profile import all_uses, profile
 from .rule import Rule, RuleSet
 from .schema_tables import hold_tables
+from .simple_properties import ignore_non_simple
 from .swrl import SwrlCompiler
 from .tbox_reader import TBoxReader
 from .unsatisfiable import unsatisfiable
@@ -49,6 +50,7 @@ def compile_ontology(store: Store, graph: NamedNode, refuse: Collection[Term] = 
     tbox.typed_expressions.extend(swrl.expressions)
     merge_alike(tbox)  # after the SWRL rules: the expressions they name are kept
     owl = OwlCompiler(tbox)
+    ignore_non_simple(tbox, owl.all_expressions())  # before any rule is made: as Pellet, not as written
     rules = RuleSet()
     rules.add(generic_rules())
     rules.add(owl.compile())
