@@ -2,7 +2,7 @@
 (tests/untyped_cases.py), the file loaded by the OWL API 3.4.3 itself as aRMOR loads it.
 
 Owlready2's path (tests/test_fidelity_pellet.py) cannot check this: Owlready2 parses the file with its own
-parser and gives Pellet what it read.  Here tests/data/owlapi/OwlApiTypes.java is compiled against Owlready2's
+parser and gives Pellet what it read.  Here benchmarks/pellet/OwlApiTypes.java is compiled against Owlready2's
 jars and reads the file with the OWL API, in N-Triples and RDF/XML.  Skipped without a JDK or Owlready2.
 """
 
@@ -29,7 +29,7 @@ from benchmarks.warm_pellet import pellet_jars  # noqa: E402
 
 pytestmark = [*NEEDS_PELLET, pytest.mark.skipif(shutil.which("javac") is None, reason="needs a JDK (javac)")]
 
-SOURCE = Path(__file__).with_name("data") / "owlapi" / "OwlApiTypes.java"
+SOURCE = Path(__file__).resolve().parents[1] / "benchmarks" / "pellet" / "OwlApiTypes.java"
 FORMATS = {"nt": ox.RdfFormat.N_TRIPLES, "owl": ox.RdfFormat.RDF_XML}
 
 
