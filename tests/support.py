@@ -23,7 +23,7 @@ def too_large_axiom(ns: str) -> list[Triple]:
     the last successful one."""
     members = " ".join(f"<{ns}A{i}>" for i in range(300))
     text = f"<{ns}C> <http://www.w3.org/2002/07/owl#equivalentClass> " \
-           f"[ <http://www.w3.org/2002/07/owl#intersectionOf> ({members}) ] ."
+           f"[ a <http://www.w3.org/2002/07/owl#Class> ; <http://www.w3.org/2002/07/owl#intersectionOf> ({members}) ] ."
     return list(parse(text, RdfFormat.TURTLE))
 
 

@@ -21,7 +21,7 @@ from topostore.rdf.vocab import ASSERTED
 TBOX = """@prefix : <http://e.org/c#> . @prefix owl: <http://www.w3.org/2002/07/owl#> .
 @prefix rdfs: <http://www.w3.org/2000/01/rdf-schema#> .
 :p a owl:ObjectProperty . :A a owl:Class . :B a owl:Class ; owl:disjointWith :A .
-:C owl:equivalentClass [ owl:complementOf :A ] .
+:C owl:equivalentClass [ a owl:Class ; owl:complementOf :A ] .
 :D rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :p ; owl:someValuesFrom :B ] .
 :E owl:equivalentClass [ a owl:Restriction ; owl:onProperty :p ; owl:allValuesFrom :C ] .
 :F rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :p ; owl:minQualifiedCardinality 2 ; owl:onClass :B ] .

@@ -289,7 +289,7 @@ TOGGLED = """
 :T3 owl:equivalentClass [ a owl:Restriction ; owl:onProperty :p ; owl:minCardinality "3"^^xsd:nonNegativeInteger ] .
 :AV rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :p ; owl:allValuesFrom :B ] .
 :M1 rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :pi ; owl:maxCardinality "1"^^xsd:nonNegativeInteger ] .
-:I owl:equivalentClass [ owl:intersectionOf ( :B :E ) ] .
+:I owl:equivalentClass [ a owl:Class ; owl:intersectionOf ( :B :E ) ] .
 :Big owl:equivalentClass [ a owl:Restriction ; owl:onProperty :d ; owl:someValuesFrom [ a rdfs:Datatype ;
     owl:onDatatype xsd:integer ; owl:withRestrictions ( [ xsd:minInclusive 10 ] ) ] ] .
 """
@@ -478,7 +478,7 @@ def test_removing_an_individual_removes_every_axiom_naming_it() -> None:
     without its first cell and an assertion without its source stayed, and SAVE wrote them)."""
     o = quiet_turtle(HEAD + """:p a owl:ObjectProperty . :w a owl:NamedIndividual . :b :p :w .
 :C owl:equivalentClass [ a owl:Restriction ; owl:onProperty :p ; owl:hasValue :v ] .
-:O owl:equivalentClass [ owl:oneOf ( :v :w ) ] .
+:O owl:equivalentClass [ a owl:Class ; owl:oneOf ( :v :w ) ] .
 [] a owl:NegativePropertyAssertion ; owl:sourceIndividual :v ; owl:assertionProperty :p ; owl:targetIndividual :w .
 """)
     kept = HEAD + ":p a owl:ObjectProperty . :w a owl:NamedIndividual . :b :p :w ."

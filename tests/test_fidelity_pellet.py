@@ -592,7 +592,7 @@ INCONSISTENT = {
 :x a :B .
 """,
     "intersection_with_nothing": """:A a owl:Class .
-:I owl:equivalentClass [ owl:intersectionOf ( :A owl:Nothing ) ] .
+:I owl:equivalentClass [ a owl:Class ; owl:intersectionOf ( :A owl:Nothing ) ] .
 :x a owl:NamedIndividual, :I .
 """,
     "union_of_nothing_alone": """:B a owl:Class ; rdfs:subClassOf [ owl:unionOf ( owl:Nothing ) ] .
@@ -689,17 +689,17 @@ TOP_AND_BOTTOM_DECLARED = """:A a owl:Class . :B a owl:Class . :Out a owl:Class 
 :a a owl:NamedIndividual, :A . :b a owl:NamedIndividual, :B . :x a owl:NamedIndividual, :Out .
 """
 TOP_AND_BOTTOM = {
-    "union_with_nothing": ":N owl:equivalentClass [ owl:complementOf [ owl:unionOf ( :A owl:Nothing ) ] ] .",
-    "union_with_thing": ":U owl:equivalentClass [ owl:intersectionOf ( :B [ owl:unionOf ( :A owl:Thing ) ] ) ] .",
-    "complement_of_nothing": ":C owl:equivalentClass [ owl:intersectionOf ( :B [ owl:complementOf owl:Nothing ] ) ] .",
-    "intersection_with_thing": ":I owl:equivalentClass [ owl:intersectionOf ( :A owl:Thing ) ] .",
-    "intersection_of_thing_alone": """:I owl:equivalentClass [ owl:intersectionOf ( :B
+    "union_with_nothing": ":N owl:equivalentClass [ a owl:Class ; owl:complementOf [ owl:unionOf ( :A owl:Nothing ) ] ] .",
+    "union_with_thing": ":U owl:equivalentClass [ a owl:Class ; owl:intersectionOf ( :B [ owl:unionOf ( :A owl:Thing ) ] ) ] .",
+    "complement_of_nothing": ":C owl:equivalentClass [ a owl:Class ; owl:intersectionOf ( :B [ owl:complementOf owl:Nothing ] ) ] .",
+    "intersection_with_thing": ":I owl:equivalentClass [ a owl:Class ; owl:intersectionOf ( :A owl:Thing ) ] .",
+    "intersection_of_thing_alone": """:I owl:equivalentClass [ a owl:Class ; owl:intersectionOf ( :B
     [ owl:intersectionOf ( owl:Thing owl:Thing ) ] ) ] .""",
-    "intersection_with_nothing": """:N owl:equivalentClass [ owl:complementOf [ owl:unionOf ( :A
+    "intersection_with_nothing": """:N owl:equivalentClass [ a owl:Class ; owl:complementOf [ owl:unionOf ( :A
     [ owl:intersectionOf ( :B owl:Nothing ) ] ) ] ] .""",
-    "existential_into_nothing": """:N owl:equivalentClass [ owl:complementOf [ owl:unionOf ( :A
+    "existential_into_nothing": """:N owl:equivalentClass [ a owl:Class ; owl:complementOf [ owl:unionOf ( :A
     [ a owl:Restriction ; owl:onProperty :p ; owl:someValuesFrom owl:Nothing ] ) ] ] .""",
-    "union_of_nothing_alone": """:N owl:equivalentClass [ owl:intersectionOf ( :B
+    "union_of_nothing_alone": """:N owl:equivalentClass [ a owl:Class ; owl:intersectionOf ( :B
     [ owl:complementOf [ owl:unionOf ( owl:Nothing ) ] ] ) ] .""",
 }
 

@@ -179,8 +179,10 @@ def without_same_as(rules: list) -> list[int]:
 
 MAP_NS = "http://bnc/exp-rob-lab/2022-23#"
 LEAN = PREFIXES + """:p a owl:ObjectProperty ; rdfs:domain :A . :q a owl:ObjectProperty ; rdfs:domain :B .
-:X owl:equivalentClass [ owl:intersectionOf ( :A [ a owl:Restriction ; owl:onProperty :p ; owl:someValuesFrom owl:Thing ] ) ] .
-:Y owl:equivalentClass [ owl:intersectionOf ( :B [ a owl:Restriction ; owl:onProperty :p ; owl:someValuesFrom owl:Thing ] ) ] .
+:X owl:equivalentClass [ a owl:Class ; owl:intersectionOf ( :A [ a owl:Restriction ; owl:onProperty :p ;
+    owl:someValuesFrom owl:Thing ] ) ] .
+:Y owl:equivalentClass [ a owl:Class ; owl:intersectionOf ( :B [ a owl:Restriction ; owl:onProperty :p ;
+    owl:someValuesFrom owl:Thing ] ) ] .
 """
 
 

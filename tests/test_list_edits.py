@@ -26,11 +26,11 @@ LIST = ":l1 rdf:first :X1 ; rdf:rest :l2 . :l2 rdf:first :X2 ; rdf:rest :l3 . :l
 #: (the axiom naming :l1, the facts whose conclusions depend on the list's members, the member the edits bring);
 #: a rule's body is a list too
 AXIOMS = {
-    "union": (":U owl:equivalentClass [ owl:unionOf :l1 ] .",
+    "union": (":U owl:equivalentClass [ a owl:Class ; owl:unionOf :l1 ] .",
               ":a a :X1 . :b a :X2 . :c a :X3 . :d a :Y .", ":Y"),
-    "intersection": (":I owl:equivalentClass [ owl:intersectionOf :l1 ] .",
+    "intersection": (":I owl:equivalentClass [ a owl:Class ; owl:intersectionOf :l1 ] .",
                      ":w a :X1 , :X2 , :X3 . :z a :X1 , :X2 , :Y . :v a :X1 , :X2 . :u a :X1 , :X2 , :X3 , :Y .", ":Y"),
-    "oneOf": (":O owl:equivalentClass [ owl:oneOf :l1 ] . :X1 :tag :t . :Y :tag :t .", "", ":Y"),
+    "oneOf": (":O owl:equivalentClass [ a owl:Class ; owl:oneOf :l1 ] . :X1 :tag :t . :Y :tag :t .", "", ":Y"),
     "chain": (":p owl:propertyChainAxiom :l1 . :X1 a owl:ObjectProperty . :X2 a owl:ObjectProperty . "
               ":X3 a owl:ObjectProperty . :Y a owl:ObjectProperty .",
               ":i0 :X1 :i1 . :i1 :X2 :i2 . :i2 :X3 :i3 . :i3 :Y :i4 . :i2 :Y :i5 .", ":Y"),
@@ -116,7 +116,7 @@ def test_a_list_added_and_removed_with_its_axiom_changes_the_rules() -> None:
 def test_an_all_different_list_edited_stays_a_fact() -> None:
     """A map's AllDifferent list (members, cells) is read by the rules, not compiled into them."""
     filler = " ".join(f":e{i} :near :e{i + 1} ." for i in range(200))  # a small change among many facts
-    onto = reasoned(f"{filler} :U owl:equivalentClass [ owl:unionOf ( :A :B ) ] . :a a :A . :b a :A . :c a :A ."
+    onto = reasoned(f"{filler} :U owl:equivalentClass [ a owl:Class ; owl:unionOf ( :A :B ) ] . :a a :A . :b a :A . :c a :A ."
                     "[] a owl:AllDifferent ; owl:distinctMembers :m1 ."
                     ":m1 rdf:first :a ; rdf:rest :m2 . :m2 rdf:first :b ; rdf:rest rdf:nil .")
     onto.rules  # noqa: B018 - compiled

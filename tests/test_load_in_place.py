@@ -21,7 +21,7 @@ PREFIXES = """@prefix : <http://e.org/a#> . @prefix owl: <http://www.w3.org/2002
 @prefix rdfs: <http://www.w3.org/2000/01/rdf-schema#> . @prefix xsd: <http://www.w3.org/2001/XMLSchema#> .
 """
 FACTS = " ".join(f":i{n} :p :i{n + 1} ." for n in range(50))
-TOO_LARGE = ":C owl:equivalentClass [ owl:intersectionOf ({}) ] .".format(" ".join(f":A{i}" for i in range(300)))
+TOO_LARGE = ":C owl:equivalentClass [ a owl:Class ; owl:intersectionOf ({}) ] .".format(" ".join(f":A{i}" for i in range(300)))
 INCOMPLETE = ":A rdfs:subClassOf [ owl:unionOf (:B :C) ] ."
 GOOD = ":p rdfs:domain :D . :D rdfs:subClassOf :E ."
 XSD_INT = NamedNode("http://www.w3.org/2001/XMLSchema#int")

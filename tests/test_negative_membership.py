@@ -26,7 +26,7 @@ PREFIXES = f"""\
 <http://example.org/neg> a owl:Ontology .
 """
 #: N ≡ ¬C: whether x ∉ C is derived shows as x ∈ N
-NOT_C = ":N owl:equivalentClass [ owl:complementOf :C ] .\n"
+NOT_C = ":N owl:equivalentClass [ a owl:Class ; owl:complementOf :C ] .\n"
 
 
 def reasoned(text: str) -> Ontology:
@@ -52,7 +52,7 @@ def not_in(o: Ontology, name: str, cls: str) -> bool:
     ":D owl:disjointWith :C .",
     "[ a owl:AllDisjointClasses ; owl:members ( :B :C :D ) ] .",
     ":U owl:disjointUnionOf ( :C :D ) .",
-    ":D owl:equivalentClass [ owl:complementOf :C ] .",
+    ":D owl:equivalentClass [ a owl:Class ; owl:complementOf :C ] .",
 ])
 def test_a_member_of_a_class_disjoint_with_c_is_not_in_c(axiom: str) -> None:
     o = reasoned(NOT_C + axiom + " :x a :D . :y a :C .")
@@ -67,14 +67,14 @@ def test_disjointness_reaches_members_of_subclasses() -> None:
 
 # ---------------------------------------------------------------- 2. unions and intersections
 def test_outside_every_member_of_a_union_is_outside_the_union() -> None:
-    o = reasoned(":C owl:equivalentClass [ owl:unionOf ( :A :B ) ] . " + NOT_C
+    o = reasoned(":C owl:equivalentClass [ a owl:Class ; owl:unionOf ( :A :B ) ] . " + NOT_C
                  + ":Z owl:disjointWith :A , :B . :Y owl:disjointWith :A . :x a :Z . :y a :Y .")
     assert "N" in types_of(o, "x")
     assert "N" not in types_of(o, "y")  # outside A only: it may be in B
 
 
 def test_outside_one_conjunct_is_outside_the_intersection() -> None:
-    o = reasoned(":C owl:equivalentClass [ owl:intersectionOf ( :A :B ) ] . " + NOT_C
+    o = reasoned(":C owl:equivalentClass [ a owl:Class ; owl:intersectionOf ( :A :B ) ] . " + NOT_C
                  + ":Z owl:disjointWith :B . :x a :Z , :A .")
     assert "N" in types_of(o, "x")
 
@@ -95,13 +95,13 @@ def test_a_value_by_an_inverse_property_counts() -> None:
 
 def test_outside_a_superclass_is_outside_its_subclasses_and_equivalents() -> None:
     o = reasoned(NOT_C + ":C rdfs:subClassOf :B . :E owl:equivalentClass :C . :Z owl:disjointWith :B . :x a :Z . "
-                 ":NE owl:equivalentClass [ owl:complementOf :E ] .")
+                 ":NE owl:equivalentClass [ a owl:Class ; owl:complementOf :E ] .")
     assert {"N", "NE"} <= types_of(o, "x") and not_in(o, "x", "C")
 
 
 # ---------------------------------------------------------------- 4. complement membership and the clash check
 def test_the_complement_gives_the_defined_class_by_its_intersection() -> None:
-    o = reasoned(":NV owl:equivalentClass [ owl:intersectionOf ( :P [ owl:complementOf :C ] ) ] . "
+    o = reasoned(":NV owl:equivalentClass [ a owl:Class ; owl:intersectionOf ( :P [ owl:complementOf :C ] ) ] . "
                  ":Z owl:disjointWith :C . :x a :Z , :P . :y a :Z .")
     assert "NV" in types_of(o, "x") and "NV" not in types_of(o, "y")
 
@@ -149,7 +149,7 @@ def test_case_analysis_stays_underived_and_the_warning_says_so() -> None:
 
 
 def test_parts_without_rules_are_named_never_derived() -> None:
-    o = reasoned(":C owl:equivalentClass [ owl:unionOf ( :A [ a owl:Restriction ; owl:onProperty :p ; "
+    o = reasoned(":C owl:equivalentClass [ a owl:Class ; owl:unionOf ( :A [ a owl:Restriction ; owl:onProperty :p ; "
                  "owl:hasValue :v ] ) ] . " + NOT_C + ":Z owl:disjointWith :A . :x a :Z .")
     said = [n for n in o.notices if n.axiom_kind == kinds.COMPLEMENT]
     assert len(said) == 1 and said[0].reason.endswith("not being in (p value v) is never derived")
@@ -165,9 +165,9 @@ def test_an_ontology_without_complements_gets_no_rule_of_non_membership() -> Non
 # ---------------------------------------------------------------- a property: random pizzas
 CATEGORIES = ["Cheese", "Veg", "Meat", "Fish"]
 VEGETARIAN = {"Cheese", "Veg"}
-PIZZAS = (":VegPizza owl:equivalentClass [ owl:intersectionOf ( :Pizza [ a owl:Restriction ; owl:onProperty "
+PIZZAS = (":VegPizza owl:equivalentClass [ a owl:Class ; owl:intersectionOf ( :Pizza [ a owl:Restriction ; owl:onProperty "
           ":hasTopping ; owl:allValuesFrom [ owl:unionOf ( :Cheese :Veg ) ] ] ) ] .\n"
-          ":NonVegPizza owl:equivalentClass [ owl:intersectionOf ( :Pizza [ owl:complementOf :VegPizza ] ) ] .\n"
+          ":NonVegPizza owl:equivalentClass [ a owl:Class ; owl:intersectionOf ( :Pizza [ owl:complementOf :VegPizza ] ) ] .\n"
           "[ a owl:AllDisjointClasses ; owl:members ( :Cheese :Veg :Meat :Fish ) ] .\n"
           ":Salami rdfs:subClassOf :Meat .\n")
 

@@ -75,7 +75,7 @@ def test_equivalent_named_classes():
 
 def test_equivalent_intersection():
     # cls-int1 (both members -> intersection), cls-int2 (intersection -> each member)
-    o = reasoned(":E owl:equivalentClass [ owl:intersectionOf ( :A :B ) ] . "
+    o = reasoned(":E owl:equivalentClass [ a owl:Class ; owl:intersectionOf ( :A :B ) ] . "
                  ":ab a :A , :B . :a a :A . :e a :E .")
     assert types_of(o, "ab") == {"A", "B", "E"}
     assert types_of(o, "a") == {"A"}
@@ -84,7 +84,7 @@ def test_equivalent_intersection():
 
 def test_equivalent_union():
     # cls-uni: each member is in the union; the union is E (cax-eqc)
-    o = reasoned(":E owl:equivalentClass [ owl:unionOf ( :A :B ) ] . :a a :A . :b a :B . :c a :C .")
+    o = reasoned(":E owl:equivalentClass [ a owl:Class ; owl:unionOf ( :A :B ) ] . :a a :A . :b a :B . :c a :C .")
     assert types_of(o, "a") == {"A", "E"}
     assert types_of(o, "b") == {"B", "E"}
     assert types_of(o, "c") == {"C"}
@@ -153,9 +153,9 @@ def test_all_disjoint_classes_is_pairwise():
 
 def test_complement_of_is_inconsistent():
     # cls-com
-    violations = inconsistent(":N owl:equivalentClass [ owl:complementOf :A ] . :x a :A , :N .")
+    violations = inconsistent(":N owl:equivalentClass [ a owl:Class ; owl:complementOf :A ] . :x a :A , :N .")
     assert any(v.rule == "cls-com" for v in violations)
-    reasoned(":N owl:equivalentClass [ owl:complementOf :A ] . :x a :A . :y a :N .")
+    reasoned(":N owl:equivalentClass [ a owl:Class ; owl:complementOf :A ] . :x a :A . :y a :N .")
 
 
 def test_nothing_has_no_instances():

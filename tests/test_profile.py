@@ -43,10 +43,10 @@ CASES = {
         "[ a owl:Restriction ; owl:onProperty :p ; owl:maxCardinality 1 ] rdfs:subClassOf :B .", kinds.MAX_LEFT,
         "max 1"),
     "a class list looping back": (
-        ":E owl:equivalentClass [ owl:intersectionOf _:l1 ] . _:l1 <%sfirst> :C ; <%srest> _:l2 . "
+        ":E owl:equivalentClass [ a owl:Class ; owl:intersectionOf _:l1 ] . _:l1 <%sfirst> :C ; <%srest> _:l2 . "
         "_:l2 <%sfirst> :D ; <%srest> _:l1 ." % ((RDF,) * 4), kinds.UNSUPPORTED, "loops back"),
     "a class list cell with two firsts": (
-        ":E owl:equivalentClass [ owl:intersectionOf _:l1 ] . _:l1 <%sfirst> :C, :D ; <%srest> <%snil> ."
+        ":E owl:equivalentClass [ a owl:Class ; owl:intersectionOf _:l1 ] . _:l1 <%sfirst> :C, :D ; <%srest> <%snil> ."
         % ((RDF,) * 3), kinds.UNSUPPORTED, "2 rdf:first"),
     "an AllDifferent list looping back": (
         "[] a owl:AllDifferent ; owl:distinctMembers _:l1 . _:l1 <%sfirst> :a ; <%srest> _:l2 . "
@@ -208,7 +208,7 @@ def test_the_horn_map_is_reasoned_completely(files: list[Path]) -> None:
 
 def test_horn_axioms_give_no_notice() -> None:
     o = quietly(":A rdfs:subClassOf :B , [ a owl:Restriction ; owl:onProperty :p ; owl:hasValue :v ] . "
-                ":C owl:equivalentClass [ owl:intersectionOf ( :A [ a owl:Restriction ; owl:onProperty :p ; "
+                ":C owl:equivalentClass [ a owl:Class ; owl:intersectionOf ( :A [ a owl:Restriction ; owl:onProperty :p ; "
                 "owl:someValuesFrom :B ] ) ] . [ owl:unionOf ( :A :B ) ] rdfs:subClassOf :D . "
                 ":E rdfs:subClassOf [ owl:complementOf :A ] . :p rdfs:domain :A ; rdfs:range :B .")
     assert o.notices == []
@@ -216,7 +216,7 @@ def test_horn_axioms_give_no_notice() -> None:
 
 def test_a_union_of_one_member_as_a_superclass_is_that_member() -> None:
     """What is left of a union once its owl:Nothing members are dropped may be one class: no case analysis."""
-    o = quietly(":A rdfs:subClassOf [ owl:unionOf ( :B owl:Nothing ) ] . :U owl:equivalentClass [ owl:unionOf "
+    o = quietly(":A rdfs:subClassOf [ owl:unionOf ( :B owl:Nothing ) ] . :U owl:equivalentClass [ a owl:Class ; owl:unionOf "
                 "( :C ) ] . :a a :A . :u a :U .")
     assert o.notices == []
     o.reason()

@@ -54,7 +54,7 @@ TBOX = """\
 # hasValue
 :C5 owl:equivalentClass [ a owl:Restriction ; owl:onProperty :p0 ; owl:hasValue :i0 ] .
 # intersection
-:C6 owl:equivalentClass [ owl:intersectionOf ( :C0 :C3 ) ] .
+:C6 owl:equivalentClass [ a owl:Class ; owl:intersectionOf ( :C0 :C3 ) ] .
 """
 CLASSES = [f"C{i}" for i in range(7)]
 PROPERTIES = ["p0", "p1", "p2", "p3", "s", "t"]

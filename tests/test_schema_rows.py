@@ -61,12 +61,12 @@ COMPLEMENTS = f"""\
 @prefix owl: <http://www.w3.org/2002/07/owl#> .
 @prefix rdfs: <http://www.w3.org/2000/01/rdf-schema#> .
 :Meat owl:disjointWith :Veg . :Salami rdfs:subClassOf :Meat . :VegTopping rdfs:subClassOf :Veg .
-:Veggie owl:equivalentClass [ owl:intersectionOf ( :Pizza [ owl:onProperty :top ; owl:allValuesFrom :Veg ] ) ] .
-:NonVeggie owl:equivalentClass [ owl:intersectionOf ( :Pizza [ owl:complementOf :Veggie ] ) ] .
+:Veggie owl:equivalentClass [ a owl:Class ; owl:intersectionOf ( :Pizza [ owl:onProperty :top ; owl:allValuesFrom :Veg ] ) ] .
+:NonVeggie owl:equivalentClass [ a owl:Class ; owl:intersectionOf ( :Pizza [ owl:complementOf :Veggie ] ) ] .
 :MeatPizza rdfs:subClassOf [ owl:onProperty :top ; owl:someValuesFrom :Meat ] .
-:Back owl:equivalentClass [ owl:onProperty [ owl:inverseOf :top ] ; owl:allValuesFrom :Veg ] .
-:Front owl:equivalentClass [ owl:complementOf :Back ] .
-:Shade owl:equivalentClass [ owl:oneOf ( :red :green :blue ) ] .
+:Back owl:equivalentClass [ a owl:Restriction ; owl:onProperty [ owl:inverseOf :top ] ; owl:allValuesFrom :Veg ] .
+:Front owl:equivalentClass [ a owl:Class ; owl:complementOf :Back ] .
+:Shade owl:equivalentClass [ a owl:Class ; owl:oneOf ( :red :green :blue ) ] .
 :p1 a :Pizza ; :top :s1 . :s1 a :Salami .
 :p2 a :Pizza , :MeatPizza .
 :p3 a :Pizza ; :top :v1 . :v1 a :VegTopping .
@@ -119,26 +119,26 @@ def test_the_rules_of_a_growing_tbox_stay_as_many() -> None:
 
 
 complements = st.lists(st.one_of(
-    st.builds(":{} owl:equivalentClass [ owl:intersectionOf ( :{} [ owl:complementOf :{} ] ) ] .".format, _c, _c, _c),
-    st.builds(":{} owl:equivalentClass [ owl:complementOf [ owl:onProperty :{} ; owl:allValuesFrom :{} ] ] ."
+    st.builds(":{} owl:equivalentClass [ a owl:Class ; owl:intersectionOf ( :{} [ owl:complementOf :{} ] ) ] .".format, _c, _c, _c),
+    st.builds(":{} owl:equivalentClass [ a owl:Class ; owl:complementOf [ owl:onProperty :{} ; owl:allValuesFrom :{} ] ] ."
               .format, _c, _p, _c),
-    st.builds(":{} owl:equivalentClass [ owl:complementOf [ owl:onProperty [ owl:inverseOf :{} ] ; "
+    st.builds(":{} owl:equivalentClass [ a owl:Class ; owl:complementOf [ owl:onProperty [ owl:inverseOf :{} ] ; "
               "owl:allValuesFrom :{} ] ] .".format, _c, _p, _c),
     st.builds(":{} rdfs:subClassOf [ owl:onProperty :{} ; owl:someValuesFrom :{} ] .".format, _c, _p, _c),
     st.builds(":{} rdfs:subClassOf :{} .".format, _c, _c),
     st.builds(":{} owl:disjointWith :{} .".format, _c, _c),
     st.builds("[ a owl:AllDisjointClasses ; owl:members ( :{} :{} :{} ) ] .".format, _c, _c, _c),
-    st.builds(":{} owl:equivalentClass [ owl:oneOf ( :{} :{} ) ] .".format, _c, _i, _i),
-    st.builds(":{} owl:equivalentClass [ owl:complementOf [ owl:unionOf ( :{} :{} ) ] ] .".format, _c, _c, _c),
-    st.builds(":{} owl:equivalentClass [ owl:complementOf [ owl:unionOf ( :{} :{} :{} ) ] ] .".format,
+    st.builds(":{} owl:equivalentClass [ a owl:Class ; owl:oneOf ( :{} :{} ) ] .".format, _c, _i, _i),
+    st.builds(":{} owl:equivalentClass [ a owl:Class ; owl:complementOf [ owl:unionOf ( :{} :{} ) ] ] .".format, _c, _c, _c),
+    st.builds(":{} owl:equivalentClass [ a owl:Class ; owl:complementOf [ owl:unionOf ( :{} :{} :{} ) ] ] .".format,
               _c, _c, _c, _c),
-    st.builds(":{} owl:equivalentClass [ owl:complementOf [ owl:unionOf ( :{} :{} :{} :{} :{} ) ] ] .".format,
+    st.builds(":{} owl:equivalentClass [ a owl:Class ; owl:complementOf [ owl:unionOf ( :{} :{} :{} :{} :{} ) ] ] .".format,
               _c, _c, _c, _c, _c, _c),
-    st.builds(":{} owl:equivalentClass [ owl:intersectionOf ( :{} :{} :{} :{} :{} ) ] .".format,
+    st.builds(":{} owl:equivalentClass [ a owl:Class ; owl:intersectionOf ( :{} :{} :{} :{} :{} ) ] .".format,
               _c, _c, _c, _c, _c, _c),
-    st.builds(":{} owl:equivalentClass [ owl:complementOf [ owl:unionOf ( :{} :{} :{} :{} :{} :{} :{} :{} ) ] ] ."
+    st.builds(":{} owl:equivalentClass [ a owl:Class ; owl:complementOf [ owl:unionOf ( :{} :{} :{} :{} :{} :{} :{} :{} ) ] ] ."
               .format, _c, _c, _c, _c, _c, _c, _c, _c, _c),
-    st.builds(":{} owl:equivalentClass [ owl:intersectionOf ( :{} :{} :{} :{} :{} :{} :{} :{} ) ] .".format,
+    st.builds(":{} owl:equivalentClass [ a owl:Class ; owl:intersectionOf ( :{} :{} :{} :{} :{} :{} :{} :{} ) ] .".format,
               _c, _c, _c, _c, _c, _c, _c, _c, _c),
 ), max_size=10)
 
@@ -157,13 +157,13 @@ def test_generic_equals_instantiated_on_generated_complements(tbox, abox) -> Non
 INTERSECTIONS = f"""\
 @prefix : <{NS}> .
 @prefix owl: <http://www.w3.org/2002/07/owl#> .
-:Two owl:equivalentClass [ owl:intersectionOf ( :A :B ) ] .
-:Three owl:equivalentClass [ owl:intersectionOf ( :A :B :C ) ] .
-:Four owl:equivalentClass [ owl:intersectionOf ( :A :B :C :D ) ] .
-:Five owl:equivalentClass [ owl:intersectionOf ( :A :B :C :D :E ) ] .
-:TwoAndThing owl:equivalentClass [ owl:intersectionOf ( :A owl:Thing :E ) ] .
-:Eight owl:equivalentClass [ owl:intersectionOf ( :A :B :C :D :E :F :G :H ) ] .
-:Nine owl:equivalentClass [ owl:intersectionOf ( :A :B :C :D :E :F :G :H :I ) ] .
+:Two owl:equivalentClass [ a owl:Class ; owl:intersectionOf ( :A :B ) ] .
+:Three owl:equivalentClass [ a owl:Class ; owl:intersectionOf ( :A :B :C ) ] .
+:Four owl:equivalentClass [ a owl:Class ; owl:intersectionOf ( :A :B :C :D ) ] .
+:Five owl:equivalentClass [ a owl:Class ; owl:intersectionOf ( :A :B :C :D :E ) ] .
+:TwoAndThing owl:equivalentClass [ a owl:Class ; owl:intersectionOf ( :A owl:Thing :E ) ] .
+:Eight owl:equivalentClass [ a owl:Class ; owl:intersectionOf ( :A :B :C :D :E :F :G :H ) ] .
+:Nine owl:equivalentClass [ a owl:Class ; owl:intersectionOf ( :A :B :C :D :E :F :G :H :I ) ] .
 :x a :A , :B , :C , :D . :y a :A , :B , :C , :D , :E . :z a :A , :B , :C , :D , :E , :F , :G , :H , :I .
 """
 
@@ -218,12 +218,12 @@ UNIONS = f"""\
 @prefix owl: <http://www.w3.org/2002/07/owl#> .
 :Out owl:disjointWith :A , :B , :C , :D . :Near owl:disjointWith :A , :B , :C , :D , :E .
 :Far owl:disjointWith :A , :B , :C , :D , :E , :F , :G , :H . :Beyond owl:disjointWith :A , :B , :C , :D , :E , :F , :G , :H , :I .
-:NotTwo owl:equivalentClass [ owl:complementOf [ owl:unionOf ( :A :B ) ] ] .
-:NotThree owl:equivalentClass [ owl:complementOf [ owl:unionOf ( :A :B :C ) ] ] .
-:NotFour owl:equivalentClass [ owl:complementOf [ owl:unionOf ( :A :B :C :D ) ] ] .
-:NotFive owl:equivalentClass [ owl:complementOf [ owl:unionOf ( :A :B :C :D :E ) ] ] .
-:NotEight owl:equivalentClass [ owl:complementOf [ owl:unionOf ( :A :B :C :D :E :F :G :H ) ] ] .
-:NotNine owl:equivalentClass [ owl:complementOf [ owl:unionOf ( :A :B :C :D :E :F :G :H :I ) ] ] .
+:NotTwo owl:equivalentClass [ a owl:Class ; owl:complementOf [ owl:unionOf ( :A :B ) ] ] .
+:NotThree owl:equivalentClass [ a owl:Class ; owl:complementOf [ owl:unionOf ( :A :B :C ) ] ] .
+:NotFour owl:equivalentClass [ a owl:Class ; owl:complementOf [ owl:unionOf ( :A :B :C :D ) ] ] .
+:NotFive owl:equivalentClass [ a owl:Class ; owl:complementOf [ owl:unionOf ( :A :B :C :D :E ) ] ] .
+:NotEight owl:equivalentClass [ a owl:Class ; owl:complementOf [ owl:unionOf ( :A :B :C :D :E :F :G :H ) ] ] .
+:NotNine owl:equivalentClass [ a owl:Class ; owl:complementOf [ owl:unionOf ( :A :B :C :D :E :F :G :H :I ) ] ] .
 :x a :Out . :y a :Near . :z a :Far . :w a :Beyond .
 """
 

@@ -156,8 +156,8 @@ EVERY_KIND = PREFIXES + """\
 :G owl:disjointWith :H . [ owl:onProperty :p ; owl:minCardinality 2 ] rdfs:subClassOf :F .
 :D rdfs:subClassOf [ owl:onProperty :p ; owl:someValuesFrom owl:Thing ] .
 :m :p :g, :h . :g a :G . :h a :H .
-:J owl:equivalentClass [ owl:unionOf ( :G :H ) ] . :K rdfs:subClassOf [ owl:onProperty :q ; owl:allValuesFrom :G ] .
-:L owl:equivalentClass [ owl:onProperty :p ; owl:hasValue :g ] .
+:J owl:equivalentClass [ a owl:Class ; owl:unionOf ( :G :H ) ] . :K rdfs:subClassOf [ owl:onProperty :q ; owl:allValuesFrom :G ] .
+:L owl:equivalentClass [ a owl:Restriction ; owl:onProperty :p ; owl:hasValue :g ] .
 [ owl:onProperty :s ; owl:someValuesFrom :G ] rdfs:subClassOf :M .
 :n a :K ; :q :o . :u :s :g .
 :v owl:propertyChainAxiom ( :p :s ) . :w owl:propertyChainAxiom ( :p :s :s ) . :g :s :h .
@@ -411,7 +411,7 @@ axioms = st.lists(st.one_of(
     st.builds(":{} rdfs:subClassOf :{} .".format, _c, _c),
     st.builds(":{} owl:equivalentClass :{} .".format, _c, _c),
     st.builds(":{} rdfs:subClassOf [ owl:intersectionOf ( :{} :{} ) ] .".format, _c, _c, _c),
-    st.builds(":{} owl:equivalentClass [ owl:intersectionOf ( :{} :{} ) ] .".format, _c, _c, _c),
+    st.builds(":{} owl:equivalentClass [ a owl:Class ; owl:intersectionOf ( :{} :{} ) ] .".format, _c, _c, _c),
     st.builds(":{} rdfs:domain :{} .".format, _p, _c),
     st.builds(":{} rdfs:range :{} .".format, _p, _c),
     st.builds(":{} rdfs:subPropertyOf :{} .".format, _p, _p),
@@ -420,7 +420,7 @@ axioms = st.lists(st.one_of(
     st.builds(":{} a owl:SymmetricProperty .".format, _p),
     st.builds(":{} a owl:TransitiveProperty .".format, _p),
     st.builds("[ owl:onProperty :{} ; owl:someValuesFrom :{} ] rdfs:subClassOf :{} .".format, _p, _c, _c),
-    st.builds(":{} owl:equivalentClass [ owl:onProperty :{} ; owl:hasValue :{} ] .".format, _c, _p, _i),
+    st.builds(":{} owl:equivalentClass [ a owl:Restriction ; owl:onProperty :{} ; owl:hasValue :{} ] .".format, _c, _p, _i),
     st.builds("[ owl:inverseOf :{} ] rdfs:domain :{} .".format, _p, _c),
     st.builds(":{} rdfs:subClassOf [ owl:onProperty :{} ; owl:allValuesFrom :{} ] .".format, _c, _p, _c),
     st.builds(":{} owl:disjointWith :{} .".format, _c, _c),
@@ -437,7 +437,7 @@ beyond_rl = st.lists(st.one_of(
               .format, _c, _p, _c),
     st.builds("[ owl:onProperty :{} ; owl:minCardinality 2 ] rdfs:subClassOf :{} .".format, _p, _c),
     st.builds("[ owl:onProperty :{} ; owl:someValuesFrom :{} ] rdfs:subClassOf :{} .".format, _p, _c, _c),
-    st.builds(":{} owl:equivalentClass [ owl:onProperty :{} ; owl:maxCardinality 1 ] .".format, _c, _p),
+    st.builds(":{} owl:equivalentClass [ a owl:Restriction ; owl:onProperty :{} ; owl:maxCardinality 1 ] .".format, _c, _p),
     st.builds(":{} a owl:FunctionalProperty .".format, _p),
     st.builds(":{} a owl:InverseFunctionalProperty .".format, _p),
     st.builds(":{} rdfs:subClassOf :{} .".format, _c, _c),

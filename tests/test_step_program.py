@@ -429,7 +429,7 @@ def test_a_rule_restating_a_premise_equals_from_scratch(batches: list) -> None:
 
 
 THROUGH = PREFIXES + f"""
-:A a owl:Class . :B a owl:Class . :K owl:equivalentClass [ owl:intersectionOf ( :A :B ) ] .
+:A a owl:Class . :B a owl:Class . :K owl:equivalentClass [ a owl:Class ; owl:intersectionOf ( :A :B ) ] .
 :q a owl:ObjectProperty ; rdfs:domain :A . :r a owl:ObjectProperty ; rdfs:domain :K ; rdfs:range :B .
 {rule([cls(':K', '?x'), obj(':q', '?x', '?y'), cls(':B', '?y')], [obj(':r', '?x', '?y')], 'Through')}
 """

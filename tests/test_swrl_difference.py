@@ -43,7 +43,7 @@ def siblings(o: Ontology) -> dict[str, list[str]]:
     ":Man owl:disjointWith :Woman . :a a :Woman .",
     "[] a owl:AllDisjointClasses ; owl:members ( :Woman :Minor :Man ) . :a a :Woman .",
     ":Person owl:disjointUnionOf ( :Man :Woman ) . :a a :Woman .",
-    ":Man owl:equivalentClass [ owl:complementOf :Woman ] . :a a :Woman .",
+    ":Man owl:equivalentClass [ a owl:Class ; owl:complementOf :Woman ] . :a a :Woman .",
     ":Man owl:disjointWith :Woman . :motherOf rdfs:domain :Woman . :a :motherOf :c .",
     ":Man owl:disjointWith :Woman . :Girl rdfs:subClassOf :Woman . :a a :Girl .",
     ":b owl:differentFrom :a .",

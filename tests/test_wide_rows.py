@@ -37,9 +37,9 @@ def wide_tbox(classes: int = 30, individuals: int = 20, per_width: int = 4, seed
              ":Out owl:disjointWith " + " , ".join(a) + " ."]
     for width in range(2, 10):
         for k in range(per_width):
-            lines.append(f":Not{width}_{k} owl:equivalentClass [ owl:complementOf [ owl:unionOf "
+            lines.append(f":Not{width}_{k} owl:equivalentClass [ a owl:Class ; owl:complementOf [ owl:unionOf "
                          f"( {' '.join(rnd.sample(a, width))} ) ] ] .")
-            lines.append(f":All{width}_{k} owl:equivalentClass [ owl:intersectionOf ( {' '.join(rnd.sample(b, width))} ) ] .")
+            lines.append(f":All{width}_{k} owl:equivalentClass [ a owl:Class ; owl:intersectionOf ( {' '.join(rnd.sample(b, width))} ) ] .")
     lines += [f":x{i} a :Out ." for i in range(individuals)]
     lines += [f":y{i} a " + " , ".join(rnd.sample(b, classes - 3)) + " ." for i in range(individuals)]
     return "\n".join(lines) + "\n"

@@ -60,7 +60,8 @@ def read_definitions(reader: TBoxReader) -> tuple[dict[NamedNode, NamedNode], li
             told[name] = t.object
             continue
         try:
-            told[name] = reader.data_range(t.object, f"the definition of {_short(name)}")
+            declared = _DATATYPE in reader.store.objects(name, TYPE, reader.graph)  # the OWL API types the range by it
+            told[name] = reader.data_range(t.object, f"the definition of {_short(name)}", typed=declared)
         except RuleCompileError as exc:
             aside.append((f"{_short(name)} DatatypeDefinition", f"{exc}: {_short(name)} stays undefined"))
     return {name: _end(name, told) for name in told}, aside

@@ -19,6 +19,7 @@ from ..stores.base import Store
 from . import data_ranges
 from .annotation_properties import CHARACTERISTICS, AnnotationProperties
 from .datatype_definitions import is_definition, read_definitions
+from .expression_types import ExpressionTypes
 from .model import Expr, Prop, TBox, describe, is_datatype
 from .notices import UNSUPPORTED
 
@@ -43,6 +44,8 @@ class TBoxReader:
         self.datatype_defs: dict[NamedNode, NamedNode] = {}
         #: the annotation properties, whose axioms are set aside (:mod:`.annotation_properties`)
         self.annotations = AnnotationProperties(store, graph, self._declared_data | self._declared_object)
+        #: which blank nodes an axiom reads as class expressions or data ranges (:mod:`.expression_types`)
+        self.types = ExpressionTypes(store, graph)
 
     # ---------------------------------------------------------------- helpers
     def _one(self, s: Term, p: str) -> Term | None:
@@ -127,9 +130,13 @@ class TBoxReader:
             return None, None
         return self.expr(value), None
 
-    def data_range(self, node: NamedNode, where: str) -> NamedNode:
+    def data_range(self, node: NamedNode, where: str, typed: bool = False) -> NamedNode:
         """A datatype restricted by numeric facets, as the IRI :mod:`.data_ranges` names it;
-        RuleCompileError for other data range expressions (data one-of, unions, string facets)."""
+        RuleCompileError for other data range expressions (data one-of, unions, string facets), and for one
+        without its ``rdf:type rdfs:Datatype`` triple unless ``typed`` (its place types it)."""
+        if not typed and not self.types.typed_data_range(node):
+            raise RuleCompileError(f"the data range in {where} lacks its rdf:type rdfs:Datatype triple: the OWL 2 "
+                                   "mapping to RDF (and the OWL API) does not read it as a data range")
         base = self._one(node, OWL + "onDatatype")
         head = self._one(node, OWL + "withRestrictions")
         if not isinstance(base, NamedNode) or head is None:
@@ -189,9 +196,12 @@ class TBoxReader:
     def _class_axioms(self, tb: TBox) -> None:
         expr, st, g = self.expr, self.store, self.graph
         self._each(tb, RDFS + "subClassOf", lambda t: tb.subclass.append((expr(t.subject), expr(t.object))))
+        check = self.types.check_pair
         self._each(tb, OWL + "equivalentClass", lambda t: is_definition(t, self) or
+                   check(t.subject, t.object, "an equivalence") or
                    tb.equivalent.append((expr(t.subject), expr(t.object))))
-        self._each(tb, OWL + "disjointWith", lambda t: tb.disjoint.append((expr(t.subject), expr(t.object))))
+        self._each(tb, OWL + "disjointWith", lambda t: check(t.subject, t.object, "a disjointness") or
+                   tb.disjoint.append((expr(t.subject), expr(t.object))))
         for node in st.subjects(TYPE, owl("AllDisjointClasses"), g):
             try:
                 members = [expr(m) for m in self._list(self._one(node, OWL + "members"))]
@@ -274,6 +284,7 @@ class TBoxReader:
 
         def domain(t) -> None:
             if not self.annotations.set_aside(tb, t, _short):
+                self.types.check_domain(t.object)
                 tb.domain.append((prop(t.subject), expr(t.object)))
 
         self._each(tb, RDFS + "domain", domain)
