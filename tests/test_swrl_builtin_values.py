@@ -141,3 +141,22 @@ def test_comparisons_with_nan_follow_javas_compare_to_as_pellet() -> None:
     assert members(o, "Above") == members(o, "Below") == set(NAN_PAIRS) - {"nf"}  # each d a NaN but nf's 2.5
     inferred, _aux, _entailed, _ok = from_scratch(o)
     assert set(o.store.triples(graph=INFERRED)) == inferred
+
+
+def test_comparisons_with_a_nan_constant_follow_javas_compare_to_as_pellet() -> None:
+    """A NaN written as the constant argument orders and equates as one read from the graph: compareTo(NaN, NaN)
+    is 0, so lessThan("NaN", NaN) and greaterThan(NaN, "NaN") are false, equal true."""
+    nan = '"NaN"^^xsd:double'
+    rules = {f"{c}R": f"d(?x, ?v) ^ swrlb:{op}(?v, {nan}) -> {c}R(?x)" for c, op in COMPARISONS.items()}
+    rules |= {f"{c}L": f"d(?x, ?v) ^ swrlb:{op}({nan}, ?v) -> {c}L(?x)" for c, op in COMPARISONS.items()}
+    values = {"n1": ('"NaN"^^xsd:double', 0), "n2": ('"NaN"^^xsd:float', 0), "low": ('"2.5"^^xsd:decimal', -1),
+              "inf": ('"INF"^^xsd:double', -1)}
+    facts = ":d a owl:DatatypeProperty . " + " ".join(f":{n} :d {v} ." for n, (v, _) in values.items()) + " ".join(
+        f" :{c} a owl:Class ." for c in rules)
+    o = ontology(facts, rules)
+    assert o.reason().consistent
+    for label in COMPARISONS:
+        assert members(o, f"{label}R") == {n for n, (_, order) in values.items() if _holds(label, order)}, label
+        assert members(o, f"{label}L") == {n for n, (_, order) in values.items() if _holds(label, -order)}, label
+    inferred, _aux, _entailed, _ok = from_scratch(o)
+    assert set(o.store.triples(graph=INFERRED)) == inferred

@@ -20,7 +20,7 @@ import pyoxigraph as ox
 import pytest
 from pyoxigraph import NamedNode
 from support import NEEDS_PELLET
-from untyped_cases import CASES, document, namespace
+from untyped_cases import CASES, SET_ASIDE_HERE, document, namespace
 
 from topostore import Ontology, OntologyWarning
 
@@ -86,6 +86,9 @@ def test_untyped_expressions_as_pellet(name: str, suffix: str, files: dict[str, 
     def of_case(answers: dict) -> dict:
         return {i: sorted(answers["types"][i]) for i in answers["types"] if i.startswith(ns)}
 
-    assert of_case(ours) == of_case(expected)
     _, read, (individual, cls) = CASES[name]
     assert (ns + cls in expected["types"][ns + individual]) is read
+    pellets = of_case(expected)
+    if name in SET_ASIDE_HERE:  # read by the OWL API's parser, set aside (named) by topostore: that one class differs
+        pellets[ns + individual] = [t for t in pellets[ns + individual] if t != ns + cls]
+    assert of_case(ours) == pellets

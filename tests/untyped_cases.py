@@ -51,6 +51,8 @@ CASES: dict[str, tuple[str, bool, tuple[str, str]]] = {
                             f"owl:someValuesFrom [ {_FACETS} ] ] . :a :dp 15 .", False, ("a", "S")),
     "data_filler_typed": (f":S a owl:Class ; owl:equivalentClass [ a owl:Restriction ; owl:onProperty :dp ; "
                           f"owl:someValuesFrom [ a rdfs:Datatype ; {_FACETS} ] ] . :a :dp 15 .", True, ("a", "S")),
+    "data_filler_owl1": (f":S a owl:Class ; owl:equivalentClass [ a owl:Restriction ; owl:onProperty :dp ; "
+                         f"owl:someValuesFrom [ a owl:DataRange ; {_FACETS} ] ] . :a :dp 15 .", True, ("a", "S")),
     "data_definition_declared": (f":Big a rdfs:Datatype ; owl:equivalentClass [ {_FACETS} ] . "
                                  ":S a owl:Class ; owl:equivalentClass [ a owl:Restriction ; owl:onProperty :dp ; "
                                  "owl:someValuesFrom :Big ] . :a :dp 15 .", True, ("a", "S")),
@@ -62,6 +64,17 @@ CASES: dict[str, tuple[str, bool, tuple[str, str]]] = {
 _SHARED = """:a a owl:NamedIndividual . :b a owl:NamedIndividual . :c a owl:NamedIndividual . :d a owl:NamedIndividual .
 :p a owl:ObjectProperty . :dp a owl:DatatypeProperty . :A a owl:Class . :B a owl:Class .
 """
+
+
+#: cases the OWL API reads and topostore sets aside with its notice: a name known as a class only because an
+#: individual has it as a type (the OWL API's parser counts that; topostore reads the schema from schema
+#: triples alone, so that an ABox type added or removed later cannot change which axioms there are)
+SET_ASIDE_HERE = frozenset({"eq_used_as_type"})
+
+
+def read_here(name: str) -> bool:
+    """Whether topostore reads the axiom of case ``name`` (as the OWL API does, but for :data:`SET_ASIDE_HERE`)."""
+    return CASES[name][1] and name not in SET_ASIDE_HERE
 
 
 def namespace(name: str) -> str:

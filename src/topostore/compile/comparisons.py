@@ -47,7 +47,7 @@ def comparison(name: str, a: str, b: str, numbers: Collection[str]) -> str:
     """The SPARQL test of comparison built-in ``name`` (local name) on argument texts ``a`` and ``b``, both
     bound; ``numbers``: the variables known to hold a number."""
     op = OPERATORS[name]
-    if _number(a, numbers) or _number(b, numbers):
+    if (_number(a, numbers) or _number(b, numbers)) and not (_nan_constant(a) or _nan_constant(b)):
         if name == "notEqual":
             return f"COALESCE({a} != {b}, true)"
         # NaN above every number: a value read from the graph may be NaN; a number computed by an arithmetic
@@ -96,6 +96,15 @@ def _by_characters(v: str) -> str:
     """A literal Pellet orders by its characters against one of its own datatype and tag (no number, no
     string type, no instant, no boolean)."""
     return f"(isLiteral({v}) && !isNumeric({v}) && !(datatype({v}) IN ({_BY_VALUE})))"
+
+
+def _nan_constant(text: str) -> bool:
+    """Whether argument ``text`` is a NaN written as a constant: it takes the general forms, which order and
+    equate NaNs as Pellet's testers do (the plain number forms follow IEEE 754)."""
+    if text.startswith("?"):
+        return False
+    term = parse_term(text)
+    return isinstance(term, Literal) and term.value == "NaN" and term.datatype.value in (XSD + "float", XSD + "double")
 
 
 def _number(text: str, numbers: Collection[str]) -> bool:

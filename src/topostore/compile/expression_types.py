@@ -10,11 +10,11 @@ does, so it follows the OWL API where they differ (measured against Pellet, Turt
   class of an ``rdf:type`` triple, a ``rdfs:range``, a ``rdfs:subClassOf`` side or a SWRL class atom are read
   untyped: the position says what they are;
 * an untyped node in ``owl:equivalentClass`` or ``owl:disjointWith`` is read only when the other side is known
-  as a class (a node typed as above, or a name declared a class, used as an individual's type or in a
-  ``rdfs:subClassOf`` triple); a name made equivalent to an untyped node and nothing else is no class to the
-  OWL API, and the axiom is not there;
+  as a class (a node typed as above, or a name declared a class or in a ``rdfs:subClassOf`` triple); a name
+  made equivalent to an untyped node and nothing else is no class to the OWL API, and the axiom is not there
+  (the OWL API also counts a name used as an individual's type: topostore does not, see ``known_class``);
 * an untyped node as a ``rdfs:domain`` is not read;
-* a data range (``owl:onDatatype`` …) is read only typed ``rdfs:Datatype``, or as the definition of a name
+* a data range (``owl:onDatatype`` …) is read only typed ``rdfs:Datatype`` (or OWL 1's ``owl:DataRange``), or as the definition of a name
   declared ``rdfs:Datatype``.
 
 An axiom that is not read is set aside with its reason (a named notice), never read silently.
@@ -32,6 +32,9 @@ from ..stores.base import Store
 #: the rdf:type triples that make a blank node a class expression (the OWL API accepts rdfs:Class too)
 CLASS_TYPES = frozenset({NamedNode(OWL + "Class"), NamedNode(OWL + "Restriction"), NamedNode(RDFS + "Class")})
 DATATYPE = NamedNode(RDFS + "Datatype")
+#: the rdf:type triples that make a blank node a data range (OWL 1's owl:DataRange, which the mapping and the
+#: OWL API still read)
+DATA_RANGE_TYPES = frozenset({DATATYPE, NamedNode(OWL + "DataRange")})
 _SUBCLASS = NamedNode(RDFS + "subClassOf")
 
 
@@ -55,8 +58,11 @@ class ExpressionTypes:
         return isinstance(node, NamedNode) and is_skolem(node) and not self.typed_class(node)
 
     def known_class(self, node: Term) -> bool:
-        """Whether the OWL API knows ``node`` as a class before an equivalence or disjointness with an untyped
-        node: a typed expression, or a name declared a class, used as a type or in a subclass triple."""
+        """Whether ``node`` is known as a class before an equivalence or disjointness with an untyped node: a
+        typed expression, or a name declared a class or in a subclass triple.  The OWL API also counts a name
+        used as an individual's type; topostore does not, so that what a LOAD reads depends on the schema
+        alone (an ABox type added or removed later recompiles nothing, and a fresh LOAD must agree with it):
+        such an axiom is set aside with its notice."""
         if not isinstance(node, NamedNode):
             return False
         if is_skolem(node):
@@ -66,7 +72,6 @@ class ExpressionTypes:
         if node not in self._named:
             st, g = self.store, self.graph
             self._named[node] = (self.typed_class(node)
-                                 or next(iter(st.triples(None, TYPE, node, g)), None) is not None
                                  or next(iter(st.triples(node, _SUBCLASS, None, g)), None) is not None
                                  or next(iter(st.triples(None, _SUBCLASS, node, g)), None) is not None)
         return self._named[node]
@@ -84,7 +89,7 @@ class ExpressionTypes:
             raise RuleCompileError(self.untyped_reason(node, "a domain"))
 
     def typed_data_range(self, node: Term) -> bool:
-        return DATATYPE in self.types(node)
+        return any(t in DATA_RANGE_TYPES for t in self.types(node))
 
     def untyped_reason(self, node: Term, where: str) -> str:
         """Why an axiom with an untyped blank class expression is left out."""

@@ -134,6 +134,8 @@ class TBoxReader:
         """A datatype restricted by numeric facets, as the IRI :mod:`.data_ranges` names it;
         RuleCompileError for other data range expressions (data one-of, unions, string facets), and for one
         without its ``rdf:type rdfs:Datatype`` triple unless ``typed`` (its place types it)."""
+        if not typed and self.types.typed_class(node):
+            raise RuleCompileError(f"a class expression stands where a data range is wanted in {where}")
         if not typed and not self.types.typed_data_range(node):
             raise RuleCompileError(f"the data range in {where} lacks its rdf:type rdfs:Datatype triple: the OWL 2 "
                                    "mapping to RDF (and the OWL API) does not read it as a data range")

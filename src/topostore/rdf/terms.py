@@ -113,8 +113,10 @@ _DEC_RE = re.compile(r"^[+-]?([0-9]+(\.[0-9]*)?|\.[0-9]+)$")
 _FLOAT_RE = re.compile(r"^[+-]?(([0-9]+(\.[0-9]*)?|\.[0-9]+)([eE][+-]?[0-9]+)?|INF|NaN)$")
 #: owl:rational's lexical space (OWL 2 Structural Specification §4.1): a numerator, "/", a positive denominator
 _RATIONAL_RE = re.compile(r"^[+-]?[0-9]+/0*[1-9][0-9]*$")
-#: the largest finite xsd:float; a float or double written finite that reads beyond its type's range is refused
-_FLOAT_MAX = 3.4028235e38
+#: where an xsd:float overflows; a float or double written finite that reads beyond its type's range is refused
+#: (Java's Float.parseFloat, as Pellet reads it, rounds to the nearest float: a value below the midpoint
+#: between the largest float and 2^128 is that largest float, from the midpoint on it is an infinity)
+_FLOAT_OVERFLOW = 2.0 ** 128 - 2.0 ** 103
 
 
 def _java_float_text(value: float) -> str:
@@ -225,7 +227,7 @@ def literal_of(value: str, local: str) -> Literal:
         if not _FLOAT_RE.match(text):
             raise InvalidValueError(f"{value!r} is not a valid xsd:{local}")
         number = float(text.replace("INF", "inf"))
-        if "INF" not in text and (math.isinf(number) or (local == "float" and abs(number) > _FLOAT_MAX)):
+        if "INF" not in text and (math.isinf(number) or (local == "float" and abs(number) >= _FLOAT_OVERFLOW)):
             # XSD 1.1 would read it as ±INF; Pellet 2.3.1 (through the OWL API's "Infinity") finds the
             # ontology inconsistent, as it does for every ill-typed literal: refused as those are
             raise InvalidValueError(f"{value!r} is out of range for xsd:{local} (write INF or -INF for an infinity)")

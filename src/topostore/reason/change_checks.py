@@ -252,6 +252,8 @@ def step_keys(keys: Collection[tuple]) -> tuple[set[str], set[str]] | None:
     """(predicates, classes) of a staged run's read keys as the changed graphs' census counts them: a class's
     facts are rdf:type facts, so rdf:type is among the predicates where a class is; None where a key
     stands for any predicate (nothing is decided from such keys)."""
+    if any(len(key) != 2 for key in keys):  # ("*",): any predicate
+        return None
     preds, classes = key_sets(keys)
     if len(preds) + len(classes) < len(keys):
         return None

@@ -165,8 +165,11 @@ class _Shared:
             return
         try:
             self.future.set_result(self._read())
-        except BaseException as error:  # noqa: BLE001 - raised to whoever reads the Future, as the pool does
+        except Exception as error:  # noqa: BLE001 - raised to whoever reads the Future, as the pool does
             self.future.set_exception(error)
+        except BaseException as error:  # an interrupt or exit: the reader learns it, and so does this thread now
+            self.future.set_exception(error)
+            raise
 
 
 def early_result(started: tuple[object, Future[T]] | None, made_for: object) -> T | None:
