@@ -14,7 +14,7 @@ import pytest
 from pyoxigraph import Literal, NamedNode, RdfFormat, Triple, parse
 
 from topostore import Ontology
-from topostore.rdf.vocab import AUX, ENTAILED, INFERRED, XSD
+from topostore.rdf.vocab import ASSERTED, AUX, ENTAILED, INFERRED, XSD
 
 
 def too_large_axiom(ns: str) -> list[Triple]:
@@ -85,6 +85,19 @@ def same_closure_without(onto: Ontology, monkeypatch: pytest.MonkeyPatch, target
     again = onto.reason(mode="full")
     assert closure(onto) == kept
     assert first.consistent == again.consistent
+
+
+def same_as_fresh_load(onto: Ontology, report: object) -> tuple[Ontology, object]:
+    """Assert that ``onto``'s last REASON (its ``report``) concluded what a fresh ontology of its asserted
+    triples concludes (consistency, inferred and entailed graphs); the fresh ontology and its report, for
+    further comparisons."""
+    fresh = Ontology()
+    fresh.add(*onto.store.triples(graph=ASSERTED))
+    fresh_report = fresh.reason()
+    assert report.consistent == fresh_report.consistent
+    for graph in (INFERRED, ENTAILED):
+        assert set(onto.store.triples(graph=graph)) == set(fresh.store.triples(graph=graph))
+    return fresh, fresh_report
 
 
 def quiet_turtle(text: str) -> Ontology:
