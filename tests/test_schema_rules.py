@@ -15,12 +15,13 @@ import sys
 import owlrl
 import pytest
 import rdflib
-from hypothesis import HealthCheck, given, settings
+from hypothesis import HealthCheck, example, given, settings
 from hypothesis import strategies as st
 from profiles import property_examples
 from pyoxigraph import NamedNode, Triple
 
 from topostore import Ontology
+from topostore.compile.notices import NON_SIMPLE
 from topostore.compile.rule import Atom
 from topostore.compile.schema import schema_rule, schema_rules, template_of
 from topostore.compile.schema_program import GENERIC_ROWS, closed, full_program
@@ -468,6 +469,7 @@ def _value(term) -> str:
 
 @settings(max_examples=property_examples(40), deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(axioms, facts)
+@example(tbox=[":p0 a owl:TransitiveProperty .", ":p0 a owl:FunctionalProperty ."], abox=[":i0 :p0 :i1 ."])
 def test_generic_equals_instantiated_equals_owlrl_on_generated_tboxes(tbox, abox) -> None:
     text = PREFIXES + _declarations() + "\n" + "\n".join(tbox + abox) + "\n"
     onto = Ontology()
@@ -476,6 +478,8 @@ def test_generic_equals_instantiated_equals_owlrl_on_generated_tboxes(tbox, abox
     assert _materialize(onto, 0) == instantiated
     if check_consistency(onto.store, onto.rules):
         return  # an inconsistent ontology entails everything: owlrl's closure and ours say nothing alike
+    if any(n.axiom_kind == NON_SIMPLE for n in onto.notices):
+        return  # outside OWL 2 DL (a transitive property also functional, …): read as Pellet reads it, not as owlrl
     g = rdflib.Graph()
     g.parse(data=text, format="turtle")
     owlrl.DeductiveClosure(owlrl.OWLRL_Semantics).expand(g)
