@@ -130,6 +130,21 @@ class TBoxReader:
             return None, None
         return self.expr(value), None
 
+    def _single_member(self, filler: Term, prop: Prop) -> Term | None:
+        """The one member of ``filler`` when it is a one-of of a single individual (``{b}``) or, for a data
+        property, a data one-of of a single literal; None otherwise (read as a filler as ever)."""
+        if not is_skolem(filler):
+            return None
+        if pred_is_data(filler, prop, self):
+            head = self._one(filler, OWL + "oneOf")
+            if head is None or not self.types.typed_data_range(filler) or self.types.typed_class(filler):
+                return None  # not a data one-of the OWL API reads: set aside by data_range, which says why
+            members = set(self._list(head))
+            return next(iter(members)) if len(members) == 1 and isinstance(next(iter(members)), Literal) else None
+        e = self.expr(filler)
+        members = set(e.individuals) if e.kind == "oneof" else set()
+        return next(iter(members)) if len(members) == 1 and isinstance(next(iter(members)), NamedNode) else None
+
     def data_range(self, node: NamedNode, where: str, typed: bool = False) -> NamedNode:
         """A datatype restricted by numeric facets, as the IRI :mod:`.data_ranges` names it;
         RuleCompileError for other data range expressions (data one-of, unions, string facets), and for one
@@ -158,6 +173,9 @@ class TBoxReader:
     def _restriction(self, node: NamedNode, prop: Prop) -> Expr:
         some = self._one(node, OWL + "someValuesFrom")
         if some is not None:
+            only = self._single_member(some, prop)
+            if only is not None:  # ∃p.{b} is p value b: the value is in {b}, so it is b (likewise for a literal)
+                return Expr(node, "value", prop=prop, value=only)
             filler, dt = self._filler(node, prop, some)
             return Expr(node, "some", prop=prop, filler=filler, datatype=dt)
         all_ = self._one(node, OWL + "allValuesFrom")
