@@ -187,7 +187,8 @@ CASES: dict[str, str] = {
 :M a owl:Class . [ a owl:Class ; owl:unionOf ( [ a owl:Restriction ; owl:onProperty :r ; owl:someValuesFrom
   [ a owl:Class ; owl:oneOf ( :e ) ] ] :G ) ] rdfs:subClassOf :M .
 :K a owl:Class ; rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :d ; owl:someValuesFrom [ a rdfs:Datatype ; owl:oneOf ( "v" ) ] ] .
-:N a owl:Class ; owl:equivalentClass [ a owl:Restriction ; owl:onProperty :d ; owl:someValuesFrom [ a rdfs:Datatype ; owl:oneOf ( "v" ) ] ] .
+:N a owl:Class ; owl:equivalentClass [ a owl:Restriction ; owl:onProperty :d ;
+  owl:someValuesFrom [ a rdfs:Datatype ; owl:oneOf ( "v" ) ] ] .
 :a a owl:NamedIndividual, :C . :b a owl:NamedIndividual . :c a owl:NamedIndividual ; :q :b . :e a owl:NamedIndividual .
 :g a owl:NamedIndividual ; :p :m . :h a owl:NamedIndividual . :k a owl:NamedIndividual, :G . :m a owl:NamedIndividual, :C .
 :n a owl:NamedIndividual ; :p :c . :s a owl:NamedIndividual ; :r :e . :x a owl:NamedIndividual, :K . :y a owl:NamedIndividual ; :d "v" .
