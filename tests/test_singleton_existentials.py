@@ -16,7 +16,7 @@ from topostore.rdf.vocab import TYPE
 
 NS = "http://example.org/singleton/"
 PREFIXES = f"""@prefix : <{NS}> . @prefix owl: <http://www.w3.org/2002/07/owl#> .
-@prefix rdfs: <http://www.w3.org/2000/01/rdf-schema#> .
+@prefix rdfs: <http://www.w3.org/2000/01/rdf-schema#> . @prefix xsd: <http://www.w3.org/2001/XMLSchema#> .
 :p a owl:ObjectProperty . :d a owl:DatatypeProperty . :C a owl:Class . :E a owl:Class .
 :a a owl:NamedIndividual . :b a owl:NamedIndividual . :c a owl:NamedIndividual .
 """
@@ -63,6 +63,14 @@ VALUES = {
     "as_a_filler": (f":E owl:equivalentClass [ a owl:Restriction ; owl:onProperty :p ; owl:someValuesFrom "
                     f"{some(':p', ':b')} ] . :c :p :a . :a :p :b .", (n("c"), TYPE, n("E"))),
     "repeated_member": (f":C rdfs:subClassOf {some(':p', ':b :b')} . :a a :C .", (n("a"), n("p"), n("b"))),
+    "named_filler_defined": (":B owl:oneOf ( :b ) . :C rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :p ;"
+                             " owl:someValuesFrom :B ] . :a a :C .", (n("a"), n("p"), n("b"))),
+    "named_filler_equivalent": (":B a owl:Class ; owl:equivalentClass [ a owl:Class ; owl:oneOf ( :b ) ] . :C rdfs:subClassOf"
+                                " [ a owl:Restriction ; owl:onProperty :p ; owl:someValuesFrom :B ] . :a a :C .",
+                                (n("a"), n("p"), n("b"))),
+    "qualified_minimum_of_one": (":C rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :p ; owl:minQualifiedCardinality"
+                                 ' "1"^^xsd:nonNegativeInteger ; owl:onClass [ a owl:Class ; owl:oneOf ( :b ) ] ] . :a a :C .',
+                                 (n("a"), n("p"), n("b"))),
     "data_superclass": (f':C rdfs:subClassOf {ONE_LITERAL} . :a a :C .',
                         (n("a"), n("d"), Literal("v"))),
     "data_sufficient": (f':E owl:equivalentClass {ONE_LITERAL} . :a :d "v" .',
