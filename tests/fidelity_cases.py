@@ -171,6 +171,33 @@ CASES: dict[str, str] = {
 :e a owl:NamedIndividual . :f a owl:NamedIndividual . :g a owl:NamedIndividual, :B ; :p :e .
 :h a owl:NamedIndividual . :k a owl:NamedIndividual, :D, [ a owl:Class ; owl:oneOf ( :m ) ] ; :p :a . :m a owl:NamedIndividual .
 """,
+    # an existential into a one-of of one individual (a one-of of one literal) is a hasValue: ∃p.{b} ≡ p value b,
+    # on the sub and the super side, in an equivalence, inside an intersection, a union and another existential,
+    # on an inverse (∃p⁻.{g} ⇒ p(g, x)), into a named class told to be {e}, as a qualified minimum of one, and for
+    # a data property (∃d.{"v"} ≡ d value "v")
+    "existential_into_a_single_individual_one_of": """
+:p a owl:ObjectProperty . :q a owl:ObjectProperty . :r a owl:ObjectProperty . :d a owl:DatatypeProperty .
+:C a owl:Class ; rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :p ; owl:someValuesFrom [ a owl:Class ; owl:oneOf ( :b ) ] ] .
+:E a owl:Class ; owl:equivalentClass [ a owl:Restriction ; owl:onProperty :q ; owl:someValuesFrom [ a owl:Class ; owl:oneOf ( :b ) ] ] .
+:F a owl:Class ; owl:equivalentClass [ a owl:Class ; owl:intersectionOf ( :C [ a owl:Restriction ;
+  owl:onProperty [ owl:inverseOf :p ] ; owl:someValuesFrom [ a owl:Class ; owl:oneOf ( :g ) ] ] ) ] .
+:G a owl:Class ; rdfs:subClassOf [ a owl:Restriction ; owl:onProperty [ owl:inverseOf :q ] ;
+  owl:someValuesFrom [ a owl:Class ; owl:oneOf ( :h ) ] ] .
+:H a owl:Class ; owl:equivalentClass [ a owl:Restriction ; owl:onProperty :p ; owl:someValuesFrom [ a owl:Restriction ;
+  owl:onProperty :q ; owl:someValuesFrom [ a owl:Class ; owl:oneOf ( :b :b ) ] ] ] .
+:M a owl:Class . [ a owl:Class ; owl:unionOf ( [ a owl:Restriction ; owl:onProperty :r ; owl:someValuesFrom
+  [ a owl:Class ; owl:oneOf ( :e ) ] ] :G ) ] rdfs:subClassOf :M .
+:K a owl:Class ; rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :d ; owl:someValuesFrom [ a rdfs:Datatype ; owl:oneOf ( "v" ) ] ] .
+:N a owl:Class ; owl:equivalentClass [ a owl:Restriction ; owl:onProperty :d ;
+  owl:someValuesFrom [ a rdfs:Datatype ; owl:oneOf ( "v" ) ] ] .
+:B a owl:Class ; owl:equivalentClass [ a owl:Class ; owl:oneOf ( :e ) ] . :P a owl:Class ; rdfs:subClassOf [ a owl:Restriction ;
+  owl:onProperty :q ; owl:someValuesFrom :B ] , [ a owl:Restriction ; owl:onProperty :r ;
+  owl:minQualifiedCardinality "1"^^xsd:nonNegativeInteger ; owl:onClass [ a owl:Class ; owl:oneOf ( :h ) ] ] .
+:t a owl:NamedIndividual, :P .
+:a a owl:NamedIndividual, :C . :b a owl:NamedIndividual . :c a owl:NamedIndividual ; :q :b . :e a owl:NamedIndividual .
+:g a owl:NamedIndividual ; :p :m . :h a owl:NamedIndividual . :k a owl:NamedIndividual, :G . :m a owl:NamedIndividual, :C .
+:n a owl:NamedIndividual ; :p :c . :s a owl:NamedIndividual ; :r :e . :x a owl:NamedIndividual, :K . :y a owl:NamedIndividual ; :d "v" .
+""",
     # a property under a functional one (sub-, equivalent, inverse of an inverse-functional) has at most one
     # value, so exactly one is known from one; a functional property's super-property has no maximum
     "functional_super_properties": """

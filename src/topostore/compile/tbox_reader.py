@@ -130,6 +130,38 @@ class TBoxReader:
             return None, None
         return self.expr(value), None
 
+    def _single_member(self, filler: Term, prop: Prop) -> Term | None:
+        """The one member of ``filler`` when it is a one-of of a single individual (``{b}``, or a named class told
+        to be one) or, for a data property, a data one-of of a single literal; None otherwise (read as a filler)."""
+        data = pred_is_data(filler, prop, self)
+        if not is_skolem(filler):
+            return self._named_single(filler) if isinstance(filler, NamedNode) and not data else None
+        if data:
+            head = self._one(filler, OWL + "oneOf")
+            if head is None or not self.types.typed_data_range(filler) or self.types.typed_class(filler):
+                return None  # not a data one-of the OWL API reads: set aside by data_range, which says why
+            members = set(self._list(head))
+            return next(iter(members)) if len(members) == 1 and isinstance(next(iter(members)), Literal) else None
+        e = self.expr(filler)
+        members = set(e.individuals) if e.kind == "oneof" else set()
+        return next(iter(members)) if len(members) == 1 and isinstance(next(iter(members)), NamedNode) else None
+
+    def _named_single(self, cls: NamedNode) -> Term | None:
+        """b when the named class ``cls`` is told to be ``{b}`` (``cls owl:oneOf (b)``, or an equivalence with a
+        one-of of b): its existential ``∃p.cls`` is ``p value b`` too; None otherwise."""
+        if is_datatype(cls) or cls in self.datatype_defs:
+            return None
+        eq = NamedNode(OWL + "equivalentClass")
+        heads = list(self.store.objects(cls, NamedNode(OWL + "oneOf"), self.graph))
+        for other in [*self.store.objects(cls, eq, self.graph), *self.store.subjects(eq, cls, self.graph)]:
+            if is_skolem(other) and self.types.typed_class(other):
+                heads += self.store.objects(other, NamedNode(OWL + "oneOf"), self.graph)
+        for head in heads:
+            members = set(self._list(head))
+            if len(members) == 1 and isinstance(next(iter(members)), NamedNode):
+                return next(iter(members))
+        return None
+
     def data_range(self, node: NamedNode, where: str, typed: bool = False) -> NamedNode:
         """A datatype restricted by numeric facets, as the IRI :mod:`.data_ranges` names it;
         RuleCompileError for other data range expressions (data one-of, unions, string facets), and for one
@@ -158,6 +190,9 @@ class TBoxReader:
     def _restriction(self, node: NamedNode, prop: Prop) -> Expr:
         some = self._one(node, OWL + "someValuesFrom")
         if some is not None:
+            only = self._single_member(some, prop)
+            if only is not None:  # ∃p.{b} is p value b: the value is in {b}, so it is b (likewise for a literal)
+                return Expr(node, "value", prop=prop, value=only)
             filler, dt = self._filler(node, prop, some)
             return Expr(node, "some", prop=prop, filler=filler, datatype=dt)
         all_ = self._one(node, OWL + "allValuesFrom")
@@ -179,6 +214,11 @@ class TBoxReader:
                 if n is not None:
                     if not isinstance(n, Literal) or not n.value.strip().isdigit():
                         raise RuleCompileError(f"cardinality {n} of a restriction on {prop.iri.value} is not a number")
+                    on = [v for v in (self._one(node, OWL + "onClass"), self._one(node, OWL + "onDataRange"))
+                          if v is not None]
+                    only = self._single_member(on[0], prop) if kind == "min" and int(n.value) == 1 and on else None
+                    if only is not None:  # ≥1 p.{b} is ∃p.{b}, p value b
+                        return Expr(node, "value", prop=prop, value=only)
                     filler, dt = self._filler(node, prop, None)
                     if filler is None and dt is None and prop.iri in self._declared_data:
                         prop = replace(prop, data=True)  # named as a data restriction, read as written
