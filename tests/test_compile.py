@@ -186,7 +186,7 @@ def test_built_ins_wait_for_their_inputs_and_refuse_bad_calls() -> None:
     with pytest.raises(RuleCompileError, match="swrlb:subtract takes a result and 2..2 arguments, got 2 in all"):
         translate(SWRLB + "subtract", ["?r", "?a"], {"?a"})
     assert SUPPORTED == [
-        "abs", "add", "ceiling", "contains", "containsIgnoreCase", "divide", "endsWith", "equal", "floor",
+        "abs", "add", "ceiling", "contains", "containsIgnoreCase", "date", "dateTime", "divide", "endsWith", "equal", "floor",
         "greaterThan", "greaterThanOrEqual", "integerDivide", "lessThan", "lessThanOrEqual", "lowerCase", "matches",
         "mod", "multiply", "notEqual", "pow", "round", "startsWith", "stringConcat", "stringLength", "substring",
         "subtract", "unaryMinus", "unaryPlus", "upperCase"]

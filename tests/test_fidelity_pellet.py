@@ -126,7 +126,7 @@ def consistent_cases() -> str:
     """One document holding every consistent case (:data:`CASES`, the SWRL string functions), each in its own
     namespace: one Pellet run answers them all."""
     return "\n".join([*(document(name) for name in CASES), swrl_strings(), swrl_builtins(), swrl_same_as(),
-                      swrl_comparisons(), document("swrl_third_party", SWRL_THIRD_PARTY)])
+                      swrl_comparisons(), swrl_calendar(), document("swrl_third_party", SWRL_THIRD_PARTY)])
 
 
 #: SWRL rules of a third-party style: string built-ins on a language-tagged and a plain string
@@ -166,6 +166,43 @@ BUILTIN_RULES = {
     "Whole": 'd(?x, ?v) ^ swrlb:matches(?v, "a.c|4") -> Whole(?x)',
     "Caseless": 'd(?x, ?v) ^ swrlb:matches(?v, "ABC", "i") -> Caseless(?x)',
 }
+
+
+#: swrlb:date and swrlb:dateTime splitting a value of each calendar type (compile/calendar_builtins.py): a part
+#: compared with a constant, a field the value has not (Java's FIELD_UNDEFINED), Pellet's time zone strings, a
+#: part bound by a property atom or read by a later built-in, a value of another type
+CALENDAR_RULES = {
+    "Year2020": "d(?x, ?t) ^ swrlb:date(?t, 2020, ?m, ?day, ?tz) -> Year2020(?x)",
+    "January": "d(?x, ?t) ^ swrlb:date(?t, ?y, 1.0, ?day) -> January(?x)",
+    "Hour7": "d(?x, ?t) ^ swrlb:dateTime(?t, ?y, ?m, ?day, 7, ?mi, ?s, ?tz) -> Hour7(?x)",
+    "NoHour": "d(?x, ?t) ^ swrlb:dateTime(?t, ?y, ?m, ?day, -2147483648, ?mi, ?s) -> NoHour(?x)",
+    "NoYear": "d(?x, ?t) ^ swrlb:date(?t, -2147483648, ?m, ?day, ?tz) -> NoYear(?x)",
+    "Utc": 'd(?x, ?t) ^ swrlb:date(?t, ?y, ?m, ?day, "Z") -> Utc(?x)',
+    "PlusTwo": 'd(?x, ?t) ^ swrlb:date(?t, ?y, ?m, ?day, "+02:02d") -> PlusTwo(?x)',
+    "MinusFive": 'd(?x, ?t) ^ swrlb:dateTime(?t, ?y, ?m, ?day, ?h, ?mi, ?s, "-05:02d") -> MinusFive(?x)',
+    "Unzoned": 'd(?x, ?t) ^ swrlb:date(?t, ?y, ?m, ?day, "") -> Unzoned(?x)',
+    "AnyZone": "d(?x, ?t) ^ swrlb:dateTime(?t, ?y, ?m, ?day, ?h, ?mi, ?s, ?tz) -> AnyZone(?x)",
+    "EmptyZone": 'd(?x, ?t) ^ swrlb:dateTime(?t, ?y, ?m, ?day, ?h, ?mi, ?s, "") -> EmptyZone(?x)',
+    "HalfSecond": "d(?x, ?t) ^ swrlb:dateTime(?t, ?y, ?m, ?day, ?h, ?mi, 30.5) -> HalfSecond(?x)",
+    "Later": "d(?x, ?t) ^ swrlb:date(?t, ?y, ?m, ?day) ^ swrlb:greaterThan(?y, 2019) -> Later(?x)",
+    "Told": "d(?x, ?t) ^ e(?x, ?y) ^ swrlb:date(?t, ?y, ?m, ?day) -> Told(?x)",
+}
+#: one value per individual, and a year told beside it (:data:`CALENDAR_RULES`)
+CALENDAR_VALUES = {
+    "instant": ('"2020-01-01T07:00:00Z"^^xsd:dateTime', 2020), "day": ('"2020-03-01"^^xsd:date', 2021),
+    "zoned": ('"2021-12-31T23:59:30.50+02:00"^^xsd:dateTime', 2021), "behind": ('"2019-01-04-05:30"^^xsd:date', 2019),
+    "local": ('"2018-05-06T07:08:09"^^xsd:dateTime', 2018), "utc_day": ('"2017-02-02Z"^^xsd:date', 2017),
+    "year": ('"2020"^^xsd:gYear', 2020), "clock": ('"07:00:00+02:00"^^xsd:time', 0),
+    "text": ('"2020-01-01"', 2020), "number": ("2020", 2020), "behind_now": ('"2016-01-01T07:00:00-05:45"^^xsd:dateTime', 2016),
+    "under_hour": ('"2016-01-01T00:00:00-00:30"^^xsd:dateTime', 2016),
+}
+
+
+def swrl_calendar() -> str:
+    """The Turtle of an ontology with :data:`CALENDAR_RULES` over :data:`CALENDAR_VALUES`."""
+    facts = " ".join(f":{name} a owl:NamedIndividual ; :d {v} ; :e {y} ." for name, (v, y) in CALENDAR_VALUES.items())
+    return swrl_document("swrl_calendar", ":d a owl:DatatypeProperty . :e a owl:DatatypeProperty . " + facts,
+                         CALENDAR_RULES)
 
 
 #: a variable bound only by a sameAs atom ranges over the other's aliases and itself (sameAs is reflexive)
@@ -266,7 +303,7 @@ def topostore_consistent_cases() -> dict:
 
 
 @pytest.mark.parametrize("name", [*CASES, "swrl_strings", "swrl_builtins", "swrl_same_as", "swrl_comparisons",
-                                  "swrl_third_party"])
+                                  "swrl_calendar", "swrl_third_party"])
 def test_cases_as_pellet(name: str) -> None:
     expected = pellet(consistent_cases())
     assert expected["consistent"]

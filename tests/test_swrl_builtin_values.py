@@ -8,9 +8,11 @@ from __future__ import annotations
 
 import warnings
 
+import pytest
 from test_incremental import from_scratch
 
 from topostore import Ontology, OntologyWarning
+from topostore.errors import RuleCompileError
 from topostore.rdf.vocab import INFERRED
 
 NS = "http://example.org/b#"
@@ -160,3 +162,62 @@ def test_comparisons_with_a_nan_constant_follow_javas_compare_to_as_pellet() -> 
         assert members(o, f"{label}L") == {n for n, (_, order) in values.items() if _holds(label, -order)}, label
     inferred, _aux, _entailed, _ok = from_scratch(o)
     assert set(o.store.triples(graph=INFERRED)) == inferred
+
+
+#: swrlb:date and swrlb:dateTime split a calendar value (Pellet's answers: tests/test_fidelity_pellet.py, swrl_calendar)
+CALENDAR_RULES = {
+    "Year2020": "d(?x, ?t) ^ swrlb:date(?t, 2020, ?m, ?day, ?tz) -> Year2020(?x)",
+    "NoHour": "d(?x, ?t) ^ swrlb:dateTime(?t, ?y, ?m, ?day, -2147483648, ?mi, ?s) -> NoHour(?x)",
+    "PlusTwo": 'd(?x, ?t) ^ swrlb:date(?t, ?y, ?m, ?day, "+02:02d") -> PlusTwo(?x)',
+    "AnyZone": "d(?x, ?t) ^ swrlb:dateTime(?t, ?y, ?m, ?day, ?h, ?mi, ?s, ?tz) -> AnyZone(?x)",
+    "Later": "d(?x, ?t) ^ swrlb:date(?t, ?y, ?m, ?day) ^ swrlb:greaterThan(?y, 2019) -> Later(?x)",
+}
+CALENDAR_FACTS = (":d a owl:DatatypeProperty . :y a owl:DatatypeProperty . :z a owl:DatatypeProperty . "
+                  + " ".join(f":{c} a owl:Class ." for c in CALENDAR_RULES)
+                  + ' :instant :d "2020-01-01T07:00:00Z"^^xsd:dateTime . :day :d "2020-03-01"^^xsd:date .'
+                  ' :zoned :d "2021-12-31T23:59:30.50+02:00"^^xsd:dateTime . :text :d "2020-01-01" .')
+
+
+def test_date_and_date_time_split_a_calendar_value_as_pellet() -> None:
+    o = ontology(CALENDAR_FACTS, CALENDAR_RULES)
+    assert o.reason().consistent
+    assert members(o, "Year2020") == {"instant", "day"}
+    assert members(o, "NoHour") == {"day"}  # a date has no hour: Java's FIELD_UNDEFINED
+    assert members(o, "PlusTwo") == {"zoned"}  # Pellet's time zone string
+    assert members(o, "AnyZone") == {"instant", "zoned"}  # no time zone: an unbound one fails
+    assert members(o, "Later") == {"instant", "day", "zoned"}
+
+
+def test_the_parts_bound_into_data_values() -> None:
+    o = ontology(CALENDAR_FACTS, {"Parts": 'd(?x, ?t) ^ swrlb:dateTime(?t, ?y, ?m, ?day, ?h, ?mi, ?s, ?tz) '
+                                           '-> y(?x, ?s) ^ z(?x, ?tz)'})
+    assert o.reason().consistent
+    assert {str(v) for v in o.data_values("y", "zoned")} == {'"30.5"^^<http://www.w3.org/2001/XMLSchema#decimal>'}
+    assert {str(v) for v in o.data_values("z", "zoned")} == {'"+02:02d"'}
+
+
+def test_an_incremental_reason_splits_calendar_values_as_from_scratch() -> None:
+    o = ontology(CALENDAR_FACTS, CALENDAR_RULES)
+    assert o.reason().consistent
+    o.load_data(PREFIXES + ':late :d "2019-07-04T07:00:00-05:30"^^xsd:dateTime . :gone :d "2024"^^xsd:gYear .')
+    o.remove_individual("day")
+    report = o.reason()
+    assert report.consistent and report.stats.mode == "incremental"
+    assert members(o, "NoHour") == {"gone"} and members(o, "AnyZone") == {"instant", "zoned", "late"}
+    inferred, _aux, _entailed, _ok = from_scratch(o)
+    assert set(o.store.triples(graph=INFERRED)) == inferred
+
+
+@pytest.mark.parametrize("rule,why", [
+    ('d(?x, ?v) ^ swrlb:date(?t, 2020, 1, 1, "Z") -> Built(?x)', "unbound first argument"),
+    ('d(?x, ?t) ^ swrlb:dateTime(?t, 2020, 1, 1, 7, 0, 0, "Z") -> Built(?x)', "every part bound"),
+    ("d(?x, ?t) ^ swrlb:date(?t, ?y, ?n, ?n) -> Built(?x)", "two unbound parts"),
+    ("d(?x, ?t) ^ swrlb:date(?t, ?y, ?m) -> Built(?x)", "takes 4 or 5 arguments"),
+])
+def test_the_forms_pellet_builds_a_value_for_are_not_translated(rule: str, why: str) -> None:
+    """Where Pellet builds the value from the parts (or stops), the rule is refused; a loaded one is set aside
+    with its notice (the same RuleCompileError)."""
+    o = ontology(CALENDAR_FACTS + " :Built a owl:Class .", {})
+    with pytest.raises(RuleCompileError, match=why):
+        o.add_rule(rule, "Built")
+    assert o.rule_labels() == [] and o.reason().consistent and members(o, "Built") == set()

@@ -16,6 +16,7 @@ from pyoxigraph import Literal, NamedNode
 from ..errors import RuleCompileError
 from ..rdf.terms import Term
 from ..rdf.vocab import POW_FUNCTION, SWRLB, XSD, xsd
+from . import calendar_builtins
 from .comparisons import OPERATORS, comparison
 from .condition import Condition, bind, test
 
@@ -79,7 +80,19 @@ def _whole(pattern: str) -> str:
     return f'CONCAT("^(?:", STR({pattern}), ")$")'
 
 
-SUPPORTED = sorted(set(_COMPARISONS) | set(_FUNCTIONS) | set(_TESTS))
+SUPPORTED = sorted(set(_COMPARISONS) | set(_FUNCTIONS) | set(_TESTS) | calendar_builtins.NAMES)
+
+
+def conditions(name: str, args: list[str], bound: set[str],
+               numbers: Collection[str] = ()) -> tuple[Condition, ...] | None:
+    """The conditions for built-in ``name`` with argument texts ``args``: :func:`translate`'s one, or for
+    ``swrlb:date`` and ``swrlb:dateTime`` a test and a BIND or comparison per part (:mod:`.calendar_builtins`);
+    None when it cannot run yet."""
+    local = name.removeprefix(SWRLB)
+    if name.startswith(SWRLB) and local in calendar_builtins.NAMES:
+        return calendar_builtins.translate(local, args, bound, numbers)
+    one = translate(name, args, bound, numbers)
+    return None if one is None else (one,)
 
 
 def translate(name: str, args: list[str], bound: set[str], numbers: Collection[str] = ()) -> Condition | None:
@@ -89,7 +102,8 @@ def translate(name: str, args: list[str], bound: set[str], numbers: Collection[s
     Returns a test (``FILTER(...)``), a BIND of the first argument (``?r``,
     :attr:`Condition.binds`) when it is still unbound, or None when it cannot run yet (some input
     argument is still unbound; the caller retries after other built-ins).
-    Raises :class:`RuleCompileError` for unknown built-ins or wrong arity.
+    Raises :class:`RuleCompileError` for unknown built-ins or wrong arity, and for the built-ins of several
+    conditions (:func:`conditions` gives them).
     """
     local = name[len(SWRLB):] if name.startswith(SWRLB) else None
     if local is None or local not in set(SUPPORTED):
@@ -98,6 +112,8 @@ def translate(name: str, args: list[str], bound: set[str], numbers: Collection[s
     def is_bound(a: str) -> bool:
         return not a.startswith("?") or a in bound
 
+    if local in calendar_builtins.NAMES:
+        raise RuleCompileError(f"swrlb:{local} is several conditions: see conditions()")
     if local in _COMPARISONS:
         if len(args) != 2:
             raise RuleCompileError(f"swrlb:{local} takes 2 arguments, got {len(args)}")
@@ -126,16 +142,19 @@ def translate(name: str, args: list[str], bound: set[str], numbers: Collection[s
 #: built-ins false (a SPARQL error) on any argument that is not a data value: an IRI has no number,
 #: and ``<``/``>`` compare no IRIs; ``=``, ``<=`` and the string functions (``STR``) do take one
 _STRICT = frozenset(_FUNCTIONS) - {"stringConcat", "stringLength", "upperCase", "lowerCase", "substring"} \
-    | {"lessThan", "greaterThan"}
+    | {"lessThan", "greaterThan"} | calendar_builtins.NAMES
 
 
 #: the functions whose result is a number (the arithmetic ones, and a string's length)
 _NUMBER_RESULTS = frozenset(_FUNCTIONS) - {"stringConcat", "upperCase", "lowerCase", "substring"}
 
 
-def gives_number(name: str) -> bool:
-    """Whether function built-in ``name`` (full IRI) binds its result to a number, where it binds one."""
-    return name.removeprefix(SWRLB) in _NUMBER_RESULTS
+def gives_number(name: str, args: list[str], variable: str) -> bool:
+    """Whether built-in ``name`` (full IRI) on argument texts ``args`` binds ``variable`` to a number."""
+    local = name.removeprefix(SWRLB)
+    if local in calendar_builtins.NAMES:
+        return calendar_builtins.number_part(local, args, variable)
+    return local in _NUMBER_RESULTS
 
 
 def is_strict(name: str) -> bool:

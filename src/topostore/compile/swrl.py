@@ -251,9 +251,9 @@ class SwrlCompiler:
                 texts = [arg(x) for x in a.args]
                 iri = a.predicate.value if a.predicate else ""
                 with _about(name, a):
-                    placed_as = builtins.translate(iri, texts, body.bound, numbers)
+                    placed_as = builtins.conditions(iri, texts, body.bound, numbers)
                 if placed_as is not None:
-                    body.conditions.append(placed_as)
+                    body.conditions += placed_as
                     if any(t.startswith("<") for t in texts):  # an individual (an IRI) given as an argument
                         body.conditions.append(cond.test("false"))
                     # a built-in's arguments are data values: on an individual it is false, as in Pellet;
@@ -264,11 +264,11 @@ class SwrlCompiler:
                         proven.update(inputs)
                     else:
                         needs.update(dict.fromkeys(inputs))
-                    if placed_as.binds:
-                        needs[placed_as.binds] = None
-                        body.bound.add(placed_as.binds)
-                        if builtins.gives_number(iri):
-                            numbers.add(placed_as.binds)
+                    for bound_var in (c.binds for c in placed_as if c.binds):
+                        needs[bound_var] = None
+                        body.bound.add(bound_var)
+                        if builtins.gives_number(iri, texts, bound_var):
+                            numbers.add(bound_var)
                     pending.remove(a)
                     placed = True
             if not placed:
