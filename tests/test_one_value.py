@@ -6,6 +6,7 @@ from __future__ import annotations
 import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
+from profiles import property_examples
 from pyoxigraph import Literal, NamedNode, Triple
 from support import IRI, SHARED
 
@@ -109,7 +110,8 @@ def _held_replace(service: ArmorService, data: st.DataObject) -> dict | None:
     return _request("REPLACE", kind, "IND", [prop, ind, new_type, data.draw(texts), old.value])
 
 
-@settings(max_examples=100, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
+@settings(max_examples=property_examples(100), deadline=None,
+          suppress_health_check=[HealthCheck.function_scoped_fixture])
 @given(data=st.data(), buffered=st.booleans(), size=st.integers(1, 12))
 def test_lane_and_general_path_agree(monkeypatch: pytest.MonkeyPatch, data: st.DataObject, buffered: bool,
                                      size: int) -> None:

@@ -254,7 +254,7 @@ def test_failed_reason_restores_the_state_before_the_change(data_dir: Path) -> N
     svc = ArmorService(data_dir=data_dir)
     assert call(svc, "LOAD", "FILE", "", ["map.owl", IRI, "true", "PELLET", "true"]).exit_code == 0
     ref = svc.reference("ref")
-    ref.ontology.limits = ReasonLimits(max_rounds=100, max_inferred=100_000, max_seconds=30)
+    ref.ontology.limits = ReasonLimits(max_rounds=100, max_inferred=100_000, max_seconds=8)
     with ref.lock:  # a rule with no finite closure once a counter has a value
         ref.ontology.load_data(PREFIXES + RUNAWAY + ":counter a owl:DatatypeProperty .\n", "turtle")
     assert call(svc, "REASON").exit_code == 0
