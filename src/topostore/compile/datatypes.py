@@ -19,6 +19,7 @@ import struct
 from collections.abc import Iterable
 from dataclasses import dataclass
 from decimal import ROUND_CEILING, ROUND_FLOOR, Decimal, InvalidOperation
+from functools import lru_cache
 
 from pyoxigraph import Literal, NamedNode
 
@@ -182,18 +183,11 @@ def surely_in(value: Term, datatype: str) -> bool:
     return (low is None or number >= low) and (high is None or number <= high)
 
 
-#: :func:`_integer_bounds` by (literal's datatype, range datatype): a few pairs per ontology
-_BOUNDS: dict[tuple[str, str], tuple[int | None, int | None] | None] = {}
-_BOUNDS_MAX = 1024
-
-
+@lru_cache(maxsize=1024)  # a few pairs per ontology, asked on every robot step
 def _integer_bounds(own_type: str, datatype: str) -> tuple[int | None, int | None] | None:
     """(least, greatest) integer (None: unbounded) that lies in the XSD integer type ``own_type`` and in
     ``datatype`` (a named integer type, or decimal, real, rational: unbounded); None where either is not
     such a type (:func:`surely_in` then says "ask")."""
-    key = (own_type, datatype)
-    if key in _BOUNDS:
-        return _BOUNDS[key]
     own = INTEGER_TYPES.get(own_type[len(XSD):]) if own_type.startswith(XSD) else None
     target = INTEGER_TYPES.get(datatype[len(XSD):]) if datatype.startswith(XSD) else None
     if own is None or (target is None and datatype not in (XSD + "decimal", OWL + "real", OWL + "rational")):
@@ -202,9 +196,6 @@ def _integer_bounds(own_type: str, datatype: str) -> tuple[int | None, int | Non
         lows = [b for b in (own[0], None if target is None else target[0]) if b is not None]
         highs = [b for b in (own[1], None if target is None else target[1]) if b is not None]
         found = (max(lows) if lows else None, min(highs) if highs else None)
-    if len(_BOUNDS) >= _BOUNDS_MAX:
-        _BOUNDS.clear()
-    _BOUNDS[key] = found
     return found
 
 
