@@ -20,13 +20,13 @@ from ..rdf.vocab import OWL, RDFS, TYPE, is_skolem
 from .model import is_datatype
 
 if TYPE_CHECKING:  # pragma: no cover
-    from .tbox_reader import TBoxReader
+    from .class_expressions import ClassExpressionReader
 
 _DATATYPE = NamedNode(RDFS + "Datatype")
 _EQUIVALENT = NamedNode(OWL + "equivalentClass")
 
 
-def is_definition(t: Triple, reader: TBoxReader) -> bool:
+def is_definition(t: Triple, reader: ClassExpressionReader) -> bool:
     """Whether an ``owl:equivalentClass`` triple defines a datatype: a named datatype made equal to a data
     range (a node restricting a datatype, one typed ``rdfs:Datatype``, or a named datatype: a built-in one, one
     declared ``rdfs:Datatype``)."""
@@ -41,7 +41,7 @@ def is_definition(t: Triple, reader: TBoxReader) -> bool:
     return declared and (is_datatype(t.object) or _DATATYPE in reader.store.objects(t.object, TYPE, reader.graph))
 
 
-def read_definitions(reader: TBoxReader) -> tuple[dict[NamedNode, NamedNode], list[tuple[str, str]]]:
+def read_definitions(reader: ClassExpressionReader) -> tuple[dict[NamedNode, NamedNode], list[tuple[str, str]]]:
     """({named datatype: the range it stands for}, [(axiom, why set aside)]): every datatype definition
     of the graph, a chain of names (``:A`` defined as ``:B``, ``:B`` as a range) followed to its end."""
     told: dict[NamedNode, NamedNode] = {}

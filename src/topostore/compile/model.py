@@ -1,6 +1,6 @@
 """The values the compiler reads an ontology into: class and property expressions and the TBox.
 
-Small immutable values with no SPARQL and no store: :mod:`.tbox_reader` builds them from the
+Small immutable values with no SPARQL and no store: :mod:`.class_expressions` and :mod:`.tbox_reader` build them from the
 RDF mapping of OWL 2, the rest of :mod:`topostore.compile` turns them into rules.
 """
 

@@ -45,7 +45,7 @@ def compile_ontology(store: Store, graph: NamedNode, refuse: Collection[Term] = 
     """
     reader = TBoxReader(store, graph)
     tbox = reader.read()
-    swrl = SwrlCompiler(store, graph, reader, refuse)
+    swrl = SwrlCompiler(store, graph, reader.classes, refuse)
     swrl_rules = swrl.compile()
     tbox.typed_expressions.extend(swrl.expressions)
     merge_alike(tbox)  # after the SWRL rules: the expressions they name are kept

@@ -22,6 +22,7 @@ from ..rdf.vocab import DIFFERENT_FROM, ENTAILED_PREFIX, SAME_AS, SWRLA, TYPE, i
 from ..stores.base import Store
 from . import builtins, data_ranges, sqwrl
 from . import condition as cond
+from .class_expressions import ClassExpressionReader
 from .condition import Condition
 from .inline_difference import DifferenceAsk
 from .model import Expr, is_datatype
@@ -30,7 +31,6 @@ from .rule import Atom, Rule
 from .snippets import candidate_atom, different_atom, surely_in_datatype
 from .swrl_atoms import Names, SwrlAtom, read_atoms
 from .swrl_same_as import rebinding, same_as_forms
-from .tbox_reader import TBoxReader
 
 T = str(TYPE)
 
@@ -78,7 +78,7 @@ def _require_bound(name: str, a: SwrlAtom, needs: Iterable[str], bound: set[str]
 
 
 class SwrlCompiler:
-    def __init__(self, store: Store, graph: NamedNode, reader: TBoxReader, refuse: Collection[Term] = ()) -> None:
+    def __init__(self, store: Store, graph: NamedNode, reader: ClassExpressionReader, refuse: Collection[Term] = ()) -> None:
         """``refuse``: the rules (their ``swrl:Imp`` nodes) refused with a RuleCompileError when they cannot be
         compiled, rather than set aside (a rule a command adds, a rule a loader repaired)."""
         self.store, self.graph, self.reader = store, graph, reader

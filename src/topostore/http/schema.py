@@ -20,6 +20,7 @@ from typing import TYPE_CHECKING, Any
 from pyoxigraph import NamedNode, Triple
 
 from ..compile.builtins import FUNCTIONS
+from ..compile.class_expressions import ClassExpressionReader
 from ..compile.model import Expr, Prop, TBox
 from ..compile.rule import Rule, RuleSet
 from ..compile.tbox_reader import TBoxReader
@@ -173,7 +174,7 @@ class _PrototypeExplainer(Explainer):
     """Proofs over the prototypes' scratch store, naming class expressions from the ontology's axioms
     (the scratch store holds the prototypes and their consequences, not the axioms)."""
 
-    def __init__(self, store: Store, rules: list[Rule], short, axioms: TBoxReader) -> None:
+    def __init__(self, store: Store, rules: list[Rule], short, axioms: ClassExpressionReader) -> None:
         super().__init__(store, rules, short)
         self.axioms = axioms
 
@@ -208,7 +209,7 @@ class Prototypes:
             cls = self.names.get(t)
             return f"(any {onto.short(cls)})" if cls is not None else onto.short(t)
 
-        explainer = _PrototypeExplainer(self.store, self.rules.all_rules, short, TBoxReader(onto.store, ASSERTED))
+        explainer = _PrototypeExplainer(self.store, self.rules.all_rules, short, ClassExpressionReader(onto.store, ASSERTED))
         tree = _assumed(explainer.explain(Triple(proto, TYPE, sup)).to_dict())
         origin = f"every {onto.short(sub)} is a {onto.short(sup)}"
         if tree["status"] == "not entailed" and sub in onto.reasoning.unsatisfiable():

@@ -29,10 +29,10 @@ from functools import lru_cache
 
 from pyoxigraph import Literal, NamedNode, Triple
 
+from ...compile.class_expressions import ClassExpressionReader
 from ...compile.generic import PREFIXES
 from ...compile.rule import Atom, Rule, join_order
 from ...compile.snippets import VALUE_CANDIDATE
-from ...compile.tbox_reader import TBoxReader
 from ...errors import QueryError, RuleCompileError
 from ...rdf.terms import Term, parse_term, sparql, value_key
 from ...rdf.vocab import (
@@ -95,7 +95,7 @@ class Explainer:
         self._candidates: dict[Triple, list[Candidate]] = {}
         self._proved: dict[Triple, Explanation] = {}
         self._failed: dict[Triple, int] = {}
-        self._reader: TBoxReader | None = None
+        self._reader: ClassExpressionReader | None = None
         self._groups: dict[str, tuple[Term, Term]] | None = None
         self._texts: dict[object, str] = {}  # readable forms of AllDifferent groups and keys
 
@@ -244,7 +244,7 @@ class Explainer:
         if self.store.contains(Triple(node, TYPE, owl("AllDifferent")), ASSERTED):
             return self._group_text(node)
         if self._reader is None:
-            self._reader = TBoxReader(self.store, ASSERTED)
+            self._reader = ClassExpressionReader(self.store, ASSERTED)
         try:
             return str(self._reader.expr(node))
         except RuleCompileError:  # not a class expression: a plain anonymous node
