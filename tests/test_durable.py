@@ -16,8 +16,6 @@ import hashlib
 import random
 import shutil
 import signal
-import subprocess
-import sys
 import threading
 import time
 from pathlib import Path
@@ -25,6 +23,7 @@ from pathlib import Path
 import httpx
 import pytest
 from pyoxigraph import NamedNode, Triple
+from serve_fork import ForkedServe
 from servers import free_port, stop
 from support import IRI
 from swrl_support import PREFIXES, builtin, data, rule
@@ -49,15 +48,15 @@ def request(command: str, spec1: str = "", spec2: str = "", *args: str, client: 
 
 # --------------------------------------------------------------------------- kill -9 loop
 
-def start_serve(store: Path, data: Path, port: int) -> subprocess.Popen:
-    proc = subprocess.Popen(
-        [sys.executable, "-c", "from topostore.cli.group import main; main()", "serve", "--port", str(port),
-         "--data-dir", str(data), "--store", str(store)],
-        stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+def start_serve(store: Path, data: Path, port: int) -> ForkedServe:
+    """``topostore serve --store DIR`` on ``port``, answering; forked from a process that imported topostore
+    (tests/serve_fork.py: a fresh interpreter per restart was most of this test's time)."""
+    proc = ForkedServe(["--port", str(port), "--data-dir", str(data), "--store", str(store)],
+                       store.parent / f"serve-{port}.log")
     deadline = time.monotonic() + 60
     while time.monotonic() < deadline:
         if proc.poll() is not None:
-            raise RuntimeError(f"topostore serve exited: {proc.stderr.read().decode()[-2000:]}")
+            raise RuntimeError(f"topostore serve exited: {proc.stderr_text()[-2000:]}")
         try:
             httpx.get(f"http://127.0.0.1:{port}/health", timeout=1)
             return proc
