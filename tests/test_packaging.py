@@ -37,14 +37,20 @@ def installed(tmp_path_factory: pytest.TempPathFactory) -> tuple[Path, Path]:
     assert built.returncode == 0, built.stderr
     wheels = list((base / "dist").glob("topostore-*.whl"))
     assert len(wheels) == 1
-    venv.EnvBuilder(with_pip=True, clear=True).create(base / "venv")
+    # no pip of its own (ensurepip was most of this fixture's time): this pip installs into it (``--python``)
+    venv.EnvBuilder(with_pip=False, clear=True).create(base / "venv")
     bin_dir = base / "venv" / "bin"
-    done = run([str(bin_dir / "python"), "-m", "pip", "install", "--quiet", str(wheels[0])], base)
+    done = run([*pip_for(bin_dir), "install", "--quiet", str(wheels[0])], base)
     assert done.returncode == 0, done.stderr
     work = base / "work"
     work.mkdir()
     shutil.copy(wheels[0], work.parent / wheels[0].name)
     return bin_dir, work
+
+
+def pip_for(bin_dir: Path) -> list[str]:
+    """This environment's pip, installing into the fresh venv's interpreter (pip's ``--python``)."""
+    return [sys.executable, "-m", "pip", "--python", str(bin_dir / "python")]
 
 
 def clean_env(bin_dir: Path) -> dict[str, str]:
@@ -95,8 +101,7 @@ def test_target_and_user_installs_find_their_data(installed: tuple[Path, Path], 
     env = clean_env(bin_dir)
     root = work.parent / how.strip("-")
     if how == "--target":
-        done = run([str(bin_dir / "python"), "-m", "pip", "install", "--quiet", "--no-deps", "--target", str(root),
-                    str(wheel)], work, env)
+        done = run([*pip_for(bin_dir), "install", "--quiet", "--no-deps", "--target", str(root), str(wheel)], work, env)
         site = root
     else:  # a user base of its own (pip refuses --user inside a venv, so the base python installs it)
         env_user = {**env, "PYTHONUSERBASE": str(root)}
