@@ -127,14 +127,16 @@ TUTORIAL = [
 
 
 def tutorial_answers(store) -> list[dict]:
+    """The answers of the tutorial's requests, on a reference of its own: no other run's graphs on a shared
+    server can be read as its own (the name was one, ``tut``, for every run)."""
     from topostore.armor import ArmorService
 
     service = ArmorService(store=store)
+    reference = f"tutorial-{next(_counter)}"
     try:
-        return [service.call({"client_name": "c", "reference_name": f"tutorial-{next(_counter)}" if i == -1 else "tut",
-                              "command": c, "primary_command_spec": s1, "secondary_command_spec": s2,
-                              "args": list(args)}).to_dict()
-                for i, (c, s1, s2, args) in enumerate(TUTORIAL)]
+        return [service.call({"client_name": "c", "reference_name": reference, "command": c,
+                              "primary_command_spec": s1, "secondary_command_spec": s2, "args": list(args)}).to_dict()
+                for c, s1, s2, args in TUTORIAL]
     finally:
         service.close()
 
@@ -145,4 +147,7 @@ def test_tutorial_answers_equal_in_memory(kind: str, request, tmp_path: Path) ->
     assert all(a["success"] for a in expected) and not expected[-2]["is_consistent"]
     assert expected[20]["queried_objects"] == ["{l=http://bnc/exp-rob-lab/2022-23#R3, t=1665579735^^http://www.w3.org/2001/XMLSchema#long}"]
     spec = str(tmp_path / "refs") if kind == "disk" else request.getfixturevalue(f"{kind}_url")
-    assert tutorial_answers(spec) == expected
+    answers = tutorial_answers(spec)
+    differ = [i for i, (got, want) in enumerate(zip(answers, expected, strict=True)) if got != want]
+    assert not differ, (f"command {differ[0]} {TUTORIAL[differ[0]]} answered {answers[differ[0]]}, in memory "
+                        f"{expected[differ[0]]}; commands answered otherwise: {differ}")
