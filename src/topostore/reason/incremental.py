@@ -89,7 +89,8 @@ from .compiled_step import MAX_PROGRAMS
 from .component import WHOLE_ROUNDS
 from .consistency import Violation, check_consistency
 from .dred import can_prove
-from .entailed import refresh_entailed, refresh_touched
+from .entailed import any_twin as _any_twin
+from .entailed import internal, refresh_entailed, refresh_touched
 from .maintenance import MaintenanceParts, MaintenanceState, Part, early_checks, is_monotone, needed_keys
 from .materialize import Materializer
 from .negation import ASKED, completion_text
@@ -148,6 +149,11 @@ class IncrementalReasoner:
         self._parts: MaintenanceParts | None = None
         #: (individual, class) pairs whose type fact the last REASON may have changed; None after a full run
         self.touched_types: list[tuple[Term, NamedNode]] | None = None
+        #: the read keys of the internal forms of the entailed-only predicates (:func:`.entailed.internal`)
+        self._twin_keys = frozenset(("p", f"<{internal(p).value}>") for p in rules.entailed_predicates)
+        #: True once the helper graph was found to hold no internal fact (no entailed-only conclusion), until
+        #: something may write one (see :meth:`_publish_entailed`); None: not known
+        self._twinless: bool | None = None
 
     rules = Part()
     monotone = Part()
@@ -221,13 +227,14 @@ class IncrementalReasoner:
                 if changed and self.change_checks.negated_match():
                     return self.full("the change makes a rule with a negated premise (stratum 1) match", profile)
                 violations = self._check(stats, changed)
-                self._publish_entailed(changed)
+                self._publish_entailed(changed, stats.program == "compiled")
                 self.touched_types = self.changed.touched_types() if changed else []
             if profile:
                 stats.derived = self.store.count(NEW_FACTS)
         except Exception:
             self.state.ready = False  # half-maintained graphs: the next REASON recomputes them
             self.touched_types = None
+            self._twinless = None
             self.flips.forget()
             self.requests.clear()
             raise
@@ -242,6 +249,7 @@ class IncrementalReasoner:
         """Recompute everything from the asserted graph; records the state maintenance starts from."""
         self.state.ready = False
         self.touched_types = None
+        self._twinless = None
         if self._parts is not None:
             self.flips.forget()
             self.step.programs.clear()  # compiled against the keys with facts, which a full run recounts
@@ -398,19 +406,40 @@ class IncrementalReasoner:
             if self.requests.profile:
                 stats.per_rule["consistency"] = stats.per_rule.get("consistency", 0.0) + time.perf_counter() - start
 
-    def _publish_entailed(self, changed: bool) -> None:
-        """Bring the ENTAILED graph up to date from what this maintenance touched (see :mod:`.entailed`)."""
+    def _publish_entailed(self, changed: bool, compiled: bool) -> None:
+        """Bring the ENTAILED graph up to date from what this maintenance touched (see :mod:`.entailed`).
+
+        A triple is in ENTAILED only while its internal twin is in the helper graph.  Where the helper
+        graph holds no twin and this REASON's compiled step writes none (its program's heads name no
+        internal form), it held none before either: ENTAILED held none of the touched triples and holds
+        none now, and the touched triples are not read (a robot's canReach on a map whose individuals
+        are declared different)."""
         if not changed:
             return
         self.requests.flush()  # what follows reads the store (the touched types too)
         if not self.ruleset.entailed_predicates:
             return
+        if compiled and self._no_twin_written():
+            if self._twinless is None:  # nothing wrote a twin in this REASON: the helper graph as it was
+                self._twinless = not _any_twin(self.store, self.ruleset.entailed_predicates)
+            if self._twinless:
+                return
+        else:
+            self._twinless = None  # the general phases may write any key
         found = self.changed.touched_watched((NEW_FACTS, OVERDELETED))
         if found is None:  # a graph too large to read into memory, or a store reached over HTTP
             refresh_entailed(self.store, self.ruleset, (NEW_FACTS, OVERDELETED), self.changed.quads)
         else:
             refresh_touched(self.store, *found)
 
+    def _no_twin_written(self) -> bool:
+        """Whether the compiled step of this REASON can have written no internal twin (no head of its
+        program is the key of one, nor a key standing for any predicate)."""
+        heads = self.step.written
+        if self._twin_keys.isdisjoint(heads) and all(len(key) == 2 for key in heads):
+            return True
+        self._twinless = None
+        return False
 
     def key_graphs(self) -> dict:
         """Which of the asserted, inferred and helper graphs hold facts of each key a rule or check
