@@ -25,7 +25,7 @@ from . import flip, staged_code
 from .change_checks import ChangeChecks
 from .component import WHOLE_ROUNDS
 from .flips import Flips
-from .program import Refused, StepProgram, signature
+from .program import Refused, Signature, StepProgram, signature
 from .requests import RequestQueue
 from .staged import StagedRun
 from .stats import ReasonStats
@@ -88,17 +88,20 @@ class CompiledStep:
 
     def run(self, added: Collection[Triple], removed: Collection[Triple], clean: dict,
             stats: ReasonStats, state: MaintenanceState, census: tuple | None = None,
-            copy_changes: Callable[[], None] = lambda: None, lost: tuple | None = None) -> bool:
+            copy_changes: Callable[[], None] = lambda: None, lost: tuple | None = None,
+            sig: Signature | None = None) -> bool:
         """Maintain with the compiled program of this kind of change (see :mod:`.program`); False
         (with the reason in ``stats.program``) when it cannot be compiled.  ``clean``: the change's
         clean replacements (:func:`.flip.replaced_in`); ``census``: :func:`key_census` of ``added``
         when the caller made it (``lost``: that of ``removed``); ``copy_changes``: writes the changes to the
-        scratch graphs SPARQL text reads them from (called before the first text is sent)."""
+        scratch graphs SPARQL text reads them from (called before the first text is sent); ``sig``: the
+        change's :func:`.program.signature` when the caller has it."""
         if not self.enabled:
             stats.program = "general: compiled step switched off"
             return False
-        sig = signature(census if census is not None else key_census(added),
-                        lost if lost is not None else key_census(removed), clean)
+        if sig is None:
+            sig = signature(census if census is not None else key_census(added),
+                            lost if lost is not None else key_census(removed), clean)
         self._clean = clean
         ran = self._unchanged(sig, state)
         program = ran[0] if ran is not None else self._program(sig, state)

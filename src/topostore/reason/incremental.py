@@ -95,7 +95,7 @@ from .maintenance import MaintenanceParts, MaintenanceState, Part, early_checks,
 from .materialize import Materializer
 from .negation import ASKED, completion_text
 from .present import key_graphs, with_facts
-from .program import PROGRAM_SCRATCH
+from .program import PROGRAM_SCRATCH, Signature, signature
 from .requests import LaterCopies
 from .scratch import ADDED, FLIP_GAINED, NEW_FACTS, OVERDELETED, REMOVED, SCRATCH
 from .stats import ReasonStats
@@ -329,19 +329,20 @@ class IncrementalReasoner:
         if self.store.round_trips:
             copy_changes()  # queued with the program's request
         preds, classes = key_census(added)
-        for keys in (self.state.present, self.state.asserted):
+        lost = key_census(removed)  # read by the completion's decision and the program's signature alike
+        state = self.state
+        for keys in (state.present, state.asserted):
             keys[0].update(preds)
             keys[1].update(classes)
-        # a newly asserted fact that was inferred is now asserted only (as from scratch); none can have
-        # been inferred where no rule that can fire writes its predicate or class (a robot's clock)
-        if added and self.step.compiler.state_graphs.derived((preds, classes), self.state.present):
-            requests.discard(added, (INFERRED, AUX))
         replaced = flip.replaced_in(self.store, added, removed, ASSERTED)
-        lost = key_census(removed)  # read by the completion's decision and the program's signature alike
-        ask_again = bool(self.deferred and removed) and self._completion.needed(self.state.present, lost,
-                                                                                asserted=True)
-        if not ask_again and self.step.run(added, removed, replaced, stats, self.state, (preds, classes),
-                                           copy_changes, lost):
+        sig, discard, ask_again = self._decided.get(
+            ("maintain", tuple(preds), tuple(classes), tuple(lost[0]), tuple(lost[1]), tuple(replaced),
+             len(state.present[0]), len(state.present[1]), len(state.asserted[0]), len(state.asserted[1])),
+            lambda: self._kind((preds, classes), lost, replaced))
+        if discard:
+            requests.discard(added, (INFERRED, AUX))
+        if not ask_again and self.step.run(added, removed, replaced, stats, state, (preds, classes),
+                                           copy_changes, lost, sig):
             self._incomplete = bool(self.deferred and removed) and self._completion.needed(
                 self.state.present, self.step.lost_keys)
             return
@@ -351,6 +352,23 @@ class IncrementalReasoner:
             self._general(added, removed, stats, profile, (preds, classes), replaced)
         finally:
             self._completion.forget()
+
+    def _kind(self, census: tuple, lost: tuple, replaced: dict) -> tuple[Signature, bool, bool]:
+        """What maintenance decides from the kind of a change alone (its added and lost read keys,
+        ``census`` and ``lost``, and its cleanly replaced predicates), given the keys with facts: the
+        compiled program's signature; whether an added fact may have been inferred (then it is discarded
+        from the reasoner's graphs: a newly asserted fact that was inferred is asserted only, as from
+        scratch; none can have been where no rule that can fire writes its key, a robot's clock); whether
+        the loss may leave a pair of a deferred rule unasked (:mod:`.negation`).
+
+        Each is a function of those keys and of the keys with facts (:attr:`MaintenanceState.present`,
+        ``asserted``), sets that only grow until a full run makes new ones: the caller keeps the answer
+        by the kind and the sets' sizes in :attr:`_decided`, which a full run clears, and a robot's
+        repeated step asks once."""
+        discard = bool(census[0]) and self.step.compiler.state_graphs.derived(census, self.state.present)
+        ask_again = bool(self.deferred and lost[0]) and self._completion.needed(self.state.present, lost,
+                                                                               asserted=True)
+        return signature(census, lost, replaced), discard, ask_again
 
     def _general(self, added: Collection[Triple], removed: Collection[Triple], stats: ReasonStats, profile: bool,
                  census: tuple, replaced: dict) -> None:
