@@ -1066,6 +1066,29 @@ def test_only_a_change_a_rule_may_have_inferred_is_discarded_from_the_inferred_g
     assert inferred not in set(onto.store.triples(graph=INFERRED))
 
 
+_terms = st.sampled_from(["i1", "i2", "i3"])
+_facts = st.lists(st.tuples(_terms, st.sampled_from(["p", "q", "type"]), _terms), max_size=6)
+
+
+@settings(max_examples=property_examples(100), deadline=None)
+@given(held=_facts, added=_facts, removed=_facts)
+def test_the_clean_replacements_read_here_are_those_of_the_definition(held: list, added: list, removed: list) -> None:
+    """:func:`.flip.replaced_in` in memory (one pass, a look-up per pair replaced once) gives what
+    :func:`.flip.clean_replacements` defines, on any change: pairs with several triples added or removed,
+    additions or removals alone, type facts, several values held."""
+    from topostore.reason import flip
+
+    def triples(facts: list) -> list[Triple]:
+        return list(dict.fromkeys(Triple(N(s), TYPE if p == "type" else N(p), N(o)) for s, p, o in facts))
+
+    store = memory_store()
+    store.add(triples(held + added), ASSERTED)
+    store.remove(triples(removed), ASSERTED)
+    change = triples(added), triples(removed)
+    assert flip.replaced_in(store, *change, ASSERTED) == flip.clean_replacements(
+        *change, lambda s, pred: store.objects(s, pred, ASSERTED))
+
+
 def test_the_clean_replacements_of_a_change_read_only_the_pairs_replaced_once() -> None:
     """A change's clean replacements (:func:`.flip.replaced_in`) read the asserted values of the pairs
     with one triple added and one removed only (each once), and are those of the values read."""

@@ -153,12 +153,41 @@ def replaced_in(store, added: Collection[Triple], removed: Collection[Triple], g
     """:func:`clean_replacements` of a change, the subjects' values read from ``graph`` of ``store``: of
     the pairs with one triple added and one removed only, one look-up each, or one batch where reads
     are round trips (each pair is hashed once: a pyoxigraph term's hash is a call)."""
-    by_pair = _by_pair(added, removed)
     if not store.round_trips:
-        return _clean(by_pair, lambda pair: store.objects(pair[0], pair[1], graph))
+        return _replaced_here(store, added, removed, graph)
+    by_pair = _by_pair(added, removed)
     single = [pair for pair, (adds, rems) in by_pair.items() if len(adds) == 1 and len(rems) == 1 and pair[1] != TYPE]
     now = store.objects_many(single, graph) if single else {}
     return _clean(by_pair, lambda pair: now.get(pair, ()))
+
+
+def _replaced_here(store, added: Collection[Triple], removed: Collection[Triple], graph) -> dict[str, list[Replacement]]:
+    """:func:`replaced_in` where a look-up is no round trip: each pair's one removed and one added triple
+    kept as they are found (None where a pair has two), without the lists of :func:`_by_pair`, and each
+    pair with one of each looked up as it is met (a robot's step: three pairs, each hashed twice)."""
+    olds: dict[tuple, Triple | None] = {}
+    for t in removed:
+        pair = (t.subject, t.predicate)
+        if olds.setdefault(pair, t) is not t:
+            olds[pair] = None
+    news: dict[tuple, Triple | None] = {}
+    for t in added:
+        pair = (t.subject, t.predicate)
+        if news.setdefault(pair, t) is not t:
+            news[pair] = None
+    clean: dict[str, list[Replacement]] = {}
+    dirty: set[str] = set()
+    for pair, new in news.items():
+        p = pair[1]
+        key = f"<{p.value}>"
+        old = olds.pop(pair, None)
+        if new is None or old is None or p == TYPE or len(store.objects(pair[0], p, graph)) != 1:
+            dirty.add(key)
+            continue
+        clean.setdefault(key, []).append(Replacement(old, new))
+    for pair in olds:  # removed, nothing added
+        dirty.add(f"<{pair[1].value}>")
+    return {p: pairs for p, pairs in clean.items() if p not in dirty} if dirty else clean
 
 
 def flip_atoms(rule: Rule, clean: Collection[str], changed) -> tuple[int, ...] | None:
