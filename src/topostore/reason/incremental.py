@@ -154,6 +154,9 @@ class IncrementalReasoner:
         #: True once the helper graph was found to hold no internal fact (no entailed-only conclusion), until
         #: something may write one (see :meth:`_publish_entailed`); None: not known
         self._twinless: bool | None = None
+        #: (subject, predicate) pairs of the asserted graph known to hold one value since the last REASON
+        #: (:func:`.flip.replaced_in`); cleared at a full run and a failed REASON
+        self._single: set[tuple] = set()
 
     rules = Part()
     monotone = Part()
@@ -235,6 +238,7 @@ class IncrementalReasoner:
             self.state.ready = False  # half-maintained graphs: the next REASON recomputes them
             self.touched_types = None
             self._twinless = None
+            self._single.clear()
             self.flips.forget()
             self.requests.clear()
             raise
@@ -250,6 +254,7 @@ class IncrementalReasoner:
         self.state.ready = False
         self.touched_types = None
         self._twinless = None
+        self._single.clear()
         if self._parts is not None:
             self.flips.forget()
             self.step.programs.clear()  # compiled against the keys with facts, which a full run recounts
@@ -334,7 +339,7 @@ class IncrementalReasoner:
         for keys in (state.present, state.asserted):
             keys[0].update(preds)
             keys[1].update(classes)
-        replaced = flip.replaced_in(self.store, added, removed, ASSERTED)
+        replaced = flip.replaced_in(self.store, added, removed, ASSERTED, self._single)
         sig, discard, ask_again = self._decided.get(
             ("maintain", tuple(preds), tuple(classes), tuple(lost[0]), tuple(lost[1]), tuple(replaced),
              len(state.present[0]), len(state.present[1]), len(state.asserted[0]), len(state.asserted[1])),
