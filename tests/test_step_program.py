@@ -11,7 +11,7 @@ from __future__ import annotations
 from unittest import mock
 
 import pytest
-from hypothesis import given, settings
+from hypothesis import example, given, settings
 from hypothesis import strategies as st
 from profiles import property_examples
 from pyoxigraph import Literal, NamedNode, Triple
@@ -1064,6 +1064,63 @@ def test_only_a_change_a_rule_may_have_inferred_is_discarded_from_the_inferred_g
         assert_as_from_scratch(onto, onto.reason(mode="incremental"))
     assert [inferred] in discarded
     assert inferred not in set(onto.store.triples(graph=INFERRED))
+
+
+_terms = st.sampled_from(["i1", "i2", "i3"])
+_facts = st.lists(st.tuples(_terms, st.sampled_from(["p", "q", "type"]), _terms), max_size=6)
+
+
+@settings(max_examples=property_examples(100), deadline=None)
+@given(held=_facts, added=_facts, removed=_facts)
+def test_the_clean_replacements_read_here_are_those_of_the_definition(held: list, added: list, removed: list) -> None:
+    """:func:`.flip.replaced_in` in memory (one pass, a look-up per pair replaced once) gives what
+    :func:`.flip.clean_replacements` defines, on any change: pairs with several triples added or removed,
+    additions or removals alone, type facts, several values held."""
+    from topostore.reason import flip
+
+    def triples(facts: list) -> list[Triple]:
+        return list(dict.fromkeys(Triple(N(s), TYPE if p == "type" else N(p), N(o)) for s, p, o in facts))
+
+    store = memory_store()
+    store.add(triples(held + added), ASSERTED)
+    store.remove(triples(removed), ASSERTED)
+    change = triples(added), triples(removed)
+    assert flip.replaced_in(store, *change, ASSERTED) == flip.clean_replacements(
+        *change, lambda s, pred: store.objects(s, pred, ASSERTED))
+
+
+_few = st.lists(st.tuples(st.sampled_from(["i1", "i2"]), st.sampled_from(["p", "type"]), _terms), max_size=3)
+
+
+@settings(max_examples=property_examples(200), deadline=None)
+@given(held=_few, batches=st.lists(st.tuples(_few, _few), max_size=8))
+# a pair replaced cleanly, given a second value, then one of its two values replaced
+@example(held=[("i1", "p", "i1")], batches=[([("i1", "p", "i2")], [("i1", "p", "i1")]), ([("i1", "p", "i3")], []),
+                                            ([("i1", "p", "i1")], [("i1", "p", "i2")])])
+# a pair replaced cleanly, its value removed, then one given and replaced
+@example(held=[("i1", "p", "i1")], batches=[([("i1", "p", "i2")], [("i1", "p", "i1")]), ([], [("i1", "p", "i2")]),
+                                            ([("i1", "p", "i1"), ("i1", "p", "i3")], []),
+                                            ([("i1", "p", "i2")], [("i1", "p", "i1")])])
+def test_the_pairs_known_single_valued_are_carried_exactly_from_change_to_change(held: list, batches: list) -> None:
+    """The pairs :func:`.flip.replaced_in` keeps as holding one value (no look-up for them at the next
+    change) give, change after change, what :func:`.flip.clean_replacements` defines from the values read:
+    each change is the net one (added: absent before and present after; removed: the reverse)."""
+    from topostore.reason import flip
+
+    def triples(facts: list) -> list[Triple]:
+        return list(dict.fromkeys(Triple(N(s), TYPE if p == "type" else N(p), N(o)) for s, p, o in facts))
+
+    store = memory_store()
+    store.add(triples(held), ASSERTED)
+    single: set = set()
+    for adds, removes in batches:
+        before = set(store.triples(graph=ASSERTED))
+        store.remove(triples(removes), ASSERTED)
+        store.add(triples(adds), ASSERTED)
+        after = set(store.triples(graph=ASSERTED))
+        change = sorted(after - before, key=str), sorted(before - after, key=str)
+        assert flip.replaced_in(store, *change, ASSERTED, single) == flip.clean_replacements(
+            *change, lambda s, pred: store.objects(s, pred, ASSERTED))
 
 
 def test_the_clean_replacements_of_a_change_read_only_the_pairs_replaced_once() -> None:

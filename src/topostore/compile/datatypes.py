@@ -172,10 +172,15 @@ def surely_in(value: Term, datatype: str) -> bool:
     read once, and the bounds of the pair of types are made once, :func:`_integer_bounds`.)"""
     if not isinstance(value, Literal):
         return False
-    bounds = _integer_bounds(value.datatype.value, datatype)
+    return text_surely_in(value.value, value.datatype.value, datatype)
+
+
+def text_surely_in(text: str, own_type: str, datatype: str) -> bool:
+    """:func:`surely_in` of the literal of lexical form ``text`` and datatype IRI ``own_type`` (a caller
+    that read them once decides by their texts, and keeps the answer by them)."""
+    bounds = _integer_bounds(own_type, datatype)
     if bounds is None:
         return False
-    text = value.value
     if len(text) > 40 or not _INTEGER_TEXT.fullmatch(text):
         return False
     number = int(text)

@@ -13,9 +13,9 @@ from __future__ import annotations
 
 from collections.abc import Collection
 
-from pyoxigraph import Triple
+from pyoxigraph import Literal, Triple
 
-from ..compile.datatypes import surely_in
+from ..compile.datatypes import text_surely_in
 from ..compile.generic import PREFIXES
 from ..compile.rule import Rule
 from ..rdf.vocab import ASSERTED, AUX, INFERRED, TYPE
@@ -57,9 +57,11 @@ class ChangeChecks:
         self.added_now: Collection[Triple] = ()
         #: what :meth:`_after` decided for the REASON under way, and its added values by predicate
         self._now: tuple | None = None
-        self._added_values: dict[str, list] | None = None
-        #: :func:`~..compile.datatypes.surely_in` of an added value and a range, decided once per REASON
+        self._added_values: dict[str, list[tuple[str, str | None]]] | None = None
+        #: :func:`~..compile.datatypes.surely_in` of an added value (its texts) and a range, decided once per REASON
         self._in_range: dict[tuple, bool] = {}
+        #: the predicates (IRI) range checks read
+        self._ranged: frozenset[str] | None = None
         #: SPARQL texts of the groups made once
         self._texts: dict[tuple, str] = {}
         #: :func:`.program.pair_atom` of a check's or negated rule's atom, by (kind, rule index, atom): rules never change
@@ -225,18 +227,34 @@ class ChangeChecks:
         if f"<{p}>" not in self.step_clean:
             return False
         values = self._added_values
-        if values is None:  # the added values by predicate, read once per REASON (each read makes new terms)
-            values = self._added_values = {}
-            for t in self.added_now:
-                values.setdefault(t.predicate.value, []).append(t.object)
+        if values is None:  # the added values of range-checked predicates, read once per REASON
+            values = self._added_values = self._ranged_values()
         decided = self._in_range  # a robot's clock and visit time: one value, two range checks
-        for o in values.get(p, ()):
-            known = decided.get((o, datatype))
+        for text, own in values.get(p, ()):
+            if own is None:
+                return False  # not a literal
+            key = (text, own, datatype)
+            known = decided.get(key)
             if known is None:
-                known = decided[(o, datatype)] = surely_in(o, datatype)
+                known = decided[key] = text_surely_in(text, own, datatype)
             if not known:
                 return False
         return True
+
+    def _ranged_values(self) -> dict[str, list[tuple[str, str | None]]]:
+        """The added values of the predicates range checks read, by predicate IRI, each as its lexical
+        form and datatype IRI (None: not a literal): each value's terms are made once, and the answers
+        kept by these texts (a term's hash is a call)."""
+        ranged = self._ranged
+        if ranged is None:  # a property of the checks: found once
+            ranged = self._ranged = frozenset(c.value_range[0] for c in self.checks if c.value_range is not None)
+        values: dict[str, list[tuple[str, str | None]]] = {}
+        for t in self.added_now:
+            p = t.predicate.value
+            if p in ranged:
+                o = t.object
+                values.setdefault(p, []).append((o.value, o.datatype.value) if type(o) is Literal else ("", None))
+        return values
 
     def _check_text(self, c: int, j: int | None, lateral: bool) -> str:
         key = ("check", c, j, lateral)

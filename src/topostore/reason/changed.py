@@ -109,8 +109,14 @@ class ChangedGraphs:
             return [(r["s"], r["c"]) for r in self.store.query(text)]
         touched: dict[tuple[Term, NamedNode], None] = {}
         for graph in (NEW_FACTS, OVERDELETED):
-            if self._scan(graph):
+            if graph in self._types:  # gone through for the other reads already
                 touched.update(dict.fromkeys(self._types[graph]))
+                continue
+            quads = self.quads(graph)
+            if quads is not None:  # its type facts only: no key counted, no text made per fact
+                for s, p, o in quads:
+                    if (p == TYPE or p == ENTAILED_TYPE) and isinstance(o, NamedNode):
+                        touched[(s, o)] = None
                 continue
             for predicate in (TYPE, ENTAILED_TYPE):
                 for t in self.store.triples(None, predicate, None, graph):

@@ -25,7 +25,7 @@ from . import flip, staged_code
 from .change_checks import ChangeChecks
 from .component import WHOLE_ROUNDS
 from .flips import Flips
-from .program import Refused, StepProgram, signature
+from .program import Refused, Signature, StepProgram, signature
 from .requests import RequestQueue
 from .staged import StagedRun
 from .stats import ReasonStats
@@ -68,6 +68,9 @@ class CompiledStep:
         #: the clean replacements of the REASON under way, by predicate (see :func:`.flip.clean_replacements`)
         self._clean: dict = {}
         self._heads: set = set()
+        #: the keys the last compiled step may have added facts to (its program's heads, or those a staged run
+        #: noted: :meth:`.staged.StagedRun.gained`)
+        self.written: frozenset = frozenset()
         #: the keys that may have lost facts in the last compiled step (the remote negated-premise read),
         #: and as (predicates, classes) (:func:`.triggers.key_sets`, made once per kind of change)
         self.lost: set = set()
@@ -85,17 +88,20 @@ class CompiledStep:
 
     def run(self, added: Collection[Triple], removed: Collection[Triple], clean: dict,
             stats: ReasonStats, state: MaintenanceState, census: tuple | None = None,
-            copy_changes: Callable[[], None] = lambda: None, lost: tuple | None = None) -> bool:
+            copy_changes: Callable[[], None] = lambda: None, lost: tuple | None = None,
+            sig: Signature | None = None) -> bool:
         """Maintain with the compiled program of this kind of change (see :mod:`.program`); False
         (with the reason in ``stats.program``) when it cannot be compiled.  ``clean``: the change's
         clean replacements (:func:`.flip.replaced_in`); ``census``: :func:`key_census` of ``added``
         when the caller made it (``lost``: that of ``removed``); ``copy_changes``: writes the changes to the
-        scratch graphs SPARQL text reads them from (called before the first text is sent)."""
+        scratch graphs SPARQL text reads them from (called before the first text is sent); ``sig``: the
+        change's :func:`.program.signature` when the caller has it."""
         if not self.enabled:
             stats.program = "general: compiled step switched off"
             return False
-        sig = signature(census if census is not None else key_census(added),
-                        lost if lost is not None else key_census(removed), clean)
+        if sig is None:
+            sig = signature(census if census is not None else key_census(added),
+                            lost if lost is not None else key_census(removed), clean)
         self._clean = clean
         ran = self._unchanged(sig, state)
         program = ran[0] if ran is not None else self._program(sig, state)
@@ -125,6 +131,7 @@ class CompiledStep:
             stats.per_rule["program"] = time.perf_counter() - start
         stats.flipped = program.flips
         stats.program = "compiled"
+        self.written = program.heads if gained is None else gained
         self.checks.step_clean = program.clean
         # the keys with facts stay a superset, and no larger: a head the program never wrote keeps the
         # operations joining it left out (a staged run's ``needs``) and the program that left it out valid

@@ -19,7 +19,7 @@ for triples in the graphs of facts new in the closure or deleted from it.
 from __future__ import annotations
 
 import functools
-from collections.abc import Callable, Collection, Sequence
+from collections.abc import Callable, Collection, Iterable, Sequence
 
 from pyoxigraph import NamedNode, Quad, Triple
 
@@ -81,7 +81,12 @@ def refresh_touched(store: Store, touched: list[Triple], twin_changed: Collectio
 def _any_twin(store: Store, touched: list[Triple]) -> bool:
     """Whether the helper graph holds an internal fact of any touched triple's predicate: one index read
     per predicate (a robot's step touches a few triples of one or two) in place of one per triple."""
-    for p in dict.fromkeys(t.predicate for t in touched):
+    return any_twin(store, dict.fromkeys(t.predicate for t in touched))
+
+
+def any_twin(store: Store, predicates: Iterable[NamedNode]) -> bool:
+    """Whether the helper graph holds an internal fact of any of ``predicates`` (one index read each)."""
+    for p in predicates:
         if next(iter(store.triples(None, internal(p), None, AUX)), None) is not None:
             return True
     return False

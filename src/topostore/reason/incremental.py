@@ -89,12 +89,13 @@ from .compiled_step import MAX_PROGRAMS
 from .component import WHOLE_ROUNDS
 from .consistency import Violation, check_consistency
 from .dred import can_prove
-from .entailed import refresh_entailed, refresh_touched
+from .entailed import any_twin as _any_twin
+from .entailed import internal, refresh_entailed, refresh_touched
 from .maintenance import MaintenanceParts, MaintenanceState, Part, early_checks, is_monotone, needed_keys
 from .materialize import Materializer
 from .negation import ASKED, completion_text
 from .present import key_graphs, with_facts
-from .program import PROGRAM_SCRATCH
+from .program import PROGRAM_SCRATCH, Signature, signature
 from .requests import LaterCopies
 from .scratch import ADDED, FLIP_GAINED, NEW_FACTS, OVERDELETED, REMOVED, SCRATCH
 from .stats import ReasonStats
@@ -148,6 +149,14 @@ class IncrementalReasoner:
         self._parts: MaintenanceParts | None = None
         #: (individual, class) pairs whose type fact the last REASON may have changed; None after a full run
         self.touched_types: list[tuple[Term, NamedNode]] | None = None
+        #: the read keys of the internal forms of the entailed-only predicates (:func:`.entailed.internal`)
+        self._twin_keys = frozenset(("p", f"<{internal(p).value}>") for p in rules.entailed_predicates)
+        #: True once the helper graph was found to hold no internal fact (no entailed-only conclusion), until
+        #: something may write one (see :meth:`_publish_entailed`); None: not known
+        self._twinless: bool | None = None
+        #: (subject, predicate) pairs of the asserted graph known to hold one value since the last REASON
+        #: (:func:`.flip.replaced_in`); cleared at a full run and a failed REASON
+        self._single: set[tuple] = set()
 
     rules = Part()
     monotone = Part()
@@ -221,13 +230,15 @@ class IncrementalReasoner:
                 if changed and self.change_checks.negated_match():
                     return self.full("the change makes a rule with a negated premise (stratum 1) match", profile)
                 violations = self._check(stats, changed)
-                self._publish_entailed(changed)
+                self._publish_entailed(changed, stats.program == "compiled")
                 self.touched_types = self.changed.touched_types() if changed else []
             if profile:
                 stats.derived = self.store.count(NEW_FACTS)
         except Exception:
             self.state.ready = False  # half-maintained graphs: the next REASON recomputes them
             self.touched_types = None
+            self._twinless = None
+            self._single.clear()
             self.flips.forget()
             self.requests.clear()
             raise
@@ -242,6 +253,8 @@ class IncrementalReasoner:
         """Recompute everything from the asserted graph; records the state maintenance starts from."""
         self.state.ready = False
         self.touched_types = None
+        self._twinless = None
+        self._single.clear()
         if self._parts is not None:
             self.flips.forget()
             self.step.programs.clear()  # compiled against the keys with facts, which a full run recounts
@@ -321,19 +334,20 @@ class IncrementalReasoner:
         if self.store.round_trips:
             copy_changes()  # queued with the program's request
         preds, classes = key_census(added)
-        for keys in (self.state.present, self.state.asserted):
+        lost = key_census(removed)  # read by the completion's decision and the program's signature alike
+        state = self.state
+        for keys in (state.present, state.asserted):
             keys[0].update(preds)
             keys[1].update(classes)
-        # a newly asserted fact that was inferred is now asserted only (as from scratch); none can have
-        # been inferred where no rule that can fire writes its predicate or class (a robot's clock)
-        if added and self.step.compiler.state_graphs.derived((preds, classes), self.state.present):
+        replaced = flip.replaced_in(self.store, added, removed, ASSERTED, self._single)
+        sig, discard, ask_again = self._decided.get(
+            ("maintain", tuple(preds), tuple(classes), tuple(lost[0]), tuple(lost[1]), tuple(replaced),
+             len(state.present[0]), len(state.present[1]), len(state.asserted[0]), len(state.asserted[1])),
+            lambda: self._kind((preds, classes), lost, replaced))
+        if discard:
             requests.discard(added, (INFERRED, AUX))
-        replaced = flip.replaced_in(self.store, added, removed, ASSERTED)
-        lost = key_census(removed)  # read by the completion's decision and the program's signature alike
-        ask_again = bool(self.deferred and removed) and self._completion.needed(self.state.present, lost,
-                                                                                asserted=True)
-        if not ask_again and self.step.run(added, removed, replaced, stats, self.state, (preds, classes),
-                                           copy_changes, lost):
+        if not ask_again and self.step.run(added, removed, replaced, stats, state, (preds, classes),
+                                           copy_changes, lost, sig):
             self._incomplete = bool(self.deferred and removed) and self._completion.needed(
                 self.state.present, self.step.lost_keys)
             return
@@ -343,6 +357,23 @@ class IncrementalReasoner:
             self._general(added, removed, stats, profile, (preds, classes), replaced)
         finally:
             self._completion.forget()
+
+    def _kind(self, census: tuple, lost: tuple, replaced: dict) -> tuple[Signature, bool, bool]:
+        """What maintenance decides from the kind of a change alone (its added and lost read keys,
+        ``census`` and ``lost``, and its cleanly replaced predicates), given the keys with facts: the
+        compiled program's signature; whether an added fact may have been inferred (then it is discarded
+        from the reasoner's graphs: a newly asserted fact that was inferred is asserted only, as from
+        scratch; none can have been where no rule that can fire writes its key, a robot's clock); whether
+        the loss may leave a pair of a deferred rule unasked (:mod:`.negation`).
+
+        Each is a function of those keys and of the keys with facts (:attr:`MaintenanceState.present`,
+        ``asserted``), sets that only grow until a full run makes new ones: the caller keeps the answer
+        by the kind and the sets' sizes in :attr:`_decided`, which a full run clears, and a robot's
+        repeated step asks once."""
+        discard = bool(census[0]) and self.step.compiler.state_graphs.derived(census, self.state.present)
+        ask_again = bool(self.deferred and lost[0]) and self._completion.needed(self.state.present, lost,
+                                                                               asserted=True)
+        return signature(census, lost, replaced), discard, ask_again
 
     def _general(self, added: Collection[Triple], removed: Collection[Triple], stats: ReasonStats, profile: bool,
                  census: tuple, replaced: dict) -> None:
@@ -398,19 +429,40 @@ class IncrementalReasoner:
             if self.requests.profile:
                 stats.per_rule["consistency"] = stats.per_rule.get("consistency", 0.0) + time.perf_counter() - start
 
-    def _publish_entailed(self, changed: bool) -> None:
-        """Bring the ENTAILED graph up to date from what this maintenance touched (see :mod:`.entailed`)."""
+    def _publish_entailed(self, changed: bool, compiled: bool) -> None:
+        """Bring the ENTAILED graph up to date from what this maintenance touched (see :mod:`.entailed`).
+
+        A triple is in ENTAILED only while its internal twin is in the helper graph.  Where the helper
+        graph holds no twin and this REASON's compiled step writes none (its program's heads name no
+        internal form), it held none before either: ENTAILED held none of the touched triples and holds
+        none now, and the touched triples are not read (a robot's canReach on a map whose individuals
+        are declared different)."""
         if not changed:
             return
         self.requests.flush()  # what follows reads the store (the touched types too)
         if not self.ruleset.entailed_predicates:
             return
+        if compiled and self._no_twin_written():
+            if self._twinless is None:  # nothing wrote a twin in this REASON: the helper graph as it was
+                self._twinless = not _any_twin(self.store, self.ruleset.entailed_predicates)
+            if self._twinless:
+                return
+        else:
+            self._twinless = None  # the general phases may write any key
         found = self.changed.touched_watched((NEW_FACTS, OVERDELETED))
         if found is None:  # a graph too large to read into memory, or a store reached over HTTP
             refresh_entailed(self.store, self.ruleset, (NEW_FACTS, OVERDELETED), self.changed.quads)
         else:
             refresh_touched(self.store, *found)
 
+    def _no_twin_written(self) -> bool:
+        """Whether the compiled step of this REASON can have written no internal twin (no head of its
+        program is the key of one, nor a key standing for any predicate)."""
+        heads = self.step.written
+        if self._twin_keys.isdisjoint(heads) and all(len(key) == 2 for key in heads):
+            return True
+        self._twinless = None
+        return False
 
     def key_graphs(self) -> dict:
         """Which of the asserted, inferred and helper graphs hold facts of each key a rule or check
