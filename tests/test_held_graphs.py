@@ -149,6 +149,17 @@ def test_after_a_reason_whose_sparql_needed_its_scratch_graphs_the_next_one_writ
     assert len(store._ox) == 2
 
 
+def test_an_empty_scratch_write_writes_nothing_and_marks_no_graph() -> None:
+    store = OxigraphStore()
+    store.hold_scratch(SCRATCH)
+    store.add_scratch([Triple(S[0], P[0], S[1])], SCRATCH[0])
+    store.update(f"INSERT {{ GRAPH {OTHER} {{ ?s ?p ?o }} }} WHERE {{ GRAPH {SCRATCH[0]} {{ ?s ?p ?o }} }}")
+    store.drop_graphs(SCRATCH)  # the end of a REASON that ran SPARQL: the next one writes to the store
+    writes = store._writes
+    store.add_scratch([], SCRATCH[1])  # a recheck that kept no candidate
+    assert store._writes == writes and not store._held.in_store and not store._held.reasoning
+
+
 def test_a_read_of_every_graph_lists_the_held_facts_when_asked() -> None:
     """A scratch write made while a read over every graph is iterated neither shows up in it nor breaks it
     (the held graphs' matches are listed when the read is asked, as the general read does)."""

@@ -71,6 +71,16 @@ def _known(store, facts: list[Triple], graphs: tuple[NamedNode, ...]) -> list[bo
     return store.known_in(facts, _STATE_SET if graphs is _STATE else frozenset(graphs))
 
 
+def _in_state(store, pattern: tuple) -> list[Triple] | None:
+    """Every fact of ``pattern`` in the state graphs by one index read over all graphs (``match_in``: a
+    bound subject or object), instead of a read per graph, most of which find nothing (a class kept by
+    an asserted or an inferred fact); None where that read does not apply or finds more than :data:`FEW`
+    (a list cut at its limit could miss the fact that proves)."""
+    match_in = getattr(store, "match_in", None)
+    found = match_in(*pattern, _STATE_SET, FEW) if match_in is not None else None
+    return found if found is not None and len(found) <= FEW else None
+
+
 def _movable(facts: list[Triple]) -> list[Triple] | None:
     """``facts`` where look-ups may move them: at most :data:`FEW`, none holding a literal (the SPARQL text
     moves those: a literal may be stored in another spelling); else None."""
@@ -203,7 +213,9 @@ class OneAtom:
             if bound is None:
                 continue
             pattern = self._body.read(bound)
-            if any(self._proves(store.triples(*pattern, g), bound) for g in graphs):
+            found = _in_state(store, pattern) if graphs is _STATE else None
+            if self._proves(found, bound) if found is not None \
+                    else any(self._proves(store.triples(*pattern, g), bound) for g in graphs):
                 kept.append(c)
         store.add_scratch(kept, KEEP)
         return ALL_KEPT if self._whole and len(kept) == len(candidates) else True

@@ -156,8 +156,9 @@ def every_graph(atom: Atom) -> tuple[NamedNode, ...]:
 def _read(store, pattern: tuple, graphs: tuple[NamedNode, ...], graph_set: frozenset) -> list[Triple]:
     """The distinct facts of ``pattern`` in ``graphs`` (at most FEW, else :class:`_Fallback`): one read
     over every graph where the store offers it (``match_in``: a bound subject or object), else one per
-    graph (``graph_set``: ``graphs`` as a set)."""
-    match_in = getattr(store, "match_in", None)
+    graph (``graph_set``: ``graphs`` as a set).  One graph is read alone: the read over every graph
+    would go through the other graphs' quads of the pattern to find the same facts."""
+    match_in = getattr(store, "match_in", None) if len(graphs) > 1 else None
     found = match_in(*pattern, graph_set, direct.FEW) if match_in is not None else None
     if found is None:
         found = store.few_facts(*pattern, graphs, direct.FEW)

@@ -17,7 +17,7 @@ from pyoxigraph import NamedNode, Triple
 
 from ..compile.generic import PREFIXES
 from ..compile.rule import ReadKey
-from ..rdf.vocab import ASSERTED
+from ..rdf.vocab import ASSERTED, AUX, INFERRED
 from .component import run_component
 from .delta_texts import FLIP_LOST, KEEP
 from .direct import pattern_of
@@ -28,6 +28,8 @@ from .triggers import Present
 
 #: up to how many candidates a key's rechecks go one by one, stopping once every candidate is kept
 FEW = 32
+#: the graphs of the new state
+_STATE = (ASSERTED, INFERRED, AUX)
 
 
 class StagedRun:
@@ -162,7 +164,7 @@ class StagedRun:
                 if needs is not None and self._without_facts(needs):
                     continue  # it joins a key without facts: it finds nothing
                 queued |= self._send(text, part, direct if look_up else None, reads, has_seeded and index,
-                                     look_up, fallback)
+                                     look_up, fallback, needs if flip is not None else None)
                 seeded |= kind in SEEDING
             elif kind == "end":
                 if handed and len(taken) < len(handed):  # heads no operation took: where the graphs would have them
@@ -186,6 +188,21 @@ class StagedRun:
             if key in self.unnoted:
                 self._changed(key, self.plus)
             if key not in self.plus:
+                return True
+        return False
+
+    def _finds_nothing(self, keys: tuple) -> bool:
+        """Whether a flip whose text is about to be queued surely finds nothing: one of the keys it joins in
+        the new state (:attr:`.staged_plan.BoundOp.needs`) has no fact in the state graphs now (index
+        look-ups, after sending what is queued and may write it).  :meth:`_without_facts` answers from the
+        keys with facts before the run, a superset that keeps a key once it had any (a helper key
+        present once, empty on every step since, let a difference flip's text run at every step of a
+        large map); asked only where a text would run, which costs far more than these reads."""
+        for key, _, _ in keys:
+            if self.dirty:
+                self._reading((key,))
+            pattern = pattern_of(key)
+            if all(next(iter(self.store.triples(*pattern, g)), None) is None for g in _STATE):
                 return True
         return False
 
@@ -263,33 +280,38 @@ class StagedRun:
         return sum(1 for _ in facts) == len(subjects)
 
     def _send(self, text: str, key: ReadKey | None, direct: Callable | None, reads: Collection | None,
-              seeded: int | bool, look_up: bool = True, fallback: tuple | None = None) -> bool:
+              seeded: int | bool, look_up: bool = True, fallback: tuple | None = None,
+              joins: tuple | None = None) -> bool:
         """Run an operation (of ``key``'s part, None: of no key's) through its look-up equivalent
         ``direct`` (None: none, or not this time) where its facts are few (after sending what is queued
         and may write ``reads``, what it reads), else queue its text.  Whether it was queued.
         ``seeded``: the operation's position where it has a seeded text (:meth:`_seeded`), else False;
         ``fallback``: a flip's tag, compiled text and its part's reads, whose text for this run is made
-        where the look-up gives up (a window query may narrow it)."""
+        where the look-up gives up (a window query may narrow it); ``joins``: a flip's keys of the new state
+        (:attr:`.staged_plan.BoundOp.needs`), looked up before its text is queued (:meth:`_finds_nothing`)."""
         if direct is not None:
             if self.dirty:  # nothing queued: nothing to send first (no call)
                 self._reading(reads)
             if direct(self.store):
                 self.sent += 1
                 return False
-            return self._queue(text, key, seeded, look_up, fallback)
-        return self._queue(text, key, seeded, look_up)
+            return self._queue(text, key, seeded, look_up, fallback, joins)
+        return self._queue(text, key, seeded, look_up, None, joins)
 
     def _queue(self, text: str, key: ReadKey | None, seeded: int | bool, look_up: bool = True,
-               fallback: tuple | None = None) -> bool:
+               fallback: tuple | None = None, joins: tuple | None = None) -> bool:
         """Queue an operation's text (:meth:`_send`'s second half, once no look-up answered); ``fallback``:
         a flip's tag, compiled text and part's reads where its look-up gave up (its text for this run is
-        made now: "" queues nothing).  Whether it was queued."""
+        made now: "" queues nothing); ``joins``: a flip's keys of the new state, none of whose facts
+        left means the text finds nothing (:meth:`_finds_nothing`).  Whether it was queued."""
         if fallback is not None:
             tag, compiled, part_reads = fallback
             text = self._flip(part_reads, tag, compiled)
             if not text:
                 return False
             look_up = text is compiled
+        if joins is not None and not self.store.round_trips and self._finds_nothing(joins):
+            return False  # (where a look-up is a round trip, the text finds out)
         if look_up and seeded is not False:  # a flip's compiled text
             text = self._seeded(seeded, text)
         self.queue.append(text)

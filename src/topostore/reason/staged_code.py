@@ -314,13 +314,15 @@ class _Part:
             extra += 1
         position = self._has_seeded(op)
         part, reads = c(op.part if key is None else key), c(op.reads)
+        # a flip's keys of the new state, looked up before its text is queued (``StagedRun._finds_nothing``)
+        joins = f", {c(op.needs)}" if op.flip is not None and op.needs is not None else ""
         if op.direct is None:
-            self.line(f"{into} |= r._queue({text}, {part}, {position}, {look_up})", extra)
+            self.line(f"{into} |= r._queue({text}, {part}, {position}, {look_up}, None{joins})", extra)
         else:
             inner = extra
             if look_up != "True":  # a flip whose text a window narrowed runs its text, not its look-up
                 self.line(f"if not {look_up}:", extra)
-                self.line(f"{into} |= r._queue({text}, {part}, {position}, False)", extra + 1)
+                self.line(f"{into} |= r._queue({text}, {part}, {position}, False, None{joins})", extra + 1)
                 self.line("else:", extra)
                 inner += 1
             self.line("if dirty:", inner)
@@ -334,6 +336,6 @@ class _Part:
                 self.line("r.sent += 1", inner + 1)
                 self.line(f"{kept} = answer is ALL_KEPT", inner + 1)
             self.line("else:", inner)
-            self.line(f"{into} |= r._queue({text}, {part}, {position}, {look_up}, {fallback})", inner + 1)
+            self.line(f"{into} |= r._queue({text}, {part}, {position}, {look_up}, {fallback}{joins})", inner + 1)
         if op.kind in SEEDING:
             self.line("seeded = True", extra)

@@ -111,6 +111,11 @@ class OxigraphStore(Store):
         if type(s) is Literal:
             return []  # a value bound by a rule's join is no subject: no fact has it (as in SPARQL)
         held = self._held.graphs
+        if len(graphs) == 1:  # most reads: one graph, whose facts are distinct as read
+            kept = held.get(graphs[0]) if held else None
+            facts = self._held.triples(s, p, o, kept) if kept is not None \
+                else list(islice(map(_TRIPLE, self._ox.quads_for_pattern(s, p, o, graphs[0])), limit + 1))
+            return None if len(facts) > limit else facts
         found: list[Triple] | dict[Triple, None] | None = None
         for g in graphs:
             kept = held.get(g) if held else None
@@ -224,9 +229,13 @@ class OxigraphStore(Store):
 
     def add_scratch(self, triples, graph: NamedNode) -> None:
         """Bulk-add to a reasoner's scratch graph (one RocksDB transaction), or hold the triples in
-        Python where the graph is held (see :meth:`hold_scratch`)."""
+        Python where the graph is held (see :meth:`hold_scratch`).  An empty list writes nothing (a
+        recheck that kept no candidate): no write counted, no graph marked as written."""
+        if type(triples) is list and not triples:
+            return
         held = self._held
-        if graph in held.eligible and held.holds(graph):
+        # a graph held already (written in this REASON) is eligible and not in the store: no second test
+        if graph in held.graphs or (graph in held.eligible and held.holds(graph)):
             taken = held.add(triples, graph)
             if taken is None:
                 return
