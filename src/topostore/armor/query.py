@@ -105,7 +105,7 @@ def query_dataprop_ind(ctx: Context) -> Reply:
 
 def query_objectprop_ind(ctx: Context) -> Reply:
     prop, ind = ctx.iri(0, "object property"), ctx.iri(1, "individual")
-    return Reply(queried_objects=ctx.render(ctx.onto.object_values(prop, ind, names=False)))
+    return Reply(queried_objects=ctx.render(ctx.onto.reads.object_values(prop, ind, names=False)))
 
 
 def most_specific(onto: Ontology, classes: list[NamedNode]) -> list[NamedNode]:
