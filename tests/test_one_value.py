@@ -237,3 +237,22 @@ def test_a_write_failing_half_way_changes_nothing(monkeypatch: pytest.MonkeyPatc
     inferred = set(onto.store.triples(graph=INFERRED))
     onto.reason(mode="full")
     assert set(onto.store.triples(graph=INFERRED)) == inferred
+
+
+@pytest.mark.parametrize("lane", [True, False])
+def test_a_clock_replaced_every_step_keeps_no_count_of_its_past_values(monkeypatch: pytest.MonkeyPatch,
+                                                                        lane: bool) -> None:
+    """The literal forms count the spellings of each value some fact writes; a value none writes any more is
+    dropped, in the lane and on the general path (a clock writes a new value every step: its past ones would
+    otherwise stay behind as empty counts, one a step)."""
+    monkeypatch.setattr(one_value, "ENABLED", lane)
+    service = _service(buffered_reasoner=True)
+    forms = service.reference("ref").ontology.store.forms
+    assert service.call(_request("ADD", "DATAPROP", "IND", ["tick", "Clock1", "LONG", "0"])).success
+    counted = len(forms._value_forms)
+    for t in range(1, 40):
+        reply = service.call(_request("REPLACE", "DATAPROP", "IND", ["tick", "Clock1", "LONG", str(t), str(t - 1)]))
+        assert reply.success and not reply.error_description, reply
+    assert len(forms._value_forms) <= counted + 1  # the clock's one value now, whether or not "0" was counted
+    assert forms.restore(Literal("39", datatype=NamedNode("http://www.w3.org/2001/XMLSchema#integer"))) == \
+        Literal("39", datatype=NamedNode("http://www.w3.org/2001/XMLSchema#long"))

@@ -22,10 +22,11 @@ from ..errors import InvalidNameError, InvalidValueError, TopostoreError, Unknow
 from ..ontology.facade import Ontology
 from ..ontology.named_queries import QueryItem
 from ..rdf import terms
-from ..rdf.vocab import ASSERTED, INFERRED, NOTHING, THING, is_internal, rdfs
+from ..rdf.vocab import ASSERTED, INFERRED, rdfs
 from . import codes
 from .codes import CommandError
 from .reference import Change, Delta, Reference
+from .render import hidden
 
 if TYPE_CHECKING:  # pragma: no cover
     from .service import ArmorService
@@ -138,7 +139,7 @@ class Context:
     def render(self, items: list) -> list[str]:
         """Render terms in the service's mode; sorted so answers are reproducible."""
         renderer = self.service.renderer
-        rendered = renderer.texts(t for t in items if not hidden(t))
+        rendered = renderer.answer(items)
         tags = self.onto.store.forms.tags  # language tags as the loaded documents spell them
         if not tags or renderer.short_names:  # a short name shows a literal's bare value: no tag to spell
             return sorted(rendered)
@@ -182,11 +183,6 @@ class Command:
                 expected = f"{self.min_args} to {self.max_args}"
             names = ", ".join(self.args) if self.args else "none"
             raise CommandError(codes.INVALID_ARGUMENT, f"expected {expected} argument(s) [{names}], got {n}")
-
-
-def hidden(term: object) -> bool:
-    """Terms never shown in answers: internal IRIs, owl:Thing and owl:Nothing (spec §7 item 6)."""
-    return is_internal(term) or term in (THING, NOTHING)
 
 
 def fixed(description: str, add: Sequence[Triple] = (), remove: Sequence[Triple] = ()) -> Change:

@@ -16,7 +16,7 @@ from dataclasses import dataclass
 from pyoxigraph import BlankNode, Literal, NamedNode
 
 from ..rdf.terms import Term
-from ..rdf.vocab import OWL, RDF, RDFS, XML, XSD
+from ..rdf.vocab import NOTHING, OWL, RDF, RDFS, THING, XML, XSD, is_internal
 from ..stores.base import unskolem
 
 _ABBREVIATIONS = (
@@ -76,10 +76,27 @@ class Renderer:
         """Render a list, dropping duplicates (aRMOR answers are sets)."""
         return list(dict.fromkeys(self.term(t) for t in terms))
 
+    def answer(self, terms: Iterable[Term]) -> set[str]:
+        """The terms an answer shows (none :func:`hidden`), rendered, as a set: a term's text or its absence
+        is cached, since a robot is answered the same few individuals every step."""
+        short = self.short_names
+        return {text for t in terms if (text := _answer_text(t, short)) is not None}
+
     def texts(self, terms: Iterable[Term]) -> set[str]:
         """The terms rendered, as a set (an answer is sorted and has no duplicates: no order to keep)."""
         short = self.short_names
         return {_rendered(t, short) for t in terms}
+
+
+def hidden(term: object) -> bool:
+    """Terms never shown in answers: internal IRIs, owl:Thing and owl:Nothing (spec §7 item 6)."""
+    return is_internal(term) or term in (THING, NOTHING)
+
+
+@functools.lru_cache(maxsize=1 << 16)
+def _answer_text(term: Term, short_names: bool) -> str | None:
+    """:func:`_rendered` of a term an answer shows, None for one it leaves out (:func:`hidden`)."""
+    return None if hidden(term) else _rendered(term, short_names)
 
 
 @functools.lru_cache(maxsize=1 << 17)
@@ -106,4 +123,4 @@ def short_name(term: Term) -> str:
     return str(term)
 
 
-__all__ = ["Renderer", "abbreviate", "local_name", "full_entity", "full_literal", "short_name", "escape_lexical"]
+__all__ = ["Renderer", "hidden", "abbreviate", "local_name", "full_entity", "full_literal", "short_name", "escape_lexical"]

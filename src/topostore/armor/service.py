@@ -169,16 +169,18 @@ class ArmorService:
     def _reply(self, req: ArmorRequest, reply: Reply, ref: Reference | None = None) -> ArmorResponse:
         """The response to ``req``; ``ref``: its reference, when the caller holds its lock (its consistency
         is read without locking it again, while the name still stands for it)."""
-        held = ref is not None and self._references.get(req.reference_name) is ref
-        return ArmorResponse(
-            success=reply.success,
-            exit_code=reply.exit_code,
-            error_description="; ".join(reply.warnings),
-            is_consistent=_consistent(ref) if held else self._consistency(req.reference_name),
-            timeout=reply.timeout,
-            queried_objects=reply.queried_objects,
-            sparql_queried_objects=reply.sparql_queried_objects,
-        )
+        if ref is not None and self._references.get(req.reference_name) is ref:
+            try:  # _consistent(ref) inline: every command on a reference answers with it
+                consistent = ref.ontology.is_consistent
+            except TopostoreError:
+                consistent = False
+        else:
+            consistent = self._consistency(req.reference_name)
+        warnings = reply.warnings
+        # the fields in their order (ArmorResponse's): success, exit_code, error_description, is_consistent,
+        # timeout, queried_objects, sparql_queried_objects
+        return ArmorResponse(reply.success, reply.exit_code, "; ".join(warnings) if warnings else "", consistent,
+                             reply.timeout, reply.queried_objects, reply.sparql_queried_objects)
 
     def _failure(self, req: ArmorRequest, code: int, message: str) -> ArmorResponse:
         return ArmorResponse(False, code, message, is_consistent=self._consistency(req.reference_name))

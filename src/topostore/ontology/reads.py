@@ -105,8 +105,18 @@ class OntologyQueries:
         return [known and _shown(s) for known, (s, _) in zip(found, pairs, strict=True)]
 
     def object_values(self, prop: str | NamedNode, individual: str | NamedNode, names: bool = True) -> list:
-        vals = [o for o in self._objects(*self._pair(individual, prop)) if isinstance(o, NamedNode)]
+        vals = self._individuals(*self._pair(individual, prop))
         return [self.onto.short(v) for v in vals] if names else vals
+
+    def _individuals(self, s: Term, p: NamedNode) -> list[NamedNode]:
+        """The individuals of :meth:`_objects`: where a read costs no request, the store's one read of every
+        visible graph taken as it is (no literal among them to key by value: a data value is no answer)."""
+        onto = self.onto
+        store = onto.store
+        if store.round_trips:
+            return [o for o in self._objects(s, p) if isinstance(o, NamedNode)]
+        found = store.objects_by_graph(s, p, onto.visible_graphs())
+        return list(dict.fromkeys(o for objects in found.values() for o in objects if isinstance(o, NamedNode)))
 
     def data_values(self, prop: str | NamedNode, individual: str | NamedNode) -> list[Literal]:
         return [o for o in self._objects(*self._pair(individual, prop)) if isinstance(o, Literal)]

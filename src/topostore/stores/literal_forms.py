@@ -138,14 +138,18 @@ class LiteralForms:
         """:meth:`record_keyed` of one removed fact (``old_value``: its value key, None for no literal) and
         one added (``new``, of value key ``new_value``) of (s, p) in ``graph``, committed on a store that
         persists no forms: the removed form forgotten and uncounted, the new one kept and counted."""
-        name = graph.value
+        name, literal_forms, value_forms = graph.value, self._literal_forms, self._value_forms
         if old_value is not None:
-            found = self._literal_forms.pop((name, s, p, old_value), None)
+            found = literal_forms.pop((name, s, p, old_value), None)
             if found is not None:  # a fact with no form kept for it was never counted
                 self._count_form(old_value, found, -1)
         if new_value is not None:
-            self._literal_forms[(name, s, p, new_value)] = new  # type: ignore[assignment] - a literal
-            self._count_form(new_value, new, +1)  # type: ignore[arg-type]
+            literal_forms[(name, s, p, new_value)] = new  # type: ignore[assignment] - a literal
+            forms = value_forms.get(new_value)  # _count_form(new_value, new, +1) inline: a clock's new value
+            if forms is None:  # is counted for the first time
+                value_forms[new_value] = {new: 1}  # type: ignore[dict-item]
+            else:
+                forms[new] = forms.get(new, 0) + 1  # type: ignore[index]
 
     def record_loaded(self, graph: NamedNode, spelled: list[tuple[tuple, Literal]]) -> list[Quad]:
         """Remember the literals of a bulk load into ``graph`` (``spelled``: ((subject, predicate,
@@ -167,10 +171,22 @@ class LiteralForms:
         return [_form_quad(name, s, p, lit) for (s, p, _), lit in spelled]
 
     def _count_form(self, key: tuple, lit: Literal, delta: int) -> None:
-        forms = self._value_forms.setdefault(key, {})
-        forms[lit] = forms.get(lit, 0) + delta
-        if forms[lit] <= 0:
-            del forms[lit]
+        """Count ``delta`` more uses of the form ``lit`` of the value ``key``; a value no form counts any
+        more is dropped (a clock writes a new value every step: its old ones are not kept as empty entries)."""
+        value_forms = self._value_forms
+        forms = value_forms.get(key)
+        if forms is None:
+            if delta <= 0:
+                return
+            value_forms[key] = {lit: delta}
+            return
+        n = forms.get(lit, 0) + delta
+        if n > 0:
+            forms[lit] = n
+            return
+        forms.pop(lit, None)
+        if not forms:
+            del value_forms[key]
 
     def _rebuild_value_forms(self) -> None:
         self._value_forms = {}
