@@ -73,7 +73,7 @@ MAKING = {
     "key, two MD5s": f"{_WALK} {_MEMBER} {_key('MD5(STR(?list))', 'MD5(STR(?x))')}",
     "key, group MD5": f"{_WALK} {_MEMBER} {_key('MD5(STR(?list))', 'STR(?x)')}",
     "key, no MD5": f"{_WALK} {_MEMBER} {_key('STR(?list)', 'STR(?x)')}",
-    "the member its own key": f"{_WALK} {_MEMBER} BIND(?x AS ?key)",
+    "key, the member itself": f"{_WALK} {_MEMBER} BIND(?x AS ?key)",
 }
 
 
