@@ -143,3 +143,24 @@ def test_one_member_list_counts_lists_not_nodes() -> None:
                    "_:h a owl:AllDifferent ; owl:distinctMembers _:l .\n_:l <http://www.w3.org/1999/02/22-rdf-syntax-ns#first> :a ;"
                    " <http://www.w3.org/1999/02/22-rdf-syntax-ns#rest> () .\n", "turtle")
     assert one_member_list(onto.store, ASSERTED)
+
+
+def test_cells_of_the_one_list_edited_incrementally() -> None:
+    """A member appended to the one list and another taken out, each maintained incrementally: the keys
+    follow (a member its own key) and the closure is a fresh ontology's."""
+    rest, first, nil = (NamedNode(f"http://www.w3.org/1999/02/22-rdf-syntax-ns#{n}") for n in ("rest", "first", "nil"))
+    onto = Ontology()
+    onto.load_data(ONE_LIST + ":y :p :c, :d .\n", "turtle")
+    assert onto.reason().consistent and _instances(onto) == {"x"}
+    last = next(iter(onto.store.triples(None, rest, nil, ASSERTED)))
+    cell = NamedNode("urn:topostore:bnode:appended")
+    onto.remove(last)
+    onto.add(Triple(last.subject, rest, cell), Triple(cell, first, _n("d")), Triple(cell, rest, nil))
+    report = onto.reason(mode="incremental")
+    assert report.stats.mode == "incremental" and onto.rules.one_list
+    assert _instances(onto) == {"x", "y"} and (_n("d").value, _n("d").value) in _keys(onto)
+    assert _closure(onto) == _fresh(onto)
+    onto.remove(next(iter(onto.store.triples(None, first, _n("a"), ASSERTED))))
+    assert onto.reason(mode="incremental").stats.mode == "incremental"
+    assert _instances(onto) == {"y"} and len(_keys(onto)) == 3
+    assert _closure(onto) == _fresh(onto)
