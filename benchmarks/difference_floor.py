@@ -11,8 +11,10 @@ the number of quads each wrote, so a cheaper form that writes a different set sh
 
 Variants (``NAME``: what it does):
 
-* ``keys``: the AllDifferent keys as ``rules/all-different-key.rq`` writes them (two MD5s, a new IRI
-  per member); ``keys_typed``: a literal key ``STR(member)^^group`` (no hash, no new string: the
+* ``keys``: the AllDifferent keys as the rules write them on these maps, whose asserted graph holds one
+  member list (``rules/one-list/all-different-key.rq``: the member its own key); ``keys_by_list``: as
+  ``rules/all-different-key.rq`` writes them where there are more lists (two MD5s, a new IRI per
+  member); ``keys_typed``: a literal key ``STR(member)^^group`` (no hash, no new string: the
   member's string and the group's IRI are in the store already); ``groups``: the group node alone per
   member (what the hand-written floor reads; it cannot tell a member's ``owl:sameAs`` alias from
   another member);
@@ -86,7 +88,8 @@ _CANDIDATES = _insert(f"?l1 {VALUE_CANDIDATE} ?l2", DOOR_PAIRS)
 _VALUES = _insert(f"?l1 {DIFFERENT} ?l2", f"GRAPH {SCRATCH} {{ ?l1 {VALUE_CANDIDATE} ?l2 . }} {VALUES_DIFFER}")
 #: variant name → (setup updates into the scratch graph, the timed update)
 VARIANTS: dict[str, tuple[tuple[str, ...], str]] = {
-    "keys": ((), _member_key('IRI(CONCAT("urn:topostore:key:", MD5(STR(?group)), ":", MD5(STR(?x))))')),
+    "keys": ((), _member_key("?x")),
+    "keys_by_list": ((), _member_key('IRI(CONCAT("urn:topostore:key:", MD5(STR(?group)), ":", MD5(STR(?x))))')),
     "keys_typed": ((), _member_key("STRDT(STR(?x), ?group)")),
     "groups": ((), _member_key("?group")),
     "pairs": ((), _insert(f"?l1 <{M}connectedTo> ?l2", DOOR_PAIRS)),

@@ -14,7 +14,8 @@ each candidate form is timed here on the same reasoned store, in one process, th
   subject than as an object, and the in-memory store walks a term's quads to look one up); the keys
   joined by hash (each key atom its own subquery);
 * the key's making: the list walk alone, the walk with its ``rdf:first``, the key with two MD5s, with the
-  group's MD5 only, with no MD5, and each written into a scratch graph.
+  group's MD5 only, with no MD5, the member its own key (the one-list form), and each written into a
+  scratch graph.
 
 The alternative forms' facts are written into scratch graphs made from the reasoned helper graph (not
 timed) and dropped at the end; topostore's own graphs are only read.
@@ -72,6 +73,7 @@ MAKING = {
     "key, two MD5s": f"{_WALK} {_MEMBER} {_key('MD5(STR(?list))', 'MD5(STR(?x))')}",
     "key, group MD5": f"{_WALK} {_MEMBER} {_key('MD5(STR(?list))', 'STR(?x)')}",
     "key, no MD5": f"{_WALK} {_MEMBER} {_key('STR(?list)', 'STR(?x)')}",
+    "key, the member itself": f"{_WALK} {_MEMBER} BIND(?x AS ?key)",
 }
 
 

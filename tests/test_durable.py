@@ -30,6 +30,7 @@ from swrl_support import PREFIXES, builtin, data, rule
 
 from topostore import Ontology, RuleCompileError
 from topostore.armor import ArmorService
+from topostore.demo import mapgen
 from topostore.ontology import state
 from topostore.rdf import safeio
 from topostore.rdf.vocab import ASSERTED, AUX, DIFFERENT_KEY_OF, INFERRED, KEY_PREFIX, LEGACY_DIFFERENT_KEY, OWL, TYPE
@@ -265,6 +266,33 @@ def test_keys_grouped_by_node_are_rebuilt_on_reopening(tmp_path: Path) -> None:
     again = Ontology(store=tmp_path / "db")
     assert again.opened == "rebuilt"
     assert sorted(map(str, again.store.triples(None, DIFFERENT_KEY_OF, None, AUX))) == keys
+    again.store.close()
+    assert Ontology(store=tmp_path / "db").opened == "reopened"
+
+
+def test_keys_of_a_one_list_store_made_by_list_are_rebuilt_on_reopening(tmp_path: Path) -> None:
+    """A store holding one AllDifferent member list whose last REASON wrote its keys by list (earlier
+    versions: ``urn:topostore:key:<md5(list)>:<md5(member)>``) is rebuilt when opened, its members now
+    their own keys: read as it is, an incremental REASON would write the keys of new members in the other
+    form, and an old member and a new one would not share a group."""
+    onto = Ontology.from_file(TBOX, store=tmp_path / "db")
+    onto.add(*mapgen.generate(8, seed=2).triples())
+    onto.reason()
+    assert onto.rules.one_list
+    keys = list(onto.store.triples(None, DIFFERENT_KEY_OF, None, AUX))
+    assert keys and all(t.subject == t.object for t in keys)
+    head = next(iter(onto.store.objects(next(iter(onto.store.subjects(TYPE, NamedNode(str(OWL) + "AllDifferent"),
+                                                                          ASSERTED))),
+                                        NamedNode(str(OWL) + "distinctMembers"), ASSERTED)))
+    group = hashlib.md5(head.value.encode()).hexdigest()
+    onto.store.remove(keys, AUX)
+    onto.store.add([Triple(NamedNode(f"{KEY_PREFIX}{group}:{hashlib.md5(t.object.value.encode()).hexdigest()}"),
+                           DIFFERENT_KEY_OF, t.object) for t in keys], AUX)
+    onto.store.meta_set(state.KEY_FORMAT, "by-list")
+    onto.store.close()
+    again = Ontology(store=tmp_path / "db")
+    assert again.opened == "rebuilt"
+    assert sorted(map(str, again.store.triples(None, DIFFERENT_KEY_OF, None, AUX))) == sorted(map(str, keys))
     again.store.close()
     assert Ontology(store=tmp_path / "db").opened == "reopened"
 

@@ -31,20 +31,18 @@ R1 rdf:type URGENT  ← swrl:Urgency: SWRL rule Urgency
 
 CORRIDOR_C1 = """\
 C1 rdf:type CORRIDOR  ← ext-min-card: class expression (hasDoor min 2 DOOR)
-  where FILTER(STR(?y1) < STR(?y2) || (STR(?y1) = STR(?y2) && (isLiteral(?y1) && isLiteral(?y2)) && (STR(DATATYPE(?y1)) < STR(DATATYPE(?y2)) || (STR(DATATYPE(?y1)) = STR(DATATYPE(?y2)) && LANG(?y1) < LANG(?y2))))) FILTER(!sameTerm(?k1_d, ?k2_d) && STRBEFORE(STRAFTER(STR(?k1_d), "urn:topostore:key:"), ":") = STRBEFORE(STRAFTER(STR(?k2_d), "urn:topostore:key:"), ":")) FILTER(!sameTerm(?y1, ?y2))  with ?k1_d = key of D1 in AllDifferent(C1, C2, R1, R2, R3, R4, … 15 members), ?k2_d = key of D6 in AllDifferent(C1, C2, R1, R2, R3, R4, … 15 members), ?x = C1, ?y1 = D1, ?y2 = D6
+  where FILTER(STR(?y1) < STR(?y2) || (STR(?y1) = STR(?y2) && (isLiteral(?y1) && isLiteral(?y2)) && (STR(DATATYPE(?y1)) < STR(DATATYPE(?y2)) || (STR(DATATYPE(?y1)) = STR(DATATYPE(?y2)) && LANG(?y1) < LANG(?y2))))) FILTER(!sameTerm(?k1_d, ?k2_d) && STRBEFORE(STRAFTER(STR(?k1_d), "urn:topostore:key:"), ":") = STRBEFORE(STRAFTER(STR(?k2_d), "urn:topostore:key:"), ":")) FILTER(!sameTerm(?y1, ?y2))  with ?k1_d = D1, ?k2_d = D6, ?x = C1, ?y1 = D1, ?y2 = D6
   C1 hasDoor D1  [asserted]
   D1 rdf:type DOOR  ← prp-rng: hasDoor range DOOR
     C2 hasDoor D1  [asserted]
   C1 hasDoor D6  [asserted]
   D6 rdf:type DOOR  ← prp-rng: hasDoor range DOOR
     R5 hasDoor D6  [asserted]
-  D1 in AllDifferent(C1, C2, R1, R2, R3, R4, … 15 members)  ← all-different: OWL 2 RL eq-diff2/eq-diff3 support: each member of an owl:AllDifferent's member list gets a key naming the list (its group) and the member (one triple per member, never n² pairs)
-    where BIND(IRI(CONCAT("urn:topostore:key:", MD5(STR(?list)), ":", MD5(STR(?x)))) AS ?key)  with ?group = AllDifferent(C1, C2, R1, R2, R3, R4, … 15 members), ?key = key of D1 in AllDifferent(C1, C2, R1, R2, R3, R4, … 15 members), ?list = _:mapgen-l, ?x = D1
+  D1 in AllDifferent(C1, C2, R1, R2, R3, R4, … 15 members)  ← all-different: OWL 2 RL eq-diff2/eq-diff3 support where the asserted graph holds one owl:AllDifferent member list (rules/all-different-key.rq otherwise): that list is the one group, so each member is its own key (one triple per member, no term made)
     AllDifferent(C1, C2, R1, R2, R3, R4, … 15 members) rdf:type owl:AllDifferent  [asserted]
     AllDifferent(C1, C2, R1, R2, R3, R4, … 15 members) has the member list (C1, C2, R1, R2, R3, R4, … 15 members)  [asserted]
     D1 listed in (C1, C2, R1, R2, R3, R4, … 15 members)  [asserted]
-  D6 in AllDifferent(C1, C2, R1, R2, R3, R4, … 15 members)  ← all-different: OWL 2 RL eq-diff2/eq-diff3 support: each member of an owl:AllDifferent's member list gets a key naming the list (its group) and the member (one triple per member, never n² pairs)
-    where BIND(IRI(CONCAT("urn:topostore:key:", MD5(STR(?list)), ":", MD5(STR(?x)))) AS ?key)  with ?group = AllDifferent(C1, C2, R1, R2, R3, R4, … 15 members), ?key = key of D6 in AllDifferent(C1, C2, R1, R2, R3, R4, … 15 members), ?list = _:mapgen-l, ?x = D6
+  D6 in AllDifferent(C1, C2, R1, R2, R3, R4, … 15 members)  ← all-different: OWL 2 RL eq-diff2/eq-diff3 support where the asserted graph holds one owl:AllDifferent member list (rules/all-different-key.rq otherwise): that list is the one group, so each member is its own key (one triple per member, no term made)
     AllDifferent(C1, C2, R1, R2, R3, R4, … 15 members) rdf:type owl:AllDifferent  [asserted]
     AllDifferent(C1, C2, R1, R2, R3, R4, … 15 members) has the member list (C1, C2, R1, R2, R3, R4, … 15 members)  [asserted]
     D6 listed in (C1, C2, R1, R2, R3, R4, … 15 members)  [asserted]"""

@@ -127,13 +127,14 @@ def rules(files: tuple[str, ...], show_all: bool, deltas: bool, step: str | None
       topostore rules --step isIn,now,visitedAt ontology/topological_map.ttl
     """
     from ..compile.generic import generic_rules
+    from ..compile.key_form import one_list_rule
 
     _existing(files)
     onto = load_files(files)
     if step:
         click.echo(_step_program(onto, [p.strip() for p in step.split(",") if p.strip()]))
         return
-    generic = {(r.name, r.where(), r.head) for r in generic_rules()}
+    generic = {(r.name, r.where(), r.head) for r in (*generic_rules(), one_list_rule())}
     groups: dict[str, list] = {g: [] for g in RULE_GROUPS}
     for rule in onto.rules.rules:  # the rows of rules/owl/ are shown by table below
         if (rule.name, rule.where(), rule.head) in generic:

@@ -16,6 +16,7 @@ from .generic import generic_rules
 from .guard import guard_rules
 from .implied import position_classes, simplify
 from .inline_difference import MAX_DISJOINT_SOURCES, inline_difference, owl_asks
+from .key_form import key_rule_form, one_member_list
 from .owl import OwlCompiler
 from .owl_extras import (
     existential_domain_rules,
@@ -51,8 +52,8 @@ def compile_ontology(store: Store, graph: NamedNode, refuse: Collection[Term] = 
     merge_alike(tbox)  # after the SWRL rules: the expressions they name are kept
     owl = OwlCompiler(tbox)
     ignore_non_simple(tbox, owl.all_expressions())  # before any rule is made: as Pellet, not as written
-    rules = RuleSet()
-    rules.add(generic_rules())
+    rules = RuleSet(one_list=one_member_list(store, graph))
+    rules.add(key_rule_form(generic_rules(), rules.one_list))
     rules.add(owl.compile())
     rules.add(key_rules(tbox))
     rules.add(reflexive_rules(tbox))

@@ -16,6 +16,7 @@ from typing import TYPE_CHECKING
 
 from pyoxigraph import Literal, NamedNode, Triple
 
+from ..compile.key_form import touches_groups
 from ..compile.notices import warn
 from ..rdf.terms import check_literal, triple, value_key
 from ..rdf.vocab import ASSERTED
@@ -191,8 +192,10 @@ class AssertedChanges:
         self.onto.dirty = True
         if self.store.durable:
             durable_state.note_changed(self.store)
-        if changes_schema(self.store, triples if type(triples) is list or isinstance(triples, Sequence)
-                          else list(triples)):
+        triples = triples if type(triples) is list or isinstance(triples, Sequence) else list(triples)
+        if touches_groups(triples):
+            self.onto.groups_touched = True
+        if changes_schema(self.store, triples):
             self.onto.schema_changed()
 
     def _change_limit(self) -> float:

@@ -89,6 +89,9 @@ class Ontology:
         self.load_notices = []  # what loading repaired or set aside (topostore.compile.notices)
         self.strict = strict
         self.dirty = True  # asserted graph changed since the last reasoning
+        #: a member link (owl:members, owl:distinctMembers) changed since the rules were compiled: the next
+        #: REASON checks whether the AllDifferent keys' form still holds (topostore.compile.key_form)
+        self.groups_touched = False
         #: the asserted changes since the last successful REASON: what incremental REASON, rollback and
         #: a unit of work's undo read (see topostore.ontology.ledger)
         self.ledger = ChangeLedger()

@@ -196,6 +196,7 @@ class OntologyFiles:
             store.clear(ASSERTED)
             raise
         self.onto.changes.touch([schema] if schema is not None else [])
+        self.onto.groups_touched = True  # the streamed triples are not listed: their member lists are counted again
         if rules is not None:
             self.onto._rules = rules
         return found.triples, self._kept(found.notices, known), Written(found.again)

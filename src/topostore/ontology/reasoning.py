@@ -16,6 +16,7 @@ from typing import TYPE_CHECKING
 from pyoxigraph import NamedNode, Quad, Triple
 
 from ..compile import RuleSet, compile_ontology
+from ..compile.key_form import form_changed
 from ..compile.notices import Notice, OntologyWarning, warn
 from ..rdf.vocab import ASSERTED, HAS_VALUE, INFERRED, NOTHING, TYPE
 from ..reason import ReasonStats, Violation, classify
@@ -65,6 +66,10 @@ class OntologyReasoning:
     def reason(self, profile: bool, mode: str) -> ReasonReport:
         """The body of :meth:`Ontology.reason` (its mode checked and its failure undone by the ledger)."""
         onto = self.onto
+        if onto.groups_touched:
+            onto.groups_touched = False
+            if onto._rules is not None and form_changed(onto.store, ASSERTED, onto._rules.one_list):
+                onto._rules = None  # the AllDifferent keys change form: new rules, a full REASON
         rules = self.rules()
         forced = ""
         if onto._reasoner is None or onto._reasoner.ruleset is not rules:

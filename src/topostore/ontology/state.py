@@ -23,9 +23,12 @@ if TYPE_CHECKING:  # pragma: no cover
 logger = logging.getLogger("topostore.store")
 
 #: the persisted key saying how the helper graph's AllDifferent keys name their group, and its value
-#: now: the member list (``urn:topostore:key:<md5(list)>:<md5(member)>``); earlier versions named the
-#: AllDifferent node, which made members of a node's two lists different
-KEY_FORMAT, BY_LIST = "different-keys", "by-list"
+#: now: the member list (``urn:topostore:key:<md5(list)>:<md5(member)>``), or the member itself where the
+#: asserted graph holds one member list (``topostore.compile.key_form``); earlier versions made the key of
+#: a one-list store by its list too ("by-list": an incremental REASON after reopening would add the new
+#: members' keys in the other form), and before that named the AllDifferent node, which made members of a
+#: node's two lists different
+KEY_FORMAT, BY_LIST = "different-keys", "by-list, one list by member"
 
 
 def note_changed(store: Store) -> None:

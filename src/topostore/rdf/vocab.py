@@ -51,7 +51,8 @@ SCHEMA_PREFIX = INTERNAL + "graph:schema:"
 #: aux predicate indexing owl:AllDifferent axioms in linear size (never n²
 #: pairs): member ``m`` of member list ``g`` of an AllDifferent node gets ``k ts:differentKeyOf m`` with
 #: ``k = urn:topostore:key:<md5(g)>:<md5(m)>`` (the group is the list: a node with two lists is two
-#: groups, as OWL 2 RL's eq-diff2/eq-diff3 read them); two individuals holding
+#: groups, as OWL 2 RL's eq-diff2/eq-diff3 read them), or ``k = m`` where the asserted graph holds one
+#: member list (compile/key_form.py: its group part is empty for every key); two individuals holding
 #: different keys with the same group part are declared different.  The key is the
 #: subject and the individual the object: a join looks the key up from the individual,
 #: and the store walks a term's quads to do so, which an individual has far fewer of as an

@@ -30,8 +30,8 @@ without negation are started early (:func:`positive`: no ``MINUS``, ``NOT EXISTS
 count's ``HAVING (COUNT(…) > 1)`` only grows with the data), so what one found on the data of its start
 holds on the final data too, and the evaluation at the turn adds the rest.  Only evaluations that write
 to one graph qualify (a first pass's rule whose facts are not read again as a delta: not in ``back``, a
-head of one predicate or class), only those that hash or count (:func:`costly`), and only those with
-first-pass work of the main thread between their start and their turn: for a plain join or an arithmetic
+head of one predicate or class), only those that hash, walk a list or count (:func:`costly`), and only
+those with first-pass work of the main thread between their start and their turn: for a plain join or an arithmetic
 ``BIND``, writing the solutions costs about as much as evaluating them (1.46 against 1.00 s per 300,000
 quads written, docs/benchmarks-history.md), and with nothing to do meanwhile the pass would only wait for
 the worker.  Without the second thread (``TOPOSTORE_OVERLAP=0``, a durable or remote store) nothing
@@ -167,12 +167,21 @@ def hashes(rule: Rule) -> bool:
     return any(c.binds and _HASH.search(c.expression) for c in rule.conditions)
 
 
+def walks(rule: Rule) -> bool:
+    """Whether ``rule`` reads an atom through a path of any length (the AllDifferent keys' walk of their
+    member list, ``(rdf:rest*)/rdf:first``): where a member is its own key no term is made, but the walk
+    still reads two list quads for each fact it writes, and beside the main thread's rules it is off
+    their path."""
+    return any("*" in a.p for a in rule.body)
+
+
 def costly(rule: Rule) -> bool:
     """Whether an evaluation of ``rule`` reads far more than it writes, so that the worker takes it: it
-    hashes (:func:`hashes`), or a full run counts it per group (:func:`.key_pairs.grouped_form`: every
-    pair of a subject's values and their keys read for one membership; a plain join such as
-    Connectability writes about one fact per match, and stays in the pass)."""
-    return hashes(rule) or grouped_form(rule) is not None
+    hashes (:func:`hashes`) or walks a list (:func:`walks`), or a full run counts it per group
+    (:func:`.key_pairs.grouped_form`: every pair of a subject's values and their keys read for one
+    membership; a plain join such as Connectability writes about one fact per match, and stays in the
+    pass)."""
+    return hashes(rule) or walks(rule) or grouped_form(rule) is not None
 
 
 class EarlyRules:

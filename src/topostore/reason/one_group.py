@@ -14,7 +14,8 @@ every key is of that one group and the test only repeats ``!sameTerm(?k1, ?k2)``
 Same matches
 ------------
 Keys are written to the helper graph only by the generic rules ``all-different`` (a key of each
-member of each member list of an ``owl:AllDifferent`` node, its group part that list's) and ``eq-rep-s``
+member of each member list of an ``owl:AllDifferent`` node, its group part that list's, or empty for
+every member where the member is its own key: :mod:`..compile.key_form`) and ``eq-rep-s``
 (a key copied as it is to what is the same as its member), and a full run starts with an empty helper
 graph and never removes a fact.  So while the store holds at most one node typed ``owl:AllDifferent``,
 that node at most one member list, and no evaluation waiting in the queue may type another node or give

@@ -276,7 +276,8 @@ class Explainer:
         return "(" + ", ".join(shown) + ")"
 
     def render_key(self, key: Term) -> str:
-        """``urn:topostore:key:<md5(list)>:<md5(member)>`` → the member and the AllDifferent group it names."""
+        """``urn:topostore:key:<md5(list)>:<md5(member)>``, or a member that is its own key where the store
+        holds one member list (:mod:`topostore.compile.key_form`) → the member and the AllDifferent group."""
         if key not in self._texts:
             self._texts[key] = self._render_key_uncached(key)
         return self._texts[key]
@@ -288,6 +289,9 @@ class Explainer:
                 for p in (owl("distinctMembers"), owl("members")):
                     for head in self.store.objects(g, p, ASSERTED):
                         self._groups[hashlib.md5(head.value.encode()).hexdigest()] = (g, head)
+        if isinstance(key, NamedNode) and not key.value.startswith(KEY_PREFIX) and len(self._groups) == 1:
+            _, head = next(iter(self._groups.values()))  # one member list: a member is its own key
+            return f"key of {self.render_term(key)} in AllDifferent{self._list_text(head)}"
         digest = key.value.split(":")[3] if isinstance(key, NamedNode) and key.value.count(":") >= 4 else ""
         found = self._groups.get(digest)
         if found is None:

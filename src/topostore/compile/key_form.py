@@ -1,0 +1,94 @@
+"""The form of the AllDifferent keys: a member is its own key while the asserted graph holds one member list.
+
+Why
+---
+Two individuals are different by ``owl:AllDifferent`` when they hold two different keys of one group
+(``rules/different-by-group.rq``); a group is one member list of an AllDifferent node (OWL 2 RL's
+eq-diff2/eq-diff3 read each list apart).  In general a key names its list and its member
+(``urn:topostore:key:<md5(list)>:<md5(member)>``, ``rules/all-different-key.rq``): a term made for
+every member, which at 100,000 locations is 199,999 new IRIs to build and write, the longest part of the
+chain of evaluations beside the fixpoint.  A map has one ``owl:AllDifferent`` over its locations and
+doors: its one list is the only group, and each member can be its own key
+(``rules/one-list/all-different-key.rq``): the same walk of the list, no term made.
+
+Same answers
+------------
+With one member list ``L``, the keys ``(L, m)`` of the general form and the members ``m`` of this one
+name each other one to one, and every key fact ``k ts:differentKeyOf x`` of one form is a key fact of
+the other with its key renamed (``all-different`` writes one per member, ``eq-rep-s`` copies a key to
+what is the same as its holder, as it is, in either form).  Every reader of the keys compares two keys
+by term (``!sameTerm``) and by group part (:func:`.counting.group_of`, the text between the key prefix
+and the next colon): two members differ as their keys do, and a member's group part is empty for every
+member (a member is no key IRI), as the one list's group part is one for all of its keys.  So every
+rule matches the same bindings, the keys renamed, and concludes the same facts (a key is never in a
+conclusion the user sees).
+
+Lists are counted in the asserted graph, every list of an ``owl:members`` or ``owl:distinctMembers``
+link but those of ``owl:AllDisjointClasses`` and ``owl:AllDisjointProperties`` (a TBox's; a node linked
+to a list and typed AllDifferent only by a later inference counts from the start).  The count is the
+compiled rules' (:attr:`.rule.RuleSet.one_list`): a change adding or removing a member link is noted
+(:func:`touches_groups`), and the next REASON compiles the rules again when the count crossed one
+(:func:`form_changed`); new rules make a full REASON, which clears the helper graph and writes the keys
+in the new form.  A durable store records the form it wrote (``ontology/state.py``).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+from functools import cache
+
+from pyoxigraph import NamedNode, Triple
+
+from ..rdf.vocab import TYPE, owl
+from ..resources import rules_dir
+from ..stores.base import Store
+from .generic import parse_rule_file
+from .rule import Rule
+
+#: the links from an n-ary axiom's node to its member list
+MEMBER_LINKS = frozenset({owl("members"), owl("distinctMembers")})
+#: the name of the rule writing the keys (both forms)
+KEY_RULE = "all-different"
+
+
+def one_member_list(store: Store, graph: NamedNode) -> bool:
+    """Whether ``graph`` holds at most one member list of an ``owl:AllDifferent`` (see the module)."""
+    links = "|".join(f"<{p.value}>" for p in sorted(MEMBER_LINKS, key=str))
+    tbox = " ".join(f"<{owl(n).value}>" for n in ("AllDisjointClasses", "AllDisjointProperties"))
+    text = (f"SELECT DISTINCT ?list WHERE {{ ?g {links} ?list "
+            f"FILTER NOT EXISTS {{ ?g <{TYPE.value}> ?kind VALUES ?kind {{ {tbox} }} }} }} LIMIT 2")
+    return len(list(store.query(text, [graph]))) <= 1
+
+
+@cache
+def one_list_rule() -> Rule:
+    """The key rule of the one-list form (``rules/one-list/all-different-key.rq``)."""
+    return parse_rule_file(rules_dir() / "one-list" / "all-different-key.rq")
+
+
+def key_rule_form(rules: Iterable[Rule], one_list: bool) -> list[Rule]:
+    """``rules`` with the generic key rule in the form of ``one_list`` (the general form is the one read
+    from ``rules/``)."""
+    if not one_list:
+        return list(rules)
+    special = one_list_rule()
+    return [special if r.name == KEY_RULE and r.head_aux() else r for r in rules]
+
+
+def touches_groups(triples: Iterable[Triple]) -> bool:
+    """Whether a change adds or removes a member link, which may change how many member lists there are
+    (a type of ``owl:AllDisjointClasses`` or ``owl:AllDisjointProperties`` is a schema triple: it compiles
+    the rules again anyway)."""
+    for t in triples:  # a loop, not any() over a generator: a manipulation changes one or two triples
+        if t.predicate in MEMBER_LINKS:
+            return True
+    return False
+
+
+def form_changed(store: Store, graph: NamedNode, one_list: bool) -> bool:
+    """Whether the keys' form of rules compiled with ``one_list`` is no longer the one ``graph`` gives."""
+    return one_member_list(store, graph) != one_list
+
+
+__all__ = ["KEY_RULE", "MEMBER_LINKS", "form_changed", "key_rule_form", "one_list_rule", "one_member_list",
+           "touches_groups"]
