@@ -626,6 +626,41 @@ def test_a_value_swapped_for_another_spelling_reasons_as_from_scratch() -> None:
     assert Triple(a, d, Literal("4", datatype=NamedNode(xsd + "integer"))) in inferred
 
 
+COMPUTED = f"""@prefix : <{SV}> . @prefix owl: <http://www.w3.org/2002/07/owl#> .
+@prefix swrl: <http://www.w3.org/2003/11/swrl#> . @prefix swrlb: <http://www.w3.org/2003/11/swrlb#> .
+:d a owl:DatatypeProperty . :e a owl:DatatypeProperty . :f a owl:DatatypeProperty . :A a owl:Class .
+:x a swrl:Variable . :v a swrl:Variable . :w a swrl:Variable . :u a swrl:Variable .
+[ a swrl:Imp ;
+  swrl:body ( [ a swrl:ClassAtom ; swrl:classPredicate :A ; swrl:argument1 :x ]
+              [ a swrl:DatavaluedPropertyAtom ; swrl:propertyPredicate :d ; swrl:argument1 :x ; swrl:argument2 :v ]
+              [ a swrl:BuiltinAtom ; swrl:builtin swrlb:add ; swrl:arguments ( :w :v 1 ) ] ) ;
+  swrl:head ( [ a swrl:DatavaluedPropertyAtom ; swrl:propertyPredicate :e ; swrl:argument1 :x ; swrl:argument2 :w ] ) ] .
+[ a swrl:Imp ;
+  swrl:body ( [ a swrl:DatavaluedPropertyAtom ; swrl:propertyPredicate :d ; swrl:argument1 :x ; swrl:argument2 :v ]
+              [ a swrl:BuiltinAtom ; swrl:builtin swrlb:multiply ; swrl:arguments ( :w :v 2 ) ]
+              [ a swrl:BuiltinAtom ; swrl:builtin swrlb:add ; swrl:arguments ( :u :w 1 ) ]
+              [ a swrl:BuiltinAtom ; swrl:builtin swrlb:lessThan ; swrl:arguments ( :w 100 ) ] ) ;
+  swrl:head ( [ a swrl:DatavaluedPropertyAtom ; swrl:propertyPredicate :f ; swrl:argument1 :x ; swrl:argument2 :u ] ) ] .
+:a a :A ; :d 3 . :b a :A ; :d 7 .
+"""
+
+
+@pytest.mark.parametrize("new", [10, 4, 7])
+def test_a_replaced_value_a_builtin_turns_into_a_head_value_reasons_as_from_scratch(new: int) -> None:
+    """A replaced value that a rule only passes to a built-in (``add(?w, ?v, 1)``) whose result is the head's
+    value is no flip: the head itself changes (d 3 → 10 makes e 4 → 11, not e 4 kept), directly and through
+    a chain of BINDs (f = 2d + 1); ``4`` and ``7`` are the old head's value and another subject's value."""
+    xsd = "http://www.w3.org/2001/XMLSchema#"
+    a, d, e, f = (NamedNode(SV + n) for n in "adef")
+    onto = Ontology()
+    onto.load_data(COMPUTED)
+    onto.reason()
+    onto.replace(a, d, Literal(str(new), datatype=NamedNode(xsd + "integer")))
+    assert_same_as_scratch(onto)
+    assert onto.data_values(e, a) == [Literal(str(new + 1), datatype=NamedNode(xsd + "integer"))]
+    assert onto.data_values(f, a) == [Literal(str(2 * new + 1), datatype=NamedNode(xsd + "integer"))]
+
+
 @pytest.mark.parametrize("prop", ["isIn", "hasDoor", "connectedTo", "canReach", "visitedAt"])
 @pytest.mark.parametrize("subject", ["Robot1", "C1", "R1", "D1"])
 def test_a_literal_given_to_an_object_property_is_reasoned_as_from_scratch(prop: str, subject: str) -> None:

@@ -40,7 +40,7 @@ from typing import NamedTuple
 
 from pyoxigraph import Literal, NamedNode, Triple
 
-from ..compile.condition import TEST
+from ..compile.condition import BIND, TEST
 from ..compile.rule import Atom, Rule, join_order
 from ..rdf.terms import sparql
 from ..rdf.vocab import INTERNAL, TYPE
@@ -84,13 +84,35 @@ def plain_filters(rule: Rule) -> bool:
 
 
 def compared_only(rule: Rule, j: int) -> bool:
-    """Whether atom ``j``'s object is a variable the rule uses only in its filters (or not at all)."""
+    """Whether atom ``j``'s object is a variable the rule uses only in its filters (or not at all).
+
+    A value a BIND computes from it (``swrlb:add(?w, ?v, 1)``, transitively) counts as the value itself:
+    written in the head or joined in another atom, a new value makes another head, not the same head
+    flipped, so such an atom is read by the ordinary delta (a value bound only to be compared, as the
+    Urgency rule's ``?d`` of ``subtract(?d, ?h, ?v)``, still flips)."""
     atom = rule.body[j]
     if not atom.o.startswith("?") or not atom.p.startswith("<") or atom.p == str(TYPE) or atom.aux:
         return False
-    if atom.o in (atom.s, atom.p) or (rule.head is not None and atom.o in rule.head.variables()):
+    if atom.o in (atom.s, atom.p):
         return False
-    return all(atom.o not in other.variables() for k, other in enumerate(rule.body) if k != j)
+    reached = _computed_from(rule, atom.o)
+    if rule.head is not None and not reached.isdisjoint(rule.head.variables()):
+        return False
+    return all(reached.isdisjoint(other.variables()) for k, other in enumerate(rule.body) if k != j)
+
+
+def _computed_from(rule: Rule, variable: str) -> set[str]:
+    """``variable`` and every variable a BIND of ``rule`` computes from it, directly or through another."""
+    reached = {variable}
+    binds = [c for c in rule.conditions if c.kind == BIND and c.binds]
+    grown = True
+    while grown:
+        grown = False
+        for c in binds:
+            if c.binds not in reached and not reached.isdisjoint(c.variables - {c.binds}):
+                reached.add(c.binds)
+                grown = True
+    return reached
 
 
 class Replacement(NamedTuple):
