@@ -14,6 +14,7 @@ from topostore import Ontology
 from topostore.compile import Atom, Rule, RuleSet, compile_ontology
 from topostore.compile.builtins import SUPPORTED, translate
 from topostore.compile.generic import expand, generic_rules, parse_rule_file
+from topostore.compile.key_form import one_list_rule
 from topostore.compile.snippets import distinct_values, in_datatype
 from topostore.compile.swrl_text import removal_triples, rule_labels, rule_triples, rules_among
 from topostore.errors import RuleCompileError
@@ -59,7 +60,7 @@ def compiled(turtle: str) -> tuple[Ontology, RuleSet]:
 
 def own_rules(rules: RuleSet) -> dict[str, list[Rule]]:
     """The rules compiled from the ontology (not the generic ones), by name."""
-    generic = {(r.name, r.origin) for r in generic_rules()}
+    generic = {(r.name, r.origin) for r in (*generic_rules(), one_list_rule())}
     out: dict[str, list[Rule]] = {}
     for r in rules.all_rules:
         if (r.name, r.origin) not in generic:
