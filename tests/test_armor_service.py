@@ -493,6 +493,32 @@ def test_buffered_reasoner_sees_changes_at_reason_only() -> None:
     assert ok(svc, "QUERY", "OBJECTPROP", "IND", ["canReach", "Robot1"]).queried_objects == [full("C1")]
 
 
+@pytest.mark.parametrize("buffered", [True, False])
+def test_a_buffered_reasoner_answers_removed_asserted_facts_until_reason(buffered: bool) -> None:
+    """aRMOR's buffered reasoner answers the state it was last flushed with, told facts included (spec §2.5):
+    a fact asserted only and removed since the last REASON is still answered, beside its replacement, until
+    the next REASON; a live reasoner sees the removal at once."""
+    svc = ArmorService()
+    load(svc, buf_reasoner=str(buffered).lower())
+    ok(svc, "ADD", "IND", "CLASS", ["Foo", "LOCATION"])
+    ok(svc, "REASON")
+    ok(svc, "REMOVE", "IND", "CLASS", ["Foo", "LOCATION"])
+    ok(svc, "REPLACE", "DATAPROP", "IND", ["urgencyThreshold", "Robot1", "LONG", "15", "7"])
+    ok(svc, "REMOVE", "OBJECTPROP", "IND", ["hasDoor", "R1", "D1"])
+    stale = {
+        ("IND", "CLASS", ("LOCATION",)): full("Foo"),
+        ("CLASS", "IND", ("Foo", "false")): full("LOCATION"),
+        ("DATAPROP", "IND", ("urgencyThreshold", "Robot1")): '"7"^^xsd:long',
+        ("OBJECTPROP", "IND", ("hasDoor", "R1")): full("D1"),
+    }
+    for (s1, s2, args), old in stale.items():
+        assert (old in ok(svc, "QUERY", s1, s2, args).queried_objects) is buffered, (s1, s2, args)
+    assert '"15"^^xsd:long' in ok(svc, "QUERY", "DATAPROP", "IND", ["urgencyThreshold", "Robot1"]).queried_objects
+    ok(svc, "REASON")
+    for (s1, s2, args), old in stale.items():
+        assert old not in ok(svc, "QUERY", s1, s2, args).queried_objects, (s1, s2, args)
+
+
 def test_reason_recovers_after_inconsistency_with_buffers() -> None:
     svc = ArmorService()
     load(svc, buf_manip="true", reasoner="", buf_reasoner="true")

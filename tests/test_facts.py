@@ -193,9 +193,10 @@ def test_a_replace_asks_no_presence_of_the_value_its_read_did_not_find(monkeypat
     _replace_reply(service, "DATAPROP", "speed", "r1", "LONG", "9", "7")
     _replace_reply(service, "OBJECTPROP", "at", "r1", "b", "a")
     assert asked == []
-    assert [str(v) for v in onto.data_values("speed", "r1")] == [str(typed("9", "long"))]
     assert onto.ledger.net_changes()[0] == [Triple(n("r1"), n("speed"), typed("9", "integer")),
                                             Triple(n("r1"), n("at"), n("b"))]
+    onto.reason()  # a buffered reasoner answers the replaced value too until REASON (spec §2.5)
+    assert [str(v) for v in onto.data_values("speed", "r1")] == [str(typed("9", "long"))]
 
 
 def test_a_value_read_present_stays_present_when_noted_unread(onto: Ontology) -> None:

@@ -77,6 +77,10 @@ class Reference:
     #: writes the settings, owner and buffer to a durable store (None in memory); see armor/durable.py
     persist: Callable[[Reference], None] | None = None
 
+    def __post_init__(self) -> None:
+        # a buffered reasoner answers what it was last flushed with, asserted facts removed since included
+        self.ontology.reads.answers_removed = self.buffered_reasoner
+
     def save_state(self) -> None:
         """Persist settings, owner and buffer (joins the store transaction in progress)."""
         if self.persist is not None:

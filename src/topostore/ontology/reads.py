@@ -7,7 +7,7 @@ SPARQL, and named queries with safely bound parameters.
 
 from __future__ import annotations
 
-from collections.abc import Hashable
+from collections.abc import Hashable, Iterable
 from typing import TYPE_CHECKING
 
 from pyoxigraph import Literal, NamedNode, Quad, Triple
@@ -34,6 +34,20 @@ class OntologyQueries:
 
     def __init__(self, onto: Ontology) -> None:
         self.onto = onto
+        #: whether an asserted fact removed since the last REASON is answered until the next one, as the
+        #: last REASON's answer held it: what aRMOR's buffered reasoner answers (its half of a query is the
+        #: state it was last flushed with, told facts included; spec §2.5).  Off for the Python API, where
+        #: a removed fact is gone at once; an aRMOR reference with a buffered reasoner turns it on.
+        self.answers_removed = False
+
+    def _removed(self) -> Iterable[Triple]:
+        """The asserted facts (as written) removed since the last successful REASON, while they are answered
+        (:attr:`answers_removed`, the ontology changed since, and consistent at that REASON: an inconsistent
+        one answers asserted facts only)."""
+        onto = self.onto
+        if not (self.answers_removed and onto.dirty and onto.ledger.removed) or len(onto.visible_graphs()) == 1:
+            return ()
+        return onto.ledger.removed.values()
 
     def _objects(self, s: Term, p: NamedNode) -> list[Term]:
         seen: dict = {}
@@ -43,6 +57,10 @@ class OntologyQueries:
                     seen.setdefault(value_key(o), self.onto.store.original_literal(ASSERTED, s, p, o))
                 else:  # an individual is its own key
                     seen.setdefault(o, o)
+        for t in self._removed():
+            if t.subject == s and t.predicate == p:
+                o = t.object
+                seen.setdefault(value_key(o) if isinstance(o, Literal) else o, o)
         return list(seen.values())
 
     def _objects_in_graphs(self, s: Term, p: NamedNode) -> dict[NamedNode, list[Term]]:
@@ -95,7 +113,9 @@ class OntologyQueries:
         return None if self.onto.dirty else self.onto.report
 
     def _instances(self, c: NamedNode) -> list[NamedNode]:
-        return [s for s in self.onto.store.batched.subjects_in(TYPE, c, self.onto.visible_graphs()) if _shown(s)]
+        members = [s for s in self.onto.store.batched.subjects_in(TYPE, c, self.onto.visible_graphs()) if _shown(s)]
+        removed = [t.subject for t in self._removed() if t.predicate == TYPE and t.object == c and _shown(t.subject)]
+        return list(dict.fromkeys(members + removed)) if removed else members
 
     def _instance_flags(self, pairs: list[tuple[Term, NamedNode]]) -> list[bool]:
         """Whether each (individual, class) pair is one of :meth:`instances` (what a class view re-decides):
@@ -138,6 +158,9 @@ class OntologyQueries:
                 p = t.predicate
                 if isinstance(t.object, Literal) == data and not _is_schema_or_internal(p):
                     props[p] = None
+        for t in self._removed():
+            if t.subject == s and isinstance(t.object, Literal) == data and not _is_schema_or_internal(t.predicate):
+                props[t.predicate] = None
         if not props:
             return []
         annotations = annotation_properties(self.onto.store, ASSERTED)  # as the reasoner reads them
