@@ -133,7 +133,7 @@ class OntologyQueries:
         visible graph taken as it is (no literal among them to key by value: a data value is no answer)."""
         onto = self.onto
         store = onto.store
-        if store.round_trips:
+        if store.round_trips or self._removed():  # removed facts still answered: :meth:`_objects` adds them
             return [o for o in self._objects(s, p) if isinstance(o, NamedNode)]
         found = store.objects_by_graph(s, p, onto.visible_graphs())
         return list(dict.fromkeys(o for objects in found.values() for o in objects if isinstance(o, NamedNode)))
