@@ -38,11 +38,13 @@ C1 rdf:type CORRIDOR  ← ext-min-card: class expression (hasDoor min 2 DOOR)
   C1 hasDoor D6  [asserted]
   D6 rdf:type DOOR  ← prp-rng: hasDoor range DOOR
     R5 hasDoor D6  [asserted]
-  D1 in AllDifferent(C1, C2, R1, R2, R3, R4, … 15 members)  ← all-different: OWL 2 RL eq-diff2/eq-diff3 support where the asserted graph holds one owl:AllDifferent member list (rules/all-different-key.rq otherwise): that list is the one group, so each member is its own key (one triple per member, no term made)
+  D1 in AllDifferent(C1, C2, R1, R2, R3, R4, … 15 members)  ← all-different: OWL 2 RL eq-diff2/eq-diff3 support where the asserted graph holds one owl:AllDifferent member list (rules/all-different-key.rq otherwise): its members are their own keys (one triple per member, no term made); a list reached only by inference keys by list and member, a group of its own
+    where BIND(IF(sameTerm(?list, _:mapgen-l), ?x, IRI(CONCAT("urn:topostore:key:", MD5(STR(?list)), ":", MD5(STR(?x))))) AS ?key)  with ?group = AllDifferent(C1, C2, R1, R2, R3, R4, … 15 members), ?key = D1, ?list = _:mapgen-l, ?x = D1
     AllDifferent(C1, C2, R1, R2, R3, R4, … 15 members) rdf:type owl:AllDifferent  [asserted]
     AllDifferent(C1, C2, R1, R2, R3, R4, … 15 members) has the member list (C1, C2, R1, R2, R3, R4, … 15 members)  [asserted]
     D1 listed in (C1, C2, R1, R2, R3, R4, … 15 members)  [asserted]
-  D6 in AllDifferent(C1, C2, R1, R2, R3, R4, … 15 members)  ← all-different: OWL 2 RL eq-diff2/eq-diff3 support where the asserted graph holds one owl:AllDifferent member list (rules/all-different-key.rq otherwise): that list is the one group, so each member is its own key (one triple per member, no term made)
+  D6 in AllDifferent(C1, C2, R1, R2, R3, R4, … 15 members)  ← all-different: OWL 2 RL eq-diff2/eq-diff3 support where the asserted graph holds one owl:AllDifferent member list (rules/all-different-key.rq otherwise): its members are their own keys (one triple per member, no term made); a list reached only by inference keys by list and member, a group of its own
+    where BIND(IF(sameTerm(?list, _:mapgen-l), ?x, IRI(CONCAT("urn:topostore:key:", MD5(STR(?list)), ":", MD5(STR(?x))))) AS ?key)  with ?group = AllDifferent(C1, C2, R1, R2, R3, R4, … 15 members), ?key = D6, ?list = _:mapgen-l, ?x = D6
     AllDifferent(C1, C2, R1, R2, R3, R4, … 15 members) rdf:type owl:AllDifferent  [asserted]
     AllDifferent(C1, C2, R1, R2, R3, R4, … 15 members) has the member list (C1, C2, R1, R2, R3, R4, … 15 members)  [asserted]
     D6 listed in (C1, C2, R1, R2, R3, R4, … 15 members)  [asserted]"""

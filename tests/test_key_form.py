@@ -164,3 +164,30 @@ def test_cells_of_the_one_list_edited_incrementally() -> None:
     assert onto.reason(mode="incremental").stats.mode == "incremental"
     assert _instances(onto) == {"y"} and len(_keys(onto)) == 3
     assert _closure(onto) == _fresh(onto)
+
+
+@pytest.mark.parametrize("lists", [
+    # a node typed AllDifferent and AllDisjointClasses: its list is not counted, yet the key rule walks it
+    "[] a owl:AllDifferent , owl:AllDisjointClasses ; owl:members (:a :b) .\n"
+    "[] a owl:AllDifferent ; owl:distinctMembers (:c :d) .",
+    # a member link only inferred (a sub-property of owl:members)
+    ":m rdfs:subPropertyOf owl:members .\n:g a owl:AllDifferent ; owl:members (:a :b) ; :m (:c :d) .",
+    # an AllDisjointClasses node the same as the AllDifferent one: its list reached through sameAs
+    ":g a owl:AllDifferent ; owl:members (:a :b) .\n:h a owl:AllDisjointClasses ; owl:members (:c :d) .\n"
+    ":h owl:sameAs :g .",
+    # a property equivalent to owl:distinctMembers linking a second node
+    ":m owl:equivalentProperty owl:distinctMembers .\n:g a owl:AllDifferent ; owl:members (:a :b) .\n"
+    ":h a owl:AllDifferent ; :m (:c :d) .",
+])
+def test_a_list_reached_only_by_inference_is_a_group_of_its_own(lists: str) -> None:
+    """Members of the counted list and of a list the key rule reaches otherwise are not different: a
+    member of each told the same is no clash (OWL 2 RL reads each list apart)."""
+    onto = Ontology()
+    onto.load_data(HEAD.replace("@prefix owl:", "@prefix rdfs: <http://www.w3.org/2000/01/rdf-schema#> . @prefix owl:")
+                   + lists + "\n:a owl:sameAs :c .\n", "turtle")
+    assert onto.rules.one_list
+    assert onto.reason().consistent
+    merged = Ontology()  # the same with a clash inside the counted list: found
+    merged.load_data(HEAD.replace("@prefix owl:", "@prefix rdfs: <http://www.w3.org/2000/01/rdf-schema#> . @prefix owl:")
+                     + lists + "\n:a owl:sameAs :b .\n", "turtle")
+    assert not merged.reason().consistent

@@ -134,7 +134,7 @@ def rules(files: tuple[str, ...], show_all: bool, deltas: bool, step: str | None
     if step:
         click.echo(_step_program(onto, [p.strip() for p in step.split(",") if p.strip()]))
         return
-    generic = {(r.name, r.where(), r.head) for r in (*generic_rules(), one_list_rule())}
+    generic = {(r.name, r.where(), r.head) for r in (*generic_rules(), one_list_rule(onto.rules.one_list))}
     groups: dict[str, list] = {g: [] for g in RULE_GROUPS}
     for rule in onto.rules.rules:  # the rows of rules/owl/ are shown by table below
         if (rule.name, rule.where(), rule.head) in generic:

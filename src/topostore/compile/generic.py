@@ -55,17 +55,19 @@ def expand(token: str) -> str:
     return token
 
 
-def parse_rule_file(path: Path) -> Rule:
-    """The rule of a file of ``rules/`` (a schema atom there is an error: see :func:`parse_schema_rule_file`)."""
-    rule, schema, _ = parse_rule_text(path)
+def parse_rule_file(path: Path, text: str | None = None) -> Rule:
+    """The rule of a file of ``rules/`` (a schema atom there is an error: see :func:`parse_schema_rule_file`);
+    ``text``: the file's text with its constants filled in, when they are the ontology's."""
+    rule, schema, _ = parse_rule_text(path, text)
     if schema:
         raise RuleCompileError(f"{path}: a schema atom belongs to a rule of rules/owl/")
     return rule
 
 
-def parse_rule_text(path: Path) -> tuple[Rule, tuple[Atom, ...], dict[str, str]]:
-    """(the rule without its schema atoms, the schema atoms, the header lines) of a rule file."""
-    text = path.read_text()
+def parse_rule_text(path: Path, text: str | None = None) -> tuple[Rule, tuple[Atom, ...], dict[str, str]]:
+    """(the rule without its schema atoms, the schema atoms, the header lines) of a rule file (``text``:
+    read from ``path`` when None)."""
+    text = path.read_text() if text is None else text
     headers = {k: v.strip() for k, v in re.findall(r"^#\s*([a-z-]+):\s*(.*)$", text, re.M)}
     match = re.search(r"\bWHERE\s*\{(.*)\}\s*$", text, re.S)
     if not match or "name" not in headers:

@@ -1,4 +1,4 @@
-"""The form of the AllDifferent keys: a member is its own key while the asserted graph holds one member list.
+"""The form of the AllDifferent keys: the members of the one member list the asserted graph holds are their own keys.
 
 Why
 ---
@@ -9,7 +9,11 @@ eq-diff2/eq-diff3 read each list apart).  In general a key names its list and it
 every member, which at 100,000 locations is 199,999 new IRIs to build and write, the longest part of the
 chain of evaluations beside the fixpoint.  A map has one ``owl:AllDifferent`` over its locations and
 doors: its one list is the only group, and each member can be its own key
-(``rules/one-list/all-different-key.rq``): the same walk of the list, no term made.
+(``rules/one-list/all-different-key.rq``, compiled with that list): the same walk of the list, no term
+made.  The rule walks every list of a node typed AllDifferent, asserted or inferred; a list it reaches other
+than the counted one (a member link or a type only inferred, a node typed AllDisjointClasses too, reached
+through sameAs) keys by list and member as in the general form, a group of its own, never joined to the
+counted list's group.
 
 Same answers
 ------------
@@ -53,32 +57,43 @@ _TBOX = (owl("AllDisjointClasses"), owl("AllDisjointProperties"))
 KEY_RULE = "all-different"
 
 
-def one_member_list(store: Store, graph: NamedNode) -> bool:
-    """Whether ``graph`` holds at most one member list of an ``owl:AllDifferent`` (see the module); read by
-    look-ups, which see an open transaction's writes without sending them (a query would send them, and a
-    failed transaction could then no longer be undone)."""
+def one_member_list(store: Store, graph: NamedNode) -> NamedNode | None:
+    """The one member list of an ``owl:AllDifferent`` ``graph`` holds, None when it holds none or several
+    (see the module); read by look-ups, which see an open transaction's writes without sending them (a
+    query would send them, and a failed transaction could then no longer be undone)."""
     lists: set = set()
     for p in sorted(MEMBER_LINKS, key=str):
         for t in store.triples(None, p, None, graph):
             if t.object not in lists and not any(store.contains(Triple(t.subject, TYPE, kind), graph) for kind in _TBOX):
                 lists.add(t.object)
                 if len(lists) > 1:
-                    return False
-    return True
+                    return None
+    found = next(iter(lists), None)
+    return found if isinstance(found, NamedNode) else None
+
+
+#: the term the one-list key rule's file names its list by, replaced by the list when it is compiled
+LIST_PLACEHOLDER = "<urn:topostore:the-one-member-list>"
 
 
 @cache
-def one_list_rule() -> Rule:
-    """The key rule of the one-list form (``rules/one-list/all-different-key.rq``)."""
-    return parse_rule_file(rules_dir() / "one-list" / "all-different-key.rq")
+def one_list_rule(the_list: NamedNode | None = None) -> Rule:
+    """The key rule of the one-list form (``rules/one-list/all-different-key.rq``) for ``the_list`` (None:
+    as the file writes it, its list a placeholder): only that list's members are their own keys, and a
+    list the rule reaches otherwise (a member link or an AllDifferent type only inferred, a node typed
+    AllDisjointClasses too) keys by list and member as in the general form, a group of its own."""
+    path = rules_dir() / "one-list" / "all-different-key.rq"
+    if the_list is None:
+        return parse_rule_file(path)
+    return parse_rule_file(path, path.read_text().replace(LIST_PLACEHOLDER, f"<{the_list.value}>"))
 
 
-def key_rule_form(rules: Iterable[Rule], one_list: bool) -> list[Rule]:
-    """``rules`` with the generic key rule in the form of ``one_list`` (the general form is the one read
-    from ``rules/``)."""
-    if not one_list:
+def key_rule_form(rules: Iterable[Rule], the_list: NamedNode | None) -> list[Rule]:
+    """``rules`` with the generic key rule in the form of ``the_list`` (:func:`one_member_list`; None: the
+    general form, the one read from ``rules/``)."""
+    if the_list is None:
         return list(rules)
-    special = one_list_rule()
+    special = one_list_rule(the_list)
     return [special if r.name == KEY_RULE and r.head_aux() else r for r in rules]
 
 
@@ -92,10 +107,11 @@ def touches_groups(triples: Iterable[Triple]) -> bool:
     return False
 
 
-def form_changed(store: Store, graph: NamedNode, one_list: bool) -> bool:
-    """Whether the keys' form of rules compiled with ``one_list`` is no longer the one ``graph`` gives."""
-    return one_member_list(store, graph) != one_list
+def form_changed(store: Store, graph: NamedNode, the_list: NamedNode | None) -> bool:
+    """Whether the keys' form of rules compiled for ``the_list`` is no longer the one ``graph`` gives (a
+    list added or removed, or the one list another)."""
+    return one_member_list(store, graph) != the_list
 
 
-__all__ = ["KEY_RULE", "MEMBER_LINKS", "form_changed", "key_rule_form", "one_list_rule", "one_member_list",
+__all__ = ["KEY_RULE", "LIST_PLACEHOLDER", "MEMBER_LINKS", "form_changed", "key_rule_form", "one_list_rule", "one_member_list",
            "touches_groups"]

@@ -284,9 +284,9 @@ class RuleSet:
     #: the instantiations of the rules of ``rules/owl/`` as tables (:class:`.schema_tables.SchemaTables`),
     #: None when there are none: :attr:`rules` holds none of them, :attr:`inference_rules` does
     tables: SchemaTables | None = None
-    #: the AllDifferent keys' form: a member its own key, the asserted graph holding one member list
-    #: (:mod:`.key_form`); otherwise a key names its list and member
-    one_list: bool = False
+    #: the AllDifferent keys' form: the one member list the asserted graph holds, whose members are their
+    #: own keys (:mod:`.key_form`); None: a key names its list and member
+    one_list: NamedNode | None = None
     #: (the list :meth:`add` last appended to, its length then, its rules by :func:`_bucket`)
     _seen: tuple | None = field(default=None, init=False, repr=False, compare=False)
     #: what :meth:`derived` made from :attr:`rules`: key -> (the rules list, its length, the value)

@@ -24,11 +24,12 @@ logger = logging.getLogger("topostore.store")
 
 #: the persisted key saying how the helper graph's AllDifferent keys name their group, and its value
 #: now: the member list (``urn:topostore:key:<md5(list)>:<md5(member)>``), or the member itself where the
-#: asserted graph holds one member list (``topostore.compile.key_form``); earlier versions made the key of
-#: a one-list store by its list too ("by-list": an incremental REASON after reopening would add the new
-#: members' keys in the other form), and before that named the AllDifferent node, which made members of a
-#: node's two lists different
-KEY_FORMAT, BY_LIST = "different-keys", "by-list, one list by member"
+#: asserted graph holds one member list, for that list's members only (``topostore.compile.key_form``);
+#: an earlier version keyed by member every list the rule reached in a one-list store (one inferred too,
+#: which joined two groups), before that a one-list store's keys named the list too ("by-list": an
+#: incremental REASON after reopening would add the new members' keys in the other form), and before
+#: that named the AllDifferent node, which made members of a node's two lists different
+KEY_FORMAT, BY_LIST = "different-keys", "by-list, the counted list by member"
 
 
 def note_changed(store: Store) -> None:
