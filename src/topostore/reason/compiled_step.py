@@ -68,8 +68,8 @@ class CompiledStep:
         #: the clean replacements of the REASON under way, by predicate (see :func:`.flip.clean_replacements`)
         self._clean: dict = {}
         self._heads: set = set()
-        #: the keys the last compiled step may have added facts to (its program's heads, or those a staged run
-        #: noted: :meth:`.staged.StagedRun.gained`)
+        #: the keys the last compiled step may have added facts to or removed facts from (its program's heads,
+        #: or those a staged run noted: :meth:`.staged.StagedRun.gained` and :meth:`~.staged.StagedRun.lost`)
         self.written: frozenset = frozenset()
         #: the keys that may have lost facts in the last compiled step (the remote negated-premise read),
         #: and as (predicates, classes) (:func:`.triggers.key_sets`, made once per kind of change)
@@ -131,7 +131,7 @@ class CompiledStep:
             stats.per_rule["program"] = time.perf_counter() - start
         stats.flipped = program.flips
         stats.program = "compiled"
-        self.written = program.heads if gained is None else gained
+        self.written = program.heads if gained is None or lost_now is None else gained | lost_now
         self.checks.step_clean = program.clean
         # the keys with facts stay a superset, and no larger: a head the program never wrote keeps the
         # operations joining it left out (a staged run's ``needs``) and the program that left it out valid

@@ -443,7 +443,7 @@ class IncrementalReasoner:
         if not self.ruleset.entailed_predicates:
             return
         if compiled and self._no_twin_written():
-            if self._twinless is None:  # nothing wrote a twin in this REASON: the helper graph as it was
+            if self._twinless is None:  # nothing added or removed a twin in this REASON: the graph as it was
                 self._twinless = not _any_twin(self.store, self.ruleset.entailed_predicates)
             if self._twinless:
                 return
@@ -456,8 +456,9 @@ class IncrementalReasoner:
             refresh_touched(self.store, *found)
 
     def _no_twin_written(self) -> bool:
-        """Whether the compiled step of this REASON can have written no internal twin (no head of its
-        program is the key of one, nor a key standing for any predicate)."""
+        """Whether the compiled step of this REASON can have written no internal twin, neither added nor
+        removed one (no key it may have changed is the key of one, nor a key standing for any predicate):
+        then the helper graph's twins read after it are those before it."""
         heads = self.step.written
         if self._twin_keys.isdisjoint(heads) and all(len(key) == 2 for key in heads):
             return True
