@@ -43,7 +43,7 @@ from functools import cache
 
 from pyoxigraph import NamedNode, Triple
 
-from ..rdf.vocab import TYPE, owl
+from ..rdf.vocab import ONE_MEMBER_LIST, TYPE, owl
 from ..resources import rules_dir
 from ..stores.base import Store
 from .generic import parse_rule_file
@@ -73,7 +73,7 @@ def one_member_list(store: Store, graph: NamedNode) -> NamedNode | None:
 
 
 #: the term the one-list key rule's file names its list by, replaced by the list when it is compiled
-LIST_PLACEHOLDER = "<urn:topostore:the-one-member-list>"
+LIST_PLACEHOLDER = f"<{ONE_MEMBER_LIST.value}>"
 
 
 @cache

@@ -91,6 +91,9 @@ EXPR_PREFIX = INTERNAL + "expr:"
 SKOLEM_PREFIX = INTERNAL + "bnode:"
 #: Prefix of the AllDifferent membership keys (see DIFFERENT_KEY_OF).
 KEY_PREFIX = INTERNAL + "key:"
+#: how the one-list AllDifferent key rule's file names its list (``rules/one-list/all-different-key.rq``),
+#: replaced by the asserted graph's one member list when the rule is compiled (``compile/key_form.py``)
+ONE_MEMBER_LIST = NamedNode(INTERNAL + "the-one-member-list")
 #: Prefix of topostore's SPARQL extension functions; user SPARQL may not call them.
 FUNCTION_PREFIX = INTERNAL + "fn:"
 #: swrlb:pow with a non-constant exponent (SPARQL 1.1 has no power function).
