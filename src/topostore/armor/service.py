@@ -169,13 +169,8 @@ class ArmorService:
     def _reply(self, req: ArmorRequest, reply: Reply, ref: Reference | None = None) -> ArmorResponse:
         """The response to ``req``; ``ref``: its reference, when the caller holds its lock (its consistency
         is read without locking it again, while the name still stands for it)."""
-        if ref is not None and self._references.get(req.reference_name) is ref:
-            try:  # _consistent(ref) inline: every command on a reference answers with it
-                consistent = ref.ontology.is_consistent
-            except TopostoreError:
-                consistent = False
-        else:
-            consistent = self._consistency(req.reference_name)
+        held = ref is not None and self._references.get(req.reference_name) is ref
+        consistent = _consistent(ref) if held else self._consistency(req.reference_name)
         warnings = reply.warnings
         # the fields in their order (ArmorResponse's): success, exit_code, error_description, is_consistent,
         # timeout, queried_objects, sparql_queried_objects

@@ -17,9 +17,9 @@ from pyoxigraph import NamedNode, Triple
 
 from ..compile.generic import PREFIXES
 from ..compile.rule import ReadKey
-from ..rdf.vocab import ASSERTED, AUX, INFERRED
+from ..rdf.vocab import ASSERTED
 from .component import run_component
-from .delta_texts import FLIP_LOST, KEEP
+from .delta_texts import FLIP_LOST, KEEP, NEW_STATE
 from .direct import pattern_of
 from .program import Signature, StepProgram
 from .scratch import CANDIDATES, FLIP_GAINED, NEW_FACTS, OVERDELETED
@@ -28,8 +28,6 @@ from .triggers import Present
 
 #: up to how many candidates a key's rechecks go one by one, stopping once every candidate is kept
 FEW = 32
-#: the graphs of the new state
-_STATE = (ASSERTED, INFERRED, AUX)
 
 
 class StagedRun:
@@ -202,7 +200,7 @@ class StagedRun:
             if self.dirty:
                 self._reading((key,))
             pattern = pattern_of(key)
-            if all(next(iter(self.store.triples(*pattern, g)), None) is None for g in _STATE):
+            if all(next(iter(self.store.triples(*pattern, g)), None) is None for g in NEW_STATE):
                 return True
         return False
 

@@ -138,18 +138,14 @@ class LiteralForms:
         """:meth:`record_keyed` of one removed fact (``old_value``: its value key, None for no literal) and
         one added (``new``, of value key ``new_value``) of (s, p) in ``graph``, committed on a store that
         persists no forms: the removed form forgotten and uncounted, the new one kept and counted."""
-        name, literal_forms, value_forms = graph.value, self._literal_forms, self._value_forms
+        name, literal_forms = graph.value, self._literal_forms
         if old_value is not None:
             found = literal_forms.pop((name, s, p, old_value), None)
             if found is not None:  # a fact with no form kept for it was never counted
                 self._count_form(old_value, found, -1)
         if new_value is not None:
             literal_forms[(name, s, p, new_value)] = new  # type: ignore[assignment] - a literal
-            forms = value_forms.get(new_value)  # _count_form(new_value, new, +1) inline: a clock's new value
-            if forms is None:  # is counted for the first time
-                value_forms[new_value] = {new: 1}  # type: ignore[dict-item]
-            else:
-                forms[new] = forms.get(new, 0) + 1  # type: ignore[index]
+            self._count_form(new_value, new, +1)  # type: ignore[arg-type]
 
     def record_loaded(self, graph: NamedNode, spelled: list[tuple[tuple, Literal]]) -> list[Quad]:
         """Remember the literals of a bulk load into ``graph`` (``spelled``: ((subject, predicate,

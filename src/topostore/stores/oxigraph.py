@@ -111,11 +111,6 @@ class OxigraphStore(Store):
         if type(s) is Literal:
             return []  # a value bound by a rule's join is no subject: no fact has it (as in SPARQL)
         held = self._held.graphs
-        if len(graphs) == 1:  # most reads: one graph, whose facts are distinct as read
-            kept = held.get(graphs[0]) if held else None
-            facts = self._held.triples(s, p, o, kept) if kept is not None \
-                else list(islice(map(_TRIPLE, self._ox.quads_for_pattern(s, p, o, graphs[0])), limit + 1))
-            return None if len(facts) > limit else facts
         found: list[Triple] | dict[Triple, None] | None = None
         for g in graphs:
             kept = held.get(g) if held else None
