@@ -2,7 +2,7 @@
 
 The reasoner keeps, per kind of change (its added and lost read keys, its cleanly replaced
 predicates) and sizes of the keys with facts, the program's signature, whether an added fact may
-have been inferred and whether the completion must ask again (``IncrementalReasoner._kind``).  These
+have been inferred and whether the completion must ask again (``KeptKinds._decide``).  These
 tests check that a repeated step takes the kept answer, and that random sequences of robot steps
 mixed with changes that give new keys facts (doors, second places, declarations of difference)
 still equal a REASON from scratch after every step.
@@ -28,7 +28,7 @@ from test_incremental import (
     second_place,
 )
 
-from topostore.reason.incremental import IncrementalReasoner
+from topostore.reason.kinds import KeptKinds
 
 
 def test_a_repeated_kind_of_change_is_decided_once() -> None:
@@ -36,7 +36,7 @@ def test_a_repeated_kind_of_change_is_decided_once() -> None:
     onto.reason()
     robot_step(onto, "C1", 1665579750)
     onto.reason()  # the first step may give keys facts: the sizes the kept answer is found by settle
-    with mock.patch.object(IncrementalReasoner, "_kind", autospec=True, side_effect=IncrementalReasoner._kind) as kind:
+    with mock.patch.object(KeptKinds, "_decide", side_effect=KeptKinds._decide) as kind:
         for k, where in enumerate(["R1", "C2", "R2", "C1", "R3"]):
             robot_step(onto, where, 1665579760 + 10 * k)
             assert onto.reason().stats.program == "compiled"

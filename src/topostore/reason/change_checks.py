@@ -20,7 +20,8 @@ from ..compile.generic import PREFIXES
 from ..compile.rule import Rule
 from ..rdf.vocab import ASSERTED, AUX, INFERRED, TYPE
 from ..stores.base import Store
-from .changed import ChangedGraphs, Decisions, shape
+from .changed import ChangedGraphs, shape
+from .kinds import Decisions
 from .plan import is_small, plan_where
 from .program import check_pair_atom, pair_atom
 from .scratch import NEW_FACTS, OVERDELETED

@@ -10,7 +10,7 @@ their read keys among the four.
 
 What the first two reads decide depends only on the *shape* of the change (:func:`shape`): the
 changed keys, the cleanly replaced predicates, the keys with facts.  A robot repeats a few shapes
-step after step, so :class:`Decisions` keeps what was decided for each (until the next full run).
+step after step, so :class:`.kinds.Decisions` keeps what was decided for each (until the next full run).
 """
 
 from __future__ import annotations
@@ -162,25 +162,4 @@ def shape(counts: list[KeyCounts], clean: frozenset, present: Present) -> tuple:
     return keys, small, clean, len(present[0]), len(present[1])
 
 
-class Decisions:
-    """What the reads after maintenance decided, by what and :func:`shape` (at most ``limit`` kept)."""
-
-    def __init__(self, limit: int) -> None:
-        self.limit = limit
-        self._decided: dict[tuple, object] = {}
-
-    def get(self, key: tuple, decide: Callable[[], object]) -> object:
-        """The decision kept for ``key``, or ``decide()`` kept from now on."""
-        if key in self._decided:
-            return self._decided[key]
-        if len(self._decided) >= self.limit:
-            self._decided.clear()
-        value = self._decided[key] = decide()
-        return value
-
-    def clear(self) -> None:
-        """A full run recounted the keys with facts: decide afresh."""
-        self._decided.clear()
-
-
-__all__ = ["ChangedGraphs", "Decisions", "SMALL", "shape"]
+__all__ = ["ChangedGraphs", "SMALL", "shape"]

@@ -126,7 +126,8 @@ class Replacement(NamedTuple):
 def clean_replacements(added: Iterable[Triple], removed: Iterable[Triple], values_now) -> dict[str, list[Replacement]]:
     """Predicates (IRI text) all of whose changes in the batch are clean replacements.
 
-    ``values_now(s, p)`` gives the current values of ``(s, p)`` in the asserted graph.
+    ``values_now(s, p)`` gives the current values of ``(s, p)`` in the asserted graph.  The definition:
+    a REASON finds them in one pass, with the pairs known to hold one value (:func:`.kinds.replaced_in`).
     """
     return _clean(_by_pair(added, removed), lambda pair: values_now(*pair))
 
@@ -169,69 +170,6 @@ def kind_tests_only(rule: Rule, atoms: Iterable[int]) -> bool:
 def same_kind(r: Replacement) -> bool:
     """Whether a replacement keeps the value's kind (IRI, blank node or literal): a kind test cannot flip."""
     return type(r.old.object) is type(r.new.object)
-
-
-def replaced_in(store, added: Collection[Triple], removed: Collection[Triple], graph,
-                single: set[tuple] | None = None) -> dict[str, list[Replacement]]:
-    """:func:`clean_replacements` of a change, the subjects' values read from ``graph`` of ``store``: of
-    the pairs with one triple added and one removed only, one look-up each, or one batch where reads
-    are round trips (each pair is hashed once: a pyoxigraph term's hash is a call).
-
-    ``single`` (in memory): the (subject, predicate) pairs known to hold one value in ``graph`` before
-    the change, kept up to date here across changes (see :func:`_replaced_here`)."""
-    if not store.round_trips:
-        return _replaced_here(store, added, removed, graph, set() if single is None else single)
-    by_pair = _by_pair(added, removed)
-    single_pairs = [pair for pair, (adds, rems) in by_pair.items()
-                    if len(adds) == 1 and len(rems) == 1 and pair[1] != TYPE]
-    now = store.objects_many(single_pairs, graph) if single_pairs else {}
-    return _clean(by_pair, lambda pair: now.get(pair, ()))
-
-
-def _replaced_here(store, added: Collection[Triple], removed: Collection[Triple], graph,
-                   single: set[tuple]) -> dict[str, list[Replacement]]:
-    """:func:`replaced_in` where a look-up is no round trip: each pair's one removed and one added triple
-    kept as they are found (None where a pair has two), without the lists of :func:`_by_pair`, and each
-    pair with one of each looked up as it is met (a robot's step: three pairs, each hashed twice).
-
-    ``added`` and ``removed`` are a net change (each removed triple was in ``graph`` before it and is not
-    now, each added one the reverse), so a pair with one triple of each holds as many values now as
-    before: one where ``single`` says it held one, and no look-up is made.  ``single`` is brought to the
-    state after the change: a pair found or kept clean is in it, any other pair of the change is not (a
-    robot's clock, its place and the visit times of the places it comes back to are read once each)."""
-    olds: dict[tuple, Triple | None] = {}
-    for t in removed:
-        pair = (t.subject, t.predicate)
-        if olds.setdefault(pair, t) is not t:
-            olds[pair] = None
-    news: dict[tuple, Triple | None] = {}
-    for t in added:
-        pair = (t.subject, t.predicate)
-        if news.setdefault(pair, t) is not t:
-            news[pair] = None
-    clean: dict[str, list[Replacement]] = {}
-    dirty: set[str] = set()
-    for pair, new in news.items():
-        p = pair[1]
-        key = f"<{p.value}>"
-        old = olds.pop(pair, None)
-        if new is None or old is None or p == TYPE or (
-                pair not in single and len(store.objects(pair[0], p, graph)) != 1):
-            single.discard(pair)
-            dirty.add(key)
-            continue
-        single.add(pair)
-        clean.setdefault(key, []).append(Replacement(old, new))
-    for pair in olds:  # removed, nothing added
-        single.discard(pair)
-        dirty.add(f"<{pair[1].value}>")
-    if len(single) > SINGLE_MAX:
-        single.clear()
-    return {p: pairs for p, pairs in clean.items() if p not in dirty} if dirty else clean
-
-
-#: pairs :func:`_replaced_here` keeps as holding one value at most (forgotten beyond: looked up again)
-SINGLE_MAX = 100_000
 
 
 def flip_atoms(rule: Rule, clean: Collection[str], changed) -> tuple[int, ...] | None:
@@ -390,4 +328,4 @@ def gained(row) -> bool:
 
 __all__ = ["CHANGE_OLD", "Replacement", "clean_replacements", "compact_possible", "compared_only", "filter_variables",
            "flip_atoms", "flip_branches", "flip_query", "gained", "head_triple", "kind_tests_only", "plain_filters",
-           "replaced_in", "same_kind"]
+           "same_kind"]

@@ -24,6 +24,7 @@ from ..stores.base import key_census
 from . import flip, window
 from .direct import FEW
 from .equal_values import EqualityIndex, difference_pairs, may_equal
+from .kinds import replaced_in
 from .plan import KeyCounts
 from .requests import RequestQueue
 from .scratch import FLIP_GAINED, target
@@ -138,7 +139,7 @@ class Flips:
         """
         self.state = state
         if replaced is None:
-            replaced = flip.replaced_in(self.store, added, removed, ASSERTED)
+            replaced = replaced_in(self.store, added, removed, ASSERTED)
         clean = {p: pairs for p, pairs in replaced.items() if not self.derivable(p)}
         skip: set[tuple[int, int]] = set()
         lost: list[Triple] = []

@@ -58,11 +58,13 @@ a change touching more than :attr:`IncrementalReasoner.max_change_share` of
 the asserted graph, where recomputation is as cheap as maintenance.  The mode
 and the reason are reported in :class:`~.stats.ReasonStats`.
 
-Where the parts live: this module chooses the mode and runs additions, flips
-and checks; :mod:`.maintenance` holds the state kept between REASONs and the
-parts made for maintenance; :mod:`.compiled_step` compiles each kind of change once and runs
-its program; :mod:`.change_checks` decides whether a check or a negated premise
-may match after maintenance; :mod:`.dred` holds the deletion phases (over-delete with proofs,
+Where the parts live: this module chooses the mode and runs the phases;
+:mod:`.maintenance` holds the state kept between REASONs and the parts made for
+maintenance; :mod:`.kinds` what a repeated kind of change keeps (its decisions,
+the pairs known to hold one value); :mod:`.compiled_step` compiles each kind of
+change once and runs its program; :mod:`.outcome` reads consistency and the
+entailed-only graph after maintenance, :mod:`.change_checks` whether a check or
+a negated premise may match; :mod:`.dred` holds the deletion phases (over-delete with proofs,
 rederive), :mod:`.requests` the batching of evaluations into update
 requests, :mod:`.scratch` the scratch graphs they share.
 """
@@ -81,24 +83,21 @@ from ..rdf.collector import collector_paused
 from ..rdf.lexer import negates_exists  # noqa: F401 - public here since the first release
 from ..rdf.terms import Term
 from ..rdf.vocab import ASSERTED, AUX, DELTA, ENTAILED, INFERRED, NEW_AUX, NEW_INFERRED
-from ..stores.base import Store, key_census
-from . import flip
-from .changed import Decisions
+from ..stores.base import Store
 from .closing import close_full, counting_asserted
 from .compiled_step import MAX_PROGRAMS
 from .component import WHOLE_ROUNDS
 from .consistency import Violation, check_consistency
 from .dred import can_prove
-from .entailed import any_twin as _any_twin
-from .entailed import internal, refresh_entailed, refresh_touched
+from .kinds import KeptKinds, read_change
 from .maintenance import MaintenanceParts, MaintenanceState, Part, early_checks, is_monotone, needed_keys
 from .materialize import Materializer
 from .negation import ASKED, completion_text
 from .present import key_graphs, with_facts
-from .program import PROGRAM_SCRATCH, Signature, signature
+from .program import PROGRAM_SCRATCH
 from .requests import LaterCopies
 from .scratch import ADDED, FLIP_GAINED, NEW_FACTS, OVERDELETED, REMOVED, SCRATCH
-from .stats import ReasonStats
+from .stats import ReasonStats, incremental_reason
 
 #: Default share of the asserted graph above which a change is recomputed from scratch.
 DEFAULT_MAX_CHANGE_SHARE = 0.10
@@ -112,9 +111,6 @@ def check_mode(mode: str) -> None:
     if mode not in MODES:
         raise ValueError(f"unknown reasoning mode {mode!r}; use auto, incremental or full")
 
-
-#: :meth:`IncrementalReasoner._incremental_reason` by (added, removed) sizes
-_REASONS: dict[tuple[int, int], str] = {}
 
 #: the scratch graphs every REASON drops at its end
 DROPPED = (*SCRATCH, *PROGRAM_SCRATCH, DELTA, NEW_INFERRED, NEW_AUX)
@@ -142,21 +138,13 @@ class IncrementalReasoner:
         #: about (found without the rule per pair of disjoint classes: :func:`needed_keys`)
         self._needed = needed_keys(rules)
         store.hold_scratch(DROPPED)  # only this reasoner reads them, and it drops them after every REASON
-        #: what the reads after maintenance decided (the checks' ASK, whether a negated rule may match), by
-        #: the shape of the change (:func:`.changed.shape`), until the next full run
-        self._decided = Decisions(MAX_PROGRAMS)
+        #: what the kind of a change decides and the pairs known to hold one value (:mod:`.kinds`); the
+        #: decisions are shared with the reads after maintenance (:mod:`.change_checks`)
+        self.kinds = KeptKinds(MAX_PROGRAMS)
         #: the parts of maintenance, made by the first REASON that maintains (:attr:`parts`)
         self._parts: MaintenanceParts | None = None
         #: (individual, class) pairs whose type fact the last REASON may have changed; None after a full run
         self.touched_types: list[tuple[Term, NamedNode]] | None = None
-        #: the read keys of the internal forms of the entailed-only predicates (:func:`.entailed.internal`)
-        self._twin_keys = frozenset(("p", f"<{internal(p).value}>") for p in rules.entailed_predicates)
-        #: True once the helper graph was found to hold no internal fact (no entailed-only conclusion), until
-        #: something may write one (see :meth:`_publish_entailed`); None: not known
-        self._twinless: bool | None = None
-        #: (subject, predicate) pairs of the asserted graph known to hold one value since the last REASON
-        #: (:func:`.flip.replaced_in`); cleared at a full run and a failed REASON
-        self._single: set[tuple] = set()
 
     rules = Part()
     monotone = Part()
@@ -176,6 +164,7 @@ class IncrementalReasoner:
     changed = Part()
     change_checks = Part()
     step = Part()
+    outcome = Part()
 
     @property
     def parts(self) -> MaintenanceParts:
@@ -202,7 +191,7 @@ class IncrementalReasoner:
             return self.full(why, profile)
         start = time.perf_counter()
         self.change_checks.begin(added)
-        stats = ReasonStats(mode="incremental", reason=self._incremental_reason(added, removed))
+        stats = ReasonStats(mode="incremental", reason=incremental_reason(len(added), len(removed)))
         self.requests.profile = profile
         self._incomplete = False
         try:
@@ -229,16 +218,16 @@ class IncrementalReasoner:
             else:
                 if changed and self.change_checks.negated_match():
                     return self.full("the change makes a rule with a negated premise (stratum 1) match", profile)
-                violations = self._check(stats, changed)
-                self._publish_entailed(changed, stats.program == "compiled")
+                violations = self.outcome.violations(self.state, stats, changed)
+                self.outcome.publish_entailed(changed, stats.program == "compiled")
                 self.touched_types = self.changed.touched_types() if changed else []
             if profile:
                 stats.derived = self.store.count(NEW_FACTS)
         except Exception:
             self.state.ready = False  # half-maintained graphs: the next REASON recomputes them
             self.touched_types = None
-            self._twinless = None
-            self._single.clear()
+            self.outcome.twinless = None
+            self.kinds.failed()
             self.flips.forget()
             self.requests.clear()
             raise
@@ -253,15 +242,14 @@ class IncrementalReasoner:
         """Recompute everything from the asserted graph; records the state maintenance starts from."""
         self.state.ready = False
         self.touched_types = None
-        self._twinless = None
-        self._single.clear()
+        self.kinds.clear()
         if self._parts is not None:
+            self.outcome.twinless = None
             self.flips.forget()
             self.step.programs.clear()  # compiled against the keys with facts, which a full run recounts
             self.step.forget_runs()
             self._completion.forget()
             self._clear_scratch()
-        self._decided.clear()
         program = full_program(self.ruleset)  # large schema tables as one generic rule each
         failed = True
         with counting_asserted(self.store) as asserted:  # beside the rules where the store overlaps
@@ -311,18 +299,6 @@ class IncrementalReasoner:
                     f"of {self.state.asserted_size}")
         return ""
 
-    @staticmethod
-    def _incremental_reason(added: Collection[Triple], removed: Collection[Triple]) -> str:
-        """Why the run was incremental, by the sizes of the change (a robot's every step: one text)."""
-        sizes = (len(added), len(removed))
-        text = _REASONS.get(sizes)
-        if text is None:
-            if len(_REASONS) >= 256:
-                _REASONS.clear()
-            text = _REASONS[sizes] = (f"{sizes[0]} added, {sizes[1]} removed asserted triples" if any(sizes)
-                                      else "no asserted change")
-        return text
-
     # ------------------------------------------------------------------ maintenance
     def _maintain(self, added: Collection[Triple], removed: Collection[Triple], stats: ReasonStats,
                   profile: bool) -> None:
@@ -333,17 +309,16 @@ class IncrementalReasoner:
         copy_changes = LaterCopies(requests, ((added, ADDED), (removed, REMOVED)))
         if self.store.round_trips:
             copy_changes()  # queued with the program's request
-        preds, classes = key_census(added)
-        lost = key_census(removed)  # read by the completion's decision and the program's signature alike
+        change = read_change(added, removed)  # each triple read once, for the kind and the replacements
+        preds, classes = change.census
+        lost = change.lost  # read by the completion's decision and the program's signature alike
         state = self.state
         for keys in (state.present, state.asserted):
             keys[0].update(preds)
             keys[1].update(classes)
-        replaced = flip.replaced_in(self.store, added, removed, ASSERTED, self._single)
-        sig, discard, ask_again = self._decided.get(
-            ("maintain", tuple(preds), tuple(classes), tuple(lost[0]), tuple(lost[1]), tuple(replaced),
-             len(state.present[0]), len(state.present[1]), len(state.asserted[0]), len(state.asserted[1])),
-            lambda: self._kind((preds, classes), lost, replaced))
+        replaced = self.kinds.replaced(self.store, change, ASSERTED)
+        sig, discard, ask_again = self.kinds.maintained((preds, classes), lost, replaced, state, self.step,
+                                                        self._completion if self.deferred else None)
         if discard:
             requests.discard(added, (INFERRED, AUX))
         if not ask_again and self.step.run(added, removed, replaced, stats, state, (preds, classes),
@@ -357,23 +332,6 @@ class IncrementalReasoner:
             self._general(added, removed, stats, profile, (preds, classes), replaced)
         finally:
             self._completion.forget()
-
-    def _kind(self, census: tuple, lost: tuple, replaced: dict) -> tuple[Signature, bool, bool]:
-        """What maintenance decides from the kind of a change alone (its added and lost read keys,
-        ``census`` and ``lost``, and its cleanly replaced predicates), given the keys with facts: the
-        compiled program's signature; whether an added fact may have been inferred (then it is discarded
-        from the reasoner's graphs: a newly asserted fact that was inferred is asserted only, as from
-        scratch; none can have been where no rule that can fire writes its key, a robot's clock); whether
-        the loss may leave a pair of a deferred rule unasked (:mod:`.negation`).
-
-        Each is a function of those keys and of the keys with facts (:attr:`MaintenanceState.present`,
-        ``asserted``), sets that only grow until a full run makes new ones: the caller keeps the answer
-        by the kind and the sets' sizes in :attr:`_decided`, which a full run clears, and a robot's
-        repeated step asks once."""
-        discard = bool(census[0]) and self.step.compiler.state_graphs.derived(census, self.state.present)
-        ask_again = bool(self.deferred and lost[0]) and self._completion.needed(self.state.present, lost,
-                                                                               asserted=True)
-        return signature(census, lost, replaced), discard, ask_again
 
     def _general(self, added: Collection[Triple], removed: Collection[Triple], stats: ReasonStats, profile: bool,
                  census: tuple, replaced: dict) -> None:
@@ -414,56 +372,6 @@ class IncrementalReasoner:
             m.propagate(self.monotone, stats, seed=ASKED, record=NEW_FACTS)
         finally:
             self.store.update(f"DROP SILENT GRAPH {ASKED}")
-
-    # ------------------------------------------------------------------ after maintenance
-    def _check(self, stats: ReasonStats, changed: bool) -> list[Violation]:
-        """Consistency of the new state, running all checks only when one may have changed."""
-        start = time.perf_counter()
-        try:
-            if not changed:
-                return list(self.state.violations)
-            if self.state.violations or not self.checks_monotone or self.change_checks.violation_possible():
-                return check_consistency(self.store, self.ruleset)
-            return []
-        finally:
-            if self.requests.profile:
-                stats.per_rule["consistency"] = stats.per_rule.get("consistency", 0.0) + time.perf_counter() - start
-
-    def _publish_entailed(self, changed: bool, compiled: bool) -> None:
-        """Bring the ENTAILED graph up to date from what this maintenance touched (see :mod:`.entailed`).
-
-        A triple is in ENTAILED only while its internal twin is in the helper graph.  Where the helper
-        graph holds no twin and this REASON's compiled step writes none (its program's heads name no
-        internal form), it held none before either: ENTAILED held none of the touched triples and holds
-        none now, and the touched triples are not read (a robot's canReach on a map whose individuals
-        are declared different)."""
-        if not changed:
-            return
-        self.requests.flush()  # what follows reads the store (the touched types too)
-        if not self.ruleset.entailed_predicates:
-            return
-        if compiled and self._no_twin_written():
-            if self._twinless is None:  # nothing added or removed a twin in this REASON: the graph as it was
-                self._twinless = not _any_twin(self.store, self.ruleset.entailed_predicates)
-            if self._twinless:
-                return
-        else:
-            self._twinless = None  # the general phases may write any key
-        found = self.changed.touched_watched((NEW_FACTS, OVERDELETED))
-        if found is None:  # a graph too large to read into memory, or a store reached over HTTP
-            refresh_entailed(self.store, self.ruleset, (NEW_FACTS, OVERDELETED), self.changed.quads)
-        else:
-            refresh_touched(self.store, *found)
-
-    def _no_twin_written(self) -> bool:
-        """Whether the compiled step of this REASON can have written no internal twin, neither added nor
-        removed one (no key it may have changed is the key of one, nor a key standing for any predicate):
-        then the helper graph's twins read after it are those before it."""
-        heads = self.step.written
-        if self._twin_keys.isdisjoint(heads) and all(len(key) == 2 for key in heads):
-            return True
-        self._twinless = None
-        return False
 
     def key_graphs(self) -> dict:
         """Which of the asserted, inferred and helper graphs hold facts of each key a rule or check

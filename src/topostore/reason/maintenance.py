@@ -23,6 +23,7 @@ from .early_reads import EARLY_CHECKS
 from .entailed import watched_forms
 from .flips import Flips
 from .negation import Completion, deferred
+from .outcome import Outcome
 from .requests import RequestQueue
 from .triggers import Present, Triggers
 
@@ -99,10 +100,13 @@ class MaintenanceParts:
         self.changed = ChangedGraphs(store, self.requests.flush, watched_forms(rules))
         #: whether a change may make a check or a negated-premise rule match (:mod:`.change_checks`)
         self.change_checks = ChangeChecks(store, self.negated, self.checks, self.check_triggers, self.changed,
-                                          reasoner._decided)
+                                          reasoner.kinds.decided)
         self.change_checks.state = reasoner.state
         #: the compiled step of each kind of change (see :mod:`.compiled_step`)
         self.step = CompiledStep(store, rules, self.monotone, self.requests, self.flips, self.change_checks)
+        #: the reads after maintenance: consistency and the entailed-only graph (see :mod:`.outcome`)
+        self.outcome = Outcome(store, rules, self.requests, self.changed, self.change_checks, self.step,
+                               self.checks_monotone)
 
 
 def early_checks(rules: RuleSet) -> list[Rule]:
