@@ -24,6 +24,7 @@ none has a warning to answer (the general path's ``answered`` block).
 from __future__ import annotations
 
 from collections.abc import Callable
+from functools import partial
 
 from pyoxigraph import NamedNode
 
@@ -80,14 +81,6 @@ def _manipulated(service, req: ArmorRequest):  # noqa: ANN001, ANN202 - ArmorSer
     return ref
 
 
-def _replace_value(service, req: ArmorRequest) -> ArmorResponse | None:  # noqa: ANN001 - ArmorService
-    return _replace(service, req, True)
-
-
-def _replace_individual(service, req: ArmorRequest) -> ArmorResponse | None:  # noqa: ANN001 - ArmorService
-    return _replace(service, req, False)
-
-
 def _replace(service, req: ArmorRequest, data: bool) -> ArmorResponse | None:  # noqa: ANN001 - ArmorService
     """REPLACE DATAPROP IND (``data``) or REPLACE OBJECTPROP IND of one held value by another."""
     args = req.args
@@ -98,8 +91,8 @@ def _replace(service, req: ArmorRequest, data: bool) -> ArmorResponse | None:  #
         return None
     with ref.lock:
         onto = ref.ontology
-        if not one_value.plain_reference(ref):
-            return None
+        if onto._report is None or not one_value.plain_reference(ref):
+            return None  # never reasoned: its reply's consistency would reason (the general path answers that)
         prefix = onto.prefix
         try:
             prop, ind = entity_named(args[0], prefix), entity_named(args[1], prefix)
@@ -129,6 +122,8 @@ def _query_values(service, req: ArmorRequest) -> ArmorResponse | None:  # noqa: 
         return None
     with ref.lock:
         onto = ref.ontology
+        if onto._report is None:
+            return None
         prefix = onto.prefix
         try:
             prop, ind = entity_named(args[0], prefix), entity_named(args[1], prefix)
@@ -148,6 +143,8 @@ def _query_members(service, req: ArmorRequest) -> ArmorResponse | None:  # noqa:
         return None
     with ref.lock:
         onto = ref.ontology
+        if onto._report is None:
+            return None
         try:
             cls = entity_named(args[0], onto.prefix)
         except TopostoreError:
@@ -164,8 +161,8 @@ def _answer(service, req: ArmorRequest, ref, objects: list[str]) -> ArmorRespons
 
 #: the lanes by command key, as a robot spells them (another spelling takes the command table)
 LANES: dict[tuple[str, str, str], Lane] = {
-    ("REPLACE", "DATAPROP", "IND"): _replace_value,
-    ("REPLACE", "OBJECTPROP", "IND"): _replace_individual,
+    ("REPLACE", "DATAPROP", "IND"): partial(_replace, data=True),
+    ("REPLACE", "OBJECTPROP", "IND"): partial(_replace, data=False),
     ("QUERY", "OBJECTPROP", "IND"): _query_values,
     ("QUERY", "IND", "CLASS"): _query_members,
 }

@@ -35,7 +35,7 @@ from . import codes, lanes
 from .codes import CommandError
 from .commands import COMMANDS, Context, Reply
 from .durable import DurableReferences
-from .lanes import LANES, Lane
+from .lanes import LANES
 from .reference import Reference
 from .reference import consistent as _consistent
 from .render import Renderer
@@ -103,7 +103,12 @@ class ArmorService:
             return ArmorResponse(False, codes.INVALID_ARGUMENT, f"malformed request: {exc}")
         try:
             lane = LANES.get((req.command, req.primary_command_spec, req.secondary_command_spec))
-            response = self._lane(lane, req) if lane is not None else None
+            response = None
+            if lane is not None and lanes.ENABLED:  # the short path of a robot's command shape (:mod:`.lanes`):
+                try:  # None where it is not the plain case (nothing done: the command table runs it)
+                    response = lane(self, req)
+                except CommandError as exc:
+                    response = self._failure(req, exc.code, exc.message)
             if response is None:  # the command table's general path
                 with answered(PelletDifferenceWarning) as heard:  # a warning is no fault: it is answered, whatever the warnings filter
                     response = self._dispatch(req)
@@ -135,16 +140,6 @@ class ArmorService:
         )
 
     # ------------------------------------------------------------ dispatch
-    def _lane(self, lane: Lane, req: ArmorRequest) -> ArmorResponse | None:
-        """The response of the short path of ``req``'s shape (:mod:`.lanes`), None where it is not the plain
-        case (nothing done: the command table runs it)."""
-        if not lanes.ENABLED:
-            return None
-        try:
-            return lane(self, req)
-        except CommandError as exc:
-            return self._failure(req, exc.code, exc.message)
-
     def reply_consistency(self, req: ArmorRequest, ref: Reference) -> bool:
         """``is_consistent`` of a reply to ``req`` whose handler holds ``ref``'s lock (read without locking it
         again, while the name still stands for it)."""
