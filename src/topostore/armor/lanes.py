@@ -14,9 +14,9 @@ new ones).  Names and literals are the general path's, from its caches (:func:`.
 :func:`.context.literal_named`).
 
 A lane answers only the plain case, and decides that before it changes anything: anything else (an argument the
-general path refuses, a reference mounted by another client, a durable or buffered reference, a value not held,
-a log that records each command) returns None, and the general path runs the command from the start, with its
-own checks and its own errors.  The one write a lane makes is :func:`.one_value.replace_plain`'s, the general
+general path refuses, a reference mounted by another client, a durable or buffered reference, one never
+reasoned, a value not held) returns None, and the general path runs the command from the start, with its own
+checks and its own errors.  The one write a lane makes is :func:`.one_value.replace_plain`'s, the general
 path's short lane, so the asserted graph, the literal forms and the ledger are the same.  No lane reasons, so
 none has a warning to answer (the general path's ``answered`` block).
 """
