@@ -10,7 +10,7 @@ from profiles import property_examples
 from pyoxigraph import Literal, NamedNode, Triple
 from support import IRI, SHARED
 
-from topostore.armor import ArmorService, one_value
+from topostore.armor import ArmorService, lanes, one_value
 from topostore.armor.reference import Reference
 from topostore.ontology.ledger import ChangeLedger
 from topostore.rdf.vocab import ASSERTED, INFERRED
@@ -84,6 +84,7 @@ def _named_forms(kept: dict) -> dict:
 
 def _call(service: ArmorService, request: dict, lane: bool, monkeypatch: pytest.MonkeyPatch) -> dict:
     monkeypatch.setattr(one_value, "ENABLED", lane)
+    monkeypatch.setattr(lanes, "ENABLED", lane)
     return service.call(request).to_dict()
 
 

@@ -26,7 +26,7 @@ from ..rdf.vocab import ASSERTED, INFERRED, rdfs
 from . import codes
 from .codes import CommandError
 from .reference import Change, Delta, Reference
-from .render import hidden
+from .render import Renderer, hidden
 
 if TYPE_CHECKING:  # pragma: no cover
     from .service import ArmorService
@@ -40,6 +40,43 @@ _ENTITIES_MAX = 4096
 #: literals of recent (text, type name) arguments, as :func:`~topostore.rdf.terms.typed_literal` made them
 _LITERALS: dict[tuple[str, str], Literal] = {}
 _LITERALS_MAX = 4096
+
+
+def entity_named(name: str, prefix: str) -> NamedNode:
+    """The IRI of the entity ``name`` in ``prefix`` (:func:`~topostore.rdf.terms.entity`), from the recent
+    ones; :class:`InvalidNameError` for an illegal name.  Every command's names, on either path."""
+    key = (name, prefix)
+    found = _ENTITIES.get(key)
+    if found is None:
+        found = terms.entity(name, prefix)
+        if len(_ENTITIES) >= _ENTITIES_MAX:
+            _ENTITIES.clear()
+        _ENTITIES[key] = found
+    return found
+
+
+def literal_named(text: str, type_name: str) -> Literal:
+    """The literal of ``text`` as aRMOR type ``type_name`` (:func:`~topostore.rdf.terms.typed_literal`), from
+    the recent ones (a robot's old value is the new value of its previous step); :class:`UnknownTypeError`
+    or :class:`InvalidValueError` as that says.  Every command's values, on either path."""
+    key = (text, type_name)
+    found = _LITERALS.get(key)
+    if found is None:
+        found = terms.typed_literal(text, type_name)
+        if len(_LITERALS) >= _LITERALS_MAX:
+            _LITERALS.clear()
+        _LITERALS[key] = found
+    return found
+
+
+def answer_texts(renderer: Renderer, onto: Ontology, items: list) -> list[str]:
+    """``items`` as a reply lists them: rendered in the renderer's mode (none :func:`hidden`), with the
+    language tags as the loaded documents spell them, sorted so answers are reproducible."""
+    rendered = renderer.answer(items)
+    tags = onto.store.forms.tags
+    if not tags or renderer.short_names:  # a short name shows a literal's bare value: no tag to spell
+        return sorted(rendered)
+    return sorted(tags.rendered(text) for text in rendered)
 
 
 @dataclass
@@ -89,35 +126,19 @@ class Context:
             ref = self.ref
             assert ref is not None, "command registered without needs_ref"
             prefix = self.prefix = ref.ontology.prefix
-        key = (self.args[position], prefix)
-        found = _ENTITIES.get(key)
-        if found is not None:
-            return found
         try:
-            found = terms.entity(*key)
+            return entity_named(self.args[position], prefix)
         except InvalidNameError as exc:
             raise CommandError(codes.INVALID_ARGUMENT, f"argument {position + 1} ({what}): {exc}") from None
-        if len(_ENTITIES) >= _ENTITIES_MAX:
-            _ENTITIES.clear()
-        _ENTITIES[key] = found
-        return found
 
     def literal(self, value_pos: int, type_pos: int) -> Literal:
         """Typed literal of ``args[value_pos]`` with type name ``args[type_pos]`` (spec §2.3)."""
-        key = (self.args[value_pos], self.args[type_pos])
-        found = _LITERALS.get(key)
-        if found is not None:  # a robot's old value is the new value of its previous step
-            return found
         try:
-            found = terms.typed_literal(*key)
+            return literal_named(self.args[value_pos], self.args[type_pos])
         except UnknownTypeError as exc:
             raise CommandError(codes.UNKNOWN_TYPE, f"argument {type_pos + 1}: {exc}") from None
         except InvalidValueError as exc:
             raise CommandError(codes.INVALID_ARGUMENT, f"argument {value_pos + 1} (value): {exc}") from None
-        if len(_LITERALS) >= _LITERALS_MAX:
-            _LITERALS.clear()
-        _LITERALS[key] = found
-        return found
 
     def flag(self, position: int, what: str) -> bool:
         """A boolean argument: ``true``/``false`` in any case (aRMOR's convention)."""
@@ -138,12 +159,7 @@ class Context:
 
     def render(self, items: list) -> list[str]:
         """Render terms in the service's mode; sorted so answers are reproducible."""
-        renderer = self.service.renderer
-        rendered = renderer.answer(items)
-        tags = self.onto.store.forms.tags  # language tags as the loaded documents spell them
-        if not tags or renderer.short_names:  # a short name shows a literal's bare value: no tag to spell
-            return sorted(rendered)
-        return sorted(tags.rendered(text) for text in rendered)
+        return answer_texts(self.service.renderer, self.onto, items)
 
     def submit(self, *changes: Change) -> Reply:
         """Apply (or queue) manipulations; a failure of the reasoner undoes them (209)."""
@@ -210,4 +226,5 @@ def subclasses(onto: Ontology, cls: NamedNode) -> list[NamedNode]:
     return sorted((c for c in told if not hidden(c)), key=lambda n: n.value)
 
 
-__all__ = ["Reply", "Context", "Command", "Handler", "hidden", "fixed", "asserted", "subclasses"]
+__all__ = ["Reply", "Context", "entity_named", "literal_named", "answer_texts",
+           "Command", "Handler", "hidden", "fixed", "asserted", "subclasses"]

@@ -103,7 +103,12 @@ def _data_property_note(onto: Ontology, prop: NamedNode, description: str) -> st
 def _note_for(value: object) -> one_value.Note:
     """The note a value given to a property of the other kind earns: a data value to an object property, an
     individual to a data property."""
-    return _object_property_note if isinstance(value, Literal) else _data_property_note
+    return note_for_kind(isinstance(value, Literal))
+
+
+def note_for_kind(literal: bool) -> one_value.Note:
+    """:func:`_note_for` of a literal (``literal``) or of an individual."""
+    return _object_property_note if literal else _data_property_note
 
 
 def add_objectprop_ind(ctx: Context) -> Reply:

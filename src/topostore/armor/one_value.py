@@ -16,7 +16,7 @@ the store writes straight (:func:`~..stores.one_fact.direct`: in memory, no list
 rules are compiled, the property names facts only (:func:`~..ontology.changes.fact_property`: no triple of it
 changes the rules), exactly one asserted value is the old one, the new value is not held and is another
 value, and the value gives no note (a data value to an object property, an individual to a data property: see
-:func:`~.manipulation._note_for`).  No unit of work is needed around it: every check is made before the one
+:func:`~.manipulation.note_for_kind`).  No unit of work is needed around it: every check is made before the one
 write, and what follows the write (the forms, the ledger's dictionaries) cannot fail.
 """
 
@@ -48,12 +48,21 @@ def replace(ref: Reference, ind: NamedNode, prop: NamedNode, new, old, descripti
             note: Note) -> list[str] | None:
     """The warnings of the REPLACE of ``old`` by ``new`` as ``prop`` of ``ind`` done in the short lane, or None
     (nothing changed) where it is not the plain case; a failure of the store is the general path's 209."""
-    if not ENABLED or not _plain_reference(ref):
+    if not ENABLED or not plain_reference(ref):
         return None
+    if not fact_property(prop) or note(ref.ontology, prop, description):
+        return None  # a schema property, a value of the other kind
+    return replace_plain(ref, ind, prop, new, old)
+
+
+def replace_plain(ref: Reference, ind: NamedNode, prop: NamedNode, new, old) -> list[str] | None:
+    """:func:`replace` where the reference (:func:`plain_reference`) and the property (a fact property, no note
+    for the value's kind) are known plain: the store's check, its one read and its one write; None (nothing
+    changed) where the store or the values held are not the plain case."""
     onto = ref.ontology
     store = onto.store
-    if not one_fact.direct(store) or not fact_property(prop) or note(onto, prop, description):
-        return None  # a store change the unit of work must hold, a schema property, a value of the other kind
+    if not one_fact.direct(store):
+        return None  # a store change the unit of work must hold
     facts = one_fact.read(store, ind, prop, ASSERTED)
     old_fact = _one_old(facts, new, old)
     if old_fact is None:
@@ -66,7 +75,7 @@ def replace(ref: Reference, ind: NamedNode, prop: NamedNode, new, old, descripti
     return []
 
 
-def _plain_reference(ref: Reference) -> bool:
+def plain_reference(ref: Reference) -> bool:
     """Whether the reference applies a change at once and nothing else: no buffer, no REASON after it, no
     state to persist, no unit of work or transaction open around it."""
     if ref.buffered_manipulation or ref.buffer or not ref.buffered_reasoner or ref.persist is not None:
@@ -111,4 +120,4 @@ def values(facts: list[Fact], old, old_key: tuple | None, new, new_key: tuple | 
     return olds, held
 
 
-__all__ = ["replace", "values", "ENABLED"]
+__all__ = ["replace", "replace_plain", "plain_reference", "values", "ENABLED"]

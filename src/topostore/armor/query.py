@@ -95,7 +95,7 @@ def query_ind_class(ctx: Context) -> Reply:
     renderer = ctx.service.renderer
     return Reply(queried_objects=ctx.onto.reads.rendered_instances(  # keyed by the renderer's one setting (a tuple
         ctx.iri(0, "class"), ("armor", renderer.short_names),  # hashes in C, the frozen dataclass in Python)
-        lambda t: None if hidden(t) else renderer.term(t)))
+        renderer.member))
 
 
 def query_dataprop_ind(ctx: Context) -> Reply:
@@ -105,7 +105,7 @@ def query_dataprop_ind(ctx: Context) -> Reply:
 
 def query_objectprop_ind(ctx: Context) -> Reply:
     prop, ind = ctx.iri(0, "object property"), ctx.iri(1, "individual")
-    return Reply(queried_objects=ctx.render(ctx.onto.reads.object_values(prop, ind, names=False)))
+    return Reply(queried_objects=ctx.render(ctx.onto.reads.individual_values(prop, ind)))
 
 
 def most_specific(onto: Ontology, classes: list[NamedNode]) -> list[NamedNode]:

@@ -76,6 +76,8 @@ class Reference:
     lock: threading.RLock = field(default_factory=threading.RLock)
     #: writes the settings, owner and buffer to a durable store (None in memory); see armor/durable.py
     persist: Callable[[Reference], None] | None = None
+    #: what the command lanes decided for this reference's shapes (:class:`~.lanes.Shapes`; None until asked)
+    shapes: object | None = field(default=None, repr=False, compare=False)
 
     def __post_init__(self) -> None:
         # a buffered reasoner answers what it was last flushed with, asserted facts removed since included
@@ -210,4 +212,13 @@ class Reference:
             logger.warning("reasoning again after undoing a failed manipulation failed too: %s", exc)
 
 
-__all__ = ["Reference", "Change", "Delta", "Applied", "REASONERS"]
+def consistent(ref: Reference) -> bool:
+    """``ref``'s consistency (its lock held); false when a reasoner that cannot run (limits, store) says
+    nothing about it."""
+    try:
+        return ref.ontology.is_consistent  # Reference.is_consistent, read without its forwarding call
+    except TopostoreError:
+        return False
+
+
+__all__ = ["consistent", "Reference", "Change", "Delta", "Applied", "REASONERS"]

@@ -76,6 +76,10 @@ class Renderer:
         """Render a list, dropping duplicates (aRMOR answers are sets)."""
         return list(dict.fromkeys(self.term(t) for t in terms))
 
+    def member(self, term: Term) -> str | None:
+        """A class's member as QUERY IND CLASS answers it, None for one it leaves out (:func:`hidden`)."""
+        return _answer_text(term, self.short_names)
+
     def answer(self, terms: Iterable[Term]) -> set[str]:
         """The terms an answer shows (none :func:`hidden`), rendered, as a set: a term's text or its absence
         is cached, since a robot is answered the same few individuals every step."""

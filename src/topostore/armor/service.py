@@ -31,11 +31,13 @@ from ..rdf.safeio import open_log
 from ..stores import StoreSpec
 from ..stores import kind as store_kind
 from ..stores.base import guess_format
-from . import codes
+from . import codes, lanes
 from .codes import CommandError
 from .commands import COMMANDS, Context, Reply
 from .durable import DurableReferences
+from .lanes import LANES
 from .reference import Reference
+from .reference import consistent as _consistent
 from .render import Renderer
 from .types import ArmorRequest, ArmorResponse, ArmorResponseList
 
@@ -100,10 +102,18 @@ class ArmorService:
         except (TypeError, ValueError) as exc:
             return ArmorResponse(False, codes.INVALID_ARGUMENT, f"malformed request: {exc}")
         try:
-            with answered(PelletDifferenceWarning) as heard:  # a warning is no fault: it is answered, whatever the warnings filter
-                response = self._dispatch(req)
-            if heard and response.success:
-                _answer(req, response, heard)
+            lane = LANES.get((req.command, req.primary_command_spec, req.secondary_command_spec))
+            response = None
+            if lane is not None and lanes.ENABLED:  # the short path of a robot's command shape (:mod:`.lanes`):
+                try:  # None where it is not the plain case (nothing done: the command table runs it)
+                    response = lane(self, req)
+                except CommandError as exc:
+                    response = self._failure(req, exc.code, exc.message)
+            if response is None:  # the command table's general path
+                with answered(PelletDifferenceWarning) as heard:  # a warning is no fault: it is answered, whatever the warnings filter
+                    response = self._dispatch(req)
+                if heard and response.success:
+                    _answer(req, response, heard)
         # The protocol's one boundary: ArmorService.call never raises (a ROS service or an HTTP route
         # waits on its reply), so anything unexpected, i.e. a bug, becomes a logged 209 reply.
         except Exception as exc:
@@ -130,6 +140,12 @@ class ArmorService:
         )
 
     # ------------------------------------------------------------ dispatch
+    def reply_consistency(self, req: ArmorRequest, ref: Reference) -> bool:
+        """``is_consistent`` of a reply to ``req`` whose handler holds ``ref``'s lock (read without locking it
+        again, while the name still stands for it)."""
+        return _consistent(ref) if self._references.get(req.reference_name) is ref else \
+            self._consistency(req.reference_name)
+
     def _dispatch(self, req: ArmorRequest) -> ArmorResponse:
         if req.reference_name == "":
             return ArmorResponse(False, codes.EMPTY_REFERENCE, "reference_name is empty; every command needs one")
@@ -169,8 +185,7 @@ class ArmorService:
     def _reply(self, req: ArmorRequest, reply: Reply, ref: Reference | None = None) -> ArmorResponse:
         """The response to ``req``; ``ref``: its reference, when the caller holds its lock (its consistency
         is read without locking it again, while the name still stands for it)."""
-        held = ref is not None and self._references.get(req.reference_name) is ref
-        consistent = _consistent(ref) if held else self._consistency(req.reference_name)
+        consistent = self.reply_consistency(req, ref) if ref is not None else self._consistency(req.reference_name)
         warnings = reply.warnings
         # the fields in their order (ArmorResponse's): success, exit_code, error_description, is_consistent,
         # timeout, queried_objects, sparql_queried_objects
@@ -339,15 +354,6 @@ class ArmorService:
         """Debug detail only while a log destination is switched on."""
         on = self._file_handler is not None or self._screen_handler is not None
         logger.setLevel(logging.DEBUG if on else logging.NOTSET)
-
-
-def _consistent(ref: Reference) -> bool:
-    """``ref``'s consistency (its lock held); false when a reasoner that cannot run (limits, store) says
-    nothing about it."""
-    try:
-        return ref.ontology.is_consistent  # Reference.is_consistent, read without its forwarding call
-    except TopostoreError:
-        return False
 
 
 def _answer(req: ArmorRequest, response: ArmorResponse, heard: list[str]) -> None:

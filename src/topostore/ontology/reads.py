@@ -128,6 +128,10 @@ class OntologyQueries:
         vals = self._individuals(*self._pair(individual, prop))
         return [self.onto.short(v) for v in vals] if names else vals
 
+    def individual_values(self, prop: NamedNode, individual: NamedNode) -> list[NamedNode]:
+        """:meth:`object_values` of an individual and a property given as IRIs, as terms (an aRMOR QUERY's)."""
+        return self._individuals(individual, prop)
+
     def _individuals(self, s: Term, p: NamedNode) -> list[NamedNode]:
         """The individuals of :meth:`_objects`: where a read costs no request, the store's one read of every
         visible graph taken as it is (no literal among them to key by value: a data value is no answer)."""

@@ -218,7 +218,10 @@ def literal_of(value: str, local: str) -> Literal:
         low, high = INTEGER_TYPES[local]
         if (low is not None and number < low) or (high is not None and number > high):
             raise InvalidValueError(f"{value!r} is out of range for xsd:{local}")
-        return Literal(str(number), datatype=datatype)
+        made = Literal(str(number), datatype=datatype)
+        if made not in _VALUE_KEYS:  # its value key from the number read here: a robot's clock is a new
+            _keep_key(made, ("real", Decimal(number).normalize()))  # integer every step, keyed at once
+        return made
     if local == "decimal":
         if not _DEC_RE.match(text):
             raise InvalidValueError(f"{value!r} is not a valid xsd:decimal")
@@ -272,10 +275,15 @@ def value_key(term: Term) -> tuple:
         key = _literal_key(term)
         if key[1] != key[1]:  # NaN: never equal to another key, as computed afresh (one object would be)
             return key
-        if len(_VALUE_KEYS) >= _VALUE_KEYS_MAX:
-            _VALUE_KEYS.clear()
-        _VALUE_KEYS[term] = key
+        _keep_key(term, key)
     return key
+
+
+def _keep_key(term: Literal, key: tuple) -> None:
+    """Remember the value key of ``term`` (:func:`value_key`'s, computed or known from its parse)."""
+    if len(_VALUE_KEYS) >= _VALUE_KEYS_MAX:
+        _VALUE_KEYS.clear()
+    _VALUE_KEYS[term] = key
 
 
 def note_stored_value(stored: Literal, written: Literal) -> None:
