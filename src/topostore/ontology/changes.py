@@ -151,6 +151,7 @@ class AssertedChanges:
                 added, removed, notes = _netted(store, adds, added, removed)
             if removed or added:  # one record of the change: the ledger's unit-of-work step undoes both
                 ledger.record_change(store, added, removed, limit)
+        self._settled()
         # a REPLACE's one fact each side without a comprehension's call
         added_triples = [added[0].triple] if len(added) == 1 else [f.triple for f in added]
         removed_triples = [removed[0].triple] if len(removed) == 1 else [f.triple for f in removed]
@@ -172,6 +173,17 @@ class AssertedChanges:
         one_fact.replace(store, old, new, alone)
         self.ledger.record_replaced(store, new, old, gone, self._change_limit)
         self.onto.dirty = True  # touch: a fact property names no schema triple, a memory store no durable state
+        self._settled()
+
+    def _settled(self) -> None:
+        """A change committed outside any caller's unit of work: the in-memory store may be rebuilt now
+        (:meth:`Store.maybe_compact`). A client that changes facts and never REASONs (a buffered reasoner, a
+        clock written many times between REASONs) would otherwise pile up removed quads, and every look-up
+        of a rewritten pair walks all of them: 10,000 REPLACEs of one value made each one 8x slower. Inside a
+        unit of work the unit's end does it (:class:`.ledger._UnitOfWork`), once the change can no longer
+        be undone."""
+        if not self.ledger.unit_open and not self.store.writes_pending:
+            self.store.maybe_compact()
 
     def _change(self, triples: tuple[Triple, ...], added: bool, said: bool = False) -> list[Triple]:
         """Add or remove in the asserted graph and record what changed in the ledger: one presence look-up
@@ -183,6 +195,7 @@ class AssertedChanges:
             changed = store.toggle_facts(facts, added)
             self.ledger.record(store, changed, added=added, limit=self._change_limit)
             notes = _held(store, facts, changed, {}) if said else []
+        self._settled()
         _warn(notes)
         return [f.triple for f in changed]
 
@@ -219,6 +232,7 @@ class AssertedChanges:
                 key = value_key(self.onto.fact(subject, prop, old).object)
                 olds = [t for t in olds if value_key(t.object) == key]
             _, removed = self.change([new_t], olds)
+        self._settled()
         return len(removed)
 
     def add_all_different(self, names: Sequence[str | NamedNode]) -> NamedNode:

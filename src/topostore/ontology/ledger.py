@@ -81,6 +81,11 @@ class ChangeLedger:
         return self.recording or bool(self._open)
 
     @property
+    def unit_open(self) -> bool:
+        """Whether a caller's unit of work is open (its changes can still be undone)."""
+        return bool(self._open)
+
+    @property
     def unit_step(self) -> int | None:
         """Within an open unit of work, the number of its steps so far (what an undo back to a unit's start
         drops is at or past that start); None outside one."""
@@ -302,6 +307,8 @@ class _UnitOfWork:
                 ledger._steps.clear()
                 self.onto.values.settled()
                 unsaid, ledger._unsaid = ledger._unsaid, []
+                if kind is None and not self.onto.store.writes_pending:
+                    self.onto.store.maybe_compact()  # the unit's changes are final: see AssertedChanges._settled
         if kind is None and unsaid:
             warn_pellet_differences(unsaid)
 

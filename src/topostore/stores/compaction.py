@@ -5,7 +5,9 @@ reasoner that derives and drops the same facts step after step gets slower and b
 live quads into a fresh store resets that; it is done when the writes since the last compaction
 outnumber a fiftieth of the live quads (at least :data:`MIN_WRITES`), which keeps its amortised cost
 small.  The live quads are counted when first needed, so that a store loaded with a big map is not
-rebuilt after its first 200 writes (0.8 s at 10,000 locations).  On-disk stores compact themselves.
+rebuilt after its first 200 writes (0.8 s at 10,000 locations).  It is asked after every REASON and after
+every committed change (a command's unit of work, a Python API change), so a client that writes often and
+reasons rarely is compacted too (``python -m benchmarks.rewrites``).  On-disk stores compact themselves.
 """
 
 from __future__ import annotations
