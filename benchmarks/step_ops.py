@@ -29,7 +29,7 @@ from .maps import ROBOT
 from .walk import plan
 
 #: the store's look-up API as the reasoner calls it, and the held scratch graphs beneath it
-STORE_METHODS = ("few_facts", "triples", "match_in", "contains_each", "known_in", "add_scratch", "discard",
+STORE_METHODS = ("few_facts", "matches", "triples", "match_in", "contains_each", "known_in", "add_scratch", "discard",
                  "update")
 HELD_METHODS = ("add", "triples")
 

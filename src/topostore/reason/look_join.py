@@ -157,10 +157,13 @@ def _read(store, pattern: tuple, graphs: tuple[NamedNode, ...], graph_set: froze
     over every graph where the store offers it (``match_in``: a bound subject or object), else one per
     graph (``graph_set``: ``graphs`` as a set).  One graph is read alone: the read over every graph
     would go through the other graphs' quads of the pattern to find the same facts."""
-    match_in = getattr(store, "match_in", None) if len(graphs) > 1 else None
-    found = match_in(*pattern, graph_set, direct.FEW) if match_in is not None else None
-    if found is None:
-        found = store.few_facts(*pattern, graphs, direct.FEW)
+    if len(graphs) == 1:  # its facts as the index gives them (the join reads their terms)
+        found = store.matches(*pattern, graphs[0], direct.FEW)
+    else:
+        match_in = getattr(store, "match_in", None)
+        found = match_in(*pattern, graph_set, direct.FEW) if match_in is not None else None
+        if found is None:
+            found = store.few_facts(*pattern, graphs, direct.FEW)
     if found is None or len(found) > direct.FEW:
         raise _Fallback
     return found

@@ -128,6 +128,32 @@ class OxigraphStore(Store):
             return []
         return found if type(found) is list else list(found)
 
+    def matches(self, s, p, o, graph: NamedNode, limit: int) -> list | None:
+        """:meth:`few_facts` of one graph as the index gives them, quads (a held graph's triples): a look-up
+        join reads only their terms, and a triple made of each quad costs pyoxigraph a copy of its terms."""
+        if self._pending is not None or self.listings is not None:
+            return reads.few_facts(self, s, p, o, (graph,), limit)
+        if type(s) is Literal:
+            return []  # a literal is no subject (:meth:`few_facts`)
+        held = self._held.graphs
+        kept = held.get(graph) if held else None
+        facts = self._held.triples(s, p, o, kept) if kept is not None \
+            else list(islice(self._ox.quads_for_pattern(s, p, o, graph), limit + 1))
+        return facts if len(facts) <= limit else None
+
+    def has_match(self, s, p, o, graph: NamedNode) -> bool:
+        """Whether ``graph`` holds a fact of the pattern: a held graph's first match, or the index's first
+        quad, with no list and no triple made (a staged run asks it of its scratch graphs a dozen times)."""
+        if self._pending is not None or self.listings is not None:
+            return super().has_match(s, p, o, graph)
+        if type(s) is Literal:
+            return False  # a literal is no subject (:meth:`few_facts`)
+        held = self._held.graphs
+        kept = held.get(graph) if held else None
+        if kept is not None:
+            return self._held.any_match(s, p, o, kept)
+        return next(self._ox.quads_for_pattern(s, p, o, graph), None) is not None
+
     def hold_scratch(self, graphs: Iterable[NamedNode]) -> None:
         """In memory, writes to ``graphs`` through :meth:`add_scratch` are held in Python until SPARQL
         text or a transactional write needs them in the store (see :mod:`.held`); the reasoner that
