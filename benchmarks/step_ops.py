@@ -29,7 +29,7 @@ from .maps import ROBOT
 from .walk import plan
 
 #: the store's look-up API as the reasoner calls it, and the held scratch graphs beneath it
-STORE_METHODS = ("few_facts", "matches", "triples", "match_in", "contains_each", "known_in", "add_scratch", "discard",
+STORE_METHODS = ("few_facts", "matches", "has_match", "triples", "match_in", "contains_each", "known_in", "add_scratch", "discard",
                  "update")
 HELD_METHODS = ("add", "triples")
 
@@ -40,10 +40,15 @@ class _Counter:
     def __init__(self) -> None:
         self.on = False
         self.calls: collections.Counter = collections.Counter()
+        #: (owner, name, the method it had) per wrapped method, put back by :meth:`restore`
+        self._wrapped: list[tuple] = []
 
     def wrap(self, owner: type, name: str, kind: str) -> None:
-        """``owner.name`` counted as ``kind`` (with the function that called it)."""
-        original = getattr(owner, name)
+        """``owner.name`` counted as ``kind`` (with the function that called it); nothing where the tree
+        measured has no such method."""
+        original = getattr(owner, name, None)
+        if original is None:
+            return
 
         @functools.wraps(original)
         def counted(*args, **kwargs):
@@ -52,7 +57,17 @@ class _Counter:
                 self.calls[(kind, f"{Path(frame.f_code.co_filename).stem}.{frame.f_code.co_name}")] += 1
             return original(*args, **kwargs)
 
+        self._wrapped.append((owner, name, owner.__dict__.get(name)))  # None: inherited
         setattr(owner, name, counted)
+
+    def restore(self) -> None:
+        """Every wrapped method as it was."""
+        for owner, name, original in reversed(self._wrapped):
+            if original is None:
+                delattr(owner, name)
+            else:
+                setattr(owner, name, original)
+        self._wrapped.clear()
 
 
 class _Index:
@@ -95,25 +110,32 @@ def count(map_name: str, steps: int, warm: int = 50) -> collections.Counter:
         counter.wrap(OxigraphStore, name, name)
     for name in HELD_METHODS:
         counter.wrap(HeldGraphs, name, f"held.{name}")
-    store = robot.ontology.store
-    for _ in range(steps):
-        m = next(moves)
-        robot._call("REPLACE", "OBJECTPROP", "IND", ["isIn", ROBOT, m.to, m.frm])
-        robot._call("REPLACE", "DATAPROP", "IND", ["now", ROBOT, "LONG", str(m.now), str(m.old_now)])
-        if m.old_visit is None:
-            robot._call("ADD", "DATAPROP", "IND", ["visitedAt", m.to, "LONG", str(m.now)])
-        else:
-            robot._call("REPLACE", "DATAPROP", "IND", ["visitedAt", m.to, "LONG", str(m.now), str(m.old_visit)])
-        index = store._ox
-        store._ox = _Index(index, counter)
-        counter.on = True
-        try:
-            robot._call("REASON", "", "", [])
-        finally:
-            counter.on = False
-            if store._ox.__class__ is _Index:  # a compaction may have put a new index in its place
-                store._ox = index
+    try:
+        for _ in range(steps):
+            _reason(robot, next(moves), counter)
+    finally:
+        counter.restore()
     return counter.calls
+
+
+def _reason(robot: ArmorRobot, m, counter: _Counter) -> None:
+    """One step of the bench's robot, its REASON counted (the index's reads through :class:`_Index`)."""
+    robot._call("REPLACE", "OBJECTPROP", "IND", ["isIn", ROBOT, m.to, m.frm])
+    robot._call("REPLACE", "DATAPROP", "IND", ["now", ROBOT, "LONG", str(m.now), str(m.old_now)])
+    if m.old_visit is None:
+        robot._call("ADD", "DATAPROP", "IND", ["visitedAt", m.to, "LONG", str(m.now)])
+    else:
+        robot._call("REPLACE", "DATAPROP", "IND", ["visitedAt", m.to, "LONG", str(m.now), str(m.old_visit)])
+    store = robot.ontology.store
+    index = store._ox
+    store._ox = _Index(index, counter)
+    counter.on = True
+    try:
+        robot._call("REASON", "", "", [])
+    finally:
+        counter.on = False
+        if store._ox.__class__ is _Index:  # a compaction may have put a new index in its place
+            store._ox = index
 
 
 def main() -> None:

@@ -144,7 +144,7 @@ class OxigraphStore(Store):
     def has_match(self, s, p, o, graph: NamedNode) -> bool:
         """Whether ``graph`` holds a fact of the pattern: a held graph's first match, or the index's first
         quad, with no list and no triple made (a staged run asks it of its scratch graphs a dozen times)."""
-        if self._pending is not None or self.listings is not None:
+        if self._pending is not None or self.listings is not None or graph is None:
             return super().has_match(s, p, o, graph)
         if type(s) is Literal:
             return False  # a literal is no subject (:meth:`few_facts`)
