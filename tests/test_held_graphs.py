@@ -32,12 +32,18 @@ operations = st.one_of(
     st.tuples(st.just("read"), patterns),
     st.tuples(st.just("few"), patterns, st.lists(st.sampled_from(GRAPHS), max_size=3), st.integers(0, 3)),
     st.tuples(st.just("pending"), triples, st.sampled_from(GRAPHS), patterns),
+    st.tuples(st.just("has"), patterns),
     st.tuples(st.just("contains"), triples, st.sampled_from(GRAPHS)),
     st.tuples(st.just("small"), st.sampled_from(GRAPHS)),
     st.tuples(st.just("copy"), st.sampled_from(SCRATCH), st.sampled_from(GRAPHS)),
     st.tuples(st.just("count"), st.sampled_from(GRAPHS)),
     st.tuples(st.just("drop"), st.lists(st.sampled_from(GRAPHS), min_size=1, max_size=3)),
 )
+
+
+def _terms(fact) -> str:
+    """A fact's subject, predicate and object (a triple's, or a quad's as :meth:`.OxigraphStore.matches` gives it)."""
+    return f"{fact.subject} {fact.predicate} {fact.object}"
 
 
 def _run(store: OxigraphStore, op: tuple):
@@ -58,12 +64,22 @@ def _run(store: OxigraphStore, op: tuple):
         found = store.few_facts(s, p, o, graphs, limit)
         general = reads.few_facts(store, s, p, o, graphs, limit)
         assert (found is None) == (general is None) and sorted(map(str, found or [])) == sorted(map(str, general or []))
+        if len(graphs) == 1:  # one graph's facts as a look-up join reads them (quads from the index): their terms
+            one = store.matches(s, p, o, graphs[0], limit)
+            assert (one is None) == (general is None)
+            assert sorted(map(_terms, one or [])) == sorted(map(_terms, general or []))
         return None if found is None else sorted(map(str, found))
+    elif kind == "has":
+        s, p, o, g = op[1]
+        found = store.has_match(s, p, o, g)
+        assert found == bool(list(reads.triples(store, s, p, o, g)))
+        return found
     elif kind == "pending":  # a read inside a transaction sees its pending writes
         with transaction(store):
             store.add(op[1], op[2])
             s, p, o, _ = op[3]
-            return sorted(map(str, store.triples(*op[3]))), store.few_facts(s, p, o, (op[2],), 2) is None
+            return sorted(map(str, store.triples(*op[3]))), store.few_facts(s, p, o, (op[2],), 2) is None, \
+                sorted(map(_terms, store.matches(s, p, o, op[2], 2) or [])), store.has_match(*op[3])
     elif kind == "contains":
         return store.contains_each(op[1], op[2]), [store.contains(t, op[2]) for t in op[1]]
     elif kind == "small":
@@ -263,3 +279,25 @@ def test_a_fact_in_one_graph_is_answered_by_one_test_as_the_presence_batch_answe
         batches.clear()
         assert store.contains_each(facts, ASSERTED) == [True, True, False]
         assert batches == [3]  # an open transaction: the batch sees its pending writes
+
+
+def test_a_presence_test_and_a_join_read_answer_as_the_general_read_held_or_not() -> None:
+    """``has_match`` (a staged run's presence test) and ``matches`` (a look-up join's read of one graph) answer
+    what the general read finds: in a held graph, in the index, over every graph (held facts included) and
+    inside a transaction (its pending writes)."""
+    store = OxigraphStore()
+    store.hold_scratch(SCRATCH)
+    fact, other = Triple(S[0], P[0], O[3]), Triple(S[1], P[0], S[2])
+    store.add_scratch([fact], SCRATCH[0])
+    store.add([other], ASSERTED)
+    assert store.has_match(None, P[0], None, SCRATCH[0]) and store.has_match(S[0], None, O[4], SCRATCH[0])
+    assert store.has_match(None, None, None, None)  # only the held graph holds S[0]'s fact
+    assert store.has_match(S[0], None, None, None) and not store.has_match(S[2], None, None, None)
+    assert not store.has_match(S[1], None, None, SCRATCH[0]) and store.has_match(S[1], P[0], S[2], ASSERTED)
+    assert [_terms(f) for f in store.matches(S[1], None, None, ASSERTED, 3)] == [_terms(other)]
+    assert [_terms(f) for f in store.matches(None, P[0], None, SCRATCH[0], 3)] == [_terms(fact)]
+    assert store.matches(None, P[0], None, ASSERTED, 0) is None and store.matches(S[2], None, None, ASSERTED, 0) == []
+    with transaction(store):
+        store.add([Triple(S[2], P[1], S[0])], ASSERTED)
+        assert store.has_match(S[2], None, None, ASSERTED)
+        assert [_terms(f) for f in store.matches(S[2], None, None, ASSERTED, 3)] == [f"{S[2]} {P[1]} {S[0]}"]

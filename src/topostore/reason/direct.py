@@ -23,9 +23,9 @@ from pyoxigraph import BlankNode, Literal, NamedNode, Triple
 
 from ..compile.rule import Atom, ReadKey, Rule, key_pattern
 from ..rdf.terms import parse_term
-from ..rdf.vocab import ASSERTED, AUX, INFERRED
+from ..rdf.vocab import AUX
 from .atom_shape import Shape
-from .delta_texts import FLIP_LOST, KEEP
+from .delta_texts import FLIP_LOST, KEEP, NEW_STATE
 from .scratch import CANDIDATES, FLIP_GAINED, NEW_FACTS, OVERDELETED
 
 #: at most this many facts are moved through look-ups; more go through the SPARQL text
@@ -35,8 +35,7 @@ FEW = 16
 #: pattern made anew parses its IRI into a term
 pattern_of = functools.lru_cache(maxsize=4096)(key_pattern)
 
-_STATE = (ASSERTED, INFERRED, AUX)
-_STATE_SET = frozenset(_STATE)
+_STATE_SET = frozenset(NEW_STATE)
 
 
 class _AllKept:
@@ -68,7 +67,7 @@ def _facts(store, pattern: tuple, graph: NamedNode) -> list[Triple] | None:
 def _known(store, facts: list[Triple], graphs: tuple[NamedNode, ...]) -> list[bool]:
     """Whether each fact is in one of ``graphs`` (:meth:`.Store.known_in`: one read per fact over every
     graph where the store offers it, else one look-up batch)."""
-    return store.known_in(facts, _STATE_SET if graphs is _STATE else frozenset(graphs))
+    return store.known_in(facts, _STATE_SET if graphs is NEW_STATE else frozenset(graphs))
 
 
 def _in_state(store, pattern: tuple) -> list[Triple] | None:
@@ -148,7 +147,7 @@ def _add_candidates(store, facts: list[Triple], graph: NamedNode) -> None:
 def _write_new(store, heads: list[Triple], graph: NamedNode) -> None:
     """The heads not known in the new state, into ``graph`` and NEW_FACTS."""
     heads = list(dict.fromkeys(heads))
-    new = [t for t, known in zip(heads, _known(store, heads, _STATE)) if not known]
+    new = [t for t, known in zip(heads, _known(store, heads, NEW_STATE)) if not known]
     if new:
         store.add_scratch(new, graph)
         store.add_scratch(new, NEW_FACTS)
@@ -206,14 +205,14 @@ class OneAtom:
         candidates = _facts(store, self._head.free, CANDIDATES)
         if candidates is None:
             return False
-        graphs = (AUX,) if self.atom.aux else _STATE
+        graphs = (AUX,) if self.atom.aux else NEW_STATE
         kept = []
         for c in candidates:
             bound = self._head.bind(c)
             if bound is None:
                 continue
             pattern = self._body.read(bound)
-            found = _in_state(store, pattern) if graphs is _STATE else None
+            found = _in_state(store, pattern) if graphs is NEW_STATE else None
             if self._proves(found, bound) if found is not None \
                     else any(self._proves(store.triples(*pattern, g), bound) for g in graphs):
                 kept.append(c)

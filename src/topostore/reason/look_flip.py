@@ -172,7 +172,8 @@ class Flipped:
 
     def _facts(self, store, pattern: tuple, graphs) -> list[Triple]:
         """The distinct facts of ``pattern`` in ``graphs``; :class:`_Fallback` (the text runs) past FEW."""
-        found = store.few_facts(*pattern, graphs, direct.FEW)
+        found = store.matches(*pattern, graphs[0], direct.FEW) if len(graphs) == 1 \
+            else store.few_facts(*pattern, graphs, direct.FEW)
         if found is None:
             raise _Fallback
         return found

@@ -27,7 +27,7 @@ from ..compile.rule import Atom, ReadKey, Rule, join_order
 from ..rdf.vocab import ASSERTED, AUX, INFERRED, TYPE
 from . import direct
 from .atom_shape import Shape
-from .delta_texts import KEEP
+from .delta_texts import KEEP, NEW_STATE
 from .direct import _instance, _named_only, _terms, _write_new, triple_of
 from .join_code import Join, JoinDecision, compile_join, interpreted
 from .look_code import compile_conditions, compile_exact_over, compile_holds_over
@@ -36,7 +36,6 @@ from .look_values import UNKNOWN, all_of
 from .scratch import CANDIDATES, NEW_FACTS, OVERDELETED
 from .triggers import Present, matches
 
-_STATE = (ASSERTED, INFERRED, AUX)
 #: False: joins are interpreted atom by atom (:func:`.join_code.interpreted`), the reference the tests
 #: compare the compiled joins against
 COMPILED_JOINS = True
@@ -65,7 +64,7 @@ class StateGraphs:
                 self._by_key.setdefault(rule.writes(), set()).add(AUX if rule.head_aux() else INFERRED)
 
     def of(self, atom: Atom) -> tuple[NamedNode, ...]:
-        """The graphs to read ``atom``'s facts from, in :data:`_STATE`'s order."""
+        """The graphs to read ``atom``'s facts from, in :data:`.delta_texts.NEW_STATE`'s order."""
         if atom.aux:
             return (AUX,)
         return self.of_key(atom.read_key())
@@ -139,7 +138,7 @@ class StateGraphs:
     def of_key(self, key: ReadKey) -> tuple[NamedNode, ...]:
         """The graphs of the new state that may hold facts of ``key`` (not a helper atom's)."""
         if key[0] == "*":
-            return _STATE
+            return NEW_STATE
         found = set(self._by_key.get(("*",), ())) | self._by_key.get(key, set())
         if key[0] == "t":
             found |= self._by_key.get(_TYPE_KEY, set())
@@ -150,7 +149,7 @@ class StateGraphs:
 
 def every_graph(atom: Atom) -> tuple[NamedNode, ...]:
     """The graphs of the new state an atom is read from when nothing is known of the rules' heads."""
-    return (AUX,) if atom.aux else _STATE
+    return (AUX,) if atom.aux else NEW_STATE
 
 
 def _read(store, pattern: tuple, graphs: tuple[NamedNode, ...], graph_set: frozenset) -> list[Triple]:
@@ -158,10 +157,13 @@ def _read(store, pattern: tuple, graphs: tuple[NamedNode, ...], graph_set: froze
     over every graph where the store offers it (``match_in``: a bound subject or object), else one per
     graph (``graph_set``: ``graphs`` as a set).  One graph is read alone: the read over every graph
     would go through the other graphs' quads of the pattern to find the same facts."""
-    match_in = getattr(store, "match_in", None) if len(graphs) > 1 else None
-    found = match_in(*pattern, graph_set, direct.FEW) if match_in is not None else None
-    if found is None:
-        found = store.few_facts(*pattern, graphs, direct.FEW)
+    if len(graphs) == 1:  # its facts as the index gives them (the join reads their terms)
+        found = store.matches(*pattern, graphs[0], direct.FEW)
+    else:
+        match_in = getattr(store, "match_in", None)
+        found = match_in(*pattern, graph_set, direct.FEW) if match_in is not None else None
+        if found is None:
+            found = store.few_facts(*pattern, graphs, direct.FEW)
     if found is None or len(found) > direct.FEW:
         raise _Fallback
     return found

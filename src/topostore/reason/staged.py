@@ -200,7 +200,7 @@ class StagedRun:
             if self.dirty:
                 self._reading((key,))
             pattern = pattern_of(key)
-            if all(next(iter(self.store.triples(*pattern, g)), None) is None for g in NEW_STATE):
+            if not any(self.store.has_match(*pattern, g) for g in NEW_STATE):
                 return True
         return False
 
@@ -362,14 +362,14 @@ class StagedRun:
 
     def has(self, key: ReadKey, graph: NamedNode) -> bool:
         """Whether ``graph`` holds a fact of ``key`` (an index look-up)."""
-        return next(iter(self.store.triples(*pattern_of(key), graph)), None) is not None
+        return self.store.has_match(*pattern_of(key), graph)
 
     def facts(self, key: ReadKey, graph: NamedNode, limit: int) -> list[Triple]:
         """The facts of ``key`` in ``graph``, at most ``limit`` of them."""
         return list(islice(self.store.triples(*pattern_of(key), graph), limit))
 
     def has_any(self, graph: NamedNode) -> bool:
-        return next(iter(self.store.triples(None, None, None, graph)), None) is not None
+        return self.store.has_match(None, None, None, graph)
 
     def note(self, key: ReadKey) -> None:
         """Record whether ``key`` lost or gained facts."""

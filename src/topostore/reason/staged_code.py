@@ -75,7 +75,8 @@ class _Code:
     """The lines of one generated run and the constants they name."""
 
     def __init__(self) -> None:
-        self.lines = ["    store = r.store", "    minus, plus, unnoted, dirty = r.minus, r.plus, r.unnoted, r.dirty"]
+        self.lines = ["    store = r.store", "    has = store.has_match",
+                      "    minus, plus, unnoted, dirty = r.minus, r.plus, r.unnoted, r.dirty"]
         self.consts: dict[str, object] = {}
 
     def const(self, value: object) -> str:
@@ -231,7 +232,7 @@ class _Part:
 
     def _has(self, key: object, graph: str) -> str:
         """An expression: whether ``graph`` (a name) holds a fact of ``key`` (``StagedRun.has``, its pattern made now)."""
-        return f"next(iter(store.triples(*{self.code.const(pattern_of(key))}, {graph})), None) is not None"
+        return f"has(*{self.code.const(pattern_of(key))}, {graph})"
 
     def _holds(self, graph: object, key: object, extra: int, first: str = "") -> str:
         """``StagedRun._holds``: lines looking up once per part whether ``graph`` holds facts of ``key``

@@ -199,6 +199,15 @@ class Store:
         index may read them all at once)."""
         return {g: self.objects(s, p, g) for g in graphs}
 
+    def matches(self, s, p, o, graph: NamedNode, limit: int) -> list | None:
+        """:meth:`few_facts` of one graph for a caller that reads only each fact's subject, predicate and
+        object (a look-up join): a store reading its own index may give its quads as they come."""
+        return self.few_facts(s, p, o, (graph,), limit)
+
+    def has_match(self, s, p, o, graph: NamedNode) -> bool:
+        """Whether ``graph`` holds a fact of the pattern (None: any)."""
+        return next(iter(self.triples(s, p, o, graph)), None) is not None
+
     # ------------------------------------------------------------ primitives (implementations)
     def _has(self, quad: Quad) -> bool:
         raise NotImplementedError

@@ -127,6 +127,15 @@ class HeldGraphs:
                 out.append(t)
         return out
 
+    def any_match(self, s, p, o, held: dict) -> bool:
+        """Whether one of a held graph's facts ``held`` matches the pattern (:meth:`triples`' first)."""
+        if o is not None:
+            o = _stored(o)
+        for qs, qp, qo in held:
+            if (s is None or qs == s) and (p is None or qp == p) and (o is None or qo == o):
+                return True
+        return False
+
     def quads(self, graph: NamedNode) -> list[Quad] | None:
         """Every held quad of ``graph`` (None where it is not held)."""
         held = self.graphs.get(graph)

@@ -11,16 +11,14 @@ commit (see docs/stores.md).
 from __future__ import annotations
 
 import os
-from collections.abc import Collection, Iterable, Iterator
+from collections.abc import Iterable, Iterator
 from itertools import chain, islice
-from operator import attrgetter
 
 import pyoxigraph as ox
-from pyoxigraph import Literal, NamedNode, Quad, Triple
+from pyoxigraph import Literal, NamedNode, Quad
 
 from ..errors import QueryError, StoreError
-from ..rdf.terms import Term
-from . import reads
+from . import index_reads, reads
 from .base import Store
 from .compaction import compacted
 from .data_text import data_update, quad_data  # noqa: F401 - quad_data: named here since the first release
@@ -28,9 +26,6 @@ from .held import HeldGraphs
 from .literal_forms import stored_literal
 from .reads import key_census
 from .text_writer import TextWriter
-
-#: a quad's triple (read in C by :func:`map`)
-_TRIPLE = attrgetter("triple")
 
 
 class OxigraphStore(Store):
@@ -82,52 +77,17 @@ class OxigraphStore(Store):
                 return self._held.match(s, p, o, graph)
         return iter(self._ox.quads_for_pattern(s, p, o, graph))
 
-    def triples(self, s=None, p=None, o=None, graph=None) -> Iterator[Triple]:
-        """:func:`.reads.triples` without its layers where no transaction is open (the reasoner's
-        look-ups, each a few facts): a held graph's matches, or the index's quads mapped to their
-        triples in C, instead of a generator over :meth:`_match`'s iterator."""
-        if self._pending is not None or self.listings is not None:
-            return reads.triples(self, s, p, o, graph)
-        if type(s) is Literal:
-            return iter(())  # a literal is no subject (:meth:`few_facts`)
-        held = self._held.graphs
-        if held:
-            if graph is None:
-                # the held graphs' matches listed now, as the general read does: a write made while
-                # the caller iterates neither shows up nor breaks the iteration
-                return chain(map(_TRIPLE, self._ox.quads_for_pattern(s, p, o, None)),
-                             [t for g in held.values() for t in self._held.triples(s, p, o, g)])
-            found = held.get(graph)
-            if found is not None:
-                return iter(self._held.triples(s, p, o, found))
-        return map(_TRIPLE, self._ox.quads_for_pattern(s, p, o, graph))
+    # ------------------------------------------------------------ the look-ups' reads (see .index_reads)
+    triples = index_reads.triples
+    few_facts = index_reads.few_facts
+    matches = index_reads.matches
+    has_match = index_reads.has_match
+    match_in = index_reads.match_in
+    objects_by_graph = index_reads.objects_by_graph
+    known_in = index_reads.known_in
+    contains_each = index_reads.contains_each
 
-    def few_facts(self, s, p, o, graphs, limit: int) -> list[Triple] | None:
-        """:func:`.reads.few_facts` read here directly where no transaction is open: a held graph's
-        matches, or the index's first ``limit + 1`` quads mapped to their triples in C; one graph's
-        facts are distinct as read (no dictionary between the index and the caller)."""
-        if self._pending is not None or self.listings is not None:
-            return reads.few_facts(self, s, p, o, graphs, limit)
-        if type(s) is Literal:
-            return []  # a value bound by a rule's join is no subject: no fact has it (as in SPARQL)
-        held = self._held.graphs
-        found: list[Triple] | dict[Triple, None] | None = None
-        for g in graphs:
-            kept = held.get(g) if held else None
-            facts = self._held.triples(s, p, o, kept) if kept is not None \
-                else list(islice(map(_TRIPLE, self._ox.quads_for_pattern(s, p, o, g)), limit + 1))
-            if found is None:
-                found = facts
-            elif facts:
-                if type(found) is list:
-                    found = dict.fromkeys(found)
-                found.update(dict.fromkeys(facts))
-            if len(found) > limit:
-                return None
-        if found is None:
-            return []
-        return found if type(found) is list else list(found)
-
+    # ------------------------------------------------------------ reasoner scratch graphs held in Python
     def hold_scratch(self, graphs: Iterable[NamedNode]) -> None:
         """In memory, writes to ``graphs`` through :meth:`add_scratch` are held in Python until SPARQL
         text or a transactional write needs them in the store (see :mod:`.held`); the reasoner that
@@ -239,87 +199,6 @@ class OxigraphStore(Store):
             return
         self._writes += 1
         self._ox.extend([Quad(t.subject, t.predicate, t.object, graph) for t in triples])
-
-    def match_in(self, s, p, o, graphs: frozenset, limit: int) -> list | None:
-        """The distinct triples of ``(s, p, o)`` in any of ``graphs``, at most ``limit + 1`` of them: one
-        index read over every graph, filtered here, instead of one read per graph (each read costs its
-        call and its iterator).  Only where the subject or the object is bound, so that the quads of other
-        graphs are few; None where that does not hold (or a transaction is open): read each graph then."""
-        if (s is None and o is None) or self._pending is not None or self.listings is not None \
-                or (self._held.graphs and not graphs.isdisjoint(self._held.graphs)):
-            return None
-        if type(s) is Literal:
-            return []  # a literal is no subject (:meth:`few_facts`)
-        found: dict = {}
-        seen = 0
-        for q in self._ox.quads_for_pattern(s, p, o, None):
-            seen += 1
-            if q.graph_name in graphs:
-                found[q.triple] = None
-                if len(found) > limit:
-                    break
-            elif seen > 4 * limit:
-                return None  # other graphs hold many: the per-graph reads are cheaper
-        return list(found)
-
-    def objects_by_graph(self, s: Term, p: NamedNode, graphs: list[NamedNode]) -> dict[NamedNode, list[Term]]:
-        """:meth:`Store.objects` of (s, p) in each of ``graphs`` by one index read over every graph, sorted
-        out here (a query's answer, e.g. the asserted, inferred and entailed values of a property, is
-        three reads otherwise, each its call and its iterator); per graph where a transaction is open,
-        literal forms are listed or a held graph is among ``graphs``."""
-        if type(s) is Literal or not self._one_read(graphs):
-            return super().objects_by_graph(s, p, graphs)
-        found: dict[NamedNode, list[Term]] = {g: [] for g in graphs}
-        for q in self._ox.quads_for_pattern(s, p, None, None):
-            values = found.get(q.graph_name)
-            if values is not None:
-                values.append(q.object)
-        return found
-
-    def known_in(self, triples: list[Triple], graphs: Collection[NamedNode]) -> list[bool]:
-        """Whether each triple is in one of ``graphs``, as :func:`.presence.present` answers it: one index
-        read per triple over every graph (a fact is in a few), where the presence batch makes a quad per
-        triple and graph; that batch (:func:`.reads.known_in`) where the one read does not hold
-        (:meth:`_one_read`) or a triple's object is a literal (presence is then by value)."""
-        if not self._one_read(graphs):
-            return super().known_in(triples, graphs)
-        match = self._ox.quads_for_pattern
-        out = []
-        for t in triples:
-            o = t.object
-            if type(o) is Literal:
-                return super().known_in(triples, graphs)
-            found = False
-            for q in match(t.subject, t.predicate, o, None):  # a loop, not any() over a generator: a fact is in one or two
-                if q.graph_name in graphs:
-                    found = True
-                    break
-            out.append(found)
-        return out
-
-    def contains_each(self, triples: list[Triple], graph: NamedNode) -> list[bool]:
-        """Whether each triple is in ``graph``, as :func:`.reads.contains_each` answers it: where no
-        transaction is open and no literal forms are listed, one membership test per triple (the held
-        graph's dictionary, or the index), not a quad batch through the presence layers; that batch for a
-        literal (presence is then by value)."""
-        if self._pending is not None or self.listings is not None:
-            return super().contains_each(triples, graph)
-        held = self._held.graphs.get(graph) if self._held.graphs else None
-        ox = self._ox
-        out = []
-        for t in triples:
-            o = t.object
-            if type(o) is Literal:
-                return super().contains_each(triples, graph)
-            out.append((t.subject, t.predicate, o) in held if held is not None
-                       else Quad(t.subject, t.predicate, o, graph) in ox)
-        return out
-
-    def _one_read(self, graphs: Collection[NamedNode]) -> bool:
-        """Whether one index read over every graph answers for ``graphs`` as the per-graph reads do: no
-        transaction open, no literal forms listed, no held graph among them."""
-        held = self._held.graphs
-        return self._pending is None and self.listings is None and not (held and not held.keys().isdisjoint(graphs))
 
     def discard(self, triples, graphs: Iterable[NamedNode]) -> None:
         """In memory, a triple with a literal object is found by its subject and predicate and removed as
