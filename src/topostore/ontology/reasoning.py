@@ -94,9 +94,13 @@ class OntologyReasoning:
         return onto._report
 
     def _advance_views(self, previous: ReasonReport | None) -> None:
-        """Bring the class views to the new report (dropped when the visible graphs changed or the run was full)."""
+        """Bring the class views to the new report (dropped when the visible graphs changed or the run was full).
+
+        The touched types are the closure's changes: an asserted type fact removed or added while the closure
+        infers it too touches none of them.  While inconsistent the asserted graph alone is answered, where
+        such a change is one of membership, so the views are dropped then."""
         onto = self.onto
-        same_graphs = previous is not None and previous.consistent == onto._report.consistent
+        same_graphs = previous is not None and previous.consistent and onto._report.consistent
         touched = onto._reasoner.touched_types if same_graphs else None
         onto.views.advance(previous, onto._report, touched, onto.reads._instance_flags)
 
