@@ -16,6 +16,7 @@ from typing import TYPE_CHECKING
 from pyoxigraph import NamedNode, Quad, Triple
 
 from ..compile import RuleSet, compile_ontology
+from ..compile.graph_notices import MALFORMED, malformed_now
 from ..compile.key_form import form_changed
 from ..compile.notices import Notice, OntologyWarning, warn
 from ..rdf.vocab import ASSERTED, HAS_VALUE, INFERRED, NOTHING, TYPE
@@ -68,8 +69,9 @@ class OntologyReasoning:
         onto = self.onto
         if onto.groups_touched:
             onto.groups_touched = False
-            if onto._rules is not None and form_changed(onto.store, ASSERTED, onto._rules.one_list):
-                onto._rules = None  # the AllDifferent keys change form: new rules, a full REASON
+            if onto._rules is not None and (form_changed(onto.store, ASSERTED, onto._rules.one_list)
+                                            or _lists_said_otherwise(onto.store, onto._rules)):
+                onto._rules = None  # the AllDifferent keys change form, or a list's notice: new rules, a full REASON
         rules = self.rules()
         forced = ""
         if onto._reasoner is None or onto._reasoner.ruleset is not rules:
@@ -187,6 +189,13 @@ class OntologyReasoning:
         """Whether a fact types some individual with ``cls`` (asserted or inferred)."""
         store = self.onto.store
         return any(True for g in (ASSERTED, INFERRED) for _ in store.triples(None, TYPE, cls, g))
+
+
+def _lists_said_otherwise(store, rules: RuleSet) -> bool:
+    """Whether the malformed-list notices the rules were compiled with are no longer those of the asserted
+    graph (an AllDifferent's list cell edited: a fact, no schema change): the REASON's report says them."""
+    said = frozenset(n.subject for n in rules.notices if n.subject in MALFORMED)
+    return malformed_now(store, ASSERTED) != said
 
 
 def _asserted(quads: list[Quad]) -> list[Triple]:
