@@ -89,6 +89,7 @@ class OntologyReasoning:
         onto.store.maybe_compact()
         previous, onto._report = onto._report, ReasonReport(not violations, violations, stats,
                                                             [n for n in rules.notices if n.incomplete])
+        onto.reasoned_superclasses = None  # the classification of these rules is the reasoner's now
         self._advance_views(previous)
         onto.dirty = False
         onto.events.after_reason(onto.store, onto._report.consistent, before, stats.seconds)
@@ -145,15 +146,16 @@ class OntologyReasoning:
         onto.dirty = True
         onto.views.clear()
 
-    def classification(self) -> dict[NamedNode, set[NamedNode]]:
-        """Each named class's superclasses, classified once per compiled rule set."""
+    def classification(self, said: bool = True) -> dict[NamedNode, set[NamedNode]]:
+        """Each named class's superclasses, classified once per compiled rule set (``said``: an unsatisfiable
+        class is warned of when the classification is made)."""
         onto = self.onto
         values = self.value_types()
         if onto._superclasses is None or values != self._classified_with:
             onto._superclasses = classify(self.rules(), values)
             self._classified_with = values
             empty = unsatisfiable(onto._superclasses)
-            if empty:
+            if empty and said:
                 warn(unsatisfiable_text(empty), OntologyWarning)
         return onto._superclasses
 
@@ -170,16 +172,18 @@ class OntologyReasoning:
         return frozenset(Triple(a, TYPE, t.object) for a in values for g in (ASSERTED, INFERRED)
                          for t in store.triples(a, TYPE, None, g) if isinstance(t.object, NamedNode))
 
-    def superclasses(self, cls: NamedNode) -> set[NamedNode]:
-        return set(self.classification().get(cls, set()))
+    def superclasses(self, cls: NamedNode, classes: dict | None = None) -> set[NamedNode]:
+        """The superclasses of ``cls`` in ``classes`` (a classification; None: the current one)."""
+        return set((self.classification() if classes is None else classes).get(cls, set()))
 
-    def subclasses(self, target: NamedNode) -> set[NamedNode]:
-        """Named classes subsumed by ``target`` (direct and indirect; never owl:Nothing).  A class the rules do
-        not name but a fact types with (used as a type only) has only the unsatisfiable classes under it, which
-        are under every class; owl:Nothing has none (the OWL API's answer), nor has a name that is no class."""
+    def subclasses(self, target: NamedNode, classes: dict | None = None) -> set[NamedNode]:
+        """Named classes subsumed by ``target`` (direct and indirect; never owl:Nothing) in ``classes`` (a
+        classification; None: the current one).  A class the rules do not name but a fact types with (used as
+        a type only) has only the unsatisfiable classes under it, which are under every class; owl:Nothing has
+        none (the OWL API's answer), nor has a name that is no class."""
         if target == NOTHING:
             return set()
-        classes = self.classification()
+        classes = self.classification() if classes is None else classes
         found = {c for c, sups in classes.items() if target in sups and c != target}
         if target not in classes and self._typed_with(target):
             found.update(c for c in unsatisfiable(classes) if c != target)
