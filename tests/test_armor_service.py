@@ -519,6 +519,29 @@ def test_a_buffered_reasoner_answers_removed_asserted_facts_until_reason(buffere
         assert old not in ok(svc, "QUERY", s1, s2, args).queried_objects, (s1, s2, args)
 
 
+@pytest.mark.parametrize("buffered", [True, False])
+def test_a_buffered_reasoner_answers_the_class_hierarchy_of_the_last_reason(buffered: bool) -> None:
+    """QUERY CLASS CLASS is the told subclasses now ∪ the reasoner's (spec §2.5): a buffered reasoner's are those
+    of its last REASON, both ways: a subclass told since shows under its told superclass only, one retracted
+    since still shows; a live reasoner follows each change."""
+    svc = ArmorService()
+    load(svc, buf_reasoner=str(buffered).lower())
+    ok(svc, "ADD", "CLASS", "CLASS", ["KITCHEN", "ROOM"])
+    ok(svc, "REASON")
+    ok(svc, "ADD", "CLASS", "CLASS", ["PANTRY", "ROOM"])
+    ok(svc, "REMOVE", "CLASS", "CLASS", ["KITCHEN", "ROOM"])
+
+    def under(cls: str) -> list[str]:
+        return ok(svc, "QUERY", "CLASS", "CLASS", [cls]).queried_objects
+
+    assert full("PANTRY") in under("ROOM")  # told now
+    assert (full("PANTRY") in under("LOCATION")) is not buffered
+    assert (full("KITCHEN") in under("ROOM")) is buffered
+    assert (full("KITCHEN") in under("LOCATION")) is buffered
+    ok(svc, "REASON")
+    assert full("KITCHEN") not in under("LOCATION") and full("PANTRY") in under("LOCATION")
+
+
 def test_reason_recovers_after_inconsistency_with_buffers() -> None:
     svc = ArmorService()
     load(svc, buf_manip="true", reasoner="", buf_reasoner="true")

@@ -165,3 +165,76 @@ def test_a_union_added_with_blank_nodes_then_cut_changes_the_rules() -> None:
     assert onto._rules is None
     onto.reason()
     assert conclusions(onto) == from_scratch(onto)
+
+
+#: a datatype restricted by a facet, read by a class (someValuesFrom) and by a range; its facet node is named
+#: so that an edit can name it
+FACETED = (PREFIXES + "@prefix xsd: <http://www.w3.org/2001/XMLSchema#> . @prefix rdfs: <http://www.w3.org/2000/01/rdf-schema#> .\n"
+           ":v a owl:DatatypeProperty . :w a owl:DatatypeProperty ; rdfs:range :small .\n"
+           ":small a rdfs:Datatype ; owl:equivalentClass [ a rdfs:Datatype ; owl:onDatatype xsd:integer ;"
+           " owl:withRestrictions ( :f ) ] . :f xsd:maxInclusive 10 .\n"
+           ":S owl:equivalentClass [ a owl:Restriction ; owl:onProperty :v ; owl:someValuesFrom :small ] .\n"
+           ":a :v 5 . :b :v 12 . :c :v 15 . :d :w 9 .\n")
+
+#: (removed, added): the facet's value or kind edited
+FACET_EDITS = {
+    "raised": (":f xsd:maxInclusive 10 .", ":f xsd:maxInclusive 13 ."),
+    "lowered": (":f xsd:maxInclusive 10 .", ":f xsd:maxInclusive 4 ."),
+    "kind": (":f xsd:maxInclusive 10 .", ":f xsd:minInclusive 11 ."),
+}
+
+
+@pytest.mark.parametrize("mode", ["auto", "incremental"])
+@pytest.mark.parametrize("edit", sorted(FACET_EDITS))
+def test_a_datatype_facet_edited_changes_the_rules(edit: str, mode: str) -> None:
+    """A facet (``_:f xsd:maxInclusive 10`` in a datatype restriction's ``owl:withRestrictions`` list) is
+    TBox: its triple is neither a list cell nor in a schema vocabulary's namespace but XSD's, and an edit of
+    it must compile the rules again, for the class it defines the members and for the range the
+    consistency of reasoning from scratch."""
+    onto = Ontology()
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        onto.load_data(FACETED, "turtle")
+        assert onto.reason().consistent
+        before = conclusions(onto)
+        removed, added = FACET_EDITS[edit]
+        onto.change(parsed("@prefix xsd: <http://www.w3.org/2001/XMLSchema#> . " + added),
+                    parsed("@prefix xsd: <http://www.w3.org/2001/XMLSchema#> . " + removed))
+        report = onto.reason(mode=mode)
+        fresh = Ontology()
+        fresh.add(*onto.triples())
+        expected = fresh.reason(mode="full")
+    assert not expected.consistent or conclusions(fresh) != before  # the edit matters
+    assert report.consistent == expected.consistent
+    assert conclusions(onto) == conclusions(fresh)
+
+
+#: (removed, added): an AllDifferent member list made malformed by a change of its cells (facts)
+MALFORMING = {
+    "two firsts": ("", ":m2 rdf:first :c ."),
+    "cut short": (":m1 rdf:rest :m2 .", ""),
+    "loop": (":m2 rdf:rest rdf:nil .", ":m2 rdf:rest :m1 ."),
+}
+
+
+def _list_notices(onto: Ontology) -> list[str]:
+    return sorted(n.subject for n in onto.report.incomplete if "list" in n.subject)
+
+
+@pytest.mark.parametrize("edit", sorted(MALFORMING))
+def test_an_all_different_list_made_malformed_and_mended_is_said_as_from_scratch(edit: str) -> None:
+    """Its cells are facts, so an edit compiles no rules; but a malformed member list is said (not reasoned
+    completely), as a load of the same graph says it, and no longer once it is mended."""
+    filler = " ".join(f":e{i} :near :e{i + 1} ." for i in range(200))
+    onto = reasoned(f"{filler} :a a :A . :b a :A . [] a owl:AllDifferent ; owl:distinctMembers :m1 ."
+                    ":m1 rdf:first :a ; rdf:rest :m2 . :m2 rdf:first :b ; rdf:rest rdf:nil .")
+    assert _list_notices(onto) == []
+    removed, added = MALFORMING[edit]
+    for change, said in (((parsed(added), parsed(removed)), True), ((parsed(removed), parsed(added)), False)):
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            onto.change(*change)
+            onto.reason()
+            fresh = reasoned(onto.serialize("turtle").decode())
+        assert bool(_list_notices(fresh)) is said  # malformed, then mended
+        assert _list_notices(onto) == _list_notices(fresh)

@@ -218,11 +218,13 @@ def subclasses(onto: Ontology, cls: NamedNode) -> list[NamedNode]:
     node), with the told ``SubClassOf(X cls)`` of a named X added (the union of spec §2.5: ``cls`` itself
     when ``SubClassOf(cls cls)`` is told); the told ones only while the ontology is inconsistent (aRMOR
     asks the reasoner nothing then, as for every query); never owl:Nothing or an internal class (spec §7
-    item 6).  An unsatisfiable class is under every class."""
+    item 6).  An unsatisfiable class is under every class.  A buffered reasoner's answer is its classification
+    as of the last REASON, until the next one (``Ontology.reasoned_superclasses``, kept at a schema change)."""
     told = {t.subject for t in asserted(onto, None, rdfs("subClassOf"), cls) if isinstance(t.subject, NamedNode)}
     if INFERRED in onto.visible_graphs():  # consistent (or not reasoned yet): the reasoner's answer too
-        above = onto.superclasses(cls)
-        told |= {c for c in onto.subclasses(cls) if c not in above}
+        kept = onto.reasoned_superclasses if onto.dirty else None
+        above = onto.reasoning.superclasses(cls, kept)
+        told |= {c for c in onto.reasoning.subclasses(cls, kept) if c not in above}
     return sorted((c for c in told if not hidden(c)), key=lambda n: n.value)
 
 

@@ -82,6 +82,21 @@ def list_vocabulary(note: Note, store: Store, graph: NamedNode) -> None:
                  "list vocabulary is not reasoned, the statement is kept as a plain triple")
 
 
+#: the subjects of :func:`malformed_lists`' notices
+TWO_FIRSTS = "an RDF list with a cell of two rdf:first"
+OPEN_END = "an AllDifferent axiom whose member list does not end in rdf:nil"
+MALFORMED = frozenset({TWO_FIRSTS, OPEN_END})
+
+
+def malformed_now(store: Store, graph: NamedNode) -> frozenset[str]:
+    """The subjects of the notices :func:`malformed_lists` gives ``graph`` as it is now: a list cell is a fact
+    where the list is an AllDifferent's (editing it compiles no rules), so what was said at compile time is
+    compared with this after such an edit."""
+    found: set[str] = set()
+    malformed_lists(lambda kind, axiom, reason: found.add(axiom), store, graph)
+    return frozenset(found)
+
+
 def malformed_lists(note: Note, store: Store, graph: NamedNode) -> None:
     """An ``owl:AllDifferent`` member list that does not end in ``rdf:nil`` (it loops back on itself, or is
     cut short), and any list cell with two ``rdf:first``: a group's keys hold every member reached, a reader
@@ -95,10 +110,10 @@ def malformed_lists(note: Note, store: Store, graph: NamedNode) -> None:
                 f"?list . FILTER NOT EXISTS {{ ?list <{REST.value}>* <{NIL.value}> }} }} LIMIT 1")
         open_end = any(True for _ in store.query(ends, graphs=[graph]))
     if two_firsts:
-        note(UNSUPPORTED, "an RDF list with a cell of two rdf:first", "a malformed RDF list: an axiom "
+        note(UNSUPPORTED, TWO_FIRSTS, "a malformed RDF list: an axiom "
              "reading it takes one of the two, an AllDifferent group both")
     if open_end:
-        note(UNSUPPORTED, "an AllDifferent axiom whose member list does not end in rdf:nil", "a malformed "
+        note(UNSUPPORTED, OPEN_END, "a malformed "
              "RDF list (it loops back on itself or is cut short): its group holds the members reached")
 
 
@@ -153,5 +168,6 @@ def reflexive_equality(store: Store, graph: NamedNode) -> Notice | None:
     return Notice(NOT_STORED, subject, REFLEXIVE_SAME_AS)
 
 
-__all__ = ["REFLEXIVE_SAME_AS", "malformed_lists", "imports", "list_vocabulary", "reflexive_equality", "top_and_bottom",
+__all__ = ["REFLEXIVE_SAME_AS", "MALFORMED", "malformed_lists", "malformed_now",
+           "imports", "list_vocabulary", "reflexive_equality", "top_and_bottom",
            "unchecked_datatypes"]

@@ -43,7 +43,7 @@ from functools import cache
 
 from pyoxigraph import NamedNode, Triple
 
-from ..rdf.vocab import ONE_MEMBER_LIST, TYPE, owl
+from ..rdf.vocab import FIRST, ONE_MEMBER_LIST, REST, TYPE, owl
 from ..resources import rules_dir
 from ..stores.base import Store
 from .generic import parse_rule_file
@@ -100,11 +100,16 @@ def key_rule_form(rules: Iterable[Rule], the_list: NamedNode | None) -> list[Rul
 def touches_groups(triples: Iterable[Triple]) -> bool:
     """Whether a change adds or removes a member link, which may change how many member lists there are
     (a type of ``owl:AllDisjointClasses`` or ``owl:AllDisjointProperties`` is a schema triple: it compiles
-    the rules again anyway)."""
+    the rules again anyway), or a list cell, which may make a member list malformed or well formed again
+    (:func:`.graph_notices.malformed_now`: a notice the rules were compiled with)."""
     for t in triples:  # a loop, not any() over a generator: a manipulation changes one or two triples
-        if t.predicate in MEMBER_LINKS:
+        if t.predicate in _GROUP_LINKS:
             return True
     return False
+
+
+#: the predicates :func:`touches_groups` looks for
+_GROUP_LINKS = MEMBER_LINKS | {FIRST, REST}
 
 
 def form_changed(store: Store, graph: NamedNode, the_list: NamedNode | None) -> bool:

@@ -85,6 +85,10 @@ class Ontology:
         self.names = Namespace(self.store, prefix)
         self._rules: RuleSet | None = None
         self._superclasses: dict | None = None
+        #: the classification as of the last successful REASON, kept where a schema change since has dropped it
+        #: and the reads answer what a buffered reasoner answers until the next REASON (``reads.answers_removed``,
+        #: spec §2.5); None: the current classification is that one
+        self.reasoned_superclasses: dict | None = None
         self._report: ReasonReport | None = None
         self.load_notices = []  # what loading repaired or set aside (topostore.compile.notices)
         self.strict = strict
@@ -156,6 +160,9 @@ class Ontology:
 
     def schema_changed(self) -> None:
         """A schema triple was added or removed: the rules, the classification and the namespace are read again."""
+        if self.reads.answers_removed and self.reasoned_superclasses is None and self._rules is not None \
+                and self._report is not None:
+            self.reasoned_superclasses = self.reasoning.classification(said=False)  # the rules of that REASON
         self._rules = None
         self._superclasses = None
         self.names.forget()

@@ -16,6 +16,7 @@ from typing import TYPE_CHECKING
 from pyoxigraph import NamedNode, Quad, Triple
 
 from ..compile import RuleSet, compile_ontology
+from ..compile.graph_notices import MALFORMED, malformed_now
 from ..compile.key_form import form_changed
 from ..compile.notices import Notice, OntologyWarning, warn
 from ..rdf.vocab import ASSERTED, HAS_VALUE, INFERRED, NOTHING, TYPE
@@ -68,8 +69,9 @@ class OntologyReasoning:
         onto = self.onto
         if onto.groups_touched:
             onto.groups_touched = False
-            if onto._rules is not None and form_changed(onto.store, ASSERTED, onto._rules.one_list):
-                onto._rules = None  # the AllDifferent keys change form: new rules, a full REASON
+            if onto._rules is not None and (form_changed(onto.store, ASSERTED, onto._rules.one_list)
+                                            or _lists_said_otherwise(onto.store, onto._rules)):
+                onto._rules = None  # the AllDifferent keys change form, or a list's notice: new rules, a full REASON
         rules = self.rules()
         forced = ""
         if onto._reasoner is None or onto._reasoner.ruleset is not rules:
@@ -87,6 +89,7 @@ class OntologyReasoning:
         onto.store.maybe_compact()
         previous, onto._report = onto._report, ReasonReport(not violations, violations, stats,
                                                             [n for n in rules.notices if n.incomplete])
+        onto.reasoned_superclasses = None  # the classification of these rules is the reasoner's now
         self._advance_views(previous)
         onto.dirty = False
         onto.events.after_reason(onto.store, onto._report.consistent, before, stats.seconds)
@@ -94,9 +97,13 @@ class OntologyReasoning:
         return onto._report
 
     def _advance_views(self, previous: ReasonReport | None) -> None:
-        """Bring the class views to the new report (dropped when the visible graphs changed or the run was full)."""
+        """Bring the class views to the new report (dropped when the visible graphs changed or the run was full).
+
+        The touched types are the closure's changes: an asserted type fact removed or added while the closure
+        infers it too touches none of them.  While inconsistent the asserted graph alone is answered, where
+        such a change is one of membership, so the views are dropped then."""
         onto = self.onto
-        same_graphs = previous is not None and previous.consistent == onto._report.consistent
+        same_graphs = previous is not None and previous.consistent and onto._report.consistent
         touched = onto._reasoner.touched_types if same_graphs else None
         onto.views.advance(previous, onto._report, touched, onto.reads._instance_flags)
 
@@ -139,15 +146,16 @@ class OntologyReasoning:
         onto.dirty = True
         onto.views.clear()
 
-    def classification(self) -> dict[NamedNode, set[NamedNode]]:
-        """Each named class's superclasses, classified once per compiled rule set."""
+    def classification(self, said: bool = True) -> dict[NamedNode, set[NamedNode]]:
+        """Each named class's superclasses, classified once per compiled rule set (``said``: an unsatisfiable
+        class is warned of when the classification is made)."""
         onto = self.onto
         values = self.value_types()
         if onto._superclasses is None or values != self._classified_with:
             onto._superclasses = classify(self.rules(), values)
             self._classified_with = values
             empty = unsatisfiable(onto._superclasses)
-            if empty:
+            if empty and said:
                 warn(unsatisfiable_text(empty), OntologyWarning)
         return onto._superclasses
 
@@ -164,16 +172,18 @@ class OntologyReasoning:
         return frozenset(Triple(a, TYPE, t.object) for a in values for g in (ASSERTED, INFERRED)
                          for t in store.triples(a, TYPE, None, g) if isinstance(t.object, NamedNode))
 
-    def superclasses(self, cls: NamedNode) -> set[NamedNode]:
-        return set(self.classification().get(cls, set()))
+    def superclasses(self, cls: NamedNode, classes: dict | None = None) -> set[NamedNode]:
+        """The superclasses of ``cls`` in ``classes`` (a classification; None: the current one)."""
+        return set((self.classification() if classes is None else classes).get(cls, set()))
 
-    def subclasses(self, target: NamedNode) -> set[NamedNode]:
-        """Named classes subsumed by ``target`` (direct and indirect; never owl:Nothing).  A class the rules do
-        not name but a fact types with (used as a type only) has only the unsatisfiable classes under it, which
-        are under every class; owl:Nothing has none (the OWL API's answer), nor has a name that is no class."""
+    def subclasses(self, target: NamedNode, classes: dict | None = None) -> set[NamedNode]:
+        """Named classes subsumed by ``target`` (direct and indirect; never owl:Nothing) in ``classes`` (a
+        classification; None: the current one).  A class the rules do not name but a fact types with (used as
+        a type only) has only the unsatisfiable classes under it, which are under every class; owl:Nothing has
+        none (the OWL API's answer), nor has a name that is no class."""
         if target == NOTHING:
             return set()
-        classes = self.classification()
+        classes = self.classification() if classes is None else classes
         found = {c for c, sups in classes.items() if target in sups and c != target}
         if target not in classes and self._typed_with(target):
             found.update(c for c in unsatisfiable(classes) if c != target)
@@ -183,6 +193,13 @@ class OntologyReasoning:
         """Whether a fact types some individual with ``cls`` (asserted or inferred)."""
         store = self.onto.store
         return any(True for g in (ASSERTED, INFERRED) for _ in store.triples(None, TYPE, cls, g))
+
+
+def _lists_said_otherwise(store, rules: RuleSet) -> bool:
+    """Whether the malformed-list notices the rules were compiled with are no longer those of the asserted
+    graph (an AllDifferent's list cell edited: a fact, no schema change): the REASON's report says them."""
+    said = frozenset(n.subject for n in rules.notices if n.subject in MALFORMED)
+    return malformed_now(store, ASSERTED) != said
 
 
 def _asserted(quads: list[Quad]) -> list[Triple]:

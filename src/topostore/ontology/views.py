@@ -17,8 +17,10 @@ A view belongs to one REASON outcome (the report object it was brought up to
 date with).  It answers only while no asserted change has been made since
 (``dirty`` is false) and the report is still that one; it moves on to the next
 report only through an incremental REASON that reports its touched type facts.
-A full REASON, a rollback (which puts an older report back) or a change of the
-visible graphs drops every view; the next read builds it again from the store.
+A full REASON, a rollback (which puts an older report back), a change of the
+visible graphs or an inconsistent outcome (the asserted graph alone answers, and an
+asserted type fact the closure infers too is touched by no REASON) drops every view;
+the next read builds it again from the store.
 
 When the touched members are decided
 ------------------------------------
