@@ -63,3 +63,17 @@ def test_python_replaces_without_reason_compact_the_store(rebuilds: list[int]) -
         onto.replace("Robot1", "now", 10_000 + k)
     assert len(rebuilds) >= 2
     assert [t.object.value for t in onto.store.triples(onto.iri("Robot1"), onto.iri("now"), None)] == ["10599"]
+
+
+def test_a_compaction_out_of_memory_leaves_the_store_and_the_command_succeeds(monkeypatch: pytest.MonkeyPatch,
+                                                                              caplog: pytest.LogCaptureFixture) -> None:
+    """A rebuild that does not fit in memory is said and skipped: the change it followed stands."""
+    def no_room(store, writes: int, live: int):
+        raise MemoryError
+
+    monkeypatch.setattr(oxigraph, "compacted", no_room)
+    onto = Ontology.from_file(SHARED / "topological_map_abox.owl")
+    onto.reason()
+    onto.replace("Robot1", "now", 7)
+    assert [t.object.value for t in onto.store.triples(onto.iri("Robot1"), onto.iri("now"), None)] == ["7"]
+    assert "could not be compacted" in caplog.text

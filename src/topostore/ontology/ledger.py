@@ -307,8 +307,8 @@ class _UnitOfWork:
                 ledger._steps.clear()
                 self.onto.values.settled()
                 unsaid, ledger._unsaid = ledger._unsaid, []
-                if kind is None and not self.onto.store.writes_pending:
-                    self.onto.store.maybe_compact()  # the unit's changes are final: see AssertedChanges._settled
+        if kind is None and not ledger._open and not self.onto.store.writes_pending:
+            self.onto.store.maybe_compact()  # the unit's changes are final: see AssertedChanges._settled
         if kind is None and unsaid:
             warn_pellet_differences(unsaid)
 

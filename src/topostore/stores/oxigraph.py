@@ -10,6 +10,7 @@ commit (see docs/stores.md).
 
 from __future__ import annotations
 
+import logging
 import os
 from collections.abc import Iterable, Iterator
 from itertools import chain, islice
@@ -26,6 +27,8 @@ from .held import HeldGraphs
 from .literal_forms import stored_literal
 from .reads import key_census
 from .text_writer import TextWriter
+
+logger = logging.getLogger(__name__)
 
 
 class OxigraphStore(Store):
@@ -309,7 +312,13 @@ class OxigraphStore(Store):
         """Rebuild the in-memory store once enough writes have piled up (:mod:`.compaction`)."""
         if not self._in_memory:
             return False
-        fresh, self._live_at_compaction = compacted(self._ox, self._writes, self._live_at_compaction)
+        try:
+            fresh, self._live_at_compaction = compacted(self._ox, self._writes, self._live_at_compaction)
+        except MemoryError:  # the copy did not fit: the store stays as it is, and a command that asked for it
+            # after its change was committed still succeeds
+            logger.warning("the in-memory store could not be compacted (out of memory); it stays as it is")
+            self._writes = 0
+            return False
         if fresh is None:
             return False
         self._ox = fresh
