@@ -212,3 +212,33 @@ def test_value_key_of_instants_is_equal_exactly_where_the_store_keeps_one_triple
             store.add(Quad(s, s, a))
             store.add(Quad(s, s, b))
             assert (len(store) == 1) == (value_key(a) == value_key(b)), (a, b)
+
+
+def test_numbers_past_28_digits_keep_their_own_value_keys_in_every_thread() -> None:
+    """A number's value key is exact: two integers (or decimals) that differ past the 28th significant digit are
+    two values, whatever precision the calling thread's decimal context has; both are kept as asserted."""
+    import decimal
+    import threading
+
+    from topostore import Ontology
+
+    xsd = "http://www.w3.org/2001/XMLSchema#"
+    pairs = [(str(10**30), str(10**30 + 1), "integer"), ("0.1", "0.10000000000000000000000000001", "decimal")]
+    keys: list[tuple] = []
+
+    def compare() -> None:
+        decimal.getcontext().prec = 6  # a thread with a narrow context of its own
+        keys.extend((value_key(Literal(a, datatype=NamedNode(xsd + t))), value_key(Literal(b, datatype=NamedNode(xsd + t))))
+                    for a, b, t in pairs)
+
+    worker = threading.Thread(target=compare)
+    worker.start()
+    worker.join()
+    for a, b, t in pairs:
+        ka, kb = value_key(Literal(a, datatype=NamedNode(xsd + t))), value_key(Literal(b, datatype=NamedNode(xsd + t)))
+        assert ka != kb and (ka, kb) in keys
+    onto = Ontology("http://ex.org/t#")
+    onto.add_data("p", "x", 10**30)
+    onto.add_data("p", "x", 10**30 + 1)
+    onto.reason()
+    assert sorted(int(v.value) for v in onto.data_values("p", "x")) == [10**30, 10**30 + 1]

@@ -10,7 +10,7 @@ from __future__ import annotations
 import math
 import re
 from datetime import date
-from decimal import Decimal, InvalidOperation
+from decimal import MAX_PREC, Context, Decimal, InvalidOperation
 from functools import lru_cache
 
 from pyoxigraph import BlankNode, Literal, NamedNode, Quad, RdfFormat, Triple, parse
@@ -24,6 +24,10 @@ Term = NamedNode | BlankNode | Literal
 # break out of ``<...>`` in SPARQL.  Whitespace and control characters too.
 _ILLEGAL_IRI_CHARS = re.compile(r'[\s<>"{}|^`\\\x00-\x1f\x7f]')
 _SCHEME = re.compile(r"^[A-Za-z][A-Za-z0-9+.\-]*:")
+
+#: the context a number's value key is normalised in: exact (no rounding to the thread's 28 digits, which made
+#: 10**30 and 10**30 + 1 one value), and the same in every thread
+EXACT = Context(prec=MAX_PREC)
 
 
 def validate_name(name: str, what: str = "name") -> str:
@@ -220,7 +224,7 @@ def literal_of(value: str, local: str) -> Literal:
             raise InvalidValueError(f"{value!r} is out of range for xsd:{local}")
         made = Literal(str(number), datatype=datatype)
         if made not in _VALUE_KEYS:  # its value key from the number read here: a robot's clock is a new
-            _keep_key(made, ("real", Decimal(number).normalize()))  # integer every step, keyed at once
+            _keep_key(made, ("real", Decimal(number).normalize(EXACT)))  # integer every step, keyed at once
         return made
     if local == "decimal":
         if not _DEC_RE.match(text):
@@ -305,7 +309,7 @@ def _literal_key(term: Literal) -> tuple:
     local = dt[len(XSD):] if dt.startswith(XSD) else None
     try:
         if local in REAL_TYPES:
-            return ("real", Decimal(term.value).normalize())
+            return ("real", Decimal(term.value).normalize(EXACT))
         if local == "float":
             return ("float", float(term.value.replace("INF", "inf")))
         if local == "double":
