@@ -39,7 +39,7 @@ in the new form.  A durable store records the form it wrote (``ontology/state.py
 from __future__ import annotations
 
 from collections.abc import Iterable
-from functools import cache
+from functools import lru_cache
 
 from pyoxigraph import NamedNode, Triple
 
@@ -76,7 +76,7 @@ def one_member_list(store: Store, graph: NamedNode) -> NamedNode | None:
 LIST_PLACEHOLDER = f"<{ONE_MEMBER_LIST.value}>"
 
 
-@cache
+@lru_cache(maxsize=32)  # one small rule per list seen; a service with many references keeps the last few
 def one_list_rule(the_list: NamedNode | None = None) -> Rule:
     """The key rule of the one-list form (``rules/one-list/all-different-key.rq``) for ``the_list`` (None:
     as the file writes it, its list a placeholder): only that list's members are their own keys, and a
