@@ -542,6 +542,24 @@ def test_a_buffered_reasoner_answers_the_class_hierarchy_of_the_last_reason(buff
     assert full("KITCHEN") not in under("LOCATION") and full("PANTRY") in under("LOCATION")
 
 
+@pytest.mark.parametrize("buffered", [True, False])
+def test_a_class_hierarchy_answer_and_its_unsatisfiable_warning_come_from_one_classification(buffered: bool) -> None:
+    """An unsatisfiable class is listed under every class with a warning naming it, both read from the classification
+    answered: a buffered reasoner's of its last REASON (U still unsatisfiable until the next REASON, and warned of),
+    a live reasoner's the current one (U satisfiable once U ⊑ BAD is retracted: neither listed nor warned of)."""
+    svc = ArmorService()
+    load(svc, buf_reasoner=str(buffered).lower())
+    ok(svc, "ADD", "CLASS", "CLASS", ["BAD", "DOOR"])
+    ok(svc, "ADD", "CLASS", "CLASS", ["BAD", "LOCATION"])  # DOOR and LOCATION are disjoint: BAD unsatisfiable
+    ok(svc, "ADD", "CLASS", "CLASS", ["U", "BAD"])
+    ok(svc, "REASON")
+    ok(svc, "REMOVE", "CLASS", "CLASS", ["U", "BAD"])
+    reply = ok(svc, "QUERY", "CLASS", "CLASS", ["ROBOT"])
+    assert (full("U") in reply.queried_objects) is buffered
+    assert ("U" in reply.error_description) is buffered
+    assert full("BAD") in reply.queried_objects and "BAD" in reply.error_description
+
+
 def test_reason_recovers_after_inconsistency_with_buffers() -> None:
     svc = ArmorService()
     load(svc, buf_manip="true", reasoner="", buf_reasoner="true")

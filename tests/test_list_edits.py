@@ -238,3 +238,19 @@ def test_an_all_different_list_made_malformed_and_mended_is_said_as_from_scratch
             fresh = reasoned(onto.serialize("turtle").decode())
         assert bool(_list_notices(fresh)) is said  # malformed, then mended
         assert _list_notices(onto) == _list_notices(fresh)
+
+
+def test_only_the_facets_of_the_xsd_namespace_are_schema_predicates() -> None:
+    """A datatype restriction's facet is a schema triple; a data property a user named in the XSD namespace is a
+    fact property (its value changes compile no rules and take the REPLACE short lane)."""
+    from pyoxigraph import Literal, NamedNode, Triple
+
+    from topostore.ontology.changes import fact_property
+    from topostore.ontology.files import is_schema_triple
+    from topostore.rdf.vocab import XSD
+
+    node, value = NamedNode("urn:x:f"), Literal("10", datatype=NamedNode(XSD + "integer"))
+    for facet in ("minInclusive", "maxExclusive", "pattern", "length", "fractionDigits"):
+        assert is_schema_triple(Triple(node, NamedNode(XSD + facet), value)) and not fact_property(NamedNode(XSD + facet))
+    level = NamedNode(XSD + "level")
+    assert not is_schema_triple(Triple(node, level, value)) and fact_property(level)

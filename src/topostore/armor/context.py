@@ -212,6 +212,13 @@ def asserted(onto: Ontology, s=None, p=None, o=None) -> list[Triple]:
     return list(onto.store.triples(s, p, o, ASSERTED))
 
 
+def answered_classification(onto: Ontology) -> dict | None:
+    """The classification a class-hierarchy answer reads: a buffered reasoner's as of its last REASON while
+    changes wait (``Ontology.reasoned_superclasses``), else None (the current one). Its members and its warning
+    of unsatisfiable classes come from the same one."""
+    return onto.reasoned_superclasses if onto.dirty else None
+
+
 def subclasses(onto: Ontology, cls: NamedNode) -> list[NamedNode]:
     """The subclasses aRMOR answers for ``cls`` (QUERY CLASS CLASS, DISJOINT CLASS CLASS), sorted: the
     reasoner's ``getSubClasses(cls, false)``, which leaves out the classes equivalent to ``cls`` (its own
@@ -222,7 +229,7 @@ def subclasses(onto: Ontology, cls: NamedNode) -> list[NamedNode]:
     as of the last REASON, until the next one (``Ontology.reasoned_superclasses``, kept at a schema change)."""
     told = {t.subject for t in asserted(onto, None, rdfs("subClassOf"), cls) if isinstance(t.subject, NamedNode)}
     if INFERRED in onto.visible_graphs():  # consistent (or not reasoned yet): the reasoner's answer too
-        kept = onto.reasoned_superclasses if onto.dirty else None
+        kept = answered_classification(onto)
         above = onto.reasoning.superclasses(cls, kept)
         told |= {c for c in onto.reasoning.subclasses(cls, kept) if c not in above}
     return sorted((c for c in told if not hidden(c)), key=lambda n: n.value)

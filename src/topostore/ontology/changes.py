@@ -23,7 +23,7 @@ from ..rdf.vocab import ASSERTED
 from ..stores import one_fact
 from ..stores.facts import Fact
 from . import state as durable_state
-from .files import SCHEMA_PREDICATE_NAMESPACES, changes_schema
+from .files import changes_schema, schema_predicate
 from .nary import all_different, individual_triples
 from .spellings import (
     AGAIN_IN_CHANGE,
@@ -250,7 +250,7 @@ def fact_property(p: NamedNode) -> bool:
     """Whether every triple of ``p`` is a fact: a property outside the RDF, RDFS, OWL and SWRL vocabularies
     and XSD's facets, whose triples :func:`~.files.changes_schema` never takes for a schema triple or a list
     cell the TBox reads (each of those is named by a property of these vocabularies), told by the property alone."""
-    return not p.value.startswith(SCHEMA_PREDICATE_NAMESPACES)
+    return not schema_predicate(p)
 
 
 def _distinct(items: Sequence[Triple | Fact]) -> Sequence[Triple | Fact]:

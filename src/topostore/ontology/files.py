@@ -56,15 +56,23 @@ if TYPE_CHECKING:  # pragma: no cover
     from .facade import Ontology
 
 SCHEMA_NAMESPACES = (RDF, RDFS, OWL, SWRL, STANFORD_SWRL)
-#: the namespaces of the predicates of schema triples: XSD's for the facets of datatype restrictions
-SCHEMA_PREDICATE_NAMESPACES = (*SCHEMA_NAMESPACES, XSD)
+#: the OWL 2 facets of a datatype restriction (``_:f xsd:maxInclusive 10``): predicates of schema triples outside the
+#: schema namespaces (a data property its user named in the XSD namespace stays a fact property)
+FACET_PREDICATES = frozenset(XSD + name for name in (
+    "minInclusive", "maxInclusive", "minExclusive", "maxExclusive", "length", "minLength", "maxLength", "pattern",
+    "totalDigits", "fractionDigits"))
+
+
+def schema_predicate(p: NamedNode) -> bool:
+    """Whether ``p`` names schema triples wherever it is used (a vocabulary property or a facet)."""
+    return p.value.startswith(SCHEMA_NAMESPACES) or p.value in FACET_PREDICATES
 _ABOX_PREDICATES = {TYPE, owl("sameAs"), DIFFERENT_FROM, FIRST, REST, owl("distinctMembers"), owl("members")}
 
 
 def is_schema_triple(t: Triple) -> bool:
     """True for triples that change the rules (TBox axioms, SWRL rules), not just facts: a datatype
     restriction's facet (``_:f xsd:maxInclusive 10``, a member of its ``owl:withRestrictions`` list) is one
-    too, its predicate in the XSD namespace (no property of an individual is)."""
+    too (:data:`FACET_PREDICATES`)."""
     p = t.predicate
     if p == TYPE:
         if is_skolem(t.object):  # a type that is an anonymous class expression: the compiler keeps its node
@@ -73,7 +81,7 @@ def is_schema_triple(t: Triple) -> bool:
             owl("NamedIndividual"), owl("Thing"), owl("AllDifferent"))
     if p in _ABOX_PREDICATES:
         return False
-    return p.value.startswith(SCHEMA_PREDICATE_NAMESPACES)
+    return schema_predicate(p)
 
 
 def changes_schema(store: Store, triples: Sequence[Triple]) -> bool:

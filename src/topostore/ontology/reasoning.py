@@ -159,9 +159,10 @@ class OntologyReasoning:
                 warn(unsatisfiable_text(empty), OntologyWarning)
         return onto._superclasses
 
-    def unsatisfiable(self) -> list[NamedNode]:
-        """The named classes no individual can be a member of (each under every class, as Pellet has it)."""
-        return unsatisfiable(self.classification())
+    def unsatisfiable(self, classes: dict | None = None) -> list[NamedNode]:
+        """The named classes no individual can be a member of (each under every class, as Pellet has it) in
+        ``classes`` (a classification; None: the current one)."""
+        return unsatisfiable(self.classification() if classes is None else classes)
 
     def value_types(self) -> frozenset[Triple]:
         """The classes (told and inferred) of the named individuals hasValue restrictions give as values: a

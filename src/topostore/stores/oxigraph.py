@@ -314,9 +314,10 @@ class OxigraphStore(Store):
             return False
         try:
             fresh, self._live_at_compaction = compacted(self._ox, self._writes, self._live_at_compaction)
-        except MemoryError:  # the copy did not fit: the store stays as it is, and a command that asked for it
-            # after its change was committed still succeeds
-            logger.warning("the in-memory store could not be compacted (out of memory); it stays as it is")
+        except Exception as exc:  # noqa: BLE001 - an optimisation: the store stays as it is (the copy did not fit,
+            # or the engine refused it), and a command that asked for it after its change was committed succeeds
+            logger.warning("the in-memory store could not be compacted (%s); it stays as it is",
+                           type(exc).__name__ if isinstance(exc, MemoryError) else exc)
             self._writes = 0
             return False
         if fresh is None:
