@@ -85,12 +85,7 @@ def test_on_the_map_the_minimum_s_subsumption_is_left_to_the_existential(monkeyp
     """ext-card-sub (≥2 hasDoor.DOOR ⊑ ∃hasDoor.DOOR, now CORRIDOR ⊑ ROOM) has nothing asserted to read on
     the map: not evaluated, with the closure unchanged against a run whose one-atom first passes read
     every member."""
-    onto = Ontology()
-    with tempfile.TemporaryDirectory() as tmp, warnings.catch_warnings():
-        warnings.simplefilter("ignore", OntologyWarning)
-        path, _ = maps.write("200", Path(tmp))
-        onto.load(path)
-    report = onto.reason(mode="full", profile=True)
+    onto, report = _map_reasoned()
     assert "ext-card-sub" not in report.stats.per_rule
     shortened = closure(onto)
     real = full_passes.implied_first_passes
@@ -132,14 +127,19 @@ def test_on_the_map_the_rooms_are_not_copied_into_locations(monkeypatch: pytest.
     """ROOM ⊑ LOCATION (cls-int2) finds no ROOM that is not a LOCATION on the map: its writers are ∃hasDoor
     and CORRIDOR ⊑ ROOM, and CORRIDOR's writer reads hasDoor, whose domain is LOCATION.  Not evaluated,
     the closure the same as a run whose one-atom first passes read every member."""
-    onto = Ontology()
-    with tempfile.TemporaryDirectory() as tmp, warnings.catch_warnings():
-        warnings.simplefilter("ignore", OntologyWarning)
-        path, _ = maps.write("200", Path(tmp))
-        onto.load(path)
-    report = onto.reason(mode="full", profile=True)
+    onto, report = _map_reasoned()
     assert "cls-int2" not in report.stats.per_rule
     shortened = closure(onto)
     monkeypatch.setattr(full_passes, "implied_first_passes", lambda rules, ordered, asserted=None: set())
     onto.reason(mode="full", profile=True)
     assert closure(onto) == shortened
+
+
+def _map_reasoned() -> tuple[Ontology, object]:
+    """The 200-location bench map loaded and reasoned in full, with its per-rule profile."""
+    onto = Ontology()
+    with tempfile.TemporaryDirectory() as tmp, warnings.catch_warnings():
+        warnings.simplefilter("ignore", OntologyWarning)
+        path, _ = maps.write("200", Path(tmp))
+        onto.load(path)
+    return onto, onto.reason(mode="full", profile=True)

@@ -14,7 +14,7 @@ from __future__ import annotations
 
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, TypeVar
 
 from pyoxigraph import Literal, NamedNode, Triple
 
@@ -33,6 +33,8 @@ if TYPE_CHECKING:  # pragma: no cover
     from .types import ArmorRequest
 
 
+T = TypeVar("T")
+
 #: entity IRIs of recent (name, namespace) arguments: a robot names the same few entities every step, and
 #: validating a name and building its IRI costs more than the rest of reading its arguments
 _ENTITIES: dict[tuple[str, str], NamedNode] = {}
@@ -45,27 +47,25 @@ _LITERALS_MAX = 4096
 def entity_named(name: str, prefix: str) -> NamedNode:
     """The IRI of the entity ``name`` in ``prefix`` (:func:`~topostore.rdf.terms.entity`), from the recent
     ones; :class:`InvalidNameError` for an illegal name.  Every command's names, on either path."""
-    key = (name, prefix)
-    found = _ENTITIES.get(key)
-    if found is None:
-        found = terms.entity(name, prefix)
-        if len(_ENTITIES) >= _ENTITIES_MAX:
-            _ENTITIES.clear()
-        _ENTITIES[key] = found
-    return found
+    return _recent(_ENTITIES, _ENTITIES_MAX, (name, prefix), terms.entity)
 
 
 def literal_named(text: str, type_name: str) -> Literal:
     """The literal of ``text`` as aRMOR type ``type_name`` (:func:`~topostore.rdf.terms.typed_literal`), from
     the recent ones (a robot's old value is the new value of its previous step); :class:`UnknownTypeError`
     or :class:`InvalidValueError` as that says.  Every command's values, on either path."""
-    key = (text, type_name)
-    found = _LITERALS.get(key)
+    return _recent(_LITERALS, _LITERALS_MAX, (text, type_name), terms.typed_literal)
+
+
+def _recent(cache: dict, limit: int, key: tuple[str, str], make: Callable[[str, str], T]) -> T:
+    """``make(*key)``, kept in ``cache`` (emptied when it holds ``limit`` entries: a robot's recent arguments
+    come back at once); an error ``make`` raises is raised again at the next call (nothing is kept)."""
+    found = cache.get(key)
     if found is None:
-        found = terms.typed_literal(text, type_name)
-        if len(_LITERALS) >= _LITERALS_MAX:
-            _LITERALS.clear()
-        _LITERALS[key] = found
+        found = make(*key)
+        if len(cache) >= limit:
+            cache.clear()
+        cache[key] = found
     return found
 
 

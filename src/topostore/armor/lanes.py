@@ -114,10 +114,7 @@ def _replace(service, req: ArmorRequest, data: bool) -> ArmorResponse | None:  #
 
 def _query_values(service, req: ArmorRequest) -> ArmorResponse | None:  # noqa: ANN001 - ArmorService
     """QUERY OBJECTPROP IND: the individuals a property relates one to."""
-    args = req.args
-    if len(args) != 2:
-        return None
-    ref = service._references.get(req.reference_name)
+    ref = _queried(service, req, 2)
     if ref is None:
         return None
     with ref.lock:
@@ -126,7 +123,7 @@ def _query_values(service, req: ArmorRequest) -> ArmorResponse | None:  # noqa: 
             return None
         prefix = onto.prefix
         try:
-            prop, ind = entity_named(args[0], prefix), entity_named(args[1], prefix)
+            prop, ind = entity_named(req.args[0], prefix), entity_named(req.args[1], prefix)
         except TopostoreError:
             return None
         found = onto.reads.individual_values(prop, ind)
@@ -135,10 +132,7 @@ def _query_values(service, req: ArmorRequest) -> ArmorResponse | None:  # noqa: 
 
 def _query_members(service, req: ArmorRequest) -> ArmorResponse | None:  # noqa: ANN001 - ArmorService
     """QUERY IND CLASS: the members of a class (kept as a view between REASONs)."""
-    args = req.args
-    if len(args) != 1:
-        return None
-    ref = service._references.get(req.reference_name)
+    ref = _queried(service, req, 1)
     if ref is None:
         return None
     with ref.lock:
@@ -146,12 +140,20 @@ def _query_members(service, req: ArmorRequest) -> ArmorResponse | None:  # noqa:
         if onto._report is None:
             return None
         try:
-            cls = entity_named(args[0], onto.prefix)
+            cls = entity_named(req.args[0], onto.prefix)
         except TopostoreError:
             return None
         renderer = service.renderer
         return _answer(service, req, ref, onto.reads.rendered_instances(
             cls, ("armor", renderer.short_names), renderer.member))
+
+
+def _queried(service, req: ArmorRequest, arity: int):  # noqa: ANN001, ANN202 - ArmorService, its Reference
+    """The reference a query lane answers from (None: the general path answers, with its own errors): the
+    request has ``arity`` arguments and names a loaded reference (whether it was reasoned is read under its lock)."""
+    if len(req.args) != arity:
+        return None
+    return service._references.get(req.reference_name)
 
 
 def _answer(service, req: ArmorRequest, ref, objects: list[str]) -> ArmorResponse:  # noqa: ANN001
