@@ -99,10 +99,12 @@ def _switched(module: object, name: str, on: bool) -> Iterator[None]:
 
 @pytest.fixture(scope="module")
 def replace_lane(request: pytest.FixtureRequest) -> Iterator[str]:
-    """REPLACE's short lane on ("lane") or off ("general") for the tests of one module."""
-    from topostore.armor import one_value
+    """REPLACE's short lane and the robot's command lanes (armor/lanes.py, queries too) on ("lane") or off
+    ("general") for the tests of one module: each such test holds of the general path alone as well."""
+    from topostore.armor import lanes, one_value
 
-    with _switched(one_value, "ENABLED", request.param == "lane"):
+    on = request.param == "lane"
+    with _switched(one_value, "ENABLED", on), _switched(lanes, "ENABLED", on):
         yield request.param
 
 
