@@ -54,12 +54,7 @@ class ArmorRobot:
     def step(self, move: Move) -> tuple[float, Answers]:
         """One robot step (three REPLACEs, REASON, two queries); its seconds and its answers."""
         start = time.perf_counter()
-        self._call("REPLACE", "OBJECTPROP", "IND", ["isIn", ROBOT, move.to, move.frm])
-        self._call("REPLACE", "DATAPROP", "IND", ["now", ROBOT, "LONG", str(move.now), str(move.old_now)])
-        if move.old_visit is None:
-            self._call("ADD", "DATAPROP", "IND", ["visitedAt", move.to, "LONG", str(move.now)])
-        else:
-            self._call("REPLACE", "DATAPROP", "IND", ["visitedAt", move.to, "LONG", str(move.now), str(move.old_visit)])
+        self.moved(move)
         reasoned = self._call("REASON", "", "", [])
         replies = self._replies()
         elapsed = time.perf_counter() - start  # the replies received: reading them into names is the checker's
@@ -67,6 +62,15 @@ class ArmorRobot:
         if not reasoned.is_consistent:
             raise RuntimeError(f"topostore found the map inconsistent after moving to {move.to}")
         return elapsed, answers
+
+    def moved(self, move: Move) -> None:
+        """The step's three changes before its REASON: the robot's place and clock, the new place's visit time."""
+        self._call("REPLACE", "OBJECTPROP", "IND", ["isIn", ROBOT, move.to, move.frm])
+        self._call("REPLACE", "DATAPROP", "IND", ["now", ROBOT, "LONG", str(move.now), str(move.old_now)])
+        if move.old_visit is None:
+            self._call("ADD", "DATAPROP", "IND", ["visitedAt", move.to, "LONG", str(move.now)])
+        else:
+            self._call("REPLACE", "DATAPROP", "IND", ["visitedAt", move.to, "LONG", str(move.now), str(move.old_visit)])
 
     def close(self) -> None:
         """Release the service's stores (a remote store's HTTP client)."""

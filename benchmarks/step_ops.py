@@ -25,7 +25,6 @@ from topostore.stores.oxigraph import OxigraphStore
 from . import maps
 from .armor_robot import ArmorRobot
 from .limits import lift_time_limit
-from .maps import ROBOT
 from .walk import plan
 
 #: the store's look-up API as the reasoner calls it, and the held scratch graphs beneath it
@@ -120,12 +119,7 @@ def count(map_name: str, steps: int, warm: int = 50) -> collections.Counter:
 
 def _reason(robot: ArmorRobot, m, counter: _Counter) -> None:
     """One step of the bench's robot, its REASON counted (the index's reads through :class:`_Index`)."""
-    robot._call("REPLACE", "OBJECTPROP", "IND", ["isIn", ROBOT, m.to, m.frm])
-    robot._call("REPLACE", "DATAPROP", "IND", ["now", ROBOT, "LONG", str(m.now), str(m.old_now)])
-    if m.old_visit is None:
-        robot._call("ADD", "DATAPROP", "IND", ["visitedAt", m.to, "LONG", str(m.now)])
-    else:
-        robot._call("REPLACE", "DATAPROP", "IND", ["visitedAt", m.to, "LONG", str(m.now), str(m.old_visit)])
+    robot.moved(m)
     store = robot.ontology.store
     index = store._ox
     store._ox = _Index(index, counter)

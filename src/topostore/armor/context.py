@@ -14,7 +14,8 @@ from __future__ import annotations
 
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, TypeVar
+from functools import lru_cache
+from typing import TYPE_CHECKING
 
 from pyoxigraph import Literal, NamedNode, Triple
 
@@ -33,40 +34,24 @@ if TYPE_CHECKING:  # pragma: no cover
     from .types import ArmorRequest
 
 
-T = TypeVar("T")
-
 #: entity IRIs of recent (name, namespace) arguments: a robot names the same few entities every step, and
 #: validating a name and building its IRI costs more than the rest of reading its arguments
-_ENTITIES: dict[tuple[str, str], NamedNode] = {}
-_ENTITIES_MAX = 4096
-#: literals of recent (text, type name) arguments, as :func:`~topostore.rdf.terms.typed_literal` made them
-_LITERALS: dict[tuple[str, str], Literal] = {}
-_LITERALS_MAX = 4096
+_entity = lru_cache(maxsize=4096)(terms.entity)
+#: literals of recent (text, type name) arguments (a robot's old value is the new value of its previous step)
+_literal = lru_cache(maxsize=4096)(terms.typed_literal)
 
 
 def entity_named(name: str, prefix: str) -> NamedNode:
     """The IRI of the entity ``name`` in ``prefix`` (:func:`~topostore.rdf.terms.entity`), from the recent
     ones; :class:`InvalidNameError` for an illegal name.  Every command's names, on either path."""
-    return _recent(_ENTITIES, _ENTITIES_MAX, (name, prefix), terms.entity)
+    return _entity(name, prefix)
 
 
 def literal_named(text: str, type_name: str) -> Literal:
     """The literal of ``text`` as aRMOR type ``type_name`` (:func:`~topostore.rdf.terms.typed_literal`), from
-    the recent ones (a robot's old value is the new value of its previous step); :class:`UnknownTypeError`
-    or :class:`InvalidValueError` as that says.  Every command's values, on either path."""
-    return _recent(_LITERALS, _LITERALS_MAX, (text, type_name), terms.typed_literal)
-
-
-def _recent(cache: dict, limit: int, key: tuple[str, str], make: Callable[[str, str], T]) -> T:
-    """``make(*key)``, kept in ``cache`` (emptied when it holds ``limit`` entries: a robot's recent arguments
-    come back at once); an error ``make`` raises is raised again at the next call (nothing is kept)."""
-    found = cache.get(key)
-    if found is None:
-        found = make(*key)
-        if len(cache) >= limit:
-            cache.clear()
-        cache[key] = found
-    return found
+    the recent ones; :class:`UnknownTypeError` or :class:`InvalidValueError` as that says.  Every command's
+    values, on either path."""
+    return _literal(text, type_name)
 
 
 def answer_texts(renderer: Renderer, onto: Ontology, items: list) -> list[str]:

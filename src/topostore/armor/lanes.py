@@ -112,9 +112,14 @@ def _replace(service, req: ArmorRequest, data: bool) -> ArmorResponse | None:  #
         return _answer(service, req, ref, [])
 
 
-def _query_values(service, req: ArmorRequest) -> ArmorResponse | None:  # noqa: ANN001 - ArmorService
-    """QUERY OBJECTPROP IND: the individuals a property relates one to."""
-    ref = _queried(service, req, 2)
+def _query(service, req: ArmorRequest, arity: int, answer: Callable) -> ArmorResponse | None:  # noqa: ANN001
+    """A query lane: its ``arity`` arguments name entities, which ``answer`` (the renderer, the ontology, the
+    entities) turns into the reply's objects; None (the general path answers, with its own errors) where the
+    arity differs, the reference is not loaded or never reasoned, or a name is refused."""
+    args = req.args
+    if len(args) != arity:
+        return None
+    ref = service._references.get(req.reference_name)
     if ref is None:
         return None
     with ref.lock:
@@ -123,37 +128,20 @@ def _query_values(service, req: ArmorRequest) -> ArmorResponse | None:  # noqa: 
             return None
         prefix = onto.prefix
         try:
-            prop, ind = entity_named(req.args[0], prefix), entity_named(req.args[1], prefix)
+            names = [entity_named(a, prefix) for a in args]
         except TopostoreError:
             return None
-        found = onto.reads.individual_values(prop, ind)
-        return _answer(service, req, ref, answer_texts(service.renderer, onto, found))
+        return _answer(service, req, ref, answer(service.renderer, onto, *names))
 
 
-def _query_members(service, req: ArmorRequest) -> ArmorResponse | None:  # noqa: ANN001 - ArmorService
+def _values(renderer, onto: Ontology, prop: NamedNode, ind: NamedNode) -> list[str]:  # noqa: ANN001 - Renderer
+    """QUERY OBJECTPROP IND: the individuals a property relates one to."""
+    return answer_texts(renderer, onto, onto.reads.individual_values(prop, ind))
+
+
+def _members(renderer, onto: Ontology, cls: NamedNode) -> list[str]:  # noqa: ANN001 - Renderer
     """QUERY IND CLASS: the members of a class (kept as a view between REASONs)."""
-    ref = _queried(service, req, 1)
-    if ref is None:
-        return None
-    with ref.lock:
-        onto = ref.ontology
-        if onto._report is None:
-            return None
-        try:
-            cls = entity_named(req.args[0], onto.prefix)
-        except TopostoreError:
-            return None
-        renderer = service.renderer
-        return _answer(service, req, ref, onto.reads.rendered_instances(
-            cls, ("armor", renderer.short_names), renderer.member))
-
-
-def _queried(service, req: ArmorRequest, arity: int):  # noqa: ANN001, ANN202 - ArmorService, its Reference
-    """The reference a query lane answers from (None: the general path answers, with its own errors): the
-    request has ``arity`` arguments and names a loaded reference (whether it was reasoned is read under its lock)."""
-    if len(req.args) != arity:
-        return None
-    return service._references.get(req.reference_name)
+    return onto.reads.rendered_instances(cls, ("armor", renderer.short_names), renderer.member)
 
 
 def _answer(service, req: ArmorRequest, ref, objects: list[str]) -> ArmorResponse:  # noqa: ANN001
@@ -165,8 +153,8 @@ def _answer(service, req: ArmorRequest, ref, objects: list[str]) -> ArmorRespons
 LANES: dict[tuple[str, str, str], Lane] = {
     ("REPLACE", "DATAPROP", "IND"): partial(_replace, data=True),
     ("REPLACE", "OBJECTPROP", "IND"): partial(_replace, data=False),
-    ("QUERY", "OBJECTPROP", "IND"): _query_values,
-    ("QUERY", "IND", "CLASS"): _query_members,
+    ("QUERY", "OBJECTPROP", "IND"): partial(_query, arity=2, answer=_values),
+    ("QUERY", "IND", "CLASS"): partial(_query, arity=1, answer=_members),
 }
 
 

@@ -66,6 +66,8 @@ FACET_PREDICATES = frozenset(XSD + name for name in (
 def schema_predicate(p: NamedNode) -> bool:
     """Whether ``p`` names schema triples wherever it is used (a vocabulary property or a facet)."""
     return p.value.startswith(SCHEMA_NAMESPACES) or p.value in FACET_PREDICATES
+
+
 _ABOX_PREDICATES = {TYPE, owl("sameAs"), DIFFERENT_FROM, FIRST, REST, owl("distinctMembers"), owl("members")}
 
 

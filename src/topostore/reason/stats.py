@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from functools import lru_cache
 
 
 @dataclass
@@ -30,17 +31,7 @@ class ReasonStats:
     per_rule: dict[str, float] = field(default_factory=dict)
 
 
-#: :func:`incremental_reason` by (added, removed) sizes
-_REASONS: dict[tuple[int, int], str] = {}
-
-
+@lru_cache(maxsize=256)
 def incremental_reason(added: int, removed: int) -> str:
     """Why a run was incremental, by the sizes of its change (a robot's every step: one text, made once)."""
-    sizes = (added, removed)
-    text = _REASONS.get(sizes)
-    if text is None:
-        if len(_REASONS) >= 256:
-            _REASONS.clear()
-        text = _REASONS[sizes] = (f"{added} added, {removed} removed asserted triples" if added or removed
-                                  else "no asserted change")
-    return text
+    return f"{added} added, {removed} removed asserted triples" if added or removed else "no asserted change"
