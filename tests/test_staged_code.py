@@ -137,3 +137,43 @@ def test_a_rule_or_axiom_added_after_the_first_step_is_never_run_by_a_function_m
         assert forms[-1][1].fused is not after_rule
     hot = {onto.short(i) for i in onto.instances(N("Hot"))}
     assert hot and {onto.short(i) for i in onto.instances(N("D"))} >= hot
+
+
+@pytest.mark.parametrize("generated", [True, False])
+def test_a_key_no_rule_writes_is_given_its_changed_facts_and_a_derived_key_is_read_back(generated: bool) -> None:
+    """The lost and gained facts of a key no rule writes are the change's all run long, so its look-ups are given
+    them instead of reading OVERDELETED and NEW_FACTS back (reason/staged_plan.py ``_given``); a key a rule writes
+    (``:C``, the range of ``:r``, read by ``C ⊑ A``) is read back, since the run adds its derived facts to those
+    graphs."""
+    from test_step_program import NS
+
+    from topostore.reason import staged
+    from topostore.reason.program import signature
+    from topostore.reason.scratch import NEW_FACTS, OVERDELETED
+    from topostore.stores.oxigraph import OxigraphStore
+
+    onto = new_ontology()
+    read_back: list = []
+    original = OxigraphStore.few_facts
+
+    def few_facts(self, s, p, o, graphs, limit):
+        if any(g in (NEW_FACTS, OVERDELETED) for g in graphs):
+            read_back.append(p)
+        return original(self, s, p, o, graphs, limit)
+
+    with mock.patch.object(OxigraphStore, "few_facts", few_facts), mock.patch.object(staged_code, "GENERATED", generated):
+        for batch in ([("i0", "p", "i1"), ("i1", "q", "i2")], [("i0", "p", "i1")], [("i0", "p", "i3"), ("i3", "q", "i4")]):
+            for s, p, o in batch:
+                fact = Triple(N(s), N(p), N(o))
+                onto.remove(fact) if fact in set(onto.store.triples(graph=ASSERTED)) else onto.add(fact)
+            report = onto.reason(mode="incremental")
+            assert report.stats.program == "compiled"
+            assert_as_from_scratch(onto, report)
+    assert N("p") not in read_back and N("q") not in read_back
+    reasoner = onto._reasoner
+    sig = signature(({f"<{NS}p>": 1}, {f"<{NS}C>": 1}), ({f"<{NS}p>": 1}, {f"<{NS}C>": 1}), ())
+    program = reasoner.step.compiler.compile(sig, reasoner.state.present, reasoner.state.asserted)
+    given = {(op.kind, op.key): op.given for part in staged.segments(program) for op in part.ops
+             if op.kind in ("minus", "plus") and op.direct is not None}
+    assert given[("plus", ("p", f"<{NS}p>"))] == 0 and given[("minus", ("p", f"<{NS}p>"))] == 1
+    assert {g for (_, key), g in given.items() if key == ("t", f"<{NS}C>")} == {None}

@@ -164,8 +164,8 @@ def test_joins_with_conditions_run_by_look_ups_and_fall_back_where_not_exact() -
     originals = {name: getattr(look_join.Joined, name) for name in ("keep", "delete", "additions")}
 
     def counted(name):
-        def run(self, store):
-            answer = originals[name](self, store)
+        def run(self, store, *given):
+            answer = originals[name](self, store, *given)
             calls.append((name, answer))
             return answer
         return run
@@ -937,7 +937,7 @@ def test_a_part_nothing_starts_is_passed_by_its_keys() -> None:
             assert part.always
         assert part.minus == {op[2] for op in part.ops if op[1] == "minus"}
         assert part.plus == {op[2] for op in part.ops if op[1] == "plus"}
-        for index, _, _, text, _, key, found, reads, seeded, _, _, _ in part.ops:  # bound once per program
+        for index, _, _, text, _, key, found, reads, seeded, _, _, _, _ in part.ops:  # bound once per program
             assert (text, key, found, seeded) == (program.ops[index][1], program.part[index],
                                                    program.direct.get(index), index in program.seeded)
             assert reads == (program.reads[index] if found is not None else None)

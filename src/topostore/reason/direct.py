@@ -31,6 +31,11 @@ from .scratch import CANDIDATES, FLIP_GAINED, NEW_FACTS, OVERDELETED
 #: at most this many facts are moved through look-ups; more go through the SPARQL text
 FEW = 16
 
+#: the look-ups of a key's lost (``minus``) or gained (``plus``) facts that may be given them instead of
+#: reading them back from OVERDELETED or NEW_FACTS, by name: where no rule of the program writes the key,
+#: those graphs hold exactly the change's facts of it all run long (:attr:`.staged_plan.BoundOp.given`)
+GIVEN = frozenset(("candidates", "additions", "run"))
+
 #: :func:`~..compile.rule.key_pattern` kept per key: a step looks its keys up a dozen times, and each
 #: pattern made anew parses its IRI into a term
 pattern_of = functools.lru_cache(maxsize=4096)(key_pattern)
@@ -182,18 +187,22 @@ class OneAtom:
                 out.append(head)
         return out
 
-    def candidates(self, store) -> bool:
-        """:func:`.delta_texts.candidates`: heads present in the graph that a removed fact derived."""
-        facts = _facts(store, self._body.free, OVERDELETED)
+    def candidates(self, store, facts: list[Triple] | None = None) -> bool:
+        """:func:`.delta_texts.candidates`: heads present in the graph that a removed fact derived;
+        ``facts``: the removed facts of the atom's key where the run has them (:data:`GIVEN`), else read."""
+        if facts is None:
+            facts = _facts(store, self._body.free, OVERDELETED)
         heads = None if facts is None else self._heads(facts)
         if heads is None:
             return False
         _add_candidates(store, heads, self.graph)
         return True
 
-    def additions(self, store) -> bool:
-        """:func:`.delta_texts.additions`: heads an added fact derives, not known yet."""
-        facts = _facts(store, self._body.free, NEW_FACTS)
+    def additions(self, store, facts: list[Triple] | None = None) -> bool:
+        """:func:`.delta_texts.additions`: heads an added fact derives, not known yet; ``facts``: as
+        :meth:`candidates`' (the added ones)."""
+        if facts is None:
+            facts = _facts(store, self._body.free, NEW_FACTS)
         heads = None if facts is None else self._heads(facts)
         if heads is None:
             return False
@@ -247,8 +256,10 @@ class Relaxed:
         #: ``j`` (its other atoms): no candidate is needed then, however wide this one's would be
         self.needs = {"run": frozenset(a.read_key() for m, a in enumerate(rule.body) if m != j)}
 
-    def run(self, store) -> bool:
-        facts = _facts(store, self._body.free, OVERDELETED)
+    def run(self, store, facts: list[Triple] | None = None) -> bool:
+        """The candidates into CANDIDATES; ``facts``: as :meth:`OneAtom.candidates`'."""
+        if facts is None:
+            facts = _facts(store, self._body.free, OVERDELETED)
         if facts is None:
             return False
         heads: dict[Triple, None] = {}

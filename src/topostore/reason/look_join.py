@@ -412,11 +412,13 @@ class Joined:
             store.add_scratch(dead, OVERDELETED)
         return True
 
-    def additions(self, store) -> bool:
+    def additions(self, store, facts: list[Triple] | None = None) -> bool:
         """:func:`.delta_texts.additions`: heads the rule derives with an added fact of the delta atom,
-        not known yet, into the graph and NEW_FACTS."""
+        not known yet, into the graph and NEW_FACTS; ``facts``: the delta atom's added facts where the run
+        has them (:data:`.direct.GIVEN`), else read."""
         delta = self._body[self.delta]
-        facts = direct._facts(store, delta.free, NEW_FACTS)
+        if facts is None:
+            facts = direct._facts(store, delta.free, NEW_FACTS)
         if facts is None:
             return False
         heads = []

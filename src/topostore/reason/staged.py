@@ -13,11 +13,12 @@ from __future__ import annotations
 from collections.abc import Callable, Collection
 from itertools import islice
 
-from pyoxigraph import NamedNode, Triple
+from pyoxigraph import Literal, NamedNode, Triple
 
 from ..compile.generic import PREFIXES
 from ..compile.rule import ReadKey
 from ..rdf.vocab import ASSERTED
+from . import direct as direct_look_ups
 from .component import run_component
 from .delta_texts import FLIP_LOST, KEEP, NEW_STATE
 from .direct import pattern_of
@@ -67,6 +68,8 @@ class StagedRun:
         self.present = present
         #: SPARQL text was sent (it may write facts of any key its part writes, without a note)
         self.texts = False
+        #: :meth:`change_facts` by (key, side)
+        self._change_facts: dict[tuple, list[Triple] | None] = {}
 
     def run(self) -> None:
         """Run the program part by part (:func:`segments`): a part none of whose operations can run (no
@@ -104,8 +107,10 @@ class StagedRun:
         #: the flips' heads by the graph they would be written to; None: none yet, False: written there
         handed: dict | bool | None = None
         taken: set = set()  # the graphs whose heads an operation took
-        for index, kind, key, text, flip, part, direct, reads, has_seeded, part_reads, hand, needs in ops:
+        for index, kind, key, text, flip, part, direct, reads, has_seeded, part_reads, hand, needs, given in ops:
             look_up = True
+            if given is not None and direct is not None:
+                direct = self._given(direct, key, given)
             fallback = None
             if flip is not None:
                 if needs and self._without_facts(needs):
@@ -276,6 +281,27 @@ class StagedRun:
             return False
         facts = islice(self.store.triples(None, NamedNode(p[1:-1]), None, ASSERTED), len(subjects) + 1)
         return sum(1 for _ in facts) == len(subjects)
+
+    def change_facts(self, key: ReadKey, side: int) -> list[Triple] | None:
+        """The change's added (``side`` 0) or removed (1) facts of ``key``: what NEW_FACTS or OVERDELETED hold
+        of a key no rule of the program writes (:attr:`.staged_plan.BoundOp.given`), without reading them
+        back; None where the look-up reads them itself: no change given (its text copies it), more than
+        :data:`.direct.FEW`, or a literal among them (read back in the form the store keeps)."""
+        found = self._change_facts.get((key, side), False)
+        if found is not False:
+            return found
+        found = None
+        if self.changes is not None:
+            _, p, o = pattern_of(key)
+            found = [t for t in self.changes[side] if t.predicate == p and (o is None or t.object == o)]
+            if len(found) > direct_look_ups.FEW or any(isinstance(t.object, Literal) for t in found):
+                found = None
+        self._change_facts[(key, side)] = found
+        return found
+
+    def _given(self, look_up: Callable, key: ReadKey, side: int) -> Callable:
+        """``look_up`` given ``key``'s facts of the change (:meth:`change_facts`) as the interpreted run calls it."""
+        return lambda store: look_up(store, self.change_facts(key, side))
 
     def _send(self, text: str, key: ReadKey | None, direct: Callable | None, reads: Collection | None,
               seeded: int | bool, look_up: bool = True, fallback: tuple | None = None,

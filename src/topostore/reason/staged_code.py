@@ -329,7 +329,8 @@ class _Part:
             self.line("if dirty:", inner)
             self.line(f"r._reading({reads})", inner + 1)
             if kept is None:
-                self.line(f"if {c(op.direct)}(store):", inner)
+                given = "" if op.given is None else f", r.change_facts({c(op.key)}, {op.given})"
+                self.line(f"if {c(op.direct)}(store{given}):", inner)
                 self.line("r.sent += 1", inner + 1)
             else:
                 self.line(f"answer = {c(op.direct)}(store)", inner)

@@ -13,8 +13,10 @@ from typing import NamedTuple
 
 from ..compile.rule import ReadKey
 from .delta_texts import FLIP_LOST
+from .direct import GIVEN
 from .program import StepProgram
 from .scratch import CANDIDATES, FLIP_GAINED
+from .triggers import may_hold
 
 #: operations that run only when a graph holds facts of their key: the key's candidates are rechecked,
 #: its flipped-false facts become candidates, its flipped-true facts are added
@@ -55,6 +57,10 @@ class BoundOp(NamedTuple):
     #: (:attr:`.program.StepProgram.needs`), the premises an addition joins (its look-up's ``needs``); each
     #: as (key, 0 for a predicate or 1 for a class, name) (:func:`_named`)
     needs: tuple | None = None
+    #: a ``minus`` or ``plus`` look-up that may be given its key's lost or gained facts from the run's
+    #: change (:meth:`.staged.StagedRun.change_facts`), as (its side of the change: 0 added, 1 removed);
+    #: None: it reads them from OVERDELETED or NEW_FACTS (see :func:`_given`)
+    given: int | None = None
 
 
 def _named(keys: Collection | None) -> tuple | None:
@@ -129,7 +135,23 @@ def _bound(program: StepProgram, direct: dict, index: int, tag: tuple, text: str
     return BoundOp(index, tag[0], tag[1] if len(tag) > 1 else None, text, flip, part, found,
                    program.reads[index] if found is not None else None, index in program.seeded,
                    (program.reads[part] if part is not None else (None,)) if flip is not None else None, hand,
-                   needs)
+                   needs, _given(program, tag, found))
+
+
+def _given(program: StepProgram, tag: tuple, found: Callable | None) -> int | None:
+    """:attr:`BoundOp.given` of an operation: its side of the change where it is a ``minus`` or ``plus``
+    look-up taking its facts (:data:`.direct.GIVEN`), the program writes the change to OVERDELETED and
+    NEW_FACTS itself (its ``changes`` operation) and none of its rules writes the key (no head of the
+    program, no part of one, no variable head: :func:`.triggers.may_hold`), so those graphs hold the
+    change's facts of it and nothing else all run long; else None."""
+    if tag[0] not in NEEDING or tag[1][0] == "*" or found is None or getattr(found, "__name__", None) not in GIVEN:
+        return None
+    if not any(t[0] == "changes" for t, _ in program.ops):
+        return None
+    written = {*program.heads, *(k for k in program.part if k is not None)}
+    if may_hold(written, tag[1]):
+        return None
+    return 1 if tag[0] == "minus" else 0
 
 
 __all__ = ["AFTER", "HANDED", "NEEDING", "SEEDING", "SENT", "BoundOp", "Segment", "segments"]
