@@ -937,7 +937,7 @@ def test_a_part_nothing_starts_is_passed_by_its_keys() -> None:
             assert part.always
         assert part.minus == {op[2] for op in part.ops if op[1] == "minus"}
         assert part.plus == {op[2] for op in part.ops if op[1] == "plus"}
-        for index, _, _, text, _, key, found, reads, seeded, _, _, _, _ in part.ops:  # bound once per program
+        for index, _, _, text, _, key, found, reads, seeded, _, _, _, _, _ in part.ops:  # bound once per program
             assert (text, key, found, seeded) == (program.ops[index][1], program.part[index],
                                                    program.direct.get(index), index in program.seeded)
             assert reads == (program.reads[index] if found is not None else None)

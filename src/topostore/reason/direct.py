@@ -151,6 +151,8 @@ def _add_candidates(store, facts: list[Triple], graph: NamedNode) -> None:
 
 def _write_new(store, heads: list[Triple], graph: NamedNode) -> None:
     """The heads not known in the new state, into ``graph`` and NEW_FACTS."""
+    if not heads:
+        return  # a join that derived nothing: nothing to look up
     heads = list(dict.fromkeys(heads))
     new = [t for t, known in zip(heads, _known(store, heads, NEW_STATE)) if not known]
     if new:
@@ -258,10 +260,18 @@ class Relaxed:
 
     def run(self, store, facts: list[Triple] | None = None) -> bool:
         """The candidates into CANDIDATES; ``facts``: as :meth:`OneAtom.candidates`'."""
+        heads = self.candidates(store, facts)
+        if heads is None:
+            return False
+        store.add_scratch(heads, CANDIDATES)
+        return True
+
+    def candidates(self, store, facts: list[Triple] | None = None) -> list[Triple] | None:
+        """The candidates (None: more than :data:`FEW`, the text finds them); ``facts``: as :meth:`run`'s."""
         if facts is None:
             facts = _facts(store, self._body.free, OVERDELETED)
         if facts is None:
-            return False
+            return None
         heads: dict[Triple, None] = {}
         for t in facts:
             bound = self._body.bind(t)
@@ -269,12 +279,11 @@ class Relaxed:
                 continue
             found = _facts(store, self._head.read(bound), self.graph)
             if found is None:
-                return False
+                return None
             heads.update(dict.fromkeys(found))
             if len(heads) > FEW:
-                return False
-        store.add_scratch(list(heads), CANDIDATES)
-        return True
+                return None
+        return list(heads)
 
 
 def relaxable(rule: Rule, j: int) -> bool:

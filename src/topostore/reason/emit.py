@@ -25,6 +25,7 @@ from .program import (
     general_head,
     pair_atom,
 )
+from .regroup import Regroup, regroupable
 from .restate import restates
 from .scratch import ADDED, CANDIDATES, NEW_FACTS, OVERDELETED, REMOVED, target
 from .triggers import Present, matches
@@ -71,6 +72,10 @@ class Emitter:
         self.reads: dict[ReadKey, frozenset] = {}
         #: by position of a flip, the keys of its rule's atoms it does not compare (see :attr:`StepProgram.needs`)
         self.needs: dict[int, frozenset] = {}
+        #: the (rule, atom) of each candidates and additions operation, by position (see :meth:`_regroup`)
+        self._atom_of: dict[int, tuple[int, int]] = {}
+        #: operations a regrouped candidates operation does, by position (see :attr:`StepProgram.covered`)
+        self.covered: dict[int, int] = {}
 
     def op(self, ops: list, tag: tuple, text: str, direct: Callable | None = None) -> None:
         """Append an operation to ``ops`` (the program's own: with its look-up equivalent, if any, a
@@ -98,7 +103,7 @@ class Emitter:
         self.part += [None] * (len(self.ops) - len(self.part))
         return StepProgram(self.ops, frozenset(absent), frozenset(self.graphs), frozenset(self.flipped),
                            self.flip_rules, self.clean, frozenset(self.unasserted), self.direct,
-                           self.seeded, self.part, self.reads, self.needs)
+                           self.seeded, self.part, self.reads, self.needs, covered=self.covered)
 
     def _active_writers(self) -> dict[ReadKey, list[int]]:
         """The active rules by the key they write, in rule order (found once: a program has a few
@@ -112,6 +117,7 @@ class Emitter:
     def _plain(self, key: ReadKey, writers: list[int]) -> None:
         """A key no rule derives from itself: candidates, flips, recheck, additions."""
         graph = self.graphs[key] = self.target(key, writers)
+        start = len(self.ops)
         seeded = self._candidates(writers)
         flipped = self.flip_ops(writers, self.ops, SEEDS)
         # the flipped-true heads before the recheck, where each is proven by its flip's rule in the new
@@ -144,6 +150,33 @@ class Emitter:
         if added or flipped:
             self.plus.add(key)
         self.ops.append((("end", key), ""))
+        self._regroup(start, key, graph)
+
+    def _regroup(self, start: int, key: ReadKey, graph: NamedNode) -> None:
+        """Where the key's part (its operations from ``start``) has one candidates operation, of a rule
+        :func:`.regroup.regroupable` at that atom, whose recheck is the rule's own deletion, and nothing
+        else that makes candidates (no flip, no removed asserted fact of the key): that operation's look-up
+        diffs the rule's heads (:class:`.regroup.Regroup`), and the deletion and the atom's additions are
+        recorded as done by it where it does (:attr:`StepProgram.covered`)."""
+        part = range(start, len(self.ops))
+        kinds = [self.ops[n][0][0] for n in part]
+        if kinds.count("minus") != 1 or kinds.count("delete") != 1 or \
+                any(k not in ("minus", "delete", "plus", "end") for k in kinds):
+            return
+        minus = start + kinds.index("minus")
+        delete = start + kinds.index("delete")
+        if minus not in self._atom_of or delete not in self.direct:
+            return
+        i, j = self._atom_of[minus]
+        plus = [n for n in part if kinds[n - start] == "plus" and self._atom_of.get(n) == (i, j)]
+        if len(plus) != 1 or getattr(self.direct[delete].__self__, "rule", None) is not self.rules[i]:
+            return
+        if not regroupable(self.rules[i], j, self.clean,
+                           lambda k: bool(self.writers.get(k)) or bool(self.writers.get(("*",)))):
+            return
+        regroup = Regroup(self.rules[i], j, graph, self.graphs_of)
+        self.direct[minus], self.reads[minus] = regroup.run, regroup.reads
+        self.covered[delete] = self.covered[plus[0]] = minus
 
     def _gained(self, key: ReadKey, graph: NamedNode) -> None:
         """The key's flipped-true heads not known yet, into its graph and NEW_FACTS."""
@@ -203,6 +236,7 @@ class Emitter:
             handled = set(self.handled(i) or ())
             for j, atom in enumerate(self.rules[i].body):
                 if atom.read_key() in self.minus and j not in handled and not self.idle(i, j):
+                    self._atom_of[len(self.ops)] = (i, j)
                     self.op(self.ops, ("minus", atom.read_key()), self.candidates(i, j),
                             self._one_atom(i, target(self.rules[i]), "candidates") or self._relaxed(i, j))
                     emitted = True
@@ -252,6 +286,7 @@ class Emitter:
             handled = set(self.handled(i) or ())
             for j, atom in enumerate(self.rules[i].body):
                 if atom.read_key() in self.plus and j not in handled and not self.idle(i, j):
+                    self._atom_of[len(self.ops)] = (i, j)
                     self.op(self.ops, ("plus", atom.read_key()),
                             texts.additions(self.rules[i], j, NEW_FACTS, (graph, NEW_FACTS), self.c.lateral),
                             self._one_atom(i, graph, "additions") or self._joined(i, graph, "additions", j))

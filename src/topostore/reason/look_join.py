@@ -403,9 +403,13 @@ class Joined:
         decided = self._decide(store)
         if decided is None:
             return False
-        dead = [c for c, proven in decided if not proven]
+        return self.remove([c for c, proven in decided if not proven], store)
+
+    def remove(self, dead: list[Triple], store) -> bool:
+        """The heads ``dead`` (no longer derived) not asserted leave the graph and join OVERDELETED; False
+        where the SPARQL text moves them (a literal among them: it may be stored in another spelling)."""
         if any(isinstance(c.object, Literal) for c in dead):
-            return False  # moved by the SPARQL text: a literal may be stored in another spelling
+            return False
         dead = [c for c, asserted in zip(dead, store.contains_each(dead, ASSERTED)) if not asserted] if dead else []
         if dead:
             store.discard(dead, (self.graph,))
@@ -416,12 +420,22 @@ class Joined:
         """:func:`.delta_texts.additions`: heads the rule derives with an added fact of the delta atom,
         not known yet, into the graph and NEW_FACTS; ``facts``: the delta atom's added facts where the run
         has them (:data:`.direct.GIVEN`), else read."""
+        heads = self.derived(store, facts)
+        if heads is None:
+            return False
+        _write_new(store, heads, self.graph)
+        return True
+
+    def derived(self, store, facts: list[Triple] | None = None) -> list[Triple] | None:
+        """The heads the rule derives in the new state with ``facts`` of the delta atom (None: its added
+        facts, read from NEW_FACTS), known or not; None where the SPARQL text decides (more than
+        :data:`.direct.FEW`, a condition not decided, a head holding a literal)."""
         delta = self._body[self.delta]
         if facts is None:
             facts = direct._facts(store, delta.free, NEW_FACTS)
         if facts is None:
-            return False
-        heads = []
+            return None
+        heads: list[Triple] = []
         try:
             for t in facts:
                 start = delta.bind(t)
@@ -429,24 +443,23 @@ class Joined:
                     continue
                 if self._derive_decided is not None:
                     if not self._derive_decided(store, start, heads):
-                        return False
+                        return None
                     continue
                 for solution in self._derive(store, start):
                     b = self.conditions.holds(solution)
                     if b is UNKNOWN:
-                        return False
+                        return None
                     if b:
                         head = _instance(self._head.terms, solution)
                         if head is False:
-                            return False
+                            return None
                         if head is not None:
                             heads.append(head)
                     if len(heads) > direct.FEW:
-                        return False
+                        return None
         except _Fallback:
-            return False
-        _write_new(store, heads, self.graph)
-        return True
+            return None
+        return heads
 
 
 __all__ = ["Conditions", "Joined", "StateGraphs", "every_graph", "joinable"]

@@ -121,6 +121,9 @@ class StepProgram:
     #: by position of a flip in ``ops``: the keys of its rule's atoms it does not compare, without whose
     #: facts in the new state it finds nothing (see :class:`.staged.StagedRun`)
     needs: dict = field(default_factory=dict)
+    #: by position: an operation a regrouped candidates operation (at the position it maps to) does where its
+    #: look-up answers :data:`.regroup.REGROUPED` (its part's deletion and its atom's additions: :mod:`.regroup`)
+    covered: dict = field(default_factory=dict)
     #: the operations grouped by part once, for key-by-key runs (:func:`.staged.segments`; built at the first run)
     segments: list | None = field(default=None, compare=False, repr=False)
     #: those parts as one generated function (:func:`.staged_code.generate`; made at the first run)

@@ -17,18 +17,37 @@ from pyoxigraph import Literal, NamedNode, Triple
 
 from ..compile.generic import PREFIXES
 from ..compile.rule import ReadKey
-from ..rdf.vocab import ASSERTED
+from ..rdf.vocab import ASSERTED, TYPE
 from . import direct as direct_look_ups
 from .component import run_component
 from .delta_texts import FLIP_LOST, KEEP, NEW_STATE
 from .direct import pattern_of
 from .program import Signature, StepProgram
+from .regroup import REGROUPED
 from .scratch import CANDIDATES, FLIP_GAINED, NEW_FACTS, OVERDELETED
-from .staged_plan import AFTER, HANDED, SEEDING, SENT, BoundOp, Segment, segments
+from .staged_plan import AFTER, BOTH, HANDED, SEEDING, SENT, BoundOp, Segment, segments
 from .triggers import Present
 
 #: up to how many candidates a key's rechecks go one by one, stopping once every candidate is kept
 FEW = 32
+
+
+#: the read key of an rdf:type atom whose class is a variable: every class's facts (never given by key)
+_ANY_CLASS = ("p", f"<{TYPE.value}>")
+
+
+def _by_key(facts: Collection[Triple]) -> tuple[dict, set]:
+    """``facts`` by their read key (a class's membership under its class), in one pass, and the keys with a
+    literal among them (read back in the store's spelling instead: :meth:`StagedRun.change_facts`)."""
+    out: dict[tuple, list[Triple]] = {}
+    literal: set[tuple] = set()
+    for t in facts:
+        p, o = t.predicate, t.object
+        key = ("t", f"<{o.value}>") if p == TYPE and isinstance(o, NamedNode) else ("p", f"<{p.value}>")
+        out.setdefault(key, []).append(t)
+        if isinstance(o, Literal):
+            literal.add(key)
+    return out, literal
 
 
 class StagedRun:
@@ -68,8 +87,8 @@ class StagedRun:
         self.present = present
         #: SPARQL text was sent (it may write facts of any key its part writes, without a note)
         self.texts = False
-        #: :meth:`change_facts` by (key, side)
-        self._change_facts: dict[tuple, list[Triple] | None] = {}
+        #: :meth:`change_facts` by (key, side), and each side's facts by key (:func:`_by_key`)
+        self._change_facts: dict = {}
 
     def run(self) -> None:
         """Run the program part by part (:func:`segments`): a part none of whose operations can run (no
@@ -107,10 +126,14 @@ class StagedRun:
         #: the flips' heads by the graph they would be written to; None: none yet, False: written there
         handed: dict | bool | None = None
         taken: set = set()  # the graphs whose heads an operation took
-        for index, kind, key, text, flip, part, direct, reads, has_seeded, part_reads, hand, needs, given in ops:
+        regrouped: set[int] = set()  # regrouped candidates operations that diffed (their covered ones are done)
+        for index, kind, key, text, flip, part, direct, reads, has_seeded, part_reads, hand, needs, given, \
+                covered_by in ops:
+            if covered_by is not None and covered_by in regrouped:
+                continue
             look_up = True
             if given is not None and direct is not None:
-                direct = self._given(direct, key, given)
+                direct = self._given(direct, key, given, index, regrouped)
             fallback = None
             if flip is not None:
                 if needs and self._without_facts(needs):
@@ -292,16 +315,28 @@ class StagedRun:
             return found
         found = None
         if self.changes is not None:
-            _, p, o = pattern_of(key)
-            found = [t for t in self.changes[side] if t.predicate == p and (o is None or t.object == o)]
-            if len(found) > direct_look_ups.FEW or any(isinstance(t.object, Literal) for t in found):
+            by_key = self._change_facts.get(side)
+            if by_key is None:
+                by_key = self._change_facts[side] = _by_key(self.changes[side])
+            found = None if key == _ANY_CLASS or key in by_key[1] else by_key[0].get(key, [])
+            if found is not None and len(found) > direct_look_ups.FEW:
                 found = None
         self._change_facts[(key, side)] = found
         return found
 
-    def _given(self, look_up: Callable, key: ReadKey, side: int) -> Callable:
-        """``look_up`` given ``key``'s facts of the change (:meth:`change_facts`) as the interpreted run calls it."""
-        return lambda store: look_up(store, self.change_facts(key, side))
+    def _given(self, look_up: Callable, key: ReadKey, side: int, index: int, regrouped: set[int]) -> Callable:
+        """``look_up`` given ``key``'s facts of the change (:meth:`change_facts`; both sides for a regrouped
+        candidates operation, whose position joins ``regrouped`` where it diffed) as the interpreted run calls it."""
+        if side != BOTH:
+            return lambda store: look_up(store, self.change_facts(key, side))
+
+        def diffed(store) -> object:
+            answer = look_up(store, self.change_facts(key, 1), self.change_facts(key, 0))
+            if answer is REGROUPED:
+                regrouped.add(index)
+            return answer
+
+        return diffed
 
     def _send(self, text: str, key: ReadKey | None, direct: Callable | None, reads: Collection | None,
               seeded: int | bool, look_up: bool = True, fallback: tuple | None = None,

@@ -25,9 +25,10 @@ from itertools import islice
 from .component import run_component
 from .delta_texts import FLIP_LOST, KEEP
 from .direct import ALL_KEPT, pattern_of
+from .regroup import REGROUPED
 from .scratch import CANDIDATES, FLIP_GAINED, NEW_FACTS, OVERDELETED
 from .staged import FEW
-from .staged_plan import AFTER, HANDED, SEEDING, SENT, BoundOp, Segment, segments
+from .staged_plan import AFTER, BOTH, HANDED, SEEDING, SENT, BoundOp, Segment, segments
 
 #: False runs every program interpreted (the reference the generated form is tested against)
 GENERATED = True
@@ -63,7 +64,7 @@ def generate(plan: list[Segment]) -> Callable:
             code.segment(segment)
     code.line("r.flush()")
     namespace = dict(code.consts, run_component=run_component, islice=islice, FEW=FEW, CANDIDATES=CANDIDATES,
-                     ALL_KEPT=ALL_KEPT,
+                     ALL_KEPT=ALL_KEPT, REGROUPED=REGROUPED,
                      KEEP=KEEP, FLIP_GAINED=FLIP_GAINED, FLIP_LOST=FLIP_LOST, NEW_FACTS=NEW_FACTS,
                      OVERDELETED=OVERDELETED)
     text = "def fused(r):\n" + "\n".join(code.lines) + "\n"
@@ -185,6 +186,9 @@ class _Part:
         kind, key = op.kind, c(op.key)
         if text == "T":
             text = c(op.text)
+        if op.covered_by is not None:  # done by the part's regrouped candidates operation where it diffed
+            self.line(f"if not {self._local('regrouped', op.covered_by)}:", extra)
+            extra += 1
         if op.flip is None and kind in HANDED and self.may_hand:
             self._handed(op, key, text, extra)
             self.line("else:", extra)
@@ -328,7 +332,15 @@ class _Part:
                 inner += 1
             self.line("if dirty:", inner)
             self.line(f"r._reading({reads})", inner + 1)
-            if kept is None:
+            if op.given == BOTH:  # a regrouped candidates operation: where it diffed, what it does is done
+                name = self._local("regrouped", op.index)
+                key = c(op.key)
+                self.line(f"answer = {c(op.direct)}(store, r.change_facts({key}, 1), r.change_facts({key}, 0))",
+                          inner)
+                self.line("if answer:", inner)
+                self.line("r.sent += 1", inner + 1)
+                self.line(f"{name} = answer is REGROUPED", inner + 1)
+            elif kept is None:
                 given = "" if op.given is None else f", r.change_facts({c(op.key)}, {op.given})"
                 self.line(f"if {c(op.direct)}(store{given}):", inner)
                 self.line("r.sent += 1", inner + 1)

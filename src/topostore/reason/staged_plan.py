@@ -15,6 +15,7 @@ from ..compile.rule import ReadKey
 from .delta_texts import FLIP_LOST
 from .direct import GIVEN
 from .program import StepProgram
+from .regroup import Regroup
 from .scratch import CANDIDATES, FLIP_GAINED
 from .triggers import may_hold
 
@@ -61,6 +62,9 @@ class BoundOp(NamedTuple):
     #: change (:meth:`.staged.StagedRun.change_facts`), as (its side of the change: 0 added, 1 removed);
     #: None: it reads them from OVERDELETED or NEW_FACTS (see :func:`_given`)
     given: int | None = None
+    #: the position of the regrouped candidates operation that does this one where it answers
+    #: :data:`.regroup.REGROUPED` (:attr:`.program.StepProgram.covered`); None: none
+    covered_by: int | None = None
 
 
 def _named(keys: Collection | None) -> tuple | None:
@@ -135,7 +139,11 @@ def _bound(program: StepProgram, direct: dict, index: int, tag: tuple, text: str
     return BoundOp(index, tag[0], tag[1] if len(tag) > 1 else None, text, flip, part, found,
                    program.reads[index] if found is not None else None, index in program.seeded,
                    (program.reads[part] if part is not None else (None,)) if flip is not None else None, hand,
-                   needs, _given(program, tag, found))
+                   needs, _given(program, tag, found), program.covered.get(index))
+
+
+#: :attr:`BoundOp.given` of a :class:`.regroup.Regroup`: given both sides of the change (removed, added)
+BOTH = 2
 
 
 def _given(program: StepProgram, tag: tuple, found: Callable | None) -> int | None:
@@ -151,7 +159,9 @@ def _given(program: StepProgram, tag: tuple, found: Callable | None) -> int | No
     written = {*program.heads, *(k for k in program.part if k is not None)}
     if may_hold(written, tag[1]):
         return None
+    if isinstance(getattr(found, "__self__", None), Regroup):
+        return BOTH
     return 1 if tag[0] == "minus" else 0
 
 
-__all__ = ["AFTER", "HANDED", "NEEDING", "SEEDING", "SENT", "BoundOp", "Segment", "segments"]
+__all__ = ["AFTER", "BOTH", "HANDED", "NEEDING", "SEEDING", "SENT", "BoundOp", "Segment", "segments"]
