@@ -24,7 +24,7 @@ from typing import TYPE_CHECKING
 
 from pyoxigraph import Literal, NamedNode, Quad
 
-from ..rdf.terms import Term, keep_triple
+from ..rdf.terms import Term
 from .facts import Fact, fact_read, fact_written
 from .literal_forms import stored_seen
 
@@ -94,12 +94,9 @@ def read(store: Store, s: Term, p: NamedNode, graph: NamedNode) -> list[Fact]:
 def new_fact(s: Term, p: NamedNode, o: Term, graph: NamedNode) -> Fact:
     """The fact of (s, p, o) added after :func:`read` found no fact of its value: :meth:`Store.unread_fact`
     with no transaction to note it in.  Its quad is made here, not kept (a clock value is never named again
-    as the same quad: the next step removes the quad it reads); its triple is kept (:func:`keep_triple`),
-    since the next step's removal names it again as written."""
-    f = fact_written(Quad(s, p, o, graph))
-    if type(o) is Literal:
-        keep_triple(s, p, o, f.triple)
-    return f
+    as the same quad: the next step removes the quad it reads); nor is its triple: the next change of the
+    pair finds it as written in the fact :class:`KeptFacts` holds."""
+    return fact_written(Quad(s, p, o, graph))
 
 
 def replace(store: Store, old: Fact, new: Fact, alone: bool, kept: KeptFacts, before: int) -> None:
