@@ -70,7 +70,8 @@ def replace_plain(ref: Reference, ind: NamedNode, prop: NamedNode, new, old) -> 
     if old_fact is None:
         return None
     try:
-        changes.replace_fact(old_fact, one_fact.new_fact(ind, prop, new, ASSERTED), len(facts) == 1, before)
+        changes.replace_fact(ind, prop, new, old_fact, one_fact.new_fact(ind, prop, new, ASSERTED), len(facts) == 1,
+                             before)
     except (TopostoreError, OSError) as exc:  # as Context.submit says it (nothing was changed)
         raise CommandError(codes.REASONER_OR_QUERY_FAILURE,
                            f"the change was undone because reasoning failed: {exc}") from exc
