@@ -125,9 +125,11 @@ def replace(store: Store, s: Term, p: NamedNode, o: Term, graph: NamedNode, old:
 
 
 def _read_back(store: Store, new: Fact, s: Term, p: NamedNode, o: Literal, graph: NamedNode) -> Fact | None:
-    """The fact of ``new``'s literal as the store holds it, its stored form noted in ``new`` too; None where
-    the index holds another fact of (s, p) than the one written."""
-    quads = list(store._match(s, p, None, graph))
+    """The fact of ``new``'s literal as the store holds it, its stored form noted in ``new`` too (None where
+    the store holds no one term of it).  The read names the literal as written, which the engine takes in
+    its own form: it finds the one quad, never the removed values of the pair, which an in-memory store
+    keeps in its index until its next compaction (a clock's, one a step)."""
+    quads = list(store._match(s, p, o, graph))
     if len(quads) != 1:
         return None
     q = quads[0]
