@@ -257,3 +257,39 @@ def test_a_clock_replaced_every_step_keeps_no_count_of_its_past_values(monkeypat
     assert len(forms._value_forms) <= counted + 1  # the clock's one value now, whether or not "0" was counted
     assert forms.restore(Literal("39", datatype=NamedNode("http://www.w3.org/2001/XMLSchema#integer"))) == \
         Literal("39", datatype=NamedNode("http://www.w3.org/2001/XMLSchema#long"))
+
+
+def _sparql_replace(onto, old: str, new: str) -> None:
+    """The clock's value replaced by a SPARQL update naming the asserted graph (another path than the lane's)."""
+    long = "<http://www.w3.org/2001/XMLSchema#long>"
+    robot, now = onto.iri("Robot1"), onto.iri("now")
+    onto.store.update(f'DELETE DATA {{ GRAPH {ASSERTED} {{ {robot} {now} "{old}"^^{long} }} }} ; '
+                      f'INSERT DATA {{ GRAPH {ASSERTED} {{ {robot} {now} "{new}"^^{long} }} }}')
+
+
+def _api_replace(onto, old: str, new: str) -> None:
+    """The clock's value replaced through the Python API (a store transaction)."""
+    long = NamedNode("http://www.w3.org/2001/XMLSchema#long")
+    robot, now = onto.iri("Robot1"), onto.iri("now")
+    onto.remove(Triple(robot, now, Literal(old, datatype=long)))
+    onto.add(Triple(robot, now, Literal(new, datatype=long)))
+
+
+@pytest.mark.parametrize("between", [_sparql_replace, _api_replace], ids=["sparql", "api"])
+def test_a_value_another_path_changed_is_read_again(monkeypatch: pytest.MonkeyPatch, between) -> None:
+    """The lane keeps the fact it wrote for the next REPLACE of the same value (no read before the write); a
+    write of any other path in between makes it read the store again: a REPLACE naming the value the lane
+    wrote, since replaced by another, is answered and leaves the graph as on the general path."""
+    services = {lane: _service(True) for lane in (True, False)}
+    for lane, service in services.items():
+        onto = service.reference("ref").ontology
+        first = _request("REPLACE", "DATAPROP", "IND", ["now", "Robot1", "LONG", "100", "1665579740"])
+        assert _call(service, first, lane, monkeypatch)["success"]
+        between(onto, "100", "200")
+    again = _request("REPLACE", "DATAPROP", "IND", ["now", "Robot1", "LONG", "300", "100"])
+    assert _call(services[True], again, True, monkeypatch) == _call(services[False], again, False, monkeypatch)
+    assert _state(services[True]) == _state(services[False])
+    held = services[True].reference("ref").ontology
+    assert {t.object.value for t in held.store.triples(held.iri("Robot1"), held.iri("now"), None, ASSERTED)} == \
+        {t.object.value for t in services[False].reference("ref").ontology.store.triples(
+            held.iri("Robot1"), held.iri("now"), None, ASSERTED)}

@@ -63,12 +63,15 @@ def replace_plain(ref: Reference, ind: NamedNode, prop: NamedNode, new, old) -> 
     store = onto.store
     if not one_fact.direct(store):
         return None  # a store change the unit of work must hold
-    facts = one_fact.read(store, ind, prop, ASSERTED)
+    changes = onto.changes
+    before = store.data_writes
+    facts = changes.kept.read(store, ind, prop, ASSERTED)
     old_fact = _one_old(facts, new, old)
     if old_fact is None:
         return None
     try:
-        onto.changes.replace_fact(old_fact, one_fact.new_fact(ind, prop, new, ASSERTED), len(facts) == 1)
+        changes.replace_fact(ind, prop, new, old_fact, one_fact.new_fact(ind, prop, new, ASSERTED), len(facts) == 1,
+                             before)
     except (TopostoreError, OSError) as exc:  # as Context.submit says it (nothing was changed)
         raise CommandError(codes.REASONER_OR_QUERY_FAILURE,
                            f"the change was undone because reasoning failed: {exc}") from exc

@@ -18,7 +18,7 @@ from pyoxigraph import Literal, NamedNode, Triple
 
 from ..compile.key_form import touches_groups
 from ..compile.notices import warn
-from ..rdf.terms import check_literal, triple, value_key
+from ..rdf.terms import Term, check_literal, triple, value_key
 from ..rdf.vocab import ASSERTED
 from ..stores import one_fact
 from ..stores.facts import Fact
@@ -50,6 +50,9 @@ class AssertedChanges:
         self.onto = onto
         self.store = onto.store
         self.ledger = onto.ledger
+        #: the facts :meth:`replace_fact` left, while the store counts no other write (a robot's next REPLACE
+        #: of the same value reads them here, not from the index)
+        self.kept = one_fact.KeptFacts()
 
     def add(self, *triples: Triple, said: bool = False) -> int:
         """Assert triples; returns how many were new (``said``: warn of each value held already in another
@@ -158,22 +161,23 @@ class AssertedChanges:
         self.touch(removed_triples + added_triples)
         return added_triples, removed_triples, notes
 
-    def replace_fact(self, old: Fact, new: Fact, alone: bool) -> None:
+    def replace_fact(self, s: Term, p: NamedNode, o: Term, old: Fact, new: Fact, alone: bool, before: int) -> None:
         """:meth:`change_noted` of one fact for another, written straight (:mod:`~..stores.one_fact`): ``old``
-        read from the committed store by :func:`one_fact.read`, ``new`` of another value that read did not
-        find, of a property :func:`fact_property` accepts, on a store :func:`one_fact.direct` accepts, with
-        no unit of work open (the caller checks all of that); ``alone``: ``old`` is the one fact that read
-        found (see :func:`one_fact.replace`).  One write, the literal forms, the ledger's
-        record and the ontology marked changed, as :meth:`change_noted` leaves them for that change (which
-        says no spelling for it: one value replaced by another, written as given)."""
+        read from the committed store by :func:`one_fact.read`, ``new`` (of (s, p, o): the terms as the caller
+        holds them) of another value that read did not find, of a property :func:`fact_property` accepts, on a
+        store :func:`one_fact.direct` accepts, with no unit of work open (the caller checks all of that);
+        ``alone``: ``old`` is the one fact that read found (see :func:`one_fact.replace`), ``before`` the
+        store's count of data writes at that read (read through :attr:`kept`).  One write, the literal forms,
+        the ledger's record and the ontology marked changed, as :meth:`change_noted` leaves them for that
+        change (which says no spelling for it: one value replaced by another, written as given)."""
         store = self.store
         if new.value is not None:
-            check_literal(new.triple.object)  # InvalidValueError: not a value of its type, nothing changed
+            check_literal(o)  # type: ignore[arg-type] - InvalidValueError: not a value of its type, nothing changed
         gone = store.written_fact(old)  # as written: read before the write takes its form
-        one_fact.replace(store, old, new, alone)
+        one_fact.replace(store, s, p, o, ASSERTED, old, new, alone, self.kept, before)
         self.ledger.record_replaced(store, new, old, gone, self._change_limit)
         self.onto.dirty = True  # touch: a fact property names no schema triple, a memory store no durable state
-        self._settled()
+        store.maybe_compact()  # :meth:`_settled`, whose conditions the caller checked (no unit, nothing pending)
 
     def _settled(self) -> None:
         """A change committed outside any caller's unit of work: the in-memory store may be rebuilt now

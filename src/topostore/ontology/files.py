@@ -195,6 +195,7 @@ class OntologyFiles:
         refusing it."""
         store = self.onto.store
         known = self._known_notices()
+        store.data_writes += 1  # a stream into the store writes past Store._write
         try:
             with collector_paused():
                 stream = stream_through_child if child_wanted(store, data) else stream_into_empty

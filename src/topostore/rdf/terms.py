@@ -213,7 +213,7 @@ def literal_of(value: str, local: str) -> Literal:
         datatype = NamedNode(XSD + local)
     text = value.strip()
     if local in INTEGER_TYPES:
-        if not _INT_RE.match(text):
+        if not (text.isdigit() and text.isascii()) and not _INT_RE.match(text):  # digits alone: a robot's clock
             raise InvalidValueError(f"{value[:40]!r} is not a valid xsd:{local}")
         if len(text) > _MAX_INTEGER_DIGITS:
             raise InvalidValueError(f"an xsd:{local} of {len(text)} digits is out of range "
@@ -223,8 +223,9 @@ def literal_of(value: str, local: str) -> Literal:
         if (low is not None and number < low) or (high is not None and number > high):
             raise InvalidValueError(f"{value!r} is out of range for xsd:{local}")
         made = Literal(str(number), datatype=datatype)
-        if made not in _VALUE_KEYS:  # its value key from the number read here: a robot's clock is a new
-            _keep_key(made, ("real", Decimal(number).normalize(EXACT)))  # integer every step, keyed at once
+        # its value key from the number read here (the one _literal_key computes): a robot's clock is a new
+        # integer every step, keyed at once
+        _keep_key(made, ("real", Decimal(number).normalize(EXACT)))
         return made
     if local == "decimal":
         if not _DEC_RE.match(text):

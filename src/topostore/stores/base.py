@@ -86,6 +86,11 @@ class Store:
         # quad key -> present in the committed store, learnt during the open transaction (saves round trips)
         self._known: dict[tuple, bool] = {}
         self._depth = 0
+        #: write operations that may have changed a graph of data (every one but a reasoner's writes to its own
+        #: graphs: :meth:`add_scratch`, :meth:`discard`, :meth:`drop_graphs`, :meth:`add_ntriples`); never goes
+        #: back, so that what was read of the asserted graph at one count holds while the count is the same
+        #: (:class:`~.one_fact.KeptFacts`)
+        self.data_writes = 0
         #: SPARQL extension functions by IRI (the rule compiler's, see :meth:`use_functions`)
         self.functions: dict[NamedNode, Callable[..., Term | None]] = {}
         #: values of (subject, predicate, graph) this process knows without asking (stores reached over HTTP)
@@ -229,6 +234,7 @@ class Store:
         A store that defers writes (:class:`~topostore.stores.remote.RemoteStore`) queues it instead and
         calls ``undo`` (what the caller recorded in memory for it) should the server refuse it later.
         """
+        self.data_writes += 1  # counted first: a write that fails half-way counts too
         self._commit(adds, removes)
         self._written(adds, removes)
 
@@ -317,6 +323,7 @@ class Store:
         """Add ``quads`` (made one by one) and ``extra`` in one commit; stores that can take a
         stream without a list override this.  Asked to ``count``: how many quads the store gained,
         where it can tell that without a query (None otherwise, and here)."""
+        self.data_writes += 1
         self._commit([*quads, *extra], [])
         return None
 
@@ -347,6 +354,7 @@ class Store:
 
     def clear(self, graph: NamedNode) -> None:
         self._flush_open()
+        self.data_writes += 1
         if self.listings is not None:
             self.listings.forget(graph)
         self._drop(graph)
@@ -355,6 +363,7 @@ class Store:
     # ------------------------------------------------------------ SPARQL
     def update(self, text: str, prefixes: dict[str, str] | None = None) -> None:
         self._flush_open()
+        self.data_writes += 1  # SPARQL text may name any graph
         if self.listings is not None:
             self.listings.updated()
         self._run_update(text, prefixes)

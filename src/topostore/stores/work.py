@@ -257,6 +257,7 @@ def add_to_empty(store: Store, triples: list[Triple] | tuple[Triple, ...], graph
         recorded.append(True)
         yield from forms_add
 
+    store.data_writes += 1  # the in-memory store's stream is its own write, past Store._write
     try:
         store._commit_stream(quads(), [])
     except BaseException:
