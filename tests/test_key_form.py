@@ -191,3 +191,35 @@ def test_a_list_reached_only_by_inference_is_a_group_of_its_own(lists: str) -> N
     merged.load_data(HEAD.replace("@prefix owl:", "@prefix rdfs: <http://www.w3.org/2000/01/rdf-schema#> . @prefix owl:")
                      + lists + "\n:a owl:sameAs :b .\n", "turtle")
     assert not merged.reason().consistent
+
+
+def test_a_first_document_compiled_as_streamed_is_not_read_for_its_lists_again(monkeypatch: pytest.MonkeyPatch) -> None:
+    """The rules compiled right after a document is streamed into the empty graph are the graph's own: the
+    first REASON does not walk its member lists again (a cut list's notice is still the one said), while a
+    list edited later is (its notice follows the edit)."""
+    from topostore.ontology import reasoning
+
+    walked: list[int] = []
+    real = reasoning.malformed_now
+
+    def counted(*args, **kwargs):
+        walked.append(1)
+        return real(*args, **kwargs)
+
+    monkeypatch.setattr(reasoning, "malformed_now", counted)
+    onto = Ontology()
+    cut = ONE_LIST.replace("owl:distinctMembers (:a :b :c)", "owl:distinctMembers _:l1 .\n"
+                           "_:l1 rdf:first :a ; rdf:rest _:l2 .\n_:l2 rdf:first :b").replace(
+        "@prefix owl:", "@prefix rdf: <http://www.w3.org/1999/02/22-rdf-syntax-ns#> . @prefix owl:")
+    onto.load_data(cut, "turtle")
+    report = onto.reason()
+    assert walked == [] and onto.rules.one_list
+    assert any("does not end in rdf:nil" in n.subject for n in report.incomplete)
+    cell = next(t for t in onto.store.triples(None, NamedNode("http://www.w3.org/1999/02/22-rdf-syntax-ns#first"),
+                                               _n("b"), ASSERTED))
+    onto.add(Triple(cell.subject, NamedNode("http://www.w3.org/1999/02/22-rdf-syntax-ns#rest"),
+                    NamedNode("http://www.w3.org/1999/02/22-rdf-syntax-ns#nil")))
+    report = onto.reason()
+    assert walked == [1]
+    assert not any("does not end in rdf:nil" in n.subject for n in report.incomplete)
+    assert _closure(onto) == _fresh(onto)

@@ -33,7 +33,9 @@ to a list and typed AllDifferent only by a later inference counts from the start
 compiled rules' (:attr:`.rule.RuleSet.one_list`): a change adding or removing a member link is noted
 (:func:`touches_groups`), and the next REASON compiles the rules again when the count crossed one
 (:func:`form_changed`); new rules make a full REASON, which clears the helper graph and writes the keys
-in the new form.  A durable store records the form it wrote (``ontology/state.py``).
+in the new form.  Rules compiled right after a first document was streamed into the empty graph
+(``ontology/files.py``) are that graph's own: the next REASON does not count its lists again.  A durable
+store records the form it wrote (``ontology/state.py``).
 """
 
 from __future__ import annotations

@@ -211,9 +211,13 @@ class OntologyFiles:
             store.clear(ASSERTED)
             raise
         self.onto.changes.touch([schema] if schema is not None else [])
-        self.onto.groups_touched = True  # the streamed triples are not listed: their member lists are counted again
         if rules is not None:
+            # compiled on the graph as it now is: their keys' form and list notices are its own, so the next
+            # REASON need not read the member lists again (0.3-0.45 s at 100,000 locations)
             self.onto._rules = rules
+            self.onto.groups_touched = False
+        else:  # the streamed triples are not listed: their member lists are counted again
+            self.onto.groups_touched = True
         return found.triples, self._kept(found.notices, known), Written(found.again)
 
     def _compiled_here(self, notices: list[Notice], refuse: Collection[Term] = ()) -> RuleSet:
