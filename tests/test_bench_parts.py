@@ -17,7 +17,7 @@ from pyoxigraph import RdfFormat, parse
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # the benchmarks package lives beside src/
 
-from benchmarks import drift, full, paired, picture, remote, report, tables, tbox  # noqa: E402
+from benchmarks import drift, full, paired, picture, remote, report, schema_change, tables, tbox  # noqa: E402
 from benchmarks.http_count import counting  # noqa: E402
 
 OWL = "http://www.w3.org/2002/07/owl#"
@@ -35,6 +35,12 @@ def test_a_short_drift_walk_on_the_example_map(tmp_path: Path) -> None:
     row = drift.run("example", 12, tmp_path)
     assert row["mismatches"] == [] and len(row["step_ms"]) == 12
     assert row["early_ms"] > 0 and row["late_ms"] > 0 and 1 <= row["longest_step"] <= 12
+
+
+def test_the_schema_change_rounds_time_each_command() -> None:
+    """Each round times the three commands after its REASON; every command succeeded (run raises otherwise)."""
+    times = schema_change.run("example", 2)
+    assert set(times) == set(schema_change.COMMANDS) and all(len(t) == 2 and min(t) > 0 for t in times.values())
 
 
 def test_a_tree_compared_with_itself_in_turns() -> None:

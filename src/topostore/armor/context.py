@@ -24,6 +24,7 @@ from ..ontology.facade import Ontology
 from ..ontology.named_queries import QueryItem
 from ..rdf import terms
 from ..rdf.vocab import ASSERTED, INFERRED, rdfs
+from ..reason.classify import unsatisfiable_text
 from . import codes
 from .codes import CommandError
 from .reference import Change, Delta, Reference
@@ -199,9 +200,25 @@ def asserted(onto: Ontology, s=None, p=None, o=None) -> list[Triple]:
 
 def answered_classification(onto: Ontology) -> dict | None:
     """The classification a class-hierarchy answer reads: a buffered reasoner's as of its last REASON while
-    changes wait (``Ontology.reasoned_superclasses``), else None (the current one). Its members and its warning
-    of unsatisfiable classes come from the same one."""
-    return onto.reasoned_superclasses if onto.dirty else None
+    changes wait (``OntologyReasoning.kept``, made on this first read from the rules and value types that REASON
+    had), else None (the current one). Its members and its warning of unsatisfiable classes come from the same
+    one."""
+    if not (onto.dirty and onto.reads.answers_removed):
+        return None
+    return onto.reasoning.kept_classification()
+
+
+#: said with a class-hierarchy answer a buffered reasoner cannot give as of its last REASON
+NOT_KEPT = ("the class hierarchy of the last REASON is not known (a durable store reopened without it, or a failed "
+            "REASON that cleared the inferred facts): the current one is answered until the next REASON")
+
+
+def hierarchy_warnings(onto: Ontology, found: Sequence[NamedNode]) -> list[str]:
+    """What a class-hierarchy answer listing ``found`` says beside it: the unsatisfiable classes among them, read
+    from the classification it answers, and :data:`NOT_KEPT` where a buffered reasoner's is not known."""
+    said = [NOT_KEPT] if onto.dirty and onto.reads.answers_removed and onto.reasoning.kept is None else []
+    empty = [c for c in onto.reasoning.unsatisfiable(answered_classification(onto)) if c in found]
+    return [unsatisfiable_text(empty), *said] if empty else said
 
 
 def subclasses(onto: Ontology, cls: NamedNode) -> list[NamedNode]:
@@ -211,7 +228,7 @@ def subclasses(onto: Ontology, cls: NamedNode) -> list[NamedNode]:
     when ``SubClassOf(cls cls)`` is told); the told ones only while the ontology is inconsistent (aRMOR
     asks the reasoner nothing then, as for every query); never owl:Nothing or an internal class (spec §7
     item 6).  An unsatisfiable class is under every class.  A buffered reasoner's answer is its classification
-    as of the last REASON, until the next one (``Ontology.reasoned_superclasses``, kept at a schema change)."""
+    as of the last REASON, until the next one (:func:`answered_classification`)."""
     told = {t.subject for t in asserted(onto, None, rdfs("subClassOf"), cls) if isinstance(t.subject, NamedNode)}
     if INFERRED in onto.visible_graphs():  # consistent (or not reasoned yet): the reasoner's answer too
         kept = answered_classification(onto)
@@ -221,4 +238,5 @@ def subclasses(onto: Ontology, cls: NamedNode) -> list[NamedNode]:
 
 
 __all__ = ["Reply", "Context", "entity_named", "literal_named", "answer_texts",
-           "Command", "Handler", "hidden", "fixed", "asserted", "subclasses"]
+           "Command", "Handler", "hidden", "fixed", "asserted", "subclasses", "answered_classification",
+           "hierarchy_warnings", "NOT_KEPT"]

@@ -5,7 +5,12 @@ Each reference keeps, beside its graphs and in the same store, one JSON record
 flags, reasoner name), the mounted client and the pending buffered
 manipulations as the requests that made them.  The record is written in the
 same transaction as the change it describes, so after ``kill -9`` the store
-holds either the state before a manipulation or the state after it.  On start
+holds either the state before a manipulation or the state after it.  A buffered
+reasoner's class hierarchy of its last REASON (what QUERY CLASS CLASS answers
+until the next one, spec §2.5) is written beside it (``Store.meta["classification"]``)
+with the first change after that REASON, and given back to a reference reopened
+with changes since: classified then from the rules the REASON had, never a
+REASON-sized write.  On start
 the service reopens every reference the store holds and replays the buffered
 requests into the buffer (their handlers validate again and queue the same
 changes).  On a remote store each reference is claimed with a
@@ -21,19 +26,27 @@ import threading
 from pathlib import Path
 from typing import TYPE_CHECKING
 
+from pyoxigraph import NamedNode
+
 from ..errors import StoreError, StoreLockedError, TopostoreError
 from ..ontology.facade import Ontology
 from ..rdf.vocab import ASSERTED
+from ..reason.classify import Classification
 from ..stores import kind, list_references, open_store, reference_dir
 from ..stores.base import Store
 from . import codes
 from .codes import CommandError
+from .context import NOT_KEPT
 from .reference import Reference
 
 if TYPE_CHECKING:  # pragma: no cover
     from .service import ArmorService
 
 logger = logging.getLogger("topostore.armor")
+
+
+#: the persisted key of a buffered reasoner's class hierarchy as of its last REASON
+KEPT = "classification"
 
 
 def record(ref: Reference) -> dict:
@@ -44,6 +57,19 @@ def record(ref: Reference) -> dict:
         "buffered_reasoner": ref.buffered_reasoner, "owner": ref.owner,
         "buffer": [c.origin for c in ref.buffer if c.origin is not None],
     }
+
+
+def classification_record(supers: dict[NamedNode, set[NamedNode]]) -> dict:
+    """A classification as the JSON value the store keeps: each class's superclasses, as IRIs."""
+    return {"superclasses": {c.value: sorted(d.value for d in ds) for c, ds in supers.items()}}
+
+
+def superclasses_of(value: object) -> dict[NamedNode, set[NamedNode]] | None:
+    """The classification a :func:`classification_record` value holds (None: none, or not one)."""
+    table = value.get("superclasses") if isinstance(value, dict) else None
+    if not isinstance(table, dict):
+        return None
+    return {NamedNode(c): {NamedNode(d) for d in ds} for c, ds in table.items()}
 
 
 class DurableReferences:
@@ -57,6 +83,8 @@ class DurableReferences:
         self._leases: dict[str, object] = {}
         self._stop = threading.Event()
         self._renewer: threading.Thread | None = None
+        #: the kept classification each reference's store holds (:meth:`_keep`), by reference name
+        self._kept: dict[str, Classification] = {}
 
     # ------------------------------------------------------------ stores
     def new_store(self, name: str) -> Store:
@@ -88,10 +116,32 @@ class DurableReferences:
         return store
 
     def persist(self, ref: Reference) -> None:
+        """Write the reference's record (and its kept classification where it changed), in the transaction of
+        the change it describes."""
         ref.ontology.store.meta_set("reference", record(ref))
+        self._keep(ref)
+
+    def _keep(self, ref: Reference) -> None:
+        """A buffered reasoner's classification of its last REASON, written where the store holds another: at the
+        first change after that REASON (a manipulation persists its reference in its own transaction), so that a
+        restart before the next REASON answers the same hierarchy.  Where it cannot be made, the store holds none
+        and the reopened reference says so (``context.NOT_KEPT``)."""
+        onto = ref.ontology
+        kept = onto.reasoning.kept
+        if not (ref.buffered_reasoner and onto.dirty) or kept is None or self._kept.get(ref.name) is kept:
+            return
+        try:
+            value: dict | None = classification_record(onto.reasoning.kept_classification() or {})
+        except TopostoreError as exc:
+            logger.warning("reference %r: the class hierarchy of its last REASON could not be made to keep (%s)",
+                           ref.name, exc)
+            value = None
+        onto.store.meta_set(KEPT, value)
+        self._kept[ref.name] = kept
 
     def discard(self, name: str, store: Store | None) -> None:
         """Remove a reference's durable data (DROP, or a LOAD that failed)."""
+        self._kept.pop(name, None)
         lease = self._leases.pop(name, None)
         if store is not None:
             self._wipe(store)
@@ -145,10 +195,29 @@ class DurableReferences:
             except TopostoreError as exc:  # the reference still opens, its asserted facts only
                 logger.warning("reference %r: its unreasoned change could not be reasoned (%s); opened with "
                                "its asserted facts only", name, exc)
+        if ref.buffered_reasoner:
+            self._restore_kept(ref)
         self._replay(service, ref, data.get("buffer") or [])
         ref.persist = self.persist
         logger.info("reference %r reopened from %s (%s, %d buffered)", name, self.spec, onto.opened, len(ref.buffer))
         return ref
+
+    def _restore_kept(self, ref: Reference) -> None:
+        """What a reopened buffered reasoner answers as its last REASON's class hierarchy: the store's where changes
+        were made since (None where it holds none: a store written before it was kept, or whose hierarchy could
+        not be made), else the one of the store as reopened (its last REASON's state)."""
+        onto = ref.ontology
+        if not onto.dirty:
+            try:
+                onto.reasoning.keep()
+            except TopostoreError as exc:  # the rules cannot be compiled: the next change or REASON says so
+                logger.warning("reference %r: its class hierarchy could not be kept (%s)", ref.name, exc)
+            return
+        supers = superclasses_of(onto.store.meta.get(KEPT)) if onto.opened == "reopened" else None
+        if supers is None:
+            logger.warning("reference %r: %s", ref.name, NOT_KEPT)
+            return
+        onto.reasoning.kept = self._kept[ref.name] = Classification(None, supers=supers)
 
     def _replay(self, service: ArmorService, ref: Reference, requests: list[dict]) -> None:
         """Queue the buffered requests again through their handlers (which validate and plan them)."""
@@ -191,4 +260,4 @@ class DurableReferences:
             ref.ontology.store.close()
 
 
-__all__ = ["DurableReferences", "record"]
+__all__ = ["DurableReferences", "record", "classification_record", "superclasses_of", "KEPT"]

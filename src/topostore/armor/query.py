@@ -29,10 +29,9 @@ from ..rdf.vocab import (
     TYPE,
     owl,
 )
-from ..reason.classify import unsatisfiable_text
 from . import codes
 from .codes import CommandError
-from .context import Context, Reply, answered_classification, hidden, subclasses
+from .context import Context, Reply, hidden, hierarchy_warnings, subclasses
 from .render import short_name
 
 #: namespaces whose properties are schema, not facts of an individual (owl:sameAs and owl:differentFrom aside)
@@ -132,8 +131,7 @@ def query_class_class(ctx: Context) -> Reply:
     """QUERY CLASS CLASS: :func:`.context.subclasses`; an unsatisfiable class among them is named in the
     reply, never listed under every class without a word."""
     found = subclasses(ctx.onto, ctx.iri(0, "class"))
-    empty = [c for c in ctx.onto.reasoning.unsatisfiable(answered_classification(ctx.onto)) if c in found]
-    return Reply(queried_objects=ctx.render(found), warnings=[unsatisfiable_text(empty)] if empty else [])
+    return Reply(queried_objects=ctx.render(found), warnings=hierarchy_warnings(ctx.onto, found))
 
 
 def query_ind_dataprop(ctx: Context) -> Reply:

@@ -32,6 +32,7 @@ from ..rdf.terms import Term
 from ..rdf.vocab import ASSERTED, AUX, ENTAILED, INFERRED, NOTHING
 from ..reason import Violation
 from ..reason import limits as reason_limits
+from ..reason.classify import Classification
 from ..reason.incremental import DEFAULT_MAX_CHANGE_SHARE, IncrementalReasoner
 from ..reason.limits import ReasonLimits
 from ..stores import StoreSpec, open_store
@@ -84,11 +85,9 @@ class Ontology:
         #: the namespace entity names are read in
         self.names = Namespace(self.store, prefix)
         self._rules: RuleSet | None = None
-        self._superclasses: dict | None = None
-        #: the classification as of the last successful REASON, kept where a schema change since has dropped it
-        #: and the reads answer what a buffered reasoner answers until the next REASON (``reads.answers_removed``,
-        #: spec §2.5); None: the current classification is that one
-        self.reasoned_superclasses: dict | None = None
+        #: the current classification (``reason.classify.Classification``, made when first read); the one the last
+        #: successful REASON answered is ``reasoning.kept``
+        self._superclasses: Classification | None = None
         self._report: ReasonReport | None = None
         self.load_notices = []  # what loading repaired or set aside (topostore.compile.notices)
         self.strict = strict
@@ -160,9 +159,6 @@ class Ontology:
 
     def schema_changed(self) -> None:
         """A schema triple was added or removed: the rules, the classification and the namespace are read again."""
-        if self.reads.answers_removed and self.reasoned_superclasses is None and self._rules is not None \
-                and self._report is not None:
-            self.reasoned_superclasses = self.reasoning.classification(said=False)  # the rules of that REASON
         self._rules = None
         self._superclasses = None
         self.names.forget()

@@ -4,7 +4,8 @@ A named part of one :class:`~topostore.ontology.facade.Ontology` (``onto.reasoni
 ``rules``, ``reason``, ``superclasses`` and ``subclasses`` are these.  The state it works on (the
 compiled rules ``onto._rules``, the reasoner ``onto._reasoner``, the report ``onto._report``, the
 classification ``onto._superclasses``, ``onto.dirty``) stays on the ontology, where the loading, the
-manipulation path and the ledger's rollback read and reset it too.
+manipulation path and the ledger's rollback read and reset it too.  The classification the last successful
+REASON answered is kept here (``kept``): what a buffered reasoner answers until the next one.
 """
 
 from __future__ import annotations
@@ -20,8 +21,8 @@ from ..compile.graph_notices import MALFORMED, malformed_now
 from ..compile.key_form import form_changed
 from ..compile.notices import Notice, OntologyWarning, warn
 from ..rdf.vocab import ASSERTED, HAS_VALUE, INFERRED, NOTHING, TYPE
-from ..reason import ReasonStats, Violation, classify
-from ..reason.classify import unsatisfiable, unsatisfiable_text
+from ..reason import ReasonStats, Violation
+from ..reason.classify import Classification, unsatisfiable, unsatisfiable_text
 from ..reason.incremental import IncrementalReasoner
 from ..stores import check_rules
 from ..stores.literal_forms import FORMS
@@ -52,8 +53,11 @@ class OntologyReasoning:
 
     def __init__(self, onto: Ontology) -> None:
         self.onto = onto
-        #: the types of the values of hasValue restrictions the classification was found with
-        self._classified_with: frozenset[Triple] = frozenset()
+        #: the classification of the last successful REASON (its rules and value types, made when first read)
+        self.kept: Classification | None = None
+        #: the named values of the hasValue restrictions of one compiled rule set (schema triples: the same
+        #: while the rules are)
+        self._values_of: tuple[RuleSet, frozenset[NamedNode]] | None = None
 
     def rules(self) -> RuleSet:
         """The compiled rules, compiled again when the TBox or the SWRL rules changed."""
@@ -89,7 +93,7 @@ class OntologyReasoning:
         onto.store.maybe_compact()
         previous, onto._report = onto._report, ReasonReport(not violations, violations, stats,
                                                             [n for n in rules.notices if n.incomplete])
-        onto.reasoned_superclasses = None  # the classification of these rules is the reasoner's now
+        self.keep(rules)
         self._advance_views(previous)
         onto.dirty = False
         onto.events.after_reason(onto.store, onto._report.consistent, before, stats.seconds)
@@ -112,6 +116,7 @@ class OntologyReasoning:
         onto = self.onto
         onto._rules = None
         onto._superclasses = None
+        self.kept = None  # no REASON answers the graph as it is now
         onto._reasoner = None
         onto.ledger.stop_incremental()
         onto.dirty = True
@@ -147,31 +152,57 @@ class OntologyReasoning:
         onto.views.clear()
 
     def classification(self, said: bool = True) -> dict[NamedNode, set[NamedNode]]:
-        """Each named class's superclasses, classified once per compiled rule set (``said``: an unsatisfiable
-        class is warned of when the classification is made)."""
+        """Each named class's superclasses, classified once per compiled rule set and value types (``said``: an
+        unsatisfiable class is warned of when the classification is made)."""
         onto = self.onto
-        values = self.value_types()
-        if onto._superclasses is None or values != self._classified_with:
-            onto._superclasses = classify(self.rules(), values)
-            self._classified_with = values
-            empty = unsatisfiable(onto._superclasses)
-            if empty and said:
-                warn(unsatisfiable_text(empty), OntologyWarning)
-        return onto._superclasses
+        rules = self.rules()
+        values = self.value_types(rules)
+        current = onto._superclasses
+        if current is None or not current.of(rules, values):
+            kept = self.kept
+            current = onto._superclasses = kept if kept is not None and kept.of(rules, values) \
+                else Classification(rules, values)
+        return _made(current, said)
+
+    def keep(self, rules: RuleSet | None = None) -> None:
+        """Keep the classification of the rules and value types now as the one the last REASON answered (by
+        reference: it is made when first read); at a successful REASON, and for a durable store reopened as
+        its last REASON left it."""
+        rules = self.rules() if rules is None else rules
+        values = self.value_types(rules)
+        current = self.onto._superclasses
+        if current is not None and current.of(rules, values):
+            self.kept = current
+        elif self.kept is None or not self.kept.of(rules, values):
+            self.kept = Classification(rules, values)
+
+    def kept_classification(self) -> dict[NamedNode, set[NamedNode]] | None:
+        """The classification the last successful REASON answered, made now if it was not (None: none kept)."""
+        return None if self.kept is None else _made(self.kept, said=False)
 
     def unsatisfiable(self, classes: dict | None = None) -> list[NamedNode]:
         """The named classes no individual can be a member of (each under every class, as Pellet has it) in
         ``classes`` (a classification; None: the current one)."""
         return unsatisfiable(self.classification() if classes is None else classes)
 
-    def value_types(self) -> frozenset[Triple]:
-        """The classes (told and inferred) of the named individuals hasValue restrictions give as values: a
-        class told ``∃p.{a}`` is under ``∃p.K`` where ``a`` is a ``K``, which classification's prototypes
-        see only with ``a``'s classes beside them."""
+    def value_types(self, rules: RuleSet | None = None) -> frozenset[Triple]:
+        """The classes (told and inferred) of the named individuals the hasValue restrictions of ``rules`` (None:
+        the current ones) give as values: a class told ``∃p.{a}`` is under ``∃p.K`` where ``a`` is a ``K``,
+        which classification's prototypes see only with ``a``'s classes beside them."""
+        values = self._has_values(self.rules() if rules is None else rules)
+        if not values:
+            return frozenset()
         store = self.onto.store
-        values = {t.object for t in store.triples(None, HAS_VALUE, None, ASSERTED) if isinstance(t.object, NamedNode)}
         return frozenset(Triple(a, TYPE, t.object) for a in values for g in (ASSERTED, INFERRED)
                          for t in store.triples(a, TYPE, None, g) if isinstance(t.object, NamedNode))
+
+    def _has_values(self, rules: RuleSet) -> frozenset[NamedNode]:
+        """The named values of the hasValue restrictions ``rules`` were compiled from, read once per rule set."""
+        if self._values_of is None or self._values_of[0] is not rules:
+            store = self.onto.store
+            self._values_of = (rules, frozenset(t.object for t in store.triples(None, HAS_VALUE, None, ASSERTED)
+                                                if isinstance(t.object, NamedNode)))
+        return self._values_of[1]
 
     def superclasses(self, cls: NamedNode, classes: dict | None = None) -> set[NamedNode]:
         """The superclasses of ``cls`` in ``classes`` (a classification; None: the current one)."""
@@ -194,6 +225,18 @@ class OntologyReasoning:
         """Whether a fact types some individual with ``cls`` (asserted or inferred)."""
         store = self.onto.store
         return any(True for g in (ASSERTED, INFERRED) for _ in store.triples(None, TYPE, cls, g))
+
+
+def _made(classification: Classification, said: bool) -> dict[NamedNode, set[NamedNode]]:
+    """The superclasses of ``classification``; where this read makes them and ``said``, its unsatisfiable classes
+    are warned of."""
+    if classification.made or not said:
+        return classification.superclasses()
+    supers = classification.superclasses()
+    empty = unsatisfiable(supers)
+    if empty:
+        warn(unsatisfiable_text(empty), OntologyWarning)
+    return supers
 
 
 def _lists_said_otherwise(store, rules: RuleSet) -> bool:

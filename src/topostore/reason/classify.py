@@ -64,6 +64,42 @@ def classify(rules: RuleSet, known: Iterable[Triple] = ()) -> dict[NamedNode, se
     return supers
 
 
+class Classification:
+    """One classification, made the first time it is read: from compiled rules and the types of the values of
+    hasValue restrictions (see :func:`classify`), both held by reference, never a copy of the store; or as it was
+    made before, given back whole (a durable store's, ``rules`` None).
+
+    A buffered reasoner answers the classification of its last REASON until the next one: keeping its inputs
+    costs a REASON nothing, and a change since (a schema triple, a value's type) makes a new one without touching
+    this one."""
+
+    __slots__ = ("rules", "values", "_supers")
+
+    def __init__(self, rules: RuleSet | None, values: frozenset[Triple] = frozenset(),
+                 supers: dict[NamedNode, set[NamedNode]] | None = None) -> None:
+        if rules is None and supers is None:
+            raise ValueError("a classification needs its rules or its superclasses")
+        self.rules = rules
+        self.values = values
+        self._supers = supers
+
+    def of(self, rules: RuleSet, values: frozenset[Triple]) -> bool:
+        """Whether it is (or will be) made from these rules and value types."""
+        return self.rules is rules and self.values == values
+
+    @property
+    def made(self) -> bool:
+        """Whether the superclasses were made (reading them costs no classification)."""
+        return self._supers is not None
+
+    def superclasses(self) -> dict[NamedNode, set[NamedNode]]:
+        """Each named class's named superclasses (:func:`classify`), made on the first read."""
+        if self._supers is None:
+            assert self.rules is not None
+            self._supers = classify(self.rules, self.values)
+        return self._supers
+
+
 def _run(rules: RuleSet, protos: dict[NamedNode, NamedNode], known: list[Triple]):
     """A scratch store holding each prototype as a member of its class, ``known`` beside them, closed under
     ``rules``."""
