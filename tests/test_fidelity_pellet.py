@@ -47,6 +47,19 @@ try:
 except owlready2.OwlReadyInconsistentOntologyError:
     print(json.dumps({"consistent": False})); sys.exit()
 props = [p for p in world.object_properties() if p.iri.startswith(base)]
+def ancestors(c):
+    # Owlready2 cannot hash a restriction into a data one-of, union or complement: walk the named classes instead
+    try:
+        return c.ancestors()
+    except TypeError:
+        seen, todo = set(), [c]
+        while todo:
+            x = todo.pop()
+            if x in seen:
+                continue
+            seen.add(x)
+            todo += [s for s in [*x.is_a, *x.equivalent_to] if isinstance(s, owlready2.ThingClass)]
+        return seen
 out = {}
 for ind in world.individuals():
     if not ind.iri.startswith(base):
@@ -54,7 +67,7 @@ for ind in world.individuals():
     types = set()
     for c in ind.is_a:
         if isinstance(c, owlready2.ThingClass):
-            types |= {a.iri for a in c.ancestors() if a.iri.startswith(base)}
+            types |= {a.iri for a in ancestors(c) if a.iri.startswith(base)}
     facts = {"types": sorted(types)}
     for p in props:
         values = sorted({v.iri for v in p[ind] if hasattr(v, "iri")})
@@ -256,7 +269,8 @@ def swrl_comparisons() -> str:
 
 #: SWRL rules as a third party writes them: rules Pellet ignores (an unknown built-in, a head variable the body does
 #: not bind, an atom without its argument; topostore sets them aside), data range atoms on a datatype defined by
-#: facets (named, or written in the atom), built-ins given an individual, and a plain rule beside them
+#: facets (named, or written in the atom) and on a union of it and a one-of, built-ins given an individual, and a
+#: plain rule beside them
 SWRL_THIRD_PARTY = """@prefix swrl: <http://www.w3.org/2003/11/swrl#> . @prefix swrlb: <http://www.w3.org/2003/11/swrlb#> .
 @prefix var: <urn:fidelity:var#> .
 :d a owl:DatatypeProperty . :p a owl:ObjectProperty . :D a owl:Class .
@@ -276,6 +290,9 @@ var:x a swrl:Variable . var:v a swrl:Variable . var:y a swrl:Variable .
     "SmallWritten": "[ a swrl:DatavaluedPropertyAtom ; swrl:propertyPredicate :d ; swrl:argument1 var:x ; "
                     "swrl:argument2 var:v ] [ a swrl:DataRangeAtom ; swrl:argument1 var:v ; swrl:dataRange [ a rdfs:Datatype ;"
                     " owl:onDatatype xsd:integer ; owl:withRestrictions ( [ xsd:maxInclusive 10 ] ) ] ]",
+    "SmallOrText": "[ a swrl:DatavaluedPropertyAtom ; swrl:propertyPredicate :d ; swrl:argument1 var:x ; "
+                   "swrl:argument2 var:v ] [ a swrl:DataRangeAtom ; swrl:argument1 var:v ; swrl:dataRange [ a rdfs:Datatype ;"
+                   " owl:unionOf ( :Small [ a rdfs:Datatype ; owl:oneOf ( \"x\" \"y\" ) ] ) ] ]",
     "EqualToIndividual": "[ a swrl:ClassAtom ; swrl:classPredicate :D ; swrl:argument1 var:x ] "
                          "[ a swrl:BuiltinAtom ; swrl:builtin swrlb:equal ; swrl:arguments ( var:x :a ) ]",
     "OtherThanIndividual": "[ a swrl:DatavaluedPropertyAtom ; swrl:propertyPredicate :d ; swrl:argument1 var:x ; "
@@ -316,7 +333,7 @@ def test_the_rules_pellet_ignores_are_set_aside_and_named() -> None:
     with pytest.warns(OntologyWarning, match="SWRL rule set aside"):
         o = Ontology.from_file(saved(document("swrl_third_party", SWRL_THIRD_PARTY)))
     aside = {n.subject for n in o.reason().incomplete if n.axiom_kind == RULE_SET_ASIDE}
-    assert aside == SET_ASIDE and len(o.rule_labels()) == 9
+    assert aside == SET_ASIDE and len(o.rule_labels()) == 10
 
 
 # ---------------------------------------------------------------- random small ontologies
@@ -672,6 +689,20 @@ INCONSISTENT = {
     "class_defined_as_a_single_individual_in_a_disjoint_class": """:B a owl:Class ; owl:oneOf ( :b ) .
 :E a owl:Class ; owl:disjointWith :F . :F a owl:Class .
 :b a owl:NamedIndividual, :E . :c a owl:NamedIndividual, :B, :F .
+""",
+    # a value outside a data range built of others: a one-of as a range, a union with a complement as a universal's
+    # filler, a named datatype defined as a union as a range (compile/data_ranges.py)
+    "value_outside_a_data_one_of_range": """:d a owl:DatatypeProperty ; rdfs:range [ a rdfs:Datatype ; owl:oneOf ( 1 2 3 ) ] .
+:x a owl:NamedIndividual ; :d 4 .
+""",
+    "value_outside_a_data_union_universal": """:d a owl:DatatypeProperty . :C a owl:Class ; rdfs:subClassOf [ a owl:Restriction ;
+  owl:onProperty :d ; owl:allValuesFrom [ a rdfs:Datatype ; owl:unionOf ( xsd:boolean
+  [ a rdfs:Datatype ; owl:datatypeComplementOf xsd:decimal ] ) ] ] .
+:x a owl:NamedIndividual, :C ; :d 4 .
+""",
+    "value_outside_a_datatype_defined_as_a_union": """:Code a rdfs:Datatype ; owl:equivalentClass [ a rdfs:Datatype ;
+  owl:unionOf ( xsd:boolean xsd:string ) ] . :d a owl:DatatypeProperty ; rdfs:range :Code .
+:x a owl:NamedIndividual ; :d 5 .
 """,
 }
 
