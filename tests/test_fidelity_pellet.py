@@ -33,6 +33,7 @@ from topostore import InvalidValueError, Ontology, OntologyWarning
 from topostore.compile import profile
 from topostore.compile.notices import NON_SIMPLE as NON_SIMPLE_KIND
 from topostore.compile.notices import RULE_SET_ASIDE
+from topostore.compile.notices import UNDECLARED as UNDECLARED_KIND
 
 pytestmark = NEEDS_PELLET
 
@@ -1023,3 +1024,42 @@ def test_non_simple_properties_in_simple_positions_as_pellet(name: str) -> None:
         return
     ours = topostore(o, list(theirs["individuals"]))
     assert _in_namespace(only(ours, ns), ns) == _in_namespace(only(theirs, ns), ns)
+
+
+# ---------------------------------------------------------------- properties used but not declared (compile/graph_notices.py)
+
+#: facts on properties nothing declares: an individual value, a literal, with a domain, a range, a SWRL atom on them
+UNDECLARED = """@prefix swrl: <http://www.w3.org/2003/11/swrl#> . @prefix var: <urn:fidelity:var#> .
+:C a owl:Class . :E a owl:Class . :F a owl:Class . :G a owl:Class . :R a owl:Class .
+:dom rdfs:domain :C . :domLit rdfs:domain :E . :ran rdfs:range :R .
+:a a owl:NamedIndividual ; :bare :b ; :bareLit "lit" . :b a owl:NamedIndividual .
+:c a owl:NamedIndividual ; :dom :d ; :domLit "x" ; :ran :g . :d a owl:NamedIndividual . :g a owl:NamedIndividual .
+:e a owl:NamedIndividual ; :sw :f ; :swLit "y" . :f a owl:NamedIndividual .
+var:x a swrl:Variable . var:y a swrl:Variable .
+[ a swrl:Imp ; swrl:body ( [ a swrl:IndividualPropertyAtom ; swrl:propertyPredicate :sw ; swrl:argument1 var:x ;
+  swrl:argument2 var:y ] ) ; swrl:head ( [ a swrl:ClassAtom ; swrl:classPredicate :F ; swrl:argument1 var:x ] ) ] .
+[ a swrl:Imp ; swrl:body ( [ a swrl:DatavaluedPropertyAtom ; swrl:propertyPredicate :swLit ; swrl:argument1 var:x ;
+  swrl:argument2 var:y ] ) ; swrl:head ( [ a swrl:ClassAtom ; swrl:classPredicate :G ; swrl:argument1 var:x ] ) ] .
+"""
+
+
+def test_undeclared_properties_are_reasoned_as_pellets_own_loader_reads_them_and_named() -> None:
+    """Pellet through Owlready2 reads the file with its Jena loader, which takes an undeclared property by its facts (an
+    object property for an individual value, a data property for a literal): domains, ranges and SWRL rules apply, as
+    in topostore.  The OWL API (under aRMOR's Pellet) reads those facts as annotations and draws nothing from them
+    (OWL API 3.4.3 with Pellet 2.3.1: every individual only a Thing): each such property is named at load."""
+    name = "undeclared"
+    text, ns = document(name, UNDECLARED), namespace(name)
+    FILES.mkdir(parents=True, exist_ok=True)
+    path = FILES / f"{name}.{os.getpid()}.nt"  # as written: a SAVE would add the declarations
+    path.write_bytes(serialize(parse(text.encode(), format=RdfFormat.TURTLE), format=RdfFormat.N_TRIPLES))
+    theirs = pellet_of_file(path)
+    with pytest.warns(OntologyWarning, match="property used but not declared"):
+        o = Ontology.from_file(path)
+    ours = topostore(o, list(theirs["individuals"]))
+    assert ({k: v.get("types") for k, v in _in_namespace(only(ours, ns), ns).items()}
+            == {k: v.get("types") for k, v in _in_namespace(only(theirs, ns), ns).items()})
+    assert {ns + c for c in ("C", "E", "R", "F", "G")} == {c for v in theirs["individuals"].values() for c in v["types"]}
+    named = {n.subject for n in o.notices if n.kind == UNDECLARED_KIND}
+    assert named == {"bare", "bareLit", "dom", "domLit", "ran", "sw", "swLit"}
+    assert not o.reason().incomplete
