@@ -712,6 +712,10 @@ INCONSISTENT = {
   [ a rdfs:Datatype ; owl:datatypeComplementOf xsd:decimal ] ) ] ] .
 :x a owl:NamedIndividual, :C ; :d 4 .
 """,
+    "existential_into_an_empty_data_intersection": """:d a owl:DatatypeProperty . :C a owl:Class ; rdfs:subClassOf [ a owl:Restriction ;
+  owl:onProperty :d ; owl:someValuesFrom [ a rdfs:Datatype ; owl:intersectionOf ( xsd:integer xsd:string ) ] ] .
+:x a owl:NamedIndividual, :C .
+""",
     "value_outside_a_datatype_defined_as_a_union": """:Code a rdfs:Datatype ; owl:equivalentClass [ a rdfs:Datatype ;
   owl:unionOf ( xsd:boolean xsd:string ) ] . :d a owl:DatatypeProperty ; rdfs:range :Code .
 :x a owl:NamedIndividual ; :d 5 .
