@@ -11,14 +11,13 @@ from __future__ import annotations
 from collections.abc import Callable, Iterable
 from itertools import islice
 
-from pyoxigraph import Literal, NamedNode
+from pyoxigraph import NamedNode
 
-from ..rdf.declarations import BUILT_IN, NOT_INDIVIDUALS
 from ..rdf.vocab import FIRST, NIL, OWL, RDFS, REST, SAME_AS, TYPE, is_skolem, owl
 from ..stores.base import Store
 from . import data_ranges
 from .model import Expr, is_datatype, short_name
-from .notices import NOT_STORED, UNCHECKED_DATATYPE, UNDECLARED, UNSUPPORTED, Notice
+from .notices import NOT_STORED, UNCHECKED_DATATYPE, UNSUPPORTED, Notice
 from .snippets import in_datatype
 
 #: the report's note: (axiom kind, axiom, reason)
@@ -168,60 +167,6 @@ def top_and_bottom(note: Note, store: Store, graph: NamedNode) -> None:
             note(UNSUPPORTED, f"owl:{name}", f"{meaning}: not reasoned, used as any other property")
 
 
-#: the types that make an IRI a property the OWL API reads facts of (an object, data or annotation property)
-_PROPERTY_TYPES = ("ObjectProperty", "DatatypeProperty", "AnnotationProperty", "FunctionalProperty",
-                   "InverseFunctionalProperty", "TransitiveProperty", "SymmetricProperty", "AsymmetricProperty",
-                   "ReflexiveProperty", "IrreflexiveProperty")
-#: the axioms that give a property its kind by the other side (an inverse, a restriction on it, a chain, a super- or
-#: equivalent property), as (predicate, whether the property is its subject): the OWL API types it by them
-_TYPING_USES = ((OWL + "inverseOf", True), (OWL + "inverseOf", False), (OWL + "onProperty", False),
-                (OWL + "propertyChainAxiom", True), (RDFS + "subPropertyOf", True), (RDFS + "subPropertyOf", False),
-                (OWL + "equivalentProperty", True), (OWL + "equivalentProperty", False))
-
-
-def undeclared_properties(store: Store, graph: NamedNode) -> list[Notice]:
-    """One notice per property a fact of ``graph`` uses (``:a :p :b``, ``:a :p "v"``) that nothing declares nor
-    types (no ``owl:ObjectProperty`` or other property type, no inverse, restriction, chain or super-property
-    using it).  topostore reasons with such a fact as an object or data property's, as Pellet's own (Jena) loader
-    does; the OWL API, which aRMOR's Pellet runs on, reads it as an annotation (a domain of the property too, and a
-    SWRL atom on it matches no such fact), so that Pellet draws nothing from it there: the difference is said.
-    (The predicates are listed once, each looked up by its own triples: no pass over the facts per fact.)"""
-    if store.writes_pending:  # a query would commit them: left to the next load or compile, which says it
-        return []
-    types = {owl(t) for t in _PROPERTY_TYPES}
-    candidates = [row["p"] for row in store.query("SELECT DISTINCT ?p WHERE { ?s ?p ?o }", graphs=[graph])]
-    notices = []
-    for p in sorted((p for p in candidates if isinstance(p, NamedNode) and not p.value.startswith(BUILT_IN)
-                     and not is_skolem(p)), key=lambda p: p.value):
-        if types & set(store.objects(p, TYPE, graph)) or any(
-                next(iter(store.triples(p, NamedNode(use), None, graph) if subject
-                          else store.triples(None, NamedNode(use), p, graph)), None) is not None
-                for use, subject in _TYPING_USES):
-            continue
-        found = _facts_of(store, graph, p)
-        if found is None:
-            continue
-        (s, o), n = found
-        kind = "a data" if isinstance(o, Literal) else "an object"
-        example = f"{short_name(s)} {short_name(p)} {o if isinstance(o, Literal) else short_name(o)}"
-        notices.append(Notice(UNDECLARED, short_name(p), f"used in {n} fact{'s' if n > 1 else ''} (as in {example}) "
-                              f"and declared nowhere: reasoned as {kind} property, as Pellet's Jena loader reads it; "
-                              "the OWL API under aRMOR's Pellet reads such facts as annotations, and draws nothing "
-                              "from them"))
-    return notices
-
-
-def _facts_of(store: Store, graph: NamedNode, p: NamedNode) -> tuple[tuple[object, object], int] | None:
-    """(a fact's subject and value, how many facts) of ``p`` whose subject is an individual (not the ontology, a
-    class or a property, which an undeclared predicate annotates), None where it has none."""
-    skipped = " ".join(f"<{t.value}>" for t in sorted(NOT_INDIVIDUALS, key=lambda t: t.value))
-    text = (f"SELECT ?s ?o WHERE {{ ?s <{p.value}> ?o . FILTER(!isBlank(?s)) "
-            f"FILTER NOT EXISTS {{ ?s a ?t . VALUES ?t {{ {skipped} }} }} }}")
-    rows = [(row["s"], row["o"]) for row in store.query(text, graphs=[graph])]
-    rows = [(s, o) for s, o in rows if isinstance(s, NamedNode) and not is_skolem(s)]
-    return (rows[0], len(rows)) if rows else None
-
-
 def reflexive_equality(store: Store, graph: NamedNode) -> Notice | None:
     """Said once when the file states an equality: see :data:`REFLEXIVE_SAME_AS` for why."""
     first = next(iter(store.triples(None, SAME_AS, None, graph)), None)
@@ -232,5 +177,5 @@ def reflexive_equality(store: Store, graph: NamedNode) -> Notice | None:
 
 
 __all__ = ["REFLEXIVE_SAME_AS", "MALFORMED", "malformed_lists", "malformed_now",
-           "imports", "list_vocabulary", "reflexive_equality", "top_and_bottom", "undeclared_properties",
+           "imports", "list_vocabulary", "reflexive_equality", "top_and_bottom",
            "unchecked_datatypes"]

@@ -34,9 +34,6 @@ INCOMPLETE = "not reasoned completely"
 NOT_STORED = "entailed, not stored"
 #: Informative: an annotation property's axioms (domain, range, super-property), set aside as OWL 2 and Pellet do.
 ANNOTATION = "annotation property axioms without logical meaning"
-#: Informative: a property a file's facts use and no axiom declares: reasoned as an object or data property, where
-#: the OWL API (under aRMOR's Pellet) reads its facts as annotations
-UNDECLARED = "property used but not declared"
 
 #: Axiom kinds of the profile report, the ``axiom_kind`` of an ``INCOMPLETE`` notice (the groups of the LOAD
 #: warning): :mod:`.profile` and :mod:`.graph_notices`.
@@ -157,6 +154,6 @@ def publish(notices: Iterable[Notice], source: str = "") -> list[str]:
     return lines
 
 
-__all__ = ["ANNOTATION", "INCOMPLETE", "NOT_STORED", "UNDECLARED",
+__all__ = ["ANNOTATION", "INCOMPLETE", "NOT_STORED",
            "RULE_REPAIRED", "RULE_SET_ASIDE", "RULE_SKIPPED", "SQWRL_QUERY", "Notice", "OntologyWarning", "answered",
            "grouped", "publish", "unsaid", "warn"]

@@ -56,7 +56,6 @@ from .notices import (
     MAX_LEFT,
     NOT_STORED,
     UNCHECKED_DATATYPE,
-    UNDECLARED,
     UNION,
     UNIVERSAL,
     UNSUPPORTED,
@@ -158,8 +157,6 @@ class ProfileReport:
         graph_notices.malformed_lists(self.note, store, graph)
         graph_notices.imports(self.note, store, graph)
         graph_notices.top_and_bottom(self.note, store, graph)
-        for notice in graph_notices.undeclared_properties(store, graph):
-            self.notices.setdefault((UNDECLARED, notice.subject), notice)
         same_as = graph_notices.reflexive_equality(store, graph)
         if same_as is not None:
             self.notices.setdefault((NOT_STORED, "owl:sameAs"), same_as)

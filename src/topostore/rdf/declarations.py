@@ -24,15 +24,14 @@ from pyoxigraph import Literal, NamedNode, Triple
 
 from .vocab import NAMED_INDIVIDUAL, OWL, RDF, RDFS, STANFORD_SWRL, SWRL, SWRLB, TYPE, XSD, is_skolem, owl
 
-#: the built-in vocabularies: their IRIs are never the document's entities
-BUILT_IN = (RDF, RDFS, OWL, XSD, SWRL, SWRLB, STANFORD_SWRL)
+_BUILT_IN = (RDF, RDFS, OWL, XSD, SWRL, SWRLB, STANFORD_SWRL)
 CLASS = owl("Class")
 OBJECT_PROPERTY = owl("ObjectProperty")
 DATATYPE_PROPERTY = owl("DatatypeProperty")
 _ANNOTATION_PROPERTY = owl("AnnotationProperty")
 _ONTOLOGY = owl("Ontology")
 #: what a subject declared so is, when an undeclared predicate describes it: annotated, not an individual
-NOT_INDIVIDUALS = {_ONTOLOGY, CLASS, OBJECT_PROPERTY, DATATYPE_PROPERTY, _ANNOTATION_PROPERTY,
+_NOT_INDIVIDUALS = {_ONTOLOGY, CLASS, OBJECT_PROPERTY, DATATYPE_PROPERTY, _ANNOTATION_PROPERTY,
                     owl("Restriction"), owl("TransitiveProperty"), owl("FunctionalProperty"),
                     owl("SymmetricProperty"), owl("AsymmetricProperty"), owl("ReflexiveProperty"),
                     owl("IrreflexiveProperty"), owl("InverseFunctionalProperty"), owl("AllDifferent"),
@@ -44,7 +43,7 @@ _FACT_PROPERTIES = {OBJECT_PROPERTY, DATATYPE_PROPERTY}
 
 def _own(term: object) -> bool:
     """An IRI of the document's own (not of a built-in vocabulary, not a skolemised blank node)."""
-    return isinstance(term, NamedNode) and not term.value.startswith(BUILT_IN) and not is_skolem(term)
+    return isinstance(term, NamedNode) and not term.value.startswith(_BUILT_IN) and not is_skolem(term)
 
 
 def _uses(triples: list[Triple], present: set[tuple[object, object]]) -> Iterable[tuple[NamedNode, NamedNode]]:
@@ -64,7 +63,7 @@ def _uses(triples: list[Triple], present: set[tuple[object, object]]) -> Iterabl
             continue
         if not _own(p) or _ANNOTATION_PROPERTY in kinds.get(p, ()):
             continue
-        if kinds.get(s, set()) & NOT_INDIVIDUALS and not kinds.get(p, set()) & _FACT_PROPERTIES:
+        if kinds.get(s, set()) & _NOT_INDIVIDUALS and not kinds.get(p, set()) & _FACT_PROPERTIES:
             continue
         if _own(s):
             yield s, NAMED_INDIVIDUAL
@@ -91,4 +90,4 @@ def declared(triples: Iterable[Triple]) -> list[Triple]:
     return [*triples, *missing_declarations(triples)]
 
 
-__all__ = ["BUILT_IN", "NOT_INDIVIDUALS", "declared", "missing_declarations"]
+__all__ = ["declared", "missing_declarations"]
