@@ -219,6 +219,34 @@ CASES: dict[str, str] = {
 :a a owl:NamedIndividual ; :q :b . :b a owl:NamedIndividual, :D . :c a owl:NamedIndividual ; :d 5 .
 :k a owl:NamedIndividual ; :g :b . :m a owl:NamedIndividual ; :h :b . :n a owl:NamedIndividual ; :r :b .
 """,
+    # data ranges built of others (compile/data_ranges.py): a one-of of literals (named by a datatype definition, or
+    # written in the restriction), a complement, a union, an intersection, as an existential's and a qualified
+    # minimum's filler, a range and a universal's filler; a value matched by value ("1"^^xsd:int, 1.0 in {1, 2, 3};
+    # "1.0"^^xsd:float not), "a"@en outside {"a", "b"}
+    "data_ranges": """
+:d a owl:DatatypeProperty . :r a owl:DatatypeProperty ; rdfs:range [ a rdfs:Datatype ; owl:oneOf ( 1 2 3 "x" ) ] .
+:Small a rdfs:Datatype ; owl:equivalentClass [ a rdfs:Datatype ; owl:oneOf ( 1 2 3 ) ] .
+:Pick a owl:Class ; owl:equivalentClass [ a owl:Restriction ; owl:onProperty :d ; owl:someValuesFrom [ a rdfs:Datatype ;
+  owl:oneOf ( "a" "b" ) ] ] .
+:NotInt a owl:Class ; owl:equivalentClass [ a owl:Restriction ; owl:onProperty :d ; owl:someValuesFrom [ a rdfs:Datatype ;
+  owl:datatypeComplementOf xsd:integer ] ] .
+:IntOrBool a owl:Class ; owl:equivalentClass [ a owl:Restriction ; owl:onProperty :d ; owl:someValuesFrom [ a rdfs:Datatype ;
+  owl:unionOf ( xsd:integer xsd:boolean ) ] ] .
+:BigSmall a owl:Class ; owl:equivalentClass [ a owl:Restriction ; owl:onProperty :d ; owl:someValuesFrom [ a rdfs:Datatype ;
+  owl:intersectionOf ( :Small [ a rdfs:Datatype ; owl:onDatatype xsd:integer ; owl:withRestrictions ( [ xsd:minInclusive 2 ] ) ] ) ] ] .
+:SmallOne a owl:Class ; owl:equivalentClass [ a owl:Restriction ; owl:onProperty :d ; owl:someValuesFrom :Small ] .
+:TwoSmall a owl:Class ; owl:equivalentClass [ a owl:Restriction ; owl:onProperty :d ;
+  owl:minQualifiedCardinality "2"^^xsd:nonNegativeInteger ; owl:onDataRange :Small ] .
+:NotSmall a owl:Class ; owl:equivalentClass [ a owl:Restriction ; owl:onProperty :d ; owl:someValuesFrom [ a rdfs:Datatype ;
+  owl:datatypeComplementOf :Small ] ] .
+:Ranged a owl:Class ; owl:equivalentClass [ a owl:Restriction ; owl:onProperty :r ; owl:someValuesFrom xsd:string ] .
+:Only a owl:Class ; rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :d ; owl:allValuesFrom [ a rdfs:Datatype ;
+  owl:unionOf ( :Small [ a rdfs:Datatype ; owl:datatypeComplementOf xsd:decimal ] ) ] ] .
+:a a owl:NamedIndividual ; :d 1 . :b a owl:NamedIndividual, :Only ; :d "1"^^xsd:int ; :r 2 . :c a owl:NamedIndividual ; :d "a" .
+:e a owl:NamedIndividual, :Only ; :d true . :f a owl:NamedIndividual ; :d 2.5 .
+:g a owl:NamedIndividual ; :d "b"^^xsd:string , 3, "2"^^xsd:long ; :r "x" . :h a owl:NamedIndividual ; :d "1.0"^^xsd:decimal .
+:i a owl:NamedIndividual ; :d "1.0"^^xsd:float . :j a owl:NamedIndividual ; :d "a"@en .
+""",
 }
 
 

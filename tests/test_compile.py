@@ -190,7 +190,7 @@ def test_built_ins_wait_for_their_inputs_and_refuse_bad_calls() -> None:
         "abs", "add", "ceiling", "contains", "containsIgnoreCase", "date", "dateTime", "divide", "endsWith", "equal", "floor",
         "greaterThan", "greaterThanOrEqual", "integerDivide", "lessThan", "lessThanOrEqual", "lowerCase", "matches",
         "mod", "multiply", "notEqual", "pow", "round", "startsWith", "stringConcat", "stringLength", "substring",
-        "subtract", "unaryMinus", "unaryPlus", "upperCase"]
+        "subtract", "time", "unaryMinus", "unaryPlus", "upperCase"]
 
 
 # ---------------------------------------------------------------- shared SPARQL fragments

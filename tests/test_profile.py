@@ -168,9 +168,13 @@ CASES = {
     "universal into an own datatype": (":Small a rdfs:Datatype . :d a owl:DatatypeProperty . :A rdfs:subClassOf "
                                        "[ a owl:Restriction ; owl:onProperty :d ; owl:allValuesFrom :Small ] .",
                                        kinds.UNCHECKED_DATATYPE, "Small is not a datatype of the OWL 2"),
-    "data one-of": (":code a owl:DatatypeProperty . :B owl:equivalentClass [ a owl:Restriction ; "
-                    "owl:onProperty :code ; owl:someValuesFrom [ a rdfs:Datatype ; owl:oneOf ( 1 2 ) ] ] .",
-                    kinds.UNSUPPORTED, "set aside"),
+    "data one-of of an individual": (":code a owl:DatatypeProperty . :B owl:equivalentClass [ a owl:Restriction ; "
+                                     "owl:onProperty :code ; owl:someValuesFrom [ a rdfs:Datatype ; owl:oneOf ( 1 :b ) ] ] .",
+                                     kinds.UNSUPPORTED, "set aside"),
+    "data union with an own datatype": (":Mine a rdfs:Datatype . :code a owl:DatatypeProperty . :B owl:equivalentClass "
+                                        "[ a owl:Restriction ; owl:onProperty :code ; owl:someValuesFrom [ a rdfs:Datatype ; "
+                                        "owl:unionOf ( xsd:boolean :Mine ) ] ] .",
+                                        kinds.UNCHECKED_DATATYPE, "built of a datatype whose values"),
 }
 
 

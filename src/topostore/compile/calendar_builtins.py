@@ -1,22 +1,23 @@
-"""``swrlb:date`` and ``swrlb:dateTime`` with a bound first argument: the value split into its parts.
+"""``swrlb:date``, ``swrlb:dateTime`` and ``swrlb:time`` with a bound first argument: the value split into its parts.
 
-``swrlb:date(?t, ?y, ?m, ?d[, ?tz])`` and ``swrlb:dateTime(?t, ?y, ?m, ?d, ?h, ?mi, ?s[, ?tz])`` hold where
-the parts are those of ``?t``: each part still unbound is bound (a BIND), each bound one compared (Pellet's
-``swrlb:equal``).  Pellet 2.3.1 (``DateTimeOperators``) splits any value of a Gregorian calendar type, and
-its parts are what ``XMLGregorianCalendar`` answers, so the rule text reproduces them:
+``swrlb:date(?t, ?y, ?m, ?d[, ?tz])``, ``swrlb:dateTime(?t, ?y, ?m, ?d, ?h, ?mi, ?s[, ?tz])`` and
+``swrlb:time(?t, ?h, ?mi, ?s[, ?tz])`` hold where the parts are those of ``?t``: each part still unbound is
+bound (a BIND), each bound one compared (Pellet's ``swrlb:equal``).  Pellet 2.3.1 (``DateTimeOperators``) splits
+any value of a Gregorian calendar type, and its parts are what ``XMLGregorianCalendar`` answers, so the rule text
+reproduces them:
 
 * a field the value has not (the hour of a date, the year of a time) is ``-2147483648`` (Java's
   ``FIELD_UNDEFINED``), not a failure;
 * the seconds are a decimal (the fraction kept), the other parts integers;
 * the time zone is a string: ``"Z"`` for UTC, ``"±hh:02d"`` otherwise (its hours, and Pellet's format
   string's literal ``:02d`` for the minutes; an offset under an hour is ``"+00:02d"``).  Without one,
-  ``date`` gives ``""`` and ``dateTime`` nothing: an unbound time zone then fails, a bound one is not
-  compared;
+  ``date`` gives ``""``, ``dateTime`` and ``time`` nothing: an unbound time zone then fails, a bound one is
+  not compared;
 * a value of any other type (a string, a number) is false.
 
 Not translated (the rule is set aside with its notice): an unbound first argument, which Pellet builds from
-the parts' lexical forms, and ``dateTime`` with every part bound, which Pellet also evaluates by building
-the value from the parts rather than by splitting it, and one unbound variable given for two parts (Pellet
+the parts' lexical forms, and ``dateTime`` or ``time`` with every part bound, which Pellet also evaluates by
+building the value from the parts rather than by splitting it, and one unbound variable given for two parts (Pellet
 binds each part on its own, and stops with an internal error).
 """
 
@@ -39,7 +40,10 @@ _CALENDAR = ", ".join(f"<{XSD}{t}>" for t in sorted(CALENDAR_TYPES))
 _PARTS = {
     "date": ("YEAR", "MONTH", "DAY"),
     "dateTime": ("YEAR", "MONTH", "DAY", "HOURS", "MINUTES", "SECONDS"),
+    "time": ("HOURS", "MINUTES", "SECONDS"),
 }
+#: the built-ins whose value without a time zone gives none (``date`` gives ``""``)
+_NO_ZONE = frozenset({"dateTime", "time"})
 
 NAMES = frozenset(_PARTS)
 
@@ -74,8 +78,8 @@ def translate(local: str, args: list[str], bound: set[str], numbers: Collection[
             raise RuleCompileError(f"swrlb:{local} with an unbound first argument (building the value from its "
                                    "parts) is not translated")
         return None
-    if local == "dateTime" and all(is_bound(a) for a in parts):
-        raise RuleCompileError("swrlb:dateTime with every part bound (Pellet builds the value from the parts' "
+    if local in _NO_ZONE and all(is_bound(a) for a in parts):
+        raise RuleCompileError(f"swrlb:{local} with every part bound (Pellet builds the value from the parts' "
                                "lexical forms and compares) is not translated")
     unbound = [a for a in parts if not is_bound(a)]
     if len(set(unbound)) < len(unbound):
@@ -86,12 +90,12 @@ def translate(local: str, args: list[str], bound: set[str], numbers: Collection[
         is_zone = i == len(functions)
         expr = _zone(value) if is_zone else _part(functions[i], value)
         if not is_bound(arg):
-            if is_zone and local == "dateTime":
+            if is_zone and local in _NO_ZONE:
                 out.append(test(f'TZ({value}) != ""'))
             out.append(bind(expr, arg))
             continue
         check = comparison("equal", arg, expr, numbers if is_zone else {*numbers, expr})
-        out.append(test(f'(TZ({value}) = "" || {check})' if is_zone and local == "dateTime" else check))
+        out.append(test(f'(TZ({value}) = "" || {check})' if is_zone and local in _NO_ZONE else check))
     return tuple(out)
 
 

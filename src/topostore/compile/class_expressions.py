@@ -71,7 +71,8 @@ class ClassExpressionReader:
             return True
         if is_skolem(value):
             # a data range expression (datatype restriction, oneOf of literals)
-            if self.store.objects(value, NamedNode(OWL + "onDatatype"), self.graph):
+            if self.store.objects(value, NamedNode(OWL + "onDatatype"), self.graph) or \
+                    self.store.objects(value, NamedNode(OWL + "datatypeComplementOf"), self.graph):
                 return True
             if self.store.objects(value, TYPE, self.graph) == [NamedNode(RDFS + "Datatype")]:
                 return True
@@ -180,19 +181,25 @@ class ClassExpressionReader:
         return None
 
     def data_range(self, node: NamedNode, where: str, typed: bool = False) -> NamedNode:
-        """A datatype restricted by numeric facets, as the IRI :mod:`.data_ranges` names it;
-        RuleCompileError for other data range expressions (data one-of, unions, string facets), and for one
-        without its ``rdf:type rdfs:Datatype`` triple unless ``typed`` (its place types it)."""
+        """A data range expression (a datatype restricted by numeric facets, a data one-of of literals, a
+        complement, a union or an intersection of data ranges), as the IRI :mod:`.data_ranges` names it;
+        RuleCompileError for others (string facets), and for one without its ``rdf:type rdfs:Datatype`` triple
+        unless ``typed`` (its place types it)."""
         if not typed and self.types.typed_class(node):
             raise RuleCompileError(f"a class expression stands where a data range is wanted in {where}")
         if not typed and not self.types.typed_data_range(node):
             raise RuleCompileError(f"the data range in {where} lacks its rdf:type rdfs:Datatype triple: the OWL 2 "
                                    "mapping to RDF (and the OWL API) does not read it as a data range")
+        if self._depth >= MAX_NESTING:
+            raise RuleCompileError(f"data ranges nested more than {MAX_NESTING} deep in {where}")
         base = self.one(node, OWL + "onDatatype")
         head = self.one(node, OWL + "withRestrictions")
         if not isinstance(base, NamedNode) or head is None:
-            raise RuleCompileError(f"unsupported data range in {where} (only datatypes restricted by "
-                                   "numeric facets are)")
+            self._depth += 1
+            try:
+                return self._composed_range(node, where)
+            finally:
+                self._depth -= 1
         facets = []
         for item in self.items(head):
             for t in self.store.triples(item, None, None, self.graph):
@@ -203,6 +210,35 @@ class ClassExpressionReader:
             return data_ranges.restricted(base, facets)
         except ValueError as exc:
             raise RuleCompileError(f"data range of {where}: {exc}") from None
+
+    def _composed_range(self, node: NamedNode, where: str) -> NamedNode:
+        """A data one-of, complement, union or intersection (:func:`.data_ranges.composed`)."""
+        head = self.one(node, OWL + "oneOf")
+        if head is not None:
+            values = self.items(head)
+            if not values or not all(isinstance(v, Literal) for v in values):
+                raise RuleCompileError(f"the data one-of in {where} has a member that is not a literal, or none")
+            return data_ranges.composed("oneOf", values)
+        inner = self.one(node, OWL + "datatypeComplementOf")
+        if inner is not None:
+            return data_ranges.composed("complementOf", [self._data_member(inner, where)])
+        for kind in ("unionOf", "intersectionOf"):
+            head = self.one(node, OWL + kind)
+            if head is not None:
+                members = [self._data_member(m, where) for m in self.items(head)]
+                if not members:
+                    raise RuleCompileError(f"the data {kind} in {where} has no member")
+                return data_ranges.composed(kind, members)
+        raise RuleCompileError(f"unsupported data range in {where} (only datatypes restricted by numeric facets, "
+                               "data one-ofs, complements, unions and intersections are)")
+
+    def _data_member(self, node: Term, where: str) -> NamedNode:
+        """A member of a composed data range: a named datatype (one defined stands for its range), or a range."""
+        if not isinstance(node, NamedNode):
+            raise RuleCompileError(f"a literal stands where a data range is wanted in {where}")
+        if is_skolem(node):
+            return self.data_range(node, where, typed=True)
+        return self.datatype_defs.get(node, node)
 
     def restriction(self, node: NamedNode, prop: Prop) -> Expr:
         """The restriction at ``node`` on ``prop``; public because the axiom reader also reads a restriction

@@ -5,8 +5,8 @@ OWL 2 maps ``DatatypeDefinition(:Small DR)`` to an ``owl:equivalentClass`` tripl
 would read it as a class equivalence and set it aside as a malformed class expression.  Read here
 first instead: the name stands for the range wherever the range itself may stand (a property's range,
 a restriction's filler), as the IRI :mod:`.data_ranges` gives it, or as the built-in datatype it is
-made equal to.  A definition by a range topostore does not test (a data one-of, a union, a string
-facet) is set aside with its reason, and the name stays undefined.
+made equal to.  A definition by a range topostore does not read (a string facet) is set aside with its
+reason, and the name stays undefined.
 """
 
 from __future__ import annotations
@@ -54,17 +54,23 @@ def read_definitions(reader: ClassExpressionReader) -> tuple[dict[NamedNode, Nam
         if len(ts) > 1:  # both hold: their intersection, which no one range here stands for
             aside.append((f"{_short(name)} DatatypeDefinition", f"defined {len(ts)} times (the values of both "
                           f"definitions): {_short(name)} stays undefined"))
-            continue
-        t = ts[0]
-        if not is_skolem(t.object):
-            told[name] = t.object
-            continue
-        try:
-            declared = _DATATYPE in reader.store.objects(name, TYPE, reader.graph)  # the OWL API types the range by it
-            told[name] = reader.data_range(t.object, f"the definition of {_short(name)}", typed=declared)
-        except RuleCompileError as exc:
-            aside.append((f"{_short(name)} DatatypeDefinition", f"{exc}: {_short(name)} stays undefined"))
-    return {name: _end(name, told) for name in told}, aside
+        elif not is_skolem(ts[0].object):
+            told[name] = ts[0].object
+    ranges = {name: ts[0] for name, ts in definitions.items() if len(ts) == 1 and is_skolem(ts[0].object)}
+    # a range may name another defined datatype (:NotSmall as the complement of :Small): read again, with the
+    # names read so far standing for their ranges, until no range changes (at most once per definition)
+    for _ in range(len(ranges) + 1):
+        reader.datatype_defs = {name: _end(name, told) for name in told}
+        failed, before = [], dict(told)
+        for name, t in ranges.items():
+            try:
+                declared = _DATATYPE in reader.store.objects(name, TYPE, reader.graph)  # the OWL API types the range by it
+                told[name] = reader.data_range(t.object, f"the definition of {_short(name)}", typed=declared)
+            except RuleCompileError as exc:
+                failed.append((f"{_short(name)} DatatypeDefinition", f"{exc}: {_short(name)} stays undefined"))
+        if told == before:
+            break
+    return {name: _end(name, told) for name in told}, aside + failed
 
 
 def _end(name: NamedNode, told: dict[NamedNode, NamedNode]) -> NamedNode:

@@ -240,7 +240,20 @@ def _next(v: float, toward: float, width: str) -> float:
 
 def is_empty(datatype: NamedNode) -> bool:
     """Whether a datatype restricted by numeric facets has no value (an integer range whose bounds
-    cross, a float range between two adjacent floats, a decimal range with ``> a`` and ``< a``)."""
+    cross, a float range between two adjacent floats, a decimal range with ``> a`` and ``< a``), or a range
+    built of others has none: the complement of ``rdfs:Literal``, a union of empty ranges, an intersection
+    with an empty member or with two members no value lies in both of (:func:`disjoint_datatypes`)."""
+    built = data_ranges.composition(datatype)
+    if built is not None:
+        kind, members = built
+        if kind == "complementOf":
+            return members[0] == LITERAL
+        if kind == "unionOf":
+            return all(is_empty(m) for m in members)
+        if kind == "intersectionOf":
+            return any(is_empty(m) for m in members) or any(
+                disjoint_datatypes(a, b) for i, a in enumerate(members) for b in members[i + 1:])
+        return False
     found = data_ranges.parts(datatype)
     if found is None:
         return False
@@ -311,5 +324,6 @@ def _short(t: NamedNode) -> str:
 
 
 RANGE = str(rdfs("range"))
+LITERAL = rdfs("Literal")
 
 __all__ = ["empty_range_rules", "implied_ranges", "is_empty", "range_rules"]

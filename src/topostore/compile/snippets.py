@@ -89,6 +89,9 @@ def in_datatype(var: str, datatype: NamedNode) -> str | None:
     Returns None for datatypes topostore does not check (any literal then fits).
     Errors (ill-typed literals) count as "not in the datatype".
     """
+    built = data_ranges.composition(datatype)
+    if built is not None:  # a one-of, complement, union or intersection of ranges
+        return _composed_test(var, *built, surely=False)
     restricted = data_ranges.parts(datatype)
     if restricted is not None:  # a datatype restricted by numeric facets: the base, then each facet
         base = surely_in_datatype(var, restricted[0])
@@ -136,9 +139,40 @@ def surely_in_datatype(var: str, datatype: NamedNode) -> str:
     checked = in_datatype(var, datatype)
     if checked is not None:
         return checked
+    built = data_ranges.composition(datatype)
+    if built is not None:  # a union or an intersection with a member not tested, a complement of one
+        return _composed_test(var, *built, surely=True) or "false"
     if datatype.value.startswith(XSD) or datatype.value.startswith(RDF):
         return f"COALESCE((isLiteral({var}) && datatype({var}) = <{datatype.value}>), false)"
     return "false"
+
+
+def _composed_test(var: str, kind: str, members: list, surely: bool) -> str | None:
+    """The test of a range built of others (:func:`.data_ranges.composition`): a one-of is each member's value
+    (:func:`same_value`: ``1`` holds ``"1"^^xsd:int`` and ``"1.0"^^xsd:decimal``, not ``"1"^^xsd:float``); a
+    complement is every literal its member does not hold (OWL 2: the complement within all data values); a
+    union or an intersection its members' tests joined.  None where a member is not tested (no literal is then
+    known outside it); with ``surely``, a union or an intersection tests what is surely in its members instead
+    (a member not tested holds no value surely), a complement stays None."""
+    if kind == "oneOf":
+        tests = [same_value(var, m) or _same_term_value(var, m) for m in members]
+        return "COALESCE((" + (" || ".join(tests) or "false") + "), false)"
+    if kind == "complementOf":
+        inner = in_datatype(var, members[0])
+        return None if inner is None else f"COALESCE((isLiteral({var}) && !({inner})), false)"
+    tests = [(surely_in_datatype if surely else in_datatype)(var, m) for m in members]
+    if any(t is None for t in tests):
+        return None
+    return "(" + (" || " if kind == "unionOf" else " && ").join(f"({t})" for t in tests) + ")"
+
+
+def _same_term_value(var: str, value: Literal) -> str:
+    """``var`` is the literal ``value`` of a datatype whose one value has one term, or two equal by SPARQL's
+    ``=`` within that datatype (``"1"^^xsd:boolean`` and ``true``, ``"1.0"^^xsd:float`` and ``"1"^^xsd:float``)."""
+    text = str(value)
+    if value.language:
+        return f"sameTerm({var}, {text})"
+    return f"(isLiteral({var}) && datatype({var}) = <{value.datatype.value}> && {var} = {text})"
 
 
 #: a literal of the decimal family (xsd:integer, long, …): its value is a real number, written many ways

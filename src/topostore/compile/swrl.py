@@ -345,14 +345,15 @@ class SwrlCompiler:
 
     def _data_range(self, pred: Term | None) -> NamedNode:
         """The datatype a DataRangeAtom tests: a named one of the datatype map, a name defined by a data range
-        (:mod:`.datatype_definitions`), or a datatype restricted by numeric facets written in the atom, the last
-        two as the IRI :mod:`.data_ranges` names them (the value test of a range or a restriction)."""
+        (:mod:`.datatype_definitions`), or a data range written in the atom (numeric facets, a one-of, a complement,
+        a union, an intersection), the last two as the IRI :mod:`.data_ranges` names them (the value test of a range or a restriction)."""
         if isinstance(pred, NamedNode) and is_skolem(pred):
             return self.reader.data_range(pred, "a data range atom", typed=True)
         datatype = self.reader.datatype_defs.get(pred, pred) if isinstance(pred, NamedNode) else None
-        if datatype is None or not (is_datatype(datatype) or data_ranges.parts(datatype) is not None):
+        if datatype is None or not (is_datatype(datatype) or data_ranges.parts(datatype) is not None
+                                    or data_ranges.composition(datatype) is not None):
             raise RuleCompileError("its data range is neither a datatype of the OWL 2 datatype map nor one defined "
-                                   "by numeric facets")
+                                   "by a data range")
         return datatype
 
     @staticmethod
