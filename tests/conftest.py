@@ -54,7 +54,8 @@ SLOW_MODULES = {"test_durable", "test_conformance", "test_fuzz_armor", "test_fuz
 
 
 #: modules whose tests share one ROS world (a module-scoped roscore and node): on two workers
-#: (``--dist loadgroup``) each module stays on one worker, so its world is started once
+#: (``--dist loadgroup``, pyproject.toml) each module stays on one worker, so its world is started once; the
+#: scheduler hands out the largest groups first and every ungrouped test on its own
 ROS_MODULES = {"test_ros", "test_ros_events", "test_fuzz_ros"}
 
 
