@@ -143,6 +143,31 @@ def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:
             item.add_marker(pytest.mark.xdist_group("virtuoso"))
 
 
+def _group_of(nodeid: str) -> str | None:
+    """The worker group of a test by its id: its ROS module's, or "virtuoso" (every Virtuoso test names it in a
+    parameter)."""
+    module = nodeid.split("::", 1)[0].rsplit("/", 1)[-1].removesuffix(".py")
+    if module in ROS_MODULES:
+        return module
+    return "virtuoso" if "virtuoso" in nodeid else None
+
+
+@pytest.hookimpl(optionalhook=True)
+def pytest_xdist_make_scheduler(config: pytest.Config, log: object) -> object | None:
+    """``--dist loadgroup`` that groups by :func:`_group_of` on the controller: xdist 3.8 groups by appending the
+    ``xdist_group`` name to each test's id on the workers, which pytest 9.2's ids no longer take (every test of a
+    ROS module then ran on both workers, each starting its own roscore and node)."""
+    if config.getvalue("dist") != "loadgroup":
+        return None
+    from xdist.scheduler import LoadGroupScheduling
+
+    class ByGroup(LoadGroupScheduling):
+        def _split_scope(self, nodeid: str) -> str:
+            return _group_of(nodeid) or super()._split_scope(nodeid)
+
+    return ByGroup(config, log)
+
+
 def pytest_sessionfinish(session: pytest.Session) -> None:
     """On an xdist worker, hand the fuzz counts of its tests to the controller (which prints them)."""
     output = getattr(session.config, "workeroutput", None)
