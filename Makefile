@@ -20,14 +20,14 @@ run: $(STAMP)
 # goes up: when tests raise the figure, set COV_FLOOR to the new value rounded down; never lower it.
 COV_FLOOR := 93
 
-# The tests that need nothing outside the venv run on two workers (pytest-xdist, `-n 2` in pyproject.toml); those
-# that start roscore, Virtuoso, a browser or a JVM run after them on two workers too, each ROS module's tests
-# (one roscore and node) and the Virtuoso tests kept on one worker (`--dist loadgroup`, tests/conftest.py);
-# coverage adds both up.
+# One pytest session on two workers (pytest-xdist, `-n 2 --dist loadgroup` in pyproject.toml), the tests that
+# start roscore, Virtuoso, a browser or a JVM (`external`) among the others: the scheduler keeps each ROS
+# module's tests (one roscore and node) and the Virtuoso tests on one worker and hands out every other test one
+# at a time, the groups first (tests/conftest.py), so that a worker waiting on a server's start-up shares the
+# machine with one running the in-process tests and neither waits idle for the other at the end.
 test: $(STAMP) browser ros-deps virtuoso java
 	$(BIN)/ruff check src tests benchmarks
-	$(BIN)/python -m pytest -m "not external" --durations=10 --cov=topostore --cov-report=
-	$(BIN)/python -m pytest -m external --dist loadgroup --durations=5 --cov=topostore --cov-append \
+	$(BIN)/python -m pytest --durations=10 --cov=topostore \
 	  --cov-report=term-missing:skip-covered --cov-fail-under=$(COV_FLOOR)
 
 # The live-map page is tested in Debian's chromium (driven by Playwright, a test extra); as

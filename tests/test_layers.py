@@ -11,7 +11,9 @@ from __future__ import annotations
 
 import ast
 import re
+from collections.abc import Collection, Mapping
 from dataclasses import dataclass
+from functools import cache
 from pathlib import Path
 
 import topostore
@@ -53,7 +55,8 @@ def module_file(name: str) -> str | None:
     return None
 
 
-def imported_modules(path: str) -> set[str]:
+@cache  # both import checks read every module: parsed once per worker
+def imported_modules(path: str) -> frozenset[str]:
     """Modules of topostore that ``path`` imports (outside ``if TYPE_CHECKING:``), as paths."""
     tree = ast.parse((PACKAGE / path).read_text(encoding="utf-8"))
     package = ["topostore", *Path(path).parent.parts]
@@ -79,7 +82,7 @@ def imported_modules(path: str) -> set[str]:
             assert target is not None, f"{path} imports {name}, which is no module of topostore"
             if target != path:
                 found.add(target)
-    return found
+    return frozenset(found)
 
 
 def unit_of(path: str) -> str:
@@ -94,7 +97,7 @@ def row_index(path: str) -> int:
     return next(r.index for r in ROWS if unit_of(path) in r.entries)
 
 
-def find_cycle(graph: dict[str, set[str]]) -> list[str]:
+def find_cycle(graph: Mapping[str, Collection[str]]) -> list[str]:
     """One cycle of ``graph`` (a path that ends where it started), or [] when there is none."""
     state: dict[str, int] = {}  # 1 on the current path, 2 done
     path: list[str] = []
