@@ -177,3 +177,36 @@ def test_a_key_no_rule_writes_is_given_its_changed_facts_and_a_derived_key_is_re
              if op.kind in ("minus", "plus") and op.direct is not None}
     assert given[("plus", ("p", f"<{NS}p>"))] == 0 and given[("minus", ("p", f"<{NS}p>"))] == 1
     assert {g for (_, key), g in given.items() if key == ("t", f"<{NS}C>")} == {None}
+
+
+@pytest.mark.parametrize("generated", [True, False])
+def test_an_atom_naming_an_individual_is_never_given_a_fact_naming_another(generated: bool) -> None:
+    """A look-up binds a fact to its atom without testing the atom's constants (its facts are read by its own
+    pattern), so a key's changed facts are handed over only to an atom naming no constant: ``isIn(?r, :kitchen) →
+    InKitchen(?r)`` must not fire on ``isIn(robot, hall)`` nor keep the robot in after a move to the corridor."""
+    from pyoxigraph import NamedNode
+
+    from topostore import Ontology
+
+    ex = "http://example.org/r#"
+    onto = Ontology()
+    onto.load_data(f"""@prefix : <{ex}> . @prefix owl: <http://www.w3.org/2002/07/owl#> .
+@prefix swrl: <http://www.w3.org/2003/11/swrl#> . @prefix var: <http://example.org/rvar#> .
+<{ex}> a owl:Ontology . :isIn a owl:ObjectProperty . :InKitchen a owl:Class . var:r a swrl:Variable .
+[ a swrl:Imp ;
+  swrl:body ( [ a swrl:IndividualPropertyAtom ; swrl:propertyPredicate :isIn ; swrl:argument1 var:r ;
+                swrl:argument2 :kitchen ] ) ;
+  swrl:head ( [ a swrl:ClassAtom ; swrl:classPredicate :InKitchen ; swrl:argument1 var:r ] ) ] .
+""")
+    robot, is_in = NamedNode(ex + "robot"), NamedNode(ex + "isIn")
+    in_kitchen = NamedNode(ex + "InKitchen")
+    with mock.patch.object(staged_code, "GENERATED", generated):
+        onto.reason()
+        for change in ("hall", "kitchen", "corridor"):
+            for old in list(onto.store.triples(robot, is_in, None, graph=ASSERTED)):
+                onto.remove(old)
+            onto.add(Triple(robot, is_in, NamedNode(ex + change)))
+            report = onto.reason(mode="incremental")
+            assert report.stats.program == "compiled"
+            assert (robot in set(onto.instances(in_kitchen))) == (change == "kitchen")
+            assert_as_from_scratch(onto, report)

@@ -13,7 +13,8 @@ from typing import NamedTuple
 
 from ..compile.rule import ReadKey
 from .delta_texts import FLIP_LOST
-from .direct import GIVEN
+from .direct import GIVEN, OneAtom, Relaxed, pattern_of
+from .look_join import Joined
 from .program import StepProgram
 from .regroup import Regroup
 from .scratch import CANDIDATES, FLIP_GAINED
@@ -151,7 +152,8 @@ def _given(program: StepProgram, tag: tuple, found: Callable | None) -> int | No
     look-up taking its facts (:data:`.direct.GIVEN`), the program writes the change to OVERDELETED and
     NEW_FACTS itself (its ``changes`` operation) and none of its rules writes the key (no head of the
     program, no part of one, no variable head: :func:`.triggers.may_hold`), so those graphs hold the
-    change's facts of it and nothing else all run long; else None."""
+    change's facts of it and nothing else all run long, and the look-up's atom names no constant (it binds a fact
+    without testing them: :func:`_read_shape`); else None."""
     if tag[0] not in NEEDING or tag[1][0] == "*" or found is None or getattr(found, "__name__", None) not in GIVEN:
         return None
     if not any(t[0] == "changes" for t, _ in program.ops):
@@ -159,9 +161,25 @@ def _given(program: StepProgram, tag: tuple, found: Callable | None) -> int | No
     written = {*program.heads, *(k for k in program.part if k is not None)}
     if may_hold(written, tag[1]):
         return None
-    if isinstance(getattr(found, "__self__", None), Regroup):
+    owner = getattr(found, "__self__", None)
+    if isinstance(owner, Regroup):
         return BOTH
+    shape = _read_shape(owner)
+    if shape is None or shape.free != pattern_of(tag[1]):
+        return None
     return 1 if tag[0] == "minus" else 0
+
+
+def _read_shape(owner: object):
+    """The atom a look-up binds its key's facts to, or None where it is not one of the kinds that take them.
+    A fact is bound without its atom's constants being tested (:class:`.atom_shape.Shape` expects facts read
+    by the atom's own pattern), so the change's facts are handed over only to an atom naming no constant
+    (its pattern the key's whole pattern): ``isIn(?r, :kitchen)`` must not bind ``isIn(robot, corridor)``."""
+    if isinstance(owner, (OneAtom, Relaxed)):
+        return owner._body
+    if isinstance(owner, Joined):
+        return owner._body[owner.delta]
+    return None
 
 
 __all__ = ["AFTER", "BOTH", "HANDED", "NEEDING", "SEEDING", "SENT", "BoundOp", "Segment", "segments"]
