@@ -90,6 +90,21 @@ def test_disjoint_class_class_reads_the_kept_hierarchy(tmp_path: Path, buffered:
 
 
 @pytest.mark.parametrize("buffered", [True, False])
+def test_query_class_ind_bottom_reads_the_hierarchy_query_class_class_answers(tmp_path: Path, buffered: bool) -> None:
+    """QUERY CLASS IND with bottom=true keeps the classes of an individual with no subclass among them as QUERY
+    CLASS CLASS answers the subclasses: a buffered reasoner's of its last REASON until the next one."""
+    ref = Reference(tmp_path, HAS_VALUE + " :b a owl:NamedIndividual , :K . :x a owl:NamedIndividual ; :p :a , :b .",
+                    buffered)
+    assert ref("QUERY", "CLASS", "IND", "x", "true").queried_objects == ["C", "D"]
+    ref("ADD", "IND", "CLASS", "a", "K")
+    assert ref.under("D") == ([] if buffered else ["C"])
+    assert ref("QUERY", "CLASS", "IND", "x", "true").queried_objects == (["C", "D"] if buffered else ["C"])
+    ref("REASON")
+    assert ref.under("D") == ["C"]
+    assert ref("QUERY", "CLASS", "IND", "x", "true").queried_objects == ["C"]
+
+
+@pytest.mark.parametrize("buffered", [True, False])
 def test_subclass_equivalent_and_disjoint_changes_wait_for_reason(tmp_path: Path, buffered: bool) -> None:
     """MAKE EQUIVALENT CLASS (A ≡ T: A leaves T's subclasses, T's others come under A), a retracted and a told
     SubClassOf, and DISJOINT CLASS (W ⊑ X ⊓ Y made unsatisfiable) change a buffered reasoner's answer at REASON."""
