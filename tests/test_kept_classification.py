@@ -90,6 +90,21 @@ def test_disjoint_class_class_reads_the_kept_hierarchy(tmp_path: Path, buffered:
 
 
 @pytest.mark.parametrize("buffered", [True, False])
+def test_query_class_ind_bottom_reads_the_hierarchy_query_class_class_answers(tmp_path: Path, buffered: bool) -> None:
+    """QUERY CLASS IND with bottom=true keeps the classes of an individual with no subclass among them as QUERY
+    CLASS CLASS answers the subclasses: a buffered reasoner's of its last REASON until the next one."""
+    ref = Reference(tmp_path, HAS_VALUE + " :b a owl:NamedIndividual , :K . :x a owl:NamedIndividual ; :p :a , :b .",
+                    buffered)
+    assert ref("QUERY", "CLASS", "IND", "x", "true").queried_objects == ["C", "D"]
+    ref("ADD", "IND", "CLASS", "a", "K")
+    assert ref.under("D") == ([] if buffered else ["C"])
+    assert ref("QUERY", "CLASS", "IND", "x", "true").queried_objects == (["C", "D"] if buffered else ["C"])
+    ref("REASON")
+    assert ref.under("D") == ["C"]
+    assert ref("QUERY", "CLASS", "IND", "x", "true").queried_objects == ["C"]
+
+
+@pytest.mark.parametrize("buffered", [True, False])
 def test_subclass_equivalent_and_disjoint_changes_wait_for_reason(tmp_path: Path, buffered: bool) -> None:
     """MAKE EQUIVALENT CLASS (A ≡ T: A leaves T's subclasses, T's others come under A), a retracted and a told
     SubClassOf, and DISJOINT CLASS (W ⊑ X ⊓ Y made unsatisfiable) change a buffered reasoner's answer at REASON."""
@@ -191,6 +206,36 @@ def test_a_durable_reference_reopened_reasoned_keeps_what_it_answers_then(tmp_pa
     assert ref.under("D") == [] and ref.under("C") == ["Z"]
     ref("REASON")
     assert ref.under("D") == ["C", "Z"]
+
+
+def test_a_failed_commit_does_not_leave_an_older_hierarchy_kept(tmp_path: Path, monkeypatch) -> None:
+    """The first change after a REASON writes its hierarchy; a commit of that change that fails (an I/O error)
+    wrote nothing, so the next change writes it, and a restart answers that REASON's hierarchy, not an older one."""
+    from topostore.stores.base import META
+    from topostore.stores.oxigraph import OxigraphStore
+
+    ref = Reference(tmp_path, HAS_VALUE + " :b a owl:NamedIndividual .", True, store=str(tmp_path / "refs"))
+    ref("ADD", "IND", "CLASS", "b", "K")  # the first change after LOAD's REASON keeps LOAD's hierarchy
+    ref("ADD", "IND", "CLASS", "a", "K")
+    ref("REASON")
+    assert ref.under("D") == ["C"]
+    commit, failed = OxigraphStore._commit, []
+
+    def failing(store, adds, removes):
+        if not failed and any(q.graph_name == META for q in adds):
+            failed.append(True)
+            raise OSError("injected I/O error")
+        return commit(store, adds, removes)
+
+    monkeypatch.setattr(OxigraphStore, "_commit", failing)
+    reply = ref.service.call({"client_name": "c", "reference_name": "ref", "command": "ADD",
+                              "primary_command_spec": "IND", "secondary_command_spec": "CLASS", "args": ["b", "T"]})
+    assert failed and not reply.success
+    ref("REMOVE", "IND", "CLASS", "b", "K")
+    assert ref.under("D") == ["C"]
+    ref.restart()
+    reply = ref("QUERY", "CLASS", "CLASS", "D")
+    assert reply.queried_objects == [f"<{NS}C>"] and reply.error_description == ""
 
 
 def test_a_store_without_the_kept_hierarchy_says_the_current_one_is_answered(tmp_path: Path) -> None:

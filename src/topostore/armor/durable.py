@@ -23,6 +23,7 @@ from __future__ import annotations
 import logging
 import shutil
 import threading
+import uuid
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -83,8 +84,9 @@ class DurableReferences:
         self._leases: dict[str, object] = {}
         self._stop = threading.Event()
         self._renewer: threading.Thread | None = None
-        #: the kept classification each reference's store holds (:meth:`_keep`), by reference name
-        self._kept: dict[str, Classification] = {}
+        #: the kept classification of each reference (by name) last written to its store or read from it, with
+        #: the token its value there carries (:meth:`_keep`)
+        self._kept: dict[str, tuple[Classification, str]] = {}
 
     # ------------------------------------------------------------ stores
     def new_store(self, name: str) -> Store:
@@ -125,19 +127,30 @@ class DurableReferences:
         """A buffered reasoner's classification of its last REASON, written where the store holds another: at the
         first change after that REASON (a manipulation persists its reference in its own transaction), so that a
         restart before the next REASON answers the same hierarchy.  Where it cannot be made, the store holds none
-        and the reopened reference says so (``context.NOT_KEPT``)."""
+        and the reopened reference says so (``context.NOT_KEPT``).
+
+        Whether the store holds it is read from the store itself: its value carries a token naming this
+        classification, and the store's values are the committed ones with the open transaction's on top.  A
+        commit that fails drops the pending value, so the next change writes it again instead of leaving an
+        older REASON's hierarchy to be answered after a restart."""
         onto = ref.ontology
         kept = onto.reasoning.kept
-        if not (ref.buffered_reasoner and onto.dirty) or kept is None or self._kept.get(ref.name) is kept:
+        if not (ref.buffered_reasoner and onto.dirty and onto.store.durable) or kept is None:
+            return
+        known = self._kept.get(ref.name)
+        token = known[1] if known is not None and known[0] is kept else uuid.uuid4().hex
+        held = onto.store.meta.get(KEPT)
+        if isinstance(held, dict) and held.get("token") == token:
             return
         try:
-            value: dict | None = classification_record(onto.reasoning.kept_classification() or {})
+            value: dict = classification_record(onto.reasoning.kept_classification() or {})
         except TopostoreError as exc:
             logger.warning("reference %r: the class hierarchy of its last REASON could not be made to keep (%s)",
                            ref.name, exc)
-            value = None
+            value = {}
+        value["token"] = token
         onto.store.meta_set(KEPT, value)
-        self._kept[ref.name] = kept
+        self._kept[ref.name] = (kept, token)
 
     def discard(self, name: str, store: Store | None) -> None:
         """Remove a reference's durable data (DROP, or a LOAD that failed)."""
@@ -213,11 +226,15 @@ class DurableReferences:
             except TopostoreError as exc:  # the rules cannot be compiled: the next change or REASON says so
                 logger.warning("reference %r: its class hierarchy could not be kept (%s)", ref.name, exc)
             return
-        supers = superclasses_of(onto.store.meta.get(KEPT)) if onto.opened == "reopened" else None
+        held = onto.store.meta.get(KEPT) if onto.opened == "reopened" else None
+        supers = superclasses_of(held)
         if supers is None:
             logger.warning("reference %r: %s", ref.name, NOT_KEPT)
             return
-        onto.reasoning.kept = self._kept[ref.name] = Classification(None, supers=supers)
+        onto.reasoning.kept = kept = Classification(None, supers=supers)
+        token = held.get("token") if isinstance(held, dict) else None
+        if isinstance(token, str):  # the store holds it: the next change need not write it again
+            self._kept[ref.name] = (kept, token)
 
     def _replay(self, service: ArmorService, ref: Reference, requests: list[dict]) -> None:
         """Queue the buffered requests again through their handlers (which validate and plan them)."""

@@ -28,10 +28,11 @@ from ..rdf.vocab import (
     THING,
     TYPE,
     owl,
+    rdfs,
 )
 from . import codes
 from .codes import CommandError
-from .context import Context, Reply, hidden, hierarchy_warnings, subclasses
+from .context import Context, Reply, answered_classification, asserted, hidden, hierarchy_warnings, subclasses
 from .render import short_name
 
 #: namespaces whose properties are schema, not facts of an individual (owl:sameAs and owl:differentFrom aside)
@@ -108,13 +109,14 @@ def query_objectprop_ind(ctx: Context) -> Reply:
 
 
 def most_specific(onto: Ontology, classes: list[NamedNode]) -> list[NamedNode]:
-    """Classes with no strict subclass among ``classes`` (equivalent classes all stay)."""
-    result = []
-    for c in classes:
-        below = onto.subclasses(c)
-        if not any(d in below and c not in onto.subclasses(d) for d in classes if d != c):
-            result.append(c)
-    return result
+    """Classes with no strict subclass among ``classes`` (equivalent classes all stay).  The subclasses are read
+    from the classification QUERY CLASS CLASS answers (:func:`.context.answered_classification`: a buffered
+    reasoner's as of its last REASON, until the next one), equivalents included, with the told ones added, so
+    that both commands answer from one classification."""
+    kept = answered_classification(onto)
+    below = {c: onto.reasoning.subclasses(c, kept) | {t.subject for t in asserted(onto, None, rdfs("subClassOf"), c)}
+             for c in classes}
+    return [c for c in classes if not any(d in below[c] and c not in below[d] for d in classes if d != c)]
 
 
 def query_class_ind(ctx: Context) -> Reply:
