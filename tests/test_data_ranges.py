@@ -100,3 +100,42 @@ def test_a_range_built_of_an_own_datatype_is_said_unchecked(member: str) -> None
     assert {n.axiom_kind for n in o.notices} == {UNCHECKED_DATATYPE}
     assert NamedNode(ns + "C") in o.types(NamedNode(ns + "x"))
     assert NamedNode(ns + "C") not in o.types(NamedNode(ns + "y"))
+
+
+def _loaded(name: str, body: str) -> Ontology:
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", OntologyWarning)
+        o = Ontology()
+        o.load_data(document(name, body))
+    return o
+
+
+def test_nested_unions_are_one_union_and_definitions_stay_small() -> None:
+    """``A_i`` the union of ``A_{i+1}`` and ``A_{i+2}``: flattened, every name is ``(integer or string)``, not a
+    range twice the size of the next one's."""
+    n = 30
+    defs = "".join(f":A{i} a rdfs:Datatype ; owl:equivalentClass [ a rdfs:Datatype ; owl:unionOf ( :A{i + 1} :A{i + 2} ) ] .\n"
+                   for i in range(n - 2))
+    o = _loaded("dag", f""":d a owl:DatatypeProperty ; rdfs:range :A0 . :x :d 1 .
+{defs}:A{n - 2} a rdfs:Datatype ; owl:equivalentClass xsd:integer . :A{n - 1} a rdfs:Datatype ; owl:equivalentClass xsd:string .""")
+    assert o.reason().consistent and not o.notices
+    assert data_ranges.composed("unionOf", [xsd("integer"), data_ranges.composed("unionOf", [xsd("string"), xsd("integer")])]) \
+        == data_ranges.composed("unionOf", [xsd("string"), xsd("integer")])
+
+
+def test_cyclic_definitions_are_set_aside_by_name() -> None:
+    defs = "".join(f":A{i} a rdfs:Datatype ; owl:equivalentClass [ a rdfs:Datatype ; owl:unionOf ( :A{(i + 1) % 12} "
+                   f"xsd:boolean ) ] .\n" for i in range(12))
+    o = _loaded("cyc", f":d a owl:DatatypeProperty ; rdfs:range :A0 . :x :d 1 .\n{defs}")
+    assert o.reason().consistent
+    said = " ".join(str(n) for n in o.notices)
+    assert "cyclic datatype definitions" in said and "A11 DatatypeDefinition" in said
+
+
+def test_a_range_too_large_is_set_aside_not_the_document() -> None:
+    values = " ".join(str(i) for i in range(700))
+    o = _loaded("large", f""":d a owl:DatatypeProperty .
+:Many a rdfs:Datatype ; owl:equivalentClass [ a rdfs:Datatype ; owl:oneOf ( {values} ) ] .
+:C owl:equivalentClass [ a owl:Restriction ; owl:onProperty :d ; owl:someValuesFrom :Many ] . :x :d 1 .""")
+    assert o.reason().consistent
+    assert "too large" in " ".join(str(n) for n in o.notices)
