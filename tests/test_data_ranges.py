@@ -139,3 +139,16 @@ def test_a_range_too_large_is_set_aside_not_the_document() -> None:
 :C owl:equivalentClass [ a owl:Restriction ; owl:onProperty :d ; owl:someValuesFrom :Many ] . :x :d 1 .""")
     assert o.reason().consistent
     assert "too large" in " ".join(str(n) for n in o.notices)
+
+
+@pytest.mark.parametrize("range_", ["[ a rdfs:Datatype ; owl:datatypeComplementOf :Mine ]",
+                                    "[ a rdfs:Datatype ; owl:unionOf ( xsd:boolean :Mine ) ]"])
+def test_a_swrl_data_range_atom_on_a_range_built_of_an_own_datatype_sets_the_rule_aside(range_: str) -> None:
+    o = _loaded("swrl_own", f"""@prefix swrl: <http://www.w3.org/2003/11/swrl#> . @prefix var: <urn:fidelity:var#> .
+:d a owl:DatatypeProperty . :Mine a rdfs:Datatype . :R a owl:Class . var:x a swrl:Variable . var:v a swrl:Variable .
+[ a swrl:Imp ; swrl:body ( [ a swrl:DatavaluedPropertyAtom ; swrl:propertyPredicate :d ; swrl:argument1 var:x ;
+  swrl:argument2 var:v ] [ a swrl:DataRangeAtom ; swrl:argument1 var:v ; swrl:dataRange {range_} ] ) ;
+  swrl:head ( [ a swrl:ClassAtom ; swrl:classPredicate :R ; swrl:argument1 var:x ] ) ] .
+:x a owl:NamedIndividual ; :d 5 .""")
+    assert o.reason().consistent
+    assert "values topostore does not test" in " ".join(str(n) for n in o.notices)
