@@ -152,3 +152,34 @@ def test_a_swrl_data_range_atom_on_a_range_built_of_an_own_datatype_sets_the_rul
 :x a owl:NamedIndividual ; :d 5 .""")
     assert o.reason().consistent
     assert "values topostore does not test" in " ".join(str(n) for n in o.notices)
+
+
+def _some(range_: str) -> str:
+    return (":d a owl:DatatypeProperty . :C a owl:Class ; rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :d ; "
+            f"owl:someValuesFrom {range_} ] . :x a owl:NamedIndividual, :C .")
+
+
+def _dr(body: str) -> str:
+    return f"[ a rdfs:Datatype ; {body} ]"
+
+
+@pytest.mark.parametrize("body", [
+    _some(_dr(f"owl:intersectionOf ( xsd:integer {_dr('owl:datatypeComplementOf xsd:integer')} )")),
+    _some(_dr("owl:intersectionOf ( " + _dr('owl:oneOf ( "a" )') + " xsd:integer )")),
+    _some(_dr(f"owl:intersectionOf ( {_dr('owl:onDatatype xsd:integer ; owl:withRestrictions ( [ xsd:minInclusive 5 ] )')}"
+              f" {_dr('owl:oneOf ( 1 2 )')} )")),
+    _some(_dr("owl:datatypeComplementOf " + _dr(f"owl:unionOf ( xsd:integer {_dr('owl:datatypeComplementOf xsd:integer')} )"))),
+    ":d a owl:DatatypeProperty . :C a owl:Class ; rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :d ; "
+    f"owl:minQualifiedCardinality \"2\"^^xsd:nonNegativeInteger ; owl:onDataRange {_dr('owl:oneOf ( 1 )')} ] . "
+    ":x a owl:NamedIndividual, :C ."])
+def test_a_value_required_in_an_empty_range_is_inconsistent(body: str) -> None:
+    assert not _loaded("empty", body).reason().consistent
+
+
+def test_a_range_whose_emptiness_is_not_decided_is_said() -> None:
+    o = _loaded("undecided", _some(_dr(f"owl:intersectionOf ( {_dr('owl:datatypeComplementOf xsd:integer')} "
+                                        f"{_dr('owl:datatypeComplementOf xsd:string')} )")))
+    assert o.reason().consistent
+    assert "has any value is not decided" in " ".join(str(n) for n in o.notices)
+    kept = _loaded("decided", _some(_dr("owl:intersectionOf ( " + _dr('owl:oneOf ( 1 "a" )') + " xsd:integer )")))
+    assert kept.reason().consistent and not kept.notices

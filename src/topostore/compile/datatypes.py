@@ -243,17 +243,10 @@ def is_empty(datatype: NamedNode) -> bool:
     cross, a float range between two adjacent floats, a decimal range with ``> a`` and ``< a``), or a range
     built of others has none: the complement of ``rdfs:Literal``, a union of empty ranges, an intersection
     with an empty member or with two members no value lies in both of (:func:`disjoint_datatypes`)."""
-    built = data_ranges.composition(datatype)
-    if built is not None:
-        kind, members = built
-        if kind == "complementOf":
-            return members[0] == LITERAL
-        if kind == "unionOf":
-            return all(is_empty(m) for m in members)
-        if kind == "intersectionOf":
-            return any(is_empty(m) for m in members) or any(
-                disjoint_datatypes(a, b) for i, a in enumerate(members) for b in members[i + 1:])
-        return False
+    if data_ranges.composition(datatype) is not None:  # decided where simple (range_values.emptiness)
+        from .range_values import emptiness
+
+        return emptiness(datatype) is True
     found = data_ranges.parts(datatype)
     if found is None:
         return False
@@ -299,6 +292,14 @@ def empty_range_rules(expressions: Iterable[Expr]) -> list[Rule]:
             rules.append(Rule("ext-empty-range", f"{e} needs a value of {_short(e.datatype)}, which has none", (
                 Atom("?x", str(TYPE), sparql(e.node)),), violation=("?x",),
                 message=f"{{x}} is in {e}, but {_short(e.datatype)} has no value"))
+        elif e.datatype is not None and e.kind in ("min", "exact") and e.n >= 2:
+            from .range_values import most_values
+
+            most = most_values(e.datatype)
+            if most is not None and most < e.n:
+                rules.append(Rule("ext-empty-range", f"{e} needs {e.n} values of {_short(e.datatype)}, which has "
+                                  f"{most}", (Atom("?x", str(TYPE), sparql(e.node)),), violation=("?x",),
+                                  message=f"{{x}} is in {e}, but {_short(e.datatype)} has fewer than {e.n} values"))
     return rules
 
 

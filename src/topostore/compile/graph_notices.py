@@ -18,6 +18,7 @@ from ..stores.base import Store
 from . import data_ranges
 from .model import Expr, is_datatype, short_name
 from .notices import NOT_STORED, UNCHECKED_DATATYPE, UNSUPPORTED, Notice
+from .range_values import emptiness
 from .snippets import in_datatype
 
 #: the report's note: (axiom kind, axiom, reason)
@@ -55,6 +56,9 @@ def unchecked_datatypes(note: Note, data_range: Iterable[tuple[NamedNode, NamedN
             unchecked(note, e.datatype, axiom, store, graph)
         elif e.kind in ("some", "min", "exact", "max") and data_ranges.composition(e.datatype) is not None:
             unchecked(note, e.datatype, axiom, store, graph)
+            if positive and e.kind != "max" and emptiness(e.datatype) is None:
+                note(UNCHECKED_DATATYPE, axiom, f"whether {data_ranges.readable(e.datatype)} has any value is not "
+                     "decided: a value required in it is not found inconsistent where it has none")
 
 
 def unchecked(note: Note, dt: NamedNode, axiom: str, store: Store, graph: NamedNode) -> None:
