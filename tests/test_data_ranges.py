@@ -183,3 +183,32 @@ def test_a_range_whose_emptiness_is_not_decided_is_said() -> None:
     assert "has any value is not decided" in " ".join(str(n) for n in o.notices)
     kept = _loaded("decided", _some(_dr("owl:intersectionOf ( " + _dr('owl:oneOf ( 1 "a" )') + " xsd:integer )")))
     assert kept.reason().consistent and not kept.notices
+
+
+@pytest.mark.parametrize(("left", "right"), [
+    ("xsd:byte", _dr("owl:datatypeComplementOf xsd:boolean")),
+    (_dr("owl:oneOf ( 1 2 )"), "xsd:integer"),
+    (_dr("owl:unionOf ( xsd:byte xsd:short )"), _dr("owl:unionOf ( xsd:integer xsd:string )")),
+    (_dr("owl:intersectionOf ( xsd:byte xsd:integer )"), "xsd:short"),
+    (_dr("owl:datatypeComplementOf xsd:integer"), _dr("owl:datatypeComplementOf xsd:byte")),
+])
+def test_an_existential_into_a_range_implies_one_into_a_wider_range(left: str, right: str) -> None:
+    ns = namespace("wider")
+    o = _loaded("wider", f""":d a owl:DatatypeProperty .
+:N a owl:Class ; owl:equivalentClass [ a owl:Restriction ; owl:onProperty :d ; owl:someValuesFrom {right} ] .
+:S a owl:Class ; rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :d ; owl:someValuesFrom {left} ] .
+:x a owl:NamedIndividual, :S .""")
+    assert o.reason().consistent
+    assert NamedNode(ns + "N") in o.types(NamedNode(ns + "x"))
+    assert not [n for n in o.notices if "is not decided" in str(n)]
+
+
+def test_an_inclusion_not_decided_is_said() -> None:
+    o = _loaded("undecided_inclusion", """:d a owl:DatatypeProperty .
+:Mine a rdfs:Datatype .
+:N a owl:Class ; owl:equivalentClass [ a owl:Restriction ; owl:onProperty :d ; owl:someValuesFrom
+  [ a rdfs:Datatype ; owl:unionOf ( xsd:boolean :Mine ) ] ] .
+:S a owl:Class ; rdfs:subClassOf [ a owl:Restriction ; owl:onProperty :d ; owl:someValuesFrom :Other ] .
+:Other a rdfs:Datatype . :x a owl:NamedIndividual, :S .""")
+    o.reason()
+    assert "is not decided" in " ".join(str(n) for n in o.notices)

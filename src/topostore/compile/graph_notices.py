@@ -18,7 +18,7 @@ from ..stores.base import Store
 from . import data_ranges
 from .model import Expr, is_datatype, short_name
 from .notices import NOT_STORED, UNCHECKED_DATATYPE, UNSUPPORTED, Notice
-from .range_values import emptiness
+from .range_values import emptiness, included
 from .snippets import in_datatype
 
 #: the report's note: (axiom kind, axiom, reason)
@@ -59,6 +59,32 @@ def unchecked_datatypes(note: Note, data_range: Iterable[tuple[NamedNode, NamedN
             if positive and e.kind != "max" and emptiness(e.datatype) is None:
                 note(UNCHECKED_DATATYPE, axiom, f"whether {data_ranges.readable(e.datatype)} has any value is not "
                      "decided: a value required in it is not found inconsistent where it has none")
+    undecided_inclusions(note, [(e, positive, axiom) for e, positive, axiom, _ in uses])
+
+
+def undecided_inclusions(note: Note, uses: list[tuple[Expr, bool, str]]) -> None:
+    """Two data restrictions on one property, one of them into a range built of others, where whether every
+    value of one range is in the other is not decided (:func:`.range_values.included`): a membership in the one
+    (a restriction an individual is told to be in) is not carried to the other."""
+    data = [(e, positive, axiom) for e, positive, axiom in uses
+            if e.datatype is not None and e.kind in ("some", "min", "exact")]
+    said = set()
+    for e, e_positive, axiom in data:
+        for other, positive, _ in data:
+            if other.prop != e.prop or other.datatype == e.datatype:
+                continue
+            for a, b, told in ((e.datatype, other.datatype, e_positive), (other.datatype, e.datatype, positive)):
+                if not told or (data_ranges.composition(a) is None and data_ranges.composition(b) is None):
+                    continue  # only a restriction told of an individual carries a membership
+                if (a, b) not in said and included(a, b) is None:
+                    said.add((a, b))
+                    note(UNCHECKED_DATATYPE, axiom, f"whether every value of {_readable(a)} is one of "
+                         f"{_readable(b)} is not decided: a restriction into the one is not found to imply one "
+                         "into the other")
+
+
+def _readable(dt: NamedNode) -> str:
+    return data_ranges.readable(dt) or short_name(dt)
 
 
 def unchecked(note: Note, dt: NamedNode, axiom: str, store: Store, graph: NamedNode) -> None:

@@ -186,8 +186,24 @@ def included(a: NamedNode, b: NamedNode) -> bool | None:
 def _included_tree(a: tuple, b: tuple) -> bool | None:
     if a == b or b == ("atom", LITERAL):
         return True
+    if _infinite(a) and _finite(b):
+        return False
+    if b[0] == "not" and b[1][0] == "one":  # outside a one-of: none of its values is in a
+        return _all(_not(_contains(v, a)) for v in b[1][1])
     if a[0] == "one":  # each value tested against the right side
         return _all(_contains(v, b) for v in a[1])
+    if a[0] == "and" and any(m[0] == "one" for m in a[1]):  # the one-of's values the other members keep
+        first = next(m for m in a[1] if m[0] == "one")
+        rest = [m for m in a[1] if m is not first]
+        answers = []
+        for v in first[1]:
+            kept = _all(_contains(v, m) for m in rest)
+            if kept is not False:
+                found = _contains(v, b)
+                answers.append(found if kept is True or found is True else None)
+        return _all(answers)
+    if a[0] == "not" and a[1][0] in ("atom", "one") and b[0] == "or" and _uncovered(a[1], b[1]):
+        return False
     if a[0] == "or":
         return _all(_included_tree(m, b) for m in a[1])
     if b[0] == "and":
@@ -197,22 +213,102 @@ def _included_tree(a: tuple, b: tuple) -> bool | None:
             return True
         return None
     if b[0] == "or":
-        if any(_included_tree(a, m) is True for m in b[1]):
+        answers = [_included_tree(a, m) for m in b[1]]
+        if True in answers:
             return True
+        if a[0] == "atom" and _built_in(a[1]) and all(
+                m[0] == "atom" and _disjoint(a[1], m[1]) for m in b[1]):  # no value of a in any member
+            return False
         return None
     if a[0] == "not" and b[0] == "not":  # ¬X ⊆ ¬Y when Y ⊆ X
-        return True if _included_tree(b[1], a[1]) is True else None
+        return _included_tree(b[1], a[1])
+    from .datatypes import disjoint_datatypes, implied_ranges
     if a[0] == "atom" and b[0] == "atom":
-        from .datatypes import implied_ranges
         if data_ranges.parts(b[1]) is None and b[1] in implied_ranges([a[1]]):
             return True
-        return None
+        if _built_in(a[1]) and _built_in(b[1]):  # the table of value-space inclusions is complete for these
+            return False
+        return False if _atom_empty(a[1]) is False and disjoint_datatypes(a[1], b[1]) else None
     if a[0] == "atom" and b[0] == "not":  # X ⊆ ¬Y when no value is in both
-        from .datatypes import disjoint_datatypes
         if b[1][0] == "atom" and disjoint_datatypes(a[1], b[1][1]):
             return True
+        if b[1][0] == "atom" and _built_in(a[1]) and _built_in(b[1][1]):
+            return False  # two datatypes of the map that share values
+        return None
+    if a[0] == "not" and b[0] == "atom" and a[1][0] == "atom":  # the complement of a datatype holds values of every family but one
+        return False if _built_in(b[1]) and _built_in(a[1][1]) else None
+    if a[0] == "atom" and b[0] == "one":  # a datatype with more values than the one-of lists
+        size = _size(a[1])
+        if size is not None and len({value_key(v) for v in b[1]}) < size:
+            return False
         return None
     return None
+
+
+def _uncovered(x: tuple, members: list) -> bool:
+    """Whether a family of the datatype map has no value in ``x`` nor in any of ``members`` (datatypes of the
+    map, restricted ones, one-ofs): its values are in the complement of ``x`` and outside the members."""
+    from .datatypes import _FAMILY_TOPS, _family
+
+    covered = set()
+    for m in [x, *members]:
+        if m[0] == "one":
+            covered |= {_family(v.datatype.value) for v in m[1]}
+            continue
+        if m[0] != "atom":
+            return False
+        found = data_ranges.parts(m[1])
+        base = found[0] if found is not None else m[1]
+        if not _built_in(base):
+            return False
+        covered.add(_family(base.value))
+    return None not in covered and bool(set(_FAMILY_TOPS) - covered)
+
+
+def _disjoint(a: NamedNode, b: NamedNode) -> bool:
+    from .datatypes import disjoint_datatypes
+    return disjoint_datatypes(a, b)
+
+
+def _finite(tree: tuple) -> bool:
+    """Whether the range surely has finitely many values."""
+    if tree[0] == "one":
+        return True
+    if tree[0] == "and":
+        return any(_finite(m) for m in tree[1])
+    if tree[0] == "or":
+        return all(_finite(m) for m in tree[1])
+    return tree[0] == "atom" and _size(tree[1]) not in (None, float("inf"))
+
+
+def _infinite(tree: tuple) -> bool:
+    """Whether the range surely has infinitely many values."""
+    if tree[0] == "not":  # the complement of a one-of or of a datatype of the map (or restricted) other than all
+        inner = tree[1]
+        return inner[0] == "one" or (inner[1] != LITERAL and (_built_in(inner[1]) or
+                                                             data_ranges.parts(inner[1]) is not None))
+    if tree[0] == "or":
+        return any(_infinite(m) for m in tree[1])
+    return tree[0] == "atom" and _size(tree[1]) == float("inf")
+
+
+def _built_in(dt: NamedNode) -> bool:
+    """A datatype of the OWL 2 datatype map, not restricted, other than rdfs:Literal."""
+    from .model import is_datatype
+    return dt != LITERAL and data_ranges.parts(dt) is None and is_datatype(dt)
+
+
+def _size(dt: NamedNode) -> float | None:
+    """How many values a named datatype of the map has (infinity for most; None where not known)."""
+    if not _built_in(dt):
+        return None
+    local = dt.value[len(XSD):] if dt.value.startswith(XSD) else ""
+    if local == "boolean":
+        return 2
+    if local in INTEGER_TYPES:
+        low, high = INTEGER_TYPES[local]
+        return float("inf") if low is None or high is None else high - low + 1
+    return float("inf")
 
 
 def most_values(dt: NamedNode) -> int | None:
