@@ -66,21 +66,22 @@ def undecided_inclusions(note: Note, uses: list[tuple[Expr, bool, str]]) -> None
     """Two data restrictions on one property, one of them into a range built of others, where whether every
     value of one range is in the other is not decided (:func:`.range_values.included`): a membership in the one
     (a restriction an individual is told to be in) is not carried to the other."""
-    data = [(e, positive, axiom) for e, positive, axiom in uses
-            if e.datatype is not None and e.kind in ("some", "min", "exact")]
-    said = set()
-    for e, e_positive, axiom in data:
-        for other, positive, _ in data:
-            if other.prop != e.prop or other.datatype == e.datatype:
-                continue
-            for a, b, told in ((e.datatype, other.datatype, e_positive), (other.datatype, e.datatype, positive)):
-                if not told or (data_ranges.composition(a) is None and data_ranges.composition(b) is None):
-                    continue  # only a restriction told of an individual carries a membership
-                if (a, b) not in said and included(a, b) is None:
-                    said.add((a, b))
-                    note(UNCHECKED_DATATYPE, axiom, f"whether every value of {_readable(a)} is one of "
-                         f"{_readable(b)} is not decided: a restriction into the one is not found to imply one "
-                         "into the other")
+    on: dict = {}  # property -> {datatype: [told of an individual, an axiom using it]}
+    for e, positive, axiom in uses:
+        if e.datatype is not None and e.kind in ("some", "min", "exact"):
+            found = on.setdefault(e.prop, {}).setdefault(e.datatype, [False, axiom])
+            found[0] = found[0] or positive
+    for ranges in on.values():
+        built = {dt for dt in ranges if data_ranges.composition(dt) is not None}
+        if not built:
+            continue
+        for a, (told, _) in ranges.items():
+            for b in ranges:
+                # only a restriction told of an individual carries a membership
+                if told and a != b and (a in built or b in built) and included(a, b) is None:
+                    note(UNCHECKED_DATATYPE, ranges[a][1], f"whether every value of "
+                         f"{_readable(a)} is one of {_readable(b)} is not decided: a restriction into the one is "
+                         "not found to imply one into the other")
 
 
 def _readable(dt: NamedNode) -> str:
