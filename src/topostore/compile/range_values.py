@@ -5,14 +5,28 @@ exactly, for the caller to say so by a notice rather than guess."""
 
 from __future__ import annotations
 
+from collections.abc import Iterable
 from decimal import Decimal, InvalidOperation
 from itertools import product
 
 from pyoxigraph import Literal, NamedNode
 
-from ..rdf.terms import INTEGER_TYPES, value_key
-from ..rdf.vocab import RDFS, XSD
+from ..rdf.terms import INTEGER_TYPES, sparql, value_key
+from ..rdf.vocab import RDFS, TYPE, XSD
 from . import data_ranges
+from .datatypes import (
+    _FAMILY_TOPS,
+    _INTEGER_TEXT,
+    _ancestors,
+    _family,
+    _integer_bounds,
+    _short,
+    disjoint_datatypes,
+    implied_ranges,
+    is_empty,
+)
+from .model import Expr, is_datatype
+from .rule import Atom, Rule
 
 LITERAL = NamedNode(RDFS + "Literal")
 #: the most conjunctions a union inside an intersection is spread into before the answer is left undecided
@@ -69,7 +83,6 @@ def _contains(value: Literal, tree: tuple) -> bool | None:
 
 
 def _in_atom(value: Literal, dt: NamedNode) -> bool | None:
-    from .datatypes import _INTEGER_TEXT, _ancestors, _integer_bounds, disjoint_datatypes
 
     if dt == LITERAL:
         return True
@@ -123,7 +136,6 @@ def emptiness(dt: NamedNode) -> bool | None:
 
 
 def _atom_empty(dt: NamedNode) -> bool:
-    from .datatypes import is_empty
     return is_empty(dt)
 
 
@@ -163,7 +175,6 @@ def _and_empty(conj: list) -> bool | None:
         if cases > _MAX_CASES:
             return None
         return _all(_and_empty(_conjuncts(rest + list(pick))) for pick in product(*(u[1] for u in unions)))
-    from .datatypes import disjoint_datatypes
     positives = [m[1] for m in conj if m[0] == "atom"]
     negatives = [m[1] for m in conj if m[0] == "not"]
     if any(disjoint_datatypes(a, b) for i, a in enumerate(positives) for b in positives[i + 1:]):
@@ -222,7 +233,6 @@ def _included_tree(a: tuple, b: tuple) -> bool | None:
         return None
     if a[0] == "not" and b[0] == "not":  # ¬X ⊆ ¬Y when Y ⊆ X
         return _included_tree(b[1], a[1])
-    from .datatypes import disjoint_datatypes, implied_ranges
     if a[0] == "atom" and b[0] == "atom":
         if data_ranges.parts(b[1]) is None and b[1] in implied_ranges([a[1]]):
             return True
@@ -248,7 +258,6 @@ def _included_tree(a: tuple, b: tuple) -> bool | None:
 def _uncovered(x: tuple, members: list) -> bool:
     """Whether a family of the datatype map has no value in ``x`` nor in any of ``members`` (datatypes of the
     map, restricted ones, one-ofs): its values are in the complement of ``x`` and outside the members."""
-    from .datatypes import _FAMILY_TOPS, _family
 
     covered = set()
     for m in [x, *members]:
@@ -266,7 +275,6 @@ def _uncovered(x: tuple, members: list) -> bool:
 
 
 def _disjoint(a: NamedNode, b: NamedNode) -> bool:
-    from .datatypes import disjoint_datatypes
     return disjoint_datatypes(a, b)
 
 
@@ -294,7 +302,6 @@ def _infinite(tree: tuple) -> bool:
 
 def _built_in(dt: NamedNode) -> bool:
     """A datatype of the OWL 2 datatype map, not restricted, other than rdfs:Literal."""
-    from .model import is_datatype
     return dt != LITERAL and data_ranges.parts(dt) is None and is_datatype(dt)
 
 
@@ -326,4 +333,27 @@ def most_values(dt: NamedNode) -> int | None:
     return None
 
 
-__all__ = ["contains", "emptiness", "included", "most_values", "normal"]
+def disjoint(a: NamedNode, b: NamedNode) -> bool:
+    """Whether no value is surely in both ``a`` and ``b`` (any data ranges): their intersection is empty."""
+    return _and_empty(_conjuncts([normal(a), normal(b)])) is True
+
+
+def empty_range_rules(expressions: Iterable[Expr]) -> list[Rule]:
+    """An individual in a restriction that needs a value of an empty data range is inconsistent."""
+    rules = []
+    for e in expressions:
+        if e.datatype is not None and (e.kind == "some" or (e.kind in ("min", "exact") and e.n >= 1)) \
+                and emptiness(e.datatype) is True:
+            rules.append(Rule("ext-empty-range", f"{e} needs a value of {_short(e.datatype)}, which has none", (
+                Atom("?x", str(TYPE), sparql(e.node)),), violation=("?x",),
+                message=f"{{x}} is in {e}, but {_short(e.datatype)} has no value"))
+        elif e.datatype is not None and e.kind in ("min", "exact") and e.n >= 2:
+            most = most_values(e.datatype)
+            if most is not None and most < e.n:
+                rules.append(Rule("ext-empty-range", f"{e} needs {e.n} values of {_short(e.datatype)}, which has "
+                                  f"{most}", (Atom("?x", str(TYPE), sparql(e.node)),), violation=("?x",),
+                                  message=f"{{x}} is in {e}, but {_short(e.datatype)} has fewer than {e.n} values"))
+    return rules
+
+
+__all__ = ["contains", "disjoint", "emptiness", "empty_range_rules", "included", "most_values", "normal"]
