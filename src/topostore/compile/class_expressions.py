@@ -213,6 +213,12 @@ class ClassExpressionReader:
 
     def _composed_range(self, node: NamedNode, where: str) -> NamedNode:
         """A data one-of, complement, union or intersection (:func:`.data_ranges.composed`)."""
+        try:
+            return self._composed(node, where)
+        except ValueError as exc:  # too large
+            raise RuleCompileError(f"{exc} in {where}") from None
+
+    def _composed(self, node: NamedNode, where: str) -> NamedNode:
         head = self.one(node, OWL + "oneOf")
         if head is not None:
             values = self.items(head)

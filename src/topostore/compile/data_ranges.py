@@ -97,8 +97,28 @@ def composed(kind: str, members: list[Term]) -> NamedNode:
     if kind == "oneOf":
         texts = {value_key(m): sparql(m) for m in members}.values()
     else:
+        if kind in _WORDS:  # a union of unions is one union, an intersection of intersections one intersection
+            members = [m for member in members for m in _flat(kind, member)]
         texts = (m.value for m in members)
-    return NamedNode(f"{PREFIX}{kind}?" + urlencode([("m", t) for t in sorted(set(texts))]))
+    name = NamedNode(f"{PREFIX}{kind}?" + urlencode([("m", t) for t in sorted(set(texts))]))
+    if len(name.value) > MAX_LENGTH:
+        raise ValueError(f"the data range is too large ({len(name.value)} characters written out, at most "
+                         f"{MAX_LENGTH} are read)")
+    return name
+
+
+#: the longest composed range read (written out as its IRI): a longer one is set aside with its notice rather
+#: than compiled into a query too large for the store
+MAX_LENGTH = 30000
+
+
+def _flat(kind: str, member: Term) -> list[Term]:
+    """The members a union (intersection) ``member`` contributes to a union (intersection): its own members
+    when it is one, else itself."""
+    built = composition(member) if isinstance(member, NamedNode) else None
+    if built is not None and built[0] == kind:
+        return [m for inner in built[1] for m in _flat(kind, inner)]
+    return [member]
 
 
 def composition(datatype: NamedNode) -> tuple[str, list[Term]] | None:
@@ -133,5 +153,5 @@ def _kind(datatype: NamedNode) -> str | None:
     return kind if kind in COMPOSED else None
 
 
-__all__ = ["COMPOSED", "FACETS", "PREFIX", "composed", "composition", "facet_tests", "parts", "readable",
+__all__ = ["COMPOSED", "FACETS", "PREFIX", "MAX_LENGTH", "composed", "composition", "facet_tests", "parts", "readable",
            "restricted"]

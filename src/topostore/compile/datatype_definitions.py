@@ -57,6 +57,16 @@ def read_definitions(reader: ClassExpressionReader) -> tuple[dict[NamedNode, Nam
         elif not is_skolem(ts[0].object):
             told[name] = ts[0].object
     ranges = {name: ts[0] for name, ts in definitions.items() if len(ts) == 1 and is_skolem(ts[0].object)}
+    # OWL 2 forbids a definition naming itself through others (:A as :B or integer, :B as :A or string): no
+    # range stands for such names, which stay undefined
+    cyclic = _cyclic({name: _named(reader, t.object, definitions) for name, t in ranges.items()} |
+                     {name: {told[name]} for name in told})
+    for name in sorted(cyclic, key=lambda n: n.value):
+        aside.append((f"{_short(name)} DatatypeDefinition", f"the definition of {_short(name)} names "
+                      f"{_short(name)} itself through other definitions (OWL 2 forbids cyclic datatype "
+                      f"definitions): {_short(name)} stays undefined"))
+        told.pop(name, None)
+        ranges.pop(name, None)
     # a range may name another defined datatype (:NotSmall as the complement of :Small): read again, with the
     # names read so far standing for their ranges, until no range changes (at most once per definition)
     for _ in range(len(ranges) + 1):
@@ -71,6 +81,38 @@ def read_definitions(reader: ClassExpressionReader) -> tuple[dict[NamedNode, Nam
         if told == before:
             break
     return {name: _end(name, told) for name in told}, aside + failed
+
+
+def _named(reader: ClassExpressionReader, node: NamedNode, definitions: dict) -> set[NamedNode]:
+    """The defined datatypes a range written at ``node`` names, its nested ranges included."""
+    found: set[NamedNode] = set()
+    todo, seen = [node], {node}
+    while todo:
+        for t in reader.store.triples(todo.pop(), None, None, reader.graph):
+            o = t.object
+            if isinstance(o, NamedNode) and is_skolem(o):
+                if o not in seen:
+                    seen.add(o)
+                    todo.append(o)
+            elif isinstance(o, NamedNode) and o in definitions:
+                found.add(o)
+    return found
+
+
+def _cyclic(edges: dict[NamedNode, set[NamedNode]]) -> set[NamedNode]:
+    """The names that reach themselves along ``edges``."""
+    cyclic = set()
+    for start in edges:
+        todo, seen = list(edges[start]), set()
+        while todo:
+            n = todo.pop()
+            if n == start:
+                cyclic.add(start)
+                break
+            if n not in seen:
+                seen.add(n)
+                todo.extend(edges.get(n, ()))
+    return cyclic
 
 
 def _end(name: NamedNode, told: dict[NamedNode, NamedNode]) -> NamedNode:

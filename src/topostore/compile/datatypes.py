@@ -24,9 +24,9 @@ from functools import lru_cache
 from pyoxigraph import Literal, NamedNode
 
 from ..rdf.terms import INTEGER_TYPES, Term, sparql
-from ..rdf.vocab import OWL, RDF, TYPE, XSD, rdfs
+from ..rdf.vocab import OWL, RDF, XSD, rdfs
 from . import data_ranges
-from .model import Expr, TBox
+from .model import TBox
 from .reach import reachable
 from .rule import Atom, Rule
 
@@ -240,20 +240,8 @@ def _next(v: float, toward: float, width: str) -> float:
 
 def is_empty(datatype: NamedNode) -> bool:
     """Whether a datatype restricted by numeric facets has no value (an integer range whose bounds
-    cross, a float range between two adjacent floats, a decimal range with ``> a`` and ``< a``), or a range
-    built of others has none: the complement of ``rdfs:Literal``, a union of empty ranges, an intersection
-    with an empty member or with two members no value lies in both of (:func:`disjoint_datatypes`)."""
-    built = data_ranges.composition(datatype)
-    if built is not None:
-        kind, members = built
-        if kind == "complementOf":
-            return members[0] == LITERAL
-        if kind == "unionOf":
-            return all(is_empty(m) for m in members)
-        if kind == "intersectionOf":
-            return any(is_empty(m) for m in members) or any(
-                disjoint_datatypes(a, b) for i, a in enumerate(members) for b in members[i + 1:])
-        return False
+    cross, a float range between two adjacent floats, a decimal range with ``> a`` and ``< a``); a range built
+    of others is decided by :func:`.range_values.emptiness`."""
     found = data_ranges.parts(datatype)
     if found is None:
         return False
@@ -290,18 +278,6 @@ def _dense_empty(tests: list[tuple[str, str]]) -> bool:
     return low[0] > high[0] or (low[0] == high[0] and not (low[1] and high[1]))
 
 
-def empty_range_rules(expressions: Iterable[Expr]) -> list[Rule]:
-    """An individual in a restriction that needs a value of an empty data range is inconsistent."""
-    rules = []
-    for e in expressions:
-        if e.datatype is not None and (e.kind == "some" or (e.kind in ("min", "exact") and e.n >= 1)) \
-                and is_empty(e.datatype):
-            rules.append(Rule("ext-empty-range", f"{e} needs a value of {_short(e.datatype)}, which has none", (
-                Atom("?x", str(TYPE), sparql(e.node)),), violation=("?x",),
-                message=f"{{x}} is in {e}, but {_short(e.datatype)} has no value"))
-    return rules
-
-
 def range_rules(tb: TBox) -> list[Rule]:
     """``p rdfs:range D`` for every datatype ``D`` the told ranges of ``p`` imply and the file does
     not state; the rule reads the told range triples, so an explanation ends in them."""
@@ -326,4 +302,4 @@ def _short(t: NamedNode) -> str:
 RANGE = str(rdfs("range"))
 LITERAL = rdfs("Literal")
 
-__all__ = ["empty_range_rules", "implied_ranges", "is_empty", "range_rules"]
+__all__ = ["implied_ranges", "is_empty", "range_rules"]

@@ -19,6 +19,7 @@ from pyoxigraph import NamedNode
 
 from .datatypes import implied_ranges
 from .model import Expr, TBox
+from .range_values import included
 
 
 class Subsumption:
@@ -48,8 +49,13 @@ class Subsumption:
         if b.filler is None and b.datatype is None:
             return True
         if a.datatype is not None or b.datatype is not None:
-            return a.datatype is not None and b.datatype is not None and (
-                a.datatype == b.datatype or b.datatype in implied_ranges([a.datatype]))
+            if a.datatype is None or b.datatype is None:
+                return False
+            if a.datatype == b.datatype or b.datatype in implied_ranges([a.datatype]):
+                return True
+            # a range built of others on either side: decided structurally where simple (range_values.included;
+            # what is not decided is said by a notice, graph_notices.unchecked_datatypes)
+            return included(a.datatype, b.datatype) is True
         if a.filler is None:
             return False
         return self.classes(a.filler, b.filler)

@@ -18,6 +18,7 @@ from ..stores.base import Store
 from . import data_ranges
 from .model import Expr, is_datatype, short_name
 from .notices import NOT_STORED, UNCHECKED_DATATYPE, UNSUPPORTED, Notice
+from .range_values import emptiness, included
 from .snippets import in_datatype
 
 #: the report's note: (axiom kind, axiom, reason)
@@ -55,6 +56,36 @@ def unchecked_datatypes(note: Note, data_range: Iterable[tuple[NamedNode, NamedN
             unchecked(note, e.datatype, axiom, store, graph)
         elif e.kind in ("some", "min", "exact", "max") and data_ranges.composition(e.datatype) is not None:
             unchecked(note, e.datatype, axiom, store, graph)
+            if positive and e.kind != "max" and emptiness(e.datatype) is None:
+                note(UNCHECKED_DATATYPE, axiom, f"whether {data_ranges.readable(e.datatype)} has any value is not "
+                     "decided: a value required in it is not found inconsistent where it has none")
+    undecided_inclusions(note, [(e, positive, axiom) for e, positive, axiom, _ in uses])
+
+
+def undecided_inclusions(note: Note, uses: list[tuple[Expr, bool, str]]) -> None:
+    """Two data restrictions on one property, one of them into a range built of others, where whether every
+    value of one range is in the other is not decided (:func:`.range_values.included`): a membership in the one
+    (a restriction an individual is told to be in) is not carried to the other."""
+    on: dict = {}  # property -> {datatype: [told of an individual, an axiom using it]}
+    for e, positive, axiom in uses:
+        if e.datatype is not None and e.kind in ("some", "min", "exact"):
+            found = on.setdefault(e.prop, {}).setdefault(e.datatype, [False, axiom])
+            found[0] = found[0] or positive
+    for ranges in on.values():
+        built = {dt for dt in ranges if data_ranges.composition(dt) is not None}
+        if not built:
+            continue
+        for a, (told, _) in ranges.items():
+            for b in ranges:
+                # only a restriction told of an individual carries a membership
+                if told and a != b and (a in built or b in built) and included(a, b) is None:
+                    note(UNCHECKED_DATATYPE, ranges[a][1], f"whether every value of "
+                         f"{_readable(a)} is one of {_readable(b)} is not decided: a restriction into the one is "
+                         "not found to imply one into the other")
+
+
+def _readable(dt: NamedNode) -> str:
+    return data_ranges.readable(dt) or short_name(dt)
 
 
 def unchecked(note: Note, dt: NamedNode, axiom: str, store: Store, graph: NamedNode) -> None:

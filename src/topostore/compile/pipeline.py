@@ -9,7 +9,7 @@ from pyoxigraph import NamedNode
 from ..rdf.terms import Term
 from ..stores.base import Store
 from .alike import kept_nodes, merge_alike
-from .datatypes import empty_range_rules, range_rules
+from .datatypes import range_rules
 from .disjointness import Disjointness
 from .fold import equivalent_names, fold_equivalents, restriction_names
 from .generic import generic_rules
@@ -27,6 +27,7 @@ from .owl_extras import (
     unsatisfiable_rules,
 )
 from .profile import all_uses, profile
+from .range_values import empty_range_rules
 from .rule import Rule, RuleSet
 from .schema_tables import hold_tables
 from .simple_properties import ignore_non_simple

@@ -28,7 +28,7 @@ from .inline_difference import DifferenceAsk
 from .model import Expr, is_datatype
 from .notices import INCOMPLETE, RULE_SET_ASIDE, SQWRL_QUERY, Notice
 from .rule import Atom, Rule
-from .snippets import candidate_atom, different_atom, surely_in_datatype
+from .snippets import candidate_atom, different_atom, in_datatype, surely_in_datatype
 from .swrl_atoms import Names, SwrlAtom, read_atoms
 from .swrl_same_as import rebinding, same_as_forms
 
@@ -348,12 +348,17 @@ class SwrlCompiler:
         (:mod:`.datatype_definitions`), or a data range written in the atom (numeric facets, a one-of, a complement,
         a union, an intersection), the last two as the IRI :mod:`.data_ranges` names them (the value test of a range or a restriction)."""
         if isinstance(pred, NamedNode) and is_skolem(pred):
-            return self.reader.data_range(pred, "a data range atom", typed=True)
-        datatype = self.reader.datatype_defs.get(pred, pred) if isinstance(pred, NamedNode) else None
+            datatype = self.reader.data_range(pred, "a data range atom", typed=True)
+        else:
+            datatype = self.reader.datatype_defs.get(pred, pred) if isinstance(pred, NamedNode) else None
         if datatype is None or not (is_datatype(datatype) or data_ranges.parts(datatype) is not None
                                     or data_ranges.composition(datatype) is not None):
             raise RuleCompileError("its data range is neither a datatype of the OWL 2 datatype map nor one defined "
                                    "by a data range")
+        if data_ranges.composition(datatype) is not None and in_datatype("?v", datatype) is None:
+            # built of a datatype whose values are not tested (the ontology's own): the atom's truth is unknown
+            raise RuleCompileError(f"its data range {data_ranges.readable(datatype)} is built of a datatype whose "
+                                   "values topostore does not test")
         return datatype
 
     @staticmethod

@@ -46,10 +46,10 @@ from pyoxigraph import NamedNode
 from ..rdf.terms import sparql
 from ..rdf.vocab import NOTHING, THING, TYPE
 from . import condition as cond
-from .datatypes import disjoint_datatypes
 from .model import Expr, Prop, describe
 from .notices import INCOMPLETE, Notice
 from .owl import OwlCompiler
+from .range_values import disjoint
 from .rule import Atom, Rule
 from .snippets import in_datatype
 
@@ -264,7 +264,7 @@ class Unsatisfiable:
         """The fillers of ``a`` and ``b`` cannot share a value (told disjoint, or their meeting is empty; two
         datatypes by their value spaces)."""
         if a.datatype is not None and b.datatype is not None:
-            return disjoint_datatypes(a.datatype, b.datatype)
+            return disjoint(a.datatype, b.datatype)
         if a.datatype is not None or b.datatype is not None or a.filler is None or b.filler is None:
             return False
         found = self.clash(self.under(a.filler) | self.under(b.filler))
