@@ -12,7 +12,7 @@ from itertools import product
 from pyoxigraph import Literal, NamedNode
 
 from ..rdf.terms import INTEGER_TYPES, sparql, value_key
-from ..rdf.vocab import RDFS, TYPE, XSD
+from ..rdf.vocab import RDF, RDFS, TYPE, XSD
 from . import data_ranges
 from .datatypes import (
     _FAMILY_TOPS,
@@ -106,7 +106,7 @@ def _in_atom(value: Literal, dt: NamedNode) -> bool | None:
         return all(answers)
     own = value.datatype.value
     if value.language:
-        own = "http://www.w3.org/1999/02/22-rdf-syntax-ns#langString"
+        own = RDF + "langString"
     if own == dt.value:
         return True
     if _integer_bounds(own, dt.value) is not None and _INTEGER_TEXT.fullmatch(value.value):
