@@ -221,6 +221,11 @@ def hierarchy_warnings(onto: Ontology, found: Sequence[NamedNode]) -> list[str]:
     return [unsatisfiable_text(empty), *said] if empty else said
 
 
+def told_subclasses(onto: Ontology, cls: NamedNode) -> set[NamedNode]:
+    """The named X of a told ``SubClassOf(X cls)``: what aRMOR adds to the reasoner's subclasses (spec §2.5)."""
+    return {t.subject for t in asserted(onto, None, rdfs("subClassOf"), cls) if isinstance(t.subject, NamedNode)}
+
+
 def subclasses(onto: Ontology, cls: NamedNode) -> list[NamedNode]:
     """The subclasses aRMOR answers for ``cls`` (QUERY CLASS CLASS, DISJOINT CLASS CLASS), sorted: the
     reasoner's ``getSubClasses(cls, false)``, which leaves out the classes equivalent to ``cls`` (its own
@@ -229,7 +234,7 @@ def subclasses(onto: Ontology, cls: NamedNode) -> list[NamedNode]:
     asks the reasoner nothing then, as for every query); never owl:Nothing or an internal class (spec §7
     item 6).  An unsatisfiable class is under every class.  A buffered reasoner's answer is its classification
     as of the last REASON, until the next one (:func:`answered_classification`)."""
-    told = {t.subject for t in asserted(onto, None, rdfs("subClassOf"), cls) if isinstance(t.subject, NamedNode)}
+    told = told_subclasses(onto, cls)
     if INFERRED in onto.visible_graphs():  # consistent (or not reasoned yet): the reasoner's answer too
         kept = answered_classification(onto)
         above = onto.reasoning.superclasses(cls, kept)
@@ -239,4 +244,4 @@ def subclasses(onto: Ontology, cls: NamedNode) -> list[NamedNode]:
 
 __all__ = ["Reply", "Context", "entity_named", "literal_named", "answer_texts",
            "Command", "Handler", "hidden", "fixed", "asserted", "subclasses", "answered_classification",
-           "hierarchy_warnings", "NOT_KEPT"]
+           "hierarchy_warnings", "told_subclasses", "NOT_KEPT"]

@@ -28,11 +28,18 @@ from ..rdf.vocab import (
     THING,
     TYPE,
     owl,
-    rdfs,
 )
 from . import codes
 from .codes import CommandError
-from .context import Context, Reply, answered_classification, asserted, hidden, hierarchy_warnings, subclasses
+from .context import (
+    Context,
+    Reply,
+    answered_classification,
+    hidden,
+    hierarchy_warnings,
+    subclasses,
+    told_subclasses,
+)
 from .render import short_name
 
 #: namespaces whose properties are schema, not facts of an individual (owl:sameAs and owl:differentFrom aside)
@@ -114,8 +121,7 @@ def most_specific(onto: Ontology, classes: list[NamedNode]) -> list[NamedNode]:
     reasoner's as of its last REASON, until the next one), equivalents included, with the told ones added, so
     that both commands answer from one classification."""
     kept = answered_classification(onto)
-    below = {c: onto.reasoning.subclasses(c, kept) | {t.subject for t in asserted(onto, None, rdfs("subClassOf"), c)}
-             for c in classes}
+    below = {c: onto.reasoning.subclasses(c, kept) | told_subclasses(onto, c) for c in classes}
     return [c for c in classes if not any(d in below[c] and c not in below[d] for d in classes if d != c)]
 
 
